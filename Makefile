@@ -1,0 +1,37 @@
+# cablestudy: two commands on a fresh machine, `make study` and `make test`.
+PYTHON ?= python3
+VENV := .venv
+BIN := $(VENV)/bin
+STAMP := $(VENV)/.installed
+CONFIG ?= configs/catenary-in-air.yaml
+OUT ?= results
+
+.PHONY: install study test figures bench lint clean
+
+install: $(STAMP)
+
+# Redone only when pyproject.toml changes.
+$(STAMP): pyproject.toml
+	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --upgrade pip
+	$(BIN)/python -m pip install --quiet -e '.[dev]'
+	touch $(STAMP)
+
+study: install
+	$(BIN)/cablestudy run $(CONFIG) --out $(OUT)
+
+test: install
+	$(BIN)/python -m pytest -q tests
+
+figures: install
+	$(BIN)/cablestudy figures --results $(OUT) --out $(OUT)/figures
+
+bench: install
+	$(BIN)/cablestudy bench --out $(OUT)/bench
+
+lint: install
+	$(BIN)/ruff check cablestudy tests benchmarks
+	$(BIN)/ruff format --check cablestudy tests benchmarks
+
+clean:
+	rm -rf $(VENV) .pytest_cache build *.egg-info
