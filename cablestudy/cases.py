@@ -1,0 +1,336 @@
+"""Sweep expansion: a study file becomes a list of cases, each a frozen object with its
+coordinates and a content hash of everything that affects its result.
+
+Sweep syntax (under ``sweep:``), each key a dotted path into the study file (list items
+by index, e.g. ``line.segments.0.length``)::
+
+    path: [v0, v1, ...]                        # explicit values
+    path: {start: a, stop: b, num: n}          # n values, both ends included
+    path: {start: a, stop: b, step: d}         # a, a + d, ... up to b (included)
+    path: {values: [...], name: dim}           # any of the above with an explicit name
+    zip:                                       # keys that vary together along one dim
+      - {name: dim, path1: [...], path2: [...]}
+
+Each axis is a dataset dimension named after the last part of its path (an explicit
+``name`` where two would clash); the cases are the cartesian product of the axes.
+"""
+
+from __future__ import annotations
+
+import copy
+import hashlib
+import itertools
+import json
+import math
+import re
+import typing
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from . import __version__
+from .config.loader import (
+    Loc,
+    StudyError,
+    StudySource,
+    _models_at,
+    _unwrap,
+    dotted,
+    validate_data,
+)
+from .config.study import Study
+
+#: dimension names used by output variables; a sweep axis may not take them
+RESERVED_DIMS = frozenset({"s", "component", "mode", "time", "complex", "point", "harmonic"})
+_DIM = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+MAX_CASES = 1_000_000
+
+
+@dataclass(frozen=True)
+class SweepAxis:
+    """One dataset dimension: its name, length, and the values each path takes on it."""
+
+    name: str
+    paths: tuple[str, ...]
+    values: tuple[tuple[Any, ...], ...]  # per path, the values along the axis
+    units: str = ""
+    long_name: str = ""
+
+    @property
+    def size(self) -> int:
+        return len(self.values[0])
+
+    def coordinate(self) -> np.ndarray:
+        """Coordinate values: the (single, scalar) path's values, else 0..n-1."""
+        if len(self.paths) == 1 and all(_is_scalar(v) for v in self.values[0]):
+            return np.asarray(self.values[0])
+        return np.arange(self.size)
+
+
+@dataclass(frozen=True)
+class Case:
+    """One case: index along each axis, coordinates, the resolved study, and hashes."""
+
+    index: tuple[int, ...]
+    coords: dict[str, Any] = field(hash=False)
+    study: Study = field(hash=False)
+    hash: str = ""
+    static_hash: str = ""
+
+
+def _is_scalar(v: Any) -> bool:
+    return isinstance(v, int | float | str | bool) and not (isinstance(v, float) and math.isnan(v))
+
+
+def _field_info(path: tuple[str, ...]) -> tuple[str, str]:
+    """(units, long_name) of a study field from its description "... [unit]"."""
+    parts = [p for p in path if not p.isdigit()]
+    if not parts:
+        return "", ".".join(path)
+    models = _models_at(tuple(parts[:-1]))
+    for m in models:
+        info = m.model_fields.get(parts[-1])
+        if info is not None and info.description:
+            desc = info.description
+            match = re.search(r"\[([^\]]*)\]", desc)
+            units = match.group(1) if match else ""
+            units = "1" if units == "-" else units
+            long_name = re.sub(r"\s*\[[^\]]*\]", "", desc).split(";")[0].strip()
+            return units, long_name
+    return "", ".".join(path)
+
+
+def _axis_values(spec: Any, where: str, line: int | None) -> tuple[list[Any], str | None]:
+    """Values of one sweep axis and its explicit name, or a StudyError message."""
+    at = f"{line if line is not None else '?'}: {where}"
+    name = None
+    if isinstance(spec, dict):
+        spec = dict(spec)
+        name = spec.pop("name", None)
+        if name is not None and not isinstance(name, str):
+            raise ValueError(f"{at}.name: must be a string, got {name!r}")
+        keys = set(spec)
+        if keys == {"values"}:
+            spec = spec["values"]
+        elif keys == {"start", "stop", "num"} or keys == {"start", "stop", "step"}:
+            for k in keys:
+                v = spec[k]
+                if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
+                    raise ValueError(f"{at}.{k}: must be a finite number, got {v!r}")
+            start, stop = float(spec["start"]), float(spec["stop"])
+            if "num" in keys:
+                num = spec["num"]
+                if not isinstance(num, int) or isinstance(num, bool) or num < 1:
+                    raise ValueError(f"{at}.num: must be a whole number >= 1, got {num!r}")
+                return list(np.linspace(start, stop, num)), name
+            step = float(spec["step"])
+            if step == 0.0 or (stop - start) * step < 0.0:
+                raise ValueError(
+                    f"{at}.step: {step!r} does not lead from start {start!r} to stop {stop!r}; "
+                    "allowed: a nonzero step with the sign of stop - start"
+                )
+            n = math.floor((stop - start) / step * (1.0 + 1e-12) + 1e-9) + 1
+            if n > MAX_CASES:
+                raise ValueError(f"{at}: {n} values is more than {MAX_CASES} allowed")
+            return [start + i * step for i in range(n)], name
+        else:
+            raise ValueError(
+                f"{at}: a sweep axis is a list of values, {{start, stop, num}}, "
+                f"{{start, stop, step}} or {{values}}, each with an optional name; "
+                f"got keys {sorted(keys)}"
+            )
+    if not isinstance(spec, list):
+        raise ValueError(f"{at}: must be a list of values or a range mapping, got {spec!r}")
+    if len(spec) == 0:
+        raise ValueError(f"{at}: an empty sweep axis gives no cases; list at least one value")
+    return list(spec), name
+
+
+def _default_dim(path: tuple[str, ...]) -> str:
+    last = path[-1]
+    if last.isdigit():
+        named = [p for p in path if not p.isdigit()]
+        return f"{named[-1]}_{last}" if named else f"index_{last}"
+    return last
+
+
+def parse_sweep(src: StudySource) -> list[SweepAxis]:
+    """The sweep axes of a study source, in file order. Raises :class:`StudyError`."""
+    raw = src.data.get("sweep") or {}
+    if not isinstance(raw, dict):
+        raise StudyError([f"{src.line_of(('sweep',))}: sweep: must be a mapping of "
+                          f"dotted paths to values, got {raw!r}"], src.source)
+    problems: list[str] = []
+    axes: list[SweepAxis] = []
+
+    def add(name: str, paths: list[str], values: list[list[Any]], loc: Loc) -> None:
+        line = src.line_of(loc)
+        if not _DIM.match(name) or name in RESERVED_DIMS:
+            problems.append(
+                f"{line}: {dotted(loc)}: dimension name {name!r} is not allowed (must be an "
+                f"identifier and not one of {sorted(RESERVED_DIMS)}); give the axis a 'name'"
+            )
+            return
+        clash = [a for a in axes if a.name == name]
+        if clash:
+            problems.append(
+                f"{line}: {dotted(loc)}: dimension {name!r} is already used by "
+                f"{clash[0].paths[0]!r}; give one of them an explicit name "
+                f"({{values: [...], name: ...}})"
+            )
+            return
+        units, long_name = _field_info(tuple(paths[0].split(".")))
+        if len(paths) > 1:
+            long_name = "zipped: " + ", ".join(paths)
+            units = ""
+        axes.append(SweepAxis(name, tuple(paths), tuple(tuple(v) for v in values),
+                              units, long_name))
+
+    for key, spec in raw.items():
+        loc: Loc = ("sweep", str(key))
+        if key == "zip":
+            groups = spec if isinstance(spec, list) else None
+            if not groups:
+                problems.append(f"{src.line_of(loc)}: sweep.zip: must be a non-empty list of "
+                                "groups {name: dim, path: [values], ...}")
+                continue
+            for gi, group in enumerate(groups):
+                gloc: Loc = (*loc, gi)
+                line = src.line_of(gloc)
+                if not isinstance(group, dict) or not isinstance(group.get("name"), str):
+                    problems.append(f"{line}: sweep.zip.{gi}: each group needs a 'name' "
+                                    "(the dimension) and two or more paths with value lists")
+                    continue
+                paths = [k for k in group if k != "name"]
+                vals = []
+                try:
+                    for p in paths:
+                        v, _ = _axis_values(group[p], f"sweep.zip.{gi}.{p}",
+                                            src.line_of((*gloc, p)))
+                        vals.append(v)
+                except ValueError as exc:
+                    problems.append(str(exc))
+                    continue
+                if not paths:
+                    problems.append(f"{line}: sweep.zip.{gi}: a group needs at least one path")
+                    continue
+                sizes = {len(v) for v in vals}
+                if len(sizes) != 1:
+                    problems.append(
+                        f"{line}: sweep.zip.{gi}: zipped paths must have equal lengths, got "
+                        + ", ".join(f"{p}: {len(v)}" for p, v in zip(paths, vals, strict=True))
+                    )
+                    continue
+                add(group["name"], paths, vals, gloc)
+            continue
+        try:
+            values, name = _axis_values(spec, f"sweep.{key}", src.line_of(loc))
+        except ValueError as exc:
+            problems.append(str(exc))
+            continue
+        add(name or _default_dim(tuple(str(key).split("."))), [str(key)], [values], loc)
+    if problems:
+        raise StudyError(problems, src.source)
+    total = math.prod(a.size for a in axes) if axes else 1
+    if total > MAX_CASES:
+        raise StudyError([f"{src.line_of(('sweep',))}: sweep: {total} cases is more than the "
+                          f"{MAX_CASES} allowed"], src.source)
+    return axes
+
+
+def _set_path(data: dict[str, Any], path: str, value: Any) -> None:
+    """Set ``value`` at dotted ``path`` in ``data``, creating mappings the study model
+    allows; raise KeyError with a reason when the path cannot exist."""
+    parts = path.split(".")
+    node: Any = data
+    done: list[str] = []
+    for i, part in enumerate(parts):
+        last = i == len(parts) - 1
+        if isinstance(node, list):
+            if not part.isdigit() or int(part) >= len(node):
+                raise KeyError(
+                    f"{'.'.join(done) or '<top>'} is a list of {len(node)} items; "
+                    f"{part!r} is not an index into it (allowed 0..{len(node) - 1})"
+                )
+            if last:
+                node[int(part)] = value
+            else:
+                node = node[int(part)]
+        elif isinstance(node, dict):
+            if last:
+                node[part] = value
+            else:
+                if part not in node or node[part] is None:
+                    models = _models_at(tuple(done))
+                    info = next((m.model_fields[part] for m in models if part in m.model_fields),
+                                None)
+                    if info is None:
+                        allowed = sorted({f for m in models for f in m.model_fields})
+                        raise KeyError(f"{'.'.join(done + [part])} does not exist; allowed keys "
+                                       f"under {'.'.join(done) or '<top>'}: {', '.join(allowed)}")
+                    kinds = _unwrap(info.annotation)
+                    origin = typing.get_origin(info.annotation)
+                    if not kinds or origin is list:
+                        raise KeyError(f"{'.'.join(done + [part])} is not in the study file, so "
+                                       f"{path} cannot be swept; write it out first")
+                    node[part] = {}
+                node = node[part]
+        else:
+            raise KeyError(f"{'.'.join(done) or '<top>'} is a value, not a mapping or a list; "
+                           f"{path} does not exist")
+        done.append(part)
+
+
+def _hash(payload: Any) -> str:
+    text = json.dumps(payload, sort_keys=True, separators=(",", ":"), default=str)
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def case_hashes(study: Study) -> tuple[str, str]:
+    """(case hash, static hash): content hashes of everything that affects the case's
+    result, and of what affects its static solution only."""
+    body = study.model_dump(mode="json", exclude={"name", "description", "sweep"})
+    static_body = {k: v for k, v in body.items() if k != "analysis"}
+    static_body["static"] = body["analysis"]["static"]
+    return _hash([__version__, body]), _hash([__version__, static_body])
+
+
+def expand_cases(src: StudySource) -> tuple[list[SweepAxis], list[Case]]:
+    """Validate the study and every case of its sweep (all before any work starts)."""
+    base = validate_data(src.data, src)
+    axes = parse_sweep(src)
+    if not axes:
+        h, sh = case_hashes(base)
+        return axes, [Case((), {}, base, h, sh)]
+    problems: list[str] = []
+    cases: list[Case] = []
+    template = {k: v for k, v in src.data.items() if k != "sweep"}
+    for index in itertools.product(*(range(a.size) for a in axes)):
+        data = copy.deepcopy(template)
+        coords: dict[str, Any] = {}
+        bad = False
+        for axis, i in zip(axes, index, strict=True):
+            coords[axis.name] = axis.coordinate()[i]
+            for path, values in zip(axis.paths, axis.values, strict=True):
+                try:
+                    _set_path(data, path, copy.deepcopy(values[i]))
+                except KeyError as exc:
+                    line = src.line_of(("sweep", path)) or src.line_of(("sweep",))
+                    msg = f"{line}: sweep.{path}: {exc.args[0]}"
+                    if msg not in problems:
+                        problems.append(msg)
+                    bad = True
+        if bad:
+            continue
+        try:
+            study = validate_data(data, src, note=f" [in sweep case {dict(coords)}]")
+        except StudyError as exc:
+            problems.extend(p for p in exc.problems if p not in problems)
+            if len(problems) > 20:
+                break
+            continue
+        h, sh = case_hashes(study)
+        cases.append(Case(tuple(index), coords, study, h, sh))
+    if problems:
+        raise StudyError(problems, src.source)
+    return axes, cases

@@ -1,0 +1,127 @@
+"""Command line: ``cablestudy run | validate | schema | figures | bench``."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from .config.loader import StudyError
+
+
+def _load(path: str):  # noqa: ANN202
+    from .analyses import check_supported
+    from .cases import expand_cases
+    from .config.loader import read_study_source
+
+    src = read_study_source(path)
+    axes, cases = expand_cases(src)
+    check_supported(cases, src)
+    return src, axes, cases
+
+
+def cmd_validate(args: argparse.Namespace) -> int:
+    src, axes, cases = _load(args.config)
+    dims = ", ".join(f"{a.name}={a.size}" for a in axes) or "no sweep"
+    print(f"{args.config}: valid study {src.data['name']!r}: {len(cases)} cases ({dims})")
+    return 0
+
+
+def cmd_run(args: argparse.Namespace) -> int:
+    from .runner import PROCESSES, SYNCHRONOUS, THREADS, run_study
+
+    src, axes, cases = _load(args.config)
+    scheduler = args.scheduler or (SYNCHRONOUS if len(cases) <= 8 else PROCESSES)
+    if scheduler not in (SYNCHRONOUS, THREADS, PROCESSES) and "://" not in scheduler:
+        raise SystemExit(
+            f"--scheduler {scheduler!r}: allowed are {SYNCHRONOUS}, {THREADS}, {PROCESSES} "
+            "or the address of a dask.distributed scheduler (tcp://host:port)"
+        )
+    settings = {c.study.analysis.static.method for c in cases}
+    summary = run_study(
+        src, axes, cases, args.out, scheduler=scheduler, workers=args.workers,
+        use_cache=not args.no_cache, progress=args.progress,
+        solver_settings={"static_methods": sorted(settings),
+                         "analysis": src.data.get("analysis", {})},
+    )
+    print(summary.report())
+    return 0
+
+
+def cmd_schema(args: argparse.Namespace) -> int:
+    from .config import Study
+
+    print(json.dumps(Study.model_json_schema(), indent=2))
+    return 0
+
+
+def cmd_figures(args: argparse.Namespace) -> int:
+    from .figures import build_all
+
+    written = build_all(Path(args.results), Path(args.out), configs=Path(args.configs),
+                        run_missing=not args.no_run)
+    for path in written:
+        print(path)
+    return 0
+
+
+def cmd_bench(args: argparse.Namespace) -> int:
+    from .bench import run_benchmarks
+
+    print(run_benchmarks(Path(args.out), quick=args.quick))
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="cablestudy", description=__doc__)
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    p = sub.add_parser("run", help="run a study file and write <out>/<name>.nc")
+    p.add_argument("config")
+    p.add_argument("--out", default="results", help="output folder (default: results)")
+    p.add_argument("--workers", type=int, default=None, help="worker processes (default: cores)")
+    p.add_argument("--scheduler", default=None,
+                   help="synchronous | threads | processes | tcp://host:port of a running "
+                        "dask.distributed scheduler (default: synchronous for <= 8 cases, "
+                        "else processes)")
+    p.add_argument("--no-cache", action="store_true", help="recompute every case")
+    p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
+                   help="progress bar (default: on a terminal)")
+    p.set_defaults(func=cmd_run)
+
+    p = sub.add_parser("validate", help="check a study file without running it")
+    p.add_argument("config")
+    p.set_defaults(func=cmd_validate)
+
+    p = sub.add_parser("schema", help="print the JSON Schema of study files")
+    p.set_defaults(func=cmd_schema)
+
+    p = sub.add_parser("figures", help="build the paper figures from results datasets")
+    p.add_argument("--results", default="results")
+    p.add_argument("--out", default="results/figures")
+    p.add_argument("--configs", default="configs")
+    p.add_argument("--no-run", action="store_true", help="do not run missing studies")
+    p.set_defaults(func=cmd_figures)
+
+    p = sub.add_parser("bench", help="run time against error benchmarks")
+    p.add_argument("--out", default="results/bench")
+    p.add_argument("--quick", action="store_true")
+    p.set_defaults(func=cmd_bench)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    if args.workers is not None and args.workers < 1 if hasattr(args, "workers") else False:
+        print(f"--workers {args.workers}: must be at least 1", file=sys.stderr)
+        return 2
+    try:
+        return args.func(args)
+    except StudyError as exc:
+        print(f"invalid study:\n{exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,39 @@
+"""End conditions. Forces are on the line; see DESIGN.md for output conventions."""
+
+from __future__ import annotations
+
+from typing import Annotated, Literal
+
+from pydantic import Field
+
+from .base import Finite, StrictModel, Vec2, Vec3
+
+
+class FixedEnd(StrictModel):
+    """End held at a known position."""
+
+    kind: Literal["fixed"]
+    position: Vec3 = Field(description="position [m], z up, surface at 0")
+
+
+class ForceEnd(StrictModel):
+    """Towing: a known force applied to the line at this end."""
+
+    kind: Literal["force"]
+    force: Vec3 = Field(description="force applied to the line at this end [N]")
+
+
+class MooringEnd(StrictModel):
+    """Mooring: a known horizontal force on the line at this end, and its height."""
+
+    kind: Literal["mooring"]
+    force: Vec2 = Field(description="horizontal force applied to the line [N]")
+    z: Finite = Field(description="height of this end [m]")
+
+
+End = Annotated[FixedEnd | ForceEnd | MooringEnd, Field(discriminator="kind")]
+
+
+class Ends(StrictModel):
+    a: End
+    b: End

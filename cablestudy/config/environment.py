@@ -1,0 +1,70 @@
+"""Environment of a study: fluid, gravity, water depth, seabed and current profile."""
+
+from __future__ import annotations
+
+from typing import Literal
+
+from pydantic import Field, field_validator
+
+from .base import Finite, NonNegative, Positive, StrictModel
+
+#: Densities of the named fluids [kg/m^3].
+FLUID_DENSITY = {"air": 1.225, "water": 1025.0, "vacuum": 0.0}
+
+
+class CustomFluid(StrictModel):
+    """A fluid given by its density (0 for vacuum)."""
+
+    density: NonNegative = Field(description="fluid density [kg/m^3]; 0 for vacuum")
+
+
+class Seabed(StrictModel):
+    """Seabed plane through (0, 0, -depth), rising at ``slope_deg`` towards
+    ``slope_heading_deg`` (measured from +x towards +y)."""
+
+    slope_deg: Finite = Field(0.0, ge=-60.0, le=60.0, description="seabed slope [deg]")
+    slope_heading_deg: Finite = Field(0.0, description="direction of rising seabed [deg]")
+    friction: NonNegative = Field(0.0, description="Coulomb friction coefficient [-]")
+
+
+class CurrentPoint(StrictModel):
+    """One point of a piecewise-linear current profile."""
+
+    z: Finite = Field(description="height of this point [m], z up, surface at 0")
+    speed: NonNegative = Field(description="current speed [m/s]")
+    heading_deg: Finite = Field(0.0, description="direction the current flows to [deg from +x]")
+
+
+class Environment(StrictModel):
+    """Fluid, gravity, depth, seabed, and current (piecewise linear in z)."""
+
+    fluid: Literal["air", "water", "vacuum"] | CustomFluid = "water"
+    gravity: Positive = 9.80665
+    depth: Positive | None = Field(None, description="water depth [m]; omit for no seabed")
+    seabed: Seabed = Seabed()
+    current: list[CurrentPoint] | None = Field(
+        None, description="current profile, piecewise linear in z, constant beyond the ends"
+    )
+
+    @field_validator("current")
+    @classmethod
+    def _distinct_heights(cls, value: list[CurrentPoint] | None) -> list[CurrentPoint] | None:
+        if value is None:
+            return value
+        if len(value) == 0:
+            raise ValueError("must list at least one point {z, speed, heading_deg}, or be omitted")
+        heights = [p.z for p in value]
+        if len(set(heights)) != len(heights):
+            raise ValueError(f"current points must have distinct z, got z = {heights}")
+        return value
+
+    @property
+    def density(self) -> float:
+        """Fluid density [kg/m^3]."""
+        if isinstance(self.fluid, CustomFluid):
+            return self.fluid.density
+        return FLUID_DENSITY[self.fluid]
+
+    @property
+    def has_current(self) -> bool:
+        return bool(self.current) and any(p.speed > 0.0 for p in self.current or [])

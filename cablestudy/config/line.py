@@ -1,0 +1,72 @@
+"""Line make-up: segments from end A to end B, and attachments."""
+
+from __future__ import annotations
+
+import math
+
+from pydantic import Field, model_validator
+
+from .base import Finite, NonNegative, Positive, StrictModel, Vec3
+
+
+class Segment(StrictModel):
+    """A uniform length of line. Give ``mass_per_length`` [kg/m] or
+    ``weight_in_fluid`` [N/m] (or both: the weight then overrides mass minus
+    buoyancy in statics, and the mass is used for inertia)."""
+
+    length: Positive = Field(description="unstretched length [m]")
+    diameter: Positive = Field(description="hydrodynamic (and buoyancy) diameter [m]")
+    mass_per_length: NonNegative | None = Field(None, description="mass per length [kg/m]")
+    weight_in_fluid: Finite | None = Field(None, description="submerged weight per length [N/m]")
+    axial_stiffness: Positive = Field(description="EA [N]")
+    drag_normal: NonNegative = Field(1.2, description="normal drag coefficient [-]")
+    drag_tangential: NonNegative = Field(0.01, description="tangential drag coefficient [-]")
+    added_mass_normal: NonNegative = Field(1.0, description="normal added-mass coefficient [-]")
+    added_mass_tangential: NonNegative = Field(0.0, description="tangential added-mass coeff [-]")
+    bending_stiffness: NonNegative = Field(0.0, description="EI [N m^2]")
+    damping_ratio: NonNegative = Field(
+        0.0, le=1.0, description="axial structural damping, fraction of critical [-]"
+    )
+
+    @model_validator(mode="after")
+    def _mass_or_weight(self) -> Segment:
+        if self.mass_per_length is None and self.weight_in_fluid is None:
+            raise ValueError(
+                "give mass_per_length [kg/m] or weight_in_fluid [N/m] (neither was given)"
+            )
+        return self
+
+    @property
+    def area(self) -> float:
+        """Displaced cross-section area pi d^2 / 4 [m^2]."""
+        return math.pi * self.diameter**2 / 4.0
+
+
+class Attachment(StrictModel):
+    """A point load, clump weight or buoy at unstretched arc length ``s`` from A."""
+
+    s: NonNegative = Field(description="position along the line from end A [m]")
+    force: Vec3 = Field([0.0, 0.0, 0.0], description="constant applied force [N]")
+    mass: NonNegative = Field(0.0, description="lumped mass [kg] (weight and inertia)")
+    volume: NonNegative = Field(0.0, description="displaced volume [m^3] (buoyancy)")
+    name: str | None = None
+
+
+class Line(StrictModel):
+    segments: list[Segment] = Field(min_length=1, max_length=100)
+    attachments: list[Attachment] = []
+
+    @property
+    def length(self) -> float:
+        return float(sum(seg.length for seg in self.segments))
+
+    @model_validator(mode="after")
+    def _attachments_inside(self) -> Line:
+        total = self.length
+        for i, att in enumerate(self.attachments):
+            if att.s > total:
+                raise ValueError(
+                    f"attachments.{i}.s = {att.s} lies beyond the end of the line; "
+                    f"allowed 0 <= s <= {total} (total unstretched length)"
+                )
+        return self

@@ -1,0 +1,65 @@
+"""Paper figures: one builder per figure, reading results datasets.
+
+:data:`FIGURES` maps a figure name to (the study names it reads, builder). ``build_all``
+runs any missing study from ``configs/`` (unless told not to) and writes PNGs.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+
+import xarray as xr
+
+Builder = Callable[[dict[str, xr.Dataset], Path], Path]
+
+#: figure name -> (study names read, builder writing the PNG and returning its path)
+FIGURES: dict[str, tuple[tuple[str, ...], Builder]] = {}
+
+
+def register(name: str, studies: tuple[str, ...]) -> Callable[[Builder], Builder]:
+    def deco(fn: Builder) -> Builder:
+        FIGURES[name] = (studies, fn)
+        return fn
+
+    return deco
+
+
+def _ensure_study(name: str, results: Path, configs: Path, run_missing: bool) -> Path:
+    path = results / f"{name}.nc"
+    if path.exists() or not run_missing:
+        return path
+    from ..analyses import check_supported
+    from ..cases import expand_cases
+    from ..config.loader import read_study_source
+    from ..runner import run_study
+
+    candidates = [p for p in sorted(configs.glob("*.yaml")) if p.stem == name]
+    if not candidates:
+        raise FileNotFoundError(f"no results/{name}.nc and no configs/{name}.yaml to run")
+    src = read_study_source(candidates[0])
+    axes, cases = expand_cases(src)
+    check_supported(cases, src)
+    run_study(src, axes, cases, results, scheduler="synchronous" if len(cases) <= 8 else "processes")
+    return path
+
+
+def build_all(results: Path, out: Path, *, configs: Path = Path("configs"),
+              run_missing: bool = True, only: list[str] | None = None) -> list[Path]:
+    """Build every registered figure (or those in ``only``); returns the PNG paths."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from . import statics_figures  # noqa: F401  (registers builders)
+
+    out.mkdir(parents=True, exist_ok=True)
+    written = []
+    for name, (studies, builder) in sorted(FIGURES.items()):
+        if only is not None and name not in only:
+            continue
+        datasets = {}
+        for study in studies:
+            path = _ensure_study(study, results, configs, run_missing)
+            datasets[study] = xr.load_dataset(path)
+        written.append(builder(datasets, out))
+    return written

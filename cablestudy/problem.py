@@ -1,0 +1,89 @@
+"""Conversion of a validated :class:`~cablestudy.config.Study` into the plain inputs of
+the physics solvers (frozen dataclasses of arrays, SI units)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .config import FixedEnd, ForceEnd, MooringEnd, Study
+from .config.ends import End
+from .statics import EndCondition, LineModel, Medium, StaticProblem
+
+
+def line_model(study: Study) -> LineModel:
+    """Segments and attachments as arrays. Weight in the fluid is taken as given, or
+    as (mass - density * area) * gravity; mass, where not given, as
+    weight / gravity + density * area."""
+    env = study.environment
+    rho, g = env.density, env.gravity
+    segs = study.line.segments
+    area = np.array([s.area for s in segs])
+    mass = np.array(
+        [s.mass_per_length if s.mass_per_length is not None
+         else s.weight_in_fluid / g + rho * a  # type: ignore[operator]
+         for s, a in zip(segs, area, strict=True)]
+    )
+    weight = np.array(
+        [s.weight_in_fluid if s.weight_in_fluid is not None else (m - rho * a) * g
+         for s, m, a in zip(segs, mass, area, strict=True)]
+    )
+    atts = study.line.attachments
+
+    def col(name: str) -> np.ndarray:
+        return np.array([getattr(s, name) for s in segs], dtype=float)
+
+    att_force = np.array(
+        [np.asarray(a.force, dtype=float) + np.array([0.0, 0.0, -(a.mass - rho * a.volume) * g])
+         for a in atts]
+    ).reshape(len(atts), 3)
+    return LineModel(
+        length=col("length"), weight=weight, mass=mass, axial_stiffness=col("axial_stiffness"),
+        diameter=col("diameter"), drag_normal=col("drag_normal"),
+        drag_tangential=col("drag_tangential"), added_mass_normal=col("added_mass_normal"),
+        added_mass_tangential=col("added_mass_tangential"),
+        bending_stiffness=col("bending_stiffness"), damping_ratio=col("damping_ratio"),
+        attachment_s=np.array([a.s for a in atts], dtype=float),
+        attachment_force=att_force,
+        attachment_mass=np.array([a.mass for a in atts], dtype=float),
+        attachment_volume=np.array([a.volume for a in atts], dtype=float),
+    )
+
+
+def medium(study: Study) -> Medium:
+    env = study.environment
+    if env.current:
+        pts = sorted(env.current, key=lambda p: p.z)
+        z = np.array([p.z for p in pts])
+        heading = np.radians([p.heading_deg for p in pts])
+        speed = np.array([p.speed for p in pts])
+        vel = np.stack([speed * np.cos(heading), speed * np.sin(heading), np.zeros_like(speed)], 1)
+    else:
+        z, vel = np.zeros(0), np.zeros((0, 3))
+    return Medium(
+        density=env.density, gravity=env.gravity, depth=env.depth,
+        seabed_slope=math.radians(env.seabed.slope_deg),
+        seabed_heading=math.radians(env.seabed.slope_heading_deg),
+        friction=env.seabed.friction, current_z=z, current_velocity=vel,
+    )
+
+
+def end_condition(end: End) -> EndCondition:
+    if isinstance(end, FixedEnd):
+        return EndCondition(kind="fixed", position=np.asarray(end.position, dtype=float))
+    if isinstance(end, ForceEnd):
+        return EndCondition(kind="force", force=np.asarray(end.force, dtype=float))
+    if isinstance(end, MooringEnd):
+        return EndCondition(kind="mooring", force=np.array([*end.force, 0.0]), z=end.z)
+    raise TypeError(f"unknown end {end!r}")
+
+
+def static_problem(study: Study) -> StaticProblem:
+    settings = study.analysis.static
+    return StaticProblem(
+        line=line_model(study), medium=medium(study),
+        end_a=end_condition(study.ends.a), end_b=end_condition(study.ends.b),
+        n_nodes=settings.nodes, tolerance=settings.tolerance,
+        max_iterations=settings.max_iterations,
+    )

@@ -1,0 +1,28 @@
+"""Static solvers, found by name through :data:`STATIC_SOLVERS` (see :mod:`.base`)."""
+
+from .base import (
+    STATUS_NO_SOLUTION,
+    STATUS_NOT_CONVERGED,
+    STATUS_NUMERICAL,
+    STATUS_OK,
+    STATUS_TIME_LIMIT,
+    EndCondition,
+    LineModel,
+    Medium,
+    StaticProblem,
+    StaticResult,
+    StaticSolver,
+)
+from .elastic_catenary import ElasticCatenarySolver
+
+#: name -> solver; ``analysis.static.method`` picks one.
+STATIC_SOLVERS: dict[str, StaticSolver] = {
+    "analytic": ElasticCatenarySolver(),
+    "catenary": ElasticCatenarySolver(),
+}
+
+__all__ = [
+    "STATIC_SOLVERS", "STATUS_NO_SOLUTION", "STATUS_NOT_CONVERGED", "STATUS_NUMERICAL",
+    "STATUS_OK", "STATUS_TIME_LIMIT", "EndCondition", "LineModel", "Medium", "StaticProblem",
+    "StaticResult", "StaticSolver",
+]
