@@ -1,0 +1,1 @@
+"""Pure physics functions: arrays in, arrays out, SI units, no I/O."""
