@@ -1,34 +1,174 @@
-"""Benchmarks: run time against error (``make bench``). Timings are medians over
-repeats, taken in the same run as the comparison they enter."""
+"""Benchmarks: run time against error (``make bench``).
+
+Each ``benchmarks/wp_*.py`` module in the repository defines ``run(quick) ->
+WorkPrecision``: for every method and setting, a median wall time over repeats and an
+error against a reference computed in the same run. This module writes one netCDF
+dataset and one log-log work-precision plot per benchmark under the output folder, and
+a summary table (``summary.md``) with median time, error and the ratio to the peer at
+equal or better error.
+"""
 
 from __future__ import annotations
 
+import importlib.util
+import math
 import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+import xarray as xr
+
+REPO = Path(__file__).resolve().parents[1]
 
 
-def _median_time(fn, repeats: int = 7, inner: int = 20) -> float:  # noqa: ANN001
-    times = []
+def median_time(fn: Callable[[], object], *, repeats: int = 7, min_time: float = 0.05) -> float:
+    """Median over ``repeats`` of the mean wall time of ``fn`` [s]; each repeat runs
+    ``fn`` enough times to last ``min_time`` (calibrated on the first call)."""
+    t0 = time.perf_counter()
+    fn()
+    once = max(time.perf_counter() - t0, 1e-7)
+    inner = max(1, int(min_time / once))
+    samples = []
     for _ in range(repeats):
         t0 = time.perf_counter()
         for _ in range(inner):
             fn()
-        times.append((time.perf_counter() - t0) / inner)
-    return float(np.median(times))
+        samples.append((time.perf_counter() - t0) / inner)
+    return float(np.median(samples))
 
 
-def run_benchmarks(out: Path, *, quick: bool = False) -> str:
-    from .statics.elastic_catenary import solve_between
+@dataclass
+class Curve:
+    """One method's points: setting labels, median wall times [s], errors [-]."""
 
+    method: str
+    settings: list[str] = field(default_factory=list)
+    times: list[float] = field(default_factory=list)
+    errors: list[float] = field(default_factory=list)
+    peer: bool = False
+
+    def add(self, setting: str, seconds: float, error: float) -> None:
+        self.settings.append(setting)
+        self.times.append(seconds)
+        self.errors.append(error)
+
+
+@dataclass
+class WorkPrecision:
+    name: str
+    title: str
+    error_name: str
+    time_name: str = "median wall time per case [s]"
+    curves: list[Curve] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+
+    def curve(self, method: str, *, peer: bool = False) -> Curve:
+        c = Curve(method, peer=peer)
+        self.curves.append(c)
+        return c
+
+    def dataset(self) -> xr.Dataset:
+        n = max((len(c.times) for c in self.curves), default=0)
+        shape = (len(self.curves), n)
+        t = np.full(shape, np.nan)
+        e = np.full(shape, np.nan)
+        lab = np.full(shape, "", dtype=object)
+        for i, c in enumerate(self.curves):
+            t[i, : len(c.times)] = c.times
+            e[i, : len(c.errors)] = c.errors
+            lab[i, : len(c.settings)] = c.settings
+        return xr.Dataset(
+            {
+                "wall_time": (("method", "point"), t,
+                              {"units": "s", "long_name": self.time_name}),
+                "error": (("method", "point"), e, {"units": "1", "long_name": self.error_name}),
+                "setting": (("method", "point"), lab, {"long_name": "solver setting"}),
+            },
+            coords={"method": [c.method for c in self.curves], "point": np.arange(n)},
+            attrs={"title": self.title, "notes": "\n".join(self.notes)},
+        )
+
+    def summary_rows(self) -> list[str]:
+        """Per method: the most accurate point, and the time ratio to the peer at equal
+        or better error."""
+        rows = []
+        peers = [c for c in self.curves if c.peer]
+        for c in self.curves:
+            if not c.times:
+                continue
+            best = int(np.nanargmin(c.errors))
+            err, t = c.errors[best], c.times[best]
+            ratio = ""
+            if peers and not c.peer:
+                # cheapest point of ours whose error is at least as good as the peer's best
+                p = peers[0]
+                pbest = int(np.nanargmin(p.errors))
+                ok = [i for i, e in enumerate(c.errors) if e <= max(p.errors[pbest], 1e-15)]
+                if ok:
+                    mine = min(c.times[i] for i in ok)
+                    ratio = f"{p.times[pbest] / mine:.1f}x faster than {p.method}"
+                    ratio += f" (at error <= {p.errors[pbest]:.1e})"
+            rows.append(f"| {self.name} | {c.method} | {c.settings[best]} | {_fmt_time(t)} | "
+                        f"{err:.2e} | {ratio} |")
+        return rows
+
+
+def _fmt_time(t: float) -> str:
+    if not math.isfinite(t):
+        return "n/a"
+    if t < 1e-3:
+        return f"{t * 1e6:.1f} us"
+    if t < 1.0:
+        return f"{t * 1e3:.2f} ms"
+    return f"{t:.2f} s"
+
+
+def plot(wp: WorkPrecision, path: Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(6, 4.2))
+    for c in wp.curves:
+        t, e = np.asarray(c.times), np.maximum(np.asarray(c.errors), 1e-17)
+        ax.loglog(t, e, "s--" if c.peer else "o-", label=c.method)
+    ax.set_xlabel(wp.time_name)
+    ax.set_ylabel(wp.error_name)
+    ax.set_title(wp.title, fontsize=10)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def _modules(directory: Path) -> list[Path]:
+    return sorted(directory.glob("wp_*.py"))
+
+
+def run_benchmarks(out: Path, *, quick: bool = False, only: list[str] | None = None) -> str:
+    """Run every work-precision benchmark; write datasets, plots and summary.md."""
     out.mkdir(parents=True, exist_ok=True)
-    L, w, EA = 100.0, 2.466 * 9.80665, 6.283e7
-    s = np.linspace(0.0, L, 101)
-    t = _median_time(lambda: solve_between((0, 0, 0), (92.5, 0, -8.6), L, w, EA, s),
-                     repeats=3 if quick else 7)
-    lines = ["| benchmark | median time | error |", "|---|---|---|",
-             f"| exact catenary, 101 points | {t * 1e6:.0f} us | closure < 1e-15 |"]
-    text = "\n".join(lines) + "\n"
+    rows = ["| benchmark | method | setting | median time | error | ratio to peer |",
+            "|---|---|---|---|---|---|"]
+    notes = []
+    for path in _modules(REPO / "benchmarks"):
+        if only and path.stem not in only:
+            continue
+        spec = importlib.util.spec_from_file_location(path.stem, path)
+        assert spec is not None and spec.loader is not None
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        wp: WorkPrecision = module.run(quick=quick)
+        wp.dataset().to_netcdf(out / f"{wp.name}.nc")
+        plot(wp, out / f"{wp.name}.png")
+        rows.extend(wp.summary_rows())
+        notes.extend(f"- {wp.name}: {n}" for n in wp.notes)
+    text = "\n".join(rows) + "\n"
+    if notes:
+        text += "\n" + "\n".join(notes) + "\n"
     (out / "summary.md").write_text(text)
     return text

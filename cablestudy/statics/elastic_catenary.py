@@ -106,31 +106,56 @@ def profile(sol: CatenarySolution, s: np.ndarray) -> tuple[np.ndarray, np.ndarra
     return x, z, T
 
 
+_GL_XS = tuple(float(v) for v in _GL_X)
+_GL_WS = tuple(float(v) for v in _GL_W)
+
+
+def _reach_scalar(a: float, b: float, s: float) -> float:
+    """Scalar :func:`_inextensible_reach` (the Newton loop runs on Python floats: numpy's
+    per-call overhead on one-element arrays would dominate)."""
+    if a * b <= 0.0:
+        if b == a:
+            return s / math.sqrt(1.0 + a * a)
+        return s * (math.asinh(b) - math.asinh(a)) / (b - a)
+    aa, bb = abs(a), abs(b)
+    c = (bb + aa) / (bb * math.sqrt(1.0 + aa * aa) + aa * math.sqrt(1.0 + bb * bb))
+    x = (bb - aa) * c
+    ratio = 1.0 - x * x / 6.0 if abs(x) < 1e-4 else math.asinh(x) / x
+    return s * c * ratio
+
+
+def _end_point(H: float, VA: float, L: float, w: float, EA: float) -> tuple[float, float]:
+    """(x(L), z(L)) relative to A."""
+    VB = VA + w * L
+    TA, TB = math.hypot(H, VA), math.hypot(H, VB)
+    x = H * L / EA + (_reach_scalar(VA / H, VB / H, L) if H > 0.0 else 0.0)
+    z = (VA * L + 0.5 * w * L * L) / EA + (L * (VB + VA) / (TB + TA) if TA + TB > 0 else 0.0)
+    return x, z
+
+
 def _residual_and_jacobian(
-    H: float, VA: float, L: float, w: float, EA: float, want_jac: bool = True
-) -> tuple[np.ndarray, np.ndarray | None]:
-    """End position (x(L), z(L)) and its Jacobian with respect to (H, V_A)."""
-    sol = CatenarySolution(H, VA, np.array([1.0, 0.0]), L, w, EA, 0, 0.0)
-    x, z, _ = profile(sol, np.array([L]))
-    f = np.array([x[0], z[0]])
-    if not want_jac:
-        return f, None
+    H: float, VA: float, L: float, w: float, EA: float
+) -> tuple[tuple[float, float], tuple[float, float, float]]:
+    """End position (x(L), z(L)) and its symmetric Jacobian (dx/dH, dx/dV_A = dz/dH,
+    dz/dV_A) with respect to (H, V_A)."""
+    f = _end_point(H, VA, L, w, EA)
     VB = VA + w * L
     TA, TB = math.hypot(H, VA), math.hypot(H, VB)
     if abs(w) * L < 0.1 * min(TA, TB):
-        # nearly straight: integrate d/dH and d/dV_A of the integrands by Gauss-Legendre
-        s = L * _GL_X
-        V = VA + w * s
-        T3 = np.hypot(H, V) ** 3
-        dxdH = L / EA + L * np.sum(_GL_W * V * V / T3)
-        dxdV = -L * np.sum(_GL_W * H * V / T3)
-        dzdV = L / EA + L * np.sum(_GL_W * H * H / T3)
-    else:
-        dxdH = L / EA + (math.asinh(VB / H) - math.asinh(VA / H) - (VB / TB - VA / TA)) / w
-        dxdV = -H * L * (VA + VB) / (TA * TB * (TA + TB))
-        dzdV = L / EA + (VB / TB - VA / TA) / w
-    jac = np.array([[dxdH, dxdV], [dxdV, dzdV]])
-    return f, jac
+        # nearly straight: the closed form of dx/dH cancels; integrate the derivatives
+        # of the integrands, (V^2, -H V, H^2) / T^3, by 5-point Gauss-Legendre instead
+        sxx = sxv = svv = 0.0
+        for xi, wi in zip(_GL_XS, _GL_WS, strict=True):
+            V = VA + w * L * xi
+            T3 = (H * H + V * V) ** 1.5
+            sxx += wi * V * V / T3
+            sxv -= wi * H * V / T3
+            svv += wi * H * H / T3
+        return f, (L / EA + L * sxx, L * sxv, L / EA + L * svv)
+    dxdH = L / EA + (math.asinh(VB / H) - math.asinh(VA / H) - (VB / TB - VA / TA)) / w
+    dxdV = -H * L * (VA + VB) / (TA * TB * (TA + TB))
+    dzdV = L / EA + (VB / TB - VA / TA) / w
+    return f, (dxdH, dxdV, dzdV)
 
 
 def _initial_guess(l: float, h: float, L: float, w: float, EA: float) -> tuple[float, float]:
@@ -184,41 +209,39 @@ def solve_plane(
         return _solve_vertical(h, L, w, EA, tolerance, max_iterations)
 
     H, VA = _initial_guess(l, h, L, w, EA)
-    target = np.array([l, h])
-    f, jac = _residual_and_jacobian(H, VA, L, w, EA)
-    r = f - target
-    norm = float(np.max(np.abs(r)))
-    best = norm
+    (x, z), jac = _residual_and_jacobian(H, VA, L, w, EA)
+    rx, rz = x - l, z - h
+    norm = max(abs(rx), abs(rz))
     it = 0
     polish = 0
     for it in range(1, max_iterations + 1):
         if deadline is not None and time.monotonic() > deadline:
             return None, STATUS_TIME_LIMIT, f"time limit reached after {it} Newton iterations"
-        try:
-            step = np.linalg.solve(jac, -r)
-        except np.linalg.LinAlgError:
+        jxx, jxv, jvv = jac
+        det = jxx * jvv - jxv * jxv
+        if det == 0.0 or not math.isfinite(det):
             return None, STATUS_NOT_CONVERGED, "singular Jacobian in the catenary Newton iteration"
+        dH = (-rx * jvv + rz * jxv) / det
+        dV = (-rz * jxx + rx * jxv) / det
         # backtracking: keep H > 0 and reduce the residual
         lam = 1.0
         while True:
-            Hn = H + lam * step[0]
+            Hn = H + lam * dH
             if Hn <= 0.0:
-                Hn = H * 0.1 if lam < 1e-3 else None  # type: ignore[assignment]
-            if Hn is not None:
-                VAn = VA + lam * step[1]
-                fn, jn = _residual_and_jacobian(Hn, VAn, L, w, EA)
-                rn = fn - target
-                nn = float(np.max(np.abs(rn)))
-                if nn < norm or lam < 1e-6 or norm < 1e-14 * scale:
-                    break
+                Hn = 0.1 * H
+            VAn = VA + lam * dV
+            (xn, zn), jn = _residual_and_jacobian(Hn, VAn, L, w, EA)
+            rxn, rzn = xn - l, zn - h
+            nn = max(abs(rxn), abs(rzn))
+            if nn < norm or lam < 1e-6 or norm < 1e-14 * scale:
+                break
             lam *= 0.5
-        H, VA, r, jac, norm = Hn, VAn, rn, jn, nn
+        H, VA, rx, rz, jac, norm = Hn, VAn, rxn, rzn, jn, nn
         if norm <= max(tolerance, 1e-15) * scale:
             polish += 1
             # Newton converges quadratically: two more steps reach round-off
             if polish > 2 or norm <= 4e-16 * scale:
                 break
-        best = min(best, norm)
     converged = norm <= tolerance * scale
     sol = CatenarySolution(H, VA, e, L, w, EA, it, norm / scale)
     if not converged:
@@ -236,8 +259,7 @@ def _solve_vertical(h: float, L: float, w: float, EA: float, tolerance: float,
     e = np.array([1.0, 0.0])
 
     def z_end(VA: float) -> float:
-        sol = CatenarySolution(0.0, VA, e, L, w, EA, 0, 0.0)
-        return float(profile(sol, np.array([L]))[1][0]) - h
+        return _end_point(0.0, VA, L, w, EA)[1] - h
 
     lo, hi = -w * L - 1.0, 1.0
     while z_end(lo) > 0.0:
