@@ -27,7 +27,7 @@ figures: install
 	$(BIN)/cablestudy figures --results $(OUT) --out $(OUT)/figures
 
 bench: install
-	$(BIN)/cablestudy bench --out $(OUT)/bench
+	$(BIN)/cablestudy bench --out $(OUT)/bench --readme README.md --docs docs/bench
 
 lint: install
 	$(BIN)/ruff check cablestudy tests benchmarks

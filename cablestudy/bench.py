@@ -149,12 +149,34 @@ def _modules(directory: Path) -> list[Path]:
     return sorted(directory.glob("wp_*.py"))
 
 
-def run_benchmarks(out: Path, *, quick: bool = False, only: list[str] | None = None) -> str:
-    """Run every work-precision benchmark; write datasets, plots and summary.md."""
+README_START = "<!-- bench:start (written by make bench) -->"
+README_END = "<!-- bench:end -->"
+
+
+def update_readme(readme: Path, summary: str, plots: list[Path]) -> None:
+    """Replace the text between the bench markers of ``readme`` with the summary table
+    and links to the plots (paths relative to the README)."""
+    text = readme.read_text()
+    if README_START not in text or README_END not in text:
+        return
+    links = "\n".join(
+        f"![{p.stem}]({p.relative_to(readme.parent).as_posix()})" for p in plots
+    )
+    block = f"{README_START}\n{summary}\n{links}\n{README_END}"
+    head, rest = text.split(README_START, 1)
+    tail = rest.split(README_END, 1)[1]
+    readme.write_text(head + block + tail)
+
+
+def run_benchmarks(out: Path, *, quick: bool = False, only: list[str] | None = None,
+                   readme: Path | None = None, docs: Path | None = None) -> str:
+    """Run every work-precision benchmark; write datasets, plots and summary.md (and, if
+    asked, copy the plots to ``docs`` and put the table into ``readme``)."""
     out.mkdir(parents=True, exist_ok=True)
     rows = ["| benchmark | method | setting | median time | error | ratio to peer |",
             "|---|---|---|---|---|---|"]
     notes = []
+    plots: list[Path] = []
     for path in _modules(REPO / "benchmarks"):
         if only and path.stem not in only:
             continue
@@ -165,10 +187,20 @@ def run_benchmarks(out: Path, *, quick: bool = False, only: list[str] | None = N
         wp: WorkPrecision = module.run(quick=quick)
         wp.dataset().to_netcdf(out / f"{wp.name}.nc")
         plot(wp, out / f"{wp.name}.png")
+        plots.append(out / f"{wp.name}.png")
         rows.extend(wp.summary_rows())
         notes.extend(f"- {wp.name}: {n}" for n in wp.notes)
     text = "\n".join(rows) + "\n"
     if notes:
         text += "\n" + "\n".join(notes) + "\n"
     (out / "summary.md").write_text(text)
+    if readme is not None and docs is not None:
+        import shutil
+
+        docs.mkdir(parents=True, exist_ok=True)
+        copied = []
+        for p in plots:
+            shutil.copy(p, docs / p.name)
+            copied.append((docs / p.name).resolve())
+        update_readme(readme.resolve(), text, copied)
     return text

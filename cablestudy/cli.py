@@ -69,7 +69,10 @@ def cmd_figures(args: argparse.Namespace) -> int:
 def cmd_bench(args: argparse.Namespace) -> int:
     from .bench import run_benchmarks
 
-    print(run_benchmarks(Path(args.out), quick=args.quick))
+    only = args.only.split(",") if args.only else None
+    readme = Path(args.readme) if args.readme else None
+    docs = Path(args.docs) if args.docs else None
+    print(run_benchmarks(Path(args.out), quick=args.quick, only=only, readme=readme, docs=docs))
     return 0
 
 
@@ -106,7 +109,10 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("bench", help="run time against error benchmarks")
     p.add_argument("--out", default="results/bench")
-    p.add_argument("--quick", action="store_true")
+    p.add_argument("--quick", action="store_true", help="fewer repeats and settings")
+    p.add_argument("--only", default=None, help="comma-separated benchmark modules (wp_*)")
+    p.add_argument("--readme", default=None, help="README to update between bench markers")
+    p.add_argument("--docs", default=None, help="folder for the committed plots")
     p.set_defaults(func=cmd_bench)
     return parser
 
