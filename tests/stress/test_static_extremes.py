@@ -1,0 +1,89 @@
+"""Static solvers on extreme but valid inputs: every case converges, or fails with a
+nonzero status and a message; a converged case is finite and in equilibrium.
+
+Equilibrium check: in still fluid the supports carry the whole weight, so
+force_a + force_b = (0, 0, -w L) exactly; the solvers close the end position to
+their tolerance (1e-9 relative by default), and the forces follow from the same
+unknowns, so 1e-7 relative to the largest end force leaves two orders of margin for
+Newton's last step and round-off in the sums (derivation: the Jacobian maps a
+position residual r to a force error ~ r * stiffness; stiffness * 1e-9 L / T stays
+below 1e-7 for the strains here, which are at most 50 %).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from cablestudy.problem import static_problem
+from cablestudy.statics import STATIC_SOLVERS
+
+from .conftest import assert_honest, evaluate, study_dict
+
+G = 9.80665
+
+# (id, overrides) of extreme geometries and materials, all physically valid
+EXTREMES = [
+    ("near-taut", {"b": (99.99, 0.0, 0.0)}),
+    ("stretched-1e-3", {"b": (100.1, 0.0, 0.0)}),
+    ("stretched-soft-50pct", {"b": (150.0, 0.0, 0.0), "ea": 1e3}),
+    ("very-slack", {"b": (1.0, 0.0, 0.0)}),
+    ("vertical-folded", {"b": (0.0, 0.0, -50.0)}),
+    ("vertical-hanging-taut", {"b": (0.0, 0.0, -100.05)}),
+    ("near-vertical", {"b": (1e-4, 0.0, -99.0)}),
+    ("u-shape-level", {"b": (30.0, 0.0, 0.0)}),
+    ("buoyant", {"weight": -15.0, "mass": None}),
+    ("neutral-stretched", {"weight": 0.0, "mass": None, "b": (100.5, 0.0, 0.0)}),
+    ("ea-1e3", {"ea": 1e3}),
+    ("ea-1e12", {"ea": 1e12}),
+    ("ten-km", {"length": 10_000.0, "b": (9_000.0, 0.0, -2_000.0)}),
+    ("one-metre", {"length": 1.0, "b": (0.8, 0.0, -0.2)}),
+    ("3d-inclined", {"b": (40.0, -50.0, 30.0)}),
+]
+
+
+def _solvers_for(data: dict) -> list[str]:
+    import yaml
+
+    from cablestudy.cases import expand_cases
+    from cablestudy.config.loader import parse_study_text
+
+    _, cases = expand_cases(parse_study_text(yaml.safe_dump(data), "<x>"))
+    problem = static_problem(cases[0].study)
+    return [m for m, s in sorted(STATIC_SOLVERS.items()) if not s.unsupported(problem)]
+
+
+CASES = [
+    pytest.param(name, overrides, method, id=f"{name}-{method}")
+    for name, overrides in EXTREMES
+    for method in _solvers_for(study_dict(**overrides))
+]
+
+
+@pytest.mark.parametrize(("name", "overrides", "method"), CASES)
+def test_extreme_static_case(name: str, overrides: dict, method: str) -> None:
+    data = study_dict(method=method, **overrides)
+    rec = evaluate(data)
+    assert_honest(rec)
+    assert rec.status == 0, f"{name}/{method}: {rec.message}"
+    seg = data["line"]["segments"][0]
+    rho = 1025.0
+    area = np.pi * seg["diameter"] ** 2 / 4
+    w = seg.get("weight_in_fluid", (seg.get("mass_per_length", 0.0) - rho * area) * G)
+    total = rec.data["force_a"] + rec.data["force_b"]
+    scale = max(np.abs(rec.data["force_a"]).max(), np.abs(rec.data["force_b"]).max(), abs(w))
+    expected = np.array([0.0, 0.0, -w * seg["length"]])
+    np.testing.assert_allclose(total, expected, atol=1e-7 * scale)
+    end = np.array([rec.data["x"][-1], rec.data["y"][-1], rec.data["z"][-1]])
+    np.testing.assert_allclose(end, data["ends"]["b"]["position"],
+                               atol=1e-8 * max(seg["length"], 1.0))
+
+
+def test_weightless_slack_line_fails_with_a_reason() -> None:
+    """A weightless line whose chord is shorter than its length has no unique shape:
+    the honest answer is a failure that says so, not an arbitrary shape."""
+    for method in _solvers_for(study_dict(weight=0.0, mass=None, b=(50.0, 0.0, 0.0))):
+        rec = evaluate(study_dict(weight=0.0, mass=None, b=(50.0, 0.0, 0.0), method=method))
+        assert_honest(rec)
+        assert rec.status != 0
+        assert "unique" in rec.message or "shape" in rec.message
