@@ -108,11 +108,13 @@ def assemble(
             elif name in rec.data and rec.status == 0:
                 val = np.asarray(rec.data[name])
                 arr[idx + tuple(slice(0, n) for n in val.shape)] = val
-        data_vars[name] = (dims + spec.dims, arr, {"units": spec.units, "long_name": spec.long_name})
+        data_vars[name] = (dims + spec.dims, arr,
+                           {"units": spec.units, "long_name": spec.long_name})
 
     coords: dict[str, Any] = {}
     for a in axes:
-        attrs = {"units": a.units or "1", "long_name": a.long_name, "sweep_paths": ", ".join(a.paths)}
+        attrs = {"units": a.units or "1", "long_name": a.long_name,
+                 "sweep_paths": ", ".join(a.paths)}
         coords[a.name] = (a.name, a.coordinate(), attrs)
         if len(a.paths) > 1:
             for path, vals in zip(a.paths, a.values, strict=True):

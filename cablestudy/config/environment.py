@@ -6,7 +6,7 @@ from typing import Literal
 
 from pydantic import Field, field_validator
 
-from .base import Finite, NonNegative, Positive, StrictModel
+from .base import FieldError, Finite, NonNegative, Positive, StrictModel
 
 #: Densities of the named fluids [kg/m^3].
 FLUID_DENSITY = {"air": 1.225, "water": 1025.0, "vacuum": 0.0}
@@ -53,9 +53,12 @@ class Environment(StrictModel):
             return value
         if len(value) == 0:
             raise ValueError("must list at least one point {z, speed, heading_deg}, or be omitted")
-        heights = [p.z for p in value]
-        if len(set(heights)) != len(heights):
-            raise ValueError(f"current points must have distinct z, got z = {heights}")
+        seen: set[float] = set()
+        for i, point in enumerate(value):
+            if point.z in seen:
+                raise FieldError((i, "z"), "current points must have distinct heights z; "
+                                 f"z = {point.z:g} m is listed twice", point.z)
+            seen.add(point.z)
         return value
 
     @property

@@ -6,7 +6,7 @@ import math
 
 from pydantic import Field, model_validator
 
-from .base import Finite, NonNegative, Positive, StrictModel, Vec3
+from .base import FieldError, Finite, NonNegative, Positive, StrictModel, Vec3
 
 
 class Segment(StrictModel):
@@ -41,6 +41,27 @@ class Segment(StrictModel):
         """Displaced cross-section area pi d^2 / 4 [m^2]."""
         return math.pi * self.diameter**2 / 4.0
 
+    def mass_in(self, density: float, gravity: float) -> float:
+        """Structural mass per length [kg/m]: as given, or weight / g + density * area.
+
+        Parameters
+        ----------
+        density : float  [kg/m^3]
+            Fluid density.
+        gravity : float  [m/s^2]
+        """
+        if self.mass_per_length is not None:
+            return self.mass_per_length
+        assert self.weight_in_fluid is not None
+        return self.weight_in_fluid / gravity + density * self.area
+
+    def weight_in(self, density: float, gravity: float) -> float:
+        """Weight per length in the fluid [N/m] (positive down): as given, or
+        (mass - density * area) * g."""
+        if self.weight_in_fluid is not None:
+            return self.weight_in_fluid
+        return (self.mass_in(density, gravity) - density * self.area) * gravity
+
 
 class Attachment(StrictModel):
     """A point load, clump weight or buoy at unstretched arc length ``s`` from A."""
@@ -65,8 +86,10 @@ class Line(StrictModel):
         total = self.length
         for i, att in enumerate(self.attachments):
             if att.s > total:
-                raise ValueError(
-                    f"attachments.{i}.s = {att.s} lies beyond the end of the line; "
-                    f"allowed 0 <= s <= {total} (total unstretched length)"
+                raise FieldError(
+                    ("attachments", i, "s"),
+                    f"attachment lies beyond the end of the line; allowed 0 <= s <= {total:g} m "
+                    "(the total unstretched length of the segments)",
+                    att.s,
                 )
         return self
