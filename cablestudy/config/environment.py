@@ -38,8 +38,10 @@ class CurrentPoint(StrictModel):
 class Environment(StrictModel):
     """Fluid, gravity, depth, seabed, and current (piecewise linear in z)."""
 
-    fluid: Literal["air", "water", "vacuum"] | CustomFluid = "water"
-    gravity: Positive = 9.80665
+    fluid: Literal["air", "water", "vacuum"] | CustomFluid = Field(
+        "water", description="surrounding fluid: air, water (1025 kg/m^3), vacuum, or {density}"
+    )
+    gravity: Positive = Field(9.80665, description="acceleration of gravity [m/s^2]")
     depth: Positive | None = Field(None, description="water depth [m]; omit for no seabed")
     seabed: Seabed = Seabed()
     current: list[CurrentPoint] | None = Field(

@@ -18,12 +18,12 @@ class Segment(StrictModel):
     diameter: Positive = Field(description="hydrodynamic (and buoyancy) diameter [m]")
     mass_per_length: NonNegative | None = Field(None, description="mass per length [kg/m]")
     weight_in_fluid: Finite | None = Field(None, description="submerged weight per length [N/m]")
-    axial_stiffness: Positive = Field(description="EA [N]")
+    axial_stiffness: Positive = Field(description="axial stiffness EA [N]")
     drag_normal: NonNegative = Field(1.2, description="normal drag coefficient [-]")
     drag_tangential: NonNegative = Field(0.01, description="tangential drag coefficient [-]")
     added_mass_normal: NonNegative = Field(1.0, description="normal added-mass coefficient [-]")
     added_mass_tangential: NonNegative = Field(0.0, description="tangential added-mass coeff [-]")
-    bending_stiffness: NonNegative = Field(0.0, description="EI [N m^2]")
+    bending_stiffness: NonNegative = Field(0.0, description="bending stiffness EI [N m^2]")
     damping_ratio: NonNegative = Field(
         0.0, le=1.0, description="axial structural damping, fraction of critical [-]"
     )

@@ -27,7 +27,33 @@ class Study(StrictModel):
     line: Line
     ends: Ends
     analysis: Analysis = Analysis()
-    sweep: dict[str, Any] = {}
+    sweep: dict[str, Any] = Field(
+        {},
+        description="parameter sweeps: dotted path -> values; expanded by cablestudy.cases",
+        json_schema_extra={
+            "propertyNames": {"pattern": r"^(zip|[A-Za-z_][A-Za-z0-9_]*(\.[A-Za-z0-9_]+)*)$"},
+            "additionalProperties": {"anyOf": [
+                {"type": "array", "minItems": 1},
+                {"type": "object", "required": ["start", "stop", "num"],
+                 "properties": {"start": {"type": "number"}, "stop": {"type": "number"},
+                                "num": {"type": "integer", "minimum": 1},
+                                "name": {"type": "string"}},
+                 "additionalProperties": False},
+                {"type": "object", "required": ["start", "stop", "step"],
+                 "properties": {"start": {"type": "number"}, "stop": {"type": "number"},
+                                "step": {"type": "number"}, "name": {"type": "string"}},
+                 "additionalProperties": False},
+                {"type": "object", "required": ["values"],
+                 "properties": {"values": {"type": "array", "minItems": 1},
+                                "name": {"type": "string"}},
+                 "additionalProperties": False},
+            ]},
+            "properties": {"zip": {"type": "array", "minItems": 1, "items": {
+                "type": "object", "required": ["name"],
+                "properties": {"name": {"type": "string"}},
+                "additionalProperties": {"type": "array", "minItems": 1}}}},
+        },
+    )
 
     @field_validator("name")
     @classmethod
