@@ -53,7 +53,10 @@ def cmd_run(args: argparse.Namespace) -> int:
 def cmd_schema(args: argparse.Namespace) -> int:
     from .config import Study
 
-    print(json.dumps(Study.model_json_schema(), indent=2))
+    schema = {"$schema": "https://json-schema.org/draft/2020-12/schema",
+              "title": "cablestudy study file", **Study.model_json_schema()}
+    schema["title"] = "cablestudy study file"
+    print(json.dumps(schema, indent=2))
     return 0
 
 
