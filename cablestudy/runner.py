@@ -78,8 +78,9 @@ def make_chunks(cases: list[Case], workers: int, *, min_chunks_per_worker: int =
     ordered = sorted(cases, key=lambda c: (c.static_hash, c.index))
     n_chunks = max(min(len(ordered), workers * min_chunks_per_worker),
                    math.ceil(len(ordered) / max_chunk))
-    size = math.ceil(len(ordered) / n_chunks)
-    return [ordered[i:i + size] for i in range(0, len(ordered), size)]
+    # sizes differ by at most one
+    bounds = [len(ordered) * i // n_chunks for i in range(n_chunks + 1)]
+    return [ordered[lo:hi] for lo, hi in zip(bounds[:-1], bounds[1:], strict=True)]
 
 
 class CaseCache:
@@ -230,7 +231,7 @@ def _run_auto(cases: list[Case], workers: int,
     t0 = time.perf_counter()
     probe: list[CaseRecord] = []
     rest = list(cases)
-    while rest and time.perf_counter() - t0 < AUTO_PROBE_SECONDS:
+    while rest and (not probe or time.perf_counter() - t0 < AUTO_PROBE_SECONDS):
         probe.extend(run_chunk([rest.pop(0)]))
     if probe:
         on_done(probe)
