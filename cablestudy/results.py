@@ -114,12 +114,16 @@ def assemble(
     coords: dict[str, Any] = {}
     for a in axes:
         numeric = a.coordinate().dtype.kind in "iuf"
+        indexed = len(a.paths) > 1 or not all(
+            isinstance(v, int | float | str | bool) for v in a.values[0])
         attrs = {"units": (a.units or "1") if numeric else "", "long_name": a.long_name,
                  "sweep_paths": ", ".join(a.paths)}
+        if indexed:
+            attrs["units"] = "1"
+            if len(a.paths) == 1:
+                attrs["long_name"] = f"index of the swept value of {a.paths[0]}"
         coords[a.name] = (a.name, a.coordinate(), attrs)
-        if len(a.paths) == 1 and a.coordinate().dtype.kind in "iu" and not all(
-            isinstance(v, int) for v in a.values[0]
-        ):
+        if len(a.paths) == 1 and indexed:
             # values that are not scalars (vectors, mappings): keep them as text
             coords[f"{a.name}_value"] = (
                 a.name, np.array([json.dumps(v) for v in a.values[0]], dtype=object),
