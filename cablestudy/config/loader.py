@@ -176,7 +176,7 @@ def _clean_loc(loc: Loc) -> Loc:
     """Drop union-member and discriminator parts pydantic adds to error paths."""
     out: list[str | int] = []
     models: list[type[BaseModel]] = [Study]
-    for part in loc:
+    for i, part in enumerate(loc):
         if isinstance(part, int):
             out.append(part)
             continue
@@ -187,7 +187,7 @@ def _clean_loc(loc: Loc) -> Loc:
                 for m in models
                 if part in m.model_fields
                 for c in _unwrap(m.model_fields[part].annotation)
-            ] or models
+            ]
             continue
         # union member names and tags ('fixed', 'CustomFluid', 'list[...]', ...)
         narrowed = [m for m in models if m.__name__ == part or (
@@ -198,6 +198,8 @@ def _clean_loc(loc: Loc) -> Loc:
             continue
         if "[" in part or part in ("str", "float", "int", "bool", "literal"):
             continue
+        if models and i < len(loc) - 1:
+            continue  # the tag of a union with a callable discriminator
         out.append(part)
     return tuple(out)
 
