@@ -18,6 +18,8 @@ Each axis is a dataset dimension named after the last part of its path (an expli
 from __future__ import annotations
 
 import copy
+import difflib
+import functools
 import hashlib
 import itertools
 import json
@@ -25,6 +27,7 @@ import math
 import re
 import typing
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -97,7 +100,7 @@ def _field_info(path: tuple[str, ...]) -> tuple[str, str]:
             units = match.group(1) if match else ""
             units = "1" if units == "-" else units
             long_name = re.sub(r"\s*\[[^\]]*\]", "", desc).split(";")[0].strip()
-            return units, long_name
+            return units, f"{long_name} ({'.'.join(path)})"
     return "", ".".join(path)
 
 
@@ -117,18 +120,18 @@ def _axis_values(spec: Any, where: str, line: int | None) -> tuple[list[Any], st
             for k in keys:
                 v = spec[k]
                 if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
-                    raise ValueError(f"{at}.{k}: must be a finite number, got {v!r}")
+                    raise ValueError(f"{at}.{k}: must be a finite number (got {v!r})")
             start, stop = float(spec["start"]), float(spec["stop"])
             if "num" in keys:
                 num = spec["num"]
                 if not isinstance(num, int) or isinstance(num, bool) or num < 1:
-                    raise ValueError(f"{at}.num: must be a whole number >= 1, got {num!r}")
-                return list(np.linspace(start, stop, num)), name
+                    raise ValueError(f"{at}.num: must be a whole number >= 1 (got {num!r})")
+                return [float(v) for v in np.linspace(start, stop, num)], name
             step = float(spec["step"])
             if step == 0.0 or (stop - start) * step < 0.0:
                 raise ValueError(
-                    f"{at}.step: {step!r} does not lead from start {start!r} to stop {stop!r}; "
-                    "allowed: a nonzero step with the sign of stop - start"
+                    f"{at}.step: does not lead from start {start!r} to stop {stop!r}; "
+                    f"allowed: a nonzero step with the sign of stop - start (got {step!r})"
                 )
             n = math.floor((stop - start) / step * (1.0 + 1e-12) + 1e-9) + 1
             if n > MAX_CASES:
@@ -137,13 +140,21 @@ def _axis_values(spec: Any, where: str, line: int | None) -> tuple[list[Any], st
         else:
             raise ValueError(
                 f"{at}: a sweep axis is a list of values, {{start, stop, num}}, "
-                f"{{start, stop, step}} or {{values}}, each with an optional name; "
-                f"got keys {sorted(keys)}"
+                f"{{start, stop, step}} or {{values}}, each with an optional name "
+                f"(got keys {sorted(keys)})"
             )
     if not isinstance(spec, list):
-        raise ValueError(f"{at}: must be a list of values or a range mapping, got {spec!r}")
+        raise ValueError(f"{at}: must be a list of values or a range mapping "
+                         f"{{start, stop, num}} / {{start, stop, step}} (got {spec!r})")
     if len(spec) == 0:
-        raise ValueError(f"{at}: an empty sweep axis gives no cases; list at least one value")
+        raise ValueError(f"{at}: an empty sweep axis gives no cases; allowed: a list of at "
+                         "least one value (got [])")
+    seen: list[Any] = []
+    for v in spec:
+        if v in seen:
+            raise ValueError(f"{at}: the value {v!r} is listed twice; allowed: distinct values "
+                             f"(each becomes one coordinate) (got {spec!r})")
+        seen.append(v)
     return list(spec), name
 
 
@@ -155,6 +166,50 @@ def _default_dim(path: tuple[str, ...]) -> str:
     return last
 
 
+#: top-level keys that name or describe a study and cannot be swept
+_NOT_SWEPT = ("name", "description", "sweep")
+
+
+def check_path(data: dict[str, Any], path: str) -> str | None:
+    """Why the dotted ``path`` cannot be swept in the study ``data`` (None: it can).
+
+    Walks the study models and the data together: every key must be a field of the model
+    at that point, every list index must exist in the file."""
+    parts = str(path).split(".")
+    if parts[0] in _NOT_SWEPT:
+        return (f"{parts[0]!r} cannot be swept; allowed: paths into environment, line, "
+                "ends or analysis")
+    models: list[Any] = [Study]
+    node: Any = data
+    done: list[str] = []
+    for part in parts:
+        here = ".".join(done) or "<top>"
+        if part == "":
+            return f"{path!r} has an empty part; allowed: keys joined by single dots"
+        if isinstance(node, list):
+            if not part.isdigit() or int(part) >= len(node):
+                return (f"{here} is a list of {len(node)} items; {part!r} is not an index "
+                        f"into it (allowed 0..{len(node) - 1})")
+            node = node[int(part)]
+        elif part.isdigit():
+            return (f"{here} is not a list in the study file, so it has no item {part}; "
+                    "write the list out first")
+        else:
+            fields = sorted({f for m in models for f in m.model_fields})
+            if part not in fields:
+                if not fields:
+                    return f"{here} is a single value with no keys; {path} does not exist"
+                close = difflib.get_close_matches(part, fields, n=1)
+                hint = f" (did you mean {close[0]!r}?)" if close else ""
+                return (f"{'.'.join(done + [part])} does not exist{hint}; allowed keys under "
+                        f"{here}: {', '.join(fields)}")
+            models = [c for m in models if part in m.model_fields
+                      for c in _unwrap(m.model_fields[part].annotation)]
+            node = node.get(part) if isinstance(node, dict) else None
+        done.append(part)
+    return None
+
+
 def parse_sweep(src: StudySource) -> list[SweepAxis]:
     """The sweep axes of a study source, in file order. Raises :class:`StudyError`."""
     raw = src.data.get("sweep") or {}
@@ -163,6 +218,7 @@ def parse_sweep(src: StudySource) -> list[SweepAxis]:
                           f"dotted paths to values, got {raw!r}"], src.source)
     problems: list[str] = []
     axes: list[SweepAxis] = []
+    key_locs: dict[str, Loc] = {}
 
     def add(name: str, paths: list[str], values: list[list[Any]], loc: Loc) -> None:
         line = src.line_of(loc)
@@ -202,7 +258,15 @@ def parse_sweep(src: StudySource) -> list[SweepAxis]:
                     problems.append(f"{line}: sweep.zip.{gi}: each group needs a 'name' "
                                     "(the dimension) and two or more paths with value lists")
                     continue
-                paths = [k for k in group if k != "name"]
+                paths = [str(k) for k in group if k != "name"]
+                whys = [(p, check_path(src.data, p)) for p in paths]
+                whys = [(p, w) for p, w in whys if w is not None]
+                if whys:
+                    problems.extend(
+                        f"{src.line_of((*gloc, p))}: sweep.zip.{gi}.{p}: the path does not lead "
+                        f"to a setting of this study: {w} (got {p!r})" for p, w in whys
+                    )
+                    continue
                 vals = []
                 try:
                     for p in paths:
@@ -223,6 +287,13 @@ def parse_sweep(src: StudySource) -> list[SweepAxis]:
                     )
                     continue
                 add(group["name"], paths, vals, gloc)
+                for p in paths:
+                    key_locs[p] = (*gloc, p)
+            continue
+        why = check_path(src.data, str(key))
+        if why is not None:
+            problems.append(f"{src.line_of(loc)}: sweep.{key}: the path does not lead to a "
+                            f"setting of this study: {why} (got {key!r})")
             continue
         try:
             values, name = _axis_values(spec, f"sweep.{key}", src.line_of(loc))
@@ -230,13 +301,33 @@ def parse_sweep(src: StudySource) -> list[SweepAxis]:
             problems.append(str(exc))
             continue
         add(name or _default_dim(tuple(str(key).split("."))), [str(key)], [values], loc)
+        key_locs[str(key)] = loc
     if problems:
         raise StudyError(problems, src.source)
     total = math.prod(a.size for a in axes) if axes else 1
     if total > MAX_CASES:
         raise StudyError([f"{src.line_of(('sweep',))}: sweep: {total} cases is more than the "
                           f"{MAX_CASES} allowed"], src.source)
+    seen_paths: dict[str, str] = {}
+    for axis in axes:
+        for p in axis.paths:
+            if p in seen_paths:
+                raise StudyError([f"{src.line_of(key_locs.get(p, ('sweep',)))}: sweep: the path "
+                                  f"{p!r} is swept twice (dimensions {seen_paths[p]!r} and "
+                                  f"{axis.name!r}); allowed: each path on one axis"], src.source)
+            seen_paths[p] = axis.name
     return axes
+
+
+def sweep_key_loc(src: StudySource, path: str) -> Loc:
+    """YAML location of the sweep key that sets ``path`` (for error lines)."""
+    raw = src.data.get("sweep") or {}
+    if path in raw:
+        return ("sweep", path)
+    for gi, group in enumerate(raw.get("zip") or []):
+        if isinstance(group, dict) and path in group:
+            return ("sweep", "zip", gi, path)
+    return ("sweep",)
 
 
 def _set_path(data: dict[str, Any], path: str, value: Any) -> None:
@@ -287,51 +378,93 @@ def _hash(payload: Any) -> str:
     return hashlib.sha256(text.encode()).hexdigest()
 
 
+#: package files whose content does not affect any case's numbers
+_NOT_PHYSICS = ("figures/", "cli.py", "bench.py", "runner.py", "results.py", "__main__.py")
+
+
+@functools.cache
+def code_fingerprint() -> str:
+    """Hash of the package source that computes results (solvers, physics, config
+    defaults, case evaluation): a changed solver invalidates cached cases."""
+    root = Path(__file__).resolve().parent
+    digest = hashlib.sha256(__version__.encode())
+    for path in sorted(root.rglob("*.py")):
+        rel = path.relative_to(root).as_posix()
+        if rel.startswith(_NOT_PHYSICS):
+            continue
+        digest.update(rel.encode())
+        digest.update(path.read_bytes())
+    return digest.hexdigest()[:20]
+
+
 def case_hashes(study: Study) -> tuple[str, str]:
     """(case hash, static hash): content hashes of everything that affects the case's
-    result, and of what affects its static solution only."""
+    result (every validated setting with its defaults filled in, and the solver code), and
+    of what affects its static solution only."""
     body = study.model_dump(mode="json", exclude={"name", "description", "sweep"})
     static_body = {k: v for k, v in body.items() if k != "analysis"}
     static_body["static"] = body["analysis"]["static"]
-    return _hash([__version__, body]), _hash([__version__, static_body])
+    code = code_fingerprint()
+    return _hash([code, body]), _hash([code, static_body])
+
+
+def _study_loc(path: str) -> Loc:
+    return tuple(int(p) if p.isdigit() else p for p in path.split("."))
 
 
 def expand_cases(src: StudySource) -> tuple[list[SweepAxis], list[Case]]:
-    """Validate the study and every case of its sweep (all before any work starts)."""
+    """Validate the study and every case of its sweep (all before any work starts).
+
+    A fault in a swept value is reported at the sweep key's line; a fault elsewhere that
+    only some sweep cases have names the first such case and how many there are."""
     base = validate_data(src.data, src)
     axes = parse_sweep(src)
     if not axes:
         h, sh = case_hashes(base)
         return axes, [Case((), {}, base, h, sh)]
-    problems: list[str] = []
+    swept = {_study_loc(p): sweep_key_loc(src, p) for a in axes for p in a.paths}
+    faults: dict[str, list[dict[str, Any]]] = {}
     cases: list[Case] = []
     template = {k: v for k, v in src.data.items() if k != "sweep"}
+    coordinates = [a.coordinate() for a in axes]
+    n_cases = math.prod(a.size for a in axes)
     for index in itertools.product(*(range(a.size) for a in axes)):
         data = copy.deepcopy(template)
         coords: dict[str, Any] = {}
         bad = False
-        for axis, i in zip(axes, index, strict=True):
-            coords[axis.name] = axis.coordinate()[i]
+        for axis, coord, i in zip(axes, coordinates, index, strict=True):
+            coords[axis.name] = coord[i].item()
             for path, values in zip(axis.paths, axis.values, strict=True):
                 try:
                     _set_path(data, path, copy.deepcopy(values[i]))
                 except KeyError as exc:
-                    line = src.line_of(("sweep", path)) or src.line_of(("sweep",))
-                    msg = f"{line}: sweep.{path}: {exc.args[0]}"
-                    if msg not in problems:
-                        problems.append(msg)
+                    line = src.line_of(sweep_key_loc(src, path))
+                    faults.setdefault(f"{line}: sweep.{path}: {exc.args[0]} (got {path!r})",
+                                      []).append(coords)
                     bad = True
         if bad:
             continue
         try:
-            study = validate_data(data, src, note=f" [in sweep case {dict(coords)}]")
+            study = validate_data(data, src, swept=swept)
         except StudyError as exc:
-            problems.extend(p for p in exc.problems if p not in problems)
-            if len(problems) > 20:
+            for p in exc.problems:
+                faults.setdefault(p, []).append(dict(coords))
+            if len(faults) > 20:
                 break
             continue
         h, sh = case_hashes(study)
         cases.append(Case(tuple(index), coords, study, h, sh))
-    if problems:
+    if faults:
+        problems = []
+        sweep_lines = sorted({src.line_of(loc) or 0 for loc in swept.values()})
+        lines_note = f"; swept on line{'s' if len(sweep_lines) > 1 else ''} " + ", ".join(
+            str(n) for n in sweep_lines)
+        for p, where in faults.items():
+            note = "" if "(value from sweep" in p else lines_note
+            if len(where) == 1:
+                problems.append(f"{p} [in sweep case {where[0]}{note}]")
+            else:
+                problems.append(f"{p} [in {len(where)} of {n_cases} sweep cases, "
+                                f"first {where[0]}{note}]")
         raise StudyError(problems, src.source)
     return axes, cases

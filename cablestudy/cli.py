@@ -29,22 +29,23 @@ def cmd_validate(args: argparse.Namespace) -> int:
 
 
 def cmd_run(args: argparse.Namespace) -> int:
-    from .runner import PROCESSES, SYNCHRONOUS, THREADS, run_study
+    from .runner import AUTO, SCHEDULERS, run_study
 
+    scheduler = args.scheduler or AUTO
+    if scheduler not in SCHEDULERS and "://" not in scheduler:
+        print(f"--scheduler {scheduler!r}: allowed are {', '.join(SCHEDULERS)} or the address "
+              "of a running dask.distributed scheduler (tcp://host:port)", file=sys.stderr)
+        return 2
     src, axes, cases = _load(args.config)
-    scheduler = args.scheduler or (SYNCHRONOUS if len(cases) <= 8 else PROCESSES)
-    if scheduler not in (SYNCHRONOUS, THREADS, PROCESSES) and "://" not in scheduler:
-        raise SystemExit(
-            f"--scheduler {scheduler!r}: allowed are {SYNCHRONOUS}, {THREADS}, {PROCESSES} "
-            "or the address of a dask.distributed scheduler (tcp://host:port)"
+    try:
+        summary = run_study(
+            src, axes, cases, args.out, scheduler=scheduler, workers=args.workers,
+            use_cache=not args.no_cache, progress=args.progress,
         )
-    settings = {c.study.analysis.static.method for c in cases}
-    summary = run_study(
-        src, axes, cases, args.out, scheduler=scheduler, workers=args.workers,
-        use_cache=not args.no_cache, progress=args.progress,
-        solver_settings={"static_methods": sorted(settings),
-                         "analysis": src.data.get("analysis", {})},
-    )
+    except KeyboardInterrupt:
+        print("\ninterrupted: finished cases are cached; run the same command again to "
+              "resume", file=sys.stderr)
+        return 130
     print(summary.report())
     return 0
 
@@ -52,7 +53,10 @@ def cmd_run(args: argparse.Namespace) -> int:
 def cmd_schema(args: argparse.Namespace) -> int:
     from .config import Study
 
-    print(json.dumps(Study.model_json_schema(), indent=2))
+    schema = {"$schema": "https://json-schema.org/draft/2020-12/schema",
+              "title": "cablestudy study file", **Study.model_json_schema()}
+    schema["title"] = "cablestudy study file"
+    print(json.dumps(schema, indent=2))
     return 0
 
 
@@ -83,11 +87,13 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("run", help="run a study file and write <out>/<name>.nc")
     p.add_argument("config")
     p.add_argument("--out", default="results", help="output folder (default: results)")
-    p.add_argument("--workers", type=int, default=None, help="worker processes (default: cores)")
+    p.add_argument("--workers", type=int, default=None,
+                   help="local worker processes (default: the cores available)")
     p.add_argument("--scheduler", default=None,
-                   help="synchronous | threads | processes | tcp://host:port of a running "
-                        "dask.distributed scheduler (default: synchronous for <= 8 cases, "
-                        "else processes)")
+                   help="auto | synchronous | threads | processes | tcp://host:port of a "
+                        "running dask.distributed scheduler (default: auto: run here, and "
+                        "start --workers processes when the study would take more than a "
+                        "few seconds)")
     p.add_argument("--no-cache", action="store_true", help="recompute every case")
     p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
                    help="progress bar (default: on a terminal)")
@@ -119,8 +125,9 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
-    if args.workers is not None and args.workers < 1 if hasattr(args, "workers") else False:
-        print(f"--workers {args.workers}: must be at least 1", file=sys.stderr)
+    workers = getattr(args, "workers", None)
+    if workers is not None and workers < 1:
+        print(f"--workers {workers}: must be at least 1", file=sys.stderr)
         return 2
     try:
         return args.func(args)

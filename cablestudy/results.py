@@ -108,18 +108,40 @@ def assemble(
             elif name in rec.data and rec.status == 0:
                 val = np.asarray(rec.data[name])
                 arr[idx + tuple(slice(0, n) for n in val.shape)] = val
-        data_vars[name] = (dims + spec.dims, arr, {"units": spec.units, "long_name": spec.long_name})
+        data_vars[name] = (dims + spec.dims, arr,
+                           {"units": spec.units, "long_name": spec.long_name})
 
     coords: dict[str, Any] = {}
     for a in axes:
-        attrs = {"units": a.units or "1", "long_name": a.long_name, "sweep_paths": ", ".join(a.paths)}
+        numeric = a.coordinate().dtype.kind in "iuf"
+        indexed = len(a.paths) > 1 or not all(
+            isinstance(v, int | float | str | bool) for v in a.values[0])
+        attrs = {"units": (a.units or "1") if numeric else "", "long_name": a.long_name,
+                 "sweep_paths": ", ".join(a.paths)}
+        if indexed:
+            attrs["units"] = "1"
+            if len(a.paths) == 1:
+                attrs["long_name"] = f"index of the swept value of {a.paths[0]}"
         coords[a.name] = (a.name, a.coordinate(), attrs)
+        if len(a.paths) == 1 and indexed:
+            # values that are not scalars (vectors, mappings): keep them as text
+            coords[f"{a.name}_value"] = (
+                a.name, np.array([json.dumps(v) for v in a.values[0]], dtype=object),
+                {"long_name": f"swept value of {a.paths[0]} (JSON)", "units": ""},
+            )
         if len(a.paths) > 1:
             for path, vals in zip(a.paths, a.values, strict=True):
+                cname = f"{a.name}_{path.split('.')[-1]}"
+                if cname in coords or cname == a.name:
+                    cname = f"{a.name}_{path.replace('.', '_')}"
+                units, long_name = _path_info(path)
                 if all(isinstance(v, int | float) and not isinstance(v, bool) for v in vals):
-                    cname = f"{a.name}_{path.split('.')[-1]}"
                     coords[cname] = (a.name, np.asarray(vals, dtype=float),
-                                     {"long_name": path, "units": ""})
+                                     {"long_name": long_name, "units": units or "1"})
+                else:
+                    coords[cname] = (a.name, np.array([json.dumps(v) for v in vals],
+                                                      dtype=object),
+                                     {"long_name": f"{long_name} (JSON)", "units": ""})
     if "component" in extent and any("component" in OUTPUTS[k].dims for k in present):
         coords["component"] = ("component", np.array(["x", "y", "z"]),
                                {"long_name": COORDINATES["component"][1]})
@@ -140,9 +162,23 @@ def assemble(
     return ds
 
 
+def _path_info(path: str) -> tuple[str, str]:
+    from .cases import _field_info
+
+    return _field_info(tuple(path.split(".")))
+
+
 def provenance(src: StudySource, solver_settings: dict[str, Any]) -> dict[str, Any]:
+    """Global attributes that trace a dataset to its inputs: the study YAML and its hash,
+    package versions, the solver-code fingerprint and the solver settings."""
+    import platform
+
+    import dask
     import numpy
+    import pydantic
     import scipy
+
+    from .cases import code_fingerprint
 
     return {
         "Conventions": "CF-1.8",
@@ -155,6 +191,10 @@ def provenance(src: StudySource, solver_settings: dict[str, Any]) -> dict[str, A
         "numpy_version": numpy.__version__,
         "scipy_version": scipy.__version__,
         "xarray_version": xr.__version__,
+        "pydantic_version": pydantic.VERSION,
+        "dask_version": dask.__version__,
+        "python_version": platform.python_version(),
+        "cablestudy_code_sha256": code_fingerprint(),
         "solver_settings": json.dumps(solver_settings, sort_keys=True),
         "history": f"{datetime.now(UTC).isoformat(timespec='seconds')} cablestudy run",
     }
@@ -171,6 +211,8 @@ def write_atomic(ds: xr.Dataset, path: str | Path) -> Path:
         encoding = {name: {"zlib": True, "complevel": 4} for name, v in ds.data_vars.items()
                     if v.dtype.kind == "f"}
         ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
+        with open(tmp, "rb+") as fh:  # on disk before the rename makes it visible
+            os.fsync(fh.fileno())
         os.replace(tmp, path)
     finally:
         if os.path.exists(tmp):

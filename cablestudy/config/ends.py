@@ -13,7 +13,7 @@ class FixedEnd(StrictModel):
     """End held at a known position."""
 
     kind: Literal["fixed"]
-    position: Vec3 = Field(description="position [m], z up, surface at 0")
+    position: Vec3 = Field(description="position of the end [m]; z up, sea surface at z = 0")
 
 
 class ForceEnd(StrictModel):

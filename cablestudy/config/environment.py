@@ -6,7 +6,7 @@ from typing import Literal
 
 from pydantic import Field, field_validator
 
-from .base import Finite, NonNegative, Positive, StrictModel
+from .base import FieldError, Finite, NonNegative, Positive, StrictModel
 
 #: Densities of the named fluids [kg/m^3].
 FLUID_DENSITY = {"air": 1.225, "water": 1025.0, "vacuum": 0.0}
@@ -38,8 +38,10 @@ class CurrentPoint(StrictModel):
 class Environment(StrictModel):
     """Fluid, gravity, depth, seabed, and current (piecewise linear in z)."""
 
-    fluid: Literal["air", "water", "vacuum"] | CustomFluid = "water"
-    gravity: Positive = 9.80665
+    fluid: Literal["air", "water", "vacuum"] | CustomFluid = Field(
+        "water", description="surrounding fluid: air, water (1025 kg/m^3), vacuum, or {density}"
+    )
+    gravity: Positive = Field(9.80665, description="acceleration of gravity [m/s^2]")
     depth: Positive | None = Field(None, description="water depth [m]; omit for no seabed")
     seabed: Seabed = Seabed()
     current: list[CurrentPoint] | None = Field(
@@ -53,9 +55,12 @@ class Environment(StrictModel):
             return value
         if len(value) == 0:
             raise ValueError("must list at least one point {z, speed, heading_deg}, or be omitted")
-        heights = [p.z for p in value]
-        if len(set(heights)) != len(heights):
-            raise ValueError(f"current points must have distinct z, got z = {heights}")
+        seen: set[float] = set()
+        for i, point in enumerate(value):
+            if point.z in seen:
+                raise FieldError((i, "z"), "current points must have distinct heights z; "
+                                 f"z = {point.z:g} m is listed twice", point.z)
+            seen.add(point.z)
         return value
 
     @property

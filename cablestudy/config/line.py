@@ -6,7 +6,7 @@ import math
 
 from pydantic import Field, model_validator
 
-from .base import Finite, NonNegative, Positive, StrictModel, Vec3
+from .base import FieldError, Finite, NonNegative, Positive, StrictModel, Vec3
 
 
 class Segment(StrictModel):
@@ -18,12 +18,12 @@ class Segment(StrictModel):
     diameter: Positive = Field(description="hydrodynamic (and buoyancy) diameter [m]")
     mass_per_length: NonNegative | None = Field(None, description="mass per length [kg/m]")
     weight_in_fluid: Finite | None = Field(None, description="submerged weight per length [N/m]")
-    axial_stiffness: Positive = Field(description="EA [N]")
+    axial_stiffness: Positive = Field(description="axial stiffness EA [N]")
     drag_normal: NonNegative = Field(1.2, description="normal drag coefficient [-]")
     drag_tangential: NonNegative = Field(0.01, description="tangential drag coefficient [-]")
     added_mass_normal: NonNegative = Field(1.0, description="normal added-mass coefficient [-]")
     added_mass_tangential: NonNegative = Field(0.0, description="tangential added-mass coeff [-]")
-    bending_stiffness: NonNegative = Field(0.0, description="EI [N m^2]")
+    bending_stiffness: NonNegative = Field(0.0, description="bending stiffness EI [N m^2]")
     damping_ratio: NonNegative = Field(
         0.0, le=1.0, description="axial structural damping, fraction of critical [-]"
     )
@@ -40,6 +40,27 @@ class Segment(StrictModel):
     def area(self) -> float:
         """Displaced cross-section area pi d^2 / 4 [m^2]."""
         return math.pi * self.diameter**2 / 4.0
+
+    def mass_in(self, density: float, gravity: float) -> float:
+        """Structural mass per length [kg/m]: as given, or weight / g + density * area.
+
+        Parameters
+        ----------
+        density : float  [kg/m^3]
+            Fluid density.
+        gravity : float  [m/s^2]
+        """
+        if self.mass_per_length is not None:
+            return self.mass_per_length
+        assert self.weight_in_fluid is not None
+        return self.weight_in_fluid / gravity + density * self.area
+
+    def weight_in(self, density: float, gravity: float) -> float:
+        """Weight per length in the fluid [N/m] (positive down): as given, or
+        (mass - density * area) * g."""
+        if self.weight_in_fluid is not None:
+            return self.weight_in_fluid
+        return (self.mass_in(density, gravity) - density * self.area) * gravity
 
 
 class Attachment(StrictModel):
@@ -65,8 +86,10 @@ class Line(StrictModel):
         total = self.length
         for i, att in enumerate(self.attachments):
             if att.s > total:
-                raise ValueError(
-                    f"attachments.{i}.s = {att.s} lies beyond the end of the line; "
-                    f"allowed 0 <= s <= {total} (total unstretched length)"
+                raise FieldError(
+                    ("attachments", i, "s"),
+                    f"attachment lies beyond the end of the line; allowed 0 <= s <= {total:g} m "
+                    "(the total unstretched length of the segments)",
+                    att.s,
                 )
         return self

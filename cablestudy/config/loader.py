@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import difflib
 import hashlib
+import re
 import types
 import typing
 from dataclasses import dataclass
@@ -12,6 +14,7 @@ from typing import Any
 import yaml
 from pydantic import BaseModel, ValidationError
 
+from .base import FieldError
 from .study import Study
 
 Loc = tuple[str | int, ...]
@@ -48,37 +51,75 @@ class StudySource:
         return None
 
 
-def _line_map(node: yaml.Node, loc: Loc, out: dict[Loc, int]) -> None:
+class _StudyLoader(yaml.SafeLoader):
+    """Safe YAML loader that also reads ``1e-9`` and ``2E5`` as numbers (YAML 1.2; PyYAML
+    follows YAML 1.1, which needs a dot in the mantissa and would return a string)."""
+
+
+_StudyLoader.add_implicit_resolver(
+    "tag:yaml.org,2002:float",
+    re.compile(
+        r"""^(?:[-+]?(?:[0-9][0-9_]*)\.[0-9_]*(?:[eE][-+]?[0-9]+)?
+        |[-+]?(?:[0-9][0-9_]*)(?:[eE][-+]?[0-9]+)
+        |\.[0-9_]+(?:[eE][-+]?[0-9]+)?
+        |[-+]?\.(?:inf|Inf|INF)
+        |\.(?:nan|NaN|NAN))$""",
+        re.X,
+    ),
+    list("-+0123456789."),
+)
+
+
+def _line_map(node: yaml.Node, loc: Loc, out: dict[Loc, int], problems: list[str]) -> None:
     out.setdefault(loc, node.start_mark.line + 1)
     if isinstance(node, yaml.MappingNode):
+        seen: dict[str, int] = {}
         for key, value in node.value:
-            sub = loc + (str(key.value),)
-            out[sub] = key.start_mark.line + 1
-            _line_map(value, sub, out)
+            name = str(key.value)
+            line = key.start_mark.line + 1
+            sub = loc + (name,)
+            if name in seen:
+                problems.append(
+                    f"{line}: {dotted(sub)}: duplicate key (first given on line {seen[name]}); "
+                    "allowed: each key once per mapping"
+                )
+                continue
+            seen[name] = line
+            out[sub] = line
+            _line_map(value, sub, out, problems)
     elif isinstance(node, yaml.SequenceNode):
         for i, item in enumerate(node.value):
             out[loc + (i,)] = item.start_mark.line + 1
-            _line_map(item, loc + (i,), out)
+            _line_map(item, loc + (i,), out, problems)
 
 
 def parse_study_text(text: str, source: str = "<study>") -> StudySource:
     """Parse YAML text, keeping line numbers. Raises :class:`StudyError`."""
     try:
-        node = yaml.compose(text, Loader=yaml.SafeLoader)
-        data = yaml.safe_load(text)
+        node = yaml.compose(text, Loader=_StudyLoader)
+        data = yaml.load(text, Loader=_StudyLoader)  # noqa: S506 - a SafeLoader subclass
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         line = mark.line + 1 if mark is not None else "?"
         raise StudyError([f"{line}: not valid YAML: {exc}"], source) from None
+    if data is None:
+        raise StudyError(["1: <top>: the study file is empty; allowed: a mapping with at "
+                          "least name, line and ends"], source)
     if not isinstance(data, dict):
         raise StudyError(
-            [f"1: the study file must be a mapping of keys (name, line, ends, ...), "
-             f"got {type(data).__name__}"],
+            [f"1: <top>: the study file must be a mapping of keys (name, line, ends, ...) "
+             f"(got {type(data).__name__})"],
             source,
         )
     lines: dict[Loc, int] = {}
+    problems: list[str] = []
     if node is not None:
-        _line_map(node, (), lines)
+        _line_map(node, (), lines, problems)
+    if problems:
+        raise StudyError(problems, source)
+    bad_keys = [k for k in data if not isinstance(k, str)]
+    if bad_keys:
+        raise StudyError([f"1: <top>: keys must be text, got {bad_keys!r}"], source)
     return StudySource(text=text, data=data, lines=lines, source=source)
 
 
@@ -135,7 +176,7 @@ def _clean_loc(loc: Loc) -> Loc:
     """Drop union-member and discriminator parts pydantic adds to error paths."""
     out: list[str | int] = []
     models: list[type[BaseModel]] = [Study]
-    for part in loc:
+    for i, part in enumerate(loc):
         if isinstance(part, int):
             out.append(part)
             continue
@@ -146,7 +187,7 @@ def _clean_loc(loc: Loc) -> Loc:
                 for m in models
                 if part in m.model_fields
                 for c in _unwrap(m.model_fields[part].annotation)
-            ] or models
+            ]
             continue
         # union member names and tags ('fixed', 'CustomFluid', 'list[...]', ...)
         narrowed = [m for m in models if m.__name__ == part or (
@@ -157,6 +198,8 @@ def _clean_loc(loc: Loc) -> Loc:
             continue
         if "[" in part or part in ("str", "float", "int", "bool", "literal"):
             continue
+        if models and i < len(loc) - 1:
+            continue  # the tag of a union with a callable discriminator
         out.append(part)
     return tuple(out)
 
@@ -165,44 +208,114 @@ def dotted(loc: Loc) -> str:
     return ".".join(str(p) for p in loc) if loc else "<top>"
 
 
+_TYPE_WORDS = {
+    "float_type": "must be a number",
+    "int_type": "must be a whole number",
+    "string_type": "must be text",
+    "bool_type": "must be true or false",
+    "list_type": "must be a list",
+    "dict_type": "must be a mapping of keys",
+    "model_type": "must be a mapping of keys",
+    "model_attributes_type": "must be a mapping of keys",
+}
+
+
+def _field_description(loc: Loc) -> str:
+    """The description of the field at raw pydantic location ``loc`` (or '')."""
+    if not loc:
+        return ""
+    for model in _models_at(loc[:-1]):
+        info = model.model_fields.get(str(loc[-1]))
+        if info is not None and info.description:
+            return info.description
+    return ""
+
+
+def _describe(err: dict[str, Any]) -> tuple[Loc, str, Any, bool]:
+    """(extra location, message, offending value, value known) of one pydantic error."""
+    kind = err["type"]
+    raw = tuple(err["loc"])
+    ctx = err.get("ctx") or {}
+    cause = ctx.get("error")
+    if isinstance(cause, FieldError):
+        return cause.loc, cause.message, cause.value, True
+    if kind == "extra_forbidden":
+        key = str(raw[-1])
+        allowed = sorted({f for m in _models_at(raw[:-1]) for f in m.model_fields})
+        close = difflib.get_close_matches(key, allowed, n=1)
+        hint = f" (did you mean {close[0]!r}?)" if close else ""
+        return (), (f"unknown key {key!r}{hint}; allowed keys here: {', '.join(allowed)}"), \
+            err["input"], True
+    if kind == "missing":
+        desc = _field_description(raw)
+        what = f" ({desc})" if desc else ""
+        return (), f"required key {str(raw[-1])!r} is missing{what}", None, False
+    if kind in ("union_tag_invalid", "union_tag_not_found"):
+        tags = ctx.get("expected_tags", "")
+        if kind == "union_tag_not_found":
+            return (), f"needs a 'kind': one of {tags}", err["input"], True
+        return ("kind",), f"'kind' must be one of {tags}", ctx.get("tag", err["input"]), True
+    text = _TYPE_WORDS.get(kind, err["msg"])
+    if text.startswith("Value error, "):
+        text = text[len("Value error, "):]
+    text = text.replace("Input should be", "must be")
+    if kind in ("too_short", "too_long"):
+        bound = ctx.get("min_length", ctx.get("max_length"))
+        word = "at least" if kind == "too_short" else "at most"
+        text = f"must be a list of {word} {bound} items, not {ctx.get('actual_length', '?')}"
+    return (), text, err.get("input"), True
+
+
+def _shown(value: Any) -> str:
+    if isinstance(value, dict | list) and len(repr(value)) > 80:
+        return f"a {type(value).__name__} of {len(value)} items"
+    return repr(value)
+
+
 def format_validation_error(
-    exc: ValidationError, src: StudySource, prefix: Loc = (), note: str = ""
+    exc: ValidationError, src: StudySource, prefix: Loc = (), note: str = "",
+    swept: dict[Loc, Loc] | None = None,
 ) -> list[str]:
-    """One message per pydantic error: ``line: path: what is wrong (got value)``."""
-    problems: list[str] = []
-    seen: set[str] = set()
+    """One message per faulty field: ``line: path: what is wrong and what is allowed
+    (got value)``. Alternatives of a union that fail at the same field are joined.
+
+    ``swept`` maps a study path set by a sweep to the sweep key that set it: a fault in a
+    swept value points at the sweep key's line."""
+    grouped: dict[tuple[Loc, str], list[str]] = {}
     for err in exc.errors(include_url=False):
-        loc = prefix + _clean_loc(tuple(err["loc"]))
-        kind = err["type"]
-        if kind == "extra_forbidden":
-            allowed = sorted({f for m in _models_at(tuple(err["loc"])[:-1]) for f in m.model_fields})
-            msg = f"unknown key {str(loc[-1])!r}; allowed keys here: {', '.join(allowed)}"
-        elif kind == "missing":
-            msg = "required key is missing"
-        elif kind == "union_tag_invalid" or kind == "union_tag_not_found":
-            ctx = err.get("ctx", {})
-            msg = f"'kind' must be one of {ctx.get('expected_tags', '')}, got {err['input']!r}"
-        else:
-            text = err["msg"]
-            if text.startswith("Value error, "):
-                text = text[len("Value error, "):]
-            shown = err.get("input")
-            if isinstance(shown, dict | list) and len(repr(shown)) > 80:
-                shown = f"{type(shown).__name__} of {len(shown)} items"
-            msg = f"{text} (got {shown!r})"
-        line = src.line_of(loc if kind != "missing" else loc[:-1])
-        entry = f"{line if line is not None else '?'}: {dotted(loc)}: {msg}{note}"
-        if entry not in seen:
-            seen.add(entry)
-            problems.append(entry)
+        extra, msg, value, known = _describe(err)
+        loc = prefix + _clean_loc(tuple(err["loc"])) + extra
+        line_loc = loc if err["type"] != "missing" else loc[:-1]
+        line = src.line_of(line_loc)
+        where = dotted(loc)
+        if swept:
+            origin = next((sk for sl, sk in swept.items() if loc[:len(sl)] == sl), None)
+            if origin is not None:
+                line = src.line_of(origin)
+                where = f"{where} (value from {dotted(origin)})"
+        head = f"{line if line is not None else '?'}: {where}"
+        tail = f" (got {_shown(value)})" if known else ""
+        msgs = grouped.setdefault((loc, head + "\x00" + tail), [])
+        if msg not in msgs:
+            msgs.append(msg)
+    problems = []
+    for (_, key), msgs in grouped.items():
+        head, tail = key.split("\x00")
+        problems.append(f"{head}: {'; or '.join(msgs)}{tail}{note}")
     return problems
 
 
-def validate_data(data: dict[str, Any], src: StudySource, prefix: Loc = (), note: str = "") -> Study:
+def validate_data(
+    data: dict[str, Any], src: StudySource, prefix: Loc = (), note: str = "",
+    swept: dict[Loc, Loc] | None = None,
+) -> Study:
+    """Validate parsed study data; raise :class:`StudyError` naming each fault's line."""
     try:
         return Study.model_validate(data)
     except ValidationError as exc:
-        raise StudyError(format_validation_error(exc, src, prefix, note), src.source) from None
+        raise StudyError(
+            format_validation_error(exc, src, prefix, note, swept), src.source
+        ) from None
 
 
 def load_study(path: str | Path) -> tuple[Study, StudySource]:

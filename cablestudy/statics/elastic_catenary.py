@@ -345,11 +345,11 @@ class ElasticCatenarySolver:
             ground = problem.medium.seabed_z(result.position[:, 0], result.position[:, 1])
             below = result.position[:, 2] < ground - 1e-9 * line.total_length
             if np.any(below):
+                depth_below = float(np.max(ground - result.position[:, 2]))
                 return StaticResult.failed(
                     s, STATUS_NO_SOLUTION,
-                    f"the free-hanging catenary passes {float(np.max(ground - result.position[:, 2])):.4g} m "
-                    "below the seabed; the 'analytic' method has no seabed contact "
-                    "(use method 'catenary')",
+                    f"the free-hanging catenary passes {depth_below:.4g} m below the seabed; "
+                    "this method has no seabed contact (choose a method with seabed contact)",
                     iterations=result.iterations, residual=result.residual,
                 )
         return result

@@ -1,0 +1,122 @@
+"""Sweep expansion into cases: axes and their names, ranges, zip groups, the cartesian
+product, frozen cases with coordinates, and content hashes."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from cablestudy.cases import Case, SweepAxis, expand_cases, parse_sweep
+from cablestudy.config import parse_study_text
+
+BASE = """\
+name: sw
+description: first
+environment: {fluid: air}
+line:
+  segments:
+    - {length: 100.0, diameter: 0.02, mass_per_length: 2.466, axial_stiffness: 6.283e7}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, 0.0]}
+  b: {kind: fixed, position: [92.5, 0.0, -8.6]}
+analysis:
+  static: {method: analytic, nodes: 11}
+"""
+
+
+def expand(sweep: str, base: str = BASE) -> tuple[list[SweepAxis], list[Case]]:
+    return expand_cases(parse_study_text(base + sweep, "t.yaml"))
+
+
+def test_no_sweep_is_one_case_without_dims() -> None:
+    axes, cases = expand("")
+    assert axes == [] and len(cases) == 1
+    assert cases[0].index == () and cases[0].coords == {}
+
+
+def test_cartesian_product_in_file_order() -> None:
+    axes, cases = expand(
+        "sweep:\n"
+        "  line.segments.0.axial_stiffness: [1.0e6, 1.0e7]\n"
+        "  ends.b.position.0: {start: 60.0, stop: 90.0, num: 4}\n"
+        "  environment.fluid: [air, vacuum, {density: 1.0}]\n"
+    )
+    assert [a.name for a in axes] == ["axial_stiffness", "position_0", "fluid"]
+    assert [a.size for a in axes] == [2, 4, 3]
+    assert len(cases) == 24
+    assert [c.index for c in cases[:4]] == [(0, 0, 0), (0, 0, 1), (0, 0, 2), (0, 1, 0)]
+    case = cases[-1]  # (1, 3, 2)
+    assert case.coords == {"axial_stiffness": 1.0e7, "position_0": 90.0, "fluid": 2}
+    assert case.study.line.segments[0].axial_stiffness == 1.0e7
+    assert case.study.ends.b.position == [90.0, 0.0, -8.6]
+    assert case.study.environment.density == 1.0
+    # scalar axes are their own coordinate, with units and a long name from the model
+    np.testing.assert_array_equal(axes[1].coordinate(), [60.0, 70.0, 80.0, 90.0])
+    assert axes[0].units == "N" and "line.segments.0.axial_stiffness" in axes[0].long_name
+    assert axes[1].units == "m"
+    # an axis of mappings is indexed
+    np.testing.assert_array_equal(axes[2].coordinate(), [0, 1, 2])
+
+
+def test_step_range_includes_stop_and_explicit_names() -> None:
+    axes, _ = expand(
+        "sweep:\n"
+        "  ends.b.position.0: {start: 60.0, stop: 61.0, step: 0.1, name: span}\n"
+        "  line.segments.0.length: {values: [100.0, 110.0], name: L}\n"
+    )
+    assert [a.name for a in axes] == ["span", "L"]
+    np.testing.assert_allclose(axes[0].coordinate(), np.linspace(60.0, 61.0, 11), atol=1e-12)
+
+
+def test_zip_group_varies_together_on_one_dimension() -> None:
+    axes, cases = expand(
+        "sweep:\n"
+        "  zip:\n"
+        "    - name: support\n"
+        "      ends.b.position.0: [80.0, 85.0, 90.0]\n"
+        "      ends.b.position.2: [-5.0, -6.0, -7.0]\n"
+        "  line.segments.0.axial_stiffness: [1.0e6, 1.0e7]\n"
+    )
+    assert [a.name for a in axes] == ["support", "axial_stiffness"]
+    assert len(cases) == 6
+    c = next(c for c in cases if c.index == (2, 0))
+    assert c.study.ends.b.position == [90.0, 0.0, -7.0]
+    assert c.coords["support"] == 2
+
+
+def test_case_is_frozen_and_hashes_are_content_hashes() -> None:
+    _, cases = expand("sweep:\n  line.segments.0.axial_stiffness: [1.0e6, 1.0e7]\n")
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        cases[0].hash = "x"  # type: ignore[misc]
+    assert len({c.hash for c in cases}) == 2
+    # stable across expansions; name and description do not enter the hash
+    _, again = expand("sweep:\n  line.segments.0.axial_stiffness: [1.0e6, 1.0e7]\n",
+                      BASE.replace("name: sw", "name: other").replace("first", "second"))
+    assert [c.hash for c in cases] == [c.hash for c in again]
+    # an explicit default is the same case as an omitted one
+    _, explicit = expand("sweep:\n  line.segments.0.axial_stiffness: [1.0e6, 1.0e7]\n",
+                         BASE.replace("diameter: 0.02,", "diameter: 0.02, drag_normal: 1.2,"))
+    assert [c.hash for c in cases] == [c.hash for c in explicit]
+    # any setting that affects the result changes it
+    _, other = expand("sweep:\n  line.segments.0.axial_stiffness: [1.0e6, 1.0e7]\n",
+                      BASE.replace("nodes: 11", "nodes: 12"))
+    assert not {c.hash for c in cases} & {c.hash for c in other}
+
+
+def test_static_hash_shared_by_cases_that_differ_only_outside_statics() -> None:
+    _, cases = expand("sweep:\n  analysis.time_limit: [100.0, 200.0]\n")
+    assert cases[0].hash != cases[1].hash
+    assert cases[0].static_hash == cases[1].static_hash
+
+
+def test_vector_valued_axis() -> None:
+    axes, cases = expand("sweep:\n  ends.b.position: [[90.0, 0.0, -5.0], [0.0, 90.0, -5.0]]\n")
+    assert axes[0].name == "position" and axes[0].size == 2
+    assert cases[1].study.ends.b.position == [0.0, 90.0, -5.0]
+
+
+def test_parse_sweep_of_an_unchanged_source_is_deterministic() -> None:
+    src = parse_study_text(BASE + "sweep:\n  line.segments.0.length: [100.0, 110.0]\n", "t")
+    assert parse_sweep(src) == parse_sweep(src)

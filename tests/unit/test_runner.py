@@ -1,0 +1,238 @@
+"""Runner: chunking, failure capture, the case cache (reuse, resume after an interrupt),
+failure summary and progress bar. All on the synchronous scheduler (the distributed one
+is exercised in tests/integration)."""
+
+from __future__ import annotations
+
+from collections import OrderedDict
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from cablestudy import analyses, runner
+from cablestudy.cases import Case, expand_cases
+from cablestudy.config import parse_study_text
+from cablestudy.runner import (
+    CaseCache,
+    Progress,
+    RunSummary,
+    group_failures,
+    make_chunks,
+    run_study,
+)
+from cablestudy.statics import STATIC_SOLVERS, STATUS_OK
+
+TEXT = """\
+name: rn
+environment: {fluid: air}
+line:
+  segments:
+    - {length: 100.0, diameter: 0.02, mass_per_length: 2.466, axial_stiffness: 6.283e7}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, 0.0]}
+  b: {kind: fixed, position: [92.5, 0.0, -8.6]}
+analysis:
+  static: {method: analytic, nodes: 5}
+sweep:
+  ends.b.position.0: {start: 60.0, stop: 100.0, num: 9, name: span}
+  line.segments.0.axial_stiffness: [1.0e6, 1.0e7, 6.283e7]
+"""
+
+
+def _expand(text: str = TEXT):  # noqa: ANN202
+    src = parse_study_text(text, "rn.yaml")
+    axes, cases = expand_cases(src)
+    return src, axes, cases
+
+
+_RUN_CHUNK = runner.run_chunk
+
+
+@pytest.fixture(autouse=True)
+def _fresh_static_cache(monkeypatch: pytest.MonkeyPatch) -> None:
+    # evaluate_case memoises static solutions per process: start each test empty
+    monkeypatch.setattr(analyses, "_STATIC_CACHE", OrderedDict())
+
+
+def _count_evaluations(monkeypatch: pytest.MonkeyPatch, interrupt_after: int | None = None):  # noqa: ANN202
+    """Wrap runner.run_chunk: count evaluated cases; raise KeyboardInterrupt (as Ctrl-C
+    would) when chunk number ``interrupt_after`` + 1 starts."""
+    counter = {"cases": 0, "chunks": 0}
+    real = _RUN_CHUNK
+
+    def counted(chunk: list[Case]):  # noqa: ANN202
+        if interrupt_after is not None and counter["chunks"] >= interrupt_after:
+            raise KeyboardInterrupt
+        counter["chunks"] += 1
+        counter["cases"] += len(chunk)
+        return real(chunk)
+
+    monkeypatch.setattr(runner, "run_chunk", counted)
+    return counter
+
+
+def test_chunks_cover_every_case_once_and_batch_cheap_cases() -> None:
+    _, _, cases = _expand()
+    chunks = make_chunks(cases, workers=2)
+    flat = [c.hash for ch in chunks for c in ch]
+    assert sorted(flat) == sorted(c.hash for c in cases)
+    assert len(chunks) == 8  # 4 chunks per worker for load balance
+    # thousands of cases: at most 200 per chunk, far fewer tasks than cases
+    many = [Case((i,), {}, cases[0].study, f"h{i}", f"s{i % 7}") for i in range(5000)]
+    big = make_chunks(many, workers=2)
+    assert len(big) == 25 and max(len(c) for c in big) == 200
+    # cases sharing a static problem are adjacent (the static solution is reused)
+    order = [c.static_hash for ch in big for c in ch]
+    assert order == sorted(order)
+
+
+def test_a_solver_exception_is_a_failed_case_and_the_study_finishes(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    real = STATIC_SOLVERS["analytic"]
+
+    class Flaky:
+        name = "analytic"
+
+        def unsupported(self, problem):  # noqa: ANN001, ANN201
+            return real.unsupported(problem)
+
+        def solve(self, problem, *, deadline=None):  # noqa: ANN001, ANN201
+            EA = float(problem.line.axial_stiffness[0])
+            if EA == 1.0e6:
+                raise ZeroDivisionError("float division by zero")
+            res = real.solve(problem, deadline=deadline)
+            if EA == 1.0e7 and problem.end_b.position[0] == 60.0:
+                res.tension[2] = np.nan  # NaN with status 0: must become a failure
+            return res
+
+    monkeypatch.setitem(analyses.STATIC_SOLVERS, "analytic", Flaky())
+    src, axes, cases = _expand()
+    summary = run_study(src, axes, cases, tmp_path, scheduler="synchronous", progress=False)
+    ds = xr.load_dataset(summary.path)
+    failed = ds["status"].sel(axial_stiffness=1.0e6)
+    assert np.all(failed != STATUS_OK)
+    assert all("ZeroDivisionError: float division by zero" in str(m)
+               for m in ds["message"].sel(axial_stiffness=1.0e6).values)
+    assert np.all(np.isnan(ds["tension"].sel(axial_stiffness=1.0e6)))
+    nan_case = ds.sel(axial_stiffness=1.0e7, span=60.0)
+    assert int(nan_case["status"]) != STATUS_OK and "non-finite" in str(nan_case["message"].item())
+    assert np.all(np.isnan(nan_case["tension"]))
+    ok = ds["status"].sel(axial_stiffness=6.283e7)
+    assert np.all(ok == STATUS_OK)
+    assert np.all(np.isfinite(ds["tension"].sel(axial_stiffness=6.283e7)))
+    assert summary.n_failed == 10 and ds.attrs["cases_failed"] == 10
+    report = summary.report()
+    assert "failures by message:" in report
+    assert "     9 x ZeroDivisionError: float division by zero" in report
+    assert "     1 x " in report and "non-finite" in report
+
+
+def test_rerun_reuses_every_finished_case(tmp_path: Path,
+                                          monkeypatch: pytest.MonkeyPatch) -> None:
+    src, axes, cases = _expand()
+    first = run_study(src, axes, cases, tmp_path, scheduler="synchronous", progress=False)
+    assert (first.n_computed, first.n_reused) == (27, 0)
+    counter = _count_evaluations(monkeypatch)
+    second = run_study(src, axes, cases, tmp_path, scheduler="synchronous", progress=False)
+    assert counter["cases"] == 0 and (second.n_computed, second.n_reused) == (0, 27)
+    # an added sweep value computes only the new cases
+    src3, axes3, cases3 = _expand(TEXT.replace("[1.0e6, 1.0e7, 6.283e7]",
+                                               "[1.0e6, 1.0e7, 6.283e7, 1.0e8]"))
+    third = run_study(src3, axes3, cases3, tmp_path, scheduler="synchronous", progress=False)
+    assert counter["cases"] == 9 and third.n_reused == 27
+
+
+def test_interrupted_study_resumes_without_losing_or_redoing_work(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    src, axes, cases = _expand()
+    reference = run_study(src, axes, cases, tmp_path / "ref", scheduler="synchronous",
+                          use_cache=False, progress=False)
+    out = tmp_path / "run"
+    counter = _count_evaluations(monkeypatch, interrupt_after=3)
+    with pytest.raises(KeyboardInterrupt):
+        run_study(src, axes, cases, out, scheduler="synchronous", progress=False)
+    done = counter["cases"]
+    assert 0 < done < len(cases)
+    assert not (out / "rn.nc").exists()  # no partial result file
+    counter = _count_evaluations(monkeypatch)
+    summary = run_study(src, axes, cases, out, scheduler="synchronous", progress=False)
+    assert counter["cases"] == len(cases) - done  # finished cases were not recomputed
+    assert summary.n_reused == done
+    got, ref = xr.load_dataset(summary.path), xr.load_dataset(reference.path)
+    skip = ["wall_time", "message"]
+    xr.testing.assert_identical(got.drop_vars(skip), ref.drop_vars(skip).assign_attrs(
+        history=got.attrs["history"]))
+
+
+def test_cache_survives_a_corrupt_file_and_skips_transient_failures(tmp_path: Path) -> None:
+    from cablestudy.results import CaseRecord
+
+    cache = CaseCache(tmp_path)
+    ok = CaseRecord(hash="a", index=(0,), status=0, message="", wall_time=0.1)
+    slow = CaseRecord(hash="b", index=(1,), status=3, message="time limit reached after 3",
+                      wall_time=0.1)
+    cache.store([ok, slow])
+    (tmp_path / "chunk-garbage.pkl").write_bytes(b"not a pickle")
+    again = CaseCache(tmp_path)
+    assert set(again.records) == {"a"}  # the time-limited case will be retried
+    assert not (tmp_path / "chunk-garbage.pkl").exists()
+    again.compact({"a"})
+    assert len(list(tmp_path.glob("chunk-*.pkl"))) == 1
+    assert set(CaseCache(tmp_path).records) == {"a"}
+
+
+def test_failures_grouped_by_message_with_numbers_masked() -> None:
+    failures = {"did not converge (residual 1.2e-05)": 3, "did not converge (residual 4e-3)": 2,
+                "singular Jacobian": 1}
+    groups = group_failures(failures)
+    assert list(groups.values())[0] == (5, "did not converge (residual 1.2e-05)")
+    report = RunSummary(Path("x.nc"), 10, 0, 10, 6, 1.0, failures).report()
+    assert "     5 x did not converge (residual #)  (e.g." in report
+    assert "     1 x singular Jacobian" in report
+
+
+def test_progress_bar_on_a_terminal(capsys: pytest.CaptureFixture[str]) -> None:
+    bar = Progress(4, enabled=True, delay=0.0)
+    bar.update(2)
+    bar.update(2)
+    bar.close()
+    err = capsys.readouterr().err
+    assert "4/4 cases" in err and "#" * 30 in err
+    quiet = Progress(4, enabled=False)
+    quiet.update(4)
+    quiet.close()
+    assert capsys.readouterr().err == ""
+
+
+def test_auto_scheduler_keeps_a_quick_study_in_process(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    def no_cluster(*args: object, **kwargs: object) -> None:
+        raise AssertionError("a 27-case catenary study must not start worker processes")
+
+    monkeypatch.setattr(runner, "_run_dask", no_cluster)
+    src, axes, cases = _expand()
+    summary = run_study(src, axes, cases, tmp_path, scheduler="auto", progress=False)
+    assert summary.n_computed == 27 and summary.n_failed == 0
+
+
+def test_auto_scheduler_hands_a_long_study_to_workers(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    handed: list[int] = []
+
+    def fake_cluster(cases, scheduler, workers, on_done):  # noqa: ANN001, ANN202
+        handed.append(len(cases))
+        on_done(runner.run_chunk(cases))
+
+    monkeypatch.setattr(runner, "_run_dask", fake_cluster)
+    monkeypatch.setattr(runner, "AUTO_PROBE_SECONDS", 0.0)  # decide after one case
+    monkeypatch.setattr(runner, "AUTO_PARALLEL_AFTER", 0.0)  # ... that anything is long
+    src, axes, cases = _expand()
+    summary = run_study(src, axes, cases, tmp_path, scheduler="auto", workers=2,
+                        progress=False)
+    assert handed == [26] and summary.n_computed == 27
