@@ -46,6 +46,9 @@ def cmd_run(args: argparse.Namespace) -> int:
         print("\ninterrupted: finished cases are cached; run the same command again to "
               "resume", file=sys.stderr)
         return 130
+    except PermissionError as exc:
+        print(f"cannot write the results: {exc}", file=sys.stderr)
+        return 1
     print(summary.report())
     return 0
 
