@@ -44,7 +44,13 @@ SCHEDULERS = (AUTO, SYNCHRONOUS, THREADS, PROCESSES)
 #: auto scheduler: seconds spent timing cases in this process before deciding, and the
 #: estimated remaining run time above which worker processes are started
 AUTO_PROBE_SECONDS = 0.5
+#: seconds to wait for a dask.distributed scheduler given by its address
+CONNECT_TIMEOUT = 10.0
 AUTO_PARALLEL_AFTER = 5.0
+
+
+class SchedulerUnreachable(RuntimeError):
+    """The dask.distributed scheduler named by ``--scheduler ADDRESS`` did not answer."""
 
 
 def default_workers() -> int:
@@ -266,7 +272,13 @@ def _run_dask(cases: list[Case], scheduler: str, workers: int,
         )
         client = Client(cluster)
     else:
-        client = Client(scheduler)
+        try:
+            client = Client(scheduler, timeout=CONNECT_TIMEOUT)
+        except (OSError, TimeoutError) as exc:
+            raise SchedulerUnreachable(
+                f"cannot reach the dask scheduler at {scheduler} within {CONNECT_TIMEOUT:g} s "
+                f"({type(exc).__name__}: {exc})"
+            ) from None
         # chunk for the cluster as it is: one slot per worker thread
         info = client.scheduler_info()
         workers = max(1, sum(w.get("nthreads", 1) for w in info.get("workers", {}).values()))

@@ -131,3 +131,17 @@ def test_shipped_span_stiffness_sweep(tmp_path: Path, capsys: pytest.CaptureFixt
     strain = math.hypot(100.5, 8.6) / 100.0 - 1.0
     # the stiff steel wire barely stretches beyond the chord: T ~ EA strain within 1 %
     assert float(taut.sel(axial_stiffness=6.283e7)) == pytest.approx(6.283e7 * strain, rel=0.01)
+
+
+def test_unreachable_scheduler_is_a_clear_error(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from cablestudy import runner
+
+    monkeypatch.setattr(runner, "CONNECT_TIMEOUT", 1.0)
+    cfg = tmp_path / "pipe.yaml"
+    cfg.write_text(SWEEP)
+    code = main(["run", str(cfg), "--out", str(tmp_path), "--scheduler", "tcp://127.0.0.1:9"])
+    assert code == 1
+    assert "cannot reach the dask scheduler at tcp://127.0.0.1:9" in capsys.readouterr().err
+    assert not (tmp_path / "pipe.nc").exists()
