@@ -256,7 +256,8 @@ def parse_sweep(src: StudySource) -> list[SweepAxis]:
                 line = src.line_of(gloc)
                 if not isinstance(group, dict) or not isinstance(group.get("name"), str):
                     problems.append(f"{line}: sweep.zip.{gi}: each group needs a 'name' "
-                                    "(the dimension) and two or more paths with value lists")
+                                    "(the dimension) and two or more paths with value lists "
+                                    f"(got {group!r})")
                     continue
                 paths = [str(k) for k in group if k != "name"]
                 whys = [(p, check_path(src.data, p)) for p in paths]
@@ -311,10 +312,13 @@ def parse_sweep(src: StudySource) -> list[SweepAxis]:
     seen_paths: dict[str, str] = {}
     for axis in axes:
         for p in axis.paths:
-            if p in seen_paths:
-                raise StudyError([f"{src.line_of(key_locs.get(p, ('sweep',)))}: sweep: the path "
-                                  f"{p!r} is swept twice (dimensions {seen_paths[p]!r} and "
-                                  f"{axis.name!r}); allowed: each path on one axis"], src.source)
+            for q, dim in seen_paths.items():
+                if p == q or p.startswith(q + ".") or q.startswith(p + "."):
+                    what = "swept twice" if p == q else f"overlaps the swept path {q!r}"
+                    raise StudyError(
+                        [f"{src.line_of(key_locs.get(p, ('sweep',)))}: sweep.{p}: the path is "
+                         f"{what} (dimensions {dim!r} and {axis.name!r}); allowed: each "
+                         f"setting on one axis (got {p!r})"], src.source)
             seen_paths[p] = axis.name
     return axes
 

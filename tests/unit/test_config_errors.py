@@ -189,6 +189,12 @@ CASES: dict[str, tuple[str, int, tuple[str, ...]]] = {
         "  zip:\n    - {name: length, analysis.static.nodes: [11, 21]}\n", 20,
         ("sweep.zip.0", "dimension 'length' is already used", "explicit name"),
     ),
+    "sweep-overlapping-paths": (
+        BASE + "sweep:\n  ends.b.position: [[90.0, 0.0, -5.0], [80.0, 0.0, -5.0]]\n"
+        "  ends.b.position.0: [70.0, 75.0]\n", 18,
+        ("sweep.ends.b.position.0", "overlaps the swept path 'ends.b.position'",
+         "each setting on one axis", "(got 'ends.b.position.0')"),
+    ),
     "sweep-zip-unequal": (
         BASE + "sweep:\n  zip:\n    - name: pair\n      line.segments.0.length: [120.0, 130.0]\n"
         "      environment.depth: [150.0]\n", 18,
