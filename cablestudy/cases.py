@@ -424,6 +424,20 @@ def _copy_tree(node: Any) -> Any:
     return copy.deepcopy(node)
 
 
+def _value_loc(src: StudySource, key_loc: Loc, i: int) -> Loc:
+    """YAML location of value ``i`` of the sweep axis at ``key_loc``: the list item where
+    the values are listed (its own line in a block list), else the key itself."""
+    node: Any = src.data
+    for part in key_loc:
+        node = node.get(part) if isinstance(node, dict) else (
+            node[part] if isinstance(node, list) and isinstance(part, int) else None)
+    if isinstance(node, list):
+        return (*key_loc, i)
+    if isinstance(node, dict) and isinstance(node.get("values"), list):
+        return (*key_loc, "values", i)
+    return key_loc
+
+
 def _study_loc(path: str) -> Loc:
     return tuple(int(p) if p.isdigit() else p for p in path.split("."))
 
@@ -438,7 +452,13 @@ def expand_cases(src: StudySource) -> tuple[list[SweepAxis], list[Case]]:
     if not axes:
         h, sh = case_hashes(base)
         return axes, [Case((), {}, base, h, sh)]
-    swept = {_study_loc(p): sweep_key_loc(src, p) for a in axes for p in a.paths}
+    key_locs = {p: sweep_key_loc(src, p) for a in axes for p in a.paths}
+    # per axis, path and index: (study location, (sweep key, location of the value))
+    value_locs = [
+        {p: [(_study_loc(p), (key_locs[p], _value_loc(src, key_locs[p], i)))
+             for i in range(a.size)] for p in a.paths}
+        for a in axes
+    ]
     faults: dict[str, list[dict[str, Any]]] = {}
     cases: list[Case] = []
     template = {k: v for k, v in src.data.items() if k != "sweep"}
@@ -447,6 +467,8 @@ def expand_cases(src: StudySource) -> tuple[list[SweepAxis], list[Case]]:
     for index in itertools.product(*(range(a.size) for a in axes)):
         data = _copy_tree(template)
         coords: dict[str, Any] = {}
+        swept = dict(locs[p][i] for locs, i in zip(value_locs, index, strict=True)
+                     for p in locs)
         bad = False
         for axis, coord, i in zip(axes, coordinates, index, strict=True):
             coords[axis.name] = coord[i].item()
@@ -472,7 +494,7 @@ def expand_cases(src: StudySource) -> tuple[list[SweepAxis], list[Case]]:
         cases.append(Case(tuple(index), coords, study, h, sh))
     if faults:
         problems = []
-        sweep_lines = sorted({src.line_of(loc) or 0 for loc in swept.values()})
+        sweep_lines = sorted({src.line_of(loc) or 0 for loc in key_locs.values()})
         lines_note = f"; swept on line{'s' if len(sweep_lines) > 1 else ''} " + ", ".join(
             str(n) for n in sweep_lines)
         for p, where in faults.items():

@@ -274,13 +274,13 @@ def _shown(value: Any) -> str:
 
 def format_validation_error(
     exc: ValidationError, src: StudySource, prefix: Loc = (), note: str = "",
-    swept: dict[Loc, Loc] | None = None,
+    swept: dict[Loc, tuple[Loc, Loc]] | None = None,
 ) -> list[str]:
     """One message per faulty field: ``line: path: what is wrong and what is allowed
     (got value)``. Alternatives of a union that fail at the same field are joined.
 
-    ``swept`` maps a study path set by a sweep to the sweep key that set it: a fault in a
-    swept value points at the sweep key's line."""
+    ``swept`` maps a study path set by a sweep to (the sweep key that set it, the YAML
+    location of the value used): a fault in a swept value points at that value's line."""
     grouped: dict[tuple[Loc, str], list[str]] = {}
     for err in exc.errors(include_url=False):
         extra, msg, value, known = _describe(err)
@@ -291,8 +291,8 @@ def format_validation_error(
         if swept:
             origin = next((sk for sl, sk in swept.items() if loc[:len(sl)] == sl), None)
             if origin is not None:
-                line = src.line_of(origin)
-                where = f"{where} (value from {dotted(origin)})"
+                line = src.line_of(origin[1])
+                where = f"{where} (value from {dotted(origin[0])})"
         head = f"{line if line is not None else '?'}: {where}"
         tail = f" (got {_shown(value)})" if known else ""
         msgs = grouped.setdefault((loc, head + "\x00" + tail), [])
@@ -307,7 +307,7 @@ def format_validation_error(
 
 def validate_data(
     data: dict[str, Any], src: StudySource, prefix: Loc = (), note: str = "",
-    swept: dict[Loc, Loc] | None = None,
+    swept: dict[Loc, tuple[Loc, Loc]] | None = None,
 ) -> Study:
     """Validate parsed study data; raise :class:`StudyError` naming each fault's line."""
     try:

@@ -183,6 +183,11 @@ CASES: dict[str, tuple[str, int, tuple[str, ...]]] = {
         ("line.segments.0.length (value from sweep.line.segments.0.length)",
          "greater than 0", "(got -5.0)", "[in sweep case {'length': -5.0}"),
     ),
+    "sweep-bad-value-in-a-block-list": (
+        BASE + "sweep:\n  line.segments.0.length:\n    - 120.0\n    - .nan\n", 19,
+        ("line.segments.0.length (value from sweep.line.segments.0.length)",
+         "finite number", "(got nan)", "[in sweep case {'length': 1}"),
+    ),
     "sweep-dimension-clash": (
         BASE + "sweep:\n  line.segments.0.length: [120.0, 130.0]\n"
         "  environment.depth: [150.0, 300.0]\n"
