@@ -218,6 +218,12 @@ def provenance(src: StudySource, solver_settings: dict[str, Any]) -> dict[str, A
     }
 
 
+def _umask() -> int:
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
 def write_atomic(ds: xr.Dataset, path: str | Path) -> Path:
     """Write ``ds`` to netCDF at ``path`` through a temporary file in the same folder and
     an atomic rename: a crash never leaves a half-written or corrupted result."""
@@ -231,6 +237,7 @@ def write_atomic(ds: xr.Dataset, path: str | Path) -> Path:
         ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
         with open(tmp, "rb+") as fh:  # on disk before the rename makes it visible
             os.fsync(fh.fileno())
+        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes it private (0600)
         os.replace(tmp, path)
     finally:
         if os.path.exists(tmp):
