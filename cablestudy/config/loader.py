@@ -124,11 +124,16 @@ def parse_study_text(text: str, source: str = "<study>") -> StudySource:
 
 
 def read_study_source(path: str | Path) -> StudySource:
+    """Read a study file (UTF-8 YAML) keeping line numbers. Raises :class:`StudyError`."""
     path = Path(path)
     try:
-        text = path.read_text()
+        text = path.read_text(encoding="utf-8")
     except OSError as exc:
         raise StudyError([f"0: cannot read the study file: {exc.strerror}"], str(path)) from None
+    except UnicodeDecodeError as exc:
+        line = path.read_bytes()[: exc.start].count(b"\n") + 1
+        raise StudyError([f"{line}: the study file is not UTF-8 text ({exc.reason} at byte "
+                          f"{exc.start})"], str(path)) from None
     return parse_study_text(text, str(path))
 
 

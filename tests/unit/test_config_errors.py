@@ -249,3 +249,12 @@ def test_missing_file_is_a_clear_error(tmp_path: Path,
                                        capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["validate", str(tmp_path / "nope.yaml")]) == 2
     assert "cannot read the study file" in capsys.readouterr().err
+
+
+def test_non_utf8_file_is_a_clear_error(tmp_path: Path,
+                                        capsys: pytest.CaptureFixture[str]) -> None:
+    path = tmp_path / "latin1.yaml"
+    text = BASE.replace("name: errs", "name: errs\ndescription: caf\xe9")
+    path.write_bytes(text.encode("latin-1"))
+    assert main(["validate", str(path)]) == 2
+    assert f"{path}:2: the study file is not UTF-8 text" in capsys.readouterr().err
