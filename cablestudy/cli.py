@@ -29,7 +29,7 @@ def cmd_validate(args: argparse.Namespace) -> int:
 
 
 def cmd_run(args: argparse.Namespace) -> int:
-    from .runner import AUTO, SCHEDULERS, run_study
+    from .runner import AUTO, SCHEDULERS, SchedulerUnreachable, run_study
 
     scheduler = args.scheduler or AUTO
     if scheduler not in SCHEDULERS and "://" not in scheduler:
@@ -46,6 +46,12 @@ def cmd_run(args: argparse.Namespace) -> int:
         print("\ninterrupted: finished cases are cached; run the same command again to "
               "resume", file=sys.stderr)
         return 130
+    except PermissionError as exc:
+        print(f"cannot write the results: {exc}", file=sys.stderr)
+        return 1
+    except SchedulerUnreachable as exc:
+        print(f"{exc}; finished cases are cached", file=sys.stderr)
+        return 1
     print(summary.report())
     return 0
 

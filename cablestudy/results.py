@@ -76,6 +76,24 @@ def _fill(dtype: str) -> Any:
     return {"int64": -1, "str": ""}.get(dtype, np.nan)
 
 
+def _fill_rows(arr: np.ndarray, rows: list[tuple[tuple[int, ...], Any]],
+               tail: tuple[int, ...]) -> None:
+    """Put each case's value at its sweep index; values of the full extent in one
+    vectorised assignment, shorter ones (fewer nodes) padded by the fill value."""
+    full = [(idx, v) for idx, v in rows if np.shape(v) == tail]
+    if full and len(full[0][0]) > 0:
+        where = tuple(np.array(col, dtype=np.intp) for col in zip(*(i for i, _ in full),
+                                                                   strict=True))
+        values = [v for _, v in full]
+        arr[where] = values if arr.dtype == object else np.asarray(values, dtype=arr.dtype)
+    else:
+        for idx, v in full:
+            arr[idx] = v
+    for idx, v in rows:
+        if np.shape(v) != tail:
+            arr[idx + tuple(slice(0, n) for n in np.shape(v))] = v
+
+
 def assemble(
     axes: list[SweepAxis], cases: list[Case], records: dict[str, CaseRecord], src: StudySource,
     *, solver_settings: dict[str, Any] | None = None,
@@ -99,15 +117,15 @@ def assemble(
 
     data_vars: dict[str, Any] = {}
     for name, spec in {**CASE_VARIABLES, **{k: OUTPUTS[k] for k in present}}.items():
-        full_shape = shape + tuple(extent[d] for d in spec.dims)
+        tail = tuple(extent[d] for d in spec.dims)
         dtype = object if spec.dtype == "str" else spec.dtype
-        arr = np.full(full_shape, _fill(spec.dtype), dtype=dtype)
-        for idx, rec in by_index.items():
-            if name in CASE_VARIABLES:
-                arr[idx] = getattr(rec, name)
-            elif name in rec.data and rec.status == 0:
-                val = np.asarray(rec.data[name])
-                arr[idx + tuple(slice(0, n) for n in val.shape)] = val
+        arr = np.full(shape + tail, _fill(spec.dtype), dtype=dtype)
+        if name in CASE_VARIABLES:
+            rows = [(idx, getattr(rec, name)) for idx, rec in by_index.items()]
+        else:
+            rows = [(idx, np.asarray(rec.data[name])) for idx, rec in by_index.items()
+                    if name in rec.data and rec.status == 0]
+        _fill_rows(arr, rows, tail)
         data_vars[name] = (dims + spec.dims, arr,
                            {"units": spec.units, "long_name": spec.long_name})
 
@@ -172,8 +190,8 @@ def provenance(src: StudySource, solver_settings: dict[str, Any]) -> dict[str, A
     """Global attributes that trace a dataset to its inputs: the study YAML and its hash,
     package versions, the solver-code fingerprint and the solver settings."""
     import platform
+    from importlib.metadata import version
 
-    import dask
     import numpy
     import pydantic
     import scipy
@@ -192,12 +210,18 @@ def provenance(src: StudySource, solver_settings: dict[str, Any]) -> dict[str, A
         "scipy_version": scipy.__version__,
         "xarray_version": xr.__version__,
         "pydantic_version": pydantic.VERSION,
-        "dask_version": dask.__version__,
+        "dask_version": version("dask"),
         "python_version": platform.python_version(),
         "cablestudy_code_sha256": code_fingerprint(),
         "solver_settings": json.dumps(solver_settings, sort_keys=True),
         "history": f"{datetime.now(UTC).isoformat(timespec='seconds')} cablestudy run",
     }
+
+
+def _umask() -> int:
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
 
 
 def write_atomic(ds: xr.Dataset, path: str | Path) -> Path:
@@ -208,11 +232,12 @@ def write_atomic(ds: xr.Dataset, path: str | Path) -> Path:
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     os.close(fd)
     try:
-        encoding = {name: {"zlib": True, "complevel": 4} for name, v in ds.data_vars.items()
-                    if v.dtype.kind == "f"}
+        encoding = {name: {"zlib": True, "complevel": 1, "shuffle": True}
+                    for name, v in ds.data_vars.items() if v.dtype.kind == "f"}
         ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
         with open(tmp, "rb+") as fh:  # on disk before the rename makes it visible
             os.fsync(fh.fileno())
+        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes it private (0600)
         os.replace(tmp, path)
     finally:
         if os.path.exists(tmp):

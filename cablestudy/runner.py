@@ -7,6 +7,7 @@ The runner moves cases and records; it knows nothing of physics (it calls
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import json
 import math
@@ -21,6 +22,8 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
+
+import numpy as np
 
 from .analyses import evaluate_case
 from .cases import Case, SweepAxis
@@ -41,7 +44,13 @@ SCHEDULERS = (AUTO, SYNCHRONOUS, THREADS, PROCESSES)
 #: auto scheduler: seconds spent timing cases in this process before deciding, and the
 #: estimated remaining run time above which worker processes are started
 AUTO_PROBE_SECONDS = 0.5
+#: seconds to wait for a dask.distributed scheduler given by its address
+CONNECT_TIMEOUT = 10.0
 AUTO_PARALLEL_AFTER = 5.0
+
+
+class SchedulerUnreachable(RuntimeError):
+    """The dask.distributed scheduler named by ``--scheduler ADDRESS`` did not answer."""
 
 
 def default_workers() -> int:
@@ -83,6 +92,13 @@ def make_chunks(cases: list[Case], workers: int, *, min_chunks_per_worker: int =
     return [ordered[lo:hi] for lo, hi in zip(bounds[:-1], bounds[1:], strict=True)]
 
 
+def _compact(record: CaseRecord) -> CaseRecord:
+    """The record with 0-d arrays as Python scalars (pickles three times faster)."""
+    data = {k: (v.item() if isinstance(v, np.ndarray) and v.ndim == 0 else v)
+            for k, v in record.data.items()}
+    return dataclasses.replace(record, data=data)
+
+
 class CaseCache:
     """Finished case records on disk, one pickle file per finished chunk, keyed by case
     hash. Written atomically (temporary file then rename)."""
@@ -108,7 +124,7 @@ class CaseCache:
         if self.directory is None or not cacheable:
             return
         key = hashlib.sha256("".join(r.hash for r in cacheable).encode()).hexdigest()[:24]
-        self._write(self.directory / f"chunk-{key}.pkl", cacheable)
+        self._write(self.directory / f"chunk-{key}.pkl", [_compact(r) for r in cacheable])
 
     def _write(self, path: Path, records: list[CaseRecord]) -> None:
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -256,7 +272,13 @@ def _run_dask(cases: list[Case], scheduler: str, workers: int,
         )
         client = Client(cluster)
     else:
-        client = Client(scheduler)
+        try:
+            client = Client(scheduler, timeout=CONNECT_TIMEOUT)
+        except (OSError, TimeoutError) as exc:
+            raise SchedulerUnreachable(
+                f"cannot reach the dask scheduler at {scheduler} within {CONNECT_TIMEOUT:g} s "
+                f"({type(exc).__name__}: {exc})"
+            ) from None
         # chunk for the cluster as it is: one slot per worker thread
         info = client.scheduler_info()
         workers = max(1, sum(w.get("nthreads", 1) for w in info.get("workers", {}).values()))

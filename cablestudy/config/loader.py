@@ -124,11 +124,16 @@ def parse_study_text(text: str, source: str = "<study>") -> StudySource:
 
 
 def read_study_source(path: str | Path) -> StudySource:
+    """Read a study file (UTF-8 YAML) keeping line numbers. Raises :class:`StudyError`."""
     path = Path(path)
     try:
-        text = path.read_text()
+        text = path.read_text(encoding="utf-8")
     except OSError as exc:
         raise StudyError([f"0: cannot read the study file: {exc.strerror}"], str(path)) from None
+    except UnicodeDecodeError as exc:
+        line = path.read_bytes()[: exc.start].count(b"\n") + 1
+        raise StudyError([f"{line}: the study file is not UTF-8 text ({exc.reason} at byte "
+                          f"{exc.start})"], str(path)) from None
     return parse_study_text(text, str(path))
 
 
@@ -274,13 +279,13 @@ def _shown(value: Any) -> str:
 
 def format_validation_error(
     exc: ValidationError, src: StudySource, prefix: Loc = (), note: str = "",
-    swept: dict[Loc, Loc] | None = None,
+    swept: dict[Loc, tuple[Loc, Loc]] | None = None,
 ) -> list[str]:
     """One message per faulty field: ``line: path: what is wrong and what is allowed
     (got value)``. Alternatives of a union that fail at the same field are joined.
 
-    ``swept`` maps a study path set by a sweep to the sweep key that set it: a fault in a
-    swept value points at the sweep key's line."""
+    ``swept`` maps a study path set by a sweep to (the sweep key that set it, the YAML
+    location of the value used): a fault in a swept value points at that value's line."""
     grouped: dict[tuple[Loc, str], list[str]] = {}
     for err in exc.errors(include_url=False):
         extra, msg, value, known = _describe(err)
@@ -291,8 +296,8 @@ def format_validation_error(
         if swept:
             origin = next((sk for sl, sk in swept.items() if loc[:len(sl)] == sl), None)
             if origin is not None:
-                line = src.line_of(origin)
-                where = f"{where} (value from {dotted(origin)})"
+                line = src.line_of(origin[1])
+                where = f"{where} (value from {dotted(origin[0])})"
         head = f"{line if line is not None else '?'}: {where}"
         tail = f" (got {_shown(value)})" if known else ""
         msgs = grouped.setdefault((loc, head + "\x00" + tail), [])
@@ -307,7 +312,7 @@ def format_validation_error(
 
 def validate_data(
     data: dict[str, Any], src: StudySource, prefix: Loc = (), note: str = "",
-    swept: dict[Loc, Loc] | None = None,
+    swept: dict[Loc, tuple[Loc, Loc]] | None = None,
 ) -> Study:
     """Validate parsed study data; raise :class:`StudyError` naming each fault's line."""
     try:

@@ -112,3 +112,36 @@ def test_unknown_scheduler_is_refused(tmp_path: Path,
     cfg.write_text(SWEEP)
     assert main(["run", str(cfg), "--scheduler", "spark"]) == 2
     assert "allowed are auto, synchronous, threads, processes" in capsys.readouterr().err
+
+
+def test_shipped_span_stiffness_sweep(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """configs/catenary-sweep.yaml end to end: a (span x axial_stiffness) dataset in which
+    the end tension grows with the span (the line is pulled straighter) and, once the chord
+    exceeds the unstretched length, with the axial stiffness (T ~ EA * strain)."""
+    cfg = ROOT / "configs" / "catenary-sweep.yaml"
+    assert main(["validate", str(cfg)]) == 0
+    assert "328 cases (span=82, axial_stiffness=4)" in capsys.readouterr().out
+    assert main(["run", str(cfg), "--out", str(tmp_path), "--scheduler", "synchronous"]) == 0
+    ds = xr.load_dataset(tmp_path / "catenary-sweep.nc")
+    assert dict(ds.sizes) == {"span": 82, "axial_stiffness": 4, "s": 101, "component": 3}
+    assert np.all(ds["status"] == 0)
+    assert np.all(ds["tension_a"].diff("span") > 0)
+    taut = ds["tension_a"].sel(span=100.5)  # chord 100.87 m > 100 m
+    assert np.all(taut.diff("axial_stiffness") > 0)
+    strain = math.hypot(100.5, 8.6) / 100.0 - 1.0
+    # the stiff steel wire barely stretches beyond the chord: T ~ EA strain within 1 %
+    assert float(taut.sel(axial_stiffness=6.283e7)) == pytest.approx(6.283e7 * strain, rel=0.01)
+
+
+def test_unreachable_scheduler_is_a_clear_error(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from cablestudy import runner
+
+    monkeypatch.setattr(runner, "CONNECT_TIMEOUT", 1.0)
+    cfg = tmp_path / "pipe.yaml"
+    cfg.write_text(SWEEP)
+    code = main(["run", str(cfg), "--out", str(tmp_path), "--scheduler", "tcp://127.0.0.1:9"])
+    assert code == 1
+    assert "cannot reach the dask scheduler at tcp://127.0.0.1:9" in capsys.readouterr().err
+    assert not (tmp_path / "pipe.nc").exists()

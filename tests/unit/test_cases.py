@@ -7,6 +7,8 @@ import dataclasses
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from cablestudy.cases import Case, SweepAxis, expand_cases, parse_sweep
 from cablestudy.config import parse_study_text
@@ -120,3 +122,26 @@ def test_vector_valued_axis() -> None:
 def test_parse_sweep_of_an_unchanged_source_is_deterministic() -> None:
     src = parse_study_text(BASE + "sweep:\n  line.segments.0.length: [100.0, 110.0]\n", "t")
     assert parse_sweep(src) == parse_sweep(src)
+
+
+PATHS = {
+    "line.segments.0.axial_stiffness": lambda st: st.line.segments[0].axial_stiffness,
+    "line.segments.0.length": lambda st: st.line.segments[0].length,
+    "ends.b.position.2": lambda st: st.ends.b.position[2],
+}
+
+
+@settings(max_examples=25, deadline=None)
+@given(sizes=st.lists(st.integers(1, 4), min_size=1, max_size=3))
+def test_every_case_holds_its_coordinates(sizes: list[int]) -> None:
+    """For any sweep, the cases are the full product and each case's study holds, at
+    each swept path, the value of its coordinate."""
+    paths = list(PATHS)[: len(sizes)]
+    lines = [f"  {p}: [{', '.join(str(90.0 + 2.0 * i) for i in range(n))}]"
+             for p, n in zip(paths, sizes, strict=False)]
+    axes, cases = expand("sweep:\n" + "\n".join(lines) + "\n")
+    assert len(cases) == int(np.prod(sizes))
+    assert len({c.index for c in cases}) == len(cases)
+    for case in cases:
+        for axis, path in zip(axes, paths, strict=True):
+            assert PATHS[path](case.study) == case.coords[axis.name]

@@ -183,11 +183,22 @@ CASES: dict[str, tuple[str, int, tuple[str, ...]]] = {
         ("line.segments.0.length (value from sweep.line.segments.0.length)",
          "greater than 0", "(got -5.0)", "[in sweep case {'length': -5.0}"),
     ),
+    "sweep-bad-value-in-a-block-list": (
+        BASE + "sweep:\n  line.segments.0.length:\n    - 120.0\n    - .nan\n", 19,
+        ("line.segments.0.length (value from sweep.line.segments.0.length)",
+         "finite number", "(got nan)", "[in sweep case {'length': 1}"),
+    ),
     "sweep-dimension-clash": (
         BASE + "sweep:\n  line.segments.0.length: [120.0, 130.0]\n"
         "  environment.depth: [150.0, 300.0]\n"
         "  zip:\n    - {name: length, analysis.static.nodes: [11, 21]}\n", 20,
         ("sweep.zip.0", "dimension 'length' is already used", "explicit name"),
+    ),
+    "sweep-overlapping-paths": (
+        BASE + "sweep:\n  ends.b.position: [[90.0, 0.0, -5.0], [80.0, 0.0, -5.0]]\n"
+        "  ends.b.position.0: [70.0, 75.0]\n", 18,
+        ("sweep.ends.b.position.0", "overlaps the swept path 'ends.b.position'",
+         "each setting on one axis", "(got 'ends.b.position.0')"),
     ),
     "sweep-zip-unequal": (
         BASE + "sweep:\n  zip:\n    - name: pair\n      line.segments.0.length: [120.0, 130.0]\n"
@@ -238,3 +249,12 @@ def test_missing_file_is_a_clear_error(tmp_path: Path,
                                        capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["validate", str(tmp_path / "nope.yaml")]) == 2
     assert "cannot read the study file" in capsys.readouterr().err
+
+
+def test_non_utf8_file_is_a_clear_error(tmp_path: Path,
+                                        capsys: pytest.CaptureFixture[str]) -> None:
+    path = tmp_path / "latin1.yaml"
+    text = BASE.replace("name: errs", "name: errs\ndescription: caf\xe9")
+    path.write_bytes(text.encode("latin-1"))
+    assert main(["validate", str(path)]) == 2
+    assert f"{path}:2: the study file is not UTF-8 text" in capsys.readouterr().err

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 from pathlib import Path
 
 import numpy as np
@@ -112,6 +113,9 @@ def test_write_round_trip(tmp_path: Path) -> None:
     assert [str(m) for m in back["message"].values.ravel()] == [
         str(m) for m in ds["message"].values.ravel()]
     assert list(tmp_path.joinpath("deep").iterdir()) == [path]
+    mask = os.umask(0o022)
+    os.umask(mask)
+    assert path.stat().st_mode & 0o777 == 0o666 & ~mask  # not mkstemp's private 0600
 
 
 def test_crash_during_write_keeps_the_earlier_result(tmp_path: Path,

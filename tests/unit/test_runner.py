@@ -236,3 +236,18 @@ def test_auto_scheduler_hands_a_long_study_to_workers(
     summary = run_study(src, axes, cases, tmp_path, scheduler="auto", workers=2,
                         progress=False)
     assert handed == [26] and summary.n_computed == 27
+
+
+def test_time_limited_cases_fail_with_a_message_and_are_retried(tmp_path: Path) -> None:
+    """A case over analysis.time_limit is a failure with a message (data NaN), and it is
+    not cached: on a less loaded machine a re-run may finish it."""
+    text = TEXT.replace("analysis:\n", "analysis:\n  time_limit: 1.0e-9\n")
+    src, axes, cases = _expand(text)
+    summary = run_study(src, axes, cases, tmp_path, scheduler="synchronous", progress=False)
+    ds = xr.load_dataset(summary.path)
+    assert np.all(ds["status"] == 3)
+    assert all(str(m).startswith("time limit") for m in ds["message"].values.ravel())
+    assert np.all(np.isnan(ds["tension_a"]))
+    assert "    27 x time limit" in summary.report()
+    again = run_study(src, axes, cases, tmp_path, scheduler="synchronous", progress=False)
+    assert again.n_reused == 0 and again.n_computed == 27
