@@ -10,12 +10,14 @@ import math
 import time
 import traceback
 from collections import OrderedDict
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
 
 from .cases import Case
 from .config.loader import StudyError, StudySource
+from .dynamics.modal import ModalProblem, ModalResult, modal_analysis
 from .problem import static_problem
 from .results import CaseRecord
 from .statics import STATIC_SOLVERS, STATUS_NUMERICAL, STATUS_OK, StaticResult
@@ -61,6 +63,46 @@ def solve_static(case: Case, deadline: float | None) -> StaticResult:
     return result
 
 
+def solve_modal(case: Case, static: StaticResult, deadline: float | None) -> ModalResult:
+    """Modal analysis about the static shape, on ``analysis.modal.n_elements`` elements.
+    The static shape is sampled at the element nodes: reused when the static output
+    already has that many points, else solved again by the same static solver."""
+    settings = case.study.analysis.modal
+    assert settings is not None
+    problem = static_problem(case.study)
+    n_nodes = settings.n_elements + 1
+    if n_nodes == problem.n_nodes:
+        mesh_static = static
+    else:
+        key = f"{case.static_hash}:modal-nodes={n_nodes}"
+        cached = _STATIC_CACHE.get(key)
+        if cached is None:
+            solver = STATIC_SOLVERS[case.study.analysis.static.method]
+            cached = solver.solve(replace(problem, n_nodes=n_nodes), deadline=deadline)
+            cached = cached.check_finite()
+            _STATIC_CACHE[key] = cached
+            while len(_STATIC_CACHE) > _STATIC_CACHE_SIZE:
+                _STATIC_CACHE.popitem(last=False)
+        mesh_static = cached
+    return modal_analysis(
+        ModalProblem(line=problem.line, medium=problem.medium, end_a=problem.end_a,
+                     end_b=problem.end_b, static=mesh_static, n_modes=settings.modes,
+                     include_added_mass=settings.include_added_mass,
+                     include_bending=settings.include_bending),
+        deadline=deadline,
+    )
+
+
+def modal_outputs(res: ModalResult, s: np.ndarray, *, mode_shapes: bool) -> dict[str, np.ndarray]:
+    out = {
+        "natural_frequency": res.frequency,
+        "modal_dof": np.asarray(res.n_dof),
+    }
+    if mode_shapes:
+        out["mode_shape"] = res.shape_at(s)
+    return out
+
+
 def static_outputs(res: StaticResult) -> dict[str, np.ndarray]:
     return {
         "arc_length": res.s,
@@ -88,6 +130,12 @@ def evaluate_case(case: Case) -> CaseRecord:
         res = solve_static(case, deadline)
         status, message = res.status, res.message
         data.update(static_outputs(res))
+        modal = case.study.analysis.modal
+        if modal is not None and status == STATUS_OK:
+            mres = solve_modal(case, res, deadline)
+            data.update(modal_outputs(mres, res.s, mode_shapes=modal.mode_shapes))
+            if mres.status != STATUS_OK:
+                status, message = mres.status, f"modal analysis: {mres.message}"
     except Exception as exc:  # noqa: BLE001 - any solver fault is recorded as data
         status = STATUS_NUMERICAL
         tb = traceback.extract_tb(exc.__traceback__)

@@ -1,8 +1,8 @@
-"""Analysis settings: statics and the per-case time limit."""
+"""Analysis settings: statics, modal analysis and the per-case time limit."""
 
 from __future__ import annotations
 
-from pydantic import Field, field_validator
+from pydantic import Field, field_validator, model_validator
 
 from .base import Positive, StrictModel
 
@@ -25,8 +25,45 @@ class StaticSettings(StrictModel):
         return value
 
 
+class ModalSettings(StrictModel):
+    """Natural frequencies and mode shapes about the static shape
+    (:mod:`cablestudy.dynamics.modal`)."""
+
+    modes: int = Field(10, ge=1, le=1000, description="number of lowest modes [-]")
+    elements: int | None = Field(
+        None, ge=2, le=100_000,
+        description="bar elements of the modal model [-]; omit: max(100, 20 * modes)",
+    )
+    include_added_mass: bool = Field(
+        True, description="add the fluid's added mass (normal, and tangential if given)"
+    )
+    include_bending: bool = Field(True, description="add the segments' bending stiffness EI")
+    mode_shapes: bool = Field(True, description="write mode shapes (mode, s, component)")
+
+    @model_validator(mode="after")
+    def _enough_freedom(self) -> ModalSettings:
+        n = self.n_elements
+        if 3 * (n - 1) < self.modes:
+            raise ValueError(
+                f"elements = {n} gives at most {3 * (n - 1)} degrees of freedom but modes = "
+                f"{self.modes}; allowed: elements >= {self.modes // 3 + 2} for this many modes"
+            )
+        return self
+
+    @property
+    def n_elements(self) -> int:
+        """Elements used: as given, or max(100, 20 * modes) (lumped-mass elements converge
+        as h^2; 20 elements per mode order keep the highest mode within about 0.1 %)."""
+        if self.elements is not None:
+            return self.elements
+        return min(max(100, 20 * self.modes), 100_000)
+
+
 class Analysis(StrictModel):
     static: StaticSettings = StaticSettings()
+    modal: ModalSettings | None = Field(
+        None, description="modal analysis about the static shape; omit: none"
+    )
     time_limit: Positive = Field(
         600.0, description="wall-time limit per case [s]; a case over it fails with a message"
     )
