@@ -75,7 +75,8 @@ def irvine_lambda(data: dict[str, xr.Dataset], out: Path) -> Path:
         ax.plot(lam, sym[:, k], "-", color="C2", lw=1,
                 label="Irvine: symmetric, tan(w/2) = w/2 - (4/lambda^2)(w/2)^3" if k == 0 else None)
     for n in range(1, 5):
-        ax.axhline(n, color="C0", lw=0.8, ls=":", label="Irvine: out of plane, n" if n == 1 else None)
+        ax.axhline(n, color="C0", lw=0.8, ls=":",
+                   label="Irvine: out of plane, n" if n == 1 else None)
     for n in (1, 2):
         ax.axhline(2 * n, color="C1", lw=0.8, ls="--",
                    label="Irvine: antisymmetric, 2n" if n == 1 else None)
