@@ -41,8 +41,10 @@ seabed) and free along it.
 Solution. The constraints keep one orthonormal basis of free directions per node, so
 the reduced mass stays block-diagonal; with its block Cholesky factor L the problem
 becomes the standard banded symmetric eigenproblem ``L^-1 K L^-T y = omega^2 y``
-(half-bandwidth at most 8 degrees of freedom), solved for the lowest modes only by
-LAPACK's banded solver (:func:`scipy.linalg.eig_banded`), O(n) work per mode.
+(half-bandwidth at most 8 degrees of freedom), solved for the lowest modes only: by
+ARPACK in shift-invert mode about 0 (:func:`scipy.sparse.linalg.eigsh` on a sparse
+LU of the banded matrix), or for small models and when half or more of the modes are
+wanted by LAPACK's banded solver (:func:`scipy.linalg.eig_banded`).
 
 Accuracy. Lumped masses and linear elements make the frequencies converge as h^2:
 for a taut string the discrete frequencies are exactly
@@ -59,6 +61,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 from scipy.linalg import eig_banded
+from scipy.sparse.linalg import ArpackError, eigsh
 
 from ..statics.base import (
     STATUS_NUMERICAL,
@@ -271,6 +274,31 @@ def stiffness_matrix(problem: ModalProblem) -> sp.csr_matrix:
     )
 
 
+#: largest model (degrees of freedom) solved by LAPACK's banded eigensolver. Its
+#: eigenvector back-transformation holds a dense n x n matrix (O(n^2) memory, ~O(n^3)
+#: time) and its eigenvalues are accurate to eps * (largest eigenvalue) only, i.e.
+#: relative 1e-9 for the lowest modes of a stiff line; larger models (and any model
+#: asked for fewer than half its modes) use ARPACK in shift-invert mode about 0 on a
+#: sparse LU of the banded matrix, which resolves the lowest modes to relative round-off
+BANDED_LIMIT = 60
+
+
+def lowest_eigenpairs(A: sp.coo_matrix, k: int) -> tuple[np.ndarray, np.ndarray]:
+    """The ``k`` lowest eigenvalues (increasing) and eigenvectors (columns) of the
+    symmetric banded matrix ``A``."""
+    n = A.shape[0]
+    if n <= BANDED_LIMIT or 2 * k >= n:
+        upper = A.col >= A.row
+        bw = int(np.max(A.col[upper] - A.row[upper])) if np.any(upper) else 0
+        ab = np.zeros((bw + 1, n))
+        ab[bw + A.row[upper] - A.col[upper], A.col[upper]] = A.data[upper]
+        return eig_banded(ab, lower=False, select="i", select_range=(0, k - 1))
+    # eigenvalues nearest 0 are the lowest (and any negative ones, which are reported)
+    lam, Y = eigsh(A.tocsc(), k=k, sigma=0.0, which="LM", tol=1e-13)
+    order = np.argsort(lam)
+    return lam[order], Y[:, order]
+
+
 def modal_analysis(problem: ModalProblem, *, deadline: float | None = None) -> ModalResult:
     """Lowest ``problem.n_modes`` natural frequencies [Hz] and mode shapes about the
     static shape. Never raises for a numerical failure: returns a failed result."""
@@ -340,14 +368,9 @@ def modal_analysis(problem: ModalProblem, *, deadline: float | None = None) -> M
         (np.concatenate(l_vals), (np.concatenate(l_rows), np.concatenate(l_cols))),
         shape=(n_dof, n_dof))
     A = (Linv @ (B.T @ K @ B) @ Linv.T).tocoo()
-    upper = A.col >= A.row
-    bw = int(np.max(A.col[upper] - A.row[upper])) if np.any(upper) else 0
-    ab = np.zeros((bw + 1, n_dof))
-    ab[bw + A.row[upper] - A.col[upper], A.col[upper]] = A.data[upper]
     try:
-        lam, Y = eig_banded(ab, lower=False, select="i", select_range=(0, k - 1),
-                            check_finite=True)
-    except (np.linalg.LinAlgError, ValueError) as exc:
+        lam, Y = lowest_eigenpairs(A, k)
+    except (np.linalg.LinAlgError, ValueError, RuntimeError, ArpackError) as exc:
         return ModalResult.failed(s, k, STATUS_NUMERICAL, f"eigenproblem failed: {exc}",
                                   n_dof=n_dof)
     scale = max(float(np.max(np.abs(lam))), 1e-300)

@@ -215,3 +215,23 @@ def test_modal_settings() -> None:
         ModalSettings(modes=10, elements=3)
     with pytest.raises(ValidationError, match="extra"):
         ModalSettings(modes=3, shapes=True)  # type: ignore[call-arg]
+
+
+def test_banded_and_shift_invert_solvers_agree(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Both eigen solvers (LAPACK banded for small models, ARPACK shift-invert about 0
+    otherwise) give the same modes. Tolerance: the banded solver's eigenvalues carry an
+    absolute error ~ eps * lambda_max, with lambda_max <= 4 EA / (m h^2) (the axial
+    chain), i.e. a relative frequency error eps * lambda_max / (2 omega^2); ARPACK's is
+    ~1e-13 relative."""
+    import cablestudy.dynamics.modal as modal
+
+    prob = sagged([0, 0, 0], [90, 0, -10], n=120)
+    monkeypatch.setattr(modal, "BANDED_LIMIT", 10**9)
+    banded = modal.modal_analysis(prob)
+    monkeypatch.setattr(modal, "BANDED_LIMIT", 0)
+    arpack = modal.modal_analysis(prob)
+    h = 102.0 / 120
+    lam_max = 4 * 1.0e7 / (2.0 * h**2)
+    tol = np.finfo(float).eps * lam_max / (2 * (2 * np.pi * banded.frequency) ** 2) + 1e-12
+    assert np.all(np.abs(arpack.frequency / banded.frequency - 1) <= tol)
+    np.testing.assert_allclose(np.abs(arpack.mode_shape), np.abs(banded.mode_shape), atol=1e-7)
