@@ -309,6 +309,10 @@ def modal_analysis(problem: ModalProblem, *, deadline: float | None = None) -> M
         return ModalResult.failed(s, k, STATUS_STATIC_FAILED,
                                   f"no static shape to linearise about: {st.message}")
     n = len(s)
+    if not (np.all(np.isfinite(s)) and np.all(np.isfinite(st.position))
+            and np.all(np.isfinite(st.tension))):
+        return ModalResult.failed(s, k, STATUS_NUMERICAL,
+                                  "the static shape holds non-finite values")
     if n < 2 or np.any(np.diff(s) <= 0.0):
         return ModalResult.failed(s, k, STATUS_NUMERICAL,
                                   "static nodes must have strictly increasing arc length")

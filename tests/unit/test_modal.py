@@ -197,6 +197,11 @@ def test_failures_are_data_not_exceptions() -> None:
     assert res.status == STATUS_SLACK and "slack" in res.message
     assert np.all(np.isnan(res.mode_shape))
 
+    nan_pos = replace(prob.static, position=np.where(s[:, None] > 50, np.nan, 0.0)
+                      + prob.static.position)
+    res = modal_analysis(replace(prob, static=nan_pos))
+    assert res.status == STATUS_NUMERICAL and "non-finite" in res.message
+
     res = modal_analysis(replace(prob, n_modes=10_000))
     assert res.status == STATUS_NUMERICAL and "degrees of freedom" in res.message
 
