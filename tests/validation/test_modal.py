@@ -14,6 +14,10 @@ Sources of the expected numbers:
   the discrete eigenproblem): omega_n = 2 sqrt(k / M) sin(n pi / (2 N)).
 * The hanging chain (D. Bernoulli; e.g. Irvine 1981, sec. 1.5): omega_n = (j_{0,n} / 2)
   sqrt(g / L) with j_{0,n} the zeros of the Bessel function J0.
+* The string with tension varying linearly along it (a vertical riser in water,
+  T = T0 + w s): u = A J0(xi) + B Y0(xi), xi = 2 omega sqrt(m T) / w, so with both ends
+  fixed J0(xi_a) Y0(xi_b) - J0(xi_b) Y0(xi_a) = 0 (the hanging-chain solution
+  continued to a tensioned lower end).
 * The pinned tensioned beam: f_n = n / (2 L) sqrt(T / m (1 + EI n^2 pi^2 / (T L^2))).
 """
 
@@ -24,7 +28,7 @@ import math
 import numpy as np
 import pytest
 from scipy.optimize import brentq
-from scipy.special import jn_zeros
+from scipy.special import j0, jn_zeros, y0
 
 from cablestudy.dynamics import irvine
 from cablestudy.dynamics.modal import ModalProblem, ModalResult, modal_analysis
@@ -332,3 +336,51 @@ def test_pinned_tensioned_beam() -> None:
     assert np.all(rel <= 1.1 * (n * np.pi / N) ** 2 / 12)
     # bending matters here: the beam term raises mode 5 by more than 10 %
     assert beam[-1] / (5 / (2 * SPAN) * math.sqrt(T / m)) > 1.1
+
+
+def test_vertical_riser_in_water_bessel() -> None:
+    """A vertical line in water between the seabed (300 m down) and the surface, bottom
+    tension 10 kN, submerged weight w = (m - rho A) g: lateral modes against the exact
+    Bessel cross-product roots with m + rho C_a A (tests varying tension, added mass and
+    buoyancy together; the static shape is the solver's vertical branch). Budget: the
+    Richardson extrapolation of 100 and 200 elements removes the h^2 error; what remains
+    is the stretch the string equation ignores, omega relative ~ -T / (2 EA) <= 2.3e-6,
+    and O(h^4); the raw 200-element values lie within 1.5 (n pi / N)^2 / 24."""
+    rho, d, m, Ca, EA, depth, T0 = 1025.0, 0.15, 30.0, 1.0, 1.0e10, 300.0, 1.0e4
+    area = math.pi * d**2 / 4
+    w = (m - rho * area) * G
+    m_total = m + rho * Ca * area
+    L0 = brentq(lambda L: L + (T0 * L + w * L * L / 2) / EA - depth, 0.9 * depth, depth)
+    line = uniform_line(L0, mass=m, weight=w, axial_stiffness=EA, diameter=d,
+                        added_mass_normal=Ca)
+    water = Medium(density=rho, gravity=G)
+    bottom = EndCondition(kind="fixed", position=np.array([0.0, 0.0, -depth]))
+    top = EndCondition(kind="fixed", position=np.zeros(3))
+
+    def cross(omega: float) -> float:
+        xa = 2 * omega * math.sqrt(m_total * T0) / w
+        xb = 2 * omega * math.sqrt(m_total * (T0 + w * L0)) / w
+        return float(j0(xa) * y0(xb) - j0(xb) * y0(xa))
+
+    omega_mean = math.pi / L0 * math.sqrt((T0 + w * L0 / 2) / m_total)
+    grid = np.linspace(0.3 * omega_mean, 4.5 * omega_mean, 2000)
+    vals = [cross(o) for o in grid]
+    roots = [brentq(cross, grid[i], grid[i + 1], xtol=1e-14)
+             for i in range(len(grid) - 1) if vals[i] * vals[i + 1] < 0]
+    exact = np.array(roots[:4]) / (2 * math.pi)
+
+    freqs = {}
+    for N in (100, 200):
+        st = STATIC_SOLVERS["analytic"].solve(StaticProblem(
+            line=line, medium=water, end_a=bottom, end_b=top, n_nodes=N + 1, tolerance=1e-12))
+        assert st.success, st.message
+        np.testing.assert_allclose(st.tension, T0 + w * st.s, rtol=1e-9)
+        res = modal_analysis(ModalProblem(line=line, medium=water, end_a=bottom, end_b=top,
+                                          static=st, n_modes=8))
+        assert res.success, res.message
+        np.testing.assert_allclose(res.frequency[0::2], res.frequency[1::2], rtol=1e-12)
+        freqs[N] = res.frequency[0::2]
+    n = np.arange(1, 5)
+    assert np.all(np.abs(freqs[200] / exact - 1) <= 1.5 * (n * np.pi / 200) ** 2 / 24 + 3e-6)
+    richardson = (4 * freqs[200] - freqs[100]) / 3
+    np.testing.assert_allclose(richardson, exact, rtol=3e-6)
