@@ -274,6 +274,70 @@ def stiffness_matrix(problem: ModalProblem) -> sp.csr_matrix:
     )
 
 
+def transverse_mass(line: LineModel, medium: Medium, s: np.ndarray, *,
+                    include_added_mass: bool = True) -> np.ndarray:
+    """Mass per length moving with transverse motion at arc lengths ``s`` [kg/m]:
+    m + rho C_an pi d^2 / 4."""
+    seg = _segment_index(line, np.asarray(s, dtype=float))
+    rho = medium.density if include_added_mass else 0.0
+    area = math.pi * line.diameter[seg] ** 2 / 4
+    return line.mass[seg] + rho * line.added_mass_normal[seg] * area
+
+
+def graded_arc_lengths(s: np.ndarray, tension: np.ndarray, mass: np.ndarray,
+                       n_elements: int, joints: np.ndarray | None = None) -> np.ndarray:
+    """Node positions [m] that cut the line into ``n_elements`` pieces of equal
+    transverse-wave travel time tau = int sqrt(m / T) ds, so that every element holds
+    the same share of each mode's phase however much the tension varies (a vertical
+    riser whose bottom tension is small against its weight needs elements far shorter
+    near the bottom than at the top).
+
+    ``s`` [m], ``tension`` [N] and ``mass`` [kg/m] sample the static line; T is taken
+    linear between samples, for which tau and its inverse are exact: on a piece
+    starting at (s_i, T_i) with slope g and a = sqrt(m), tau - tau_i = 2 a (sqrt(T) -
+    sqrt(T_i)) / g, and s = s_i + D sqrt(T_i) / a + g D^2 / (4 a^2) for D = tau - tau_i.
+    Tension below 1e-9 of its largest value is raised to that floor. ``joints`` [m]
+    (segment ends) are added to the result.
+    """
+    s = np.asarray(s, dtype=float)
+    T = np.maximum(np.asarray(tension, dtype=float), 1e-9 * float(np.max(tension)))
+    m_mid = 0.5 * (mass[:-1] + mass[1:])
+    a = np.sqrt(m_mid)
+    ds = np.diff(s)
+    rt = np.sqrt(T)
+    dtau = 2.0 * a * ds / (rt[:-1] + rt[1:])
+    tau = np.concatenate(([0.0], np.cumsum(dtau)))
+    targets = np.linspace(0.0, tau[-1], n_elements + 1)[1:-1]
+    i = np.clip(np.searchsorted(tau, targets, side="right") - 1, 0, len(ds) - 1)
+    D = targets - tau[i]
+    g = np.diff(T)[i] / ds[i]
+    inner = s[i] + D * rt[i] / a[i] + g * D * D / (4.0 * a[i] ** 2)
+    out = np.concatenate(([s[0]], np.clip(inner, s[0], s[-1]), [s[-1]]))
+    if joints is not None and len(joints):
+        out = np.union1d(out, np.asarray(joints, dtype=float))
+    return np.unique(out)
+
+
+def subset_static(static: StaticResult, index: np.ndarray) -> StaticResult:
+    """The static result at the sample points ``index`` only."""
+    return StaticResult(
+        s=static.s[index], position=static.position[index], tension=static.tension[index],
+        force_a=static.force_a, force_b=static.force_b, laid_length=static.laid_length,
+        status=static.status, message=static.message, iterations=static.iterations,
+        residual=static.residual,
+    )
+
+
+def snap_to_samples(s_fine: np.ndarray, targets: np.ndarray) -> np.ndarray:
+    """Indices of the samples ``s_fine`` nearest to ``targets`` (increasing, unique,
+    first and last sample included)."""
+    j = np.clip(np.searchsorted(s_fine, targets), 1, len(s_fine) - 1)
+    nearer_left = (targets - s_fine[j - 1]) <= (s_fine[j] - targets)
+    idx = np.where(nearer_left, j - 1, j)
+    idx = np.unique(np.concatenate(([0], idx, [len(s_fine) - 1])))
+    return idx
+
+
 #: largest model (degrees of freedom) solved by LAPACK's banded eigensolver. Its
 #: eigenvector back-transformation holds a dense n x n matrix (O(n^2) memory, ~O(n^3)
 #: time) and its eigenvalues are accurate to eps * (largest eigenvalue) only, i.e.
