@@ -240,3 +240,26 @@ def test_banded_and_shift_invert_solvers_agree(monkeypatch: pytest.MonkeyPatch) 
     tol = np.finfo(float).eps * lam_max / (2 * (2 * np.pi * banded.frequency) ** 2) + 1e-12
     assert np.all(np.abs(arpack.frequency / banded.frequency - 1) <= tol)
     np.testing.assert_allclose(np.abs(arpack.mode_shape), np.abs(banded.mode_shape), atol=1e-7)
+
+
+def test_graded_arc_lengths_equal_travel_time() -> None:
+    """Uniform tension gives uniform elements; tension linear in s gives nodes of equal
+    tau = 2 sqrt(m) (sqrt(T) - sqrt(T0)) / w (exact for linear T from any sampling);
+    joints are kept."""
+    from cablestudy.dynamics.modal import graded_arc_lengths, snap_to_samples
+
+    s = np.linspace(0.0, 50.0, 6)
+    mass = np.full(6, 3.0)
+    np.testing.assert_allclose(graded_arc_lengths(s, np.full(6, 7.0), mass, 10),
+                               np.linspace(0, 50, 11), atol=1e-12)
+    T0, w = 100.0, 80.0
+    nodes = graded_arc_lengths(s, T0 + w * s, mass, 16)
+    tau = 2 * np.sqrt(3.0) * (np.sqrt(T0 + w * nodes) - np.sqrt(T0)) / w
+    np.testing.assert_allclose(np.diff(tau), tau[-1] / 16, rtol=1e-12)
+    assert nodes[1] - nodes[0] < 0.2 * (nodes[-1] - nodes[-2])
+    with_joint = graded_arc_lengths(s, T0 + w * s, mass, 16, joints=np.array([0.0, 21.0, 50.0]))
+    assert 21.0 in with_joint and len(with_joint) == 18
+
+    fine = np.linspace(0.0, 1.0, 11)
+    np.testing.assert_array_equal(snap_to_samples(fine, np.array([0.0, 0.14, 0.16, 0.5, 1.0])),
+                                  [0, 1, 2, 5, 10])
