@@ -94,3 +94,60 @@ def irvine_lambda(data: dict[str, xr.Dataset], out: Path) -> Path:
     fig.savefig(path, dpi=120)
     plt.close(fig)
     return path
+
+
+@register("umbilical-frequency-tension", ("umbilical-frequency-tension",))
+def umbilical_frequency_tension(data: dict[str, xr.Dataset], out: Path) -> Path:
+    """Lateral natural frequencies of the vertical umbilical against its bottom
+    tension, with and without EI, and the exact string (EI = 0) with linear tension."""
+    from scipy.optimize import brentq
+
+    from ..dynamics.strings import linear_tension_string
+
+    ds = data["umbilical-frequency-tension"]
+    study = yaml.safe_load(ds.attrs["study_yaml"])
+    seg = study["line"]["segments"][0]
+    env = study["environment"]
+    rho = 1025.0 if env.get("fluid", "water") == "water" else float(env["fluid"]["density"])
+    gravity = float(env.get("gravity", 9.80665))
+    area = math.pi * float(seg["diameter"]) ** 2 / 4
+    m = float(seg["mass_per_length"])
+    w = (m - rho * area) * gravity
+    m_total = m + rho * float(seg.get("added_mass_normal", 1.0)) * area
+    EA = float(seg["axial_stiffness"])
+    height = abs(study["ends"]["b"]["position"][2] - study["ends"]["a"]["position"][2])
+
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    n_lateral = ds.sizes["mode"] // 2
+    T0 = np.geomspace(float(ds["tension_a"].min()) * 0.8, float(ds["tension_a"].max()) * 1.25, 40)
+    curves = []
+    for t0 in T0:
+        L0 = brentq(lambda L, t0=t0: L + (t0 * L + w * L * L / 2) / EA - height,
+                    0.9 * height, height, xtol=1e-12)
+        curves.append(linear_tension_string(length=L0, bottom_tension=t0, weight=w,
+                                            mass=m_total, count=n_lateral))
+    curves_arr = np.array(curves)
+    for k in range(n_lateral):
+        ax.plot(T0, curves_arr[:, k], "-", color=f"C{k}", lw=1,
+                label="string, T = T0 + w s (Bessel roots)" if k == 0 else None)
+    for j, EI in enumerate(ds["bending_stiffness"].values):
+        sub = ds.isel(bending_stiffness=j)
+        ok = sub["status"].values == 0
+        tension = sub["tension_a"].values[ok]
+        freq = sub["natural_frequency"].values[ok][:, 0::2]  # lateral modes come in pairs
+        for k in range(n_lateral):
+            ax.plot(tension, freq[:, k], "o" if EI == 0 else "s", color=f"C{k}",
+                    mfc="none" if EI == 0 else f"C{k}", ms=5,
+                    label=(f"cablestudy, EI = {EI:.3g} N m^2" if k == 0 else None))
+    ax.set_xscale("log")
+    ax.set_xlabel("bottom tension T0 [N]")
+    ax.set_ylabel("natural frequency [Hz]")
+    ax.set_title("Vertical umbilical in 1200 m of water (ajayi Table 1): lateral modes 1-"
+                 f"{n_lateral}", fontsize=10)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8)
+    path = out / "umbilical-frequency-tension.png"
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
