@@ -31,25 +31,39 @@ def problem(elements: int) -> ModalProblem:
     w = m * g
     H = w * l / (8 * eps)
     EA = lam2 * H * l * (1 + 8 * eps**2) / (l * (w * l / H) ** 2)
-    L0 = brentq(lambda L: H * L / EA + (2 * H / w) * math.asinh(w * L / (2 * H)) - l,
-                0.5 * l, 2 * l, xtol=1e-13)
+    L0 = brentq(
+        lambda L: H * L / EA + (2 * H / w) * math.asinh(w * L / (2 * H)) - l,
+        0.5 * l,
+        2 * l,
+        xtol=1e-13,
+    )
 
     def one(v: float) -> np.ndarray:
         return np.array([float(v)])
 
     line = LineModel(
-        length=one(L0), weight=one(w), mass=one(m), axial_stiffness=one(EA),
-        diameter=one(0.05), drag_normal=one(1.2), drag_tangential=one(0.0),
-        added_mass_normal=one(1.0), added_mass_tangential=one(0.0),
-        bending_stiffness=one(0.0), damping_ratio=one(0.0), attachment_s=np.zeros(0),
-        attachment_force=np.zeros((0, 3)), attachment_mass=np.zeros(0),
+        length=one(L0),
+        weight=one(w),
+        mass=one(m),
+        axial_stiffness=one(EA),
+        diameter=one(0.05),
+        drag_normal=one(1.2),
+        drag_tangential=one(0.0),
+        added_mass_normal=one(1.0),
+        added_mass_tangential=one(0.0),
+        bending_stiffness=one(0.0),
+        damping_ratio=one(0.0),
+        attachment_s=np.zeros(0),
+        attachment_force=np.zeros((0, 3)),
+        attachment_mass=np.zeros(0),
         attachment_volume=np.zeros(0),
     )
     medium = Medium(density=0.0, gravity=g)
     a = EndCondition(kind="fixed", position=np.zeros(3))
     b = EndCondition(kind="fixed", position=np.array([l, 0.0, 0.0]))
-    st = STATIC_SOLVERS["analytic"].solve(StaticProblem(line=line, medium=medium, end_a=a,
-                                                        end_b=b, n_nodes=elements + 1))
+    st = STATIC_SOLVERS["analytic"].solve(
+        StaticProblem(line=line, medium=medium, end_a=a, end_b=b, n_nodes=elements + 1)
+    )
     return ModalProblem(line=line, medium=medium, end_a=a, end_b=b, static=st, n_modes=10)
 
 

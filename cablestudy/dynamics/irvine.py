@@ -24,8 +24,14 @@ import numpy as np
 from scipy.optimize import brentq
 
 
-def cable_parameter(*, span: float, weight: float, horizontal_tension: float,
-                    axial_stiffness: float, effective_length: float) -> float:
+def cable_parameter(
+    *,
+    span: float,
+    weight: float,
+    horizontal_tension: float,
+    axial_stiffness: float,
+    effective_length: float,
+) -> float:
     """Irvine's lambda^2 [-].
 
     Parameters
@@ -73,8 +79,9 @@ def frequencies(lambda_squared: float, count: int) -> dict[str, np.ndarray]:
     }
 
 
-def lowest_frequencies(lambda_squared: float, count: int, *, span: float,
-                       horizontal_tension: float, mass: float) -> np.ndarray:
+def lowest_frequencies(
+    lambda_squared: float, count: int, *, span: float, horizontal_tension: float, mass: float
+) -> np.ndarray:
     """The ``count`` lowest natural frequencies [Hz] of all three families together,
     sorted; ``mass`` [kg/m] includes any added mass."""
     fam = frequencies(lambda_squared, count)

@@ -136,11 +136,17 @@ class ModalResult:
         return self.status == STATUS_OK
 
     @classmethod
-    def failed(cls, s: np.ndarray, n_modes: int, status: int, message: str,
-               n_dof: int = 0) -> ModalResult:
-        return cls(s=s, frequency=np.full(n_modes, np.nan),
-                   mode_shape=np.full((n_modes, len(s), 3), np.nan), n_dof=n_dof,
-                   status=status, message=message)
+    def failed(
+        cls, s: np.ndarray, n_modes: int, status: int, message: str, n_dof: int = 0
+    ) -> ModalResult:
+        return cls(
+            s=s,
+            frequency=np.full(n_modes, np.nan),
+            mode_shape=np.full((n_modes, len(s), 3), np.nan),
+            n_dof=n_dof,
+            status=status,
+            message=message,
+        )
 
     def shape_at(self, s: np.ndarray) -> np.ndarray:
         """Mode shapes interpolated linearly (the elements' own shape functions) to the
@@ -181,8 +187,9 @@ def node_bases(problem: ModalProblem) -> list[np.ndarray]:
         ground = med.seabed_z(pos[:, 0], pos[:, 1])
         tol = 1e-6 * max(float(problem.static.s[-1]), 1.0)
         rise = math.tan(med.seabed_slope)
-        normal = np.array([-rise * math.cos(med.seabed_heading),
-                           -rise * math.sin(med.seabed_heading), 1.0])
+        normal = np.array(
+            [-rise * math.cos(med.seabed_heading), -rise * math.sin(med.seabed_heading), 1.0]
+        )
         normal /= np.linalg.norm(normal)
         for i in np.flatnonzero(np.abs(pos[:, 2] - ground) <= tol):
             constraints[i].append(normal)
@@ -208,8 +215,9 @@ def mass_blocks(problem: ModalProblem) -> np.ndarray:
     m_n = m + rho * line.added_mass_normal[seg] * area
     m_t = m + rho * line.added_mass_tangential[seg] * area
     tt = t[:, :, None] * t[:, None, :]
-    blocks_e = 0.5 * l0[:, None, None] * (m_n[:, None, None] * (np.eye(3) - tt)
-                                         + m_t[:, None, None] * tt)
+    blocks_e = (
+        0.5 * l0[:, None, None] * (m_n[:, None, None] * (np.eye(3) - tt) + m_t[:, None, None] * tt)
+    )
     M = np.zeros((len(s), 3, 3))
     M[:-1] += blocks_e
     M[1:] += blocks_e
@@ -274,8 +282,9 @@ def stiffness_matrix(problem: ModalProblem) -> sp.csr_matrix:
     )
 
 
-def transverse_mass(line: LineModel, medium: Medium, s: np.ndarray, *,
-                    include_added_mass: bool = True) -> np.ndarray:
+def transverse_mass(
+    line: LineModel, medium: Medium, s: np.ndarray, *, include_added_mass: bool = True
+) -> np.ndarray:
     """Mass per length moving with transverse motion at arc lengths ``s`` [kg/m]:
     m + rho C_an pi d^2 / 4."""
     seg = _segment_index(line, np.asarray(s, dtype=float))
@@ -284,8 +293,13 @@ def transverse_mass(line: LineModel, medium: Medium, s: np.ndarray, *,
     return line.mass[seg] + rho * line.added_mass_normal[seg] * area
 
 
-def graded_arc_lengths(s: np.ndarray, tension: np.ndarray, mass: np.ndarray,
-                       n_elements: int, joints: np.ndarray | None = None) -> np.ndarray:
+def graded_arc_lengths(
+    s: np.ndarray,
+    tension: np.ndarray,
+    mass: np.ndarray,
+    n_elements: int,
+    joints: np.ndarray | None = None,
+) -> np.ndarray:
     """Node positions [m] that cut the line into ``n_elements`` pieces of equal
     transverse-wave travel time tau = int sqrt(m / T) ds, so that every element holds
     the same share of each mode's phase however much the tension varies (a vertical
@@ -321,9 +335,15 @@ def graded_arc_lengths(s: np.ndarray, tension: np.ndarray, mass: np.ndarray,
 def subset_static(static: StaticResult, index: np.ndarray) -> StaticResult:
     """The static result at the sample points ``index`` only."""
     return StaticResult(
-        s=static.s[index], position=static.position[index], tension=static.tension[index],
-        force_a=static.force_a, force_b=static.force_b, laid_length=static.laid_length,
-        status=static.status, message=static.message, iterations=static.iterations,
+        s=static.s[index],
+        position=static.position[index],
+        tension=static.tension[index],
+        force_a=static.force_a,
+        force_b=static.force_b,
+        laid_length=static.laid_length,
+        status=static.status,
+        message=static.message,
+        iterations=static.iterations,
         residual=static.residual,
     )
 
@@ -370,25 +390,34 @@ def modal_analysis(problem: ModalProblem, *, deadline: float | None = None) -> M
     s = np.asarray(st.s, dtype=float)
     k = problem.n_modes
     if not st.success:
-        return ModalResult.failed(s, k, STATUS_STATIC_FAILED,
-                                  f"no static shape to linearise about: {st.message}")
+        return ModalResult.failed(
+            s, k, STATUS_STATIC_FAILED, f"no static shape to linearise about: {st.message}"
+        )
     n = len(s)
-    if not (np.all(np.isfinite(s)) and np.all(np.isfinite(st.position))
-            and np.all(np.isfinite(st.tension))):
-        return ModalResult.failed(s, k, STATUS_NUMERICAL,
-                                  "the static shape holds non-finite values")
+    if not (
+        np.all(np.isfinite(s))
+        and np.all(np.isfinite(st.position))
+        and np.all(np.isfinite(st.tension))
+    ):
+        return ModalResult.failed(
+            s, k, STATUS_NUMERICAL, "the static shape holds non-finite values"
+        )
     if n < 2 or np.any(np.diff(s) <= 0.0):
-        return ModalResult.failed(s, k, STATUS_NUMERICAL,
-                                  "static nodes must have strictly increasing arc length")
+        return ModalResult.failed(
+            s, k, STATUS_NUMERICAL, "static nodes must have strictly increasing arc length"
+        )
     chord = np.linalg.norm(np.diff(st.position, axis=0), axis=1)
     if np.any(chord <= 0.0):
-        return ModalResult.failed(s, k, STATUS_NUMERICAL,
-                                  "two static nodes coincide; the element direction is undefined")
+        return ModalResult.failed(
+            s, k, STATUS_NUMERICAL, "two static nodes coincide; the element direction is undefined"
+        )
     T_e = 0.5 * (st.tension[:-1] + st.tension[1:])
     if np.any(T_e <= 0.0):
         i = int(np.argmin(T_e))
         return ModalResult.failed(
-            s, k, STATUS_SLACK,
+            s,
+            k,
+            STATUS_SLACK,
             f"the static line is slack or compressed near s = {0.5 * (s[i] + s[i + 1]):.6g} m "
             f"(element tension {T_e[i]:.4g} N); a cable has no small-motion modes there",
         )
@@ -398,13 +427,17 @@ def modal_analysis(problem: ModalProblem, *, deadline: float | None = None) -> M
     n_dof = int(dims.sum())
     if n_dof < k:
         return ModalResult.failed(
-            s, k, STATUS_NUMERICAL,
+            s,
+            k,
+            STATUS_NUMERICAL,
             f"{k} modes asked for but the model has only {n_dof} degrees of freedom "
-            f"({n - 1} elements); use more elements", n_dof=n_dof,
+            f"({n - 1} elements); use more elements",
+            n_dof=n_dof,
         )
     if deadline is not None and time.monotonic() > deadline:
-        return ModalResult.failed(s, k, STATUS_TIME_LIMIT,
-                                  "time limit reached before the modal eigenproblem", n_dof=n_dof)
+        return ModalResult.failed(
+            s, k, STATUS_TIME_LIMIT, "time limit reached before the modal eigenproblem", n_dof=n_dof
+        )
 
     M = mass_blocks(problem)
     K = stiffness_matrix(problem)
@@ -420,8 +453,12 @@ def modal_analysis(problem: ModalProblem, *, deadline: float | None = None) -> M
             Lc = np.linalg.cholesky(basis.T @ M[i] @ basis)
         except np.linalg.LinAlgError:
             return ModalResult.failed(
-                s, k, STATUS_NUMERICAL,
-                f"node at s = {s[i]:.6g} m has no positive mass in a free direction", n_dof=n_dof)
+                s,
+                k,
+                STATUS_NUMERICAL,
+                f"node at s = {s[i]:.6g} m has no positive mass in a free direction",
+                n_dof=n_dof,
+            )
         r3, ck = np.meshgrid(np.arange(3), np.arange(kd), indexing="ij")
         b_rows.append(3 * i + r3.ravel())
         b_cols.append(offsets[i] + ck.ravel())
@@ -430,23 +467,31 @@ def modal_analysis(problem: ModalProblem, *, deadline: float | None = None) -> M
         l_rows.append(offsets[i] + rk.ravel())
         l_cols.append(offsets[i] + ck2.ravel())
         l_vals.append(np.linalg.inv(Lc).ravel())
-    B = sp.csr_matrix((np.concatenate(b_vals), (np.concatenate(b_rows), np.concatenate(b_cols))),
-                      shape=(3 * n, n_dof))
+    B = sp.csr_matrix(
+        (np.concatenate(b_vals), (np.concatenate(b_rows), np.concatenate(b_cols))),
+        shape=(3 * n, n_dof),
+    )
     Linv = sp.csr_matrix(
         (np.concatenate(l_vals), (np.concatenate(l_rows), np.concatenate(l_cols))),
-        shape=(n_dof, n_dof))
+        shape=(n_dof, n_dof),
+    )
     A = (Linv @ (B.T @ K @ B) @ Linv.T).tocoo()
     try:
         lam, Y = lowest_eigenpairs(A, k)
     except (np.linalg.LinAlgError, ValueError, RuntimeError, ArpackError) as exc:
-        return ModalResult.failed(s, k, STATUS_NUMERICAL, f"eigenproblem failed: {exc}",
-                                  n_dof=n_dof)
+        return ModalResult.failed(
+            s, k, STATUS_NUMERICAL, f"eigenproblem failed: {exc}", n_dof=n_dof
+        )
     scale = max(float(np.max(np.abs(lam))), 1e-300)
     if lam[0] < -1e-8 * scale:
         return ModalResult.failed(
-            s, k, STATUS_NUMERICAL,
+            s,
+            k,
+            STATUS_NUMERICAL,
             f"negative stiffness about the static shape (omega^2 = {lam[0]:.4g} 1/s^2): the "
-            "static shape is not a stable equilibrium", n_dof=n_dof)
+            "static shape is not a stable equilibrium",
+            n_dof=n_dof,
+        )
     freq = np.sqrt(np.clip(lam, 0.0, None)) / (2.0 * math.pi)
     U = (B @ (Linv.T @ Y)).T.reshape(k, n, 3)
     mag = np.linalg.norm(U, axis=2)
@@ -456,5 +501,4 @@ def modal_analysis(problem: ModalProblem, *, deadline: float | None = None) -> M
         comp = int(np.argmax(np.abs(U[j, node])))
         if U[j, node, comp] < 0.0:
             U[j] *= -1.0
-    return ModalResult(s=s, frequency=freq, mode_shape=U, n_dof=n_dof, status=STATUS_OK,
-                       message="")
+    return ModalResult(s=s, frequency=freq, mode_shape=U, n_dof=n_dof, status=STATUS_OK, message="")

@@ -9,8 +9,9 @@ from scipy.optimize import brentq
 from scipy.special import j0, y0
 
 
-def tensioned_beam(*, length: float, tension: float, mass: float, bending_stiffness: float,
-                   count: int) -> np.ndarray:
+def tensioned_beam(
+    *, length: float, tension: float, mass: float, bending_stiffness: float, count: int
+) -> np.ndarray:
     """Pinned-pinned uniform tensioned beam, f_n = n / (2 L) sqrt(T / m (1 + EI n^2 pi^2 /
     (T L^2))) [Hz], n = 1..count.
 
@@ -23,12 +24,18 @@ def tensioned_beam(*, length: float, tension: float, mass: float, bending_stiffn
     count : int
     """
     n = np.arange(1, count + 1)
-    return n / (2 * length) * np.sqrt(
-        tension / mass * (1 + bending_stiffness * n**2 * math.pi**2 / (tension * length**2)))
+    return (
+        n
+        / (2 * length)
+        * np.sqrt(
+            tension / mass * (1 + bending_stiffness * n**2 * math.pi**2 / (tension * length**2))
+        )
+    )
 
 
-def linear_tension_string(*, length: float, bottom_tension: float, weight: float,
-                          mass: float, count: int) -> np.ndarray:
+def linear_tension_string(
+    *, length: float, bottom_tension: float, weight: float, mass: float, count: int
+) -> np.ndarray:
     """String fixed at both ends with tension T(s) = T0 + w s (a vertical riser):
     lateral natural frequencies [Hz], the roots of J0(xi_a) Y0(xi_b) - J0(xi_b) Y0(xi_a)
     with xi = 2 omega sqrt(m T) / w (u = A J0(xi) + B Y0(xi) solves (T u')' + m omega^2

@@ -31,8 +31,11 @@ def classify(shape: np.ndarray) -> str:
     if np.nansum(shape[:, 0] ** 2) > 0.5 * energy:
         return "longitudinal"
     z = shape[:, 2]
-    return "symmetric" if np.nansum((z + z[::-1]) ** 2) > np.nansum((z - z[::-1]) ** 2) \
+    return (
+        "symmetric"
+        if np.nansum((z + z[::-1]) ** 2) > np.nansum((z - z[::-1]) ** 2)
         else "antisymmetric"
+    )
 
 
 @register("irvine-modal-lambda", ("irvine-modal-lambda",))
@@ -42,8 +45,11 @@ def irvine_lambda(data: dict[str, xr.Dataset], out: Path) -> Path:
     seg = study["line"]["segments"][0]
     mass = float(seg["mass_per_length"])
     gravity = float(study["environment"].get("gravity", 9.80665))
-    span = float(np.hypot(*np.subtract(study["ends"]["b"]["position"][:2],
-                                        study["ends"]["a"]["position"][:2])))
+    span = float(
+        np.hypot(
+            *np.subtract(study["ends"]["b"]["position"][:2], study["ends"]["a"]["position"][:2])
+        )
+    )
     fig, ax = plt.subplots(figsize=(7, 4.5))
     seen: set[str] = set()
     for i in range(ds.sizes["lambda_squared"]):
@@ -56,30 +62,58 @@ def irvine_lambda(data: dict[str, xr.Dataset], out: Path) -> Path:
         T = case["tension"].values
         s = case["arc_length"].values if "arc_length" in case else np.linspace(0, L0, T.size)
         effective_length = float(np.trapezoid((T / H) ** 2 * (1 + T / EA), s))
-        lam2 = irvine.cable_parameter(span=span, weight=mass * gravity, horizontal_tension=H,
-                                      axial_stiffness=EA, effective_length=effective_length)
-        arc = float(np.sum(np.sqrt(np.diff(case["x"]) ** 2 + np.diff(case["y"]) ** 2
-                                   + np.diff(case["z"]) ** 2)))
+        lam2 = irvine.cable_parameter(
+            span=span,
+            weight=mass * gravity,
+            horizontal_tension=H,
+            axial_stiffness=EA,
+            effective_length=effective_length,
+        )
+        arc = float(
+            np.sum(
+                np.sqrt(np.diff(case["x"]) ** 2 + np.diff(case["y"]) ** 2 + np.diff(case["z"]) ** 2)
+            )
+        )
         # omega_bar / pi = f / f1 with f1 = sqrt(H / m) / (2 l), m per hanging length
         f1 = math.sqrt(H / (mass * L0 / arc)) / (2 * span)
-        for f, shape in zip(case["natural_frequency"].values, case["mode_shape"].values,
-                            strict=True):
+        for f, shape in zip(
+            case["natural_frequency"].values, case["mode_shape"].values, strict=True
+        ):
             fam = classify(shape)
             marker, label = FAMILIES[fam]
-            ax.plot(lam2, f / f1, marker, color=f"C{list(FAMILIES).index(fam)}", mfc="none",
-                    ms=5, label=None if fam in seen else f"cablestudy: {label}")
+            ax.plot(
+                lam2,
+                f / f1,
+                marker,
+                color=f"C{list(FAMILIES).index(fam)}",
+                mfc="none",
+                ms=5,
+                label=None if fam in seen else f"cablestudy: {label}",
+            )
             seen.add(fam)
     lam = np.logspace(0, 3, 300)
     sym = np.array([irvine.symmetric_roots(x, 3) for x in lam]) / math.pi
     for k in range(3):
-        ax.plot(lam, sym[:, k], "-", color="C2", lw=1,
-                label="Irvine: symmetric, tan(w/2) = w/2 - (4/lambda^2)(w/2)^3" if k == 0 else None)
+        ax.plot(
+            lam,
+            sym[:, k],
+            "-",
+            color="C2",
+            lw=1,
+            label="Irvine: symmetric, tan(w/2) = w/2 - (4/lambda^2)(w/2)^3" if k == 0 else None,
+        )
     for n in range(1, 5):
-        ax.axhline(n, color="C0", lw=0.8, ls=":",
-                   label="Irvine: out of plane, n" if n == 1 else None)
+        ax.axhline(
+            n, color="C0", lw=0.8, ls=":", label="Irvine: out of plane, n" if n == 1 else None
+        )
     for n in (1, 2):
-        ax.axhline(2 * n, color="C1", lw=0.8, ls="--",
-                   label="Irvine: antisymmetric, 2n" if n == 1 else None)
+        ax.axhline(
+            2 * n,
+            color="C1",
+            lw=0.8,
+            ls="--",
+            label="Irvine: antisymmetric, 2n" if n == 1 else None,
+        )
     ax.axvline(4 * math.pi**2, color="0.5", lw=0.8)
     ax.text(4 * math.pi**2 * 1.05, 0.6, "lambda^2 = 4 pi^2", color="0.4", fontsize=8)
     ax.set_xscale("log")
@@ -122,28 +156,49 @@ def umbilical_frequency_tension(data: dict[str, xr.Dataset], out: Path) -> Path:
     T0 = np.geomspace(float(ds["tension_a"].min()) * 0.8, float(ds["tension_a"].max()) * 1.25, 40)
     curves = []
     for t0 in T0:
-        L0 = brentq(lambda L, t0=t0: L + (t0 * L + w * L * L / 2) / EA - height,
-                    0.9 * height, height, xtol=1e-12)
-        curves.append(linear_tension_string(length=L0, bottom_tension=t0, weight=w,
-                                            mass=m_total, count=n_lateral))
+        L0 = brentq(
+            lambda L, t0=t0: L + (t0 * L + w * L * L / 2) / EA - height,
+            0.9 * height,
+            height,
+            xtol=1e-12,
+        )
+        curves.append(
+            linear_tension_string(
+                length=L0, bottom_tension=t0, weight=w, mass=m_total, count=n_lateral
+            )
+        )
     curves_arr = np.array(curves)
     for k in range(n_lateral):
-        ax.plot(T0, curves_arr[:, k], "-", color=f"C{k}", lw=1,
-                label="string, T = T0 + w s (Bessel roots)" if k == 0 else None)
+        ax.plot(
+            T0,
+            curves_arr[:, k],
+            "-",
+            color=f"C{k}",
+            lw=1,
+            label="string, T = T0 + w s (Bessel roots)" if k == 0 else None,
+        )
     for j, EI in enumerate(ds["bending_stiffness"].values):
         sub = ds.isel(bending_stiffness=j)
         ok = sub["status"].values == 0
         tension = sub["tension_a"].values[ok]
         freq = sub["natural_frequency"].values[ok][:, 0::2]  # lateral modes come in pairs
         for k in range(n_lateral):
-            ax.plot(tension, freq[:, k], "o" if EI == 0 else "s", color=f"C{k}",
-                    mfc="none" if EI == 0 else f"C{k}", ms=5,
-                    label=(f"cablestudy, EI = {EI:.3g} N m^2" if k == 0 else None))
+            ax.plot(
+                tension,
+                freq[:, k],
+                "o" if EI == 0 else "s",
+                color=f"C{k}",
+                mfc="none" if EI == 0 else f"C{k}",
+                ms=5,
+                label=(f"cablestudy, EI = {EI:.3g} N m^2" if k == 0 else None),
+            )
     ax.set_xscale("log")
     ax.set_xlabel("bottom tension T0 [N]")
     ax.set_ylabel("natural frequency [Hz]")
-    ax.set_title("Vertical umbilical in 1200 m of water (ajayi Table 1): lateral modes 1-"
-                 f"{n_lateral}", fontsize=10)
+    ax.set_title(
+        f"Vertical umbilical in 1200 m of water (ajayi Table 1): lateral modes 1-{n_lateral}",
+        fontsize=10,
+    )
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8)
     path = out / "umbilical-frequency-tension.png"

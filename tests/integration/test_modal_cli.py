@@ -47,7 +47,8 @@ def test_modal_yaml_to_netcdf(tmp_path: Path) -> None:
     assert np.all(np.diff(f.values, axis=1) >= 0.0)
     assert ds["mode_shape"].dims == ("added_mass_normal", "mode", "s", "component")
     np.testing.assert_allclose(
-        np.linalg.norm(ds["mode_shape"].values, axis=-1).max(axis=-1), 1.0, rtol=0.05)
+        np.linalg.norm(ds["mode_shape"].values, axis=-1).max(axis=-1), 1.0, rtol=0.05
+    )
 
     # first mode: out of plane, Irvine's pi sqrt(H / m) / l, m the mass per hanging
     # length plus rho C_a pi d^2 / 4 (the sag here is ~1/90 of the span, so Irvine's
@@ -98,8 +99,9 @@ def test_graded_modal_mesh_end_to_end(tmp_path: Path) -> None:
 
     w = (30.0 - 1025.0 * math.pi * 0.15**2 / 4) * 9.80665
     # unstretched length for T0 = 1 kN: L + (T0 L + w L^2 / 2) / EA = 300 m
-    length = brentq(lambda L: L + (1000.0 * L + w * L * L / 2) / 1.0e9 - 300.0, 290.0, 300.0,
-                    xtol=1e-13)
+    length = brentq(
+        lambda L: L + (1000.0 * L + w * L * L / 2) / 1.0e9 - 300.0, 290.0, 300.0, xtol=1e-13
+    )
     cfg = tmp_path / "riser.yaml"
     cfg.write_text(RISER.replace("LENGTH", repr(length)))
     assert main(["run", str(cfg), "--out", str(tmp_path), "--scheduler", "synchronous"]) == 0
@@ -107,8 +109,13 @@ def test_graded_modal_mesh_end_to_end(tmp_path: Path) -> None:
     assert int(ds["status"]) == 0
     T0 = float(ds["tension_a"])
     assert abs(T0 - 1000.0) < 1.0
-    exact = linear_tension_string(length=length, bottom_tension=T0, weight=w,
-                                  mass=30.0 + 1025.0 * math.pi * 0.15**2 / 4, count=4)
+    exact = linear_tension_string(
+        length=length,
+        bottom_tension=T0,
+        weight=w,
+        mass=30.0 + 1025.0 * math.pi * 0.15**2 / 4,
+        count=4,
+    )
     f = ds["natural_frequency"].values
     np.testing.assert_allclose(f[0::2], exact, rtol=5e-4)
     np.testing.assert_allclose(f[1::2], exact, rtol=5e-4)

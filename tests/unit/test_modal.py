@@ -35,20 +35,34 @@ from cablestudy.statics import (
 G = 9.81
 
 
-def line_model(length: float = 102.0, *, mass: float = 2.0, weight: float | None = None,
-               axial_stiffness: float = 1.0e7, diameter: float = 0.08, ca_n: float = 1.0,
-               ca_t: float = 0.0, attachments: list[tuple[float, float]] | None = None
-               ) -> LineModel:
+def line_model(
+    length: float = 102.0,
+    *,
+    mass: float = 2.0,
+    weight: float | None = None,
+    axial_stiffness: float = 1.0e7,
+    diameter: float = 0.08,
+    ca_n: float = 1.0,
+    ca_t: float = 0.0,
+    attachments: list[tuple[float, float]] | None = None,
+) -> LineModel:
     att = attachments or []
 
     def one(v: float) -> np.ndarray:
         return np.array([float(v)])
 
     return LineModel(
-        length=one(length), weight=one(mass * G if weight is None else weight), mass=one(mass),
-        axial_stiffness=one(axial_stiffness), diameter=one(diameter), drag_normal=one(1.2),
-        drag_tangential=one(0.01), added_mass_normal=one(ca_n), added_mass_tangential=one(ca_t),
-        bending_stiffness=one(0.0), damping_ratio=one(0.0),
+        length=one(length),
+        weight=one(mass * G if weight is None else weight),
+        mass=one(mass),
+        axial_stiffness=one(axial_stiffness),
+        diameter=one(diameter),
+        drag_normal=one(1.2),
+        drag_tangential=one(0.01),
+        added_mass_normal=one(ca_n),
+        added_mass_tangential=one(ca_t),
+        bending_stiffness=one(0.0),
+        damping_ratio=one(0.0),
         attachment_s=np.array([a[0] for a in att], dtype=float),
         attachment_force=np.zeros((len(att), 3)),
         attachment_mass=np.array([a[1] for a in att], dtype=float),
@@ -64,12 +78,14 @@ AIR = Medium(density=0.0, gravity=G)
 WATER = Medium(density=1025.0, gravity=G)
 
 
-def sagged(a: list[float], b: list[float], n: int = 60, line: LineModel | None = None,
-           medium: Medium = AIR) -> ModalProblem:
+def sagged(
+    a: list[float], b: list[float], n: int = 60, line: LineModel | None = None, medium: Medium = AIR
+) -> ModalProblem:
     line = line or line_model()
     ea, eb = fixed(a), fixed(b)
-    st = STATIC_SOLVERS["analytic"].solve(StaticProblem(line=line, medium=medium, end_a=ea,
-                                                        end_b=eb, n_nodes=n + 1))
+    st = STATIC_SOLVERS["analytic"].solve(
+        StaticProblem(line=line, medium=medium, end_a=ea, end_b=eb, n_nodes=n + 1)
+    )
     assert st.success
     return ModalProblem(line=line, medium=medium, end_a=ea, end_b=eb, static=st, n_modes=8)
 
@@ -83,15 +99,18 @@ def test_lumped_mass_total_and_added_mass_directions() -> None:
     s = np.linspace(0, L0, n)
     pos = np.zeros((n, 3))
     pos[:, 0] = s * 1.001
-    st = StaticResult(s=s, position=pos, tension=np.full(n, 1e4), force_a=np.zeros(3),
-                      force_b=np.zeros(3))
-    prob = ModalProblem(line=line, medium=WATER, end_a=fixed([0, 0, 0]),
-                        end_b=fixed([100.1, 0, 0]), static=st)
+    st = StaticResult(
+        s=s, position=pos, tension=np.full(n, 1e4), force_a=np.zeros(3), force_b=np.zeros(3)
+    )
+    prob = ModalProblem(
+        line=line, medium=WATER, end_a=fixed([0, 0, 0]), end_b=fixed([100.1, 0, 0]), static=st
+    )
     M = mass_blocks(prob)
     total = M.sum(axis=0)
     ma = rho * math.pi * d**2 / 4
-    np.testing.assert_allclose(np.diag(total), [m * L0 + 30, (m + ma) * L0 + 30,
-                                                 (m + ma) * L0 + 30], rtol=1e-13)
+    np.testing.assert_allclose(
+        np.diag(total), [m * L0 + 30, (m + ma) * L0 + 30, (m + ma) * L0 + 30], rtol=1e-13
+    )
     np.testing.assert_allclose(total - np.diag(np.diag(total)), 0.0, atol=1e-12)
     # attachment at s = 25 lies between nodes 2 (s = 20) and 3 (s = 30): split 1/2, 1/2
     np.testing.assert_allclose(M[2, 0, 0] - M[1, 0, 0], 15.0, rtol=1e-12)
@@ -131,11 +150,17 @@ def test_mooring_end_is_free_horizontally_and_held_vertically() -> None:
     s = np.linspace(0, L0, N + 1)
     pos = np.zeros((N + 1, 3))
     pos[:, 0] = s * (1 + T / EA)
-    st = StaticResult(s=s, position=pos, tension=np.full(N + 1, T),
-                      force_a=np.array([-T, 0, 0]), force_b=np.array([T, 0, 0]))
+    st = StaticResult(
+        s=s,
+        position=pos,
+        tension=np.full(N + 1, T),
+        force_a=np.array([-T, 0, 0]),
+        force_b=np.array([T, 0, 0]),
+    )
     moor = EndCondition(kind="mooring", force=np.array([T, 0, 0]), z=0.0)
-    prob = ModalProblem(line=line, medium=AIR, end_a=fixed([0, 0, 0]), end_b=moor, static=st,
-                        n_modes=3 * N - 1)
+    prob = ModalProblem(
+        line=line, medium=AIR, end_a=fixed([0, 0, 0]), end_b=moor, static=st, n_modes=3 * N - 1
+    )
     res = modal_analysis(prob)
     assert res.success and res.n_dof == 3 * N - 1
     M = m * h0
@@ -157,11 +182,23 @@ def test_seabed_nodes_do_not_move_normal_to_the_seabed() -> None:
     pos[:, 2] = -30.0
     rise = s > 20.0
     pos[rise, 2] = -30.0 + 0.2 * (s[rise] - 20.0)
-    st = StaticResult(s=s, position=pos, tension=np.full(N + 1, T), force_a=np.zeros(3),
-                      force_b=np.zeros(3), laid_length=20.0)
+    st = StaticResult(
+        s=s,
+        position=pos,
+        tension=np.full(N + 1, T),
+        force_a=np.zeros(3),
+        force_b=np.zeros(3),
+        laid_length=20.0,
+    )
     medium = Medium(density=1025.0, gravity=G, depth=30.0)
-    prob = ModalProblem(line=line_model(L0), medium=medium, end_a=fixed(list(pos[0])),
-                        end_b=fixed(list(pos[-1])), static=st, n_modes=6)
+    prob = ModalProblem(
+        line=line_model(L0),
+        medium=medium,
+        end_a=fixed(list(pos[0])),
+        end_b=fixed(list(pos[-1])),
+        static=st,
+        n_modes=6,
+    )
     dims = [b.shape[1] for b in node_bases(prob)]
     assert dims[0] == 0 and dims[-1] == 0
     assert dims[1:11] == [2] * 10 and dims[11:-1] == [3] * (N - 11)
@@ -197,8 +234,9 @@ def test_failures_are_data_not_exceptions() -> None:
     assert res.status == STATUS_SLACK and "slack" in res.message
     assert np.all(np.isnan(res.mode_shape))
 
-    nan_pos = replace(prob.static, position=np.where(s[:, None] > 50, np.nan, 0.0)
-                      + prob.static.position)
+    nan_pos = replace(
+        prob.static, position=np.where(s[:, None] > 50, np.nan, 0.0) + prob.static.position
+    )
     res = modal_analysis(replace(prob, static=nan_pos))
     assert res.status == STATUS_NUMERICAL and "non-finite" in res.message
 
@@ -250,8 +288,9 @@ def test_graded_arc_lengths_equal_travel_time() -> None:
 
     s = np.linspace(0.0, 50.0, 6)
     mass = np.full(6, 3.0)
-    np.testing.assert_allclose(graded_arc_lengths(s, np.full(6, 7.0), mass, 10),
-                               np.linspace(0, 50, 11), atol=1e-12)
+    np.testing.assert_allclose(
+        graded_arc_lengths(s, np.full(6, 7.0), mass, 10), np.linspace(0, 50, 11), atol=1e-12
+    )
     T0, w = 100.0, 80.0
     nodes = graded_arc_lengths(s, T0 + w * s, mass, 16)
     tau = 2 * np.sqrt(3.0) * (np.sqrt(T0 + w * nodes) - np.sqrt(T0)) / w
@@ -261,5 +300,6 @@ def test_graded_arc_lengths_equal_travel_time() -> None:
     assert 21.0 in with_joint and len(with_joint) == 18
 
     fine = np.linspace(0.0, 1.0, 11)
-    np.testing.assert_array_equal(snap_to_samples(fine, np.array([0.0, 0.14, 0.16, 0.5, 1.0])),
-                                  [0, 1, 2, 5, 10])
+    np.testing.assert_array_equal(
+        snap_to_samples(fine, np.array([0.0, 0.14, 0.16, 0.5, 1.0])), [0, 1, 2, 5, 10]
+    )

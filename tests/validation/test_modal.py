@@ -55,19 +55,35 @@ SPAN = 100.0
 MASS = 1.0  # [kg/m]
 
 
-def uniform_line(length: float, *, mass: float, weight: float, axial_stiffness: float,
-                 diameter: float = 0.05, added_mass_normal: float = 1.0,
-                 bending_stiffness: float = 0.0) -> LineModel:
+def uniform_line(
+    length: float,
+    *,
+    mass: float,
+    weight: float,
+    axial_stiffness: float,
+    diameter: float = 0.05,
+    added_mass_normal: float = 1.0,
+    bending_stiffness: float = 0.0,
+) -> LineModel:
     def one(v: float) -> np.ndarray:
         return np.array([float(v)])
 
     return LineModel(
-        length=one(length), weight=one(weight), mass=one(mass),
-        axial_stiffness=one(axial_stiffness), diameter=one(diameter), drag_normal=one(1.2),
-        drag_tangential=one(0.01), added_mass_normal=one(added_mass_normal),
-        added_mass_tangential=one(0.0), bending_stiffness=one(bending_stiffness),
-        damping_ratio=one(0.0), attachment_s=np.zeros(0), attachment_force=np.zeros((0, 3)),
-        attachment_mass=np.zeros(0), attachment_volume=np.zeros(0),
+        length=one(length),
+        weight=one(weight),
+        mass=one(mass),
+        axial_stiffness=one(axial_stiffness),
+        diameter=one(diameter),
+        drag_normal=one(1.2),
+        drag_tangential=one(0.01),
+        added_mass_normal=one(added_mass_normal),
+        added_mass_tangential=one(0.0),
+        bending_stiffness=one(bending_stiffness),
+        damping_ratio=one(0.0),
+        attachment_s=np.zeros(0),
+        attachment_force=np.zeros((0, 3)),
+        attachment_mass=np.zeros(0),
+        attachment_volume=np.zeros(0),
     )
 
 
@@ -81,8 +97,9 @@ class LevelCable:
     (H = w l / (8 sag_ratio)) and Irvine's parameter ``lambda_squared`` (EA chosen for
     it), solved by the exact elastic catenary on ``elements`` elements."""
 
-    def __init__(self, lambda_squared: float, sag_ratio: float, elements: int,
-                 modes: int = 10) -> None:
+    def __init__(
+        self, lambda_squared: float, sag_ratio: float, elements: int, modes: int = 10
+    ) -> None:
         w = MASS * G
         H = w * SPAN / (8.0 * sag_ratio)
         EA = lambda_squared * H * SPAN * (1 + 8 * sag_ratio**2) / (SPAN * (w * SPAN / H) ** 2)
@@ -92,8 +109,14 @@ class LevelCable:
 
         L0 = brentq(span_error, 0.5 * SPAN, 2.0 * SPAN, xtol=1e-13)
         self.line = uniform_line(L0, mass=MASS, weight=w, axial_stiffness=EA)
-        problem = StaticProblem(line=self.line, medium=VACUUM, end_a=FIXED_A, end_b=FIXED_B,
-                                n_nodes=elements + 1, tolerance=1e-12)
+        problem = StaticProblem(
+            line=self.line,
+            medium=VACUUM,
+            end_a=FIXED_A,
+            end_b=FIXED_B,
+            n_nodes=elements + 1,
+            tolerance=1e-12,
+        )
         self.static = STATIC_SOLVERS["analytic"].solve(problem)
         assert self.static.success, self.static.message
         st = self.static
@@ -103,15 +126,26 @@ class LevelCable:
         # (dx = (H/T) dp, dp = (1 + T/EA) ds0); trapezoidal error O(h^2) ~ 1e-7 relative
         effective_length = float(np.trapezoid((T / self.H) ** 2 * (1 + T / EA), st.s))
         self.lambda_squared = irvine.cable_parameter(
-            span=SPAN, weight=w, horizontal_tension=self.H, axial_stiffness=EA,
-            effective_length=effective_length)
+            span=SPAN,
+            weight=w,
+            horizontal_tension=self.H,
+            axial_stiffness=EA,
+            effective_length=effective_length,
+        )
         # Irvine's m is the mass per length of the cable as it hangs (stretched): the
         # unstretched mass m L0 spread over the arc length of the static profile
         arc = float(np.sum(np.linalg.norm(np.diff(st.position, axis=0), axis=1)))
         self.mass_hanging = MASS * L0 / arc
-        self.result = modal_analysis(ModalProblem(
-            line=self.line, medium=VACUUM, end_a=FIXED_A, end_b=FIXED_B, static=st,
-            n_modes=modes))
+        self.result = modal_analysis(
+            ModalProblem(
+                line=self.line,
+                medium=VACUUM,
+                end_a=FIXED_A,
+                end_b=FIXED_B,
+                static=st,
+                n_modes=modes,
+            )
+        )
         assert self.result.success, self.result.message
 
     def irvine_hz(self, omega_bar: np.ndarray) -> np.ndarray:
@@ -125,8 +159,12 @@ def families(res: ModalResult) -> dict[str, np.ndarray]:
     up to round-off). Modes of mostly horizontal (x, along the span) motion are the
     longitudinal modes of the elastic bar, whose inertia Irvine's theory neglects; they
     come down among the lowest only for a very extensible cable (lambda^2 ~ 1)."""
-    out: dict[str, list[float]] = {"out_of_plane": [], "antisymmetric": [], "symmetric": [],
-                                   "longitudinal": []}
+    out: dict[str, list[float]] = {
+        "out_of_plane": [],
+        "antisymmetric": [],
+        "symmetric": [],
+        "longitudinal": [],
+    }
     for f, U in zip(res.frequency, res.mode_shape, strict=True):
         if np.sum(U[:, 1] ** 2) > 0.5 * np.sum(U**2):
             out["out_of_plane"].append(float(f))
@@ -207,8 +245,9 @@ def test_mesh_convergence_second_order() -> None:
     """Lumped masses on linear elements converge as h^2: successive differences of the
     frequencies at 25, 50, 100, 200 elements fall by 4 (observed order 2 within 0.02
     once the mesh resolves the mode)."""
-    fs = np.array([LevelCable(100.0, 1 / 40, n, modes=6).result.frequency
-                   for n in (25, 50, 100, 200)])
+    fs = np.array(
+        [LevelCable(100.0, 1 / 40, n, modes=6).result.frequency for n in (25, 50, 100, 200)]
+    )
     d = np.diff(fs, axis=0)
     order = np.log2(np.abs(d[:-1] / d[1:]))
     np.testing.assert_allclose(order[-1], 2.0, atol=0.02)
@@ -223,8 +262,13 @@ def _straight(n_el: int, length: float, tension: float, stretch: float) -> Stati
     s = np.linspace(0.0, length / stretch, n_el + 1)
     pos = np.zeros((n_el + 1, 3))
     pos[:, 0] = s * stretch
-    return StaticResult(s=s, position=pos, tension=np.full(n_el + 1, tension),
-                        force_a=np.array([-tension, 0, 0]), force_b=np.array([tension, 0, 0]))
+    return StaticResult(
+        s=s,
+        position=pos,
+        tension=np.full(n_el + 1, tension),
+        force_a=np.array([-tension, 0, 0]),
+        force_b=np.array([tension, 0, 0]),
+    )
 
 
 def test_taut_string_and_axial_bar_exact_discrete_and_continuum() -> None:
@@ -236,13 +280,15 @@ def test_taut_string_and_axial_bar_exact_discrete_and_continuum() -> None:
     (n pi / N)^2 / 24 (times 1.1 for the next term)."""
     N, L0, EA, chord = 50, 99.0, 1.0e6, SPAN
     line = uniform_line(L0, mass=MASS, weight=0.0, axial_stiffness=EA)
-    st = STATIC_SOLVERS["analytic"].solve(StaticProblem(
-        line=line, medium=VACUUM, end_a=FIXED_A, end_b=FIXED_B, n_nodes=N + 1))
+    st = STATIC_SOLVERS["analytic"].solve(
+        StaticProblem(line=line, medium=VACUUM, end_a=FIXED_A, end_b=FIXED_B, n_nodes=N + 1)
+    )
     assert st.success
     T = EA * (chord / L0 - 1)
     np.testing.assert_allclose(st.tension, T, rtol=1e-12)
-    res = modal_analysis(ModalProblem(line=line, medium=VACUUM, end_a=FIXED_A, end_b=FIXED_B,
-                                      static=st, n_modes=12))
+    res = modal_analysis(
+        ModalProblem(line=line, medium=VACUUM, end_a=FIXED_A, end_b=FIXED_B, static=st, n_modes=12)
+    )
     assert res.success
     h, h0 = chord / N, L0 / N
     n = np.arange(1, 7)
@@ -263,13 +309,17 @@ def test_added_mass_in_water_acts_normal_to_the_line() -> None:
     m + rho C_a pi d^2 / 4, axial modes the structural mass only (tangential added
     mass 0). Exact discrete eigenvalues; tolerance round-off."""
     N, L0, EA, d, Ca, rho = 40, 99.5, 2.0e6, 0.1, 1.0, 1025.0
-    line = uniform_line(L0, mass=MASS, weight=0.0, axial_stiffness=EA, diameter=d,
-                        added_mass_normal=Ca)
+    line = uniform_line(
+        L0, mass=MASS, weight=0.0, axial_stiffness=EA, diameter=d, added_mass_normal=Ca
+    )
     water = Medium(density=rho, gravity=G)
     T = EA * (SPAN / L0 - 1)
     st = _straight(N, SPAN, T, SPAN / L0)
-    res = modal_analysis(ModalProblem(line=line, medium=water, end_a=FIXED_A, end_b=FIXED_B,
-                                      static=st, n_modes=3 * (N - 1)))
+    res = modal_analysis(
+        ModalProblem(
+            line=line, medium=water, end_a=FIXED_A, end_b=FIXED_B, static=st, n_modes=3 * (N - 1)
+        )
+    )
     assert res.success
     m_added = rho * Ca * math.pi * d**2 / 4
     h, h0 = SPAN / N, L0 / N
@@ -279,10 +329,20 @@ def test_added_mass_in_water_acts_normal_to_the_line() -> None:
     axial = 2 * np.sqrt(EA / h0 / (MASS * h0)) * theta / (2 * np.pi)
     expected = np.sort(np.concatenate([transverse, transverse, axial]))
     np.testing.assert_allclose(res.frequency, expected, rtol=1e-9)
-    dry = modal_analysis(ModalProblem(line=line, medium=water, end_a=FIXED_A, end_b=FIXED_B,
-                                      static=st, n_modes=1, include_added_mass=False))
-    np.testing.assert_allclose(dry.frequency[0] / res.frequency[0],
-                               math.sqrt(1 + m_added / MASS), rtol=1e-10)
+    dry = modal_analysis(
+        ModalProblem(
+            line=line,
+            medium=water,
+            end_a=FIXED_A,
+            end_b=FIXED_B,
+            static=st,
+            n_modes=1,
+            include_added_mass=False,
+        )
+    )
+    np.testing.assert_allclose(
+        dry.frequency[0] / res.frequency[0], math.sqrt(1 + m_added / MASS), rtol=1e-10
+    )
 
 
 def test_hanging_chain_free_end_bessel() -> None:
@@ -301,10 +361,12 @@ def test_hanging_chain_free_end_bessel() -> None:
         T = w * (L - s)
         pos = np.zeros((N + 1, 3))
         pos[:, 2] = -(s + (w * L * s - 0.5 * w * s**2) / EA)
-        st = StaticResult(s=s, position=pos, tension=T, force_a=np.array([0, 0, -w * L]),
-                          force_b=np.zeros(3))
-        res = modal_analysis(ModalProblem(line=line, medium=VACUUM, end_a=FIXED_A, end_b=free,
-                                          static=st, n_modes=6))
+        st = StaticResult(
+            s=s, position=pos, tension=T, force_a=np.array([0, 0, -w * L]), force_b=np.zeros(3)
+        )
+        res = modal_analysis(
+            ModalProblem(line=line, medium=VACUUM, end_a=FIXED_A, end_b=free, static=st, n_modes=6)
+        )
         assert res.success, res.message
         # x and y lateral modes are degenerate pairs
         np.testing.assert_allclose(res.frequency[0::2], res.frequency[1::2], rtol=1e-9)
@@ -327,8 +389,9 @@ def test_pinned_tensioned_beam() -> None:
     L0 = SPAN / (1 + T / EA)
     line = uniform_line(L0, mass=MASS, weight=0.0, axial_stiffness=EA, bending_stiffness=EI)
     st = _straight(N, SPAN, T, SPAN / L0)
-    res = modal_analysis(ModalProblem(line=line, medium=VACUUM, end_a=FIXED_A, end_b=FIXED_B,
-                                      static=st, n_modes=10))
+    res = modal_analysis(
+        ModalProblem(line=line, medium=VACUUM, end_a=FIXED_A, end_b=FIXED_B, static=st, n_modes=10)
+    )
     assert res.success
     h, h0 = SPAN / N, L0 / N
     n = np.arange(1, 6)
@@ -360,8 +423,7 @@ def test_vertical_riser_in_water_bessel() -> None:
     w = (m - rho * area) * G
     m_total = m + rho * Ca * area
     L0 = brentq(lambda L: L + (T0 * L + w * L * L / 2) / EA - depth, 0.9 * depth, depth)
-    line = uniform_line(L0, mass=m, weight=w, axial_stiffness=EA, diameter=d,
-                        added_mass_normal=Ca)
+    line = uniform_line(L0, mass=m, weight=w, axial_stiffness=EA, diameter=d, added_mass_normal=Ca)
     water = Medium(density=rho, gravity=G)
     bottom = EndCondition(kind="fixed", position=np.array([0.0, 0.0, -depth]))
     top = EndCondition(kind="fixed", position=np.zeros(3))
@@ -374,18 +436,25 @@ def test_vertical_riser_in_water_bessel() -> None:
     omega_mean = math.pi / L0 * math.sqrt((T0 + w * L0 / 2) / m_total)
     grid = np.linspace(0.3 * omega_mean, 4.5 * omega_mean, 2000)
     vals = [cross(o) for o in grid]
-    roots = [brentq(cross, grid[i], grid[i + 1], xtol=1e-14)
-             for i in range(len(grid) - 1) if vals[i] * vals[i + 1] < 0]
+    roots = [
+        brentq(cross, grid[i], grid[i + 1], xtol=1e-14)
+        for i in range(len(grid) - 1)
+        if vals[i] * vals[i + 1] < 0
+    ]
     exact = np.array(roots[:4]) / (2 * math.pi)
 
     freqs = {}
     for N in (100, 200):
-        st = STATIC_SOLVERS["analytic"].solve(StaticProblem(
-            line=line, medium=water, end_a=bottom, end_b=top, n_nodes=N + 1, tolerance=1e-12))
+        st = STATIC_SOLVERS["analytic"].solve(
+            StaticProblem(
+                line=line, medium=water, end_a=bottom, end_b=top, n_nodes=N + 1, tolerance=1e-12
+            )
+        )
         assert st.success, st.message
         np.testing.assert_allclose(st.tension, T0 + w * st.s, rtol=1e-9)
-        res = modal_analysis(ModalProblem(line=line, medium=water, end_a=bottom, end_b=top,
-                                          static=st, n_modes=8))
+        res = modal_analysis(
+            ModalProblem(line=line, medium=water, end_a=bottom, end_b=top, static=st, n_modes=8)
+        )
         assert res.success, res.message
         np.testing.assert_allclose(res.frequency[0::2], res.frequency[1::2], rtol=1e-12)
         freqs[N] = res.frequency[0::2]
@@ -407,34 +476,40 @@ def test_graded_mesh_for_a_riser_with_low_bottom_tension() -> None:
     rho, d, m, EA, depth, T0 = 1025.0, 0.8, 1500.0, 4.6e13, 1200.0, 1.0e4
     area = math.pi * d**2 / 4
     w = (m - rho * area) * G
-    L0 = brentq(lambda L: L + (T0 * L + w * L * L / 2) / EA - depth, 0.99 * depth, depth,
-                xtol=1e-13)
-    line = uniform_line(L0, mass=m, weight=w, axial_stiffness=EA, diameter=d,
-                        added_mass_normal=1.0)
+    L0 = brentq(
+        lambda L: L + (T0 * L + w * L * L / 2) / EA - depth, 0.99 * depth, depth, xtol=1e-13
+    )
+    line = uniform_line(L0, mass=m, weight=w, axial_stiffness=EA, diameter=d, added_mass_normal=1.0)
     water = Medium(density=rho, gravity=G)
     bottom = EndCondition(kind="fixed", position=np.array([0.0, 0.0, -depth]))
     top = EndCondition(kind="fixed", position=np.zeros(3))
-    exact = linear_tension_string(length=L0, bottom_tension=T0, weight=w,
-                                  mass=m + rho * area, count=4)
+    exact = linear_tension_string(
+        length=L0, bottom_tension=T0, weight=w, mass=m + rho * area, count=4
+    )
     solver = STATIC_SOLVERS["analytic"]
 
     def static(n_nodes: int) -> StaticResult:
-        st = solver.solve(StaticProblem(line=line, medium=water, end_a=bottom, end_b=top,
-                                        n_nodes=n_nodes, tolerance=1e-12))
+        st = solver.solve(
+            StaticProblem(
+                line=line, medium=water, end_a=bottom, end_b=top, n_nodes=n_nodes, tolerance=1e-12
+            )
+        )
         assert st.success
         return st
 
     def lateral(st: StaticResult) -> np.ndarray:
-        res = modal_analysis(ModalProblem(line=line, medium=water, end_a=bottom, end_b=top,
-                                          static=st, n_modes=8))
+        res = modal_analysis(
+            ModalProblem(line=line, medium=water, end_a=bottom, end_b=top, static=st, n_modes=8)
+        )
         assert res.success, res.message
         return res.frequency[0::2]
 
     coarse = static(101)
     errors = {}
     for N in (120, 240):
-        targets = graded_arc_lengths(coarse.s, coarse.tension,
-                                     transverse_mass(line, water, coarse.s), N)
+        targets = graded_arc_lengths(
+            coarse.s, coarse.tension, transverse_mass(line, water, coarse.s), N
+        )
         # T is linear in s here, so the travel-time nodes are exact; sample 16 per element
         # of the uniform mesh or 8 in the shortest, whichever is finer
         per = max(16, math.ceil(8 * L0 / (np.min(np.diff(targets)) * N)))
