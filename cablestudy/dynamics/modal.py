@@ -49,7 +49,13 @@ wanted by LAPACK's banded solver (:func:`scipy.linalg.eig_banded`).
 Accuracy. Lumped masses and linear elements make the frequencies converge as h^2:
 for a taut string the discrete frequencies are exactly
 ``omega_n = 2 sqrt(T / (m h^2)) sin(n pi h / (2 L))``, i.e. a relative error of about
--(n pi h / L)^2 / 24.
+-(n pi h / L)^2 / 24. Where the tension varies by orders of magnitude along the line
+(a riser whose bottom tension is small against its weight), elements of equal length
+miss the short waves at the low-tension end; :func:`graded_arc_lengths` places the
+nodes at equal transverse-wave travel time instead (the caller samples the static
+solution there, see :func:`cablestudy.analyses.solve_modal`). The grading uses the
+tension only; with EI the low-tension end is over-resolved, which costs accuracy
+elsewhere but not convergence.
 """
 
 from __future__ import annotations
