@@ -46,7 +46,17 @@ def check_supported(cases: list[Case], src: StudySource) -> None:
             continue
         seen.add(case.static_hash)
         method = case.study.analysis.static.method
-        missing = STATIC_SOLVERS[method].unsupported(static_problem(case.study))
+        problem = static_problem(case.study)
+        missing = STATIC_SOLVERS[method].unsupported(problem)
+        if case.study.analysis.modal is not None:
+            for i, mass in enumerate(problem.line.mass):
+                if not mass > 0.0:
+                    loc = ("line", "segments", str(i), "mass_per_length")
+                    msg = (f"{src.line_of(loc) or src.line_of(('line',))}: "
+                           f"line.segments.{i}.mass_per_length: {mass:g} kg/m; analysis.modal "
+                           "needs a positive mass per length (allowed: > 0)")
+                    if msg not in problems:
+                        problems.append(msg)
         for item in missing:
             line = src.line_of(("analysis", "static", "method")) or src.line_of(("analysis",))
             msg = (f"{line}: analysis.static.method: {method!r} does not support {item}; "

@@ -53,7 +53,7 @@ class ModalSettings(StrictModel):
         if 3 * (n - 1) < self.modes:
             raise ValueError(
                 f"elements = {n} gives at most {3 * (n - 1)} degrees of freedom but modes = "
-                f"{self.modes}; allowed: elements >= {self.modes // 3 + 2} for this many modes"
+                f"{self.modes}; allowed: elements >= {-(-self.modes // 3) + 1} for this many modes"
             )
         return self
 

@@ -161,3 +161,11 @@ def test_irvine_study_config_reproduces_irvine(tmp_path: Path) -> None:
             ref = expected[family][: len(f)] * f_unit
             np.testing.assert_allclose(f, ref, rtol=0.01, err_msg=f"{family} at {lam2}")
     assert min(lambdas) < 1.01 and max(lambdas) > 990.0
+
+
+def test_modal_needs_positive_mass(tmp_path: Path, capsys) -> None:  # noqa: ANN001
+    cfg = tmp_path / "massless.yaml"
+    cfg.write_text(STUDY.replace("mass_per_length: 8.0", "mass_per_length: 0.0"))
+    assert main(["run", str(cfg), "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert "line.segments.0.mass_per_length" in err and "analysis.modal" in err
