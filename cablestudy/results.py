@@ -44,6 +44,14 @@ OUTPUTS: dict[str, OutputVariable] = {
     "laid_length": OutputVariable((), "m", "unstretched length resting on the seabed"),
     "static_iterations": OutputVariable((), "1", "iterations of the static solver", "int64"),
     "static_residual": OutputVariable((), "1", "final relative residual of the static solver"),
+    "natural_frequency": OutputVariable(
+        ("mode",), "Hz", "natural frequency about the static shape"
+    ),
+    "mode_shape": OutputVariable(
+        ("mode", "s", "component"), "m",
+        "mode shape: node displacement scaled to a largest displacement of 1 m",
+    ),
+    "modal_dof": OutputVariable((), "1", "degrees of freedom of the modal model", "int64"),
 }
 
 #: per-case bookkeeping variables (always present)
@@ -56,6 +64,7 @@ CASE_VARIABLES: dict[str, OutputVariable] = {
 COORDINATES: dict[str, tuple[str, str]] = {
     "s": ("m", "unstretched arc length from end A"),
     "component": ("", "vector component"),
+    "mode": ("1", "mode number, by increasing natural frequency"),
 }
 
 
@@ -163,6 +172,9 @@ def assemble(
     if "component" in extent and any("component" in OUTPUTS[k].dims for k in present):
         coords["component"] = ("component", np.array(["x", "y", "z"]),
                                {"long_name": COORDINATES["component"][1]})
+    if "mode" in extent and any("mode" in OUTPUTS[k].dims for k in present):
+        coords["mode"] = ("mode", np.arange(1, extent["mode"] + 1),
+                          {"units": COORDINATES["mode"][0], "long_name": COORDINATES["mode"][1]})
     if "s" in extent:
         arcs = [np.asarray(r.data["arc_length"]) for r in by_index.values()
                 if "arc_length" in r.data and r.status == 0]
