@@ -44,6 +44,8 @@ OUTPUTS: dict[str, OutputVariable] = {
     "laid_length": OutputVariable((), "m", "unstretched length resting on the seabed"),
     "static_iterations": OutputVariable((), "1", "iterations of the static solver", "int64"),
     "static_residual": OutputVariable((), "1", "final relative residual of the static solver"),
+    "drag_iterations": OutputVariable((), "1", "outer drag iterations of the static solver",
+                                      "int64"),
 }
 
 #: per-case bookkeeping variables (always present)
