@@ -405,7 +405,7 @@ def _contact_shape(lay: Layout, q: np.ndarray, rA: np.ndarray, s_td: float, T_td
         if slack_len > 0.0:
             s0l.append(lo)
             elll.append(slack_len)
-            T0l.append(1e-300 * e)
+            T0l.append(1e-150 * e)
             ql.append(np.zeros(3))
             EAl.append(seg_ea)
         if hi - lo - slack_len > 0.0:
@@ -557,8 +557,14 @@ def solve_contact(lay: Layout, q: np.ndarray, ends: Ends, plane: Plane, guess: t
                 break
             lam *= 0.5
         else:
-            raise _Failure(STATUS_NOT_CONVERGED, "line search failed in the seabed-contact "
-                           f"Newton iteration (residual {res:.3g})", it, res)
+            hint = ""
+            if float(np.linalg.norm(y[:2])) < 1e-3 * Fscale:
+                hint = ("; the tension at the touchdown point tends to zero: the line is longer "
+                        "than the straight path along the seabed and up to B, so it lies "
+                        "slack on the seabed and its laid shape is not determined")
+            raise _Failure(STATUS_NO_SOLUTION if hint else STATUS_NOT_CONVERGED,
+                           "line search failed in the seabed-contact Newton iteration "
+                           f"(residual {res:.3g}){hint}", it, res)
         y, R, Jm = yn, Rn, Jn
         res = float(np.max(np.abs(R)))
         if y[2] <= 0.0:
@@ -888,7 +894,7 @@ class SemiAnalyticSolver:
         n = float(np.linalg.norm(d))
         e = d / n if n > 0.0 else -_Z
         L = lay.total
-        return Shape(s0=np.zeros(1), ell=np.array([L]), T0=(1e-300 * e)[None, :],
+        return Shape(s0=np.zeros(1), ell=np.array([L]), T0=(1e-150 * e)[None, :],
                      q=np.zeros((1, 3)), EA=np.array([1.0]), r0=ends.rA[None, :],
                      force_a=np.zeros(3), tension_end=np.zeros(3))
 
