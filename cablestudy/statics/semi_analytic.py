@@ -153,6 +153,8 @@ class Shape:
     iterations: int = 0
     residual: float = 0.0
     contact: bool = False
+    #: positions at the piece boundaries (P + 1, 3) where known [m]
+    nodes: np.ndarray | None = None
 
     def sample(self, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Positions [m] (n, 3) and tension [N] (n,) at arc lengths ``s`` [m]."""
@@ -169,13 +171,15 @@ class Shape:
         return pos, tension
 
 
-def _free_shape(lay: Layout, q: np.ndarray, rA: np.ndarray, TA: np.ndarray) -> Shape:
+def _free_shape(lay: Layout, q: np.ndarray, rA: np.ndarray, TA: np.ndarray,
+                dr: np.ndarray | None = None) -> Shape:
     C, Cend = _offsets(lay, q)
     T0 = TA - C
-    dr, _, _ = piece_integrals(T0, q, lay.ell, lay.EA, jacobian=False)
+    if dr is None:
+        dr, _, _ = piece_integrals(T0, q, lay.ell, lay.EA, jacobian=False)
     r0 = rA + np.concatenate((np.zeros((1, 3)), np.cumsum(dr, axis=0)))
     return Shape(s0=lay.bounds[:-1], ell=lay.ell, T0=T0, q=q, EA=lay.EA, r0=r0[:-1],
-                 force_a=TA.copy(), tension_end=TA - Cend)
+                 force_a=TA.copy(), tension_end=TA - Cend, nodes=r0)
 
 
 def _offsets(lay: Layout, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -275,8 +279,10 @@ def initial_tension(lay: Layout, q: np.ndarray, ends: Ends) -> np.ndarray:
 
 
 def solve_free(lay: Layout, q: np.ndarray, ends: Ends, TA: np.ndarray, *, tol: float,
-               max_iterations: int, deadline: float | None) -> Shape:
-    """Solve a free-hanging line for T_A (Newton on the complementary energy)."""
+               max_iterations: int, deadline: float | None, polish: bool = True) -> Shape:
+    """Solve a free-hanging line for T_A (Newton on the complementary energy). With
+    ``polish`` one more Newton step is taken once the tolerance is met (quadratic
+    convergence then brings the residual to round-off)."""
     C, Cend = _offsets(lay, q)
     L = lay.total
     if ends.kind == "force":
@@ -296,25 +302,29 @@ def solve_free(lay: Layout, q: np.ndarray, ends: Ends, TA: np.ndarray, *, tol: f
         idx = np.array([2])
     scale = max(L, float(np.linalg.norm(target)))
 
+    last: list[np.ndarray] = []
+
     def evaluate(T: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
         dr, jac, en = piece_integrals(T - C, q, lay.ell, lay.EA)
         assert jac is not None
+        last[:] = [dr]
         return dr.sum(axis=0), jac.sum(axis=0), float(en.sum())
 
     r, J, E = evaluate(TA)
+    dr_acc = last[0]
     g = r[idx] - target[idx]
     psi = E - float(target[idx] @ TA[idx])
     it = 0
-    polish = 0
+    polished = 0 if polish else 1
     res = float(np.max(np.abs(g))) / scale
     while True:
         if not np.isfinite(res):
             raise _Failure(STATUS_NUMERICAL, "non-finite residual in the end-force Newton "
                            "iteration (a piece with zero tension and no load?)", it, res)
         if res <= tol:
-            if polish >= 1 or res <= 1e-15:
+            if polished >= 1 or res <= 1e-15:
                 break
-            polish += 1
+            polished += 1
         if it >= max_iterations:
             raise _Failure(STATUS_NOT_CONVERGED, f"end-force Newton did not converge in "
                            f"{max_iterations} iterations (relative residual {res:.3g}, "
@@ -342,9 +352,10 @@ def solve_free(lay: Layout, q: np.ndarray, ends: Ends, TA: np.ndarray, *, tol: f
             raise _Failure(STATUS_NOT_CONVERGED, "line search failed in the end-force Newton "
                            f"iteration (relative residual {res:.3g})", it, res)
         TA, r, J, E, psi = Tn, rn, Jn, En, psin
+        dr_acc = last[0]
         g = r[idx] - target[idx]
         res = float(np.max(np.abs(g))) / scale
-    shape = _free_shape(lay, q, ends.rA, TA)
+    shape = _free_shape(lay, q, ends.rA, TA, dr_acc)
     shape.iterations = it
     shape.residual = res
     _finite(shape, "free-hanging line")
@@ -428,7 +439,8 @@ def _contact_shape(lay: Layout, q: np.ndarray, rA: np.ndarray, s_td: float, T_td
                  tension_end=T_td - Cend, laid_length=s_td, contact=True)
 
 
-def initial_contact(lay: Layout, ends: Ends, plane: Plane) -> tuple[np.ndarray, float]:
+def initial_contact(lay: Layout, ends: Ends, plane: Plane, *, still: bool = False) -> tuple[
+        np.ndarray, float]:
     """Starting (T_td, s_td): the inextensible uniform line with the same weight, lying
     on the seabed from the anchor and hanging to B (classical mooring-line formulas:
     suspended length sqrt(h^2 + 2 h H / w), reach (H/w) acosh(1 + w h / H))."""
@@ -450,6 +462,10 @@ def initial_contact(lay: Layout, ends: Ends, plane: Plane) -> tuple[np.ndarray, 
 
         Hmax = w * (L * L - h * h) / (2.0 * h) if L > h else w * L
         lo, hi = 1e-9 * w * L, Hmax
+        if still and L - h - X > 1e-9 * L:
+            raise _Failure(STATUS_NO_SOLUTION, f"the line ({L:.6g} m) is longer than the path "
+                           f"along the seabed and straight up to B ({X + h:.6g} m): it lies slack "
+                           "on the seabed and its laid shape is not determined")
         if excess(hi) >= 0.0:
             H = hi
         elif excess(lo) <= 0.0:
@@ -601,7 +617,10 @@ class DragModel:
         """Drag per unstretched length [N/m] (P, 3) on each layout piece, from the chord
         of the piece in ``shape`` and the current at its mid-height times ``factor``
         (seed eqs. 38-39; the seed's l is the stretched chord). Zero on the laid part."""
-        r, _ = shape.sample(lay.bounds)
+        if shape.nodes is not None and len(shape.nodes) == len(lay.bounds):
+            r = shape.nodes
+        else:
+            r, _ = shape.sample(lay.bounds)
         chord = np.diff(r, axis=0)
         lc = np.linalg.norm(chord, axis=1)
         t = chord / np.where(lc > 0.0, lc, 1.0)[:, None]
@@ -738,10 +757,9 @@ class SemiAnalyticSolver:
         maxit = problem.max_iterations
         grav = lay.gravity
 
-        def inner(q: np.ndarray, tol_inner: float) -> Shape:
-            shape = self._inner(lay, q, ends, plane if grounded else None, state, tol_inner,
-                                maxit, deadline)
-            return shape
+        def inner(q: np.ndarray, tol_inner: float, polish: bool = True) -> Shape:
+            return self._inner(lay, q, ends, plane if grounded else None, state, tol_inner,
+                               maxit, deadline, polish)
 
         if not has_current:
             shape = inner(grav, tol)
@@ -770,7 +788,8 @@ class SemiAnalyticSolver:
                             iterations=state.newton, residual=res)
 
     def _inner(self, lay: Layout, q: np.ndarray, ends: Ends, plane: Plane | None,
-               state: _State, tol: float, maxit: int, deadline: float | None) -> Shape:
+               state: _State, tol: float, maxit: int, deadline: float | None,
+               polish: bool = True) -> Shape:
         """One solve with known loads: free-hanging, or with a laid part."""
         if plane is not None and state.contact is not None:
             shape = solve_contact(lay, q, ends, plane, state.contact, tol=tol,
@@ -783,7 +802,7 @@ class SemiAnalyticSolver:
         TA = state.TA if state.TA is not None else initial_tension(lay, q, ends)
         try:
             shape = solve_free(lay, q, ends, TA, tol=tol, max_iterations=maxit,
-                               deadline=deadline)
+                               deadline=deadline, polish=polish)
             free_ok = True
         except _Failure:
             if plane is None:
@@ -797,7 +816,8 @@ class SemiAnalyticSolver:
             if plane is None or not _penetrates(shape, lay, plane):
                 return shape
         assert plane is not None
-        guess = initial_contact(lay, ends, plane)
+        still = not np.any(q[:, :2]) and plane.slope == 0.0
+        guess = initial_contact(lay, ends, plane, still=still)
         cshape = solve_contact(lay, q, ends, plane, guess, tol=tol, max_iterations=maxit,
                                deadline=deadline)
         if cshape is None:
@@ -858,11 +878,13 @@ class SemiAnalyticSolver:
         for it in range(1, self.max_drag_iterations + 1):
             _check_deadline(deadline, it, "the drag iteration")
             state.drag += 1
-            shape = inner(grav + D, tol)
+            # inexact inner solves while the loads are still far from converged
+            tol_inner = max(tol, min(1e-4, 1e-2 * res))
+            shape = inner(grav + D, tol_inner, False)
             Dn = drag.load(shape, lay, factor)
             scale = Fscale + float(np.sum(np.linalg.norm(Dn, axis=1) * lay.ell))
             res = float(np.max(np.linalg.norm(Dn - D, axis=1) * lay.ell)) / max(scale, 1e-300)
-            if res <= tol:
+            if res <= tol and tol_inner <= tol:
                 return shape, Dn, res
             if res < 0.5 * best:
                 best = res
