@@ -883,7 +883,8 @@ class SemiAnalyticSolver:
             shape = inner(grav + D, tol_inner, False)
             Dn = drag.load(shape, lay, factor)
             scale = Fscale + float(np.sum(np.linalg.norm(Dn, axis=1) * lay.ell))
-            res = float(np.max(np.linalg.norm(Dn - D, axis=1) * lay.ell)) / max(scale, 1e-300)
+            # summed change of the drag loads: bounds the force imbalance of the line
+            res = float(np.sum(np.linalg.norm(Dn - D, axis=1) * lay.ell)) / max(scale, 1e-300)
             if res <= tol and tol_inner <= tol:
                 return shape, Dn, res
             if res < 0.5 * best:
