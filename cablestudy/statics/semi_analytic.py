@@ -801,8 +801,13 @@ class SemiAnalyticSolver:
             state.contact = None
         TA = state.TA if state.TA is not None else initial_tension(lay, q, ends)
         try:
-            shape = solve_free(lay, q, ends, TA, tol=tol, max_iterations=maxit,
-                               deadline=deadline, polish=polish)
+            try:
+                shape = solve_free(lay, q, ends, TA, tol=tol, max_iterations=maxit,
+                                   deadline=deadline, polish=polish)
+            except _Failure as exc:
+                if exc.status == STATUS_TIME_LIMIT:
+                    raise
+                shape = self._regularised(lay, q, ends, tol, maxit, deadline, polish, exc)
             free_ok = True
         except _Failure:
             if plane is None:
@@ -828,6 +833,48 @@ class SemiAnalyticSolver:
         state.newton += cshape.iterations
         state.contact = (_td_tension(cshape), cshape.laid_length)
         return cshape
+
+    @staticmethod
+    def _regularised(lay: Layout, q: np.ndarray, ends: Ends, tol: float, maxit: int,
+                     deadline: float | None, polish: bool, failure: _Failure) -> Shape:
+        """Retry a line with unloaded (weightless) pieces with a small weight on them,
+        reduced from 1e-2 to 1e-10 (at least 1e-6) of the point loads per length. A weightless piece that goes slack has no
+        determined shape and its energy a kink at zero tension where Newton stalls; the
+        light chain is its physical limit; the end forces change by that fraction of the
+        loads (1e-10 to 1e-6)."""
+        unloaded = np.linalg.norm(q, axis=1) == 0.0
+        if not np.any(unloaded):
+            raise failure
+        _, Cend = _offsets(lay, q)
+        scale = float(np.sum(np.linalg.norm(lay.point, axis=1)))
+        if ends.force is not None:
+            scale += float(np.linalg.norm(ends.force))
+        if scale <= 0.0:
+            raise failure
+        qr = q.copy()
+        TA = None
+        shape = None
+        # continuation in the regularising weight, each level warm-starting the next. A
+        # slack light piece folds, and the height of its far end moves by 2/w per newton
+        # of vertical force: with w -> 0 the position tolerance becomes unattainable in
+        # double precision, so the smallest level that converges (at least 1e-6) stands
+        for level in (1e-2, 1e-4, 1e-6, 1e-8, 1e-10):
+            qr[unloaded, 2] = -level * scale / lay.total
+            if TA is None:
+                TA = initial_tension(lay, qr, ends)
+            try:
+                shape = solve_free(lay, qr, ends, TA, tol=tol if level <= 1e-6 else
+                                   max(tol, 1e-6), max_iterations=maxit, deadline=deadline,
+                                   polish=polish and level <= 1e-6)
+            except _Failure as exc:
+                if exc.status == STATUS_TIME_LIMIT or level > 1e-6:
+                    raise _Failure(exc.status, f"{failure.message}; retried with a small "
+                                   f"regularising weight on the weightless pieces: "
+                                   f"{exc.message}", exc.iterations, exc.residual) from None
+                break
+            TA = shape.force_a
+        assert shape is not None
+        return shape
 
     def _drag_loop(self, lay: Layout, grav: np.ndarray, drag: DragModel, inner, tol: float,  # noqa: ANN001
                    deadline: float | None, state: _State, ends: Ends) -> tuple[Shape, float]:
