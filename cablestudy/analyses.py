@@ -160,6 +160,7 @@ def static_outputs(res: StaticResult) -> dict[str, np.ndarray]:
         "laid_length": np.asarray(res.laid_length),
         "static_iterations": np.asarray(res.iterations),
         "static_residual": np.asarray(res.residual),
+        "drag_iterations": np.asarray(res.drag_iterations),
     }
 
 

@@ -86,4 +86,5 @@ def static_problem(study: Study) -> StaticProblem:
         end_a=end_condition(study.ends.a), end_b=end_condition(study.ends.b),
         n_nodes=settings.nodes, tolerance=settings.tolerance,
         max_iterations=settings.max_iterations,
+        drag_elements=settings.drag_elements or 0,
     )

@@ -52,6 +52,8 @@ OUTPUTS: dict[str, OutputVariable] = {
         "mode shape: node displacement scaled to a largest displacement of 1 m",
     ),
     "modal_dof": OutputVariable((), "1", "degrees of freedom of the modal model", "int64"),
+    "drag_iterations": OutputVariable((), "1", "outer drag iterations of the static solver",
+                                      "int64"),
 }
 
 #: per-case bookkeeping variables (always present)

@@ -14,6 +14,11 @@ class StaticSettings(StrictModel):
     nodes: int = Field(101, ge=2, le=100_000, description="output points along the line")
     tolerance: Positive = Field(1e-9, le=1e-2, description="relative tolerance [-]")
     max_iterations: int = Field(100, ge=1, le=100_000)
+    drag_elements: int | None = Field(
+        None, ge=1, le=100_000,
+        description="drag elements along the line (method catenary, with current); "
+                    "default: nodes - 1, at least 20",
+    )
 
     @field_validator("method")
     @classmethod

@@ -17,11 +17,14 @@ TABLE1 = np.array([
 ])
 
 
-@register("dodaran-fig4", ("catenary-in-air",))
+@register("dodaran-fig4", ("catenary-in-air", "dodaran-fig4-semi-analytic"))
 def fig4(data: dict[str, xr.Dataset], out: Path) -> Path:
     ds = data["catenary-in-air"]
+    semi = data["dodaran-fig4-semi-analytic"]
     fig, ax = plt.subplots(figsize=(6, 3.5))
-    ax.plot(ds["x"], ds["z"], "-", label="cablestudy (exact elastic catenary)")
+    ax.plot(semi["x"], semi["z"], "-", label="cablestudy semi-analytic (method catenary)")
+    ax.plot(ds["x"][::10], ds["z"][::10], "s", mfc="none", ms=5,
+            label="exact elastic catenary (Irvine 1981)")
     ax.plot(TABLE1[:, 0], TABLE1[:, 1], "o", mfc="none", label="seed Table 1")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("z [m]")
@@ -34,3 +37,81 @@ def fig4(data: dict[str, xr.Dataset], out: Path) -> Path:
     fig.savefig(path, dpi=120)
     plt.close(fig)
     return path
+
+
+def _save(fig: plt.Figure, out: Path, name: str) -> Path:
+    path = out / f"{name}.png"
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+
+
+@register("dodaran-fig5", ("dodaran-fig5-point-load",))
+def fig5(data: dict[str, xr.Dataset], out: Path) -> Path:
+    ds = data["dodaran-fig5-point-load"]
+    fig, ax = plt.subplots(figsize=(6, 3.5))
+    for i, load in enumerate(ds["point_load"].values):
+        case = ds.isel(point_load=i)
+        ax.plot(case["x"], case["z"], "-", label=f"point load {abs(load) / 1e3:.2g} kN at s = 50 m")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("z [m]")
+    ax.set_title("Hanging cable under a point load, L = 100 m (dodaran-park Fig. 5)")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    return _save(fig, out, "dodaran-fig5")
+
+
+def _current_figure(ds: xr.Dataset, title: str, out: Path, name: str) -> Path:
+    styles = {0: ("--", "no current"), 1: ("-.", "U = {:.3g} m/s"), 2: ("-", "U = {:.3g} m/s")}
+    fig, ax = plt.subplots(figsize=(5, 5))
+    for i, speed in enumerate(ds["current_speed"].values):
+        case = ds.isel(current_speed=i)
+        ls, label = styles.get(i, ("-", "U = {:.3g} m/s"))
+        ax.plot(case["x"], case["z"], ls, label=label.format(speed))
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("z [m]")
+    ax.set_title(title, fontsize=9)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    return _save(fig, out, name)
+
+
+@register("dodaran-fig6", ("dodaran-fig6-marine-cable-340",))
+def fig6(data: dict[str, xr.Dataset], out: Path) -> Path:
+    return _current_figure(data["dodaran-fig6-marine-cable-340"],
+                           "Marine cable L = 340 m in current (dodaran-park Fig. 6)", out,
+                           "dodaran-fig6")
+
+
+@register("dodaran-fig7", ("dodaran-fig7-marine-cable-310",))
+def fig7(data: dict[str, xr.Dataset], out: Path) -> Path:
+    return _current_figure(data["dodaran-fig7-marine-cable-310"],
+                           "Marine cable L = 310 m in current (dodaran-park Fig. 7)", out,
+                           "dodaran-fig7")
+
+
+@register("dodaran-fig8", ("dodaran-fig8-submersible-3d",))
+def fig8(data: dict[str, xr.Dataset], out: Path) -> Path:
+    ds = data["dodaran-fig8-submersible-3d"]
+    fig = plt.figure(figsize=(9, 4))
+    ax3 = fig.add_subplot(1, 2, 1, projection="3d")
+    ax2 = fig.add_subplot(1, 2, 2)
+    for i, speed in enumerate(ds["current_speed"].values):
+        case = ds.isel(current_speed=i)
+        ls = "-." if speed == 0.0 else "-"
+        label = "no current" if speed == 0.0 else f"U = {speed:.3g} m/s"
+        ax3.plot(case["x"], case["y"], case["z"], ls, label=label)
+        ax2.plot(case["x"], case["y"], ls, label=label)
+    ax3.set_xlabel("x [m]")
+    ax3.set_ylabel("y [m]")
+    ax3.set_zlabel("z [m]")
+    ax3.set_title("3D submersible cable, L = 300 m", fontsize=9)
+    ax2.set_xlabel("x [m]")
+    ax2.set_ylabel("y [m]")
+    ax2.set_title("plan view (dodaran-park Fig. 8)", fontsize=9)
+    ax2.grid(alpha=0.3)
+    ax2.legend(fontsize=8)
+    return _save(fig, out, "dodaran-fig8")

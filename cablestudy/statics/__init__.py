@@ -14,11 +14,12 @@ from .base import (
     StaticSolver,
 )
 from .elastic_catenary import ElasticCatenarySolver
+from .semi_analytic import SemiAnalyticSolver
 
 #: name -> solver; ``analysis.static.method`` picks one.
 STATIC_SOLVERS: dict[str, StaticSolver] = {
     "analytic": ElasticCatenarySolver(),
-    "catenary": ElasticCatenarySolver(),
+    "catenary": SemiAnalyticSolver(),
 }
 
 __all__ = [

@@ -140,6 +140,8 @@ class StaticProblem:
     n_nodes: int = 101
     tolerance: float = 1e-9
     max_iterations: int = 100
+    #: drag elements along the line for solvers that lump drag (0: solver default)
+    drag_elements: int = 0
 
 
 @dataclass(kw_only=True)
@@ -160,6 +162,8 @@ class StaticResult:
     message: str = ""
     iterations: int = 0
     residual: float = 0.0
+    #: outer iterations of a drag (current) loop, 0 in still water
+    drag_iterations: int = 0
 
     @property
     def success(self) -> bool:

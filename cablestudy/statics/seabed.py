@@ -1,0 +1,145 @@
+"""Seabed contact of a line anchored on a plane seabed: the laid part.
+
+Quasi-static convention (e.g. Faltinsen, *Sea Loads on Ships and Offshore
+Structures*, 1990, ch. 8): the part of the line between the anchor and the touchdown
+point (TDP) lies straight on the seabed along the direction ``e`` of the tension at the
+TDP; the seabed carries the normal component of its weight; Coulomb friction is fully
+mobilised towards the anchor, so that the tension falls from the TDP towards the anchor
+at the rate
+
+    k = mu w (n . z) + w (e . z)     [N/m]
+
+(friction on the normal weight plus the component of weight along the line; w > 0 the
+submerged weight per length, n the upward seabed normal), and never below zero: where
+it reaches zero the rest of the laid line towards the anchor is slack. Drag on the laid
+part is neglected.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Plane:
+    """Seabed plane through (0, 0, -depth) rising at ``slope`` [rad] towards
+    ``heading`` [rad from +x]; ``normal`` is its upward unit normal, ``e1``, ``e2`` an
+    orthonormal basis of the plane."""
+
+    depth: float
+    slope: float
+    heading: float
+    friction: float
+
+    @property
+    def normal(self) -> np.ndarray:
+        ch, sh = math.cos(self.heading), math.sin(self.heading)
+        ts = math.tan(self.slope)
+        n = np.array([-ts * ch, -ts * sh, 1.0])
+        return n / np.linalg.norm(n)
+
+    @property
+    def basis(self) -> tuple[np.ndarray, np.ndarray]:
+        n = self.normal
+        ch, sh = math.cos(self.heading), math.sin(self.heading)
+        e2 = np.array([-sh, ch, 0.0])  # level line of the plane
+        e1 = np.cross(e2, n)
+        return e1 / np.linalg.norm(e1), e2
+
+    def height_above(self, r: np.ndarray) -> np.ndarray:
+        """Distance above the plane measured along its normal [m] (negative below)."""
+        r = np.asarray(r, dtype=float)
+        return (r - np.array([0.0, 0.0, -self.depth])) @ self.normal
+
+
+@dataclass
+class LaidPart:
+    """The laid part from the anchor (s = 0) to the TDP s_td [m].
+
+    ``s`` [m] piece boundaries from 0 to s_td; ``tension`` [N] at them (on the TDP side
+    of any point load there); ``tension_lo``, ``tension_hi`` [N] per piece at its anchor
+    and TDP ends, ``rate`` [N/m] per piece; ``stretched``
+    [m] the stretched laid length; ``positive_flex`` [m/N] = sum over the length with
+    positive tension of dl / EA (d stretched / d tension at the TDP); ``rate_td`` [N/m]
+    the rate k at the TDP."""
+
+    s: np.ndarray
+    tension: np.ndarray
+    tension_lo: np.ndarray
+    tension_hi: np.ndarray
+    rate: np.ndarray
+    stretched: float
+    positive_flex: float
+    rate_td: float
+
+
+def laid_part(s_td: float, tension_td: float, direction: np.ndarray, bounds: np.ndarray,
+              weight: np.ndarray, EA: np.ndarray, point_s: np.ndarray, point_force: np.ndarray,
+              plane: Plane) -> LaidPart:
+    """Tension along the laid part, marching from the TDP to the anchor.
+
+    Parameters
+    ----------
+    s_td : float
+        [m] arc length of the touchdown point.
+    tension_td : float
+        [N] tension at the TDP (>= 0).
+    direction : np.ndarray
+        [-] (3,) unit vector along the laid line from the anchor towards the TDP.
+    bounds : np.ndarray
+        [m] (P + 1,) piece boundaries of the whole line.
+    weight, EA : np.ndarray
+        [N/m], [N] (P,) per piece.
+    point_s, point_force : np.ndarray
+        [m] (k,), [N] (k, 3): point loads (applied to the line) on the laid part.
+    plane : Plane
+        The seabed.
+    """
+    n = plane.normal
+    mu = plane.friction
+    ez = float(direction[2])
+    nz = float(n[2])
+    cut = bounds[(bounds > 0.0) & (bounds < s_td)]
+    pts = np.concatenate(([0.0], cut, [s_td]))
+    tension = np.empty(len(pts))
+    tension[-1] = max(tension_td, 0.0)
+    stretched = 0.0
+    flex = 0.0
+    piece = np.clip(np.searchsorted(bounds, 0.5 * (pts[:-1] + pts[1:]), side="right") - 1,
+                    0, len(weight) - 1)
+    rates = weight[piece] * (mu * nz + ez)
+    order = np.argsort(point_s)
+    t_los = np.zeros(len(pts) - 1)
+    t_his = np.zeros(len(pts) - 1)
+    for j in range(len(pts) - 2, -1, -1):
+        lo, hi = pts[j], pts[j + 1]
+        ell = hi - lo
+        t_hi = tension[j + 1]
+        # point loads inside (lo, hi]: friction and along-line jumps
+        for i in order:
+            if lo < point_s[i] <= hi and point_s[i] < s_td:
+                f = point_force[i]
+                t_hi = max(t_hi - (mu * max(0.0, -float(f @ n)) - float(f @ direction)), 0.0)
+        k = rates[j]
+        ea = EA[piece[j]]
+        t_lo = t_hi - k * ell
+        if t_lo >= 0.0:
+            positive = ell
+            area = 0.5 * ell * (t_hi + t_lo)
+        else:
+            positive = t_hi / k if k > 0.0 else ell
+            area = 0.5 * t_hi * positive
+            t_lo = 0.0
+        if t_hi <= 0.0:
+            positive, area = 0.0, 0.0
+        tension[j] = max(t_lo, 0.0)
+        t_los[j], t_his[j] = tension[j], max(t_hi, 0.0)
+        stretched += ell + area / ea
+        flex += positive / ea
+    rate_td = float(rates[-1]) if len(rates) else 0.0
+    return LaidPart(s=pts, tension=tension, tension_lo=t_los, tension_hi=t_his, rate=rates,
+                    stretched=stretched, positive_flex=flex,
+                    rate_td=rate_td)
