@@ -14,11 +14,13 @@ from .base import (
     StaticSolver,
 )
 from .elastic_catenary import ElasticCatenarySolver
+from .shooting import ShootingSolver
 
 #: name -> solver; ``analysis.static.method`` picks one.
 STATIC_SOLVERS: dict[str, StaticSolver] = {
     "analytic": ElasticCatenarySolver(),
     "catenary": ElasticCatenarySolver(),
+    "shooting": ShootingSolver(),
 }
 
 __all__ = [
