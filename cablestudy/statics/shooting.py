@@ -89,8 +89,10 @@ from .elastic_catenary import CatenarySolution, profile, solve_between
 _GROUND_TOL = 1e-6
 #: legs end (and restart in a new frame) where |sin(elevation)| reaches this [-]
 _POLE_LIMIT = 0.95
+#: Newton iterations allowed per current-continuation step before it is shortened
+_CONTINUATION_ITERATIONS = 15
 #: finite-difference step of the Newton Jacobian, in the scaled unknowns [-]
-_FD_STEP = 1e-6
+_FD_STEP = 1e-7
 
 
 class _ShotFailed(Exception):
@@ -272,6 +274,15 @@ class _Integrator:
         L = line.length
         self.atol = np.array([rtol * force_scale, rtol, rtol, rtol * L, rtol * L, rtol * L])
         self.t_min = 1e-10 * force_scale
+
+    def tighten(self) -> bool:
+        """Divide the integration tolerances by 100 (down to 2.5e-14); False when already
+        there."""
+        if self.rtol <= 3e-14:
+            return False
+        self.rtol = max(self.rtol / 100.0, 2.5e-14)
+        self.atol = self.atol / 100.0
+        return True
 
     def _rhs_factory(self, k: int, e1: np.ndarray, e2: np.ndarray,
                      e3: np.ndarray) -> Callable[[float, np.ndarray], list[float]]:
@@ -473,8 +484,24 @@ class _Setup:
     far: EndCondition
     reverse: bool
     bed: _Seabed | None
-    grounded: bool
+    mode: str  # 'fixed', 'grounded', 'force' or 'mooring': the kind of the start end
     force_scale: float
+
+
+@dataclass
+class _Start:
+    """Where a shot starts: at s0 with force F(s0-) and position r(s0); ``laid`` is the
+    laid direction (grounded start with a laid part), ``t_tdp`` the touchdown tension;
+    ``force_start`` is the force of the line on the start fixture [N]; ``origin`` the
+    position at s = 0 [m]."""
+
+    s0: float
+    force: np.ndarray
+    position: np.ndarray
+    laid: np.ndarray | None
+    t_tdp: float
+    force_start: np.ndarray
+    origin: np.ndarray
 
 
 class ShootingSolver:
@@ -529,69 +556,114 @@ class ShootingSolver:
 
     # -- set-up ---------------------------------------------------------------------
     def _setup(self, problem: StaticProblem) -> _Setup:
+        """Choose the start end: a fixed end on the seabed (touchdown integration), else
+        a force or mooring end (integration from its known force towards the fixed end,
+        the stable direction from low to high tension), else end A."""
         a, b = problem.end_a, problem.end_b
         med = problem.medium
-        L = problem.line.total_length
+        model = problem.line
+        L = model.total_length
         bed = None
         if med.depth is not None:
             bed = _seabed(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
 
-        def on_ground(end: EndCondition) -> bool:
-            if bed is None or end.kind != "fixed" or end.position is None:
+        def on_ground(end: EndCondition, weight: float) -> bool:
+            if bed is None or end.kind != "fixed" or end.position is None or weight <= 0.0:
                 return False
             return abs(end.position[2] - bed.z(end.position[0], end.position[1])) <= (
                 _GROUND_TOL * L)
 
-        # start at a fixed end; prefer one on the seabed (touchdown integration)
-        if a.kind == "fixed" and (on_ground(a) or not on_ground(b) or b.kind != "fixed"):
-            reverse = False
+        if on_ground(a, float(model.weight[0])):
+            reverse, mode = False, "grounded"
+        elif on_ground(b, float(model.weight[-1])):
+            reverse, mode = True, "grounded"
+        elif a.kind != "fixed":
+            reverse, mode = False, a.kind
+        elif b.kind != "fixed":
+            reverse, mode = True, b.kind
         else:
-            reverse = True
+            reverse, mode = False, "fixed"
         start, far = (b, a) if reverse else (a, b)
-        line = _make_line(problem.line, reverse)
-        grounded = on_ground(start) and line.weight[0] > 0.0
+        line = _make_line(model, reverse)
         env = _Env(
             density=med.density, current_z=tuple(float(z) for z in med.current_z),
             current_u=tuple(tuple(float(c) for c in u) for u in med.current_velocity),  # type: ignore[misc]
         ) if med.current_velocity.size else _Env(med.density, (0.0,), ((0.0, 0.0, 0.0),))
-        scale = float(np.sum(np.abs(problem.line.weight) * problem.line.length))
-        scale += float(np.sum(np.linalg.norm(problem.line.attachment_force, axis=1))) if (
-            problem.line.attachment_force.size) else 0.0
-        if far.force is not None:
-            scale = max(scale, float(np.linalg.norm(far.force)))
+        scale = float(np.sum(np.abs(model.weight) * model.length))
+        if model.attachment_force.size:
+            scale += float(np.sum(np.linalg.norm(model.attachment_force, axis=1)))
+        for end in (a, b):
+            if end.force is not None:
+                scale = max(scale, float(np.linalg.norm(end.force)))
         if scale <= 0.0:
-            scale = 1e-6 * float(np.min(problem.line.axial_stiffness))
-        return _Setup(line, env, start, far, reverse, bed, grounded, scale)
+            scale = 1e-6 * float(np.min(model.axial_stiffness))
+        return _Setup(line, env, start, far, reverse, bed, mode, scale)
 
     # -- residual -------------------------------------------------------------------
-    def _start_state(self, st: _Setup, u: np.ndarray) -> tuple[float, np.ndarray, np.ndarray,
-                                                                np.ndarray | None, float]:
-        """(s0, F(s0-), position at s0, laid direction or None, T at touchdown) from
-        the scaled unknowns."""
-        assert st.start.position is not None
-        p0 = np.asarray(st.start.position, dtype=float)
-        if not st.grounded:
-            return 0.0, u * st.force_scale, p0, None, 0.0
-        assert st.bed is not None
-        T0 = float(u[0]) * st.force_scale
-        e = st.bed.direction(float(u[1]))
+    def _start_state(self, st: _Setup, env: _Env, u: np.ndarray) -> _Start:
+        """The start of a shot from the scaled unknowns ``u``."""
         L = st.line.length
-        q = float(u[2]) * L
-        if q >= 0.0:
-            if q >= L:
-                raise _ShotFailed("laid length would exceed the line length")
-            _, _, total = _laid_profile(st.line, st.bed, e, q, T0, np.zeros(0))
-            return q, T0 * e, p0 + total * e, e, T0
-        gamma = -float(u[2])
-        t0 = math.cos(gamma) * e + math.sin(gamma) * st.bed.normal
-        return 0.0, T0 * t0, p0, None, T0
+        if st.mode == "fixed":
+            assert st.start.position is not None
+            p0 = np.asarray(st.start.position, dtype=float)
+            return _Start(0.0, u * st.force_scale, p0, None, 0.0, u * st.force_scale, p0)
+        if st.mode == "grounded":
+            assert st.bed is not None and st.start.position is not None
+            p0 = np.asarray(st.start.position, dtype=float)
+            T0 = float(u[0]) * st.force_scale
+            if T0 <= 0.0:
+                raise _ShotFailed("non-positive tension at the touchdown point")
+            e = st.bed.direction(float(u[1]))
+            q = float(u[2]) * L
+            if q >= 0.0:
+                if q >= L:
+                    raise _ShotFailed("laid length would exceed the line length")
+                pieces, T_anchor = _laid_tension(st.line, st.bed, e, q, T0)
+                _, _, total = _laid_profile(st.line, st.bed, e, q, T0, np.zeros(0))
+                return _Start(q, T0 * e, p0 + total * e, e, T0, max(0.0, T_anchor) * e, p0)
+            gamma = -float(u[2])
+            t0 = math.cos(gamma) * e + math.sin(gamma) * st.bed.normal
+            return _Start(0.0, T0 * t0, p0, None, T0, T0 * t0, p0)
+        assert st.start.force is not None
+        R = np.asarray(st.start.force, dtype=float)
+        if st.mode == "force":
+            p0 = u * L
+            F0 = -R
+        else:  # mooring: unknown vertical force and horizontal position
+            assert st.start.z is not None
+            p0 = np.array([u[1] * L, u[2] * L, st.start.z])
+            F0 = np.array([-R[0], -R[1], u[0] * st.force_scale])
+        # attachments at the start end act on the line there
+        F_plus = F0.copy()
+        if st.line.att_s and st.line.att_s[0] == 0.0:
+            F_plus = F_plus - np.asarray(st.line.att_force[0])
+        if float(np.linalg.norm(F_plus)) > 1e-9 * st.force_scale:
+            return _Start(0.0, F0, p0, None, 0.0, F0, p0)
+        # a free end: the line leaves it along its load, F(s) = -f s for small s
+        return self._free_end_start(st, env, p0, F0)
+
+    def _free_end_start(self, st: _Setup, env: _Env, p0: np.ndarray,
+                        F0: np.ndarray) -> _Start:
+        line = st.line
+        k = line.segment_at(0.0)
+        f = np.asarray(_load(env, line, k, (0.0, 0.0, 1.0), float(p0[2]), 0.0))
+        if not np.any(f):
+            raise _ShotFailed("a free end with no load on the line next to it")
+        t0 = -f / np.linalg.norm(f)
+        for _ in range(200):  # tangent along minus the load it produces (fixed point)
+            f = np.asarray(_load(env, line, k, tuple(t0), float(p0[2]), 0.0))
+            t_new = -f / np.linalg.norm(f)
+            if np.linalg.norm(t_new - t0) < 1e-15:
+                break
+            t0 = _unit(0.5 * (t0 + t_new))
+        delta = 1e-9 * line.length
+        fmag = float(np.linalg.norm(f))
+        return _Start(delta, fmag * delta * t0, p0 + delta * t0, None, 0.0, F0, p0)
 
     def _residual(self, st: _Setup, integ: _Integrator, u: np.ndarray,
-                  dense: bool = False) -> tuple[np.ndarray, _Shot, tuple]:
-        s0, F0, p0, e, T0 = self._start_state(st, u)
-        if st.grounded and T0 <= 0.0:
-            raise _ShotFailed("non-positive tension at the touchdown point")
-        shot = integ.run(s0, F0, p0, dense=dense)
+                  dense: bool = False) -> tuple[np.ndarray, _Shot, _Start]:
+        start = self._start_state(st, integ.env, u)
+        shot = integ.run(start.s0, start.force, start.position, dense=dense)
         L = st.line.length
         far = st.far
         if far.kind == "fixed":
@@ -605,10 +677,12 @@ class ShootingSolver:
             r = np.array([(shot.force_end[0] - far.force[0]) / st.force_scale,
                           (shot.force_end[1] - far.force[1]) / st.force_scale,
                           (shot.position_end[2] - far.z) / L])
-        return r, shot, (s0, F0, p0, e, T0)
+        return r, shot, start
 
     # -- initial guesses --------------------------------------------------------------
     def _guess(self, st: _Setup) -> np.ndarray:
+        if st.mode in ("force", "mooring"):
+            return self._guess_from_free_end(st)
         line, far = st.line, st.far
         L = line.length
         w = line.mean_weight()
@@ -638,11 +712,46 @@ class ShootingSolver:
             H = float(np.linalg.norm(Hv))
             h = far.z - p0[2]
             VA = self._mooring_va(H, h, L, w, EA)
-            loads_h = loads[:2]
-            F0 = np.array([Hv[0] - loads_h[0], Hv[1] - loads_h[1], VA])
-        if not st.grounded:
+            F0 = np.array([Hv[0] - loads[0], Hv[1] - loads[1], VA])
+        if st.mode == "fixed":
             return F0 / st.force_scale
         return self._grounded_guess(st, F0, w)
+
+    def _guess_from_free_end(self, st: _Setup) -> np.ndarray:
+        """Start at a force or mooring end: one still-water shot from a trial position
+        gives the offset to the fixed far end (exact without current)."""
+        line, far = st.line, st.far
+        L = line.length
+        assert far.position is not None and st.start.force is not None
+        p_far = np.asarray(far.position, dtype=float)
+        if st.mode == "force":
+            u = p_far / L
+        else:
+            assert st.start.z is not None
+            R = np.asarray(st.start.force, dtype=float)
+            H = float(np.linalg.norm(R[:2]))
+            w = line.mean_weight()
+            EA = L / line.compliance()
+            # catenary from the far (fixed) end to the mooring end: tension there is
+            # (H e, V_A + w L) along the line towards the mooring end
+            VA = self._mooring_va(H, st.start.z - p_far[2], L, w, EA)
+            vz = -(VA + w * L)
+            u = np.array([vz / st.force_scale, p_far[0] / L, p_far[1] / L])
+        integ = _Integrator(line, st.env.scaled(0.0), rtol=1e-8, force_scale=st.force_scale,
+                            deadline=None)
+        try:
+            shot = integ.run(*self._shot_args(st, integ, u), dense=False)
+        except _ShotFailed:
+            return u
+        shift = p_far - shot.position_end
+        if st.mode == "force":
+            return u + shift / L
+        return np.array([u[0], u[1] + shift[0] / L, u[2] + shift[1] / L])
+
+    def _shot_args(self, st: _Setup, integ: _Integrator,
+                   u: np.ndarray) -> tuple[float, np.ndarray, np.ndarray]:
+        start = self._start_state(st, integ.env, u)
+        return start.s0, start.force, start.position
 
     @staticmethod
     def _mooring_va(H: float, h: float, L: float, w: float, EA: float) -> float:
@@ -747,7 +856,7 @@ class ShootingSolver:
             if norm <= tol:
                 # a few more steps towards the round-off floor of the integration
                 polish += 1
-                if polish > 2 or norm <= 10.0 * self.rtol:
+                if polish > 2 or norm <= 10.0 * integ.rtol:
                     return u, norm, it, STATUS_OK, ""
             if it >= max_iterations:
                 return u, norm, it, STATUS_NOT_CONVERGED, (
@@ -756,19 +865,10 @@ class ShootingSolver:
             if deadline is not None and time.monotonic() > deadline:
                 raise _TimeUp
             it += 1
-            J = np.empty((len(r), len(u)))
-            for j in range(len(u)):
-                h = _FD_STEP * max(1.0, abs(u[j]))
-                du = np.zeros_like(u)
-                du[j] = h
-                rp = resid(u + du)
-                if rp is None:
-                    rp = resid(u - du)
-                    h = -h
-                if rp is None:
-                    return u, norm, it, STATUS_NOT_CONVERGED, (
-                        "shots next to the current iterate fail (tension vanishes)")
-                J[:, j] = (rp - r) / h
+            J = self._jacobian(resid, u, r)
+            if J is None:
+                return u, norm, it, STATUS_NOT_CONVERGED, (
+                    "shots next to the current iterate fail (tension vanishes)")
             step = np.linalg.lstsq(J, -r, rcond=None)[0]
             if not np.all(np.isfinite(step)):
                 return u, norm, it, STATUS_NUMERICAL, "non-finite Newton step"
@@ -786,12 +886,49 @@ class ShootingSolver:
             if not accepted:
                 if norm <= tol:
                     return u, norm, it, STATUS_OK, ""
+                if norm < 1e-5 and integ.tighten():
+                    # stalled near the solution: the integration error of an
+                    # ill-conditioned shot is the floor; integrate more tightly
+                    r = resid(u)
+                    if r is None:
+                        return u, norm, it, STATUS_NOT_CONVERGED, "a tighter shot failed"
+                    norm = float(np.max(np.abs(r)))
+                    continue
                 return u, norm, it, STATUS_NOT_CONVERGED, (
                     f"shooting Newton line search failed (residual {norm:.3g}, "
                     f"tolerance {tol:.3g})")
-            if norm <= tol and nn > 0.5 * norm:
-                return un, nn, it, STATUS_OK, ""
+            if nn > 0.5 * norm:
+                if norm <= tol:
+                    return un, nn, it, STATUS_OK, ""
+                if nn < 1e-5:
+                    integ.tighten()
+                    rn = resid(un)
+                    if rn is None:
+                        return u, norm, it, STATUS_NOT_CONVERGED, "a tighter shot failed"
+                    nn = float(np.max(np.abs(rn)))
             u, r, norm = un, rn, nn
+
+    @staticmethod
+    def _jacobian(resid: Callable[[np.ndarray], np.ndarray | None], u: np.ndarray,
+                  r: np.ndarray) -> np.ndarray | None:
+        """Central-difference Jacobian (one-sided where a shot fails): the shooting map
+        of a drag-loaded line is strongly nonlinear, and central differences keep
+        Newton quadratic down to the integration round-off."""
+        J = np.empty((len(r), len(u)))
+        for j in range(len(u)):
+            h = _FD_STEP * max(1.0, abs(u[j]))
+            du = np.zeros_like(u)
+            du[j] = h
+            rp, rm = resid(u + du), resid(u - du)
+            if rp is not None and rm is not None:
+                J[:, j] = (rp - rm) / (2.0 * h)
+            elif rp is not None:
+                J[:, j] = (rp - r) / h
+            elif rm is not None:
+                J[:, j] = (r - rm) / h
+            else:
+                return None
+        return J
 
     # -- driver ---------------------------------------------------------------------
     def _solve(self, problem: StaticProblem, s_out: np.ndarray,
@@ -800,101 +937,99 @@ class ShootingSolver:
         tol = max(problem.tolerance, 100.0 * self.rtol)
         u = self._guess(st)
         total_it = 0
-        env_full = st.env
-        factors = [1.0] if not env_full.has_current else [0.0, 1.0]
-        done = 0.0
-        status, msg, norm = STATUS_OK, "", math.nan
-        u_done = u
-        step = 1.0
-        n_steps = 0
-        for target in factors:
-            if target == 1.0 and factors == [0.0, 1.0]:
-                # continuation in current speed from still water
-                while done < 1.0:
-                    n_steps += 1
-                    if n_steps > 40:
-                        return StaticResult.failed(
-                            s_out, STATUS_NOT_CONVERGED,
-                            f"current-speed continuation stalled at {done:.3g} of the "
-                            "current", iterations=total_it, residual=norm)
-                    trial = min(1.0, done + step)
-                    integ = _Integrator(st.line, env_full.scaled(trial), rtol=self.rtol,
-                                        force_scale=st.force_scale, deadline=deadline)
-                    u_try, norm_t, it, status_t, msg_t = self._newton(
-                        st, integ, u_done, tol, problem.max_iterations, deadline)
-                    total_it += it
-                    if status_t == STATUS_OK:
-                        done, u_done, norm = trial, u_try, norm_t
-                        step = min(1.0, 2.0 * step)
-                    else:
-                        step *= 0.25
-                        if step < 1e-3:
-                            return StaticResult.failed(
-                                s_out, status_t,
-                                f"current-speed continuation failed at {trial:.3g} of the "
-                                f"current: {msg_t}", iterations=total_it, residual=norm_t)
-                u = u_done
-                status, msg = STATUS_OK, ""
-                continue
-            integ = _Integrator(st.line, env_full.scaled(target), rtol=self.rtol,
+
+        def newton(factor: float, u0: np.ndarray, cap: int) -> tuple[np.ndarray, float, int,
+                                                                      str]:
+            nonlocal total_it
+            integ = _Integrator(st.line, st.env.scaled(factor), rtol=self.rtol,
                                 force_scale=st.force_scale, deadline=deadline)
-            u, norm, it, status, msg = self._newton(st, integ, u, tol, problem.max_iterations,
-                                                    deadline)
+            u1, norm1, it, status1, msg1 = self._newton(st, integ, u0, tol, cap, deadline)
             total_it += it
-            if status != STATUS_OK:
-                return StaticResult.failed(s_out, status, msg, iterations=total_it,
-                                           residual=norm)
-            u_done = u
-        integ = _Integrator(st.line, env_full, rtol=self.rtol, force_scale=st.force_scale,
+            return u1, norm1, status1, msg1
+
+        u, norm, status, msg = newton(0.0, u, problem.max_iterations)
+        if status != STATUS_OK:
+            return StaticResult.failed(s_out, status, f"still water: {msg}",
+                                       iterations=total_it, residual=norm)
+        if st.env.has_current:
+            # continuation in current speed from the still-water solution, with a secant
+            # predictor from the last two converged steps
+            done, step, n_steps = 0.0, 1.0, 0
+            prev: tuple[float, np.ndarray] | None = None
+            while done < 1.0:
+                n_steps += 1
+                trial = min(1.0, done + step)
+                if n_steps > 80:
+                    return StaticResult.failed(
+                        s_out, STATUS_NOT_CONVERGED,
+                        f"current-speed continuation stalled at {done:.3g} of the current",
+                        iterations=total_it, residual=norm)
+                u_pred = u
+                if prev is not None:
+                    u_pred = u + (trial - done) * (u - prev[1]) / (done - prev[0])
+                # a continuation step that needs many iterations is retried shorter
+                cap = problem.max_iterations if step < 2e-3 else min(problem.max_iterations,
+                                                                      _CONTINUATION_ITERATIONS)
+                u_try, norm_t, status_t, msg_t = newton(trial, u_pred, cap)
+                if status_t == STATUS_OK:
+                    prev = (done, u)
+                    done, u, norm = trial, u_try, norm_t
+                    step = min(1.0 - done, 2.0 * step) if done < 1.0 else step
+                    continue
+                step *= 0.25
+                if step < 1e-3:
+                    return StaticResult.failed(
+                        s_out, status_t,
+                        f"current-speed continuation failed at {trial:.3g} of the current: "
+                        f"{msg_t}", iterations=total_it, residual=norm_t)
+        integ = _Integrator(st.line, st.env, rtol=self.rtol, force_scale=st.force_scale,
                             deadline=deadline)
         try:
             r, shot, start = self._residual(st, integ, u, dense=True)
         except _ShotFailed as exc:
             return StaticResult.failed(s_out, STATUS_NUMERICAL, f"final shot failed: {exc}",
                                        iterations=total_it, residual=norm)
-        return self._result(problem, st, s_out, shot, start, total_it,
-                            float(np.max(np.abs(r))))
+        return self._result(st, s_out, shot, start, total_it, float(np.max(np.abs(r))))
 
-    def _result(self, problem: StaticProblem, st: _Setup, s_out: np.ndarray, shot: _Shot,
-                start: tuple, iterations: int, residual: float) -> StaticResult:
-        s0, F0, p0, e, T0 = start
+    def _result(self, st: _Setup, s_out: np.ndarray, shot: _Shot, start: _Start,
+                iterations: int, residual: float) -> StaticResult:
         L = st.line.length
         s_loc = (L - s_out) if st.reverse else s_out.copy()
         position = np.full((len(s_out), 3), np.nan)
         tension = np.full(len(s_out), np.nan)
         laid = 0.0
-        force_start = F0.copy()
-        if e is not None:
-            laid = s0
-            dist, tens, _ = _laid_profile(st.line, st.bed, e, s0, T0, s_loc)  # type: ignore[arg-type]
-            on = s_loc <= s0
-            position[on] = st.start.position + dist[on, None] * e  # type: ignore[operator]
-            tension[on] = tens[on]
-            pieces, T_anchor = _laid_tension(st.line, st.bed, e, s0, T0)  # type: ignore[arg-type]
-            force_start = max(0.0, T_anchor) * e
-        else:
-            # attachments exactly at the start are carried by the start fixture
-            force_start = F0
+        before = s_loc < start.s0
+        if start.laid is not None:
+            assert st.bed is not None
+            laid = start.s0
+            dist, tens, _ = _laid_profile(st.line, st.bed, start.laid, start.s0, start.t_tdp,
+                                          s_loc)
+            position[before] = start.origin + dist[before, None] * start.laid
+            tension[before] = tens[before]
+        elif np.any(before):  # the short straight piece next to a free end
+            frac = s_loc[before] / start.s0
+            position[before] = start.origin + frac[:, None] * (start.position - start.origin)
+            tension[before] = frac * float(np.linalg.norm(start.force))
         for piece in shot.pieces:
             inside = (s_loc >= piece.s0) & (s_loc <= piece.s1) & np.isnan(tension)
             if np.any(inside):
                 y = piece.sol(s_loc[inside])
                 tension[inside] = y[0]
                 position[inside] = y[3:6].T
+        force_start = start.force_start
         force_far = -shot.force_end
         force_a, force_b = (force_far, force_start) if st.reverse else (force_start, force_far)
-        result = StaticResult(
+        if st.bed is not None:
+            ground = np.array([st.bed.z(x, y) for x, y in position[:, :2]])
+            below = float(np.max(ground - position[:, 2]))
+            if below > 1e-6 * L:
+                return StaticResult.failed(
+                    s_out, STATUS_NO_SOLUTION,
+                    f"the line passes {below:.4g} m below the seabed; the shooting solver "
+                    "models seabed contact only from a fixed end on the seabed (touchdown "
+                    "integration)", iterations=iterations, residual=residual)
+        return StaticResult(
             s=s_out, position=position, tension=tension, force_a=force_a, force_b=force_b,
             laid_length=float(laid), status=STATUS_OK, message="", iterations=iterations,
             residual=residual,
         )
-        if st.bed is not None:
-            ground = np.array([st.bed.z(x, y) for x, y in position[:, :2]])
-            depth_below = float(np.max(ground - position[:, 2]))
-            if depth_below > 1e-6 * L:
-                return StaticResult.failed(
-                    s_out, STATUS_NO_SOLUTION,
-                    f"the line passes {depth_below:.4g} m below the seabed; the shooting "
-                    "solver models seabed contact only from a fixed end on the seabed "
-                    "(touchdown integration)", iterations=iterations, residual=residual)
-        return result
