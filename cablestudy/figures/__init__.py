@@ -50,7 +50,7 @@ def build_all(results: Path, out: Path, *, configs: Path = Path("configs"),
     import matplotlib
 
     matplotlib.use("Agg")
-    from . import statics_figures  # noqa: F401  (registers builders)
+    from . import statics_figures, vaz_patel_figures  # noqa: F401  (registers builders)
 
     out.mkdir(parents=True, exist_ok=True)
     written = []
