@@ -837,7 +837,10 @@ class ShootingSolver:
     def _newton(self, st: _Setup, integ: _Integrator, u0: np.ndarray, tol: float,
                 max_iterations: int, deadline: float | None) -> tuple[np.ndarray, float, int,
                                                                       int, str]:
-        """Returns (u, residual norm, iterations, status, message)."""
+        """Damped Newton on the scaled end residual. The Jacobian is a central-difference
+        one, refreshed when a step does not reduce the residual well and otherwise
+        updated by Broyden's rank-one formula (each refresh costs six shots). Returns
+        (u, residual norm, iterations, status, message)."""
 
         def resid(u: np.ndarray) -> np.ndarray | None:
             try:
@@ -852,6 +855,8 @@ class ShootingSolver:
         norm = float(np.max(np.abs(r)))
         it = 0
         polish = 0
+        J: np.ndarray | None = None
+        fresh = False
         while True:
             if norm <= tol:
                 # a few more steps towards the round-off floor of the integration
@@ -865,10 +870,12 @@ class ShootingSolver:
             if deadline is not None and time.monotonic() > deadline:
                 raise _TimeUp
             it += 1
-            J = self._jacobian(resid, u, r)
             if J is None:
-                return u, norm, it, STATUS_NOT_CONVERGED, (
-                    "shots next to the current iterate fail (tension vanishes)")
+                J = self._jacobian(resid, u, r)
+                fresh = True
+                if J is None:
+                    return u, norm, it, STATUS_NOT_CONVERGED, (
+                        "shots next to the current iterate fail (tension vanishes)")
             step = np.linalg.lstsq(J, -r, rcond=None)[0]
             if not np.all(np.isfinite(step)):
                 return u, norm, it, STATUS_NUMERICAL, "non-finite Newton step"
@@ -883,7 +890,12 @@ class ShootingSolver:
                         accepted = True
                         break
                 lam *= 0.5
+                if not fresh and lam < 0.2:
+                    break  # a stale Jacobian: refresh it before searching further
             if not accepted:
+                if not fresh:
+                    J = None
+                    continue
                 if norm <= tol:
                     return u, norm, it, STATUS_OK, ""
                 if norm < 1e-5 and integ.tighten():
@@ -893,11 +905,13 @@ class ShootingSolver:
                     if r is None:
                         return u, norm, it, STATUS_NOT_CONVERGED, "a tighter shot failed"
                     norm = float(np.max(np.abs(r)))
+                    J = None
                     continue
                 return u, norm, it, STATUS_NOT_CONVERGED, (
                     f"shooting Newton line search failed (residual {norm:.3g}, "
                     f"tolerance {tol:.3g})")
-            if nn > 0.5 * norm:
+            slow = nn > 0.5 * norm
+            if slow and fresh:
                 if norm <= tol:
                     return un, nn, it, STATUS_OK, ""
                 if nn < 1e-5:
@@ -906,6 +920,13 @@ class ShootingSolver:
                     if rn is None:
                         return u, norm, it, STATUS_NOT_CONVERGED, "a tighter shot failed"
                     nn = float(np.max(np.abs(rn)))
+            # Broyden's update of the Jacobian along the step taken; a slow step with
+            # an updated Jacobian asks for a fresh one
+            du = un - u
+            J = J + np.outer(rn - r - J @ du, du) / float(du @ du)
+            fresh = False
+            if slow:
+                J = None
             u, r, norm = un, rn, nn
 
     @staticmethod
