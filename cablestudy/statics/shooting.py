@@ -754,6 +754,16 @@ class ShootingSolver:
         return start.s0, start.force, start.position
 
     @staticmethod
+    def _other_guesses(st: _Setup, u0: np.ndarray) -> list[np.ndarray]:
+        """Further starting points, tried in turn when Newton fails from the first."""
+        if st.mode == "grounded":
+            return [np.array([u0[0] * f, u0[1], q]) for f in (1.0, 0.3, 3.0)
+                    for q in (0.5, 0.2, 0.05, -0.2) if q != u0[2]]
+        if st.mode == "fixed":
+            return [u0 * f for f in (0.3, 3.0, 10.0)]
+        return []
+
+    @staticmethod
     def _mooring_va(H: float, h: float, L: float, w: float, EA: float) -> float:
         """Vertical component V_A of the tension vector at A of a uniform catenary with
         horizontal tension H whose far end is h above A [N]."""
@@ -807,11 +817,16 @@ class ShootingSolver:
                     a = (Ls * Ls - h * h) / (2.0 * h)
                     return (L - Ls) + a * math.asinh(Ls / a) - X
 
-                lo, hi = h * (1.0 + 1e-9), L
-                if lo < hi and gap(lo) < 0.0 < gap(hi) or (lo < hi and gap(hi) > 0.0 > gap(lo)):
-                    suspended = float(brentq(gap, lo, hi, xtol=1e-9 * L))
-                    a = (suspended ** 2 - h * h) / (2.0 * h)
-                    H = a * w
+                # the largest suspended length with a sign change of the gap on a grid
+                grid = np.linspace(h * (1.0 + 1e-6), L, 65) if h < L else np.zeros(0)
+                gaps = [gap(float(g)) for g in grid]
+                for g0, g1, v0, v1 in zip(grid[-2::-1], grid[:0:-1], gaps[-2::-1],
+                                          gaps[:0:-1], strict=True):
+                    if v0 * v1 <= 0.0:
+                        suspended = float(brentq(gap, g0, g1, xtol=1e-9 * L))
+                        a = (suspended ** 2 - h * h) / (2.0 * h)
+                        H = a * w
+                        break
         elif far.kind == "mooring":
             assert far.z is not None
             h = far.z - bed.z(p0[0], p0[1])
@@ -881,12 +896,13 @@ class ShootingSolver:
                 return u, norm, it, STATUS_NUMERICAL, "non-finite Newton step"
             lam = 1.0
             accepted = False
+            merit = float(np.linalg.norm(r))  # the step is a descent direction of |r|_2
             while lam >= 1.0 / 4096.0:
                 un = u + lam * step
                 rn = resid(un)
                 if rn is not None:
                     nn = float(np.max(np.abs(rn)))
-                    if nn < norm:
+                    if float(np.linalg.norm(rn)) < (1.0 - 1e-4 * lam) * merit:
                         accepted = True
                         break
                 lam *= 0.5
@@ -910,7 +926,7 @@ class ShootingSolver:
                 return u, norm, it, STATUS_NOT_CONVERGED, (
                     f"shooting Newton line search failed (residual {norm:.3g}, "
                     f"tolerance {tol:.3g})")
-            slow = nn > 0.5 * norm
+            slow = float(np.linalg.norm(rn)) > 0.5 * merit
             if slow and fresh:
                 if norm <= tol:
                     return un, nn, it, STATUS_OK, ""
@@ -968,9 +984,23 @@ class ShootingSolver:
             total_it += it
             return u1, norm1, status1, msg1
 
-        u, norm, status, msg = newton(0.0, u, problem.max_iterations)
+        u0 = u
+        u, norm, status, msg = newton(0.0, u0, problem.max_iterations)
+        for alt in self._other_guesses(st, u0):
+            if status == STATUS_OK:
+                break
+            u, norm, status, msg = newton(0.0, alt, problem.max_iterations)
+        if status != STATUS_OK and st.mode == "grounded" and u[0] < 1e-4:
+            return StaticResult.failed(
+                s_out, STATUS_NO_SOLUTION,
+                "slack line: the touchdown tension tends to zero (the line is longer than a "
+                "straight laid part and a vertical hanging part can take, so it would pile "
+                "on the seabed; there is no taut static shape)",
+                iterations=total_it, residual=norm)
         if status != STATUS_OK:
-            return StaticResult.failed(s_out, status, f"still water: {msg}",
+            hint = ("; no equilibrium above the seabed may exist for these end conditions"
+                    if st.mode == "grounded" else "")
+            return StaticResult.failed(s_out, status, f"still water: {msg}{hint}",
                                        iterations=total_it, residual=norm)
         if st.env.has_current:
             # continuation in current speed from the still-water solution, with a secant
