@@ -1067,6 +1067,12 @@ class ShootingSolver:
                 y = piece.sol(s_loc[inside])
                 tension[inside] = y[0]
                 position[inside] = y[3:6].T
+        # a node exactly at an attachment reports the tension on its B side (s+)
+        for j in np.nonzero(np.isin(s_loc, st.line.att_s))[0]:
+            for piece in shot.pieces:
+                if (piece.s1 if st.reverse else piece.s0) == s_loc[j]:
+                    tension[j] = float(piece.sol(np.array([s_loc[j]]))[0, 0])
+                    break
         force_start = start.force_start
         force_far = -shot.force_end
         force_a, force_b = (force_far, force_start) if st.reverse else (force_start, force_far)

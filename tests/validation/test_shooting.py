@@ -187,6 +187,9 @@ def test_attachment_and_segments_against_piecewise_catenaries() -> None:
         right = next(v for (k0, k1), v in ends_of.items() if k0 == s_k)
         jump = right.force_a - (-left.force_b)
         assert np.allclose(jump, -np.asarray(p), atol=1e-7 * 30000.0)
+        # the output node at the attachment holds the tension on its B side (s+)
+        i = int(round(s_k))
+        assert abs(res.tension[i] - np.linalg.norm(right.force_a)) < 1e-7 * 30000.0
     # global balance: the ends carry the weight and the attachment loads
     total = np.array([0.0, 0.0, -float(np.dot(w, lengths))]) + np.sum(att_force, axis=0)
     assert np.allclose(res.force_a + res.force_b, total, atol=1e-9 * abs(total[2]))
