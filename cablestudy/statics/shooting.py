@@ -37,7 +37,7 @@ restarts at that point with a new frame. The angle form is therefore used everyw
 Legs also end at segment boundaries and at attachments (point forces, clump weights,
 buoys: F(s+) = F(s-) - P for a force P applied to the line), where the angles are
 recomputed from the force after the jump. The ODE is integrated with scipy's DOP853
-(Dormand-Prince 8(5,3)), relative tolerance 1e-11 by default.
+(Dormand-Prince 8(5,3)), relative tolerance 1e-12 by default.
 
 Shooting: the integration starts at a fixed end (mirrored internally so that the start
 end is A), from the three unknown components of the force there, and Newton's method
@@ -516,7 +516,7 @@ class ShootingSolver:
 
     name = "shooting"
 
-    def __init__(self, *, rtol: float = 1e-11) -> None:
+    def __init__(self, *, rtol: float = 1e-12) -> None:
         self.rtol = rtol
 
     # -- contract ------------------------------------------------------------------
@@ -876,7 +876,7 @@ class ShootingSolver:
             if norm <= tol:
                 # a few more steps towards the round-off floor of the integration
                 polish += 1
-                if polish > 2 or norm <= 10.0 * integ.rtol:
+                if polish > 4 or norm <= 10.0 * integ.rtol:
                     return u, norm, it, STATUS_OK, ""
             if it >= max_iterations:
                 return u, norm, it, STATUS_NOT_CONVERGED, (

@@ -1,7 +1,7 @@
 """Validation of the shooting static solver (``method: shooting``, vaz-patel seed) against
 closed-form solutions, hand derivations and invariances.
 
-Tolerances: the ODE is integrated with DOP853 at rtol = 1e-11, and Newton stops at a
+Tolerances: the ODE is integrated with DOP853 at rtol = 1e-12, and Newton stops at a
 scaled end residual of 1e-9 or below (then polishes towards the integration floor). The
 global integration error of a smooth line over O(100) steps is a few times rtol, and the
 dense-output interpolant used at the output nodes is 7th order, so positions and forces
@@ -277,7 +277,7 @@ def test_pode_critical_angle_is_approached() -> None:
 
 def test_convergence_as_rtol_is_tightened() -> None:
     """The solution converges as the integration tolerance is tightened: the difference
-    to the rtol = 1e-13 solution falls with rtol, and at the default 1e-11 it is below
+    to the rtol = 1e-13 solution falls with rtol, and at 1e-11 it is below
     1e-9 of the length and tension scales."""
     line = make_line([250.0, 150.0], [40.0, 15.0], [3e8, 5e7], diameter=0.06,
                      drag_tangential=0.01, att_s=(250.0,), att_force=((0.0, 0.0, 2000.0),))
