@@ -39,12 +39,18 @@ buoys: F(s+) = F(s-) - P for a force P applied to the line), where the angles ar
 recomputed from the force after the jump. The ODE is integrated with scipy's DOP853
 (Dormand-Prince 8(5,3)), relative tolerance 1e-12 by default.
 
-Shooting: the integration starts at a fixed end (mirrored internally so that the start
-end is A), from the three unknown components of the force there, and Newton's method
-(finite-difference Jacobian, backtracking line search) meets the three conditions at the
-other end: its position (fixed), the force on the line there (force), or the horizontal
-force and height (mooring). Strong currents are reached by continuation in current speed
-from the still-water solution.
+Shooting: the line is mirrored internally so that the integration starts at end A' and
+runs to B'. The start end is, in this order of preference, a fixed end on the seabed
+(see below), a `force` or `mooring` end (integration from its known force towards the
+fixed end, the stable direction from low to high tension: the unknowns are its position,
+or its horizontal position and vertical force), or a fixed end (unknowns: the three
+components of the force there). Newton's method meets the three conditions at the other
+end: its position (fixed), the force on the line there (force), or the horizontal force
+and height (mooring). The Jacobian is by central differences, updated by Broyden's
+formula between refreshes; the line search uses the 2-norm of the scaled residual.
+Strong currents are reached by continuation in current speed from the still-water
+solution, with a secant predictor. A free end (zero force) starts along its own load
+(so a cable with a free end in a uniform current starts at Pode's critical angle).
 
 Seabed (vaz-patel: the integration starts at the touchdown point): when the start end is
 fixed on the seabed, the unknowns become the tension T_0 at the touchdown point, the
@@ -550,7 +556,7 @@ class ShootingSolver:
         except _TimeUp:
             return StaticResult.failed(s_out, STATUS_TIME_LIMIT,
                                        "time limit reached in the shooting solver")
-        except (ArithmeticError, ValueError, np.linalg.LinAlgError) as exc:
+        except Exception as exc:  # noqa: BLE001 - a numerical fault is data, not a crash
             return StaticResult.failed(s_out, STATUS_NUMERICAL,
                                        f"shooting solver: {type(exc).__name__}: {exc}")
 
