@@ -50,9 +50,10 @@ def build_all(results: Path, out: Path, *, configs: Path = Path("configs"),
     import matplotlib
 
     matplotlib.use("Agg")
-    from . import (
-        modal_figures,  # noqa: F401  (registers builders)
-        statics_figures,  # noqa: F401  (registers builders)
+    from . import (  # noqa: F401  (each module registers its builders)
+        modal_figures,
+        statics_figures,
+        vaz_patel_figures,
     )
 
     out.mkdir(parents=True, exist_ok=True)

@@ -15,11 +15,13 @@ from .base import (
 )
 from .elastic_catenary import ElasticCatenarySolver
 from .semi_analytic import SemiAnalyticSolver
+from .shooting import ShootingSolver
 
 #: name -> solver; ``analysis.static.method`` picks one.
 STATIC_SOLVERS: dict[str, StaticSolver] = {
     "analytic": ElasticCatenarySolver(),
     "catenary": SemiAnalyticSolver(),
+    "shooting": ShootingSolver(),
 }
 
 __all__ = [

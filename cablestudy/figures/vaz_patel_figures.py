@@ -1,0 +1,99 @@
+"""Figures of the vaz-patel seed's static examples (shooting solver): a segmented
+deep-water mooring line in a sheared current, and a telecommunication cable in a
+current that turns with depth."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+import numpy as np
+import xarray as xr
+
+from . import register
+
+
+def _labels(ds: xr.Dataset, dim: str, unit: str) -> list[str]:
+    """Legend labels of a sweep dimension: the values of the swept path where the axis
+    is a zip (coordinate ``<dim>_<path end>``), else the dimension's own values."""
+    extra = [c for c in ds.coords if c != dim and c.startswith(f"{dim}_")
+             and ds[c].dims == (dim,)]
+    values = ds[extra[0]].values if extra else ds[dim].values
+    return [f"{v:g} {unit}" for v in values]
+
+
+def _segment_ends(ds: xr.Dataset) -> list[float]:
+    """Interior segment boundaries [m] from the study YAML kept in the dataset."""
+    import yaml
+
+    study = yaml.safe_load(ds.attrs["study_yaml"])
+    lengths = [float(seg["length"]) for seg in study["line"]["segments"]]
+    return list(np.cumsum(lengths)[:-1])
+
+
+@register("vaz-patel-mooring", ("vaz-patel-segmented-mooring",))
+def mooring(data: dict[str, xr.Dataset], out: Path) -> Path:
+    ds = data["vaz-patel-segmented-mooring"]
+    dim = "current_heading"
+    labels = _labels(ds, dim, "deg")
+    fig, axes = plt.subplots(1, 3, figsize=(13, 4))
+    for i, label in enumerate(labels):
+        case = ds.isel({dim: i})
+        if int(case["status"]) != 0:
+            continue
+        laid = float(case["laid_length"])
+        axes[0].plot(case["x"], case["z"], label=f"current {label}, laid {laid:.0f} m")
+        axes[1].plot(case["x"], case["y"], label=f"current {label}")
+        fb = -case["force_b"].values
+        axes[2].plot(case["s"], case["tension"] / 1e3,
+                     label=f"{label}: top H = {np.hypot(fb[0], fb[1]) / 1e3:.1f} kN, "
+                           f"V = {fb[2] / 1e3:.1f} kN")
+    for s_b in _segment_ends(ds):
+        axes[2].axvline(s_b, color="0.6", lw=0.8, ls="--")
+    axes[0].set(xlabel="x [m]", ylabel="z [m]", title="elevation")
+    axes[1].set(xlabel="x [m]", ylabel="y [m]", title="plan")
+    axes[2].set(xlabel="unstretched arc length from anchor s [m]", ylabel="tension [kN]",
+                title="tension (dashed: chain / polyester joints)")
+    for ax in axes:
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle("Segmented deep-water mooring in a sheared current (vaz-patel example 2, "
+                 "shooting solver)", fontsize=10)
+    path = out / "vaz-patel-mooring.png"
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+
+
+@register("vaz-patel-turning-current", ("vaz-patel-turning-current",))
+def turning_current(data: dict[str, xr.Dataset], out: Path) -> Path:
+    ds = data["vaz-patel-turning-current"]
+    dim = "lower_heading"
+    labels = _labels(ds, dim, "deg")
+    fig, axes = plt.subplots(2, 2, figsize=(10, 8))
+    (ax_xz, ax_xy), (ax_yz, ax_t) = axes
+    for i, label in enumerate(labels):
+        case = ds.isel({dim: i})
+        if int(case["status"]) != 0:
+            continue
+        text = f"lower current {label}"
+        ax_xz.plot(case["x"], case["z"], label=text)
+        ax_xy.plot(case["x"], case["y"], label=f"{text}, laid {float(case['laid_length']):.0f} m")
+        ax_yz.plot(case["y"], case["z"], label=text)
+        ax_t.plot(case["s"], case["tension"] / 1e3, label=text)
+    ax_xz.set(xlabel="x [m]", ylabel="z [m]", title="elevation (x-z)")
+    ax_xy.set(xlabel="x [m]", ylabel="y [m]", title="plan (x-y)")
+    ax_yz.set(xlabel="y [m]", ylabel="z [m]", title="side (y-z)")
+    ax_t.set(xlabel="unstretched arc length from the seabed end s [m]", ylabel="tension [kN]",
+             title="tension")
+    for ax in axes.flat:
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle("HA telecommunication cable (seed Table 1) in a current turning with depth "
+                 "(vaz-patel example 3, shooting solver)", fontsize=10)
+    path = out / "vaz-patel-turning-current.png"
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
