@@ -137,7 +137,7 @@ class DynamicSettings(StrictModel):
     max_refinement: int = Field(
         3, ge=0, le=12, description="step halvings allowed around slack-taut transitions")
     spectral_radius: float = Field(
-        0.7, ge=0.0, le=1.0,
+        0.3, ge=0.0, le=1.0,
         description="generalised-alpha high-frequency spectral radius [-] (1: no damping)")
     newton_tolerance: Positive = Field(
         1e-7, le=1e-2, description="Newton force residual relative to the static tension [-]")

@@ -115,6 +115,10 @@ def alpha_step(x0, v0, a0, F0, h, end_x, end_v, end_a, alpha_m, alpha_f, beta, g
                                      y[:m])
         if not ok:
             return it, False
+        # the start-of-step stiffness of elements gone slack in the predictor helps the
+        # first iteration only; later ones use the exact tangent (quadratic convergence)
+        for e in range(taut0.shape[0]):
+            taut0[e] = False
         big = 0.0
         for i in range(m):
             for c in range(3):

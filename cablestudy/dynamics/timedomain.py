@@ -76,7 +76,7 @@ class DynamicProblem:
     step: float
     excited_end: int = 1
     max_refinement: int = 3
-    spectral_radius: float = 0.7
+    spectral_radius: float = 0.3
     newton_tolerance: float = 1e-5
     max_newton_iterations: int = 12
     steady_tolerance: float = 0.002
