@@ -15,9 +15,9 @@ from typing import Any
 import numpy as np
 
 from .cases import Case
-from .config.loader import StudyError, StudySource
 from .config.analysis import DynamicSettings, HarmonicExcitation
 from .config.ends import FixedEnd
+from .config.loader import StudyError, StudySource
 from .dynamics.excitation import EndMotion, TableMotion
 from .dynamics.model import DiscreteLine, discretise, static_equilibrium
 from .dynamics.timedomain import DynamicProblem, DynamicResult, simulate

@@ -46,7 +46,8 @@ OUTPUTS: dict[str, OutputVariable] = {
     "static_residual": OutputVariable((), "1", "final relative residual of the static solver"),
     # dynamics (cablestudy.dynamics.timedomain): tensions at the excited end over the
     # steady-state window (the envelope of the last periods when steady_converged is 0)
-    "tension_static": OutputVariable((), "N", "static tension at the excited end (dynamic model)"),
+    "tension_static": OutputVariable(
+        (), "N", "static tension at the excited end (dynamic model)"),
     "tension_max": OutputVariable((), "N", "maximum tension at the excited end, steady window"),
     "tension_min": OutputVariable((), "N", "minimum tension at the excited end, steady window"),
     "tension_mean": OutputVariable((), "N", "mean tension at the excited end, steady window"),
@@ -67,7 +68,8 @@ OUTPUTS: dict[str, OutputVariable] = {
     "history_point_s": OutputVariable(("point",), "m", "arc length of the history points"),
     "history_displacement": OutputVariable(
         ("point", "time", "component"), "m", "displacement of the point from its static position"),
-    "history_velocity": OutputVariable(("point", "time", "component"), "m/s", "velocity of the point"),
+    "history_velocity": OutputVariable(
+        ("point", "time", "component"), "m/s", "velocity of the point"),
     "history_acceleration": OutputVariable(
         ("point", "time", "component"), "m/s^2", "acceleration of the point"),
 }

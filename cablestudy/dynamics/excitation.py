@@ -82,7 +82,8 @@ class EndMotion:
         if t <= 0.0:
             return 0.0, 0.0, 0.0
         w = math.pi / tr
-        return 0.5 * (1.0 - math.cos(w * t)), 0.5 * w * math.sin(w * t), 0.5 * w * w * math.cos(w * t)
+        c, s = math.cos(w * t), math.sin(w * t)
+        return 0.5 * (1.0 - c), 0.5 * w * s, 0.5 * w * w * c
 
     def unramped(self, t: float) -> np.ndarray:
         """Displacement, velocity, acceleration without the ramp, shape (3, 2, 3):

@@ -162,7 +162,6 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     gives :data:`STATUS_TIME_LIMIT`.
     """
     line = problem.line
-    n = line.n_nodes
     par = AlphaParameters.from_spectral_radius(problem.spectral_radius)
     work = Workspace(line.n_elements)
     largs = line.kernel_args()

@@ -51,6 +51,7 @@ def build_all(results: Path, out: Path, *, configs: Path = Path("configs"),
 
     matplotlib.use("Agg")
     from . import statics_figures  # noqa: F401  (registers builders)
+    from . import dynamics_figures  # noqa: F401  (registers builders)
 
     out.mkdir(parents=True, exist_ok=True)
     written = []
