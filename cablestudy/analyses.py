@@ -16,7 +16,10 @@ from typing import Any
 import numpy as np
 
 from .cases import Case
+from .config.analysis import DynamicSettings, HarmonicExcitation
+from .config.ends import FixedEnd
 from .config.loader import StudyError, StudySource
+from .dynamics.excitation import EndMotion, TableMotion
 from .dynamics.modal import (
     ModalProblem,
     ModalResult,
@@ -26,7 +29,9 @@ from .dynamics.modal import (
     subset_static,
     transverse_mass,
 )
-from .problem import static_problem
+from .dynamics.model import DiscreteLine, discretise, static_equilibrium
+from .dynamics.timedomain import DynamicProblem, DynamicResult, simulate
+from .problem import line_model, medium, static_problem
 from .results import CaseRecord
 from .statics import STATIC_SOLVERS, STATUS_NUMERICAL, STATUS_OK, StaticResult
 
@@ -63,8 +68,44 @@ def check_supported(cases: list[Case], src: StudySource) -> None:
                    f"choose another method (available: {', '.join(sorted(STATIC_SOLVERS))})")
             if msg not in problems:
                 problems.append(msg)
+    problems.extend(p for p in _dynamic_problems(cases, src) if p not in problems)
     if problems:
         raise StudyError(problems, src.source)
+
+
+def _dynamic_problems(cases: list[Case], src: StudySource) -> list[str]:
+    """Config errors of the dynamic analysis that need the whole study (ends, length)."""
+    problems: list[str] = []
+    for case in cases:
+        dyn = case.study.analysis.dynamic
+        if dyn is None:
+            continue
+        study = case.study
+        for label in ("a", "b"):
+            end = getattr(study.ends, label)
+            if not isinstance(end, FixedEnd):
+                line = src.line_of(("ends", label, "kind"))
+                problems.append(
+                    f"{line}: ends.{label}.kind: {end.kind!r} is not supported with "
+                    "analysis.dynamic (the time-domain model holds or moves each end along a "
+                    "prescribed path); allowed: 'fixed'")
+        length = study.line.length
+        if dyn.history is not None:
+            for i, s in enumerate(dyn.history.points):
+                if s > length:
+                    line = src.line_of(("analysis", "dynamic", "history", "points", i))
+                    problems.append(
+                        f"{line}: analysis.dynamic.history.points.{i}: s = {s} lies beyond "
+                        f"the end of the line; allowed 0 <= s <= {length}")
+        if dyn.duration is None and dyn.max_periods < math.ceil(dyn.ramp_periods) + dyn.min_periods:
+            line = src.line_of(("analysis", "dynamic", "max_periods"))
+            problems.append(
+                f"{line}: analysis.dynamic.max_periods: {dyn.max_periods} leaves no room for "
+                f"the ramp ({dyn.ramp_periods} periods) and min_periods ({dyn.min_periods}); "
+                f"allowed >= {math.ceil(dyn.ramp_periods) + dyn.min_periods}")
+        if len(problems) > 20:
+            break
+    return problems
 
 
 def solve_static(case: Case, deadline: float | None) -> StaticResult:
@@ -164,6 +205,134 @@ def static_outputs(res: StaticResult) -> dict[str, np.ndarray]:
     }
 
 
+#: discrete static equilibria of the dynamic model, by (static hash, elements)
+_DISCRETE_CACHE: OrderedDict[tuple[str, int], tuple[DiscreteLine, np.ndarray, str]] = OrderedDict()
+
+
+def discrete_statics(case: Case, static: StaticResult) -> tuple[DiscreteLine, np.ndarray, str]:
+    """The lumped-mass line of the case and its own static equilibrium, found by Newton
+    from the static solution (cached per static problem and element count). The third
+    item is an error message (empty when the equilibrium was found)."""
+    dyn = case.study.analysis.dynamic
+    assert dyn is not None
+    key = (case.static_hash, dyn.elements)
+    cached = _DISCRETE_CACHE.get(key)
+    if cached is not None:
+        return cached
+    line = discretise(line_model(case.study), medium(case.study), dyn.elements)
+    start = np.stack([np.interp(line.s, static.s, static.position[:, k]) for k in range(3)], 1)
+    scale = float(np.nanmax(static.tension))
+    x, its, res, ok = static_equilibrium(
+        line, start, tolerance=max(1e-9 * scale, roundoff_force(line, start)),
+        max_iterations=200)
+    msg = "" if ok else (f"the discrete static equilibrium of the dynamic model did not "
+                         f"converge ({its} iterations, residual {res:.3g} N)")
+    _DISCRETE_CACHE[key] = (line, x, msg)
+    while len(_DISCRETE_CACHE) > _STATIC_CACHE_SIZE:
+        _DISCRETE_CACHE.popitem(last=False)
+    return line, x, msg
+
+
+def roundoff_force(line: DiscreteLine, x: np.ndarray) -> float:
+    """Nodal force [N] below which a residual is lost in rounding: an element tension
+    carries EA * (relative rounding of the node coordinates) / (element length)."""
+    reach = float(np.max(np.abs(x))) + float(np.sum(line.rest_length))
+    return 16.0 * float(np.finfo(float).eps) * float(np.max(line.axial_stiffness)) * reach / float(
+        np.min(line.rest_length))
+
+
+def end_motion(dyn: DynamicSettings) -> tuple[EndMotion, float, float]:
+    """(end motion, steady-state period [s], base time step [s]) of the settings."""
+    harmonics = [e for e in dyn.excitations if isinstance(e, HarmonicExcitation)]
+    tables = [e for e in dyn.excitations if not isinstance(e, HarmonicExcitation)]
+    table_motions = tuple(
+        TableMotion(end=0 if e.end == "a" else 1,
+                    direction=np.asarray(e.direction) / np.linalg.norm(e.direction),
+                    times=np.array([r[0] for r in e.table]),
+                    values=np.array([r[1] for r in e.table]), periodic=e.periodic)
+        for e in tables)
+    periods = [1.0 / e.frequency for e in harmonics]
+    periods += [m.duration for m in table_motions if m.periodic]
+    if dyn.period is not None:
+        period = dyn.period
+    elif periods:
+        period = max(periods)
+    else:
+        period = dyn.duration  # type: ignore[assignment]  (validated: one of them is set)
+    fastest = min(periods) if periods else period
+    step = fastest / dyn.points_per_period
+    step = period / math.ceil(period / step * (1.0 - 1e-12))
+    motion = EndMotion(
+        harmonic_end=np.array([0 if e.end == "a" else 1 for e in harmonics], dtype=int),
+        harmonic_direction=np.array([np.asarray(e.direction) / np.linalg.norm(e.direction)
+                                     for e in harmonics]).reshape(-1, 3),
+        harmonic_amplitude=np.array([e.amplitude for e in harmonics], dtype=float),
+        harmonic_frequency=np.array([e.frequency for e in harmonics], dtype=float),
+        harmonic_phase=np.radians([e.phase_deg for e in harmonics]),
+        tables=table_motions, ramp_time=dyn.ramp_periods * period,
+    )
+    return motion, period, step
+
+
+def dynamic_method(dyn: DynamicSettings) -> str:
+    """The method a case runs: 'auto' resolves to 'time' (the only one available)."""
+    return "time" if dyn.method in ("auto", "time") else dyn.method
+
+
+def solve_dynamic(case: Case, static: StaticResult, deadline: float | None) -> DynamicResult:
+    dyn = case.study.analysis.dynamic
+    assert dyn is not None
+    line, x_static, msg = discrete_statics(case, static)
+    if msg:
+        return DynamicResult(status=STATUS_NUMERICAL, message=msg)
+    motion, period, step = end_motion(dyn)
+    first = dyn.excitations[0]
+    hist = dyn.history
+    problem = DynamicProblem(
+        line=line, static_position=x_static, motion=motion, period=period, step=step,
+        excited_end=0 if first.end == "a" else 1, max_refinement=dyn.max_refinement,
+        spectral_radius=dyn.spectral_radius,
+        newton_tolerance=max(dyn.newton_tolerance * float(np.nanmax(static.tension)),
+                             4.0 * roundoff_force(line, x_static)),
+        max_newton_iterations=dyn.max_newton_iterations,
+        steady_tolerance=dyn.steady_tolerance, steady_window=dyn.steady_window,
+        min_periods=dyn.min_periods, max_periods=dyn.max_periods, duration=dyn.duration,
+        history=hist is not None,
+        history_s=np.asarray(hist.points if hist else [], dtype=float),
+        history_periods=hist.periods if hist else 0.0,
+        history_samples=hist.samples_per_period if hist else 1,
+    )
+    return simulate(problem, deadline=deadline)
+
+
+def dynamic_outputs(res: DynamicResult, dyn: DynamicSettings) -> dict[str, np.ndarray]:
+    out: dict[str, np.ndarray] = {
+        "tension_static": np.asarray(res.tension_static),
+        "tension_max": np.asarray(res.tension_max),
+        "tension_min": np.asarray(res.tension_min),
+        "tension_mean": np.asarray(res.tension_mean),
+        "tension_max_line": np.asarray(res.tension_max_line),
+        "tension_max_spread": np.asarray(res.tension_max_spread),
+        "tension_min_spread": np.asarray(res.tension_min_spread),
+        "steady_converged": np.asarray(int(res.steady_converged)),
+        "periods": np.asarray(res.periods),
+        "dynamic_steps": np.asarray(res.steps),
+        "newton_iterations": np.asarray(res.newton_iterations),
+        "rejected_steps": np.asarray(res.rejected_steps),
+        "dynamic_method": np.asarray(dynamic_method(dyn)),
+    }
+    if res.history is not None:
+        h = res.history
+        out.update({
+            "history_time": h["time"], "history_tension": h["tension"],
+            "history_displacement": h["displacement"], "history_velocity": h["velocity"],
+            "history_acceleration": h["acceleration"],
+            "history_point_s": np.asarray(dyn.history.points if dyn.history else [],
+                                          dtype=float),
+        })
+    return out
+
+
 def evaluate_case(case: Case) -> CaseRecord:
     """Run every analysis the case asks for. Never raises: an exception inside a solver
     becomes a failed record with the exception's text."""
@@ -180,6 +349,12 @@ def evaluate_case(case: Case) -> CaseRecord:
             data.update(modal_outputs(mres, res.s, mode_shapes=modal.mode_shapes))
             if mres.status != STATUS_OK:
                 status, message = mres.status, f"modal analysis: {mres.message}"
+
+        dyn = case.study.analysis.dynamic
+        if dyn is not None and status == STATUS_OK:
+            dres = solve_dynamic(case, res, deadline)
+            status, message = dres.status, dres.message
+            data.update(dynamic_outputs(dres, dyn))
     except Exception as exc:  # noqa: BLE001 - any solver fault is recorded as data
         status = STATUS_NUMERICAL
         tb = traceback.extract_tb(exc.__traceback__)

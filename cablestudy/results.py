@@ -54,6 +54,34 @@ OUTPUTS: dict[str, OutputVariable] = {
     "modal_dof": OutputVariable((), "1", "degrees of freedom of the modal model", "int64"),
     "drag_iterations": OutputVariable((), "1", "outer drag iterations of the static solver",
                                       "int64"),
+    # dynamics (cablestudy.dynamics.timedomain): tensions at the excited end over the
+    # steady-state window (the envelope of the last periods when steady_converged is 0)
+    "tension_static": OutputVariable(
+        (), "N", "static tension at the excited end (dynamic model)"),
+    "tension_max": OutputVariable((), "N", "maximum tension at the excited end, steady window"),
+    "tension_min": OutputVariable((), "N", "minimum tension at the excited end, steady window"),
+    "tension_mean": OutputVariable((), "N", "mean tension at the excited end, steady window"),
+    "tension_max_line": OutputVariable((), "N", "maximum tension along the line, steady window"),
+    "tension_max_spread": OutputVariable(
+        (), "N", "range of the per-period maximum end tension over the last periods"),
+    "tension_min_spread": OutputVariable(
+        (), "N", "range of the per-period minimum end tension over the last periods"),
+    "steady_converged": OutputVariable(
+        (), "1", "1 if the per-period max/min tension settled within the tolerance", "int64"),
+    "periods": OutputVariable((), "1", "excitation periods simulated"),
+    "dynamic_steps": OutputVariable((), "1", "accepted time steps", "int64"),
+    "newton_iterations": OutputVariable((), "1", "Newton iterations of the time steps", "int64"),
+    "rejected_steps": OutputVariable((), "1", "rejected (retried shorter) time steps", "int64"),
+    "dynamic_method": OutputVariable((), "", "dynamic method used (time | frequency)", "str"),
+    "history_time": OutputVariable(("time",), "s", "time of the history samples"),
+    "history_tension": OutputVariable(("time",), "N", "tension at the excited end"),
+    "history_point_s": OutputVariable(("point",), "m", "arc length of the history points"),
+    "history_displacement": OutputVariable(
+        ("point", "time", "component"), "m", "displacement of the point from its static position"),
+    "history_velocity": OutputVariable(
+        ("point", "time", "component"), "m/s", "velocity of the point"),
+    "history_acceleration": OutputVariable(
+        ("point", "time", "component"), "m/s^2", "acceleration of the point"),
 }
 
 #: per-case bookkeeping variables (always present)

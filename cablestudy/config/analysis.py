@@ -1,12 +1,20 @@
-"""Analysis settings: statics, modal analysis and the per-case time limit."""
+"""Analysis settings: statics, modal analysis, dynamics and the per-case time limit."""
 
 from __future__ import annotations
 
-from typing import Literal
+import math
+from typing import Annotated, Any, Literal
 
-from pydantic import Field, field_validator, model_validator
+from pydantic import (
+    AfterValidator,
+    Discriminator,
+    Field,
+    Tag,
+    field_validator,
+    model_validator,
+)
 
-from .base import Positive, StrictModel
+from .base import Finite, NonNegative, Positive, StrictModel, Vec2, Vec3
 
 
 class StaticSettings(StrictModel):
@@ -72,6 +80,157 @@ class ModalSettings(StrictModel):
         return min(max(100, 20 * self.modes), 100_000)
 
 
+# ------------------------------------------------------------------ dynamics
+# (time-domain response to prescribed end motion; see cablestudy.dynamics)
+
+#: dynamic methods a study may name, and what each means
+DYNAMIC_METHODS = {
+    "auto": "choose per case (currently always 'time')",
+    "time": "implicit time integration of the discretised line",
+}
+
+
+def _unit_direction(value: list[float]) -> list[float]:
+    norm = math.sqrt(sum(v * v for v in value))
+    if norm == 0.0:
+        raise ValueError(f"direction must be a nonzero vector, got {value!r}")
+    return value
+
+
+class HarmonicExcitation(StrictModel):
+    """Harmonic motion of one end about its static position:
+    ``amplitude * sin(2 pi frequency t + phase) * direction / |direction|``."""
+
+    end: Literal["a", "b"] = Field(description="the end that moves")
+    direction: Annotated[Vec3, AfterValidator(_unit_direction)] = Field(
+        description="direction of the motion [-] (normalised)")
+    amplitude: NonNegative = Field(description="excitation amplitude [m]")
+    frequency: Positive = Field(description="excitation frequency [Hz]")
+    phase_deg: Finite = Field(0.0, description="phase of the sine [deg]")
+
+
+class TimeSeriesExcitation(StrictModel):
+    """Motion of one end along ``direction`` given as a table of (time [s], displacement
+    [m]) pairs, interpolated by a cubic spline (continuous acceleration). With
+    ``periodic`` the table repeats with its duration as period (the last displacement
+    must equal the first); otherwise the motion holds its last value after the table."""
+
+    end: Literal["a", "b"] = Field(description="the end that moves")
+    direction: Annotated[Vec3, AfterValidator(_unit_direction)] = Field(
+        description="direction of the motion [-] (normalised)")
+    table: list[Vec2] = Field(min_length=4, description="rows [time s, displacement m]")
+    periodic: bool = Field(False, description="repeat the table with its duration as period")
+
+    @field_validator("table")
+    @classmethod
+    def _increasing(cls, value: list[list[float]]) -> list[list[float]]:
+        times = [row[0] for row in value]
+        if any(b <= a for a, b in zip(times, times[1:], strict=False)):
+            raise ValueError(f"table times must increase strictly, got t = {times}")
+        if times[0] != 0.0:
+            raise ValueError(f"the table must start at t = 0, got t = {times[0]}")
+        return value
+
+    @model_validator(mode="after")
+    def _closes(self) -> TimeSeriesExcitation:
+        if self.periodic:
+            first, last = self.table[0][1], self.table[-1][1]
+            if abs(last - first) > 1e-9 * max(1.0, abs(first)):
+                raise ValueError(
+                    f"a periodic table must end where it starts: displacement {last} at the "
+                    f"end, {first} at t = 0")
+        return self
+
+
+def _excitation_tag(value: Any) -> str:
+    if isinstance(value, dict):
+        return "TimeSeriesExcitation" if "table" in value else "HarmonicExcitation"
+    return type(value).__name__
+
+
+Excitation = Annotated[
+    Annotated[HarmonicExcitation, Tag("HarmonicExcitation")]
+    | Annotated[TimeSeriesExcitation, Tag("TimeSeriesExcitation")],
+    Discriminator(_excitation_tag),
+]
+
+
+class HistorySettings(StrictModel):
+    """Time histories to keep, resampled uniformly over the last periods of the run."""
+
+    points: list[NonNegative] = Field(
+        [], description="arc lengths from end A of the points whose motion is kept [m]")
+    periods: Positive = Field(2.0, description="length of the kept record [periods]")
+    samples_per_period: int = Field(64, ge=4, le=10_000, description="samples per period")
+
+
+class DynamicSettings(StrictModel):
+    """Time-domain dynamics about the static shape under prescribed end motion.
+
+    ``excitation`` is one motion or a list of motions summed (harmonics at either or both
+    ends, or time tables). The run lasts until the per-period maximum and minimum end
+    tension change by less than ``steady_tolerance`` (relative to the period's maximum)
+    over ``steady_window`` consecutive periods, or ``max_periods`` periods; with
+    ``duration`` it lasts that long instead and steady-state detection is off.
+    """
+
+    excitation: Excitation | list[Excitation] = Field(description="prescribed end motion")
+    method: str = Field("auto", description="auto | time (frequency-domain: later)")
+    elements: int = Field(40, ge=2, le=10_000, description="elements of the dynamic model")
+    points_per_period: int = Field(
+        64, ge=8, le=100_000, description="time steps per period of the fastest harmonic")
+    max_refinement: int = Field(
+        3, ge=0, le=12, description="step halvings allowed around slack-taut transitions")
+    spectral_radius: float = Field(
+        0.3, ge=0.0, le=1.0,
+        description="generalised-alpha high-frequency spectral radius [-] (1: no damping)")
+    newton_tolerance: Positive = Field(
+        1e-7, le=1e-2, description="Newton force residual relative to the static tension [-]")
+    max_newton_iterations: int = Field(12, ge=2, le=200)
+    ramp_periods: NonNegative = Field(
+        2.0, description="smooth start of the motion over this many periods [periods]")
+    steady_tolerance: Positive = Field(
+        0.002, le=0.5,
+        description="steady state: change of per-period max and min tension [-]")
+    steady_window: int = Field(2, ge=1, le=100, description="periods that must agree")
+    min_periods: int = Field(3, ge=1, description="periods run after the ramp at least")
+    max_periods: int = Field(80, ge=1, le=100_000, description="periods run at most")
+    period: Positive | None = Field(
+        None, description="steady-state period [s]; default 1 / lowest frequency")
+    duration: Positive | None = Field(
+        None, description="fixed run time [s] (no steady-state detection)")
+    history: HistorySettings | None = None
+
+    @field_validator("method")
+    @classmethod
+    def _known_dynamic_method(cls, value: str) -> str:
+        if value == "frequency":
+            raise ValueError(
+                "method 'frequency' (frequency-domain linearised dynamics) "
+                f"is not available in this version; allowed: {', '.join(DYNAMIC_METHODS)}")
+        if value not in DYNAMIC_METHODS:
+            raise ValueError(
+                f"unknown dynamic method {value!r}; allowed: {', '.join(DYNAMIC_METHODS)}")
+        return value
+
+    @model_validator(mode="after")
+    def _period_known(self) -> DynamicSettings:
+        items = self.excitation if isinstance(self.excitation, list) else [self.excitation]
+        if not items:
+            raise ValueError("excitation: list at least one motion")
+        harmonic = any(isinstance(e, HarmonicExcitation) for e in items)
+        periodic = any(isinstance(e, TimeSeriesExcitation) and e.periodic for e in items)
+        if not (harmonic or periodic) and self.period is None and self.duration is None:
+            raise ValueError(
+                "excitation has no period (only non-periodic tables): give "
+                "analysis.dynamic.duration [s] or analysis.dynamic.period [s]")
+        return self
+
+    @property
+    def excitations(self) -> list[HarmonicExcitation | TimeSeriesExcitation]:
+        return list(self.excitation) if isinstance(self.excitation, list) else [self.excitation]
+
+
 class Analysis(StrictModel):
     static: StaticSettings = StaticSettings()
     modal: ModalSettings | None = Field(
@@ -80,3 +239,5 @@ class Analysis(StrictModel):
     time_limit: Positive = Field(
         600.0, description="wall-time limit per case [s]; a case over it fails with a message"
     )
+    dynamic: DynamicSettings | None = Field(
+        None, description="time-domain dynamics under prescribed end motion; omit: statics only")

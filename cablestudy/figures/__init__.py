@@ -51,6 +51,7 @@ def build_all(results: Path, out: Path, *, configs: Path = Path("configs"),
 
     matplotlib.use("Agg")
     from . import (  # noqa: F401  (each module registers its builders)
+        dynamics_figures,
         modal_figures,
         statics_figures,
         vaz_patel_figures,

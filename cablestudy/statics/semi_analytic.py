@@ -41,7 +41,6 @@ from .base import (
     STATUS_NO_SOLUTION,
     STATUS_NOT_CONVERGED,
     STATUS_NUMERICAL,
-    STATUS_OK,
     STATUS_TIME_LIMIT,
     EndCondition,
     LineModel,

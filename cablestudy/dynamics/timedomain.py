@@ -1,0 +1,396 @@
+"""Steady periodic response of the discretised line to prescribed end motion.
+
+:func:`simulate` integrates the line from rest in its static equilibrium with the
+generalised-alpha method (:mod:`.integrator`) and
+
+* steps at ``step`` (the period of the fastest harmonic over the points per period),
+  landing exactly on period boundaries;
+* halves the step, up to ``max_refinement`` times, when an element changes between
+  slack and taut within a step (and whenever Newton fails), and grows it back after
+  two clean steps: steps shorten around slack-taut transitions, never because of the
+  axial wave speed;
+* records, per period, the maximum, minimum and mean tension at the excited end (the
+  magnitude of the force of the line on the end support) and the largest element
+  tension; it stops when the per-period maximum and minimum have changed by less
+  than ``steady_tolerance`` times the period's maximum over ``steady_window``
+  consecutive periods (steady state), or after ``max_periods`` periods (not
+  converged: the spread of the per-period values over the last periods is reported
+  with the result, so a response that does not settle (subharmonic, chaotic) is never
+  mistaken for a final number);
+* optionally keeps time histories of the end tension and of the motion of chosen
+  points, resampled uniformly over the last periods.
+
+Pure: arrays in, a :class:`DynamicResult` out (status, message, counters).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections import deque
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..statics.base import STATUS_NUMERICAL, STATUS_OK, STATUS_TIME_LIMIT
+from .excitation import EndMotion
+from .integrator import AlphaParameters, alpha_step
+from .model import DiscreteLine, Workspace, evaluate, interpolate_nodes
+
+#: extra step halvings allowed beyond ``max_refinement`` when Newton fails
+NEWTON_RESCUE_HALVINGS = 8
+
+
+@dataclass(frozen=True, kw_only=True)
+class DynamicProblem:
+    """A time-domain run.
+
+    Parameters
+    ----------
+    line : the discretised line
+    static_position : [m] (n + 1, 3) discrete static equilibrium (start, at rest)
+    motion : prescribed motion of the ends about their static positions
+    period : [s] steady-state period (windows of the per-period statistics)
+    step : [s] base time step
+    excited_end : 0 (A) or 1 (B): where ``tension_*`` are taken
+    max_refinement : step halvings allowed around slack-taut transitions
+    spectral_radius : [-] generalised-alpha high-frequency spectral radius
+    newton_tolerance : [N] largest residual force accepted on a free node
+    max_newton_iterations : per step
+    steady_tolerance : [-] relative change of per-period max/min that counts as steady
+    steady_window : consecutive periods that must agree; outputs are taken over them
+    min_periods : periods after the ramp before steady state may be declared
+    max_periods : periods run at most (ramp included)
+    duration : [s] fixed run time instead (no steady-state detection), or None
+    history_s : [m] (p,) arc lengths of the points whose motion is kept
+    history : whether to keep time histories
+    history_periods : [periods] length of the kept record
+    history_samples : samples per period of the kept record
+    keep_steps : keep every accepted step's full state (for tests and diagnostics)
+    """
+
+    line: DiscreteLine
+    static_position: np.ndarray
+    motion: EndMotion
+    period: float
+    step: float
+    excited_end: int = 1
+    max_refinement: int = 3
+    spectral_radius: float = 0.3
+    newton_tolerance: float = 1e-5
+    max_newton_iterations: int = 12
+    steady_tolerance: float = 0.002
+    steady_window: int = 2
+    min_periods: int = 3
+    max_periods: int = 80
+    duration: float | None = None
+    history: bool = False
+    history_s: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    history_periods: float = 2.0
+    history_samples: int = 64
+    keep_steps: bool = False
+
+
+@dataclass(kw_only=True)
+class DynamicResult:
+    """Outcome of :func:`simulate` (tensions [N], times [s]).
+
+    ``tension_max``/``tension_min``/``tension_mean`` are at the excited end over the
+    last ``steady_window`` periods; ``tension_max_line`` is the largest element or end
+    tension there; the spreads are the ranges of the per-period maxima and minima over
+    the last ``steady_window + 1`` periods (below ``steady_tolerance`` times the
+    maximum when ``steady_converged``). ``history`` holds ``time`` (nt,), ``tension``
+    (nt,), ``displacement``, ``velocity``, ``acceleration`` (p, nt, 3) when asked for.
+    """
+
+    status: int = STATUS_OK
+    message: str = ""
+    tension_static: float = math.nan
+    tension_max: float = math.nan
+    tension_min: float = math.nan
+    tension_mean: float = math.nan
+    tension_max_line: float = math.nan
+    tension_max_spread: float = math.nan
+    tension_min_spread: float = math.nan
+    steady_converged: bool = False
+    steps: int = 0
+    newton_iterations: int = 0
+    rejected_steps: int = 0
+    periods: float = 0.0
+    simulated_time: float = 0.0
+    period_max: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    period_min: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    history: dict[str, np.ndarray] | None = None
+    record: dict[str, np.ndarray] | None = None
+
+    @property
+    def success(self) -> bool:
+        return self.status == STATUS_OK
+
+
+def end_forces(work: Workspace, a: np.ndarray) -> np.ndarray:
+    """Force of the line on the supports at A and B [N] (2, 3): minus the support
+    reaction ``M a + F`` of the end nodes."""
+    out = np.empty((2, 3))
+    out[0] = -(work.F[0] + work.M_d[0] @ a[0])
+    out[1] = -(work.F[-1] + work.M_d[-1] @ a[-1])
+    return out
+
+
+def _hermite(t: np.ndarray, y: np.ndarray, dy: np.ndarray, tq: np.ndarray) -> np.ndarray:
+    """Cubic Hermite interpolation of samples ``y`` (ns, ...) with derivatives ``dy``
+    at increasing times ``t`` (ns,) to ``tq`` (clamped to the samples' range)."""
+    tq = np.clip(tq, t[0], t[-1])
+    i = np.clip(np.searchsorted(t, tq, side="right") - 1, 0, t.size - 2)
+    h = t[i + 1] - t[i]
+    s = (tq - t[i]) / h
+    shape = (-1,) + (1,) * (y.ndim - 1)
+    s = s.reshape(shape)
+    hh = h.reshape(shape)
+    h00 = 2 * s**3 - 3 * s**2 + 1
+    h10 = s**3 - 2 * s**2 + s
+    h01 = -2 * s**3 + 3 * s**2
+    h11 = s**3 - s**2
+    return h00 * y[i] + h10 * hh * dy[i] + h01 * y[i + 1] + h11 * hh * dy[i + 1]
+
+
+def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> DynamicResult:
+    """Integrate until steady state (or ``max_periods``, or ``duration``).
+
+    A numerical failure (Newton failing at the smallest step) is returned as a result
+    with nonzero status and a message; the deadline (a :func:`time.monotonic` value)
+    gives :data:`STATUS_TIME_LIMIT`.
+    """
+    line = problem.line
+    par = AlphaParameters.from_spectral_radius(problem.spectral_radius)
+    work = Workspace(line.n_elements)
+    largs = line.kernel_args()
+    wargs = work.assemble_args()
+    sargs = work.solver_args()
+
+    x0 = np.array(problem.static_position, dtype=float, copy=True)
+    v0 = np.zeros_like(x0)
+    a0 = np.zeros_like(x0)
+    x1, v1, a1 = x0.copy(), v0.copy(), a0.copy()
+    evaluate(line, x0, v0, work)
+    F0 = work.F.copy()
+    strain_prev = work.strain.copy()
+    base = np.stack([x0[0], x0[-1]])
+    ex = problem.excited_end
+    t_static = float(np.linalg.norm(end_forces(work, a0)[ex]))
+    result = DynamicResult(tension_static=t_static)
+
+    T = problem.period
+    t_ramp = problem.motion.ramp_time
+    t_stop = problem.duration if problem.duration is not None else problem.max_periods * T
+    tol = problem.newton_tolerance
+    max_level = problem.max_refinement
+    eps_t = 1e-9 * T
+
+    # history buffer: (t, end tension, x, v, a at the history points)
+    hs = np.asarray(problem.history_s, dtype=float)
+    keep_hist = problem.history
+    hist_span = (problem.history_periods + 1.0) * T
+    buf: deque[tuple[float, float, np.ndarray, np.ndarray, np.ndarray]] = deque()
+
+    def push(t: float, tension: float) -> None:
+        if not keep_hist:
+            return
+        xs = interpolate_nodes(line.s, hs, np.stack([x0, v0, a0]))
+        buf.append((t, tension, xs[0], xs[1], xs[2]))
+        while len(buf) > 2 and buf[1][0] < t - hist_span:
+            buf.popleft()
+
+    rec: dict[str, list[np.ndarray]] = {k: [] for k in ("t", "x", "v", "a", "end_force",
+                                                          "tension")}
+
+    def keep(t: float, forces: np.ndarray) -> None:
+        if problem.keep_steps:
+            rec["t"].append(np.asarray(t))
+            rec["x"].append(x0.copy())
+            rec["v"].append(v0.copy())
+            rec["a"].append(a0.copy())
+            rec["end_force"].append(forces.copy())
+            rec["tension"].append(work.tension.copy())
+
+    keep(0.0, end_forces(work, a0))
+    push(0.0, t_static)
+
+    # per-period statistics (periods starting after the ramp only)
+    p_max: list[float] = []
+    p_min: list[float] = []
+    p_mean: list[float] = []
+    p_line: list[float] = []
+    c_max = c_min = t_static
+    c_int = 0.0
+    c_line = max(t_static, float(work.tension.max()))
+    c_start = 0.0
+    t_prev_tension = t_static
+
+    # Newton starts from a quadratic extrapolation of the last three positions: the
+    # positions are smooth, whereas the accelerations of generalised-alpha carry the
+    # decaying unresolved axial modes, which a Taylor predictor would amplify into
+    # large spurious stretches.
+    past: deque[tuple[float, np.ndarray]] = deque()
+    frac = (line.s / line.s[-1])[:, None]
+    x_pred = np.empty_like(x0)
+
+    def predict(t_new: float, out: np.ndarray) -> None:
+        if len(past) < 2:
+            np.add(x0, (t_new - t) * v0, out=out)
+            return
+        (ta, xa), (tb, xb) = past[0], past[1]
+        tc = t
+        la = (t_new - tb) * (t_new - tc) / ((ta - tb) * (ta - tc))
+        lb = (t_new - ta) * (t_new - tc) / ((tb - ta) * (tb - tc))
+        lc = (t_new - ta) * (t_new - tb) / ((tc - ta) * (tc - tb))
+        np.multiply(xa, la, out=out)
+        out += lb * xb
+        out += lc * x0
+
+    t = 0.0
+    level = 0
+    clean = 0
+    next_b = min(T, t_stop)
+    steps = newton = rejected = 0
+    converged = False
+    while True:
+        if deadline is not None and steps % 64 == 0 and time.monotonic() > deadline:
+            result.status, result.message = STATUS_TIME_LIMIT, (
+                f"time limit reached at t = {t:.4g} s of the dynamic run")
+            return result
+        h = problem.step / 2**level
+        if next_b - t <= h * (1.0 + 1e-6):
+            h = next_b - t
+        disp, vel, acc = problem.motion.at(t + h)
+        predict(t + h, x_pred)
+        np.greater(strain_prev, 0.0, out=work.taut0)
+        # move the whole line with the ends' prescribed correction, shared linearly
+        # along s, so that the predictor neither stretches nor compresses the end
+        # elements
+        x_pred += (1.0 - frac) * (base[0] + disp[0] - x_pred[0])[None, :]
+        x_pred += frac * (base[1] + disp[1] - x_pred[-1])[None, :]
+        x_pred[0] = base[0] + disp[0]
+        x_pred[-1] = base[1] + disp[1]
+        its, ok = alpha_step(x0, v0, a0, F0, h, base + disp, vel, acc, par.alpha_m,
+                             par.alpha_f, par.beta, par.gamma, tol,
+                             problem.max_newton_iterations, x_pred, x1, v1, a1, *largs,
+                             *wargs, *sargs)
+        newton += its
+        if not ok:
+            rejected += 1
+            if level >= max_level + NEWTON_RESCUE_HALVINGS:
+                result.status = STATUS_NUMERICAL
+                result.message = (f"Newton did not converge at t = {t:.6g} s with step "
+                                  f"{h:.3g} s ({problem.step:.3g} s halved {level} times)")
+                result.steps, result.newton_iterations = steps, newton
+                result.rejected_steps = rejected
+                return result
+            level += 1
+            clean = 0
+            continue
+        switched = bool(np.any((work.strain > 0.0) != (strain_prev > 0.0)))
+        if switched and level < max_level:
+            rejected += 1
+            level += 1
+            clean = 0
+            continue
+        # accept
+        steps += 1
+        past.append((t, x0.copy()))
+        if len(past) > 2:
+            past.popleft()
+        t += h
+        x0, x1 = x1, x0
+        v0, v1 = v1, v0
+        a0, a1 = a1, a0
+        F0[:] = work.F
+        strain_prev[:] = work.strain
+        forces = end_forces(work, a0)
+        tension = float(math.sqrt(forces[ex] @ forces[ex]))
+        line_max = max(float(work.tension.max()), float(np.sqrt(np.max(np.sum(forces**2, 1)))))
+        c_max = max(c_max, tension)
+        c_min = min(c_min, tension)
+        c_int += 0.5 * (t_prev_tension + tension) * h
+        c_line = max(c_line, line_max)
+        t_prev_tension = tension
+        keep(t, forces)
+        push(t, tension)
+        if switched:
+            clean = 0
+        else:
+            clean += 1
+            if clean >= 2 and level > 0:
+                level -= 1
+                clean = 0
+        if abs(t - next_b) <= eps_t:
+            t = next_b
+            if c_start >= t_ramp - eps_t:
+                p_max.append(c_max)
+                p_min.append(c_min)
+                p_mean.append(c_int / max(t - c_start, 1e-300))
+                p_line.append(c_line)
+            c_max = c_min = tension
+            c_line = line_max
+            c_int = 0.0
+            c_start = t
+            if problem.duration is None:
+                w = problem.steady_window
+                if len(p_max) >= max(problem.min_periods, w + 1):
+                    converged = all(
+                        abs(p_max[-j] - p_max[-j - 1]) <= problem.steady_tolerance * p_max[-j]
+                        and abs(p_min[-j] - p_min[-j - 1]) <= problem.steady_tolerance * p_max[-j]
+                        for j in range(1, w + 1))
+            if converged or t >= t_stop - eps_t:
+                break
+            next_b = min(next_b + T, t_stop)
+
+    w = max(1, problem.steady_window) if problem.duration is None else len(p_max)
+    if not p_max:  # the run ended inside the ramp: use the last (partial) window
+        p_max, p_min, p_line = [c_max], [c_min], [c_line]
+        p_mean = [c_int / max(t - c_start, 1e-300)]
+    sl = slice(-min(w, len(p_max)), None)
+    sp = slice(-min(w + 1, len(p_max)), None)
+    result.tension_max = max(p_max[sl])
+    result.tension_min = min(p_min[sl])
+    result.tension_mean = float(np.mean(p_mean[sl]))
+    result.tension_max_line = max(p_line[sl])
+    result.tension_max_spread = max(p_max[sp]) - min(p_max[sp])
+    result.tension_min_spread = max(p_min[sp]) - min(p_min[sp])
+    result.steady_converged = converged
+    result.steps, result.newton_iterations, result.rejected_steps = steps, newton, rejected
+    result.periods = t / T
+    result.simulated_time = t
+    result.period_max = np.asarray(p_max)
+    result.period_min = np.asarray(p_min)
+    if keep_hist and len(buf) >= 2:
+        result.history = _resample(buf, t, T, problem, interpolate_nodes(
+            line.s, hs, problem.static_position[None])[0])
+    if problem.keep_steps:
+        result.record = {k: np.asarray(v) for k, v in rec.items()}
+    return result
+
+
+def _resample(buf: deque, t_end: float, period: float, problem: DynamicProblem,
+              static_points: np.ndarray) -> dict[str, np.ndarray]:
+    """Uniform record over the last ``history_periods`` periods ending at ``t_end``."""
+    nt = int(round(problem.history_periods * problem.history_samples)) + 1
+    tq = t_end - problem.history_periods * period + np.arange(nt) * period / problem.history_samples
+    ts = np.array([b[0] for b in buf])
+    tension = np.array([b[1] for b in buf])
+    xs = np.array([b[2] for b in buf])  # (ns, p, 3)
+    vs = np.array([b[3] for b in buf])
+    acc = np.array([b[4] for b in buf])
+    pos = _hermite(ts, xs, vs, tq)
+    vel = _hermite(ts, vs, acc, tq)
+    ai = np.empty_like(pos)
+    for p in range(xs.shape[1]):
+        for c in range(3):
+            ai[:, p, c] = np.interp(tq, ts, acc[:, p, c])
+    return {
+        "time": tq,
+        "tension": np.interp(tq, ts, tension),
+        "displacement": np.transpose(pos - static_points[None], (1, 0, 2)),
+        "velocity": np.transpose(vel, (1, 0, 2)),
+        "acceleration": np.transpose(ai, (1, 0, 2)),
+    }

@@ -1,0 +1,128 @@
+"""Figures of the dynamics seed (moustafa): tension against excitation frequency, and
+midpoint histories. Cases whose steady state did not settle (steady_converged = 0)
+are drawn with open markers, so a number that is not final never looks final."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+import numpy as np
+import xarray as xr
+
+from . import register
+
+
+def _curves(ax: plt.Axes, ds: xr.Dataset, dim: str, value: float, label: str,
+            color: str) -> None:
+    sel = ds.sel({dim: value}) if dim else ds
+    f = sel["frequency"].values
+    ok = (sel["status"].values == 0)
+    conv = ok & (sel["steady_converged"].values == 1)
+    for var, style in (("tension_max", "-"), ("tension_min", "--")):
+        y = np.where(ok, sel[var].values, np.nan)
+        ax.plot(f, y, style, color=color, label=f"{label} {var.split('_')[1]}")
+        ax.plot(f[conv], y[conv], "o", color=color, ms=3)
+        ax.plot(f[ok & ~conv], y[ok & ~conv], "o", mfc="none", color=color, ms=5)
+    ax.axhline(float(np.nanmean(sel["tension_static"].values)), color=color, lw=0.6, ls=":")
+
+
+def _finish(fig: plt.Figure, ax: plt.Axes, title: str, path: Path) -> Path:
+    ax.set_xlabel("excitation frequency [Hz]")
+    ax.set_ylabel("tension at the excited end [N]")
+    ax.set_title(title, fontsize=9)
+    ax.set_ylim(bottom=0.0)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, ncol=2)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+
+
+@register("moustafa-figs2-5", ("moustafa-figs2-5",))
+def figs2_5(data: dict[str, xr.Dataset], out: Path) -> Path:
+    ds = data["moustafa-figs2-5"]
+    fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
+    for ax, amp, n in zip(axes.flat, ds["amplitude"].values, (2, 3, 4, 5), strict=False):
+        _curves(ax, ds, "amplitude", float(amp), f"{amp:g} m", "C0")
+        ax.set_xlabel("excitation frequency [Hz]")
+        ax.set_ylabel("tension [N]")
+        ax.set_title(f"Moustafa Fig. {n}: amplitude {amp:g} m (dotted: static)", fontsize=9)
+        ax.set_ylim(bottom=0.0)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle("Max/min tension at the excited end (filled: steady, open: not settled)",
+                 fontsize=10)
+    fig.tight_layout()
+    path = out / "moustafa-figs2-5.png"
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+
+
+@register("moustafa-fig6", ("moustafa-fig6",))
+def fig6(data: dict[str, xr.Dataset], out: Path) -> Path:
+    ds = data["moustafa-fig6"]
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for i, span in enumerate(ds["span"].values):
+        t0 = float(ds["tension_static"].sel(span=span).mean())
+        _curves(ax, ds, "span", float(span), f"span {span:g} m, T0 = {t0:.0f} N", f"C{i}")
+    return _finish(fig, ax, "Moustafa Fig. 6: effect of the initial tension (amplitude 0.075 m)",
+                   out / "moustafa-fig6.png")
+
+
+@register("moustafa-fig7", ("moustafa-fig7",))
+def fig7(data: dict[str, xr.Dataset], out: Path) -> Path:
+    ds = data["moustafa-fig7"]
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    area = np.pi * 0.01**2 / 4.0
+    for i, ea in enumerate(ds["axial_stiffness"].values):
+        _curves(ax, ds, "axial_stiffness", float(ea), f"E = {ea / area:.2g} Pa", f"C{i}")
+    return _finish(fig, ax, "Moustafa Fig. 7: effect of Young's modulus (amplitude 0.075 m)",
+                   out / "moustafa-fig7.png")
+
+
+@register("moustafa-sensitivity", ("moustafa-sensitivity",))
+def sensitivity(data: dict[str, xr.Dataset], out: Path) -> Path:
+    ds = data["moustafa-sensitivity"]
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    i = 0
+    for fluid in ds["fluid"].values:
+        for ea in ds["axial_stiffness"].values:
+            sub = ds.sel(fluid=fluid)
+            _curves(ax, sub, "axial_stiffness", float(ea), f"{fluid}, EA = {ea:.3g} N", f"C{i}")
+            i += 1
+    return _finish(fig, ax, "Sensitivity to the seed's readings (amplitude 0.075 m)",
+                   out / "moustafa-sensitivity.png")
+
+
+@register("moustafa-figs8-10", ("moustafa-figs8-10",))
+def figs8_10(data: dict[str, xr.Dataset], out: Path) -> Path:
+    ds = data["moustafa-figs8-10"]
+    n = ds.sizes["excitation_case"]
+    fig, axes = plt.subplots(3, n, figsize=(4 * n, 7), sharex="col")
+    amps = ds["excitation_case_amplitude"].values
+    freqs = ds["excitation_case_frequency"].values
+    quantities = (("history_displacement", "displacement [m]"),
+                  ("history_velocity", "velocity [m/s]"),
+                  ("history_acceleration", "acceleration [m/s^2]"))
+    for j in range(n):
+        case = ds.isel(excitation_case=j)
+        t = case["history_time"].values
+        t = t - t[0]
+        for i, (var, label) in enumerate(quantities):
+            ax = axes[i, j]
+            ax.plot(t, case[var].isel(point=0).sel(component="z").values, lw=1)
+            ax.set_ylabel(label)
+            ax.grid(alpha=0.3)
+        axes[0, j].set_title(f"Fig. {8 + j}: midpoint, {amps[j]:g} m, {freqs[j]:g} Hz",
+                             fontsize=9)
+        axes[-1, j].set_xlabel("time in the steady window [s]")
+    fig.suptitle("Moustafa Figs. 8-10: vertical response of the cable midpoint (z up)",
+                 fontsize=10)
+    fig.tight_layout()
+    path = out / "moustafa-figs8-10.png"
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
