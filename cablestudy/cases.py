@@ -104,8 +104,11 @@ def _field_info(path: tuple[str, ...]) -> tuple[str, str]:
     return "", ".".join(path)
 
 
-def _axis_values(spec: Any, where: str, line: int | None) -> tuple[list[Any], str | None]:
-    """Values of one sweep axis and its explicit name, or a StudyError message."""
+def _axis_values(spec: Any, where: str, line: int | None, *,
+                 distinct: bool = True) -> tuple[list[Any], str | None]:
+    """Values of one sweep axis and its explicit name, or a StudyError message. Values
+    must be distinct where they become the dimension's coordinate (``distinct``); in a
+    zip group the coordinate is the case index, so a path may repeat a value there."""
     at = f"{line if line is not None else '?'}: {where}"
     name = None
     if isinstance(spec, dict):
@@ -151,7 +154,7 @@ def _axis_values(spec: Any, where: str, line: int | None) -> tuple[list[Any], st
                          "least one value (got [])")
     seen: list[Any] = []
     for v in spec:
-        if v in seen:
+        if distinct and v in seen:
             raise ValueError(f"{at}: the value {v!r} is listed twice; allowed: distinct values "
                              f"(each becomes one coordinate) (got {spec!r})")
         seen.append(v)
@@ -272,7 +275,7 @@ def parse_sweep(src: StudySource) -> list[SweepAxis]:
                 try:
                     for p in paths:
                         v, _ = _axis_values(group[p], f"sweep.zip.{gi}.{p}",
-                                            src.line_of((*gloc, p)))
+                                            src.line_of((*gloc, p)), distinct=False)
                         vals.append(v)
                 except ValueError as exc:
                     problems.append(str(exc))

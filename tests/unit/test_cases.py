@@ -145,3 +145,28 @@ def test_every_case_holds_its_coordinates(sizes: list[int]) -> None:
     for case in cases:
         for axis, path in zip(axes, paths, strict=True):
             assert PATHS[path](case.study) == case.coords[axis.name]
+
+
+def test_zip_group_paths_may_repeat_values() -> None:
+    """In a zip group the dimension's coordinate is the case index, so one path may
+    repeat a value (the moustafa Figs. 8-10 pairs (0.075 m, 1 Hz) and (0.1 m, 1 Hz))."""
+    from cablestudy.cases import expand_cases
+    from cablestudy.config.loader import parse_study_text
+
+    text = """
+name: zipped
+line:
+  segments:
+    - {length: 100.0, diameter: 0.02, mass_per_length: 2.0, axial_stiffness: 1.0e+8}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, 0.0]}
+  b: {kind: fixed, position: [90.0, 0.0, 0.0]}
+sweep:
+  zip:
+    - name: case
+      line.segments.0.length: [100.0, 101.0, 102.0]
+      line.segments.0.diameter: [0.02, 0.03, 0.03]
+"""
+    axes, cases = expand_cases(parse_study_text(text, "<zip>"))
+    assert [a.name for a in axes] == ["case"]
+    assert [c.study.line.segments[0].diameter for c in cases] == [0.02, 0.03, 0.03]
