@@ -209,6 +209,7 @@ def solve_dynamic(case: Case, static: StaticResult, deadline: float | None) -> D
         newton_tolerance=max(dyn.newton_tolerance * float(np.nanmax(static.tension)),
                              4.0 * roundoff_force(line, x_static)),
         max_newton_iterations=dyn.max_newton_iterations,
+        tension_step=dyn.tension_resolution * float(np.nanmax(static.tension)),
         steady_tolerance=dyn.steady_tolerance, steady_window=dyn.steady_window,
         min_periods=dyn.min_periods, max_periods=dyn.max_periods, duration=dyn.duration,
         history=hist is not None,

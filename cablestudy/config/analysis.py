@@ -131,11 +131,15 @@ class DynamicSettings(StrictModel):
 
     excitation: Excitation | list[Excitation] = Field(description="prescribed end motion")
     method: str = Field("auto", description="auto | time (frequency-domain: later)")
-    elements: int = Field(40, ge=2, le=10_000, description="elements of the dynamic model")
+    elements: int = Field(80, ge=2, le=10_000, description="elements of the dynamic model")
     points_per_period: int = Field(
         64, ge=8, le=100_000, description="time steps per period of the fastest harmonic")
     max_refinement: int = Field(
-        3, ge=0, le=12, description="step halvings allowed around slack-taut transitions")
+        6, ge=0, le=12, description="step halvings allowed around slack-taut transitions")
+    tension_resolution: Positive = Field(
+        0.2, le=10.0,
+        description="largest end-tension change in one step, relative to the static "
+                    "tension [-]; a larger change halves the step (snap loads)")
     spectral_radius: float = Field(
         0.3, ge=0.0, le=1.0,
         description="generalised-alpha high-frequency spectral radius [-] (1: no damping)")
