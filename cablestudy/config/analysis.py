@@ -110,6 +110,19 @@ Excitation = Annotated[
 ]
 
 
+def _one_or_many(value: Any) -> str:
+    # tag names with brackets are dropped from error paths by the loader
+    return "list[motions]" if isinstance(value, list) else "single[motion]"
+
+
+#: one motion, or a list of motions that add up (errors report only the form given)
+ExcitationOrList = Annotated[
+    Annotated[Excitation, Tag("single[motion]")]
+    | Annotated[list[Excitation], Tag("list[motions]")],
+    Discriminator(_one_or_many),
+]
+
+
 class HistorySettings(StrictModel):
     """Time histories to keep, resampled uniformly over the last periods of the run."""
 
@@ -129,7 +142,7 @@ class DynamicSettings(StrictModel):
     ``duration`` it lasts that long instead and steady-state detection is off.
     """
 
-    excitation: Excitation | list[Excitation] = Field(description="prescribed end motion")
+    excitation: ExcitationOrList = Field(description="prescribed end motion")
     method: str = Field("auto", description="auto | time (frequency-domain: later)")
     elements: int = Field(80, ge=2, le=10_000, description="elements of the dynamic model")
     points_per_period: int = Field(
