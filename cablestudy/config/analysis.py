@@ -168,7 +168,8 @@ class DynamicSettings(StrictModel):
     min_periods: int = Field(3, ge=1, description="periods run after the ramp at least")
     max_periods: int = Field(80, ge=1, le=100_000, description="periods run at most")
     period: Positive | None = Field(
-        None, description="steady-state period [s]; default 1 / lowest frequency")
+        None, description="steady-state period [s]; default: the longest harmonic or "
+                          "periodic-table period")
     duration: Positive | None = Field(
         None, description="fixed run time [s] (no steady-state detection)")
     history: HistorySettings | None = None
