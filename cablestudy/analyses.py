@@ -23,7 +23,13 @@ from .dynamics.model import DiscreteLine, discretise, static_equilibrium
 from .dynamics.timedomain import DynamicProblem, DynamicResult, simulate
 from .problem import line_model, medium, static_problem
 from .results import CaseRecord
-from .statics import STATIC_SOLVERS, STATUS_NUMERICAL, STATUS_OK, StaticResult
+from .statics import (
+    STATIC_SOLVERS,
+    STATUS_NO_SOLUTION,
+    STATUS_NUMERICAL,
+    STATUS_OK,
+    StaticResult,
+)
 
 #: static solutions already computed in this process, by static hash (a sweep over
 #: excitation parameters solves each distinct static problem once)
@@ -196,6 +202,11 @@ def dynamic_method(dyn: DynamicSettings) -> str:
 def solve_dynamic(case: Case, static: StaticResult, deadline: float | None) -> DynamicResult:
     dyn = case.study.analysis.dynamic
     assert dyn is not None
+    if static.laid_length > 0.0:
+        return DynamicResult(
+            status=STATUS_NO_SOLUTION,
+            message=f"the static line rests on the seabed over {static.laid_length:.4g} m; "
+                    "the dynamic model has no seabed contact yet")
     line, x_static, msg = discrete_statics(case, static)
     if msg:
         return DynamicResult(status=STATUS_NUMERICAL, message=msg)
