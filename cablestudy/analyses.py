@@ -33,7 +33,13 @@ from .dynamics.model import DiscreteLine, discretise, static_equilibrium
 from .dynamics.timedomain import DynamicProblem, DynamicResult, simulate
 from .problem import line_model, medium, static_problem
 from .results import CaseRecord
-from .statics import STATIC_SOLVERS, STATUS_NUMERICAL, STATUS_OK, StaticResult
+from .statics import (
+    STATIC_SOLVERS,
+    STATUS_NO_SOLUTION,
+    STATUS_NUMERICAL,
+    STATUS_OK,
+    StaticResult,
+)
 
 #: static solutions already computed in this process, by static hash (a sweep over
 #: excitation parameters solves each distinct static problem once)
@@ -282,6 +288,11 @@ def dynamic_method(dyn: DynamicSettings) -> str:
 def solve_dynamic(case: Case, static: StaticResult, deadline: float | None) -> DynamicResult:
     dyn = case.study.analysis.dynamic
     assert dyn is not None
+    if static.laid_length > 0.0:
+        return DynamicResult(
+            status=STATUS_NO_SOLUTION,
+            message=f"the static line rests on the seabed over {static.laid_length:.4g} m; "
+                    "the dynamic model has no seabed contact yet")
     line, x_static, msg = discrete_statics(case, static)
     if msg:
         return DynamicResult(status=STATUS_NUMERICAL, message=msg)
@@ -295,6 +306,7 @@ def solve_dynamic(case: Case, static: StaticResult, deadline: float | None) -> D
         newton_tolerance=max(dyn.newton_tolerance * float(np.nanmax(static.tension)),
                              4.0 * roundoff_force(line, x_static)),
         max_newton_iterations=dyn.max_newton_iterations,
+        tension_step=dyn.tension_resolution * float(np.nanmax(static.tension)),
         steady_tolerance=dyn.steady_tolerance, steady_window=dyn.steady_window,
         min_periods=dyn.min_periods, max_periods=dyn.max_periods, duration=dyn.duration,
         history=hist is not None,

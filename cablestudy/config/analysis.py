@@ -155,6 +155,19 @@ Excitation = Annotated[
 ]
 
 
+def _one_or_many(value: Any) -> str:
+    # tag names with brackets are dropped from error paths by the loader
+    return "list[motions]" if isinstance(value, list) else "single[motion]"
+
+
+#: one motion, or a list of motions that add up (errors report only the form given)
+ExcitationOrList = Annotated[
+    Annotated[Excitation, Tag("single[motion]")]
+    | Annotated[list[Excitation], Tag("list[motions]")],
+    Discriminator(_one_or_many),
+]
+
+
 class HistorySettings(StrictModel):
     """Time histories to keep, resampled uniformly over the last periods of the run."""
 
@@ -174,13 +187,17 @@ class DynamicSettings(StrictModel):
     ``duration`` it lasts that long instead and steady-state detection is off.
     """
 
-    excitation: Excitation | list[Excitation] = Field(description="prescribed end motion")
+    excitation: ExcitationOrList = Field(description="prescribed end motion")
     method: str = Field("auto", description="auto | time (frequency-domain: later)")
-    elements: int = Field(40, ge=2, le=10_000, description="elements of the dynamic model")
+    elements: int = Field(80, ge=2, le=10_000, description="elements of the dynamic model")
     points_per_period: int = Field(
         64, ge=8, le=100_000, description="time steps per period of the fastest harmonic")
     max_refinement: int = Field(
-        3, ge=0, le=12, description="step halvings allowed around slack-taut transitions")
+        6, ge=0, le=12, description="step halvings allowed around slack-taut transitions")
+    tension_resolution: Positive = Field(
+        0.2, le=10.0,
+        description="largest end-tension change in one step, relative to the static "
+                    "tension [-]; a larger change halves the step (snap loads)")
     spectral_radius: float = Field(
         0.3, ge=0.0, le=1.0,
         description="generalised-alpha high-frequency spectral radius [-] (1: no damping)")
@@ -196,7 +213,8 @@ class DynamicSettings(StrictModel):
     min_periods: int = Field(3, ge=1, description="periods run after the ramp at least")
     max_periods: int = Field(80, ge=1, le=100_000, description="periods run at most")
     period: Positive | None = Field(
-        None, description="steady-state period [s]; default 1 / lowest frequency")
+        None, description="steady-state period [s]; default: the longest harmonic or "
+                          "periodic-table period")
     duration: Positive | None = Field(
         None, description="fixed run time [s] (no steady-state detection)")
     history: HistorySettings | None = None

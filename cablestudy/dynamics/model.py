@@ -94,8 +94,8 @@ def element_counts(lengths: np.ndarray, elements: int) -> np.ndarray:
     lengths = np.asarray(lengths, dtype=float)
     counts = np.maximum(1, np.round(elements * lengths / lengths.sum()).astype(int))
     while counts.sum() > max(elements, len(lengths)):
-        i = int(np.argmax(counts - elements * lengths / lengths.sum()))
-        counts[i] -= 1
+        excess = np.where(counts > 1, counts - elements * lengths / lengths.sum(), -np.inf)
+        counts[int(np.argmax(excess))] -= 1
     while counts.sum() < elements:
         i = int(np.argmax(elements * lengths / lengths.sum() - counts))
         counts[i] += 1
@@ -216,7 +216,7 @@ def assemble(x, v, rest_length, axial_stiffness, internal_damping, force, drag_n
             t = axial_stiffness[e] * eps + internal_damping[e] * rate / l0
             if t > 0.0:
                 kax = axial_stiffness[e] / l0
-                cax = internal_damping[e] / (l0 * l0)
+                cax = internal_damping[e] / l0
             else:
                 t = 0.0
         if taut0[e] and kax == 0.0:

@@ -67,6 +67,8 @@ class DynamicProblem:
     history_periods : [periods] length of the kept record
     history_samples : samples per period of the kept record
     keep_steps : keep every accepted step's full state (for tests and diagnostics)
+    tension_step : [N] largest change of the end tension in one step; a larger change
+        halves the step (up to ``max_refinement`` times), so snap loads are resolved
     """
 
     line: DiscreteLine
@@ -89,6 +91,7 @@ class DynamicProblem:
     history_periods: float = 2.0
     history_samples: int = 64
     keep_steps: bool = False
+    tension_step: float = math.inf
 
 
 @dataclass(kw_only=True)
@@ -290,7 +293,10 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             clean = 0
             continue
         switched = bool(np.any((work.strain > 0.0) != (strain_prev > 0.0)))
-        if switched and level < max_level:
+        forces = end_forces(work, a1)
+        tension = float(math.sqrt(forces[ex] @ forces[ex]))
+        steep = abs(tension - t_prev_tension) > problem.tension_step
+        if (switched or steep) and level < max_level:
             rejected += 1
             level += 1
             clean = 0
@@ -306,8 +312,6 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         a0, a1 = a1, a0
         F0[:] = work.F
         strain_prev[:] = work.strain
-        forces = end_forces(work, a0)
-        tension = float(math.sqrt(forces[ex] @ forces[ex]))
         line_max = max(float(work.tension.max()), float(np.sqrt(np.max(np.sum(forces**2, 1)))))
         c_max = max(c_max, tension)
         c_min = min(c_min, tension)
@@ -316,7 +320,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         t_prev_tension = tension
         keep(t, forces)
         push(t, tension)
-        if switched:
+        if switched or steep:
             clean = 0
         else:
             clean += 1

@@ -125,3 +125,28 @@ def test_a_response_that_has_not_settled_is_flagged(tmp_path: Path) -> None:
     assert int(ds["steady_converged"]) == 0
     assert float(ds["periods"]) == pytest.approx(3.0)
     assert float(ds["tension_max_spread"]) > 0.0
+
+
+def test_excitation_errors_name_the_field_once() -> None:
+    text = CONTRACT.replace("amplitude: 0.05, frequency: 0.5}", "amplitude: 0.05}")
+    with pytest.raises(StudyError) as info:
+        expand_cases(parse_study_text(text.split("sweep:")[0]))
+    # one problem (not one per union member), at the field, saying it is missing
+    assert len(info.value.problems) == 1
+    problem = info.value.problems[0]
+    assert problem.split(":")[0].isdigit()
+    assert "analysis.dynamic.excitation.frequency: required key" in problem
+    assert "missing" in problem
+
+
+def test_dynamics_needs_fixed_or_moved_ends(tmp_path: Path,
+                                           capsys: pytest.CaptureFixture[str]) -> None:
+    text = CONTRACT.replace("b: {kind: fixed, position: [10.792, 0.0, 0.0]}",
+                            "b: {kind: force, force: [100.0, 0.0, 20.0]}")
+    cfg = tmp_path / "towed.yaml"
+    cfg.write_text(text)
+    assert main(["run", str(cfg), "--out", str(tmp_path), "--scheduler", "synchronous"]) == 2
+    err = capsys.readouterr().err
+    assert "ends.b.kind: 'force' is not supported with analysis.dynamic" in err
+    assert "allowed: 'fixed'" in err
+    assert not (tmp_path / "contract.nc").exists()  # nothing ran
