@@ -61,7 +61,8 @@ def test_composite_line_with_current_runs_dynamics_and_modes(tmp_path: Path) -> 
     swing = ds["tension_max"] - ds["tension_min"]
     assert float(swing.sel(frequency=0.5)) > float(swing.sel(frequency=0.2))
     # natural frequencies about the static shape: positive, ascending, and the same
-    # for both excitation frequencies (one static problem)
+    # for both excitation frequencies (one static problem; the eigensolver's random
+    # start vector leaves differences at its convergence level, ~1e-12 relative)
     f = ds["natural_frequency"].values
     assert np.all(f > 0) and np.all(np.diff(f, axis=-1) >= 0)
-    np.testing.assert_array_equal(f[0], f[1])
+    np.testing.assert_allclose(f[0], f[1], rtol=1e-9)
