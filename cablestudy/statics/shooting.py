@@ -97,6 +97,8 @@ _GROUND_TOL = 1e-6
 _POLE_LIMIT = 0.95
 #: Newton iterations allowed per current-continuation step before it is shortened
 _CONTINUATION_ITERATIONS = 15
+#: Newton iterations allowed from each alternative starting point
+_ALTERNATIVE_ITERATIONS = 30
 #: finite-difference step of the Newton Jacobian, in the scaled unknowns [-]
 _FD_STEP = 1e-7
 
@@ -993,9 +995,10 @@ class ShootingSolver:
         u0 = u
         u, norm, status, msg = newton(0.0, u0, problem.max_iterations)
         for alt in self._other_guesses(st, u0):
-            if status == STATUS_OK:
-                break
-            u, norm, status, msg = newton(0.0, alt, problem.max_iterations)
+            if status == STATUS_OK or (st.mode == "grounded" and u[0] < 1e-4):
+                break  # converged, or heading for a slack line (diagnosed below)
+            u, norm, status, msg = newton(0.0, alt, min(problem.max_iterations,
+                                                        _ALTERNATIVE_ITERATIONS))
         if status != STATUS_OK and st.mode == "grounded" and u[0] < 1e-4:
             return StaticResult.failed(
                 s_out, STATUS_NO_SOLUTION,
@@ -1003,6 +1006,15 @@ class ShootingSolver:
                 "straight laid part and a vertical hanging part can take, so it would pile "
                 "on the seabed; there is no taut static shape)",
                 iterations=total_it, residual=norm)
+        if status != STATUS_OK and st.mode == "grounded" and st.far.kind == "force":
+            assert st.far.force is not None
+            lift = float(st.far.force[2]) + sum(max(0.0, p[2]) for p in st.line.att_force)
+            if lift <= 0.0:
+                return StaticResult.failed(
+                    s_out, STATUS_NO_SOLUTION,
+                    f"the force at the free end (vertical component {st.far.force[2]:.6g} N) "
+                    "and the attachments do not lift the line off the seabed: it would be "
+                    "pulled into the seabed", iterations=total_it, residual=norm)
         if status != STATUS_OK:
             hint = ("; no equilibrium above the seabed may exist for these end conditions"
                     if st.mode == "grounded" else "")
