@@ -140,6 +140,14 @@ class StaticProblem:
     n_nodes: int = 101
     tolerance: float = 1e-9
     max_iterations: int = 100
+    #: steady cable laying (vaz-patel seed): speed of the cable along itself from B
+    #: towards A [m/s], and the horizontal velocity of the laying frame [m/s] (3,)
+    payout_speed: float = 0.0
+    touchdown_velocity: np.ndarray = field(default_factory=lambda: np.zeros(3))
+
+    @property
+    def is_installation(self) -> bool:
+        return self.payout_speed != 0.0 or bool(np.any(self.touchdown_velocity != 0.0))
 
 
 @dataclass(kw_only=True)

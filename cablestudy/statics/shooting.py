@@ -125,6 +125,8 @@ class _Line:
     diameter: tuple[float, ...]
     drag_normal: tuple[float, ...]
     drag_tangential: tuple[float, ...]
+    mass: tuple[float, ...]
+    added_mass_normal: tuple[float, ...]
     att_s: tuple[float, ...]          # sorted, merged positions of attachments
     att_force: tuple[tuple[float, float, float], ...]
 
@@ -173,7 +175,8 @@ def _make_line(model: LineModel, reverse: bool) -> _Line:
     return _Line(
         ends=ends, weight=col(model.weight), axial_stiffness=col(model.axial_stiffness),
         diameter=col(model.diameter), drag_normal=col(model.drag_normal),
-        drag_tangential=col(model.drag_tangential), att_s=tuple(keys),
+        drag_tangential=col(model.drag_tangential), mass=col(model.mass),
+        added_mass_normal=col(model.added_mass_normal), att_s=tuple(keys),
         att_force=tuple(tuple(float(c) for c in merged[k]) for k in keys),  # type: ignore[misc]
     )
 
@@ -188,13 +191,16 @@ class _Env:
     current_z: tuple[float, ...]
     current_u: tuple[tuple[float, float, float], ...]
     scale: float = 1.0  # current-speed continuation factor
+    payout: float = 0.0  # cable speed along +t relative to the laying frame, negated [m/s]
 
     @property
     def has_current(self) -> bool:
-        return self.scale != 0.0 and any(any(c != 0.0 for c in u) for u in self.current_u)
+        """Any relative flow (current, frame velocity or pay-out) at this scale."""
+        return self.scale != 0.0 and (self.payout != 0.0 or any(
+            any(c != 0.0 for c in u) for u in self.current_u))
 
     def scaled(self, factor: float) -> _Env:
-        return _Env(self.density, self.current_z, self.current_u, factor)
+        return _Env(self.density, self.current_z, self.current_u, factor, self.payout)
 
     def velocity(self, z: float) -> tuple[float, float, float]:
         """Piecewise-linear current at height z, constant beyond the profile [m/s]."""
@@ -215,13 +221,16 @@ class _Env:
 def _load(env: _Env, line: _Line, k: int, t: tuple[float, float, float], z: float,
           T: float) -> tuple[float, float, float]:
     """External load per unstretched length on segment k with tangent t at height z
-    with tension T [N/m]: weight plus drag per stretched length times the stretch."""
+    with tension T [N/m]: weight plus drag per stretched length times the stretch. The
+    flow relative to the line is the current in the laying frame plus the pay-out
+    speed along the tangent (vaz-patel seed, Appendix B: V_rt, V_rn, V_rb)."""
     w = line.weight[k]
     fx, fy, fz = 0.0, 0.0, -w
     if env.has_current and env.density > 0.0:
         ux, uy, uz = env.velocity(z)
         ut = ux * t[0] + uy * t[1] + uz * t[2]
         nx, ny, nz = ux - ut * t[0], uy - ut * t[1], uz - ut * t[2]
+        ut += env.scale * env.payout
         un = math.sqrt(nx * nx + ny * ny + nz * nz)
         kk = 0.5 * env.density * line.diameter[k] * (1.0 + T / line.axial_stiffness[k])
         cn = kk * line.drag_normal[k] * un
@@ -300,6 +309,7 @@ class _Integrator:
         line, env = self.line, self.env
         EA = line.axial_stiffness[k]
         cos, sin = math.cos, math.sin
+        m_flow, m_add = self._flow_mass(k)
 
         def rhs(s: float, y: np.ndarray) -> list[float]:
             T, ph, ps, _, _, z = y
@@ -313,14 +323,35 @@ class _Integrator:
             bn = (-sps * e1x + cps * e2x, -sps * e1y + cps * e2y, -sps * e1z + cps * e2z)
             f = _load(env, line, k, t, z, T)
             st = 1.0 + T / EA
+            # pay-out: the cable flowing round its own curvature needs T - mu V^2 in the
+            # normal equations (seed eqs. 4b-4c), mu the mass and added mass per
+            # stretched length
+            Te = T - (m_flow / st + m_add) if m_flow or m_add else T
             return [
                 -(f[0] * t[0] + f[1] * t[1] + f[2] * t[2]),
-                -(f[0] * n[0] + f[1] * n[1] + f[2] * n[2]) / T,
-                -(f[0] * bn[0] + f[1] * bn[1] + f[2] * bn[2]) / (T * cph),
+                -(f[0] * n[0] + f[1] * n[1] + f[2] * n[2]) / Te,
+                -(f[0] * bn[0] + f[1] * bn[1] + f[2] * bn[2]) / (Te * cph),
                 st * t[0], st * t[1], st * t[2],
             ]
 
         return rhs
+
+    def _flow_mass(self, k: int) -> tuple[float, float]:
+        """(m V^2, m_a V^2) [N] of segment k for the pay-out speed V at this
+        continuation scale: structural mass per unstretched length (divided by the
+        stretch where used) and normal added mass per length."""
+        v = self.env.scale * self.env.payout
+        if v == 0.0:
+            return 0.0, 0.0
+        line = self.line
+        area = math.pi * line.diameter[k] ** 2 / 4.0
+        return (line.mass[k] * v * v,
+                line.added_mass_normal[k] * self.env.density * area * v * v)
+
+    def effective_tension(self, k: int, T: float) -> float:
+        """T - mu V^2 [N]: the tension that resists curvature under pay-out."""
+        m_flow, m_add = self._flow_mass(k)
+        return T - m_flow / (1.0 + T / self.line.axial_stiffness[k]) - m_add
 
     def run(self, s0: float, force: np.ndarray, position: np.ndarray, *,
             dense: bool) -> _Shot:
@@ -349,6 +380,9 @@ class _Integrator:
                 T = float(np.linalg.norm(F))
                 if not math.isfinite(T) or T <= self.t_min:
                     raise _ShotFailed(f"tension vanishes at s = {s:.6g} m")
+                if self.effective_tension(k, T) <= self.t_min:
+                    raise _ShotFailed(f"the tension at s = {s:.6g} m does not exceed mu V^2 "
+                                      "of the pay-out (the cable cannot hold a curve)")
                 t0 = F / T
                 f0 = np.asarray(_load(self.env, line, k, tuple(t0), float(r[2]), T))
                 e1, e2, e3 = _frame(t0, f0)
@@ -357,8 +391,8 @@ class _Integrator:
                 def pole(_s: float, y: np.ndarray) -> float:
                     return _POLE_LIMIT - abs(math.sin(y[1]))
 
-                def slack(_s: float, y: np.ndarray) -> float:
-                    return y[0] - self.t_min
+                def slack(_s: float, y: np.ndarray, k: int = k) -> float:
+                    return self.effective_tension(k, y[0]) - self.t_min
 
                 pole.terminal = True  # type: ignore[attr-defined]
                 slack.terminal = True  # type: ignore[attr-defined]
@@ -593,10 +627,18 @@ class ShootingSolver:
             reverse, mode = False, "fixed"
         start, far = (b, a) if reverse else (a, b)
         line = _make_line(model, reverse)
+        # installation: the current seen in the laying frame is the current minus the
+        # frame velocity; the cable moves along itself from B to A at the pay-out speed
+        frame = np.asarray(problem.touchdown_velocity, dtype=float)
+        if med.current_velocity.size:
+            cz, cu = med.current_z, med.current_velocity - frame
+        else:
+            cz, cu = np.zeros(1), -frame[None, :]
         env = _Env(
-            density=med.density, current_z=tuple(float(z) for z in med.current_z),
-            current_u=tuple(tuple(float(c) for c in u) for u in med.current_velocity),  # type: ignore[misc]
-        ) if med.current_velocity.size else _Env(med.density, (0.0,), ((0.0, 0.0, 0.0),))
+            density=med.density, current_z=tuple(float(z) for z in cz),
+            current_u=tuple(tuple(float(c) for c in u) for u in cu),  # type: ignore[misc]
+            payout=-problem.payout_speed if reverse else problem.payout_speed,
+        )
         scale = float(np.sum(np.abs(model.weight) * model.length))
         if model.attachment_force.size:
             scale += float(np.sum(np.linalg.norm(model.attachment_force, axis=1)))
