@@ -187,35 +187,62 @@ def _make_line(model: LineModel, reverse: bool) -> _Line:
 
 @dataclass(frozen=True)
 class _Env:
+    """Fluid density [kg/m^3], current profile (z [m], velocity [m/s]), laying-frame
+    velocity [m/s] and pay-out [m/s] (cable speed along -t relative to the frame), with
+    continuation factors on the current (``c_current``) and on the frame velocity and
+    pay-out (``c_frame``)."""
+
     density: float
     current_z: tuple[float, ...]
     current_u: tuple[tuple[float, float, float], ...]
-    scale: float = 1.0  # current-speed continuation factor
-    payout: float = 0.0  # cable speed along +t relative to the laying frame, negated [m/s]
+    frame: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    payout: float = 0.0
+    c_current: float = 1.0
+    c_frame: float = 1.0
+
+    @property
+    def installation(self) -> bool:
+        return self.payout != 0.0 or any(c != 0.0 for c in self.frame)
 
     @property
     def has_current(self) -> bool:
-        """Any relative flow (current, frame velocity or pay-out) at this scale."""
-        return self.scale != 0.0 and (self.payout != 0.0 or any(
-            any(c != 0.0 for c in u) for u in self.current_u))
+        """Any flow relative to the line (current, frame velocity or pay-out)."""
+        current = self.c_current != 0.0 and any(any(c != 0.0 for c in u)
+                                                for u in self.current_u)
+        return current or (self.c_frame != 0.0 and self.installation)
 
-    def scaled(self, factor: float) -> _Env:
-        return _Env(self.density, self.current_z, self.current_u, factor, self.payout)
+    def scaled(self, t: float) -> _Env:
+        """The flow at continuation parameter t in [0, 1]: for an installation in a
+        current the frame velocity and pay-out ramp up first (t <= 1/2), then the
+        current, so a laying configuration is followed into the current; otherwise
+        everything scales with t."""
+        if self.installation and any(any(c != 0.0 for c in u) for u in self.current_u):
+            c_frame, c_current = min(1.0, 2.0 * t), max(0.0, 2.0 * t - 1.0)
+        else:
+            c_frame = c_current = t
+        return _Env(self.density, self.current_z, self.current_u, self.frame, self.payout,
+                    c_current, c_frame)
+
+    @property
+    def payout_speed(self) -> float:
+        return self.c_frame * self.payout
 
     def velocity(self, z: float) -> tuple[float, float, float]:
-        """Piecewise-linear current at height z, constant beyond the profile [m/s]."""
-        zs, us, c = self.current_z, self.current_u, self.scale
+        """Current minus the frame velocity at height z [m/s]; the current profile is
+        piecewise linear, constant beyond its ends."""
+        zs, us, c = self.current_z, self.current_u, self.c_current
         if len(zs) == 1 or z <= zs[0]:
             u = us[0]
-            return (c * u[0], c * u[1], c * u[2])
-        if z >= zs[-1]:
+        elif z >= zs[-1]:
             u = us[-1]
-            return (c * u[0], c * u[1], c * u[2])
-        i = bisect.bisect_right(zs, z) - 1
-        a = (z - zs[i]) / (zs[i + 1] - zs[i])
-        u0, u1 = us[i], us[i + 1]
-        return (c * (u0[0] + a * (u1[0] - u0[0])), c * (u0[1] + a * (u1[1] - u0[1])),
-                c * (u0[2] + a * (u1[2] - u0[2])))
+        else:
+            i = bisect.bisect_right(zs, z) - 1
+            a = (z - zs[i]) / (zs[i + 1] - zs[i])
+            u0, u1 = us[i], us[i + 1]
+            u = (u0[0] + a * (u1[0] - u0[0]), u0[1] + a * (u1[1] - u0[1]),
+                 u0[2] + a * (u1[2] - u0[2]))
+        f, v = self.c_frame, self.frame
+        return (c * u[0] - f * v[0], c * u[1] - f * v[1], c * u[2] - f * v[2])
 
 
 def _load(env: _Env, line: _Line, k: int, t: tuple[float, float, float], z: float,
@@ -230,7 +257,7 @@ def _load(env: _Env, line: _Line, k: int, t: tuple[float, float, float], z: floa
         ux, uy, uz = env.velocity(z)
         ut = ux * t[0] + uy * t[1] + uz * t[2]
         nx, ny, nz = ux - ut * t[0], uy - ut * t[1], uz - ut * t[2]
-        ut += env.scale * env.payout
+        ut += env.payout_speed
         un = math.sqrt(nx * nx + ny * ny + nz * nz)
         kk = 0.5 * env.density * line.diameter[k] * (1.0 + T / line.axial_stiffness[k])
         cn = kk * line.drag_normal[k] * un
@@ -340,7 +367,7 @@ class _Integrator:
         """(m V^2, m_a V^2) [N] of segment k for the pay-out speed V at this
         continuation scale: structural mass per unstretched length (divided by the
         stretch where used) and normal added mass per length."""
-        v = self.env.scale * self.env.payout
+        v = self.env.payout_speed
         if v == 0.0:
             return 0.0, 0.0
         line = self.line
@@ -627,16 +654,16 @@ class ShootingSolver:
             reverse, mode = False, "fixed"
         start, far = (b, a) if reverse else (a, b)
         line = _make_line(model, reverse)
-        # installation: the current seen in the laying frame is the current minus the
+        # installation: the flow seen in the laying frame is the current minus the
         # frame velocity; the cable moves along itself from B to A at the pay-out speed
-        frame = np.asarray(problem.touchdown_velocity, dtype=float)
         if med.current_velocity.size:
-            cz, cu = med.current_z, med.current_velocity - frame
+            cz, cu = med.current_z, med.current_velocity
         else:
-            cz, cu = np.zeros(1), -frame[None, :]
+            cz, cu = np.zeros(1), np.zeros((1, 3))
         env = _Env(
             density=med.density, current_z=tuple(float(z) for z in cz),
             current_u=tuple(tuple(float(c) for c in u) for u in cu),  # type: ignore[misc]
+            frame=tuple(float(c) for c in problem.touchdown_velocity),  # type: ignore[arg-type]
             payout=-problem.payout_speed if reverse else problem.payout_speed,
         )
         scale = float(np.sum(np.abs(model.weight) * model.length))
