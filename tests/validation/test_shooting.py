@@ -294,6 +294,24 @@ def test_convergence_as_rtol_is_tightened() -> None:
     assert errors[2] < 1e-9
 
 
+def test_touchdown_with_drag_converged_to_1e8() -> None:
+    """A grounded line with friction in a turning current (the shooting map is
+    ill-conditioned: a small change of the touchdown tension moves the far end a lot):
+    the default solver agrees with rtol = 1e-13 to 1e-8 of the length and tension, the
+    accuracy the comparison with the semi-analytic solver needs (1e-6)."""
+    line = make_line([600.0], 200.0, 1e9, diameter=0.1, drag_tangential=0.01)
+    problem = StaticProblem(line=line, medium=medium(depth=200.0, friction=0.5,
+                                                     current=TURNING),
+                            end_a=fixed([0, 0, -200]), end_b=fixed([500.0, 100.0, 0.0]),
+                            n_nodes=61, tolerance=1e-12)
+    ref = solve(problem, ShootingSolver(rtol=1e-13))
+    res = solve(problem)
+    assert res.laid_length > 100.0
+    assert np.max(np.abs(res.position - ref.position)) < 1e-8 * 600.0
+    assert np.max(np.abs(res.tension - ref.tension)) < 1e-8 * ref.tension.max()
+    assert abs(res.laid_length - ref.laid_length) < 1e-8 * 600.0
+
+
 # ----------------------------------------------------------------------------------
 # invariances
 
