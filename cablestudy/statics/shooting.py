@@ -63,7 +63,21 @@ usual quasi-static convention: fully mobilised along the laid length towards the
     T(s) = max(0, T_0 - sum over the laid length beyond s of (mu w cos(a) + w e_z)),
 
 (e_z the rise of the laid direction, a the seabed slope), so friction reduces the anchor
-tension but never below zero and does not change the suspended shape.
+tension but never below zero and does not change the suspended shape. An end counts as
+on the seabed within 1e-6 of the line length; contact elsewhere (a line sagging onto the
+seabed between raised ends) is reported as a failure, never ignored.
+
+Installation (vaz-patel seed, eqs. 3b-4c, ``analysis.static.installation``): in the
+frame of a laying ship moving at the constant horizontal velocity V_0 with the cable
+paid out from end B towards end A at speed V_po, the flow relative to the cable is the
+current minus V_0 plus V_po along the tangent, and the cable flowing round its own
+curvature replaces T by T - mu V_po^2 in the normal and binormal equations (mu: mass
+per stretched length plus the normal added mass Cm rho pi d^2 / 4). The continuation
+then ramps the frame flow and pay-out before the current.
+
+Convergence: Newton stops when the scaled end residual (positions / line length,
+forces / total weight and applied loads) is below max(tolerance, 100 rtol) and then
+polishes for up to four more steps towards the integration floor.
 """
 
 from __future__ import annotations
@@ -1170,8 +1184,9 @@ class ShootingSolver:
                 return StaticResult.failed(
                     s_out, STATUS_NO_SOLUTION,
                     f"the line passes {below:.4g} m below the seabed; the shooting solver "
-                    "models seabed contact only from a fixed end on the seabed (touchdown "
-                    "integration)", iterations=iterations, residual=residual)
+                    "models seabed contact only from a fixed end on the seabed (within "
+                    "1e-6 of the line length; touchdown integration)",
+                    iterations=iterations, residual=residual)
         return StaticResult(
             s=s_out, position=position, tension=tension, force_a=force_a, force_b=force_b,
             laid_length=float(laid), status=STATUS_OK, message="", iterations=iterations,
