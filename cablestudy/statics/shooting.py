@@ -970,6 +970,8 @@ class ShootingSolver:
                 if polish > 4 or norm <= 10.0 * integ.rtol:
                     return u, norm, it, STATUS_OK, ""
             if it >= max_iterations:
+                if norm <= tol:
+                    return u, norm, it, STATUS_OK, ""
                 return u, norm, it, STATUS_NOT_CONVERGED, (
                     f"shooting Newton did not converge in {max_iterations} iterations "
                     f"(residual {norm:.3g}, tolerance {tol:.3g})")
