@@ -709,7 +709,7 @@ class ShootingSolver:
             if q >= 0.0:
                 if q >= L:
                     raise _ShotFailed("laid length would exceed the line length")
-                pieces, T_anchor = _laid_tension(st.line, st.bed, e, q, T0)
+                _, T_anchor = _laid_tension(st.line, st.bed, e, q, T0)
                 _, _, total = _laid_profile(st.line, st.bed, e, q, T0, np.zeros(0))
                 return _Start(q, T0 * e, p0 + total * e, e, T0, max(0.0, T_anchor) * e, p0)
             gamma = -float(u[2])
@@ -895,7 +895,6 @@ class ShootingSolver:
         if np.linalg.norm(horiz) == 0.0:
             horiz = bed.upslope.copy()
         beta = bed.beta_of(horiz)
-        e = bed.direction(beta)
         suspended: float | None = None
         H = float(np.linalg.norm(F0[:2]))
         if far.kind == "fixed":
@@ -936,7 +935,6 @@ class ShootingSolver:
         t0 = F0 / T
         gamma = math.asin(max(-1.0, min(1.0, float(np.dot(t0, bed.normal)))))
         beta = bed.beta_of(t0 - np.dot(t0, bed.normal) * bed.normal) if gamma < 1.5 else beta
-        _ = e
         return np.array([T / st.force_scale, beta, -max(gamma, 0.0)])
 
     # -- Newton ---------------------------------------------------------------------
