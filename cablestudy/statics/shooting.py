@@ -23,7 +23,9 @@ with f = (0, 0, -w) + (1 + T / EA) f_drag(t, z). The drag per unit *stretched* l
 Morison's split into normal and tangential parts of the current velocity relative to the
 tangent (dodaran-park seed eqs. 38-39, :func:`cablestudy.physics.hydro.drag_per_length`;
 there, as here, the drag of an element is proportional to its stretched length and the
-unstretched diameter). The current is the piecewise-linear profile in z of the study, so
+unstretched diameter; the vaz-patel seed also thins the diameter as d (1 + e)^(-1/2),
+a Poisson effect of relative size T / 2EA that is left out here so that both static
+solvers share one drag law). The current is the piecewise-linear profile in z of the study, so
 it may turn with depth; drag depends on the local tangent and height and so sits inside
 the ODE (no outer iteration).
 
