@@ -948,16 +948,19 @@ class ShootingSolver:
         updated by Broyden's rank-one formula (each refresh costs six shots). Returns
         (u, residual norm, iterations, status, message)."""
 
+        failures: list[str] = []
+
         def resid(u: np.ndarray) -> np.ndarray | None:
             try:
                 return self._residual(st, integ, u)[0]
-            except _ShotFailed:
+            except _ShotFailed as exc:
+                failures.append(str(exc))
                 return None
 
         u = np.array(u0, dtype=float)
         r = resid(u)
         if r is None:
-            return u, math.inf, 0, STATUS_NOT_CONVERGED, "the first shot failed"
+            return u, math.inf, 0, STATUS_NOT_CONVERGED, f"the first shot failed: {failures[-1]}"
         norm = float(np.max(np.abs(r)))
         it = 0
         polish = 0
@@ -1084,6 +1087,13 @@ class ShootingSolver:
                 break  # converged, or heading for a slack line (diagnosed below)
             u, norm, status, msg = newton(0.0, alt, min(problem.max_iterations,
                                                         _ALTERNATIVE_ITERATIONS))
+        if status != STATUS_OK and st.env.has_current:
+            # no still-water shape (e.g. a slack weightless line): go straight to the
+            # full current
+            for start in [u0, *self._other_guesses(st, u0)]:
+                u, norm, status, msg = newton(1.0, start, problem.max_iterations)
+                if status == STATUS_OK:
+                    return self._finish(st, s_out, u, norm, total_it, deadline)
         if status != STATUS_OK and st.mode == "grounded" and u[0] < 1e-4:
             return StaticResult.failed(
                 s_out, STATUS_NO_SOLUTION,
@@ -1136,6 +1146,11 @@ class ShootingSolver:
                         s_out, status_t,
                         f"current-speed continuation failed at {trial:.3g} of the current: "
                         f"{msg_t}", iterations=total_it, residual=norm_t)
+        return self._finish(st, s_out, u, norm, total_it, deadline)
+
+    def _finish(self, st: _Setup, s_out: np.ndarray, u: np.ndarray, norm: float,
+                total_it: int, deadline: float | None) -> StaticResult:
+        """The converged shot again, with dense output, sampled at the output nodes."""
         integ = _Integrator(st.line, st.env, rtol=self.rtol, force_scale=st.force_scale,
                             deadline=deadline)
         try:

@@ -626,3 +626,19 @@ def test_installation_config_rejected_by_solvers_without_it() -> None:
                             end_a=fixed([0, 0, 0]), end_b=fixed([90, 0, 0]), payout_speed=1.0)
     assert any("installation" in m for m in STATIC_SOLVERS["analytic"].unsupported(problem))
     assert SOLVER.unsupported(problem) == []
+
+
+def test_weightless_line_in_a_current() -> None:
+    """A weightless slack line has no still-water shape, so the solver goes straight to
+    the full current: in a uniform current across the chord the line bows downstream,
+    symmetric about its mid-point (the ends exchange roles under a reflection through
+    the mid-height plane), with the whole drag taken by the ends along the current."""
+    line = make_line([100.0], 0.0, 1e8, diameter=0.05, drag_normal=1.2)
+    res = solve(StaticProblem(line=line, medium=medium(current=[(0.0, 0.5, 0.0)]),
+                              end_a=fixed([0, 0, 0]), end_b=fixed([0, 0, -90]), n_nodes=41))
+    scale = float(np.linalg.norm(res.force_a))
+    assert res.force_a[0] > 0.1 * scale                       # pulled downstream
+    assert np.allclose(res.force_a[[0, 1]], res.force_b[[0, 1]], atol=1e-8 * scale)
+    assert abs(res.force_a[2] + res.force_b[2]) < 1e-8 * scale
+    mirrored = res.position[::-1] * np.array([1.0, 1.0, -1.0]) + np.array([0.0, 0.0, -90.0])
+    assert np.max(np.abs(mirrored - res.position)) < 1e-8 * 100.0
