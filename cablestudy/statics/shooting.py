@@ -850,7 +850,7 @@ class ShootingSolver:
     def _other_guesses(st: _Setup, u0: np.ndarray) -> list[np.ndarray]:
         """Further starting points, tried in turn when Newton fails from the first."""
         if st.mode == "grounded":
-            return [np.array([u0[0] * f, u0[1], q]) for f in (1.0, 0.3, 3.0)
+            return [np.array([u0[0] * f, u0[1], q]) for f in (1.0, 0.3)
                     for q in (0.5, 0.2, 0.05, -0.2) if q != u0[2]]
         if st.mode == "fixed":
             return [u0 * f for f in (0.3, 3.0, 10.0)]
@@ -1087,11 +1087,13 @@ class ShootingSolver:
                 break  # converged, or heading for a slack line (diagnosed below)
             u, norm, status, msg = newton(0.0, alt, min(problem.max_iterations,
                                                         _ALTERNATIVE_ITERATIONS))
-        if status != STATUS_OK and st.env.has_current:
-            # no still-water shape (e.g. a slack weightless line): go straight to the
-            # full current
+        unloaded = not any(st.line.weight) and not st.line.att_force
+        if status != STATUS_OK and st.env.has_current and unloaded:
+            # no still-water shape (a slack weightless line): go straight to the full
+            # current
             for start in [u0, *self._other_guesses(st, u0)]:
-                u, norm, status, msg = newton(1.0, start, problem.max_iterations)
+                u, norm, status, msg = newton(1.0, start, min(problem.max_iterations,
+                                                              _ALTERNATIVE_ITERATIONS))
                 if status == STATUS_OK:
                     return self._finish(st, s_out, u, norm, total_it, deadline)
         if status != STATUS_OK and st.mode == "grounded" and u[0] < 1e-4:
@@ -1110,6 +1112,16 @@ class ShootingSolver:
                     f"the force at the free end (vertical component {st.far.force[2]:.6g} N) "
                     "and the attachments do not lift the line off the seabed: it would be "
                     "pulled into the seabed", iterations=total_it, residual=norm)
+        if status != STATUS_OK and st.mode == "grounded" and u[2] > 0.0:
+            L = st.line.length
+            near = [x for x in st.line.att_s if abs(x - u[2] * L) < 0.02 * L]
+            if near:
+                return StaticResult.failed(
+                    s_out, status,
+                    f"the touchdown point runs into the attachment at s = {near[0]:.6g} m "
+                    "(from the seabed end): a point load resting on the seabed at the "
+                    "touchdown point, with a kink in the line there, is not modelled; "
+                    f"{msg}", iterations=total_it, residual=norm)
         if status != STATUS_OK:
             hint = ("; no equilibrium above the seabed may exist for these end conditions"
                     if st.mode == "grounded" else "")
