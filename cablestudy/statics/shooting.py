@@ -403,11 +403,13 @@ class _Integrator:
         L = line.length
         F = np.array(force, dtype=float)
         r = np.array(position, dtype=float)
-        # attachments at or beyond s0, and segment boundaries beyond s0, are knots
-        knots = sorted({x for x in line.ends[1:-1] if x > s0} | {x for x in line.att_s if x > s0}
-                       | {L})
+        # an attachment at s0 acts at the start; those beyond s0, and segment boundaries
+        # beyond s0, are knots
+        at_start = s0 + 1e-14 * L
+        knots = sorted({x for x in line.ends[1:-1] if x > s0}
+                       | {x for x in line.att_s if x > at_start} | {L})
         for s_att, p in zip(line.att_s, line.att_force, strict=True):
-            if s_att == s0 or (s0 > 0.0 and abs(s_att - s0) <= 1e-14 * L):
+            if s0 - 1e-14 * L <= s_att <= at_start:
                 F = F - np.asarray(p)
         pieces: list[_Piece] = []
         legs = 0
@@ -502,9 +504,11 @@ def _seabed(medium_depth: float, slope: float, heading: float, friction: float) 
 
 def _laid_tension(line: _Line, bed: _Seabed, e: np.ndarray, q: float,
                   t_tdp: float) -> tuple[list[tuple[float, float, float, float]], float]:
-    """Pieces (s_a, s_b, T_lin(s_a), dT/ds) of the unclipped tension along the laid part
-    [0, q], and the unclipped tension just after the anchor [N]. The clipped tension is
-    max(0, T_lin)."""
+    """Pieces (s_a, s_b, T_lin(s_a), dT/ds) of the tension along the laid part [0, q],
+    marching from the touchdown point towards the anchor, and the tension just after the
+    anchor [N]. In a piece the tension is max(0, T_lin); a piece starts (at its touchdown
+    side) from the clipped tension of the one before, so a slack stretch stays slack up
+    to the next attachment that pulls."""
     pts = sorted({0.0, q} | {x for x in line.ends if 0.0 < x < q}
                  | {x for x in line.att_s if 0.0 < x < q})
     mu, m_z, e_z = bed.friction, float(bed.normal[2]), float(e[2])
@@ -522,7 +526,7 @@ def _laid_tension(line: _Line, bed: _Seabed, e: np.ndarray, q: float,
         g = w * e_z + mu * w * m_z  # dT/ds
         T_left = T_right - g * (b - a)
         pieces.append((a, b, T_left, g))
-        T_right = T_left
+        T_right = max(0.0, T_left)  # a slack stretch stays slack (never below zero)
     pieces.reverse()
     return pieces, T_right
 
