@@ -4,10 +4,12 @@ the physics solvers (frozen dataclasses of arrays, SI units)."""
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
 from .config import FixedEnd, ForceEnd, MooringEnd, Study
+from .config.analysis import Installation
 from .config.ends import End
 from .statics import EndCondition, LineModel, Medium, StaticProblem
 
@@ -87,4 +89,14 @@ def static_problem(study: Study) -> StaticProblem:
         n_nodes=settings.nodes, tolerance=settings.tolerance,
         max_iterations=settings.max_iterations,
         drag_elements=settings.drag_elements or 0,
+        **_installation(settings.installation),
     )
+
+
+def _installation(inst: Installation | None) -> dict[str, Any]:
+    """Pay-out speed [m/s] and laying-frame velocity [m/s] of a steady cable laying."""
+    if inst is None:
+        return {}
+    vx, vy = inst.touchdown_velocity
+    return {"payout_speed": float(inst.payout_speed),
+            "touchdown_velocity": np.array([vx, vy, 0.0])}

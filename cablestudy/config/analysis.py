@@ -17,6 +17,17 @@ from pydantic import (
 from .base import Finite, NonNegative, Positive, StrictModel, Vec2, Vec3
 
 
+class Installation(StrictModel):
+    """Steady cable laying (vaz-patel seed, eqs. 3b-4c): the laying frame (ship and
+    touchdown point) moves at a constant horizontal velocity and the cable is paid out
+    along itself from end B towards end A (A is the touchdown end)."""
+
+    payout_speed: Finite = Field(
+        0.0, description="speed of the cable along itself from end B towards end A [m/s]")
+    touchdown_velocity: Vec2 = Field(
+        [0.0, 0.0], description="horizontal velocity of the ship and touchdown point [m/s]")
+
+
 class StaticSettings(StrictModel):
     method: str = Field("catenary", description="static solver (see `cablestudy schema`)")
     nodes: int = Field(101, ge=2, le=100_000, description="output points along the line")
@@ -27,6 +38,8 @@ class StaticSettings(StrictModel):
         description="drag elements along the line (method catenary, with current); "
                     "default: nodes - 1, at least 20",
     )
+    installation: Installation | None = Field(
+        None, description="steady cable laying; omit for a line at rest (static)")
 
     @field_validator("method")
     @classmethod

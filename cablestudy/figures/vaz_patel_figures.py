@@ -97,3 +97,33 @@ def turning_current(data: dict[str, xr.Dataset], out: Path) -> Path:
     fig.savefig(path, dpi=120)
     plt.close(fig)
     return path
+
+
+@register("vaz-patel-cable-installation", ("vaz-patel-cable-installation",))
+def cable_installation(data: dict[str, xr.Dataset], out: Path) -> Path:
+    ds = data["vaz-patel-cable-installation"]
+    dim = "speed"
+    labels = _labels(ds, dim, "m/s")
+    fig, axes = plt.subplots(1, 3, figsize=(13, 4))
+    for i, label in enumerate(labels):
+        case = ds.isel({dim: i})
+        if int(case["status"]) != 0:
+            continue
+        text = f"transverse current {label}"
+        axes[0].plot(case["x"], case["z"], label=text)
+        axes[1].plot(case["x"], case["y"], label=f"{text}, laid {float(case['laid_length']):.0f} m")
+        axes[2].plot(case["s"], case["tension"] / 1e3, label=text)
+    axes[0].set(xlabel="x (ship's heading) [m]", ylabel="z [m]", title="elevation")
+    axes[1].set(xlabel="x [m]", ylabel="y [m]", title="plan (ship at the right end)")
+    axes[2].set(xlabel="unstretched arc length from the seabed end s [m]",
+                ylabel="tension [kN]", title="tension")
+    for ax in axes:
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle("Steady laying of the HA cable (seed Table 1), ship 1.0 m/s, pay-out "
+                 "1.05 m/s, in a transverse sheared current (vaz-patel example 1)", fontsize=10)
+    path = out / "vaz-patel-cable-installation.png"
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path

@@ -143,6 +143,15 @@ class StaticProblem:
     #: drag elements along the line for solvers that lump drag (0: solver default)
     drag_elements: int = 0
 
+    #: steady cable laying (vaz-patel seed): speed of the cable along itself from B
+    #: towards A [m/s], and the horizontal velocity of the laying frame [m/s] (3,)
+    payout_speed: float = 0.0
+    touchdown_velocity: np.ndarray = field(default_factory=lambda: np.zeros(3))
+
+    @property
+    def is_installation(self) -> bool:
+        return self.payout_speed != 0.0 or bool(np.any(self.touchdown_velocity != 0.0))
+
 
 @dataclass(kw_only=True)
 class StaticResult:

@@ -329,6 +329,8 @@ class ElasticCatenarySolver:
             out.append("attachments")
         if problem.medium.has_current:
             out.append("current")
+        if problem.is_installation:
+            out.append("installation (pay-out speed, touchdown velocity)")
         return out
 
     def solve(self, problem: StaticProblem, *, deadline: float | None = None) -> StaticResult:

@@ -686,9 +686,12 @@ class SemiAnalyticSolver:
         self.continuation_steps = continuation_steps
 
     def unsupported(self, problem: StaticProblem) -> list[str]:
+        out = []
         if problem.end_a.kind != "fixed" and problem.end_b.kind != "fixed":
-            return ["lines with no fixed end (one end must be 'fixed')"]
-        return []
+            out.append("lines with no fixed end (one end must be 'fixed')")
+        if problem.is_installation:
+            out.append("installation (pay-out speed, touchdown velocity): use method 'shooting'")
+        return out
 
     # ------------------------------------------------------------------ public
 

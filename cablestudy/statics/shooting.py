@@ -23,7 +23,9 @@ with f = (0, 0, -w) + (1 + T / EA) f_drag(t, z). The drag per unit *stretched* l
 Morison's split into normal and tangential parts of the current velocity relative to the
 tangent (dodaran-park seed eqs. 38-39, :func:`cablestudy.physics.hydro.drag_per_length`;
 there, as here, the drag of an element is proportional to its stretched length and the
-unstretched diameter). The current is the piecewise-linear profile in z of the study, so
+unstretched diameter; the vaz-patel seed also thins the diameter as d (1 + e)^(-1/2),
+a Poisson effect of relative size T / 2EA that is left out here so that both static
+solvers share one drag law). The current is the piecewise-linear profile in z of the study, so
 it may turn with depth; drag depends on the local tangent and height and so sits inside
 the ODE (no outer iteration).
 
@@ -63,7 +65,21 @@ usual quasi-static convention: fully mobilised along the laid length towards the
     T(s) = max(0, T_0 - sum over the laid length beyond s of (mu w cos(a) + w e_z)),
 
 (e_z the rise of the laid direction, a the seabed slope), so friction reduces the anchor
-tension but never below zero and does not change the suspended shape.
+tension but never below zero and does not change the suspended shape. An end counts as
+on the seabed within 1e-6 of the line length; contact elsewhere (a line sagging onto the
+seabed between raised ends) is reported as a failure, never ignored.
+
+Installation (vaz-patel seed, eqs. 3b-4c, ``analysis.static.installation``): in the
+frame of a laying ship moving at the constant horizontal velocity V_0 with the cable
+paid out from end B towards end A at speed V_po, the flow relative to the cable is the
+current minus V_0 plus V_po along the tangent, and the cable flowing round its own
+curvature replaces T by T - mu V_po^2 in the normal and binormal equations (mu: mass
+per stretched length plus the normal added mass Cm rho pi d^2 / 4). The continuation
+then ramps the frame flow and pay-out before the current.
+
+Convergence: Newton stops when the scaled end residual (positions / line length,
+forces / total weight and applied loads) is below max(tolerance, 100 rtol) and then
+polishes for up to four more steps towards the integration floor.
 """
 
 from __future__ import annotations
@@ -97,6 +113,8 @@ _GROUND_TOL = 1e-6
 _POLE_LIMIT = 0.95
 #: Newton iterations allowed per current-continuation step before it is shortened
 _CONTINUATION_ITERATIONS = 15
+#: Newton iterations allowed from each alternative starting point
+_ALTERNATIVE_ITERATIONS = 30
 #: finite-difference step of the Newton Jacobian, in the scaled unknowns [-]
 _FD_STEP = 1e-7
 
@@ -123,6 +141,8 @@ class _Line:
     diameter: tuple[float, ...]
     drag_normal: tuple[float, ...]
     drag_tangential: tuple[float, ...]
+    mass: tuple[float, ...]
+    added_mass_normal: tuple[float, ...]
     att_s: tuple[float, ...]          # sorted, merged positions of attachments
     att_force: tuple[tuple[float, float, float], ...]
 
@@ -171,7 +191,8 @@ def _make_line(model: LineModel, reverse: bool) -> _Line:
     return _Line(
         ends=ends, weight=col(model.weight), axial_stiffness=col(model.axial_stiffness),
         diameter=col(model.diameter), drag_normal=col(model.drag_normal),
-        drag_tangential=col(model.drag_tangential), att_s=tuple(keys),
+        drag_tangential=col(model.drag_tangential), mass=col(model.mass),
+        added_mass_normal=col(model.added_mass_normal), att_s=tuple(keys),
         att_force=tuple(tuple(float(c) for c in merged[k]) for k in keys),  # type: ignore[misc]
     )
 
@@ -182,44 +203,77 @@ def _make_line(model: LineModel, reverse: bool) -> _Line:
 
 @dataclass(frozen=True)
 class _Env:
+    """Fluid density [kg/m^3], current profile (z [m], velocity [m/s]), laying-frame
+    velocity [m/s] and pay-out [m/s] (cable speed along -t relative to the frame), with
+    continuation factors on the current (``c_current``) and on the frame velocity and
+    pay-out (``c_frame``)."""
+
     density: float
     current_z: tuple[float, ...]
     current_u: tuple[tuple[float, float, float], ...]
-    scale: float = 1.0  # current-speed continuation factor
+    frame: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    payout: float = 0.0
+    c_current: float = 1.0
+    c_frame: float = 1.0
+
+    @property
+    def installation(self) -> bool:
+        return self.payout != 0.0 or any(c != 0.0 for c in self.frame)
 
     @property
     def has_current(self) -> bool:
-        return self.scale != 0.0 and any(any(c != 0.0 for c in u) for u in self.current_u)
+        """Any flow relative to the line (current, frame velocity or pay-out)."""
+        current = self.c_current != 0.0 and any(any(c != 0.0 for c in u)
+                                                for u in self.current_u)
+        return current or (self.c_frame != 0.0 and self.installation)
 
-    def scaled(self, factor: float) -> _Env:
-        return _Env(self.density, self.current_z, self.current_u, factor)
+    def scaled(self, t: float) -> _Env:
+        """The flow at continuation parameter t in [0, 1]: for an installation in a
+        current the frame velocity and pay-out ramp up first (t <= 1/2), then the
+        current, so a laying configuration is followed into the current; otherwise
+        everything scales with t."""
+        if self.installation and any(any(c != 0.0 for c in u) for u in self.current_u):
+            c_frame, c_current = min(1.0, 2.0 * t), max(0.0, 2.0 * t - 1.0)
+        else:
+            c_frame = c_current = t
+        return _Env(self.density, self.current_z, self.current_u, self.frame, self.payout,
+                    c_current, c_frame)
+
+    @property
+    def payout_speed(self) -> float:
+        return self.c_frame * self.payout
 
     def velocity(self, z: float) -> tuple[float, float, float]:
-        """Piecewise-linear current at height z, constant beyond the profile [m/s]."""
-        zs, us, c = self.current_z, self.current_u, self.scale
+        """Current minus the frame velocity at height z [m/s]; the current profile is
+        piecewise linear, constant beyond its ends."""
+        zs, us, c = self.current_z, self.current_u, self.c_current
         if len(zs) == 1 or z <= zs[0]:
             u = us[0]
-            return (c * u[0], c * u[1], c * u[2])
-        if z >= zs[-1]:
+        elif z >= zs[-1]:
             u = us[-1]
-            return (c * u[0], c * u[1], c * u[2])
-        i = bisect.bisect_right(zs, z) - 1
-        a = (z - zs[i]) / (zs[i + 1] - zs[i])
-        u0, u1 = us[i], us[i + 1]
-        return (c * (u0[0] + a * (u1[0] - u0[0])), c * (u0[1] + a * (u1[1] - u0[1])),
-                c * (u0[2] + a * (u1[2] - u0[2])))
+        else:
+            i = bisect.bisect_right(zs, z) - 1
+            a = (z - zs[i]) / (zs[i + 1] - zs[i])
+            u0, u1 = us[i], us[i + 1]
+            u = (u0[0] + a * (u1[0] - u0[0]), u0[1] + a * (u1[1] - u0[1]),
+                 u0[2] + a * (u1[2] - u0[2]))
+        f, v = self.c_frame, self.frame
+        return (c * u[0] - f * v[0], c * u[1] - f * v[1], c * u[2] - f * v[2])
 
 
 def _load(env: _Env, line: _Line, k: int, t: tuple[float, float, float], z: float,
           T: float) -> tuple[float, float, float]:
     """External load per unstretched length on segment k with tangent t at height z
-    with tension T [N/m]: weight plus drag per stretched length times the stretch."""
+    with tension T [N/m]: weight plus drag per stretched length times the stretch. The
+    flow relative to the line is the current in the laying frame plus the pay-out
+    speed along the tangent (vaz-patel seed, Appendix B: V_rt, V_rn, V_rb)."""
     w = line.weight[k]
     fx, fy, fz = 0.0, 0.0, -w
     if env.has_current and env.density > 0.0:
         ux, uy, uz = env.velocity(z)
         ut = ux * t[0] + uy * t[1] + uz * t[2]
         nx, ny, nz = ux - ut * t[0], uy - ut * t[1], uz - ut * t[2]
+        ut += env.payout_speed
         un = math.sqrt(nx * nx + ny * ny + nz * nz)
         kk = 0.5 * env.density * line.diameter[k] * (1.0 + T / line.axial_stiffness[k])
         cn = kk * line.drag_normal[k] * un
@@ -298,6 +352,7 @@ class _Integrator:
         line, env = self.line, self.env
         EA = line.axial_stiffness[k]
         cos, sin = math.cos, math.sin
+        m_flow, m_add = self._flow_mass(k)
 
         def rhs(s: float, y: np.ndarray) -> list[float]:
             T, ph, ps, _, _, z = y
@@ -311,14 +366,35 @@ class _Integrator:
             bn = (-sps * e1x + cps * e2x, -sps * e1y + cps * e2y, -sps * e1z + cps * e2z)
             f = _load(env, line, k, t, z, T)
             st = 1.0 + T / EA
+            # pay-out: the cable flowing round its own curvature needs T - mu V^2 in the
+            # normal equations (seed eqs. 4b-4c), mu the mass and added mass per
+            # stretched length
+            Te = T - (m_flow / st + m_add) if m_flow or m_add else T
             return [
                 -(f[0] * t[0] + f[1] * t[1] + f[2] * t[2]),
-                -(f[0] * n[0] + f[1] * n[1] + f[2] * n[2]) / T,
-                -(f[0] * bn[0] + f[1] * bn[1] + f[2] * bn[2]) / (T * cph),
+                -(f[0] * n[0] + f[1] * n[1] + f[2] * n[2]) / Te,
+                -(f[0] * bn[0] + f[1] * bn[1] + f[2] * bn[2]) / (Te * cph),
                 st * t[0], st * t[1], st * t[2],
             ]
 
         return rhs
+
+    def _flow_mass(self, k: int) -> tuple[float, float]:
+        """(m V^2, m_a V^2) [N] of segment k for the pay-out speed V at this
+        continuation scale: structural mass per unstretched length (divided by the
+        stretch where used) and normal added mass per length."""
+        v = self.env.payout_speed
+        if v == 0.0:
+            return 0.0, 0.0
+        line = self.line
+        area = math.pi * line.diameter[k] ** 2 / 4.0
+        return (line.mass[k] * v * v,
+                line.added_mass_normal[k] * self.env.density * area * v * v)
+
+    def effective_tension(self, k: int, T: float) -> float:
+        """T - mu V^2 [N]: the tension that resists curvature under pay-out."""
+        m_flow, m_add = self._flow_mass(k)
+        return T - m_flow / (1.0 + T / self.line.axial_stiffness[k]) - m_add
 
     def run(self, s0: float, force: np.ndarray, position: np.ndarray, *,
             dense: bool) -> _Shot:
@@ -327,11 +403,13 @@ class _Integrator:
         L = line.length
         F = np.array(force, dtype=float)
         r = np.array(position, dtype=float)
-        # attachments at or beyond s0, and segment boundaries beyond s0, are knots
-        knots = sorted({x for x in line.ends[1:-1] if x > s0} | {x for x in line.att_s if x > s0}
-                       | {L})
+        # an attachment at s0 acts at the start; those beyond s0, and segment boundaries
+        # beyond s0, are knots
+        at_start = s0 + 1e-14 * L
+        knots = sorted({x for x in line.ends[1:-1] if x > s0}
+                       | {x for x in line.att_s if x > at_start} | {L})
         for s_att, p in zip(line.att_s, line.att_force, strict=True):
-            if s_att == s0 or (s0 > 0.0 and abs(s_att - s0) <= 1e-14 * L):
+            if s0 - 1e-14 * L <= s_att <= at_start:
                 F = F - np.asarray(p)
         pieces: list[_Piece] = []
         legs = 0
@@ -347,6 +425,9 @@ class _Integrator:
                 T = float(np.linalg.norm(F))
                 if not math.isfinite(T) or T <= self.t_min:
                     raise _ShotFailed(f"tension vanishes at s = {s:.6g} m")
+                if self.effective_tension(k, T) <= self.t_min:
+                    raise _ShotFailed(f"the tension at s = {s:.6g} m does not exceed mu V^2 "
+                                      "of the pay-out (the cable cannot hold a curve)")
                 t0 = F / T
                 f0 = np.asarray(_load(self.env, line, k, tuple(t0), float(r[2]), T))
                 e1, e2, e3 = _frame(t0, f0)
@@ -355,8 +436,8 @@ class _Integrator:
                 def pole(_s: float, y: np.ndarray) -> float:
                     return _POLE_LIMIT - abs(math.sin(y[1]))
 
-                def slack(_s: float, y: np.ndarray) -> float:
-                    return y[0] - self.t_min
+                def slack(_s: float, y: np.ndarray, k: int = k) -> float:
+                    return self.effective_tension(k, y[0]) - self.t_min
 
                 pole.terminal = True  # type: ignore[attr-defined]
                 slack.terminal = True  # type: ignore[attr-defined]
@@ -423,9 +504,11 @@ def _seabed(medium_depth: float, slope: float, heading: float, friction: float) 
 
 def _laid_tension(line: _Line, bed: _Seabed, e: np.ndarray, q: float,
                   t_tdp: float) -> tuple[list[tuple[float, float, float, float]], float]:
-    """Pieces (s_a, s_b, T_lin(s_a), dT/ds) of the unclipped tension along the laid part
-    [0, q], and the unclipped tension just after the anchor [N]. The clipped tension is
-    max(0, T_lin)."""
+    """Pieces (s_a, s_b, T_lin(s_a), dT/ds) of the tension along the laid part [0, q],
+    marching from the touchdown point towards the anchor, and the tension just after the
+    anchor [N]. In a piece the tension is max(0, T_lin); a piece starts (at its touchdown
+    side) from the clipped tension of the one before, so a slack stretch stays slack up
+    to the next attachment that pulls."""
     pts = sorted({0.0, q} | {x for x in line.ends if 0.0 < x < q}
                  | {x for x in line.att_s if 0.0 < x < q})
     mu, m_z, e_z = bed.friction, float(bed.normal[2]), float(e[2])
@@ -443,7 +526,7 @@ def _laid_tension(line: _Line, bed: _Seabed, e: np.ndarray, q: float,
         g = w * e_z + mu * w * m_z  # dT/ds
         T_left = T_right - g * (b - a)
         pieces.append((a, b, T_left, g))
-        T_right = T_left
+        T_right = max(0.0, T_left)  # a slack stretch stays slack (never below zero)
     pieces.reverse()
     return pieces, T_right
 
@@ -591,10 +674,18 @@ class ShootingSolver:
             reverse, mode = False, "fixed"
         start, far = (b, a) if reverse else (a, b)
         line = _make_line(model, reverse)
+        # installation: the flow seen in the laying frame is the current minus the
+        # frame velocity; the cable moves along itself from B to A at the pay-out speed
+        if med.current_velocity.size:
+            cz, cu = med.current_z, med.current_velocity
+        else:
+            cz, cu = np.zeros(1), np.zeros((1, 3))
         env = _Env(
-            density=med.density, current_z=tuple(float(z) for z in med.current_z),
-            current_u=tuple(tuple(float(c) for c in u) for u in med.current_velocity),  # type: ignore[misc]
-        ) if med.current_velocity.size else _Env(med.density, (0.0,), ((0.0, 0.0, 0.0),))
+            density=med.density, current_z=tuple(float(z) for z in cz),
+            current_u=tuple(tuple(float(c) for c in u) for u in cu),  # type: ignore[misc]
+            frame=tuple(float(c) for c in problem.touchdown_velocity),  # type: ignore[arg-type]
+            payout=-problem.payout_speed if reverse else problem.payout_speed,
+        )
         scale = float(np.sum(np.abs(model.weight) * model.length))
         if model.attachment_force.size:
             scale += float(np.sum(np.linalg.norm(model.attachment_force, axis=1)))
@@ -624,7 +715,7 @@ class ShootingSolver:
             if q >= 0.0:
                 if q >= L:
                     raise _ShotFailed("laid length would exceed the line length")
-                pieces, T_anchor = _laid_tension(st.line, st.bed, e, q, T0)
+                _, T_anchor = _laid_tension(st.line, st.bed, e, q, T0)
                 _, _, total = _laid_profile(st.line, st.bed, e, q, T0, np.zeros(0))
                 return _Start(q, T0 * e, p0 + total * e, e, T0, max(0.0, T_anchor) * e, p0)
             gamma = -float(u[2])
@@ -763,7 +854,7 @@ class ShootingSolver:
     def _other_guesses(st: _Setup, u0: np.ndarray) -> list[np.ndarray]:
         """Further starting points, tried in turn when Newton fails from the first."""
         if st.mode == "grounded":
-            return [np.array([u0[0] * f, u0[1], q]) for f in (1.0, 0.3, 3.0)
+            return [np.array([u0[0] * f, u0[1], q]) for f in (1.0, 0.3)
                     for q in (0.5, 0.2, 0.05, -0.2) if q != u0[2]]
         if st.mode == "fixed":
             return [u0 * f for f in (0.3, 3.0, 10.0)]
@@ -810,7 +901,6 @@ class ShootingSolver:
         if np.linalg.norm(horiz) == 0.0:
             horiz = bed.upslope.copy()
         beta = bed.beta_of(horiz)
-        e = bed.direction(beta)
         suspended: float | None = None
         H = float(np.linalg.norm(F0[:2]))
         if far.kind == "fixed":
@@ -851,7 +941,6 @@ class ShootingSolver:
         t0 = F0 / T
         gamma = math.asin(max(-1.0, min(1.0, float(np.dot(t0, bed.normal)))))
         beta = bed.beta_of(t0 - np.dot(t0, bed.normal) * bed.normal) if gamma < 1.5 else beta
-        _ = e
         return np.array([T / st.force_scale, beta, -max(gamma, 0.0)])
 
     # -- Newton ---------------------------------------------------------------------
@@ -863,16 +952,19 @@ class ShootingSolver:
         updated by Broyden's rank-one formula (each refresh costs six shots). Returns
         (u, residual norm, iterations, status, message)."""
 
+        failures: list[str] = []
+
         def resid(u: np.ndarray) -> np.ndarray | None:
             try:
                 return self._residual(st, integ, u)[0]
-            except _ShotFailed:
+            except _ShotFailed as exc:
+                failures.append(str(exc))
                 return None
 
         u = np.array(u0, dtype=float)
         r = resid(u)
         if r is None:
-            return u, math.inf, 0, STATUS_NOT_CONVERGED, "the first shot failed"
+            return u, math.inf, 0, STATUS_NOT_CONVERGED, f"the first shot failed: {failures[-1]}"
         norm = float(np.max(np.abs(r)))
         it = 0
         polish = 0
@@ -885,6 +977,8 @@ class ShootingSolver:
                 if polish > 4 or norm <= 10.0 * integ.rtol:
                     return u, norm, it, STATUS_OK, ""
             if it >= max_iterations:
+                if norm <= tol:
+                    return u, norm, it, STATUS_OK, ""
                 return u, norm, it, STATUS_NOT_CONVERGED, (
                     f"shooting Newton did not converge in {max_iterations} iterations "
                     f"(residual {norm:.3g}, tolerance {tol:.3g})")
@@ -993,9 +1087,19 @@ class ShootingSolver:
         u0 = u
         u, norm, status, msg = newton(0.0, u0, problem.max_iterations)
         for alt in self._other_guesses(st, u0):
-            if status == STATUS_OK:
-                break
-            u, norm, status, msg = newton(0.0, alt, problem.max_iterations)
+            if status == STATUS_OK or (st.mode == "grounded" and u[0] < 1e-4):
+                break  # converged, or heading for a slack line (diagnosed below)
+            u, norm, status, msg = newton(0.0, alt, min(problem.max_iterations,
+                                                        _ALTERNATIVE_ITERATIONS))
+        unloaded = not any(st.line.weight) and not st.line.att_force
+        if status != STATUS_OK and st.env.has_current and unloaded:
+            # no still-water shape (a slack weightless line): go straight to the full
+            # current
+            for start in [u0, *self._other_guesses(st, u0)]:
+                u, norm, status, msg = newton(1.0, start, min(problem.max_iterations,
+                                                              _ALTERNATIVE_ITERATIONS))
+                if status == STATUS_OK:
+                    return self._finish(st, s_out, u, norm, total_it, deadline)
         if status != STATUS_OK and st.mode == "grounded" and u[0] < 1e-4:
             return StaticResult.failed(
                 s_out, STATUS_NO_SOLUTION,
@@ -1003,6 +1107,25 @@ class ShootingSolver:
                 "straight laid part and a vertical hanging part can take, so it would pile "
                 "on the seabed; there is no taut static shape)",
                 iterations=total_it, residual=norm)
+        if status != STATUS_OK and st.mode == "grounded" and st.far.kind == "force":
+            assert st.far.force is not None
+            lift = float(st.far.force[2]) + sum(max(0.0, p[2]) for p in st.line.att_force)
+            if lift <= 0.0:
+                return StaticResult.failed(
+                    s_out, STATUS_NO_SOLUTION,
+                    f"the force at the free end (vertical component {st.far.force[2]:.6g} N) "
+                    "and the attachments do not lift the line off the seabed: it would be "
+                    "pulled into the seabed", iterations=total_it, residual=norm)
+        if status != STATUS_OK and st.mode == "grounded" and u[2] > 0.0:
+            L = st.line.length
+            near = [x for x in st.line.att_s if abs(x - u[2] * L) < 0.02 * L]
+            if near:
+                return StaticResult.failed(
+                    s_out, status,
+                    f"the touchdown point runs into the attachment at s = {near[0]:.6g} m "
+                    "(from the seabed end): a point load resting on the seabed at the "
+                    "touchdown point, with a kink in the line there, is not modelled; "
+                    f"{msg}", iterations=total_it, residual=norm)
         if status != STATUS_OK:
             hint = ("; no equilibrium above the seabed may exist for these end conditions"
                     if st.mode == "grounded" else "")
@@ -1039,6 +1162,11 @@ class ShootingSolver:
                         s_out, status_t,
                         f"current-speed continuation failed at {trial:.3g} of the current: "
                         f"{msg_t}", iterations=total_it, residual=norm_t)
+        return self._finish(st, s_out, u, norm, total_it, deadline)
+
+    def _finish(self, st: _Setup, s_out: np.ndarray, u: np.ndarray, norm: float,
+                total_it: int, deadline: float | None) -> StaticResult:
+        """The converged shot again, with dense output, sampled at the output nodes."""
         integ = _Integrator(st.line, st.env, rtol=self.rtol, force_scale=st.force_scale,
                             deadline=deadline)
         try:
@@ -1089,8 +1217,9 @@ class ShootingSolver:
                 return StaticResult.failed(
                     s_out, STATUS_NO_SOLUTION,
                     f"the line passes {below:.4g} m below the seabed; the shooting solver "
-                    "models seabed contact only from a fixed end on the seabed (touchdown "
-                    "integration)", iterations=iterations, residual=residual)
+                    "models seabed contact only from a fixed end on the seabed (within "
+                    "1e-6 of the line length; touchdown integration)",
+                    iterations=iterations, residual=residual)
         return StaticResult(
             s=s_out, position=position, tension=tension, force_a=force_a, force_b=force_b,
             laid_length=float(laid), status=STATUS_OK, message="", iterations=iterations,

@@ -294,6 +294,24 @@ def test_convergence_as_rtol_is_tightened() -> None:
     assert errors[2] < 1e-9
 
 
+def test_touchdown_with_drag_converged_to_1e8() -> None:
+    """A grounded line with friction in a turning current (the shooting map is
+    ill-conditioned: a small change of the touchdown tension moves the far end a lot):
+    the default solver agrees with rtol = 1e-13 to 1e-8 of the length and tension, the
+    accuracy the comparison with the semi-analytic solver needs (1e-6)."""
+    line = make_line([600.0], 200.0, 1e9, diameter=0.1, drag_tangential=0.01)
+    problem = StaticProblem(line=line, medium=medium(depth=200.0, friction=0.5,
+                                                     current=TURNING),
+                            end_a=fixed([0, 0, -200]), end_b=fixed([500.0, 100.0, 0.0]),
+                            n_nodes=61, tolerance=1e-12)
+    ref = solve(problem, ShootingSolver(rtol=1e-13))
+    res = solve(problem)
+    assert res.laid_length > 100.0
+    assert np.max(np.abs(res.position - ref.position)) < 1e-8 * 600.0
+    assert np.max(np.abs(res.tension - ref.tension)) < 1e-8 * ref.tension.max()
+    assert abs(res.laid_length - ref.laid_length) < 1e-8 * 600.0
+
+
 # ----------------------------------------------------------------------------------
 # invariances
 
@@ -547,3 +565,80 @@ sweep:
     y_b = np.abs(ds["y"].values[:, -1])
     assert y_b[1] > y_b[0] + 1.0                          # the current pushes it sideways
     assert np.all(ds["static_iterations"].values >= 0)
+
+
+# ----------------------------------------------------------------------------------
+# installation (vaz-patel seed: pay-out speed and touchdown velocity)
+
+
+def test_installation_payout_adds_mu_v_squared() -> None:
+    """A cable paid out at speed V along itself in still water, with no tangential drag
+    (the relative flow is tangential, so normal drag is zero): with EA -> infinity the
+    normal equations hold T - mu V^2 in place of T (seed eqs. 4b-4c), the tangential one
+    is unchanged, so T - mu V^2 solves the static equations: the shape is the static
+    catenary between the same points and T = T_static + mu V^2, mu = m + Cm rho pi d^2/4
+    (structural plus normal added mass per length)."""
+    L, w, EA, d, V = 150.0, 30.0, 1e15, 0.05, 5.0
+    line = make_line([L], w, EA, diameter=d, drag_normal=1.2, drag_tangential=0.0)
+    mass = 4.0  # make_line sets 1 kg/m; use a line with 4 kg/m
+    line = LineModel(**{**line.__dict__, "mass": np.array([mass])})
+    pb = [80.0, 30.0, -10.0]
+    problem = StaticProblem(line=line, medium=medium(), end_a=fixed([0, 0, 0]),
+                            end_b=fixed(pb), n_nodes=31, payout_speed=V)
+    res = solve(problem)
+    exact = solve_between(np.zeros(3), np.array(pb), L, w, EA, res.s, tolerance=1e-14)
+    mu_v2 = (mass + 1.0 * 1025.0 * math.pi * d * d / 4.0) * V * V
+    assert mu_v2 > 0.1 * exact.tension.min()  # a large effect
+    assert np.max(np.abs(res.position - exact.position)) < 1e-9 * L
+    assert np.max(np.abs(res.tension - (exact.tension + mu_v2))) < 1e-9 * exact.tension.max()
+
+
+def test_installation_tangential_drag_and_frame_velocity() -> None:
+    """A cable hanging vertically from A with a weight force at B, hauled in from B
+    towards A at speed V (negative pay-out is laying, positive is towards A): the water
+    flows down along it, the tangential drag (dodaran eq. 39) pi/2 rho Ct d V^2 adds to
+    the weight, T_A = T_B + (w + pi/2 rho Ct d V^2) L. And a laying frame moving at V0
+    in a current U is the same as a frame at rest in the current U - V0."""
+    L, w, d, ct, V = 200.0, 15.0, 0.04, 0.02, 2.0
+    line = make_line([L], w, 1e15, diameter=d, drag_normal=1.2, drag_tangential=ct)
+    res = solve(StaticProblem(line=line, medium=medium(), end_a=fixed([0, 0, 0]),
+                              end_b=force([0, 0, -1000.0]), n_nodes=11, payout_speed=V))
+    drag = 0.5 * math.pi * 1025.0 * ct * d * V * V
+    assert abs(res.tension[0] - (1000.0 + (w + drag) * L)) < 1e-9 * w * L
+    assert np.max(np.abs(res.position[:, :2])) < 1e-9 * L
+
+    v0 = np.array([0.4, -0.3, 0.0])
+    moving = solve(StaticProblem(line=line, medium=medium(current=TURNING), end_a=fixed(
+        [0, 0, -150]), end_b=fixed([120, 40, 0]), n_nodes=21, touchdown_velocity=v0))
+    turning = medium(current=TURNING)
+    rest_medium = Medium(density=1025.0, gravity=9.80665, current_z=turning.current_z,
+                         current_velocity=turning.current_velocity - v0)
+    rest = solve(StaticProblem(line=line, medium=rest_medium, end_a=fixed([0, 0, -150]),
+                               end_b=fixed([120, 40, 0]), n_nodes=21))
+    assert np.max(np.abs(moving.position - rest.position)) < 1e-10 * 200.0
+    assert np.allclose(moving.force_a, rest.force_a, atol=1e-10 * np.abs(rest.force_a).max())
+
+
+def test_installation_config_rejected_by_solvers_without_it() -> None:
+    """The exact-catenary solver lists installation among what it cannot do (a config
+    error before any work), the shooting solver supports it."""
+    problem = StaticProblem(line=make_line([100.0], 10.0, 1e8), medium=medium(density=0.0),
+                            end_a=fixed([0, 0, 0]), end_b=fixed([90, 0, 0]), payout_speed=1.0)
+    assert any("installation" in m for m in STATIC_SOLVERS["analytic"].unsupported(problem))
+    assert SOLVER.unsupported(problem) == []
+
+
+def test_weightless_line_in_a_current() -> None:
+    """A weightless slack line has no still-water shape, so the solver goes straight to
+    the full current: in a uniform current across the chord the line bows downstream,
+    symmetric about its mid-point (the ends exchange roles under a reflection through
+    the mid-height plane), with the whole drag taken by the ends along the current."""
+    line = make_line([100.0], 0.0, 1e8, diameter=0.05, drag_normal=1.2)
+    res = solve(StaticProblem(line=line, medium=medium(current=[(0.0, 0.5, 0.0)]),
+                              end_a=fixed([0, 0, 0]), end_b=fixed([0, 0, -90]), n_nodes=41))
+    scale = float(np.linalg.norm(res.force_a))
+    assert res.force_a[0] > 0.1 * scale                       # pulled downstream
+    assert np.allclose(res.force_a[[0, 1]], res.force_b[[0, 1]], atol=1e-8 * scale)
+    assert abs(res.force_a[2] + res.force_b[2]) < 1e-8 * scale
+    mirrored = res.position[::-1] * np.array([1.0, 1.0, -1.0]) + np.array([0.0, 0.0, -90.0])
+    assert np.max(np.abs(mirrored - res.position)) < 1e-8 * 100.0

@@ -37,7 +37,8 @@ def test_table1_ha_cable_is_consistent_with_buoyancy() -> None:
 def results(tmp_path_factory: pytest.TempPathFactory) -> dict[str, xr.Dataset]:
     out = tmp_path_factory.mktemp("vaz-patel")
     data = {}
-    for name in ("vaz-patel-segmented-mooring", "vaz-patel-turning-current"):
+    for name in ("vaz-patel-segmented-mooring", "vaz-patel-turning-current",
+                 "vaz-patel-cable-installation"):
         assert main(["run", str(CONFIGS / f"{name}.yaml"), "--out", str(out)]) == 0
         data[name] = xr.load_dataset(out / f"{name}.nc")
     return data
@@ -96,12 +97,39 @@ def test_turning_current_cable(results: dict[str, xr.Dataset]) -> None:
     assert np.allclose(-fb[:, 2], w * suspended, rtol=0.05)
 
 
+def test_cable_installation(results: dict[str, xr.Dataset]) -> None:
+    """Steady laying, seen from the ship: the water flows aft at the ship speed, so
+    above the touchdown point the suspended cable turns from the horizontal towards
+    Pode's critical angle for that flow, cos(phi)/sin^2(phi) = 1/2 rho Cn d U^2 / w
+    (42.9 deg), which attracts it as the tension grows (the deviation decays like a
+    power of the tension, slowly here since T grows by only ~30 % over the upper half):
+    the angle rises monotonically, stays below phi and ends within 2 deg of it at the
+    ship; the ship's horizontal force is held; a transverse current pushes the cable
+    sideways, more for a faster current."""
+    ds = results["vaz-patel-cable-installation"]
+    assert ds["status"].values.tolist() == [0, 0, 0, 0], ds["message"].values
+    still = ds.isel(speed=0)
+    k = 0.5 * 1025.0 * 1.649 * 0.0332 * 1.0**2 / 17.76
+    phi = math.acos((-1.0 + math.sqrt(1.0 + 4.0 * k * k)) / (2.0 * k))
+    z = still["z"].values
+    upper = z > -500.0
+    dx = np.diff(still["x"].values)[upper[1:]]
+    dz = np.diff(z)[upper[1:]]
+    angle = np.arctan2(dz, dx)
+    assert np.all(np.diff(angle) > 0.0) and np.all(angle < phi)
+    assert phi - angle[-1] < math.radians(2.0)
+    assert np.allclose(ds["force_b"].values[:, 0], -25000.0, rtol=1e-8)
+    y_ship = ds["y"].values[:, -1]
+    assert abs(y_ship[0]) < 1e-6 and np.all(np.diff(y_ship) > 50.0)
+
+
 def test_figures_build(results: dict[str, xr.Dataset], tmp_path: Path) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
     from cablestudy.figures import vaz_patel_figures
 
-    for builder in (vaz_patel_figures.mooring, vaz_patel_figures.turning_current):
+    for builder in (vaz_patel_figures.mooring, vaz_patel_figures.turning_current,
+                    vaz_patel_figures.cable_installation):
         path = builder(results, tmp_path)
         assert path.exists() and path.stat().st_size > 10_000
