@@ -60,11 +60,21 @@ CASES = [
 ]
 
 
+#: (geometry, method) pairs where a method may honestly fail, and why. The default
+#: method ('catenary') and the exact one must converge everywhere.
+SINGULAR_FOR = {
+    ("vertical-folded", "shooting"): "a zero-span fold has zero tension at the fold point, "
+    "where the angle form of the equilibrium ODE is singular (with 1 mm of span it converges)",
+}
+
+
 @pytest.mark.parametrize(("name", "overrides", "method"), CASES)
 def test_extreme_static_case(name: str, overrides: dict, method: str) -> None:
     data = study_dict(method=method, **overrides)
     rec = evaluate(data)
     assert_honest(rec)
+    if (name, method) in SINGULAR_FOR and rec.status != 0:
+        return  # an honest failure with a message (assert_honest) is the right answer
     assert rec.status == 0, f"{name}/{method}: {rec.message}"
     seg = data["line"]["segments"][0]
     rho = 1025.0
