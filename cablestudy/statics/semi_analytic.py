@@ -41,7 +41,6 @@ from .base import (
     STATUS_NO_SOLUTION,
     STATUS_NOT_CONVERGED,
     STATUS_NUMERICAL,
-    STATUS_OK,
     STATUS_TIME_LIMIT,
     EndCondition,
     LineModel,
@@ -743,8 +742,9 @@ class SemiAnalyticSolver:
         if plane is not None:
             for label, pos in (("A", ends.rA), ("B", ends.rB)):
                 if pos is not None and float(plane.height_above(pos)) < -1e-6 * L:
-                    raise _Failure(STATUS_NO_SOLUTION, f"end {label if not reverse else 'AB'[label == 'A']} "
-                                   f"lies {-float(plane.height_above(pos)):.4g} m below the seabed")
+                    name = label if not reverse else ("B" if label == "A" else "A")
+                    raise _Failure(STATUS_NO_SOLUTION, f"end {name} lies "
+                                   f"{-float(plane.height_above(pos)):.4g} m below the seabed")
             grounded = float(plane.height_above(ends.rA)) <= 1e-6 * L
         has_current = medium.has_current and medium.density > 0.0 and bool(
             np.any(line.diameter * (line.drag_normal + line.drag_tangential) > 0.0))
@@ -838,8 +838,9 @@ class SemiAnalyticSolver:
     def _regularised(lay: Layout, q: np.ndarray, ends: Ends, tol: float, maxit: int,
                      deadline: float | None, polish: bool, failure: _Failure) -> Shape:
         """Retry a line with unloaded (weightless) pieces with a small weight on them,
-        reduced from 1e-2 to 1e-10 (at least 1e-6) of the point loads per length. A weightless piece that goes slack has no
-        determined shape and its energy a kink at zero tension where Newton stalls; the
+        reduced from 1e-2 to 1e-10 (at least 1e-6) of the point loads per length. A
+        weightless piece that goes slack has no determined shape and its energy a kink at
+        zero tension where Newton stalls; the
         light chain is its physical limit; the end forces change by that fraction of the
         loads (1e-10 to 1e-6)."""
         unloaded = np.linalg.norm(q, axis=1) == 0.0

@@ -73,7 +73,8 @@ def test_mooring_end_meets_its_height_and_horizontal_force() -> None:
     """Mooring (seed 3.3): known horizontal force on the line at B and B's height."""
     Fh = np.array([800.0, -300.0, 0.0])
     prob = StaticProblem(line=make_line([120.0], [30.0], 1e8), medium=WATER,
-                         end_a=fixed(0, 0, -80), end_b=EndCondition(kind="mooring", force=Fh, z=0.0),
+                         end_a=fixed(0, 0, -80),
+                         end_b=EndCondition(kind="mooring", force=Fh, z=0.0),
                          tolerance=1e-11)
     res = SOLVER.solve(prob)
     assert res.status == STATUS_OK, res.message
@@ -110,7 +111,8 @@ def test_still_water_pays_for_no_drag_loop(kind: str) -> None:
 def test_drag_dominated_light_tether_converges(rb: tuple[float, float, float]) -> None:
     """2 m/s on a 0.5 N/m tether (normal drag ~ 100 times the weight): the drag loop
     converges to the tolerance and the forces balance weight plus drag."""
-    prob = StaticProblem(line=make_line([100.0], [0.5], 1e6, diameter=0.02), medium=current(2.0, 30),
+    prob = StaticProblem(line=make_line([100.0], [0.5], 1e6, diameter=0.02),
+                         medium=current(2.0, 30),
                          end_a=fixed(0, 0, 0), end_b=fixed(*rb), tolerance=1e-9, n_nodes=51)
     res = SOLVER.solve(prob)
     assert res.status == STATUS_OK, res.message
@@ -120,7 +122,8 @@ def test_drag_dominated_light_tether_converges(rb: tuple[float, float, float]) -
 
     chord = np.diff(res.position, axis=0)
     lc = np.linalg.norm(chord, axis=1)
-    f = drag_per_length(np.array([2.0 * math.cos(math.radians(30)), 2.0 * math.sin(math.radians(30)), 0.0]),
+    heading = math.radians(30)
+    f = drag_per_length(np.array([2.0 * math.cos(heading), 2.0 * math.sin(heading), 0.0]),
                         chord / lc[:, None], density=1025.0, diameter=np.full(50, 0.02),
                         drag_normal=np.full(50, 1.2), drag_tangential=np.full(50, 0.01))
     total = (f * lc[:, None]).sum(axis=0) + np.array([0, 0, -0.5 * 100.0])
@@ -166,7 +169,8 @@ def test_weightless_slack_line_fails_with_a_message() -> None:
 def test_weightless_taut_line_is_a_straight_bar() -> None:
     res = SOLVER.solve(StaticProblem(line=make_line([100.0], [0.0], 1e6),
                                      medium=Medium(density=0.0, gravity=9.8),
-                                     end_a=fixed(0, 0, 0), end_b=fixed(60, 0, 80.1), tolerance=1e-12))
+                                     end_a=fixed(0, 0, 0), end_b=fixed(60, 0, 80.1),
+                                     tolerance=1e-12))
     assert res.status == STATUS_OK, res.message
     T = 1e6 * (math.hypot(60, 80.1) / 100 - 1)
     assert np.linalg.norm(res.force_a) == pytest.approx(T, rel=1e-10)

@@ -65,7 +65,8 @@ def test_exact_elastic_catenary(name: str) -> None:
     1e-10 relative to the largest force / the length."""
     rb, w = GEOMETRIES[name]
     L, EA = 100.0, 6.283e7
-    prob = StaticProblem(line=make_line([L], [w], EA), medium=Medium(density=1.225, gravity=9.80665),
+    air = Medium(density=1.225, gravity=9.80665)
+    prob = StaticProblem(line=make_line([L], [w], EA), medium=air,
                          end_a=fixed(0, 0, 0), end_b=fixed(*rb), n_nodes=101, tolerance=1e-12)
     res = SOLVER.solve(prob)
     assert res.status == 0, res.message
@@ -202,11 +203,12 @@ def test_pode_critical_angle_of_a_towed_cable() -> None:
 
 def _seabed_reference(L: float, w: float, EA: float, h: float, X: float, mu: float) -> tuple[
         float, float]:
-    """Independent derivation (nested root finds) for a uniform elastic line anchored on a flat seabed, top
-    end at horizontal distance X and height h above the anchor (Faltinsen 1990, ch. 8,
-    with elasticity): unknown H and suspended length Ls,
+    """Independent derivation (nested root finds) for a uniform elastic line anchored on
+    a flat seabed, top end at horizontal distance X and height h above the anchor
+    (Faltinsen 1990, ch. 8, with elasticity): unknown H and suspended length Ls,
 
-        x_s = Ls H/EA + (H/w) asinh(w Ls / H),   z_s = w Ls^2/(2 EA) + (H/w)(sqrt(1 + (w Ls/H)^2) - 1),
+        x_s = Ls H/EA + (H/w) asinh(w Ls / H),
+        z_s = w Ls^2/(2 EA) + (H/w)(sqrt(1 + (w Ls/H)^2) - 1),
 
     laid part Lb = L - Ls with tension max(0, H - mu w (Lb - s)), so its stretch is
     Lb (H - mu w Lb / 2) / EA, or H^2 / (2 mu w EA) when friction exhausts it."""
