@@ -306,3 +306,101 @@ def solve_cases(ell: np.ndarray, EA: np.ndarray, w: np.ndarray, point: np.ndarra
             tension[c, i] = math.sqrt(tx * tx + ty * ty + tzs * tzs)
         tension[c, 0] = math.sqrt(TA[0] ** 2 + TA[1] ** 2 + TA[2] ** 2)
         tension[c, n - 1] = math.sqrt(TL_out[c, 0] ** 2 + TL_out[c, 1] ** 2 + TL_out[c, 2] ** 2)
+
+
+@njit(cache=True)
+def _piece_general(tx: float, ty: float, tz: float, qx: float, qy: float, qz: float,
+                   ell: float, EA: float, dr: np.ndarray, jac: np.ndarray,
+                   want_jac: bool) -> float:
+    """One piece under a constant load q of any direction (:func:`.pieces.piece_integrals`
+    for one piece): writes ``dr`` (3,), ``jac`` (3, 3) if asked; returns the energy."""
+    w = math.sqrt(qx * qx + qy * qy + qz * qz)
+    if w > 0.0:
+        ux, uy, uz = -qx / w, -qy / w, -qz / w
+    else:
+        ux, uy, uz = 0.0, 0.0, 0.0
+    V0 = tx * ux + ty * uy + tz * uz
+    hx, hy, hz = tx - V0 * ux, ty - V0 * uy, tz - V0 * uz
+    H2 = hx * hx + hy * hy + hz * hz
+    wl = w * ell
+    V1 = V0 + wl
+    T0n = math.sqrt(H2 + V0 * V0)
+    T1n = math.sqrt(H2 + V1 * V1)
+    a = abs(V0)
+    b = abs(V1)
+    H = math.sqrt(H2)
+    if ell == 0.0:
+        for i in range(3):
+            dr[i] = 0.0
+            if want_jac:
+                for j in range(3):
+                    jac[i, j] = 0.0
+        return 0.0
+    Dn = b * T0n + a * T1n
+    if w > 0.0 and V0 * V1 > 0.0:
+        X = (b - a) * (b + a) / Dn
+        Pl = ell * (a + b) / Dn * _asinh_ratio(X)
+        A1 = 0.5 * ell * (V0 + V1) * (V0 * V0 + V1 * V1 + H2) / (V1 * T1n + V0 * T0n)
+        A1 += 0.5 * H2 * Pl
+        H2J = H2 * ell * (a + b) / (T0n * T1n * Dn)
+    elif w > 0.0 and wl > 0.0:
+        Hs = max(H, 1e-200 * (a + b))
+        Pl = ell * (math.asinh(V1 / Hs) - math.asinh(V0 / Hs)) / wl
+        A1 = 0.5 * ell * (V1 * T1n - V0 * T0n) / wl + 0.5 * H2 * Pl
+        H2J = ell * (V1 / T1n - V0 / T0n) / wl
+    else:
+        Pl = ell / T0n
+        A1 = ell * T0n
+        H2J = H2 * ell / (T0n * T0n * T0n)
+    S1 = ell * (V0 + V1) / (T0n + T1n)
+    inv_ea = ell / EA
+    e2 = 0.5 * ell * inv_ea
+    dr[0] = tx * inv_ea - qx * e2 + hx * Pl + ux * S1
+    dr[1] = ty * inv_ea - qy * e2 + hy * Pl + uy * S1
+    dr[2] = tz * inv_ea - qz * e2 + hz * Pl + uz * S1
+    TT = tx * tx + ty * ty + tz * tz
+    Tq = tx * qx + ty * qy + tz * qz
+    energy = A1 + (TT * ell - Tq * ell * ell + w * w * ell ** 3 / 3.0) / (2.0 * EA)
+    if want_jac:
+        L1H = ell * (V0 + V1) * H / ((T0n + T1n) * T0n * T1n)
+        K = Pl - H2J
+        if H > 0.0:
+            nx, ny, nz = hx / H, hy / H, hz / H
+        else:
+            nx, ny, nz = 0.0, 0.0, 0.0
+        n = (nx, ny, nz)
+        u = (ux, uy, uz)
+        diag = inv_ea + Pl
+        for i in range(3):
+            for j in range(i, 3):
+                v = -H2J * n[i] * n[j] - L1H * (n[i] * u[j] + u[i] * n[j]) - K * u[i] * u[j]
+                if i == j:
+                    v += diag
+                jac[i, j] = v
+                jac[j, i] = v
+    return energy
+
+
+@njit(cache=True)
+def line_sums(TA: np.ndarray, C: np.ndarray, q: np.ndarray, ell: np.ndarray, EA: np.ndarray,
+              dr_out: np.ndarray, r: np.ndarray, J: np.ndarray, want_jac: bool) -> float:
+    """Sum over the pieces of a line with T(start of piece p) = T_A - C[p]: increments
+    per piece into ``dr_out`` (P, 3), their sum into ``r`` (3,), the summed flexibility
+    into ``J`` (3, 3); returns the complementary energy."""
+    dr = np.zeros(3)
+    jac = np.zeros((3, 3))
+    for k in range(3):
+        r[k] = 0.0
+        for m in range(3):
+            J[k, m] = 0.0
+    E = 0.0
+    for p in range(ell.shape[0]):
+        E += _piece_general(TA[0] - C[p, 0], TA[1] - C[p, 1], TA[2] - C[p, 2], q[p, 0],
+                            q[p, 1], q[p, 2], ell[p], EA[p], dr, jac, want_jac)
+        for k in range(3):
+            dr_out[p, k] = dr[k]
+            r[k] += dr[k]
+            if want_jac:
+                for m in range(3):
+                    J[k, m] += jac[k, m]
+    return E

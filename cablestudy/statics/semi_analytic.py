@@ -47,6 +47,7 @@ from .base import (
     StaticProblem,
     StaticResult,
 )
+from . import _fast
 from .pieces import piece_integrals
 from .seabed import LaidPart, Plane, laid_part
 
@@ -303,11 +304,24 @@ def solve_free(lay: Layout, q: np.ndarray, ends: Ends, TA: np.ndarray, *, tol: f
 
     last: list[np.ndarray] = []
 
-    def evaluate(T: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
-        dr, jac, en = piece_integrals(T - C, q, lay.ell, lay.EA)
-        assert jac is not None
-        last[:] = [dr]
-        return dr.sum(axis=0), jac.sum(axis=0), float(en.sum())
+    if _fast.AVAILABLE:
+        qc = np.ascontiguousarray(q, dtype=float)
+        Cc = np.ascontiguousarray(C)
+
+        def evaluate(T: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+            dr = np.empty((len(lay.ell), 3))
+            r = np.empty(3)
+            J = np.empty((3, 3))
+            E = _fast.line_sums(np.ascontiguousarray(T, dtype=float), Cc, qc, lay.ell, lay.EA,
+                                dr, r, J, True)
+            last[:] = [dr]
+            return r, J, E
+    else:
+        def evaluate(T: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+            dr, jac, en = piece_integrals(T - C, q, lay.ell, lay.EA)
+            assert jac is not None
+            last[:] = [dr]
+            return dr.sum(axis=0), jac.sum(axis=0), float(en.sum())
 
     r, J, E = evaluate(TA)
     dr_acc = last[0]
