@@ -37,6 +37,7 @@ import numpy as np
 
 from ..physics.current import current_velocity
 from ..physics.hydro import drag_per_length
+from . import _fast
 from .base import (
     STATUS_NO_SOLUTION,
     STATUS_NOT_CONVERGED,
@@ -47,7 +48,6 @@ from .base import (
     StaticProblem,
     StaticResult,
 )
-from . import _fast
 from .pieces import piece_integrals
 from .seabed import LaidPart, Plane, laid_part
 
