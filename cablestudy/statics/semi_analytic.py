@@ -404,7 +404,7 @@ def _suspended(lay: Layout, q: np.ndarray, s_td: float) -> tuple[
 def _laid(lay: Layout, s_td: float, T_td: np.ndarray, plane: Plane) -> LaidPart:
     tn = float(np.linalg.norm(T_td))
     e = T_td / tn if tn > 0.0 else plane.basis[0]
-    mask = lay.bounds < s_td
+    mask = (lay.bounds < s_td) & np.any(lay.point != 0.0, axis=1)
     return laid_part(s_td, tn, e, lay.bounds, lay.weight, lay.EA, lay.bounds[mask],
                      lay.point[mask], plane)
 
@@ -574,7 +574,7 @@ def solve_contact(lay: Layout, q: np.ndarray, ends: Ends, plane: Plane, guess: t
             step = -np.linalg.lstsq(Jm, R, rcond=None)[0]
         lam = 1.0
         norm0 = float(np.linalg.norm(R))
-        for _ in range(60):
+        for _ in range(40):
             yn = y + lam * step
             # keep the TDP on the line and the tension positive
             yn[2] = min(max(yn[2], 0.0), L * (1.0 - 1e-9))
@@ -596,6 +596,12 @@ def solve_contact(lay: Layout, q: np.ndarray, ends: Ends, plane: Plane, guess: t
                            f"(residual {res:.3g}){hint}", it, res)
         y, R, Jm = yn, Rn, Jn
         res = float(np.max(np.abs(R)))
+        if float(np.linalg.norm(y[:2])) < 1e-9 * Fscale and res > tol:
+            raise _Failure(STATUS_NO_SOLUTION, "the tension at the touchdown point tends to "
+                           "zero: the line is longer than the straight path along the seabed "
+                           "and up to B (or the current pushes it back towards the anchor), so "
+                           "it lies slack on the seabed and its laid shape is not determined",
+                           it, res)
         if y[2] <= 0.0:
             at_zero += 1
             if at_zero >= 2:
@@ -918,9 +924,11 @@ class SemiAnalyticSolver:
                 last = exc
                 state.TA, state.contact = saved_TA, saved_contact
                 state.notes.append(exc.message)
+                if exc.status == STATUS_NO_SOLUTION and n_steps > 1:
+                    break  # confirmed with continuation: no static solution
         assert last is not None
         raise _Failure(last.status, f"drag iteration failed even with current-speed "
-                       f"continuation in {attempts[-1]} steps: {last.message}", 0, last.residual)
+                       f"continuation in {n_steps} steps: {last.message}", 0, last.residual)
 
     def _drag_fixed_point(self, lay: Layout, grav: np.ndarray, drag: DragModel, D: np.ndarray,
                           factor: float, inner, tol: float, Fscale: float,  # noqa: ANN001

@@ -220,3 +220,29 @@ def test_sloped_seabed_laid_part_lies_on_the_slope() -> None:
     assert np.count_nonzero(taut) > 10
     assert np.allclose(dT[taut], rate * 1.0, rtol=1e-9)  # nodes 1 m apart
     assert res.tension[0] == 0.0 or res.tension[0] < 1e-6  # friction exhausts it
+
+
+@pytest.mark.parametrize("heading", [0.0, 90.0])
+def test_mooring_line_on_the_seabed_in_a_current(heading: float) -> None:
+    """Seabed contact and drag together: the laid part stays on the seabed and straight,
+    the anchor force lies in the seabed plane, and the line settles within tolerance."""
+    h = math.radians(heading)
+    med = Medium(density=1025.0, gravity=9.80665, depth=100.0, friction=0.3,
+                 current_z=np.array([0.0]),
+                 current_velocity=np.array([[math.cos(h), math.sin(h), 0.0]]))
+    prob = StaticProblem(line=make_line([300.0], [500.0], 5e8, diameter=0.1), medium=med,
+                         end_a=fixed(0, 0, -100), end_b=fixed(230, 0, 0), n_nodes=151)
+    res = SOLVER.solve(prob)
+    assert res.status == STATUS_OK, res.message
+    assert res.drag_iterations > 0 and res.residual <= prob.tolerance
+    assert 100.0 < res.laid_length < 250.0
+    laid = res.s < res.laid_length
+    assert np.allclose(res.position[laid, 2], -100.0, atol=1e-9 * 300)
+    assert np.all(res.position[:, 2] >= -100.0 - 1e-9 * 300)
+    assert abs(res.force_a[2]) <= 1e-9 * np.abs(res.force_b).max()
+    # the laid part is straight: its points lie on the line from the anchor to the TDP
+    pts = res.position[laid]
+    if len(pts) > 2:
+        d = pts[-1] - pts[0]
+        cross = np.cross(pts - pts[0], d / np.linalg.norm(d))
+        assert np.max(np.abs(cross)) <= 1e-8 * 300
