@@ -75,9 +75,23 @@ def solve_batch(problems: list[StaticProblem], *, deadline: float | None = None,
     for i, prob in enumerate(problems):
         res = results[i]
         if res is None or not res.success:
-            res = solver.solve(prob, deadline=deadline)
+            res = solver.solve(prob, deadline=deadline, compiled=False)
         out.append(res)
     return out
+
+
+def solve_compiled(problem: StaticProblem, *, deadline: float | None = None) -> StaticResult | None:
+    """One still-water problem through the compiled batch kernel, or None when it does
+    not take that path (or does not settle there)."""
+    if not _fast.AVAILABLE or not batchable(problem):
+        return None
+    line = problem.line
+    if line.length.size == 1 and line.attachment_s.size == 0:
+        lay, P = None, 1
+    else:
+        lay = make_layout(line)
+        P = len(lay.ell)
+    return _solve_group([problem], P, problem.n_nodes, [lay], deadline)[0]
 
 
 def _guess(d: np.ndarray, L: np.ndarray, Cend: np.ndarray, EA: np.ndarray,
@@ -174,8 +188,8 @@ def _solve_group(problems: list[StaticProblem], P: int, n_nodes: int, layouts: l
         TA[moor, 2] = np.where(Wz > 0.0, Vz, -0.5 * Wz)
     tol = np.array([p.tolerance for p in problems])
     maxit = np.array([p.max_iterations for p in problems])
-    s = np.linspace(0.0, 1.0, n_nodes)[None, :] * Ltot[:, None]
-    s[:, -1] = Ltot
+    # the same arc lengths as np.linspace(0, L, n) of the one-by-one path, bit for bit
+    s = np.linspace(np.zeros(N), Ltot, n_nodes, axis=1)
     if _fast.AVAILABLE and use_compiled:
         pos = np.empty((N, n_nodes, 3))
         tension = np.empty((N, n_nodes))

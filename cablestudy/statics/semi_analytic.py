@@ -713,7 +713,16 @@ class SemiAnalyticSolver:
     # ------------------------------------------------------------------ public
 
     def solve(self, problem: StaticProblem, *, deadline: float | None = None,
-              drag_elements: int | None = None) -> StaticResult:
+              drag_elements: int | None = None, compiled: bool = True) -> StaticResult:
+        """Solve ``problem``. A still-water free-hanging problem first takes the compiled
+        kernel of :mod:`.batch` (when numba is available and ``compiled``); anything it
+        does not settle takes the general path below, which gives the same answer."""
+        if compiled and _fast.AVAILABLE:
+            from .batch import solve_compiled
+
+            fast = solve_compiled(problem, deadline=deadline)
+            if fast is not None:
+                return fast
         line = problem.line
         L = line.total_length
         s = np.linspace(0.0, L, problem.n_nodes)
