@@ -37,7 +37,6 @@ import numpy as np
 
 from ..physics.current import current_velocity
 from ..physics.hydro import drag_per_length
-from . import _fast
 from .base import (
     STATUS_NO_SOLUTION,
     STATUS_NOT_CONVERGED,
@@ -303,6 +302,7 @@ def solve_free(lay: Layout, q: np.ndarray, ends: Ends, TA: np.ndarray, *, tol: f
     scale = max(L, float(np.linalg.norm(target)))
 
     last: list[np.ndarray] = []
+    from . import _fast
 
     if _fast.AVAILABLE:
         qc = np.ascontiguousarray(q, dtype=float)
@@ -717,6 +717,8 @@ class SemiAnalyticSolver:
         """Solve ``problem``. A still-water free-hanging problem first takes the compiled
         kernel of :mod:`.batch` (when numba is available and ``compiled``); anything it
         does not settle takes the general path below, which gives the same answer."""
+        from . import _fast  # numba is imported on first use, not with the package
+
         if compiled and _fast.AVAILABLE:
             from .batch import solve_compiled
 
