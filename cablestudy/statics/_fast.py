@@ -25,14 +25,14 @@ except ImportError:  # pragma: no cover - exercised only without numba
         return deco
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _asinh_ratio(X: float) -> float:
     if abs(X) < 1e-4:
         return 1.0 - X * X / 6.0
     return math.asinh(X) / X
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _piece(tx: float, ty: float, tz: float, w: float, ell: float, EA: float,
            dr: np.ndarray, jac: np.ndarray, want_jac: bool) -> float:
     """One piece under the vertical load q = (0, 0, -w) (w < 0 buoyant). Writes the
@@ -110,7 +110,7 @@ def _piece(tx: float, ty: float, tz: float, w: float, ell: float, EA: float,
     return energy
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _total(TA: np.ndarray, C: np.ndarray, w: np.ndarray, ell: np.ndarray, EA: np.ndarray,
            r: np.ndarray, J: np.ndarray, want_jac: bool) -> float:
     P = ell.shape[0]
@@ -132,7 +132,7 @@ def _total(TA: np.ndarray, C: np.ndarray, w: np.ndarray, ell: np.ndarray, EA: np
     return E
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _solve3(J: np.ndarray, g: np.ndarray, free: np.ndarray, step: np.ndarray) -> bool:
     """step = -J^-1 g on the free components (Gaussian elimination, partial pivoting)."""
     idx = np.empty(3, dtype=np.int64)
@@ -172,7 +172,7 @@ def _solve3(J: np.ndarray, g: np.ndarray, free: np.ndarray, step: np.ndarray) ->
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def solve_cases(ell: np.ndarray, EA: np.ndarray, w: np.ndarray, point: np.ndarray,
                 bounds: np.ndarray, kind: np.ndarray, rA: np.ndarray, target: np.ndarray,
                 TA0: np.ndarray, tol: np.ndarray, maxit: np.ndarray, s: np.ndarray,
@@ -308,7 +308,7 @@ def solve_cases(ell: np.ndarray, EA: np.ndarray, w: np.ndarray, point: np.ndarra
         tension[c, n - 1] = math.sqrt(TL_out[c, 0] ** 2 + TL_out[c, 1] ** 2 + TL_out[c, 2] ** 2)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _piece_general(tx: float, ty: float, tz: float, qx: float, qy: float, qz: float,
                    ell: float, EA: float, dr: np.ndarray, jac: np.ndarray,
                    want_jac: bool) -> float:
@@ -381,7 +381,7 @@ def _piece_general(tx: float, ty: float, tz: float, qx: float, qy: float, qz: fl
     return energy
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def line_sums(TA: np.ndarray, C: np.ndarray, q: np.ndarray, ell: np.ndarray, EA: np.ndarray,
               dr_out: np.ndarray, r: np.ndarray, J: np.ndarray, want_jac: bool) -> float:
     """Sum over the pieces of a line with T(start of piece p) = T_A - C[p]: increments
