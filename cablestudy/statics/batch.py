@@ -137,15 +137,16 @@ def _solve_group(problems: list[StaticProblem], P: int, n_nodes: int, layouts: l
     q = np.zeros((N, P, 3))
     point = np.zeros((N, P + 1, 3))
     bounds = np.empty((N, P + 1))
-    for i, prob in enumerate(problems):
-        lay = layouts[i]
-        if lay is None:
-            L = float(prob.line.length[0])
-            ell[i, 0] = L
-            EA[i, 0] = prob.line.axial_stiffness[0]
-            q[i, 0, 2] = -prob.line.weight[0]
-            bounds[i] = (0.0, L)
-        else:
+    if all(lay is None for lay in layouts):  # single segments, no attachments
+        lines = [p.line for p in problems]
+        ell[:, 0] = [ln.length[0] for ln in lines]
+        EA[:, 0] = [ln.axial_stiffness[0] for ln in lines]
+        q[:, 0, 2] = [-ln.weight[0] for ln in lines]
+        bounds[:, 0] = 0.0
+        bounds[:, 1] = ell[:, 0]
+    else:
+        for i, prob in enumerate(problems):
+            lay = layouts[i] if layouts[i] is not None else make_layout(prob.line)
             ell[i], EA[i], bounds[i], point[i] = lay.ell, lay.EA, lay.bounds, lay.point
             q[i, :, 2] = -lay.weight
     kind = np.array([p.end_b.kind for p in problems])
@@ -161,15 +162,16 @@ def _solve_group(problems: list[StaticProblem], P: int, n_nodes: int, layouts: l
     fixed = kind == "fixed"
     moor = kind == "mooring"
     force = kind == "force"
-    for i, prob in enumerate(problems):
-        b = prob.end_b
-        if b.kind == "fixed":
-            target[i] = np.asarray(b.position) - rA[i]
-        elif b.kind == "mooring":
-            target[i, 2] = float(b.z) - rA[i, 2]  # type: ignore[arg-type]
-            TA[i, :2] = np.asarray(b.force)[:2] + Cend[i, :2]
-        else:
-            TA[i] = np.asarray(b.force) + Cend[i]
+    if np.any(fixed):
+        target[fixed] = np.array([p.end_b.position for p, f in zip(problems, fixed, strict=True)
+                                  if f], dtype=float) - rA[fixed]
+    if np.any(moor):
+        mp = [p.end_b for p, m in zip(problems, moor, strict=True) if m]
+        target[moor, 2] = np.array([b.z for b in mp], dtype=float) - rA[moor, 2]
+        TA[moor, :2] = np.array([b.force[:2] for b in mp], dtype=float) + Cend[moor, :2]
+    if np.any(force):
+        TA[force] = np.array([p.end_b.force for p, f in zip(problems, force, strict=True) if f],
+                             dtype=float) + Cend[force]
     free[fixed] = True
     free[moor, 2] = True
     EAeff = Ltot / np.sum(ell / EA, axis=1)
@@ -213,13 +215,16 @@ def _solve_group(problems: list[StaticProblem], P: int, n_nodes: int, layouts: l
             & np.all(np.isfinite(tension), axis=1) & np.all(np.isfinite(TA), axis=1)
             & np.all(np.isfinite(TL), axis=1))
     out: list[StaticResult | None] = []
+    force_b = -TL
+    iters_l = iters.tolist()
+    resid_l = resid.tolist()
     for i, prob in enumerate(problems):
         if not good[i]:
             out.append(None)
             continue
         res = StaticResult(s=s[i], position=pos[i], tension=tension[i], force_a=TA[i],
-                           force_b=-TL[i], status=STATUS_OK, iterations=int(iters[i]),
-                           residual=float(resid[i]))
+                           force_b=force_b[i], status=STATUS_OK, iterations=iters_l[i],
+                           residual=resid_l[i])
         if prob.medium.depth is not None:
             med = prob.medium
             plane = Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
