@@ -777,6 +777,10 @@ class SemiAnalyticSolver:
                     raise _Failure(STATUS_NO_SOLUTION, f"end {name} lies "
                                    f"{-float(plane.height_above(pos)):.4g} m below the seabed")
             grounded = float(plane.height_above(ends.rA)) <= 1e-6 * L
+        if grounded and ends.kind == "fixed" and plane is not None:
+            assert ends.rB is not None
+            if float(plane.height_above(ends.rB)) <= 1e-6 * L:
+                return _laid_between(line, ends, plane, s_eval, s, reverse)
         has_current = medium.has_current and medium.density > 0.0 and bool(
             np.any(line.diameter * (line.drag_normal + line.drag_tangential) > 0.0))
         n_el = 0
@@ -1001,6 +1005,34 @@ class SemiAnalyticSolver:
         return Shape(s0=np.zeros(1), ell=np.array([L]), T0=(1e-150 * e)[None, :],
                      q=np.zeros((1, 3)), EA=np.array([1.0]), r0=ends.rA[None, :],
                      force_a=np.zeros(3), tension_end=np.zeros(3))
+
+
+def _laid_between(line: LineModel, ends: Ends, plane: Plane, s_eval: np.ndarray,
+                  s: np.ndarray, reverse: bool) -> StaticResult:
+    """Both ends fixed on the seabed: a line no longer than the distance between them
+    lies straight on the seabed with the uniform tension that stretches it to that
+    distance (the seabed carries its weight; friction is not mobilised in a uniform
+    stretch); a longer one lies slack, with no determined shape."""
+    assert ends.rB is not None
+    d = ends.rB - ends.rA
+    chord = float(np.linalg.norm(d))
+    L = line.total_length
+    flex = float(np.sum(line.length / line.axial_stiffness))  # stretch per newton [m/N]
+    if chord <= L:
+        raise _Failure(STATUS_NO_SOLUTION, f"both ends lie on the seabed {chord:.6g} m apart "
+                       f"and the line ({L:.6g} m) is not shorter: it lies slack on the seabed "
+                       "and its shape is not determined")
+    T = (chord - L) / flex
+    e = d / chord
+    bounds = line.segment_ends
+    stretched = np.concatenate(([0.0], np.cumsum(line.length * (1.0 + T / line.axial_stiffness))))
+    along = np.interp(s_eval, bounds, stretched)
+    pos = ends.rA + along[:, None] * e
+    force_a, force_b = T * e, -T * e
+    if reverse:
+        force_a, force_b = force_b, force_a
+    return StaticResult(s=s, position=pos, tension=np.full(len(s), T), force_a=force_a,
+                        force_b=force_b, laid_length=L, iterations=0, residual=0.0)
 
 
 def _td_tension(shape: Shape) -> np.ndarray:

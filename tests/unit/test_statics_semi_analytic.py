@@ -246,3 +246,20 @@ def test_mooring_line_on_the_seabed_in_a_current(heading: float) -> None:
         d = pts[-1] - pts[0]
         cross = np.cross(pts - pts[0], d / np.linalg.norm(d))
         assert np.max(np.abs(cross)) <= 1e-8 * 300
+
+
+def test_both_ends_on_the_seabed() -> None:
+    """Taut: the line lies straight on the seabed, stretched uniformly to the distance
+    between its ends (T = EA (d/L - 1) for one segment). Slack: a failure with a reason."""
+    med = Medium(density=1025.0, gravity=9.80665, depth=100.0, friction=0.3)
+    taut = SOLVER.solve(StaticProblem(line=make_line([240.0], [500.0], 5e8), medium=med,
+                                      end_a=fixed(0, 0, -100), end_b=fixed(150, 200, -100)))
+    assert taut.status == STATUS_OK, taut.message
+    T = 5e8 * (250.0 / 240.0 - 1.0)
+    assert np.allclose(taut.tension, T, rtol=1e-12) and taut.laid_length == 240.0
+    assert np.allclose(taut.force_a, T * np.array([0.6, 0.8, 0.0]), rtol=1e-12)
+    assert np.allclose(taut.position[:, 2], -100.0)
+    assert np.allclose(taut.position[-1], [150, 200, -100])
+    slack = SOLVER.solve(StaticProblem(line=make_line([300.0], [500.0], 5e8), medium=med,
+                                       end_a=fixed(0, 0, -100), end_b=fixed(150, 200, -100)))
+    assert slack.status != STATUS_OK and "slack on the seabed" in slack.message
