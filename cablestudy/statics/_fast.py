@@ -33,8 +33,17 @@ def _asinh_ratio(X: float) -> float:
 
 
 @njit(cache=True, error_model="numpy")
-def _piece(tx: float, ty: float, tz: float, w: float, ell: float, EA: float,
-           dr: np.ndarray, jac: np.ndarray, want_jac: bool) -> float:
+def _piece(
+    tx: float,
+    ty: float,
+    tz: float,
+    w: float,
+    ell: float,
+    EA: float,
+    dr: np.ndarray,
+    jac: np.ndarray,
+    want_jac: bool,
+) -> float:
     """One piece under the vertical load q = (0, 0, -w) (w < 0 buoyant). Writes the
     increment into ``dr`` (3,) and, if asked, the flexibility into ``jac`` (3, 3);
     returns the complementary energy."""
@@ -89,7 +98,7 @@ def _piece(tx: float, ty: float, tz: float, w: float, ell: float, EA: float,
     dr[1] = ty * inv_ea + ty * Pl
     dr[2] = tz * inv_ea - qz * 0.5 * ell * inv_ea + hz * Pl + uz * S1
     TT = tx * tx + ty * ty + tz * tz
-    energy = A1 + (TT * ell - tz * qz * ell * ell + w * w * ell ** 3 / 3.0) / (2.0 * EA)
+    energy = A1 + (TT * ell - tz * qz * ell * ell + w * w * ell**3 / 3.0) / (2.0 * EA)
     if want_jac:
         L1H = ell * (V0 + V1) * H / ((T0n + T1n) * T0n * T1n)
         K = Pl - H2J
@@ -111,8 +120,16 @@ def _piece(tx: float, ty: float, tz: float, w: float, ell: float, EA: float,
 
 
 @njit(cache=True, error_model="numpy")
-def _total(TA: np.ndarray, C: np.ndarray, w: np.ndarray, ell: np.ndarray, EA: np.ndarray,
-           r: np.ndarray, J: np.ndarray, want_jac: bool) -> float:
+def _total(
+    TA: np.ndarray,
+    C: np.ndarray,
+    w: np.ndarray,
+    ell: np.ndarray,
+    EA: np.ndarray,
+    r: np.ndarray,
+    J: np.ndarray,
+    want_jac: bool,
+) -> float:
     P = ell.shape[0]
     dr = np.zeros(3)
     jac = np.zeros((3, 3))
@@ -122,8 +139,17 @@ def _total(TA: np.ndarray, C: np.ndarray, w: np.ndarray, ell: np.ndarray, EA: np
             J[k, m] = 0.0
     E = 0.0
     for p in range(P):
-        E += _piece(TA[0] - C[p, 0], TA[1] - C[p, 1], TA[2] - C[p, 2], w[p], ell[p], EA[p], dr,
-                    jac, want_jac)
+        E += _piece(
+            TA[0] - C[p, 0],
+            TA[1] - C[p, 1],
+            TA[2] - C[p, 2],
+            w[p],
+            ell[p],
+            EA[p],
+            dr,
+            jac,
+            want_jac,
+        )
         for k in range(3):
             r[k] += dr[k]
             if want_jac:
@@ -173,11 +199,27 @@ def _solve3(J: np.ndarray, g: np.ndarray, free: np.ndarray, step: np.ndarray) ->
 
 
 @njit(cache=True, error_model="numpy")
-def solve_cases(ell: np.ndarray, EA: np.ndarray, w: np.ndarray, point: np.ndarray,
-                bounds: np.ndarray, kind: np.ndarray, rA: np.ndarray, target: np.ndarray,
-                TA0: np.ndarray, tol: np.ndarray, maxit: np.ndarray, s: np.ndarray,
-                pos: np.ndarray, tension: np.ndarray, TA_out: np.ndarray, TL_out: np.ndarray,
-                iters: np.ndarray, resid: np.ndarray, status: np.ndarray) -> None:
+def solve_cases(
+    ell: np.ndarray,
+    EA: np.ndarray,
+    w: np.ndarray,
+    point: np.ndarray,
+    bounds: np.ndarray,
+    kind: np.ndarray,
+    rA: np.ndarray,
+    target: np.ndarray,
+    TA0: np.ndarray,
+    tol: np.ndarray,
+    maxit: np.ndarray,
+    s: np.ndarray,
+    pos: np.ndarray,
+    tension: np.ndarray,
+    TA_out: np.ndarray,
+    TL_out: np.ndarray,
+    iters: np.ndarray,
+    resid: np.ndarray,
+    status: np.ndarray,
+) -> None:
     """Solve N cases of P pieces (arrays (N, P) / (N, P + 1, 3) ...) and sample them at
     ``s`` (N, n). ``kind`` 0 fixed B (target = rB - rA), 1 mooring (target[2] = zB - zA,
     TA0[:2] known), 2 force (TA0 = T_A). ``status`` 0 converged, 1 not."""
@@ -290,8 +332,17 @@ def solve_cases(ell: np.ndarray, EA: np.ndarray, w: np.ndarray, point: np.ndarra
         for i in range(n):
             si = s[c, i]
             while p < P - 1 and bounds[c, p + 1] <= si:
-                _piece(TA[0] - C[p, 0], TA[1] - C[p, 1], TA[2] - C[p, 2], w[c, p], ell[c, p],
-                       EA[c, p], dr, jac, False)
+                _piece(
+                    TA[0] - C[p, 0],
+                    TA[1] - C[p, 1],
+                    TA[2] - C[p, 2],
+                    w[c, p],
+                    ell[c, p],
+                    EA[c, p],
+                    dr,
+                    jac,
+                    False,
+                )
                 x0 += dr[0]
                 y0 += dr[1]
                 z0 += dr[2]
@@ -309,9 +360,19 @@ def solve_cases(ell: np.ndarray, EA: np.ndarray, w: np.ndarray, point: np.ndarra
 
 
 @njit(cache=True, error_model="numpy")
-def _piece_general(tx: float, ty: float, tz: float, qx: float, qy: float, qz: float,
-                   ell: float, EA: float, dr: np.ndarray, jac: np.ndarray,
-                   want_jac: bool) -> float:
+def _piece_general(
+    tx: float,
+    ty: float,
+    tz: float,
+    qx: float,
+    qy: float,
+    qz: float,
+    ell: float,
+    EA: float,
+    dr: np.ndarray,
+    jac: np.ndarray,
+    want_jac: bool,
+) -> float:
     """One piece under a constant load q of any direction (:func:`.pieces.piece_integrals`
     for one piece): writes ``dr`` (3,), ``jac`` (3, 3) if asked; returns the energy."""
     w = math.sqrt(qx * qx + qy * qy + qz * qz)
@@ -360,7 +421,7 @@ def _piece_general(tx: float, ty: float, tz: float, qx: float, qy: float, qz: fl
     dr[2] = tz * inv_ea - qz * e2 + hz * Pl + uz * S1
     TT = tx * tx + ty * ty + tz * tz
     Tq = tx * qx + ty * qy + tz * qz
-    energy = A1 + (TT * ell - Tq * ell * ell + w * w * ell ** 3 / 3.0) / (2.0 * EA)
+    energy = A1 + (TT * ell - Tq * ell * ell + w * w * ell**3 / 3.0) / (2.0 * EA)
     if want_jac:
         L1H = ell * (V0 + V1) * H / ((T0n + T1n) * T0n * T1n)
         K = Pl - H2J
@@ -382,8 +443,17 @@ def _piece_general(tx: float, ty: float, tz: float, qx: float, qy: float, qz: fl
 
 
 @njit(cache=True, error_model="numpy")
-def line_sums(TA: np.ndarray, C: np.ndarray, q: np.ndarray, ell: np.ndarray, EA: np.ndarray,
-              dr_out: np.ndarray, r: np.ndarray, J: np.ndarray, want_jac: bool) -> float:
+def line_sums(
+    TA: np.ndarray,
+    C: np.ndarray,
+    q: np.ndarray,
+    ell: np.ndarray,
+    EA: np.ndarray,
+    dr_out: np.ndarray,
+    r: np.ndarray,
+    J: np.ndarray,
+    want_jac: bool,
+) -> float:
     """Sum over the pieces of a line with T(start of piece p) = T_A - C[p]: increments
     per piece into ``dr_out`` (P, 3), their sum into ``r`` (3,), the summed flexibility
     into ``J`` (3, 3); returns the complementary energy."""
@@ -395,8 +465,19 @@ def line_sums(TA: np.ndarray, C: np.ndarray, q: np.ndarray, ell: np.ndarray, EA:
             J[k, m] = 0.0
     E = 0.0
     for p in range(ell.shape[0]):
-        E += _piece_general(TA[0] - C[p, 0], TA[1] - C[p, 1], TA[2] - C[p, 2], q[p, 0],
-                            q[p, 1], q[p, 2], ell[p], EA[p], dr, jac, want_jac)
+        E += _piece_general(
+            TA[0] - C[p, 0],
+            TA[1] - C[p, 1],
+            TA[2] - C[p, 2],
+            q[p, 0],
+            q[p, 1],
+            q[p, 2],
+            ell[p],
+            EA[p],
+            dr,
+            jac,
+            want_jac,
+        )
         for k in range(3):
             dr_out[p, k] = dr[k]
             r[k] += dr[k]

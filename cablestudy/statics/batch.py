@@ -32,8 +32,11 @@ def batchable(problem: StaticProblem) -> bool:
     line = problem.line
     if problem.end_a.kind != "fixed":
         return False
-    if med.has_current and med.density > 0.0 and bool(
-            np.any(line.diameter * (line.drag_normal + line.drag_tangential) > 0.0)):
+    if (
+        med.has_current
+        and med.density > 0.0
+        and bool(np.any(line.diameter * (line.drag_normal + line.drag_tangential) > 0.0))
+    ):
         return False
     if med.depth is not None:
         plane = Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
@@ -47,8 +50,12 @@ def batchable(problem: StaticProblem) -> bool:
     return True
 
 
-def solve_batch(problems: list[StaticProblem], *, deadline: float | None = None,
-                solver: SemiAnalyticSolver | None = None) -> list[StaticResult]:
+def solve_batch(
+    problems: list[StaticProblem],
+    *,
+    deadline: float | None = None,
+    solver: SemiAnalyticSolver | None = None,
+) -> list[StaticResult]:
     """Solve ``problems`` (any mix); batchable ones with equal piece and node counts are
     solved together, the others (and any batch case that fails or touches the seabed)
     one by one."""
@@ -67,9 +74,17 @@ def solve_batch(problems: list[StaticProblem], *, deadline: float | None = None,
             P = len(layouts[i].ell)
         groups.setdefault((P, prob.n_nodes), []).append(i)
     for (P, n_nodes), members in groups.items():
-        for i, res in zip(members, _solve_group([problems[i] for i in members], P, n_nodes,
-                                                 [layouts.get(i) for i in members], deadline),
-                          strict=True):
+        for i, res in zip(
+            members,
+            _solve_group(
+                [problems[i] for i in members],
+                P,
+                n_nodes,
+                [layouts.get(i) for i in members],
+                deadline,
+            ),
+            strict=True,
+        ):
             results[i] = res
     out = []
     for i, prob in enumerate(problems):
@@ -94,8 +109,9 @@ def solve_compiled(problem: StaticProblem, *, deadline: float | None = None) -> 
     return _solve_group([problem], P, problem.n_nodes, [lay], deadline)[0]
 
 
-def _guess(d: np.ndarray, L: np.ndarray, Cend: np.ndarray, EA: np.ndarray,
-           point0: np.ndarray) -> np.ndarray:
+def _guess(
+    d: np.ndarray, L: np.ndarray, Cend: np.ndarray, EA: np.ndarray, point0: np.ndarray
+) -> np.ndarray:
     """Vectorised starting T_A for fixed-fixed cases (same rule as
     :func:`.semi_analytic.initial_tension`)."""
     W = np.linalg.norm(Cend, axis=1)
@@ -109,16 +125,27 @@ def _guess(d: np.ndarray, L: np.ndarray, Cend: np.ndarray, EA: np.ndarray,
         l = np.linalg.norm(dh, axis=1)
         vertical = l <= 1e-12 * chord
         alt = np.cross(up, [1.0, 0.0, 0.0])
-        alt = np.where(np.linalg.norm(alt, axis=1)[:, None] < 0.5, np.cross(up, [0.0, 1.0, 0.0]),
-                       alt)
+        alt = np.where(
+            np.linalg.norm(alt, axis=1)[:, None] < 0.5, np.cross(up, [0.0, 1.0, 0.0]), alt
+        )
         alt = alt / np.linalg.norm(alt, axis=1)[:, None]
         e = np.where(vertical[:, None], alt, dh / np.where(vertical, 1.0, l)[:, None])
-        lam = np.where(L <= chord, 0.2, np.maximum(
-            np.sqrt(3.0 * np.maximum((L * L - h * h) / np.where(vertical, 1.0, l * l) - 1.0, 0.0)),
-            1e-3))
+        lam = np.where(
+            L <= chord,
+            0.2,
+            np.maximum(
+                np.sqrt(
+                    3.0 * np.maximum((L * L - h * h) / np.where(vertical, 1.0, l * l) - 1.0, 0.0)
+                ),
+                1e-3,
+            ),
+        )
         H = np.where(vertical, 0.0, w * l / (2.0 * lam))
-        VB = np.where(vertical, np.where(L > np.abs(h), 0.5 * w * (L + h), w * L + stretch),
-                      0.5 * w * (h / np.tanh(lam) + L))
+        VB = np.where(
+            vertical,
+            np.where(L > np.abs(h), 0.5 * w * (L + h), w * L + stretch),
+            0.5 * w * (h / np.tanh(lam) + L),
+        )
         taut = (chord > L) & ~vertical
         H = np.where(taut, np.maximum(H, stretch * l / chord), H)
         VB = np.where(taut, np.maximum(VB, stretch * h / chord + 0.5 * w * L), VB)
@@ -129,8 +156,14 @@ def _guess(d: np.ndarray, L: np.ndarray, Cend: np.ndarray, EA: np.ndarray,
     return TA
 
 
-def _solve_group(problems: list[StaticProblem], P: int, n_nodes: int, layouts: list,
-                 deadline: float | None, use_compiled: bool = True) -> list[StaticResult | None]:
+def _solve_group(
+    problems: list[StaticProblem],
+    P: int,
+    n_nodes: int,
+    layouts: list,
+    deadline: float | None,
+    use_compiled: bool = True,
+) -> list[StaticResult | None]:
     N = len(problems)
     ell = np.empty((N, P))
     EA = np.empty((N, P))
@@ -163,21 +196,28 @@ def _solve_group(problems: list[StaticProblem], P: int, n_nodes: int, layouts: l
     moor = kind == "mooring"
     force = kind == "force"
     if np.any(fixed):
-        target[fixed] = np.array([p.end_b.position for p, f in zip(problems, fixed, strict=True)
-                                  if f], dtype=float) - rA[fixed]
+        target[fixed] = (
+            np.array(
+                [p.end_b.position for p, f in zip(problems, fixed, strict=True) if f], dtype=float
+            )
+            - rA[fixed]
+        )
     if np.any(moor):
         mp = [p.end_b for p, m in zip(problems, moor, strict=True) if m]
         target[moor, 2] = np.array([b.z for b in mp], dtype=float) - rA[moor, 2]
         TA[moor, :2] = np.array([b.force[:2] for b in mp], dtype=float) + Cend[moor, :2]
     if np.any(force):
-        TA[force] = np.array([p.end_b.force for p, f in zip(problems, force, strict=True) if f],
-                             dtype=float) + Cend[force]
+        TA[force] = (
+            np.array(
+                [p.end_b.force for p, f in zip(problems, force, strict=True) if f], dtype=float
+            )
+            + Cend[force]
+        )
     free[fixed] = True
     free[moor, 2] = True
     EAeff = Ltot / np.sum(ell / EA, axis=1)
     if np.any(fixed):
-        TA[fixed] = _guess(target[fixed], Ltot[fixed], Cend[fixed], EAeff[fixed],
-                           point[fixed, 0])
+        TA[fixed] = _guess(target[fixed], Ltot[fixed], Cend[fixed], EAeff[fixed], point[fixed, 0])
     if np.any(moor):
         Hh = np.hypot(TA[moor, 0], TA[moor, 1])
         Wz = -Cend[moor, 2]
@@ -201,19 +241,42 @@ def _solve_group(problems: list[StaticProblem], P: int, n_nodes: int, layouts: l
         resid = np.zeros(N)
         status = np.zeros(N, dtype=np.int64)
         kind_code = np.where(fixed, 0, np.where(moor, 1, 2)).astype(np.int64)
-        _fast.solve_cases(ell, EA, -q[..., 2].copy(), point, bounds, kind_code, rA, target, TA,
-                          tol, maxit.astype(np.int64), s, pos, tension, TAo, TL, iters, resid,
-                          status)
+        _fast.solve_cases(
+            ell,
+            EA,
+            -q[..., 2].copy(),
+            point,
+            bounds,
+            kind_code,
+            rA,
+            target,
+            TA,
+            tol,
+            maxit.astype(np.int64),
+            s,
+            pos,
+            tension,
+            TAo,
+            TL,
+            iters,
+            resid,
+            status,
+        )
         TA = TAo
         done = status == 0
         failed = ~done
     else:
         pos, tension, TA, TL, iters, resid, done, failed = _newton_numpy(
-            ell, EA, q, point, bounds, C, Cend, rA, target, free, TA, force, tol, maxit, s,
-            deadline)
-    good = (done & ~failed & np.all(np.isfinite(pos), axis=(1, 2))
-            & np.all(np.isfinite(tension), axis=1) & np.all(np.isfinite(TA), axis=1)
-            & np.all(np.isfinite(TL), axis=1))
+            ell, EA, q, point, bounds, C, Cend, rA, target, free, TA, force, tol, maxit, s, deadline
+        )
+    good = (
+        done
+        & ~failed
+        & np.all(np.isfinite(pos), axis=(1, 2))
+        & np.all(np.isfinite(tension), axis=1)
+        & np.all(np.isfinite(TA), axis=1)
+        & np.all(np.isfinite(TL), axis=1)
+    )
     out: list[StaticResult | None] = []
     force_b = -TL
     iters_l = iters.tolist()
@@ -222,9 +285,16 @@ def _solve_group(problems: list[StaticProblem], P: int, n_nodes: int, layouts: l
         if not good[i]:
             out.append(None)
             continue
-        res = StaticResult(s=s[i], position=pos[i], tension=tension[i], force_a=TA[i],
-                           force_b=force_b[i], status=STATUS_OK, iterations=iters_l[i],
-                           residual=resid_l[i])
+        res = StaticResult(
+            s=s[i],
+            position=pos[i],
+            tension=tension[i],
+            force_a=TA[i],
+            force_b=force_b[i],
+            status=STATUS_OK,
+            iterations=iters_l[i],
+            residual=resid_l[i],
+        )
         if prob.medium.depth is not None:
             med = prob.medium
             plane = Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
@@ -235,11 +305,24 @@ def _solve_group(problems: list[StaticProblem], P: int, n_nodes: int, layouts: l
     return out
 
 
-def _newton_numpy(ell: np.ndarray, EA: np.ndarray, q: np.ndarray, point: np.ndarray,
-                  bounds: np.ndarray, C: np.ndarray, Cend: np.ndarray, rA: np.ndarray,
-                  target: np.ndarray, free: np.ndarray, TA: np.ndarray, force: np.ndarray,
-                  tol: np.ndarray, maxit: np.ndarray, s: np.ndarray,
-                  deadline: float | None) -> tuple[np.ndarray, ...]:
+def _newton_numpy(
+    ell: np.ndarray,
+    EA: np.ndarray,
+    q: np.ndarray,
+    point: np.ndarray,
+    bounds: np.ndarray,
+    C: np.ndarray,
+    Cend: np.ndarray,
+    rA: np.ndarray,
+    target: np.ndarray,
+    free: np.ndarray,
+    TA: np.ndarray,
+    force: np.ndarray,
+    tol: np.ndarray,
+    maxit: np.ndarray,
+    s: np.ndarray,
+    deadline: float | None,
+) -> tuple[np.ndarray, ...]:
     """The Newton iteration over all cases as numpy array operations (used without
     numba), then the sampling at ``s``."""
     N, P = ell.shape
@@ -276,8 +359,7 @@ def _newton_numpy(ell: np.ndarray, EA: np.ndarray, q: np.ndarray, point: np.ndar
             failed[active[bad | (over & ~conv)]] = True
             done[active[conv]] = True
             keep = ~stop
-            active, r, J, E, g, psi = (active[keep], r[keep], J[keep], E[keep], g[keep],
-                                       psi[keep])
+            active, r, J, E, g, psi = (active[keep], r[keep], J[keep], E[keep], g[keep], psi[keep])
             if not active.size:
                 break
             iters[active] += 1
@@ -285,8 +367,9 @@ def _newton_numpy(ell: np.ndarray, EA: np.ndarray, q: np.ndarray, point: np.ndar
             Jm = np.where(fa[:, :, None] & fa[:, None, :], J, np.eye(3))
             step = np.linalg.solve(Jm, -g[..., None])[..., 0]
             slope = np.sum(g * step, axis=1)
-            slack = 1e-13 * (np.abs(E) + np.abs(np.sum(np.where(fa, target[active] * TA[active],
-                                                                0.0), axis=1)))
+            slack = 1e-13 * (
+                np.abs(E) + np.abs(np.sum(np.where(fa, target[active] * TA[active], 0.0), axis=1))
+            )
             lam = np.ones(active.size)
             pending = np.arange(active.size)
             newT = TA[active].copy()
@@ -296,9 +379,11 @@ def _newton_numpy(ell: np.ndarray, EA: np.ndarray, q: np.ndarray, point: np.ndar
                 Tn = TA[idx] + lam[pending, None] * step[pending]
                 rn, Jn, En = evaluate(idx, Tn)
                 psin = En - np.sum(np.where(fa[pending], target[idx] * Tn, 0.0), axis=1)
-                ok = (np.isfinite(psin) & np.all(np.isfinite(Jn), axis=(1, 2))
-                      & (psin <= psi[pending] + 1e-4 * lam[pending] * slope[pending]
-                         + slack[pending]))
+                ok = (
+                    np.isfinite(psin)
+                    & np.all(np.isfinite(Jn), axis=(1, 2))
+                    & (psin <= psi[pending] + 1e-4 * lam[pending] * slope[pending] + slack[pending])
+                )
                 acc = pending[ok]
                 newT[acc], new_r[acc], new_J[acc] = Tn[ok], rn[ok], Jn[ok]
                 new_E[acc], new_psi[acc] = En[ok], psin[ok]
@@ -315,8 +400,7 @@ def _newton_numpy(ell: np.ndarray, EA: np.ndarray, q: np.ndarray, point: np.ndar
             TA[active] = newT
             r, J, E, psi = new_r, new_J, new_E, new_psi
             g = np.where(free[active], r - target[active], 0.0)
-            active, r, J, E, g, psi = (active[keep], r[keep], J[keep], E[keep], g[keep],
-                                       psi[keep])
+            active, r, J, E, g, psi = (active[keep], r[keep], J[keep], E[keep], g[keep], psi[keep])
     # sample the solved lines
     k = np.clip(np.sum(bounds[:, None, 1:-1] <= s[:, :, None], axis=2), 0, P - 1)
     rows = np.arange(N)[:, None]

@@ -39,7 +39,12 @@ import numpy as np
 
 
 def piece_integrals(
-    T0: np.ndarray, q: np.ndarray, ell: np.ndarray, EA: np.ndarray, *, jacobian: bool = True,
+    T0: np.ndarray,
+    q: np.ndarray,
+    ell: np.ndarray,
+    EA: np.ndarray,
+    *,
+    jacobian: bool = True,
 ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
     """Position increment, flexibility and complementary energy of line pieces.
 
@@ -114,9 +119,14 @@ def piece_integrals(
 
         inv_ea = ell / EA
         e2 = 0.5 * ell * inv_ea
-        dr = np.stack((tx * inv_ea - qx * e2 + hx * Pl + ux * S1,
-                       ty * inv_ea - qy * e2 + hy * Pl + uy * S1,
-                       tz * inv_ea - qz * e2 + hz * Pl + uz * S1), axis=-1)
+        dr = np.stack(
+            (
+                tx * inv_ea - qx * e2 + hx * Pl + ux * S1,
+                ty * inv_ea - qy * e2 + hy * Pl + uy * S1,
+                tz * inv_ea - qz * e2 + hz * Pl + uz * S1,
+            ),
+            axis=-1,
+        )
         TT = tx * tx + ty * ty + tz * tz
         Tq = tx * qx + ty * qy + tz * qz
         energy = A1 + (TT * ell - Tq * ell * ell + w * w * ell**3 / 3.0) / (2.0 * EA)
@@ -140,8 +150,7 @@ def piece_integrals(
         jac = np.empty(np.shape(tx) + (3, 3))
         for i in range(3):
             for j in range(i, 3):
-                v = (-H2J * n_[i] * n_[j] - L1H * (n_[i] * u_[j] + u_[i] * n_[j])
-                     - K * u_[i] * u_[j])
+                v = -H2J * n_[i] * n_[j] - L1H * (n_[i] * u_[j] + u_[i] * n_[j]) - K * u_[i] * u_[j]
                 if i == j:
                     v = v + diag
                 jac[..., i, j] = v

@@ -15,12 +15,22 @@ from cablestudy.statics.semi_analytic import SemiAnalyticSolver, make_layout
 def make_line(L: float, w: float, EA: float, atts=()) -> LineModel:  # noqa: ANN001
     one = np.ones(1)
     return LineModel(
-        length=L * one, weight=w * one, mass=one, axial_stiffness=EA * one, diameter=0.05 * one,
-        drag_normal=1.2 * one, drag_tangential=0.01 * one, added_mass_normal=one,
-        added_mass_tangential=0 * one, bending_stiffness=0 * one, damping_ratio=0 * one,
+        length=L * one,
+        weight=w * one,
+        mass=one,
+        axial_stiffness=EA * one,
+        diameter=0.05 * one,
+        drag_normal=1.2 * one,
+        drag_tangential=0.01 * one,
+        added_mass_normal=one,
+        added_mass_tangential=0 * one,
+        bending_stiffness=0 * one,
+        damping_ratio=0 * one,
         attachment_s=np.array([a[0] for a in atts], dtype=float),
         attachment_force=np.array([a[1] for a in atts], dtype=float).reshape(-1, 3),
-        attachment_mass=np.zeros(len(atts)), attachment_volume=np.zeros(len(atts)))
+        attachment_mass=np.zeros(len(atts)),
+        attachment_volume=np.zeros(len(atts)),
+    )
 
 
 def problems(n: int = 60) -> list[StaticProblem]:
@@ -31,16 +41,32 @@ def problems(n: int = 60) -> list[StaticProblem]:
         L = rng.uniform(50, 150)
         atts = [] if i % 2 else [(rng.uniform(0, L), (0.0, 0.0, -rng.uniform(0, 500)))]
         kind = ("fixed", "mooring", "force")[i % 3]
-        b = {"fixed": EndCondition(kind="fixed", position=np.array(
-                 [rng.uniform(10, 0.99 * L), rng.uniform(-10, 10), rng.uniform(-20, 20)])),
-             "mooring": EndCondition(kind="mooring", force=np.array([rng.uniform(100, 2e3), 0, 0]),
-                                     z=rng.uniform(-20, 20)),
-             "force": EndCondition(kind="force", force=np.array(
-                 [rng.uniform(100, 2e3), 0, rng.uniform(0, 3e3)]))}[kind]
-        out.append(StaticProblem(line=make_line(L, rng.uniform(1, 50), 10 ** rng.uniform(6, 9),
-                                                atts), medium=water,
-                                 end_a=EndCondition(kind="fixed", position=np.zeros(3)), end_b=b,
-                                 n_nodes=51, tolerance=1e-10))
+        b = {
+            "fixed": EndCondition(
+                kind="fixed",
+                position=np.array(
+                    [rng.uniform(10, 0.99 * L), rng.uniform(-10, 10), rng.uniform(-20, 20)]
+                ),
+            ),
+            "mooring": EndCondition(
+                kind="mooring",
+                force=np.array([rng.uniform(100, 2e3), 0, 0]),
+                z=rng.uniform(-20, 20),
+            ),
+            "force": EndCondition(
+                kind="force", force=np.array([rng.uniform(100, 2e3), 0, rng.uniform(0, 3e3)])
+            ),
+        }[kind]
+        out.append(
+            StaticProblem(
+                line=make_line(L, rng.uniform(1, 50), 10 ** rng.uniform(6, 9), atts),
+                medium=water,
+                end_a=EndCondition(kind="fixed", position=np.zeros(3)),
+                end_b=b,
+                n_nodes=51,
+                tolerance=1e-10,
+            )
+        )
     return out
 
 
@@ -80,27 +106,46 @@ def test_group_with_attachments_uses_layouts() -> None:
     solver = SemiAnalyticSolver()
     for P, idx in groups.items():
         for compiled in (True, False):
-            res = _solve_group([probs[i] for i in idx], P, 51, [layouts[i] for i in idx], None,
-                               use_compiled=compiled)
+            res = _solve_group(
+                [probs[i] for i in idx],
+                P,
+                51,
+                [layouts[i] for i in idx],
+                None,
+                use_compiled=compiled,
+            )
             for a, i in zip(res, idx, strict=True):
                 assert a is not None
                 _agree(a, solver.solve(probs[i]), probs[i].line.total_length)
 
 
 def test_cases_the_batch_does_not_take_are_solved_one_by_one() -> None:
-    current = Medium(density=1025.0, gravity=9.80665, current_z=np.array([0.0]),
-                     current_velocity=np.array([[1.0, 0.0, 0.0]]))
+    current = Medium(
+        density=1025.0,
+        gravity=9.80665,
+        current_z=np.array([0.0]),
+        current_velocity=np.array([[1.0, 0.0, 0.0]]),
+    )
     seabed = Medium(density=1025.0, gravity=9.80665, depth=100.0)
-    p_current = StaticProblem(line=make_line(100.0, 5.0, 1e7), medium=current,
-                              end_a=EndCondition(kind="fixed", position=np.zeros(3)),
-                              end_b=EndCondition(kind="fixed", position=np.array([60, 0, -10.0])))
-    p_anchor = StaticProblem(line=make_line(300.0, 500.0, 5e8), medium=seabed,
-                             end_a=EndCondition(kind="fixed", position=np.array([0, 0, -100.0])),
-                             end_b=EndCondition(kind="fixed", position=np.array([230, 0, 0.0])))
+    p_current = StaticProblem(
+        line=make_line(100.0, 5.0, 1e7),
+        medium=current,
+        end_a=EndCondition(kind="fixed", position=np.zeros(3)),
+        end_b=EndCondition(kind="fixed", position=np.array([60, 0, -10.0])),
+    )
+    p_anchor = StaticProblem(
+        line=make_line(300.0, 500.0, 5e8),
+        medium=seabed,
+        end_a=EndCondition(kind="fixed", position=np.array([0, 0, -100.0])),
+        end_b=EndCondition(kind="fixed", position=np.array([230, 0, 0.0])),
+    )
     # free-hanging over a seabed that it would touch between the ends: not anchored there
-    p_touch = StaticProblem(line=make_line(300.0, 500.0, 5e8), medium=seabed,
-                            end_a=EndCondition(kind="fixed", position=np.array([0, 0, -50.0])),
-                            end_b=EndCondition(kind="fixed", position=np.array([100, 0, -50.0])))
+    p_touch = StaticProblem(
+        line=make_line(300.0, 500.0, 5e8),
+        medium=seabed,
+        end_a=EndCondition(kind="fixed", position=np.array([0, 0, -50.0])),
+        end_b=EndCondition(kind="fixed", position=np.array([100, 0, -50.0])),
+    )
     assert not batchable(p_current) and not batchable(p_anchor) and batchable(p_touch)
     res = solve_batch([p_current, p_anchor, p_touch, *problems(4)])
     assert res[0].status == 0 and res[0].drag_iterations > 0

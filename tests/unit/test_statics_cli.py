@@ -57,8 +57,10 @@ sweep:
 def _run(tmp_path: Path, text: str, name: str) -> xr.Dataset:
     cfg = tmp_path / f"{name}.yaml"
     cfg.write_text(text)
-    assert main(["run", str(cfg), "--out", str(tmp_path), "--scheduler", "synchronous",
-                 "--no-cache"]) == 0
+    assert (
+        main(["run", str(cfg), "--out", str(tmp_path), "--scheduler", "synchronous", "--no-cache"])
+        == 0
+    )
     return xr.load_dataset(tmp_path / f"{name}.nc")
 
 
@@ -86,8 +88,15 @@ def test_batched_span_sweep_and_seabed(tmp_path: Path) -> None:
     # anchor far above the seabed: free-hanging (batched) cases equal Irvine's catenary
     for span in (130.0, 160.0, 190.0, 240.0):
         case = ds.sel(anchor_z=-20.0, span=span)
-        exact = solve_between(np.array([0, 0, -20.0]), np.array([span, 0, 0.0]), 300.0, 500.0,
-                              5e8, ds["s"].values, tolerance=1e-13)
+        exact = solve_between(
+            np.array([0, 0, -20.0]),
+            np.array([span, 0, 0.0]),
+            300.0,
+            500.0,
+            5e8,
+            ds["s"].values,
+            tolerance=1e-13,
+        )
         F = np.abs(exact.force_a).max()
         assert np.max(np.abs(case["force_a"].values - exact.force_a)) <= 1e-9 * F
         assert np.max(np.abs(case["z"].values - exact.position[:, 2])) <= 1e-9 * 300.0
