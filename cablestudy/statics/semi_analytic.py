@@ -18,9 +18,10 @@ direction). The tension at end A, ``T_A``, is the only unknown of a free-hanging
 If end A is the free end it is solved as the reversed line. Drag (seed eqs. 38-39) is
 piecewise constant along drag elements and updated from the shape by an outer
 fixed-point iteration, accelerated by Anderson mixing and damped, with the seed's
-current-speed continuation as fallback. Seabed contact of a line anchored on the
-seabed is :mod:`.seabed` (laid part) plus a Newton on (tension at the touchdown point,
-laid length).
+current-speed continuation as fallback. Seabed contact: a line anchored on the
+seabed is :mod:`.seabed` (the laid part, with friction) plus a Newton on (tension at
+the touchdown point, laid length); a line whose ends are both above the seabed but
+which sags onto it is :mod:`.midspan`.
 
 Force conventions: ``force_a`` = T_A and ``force_b`` = -T(L) are the forces the line
 exerts on its end attachments; a given ``force`` end is the force applied to the line,
@@ -172,6 +173,8 @@ class Shape:
     force_a: np.ndarray
     tension_end: np.ndarray
     laid_length: float = 0.0
+    #: arc length where the laid part starts [m] (0: at end A)
+    laid_start: float = 0.0
     iterations: int = 0
     residual: float = 0.0
     contact: bool = False
@@ -777,7 +780,9 @@ class DragModel:
         )
         D = f * (lc / lay.ell)[:, None]
         if shape.laid_length > 0.0:
-            D[0.5 * (lay.bounds[:-1] + lay.bounds[1:]) <= shape.laid_length] = 0.0
+            mid = 0.5 * (lay.bounds[:-1] + lay.bounds[1:])
+            lo = shape.laid_start
+            D[(mid >= lo) & (mid <= lo + shape.laid_length)] = 0.0
         return D
 
 
@@ -818,6 +823,7 @@ class _State:
     contact: tuple[np.ndarray, float] | None = None
     newton: int = 0
     drag: int = 0
+    mid: np.ndarray | None = None
 
 
 class SemiAnalyticSolver:
@@ -954,7 +960,7 @@ class SemiAnalyticSolver:
 
         def inner(q: np.ndarray, tol_inner: float, polish: bool = True) -> Shape:
             return self._inner(
-                lay, q, ends, plane if grounded else None, state, tol_inner, maxit, deadline, polish
+                lay, q, ends, plane, state, tol_inner, maxit, deadline, polish, grounded
             )
 
         if not has_current:
@@ -976,17 +982,11 @@ class SemiAnalyticSolver:
             height = plane.height_above(pos)
             depth_below = float(-np.min(height))
             if depth_below > max(1e-6 * L, 1e3 * tol * L):
-                where = (
-                    ""
-                    if grounded
-                    else (
-                        " between its ends (contact is modelled for a line "
-                        "anchored on the seabed at a fixed end)"
-                    )
-                )
+                where = "" if grounded else " between its ends"
                 raise _Failure(
                     STATUS_NO_SOLUTION,
-                    f"the line passes {depth_below:.4g} m below the seabed{where}",
+                    f"the line passes {depth_below:.4g} m below the seabed{where} "
+                    "(a contact the solver could not resolve)",
                     state.newton,
                     shape.residual,
                 )
@@ -1017,8 +1017,12 @@ class SemiAnalyticSolver:
         maxit: int,
         deadline: float | None,
         polish: bool = True,
+        grounded: bool = False,
     ) -> Shape:
-        """One solve with known loads: free-hanging, or with a laid part."""
+        """One solve with known loads: free-hanging, or with a laid part (from an end
+        anchored on the seabed, or between the ends)."""
+        if plane is not None and not grounded:
+            return self._inner_midspan(lay, q, ends, plane, state, tol, maxit, deadline, polish)
         if plane is not None and state.contact is not None:
             shape = solve_contact(
                 lay, q, ends, plane, state.contact, tol=tol, max_iterations=maxit, deadline=deadline
@@ -1073,6 +1077,52 @@ class SemiAnalyticSolver:
         state.newton += cshape.iterations
         state.contact = (_td_tension(cshape), cshape.laid_length)
         return cshape
+
+    def _inner_midspan(
+        self,
+        lay: Layout,
+        q: np.ndarray,
+        ends: Ends,
+        plane: Plane,
+        state: _State,
+        tol: float,
+        maxit: int,
+        deadline: float | None,
+        polish: bool,
+    ) -> Shape:
+        """Neither end on the seabed: free-hanging, unless that dips into the seabed, then
+        resting on it between the ends (:mod:`.midspan`)."""
+        from .midspan import initial_midspan, solve_midspan
+
+        if state.mid is not None:
+            try:
+                shape = solve_midspan(
+                    lay,
+                    q,
+                    ends,
+                    plane,
+                    state.mid,
+                    tol=tol,
+                    max_iterations=maxit,
+                    deadline=deadline,
+                )
+                state.newton += shape.iterations
+                state.mid = _mid_unknowns(shape, plane)
+                return shape
+            except _Failure as exc:
+                if exc.status == STATUS_TIME_LIMIT:
+                    raise
+                state.mid = None
+        shape = self._inner(lay, q, ends, None, state, tol, maxit, deadline, polish)
+        if not _penetrates(shape, lay, plane, anchored=False):
+            return shape
+        guess = initial_midspan(shape, plane, lay.total)
+        mshape = solve_midspan(
+            lay, q, ends, plane, guess, tol=tol, max_iterations=maxit, deadline=deadline
+        )
+        state.newton += mshape.iterations
+        state.mid = _mid_unknowns(mshape, plane)
+        return mshape
 
     @staticmethod
     def _regularised(
@@ -1183,7 +1233,7 @@ class SemiAnalyticSolver:
                     raise
                 last = exc
                 state.TA, state.contact = saved_TA, saved_contact
-                if exc.status == STATUS_NO_SOLUTION and n_steps > 1:
+                if exc.status == STATUS_NO_SOLUTION and (n_steps > 1 or "slack" in exc.message):
                     break  # confirmed with continuation: no static solution
         assert last is not None
         raise _Failure(
@@ -1318,18 +1368,32 @@ def _laid_between(
     )
 
 
+def _mid_unknowns(shape: Shape, plane: Plane) -> np.ndarray:
+    """(alpha, beta, s1, s2) of a solution resting on the seabed between its ends."""
+    T = _td_tension_at(shape, shape.laid_start)
+    e1, e2 = plane.basis
+    return np.array(
+        [float(T @ e1), float(T @ e2), shape.laid_start, shape.laid_start + shape.laid_length]
+    )
+
+
+def _td_tension_at(shape: Shape, s: float) -> np.ndarray:
+    k = min(int(np.searchsorted(shape.s0, s, side="left")), len(shape.s0) - 1)
+    return shape.T0[k].copy()
+
+
 def _td_tension(shape: Shape) -> np.ndarray:
     """Tension vector at the TDP: the start of the first suspended piece."""
     k = min(int(np.searchsorted(shape.s0, shape.laid_length, side="left")), len(shape.s0) - 1)
     return shape.T0[k].copy()
 
 
-def _penetrates(shape: Shape, lay: Layout, plane: Plane) -> bool:
-    """Whether a free-hanging solution anchored on the seabed dips into it (its tension
-    at the anchor points into the seabed, or a piece boundary lies below it)."""
-    if float(shape.force_a @ plane.normal) < 0.0:
+def _penetrates(shape: Shape, lay: Layout, plane: Plane, anchored: bool = True) -> bool:
+    """Whether a free-hanging solution dips into the seabed (for a line anchored on it:
+    also when its tension at the anchor points into the seabed)."""
+    if anchored and float(shape.force_a @ plane.normal) < 0.0:
         return True
-    r, _ = shape.sample(np.linspace(0.0, lay.total, 4 * len(lay.ell) + 1))
+    r, _ = shape.sample(np.linspace(0.0, lay.total, max(4 * len(lay.ell) + 1, 401)))
     return bool(np.any(plane.height_above(r) < -1e-9 * lay.total))
 
 

@@ -327,3 +327,43 @@ def test_seabed_lift_off_and_slack_line() -> None:
     )
     assert slack.status != 0 and "slack on the seabed" in slack.message
     assert np.all(np.isnan(slack.position))
+
+
+@pytest.mark.parametrize("X", [160.0, 180.0, 195.0])
+def test_u_shaped_line_resting_on_the_seabed_between_its_ends(X: float) -> None:
+    """Expected: a uniform line with both ends h above a flat, frictionless seabed and
+    span X rests on it symmetrically; each suspended half is the elastic catenary from a
+    touchdown point with zero vertical tension (as in the anchored reference above):
+    2 x_s(H, Ls) + (L - 2 Ls)(1 + H/EA) = X and z_s(H, Ls) = h, solved by nested root
+    finds. The solver (frictionless laid part between two suspended parts) must agree to
+    the 1e-9 of both solutions."""
+    L, w, EA, h = 250.0, 500.0, 5e8, 50.0
+
+    def z_s(Ls: float, H: float) -> float:
+        return w * Ls**2 / (2 * EA) + H / w * (math.sqrt(1 + (w * Ls / H) ** 2) - 1)
+
+    def suspended(H: float) -> float:
+        return brentq(lambda Ls: z_s(Ls, H) - h, 0.0, 10 * L, xtol=1e-15, rtol=1e-15)
+
+    def x_error(H: float) -> float:
+        Ls = suspended(H)
+        xs = Ls * H / EA + H / w * math.asinh(w * Ls / H)
+        return 2 * xs + (L - 2 * Ls) * (1 + H / EA) - X
+
+    H = brentq(x_error, 1e-3 * w, w * ((L / 2) ** 2 - h * h) / (2 * h), xtol=1e-12, rtol=1e-15)
+    Ls = suspended(H)
+    med = Medium(density=1025.0, gravity=9.80665, depth=100.0, friction=0.0)
+    prob = StaticProblem(
+        line=make_line([L], [w], EA),
+        medium=med,
+        end_a=fixed(0, 0, -50),
+        end_b=fixed(X, 0, -50),
+        n_nodes=101,
+        tolerance=1e-11,
+    )
+    res = SOLVER.solve(prob)
+    assert res.status == 0, res.message
+    assert res.laid_length == pytest.approx(L - 2 * Ls, rel=1e-8)
+    assert res.force_a[0] == pytest.approx(H, rel=1e-8)
+    assert -res.force_a[2] == pytest.approx(w * Ls, rel=1e-9)
+    assert np.all(res.position[:, 2] >= -100.0 - 1e-9 * L)
