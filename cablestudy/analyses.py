@@ -114,7 +114,10 @@ def _dynamic_problems(cases: list[Case], src: StudySource) -> list[str]:
     return problems
 
 
-def solve_static(case: Case, deadline: float | None) -> StaticResult:
+def solve_static(case: Case, deadline: float | None,
+                 presolved: dict[str, StaticResult] | None = None) -> StaticResult:
+    if presolved is not None and case.static_hash in presolved:
+        return presolved[case.static_hash]
     cached = _STATIC_CACHE.get(case.static_hash)
     if cached is not None:
         _STATIC_CACHE.move_to_end(case.static_hash)
@@ -345,14 +348,16 @@ def dynamic_outputs(res: DynamicResult, dyn: DynamicSettings) -> dict[str, np.nd
     return out
 
 
-def evaluate_case(case: Case) -> CaseRecord:
+def evaluate_case(case: Case, *,
+                  presolved: dict[str, StaticResult] | None = None) -> CaseRecord:
     """Run every analysis the case asks for. Never raises: an exception inside a solver
-    becomes a failed record with the exception's text."""
+    becomes a failed record with the exception's text. ``presolved`` maps static hashes
+    to static solutions already computed (by :func:`evaluate_chunk`)."""
     t0 = time.perf_counter()
     deadline = time.monotonic() + case.study.analysis.time_limit
     data: dict[str, Any] = {}
     try:
-        res = solve_static(case, deadline)
+        res = solve_static(case, deadline, presolved)
         status, message = res.status, res.message
         data.update(static_outputs(res))
         modal = case.study.analysis.modal
@@ -382,3 +387,48 @@ def evaluate_case(case: Case) -> CaseRecord:
         wall = 0.0
     return CaseRecord(hash=case.hash, index=case.index, status=int(status), message=message,
                       wall_time=wall, data=data)
+
+
+def presolve_statics(cases: list[Case]) -> tuple[dict[str, StaticResult], dict[str, float]]:
+    """Solve the distinct still-water static problems of method 'catenary' in ``cases``
+    together (:func:`cablestudy.statics.batch.solve_batch`). Returns the solutions by
+    static hash and each one's share of the batch wall time [s]. Anything unexpected
+    leaves the cases to the one-by-one path (which records its own errors)."""
+    from .statics.batch import batchable, solve_batch
+
+    todo: dict[str, Any] = {}
+    for case in cases:
+        h = case.static_hash
+        if h in todo or h in _STATIC_CACHE or case.study.analysis.static.method != "catenary":
+            continue
+        try:
+            problem = static_problem(case.study)
+        except Exception:  # noqa: BLE001 - the per-case path reports it
+            continue
+        if batchable(problem):
+            todo[h] = (problem, case.study.analysis.time_limit)
+    if len(todo) < 2:
+        return {}, {}
+    t0 = time.perf_counter()
+    try:
+        deadline = time.monotonic() + max(limit for _, limit in todo.values())
+        results = solve_batch([p for p, _ in todo.values()], deadline=deadline)
+    except Exception:  # noqa: BLE001 - fall back to one case at a time
+        return {}, {}
+    share = (time.perf_counter() - t0) / len(todo)
+    solved = {h: r.check_finite() for h, r in zip(todo, results, strict=True)}
+    return solved, dict.fromkeys(solved, share)
+
+
+def evaluate_chunk(cases: list[Case]) -> list[CaseRecord]:
+    """Evaluate a chunk of cases in one task: compatible static problems are solved as
+    one batch first, then every case runs as in :func:`evaluate_case` (its wall time
+    includes its share of the batch)."""
+    solved, share = presolve_statics(cases)
+    records = []
+    for case in cases:
+        rec = evaluate_case(case, presolved=solved)
+        if case.static_hash in share:
+            rec.wall_time += share.pop(case.static_hash)
+        records.append(rec)
+    return records

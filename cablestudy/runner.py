@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from .analyses import evaluate_case
+from .analyses import evaluate_chunk
 from .cases import Case, SweepAxis
 from .config.loader import StudySource
 from .results import CaseRecord, assemble, write_atomic
@@ -73,8 +73,8 @@ def failed_chunk(cases: list[Case], exc: BaseException) -> list[CaseRecord]:
 
 def run_chunk(cases: list[Case]) -> list[CaseRecord]:
     """Evaluate a chunk of cases in one task (cases sharing a static problem are
-    adjacent, so its solution is reused)."""
-    return [evaluate_case(c) for c in cases]
+    adjacent, so its solution is reused; compatible static problems are batched)."""
+    return evaluate_chunk(cases)
 
 
 def make_chunks(cases: list[Case], workers: int, *, min_chunks_per_worker: int = 4,

@@ -56,7 +56,7 @@ def fig5(data: dict[str, xr.Dataset], out: Path) -> Path:
         ax.plot(case["x"], case["z"], "-", label=f"point load {abs(load) / 1e3:.2g} kN at s = 50 m")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("z [m]")
-    ax.set_title("Hanging cable under a point load, L = 100 m (dodaran-park Fig. 5)")
+    ax.set_title("Cable under a point load, L = 100 m (dodaran-park Fig. 5)", fontsize=10)
     ax.set_aspect("equal", adjustable="datalim")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)

@@ -39,7 +39,12 @@ import numpy as np
 
 
 def piece_integrals(
-    T0: np.ndarray, q: np.ndarray, ell: np.ndarray, EA: np.ndarray, *, jacobian: bool = True,
+    T0: np.ndarray,
+    q: np.ndarray,
+    ell: np.ndarray,
+    EA: np.ndarray,
+    *,
+    jacobian: bool = True,
 ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
     """Position increment, flexibility and complementary energy of line pieces.
 
@@ -66,12 +71,16 @@ def piece_integrals(
         [N m] shape (...), int(|T| + |T|^2 / (2 EA)) ds, whose gradient in T0 is dr.
     """
     with np.errstate(all="ignore"):
-        w = np.sqrt(np.sum(q * q, axis=-1))
+        # component arrays: numpy reductions over a length-3 axis are slow
+        tx, ty, tz = T0[..., 0], T0[..., 1], T0[..., 2]
+        qx, qy, qz = q[..., 0], q[..., 1], q[..., 2]
+        w = np.sqrt(qx * qx + qy * qy + qz * qz)
         curved = w > 0.0
-        u = np.where(curved[..., None], -q / np.where(curved, w, 1.0)[..., None], 0.0)
-        V0 = np.sum(T0 * u, axis=-1)
-        Hv = T0 - V0[..., None] * u
-        H2 = np.sum(Hv * Hv, axis=-1)
+        inv_w = np.where(curved, 1.0 / np.where(curved, w, 1.0), 0.0)
+        ux, uy, uz = -qx * inv_w, -qy * inv_w, -qz * inv_w
+        V0 = tx * ux + ty * uy + tz * uz
+        hx, hy, hz = tx - V0 * ux, ty - V0 * uy, tz - V0 * uz
+        H2 = hx * hx + hy * hy + hz * hz
         wl = w * ell
         V1 = V0 + wl
         T0n = np.sqrt(H2 + V0 * V0)
@@ -81,30 +90,27 @@ def piece_integrals(
         same = curved & (V0 * V1 > 0.0)
         opp = curved & ~same & (wl > 0.0)
         straight = ~(same | opp)
+        any_opp = bool(np.any(opp))
+        any_straight = bool(np.any(straight))
 
         # same sign of V along the piece: cancellation-free forms
         Dn = b * T0n + a * T1n
         X = (b - a) * (b + a) / Dn
         small = np.abs(X) < 1e-4
         ratio = np.where(small, 1.0 - X * X / 6.0, np.arcsinh(X) / np.where(small, 1.0, X))
-        P_same = ell * (a + b) / Dn * ratio
-        J_same = ell * (a + b) / (T0n * T1n * Dn)
-        A_same = 0.5 * ell * (V0 + V1) * (V0 * V0 + V1 * V1 + H2) / (V1 * T1n + V0 * T0n)
-
-        # V changes sign: no cancellation in the plain differences
+        Pl = ell * (a + b) / Dn * ratio
+        A1 = 0.5 * ell * (V0 + V1) * (V0 * V0 + V1 * V1 + H2) / (V1 * T1n + V0 * T0n)
         H = np.sqrt(H2)
-        Hs = np.maximum(H, 1e-200 * (a + b))
-        wls = np.where(wl > 0.0, wl, 1.0)
-        P_opp = ell * (np.arcsinh(V1 / Hs) - np.arcsinh(V0 / Hs)) / wls
-        A_opp = 0.5 * ell * (V1 * T1n - V0 * T0n) / wls
-
-        # straight piece (no load, or zero length)
-        P_str = ell / T0n
-        J_str = ell / T0n**3
-        A_str = ell * T0n
-
-        Pl = np.where(same, P_same, np.where(opp, P_opp, P_str))
-        A1 = np.where(same, A_same, np.where(opp, A_opp, A_str))
+        if any_opp:
+            # V changes sign: no cancellation in the plain differences
+            Hs = np.maximum(H, 1e-200 * (a + b))
+            wls = np.where(wl > 0.0, wl, 1.0)
+            Pl = np.where(opp, ell * (np.arcsinh(V1 / Hs) - np.arcsinh(V0 / Hs)) / wls, Pl)
+            A1 = np.where(opp, 0.5 * ell * (V1 * T1n - V0 * T0n) / wls, A1)
+        if any_straight:
+            # straight piece (no load, or zero length)
+            Pl = np.where(straight, ell / T0n, Pl)
+            A1 = np.where(straight, ell * T0n, A1)
         A1 = A1 + 0.5 * H2 * np.where(straight, 0.0, Pl)
         zero = ell == 0.0
         Pl = np.where(zero, 0.0, Pl)
@@ -112,24 +118,42 @@ def piece_integrals(
         S1 = np.where(zero, 0.0, ell * (V0 + V1) / (T0n + T1n))
 
         inv_ea = ell / EA
-        dr = (T0 * inv_ea[..., None] - q * (0.5 * ell * inv_ea)[..., None]
-              + Hv * Pl[..., None] + u * S1[..., None])
-        TT = np.sum(T0 * T0, axis=-1)
-        energy = A1 + (TT * ell - np.sum(T0 * q, axis=-1) * ell * ell
-                       + w * w * ell**3 / 3.0) / (2.0 * EA)
+        e2 = 0.5 * ell * inv_ea
+        dr = np.stack(
+            (
+                tx * inv_ea - qx * e2 + hx * Pl + ux * S1,
+                ty * inv_ea - qy * e2 + hy * Pl + uy * S1,
+                tz * inv_ea - qz * e2 + hz * Pl + uz * S1,
+            ),
+            axis=-1,
+        )
+        TT = tx * tx + ty * ty + tz * tz
+        Tq = tx * qx + ty * qy + tz * qz
+        energy = A1 + (TT * ell - Tq * ell * ell + w * w * ell**3 / 3.0) / (2.0 * EA)
         if not jacobian:
             return dr, None, energy
         # H^2 int(1/|T|^3), finite also as H -> 0 where int(1/|T|^3) alone is not
-        H2J_opp = ell * (V1 / T1n - V0 / T0n) / wls
-        H2J = np.where(same, H2 * J_same, np.where(opp, H2J_opp, H2 * J_str))
+        H2J = H2 * ell * (a + b) / (T0n * T1n * Dn)
+        if any_opp:
+            H2J = np.where(opp, ell * (V1 / T1n - V0 / T0n) / wls, H2J)
+        if any_straight:
+            H2J = np.where(straight, H2 * ell / T0n**3, H2J)
         H2J = np.where(zero, 0.0, H2J)
         L1H = np.where(zero, 0.0, ell * (V0 + V1) * H / ((T0n + T1n) * T0n * T1n))
         K = Pl - H2J
-        nh = np.where((H > 0.0)[..., None], Hv / np.where(H > 0.0, H, 1.0)[..., None], 0.0)
-        eye = np.eye(3)
-        jac = ((inv_ea + Pl)[..., None, None] * eye
-               - H2J[..., None, None] * nh[..., :, None] * nh[..., None, :]
-               - L1H[..., None, None] * (nh[..., :, None] * u[..., None, :]
-                                         + u[..., :, None] * nh[..., None, :])
-               - K[..., None, None] * u[..., :, None] * u[..., None, :])
+        pos = H > 0.0
+        inv_h = np.where(pos, 1.0 / np.where(pos, H, 1.0), 0.0)
+        nx, ny, nz = hx * inv_h, hy * inv_h, hz * inv_h
+        diag = inv_ea + Pl
+        n_ = (nx, ny, nz)
+        u_ = (ux, uy, uz)
+        jac = np.empty(np.shape(tx) + (3, 3))
+        for i in range(3):
+            for j in range(i, 3):
+                v = -H2J * n_[i] * n_[j] - L1H * (n_[i] * u_[j] + u_[i] * n_[j]) - K * u_[i] * u_[j]
+                if i == j:
+                    v = v + diag
+                jac[..., i, j] = v
+                if i != j:
+                    jac[..., j, i] = v
     return dr, jac, energy

@@ -76,9 +76,17 @@ class LaidPart:
     rate_td: float
 
 
-def laid_part(s_td: float, tension_td: float, direction: np.ndarray, bounds: np.ndarray,
-              weight: np.ndarray, EA: np.ndarray, point_s: np.ndarray, point_force: np.ndarray,
-              plane: Plane) -> LaidPart:
+def laid_part(
+    s_td: float,
+    tension_td: float,
+    direction: np.ndarray,
+    bounds: np.ndarray,
+    weight: np.ndarray,
+    EA: np.ndarray,
+    point_s: np.ndarray,
+    point_force: np.ndarray,
+    plane: Plane,
+) -> LaidPart:
     """Tension along the laid part, marching from the TDP to the anchor.
 
     Parameters
@@ -108,8 +116,9 @@ def laid_part(s_td: float, tension_td: float, direction: np.ndarray, bounds: np.
     tension[-1] = max(tension_td, 0.0)
     stretched = 0.0
     flex = 0.0
-    piece = np.clip(np.searchsorted(bounds, 0.5 * (pts[:-1] + pts[1:]), side="right") - 1,
-                    0, len(weight) - 1)
+    piece = np.clip(
+        np.searchsorted(bounds, 0.5 * (pts[:-1] + pts[1:]), side="right") - 1, 0, len(weight) - 1
+    )
     rates = weight[piece] * (mu * nz + ez)
     order = np.argsort(point_s)
     t_los = np.zeros(len(pts) - 1)
@@ -140,6 +149,13 @@ def laid_part(s_td: float, tension_td: float, direction: np.ndarray, bounds: np.
         stretched += ell + area / ea
         flex += positive / ea
     rate_td = float(rates[-1]) if len(rates) else 0.0
-    return LaidPart(s=pts, tension=tension, tension_lo=t_los, tension_hi=t_his, rate=rates,
-                    stretched=stretched, positive_flex=flex,
-                    rate_td=rate_td)
+    return LaidPart(
+        s=pts,
+        tension=tension,
+        tension_lo=t_los,
+        tension_hi=t_his,
+        rate=rates,
+        stretched=stretched,
+        positive_flex=flex,
+        rate_td=rate_td,
+    )

@@ -18,9 +18,10 @@ direction). The tension at end A, ``T_A``, is the only unknown of a free-hanging
 If end A is the free end it is solved as the reversed line. Drag (seed eqs. 38-39) is
 piecewise constant along drag elements and updated from the shape by an outer
 fixed-point iteration, accelerated by Anderson mixing and damped, with the seed's
-current-speed continuation as fallback. Seabed contact of a line anchored on the
-seabed is :mod:`.seabed` (laid part) plus a Newton on (tension at the touchdown point,
-laid length).
+current-speed continuation as fallback. Seabed contact: a line anchored on the
+seabed is :mod:`.seabed` (the laid part, with friction) plus a Newton on (tension at
+the touchdown point, laid length); a line whose ends are both above the seabed but
+which sags onto it is :mod:`.midspan`.
 
 Force conventions: ``force_a`` = T_A and ``force_b`` = -T(L) are the forces the line
 exerts on its end attachments; a given ``force`` end is the force applied to the line,
@@ -31,7 +32,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -56,8 +57,9 @@ _Z = np.array([0.0, 0.0, 1.0])
 class _Failure(Exception):
     """Internal: a numerical failure with its status (turned into a failed result)."""
 
-    def __init__(self, status: int, message: str, iterations: int = 0,
-                 residual: float = math.nan) -> None:
+    def __init__(
+        self, status: int, message: str, iterations: int = 0, residual: float = math.nan
+    ) -> None:
         super().__init__(message)
         self.status = status
         self.message = message
@@ -108,27 +110,49 @@ def make_layout(line: LineModel, drag_elements: int = 0) -> Layout:
         keep.pop()
     bounds = np.array([*keep, L])
     mids = 0.5 * (bounds[:-1] + bounds[1:])
-    seg = np.clip(np.searchsorted(line.segment_ends, mids, side="right") - 1, 0,
-                  len(line.length) - 1)
+    seg = np.clip(
+        np.searchsorted(line.segment_ends, mids, side="right") - 1, 0, len(line.length) - 1
+    )
     point = np.zeros((len(bounds), 3))
     for s, f in zip(line.attachment_s, line.attachment_force, strict=True):
         point[int(np.argmin(np.abs(bounds - s)))] += f
-    return Layout(bounds=bounds, ell=np.diff(bounds), EA=line.axial_stiffness[seg].astype(float),
-                  weight=line.weight[seg].astype(float), segment=seg, point=point)
+    return Layout(
+        bounds=bounds,
+        ell=np.diff(bounds),
+        EA=line.axial_stiffness[seg].astype(float),
+        weight=line.weight[seg].astype(float),
+        segment=seg,
+        point=point,
+    )
 
 
 def reversed_line(line: LineModel) -> LineModel:
     """The same line described from B to A."""
     L = line.total_length
     order = np.argsort(L - line.attachment_s, kind="stable")
-    seg = {name: getattr(line, name)[::-1].copy() for name in (
-        "length", "weight", "mass", "axial_stiffness", "diameter", "drag_normal",
-        "drag_tangential", "added_mass_normal", "added_mass_tangential", "bending_stiffness",
-        "damping_ratio")}
-    return LineModel(**seg, attachment_s=(L - line.attachment_s)[order],
-                     attachment_force=line.attachment_force[order],
-                     attachment_mass=line.attachment_mass[order],
-                     attachment_volume=line.attachment_volume[order])
+    seg = {
+        name: getattr(line, name)[::-1].copy()
+        for name in (
+            "length",
+            "weight",
+            "mass",
+            "axial_stiffness",
+            "diameter",
+            "drag_normal",
+            "drag_tangential",
+            "added_mass_normal",
+            "added_mass_tangential",
+            "bending_stiffness",
+            "damping_ratio",
+        )
+    }
+    return LineModel(
+        **seg,
+        attachment_s=(L - line.attachment_s)[order],
+        attachment_force=line.attachment_force[order],
+        attachment_mass=line.attachment_mass[order],
+        attachment_volume=line.attachment_volume[order],
+    )
 
 
 # --------------------------------------------------------------------------- shape
@@ -149,6 +173,8 @@ class Shape:
     force_a: np.ndarray
     tension_end: np.ndarray
     laid_length: float = 0.0
+    #: arc length where the laid part starts [m] (0: at end A)
+    laid_start: float = 0.0
     iterations: int = 0
     residual: float = 0.0
     contact: bool = False
@@ -170,15 +196,25 @@ class Shape:
         return pos, tension
 
 
-def _free_shape(lay: Layout, q: np.ndarray, rA: np.ndarray, TA: np.ndarray,
-                dr: np.ndarray | None = None) -> Shape:
+def _free_shape(
+    lay: Layout, q: np.ndarray, rA: np.ndarray, TA: np.ndarray, dr: np.ndarray | None = None
+) -> Shape:
     C, Cend = _offsets(lay, q)
     T0 = TA - C
     if dr is None:
         dr, _, _ = piece_integrals(T0, q, lay.ell, lay.EA, jacobian=False)
     r0 = rA + np.concatenate((np.zeros((1, 3)), np.cumsum(dr, axis=0)))
-    return Shape(s0=lay.bounds[:-1], ell=lay.ell, T0=T0, q=q, EA=lay.EA, r0=r0[:-1],
-                 force_a=TA.copy(), tension_end=TA - Cend, nodes=r0)
+    return Shape(
+        s0=lay.bounds[:-1],
+        ell=lay.ell,
+        T0=T0,
+        q=q,
+        EA=lay.EA,
+        r0=r0[:-1],
+        force_a=TA.copy(),
+        tension_end=TA - Cend,
+        nodes=r0,
+    )
 
 
 def _offsets(lay: Layout, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -277,8 +313,17 @@ def initial_tension(lay: Layout, q: np.ndarray, ends: Ends) -> np.ndarray:
     return H * e + VA * up + lay.point[0]
 
 
-def solve_free(lay: Layout, q: np.ndarray, ends: Ends, TA: np.ndarray, *, tol: float,
-               max_iterations: int, deadline: float | None, polish: bool = True) -> Shape:
+def solve_free(
+    lay: Layout,
+    q: np.ndarray,
+    ends: Ends,
+    TA: np.ndarray,
+    *,
+    tol: float,
+    max_iterations: int,
+    deadline: float | None,
+    polish: bool = True,
+) -> Shape:
     """Solve a free-hanging line for T_A (Newton on the complementary energy). With
     ``polish`` one more Newton step is taken once the tolerance is met (quadratic
     convergence then brings the residual to round-off)."""
@@ -302,12 +347,28 @@ def solve_free(lay: Layout, q: np.ndarray, ends: Ends, TA: np.ndarray, *, tol: f
     scale = max(L, float(np.linalg.norm(target)))
 
     last: list[np.ndarray] = []
+    from . import _fast
 
-    def evaluate(T: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
-        dr, jac, en = piece_integrals(T - C, q, lay.ell, lay.EA)
-        assert jac is not None
-        last[:] = [dr]
-        return dr.sum(axis=0), jac.sum(axis=0), float(en.sum())
+    if _fast.AVAILABLE:
+        qc = np.ascontiguousarray(q, dtype=float)
+        Cc = np.ascontiguousarray(C)
+
+        def evaluate(T: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+            dr = np.empty((len(lay.ell), 3))
+            r = np.empty(3)
+            J = np.empty((3, 3))
+            E = _fast.line_sums(
+                np.ascontiguousarray(T, dtype=float), Cc, qc, lay.ell, lay.EA, dr, r, J, True
+            )
+            last[:] = [dr]
+            return r, J, E
+    else:
+
+        def evaluate(T: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+            dr, jac, en = piece_integrals(T - C, q, lay.ell, lay.EA)
+            assert jac is not None
+            last[:] = [dr]
+            return dr.sum(axis=0), jac.sum(axis=0), float(en.sum())
 
     r, J, E = evaluate(TA)
     dr_acc = last[0]
@@ -318,16 +379,26 @@ def solve_free(lay: Layout, q: np.ndarray, ends: Ends, TA: np.ndarray, *, tol: f
     res = float(np.max(np.abs(g))) / scale
     while True:
         if not np.isfinite(res):
-            raise _Failure(STATUS_NUMERICAL, "non-finite residual in the end-force Newton "
-                           "iteration (a piece with zero tension and no load?)", it, res)
+            raise _Failure(
+                STATUS_NUMERICAL,
+                "non-finite residual in the end-force Newton "
+                "iteration (a piece with zero tension and no load?)",
+                it,
+                res,
+            )
         if res <= tol:
             if polished >= 1 or res <= 1e-15:
                 break
             polished += 1
         if it >= max_iterations:
-            raise _Failure(STATUS_NOT_CONVERGED, f"end-force Newton did not converge in "
-                           f"{max_iterations} iterations (relative residual {res:.3g}, "
-                           f"tolerance {tol:.3g})", it, res)
+            raise _Failure(
+                STATUS_NOT_CONVERGED,
+                f"end-force Newton did not converge in "
+                f"{max_iterations} iterations (relative residual {res:.3g}, "
+                f"tolerance {tol:.3g})",
+                it,
+                res,
+            )
         _check_deadline(deadline, it, "the end-force Newton iteration")
         it += 1
         Jf = J[np.ix_(idx, idx)]
@@ -343,13 +414,21 @@ def solve_free(lay: Layout, q: np.ndarray, ends: Ends, TA: np.ndarray, *, tol: f
             Tn[idx] += lam * step
             rn, Jn, En = evaluate(Tn)
             psin = En - float(target[idx] @ Tn[idx])
-            if np.isfinite(psin) and np.all(np.isfinite(Jn)) and \
-                    psin <= psi + 1e-4 * lam * slope + slack:
+            if (
+                np.isfinite(psin)
+                and np.all(np.isfinite(Jn))
+                and psin <= psi + 1e-4 * lam * slope + slack
+            ):
                 break
             lam *= 0.5
         else:
-            raise _Failure(STATUS_NOT_CONVERGED, "line search failed in the end-force Newton "
-                           f"iteration (relative residual {res:.3g})", it, res)
+            raise _Failure(
+                STATUS_NOT_CONVERGED,
+                "line search failed in the end-force Newton "
+                f"iteration (relative residual {res:.3g})",
+                it,
+                res,
+            )
         TA, r, J, E, psi = Tn, rn, Jn, En, psin
         dr_acc = last[0]
         g = r[idx] - target[idx]
@@ -363,23 +442,28 @@ def solve_free(lay: Layout, q: np.ndarray, ends: Ends, TA: np.ndarray, *, tol: f
 
 def _finite(shape: Shape, what: str) -> None:
     if not (np.all(np.isfinite(shape.r0)) and np.all(np.isfinite(shape.T0))):
-        raise _Failure(STATUS_NUMERICAL, f"non-finite shape of the {what} (zero tension "
-                       "somewhere on an unloaded piece?)", shape.iterations, shape.residual)
+        raise _Failure(
+            STATUS_NUMERICAL,
+            f"non-finite shape of the {what} (zero tension somewhere on an unloaded piece?)",
+            shape.iterations,
+            shape.residual,
+        )
 
 
 # --------------------------------------------------------------------------- seabed
 
 
-def _suspended(lay: Layout, q: np.ndarray, s_td: float) -> tuple[
-        np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, int, np.ndarray]:
+def _suspended(
+    lay: Layout, q: np.ndarray, s_td: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, int, np.ndarray]:
     """Suspended pieces from s_td to L: (s0, ell, EA, q, C offsets, index of the TDP piece,
     C_end) with T(start of piece j) = T_td - C_j and T(L) = T_td - C_end."""
     k = int(np.clip(np.searchsorted(lay.bounds, s_td, side="right") - 1, 0, len(lay.ell) - 1))
-    s0 = np.concatenate(([s_td], lay.bounds[k + 1:-1]))
-    ell = np.concatenate(([lay.bounds[k + 1] - s_td], lay.ell[k + 1:]))
+    s0 = np.concatenate(([s_td], lay.bounds[k + 1 : -1]))
+    ell = np.concatenate(([lay.bounds[k + 1] - s_td], lay.ell[k + 1 :]))
     EA = lay.EA[k:]
     qs = q[k:]
-    pts = lay.point[k + 1:]  # boundaries k+1 .. P
+    pts = lay.point[k + 1 :]  # boundaries k+1 .. P
     Q = qs * ell[:, None]
     C = np.zeros((len(ell), 3))
     C[1:] = np.cumsum(pts[:-1], axis=0) + np.cumsum(Q[:-1], axis=0)
@@ -390,21 +474,27 @@ def _suspended(lay: Layout, q: np.ndarray, s_td: float) -> tuple[
 def _laid(lay: Layout, s_td: float, T_td: np.ndarray, plane: Plane) -> LaidPart:
     tn = float(np.linalg.norm(T_td))
     e = T_td / tn if tn > 0.0 else plane.basis[0]
-    mask = lay.bounds < s_td
-    return laid_part(s_td, tn, e, lay.bounds, lay.weight, lay.EA, lay.bounds[mask],
-                     lay.point[mask], plane)
+    mask = (lay.bounds < s_td) & np.any(lay.point != 0.0, axis=1)
+    return laid_part(
+        s_td, tn, e, lay.bounds, lay.weight, lay.EA, lay.bounds[mask], lay.point[mask], plane
+    )
 
 
-def _contact_shape(lay: Layout, q: np.ndarray, rA: np.ndarray, s_td: float, T_td: np.ndarray,
-                   plane: Plane) -> Shape:
+def _contact_shape(
+    lay: Layout, q: np.ndarray, rA: np.ndarray, s_td: float, T_td: np.ndarray, plane: Plane
+) -> Shape:
     laid = _laid(lay, s_td, T_td, plane)
     tn = float(np.linalg.norm(T_td))
     e = T_td / tn if tn > 0.0 else plane.basis[0]
     s0l, elll, T0l, ql, EAl = [], [], [], [], []
     for j in range(len(laid.s) - 1):
         lo, hi = laid.s[j], laid.s[j + 1]
-        seg_ea = lay.EA[min(int(np.searchsorted(lay.bounds, 0.5 * (lo + hi), side="right")) - 1,
-                            len(lay.ell) - 1)]
+        seg_ea = lay.EA[
+            min(
+                int(np.searchsorted(lay.bounds, 0.5 * (lo + hi), side="right")) - 1,
+                len(lay.ell) - 1,
+            )
+        ]
         k = laid.rate[j]
         t_lo, t_hi = laid.tension_lo[j], laid.tension_hi[j]
         slack_len = 0.0
@@ -434,12 +524,23 @@ def _contact_shape(lay: Layout, q: np.ndarray, rA: np.ndarray, s_td: float, T_td
     dr, _, _ = piece_integrals(T0, qa, ell, EA, jacobian=False)
     r0 = rA + np.concatenate((np.zeros((1, 3)), np.cumsum(dr, axis=0)))[:-1]
     force_a = laid.tension[0] * e
-    return Shape(s0=s0, ell=ell, T0=T0, q=qa, EA=EA, r0=r0, force_a=force_a,
-                 tension_end=T_td - Cend, laid_length=s_td, contact=True)
+    return Shape(
+        s0=s0,
+        ell=ell,
+        T0=T0,
+        q=qa,
+        EA=EA,
+        r0=r0,
+        force_a=force_a,
+        tension_end=T_td - Cend,
+        laid_length=s_td,
+        contact=True,
+    )
 
 
-def initial_contact(lay: Layout, ends: Ends, plane: Plane, *, still: bool = False) -> tuple[
-        np.ndarray, float]:
+def initial_contact(
+    lay: Layout, ends: Ends, plane: Plane, *, still: bool = False
+) -> tuple[np.ndarray, float]:
     """Starting (T_td, s_td): the inextensible uniform line with the same weight, lying
     on the seabed from the anchor and hanging to B (classical mooring-line formulas:
     suspended length sqrt(h^2 + 2 h H / w), reach (H/w) acosh(1 + w h / H))."""
@@ -462,9 +563,12 @@ def initial_contact(lay: Layout, ends: Ends, plane: Plane, *, still: bool = Fals
         Hmax = w * (L * L - h * h) / (2.0 * h) if L > h else w * L
         lo, hi = 1e-9 * w * L, Hmax
         if still and L - h - X > 1e-9 * L:
-            raise _Failure(STATUS_NO_SOLUTION, f"the line ({L:.6g} m) is longer than the path "
-                           f"along the seabed and straight up to B ({X + h:.6g} m): it lies slack "
-                           "on the seabed and its laid shape is not determined")
+            raise _Failure(
+                STATUS_NO_SOLUTION,
+                f"the line ({L:.6g} m) is longer than the path "
+                f"along the seabed and straight up to B ({X + h:.6g} m): it lies slack "
+                "on the seabed and its laid shape is not determined",
+            )
         if excess(hi) >= 0.0:
             H = hi
         elif excess(lo) <= 0.0:
@@ -488,9 +592,17 @@ def initial_contact(lay: Layout, ends: Ends, plane: Plane, *, still: bool = Fals
     return H * e, max(L - Ls, 0.0)
 
 
-def solve_contact(lay: Layout, q: np.ndarray, ends: Ends, plane: Plane, guess: tuple[
-        np.ndarray, float], *, tol: float, max_iterations: int,
-        deadline: float | None) -> Shape | None:
+def solve_contact(
+    lay: Layout,
+    q: np.ndarray,
+    ends: Ends,
+    plane: Plane,
+    guess: tuple[np.ndarray, float],
+    *,
+    tol: float,
+    max_iterations: int,
+    deadline: float | None,
+) -> Shape | None:
     """Line anchored at A on the seabed with a laid part: Newton on (T_td in the seabed
     plane, s_td) with an analytic Jacobian. Returns None if the line lifts off (s_td
     driven to zero)."""
@@ -515,8 +627,9 @@ def solve_contact(lay: Layout, q: np.ndarray, ends: Ends, plane: Plane, guess: t
         assert jac is not None
         Js = jac.sum(axis=0)
         rB = ends.rA + e * laid.stretched + dr.sum(axis=0)
-        dlaid = laid.stretched * (np.eye(3) - np.outer(e, e)) / tn + np.outer(e, e) * \
-            laid.positive_flex
+        dlaid = (
+            laid.stretched * (np.eye(3) - np.outer(e, e)) / tn + np.outer(e, e) * laid.positive_flex
+        )
         dT = (Js + dlaid) @ basis  # d rB / d (alpha, beta)
         drs = Js @ qs[0] - e * laid.rate_td * laid.positive_flex  # d rB / d s_td
         TL = T_td - Cend
@@ -526,10 +639,19 @@ def solve_contact(lay: Layout, q: np.ndarray, ends: Ends, plane: Plane, guess: t
             Jm = np.column_stack((dT, drs)) / L
         elif ends.kind == "mooring":
             assert ends.force is not None
-            R = np.array([(TL[0] - ends.force[0]) / Fscale, (TL[1] - ends.force[1]) / Fscale,
-                          (rB[2] - ends.zB) / L])
-            Jm = np.vstack((np.column_stack((basis[:2], qs[0][:2, None])) / Fscale,
-                            np.append(dT[2], drs[2])[None, :] / L))
+            R = np.array(
+                [
+                    (TL[0] - ends.force[0]) / Fscale,
+                    (TL[1] - ends.force[1]) / Fscale,
+                    (rB[2] - ends.zB) / L,
+                ]
+            )
+            Jm = np.vstack(
+                (
+                    np.column_stack((basis[:2], qs[0][:2, None])) / Fscale,
+                    np.append(dT[2], drs[2])[None, :] / L,
+                )
+            )
         else:
             assert ends.force is not None
             R = (TL - ends.force) / Fscale
@@ -543,15 +665,24 @@ def solve_contact(lay: Layout, q: np.ndarray, ends: Ends, plane: Plane, guess: t
     at_zero = 0
     while True:
         if not np.isfinite(res):
-            raise _Failure(STATUS_NUMERICAL, "non-finite residual in the seabed-contact Newton "
-                           "iteration", it, res)
+            raise _Failure(
+                STATUS_NUMERICAL,
+                "non-finite residual in the seabed-contact Newton iteration",
+                it,
+                res,
+            )
         if res <= tol:
             if polish >= 1 or res <= 1e-15:
                 break
             polish += 1
         if it >= max_iterations:
-            raise _Failure(STATUS_NOT_CONVERGED, f"seabed-contact Newton did not converge in "
-                           f"{max_iterations} iterations (residual {res:.3g})", it, res)
+            raise _Failure(
+                STATUS_NOT_CONVERGED,
+                f"seabed-contact Newton did not converge in "
+                f"{max_iterations} iterations (residual {res:.3g})",
+                it,
+                res,
+            )
         _check_deadline(deadline, it, "the seabed-contact Newton iteration")
         it += 1
         try:
@@ -560,28 +691,43 @@ def solve_contact(lay: Layout, q: np.ndarray, ends: Ends, plane: Plane, guess: t
             step = -np.linalg.lstsq(Jm, R, rcond=None)[0]
         lam = 1.0
         norm0 = float(np.linalg.norm(R))
-        for _ in range(60):
+        for _ in range(40):
             yn = y + lam * step
             # keep the TDP on the line and the tension positive
             yn[2] = min(max(yn[2], 0.0), L * (1.0 - 1e-9))
             if np.linalg.norm(yn[:2]) <= 1e-3 * np.linalg.norm(y[:2]):
                 yn[:2] = y[:2] * 1e-3
             Rn, Jn = evaluate(yn)
-            if np.all(np.isfinite(Rn)) and np.linalg.norm(Rn) <= (1.0 - 1e-4 * lam) * norm0 + \
-                    1e-15:
+            if np.all(np.isfinite(Rn)) and np.linalg.norm(Rn) <= (1.0 - 1e-4 * lam) * norm0 + 1e-15:
                 break
             lam *= 0.5
         else:
             hint = ""
             if float(np.linalg.norm(y[:2])) < 1e-3 * Fscale:
-                hint = ("; the tension at the touchdown point tends to zero: the line is longer "
-                        "than the straight path along the seabed and up to B, so it lies "
-                        "slack on the seabed and its laid shape is not determined")
-            raise _Failure(STATUS_NO_SOLUTION if hint else STATUS_NOT_CONVERGED,
-                           "line search failed in the seabed-contact Newton iteration "
-                           f"(residual {res:.3g}){hint}", it, res)
+                hint = (
+                    "; the tension at the touchdown point tends to zero: the line is longer "
+                    "than the straight path along the seabed and up to B, so it lies "
+                    "slack on the seabed and its laid shape is not determined"
+                )
+            raise _Failure(
+                STATUS_NO_SOLUTION if hint else STATUS_NOT_CONVERGED,
+                "line search failed in the seabed-contact Newton iteration "
+                f"(residual {res:.3g}){hint}",
+                it,
+                res,
+            )
         y, R, Jm = yn, Rn, Jn
         res = float(np.max(np.abs(R)))
+        if float(np.linalg.norm(y[:2])) < 1e-9 * Fscale and res > tol:
+            raise _Failure(
+                STATUS_NO_SOLUTION,
+                "the tension at the touchdown point tends to "
+                "zero: the line is longer than the straight path along the seabed "
+                "and up to B (or the current pushes it back towards the anchor), so "
+                "it lies slack on the seabed and its laid shape is not determined",
+                it,
+                res,
+            )
         if y[2] <= 0.0:
             at_zero += 1
             if at_zero >= 2:
@@ -624,11 +770,19 @@ class DragModel:
         lc = np.linalg.norm(chord, axis=1)
         t = chord / np.where(lc > 0.0, lc, 1.0)[:, None]
         U = factor * current_velocity(0.5 * (r[:-1, 2] + r[1:, 2]), self.z, self.velocity)
-        f = drag_per_length(U, t, density=self.density, diameter=self.diameter, drag_normal=self.cn,
-                            drag_tangential=self.ct)
+        f = drag_per_length(
+            U,
+            t,
+            density=self.density,
+            diameter=self.diameter,
+            drag_normal=self.cn,
+            drag_tangential=self.ct,
+        )
         D = f * (lc / lay.ell)[:, None]
         if shape.laid_length > 0.0:
-            D[0.5 * (lay.bounds[:-1] + lay.bounds[1:]) <= shape.laid_length] = 0.0
+            mid = 0.5 * (lay.bounds[:-1] + lay.bounds[1:])
+            lo = shape.laid_start
+            D[(mid >= lo) & (mid <= lo + shape.laid_length)] = 0.0
         return D
 
 
@@ -669,7 +823,7 @@ class _State:
     contact: tuple[np.ndarray, float] | None = None
     newton: int = 0
     drag: int = 0
-    notes: list[str] = field(default_factory=list)
+    mid: np.ndarray | None = None
 
 
 class SemiAnalyticSolver:
@@ -679,8 +833,13 @@ class SemiAnalyticSolver:
 
     name = "catenary"
 
-    def __init__(self, *, drag_elements: int | None = None, max_drag_iterations: int = 300,
-                 continuation_steps: tuple[int, ...] = (4, 16)) -> None:
+    def __init__(
+        self,
+        *,
+        drag_elements: int | None = None,
+        max_drag_iterations: int = 300,
+        continuation_steps: tuple[int, ...] = (4, 16),
+    ) -> None:
         self.drag_elements = drag_elements
         self.max_drag_iterations = max_drag_iterations
         self.continuation_steps = continuation_steps
@@ -695,8 +854,25 @@ class SemiAnalyticSolver:
 
     # ------------------------------------------------------------------ public
 
-    def solve(self, problem: StaticProblem, *, deadline: float | None = None,
-              drag_elements: int | None = None) -> StaticResult:
+    def solve(
+        self,
+        problem: StaticProblem,
+        *,
+        deadline: float | None = None,
+        drag_elements: int | None = None,
+        compiled: bool = True,
+    ) -> StaticResult:
+        """Solve ``problem``. A still-water free-hanging problem first takes the compiled
+        kernel of :mod:`.batch` (when numba is available and ``compiled``); anything it
+        does not settle takes the general path below, which gives the same answer."""
+        from . import _fast  # numba is imported on first use, not with the package
+
+        if compiled and _fast.AVAILABLE:
+            from .batch import solve_compiled
+
+            fast = solve_compiled(problem, deadline=deadline)
+            if fast is not None:
+                return fast
         line = problem.line
         L = line.total_length
         s = np.linspace(0.0, L, problem.n_nodes)
@@ -704,28 +880,40 @@ class SemiAnalyticSolver:
         try:
             result = self._solve(problem, s, deadline, drag_elements, state)
         except _Failure as exc:
-            result = StaticResult.failed(s, exc.status, exc.message,
-                                         iterations=state.newton + exc.iterations,
-                                         residual=exc.residual)
+            result = StaticResult.failed(
+                s,
+                exc.status,
+                exc.message,
+                iterations=state.newton + exc.iterations,
+                residual=exc.residual,
+            )
         except (FloatingPointError, np.linalg.LinAlgError, ValueError, ZeroDivisionError) as exc:
-            result = StaticResult.failed(s, STATUS_NUMERICAL,
-                                         f"{type(exc).__name__} in the catenary solver: {exc}",
-                                         iterations=state.newton)
+            result = StaticResult.failed(
+                s,
+                STATUS_NUMERICAL,
+                f"{type(exc).__name__} in the catenary solver: {exc}",
+                iterations=state.newton,
+            )
         result.drag_iterations = state.drag
         return result.check_finite()
 
     # ------------------------------------------------------------------ internals
 
-    def _solve(self, problem: StaticProblem, s: np.ndarray, deadline: float | None,
-               drag_elements: int | None, state: _State) -> StaticResult:
+    def _solve(
+        self,
+        problem: StaticProblem,
+        s: np.ndarray,
+        deadline: float | None,
+        drag_elements: int | None,
+        state: _State,
+    ) -> StaticResult:
         a, b = problem.end_a, problem.end_b
         line = problem.line
         L = line.total_length
         medium = problem.medium
         plane = None
         if medium.depth is not None:
-            plane = Plane(medium.depth, medium.seabed_slope, medium.seabed_heading,
-                          medium.friction)
+            plane = Plane(medium.depth, medium.seabed_slope, medium.seabed_heading, medium.friction)
         reverse = a.kind != "fixed"
         if a.kind == "fixed" and b.kind == "fixed" and plane is not None:
             assert a.position is not None and b.position is not None
@@ -745,57 +933,103 @@ class SemiAnalyticSolver:
         if plane is not None:
             for label, pos in (("A", ends.rA), ("B", ends.rB)):
                 if pos is not None and float(plane.height_above(pos)) < -1e-6 * L:
-                    raise _Failure(STATUS_NO_SOLUTION, f"end {label if not reverse else 'AB'[label == 'A']} "
-                                   f"lies {-float(plane.height_above(pos)):.4g} m below the seabed")
+                    name = label if not reverse else ("B" if label == "A" else "A")
+                    raise _Failure(
+                        STATUS_NO_SOLUTION,
+                        f"end {name} lies {-float(plane.height_above(pos)):.4g} m below the seabed",
+                    )
             grounded = float(plane.height_above(ends.rA)) <= 1e-6 * L
-        has_current = medium.has_current and medium.density > 0.0 and bool(
-            np.any(line.diameter * (line.drag_normal + line.drag_tangential) > 0.0))
+        if grounded and ends.kind == "fixed" and plane is not None:
+            assert ends.rB is not None
+            if float(plane.height_above(ends.rB)) <= 1e-6 * L:
+                return _laid_between(line, ends, plane, s_eval, s, reverse)
+        has_current = (
+            medium.has_current
+            and medium.density > 0.0
+            and bool(np.any(line.diameter * (line.drag_normal + line.drag_tangential) > 0.0))
+        )
         n_el = 0
         if has_current:
-            n_el = (drag_elements or problem.drag_elements or self.drag_elements
-                    or max(problem.n_nodes - 1, 20))
+            n_el = (
+                drag_elements
+                or problem.drag_elements
+                or self.drag_elements
+                or max(problem.n_nodes - 1, 20)
+            )
         lay = make_layout(line, n_el)
         tol = problem.tolerance
         maxit = problem.max_iterations
         grav = lay.gravity
 
         def inner(q: np.ndarray, tol_inner: float, polish: bool = True) -> Shape:
-            return self._inner(lay, q, ends, plane if grounded else None, state, tol_inner,
-                               maxit, deadline, polish)
+            return self._inner(
+                lay, q, ends, plane, state, tol_inner, maxit, deadline, polish, grounded
+            )
 
         if not has_current:
             shape = inner(grav, tol)
             drag_res = 0.0
         else:
             seg = lay.segment
-            drag = DragModel(line.diameter[seg], line.drag_normal[seg], line.drag_tangential[seg],
-                             medium.density, medium.current_z, medium.current_velocity)
+            drag = DragModel(
+                line.diameter[seg],
+                line.drag_normal[seg],
+                line.drag_tangential[seg],
+                medium.density,
+                medium.current_z,
+                medium.current_velocity,
+            )
             shape, drag_res = self._drag_loop(lay, grav, drag, inner, tol, deadline, state, ends)
         pos, tension = shape.sample(s_eval)
         if plane is not None:
             height = plane.height_above(pos)
             depth_below = float(-np.min(height))
             if depth_below > max(1e-6 * L, 1e3 * tol * L):
-                where = "" if grounded else (" between its ends (contact is modelled for a line "
-                                             "anchored on the seabed at a fixed end)")
-                raise _Failure(STATUS_NO_SOLUTION, f"the line passes {depth_below:.4g} m below "
-                               f"the seabed{where}", state.newton, shape.residual)
+                where = "" if grounded else " between its ends"
+                raise _Failure(
+                    STATUS_NO_SOLUTION,
+                    f"the line passes {depth_below:.4g} m below the seabed{where} "
+                    "(a contact the solver could not resolve)",
+                    state.newton,
+                    shape.residual,
+                )
         force_a = shape.force_a
         force_b = -shape.tension_end
         if reverse:
             force_a, force_b = force_b, force_a
         res = max(shape.residual, drag_res)
-        return StaticResult(s=s, position=pos, tension=tension, force_a=np.asarray(force_a),
-                            force_b=np.asarray(force_b), laid_length=shape.laid_length,
-                            iterations=state.newton, residual=res)
+        return StaticResult(
+            s=s,
+            position=pos,
+            tension=tension,
+            force_a=np.asarray(force_a),
+            force_b=np.asarray(force_b),
+            laid_length=shape.laid_length,
+            iterations=state.newton,
+            residual=res,
+        )
 
-    def _inner(self, lay: Layout, q: np.ndarray, ends: Ends, plane: Plane | None,
-               state: _State, tol: float, maxit: int, deadline: float | None,
-               polish: bool = True) -> Shape:
-        """One solve with known loads: free-hanging, or with a laid part."""
+    def _inner(
+        self,
+        lay: Layout,
+        q: np.ndarray,
+        ends: Ends,
+        plane: Plane | None,
+        state: _State,
+        tol: float,
+        maxit: int,
+        deadline: float | None,
+        polish: bool = True,
+        grounded: bool = False,
+    ) -> Shape:
+        """One solve with known loads: free-hanging, or with a laid part (from an end
+        anchored on the seabed, or between the ends)."""
+        if plane is not None and not grounded:
+            return self._inner_midspan(lay, q, ends, plane, state, tol, maxit, deadline, polish)
         if plane is not None and state.contact is not None:
-            shape = solve_contact(lay, q, ends, plane, state.contact, tol=tol,
-                                  max_iterations=maxit, deadline=deadline)
+            shape = solve_contact(
+                lay, q, ends, plane, state.contact, tol=tol, max_iterations=maxit, deadline=deadline
+            )
             if shape is not None:
                 state.newton += shape.iterations
                 state.contact = (_td_tension(shape), shape.laid_length)
@@ -804,8 +1038,16 @@ class SemiAnalyticSolver:
         TA = state.TA if state.TA is not None else initial_tension(lay, q, ends)
         try:
             try:
-                shape = solve_free(lay, q, ends, TA, tol=tol, max_iterations=maxit,
-                                   deadline=deadline, polish=polish)
+                shape = solve_free(
+                    lay,
+                    q,
+                    ends,
+                    TA,
+                    tol=tol,
+                    max_iterations=maxit,
+                    deadline=deadline,
+                    polish=polish,
+                )
             except _Failure as exc:
                 if exc.status == STATUS_TIME_LIMIT:
                     raise
@@ -825,23 +1067,81 @@ class SemiAnalyticSolver:
         assert plane is not None
         still = not np.any(q[:, :2]) and plane.slope == 0.0
         guess = initial_contact(lay, ends, plane, still=still)
-        cshape = solve_contact(lay, q, ends, plane, guess, tol=tol, max_iterations=maxit,
-                               deadline=deadline)
+        cshape = solve_contact(
+            lay, q, ends, plane, guess, tol=tol, max_iterations=maxit, deadline=deadline
+        )
         if cshape is None:
             if shape is not None:
                 return shape
-            raise _Failure(STATUS_NOT_CONVERGED, "neither the free-hanging nor the seabed-"
-                           "contact solution converged")
+            raise _Failure(
+                STATUS_NOT_CONVERGED,
+                "neither the free-hanging nor the seabed-contact solution converged",
+            )
         state.newton += cshape.iterations
         state.contact = (_td_tension(cshape), cshape.laid_length)
         return cshape
 
+    def _inner_midspan(
+        self,
+        lay: Layout,
+        q: np.ndarray,
+        ends: Ends,
+        plane: Plane,
+        state: _State,
+        tol: float,
+        maxit: int,
+        deadline: float | None,
+        polish: bool,
+    ) -> Shape:
+        """Neither end on the seabed: free-hanging, unless that dips into the seabed, then
+        resting on it between the ends (:mod:`.midspan`)."""
+        from .midspan import initial_midspan, solve_midspan
+
+        if state.mid is not None:
+            try:
+                shape = solve_midspan(
+                    lay,
+                    q,
+                    ends,
+                    plane,
+                    state.mid,
+                    tol=tol,
+                    max_iterations=maxit,
+                    deadline=deadline,
+                )
+                state.newton += shape.iterations
+                state.mid = _mid_unknowns(shape, plane)
+                return shape
+            except _Failure as exc:
+                if exc.status == STATUS_TIME_LIMIT:
+                    raise
+                state.mid = None
+        shape = self._inner(lay, q, ends, None, state, tol, maxit, deadline, polish)
+        if not _penetrates(shape, lay, plane, anchored=False):
+            return shape
+        guess = initial_midspan(shape, plane, lay.total)
+        mshape = solve_midspan(
+            lay, q, ends, plane, guess, tol=tol, max_iterations=maxit, deadline=deadline
+        )
+        state.newton += mshape.iterations
+        state.mid = _mid_unknowns(mshape, plane)
+        return mshape
+
     @staticmethod
-    def _regularised(lay: Layout, q: np.ndarray, ends: Ends, tol: float, maxit: int,
-                     deadline: float | None, polish: bool, failure: _Failure) -> Shape:
+    def _regularised(
+        lay: Layout,
+        q: np.ndarray,
+        ends: Ends,
+        tol: float,
+        maxit: int,
+        deadline: float | None,
+        polish: bool,
+        failure: _Failure,
+    ) -> Shape:
         """Retry a line with unloaded (weightless) pieces with a small weight on them,
-        reduced from 1e-2 to 1e-10 (at least 1e-6) of the point loads per length. A weightless piece that goes slack has no
-        determined shape and its energy a kink at zero tension where Newton stalls; the
+        reduced from 1e-2 to 1e-10 (at least 1e-6) of the point loads per length. A
+        weightless piece that goes slack has no determined shape and its energy a kink at
+        zero tension where Newton stalls; the
         light chain is its physical limit; the end forces change by that fraction of the
         loads (1e-10 to 1e-6)."""
         unloaded = np.linalg.norm(q, axis=1) == 0.0
@@ -865,21 +1165,42 @@ class SemiAnalyticSolver:
             if TA is None:
                 TA = initial_tension(lay, qr, ends)
             try:
-                shape = solve_free(lay, qr, ends, TA, tol=tol if level <= 1e-6 else
-                                   max(tol, 1e-6), max_iterations=maxit, deadline=deadline,
-                                   polish=polish and level <= 1e-6)
+                shape = solve_free(
+                    lay,
+                    qr,
+                    ends,
+                    TA,
+                    tol=tol if level <= 1e-6 else max(tol, 1e-6),
+                    max_iterations=maxit,
+                    deadline=deadline,
+                    polish=polish and level <= 1e-6,
+                )
             except _Failure as exc:
                 if exc.status == STATUS_TIME_LIMIT or level > 1e-6:
-                    raise _Failure(exc.status, f"{failure.message}; retried with a small "
-                                   f"regularising weight on the weightless pieces: "
-                                   f"{exc.message}", exc.iterations, exc.residual) from None
+                    raise _Failure(
+                        exc.status,
+                        f"{failure.message}; retried with a small "
+                        f"regularising weight on the weightless pieces: "
+                        f"{exc.message}",
+                        exc.iterations,
+                        exc.residual,
+                    ) from None
                 break
             TA = shape.force_a
         assert shape is not None
         return shape
 
-    def _drag_loop(self, lay: Layout, grav: np.ndarray, drag: DragModel, inner, tol: float,  # noqa: ANN001
-                   deadline: float | None, state: _State, ends: Ends) -> tuple[Shape, float]:
+    def _drag_loop(
+        self,
+        lay: Layout,
+        grav: np.ndarray,
+        drag: DragModel,
+        inner,
+        tol: float,  # noqa: ANN001
+        deadline: float | None,
+        state: _State,
+        ends: Ends,
+    ) -> tuple[Shape, float]:
         """Outer iteration on the drag loads; continuation in current speed on failure."""
         Fscale = float(np.sum(np.abs(lay.weight) * lay.ell) + np.sum(np.abs(lay.point)))
         attempts: list[int] = [1, *self.continuation_steps]
@@ -895,8 +1216,20 @@ class SemiAnalyticSolver:
                     if k > 1:  # drag grows with the square of the speed
                         D = D * (k / (k - 1)) ** 2
                     shape, D, res = self._drag_fixed_point(
-                        lay, grav, drag, D, factor, inner, tol if final else max(tol, 1e-4),
-                        Fscale, deadline, state, first=shape is None, ends=ends)
+                        lay,
+                        grav,
+                        drag,
+                        D,
+                        factor,
+                        inner,
+                        tol if final else max(tol, 1e-4),
+                        Fscale,
+                        deadline,
+                        state,
+                        first=shape is None,
+                        ends=ends,
+                        lenient=not final,
+                    )
                 assert shape is not None
                 return shape, res
             except _Failure as exc:
@@ -904,16 +1237,36 @@ class SemiAnalyticSolver:
                     raise
                 last = exc
                 state.TA, state.contact = saved_TA, saved_contact
-                state.notes.append(exc.message)
+                if exc.status == STATUS_NO_SOLUTION and (n_steps > 1 or "slack" in exc.message):
+                    break  # confirmed with continuation: no static solution
         assert last is not None
-        raise _Failure(last.status, f"drag iteration failed even with current-speed "
-                       f"continuation in {attempts[-1]} steps: {last.message}", 0, last.residual)
+        raise _Failure(
+            last.status,
+            f"drag iteration failed even with current-speed "
+            f"continuation in {n_steps} steps: {last.message}",
+            0,
+            last.residual,
+        )
 
-    def _drag_fixed_point(self, lay: Layout, grav: np.ndarray, drag: DragModel, D: np.ndarray,
-                          factor: float, inner, tol: float, Fscale: float,  # noqa: ANN001
-                          deadline: float | None, state: _State, first: bool,
-                          ends: Ends) -> tuple[
-                              Shape, np.ndarray, float]:
+    def _drag_fixed_point(
+        self,
+        lay: Layout,
+        grav: np.ndarray,
+        drag: DragModel,
+        D: np.ndarray,
+        factor: float,
+        inner,
+        tol: float,
+        Fscale: float,  # noqa: ANN001
+        deadline: float | None,
+        state: _State,
+        first: bool,
+        ends: Ends,
+        lenient: bool = False,
+    ) -> tuple[Shape, np.ndarray, float]:
+        """Fixed point on the drag loads, Anderson-accelerated. ``lenient`` (an
+        intermediate continuation step, which only has to give the next step a start)
+        accepts the best iterate when the loop stalls within 1e-2 of the loads."""
         if first:
             try:
                 shape = inner(grav + D, max(tol, 1e-6))
@@ -922,6 +1275,7 @@ class SemiAnalyticSolver:
             D = drag.load(shape, lay, factor)
         acc = _Anderson()
         best = math.inf
+        best_res, best_iterate = math.inf, None
         stall = 0
         res = math.inf
         for it in range(1, self.max_drag_iterations + 1):
@@ -936,6 +1290,8 @@ class SemiAnalyticSolver:
             res = float(np.sum(np.linalg.norm(Dn - D, axis=1) * lay.ell)) / max(scale, 1e-300)
             if res <= tol and tol_inner <= tol:
                 return shape, Dn, res
+            if res < best_res:
+                best_res, best_iterate = res, (shape, Dn)
             if res < 0.5 * best:
                 best = res
                 stall = 0
@@ -946,9 +1302,16 @@ class SemiAnalyticSolver:
                     acc.beta = max(acc.beta * 0.5, 0.05)
                     stall = 0
             D = acc.step(D.ravel(), Dn.ravel()).reshape(D.shape)
-        raise _Failure(STATUS_NOT_CONVERGED, f"drag iteration did not converge in "
-                       f"{self.max_drag_iterations} iterations (relative load residual "
-                       f"{res:.3g}, tolerance {tol:.3g})", 0, res)
+        if lenient and best_iterate is not None and best_res < 1e-2:
+            return best_iterate[0], best_iterate[1], best_res
+        raise _Failure(
+            STATUS_NOT_CONVERGED,
+            f"drag iteration did not converge in "
+            f"{self.max_drag_iterations} iterations (relative load residual "
+            f"{res:.3g}, tolerance {tol:.3g})",
+            0,
+            res,
+        )
 
     @staticmethod
     def _straight_start(lay: Layout, ends: Ends) -> Shape:
@@ -966,9 +1329,70 @@ class SemiAnalyticSolver:
         n = float(np.linalg.norm(d))
         e = d / n if n > 0.0 else -_Z
         L = lay.total
-        return Shape(s0=np.zeros(1), ell=np.array([L]), T0=(1e-150 * e)[None, :],
-                     q=np.zeros((1, 3)), EA=np.array([1.0]), r0=ends.rA[None, :],
-                     force_a=np.zeros(3), tension_end=np.zeros(3))
+        return Shape(
+            s0=np.zeros(1),
+            ell=np.array([L]),
+            T0=(1e-150 * e)[None, :],
+            q=np.zeros((1, 3)),
+            EA=np.array([1.0]),
+            r0=ends.rA[None, :],
+            force_a=np.zeros(3),
+            tension_end=np.zeros(3),
+        )
+
+
+def _laid_between(
+    line: LineModel, ends: Ends, plane: Plane, s_eval: np.ndarray, s: np.ndarray, reverse: bool
+) -> StaticResult:
+    """Both ends fixed on the seabed: a line no longer than the distance between them
+    lies straight on the seabed with the uniform tension that stretches it to that
+    distance (the seabed carries its weight; friction is not mobilised in a uniform
+    stretch); a longer one lies slack, with no determined shape."""
+    assert ends.rB is not None
+    d = ends.rB - ends.rA
+    chord = float(np.linalg.norm(d))
+    L = line.total_length
+    flex = float(np.sum(line.length / line.axial_stiffness))  # stretch per newton [m/N]
+    if chord <= L:
+        raise _Failure(
+            STATUS_NO_SOLUTION,
+            f"both ends lie on the seabed {chord:.6g} m apart "
+            f"and the line ({L:.6g} m) is not shorter: it lies slack on the seabed "
+            "and its shape is not determined",
+        )
+    T = (chord - L) / flex
+    e = d / chord
+    bounds = line.segment_ends
+    stretched = np.concatenate(([0.0], np.cumsum(line.length * (1.0 + T / line.axial_stiffness))))
+    along = np.interp(s_eval, bounds, stretched)
+    pos = ends.rA + along[:, None] * e
+    force_a, force_b = T * e, -T * e
+    if reverse:
+        force_a, force_b = force_b, force_a
+    return StaticResult(
+        s=s,
+        position=pos,
+        tension=np.full(len(s), T),
+        force_a=force_a,
+        force_b=force_b,
+        laid_length=L,
+        iterations=0,
+        residual=0.0,
+    )
+
+
+def _mid_unknowns(shape: Shape, plane: Plane) -> np.ndarray:
+    """(alpha, beta, s1, s2) of a solution resting on the seabed between its ends."""
+    T = _td_tension_at(shape, shape.laid_start)
+    e1, e2 = plane.basis
+    return np.array(
+        [float(T @ e1), float(T @ e2), shape.laid_start, shape.laid_start + shape.laid_length]
+    )
+
+
+def _td_tension_at(shape: Shape, s: float) -> np.ndarray:
+    k = min(int(np.searchsorted(shape.s0, s, side="left")), len(shape.s0) - 1)
+    return shape.T0[k].copy()
 
 
 def _td_tension(shape: Shape) -> np.ndarray:
@@ -977,12 +1401,12 @@ def _td_tension(shape: Shape) -> np.ndarray:
     return shape.T0[k].copy()
 
 
-def _penetrates(shape: Shape, lay: Layout, plane: Plane) -> bool:
-    """Whether a free-hanging solution anchored on the seabed dips into it (its tension
-    at the anchor points into the seabed, or a piece boundary lies below it)."""
-    if float(shape.force_a @ plane.normal) < 0.0:
+def _penetrates(shape: Shape, lay: Layout, plane: Plane, anchored: bool = True) -> bool:
+    """Whether a free-hanging solution dips into the seabed (for a line anchored on it:
+    also when its tension at the anchor points into the seabed)."""
+    if anchored and float(shape.force_a @ plane.normal) < 0.0:
         return True
-    r, _ = shape.sample(np.linspace(0.0, lay.total, 4 * len(lay.ell) + 1))
+    r, _ = shape.sample(np.linspace(0.0, lay.total, max(4 * len(lay.ell) + 1, 401)))
     return bool(np.any(plane.height_above(r) < -1e-9 * lay.total))
 
 

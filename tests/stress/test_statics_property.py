@@ -7,7 +7,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
@@ -16,35 +16,52 @@ from cablestudy.statics import EndCondition, LineModel, Medium, StaticProblem
 from cablestudy.statics.semi_analytic import SemiAnalyticSolver
 
 SOLVER = SemiAnalyticSolver()
-SETTINGS = settings(max_examples=30, deadline=None, derandomize=True,
-                    suppress_health_check=[HealthCheck.too_slow])
+SETTINGS = settings(
+    max_examples=30, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow]
+)
 
 
-def make_line(L: float, w: float, EA: float, atts: list[tuple[float, np.ndarray]], *,
-              d: float = 0.03) -> LineModel:
+def make_line(
+    L: float, w: float, EA: float, atts: list[tuple[float, np.ndarray]], *, d: float = 0.03
+) -> LineModel:
     one = np.ones(1)
     return LineModel(
-        length=np.array([L]), weight=np.array([w]), mass=one, axial_stiffness=np.array([EA]),
-        diameter=d * one, drag_normal=1.2 * one, drag_tangential=0.01 * one,
-        added_mass_normal=one, added_mass_tangential=0 * one, bending_stiffness=0 * one,
-        damping_ratio=0 * one, attachment_s=np.array([a[0] for a in atts], dtype=float),
+        length=np.array([L]),
+        weight=np.array([w]),
+        mass=one,
+        axial_stiffness=np.array([EA]),
+        diameter=d * one,
+        drag_normal=1.2 * one,
+        drag_tangential=0.01 * one,
+        added_mass_normal=one,
+        added_mass_tangential=0 * one,
+        bending_stiffness=0 * one,
+        damping_ratio=0 * one,
+        attachment_s=np.array([a[0] for a in atts], dtype=float),
         attachment_force=np.array([a[1] for a in atts], dtype=float).reshape(-1, 3),
-        attachment_mass=np.zeros(len(atts)), attachment_volume=np.zeros(len(atts)))
+        attachment_mass=np.zeros(len(atts)),
+        attachment_volume=np.zeros(len(atts)),
+    )
 
 
 @st.composite
 def still_water_problems(draw: st.DrawFn) -> tuple[StaticProblem, list]:
     L = draw(st.floats(5.0, 2000.0))
     kind = draw(st.sampled_from(["heavy", "buoyant", "neutral", "weightless+load"]))
-    w = {"heavy": draw(st.floats(0.1, 2000.0)), "buoyant": -draw(st.floats(0.1, 500.0)),
-         "neutral": 0.0, "weightless+load": 0.0}[kind]
+    w = {
+        "heavy": draw(st.floats(0.1, 2000.0)),
+        "buoyant": -draw(st.floats(0.1, 500.0)),
+        "neutral": 0.0,
+        "weightless+load": 0.0,
+    }[kind]
     EA = 10 ** draw(st.floats(4.0, 10.0))
     ratio = draw(st.sampled_from([0.02, 0.3, 0.7, 0.95, 0.999, 1.0005]))
     elev = draw(st.floats(-math.pi / 2, math.pi / 2))
     heading = draw(st.floats(-math.pi, math.pi))
     chord = ratio * L
-    b = chord * np.array([math.cos(elev) * math.cos(heading), math.cos(elev) * math.sin(heading),
-                          math.sin(elev)])
+    b = chord * np.array(
+        [math.cos(elev) * math.cos(heading), math.cos(elev) * math.sin(heading), math.sin(elev)]
+    )
     n_att = draw(st.integers(0, 2)) if kind != "weightless+load" else draw(st.integers(1, 2))
     atts = []
     for _ in range(n_att):
@@ -55,9 +72,14 @@ def still_water_problems(draw: st.DrawFn) -> tuple[StaticProblem, list]:
         atts.append((s, f))
     if kind == "neutral" and ratio <= 1.0 and not atts:
         atts.append((0.5 * L, np.array([0.0, 0.0, -50.0])))  # neutral slack line needs a load
-    prob = StaticProblem(line=make_line(L, w, EA, atts), medium=Medium(density=1025.0, gravity=9.8),
-                         end_a=EndCondition(kind="fixed", position=np.zeros(3)),
-                         end_b=EndCondition(kind="fixed", position=b), n_nodes=41, tolerance=1e-9)
+    prob = StaticProblem(
+        line=make_line(L, w, EA, atts),
+        medium=Medium(density=1025.0, gravity=9.8),
+        end_a=EndCondition(kind="fixed", position=np.zeros(3)),
+        end_b=EndCondition(kind="fixed", position=b),
+        n_nodes=41,
+        tolerance=1e-9,
+    )
     return prob, atts
 
 
@@ -86,8 +108,9 @@ def test_still_water_converges_and_balances(case: tuple[StaticProblem, list]) ->
                 T = T - f
         return T
 
-    inner = [k for k in range(1, len(res.s) - 1)
-             if all(abs(res.s[k] - sa) > 1e-9 * L for sa, _ in atts)]
+    inner = [
+        k for k in range(1, len(res.s) - 1) if all(abs(res.s[k] - sa) > 1e-9 * L for sa, _ in atts)
+    ]
     mags = np.array([np.linalg.norm(T_of(res.s[k])) for k in inner])
     assert np.allclose(mags, res.tension[inner], rtol=1e-9, atol=(1e-9 if w else 2e-6) * F)
     if w == 0.0 and np.min(res.tension) < 1e-4 * F:
@@ -96,8 +119,12 @@ def test_still_water_converges_and_balances(case: tuple[StaticProblem, list]) ->
         ends = sorted([0.0, *[sa for sa, _ in atts], L])
         for lo, hi in zip(ends[:-1], ends[1:], strict=True):
             ka, kb = np.searchsorted(res.s, [lo, hi])
-            assert np.linalg.norm(res.position[min(kb, len(res.s) - 1)] - res.position[ka]) \
-                <= (hi - lo) * (1 + np.max(res.tension) / EA) + 1e-9 * L + (res.s[1] - res.s[0])
+            kb = min(kb, len(res.s) - 1)
+            span = res.s[kb] - res.s[ka]
+            assert (
+                np.linalg.norm(res.position[kb] - res.position[ka])
+                <= span * (1 + np.max(res.tension) / EA) + 1e-9 * L
+            )
         return
     # compatibility, independently: integrate dr/ds = T (1/EA + 1/|T|) across the pieces
     stops = sorted({0.0, L, *[sa for sa, _ in atts]})
@@ -126,21 +153,63 @@ def drag_problems(draw: st.DrawFn) -> StaticProblem:
     ratio = draw(st.sampled_from([0.2, 0.6, 0.9, 0.99]))
     elev = draw(st.floats(-1.4, 1.4))
     az = draw(st.floats(-math.pi, math.pi))
-    b = ratio * L * np.array([math.cos(elev) * math.cos(az), math.cos(elev) * math.sin(az),
-                              math.sin(elev)])
+    b = (
+        ratio
+        * L
+        * np.array([math.cos(elev) * math.cos(az), math.cos(elev) * math.sin(az), math.sin(elev)])
+    )
+    if w == 0.0:
+        # a weightless line in a current along its chord bows in any direction about it
+        # (no unique solution): keep a current component across the chord
+        along = abs(math.cos(elev) * math.cos(az - heading))
+        assume(along < 0.95)
     z0 = -L - 10.0
-    vel = np.array([[speed * math.cos(heading + turn), speed * math.sin(heading + turn), 0.0],
-                    [speed * math.cos(heading), speed * math.sin(heading), 0.0]])
+    vel = np.array(
+        [
+            [speed * math.cos(heading + turn), speed * math.sin(heading + turn), 0.0],
+            [speed * math.cos(heading), speed * math.sin(heading), 0.0],
+        ]
+    )
     med = Medium(density=1025.0, gravity=9.8, current_z=np.array([z0, 10.0]), current_velocity=vel)
-    return StaticProblem(line=make_line(L, w, 1e7, []), medium=med,
-                         end_a=EndCondition(kind="fixed", position=np.zeros(3)),
-                         end_b=EndCondition(kind="fixed", position=b), n_nodes=31, tolerance=1e-9)
+    return StaticProblem(
+        line=make_line(L, w, 1e7, []),
+        medium=med,
+        end_a=EndCondition(kind="fixed", position=np.zeros(3)),
+        end_b=EndCondition(kind="fixed", position=b),
+        n_nodes=31,
+        tolerance=1e-9,
+    )
 
 
-@settings(max_examples=20, deadline=None, derandomize=True,
-          suppress_health_check=[HealthCheck.too_slow])
+@settings(
+    max_examples=20, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow]
+)
 @given(drag_problems())
 def test_sheared_current_converges_and_balances_drag(prob: StaticProblem) -> None:
+    check_drag_balance(prob)
+
+
+def test_buoyant_light_line_in_strong_sheared_current() -> None:
+    """Regression: a found example where the drag loop stalled at an intermediate
+    current-speed continuation step (relative load residual 1.8e-4 against the 1e-4 asked
+    of intermediate steps) and the solve failed; intermediate steps now hand their best
+    iterate to the next step."""
+    L = 221.22999672958395
+    vel = np.array([[1.112553405138498, 0.43793058739907026, 0.0],
+                    [1.1956413670766672, 0.0, 0.0]])
+    prob = StaticProblem(
+        line=make_line(L, -0.2, 1e7, []),
+        medium=Medium(density=1025.0, gravity=9.8, current_z=np.array([-L - 10.0, 10.0]),
+                      current_velocity=vel),
+        end_a=EndCondition(kind="fixed", position=np.zeros(3)),
+        end_b=EndCondition(kind="fixed",
+                           position=np.array([130.09207548635544, 0.0, 26.370969241236015])),
+        n_nodes=31, tolerance=1e-9,
+    )
+    check_drag_balance(prob)
+
+
+def check_drag_balance(prob: StaticProblem) -> None:
     res = SOLVER.solve(prob)
     assert res.status == 0, res.message
     assert res.residual <= 1e-9
@@ -152,8 +221,14 @@ def test_sheared_current_converges_and_balances_drag(prob: StaticProblem) -> Non
     med = prob.medium
     U = np.stack([np.interp(zmid, med.current_z, med.current_velocity[:, k]) for k in range(3)], 1)
     n = len(lc)
-    f = drag_per_length(U, chord / lc[:, None], density=1025.0, diameter=np.full(n, 0.03),
-                        drag_normal=np.full(n, 1.2), drag_tangential=np.full(n, 0.01))
+    f = drag_per_length(
+        U,
+        chord / lc[:, None],
+        density=1025.0,
+        diameter=np.full(n, 0.03),
+        drag_normal=np.full(n, 1.2),
+        drag_tangential=np.full(n, 0.01),
+    )
     L, w = prob.line.total_length, float(prob.line.weight[0])
     total = (f * lc[:, None]).sum(axis=0) + np.array([0.0, 0.0, -w * L])
     scale = np.abs(w) * L + np.sum(np.linalg.norm(f, axis=1) * lc)

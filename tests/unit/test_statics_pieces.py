@@ -19,26 +19,42 @@ def _quadrature(T0: np.ndarray, q: np.ndarray, ell: float, EA: float) -> tuple[n
     crossing = -(T0 @ (-q / w)) / w if w > 0.0 else -1.0
     points = [crossing] if 0.0 < crossing < ell else None
 
-    dr = np.array([
-        quad(lambda s, k=k: (tension(s) * (1.0 / EA + 1.0 / np.linalg.norm(tension(s))))[k],
-             0.0, ell, epsabs=1e-14, epsrel=1e-13, limit=200, points=points)[0]
-        for k in range(3)
-    ])
-    energy = quad(lambda s: np.linalg.norm(tension(s)) + tension(s) @ tension(s) / (2.0 * EA),
-                  0.0, ell, epsabs=1e-14, epsrel=1e-13, limit=200, points=points)[0]
+    dr = np.array(
+        [
+            quad(
+                lambda s, k=k: (tension(s) * (1.0 / EA + 1.0 / np.linalg.norm(tension(s))))[k],
+                0.0,
+                ell,
+                epsabs=1e-14,
+                epsrel=1e-13,
+                limit=200,
+                points=points,
+            )[0]
+            for k in range(3)
+        ]
+    )
+    energy = quad(
+        lambda s: np.linalg.norm(tension(s)) + tension(s) @ tension(s) / (2.0 * EA),
+        0.0,
+        ell,
+        epsabs=1e-14,
+        epsrel=1e-13,
+        limit=200,
+        points=points,
+    )[0]
     return dr, energy
 
 
 CASES = [
     # T0 [N], q [N/m], length [m], EA [N]
-    ((100.0, 0.0, -50.0), (0.0, 0.0, -3.0), 40.0, 1e5),      # ordinary sagging piece
-    ((100.0, 20.0, 80.0), (0.0, 0.0, -3.0), 40.0, 1e5),      # V keeps its sign
-    ((1.0, 0.0, -60.0), (0.0, 0.0, -3.0), 40.0, 1e5),        # nearly vertical, V changes sign
-    ((100.0, 0.0, -50.0), (0.0, 0.0, 3.0), 40.0, 1e5),       # buoyant
-    ((100.0, 30.0, -50.0), (1e-9, 0.0, -1e-9), 40.0, 1e5),   # nearly weightless
-    ((100.0, 30.0, -50.0), (0.0, 0.0, 0.0), 40.0, 1e5),      # weightless: straight
-    ((10.0, -30.0, 5.0), (4.0, -2.0, -3.0), 25.0, 1e4),      # oblique load (weight + drag)
-    ((2e5, 0.0, 1e3), (0.0, 0.0, -30.0), 10.0, 1e6),          # taut, stretched
+    ((100.0, 0.0, -50.0), (0.0, 0.0, -3.0), 40.0, 1e5),  # ordinary sagging piece
+    ((100.0, 20.0, 80.0), (0.0, 0.0, -3.0), 40.0, 1e5),  # V keeps its sign
+    ((1.0, 0.0, -60.0), (0.0, 0.0, -3.0), 40.0, 1e5),  # nearly vertical, V changes sign
+    ((100.0, 0.0, -50.0), (0.0, 0.0, 3.0), 40.0, 1e5),  # buoyant
+    ((100.0, 30.0, -50.0), (1e-9, 0.0, -1e-9), 40.0, 1e5),  # nearly weightless
+    ((100.0, 30.0, -50.0), (0.0, 0.0, 0.0), 40.0, 1e5),  # weightless: straight
+    ((10.0, -30.0, 5.0), (4.0, -2.0, -3.0), 25.0, 1e4),  # oblique load (weight + drag)
+    ((2e5, 0.0, 1e3), (0.0, 0.0, -30.0), 10.0, 1e6),  # taut, stretched
 ]
 
 
@@ -86,8 +102,9 @@ def test_vectorised_over_pieces_and_zero_length() -> None:
 def test_vertical_hanging_piece_with_zero_horizontal_tension() -> None:
     # H = 0 and V from -60 to +60 N: a folded vertical line; reach 0, rise
     # int V/|V| ds = 0 plus elastic part (V0 l + w l^2 / 2) / EA = 0
-    dr, jac, _ = piece_integrals(np.array([0.0, 0.0, -60.0]), np.array([0.0, 0.0, -3.0]),
-                                 np.array(40.0), np.array(1e5))
+    dr, jac, _ = piece_integrals(
+        np.array([0.0, 0.0, -60.0]), np.array([0.0, 0.0, -3.0]), np.array(40.0), np.array(1e5)
+    )
     assert np.all(np.isfinite(dr)) and np.all(np.isfinite(jac))
     assert np.max(np.abs(dr)) <= 1e-13
     # d z / d V0 = l / EA + H^2 int(1/|T|^3) -> l/EA + 2 / w as H -> 0 (fold)

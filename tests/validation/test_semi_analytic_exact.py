@@ -17,21 +17,37 @@ from cablestudy.statics.semi_analytic import SemiAnalyticSolver
 SOLVER = SemiAnalyticSolver()
 
 
-def make_line(lengths, weights, stiffness, *, diameter=0.02, cn=1.2, ct=0.01,  # noqa: ANN001
-              attachments=()) -> LineModel:  # noqa: ANN001
+def make_line(
+    lengths,
+    weights,
+    stiffness,
+    *,
+    diameter=0.02,
+    cn=1.2,
+    ct=0.01,  # noqa: ANN001
+    attachments=(),
+) -> LineModel:  # noqa: ANN001
     n = len(lengths)
 
     def arr(v):  # noqa: ANN001, ANN202
         return np.broadcast_to(np.asarray(v, dtype=float), (n,)).copy()
 
     return LineModel(
-        length=arr(lengths), weight=arr(weights), mass=arr(weights) / 9.80665,
-        axial_stiffness=arr(stiffness), diameter=arr(diameter), drag_normal=arr(cn),
-        drag_tangential=arr(ct), added_mass_normal=arr(1.0), added_mass_tangential=arr(0.0),
-        bending_stiffness=arr(0.0), damping_ratio=arr(0.0),
+        length=arr(lengths),
+        weight=arr(weights),
+        mass=arr(weights) / 9.80665,
+        axial_stiffness=arr(stiffness),
+        diameter=arr(diameter),
+        drag_normal=arr(cn),
+        drag_tangential=arr(ct),
+        added_mass_normal=arr(1.0),
+        added_mass_tangential=arr(0.0),
+        bending_stiffness=arr(0.0),
+        damping_ratio=arr(0.0),
         attachment_s=np.array([a[0] for a in attachments], dtype=float),
         attachment_force=np.array([a[1] for a in attachments], dtype=float).reshape(-1, 3),
-        attachment_mass=np.zeros(len(attachments)), attachment_volume=np.zeros(len(attachments)),
+        attachment_mass=np.zeros(len(attachments)),
+        attachment_volume=np.zeros(len(attachments)),
     )
 
 
@@ -65,8 +81,15 @@ def test_exact_elastic_catenary(name: str) -> None:
     1e-10 relative to the largest force / the length."""
     rb, w = GEOMETRIES[name]
     L, EA = 100.0, 6.283e7
-    prob = StaticProblem(line=make_line([L], [w], EA), medium=Medium(density=1.225, gravity=9.80665),
-                         end_a=fixed(0, 0, 0), end_b=fixed(*rb), n_nodes=101, tolerance=1e-12)
+    air = Medium(density=1.225, gravity=9.80665)
+    prob = StaticProblem(
+        line=make_line([L], [w], EA),
+        medium=air,
+        end_a=fixed(0, 0, 0),
+        end_b=fixed(*rb),
+        n_nodes=101,
+        tolerance=1e-12,
+    )
     res = SOLVER.solve(prob)
     assert res.status == 0, res.message
     exact = solve_between(np.zeros(3), np.array(rb), L, w, EA, res.s, tolerance=1e-13)
@@ -87,8 +110,13 @@ def test_segmented_line_with_attachments_against_ode_integration() -> None:
     lengths, weights, EA = [40.0, 30.0, 50.0], [30.0, 5.0, -8.0], [1e8, 2e6, 5e6]
     atts = [(25.0, (0.0, 0.0, -400.0)), (70.0, (50.0, 20.0, 300.0))]
     line = make_line(lengths, weights, EA, attachments=atts)
-    prob = StaticProblem(line=line, medium=Medium(density=1025.0, gravity=9.80665),
-                         end_a=fixed(0, 0, 0), end_b=fixed(80.0, 30.0, -25.0), tolerance=1e-12)
+    prob = StaticProblem(
+        line=line,
+        medium=Medium(density=1025.0, gravity=9.80665),
+        end_a=fixed(0, 0, 0),
+        end_b=fixed(80.0, 30.0, -25.0),
+        tolerance=1e-12,
+    )
     res = SOLVER.solve(prob)
     assert res.status == 0, res.message
     bounds = np.concatenate(([0.0], np.cumsum(lengths)))
@@ -96,8 +124,9 @@ def test_segmented_line_with_attachments_against_ode_integration() -> None:
     T = res.force_a.copy()
     for i in range(3):
         q = np.array([0.0, 0.0, -weights[i]])
-        stops = sorted({bounds[i], bounds[i + 1], *[a[0] for a in atts
-                                                     if bounds[i] < a[0] < bounds[i + 1]]})
+        stops = sorted(
+            {bounds[i], bounds[i + 1], *[a[0] for a in atts if bounds[i] < a[0] < bounds[i + 1]]}
+        )
         for lo, hi in zip(stops[:-1], stops[1:], strict=True):
             T_lo = T.copy()
 
@@ -136,8 +165,14 @@ def test_weightless_line_with_point_load_is_a_two_bar_truss() -> None:
 
     P = fsolve(balance, np.array([5.0, 0.0, -5.0]), xtol=1e-13)
     line = make_line([l1 + l2], [0.0], EA, attachments=[(l1, F)])
-    prob = StaticProblem(line=line, medium=Medium(density=0.0, gravity=9.80665),
-                         end_a=fixed(*A), end_b=fixed(*B), n_nodes=14, tolerance=1e-12)
+    prob = StaticProblem(
+        line=line,
+        medium=Medium(density=0.0, gravity=9.80665),
+        end_a=fixed(*A),
+        end_b=fixed(*B),
+        n_nodes=14,
+        tolerance=1e-12,
+    )
     res = SOLVER.solve(prob)
     assert res.status == 0, res.message
     assert np.max(np.abs(res.position[6] - P)) <= 1e-10 * (l1 + l2)
@@ -156,10 +191,16 @@ def test_inextensible_limit() -> None:
     L = (2H/w) sinh(w l / 2H) (Irvine 1981, eq. 1.14 with h = 0), solved by brentq; the
     elastic solution with EA = 1e14 N differs by O(T/EA) ~ 1e-11 relative."""
     L, w, l = 100.0, 20.0, 80.0
-    H = brentq(lambda H: 2 * H / w * math.sinh(w * l / (2 * H)) - L, 50.0, 1e6, xtol=1e-14,
-               rtol=1e-15)
-    prob = StaticProblem(line=make_line([L], [w], 1e14), medium=Medium(density=0.0, gravity=9.8),
-                         end_a=fixed(0, 0, 0), end_b=fixed(l, 0, 0), tolerance=1e-12)
+    H = brentq(
+        lambda H: 2 * H / w * math.sinh(w * l / (2 * H)) - L, 50.0, 1e6, xtol=1e-14, rtol=1e-15
+    )
+    prob = StaticProblem(
+        line=make_line([L], [w], 1e14),
+        medium=Medium(density=0.0, gravity=9.8),
+        end_a=fixed(0, 0, 0),
+        end_b=fixed(l, 0, 0),
+        tolerance=1e-12,
+    )
     res = SOLVER.solve(prob)
     assert res.status == 0, res.message
     assert res.force_a[0] == pytest.approx(H, rel=1e-9)
@@ -181,12 +222,20 @@ def test_pode_critical_angle_of_a_towed_cable() -> None:
     R = 0.5 * 1025.0 * d * cn * U * U
     c = (-1 + math.sqrt(1 + 4 * (R / w) ** 2)) / (2 * R / w)
     phi_c = math.acos(c)
-    med = Medium(density=1025.0, gravity=9.80665, current_z=np.array([0.0]),
-                 current_velocity=np.array([[U, 0.0, 0.0]]))
-    prob = StaticProblem(line=make_line([100.0], [w], 1e13, diameter=d, cn=cn, ct=0.0),
-                         medium=med, end_a=fixed(0, 0, 0),
-                         end_b=EndCondition(kind="force", force=np.zeros(3)), n_nodes=41,
-                         tolerance=1e-10)
+    med = Medium(
+        density=1025.0,
+        gravity=9.80665,
+        current_z=np.array([0.0]),
+        current_velocity=np.array([[U, 0.0, 0.0]]),
+    )
+    prob = StaticProblem(
+        line=make_line([100.0], [w], 1e13, diameter=d, cn=cn, ct=0.0),
+        medium=med,
+        end_a=fixed(0, 0, 0),
+        end_b=EndCondition(kind="force", force=np.zeros(3)),
+        n_nodes=41,
+        tolerance=1e-10,
+    )
     res = SOLVER.solve(prob)
     assert res.status == 0, res.message
     assert res.drag_iterations > 0
@@ -200,13 +249,15 @@ def test_pode_critical_angle_of_a_towed_cable() -> None:
 # ---------------------------------------------------------------- seabed
 
 
-def _seabed_reference(L: float, w: float, EA: float, h: float, X: float, mu: float) -> tuple[
-        float, float]:
-    """Independent derivation (nested root finds) for a uniform elastic line anchored on a flat seabed, top
-    end at horizontal distance X and height h above the anchor (Faltinsen 1990, ch. 8,
-    with elasticity): unknown H and suspended length Ls,
+def _seabed_reference(
+    L: float, w: float, EA: float, h: float, X: float, mu: float
+) -> tuple[float, float]:
+    """Independent derivation (nested root finds) for a uniform elastic line anchored on
+    a flat seabed, top end at horizontal distance X and height h above the anchor
+    (Faltinsen 1990, ch. 8, with elasticity): unknown H and suspended length Ls,
 
-        x_s = Ls H/EA + (H/w) asinh(w Ls / H),   z_s = w Ls^2/(2 EA) + (H/w)(sqrt(1 + (w Ls/H)^2) - 1),
+        x_s = Ls H/EA + (H/w) asinh(w Ls / H),
+        z_s = w Ls^2/(2 EA) + (H/w)(sqrt(1 + (w Ls/H)^2) - 1),
 
     laid part Lb = L - Ls with tension max(0, H - mu w (Lb - s)), so its stretch is
     Lb (H - mu w Lb / 2) / EA, or H^2 / (2 mu w EA) when friction exhausts it."""
@@ -237,8 +288,13 @@ def test_seabed_contact_against_independent_derivation(X: float, mu: float) -> N
     L, w, EA, depth = 300.0, 500.0, 5e8, 100.0
     H, Ls = _seabed_reference(L, w, EA, depth, X, mu)
     med = Medium(density=1025.0, gravity=9.80665, depth=depth, friction=mu)
-    prob = StaticProblem(line=make_line([L], [w], EA), medium=med, end_a=fixed(0, 0, -depth),
-                         end_b=fixed(X, 0, 0), tolerance=1e-11)
+    prob = StaticProblem(
+        line=make_line([L], [w], EA),
+        medium=med,
+        end_a=fixed(0, 0, -depth),
+        end_b=fixed(X, 0, 0),
+        tolerance=1e-11,
+    )
     res = SOLVER.solve(prob)
     assert res.status == 0, res.message
     # fsolve and the solver both reach ~1e-12; the comparison is at 1e-9
@@ -258,13 +314,56 @@ def test_seabed_lift_off_and_slack_line() -> None:
     reported as a failure with a message (its laid shape is not determined)."""
     med = Medium(density=1025.0, gravity=9.80665, depth=100.0)
     line = make_line([300.0], [500.0], 5e8)
-    lifted = SOLVER.solve(StaticProblem(line=line, medium=med, end_a=fixed(0, 0, -100),
-                                        end_b=fixed(280, 0, 0)))
+    lifted = SOLVER.solve(
+        StaticProblem(line=line, medium=med, end_a=fixed(0, 0, -100), end_b=fixed(280, 0, 0))
+    )
     assert lifted.status == 0 and lifted.laid_length == 0.0 and lifted.force_a[2] > 0.0
-    exact = solve_between(np.array([0, 0, -100.0]), np.array([280, 0, 0.0]), 300.0, 500.0,
-                          5e8, lifted.s)
+    exact = solve_between(
+        np.array([0, 0, -100.0]), np.array([280, 0, 0.0]), 300.0, 500.0, 5e8, lifted.s
+    )
     assert np.allclose(lifted.force_a, exact.force_a, rtol=1e-8)
-    slack = SOLVER.solve(StaticProblem(line=line, medium=med, end_a=fixed(0, 0, -100),
-                                       end_b=fixed(150, 0, 0)))
+    slack = SOLVER.solve(
+        StaticProblem(line=line, medium=med, end_a=fixed(0, 0, -100), end_b=fixed(150, 0, 0))
+    )
     assert slack.status != 0 and "slack on the seabed" in slack.message
     assert np.all(np.isnan(slack.position))
+
+
+@pytest.mark.parametrize("X", [160.0, 180.0, 195.0])
+def test_u_shaped_line_resting_on_the_seabed_between_its_ends(X: float) -> None:
+    """Expected: a uniform line with both ends h above a flat, frictionless seabed and
+    span X rests on it symmetrically; each suspended half is the elastic catenary from a
+    touchdown point with zero vertical tension (as in the anchored reference above):
+    2 x_s(H, Ls) + (L - 2 Ls)(1 + H/EA) = X and z_s(H, Ls) = h, solved by nested root
+    finds. The solver (frictionless laid part between two suspended parts) must agree to
+    the 1e-9 of both solutions."""
+    L, w, EA, h = 250.0, 500.0, 5e8, 50.0
+
+    def z_s(Ls: float, H: float) -> float:
+        return w * Ls**2 / (2 * EA) + H / w * (math.sqrt(1 + (w * Ls / H) ** 2) - 1)
+
+    def suspended(H: float) -> float:
+        return brentq(lambda Ls: z_s(Ls, H) - h, 0.0, 10 * L, xtol=1e-15, rtol=1e-15)
+
+    def x_error(H: float) -> float:
+        Ls = suspended(H)
+        xs = Ls * H / EA + H / w * math.asinh(w * Ls / H)
+        return 2 * xs + (L - 2 * Ls) * (1 + H / EA) - X
+
+    H = brentq(x_error, 1e-3 * w, w * ((L / 2) ** 2 - h * h) / (2 * h), xtol=1e-12, rtol=1e-15)
+    Ls = suspended(H)
+    med = Medium(density=1025.0, gravity=9.80665, depth=100.0, friction=0.0)
+    prob = StaticProblem(
+        line=make_line([L], [w], EA),
+        medium=med,
+        end_a=fixed(0, 0, -50),
+        end_b=fixed(X, 0, -50),
+        n_nodes=101,
+        tolerance=1e-11,
+    )
+    res = SOLVER.solve(prob)
+    assert res.status == 0, res.message
+    assert res.laid_length == pytest.approx(L - 2 * Ls, rel=1e-8)
+    assert res.force_a[0] == pytest.approx(H, rel=1e-8)
+    assert -res.force_a[2] == pytest.approx(w * Ls, rel=1e-9)
+    assert np.all(res.position[:, 2] >= -100.0 - 1e-9 * L)

@@ -1,0 +1,420 @@
+"""Many still-water problems of the semi-analytic solver at once (one Newton iteration
+over all cases as array operations).
+
+The per-case solver spends most of its time in numpy overhead on arrays of a few
+elements; a study sweeping end positions, lengths or loads has thousands of such cases
+that differ only in numbers. Here the cases of one chunk with the same number of
+pieces and output points are stacked along a leading axis and solved together by the
+same damped Newton iteration on the convex complementary energy as
+:func:`.semi_analytic.solve_free` (with a per-case Armijo line search and per-case
+convergence). Cases that need more (current, seabed contact, a weightless slack piece,
+no fixed end A) are solved one by one by :class:`.semi_analytic.SemiAnalyticSolver`,
+so the answer never depends on which path a case took beyond round-off.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from . import _fast
+from .base import STATUS_OK, StaticProblem, StaticResult
+from .pieces import piece_integrals
+from .seabed import Plane
+from .semi_analytic import SemiAnalyticSolver, make_layout
+
+
+def batchable(problem: StaticProblem) -> bool:
+    """Whether ``problem`` can take the batch path: still water (or no drag), end A
+    fixed, end A not resting on a seabed."""
+    med = problem.medium
+    line = problem.line
+    if problem.end_a.kind != "fixed":
+        return False
+    if (
+        med.has_current
+        and med.density > 0.0
+        and bool(np.any(line.diameter * (line.drag_normal + line.drag_tangential) > 0.0))
+    ):
+        return False
+    if med.depth is not None:
+        plane = Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
+        assert problem.end_a.position is not None
+        if float(plane.height_above(problem.end_a.position)) <= 1e-6 * line.total_length:
+            return False
+        if problem.end_b.kind == "fixed":
+            assert problem.end_b.position is not None
+            if float(plane.height_above(problem.end_b.position)) <= 1e-6 * line.total_length:
+                return False
+    return True
+
+
+def solve_batch(
+    problems: list[StaticProblem],
+    *,
+    deadline: float | None = None,
+    solver: SemiAnalyticSolver | None = None,
+) -> list[StaticResult]:
+    """Solve ``problems`` (any mix); batchable ones with equal piece and node counts are
+    solved together, the others (and any batch case that fails or touches the seabed)
+    one by one."""
+    solver = solver or SemiAnalyticSolver()
+    results: list[StaticResult | None] = [None] * len(problems)
+    groups: dict[tuple[int, int], list[int]] = {}
+    layouts = {}
+    for i, prob in enumerate(problems):
+        if not batchable(prob):
+            continue
+        line = prob.line
+        if line.length.size == 1 and line.attachment_s.size == 0:
+            P = 1
+        else:
+            layouts[i] = make_layout(line)
+            P = len(layouts[i].ell)
+        groups.setdefault((P, prob.n_nodes), []).append(i)
+    for (P, n_nodes), members in groups.items():
+        for i, res in zip(
+            members,
+            _solve_group(
+                [problems[i] for i in members],
+                P,
+                n_nodes,
+                [layouts.get(i) for i in members],
+                deadline,
+            ),
+            strict=True,
+        ):
+            results[i] = res
+    out = []
+    for i, prob in enumerate(problems):
+        res = results[i]
+        if res is None or not res.success:
+            res = solver.solve(prob, deadline=deadline, compiled=False)
+        out.append(res)
+    return out
+
+
+def solve_compiled(problem: StaticProblem, *, deadline: float | None = None) -> StaticResult | None:
+    """One still-water problem through the compiled batch kernel, or None when it does
+    not take that path (or does not settle there)."""
+    if not _fast.AVAILABLE or not batchable(problem):
+        return None
+    line = problem.line
+    if line.length.size == 1 and line.attachment_s.size == 0:
+        lay, P = None, 1
+    else:
+        lay = make_layout(line)
+        P = len(lay.ell)
+    return _solve_group([problem], P, problem.n_nodes, [lay], deadline)[0]
+
+
+def _guess(
+    d: np.ndarray, L: np.ndarray, Cend: np.ndarray, EA: np.ndarray, point0: np.ndarray
+) -> np.ndarray:
+    """Vectorised starting T_A for fixed-fixed cases (same rule as
+    :func:`.semi_analytic.initial_tension`)."""
+    W = np.linalg.norm(Cend, axis=1)
+    chord = np.linalg.norm(d, axis=1)
+    stretch = EA * np.maximum(chord / L - 1.0, 0.0)
+    with np.errstate(all="ignore"):
+        up = np.where(W[:, None] > 0.0, -Cend / np.where(W > 0.0, W, 1.0)[:, None], [0, 0, 1.0])
+        w = W / L
+        h = np.sum(d * up, axis=1)
+        dh = d - h[:, None] * up
+        l = np.linalg.norm(dh, axis=1)
+        vertical = l <= 1e-12 * chord
+        alt = np.cross(up, [1.0, 0.0, 0.0])
+        alt = np.where(
+            np.linalg.norm(alt, axis=1)[:, None] < 0.5, np.cross(up, [0.0, 1.0, 0.0]), alt
+        )
+        alt = alt / np.linalg.norm(alt, axis=1)[:, None]
+        e = np.where(vertical[:, None], alt, dh / np.where(vertical, 1.0, l)[:, None])
+        lam = np.where(
+            L <= chord,
+            0.2,
+            np.maximum(
+                np.sqrt(
+                    3.0 * np.maximum((L * L - h * h) / np.where(vertical, 1.0, l * l) - 1.0, 0.0)
+                ),
+                1e-3,
+            ),
+        )
+        H = np.where(vertical, 0.0, w * l / (2.0 * lam))
+        VB = np.where(
+            vertical,
+            np.where(L > np.abs(h), 0.5 * w * (L + h), w * L + stretch),
+            0.5 * w * (h / np.tanh(lam) + L),
+        )
+        taut = (chord > L) & ~vertical
+        H = np.where(taut, np.maximum(H, stretch * l / chord), H)
+        VB = np.where(taut, np.maximum(VB, stretch * h / chord + 0.5 * w * L), VB)
+        TA = H[:, None] * e + (VB - w * L)[:, None] * up + point0
+        straight = W <= 0.0
+        t = np.where(stretch > 0.0, stretch, 1e-6 * EA)
+        TA = np.where(straight[:, None], t[:, None] * d / np.maximum(chord, 1e-300)[:, None], TA)
+    return TA
+
+
+def _solve_group(
+    problems: list[StaticProblem],
+    P: int,
+    n_nodes: int,
+    layouts: list,
+    deadline: float | None,
+    use_compiled: bool = True,
+) -> list[StaticResult | None]:
+    N = len(problems)
+    ell = np.empty((N, P))
+    EA = np.empty((N, P))
+    q = np.zeros((N, P, 3))
+    point = np.zeros((N, P + 1, 3))
+    bounds = np.empty((N, P + 1))
+    if all(lay is None for lay in layouts):  # single segments, no attachments
+        lines = [p.line for p in problems]
+        ell[:, 0] = [ln.length[0] for ln in lines]
+        EA[:, 0] = [ln.axial_stiffness[0] for ln in lines]
+        q[:, 0, 2] = [-ln.weight[0] for ln in lines]
+        bounds[:, 0] = 0.0
+        bounds[:, 1] = ell[:, 0]
+    else:
+        for i, prob in enumerate(problems):
+            lay = layouts[i] if layouts[i] is not None else make_layout(prob.line)
+            ell[i], EA[i], bounds[i], point[i] = lay.ell, lay.EA, lay.bounds, lay.point
+            q[i, :, 2] = -lay.weight
+    kind = np.array([p.end_b.kind for p in problems])
+    rA = np.array([p.end_a.position for p in problems], dtype=float)
+    Ltot = bounds[:, -1]
+    Q = q * ell[..., None]
+    C = np.cumsum(point[:, :-1], axis=1)
+    C[:, 1:] += np.cumsum(Q[:, :-1], axis=1)
+    Cend = point.sum(axis=1) + Q.sum(axis=1)
+    target = np.zeros((N, 3))
+    free = np.zeros((N, 3), dtype=bool)
+    TA = np.zeros((N, 3))
+    fixed = kind == "fixed"
+    moor = kind == "mooring"
+    force = kind == "force"
+    if np.any(fixed):
+        target[fixed] = (
+            np.array(
+                [p.end_b.position for p, f in zip(problems, fixed, strict=True) if f], dtype=float
+            )
+            - rA[fixed]
+        )
+    if np.any(moor):
+        mp = [p.end_b for p, m in zip(problems, moor, strict=True) if m]
+        target[moor, 2] = np.array([b.z for b in mp], dtype=float) - rA[moor, 2]
+        TA[moor, :2] = np.array([b.force[:2] for b in mp], dtype=float) + Cend[moor, :2]
+    if np.any(force):
+        TA[force] = (
+            np.array(
+                [p.end_b.force for p, f in zip(problems, force, strict=True) if f], dtype=float
+            )
+            + Cend[force]
+        )
+    free[fixed] = True
+    free[moor, 2] = True
+    EAeff = Ltot / np.sum(ell / EA, axis=1)
+    if np.any(fixed):
+        TA[fixed] = _guess(target[fixed], Ltot[fixed], Cend[fixed], EAeff[fixed], point[fixed, 0])
+    if np.any(moor):
+        Hh = np.hypot(TA[moor, 0], TA[moor, 1])
+        Wz = -Cend[moor, 2]
+        h = target[moor, 2]
+        with np.errstate(all="ignore"):
+            w = Wz / Ltot[moor]
+            c = Wz / np.maximum(Hh, 1e-300)
+            a = np.arcsinh(w * h / (2.0 * Hh * np.sinh(0.5 * np.minimum(c, 600.0)))) - 0.5 * c
+            Vz = np.where((c < 600.0) & (Hh > 0.0), Hh * np.sinh(a), 0.5 * (w * h - Wz))
+        TA[moor, 2] = np.where(Wz > 0.0, Vz, -0.5 * Wz)
+    tol = np.array([p.tolerance for p in problems])
+    maxit = np.array([p.max_iterations for p in problems])
+    # the same arc lengths as np.linspace(0, L, n) of the one-by-one path, bit for bit
+    s = np.linspace(np.zeros(N), Ltot, n_nodes, axis=1)
+    if _fast.AVAILABLE and use_compiled:
+        pos = np.empty((N, n_nodes, 3))
+        tension = np.empty((N, n_nodes))
+        TL = np.empty((N, 3))
+        TAo = np.empty((N, 3))
+        iters = np.zeros(N, dtype=np.int64)
+        resid = np.zeros(N)
+        status = np.zeros(N, dtype=np.int64)
+        kind_code = np.where(fixed, 0, np.where(moor, 1, 2)).astype(np.int64)
+        _fast.solve_cases(
+            ell,
+            EA,
+            -q[..., 2].copy(),
+            point,
+            bounds,
+            kind_code,
+            rA,
+            target,
+            TA,
+            tol,
+            maxit.astype(np.int64),
+            s,
+            pos,
+            tension,
+            TAo,
+            TL,
+            iters,
+            resid,
+            status,
+        )
+        TA = TAo
+        done = status == 0
+        failed = ~done
+    else:
+        pos, tension, TA, TL, iters, resid, done, failed = _newton_numpy(
+            ell, EA, q, point, bounds, C, Cend, rA, target, free, TA, force, tol, maxit, s, deadline
+        )
+    good = (
+        done
+        & ~failed
+        & np.all(np.isfinite(pos), axis=(1, 2))
+        & np.all(np.isfinite(tension), axis=1)
+        & np.all(np.isfinite(TA), axis=1)
+        & np.all(np.isfinite(TL), axis=1)
+    )
+    out: list[StaticResult | None] = []
+    force_b = -TL
+    iters_l = iters.tolist()
+    resid_l = resid.tolist()
+    for i, prob in enumerate(problems):
+        if not good[i]:
+            out.append(None)
+            continue
+        res = StaticResult(
+            s=s[i],
+            position=pos[i],
+            tension=tension[i],
+            force_a=TA[i],
+            force_b=force_b[i],
+            status=STATUS_OK,
+            iterations=iters_l[i],
+            residual=resid_l[i],
+        )
+        if prob.medium.depth is not None:
+            med = prob.medium
+            plane = Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
+            if np.any(plane.height_above(res.position) < -1e-6 * Ltot[i]):
+                out.append(None)  # touches the seabed: the one-by-one solver decides
+                continue
+        out.append(res)
+    return out
+
+
+def _newton_numpy(
+    ell: np.ndarray,
+    EA: np.ndarray,
+    q: np.ndarray,
+    point: np.ndarray,
+    bounds: np.ndarray,
+    C: np.ndarray,
+    Cend: np.ndarray,
+    rA: np.ndarray,
+    target: np.ndarray,
+    free: np.ndarray,
+    TA: np.ndarray,
+    force: np.ndarray,
+    tol: np.ndarray,
+    maxit: np.ndarray,
+    s: np.ndarray,
+    deadline: float | None,
+) -> tuple[np.ndarray, ...]:
+    """The Newton iteration over all cases as numpy array operations (used without
+    numba), then the sampling at ``s``."""
+    N, P = ell.shape
+    Ltot = bounds[:, -1]
+    scale = np.maximum(Ltot, np.linalg.norm(target, axis=1))
+
+    def evaluate(idx: np.ndarray, T: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        dr, jac, en = piece_integrals(T[:, None, :] - C[idx], q[idx], ell[idx], EA[idx])
+        assert jac is not None
+        return dr.sum(axis=1), jac.sum(axis=1), en.sum(axis=1)
+
+    active = np.flatnonzero(~force)
+    done = np.zeros(N, dtype=bool)
+    done[force] = True
+    failed = np.zeros(N, dtype=bool)
+    iters = np.zeros(N, dtype=int)
+    resid = np.zeros(N)
+    polished = np.zeros(N, dtype=bool)
+    if active.size:
+        r, J, E = evaluate(active, TA[active])
+        g = np.where(free[active], r - target[active], 0.0)
+        psi = E - np.sum(np.where(free[active], target[active] * TA[active], 0.0), axis=1)
+        while active.size:
+            if deadline is not None and time.monotonic() > deadline:
+                failed[active] = True
+                break
+            res = np.max(np.abs(g), axis=1) / scale[active]
+            resid[active] = res
+            bad = ~np.isfinite(res)
+            conv = (res <= tol[active]) & (polished[active] | (res <= 1e-15))
+            polished[active[res <= tol[active]]] = True
+            over = iters[active] >= maxit[active]
+            stop = bad | conv | over
+            failed[active[bad | (over & ~conv)]] = True
+            done[active[conv]] = True
+            keep = ~stop
+            active, r, J, E, g, psi = (active[keep], r[keep], J[keep], E[keep], g[keep], psi[keep])
+            if not active.size:
+                break
+            iters[active] += 1
+            fa = free[active]
+            Jm = np.where(fa[:, :, None] & fa[:, None, :], J, np.eye(3))
+            step = np.linalg.solve(Jm, -g[..., None])[..., 0]
+            slope = np.sum(g * step, axis=1)
+            slack = 1e-13 * (
+                np.abs(E) + np.abs(np.sum(np.where(fa, target[active] * TA[active], 0.0), axis=1))
+            )
+            lam = np.ones(active.size)
+            pending = np.arange(active.size)
+            newT = TA[active].copy()
+            new_r, new_J, new_E, new_psi = r.copy(), J.copy(), E.copy(), psi.copy()
+            for _ in range(80):
+                idx = active[pending]
+                Tn = TA[idx] + lam[pending, None] * step[pending]
+                rn, Jn, En = evaluate(idx, Tn)
+                psin = En - np.sum(np.where(fa[pending], target[idx] * Tn, 0.0), axis=1)
+                ok = (
+                    np.isfinite(psin)
+                    & np.all(np.isfinite(Jn), axis=(1, 2))
+                    & (psin <= psi[pending] + 1e-4 * lam[pending] * slope[pending] + slack[pending])
+                )
+                acc = pending[ok]
+                newT[acc], new_r[acc], new_J[acc] = Tn[ok], rn[ok], Jn[ok]
+                new_E[acc], new_psi[acc] = En[ok], psin[ok]
+                pending = pending[~ok]
+                if not pending.size:
+                    break
+                lam[pending] *= 0.5
+            if pending.size:
+                failed[active[pending]] = True
+                keep = np.ones(active.size, dtype=bool)
+                keep[pending] = False
+            else:
+                keep = np.ones(active.size, dtype=bool)
+            TA[active] = newT
+            r, J, E, psi = new_r, new_J, new_E, new_psi
+            g = np.where(free[active], r - target[active], 0.0)
+            active, r, J, E, g, psi = (active[keep], r[keep], J[keep], E[keep], g[keep], psi[keep])
+    # sample the solved lines
+    k = np.clip(np.sum(bounds[:, None, 1:-1] <= s[:, :, None], axis=2), 0, P - 1)
+    rows = np.arange(N)[:, None]
+    T0 = TA[:, None, :] - C  # (N, P, 3)
+    dr_p, _, _ = piece_integrals(T0, q, ell, EA, jacobian=False)
+    r0 = rA[:, None, :] + np.concatenate((np.zeros((N, 1, 3)), np.cumsum(dr_p, axis=1)), axis=1)
+    sigma = np.clip(s - bounds[rows, k], 0.0, ell[rows, k])
+    qk = q[rows, k]
+    T0k = T0[rows, k]
+    dr, _, _ = piece_integrals(T0k, qk, sigma, EA[rows, k], jacobian=False)
+    pos = r0[rows, k] + dr
+    Tv = T0k - qk * sigma[..., None]
+    tension = np.linalg.norm(Tv, axis=2)
+    TL = TA - Cend
+    tension[:, 0] = np.linalg.norm(TA, axis=1)
+    tension[:, -1] = np.linalg.norm(TL, axis=1)
+    return pos, tension, TA, TL, iters, resid, done, failed
