@@ -165,6 +165,11 @@ def assemble(
         else:
             rows = [(idx, np.asarray(rec.data[name])) for idx, rec in by_index.items()
                     if name in rec.data and rec.status == 0]
+        if spec.dtype == "str":
+            # text as Python str (not 0-d arrays), so that netCDF sees one type when
+            # failed cases hold the fill value ""
+            rows = [(idx, str(v.item()) if isinstance(v, np.ndarray) and v.ndim == 0 else v)
+                    for idx, v in rows]
         _fill_rows(arr, rows, tail)
         data_vars[name] = (dims + spec.dims, arr,
                            {"units": spec.units, "long_name": spec.long_name})
