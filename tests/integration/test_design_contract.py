@@ -96,8 +96,11 @@ def _edit(text: str, old: str, new: str) -> str:
 def statics_of(text: str, *, name: str) -> str:
     """The example as a statics-only study: analysis.dynamic, sweep and modal removed."""
     text = text.split("  dynamic:")[0]
-    text = _edit(text, "  modal: {modes: 10}              # omit: no modal analysis about "
-                 "the static shape\n", "")
+    text = _edit(
+        text,
+        "  modal: {modes: 10}              # omit: no modal analysis about the static shape\n",
+        "",
+    )
     return _edit(text, "name: catenary-in-air", f"name: {name}")
 
 
@@ -108,8 +111,19 @@ def run(tmp_path: Path, text: str, *extra: str) -> xr.Dataset:
     cfg = tmp_path / f"{name}.yaml"
     cfg.write_text(text)
     out = tmp_path / "out"
-    code = main(["run", str(cfg), "--out", str(out), "--scheduler", "synchronous",
-                 "--no-cache", "--no-progress", *extra])
+    code = main(
+        [
+            "run",
+            str(cfg),
+            "--out",
+            str(out),
+            "--scheduler",
+            "synchronous",
+            "--no-cache",
+            "--no-progress",
+            *extra,
+        ]
+    )
     assert code == 0
     return xr.load_dataset(out / f"{name}.nc")
 
@@ -137,8 +151,7 @@ def test_example_validates_as_written(tmp_path: Path, capsys: pytest.CaptureFixt
 
 def test_example_dims_coordinates_and_units(example: xr.Dataset) -> None:
     ds = example
-    assert dict(ds.sizes) == {"amplitude": 2, "frequency": 2, "s": 100, "component": 3,
-                              "mode": 10}
+    assert dict(ds.sizes) == {"amplitude": 2, "frequency": 2, "s": 100, "component": 3, "mode": 10}
     np.testing.assert_array_equal(ds["amplitude"], [0.025, 0.1])
     np.testing.assert_array_equal(ds["frequency"], [0.1, 0.2])  # num values, ends included
     assert ds["amplitude"].attrs["units"] == "m" and ds["frequency"].attrs["units"] == "Hz"
@@ -155,10 +168,25 @@ def test_example_dims_coordinates_and_units(example: xr.Dataset) -> None:
         assert attrs.get("long_name"), name
         if ds[name].dtype.kind in "OUS":
             assert attrs["units"] == "1", name
-    expected = {"x": "m", "y": "m", "z": "m", "s": "m", "tension": "N", "force_a": "N",
-                "force_b": "N", "laid_length": "m", "tension_max": "N", "tension_min": "N",
-                "tension_mean": "N", "tension_static": "N", "natural_frequency": "Hz",
-                "wall_time": "s", "status": "1", "message": "1", "mode": "1"}
+    expected = {
+        "x": "m",
+        "y": "m",
+        "z": "m",
+        "s": "m",
+        "tension": "N",
+        "force_a": "N",
+        "force_b": "N",
+        "laid_length": "m",
+        "tension_max": "N",
+        "tension_min": "N",
+        "tension_mean": "N",
+        "tension_static": "N",
+        "natural_frequency": "Hz",
+        "wall_time": "s",
+        "status": "1",
+        "message": "1",
+        "mode": "1",
+    }
     assert {k: ds[k].attrs["units"] for k in expected} == expected
 
 
@@ -195,8 +223,7 @@ def test_example_statics_frame_and_end_forces(example: xr.Dataset) -> None:
     # the supports carry the weight in air and the 500 N point load; the "current" (a
     # wind here) adds a drag of at most 1/2 rho Cd d U^2 L = 0.39 N in any direction
     drag_bound = 0.5 * 1.225 * 1.2 * D * 0.514**2 * L
-    np.testing.assert_allclose(fa + fb, [0.0, 0.0, -(weight(1.225) * L + F_ATT)],
-                               atol=drag_bound)
+    np.testing.assert_allclose(fa + fb, [0.0, 0.0, -(weight(1.225) * L + F_ATT)], atol=drag_bound)
     assert float(ds["laid_length"]) == 0.0  # 320 m of depth: far above the seabed
 
 
@@ -229,21 +256,26 @@ def test_example_modes_and_dynamics(example: xr.Dataset) -> None:
 
 def test_towing_end_force_is_the_applied_force(tmp_path: Path) -> None:
     applied = [2000.0, 100.0, 1500.0]
-    text = _edit(statics_of(DESIGN_EXAMPLE, name="tow"), B_FIXED,
-                 f"  b: {{kind: force, force: {applied}}}\n")
+    text = _edit(
+        statics_of(DESIGN_EXAMPLE, name="tow"), B_FIXED, f"  b: {{kind: force, force: {applied}}}\n"
+    )
     ds = run(tmp_path, text)
     assert int(ds["status"]) == 0, str(ds["message"].values)
     # the line pushes back on whatever applies the force: force_b = -(applied), exactly
     np.testing.assert_array_equal(ds["force_b"].values, -np.asarray(applied))
     np.testing.assert_allclose([ds[c].values[0] for c in "xyz"], 0.0, atol=1e-9)
     drag_bound = 0.5 * 1.225 * 1.2 * D * 0.514**2 * L
-    np.testing.assert_allclose(ds["force_a"] + ds["force_b"],
-                               [0.0, 0.0, -(weight(1.225) * L + F_ATT)], atol=drag_bound)
+    np.testing.assert_allclose(
+        ds["force_a"] + ds["force_b"], [0.0, 0.0, -(weight(1.225) * L + F_ATT)], atol=drag_bound
+    )
 
 
 def test_mooring_end_horizontal_force_and_height(tmp_path: Path) -> None:
-    text = _edit(statics_of(DESIGN_EXAMPLE, name="moor"), B_FIXED,
-                 "  b: {kind: mooring, force: [2000.0, 0.0], z: -8.6}\n")
+    text = _edit(
+        statics_of(DESIGN_EXAMPLE, name="moor"),
+        B_FIXED,
+        "  b: {kind: mooring, force: [2000.0, 0.0], z: -8.6}\n",
+    )
     ds = run(tmp_path, text)
     assert int(ds["status"]) == 0, str(ds["message"].values)
     fb = ds["force_b"].values
@@ -253,8 +285,9 @@ def test_mooring_end_horizontal_force_and_height(tmp_path: Path) -> None:
     assert float(ds["x"][-1]) > 0
 
 
-def test_dynamics_needs_fixed_ends_and_says_so(tmp_path: Path,
-                                               capsys: pytest.CaptureFixture[str]) -> None:
+def test_dynamics_needs_fixed_ends_and_says_so(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     text = _edit(DESIGN_EXAMPLE, B_FIXED, "  b: {kind: force, force: [2000.0, 0.0, 1500.0]}\n")
     cfg = tmp_path / "tow.yaml"
     cfg.write_text(text)
@@ -268,10 +301,16 @@ def test_dynamics_needs_fixed_ends_and_says_so(tmp_path: Path,
 # ------------------------------------------------------------------ environment
 
 
-@pytest.mark.parametrize(("fluid", "density"), [
-    ("air", 1.225), ("water", 1025.0), ("vacuum", 0.0), ("{density: 1025.0}", 1025.0),
-    ("{density: 0.0}", 0.0),
-])
+@pytest.mark.parametrize(
+    ("fluid", "density"),
+    [
+        ("air", 1.225),
+        ("water", 1025.0),
+        ("vacuum", 0.0),
+        ("{density: 1025.0}", 1025.0),
+        ("{density: 0.0}", 0.0),
+    ],
+)
 def test_fluids_without_depth_or_current(tmp_path: Path, fluid: str, density: float) -> None:
     """No current and no seabed (both keys omitted): the supports carry exactly the
     weight in the fluid, (m - rho A) g L, and the point load."""
@@ -281,8 +320,9 @@ def test_fluids_without_depth_or_current(tmp_path: Path, fluid: str, density: fl
     assert int(ds["status"]) == 0, str(ds["message"].values)
     total = ds["force_a"] + ds["force_b"]
     # equilibrium holds to the solver tolerance (1e-9) relative to the end tension
-    np.testing.assert_allclose(total, [0.0, 0.0, -(weight(density) * L + F_ATT)],
-                               atol=1e-7 * float(ds["tension_a"]))
+    np.testing.assert_allclose(
+        total, [0.0, 0.0, -(weight(density) * L + F_ATT)], atol=1e-7 * float(ds["tension_a"])
+    )
     assert float(ds["laid_length"]) == 0.0
 
 
@@ -292,13 +332,19 @@ def test_weight_in_fluid_is_mass_per_length(tmp_path: Path) -> None:
     base = _edit(DESIGN_EXAMPLE.split("  dynamic:")[0], "fluid: air ", "fluid: water ")
     base = _edit(base, CURRENT, "")
     by_mass = run(tmp_path / "m", _edit(base, "name: catenary-in-air", "name: by-mass"))
-    by_weight = run(tmp_path / "w", _edit(
-        _edit(base, "name: catenary-in-air", "name: by-weight"),
-        "mass_per_length: 2.466 ", f"weight_in_fluid: {weight(1025.0)!r} "))
+    by_weight = run(
+        tmp_path / "w",
+        _edit(
+            _edit(base, "name: catenary-in-air", "name: by-weight"),
+            "mass_per_length: 2.466 ",
+            f"weight_in_fluid: {weight(1025.0)!r} ",
+        ),
+    )
     for k in ("x", "z", "tension", "force_a", "force_b"):
         np.testing.assert_allclose(by_weight[k], by_mass[k], rtol=1e-9, atol=1e-9)
-    np.testing.assert_allclose(by_weight["natural_frequency"], by_mass["natural_frequency"],
-                               rtol=1e-9)
+    np.testing.assert_allclose(
+        by_weight["natural_frequency"], by_mass["natural_frequency"], rtol=1e-9
+    )
 
 
 def _mooring_on_seabed(slope_deg: float, friction: float) -> str:
@@ -307,12 +353,16 @@ def _mooring_on_seabed(slope_deg: float, friction: float) -> str:
     text = statics_of(DESIGN_EXAMPLE, name="laid")
     text = _edit(_edit(text, CURRENT, ""), "fluid: air ", "fluid: water ")
     text = _edit(text, DEPTH, "  depth: 50.0\n")
-    text = _edit(text, "seabed: {slope_deg: 0.0, friction: 0.0}",
-                 f"seabed: {{slope_deg: {slope_deg}, friction: {friction}}}")
+    text = _edit(
+        text,
+        "seabed: {slope_deg: 0.0, friction: 0.0}",
+        f"seabed: {{slope_deg: {slope_deg}, friction: {friction}}}",
+    )
     text = _edit(text, "length: 100.0 ", "length: 150.0 ")
     text = _edit(text, "    - {s: 50.0, force: [0.0, 0.0, -500.0]}\n", "")
-    text = _edit(text, "  attachments:                    # point loads, clump weights, buoys\n",
-                 "")
+    text = _edit(
+        text, "  attachments:                    # point loads, clump weights, buoys\n", ""
+    )
     text = _edit(text, "position: [0.0, 0.0, 0.0]", "position: [0.0, 0.0, -50.0]")
     return _edit(text, B_FIXED, "  b: {kind: mooring, force: [500.0, 0.0], z: -5.0}\n")
 
@@ -367,13 +417,18 @@ def test_turning_current_pushes_the_line_downstream(tmp_path: Path) -> None:
 
 
 def test_attachment_forces_reach_the_supports(tmp_path: Path) -> None:
-    text = _edit(_edit(statics_of(DESIGN_EXAMPLE, name="att"), CURRENT, ""),
-                 "force: [0.0, 0.0, -500.0]", "force: [100.0, 50.0, -500.0]")
+    text = _edit(
+        _edit(statics_of(DESIGN_EXAMPLE, name="att"), CURRENT, ""),
+        "force: [0.0, 0.0, -500.0]",
+        "force: [100.0, 50.0, -500.0]",
+    )
     ds = run(tmp_path, text)
     assert int(ds["status"]) == 0, str(ds["message"].values)
-    np.testing.assert_allclose(ds["force_a"] + ds["force_b"],
-                               [100.0, 50.0, -(weight(1.225) * L + 500.0)],
-                               atol=1e-7 * float(ds["tension_a"]))
+    np.testing.assert_allclose(
+        ds["force_a"] + ds["force_b"],
+        [100.0, 50.0, -(weight(1.225) * L + 500.0)],
+        atol=1e-7 * float(ds["tension_a"]),
+    )
 
 
 # ------------------------------------------------------------------ failures, sweeps
@@ -399,28 +454,33 @@ def test_failed_case_is_kept_with_nan_status_and_message(tmp_path: Path) -> None
 
 
 def test_sweep_axes_name_dimensions_with_units(tmp_path: Path) -> None:
-    text = statics_of(DESIGN_EXAMPLE, name="sweeps") + """\
+    text = (
+        statics_of(DESIGN_EXAMPLE, name="sweeps")
+        + """\
 sweep:
   ends.b.position.0: {start: 90.0, stop: 95.0, num: 3}
   environment.fluid: [air, water]
   line.segments.0.axial_stiffness: {values: [1.0e6, 6.283e7], name: stiffness}
 """
+    )
     ds = run(tmp_path, text)
     assert ds["tension"].dims == ("position_0", "fluid", "stiffness", "s")
     np.testing.assert_array_equal(ds["position_0"], [90.0, 92.5, 95.0])
     assert list(ds["fluid"].values) == ["air", "water"]
     assert ds["position_0"].attrs["units"] == "m" and ds["stiffness"].attrs["units"] == "N"
     assert ds["fluid"].attrs["units"] == "1" and ds["fluid"].attrs["long_name"]
-    np.testing.assert_allclose(ds["x"].isel(s=-1), ds["position_0"].broadcast_like(
-        ds["x"].isel(s=-1)), atol=1e-7)
+    np.testing.assert_allclose(
+        ds["x"].isel(s=-1), ds["position_0"].broadcast_like(ds["x"].isel(s=-1)), atol=1e-7
+    )
     assert np.all(ds["status"] == 0)
 
 
 # ------------------------------------------------------------------ command line
 
 
-def test_validate_and_bad_input_before_any_work(tmp_path: Path,
-                                                capsys: pytest.CaptureFixture[str]) -> None:
+def test_validate_and_bad_input_before_any_work(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     text = _edit(DESIGN_EXAMPLE, "method: auto    ", "method: frequency")
     text = _edit(text, "length: 100.0 ", 'length: "100"')
     text = _edit(text, "drag_normal: 1.2", "drag_normall: 1.2")
@@ -449,13 +509,23 @@ def test_schema_lists_the_contract_keys(capsys: pytest.CaptureFixture[str]) -> N
     assert main(["schema"]) == 0
     schema = json.loads(capsys.readouterr().out)
     defs = schema["$defs"]
-    assert {"name", "description", "environment", "line", "ends", "analysis",
-            "sweep"} <= set(schema["properties"])
+    assert {"name", "description", "environment", "line", "ends", "analysis", "sweep"} <= set(
+        schema["properties"]
+    )
     assert {"fluid", "gravity", "depth", "seabed", "current"} <= set(
-        defs["Environment"]["properties"])
-    assert {"length", "diameter", "mass_per_length", "weight_in_fluid", "axial_stiffness",
-            "drag_normal", "drag_tangential", "added_mass_normal",
-            "bending_stiffness"} <= set(defs["Segment"]["properties"])
+        defs["Environment"]["properties"]
+    )
+    assert {
+        "length",
+        "diameter",
+        "mass_per_length",
+        "weight_in_fluid",
+        "axial_stiffness",
+        "drag_normal",
+        "drag_tangential",
+        "added_mass_normal",
+        "bending_stiffness",
+    } <= set(defs["Segment"]["properties"])
     assert {"static", "modal", "dynamic"} <= set(defs["Analysis"]["properties"])
 
 
