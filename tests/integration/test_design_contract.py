@@ -537,3 +537,54 @@ def test_make_study_writes_into_results() -> None:
     recipe = re.search(r"^study:.*\n\t(.*)$", makefile, re.M)
     assert recipe is not None
     assert recipe.group(1) == "$(BIN)/cablestudy run $(CONFIG) --out $(OUT)"
+
+
+@pytest.mark.parametrize(
+    ("end_b", "expected"),
+    [
+        ("{kind: force}", "ends.b.force: required key 'force' is missing"),
+        ("{kind: force, force: [1.0, 2.0]}", "ends.b.force: must be a list of at least 3 items"),
+        ("{kind: mooring, force: [1.0, 2.0]}", "ends.b.z: required key 'z' is missing"),
+        (
+            "{position: [1.0, 2.0, 3.0]}",
+            "ends.b: needs a 'kind': one of 'fixed', 'force', 'mooring' (got {'position'",
+        ),
+        (
+            "{kind: pinned}",
+            "ends.b.kind: 'kind' must be one of 'fixed', 'force', 'mooring' (got 'pinned')",
+        ),
+    ],
+)
+def test_end_errors_name_the_field_once(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], end_b: str, expected: str
+) -> None:
+    cfg = tmp_path / "ends.yaml"
+    cfg.write_text(_edit(DESIGN_EXAMPLE, B_FIXED, f"  b: {end_b}\n"))
+    assert main(["validate", str(cfg)]) == 2
+    err = capsys.readouterr().err
+    assert f"{cfg}:25: {expected}" in err, err
+
+
+def test_mooring_line_reversed_is_the_same_line(tmp_path: Path) -> None:
+    """Invariance: the seabed mooring defined from the fairlead (A, mooring end) to the
+    anchor (B, fixed) is the same line as from anchor to fairlead; s runs from A."""
+    text = _mooring_on_seabed(0.0, 0.0)
+    fwd = run(tmp_path / "fwd", text)
+    text = _edit(
+        text,
+        "  a: {kind: fixed, position: [0.0, 0.0, -50.0]}\n",
+        "  a: {kind: mooring, force: [-500.0, 0.0], z: -5.0}\n",
+    )
+    text = _edit(
+        text,
+        "  b: {kind: mooring, force: [500.0, 0.0], z: -5.0}\n",
+        "  b: {kind: fixed, position: [0.0, 0.0, -50.0]}\n",
+    )
+    rev = run(tmp_path / "rev", text)
+    assert int(rev["status"]) == 0, str(rev["message"].values)
+    assert float(rev["laid_length"]) == pytest.approx(float(fwd["laid_length"]), rel=1e-9)
+    mirror = np.array([-1.0, 1.0, 1.0])  # the reversed line lies along -x from its anchor
+    np.testing.assert_allclose(rev["force_a"], fwd["force_b"] * mirror, rtol=1e-9, atol=1e-9)
+    np.testing.assert_allclose(rev["force_b"], fwd["force_a"] * mirror, rtol=1e-9, atol=1e-9)
+    np.testing.assert_allclose(rev["z"].values, fwd["z"].values[::-1], atol=1e-9)
+    np.testing.assert_allclose(float(rev["z"][0]), -5.0, atol=1e-9)  # A at the given height
