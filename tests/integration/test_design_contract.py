@@ -139,6 +139,20 @@ def test_example_validates_as_written(tmp_path: Path, capsys: pytest.CaptureFixt
     assert "92 cases (amplitude=4, frequency=23)" in capsys.readouterr().out
 
 
+def test_example_full_sweep_coordinates_are_the_decimals_written() -> None:
+    """{start: 0.1, stop: 1.2, num: 23} gives 0.1, 0.15, ..., 1.2 as written (not
+    0.44999999999999996), so that ``ds.sel(frequency=0.45)`` finds its case."""
+    from cablestudy.cases import expand_cases
+    from cablestudy.config import parse_study_text
+
+    axes, cases = expand_cases(parse_study_text(DESIGN_EXAMPLE, "design.yaml"))
+    assert [a.name for a in axes] == ["amplitude", "frequency"] and len(cases) == 92
+    assert list(axes[1].values[0]) == [float(f"{0.1 + 0.05 * i:.2f}") for i in range(23)]
+    assert list(axes[0].values[0]) == [0.025, 0.05, 0.075, 0.1]
+    freq = {c.study.analysis.dynamic.excitation.frequency for c in cases}  # type: ignore
+    assert freq == set(axes[1].values[0])  # the cases run the coordinate values
+
+
 def test_example_dims_coordinates_and_units(example: xr.Dataset) -> None:
     ds = example
     assert dict(ds.sizes) == {"amplitude": 2, "frequency": 2, "s": 100, "component": 3, "mode": 10}
