@@ -104,6 +104,17 @@ def _field_info(path: tuple[str, ...]) -> tuple[str, str]:
     return "", ".".join(path)
 
 
+def _tidy_range(values: list[float], start: float, stop: float | None) -> list[float]:
+    """Range values rounded to 15 significant digits, so that steps of decimal numbers
+    give the decimals written (0.45, not 0.44999999999999996: ``ds.sel(frequency=0.45)``
+    works); the ends stay as given. Unrounded if rounding would merge values."""
+    tidy = [float(f"{v:.15g}") for v in values]
+    tidy[0] = start
+    if stop is not None:
+        tidy[-1] = stop
+    return tidy if len(set(tidy)) == len(tidy) else values
+
+
 def _axis_values(spec: Any, where: str, line: int | None, *,
                  distinct: bool = True) -> tuple[list[Any], str | None]:
     """Values of one sweep axis and its explicit name, or a StudyError message. Values
@@ -129,7 +140,8 @@ def _axis_values(spec: Any, where: str, line: int | None, *,
                 num = spec["num"]
                 if not isinstance(num, int) or isinstance(num, bool) or num < 1:
                     raise ValueError(f"{at}.num: must be a whole number >= 1 (got {num!r})")
-                return [float(v) for v in np.linspace(start, stop, num)], name
+                values = [float(v) for v in np.linspace(start, stop, num)]
+                return _tidy_range(values, start, stop if num > 1 else None), name
             step = float(spec["step"])
             if step == 0.0 or (stop - start) * step < 0.0:
                 raise ValueError(
@@ -139,7 +151,8 @@ def _axis_values(spec: Any, where: str, line: int | None, *,
             n = math.floor((stop - start) / step * (1.0 + 1e-12) + 1e-9) + 1
             if n > MAX_CASES:
                 raise ValueError(f"{at}: {n} values is more than {MAX_CASES} allowed")
-            return [start + i * step for i in range(n)], name
+            values = [start + i * step for i in range(n)]
+            return _tidy_range(values, start, None), name
         else:
             raise ValueError(
                 f"{at}: a sweep axis is a list of values, {{start, stop, num}}, "

@@ -30,7 +30,9 @@ class OutputVariable:
     dtype: str = "float64"
 
 
-#: every data variable a case may produce: name -> extra dims, units, long name
+#: every data variable a case may produce: name -> extra dims, units, long name.
+#: Numeric outputs (counters included) are float64 so that a failed case is NaN in every
+#: one of them (DESIGN.md); dimensionless and text variables have units "1" (CF).
 OUTPUTS: dict[str, OutputVariable] = {
     "x": OutputVariable(("s",), "m", "x position along the line"),
     "y": OutputVariable(("s",), "m", "y position along the line"),
@@ -42,7 +44,7 @@ OUTPUTS: dict[str, OutputVariable] = {
     "tension_a": OutputVariable((), "N", "tension at end A"),
     "tension_b": OutputVariable((), "N", "tension at end B"),
     "laid_length": OutputVariable((), "m", "unstretched length resting on the seabed"),
-    "static_iterations": OutputVariable((), "1", "iterations of the static solver", "int64"),
+    "static_iterations": OutputVariable((), "1", "iterations of the static solver"),
     "static_residual": OutputVariable((), "1", "final relative residual of the static solver"),
     "natural_frequency": OutputVariable(
         ("mode",), "Hz", "natural frequency about the static shape"
@@ -51,9 +53,8 @@ OUTPUTS: dict[str, OutputVariable] = {
         ("mode", "s", "component"), "m",
         "mode shape: node displacement scaled to a largest displacement of 1 m",
     ),
-    "modal_dof": OutputVariable((), "1", "degrees of freedom of the modal model", "int64"),
-    "drag_iterations": OutputVariable((), "1", "outer drag iterations of the static solver",
-                                      "int64"),
+    "modal_dof": OutputVariable((), "1", "degrees of freedom of the modal model"),
+    "drag_iterations": OutputVariable((), "1", "outer drag iterations of the static solver"),
     # dynamics (cablestudy.dynamics.timedomain): tensions at the excited end over the
     # steady-state window (the envelope of the last periods when steady_converged is 0)
     "tension_static": OutputVariable(
@@ -67,12 +68,12 @@ OUTPUTS: dict[str, OutputVariable] = {
     "tension_min_spread": OutputVariable(
         (), "N", "range of the per-period minimum end tension over the last periods"),
     "steady_converged": OutputVariable(
-        (), "1", "1 if the per-period max/min tension settled within the tolerance", "int64"),
+        (), "1", "1 if the per-period max/min tension settled within the tolerance"),
     "periods": OutputVariable((), "1", "excitation periods simulated"),
-    "dynamic_steps": OutputVariable((), "1", "accepted time steps", "int64"),
-    "newton_iterations": OutputVariable((), "1", "Newton iterations of the time steps", "int64"),
-    "rejected_steps": OutputVariable((), "1", "rejected (retried shorter) time steps", "int64"),
-    "dynamic_method": OutputVariable((), "", "dynamic method used (time | frequency)", "str"),
+    "dynamic_steps": OutputVariable((), "1", "accepted time steps"),
+    "newton_iterations": OutputVariable((), "1", "Newton iterations of the time steps"),
+    "rejected_steps": OutputVariable((), "1", "rejected (retried shorter) time steps"),
+    "dynamic_method": OutputVariable((), "1", "dynamic method used (time | frequency)", "str"),
     "history_time": OutputVariable(("time",), "s", "time of the history samples"),
     "history_tension": OutputVariable(("time",), "N", "tension at the excited end"),
     "history_point_s": OutputVariable(("point",), "m", "arc length of the history points"),
@@ -87,13 +88,13 @@ OUTPUTS: dict[str, OutputVariable] = {
 #: per-case bookkeeping variables (always present)
 CASE_VARIABLES: dict[str, OutputVariable] = {
     "status": OutputVariable((), "1", "case status: 0 ok, nonzero failed", "int64"),
-    "message": OutputVariable((), "", "why the case failed (empty when ok)", "str"),
+    "message": OutputVariable((), "1", "why the case failed (empty when ok)", "str"),
     "wall_time": OutputVariable((), "s", "wall time of the case"),
 }
 
 COORDINATES: dict[str, tuple[str, str]] = {
     "s": ("m", "unstretched arc length from end A"),
-    "component": ("", "vector component"),
+    "component": ("1", "vector component"),
     "mode": ("1", "mode number, by increasing natural frequency"),
 }
 
@@ -164,6 +165,11 @@ def assemble(
         else:
             rows = [(idx, np.asarray(rec.data[name])) for idx, rec in by_index.items()
                     if name in rec.data and rec.status == 0]
+        if spec.dtype == "str":
+            # text as Python str (not 0-d arrays), so that netCDF sees one type when
+            # failed cases hold the fill value ""
+            rows = [(idx, str(v.item()) if isinstance(v, np.ndarray) and v.ndim == 0 else v)
+                    for idx, v in rows]
         _fill_rows(arr, rows, tail)
         data_vars[name] = (dims + spec.dims, arr,
                            {"units": spec.units, "long_name": spec.long_name})
@@ -173,7 +179,7 @@ def assemble(
         numeric = a.coordinate().dtype.kind in "iuf"
         indexed = len(a.paths) > 1 or not all(
             isinstance(v, int | float | str | bool) for v in a.values[0])
-        attrs = {"units": (a.units or "1") if numeric else "", "long_name": a.long_name,
+        attrs = {"units": (a.units or "1") if numeric else "1", "long_name": a.long_name,
                  "sweep_paths": ", ".join(a.paths)}
         if indexed:
             attrs["units"] = "1"
@@ -184,7 +190,7 @@ def assemble(
             # values that are not scalars (vectors, mappings): keep them as text
             coords[f"{a.name}_value"] = (
                 a.name, np.array([json.dumps(v) for v in a.values[0]], dtype=object),
-                {"long_name": f"swept value of {a.paths[0]} (JSON)", "units": ""},
+                {"long_name": f"swept value of {a.paths[0]} (JSON)", "units": "1"},
             )
         if len(a.paths) > 1:
             for path, vals in zip(a.paths, a.values, strict=True):
@@ -198,10 +204,11 @@ def assemble(
                 else:
                     coords[cname] = (a.name, np.array([json.dumps(v) for v in vals],
                                                       dtype=object),
-                                     {"long_name": f"{long_name} (JSON)", "units": ""})
+                                     {"long_name": f"{long_name} (JSON)", "units": "1"})
     if "component" in extent and any("component" in OUTPUTS[k].dims for k in present):
         coords["component"] = ("component", np.array(["x", "y", "z"]),
-                               {"long_name": COORDINATES["component"][1]})
+                               {"units": COORDINATES["component"][0],
+                                "long_name": COORDINATES["component"][1]})
     if "mode" in extent and any("mode" in OUTPUTS[k].dims for k in present):
         coords["mode"] = ("mode", np.arange(1, extent["mode"] + 1),
                           {"units": COORDINATES["mode"][0], "long_name": COORDINATES["mode"][1]})

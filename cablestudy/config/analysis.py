@@ -106,7 +106,7 @@ DYNAMIC_METHODS = {
 def _unit_direction(value: list[float]) -> list[float]:
     norm = math.sqrt(sum(v * v for v in value))
     if norm == 0.0:
-        raise ValueError(f"direction must be a nonzero vector, got {value!r}")
+        raise ValueError("must be a nonzero vector; allowed: any direction of length > 0")
     return value
 
 

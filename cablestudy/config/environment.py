@@ -2,9 +2,17 @@
 
 from __future__ import annotations
 
-from typing import Literal
+from typing import Annotated, Any, Literal
 
-from pydantic import Field, field_validator
+from pydantic import (
+    Discriminator,
+    Field,
+    Tag,
+    ValidationError,
+    ValidatorFunctionWrapHandler,
+    WrapValidator,
+    field_validator,
+)
 
 from .base import FieldError, Finite, NonNegative, Positive, StrictModel
 
@@ -16,6 +24,30 @@ class CustomFluid(StrictModel):
     """A fluid given by its density (0 for vacuum)."""
 
     density: NonNegative = Field(description="fluid density [kg/m^3]; 0 for vacuum")
+
+
+def _fluid_form(value: Any) -> str:
+    # tag names with brackets are dropped from error paths by the loader, so an error
+    # names only the form given: a fluid name, or a mapping {density}
+    return "mapping[fluid]" if isinstance(value, dict | CustomFluid) else "name[fluid]"
+
+
+def _fluid_name(value: Any, handler: ValidatorFunctionWrapHandler) -> Any:
+    try:
+        return handler(value)
+    except ValidationError:
+        raise ValueError(
+            "must be 'air', 'water' or 'vacuum', or a mapping {density: <kg/m^3>}"
+        ) from None
+
+
+#: a named fluid or a mapping {density}
+Fluid = Annotated[
+    Annotated[Literal["air", "water", "vacuum"], WrapValidator(_fluid_name),
+              Tag("name[fluid]")]
+    | Annotated[CustomFluid, Tag("mapping[fluid]")],
+    Discriminator(_fluid_form),
+]
 
 
 class Seabed(StrictModel):
@@ -38,7 +70,7 @@ class CurrentPoint(StrictModel):
 class Environment(StrictModel):
     """Fluid, gravity, depth, seabed, and current (piecewise linear in z)."""
 
-    fluid: Literal["air", "water", "vacuum"] | CustomFluid = Field(
+    fluid: Fluid = Field(
         "water", description="surrounding fluid: air, water (1025 kg/m^3), vacuum, or {density}"
     )
     gravity: Positive = Field(9.80665, description="acceleration of gravity [m/s^2]")

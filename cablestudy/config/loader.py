@@ -155,11 +155,25 @@ def _unwrap(tp: Any) -> list[Any]:
     return []
 
 
+def _kind_tagged(models: list[type[BaseModel]], part: str | int) -> list[type[BaseModel]]:
+    """The members of a 'kind'-discriminated union that ``part`` names as their tag ([] if
+    ``models`` is not such a union). pydantic puts the tag in error paths, and a tag may
+    also be a field name ('force' is both a kind of end and a key of that end)."""
+    if len(models) < 2:
+        return []
+    return [m for m in models if "kind" in m.model_fields
+            and part in typing.get_args(m.model_fields["kind"].annotation)]
+
+
 def _models_at(loc: Loc) -> list[type[BaseModel]]:
     """Candidate model classes at a pydantic error location."""
     current: list[type[BaseModel]] = [Study]
     for part in loc:
         if isinstance(part, int):
+            continue
+        tagged = _kind_tagged(current, part)
+        if tagged:
+            current = tagged
             continue
         named = [m for m in current if part in m.model_fields]
         if named:
@@ -184,6 +198,10 @@ def _clean_loc(loc: Loc) -> Loc:
     for i, part in enumerate(loc):
         if isinstance(part, int):
             out.append(part)
+            continue
+        tagged = _kind_tagged(models, part)
+        if tagged:
+            models = tagged
             continue
         if any(part in m.model_fields for m in models):
             out.append(part)
@@ -258,6 +276,10 @@ def _describe(err: dict[str, Any]) -> tuple[Loc, str, Any, bool]:
     if kind in ("union_tag_invalid", "union_tag_not_found"):
         tags = ctx.get("expected_tags", "")
         if kind == "union_tag_not_found":
+            if not tags:  # pydantic names the tags only when the given one is wrong
+                kinds = [a for m in _models_at(raw) if "kind" in m.model_fields
+                         for a in typing.get_args(m.model_fields["kind"].annotation)]
+                tags = ", ".join(repr(k) for k in kinds)
             return (), f"needs a 'kind': one of {tags}", err["input"], True
         return ("kind",), f"'kind' must be one of {tags}", ctx.get("tag", err["input"]), True
     text = _TYPE_WORDS.get(kind, err["msg"])
