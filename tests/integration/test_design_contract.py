@@ -442,10 +442,11 @@ def test_attachment_forces_reach_the_supports(tmp_path: Path) -> None:
 
 @pytest.mark.parametrize("scheduler", ["synchronous", "processes"])
 def test_failed_case_is_kept_with_nan_status_and_message(tmp_path: Path, scheduler: str) -> None:
-    """Sweeping the depth down to 20 m puts the sagging line (lowest point z = -21.5 m)
-    through the seabed between its supports, which the static solvers do not model (they
-    model contact from an end anchored on the seabed): that case fails, and stays in the
-    dataset with NaN data, a nonzero status and a message, on either scheduler."""
+    """Sweeping the depth down to 20 m lays the sagging line (lowest point z = -21.5 m
+    without a seabed) on the seabed between its supports; the static solver models that
+    contact, but the dynamic model has no seabed contact, so the case fails before time
+    stepping, and stays in the dataset with NaN data, a nonzero status and a message
+    naming the seabed, on either scheduler."""
     text = _edit(DESIGN_EXAMPLE, FULL_SWEEP, "  environment.depth: [320.0, 20.0]\n")
     text = _edit(text, "amplitude: 0.05, frequency: 0.5", "amplitude: 0.05, frequency: 0.2")
     ds = run(tmp_path, text, "--scheduler", scheduler, "--workers", "2")
