@@ -168,8 +168,22 @@ def solve_modal(case: Case, static: StaticResult, deadline: float | None) -> Mod
     else:
         mass = transverse_mass(problem.line, problem.medium, static.s,
                                include_added_mass=settings.include_added_mass)
-        targets = graded_arc_lengths(static.s, static.tension, mass, n_el,
-                                     joints=problem.line.segment_ends)
+        tension = static.tension
+        joints = problem.line.segment_ends
+        med = problem.medium
+        if med.friction > 0.0 and static.laid_length > 0.0 and med.depth is not None:
+            # the laid part sticks (dynamics.modal): it needs no elements of its own, so
+            # grade as if it were as stiff as the most tensioned point, and put a node
+            # exactly at the touchdown point, where the pinned part begins
+            ground = med.seabed_z(static.position[:, 0], static.position[:, 1])
+            on_bed = np.abs(static.position[:, 2] - ground) <= 1e-6 * max(
+                float(static.s[-1]), 1.0)
+            tension = np.where(on_bed, float(np.max(static.tension)), static.tension)
+            total_length = float(static.s[-1])
+            touchdown = [static.laid_length] if on_bed[0] else []
+            touchdown += [total_length - static.laid_length] if on_bed[-1] else []
+            joints = np.union1d(joints, np.clip(touchdown, 0.0, total_length))
+        targets = graded_arc_lengths(static.s, tension, mass, n_el, joints=joints)
         shortest = float(np.min(np.diff(targets)))
         total = float(static.s[-1] - static.s[0])
         per_element = max(8, math.ceil(8.0 * total / (shortest * n_el)))

@@ -35,8 +35,11 @@ Boundary conditions. A ``fixed`` end node has no degree of freedom. A ``force`` 
 magnitude and direction) and adds no stiffness; the node keeps its half-element
 mass. A ``mooring`` end is free horizontally and held at its height (z fixed).
 Nodes resting on the seabed (static ``laid_length`` > 0 and the node on the seabed
-plane) are held in the direction normal to the seabed (a bilateral, rigid, frictionless
-seabed) and free along it.
+plane) are held in the direction normal to the seabed (a bilateral, rigid seabed). On a
+frictionless seabed they are free along it; with friction they stick (held in all
+directions): for small vibrations static friction does not let the laid line slide,
+and where friction has taken all the tension out of the laid part a free node there
+would have no lateral stiffness at all (a singular eigenproblem).
 
 Solution. The constraints keep one orthonormal basis of free directions per node, so
 the reduced mass stays block-diagonal; with its block Cholesky factor L the problem
@@ -197,8 +200,12 @@ def node_bases(problem: ModalProblem) -> list[np.ndarray]:
             [-rise * math.cos(med.seabed_heading), -rise * math.sin(med.seabed_heading), 1.0]
         )
         normal /= np.linalg.norm(normal)
+        stick = med.friction > 0.0
         for i in np.flatnonzero(np.abs(pos[:, 2] - ground) <= tol):
-            constraints[i].append(normal)
+            if stick:
+                constraints[i] = [np.eye(3)[:, j] for j in range(3)]
+            else:
+                constraints[i].append(normal)
     for node, end in ((0, problem.end_a), (n - 1, problem.end_b)):
         if end.kind == "fixed":
             constraints[node] = [np.eye(3)[:, j] for j in range(3)]
