@@ -265,7 +265,8 @@ def solve_midspan(
             raise _Failure(
                 STATUS_NOT_CONVERGED,
                 "line search failed in the seabed-contact "
-                f"(between the ends) Newton iteration (residual {res:.3g})",
+                f"(between the ends) Newton iteration (residual {res:.3g}); with a current "
+                "the frictionless laid part may have no straight equilibrium",
                 it,
                 res,
             )
