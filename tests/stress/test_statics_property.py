@@ -17,7 +17,7 @@ from cablestudy.statics.semi_analytic import SemiAnalyticSolver
 
 SOLVER = SemiAnalyticSolver()
 SETTINGS = settings(
-    max_examples=30, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow]
+    max_examples=80, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow]
 )
 
 
@@ -182,7 +182,7 @@ def drag_problems(draw: st.DrawFn) -> StaticProblem:
 
 
 @settings(
-    max_examples=20, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow]
+    max_examples=40, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow]
 )
 @given(drag_problems())
 def test_sheared_current_converges_and_balances_drag(prob: StaticProblem) -> None:
@@ -252,7 +252,7 @@ def seabed_problems(draw: st.DrawFn) -> StaticProblem:
 
 
 @settings(
-    max_examples=25, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow]
+    max_examples=40, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow]
 )
 @given(seabed_problems())
 def test_seabed_contact_converges_or_says_why(prob: StaticProblem) -> None:
