@@ -228,9 +228,7 @@ def seabed_problems(draw: st.DrawFn) -> StaticProblem:
     bx, by = X * math.cos(az), X * math.sin(az)
     za = ground(0.0, 0.0) if anchored else ground(0.0, 0.0) + draw(st.floats(10.0, 80.0))
     zb = ground(bx, by) + draw(st.floats(10.0, 99.0))
-    # a current on a line resting on the seabed between its ends is a known limitation
-    # (the frictionless laid part there may have no straight equilibrium): anchored only
-    speed = draw(st.sampled_from([0.0, 0.0, 0.5, 1.5])) if anchored else 0.0
+    speed = draw(st.sampled_from([0.0, 0.0, 0.5, 1.5]))
     med = Medium(
         density=1025.0,
         gravity=9.8,
@@ -256,7 +254,7 @@ def seabed_problems(draw: st.DrawFn) -> StaticProblem:
 )
 @given(seabed_problems())
 def test_seabed_contact_converges_or_says_why(prob: StaticProblem) -> None:
-    """Anchored (in still water or a current) or sagging onto a sloped seabed: the solve
+    """Anchored or sagging onto a sloped seabed, in still water or a current: the solve
     converges, or fails only because the line lies slack on the seabed (no determined
     shape), with that reason; a converged line never enters the seabed, its laid part
     lies on it, and it reaches B."""
@@ -277,5 +275,5 @@ def test_seabed_contact_converges_or_says_why(prob: StaticProblem) -> None:
     L = prob.line.total_length
     assert np.all(height >= -1e-6 * L)
     assert np.allclose(res.position[-1], prob.end_b.position, atol=1e-8 * L)
-    if res.laid_length > 0.0:
+    if res.laid_length >= 2 * (res.s[1] - res.s[0]):  # some node lies on the laid part
         assert np.min(np.abs(height)) <= 1e-6 * L
