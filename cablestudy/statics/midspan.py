@@ -207,9 +207,11 @@ def solve_midspan(
             f"down to the seabed, along it and up to the other end "
             f"({ha + along + hb:.6g} m): it lies slack on the seabed and its laid "
             "shape is not determined",
+            final=True,
         )
     e1, e2 = plane.basis
     basis = np.stack((e1, e2), axis=1)
+    weight = float(np.sum(np.abs(lay.weight) * lay.ell))  # load scale [N]
     y = guess.astype(float).copy()
     R, parts = _evaluate(y, lay, q, ends, plane, basis)
     res = float(np.max(np.abs(R)))
@@ -262,6 +264,16 @@ def solve_midspan(
                 break
             lam *= 0.5
         else:
+            tn = float(np.linalg.norm(y[:2]))
+            if tn < 1e-2 * weight:
+                raise _Failure(
+                    STATUS_NO_SOLUTION,
+                    f"the tension of the part resting on the seabed between the ends falls to "
+                    f"zero ({tn:.3g} N): with no friction there it would be pushed into a curve "
+                    "(slack on the seabed), so its shape is not determined",
+                    it,
+                    res,
+                )
             raise _Failure(
                 STATUS_NOT_CONVERGED,
                 "line search failed in the seabed-contact "

@@ -58,13 +58,22 @@ class _Failure(Exception):
     """Internal: a numerical failure with its status (turned into a failed result)."""
 
     def __init__(
-        self, status: int, message: str, iterations: int = 0, residual: float = math.nan
+        self,
+        status: int,
+        message: str,
+        iterations: int = 0,
+        residual: float = math.nan,
+        *,
+        final: bool = False,
     ) -> None:
         super().__init__(message)
         self.status = status
         self.message = message
         self.iterations = iterations
         self.residual = residual
+        #: a geometric fact (e.g. a line too long for a straight laid part), not a
+        #: numerical failure: retrying with continuation cannot help
+        self.final = final
 
 
 # --------------------------------------------------------------------------- layout
@@ -568,6 +577,7 @@ def initial_contact(
                 f"the line ({L:.6g} m) is longer than the path "
                 f"along the seabed and straight up to B ({X + h:.6g} m): it lies slack "
                 "on the seabed and its laid shape is not determined",
+                final=True,
             )
         if excess(hi) >= 0.0:
             H = hi
@@ -1237,7 +1247,7 @@ class SemiAnalyticSolver:
                     raise
                 last = exc
                 state.TA, state.contact = saved_TA, saved_contact
-                if exc.status == STATUS_NO_SOLUTION and (n_steps > 1 or "slack" in exc.message):
+                if exc.final or (exc.status == STATUS_NO_SOLUTION and n_steps > 1):
                     break  # confirmed with continuation: no static solution
         assert last is not None
         raise _Failure(
