@@ -63,15 +63,19 @@ def check_supported(cases: list[Case], src: StudySource) -> None:
             for i, mass in enumerate(problem.line.mass):
                 if not mass > 0.0:
                     loc = ("line", "segments", str(i), "mass_per_length")
-                    msg = (f"{src.line_of(loc) or src.line_of(('line',))}: "
-                           f"line.segments.{i}.mass_per_length: {mass:g} kg/m; analysis.modal "
-                           "needs a positive mass per length (allowed: > 0)")
+                    msg = (
+                        f"{src.line_of(loc) or src.line_of(('line',))}: "
+                        f"line.segments.{i}.mass_per_length: {mass:g} kg/m; analysis.modal "
+                        "needs a positive mass per length (allowed: > 0)"
+                    )
                     if msg not in problems:
                         problems.append(msg)
         for item in missing:
             line = src.line_of(("analysis", "static", "method")) or src.line_of(("analysis",))
-            msg = (f"{line}: analysis.static.method: {method!r} does not support {item}; "
-                   f"choose another method (available: {', '.join(sorted(STATIC_SOLVERS))})")
+            msg = (
+                f"{line}: analysis.static.method: {method!r} does not support {item}; "
+                f"choose another method (available: {', '.join(sorted(STATIC_SOLVERS))})"
+            )
             if msg not in problems:
                 problems.append(msg)
     problems.extend(p for p in _dynamic_problems(cases, src) if p not in problems)
@@ -94,7 +98,8 @@ def _dynamic_problems(cases: list[Case], src: StudySource) -> list[str]:
                 problems.append(
                     f"{line}: ends.{label}.kind: {end.kind!r} is not supported with "
                     "analysis.dynamic (the time-domain model holds or moves each end along a "
-                    "prescribed path); allowed: 'fixed'")
+                    "prescribed path); allowed: 'fixed'"
+                )
         length = study.line.length
         if dyn.history is not None:
             for i, s in enumerate(dyn.history.points):
@@ -102,20 +107,23 @@ def _dynamic_problems(cases: list[Case], src: StudySource) -> list[str]:
                     line = src.line_of(("analysis", "dynamic", "history", "points", i))
                     problems.append(
                         f"{line}: analysis.dynamic.history.points.{i}: s = {s} lies beyond "
-                        f"the end of the line; allowed 0 <= s <= {length}")
+                        f"the end of the line; allowed 0 <= s <= {length}"
+                    )
         if dyn.duration is None and dyn.max_periods < math.ceil(dyn.ramp_periods) + dyn.min_periods:
             line = src.line_of(("analysis", "dynamic", "max_periods"))
             problems.append(
                 f"{line}: analysis.dynamic.max_periods: {dyn.max_periods} leaves no room for "
                 f"the ramp ({dyn.ramp_periods} periods) and min_periods ({dyn.min_periods}); "
-                f"allowed >= {math.ceil(dyn.ramp_periods) + dyn.min_periods}")
+                f"allowed >= {math.ceil(dyn.ramp_periods) + dyn.min_periods}"
+            )
         if len(problems) > 20:
             break
     return problems
 
 
-def solve_static(case: Case, deadline: float | None,
-                 presolved: dict[str, StaticResult] | None = None) -> StaticResult:
+def solve_static(
+    case: Case, deadline: float | None, presolved: dict[str, StaticResult] | None = None
+) -> StaticResult:
     if presolved is not None and case.static_hash in presolved:
         return presolved[case.static_hash]
     cached = _STATIC_CACHE.get(case.static_hash)
@@ -166,8 +174,9 @@ def solve_modal(case: Case, static: StaticResult, deadline: float | None) -> Mod
         n_nodes = n_el + 1
         mesh_static = static if n_nodes == len(static.s) else _static_at(case, n_nodes, deadline)
     else:
-        mass = transverse_mass(problem.line, problem.medium, static.s,
-                               include_added_mass=settings.include_added_mass)
+        mass = transverse_mass(
+            problem.line, problem.medium, static.s, include_added_mass=settings.include_added_mass
+        )
         tension = static.tension
         joints = problem.line.segment_ends
         med = problem.medium
@@ -176,8 +185,7 @@ def solve_modal(case: Case, static: StaticResult, deadline: float | None) -> Mod
             # grade as if it were as stiff as the most tensioned point, and put a node
             # exactly at the touchdown point, where the pinned part begins
             ground = med.seabed_z(static.position[:, 0], static.position[:, 1])
-            on_bed = np.abs(static.position[:, 2] - ground) <= 1e-6 * max(
-                float(static.s[-1]), 1.0)
+            on_bed = np.abs(static.position[:, 2] - ground) <= 1e-6 * max(float(static.s[-1]), 1.0)
             tension = np.where(on_bed, float(np.max(static.tension)), static.tension)
             total_length = float(static.s[-1])
             touchdown = [static.laid_length] if on_bed[0] else []
@@ -189,13 +197,20 @@ def solve_modal(case: Case, static: StaticResult, deadline: float | None) -> Mod
         per_element = max(8, math.ceil(8.0 * total / (shortest * n_el)))
         per_element = min(per_element, max(1, (MODAL_MAX_SAMPLES - 1) // n_el))
         fine = _static_at(case, n_el * per_element + 1, deadline)
-        mesh_static = (subset_static(fine, snap_to_samples(fine.s, targets))
-                       if fine.success else fine)
+        mesh_static = (
+            subset_static(fine, snap_to_samples(fine.s, targets)) if fine.success else fine
+        )
     return modal_analysis(
-        ModalProblem(line=problem.line, medium=problem.medium, end_a=problem.end_a,
-                     end_b=problem.end_b, static=mesh_static, n_modes=settings.modes,
-                     include_added_mass=settings.include_added_mass,
-                     include_bending=settings.include_bending),
+        ModalProblem(
+            line=problem.line,
+            medium=problem.medium,
+            end_a=problem.end_a,
+            end_b=problem.end_b,
+            static=mesh_static,
+            n_modes=settings.modes,
+            include_added_mass=settings.include_added_mass,
+            include_bending=settings.include_bending,
+        ),
         deadline=deadline,
     )
 
@@ -246,10 +261,16 @@ def discrete_statics(case: Case, static: StaticResult) -> tuple[DiscreteLine, np
     start = np.stack([np.interp(line.s, static.s, static.position[:, k]) for k in range(3)], 1)
     scale = float(np.nanmax(static.tension))
     x, its, res, ok = static_equilibrium(
-        line, start, tolerance=max(1e-9 * scale, roundoff_force(line, start)),
-        max_iterations=200)
-    msg = "" if ok else (f"the discrete static equilibrium of the dynamic model did not "
-                         f"converge ({its} iterations, residual {res:.3g} N)")
+        line, start, tolerance=max(1e-9 * scale, roundoff_force(line, start)), max_iterations=200
+    )
+    msg = (
+        ""
+        if ok
+        else (
+            f"the discrete static equilibrium of the dynamic model did not "
+            f"converge ({its} iterations, residual {res:.3g} N)"
+        )
+    )
     _DISCRETE_CACHE[key] = (line, x, msg)
     while len(_DISCRETE_CACHE) > _STATIC_CACHE_SIZE:
         _DISCRETE_CACHE.popitem(last=False)
@@ -260,8 +281,13 @@ def roundoff_force(line: DiscreteLine, x: np.ndarray) -> float:
     """Nodal force [N] below which a residual is lost in rounding: an element tension
     carries EA * (relative rounding of the node coordinates) / (element length)."""
     reach = float(np.max(np.abs(x))) + float(np.sum(line.rest_length))
-    return 16.0 * float(np.finfo(float).eps) * float(np.max(line.axial_stiffness)) * reach / float(
-        np.min(line.rest_length))
+    return (
+        16.0
+        * float(np.finfo(float).eps)
+        * float(np.max(line.axial_stiffness))
+        * reach
+        / float(np.min(line.rest_length))
+    )
 
 
 def end_motion(dyn: DynamicSettings) -> tuple[EndMotion, float, float]:
@@ -269,11 +295,15 @@ def end_motion(dyn: DynamicSettings) -> tuple[EndMotion, float, float]:
     harmonics = [e for e in dyn.excitations if isinstance(e, HarmonicExcitation)]
     tables = [e for e in dyn.excitations if not isinstance(e, HarmonicExcitation)]
     table_motions = tuple(
-        TableMotion(end=0 if e.end == "a" else 1,
-                    direction=np.asarray(e.direction) / np.linalg.norm(e.direction),
-                    times=np.array([r[0] for r in e.table]),
-                    values=np.array([r[1] for r in e.table]), periodic=e.periodic)
-        for e in tables)
+        TableMotion(
+            end=0 if e.end == "a" else 1,
+            direction=np.asarray(e.direction) / np.linalg.norm(e.direction),
+            times=np.array([r[0] for r in e.table]),
+            values=np.array([r[1] for r in e.table]),
+            periodic=e.periodic,
+        )
+        for e in tables
+    )
     periods = [1.0 / e.frequency for e in harmonics]
     periods += [m.duration for m in table_motions if m.periodic]
     if dyn.period is not None:
@@ -287,12 +317,14 @@ def end_motion(dyn: DynamicSettings) -> tuple[EndMotion, float, float]:
     step = period / math.ceil(period / step * (1.0 - 1e-12))
     motion = EndMotion(
         harmonic_end=np.array([0 if e.end == "a" else 1 for e in harmonics], dtype=int),
-        harmonic_direction=np.array([np.asarray(e.direction) / np.linalg.norm(e.direction)
-                                     for e in harmonics]).reshape(-1, 3),
+        harmonic_direction=np.array(
+            [np.asarray(e.direction) / np.linalg.norm(e.direction) for e in harmonics]
+        ).reshape(-1, 3),
         harmonic_amplitude=np.array([e.amplitude for e in harmonics], dtype=float),
         harmonic_frequency=np.array([e.frequency for e in harmonics], dtype=float),
         harmonic_phase=np.radians([e.phase_deg for e in harmonics]),
-        tables=table_motions, ramp_time=dyn.ramp_periods * period,
+        tables=table_motions,
+        ramp_time=dyn.ramp_periods * period,
     )
     return motion, period, step
 
@@ -309,7 +341,8 @@ def solve_dynamic(case: Case, static: StaticResult, deadline: float | None) -> D
         return DynamicResult(
             status=STATUS_NO_SOLUTION,
             message=f"the static line rests on the seabed over {static.laid_length:.4g} m; "
-                    "the dynamic model has no seabed contact yet")
+            "the dynamic model has no seabed contact yet",
+        )
     line, x_static, msg = discrete_statics(case, static)
     if msg:
         return DynamicResult(status=STATUS_NUMERICAL, message=msg)
@@ -317,15 +350,25 @@ def solve_dynamic(case: Case, static: StaticResult, deadline: float | None) -> D
     first = dyn.excitations[0]
     hist = dyn.history
     problem = DynamicProblem(
-        line=line, static_position=x_static, motion=motion, period=period, step=step,
-        excited_end=0 if first.end == "a" else 1, max_refinement=dyn.max_refinement,
+        line=line,
+        static_position=x_static,
+        motion=motion,
+        period=period,
+        step=step,
+        excited_end=0 if first.end == "a" else 1,
+        max_refinement=dyn.max_refinement,
         spectral_radius=dyn.spectral_radius,
-        newton_tolerance=max(dyn.newton_tolerance * float(np.nanmax(static.tension)),
-                             4.0 * roundoff_force(line, x_static)),
+        newton_tolerance=max(
+            dyn.newton_tolerance * float(np.nanmax(static.tension)),
+            4.0 * roundoff_force(line, x_static),
+        ),
         max_newton_iterations=dyn.max_newton_iterations,
         tension_step=dyn.tension_resolution * float(np.nanmax(static.tension)),
-        steady_tolerance=dyn.steady_tolerance, steady_window=dyn.steady_window,
-        min_periods=dyn.min_periods, max_periods=dyn.max_periods, duration=dyn.duration,
+        steady_tolerance=dyn.steady_tolerance,
+        steady_window=dyn.steady_window,
+        min_periods=dyn.min_periods,
+        max_periods=dyn.max_periods,
+        duration=dyn.duration,
         history=hist is not None,
         history_s=np.asarray(hist.points if hist else [], dtype=float),
         history_periods=hist.periods if hist else 0.0,
@@ -352,18 +395,22 @@ def dynamic_outputs(res: DynamicResult, dyn: DynamicSettings) -> dict[str, np.nd
     }
     if res.history is not None:
         h = res.history
-        out.update({
-            "history_time": h["time"], "history_tension": h["tension"],
-            "history_displacement": h["displacement"], "history_velocity": h["velocity"],
-            "history_acceleration": h["acceleration"],
-            "history_point_s": np.asarray(dyn.history.points if dyn.history else [],
-                                          dtype=float),
-        })
+        out.update(
+            {
+                "history_time": h["time"],
+                "history_tension": h["tension"],
+                "history_displacement": h["displacement"],
+                "history_velocity": h["velocity"],
+                "history_acceleration": h["acceleration"],
+                "history_point_s": np.asarray(
+                    dyn.history.points if dyn.history else [], dtype=float
+                ),
+            }
+        )
     return out
 
 
-def evaluate_case(case: Case, *,
-                  presolved: dict[str, StaticResult] | None = None) -> CaseRecord:
+def evaluate_case(case: Case, *, presolved: dict[str, StaticResult] | None = None) -> CaseRecord:
     """Run every analysis the case asks for. Never raises: an exception inside a solver
     becomes a failed record with the exception's text. ``presolved`` maps static hashes
     to static solutions already computed (by :func:`evaluate_chunk`)."""
@@ -392,15 +439,24 @@ def evaluate_case(case: Case, *,
         where = f" at {tb[-1].name}:{tb[-1].lineno}" if tb else ""
         message = f"{type(exc).__name__}: {exc}{where}"
     if status == STATUS_OK:
-        bad = [k for k, v in data.items()
-               if np.asarray(v).dtype.kind == "f" and not np.all(np.isfinite(v))]
+        bad = [
+            k
+            for k, v in data.items()
+            if np.asarray(v).dtype.kind == "f" and not np.all(np.isfinite(v))
+        ]
         if bad:
             status, message = STATUS_NUMERICAL, f"non-finite values in {', '.join(sorted(bad))}"
     wall = time.perf_counter() - t0
     if not math.isfinite(wall):
         wall = 0.0
-    return CaseRecord(hash=case.hash, index=case.index, status=int(status), message=message,
-                      wall_time=wall, data=data)
+    return CaseRecord(
+        hash=case.hash,
+        index=case.index,
+        status=int(status),
+        message=message,
+        wall_time=wall,
+        data=data,
+    )
 
 
 def presolve_statics(cases: list[Case]) -> tuple[dict[str, StaticResult], dict[str, float]]:

@@ -81,8 +81,7 @@ class WorkPrecision:
             lab[i, : len(c.settings)] = c.settings
         return xr.Dataset(
             {
-                "wall_time": (("method", "point"), t,
-                              {"units": "s", "long_name": self.time_name}),
+                "wall_time": (("method", "point"), t, {"units": "s", "long_name": self.time_name}),
                 "error": (("method", "point"), e, {"units": "1", "long_name": self.error_name}),
                 "setting": (("method", "point"), lab, {"long_name": "solver setting"}),
             },
@@ -110,8 +109,10 @@ class WorkPrecision:
                     mine = min(c.times[i] for i in ok)
                     ratio = f"{p.times[pbest] / mine:.1f}x faster than {p.method}"
                     ratio += f" (at error <= {p.errors[pbest]:.1e})"
-            rows.append(f"| {self.name} | {c.method} | {c.settings[best]} | {_fmt_time(t)} | "
-                        f"{err:.2e} | {ratio} |")
+            rows.append(
+                f"| {self.name} | {c.method} | {c.settings[best]} | {_fmt_time(t)} | "
+                f"{err:.2e} | {ratio} |"
+            )
         return rows
 
 
@@ -159,22 +160,28 @@ def update_readme(readme: Path, summary: str, plots: list[Path]) -> None:
     text = readme.read_text()
     if README_START not in text or README_END not in text:
         return
-    links = "\n".join(
-        f"![{p.stem}]({p.relative_to(readme.parent).as_posix()})" for p in plots
-    )
+    links = "\n".join(f"![{p.stem}]({p.relative_to(readme.parent).as_posix()})" for p in plots)
     block = f"{README_START}\n{summary}\n{links}\n{README_END}"
     head, rest = text.split(README_START, 1)
     tail = rest.split(README_END, 1)[1]
     readme.write_text(head + block + tail)
 
 
-def run_benchmarks(out: Path, *, quick: bool = False, only: list[str] | None = None,
-                   readme: Path | None = None, docs: Path | None = None) -> str:
+def run_benchmarks(
+    out: Path,
+    *,
+    quick: bool = False,
+    only: list[str] | None = None,
+    readme: Path | None = None,
+    docs: Path | None = None,
+) -> str:
     """Run every work-precision benchmark; write datasets, plots and summary.md (and, if
     asked, copy the plots to ``docs`` and put the table into ``readme``)."""
     out.mkdir(parents=True, exist_ok=True)
-    rows = ["| benchmark | method | setting | median time | error | ratio to peer |",
-            "|---|---|---|---|---|---|"]
+    rows = [
+        "| benchmark | method | setting | median time | error | ratio to peer |",
+        "|---|---|---|---|---|---|",
+    ]
     notes = []
     plots: list[Path] = []
     for path in _modules(REPO / "benchmarks"):

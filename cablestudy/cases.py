@@ -115,8 +115,9 @@ def _tidy_range(values: list[float], start: float, stop: float | None) -> list[f
     return tidy if len(set(tidy)) == len(tidy) else values
 
 
-def _axis_values(spec: Any, where: str, line: int | None, *,
-                 distinct: bool = True) -> tuple[list[Any], str | None]:
+def _axis_values(
+    spec: Any, where: str, line: int | None, *, distinct: bool = True
+) -> tuple[list[Any], str | None]:
     """Values of one sweep axis and its explicit name, or a StudyError message. Values
     must be distinct where they become the dimension's coordinate (``distinct``); in a
     zip group the coordinate is the case index, so a path may repeat a value there."""
@@ -160,16 +161,22 @@ def _axis_values(spec: Any, where: str, line: int | None, *,
                 f"(got keys {sorted(keys)})"
             )
     if not isinstance(spec, list):
-        raise ValueError(f"{at}: must be a list of values or a range mapping "
-                         f"{{start, stop, num}} / {{start, stop, step}} (got {spec!r})")
+        raise ValueError(
+            f"{at}: must be a list of values or a range mapping "
+            f"{{start, stop, num}} / {{start, stop, step}} (got {spec!r})"
+        )
     if len(spec) == 0:
-        raise ValueError(f"{at}: an empty sweep axis gives no cases; allowed: a list of at "
-                         "least one value (got [])")
+        raise ValueError(
+            f"{at}: an empty sweep axis gives no cases; allowed: a list of at "
+            "least one value (got [])"
+        )
     seen: list[Any] = []
     for v in spec:
         if distinct and v in seen:
-            raise ValueError(f"{at}: the value {v!r} is listed twice; allowed: distinct values "
-                             f"(each becomes one coordinate) (got {spec!r})")
+            raise ValueError(
+                f"{at}: the value {v!r} is listed twice; allowed: distinct values "
+                f"(each becomes one coordinate) (got {spec!r})"
+            )
         seen.append(v)
     return list(spec), name
 
@@ -193,8 +200,9 @@ def check_path(data: dict[str, Any], path: str) -> str | None:
     at that point, every list index must exist in the file."""
     parts = str(path).split(".")
     if parts[0] in _NOT_SWEPT:
-        return (f"{parts[0]!r} cannot be swept; allowed: paths into environment, line, "
-                "ends or analysis")
+        return (
+            f"{parts[0]!r} cannot be swept; allowed: paths into environment, line, ends or analysis"
+        )
     models: list[Any] = [Study]
     node: Any = data
     done: list[str] = []
@@ -204,12 +212,16 @@ def check_path(data: dict[str, Any], path: str) -> str | None:
             return f"{path!r} has an empty part; allowed: keys joined by single dots"
         if isinstance(node, list):
             if not part.isdigit() or int(part) >= len(node):
-                return (f"{here} is a list of {len(node)} items; {part!r} is not an index "
-                        f"into it (allowed 0..{len(node) - 1})")
+                return (
+                    f"{here} is a list of {len(node)} items; {part!r} is not an index "
+                    f"into it (allowed 0..{len(node) - 1})"
+                )
             node = node[int(part)]
         elif part.isdigit():
-            return (f"{here} is not a list in the study file, so it has no item {part}; "
-                    "write the list out first")
+            return (
+                f"{here} is not a list in the study file, so it has no item {part}; "
+                "write the list out first"
+            )
         else:
             fields = sorted({f for m in models for f in m.model_fields})
             if part not in fields:
@@ -217,10 +229,16 @@ def check_path(data: dict[str, Any], path: str) -> str | None:
                     return f"{here} is a single value with no keys; {path} does not exist"
                 close = difflib.get_close_matches(part, fields, n=1)
                 hint = f" (did you mean {close[0]!r}?)" if close else ""
-                return (f"{'.'.join(done + [part])} does not exist{hint}; allowed keys under "
-                        f"{here}: {', '.join(fields)}")
-            models = [c for m in models if part in m.model_fields
-                      for c in _unwrap(m.model_fields[part].annotation)]
+                return (
+                    f"{'.'.join(done + [part])} does not exist{hint}; allowed keys under "
+                    f"{here}: {', '.join(fields)}"
+                )
+            models = [
+                c
+                for m in models
+                if part in m.model_fields
+                for c in _unwrap(m.model_fields[part].annotation)
+            ]
             node = node.get(part) if isinstance(node, dict) else None
         done.append(part)
     return None
@@ -230,8 +248,13 @@ def parse_sweep(src: StudySource) -> list[SweepAxis]:
     """The sweep axes of a study source, in file order. Raises :class:`StudyError`."""
     raw = src.data.get("sweep") or {}
     if not isinstance(raw, dict):
-        raise StudyError([f"{src.line_of(('sweep',))}: sweep: must be a mapping of "
-                          f"dotted paths to values, got {raw!r}"], src.source)
+        raise StudyError(
+            [
+                f"{src.line_of(('sweep',))}: sweep: must be a mapping of "
+                f"dotted paths to values, got {raw!r}"
+            ],
+            src.source,
+        )
     problems: list[str] = []
     axes: list[SweepAxis] = []
     key_locs: dict[str, Loc] = {}
@@ -256,24 +279,29 @@ def parse_sweep(src: StudySource) -> list[SweepAxis]:
         if len(paths) > 1:
             long_name = "zipped: " + ", ".join(paths)
             units = ""
-        axes.append(SweepAxis(name, tuple(paths), tuple(tuple(v) for v in values),
-                              units, long_name))
+        axes.append(
+            SweepAxis(name, tuple(paths), tuple(tuple(v) for v in values), units, long_name)
+        )
 
     for key, spec in raw.items():
         loc: Loc = ("sweep", str(key))
         if key == "zip":
             groups = spec if isinstance(spec, list) else None
             if not groups:
-                problems.append(f"{src.line_of(loc)}: sweep.zip: must be a non-empty list of "
-                                "groups {name: dim, path: [values], ...}")
+                problems.append(
+                    f"{src.line_of(loc)}: sweep.zip: must be a non-empty list of "
+                    "groups {name: dim, path: [values], ...}"
+                )
                 continue
             for gi, group in enumerate(groups):
                 gloc: Loc = (*loc, gi)
                 line = src.line_of(gloc)
                 if not isinstance(group, dict) or not isinstance(group.get("name"), str):
-                    problems.append(f"{line}: sweep.zip.{gi}: each group needs a 'name' "
-                                    "(the dimension) and two or more paths with value lists "
-                                    f"(got {group!r})")
+                    problems.append(
+                        f"{line}: sweep.zip.{gi}: each group needs a 'name' "
+                        "(the dimension) and two or more paths with value lists "
+                        f"(got {group!r})"
+                    )
                     continue
                 paths = [str(k) for k in group if k != "name"]
                 whys = [(p, check_path(src.data, p)) for p in paths]
@@ -281,14 +309,16 @@ def parse_sweep(src: StudySource) -> list[SweepAxis]:
                 if whys:
                     problems.extend(
                         f"{src.line_of((*gloc, p))}: sweep.zip.{gi}.{p}: the path does not lead "
-                        f"to a setting of this study: {w} (got {p!r})" for p, w in whys
+                        f"to a setting of this study: {w} (got {p!r})"
+                        for p, w in whys
                     )
                     continue
                 vals = []
                 try:
                     for p in paths:
-                        v, _ = _axis_values(group[p], f"sweep.zip.{gi}.{p}",
-                                            src.line_of((*gloc, p)), distinct=False)
+                        v, _ = _axis_values(
+                            group[p], f"sweep.zip.{gi}.{p}", src.line_of((*gloc, p)), distinct=False
+                        )
                         vals.append(v)
                 except ValueError as exc:
                     problems.append(str(exc))
@@ -309,8 +339,10 @@ def parse_sweep(src: StudySource) -> list[SweepAxis]:
             continue
         why = check_path(src.data, str(key))
         if why is not None:
-            problems.append(f"{src.line_of(loc)}: sweep.{key}: the path does not lead to a "
-                            f"setting of this study: {why} (got {key!r})")
+            problems.append(
+                f"{src.line_of(loc)}: sweep.{key}: the path does not lead to a "
+                f"setting of this study: {why} (got {key!r})"
+            )
             continue
         try:
             values, name = _axis_values(spec, f"sweep.{key}", src.line_of(loc))
@@ -323,8 +355,13 @@ def parse_sweep(src: StudySource) -> list[SweepAxis]:
         raise StudyError(problems, src.source)
     total = math.prod(a.size for a in axes) if axes else 1
     if total > MAX_CASES:
-        raise StudyError([f"{src.line_of(('sweep',))}: sweep: {total} cases is more than the "
-                          f"{MAX_CASES} allowed"], src.source)
+        raise StudyError(
+            [
+                f"{src.line_of(('sweep',))}: sweep: {total} cases is more than the "
+                f"{MAX_CASES} allowed"
+            ],
+            src.source,
+        )
     seen_paths: dict[str, str] = {}
     for axis in axes:
         for p in axis.paths:
@@ -332,9 +369,13 @@ def parse_sweep(src: StudySource) -> list[SweepAxis]:
                 if p == q or p.startswith(q + ".") or q.startswith(p + "."):
                     what = "swept twice" if p == q else f"overlaps the swept path {q!r}"
                     raise StudyError(
-                        [f"{src.line_of(key_locs.get(p, ('sweep',)))}: sweep.{p}: the path is "
-                         f"{what} (dimensions {dim!r} and {axis.name!r}); allowed: each "
-                         f"setting on one axis (got {p!r})"], src.source)
+                        [
+                            f"{src.line_of(key_locs.get(p, ('sweep',)))}: sweep.{p}: the path is "
+                            f"{what} (dimensions {dim!r} and {axis.name!r}); allowed: each "
+                            f"setting on one axis (got {p!r})"
+                        ],
+                        src.source,
+                    )
             seen_paths[p] = axis.name
     return axes
 
@@ -374,22 +415,29 @@ def _set_path(data: dict[str, Any], path: str, value: Any) -> None:
             else:
                 if part not in node or node[part] is None:
                     models = _models_at(tuple(done))
-                    info = next((m.model_fields[part] for m in models if part in m.model_fields),
-                                None)
+                    info = next(
+                        (m.model_fields[part] for m in models if part in m.model_fields), None
+                    )
                     if info is None:
                         allowed = sorted({f for m in models for f in m.model_fields})
-                        raise KeyError(f"{'.'.join(done + [part])} does not exist; allowed keys "
-                                       f"under {'.'.join(done) or '<top>'}: {', '.join(allowed)}")
+                        raise KeyError(
+                            f"{'.'.join(done + [part])} does not exist; allowed keys "
+                            f"under {'.'.join(done) or '<top>'}: {', '.join(allowed)}"
+                        )
                     kinds = _unwrap(info.annotation)
                     origin = typing.get_origin(info.annotation)
                     if not kinds or origin is list:
-                        raise KeyError(f"{'.'.join(done + [part])} is not in the study file, so "
-                                       f"{path} cannot be swept; write it out first")
+                        raise KeyError(
+                            f"{'.'.join(done + [part])} is not in the study file, so "
+                            f"{path} cannot be swept; write it out first"
+                        )
                     node[part] = {}
                 node = node[part]
         else:
-            raise KeyError(f"{'.'.join(done) or '<top>'} is a value, not a mapping or a list; "
-                           f"{path} does not exist")
+            raise KeyError(
+                f"{'.'.join(done) or '<top>'} is a value, not a mapping or a list; "
+                f"{path} does not exist"
+            )
         done.append(part)
 
 
@@ -445,8 +493,11 @@ def _value_loc(src: StudySource, key_loc: Loc, i: int) -> Loc:
     the values are listed (its own line in a block list), else the key itself."""
     node: Any = src.data
     for part in key_loc:
-        node = node.get(part) if isinstance(node, dict) else (
-            node[part] if isinstance(node, list) and isinstance(part, int) else None)
+        node = (
+            node.get(part)
+            if isinstance(node, dict)
+            else (node[part] if isinstance(node, list) and isinstance(part, int) else None)
+        )
     if isinstance(node, list):
         return (*key_loc, i)
     if isinstance(node, dict) and isinstance(node.get("values"), list):
@@ -471,8 +522,13 @@ def expand_cases(src: StudySource) -> tuple[list[SweepAxis], list[Case]]:
     key_locs = {p: sweep_key_loc(src, p) for a in axes for p in a.paths}
     # per axis, path and index: (study location, (sweep key, location of the value))
     value_locs = [
-        {p: [(_study_loc(p), (key_locs[p], _value_loc(src, key_locs[p], i)))
-             for i in range(a.size)] for p in a.paths}
+        {
+            p: [
+                (_study_loc(p), (key_locs[p], _value_loc(src, key_locs[p], i)))
+                for i in range(a.size)
+            ]
+            for p in a.paths
+        }
         for a in axes
     ]
     faults: dict[str, list[dict[str, Any]]] = {}
@@ -483,8 +539,7 @@ def expand_cases(src: StudySource) -> tuple[list[SweepAxis], list[Case]]:
     for index in itertools.product(*(range(a.size) for a in axes)):
         data = _copy_tree(template)
         coords: dict[str, Any] = {}
-        swept = dict(locs[p][i] for locs, i in zip(value_locs, index, strict=True)
-                     for p in locs)
+        swept = dict(locs[p][i] for locs, i in zip(value_locs, index, strict=True) for p in locs)
         bad = False
         for axis, coord, i in zip(axes, coordinates, index, strict=True):
             coords[axis.name] = coord[i].item()
@@ -493,8 +548,9 @@ def expand_cases(src: StudySource) -> tuple[list[SweepAxis], list[Case]]:
                     _set_path(data, path, _copy_tree(values[i]))
                 except KeyError as exc:
                     line = src.line_of(sweep_key_loc(src, path))
-                    faults.setdefault(f"{line}: sweep.{path}: {exc.args[0]} (got {path!r})",
-                                      []).append(coords)
+                    faults.setdefault(
+                        f"{line}: sweep.{path}: {exc.args[0]} (got {path!r})", []
+                    ).append(coords)
                     bad = True
         if bad:
             continue
@@ -512,13 +568,15 @@ def expand_cases(src: StudySource) -> tuple[list[SweepAxis], list[Case]]:
         problems = []
         sweep_lines = sorted({src.line_of(loc) or 0 for loc in key_locs.values()})
         lines_note = f"; swept on line{'s' if len(sweep_lines) > 1 else ''} " + ", ".join(
-            str(n) for n in sweep_lines)
+            str(n) for n in sweep_lines
+        )
         for p, where in faults.items():
             note = "" if "(value from sweep" in p else lines_note
             if len(where) == 1:
                 problems.append(f"{p} [in sweep case {where[0]}{note}]")
             else:
-                problems.append(f"{p} [in {len(where)} of {n_cases} sweep cases, "
-                                f"first {where[0]}{note}]")
+                problems.append(
+                    f"{p} [in {len(where)} of {n_cases} sweep cases, first {where[0]}{note}]"
+                )
         raise StudyError(problems, src.source)
     return axes, cases

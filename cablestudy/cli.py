@@ -33,18 +33,29 @@ def cmd_run(args: argparse.Namespace) -> int:
 
     scheduler = args.scheduler or AUTO
     if scheduler not in SCHEDULERS and "://" not in scheduler:
-        print(f"--scheduler {scheduler!r}: allowed are {', '.join(SCHEDULERS)} or the address "
-              "of a running dask.distributed scheduler (tcp://host:port)", file=sys.stderr)
+        print(
+            f"--scheduler {scheduler!r}: allowed are {', '.join(SCHEDULERS)} or the address "
+            "of a running dask.distributed scheduler (tcp://host:port)",
+            file=sys.stderr,
+        )
         return 2
     src, axes, cases = _load(args.config)
     try:
         summary = run_study(
-            src, axes, cases, args.out, scheduler=scheduler, workers=args.workers,
-            use_cache=not args.no_cache, progress=args.progress,
+            src,
+            axes,
+            cases,
+            args.out,
+            scheduler=scheduler,
+            workers=args.workers,
+            use_cache=not args.no_cache,
+            progress=args.progress,
         )
     except KeyboardInterrupt:
-        print("\ninterrupted: finished cases are cached; run the same command again to "
-              "resume", file=sys.stderr)
+        print(
+            "\ninterrupted: finished cases are cached; run the same command again to resume",
+            file=sys.stderr,
+        )
         return 130
     except PermissionError as exc:
         print(f"cannot write the results: {exc}", file=sys.stderr)
@@ -59,8 +70,11 @@ def cmd_run(args: argparse.Namespace) -> int:
 def cmd_schema(args: argparse.Namespace) -> int:
     from .config import Study
 
-    schema = {"$schema": "https://json-schema.org/draft/2020-12/schema",
-              "title": "cablestudy study file", **Study.model_json_schema()}
+    schema = {
+        "$schema": "https://json-schema.org/draft/2020-12/schema",
+        "title": "cablestudy study file",
+        **Study.model_json_schema(),
+    }
     schema["title"] = "cablestudy study file"
     print(json.dumps(schema, indent=2))
     return 0
@@ -69,8 +83,9 @@ def cmd_schema(args: argparse.Namespace) -> int:
 def cmd_figures(args: argparse.Namespace) -> int:
     from .figures import build_all
 
-    written = build_all(Path(args.results), Path(args.out), configs=Path(args.configs),
-                        run_missing=not args.no_run)
+    written = build_all(
+        Path(args.results), Path(args.out), configs=Path(args.configs), run_missing=not args.no_run
+    )
     for path in written:
         print(path)
     return 0
@@ -93,16 +108,27 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("run", help="run a study file and write <out>/<name>.nc")
     p.add_argument("config")
     p.add_argument("--out", default="results", help="output folder (default: results)")
-    p.add_argument("--workers", type=int, default=None,
-                   help="local worker processes (default: the cores available)")
-    p.add_argument("--scheduler", default=None,
-                   help="auto | synchronous | threads | processes | tcp://host:port of a "
-                        "running dask.distributed scheduler (default: auto: run here, and "
-                        "start --workers processes when the study would take more than a "
-                        "few seconds)")
+    p.add_argument(
+        "--workers",
+        type=int,
+        default=None,
+        help="local worker processes (default: the cores available)",
+    )
+    p.add_argument(
+        "--scheduler",
+        default=None,
+        help="auto | synchronous | threads | processes | tcp://host:port of a "
+        "running dask.distributed scheduler (default: auto: run here, and "
+        "start --workers processes when the study would take more than a "
+        "few seconds)",
+    )
     p.add_argument("--no-cache", action="store_true", help="recompute every case")
-    p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
-                   help="progress bar (default: on a terminal)")
+    p.add_argument(
+        "--progress",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="progress bar (default: on a terminal)",
+    )
     p.set_defaults(func=cmd_run)
 
     p = sub.add_parser("validate", help="check a study file without running it")

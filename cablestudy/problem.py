@@ -23,13 +23,16 @@ def line_model(study: Study) -> LineModel:
     segs = study.line.segments
     area = np.array([s.area for s in segs])
     mass = np.array(
-        [s.mass_per_length if s.mass_per_length is not None
-         else s.weight_in_fluid / g + rho * a  # type: ignore[operator]
-         for s, a in zip(segs, area, strict=True)]
+        [
+            s.mass_per_length if s.mass_per_length is not None else s.weight_in_fluid / g + rho * a  # type: ignore[operator]
+            for s, a in zip(segs, area, strict=True)
+        ]
     )
     weight = np.array(
-        [s.weight_in_fluid if s.weight_in_fluid is not None else (m - rho * a) * g
-         for s, m, a in zip(segs, mass, area, strict=True)]
+        [
+            s.weight_in_fluid if s.weight_in_fluid is not None else (m - rho * a) * g
+            for s, m, a in zip(segs, mass, area, strict=True)
+        ]
     )
     atts = study.line.attachments
 
@@ -37,15 +40,23 @@ def line_model(study: Study) -> LineModel:
         return np.array([getattr(s, name) for s in segs], dtype=float)
 
     att_force = np.array(
-        [np.asarray(a.force, dtype=float) + np.array([0.0, 0.0, -(a.mass - rho * a.volume) * g])
-         for a in atts]
+        [
+            np.asarray(a.force, dtype=float) + np.array([0.0, 0.0, -(a.mass - rho * a.volume) * g])
+            for a in atts
+        ]
     ).reshape(len(atts), 3)
     return LineModel(
-        length=col("length"), weight=weight, mass=mass, axial_stiffness=col("axial_stiffness"),
-        diameter=col("diameter"), drag_normal=col("drag_normal"),
-        drag_tangential=col("drag_tangential"), added_mass_normal=col("added_mass_normal"),
+        length=col("length"),
+        weight=weight,
+        mass=mass,
+        axial_stiffness=col("axial_stiffness"),
+        diameter=col("diameter"),
+        drag_normal=col("drag_normal"),
+        drag_tangential=col("drag_tangential"),
+        added_mass_normal=col("added_mass_normal"),
         added_mass_tangential=col("added_mass_tangential"),
-        bending_stiffness=col("bending_stiffness"), damping_ratio=col("damping_ratio"),
+        bending_stiffness=col("bending_stiffness"),
+        damping_ratio=col("damping_ratio"),
         attachment_s=np.array([a.s for a in atts], dtype=float),
         attachment_force=att_force,
         attachment_mass=np.array([a.mass for a in atts], dtype=float),
@@ -64,10 +75,14 @@ def medium(study: Study) -> Medium:
     else:
         z, vel = np.zeros(0), np.zeros((0, 3))
     return Medium(
-        density=env.density, gravity=env.gravity, depth=env.depth,
+        density=env.density,
+        gravity=env.gravity,
+        depth=env.depth,
         seabed_slope=math.radians(env.seabed.slope_deg),
         seabed_heading=math.radians(env.seabed.slope_heading_deg),
-        friction=env.seabed.friction, current_z=z, current_velocity=vel,
+        friction=env.seabed.friction,
+        current_z=z,
+        current_velocity=vel,
     )
 
 
@@ -84,9 +99,12 @@ def end_condition(end: End) -> EndCondition:
 def static_problem(study: Study) -> StaticProblem:
     settings = study.analysis.static
     return StaticProblem(
-        line=line_model(study), medium=medium(study),
-        end_a=end_condition(study.ends.a), end_b=end_condition(study.ends.b),
-        n_nodes=settings.nodes, tolerance=settings.tolerance,
+        line=line_model(study),
+        medium=medium(study),
+        end_a=end_condition(study.ends.a),
+        end_b=end_condition(study.ends.b),
+        n_nodes=settings.nodes,
+        tolerance=settings.tolerance,
         max_iterations=settings.max_iterations,
         drag_elements=settings.drag_elements or 0,
         **_installation(settings.installation),
@@ -98,5 +116,4 @@ def _installation(inst: Installation | None) -> dict[str, Any]:
     if inst is None:
         return {}
     vx, vy = inst.touchdown_velocity
-    return {"payout_speed": float(inst.payout_speed),
-            "touchdown_velocity": np.array([vx, vy, 0.0])}
+    return {"payout_speed": float(inst.payout_speed), "touchdown_velocity": np.array([vx, vy, 0.0])}

@@ -50,25 +50,28 @@ OUTPUTS: dict[str, OutputVariable] = {
         ("mode",), "Hz", "natural frequency about the static shape"
     ),
     "mode_shape": OutputVariable(
-        ("mode", "s", "component"), "m",
+        ("mode", "s", "component"),
+        "m",
         "mode shape: node displacement scaled to a largest displacement of 1 m",
     ),
     "modal_dof": OutputVariable((), "1", "degrees of freedom of the modal model"),
     "drag_iterations": OutputVariable((), "1", "outer drag iterations of the static solver"),
     # dynamics (cablestudy.dynamics.timedomain): tensions at the excited end over the
     # steady-state window (the envelope of the last periods when steady_converged is 0)
-    "tension_static": OutputVariable(
-        (), "N", "static tension at the excited end (dynamic model)"),
+    "tension_static": OutputVariable((), "N", "static tension at the excited end (dynamic model)"),
     "tension_max": OutputVariable((), "N", "maximum tension at the excited end, steady window"),
     "tension_min": OutputVariable((), "N", "minimum tension at the excited end, steady window"),
     "tension_mean": OutputVariable((), "N", "mean tension at the excited end, steady window"),
     "tension_max_line": OutputVariable((), "N", "maximum tension along the line, steady window"),
     "tension_max_spread": OutputVariable(
-        (), "N", "range of the per-period maximum end tension over the last periods"),
+        (), "N", "range of the per-period maximum end tension over the last periods"
+    ),
     "tension_min_spread": OutputVariable(
-        (), "N", "range of the per-period minimum end tension over the last periods"),
+        (), "N", "range of the per-period minimum end tension over the last periods"
+    ),
     "steady_converged": OutputVariable(
-        (), "1", "1 if the per-period max/min tension settled within the tolerance"),
+        (), "1", "1 if the per-period max/min tension settled within the tolerance"
+    ),
     "periods": OutputVariable((), "1", "excitation periods simulated"),
     "dynamic_steps": OutputVariable((), "1", "accepted time steps"),
     "newton_iterations": OutputVariable((), "1", "Newton iterations of the time steps"),
@@ -78,11 +81,14 @@ OUTPUTS: dict[str, OutputVariable] = {
     "history_tension": OutputVariable(("time",), "N", "tension at the excited end"),
     "history_point_s": OutputVariable(("point",), "m", "arc length of the history points"),
     "history_displacement": OutputVariable(
-        ("point", "time", "component"), "m", "displacement of the point from its static position"),
+        ("point", "time", "component"), "m", "displacement of the point from its static position"
+    ),
     "history_velocity": OutputVariable(
-        ("point", "time", "component"), "m/s", "velocity of the point"),
+        ("point", "time", "component"), "m/s", "velocity of the point"
+    ),
     "history_acceleration": OutputVariable(
-        ("point", "time", "component"), "m/s^2", "acceleration of the point"),
+        ("point", "time", "component"), "m/s^2", "acceleration of the point"
+    ),
 }
 
 #: per-case bookkeeping variables (always present)
@@ -116,14 +122,16 @@ def _fill(dtype: str) -> Any:
     return {"int64": -1, "str": ""}.get(dtype, np.nan)
 
 
-def _fill_rows(arr: np.ndarray, rows: list[tuple[tuple[int, ...], Any]],
-               tail: tuple[int, ...]) -> None:
+def _fill_rows(
+    arr: np.ndarray, rows: list[tuple[tuple[int, ...], Any]], tail: tuple[int, ...]
+) -> None:
     """Put each case's value at its sweep index; values of the full extent in one
     vectorised assignment, shorter ones (fewer nodes) padded by the fill value."""
     full = [(idx, v) for idx, v in rows if np.shape(v) == tail]
     if full and len(full[0][0]) > 0:
-        where = tuple(np.array(col, dtype=np.intp) for col in zip(*(i for i, _ in full),
-                                                                   strict=True))
+        where = tuple(
+            np.array(col, dtype=np.intp) for col in zip(*(i for i, _ in full), strict=True)
+        )
         values = [v for _, v in full]
         arr[where] = values if arr.dtype == object else np.asarray(values, dtype=arr.dtype)
     else:
@@ -135,8 +143,12 @@ def _fill_rows(arr: np.ndarray, rows: list[tuple[tuple[int, ...], Any]],
 
 
 def assemble(
-    axes: list[SweepAxis], cases: list[Case], records: dict[str, CaseRecord], src: StudySource,
-    *, solver_settings: dict[str, Any] | None = None,
+    axes: list[SweepAxis],
+    cases: list[Case],
+    records: dict[str, CaseRecord],
+    src: StudySource,
+    *,
+    solver_settings: dict[str, Any] | None = None,
 ) -> xr.Dataset:
     """One Dataset on the sweep axes. A failed case is NaN (or -1 for counters) in its
     data variables, never dropped."""
@@ -163,24 +175,36 @@ def assemble(
         if name in CASE_VARIABLES:
             rows = [(idx, getattr(rec, name)) for idx, rec in by_index.items()]
         else:
-            rows = [(idx, np.asarray(rec.data[name])) for idx, rec in by_index.items()
-                    if name in rec.data and rec.status == 0]
+            rows = [
+                (idx, np.asarray(rec.data[name]))
+                for idx, rec in by_index.items()
+                if name in rec.data and rec.status == 0
+            ]
         if spec.dtype == "str":
             # text as Python str (not 0-d arrays), so that netCDF sees one type when
             # failed cases hold the fill value ""
-            rows = [(idx, str(v.item()) if isinstance(v, np.ndarray) and v.ndim == 0 else v)
-                    for idx, v in rows]
+            rows = [
+                (idx, str(v.item()) if isinstance(v, np.ndarray) and v.ndim == 0 else v)
+                for idx, v in rows
+            ]
         _fill_rows(arr, rows, tail)
-        data_vars[name] = (dims + spec.dims, arr,
-                           {"units": spec.units, "long_name": spec.long_name})
+        data_vars[name] = (
+            dims + spec.dims,
+            arr,
+            {"units": spec.units, "long_name": spec.long_name},
+        )
 
     coords: dict[str, Any] = {}
     for a in axes:
         numeric = a.coordinate().dtype.kind in "iuf"
         indexed = len(a.paths) > 1 or not all(
-            isinstance(v, int | float | str | bool) for v in a.values[0])
-        attrs = {"units": (a.units or "1") if numeric else "1", "long_name": a.long_name,
-                 "sweep_paths": ", ".join(a.paths)}
+            isinstance(v, int | float | str | bool) for v in a.values[0]
+        )
+        attrs = {
+            "units": (a.units or "1") if numeric else "1",
+            "long_name": a.long_name,
+            "sweep_paths": ", ".join(a.paths),
+        }
         if indexed:
             attrs["units"] = "1"
             if len(a.paths) == 1:
@@ -189,7 +213,8 @@ def assemble(
         if len(a.paths) == 1 and indexed:
             # values that are not scalars (vectors, mappings): keep them as text
             coords[f"{a.name}_value"] = (
-                a.name, np.array([json.dumps(v) for v in a.values[0]], dtype=object),
+                a.name,
+                np.array([json.dumps(v) for v in a.values[0]], dtype=object),
                 {"long_name": f"swept value of {a.paths[0]} (JSON)", "units": "1"},
             )
         if len(a.paths) > 1:
@@ -199,22 +224,35 @@ def assemble(
                     cname = f"{a.name}_{path.replace('.', '_')}"
                 units, long_name = _path_info(path)
                 if all(isinstance(v, int | float) and not isinstance(v, bool) for v in vals):
-                    coords[cname] = (a.name, np.asarray(vals, dtype=float),
-                                     {"long_name": long_name, "units": units or "1"})
+                    coords[cname] = (
+                        a.name,
+                        np.asarray(vals, dtype=float),
+                        {"long_name": long_name, "units": units or "1"},
+                    )
                 else:
-                    coords[cname] = (a.name, np.array([json.dumps(v) for v in vals],
-                                                      dtype=object),
-                                     {"long_name": f"{long_name} (JSON)", "units": "1"})
+                    coords[cname] = (
+                        a.name,
+                        np.array([json.dumps(v) for v in vals], dtype=object),
+                        {"long_name": f"{long_name} (JSON)", "units": "1"},
+                    )
     if "component" in extent and any("component" in OUTPUTS[k].dims for k in present):
-        coords["component"] = ("component", np.array(["x", "y", "z"]),
-                               {"units": COORDINATES["component"][0],
-                                "long_name": COORDINATES["component"][1]})
+        coords["component"] = (
+            "component",
+            np.array(["x", "y", "z"]),
+            {"units": COORDINATES["component"][0], "long_name": COORDINATES["component"][1]},
+        )
     if "mode" in extent and any("mode" in OUTPUTS[k].dims for k in present):
-        coords["mode"] = ("mode", np.arange(1, extent["mode"] + 1),
-                          {"units": COORDINATES["mode"][0], "long_name": COORDINATES["mode"][1]})
+        coords["mode"] = (
+            "mode",
+            np.arange(1, extent["mode"] + 1),
+            {"units": COORDINATES["mode"][0], "long_name": COORDINATES["mode"][1]},
+        )
     if "s" in extent:
-        arcs = [np.asarray(r.data["arc_length"]) for r in by_index.values()
-                if "arc_length" in r.data and r.status == 0]
+        arcs = [
+            np.asarray(r.data["arc_length"])
+            for r in by_index.values()
+            if "arc_length" in r.data and r.status == 0
+        ]
         if arcs and all(len(a) == extent["s"] and np.array_equal(a, arcs[0]) for a in arcs):
             coords["s"] = ("s", arcs[0], {"units": "m", "long_name": COORDINATES["s"][1]})
             data_vars.pop("arc_length", None)
@@ -281,8 +319,11 @@ def write_atomic(ds: xr.Dataset, path: str | Path) -> Path:
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     os.close(fd)
     try:
-        encoding = {name: {"zlib": True, "complevel": 1, "shuffle": True}
-                    for name, v in ds.data_vars.items() if v.dtype.kind == "f"}
+        encoding = {
+            name: {"zlib": True, "complevel": 1, "shuffle": True}
+            for name, v in ds.data_vars.items()
+            if v.dtype.kind == "f"
+        }
         ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
         with open(tmp, "rb+") as fh:  # on disk before the rename makes it visible
             os.fsync(fh.fileno())

@@ -67,8 +67,16 @@ def failed_chunk(cases: list[Case], exc: BaseException) -> list[CaseRecord]:
     """Records for a chunk whose task died outside the solvers (a worker lost, an
     unpicklable result): every case failed with the reason, NaN data, not cached."""
     message = f"{LOST_PREFIX}{type(exc).__name__}: {exc}"
-    return [CaseRecord(hash=c.hash, index=c.index, status=STATUS_TASK_FAILED, message=message,
-                       wall_time=math.nan) for c in cases]
+    return [
+        CaseRecord(
+            hash=c.hash,
+            index=c.index,
+            status=STATUS_TASK_FAILED,
+            message=message,
+            wall_time=math.nan,
+        )
+        for c in cases
+    ]
 
 
 def run_chunk(cases: list[Case]) -> list[CaseRecord]:
@@ -77,16 +85,18 @@ def run_chunk(cases: list[Case]) -> list[CaseRecord]:
     return evaluate_chunk(cases)
 
 
-def make_chunks(cases: list[Case], workers: int, *, min_chunks_per_worker: int = 4,
-                max_chunk: int = 200) -> list[list[Case]]:
+def make_chunks(
+    cases: list[Case], workers: int, *, min_chunks_per_worker: int = 4, max_chunk: int = 200
+) -> list[list[Case]]:
     """Batch cases so that thousands of cheap cases are not drowned by task overhead,
     while every worker gets several chunks (load balance) and an interrupt loses at most
     one chunk per worker."""
     if not cases:
         return []
     ordered = sorted(cases, key=lambda c: (c.static_hash, c.index))
-    n_chunks = max(min(len(ordered), workers * min_chunks_per_worker),
-                   math.ceil(len(ordered) / max_chunk))
+    n_chunks = max(
+        min(len(ordered), workers * min_chunks_per_worker), math.ceil(len(ordered) / max_chunk)
+    )
     # sizes differ by at most one
     bounds = [len(ordered) * i // n_chunks for i in range(n_chunks + 1)]
     return [ordered[lo:hi] for lo, hi in zip(bounds[:-1], bounds[1:], strict=True)]
@@ -94,8 +104,10 @@ def make_chunks(cases: list[Case], workers: int, *, min_chunks_per_worker: int =
 
 def _compact(record: CaseRecord) -> CaseRecord:
     """The record with 0-d arrays as Python scalars (pickles three times faster)."""
-    data = {k: (v.item() if isinstance(v, np.ndarray) and v.ndim == 0 else v)
-            for k, v in record.data.items()}
+    data = {
+        k: (v.item() if isinstance(v, np.ndarray) and v.ndim == 0 else v)
+        for k, v in record.data.items()
+    }
     return dataclasses.replace(record, data=data)
 
 
@@ -146,8 +158,11 @@ class CaseCache:
         if self.directory is None or not self.directory.is_dir():
             return
         old = sorted(self.directory.glob("chunk-*.pkl"))
-        records = [r for h, r in self.records.items() if h in keep
-                   and not r.message.startswith(TRANSIENT_PREFIXES)]
+        records = [
+            r
+            for h, r in self.records.items()
+            if h in keep and not r.message.startswith(TRANSIENT_PREFIXES)
+        ]
         if not records:
             return
         key = hashlib.sha256("".join(sorted(r.hash for r in records)).encode()).hexdigest()
@@ -223,8 +238,9 @@ class Progress:
         frac = self.done / max(self.total, 1)
         bar = "#" * int(30 * frac)
         eta = elapsed / frac - elapsed if frac > 0 else float("nan")
-        sys.stderr.write(f"\r[{bar:<30}] {self.done}/{self.total} cases, {elapsed:.0f} s, "
-                         f"eta {eta:.0f} s ")
+        sys.stderr.write(
+            f"\r[{bar:<30}] {self.done}/{self.total} cases, {elapsed:.0f} s, eta {eta:.0f} s "
+        )
         sys.stderr.flush()
         self.shown = True
 
@@ -233,14 +249,14 @@ class Progress:
             sys.stderr.write("\n")
 
 
-def _run_local(cases: list[Case], workers: int,
-               on_done: Callable[[list[CaseRecord]], None]) -> None:
+def _run_local(
+    cases: list[Case], workers: int, on_done: Callable[[list[CaseRecord]], None]
+) -> None:
     for chunk in make_chunks(cases, workers):
         on_done(run_chunk(chunk))
 
 
-def _run_auto(cases: list[Case], workers: int,
-              on_done: Callable[[list[CaseRecord]], None]) -> None:
+def _run_auto(cases: list[Case], workers: int, on_done: Callable[[list[CaseRecord]], None]) -> None:
     """Probe the cost of a case in this process; keep going here when the whole study
     would take less than :data:`AUTO_PARALLEL_AFTER` seconds (starting worker processes
     costs a few seconds), else hand the rest to a local cluster of ``workers`` processes."""
@@ -258,8 +274,9 @@ def _run_auto(cases: list[Case], workers: int,
         _run_local(rest, 1, on_done)
 
 
-def _run_dask(cases: list[Case], scheduler: str, workers: int,
-              on_done: Callable[[list[CaseRecord]], None]) -> None:
+def _run_dask(
+    cases: list[Case], scheduler: str, workers: int, on_done: Callable[[list[CaseRecord]], None]
+) -> None:
     from dask.distributed import Client, LocalCluster, as_completed
 
     cluster = None
@@ -267,7 +284,8 @@ def _run_dask(cases: list[Case], scheduler: str, workers: int,
         cluster = LocalCluster(
             n_workers=workers if scheduler == PROCESSES else 1,
             threads_per_worker=1 if scheduler == PROCESSES else workers,
-            processes=scheduler == PROCESSES, dashboard_address=None,
+            processes=scheduler == PROCESSES,
+            dashboard_address=None,
             silence_logs=50,
         )
         client = Client(cluster)
@@ -299,8 +317,9 @@ def _run_dask(cases: list[Case], scheduler: str, workers: int,
             cluster.close()
 
 
-def execute(cases: list[Case], scheduler: str, workers: int,
-            on_done: Callable[[list[CaseRecord]], None]) -> None:
+def execute(
+    cases: list[Case], scheduler: str, workers: int, on_done: Callable[[list[CaseRecord]], None]
+) -> None:
     """Evaluate ``cases`` in chunks on ``scheduler``, calling ``on_done`` with each chunk's
     records as it finishes (in the calling process)."""
     if not cases:
@@ -329,9 +348,16 @@ def default_solver_settings(cases: list[Case]) -> dict[str, Any]:
 
 
 def run_study(
-    src: StudySource, axes: list[SweepAxis], cases: list[Case], out_dir: str | Path, *,
-    scheduler: str = AUTO, workers: int | None = None, use_cache: bool = True,
-    progress: bool | None = None, solver_settings: dict[str, Any] | None = None,
+    src: StudySource,
+    axes: list[SweepAxis],
+    cases: list[Case],
+    out_dir: str | Path,
+    *,
+    scheduler: str = AUTO,
+    workers: int | None = None,
+    use_cache: bool = True,
+    progress: bool | None = None,
+    solver_settings: dict[str, Any] | None = None,
 ) -> RunSummary:
     """Run ``cases`` and write ``<out_dir>/<name>.nc``. ``scheduler`` is 'auto' (time a
     few cases here, start ``workers`` processes only when the study would take more than a
@@ -370,7 +396,11 @@ def run_study(
     cache.compact({c.hash for c in cases})
     failures = Counter(records[c.hash].message for c in cases if records[c.hash].status != 0)
     return RunSummary(
-        path=path, n_cases=len(cases), n_reused=n_reused, n_computed=len(unique),
-        n_failed=sum(failures.values()), wall_time=time.perf_counter() - t0,
+        path=path,
+        n_cases=len(cases),
+        n_reused=n_reused,
+        n_computed=len(unique),
+        n_failed=sum(failures.values()),
+        wall_time=time.perf_counter() - t0,
         failures=dict(failures),
     )

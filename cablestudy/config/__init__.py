@@ -8,8 +8,25 @@ from .loader import StudyError, StudySource, load_study, parse_study_text, read_
 from .study import Study
 
 __all__ = [
-    "Analysis", "Attachment", "CurrentPoint", "CustomFluid", "End", "Ends", "Environment",
-    "FixedEnd", "ForceEnd", "Line", "ModalSettings", "MooringEnd", "Seabed", "Segment",
-    "StaticSettings", "Study", "StudyError", "StudySource", "load_study", "parse_study_text",
+    "Analysis",
+    "Attachment",
+    "CurrentPoint",
+    "CustomFluid",
+    "End",
+    "Ends",
+    "Environment",
+    "FixedEnd",
+    "ForceEnd",
+    "Line",
+    "ModalSettings",
+    "MooringEnd",
+    "Seabed",
+    "Segment",
+    "StaticSettings",
+    "Study",
+    "StudyError",
+    "StudySource",
+    "load_study",
+    "parse_study_text",
     "read_study_source",
 ]

@@ -23,9 +23,11 @@ class Installation(StrictModel):
     along itself from end B towards end A (A is the touchdown end)."""
 
     payout_speed: Finite = Field(
-        0.0, description="speed of the cable along itself from end B towards end A [m/s]")
+        0.0, description="speed of the cable along itself from end B towards end A [m/s]"
+    )
     touchdown_velocity: Vec2 = Field(
-        [0.0, 0.0], description="horizontal velocity of the ship and touchdown point [m/s]")
+        [0.0, 0.0], description="horizontal velocity of the ship and touchdown point [m/s]"
+    )
 
 
 class StaticSettings(StrictModel):
@@ -34,12 +36,15 @@ class StaticSettings(StrictModel):
     tolerance: Positive = Field(1e-9, le=1e-2, description="relative tolerance [-]")
     max_iterations: int = Field(100, ge=1, le=100_000)
     drag_elements: int | None = Field(
-        None, ge=1, le=100_000,
+        None,
+        ge=1,
+        le=100_000,
         description="drag elements along the line (method catenary, with current); "
-                    "default: nodes - 1, at least 20",
+        "default: nodes - 1, at least 20",
     )
     installation: Installation | None = Field(
-        None, description="steady cable laying; omit for a line at rest (static)")
+        None, description="steady cable laying; omit for a line at rest (static)"
+    )
 
     @field_validator("method")
     @classmethod
@@ -59,7 +64,9 @@ class ModalSettings(StrictModel):
 
     modes: int = Field(10, ge=1, le=1000, description="number of lowest modes [-]")
     elements: int | None = Field(
-        None, ge=2, le=100_000,
+        None,
+        ge=2,
+        le=100_000,
         description="bar elements of the modal model [-]; omit: max(100, 20 * modes)",
     )
     mesh: Literal["graded", "uniform"] = Field(
@@ -116,7 +123,8 @@ class HarmonicExcitation(StrictModel):
 
     end: Literal["a", "b"] = Field(description="the end that moves")
     direction: Annotated[Vec3, AfterValidator(_unit_direction)] = Field(
-        description="direction of the motion [-] (normalised)")
+        description="direction of the motion [-] (normalised)"
+    )
     amplitude: NonNegative = Field(description="excitation amplitude [m]")
     frequency: Positive = Field(description="excitation frequency [Hz]")
     phase_deg: Finite = Field(0.0, description="phase of the sine [deg]")
@@ -130,7 +138,8 @@ class TimeSeriesExcitation(StrictModel):
 
     end: Literal["a", "b"] = Field(description="the end that moves")
     direction: Annotated[Vec3, AfterValidator(_unit_direction)] = Field(
-        description="direction of the motion [-] (normalised)")
+        description="direction of the motion [-] (normalised)"
+    )
     table: list[Vec2] = Field(min_length=4, description="rows [time s, displacement m]")
     periodic: bool = Field(False, description="repeat the table with its duration as period")
 
@@ -151,7 +160,8 @@ class TimeSeriesExcitation(StrictModel):
             if abs(last - first) > 1e-9 * max(1.0, abs(first)):
                 raise ValueError(
                     f"a periodic table must end where it starts: displacement {last} at the "
-                    f"end, {first} at t = 0")
+                    f"end, {first} at t = 0"
+                )
         return self
 
 
@@ -185,7 +195,8 @@ class HistorySettings(StrictModel):
     """Time histories to keep, resampled uniformly over the last periods of the run."""
 
     points: list[NonNegative] = Field(
-        [], description="arc lengths from end A of the points whose motion is kept [m]")
+        [], description="arc lengths from end A of the points whose motion is kept [m]"
+    )
     periods: Positive = Field(2.0, description="length of the kept record [periods]")
     samples_per_period: int = Field(64, ge=4, le=10_000, description="samples per period")
 
@@ -204,32 +215,44 @@ class DynamicSettings(StrictModel):
     method: str = Field("auto", description="auto | time (frequency-domain: later)")
     elements: int = Field(80, ge=2, le=10_000, description="elements of the dynamic model")
     points_per_period: int = Field(
-        64, ge=8, le=100_000, description="time steps per period of the fastest harmonic")
+        64, ge=8, le=100_000, description="time steps per period of the fastest harmonic"
+    )
     max_refinement: int = Field(
-        6, ge=0, le=12, description="step halvings allowed around slack-taut transitions")
+        6, ge=0, le=12, description="step halvings allowed around slack-taut transitions"
+    )
     tension_resolution: Positive = Field(
-        0.2, le=10.0,
+        0.2,
+        le=10.0,
         description="largest end-tension change in one step, relative to the static "
-                    "tension [-]; a larger change halves the step (snap loads)")
+        "tension [-]; a larger change halves the step (snap loads)",
+    )
     spectral_radius: float = Field(
-        0.3, ge=0.0, le=1.0,
-        description="generalised-alpha high-frequency spectral radius [-] (1: no damping)")
+        0.3,
+        ge=0.0,
+        le=1.0,
+        description="generalised-alpha high-frequency spectral radius [-] (1: no damping)",
+    )
     newton_tolerance: Positive = Field(
-        1e-7, le=1e-2, description="Newton force residual relative to the static tension [-]")
+        1e-7, le=1e-2, description="Newton force residual relative to the static tension [-]"
+    )
     max_newton_iterations: int = Field(12, ge=2, le=200)
     ramp_periods: NonNegative = Field(
-        2.0, description="smooth start of the motion over this many periods [periods]")
+        2.0, description="smooth start of the motion over this many periods [periods]"
+    )
     steady_tolerance: Positive = Field(
-        0.002, le=0.5,
-        description="steady state: change of per-period max and min tension [-]")
+        0.002, le=0.5, description="steady state: change of per-period max and min tension [-]"
+    )
     steady_window: int = Field(2, ge=1, le=100, description="periods that must agree")
     min_periods: int = Field(3, ge=1, description="periods run after the ramp at least")
     max_periods: int = Field(80, ge=1, le=100_000, description="periods run at most")
     period: Positive | None = Field(
-        None, description="steady-state period [s]; default: the longest harmonic or "
-                          "periodic-table period")
+        None,
+        description="steady-state period [s]; default: the longest harmonic or "
+        "periodic-table period",
+    )
     duration: Positive | None = Field(
-        None, description="fixed run time [s] (no steady-state detection)")
+        None, description="fixed run time [s] (no steady-state detection)"
+    )
     history: HistorySettings | None = None
 
     @field_validator("method")
@@ -238,10 +261,12 @@ class DynamicSettings(StrictModel):
         if value == "frequency":
             raise ValueError(
                 "method 'frequency' (frequency-domain linearised dynamics) "
-                f"is not available in this version; allowed: {', '.join(DYNAMIC_METHODS)}")
+                f"is not available in this version; allowed: {', '.join(DYNAMIC_METHODS)}"
+            )
         if value not in DYNAMIC_METHODS:
             raise ValueError(
-                f"unknown dynamic method {value!r}; allowed: {', '.join(DYNAMIC_METHODS)}")
+                f"unknown dynamic method {value!r}; allowed: {', '.join(DYNAMIC_METHODS)}"
+            )
         return value
 
     @model_validator(mode="after")
@@ -254,7 +279,8 @@ class DynamicSettings(StrictModel):
         if not (harmonic or periodic) and self.period is None and self.duration is None:
             raise ValueError(
                 "excitation has no period (only non-periodic tables): give "
-                "analysis.dynamic.duration [s] or analysis.dynamic.period [s]")
+                "analysis.dynamic.duration [s] or analysis.dynamic.period [s]"
+            )
         return self
 
     @property
@@ -271,4 +297,5 @@ class Analysis(StrictModel):
         600.0, description="wall-time limit per case [s]; a case over it fails with a message"
     )
     dynamic: DynamicSettings | None = Field(
-        None, description="time-domain dynamics under prescribed end motion; omit: statics only")
+        None, description="time-domain dynamics under prescribed end motion; omit: statics only"
+    )

@@ -43,8 +43,7 @@ def _fluid_name(value: Any, handler: ValidatorFunctionWrapHandler) -> Any:
 
 #: a named fluid or a mapping {density}
 Fluid = Annotated[
-    Annotated[Literal["air", "water", "vacuum"], WrapValidator(_fluid_name),
-              Tag("name[fluid]")]
+    Annotated[Literal["air", "water", "vacuum"], WrapValidator(_fluid_name), Tag("name[fluid]")]
     | Annotated[CustomFluid, Tag("mapping[fluid]")],
     Discriminator(_fluid_form),
 ]
@@ -90,8 +89,12 @@ class Environment(StrictModel):
         seen: set[float] = set()
         for i, point in enumerate(value):
             if point.z in seen:
-                raise FieldError((i, "z"), "current points must have distinct heights z; "
-                                 f"z = {point.z:g} m is listed twice", point.z)
+                raise FieldError(
+                    (i, "z"),
+                    "current points must have distinct heights z; "
+                    f"z = {point.z:g} m is listed twice",
+                    point.z,
+                )
             seen.add(point.z)
         return value
 

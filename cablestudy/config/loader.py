@@ -103,12 +103,19 @@ def parse_study_text(text: str, source: str = "<study>") -> StudySource:
         line = mark.line + 1 if mark is not None else "?"
         raise StudyError([f"{line}: not valid YAML: {exc}"], source) from None
     if data is None:
-        raise StudyError(["1: <top>: the study file is empty; allowed: a mapping with at "
-                          "least name, line and ends"], source)
+        raise StudyError(
+            [
+                "1: <top>: the study file is empty; allowed: a mapping with at "
+                "least name, line and ends"
+            ],
+            source,
+        )
     if not isinstance(data, dict):
         raise StudyError(
-            [f"1: <top>: the study file must be a mapping of keys (name, line, ends, ...) "
-             f"(got {type(data).__name__})"],
+            [
+                f"1: <top>: the study file must be a mapping of keys (name, line, ends, ...) "
+                f"(got {type(data).__name__})"
+            ],
             source,
         )
     lines: dict[Loc, int] = {}
@@ -132,8 +139,10 @@ def read_study_source(path: str | Path) -> StudySource:
         raise StudyError([f"0: cannot read the study file: {exc.strerror}"], str(path)) from None
     except UnicodeDecodeError as exc:
         line = path.read_bytes()[: exc.start].count(b"\n") + 1
-        raise StudyError([f"{line}: the study file is not UTF-8 text ({exc.reason} at byte "
-                          f"{exc.start})"], str(path)) from None
+        raise StudyError(
+            [f"{line}: the study file is not UTF-8 text ({exc.reason} at byte {exc.start})"],
+            str(path),
+        ) from None
     return parse_study_text(text, str(path))
 
 
@@ -161,8 +170,11 @@ def _kind_tagged(models: list[type[BaseModel]], part: str | int) -> list[type[Ba
     also be a field name ('force' is both a kind of end and a key of that end)."""
     if len(models) < 2:
         return []
-    return [m for m in models if "kind" in m.model_fields
-            and part in typing.get_args(m.model_fields["kind"].annotation)]
+    return [
+        m
+        for m in models
+        if "kind" in m.model_fields and part in typing.get_args(m.model_fields["kind"].annotation)
+    ]
 
 
 def _models_at(loc: Loc) -> list[type[BaseModel]]:
@@ -213,9 +225,15 @@ def _clean_loc(loc: Loc) -> Loc:
             ]
             continue
         # union member names and tags ('fixed', 'CustomFluid', 'list[...]', ...)
-        narrowed = [m for m in models if m.__name__ == part or (
-            "kind" in m.model_fields and part in typing.get_args(m.model_fields["kind"].annotation)
-        )]
+        narrowed = [
+            m
+            for m in models
+            if m.__name__ == part
+            or (
+                "kind" in m.model_fields
+                and part in typing.get_args(m.model_fields["kind"].annotation)
+            )
+        ]
         if narrowed:
             models = narrowed
             continue
@@ -267,8 +285,12 @@ def _describe(err: dict[str, Any]) -> tuple[Loc, str, Any, bool]:
         allowed = sorted({f for m in _models_at(raw[:-1]) for f in m.model_fields})
         close = difflib.get_close_matches(key, allowed, n=1)
         hint = f" (did you mean {close[0]!r}?)" if close else ""
-        return (), (f"unknown key {key!r}{hint}; allowed keys here: {', '.join(allowed)}"), \
-            err["input"], True
+        return (
+            (),
+            (f"unknown key {key!r}{hint}; allowed keys here: {', '.join(allowed)}"),
+            err["input"],
+            True,
+        )
     if kind == "missing":
         desc = _field_description(raw)
         what = f" ({desc})" if desc else ""
@@ -277,14 +299,18 @@ def _describe(err: dict[str, Any]) -> tuple[Loc, str, Any, bool]:
         tags = ctx.get("expected_tags", "")
         if kind == "union_tag_not_found":
             if not tags:  # pydantic names the tags only when the given one is wrong
-                kinds = [a for m in _models_at(raw) if "kind" in m.model_fields
-                         for a in typing.get_args(m.model_fields["kind"].annotation)]
+                kinds = [
+                    a
+                    for m in _models_at(raw)
+                    if "kind" in m.model_fields
+                    for a in typing.get_args(m.model_fields["kind"].annotation)
+                ]
                 tags = ", ".join(repr(k) for k in kinds)
             return (), f"needs a 'kind': one of {tags}", err["input"], True
         return ("kind",), f"'kind' must be one of {tags}", ctx.get("tag", err["input"]), True
     text = _TYPE_WORDS.get(kind, err["msg"])
     if text.startswith("Value error, "):
-        text = text[len("Value error, "):]
+        text = text[len("Value error, ") :]
     text = text.replace("Input should be", "must be")
     if kind in ("too_short", "too_long"):
         bound = ctx.get("min_length", ctx.get("max_length"))
@@ -300,7 +326,10 @@ def _shown(value: Any) -> str:
 
 
 def format_validation_error(
-    exc: ValidationError, src: StudySource, prefix: Loc = (), note: str = "",
+    exc: ValidationError,
+    src: StudySource,
+    prefix: Loc = (),
+    note: str = "",
     swept: dict[Loc, tuple[Loc, Loc]] | None = None,
 ) -> list[str]:
     """One message per faulty field: ``line: path: what is wrong and what is allowed
@@ -316,7 +345,7 @@ def format_validation_error(
         line = src.line_of(line_loc)
         where = dotted(loc)
         if swept:
-            origin = next((sk for sl, sk in swept.items() if loc[:len(sl)] == sl), None)
+            origin = next((sk for sl, sk in swept.items() if loc[: len(sl)] == sl), None)
             if origin is not None:
                 line = src.line_of(origin[1])
                 where = f"{where} (value from {dotted(origin[0])})"
@@ -333,7 +362,10 @@ def format_validation_error(
 
 
 def validate_data(
-    data: dict[str, Any], src: StudySource, prefix: Loc = (), note: str = "",
+    data: dict[str, Any],
+    src: StudySource,
+    prefix: Loc = (),
+    note: str = "",
     swept: dict[Loc, tuple[Loc, Loc]] | None = None,
 ) -> Study:
     """Validate parsed study data; raise :class:`StudyError` naming each fault's line."""

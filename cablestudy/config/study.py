@@ -32,26 +32,54 @@ class Study(StrictModel):
         description="parameter sweeps: dotted path -> values; expanded by cablestudy.cases",
         json_schema_extra={
             "propertyNames": {"pattern": r"^(zip|[A-Za-z_][A-Za-z0-9_]*(\.[A-Za-z0-9_]+)*)$"},
-            "additionalProperties": {"anyOf": [
-                {"type": "array", "minItems": 1},
-                {"type": "object", "required": ["start", "stop", "num"],
-                 "properties": {"start": {"type": "number"}, "stop": {"type": "number"},
-                                "num": {"type": "integer", "minimum": 1},
-                                "name": {"type": "string"}},
-                 "additionalProperties": False},
-                {"type": "object", "required": ["start", "stop", "step"],
-                 "properties": {"start": {"type": "number"}, "stop": {"type": "number"},
-                                "step": {"type": "number"}, "name": {"type": "string"}},
-                 "additionalProperties": False},
-                {"type": "object", "required": ["values"],
-                 "properties": {"values": {"type": "array", "minItems": 1},
-                                "name": {"type": "string"}},
-                 "additionalProperties": False},
-            ]},
-            "properties": {"zip": {"type": "array", "minItems": 1, "items": {
-                "type": "object", "required": ["name"],
-                "properties": {"name": {"type": "string"}},
-                "additionalProperties": {"type": "array", "minItems": 1}}}},
+            "additionalProperties": {
+                "anyOf": [
+                    {"type": "array", "minItems": 1},
+                    {
+                        "type": "object",
+                        "required": ["start", "stop", "num"],
+                        "properties": {
+                            "start": {"type": "number"},
+                            "stop": {"type": "number"},
+                            "num": {"type": "integer", "minimum": 1},
+                            "name": {"type": "string"},
+                        },
+                        "additionalProperties": False,
+                    },
+                    {
+                        "type": "object",
+                        "required": ["start", "stop", "step"],
+                        "properties": {
+                            "start": {"type": "number"},
+                            "stop": {"type": "number"},
+                            "step": {"type": "number"},
+                            "name": {"type": "string"},
+                        },
+                        "additionalProperties": False,
+                    },
+                    {
+                        "type": "object",
+                        "required": ["values"],
+                        "properties": {
+                            "values": {"type": "array", "minItems": 1},
+                            "name": {"type": "string"},
+                        },
+                        "additionalProperties": False,
+                    },
+                ]
+            },
+            "properties": {
+                "zip": {
+                    "type": "array",
+                    "minItems": 1,
+                    "items": {
+                        "type": "object",
+                        "required": ["name"],
+                        "properties": {"name": {"type": "string"}},
+                        "additionalProperties": {"type": "array", "minItems": 1},
+                    },
+                }
+            },
         },
     )
 
@@ -118,7 +146,8 @@ class Study(StrictModel):
                     continue
                 ground = -env.depth + (
                     rise * (x * math.cos(heading) + y * math.sin(heading))
-                    if math.isfinite(x) else 0.0
+                    if math.isfinite(x)
+                    else 0.0
                 )
                 if z < ground - 1e-9 * env.depth:
                     raise FieldError(

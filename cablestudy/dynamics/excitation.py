@@ -71,8 +71,11 @@ class EndMotion:
 
     @property
     def moving_ends(self) -> set[int]:
-        ends = {int(e) for e, a in zip(self.harmonic_end, self.harmonic_amplitude,
-                                       strict=True) if a > 0.0}
+        ends = {
+            int(e)
+            for e, a in zip(self.harmonic_end, self.harmonic_amplitude, strict=True)
+            if a > 0.0
+        }
         return ends | {t.end for t in self.tables}
 
     def _ramp(self, t: float) -> tuple[float, float, float]:
@@ -112,5 +115,4 @@ class EndMotion:
         time ``t`` [s], each (2, 3), ramp included."""
         raw = self.unramped(t)
         r, dr, ddr = self._ramp(t)
-        return (r * raw[0], r * raw[1] + dr * raw[0],
-                r * raw[2] + 2.0 * dr * raw[1] + ddr * raw[0])
+        return (r * raw[0], r * raw[1] + dr * raw[0], r * raw[2] + 2.0 * dr * raw[1] + ddr * raw[0])

@@ -49,12 +49,53 @@ class AlphaParameters:
 
 
 @njit(cache=True)
-def alpha_step(x0, v0, a0, F0, h, end_x, end_v, end_a, alpha_m, alpha_f, beta, gamma,
-               tol, max_iterations, x_pred, x1, v1, a1,
-               rest_length, axial_stiffness, internal_damping, force, drag_normal,
-               drag_tangential, added_mass_normal, added_mass_tangential, mass, current_z,
-               current_velocity, has_drag, F, K_d, K_o, C_d, C_o, M_d, tension, strain,
-               taut0, J_d, J_o, r, dx, Dinv, y):  # noqa: ANN001, ANN201
+def alpha_step(
+    x0,
+    v0,
+    a0,
+    F0,
+    h,
+    end_x,
+    end_v,
+    end_a,
+    alpha_m,
+    alpha_f,
+    beta,
+    gamma,
+    tol,
+    max_iterations,
+    x_pred,
+    x1,
+    v1,
+    a1,
+    rest_length,
+    axial_stiffness,
+    internal_damping,
+    force,
+    drag_normal,
+    drag_tangential,
+    added_mass_normal,
+    added_mass_tangential,
+    mass,
+    current_z,
+    current_velocity,
+    has_drag,
+    F,
+    K_d,
+    K_o,
+    C_d,
+    C_o,
+    M_d,
+    tension,
+    strain,
+    taut0,
+    J_d,
+    J_o,
+    r,
+    dx,
+    Dinv,
+    y,
+):  # noqa: ANN001, ANN201
     """One step of length ``h`` [s] from (x0, v0, a0) with out-of-balance force F0.
 
     ``end_x, end_v, end_a`` (2, 3) are the prescribed position, velocity and
@@ -69,8 +110,9 @@ def alpha_step(x0, v0, a0, F0, h, end_x, end_v, end_a, alpha_m, alpha_f, beta, g
     for i in range(n):
         for c in range(3):
             x1[i, c] = x_pred[i, c]
-            a1[i, c] = (x1[i, c] - x0[i, c] - h * v0[i, c]
-                        - h * h * (0.5 - beta) * a0[i, c]) / (beta * h * h)
+            a1[i, c] = (x1[i, c] - x0[i, c] - h * v0[i, c] - h * h * (0.5 - beta) * a0[i, c]) / (
+                beta * h * h
+            )
             v1[i, c] = v0[i, c] + h * ((1.0 - gamma) * a0[i, c] + gamma * a1[i, c])
     for c in range(3):
         x1[0, c] = end_x[0, c]
@@ -83,10 +125,31 @@ def alpha_step(x0, v0, a0, F0, h, end_x, end_v, end_a, alpha_m, alpha_f, beta, g
     cv = gamma / (beta * h)
     lmin = rest_length.min()
     for it in range(max_iterations + 1):
-        assemble(x1, v1, rest_length, axial_stiffness, internal_damping, force, drag_normal,
-                 drag_tangential, added_mass_normal, added_mass_tangential, mass, current_z,
-                 current_velocity, has_drag, F, K_d, K_o, C_d, C_o, M_d, tension, strain,
-                 taut0)
+        assemble(
+            x1,
+            v1,
+            rest_length,
+            axial_stiffness,
+            internal_damping,
+            force,
+            drag_normal,
+            drag_tangential,
+            added_mass_normal,
+            added_mass_tangential,
+            mass,
+            current_z,
+            current_velocity,
+            has_drag,
+            F,
+            K_d,
+            K_o,
+            C_d,
+            C_o,
+            M_d,
+            tension,
+            strain,
+            taut0,
+        )
         res = 0.0
         for i in range(1, n - 1):
             for c in range(3):
@@ -105,13 +168,13 @@ def alpha_step(x0, v0, a0, F0, h, end_x, end_v, end_a, alpha_m, alpha_f, beta, g
             for c in range(3):
                 for b in range(3):
                     J_d[i - 1, c, b] = cm * M_d[i, c, b] + (1.0 - alpha_f) * (
-                        K_d[i, c, b] + cv * C_d[i, c, b])
+                        K_d[i, c, b] + cv * C_d[i, c, b]
+                    )
         for i in range(1, n - 2):
             for c in range(3):
                 for b in range(3):
                     J_o[i - 1, c, b] = (1.0 - alpha_f) * (K_o[i, c, b] + cv * C_o[i, c, b])
-        ok = solve_block_tridiagonal(J_d[:m], J_o[:max(m - 1, 0)], r[:m], dx[:m], Dinv[:m],
-                                     y[:m])
+        ok = solve_block_tridiagonal(J_d[:m], J_o[: max(m - 1, 0)], r[:m], dx[:m], Dinv[:m], y[:m])
         if not ok:
             return it, False
         # the start-of-step stiffness of elements gone slack in the predictor helps the

@@ -83,10 +83,20 @@ class DiscreteLine:
 
     def kernel_args(self) -> tuple:
         """The arrays in the order the compiled kernels take them."""
-        return (self.rest_length, self.axial_stiffness, self.internal_damping, self.force,
-                self.drag_normal, self.drag_tangential, self.added_mass_normal,
-                self.added_mass_tangential, self.mass, self.current_z, self.current_velocity,
-                self.has_drag)
+        return (
+            self.rest_length,
+            self.axial_stiffness,
+            self.internal_damping,
+            self.force,
+            self.drag_normal,
+            self.drag_tangential,
+            self.added_mass_normal,
+            self.added_mass_tangential,
+            self.mass,
+            self.current_z,
+            self.current_velocity,
+            self.has_drag,
+        )
 
 
 def element_counts(lengths: np.ndarray, elements: int) -> np.ndarray:
@@ -114,8 +124,10 @@ def discretise(line: LineModel, medium: Medium, elements: int) -> DiscreteLine:
     """
     counts = element_counts(line.length, elements)
     bounds = line.segment_ends
-    s = np.concatenate([np.linspace(bounds[i], bounds[i + 1], counts[i] + 1)[:-1]
-                        for i in range(len(counts))] + [bounds[-1:]])
+    s = np.concatenate(
+        [np.linspace(bounds[i], bounds[i + 1], counts[i] + 1)[:-1] for i in range(len(counts))]
+        + [bounds[-1:]]
+    )
     seg = np.repeat(np.arange(len(counts)), counts)
     l0 = np.diff(s)
     rho = medium.density
@@ -148,17 +160,23 @@ def discretise(line: LineModel, medium: Medium, elements: int) -> DiscreteLine:
             mass[node] += share * line.attachment_mass[k]
     has_drag = bool(rho > 0.0 and (np.any(drag_n > 0.0) or np.any(drag_t > 0.0)))
     return DiscreteLine(
-        s=s, rest_length=l0, axial_stiffness=ea, internal_damping=c_int, mass=mass,
-        added_mass_normal=added_n, added_mass_tangential=added_t, drag_normal=drag_n,
-        drag_tangential=drag_t, force=force,
+        s=s,
+        rest_length=l0,
+        axial_stiffness=ea,
+        internal_damping=c_int,
+        mass=mass,
+        added_mass_normal=added_n,
+        added_mass_tangential=added_t,
+        drag_normal=drag_n,
+        drag_tangential=drag_t,
+        force=force,
         current_z=np.ascontiguousarray(medium.current_z, dtype=float),
         current_velocity=np.ascontiguousarray(medium.current_velocity, dtype=float).reshape(-1, 3),
         has_drag=has_drag,
     )
 
 
-def interpolate_nodes(s_nodes: np.ndarray, s_points: np.ndarray,
-                      values: np.ndarray) -> np.ndarray:
+def interpolate_nodes(s_nodes: np.ndarray, s_points: np.ndarray, values: np.ndarray) -> np.ndarray:
     """Linear interpolation along the line of nodal ``values`` (..., n + 1, 3) to arc
     lengths ``s_points`` [m]; returns (..., p, 3)."""
     e = np.clip(np.searchsorted(s_nodes, s_points, side="right") - 1, 0, s_nodes.size - 2)
@@ -170,10 +188,31 @@ def interpolate_nodes(s_nodes: np.ndarray, s_points: np.ndarray,
 
 
 @njit(cache=True)
-def assemble(x, v, rest_length, axial_stiffness, internal_damping, force, drag_normal,
-             drag_tangential, added_mass_normal, added_mass_tangential, mass, current_z,
-             current_velocity, has_drag, F, K_d, K_o, C_d, C_o, M_d, tension, strain,
-             taut0):  # noqa: ANN001, ANN201
+def assemble(
+    x,
+    v,
+    rest_length,
+    axial_stiffness,
+    internal_damping,
+    force,
+    drag_normal,
+    drag_tangential,
+    added_mass_normal,
+    added_mass_tangential,
+    mass,
+    current_z,
+    current_velocity,
+    has_drag,
+    F,
+    K_d,
+    K_o,
+    C_d,
+    C_o,
+    M_d,
+    tension,
+    strain,
+    taut0,
+):  # noqa: ANN001, ANN201
     """Nodal out-of-balance force ``F = f_internal - f_external`` [N] (n + 1, 3) at
     positions ``x`` [m] and velocities ``v`` [m/s], so that ``M a + F = 0``; its
     tangents: stiffness ``K = dF/dx`` and damping ``C = dF/dv`` as diagonal blocks
@@ -385,36 +424,99 @@ class Workspace:
         self.y = np.zeros((max(n - 2, 1), 3))
 
     def assemble_args(self) -> tuple:
-        return (self.F, self.K_d, self.K_o, self.C_d, self.C_o, self.M_d, self.tension,
-                self.strain, self.taut0)
+        return (
+            self.F,
+            self.K_d,
+            self.K_o,
+            self.C_d,
+            self.C_o,
+            self.M_d,
+            self.tension,
+            self.strain,
+            self.taut0,
+        )
 
     def solver_args(self) -> tuple:
         return (self.J_d, self.J_o, self.r, self.dx, self.Dinv, self.y)
 
 
-def evaluate(line: DiscreteLine, x: np.ndarray, v: np.ndarray,
-             work: Workspace | None = None) -> Workspace:
+def evaluate(
+    line: DiscreteLine, x: np.ndarray, v: np.ndarray, work: Workspace | None = None
+) -> Workspace:
     """Forces, tangents, masses and tensions at state (``x`` [m], ``v`` [m/s])."""
     work = work or Workspace(line.n_elements)
-    assemble(np.ascontiguousarray(x, dtype=float), np.ascontiguousarray(v, dtype=float),
-             *line.kernel_args(), *work.assemble_args())
+    assemble(
+        np.ascontiguousarray(x, dtype=float),
+        np.ascontiguousarray(v, dtype=float),
+        *line.kernel_args(),
+        *work.assemble_args(),
+    )
     return work
 
 
 @njit(cache=True)
-def _static_newton(x, rest_length, axial_stiffness, internal_damping, force, drag_normal,
-                   drag_tangential, added_mass_normal, added_mass_tangential, mass, current_z,
-                   current_velocity, has_drag, F, K_d, K_o, C_d, C_o, M_d, tension, strain,
-                   taut0, J_d, J_o, r, dx, Dinv, y, tol, max_iterations):  # noqa: ANN001, ANN201
+def _static_newton(
+    x,
+    rest_length,
+    axial_stiffness,
+    internal_damping,
+    force,
+    drag_normal,
+    drag_tangential,
+    added_mass_normal,
+    added_mass_tangential,
+    mass,
+    current_z,
+    current_velocity,
+    has_drag,
+    F,
+    K_d,
+    K_o,
+    C_d,
+    C_o,
+    M_d,
+    tension,
+    strain,
+    taut0,
+    J_d,
+    J_o,
+    r,
+    dx,
+    Dinv,
+    y,
+    tol,
+    max_iterations,
+):  # noqa: ANN001, ANN201
     n = x.shape[0]
     v = np.zeros_like(x)
     res = np.inf
     lmin = rest_length.min()
     for it in range(max_iterations + 1):
-        assemble(x, v, rest_length, axial_stiffness, internal_damping, force, drag_normal,
-                 drag_tangential, added_mass_normal, added_mass_tangential, mass, current_z,
-                 current_velocity, has_drag, F, K_d, K_o, C_d, C_o, M_d, tension, strain,
-                 taut0)
+        assemble(
+            x,
+            v,
+            rest_length,
+            axial_stiffness,
+            internal_damping,
+            force,
+            drag_normal,
+            drag_tangential,
+            added_mass_normal,
+            added_mass_tangential,
+            mass,
+            current_z,
+            current_velocity,
+            has_drag,
+            F,
+            K_d,
+            K_o,
+            C_d,
+            C_o,
+            M_d,
+            tension,
+            strain,
+            taut0,
+        )
         res = 0.0
         for i in range(1, n - 1):
             for a in range(3):
@@ -435,8 +537,9 @@ def _static_newton(x, rest_length, axial_stiffness, internal_damping, force, dra
             for a in range(3):
                 for b in range(3):
                     J_o[i - 1, a, b] = K_o[i, a, b]
-        ok = solve_block_tridiagonal(J_d[: n - 2], J_o[: max(n - 3, 0)], r[: n - 2],
-                                     dx[: n - 2], Dinv[: n - 2], y[: n - 2])
+        ok = solve_block_tridiagonal(
+            J_d[: n - 2], J_o[: max(n - 3, 0)], r[: n - 2], dx[: n - 2], Dinv[: n - 2], y[: n - 2]
+        )
         if not ok:
             return it, res, False
         big = 0.0
@@ -452,8 +555,9 @@ def _static_newton(x, rest_length, axial_stiffness, internal_damping, force, dra
     return max_iterations, res, False
 
 
-def static_equilibrium(line: DiscreteLine, x0: np.ndarray, *, tolerance: float,
-                       max_iterations: int = 100) -> tuple[np.ndarray, int, float, bool]:
+def static_equilibrium(
+    line: DiscreteLine, x0: np.ndarray, *, tolerance: float, max_iterations: int = 100
+) -> tuple[np.ndarray, int, float, bool]:
     """Equilibrium of the discrete line with both end nodes held where ``x0`` puts them.
 
     Newton from ``x0`` (the continuous static solution at the nodes), so that the time
@@ -464,8 +568,14 @@ def static_equilibrium(line: DiscreteLine, x0: np.ndarray, *, tolerance: float,
     """
     x = np.array(x0, dtype=float, copy=True)
     work = Workspace(line.n_elements)
-    it, res, ok = _static_newton(x, *line.kernel_args(), *work.assemble_args(),
-                                 *work.solver_args(), tolerance, max_iterations)
+    it, res, ok = _static_newton(
+        x,
+        *line.kernel_args(),
+        *work.assemble_args(),
+        *work.solver_args(),
+        tolerance,
+        max_iterations,
+    )
     return x, int(it), float(res), bool(ok)
 
 

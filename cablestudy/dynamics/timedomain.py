@@ -204,8 +204,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         while len(buf) > 2 and buf[1][0] < t - hist_span:
             buf.popleft()
 
-    rec: dict[str, list[np.ndarray]] = {k: [] for k in ("t", "x", "v", "a", "end_force",
-                                                          "tension")}
+    rec: dict[str, list[np.ndarray]] = {k: [] for k in ("t", "x", "v", "a", "end_force", "tension")}
 
     def keep(t: float, forces: np.ndarray) -> None:
         if problem.keep_steps:
@@ -259,8 +258,10 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     converged = False
     while True:
         if deadline is not None and steps % 64 == 0 and time.monotonic() > deadline:
-            result.status, result.message = STATUS_TIME_LIMIT, (
-                f"time limit reached at t = {t:.4g} s of the dynamic run")
+            result.status, result.message = (
+                STATUS_TIME_LIMIT,
+                (f"time limit reached at t = {t:.4g} s of the dynamic run"),
+            )
             return result
         h = problem.step / 2**level
         if next_b - t <= h * (1.0 + 1e-6):
@@ -275,17 +276,38 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         x_pred += frac * (base[1] + disp[1] - x_pred[-1])[None, :]
         x_pred[0] = base[0] + disp[0]
         x_pred[-1] = base[1] + disp[1]
-        its, ok = alpha_step(x0, v0, a0, F0, h, base + disp, vel, acc, par.alpha_m,
-                             par.alpha_f, par.beta, par.gamma, tol,
-                             problem.max_newton_iterations, x_pred, x1, v1, a1, *largs,
-                             *wargs, *sargs)
+        its, ok = alpha_step(
+            x0,
+            v0,
+            a0,
+            F0,
+            h,
+            base + disp,
+            vel,
+            acc,
+            par.alpha_m,
+            par.alpha_f,
+            par.beta,
+            par.gamma,
+            tol,
+            problem.max_newton_iterations,
+            x_pred,
+            x1,
+            v1,
+            a1,
+            *largs,
+            *wargs,
+            *sargs,
+        )
         newton += its
         if not ok:
             rejected += 1
             if level >= max_level + NEWTON_RESCUE_HALVINGS:
                 result.status = STATUS_NUMERICAL
-                result.message = (f"Newton did not converge at t = {t:.6g} s with step "
-                                  f"{h:.3g} s ({problem.step:.3g} s halved {level} times)")
+                result.message = (
+                    f"Newton did not converge at t = {t:.6g} s with step "
+                    f"{h:.3g} s ({problem.step:.3g} s halved {level} times)"
+                )
                 result.steps, result.newton_iterations = steps, newton
                 result.rejected_steps = rejected
                 return result
@@ -344,7 +366,8 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
                     converged = all(
                         abs(p_max[-j] - p_max[-j - 1]) <= problem.steady_tolerance * p_max[-j]
                         and abs(p_min[-j] - p_min[-j - 1]) <= problem.steady_tolerance * p_max[-j]
-                        for j in range(1, w + 1))
+                        for j in range(1, w + 1)
+                    )
             if converged or t >= t_stop - eps_t:
                 break
             next_b = min(next_b + T, t_stop)
@@ -368,15 +391,17 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     result.period_max = np.asarray(p_max)
     result.period_min = np.asarray(p_min)
     if keep_hist and len(buf) >= 2:
-        result.history = _resample(buf, t, T, problem, interpolate_nodes(
-            line.s, hs, problem.static_position[None])[0])
+        result.history = _resample(
+            buf, t, T, problem, interpolate_nodes(line.s, hs, problem.static_position[None])[0]
+        )
     if problem.keep_steps:
         result.record = {k: np.asarray(v) for k, v in rec.items()}
     return result
 
 
-def _resample(buf: deque, t_end: float, period: float, problem: DynamicProblem,
-              static_points: np.ndarray) -> dict[str, np.ndarray]:
+def _resample(
+    buf: deque, t_end: float, period: float, problem: DynamicProblem, static_points: np.ndarray
+) -> dict[str, np.ndarray]:
     """Uniform record over the last ``history_periods`` periods ending at ``t_end``."""
     nt = int(round(problem.history_periods * problem.history_samples)) + 1
     tq = t_end - problem.history_periods * period + np.arange(nt) * period / problem.history_samples

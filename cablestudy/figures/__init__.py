@@ -40,12 +40,20 @@ def _ensure_study(name: str, results: Path, configs: Path, run_missing: bool) ->
     src = read_study_source(candidates[0])
     axes, cases = expand_cases(src)
     check_supported(cases, src)
-    run_study(src, axes, cases, results, scheduler="synchronous" if len(cases) <= 8 else "processes")
+    run_study(
+        src, axes, cases, results, scheduler="synchronous" if len(cases) <= 8 else "processes"
+    )
     return path
 
 
-def build_all(results: Path, out: Path, *, configs: Path = Path("configs"),
-              run_missing: bool = True, only: list[str] | None = None) -> list[Path]:
+def build_all(
+    results: Path,
+    out: Path,
+    *,
+    configs: Path = Path("configs"),
+    run_missing: bool = True,
+    only: list[str] | None = None,
+) -> list[Path]:
     """Build every registered figure (or those in ``only``); returns the PNG paths."""
     import matplotlib
 

@@ -13,11 +13,10 @@ import xarray as xr
 from . import register
 
 
-def _curves(ax: plt.Axes, ds: xr.Dataset, dim: str, value: float, label: str,
-            color: str) -> None:
+def _curves(ax: plt.Axes, ds: xr.Dataset, dim: str, value: float, label: str, color: str) -> None:
     sel = ds.sel({dim: value}) if dim else ds
     f = sel["frequency"].values
-    ok = (sel["status"].values == 0)
+    ok = sel["status"].values == 0
     conv = ok & (sel["steady_converged"].values == 1)
     for var, style in (("tension_max", "-"), ("tension_min", "--")):
         y = np.where(ok, sel[var].values, np.nan)
@@ -52,8 +51,9 @@ def figs2_5(data: dict[str, xr.Dataset], out: Path) -> Path:
         ax.set_ylim(bottom=0.0)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
-    fig.suptitle("Max/min tension at the excited end (filled: steady, open: not settled)",
-                 fontsize=10)
+    fig.suptitle(
+        "Max/min tension at the excited end (filled: steady, open: not settled)", fontsize=10
+    )
     fig.tight_layout()
     path = out / "moustafa-figs2-5.png"
     fig.savefig(path, dpi=120)
@@ -68,8 +68,12 @@ def fig6(data: dict[str, xr.Dataset], out: Path) -> Path:
     for i, span in enumerate(ds["span"].values):
         t0 = float(ds["tension_static"].sel(span=span).mean())
         _curves(ax, ds, "span", float(span), f"span {span:g} m, T0 = {t0:.0f} N", f"C{i}")
-    return _finish(fig, ax, "Moustafa Fig. 6: effect of the initial tension (amplitude 0.075 m)",
-                   out / "moustafa-fig6.png")
+    return _finish(
+        fig,
+        ax,
+        "Moustafa Fig. 6: effect of the initial tension (amplitude 0.075 m)",
+        out / "moustafa-fig6.png",
+    )
 
 
 @register("moustafa-fig7", ("moustafa-fig7",))
@@ -79,8 +83,12 @@ def fig7(data: dict[str, xr.Dataset], out: Path) -> Path:
     area = np.pi * 0.01**2 / 4.0
     for i, ea in enumerate(ds["axial_stiffness"].values):
         _curves(ax, ds, "axial_stiffness", float(ea), f"E = {ea / area:.2g} Pa", f"C{i}")
-    return _finish(fig, ax, "Moustafa Fig. 7: effect of Young's modulus (amplitude 0.075 m)",
-                   out / "moustafa-fig7.png")
+    return _finish(
+        fig,
+        ax,
+        "Moustafa Fig. 7: effect of Young's modulus (amplitude 0.075 m)",
+        out / "moustafa-fig7.png",
+    )
 
 
 @register("moustafa-sensitivity", ("moustafa-sensitivity",))
@@ -93,8 +101,12 @@ def sensitivity(data: dict[str, xr.Dataset], out: Path) -> Path:
             sub = ds.sel(fluid=fluid)
             _curves(ax, sub, "axial_stiffness", float(ea), f"{fluid}, EA = {ea:.3g} N", f"C{i}")
             i += 1
-    return _finish(fig, ax, "Sensitivity to the seed's readings (amplitude 0.075 m)",
-                   out / "moustafa-sensitivity.png")
+    return _finish(
+        fig,
+        ax,
+        "Sensitivity to the seed's readings (amplitude 0.075 m)",
+        out / "moustafa-sensitivity.png",
+    )
 
 
 @register("moustafa-figs8-10", ("moustafa-figs8-10",))
@@ -104,9 +116,11 @@ def figs8_10(data: dict[str, xr.Dataset], out: Path) -> Path:
     fig, axes = plt.subplots(3, n, figsize=(4 * n, 7), sharex="col")
     amps = ds["excitation_case_amplitude"].values
     freqs = ds["excitation_case_frequency"].values
-    quantities = (("history_displacement", "displacement [m]"),
-                  ("history_velocity", "velocity [m/s]"),
-                  ("history_acceleration", "acceleration [m/s^2]"))
+    quantities = (
+        ("history_displacement", "displacement [m]"),
+        ("history_velocity", "velocity [m/s]"),
+        ("history_acceleration", "acceleration [m/s^2]"),
+    )
     for j in range(n):
         case = ds.isel(excitation_case=j)
         t = case["history_time"].values
@@ -116,11 +130,9 @@ def figs8_10(data: dict[str, xr.Dataset], out: Path) -> Path:
             ax.plot(t, case[var].isel(point=0).sel(component="z").values, lw=1)
             ax.set_ylabel(label)
             ax.grid(alpha=0.3)
-        axes[0, j].set_title(f"Fig. {8 + j}: midpoint, {amps[j]:g} m, {freqs[j]:g} Hz",
-                             fontsize=9)
+        axes[0, j].set_title(f"Fig. {8 + j}: midpoint, {amps[j]:g} m, {freqs[j]:g} Hz", fontsize=9)
         axes[-1, j].set_xlabel("time in the steady window [s]")
-    fig.suptitle("Moustafa Figs. 8-10: vertical response of the cable midpoint (z up)",
-                 fontsize=10)
+    fig.suptitle("Moustafa Figs. 8-10: vertical response of the cable midpoint (z up)", fontsize=10)
     fig.tight_layout()
     path = out / "moustafa-figs8-10.png"
     fig.savefig(path, dpi=120)

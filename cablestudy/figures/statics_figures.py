@@ -11,10 +11,18 @@ import xarray as xr
 from . import register
 
 #: dodaran-park seed, Table 1: points of the steel catenary of Fig. 4 (x, z) [m]
-TABLE1 = np.array([
-    [0.0, 0.0], [5.25, -2.5], [25.67, -12.5], [58.64, -17.5], [65.85, -15.5],
-    [79.64, -12.65], [82.91, -9.56], [92.5, -8.6],
-])
+TABLE1 = np.array(
+    [
+        [0.0, 0.0],
+        [5.25, -2.5],
+        [25.67, -12.5],
+        [58.64, -17.5],
+        [65.85, -15.5],
+        [79.64, -12.65],
+        [82.91, -9.56],
+        [92.5, -8.6],
+    ]
+)
 
 
 @register("dodaran-fig4", ("catenary-in-air", "dodaran-fig4-semi-analytic"))
@@ -23,8 +31,14 @@ def fig4(data: dict[str, xr.Dataset], out: Path) -> Path:
     semi = data["dodaran-fig4-semi-analytic"]
     fig, ax = plt.subplots(figsize=(6, 3.5))
     ax.plot(semi["x"], semi["z"], "-", label="cablestudy semi-analytic (method catenary)")
-    ax.plot(ds["x"][::10], ds["z"][::10], "s", mfc="none", ms=5,
-            label="exact elastic catenary (Irvine 1981)")
+    ax.plot(
+        ds["x"][::10],
+        ds["z"][::10],
+        "s",
+        mfc="none",
+        ms=5,
+        label="exact elastic catenary (Irvine 1981)",
+    )
     ax.plot(TABLE1[:, 0], TABLE1[:, 1], "o", mfc="none", label="seed Table 1")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("z [m]")
@@ -81,16 +95,22 @@ def _current_figure(ds: xr.Dataset, title: str, out: Path, name: str) -> Path:
 
 @register("dodaran-fig6", ("dodaran-fig6-marine-cable-340",))
 def fig6(data: dict[str, xr.Dataset], out: Path) -> Path:
-    return _current_figure(data["dodaran-fig6-marine-cable-340"],
-                           "Marine cable L = 340 m in current (dodaran-park Fig. 6)", out,
-                           "dodaran-fig6")
+    return _current_figure(
+        data["dodaran-fig6-marine-cable-340"],
+        "Marine cable L = 340 m in current (dodaran-park Fig. 6)",
+        out,
+        "dodaran-fig6",
+    )
 
 
 @register("dodaran-fig7", ("dodaran-fig7-marine-cable-310",))
 def fig7(data: dict[str, xr.Dataset], out: Path) -> Path:
-    return _current_figure(data["dodaran-fig7-marine-cable-310"],
-                           "Marine cable L = 310 m in current (dodaran-park Fig. 7)", out,
-                           "dodaran-fig7")
+    return _current_figure(
+        data["dodaran-fig7-marine-cable-310"],
+        "Marine cable L = 310 m in current (dodaran-park Fig. 7)",
+        out,
+        "dodaran-fig7",
+    )
 
 
 @register("dodaran-fig8", ("dodaran-fig8-submersible-3d",))

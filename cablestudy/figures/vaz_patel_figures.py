@@ -16,8 +16,7 @@ from . import register
 def _labels(ds: xr.Dataset, dim: str, unit: str) -> list[str]:
     """Legend labels of a sweep dimension: the values of the swept path where the axis
     is a zip (coordinate ``<dim>_<path end>``), else the dimension's own values."""
-    extra = [c for c in ds.coords if c != dim and c.startswith(f"{dim}_")
-             and ds[c].dims == (dim,)]
+    extra = [c for c in ds.coords if c != dim and c.startswith(f"{dim}_") and ds[c].dims == (dim,)]
     values = ds[extra[0]].values if extra else ds[dim].values
     return [f"{v:g} {unit}" for v in values]
 
@@ -45,20 +44,28 @@ def mooring(data: dict[str, xr.Dataset], out: Path) -> Path:
         axes[0].plot(case["x"], case["z"], label=f"current {label}, laid {laid:.0f} m")
         axes[1].plot(case["x"], case["y"], label=f"current {label}")
         fb = -case["force_b"].values
-        axes[2].plot(case["s"], case["tension"] / 1e3,
-                     label=f"{label}: top H = {np.hypot(fb[0], fb[1]) / 1e3:.1f} kN, "
-                           f"V = {fb[2] / 1e3:.1f} kN")
+        axes[2].plot(
+            case["s"],
+            case["tension"] / 1e3,
+            label=f"{label}: top H = {np.hypot(fb[0], fb[1]) / 1e3:.1f} kN, "
+            f"V = {fb[2] / 1e3:.1f} kN",
+        )
     for s_b in _segment_ends(ds):
         axes[2].axvline(s_b, color="0.6", lw=0.8, ls="--")
     axes[0].set(xlabel="x [m]", ylabel="z [m]", title="elevation")
     axes[1].set(xlabel="x [m]", ylabel="y [m]", title="plan")
-    axes[2].set(xlabel="unstretched arc length from anchor s [m]", ylabel="tension [kN]",
-                title="tension (dashed: chain / polyester joints)")
+    axes[2].set(
+        xlabel="unstretched arc length from anchor s [m]",
+        ylabel="tension [kN]",
+        title="tension (dashed: chain / polyester joints)",
+    )
     for ax in axes:
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
-    fig.suptitle("Segmented deep-water mooring in a sheared current (vaz-patel example 2, "
-                 "shooting solver)", fontsize=10)
+    fig.suptitle(
+        "Segmented deep-water mooring in a sheared current (vaz-patel example 2, shooting solver)",
+        fontsize=10,
+    )
     path = out / "vaz-patel-mooring.png"
     fig.tight_layout()
     fig.savefig(path, dpi=120)
@@ -85,13 +92,19 @@ def turning_current(data: dict[str, xr.Dataset], out: Path) -> Path:
     ax_xz.set(xlabel="x [m]", ylabel="z [m]", title="elevation (x-z)")
     ax_xy.set(xlabel="x [m]", ylabel="y [m]", title="plan (x-y)")
     ax_yz.set(xlabel="y [m]", ylabel="z [m]", title="side (y-z)")
-    ax_t.set(xlabel="unstretched arc length from the seabed end s [m]", ylabel="tension [kN]",
-             title="tension")
+    ax_t.set(
+        xlabel="unstretched arc length from the seabed end s [m]",
+        ylabel="tension [kN]",
+        title="tension",
+    )
     for ax in axes.flat:
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
-    fig.suptitle("HA telecommunication cable (seed Table 1) in a current turning with depth "
-                 "(vaz-patel example 3, shooting solver)", fontsize=10)
+    fig.suptitle(
+        "HA telecommunication cable (seed Table 1) in a current turning with depth "
+        "(vaz-patel example 3, shooting solver)",
+        fontsize=10,
+    )
     path = out / "vaz-patel-turning-current.png"
     fig.tight_layout()
     fig.savefig(path, dpi=120)
@@ -115,13 +128,19 @@ def cable_installation(data: dict[str, xr.Dataset], out: Path) -> Path:
         axes[2].plot(case["s"], case["tension"] / 1e3, label=text)
     axes[0].set(xlabel="x (ship's heading) [m]", ylabel="z [m]", title="elevation")
     axes[1].set(xlabel="x [m]", ylabel="y [m]", title="plan (ship at the right end)")
-    axes[2].set(xlabel="unstretched arc length from the seabed end s [m]",
-                ylabel="tension [kN]", title="tension")
+    axes[2].set(
+        xlabel="unstretched arc length from the seabed end s [m]",
+        ylabel="tension [kN]",
+        title="tension",
+    )
     for ax in axes:
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
-    fig.suptitle("Steady laying of the HA cable (seed Table 1), ship 1.0 m/s, pay-out "
-                 "1.05 m/s, in a transverse sheared current (vaz-patel example 1)", fontsize=10)
+    fig.suptitle(
+        "Steady laying of the HA cable (seed Table 1), ship 1.0 m/s, pay-out "
+        "1.05 m/s, in a transverse sheared current (vaz-patel example 1)",
+        fontsize=10,
+    )
     path = out / "vaz-patel-cable-installation.png"
     fig.tight_layout()
     fig.savefig(path, dpi=120)

@@ -5,7 +5,9 @@ from __future__ import annotations
 import numpy as np
 
 
-def current_velocity(z: np.ndarray, profile_z: np.ndarray, profile_velocity: np.ndarray) -> np.ndarray:
+def current_velocity(
+    z: np.ndarray, profile_z: np.ndarray, profile_velocity: np.ndarray
+) -> np.ndarray:
     """Current velocity at heights ``z`` [m].
 
     Parameters

@@ -15,8 +15,13 @@ import numpy as np
 
 
 def drag_per_length(
-    relative_velocity: np.ndarray, tangent: np.ndarray, *, density: float, diameter: np.ndarray,
-    drag_normal: np.ndarray, drag_tangential: np.ndarray,
+    relative_velocity: np.ndarray,
+    tangent: np.ndarray,
+    *,
+    density: float,
+    diameter: np.ndarray,
+    drag_normal: np.ndarray,
+    drag_tangential: np.ndarray,
 ) -> np.ndarray:
     """Drag force per unit length [N/m], shape (..., 3).
 

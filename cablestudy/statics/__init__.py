@@ -25,7 +25,16 @@ STATIC_SOLVERS: dict[str, StaticSolver] = {
 }
 
 __all__ = [
-    "STATIC_SOLVERS", "STATUS_NO_SOLUTION", "STATUS_NOT_CONVERGED", "STATUS_NUMERICAL",
-    "STATUS_OK", "STATUS_TIME_LIMIT", "EndCondition", "LineModel", "Medium", "StaticProblem",
-    "StaticResult", "StaticSolver",
+    "STATIC_SOLVERS",
+    "STATUS_NO_SOLUTION",
+    "STATUS_NOT_CONVERGED",
+    "STATUS_NUMERICAL",
+    "STATUS_OK",
+    "STATUS_TIME_LIMIT",
+    "EndCondition",
+    "LineModel",
+    "Medium",
+    "StaticProblem",
+    "StaticResult",
+    "StaticSolver",
 ]

@@ -179,13 +179,27 @@ class StaticResult:
         return self.status == STATUS_OK
 
     @classmethod
-    def failed(cls, s: np.ndarray, status: int, message: str, *, iterations: int = 0,
-               residual: float = math.nan) -> StaticResult:
+    def failed(
+        cls,
+        s: np.ndarray,
+        status: int,
+        message: str,
+        *,
+        iterations: int = 0,
+        residual: float = math.nan,
+    ) -> StaticResult:
         n = len(s)
         return cls(
-            s=s, position=np.full((n, 3), np.nan), tension=np.full(n, np.nan),
-            force_a=np.full(3, np.nan), force_b=np.full(3, np.nan), laid_length=math.nan,
-            status=status, message=message, iterations=iterations, residual=residual,
+            s=s,
+            position=np.full((n, 3), np.nan),
+            tension=np.full(n, np.nan),
+            force_a=np.full(3, np.nan),
+            force_b=np.full(3, np.nan),
+            laid_length=math.nan,
+            status=status,
+            message=message,
+            iterations=iterations,
+            residual=residual,
         )
 
     def check_finite(self) -> StaticResult:
@@ -195,9 +209,11 @@ class StaticResult:
             arrays = (self.position, self.tension, self.force_a, self.force_b)
             if not all(np.all(np.isfinite(a)) for a in arrays):
                 return StaticResult.failed(
-                    self.s, STATUS_NUMERICAL,
+                    self.s,
+                    STATUS_NUMERICAL,
                     "solver returned non-finite values although it reported convergence",
-                    iterations=self.iterations, residual=self.residual,
+                    iterations=self.iterations,
+                    residual=self.residual,
                 )
         return self
 
@@ -209,5 +225,4 @@ class StaticSolver(Protocol):
         """Features of ``problem`` this solver cannot handle (empty: all supported)."""
         ...
 
-    def solve(self, problem: StaticProblem, *, deadline: float | None = None) -> StaticResult:
-        ...
+    def solve(self, problem: StaticProblem, *, deadline: float | None = None) -> StaticResult: ...

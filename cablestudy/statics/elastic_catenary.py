@@ -179,28 +179,48 @@ def _initial_guess(l: float, h: float, L: float, w: float, EA: float) -> tuple[f
 
 
 def solve_plane(
-    l: float, h: float, L: float, w: float, EA: float, *, tolerance: float = 1e-12,
-    max_iterations: int = 100, deadline: float | None = None,
+    l: float,
+    h: float,
+    L: float,
+    w: float,
+    EA: float,
+    *,
+    tolerance: float = 1e-12,
+    max_iterations: int = 100,
+    deadline: float | None = None,
 ) -> tuple[CatenarySolution | None, int, str]:
     """Find (H, V_A) for horizontal span ``l`` >= 0 [m], rise ``h`` [m], length ``L`` [m],
     weight ``w`` [N/m] and stiffness ``EA`` [N]. Returns (solution or None, status,
     message)."""
     e = np.array([1.0, 0.0])
     if w < 0.0:  # buoyant line: mirror in z
-        sol, status, msg = solve_plane(l, -h, L, -w, EA, tolerance=tolerance,
-                                       max_iterations=max_iterations, deadline=deadline)
+        sol, status, msg = solve_plane(
+            l, -h, L, -w, EA, tolerance=tolerance, max_iterations=max_iterations, deadline=deadline
+        )
         if sol is None:
             return None, status, msg
-        mirrored = CatenarySolution(sol.horizontal_tension, -sol.vertical_tension_a, e, L, w, EA,
-                                    sol.iterations, sol.residual)
+        mirrored = CatenarySolution(
+            sol.horizontal_tension,
+            -sol.vertical_tension_a,
+            e,
+            L,
+            w,
+            EA,
+            sol.iterations,
+            sol.residual,
+        )
         return mirrored, status, msg
     chord = math.hypot(l, h)
     scale = max(L, chord)
     if w == 0.0:
         if chord <= L:
-            return None, STATUS_NO_SOLUTION, (
-                f"weightless line with chord {chord:.6g} m not longer than its length {L:.6g} m "
-                "has no unique static shape"
+            return (
+                None,
+                STATUS_NO_SOLUTION,
+                (
+                    f"weightless line with chord {chord:.6g} m not longer than its length "
+                    f"{L:.6g} m has no unique static shape"
+                ),
             )
         T = EA * (chord / L - 1.0)
         sol = CatenarySolution(T * l / chord, T * h / chord, e, L, 0.0, EA, 0, 0.0)
@@ -245,15 +265,20 @@ def solve_plane(
     converged = norm <= tolerance * scale
     sol = CatenarySolution(H, VA, e, L, w, EA, it, norm / scale)
     if not converged:
-        return sol, STATUS_NOT_CONVERGED, (
-            f"catenary Newton did not converge in {max_iterations} iterations "
-            f"(relative residual {norm / scale:.3g}, tolerance {tolerance:.3g})"
+        return (
+            sol,
+            STATUS_NOT_CONVERGED,
+            (
+                f"catenary Newton did not converge in {max_iterations} iterations "
+                f"(relative residual {norm / scale:.3g}, tolerance {tolerance:.3g})"
+            ),
         )
     return sol, STATUS_OK, ""
 
 
-def _solve_vertical(h: float, L: float, w: float, EA: float, tolerance: float,
-                    max_iterations: int) -> tuple[CatenarySolution | None, int, str]:
+def _solve_vertical(
+    h: float, L: float, w: float, EA: float, tolerance: float, max_iterations: int
+) -> tuple[CatenarySolution | None, int, str]:
     """Zero horizontal span (H = 0): a vertical line, straight or folded. z(L) is
     monotone in V_A, so a bracketing root find is safe."""
     e = np.array([1.0, 0.0])
@@ -268,19 +293,29 @@ def _solve_vertical(h: float, L: float, w: float, EA: float, tolerance: float,
         hi = 2.0 * hi + 1.0
     from scipy.optimize import brentq
 
-    VA, info = brentq(z_end, lo, hi, xtol=1e-300, rtol=1e-15, full_output=True,
-                      maxiter=max(max_iterations, 200))
+    VA, info = brentq(
+        z_end, lo, hi, xtol=1e-300, rtol=1e-15, full_output=True, maxiter=max(max_iterations, 200)
+    )
     res = abs(z_end(VA)) / max(L, abs(h))
     status = STATUS_OK if res <= max(tolerance, 1e-12) else STATUS_NOT_CONVERGED
-    return CatenarySolution(0.0, VA, e, L, w, EA, info.iterations, res), status, (
-        "" if status == STATUS_OK else f"vertical line did not converge (residual {res:.3g})"
+    return (
+        CatenarySolution(0.0, VA, e, L, w, EA, info.iterations, res),
+        status,
+        ("" if status == STATUS_OK else f"vertical line did not converge (residual {res:.3g})"),
     )
 
 
 def solve_between(
-    position_a: np.ndarray, position_b: np.ndarray, length: float, weight: float,
-    axial_stiffness: float, s: np.ndarray, *, tolerance: float = 1e-12,
-    max_iterations: int = 100, deadline: float | None = None,
+    position_a: np.ndarray,
+    position_b: np.ndarray,
+    length: float,
+    weight: float,
+    axial_stiffness: float,
+    s: np.ndarray,
+    *,
+    tolerance: float = 1e-12,
+    max_iterations: int = 100,
+    deadline: float | None = None,
 ) -> StaticResult:
     """Exact elastic catenary between two fixed points in 3D, sampled at ``s`` [m]."""
     pa = np.asarray(position_a, dtype=float)
@@ -288,8 +323,16 @@ def solve_between(
     d = pb - pa
     l = math.hypot(d[0], d[1])
     e = d[:2] / l if l > 0.0 else np.array([1.0, 0.0])
-    sol, status, msg = solve_plane(l, d[2], length, weight, axial_stiffness, tolerance=tolerance,
-                                   max_iterations=max_iterations, deadline=deadline)
+    sol, status, msg = solve_plane(
+        l,
+        d[2],
+        length,
+        weight,
+        axial_stiffness,
+        tolerance=tolerance,
+        max_iterations=max_iterations,
+        deadline=deadline,
+    )
     if sol is None:
         return StaticResult.failed(s, status, msg)
     x, z, T = profile(sol, s)
@@ -302,12 +345,20 @@ def solve_between(
     force_a = np.array([H * e[0], H * e[1], VA])
     force_b = -np.array([H * e[0], H * e[1], VB])
     result = StaticResult(
-        s=s, position=position, tension=T, force_a=force_a, force_b=force_b,
-        status=status, message=msg, iterations=sol.iterations, residual=sol.residual,
+        s=s,
+        position=position,
+        tension=T,
+        force_a=force_a,
+        force_b=force_b,
+        status=status,
+        message=msg,
+        iterations=sol.iterations,
+        residual=sol.residual,
     )
     if status != STATUS_OK:
-        result = StaticResult.failed(s, status, msg, iterations=sol.iterations,
-                                     residual=sol.residual)
+        result = StaticResult.failed(
+            s, status, msg, iterations=sol.iterations, residual=sol.residual
+        )
     return result.check_finite()
 
 
@@ -321,8 +372,10 @@ class ElasticCatenarySolver:
     def unsupported(self, problem: StaticProblem) -> list[str]:
         out = []
         if problem.end_a.kind != "fixed" or problem.end_b.kind != "fixed":
-            out.append(f"end kinds a={problem.end_a.kind!r}, b={problem.end_b.kind!r} "
-                       "(only both ends 'fixed')")
+            out.append(
+                f"end kinds a={problem.end_a.kind!r}, b={problem.end_b.kind!r} "
+                "(only both ends 'fixed')"
+            )
         if not problem.line.is_uniform:
             out.append("segments of different weight or axial stiffness")
         if problem.line.attachment_s.size:
@@ -338,9 +391,14 @@ class ElasticCatenarySolver:
         s = np.linspace(0.0, line.total_length, problem.n_nodes)
         assert problem.end_a.position is not None and problem.end_b.position is not None
         result = solve_between(
-            problem.end_a.position, problem.end_b.position, line.total_length,
-            float(line.weight[0]), float(line.axial_stiffness[0]), s,
-            tolerance=min(problem.tolerance, 1e-12), max_iterations=problem.max_iterations,
+            problem.end_a.position,
+            problem.end_b.position,
+            line.total_length,
+            float(line.weight[0]),
+            float(line.axial_stiffness[0]),
+            s,
+            tolerance=min(problem.tolerance, 1e-12),
+            max_iterations=problem.max_iterations,
             deadline=deadline,
         )
         if result.success and problem.medium.depth is not None:
@@ -349,9 +407,11 @@ class ElasticCatenarySolver:
             if np.any(below):
                 depth_below = float(np.max(ground - result.position[:, 2]))
                 return StaticResult.failed(
-                    s, STATUS_NO_SOLUTION,
+                    s,
+                    STATUS_NO_SOLUTION,
                     f"the free-hanging catenary passes {depth_below:.4g} m below the seabed; "
                     "this method has no seabed contact (choose a method with seabed contact)",
-                    iterations=result.iterations, residual=result.residual,
+                    iterations=result.iterations,
+                    residual=result.residual,
                 )
         return result

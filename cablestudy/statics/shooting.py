@@ -135,7 +135,7 @@ class _TimeUp(Exception):
 class _Line:
     """Segments and attachments seen from the start end (s from the start end) [SI]."""
 
-    ends: tuple[float, ...]          # segment boundaries, len n_seg + 1
+    ends: tuple[float, ...]  # segment boundaries, len n_seg + 1
     weight: tuple[float, ...]
     axial_stiffness: tuple[float, ...]
     diameter: tuple[float, ...]
@@ -143,7 +143,7 @@ class _Line:
     drag_tangential: tuple[float, ...]
     mass: tuple[float, ...]
     added_mass_normal: tuple[float, ...]
-    att_s: tuple[float, ...]          # sorted, merged positions of attachments
+    att_s: tuple[float, ...]  # sorted, merged positions of attachments
     att_force: tuple[tuple[float, float, float], ...]
 
     @property
@@ -189,10 +189,15 @@ def _make_line(model: LineModel, reverse: bool) -> _Line:
         return tuple(float(v) for v in np.asarray(a, dtype=float)[order])
 
     return _Line(
-        ends=ends, weight=col(model.weight), axial_stiffness=col(model.axial_stiffness),
-        diameter=col(model.diameter), drag_normal=col(model.drag_normal),
-        drag_tangential=col(model.drag_tangential), mass=col(model.mass),
-        added_mass_normal=col(model.added_mass_normal), att_s=tuple(keys),
+        ends=ends,
+        weight=col(model.weight),
+        axial_stiffness=col(model.axial_stiffness),
+        diameter=col(model.diameter),
+        drag_normal=col(model.drag_normal),
+        drag_tangential=col(model.drag_tangential),
+        mass=col(model.mass),
+        added_mass_normal=col(model.added_mass_normal),
+        att_s=tuple(keys),
         att_force=tuple(tuple(float(c) for c in merged[k]) for k in keys),  # type: ignore[misc]
     )
 
@@ -223,8 +228,7 @@ class _Env:
     @property
     def has_current(self) -> bool:
         """Any flow relative to the line (current, frame velocity or pay-out)."""
-        current = self.c_current != 0.0 and any(any(c != 0.0 for c in u)
-                                                for u in self.current_u)
+        current = self.c_current != 0.0 and any(any(c != 0.0 for c in u) for u in self.current_u)
         return current or (self.c_frame != 0.0 and self.installation)
 
     def scaled(self, t: float) -> _Env:
@@ -236,8 +240,15 @@ class _Env:
             c_frame, c_current = min(1.0, 2.0 * t), max(0.0, 2.0 * t - 1.0)
         else:
             c_frame = c_current = t
-        return _Env(self.density, self.current_z, self.current_u, self.frame, self.payout,
-                    c_current, c_frame)
+        return _Env(
+            self.density,
+            self.current_z,
+            self.current_u,
+            self.frame,
+            self.payout,
+            c_current,
+            c_frame,
+        )
 
     @property
     def payout_speed(self) -> float:
@@ -255,14 +266,18 @@ class _Env:
             i = bisect.bisect_right(zs, z) - 1
             a = (z - zs[i]) / (zs[i + 1] - zs[i])
             u0, u1 = us[i], us[i + 1]
-            u = (u0[0] + a * (u1[0] - u0[0]), u0[1] + a * (u1[1] - u0[1]),
-                 u0[2] + a * (u1[2] - u0[2]))
+            u = (
+                u0[0] + a * (u1[0] - u0[0]),
+                u0[1] + a * (u1[1] - u0[1]),
+                u0[2] + a * (u1[2] - u0[2]),
+            )
         f, v = self.c_frame, self.frame
         return (c * u[0] - f * v[0], c * u[1] - f * v[1], c * u[2] - f * v[2])
 
 
-def _load(env: _Env, line: _Line, k: int, t: tuple[float, float, float], z: float,
-          T: float) -> tuple[float, float, float]:
+def _load(
+    env: _Env, line: _Line, k: int, t: tuple[float, float, float], z: float, T: float
+) -> tuple[float, float, float]:
     """External load per unstretched length on segment k with tangent t at height z
     with tension T [N/m]: weight plus drag per stretched length times the stretch. The
     flow relative to the line is the current in the laying frame plus the pay-out
@@ -295,8 +310,11 @@ def _frame(t0: np.ndarray, f0: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.n
     candidates = []
     if fn > 0.0:
         candidates.append(np.cross(t0, f0 / fn))
-    candidates += [np.cross(t0, [0.0, 0.0, 1.0]), np.cross(t0, [1.0, 0.0, 0.0]),
-                   np.cross(t0, [0.0, 1.0, 0.0])]
+    candidates += [
+        np.cross(t0, [0.0, 0.0, 1.0]),
+        np.cross(t0, [1.0, 0.0, 0.0]),
+        np.cross(t0, [0.0, 1.0, 0.0]),
+    ]
     for c in candidates:
         if np.linalg.norm(c) > 1e-3:
             e3 = _unit(c)
@@ -320,15 +338,23 @@ class _Piece:
 
 @dataclass
 class _Shot:
-    force_end: np.ndarray        # F(L+): force applied to the line at the far end [N]
-    position_end: np.ndarray     # [m]
+    force_end: np.ndarray  # F(L+): force applied to the line at the far end [N]
+    position_end: np.ndarray  # [m]
     pieces: list[_Piece]
     legs: int
 
 
 class _Integrator:
-    def __init__(self, line: _Line, env: _Env, *, rtol: float, force_scale: float,
-                 deadline: float | None, max_legs: int = 2000) -> None:
+    def __init__(
+        self,
+        line: _Line,
+        env: _Env,
+        *,
+        rtol: float,
+        force_scale: float,
+        deadline: float | None,
+        max_legs: int = 2000,
+    ) -> None:
         self.line, self.env, self.rtol = line, env, rtol
         self.force_scale, self.deadline, self.max_legs = force_scale, deadline, max_legs
         L = line.length
@@ -344,8 +370,9 @@ class _Integrator:
         self.atol = self.atol / 100.0
         return True
 
-    def _rhs_factory(self, k: int, e1: np.ndarray, e2: np.ndarray,
-                     e3: np.ndarray) -> Callable[[float, np.ndarray], list[float]]:
+    def _rhs_factory(
+        self, k: int, e1: np.ndarray, e2: np.ndarray, e3: np.ndarray
+    ) -> Callable[[float, np.ndarray], list[float]]:
         e1x, e1y, e1z = (float(v) for v in e1)
         e2x, e2y, e2z = (float(v) for v in e2)
         e3x, e3y, e3z = (float(v) for v in e3)
@@ -358,11 +385,17 @@ class _Integrator:
             T, ph, ps, _, _, z = y
             cph, sph, cps, sps = cos(ph), sin(ph), cos(ps), sin(ps)
             a, b = cph * cps, cph * sps
-            t = (a * e1x + b * e2x + sph * e3x, a * e1y + b * e2y + sph * e3y,
-                 a * e1z + b * e2z + sph * e3z)
+            t = (
+                a * e1x + b * e2x + sph * e3x,
+                a * e1y + b * e2y + sph * e3y,
+                a * e1z + b * e2z + sph * e3z,
+            )
             a, b = -sph * cps, -sph * sps
-            n = (a * e1x + b * e2x + cph * e3x, a * e1y + b * e2y + cph * e3y,
-                 a * e1z + b * e2z + cph * e3z)
+            n = (
+                a * e1x + b * e2x + cph * e3x,
+                a * e1y + b * e2y + cph * e3y,
+                a * e1z + b * e2z + cph * e3z,
+            )
             bn = (-sps * e1x + cps * e2x, -sps * e1y + cps * e2y, -sps * e1z + cps * e2z)
             f = _load(env, line, k, t, z, T)
             st = 1.0 + T / EA
@@ -374,7 +407,9 @@ class _Integrator:
                 -(f[0] * t[0] + f[1] * t[1] + f[2] * t[2]),
                 -(f[0] * n[0] + f[1] * n[1] + f[2] * n[2]) / Te,
                 -(f[0] * bn[0] + f[1] * bn[1] + f[2] * bn[2]) / (Te * cph),
-                st * t[0], st * t[1], st * t[2],
+                st * t[0],
+                st * t[1],
+                st * t[2],
             ]
 
         return rhs
@@ -388,16 +423,14 @@ class _Integrator:
             return 0.0, 0.0
         line = self.line
         area = math.pi * line.diameter[k] ** 2 / 4.0
-        return (line.mass[k] * v * v,
-                line.added_mass_normal[k] * self.env.density * area * v * v)
+        return (line.mass[k] * v * v, line.added_mass_normal[k] * self.env.density * area * v * v)
 
     def effective_tension(self, k: int, T: float) -> float:
         """T - mu V^2 [N]: the tension that resists curvature under pay-out."""
         m_flow, m_add = self._flow_mass(k)
         return T - m_flow / (1.0 + T / self.line.axial_stiffness[k]) - m_add
 
-    def run(self, s0: float, force: np.ndarray, position: np.ndarray, *,
-            dense: bool) -> _Shot:
+    def run(self, s0: float, force: np.ndarray, position: np.ndarray, *, dense: bool) -> _Shot:
         """Integrate from s0 (force F(s0-) and position given) to the far end."""
         line = self.line
         L = line.length
@@ -406,8 +439,9 @@ class _Integrator:
         # an attachment at s0 acts at the start; those beyond s0, and segment boundaries
         # beyond s0, are knots
         at_start = s0 + 1e-14 * L
-        knots = sorted({x for x in line.ends[1:-1] if x > s0}
-                       | {x for x in line.att_s if x > at_start} | {L})
+        knots = sorted(
+            {x for x in line.ends[1:-1] if x > s0} | {x for x in line.att_s if x > at_start} | {L}
+        )
         for s_att, p in zip(line.att_s, line.att_force, strict=True):
             if s0 - 1e-14 * L <= s_att <= at_start:
                 F = F - np.asarray(p)
@@ -426,8 +460,10 @@ class _Integrator:
                 if not math.isfinite(T) or T <= self.t_min:
                     raise _ShotFailed(f"tension vanishes at s = {s:.6g} m")
                 if self.effective_tension(k, T) <= self.t_min:
-                    raise _ShotFailed(f"the tension at s = {s:.6g} m does not exceed mu V^2 "
-                                      "of the pay-out (the cable cannot hold a curve)")
+                    raise _ShotFailed(
+                        f"the tension at s = {s:.6g} m does not exceed mu V^2 "
+                        "of the pay-out (the cable cannot hold a curve)"
+                    )
                 t0 = F / T
                 f0 = np.asarray(_load(self.env, line, k, tuple(t0), float(r[2]), T))
                 e1, e2, e3 = _frame(t0, f0)
@@ -442,8 +478,16 @@ class _Integrator:
                 pole.terminal = True  # type: ignore[attr-defined]
                 slack.terminal = True  # type: ignore[attr-defined]
                 y0 = np.array([T, 0.0, 0.0, r[0], r[1], r[2]])
-                sol = solve_ivp(rhs, (s, knot), y0, method="DOP853", rtol=self.rtol,
-                                atol=self.atol, events=(pole, slack), dense_output=dense)
+                sol = solve_ivp(
+                    rhs,
+                    (s, knot),
+                    y0,
+                    method="DOP853",
+                    rtol=self.rtol,
+                    atol=self.atol,
+                    events=(pole, slack),
+                    dense_output=dense,
+                )
                 if sol.status == -1:
                     raise _ShotFailed(f"integration failed at s = {s:.6g} m: {sol.message}")
                 y = sol.y[:, -1]
@@ -457,8 +501,11 @@ class _Integrator:
                 if dense:
                     pieces.append(_Piece(s, s_new, sol.sol))
                 T, ph, ps = float(y[0]), float(y[1]), float(y[2])
-                t = (math.cos(ph) * math.cos(ps) * e1 + math.cos(ph) * math.sin(ps) * e2
-                     + math.sin(ph) * e3)
+                t = (
+                    math.cos(ph) * math.cos(ps) * e1
+                    + math.cos(ph) * math.sin(ps) * e2
+                    + math.sin(ph) * e3
+                )
                 F = T * t
                 r = y[3:6].copy()
                 s = s_new if sol.status == 1 else knot
@@ -476,9 +523,9 @@ class _Integrator:
 @dataclass(frozen=True)
 class _Seabed:
     depth: float
-    normal: np.ndarray      # unit upward normal
-    upslope: np.ndarray     # unit in-plane vector rising towards the slope heading
-    across: np.ndarray      # unit in-plane horizontal vector
+    normal: np.ndarray  # unit upward normal
+    upslope: np.ndarray  # unit in-plane vector rising towards the slope heading
+    across: np.ndarray  # unit in-plane horizontal vector
     friction: float
 
     def z(self, x: float, y: float) -> float:
@@ -502,15 +549,17 @@ def _seabed(medium_depth: float, slope: float, heading: float, friction: float) 
     return _Seabed(medium_depth, normal, upslope, across, friction)
 
 
-def _laid_tension(line: _Line, bed: _Seabed, e: np.ndarray, q: float,
-                  t_tdp: float) -> tuple[list[tuple[float, float, float, float]], float]:
+def _laid_tension(
+    line: _Line, bed: _Seabed, e: np.ndarray, q: float, t_tdp: float
+) -> tuple[list[tuple[float, float, float, float]], float]:
     """Pieces (s_a, s_b, T_lin(s_a), dT/ds) of the tension along the laid part [0, q],
     marching from the touchdown point towards the anchor, and the tension just after the
     anchor [N]. In a piece the tension is max(0, T_lin); a piece starts (at its touchdown
     side) from the clipped tension of the one before, so a slack stretch stays slack up
     to the next attachment that pulls."""
-    pts = sorted({0.0, q} | {x for x in line.ends if 0.0 < x < q}
-                 | {x for x in line.att_s if 0.0 < x < q})
+    pts = sorted(
+        {0.0, q} | {x for x in line.ends if 0.0 < x < q} | {x for x in line.att_s if 0.0 < x < q}
+    )
     mu, m_z, e_z = bed.friction, float(bed.normal[2]), float(e[2])
     # march backwards from the touchdown point
     pieces = []
@@ -542,8 +591,9 @@ def _clipped_integral(T_a: float, g: float, length: float) -> float:
     return 0.5 * T_a * x0 if T_a > 0.0 else 0.5 * T_b * (length - x0)
 
 
-def _laid_profile(line: _Line, bed: _Seabed, e: np.ndarray, q: float, t_tdp: float,
-                  s: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+def _laid_profile(
+    line: _Line, bed: _Seabed, e: np.ndarray, q: float, t_tdp: float, s: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, float]:
     """Stretched distance from the anchor [m] and clipped tension [N] at s (inside
     [0, q]), and the total stretched laid length [m]."""
     pieces, _ = _laid_tension(line, bed, e, q, t_tdp)
@@ -613,8 +663,10 @@ class ShootingSolver:
         out = []
         kinds = (problem.end_a.kind, problem.end_b.kind)
         if "fixed" not in kinds:
-            out.append(f"end kinds a={kinds[0]!r}, b={kinds[1]!r} (at least one end must be "
-                       "'fixed': a line held only by forces has no unique position)")
+            out.append(
+                f"end kinds a={kinds[0]!r}, b={kinds[1]!r} (at least one end must be "
+                "'fixed': a line held only by forces has no unique position)"
+            )
         med = problem.medium
         if med.depth is not None:
             L = problem.line.total_length
@@ -622,10 +674,16 @@ class ShootingSolver:
                 if end.kind == "fixed" and end.position is not None:
                     ground = float(med.seabed_z(end.position[0], end.position[1]))
                     if end.position[2] < ground - _GROUND_TOL * L:
-                        out.append(f"end {label} at z = {end.position[2]:.6g} m below the "
-                                   f"seabed (z = {ground:.6g} m there)")
-                if end.kind == "mooring" and end.z is not None and end.z < -med.depth - (
-                        _GROUND_TOL * L) and med.seabed_slope == 0.0:
+                        out.append(
+                            f"end {label} at z = {end.position[2]:.6g} m below the "
+                            f"seabed (z = {ground:.6g} m there)"
+                        )
+                if (
+                    end.kind == "mooring"
+                    and end.z is not None
+                    and end.z < -med.depth - (_GROUND_TOL * L)
+                    and med.seabed_slope == 0.0
+                ):
                     out.append(f"end {label} mooring height z = {end.z:.6g} m below the seabed")
         return out
 
@@ -637,11 +695,13 @@ class ShootingSolver:
         try:
             return self._solve(problem, s_out, deadline).check_finite()
         except _TimeUp:
-            return StaticResult.failed(s_out, STATUS_TIME_LIMIT,
-                                       "time limit reached in the shooting solver")
+            return StaticResult.failed(
+                s_out, STATUS_TIME_LIMIT, "time limit reached in the shooting solver"
+            )
         except Exception as exc:  # noqa: BLE001 - a numerical fault is data, not a crash
-            return StaticResult.failed(s_out, STATUS_NUMERICAL,
-                                       f"shooting solver: {type(exc).__name__}: {exc}")
+            return StaticResult.failed(
+                s_out, STATUS_NUMERICAL, f"shooting solver: {type(exc).__name__}: {exc}"
+            )
 
     # -- set-up ---------------------------------------------------------------------
     def _setup(self, problem: StaticProblem) -> _Setup:
@@ -660,7 +720,8 @@ class ShootingSolver:
             if bed is None or end.kind != "fixed" or end.position is None or weight <= 0.0:
                 return False
             return abs(end.position[2] - bed.z(end.position[0], end.position[1])) <= (
-                _GROUND_TOL * L)
+                _GROUND_TOL * L
+            )
 
         if on_ground(a, float(model.weight[0])):
             reverse, mode = False, "grounded"
@@ -681,7 +742,8 @@ class ShootingSolver:
         else:
             cz, cu = np.zeros(1), np.zeros((1, 3))
         env = _Env(
-            density=med.density, current_z=tuple(float(z) for z in cz),
+            density=med.density,
+            current_z=tuple(float(z) for z in cz),
             current_u=tuple(tuple(float(c) for c in u) for u in cu),  # type: ignore[misc]
             frame=tuple(float(c) for c in problem.touchdown_velocity),  # type: ignore[arg-type]
             payout=-problem.payout_speed if reverse else problem.payout_speed,
@@ -739,8 +801,7 @@ class ShootingSolver:
         # a free end: the line leaves it along its load, F(s) = -f s for small s
         return self._free_end_start(st, env, p0, F0)
 
-    def _free_end_start(self, st: _Setup, env: _Env, p0: np.ndarray,
-                        F0: np.ndarray) -> _Start:
+    def _free_end_start(self, st: _Setup, env: _Env, p0: np.ndarray, F0: np.ndarray) -> _Start:
         line = st.line
         k = line.segment_at(0.0)
         f = np.asarray(_load(env, line, k, (0.0, 0.0, 1.0), float(p0[2]), 0.0))
@@ -757,8 +818,9 @@ class ShootingSolver:
         fmag = float(np.linalg.norm(f))
         return _Start(delta, fmag * delta * t0, p0 + delta * t0, None, 0.0, F0, p0)
 
-    def _residual(self, st: _Setup, integ: _Integrator, u: np.ndarray,
-                  dense: bool = False) -> tuple[np.ndarray, _Shot, _Start]:
+    def _residual(
+        self, st: _Setup, integ: _Integrator, u: np.ndarray, dense: bool = False
+    ) -> tuple[np.ndarray, _Shot, _Start]:
         start = self._start_state(st, integ.env, u)
         shot = integ.run(start.s0, start.force, start.position, dense=dense)
         L = st.line.length
@@ -771,9 +833,13 @@ class ShootingSolver:
             r = (shot.force_end - far.force) / st.force_scale
         else:
             assert far.force is not None and far.z is not None
-            r = np.array([(shot.force_end[0] - far.force[0]) / st.force_scale,
-                          (shot.force_end[1] - far.force[1]) / st.force_scale,
-                          (shot.position_end[2] - far.z) / L])
+            r = np.array(
+                [
+                    (shot.force_end[0] - far.force[0]) / st.force_scale,
+                    (shot.force_end[1] - far.force[1]) / st.force_scale,
+                    (shot.position_end[2] - far.z) / L,
+                ]
+            )
         return r, shot, start
 
     # -- initial guesses --------------------------------------------------------------
@@ -793,8 +859,7 @@ class ShootingSolver:
             F0 = np.asarray(far.force, dtype=float) - loads
         elif far.kind == "fixed":
             assert far.position is not None
-            res = solve_between(p0, far.position, L, w, EA, np.array([0.0, L]),
-                                tolerance=1e-10)
+            res = solve_between(p0, far.position, L, w, EA, np.array([0.0, L]), tolerance=1e-10)
             if res.success:
                 F0 = res.force_a.copy()
             else:
@@ -834,8 +899,9 @@ class ShootingSolver:
             VA = self._mooring_va(H, st.start.z - p_far[2], L, w, EA)
             vz = -(VA + w * L)
             u = np.array([vz / st.force_scale, p_far[0] / L, p_far[1] / L])
-        integ = _Integrator(line, st.env.scaled(0.0), rtol=1e-8, force_scale=st.force_scale,
-                            deadline=None)
+        integ = _Integrator(
+            line, st.env.scaled(0.0), rtol=1e-8, force_scale=st.force_scale, deadline=None
+        )
         try:
             shot = integ.run(*self._shot_args(st, integ, u), dense=False)
         except _ShotFailed:
@@ -845,8 +911,9 @@ class ShootingSolver:
             return u + shift / L
         return np.array([u[0], u[1] + shift[0] / L, u[2] + shift[1] / L])
 
-    def _shot_args(self, st: _Setup, integ: _Integrator,
-                   u: np.ndarray) -> tuple[float, np.ndarray, np.ndarray]:
+    def _shot_args(
+        self, st: _Setup, integ: _Integrator, u: np.ndarray
+    ) -> tuple[float, np.ndarray, np.ndarray]:
         start = self._start_state(st, integ.env, u)
         return start.s0, start.force, start.position
 
@@ -854,8 +921,12 @@ class ShootingSolver:
     def _other_guesses(st: _Setup, u0: np.ndarray) -> list[np.ndarray]:
         """Further starting points, tried in turn when Newton fails from the first."""
         if st.mode == "grounded":
-            return [np.array([u0[0] * f, u0[1], q]) for f in (1.0, 0.3)
-                    for q in (0.5, 0.2, 0.05, -0.2) if q != u0[2]]
+            return [
+                np.array([u0[0] * f, u0[1], q])
+                for f in (1.0, 0.3)
+                for q in (0.5, 0.2, 0.05, -0.2)
+                if q != u0[2]
+            ]
         if st.mode == "fixed":
             return [u0 * f for f in (0.3, 3.0, 10.0)]
         return []
@@ -909,6 +980,7 @@ class ShootingSolver:
             h = float(np.dot(d, bed.normal))
             X = float(np.linalg.norm(d - h * bed.normal))
             if h > 0.0 and X > 0.0:
+
                 def gap(Ls: float) -> float:
                     a = (Ls * Ls - h * h) / (2.0 * h)
                     return (L - Ls) + a * math.asinh(Ls / a) - X
@@ -916,11 +988,12 @@ class ShootingSolver:
                 # the largest suspended length with a sign change of the gap on a grid
                 grid = np.linspace(h * (1.0 + 1e-6), L, 65) if h < L else np.zeros(0)
                 gaps = [gap(float(g)) for g in grid]
-                for g0, g1, v0, v1 in zip(grid[-2::-1], grid[:0:-1], gaps[-2::-1],
-                                          gaps[:0:-1], strict=True):
+                for g0, g1, v0, v1 in zip(
+                    grid[-2::-1], grid[:0:-1], gaps[-2::-1], gaps[:0:-1], strict=True
+                ):
                     if v0 * v1 <= 0.0:
                         suspended = float(brentq(gap, g0, g1, xtol=1e-9 * L))
-                        a = (suspended ** 2 - h * h) / (2.0 * h)
+                        a = (suspended**2 - h * h) / (2.0 * h)
                         H = a * w
                         break
         elif far.kind == "mooring":
@@ -944,9 +1017,15 @@ class ShootingSolver:
         return np.array([T / st.force_scale, beta, -max(gamma, 0.0)])
 
     # -- Newton ---------------------------------------------------------------------
-    def _newton(self, st: _Setup, integ: _Integrator, u0: np.ndarray, tol: float,
-                max_iterations: int, deadline: float | None) -> tuple[np.ndarray, float, int,
-                                                                      int, str]:
+    def _newton(
+        self,
+        st: _Setup,
+        integ: _Integrator,
+        u0: np.ndarray,
+        tol: float,
+        max_iterations: int,
+        deadline: float | None,
+    ) -> tuple[np.ndarray, float, int, int, str]:
         """Damped Newton on the scaled end residual. The Jacobian is a central-difference
         one, refreshed when a step does not reduce the residual well and otherwise
         updated by Broyden's rank-one formula (each refresh costs six shots). Returns
@@ -979,9 +1058,16 @@ class ShootingSolver:
             if it >= max_iterations:
                 if norm <= tol:
                     return u, norm, it, STATUS_OK, ""
-                return u, norm, it, STATUS_NOT_CONVERGED, (
-                    f"shooting Newton did not converge in {max_iterations} iterations "
-                    f"(residual {norm:.3g}, tolerance {tol:.3g})")
+                return (
+                    u,
+                    norm,
+                    it,
+                    STATUS_NOT_CONVERGED,
+                    (
+                        f"shooting Newton did not converge in {max_iterations} iterations "
+                        f"(residual {norm:.3g}, tolerance {tol:.3g})"
+                    ),
+                )
             if deadline is not None and time.monotonic() > deadline:
                 raise _TimeUp
             it += 1
@@ -989,8 +1075,13 @@ class ShootingSolver:
                 J = self._jacobian(resid, u, r)
                 fresh = True
                 if J is None:
-                    return u, norm, it, STATUS_NOT_CONVERGED, (
-                        "shots next to the current iterate fail (tension vanishes)")
+                    return (
+                        u,
+                        norm,
+                        it,
+                        STATUS_NOT_CONVERGED,
+                        ("shots next to the current iterate fail (tension vanishes)"),
+                    )
             step = np.linalg.lstsq(J, -r, rcond=None)[0]
             if not np.all(np.isfinite(step)):
                 return u, norm, it, STATUS_NUMERICAL, "non-finite Newton step"
@@ -1023,9 +1114,16 @@ class ShootingSolver:
                     norm = float(np.max(np.abs(r)))
                     J = None
                     continue
-                return u, norm, it, STATUS_NOT_CONVERGED, (
-                    f"shooting Newton line search failed (residual {norm:.3g}, "
-                    f"tolerance {tol:.3g})")
+                return (
+                    u,
+                    norm,
+                    it,
+                    STATUS_NOT_CONVERGED,
+                    (
+                        f"shooting Newton line search failed (residual {norm:.3g}, "
+                        f"tolerance {tol:.3g})"
+                    ),
+                )
             slow = float(np.linalg.norm(rn)) > 0.5 * merit
             if slow and fresh:
                 if norm <= tol:
@@ -1046,8 +1144,9 @@ class ShootingSolver:
             u, r, norm = un, rn, nn
 
     @staticmethod
-    def _jacobian(resid: Callable[[np.ndarray], np.ndarray | None], u: np.ndarray,
-                  r: np.ndarray) -> np.ndarray | None:
+    def _jacobian(
+        resid: Callable[[np.ndarray], np.ndarray | None], u: np.ndarray, r: np.ndarray
+    ) -> np.ndarray | None:
         """Central-difference Jacobian (one-sided where a shot fails): the shooting map
         of a drag-loaded line is strongly nonlinear, and central differences keep
         Newton quadratic down to the integration round-off."""
@@ -1068,18 +1167,23 @@ class ShootingSolver:
         return J
 
     # -- driver ---------------------------------------------------------------------
-    def _solve(self, problem: StaticProblem, s_out: np.ndarray,
-               deadline: float | None) -> StaticResult:
+    def _solve(
+        self, problem: StaticProblem, s_out: np.ndarray, deadline: float | None
+    ) -> StaticResult:
         st = self._setup(problem)
         tol = max(problem.tolerance, 100.0 * self.rtol)
         u = self._guess(st)
         total_it = 0
 
-        def newton(factor: float, u0: np.ndarray, cap: int) -> tuple[np.ndarray, float, int,
-                                                                      str]:
+        def newton(factor: float, u0: np.ndarray, cap: int) -> tuple[np.ndarray, float, int, str]:
             nonlocal total_it
-            integ = _Integrator(st.line, st.env.scaled(factor), rtol=self.rtol,
-                                force_scale=st.force_scale, deadline=deadline)
+            integ = _Integrator(
+                st.line,
+                st.env.scaled(factor),
+                rtol=self.rtol,
+                force_scale=st.force_scale,
+                deadline=deadline,
+            )
             u1, norm1, it, status1, msg1 = self._newton(st, integ, u0, tol, cap, deadline)
             total_it += it
             return u1, norm1, status1, msg1
@@ -1089,48 +1193,65 @@ class ShootingSolver:
         for alt in self._other_guesses(st, u0):
             if status == STATUS_OK or (st.mode == "grounded" and u[0] < 1e-4):
                 break  # converged, or heading for a slack line (diagnosed below)
-            u, norm, status, msg = newton(0.0, alt, min(problem.max_iterations,
-                                                        _ALTERNATIVE_ITERATIONS))
+            u, norm, status, msg = newton(
+                0.0, alt, min(problem.max_iterations, _ALTERNATIVE_ITERATIONS)
+            )
         unloaded = not any(st.line.weight) and not st.line.att_force
         if status != STATUS_OK and st.env.has_current and unloaded:
             # no still-water shape (a slack weightless line): go straight to the full
             # current
             for start in [u0, *self._other_guesses(st, u0)]:
-                u, norm, status, msg = newton(1.0, start, min(problem.max_iterations,
-                                                              _ALTERNATIVE_ITERATIONS))
+                u, norm, status, msg = newton(
+                    1.0, start, min(problem.max_iterations, _ALTERNATIVE_ITERATIONS)
+                )
                 if status == STATUS_OK:
                     return self._finish(st, s_out, u, norm, total_it, deadline)
         if status != STATUS_OK and st.mode == "grounded" and u[0] < 1e-4:
             return StaticResult.failed(
-                s_out, STATUS_NO_SOLUTION,
+                s_out,
+                STATUS_NO_SOLUTION,
                 "slack line: the touchdown tension tends to zero (the line is longer than a "
                 "straight laid part and a vertical hanging part can take, so it would pile "
                 "on the seabed; there is no taut static shape)",
-                iterations=total_it, residual=norm)
+                iterations=total_it,
+                residual=norm,
+            )
         if status != STATUS_OK and st.mode == "grounded" and st.far.kind == "force":
             assert st.far.force is not None
             lift = float(st.far.force[2]) + sum(max(0.0, p[2]) for p in st.line.att_force)
             if lift <= 0.0:
                 return StaticResult.failed(
-                    s_out, STATUS_NO_SOLUTION,
+                    s_out,
+                    STATUS_NO_SOLUTION,
                     f"the force at the free end (vertical component {st.far.force[2]:.6g} N) "
                     "and the attachments do not lift the line off the seabed: it would be "
-                    "pulled into the seabed", iterations=total_it, residual=norm)
+                    "pulled into the seabed",
+                    iterations=total_it,
+                    residual=norm,
+                )
         if status != STATUS_OK and st.mode == "grounded" and u[2] > 0.0:
             L = st.line.length
             near = [x for x in st.line.att_s if abs(x - u[2] * L) < 0.02 * L]
             if near:
                 return StaticResult.failed(
-                    s_out, status,
+                    s_out,
+                    status,
                     f"the touchdown point runs into the attachment at s = {near[0]:.6g} m "
                     "(from the seabed end): a point load resting on the seabed at the "
                     "touchdown point, with a kink in the line there, is not modelled; "
-                    f"{msg}", iterations=total_it, residual=norm)
+                    f"{msg}",
+                    iterations=total_it,
+                    residual=norm,
+                )
         if status != STATUS_OK:
-            hint = ("; no equilibrium above the seabed may exist for these end conditions"
-                    if st.mode == "grounded" else "")
-            return StaticResult.failed(s_out, status, f"still water: {msg}{hint}",
-                                       iterations=total_it, residual=norm)
+            hint = (
+                "; no equilibrium above the seabed may exist for these end conditions"
+                if st.mode == "grounded"
+                else ""
+            )
+            return StaticResult.failed(
+                s_out, status, f"still water: {msg}{hint}", iterations=total_it, residual=norm
+            )
         if st.env.has_current:
             # continuation in current speed from the still-water solution, with a secant
             # predictor from the last two converged steps
@@ -1141,15 +1262,21 @@ class ShootingSolver:
                 trial = min(1.0, done + step)
                 if n_steps > 80:
                     return StaticResult.failed(
-                        s_out, STATUS_NOT_CONVERGED,
+                        s_out,
+                        STATUS_NOT_CONVERGED,
                         f"current-speed continuation stalled at {done:.3g} of the current",
-                        iterations=total_it, residual=norm)
+                        iterations=total_it,
+                        residual=norm,
+                    )
                 u_pred = u
                 if prev is not None:
                     u_pred = u + (trial - done) * (u - prev[1]) / (done - prev[0])
                 # a continuation step that needs many iterations is retried shorter
-                cap = problem.max_iterations if step < 2e-3 else min(problem.max_iterations,
-                                                                      _CONTINUATION_ITERATIONS)
+                cap = (
+                    problem.max_iterations
+                    if step < 2e-3
+                    else min(problem.max_iterations, _CONTINUATION_ITERATIONS)
+                )
                 u_try, norm_t, status_t, msg_t = newton(trial, u_pred, cap)
                 if status_t == STATUS_OK:
                     prev = (done, u)
@@ -1159,25 +1286,48 @@ class ShootingSolver:
                 step *= 0.25
                 if step < 1e-3:
                     return StaticResult.failed(
-                        s_out, status_t,
-                        f"current-speed continuation failed at {trial:.3g} of the current: "
-                        f"{msg_t}", iterations=total_it, residual=norm_t)
+                        s_out,
+                        status_t,
+                        f"current-speed continuation failed at {trial:.3g} of the current: {msg_t}",
+                        iterations=total_it,
+                        residual=norm_t,
+                    )
         return self._finish(st, s_out, u, norm, total_it, deadline)
 
-    def _finish(self, st: _Setup, s_out: np.ndarray, u: np.ndarray, norm: float,
-                total_it: int, deadline: float | None) -> StaticResult:
+    def _finish(
+        self,
+        st: _Setup,
+        s_out: np.ndarray,
+        u: np.ndarray,
+        norm: float,
+        total_it: int,
+        deadline: float | None,
+    ) -> StaticResult:
         """The converged shot again, with dense output, sampled at the output nodes."""
-        integ = _Integrator(st.line, st.env, rtol=self.rtol, force_scale=st.force_scale,
-                            deadline=deadline)
+        integ = _Integrator(
+            st.line, st.env, rtol=self.rtol, force_scale=st.force_scale, deadline=deadline
+        )
         try:
             r, shot, start = self._residual(st, integ, u, dense=True)
         except _ShotFailed as exc:
-            return StaticResult.failed(s_out, STATUS_NUMERICAL, f"final shot failed: {exc}",
-                                       iterations=total_it, residual=norm)
+            return StaticResult.failed(
+                s_out,
+                STATUS_NUMERICAL,
+                f"final shot failed: {exc}",
+                iterations=total_it,
+                residual=norm,
+            )
         return self._result(st, s_out, shot, start, total_it, float(np.max(np.abs(r))))
 
-    def _result(self, st: _Setup, s_out: np.ndarray, shot: _Shot, start: _Start,
-                iterations: int, residual: float) -> StaticResult:
+    def _result(
+        self,
+        st: _Setup,
+        s_out: np.ndarray,
+        shot: _Shot,
+        start: _Start,
+        iterations: int,
+        residual: float,
+    ) -> StaticResult:
         L = st.line.length
         s_loc = (L - s_out) if st.reverse else s_out.copy()
         position = np.full((len(s_out), 3), np.nan)
@@ -1187,8 +1337,7 @@ class ShootingSolver:
         if start.laid is not None:
             assert st.bed is not None
             laid = start.s0
-            dist, tens, _ = _laid_profile(st.line, st.bed, start.laid, start.s0, start.t_tdp,
-                                          s_loc)
+            dist, tens, _ = _laid_profile(st.line, st.bed, start.laid, start.s0, start.t_tdp, s_loc)
             position[before] = start.origin + dist[before, None] * start.laid
             tension[before] = tens[before]
         elif np.any(before):  # the short straight piece next to a free end
@@ -1215,13 +1364,23 @@ class ShootingSolver:
             below = float(np.max(ground - position[:, 2]))
             if below > 1e-6 * L:
                 return StaticResult.failed(
-                    s_out, STATUS_NO_SOLUTION,
+                    s_out,
+                    STATUS_NO_SOLUTION,
                     f"the line passes {below:.4g} m below the seabed; the shooting solver "
                     "models seabed contact only from a fixed end on the seabed (within "
                     "1e-6 of the line length; touchdown integration)",
-                    iterations=iterations, residual=residual)
+                    iterations=iterations,
+                    residual=residual,
+                )
         return StaticResult(
-            s=s_out, position=position, tension=tension, force_a=force_a, force_b=force_b,
-            laid_length=float(laid), status=STATUS_OK, message="", iterations=iterations,
+            s=s_out,
+            position=position,
+            tension=tension,
+            force_a=force_a,
+            force_b=force_b,
+            laid_length=float(laid),
+            status=STATUS_OK,
+            message="",
+            iterations=iterations,
             residual=residual,
         )
