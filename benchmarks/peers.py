@@ -80,7 +80,8 @@ cablestudy benchmark
 ----------------------- LINE TYPES ------------------------------------------
 TypeName   Diam    Mass/m     EA     BA/-zeta    EI    Cd     Ca     CdAx    CaAx
 (name)     (m)     (kg/m)     (N)    (N-s/-)    (N-m^2) (-)   (-)    (-)     (-)
-cable {case.diameter} {case.mass} {case.axial_stiffness} -0.8 0.0 {case.drag_normal} {case.added_mass_normal} {case.drag_tangential} 0.0
+cable {case.diameter} {case.mass} {case.axial_stiffness} -0.8 0.0 \
+{case.drag_normal} {case.added_mass_normal} {case.drag_tangential} 0.0
 ---------------------- POINTS --------------------------------
 ID     Attachment  X        Y     Z       Mass   Volume  CdA    Ca
 (#)    (-)         (m)      (m)   (m)     (kg)   (m^3)   (m^2)  (-)

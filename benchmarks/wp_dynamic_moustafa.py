@@ -29,7 +29,6 @@ Also: wall time of the 92-case Figs. 2-5 sweep through the CLI.
 
 from __future__ import annotations
 
-import copy
 import subprocess
 import sys
 import tempfile

@@ -15,7 +15,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from cablestudy.bench import WorkPrecision, _fmt_time as _fmt, median_time
+from cablestudy.bench import WorkPrecision, median_time
+from cablestudy.bench import _fmt_time as _fmt
 
 L, MASS, G, EA = 100.0, 2.466, 9.80665, 6.283e7
 SPAN, RISE = 92.5, -8.6
