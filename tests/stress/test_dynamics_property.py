@@ -9,7 +9,8 @@ amplitudes up to 10 % of the length (enough to drive the line slack) and frequen
   message (never an exception, never NaN with status 0), within its time limit;
 * on status 0 the end tension is that of a tension-only line, 0 <= T_min <= T_max, and
   the largest tension anywhere on the line over the same window is at least the largest
-  end tension (T_max_line >= T_max, exactly: the end is one of the places it is taken).
+  end tension (T_max_line >= T_max: the end is one of the places it is taken; up to
+  1e-12 relative, as the two are summed in different orders).
 
 (That the motion spans the static tension, T_min <= T_static <= T_max, is NOT a property:
 hypothesis found a 1 m buoyant folded line whipped 0.1 m at 16 Hz whose end tension never
@@ -79,5 +80,5 @@ def test_short_dynamic_runs_are_honest(data: dict[str, Any]) -> None:
     tmax, tmin = float(rec.data["tension_max"]), float(rec.data["tension_min"])
     tstat = float(rec.data["tension_static"])
     assert 0.0 <= tmin <= tmax
-    assert float(rec.data["tension_max_line"]) >= tmax
+    assert float(rec.data["tension_max_line"]) >= tmax * (1.0 - 1e-12)
     assert np.isfinite(tstat) and tstat >= 0.0
