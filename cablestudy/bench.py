@@ -3,8 +3,8 @@
 Each ``benchmarks/wp_*.py`` module in the repository defines ``run(quick) ->
 WorkPrecision`` (or a list of them): for every method and setting, a median wall time
 over repeats and an error against a reference computed in the same run. This module
-writes one netCDF
-dataset and one log-log work-precision plot per benchmark under the output folder, and
+writes one netCDF dataset and one log-log work-precision plot per benchmark under the
+output folder, and
 a summary table (``summary.md``) with median time, error and the ratio to the peer at
 equal or better error.
 """
