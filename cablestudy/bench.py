@@ -92,29 +92,40 @@ class WorkPrecision:
         )
 
     def summary_rows(self) -> list[str]:
-        """Per method: the most accurate point, and the time ratio to the peer at equal
-        or better error."""
+        """Per method: its most accurate point, and the time ratio to the peer at equal
+        or better error; then, when a peer ran, one row comparing our cheapest point
+        over all our methods at the peer's best error with that peer point."""
         rows = []
-        peers = [c for c in self.curves if c.peer]
+        ours = [(c, i) for c in self.curves if not c.peer for i in range(len(c.times))]
+        theirs = [(c, i) for c in self.curves if c.peer for i in range(len(c.times))]
+        peer = min(theirs, key=lambda ci: ci[0].errors[ci[1]]) if theirs else None
+        pname = peer[0].method.split(" (")[0] if peer else ""
+
+        def versus(points: list[tuple[Curve, int]]) -> tuple[str, tuple[Curve, int] | None]:
+            if peer is None:
+                return "", None
+            p_err, p_time = peer[0].errors[peer[1]], peer[0].times[peer[1]]
+            ok = [ci for ci in points if ci[0].errors[ci[1]] <= max(p_err, 1e-15)]
+            if not ok:
+                return f"never as accurate as {pname} ({p_err:.1e})", None
+            mine = min(ok, key=lambda ci: ci[0].times[ci[1]])
+            ratio = p_time / mine[0].times[mine[1]]
+            return f"{pname} time / ours = {_fmt_ratio(ratio)} (at error <= {p_err:.1e})", mine
+
         for c in self.curves:
             if not c.times:
                 continue
             best = int(np.nanargmin(c.errors))
-            err, t = c.errors[best], c.times[best]
-            ratio = ""
-            if peers and not c.peer:
-                # cheapest point of ours whose error is at least as good as the peer's best
-                p = peers[0]
-                pbest = int(np.nanargmin(p.errors))
-                ok = [i for i, e in enumerate(c.errors) if e <= max(p.errors[pbest], 1e-15)]
-                if ok:
-                    mine = min(c.times[i] for i in ok)
-                    ratio = (f"{p.method} time / ours = {_fmt_ratio(p.times[pbest] / mine)} "
-                             f"(at error <= {p.errors[pbest]:.1e})")
-                else:
-                    ratio = f"never as accurate as {p.method} ({p.errors[pbest]:.1e})"
-            rows.append(f"| {self.name} | {c.method} | {c.settings[best]} | {_fmt_time(t)} | "
-                        f"{err:.2e} | {ratio} |")
+            ratio = "" if c.peer else versus([(c, i) for i in range(len(c.times))])[0]
+            rows.append(f"| {self.name} | {c.method} | {c.settings[best]} | "
+                        f"{_fmt_time(c.times[best])} | {c.errors[best]:.2e} | {ratio} |")
+        if peer is not None and ours:
+            text, mine = versus(ours)
+            if mine is not None:
+                c, i = mine
+                rows.append(f"| {self.name} | **cablestudy at equal error** | {c.settings[i]} "
+                            f"({c.method}) | {_fmt_time(c.times[i])} | {c.errors[i]:.2e} | "
+                            f"**{text}** |")
         return rows
 
 
