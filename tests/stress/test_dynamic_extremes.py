@@ -23,6 +23,8 @@ from typing import Any
 import numpy as np
 import pytest
 
+from cablestudy.statics import STATUS_TIME_LIMIT
+
 from .conftest import assert_honest, evaluate, study_dict
 
 #: per-case wall-time limit [s] given to the runner (analysis.time_limit)
@@ -125,3 +127,14 @@ def test_time_limit_stops_a_long_run() -> None:
     for key in ("tension_max", "tension_min"):
         if key in rec.data:
             assert not np.isfinite(rec.data[key]) or rec.status != 0
+
+
+@pytest.mark.parametrize("method", ["analytic", "catenary", "shooting"])
+def test_time_limit_stops_each_static_solver(method: str) -> None:
+    """A limit of 1 microsecond is over before the first Newton iteration ends: every
+    static solver must notice (status 3, 'time limit') instead of finishing or hanging."""
+    rec = evaluate(study_dict(method=method, length=10_000.0, b=(9_000.0, 0.0, -2_000.0),
+                              time_limit=1e-6))
+    assert rec.status == STATUS_TIME_LIMIT and "time limit" in rec.message, rec.message
+    assert rec.wall_time < 2.0
+    assert_honest(rec)
