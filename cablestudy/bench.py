@@ -157,7 +157,6 @@ def plot(wp: WorkPrecision, path: Path) -> None:
     ax.xaxis.set_major_locator(LogLocator(base=10.0, subs=(1.0, 2.0, 5.0)))
     ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
     ax.xaxis.set_minor_formatter(NullFormatter())
-    ax.yaxis.set_minor_formatter(NullFormatter())
     ax.set_xlabel(wp.time_name)
     ax.set_ylabel(wp.error_name)
     ax.set_title(wp.title, fontsize=10)
