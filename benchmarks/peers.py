@@ -67,9 +67,12 @@ class PeerDynamicResult:
 
 def moordyn_harmonic(case: CableCase, *, amplitude: float, frequency: float,
                      segments: int, dt: float, periods: int = 8,
-                     window: int = 2) -> PeerDynamicResult:
-    """MoorDyn with end B moved harmonically along x; max/min fairlead tension over the
-    last ``window`` periods."""
+                     window: int = 2, ramp_periods: float = 1.0,
+                     samples_per_period: int = 200) -> PeerDynamicResult:
+    """MoorDyn with end B moved harmonically along x, ``amplitude * r(t) * sin(2 pi f t)``
+    with the ramp ``r = (1 - cos(pi t / t_r)) / 2`` over ``ramp_periods`` periods (the
+    ramp of cablestudy's dynamics); max/min tension at end B over the last ``window``
+    periods, sampled ``samples_per_period`` times a period."""
     import moordyn
 
     text = f"""--------------------- MoorDyn Input File ------------------------------------
@@ -77,7 +80,8 @@ cablestudy benchmark
 ----------------------- LINE TYPES ------------------------------------------
 TypeName   Diam    Mass/m     EA     BA/-zeta    EI    Cd     Ca     CdAx    CaAx
 (name)     (m)     (kg/m)     (N)    (N-s/-)    (N-m^2) (-)   (-)    (-)     (-)
-cable {case.diameter} {case.mass} {case.axial_stiffness} -0.8 0.0 {case.drag_normal} {case.added_mass_normal} {case.drag_tangential} 0.0
+cable {case.diameter} {case.mass} {case.axial_stiffness} -0.8 0.0 \
+{case.drag_normal} {case.added_mass_normal} {case.drag_tangential} 0.0
 ---------------------- POINTS --------------------------------
 ID     Attachment  X        Y     Z       Mass   Volume  CdA    Ca
 (#)    (-)         (m)      (m)   (m)     (kg)   (m^3)   (m^2)  (-)
@@ -110,15 +114,21 @@ FairTen1
             t1 = time.perf_counter()
             omega = 2.0 * np.pi * frequency
             period = 1.0 / frequency
-            dt_out = min(period / 200.0, 0.01)
+            dt_out = period / samples_per_period
             n = int(round(periods * period / dt_out))
             t = 0.0
             tension = np.empty(n)
+            t_r = ramp_periods * period
             for i in range(n):
                 tn = t + dt_out
-                ramp = min(tn / period, 1.0)  # one-period linear ramp of the amplitude
-                xx = x0 + np.array([ramp * amplitude * np.sin(omega * tn), 0.0, 0.0])
-                vv = np.array([ramp * amplitude * omega * np.cos(omega * tn), 0.0, 0.0])
+                if tn < t_r:
+                    ramp = 0.5 * (1.0 - np.cos(np.pi * tn / t_r))
+                    dramp = 0.5 * np.pi / t_r * np.sin(np.pi * tn / t_r)
+                else:
+                    ramp, dramp = 1.0, 0.0
+                sin, cos = np.sin(omega * tn), np.cos(omega * tn)
+                xx = x0 + np.array([ramp * amplitude * sin, 0.0, 0.0])
+                vv = np.array([amplitude * (ramp * omega * cos + dramp * sin), 0.0, 0.0])
                 force = moordyn.Step(system, xx, vv, t, dt_out)
                 tension[i] = float(np.linalg.norm(force))
                 t = tn

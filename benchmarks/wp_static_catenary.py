@@ -3,7 +3,12 @@ seed (L = 100 m, 2.466 kg/m in air, EA = 6.283e7 N, B at (92.5, -8.6) m from A).
 
 Reference: Irvine's two closure equations solved with mpmath at 40 significant digits
 (independent of the float code). Error: largest end-force component error relative to
-the end tension. Peer: MoorPy's catenary (optional extra `peers`) at several Tol.
+the end tension. Methods: the exact `analytic` solver (Irvine's equations by Newton),
+the semi-analytic `catenary` solver and the `shooting` solver, each timed on the solve
+itself (``STATIC_SOLVERS[...].solve(problem)`` on a prepared StaticProblem of 101
+output nodes); the per-case overhead of the pipeline (config -> problem -> solve ->
+record, ``evaluate_case`` with the static cache cleared) is timed separately and noted.
+Peer: MoorPy's catenary (optional extra `peers`) at several Tol.
 """
 
 from __future__ import annotations
@@ -11,6 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from cablestudy.bench import WorkPrecision, median_time
+from cablestudy.bench import _fmt_time as _fmt
 
 L, MASS, G, EA = 100.0, 2.466, 9.80665, 6.283e7
 SPAN, RISE = 92.5, -8.6
@@ -34,8 +40,59 @@ def reference() -> np.ndarray:
     return np.array([float(H), float(VA), float(VA + w * Lm)])
 
 
+def problem(tolerance: float = 1e-12):  # noqa: ANN201
+    """The Fig. 4 case as a StaticProblem (in vacuum: weight m g, as in the reference)."""
+    from cablestudy.statics import EndCondition, LineModel, Medium, StaticProblem
+
+    def one(v: float) -> np.ndarray:
+        return np.array([float(v)])
+
+    line = LineModel(
+        length=one(L), weight=one(W), mass=one(MASS), axial_stiffness=one(EA),
+        diameter=one(0.02), drag_normal=one(1.2), drag_tangential=one(0.01),
+        added_mass_normal=one(1.0), added_mass_tangential=one(0.0),
+        bending_stiffness=one(0.0), damping_ratio=one(0.0), attachment_s=np.zeros(0),
+        attachment_force=np.zeros((0, 3)), attachment_mass=np.zeros(0),
+        attachment_volume=np.zeros(0))
+    return StaticProblem(line=line, medium=Medium(density=0.0, gravity=G),
+                         end_a=EndCondition(kind="fixed", position=np.zeros(3)),
+                         end_b=EndCondition(kind="fixed", position=np.array([SPAN, 0.0, RISE])),
+                         n_nodes=101, tolerance=tolerance)
+
+
+def pipeline_overhead(repeats: int) -> tuple[float, float]:
+    """(median time of one case through evaluate_case, of its static solve alone) [s],
+    method catenary at tolerance 1e-12, static cache cleared before every call."""
+    import yaml
+
+    from cablestudy import analyses
+    from cablestudy.cases import expand_cases
+    from cablestudy.config.loader import parse_study_text
+    from cablestudy.problem import static_problem
+    from cablestudy.statics import STATIC_SOLVERS
+
+    data = {"name": "bench", "environment": {"fluid": "vacuum", "gravity": G},
+            "line": {"segments": [{"length": L, "diameter": 0.02, "mass_per_length": MASS,
+                                   "axial_stiffness": EA}]},
+            "ends": {"a": {"kind": "fixed", "position": [0.0, 0.0, 0.0]},
+                     "b": {"kind": "fixed", "position": [SPAN, 0.0, RISE]}},
+            "analysis": {"static": {"method": "catenary", "nodes": 101, "tolerance": 1e-12}}}
+    _, cases = expand_cases(parse_study_text(yaml.safe_dump(data), "<bench>"))
+
+    def whole() -> None:
+        analyses._STATIC_CACHE.clear()
+        analyses.evaluate_case(cases[0])
+
+    prob = static_problem(cases[0].study)
+    solve = STATIC_SOLVERS["catenary"].solve
+    return (median_time(whole, repeats=repeats), median_time(lambda: solve(prob),
+                                                             repeats=repeats))
+
+
 def run(quick: bool = False) -> WorkPrecision:
+    from cablestudy.statics import STATIC_SOLVERS
     from cablestudy.statics.elastic_catenary import solve_between
+    from cablestudy.statics.shooting import ShootingSolver
 
     ref = reference()
     tension = float(np.hypot(ref[0], ref[1]))
@@ -58,6 +115,30 @@ def run(quick: bool = False) -> WorkPrecision:
             lambda tol=tol: solve_between((0, 0, 0), (SPAN, 0, RISE), L, W, EA, s,
                                           tolerance=tol), repeats=repeats),
             err_of(r.force_a, r.force_b))
+
+    c = wp.curve("cablestudy catenary (semi-analytic)")
+    for tol in (1e-4, 1e-6, 1e-8, 1e-10, 1e-12):
+        prob = problem(tol)
+        r = STATIC_SOLVERS["catenary"].solve(prob)
+        assert r.status == 0, r.message
+        c.add(f"tolerance={tol:g}", median_time(
+            lambda prob=prob: STATIC_SOLVERS["catenary"].solve(prob), repeats=repeats),
+            err_of(r.force_a, r.force_b))
+
+    c = wp.curve("cablestudy shooting (ODE, DOP853)")
+    for rtol in ((1e-6, 1e-9, 1e-12) if quick else (1e-6, 1e-8, 1e-10, 1e-12)):
+        solver, prob = ShootingSolver(rtol=rtol), problem(1e-12)
+        r = solver.solve(prob)
+        assert r.status == 0, r.message
+        c.add(f"rtol={rtol:g}", median_time(lambda solver=solver, prob=prob: solver.solve(prob),
+                                            repeats=repeats), err_of(r.force_a, r.force_b))
+
+    whole, solve = pipeline_overhead(repeats)
+    over = (f"overhead {_fmt(whole - solve)} per case" if whole > solve
+            else "overhead below the timing noise")
+    wp.notes.append(
+        f"one case through the pipeline (evaluate_case: config -> problem -> catenary solve "
+        f"-> record, 101 nodes) takes {_fmt(whole)}; the solve alone {_fmt(solve)}: {over}")
     try:
         from moorpy.Catenary import catenary
     except ImportError:

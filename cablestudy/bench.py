@@ -1,9 +1,10 @@
 """Benchmarks: run time against error (``make bench``).
 
 Each ``benchmarks/wp_*.py`` module in the repository defines ``run(quick) ->
-WorkPrecision``: for every method and setting, a median wall time over repeats and an
-error against a reference computed in the same run. This module writes one netCDF
-dataset and one log-log work-precision plot per benchmark under the output folder, and
+WorkPrecision`` (or a list of them): for every method and setting, a median wall time
+over repeats and an error against a reference computed in the same run. This module
+writes one netCDF dataset and one log-log work-precision plot per benchmark under the
+output folder, and
 a summary table (``summary.md``) with median time, error and the ratio to the peer at
 equal or better error.
 """
@@ -90,30 +91,49 @@ class WorkPrecision:
         )
 
     def summary_rows(self) -> list[str]:
-        """Per method: the most accurate point, and the time ratio to the peer at equal
-        or better error."""
+        """Per method: its most accurate point, and the time ratio to the peer at equal
+        or better error; then, when a peer ran, one row comparing our cheapest point
+        over all our methods at the peer's best error with that peer point."""
         rows = []
-        peers = [c for c in self.curves if c.peer]
+        ours = [(c, i) for c in self.curves if not c.peer for i in range(len(c.times))]
+        theirs = [(c, i) for c in self.curves if c.peer for i in range(len(c.times))]
+        peer = min(theirs, key=lambda ci: ci[0].errors[ci[1]]) if theirs else None
+        pname = peer[0].method.split(" (")[0] if peer else ""
+
+        def versus(points: list[tuple[Curve, int]]) -> tuple[str, tuple[Curve, int] | None]:
+            if peer is None:
+                return "", None
+            p_err, p_time = peer[0].errors[peer[1]], peer[0].times[peer[1]]
+            ok = [ci for ci in points if ci[0].errors[ci[1]] <= max(p_err, 1e-15)]
+            if not ok:
+                return f"never as accurate as {pname} ({p_err:.1e})", None
+            mine = min(ok, key=lambda ci: ci[0].times[ci[1]])
+            ratio = p_time / mine[0].times[mine[1]]
+            return f"{pname} time / ours = {_fmt_ratio(ratio)} (at error <= {p_err:.1e})", mine
+
         for c in self.curves:
             if not c.times:
                 continue
             best = int(np.nanargmin(c.errors))
-            err, t = c.errors[best], c.times[best]
-            ratio = ""
-            if peers and not c.peer:
-                # cheapest point of ours whose error is at least as good as the peer's best
-                p = peers[0]
-                pbest = int(np.nanargmin(p.errors))
-                ok = [i for i, e in enumerate(c.errors) if e <= max(p.errors[pbest], 1e-15)]
-                if ok:
-                    mine = min(c.times[i] for i in ok)
-                    ratio = f"{p.times[pbest] / mine:.1f}x faster than {p.method}"
-                    ratio += f" (at error <= {p.errors[pbest]:.1e})"
+            ratio = "" if c.peer else versus([(c, i) for i in range(len(c.times))])[0]
             rows.append(
-                f"| {self.name} | {c.method} | {c.settings[best]} | {_fmt_time(t)} | "
-                f"{err:.2e} | {ratio} |"
+                f"| {self.name} | {c.method} | {c.settings[best]} | "
+                f"{_fmt_time(c.times[best])} | {c.errors[best]:.2e} | {ratio} |"
             )
+        if peer is not None and ours:
+            text, mine = versus(ours)
+            if mine is not None:
+                c, i = mine
+                rows.append(
+                    f"| {self.name} | **cablestudy at equal error** | {c.settings[i]} "
+                    f"({c.method}) | {_fmt_time(c.times[i])} | {c.errors[i]:.2e} | "
+                    f"**{text}** |"
+                )
         return rows
+
+
+def _fmt_ratio(r: float) -> str:
+    return f"{r:.2g}" if r < 10 else f"{r:.0f}"
 
 
 def _fmt_time(t: float) -> str:
@@ -131,16 +151,20 @@ def plot(wp: WorkPrecision, path: Path) -> None:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
-    fig, ax = plt.subplots(figsize=(6, 4.2))
+    fig, ax = plt.subplots(figsize=(8.2, 4.4))
     for c in wp.curves:
         t, e = np.asarray(c.times), np.maximum(np.asarray(c.errors), 1e-17)
         ax.loglog(t, e, "s--" if c.peer else "o-", label=c.method)
+    ax.xaxis.set_major_locator(LogLocator(base=10.0, subs=(1.0, 2.0, 5.0)))
+    ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    ax.xaxis.set_minor_formatter(NullFormatter())
     ax.set_xlabel(wp.time_name)
     ax.set_ylabel(wp.error_name)
     ax.set_title(wp.title, fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
@@ -191,12 +215,15 @@ def run_benchmarks(
         assert spec is not None and spec.loader is not None
         module = importlib.util.module_from_spec(spec)
         spec.loader.exec_module(module)
-        wp: WorkPrecision = module.run(quick=quick)
-        wp.dataset().to_netcdf(out / f"{wp.name}.nc")
-        plot(wp, out / f"{wp.name}.png")
-        plots.append(out / f"{wp.name}.png")
-        rows.extend(wp.summary_rows())
-        notes.extend(f"- {wp.name}: {n}" for n in wp.notes)
+        t0 = time.perf_counter()
+        got = module.run(quick=quick)
+        print(f"{path.stem}: {time.perf_counter() - t0:.0f} s", flush=True)
+        for wp in got if isinstance(got, list) else [got]:
+            wp.dataset().to_netcdf(out / f"{wp.name}.nc")
+            plot(wp, out / f"{wp.name}.png")
+            plots.append(out / f"{wp.name}.png")
+            rows.extend(wp.summary_rows())
+            notes.extend(f"- {wp.name}: {n}" for n in wp.notes)
     text = "\n".join(rows) + "\n"
     if notes:
         text += "\n" + "\n".join(notes) + "\n"

@@ -7,7 +7,7 @@ from typing import Any
 import numpy as np
 import yaml
 
-from cablestudy.analyses import evaluate_case
+from cablestudy.analyses import check_supported, evaluate_case
 from cablestudy.cases import expand_cases
 from cablestudy.config.loader import parse_study_text
 from cablestudy.results import CaseRecord
@@ -42,6 +42,7 @@ def evaluate(data: dict[str, Any]) -> CaseRecord:
     src = parse_study_text(yaml.safe_dump(data, sort_keys=False), "<stress>")
     _, cases = expand_cases(src)
     assert len(cases) == 1
+    check_supported(cases, src)  # as the runner does before any work
     return evaluate_case(cases[0])
 
 
