@@ -51,8 +51,14 @@ print(t1 - t0, t2 - t1, t3 - t2)
 
 def compile_cost(cache_dir: str) -> tuple[float, float, float]:
     env = {**os.environ, "NUMBA_CACHE_DIR": cache_dir, "PYTHONPATH": str(ROOT)}
-    out = subprocess.run([sys.executable, "-c", FIRST_RUN.format(config=str(CONFIG))],
-                         env=env, capture_output=True, text=True, check=True, cwd=ROOT)
+    out = subprocess.run(
+        [sys.executable, "-c", FIRST_RUN.format(config=str(CONFIG))],
+        env=env,
+        capture_output=True,
+        text=True,
+        check=True,
+        cwd=ROOT,
+    )
     imp, first, second = (float(v) for v in out.stdout.split())
     return imp, first, second
 
@@ -67,8 +73,9 @@ def run_sweep(data: dict, out: Path, workers: int, scheduler: str) -> tuple[xr.D
     axes, cases = expand_cases(src)
     check_supported(cases, src)
     t0 = time.perf_counter()
-    summary = run_study(src, axes, cases, out, scheduler=scheduler, workers=workers,
-                        use_cache=False, progress=False)
+    summary = run_study(
+        src, axes, cases, out, scheduler=scheduler, workers=workers, use_cache=False, progress=False
+    )
     wall = time.perf_counter() - t0
     return xr.load_dataset(summary.path), wall
 
@@ -85,46 +92,66 @@ def main() -> None:
         cold = compile_cost(cache)
         warm = compile_cost(cache)
     print("numba kernels: first case in a fresh process")
-    print(f"  cold cache: import {cold[0]:.2f} s, first case {cold[1]:.2f} s "
-          f"(compile + run), next case {cold[2] * 1e3:.1f} ms")
-    print(f"  warm cache: import {warm[0]:.2f} s, first case {warm[1]:.2f} s, "
-          f"next case {warm[2] * 1e3:.1f} ms")
+    print(
+        f"  cold cache: import {cold[0]:.2f} s, first case {cold[1]:.2f} s "
+        f"(compile + run), next case {cold[2] * 1e3:.1f} ms"
+    )
+    print(
+        f"  warm cache: import {warm[0]:.2f} s, first case {warm[1]:.2f} s, "
+        f"next case {warm[2] * 1e3:.1f} ms"
+    )
 
     walls = []
     with tempfile.TemporaryDirectory() as tmp:
         for _ in range(repeats):
             ds, wall = run_sweep(base, Path(tmp), 2, "processes")
             walls.append(wall)
-    print(f"\nFigs. 2-5 sweep, {ds.attrs['cases']} cases, 2 worker processes: median wall "
-          f"{np.median(walls):.2f} s over {repeats} (all: "
-          + ", ".join(f"{w:.2f}" for w in walls) + ")")
-    print(f"  failed {int((ds.status != 0).sum())}, not settled "
-          f"{int((ds.steady_converged == 0).sum())}; sum of case wall times "
-          f"{float(ds.wall_time.sum()):.2f} s")
+    print(
+        f"\nFigs. 2-5 sweep, {ds.attrs['cases']} cases, 2 worker processes: median wall "
+        f"{np.median(walls):.2f} s over {repeats} (all: "
+        + ", ".join(f"{w:.2f}" for w in walls)
+        + ")"
+    )
+    print(
+        f"  failed {int((ds.status != 0).sum())}, not settled "
+        f"{int((ds.steady_converged == 0).sum())}; sum of case wall times "
+        f"{float(ds.wall_time.sum()):.2f} s"
+    )
     for name in ("dynamic_steps", "newton_iterations", "rejected_steps", "periods"):
         v = ds[name].values
         print(f"  {name}: median {np.median(v):.0f}, max {np.max(v):.0f}, total {np.sum(v):.0f}")
 
     ref = yaml.safe_load(CONFIG.read_text())
     dyn = ref["analysis"]["dynamic"]
-    dyn.update({"points_per_period": 128 if args.quick else 256, "elements": 160,
-                "tension_resolution": 0.02, "max_refinement": 8,
-                "steady_tolerance": 1e-4, "max_periods": 120})
+    dyn.update(
+        {
+            "points_per_period": 128 if args.quick else 256,
+            "elements": 160,
+            "tension_resolution": 0.02,
+            "max_refinement": 8,
+            "steady_tolerance": 1e-4,
+            "max_periods": 120,
+        }
+    )
     ref["name"] = "moustafa-figs2-5-reference"
     with tempfile.TemporaryDirectory() as tmp:
         rds, rwall = run_sweep(ref, Path(tmp), 2, "processes")
     scale = rds["tension_max"].values
     err_max = np.abs(ds["tension_max"].values - rds["tension_max"].values) / scale
     err_min = np.abs(ds["tension_min"].values - rds["tension_min"].values) / scale
-    print(f"\naccuracy against the reference ({dyn['points_per_period']} steps per period, "
-          f"160 elements, tension resolution 0.02, steady tolerance 1e-4; {rwall:.1f} s):")
+    print(
+        f"\naccuracy against the reference ({dyn['points_per_period']} steps per period, "
+        f"160 elements, tension resolution 0.02, steady tolerance 1e-4; {rwall:.1f} s):"
+    )
     print(f"  max tension: median error {np.median(err_max):.2%}, worst {np.max(err_max):.2%}")
     print(f"  min tension: median error {np.median(err_min):.2%}, worst {np.max(err_min):.2%}")
     worst = np.unravel_index(np.argmax(np.maximum(err_max, err_min)), err_max.shape)
-    print(f"  worst case: amplitude {float(ds.amplitude[worst[0]]):g} m, frequency "
-          f"{float(ds.frequency[worst[1]]):g} Hz: max {float(ds.tension_max[worst]):.2f} "
-          f"vs {float(rds.tension_max[worst]):.2f} N, min {float(ds.tension_min[worst]):.2f} "
-          f"vs {float(rds.tension_min[worst]):.2f} N")
+    print(
+        f"  worst case: amplitude {float(ds.amplitude[worst[0]]):g} m, frequency "
+        f"{float(ds.frequency[worst[1]]):g} Hz: max {float(ds.tension_max[worst]):.2f} "
+        f"vs {float(rds.tension_max[worst]):.2f} N, min {float(ds.tension_min[worst]):.2f} "
+        f"vs {float(rds.tension_min[worst]):.2f} N"
+    )
     print(f"  reference not settled: {int((rds.steady_converged == 0).sum())}")
 
 

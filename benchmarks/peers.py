@@ -65,10 +65,18 @@ class PeerDynamicResult:
     init_time: float  # [s] initial-state (static/dynamic relaxation) time
 
 
-def moordyn_harmonic(case: CableCase, *, amplitude: float, frequency: float,
-                     segments: int, dt: float, periods: int = 8,
-                     window: int = 2, ramp_periods: float = 1.0,
-                     samples_per_period: int = 200) -> PeerDynamicResult:
+def moordyn_harmonic(
+    case: CableCase,
+    *,
+    amplitude: float,
+    frequency: float,
+    segments: int,
+    dt: float,
+    periods: int = 8,
+    window: int = 2,
+    ramp_periods: float = 1.0,
+    samples_per_period: int = 200,
+) -> PeerDynamicResult:
     """MoorDyn with end B moved harmonically along x, ``amplitude * r(t) * sin(2 pi f t)``
     with the ramp ``r = (1 - cos(pi t / t_r)) / 2`` over ``ramp_periods`` periods (the
     ramp of cablestudy's dynamics); max/min tension at end B over the last ``window``
@@ -134,5 +142,5 @@ FairTen1
                 t = tn
             t2 = time.perf_counter()
             moordyn.Close(system)
-    last = tension[-int(round(window * period / dt_out)):]
+    last = tension[-int(round(window * period / dt_out)) :]
     return PeerDynamicResult(float(last.max()), float(last.min()), t2 - t1, t1 - t0)

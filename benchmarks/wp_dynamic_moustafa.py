@@ -52,18 +52,40 @@ MOORDYN_DT = {10: 1e-4, 20: 5e-5, 40: 2.5e-5}
 
 def study(frequency: float, amplitude: float, elements: int, ppp: int) -> dict:
     return {
-        "name": "bench-moustafa", "environment": {"fluid": "water", "gravity": 9.80665},
-        "line": {"segments": [{"length": LENGTH, "diameter": DIAMETER, "mass_per_length": MASS,
-                               "axial_stiffness": EA, "drag_normal": 1.2,
-                               "drag_tangential": 0.01, "added_mass_normal": 1.0}]},
-        "ends": {"a": {"kind": "fixed", "position": [0.0, 0.0, 0.0]},
-                 "b": {"kind": "fixed", "position": [SPAN, 0.0, 0.0]}},
+        "name": "bench-moustafa",
+        "environment": {"fluid": "water", "gravity": 9.80665},
+        "line": {
+            "segments": [
+                {
+                    "length": LENGTH,
+                    "diameter": DIAMETER,
+                    "mass_per_length": MASS,
+                    "axial_stiffness": EA,
+                    "drag_normal": 1.2,
+                    "drag_tangential": 0.01,
+                    "added_mass_normal": 1.0,
+                }
+            ]
+        },
+        "ends": {
+            "a": {"kind": "fixed", "position": [0.0, 0.0, 0.0]},
+            "b": {"kind": "fixed", "position": [SPAN, 0.0, 0.0]},
+        },
         "analysis": {
             "static": {"method": "analytic", "tolerance": 1e-12},
-            "dynamic": {"excitation": {"end": "b", "direction": [1.0, 0.0, 0.0],
-                                       "amplitude": amplitude, "frequency": frequency},
-                        "elements": elements, "points_per_period": ppp,
-                        "ramp_periods": RAMP, "duration": PERIODS / frequency}},
+            "dynamic": {
+                "excitation": {
+                    "end": "b",
+                    "direction": [1.0, 0.0, 0.0],
+                    "amplitude": amplitude,
+                    "frequency": frequency,
+                },
+                "elements": elements,
+                "points_per_period": ppp,
+                "ramp_periods": RAMP,
+                "duration": PERIODS / frequency,
+            },
+        },
     }
 
 
@@ -83,11 +105,20 @@ def prepare(data: dict):  # noqa: ANN201
     dyn = case.study.analysis.dynamic
     motion, period, step = end_motion(dyn)
     return DynamicProblem(
-        line=line, static_position=x_static, motion=motion, period=period, step=step,
-        max_refinement=dyn.max_refinement, spectral_radius=dyn.spectral_radius,
-        newton_tolerance=max(dyn.newton_tolerance * float(np.nanmax(static.tension)),
-                             4.0 * roundoff_force(line, x_static)),
-        max_newton_iterations=dyn.max_newton_iterations, duration=dyn.duration)
+        line=line,
+        static_position=x_static,
+        motion=motion,
+        period=period,
+        step=step,
+        max_refinement=dyn.max_refinement,
+        spectral_radius=dyn.spectral_radius,
+        newton_tolerance=max(
+            dyn.newton_tolerance * float(np.nanmax(static.tension)),
+            4.0 * roundoff_force(line, x_static),
+        ),
+        max_newton_iterations=dyn.max_newton_iterations,
+        duration=dyn.duration,
+    )
 
 
 def tensions(res) -> np.ndarray:  # noqa: ANN001
@@ -117,13 +148,15 @@ def regime(label: str, quick: bool) -> WorkPrecision:
         name=f"dynamic_moustafa_{label}",
         title=f"Moustafa cable, {f} Hz, {a} m: end tension max/min error vs time",
         error_name="max(|dT_max|, |dT_min|) / T_max,ref [-]",
-        time_name="median wall time per run [s]")
+        time_name="median wall time per run [s]",
+    )
     fine = [tensions(simulate(prepare(study(f, a, n, p)))) for n, p in ((80, 512), (160, 1024))]
     ref = (4.0 * fine[1] - fine[0]) / 3.0
     wp.notes.append(
         f"reference T_max = {ref[0]:.3f} N, T_min = {ref[1]:.3f} N (Richardson from (80, 512): "
         f"{fine[0][0]:.3f}/{fine[0][1]:.3f} N and (160, 1024): {fine[1][0]:.3f}/"
-        f"{fine[1][1]:.3f} N)")
+        f"{fine[1][1]:.3f} N)"
+    )
 
     def error(t: np.ndarray) -> float:
         return float(np.max(np.abs(t - ref)) / ref[0])
@@ -136,8 +169,11 @@ def regime(label: str, quick: bool) -> WorkPrecision:
         for p in steps:
             prob = prepare(study(f, a, n, p))
             got = tensions(simulate(prob))
-            c.add(f"N={n}, P={p}", median_time(lambda prob=prob: simulate(prob),
-                                               repeats=repeats, min_time=0.0), error(got))
+            c.add(
+                f"N={n}, P={p}",
+                median_time(lambda prob=prob: simulate(prob), repeats=repeats, min_time=0.0),
+                error(got),
+            )
     moordyn(wp, f, a, error, quick)
     return wp
 
@@ -153,19 +189,35 @@ def moordyn(wp: WorkPrecision, f: float, a: float, error, quick: bool) -> None: 
     if not have("moordyn"):
         wp.notes.append("MoorDyn not installed (pip install '.[peers]'): peer skipped")
         return
-    case = CableCase(length=LENGTH, span=SPAN, rise=0.0, diameter=DIAMETER, mass=MASS,
-                     axial_stiffness=EA, density=1025.0)
+    case = CableCase(
+        length=LENGTH,
+        span=SPAN,
+        rise=0.0,
+        diameter=DIAMETER,
+        mass=MASS,
+        axial_stiffness=EA,
+        density=1025.0,
+    )
     parts = []
-    for seg in ((10, 20) if quick else (10, 20, 40)):
+    for seg in (10, 20) if quick else (10, 20, 40):
         c = wp.curve(f"MoorDyn {seg} segments (dt {MOORDYN_DT[seg] * 1e6:g} us)", peer=True)
-        for spp in ((2048,) if quick else (512, 2048, 8192)):
+        for spp in (2048,) if quick else (512, 2048, 8192):
             runs = []
             for _ in range(3 if seg == 10 and not quick else 1):
                 try:
-                    runs.append(moordyn_harmonic(
-                        case, amplitude=a, frequency=f, segments=seg, dt=MOORDYN_DT[seg],
-                        periods=PERIODS, window=WINDOW, ramp_periods=RAMP,
-                        samples_per_period=spp))
+                    runs.append(
+                        moordyn_harmonic(
+                            case,
+                            amplitude=a,
+                            frequency=f,
+                            segments=seg,
+                            dt=MOORDYN_DT[seg],
+                            periods=PERIODS,
+                            window=WINDOW,
+                            ramp_periods=RAMP,
+                            samples_per_period=spp,
+                        )
+                    )
                 except Exception as exc:  # noqa: BLE001 - a peer failure is reported
                     wp.notes.append(f"MoorDyn failed at {seg} segments: {exc}")
                     break
@@ -174,12 +226,19 @@ def moordyn(wp: WorkPrecision, f: float, a: float, error, quick: bool) -> None: 
             r = runs[0]
             wall = float(np.median([x.wall_time for x in runs]))
             init = float(np.median([x.init_time for x in runs]))
-            c.add(f"segments={seg}, coupling=T/{spp}", wall + init,
-                  error(np.array([r.tension_max, r.tension_min])))
-            parts.append(f"{seg} seg, T/{spp}: {r.tension_max:.2f}/{r.tension_min:.2f} N, "
-                         f"stepping {_fmt_time(wall)} + initial state {_fmt_time(init)}")
-    wp.notes.append("MoorDyn (T_max/T_min; times are medians of 3 runs at 10 segments, "
-                    "1 run otherwise): " + "; ".join(parts))
+            c.add(
+                f"segments={seg}, coupling=T/{spp}",
+                wall + init,
+                error(np.array([r.tension_max, r.tension_min])),
+            )
+            parts.append(
+                f"{seg} seg, T/{spp}: {r.tension_max:.2f}/{r.tension_min:.2f} N, "
+                f"stepping {_fmt_time(wall)} + initial state {_fmt_time(init)}"
+            )
+    wp.notes.append(
+        "MoorDyn (T_max/T_min; times are medians of 3 runs at 10 segments, "
+        "1 run otherwise): " + "; ".join(parts)
+    )
 
 
 def cli_sweep(quick: bool) -> str:
@@ -189,23 +248,40 @@ def cli_sweep(quick: bool) -> str:
         with tempfile.TemporaryDirectory() as tmp:
             t0 = time.perf_counter()
             proc = subprocess.run(
-                [sys.executable, "-m", "cablestudy", "run", "configs/moustafa-figs2-5.yaml",
-                 "--out", tmp, "--no-cache"], cwd=REPO, capture_output=True, text=True,
-                env={**__import__("os").environ, "PYTHONPATH": str(REPO)})
+                [
+                    sys.executable,
+                    "-m",
+                    "cablestudy",
+                    "run",
+                    "configs/moustafa-figs2-5.yaml",
+                    "--out",
+                    tmp,
+                    "--no-cache",
+                ],
+                cwd=REPO,
+                capture_output=True,
+                text=True,
+                env={**__import__("os").environ, "PYTHONPATH": str(REPO)},
+            )
             times.append(time.perf_counter() - t0)
             if proc.returncode != 0:
                 return f"Figs. 2-5 sweep through the CLI failed: {proc.stderr[-300:]}"
     how = "median of 3 runs" if len(times) > 1 else "1 run"
-    return (f"the 92-case Figs. 2-5 sweep (configs/moustafa-figs2-5.yaml, default settings: "
-            f"40 elements, 64 steps a period, steady-state detection) takes "
-            f"{np.median(times):.1f} s wall time through `cablestudy run --no-cache` "
-            f"({how}, process start and file output included)")
+    return (
+        f"the 92-case Figs. 2-5 sweep (configs/moustafa-figs2-5.yaml, default settings: "
+        f"40 elements, 64 steps a period, steady-state detection) takes "
+        f"{np.median(times):.1f} s wall time through `cablestudy run --no-cache` "
+        f"({how}, process start and file output included)"
+    )
 
 
 def run(quick: bool = False) -> list[WorkPrecision]:
     out = [regime(label, quick) for label in REGIMES]
     f1 = first_mode()
-    out[1].notes.insert(0, f"first natural frequency of the cable (modal, 200 elements): "
-                           f"{f1:.3f} Hz; excitation 0.75 Hz")
+    out[1].notes.insert(
+        0,
+        f"first natural frequency of the cable (modal, 200 elements): "
+        f"{f1:.3f} Hz; excitation 0.75 Hz",
+    )
     out[0].notes.append(cli_sweep(quick))
     return out

@@ -28,12 +28,19 @@ EA, L0 = 12319769.88, 100.1266998  # a pair of configs/irvine-modal-lambda.yaml
 BASE = {
     "name": "bench-irvine",
     "environment": {"fluid": "vacuum", "gravity": 9.80665},
-    "line": {"segments": [{"length": L0, "diameter": 0.01, "mass_per_length": 1.0,
-                           "axial_stiffness": EA}]},
-    "ends": {"a": {"kind": "fixed", "position": [0.0, 0.0, 0.0]},
-             "b": {"kind": "fixed", "position": [100.0, 0.0, 0.0]}},
-    "analysis": {"static": {"method": "analytic", "nodes": 101, "tolerance": 1e-12},
-                 "modal": {"modes": 6, "mode_shapes": False}},
+    "line": {
+        "segments": [
+            {"length": L0, "diameter": 0.01, "mass_per_length": 1.0, "axial_stiffness": EA}
+        ]
+    },
+    "ends": {
+        "a": {"kind": "fixed", "position": [0.0, 0.0, 0.0]},
+        "b": {"kind": "fixed", "position": [100.0, 0.0, 0.0]},
+    },
+    "analysis": {
+        "static": {"method": "analytic", "nodes": 101, "tolerance": 1e-12},
+        "modal": {"modes": 6, "mode_shapes": False},
+    },
 }
 MODES = 4
 
@@ -61,8 +68,9 @@ def run(quick: bool = False) -> list[WorkPrecision]:
     x, z = static.position[:, 0], static.position[:, 2]
     slope = np.gradient(z, x)
     le = float(np.trapezoid((1.0 + slope**2) ** 1.5, x))
-    lam2 = cable_parameter(span=span, weight=w, horizontal_tension=H, axial_stiffness=EA,
-                           effective_length=le)
+    lam2 = cable_parameter(
+        span=span, weight=w, horizontal_tension=H, axial_stiffness=EA, effective_length=le
+    )
     irvine = lowest_frequencies(lam2, MODES, span=span, horizontal_tension=H, mass=1.0)
 
     repeats = 3 if quick else 5
@@ -74,12 +82,15 @@ def run(quick: bool = False) -> list[WorkPrecision]:
     limit = (4.0 * fine[1] - fine[0]) / 3.0
 
     vs_theory = WorkPrecision(
-        name="modal_irvine", title=f"Modal: 4 lowest frequencies vs Irvine (lambda^2 = "
-                                   f"{lam2:.0f}, sag/span 1/40)",
-        error_name="max relative frequency error vs Irvine [-]")
+        name="modal_irvine",
+        title=f"Modal: 4 lowest frequencies vs Irvine (lambda^2 = {lam2:.0f}, sag/span 1/40)",
+        error_name="max relative frequency error vs Irvine [-]",
+    )
     vs_mesh = WorkPrecision(
-        name="modal_mesh", title="Modal: 4 lowest frequencies vs the mesh limit (Richardson)",
-        error_name="max relative frequency error vs mesh limit [-]")
+        name="modal_mesh",
+        title="Modal: 4 lowest frequencies vs the mesh limit (Richardson)",
+        error_name="max relative frequency error vs mesh limit [-]",
+    )
     for mesh in ("uniform", "graded"):
         a = vs_theory.curve(f"cablestudy {mesh} mesh")
         b = vs_mesh.curve(f"cablestudy {mesh} mesh")
@@ -88,19 +99,24 @@ def run(quick: bool = False) -> list[WorkPrecision]:
             st = solve_static(c, None)
             res = solve_modal(c, st, None)
             assert res.success, res.message
-            t = median_time(lambda c=c, st=st: solve_modal(c, st, None), repeats=repeats,
-                            min_time=0.02)
+            t = median_time(
+                lambda c=c, st=st: solve_modal(c, st, None), repeats=repeats, min_time=0.02
+            )
             f = res.frequency[:MODES]
             a.add(f"elements={n}", t, float(np.max(np.abs(f / irvine - 1.0))))
             b.add(f"elements={n}", t, float(np.max(np.abs(f / limit - 1.0))))
     theory = float(np.max(np.abs(limit / irvine - 1.0)))
     vs_theory.notes.append(
         f"lambda^2 = {lam2:.2f}, sag/span = {sag / span:.4f}; Irvine's 4 lowest: "
-        + ", ".join(f"{v:.5f}" for v in irvine) + " Hz; our mesh limit: "
+        + ", ".join(f"{v:.5f}" for v in irvine)
+        + " Hz; our mesh limit: "
         + ", ".join(f"{v:.5f}" for v in limit)
         + f" Hz: they differ by {theory:.1e}, the order of the (sag/span)^2 terms "
-          "Irvine's theory drops")
-    vs_mesh.notes.append("reference: (4 f_2560 - f_1280) / 3 on uniform meshes; the tension "
-                         "of this shallow cable is nearly uniform, so the graded mesh is "
-                         "nearly the uniform one")
+        "Irvine's theory drops"
+    )
+    vs_mesh.notes.append(
+        "reference: (4 f_2560 - f_1280) / 3 on uniform meshes; the tension "
+        "of this shallow cable is nearly uniform, so the graded mesh is "
+        "nearly the uniform one"
+    )
     return [vs_theory, vs_mesh]

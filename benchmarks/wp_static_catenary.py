@@ -48,16 +48,30 @@ def problem(tolerance: float = 1e-12):  # noqa: ANN201
         return np.array([float(v)])
 
     line = LineModel(
-        length=one(L), weight=one(W), mass=one(MASS), axial_stiffness=one(EA),
-        diameter=one(0.02), drag_normal=one(1.2), drag_tangential=one(0.01),
-        added_mass_normal=one(1.0), added_mass_tangential=one(0.0),
-        bending_stiffness=one(0.0), damping_ratio=one(0.0), attachment_s=np.zeros(0),
-        attachment_force=np.zeros((0, 3)), attachment_mass=np.zeros(0),
-        attachment_volume=np.zeros(0))
-    return StaticProblem(line=line, medium=Medium(density=0.0, gravity=G),
-                         end_a=EndCondition(kind="fixed", position=np.zeros(3)),
-                         end_b=EndCondition(kind="fixed", position=np.array([SPAN, 0.0, RISE])),
-                         n_nodes=101, tolerance=tolerance)
+        length=one(L),
+        weight=one(W),
+        mass=one(MASS),
+        axial_stiffness=one(EA),
+        diameter=one(0.02),
+        drag_normal=one(1.2),
+        drag_tangential=one(0.01),
+        added_mass_normal=one(1.0),
+        added_mass_tangential=one(0.0),
+        bending_stiffness=one(0.0),
+        damping_ratio=one(0.0),
+        attachment_s=np.zeros(0),
+        attachment_force=np.zeros((0, 3)),
+        attachment_mass=np.zeros(0),
+        attachment_volume=np.zeros(0),
+    )
+    return StaticProblem(
+        line=line,
+        medium=Medium(density=0.0, gravity=G),
+        end_a=EndCondition(kind="fixed", position=np.zeros(3)),
+        end_b=EndCondition(kind="fixed", position=np.array([SPAN, 0.0, RISE])),
+        n_nodes=101,
+        tolerance=tolerance,
+    )
 
 
 def pipeline_overhead(repeats: int) -> tuple[float, float]:
@@ -71,12 +85,20 @@ def pipeline_overhead(repeats: int) -> tuple[float, float]:
     from cablestudy.problem import static_problem
     from cablestudy.statics import STATIC_SOLVERS
 
-    data = {"name": "bench", "environment": {"fluid": "vacuum", "gravity": G},
-            "line": {"segments": [{"length": L, "diameter": 0.02, "mass_per_length": MASS,
-                                   "axial_stiffness": EA}]},
-            "ends": {"a": {"kind": "fixed", "position": [0.0, 0.0, 0.0]},
-                     "b": {"kind": "fixed", "position": [SPAN, 0.0, RISE]}},
-            "analysis": {"static": {"method": "catenary", "nodes": 101, "tolerance": 1e-12}}}
+    data = {
+        "name": "bench",
+        "environment": {"fluid": "vacuum", "gravity": G},
+        "line": {
+            "segments": [
+                {"length": L, "diameter": 0.02, "mass_per_length": MASS, "axial_stiffness": EA}
+            ]
+        },
+        "ends": {
+            "a": {"kind": "fixed", "position": [0.0, 0.0, 0.0]},
+            "b": {"kind": "fixed", "position": [SPAN, 0.0, RISE]},
+        },
+        "analysis": {"static": {"method": "catenary", "nodes": 101, "tolerance": 1e-12}},
+    }
     _, cases = expand_cases(parse_study_text(yaml.safe_dump(data), "<bench>"))
 
     def whole() -> None:
@@ -85,8 +107,7 @@ def pipeline_overhead(repeats: int) -> tuple[float, float]:
 
     prob = static_problem(cases[0].study)
     solve = STATIC_SOLVERS["catenary"].solve
-    return (median_time(whole, repeats=repeats), median_time(lambda: solve(prob),
-                                                             repeats=repeats))
+    return (median_time(whole, repeats=repeats), median_time(lambda: solve(prob), repeats=repeats))
 
 
 def run(quick: bool = False) -> WorkPrecision:
@@ -111,34 +132,49 @@ def run(quick: bool = False) -> WorkPrecision:
     c = wp.curve("cablestudy analytic (Irvine, Newton)")
     for tol in (1e-4, 1e-8, 1e-12):
         r = solve_between((0, 0, 0), (SPAN, 0, RISE), L, W, EA, s, tolerance=tol)
-        c.add(f"tol={tol:g}", median_time(
-            lambda tol=tol: solve_between((0, 0, 0), (SPAN, 0, RISE), L, W, EA, s,
-                                          tolerance=tol), repeats=repeats),
-            err_of(r.force_a, r.force_b))
+        c.add(
+            f"tol={tol:g}",
+            median_time(
+                lambda tol=tol: solve_between(
+                    (0, 0, 0), (SPAN, 0, RISE), L, W, EA, s, tolerance=tol
+                ),
+                repeats=repeats,
+            ),
+            err_of(r.force_a, r.force_b),
+        )
 
     c = wp.curve("cablestudy catenary (semi-analytic)")
     for tol in (1e-4, 1e-6, 1e-8, 1e-10, 1e-12):
         prob = problem(tol)
         r = STATIC_SOLVERS["catenary"].solve(prob)
         assert r.status == 0, r.message
-        c.add(f"tolerance={tol:g}", median_time(
-            lambda prob=prob: STATIC_SOLVERS["catenary"].solve(prob), repeats=repeats),
-            err_of(r.force_a, r.force_b))
+        c.add(
+            f"tolerance={tol:g}",
+            median_time(lambda prob=prob: STATIC_SOLVERS["catenary"].solve(prob), repeats=repeats),
+            err_of(r.force_a, r.force_b),
+        )
 
     c = wp.curve("cablestudy shooting (ODE, DOP853)")
-    for rtol in ((1e-6, 1e-9, 1e-12) if quick else (1e-6, 1e-8, 1e-10, 1e-12)):
+    for rtol in (1e-6, 1e-9, 1e-12) if quick else (1e-6, 1e-8, 1e-10, 1e-12):
         solver, prob = ShootingSolver(rtol=rtol), problem(1e-12)
         r = solver.solve(prob)
         assert r.status == 0, r.message
-        c.add(f"rtol={rtol:g}", median_time(lambda solver=solver, prob=prob: solver.solve(prob),
-                                            repeats=repeats), err_of(r.force_a, r.force_b))
+        c.add(
+            f"rtol={rtol:g}",
+            median_time(lambda solver=solver, prob=prob: solver.solve(prob), repeats=repeats),
+            err_of(r.force_a, r.force_b),
+        )
 
     whole, solve = pipeline_overhead(repeats)
-    over = (f"overhead {_fmt(whole - solve)} per case" if whole > solve
-            else "overhead below the timing noise")
+    over = (
+        f"overhead {_fmt(whole - solve)} per case"
+        if whole > solve
+        else "overhead below the timing noise"
+    )
     wp.notes.append(
         f"one case through the pipeline (evaluate_case: config -> problem -> catenary solve "
-        f"-> record, 101 nodes) takes {_fmt(whole)}; the solve alone {_fmt(solve)}: {over}")
+        f"-> record, 101 nodes) takes {_fmt(whole)}; the solve alone {_fmt(solve)}: {over}"
+    )
     try:
         from moorpy.Catenary import catenary
     except ImportError:
@@ -150,7 +186,12 @@ def run(quick: bool = False) -> WorkPrecision:
         # MoorPy returns (fAH, fAV, fBH, fBV) of the line's end forces, positive up:
         # in our tension-vector terms (H, V_A, V_B) = (fAH, fAV, -fBV)
         err = float(np.max(np.abs(np.array([fAH, fAV, -fBV]) - ref)) / tension)
-        p.add(f"Tol={tol:g}", median_time(
-            lambda tol=tol: catenary(SPAN, RISE, L, EA, W, CB=-1e3, Tol=tol, MaxIter=200),
-            repeats=repeats), err)
+        p.add(
+            f"Tol={tol:g}",
+            median_time(
+                lambda tol=tol: catenary(SPAN, RISE, L, EA, W, CB=-1e3, Tol=tol, MaxIter=200),
+                repeats=repeats,
+            ),
+            err,
+        )
     return wp

@@ -39,13 +39,23 @@ from cablestudy.statics.shooting import ShootingSolver
 
 FIG8 = {
     "name": "bench-fig8",
-    "environment": {"fluid": "water",
-                    "current": [{"z": 0.0, "speed": 0.1, "heading_deg": 60.0}]},
-    "line": {"segments": [{"length": 300.0, "diameter": 0.032, "weight_in_fluid": 0.5,
-                           "axial_stiffness": 1.608e8, "drag_normal": 1.2,
-                           "drag_tangential": 0.01}]},
-    "ends": {"a": {"kind": "fixed", "position": [0.0, 0.0, -50.0]},
-             "b": {"kind": "fixed", "position": [200.0, 0.0, -150.0]}},
+    "environment": {"fluid": "water", "current": [{"z": 0.0, "speed": 0.1, "heading_deg": 60.0}]},
+    "line": {
+        "segments": [
+            {
+                "length": 300.0,
+                "diameter": 0.032,
+                "weight_in_fluid": 0.5,
+                "axial_stiffness": 1.608e8,
+                "drag_normal": 1.2,
+                "drag_tangential": 0.01,
+            }
+        ]
+    },
+    "ends": {
+        "a": {"kind": "fixed", "position": [0.0, 0.0, -50.0]},
+        "b": {"kind": "fixed", "position": [200.0, 0.0, -150.0]},
+    },
     "analysis": {"static": {"nodes": 61, "tolerance": 1e-12}},
 }
 
@@ -55,8 +65,10 @@ def towed() -> dict:
     d["name"] = "bench-towed"
     d["environment"]["current"] = [{"z": 0.0, "speed": 1.0, "heading_deg": 180.0}]
     d["line"]["segments"][0].update(length=200.0, weight_in_fluid=3.0)
-    d["ends"] = {"a": {"kind": "fixed", "position": [0.0, 0.0, 0.0]},
-                 "b": {"kind": "force", "force": [-50.0, 20.0, -400.0]}}
+    d["ends"] = {
+        "a": {"kind": "fixed", "position": [0.0, 0.0, 0.0]},
+        "b": {"kind": "force", "force": [-50.0, 20.0, -400.0]},
+    }
     return d
 
 
@@ -79,37 +91,50 @@ def difference(a: dict[str, np.ndarray], b: StaticResult) -> float:
 
 def fields(r: StaticResult) -> dict[str, np.ndarray]:
     assert r.status == 0, r.message
-    return {"force_a": r.force_a, "force_b": r.force_b, "position": r.position,
-            "tension": r.tension}
+    return {
+        "force_a": r.force_a,
+        "force_b": r.force_b,
+        "position": r.position,
+        "tension": r.tension,
+    }
 
 
 def one_case(label: str, title: str, data: dict, quick: bool) -> WorkPrecision:
     repeats = 3 if quick else 5
-    wp = WorkPrecision(name=f"static_drag_{label}", title=title,
-                       error_name="max error: end forces & tension / T_end, profile / L [-]")
+    wp = WorkPrecision(
+        name=f"static_drag_{label}",
+        title=title,
+        error_name="max error: end forces & tension / T_end, profile / L [-]",
+    )
     ref = ShootingSolver(rtol=1e-13).solve(problem(data, "shooting"))
     assert ref.status == 0, ref.message
     cat = STATIC_SOLVERS["catenary"]
     x800 = fields(cat.solve(problem(data, "catenary", drag_elements=800)))
     x1600 = fields(cat.solve(problem(data, "catenary", drag_elements=1600)))
     extrap = {k: (4.0 * x1600[k] - x800[k]) / 3.0 for k in x1600}
-    wp.notes.append(f"reference shooting rtol 1e-13 vs catenary Richardson-extrapolated "
-                    f"from N = 800, 1600: difference {difference(extrap, ref):.1e}")
+    wp.notes.append(
+        f"reference shooting rtol 1e-13 vs catenary Richardson-extrapolated "
+        f"from N = 800, 1600: difference {difference(extrap, ref):.1e}"
+    )
     c = wp.curve("cablestudy catenary (semi-analytic)")
-    for n in ((25, 100, 400) if quick else (25, 50, 100, 200, 400, 800, 1600)):
+    for n in (25, 100, 400) if quick else (25, 50, 100, 200, 400, 800, 1600):
         prob = problem(data, "catenary", drag_elements=n)
         r = cat.solve(prob)
-        c.add(f"drag_elements={n}",
-              median_time(lambda prob=prob: cat.solve(prob), repeats=repeats,
-                          min_time=0.02), difference(fields(r), ref))
+        c.add(
+            f"drag_elements={n}",
+            median_time(lambda prob=prob: cat.solve(prob), repeats=repeats, min_time=0.02),
+            difference(fields(r), ref),
+        )
     c = wp.curve("cablestudy shooting (ODE, DOP853)")
     prob = problem(data, "shooting")
-    for rtol in ((1e-6, 1e-9, 1e-12) if quick else (1e-6, 1e-8, 1e-10, 1e-11, 1e-12)):
+    for rtol in (1e-6, 1e-9, 1e-12) if quick else (1e-6, 1e-8, 1e-10, 1e-11, 1e-12):
         solver = ShootingSolver(rtol=rtol)
         r = solver.solve(prob)
-        c.add(f"rtol={rtol:g}",
-              median_time(lambda solver=solver: solver.solve(prob), repeats=repeats,
-                          min_time=0.02), difference(fields(r), ref))
+        c.add(
+            f"rtol={rtol:g}",
+            median_time(lambda solver=solver: solver.solve(prob), repeats=repeats, min_time=0.02),
+            difference(fields(r), ref),
+        )
     if label == "fig8":
         moorpy_fig8(wp, ref, repeats)
     return wp
@@ -139,9 +164,15 @@ def moorpy_fig8(wp: WorkPrecision, ref: StaticResult, repeats: int) -> None:
             ms = moorpy.System(depth=1000.0, rho=rho, g=g)
             ms.currentMod = 1
             ms.current = np.array([0.1 * np.cos(heading), 0.1 * np.sin(heading), 0.0])
-            ms.setLineType(dnommm=d * 1000, name="c", mass=mass, d_vol=d,
-                           EA=seg["axial_stiffness"], Cd=seg["drag_normal"],
-                           CdAx=seg["drag_tangential"])
+            ms.setLineType(
+                dnommm=d * 1000,
+                name="c",
+                mass=mass,
+                d_vol=d,
+                EA=seg["axial_stiffness"],
+                Cd=seg["drag_normal"],
+                CdAx=seg["drag_tangential"],
+            )
             ms.addPoint(1, [0.0, 0.0, -50.0])
             ms.addPoint(1, [200.0, 0.0, -150.0])
             ms.addLine(seg["length"], "c", nSegs=60)
@@ -160,19 +191,27 @@ def moorpy_fig8(wp: WorkPrecision, ref: StaticResult, repeats: int) -> None:
                 # fA, fB: forces of the line on its end points, as our force_a, force_b
                 fa, fb = np.asarray(line.fA), np.asarray(line.fB)
                 err = max(np.abs(fa - ref.force_a).max(), np.abs(fb - ref.force_b).max())
-                curve.add(f"passes={passes}", median_time(solve, repeats=repeats,
-                                                          min_time=0.02), float(err / scale))
+                curve.add(
+                    f"passes={passes}",
+                    median_time(solve, repeats=repeats, min_time=0.02),
+                    float(err / scale),
+                )
     except Exception as exc:  # noqa: BLE001 - a peer failure is reported, not fatal
         wp.notes.append(f"MoorPy failed on fig8: {type(exc).__name__}: {exc}")
         return
-    wp.notes.append(f"MoorPy's error floor {min(curve.errors):.1e} is its model of current "
-                    "(load from the chord-wise profile, one catenary plane), not a tolerance")
+    wp.notes.append(
+        f"MoorPy's error floor {min(curve.errors):.1e} is its model of current "
+        "(load from the chord-wise profile, one catenary plane), not a tolerance"
+    )
 
 
 def run(quick: bool = False) -> list[WorkPrecision]:
     return [
-        one_case("fig8", "Drag-loaded 3D static line (dodaran Fig. 8, current 0.1 m/s at 60 deg)",
-                 FIG8, quick),
-        one_case("towed", "Drag-dominated towed tether (1 m/s, drag ~15x weight)", towed(),
-                 quick),
+        one_case(
+            "fig8",
+            "Drag-loaded 3D static line (dodaran Fig. 8, current 0.1 m/s at 60 deg)",
+            FIG8,
+            quick,
+        ),
+        one_case("towed", "Drag-dominated towed tether (1 m/s, drag ~15x weight)", towed(), quick),
     ]

@@ -131,8 +131,18 @@ def solve_static(
         _STATIC_CACHE.move_to_end(case.static_hash)
         return cached
     problem = static_problem(case.study)
-    result = STATIC_SOLVERS[case.study.analysis.static.method].solve(problem, deadline=deadline)
-    result = result.check_finite()
+    method = case.study.analysis.static.method
+    solver = STATIC_SOLVERS[method]
+    missing = solver.unsupported(problem)
+    if missing:
+        # the CLI rejects these before any work (check_supported); a caller that skips
+        # that check still gets a failure rather than a solution that ignores an input
+        return StaticResult.failed(
+            np.linspace(0.0, problem.line.total_length, problem.n_nodes),
+            STATUS_NO_SOLUTION,
+            f"static method {method!r} does not support {'; '.join(missing)}",
+        )
+    result = solver.solve(problem, deadline=deadline).check_finite()
     _STATIC_CACHE[case.static_hash] = result
     while len(_STATIC_CACHE) > _STATIC_CACHE_SIZE:
         _STATIC_CACHE.popitem(last=False)

@@ -51,18 +51,34 @@ def _check_physics(ds: xr.Dataset) -> None:
     # the supports carry the whole weight; end tension is the end force's magnitude
     total = ds["force_a"] + ds["force_b"]
     np.testing.assert_allclose(total.sel(component="z"), -w * 100.0, rtol=1e-12)
-    np.testing.assert_allclose(np.hypot(*(ds["force_a"].sel(component=c) for c in "xz")),
-                               ds["tension"].isel(s=0), rtol=1e-12)
+    np.testing.assert_allclose(
+        np.hypot(*(ds["force_a"].sel(component=c) for c in "xz")),
+        ds["tension"].isel(s=0),
+        rtol=1e-12,
+    )
     # the line ends where end B was put
-    np.testing.assert_allclose(ds["x"].isel(s=-1), ds["span"].broadcast_like(ds["x"].isel(s=-1)),
-                               atol=1e-9)
+    np.testing.assert_allclose(
+        ds["x"].isel(s=-1), ds["span"].broadcast_like(ds["x"].isel(s=-1)), atol=1e-9
+    )
 
 
-def test_catenary_in_air_study_through_the_cli(tmp_path: Path,
-                                               capsys: pytest.CaptureFixture[str]) -> None:
+def test_catenary_in_air_study_through_the_cli(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     out = tmp_path / "results"
-    assert main(["run", str(ROOT / "configs" / "catenary-in-air.yaml"), "--out", str(out),
-                 "--scheduler", "synchronous"]) == 0
+    assert (
+        main(
+            [
+                "run",
+                str(ROOT / "configs" / "catenary-in-air.yaml"),
+                "--out",
+                str(out),
+                "--scheduler",
+                "synchronous",
+            ]
+        )
+        == 0
+    )
     ds = xr.load_dataset(out / "catenary-in-air.nc")
     assert ds["x"].dims == ("s",) and ds.sizes["s"] == 101
     assert ds["x"].attrs["units"] == "m" and ds["tension"].attrs["units"] == "N"
@@ -98,16 +114,21 @@ def test_swept_study_on_a_running_scheduler_address(
 ) -> None:
     from dask.distributed import LocalCluster
 
-    with LocalCluster(n_workers=1, threads_per_worker=2, processes=True, protocol="tcp://",
-                      dashboard_address=None, silence_logs=50) as cluster:
+    with LocalCluster(
+        n_workers=1,
+        threads_per_worker=2,
+        processes=True,
+        protocol="tcp://",
+        dashboard_address=None,
+        silence_logs=50,
+    ) as cluster:
         address = cluster.scheduler_address
         assert address.startswith("tcp://")
         ds = _run(tmp_path, capsys, "--scheduler", address)
     _check_physics(ds)
 
 
-def test_unknown_scheduler_is_refused(tmp_path: Path,
-                                      capsys: pytest.CaptureFixture[str]) -> None:
+def test_unknown_scheduler_is_refused(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     cfg = tmp_path / "pipe.yaml"
     cfg.write_text(SWEEP)
     assert main(["run", str(cfg), "--scheduler", "spark"]) == 2

@@ -13,11 +13,20 @@ from cablestudy.config.loader import parse_study_text
 from cablestudy.results import CaseRecord
 
 
-def study_dict(*, length: float = 100.0, b: tuple[float, float, float] = (80.0, 0.0, -20.0),
-               weight: float | None = None, mass: float | None = 2.0, ea: float = 1e8,
-               fluid: Any = "water", method: str = "catenary", current: list | None = None,
-               depth: float | None = None, time_limit: float = 60.0,
-               diameter: float = 0.05) -> dict[str, Any]:
+def study_dict(
+    *,
+    length: float = 100.0,
+    b: tuple[float, float, float] = (80.0, 0.0, -20.0),
+    weight: float | None = None,
+    mass: float | None = 2.0,
+    ea: float = 1e8,
+    fluid: Any = "water",
+    method: str = "catenary",
+    current: list | None = None,
+    depth: float | None = None,
+    time_limit: float = 60.0,
+    diameter: float = 0.05,
+) -> dict[str, Any]:
     seg: dict[str, Any] = {"length": length, "diameter": diameter, "axial_stiffness": ea}
     if weight is not None:
         seg["weight_in_fluid"] = weight
@@ -32,8 +41,10 @@ def study_dict(*, length: float = 100.0, b: tuple[float, float, float] = (80.0, 
         "name": "stress",
         "environment": env,
         "line": {"segments": [seg]},
-        "ends": {"a": {"kind": "fixed", "position": [0.0, 0.0, 0.0]},
-                 "b": {"kind": "fixed", "position": list(b)}},
+        "ends": {
+            "a": {"kind": "fixed", "position": [0.0, 0.0, 0.0]},
+            "b": {"kind": "fixed", "position": list(b)},
+        },
         "analysis": {"static": {"method": method, "nodes": 41}, "time_limit": time_limit},
     }
 

@@ -44,8 +44,11 @@ def dynamic_cases(draw: st.DrawFn) -> dict[str, Any]:
     elev = draw(st.sampled_from([-math.pi / 2, -0.6, 0.0, 0.3, math.pi / 2]))
     d = 0.05
     mass = draw(st.floats(0.5, 50.0))
-    weight = {"heavy": (mass - 1025.0 * math.pi * d * d / 4) * G,
-              "buoyant": -draw(st.floats(0.1, 20.0)), "weightless": 0.0}[kind]
+    weight = {
+        "heavy": (mass - 1025.0 * math.pi * d * d / 4) * G,
+        "buoyant": -draw(st.floats(0.1, 20.0)),
+        "weightless": 0.0,
+    }[kind]
     # stretched chords need the strain to stay modest (a 1e3 N line over a 0.05 % stretch
     # is still fine); the chord is along elev in the x-z plane
     chord = ratio * L
@@ -56,19 +59,34 @@ def dynamic_cases(draw: st.DrawFn) -> dict[str, Any]:
     freq = f1 * 10 ** draw(st.floats(-1.0, math.log10(50.0)))
     amp = L * 10 ** draw(st.floats(-4.0, -1.0))
     direction = draw(st.sampled_from([(1.0, 0.0, 0.0), (0.0, 0.0, 1.0), (0.0, 1.0, 0.0)]))
-    data = study_dict(length=L, b=b, weight=weight, mass=mass, ea=ea, diameter=d,
-                      method="catenary", time_limit=LIMIT)
+    data = study_dict(
+        length=L,
+        b=b,
+        weight=weight,
+        mass=mass,
+        ea=ea,
+        diameter=d,
+        method="catenary",
+        time_limit=LIMIT,
+    )
     data["analysis"]["dynamic"] = {
-        "excitation": {"end": "b", "direction": list(direction), "amplitude": amp,
-                       "frequency": freq},
-        "elements": draw(st.integers(3, 12)), "points_per_period": draw(st.sampled_from([16, 32])),
-        "ramp_periods": 1.0, "duration": 2.0 / freq,
+        "excitation": {
+            "end": "b",
+            "direction": list(direction),
+            "amplitude": amp,
+            "frequency": freq,
+        },
+        "elements": draw(st.integers(3, 12)),
+        "points_per_period": draw(st.sampled_from([16, 32])),
+        "ramp_periods": 1.0,
+        "duration": 2.0 / freq,
     }
     return data
 
 
-@settings(max_examples=100, deadline=None, derandomize=True,
-          suppress_health_check=[HealthCheck.too_slow])
+@settings(
+    max_examples=100, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow]
+)
 @given(dynamic_cases())
 def test_short_dynamic_runs_are_honest(data: dict[str, Any]) -> None:
     t0 = time.monotonic()

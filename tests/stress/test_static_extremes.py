@@ -85,8 +85,9 @@ def test_extreme_static_case(name: str, overrides: dict, method: str) -> None:
     expected = np.array([0.0, 0.0, -w * seg["length"]])
     np.testing.assert_allclose(total, expected, atol=1e-7 * scale)
     end = np.array([rec.data["x"][-1], rec.data["y"][-1], rec.data["z"][-1]])
-    np.testing.assert_allclose(end, data["ends"]["b"]["position"],
-                               atol=1e-8 * max(seg["length"], 1.0))
+    np.testing.assert_allclose(
+        end, data["ends"]["b"]["position"], atol=1e-8 * max(seg["length"], 1.0)
+    )
 
 
 def test_weightless_slack_line_is_rejected_before_work() -> None:
@@ -100,17 +101,32 @@ def test_weightless_slack_line_is_rejected_before_work() -> None:
 
 # current extremes: drag far above the weight, and a current that reverses with depth
 CURRENT_EXTREMES = [
-    ("drag-250x-weight", {"weight": 0.5, "mass": None, "diameter": 0.05,
-                          "b": (60.0, 0.0, -40.0),
-                          "current": [{"z": 0.0, "speed": 2.0, "heading_deg": 90.0}]}),
-    ("current-reversing-with-depth", {"b": (60.0, 20.0, -60.0), "current": [
-        {"z": -100.0, "speed": 1.0, "heading_deg": 180.0},
-        {"z": 0.0, "speed": 1.0, "heading_deg": 0.0}]}),
+    (
+        "drag-250x-weight",
+        {
+            "weight": 0.5,
+            "mass": None,
+            "diameter": 0.05,
+            "b": (60.0, 0.0, -40.0),
+            "current": [{"z": 0.0, "speed": 2.0, "heading_deg": 90.0}],
+        },
+    ),
+    (
+        "current-reversing-with-depth",
+        {
+            "b": (60.0, 20.0, -60.0),
+            "current": [
+                {"z": -100.0, "speed": 1.0, "heading_deg": 180.0},
+                {"z": 0.0, "speed": 1.0, "heading_deg": 0.0},
+            ],
+        },
+    ),
 ]
 
 
-@pytest.mark.parametrize(("name", "overrides"), CURRENT_EXTREMES,
-                         ids=[c[0] for c in CURRENT_EXTREMES])
+@pytest.mark.parametrize(
+    ("name", "overrides"), CURRENT_EXTREMES, ids=[c[0] for c in CURRENT_EXTREMES]
+)
 def test_current_extremes_both_solvers_agree(name: str, overrides: dict) -> None:
     """Both drag-capable solvers converge, and agree: the semi-analytic solver's
     lumping error is O(h^2); at 400 drag elements it was 2.8e-5 of the end tension

@@ -195,16 +195,18 @@ def test_buoyant_light_line_in_strong_sheared_current() -> None:
     of intermediate steps) and the solve failed; intermediate steps now hand their best
     iterate to the next step."""
     L = 221.22999672958395
-    vel = np.array([[1.112553405138498, 0.43793058739907026, 0.0],
-                    [1.1956413670766672, 0.0, 0.0]])
+    vel = np.array([[1.112553405138498, 0.43793058739907026, 0.0], [1.1956413670766672, 0.0, 0.0]])
     prob = StaticProblem(
         line=make_line(L, -0.2, 1e7, []),
-        medium=Medium(density=1025.0, gravity=9.8, current_z=np.array([-L - 10.0, 10.0]),
-                      current_velocity=vel),
+        medium=Medium(
+            density=1025.0, gravity=9.8, current_z=np.array([-L - 10.0, 10.0]), current_velocity=vel
+        ),
         end_a=EndCondition(kind="fixed", position=np.zeros(3)),
-        end_b=EndCondition(kind="fixed",
-                           position=np.array([130.09207548635544, 0.0, 26.370969241236015])),
-        n_nodes=31, tolerance=1e-9,
+        end_b=EndCondition(
+            kind="fixed", position=np.array([130.09207548635544, 0.0, 26.370969241236015])
+        ),
+        n_nodes=31,
+        tolerance=1e-9,
     )
     check_drag_balance(prob)
 

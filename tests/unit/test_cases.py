@@ -94,16 +94,22 @@ def test_case_is_frozen_and_hashes_are_content_hashes() -> None:
         cases[0].hash = "x"  # type: ignore[misc]
     assert len({c.hash for c in cases}) == 2
     # stable across expansions; name and description do not enter the hash
-    _, again = expand("sweep:\n  line.segments.0.axial_stiffness: [1.0e6, 1.0e7]\n",
-                      BASE.replace("name: sw", "name: other").replace("first", "second"))
+    _, again = expand(
+        "sweep:\n  line.segments.0.axial_stiffness: [1.0e6, 1.0e7]\n",
+        BASE.replace("name: sw", "name: other").replace("first", "second"),
+    )
     assert [c.hash for c in cases] == [c.hash for c in again]
     # an explicit default is the same case as an omitted one
-    _, explicit = expand("sweep:\n  line.segments.0.axial_stiffness: [1.0e6, 1.0e7]\n",
-                         BASE.replace("diameter: 0.02,", "diameter: 0.02, drag_normal: 1.2,"))
+    _, explicit = expand(
+        "sweep:\n  line.segments.0.axial_stiffness: [1.0e6, 1.0e7]\n",
+        BASE.replace("diameter: 0.02,", "diameter: 0.02, drag_normal: 1.2,"),
+    )
     assert [c.hash for c in cases] == [c.hash for c in explicit]
     # any setting that affects the result changes it
-    _, other = expand("sweep:\n  line.segments.0.axial_stiffness: [1.0e6, 1.0e7]\n",
-                      BASE.replace("nodes: 11", "nodes: 12"))
+    _, other = expand(
+        "sweep:\n  line.segments.0.axial_stiffness: [1.0e6, 1.0e7]\n",
+        BASE.replace("nodes: 11", "nodes: 12"),
+    )
     assert not {c.hash for c in cases} & {c.hash for c in other}
 
 
@@ -137,8 +143,10 @@ def test_every_case_holds_its_coordinates(sizes: list[int]) -> None:
     """For any sweep, the cases are the full product and each case's study holds, at
     each swept path, the value of its coordinate."""
     paths = list(PATHS)[: len(sizes)]
-    lines = [f"  {p}: [{', '.join(str(90.0 + 2.0 * i) for i in range(n))}]"
-             for p, n in zip(paths, sizes, strict=False)]
+    lines = [
+        f"  {p}: [{', '.join(str(90.0 + 2.0 * i) for i in range(n))}]"
+        for p, n in zip(paths, sizes, strict=False)
+    ]
     axes, cases = expand("sweep:\n" + "\n".join(lines) + "\n")
     assert len(cases) == int(np.prod(sizes))
     assert len({c.index for c in cases}) == len(cases)

@@ -21,24 +21,38 @@ G = 9.80665
 
 def two_material_line() -> LineModel:
     """A chain (heavy, stiff) then a rope (light), with a 5 kg clump between them."""
+
     def arr(a: float, b: float) -> np.ndarray:
         return np.array([a, b])
+
     return LineModel(
-        length=arr(4.0, 6.0), weight=arr(50.0, 5.0), mass=arr(5.6, 0.9),
-        axial_stiffness=arr(5e7, 2e6), diameter=arr(0.03, 0.02),
-        drag_normal=arr(2.4, 1.2), drag_tangential=arr(0.4, 0.01),
-        added_mass_normal=arr(1.0, 1.0), added_mass_tangential=arr(0.0, 0.0),
-        bending_stiffness=arr(0.0, 0.0), damping_ratio=arr(0.0, 0.1),
-        attachment_s=np.array([4.0]), attachment_force=np.array([[0.0, 0.0, -5.0 * G]]),
-        attachment_mass=np.array([5.0]), attachment_volume=np.array([0.0]),
+        length=arr(4.0, 6.0),
+        weight=arr(50.0, 5.0),
+        mass=arr(5.6, 0.9),
+        axial_stiffness=arr(5e7, 2e6),
+        diameter=arr(0.03, 0.02),
+        drag_normal=arr(2.4, 1.2),
+        drag_tangential=arr(0.4, 0.01),
+        added_mass_normal=arr(1.0, 1.0),
+        added_mass_tangential=arr(0.0, 0.0),
+        bending_stiffness=arr(0.0, 0.0),
+        damping_ratio=arr(0.0, 0.1),
+        attachment_s=np.array([4.0]),
+        attachment_force=np.array([[0.0, 0.0, -5.0 * G]]),
+        attachment_mass=np.array([5.0]),
+        attachment_volume=np.array([0.0]),
     )
 
 
 def water(current: bool = False) -> Medium:
     if not current:
         return Medium(density=1025.0, gravity=G)
-    return Medium(density=1025.0, gravity=G, current_z=np.array([-20.0, 0.0]),
-                  current_velocity=np.array([[0.2, 0.0, 0.0], [0.8, 0.3, 0.0]]))
+    return Medium(
+        density=1025.0,
+        gravity=G,
+        current_z=np.array([-20.0, 0.0]),
+        current_velocity=np.array([[0.2, 0.0, 0.0], [0.8, 0.3, 0.0]]),
+    )
 
 
 def test_lumping_conserves_mass_and_weight_and_keeps_segment_boundaries() -> None:
@@ -88,16 +102,14 @@ def test_tangents_match_finite_differences(current: bool) -> None:
     x = np.vstack([np.zeros(3), np.cumsum(steps * dirs, axis=0)]) + np.array([0, 0, -5.0])
     v = 0.3 * rng.normal(size=x.shape)
     w = evaluate(disc, x, v)
-    F, K_d, K_o, C_d, C_o = (w.F.copy(), w.K_d.copy(), w.K_o.copy(), w.C_d.copy(),
-                             w.C_o.copy())
+    F, K_d, K_o, C_d, C_o = (w.F.copy(), w.K_d.copy(), w.K_o.copy(), w.C_d.copy(), w.C_o.copy())
     assert np.all(w.strain > 0.0)  # all taut: the tangents are smooth here
     n = disc.n_nodes
     # central differences: truncation O(h^2) with h = 1e-7 m against a stiffness of
     # EA/l ~ 5e7 N/m; rounding ~ 1e-16 * |F| / h; 1e-5 relative to the largest entry
     for i in (2, 4, 5):
         for c in range(3):
-            for which, blocks_d, blocks_o, step in (("x", K_d, K_o, 1e-7),
-                                                    ("v", C_d, C_o, 1e-6)):
+            for which, blocks_d, blocks_o, step in (("x", K_d, K_o, 1e-7), ("v", C_d, C_o, 1e-6)):
                 xp, xm, vp, vm = x.copy(), x.copy(), v.copy(), v.copy()
                 if which == "x":
                     xp[i, c] += step
@@ -144,10 +156,17 @@ def test_nodal_drag_is_the_shared_morison_drag_times_the_tributary_length() -> N
     trib[1:] += l0 / 2
     seg = (disc.s >= 4.0 - 1e-12).astype(int)  # nodes in the rope (boundary node: mixed)
     interior = [k for k in range(1, disc.n_nodes - 1) if abs(disc.s[k] - 4.0) > 1e-9]
-    expected = drag_per_length(
-        rel, tangent, density=1025.0, diameter=line.diameter[seg],
-        drag_normal=line.drag_normal[seg], drag_tangential=line.drag_tangential[seg],
-    ) * trib[:, None]
+    expected = (
+        drag_per_length(
+            rel,
+            tangent,
+            density=1025.0,
+            diameter=line.diameter[seg],
+            drag_normal=line.drag_normal[seg],
+            drag_tangential=line.drag_tangential[seg],
+        )
+        * trib[:, None]
+    )
     np.testing.assert_allclose(drag[interior], expected[interior], rtol=1e-10, atol=1e-12)
 
 
@@ -159,10 +178,10 @@ def test_block_tridiagonal_solver_matches_dense() -> None:
     O = rng.normal(size=(m - 1, 3, 3))  # noqa: E741
     J = np.zeros((3 * m, 3 * m))
     for i in range(m):
-        J[3 * i:3 * i + 3, 3 * i:3 * i + 3] = D[i]
+        J[3 * i : 3 * i + 3, 3 * i : 3 * i + 3] = D[i]
     for i in range(m - 1):
-        J[3 * i:3 * i + 3, 3 * i + 3:3 * i + 6] = O[i]
-        J[3 * i + 3:3 * i + 6, 3 * i:3 * i + 3] = O[i].T
+        J[3 * i : 3 * i + 3, 3 * i + 3 : 3 * i + 6] = O[i]
+        J[3 * i + 3 : 3 * i + 6, 3 * i : 3 * i + 3] = O[i].T
     b = rng.normal(size=(m, 3))
     out, Dinv, y = np.zeros((m, 3)), np.zeros((m, 3, 3)), np.zeros((m, 3))
     assert solve_block_tridiagonal(D, O, b, out, Dinv, y)
@@ -170,12 +189,22 @@ def test_block_tridiagonal_solver_matches_dense() -> None:
 
 
 def test_end_motion_ramp_and_derivatives() -> None:
-    table = TableMotion(end=0, direction=np.array([0.0, 0.0, 1.0]),
-                        times=np.linspace(0.0, 2.0, 41),
-                        values=0.1 * np.sin(np.pi * np.linspace(0.0, 2.0, 41)), periodic=True)
-    motion = EndMotion(harmonic_end=np.array([1]), harmonic_direction=np.array([[1.0, 0, 0]]),
-                       harmonic_amplitude=np.array([0.05]), harmonic_frequency=np.array([0.7]),
-                       harmonic_phase=np.array([0.3]), tables=(table,), ramp_time=3.0)
+    table = TableMotion(
+        end=0,
+        direction=np.array([0.0, 0.0, 1.0]),
+        times=np.linspace(0.0, 2.0, 41),
+        values=0.1 * np.sin(np.pi * np.linspace(0.0, 2.0, 41)),
+        periodic=True,
+    )
+    motion = EndMotion(
+        harmonic_end=np.array([1]),
+        harmonic_direction=np.array([[1.0, 0, 0]]),
+        harmonic_amplitude=np.array([0.05]),
+        harmonic_frequency=np.array([0.7]),
+        harmonic_phase=np.array([0.3]),
+        tables=(table,),
+        ramp_time=3.0,
+    )
     d0, v0, a0 = motion.at(0.0)
     assert np.all(d0 == 0.0) and np.all(v0 == 0.0)  # starts at rest
     # velocity and acceleration are the derivatives of the displacement (central

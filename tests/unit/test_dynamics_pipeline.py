@@ -23,7 +23,10 @@ ends:
   b: {kind: fixed, position: [10.792, 0.0, 0.0]}
 """
 
-CONTRACT = "name: contract\n" + CABLE + """
+CONTRACT = (
+    "name: contract\n"
+    + CABLE
+    + """
 analysis:
   static: {method: analytic}
   dynamic:
@@ -34,13 +37,16 @@ sweep:
   analysis.dynamic.excitation.amplitude: [0.025, 0.05]
   analysis.dynamic.excitation.frequency: {start: 0.3, stop: 0.6, num: 2}
 """
+)
 
 
 def _run(tmp_path: Path, text: str, name: str) -> xr.Dataset:
     cfg = tmp_path / f"{name}.yaml"
     cfg.write_text(text)
-    assert main(["run", str(cfg), "--out", str(tmp_path), "--scheduler", "synchronous",
-                 "--no-cache"]) == 0
+    assert (
+        main(["run", str(cfg), "--out", str(tmp_path), "--scheduler", "synchronous", "--no-cache"])
+        == 0
+    )
     return xr.load_dataset(tmp_path / f"{name}.nc")
 
 
@@ -57,9 +63,18 @@ def test_contract_study_runs_to_netcdf(tmp_path: Path) -> None:
     # the swing grows with the amplitude (taut, far below resonance: about linearly)
     swing = (ds["tension_max"] - ds["tension_min"]).values
     assert np.all(swing[1] > 1.5 * swing[0])
-    for name in ("tension_max", "tension_min", "tension_mean", "tension_static",
-                 "tension_max_line", "dynamic_steps", "newton_iterations",
-                 "rejected_steps", "periods", "steady_converged"):
+    for name in (
+        "tension_max",
+        "tension_min",
+        "tension_mean",
+        "tension_static",
+        "tension_max_line",
+        "dynamic_steps",
+        "newton_iterations",
+        "rejected_steps",
+        "periods",
+        "steady_converged",
+    ):
         assert "units" in ds[name].attrs and ds[name].attrs["long_name"]
     assert "time" not in ds.dims  # no histories unless asked for
     # the along-line maximum is at least the end maximum
@@ -86,7 +101,10 @@ def test_history_of_a_moved_end_is_its_prescribed_motion(tmp_path: Path) -> None
     times = np.linspace(0.0, 2.0, 41)
     bump = 0.02 * np.sin(np.pi * times / 2.0) ** 2
     table = ", ".join(f"[{t:.4f}, {u:.8f}]" for t, u in zip(times, bump, strict=True))
-    text = "name: two-ends\n" + CABLE + f"""
+    text = (
+        "name: two-ends\n"
+        + CABLE
+        + f"""
 analysis:
   static: {{method: analytic}}
   dynamic:
@@ -98,6 +116,7 @@ analysis:
     max_periods: 12
     history: {{points: [0.0, 5.4887], periods: 1.0, samples_per_period: 32}}
 """
+    )
     ds = _run(tmp_path, text, "two-ends")
     assert int(ds["status"]) == 0, str(ds["message"].values)
     assert ds["history_displacement"].dims == ("point", "time", "component")
@@ -116,9 +135,12 @@ analysis:
 
 
 def test_a_response_that_has_not_settled_is_flagged(tmp_path: Path) -> None:
-    text = CONTRACT.replace("    elements: 10", "    elements: 10\n    ramp_periods: 1.0\n"
-                            "    min_periods: 2\n    max_periods: 3\n"
-                            "    steady_tolerance: 1.0e-12")
+    text = CONTRACT.replace(
+        "    elements: 10",
+        "    elements: 10\n    ramp_periods: 1.0\n"
+        "    min_periods: 2\n    max_periods: 3\n"
+        "    steady_tolerance: 1.0e-12",
+    )
     text = text.split("sweep:")[0]
     ds = _run(tmp_path, text.replace("name: contract", "name: unsettled"), "unsettled")
     assert int(ds["status"]) == 0
@@ -139,10 +161,13 @@ def test_excitation_errors_name_the_field_once() -> None:
     assert "missing" in problem
 
 
-def test_dynamics_needs_fixed_or_moved_ends(tmp_path: Path,
-                                           capsys: pytest.CaptureFixture[str]) -> None:
-    text = CONTRACT.replace("b: {kind: fixed, position: [10.792, 0.0, 0.0]}",
-                            "b: {kind: force, force: [100.0, 0.0, 20.0]}")
+def test_dynamics_needs_fixed_or_moved_ends(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    text = CONTRACT.replace(
+        "b: {kind: fixed, position: [10.792, 0.0, 0.0]}",
+        "b: {kind: force, force: [100.0, 0.0, 20.0]}",
+    )
     cfg = tmp_path / "towed.yaml"
     cfg.write_text(text)
     assert main(["run", str(cfg), "--out", str(tmp_path), "--scheduler", "synchronous"]) == 2

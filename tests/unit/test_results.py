@@ -39,12 +39,17 @@ def _records(cases, fail_index=(1, 2)):  # noqa: ANN001, ANN202
         ok = c.index != fail_index
         k = float(c.index[0] * 10 + c.index[1])
         out[c.hash] = CaseRecord(
-            hash=c.hash, index=c.index, status=0 if ok else 2,
-            message="" if ok else "singular Jacobian", wall_time=0.001,
-            data={"arc_length": np.array([0.0, 50.0, 100.0]),
-                  "tension": np.array([k, k + 1, k + 2]) if ok else np.full(3, np.nan),
-                  "force_a": np.array([k, 0.0, -k]),
-                  "static_iterations": np.asarray(5)},
+            hash=c.hash,
+            index=c.index,
+            status=0 if ok else 2,
+            message="" if ok else "singular Jacobian",
+            wall_time=0.001,
+            data={
+                "arc_length": np.array([0.0, 50.0, 100.0]),
+                "tension": np.array([k, k + 1, k + 2]) if ok else np.full(3, np.nan),
+                "force_a": np.array([k, 0.0, -k]),
+                "static_iterations": np.asarray(5),
+            },
         )
     return out
 
@@ -91,8 +96,13 @@ def test_provenance_attributes() -> None:
     ds, src = _assembled()
     assert ds.attrs["study_yaml"] == TEXT
     assert ds.attrs["study_sha256"] == src.sha256  # type: ignore[attr-defined]
-    for key in ("cablestudy_version", "numpy_version", "scipy_version", "xarray_version",
-                "cablestudy_code_sha256"):
+    for key in (
+        "cablestudy_version",
+        "numpy_version",
+        "scipy_version",
+        "xarray_version",
+        "cablestudy_code_sha256",
+    ):
         assert ds.attrs[key]
     assert json.loads(ds.attrs["solver_settings"]) == {"tol": 1e-9}
 
@@ -112,15 +122,17 @@ def test_write_round_trip(tmp_path: Path) -> None:
     back = xr.load_dataset(path)
     xr.testing.assert_identical(back.drop_vars("message"), ds.drop_vars("message"))
     assert [str(m) for m in back["message"].values.ravel()] == [
-        str(m) for m in ds["message"].values.ravel()]
+        str(m) for m in ds["message"].values.ravel()
+    ]
     assert list(tmp_path.joinpath("deep").iterdir()) == [path]
     mask = os.umask(0o022)
     os.umask(mask)
     assert path.stat().st_mode & 0o777 == 0o666 & ~mask  # not mkstemp's private 0600
 
 
-def test_crash_during_write_keeps_the_earlier_result(tmp_path: Path,
-                                                     monkeypatch: pytest.MonkeyPatch) -> None:
+def test_crash_during_write_keeps_the_earlier_result(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
     ds, _ = _assembled()
     path = write_atomic(ds, tmp_path / "res.nc")
     before = path.read_bytes()

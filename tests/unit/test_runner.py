@@ -114,8 +114,10 @@ def test_a_solver_exception_is_a_failed_case_and_the_study_finishes(
     ds = xr.load_dataset(summary.path)
     failed = ds["status"].sel(axial_stiffness=1.0e6)
     assert np.all(failed != STATUS_OK)
-    assert all("ZeroDivisionError: float division by zero" in str(m)
-               for m in ds["message"].sel(axial_stiffness=1.0e6).values)
+    assert all(
+        "ZeroDivisionError: float division by zero" in str(m)
+        for m in ds["message"].sel(axial_stiffness=1.0e6).values
+    )
     assert np.all(np.isnan(ds["tension"].sel(axial_stiffness=1.0e6)))
     nan_case = ds.sel(axial_stiffness=1.0e7, span=60.0)
     assert int(nan_case["status"]) != STATUS_OK and "non-finite" in str(nan_case["message"].item())
@@ -130,8 +132,7 @@ def test_a_solver_exception_is_a_failed_case_and_the_study_finishes(
     assert "     1 x " in report and "non-finite" in report
 
 
-def test_rerun_reuses_every_finished_case(tmp_path: Path,
-                                          monkeypatch: pytest.MonkeyPatch) -> None:
+def test_rerun_reuses_every_finished_case(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     src, axes, cases = _expand()
     first = run_study(src, axes, cases, tmp_path, scheduler="synchronous", progress=False)
     assert (first.n_computed, first.n_reused) == (27, 0)
@@ -139,8 +140,9 @@ def test_rerun_reuses_every_finished_case(tmp_path: Path,
     second = run_study(src, axes, cases, tmp_path, scheduler="synchronous", progress=False)
     assert counter["cases"] == 0 and (second.n_computed, second.n_reused) == (0, 27)
     # an added sweep value computes only the new cases
-    src3, axes3, cases3 = _expand(TEXT.replace("[1.0e6, 1.0e7, 6.283e7]",
-                                               "[1.0e6, 1.0e7, 6.283e7, 1.0e8]"))
+    src3, axes3, cases3 = _expand(
+        TEXT.replace("[1.0e6, 1.0e7, 6.283e7]", "[1.0e6, 1.0e7, 6.283e7, 1.0e8]")
+    )
     third = run_study(src3, axes3, cases3, tmp_path, scheduler="synchronous", progress=False)
     assert counter["cases"] == 9 and third.n_reused == 27
 
@@ -149,8 +151,9 @@ def test_interrupted_study_resumes_without_losing_or_redoing_work(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     src, axes, cases = _expand()
-    reference = run_study(src, axes, cases, tmp_path / "ref", scheduler="synchronous",
-                          use_cache=False, progress=False)
+    reference = run_study(
+        src, axes, cases, tmp_path / "ref", scheduler="synchronous", use_cache=False, progress=False
+    )
     out = tmp_path / "run"
     counter = _count_evaluations(monkeypatch, interrupt_after=3)
     with pytest.raises(KeyboardInterrupt):
@@ -164,8 +167,9 @@ def test_interrupted_study_resumes_without_losing_or_redoing_work(
     assert summary.n_reused == done
     got, ref = xr.load_dataset(summary.path), xr.load_dataset(reference.path)
     skip = ["wall_time", "message"]
-    xr.testing.assert_identical(got.drop_vars(skip), ref.drop_vars(skip).assign_attrs(
-        history=got.attrs["history"]))
+    xr.testing.assert_identical(
+        got.drop_vars(skip), ref.drop_vars(skip).assign_attrs(history=got.attrs["history"])
+    )
 
 
 def test_cache_survives_a_corrupt_file_and_skips_transient_failures(tmp_path: Path) -> None:
@@ -173,8 +177,9 @@ def test_cache_survives_a_corrupt_file_and_skips_transient_failures(tmp_path: Pa
 
     cache = CaseCache(tmp_path)
     ok = CaseRecord(hash="a", index=(0,), status=0, message="", wall_time=0.1)
-    slow = CaseRecord(hash="b", index=(1,), status=3, message="time limit reached after 3",
-                      wall_time=0.1)
+    slow = CaseRecord(
+        hash="b", index=(1,), status=3, message="time limit reached after 3", wall_time=0.1
+    )
     cache.store([ok, slow])
     (tmp_path / "chunk-garbage.pkl").write_bytes(b"not a pickle")
     again = CaseCache(tmp_path)
@@ -186,8 +191,11 @@ def test_cache_survives_a_corrupt_file_and_skips_transient_failures(tmp_path: Pa
 
 
 def test_failures_grouped_by_message_with_numbers_masked() -> None:
-    failures = {"did not converge (residual 1.2e-05)": 3, "did not converge (residual 4e-3)": 2,
-                "singular Jacobian": 1}
+    failures = {
+        "did not converge (residual 1.2e-05)": 3,
+        "did not converge (residual 4e-3)": 2,
+        "singular Jacobian": 1,
+    }
     groups = group_failures(failures)
     assert list(groups.values())[0] == (5, "did not converge (residual 1.2e-05)")
     report = RunSummary(Path("x.nc"), 10, 0, 10, 6, 1.0, failures).report()
@@ -233,8 +241,7 @@ def test_auto_scheduler_hands_a_long_study_to_workers(
     monkeypatch.setattr(runner, "AUTO_PROBE_SECONDS", 0.0)  # decide after one case
     monkeypatch.setattr(runner, "AUTO_PARALLEL_AFTER", 0.0)  # ... that anything is long
     src, axes, cases = _expand()
-    summary = run_study(src, axes, cases, tmp_path, scheduler="auto", workers=2,
-                        progress=False)
+    summary = run_study(src, axes, cases, tmp_path, scheduler="auto", workers=2, progress=False)
     assert handed == [26] and summary.n_computed == 27
 
 
@@ -251,3 +258,35 @@ def test_time_limited_cases_fail_with_a_message_and_are_retried(tmp_path: Path) 
     assert "    27 x time limit" in summary.report()
     again = run_study(src, axes, cases, tmp_path, scheduler="synchronous", progress=False)
     assert again.n_reused == 0 and again.n_computed == 27
+
+
+def test_case_evaluation_refuses_features_its_solver_lacks() -> None:
+    """Defence in depth: evaluate_case called without the CLI's check_supported must not
+    quietly solve a current-loaded line with the still-water exact solver."""
+    import yaml
+
+    from cablestudy.analyses import evaluate_case
+    from cablestudy.cases import expand_cases
+    from cablestudy.config.loader import parse_study_text
+
+    data = {
+        "name": "unsupported",
+        "environment": {
+            "fluid": "water",
+            "current": [{"z": 0.0, "speed": 1.0, "heading_deg": 0.0}],
+        },
+        "line": {
+            "segments": [
+                {"length": 100.0, "diameter": 0.05, "mass_per_length": 5.0, "axial_stiffness": 1e8}
+            ]
+        },
+        "ends": {
+            "a": {"kind": "fixed", "position": [0.0, 0.0, 0.0]},
+            "b": {"kind": "fixed", "position": [80.0, 0.0, -20.0]},
+        },
+        "analysis": {"static": {"method": "analytic"}},
+    }
+    _, cases = expand_cases(parse_study_text(yaml.safe_dump(data), "<x>"))
+    record = evaluate_case(cases[0])
+    assert record.status != 0
+    assert "analytic" in record.message and "current" in record.message

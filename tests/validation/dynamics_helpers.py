@@ -18,23 +18,43 @@ from cablestudy.dynamics.timedomain import DynamicProblem, DynamicResult, simula
 LENGTH, SPAN, MASS, EA, DIAMETER = 10.9774, 10.792, 0.61, 7.854e6, 0.01
 
 
-def moustafa_study(*, fluid: str = "water", dynamic: dict[str, Any] | None = None,
-                   segment: dict[str, Any] | None = None) -> dict[str, Any]:
-    seg = {"length": LENGTH, "diameter": DIAMETER, "mass_per_length": MASS,
-           "axial_stiffness": EA, **(segment or {})}
-    dyn = {"excitation": {"end": "b", "direction": [1.0, 0.0, 0.0], "amplitude": 0.05,
-                          "frequency": 0.5}, **(dynamic or {})}
+def moustafa_study(
+    *,
+    fluid: str = "water",
+    dynamic: dict[str, Any] | None = None,
+    segment: dict[str, Any] | None = None,
+) -> dict[str, Any]:
+    seg = {
+        "length": LENGTH,
+        "diameter": DIAMETER,
+        "mass_per_length": MASS,
+        "axial_stiffness": EA,
+        **(segment or {}),
+    }
+    dyn = {
+        "excitation": {
+            "end": "b",
+            "direction": [1.0, 0.0, 0.0],
+            "amplitude": 0.05,
+            "frequency": 0.5,
+        },
+        **(dynamic or {}),
+    }
     return {
-        "name": "moustafa-test", "environment": {"fluid": fluid},
+        "name": "moustafa-test",
+        "environment": {"fluid": fluid},
         "line": {"segments": [seg]},
-        "ends": {"a": {"kind": "fixed", "position": [0.0, 0.0, 0.0]},
-                 "b": {"kind": "fixed", "position": [SPAN, 0.0, 0.0]}},
+        "ends": {
+            "a": {"kind": "fixed", "position": [0.0, 0.0, 0.0]},
+            "b": {"kind": "fixed", "position": [SPAN, 0.0, 0.0]},
+        },
         "analysis": {"static": {"method": "analytic", "tolerance": 1e-12}, "dynamic": dyn},
     }
 
 
-def run_direct(study: dict[str, Any], **overrides: Any) -> tuple[DynamicResult, DiscreteLine,
-                                                                  np.ndarray]:
+def run_direct(
+    study: dict[str, Any], **overrides: Any
+) -> tuple[DynamicResult, DiscreteLine, np.ndarray]:
     """Run one case through the same set-up as the pipeline, keeping every step.
     Returns (result, discrete line, its static positions)."""
     src = parse_study_text(yaml.safe_dump(study))
@@ -48,13 +68,22 @@ def run_direct(study: dict[str, Any], **overrides: Any) -> tuple[DynamicResult, 
     assert dyn is not None
     motion, period, step = end_motion(dyn)
     kwargs: dict[str, Any] = dict(
-        line=line, static_position=x_static, motion=motion, period=period, step=step,
-        max_refinement=dyn.max_refinement, spectral_radius=dyn.spectral_radius,
-        newton_tolerance=max(dyn.newton_tolerance * float(static.tension.max()),
-                             4.0 * roundoff_force(line, x_static)),
+        line=line,
+        static_position=x_static,
+        motion=motion,
+        period=period,
+        step=step,
+        max_refinement=dyn.max_refinement,
+        spectral_radius=dyn.spectral_radius,
+        newton_tolerance=max(
+            dyn.newton_tolerance * float(static.tension.max()), 4.0 * roundoff_force(line, x_static)
+        ),
         tension_step=dyn.tension_resolution * float(static.tension.max()),
-        steady_tolerance=dyn.steady_tolerance, steady_window=dyn.steady_window,
-        min_periods=dyn.min_periods, max_periods=dyn.max_periods, duration=dyn.duration,
+        steady_tolerance=dyn.steady_tolerance,
+        steady_window=dyn.steady_window,
+        min_periods=dyn.min_periods,
+        max_periods=dyn.max_periods,
+        duration=dyn.duration,
         keep_steps=True,
     )
     kwargs.update(overrides)

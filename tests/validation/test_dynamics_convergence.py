@@ -16,11 +16,20 @@ from .dynamics_helpers import moustafa_study, run_direct
 
 
 def _tensions(points_per_period: int, elements: int) -> np.ndarray:
-    study = moustafa_study(dynamic={
-        "excitation": {"end": "b", "direction": [1.0, 0.0, 0.0], "amplitude": 0.05,
-                       "frequency": 0.75},
-        "elements": elements, "points_per_period": points_per_period,
-        "steady_tolerance": 1e-6, "max_periods": 40})
+    study = moustafa_study(
+        dynamic={
+            "excitation": {
+                "end": "b",
+                "direction": [1.0, 0.0, 0.0],
+                "amplitude": 0.05,
+                "frequency": 0.75,
+            },
+            "elements": elements,
+            "points_per_period": points_per_period,
+            "steady_tolerance": 1e-6,
+            "max_periods": 40,
+        }
+    )
     res, _, _ = run_direct(study, keep_steps=False)
     assert res.success and res.steady_converged, res.message
     return np.array([res.tension_max, res.tension_min])
@@ -50,10 +59,18 @@ def test_node_doubling_converges_at_second_order() -> None:
 def test_no_compression_in_a_taut_slack_case() -> None:
     # 0.1 m at 1.2 Hz: the end tension falls to the weight of half an element (the
     # line goes slack) and peaks at several times the static tension (snap)
-    study = moustafa_study(dynamic={
-        "excitation": {"end": "b", "direction": [1.0, 0.0, 0.0], "amplitude": 0.1,
-                       "frequency": 1.2},
-        "elements": 20, "max_periods": 12})
+    study = moustafa_study(
+        dynamic={
+            "excitation": {
+                "end": "b",
+                "direction": [1.0, 0.0, 0.0],
+                "amplitude": 0.1,
+                "frequency": 1.2,
+            },
+            "elements": 20,
+            "max_periods": 12,
+        }
+    )
     res, line, _ = run_direct(study)
     assert res.success, res.message
     rec = res.record

@@ -14,18 +14,28 @@ from .dynamics_helpers import moustafa_study, run_direct
 
 
 def _balance_error(points_per_period: int) -> tuple[float, float]:
-    study = moustafa_study(fluid="vacuum", dynamic={
-        "excitation": {"end": "b", "direction": [1.0, 0.0, 0.0], "amplitude": 0.02,
-                       "frequency": 0.8},
-        "elements": 20, "spectral_radius": 1.0, "ramp_periods": 1.0,
-        "points_per_period": points_per_period, "duration": 4.0})
+    study = moustafa_study(
+        fluid="vacuum",
+        dynamic={
+            "excitation": {
+                "end": "b",
+                "direction": [1.0, 0.0, 0.0],
+                "amplitude": 0.02,
+                "frequency": 0.8,
+            },
+            "elements": 20,
+            "spectral_radius": 1.0,
+            "ramp_periods": 1.0,
+            "points_per_period": points_per_period,
+            "duration": 4.0,
+        },
+    )
     res, line, _ = run_direct(study)
     assert res.success, res.message
     rec = res.record
     assert rec is not None
     assert np.all(rec["tension"] > 0.0)  # stays taut: no slack-taut events
-    energy = np.array([sum(energies(line, x, v)) for x, v in zip(rec["x"], rec["v"],
-                                                               strict=True)])
+    energy = np.array([sum(energies(line, x, v)) for x, v in zip(rec["x"], rec["v"], strict=True)])
     # power of the support on the line: minus the line's force on the support, times
     # the end's velocity (end B moves, A is fixed)
     power = -np.sum(rec["end_force"][:, 1] * rec["v"][:, -1], axis=1)

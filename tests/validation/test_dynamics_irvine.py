@@ -52,7 +52,7 @@ def dominant_frequency(t: np.ndarray, y: np.ndarray, band: tuple[float, float]) 
     freq = np.fft.rfftfreq(n, dt)
     inside = np.flatnonzero((freq > band[0]) & (freq < band[1]))
     k = inside[np.argmax(spec[inside])]
-    a, b, c = np.log(spec[k - 1:k + 2])
+    a, b, c = np.log(spec[k - 1 : k + 2])
     shift = 0.5 * (a - c) / (a - 2 * b + c)
     return float(freq[k] + shift * (freq[1] - freq[0]))
 
@@ -61,9 +61,16 @@ def test_free_vibration_matches_irvine_first_symmetric_mode() -> None:
     times = np.linspace(0.0, 0.6, 25)
     bump = 0.003 * np.sin(np.pi * times / 0.6) ** 2
     table = [[float(t), float(u)] for t, u in zip(times, bump, strict=True)]
-    study = moustafa_study(fluid="vacuum", dynamic={
-        "excitation": {"end": "b", "direction": [1.0, 0.0, 0.0], "table": table},
-        "elements": 40, "period": 0.3125, "duration": 40.0, "ramp_periods": 0.0})
+    study = moustafa_study(
+        fluid="vacuum",
+        dynamic={
+            "excitation": {"end": "b", "direction": [1.0, 0.0, 0.0], "table": table},
+            "elements": 40,
+            "period": 0.3125,
+            "duration": 40.0,
+            "ramp_periods": 0.0,
+        },
+    )
     res, _, _ = run_direct(study)
     assert res.success, res.message
     rec = res.record

@@ -14,18 +14,34 @@ from cablestudy.statics.elastic_catenary import solve_between
 from .dynamics_helpers import EA, LENGTH, MASS, SPAN, moustafa_study, run_direct
 
 
-@pytest.mark.parametrize(("end_b", "direction"), [
-    ((SPAN, 0.0, 0.0), (1.0, 0.0, 0.0)),            # the seed's level supports
-    ((10.2, 1.5, -2.5), (0.6, 0.3, -0.74)),          # B lower and aside, oblique motion
-])
+@pytest.mark.parametrize(
+    ("end_b", "direction"),
+    [
+        ((SPAN, 0.0, 0.0), (1.0, 0.0, 0.0)),  # the seed's level supports
+        ((10.2, 1.5, -2.5), (0.6, 0.3, -0.74)),  # B lower and aside, oblique motion
+    ],
+)
 def test_slow_motion_reproduces_static_tensions_at_the_extreme_positions(
-        end_b: tuple[float, float, float], direction: tuple[float, float, float]) -> None:
+    end_b: tuple[float, float, float], direction: tuple[float, float, float]
+) -> None:
     amplitude, frequency = 0.1, 0.01  # period 100 s, some 60 times the first natural one
-    study = moustafa_study(fluid="vacuum", dynamic={
-        "excitation": {"end": "b", "direction": list(direction), "amplitude": amplitude,
-                       "frequency": frequency},
-        "elements": 40, "ramp_periods": 1.0, "min_periods": 2, "max_periods": 6,
-        "steady_tolerance": 1e-4, "spectral_radius": 0.0})
+    study = moustafa_study(
+        fluid="vacuum",
+        dynamic={
+            "excitation": {
+                "end": "b",
+                "direction": list(direction),
+                "amplitude": amplitude,
+                "frequency": frequency,
+            },
+            "elements": 40,
+            "ramp_periods": 1.0,
+            "min_periods": 2,
+            "max_periods": 6,
+            "steady_tolerance": 1e-4,
+            "spectral_radius": 0.0,
+        },
+    )
     study["ends"]["b"]["position"] = list(end_b)
     res, _, _ = run_direct(study, keep_steps=False)
     assert res.success, res.message
@@ -34,8 +50,9 @@ def test_slow_motion_reproduces_static_tensions_at_the_extreme_positions(
     exact = {}
     unit = np.asarray(direction) / np.linalg.norm(direction)
     for sign in (+1.0, -1.0):
-        sol = solve_between((0, 0, 0), np.asarray(end_b) + sign * amplitude * unit, LENGTH, w,
-                            EA, s)
+        sol = solve_between(
+            (0, 0, 0), np.asarray(end_b) + sign * amplitude * unit, LENGTH, w, EA, s
+        )
         exact[sign] = float(np.linalg.norm(sol.force_b))
     # Errors allowed: (i) dynamic amplification ~ (f / f1)^2 = (0.01 / 0.59)^2 = 3e-4 of
     # the tension swing (f1 = taut-string fundamental sqrt(H/m)/(2 span)); (ii) the

@@ -56,8 +56,9 @@ def solved(label: str, n: int = 201):  # noqa: ANN201
     return res, np.array(pa), np.array(pb), L, w, EA
 
 
-def integrate(pa: np.ndarray, force_a: np.ndarray, L: float, w: float, EA: float,
-              s_eval: np.ndarray) -> np.ndarray:
+def integrate(
+    pa: np.ndarray, force_a: np.ndarray, L: float, w: float, EA: float, s_eval: np.ndarray
+) -> np.ndarray:
     """Positions (n, 3) from integrating the equilibrium equations from end A with the
     tension vector at A equal to ``force_a`` (the force on the support at A)."""
     Hvec = force_a[:2]
@@ -69,8 +70,7 @@ def integrate(pa: np.ndarray, force_a: np.ndarray, L: float, w: float, EA: float
         stretch = 1.0 + T / EA
         return np.array([Hvec[0] / T * stretch, Hvec[1] / T * stretch, V / T * stretch])
 
-    sol = solve_ivp(rhs, (0.0, L), pa, method="DOP853", t_eval=s_eval, rtol=1e-13,
-                    atol=1e-13 * L)
+    sol = solve_ivp(rhs, (0.0, L), pa, method="DOP853", t_eval=s_eval, rtol=1e-13, atol=1e-13 * L)
     assert sol.success
     return sol.y.T
 
@@ -150,10 +150,10 @@ def test_inextensible_limit_matches_the_classic_catenary() -> None:
     L = (2 H / w) sinh(w l / (2 H)), solved for H by brentq (independent of the
     Lagrangian formulas); sag (H / w)(cosh(w l / 2H) - 1)."""
     l, L, w = 80.0, 100.0, W_STEEL
-    res = solve_between(np.zeros(3), np.array([l, 0.0, 0.0]), L, w, 1e20,
-                        np.array([0.0, L / 2, L]))
-    H = brentq(lambda H: 2 * H / w * math.sinh(w * l / (2 * H)) - L, 50.0, 1e7, xtol=1e-14,
-               rtol=1e-15)
+    res = solve_between(np.zeros(3), np.array([l, 0.0, 0.0]), L, w, 1e20, np.array([0.0, L / 2, L]))
+    H = brentq(
+        lambda H: 2 * H / w * math.sinh(w * l / (2 * H)) - L, 50.0, 1e7, xtol=1e-14, rtol=1e-15
+    )
     assert res.force_a[0] == pytest.approx(H, rel=1e-10)
     assert res.force_a[2] == pytest.approx(-w * L / 2, rel=1e-12)
     sag = H / w * (math.cosh(w * l / (2 * H)) - 1.0)
@@ -204,12 +204,15 @@ def test_mirror_rotation_and_translation_invariance(label: str) -> None:
     for name, R in maps.items():
         out = solve_between(R @ pa + shift, R @ pb + shift, L, w, EA, res.s, tolerance=1e-12)
         assert out.status == STATUS_OK, name
-        np.testing.assert_allclose(out.position, res.position @ R.T + shift, rtol=0,
-                                   atol=1e-10 * L, err_msg=name)
-        np.testing.assert_allclose(out.force_a, R @ res.force_a, rtol=0, atol=1e-10 * T,
-                                   err_msg=name)
-        np.testing.assert_allclose(out.force_b, R @ res.force_b, rtol=0, atol=1e-10 * T,
-                                   err_msg=name)
+        np.testing.assert_allclose(
+            out.position, res.position @ R.T + shift, rtol=0, atol=1e-10 * L, err_msg=name
+        )
+        np.testing.assert_allclose(
+            out.force_a, R @ res.force_a, rtol=0, atol=1e-10 * T, err_msg=name
+        )
+        np.testing.assert_allclose(
+            out.force_b, R @ res.force_b, rtol=0, atol=1e-10 * T, err_msg=name
+        )
 
 
 @pytest.mark.parametrize("label", [k for k in CASES])

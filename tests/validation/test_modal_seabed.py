@@ -25,14 +25,22 @@ from cablestudy.results import CaseRecord
 def _study(length: float, anchor: list[float], current: bool = False) -> dict:
     env: dict = {"fluid": "water", "depth": 320.0, "seabed": {"friction": 0.5}}
     if current:
-        env["current"] = [{"z": 0.0, "speed": 0.514, "heading_deg": 0.0},
-                          {"z": -300.0, "speed": 0.1, "heading_deg": 90.0}]
+        env["current"] = [
+            {"z": 0.0, "speed": 0.514, "heading_deg": 0.0},
+            {"z": -300.0, "speed": 0.1, "heading_deg": 90.0},
+        ]
     return {
-        "name": "modal-seabed", "environment": env,
-        "line": {"segments": [{"length": length, "diameter": 0.1, "mass_per_length": 60.0,
-                               "axial_stiffness": 5e8}]},
-        "ends": {"a": {"kind": "fixed", "position": anchor},
-                 "b": {"kind": "mooring", "force": [60000.0, 0.0], "z": -8.6}},
+        "name": "modal-seabed",
+        "environment": env,
+        "line": {
+            "segments": [
+                {"length": length, "diameter": 0.1, "mass_per_length": 60.0, "axial_stiffness": 5e8}
+            ]
+        },
+        "ends": {
+            "a": {"kind": "fixed", "position": anchor},
+            "b": {"kind": "mooring", "force": [60000.0, 0.0], "z": -8.6},
+        },
         "analysis": {"static": {"nodes": 2001}, "modal": {"modes": 6, "elements": 200}},
     }
 
@@ -50,8 +58,9 @@ def test_laid_line_sticks_and_vibrates_like_its_suspended_part() -> None:
     assert laid > 300.0  # friction takes the tension out of much of the laid part
     x_touchdown = float(np.interp(laid, full.data["arc_length"], full.data["x"]))
     suspended = _run(_study(800.0 - laid, [x_touchdown, 0.0, -320.0]))
-    np.testing.assert_allclose(full.data["natural_frequency"],
-                               suspended.data["natural_frequency"], rtol=2e-3)
+    np.testing.assert_allclose(
+        full.data["natural_frequency"], suspended.data["natural_frequency"], rtol=2e-3
+    )
 
 
 def test_laid_line_with_friction_in_a_turning_current_has_modes() -> None:

@@ -37,23 +37,38 @@ from cablestudy.statics.shooting import ShootingSolver
 SOLVER = STATIC_SOLVERS["shooting"]
 
 
-def make_line(lengths: list[float], weight: float | list[float], stiffness: float | list[float],
-              *, diameter: float = 0.05, drag_normal: float = 1.2, drag_tangential: float = 0.0,
-              att_s: tuple[float, ...] = (), att_force: tuple[tuple[float, ...], ...] = (),
-              ) -> LineModel:
+def make_line(
+    lengths: list[float],
+    weight: float | list[float],
+    stiffness: float | list[float],
+    *,
+    diameter: float = 0.05,
+    drag_normal: float = 1.2,
+    drag_tangential: float = 0.0,
+    att_s: tuple[float, ...] = (),
+    att_force: tuple[tuple[float, ...], ...] = (),
+) -> LineModel:
     n = len(lengths)
 
     def col(v: float | list[float]) -> np.ndarray:
         return np.broadcast_to(np.asarray(v, dtype=float), (n,)).copy()
 
     return LineModel(
-        length=col(lengths), weight=col(weight), mass=col(1.0), axial_stiffness=col(stiffness),
-        diameter=col(diameter), drag_normal=col(drag_normal),
-        drag_tangential=col(drag_tangential), added_mass_normal=col(1.0),
-        added_mass_tangential=col(0.0), bending_stiffness=col(0.0), damping_ratio=col(0.0),
+        length=col(lengths),
+        weight=col(weight),
+        mass=col(1.0),
+        axial_stiffness=col(stiffness),
+        diameter=col(diameter),
+        drag_normal=col(drag_normal),
+        drag_tangential=col(drag_tangential),
+        added_mass_normal=col(1.0),
+        added_mass_tangential=col(0.0),
+        bending_stiffness=col(0.0),
+        damping_ratio=col(0.0),
         attachment_s=np.asarray(att_s, dtype=float),
         attachment_force=np.asarray(att_force, dtype=float).reshape(-1, 3),
-        attachment_mass=np.zeros(len(att_s)), attachment_volume=np.zeros(len(att_s)),
+        attachment_mass=np.zeros(len(att_s)),
+        attachment_volume=np.zeros(len(att_s)),
     )
 
 
@@ -69,8 +84,13 @@ def mooring(h: list[float] | np.ndarray, z: float) -> EndCondition:
     return EndCondition(kind="mooring", force=np.array([h[0], h[1], 0.0]), z=z)
 
 
-def medium(*, density: float = 1025.0, depth: float | None = None,
-           current: list[tuple[float, float, float]] | None = None, **kw: float) -> Medium:
+def medium(
+    *,
+    density: float = 1025.0,
+    depth: float | None = None,
+    current: list[tuple[float, float, float]] | None = None,
+    **kw: float,
+) -> Medium:
     """current: (z, speed, heading_deg) points."""
     if current:
         pts = sorted(current)
@@ -80,8 +100,9 @@ def medium(*, density: float = 1025.0, depth: float | None = None,
         vel = np.stack([sp * np.cos(h), sp * np.sin(h), 0 * sp], axis=1)
     else:
         z, vel = np.zeros(0), np.zeros((0, 3))
-    return Medium(density=density, gravity=9.80665, depth=depth, current_z=z,
-                  current_velocity=vel, **kw)
+    return Medium(
+        density=density, gravity=9.80665, depth=depth, current_z=z, current_velocity=vel, **kw
+    )
 
 
 def solve(problem: StaticProblem, solver: ShootingSolver = SOLVER):  # noqa: ANN201
@@ -100,7 +121,7 @@ TURNING = [(0.0, 1.0, 0.0), (-150.0, 0.6, 60.0), (-300.0, 0.2, 120.0)]
 CATENARY_CASES = {
     # name: (B position, L, w, EA)
     "slack": ([80.0, 0.0, -10.0], 150.0, 30.0, 1e8),
-    "taut": ([99.5, 0.0, 5.0], 100.0, 10.0, 1e6),          # stretched by ~0.1 %
+    "taut": ([99.5, 0.0, 5.0], 100.0, 10.0, 1e6),  # stretched by ~0.1 %
     "inclined-3d": ([60.0, 45.0, -50.0], 120.0, 250.0, 5e8),
     "near-vertical": ([0.5, 0.2, -95.0], 100.0, 40.0, 1e7),
     "dodaran-fig4": ([92.5, 0.0, -8.6], 100.0, 2.466 * 9.80665, 6.283e7),
@@ -125,8 +146,7 @@ def test_exact_catenary_all_end_kinds(name: str, kind: str) -> None:
         a, b = fixed([0, 0, 0]), mooring(-exact.force_b[:2], pb[2])
     else:
         a, b = force(-exact.force_a), fixed(pb)
-    res = solve(StaticProblem(line=line, medium=medium(density=0.0), end_a=a, end_b=b,
-                              n_nodes=41))
+    res = solve(StaticProblem(line=line, medium=medium(density=0.0), end_a=a, end_b=b, n_nodes=41))
     t_scale = float(np.max(exact.tension))
     assert np.max(np.abs(res.position - exact.position)) < 1e-9 * L
     assert np.max(np.abs(res.tension - exact.tension)) < 1e-9 * t_scale
@@ -141,19 +161,33 @@ def test_vertical_line_and_pole_restarts() -> None:
     weight balance."""
     L, w, EA = 100.0, 40.0, 1e7
     line = make_line([L], w, EA)
-    res = solve(StaticProblem(line=line, medium=medium(density=0.0), end_a=fixed([0, 0, 0]),
-                              end_b=fixed([0.0, 0.0, -100.05]), n_nodes=21))
-    exact = solve_between(np.zeros(3), np.array([0.0, 0.0, -100.05]), L, w, EA, res.s,
-                          tolerance=1e-14)
+    res = solve(
+        StaticProblem(
+            line=line,
+            medium=medium(density=0.0),
+            end_a=fixed([0, 0, 0]),
+            end_b=fixed([0.0, 0.0, -100.05]),
+            n_nodes=21,
+        )
+    )
+    exact = solve_between(
+        np.zeros(3), np.array([0.0, 0.0, -100.05]), L, w, EA, res.s, tolerance=1e-14
+    )
     assert np.max(np.abs(res.position - exact.position)) < 1e-9 * L
     assert np.max(np.abs(res.tension - exact.tension)) < 1e-9 * exact.tension[0]
     # vertical balance of the whole line: tension difference = weight
     assert abs(res.tension[0] - res.tension[-1] - w * L) < 1e-9 * w * L
     # U shape: the tangent turns from down through horizontal to up
-    res = solve(StaticProblem(line=line, medium=medium(density=0.0), end_a=fixed([0, 0, 0]),
-                              end_b=fixed([10.0, 5.0, 0.0]), n_nodes=41))
-    exact = solve_between(np.zeros(3), np.array([10.0, 5.0, 0.0]), L, w, EA, res.s,
-                          tolerance=1e-14)
+    res = solve(
+        StaticProblem(
+            line=line,
+            medium=medium(density=0.0),
+            end_a=fixed([0, 0, 0]),
+            end_b=fixed([10.0, 5.0, 0.0]),
+            n_nodes=41,
+        )
+    )
+    exact = solve_between(np.zeros(3), np.array([10.0, 5.0, 0.0]), L, w, EA, res.s, tolerance=1e-14)
     assert np.max(np.abs(res.position - exact.position)) < 1e-9 * L
 
 
@@ -168,8 +202,13 @@ def test_attachment_and_segments_against_piecewise_catenaries() -> None:
     att_s = (60.0, 250.0)
     att_force = ((0.0, 0.0, -30000.0), (0.0, 0.0, 25000.0))
     line = make_line(lengths, w, EA, att_s=att_s, att_force=att_force)
-    problem = StaticProblem(line=line, medium=medium(density=0.0), end_a=fixed([0, 0, -300]),
-                            end_b=fixed([280.0, 60.0, 0.0]), n_nodes=401)
+    problem = StaticProblem(
+        line=line,
+        medium=medium(density=0.0),
+        end_a=fixed([0, 0, -300]),
+        end_b=fixed([280.0, 60.0, 0.0]),
+        n_nodes=401,
+    )
     res = solve(problem)
     knots = [0.0, 60.0, 120.0, 250.0, 320.0, 400.0]
     seg_w = [900.0, 900.0, 60.0, 60.0, 900.0]
@@ -178,8 +217,8 @@ def test_attachment_and_segments_against_piecewise_catenaries() -> None:
     for k0, k1, wk, ek in zip(knots[:-1], knots[1:], seg_w, seg_ea, strict=True):
         i0, i1 = int(round(k0)), int(round(k1))  # nodes every 1 m
         pa, pb = res.position[i0], res.position[i1]
-        sub = solve_between(pa, pb, k1 - k0, wk, ek, res.s[i0:i1 + 1] - k0, tolerance=1e-14)
-        assert np.max(np.abs(sub.position - res.position[i0:i1 + 1])) < 1e-8 * 400.0
+        sub = solve_between(pa, pb, k1 - k0, wk, ek, res.s[i0 : i1 + 1] - k0, tolerance=1e-14)
+        assert np.max(np.abs(sub.position - res.position[i0 : i1 + 1])) < 1e-8 * 400.0
         ends_of[(k0, k1)] = sub
     # force balance at each attachment: F(s+) = F(s-) - P, with F the tension vector
     for s_k, p in zip(att_s, att_force, strict=True):
@@ -208,15 +247,30 @@ def test_drag_integral_balances_end_forces() -> None:
     L, w = 400.0, 25.0
     line = make_line([L], w, 5e7, diameter=0.08, drag_normal=1.2, drag_tangential=0.01)
     med = medium(current=TURNING)
-    res = solve(StaticProblem(line=line, medium=med, end_a=fixed([0, 0, -300]),
-                              end_b=fixed([250.0, 0.0, 0.0]), n_nodes=2001))
+    res = solve(
+        StaticProblem(
+            line=line,
+            medium=med,
+            end_a=fixed([0, 0, -300]),
+            end_b=fixed([250.0, 0.0, 0.0]),
+            n_nodes=2001,
+        )
+    )
     drdS = np.gradient(res.position, res.s, axis=0, edge_order=2)
     stretch = np.linalg.norm(drdS, axis=1)
     tangent = drdS / stretch[:, None]
     u = current_velocity(res.position[:, 2], med.current_z, med.current_velocity)
-    f = drag_per_length(u, tangent, density=med.density, diameter=np.full(len(u), 0.08),
-                        drag_normal=np.full(len(u), 1.2),
-                        drag_tangential=np.full(len(u), 0.01)) * stretch[:, None]
+    f = (
+        drag_per_length(
+            u,
+            tangent,
+            density=med.density,
+            diameter=np.full(len(u), 0.08),
+            drag_normal=np.full(len(u), 1.2),
+            drag_tangential=np.full(len(u), 0.01),
+        )
+        * stretch[:, None]
+    )
     drag = simpson(f, x=res.s, axis=0)
     total = drag + np.array([0.0, 0.0, -w * L])
     scale = float(np.linalg.norm(res.force_a))
@@ -246,8 +300,15 @@ def test_pode_critical_angle_free_end() -> None:
     w, rho, cn, d, U = 20.0, 1025.0, 1.2, 0.05, 1.0
     L = 1000.0
     line = make_line([L], w, 1e16, diameter=d, drag_normal=cn)
-    res = solve(StaticProblem(line=line, medium=medium(current=[(0.0, U, 0.0)]),
-                              end_a=fixed([0, 0, 0]), end_b=force([0, 0, 0]), n_nodes=21))
+    res = solve(
+        StaticProblem(
+            line=line,
+            medium=medium(current=[(0.0, U, 0.0)]),
+            end_a=fixed([0, 0, 0]),
+            end_b=force([0, 0, 0]),
+            n_nodes=21,
+        )
+    )
     phi = critical_angle(w, rho, cn, d, U)
     seg = np.diff(res.position, axis=0)
     angle = np.arctan2(-seg[:, 2], seg[:, 0])
@@ -267,11 +328,18 @@ def test_pode_critical_angle_is_approached() -> None:
     line = make_line([1000.0], w, 1e9, diameter=d, drag_normal=cn)
     off = phi - 0.5
     t_end = 100.0 * np.array([math.cos(off), 0.0, -math.sin(off)])
-    res = solve(StaticProblem(line=line, medium=medium(current=[(0.0, U, 0.0)]),
-                              end_a=fixed([0, 0, 0]), end_b=force(t_end), n_nodes=101))
+    res = solve(
+        StaticProblem(
+            line=line,
+            medium=medium(current=[(0.0, U, 0.0)]),
+            end_a=fixed([0, 0, 0]),
+            end_b=force(t_end),
+            n_nodes=101,
+        )
+    )
     seg = np.diff(res.position, axis=0)
     angle = np.arctan2(-seg[:, 2], seg[:, 0])
-    assert abs(angle[-1] - phi) > 0.05               # near B the line is off critical
+    assert abs(angle[-1] - phi) > 0.05  # near B the line is off critical
     assert np.max(np.abs(angle[:50] - phi)) < 0.005  # far from B it is at phi_c
 
 
@@ -279,17 +347,33 @@ def test_convergence_as_rtol_is_tightened() -> None:
     """The solution converges as the integration tolerance is tightened: the difference
     to the rtol = 1e-13 solution falls with rtol, and at 1e-11 it is below
     1e-9 of the length and tension scales."""
-    line = make_line([250.0, 150.0], [40.0, 15.0], [3e8, 5e7], diameter=0.06,
-                     drag_tangential=0.01, att_s=(250.0,), att_force=((0.0, 0.0, 2000.0),))
-    problem = StaticProblem(line=line, medium=medium(current=TURNING),
-                            end_a=fixed([0, 0, -280]), end_b=fixed([260.0, 40.0, -5.0]),
-                            n_nodes=41, tolerance=1e-12)
+    line = make_line(
+        [250.0, 150.0],
+        [40.0, 15.0],
+        [3e8, 5e7],
+        diameter=0.06,
+        drag_tangential=0.01,
+        att_s=(250.0,),
+        att_force=((0.0, 0.0, 2000.0),),
+    )
+    problem = StaticProblem(
+        line=line,
+        medium=medium(current=TURNING),
+        end_a=fixed([0, 0, -280]),
+        end_b=fixed([260.0, 40.0, -5.0]),
+        n_nodes=41,
+        tolerance=1e-12,
+    )
     ref = solve(problem, ShootingSolver(rtol=1e-13))
     errors = []
     for rtol in (1e-6, 1e-8, 1e-11):
         res = solve(problem, ShootingSolver(rtol=rtol))
-        errors.append(max(np.max(np.abs(res.position - ref.position)) / 400.0,
-                          np.max(np.abs(res.tension - ref.tension)) / ref.tension.max()))
+        errors.append(
+            max(
+                np.max(np.abs(res.position - ref.position)) / 400.0,
+                np.max(np.abs(res.tension - ref.tension)) / ref.tension.max(),
+            )
+        )
     assert errors[0] > errors[1] > errors[2]
     assert errors[2] < 1e-9
 
@@ -300,10 +384,14 @@ def test_touchdown_with_drag_converged_to_1e8() -> None:
     the default solver agrees with rtol = 1e-13 to 1e-8 of the length and tension, the
     accuracy the comparison with the semi-analytic solver needs (1e-6)."""
     line = make_line([600.0], 200.0, 1e9, diameter=0.1, drag_tangential=0.01)
-    problem = StaticProblem(line=line, medium=medium(depth=200.0, friction=0.5,
-                                                     current=TURNING),
-                            end_a=fixed([0, 0, -200]), end_b=fixed([500.0, 100.0, 0.0]),
-                            n_nodes=61, tolerance=1e-12)
+    problem = StaticProblem(
+        line=line,
+        medium=medium(depth=200.0, friction=0.5, current=TURNING),
+        end_a=fixed([0, 0, -200]),
+        end_b=fixed([500.0, 100.0, 0.0]),
+        n_nodes=61,
+        tolerance=1e-12,
+    )
     ref = solve(problem, ShootingSolver(rtol=1e-13))
     res = solve(problem)
     assert res.laid_length > 100.0
@@ -316,8 +404,9 @@ def test_touchdown_with_drag_converged_to_1e8() -> None:
 # invariances
 
 
-def _problem_3d(rotation: float = 0.0, mirror: bool = False, swap: bool = False,
-                seabed: bool = False) -> StaticProblem:
+def _problem_3d(
+    rotation: float = 0.0, mirror: bool = False, swap: bool = False, seabed: bool = False
+) -> StaticProblem:
     """A drag-loaded two-segment line with an attachment; optionally rotated about z by
     ``rotation`` [rad] (positions, current headings and seabed heading), mirrored in y,
     or with its ends swapped (segments and attachments reversed)."""
@@ -336,15 +425,21 @@ def _problem_3d(rotation: float = 0.0, mirror: bool = False, swap: bool = False,
         lengths, w, ea = lengths[::-1], w[::-1], ea[::-1]
         att_s = (500.0 - att_s[0],)
         a, b = b, a
-    line = make_line(lengths, w, ea, diameter=0.08, drag_tangential=0.01, att_s=att_s,
-                     att_force=att_f)
+    line = make_line(
+        lengths, w, ea, diameter=0.08, drag_tangential=0.01, att_s=att_s, att_force=att_f
+    )
     kw = {}
     if seabed:
-        kw = dict(depth=300.0, seabed_slope=math.radians(3.0),
-                  seabed_heading=rotation + sign * math.radians(20.0), friction=0.3)
+        kw = dict(
+            depth=300.0,
+            seabed_slope=math.radians(3.0),
+            seabed_heading=rotation + sign * math.radians(20.0),
+            friction=0.3,
+        )
         # the anchor at x = y = 0 is on the plane through (0, 0, -depth)
-    return StaticProblem(line=line, medium=medium(current=current, **kw), end_a=a, end_b=b,
-                         n_nodes=51)
+    return StaticProblem(
+        line=line, medium=medium(current=current, **kw), end_a=a, end_b=b, n_nodes=51
+    )
 
 
 @pytest.mark.parametrize("seabed", [False, True])
@@ -368,8 +463,7 @@ def test_invariance_swap_rotate_mirror(seabed: bool) -> None:
 
     rot = 0.7
     rotated = solve(_problem_3d(rotation=rot, seabed=seabed))
-    R = np.array([[math.cos(rot), -math.sin(rot), 0], [math.sin(rot), math.cos(rot), 0],
-                  [0, 0, 1]])
+    R = np.array([[math.cos(rot), -math.sin(rot), 0], [math.sin(rot), math.cos(rot), 0], [0, 0, 1]])
     assert np.max(np.abs(rotated.position - ref.position @ R.T)) < 1e-8 * L
     assert np.allclose(rotated.force_b, R @ ref.force_b, atol=1e-8 * F)
 
@@ -383,8 +477,9 @@ def test_invariance_swap_rotate_mirror(seabed: bool) -> None:
 # seabed
 
 
-def _hand_touchdown(L: float, w: float, EA: float, D: float, X: float,
-                    mu: float) -> tuple[float, float]:
+def _hand_touchdown(
+    L: float, w: float, EA: float, D: float, X: float, mu: float
+) -> tuple[float, float]:
     """Hand derivation for an anchor on a flat seabed at depth D and a fairlead at
     horizontal distance X on the surface, no current. The suspended part is an elastic
     catenary starting horizontally at the touchdown point (V = 0 there) with horizontal
@@ -420,9 +515,15 @@ def test_seabed_touchdown_hand_derivation(mu: float) -> None:
     makes the friction capacity exceed H, so the anchor tension is zero."""
     L, w, EA, D, X = 600.0, 200.0, 1e9, 200.0, 500.0
     H, Ls = _hand_touchdown(L, w, EA, D, X, mu)
-    res = solve(StaticProblem(line=make_line([L], w, EA), medium=medium(depth=D, friction=mu),
-                              end_a=fixed([0.0, 0.0, -D]), end_b=fixed([X, 0.0, 0.0]),
-                              n_nodes=61))
+    res = solve(
+        StaticProblem(
+            line=make_line([L], w, EA),
+            medium=medium(depth=D, friction=mu),
+            end_a=fixed([0.0, 0.0, -D]),
+            end_b=fixed([X, 0.0, 0.0]),
+            n_nodes=61,
+        )
+    )
     Lb = L - Ls
     assert abs(res.laid_length - Lb) < 1e-8 * L
     assert np.allclose(res.force_b, [-H, 0.0, -w * Ls], atol=1e-8 * w * L)
@@ -447,12 +548,18 @@ def test_seabed_mooring_end_hand_derivation() -> None:
     Ls = brentq(zs, 1.0, L, xtol=1e-13)
     line = make_line([L], w, EA)
     med = medium(depth=D)
-    res = solve(StaticProblem(line=line, medium=med, end_a=fixed([0.0, 0.0, -D]),
-                              end_b=mooring([H, 0.0], 0.0)))
+    res = solve(
+        StaticProblem(
+            line=line, medium=med, end_a=fixed([0.0, 0.0, -D]), end_b=mooring([H, 0.0], 0.0)
+        )
+    )
     assert abs(res.laid_length - (L - Ls)) < 1e-8 * L
     assert np.allclose(res.force_b, [-H, 0.0, -w * Ls], atol=1e-8 * w * L)
-    mirrored = solve(StaticProblem(line=line, medium=med, end_a=mooring([-H, 0.0], 0.0),
-                                   end_b=fixed([0.0, 0.0, -D])))
+    mirrored = solve(
+        StaticProblem(
+            line=line, medium=med, end_a=mooring([-H, 0.0], 0.0), end_b=fixed([0.0, 0.0, -D])
+        )
+    )
     assert abs(mirrored.laid_length - (L - Ls)) < 1e-8 * L
     assert np.allclose(mirrored.force_a, [H, 0.0, -w * Ls], atol=1e-8 * w * L)
 
@@ -467,9 +574,15 @@ def test_sloped_seabed_tangent_touchdown() -> None:
     a = math.radians(5.0)
     L, w, EA, D = 700.0, 200.0, 1e9, 200.0
     med = medium(depth=D, seabed_slope=a, seabed_heading=math.pi)
-    res = solve(StaticProblem(line=make_line([L], w, EA), medium=med,
-                              end_a=fixed([0.0, 0.0, -D]), end_b=fixed([560.0, 0.0, 0.0]),
-                              n_nodes=1401))
+    res = solve(
+        StaticProblem(
+            line=make_line([L], w, EA),
+            medium=med,
+            end_a=fixed([0.0, 0.0, -D]),
+            end_b=fixed([560.0, 0.0, 0.0]),
+            n_nodes=1401,
+        )
+    )
     Lb = res.laid_length
     assert 50.0 < Lb < L
     on = res.s <= Lb
@@ -487,8 +600,7 @@ def test_sloped_seabed_tangent_touchdown() -> None:
     t_tdp = t_anchor - w * math.sin(a) * Lb
     e = np.array([math.cos(a), 0.0, -math.sin(a)])
     tdp = np.array([0.0, 0.0, -D]) + e * Lb * (1.0 + 0.5 * (t_anchor + t_tdp) / EA)
-    sus = solve_between(tdp, res.position[-1], L - Lb, w, EA, res.s[~on] - Lb,
-                        tolerance=1e-14)
+    sus = solve_between(tdp, res.position[-1], L - Lb, w, EA, res.s[~on] - Lb, tolerance=1e-14)
     assert np.max(np.abs(sus.position - res.position[~on])) < 1e-8 * L
     assert abs(math.atan2(sus.force_a[2], sus.force_a[0]) + a) < 1e-8
     assert abs(np.linalg.norm(sus.force_a) - t_tdp) < 1e-8 * w * L
@@ -501,22 +613,41 @@ def test_sloped_seabed_tangent_touchdown() -> None:
 def test_failures_are_reported() -> None:
     line = make_line([300.0], 50.0, 1e8)
     # the line would sag through the seabed between two raised supports
-    res = SOLVER.solve(StaticProblem(line=line, medium=medium(depth=60.0),
-                                     end_a=fixed([0, 0, -10]), end_b=fixed([100, 0, -10])))
+    res = SOLVER.solve(
+        StaticProblem(
+            line=line,
+            medium=medium(depth=60.0),
+            end_a=fixed([0, 0, -10]),
+            end_b=fixed([100, 0, -10]),
+        )
+    )
     assert res.status != STATUS_OK and "seabed" in res.message
     assert np.all(np.isnan(res.position))
     # time limit
-    res = SOLVER.solve(StaticProblem(line=line, medium=medium(current=TURNING),
-                                     end_a=fixed([0, 0, -200]), end_b=fixed([200, 0, 0])),
-                       deadline=time.monotonic() - 1.0)
+    res = SOLVER.solve(
+        StaticProblem(
+            line=line,
+            medium=medium(current=TURNING),
+            end_a=fixed([0, 0, -200]),
+            end_b=fixed([200, 0, 0]),
+        ),
+        deadline=time.monotonic() - 1.0,
+    )
     assert res.status == STATUS_TIME_LIMIT and "time limit" in res.message
     # both ends free: a config error listed before any work
-    missing = SOLVER.unsupported(StaticProblem(line=line, medium=medium(),
-                                               end_a=force([0, 0, 1]), end_b=force([0, 0, 1])))
+    missing = SOLVER.unsupported(
+        StaticProblem(line=line, medium=medium(), end_a=force([0, 0, 1]), end_b=force([0, 0, 1]))
+    )
     assert missing and "fixed" in missing[0]
     # a slack weightless line has no unique shape
-    res = SOLVER.solve(StaticProblem(line=make_line([100.0], 0.0, 1e8), medium=medium(),
-                                     end_a=fixed([0, 0, 0]), end_b=fixed([50, 0, 0])))
+    res = SOLVER.solve(
+        StaticProblem(
+            line=make_line([100.0], 0.0, 1e8),
+            medium=medium(),
+            end_a=fixed([0, 0, 0]),
+            end_b=fixed([50, 0, 0]),
+        )
+    )
     assert res.status != STATUS_OK and res.message
 
 
@@ -559,11 +690,11 @@ sweep:
     assert ds["status"].values.tolist() == [0, 0], ds["message"].values
     assert ds["z"].sizes["s"] == 71
     fb = ds["force_b"].values
-    assert np.allclose(fb[:, 0], -150000.0, rtol=1e-8)   # the mooring condition holds
+    assert np.allclose(fb[:, 0], -150000.0, rtol=1e-8)  # the mooring condition holds
     assert np.allclose(ds["z"].values[:, -1], -5.0, atol=1e-7)
     assert np.all(ds["laid_length"].values > 0.0)
     y_b = np.abs(ds["y"].values[:, -1])
-    assert y_b[1] > y_b[0] + 1.0                          # the current pushes it sideways
+    assert y_b[1] > y_b[0] + 1.0  # the current pushes it sideways
     assert np.all(ds["static_iterations"].values >= 0)
 
 
@@ -583,8 +714,14 @@ def test_installation_payout_adds_mu_v_squared() -> None:
     mass = 4.0  # make_line sets 1 kg/m; use a line with 4 kg/m
     line = LineModel(**{**line.__dict__, "mass": np.array([mass])})
     pb = [80.0, 30.0, -10.0]
-    problem = StaticProblem(line=line, medium=medium(), end_a=fixed([0, 0, 0]),
-                            end_b=fixed(pb), n_nodes=31, payout_speed=V)
+    problem = StaticProblem(
+        line=line,
+        medium=medium(),
+        end_a=fixed([0, 0, 0]),
+        end_b=fixed(pb),
+        n_nodes=31,
+        payout_speed=V,
+    )
     res = solve(problem)
     exact = solve_between(np.zeros(3), np.array(pb), L, w, EA, res.s, tolerance=1e-14)
     mu_v2 = (mass + 1.0 * 1025.0 * math.pi * d * d / 4.0) * V * V
@@ -601,20 +738,47 @@ def test_installation_tangential_drag_and_frame_velocity() -> None:
     in a current U is the same as a frame at rest in the current U - V0."""
     L, w, d, ct, V = 200.0, 15.0, 0.04, 0.02, 2.0
     line = make_line([L], w, 1e15, diameter=d, drag_normal=1.2, drag_tangential=ct)
-    res = solve(StaticProblem(line=line, medium=medium(), end_a=fixed([0, 0, 0]),
-                              end_b=force([0, 0, -1000.0]), n_nodes=11, payout_speed=V))
+    res = solve(
+        StaticProblem(
+            line=line,
+            medium=medium(),
+            end_a=fixed([0, 0, 0]),
+            end_b=force([0, 0, -1000.0]),
+            n_nodes=11,
+            payout_speed=V,
+        )
+    )
     drag = 0.5 * math.pi * 1025.0 * ct * d * V * V
     assert abs(res.tension[0] - (1000.0 + (w + drag) * L)) < 1e-9 * w * L
     assert np.max(np.abs(res.position[:, :2])) < 1e-9 * L
 
     v0 = np.array([0.4, -0.3, 0.0])
-    moving = solve(StaticProblem(line=line, medium=medium(current=TURNING), end_a=fixed(
-        [0, 0, -150]), end_b=fixed([120, 40, 0]), n_nodes=21, touchdown_velocity=v0))
+    moving = solve(
+        StaticProblem(
+            line=line,
+            medium=medium(current=TURNING),
+            end_a=fixed([0, 0, -150]),
+            end_b=fixed([120, 40, 0]),
+            n_nodes=21,
+            touchdown_velocity=v0,
+        )
+    )
     turning = medium(current=TURNING)
-    rest_medium = Medium(density=1025.0, gravity=9.80665, current_z=turning.current_z,
-                         current_velocity=turning.current_velocity - v0)
-    rest = solve(StaticProblem(line=line, medium=rest_medium, end_a=fixed([0, 0, -150]),
-                               end_b=fixed([120, 40, 0]), n_nodes=21))
+    rest_medium = Medium(
+        density=1025.0,
+        gravity=9.80665,
+        current_z=turning.current_z,
+        current_velocity=turning.current_velocity - v0,
+    )
+    rest = solve(
+        StaticProblem(
+            line=line,
+            medium=rest_medium,
+            end_a=fixed([0, 0, -150]),
+            end_b=fixed([120, 40, 0]),
+            n_nodes=21,
+        )
+    )
     assert np.max(np.abs(moving.position - rest.position)) < 1e-10 * 200.0
     assert np.allclose(moving.force_a, rest.force_a, atol=1e-10 * np.abs(rest.force_a).max())
 
@@ -622,8 +786,13 @@ def test_installation_tangential_drag_and_frame_velocity() -> None:
 def test_installation_config_rejected_by_solvers_without_it() -> None:
     """The exact-catenary solver lists installation among what it cannot do (a config
     error before any work), the shooting solver supports it."""
-    problem = StaticProblem(line=make_line([100.0], 10.0, 1e8), medium=medium(density=0.0),
-                            end_a=fixed([0, 0, 0]), end_b=fixed([90, 0, 0]), payout_speed=1.0)
+    problem = StaticProblem(
+        line=make_line([100.0], 10.0, 1e8),
+        medium=medium(density=0.0),
+        end_a=fixed([0, 0, 0]),
+        end_b=fixed([90, 0, 0]),
+        payout_speed=1.0,
+    )
     assert any("installation" in m for m in STATIC_SOLVERS["analytic"].unsupported(problem))
     assert SOLVER.unsupported(problem) == []
 
@@ -634,10 +803,17 @@ def test_weightless_line_in_a_current() -> None:
     symmetric about its mid-point (the ends exchange roles under a reflection through
     the mid-height plane), with the whole drag taken by the ends along the current."""
     line = make_line([100.0], 0.0, 1e8, diameter=0.05, drag_normal=1.2)
-    res = solve(StaticProblem(line=line, medium=medium(current=[(0.0, 0.5, 0.0)]),
-                              end_a=fixed([0, 0, 0]), end_b=fixed([0, 0, -90]), n_nodes=41))
+    res = solve(
+        StaticProblem(
+            line=line,
+            medium=medium(current=[(0.0, 0.5, 0.0)]),
+            end_a=fixed([0, 0, 0]),
+            end_b=fixed([0, 0, -90]),
+            n_nodes=41,
+        )
+    )
     scale = float(np.linalg.norm(res.force_a))
-    assert res.force_a[0] > 0.1 * scale                       # pulled downstream
+    assert res.force_a[0] > 0.1 * scale  # pulled downstream
     assert np.allclose(res.force_a[[0, 1]], res.force_b[[0, 1]], atol=1e-8 * scale)
     assert abs(res.force_a[2] + res.force_b[2]) < 1e-8 * scale
     mirrored = res.position[::-1] * np.array([1.0, 1.0, -1.0]) + np.array([0.0, 0.0, -90.0])

@@ -34,13 +34,23 @@ from cablestudy.statics import STATIC_SOLVERS, StaticResult
 
 FIG8 = {
     "name": "xcheck",
-    "environment": {"fluid": "water",
-                    "current": [{"z": 0.0, "speed": 0.1, "heading_deg": 60.0}]},
-    "line": {"segments": [{"length": 300.0, "diameter": 0.032, "weight_in_fluid": 0.5,
-                           "axial_stiffness": 1.608e8, "drag_normal": 1.2,
-                           "drag_tangential": 0.01}]},
-    "ends": {"a": {"kind": "fixed", "position": [0.0, 0.0, -50.0]},
-             "b": {"kind": "fixed", "position": [200.0, 0.0, -150.0]}},
+    "environment": {"fluid": "water", "current": [{"z": 0.0, "speed": 0.1, "heading_deg": 60.0}]},
+    "line": {
+        "segments": [
+            {
+                "length": 300.0,
+                "diameter": 0.032,
+                "weight_in_fluid": 0.5,
+                "axial_stiffness": 1.608e8,
+                "drag_normal": 1.2,
+                "drag_tangential": 0.01,
+            }
+        ]
+    },
+    "ends": {
+        "a": {"kind": "fixed", "position": [0.0, 0.0, -50.0]},
+        "b": {"kind": "fixed", "position": [200.0, 0.0, -150.0]},
+    },
     "analysis": {"static": {"nodes": 61}},
 }
 
@@ -52,13 +62,27 @@ def _turning_segmented() -> dict:
         {"z": 0.0, "speed": 0.6, "heading_deg": 0.0},
     ]
     d["line"]["segments"] = [
-        {"length": 150.0, "diameter": 0.04, "weight_in_fluid": 8.0, "axial_stiffness": 5e7,
-         "drag_normal": 1.2, "drag_tangential": 0.02},
-        {"length": 250.0, "diameter": 0.03, "weight_in_fluid": 2.0, "axial_stiffness": 2e7,
-         "drag_normal": 1.0, "drag_tangential": 0.01},
+        {
+            "length": 150.0,
+            "diameter": 0.04,
+            "weight_in_fluid": 8.0,
+            "axial_stiffness": 5e7,
+            "drag_normal": 1.2,
+            "drag_tangential": 0.02,
+        },
+        {
+            "length": 250.0,
+            "diameter": 0.03,
+            "weight_in_fluid": 2.0,
+            "axial_stiffness": 2e7,
+            "drag_normal": 1.0,
+            "drag_tangential": 0.01,
+        },
     ]
-    d["ends"] = {"a": {"kind": "fixed", "position": [0.0, 0.0, -380.0]},
-                 "b": {"kind": "fixed", "position": [250.0, 80.0, -20.0]}}
+    d["ends"] = {
+        "a": {"kind": "fixed", "position": [0.0, 0.0, -380.0]},
+        "b": {"kind": "fixed", "position": [250.0, 80.0, -20.0]},
+    }
     return d
 
 
@@ -67,8 +91,10 @@ def _towed() -> dict:
     d = copy.deepcopy(FIG8)
     d["environment"]["current"] = [{"z": 0.0, "speed": 1.0, "heading_deg": 180.0}]
     d["line"]["segments"][0].update(length=200.0, weight_in_fluid=3.0)
-    d["ends"] = {"a": {"kind": "fixed", "position": [0.0, 0.0, 0.0]},
-                 "b": {"kind": "force", "force": [-50.0, 20.0, -400.0]}}
+    d["ends"] = {
+        "a": {"kind": "fixed", "position": [0.0, 0.0, 0.0]},
+        "b": {"kind": "force", "force": [-50.0, 20.0, -400.0]},
+    }
     return d
 
 
@@ -78,13 +104,19 @@ def _moored() -> dict:
     d = copy.deepcopy(FIG8)
     d["environment"]["current"] = [{"z": 0.0, "speed": 0.4, "heading_deg": 90.0}]
     d["line"]["segments"][0].update(length=250.0, weight_in_fluid=4.0)
-    d["ends"] = {"a": {"kind": "fixed", "position": [0.0, 0.0, -200.0]},
-                 "b": {"kind": "mooring", "force": [900.0, 0.0], "z": 0.0}}
+    d["ends"] = {
+        "a": {"kind": "fixed", "position": [0.0, 0.0, -200.0]},
+        "b": {"kind": "mooring", "force": [900.0, 0.0], "z": 0.0},
+    }
     return d
 
 
-CASES = {"fig8-oblique-current": FIG8, "turning-current-segmented": _turning_segmented(),
-         "towed-force-end": _towed(), "mooring-end-cross-current": _moored()}
+CASES = {
+    "fig8-oblique-current": FIG8,
+    "turning-current-segmented": _turning_segmented(),
+    "towed-force-end": _towed(),
+    "mooring-end-cross-current": _moored(),
+}
 
 
 def _solve(data: dict, method: str, **settings: object) -> StaticResult:
@@ -97,8 +129,12 @@ def _solve(data: dict, method: str, **settings: object) -> StaticResult:
 
 
 def _fields(r: StaticResult) -> dict[str, np.ndarray]:
-    return {"force_a": r.force_a, "force_b": r.force_b, "position": r.position,
-            "tension": r.tension}
+    return {
+        "force_a": r.force_a,
+        "force_b": r.force_b,
+        "position": r.position,
+        "tension": r.tension,
+    }
 
 
 def _difference(a: dict[str, np.ndarray], b: StaticResult) -> float:
@@ -115,8 +151,7 @@ def _difference(a: dict[str, np.ndarray], b: StaticResult) -> float:
 def test_semi_analytic_and_shooting_agree(name: str) -> None:
     data = CASES[name]
     reference = _solve(data, "shooting")
-    x100, x200, x400 = (_fields(_solve(data, "catenary", drag_elements=n))
-                        for n in (100, 200, 400))
+    x100, x200, x400 = (_fields(_solve(data, "catenary", drag_elements=n)) for n in (100, 200, 400))
     e100, e200 = _difference(x100, reference), _difference(x200, reference)
     assert 3.0 < e100 / e200 < 5.0, f"{name}: not second order ({e100:.2e}, {e200:.2e})"
     extrapolated = {k: (4.0 * x400[k] - x200[k]) / 3.0 for k in x400}

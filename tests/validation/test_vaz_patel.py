@@ -37,8 +37,11 @@ def test_table1_ha_cable_is_consistent_with_buoyancy() -> None:
 def results(tmp_path_factory: pytest.TempPathFactory) -> dict[str, xr.Dataset]:
     out = tmp_path_factory.mktemp("vaz-patel")
     data = {}
-    for name in ("vaz-patel-segmented-mooring", "vaz-patel-turning-current",
-                 "vaz-patel-cable-installation"):
+    for name in (
+        "vaz-patel-segmented-mooring",
+        "vaz-patel-turning-current",
+        "vaz-patel-cable-installation",
+    ):
         assert main(["run", str(CONFIGS / f"{name}.yaml"), "--out", str(out)]) == 0
         data[name] = xr.load_dataset(out / f"{name}.nc")
     return data
@@ -129,7 +132,10 @@ def test_figures_build(results: dict[str, xr.Dataset], tmp_path: Path) -> None:
     matplotlib.use("Agg")
     from cablestudy.figures import vaz_patel_figures
 
-    for builder in (vaz_patel_figures.mooring, vaz_patel_figures.turning_current,
-                    vaz_patel_figures.cable_installation):
+    for builder in (
+        vaz_patel_figures.mooring,
+        vaz_patel_figures.turning_current,
+        vaz_patel_figures.cable_installation,
+    ):
         path = builder(results, tmp_path)
         assert path.exists() and path.stat().st_size > 10_000
