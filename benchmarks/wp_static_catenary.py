@@ -154,6 +154,19 @@ def run(quick: bool = False) -> WorkPrecision:
             err_of(r.force_a, r.force_b),
         )
 
+    # many cases in one task (what the runner does with a chunk of still-water cases):
+    # the compiled batch kernel, timed per case over a batch of the same problem
+    from cablestudy.statics.batch import solve_batch
+
+    c = wp.curve("cablestudy catenary, batch of 1000 cases per task")
+    for tol in (1e-6, 1e-9, 1e-12):
+        probs = [problem(tol)] * 1000
+        solve_batch(probs[:4])  # numba compile (cached on disk) outside the timing
+        r = solve_batch(probs)[0]
+        assert r.status == 0, r.message
+        batch_time = median_time(lambda probs=probs: solve_batch(probs), repeats=repeats)
+        c.add(f"tolerance={tol:g}", batch_time / len(probs), err_of(r.force_a, r.force_b))
+
     c = wp.curve("cablestudy shooting (ODE, DOP853)")
     for rtol in (1e-6, 1e-9, 1e-12) if quick else (1e-6, 1e-8, 1e-10, 1e-12):
         solver, prob = ShootingSolver(rtol=rtol), problem(1e-12)
