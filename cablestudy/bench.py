@@ -146,6 +146,14 @@ def _fmt_time(t: float) -> str:
     return f"{t:.2f} s"
 
 
+def _tick_time(t: float) -> str:
+    """Short axis label of a time [s]: 20 us, 5 ms, 2 s."""
+    for unit, scale in (("s", 1.0), ("ms", 1e-3), ("us", 1e-6)):
+        if t >= scale * 0.999:
+            return f"{t / scale:.3g} {unit}"
+    return f"{t / 1e-9:.3g} ns"
+
+
 def plot(wp: WorkPrecision, path: Path) -> None:
     import matplotlib
 
@@ -157,8 +165,12 @@ def plot(wp: WorkPrecision, path: Path) -> None:
     for c in wp.curves:
         t, e = np.asarray(c.times), np.maximum(np.asarray(c.errors), 1e-17)
         ax.loglog(t, e, "s--" if c.peer else "o-", label=c.method)
-    ax.xaxis.set_major_locator(LogLocator(base=10.0, subs=(1.0, 2.0, 5.0)))
-    ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    # decades only when the times span more than two of them (labels would collide)
+    times = [t for c in wp.curves for t in c.times if t > 0]
+    span = max(times) / min(times) if times else 1.0
+    subs = (1.0,) if span > 100.0 else (1.0, 2.0, 5.0)
+    ax.xaxis.set_major_locator(LogLocator(base=10.0, subs=subs))
+    ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: _tick_time(v)))
     ax.xaxis.set_minor_formatter(NullFormatter())
     ax.set_xlabel(wp.time_name)
     ax.set_ylabel(wp.error_name)
