@@ -91,14 +91,19 @@ def _dynamic_problems(cases: list[Case], src: StudySource) -> list[str]:
         if dyn is None:
             continue
         study = case.study
+        excited = {e.end for e in dyn.excitations}
         for label in ("a", "b"):
             end = getattr(study.ends, label)
-            if not isinstance(end, FixedEnd):
+            # a 'force' or 'mooring' end fixes the static equilibrium; an end the
+            # excitation moves then moves about that static position (a vessel-attached
+            # end). An unexcited end must be held: the model has no free end node.
+            if not isinstance(end, FixedEnd) and label not in excited:
                 line = src.line_of(("ends", label, "kind"))
                 problems.append(
                     f"{line}: ends.{label}.kind: {end.kind!r} is not supported with "
-                    "analysis.dynamic (the time-domain model holds or moves each end along a "
-                    "prescribed path); allowed: 'fixed'"
+                    "analysis.dynamic unless the excitation moves this end (the time-domain "
+                    "model holds or moves each end along a prescribed path about its static "
+                    f"position); allowed: 'fixed', or an excitation with end: {label}"
                 )
         length = study.line.length
         if dyn.history is not None:

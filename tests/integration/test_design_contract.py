@@ -291,17 +291,40 @@ def test_mooring_end_horizontal_force_and_height(tmp_path: Path) -> None:
     assert float(ds["x"][-1]) > 0
 
 
-def test_dynamics_needs_fixed_ends_and_says_so(
-    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+@pytest.mark.parametrize(
+    "end_b",
+    [
+        "  b: {kind: force, force: [2000.0, 0.0, 1500.0]}\n",
+        "  b: {kind: mooring, force: [2000.0, 0.0], z: -8.6}\n",
+    ],
+)
+def test_design_example_with_towing_or_mooring_end_runs_dynamics(
+    tmp_path: Path, end_b: str
 ) -> None:
-    text = _edit(DESIGN_EXAMPLE, B_FIXED, "  b: {kind: force, force: [2000.0, 0.0, 1500.0]}\n")
-    cfg = tmp_path / "tow.yaml"
-    cfg.write_text(text)
-    assert main(["run", str(cfg), "--out", str(tmp_path / "out")]) == 2
-    err = capsys.readouterr().err
-    assert f"{cfg}:25: ends.b.kind: 'force' is not supported with analysis.dynamic" in err
-    assert "allowed: 'fixed'" in err
-    assert not (tmp_path / "out").exists()  # nothing done
+    """The commented variants of end B in DESIGN.md's example, with the rest of the file
+    as written (dynamic analysis exciting end b): B's static end condition fixes its
+    equilibrium position and the excitation moves it about that position. One case of
+    the sweep keeps the run short."""
+    text = _edit(DESIGN_EXAMPLE, B_FIXED, end_b)
+    text = _edit(
+        text,
+        FULL_SWEEP,
+        "  analysis.dynamic.excitation.amplitude: [0.05]\n"
+        "  analysis.dynamic.excitation.frequency: [0.2]\n",
+    )
+    ds = run(tmp_path, text)
+    assert int(ds["status"].max()) == 0, ds["message"].values
+    if "force:" in end_b and "mooring" not in end_b:
+        # towing: the line pulls the attachment with minus the applied force
+        np.testing.assert_allclose(
+            ds["force_b"].squeeze(), [-2000.0, 0.0, -1500.0], rtol=1e-9, atol=1e-9
+        )
+    else:
+        # mooring: B at the given height, horizontal pull as given
+        assert float(ds["z"].squeeze()[-1]) == pytest.approx(-8.6, abs=1e-9)
+        assert float(ds["force_b"].squeeze()[0]) == pytest.approx(-2000.0, rel=1e-9)
+    assert float(ds["tension_min"].squeeze()) <= float(ds["tension_static"].squeeze())
+    assert float(ds["tension_max"].squeeze()) >= float(ds["tension_static"].squeeze())
 
 
 # ------------------------------------------------------------------ environment
