@@ -23,7 +23,7 @@ from scipy.optimize import brentq
 
 from cablestudy.statics.elastic_catenary import solve_between
 
-from .dynamics_helpers import EA, LENGTH, MASS, SPAN, moustafa_study, run_direct
+from .dynamics_helpers import EA, LENGTH, MASS, SPAN, ring_after_pulse
 
 G = 9.80665
 
@@ -58,25 +58,7 @@ def dominant_frequency(t: np.ndarray, y: np.ndarray, band: tuple[float, float]) 
 
 
 def test_free_vibration_matches_irvine_first_symmetric_mode() -> None:
-    times = np.linspace(0.0, 0.6, 25)
-    bump = 0.003 * np.sin(np.pi * times / 0.6) ** 2
-    table = [[float(t), float(u)] for t, u in zip(times, bump, strict=True)]
-    study = moustafa_study(
-        fluid="vacuum",
-        dynamic={
-            "excitation": {"end": "b", "direction": [1.0, 0.0, 0.0], "table": table},
-            "elements": 40,
-            "period": 0.3125,
-            "duration": 40.0,
-            "ramp_periods": 0.0,
-        },
-    )
-    res, _, _ = run_direct(study)
-    assert res.success, res.message
-    rec = res.record
-    assert rec is not None
-    t = rec["t"]
-    tension = np.linalg.norm(rec["end_force"][:, 1], axis=1)
+    t, tension = ring_after_pulse()
     late = t > 2.0
     measured = dominant_frequency(t[late], tension[late], (1.4, 2.2))
     sol = solve_between((0, 0, 0), (SPAN, 0, 0), LENGTH, MASS * G, EA, np.linspace(0, LENGTH, 201))

@@ -22,37 +22,19 @@ from cablestudy.analyses import evaluate_case
 from cablestudy.cases import expand_cases
 from cablestudy.config.loader import parse_study_text
 
-from .dynamics_helpers import moustafa_study, run_direct
+from .dynamics_helpers import moustafa_study, ring_after_pulse
 from .test_dynamics_irvine import dominant_frequency
 
 BAND = (1.4, 2.2)
 
 
 def test_free_vibration_peak_matches_the_modal_frequency() -> None:
-    times = np.linspace(0.0, 0.6, 25)
-    bump = 0.003 * np.sin(np.pi * times / 0.6) ** 2
-    table = [[float(t), float(u)] for t, u in zip(times, bump, strict=True)]
-    study = moustafa_study(
-        fluid="vacuum",
-        dynamic={
-            "excitation": {"end": "b", "direction": [1.0, 0.0, 0.0], "table": table},
-            "elements": 40,
-            "period": 0.3125,
-            "duration": 40.0,
-            "ramp_periods": 0.0,
-        },
-    )
-    res, _, _ = run_direct(study)
-    assert res.success, res.message
-    rec = res.record
-    assert rec is not None
-    t = rec["t"]
-    tension = np.linalg.norm(rec["end_force"][:, 1], axis=1)
+    t, tension = ring_after_pulse()
     measured = dominant_frequency(t[t > 2.0], tension[t > 2.0], BAND)
 
-    modal_study = dict(study)
+    modal_study = moustafa_study(fluid="vacuum")
     modal_study["analysis"] = {
-        "static": study["analysis"]["static"],
+        "static": modal_study["analysis"]["static"],
         "modal": {"modes": 8, "elements": 40, "mesh": "uniform"},
     }
     _, cases = expand_cases(parse_study_text(yaml.safe_dump(modal_study), "<modal>"))
