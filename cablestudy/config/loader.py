@@ -14,7 +14,14 @@ import yaml
 from pydantic import BaseModel, ValidationError
 
 from .base import FieldError
-from .safe_yaml import YamlRefused, compose_and_load, dotted, max_study_bytes, too_large
+from .safe_yaml import (
+    YamlRefused,
+    compose_and_load,
+    dotted,
+    max_study_bytes,
+    printable,
+    too_large,
+)
 from .study import Study
 
 Loc = tuple[str | int, ...]
@@ -25,8 +32,8 @@ class StudyError(ValueError):
     naming the YAML path, the bad value and what is allowed, with the line number."""
 
     def __init__(self, problems: list[str], source: str = "<study>") -> None:
-        self.problems = list(problems)
-        self.source = source
+        self.problems = [printable(p) for p in problems]
+        self.source = printable(source)
         super().__init__("\n".join(f"{source}:{p}" for p in self.problems))
 
 
@@ -329,7 +336,7 @@ def format_validation_error(
 
     ``swept`` maps a study path set by a sweep to (the sweep key that set it, the YAML
     location of the value used): a fault in a swept value points at that value's line."""
-    grouped: dict[tuple[Loc, str], list[str]] = {}
+    grouped: dict[tuple[Loc, str, str], list[str]] = {}
     for err in exc.errors(include_url=False):
         extra, msg, value, known = _describe(err)
         loc = prefix + _clean_loc(tuple(err["loc"])) + extra
@@ -343,12 +350,11 @@ def format_validation_error(
                 where = f"{where} (value from {dotted(origin[0])})"
         head = f"{line if line is not None else '?'}: {where}"
         tail = f" (got {_shown(value)})" if known else ""
-        msgs = grouped.setdefault((loc, head + "\x00" + tail), [])
+        msgs = grouped.setdefault((loc, head, tail), [])
         if msg not in msgs:
             msgs.append(msg)
     problems = []
-    for (_, key), msgs in grouped.items():
-        head, tail = key.split("\x00")
+    for (_, head, tail), msgs in grouped.items():
         problems.append(f"{head}: {'; or '.join(msgs)}{tail}{note}")
     return problems
 

@@ -75,6 +75,15 @@ def dotted(loc: Loc) -> str:
     return ".".join(str(p) for p in loc) if loc else "<top>"
 
 
+def printable(message: str) -> str:
+    """``message`` with every unprintable character escaped (``\\r``, ``\\x1b``): a key
+    or value from the file can neither break a message across lines nor send control
+    sequences to the user's terminal."""
+    if message.isprintable():
+        return message
+    return "".join(c if c.isprintable() else repr(c)[1:-1] for c in message)
+
+
 def parse_size(text: str) -> int:
     """Bytes in a size such as ``1048576``, ``512k``, ``4M``, ``4MiB`` or ``1G`` (powers
     of 1024). Raises ValueError naming what is allowed."""
