@@ -57,6 +57,7 @@ _ALLOWED_TAGS = ", ".join(f"!!{t[len(_CORE) :]}" for t in STANDARD_TAGS)
 _NON_PRINTABLE = re.compile(
     "[^\x09\x0a\x0d\x20-\x7e\x85\xa0-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]"
 )
+_SHOWN = 20  # duplicate keys listed one by one
 _SIZE = re.compile(r"^\s*([0-9]+)\s*([kKmMgG]?)(?:i?[bB])?\s*$")
 _UNITS = {"": 1, "k": 1 << 10, "m": 1 << 20, "g": 1 << 30}
 
@@ -338,7 +339,12 @@ def compose_and_load(
     try:
         node = loader.get_single_node()
         if loader.duplicates:
-            raise YamlRefused(loader.duplicates)
+            shown = loader.duplicates[:_SHOWN]
+            more = len(loader.duplicates) - len(shown)
+            if more:
+                line = loader.duplicates[_SHOWN].split(":", 1)[0]
+                shown.append(f"{line}: <top>: and {more} more duplicate keys, not shown")
+            raise YamlRefused(shown)
         data = loader.construct_document(node) if node is not None else None
     except yaml.YAMLError as exc:
         raise YamlRefused([_yaml_error(exc)]) from None

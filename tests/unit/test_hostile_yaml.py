@@ -273,3 +273,19 @@ def test_ordinary_anchors_and_aliases_still_work(tmp_path: Path) -> None:
     assert int(explicit.attrs["cases_failed"]) == 0 and explicit.sizes["position_0"] == 2
     for name in ("x", "z", "tension", "force_a", "force_b"):
         xr.testing.assert_equal(explicit[name], anchored[name])
+
+
+def test_many_duplicate_keys_are_summed_up(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Every duplicate is found, but a file of thousands is not echoed back in full."""
+    path = tmp_path / "study.yaml"
+    path.write_text("name: dups\nline:\n" + "".join(f"  k{i % 100}: 1\n" for i in range(5000)))
+    assert main(["validate", str(path)]) == 2
+    messages = capsys.readouterr().err.splitlines()[1:]
+    assert len(messages) == 21
+    assert messages[0] == (
+        f"{path}:103: line.k0: duplicate key 'k0' (first given on line 3, again on line "
+        "103); allowed: each key once per mapping"
+    )
+    assert messages[-1] == f"{path}:123: <top>: and 4880 more duplicate keys, not shown"
