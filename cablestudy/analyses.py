@@ -11,7 +11,7 @@ import time
 import traceback
 from collections import OrderedDict
 from dataclasses import replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -19,20 +19,7 @@ from .cases import Case
 from .config.analysis import DynamicSettings, HarmonicExcitation
 from .config.ends import FixedEnd
 from .config.loader import StudyError, StudySource
-from .dynamics.excitation import EndMotion, TableMotion
-from .dynamics.modal import (
-    ModalProblem,
-    ModalResult,
-    graded_arc_lengths,
-    modal_analysis,
-    snap_to_samples,
-    subset_static,
-    transverse_mass,
-)
-from .dynamics.model import DiscreteLine, discretise, static_equilibrium
-from .dynamics.timedomain import DynamicProblem, DynamicResult, simulate
 from .problem import line_model, medium, static_problem
-from .results import CaseRecord
 from .statics import (
     STATIC_SOLVERS,
     STATUS_NO_SOLUTION,
@@ -40,6 +27,13 @@ from .statics import (
     STATUS_OK,
     StaticResult,
 )
+
+if TYPE_CHECKING:  # imported where used: `cablestudy validate` needs none of them
+    from .dynamics.excitation import EndMotion
+    from .dynamics.modal import ModalResult
+    from .dynamics.model import DiscreteLine
+    from .dynamics.timedomain import DynamicResult
+    from .results import CaseRecord
 
 #: static solutions already computed in this process, by static hash (a sweep over
 #: excitation parameters solves each distinct static problem once)
@@ -181,6 +175,15 @@ def solve_modal(case: Case, static: StaticResult, deadline: float | None) -> Mod
     solution is sampled uniformly fine enough (at least 8 samples in the shortest
     element, an integer number per uniform element) to take the nearest sample for
     each node, so every node lies exactly on the static solution."""
+    from .dynamics.modal import (
+        ModalProblem,
+        graded_arc_lengths,
+        modal_analysis,
+        snap_to_samples,
+        subset_static,
+        transverse_mass,
+    )
+
     settings = case.study.analysis.modal
     assert settings is not None
     problem = static_problem(case.study)
@@ -266,6 +269,8 @@ def discrete_statics(case: Case, static: StaticResult) -> tuple[DiscreteLine, np
     """The lumped-mass line of the case and its own static equilibrium, found by Newton
     from the static solution (cached per static problem and element count). The third
     item is an error message (empty when the equilibrium was found)."""
+    from .dynamics.model import discretise, static_equilibrium
+
     dyn = case.study.analysis.dynamic
     assert dyn is not None
     key = (case.static_hash, dyn.elements)
@@ -307,6 +312,8 @@ def roundoff_force(line: DiscreteLine, x: np.ndarray) -> float:
 
 def end_motion(dyn: DynamicSettings) -> tuple[EndMotion, float, float]:
     """(end motion, steady-state period [s], base time step [s]) of the settings."""
+    from .dynamics.excitation import EndMotion, TableMotion
+
     harmonics = [e for e in dyn.excitations if isinstance(e, HarmonicExcitation)]
     tables = [e for e in dyn.excitations if not isinstance(e, HarmonicExcitation)]
     table_motions = tuple(
@@ -350,6 +357,8 @@ def dynamic_method(dyn: DynamicSettings) -> str:
 
 
 def solve_dynamic(case: Case, static: StaticResult, deadline: float | None) -> DynamicResult:
+    from .dynamics.timedomain import DynamicProblem, DynamicResult, simulate
+
     dyn = case.study.analysis.dynamic
     assert dyn is not None
     if static.laid_length > 0.0:
@@ -429,6 +438,8 @@ def evaluate_case(case: Case, *, presolved: dict[str, StaticResult] | None = Non
     """Run every analysis the case asks for. Never raises: an exception inside a solver
     becomes a failed record with the exception's text. ``presolved`` maps static hashes
     to static solutions already computed (by :func:`evaluate_chunk`)."""
+    from .results import CaseRecord
+
     t0 = time.perf_counter()
     deadline = time.monotonic() + case.study.analysis.time_limit
     data: dict[str, Any] = {}

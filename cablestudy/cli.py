@@ -10,19 +10,28 @@ from pathlib import Path
 from .config.loader import StudyError
 
 
-def _load(path: str):  # noqa: ANN202
+def _size(text: str) -> int:
+    from .config.safe_yaml import parse_size
+
+    try:
+        return parse_size(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def _load(path: str, max_bytes: int | None = None):  # noqa: ANN202
     from .analyses import check_supported
     from .cases import expand_cases
     from .config.loader import read_study_source
 
-    src = read_study_source(path)
+    src = read_study_source(path, max_bytes=max_bytes)
     axes, cases = expand_cases(src)
     check_supported(cases, src)
     return src, axes, cases
 
 
 def cmd_validate(args: argparse.Namespace) -> int:
-    src, axes, cases = _load(args.config)
+    src, axes, cases = _load(args.config, args.max_study_size)
     dims = ", ".join(f"{a.name}={a.size}" for a in axes) or "no sweep"
     print(f"{args.config}: valid study {src.data['name']!r}: {len(cases)} cases ({dims})")
     return 0
@@ -39,7 +48,7 @@ def cmd_run(args: argparse.Namespace) -> int:
             file=sys.stderr,
         )
         return 2
-    src, axes, cases = _load(args.config)
+    src, axes, cases = _load(args.config, args.max_study_size)
     try:
         summary = run_study(
             src,
@@ -101,6 +110,17 @@ def cmd_bench(args: argparse.Namespace) -> int:
     return 0
 
 
+def _add_size_option(p: argparse.ArgumentParser) -> None:
+    p.add_argument(
+        "--max-study-size",
+        type=_size,
+        default=None,
+        metavar="SIZE",
+        help="refuse study files larger than this (bytes, or 512k, 4M, 1G; default: "
+        "$CABLESTUDY_MAX_STUDY_SIZE, else 1M)",
+    )
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="cablestudy", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
@@ -129,10 +149,12 @@ def build_parser() -> argparse.ArgumentParser:
         default=None,
         help="progress bar (default: on a terminal)",
     )
+    _add_size_option(p)
     p.set_defaults(func=cmd_run)
 
     p = sub.add_parser("validate", help="check a study file without running it")
     p.add_argument("config")
+    _add_size_option(p)
     p.set_defaults(func=cmd_validate)
 
     p = sub.add_parser("schema", help="print the JSON Schema of study files")

@@ -38,8 +38,9 @@ class Segment(StrictModel):
 
     @property
     def area(self) -> float:
-        """Displaced cross-section area pi d^2 / 4 [m^2]."""
-        return math.pi * self.diameter**2 / 4.0
+        """Displaced cross-section area pi d^2 / 4 [m^2] (inf, not an OverflowError
+        that would escape validation, for an absurd diameter)."""
+        return math.pi * self.diameter * self.diameter / 4.0
 
     def mass_in(self, density: float, gravity: float) -> float:
         """Structural mass per length [kg/m]: as given, or weight / g + density * area.

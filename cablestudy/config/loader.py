@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import difflib
 import hashlib
-import re
 import types
 import typing
 from dataclasses import dataclass
@@ -15,6 +14,14 @@ import yaml
 from pydantic import BaseModel, ValidationError
 
 from .base import FieldError
+from .safe_yaml import (
+    YamlRefused,
+    compose_and_load,
+    dotted,
+    max_study_bytes,
+    printable,
+    too_large,
+)
 from .study import Study
 
 Loc = tuple[str | int, ...]
@@ -25,8 +32,8 @@ class StudyError(ValueError):
     naming the YAML path, the bad value and what is allowed, with the line number."""
 
     def __init__(self, problems: list[str], source: str = "<study>") -> None:
-        self.problems = list(problems)
-        self.source = source
+        self.problems = [printable(p) for p in problems]
+        self.source = printable(source)
         super().__init__("\n".join(f"{source}:{p}" for p in self.problems))
 
 
@@ -51,57 +58,38 @@ class StudySource:
         return None
 
 
-class _StudyLoader(yaml.SafeLoader):
-    """Safe YAML loader that also reads ``1e-9`` and ``2E5`` as numbers (YAML 1.2; PyYAML
-    follows YAML 1.1, which needs a dot in the mantissa and would return a string)."""
-
-
-_StudyLoader.add_implicit_resolver(
-    "tag:yaml.org,2002:float",
-    re.compile(
-        r"""^(?:[-+]?(?:[0-9][0-9_]*)\.[0-9_]*(?:[eE][-+]?[0-9]+)?
-        |[-+]?(?:[0-9][0-9_]*)(?:[eE][-+]?[0-9]+)
-        |\.[0-9_]+(?:[eE][-+]?[0-9]+)?
-        |[-+]?\.(?:inf|Inf|INF)
-        |\.(?:nan|NaN|NAN))$""",
-        re.X,
-    ),
-    list("-+0123456789."),
-)
-
-
-def _line_map(node: yaml.Node, loc: Loc, out: dict[Loc, int], problems: list[str]) -> None:
+def _line_map(node: yaml.Node, loc: Loc, out: dict[Loc, int]) -> None:
+    """Line of every YAML path (aliases included: their nodes are counted in the node
+    budget, so this walk is bounded). Duplicate keys were refused while composing."""
     out.setdefault(loc, node.start_mark.line + 1)
     if isinstance(node, yaml.MappingNode):
-        seen: dict[str, int] = {}
         for key, value in node.value:
-            name = str(key.value)
-            line = key.start_mark.line + 1
-            sub = loc + (name,)
-            if name in seen:
-                problems.append(
-                    f"{line}: {dotted(sub)}: duplicate key (first given on line {seen[name]}); "
-                    "allowed: each key once per mapping"
-                )
-                continue
-            seen[name] = line
-            out[sub] = line
-            _line_map(value, sub, out, problems)
+            sub = loc + (str(key.value),)
+            out[sub] = key.start_mark.line + 1
+            _line_map(value, sub, out)
     elif isinstance(node, yaml.SequenceNode):
         for i, item in enumerate(node.value):
             out[loc + (i,)] = item.start_mark.line + 1
-            _line_map(item, loc + (i,), out, problems)
+            _line_map(item, loc + (i,), out)
 
 
-def parse_study_text(text: str, source: str = "<study>") -> StudySource:
-    """Parse YAML text, keeping line numbers. Raises :class:`StudyError`."""
+def _byte_size(text: str) -> int:
+    return len(text.encode("utf-8", "surrogatepass"))
+
+
+def parse_study_text(
+    text: str, source: str = "<study>", *, max_bytes: int | None = None
+) -> StudySource:
+    """Parse YAML text within the limits of :mod:`cablestudy.config.safe_yaml`, keeping
+    line numbers. ``max_bytes`` [bytes] defaults to the configured study size limit.
+    Raises :class:`StudyError`."""
     try:
-        node = yaml.compose(text, Loader=_StudyLoader)
-        data = yaml.load(text, Loader=_StudyLoader)  # noqa: S506 - a SafeLoader subclass
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        line = mark.line + 1 if mark is not None else "?"
-        raise StudyError([f"{line}: not valid YAML: {exc}"], source) from None
+        limit = max_study_bytes() if max_bytes is None else max_bytes
+        if len(text) > limit or _byte_size(text) > limit:
+            raise YamlRefused([too_large(_byte_size(text), limit, exact=True)])
+        node, data = compose_and_load(text)
+    except YamlRefused as exc:
+        raise StudyError(exc.problems, source) from None
     if data is None:
         raise StudyError(
             [
@@ -119,31 +107,43 @@ def parse_study_text(text: str, source: str = "<study>") -> StudySource:
             source,
         )
     lines: dict[Loc, int] = {}
-    problems: list[str] = []
     if node is not None:
-        _line_map(node, (), lines, problems)
-    if problems:
-        raise StudyError(problems, source)
+        _line_map(node, (), lines)
     bad_keys = [k for k in data if not isinstance(k, str)]
     if bad_keys:
         raise StudyError([f"1: <top>: keys must be text, got {bad_keys!r}"], source)
     return StudySource(text=text, data=data, lines=lines, source=source)
 
 
-def read_study_source(path: str | Path) -> StudySource:
-    """Read a study file (UTF-8 YAML) keeping line numbers. Raises :class:`StudyError`."""
+def read_study_source(path: str | Path, *, max_bytes: int | None = None) -> StudySource:
+    """Read a study file (UTF-8 YAML) keeping line numbers; a file over ``max_bytes``
+    [bytes] (default: the configured study size limit) is refused before it is read in
+    full. Raises :class:`StudyError`."""
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        limit = max_study_bytes() if max_bytes is None else max_bytes
+    except YamlRefused as exc:
+        raise StudyError(exc.problems, str(path)) from None
+    try:
+        with path.open("rb") as stream:
+            raw = stream.read(limit + 1)
+            if len(raw) > limit:
+                size = path.stat().st_size
+                raise StudyError([too_large(size, limit, exact=size > limit)], str(path))
     except OSError as exc:
         raise StudyError([f"0: cannot read the study file: {exc.strerror}"], str(path)) from None
+    try:
+        text = raw.decode("utf-8")
     except UnicodeDecodeError as exc:
-        line = path.read_bytes()[: exc.start].count(b"\n") + 1
+        line = raw[: exc.start].count(b"\n") + 1
         raise StudyError(
-            [f"{line}: the study file is not UTF-8 text ({exc.reason} at byte {exc.start})"],
+            [
+                f"{line}: the study file is not UTF-8 text ({exc.reason} at byte "
+                f"{exc.start}); allowed: UTF-8 text"
+            ],
             str(path),
         ) from None
-    return parse_study_text(text, str(path))
+    return parse_study_text(text, str(path), max_bytes=limit)
 
 
 # ----------------------------------------------------------------- error wording
@@ -245,10 +245,6 @@ def _clean_loc(loc: Loc) -> Loc:
     return tuple(out)
 
 
-def dotted(loc: Loc) -> str:
-    return ".".join(str(p) for p in loc) if loc else "<top>"
-
-
 _TYPE_WORDS = {
     "float_type": "must be a number",
     "int_type": "must be a whole number",
@@ -322,7 +318,10 @@ def _describe(err: dict[str, Any]) -> tuple[Loc, str, Any, bool]:
 def _shown(value: Any) -> str:
     if isinstance(value, dict | list) and len(repr(value)) > 80:
         return f"a {type(value).__name__} of {len(value)} items"
-    return repr(value)
+    if isinstance(value, str) and len(value) > 80:
+        return f"{value[:40]!r}... (text of {len(value)} characters)"
+    text = repr(value)
+    return text if len(text) <= 200 else text[:200] + "..."
 
 
 def format_validation_error(
@@ -337,7 +336,7 @@ def format_validation_error(
 
     ``swept`` maps a study path set by a sweep to (the sweep key that set it, the YAML
     location of the value used): a fault in a swept value points at that value's line."""
-    grouped: dict[tuple[Loc, str], list[str]] = {}
+    grouped: dict[tuple[Loc, str, str], list[str]] = {}
     for err in exc.errors(include_url=False):
         extra, msg, value, known = _describe(err)
         loc = prefix + _clean_loc(tuple(err["loc"])) + extra
@@ -351,12 +350,11 @@ def format_validation_error(
                 where = f"{where} (value from {dotted(origin[0])})"
         head = f"{line if line is not None else '?'}: {where}"
         tail = f" (got {_shown(value)})" if known else ""
-        msgs = grouped.setdefault((loc, head + "\x00" + tail), [])
+        msgs = grouped.setdefault((loc, head, tail), [])
         if msg not in msgs:
             msgs.append(msg)
     problems = []
-    for (_, key), msgs in grouped.items():
-        head, tail = key.split("\x00")
+    for (_, head, tail), msgs in grouped.items():
         problems.append(f"{head}: {'; or '.join(msgs)}{tail}{note}")
     return problems
 

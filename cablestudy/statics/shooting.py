@@ -91,8 +91,6 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import solve_ivp
-from scipy.optimize import brentq
 
 from .base import (
     STATUS_NO_SOLUTION,
@@ -432,6 +430,8 @@ class _Integrator:
 
     def run(self, s0: float, force: np.ndarray, position: np.ndarray, *, dense: bool) -> _Shot:
         """Integrate from s0 (force F(s0-) and position given) to the far end."""
+        from scipy.integrate import solve_ivp  # here, not at import: validation needs none
+
         line = self.line
         L = line.length
         F = np.array(force, dtype=float)
@@ -935,6 +935,8 @@ class ShootingSolver:
     def _mooring_va(H: float, h: float, L: float, w: float, EA: float) -> float:
         """Vertical component V_A of the tension vector at A of a uniform catenary with
         horizontal tension H whose far end is h above A [N]."""
+        from scipy.optimize import brentq
+
         if w == 0.0:
             return H * h / max(math.sqrt(max(L * L - h * h, 1e-12 * L * L)), 1e-12)
 
@@ -960,6 +962,8 @@ class ShootingSolver:
         """Start unknowns (T_0, beta, q / L) for a start end on the seabed, from a free
         start-force guess and, where the line should rest on the seabed, the inextensible
         catenary with touchdown."""
+        from scipy.optimize import brentq
+
         assert st.bed is not None and st.start.position is not None
         bed, line, far = st.bed, st.line, st.far
         L = line.length

@@ -191,7 +191,7 @@ CASES: dict[str, tuple[str, int, tuple[str, ...]]] = {
         9,
         (
             "line.segments.0.diameter",
-            "duplicate key (first given on line 8)",
+            "duplicate key 'diameter' (first given on line 8, again on line 9)",
             "allowed: each key once",
         ),
     ),
