@@ -344,9 +344,55 @@ def end_motion(dyn: DynamicSettings) -> tuple[EndMotion, float, float]:
     return motion, period, step
 
 
-def dynamic_method(dyn: DynamicSettings) -> str:
-    """The method a case runs: 'auto' resolves to 'time' (the only one available)."""
-    return "time" if dyn.method in ("auto", "time") else dyn.method
+def auto_ineligible(dyn: DynamicSettings) -> str:
+    """Why ``method: auto`` cannot try the frequency domain for these settings ("" if it
+    can): it needs one harmonic frequency, and time histories come from the time domain."""
+    if not all(isinstance(e, HarmonicExcitation) for e in dyn.excitations):
+        return "excitation is not harmonic"
+    if len({e.frequency for e in dyn.excitations}) > 1:  # type: ignore[union-attr]
+        return "excitation has several frequencies"
+    if dyn.history is not None:
+        return "time histories asked for"
+    if dyn.duration is not None:
+        return "a fixed run duration asked for"
+    return ""
+
+
+def run_dynamic(
+    case: Case, static: StaticResult, deadline: float | None
+) -> tuple[int, str, dict[str, np.ndarray]]:
+    """The case's dynamic analysis by its method: (status, message, outputs).
+
+    ``time``: the time domain; ``frequency``: the linearised harmonic response;
+    ``auto``: the frequency domain where :mod:`cablestudy.frequency_cases` trusts it,
+    else the time domain. ``dynamic_method`` and ``dynamic_method_reason`` record
+    which ran and why."""
+    from .frequency_cases import solve_frequency
+
+    dyn = case.study.analysis.dynamic
+    assert dyn is not None
+    if dyn.method in ("frequency", "auto"):
+        why = auto_ineligible(dyn) if dyn.method == "auto" else ""
+        if not why:
+            fres = solve_frequency(case, static, deadline)
+            if dyn.method == "frequency" or (fres.status == STATUS_OK and not fres.distrust):
+                reason = (
+                    "method: frequency"
+                    if dyn.method == "frequency"
+                    else f"auto: linear ({fres.summary})"
+                )
+                out = dict(fres.data)
+                out["dynamic_method"] = np.asarray("frequency")
+                out["dynamic_method_reason"] = np.asarray(reason)
+                return fres.status, fres.message, out
+            why = fres.distrust or fres.message
+        reason = f"auto: {why}"
+    else:
+        reason = "method: time"
+    dres = solve_dynamic(case, static, deadline)
+    out = dynamic_outputs(dres, dyn)
+    out["dynamic_method_reason"] = np.asarray(reason)
+    return dres.status, dres.message, out
 
 
 def solve_dynamic(case: Case, static: StaticResult, deadline: float | None) -> DynamicResult:
@@ -406,7 +452,7 @@ def dynamic_outputs(res: DynamicResult, dyn: DynamicSettings) -> dict[str, np.nd
         "dynamic_steps": np.asarray(res.steps),
         "newton_iterations": np.asarray(res.newton_iterations),
         "rejected_steps": np.asarray(res.rejected_steps),
-        "dynamic_method": np.asarray(dynamic_method(dyn)),
+        "dynamic_method": np.asarray("time"),
     }
     if res.history is not None:
         h = res.history
@@ -445,9 +491,8 @@ def evaluate_case(case: Case, *, presolved: dict[str, StaticResult] | None = Non
 
         dyn = case.study.analysis.dynamic
         if dyn is not None and status == STATUS_OK:
-            dres = solve_dynamic(case, res, deadline)
-            status, message = dres.status, dres.message
-            data.update(dynamic_outputs(dres, dyn))
+            status, message, dyn_out = run_dynamic(case, res, deadline)
+            data.update(dyn_out)
     except Exception as exc:  # noqa: BLE001 - any solver fault is recorded as data
         status = STATUS_NUMERICAL
         tb = traceback.extract_tb(exc.__traceback__)

@@ -77,6 +77,46 @@ OUTPUTS: dict[str, OutputVariable] = {
     "newton_iterations": OutputVariable((), "1", "Newton iterations of the time steps"),
     "rejected_steps": OutputVariable((), "1", "rejected (retried shorter) time steps"),
     "dynamic_method": OutputVariable((), "1", "dynamic method used (time | frequency)", "str"),
+    "dynamic_method_reason": OutputVariable(
+        (), "1", "why this dynamic method ran (method: auto records its checks)", "str"
+    ),
+    # frequency domain (cablestudy.dynamics.frequency): static +/- harmonic amplitude
+    "tension_envelope_max": OutputVariable(
+        ("s",), "N", "largest tension along the line over the steady motion"
+    ),
+    "tension_envelope_min": OutputVariable(
+        ("s",), "N", "smallest tension along the line over the steady motion"
+    ),
+    "tension_amplitude_a": OutputVariable((), "N", "tension amplitude at end A"),
+    "tension_amplitude_b": OutputVariable((), "N", "tension amplitude at end B"),
+    "tension_phase_a": OutputVariable(
+        (), "deg", "phase of the tension at end A ahead of the (first) excitation"
+    ),
+    "tension_phase_b": OutputVariable(
+        (), "deg", "phase of the tension at end B ahead of the (first) excitation"
+    ),
+    "linearisation_iterations": OutputVariable((), "1", "drag linearisation iterations"),
+    "linearisation_converged": OutputVariable(
+        (), "1", "1 if the drag linearisation converged, else 0"
+    ),
+    "transfer_frequency": OutputVariable(
+        ("frequency",), "Hz", "frequency of the tension transfer function"
+    ),
+    "tension_rao_a": OutputVariable(
+        ("frequency",), "N/m", "tension amplitude at end A per unit excitation amplitude"
+    ),
+    "tension_rao_b": OutputVariable(
+        ("frequency",), "N/m", "tension amplitude at end B per unit excitation amplitude"
+    ),
+    "tension_rao_phase_a": OutputVariable(
+        ("frequency",), "deg", "phase of the end-A tension ahead of the excitation"
+    ),
+    "tension_rao_phase_b": OutputVariable(
+        ("frequency",), "deg", "phase of the end-B tension ahead of the excitation"
+    ),
+    "tension_rao_line": OutputVariable(
+        ("frequency", "s"), "N/m", "tension amplitude along the line per unit excitation amplitude"
+    ),
     "history_time": OutputVariable(("time",), "s", "time of the history samples"),
     "history_tension": OutputVariable(("time",), "N", "tension at the excited end"),
     "history_point_s": OutputVariable(("point",), "m", "arc length of the history points"),

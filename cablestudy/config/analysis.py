@@ -105,9 +105,66 @@ class ModalSettings(StrictModel):
 
 #: dynamic methods a study may name, and what each means
 DYNAMIC_METHODS = {
-    "auto": "choose per case (currently always 'time')",
+    "auto": "per case: 'frequency' where the linear answer can be trusted "
+    "(analysis.dynamic.auto), else 'time'",
     "time": "implicit time integration of the discretised line",
+    "frequency": "linearised about the static shape, harmonic response per excitation "
+    "frequency, drag linearised (cablestudy.dynamics.frequency)",
 }
+
+#: settings of the time integration only: refused with method 'frequency'
+TIME_ONLY_KEYS = (
+    "points_per_period",
+    "max_refinement",
+    "tension_resolution",
+    "spectral_radius",
+    "newton_tolerance",
+    "max_newton_iterations",
+    "ramp_periods",
+    "steady_tolerance",
+    "steady_window",
+    "min_periods",
+    "max_periods",
+    "period",
+    "duration",
+    "history",
+)
+
+
+class LinearisationSettings(StrictModel):
+    """Drag linearisation of the frequency-domain method (methods 'frequency' and
+    'auto'): the equivalent damping is iterated until the nodal velocity amplitudes
+    change by less than ``tolerance`` of the largest."""
+
+    tolerance: Positive = Field(
+        1e-6, le=1e-2, description="relative change of the velocity amplitudes [-]"
+    )
+    max_iterations: int = Field(100, ge=1, le=10_000, description="drag iterations at most")
+    samples: int = Field(
+        32, ge=8, le=4096, description="phases per period in the drag fit (describing function)"
+    )
+
+
+class AutoSettings(StrictModel):
+    """When ``method: auto`` trusts the frequency domain (all must hold), else it runs
+    the time domain. Defaults from the study in docs/frequency-domain.md."""
+
+    min_tension_ratio: float = Field(
+        0.6,
+        ge=0.0,
+        le=1.0,
+        description="smallest (static - amplitude) / static element tension along the line "
+        "[-]; below it the line nears slack",
+    )
+    max_amplitude_sag_ratio: NonNegative = Field(
+        0.05,
+        description="largest nodal displacement amplitude over the static sag (largest "
+        "distance of the line from its end chord) [-]; above it geometry is nonlinear",
+    )
+    max_touchdown_travel: NonNegative = Field(
+        0.01,
+        description="largest estimated touchdown-point travel over the line length [-]",
+    )
 
 
 def _unit_direction(value: list[float]) -> list[float]:
@@ -201,6 +258,27 @@ class HistorySettings(StrictModel):
     samples_per_period: int = Field(64, ge=4, le=10_000, description="samples per period")
 
 
+class FrequencyRange(StrictModel):
+    """Frequencies [Hz] from ``start`` to ``stop`` (included), ``num`` of them."""
+
+    start: Positive = Field(description="lowest frequency [Hz]")
+    stop: Positive = Field(description="highest frequency [Hz]")
+    num: int = Field(200, ge=2, le=100_000, description="number of frequencies [-]")
+
+    @model_validator(mode="after")
+    def _ordered(self) -> FrequencyRange:
+        if self.stop <= self.start:
+            raise ValueError(
+                f"stop must exceed start; allowed: stop > {self.start} (got {self.stop})"
+            )
+        return self
+
+    @property
+    def values(self) -> list[float]:
+        step = (self.stop - self.start) / (self.num - 1)
+        return [float(f"{self.start + i * step:.15g}") for i in range(self.num)]
+
+
 class DynamicSettings(StrictModel):
     """Time-domain dynamics about the static shape under prescribed end motion.
 
@@ -212,7 +290,7 @@ class DynamicSettings(StrictModel):
     """
 
     excitation: ExcitationOrList = Field(description="prescribed end motion")
-    method: str = Field("auto", description="auto | time (frequency-domain: later)")
+    method: str = Field("auto", description="auto | time | frequency")
     elements: int = Field(80, ge=2, le=10_000, description="elements of the dynamic model")
     points_per_period: int = Field(
         64, ge=8, le=100_000, description="time steps per period of the fastest harmonic"
@@ -254,15 +332,19 @@ class DynamicSettings(StrictModel):
         None, description="fixed run time [s] (no steady-state detection)"
     )
     history: HistorySettings | None = None
+    linearisation: LinearisationSettings | None = Field(
+        None, description="drag linearisation (methods frequency and auto); omit: defaults"
+    )
+    auto: AutoSettings | None = Field(None, description="thresholds of method auto; omit: defaults")
+    transfer_function: FrequencyRange | None = Field(
+        None,
+        description="methods frequency and auto: also write the end and line tension per unit "
+        "excitation amplitude at these frequencies, on a 'frequency' dimension",
+    )
 
     @field_validator("method")
     @classmethod
     def _known_dynamic_method(cls, value: str) -> str:
-        if value == "frequency":
-            raise ValueError(
-                "method 'frequency' (frequency-domain linearised dynamics) "
-                f"is not available in this version; allowed: {', '.join(DYNAMIC_METHODS)}"
-            )
         if value not in DYNAMIC_METHODS:
             raise ValueError(
                 f"unknown dynamic method {value!r}; allowed: {', '.join(DYNAMIC_METHODS)}"
@@ -283,6 +365,50 @@ class DynamicSettings(StrictModel):
             )
         return self
 
+    @model_validator(mode="after")
+    def _keys_of_the_method(self) -> DynamicSettings:
+        method = self.method
+        if method == "frequency":
+            given = [k for k in TIME_ONLY_KEYS if k in self.model_fields_set]
+            if given:
+                raise ValueError(
+                    f"{', '.join(given)}: used by the time domain only, not by method "
+                    "'frequency'; allowed: method 'time' or 'auto' (or remove the key)"
+                )
+            items = self.excitations
+            if not all(isinstance(e, HarmonicExcitation) for e in items):
+                raise ValueError(
+                    "method 'frequency' needs harmonic excitation (a time table is solved "
+                    "by method 'time'); allowed: harmonic motions of one frequency"
+                )
+            freqs = {e.frequency for e in items}  # type: ignore[union-attr]
+            if len(freqs) > 1:
+                raise ValueError(
+                    f"method 'frequency' solves one excitation frequency per case (got "
+                    f"{sorted(freqs)} Hz); allowed: harmonic motions of one frequency, or "
+                    "method 'time'"
+                )
+        if method == "time":
+            for key in ("linearisation", "transfer_function"):
+                if key in self.model_fields_set:
+                    raise ValueError(
+                        f"{key}: used by methods 'frequency' and 'auto', not by method "
+                        "'time'; allowed: method 'frequency' or 'auto' (or remove the key)"
+                    )
+        if self.auto is not None and method != "auto":
+            raise ValueError(
+                f"auto: thresholds of method 'auto', not used by method {method!r}; allowed: "
+                "method 'auto' (or remove the key)"
+            )
+        if self.transfer_function is not None and not all(
+            isinstance(e, HarmonicExcitation) for e in self.excitations
+        ):
+            raise ValueError(
+                "transfer_function: needs harmonic excitation (the tension per unit amplitude "
+                "of a harmonic end motion); allowed: harmonic motions"
+            )
+        return self
+
     @property
     def excitations(self) -> list[HarmonicExcitation | TimeSeriesExcitation]:
         return list(self.excitation) if isinstance(self.excitation, list) else [self.excitation]
@@ -297,5 +423,7 @@ class Analysis(StrictModel):
         600.0, description="wall-time limit per case [s]; a case over it fails with a message"
     )
     dynamic: DynamicSettings | None = Field(
-        None, description="time-domain dynamics under prescribed end motion; omit: statics only"
+        None,
+        description="dynamics under prescribed end motion (time or frequency domain); "
+        "omit: statics only",
     )

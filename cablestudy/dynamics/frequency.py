@@ -1,0 +1,412 @@
+"""Frequency-domain response of a line linearised about its static shape.
+
+Input is a :class:`LinearLine`: lumped mass blocks (fluid added mass included), the
+tangent stiffness (elastic + geometric, and bending), structural damping, per-element
+data for the tension output, per-node drag data, and the split of the degrees of
+freedom into free directions (columns of ``free_basis``) and prescribed ones (the
+end nodes, moved by the excitation or held; other directions that are not free,
+e.g. nodes held by the seabed, stay at rest). Any line model that can produce these
+arrays can use this solver (today: :func:`cablestudy.dynamics.linear_model.linear_line`).
+
+Harmonic motion. Every quantity is ``q(t) = Re(Q exp(i w t))``. The end motion ``X``
+(complex, per end) is given; the free displacements solve
+
+    B^T [K - w^2 M + i w (C + D)] B q = -B^T [K - w^2 M + i w (C + D)] u_p,
+    u = B q + u_p,
+
+where ``B`` is the free basis, ``u_p`` holds the prescribed end displacements and
+``D`` is the drag damping (below). The element tension varies by
+
+    dT_e = (EA_e / l0_e + i w c_e / l0_e) t_e . (u_{e+1} - u_e),
+
+the first-order change of ``T = EA (l / l0 - 1) + c dl/dt / l0`` (``dl = t . du`` to
+first order); the same element law gives the stiffness ``(EA / l0) t t^T + (T / l) P``
+used in ``K``, so the tension output and the stiffness are consistent: ``d(T t) =
+dT t + T dt`` with ``dt = P du / l``. The force of the line on an end support is
+``-(A u)_j`` at the end node ``j`` (``A`` the dynamic stiffness above: the support
+reaction balances the element forces, the drag and the inertia of the end node's
+mass, as in the time domain), and the end tension varies by ``F_hat . dF``
+(``F_hat`` the unit static end force); its second-order part is neglected.
+
+Drag linearisation (equivalent, describing function). The Morison drag on node
+``i`` (the law of :mod:`cablestudy.physics.hydro`, lumped over the node's
+tributary length)
+
+    f(w) = c_N |w_N| w_N + c_T |w_T| w_T,    w = U_c - v (relative velocity),
+
+is replaced by ``f_bar + D_i (w - U_c)``, with ``D_i`` the 3 x 3 matrix that
+minimises the mean square error over a period of the computed motion: with ``w'``
+the oscillating part of the relative velocity and ``f'`` that of the drag,
+``D = <f' w'^T> <w' w'^T>^-1`` (averages over ``samples`` equally spaced phases). For
+harmonic ``w'`` this is the first-harmonic (describing-function) fit, and it
+dissipates exactly the mean power of the nonlinear drag, ``<f' . w'> = <(D w') . w'>``
+(energy equivalence). In still water and one-dimensional motion of velocity
+amplitude ``a`` it is the classical ``c 8 a / (3 pi)``.
+
+With a current ``U`` (component ``U_N`` normal to the line, say, and one-dimensional
+oscillation of amplitude ``a`` along it) ``|U + a cos(th)| (U + a cos(th))`` has no
+sign change when ``|U| >= a``, so it is the polynomial ``sgn(U)(U^2 + 2 U a cos(th) +
+a^2 cos^2(th))``: its first harmonic is exactly ``2 |U| a cos(th)``, i.e. ``D = 2 c |U|``,
+the tangent at the mean flow (the linear term); the quadratic term only adds a mean
+force ``c a^2 / 2`` (a second-order drift, which the linear model leaves out, as it
+leaves out the mean drift of any nonlinearity) and the second harmonic. For ``|U| <
+a`` the fit falls between ``2 c |U|`` and ``c 8 a / (3 pi)``; for motion across a
+current in 2 or 3 dimensions the same fit gives the matrix ``c (|U| I + U U^T / |U|)``
+on the normal plane in the limit ``a << |U|``. Directions in which a node does not
+move (``<w' w'^T>`` singular there) take that small-motion tangent.
+
+Since ``D`` depends on the motion, the solve is iterated: start from the quasi-static
+motion (the end motion spread linearly along the line), compute ``D``, solve, and
+repeat, with Anderson acceleration of depth one on the fixed point ``D = G(D)``
+(near a resonance the plain map behaves like ``a -> c / a`` and oscillates; the
+secant step removes that), until the nodal velocities change by less than
+``tolerance`` of their largest amplitude.
+
+Pure: arrays in, a :class:`FrequencyResult` out (status, message, counters).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.linalg import solve_banded
+
+from ..statics.base import STATUS_NUMERICAL, STATUS_OK
+
+#: status of a case whose drag linearisation did not converge
+STATUS_NOT_CONVERGED = 7
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class LinearLine:
+    """A line linearised about its static shape (n nodes, n - 1 elements).
+
+    Parameters
+    ----------
+    s : [m] (n,) unstretched arc length of the nodes from end A
+    position : [m] (n, 3) static node positions
+    mass : [kg] (n, 3, 3) lumped mass blocks, added mass included
+    stiffness : [N/m] (3n, 3n) tangent stiffness (elastic, geometric, bending)
+    damping : [N s/m] (3n, 3n) structural damping
+    rest_length : [m] (n - 1,) unstretched element lengths l0
+    direction : [-] (n - 1, 3) unit element chords t
+    axial_stiffness : [N] (n - 1,) EA of each element
+    axial_damping : [N s] (n - 1,) c of each element (tension c * strain rate)
+    tension : [N] (n - 1,) static element tension
+    end_force : [N] (2, 3) static force of the line on the supports at A and B
+    drag_normal, drag_tangential : [kg/m] (n,) nodal drag coefficients 1/2 rho C_N d l
+        and 1/2 rho pi C_T d l (l: tributary length)
+    current : [m/s] (n, 3) current velocity at the nodes
+    tangent : [-] (n, 3) unit tangent at the nodes
+    free_basis : [-] (3n, k) orthonormal free directions, block per node
+    """
+
+    s: np.ndarray
+    position: np.ndarray
+    mass: np.ndarray
+    stiffness: sp.csr_matrix
+    damping: sp.csr_matrix
+    rest_length: np.ndarray
+    direction: np.ndarray
+    axial_stiffness: np.ndarray
+    axial_damping: np.ndarray
+    tension: np.ndarray
+    end_force: np.ndarray
+    drag_normal: np.ndarray
+    drag_tangential: np.ndarray
+    current: np.ndarray
+    tangent: np.ndarray
+    free_basis: sp.csr_matrix
+
+    @property
+    def n_nodes(self) -> int:
+        return int(self.s.size)
+
+    @property
+    def has_drag(self) -> bool:
+        return bool(np.any(self.drag_normal > 0.0) or np.any(self.drag_tangential > 0.0))
+
+    def mass_matrix(self) -> sp.csr_matrix:
+        """Block-diagonal mass (3n, 3n) [kg]."""
+        return block_diagonal(self.mass)
+
+
+def block_diagonal(blocks: np.ndarray) -> sp.csr_matrix:
+    """Sparse block-diagonal matrix of ``blocks`` (n, 3, 3)."""
+    n = blocks.shape[0]
+    rows = (3 * np.arange(n)[:, None, None] + np.arange(3)[None, :, None]).repeat(3, 2)
+    cols = (3 * np.arange(n)[:, None, None] + np.arange(3)[None, None, :]).repeat(3, 1)
+    return sp.csr_matrix((blocks.ravel(), (rows.ravel(), cols.ravel())), shape=(3 * n, 3 * n))
+
+
+@dataclass(frozen=True, kw_only=True)
+class DragSettings:
+    """Drag iteration: ``tolerance`` [-] on the relative change of the nodal velocity
+    amplitudes, ``max_iterations``, and ``samples`` phases per period in the fit."""
+
+    tolerance: float = 1e-6
+    max_iterations: int = 100
+    samples: int = 32
+
+
+@dataclass(kw_only=True)
+class FrequencyResult:
+    """Harmonic response at one frequency (complex amplitudes of ``Re(Q e^{i w t})``).
+
+    displacement [m] (n, 3); element_tension [N] (n - 1,) tension variation;
+    end_tension [N] (2,) variation of the end tensions at A and B; tension_static [N]
+    (2,) static end tensions; drag_iterations, drag_converged, drag_change (last
+    relative change); status, message.
+    """
+
+    displacement: np.ndarray
+    element_tension: np.ndarray
+    end_tension: np.ndarray
+    tension_static: np.ndarray
+    drag_iterations: int = 0
+    drag_converged: bool = True
+    drag_change: float = 0.0
+    status: int = STATUS_OK
+    message: str = ""
+
+    @property
+    def success(self) -> bool:
+        return self.status == STATUS_OK
+
+
+def drag_force(line: LinearLine, relative_velocity: np.ndarray) -> np.ndarray:
+    """Morison drag [N] (..., n, 3) on the nodes for relative velocities (..., n, 3)."""
+    t = line.tangent
+    wt = np.einsum("...ia,ia->...i", relative_velocity, t)[..., None]
+    wn = relative_velocity - wt * t
+    sn = np.sqrt(np.einsum("...a,...a->...", wn, wn))[..., None]
+    return line.drag_normal[:, None] * sn * wn + line.drag_tangential[:, None] * np.abs(wt) * wt * t
+
+
+def drag_tangent(line: LinearLine) -> np.ndarray:
+    """d f / d w [N s/m] (n, 3, 3) at the mean flow ``w = U_c`` (small-motion limit)."""
+    t = line.tangent
+    U = line.current
+    ut = np.sum(U * t, axis=1)
+    un = U - ut[:, None] * t
+    sn = np.linalg.norm(un, axis=1)
+    P = np.eye(3) - t[:, :, None] * t[:, None, :]
+    safe = np.where(sn > 0.0, sn, 1.0)
+    Dn = sn[:, None, None] * P + np.where(sn > 0.0, 1.0 / safe, 0.0)[:, None, None] * (
+        un[:, :, None] * un[:, None, :]
+    )
+    Dt = 2.0 * np.abs(ut)[:, None, None] * (t[:, :, None] * t[:, None, :])
+    return line.drag_normal[:, None, None] * Dn + line.drag_tangential[:, None, None] * Dt
+
+
+def drag_linearisation(
+    line: LinearLine, velocity: np.ndarray, samples: int = 32, tangent: np.ndarray | None = None
+) -> np.ndarray:
+    """Equivalent drag damping [N s/m] (n, 3, 3) for nodal velocity amplitudes
+    ``velocity`` [m/s] (n, 3) complex: the mean-square (describing-function) fit of the
+    module docstring."""
+    theta = 2.0 * np.pi * np.arange(samples) / samples
+    phase = np.exp(1j * theta)[:, None, None]
+    w_osc = -np.real(velocity[None] * phase)  # (N, n, 3) oscillating relative velocity
+    f = drag_force(line, line.current[None] + w_osc)
+    f_osc = f - f.mean(axis=0)
+    wT = np.transpose(w_osc, (1, 2, 0))  # (n, 3, N)
+    G = wT @ np.transpose(w_osc, (1, 0, 2)) / samples
+    H = np.transpose(f_osc, (1, 2, 0)) @ np.transpose(w_osc, (1, 0, 2)) / samples
+    D0 = drag_tangent(line) if tangent is None else tangent
+    scale = np.trace(G, axis1=1, axis2=2)
+    eps = 1e-10 * scale + 1e-300
+    lhs = G + eps[:, None, None] * np.eye(3)
+    rhs = H + eps[:, None, None] * D0
+    # D lhs = rhs  ->  lhs^T D^T = rhs^T
+    return np.swapaxes(np.linalg.solve(np.swapaxes(lhs, 1, 2), np.swapaxes(rhs, 1, 2)), 1, 2)
+
+
+def _banded(A: sp.spmatrix, bw: int) -> np.ndarray:
+    """``A`` in LAPACK band storage with ``bw`` sub- and super-diagonals."""
+    coo = A.tocoo()
+    ab = np.zeros((2 * bw + 1, A.shape[0]), dtype=A.dtype)
+    np.add.at(ab, (bw + coo.row - coo.col, coo.col), coo.data)
+    return ab
+
+
+@dataclass(frozen=True, eq=False)
+class ReducedLine:
+    """The matrices of a :class:`LinearLine` projected once on its free basis, in band
+    storage (node order keeps them banded), reused by every frequency and amplitude
+    of a sweep; per frequency only the drag blocks change."""
+
+    line: LinearLine
+    K: np.ndarray
+    M: np.ndarray
+    C: np.ndarray
+    bandwidth: int
+    node_basis: np.ndarray
+    band_index: tuple[np.ndarray, np.ndarray]
+    block_index: tuple[np.ndarray, np.ndarray, np.ndarray]
+
+    @classmethod
+    def of(cls, line: LinearLine) -> ReducedLine:
+        B = line.free_basis
+        Kr = (B.T @ line.stiffness @ B).tocoo()
+        Mr = (B.T @ line.mass_matrix() @ B).tocoo()
+        Cr = (B.T @ line.damping @ B).tocoo()
+        bw = max(int(np.max(np.abs(m.row - m.col), initial=0)) for m in (Kr, Mr, Cr))
+        n = line.n_nodes
+        dense = B.toarray() if B.shape[1] else np.zeros((3 * n, 0))
+        # per node its free basis, padded with zero columns to (3, 3), and where each
+        # entry of the node's reduced 3 x 3 block lands in band storage
+        padded = np.zeros((n, 3, 3))
+        band_r, band_c, blk_i, blk_r, blk_c = [], [], [], [], []
+        offset = 0
+        for i in range(n):
+            cols = np.flatnonzero(np.any(dense[3 * i : 3 * i + 3] != 0.0, axis=0))
+            k = cols.size
+            padded[i, :, :k] = dense[3 * i : 3 * i + 3, cols]
+            r, c = np.meshgrid(np.arange(k), np.arange(k), indexing="ij")
+            band_r.append(bw + r.ravel() - c.ravel())
+            band_c.append(offset + c.ravel())
+            blk_i.append(np.full(k * k, i))
+            blk_r.append(r.ravel())
+            blk_c.append(c.ravel())
+            offset += k
+        return cls(
+            line=line,
+            K=_banded(Kr, bw),
+            M=_banded(Mr, bw),
+            C=_banded(Cr, bw),
+            bandwidth=bw,
+            node_basis=padded,
+            band_index=(np.concatenate(band_r), np.concatenate(band_c)),
+            block_index=(np.concatenate(blk_i), np.concatenate(blk_r), np.concatenate(blk_c)),
+        )
+
+    def drag_band(self, D: np.ndarray) -> np.ndarray:
+        """The drag blocks ``D`` (n, 3, 3) projected on the free basis, in band storage."""
+        b = self.node_basis
+        blocks = np.swapaxes(b, 1, 2) @ D @ b
+        out = np.zeros(self.K.shape)
+        out[self.band_index] = blocks[self.block_index]
+        return out
+
+    def apply(self, u: np.ndarray, omega: float, D: np.ndarray | None) -> np.ndarray:
+        """``[K - w^2 M + i w (C + D)] u`` [N] (n, 3) for displacements ``u`` (n, 3)."""
+        line = self.line
+        flat = u.ravel()
+        out = line.stiffness @ flat + 1j * omega * (line.damping @ flat)
+        out = out.reshape(-1, 3) - omega**2 * np.einsum("iab,ib->ia", line.mass, u)
+        if D is not None:
+            out = out + 1j * omega * np.einsum("iab,ib->ia", D, u)
+        return out
+
+
+def solve_harmonic(
+    red: ReducedLine,
+    omega: float,
+    end_motion: np.ndarray,
+    settings: DragSettings | None = None,
+) -> FrequencyResult:
+    """Steady harmonic response at angular frequency ``omega`` [rad/s] to the end
+    displacements ``end_motion`` [m] (2, 3) complex (A and B), with the drag
+    linearised by iteration (module docstring). Never raises for a numerical failure."""
+    settings = settings or DragSettings()
+    line = red.line
+    n = line.n_nodes
+    B = line.free_basis
+    BT = B.T.tocsr()
+    bw = red.bandwidth
+    up = np.zeros((n, 3), dtype=complex)
+    up[0], up[-1] = end_motion[0], end_motion[-1]
+    base = red.K - omega**2 * red.M + 1j * omega * red.C
+    static_mag = np.linalg.norm(line.end_force, axis=1)
+    failed = FrequencyResult(
+        displacement=np.full((n, 3), np.nan + 0j),
+        element_tension=np.full(n - 1, np.nan + 0j),
+        end_tension=np.full(2, np.nan + 0j),
+        tension_static=static_mag,
+        status=STATUS_NUMERICAL,
+        message=f"singular dynamic matrix at {omega / (2 * math.pi):.6g} Hz",
+    )
+
+    def solve(D: np.ndarray | None) -> np.ndarray | None:
+        ab = base if D is None else base + 1j * omega * red.drag_band(D)
+        rhs = -(BT @ red.apply(up, omega, D).ravel())
+        if rhs.size == 0:
+            return up.copy()
+        try:
+            q = solve_banded((bw, bw), ab, rhs, check_finite=False)
+        except (np.linalg.LinAlgError, ValueError):
+            return None
+        if not np.all(np.isfinite(q)):
+            return None
+        return (B @ q).reshape(n, 3) + up
+
+    D: np.ndarray | None = None
+    iterations = 0
+    converged = True
+    change = 0.0
+    if line.has_drag:
+        frac = (line.s / line.s[-1])[:, None]
+        u = (1.0 - frac) * up[0] + frac * up[-1]
+        v = 1j * omega * u
+        D_small = drag_tangent(line)
+        D = drag_linearisation(line, v, settings.samples, D_small)
+        converged = False
+        previous: tuple[np.ndarray, np.ndarray] | None = None  # last (D, G(D))
+        last_change = math.inf
+        for iterations in range(1, settings.max_iterations + 1):  # noqa: B007
+            u_new = solve(D)
+            if u_new is None:
+                return failed
+            v_new = 1j * omega * u_new
+            change = float(np.max(np.abs(v_new - v)) / max(np.max(np.abs(v_new)), 1e-300))
+            v, u = v_new, u_new
+            if change <= settings.tolerance:
+                converged = True
+                break
+            G = drag_linearisation(line, v, settings.samples, D_small)
+            # Anderson acceleration of depth one (a secant step on the fixed point
+            # D = G(D)): it damps the oscillation near a resonance, where the map
+            # behaves like a -> c / a, and speeds up the monotone convergence elsewhere
+            # (a step that did not reduce the change falls back to the average of D
+            # and G(D), and restarts the secant)
+            if change >= last_change:
+                D, previous = 0.5 * (D + G), None
+            else:
+                D_next = G
+                if previous is not None:
+                    R, R_old = G - D, previous[1] - previous[0]
+                    dR = R - R_old
+                    den = float(np.sum(dR * dR))
+                    if den > 0.0:
+                        theta = float(np.sum(R * dR)) / den
+                        D_next = G - theta * (G - previous[1])
+                previous = (D, G)
+                D = D_next
+            last_change = change
+    else:
+        u_solved = solve(None)
+        if u_solved is None:
+            return failed
+        u = u_solved
+    du = np.diff(u, axis=0)
+    axial = (line.axial_stiffness + 1j * omega * line.axial_damping) / line.rest_length
+    element_tension = axial * np.sum(line.direction * du, axis=1)
+    reaction = red.apply(u, omega, D)
+    support = -np.stack([reaction[0], reaction[-1]])  # change of the force on the supports
+    unit = line.end_force / np.where(static_mag > 0.0, static_mag, 1.0)[:, None]
+    end_tension = np.sum(unit * support, axis=1)
+    return FrequencyResult(
+        displacement=u,
+        element_tension=element_tension,
+        end_tension=end_tension,
+        tension_static=static_mag,
+        drag_iterations=iterations,
+        drag_converged=converged,
+        drag_change=change,
+        status=STATUS_OK,
+        message="",
+    )

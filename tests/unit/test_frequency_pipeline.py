@@ -1,0 +1,108 @@
+"""method: frequency end to end (YAML to netCDF) and its validation messages."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from cablestudy.cases import expand_cases
+from cablestudy.cli import main
+from cablestudy.config.loader import StudyError, parse_study_text
+
+STUDY = """
+name: freq
+environment: {fluid: vacuum}
+line:
+  segments:
+    - {length: 10.9774, diameter: 0.01, mass_per_length: 0.61, axial_stiffness: 7.854e+6}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, 0.0]}
+  b: {kind: fixed, position: [10.792, 0.0, 0.0]}
+analysis:
+  static: {method: analytic}
+  dynamic:
+    excitation: {end: b, direction: [1.0, 0.0, 0.0], amplitude: 0.05, frequency: 0.5}
+    method: frequency
+    elements: 40
+sweep:
+  analysis.dynamic.excitation.amplitude: [0.01, 0.02]
+  analysis.dynamic.excitation.frequency: [0.3, 0.7]
+"""
+
+
+def _run(tmp_path: Path, text: str, name: str = "freq") -> xr.Dataset:
+    cfg = tmp_path / f"{name}.yaml"
+    cfg.write_text(text)
+    args = ["run", str(cfg), "--out", str(tmp_path), "--scheduler", "synchronous", "--no-cache"]
+    assert main(args) == 0
+    return xr.load_dataset(tmp_path / f"{name}.nc")
+
+
+def test_frequency_study_runs_to_netcdf(tmp_path: Path) -> None:
+    ds = _run(tmp_path, STUDY)
+    assert np.all(ds["status"] == 0)
+    assert np.all(ds["dynamic_method"] == "frequency")
+    assert np.all(ds["dynamic_method_reason"] == "method: frequency")
+    for name in ("tension_max", "tension_min", "tension_mean", "tension_amplitude_a"):
+        assert ds[name].dims == ("amplitude", "frequency") and ds[name].attrs["units"] == "N"
+    assert ds["tension_phase_b"].attrs["units"] == "deg"
+    assert ds["tension_envelope_max"].dims == ("amplitude", "frequency", "s")
+    t0, tmax, tmin = (ds[k].values for k in ("tension_static", "tension_max", "tension_min"))
+    # linear: the swing is symmetric about the static tension, the mean is static
+    np.testing.assert_allclose(tmax - t0, t0 - tmin, rtol=1e-12)
+    np.testing.assert_allclose(ds["tension_mean"].values, t0, rtol=1e-12)
+    # no drag (vacuum): the response is exactly proportional to the amplitude
+    amp = ds["tension_amplitude_b"].values
+    np.testing.assert_allclose(amp[1], 2.0 * amp[0], rtol=1e-10)
+    np.testing.assert_allclose(ds["tension_phase_b"][1], ds["tension_phase_b"][0], atol=1e-8)
+    # the static tension at B is the static result's; the envelope ends at the end values
+    np.testing.assert_allclose(t0, ds["tension_b"].values, rtol=1e-12)
+    np.testing.assert_allclose(ds["tension_envelope_max"].isel(s=-1), tmax, rtol=1e-12)
+    np.testing.assert_allclose(ds["tension_envelope_min"].isel(s=-1), tmin, rtol=1e-12)
+    env = ds["tension_envelope_max"] - ds["tension"]
+    assert float(env.min()) >= 0.0
+    assert np.all(ds["tension_max_line"] >= ds["tension_envelope_max"].max("s") - 1e-9)
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "words"),
+    [
+        (
+            "    elements: 40",
+            "    elements: 40\n    points_per_period: 32",
+            "points_per_period: used by the time domain only",
+        ),
+        (
+            "excitation: {end: b, direction: [1.0, 0.0, 0.0], amplitude: 0.05, frequency: 0.5}",
+            "excitation: {end: b, direction: [1.0, 0.0, 0.0], "
+            "table: [[0, 0], [1, 1], [2, -1], [3, 0]], periodic: true}",
+            "method 'frequency' needs harmonic excitation",
+        ),
+        (
+            "excitation: {end: b, direction: [1.0, 0.0, 0.0], amplitude: 0.05, frequency: 0.5}",
+            "excitation: [{end: b, direction: [1, 0, 0], amplitude: 0.05, frequency: 0.5}, "
+            "{end: a, direction: [1, 0, 0], amplitude: 0.05, frequency: 0.6}]",
+            "one excitation frequency per case",
+        ),
+        (
+            "    method: frequency",
+            "    method: time\n    linearisation: {tolerance: 1.0e-5}",
+            "linearisation: used by methods 'frequency' and 'auto'",
+        ),
+        (
+            "    method: frequency",
+            "    method: frequency\n    auto: {min_tension_ratio: 0.5}",
+            "auto: thresholds of method 'auto'",
+        ),
+    ],
+)
+def test_keys_another_method_needs_are_refused(old: str, new: str, words: str) -> None:
+    text = STUDY.replace(old, new)
+    assert text != STUDY
+    with pytest.raises(StudyError) as info:
+        expand_cases(parse_study_text(text))
+    msg = str(info.value)
+    assert "analysis.dynamic" in msg and words in msg, msg
