@@ -31,6 +31,7 @@ from .dynamics.modal import (
 )
 from .dynamics.model import DiscreteLine, discretise, static_equilibrium
 from .dynamics.timedomain import DynamicProblem, DynamicResult, simulate
+from .frequency_cases import COUNTERS
 from .problem import line_model, medium, static_problem
 from .results import CaseRecord
 from .statics import (
@@ -148,6 +149,7 @@ def solve_static(
             f"static method {method!r} does not support {'; '.join(missing)}",
         )
     result = solver.solve(problem, deadline=deadline).check_finite()
+    COUNTERS["static_solves"] += 1
     _STATIC_CACHE[case.static_hash] = result
     while len(_STATIC_CACHE) > _STATIC_CACHE_SIZE:
         _STATIC_CACHE.popitem(last=False)
@@ -166,6 +168,7 @@ def _static_at(case: Case, n_nodes: int, deadline: float | None) -> StaticResult
         problem = replace(static_problem(case.study), n_nodes=n_nodes)
         solver = STATIC_SOLVERS[case.study.analysis.static.method]
         cached = solver.solve(problem, deadline=deadline).check_finite()
+        COUNTERS["static_solves"] += 1
         _STATIC_CACHE[key] = cached
         while len(_STATIC_CACHE) > _STATIC_CACHE_SIZE:
             _STATIC_CACHE.popitem(last=False)
@@ -545,6 +548,7 @@ def presolve_statics(cases: list[Case]) -> tuple[dict[str, StaticResult], dict[s
         results = solve_batch([p for p, _ in todo.values()], deadline=deadline)
     except Exception:  # noqa: BLE001 - fall back to one case at a time
         return {}, {}
+    COUNTERS["static_solves"] += len(todo)
     share = (time.perf_counter() - t0) / len(todo)
     solved = {h: r.check_finite() for h, r in zip(todo, results, strict=True)}
     return solved, dict.fromkeys(solved, share)
