@@ -31,7 +31,7 @@ from .dynamics.modal import (
 )
 from .dynamics.model import DiscreteLine, discretise, static_equilibrium
 from .dynamics.timedomain import DynamicProblem, DynamicResult, simulate
-from .frequency_cases import COUNTERS
+from .frequency_cases import COUNTERS, TRANSFER_OUTPUTS
 from .problem import line_model, medium, static_problem
 from .results import CaseRecord
 from .statics import (
@@ -106,6 +106,14 @@ def _dynamic_problems(cases: list[Case], src: StudySource) -> list[str]:
                     "model holds or moves each end along a prescribed path about its static "
                     f"position); allowed: 'fixed', or an excitation with end: {label}"
                 )
+        if dyn.transfer_function is not None and "frequency" in case.coords:
+            line = src.line_of(("analysis", "dynamic", "transfer_function"))
+            problems.append(
+                f"{line}: analysis.dynamic.transfer_function: writes its own 'frequency' "
+                "dimension, and the sweep has an axis named 'frequency'; allowed: a "
+                "transfer function instead of the frequency sweep, or name the sweep axis "
+                "otherwise (name: ...)"
+            )
         length = study.line.length
         if dyn.history is not None:
             for i, s in enumerate(dyn.history.points):
@@ -374,6 +382,7 @@ def run_dynamic(
 
     dyn = case.study.analysis.dynamic
     assert dyn is not None
+    linear: dict[str, np.ndarray] = {}
     if dyn.method in ("frequency", "auto"):
         why = auto_ineligible(dyn) if dyn.method == "auto" else ""
         if not why:
@@ -389,12 +398,15 @@ def run_dynamic(
                 out["dynamic_method_reason"] = np.asarray(reason)
                 return fres.status, fres.message, out
             why = fres.distrust or fres.message
+            # the transfer function is a linear result whichever method answers the case
+            linear = {k: v for k, v in fres.data.items() if k in TRANSFER_OUTPUTS}
         reason = f"auto: {why}"
     else:
         reason = "method: time"
     dres = solve_dynamic(case, static, deadline)
     out = dynamic_outputs(dres, dyn)
     out["dynamic_method_reason"] = np.asarray(reason)
+    out.update(linear)
     return dres.status, dres.message, out
 
 

@@ -22,9 +22,19 @@ from .config.analysis import AutoSettings, DynamicSettings, HarmonicExcitation
 from .dynamics.frequency import DragSettings, ReducedLine, solve_harmonic
 from .dynamics.linear_model import linear_line
 from .dynamics.modal import ModalProblem
-from .dynamics.validity import measures
+from .dynamics.validity import Validity, measures
 from .problem import static_problem
 from .statics import STATUS_NO_SOLUTION, STATUS_NUMERICAL, STATUS_OK, StaticResult
+
+#: outputs of the transfer function (analysis.dynamic.transfer_function)
+TRANSFER_OUTPUTS = (
+    "transfer_frequency",
+    "tension_rao_a",
+    "tension_rao_b",
+    "tension_rao_phase_a",
+    "tension_rao_phase_b",
+    "tension_rao_line",
+)
 
 #: static solves and linear-model assemblies done in this process
 COUNTERS: Counter[str] = Counter()
@@ -112,6 +122,8 @@ class FrequencyOutcome:
     data: dict[str, np.ndarray]
     distrust: str = ""  # why method auto would not trust it ("" if it would)
     summary: str = ""
+    validity: Validity | None = None
+    drag_converged: bool = True
 
 
 def _along(
@@ -207,7 +219,13 @@ def solve_frequency(case: Case, static: StaticResult, deadline: float | None) ->
         f"min/static tension {v.min_tension_ratio:.3g}, amplitude/sag {v.amplitude_sag_ratio:.3g}"
     )
     return FrequencyOutcome(
-        status=STATUS_OK, message="", data=data, distrust="; ".join(reasons), summary=summary
+        status=STATUS_OK,
+        message="",
+        data=data,
+        distrust="; ".join(reasons),
+        summary=summary,
+        validity=v,
+        drag_converged=res.drag_converged,
     )
 
 

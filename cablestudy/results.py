@@ -296,6 +296,21 @@ def assemble(
         if arcs and all(len(a) == extent["s"] and np.array_equal(a, arcs[0]) for a in arcs):
             coords["s"] = ("s", arcs[0], {"units": "m", "long_name": COORDINATES["s"][1]})
             data_vars.pop("arc_length", None)
+    if "transfer_frequency" in data_vars and "frequency" not in coords:
+        # the transfer function's frequencies: a coordinate when every case has the same
+        freqs = [
+            np.asarray(r.data["transfer_frequency"])
+            for r in by_index.values()
+            if "transfer_frequency" in r.data and r.status == 0
+        ]
+        if freqs and all(np.array_equal(f, freqs[0]) for f in freqs):
+            spec = OUTPUTS["transfer_frequency"]
+            coords["frequency"] = (
+                "frequency",
+                freqs[0],
+                {"units": spec.units, "long_name": spec.long_name},
+            )
+            data_vars.pop("transfer_frequency")
     if "arc_length" in data_vars and "s" not in coords:
         coords["s"] = ("s", np.arange(extent["s"]), {"units": "1", "long_name": "node index"})
 

@@ -147,17 +147,19 @@ class LinearisationSettings(StrictModel):
 
 class AutoSettings(StrictModel):
     """When ``method: auto`` trusts the frequency domain (all must hold), else it runs
-    the time domain. Defaults from the study in docs/frequency-domain.md."""
+    the time domain. Defaults from the study in docs/frequency-domain.md (the Figs. 2-5
+    sweep run by both methods: where these pick the frequency domain, max and min
+    tension agree with the time domain within 1 %, half the 2 % asked for)."""
 
     min_tension_ratio: float = Field(
-        0.6,
+        0.7,
         ge=0.0,
         le=1.0,
         description="smallest (static - amplitude) / static element tension along the line "
         "[-]; below it the line nears slack",
     )
     max_amplitude_sag_ratio: NonNegative = Field(
-        0.05,
+        0.075,
         description="largest nodal displacement amplitude over the static sag (largest "
         "distance of the line from its end chord) [-]; above it geometry is nonlinear",
     )
