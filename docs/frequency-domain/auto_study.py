@@ -136,8 +136,8 @@ def main(out: Path) -> None:
     largest = summary["largest_error_where_frequency_chosen"]
     fig.suptitle(
         "method auto on the Figs. 2-5 sweep: frequency chosen for "
-        f"{summary['auto_chose_frequency']} of 92 cases, largest max/min difference to the time domain there "
-        f"{100 * (largest or 0):.2f} % (red lines: default thresholds)",
+        f"{summary['auto_chose_frequency']} of 92 cases, largest max/min difference to the "
+        f"time domain there {100 * (largest or 0):.2f} % (red lines: default thresholds)",
         fontsize=10,
     )
     fig.tight_layout()

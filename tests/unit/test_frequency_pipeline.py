@@ -34,6 +34,7 @@ sweep:
 
 
 def _run(tmp_path: Path, text: str, name: str = "freq") -> xr.Dataset:
+    text = text.replace("name: freq", f"name: {name}")
     cfg = tmp_path / f"{name}.yaml"
     cfg.write_text(text)
     args = ["run", str(cfg), "--out", str(tmp_path), "--scheduler", "synchronous", "--no-cache"]
@@ -106,3 +107,46 @@ def test_keys_another_method_needs_are_refused(old: str, new: str, words: str) -
         expand_cases(parse_study_text(text))
     msg = str(info.value)
     assert "analysis.dynamic" in msg and words in msg, msg
+
+
+TRANSFER = STUDY.replace(
+    "    elements: 40\n",
+    "    elements: 40\n    transfer_function: {start: 0.1, stop: 1.0, num: 10}\n",
+).replace("  analysis.dynamic.excitation.frequency: [0.3, 0.7]\n", "")
+
+
+def test_transfer_function_on_a_frequency_dimension(tmp_path: Path) -> None:
+    ds = _run(tmp_path, TRANSFER, "transfer")
+    assert np.all(ds["status"] == 0)
+    assert ds["tension_rao_b"].dims == ("amplitude", "frequency")
+    assert ds["tension_rao_line"].dims == ("amplitude", "frequency", "s")
+    assert ds["frequency"].attrs["units"] == "Hz" and ds["tension_rao_b"].attrs["units"] == "N/m"
+    np.testing.assert_allclose(ds["frequency"], np.linspace(0.1, 1.0, 10), rtol=1e-14)
+    # at the excitation frequency (0.5 Hz) the transfer function is the case's own
+    # amplitude per unit excitation amplitude, at both ends, with the same phase
+    at = ds.sel(frequency=0.5)
+    for end in ("a", "b"):
+        np.testing.assert_allclose(
+            at[f"tension_rao_{end}"], ds[f"tension_amplitude_{end}"] / ds["amplitude"], rtol=1e-10
+        )
+        np.testing.assert_allclose(at[f"tension_rao_phase_{end}"], ds[f"tension_phase_{end}"])
+    # no drag: the same transfer function for every amplitude; along the line it ends
+    # at the end values
+    np.testing.assert_allclose(ds["tension_rao_b"][0], ds["tension_rao_b"][1], rtol=1e-10)
+    np.testing.assert_allclose(ds["tension_rao_line"].isel(s=-1), ds["tension_rao_b"], rtol=1e-12)
+    np.testing.assert_allclose(ds["tension_rao_line"].isel(s=0), ds["tension_rao_a"], rtol=1e-12)
+
+
+def test_transfer_function_refuses_a_frequency_sweep_axis() -> None:
+    from cablestudy.analyses import check_supported
+
+    text = STUDY.replace(
+        "    elements: 40\n", "    elements: 40\n    transfer_function: {start: 0.1, stop: 1.0}\n"
+    )
+    src = parse_study_text(text)
+    _, cases = expand_cases(src)
+    with pytest.raises(StudyError) as info:
+        check_supported(cases, src)
+    assert "analysis.dynamic.transfer_function: writes its own 'frequency' dimension" in str(
+        info.value
+    )
