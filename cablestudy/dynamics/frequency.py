@@ -72,6 +72,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
+from numba import njit
 from scipy.linalg import solve_banded
 
 from ..statics.base import STATUS_NUMERICAL, STATUS_OK
@@ -202,27 +203,111 @@ def drag_tangent(line: LinearLine) -> np.ndarray:
     return line.drag_normal[:, None, None] * Dn + line.drag_tangential[:, None, None] * Dt
 
 
+@njit(cache=True)
+def _drag_fit(velocity_re, velocity_im, current, tangent, c_n, c_t, tangent_d, samples, out):  # noqa: ANN001, ANN202
+    """Kernel of :func:`drag_linearisation` (loops over nodes and phases)."""
+    n = current.shape[0]
+    cos = np.empty(samples)
+    sin = np.empty(samples)
+    for k in range(samples):
+        cos[k] = np.cos(2.0 * np.pi * k / samples)
+        sin[k] = np.sin(2.0 * np.pi * k / samples)
+    Gi = np.empty((3, 3))
+    w = np.empty((samples, 3))
+    f = np.empty((samples, 3))
+    G = np.empty((3, 3))
+    H = np.empty((3, 3))
+    for i in range(n):
+        fm0 = fm1 = fm2 = 0.0
+        for k in range(samples):
+            c, s = cos[k], sin[k]
+            # Re((a + i b) e^{i th}) = a cos - b sin; the relative velocity is -v
+            for a in range(3):
+                w[k, a] = -(velocity_re[i, a] * c - velocity_im[i, a] * s)
+            r0 = current[i, 0] + w[k, 0]
+            r1 = current[i, 1] + w[k, 1]
+            r2 = current[i, 2] + w[k, 2]
+            t0, t1, t2 = tangent[i, 0], tangent[i, 1], tangent[i, 2]
+            wt = r0 * t0 + r1 * t1 + r2 * t2
+            n0, n1, n2 = r0 - wt * t0, r1 - wt * t1, r2 - wt * t2
+            sn = np.sqrt(n0 * n0 + n1 * n1 + n2 * n2)
+            st = abs(wt) * wt * c_t[i]
+            f[k, 0] = c_n[i] * sn * n0 + st * t0
+            f[k, 1] = c_n[i] * sn * n1 + st * t1
+            f[k, 2] = c_n[i] * sn * n2 + st * t2
+            fm0 += f[k, 0]
+            fm1 += f[k, 1]
+            fm2 += f[k, 2]
+        fm0 /= samples
+        fm1 /= samples
+        fm2 /= samples
+        for a in range(3):
+            for b in range(3):
+                G[a, b] = 0.0
+                H[a, b] = 0.0
+        for k in range(samples):
+            f[k, 0] -= fm0
+            f[k, 1] -= fm1
+            f[k, 2] -= fm2
+            for a in range(3):
+                for b in range(3):
+                    G[a, b] += w[k, a] * w[k, b]
+                    H[a, b] += f[k, a] * w[k, b]
+        trace = (G[0, 0] + G[1, 1] + G[2, 2]) / samples
+        if not trace > 0.0:  # a node at rest: the small-motion tangent
+            for a in range(3):
+                for b in range(3):
+                    out[i, a, b] = tangent_d[i, a, b]
+            continue
+        eps = 1e-10 * trace
+        for a in range(3):
+            for b in range(3):
+                G[a, b] = G[a, b] / samples
+                H[a, b] = H[a, b] / samples + eps * tangent_d[i, a, b]
+            G[a, a] += eps
+        # D G = H  ->  D = H G^-1 (G symmetric positive definite; cofactors)
+        Gi[0, 0] = G[1, 1] * G[2, 2] - G[1, 2] * G[2, 1]
+        Gi[0, 1] = G[0, 2] * G[2, 1] - G[0, 1] * G[2, 2]
+        Gi[0, 2] = G[0, 1] * G[1, 2] - G[0, 2] * G[1, 1]
+        Gi[1, 0] = G[1, 2] * G[2, 0] - G[1, 0] * G[2, 2]
+        Gi[1, 1] = G[0, 0] * G[2, 2] - G[0, 2] * G[2, 0]
+        Gi[1, 2] = G[0, 2] * G[1, 0] - G[0, 0] * G[1, 2]
+        Gi[2, 0] = G[1, 0] * G[2, 1] - G[1, 1] * G[2, 0]
+        Gi[2, 1] = G[0, 1] * G[2, 0] - G[0, 0] * G[2, 1]
+        Gi[2, 2] = G[0, 0] * G[1, 1] - G[0, 1] * G[1, 0]
+        det = G[0, 0] * Gi[0, 0] + G[0, 1] * Gi[1, 0] + G[0, 2] * Gi[2, 0]
+        for a in range(3):
+            for b in range(3):
+                Gi[a, b] /= det
+        for a in range(3):
+            for b in range(3):
+                acc = 0.0
+                for c2 in range(3):
+                    acc += H[a, c2] * Gi[c2, b]
+                out[i, a, b] = acc
+
+
 def drag_linearisation(
     line: LinearLine, velocity: np.ndarray, samples: int = 32, tangent: np.ndarray | None = None
 ) -> np.ndarray:
     """Equivalent drag damping [N s/m] (n, 3, 3) for nodal velocity amplitudes
     ``velocity`` [m/s] (n, 3) complex: the mean-square (describing-function) fit of the
-    module docstring."""
-    theta = 2.0 * np.pi * np.arange(samples) / samples
-    phase = np.exp(1j * theta)[:, None, None]
-    w_osc = -np.real(velocity[None] * phase)  # (N, n, 3) oscillating relative velocity
-    f = drag_force(line, line.current[None] + w_osc)
-    f_osc = f - f.mean(axis=0)
-    wT = np.transpose(w_osc, (1, 2, 0))  # (n, 3, N)
-    G = wT @ np.transpose(w_osc, (1, 0, 2)) / samples
-    H = np.transpose(f_osc, (1, 2, 0)) @ np.transpose(w_osc, (1, 0, 2)) / samples
+    module docstring, over ``samples`` phases; ``tangent`` is :func:`drag_tangent`
+    (computed when not given)."""
     D0 = drag_tangent(line) if tangent is None else tangent
-    scale = np.trace(G, axis1=1, axis2=2)
-    eps = 1e-10 * scale + 1e-300
-    lhs = G + eps[:, None, None] * np.eye(3)
-    rhs = H + eps[:, None, None] * D0
-    # D lhs = rhs  ->  lhs^T D^T = rhs^T
-    return np.swapaxes(np.linalg.solve(np.swapaxes(lhs, 1, 2), np.swapaxes(rhs, 1, 2)), 1, 2)
+    out = np.empty((line.n_nodes, 3, 3))
+    _drag_fit(
+        np.ascontiguousarray(velocity.real),
+        np.ascontiguousarray(velocity.imag),
+        line.current,
+        line.tangent,
+        line.drag_normal,
+        line.drag_tangential,
+        D0,
+        samples,
+        out,
+    )
+    return out
 
 
 def _banded(A: sp.spmatrix, bw: int) -> np.ndarray:
@@ -331,9 +416,18 @@ def solve_harmonic(
         message=f"singular dynamic matrix at {omega / (2 * math.pi):.6g} Hz",
     )
 
+    # right side: the prescribed end motion through the dynamic matrix; only the end
+    # nodes move, so the drag adds iw D_j u_j at those two nodes only
+    rhs0 = -(BT @ red.apply(up, omega, None).ravel())
+    ends = np.zeros((n, 3), dtype=complex)
+
     def solve(D: np.ndarray | None) -> np.ndarray | None:
         ab = base if D is None else base + 1j * omega * red.drag_band(D)
-        rhs = -(BT @ red.apply(up, omega, D).ravel())
+        rhs = rhs0
+        if D is not None:
+            ends[0] = D[0] @ up[0]
+            ends[-1] = D[-1] @ up[-1]
+            rhs = rhs0 - 1j * omega * (BT @ ends.ravel())
         if rhs.size == 0:
             return up.copy()
         try:
