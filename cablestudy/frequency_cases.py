@@ -194,6 +194,7 @@ def solve_frequency(case: Case, static: StaticResult, deadline: float | None) ->
         laid_length=static.laid_length,
         on_seabed=on_bed,
         submerged_weight=weight,
+        held=np.diff(line.free_basis.tocsr().indptr).reshape(-1, 3).sum(axis=1) == 0,
     )
     auto = dyn.auto or AutoSettings()
     reasons = []

@@ -504,3 +504,12 @@ def solve_harmonic(
         status=STATUS_OK,
         message="",
     )
+
+
+def warm_up() -> None:
+    """Load the compiled drag kernel (numba's first call in a process costs about a
+    second, mostly loading its own registries); callers do it before timing cases."""
+    n = 2
+    out = np.empty((n, 3, 3))
+    z = np.zeros((n, 3))
+    _drag_fit(z, z, z, np.tile([1.0, 0.0, 0.0], (n, 1)), np.zeros(n), np.zeros(n), out, 8, out)

@@ -60,15 +60,27 @@ def measures(
     laid_length: float,
     on_seabed: np.ndarray,
     submerged_weight: np.ndarray,
+    held: np.ndarray | None = None,
 ) -> Validity:
     """Validity measures. ``s`` [m] (n,), ``position`` [m] (n, 3) static nodes,
     ``displacement`` [m] (n, 3) complex amplitudes; tensions [N]: static and amplitude
     per element (n - 1,) and at the ends (2,); ``laid_length`` [m]; ``on_seabed`` (n,)
-    bool, the held laid nodes; ``submerged_weight`` [N/m] (n,) at the nodes."""
-    static = np.concatenate([element_tension_static, end_tension_static])
-    amp = np.concatenate([element_tension_amplitude, end_tension_amplitude])
-    ratio = float(np.min((static - amp) / np.where(static > 0.0, static, np.inf)))
-    if not np.all(static > 0.0):
+    bool, the held laid nodes; ``submerged_weight`` [N/m] (n,) at the nodes; ``held``
+    (n,) bool, nodes with no free direction (elements between two of them do not move
+    and are left out of the slack check: a laid stretch that friction has emptied of
+    tension is not a slack span)."""
+    moving = np.ones(element_tension_static.size, dtype=bool)
+    if held is not None:
+        moving = ~(held[:-1] & held[1:])
+    static = np.concatenate([element_tension_static[moving], end_tension_static])
+    amp = np.concatenate([element_tension_amplitude[moving], end_tension_amplitude])
+    # a point with no static tension and no motion (an anchor that friction has
+    # emptied of tension) is not near slack; one with motion is
+    active = (static > 0.0) | (amp > 1e-12 * float(np.max(static, initial=0.0)))
+    static, amp = static[active], amp[active]
+    if np.all(static > 0.0):
+        ratio = float(np.min((static - amp) / static, initial=math.inf))
+    else:
         ratio = -math.inf
     length = float(s[-1] - s[0])
     d = sag(position)

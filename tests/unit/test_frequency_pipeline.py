@@ -150,3 +150,33 @@ def test_transfer_function_refuses_a_frequency_sweep_axis() -> None:
     assert "analysis.dynamic.transfer_function: writes its own 'frequency' dimension" in str(
         info.value
     )
+
+
+MOORING = """
+name: moor
+environment: {fluid: water, depth: 100.0, seabed: {friction: 0.5}}
+line:
+  segments:
+    - {length: 300.0, diameter: 0.1, weight_in_fluid: 500.0, axial_stiffness: 5.0e8}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -100.0]}
+  b: {kind: fixed, position: [240.0, 0.0, 0.0]}
+analysis:
+  static: {method: catenary, nodes: 101, tolerance: 1.0e-9}
+  dynamic:
+    excitation: {end: b, direction: [1.0, 0.0, 0.0], amplitude: 0.2, frequency: 0.1}
+    method: frequency
+"""
+
+
+def test_laid_line_sticks_on_a_frictional_seabed(tmp_path: Path) -> None:
+    """Seabed friction is linearised as sticking: the laid nodes are held, so nothing
+    of the motion reaches the anchor, and the laid stretch keeps its static tension."""
+    ds = _run(tmp_path, MOORING, "moor")
+    assert int(ds["status"]) == 0, str(ds["message"].values)
+    assert float(ds["laid_length"]) > 100.0
+    assert float(ds["tension_amplitude_b"]) > 0.0
+    assert float(ds["tension_amplitude_a"]) == 0.0
+    laid = ds["s"].values < float(ds["laid_length"]) - 300.0 / 80
+    env = (ds["tension_envelope_max"] - ds["tension"]).values[laid]
+    np.testing.assert_array_equal(env, 0.0)
