@@ -409,6 +409,11 @@ def run_dynamic(
             why = fres.distrust or fres.message
             # the transfer function is a linear result whichever method answers the case
             linear = {k: v for k, v in fres.data.items() if k in TRANSFER_OUTPUTS}
+        elif dyn.transfer_function is not None:
+            # auto runs the time domain for this case; the transfer function asked for
+            # is still the linear model's
+            fres = solve_frequency(case, static, deadline)
+            linear = {k: v for k, v in fres.data.items() if k in TRANSFER_OUTPUTS}
         reason = f"auto: {why}"
     else:
         reason = "method: time"

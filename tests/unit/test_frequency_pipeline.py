@@ -180,3 +180,23 @@ def test_laid_line_sticks_on_a_frictional_seabed(tmp_path: Path) -> None:
     laid = ds["s"].values < float(ds["laid_length"]) - 300.0 / 80
     env = (ds["tension_envelope_max"] - ds["tension"]).values[laid]
     np.testing.assert_array_equal(env, 0.0)
+
+
+def test_auto_with_histories_runs_time_and_still_writes_the_transfer_function(
+    tmp_path: Path,
+) -> None:
+    text = (
+        STUDY.replace("method: frequency", "method: auto")
+        .replace(
+            "    elements: 40\n",
+            "    elements: 20\n    history: {points: [5.0]}\n"
+            "    transfer_function: {start: 0.1, stop: 1.0, num: 4}\n",
+        )
+        .replace("  analysis.dynamic.excitation.frequency: [0.3, 0.7]\n", "")
+    )
+    ds = _run(tmp_path, text, "autohist")
+    assert np.all(ds["status"] == 0)
+    assert np.all(ds["dynamic_method"] == "time")
+    assert np.all(ds["dynamic_method_reason"] == "auto: time histories asked for")
+    assert "history_tension" in ds and ds["tension_rao_b"].dims == ("amplitude", "frequency")
+    assert np.all(np.isfinite(ds["tension_rao_b"]))
