@@ -16,7 +16,12 @@ from typing import Any
 import numpy as np
 
 from .cases import Case
-from .config.analysis import DynamicSettings, HarmonicExcitation
+from .config.analysis import (
+    DynamicSettings,
+    HarmonicExcitation,
+    SpectrumExcitation,
+    TimeSeriesExcitation,
+)
 from .config.ends import FixedEnd
 from .config.loader import StudyError, StudySource
 from .dynamics.excitation import EndMotion, TableMotion
@@ -122,6 +127,14 @@ def _dynamic_problems(cases: list[Case], src: StudySource) -> list[str]:
                 "dimension, and the sweep has an axis named 'frequency'; allowed: a "
                 "transfer function instead of the frequency sweep, or name the sweep axis "
                 "otherwise (name: ...)"
+            )
+        spectral = any(isinstance(e, SpectrumExcitation) for e in dyn.excitations)
+        if spectral and dyn.method == "frequency" and "frequency" in case.coords:
+            line = src.line_of(("analysis", "dynamic", "excitation"))
+            problems.append(
+                f"{line}: analysis.dynamic.excitation: a spectrum's tension spectrum is "
+                "written on a 'frequency' dimension, and the sweep has an axis named "
+                "'frequency'; allowed: name the sweep axis otherwise (name: ...)"
             )
         length = study.line.length
         if dyn.history is not None:
@@ -328,7 +341,8 @@ def roundoff_force(line: DiscreteLine, x: np.ndarray) -> float:
 def end_motion(dyn: DynamicSettings) -> tuple[EndMotion, float, float]:
     """(end motion, steady-state period [s], base time step [s]) of the settings."""
     harmonics = [e for e in dyn.excitations if isinstance(e, HarmonicExcitation)]
-    tables = [e for e in dyn.excitations if not isinstance(e, HarmonicExcitation)]
+    tables = [e for e in dyn.excitations if isinstance(e, TimeSeriesExcitation)]
+    spectra = [e for e in dyn.excitations if isinstance(e, SpectrumExcitation)]
     table_motions = tuple(
         TableMotion(
             end=0 if e.end == "a" else 1,
@@ -339,7 +353,19 @@ def end_motion(dyn: DynamicSettings) -> tuple[EndMotion, float, float]:
         )
         for e in tables
     )
-    periods = [1.0 / e.frequency for e in harmonics]
+    # a spectrum runs as its lines with random phases (seeded): a periodic motion whose
+    # period is that of its lowest line
+    lines = [
+        (e, f, a, p)
+        for e in spectra
+        for f, a, p in zip(
+            e.line_frequencies,
+            e.line_amplitudes,
+            np.random.default_rng(e.seed).uniform(0.0, 2.0 * math.pi, e.components),
+            strict=True,
+        )
+    ]
+    periods = [1.0 / e.frequency for e in harmonics] + [1.0 / f for _, f, _, _ in lines]
     periods += [m.duration for m in table_motions if m.periodic]
     if dyn.period is not None:
         period = dyn.period
@@ -350,14 +376,16 @@ def end_motion(dyn: DynamicSettings) -> tuple[EndMotion, float, float]:
     fastest = min(periods) if periods else period
     step = fastest / dyn.points_per_period
     step = period / math.ceil(period / step * (1.0 - 1e-12))
+    every = [(e, e.frequency, e.amplitude, math.radians(e.phase_deg)) for e in harmonics]
+    every += lines
     motion = EndMotion(
-        harmonic_end=np.array([0 if e.end == "a" else 1 for e in harmonics], dtype=int),
+        harmonic_end=np.array([0 if e.end == "a" else 1 for e, _, _, _ in every], dtype=int),
         harmonic_direction=np.array(
-            [np.asarray(e.direction) / np.linalg.norm(e.direction) for e in harmonics]
+            [np.asarray(e.direction) / np.linalg.norm(e.direction) for e, _, _, _ in every]
         ).reshape(-1, 3),
-        harmonic_amplitude=np.array([e.amplitude for e in harmonics], dtype=float),
-        harmonic_frequency=np.array([e.frequency for e in harmonics], dtype=float),
-        harmonic_phase=np.radians([e.phase_deg for e in harmonics]),
+        harmonic_amplitude=np.array([a for _, _, a, _ in every], dtype=float),
+        harmonic_frequency=np.array([f for _, f, _, _ in every], dtype=float),
+        harmonic_phase=np.array([p for _, _, _, p in every], dtype=float),
         tables=table_motions,
         ramp_time=dyn.ramp_periods * period,
     )

@@ -18,8 +18,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from .cases import Case
-from .config.analysis import AutoSettings, DynamicSettings, HarmonicExcitation
-from .dynamics.frequency import DragSettings, ReducedLine, solve_harmonic
+from .config.analysis import (
+    AutoSettings,
+    DynamicSettings,
+    HarmonicExcitation,
+    SpectrumExcitation,
+)
+from .dynamics.frequency import DragSettings, ReducedLine, solve_harmonic, solve_spectrum
 from .dynamics.linear_model import linear_line
 from .dynamics.modal import ModalProblem
 from .dynamics.validity import Validity, measures
@@ -145,6 +150,9 @@ def solve_frequency(case: Case, static: StaticResult, deadline: float | None) ->
     red, why = linearised(case, static, deadline)
     if red is None:
         return FrequencyOutcome(status=STATUS_NO_SOLUTION, message=why, data={}, distrust=why)
+    spectra = [e for e in dyn.excitations if isinstance(e, SpectrumExcitation)]
+    if spectra:
+        return irregular(red, spectra[0], dyn, static)
     X, freq, ref = end_displacements(dyn)
     res = solve_harmonic(red, 2.0 * math.pi * freq, X, drag_settings(dyn))
     if not res.success:
@@ -271,3 +279,66 @@ def transfer_function(
         "tension_rao_phase_b": end_phase[:, 1],
         "tension_rao_line": line_amp,
     }
+
+
+def irregular(
+    red: ReducedLine, spec: SpectrumExcitation, dyn: DynamicSettings, static: StaticResult
+) -> FrequencyOutcome:
+    """Response to an end-motion spectrum: tension standard deviations, spectra and the
+    most probable maxima over ``storm_duration``. With the tension a narrow-band
+    Gaussian process its peaks are Rayleigh-distributed, and the most probable largest
+    of ``N = duration / T_z`` of them is ``sigma sqrt(2 ln N)`` above the mean, with the
+    zero up-crossing period ``T_z = 2 pi sqrt(m0 / m2)`` from the tension spectrum's
+    moments ``m_j = sum_k w_k^j |dT_k|^2 / 2``."""
+    freqs = np.asarray(spec.line_frequencies)
+    amps = np.asarray(spec.line_amplitudes)
+    d = np.asarray(spec.direction, dtype=float)
+    X = np.zeros((freqs.size, 2, 3), dtype=complex)
+    X[:, 0 if spec.end == "a" else 1] = amps[:, None] * (d / np.linalg.norm(d))[None]
+    omegas = 2.0 * math.pi * freqs
+    res = solve_spectrum(red, omegas, X, drag_settings(dyn))
+    if res.status != STATUS_OK:
+        return FrequencyOutcome(
+            status=res.status, message=res.message, data={}, distrust=res.message
+        )
+    df = float(freqs[1] - freqs[0])
+
+    def mpm(power: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(standard deviation, most probable maximum amplitude) of line powers
+        |dT_k|^2 (K, ...)."""
+        m0 = 0.5 * np.sum(power, axis=0)
+        m2 = 0.5 * np.sum(omegas.reshape((-1,) + (1,) * (power.ndim - 1)) ** 2 * power, axis=0)
+        tz = 2.0 * math.pi * np.sqrt(m0 / np.where(m2 > 0.0, m2, np.inf))
+        n_peaks = np.maximum(spec.storm_duration / np.where(tz > 0.0, tz, np.inf), 1.0)
+        return np.sqrt(m0), np.sqrt(m0) * np.sqrt(2.0 * np.log(n_peaks))
+
+    sd_end, mpm_end = mpm(np.abs(res.end_tension) ** 2)
+    sd_el, mpm_el = mpm(np.abs(res.element_tension) ** 2)
+    ex = 0 if spec.end == "a" else 1
+    t_end = res.tension_static
+    env = _along(static.s, red.line.s, mpm_el, mpm_end)
+    data: dict[str, np.ndarray] = {
+        "tension_static": np.asarray(t_end[ex]),
+        "tension_max": np.asarray(t_end[ex] + mpm_end[ex]),
+        "tension_min": np.asarray(t_end[ex] - mpm_end[ex]),
+        "tension_mean": np.asarray(t_end[ex]),
+        "tension_max_line": np.asarray(
+            max(float(np.max(static.tension + env)), float(np.max(t_end + mpm_end)))
+        ),
+        "tension_envelope_max": static.tension + env,
+        "tension_envelope_min": static.tension - env,
+        "tension_std_a": np.asarray(sd_end[0]),
+        "tension_std_b": np.asarray(sd_end[1]),
+        "transfer_frequency": freqs,
+        "tension_psd_a": np.abs(res.end_tension[:, 0]) ** 2 / (2.0 * df),
+        "tension_psd_b": np.abs(res.end_tension[:, 1]) ** 2 / (2.0 * df),
+        "linearisation_iterations": np.asarray(res.iterations),
+        "linearisation_converged": np.asarray(int(res.converged)),
+    }
+    return FrequencyOutcome(
+        status=STATUS_OK,
+        message="",
+        data=data,
+        distrust="" if res.converged else "drag linearisation not converged",
+        drag_converged=res.converged,
+    )

@@ -100,7 +100,15 @@ OUTPUTS: dict[str, OutputVariable] = {
         (), "1", "1 if the drag linearisation converged, else 0"
     ),
     "transfer_frequency": OutputVariable(
-        ("frequency",), "Hz", "frequency of the tension transfer function"
+        ("frequency",), "Hz", "frequency of the tension transfer function or spectrum"
+    ),
+    "tension_std_a": OutputVariable((), "N", "standard deviation of the tension at end A"),
+    "tension_std_b": OutputVariable((), "N", "standard deviation of the tension at end B"),
+    "tension_psd_a": OutputVariable(
+        ("frequency",), "N^2/Hz", "spectral density of the tension at end A"
+    ),
+    "tension_psd_b": OutputVariable(
+        ("frequency",), "N^2/Hz", "spectral density of the tension at end B"
     ),
     "tension_rao_a": OutputVariable(
         ("frequency",), "N/m", "tension amplitude at end A per unit excitation amplitude"

@@ -224,15 +224,76 @@ class TimeSeriesExcitation(StrictModel):
         return self
 
 
+class SpectrumExcitation(StrictModel):
+    """Irregular motion of one end along ``direction``: a one-sided displacement spectral
+    density S(f) [m^2/Hz], given as a table of (frequency [Hz], density [m^2/Hz]) rows and
+    interpolated linearly (zero outside the table). It is represented by ``components``
+    spectral lines ``f_k = k df``, ``df = f_max / components`` (``f_max`` the table's last
+    frequency), of amplitude ``sqrt(2 S(f_k) df)``: the frequency domain sums their
+    responses (variance), the time domain runs the realisation with random phases drawn
+    with ``seed``; it repeats after ``1 / df``."""
+
+    end: Literal["a", "b"] = Field(description="the end that moves")
+    direction: Annotated[Vec3, AfterValidator(_unit_direction)] = Field(
+        description="direction of the motion [-] (normalised)"
+    )
+    spectrum: list[Vec2] = Field(
+        min_length=2, description="rows [frequency Hz, displacement spectral density m^2/Hz]"
+    )
+    components: int = Field(64, ge=4, le=4096, description="spectral lines [-]")
+    seed: int = Field(0, ge=0, description="seed of the random phases (time domain) [-]")
+    storm_duration: Positive = Field(
+        10800.0, description="duration of the most probable maximum (frequency domain) [s]"
+    )
+
+    @field_validator("spectrum")
+    @classmethod
+    def _valid_table(cls, value: list[list[float]]) -> list[list[float]]:
+        freqs = [row[0] for row in value]
+        if any(b <= a for a, b in zip(freqs, freqs[1:], strict=False)) or freqs[0] < 0.0:
+            raise ValueError(f"frequencies must be >= 0 and increase strictly, got {freqs}")
+        if any(row[1] < 0.0 for row in value) or not any(row[1] > 0.0 for row in value):
+            raise ValueError("densities must be >= 0 and not all zero")
+        return value
+
+    @property
+    def line_frequencies(self) -> list[float]:
+        df = self.spectrum[-1][0] / self.components
+        return [df * k for k in range(1, self.components + 1)]
+
+    @property
+    def line_amplitudes(self) -> list[float]:
+        """Amplitudes [m] of the spectral lines: sqrt(2 S(f_k) df)."""
+        freqs = [r[0] for r in self.spectrum]
+        dens = [r[1] for r in self.spectrum]
+        df = self.spectrum[-1][0] / self.components
+        out = []
+        for f in self.line_frequencies:
+            if f < freqs[0] or f > freqs[-1]:
+                out.append(0.0)
+                continue
+            i = max(j for j in range(len(freqs)) if freqs[j] <= f)
+            if i == len(freqs) - 1:
+                sf = dens[-1]
+            else:
+                w = (f - freqs[i]) / (freqs[i + 1] - freqs[i])
+                sf = (1.0 - w) * dens[i] + w * dens[i + 1]
+            out.append(math.sqrt(2.0 * sf * df))
+        return out
+
+
 def _excitation_tag(value: Any) -> str:
     if isinstance(value, dict):
+        if "spectrum" in value:
+            return "SpectrumExcitation"
         return "TimeSeriesExcitation" if "table" in value else "HarmonicExcitation"
     return type(value).__name__
 
 
 Excitation = Annotated[
     Annotated[HarmonicExcitation, Tag("HarmonicExcitation")]
-    | Annotated[TimeSeriesExcitation, Tag("TimeSeriesExcitation")],
+    | Annotated[TimeSeriesExcitation, Tag("TimeSeriesExcitation")]
+    | Annotated[SpectrumExcitation, Tag("SpectrumExcitation")],
     Discriminator(_excitation_tag),
 ]
 
@@ -359,7 +420,9 @@ class DynamicSettings(StrictModel):
         if not items:
             raise ValueError("excitation: list at least one motion")
         harmonic = any(isinstance(e, HarmonicExcitation) for e in items)
-        periodic = any(isinstance(e, TimeSeriesExcitation) and e.periodic for e in items)
+        periodic = any(isinstance(e, TimeSeriesExcitation) and e.periodic for e in items) or any(
+            isinstance(e, SpectrumExcitation) for e in items
+        )
         if not (harmonic or periodic) and self.period is None and self.duration is None:
             raise ValueError(
                 "excitation has no period (only non-periodic tables): give "
@@ -378,12 +441,19 @@ class DynamicSettings(StrictModel):
                     "'frequency'; allowed: method 'time' or 'auto' (or remove the key)"
                 )
             items = self.excitations
-            if not all(isinstance(e, HarmonicExcitation) for e in items):
+            spectra = [e for e in items if isinstance(e, SpectrumExcitation)]
+            if spectra and len(items) != 1:
                 raise ValueError(
-                    "method 'frequency' needs harmonic excitation (a time table is solved "
-                    "by method 'time'); allowed: harmonic motions of one frequency"
+                    "method 'frequency' solves harmonic motions of one frequency, or one "
+                    "spectrum alone; allowed: one spectrum, or method 'time'"
                 )
-            freqs = {e.frequency for e in items}  # type: ignore[union-attr]
+            if not spectra and not all(isinstance(e, HarmonicExcitation) for e in items):
+                raise ValueError(
+                    "method 'frequency' needs harmonic excitation or a spectrum (a time table "
+                    "is solved by method 'time'); allowed: harmonic motions of one frequency, "
+                    "or one spectrum"
+                )
+            freqs = {e.frequency for e in items if isinstance(e, HarmonicExcitation)}
             if len(freqs) > 1:
                 raise ValueError(
                     f"method 'frequency' solves one excitation frequency per case (got "
@@ -412,7 +482,7 @@ class DynamicSettings(StrictModel):
         return self
 
     @property
-    def excitations(self) -> list[HarmonicExcitation | TimeSeriesExcitation]:
+    def excitations(self) -> list[HarmonicExcitation | TimeSeriesExcitation | SpectrumExcitation]:
         return list(self.excitation) if isinstance(self.excitation, list) else [self.excitation]
 
 

@@ -513,3 +513,156 @@ def warm_up() -> None:
     out = np.empty((n, 3, 3))
     z = np.zeros((n, 3))
     _drag_fit(z, z, z, np.tile([1.0, 0.0, 0.0], (n, 1)), np.zeros(n), np.zeros(n), out, 8, out)
+
+
+# ------------------------------------------------------------------ irregular motion
+
+
+def _gauss_hermite(m: int) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes (m^3, 3) and weights (m^3,) of the tensor Gauss-Hermite rule for the
+    standard normal distribution in three dimensions."""
+    x, w = np.polynomial.hermite_e.hermegauss(m)
+    w = w / w.sum()
+    X = np.stack(np.meshgrid(x, x, x, indexing="ij"), -1).reshape(-1, 3)
+    W = np.prod(np.stack(np.meshgrid(w, w, w, indexing="ij"), -1).reshape(-1, 3), axis=1)
+    return X, W
+
+
+def drag_stochastic(
+    line: LinearLine, covariance: np.ndarray, tangent: np.ndarray, points: int = 6
+) -> np.ndarray:
+    """Statistically linearised drag damping [N s/m] (n, 3, 3) for a Gaussian relative
+    velocity of mean the current and covariance ``covariance`` [m^2/s^2] (n, 3, 3):
+    ``D = E[df/dw] = E[f (w - U) ^T] C^-1`` (Stein's lemma: the mean-square optimal
+    linear fit, as the harmonic fit is for a sine), by tensor Gauss-Hermite quadrature
+    with ``points`` nodes per direction. Directions without motion take the
+    small-motion tangent ``tangent`` (:func:`drag_tangent`)."""
+    X, W = _gauss_hermite(points)
+    lam, Q = np.linalg.eigh(covariance)
+    L = Q * np.sqrt(np.clip(lam, 0.0, None))[:, None, :]  # (n, 3, 3): C = L L^T
+    dev = np.einsum("iab,kb->kia", L, X)  # (m^3, n, 3)
+    f = drag_force(line, line.current[None] + dev)
+    H = np.einsum("k,kia,kib->iab", W, f, dev)
+    trace = np.trace(covariance, axis1=1, axis2=2)
+    eps = np.where(trace > 0.0, 1e-10 * trace, 1.0)[:, None, None]
+    lhs = covariance + eps * np.eye(3)
+    rhs = np.where((trace > 0.0)[:, None, None], H + eps * tangent, tangent)
+    return np.swapaxes(np.linalg.solve(lhs, np.swapaxes(rhs, 1, 2)), 1, 2)
+
+
+@dataclass(kw_only=True)
+class SpectrumResult:
+    """Response to an end-motion spectrum: per spectral line (K,) the complex
+    amplitudes of the end tensions (K, 2) [N] and element tensions (K, n - 1) [N];
+    tension_static (2,) [N]; iterations, converged, change; status, message."""
+
+    end_tension: np.ndarray
+    element_tension: np.ndarray
+    tension_static: np.ndarray
+    iterations: int = 0
+    converged: bool = True
+    change: float = 0.0
+    status: int = STATUS_OK
+    message: str = ""
+
+
+def solve_spectrum(
+    red: ReducedLine,
+    omegas: np.ndarray,
+    end_motion: np.ndarray,
+    settings: DragSettings | None = None,
+) -> SpectrumResult:
+    """Linear response to end motion given as spectral lines: angular frequencies
+    ``omegas`` [rad/s] (K,), end displacement amplitudes ``end_motion`` [m] (K, 2, 3)
+    (the lines are independent, random-phase: variances add). The drag is linearised
+    statistically on the covariance of the relative velocity summed over the lines,
+    ``C = sum_k Re(v_k v_k^H) / 2``, and iterated to consistency as in
+    :func:`solve_harmonic`."""
+    settings = settings or DragSettings()
+    line = red.line
+    n = line.n_nodes
+    B = line.free_basis
+    BT = B.T.tocsr()
+    bw = red.bandwidth
+    K = omegas.size
+    static_mag = np.linalg.norm(line.end_force, axis=1)
+
+    def solve_all(D: np.ndarray | None) -> np.ndarray | None:
+        U = np.empty((K, n, 3), dtype=complex)
+        band = None if D is None else red.drag_band(D)
+        for k, w in enumerate(omegas):
+            up = np.zeros((n, 3), dtype=complex)
+            up[0], up[-1] = end_motion[k, 0], end_motion[k, 1]
+            ab = red.K - w**2 * red.M + 1j * w * red.C
+            if band is not None:
+                ab = ab + 1j * w * band
+            rhs = -(BT @ red.apply(up, w, D).ravel())
+            if rhs.size == 0:
+                U[k] = up
+                continue
+            try:
+                q = solve_banded((bw, bw), ab, rhs, check_finite=False)
+            except (np.linalg.LinAlgError, ValueError):
+                return None
+            if not np.all(np.isfinite(q)):
+                return None
+            U[k] = (B @ q).reshape(n, 3) + up
+        return U
+
+    def covariance(U: np.ndarray) -> np.ndarray:
+        V = 1j * omegas[:, None, None] * U
+        return 0.5 * np.real(np.einsum("kia,kib->iab", V, V.conj()))
+
+    D: np.ndarray | None = None
+    iterations, converged, change = 0, True, 0.0
+    if line.has_drag:
+        frac = (line.s / line.s[-1])[None, :, None]
+        U = (1.0 - frac) * end_motion[:, 0:1, :] + frac * end_motion[:, 1:2, :]
+        D_small = drag_tangent(line)
+        D = drag_stochastic(line, covariance(U), D_small)
+        sigma = np.sqrt(np.einsum("iaa->i", covariance(U)))
+        converged = False
+        last = math.inf
+        for iterations in range(1, settings.max_iterations + 1):  # noqa: B007
+            U_new = solve_all(D)
+            if U_new is None:
+                break
+            C = covariance(U_new)
+            sigma_new = np.sqrt(np.einsum("iaa->i", C))
+            change = float(np.max(np.abs(sigma_new - sigma)) / max(np.max(sigma_new), 1e-300))
+            U, sigma = U_new, sigma_new
+            if change <= settings.tolerance:
+                converged = True
+                break
+            relax = 0.5 if change >= 0.5 * last else 1.0
+            last = change
+            D = (1.0 - relax) * D + relax * drag_stochastic(line, C, D_small)
+    else:
+        U = solve_all(None)  # type: ignore[assignment]
+    if U is None or (line.has_drag and iterations and not np.all(np.isfinite(U))):
+        return SpectrumResult(
+            end_tension=np.full((K, 2), np.nan + 0j),
+            element_tension=np.full((K, n - 1), np.nan + 0j),
+            tension_static=static_mag,
+            status=STATUS_NUMERICAL,
+            message="singular dynamic matrix at a spectral line",
+        )
+    du = np.diff(U, axis=1)
+    axial = (line.axial_stiffness[None] + 1j * omegas[:, None] * line.axial_damping[None]) / (
+        line.rest_length[None]
+    )
+    element = axial * np.einsum("ea,kea->ke", line.direction, du)
+    unit = line.end_force / np.where(static_mag > 0.0, static_mag, 1.0)[:, None]
+    ends = np.empty((K, 2), dtype=complex)
+    for k, w in enumerate(omegas):
+        r = red.apply(U[k], w, D)
+        ends[k, 0] = -unit[0] @ r[0]
+        ends[k, 1] = -unit[1] @ r[-1]
+    return SpectrumResult(
+        end_tension=ends,
+        element_tension=element,
+        tension_static=static_mag,
+        iterations=iterations,
+        converged=converged,
+        change=change,
+    )

@@ -200,3 +200,36 @@ def test_auto_with_histories_runs_time_and_still_writes_the_transfer_function(
     assert np.all(ds["dynamic_method_reason"] == "auto: time histories asked for")
     assert "history_tension" in ds and ds["tension_rao_b"].dims == ("amplitude", "frequency")
     assert np.all(np.isfinite(ds["tension_rao_b"]))
+
+
+def test_spectrum_study_runs_to_netcdf(tmp_path: Path) -> None:
+    text = STUDY.replace(
+        "excitation: {end: b, direction: [1.0, 0.0, 0.0], amplitude: 0.05, frequency: 0.5}",
+        "excitation: {end: b, direction: [1.0, 0.0, 0.0], components: 16, "
+        "spectrum: [[0.2, 1.0e-4], [0.8, 1.0e-4]]}",
+    ).replace(
+        "sweep:\n  analysis.dynamic.excitation.amplitude: [0.01, 0.02]\n"
+        "  analysis.dynamic.excitation.frequency: [0.3, 0.7]\n",
+        "sweep:\n  analysis.dynamic.excitation.storm_duration: [3600.0, 10800.0]\n",
+    )
+    ds = _run(tmp_path, text, "spectrum")
+    assert np.all(ds["status"] == 0)
+    assert ds["tension_psd_b"].dims == ("storm_duration", "frequency")
+    assert ds["frequency"].attrs["units"] == "Hz" and ds["tension_psd_b"].attrs["units"] == "N^2/Hz"
+    np.testing.assert_allclose(ds["frequency"], 0.05 * np.arange(1, 17), rtol=1e-12)
+    # linear (vacuum): the standard deviation does not depend on the storm duration, the
+    # most probable maximum grows with it as sqrt(2 ln N)
+    np.testing.assert_allclose(ds["tension_std_b"][0], ds["tension_std_b"][1], rtol=1e-12)
+    rise = (ds["tension_max"] - ds["tension_static"]) / ds["tension_std_b"]
+    np.testing.assert_allclose(rise[1] ** 2 - rise[0] ** 2, 2.0 * np.log(3.0), rtol=1e-10)
+
+
+def test_spectrum_and_harmonics_together_are_refused_by_frequency() -> None:
+    text = STUDY.replace(
+        "excitation: {end: b, direction: [1.0, 0.0, 0.0], amplitude: 0.05, frequency: 0.5}",
+        "excitation: [{end: b, direction: [1, 0, 0], amplitude: 0.05, frequency: 0.5}, "
+        "{end: a, direction: [1, 0, 0], spectrum: [[0.2, 1.0e-4], [0.8, 1.0e-4]]}]",
+    )
+    with pytest.raises(StudyError) as info:
+        expand_cases(parse_study_text(text))
+    assert "one spectrum alone" in str(info.value)
