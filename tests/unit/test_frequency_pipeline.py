@@ -233,3 +233,26 @@ def test_spectrum_and_harmonics_together_are_refused_by_frequency() -> None:
     with pytest.raises(StudyError) as info:
         expand_cases(parse_study_text(text))
     assert "one spectrum alone" in str(info.value)
+
+
+def test_jonswap_times_rao_spectrum() -> None:
+    from cablestudy.config.analysis import SpectrumExcitation
+
+    ex = SpectrumExcitation(
+        end="b",
+        direction=[1.0, 0.0, 0.0],
+        wave_spectrum={"hs": 2.0, "tp": 8.0, "gamma": 3.3},
+        rao=[[0.0, 1.0], [2.0, 1.0]],
+        components=2000,
+    )
+    # unit RAO: the motion variance is the wave variance, (Hs / 4)^2 (DNV's JONSWAP
+    # normalisation A_gamma = 1 - 0.287 ln gamma holds the integral to about 1 %)
+    var = 0.5 * sum(a * a for a in ex.line_amplitudes)
+    np.testing.assert_allclose(var, (2.0 / 4.0) ** 2, rtol=0.02)
+    with pytest.raises(ValueError, match="either spectrum"):
+        SpectrumExcitation(
+            end="b",
+            direction=[1.0, 0.0, 0.0],
+            spectrum=[[0.1, 1.0], [0.5, 1.0]],
+            rao=[[0.0, 1.0], [2.0, 1.0]],
+        )
