@@ -57,7 +57,7 @@ move (``<w' w'^T>`` singular there) take that small-motion tangent.
 
 Since ``D`` depends on the motion, the solve is iterated: start from the quasi-static
 motion (the end motion spread linearly along the line), compute ``D``, solve, and
-repeat, with Anderson acceleration of depth one on the fixed point ``D = G(D)``
+repeat (compiled: :func:`_drag_iteration`), with Anderson acceleration of depth one on the fixed point ``D = G(D)``
 (near a resonance the plain map behaves like ``a -> c / a`` and oscillates; the
 secant step removes that), until the nodal velocities change by less than
 ``tolerance`` of their largest amplitude.
@@ -287,6 +287,178 @@ def _drag_fit(velocity_re, velocity_im, current, tangent, c_n, c_t, tangent_d, s
                 out[i, a, b] = acc
 
 
+@njit(cache=True)
+def _band_solve(ab, bw, rhs, x):  # noqa: ANN001, ANN202
+    """Solve the complex banded system in ``ab`` (3 bw + 1, N): A[i, j] at
+    ab[2 bw + i - j, j], rows 0..bw-1 free for the fill-in of row exchanges) by
+    Gaussian elimination with partial pivoting (as LAPACK's gbsv); ``ab`` and ``rhs``
+    are overwritten. Returns False for a zero pivot."""
+    N = rhs.shape[0]
+    ku = 2 * bw
+    for k in range(N):
+        last = min(k + bw, N - 1)
+        p = k
+        big = abs(ab[ku, k])
+        for i in range(k + 1, last + 1):
+            a = abs(ab[ku + i - k, k])
+            if a > big:
+                big, p = a, i
+        if not big > 0.0:
+            return False
+        right = min(k + ku, N - 1)
+        if p != k:
+            for j in range(k, right + 1):
+                t = ab[ku + k - j, j]
+                ab[ku + k - j, j] = ab[ku + p - j, j]
+                ab[ku + p - j, j] = t
+            t = rhs[k]
+            rhs[k] = rhs[p]
+            rhs[p] = t
+        pivot = ab[ku, k]
+        for i in range(k + 1, last + 1):
+            f = ab[ku + i - k, k] / pivot
+            if f == 0.0:
+                continue
+            for j in range(k + 1, right + 1):
+                ab[ku + i - j, j] -= f * ab[ku + k - j, j]
+            rhs[i] -= f * rhs[k]
+    for i in range(N - 1, -1, -1):
+        acc = rhs[i]
+        for j in range(i + 1, min(i + ku, N - 1) + 1):
+            acc -= ab[ku + i - j, j] * x[j]
+        x[i] = acc / ab[ku, i]
+    return True
+
+
+@njit(cache=True)
+def _drag_iteration(  # noqa: ANN201, PLR0913
+    base,
+    bw,
+    omega,
+    rhs0,
+    up,
+    u,
+    offsets,
+    basis,
+    current,
+    tangent,
+    c_n,
+    c_t,
+    D_small,
+    samples,
+    tol,
+    max_iterations,
+    D,
+):  # noqa: ANN001
+    """The drag iteration of :func:`solve_harmonic` (same steps, compiled): ``u`` (n, 3)
+    complex holds the start and receives the answer, ``D`` (n, 3, 3) the last drag
+    matrices. Returns (iterations, converged, change, ok)."""
+    n = u.shape[0]
+    N = rhs0.shape[0]
+    ab = np.zeros((3 * bw + 1, N), dtype=np.complex128)
+    rhs = np.empty(N, dtype=np.complex128)
+    q = np.empty(N, dtype=np.complex128)
+    v = 1j * omega * u
+    _drag_fit(
+        np.ascontiguousarray(v.real),
+        np.ascontiguousarray(v.imag),
+        current,
+        tangent,
+        c_n,
+        c_t,
+        D_small,
+        samples,
+        D,
+    )
+    G = np.empty_like(D)
+    prev_D = np.empty_like(D)
+    prev_G = np.empty_like(D)
+    have_prev = False
+    last = np.inf
+    change = np.inf
+    for it in range(1, max_iterations + 1):
+        ab[:bw, :] = 0.0
+        ab[bw:, :] = base
+        for i in range(n):
+            o = offsets[i]
+            k = offsets[i + 1] - o
+            for r in range(k):
+                for c in range(k):
+                    acc = 0.0
+                    for a in range(3):
+                        for b in range(3):
+                            acc += basis[i, a, r] * D[i, a, b] * basis[i, b, c]
+                    ab[2 * bw + r - c, o + c] += 1j * omega * acc
+        for j in range(N):
+            rhs[j] = rhs0[j]
+        if not _band_solve(ab, bw, rhs, q):
+            return it, False, change, False
+        vmax = 0.0
+        dmax = 0.0
+        for i in range(n):
+            o = offsets[i]
+            k = offsets[i + 1] - o
+            for a in range(3):
+                acc = up[i, a]
+                for r in range(k):
+                    acc += basis[i, a, r] * q[o + r]
+                vn = 1j * omega * acc
+                if not (np.isfinite(vn.real) and np.isfinite(vn.imag)):
+                    return it, False, change, False
+                dmax = max(dmax, abs(vn - v[i, a]))
+                vmax = max(vmax, abs(vn))
+                u[i, a] = acc
+                v[i, a] = vn
+        change = dmax / max(vmax, 1e-300)
+        if change <= tol:
+            return it, True, change, True
+        _drag_fit(
+            np.ascontiguousarray(v.real),
+            np.ascontiguousarray(v.imag),
+            current,
+            tangent,
+            c_n,
+            c_t,
+            D_small,
+            samples,
+            G,
+        )
+        if change >= last:
+            for i in range(n):
+                for a in range(3):
+                    for b in range(3):
+                        D[i, a, b] = 0.5 * (D[i, a, b] + G[i, a, b])
+            have_prev = False
+        else:
+            theta = 0.0
+            if have_prev:
+                num = 0.0
+                den = 0.0
+                for i in range(n):
+                    for a in range(3):
+                        for b in range(3):
+                            R = G[i, a, b] - D[i, a, b]
+                            dR = R - (prev_G[i, a, b] - prev_D[i, a, b])
+                            num += R * dR
+                            den += dR * dR
+                if den > 0.0:
+                    theta = num / den
+            for i in range(n):
+                for a in range(3):
+                    for b in range(3):
+                        nxt = (
+                            G[i, a, b] - theta * (G[i, a, b] - prev_G[i, a, b])
+                            if have_prev
+                            else G[i, a, b]
+                        )
+                        prev_D[i, a, b] = D[i, a, b]
+                        prev_G[i, a, b] = G[i, a, b]
+                        D[i, a, b] = nxt
+            have_prev = True
+        last = change
+    return max_iterations, False, change, True
+
+
 def drag_linearisation(
     line: LinearLine, velocity: np.ndarray, samples: int = 32, tangent: np.ndarray | None = None
 ) -> np.ndarray:
@@ -332,6 +504,7 @@ class ReducedLine:
     node_basis: np.ndarray
     band_index: tuple[np.ndarray, np.ndarray]
     block_index: tuple[np.ndarray, np.ndarray, np.ndarray]
+    offsets: np.ndarray
 
     @classmethod
     def of(cls, line: LinearLine) -> ReducedLine:
@@ -347,9 +520,11 @@ class ReducedLine:
         padded = np.zeros((n, 3, 3))
         band_r, band_c, blk_i, blk_r, blk_c = [], [], [], [], []
         offset = 0
+        counts = []
         for i in range(n):
             cols = np.flatnonzero(np.any(dense[3 * i : 3 * i + 3] != 0.0, axis=0))
             k = cols.size
+            counts.append(k)
             padded[i, :, :k] = dense[3 * i : 3 * i + 3, cols]
             r, c = np.meshgrid(np.arange(k), np.arange(k), indexing="ij")
             band_r.append(bw + r.ravel() - c.ravel())
@@ -367,6 +542,7 @@ class ReducedLine:
             node_basis=padded,
             band_index=(np.concatenate(band_r), np.concatenate(band_c)),
             block_index=(np.concatenate(blk_i), np.concatenate(blk_r), np.concatenate(blk_c)),
+            offsets=np.concatenate(([0], np.cumsum(counts))).astype(np.int64),
         )
 
     def drag_band(self, D: np.ndarray) -> np.ndarray:
@@ -445,42 +621,30 @@ def solve_harmonic(
     if line.has_drag:
         frac = (line.s / line.s[-1])[:, None]
         u = (1.0 - frac) * up[0] + frac * up[-1]
-        v = 1j * omega * u
         D_small = drag_tangent(line)
-        D = drag_linearisation(line, v, settings.samples, D_small)
-        converged = False
-        previous: tuple[np.ndarray, np.ndarray] | None = None  # last (D, G(D))
-        last_change = math.inf
-        for iterations in range(1, settings.max_iterations + 1):  # noqa: B007
-            u_new = solve(D)
-            if u_new is None:
-                return failed
-            v_new = 1j * omega * u_new
-            change = float(np.max(np.abs(v_new - v)) / max(np.max(np.abs(v_new)), 1e-300))
-            v, u = v_new, u_new
-            if change <= settings.tolerance:
-                converged = True
-                break
-            G = drag_linearisation(line, v, settings.samples, D_small)
-            # Anderson acceleration of depth one (a secant step on the fixed point
-            # D = G(D)): it damps the oscillation near a resonance, where the map
-            # behaves like a -> c / a, and speeds up the monotone convergence elsewhere
-            # (a step that did not reduce the change falls back to the average of D
-            # and G(D), and restarts the secant)
-            if change >= last_change:
-                D, previous = 0.5 * (D + G), None
-            else:
-                D_next = G
-                if previous is not None:
-                    R, R_old = G - D, previous[1] - previous[0]
-                    dR = R - R_old
-                    den = float(np.sum(dR * dR))
-                    if den > 0.0:
-                        theta = float(np.sum(R * dR)) / den
-                        D_next = G - theta * (G - previous[1])
-                previous = (D, G)
-                D = D_next
-            last_change = change
+        D = np.empty((n, 3, 3))
+        u = np.ascontiguousarray(u, dtype=np.complex128)
+        iterations, converged, change, ok = _drag_iteration(
+            np.ascontiguousarray(base),
+            bw,
+            float(omega),
+            np.ascontiguousarray(rhs0, dtype=np.complex128),
+            up,
+            u,
+            red.offsets,
+            red.node_basis,
+            line.current,
+            line.tangent,
+            line.drag_normal,
+            line.drag_tangential,
+            D_small,
+            settings.samples,
+            settings.tolerance,
+            settings.max_iterations,
+            D,
+        )
+        if not ok:
+            return failed
     else:
         u_solved = solve(None)
         if u_solved is None:
@@ -507,12 +671,35 @@ def solve_harmonic(
 
 
 def warm_up() -> None:
-    """Load the compiled drag kernel (numba's first call in a process costs about a
+    """Load the compiled drag kernels (numba's first call in a process costs about a
     second, mostly loading its own registries); callers do it before timing cases."""
-    n = 2
-    out = np.empty((n, 3, 3))
-    z = np.zeros((n, 3))
-    _drag_fit(z, z, z, np.tile([1.0, 0.0, 0.0], (n, 1)), np.zeros(n), np.zeros(n), out, 8, out)
+    n = 3
+    t = np.tile([1.0, 0.0, 0.0], (n, 1))
+    basis = np.zeros((n, 3, 3))
+    basis[1] = np.eye(3)
+    base = np.zeros((5, 3), dtype=np.complex128)
+    base[2] = 1.0
+    up = np.zeros((n, 3), dtype=np.complex128)
+    up[-1, 2] = 1.0
+    _drag_iteration(
+        base,
+        2,
+        1.0,
+        np.ones(3, dtype=np.complex128),
+        up,
+        up.copy(),
+        np.array([0, 0, 3, 3], dtype=np.int64),
+        basis,
+        np.zeros((n, 3)),
+        t,
+        np.ones(n),
+        np.zeros(n),
+        np.zeros((n, 3, 3)),
+        8,
+        1e-6,
+        2,
+        np.empty((n, 3, 3)),
+    )
 
 
 # ------------------------------------------------------------------ irregular motion
