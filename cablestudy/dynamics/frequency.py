@@ -57,10 +57,10 @@ move (``<w' w'^T>`` singular there) take that small-motion tangent.
 
 Since ``D`` depends on the motion, the solve is iterated: start from the quasi-static
 motion (the end motion spread linearly along the line), compute ``D``, solve, and
-repeat (compiled: :func:`_drag_iteration`), with Anderson acceleration of depth one on the fixed point ``D = G(D)``
-(near a resonance the plain map behaves like ``a -> c / a`` and oscillates; the
-secant step removes that), until the nodal velocities change by less than
-``tolerance`` of their largest amplitude.
+repeat (compiled: :func:`_drag_iteration`), with Anderson acceleration of depth one
+on the fixed point ``D = G(D)`` (near a resonance the plain map behaves like
+``a -> c / a`` and oscillates; the secant step removes that), until the nodal
+velocities change by less than ``tolerance`` of their largest amplitude.
 
 Pure: arrays in, a :class:`FrequencyResult` out (status, message, counters).
 """
