@@ -64,6 +64,8 @@ def linearised(
         return cached
     n_nodes = dyn.elements + 1
     mesh = static if len(static.s) == n_nodes else _static_at(case, n_nodes, deadline)
+    if mesh.success and static.laid_length > 0.0:
+        mesh = _with_touchdown_nodes(case, static, dyn.elements, deadline) or mesh
     out: tuple[ReducedLine | None, str]
     if not mesh.success:
         out = (None, f"static shape at the dynamic nodes: {mesh.message}")
@@ -93,6 +95,37 @@ def linearised(
     while len(_LINEAR_CACHE) > _LINEAR_CACHE_SIZE:
         _LINEAR_CACHE.popitem(last=False)
     return out
+
+
+#: static samples per element from which a touchdown node is taken (it lies within
+#: half a sample of the touchdown point)
+TOUCHDOWN_SAMPLES = 16
+
+
+def _with_touchdown_nodes(
+    case: Case, static: StaticResult, elements: int, deadline: float | None
+) -> StaticResult | None:
+    """The uniform nodes plus a node at each touchdown point (the last laid one of
+    ``TOUCHDOWN_SAMPLES`` static samples per element), so that the held laid nodes end
+    where the line leaves the seabed, as in the modal mesh
+    (:func:`cablestudy.analyses.solve_modal`); None if the fine sampling fails."""
+    from .analyses import _static_at
+    from .dynamics.modal import snap_to_samples, subset_static
+
+    fine = _static_at(case, elements * TOUCHDOWN_SAMPLES + 1, deadline)
+    if not fine.success:
+        return None
+    length = float(fine.s[-1])
+    med = static_problem(case.study).medium
+    ground = med.seabed_z(fine.position[:, 0], fine.position[:, 1])
+    on_bed = np.abs(fine.position[:, 2] - ground) <= 1e-6 * max(length, 1.0)
+    touchdown = []
+    if on_bed[0] and not on_bed.all():
+        touchdown.append(fine.s[int(np.argmin(on_bed)) - 1])  # last laid sample from A
+    if on_bed[-1] and not on_bed.all():
+        touchdown.append(fine.s[len(on_bed) - int(np.argmin(on_bed[::-1]))])  # from B
+    targets = np.union1d(np.linspace(0.0, length, elements + 1), touchdown)
+    return subset_static(fine, snap_to_samples(fine.s, targets))
 
 
 def end_displacements(dyn: DynamicSettings) -> tuple[np.ndarray, float, complex]:
