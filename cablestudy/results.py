@@ -77,6 +77,54 @@ OUTPUTS: dict[str, OutputVariable] = {
     "newton_iterations": OutputVariable((), "1", "Newton iterations of the time steps"),
     "rejected_steps": OutputVariable((), "1", "rejected (retried shorter) time steps"),
     "dynamic_method": OutputVariable((), "1", "dynamic method used (time | frequency)", "str"),
+    "dynamic_method_reason": OutputVariable(
+        (), "1", "why this dynamic method ran (method: auto records its checks)", "str"
+    ),
+    # frequency domain (cablestudy.dynamics.frequency): static +/- harmonic amplitude
+    "tension_envelope_max": OutputVariable(
+        ("s",), "N", "largest tension along the line over the steady motion"
+    ),
+    "tension_envelope_min": OutputVariable(
+        ("s",), "N", "smallest tension along the line over the steady motion"
+    ),
+    "tension_amplitude_a": OutputVariable((), "N", "tension amplitude at end A"),
+    "tension_amplitude_b": OutputVariable((), "N", "tension amplitude at end B"),
+    "tension_phase_a": OutputVariable(
+        (), "deg", "phase of the tension at end A ahead of the (first) excitation"
+    ),
+    "tension_phase_b": OutputVariable(
+        (), "deg", "phase of the tension at end B ahead of the (first) excitation"
+    ),
+    "linearisation_iterations": OutputVariable((), "1", "drag linearisation iterations"),
+    "linearisation_converged": OutputVariable(
+        (), "1", "1 if the drag linearisation converged, else 0"
+    ),
+    "transfer_frequency": OutputVariable(
+        ("frequency",), "Hz", "frequency of the tension transfer function or spectrum"
+    ),
+    "tension_std_a": OutputVariable((), "N", "standard deviation of the tension at end A"),
+    "tension_std_b": OutputVariable((), "N", "standard deviation of the tension at end B"),
+    "tension_psd_a": OutputVariable(
+        ("frequency",), "N^2/Hz", "spectral density of the tension at end A"
+    ),
+    "tension_psd_b": OutputVariable(
+        ("frequency",), "N^2/Hz", "spectral density of the tension at end B"
+    ),
+    "tension_rao_a": OutputVariable(
+        ("frequency",), "N/m", "tension amplitude at end A per unit excitation amplitude"
+    ),
+    "tension_rao_b": OutputVariable(
+        ("frequency",), "N/m", "tension amplitude at end B per unit excitation amplitude"
+    ),
+    "tension_rao_phase_a": OutputVariable(
+        ("frequency",), "deg", "phase of the end-A tension ahead of the excitation"
+    ),
+    "tension_rao_phase_b": OutputVariable(
+        ("frequency",), "deg", "phase of the end-B tension ahead of the excitation"
+    ),
+    "tension_rao_line": OutputVariable(
+        ("frequency", "s"), "N/m", "tension amplitude along the line per unit excitation amplitude"
+    ),
     "history_time": OutputVariable(("time",), "s", "time of the history samples"),
     "history_tension": OutputVariable(("time",), "N", "tension at the excited end"),
     "history_point_s": OutputVariable(("point",), "m", "arc length of the history points"),
@@ -256,6 +304,21 @@ def assemble(
         if arcs and all(len(a) == extent["s"] and np.array_equal(a, arcs[0]) for a in arcs):
             coords["s"] = ("s", arcs[0], {"units": "m", "long_name": COORDINATES["s"][1]})
             data_vars.pop("arc_length", None)
+    if "transfer_frequency" in data_vars and "frequency" not in coords:
+        # the transfer function's frequencies: a coordinate when every case has the same
+        freqs = [
+            np.asarray(r.data["transfer_frequency"])
+            for r in by_index.values()
+            if "transfer_frequency" in r.data and r.status == 0
+        ]
+        if freqs and all(np.array_equal(f, freqs[0]) for f in freqs):
+            spec = OUTPUTS["transfer_frequency"]
+            coords["frequency"] = (
+                "frequency",
+                freqs[0],
+                {"units": spec.units, "long_name": spec.long_name},
+            )
+            data_vars.pop("transfer_frequency")
     if "arc_length" in data_vars and "s" not in coords:
         coords["s"] = ("s", np.arange(extent["s"]), {"units": "1", "long_name": "node index"})
 

@@ -105,9 +105,68 @@ class ModalSettings(StrictModel):
 
 #: dynamic methods a study may name, and what each means
 DYNAMIC_METHODS = {
-    "auto": "choose per case (currently always 'time')",
+    "auto": "per case: 'frequency' where the linear answer can be trusted "
+    "(analysis.dynamic.auto), else 'time'",
     "time": "implicit time integration of the discretised line",
+    "frequency": "linearised about the static shape, harmonic response per excitation "
+    "frequency, drag linearised (cablestudy.dynamics.frequency)",
 }
+
+#: settings of the time integration only: refused with method 'frequency'
+TIME_ONLY_KEYS = (
+    "points_per_period",
+    "max_refinement",
+    "tension_resolution",
+    "spectral_radius",
+    "newton_tolerance",
+    "max_newton_iterations",
+    "ramp_periods",
+    "steady_tolerance",
+    "steady_window",
+    "min_periods",
+    "max_periods",
+    "period",
+    "duration",
+    "history",
+)
+
+
+class LinearisationSettings(StrictModel):
+    """Drag linearisation of the frequency-domain method (methods 'frequency' and
+    'auto'): the equivalent damping is iterated until the nodal velocity amplitudes
+    change by less than ``tolerance`` of the largest."""
+
+    tolerance: Positive = Field(
+        1e-6, le=1e-2, description="relative change of the velocity amplitudes [-]"
+    )
+    max_iterations: int = Field(100, ge=1, le=10_000, description="drag iterations at most")
+    samples: int = Field(
+        32, ge=8, le=4096, description="phases per period in the drag fit (describing function)"
+    )
+
+
+class AutoSettings(StrictModel):
+    """When ``method: auto`` trusts the frequency domain (all must hold), else it runs
+    the time domain. Defaults from the study in docs/frequency-domain.md (the Figs. 2-5
+    sweep run by both methods: where these pick the frequency domain, max and min
+    tension agree with the time domain within 1 %, half the 2 % asked for)."""
+
+    min_tension_ratio: float = Field(
+        0.7,
+        ge=0.0,
+        le=1.0,
+        description="smallest (static - amplitude) / static element tension along the line "
+        "[-]; below it the line nears slack",
+    )
+    max_amplitude_sag_ratio: NonNegative = Field(
+        0.075,
+        description="largest nodal displacement amplitude over the static sag (largest "
+        "distance of the line from its end chord) [-]; above it geometry is nonlinear",
+    )
+    max_touchdown_travel: NonNegative = Field(
+        0.01,
+        description="largest estimated touchdown-point travel over the line length [-]",
+    )
 
 
 def _unit_direction(value: list[float]) -> list[float]:
@@ -165,15 +224,128 @@ class TimeSeriesExcitation(StrictModel):
         return self
 
 
+class Jonswap(StrictModel):
+    """JONSWAP wave spectrum (DNV-RP-C205 3.5.5): significant wave height, peak
+    period and peak enhancement factor."""
+
+    hs: Positive = Field(description="significant wave height [m]")
+    tp: Positive = Field(description="peak period [s]")
+    gamma: float = Field(3.3, ge=1.0, le=7.0, description="peak enhancement factor [-]")
+
+    def density(self, f: float) -> float:
+        """Wave elevation spectral density [m^2/Hz] at frequency ``f`` [Hz]."""
+        if f <= 0.0:
+            return 0.0
+        w, wp = 2.0 * math.pi * f, 2.0 * math.pi / self.tp
+        sigma = 0.07 if w <= wp else 0.09
+        pm = 5.0 / 16.0 * self.hs**2 * wp**4 * w**-5 * math.exp(-1.25 * (w / wp) ** -4)
+        peak = self.gamma ** math.exp(-0.5 * ((w - wp) / (sigma * wp)) ** 2)
+        return (1.0 - 0.287 * math.log(self.gamma)) * pm * peak * 2.0 * math.pi
+
+
+def _interp(table: list[list[float]], f: float) -> float:
+    """Linear interpolation in a (x, y) table, zero outside it."""
+    xs = [r[0] for r in table]
+    if f < xs[0] or f > xs[-1]:
+        return 0.0
+    i = max(j for j in range(len(xs)) if xs[j] <= f)
+    if i == len(xs) - 1:
+        return table[-1][1]
+    w = (f - xs[i]) / (xs[i + 1] - xs[i])
+    return (1.0 - w) * table[i][1] + w * table[i + 1][1]
+
+
+class SpectrumExcitation(StrictModel):
+    """Irregular motion of one end along ``direction``: a one-sided displacement spectral
+    density S(f) [m^2/Hz], either given as a table ``spectrum`` of (frequency [Hz],
+    density [m^2/Hz]) rows, or as a JONSWAP wave spectrum ``wave_spectrum`` times the
+    squared motion RAO ``rao`` (rows of frequency [Hz] and displacement per wave
+    amplitude [m/m]); tables are interpolated linearly, zero outside. It is represented
+    by ``components`` spectral lines ``f_k = k df``, ``df = f_max / components``
+    (``f_max`` the last frequency of the table or the RAO), of amplitude
+    ``sqrt(2 S(f_k) df)``: the frequency domain sums their responses (variance), the
+    time domain runs the realisation with random phases drawn with ``seed``; it repeats
+    after ``1 / df``."""
+
+    end: Literal["a", "b"] = Field(description="the end that moves")
+    direction: Annotated[Vec3, AfterValidator(_unit_direction)] = Field(
+        description="direction of the motion [-] (normalised)"
+    )
+    spectrum: list[Vec2] | None = Field(
+        None,
+        min_length=2,
+        description="rows [frequency Hz, displacement spectral density m^2/Hz]",
+    )
+    wave_spectrum: Jonswap | None = Field(None, description="JONSWAP waves (with rao)")
+    rao: list[Vec2] | None = Field(
+        None, min_length=2, description="rows [frequency Hz, motion per wave amplitude m/m]"
+    )
+    components: int = Field(64, ge=4, le=4096, description="spectral lines [-]")
+    seed: int = Field(0, ge=0, description="seed of the random phases (time domain) [-]")
+    storm_duration: Positive = Field(
+        10800.0, description="duration of the most probable maximum (frequency domain) [s]"
+    )
+
+    @field_validator("spectrum", "rao")
+    @classmethod
+    def _valid_table(cls, value: list[list[float]] | None) -> list[list[float]] | None:
+        if value is None:
+            return value
+        freqs = [row[0] for row in value]
+        if any(b <= a for a, b in zip(freqs, freqs[1:], strict=False)) or freqs[0] < 0.0:
+            raise ValueError(f"frequencies must be >= 0 and increase strictly, got {freqs}")
+        if any(row[1] < 0.0 for row in value) or not any(row[1] > 0.0 for row in value):
+            raise ValueError("values must be >= 0 and not all zero")
+        return value
+
+    @model_validator(mode="after")
+    def _one_form(self) -> SpectrumExcitation:
+        table = self.spectrum is not None
+        waves = self.wave_spectrum is not None or self.rao is not None
+        if table == waves or (waves and (self.wave_spectrum is None or self.rao is None)):
+            raise ValueError(
+                "give either spectrum (a displacement density table) or wave_spectrum "
+                "together with rao; allowed: one of the two forms"
+            )
+        return self
+
+    @property
+    def f_max(self) -> float:
+        table = self.spectrum if self.spectrum is not None else self.rao
+        assert table is not None
+        return table[-1][0]
+
+    @property
+    def line_frequencies(self) -> list[float]:
+        df = self.f_max / self.components
+        return [df * k for k in range(1, self.components + 1)]
+
+    def density(self, f: float) -> float:
+        """Displacement spectral density [m^2/Hz] at ``f`` [Hz]."""
+        if self.spectrum is not None:
+            return _interp(self.spectrum, f)
+        assert self.wave_spectrum is not None and self.rao is not None
+        return self.wave_spectrum.density(f) * _interp(self.rao, f) ** 2
+
+    @property
+    def line_amplitudes(self) -> list[float]:
+        """Amplitudes [m] of the spectral lines: sqrt(2 S(f_k) df)."""
+        df = self.f_max / self.components
+        return [math.sqrt(2.0 * self.density(f) * df) for f in self.line_frequencies]
+
+
 def _excitation_tag(value: Any) -> str:
     if isinstance(value, dict):
+        if "spectrum" in value or "wave_spectrum" in value:
+            return "SpectrumExcitation"
         return "TimeSeriesExcitation" if "table" in value else "HarmonicExcitation"
     return type(value).__name__
 
 
 Excitation = Annotated[
     Annotated[HarmonicExcitation, Tag("HarmonicExcitation")]
-    | Annotated[TimeSeriesExcitation, Tag("TimeSeriesExcitation")],
+    | Annotated[TimeSeriesExcitation, Tag("TimeSeriesExcitation")]
+    | Annotated[SpectrumExcitation, Tag("SpectrumExcitation")],
     Discriminator(_excitation_tag),
 ]
 
@@ -201,6 +373,27 @@ class HistorySettings(StrictModel):
     samples_per_period: int = Field(64, ge=4, le=10_000, description="samples per period")
 
 
+class FrequencyRange(StrictModel):
+    """Frequencies [Hz] from ``start`` to ``stop`` (included), ``num`` of them."""
+
+    start: Positive = Field(description="lowest frequency [Hz]")
+    stop: Positive = Field(description="highest frequency [Hz]")
+    num: int = Field(200, ge=2, le=100_000, description="number of frequencies [-]")
+
+    @model_validator(mode="after")
+    def _ordered(self) -> FrequencyRange:
+        if self.stop <= self.start:
+            raise ValueError(
+                f"stop must exceed start; allowed: stop > {self.start} (got {self.stop})"
+            )
+        return self
+
+    @property
+    def values(self) -> list[float]:
+        step = (self.stop - self.start) / (self.num - 1)
+        return [float(f"{self.start + i * step:.15g}") for i in range(self.num)]
+
+
 class DynamicSettings(StrictModel):
     """Time-domain dynamics about the static shape under prescribed end motion.
 
@@ -212,7 +405,7 @@ class DynamicSettings(StrictModel):
     """
 
     excitation: ExcitationOrList = Field(description="prescribed end motion")
-    method: str = Field("auto", description="auto | time (frequency-domain: later)")
+    method: str = Field("auto", description="auto | time | frequency")
     elements: int = Field(80, ge=2, le=10_000, description="elements of the dynamic model")
     points_per_period: int = Field(
         64, ge=8, le=100_000, description="time steps per period of the fastest harmonic"
@@ -254,15 +447,19 @@ class DynamicSettings(StrictModel):
         None, description="fixed run time [s] (no steady-state detection)"
     )
     history: HistorySettings | None = None
+    linearisation: LinearisationSettings | None = Field(
+        None, description="drag linearisation (methods frequency and auto); omit: defaults"
+    )
+    auto: AutoSettings | None = Field(None, description="thresholds of method auto; omit: defaults")
+    transfer_function: FrequencyRange | None = Field(
+        None,
+        description="methods frequency and auto: also write the end and line tension per unit "
+        "excitation amplitude at these frequencies, on a 'frequency' dimension",
+    )
 
     @field_validator("method")
     @classmethod
     def _known_dynamic_method(cls, value: str) -> str:
-        if value == "frequency":
-            raise ValueError(
-                "method 'frequency' (frequency-domain linearised dynamics) "
-                f"is not available in this version; allowed: {', '.join(DYNAMIC_METHODS)}"
-            )
         if value not in DYNAMIC_METHODS:
             raise ValueError(
                 f"unknown dynamic method {value!r}; allowed: {', '.join(DYNAMIC_METHODS)}"
@@ -275,7 +472,9 @@ class DynamicSettings(StrictModel):
         if not items:
             raise ValueError("excitation: list at least one motion")
         harmonic = any(isinstance(e, HarmonicExcitation) for e in items)
-        periodic = any(isinstance(e, TimeSeriesExcitation) and e.periodic for e in items)
+        periodic = any(isinstance(e, TimeSeriesExcitation) and e.periodic for e in items) or any(
+            isinstance(e, SpectrumExcitation) for e in items
+        )
         if not (harmonic or periodic) and self.period is None and self.duration is None:
             raise ValueError(
                 "excitation has no period (only non-periodic tables): give "
@@ -283,8 +482,59 @@ class DynamicSettings(StrictModel):
             )
         return self
 
+    @model_validator(mode="after")
+    def _keys_of_the_method(self) -> DynamicSettings:
+        method = self.method
+        if method == "frequency":
+            given = [k for k in TIME_ONLY_KEYS if k in self.model_fields_set]
+            if given:
+                raise ValueError(
+                    f"{', '.join(given)}: used by the time domain only, not by method "
+                    "'frequency'; allowed: method 'time' or 'auto' (or remove the key)"
+                )
+            items = self.excitations
+            spectra = [e for e in items if isinstance(e, SpectrumExcitation)]
+            if spectra and len(items) != 1:
+                raise ValueError(
+                    "method 'frequency' solves harmonic motions of one frequency, or one "
+                    "spectrum alone; allowed: one spectrum, or method 'time'"
+                )
+            if not spectra and not all(isinstance(e, HarmonicExcitation) for e in items):
+                raise ValueError(
+                    "method 'frequency' needs harmonic excitation or a spectrum (a time table "
+                    "is solved by method 'time'); allowed: harmonic motions of one frequency, "
+                    "or one spectrum"
+                )
+            freqs = {e.frequency for e in items if isinstance(e, HarmonicExcitation)}
+            if len(freqs) > 1:
+                raise ValueError(
+                    f"method 'frequency' solves one excitation frequency per case (got "
+                    f"{sorted(freqs)} Hz); allowed: harmonic motions of one frequency, or "
+                    "method 'time'"
+                )
+        if method == "time":
+            for key in ("linearisation", "transfer_function"):
+                if key in self.model_fields_set:
+                    raise ValueError(
+                        f"{key}: used by methods 'frequency' and 'auto', not by method "
+                        "'time'; allowed: method 'frequency' or 'auto' (or remove the key)"
+                    )
+        if self.auto is not None and method != "auto":
+            raise ValueError(
+                f"auto: thresholds of method 'auto', not used by method {method!r}; allowed: "
+                "method 'auto' (or remove the key)"
+            )
+        if self.transfer_function is not None and not all(
+            isinstance(e, HarmonicExcitation) for e in self.excitations
+        ):
+            raise ValueError(
+                "transfer_function: needs harmonic excitation (the tension per unit amplitude "
+                "of a harmonic end motion); allowed: harmonic motions"
+            )
+        return self
+
     @property
-    def excitations(self) -> list[HarmonicExcitation | TimeSeriesExcitation]:
+    def excitations(self) -> list[HarmonicExcitation | TimeSeriesExcitation | SpectrumExcitation]:
         return list(self.excitation) if isinstance(self.excitation, list) else [self.excitation]
 
 
@@ -297,5 +547,7 @@ class Analysis(StrictModel):
         600.0, description="wall-time limit per case [s]; a case over it fails with a message"
     )
     dynamic: DynamicSettings | None = Field(
-        None, description="time-domain dynamics under prescribed end motion; omit: statics only"
+        None,
+        description="dynamics under prescribed end motion (time or frequency domain); "
+        "omit: statics only",
     )

@@ -39,20 +39,68 @@ def _finish(fig: plt.Figure, ax: plt.Axes, title: str, path: Path) -> Path:
     return path
 
 
-@register("moustafa-figs2-5", ("moustafa-figs2-5",))
+@register("moustafa-figs2-5", ("moustafa-figs2-5", "moustafa-figs2-5-methods"))
 def figs2_5(data: dict[str, xr.Dataset], out: Path) -> Path:
-    ds = data["moustafa-figs2-5"]
-    fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
-    for ax, amp, n in zip(axes.flat, ds["amplitude"].values, (2, 3, 4, 5), strict=False):
-        _curves(ax, ds, "amplitude", float(amp), f"{amp:g} m", "C0")
+    """Per amplitude: time-domain max/min (black, filled markers where steady, open
+    where not settled), frequency-domain max/min (blue lines), and the answer of
+    ``method: auto`` (the moustafa-figs2-5 study) as green dots where it kept the
+    frequency domain and red rings where it ran the time domain."""
+    auto = data["moustafa-figs2-5"]
+    both = data["moustafa-figs2-5-methods"]
+    methods = [str(m) for m in both["method"].values]
+
+    def method(name: str) -> xr.Dataset:
+        return both.isel(method=methods.index(name))
+
+    fig, axes = plt.subplots(2, 2, figsize=(10, 7.5), sharex=True)
+    for ax, amp, n in zip(axes.flat, auto["amplitude"].values, (2, 3, 4, 5), strict=False):
+        _curves(ax, method("time"), "amplitude", float(amp), "time", "k")
+        fd = method("frequency").sel(amplitude=amp)
+        ok = fd["status"].values == 0
+        f = fd["frequency"].values
+        for var, style in (("tension_max", "-"), ("tension_min", "--")):
+            ax.plot(
+                f,
+                np.where(ok, fd[var].values, np.nan),
+                style,
+                color="C0",
+                lw=1.2,
+                label=f"frequency {var.split('_')[1]}",
+            )
+        sel = auto.sel(amplitude=amp)
+        chose = sel["dynamic_method"].values == "frequency"
+        good = sel["status"].values == 0
+        for var in ("tension_max", "tension_min"):
+            y = np.where(good, sel[var].values, np.nan)
+            ax.plot(
+                f[chose],
+                y[chose],
+                "o",
+                color="C2",
+                ms=6,
+                mfc="none",
+                mew=1.5,
+                label="auto: frequency" if var == "tension_max" else None,
+            )
+            ax.plot(
+                f[~chose],
+                y[~chose],
+                "s",
+                color="C3",
+                ms=6,
+                mfc="none",
+                mew=1.0,
+                label="auto: time" if var == "tension_max" else None,
+            )
         ax.set_xlabel("excitation frequency [Hz]")
         ax.set_ylabel("tension [N]")
         ax.set_title(f"Moustafa Fig. {n}: amplitude {amp:g} m (dotted: static)", fontsize=9)
-        ax.set_ylim(bottom=0.0)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=6, ncol=2)
     fig.suptitle(
-        "Max/min tension at the excited end (filled: steady, open: not settled)", fontsize=10
+        "Max/min tension at the excited end: time domain (black; open: not settled), "
+        "frequency domain (blue), method auto's choice (markers)",
+        fontsize=9,
     )
     fig.tight_layout()
     path = out / "moustafa-figs2-5.png"

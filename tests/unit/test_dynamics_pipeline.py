@@ -31,7 +31,7 @@ analysis:
   static: {method: analytic}
   dynamic:
     excitation: {end: b, direction: [1.0, 0.0, 0.0], amplitude: 0.05, frequency: 0.5}
-    method: auto
+    method: time
     elements: 10
 sweep:
   analysis.dynamic.excitation.amplitude: [0.025, 0.05]
@@ -56,7 +56,8 @@ def test_contract_study_runs_to_netcdf(tmp_path: Path) -> None:
     assert ds["frequency"].attrs["units"] == "Hz"
     assert ds["amplitude"].attrs["units"] == "m"
     assert np.all(ds["status"].values == 0)
-    assert np.all(ds["dynamic_method"].values == "time")  # auto resolves to time
+    assert np.all(ds["dynamic_method"].values == "time")
+    assert np.all(ds["dynamic_method_reason"].values == "method: time")
     assert np.all(ds["steady_converged"].values == 1)
     t0 = ds["tension_static"].values
     assert np.all(ds["tension_max"].values > t0) and np.all(ds["tension_min"].values < t0)
@@ -87,13 +88,13 @@ def test_dynamic_settings_stay_out_of_the_static_hash() -> None:
     assert len({c.static_hash for c in cases}) == 1
 
 
-def test_frequency_method_is_rejected_at_validation() -> None:
-    text = CONTRACT.replace("method: auto", "method: frequency")
+def test_unknown_dynamic_method_is_rejected_at_validation() -> None:
+    text = CONTRACT.replace("method: time", "method: spectral")
     with pytest.raises(StudyError) as info:
         expand_cases(parse_study_text(text))
     msg = str(info.value)
-    assert "analysis.dynamic.method" in msg and "'frequency'" in msg
-    assert "allowed: auto, time" in msg
+    assert "analysis.dynamic.method" in msg and "'spectral'" in msg
+    assert "allowed: auto, time, frequency" in msg
 
 
 def test_history_of_a_moved_end_is_its_prescribed_motion(tmp_path: Path) -> None:

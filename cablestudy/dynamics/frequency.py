@@ -1,0 +1,855 @@
+"""Frequency-domain response of a line linearised about its static shape.
+
+Input is a :class:`LinearLine`: lumped mass blocks (fluid added mass included), the
+tangent stiffness (elastic + geometric, and bending), structural damping, per-element
+data for the tension output, per-node drag data, and the split of the degrees of
+freedom into free directions (columns of ``free_basis``) and prescribed ones (the
+end nodes, moved by the excitation or held; other directions that are not free,
+e.g. nodes held by the seabed, stay at rest). Any line model that can produce these
+arrays can use this solver (today: :func:`cablestudy.dynamics.linear_model.linear_line`).
+
+Harmonic motion. Every quantity is ``q(t) = Re(Q exp(i w t))``. The end motion ``X``
+(complex, per end) is given; the free displacements solve
+
+    B^T [K - w^2 M + i w (C + D)] B q = -B^T [K - w^2 M + i w (C + D)] u_p,
+    u = B q + u_p,
+
+where ``B`` is the free basis, ``u_p`` holds the prescribed end displacements and
+``D`` is the drag damping (below). The element tension varies by
+
+    dT_e = (EA_e / l0_e + i w c_e / l0_e) t_e . (u_{e+1} - u_e),
+
+the first-order change of ``T = EA (l / l0 - 1) + c dl/dt / l0`` (``dl = t . du`` to
+first order); the same element law gives the stiffness ``(EA / l0) t t^T + (T / l) P``
+used in ``K``, so the tension output and the stiffness are consistent: ``d(T t) =
+dT t + T dt`` with ``dt = P du / l``. The force of the line on an end support is
+``-(A u)_j`` at the end node ``j`` (``A`` the dynamic stiffness above: the support
+reaction balances the element forces, the drag and the inertia of the end node's
+mass, as in the time domain), and the end tension varies by ``F_hat . dF``
+(``F_hat`` the unit static end force); its second-order part is neglected.
+
+Drag linearisation (equivalent, describing function). The Morison drag on node
+``i`` (the law of :mod:`cablestudy.physics.hydro`, lumped over the node's
+tributary length)
+
+    f(w) = c_N |w_N| w_N + c_T |w_T| w_T,    w = U_c - v (relative velocity),
+
+is replaced by ``f_bar + D_i (w - U_c)``, with ``D_i`` the 3 x 3 matrix that
+minimises the mean square error over a period of the computed motion: with ``w'``
+the oscillating part of the relative velocity and ``f'`` that of the drag,
+``D = <f' w'^T> <w' w'^T>^-1`` (averages over ``samples`` equally spaced phases). For
+harmonic ``w'`` this is the first-harmonic (describing-function) fit, and it
+dissipates exactly the mean power of the nonlinear drag, ``<f' . w'> = <(D w') . w'>``
+(energy equivalence). In still water and one-dimensional motion of velocity
+amplitude ``a`` it is the classical ``c 8 a / (3 pi)``.
+
+With a current ``U`` (component ``U_N`` normal to the line, say, and one-dimensional
+oscillation of amplitude ``a`` along it) ``|U + a cos(th)| (U + a cos(th))`` has no
+sign change when ``|U| >= a``, so it is the polynomial ``sgn(U)(U^2 + 2 U a cos(th) +
+a^2 cos^2(th))``: its first harmonic is exactly ``2 |U| a cos(th)``, i.e. ``D = 2 c |U|``,
+the tangent at the mean flow (the linear term); the quadratic term only adds a mean
+force ``c a^2 / 2`` (a second-order drift, which the linear model leaves out, as it
+leaves out the mean drift of any nonlinearity) and the second harmonic. For ``|U| <
+a`` the fit falls between ``2 c |U|`` and ``c 8 a / (3 pi)``; for motion across a
+current in 2 or 3 dimensions the same fit gives the matrix ``c (|U| I + U U^T / |U|)``
+on the normal plane in the limit ``a << |U|``. Directions in which a node does not
+move (``<w' w'^T>`` singular there) take that small-motion tangent.
+
+Since ``D`` depends on the motion, the solve is iterated: start from the quasi-static
+motion (the end motion spread linearly along the line), compute ``D``, solve, and
+repeat (compiled: :func:`_drag_iteration`), with Anderson acceleration of depth one
+on the fixed point ``D = G(D)`` (near a resonance the plain map behaves like
+``a -> c / a`` and oscillates; the secant step removes that), until the nodal
+velocities change by less than ``tolerance`` of their largest amplitude.
+
+Pure: arrays in, a :class:`FrequencyResult` out (status, message, counters).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from numba import njit
+from scipy.linalg import solve_banded
+
+from ..statics.base import STATUS_NUMERICAL, STATUS_OK
+
+#: status of a case whose drag linearisation did not converge
+STATUS_NOT_CONVERGED = 7
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class LinearLine:
+    """A line linearised about its static shape (n nodes, n - 1 elements).
+
+    Parameters
+    ----------
+    s : [m] (n,) unstretched arc length of the nodes from end A
+    position : [m] (n, 3) static node positions
+    mass : [kg] (n, 3, 3) lumped mass blocks, added mass included
+    stiffness : [N/m] (3n, 3n) tangent stiffness (elastic, geometric, bending)
+    damping : [N s/m] (3n, 3n) structural damping
+    rest_length : [m] (n - 1,) unstretched element lengths l0
+    direction : [-] (n - 1, 3) unit element chords t
+    axial_stiffness : [N] (n - 1,) EA of each element
+    axial_damping : [N s] (n - 1,) c of each element (tension c * strain rate)
+    tension : [N] (n - 1,) static element tension
+    end_force : [N] (2, 3) static force of the line on the supports at A and B
+    drag_normal, drag_tangential : [kg/m] (n,) nodal drag coefficients 1/2 rho C_N d l
+        and 1/2 rho pi C_T d l (l: tributary length)
+    current : [m/s] (n, 3) current velocity at the nodes
+    tangent : [-] (n, 3) unit tangent at the nodes
+    free_basis : [-] (3n, k) orthonormal free directions, block per node
+    """
+
+    s: np.ndarray
+    position: np.ndarray
+    mass: np.ndarray
+    stiffness: sp.csr_matrix
+    damping: sp.csr_matrix
+    rest_length: np.ndarray
+    direction: np.ndarray
+    axial_stiffness: np.ndarray
+    axial_damping: np.ndarray
+    tension: np.ndarray
+    end_force: np.ndarray
+    drag_normal: np.ndarray
+    drag_tangential: np.ndarray
+    current: np.ndarray
+    tangent: np.ndarray
+    free_basis: sp.csr_matrix
+
+    @property
+    def n_nodes(self) -> int:
+        return int(self.s.size)
+
+    @property
+    def has_drag(self) -> bool:
+        return bool(np.any(self.drag_normal > 0.0) or np.any(self.drag_tangential > 0.0))
+
+    def mass_matrix(self) -> sp.csr_matrix:
+        """Block-diagonal mass (3n, 3n) [kg]."""
+        return block_diagonal(self.mass)
+
+
+def block_diagonal(blocks: np.ndarray) -> sp.csr_matrix:
+    """Sparse block-diagonal matrix of ``blocks`` (n, 3, 3)."""
+    n = blocks.shape[0]
+    rows = (3 * np.arange(n)[:, None, None] + np.arange(3)[None, :, None]).repeat(3, 2)
+    cols = (3 * np.arange(n)[:, None, None] + np.arange(3)[None, None, :]).repeat(3, 1)
+    return sp.csr_matrix((blocks.ravel(), (rows.ravel(), cols.ravel())), shape=(3 * n, 3 * n))
+
+
+@dataclass(frozen=True, kw_only=True)
+class DragSettings:
+    """Drag iteration: ``tolerance`` [-] on the relative change of the nodal velocity
+    amplitudes, ``max_iterations``, and ``samples`` phases per period in the fit."""
+
+    tolerance: float = 1e-6
+    max_iterations: int = 100
+    samples: int = 32
+
+
+@dataclass(kw_only=True)
+class FrequencyResult:
+    """Harmonic response at one frequency (complex amplitudes of ``Re(Q e^{i w t})``).
+
+    displacement [m] (n, 3); element_tension [N] (n - 1,) tension variation;
+    end_tension [N] (2,) variation of the end tensions at A and B; tension_static [N]
+    (2,) static end tensions; drag_iterations, drag_converged, drag_change (last
+    relative change); status, message.
+    """
+
+    displacement: np.ndarray
+    element_tension: np.ndarray
+    end_tension: np.ndarray
+    tension_static: np.ndarray
+    drag_iterations: int = 0
+    drag_converged: bool = True
+    drag_change: float = 0.0
+    status: int = STATUS_OK
+    message: str = ""
+
+    @property
+    def success(self) -> bool:
+        return self.status == STATUS_OK
+
+
+def drag_force(line: LinearLine, relative_velocity: np.ndarray) -> np.ndarray:
+    """Morison drag [N] (..., n, 3) on the nodes for relative velocities (..., n, 3)."""
+    t = line.tangent
+    wt = np.einsum("...ia,ia->...i", relative_velocity, t)[..., None]
+    wn = relative_velocity - wt * t
+    sn = np.sqrt(np.einsum("...a,...a->...", wn, wn))[..., None]
+    return line.drag_normal[:, None] * sn * wn + line.drag_tangential[:, None] * np.abs(wt) * wt * t
+
+
+def drag_tangent(line: LinearLine) -> np.ndarray:
+    """d f / d w [N s/m] (n, 3, 3) at the mean flow ``w = U_c`` (small-motion limit)."""
+    t = line.tangent
+    U = line.current
+    ut = np.sum(U * t, axis=1)
+    un = U - ut[:, None] * t
+    sn = np.linalg.norm(un, axis=1)
+    P = np.eye(3) - t[:, :, None] * t[:, None, :]
+    safe = np.where(sn > 0.0, sn, 1.0)
+    Dn = sn[:, None, None] * P + np.where(sn > 0.0, 1.0 / safe, 0.0)[:, None, None] * (
+        un[:, :, None] * un[:, None, :]
+    )
+    Dt = 2.0 * np.abs(ut)[:, None, None] * (t[:, :, None] * t[:, None, :])
+    return line.drag_normal[:, None, None] * Dn + line.drag_tangential[:, None, None] * Dt
+
+
+@njit(cache=True)
+def _drag_fit(velocity_re, velocity_im, current, tangent, c_n, c_t, tangent_d, samples, out):  # noqa: ANN001, ANN202
+    """Kernel of :func:`drag_linearisation` (loops over nodes and phases)."""
+    n = current.shape[0]
+    cos = np.empty(samples)
+    sin = np.empty(samples)
+    for k in range(samples):
+        cos[k] = np.cos(2.0 * np.pi * k / samples)
+        sin[k] = np.sin(2.0 * np.pi * k / samples)
+    Gi = np.empty((3, 3))
+    w = np.empty((samples, 3))
+    f = np.empty((samples, 3))
+    G = np.empty((3, 3))
+    H = np.empty((3, 3))
+    for i in range(n):
+        fm0 = fm1 = fm2 = 0.0
+        for k in range(samples):
+            c, s = cos[k], sin[k]
+            # Re((a + i b) e^{i th}) = a cos - b sin; the relative velocity is -v
+            for a in range(3):
+                w[k, a] = -(velocity_re[i, a] * c - velocity_im[i, a] * s)
+            r0 = current[i, 0] + w[k, 0]
+            r1 = current[i, 1] + w[k, 1]
+            r2 = current[i, 2] + w[k, 2]
+            t0, t1, t2 = tangent[i, 0], tangent[i, 1], tangent[i, 2]
+            wt = r0 * t0 + r1 * t1 + r2 * t2
+            n0, n1, n2 = r0 - wt * t0, r1 - wt * t1, r2 - wt * t2
+            sn = np.sqrt(n0 * n0 + n1 * n1 + n2 * n2)
+            st = abs(wt) * wt * c_t[i]
+            f[k, 0] = c_n[i] * sn * n0 + st * t0
+            f[k, 1] = c_n[i] * sn * n1 + st * t1
+            f[k, 2] = c_n[i] * sn * n2 + st * t2
+            fm0 += f[k, 0]
+            fm1 += f[k, 1]
+            fm2 += f[k, 2]
+        fm0 /= samples
+        fm1 /= samples
+        fm2 /= samples
+        for a in range(3):
+            for b in range(3):
+                G[a, b] = 0.0
+                H[a, b] = 0.0
+        for k in range(samples):
+            f[k, 0] -= fm0
+            f[k, 1] -= fm1
+            f[k, 2] -= fm2
+            for a in range(3):
+                for b in range(3):
+                    G[a, b] += w[k, a] * w[k, b]
+                    H[a, b] += f[k, a] * w[k, b]
+        trace = (G[0, 0] + G[1, 1] + G[2, 2]) / samples
+        if not trace > 0.0:  # a node at rest: the small-motion tangent
+            for a in range(3):
+                for b in range(3):
+                    out[i, a, b] = tangent_d[i, a, b]
+            continue
+        eps = 1e-10 * trace
+        for a in range(3):
+            for b in range(3):
+                G[a, b] = G[a, b] / samples
+                H[a, b] = H[a, b] / samples + eps * tangent_d[i, a, b]
+            G[a, a] += eps
+        # D G = H  ->  D = H G^-1 (G symmetric positive definite; cofactors)
+        Gi[0, 0] = G[1, 1] * G[2, 2] - G[1, 2] * G[2, 1]
+        Gi[0, 1] = G[0, 2] * G[2, 1] - G[0, 1] * G[2, 2]
+        Gi[0, 2] = G[0, 1] * G[1, 2] - G[0, 2] * G[1, 1]
+        Gi[1, 0] = G[1, 2] * G[2, 0] - G[1, 0] * G[2, 2]
+        Gi[1, 1] = G[0, 0] * G[2, 2] - G[0, 2] * G[2, 0]
+        Gi[1, 2] = G[0, 2] * G[1, 0] - G[0, 0] * G[1, 2]
+        Gi[2, 0] = G[1, 0] * G[2, 1] - G[1, 1] * G[2, 0]
+        Gi[2, 1] = G[0, 1] * G[2, 0] - G[0, 0] * G[2, 1]
+        Gi[2, 2] = G[0, 0] * G[1, 1] - G[0, 1] * G[1, 0]
+        det = G[0, 0] * Gi[0, 0] + G[0, 1] * Gi[1, 0] + G[0, 2] * Gi[2, 0]
+        for a in range(3):
+            for b in range(3):
+                Gi[a, b] /= det
+        for a in range(3):
+            for b in range(3):
+                acc = 0.0
+                for c2 in range(3):
+                    acc += H[a, c2] * Gi[c2, b]
+                out[i, a, b] = acc
+
+
+@njit(cache=True)
+def _band_solve(ab, bw, rhs, x):  # noqa: ANN001, ANN202
+    """Solve the complex banded system in ``ab`` (3 bw + 1, N): A[i, j] at
+    ab[2 bw + i - j, j], rows 0..bw-1 free for the fill-in of row exchanges) by
+    Gaussian elimination with partial pivoting (as LAPACK's gbsv); ``ab`` and ``rhs``
+    are overwritten. Returns False for a zero pivot."""
+    N = rhs.shape[0]
+    ku = 2 * bw
+    for k in range(N):
+        last = min(k + bw, N - 1)
+        p = k
+        big = abs(ab[ku, k])
+        for i in range(k + 1, last + 1):
+            a = abs(ab[ku + i - k, k])
+            if a > big:
+                big, p = a, i
+        if not big > 0.0:
+            return False
+        right = min(k + ku, N - 1)
+        if p != k:
+            for j in range(k, right + 1):
+                t = ab[ku + k - j, j]
+                ab[ku + k - j, j] = ab[ku + p - j, j]
+                ab[ku + p - j, j] = t
+            t = rhs[k]
+            rhs[k] = rhs[p]
+            rhs[p] = t
+        pivot = ab[ku, k]
+        for i in range(k + 1, last + 1):
+            f = ab[ku + i - k, k] / pivot
+            if f == 0.0:
+                continue
+            for j in range(k + 1, right + 1):
+                ab[ku + i - j, j] -= f * ab[ku + k - j, j]
+            rhs[i] -= f * rhs[k]
+    for i in range(N - 1, -1, -1):
+        acc = rhs[i]
+        for j in range(i + 1, min(i + ku, N - 1) + 1):
+            acc -= ab[ku + i - j, j] * x[j]
+        x[i] = acc / ab[ku, i]
+    return True
+
+
+@njit(cache=True)
+def _drag_iteration(  # noqa: ANN201, PLR0913
+    base,
+    bw,
+    omega,
+    rhs0,
+    up,
+    u,
+    offsets,
+    basis,
+    current,
+    tangent,
+    c_n,
+    c_t,
+    D_small,
+    samples,
+    tol,
+    max_iterations,
+    D,
+):  # noqa: ANN001
+    """The drag iteration of :func:`solve_harmonic` (same steps, compiled): ``u`` (n, 3)
+    complex holds the start and receives the answer, ``D`` (n, 3, 3) the last drag
+    matrices. Returns (iterations, converged, change, ok)."""
+    n = u.shape[0]
+    N = rhs0.shape[0]
+    ab = np.zeros((3 * bw + 1, N), dtype=np.complex128)
+    rhs = np.empty(N, dtype=np.complex128)
+    q = np.empty(N, dtype=np.complex128)
+    v = 1j * omega * u
+    _drag_fit(
+        np.ascontiguousarray(v.real),
+        np.ascontiguousarray(v.imag),
+        current,
+        tangent,
+        c_n,
+        c_t,
+        D_small,
+        samples,
+        D,
+    )
+    G = np.empty_like(D)
+    prev_D = np.empty_like(D)
+    prev_G = np.empty_like(D)
+    have_prev = False
+    last = np.inf
+    change = np.inf
+    for it in range(1, max_iterations + 1):
+        ab[:bw, :] = 0.0
+        ab[bw:, :] = base
+        for i in range(n):
+            o = offsets[i]
+            k = offsets[i + 1] - o
+            for r in range(k):
+                for c in range(k):
+                    acc = 0.0
+                    for a in range(3):
+                        for b in range(3):
+                            acc += basis[i, a, r] * D[i, a, b] * basis[i, b, c]
+                    ab[2 * bw + r - c, o + c] += 1j * omega * acc
+        for j in range(N):
+            rhs[j] = rhs0[j]
+        if not _band_solve(ab, bw, rhs, q):
+            return it, False, change, False
+        vmax = 0.0
+        dmax = 0.0
+        for i in range(n):
+            o = offsets[i]
+            k = offsets[i + 1] - o
+            for a in range(3):
+                acc = up[i, a]
+                for r in range(k):
+                    acc += basis[i, a, r] * q[o + r]
+                vn = 1j * omega * acc
+                if not (np.isfinite(vn.real) and np.isfinite(vn.imag)):
+                    return it, False, change, False
+                dmax = max(dmax, abs(vn - v[i, a]))
+                vmax = max(vmax, abs(vn))
+                u[i, a] = acc
+                v[i, a] = vn
+        change = dmax / max(vmax, 1e-300)
+        if change <= tol:
+            return it, True, change, True
+        _drag_fit(
+            np.ascontiguousarray(v.real),
+            np.ascontiguousarray(v.imag),
+            current,
+            tangent,
+            c_n,
+            c_t,
+            D_small,
+            samples,
+            G,
+        )
+        if change >= last:
+            for i in range(n):
+                for a in range(3):
+                    for b in range(3):
+                        D[i, a, b] = 0.5 * (D[i, a, b] + G[i, a, b])
+            have_prev = False
+        else:
+            theta = 0.0
+            if have_prev:
+                num = 0.0
+                den = 0.0
+                for i in range(n):
+                    for a in range(3):
+                        for b in range(3):
+                            R = G[i, a, b] - D[i, a, b]
+                            dR = R - (prev_G[i, a, b] - prev_D[i, a, b])
+                            num += R * dR
+                            den += dR * dR
+                if den > 0.0:
+                    theta = num / den
+            for i in range(n):
+                for a in range(3):
+                    for b in range(3):
+                        nxt = (
+                            G[i, a, b] - theta * (G[i, a, b] - prev_G[i, a, b])
+                            if have_prev
+                            else G[i, a, b]
+                        )
+                        prev_D[i, a, b] = D[i, a, b]
+                        prev_G[i, a, b] = G[i, a, b]
+                        D[i, a, b] = nxt
+            have_prev = True
+        last = change
+    return max_iterations, False, change, True
+
+
+def drag_linearisation(
+    line: LinearLine, velocity: np.ndarray, samples: int = 32, tangent: np.ndarray | None = None
+) -> np.ndarray:
+    """Equivalent drag damping [N s/m] (n, 3, 3) for nodal velocity amplitudes
+    ``velocity`` [m/s] (n, 3) complex: the mean-square (describing-function) fit of the
+    module docstring, over ``samples`` phases; ``tangent`` is :func:`drag_tangent`
+    (computed when not given)."""
+    D0 = drag_tangent(line) if tangent is None else tangent
+    out = np.empty((line.n_nodes, 3, 3))
+    _drag_fit(
+        np.ascontiguousarray(velocity.real),
+        np.ascontiguousarray(velocity.imag),
+        line.current,
+        line.tangent,
+        line.drag_normal,
+        line.drag_tangential,
+        D0,
+        samples,
+        out,
+    )
+    return out
+
+
+def _banded(A: sp.spmatrix, bw: int) -> np.ndarray:
+    """``A`` in LAPACK band storage with ``bw`` sub- and super-diagonals."""
+    coo = A.tocoo()
+    ab = np.zeros((2 * bw + 1, A.shape[0]), dtype=A.dtype)
+    np.add.at(ab, (bw + coo.row - coo.col, coo.col), coo.data)
+    return ab
+
+
+@dataclass(frozen=True, eq=False)
+class ReducedLine:
+    """The matrices of a :class:`LinearLine` projected once on its free basis, in band
+    storage (node order keeps them banded), reused by every frequency and amplitude
+    of a sweep; per frequency only the drag blocks change."""
+
+    line: LinearLine
+    K: np.ndarray
+    M: np.ndarray
+    C: np.ndarray
+    bandwidth: int
+    node_basis: np.ndarray
+    band_index: tuple[np.ndarray, np.ndarray]
+    block_index: tuple[np.ndarray, np.ndarray, np.ndarray]
+    offsets: np.ndarray
+
+    @classmethod
+    def of(cls, line: LinearLine) -> ReducedLine:
+        B = line.free_basis
+        Kr = (B.T @ line.stiffness @ B).tocoo()
+        Mr = (B.T @ line.mass_matrix() @ B).tocoo()
+        Cr = (B.T @ line.damping @ B).tocoo()
+        bw = max(int(np.max(np.abs(m.row - m.col), initial=0)) for m in (Kr, Mr, Cr))
+        n = line.n_nodes
+        dense = B.toarray() if B.shape[1] else np.zeros((3 * n, 0))
+        # per node its free basis, padded with zero columns to (3, 3), and where each
+        # entry of the node's reduced 3 x 3 block lands in band storage
+        padded = np.zeros((n, 3, 3))
+        band_r, band_c, blk_i, blk_r, blk_c = [], [], [], [], []
+        offset = 0
+        counts = []
+        for i in range(n):
+            cols = np.flatnonzero(np.any(dense[3 * i : 3 * i + 3] != 0.0, axis=0))
+            k = cols.size
+            counts.append(k)
+            padded[i, :, :k] = dense[3 * i : 3 * i + 3, cols]
+            r, c = np.meshgrid(np.arange(k), np.arange(k), indexing="ij")
+            band_r.append(bw + r.ravel() - c.ravel())
+            band_c.append(offset + c.ravel())
+            blk_i.append(np.full(k * k, i))
+            blk_r.append(r.ravel())
+            blk_c.append(c.ravel())
+            offset += k
+        return cls(
+            line=line,
+            K=_banded(Kr, bw),
+            M=_banded(Mr, bw),
+            C=_banded(Cr, bw),
+            bandwidth=bw,
+            node_basis=padded,
+            band_index=(np.concatenate(band_r), np.concatenate(band_c)),
+            block_index=(np.concatenate(blk_i), np.concatenate(blk_r), np.concatenate(blk_c)),
+            offsets=np.concatenate(([0], np.cumsum(counts))).astype(np.int64),
+        )
+
+    def drag_band(self, D: np.ndarray) -> np.ndarray:
+        """The drag blocks ``D`` (n, 3, 3) projected on the free basis, in band storage."""
+        b = self.node_basis
+        blocks = np.swapaxes(b, 1, 2) @ D @ b
+        out = np.zeros(self.K.shape)
+        out[self.band_index] = blocks[self.block_index]
+        return out
+
+    def apply(self, u: np.ndarray, omega: float, D: np.ndarray | None) -> np.ndarray:
+        """``[K - w^2 M + i w (C + D)] u`` [N] (n, 3) for displacements ``u`` (n, 3)."""
+        line = self.line
+        flat = u.ravel()
+        out = line.stiffness @ flat + 1j * omega * (line.damping @ flat)
+        out = out.reshape(-1, 3) - omega**2 * np.einsum("iab,ib->ia", line.mass, u)
+        if D is not None:
+            out = out + 1j * omega * np.einsum("iab,ib->ia", D, u)
+        return out
+
+
+def solve_harmonic(
+    red: ReducedLine,
+    omega: float,
+    end_motion: np.ndarray,
+    settings: DragSettings | None = None,
+) -> FrequencyResult:
+    """Steady harmonic response at angular frequency ``omega`` [rad/s] to the end
+    displacements ``end_motion`` [m] (2, 3) complex (A and B), with the drag
+    linearised by iteration (module docstring). Never raises for a numerical failure."""
+    settings = settings or DragSettings()
+    line = red.line
+    n = line.n_nodes
+    B = line.free_basis
+    BT = B.T.tocsr()
+    bw = red.bandwidth
+    up = np.zeros((n, 3), dtype=complex)
+    up[0], up[-1] = end_motion[0], end_motion[-1]
+    base = red.K - omega**2 * red.M + 1j * omega * red.C
+    static_mag = np.linalg.norm(line.end_force, axis=1)
+    failed = FrequencyResult(
+        displacement=np.full((n, 3), np.nan + 0j),
+        element_tension=np.full(n - 1, np.nan + 0j),
+        end_tension=np.full(2, np.nan + 0j),
+        tension_static=static_mag,
+        status=STATUS_NUMERICAL,
+        message=f"singular dynamic matrix at {omega / (2 * math.pi):.6g} Hz",
+    )
+
+    # right side: the prescribed end motion through the dynamic matrix; only the end
+    # nodes move, so the drag adds iw D_j u_j at those two nodes only
+    rhs0 = -(BT @ red.apply(up, omega, None).ravel())
+    ends = np.zeros((n, 3), dtype=complex)
+
+    def solve(D: np.ndarray | None) -> np.ndarray | None:
+        ab = base if D is None else base + 1j * omega * red.drag_band(D)
+        rhs = rhs0
+        if D is not None:
+            ends[0] = D[0] @ up[0]
+            ends[-1] = D[-1] @ up[-1]
+            rhs = rhs0 - 1j * omega * (BT @ ends.ravel())
+        if rhs.size == 0:
+            return up.copy()
+        try:
+            q = solve_banded((bw, bw), ab, rhs, check_finite=False)
+        except (np.linalg.LinAlgError, ValueError):
+            return None
+        if not np.all(np.isfinite(q)):
+            return None
+        return (B @ q).reshape(n, 3) + up
+
+    D: np.ndarray | None = None
+    iterations = 0
+    converged = True
+    change = 0.0
+    if line.has_drag:
+        frac = (line.s / line.s[-1])[:, None]
+        u = (1.0 - frac) * up[0] + frac * up[-1]
+        D_small = drag_tangent(line)
+        D = np.empty((n, 3, 3))
+        u = np.ascontiguousarray(u, dtype=np.complex128)
+        iterations, converged, change, ok = _drag_iteration(
+            np.ascontiguousarray(base),
+            bw,
+            float(omega),
+            np.ascontiguousarray(rhs0, dtype=np.complex128),
+            up,
+            u,
+            red.offsets,
+            red.node_basis,
+            line.current,
+            line.tangent,
+            line.drag_normal,
+            line.drag_tangential,
+            D_small,
+            settings.samples,
+            settings.tolerance,
+            settings.max_iterations,
+            D,
+        )
+        if not ok:
+            return failed
+    else:
+        u_solved = solve(None)
+        if u_solved is None:
+            return failed
+        u = u_solved
+    du = np.diff(u, axis=0)
+    axial = (line.axial_stiffness + 1j * omega * line.axial_damping) / line.rest_length
+    element_tension = axial * np.sum(line.direction * du, axis=1)
+    reaction = red.apply(u, omega, D)
+    support = -np.stack([reaction[0], reaction[-1]])  # change of the force on the supports
+    unit = line.end_force / np.where(static_mag > 0.0, static_mag, 1.0)[:, None]
+    end_tension = np.sum(unit * support, axis=1)
+    return FrequencyResult(
+        displacement=u,
+        element_tension=element_tension,
+        end_tension=end_tension,
+        tension_static=static_mag,
+        drag_iterations=iterations,
+        drag_converged=converged,
+        drag_change=change,
+        status=STATUS_OK,
+        message="",
+    )
+
+
+def warm_up() -> None:
+    """Load the compiled drag kernels (numba's first call in a process costs about a
+    second, mostly loading its own registries); callers do it before timing cases."""
+    n = 3
+    t = np.tile([1.0, 0.0, 0.0], (n, 1))
+    basis = np.zeros((n, 3, 3))
+    basis[1] = np.eye(3)
+    base = np.zeros((5, 3), dtype=np.complex128)
+    base[2] = 1.0
+    up = np.zeros((n, 3), dtype=np.complex128)
+    up[-1, 2] = 1.0
+    _drag_iteration(
+        base,
+        2,
+        1.0,
+        np.ones(3, dtype=np.complex128),
+        up,
+        up.copy(),
+        np.array([0, 0, 3, 3], dtype=np.int64),
+        basis,
+        np.zeros((n, 3)),
+        t,
+        np.ones(n),
+        np.zeros(n),
+        np.zeros((n, 3, 3)),
+        8,
+        1e-6,
+        2,
+        np.empty((n, 3, 3)),
+    )
+
+
+# ------------------------------------------------------------------ irregular motion
+
+
+def _gauss_hermite(m: int) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes (m^3, 3) and weights (m^3,) of the tensor Gauss-Hermite rule for the
+    standard normal distribution in three dimensions."""
+    x, w = np.polynomial.hermite_e.hermegauss(m)
+    w = w / w.sum()
+    X = np.stack(np.meshgrid(x, x, x, indexing="ij"), -1).reshape(-1, 3)
+    W = np.prod(np.stack(np.meshgrid(w, w, w, indexing="ij"), -1).reshape(-1, 3), axis=1)
+    return X, W
+
+
+def drag_stochastic(
+    line: LinearLine, covariance: np.ndarray, tangent: np.ndarray, points: int = 6
+) -> np.ndarray:
+    """Statistically linearised drag damping [N s/m] (n, 3, 3) for a Gaussian relative
+    velocity of mean the current and covariance ``covariance`` [m^2/s^2] (n, 3, 3):
+    ``D = E[df/dw] = E[f (w - U) ^T] C^-1`` (Stein's lemma: the mean-square optimal
+    linear fit, as the harmonic fit is for a sine), by tensor Gauss-Hermite quadrature
+    with ``points`` nodes per direction. Directions without motion take the
+    small-motion tangent ``tangent`` (:func:`drag_tangent`)."""
+    X, W = _gauss_hermite(points)
+    lam, Q = np.linalg.eigh(covariance)
+    L = Q * np.sqrt(np.clip(lam, 0.0, None))[:, None, :]  # (n, 3, 3): C = L L^T
+    dev = np.einsum("iab,kb->kia", L, X)  # (m^3, n, 3)
+    f = drag_force(line, line.current[None] + dev)
+    H = np.einsum("k,kia,kib->iab", W, f, dev)
+    trace = np.trace(covariance, axis1=1, axis2=2)
+    eps = np.where(trace > 0.0, 1e-10 * trace, 1.0)[:, None, None]
+    lhs = covariance + eps * np.eye(3)
+    rhs = np.where((trace > 0.0)[:, None, None], H + eps * tangent, tangent)
+    return np.swapaxes(np.linalg.solve(lhs, np.swapaxes(rhs, 1, 2)), 1, 2)
+
+
+@dataclass(kw_only=True)
+class SpectrumResult:
+    """Response to an end-motion spectrum: per spectral line (K,) the complex
+    amplitudes of the end tensions (K, 2) [N] and element tensions (K, n - 1) [N];
+    tension_static (2,) [N]; iterations, converged, change; status, message."""
+
+    end_tension: np.ndarray
+    element_tension: np.ndarray
+    tension_static: np.ndarray
+    iterations: int = 0
+    converged: bool = True
+    change: float = 0.0
+    status: int = STATUS_OK
+    message: str = ""
+
+
+def solve_spectrum(
+    red: ReducedLine,
+    omegas: np.ndarray,
+    end_motion: np.ndarray,
+    settings: DragSettings | None = None,
+) -> SpectrumResult:
+    """Linear response to end motion given as spectral lines: angular frequencies
+    ``omegas`` [rad/s] (K,), end displacement amplitudes ``end_motion`` [m] (K, 2, 3)
+    (the lines are independent, random-phase: variances add). The drag is linearised
+    statistically on the covariance of the relative velocity summed over the lines,
+    ``C = sum_k Re(v_k v_k^H) / 2``, and iterated to consistency as in
+    :func:`solve_harmonic`."""
+    settings = settings or DragSettings()
+    line = red.line
+    n = line.n_nodes
+    B = line.free_basis
+    BT = B.T.tocsr()
+    bw = red.bandwidth
+    K = omegas.size
+    static_mag = np.linalg.norm(line.end_force, axis=1)
+
+    def solve_all(D: np.ndarray | None) -> np.ndarray | None:
+        U = np.empty((K, n, 3), dtype=complex)
+        band = None if D is None else red.drag_band(D)
+        for k, w in enumerate(omegas):
+            up = np.zeros((n, 3), dtype=complex)
+            up[0], up[-1] = end_motion[k, 0], end_motion[k, 1]
+            ab = red.K - w**2 * red.M + 1j * w * red.C
+            if band is not None:
+                ab = ab + 1j * w * band
+            rhs = -(BT @ red.apply(up, w, D).ravel())
+            if rhs.size == 0:
+                U[k] = up
+                continue
+            try:
+                q = solve_banded((bw, bw), ab, rhs, check_finite=False)
+            except (np.linalg.LinAlgError, ValueError):
+                return None
+            if not np.all(np.isfinite(q)):
+                return None
+            U[k] = (B @ q).reshape(n, 3) + up
+        return U
+
+    def covariance(U: np.ndarray) -> np.ndarray:
+        V = 1j * omegas[:, None, None] * U
+        return 0.5 * np.real(np.einsum("kia,kib->iab", V, V.conj()))
+
+    D: np.ndarray | None = None
+    iterations, converged, change = 0, True, 0.0
+    if line.has_drag:
+        frac = (line.s / line.s[-1])[None, :, None]
+        U = (1.0 - frac) * end_motion[:, 0:1, :] + frac * end_motion[:, 1:2, :]
+        D_small = drag_tangent(line)
+        D = drag_stochastic(line, covariance(U), D_small)
+        sigma = np.sqrt(np.einsum("iaa->i", covariance(U)))
+        converged = False
+        last = math.inf
+        for iterations in range(1, settings.max_iterations + 1):  # noqa: B007
+            U_new = solve_all(D)
+            if U_new is None:
+                break
+            C = covariance(U_new)
+            sigma_new = np.sqrt(np.einsum("iaa->i", C))
+            change = float(np.max(np.abs(sigma_new - sigma)) / max(np.max(sigma_new), 1e-300))
+            U, sigma = U_new, sigma_new
+            if change <= settings.tolerance:
+                converged = True
+                break
+            relax = 0.5 if change >= 0.5 * last else 1.0
+            last = change
+            D = (1.0 - relax) * D + relax * drag_stochastic(line, C, D_small)
+    else:
+        U = solve_all(None)  # type: ignore[assignment]
+    if U is None or (line.has_drag and iterations and not np.all(np.isfinite(U))):
+        return SpectrumResult(
+            end_tension=np.full((K, 2), np.nan + 0j),
+            element_tension=np.full((K, n - 1), np.nan + 0j),
+            tension_static=static_mag,
+            status=STATUS_NUMERICAL,
+            message="singular dynamic matrix at a spectral line",
+        )
+    du = np.diff(U, axis=1)
+    axial = (line.axial_stiffness[None] + 1j * omegas[:, None] * line.axial_damping[None]) / (
+        line.rest_length[None]
+    )
+    element = axial * np.einsum("ea,kea->ke", line.direction, du)
+    unit = line.end_force / np.where(static_mag > 0.0, static_mag, 1.0)[:, None]
+    ends = np.empty((K, 2), dtype=complex)
+    for k, w in enumerate(omegas):
+        r = red.apply(U[k], w, D)
+        ends[k, 0] = -unit[0] @ r[0]
+        ends[k, 1] = -unit[1] @ r[-1]
+    return SpectrumResult(
+        end_tension=ends,
+        element_tension=element,
+        tension_static=static_mag,
+        iterations=iterations,
+        converged=converged,
+        change=change,
+    )

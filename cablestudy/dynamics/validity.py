@@ -1,0 +1,107 @@
+"""When a frequency-domain (linear) answer can be trusted: the checks of ``method:
+auto``. Pure: arrays in, numbers out.
+
+* **Slack.** The linear model keeps every element taut. The smallest ratio of
+  (static - amplitude) to static tension over the elements (and the end tensions)
+  measures how near the line comes to slack; below ``min_tension_ratio`` the time
+  domain runs (taut-slack snapping is outside any linearisation).
+* **Geometry.** The linearisation drops terms of order (displacement / sag) against
+  one: the largest nodal displacement amplitude over the sag (largest distance of the
+  static line from the chord between its ends) must stay below
+  ``max_amplitude_sag_ratio``. A line with no sag (straight) uses its length instead.
+* **Drag.** The drag linearisation must have converged.
+* **Touchdown.** The laid nodes are held (:mod:`cablestudy.dynamics.linear_model`);
+  that stands only while the touchdown point stays put. Near touchdown the line
+  rises as ``h = kappa x^2 / 2`` with ``kappa = w / T`` (catenary curvature at the
+  touchdown point: submerged weight over tension), so a vertical motion of amplitude
+  ``dz`` of the suspended line there moves the touchdown point by about
+  ``sqrt(2 dz / kappa)``; this over the line length must stay below
+  ``max_touchdown_travel``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True, kw_only=True)
+class Validity:
+    """The measures of the module docstring for one harmonic response."""
+
+    min_tension_ratio: float
+    amplitude_sag_ratio: float
+    touchdown_travel: float  # over the line length [-]
+
+
+def sag(position: np.ndarray) -> float:
+    """Largest distance [m] of the points ``position`` (n, 3) from the chord of the two
+    end points."""
+    chord = position[-1] - position[0]
+    length = float(np.linalg.norm(chord))
+    rel = position - position[0]
+    if length == 0.0:
+        return float(np.max(np.linalg.norm(rel, axis=1)))
+    along = rel @ (chord / length)
+    return float(np.max(np.linalg.norm(rel - along[:, None] * (chord / length), axis=1)))
+
+
+def measures(
+    *,
+    s: np.ndarray,
+    position: np.ndarray,
+    displacement: np.ndarray,
+    element_tension_static: np.ndarray,
+    element_tension_amplitude: np.ndarray,
+    end_tension_static: np.ndarray,
+    end_tension_amplitude: np.ndarray,
+    laid_length: float,
+    on_seabed: np.ndarray,
+    submerged_weight: np.ndarray,
+    held: np.ndarray | None = None,
+) -> Validity:
+    """Validity measures. ``s`` [m] (n,), ``position`` [m] (n, 3) static nodes,
+    ``displacement`` [m] (n, 3) complex amplitudes; tensions [N]: static and amplitude
+    per element (n - 1,) and at the ends (2,); ``laid_length`` [m]; ``on_seabed`` (n,)
+    bool, the held laid nodes; ``submerged_weight`` [N/m] (n,) at the nodes; ``held``
+    (n,) bool, nodes with no free direction (elements between two of them do not move
+    and are left out of the slack check: a laid stretch that friction has emptied of
+    tension is not a slack span)."""
+    moving = np.ones(element_tension_static.size, dtype=bool)
+    if held is not None:
+        moving = ~(held[:-1] & held[1:])
+    static = np.concatenate([element_tension_static[moving], end_tension_static])
+    amp = np.concatenate([element_tension_amplitude[moving], end_tension_amplitude])
+    # a point with no static tension and no motion (an anchor that friction has
+    # emptied of tension) is not near slack; one with motion is
+    active = (static > 0.0) | (amp > 1e-12 * float(np.max(static, initial=0.0)))
+    static, amp = static[active], amp[active]
+    if np.all(static > 0.0):
+        ratio = float(np.min((static - amp) / static, initial=math.inf))
+    else:
+        ratio = -math.inf
+    length = float(s[-1] - s[0])
+    d = sag(position)
+    a = float(np.max(np.sqrt(np.sum(np.abs(displacement) ** 2, axis=1))))
+    travel = 0.0
+    if laid_length > 0.0 and np.any(on_seabed) and not np.all(on_seabed):
+        # the first suspended node next to each laid stretch
+        edges = np.flatnonzero(np.diff(on_seabed.astype(int)) != 0)
+        travels = []
+        for e in edges:
+            j = e + 1 if on_seabed[e] else e  # the suspended node of the pair
+            k = e if on_seabed[e] else e + 1  # the laid node (touchdown side)
+            t_td = max(
+                float(element_tension_static[min(e, element_tension_static.size - 1)]), 1e-300
+            )
+            kappa = max(float(submerged_weight[k]), 0.0) / t_td
+            dz = float(np.abs(displacement[j, 2]))
+            travels.append(math.sqrt(2.0 * dz / kappa) if kappa > 0.0 else math.inf)
+        travel = max(travels) / length
+    return Validity(
+        min_tension_ratio=ratio,
+        amplitude_sag_ratio=a / (d if d > 1e-9 * length else length),
+        touchdown_travel=travel,
+    )

@@ -1,0 +1,375 @@
+"""Case-level glue of the frequency-domain method and of ``method: auto``.
+
+A sweep over excitation frequency and amplitude shares one static problem: the
+linearised line (:func:`cablestudy.dynamics.linear_model.linear_line`, projected on
+its free degrees of freedom) is built once per (static hash, elements) and cached in
+the process, like the static solutions of :mod:`cablestudy.analyses`; per case only
+the drag iteration and the complex solves run. :data:`COUNTERS` counts the static
+solves and linear-model assemblies of this process (reported by the sweep benchmark
+and checked by a test).
+"""
+
+from __future__ import annotations
+
+import math
+from collections import OrderedDict
+from dataclasses import dataclass
+
+import numpy as np
+
+from .cases import Case
+from .config.analysis import (
+    AutoSettings,
+    DynamicSettings,
+    HarmonicExcitation,
+    SpectrumExcitation,
+)
+from .counters import COUNTERS  # noqa: F401 - re-exported: static solves, assemblies
+from .dynamics.frequency import DragSettings, ReducedLine, solve_harmonic, solve_spectrum
+from .dynamics.linear_model import linear_line
+from .dynamics.modal import ModalProblem
+from .dynamics.validity import Validity, measures
+from .problem import static_problem
+from .statics import STATUS_NO_SOLUTION, STATUS_NUMERICAL, STATUS_OK, StaticResult
+
+#: outputs of the transfer function (analysis.dynamic.transfer_function)
+TRANSFER_OUTPUTS = (
+    "transfer_frequency",
+    "tension_rao_a",
+    "tension_rao_b",
+    "tension_rao_phase_a",
+    "tension_rao_phase_b",
+    "tension_rao_line",
+)
+
+_LINEAR_CACHE: OrderedDict[tuple[str, int], tuple[ReducedLine | None, str]] = OrderedDict()
+_LINEAR_CACHE_SIZE = 64
+
+
+def linearised(
+    case: Case, static: StaticResult, deadline: float | None
+) -> tuple[ReducedLine | None, str]:
+    """The case's line linearised about its static shape at ``elements + 1`` equally
+    spaced nodes (cached per static problem); or None and why not."""
+    from .analyses import _static_at
+
+    dyn = case.study.analysis.dynamic
+    assert dyn is not None
+    key = (case.static_hash, dyn.elements)
+    cached = _LINEAR_CACHE.get(key)
+    if cached is not None:
+        _LINEAR_CACHE.move_to_end(key)
+        return cached
+    n_nodes = dyn.elements + 1
+    mesh = static if len(static.s) == n_nodes else _static_at(case, n_nodes, deadline)
+    if mesh.success and static.laid_length > 0.0:
+        mesh = _with_touchdown_nodes(case, static, dyn.elements, deadline) or mesh
+    out: tuple[ReducedLine | None, str]
+    if not mesh.success:
+        out = (None, f"static shape at the dynamic nodes: {mesh.message}")
+    else:
+        T_e = 0.5 * (mesh.tension[:-1] + mesh.tension[1:])
+        if np.any(T_e <= 0.0):
+            i = int(np.argmin(T_e))
+            out = (
+                None,
+                f"the static line is slack near s = {0.5 * (mesh.s[i] + mesh.s[i + 1]):.6g} m "
+                f"(element tension {T_e[i]:.4g} N); the frequency domain needs a taut line",
+            )
+        else:
+            problem = static_problem(case.study)
+            line = linear_line(
+                ModalProblem(
+                    line=problem.line,
+                    medium=problem.medium,
+                    end_a=problem.end_a,
+                    end_b=problem.end_b,
+                    static=mesh,
+                )
+            )
+            COUNTERS["linear_assemblies"] += 1
+            out = (ReducedLine.of(line), "")
+    _LINEAR_CACHE[key] = out
+    while len(_LINEAR_CACHE) > _LINEAR_CACHE_SIZE:
+        _LINEAR_CACHE.popitem(last=False)
+    return out
+
+
+#: static samples per element from which a touchdown node is taken (it lies within
+#: half a sample of the touchdown point)
+TOUCHDOWN_SAMPLES = 16
+
+
+def _with_touchdown_nodes(
+    case: Case, static: StaticResult, elements: int, deadline: float | None
+) -> StaticResult | None:
+    """The uniform nodes plus a node at each touchdown point (the last laid one of
+    ``TOUCHDOWN_SAMPLES`` static samples per element), so that the held laid nodes end
+    where the line leaves the seabed, as in the modal mesh
+    (:func:`cablestudy.analyses.solve_modal`); None if the fine sampling fails."""
+    from .analyses import _static_at
+    from .dynamics.modal import snap_to_samples, subset_static
+
+    fine = _static_at(case, elements * TOUCHDOWN_SAMPLES + 1, deadline)
+    if not fine.success:
+        return None
+    length = float(fine.s[-1])
+    med = static_problem(case.study).medium
+    ground = med.seabed_z(fine.position[:, 0], fine.position[:, 1])
+    on_bed = np.abs(fine.position[:, 2] - ground) <= 1e-6 * max(length, 1.0)
+    touchdown = []
+    if on_bed[0] and not on_bed.all():
+        touchdown.append(fine.s[int(np.argmin(on_bed)) - 1])  # last laid sample from A
+    if on_bed[-1] and not on_bed.all():
+        touchdown.append(fine.s[len(on_bed) - int(np.argmin(on_bed[::-1]))])  # from B
+    targets = np.union1d(np.linspace(0.0, length, elements + 1), touchdown)
+    return subset_static(fine, snap_to_samples(fine.s, targets))
+
+
+def end_displacements(dyn: DynamicSettings) -> tuple[np.ndarray, float, complex]:
+    """Complex end displacements [m] (2, 3) of ``Re(X e^{i w t})``, the excitation
+    frequency [Hz], and the complex phase factor of the first excitation (the
+    reference of the tension phases). ``a sin(w t + phi) d`` is ``Re(-i a e^{i phi}
+    d e^{i w t})``."""
+    X = np.zeros((2, 3), dtype=complex)
+    harmonics = [e for e in dyn.excitations if isinstance(e, HarmonicExcitation)]
+    for e in harmonics:
+        d = np.asarray(e.direction, dtype=float)
+        X[0 if e.end == "a" else 1] += (
+            -1j * e.amplitude * np.exp(1j * math.radians(e.phase_deg)) * (d / np.linalg.norm(d))
+        )
+    first = harmonics[0]
+    return X, first.frequency, -1j * np.exp(1j * math.radians(first.phase_deg))
+
+
+def drag_settings(dyn: DynamicSettings) -> DragSettings:
+    lin = dyn.linearisation
+    if lin is None:
+        return DragSettings()
+    return DragSettings(
+        tolerance=lin.tolerance, max_iterations=lin.max_iterations, samples=lin.samples
+    )
+
+
+@dataclass(kw_only=True)
+class FrequencyOutcome:
+    status: int
+    message: str
+    data: dict[str, np.ndarray]
+    distrust: str = ""  # why method auto would not trust it ("" if it would)
+    summary: str = ""
+    validity: Validity | None = None
+    drag_converged: bool = True
+
+
+def _along(
+    s_out: np.ndarray, s_nodes: np.ndarray, element: np.ndarray, ends: np.ndarray
+) -> np.ndarray:
+    """Element values (at element midpoints) with end values, interpolated to ``s_out``."""
+    mid = 0.5 * (s_nodes[:-1] + s_nodes[1:])
+    return np.interp(
+        s_out,
+        np.concatenate(([s_nodes[0]], mid, [s_nodes[-1]])),
+        np.concatenate(([ends[0]], element, [ends[1]])),
+    )
+
+
+def solve_frequency(case: Case, static: StaticResult, deadline: float | None) -> FrequencyOutcome:
+    """The harmonic response of the case, its outputs, and the auto checks."""
+    dyn = case.study.analysis.dynamic
+    assert dyn is not None
+    red, why = linearised(case, static, deadline)
+    if red is None:
+        return FrequencyOutcome(status=STATUS_NO_SOLUTION, message=why, data={}, distrust=why)
+    spectra = [e for e in dyn.excitations if isinstance(e, SpectrumExcitation)]
+    if spectra:
+        return irregular(red, spectra[0], dyn, static)
+    X, freq, ref = end_displacements(dyn)
+    res = solve_harmonic(red, 2.0 * math.pi * freq, X, drag_settings(dyn))
+    if not res.success:
+        return FrequencyOutcome(
+            status=STATUS_NUMERICAL, message=res.message, data={}, distrust=res.message
+        )
+    line = red.line
+    first = dyn.excitations[0]
+    ex = 0 if first.end == "a" else 1
+    t_end = res.tension_static
+    a_end = np.abs(res.end_tension)
+    a_el = np.abs(res.element_tension)
+    phase = np.degrees(np.angle(res.end_tension / ref))
+    env_amp = _along(static.s, line.s, a_el, a_end)
+    env_max = static.tension + env_amp
+    env_min = static.tension - env_amp
+    data: dict[str, np.ndarray] = {
+        "tension_static": np.asarray(t_end[ex]),
+        "tension_max": np.asarray(t_end[ex] + a_end[ex]),
+        "tension_min": np.asarray(t_end[ex] - a_end[ex]),
+        "tension_mean": np.asarray(t_end[ex]),
+        "tension_max_line": np.asarray(max(float(np.max(env_max)), float(np.max(t_end + a_end)))),
+        "tension_envelope_max": env_max,
+        "tension_envelope_min": env_min,
+        "tension_amplitude_a": np.asarray(a_end[0]),
+        "tension_amplitude_b": np.asarray(a_end[1]),
+        "tension_phase_a": np.asarray(phase[0]),
+        "tension_phase_b": np.asarray(phase[1]),
+        "steady_converged": np.asarray(1),
+        "linearisation_iterations": np.asarray(res.drag_iterations),
+        "linearisation_converged": np.asarray(int(res.drag_converged)),
+    }
+    if dyn.transfer_function is not None:
+        data.update(transfer_function(red, dyn, static))
+    med = static_problem(case.study).medium
+    ground = med.seabed_z(line.position[:, 0], line.position[:, 1])
+    on_bed = np.abs(line.position[:, 2] - ground) <= 1e-6 * max(float(line.s[-1]), 1.0)
+    weight = _submerged_weight(case, line.s)
+    v = measures(
+        s=line.s,
+        position=line.position,
+        displacement=res.displacement,
+        element_tension_static=line.tension,
+        element_tension_amplitude=a_el,
+        end_tension_static=t_end,
+        end_tension_amplitude=a_end,
+        laid_length=static.laid_length,
+        on_seabed=on_bed,
+        submerged_weight=weight,
+        held=np.diff(line.free_basis.tocsr().indptr).reshape(-1, 3).sum(axis=1) == 0,
+    )
+    auto = dyn.auto or AutoSettings()
+    reasons = []
+    if not res.drag_converged:
+        reasons.append(
+            f"drag linearisation not converged ({res.drag_iterations} iterations, change "
+            f"{res.drag_change:.2g})"
+        )
+    if v.min_tension_ratio < auto.min_tension_ratio:
+        reasons.append(
+            f"near slack: min/static tension {v.min_tension_ratio:.3g} < {auto.min_tension_ratio:g}"
+        )
+    if v.amplitude_sag_ratio > auto.max_amplitude_sag_ratio:
+        reasons.append(
+            f"large motion: amplitude/sag {v.amplitude_sag_ratio:.3g} > "
+            f"{auto.max_amplitude_sag_ratio:g}"
+        )
+    if v.touchdown_travel > auto.max_touchdown_travel:
+        reasons.append(
+            f"touchdown travel {v.touchdown_travel:.3g} L > {auto.max_touchdown_travel:g} L"
+        )
+    summary = (
+        f"min/static tension {v.min_tension_ratio:.3g}, amplitude/sag {v.amplitude_sag_ratio:.3g}"
+    )
+    return FrequencyOutcome(
+        status=STATUS_OK,
+        message="",
+        data=data,
+        distrust="; ".join(reasons),
+        summary=summary,
+        validity=v,
+        drag_converged=res.drag_converged,
+    )
+
+
+def _submerged_weight(case: Case, s: np.ndarray) -> np.ndarray:
+    """Submerged weight per length [N/m] at arc lengths ``s``."""
+    line = static_problem(case.study).line
+    ends = line.segment_ends
+    idx = np.clip(np.searchsorted(ends, s, side="right") - 1, 0, len(line.length) - 1)
+    return line.weight[idx]
+
+
+def transfer_function(
+    red: ReducedLine, dyn: DynamicSettings, static: StaticResult
+) -> dict[str, np.ndarray]:
+    """Tension per unit excitation amplitude [N/m] at the transfer-function frequencies:
+    the excitation of the case (directions, phases, amplitude ratios) at each frequency,
+    drag linearised at the case's amplitude, divided by the largest amplitude."""
+    assert dyn.transfer_function is not None
+    freqs = np.asarray(dyn.transfer_function.values)
+    X, _, ref = end_displacements(dyn)
+    scale = max(float(np.max(np.abs(X))), 1e-300)
+    settings = drag_settings(dyn)
+    n_out = static.s.size
+    end_amp = np.full((freqs.size, 2), np.nan)
+    end_phase = np.full((freqs.size, 2), np.nan)
+    line_amp = np.full((freqs.size, n_out), np.nan)
+    for k, f in enumerate(freqs):
+        res = solve_harmonic(red, 2.0 * math.pi * f, X, settings)
+        if not res.success:
+            continue
+        end_amp[k] = np.abs(res.end_tension) / scale
+        end_phase[k] = np.degrees(np.angle(res.end_tension / ref))
+        line_amp[k] = (
+            _along(static.s, red.line.s, np.abs(res.element_tension), np.abs(res.end_tension))
+            / scale
+        )
+    return {
+        "transfer_frequency": freqs,
+        "tension_rao_a": end_amp[:, 0],
+        "tension_rao_b": end_amp[:, 1],
+        "tension_rao_phase_a": end_phase[:, 0],
+        "tension_rao_phase_b": end_phase[:, 1],
+        "tension_rao_line": line_amp,
+    }
+
+
+def irregular(
+    red: ReducedLine, spec: SpectrumExcitation, dyn: DynamicSettings, static: StaticResult
+) -> FrequencyOutcome:
+    """Response to an end-motion spectrum: tension standard deviations, spectra and the
+    most probable maxima over ``storm_duration``. With the tension a narrow-band
+    Gaussian process its peaks are Rayleigh-distributed, and the most probable largest
+    of ``N = duration / T_z`` of them is ``sigma sqrt(2 ln N)`` above the mean, with the
+    zero up-crossing period ``T_z = 2 pi sqrt(m0 / m2)`` from the tension spectrum's
+    moments ``m_j = sum_k w_k^j |dT_k|^2 / 2``."""
+    freqs = np.asarray(spec.line_frequencies)
+    amps = np.asarray(spec.line_amplitudes)
+    d = np.asarray(spec.direction, dtype=float)
+    X = np.zeros((freqs.size, 2, 3), dtype=complex)
+    X[:, 0 if spec.end == "a" else 1] = amps[:, None] * (d / np.linalg.norm(d))[None]
+    omegas = 2.0 * math.pi * freqs
+    res = solve_spectrum(red, omegas, X, drag_settings(dyn))
+    if res.status != STATUS_OK:
+        return FrequencyOutcome(
+            status=res.status, message=res.message, data={}, distrust=res.message
+        )
+    df = float(freqs[1] - freqs[0])
+
+    def mpm(power: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(standard deviation, most probable maximum amplitude) of line powers
+        |dT_k|^2 (K, ...)."""
+        m0 = 0.5 * np.sum(power, axis=0)
+        m2 = 0.5 * np.sum(omegas.reshape((-1,) + (1,) * (power.ndim - 1)) ** 2 * power, axis=0)
+        tz = 2.0 * math.pi * np.sqrt(m0 / np.where(m2 > 0.0, m2, np.inf))
+        n_peaks = np.maximum(spec.storm_duration / np.where(tz > 0.0, tz, np.inf), 1.0)
+        return np.sqrt(m0), np.sqrt(m0) * np.sqrt(2.0 * np.log(n_peaks))
+
+    sd_end, mpm_end = mpm(np.abs(res.end_tension) ** 2)
+    sd_el, mpm_el = mpm(np.abs(res.element_tension) ** 2)
+    ex = 0 if spec.end == "a" else 1
+    t_end = res.tension_static
+    env = _along(static.s, red.line.s, mpm_el, mpm_end)
+    data: dict[str, np.ndarray] = {
+        "tension_static": np.asarray(t_end[ex]),
+        "tension_max": np.asarray(t_end[ex] + mpm_end[ex]),
+        "tension_min": np.asarray(t_end[ex] - mpm_end[ex]),
+        "tension_mean": np.asarray(t_end[ex]),
+        "tension_max_line": np.asarray(
+            max(float(np.max(static.tension + env)), float(np.max(t_end + mpm_end)))
+        ),
+        "tension_envelope_max": static.tension + env,
+        "tension_envelope_min": static.tension - env,
+        "tension_std_a": np.asarray(sd_end[0]),
+        "tension_std_b": np.asarray(sd_end[1]),
+        "transfer_frequency": freqs,
+        "tension_psd_a": np.abs(res.end_tension[:, 0]) ** 2 / (2.0 * df),
+        "tension_psd_b": np.abs(res.end_tension[:, 1]) ** 2 / (2.0 * df),
+        "linearisation_iterations": np.asarray(res.iterations),
+        "linearisation_converged": np.asarray(int(res.converged)),
+    }
+    return FrequencyOutcome(
+        status=STATUS_OK,
+        message="",
+        data=data,
+        distrust="" if res.converged else "drag linearisation not converged",
+        drag_converged=res.converged,
+    )
