@@ -81,15 +81,19 @@ def check_supported(cases: list[Case], src: StudySource) -> None:
     problems.extend(p for p in _dynamic_problems(cases, src) if p not in problems)
     if problems:
         raise StudyError(problems, src.source)
+
+
+def warm_up(cases: list[Case]) -> None:
+    """Load the compiled kernels the cases will need, before any case is timed (the
+    runner's scheduler choice probes the first cases: a kernel's one-off load is
+    start-up, not case cost). Not part of validation, which must stay light."""
     if any(
         c.study.analysis.dynamic is not None and c.study.analysis.dynamic.method != "time"
         for c in cases
     ):
-        # before any case is timed (the runner's scheduler choice probes the first
-        # cases): the compiled drag kernel's one-off load is start-up, not case cost
-        from .dynamics.frequency import warm_up
+        from .dynamics.frequency import warm_up as warm_up_frequency
 
-        warm_up()
+        warm_up_frequency()
 
 
 def _dynamic_problems(cases: list[Case], src: StudySource) -> list[str]:

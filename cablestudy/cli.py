@@ -49,6 +49,9 @@ def cmd_run(args: argparse.Namespace) -> int:
         )
         return 2
     src, axes, cases = _load(args.config, args.max_study_size)
+    from .analyses import warm_up
+
+    warm_up(cases)
     try:
         summary = run_study(
             src,
