@@ -38,6 +38,8 @@ class StudySource:
     data: dict[str, Any]
     lines: dict[Loc, int]
     source: str
+    #: what files the study refers to hold and cablestudy does not model (by name)
+    notes: tuple[str, ...] = ()
 
     @property
     def sha256(self) -> str:
@@ -143,7 +145,49 @@ def read_study_source(path: str | Path) -> StudySource:
             [f"{line}: the study file is not UTF-8 text ({exc.reason} at byte {exc.start})"],
             str(path),
         ) from None
-    return parse_study_text(text, str(path))
+    return resolve_references(parse_study_text(text, str(path)), path.parent)
+
+
+def resolve_references(src: StudySource, folder: Path) -> StudySource:
+    """Replace ``line: {moordyn: path, line: N}`` by the segments and attachments it
+    names (see :class:`~cablestudy.config.line.MoorDynLineRef`); other studies pass
+    through unchanged. Raises :class:`StudyError` at the ``line:`` key's line."""
+    from .line import MoorDynLineRef
+
+    line = src.data.get("line")
+    if not (isinstance(line, dict) and "moordyn" in line):
+        return src
+    where = src.line_of(("line", "moordyn"))
+    try:
+        ref = MoorDynLineRef.model_validate(line)
+    except ValidationError as exc:
+        problems = []
+        for err in exc.errors(include_url=False):
+            sub = ("line",) + tuple(err["loc"])[:2]
+            msg = err["msg"].replace("Input should be", "must be")
+            if err["type"] == "extra_forbidden":
+                msg = f"unknown key; allowed keys here: {', '.join(MoorDynLineRef.model_fields)}"
+            problems.append(
+                f"{src.line_of(sub) or where}: {dotted(sub)}: {msg} (got {_shown(err['input'])})"
+            )
+        raise StudyError(problems, src.source) from None
+    from ..interchange import InterchangeError, line_from_reference
+
+    try:
+        resolved, notes = line_from_reference(ref.moordyn, ref.line, folder)
+    except InterchangeError as exc:
+        raise StudyError(
+            [f"{where}: line.moordyn: {exc} (got {ref.moordyn!r})"], src.source
+        ) from None
+    data = dict(src.data)
+    data["line"] = resolved
+    return StudySource(
+        text=src.text,
+        data=data,
+        lines=src.lines,
+        source=src.source,
+        notes=tuple(f"line.moordyn {ref.moordyn}: {n}" for n in notes),
+    )
 
 
 # ----------------------------------------------------------------- error wording
