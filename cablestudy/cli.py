@@ -108,9 +108,15 @@ def cmd_import(args: argparse.Namespace) -> int:
     import re
 
     from .interchange import InterchangeError, import_model, imported_yaml, read_in_scope
+    from .interchange.moorpy_yaml import is_mooring_yaml
 
     try:
         text, path = read_in_scope(args.file, None)
+        if args.format == "moorpy" and not is_mooring_yaml(text):
+            raise InterchangeError(
+                f"{args.file}: not a RAFT/MoorPy mooring YAML (a mapping 'mooring:' with "
+                "points, lines and line_types)"
+            )
         name = args.name or re.sub(r"[^A-Za-z0-9_.\-]", "-", path.stem).lstrip("-._") or "imported"
         imported = import_model(text, args.file, lines=args.line, name=name, folder=path.parent)
     except InterchangeError as exc:

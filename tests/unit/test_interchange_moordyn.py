@@ -370,3 +370,33 @@ def test_cli_import_writes_a_valid_study(tmp_path: Path, capsys: pytest.CaptureF
     assert "Mooring-System" in capsys.readouterr().out
     assert main(["import", "moordyn", str(model), "--line", "9"]) == 2
     assert "no line 9" in capsys.readouterr().err
+
+
+def test_cli_import_moorpy_and_export_round_trip(
+    tmp_path: Path, capsys: pytest.CaptureFixture
+) -> None:
+    design = tmp_path / "design.yaml"
+    design.write_text(MOORPY)
+    assert main(["import", "moorpy", str(design), "--line", "bottom", "--line", "top"]) == 0
+    out = capsys.readouterr()
+    assert "breaking_load" in out.err
+    assert main(["import", "moorpy", str(tmp_path / "design.yaml").replace("design", "none")]) == 2
+    capsys.readouterr()
+    dat = tmp_path / "v1.dat"
+    dat.write_text(V1)
+    assert main(["import", "moorpy", str(dat)]) == 2
+    assert "not a RAFT/MoorPy mooring YAML" in capsys.readouterr().err
+    # export of a swept study needs its case
+    study = tmp_path / "study.yaml"
+    study.write_text(STUDY + "sweep:\n  line.segments.0.length: [110.0, 120.0]\n")
+    assert main(["export", "moordyn", str(study)]) == 2
+    assert "--case" in capsys.readouterr().err and True
+    assert main(["export", "moordyn", str(study), "--case", "span=3"]) == 2
+    assert "no sweep dimension 'span'; dimensions: length" in capsys.readouterr().err
+    target = tmp_path / "out" / "case.dat"
+    assert (
+        main(["export", "moordyn", str(study), "--case", "length=110", "--out", str(target)]) == 0
+    )
+    capsys.readouterr()
+    back = import_model(target.read_text(), "case.dat")
+    assert back.data["line"]["segments"][0]["length"] == pytest.approx(110.0)
