@@ -87,7 +87,11 @@ def cmd_figures(args: argparse.Namespace) -> int:
     from .figures import build_all
 
     written = build_all(
-        Path(args.results), Path(args.out), configs=Path(args.configs), run_missing=not args.no_run
+        Path(args.results),
+        Path(args.out),
+        configs=Path(args.configs),
+        run_missing=not args.no_run,
+        docs=Path(args.docs) if args.docs else None,
     )
     for path in written:
         print(path)
@@ -226,6 +230,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", default="results/figures")
     p.add_argument("--configs", default="configs")
     p.add_argument("--no-run", action="store_true", help="do not run missing studies")
+    p.add_argument(
+        "--docs",
+        default=None,
+        help="also write the checked gallery DOCS/figures.md with the figures in DOCS/figures/",
+    )
     p.set_defaults(func=cmd_figures)
 
     p = sub.add_parser("bench", help="run time against error benchmarks")
