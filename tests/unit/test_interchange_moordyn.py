@@ -400,3 +400,58 @@ def test_cli_import_moorpy_and_export_round_trip(
     capsys.readouterr()
     back = import_model(target.read_text(), "case.dat")
     assert back.data["line"]["segments"][0]["length"] == pytest.approx(110.0)
+
+
+def test_current_round_trip_through_the_table_beside_the_file(tmp_path: Path) -> None:
+    study = tmp_path / "study.yaml"
+    current = (
+        "  current:\n"
+        "    - {z: -300.0, speed: 0.3, heading_deg: 45.0}\n"
+        "    - {z: 0.0, speed: 0.5, heading_deg: 0.0}\n"
+    )
+    text = STUDY.replace(
+        "environment: {fluid: water, gravity: 9.80665, depth: 300.0, seabed: {friction: 0.3}}",
+        "environment:\n  fluid: water\n  depth: 300.0\n" + current,
+    )
+    study.write_text(text)
+    target = tmp_path / "md" / "case.dat"
+    assert main(["export", "moordyn", str(study), "--out", str(target)]) == 0
+    assert (target.parent / "current_profile.txt").exists()
+    assert main(["export", "moordyn", str(study)]) == 2  # the table needs a folder
+    back = import_model(target.read_text(), "case.dat", folder=target.parent)
+    src = parse_study_text(text, "<s>")
+    original = validate_data(src.data, src).environment.current
+    got = back.data["environment"]["current"]
+    assert [p["z"] for p in got] == [p.z for p in original]
+    for p, q in zip(got, original, strict=True):
+        assert p["speed"] == pytest.approx(q.speed, rel=1e-15)
+        assert p["heading_deg"] == pytest.approx(q.heading_deg, abs=1e-12)
+
+
+def test_unmodelled_sections_and_moordyn_f_options_are_named() -> None:
+    text = V2.replace(
+        "---------------------- POINTS",
+        "---------------------- ROD TYPES ------\nName Diam Mass Cd Ca CdEnd CaEnd\n"
+        "(-) (m) (kg/m) (-) (-) (-) (-)\nBuoy 10 1e3 0.6 1.0 1.2 1.0\n"
+        "---------------------- BODIES ------\nID Attachment X0 Y0 Z0 r0 p0 y0 Mass CG I V CdA Ca\n"
+        "(#) (-) (m) (m) (m) (deg) (deg) (deg) (kg) (m) (kg-m2) (m3) (m2) (-)\n"
+        "1 coupled 0 0 0 0 0 0 0 0 0 0 0 0\n"
+        "---------------------- POINTS",
+    ).replace("0.5           FrictionCoefficient", "0.4 MU_KT\n0.2 MU_KA\n2 WaveKin")
+    imported = import_model(text, "f.dat")
+    warned = "\n".join(imported.warnings)
+    assert "section ROD TYPES (1 entries)" in warned
+    assert "section BODIES (1 entries)" in warned
+    assert "MU_KA = 0.2" in warned and "WaveKin = 2" in warned
+    assert imported.data["environment"]["seabed"]["friction"] == 0.4
+
+
+def test_current_table_missing_or_unreadable(tmp_path: Path) -> None:
+    text = V2.replace("0.5           FrictionCoefficient", "1 Currents")
+    with pytest.raises(InterchangeError, match="current_profile.txt: no such file"):
+        import_model(text, "v2.dat", folder=tmp_path)
+    with pytest.raises(InterchangeError, match="Currents 1 reads current_profile.txt"):
+        import_model(text, "v2.dat")
+    (tmp_path / "current_profile.txt").write_text("a\nb\nc\n-10 0.5 0 0.2\n")
+    with pytest.raises(InterchangeError, match="vertical current"):
+        import_model(text, "v2.dat", folder=tmp_path)
