@@ -171,7 +171,7 @@ def resolve_references(src: StudySource, folder: Path) -> StudySource:
                 f"{src.line_of(sub) or where}: {dotted(sub)}: {msg} (got {_shown(err['input'])})"
             )
         raise StudyError(problems, src.source) from None
-    from ..interchange import InterchangeError, line_from_reference
+    from ..interchange import InterchangeError, line_from_reference, read_in_scope
 
     try:
         resolved, notes = line_from_reference(ref.moordyn, ref.line, folder)
@@ -181,8 +181,19 @@ def resolve_references(src: StudySource, folder: Path) -> StudySource:
         ) from None
     data = dict(src.data)
     data["line"] = resolved
+    # the referenced file travels with the study text (as YAML comments), so its hash
+    # and the result files' study_yaml change when the file does
+    raw, _ = read_in_scope(ref.moordyn, folder)
+    digest = hashlib.sha256(raw.encode()).hexdigest()
+    appendix = "".join(f"\n#| {line}" for line in raw.splitlines())
+    text = (
+        src.text.rstrip("\n")
+        + f"\n\n# ---- line.moordyn {ref.moordyn} (sha256 {digest}), as read:"
+        + appendix
+        + "\n"
+    )
     return StudySource(
-        text=src.text,
+        text=text,
         data=data,
         lines=src.lines,
         source=src.source,

@@ -338,6 +338,19 @@ def test_study_refers_to_a_moordyn_file_and_sweeps_it(tmp_path: Path) -> None:
     with xr.open_dataset(tmp_path / "out" / "by-reference.nc") as ds:
         assert ds.sizes["length"] == 2
         assert (ds.status.values == 0).all()
+        # the referenced file travels with the study text into the result
+        assert "#| chain      0.1     150.0      1e9" in ds.attrs["study_yaml"]
+        sha = ds.attrs["study_sha256"]
+    (tmp_path / "models" / "system.dat").write_text(V2.replace("150.0 ", "151.0 "))
+    assert read_study_source(path).sha256 != sha
+
+
+def test_schema_allows_a_line_reference() -> None:
+    from cablestudy.config import Study
+
+    line = Study.model_json_schema()["properties"]["line"]
+    assert line["anyOf"][0] == {"$ref": "#/$defs/Line"}
+    assert set(line["anyOf"][1]["properties"]) == {"moordyn", "line"}
 
 
 @pytest.mark.parametrize(
