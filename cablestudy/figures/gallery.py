@@ -286,10 +286,6 @@ def gallery_markdown(data: Data, figures: list[Path], image_dir: str) -> str:
         "",
         "## Not yet in this gallery",
         "",
-        "- the sheared-current seed's (vaz-patel) drag on the stretched diameter "
-        "d (1 + e)^(-1/2): both static solvers keep the unstretched diameter (a change of "
-        "relative size T / 2EA, below 0.1 % in its examples); its wall tension, tangent "
-        "angles and elongation are outputs and drawn in its three figures;",
         "- axis readings of the figures (the seeds print curves, not tables, for Figs. 2-8 "
         "of the excitation and statics seeds);",
         "- the cable-types seed (aqwa) prints no figures or numbers to compare.",
