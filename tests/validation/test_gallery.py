@@ -79,3 +79,20 @@ def test_markdown_has_every_row_and_no_failed_statement(data: dict[str, xr.Datas
     assert "| NO |" not in text
     assert "{rms" not in text and "nan" not in text
     assert "![dodaran-fig4](figures/dodaran-fig4.png)" in text
+
+
+def test_sag_ratio_sensitivity_sentence(tmp_path: Path) -> None:
+    """The sag-span row's sentence: with the span fixed, 1.9 mm more length gives the
+    printed 0.0812 (a sweep of the length in 0.1 mm steps, exact elastic catenary)."""
+    study = (CONFIGS / "moustafa-figs2-5.yaml").read_text()
+    start = study.index("sweep:")
+    study = study[:start].replace("name: moustafa-figs2-5", "name: sag-fit")
+    study = study.replace("  dynamic:", "  dynamic_unused:").split("  dynamic_unused:")[0]
+    study += "sweep:\n  line.segments.0.length: {start: 10.9774, stop: 10.9824, num: 51}\n"
+    path = tmp_path / "sag.yaml"
+    path.write_text(study)
+    assert main(["run", str(path), "--out", str(tmp_path), "--no-progress"]) == 0
+    with xr.open_dataset(tmp_path / "sag-fit.nc") as ds:
+        ratio = (-ds.z.min("s") / (ds.x.isel(s=-1) - ds.x.isel(s=0))).values
+        first = int(np.argmax(ratio >= 0.08115))  # the printed value, rounded
+        assert float(ds.length[first]) - 10.9774 == pytest.approx(0.0019, abs=0.0002)
