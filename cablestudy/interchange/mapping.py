@@ -408,6 +408,8 @@ def moordyn_to_study(
         comments[("ends", label)] = where
         if pt.kind == "coupled":
             comments[("ends", label)] += ": held at its initial position"
+            if pt.attachment.lower() in ("vessel", "vec", "ves"):
+                comments[("ends", label)] += " (vessel frame taken at the origin)"
         elif pt.kind == "body":
             warnings.append(
                 f"{src}:{pt.source_line}: point {pt.id} is attached to {pt.attachment}: its "
@@ -415,6 +417,11 @@ def moordyn_to_study(
                 f"{label} (bodies are not modelled)"
             )
 
+    if all(e["kind"] == "force" for e in ends.values()):
+        warnings.append(
+            f"{src}: both ends of the chosen lines are free points: the study has no fixed "
+            "end, which cablestudy's statics need; fix one end before running it"
+        )
     data: dict[str, Any] = {
         "name": name,
         "description": f"imported from {src} (MoorDyn v{md.version}), lines "

@@ -468,3 +468,13 @@ def test_current_table_missing_or_unreadable(tmp_path: Path) -> None:
     (tmp_path / "current_profile.txt").write_text("a\nb\nc\n-10 0.5 0 0.2\n")
     with pytest.raises(InterchangeError, match="vertical current"):
         import_model(text, "v2.dat", folder=tmp_path)
+
+
+def test_chain_between_two_free_points_is_imported_with_a_warning() -> None:
+    text = V2.replace("1     Fixed      -800", "1     Free       -800").replace(
+        "3     Coupled    -40", "3     Free       -40"
+    )
+    imported = import_model(text, "free.dat")
+    assert {e["kind"] for e in imported.data["ends"].values()} == {"force"}
+    assert any("no fixed end" in w for w in imported.warnings)
+    assert "vessel frame" in imported_yaml(import_model(V1, "v1.dat"), "v1.dat")
