@@ -14,12 +14,45 @@ anchor types, ...) are reported by name.
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 import yaml
 
-from ..config.loader import _line_map, _StudyLoader
 from .moordyn_format import InterchangeError, Line, LineType, MoorDynFile, Option, Point
+
+Loc = tuple[str | int, ...]
+
+
+class _Loader(yaml.SafeLoader):
+    """Safe YAML loader that also reads ``1e-9`` as a number (YAML 1.2), as design files
+    written by Python tools do."""
+
+
+_Loader.add_implicit_resolver(
+    "tag:yaml.org,2002:float",
+    re.compile(r"^[-+]?(?:[0-9][0-9_]*)(?:\.[0-9_]*)?[eE][-+]?[0-9]+$"),
+    list("-+0123456789"),
+)
+
+
+def _load(text: str) -> Any:
+    return yaml.load(text, Loader=_Loader)  # noqa: S506 - a SafeLoader subclass
+
+
+def _lines(node: yaml.Node | None, loc: Loc, out: dict[Loc, int]) -> None:
+    """Line (1-based) of every YAML path below ``node``."""
+    if node is None:
+        return
+    out.setdefault(loc, node.start_mark.line + 1)
+    if isinstance(node, yaml.MappingNode):
+        for key, value in node.value:
+            out.setdefault(loc + (str(key.value),), key.start_mark.line + 1)
+            _lines(value, loc + (str(key.value),), out)
+    elif isinstance(node, yaml.SequenceNode):
+        for i, item in enumerate(node.value):
+            _lines(item, loc + (i,), out)
+
 
 _TYPE_KEYS = {
     "name", "diameter", "mass_density", "stiffness", "damping", "bending_stiffness",
@@ -34,7 +67,7 @@ def is_mooring_yaml(text: str) -> bool:
     """True if ``text`` looks like a RAFT/MoorPy design YAML (a ``mooring:`` mapping or
     the mapping itself with ``lines`` and ``line_types``)."""
     try:
-        data = yaml.load(text, Loader=_StudyLoader)  # noqa: S506 - a SafeLoader subclass
+        data = _load(text)
     except yaml.YAMLError:
         return False
     if not isinstance(data, dict):
@@ -49,13 +82,12 @@ def parse_mooring_yaml(text: str, source: str) -> tuple[MoorDynFile, list[str]]:
     Points and lines are numbered 1, 2, ... in file order; their names are kept in
     the comments through :attr:`Point.attachment` (points) and the line outputs field."""
     try:
-        node = yaml.compose(text, Loader=_StudyLoader)
-        data = yaml.load(text, Loader=_StudyLoader)  # noqa: S506 - a SafeLoader subclass
+        node = yaml.compose(text, Loader=_Loader)
+        data = _load(text)
     except yaml.YAMLError as exc:
         raise InterchangeError(f"{source}: not valid YAML: {exc}") from None
-    lines_at: dict[tuple[str | int, ...], int] = {}
-    if node is not None:
-        _line_map(node, (), lines_at, [])
+    lines_at: dict[Loc, int] = {}
+    _lines(node, (), lines_at)
     prefix: tuple[str | int, ...] = (
         ("mooring",) if isinstance(data, dict) and "mooring" in data else ()
     )
@@ -175,6 +207,6 @@ def parse_mooring_yaml(text: str, source: str) -> tuple[MoorDynFile, list[str]]:
 
 def line_names(text: str) -> dict[str, int]:
     """Line name -> number (1, 2, ... in file order) of a RAFT/MoorPy mooring YAML."""
-    data = yaml.load(text, Loader=_StudyLoader)  # noqa: S506 - a SafeLoader subclass
+    data = _load(text)
     body = data.get("mooring", data) if isinstance(data, dict) else {}
     return {str(ln.get("name", i + 1)): i + 1 for i, ln in enumerate(body.get("lines") or [])}
