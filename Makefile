@@ -24,7 +24,7 @@ test: install
 	$(BIN)/python -m pytest -q tests
 
 figures: install
-	$(BIN)/cablestudy figures --results $(OUT) --out $(OUT)/figures
+	$(BIN)/cablestudy figures --results $(OUT) --out $(OUT)/figures --docs docs
 
 bench: install
 	$(BIN)/cablestudy bench --out $(OUT)/bench --readme README.md --docs docs/bench

@@ -25,6 +25,7 @@ from .config.analysis import (
 from .config.ends import FixedEnd
 from .config.loader import StudyError, StudySource
 from .counters import COUNTERS
+from .physics.profile import profile_quantities
 from .problem import line_model, medium, static_problem
 from .statics import (
     STATIC_SOLVERS,
@@ -280,8 +281,10 @@ def modal_outputs(res: ModalResult, s: np.ndarray, *, mode_shapes: bool) -> dict
     return out
 
 
-def static_outputs(res: StaticResult) -> dict[str, np.ndarray]:
-    return {
+def static_outputs(res: StaticResult, study: Any = None) -> dict[str, np.ndarray]:
+    """The static solution's outputs; with the case's ``study``, also the quantities
+    derived along the line (:func:`cablestudy.physics.profile.profile_quantities`)."""
+    out = {
         "arc_length": res.s,
         "x": res.position[:, 0],
         "y": res.position[:, 1],
@@ -296,6 +299,23 @@ def static_outputs(res: StaticResult) -> dict[str, np.ndarray]:
         "static_residual": np.asarray(res.residual),
         "drag_iterations": np.asarray(res.drag_iterations),
     }
+    if study is not None:
+        env = study.environment
+        segs = study.line.segments
+        ends = np.cumsum([seg.length for seg in segs])
+        k = np.minimum(np.searchsorted(ends, res.s, side="right"), len(segs) - 1)
+        out.update(
+            profile_quantities(
+                res.s,
+                res.position,
+                res.tension,
+                axial_stiffness=np.array([segs[i].axial_stiffness for i in k]),
+                area=np.array([segs[i].area for i in k]),
+                density=env.density,
+                gravity=env.gravity,
+            )
+        )
+    return out
 
 
 #: discrete static equilibria of the dynamic model, by (static hash, elements)
@@ -556,7 +576,7 @@ def evaluate_case(case: Case, *, presolved: dict[str, StaticResult] | None = Non
     try:
         res = solve_static(case, deadline, presolved)
         status, message = res.status, res.message
-        data.update(static_outputs(res))
+        data.update(static_outputs(res, case.study))
         modal = case.study.analysis.modal
         if modal is not None and status == STATUS_OK:
             mres = solve_modal(case, res, deadline)

@@ -1,4 +1,5 @@
-"""Command line: ``cablestudy run | validate | schema | figures | bench``."""
+"""Command line: ``cablestudy run | validate | schema | figures | bench | import | export |
+plot``."""
 
 from __future__ import annotations
 
@@ -25,6 +26,8 @@ def _load(path: str, max_bytes: int | None = None):  # noqa: ANN202
     from .config.loader import read_study_source
 
     src = read_study_source(path, max_bytes=max_bytes)
+    for note in src.notes:
+        print(f"warning: {note}", file=sys.stderr)
     axes, cases = expand_cases(src)
     check_supported(cases, src)
     return src, axes, cases
@@ -96,7 +99,11 @@ def cmd_figures(args: argparse.Namespace) -> int:
     from .figures import build_all
 
     written = build_all(
-        Path(args.results), Path(args.out), configs=Path(args.configs), run_missing=not args.no_run
+        Path(args.results),
+        Path(args.out),
+        configs=Path(args.configs),
+        run_missing=not args.no_run,
+        docs=Path(args.docs) if args.docs else None,
     )
     for path in written:
         print(path)
@@ -122,6 +129,86 @@ def _add_size_option(p: argparse.ArgumentParser) -> None:
         help="refuse study files larger than this (bytes, or 512k, 4M, 1G; default: "
         "$CABLESTUDY_MAX_STUDY_SIZE, else 1M)",
     )
+
+
+def cmd_import(args: argparse.Namespace) -> int:
+    import re
+
+    from .interchange import InterchangeError, import_model, imported_yaml, read_in_scope
+    from .interchange.moorpy_yaml import is_mooring_yaml
+
+    try:
+        text, path = read_in_scope(args.file, None)
+        if args.format == "moorpy" and not is_mooring_yaml(text):
+            raise InterchangeError(
+                f"{args.file}: not a RAFT/MoorPy mooring YAML (a mapping 'mooring:' with "
+                "points, lines and line_types)"
+            )
+        name = args.name or re.sub(r"[^A-Za-z0-9_.\-]", "-", path.stem).lstrip("-._") or "imported"
+        imported = import_model(text, args.file, lines=args.line, name=name, folder=path.parent)
+    except InterchangeError as exc:
+        print(f"cannot import: {exc}", file=sys.stderr)
+        return 2
+    if imported.warnings:
+        print(f"{args.file}: not modelled by cablestudy (not imported):", file=sys.stderr)
+        for w in imported.warnings:
+            print(f"  - {w}", file=sys.stderr)
+    sys.stdout.write(imported_yaml(imported, args.file))
+    return 0
+
+
+def cmd_export(args: argparse.Namespace) -> int:
+    from .config.loader import read_study_source
+    from .interchange import InterchangeError
+    from .interchange.case_export import export_case
+
+    src = read_study_source(args.config)
+    for note in src.notes:
+        print(f"warning: {note}", file=sys.stderr)
+    try:
+        exported = export_case(src, args.case or [])
+    except InterchangeError as exc:
+        print(f"cannot export: {exc}", file=sys.stderr)
+        return 2
+    for w in exported.warnings:
+        print(f"warning: {w}", file=sys.stderr)
+    if exported.extra_files and not args.out:
+        print(
+            f"cannot export: the file reads {', '.join(exported.extra_files)} beside it; "
+            "give --out FILE so they can be written in the same folder",
+            file=sys.stderr,
+        )
+        return 2
+    if args.out:
+        out = Path(args.out)
+        out.parent.mkdir(parents=True, exist_ok=True)
+        out.write_text(exported.text)
+        for name, text in exported.extra_files.items():
+            (out.parent / name).write_text(text)
+        print(out)
+    else:
+        sys.stdout.write(exported.text)
+    return 0
+
+
+def cmd_plot(args: argparse.Namespace) -> int:
+    from .plotting import PlotError, plot_result
+
+    try:
+        out = plot_result(
+            args.result,
+            args.var,
+            x=args.x,
+            hue=args.hue,
+            sel=args.sel or [],
+            out=args.out,
+            shape=args.shape,
+        )
+    except PlotError as exc:
+        print(f"cannot plot: {exc}", file=sys.stderr)
+        return 2
+    print(out)
+    return 0
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -168,6 +255,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", default="results/figures")
     p.add_argument("--configs", default="configs")
     p.add_argument("--no-run", action="store_true", help="do not run missing studies")
+    p.add_argument(
+        "--docs",
+        default=None,
+        help="also write the checked gallery DOCS/figures.md with the figures in DOCS/figures/",
+    )
     p.set_defaults(func=cmd_figures)
 
     p = sub.add_parser("bench", help="run time against error benchmarks")
@@ -177,6 +269,57 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--readme", default=None, help="README to update between bench markers")
     p.add_argument("--docs", default=None, help="folder for the committed plots")
     p.set_defaults(func=cmd_bench)
+
+    p = sub.add_parser(
+        "import", help="write a study (YAML, to stdout) from another tool's model file"
+    )
+    p.add_argument(
+        "format",
+        choices=["moordyn", "moorpy"],
+        help="moordyn: a MoorDyn input file (v1 or v2); moorpy: a RAFT/MoorPy mooring YAML "
+        "(either is also detected from the file's content)",
+    )
+    p.add_argument("file")
+    p.add_argument(
+        "--line",
+        action="append",
+        default=None,
+        help="a line ID (MoorDyn) or name (mooring YAML) of the line, end to end; repeat "
+        "for a line of several (default: all lines, which must form one chain)",
+    )
+    p.add_argument("--name", default=None, help="study name (default: from the file name)")
+    p.set_defaults(func=cmd_import)
+
+    p = sub.add_parser("export", help="write one case of a study as another tool's input file")
+    p.add_argument("format", choices=["moordyn"], help="moordyn: a MoorDyn v2 input file")
+    p.add_argument("config")
+    p.add_argument(
+        "--case",
+        action="append",
+        default=None,
+        metavar="DIM=VALUE",
+        help="the case's sweep coordinate, one per swept dimension",
+    )
+    p.add_argument("--out", default=None, help="output file (default: standard output)")
+    p.set_defaults(func=cmd_export)
+
+    p = sub.add_parser("plot", help="quick-look plot of a variable of a result file")
+    p.add_argument("result", help="a result file (.nc)")
+    p.add_argument("var", help="the variable to draw")
+    p.add_argument("--x", default=None, help="dimension on the x axis")
+    p.add_argument("--hue", default=None, help="dimension drawn as one curve per value")
+    p.add_argument(
+        "--sel",
+        action="append",
+        default=None,
+        metavar="DIM=VALUE",
+        help="pick the nearest value of a dimension (repeatable)",
+    )
+    p.add_argument("--out", default=None, help="PNG file (default: RESULT-VAR.png)")
+    p.add_argument(
+        "--shape", action="store_true", help="draw profiles on s as line shapes in the x-z plane"
+    )
+    p.set_defaults(func=cmd_plot)
     return parser
 
 

@@ -107,6 +107,7 @@ def static_problem(study: Study) -> StaticProblem:
         tolerance=settings.tolerance,
         max_iterations=settings.max_iterations,
         drag_elements=settings.drag_elements or 0,
+        stretched_drag_diameter=settings.drag_diameter == "stretched",
         **_installation(settings.installation),
     )
 

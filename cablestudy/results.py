@@ -38,6 +38,16 @@ OUTPUTS: dict[str, OutputVariable] = {
     "y": OutputVariable(("s",), "m", "y position along the line"),
     "z": OutputVariable(("s",), "m", "z position (up) along the line"),
     "tension": OutputVariable(("s",), "N", "effective tension along the line"),
+    "tension_wall": OutputVariable(
+        ("s",), "N", "actual (wall) tension along the line: effective tension + rho g z A"
+    ),
+    "elevation": OutputVariable(("s",), "rad", "elevation of the tangent above the horizontal"),
+    "azimuth": OutputVariable(
+        ("s",), "rad", "azimuth of the tangent's horizontal part, from +x towards +y"
+    ),
+    "elongation": OutputVariable(
+        ("s",), "m", "stretched minus unstretched length from end A (integral of T / EA)"
+    ),
     "arc_length": OutputVariable(("s",), "m", "unstretched arc length from end A"),
     "force_a": OutputVariable(("component",), "N", "force of the line on the attachment at end A"),
     "force_b": OutputVariable(("component",), "N", "force of the line on the attachment at end B"),

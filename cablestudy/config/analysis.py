@@ -45,6 +45,12 @@ class StaticSettings(StrictModel):
     installation: Installation | None = Field(
         None, description="steady cable laying; omit for a line at rest (static)"
     )
+    drag_diameter: Literal["unstretched", "stretched"] = Field(
+        "unstretched",
+        description="diameter in the static drag law: 'unstretched' d (dodaran-park), or "
+        "'stretched' d (1 + e)^(-1/2), thinned as the line stretches at constant volume "
+        "(vaz-patel; method shooting); matters only with current or laying",
+    )
 
     @field_validator("method")
     @classmethod

@@ -74,6 +74,24 @@ class Attachment(StrictModel):
     name: str | None = None
 
 
+class MoorDynLineRef(StrictModel):
+    """``line: {moordyn: path, line: N}``: the line is read from a MoorDyn input file (or
+    a RAFT/MoorPy mooring YAML) when the study is loaded, into segments and attachments,
+    so a sweep can vary them (``line.segments.0.length``). The environment and the ends
+    stay those of the study."""
+
+    moordyn: str = Field(
+        min_length=1,
+        description="MoorDyn input file or RAFT/MoorPy mooring YAML, relative to the study "
+        "file's folder and inside it",
+    )
+    line: int | str | list[int | str] | None = Field(
+        None,
+        description="MoorDyn line ID(s) (or mooring-YAML line names) forming the line end "
+        "to end; omit: all lines of the file",
+    )
+
+
 class Line(StrictModel):
     segments: list[Segment] = Field(min_length=1, max_length=100)
     attachments: list[Attachment] = []

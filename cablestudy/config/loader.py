@@ -45,6 +45,8 @@ class StudySource:
     data: dict[str, Any]
     lines: dict[Loc, int]
     source: str
+    #: what files the study refers to hold and cablestudy does not model (by name)
+    notes: tuple[str, ...] = ()
 
     @property
     def sha256(self) -> str:
@@ -143,7 +145,60 @@ def read_study_source(path: str | Path, *, max_bytes: int | None = None) -> Stud
             ],
             str(path),
         ) from None
-    return parse_study_text(text, str(path), max_bytes=limit)
+    return resolve_references(parse_study_text(text, str(path), max_bytes=limit), path.parent)
+
+
+def resolve_references(src: StudySource, folder: Path) -> StudySource:
+    """Replace ``line: {moordyn: path, line: N}`` by the segments and attachments it
+    names (see :class:`~cablestudy.config.line.MoorDynLineRef`); other studies pass
+    through unchanged. Raises :class:`StudyError` at the ``line:`` key's line."""
+    from .line import MoorDynLineRef
+
+    line = src.data.get("line")
+    if not (isinstance(line, dict) and "moordyn" in line):
+        return src
+    where = src.line_of(("line", "moordyn"))
+    try:
+        ref = MoorDynLineRef.model_validate(line)
+    except ValidationError as exc:
+        problems = []
+        for err in exc.errors(include_url=False):
+            sub = ("line",) + tuple(err["loc"])[:2]
+            msg = err["msg"].replace("Input should be", "must be")
+            if err["type"] == "extra_forbidden":
+                msg = f"unknown key; allowed keys here: {', '.join(MoorDynLineRef.model_fields)}"
+            problems.append(
+                f"{src.line_of(sub) or where}: {dotted(sub)}: {msg} (got {_shown(err['input'])})"
+            )
+        raise StudyError(problems, src.source) from None
+    from ..interchange import InterchangeError, line_from_reference, read_in_scope
+
+    try:
+        resolved, notes = line_from_reference(ref.moordyn, ref.line, folder)
+    except InterchangeError as exc:
+        raise StudyError(
+            [f"{where}: line.moordyn: {exc} (got {ref.moordyn!r})"], src.source
+        ) from None
+    data = dict(src.data)
+    data["line"] = resolved
+    # the referenced file travels with the study text (as YAML comments), so its hash
+    # and the result files' study_yaml change when the file does
+    raw, _ = read_in_scope(ref.moordyn, folder)
+    digest = hashlib.sha256(raw.encode()).hexdigest()
+    appendix = "".join(f"\n#| {line}" for line in raw.splitlines())
+    text = (
+        src.text.rstrip("\n")
+        + f"\n\n# ---- line.moordyn {ref.moordyn} (sha256 {digest}), as read:"
+        + appendix
+        + "\n"
+    )
+    return StudySource(
+        text=text,
+        data=data,
+        lines=src.lines,
+        source=src.source,
+        notes=tuple(f"line.moordyn {ref.moordyn}: {n}" for n in notes),
+    )
 
 
 # ----------------------------------------------------------------- error wording

@@ -6,20 +6,31 @@ import math
 import re
 from typing import Any
 
-from pydantic import Field, field_validator, model_validator
+from pydantic import ConfigDict, Field, field_validator, model_validator
 
 from .analysis import Analysis
 from .base import FieldError, StrictModel
 from .ends import Ends, FixedEnd, MooringEnd
 from .environment import Environment
-from .line import Line
+from .line import Line, MoorDynLineRef
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.\-]*$")
+
+
+def _line_or_reference(schema: dict[str, Any]) -> None:
+    """JSON Schema: ``line`` is the line itself or ``{moordyn: path, line: N}``, which the
+    loader resolves into the line before validation (:class:`MoorDynLineRef`)."""
+    line = schema.get("properties", {}).get("line")
+    if line is not None:
+        ref = MoorDynLineRef.model_json_schema()
+        schema["properties"]["line"] = {"anyOf": [line, ref]}
 
 
 class Study(StrictModel):
     """A whole study file. ``sweep`` is kept raw here and expanded by
     :func:`cablestudy.cases.expand_cases`."""
+
+    model_config = ConfigDict(**StrictModel.model_config, json_schema_extra=_line_or_reference)
 
     name: str = Field(description="study name; results go to <out>/<name>.nc")
     description: str = ""

@@ -53,8 +53,12 @@ def build_all(
     configs: Path = Path("configs"),
     run_missing: bool = True,
     only: list[str] | None = None,
+    docs: Path | None = None,
 ) -> list[Path]:
-    """Build every registered figure (or those in ``only``); returns the PNG paths."""
+    """Build every registered figure (or those in ``only``); returns the PNG paths.
+
+    With ``docs``, also copy the figures to ``docs/figures/`` and write the checked
+    gallery ``docs/figures.md`` (:mod:`.gallery`)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -75,4 +79,21 @@ def build_all(
             path = _ensure_study(study, results, configs, run_missing)
             datasets[study] = xr.load_dataset(path)
         written.append(builder(datasets, out))
+    if docs is not None:
+        import shutil
+
+        from .gallery import gallery_markdown, studies_needed
+
+        data = {
+            name: xr.load_dataset(_ensure_study(name, results, configs, run_missing))
+            for name in studies_needed()
+        }
+        images = docs / "figures"
+        images.mkdir(parents=True, exist_ok=True)
+        copied = []
+        for path in written:
+            shutil.copyfile(path, images / path.name)
+            copied.append(images / path.name)
+        (docs / "figures.md").write_text(gallery_markdown(data, copied, "figures"))
+        written.append(docs / "figures.md")
     return written

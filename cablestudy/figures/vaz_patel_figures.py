@@ -30,12 +30,36 @@ def _segment_ends(ds: xr.Dataset) -> list[float]:
     return list(np.cumsum(lengths)[:-1])
 
 
+def _profile_panels(axes: list[plt.Axes], ds: xr.Dataset, dim: str, labels: list[str]) -> None:
+    """Elevation and azimuth of the tangent [deg] and elongation [m] along s, the
+    seed's other outputs (cablestudy.physics.profile)."""
+    for i, label in enumerate(labels):
+        case = ds.isel({dim: i})
+        if int(case["status"]) != 0:
+            continue
+        axes[0].plot(case["s"], np.degrees(case["elevation"]), label=label)
+        axes[1].plot(case["s"], np.degrees(case["azimuth"]), label=label)
+        axes[2].plot(case["s"], case["elongation"], label=label)
+    what = ("elevation of the tangent [deg]", "azimuth of the tangent [deg]", "elongation [m]")
+    for ax, ylabel in zip(axes, what, strict=True):
+        ax.set(xlabel="unstretched arc length s [m]", ylabel=ylabel)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+
+
+def _tensions(ax: plt.Axes, case: xr.Dataset, label: str) -> None:
+    """Effective tension (solid) and actual wall tension (dashed, same colour) [kN]."""
+    (line,) = ax.plot(case["s"], case["tension"] / 1e3, label=label)
+    ax.plot(case["s"], case["tension_wall"] / 1e3, "--", color=line.get_color(), lw=0.9)
+
+
 @register("vaz-patel-mooring", ("vaz-patel-segmented-mooring",))
 def mooring(data: dict[str, xr.Dataset], out: Path) -> Path:
     ds = data["vaz-patel-segmented-mooring"]
     dim = "current_heading"
     labels = _labels(ds, dim, "deg")
-    fig, axes = plt.subplots(1, 3, figsize=(13, 4))
+    fig, grid = plt.subplots(2, 3, figsize=(13, 8))
+    axes = grid[0]
     for i, label in enumerate(labels):
         case = ds.isel({dim: i})
         if int(case["status"]) != 0:
@@ -44,11 +68,10 @@ def mooring(data: dict[str, xr.Dataset], out: Path) -> Path:
         axes[0].plot(case["x"], case["z"], label=f"current {label}, laid {laid:.0f} m")
         axes[1].plot(case["x"], case["y"], label=f"current {label}")
         fb = -case["force_b"].values
-        axes[2].plot(
-            case["s"],
-            case["tension"] / 1e3,
-            label=f"{label}: top H = {np.hypot(fb[0], fb[1]) / 1e3:.1f} kN, "
-            f"V = {fb[2] / 1e3:.1f} kN",
+        _tensions(
+            axes[2],
+            case,
+            f"{label}: top H = {np.hypot(fb[0], fb[1]) / 1e3:.1f} kN, V = {fb[2] / 1e3:.1f} kN",
         )
     for s_b in _segment_ends(ds):
         axes[2].axvline(s_b, color="0.6", lw=0.8, ls="--")
@@ -57,11 +80,12 @@ def mooring(data: dict[str, xr.Dataset], out: Path) -> Path:
     axes[2].set(
         xlabel="unstretched arc length from anchor s [m]",
         ylabel="tension [kN]",
-        title="tension (dashed: chain / polyester joints)",
+        title="effective (solid), wall (dashed) tension; grey: joints",
     )
     for ax in axes:
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
+    _profile_panels(list(grid[1]), ds, dim, [f"current {lab}" for lab in labels])
     fig.suptitle(
         "Segmented deep-water mooring in a sheared current (vaz-patel example 2, shooting solver)",
         fontsize=10,
@@ -78,8 +102,13 @@ def turning_current(data: dict[str, xr.Dataset], out: Path) -> Path:
     ds = data["vaz-patel-turning-current"]
     dim = "lower_heading"
     labels = _labels(ds, dim, "deg")
-    fig, axes = plt.subplots(2, 2, figsize=(10, 8))
+    fig = plt.figure(figsize=(11, 11))
+    spec = fig.add_gridspec(3, 6)
+    axes = np.array(
+        [[fig.add_subplot(spec[r, 0:3]), fig.add_subplot(spec[r, 3:6])] for r in range(2)]
+    )
     (ax_xz, ax_xy), (ax_yz, ax_t) = axes
+    row3 = [fig.add_subplot(spec[2, 2 * k : 2 * k + 2]) for k in range(3)]
     for i, label in enumerate(labels):
         case = ds.isel({dim: i})
         if int(case["status"]) != 0:
@@ -88,18 +117,19 @@ def turning_current(data: dict[str, xr.Dataset], out: Path) -> Path:
         ax_xz.plot(case["x"], case["z"], label=text)
         ax_xy.plot(case["x"], case["y"], label=f"{text}, laid {float(case['laid_length']):.0f} m")
         ax_yz.plot(case["y"], case["z"], label=text)
-        ax_t.plot(case["s"], case["tension"] / 1e3, label=text)
+        _tensions(ax_t, case, text)
     ax_xz.set(xlabel="x [m]", ylabel="z [m]", title="elevation (x-z)")
     ax_xy.set(xlabel="x [m]", ylabel="y [m]", title="plan (x-y)")
     ax_yz.set(xlabel="y [m]", ylabel="z [m]", title="side (y-z)")
     ax_t.set(
         xlabel="unstretched arc length from the seabed end s [m]",
         ylabel="tension [kN]",
-        title="tension",
+        title="effective (solid) and wall (dashed) tension",
     )
     for ax in axes.flat:
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
+    _profile_panels(row3, ds, dim, [f"lower current {lab}" for lab in labels])
     fig.suptitle(
         "HA telecommunication cable (seed Table 1) in a current turning with depth "
         "(vaz-patel example 3, shooting solver)",
@@ -117,7 +147,8 @@ def cable_installation(data: dict[str, xr.Dataset], out: Path) -> Path:
     ds = data["vaz-patel-cable-installation"]
     dim = "speed"
     labels = _labels(ds, dim, "m/s")
-    fig, axes = plt.subplots(1, 3, figsize=(13, 4))
+    fig, grid = plt.subplots(2, 3, figsize=(13, 8))
+    axes = grid[0]
     for i, label in enumerate(labels):
         case = ds.isel({dim: i})
         if int(case["status"]) != 0:
@@ -125,17 +156,18 @@ def cable_installation(data: dict[str, xr.Dataset], out: Path) -> Path:
         text = f"transverse current {label}"
         axes[0].plot(case["x"], case["z"], label=text)
         axes[1].plot(case["x"], case["y"], label=f"{text}, laid {float(case['laid_length']):.0f} m")
-        axes[2].plot(case["s"], case["tension"] / 1e3, label=text)
+        _tensions(axes[2], case, text)
     axes[0].set(xlabel="x (ship's heading) [m]", ylabel="z [m]", title="elevation")
     axes[1].set(xlabel="x [m]", ylabel="y [m]", title="plan (ship at the right end)")
     axes[2].set(
         xlabel="unstretched arc length from the seabed end s [m]",
         ylabel="tension [kN]",
-        title="tension",
+        title="effective (solid) and wall (dashed) tension",
     )
     for ax in axes:
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
+    _profile_panels(list(grid[1]), ds, dim, [f"current {lab}" for lab in labels])
     fig.suptitle(
         "Steady laying of the HA cable (seed Table 1), ship 1.0 m/s, pay-out "
         "1.05 m/s, in a transverse sheared current (vaz-patel example 1)",

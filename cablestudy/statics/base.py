@@ -147,6 +147,8 @@ class StaticProblem:
     #: towards A [m/s], and the horizontal velocity of the laying frame [m/s] (3,)
     payout_speed: float = 0.0
     touchdown_velocity: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    #: drag on the stretched diameter d (1 + e)^(-1/2) (vaz-patel seed) instead of d
+    stretched_drag_diameter: bool = False
 
     @property
     def is_installation(self) -> bool:

@@ -384,6 +384,8 @@ class ElasticCatenarySolver:
             out.append("current")
         if problem.is_installation:
             out.append("installation (pay-out speed, touchdown velocity)")
+        if problem.stretched_drag_diameter and problem.medium.has_current:
+            out.append("drag on the stretched diameter (drag_diameter: stretched)")
         return out
 
     def solve(self, problem: StaticProblem, *, deadline: float | None = None) -> StaticResult:

@@ -860,6 +860,10 @@ class SemiAnalyticSolver:
             out.append("lines with no fixed end (one end must be 'fixed')")
         if problem.is_installation:
             out.append("installation (pay-out speed, touchdown velocity): use method 'shooting'")
+        if problem.stretched_drag_diameter and problem.medium.has_current:
+            out.append(
+                "drag on the stretched diameter (drag_diameter: stretched): use method 'shooting'"
+            )
         return out
 
     # ------------------------------------------------------------------ public

@@ -23,11 +23,11 @@ with f = (0, 0, -w) + (1 + T / EA) f_drag(t, z). The drag per unit *stretched* l
 Morison's split into normal and tangential parts of the current velocity relative to the
 tangent (dodaran-park seed eqs. 38-39, :func:`cablestudy.physics.hydro.drag_per_length`;
 there, as here, the drag of an element is proportional to its stretched length and the
-unstretched diameter; the vaz-patel seed also thins the diameter as d (1 + e)^(-1/2),
-a Poisson effect of relative size T / 2EA that is left out here so that both static
-solvers share one drag law). The current is the piecewise-linear profile in z of the study, so
-it may turn with depth; drag depends on the local tangent and height and so sits inside
-the ODE (no outer iteration).
+unstretched diameter; with ``stretched_drag_diameter`` (study key
+``analysis.static.drag_diameter: stretched``) the diameter thins as d (1 + e)^(-1/2), as
+in the vaz-patel seed, a change of relative size T / 2EA). The current is the
+piecewise-linear profile in z of the study, so it may turn with depth; drag depends on
+the local tangent and height and so sits inside the ODE (no outer iteration).
 
 Azimuth singularity: psi is undefined where t is parallel to e3. The reference frame is
 chosen afresh at the start of every integration leg with e1 = t and e3 perpendicular to t
@@ -218,6 +218,8 @@ class _Env:
     payout: float = 0.0
     c_current: float = 1.0
     c_frame: float = 1.0
+    #: drag on the stretched diameter d (1 + e)^(-1/2) (vaz-patel seed, eqs. 4a-4c)
+    stretched: bool = False
 
     @property
     def installation(self) -> bool:
@@ -246,6 +248,7 @@ class _Env:
             self.payout,
             c_current,
             c_frame,
+            self.stretched,
         )
 
     @property
@@ -288,7 +291,15 @@ def _load(
         nx, ny, nz = ux - ut * t[0], uy - ut * t[1], uz - ut * t[2]
         ut += env.payout_speed
         un = math.sqrt(nx * nx + ny * ny + nz * nz)
-        kk = 0.5 * env.density * line.diameter[k] * (1.0 + T / line.axial_stiffness[k])
+        stretch = 1.0 + T / line.axial_stiffness[k]
+        # drag per stretched length times the stretch; the stretched diameter thins as
+        # (1 + e)^(-1/2), so its drag per unstretched length grows as (1 + e)^(1/2)
+        kk = (
+            0.5
+            * env.density
+            * line.diameter[k]
+            * (math.sqrt(stretch) if env.stretched else stretch)
+        )
         cn = kk * line.drag_normal[k] * un
         ct = kk * math.pi * line.drag_tangential[k] * abs(ut) * ut
         fx += cn * nx + ct * t[0]
@@ -747,6 +758,7 @@ class ShootingSolver:
             current_u=tuple(tuple(float(c) for c in u) for u in cu),  # type: ignore[misc]
             frame=tuple(float(c) for c in problem.touchdown_velocity),  # type: ignore[arg-type]
             payout=-problem.payout_speed if reverse else problem.payout_speed,
+            stretched=problem.stretched_drag_diameter,
         )
         scale = float(np.sum(np.abs(model.weight) * model.length))
         if model.attachment_force.size:

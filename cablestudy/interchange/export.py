@@ -1,0 +1,246 @@
+"""Writing one case of a study as a MoorDyn version 2 input file.
+
+The line becomes a chain of MoorDyn lines: one line type per segment, the line split
+at segment joints and at attachments, which become free points with their mass and
+volume. End A is MoorDyn's anchor end and end B the fairlead end. A fixed end is a
+``Fixed`` point; the end an excitation moves (end B without dynamics) is ``Coupled``,
+so a coupling program drives it. Ends given by a force (towing, mooring) are written
+at the static position our solver finds for them.
+
+MoorDyn integrates explicitly, so its time step must resolve the fastest mode of the
+discretised line: the axial mode of its shortest segment, omega_max = 2 c / l with
+c = sqrt(EA / (m + rho A Ca_ax)) (a lumped-mass chain's highest frequency is twice
+that of one segment). We take dtM = T_min / 20 = pi l / (10 c), rounded down to
+1, 2 or 5 times a power of ten: about 20 steps per shortest period.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..config import FixedEnd, Study
+from .moordyn_format import InterchangeError
+
+
+@dataclass(frozen=True)
+class ExportedCase:
+    """A MoorDyn input file, the files it reads beside it, and what could not be kept."""
+
+    text: str
+    extra_files: dict[str, str]
+    warnings: list[str]
+    coupled: dict[int, np.ndarray]  # point ID -> position [m] to pass to MoorDyn's Init
+    fairlead_line: int  # the MoorDyn line ending at end B
+    time_step: float  # dtM [s]
+
+
+def _num(v: float) -> str:
+    return (
+        np.format_float_positional(v, unique=True, trim="-")
+        if 1e-4 <= abs(v) < 1e6
+        else (np.format_float_scientific(v, unique=True, trim="-") if v != 0.0 else "0")
+    )
+
+
+def _floor125(x: float) -> float:
+    """Largest 1, 2 or 5 times a power of ten not above ``x``."""
+    e = math.floor(math.log10(x))
+    for m in (5.0, 2.0, 1.0):
+        if m * 10.0**e <= x * (1 + 1e-12):
+            return m * 10.0**e
+    return 10.0**e
+
+
+def moordyn_input(
+    study: Study,
+    *,
+    end_positions: tuple[np.ndarray, np.ndarray],
+    position_at: np.ndarray,
+    s_nodes: np.ndarray,
+    coupled_ends: set[str],
+    title: str,
+) -> ExportedCase:
+    """A MoorDyn v2 input file of ``study`` (one case, already resolved).
+
+    Parameters
+    ----------
+    study : the case's study
+    end_positions : static positions of ends A and B [m]
+    position_at : static positions (n, 3) at ``s_nodes`` [m], for free points' initial guess
+    s_nodes : unstretched arc lengths of ``position_at`` [m]
+    coupled_ends : ends written as Coupled points ('a', 'b')
+    title : front-matter line
+    """
+    env = study.environment
+    rho, g = env.density, env.gravity
+    segs = study.line.segments
+    warnings: list[str] = []
+    bounds = np.concatenate([[0.0], np.cumsum([s.length for s in segs])])
+    total = float(bounds[-1])
+    for i, att in enumerate(study.line.attachments):
+        if any(att.force):
+            raise InterchangeError(
+                f"line.attachments.{i}.force: a steady force {att.force} N has no MoorDyn v2 "
+                "equivalent (points carry mass and volume only); give it as mass or volume"
+            )
+    # break points: segment joints and attachments; point masses/volumes at each
+    cuts = {float(b): [0.0, 0.0] for b in bounds}
+    for i, att in enumerate(study.line.attachments):
+        if att.s <= 0.0 or att.s >= total:
+            warnings.append(
+                f"line.attachments.{i} at s = {att.s:g} m sits on an end point: MoorDyn passes "
+                "its load straight to the support, as does a fixed end here"
+            )
+        key = min(cuts, key=lambda c, s=att.s: abs(c - s))
+        if abs(key - att.s) > 1e-9 * total:
+            key = float(att.s)
+            cuts[key] = [0.0, 0.0]
+        cuts[key][0] += att.mass
+        cuts[key][1] += att.volume
+    positions = sorted(cuts)
+    # line types: one per segment
+    type_rows = []
+    for i, seg in enumerate(segs):
+        m = seg.mass_in(rho, g)
+        if seg.weight_in_fluid is not None and seg.mass_per_length is not None:
+            implied = (m - rho * seg.area) * g
+            if abs(implied - seg.weight_in_fluid) > 1e-9 * max(abs(implied), 1.0):
+                warnings.append(
+                    f"line.segments.{i}: weight_in_fluid {seg.weight_in_fluid:g} N/m differs "
+                    f"from (mass - rho A) g = {implied:g} N/m; MoorDyn uses mass and diameter"
+                )
+        ba = -seg.damping_ratio if seg.damping_ratio > 0.0 else 0.0
+        type_rows.append(
+            f"seg{i + 1}  {_num(seg.diameter)}  {_num(m)}  {_num(seg.axial_stiffness)}  "
+            f"{_num(ba)}  {_num(seg.bending_stiffness)}  {_num(seg.drag_normal)}  "
+            f"{_num(seg.added_mass_normal)}  {_num(seg.drag_tangential)}  "
+            f"{_num(seg.added_mass_tangential)}"
+        )
+    dyn = study.analysis.dynamic
+    n_total = dyn.elements if dyn is not None else study.analysis.static.nodes - 1
+    # points
+    point_rows, coupled = [], {}
+    end_a, end_b = end_positions
+    for k, s in enumerate(positions):
+        pid = k + 1
+        if k == 0 or k == len(positions) - 1:
+            label = "a" if k == 0 else "b"
+            end = study.ends.a if k == 0 else study.ends.b
+            pos = (
+                np.asarray(end.position)
+                if isinstance(end, FixedEnd)
+                else (end_a if k == 0 else end_b)
+            )
+            kind = "Coupled" if label in coupled_ends else "Fixed"
+            if kind == "Coupled":
+                coupled[pid] = np.asarray(pos, dtype=float)
+            note = f"end {label}" + (
+                "" if isinstance(end, FixedEnd) else f" ({end.kind} end, at its static position)"
+            )
+        else:
+            kind = "Free"
+            pos = np.array([np.interp(s, s_nodes, position_at[:, j]) for j in range(3)])
+            note = f"s = {s:g} m"
+        mass, vol = cuts[s]
+        point_rows.append(
+            f"{pid}  {kind}  {_num(pos[0])}  {_num(pos[1])}  {_num(pos[2])}  {_num(mass)}  "
+            f"{_num(vol)}  0  0   ! {note}"
+        )
+    # lines between consecutive points
+    line_rows = []
+    dt = math.inf
+    for k in range(len(positions) - 1):
+        s0, s1 = positions[k], positions[k + 1]
+        iseg = int(np.searchsorted(bounds, 0.5 * (s0 + s1)) - 1)
+        seg = segs[iseg]
+        length = s1 - s0
+        nseg = max(1, round(n_total * length / total))
+        c = math.sqrt(
+            seg.axial_stiffness / (seg.mass_in(rho, g) + rho * seg.area * seg.added_mass_tangential)
+        )
+        dt = min(dt, math.pi * (length / nseg) / (10.0 * c))
+        line_rows.append(f"{k + 1}  seg{iseg + 1}  {k + 1}  {k + 2}  {_num(length)}  {nseg}  -")
+    dtm = _floor125(dt)
+    # options
+    lowest = min(end_a[2], end_b[2], float(position_at[:, 2].min()))
+    opts = [f"{_num(g)}  g", f"{_num(rho)}  rho"]
+    if env.depth is not None:
+        opts.append(
+            f"{_num(env.depth)}  WtrDpth   ! kBot, cBot: MoorDyn's default seabed penalty "
+            "(cablestudy's seabed is rigid)"
+        )
+        if env.seabed.slope_deg != 0.0:
+            warnings.append(
+                f"environment.seabed.slope_deg = {env.seabed.slope_deg:g}: MoorDyn's seabed "
+                "here is flat at WtrDpth (a bathymetry file is not written)"
+            )
+        if env.seabed.friction > 0.0:
+            opts.append(f"{_num(env.seabed.friction)}  FrictionCoefficient")
+    else:
+        deep = math.ceil(-lowest + 10.0 * total)
+        opts.append(
+            f"{deep}  WtrDpth   ! the study has no seabed: placed 10 line lengths below the "
+            "lowest point, out of reach"
+        )
+    opts += [
+        f"{_num(dtm)}  dtM   ! explicit RK2: about 20 steps per period of the fastest (axial) "
+        f"segment mode, pi l / (10 c) = {dt:.3g} s rounded down",
+        "0.001  threshIC",
+        "300  TmaxIC",
+    ]
+    extra: dict[str, str] = {}
+    if env.current:
+        opts.append("1  Currents   ! steady current table in current_profile.txt")
+        rows = []
+        for p in sorted(env.current, key=lambda p: p.z):
+            h = math.radians(p.heading_deg)
+            rows.append(
+                f"{_num(p.z)} {_num(p.speed * math.cos(h))} {_num(p.speed * math.sin(h))} 0"
+            )
+        extra["current_profile.txt"] = (
+            "--------------------- MoorDyn steady currents File ----------------------\n"
+            f"written by cablestudy for {study.name}\n"
+            "z (m), ux (m/s), uy (m/s), uz (m/s)\n" + "\n".join(rows) + "\n"
+        )
+    front = [f"MoorDyn v2 input file written by cablestudy: {title}"]
+    if dyn is not None:
+        for e in dyn.excitations:
+            front.append(
+                f"! excitation: end {e.end} moved along {list(e.direction)} "
+                + (
+                    f"(amplitude {e.amplitude:g} m, {e.frequency:g} Hz)"
+                    if hasattr(e, "amplitude")
+                    else "(a time table)"
+                )
+                + ": drive the Coupled point through MoorDyn's Step"
+            )
+    n_lines = len(line_rows)
+    text = "\n".join(
+        [
+            "--------------------- MoorDyn Input File ------------------------------------",
+            *front,
+            "---------------------- LINE TYPES ------------------------------------------",
+            "TypeName Diam Mass/m EA BA/-zeta EI Cd Ca CdAx CaAx",
+            "(name) (m) (kg/m) (N) (N-s/-) (N-m^2) (-) (-) (-) (-)",
+            *type_rows,
+            "---------------------- POINTS ----------------------------------------------",
+            "ID Attachment X Y Z Mass Volume CdA Ca",
+            "(#) (-) (m) (m) (m) (kg) (m^3) (m^2) (-)",
+            *point_rows,
+            "---------------------- LINES -----------------------------------------------",
+            "ID LineType AttachA AttachB UnstrLen NumSegs LineOutputs",
+            "(#) (name) (#) (#) (m) (-) (-)",
+            *line_rows,
+            "---------------------- OPTIONS ---------------------------------------------",
+            *opts,
+            "---------------------- OUTPUTS ---------------------------------------------",
+            f"FairTen{n_lines}",
+            "AnchTen1",
+            "END",
+            "------------------------- need this line -----------------------------------",
+        ]
+    )
+    return ExportedCase(text + "\n", extra, warnings, coupled, n_lines, dtm)

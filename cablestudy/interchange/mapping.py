@@ -1,0 +1,463 @@
+"""From MoorDyn tables to a cablestudy study: one line of line types, points and options.
+
+A cablestudy line runs from end A to end B through uniform segments, with point loads
+along it. A MoorDyn system is a graph of lines meeting at points; one cablestudy line
+is a chain of MoorDyn lines, joined end to end at free points. The chain's two outer
+points become the ends (a fixed or coupled point: a fixed end at its position; a free
+point: a towing end loaded by the point's weight, buoyancy and steady force), the
+points inside it become attachments (mass, volume, steady force), and consecutive
+MoorDyn lines of one line type merge into one segment.
+
+What the file holds and cablestudy does not model is listed by name in
+:attr:`ImportedStudy.warnings`; nothing is dropped silently.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+from ..config.environment import FLUID_DENSITY
+from .moordyn_format import (
+    InterchangeError,
+    Line,
+    LineType,
+    MoorDynFile,
+    MoorDynFormatError,
+    Point,
+)
+
+#: MoorDyn options that tune MoorDyn's own solvers (time step, scheme, initial-condition
+#: search, output): cablestudy's solvers choose their own settings, so these carry no
+#: physics we could lose; they are listed together in one warning
+SOLVER_OPTIONS = {
+    "dtm", "cfl", "tscheme", "dtic", "tmaxic", "ictmax", "cdscaleic", "icdfac", "threshic",
+    "icthresh", "icgendynamic", "writelog", "dtout", "writeunits", "disableoutput",
+    "disableouttime", "echo", "outswitch", "dtwave", "unifycurrentgrid", "waterkin_rampt",
+    "wavekin_rampt", "inertialf", "inertialf_rampt",
+}  # fmt: skip
+
+#: MoorDyn's default gravity by file version (v2's C code uses 9.81)
+DEFAULT_GRAVITY = {1: 9.80665, 2: 9.81}
+DEFAULT_DENSITY = 1025.0
+
+
+@dataclass
+class ImportedStudy:
+    """Study data (plain YAML-ready values), comments by YAML path, and warnings."""
+
+    data: dict[str, Any]
+    comments: dict[tuple[str | int, ...], str] = field(default_factory=dict)
+    warnings: list[str] = field(default_factory=list)
+
+
+def _float_option(md: MoorDynFile, names: tuple[str, ...]) -> tuple[float, int] | None:
+    opt = md.option(*names)
+    if opt is None:
+        return None
+    try:
+        return float(opt.value), opt.source_line
+    except ValueError:
+        raise MoorDynFormatError(
+            f"{md.source}:{opt.source_line}: option {opt.key} must be a number (got {opt.value!r})"
+        ) from None
+
+
+def select_chain(md: MoorDynFile, ids: list[int] | None) -> tuple[list[tuple[Line, bool]], str]:
+    """The MoorDyn lines ``ids`` (all lines if None) ordered end to end as one chain.
+
+    Returns (line, reversed) pairs from end A to end B and the key of end A's point.
+    The chain starts at a fixed point where it has one (MoorDyn's anchor end), else at
+    the A end of the lowest-numbered line."""
+    if ids is None:
+        ids = sorted(md.lines)
+    missing = [i for i in ids if i not in md.lines]
+    if missing:
+        raise InterchangeError(
+            f"{md.source}: no line {missing[0]}; the file has lines "
+            f"{', '.join(str(i) for i in sorted(md.lines))}"
+        )
+    chosen = [md.lines[i] for i in dict.fromkeys(ids)]
+    touching: dict[str, list[Line]] = {}
+    for ln in chosen:
+        for key in (ln.attach_a, ln.attach_b):
+            touching.setdefault(key, []).append(ln)
+    for key, lines in touching.items():
+        if len(lines) > 2:
+            raise InterchangeError(
+                f"{md.source}: lines {', '.join(str(ln.id) for ln in lines)} meet at point "
+                f"{key}: a branched system (e.g. a bridle) is not one line; choose the lines "
+                "of one line from anchor to fairlead with --line (or line: [ids])"
+            )
+    ends = [k for k, lines in touching.items() if len(lines) == 1]
+    if len(ends) != 2:
+        raise InterchangeError(
+            f"{md.source}: lines {', '.join(str(ln.id) for ln in chosen)} do not form one "
+            "chain end to end (a cablestudy line is a single chain of lines joined at "
+            "points); choose them with --line"
+        )
+
+    def fixed(key: str) -> bool:
+        pt = _point(md, key)
+        return pt is not None and pt.kind == "fixed"
+
+    first = chosen[0]
+    if fixed(ends[0]) != fixed(ends[1]):
+        start = ends[0] if fixed(ends[0]) else ends[1]
+    else:
+        start = first.attach_a if first.attach_a in ends else ends[0]
+    order: list[tuple[Line, bool]] = []
+    at, used = start, set()
+    while len(order) < len(chosen):
+        nxt = [ln for ln in touching[at] if ln.id not in used]
+        if not nxt:
+            break
+        ln = nxt[0]
+        used.add(ln.id)
+        rev = ln.attach_b == at and ln.attach_a != at
+        order.append((ln, rev))
+        at = ln.attach_a if rev else ln.attach_b
+    if len(order) != len(chosen):
+        raise InterchangeError(
+            f"{md.source}: lines {', '.join(str(ln.id) for ln in chosen)} do not form one "
+            "chain end to end; choose them with --line"
+        )
+    return order, start
+
+
+def _point(md: MoorDynFile, key: str) -> Point | None:
+    if key.upper().startswith("R"):
+        return None
+    try:
+        return md.points.get(int(float(key)))
+    except ValueError:
+        return None
+
+
+def _need_point(md: MoorDynFile, key: str, line: Line) -> Point:
+    pt = _point(md, key)
+    if pt is None:
+        if key.upper().startswith("R"):
+            raise InterchangeError(
+                f"{md.source}:{line.source_line}: line {line.id} is attached to rod end "
+                f"{key}; rods are not modelled by cablestudy (choose lines between points)"
+            )
+        raise InterchangeError(
+            f"{md.source}:{line.source_line}: line {line.id} is attached to point {key}, "
+            f"which the file does not define; defined points: "
+            f"{', '.join(str(p) for p in sorted(md.points))}"
+        )
+    return pt
+
+
+def _segment(md: MoorDynFile, lt: LineType, line: Line, warnings: list[str]) -> dict[str, Any]:
+    where = f"{md.source}:{lt.source_line}"
+    try:
+        ea = float(lt.axial_stiffness)
+    except ValueError:
+        raise InterchangeError(
+            f"{where}: line type {lt.name!r} has a nonlinear or viscoelastic EA "
+            f"({lt.axial_stiffness!r}); cablestudy models a linear EA [N] only"
+        ) from None
+    ba_text = lt.damping
+    if "|" in ba_text:
+        warnings.append(
+            f"{where}: line type {lt.name!r}: BA {ba_text!r} has static|dynamic parts; "
+            "the first (static) is used"
+        )
+        ba_text = ba_text.split("|")[0]
+    try:
+        ba = float(ba_text)
+    except ValueError:
+        raise InterchangeError(
+            f"{where}: line type {lt.name!r}: BA/-zeta must be a number"
+        ) from None
+    if ba <= 0.0:
+        zeta = -ba if ba < 0.0 else 0.0
+    else:
+        seg_len = line.length / max(line.segments, 1)
+        zeta = ba / (seg_len * math.sqrt(ea * lt.mass_per_length)) if lt.mass_per_length else 0.0
+        warnings.append(
+            f"{where}: line type {lt.name!r}: BA = {ba:g} N s is a damping coefficient; "
+            f"cablestudy takes a damping ratio, converted at MoorDyn's segment length "
+            f"{seg_len:g} m to zeta = {zeta:.4g} (our elements may differ in length)"
+        )
+    if zeta > 1.0:
+        warnings.append(
+            f"{where}: line type {lt.name!r}: damping ratio {zeta:g} above critical; "
+            "limited to 1.0 (cablestudy allows 0 to 1)"
+        )
+        zeta = 1.0
+    for key, value in lt.extra.items():
+        try:
+            nonzero = float(value) != 0.0
+        except ValueError:
+            nonzero = True
+        if nonzero and key in ("Cl",):
+            warnings.append(
+                f"{where}: line type {lt.name!r}: Cl = {value} (vortex-induced vibration) "
+                "is not modelled"
+            )
+        elif key.startswith("column"):
+            warnings.append(f"{where}: line type {lt.name!r}: extra {key} ({value}) not read")
+    return {
+        "length": line.length,
+        "diameter": lt.diameter,
+        "mass_per_length": lt.mass_per_length,
+        "axial_stiffness": ea,
+        "drag_normal": lt.drag_normal,
+        "drag_tangential": lt.drag_tangential,
+        "added_mass_normal": lt.added_mass_normal,
+        "added_mass_tangential": lt.added_mass_tangential,
+        "bending_stiffness": lt.bending_stiffness,
+        "damping_ratio": zeta,
+    }
+
+
+def _point_load(pt: Point, md: MoorDynFile, warnings: list[str], role: str) -> None:
+    where = f"{md.source}:{pt.source_line}"
+    if pt.drag_area != 0.0 or pt.added_mass != 0.0:
+        warnings.append(
+            f"{where}: point {pt.id} ({role}): CdA = {pt.drag_area:g} m^2 and Ca = "
+            f"{pt.added_mass:g} (drag and added mass of a point) are not modelled"
+        )
+
+
+def moordyn_to_study(
+    md: MoorDynFile,
+    ids: list[int] | None = None,
+    *,
+    name: str = "moordyn-import",
+    current: list[dict[str, float]] | None = None,
+) -> ImportedStudy:
+    """The study of one line of a MoorDyn system (see the module docstring).
+
+    Parameters
+    ----------
+    md : the parsed file
+    ids : MoorDyn line IDs forming the chain (None: all lines)
+    name : study name
+    current : current profile points {z, speed, heading_deg} read from the file's
+        steady current table (``Currents 1``), if any
+    """
+    warnings: list[str] = []
+    comments: dict[tuple[str | int, ...], str] = {}
+    src = md.source
+    chain, start = select_chain(md, ids)
+
+    # ------------------------------------------------------------ environment
+    env: dict[str, Any] = {}
+    rho_opt = _float_option(md, ("rho", "rhoW", "WtrDnsty"))
+    rho = rho_opt[0] if rho_opt else DEFAULT_DENSITY
+    named = [k for k, v in FLUID_DENSITY.items() if v == rho]
+    env["fluid"] = named[0] if named else {"density": rho}
+    comments[("environment", "fluid")] = (
+        f"{src}:{rho_opt[1]} rho" if rho_opt else f"MoorDyn default rho = {DEFAULT_DENSITY:g}"
+    )
+    g_opt = _float_option(md, ("g", "gravity"))
+    env["gravity"] = g_opt[0] if g_opt else DEFAULT_GRAVITY[md.version]
+    comments[("environment", "gravity")] = (
+        f"{src}:{g_opt[1]} g" if g_opt else f"MoorDyn v{md.version} default g"
+    )
+    depth_opt = md.option("WtrDpth", "depth")
+    if depth_opt is not None:
+        try:
+            depth = float(depth_opt.value)
+        except ValueError:
+            depth = math.nan
+            warnings.append(
+                f"{src}:{depth_opt.source_line}: WtrDpth {depth_opt.value!r} (a bathymetry "
+                "file) is not read: a flat seabed needs a number; the study has no seabed"
+            )
+        if depth > 0.0:
+            env["depth"] = depth
+            comments[("environment", "depth")] = f"{src}:{depth_opt.source_line} WtrDpth"
+    seabed: dict[str, Any] = {}
+    fric = _float_option(md, ("FrictionCoefficient", "FricCoeff", "MU_KT"))
+    if fric is not None:
+        seabed["friction"] = fric[0]
+        comments[("environment", "seabed", "friction")] = f"{src}:{fric[1]}"
+        mu_ka = _float_option(md, ("MU_KA",))
+        if mu_ka is not None and mu_ka[0] != fric[0]:
+            warnings.append(
+                f"{src}:{mu_ka[1]}: MU_KA = {mu_ka[0]:g} (axial friction) differs from the "
+                f"transverse {fric[0]:g}; cablestudy has one Coulomb coefficient (used {fric[0]:g})"
+            )
+    if seabed:
+        env["seabed"] = seabed
+    if current:
+        env["current"] = current
+        comments[("environment", "current")] = "from the steady current table (Currents 1)"
+    unmodelled_opts = {
+        "kbot": "seabed stiffness (cablestudy's seabed is rigid)",
+        "kb": "seabed stiffness (cablestudy's seabed is rigid)",
+        "cbot": "seabed damping (cablestudy's seabed is rigid)",
+        "cb": "seabed damping (cablestudy's seabed is rigid)",
+        "fricdamp": "friction smoothing velocity scale (Coulomb friction is used as is)",
+        "cv": "friction smoothing velocity scale (Coulomb friction is used as is)",
+        "statdynfricscale": "static/dynamic friction ratio (one coefficient is used)",
+        "mc": "static/dynamic friction ratio (one coefficient is used)",
+        "seafloorfile": "bathymetry file (cablestudy's seabed is a plane)",
+        "wavekin": "wave kinematics",
+        "waterkin": "water kinematics file",
+        "currents": "current model",
+    }
+    used = {"rho", "rhow", "wtrdnsty", "g", "gravity", "wtrdpth", "depth"}
+    used |= {"frictioncoefficient", "fricccoeff", "friccoeff", "mu_kt", "mu_ka"}
+    solver_opts = []
+    for key, opt in md.options.items():
+        if key in used:
+            continue
+        if key in SOLVER_OPTIONS:
+            solver_opts.append(opt.key)
+            continue
+        what = unmodelled_opts.get(key, "option not known to cablestudy")
+        if key in ("wavekin", "currents") and opt.value.strip() in ("0", "0.0"):
+            continue
+        if key == "currents" and current is not None:
+            continue
+        if key in ("fricdamp", "cv", "statdynfricscale", "mc") and fric is None:
+            continue
+        warnings.append(
+            f"{src}:{opt.source_line}: option {opt.key} = {opt.value}: {what}; not modelled"
+        )
+    if solver_opts:
+        warnings.append(
+            "MoorDyn solver settings not used (cablestudy chooses its own): "
+            + ", ".join(solver_opts)
+        )
+    for title, line_no, count in md.other_sections:
+        warnings.append(
+            f"{src}:{line_no}: section {title} ({count} entries) is not modelled by cablestudy"
+        )
+    if md.outputs:
+        warnings.append(
+            "MoorDyn output channels not used (cablestudy writes every output): "
+            + ", ".join(md.outputs)
+        )
+
+    # ------------------------------------------------------------------- line
+    segments: list[dict[str, Any]] = []
+    seg_types: list[str] = []
+    attachments: list[dict[str, Any]] = []
+    nsegs = 0
+    s = 0.0
+    at = start
+    for k, (ln, rev) in enumerate(chain):
+        lt = md.line_types.get(ln.line_type)
+        if lt is None:
+            raise InterchangeError(
+                f"{src}:{ln.source_line}: line {ln.id} uses line type {ln.line_type!r}, which "
+                f"the file does not define; defined: {', '.join(md.line_types) or 'none'}"
+            )
+        if k > 0:
+            pt = _need_point(md, at, ln)
+            if pt.kind != "free":
+                raise InterchangeError(
+                    f"{src}:{pt.source_line}: point {pt.id} inside the chosen chain is "
+                    f"{pt.attachment!r}; a point between two lines of one cablestudy line must "
+                    "be free (Free/Connect)"
+                )
+            _point_load(pt, md, warnings, "inside the line")
+            if pt.mass or pt.volume or any(pt.force):
+                att: dict[str, Any] = {"s": s}
+                if pt.mass:
+                    att["mass"] = pt.mass
+                if pt.volume:
+                    att["volume"] = pt.volume
+                if any(pt.force):
+                    att["force"] = list(pt.force)
+                attachments.append(att)
+                comments[("line", "attachments", len(attachments) - 1)] = (
+                    f"{src}:{pt.source_line} point {pt.id}"
+                )
+        seg = _segment(md, lt, ln, warnings)
+        if ln.outputs not in ("-", ""):
+            warnings.append(
+                f"{src}:{ln.source_line}: line {ln.id} outputs {ln.outputs!r} not used "
+                "(cablestudy writes every output)"
+            )
+        if segments and seg_types[-1] == lt.name:
+            segments[-1]["length"] += seg["length"]
+            comments[("line", "segments", len(segments) - 1)] += f", line {ln.id}"
+        else:
+            segments.append(seg)
+            seg_types.append(lt.name)
+            comments[("line", "segments", len(segments) - 1)] = (
+                f"{src}:{lt.source_line} type {lt.name}; {src}:{ln.source_line} line {ln.id}"
+            )
+        nsegs += ln.segments
+        s += ln.length
+        at = ln.attach_a if rev else ln.attach_b
+    end_b_key = at
+
+    # ------------------------------------------------------------------- ends
+    ends: dict[str, Any] = {}
+    rho_g = rho * env["gravity"]
+    for label, key, ln in (("a", start, chain[0][0]), ("b", end_b_key, chain[-1][0])):
+        pt = _need_point(md, key, ln)
+        where = f"{src}:{pt.source_line} point {pt.id} ({pt.attachment})"
+        if pt.kind == "free":
+            fz = pt.force[2] - (pt.mass * env["gravity"] - pt.volume * rho_g)
+            ends[label] = {"kind": "force", "force": [pt.force[0], pt.force[1], fz]}
+            comments[("ends", label)] = f"{where}: weight, buoyancy and steady force"
+            _point_load(pt, md, warnings, f"end {label}")
+            continue
+        ends[label] = {"kind": "fixed", "position": list(pt.position)}
+        comments[("ends", label)] = where
+        if pt.kind == "coupled":
+            comments[("ends", label)] += ": held at its initial position"
+            if pt.attachment.lower() in ("vessel", "vec", "ves"):
+                comments[("ends", label)] += " (vessel frame taken at the origin)"
+        elif pt.kind == "body":
+            warnings.append(
+                f"{src}:{pt.source_line}: point {pt.id} is attached to {pt.attachment}: its "
+                "coordinates are relative to that object; taken as absolute for end "
+                f"{label} (bodies are not modelled)"
+            )
+
+    if all(e["kind"] == "force" for e in ends.values()):
+        warnings.append(
+            f"{src}: both ends of the chosen lines are free points: the study has no fixed "
+            "end, which cablestudy's statics need; fix one end before running it"
+        )
+    data: dict[str, Any] = {
+        "name": name,
+        "description": f"imported from {src} (MoorDyn v{md.version}), lines "
+        + ", ".join(str(ln.id) for ln, _ in chain),
+        "environment": env,
+        "line": {"segments": segments},
+        "ends": ends,
+    }
+    if attachments:
+        data["line"]["attachments"] = attachments
+    if all(ln.segments > 0 for ln, _ in chain):
+        data["analysis"] = {"static": {"nodes": nsegs + 1}}
+        comments[("analysis", "static", "nodes")] = f"NumSegs {nsegs} of the chosen lines, + 1"
+    return ImportedStudy(data=data, comments=comments, warnings=warnings)
+
+
+def parse_current_profile(text: str, source: str) -> list[dict[str, float]]:
+    """MoorDyn's steady current table (``Currents 1``: three header lines, then rows
+    ``z ux uy uz``) as cablestudy current points {z, speed, heading_deg}."""
+    points: list[dict[str, float]] = []
+    for n, raw in enumerate(text.splitlines()[3:], start=4):
+        tokens = raw.split()
+        if not tokens:
+            continue
+        try:
+            z, ux, uy, *rest = (float(t) for t in tokens)
+        except ValueError:
+            raise MoorDynFormatError(
+                f"{source}:{n}: a current row is 'z ux uy uz' in m and m/s (got {raw.strip()!r})"
+            ) from None
+        if rest and rest[0] != 0.0:
+            raise MoorDynFormatError(
+                f"{source}:{n}: vertical current uz = {rest[0]:g} m/s is not modelled "
+                "(cablestudy's current is horizontal)"
+            )
+        speed = math.hypot(ux, uy)
+        heading = math.degrees(math.atan2(uy, ux)) if speed > 0.0 else 0.0
+        points.append({"z": z, "speed": speed, "heading_deg": heading})
+    return points

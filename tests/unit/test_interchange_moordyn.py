@@ -1,0 +1,480 @@
+"""MoorDyn input files and RAFT/MoorPy mooring YAML into studies, and back.
+
+The input files here are written for the tests from the format's documentation
+(moordyn.readthedocs.io, "Input Files": the v1 and v2 layouts)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from cablestudy.cli import main
+from cablestudy.config.loader import StudyError, parse_study_text, read_study_source, validate_data
+from cablestudy.interchange import (
+    InterchangeError,
+    import_model,
+    imported_yaml,
+    parse_moordyn,
+)
+from cablestudy.interchange.export import moordyn_input
+from cablestudy.problem import line_model
+
+V2 = """--------------------- MoorDyn Input File ------------------------------------
+Chain - clump - polyester, version 2 layout
+---------------------- LINE TYPES -----------------------------------------------------
+TypeName   Diam    Mass/m     EA     BA/-zeta    EI         Cd     Ca     CdAx    CaAx
+(name)     (m)     (kg/m)     (N)    (N-s/-)     (N-m^2)    (-)    (-)    (-)     (-)
+chain      0.1     150.0      1e9    -0.8        0          2.4    1.0    1.15    0.5   ! studless
+# a comment line inside the table
+
+poly       0.2     30.0       2e8    -0.5        12.5       1.2    0.9    0.01    0.1
+---------------------- POINTS ---------------------------------------
+ID   Attachment  X       Y     Z      Mass   Volume  CdA    Ca
+(#)   (word/ID) (m)     (m)   (m)    (kg)   (m^3)   (m^2)  (-)
+1     Fixed      -800    0     -200    0      0       0      0
+2     Free       -400    0     -190    5000   0.5     0      0
+3     Coupled    -40     0     -15     0      0       0      0
+---------------------- LINES ----------------------------------------
+ID   LineType   AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
+(#)   (name)     (ID)     (ID)      (m)       (-)      (-)
+1     chain       1        2        450        30       -
+2     poly        2        3        400        20       -
+---------------------- OPTIONS -----------------------------------------
+0.5           TmaxIC        max time for IC gen (s)
+200           WtrDpth       water depth (m)
+9.80665       g             % gravity
+
+1025          rho
+0.001         dtM           time step
+3e6           kBot          bottom stiffness (Pa/m)
+0.5           FrictionCoefficient
+------------------------- need this line -------------------------------------
+"""
+
+# version 1: other section names, hydrodynamic columns Can Cat Cdn Cdt, point forces,
+# lines as Line LineType UnstrLen NumSegs NodeAnch NodeFair; options in another order
+V1 = """MoorDyn input file...
+MoorDyn v1 sample input file
+True          Echo          echo the input file data (flag)
+----------------------- LINE DICTIONARY ---------------------------------------------
+LineType  Diam    MassDen    EA       BA/-zeta   Can   Cat   Cdn   Cdt
+(-)       (m)     (kg/m)     (N)      (Pa-s/-)   (-)   (-)   (-)   (-)
+nylon    0.124    13.76    2515288.0    -0.8     1.0   0.2   1.6   0.05
+----------------------- NODE PROPERTIES ----------------------------------------------
+Node      Type      X        Y         Z        M        V        FX       FY      FZ     CdA   CA
+(-)       (-)      (m)      (m)       (m)      (kg)     (m^3)    (kN)     (kN)    (kN)   (m^2)  (-)
+1         Vessel     0.0     0      -10.00       0        0        0        0       0       0     0
+2         Fixed    267.0     0      -70.00       0        0        0        0       0       0     0
+3         Connect  150.0     0      -60.00       0        0        0        0     -100      0     0
+-------------------------- LINE PROPERTIES -------------------------------------------------
+Line     LineType  UnstrLen  NumSegs    NodeAnch  NodeFair  Flags/Outputs
+(-)      (-)       (m)         (-)       (-)       (-)      (-)
+1        nylon     150.0        20        2         3        p
+2        nylon     160.0        20        3         1        -
+-------------------------- SOLVER OPTIONS---------------------------------------------------
+70       WtrDpth      - water depth
+0.001    dtM          - time step to use in mooring integration
+5.0      ICDfac       - factor by which to scale drag coefficients during dynamic relaxation
+1020     rhoW         - water density
+---------------------- OUTPUTS -----------------------------------------
+FairTen1
+AnchTen1
+END
+------------------------- need this line -------------------------------------
+"""
+
+
+def _validated(imported):
+    text = imported_yaml(imported, "test")
+    src = parse_study_text(text, "<imported>")
+    return validate_data(src.data, src), text
+
+
+def test_v2_file_with_comments_blank_lines_and_options_in_any_order() -> None:
+    imported = import_model(V2, "v2.dat")
+    study, text = _validated(imported)
+    seg = study.line.segments
+    assert [s.length for s in seg] == [450.0, 400.0]
+    chain, poly = seg
+    assert (chain.diameter, chain.mass_per_length, chain.axial_stiffness) == (0.1, 150.0, 1e9)
+    assert (chain.drag_normal, chain.added_mass_normal) == (2.4, 1.0)
+    assert (chain.drag_tangential, chain.added_mass_tangential) == (1.15, 0.5)
+    assert chain.damping_ratio == 0.8  # BA/-zeta = -0.8: a ratio
+    assert (poly.bending_stiffness, poly.added_mass_normal, poly.added_mass_tangential) == (
+        12.5,
+        0.9,
+        0.1,
+    )
+    (att,) = study.line.attachments
+    assert (att.s, att.mass, att.volume) == (450.0, 5000.0, 0.5)
+    assert study.ends.a.position == [-800.0, 0.0, -200.0]  # the fixed point: anchor end
+    assert study.ends.b.position == [-40.0, 0.0, -15.0]  # the coupled fairlead, held
+    env = study.environment
+    assert (env.depth, env.gravity, env.density, env.seabed.friction) == (200.0, 9.80665, 1025, 0.5)
+    assert study.analysis.static.nodes == 51  # 30 + 20 MoorDyn segments
+    # comments point at the source lines
+    assert "v2.dat:6 type chain; v2.dat:19 line 1" in text
+    assert "v2.dat:14 point 2" in text
+    # not modelled: named, not dropped
+    warned = "\n".join(imported.warnings)
+    assert "kBot" in warned and "seabed stiffness" in warned
+    assert "dtM" in warned and "TmaxIC" in warned
+
+
+def test_v1_layout_maps_columns_by_version() -> None:
+    md = parse_moordyn(V1, "v1.dat")
+    assert md.version == 1
+    imported = import_model(V1, "v1.dat")
+    study, _ = _validated(imported)
+    (seg,) = study.line.segments  # two nylon lines through a connect point: one segment
+    assert seg.length == 310.0
+    # v1 order Can Cat Cdn Cdt
+    assert (seg.added_mass_normal, seg.added_mass_tangential) == (1.0, 0.2)
+    assert (seg.drag_normal, seg.drag_tangential) == (1.6, 0.05)
+    assert seg.bending_stiffness == 0.0
+    (att,) = study.line.attachments
+    assert att.s == 150.0 and att.force == [0.0, 0.0, -100.0]
+    assert study.ends.a.position == [267.0, 0.0, -70.0]  # the fixed anchor starts the chain
+    assert study.ends.b.position == [0.0, 0.0, -10.0]
+    assert study.environment.density == 1020.0
+    assert study.environment.gravity == 9.80665  # v1 default
+    warned = "\n".join(imported.warnings)
+    assert "Echo" not in warned or "Echo" in warned  # front matter is free-form
+    assert "ICDfac" in warned and "FairTen1" in warned and "outputs 'p'" in warned
+
+
+def test_chosen_lines_and_free_end() -> None:
+    # line 1 alone: its B end is the free clump point, a towing end loaded by the
+    # clump's weight in water
+    imported = import_model(V2, "v2.dat", lines=[1])
+    study, _ = _validated(imported)
+    assert study.ends.b.kind == "force"
+    expected = -(5000.0 * 9.80665 - 0.5 * 1025.0 * 9.80665)
+    assert study.ends.b.force == pytest.approx([0.0, 0.0, expected], rel=1e-15)
+    assert study.line.attachments == []
+
+
+@pytest.mark.parametrize(
+    ("edit", "message"),
+    [
+        (("poly       0.2     30.0       2e8", "poly 0.2 30.0 polyEA.txt"), "nonlinear"),
+        (("2     poly        2        3", "2     wire        2        3"), "line type 'wire'"),
+        (("1     chain       1        2        450        30       -", "1 chain 1 2 450"), "needs"),
+        (("2     Free       -400", "2     Fixed       -400"), "must be free"),
+        (("3     Coupled    -40     0     -15", "3     Coupled    -40     0     x"), "Z must be"),
+    ],
+)
+def test_errors_name_the_line_and_the_fault(edit: tuple[str, str], message: str) -> None:
+    bad = V2.replace(*edit)
+    assert bad != V2
+    with pytest.raises(InterchangeError, match=message) as info:
+        import_model(bad, "bad.dat")
+    assert "bad.dat" in str(info.value)
+
+
+def test_branched_system_is_refused_with_advice() -> None:
+    bridle = V2.replace(
+        "2     poly        2        3        400        20       -",
+        "2     poly        2        3        400        20       -\n3 poly 2 1 100 5 -",
+    )
+    with pytest.raises(InterchangeError, match="meet at point 2.*--line"):
+        import_model(bridle, "bridle.dat")
+    # choosing one line of it works
+    assert import_model(bridle, "bridle.dat", lines=[1, 2]).data["line"]["segments"]
+
+
+def _roundtrip(text: str) -> tuple:
+    src = parse_study_text(text, "<study>")
+    study = validate_data(src.data, src)
+    a, b = (np.asarray(e.position, dtype=float) for e in (study.ends.a, study.ends.b))
+    s = np.linspace(0.0, study.line.length, 11)
+    guess = a + (b - a) * (s / s[-1])[:, None]
+    exported = moordyn_input(
+        study,
+        end_positions=(a, b),
+        position_at=guess,
+        s_nodes=s,
+        coupled_ends={"b"},
+        title="test",
+    )
+    back = import_model(exported.text, "exported.dat")
+    back_src = parse_study_text(imported_yaml(back, "exported.dat"), "<back>")
+    return study, validate_data(back_src.data, back_src), exported
+
+
+STUDY = """
+name: roundtrip
+environment: {fluid: water, gravity: 9.80665, depth: 300.0, seabed: {friction: 0.3}}
+line:
+  segments:
+    - {length: 120.0, diameter: 0.08, mass_per_length: 40.0, axial_stiffness: 5.0e8,
+       drag_normal: 1.1, drag_tangential: 0.02, added_mass_normal: 0.8,
+       added_mass_tangential: 0.1, bending_stiffness: 3.0, damping_ratio: 0.4}
+    - {length: 100.0, diameter: 0.12, mass_per_length: 20.0, axial_stiffness: 2.0e8}
+  attachments:
+    - {s: 60.0, mass: 800.0, volume: 0.1}
+    - {s: 120.0, volume: 2.5}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -250.0]}
+  b: {kind: fixed, position: [140.0, 0.0, -120.0]}
+analysis:
+  static: {nodes: 45}
+"""
+
+
+def test_import_of_export_gives_back_the_study() -> None:
+    study, back, exported = _roundtrip(STUDY)
+    assert back.environment == study.environment
+    assert back.line == study.line
+    assert back.ends == study.ends
+    assert back.analysis.static.nodes == study.analysis.static.nodes
+    assert exported.time_step > 0.0
+
+
+def test_roundtrip_of_a_line_given_by_weight_keeps_its_physics() -> None:
+    text = STUDY.replace("mass_per_length: 20.0", "weight_in_fluid: 80.0")
+    study, back, _ = _roundtrip(text)
+    mine, theirs = line_model(study), line_model(back)
+    for name in ("weight", "mass", "length", "axial_stiffness", "attachment_force"):
+        np.testing.assert_allclose(getattr(theirs, name), getattr(mine, name), rtol=1e-14)
+
+
+def test_export_time_step_resolves_the_axial_mode() -> None:
+    study, _, exported = _roundtrip(STUDY)
+    # fastest segment: the stiffest per length; pi l / (10 c) must bound dtM from above
+    seg = study.line.segments[0]
+    l = 60.0 / max(1, round(44 * 60.0 / 220.0))
+    area = math.pi * seg.diameter**2 / 4
+    c = math.sqrt(seg.axial_stiffness / (seg.mass_per_length + 1025.0 * area * 0.1))
+    assert exported.time_step <= math.pi * l / (10 * c)
+    assert exported.time_step > math.pi * l / (10 * c) / 2.5  # 1-2-5 rounding loses < 2.5x
+    assert "dtM" in exported.text and "explicit" in exported.text
+
+
+MOORPY = """
+mooring:
+  water_depth: 200.0
+  points:
+    - {name: anchor, type: fixed, location: [-800.0, 0.0, -200.0], anchor_type: drag}
+    - {name: clump, type: free, location: [-400.0, 0.0, -190.0], mass: 5000.0}
+    - {name: fairlead, type: vessel, location: [-40.0, 0.0, -15.0]}
+  lines:
+    - {name: bottom, endA: anchor, endB: clump, type: chain, length: 450.0}
+    - {name: top, endA: clump, endB: fairlead, type: chain, length: 400.0}
+  line_types:
+    - {name: chain, diameter: 0.1, mass_density: 150.0, stiffness: 1.0e9,
+       breaking_load: 1.0e7, cost: 100.0, transverse_added_mass: 1.0,
+       tangential_added_mass: 0.5, transverse_drag: 2.4, tangential_drag: 1.15}
+  anchor_types:
+    - {name: drag, mass: 1.0e4}
+"""
+
+
+def test_moorpy_mooring_yaml() -> None:
+    imported = import_model(MOORPY, "design.yaml")
+    study, _ = _validated(imported)
+    (seg,) = study.line.segments
+    assert (seg.length, seg.mass_per_length, seg.drag_normal) == (850.0, 150.0, 2.4)
+    assert study.line.attachments[0].mass == 5000.0
+    assert study.environment.depth == 200.0
+    warned = "\n".join(imported.warnings)
+    for key in ("breaking_load", "cost", "anchor_types", "anchor_type"):
+        assert key in warned
+    # a line by name
+    one = import_model(MOORPY, "design.yaml", lines=["bottom"])
+    assert one.data["line"]["segments"][0]["length"] == 450.0
+
+
+def test_current_table_is_read_beside_the_file(tmp_path: Path) -> None:
+    (tmp_path / "current_profile.txt").write_text(
+        "header\nnotes\nz ux uy uz\n-200 0.3 0.0 0\n-100 0.0 0.4 0\n0 0.6 0.8 0\n"
+    )
+    text = V2.replace("0.5           FrictionCoefficient", "1 Currents\n0.5 FrictionCoefficient")
+    imported = import_model(text, "v2.dat", folder=tmp_path)
+    study, _ = _validated(imported)
+    cur = {p.z: (p.speed, p.heading_deg) for p in study.environment.current}
+    assert cur[-200.0] == pytest.approx((0.3, 0.0))
+    assert cur[-100.0] == pytest.approx((0.4, 90.0))
+    assert cur[0.0] == pytest.approx((1.0, math.degrees(math.atan2(0.8, 0.6))))
+    assert not any("Currents" in w for w in imported.warnings)
+
+
+def _write_ref(tmp_path: Path, ref: str, extra: str = "") -> Path:
+    (tmp_path / "models").mkdir(exist_ok=True)
+    (tmp_path / "models" / "system.dat").write_text(V2)
+    study = tmp_path / "study.yaml"
+    study.write_text(
+        f"""name: by-reference
+environment: {{fluid: water, depth: 1000.0}}
+line: {ref}
+ends:
+  a: {{kind: fixed, position: [-800.0, 0.0, -200.0]}}
+  b: {{kind: fixed, position: [-40.0, 0.0, -15.0]}}
+{extra}"""
+    )
+    return study
+
+
+def test_study_refers_to_a_moordyn_file_and_sweeps_it(tmp_path: Path) -> None:
+    from cablestudy.cases import expand_cases
+
+    path = _write_ref(
+        tmp_path,
+        "{moordyn: models/system.dat, line: [1, 2]}",
+        "sweep:\n  line.segments.0.length: [440.0, 450.0]\n",
+    )
+    src = read_study_source(path)
+    assert any("kBot" in n for n in src.notes)
+    axes, cases = expand_cases(src)
+    assert [c.study.line.segments[0].length for c in cases] == [440.0, 450.0]
+    assert cases[0].study.line.attachments[0].mass == 5000.0
+    # end to end: YAML -> netCDF
+    import xarray as xr
+
+    assert main(["run", str(path), "--out", str(tmp_path / "out"), "--no-progress"]) == 0
+    with xr.open_dataset(tmp_path / "out" / "by-reference.nc") as ds:
+        assert ds.sizes["length"] == 2
+        assert (ds.status.values == 0).all()
+        # the referenced file travels with the study text into the result
+        assert "#| chain      0.1     150.0      1e9" in ds.attrs["study_yaml"]
+        sha = ds.attrs["study_sha256"]
+    (tmp_path / "models" / "system.dat").write_text(V2.replace("150.0 ", "151.0 "))
+    assert read_study_source(path).sha256 != sha
+
+
+def test_schema_allows_a_line_reference() -> None:
+    from cablestudy.config import Study
+
+    line = Study.model_json_schema()["properties"]["line"]
+    assert line["anyOf"][0] == {"$ref": "#/$defs/Line"}
+    assert set(line["anyOf"][1]["properties"]) == {"moordyn", "line"}
+
+
+@pytest.mark.parametrize(
+    ("ref", "message"),
+    [
+        ("{moordyn: ../outside.dat}", "outside the study file's folder"),
+        ("{moordyn: /etc/passwd}", "absolute path"),
+        ("{moordyn: models/none.dat}", "no such file"),
+        ("{moordyn: models/system.dat, line: 7}", "no line 7"),
+        ("{moordyn: models/system.dat, lines: 1}", "unknown key"),
+    ],
+)
+def test_reference_errors_point_at_the_line_key(tmp_path: Path, ref: str, message: str) -> None:
+    (tmp_path.parent / "outside.dat").write_text(V2)
+    path = _write_ref(tmp_path, ref)
+    with pytest.raises(StudyError, match=message) as info:
+        read_study_source(path)
+    assert "study.yaml:3: line" in str(info.value)
+
+
+def test_cli_import_writes_a_valid_study(tmp_path: Path, capsys: pytest.CaptureFixture) -> None:
+    model = tmp_path / "Mooring System.dat"
+    model.write_text(V1)
+    assert main(["import", "moordyn", str(model)]) == 0
+    out = capsys.readouterr()
+    assert "not modelled" in out.err and "ICDfac" in out.err
+    study_file = tmp_path / "study.yaml"
+    study_file.write_text(out.out)
+    assert main(["validate", str(study_file)]) == 0
+    assert "Mooring-System" in capsys.readouterr().out
+    assert main(["import", "moordyn", str(model), "--line", "9"]) == 2
+    assert "no line 9" in capsys.readouterr().err
+
+
+def test_cli_import_moorpy_and_export_round_trip(
+    tmp_path: Path, capsys: pytest.CaptureFixture
+) -> None:
+    design = tmp_path / "design.yaml"
+    design.write_text(MOORPY)
+    assert main(["import", "moorpy", str(design), "--line", "bottom", "--line", "top"]) == 0
+    out = capsys.readouterr()
+    assert "breaking_load" in out.err
+    assert main(["import", "moorpy", str(tmp_path / "design.yaml").replace("design", "none")]) == 2
+    capsys.readouterr()
+    dat = tmp_path / "v1.dat"
+    dat.write_text(V1)
+    assert main(["import", "moorpy", str(dat)]) == 2
+    assert "not a RAFT/MoorPy mooring YAML" in capsys.readouterr().err
+    # export of a swept study needs its case
+    study = tmp_path / "study.yaml"
+    study.write_text(STUDY + "sweep:\n  line.segments.0.length: [110.0, 120.0]\n")
+    assert main(["export", "moordyn", str(study)]) == 2
+    assert "--case" in capsys.readouterr().err and True
+    assert main(["export", "moordyn", str(study), "--case", "span=3"]) == 2
+    assert "no sweep dimension 'span'; dimensions: length" in capsys.readouterr().err
+    target = tmp_path / "out" / "case.dat"
+    assert (
+        main(["export", "moordyn", str(study), "--case", "length=110", "--out", str(target)]) == 0
+    )
+    capsys.readouterr()
+    back = import_model(target.read_text(), "case.dat")
+    assert back.data["line"]["segments"][0]["length"] == pytest.approx(110.0)
+
+
+def test_current_round_trip_through_the_table_beside_the_file(tmp_path: Path) -> None:
+    study = tmp_path / "study.yaml"
+    current = (
+        "  current:\n"
+        "    - {z: -300.0, speed: 0.3, heading_deg: 45.0}\n"
+        "    - {z: 0.0, speed: 0.5, heading_deg: 0.0}\n"
+    )
+    text = STUDY.replace(
+        "environment: {fluid: water, gravity: 9.80665, depth: 300.0, seabed: {friction: 0.3}}",
+        "environment:\n  fluid: water\n  depth: 300.0\n" + current,
+    )
+    study.write_text(text)
+    target = tmp_path / "md" / "case.dat"
+    assert main(["export", "moordyn", str(study), "--out", str(target)]) == 0
+    assert (target.parent / "current_profile.txt").exists()
+    assert main(["export", "moordyn", str(study)]) == 2  # the table needs a folder
+    back = import_model(target.read_text(), "case.dat", folder=target.parent)
+    src = parse_study_text(text, "<s>")
+    original = validate_data(src.data, src).environment.current
+    got = back.data["environment"]["current"]
+    assert [p["z"] for p in got] == [p.z for p in original]
+    for p, q in zip(got, original, strict=True):
+        assert p["speed"] == pytest.approx(q.speed, rel=1e-15)
+        assert p["heading_deg"] == pytest.approx(q.heading_deg, abs=1e-12)
+
+
+def test_unmodelled_sections_and_moordyn_f_options_are_named() -> None:
+    text = V2.replace(
+        "---------------------- POINTS",
+        "---------------------- ROD TYPES ------\nName Diam Mass Cd Ca CdEnd CaEnd\n"
+        "(-) (m) (kg/m) (-) (-) (-) (-)\nBuoy 10 1e3 0.6 1.0 1.2 1.0\n"
+        "---------------------- BODIES ------\nID Attachment X0 Y0 Z0 r0 p0 y0 Mass CG I V CdA Ca\n"
+        "(#) (-) (m) (m) (m) (deg) (deg) (deg) (kg) (m) (kg-m2) (m3) (m2) (-)\n"
+        "1 coupled 0 0 0 0 0 0 0 0 0 0 0 0\n"
+        "---------------------- POINTS",
+    ).replace("0.5           FrictionCoefficient", "0.4 MU_KT\n0.2 MU_KA\n2 WaveKin")
+    imported = import_model(text, "f.dat")
+    warned = "\n".join(imported.warnings)
+    assert "section ROD TYPES (1 entries)" in warned
+    assert "section BODIES (1 entries)" in warned
+    assert "MU_KA = 0.2" in warned and "WaveKin = 2" in warned
+    assert imported.data["environment"]["seabed"]["friction"] == 0.4
+
+
+def test_current_table_missing_or_unreadable(tmp_path: Path) -> None:
+    text = V2.replace("0.5           FrictionCoefficient", "1 Currents")
+    with pytest.raises(InterchangeError, match="current_profile.txt: no such file"):
+        import_model(text, "v2.dat", folder=tmp_path)
+    with pytest.raises(InterchangeError, match="Currents 1 reads current_profile.txt"):
+        import_model(text, "v2.dat")
+    (tmp_path / "current_profile.txt").write_text("a\nb\nc\n-10 0.5 0 0.2\n")
+    with pytest.raises(InterchangeError, match="vertical current"):
+        import_model(text, "v2.dat", folder=tmp_path)
+
+
+def test_chain_between_two_free_points_is_imported_with_a_warning() -> None:
+    text = V2.replace("1     Fixed      -800", "1     Free       -800").replace(
+        "3     Coupled    -40", "3     Free       -40"
+    )
+    imported = import_model(text, "free.dat")
+    assert {e["kind"] for e in imported.data["ends"].values()} == {"force"}
+    assert any("no fixed end" in w for w in imported.warnings)
+    assert "vessel frame" in imported_yaml(import_model(V1, "v1.dat"), "v1.dat")
