@@ -307,7 +307,11 @@ def gallery_markdown(data: Data, figures: list[Path], image_dir: str) -> str:
         "",
         "- axis readings of the figures (the seeds print curves, not tables, for Figs. 2-8 "
         "of the excitation and statics seeds);",
-        "- the cable-types seed (aqwa) prints no figures or numbers to compare.",
+        "- the cable-types seed (aqwa) prints no figures or numbers to compare;",
+        "- the umbilical seed's Figs. 4-8 (normal, tangential and transverse displacement "
+        "and velocity over length and time): they need bending stiffness in the time "
+        "domain, which the time-domain solver does not model yet (issue 9); its Figs. 9-12 "
+        "are here (umbilical-frequency-tension, from modal analysis with EI).",
         "",
         "## Figures",
         "",
