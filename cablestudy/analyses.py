@@ -59,7 +59,7 @@ def check_supported(cases: list[Case], src: StudySource) -> None:
         seen.add(case.static_hash)
         method = case.study.analysis.static.method
         problem = static_problem(case.study)
-        missing = STATIC_SOLVERS[method].unsupported(problem)
+        missing = unsupported_static(method, problem)
         if case.study.analysis.modal is not None:
             for i, mass in enumerate(problem.line.mass):
                 if not mass > 0.0:
@@ -85,6 +85,15 @@ def check_supported(cases: list[Case], src: StudySource) -> None:
         raise StudyError(problems, src.source)
 
 
+def unsupported_static(method: str, problem: Any) -> list[str]:
+    """What the static ``method`` cannot model in ``problem``: its own list, and bending
+    stiffness for the cable solvers (only method 'discrete' carries EI)."""
+    missing = list(STATIC_SOLVERS[method].unsupported(problem))
+    if method != "discrete" and np.any(problem.line.bending_stiffness > 0.0):
+        missing.append("bending stiffness (bending_stiffness > 0; method 'discrete' models it)")
+    return missing
+
+
 def warm_up(cases: list[Case]) -> None:
     """Load the compiled kernels the cases will need, before any case is timed (the
     runner's scheduler choice probes the first cases: a kernel's one-off load is
@@ -99,54 +108,33 @@ def warm_up(cases: list[Case]) -> None:
 
 
 def linear_model_gaps(study: Any) -> list[tuple[tuple[str | int, ...], str]]:
-    """Keys of ``study`` set to something the modal and frequency-domain (linearised)
-    line model does not represent yet, as (YAML path, what it is); the time-domain model
-    (:mod:`cablestudy.dynamics.model`) has them all."""
-    gaps: list[tuple[tuple[str | int, ...], str]] = []
-    for label in ("a", "b"):
-        if getattr(study.ends, label).bending == "clamped":
-            gaps.append((("ends", label, "bending"), "a clamped end (both ends pinned there)"))
-    for i, seg in enumerate(study.line.segments):
-        if seg.damping_transverse > 0.0:
-            gaps.append(
-                (("line", "segments", i, "damping_transverse"), "transverse structural damping")
-            )
-    for i, att in enumerate(study.line.attachments):
-        if att.added_mass > 0.0:
-            gaps.append((("line", "attachments", i, "added_mass"), "a body's added mass"))
-        if att.drag_area > 0.0:
-            gaps.append((("line", "attachments", i, "drag_area"), "a body's drag"))
-    if study.environment.seabed.stiffness is not None:
-        gaps.append(
-            (("environment", "seabed", "stiffness"), "a compliant seabed (rigid seabed there)")
-        )
-    return gaps
+    """Keys of ``study`` set to something the frequency-domain solver does not represent
+    yet, as (YAML path, what it is): the drag of lumped bodies (its drag linearisation
+    covers the line's Morison drag). Modal analysis and the time domain model them all
+    (one line model, :mod:`cablestudy.dynamics.model`)."""
+    return [
+        (("line", "attachments", i, "drag_area"), "a lumped body's drag")
+        for i, att in enumerate(study.line.attachments)
+        if att.drag_area > 0.0
+    ]
 
 
 def _linear_model_problems(cases: list[Case], src: StudySource) -> list[str]:
-    """Keys that modal analysis or ``method: frequency`` would ignore: refused with the
-    analysis that models them (``method: auto`` runs such cases in the time domain)."""
+    """Keys that ``method: frequency`` would ignore, refused naming the method that
+    models them (``method: auto`` runs such cases in the time domain), and a body's drag
+    in a current, which no static solver models."""
     problems: list[str] = []
     for case in cases:
         study = case.study
-        users = []
-        if study.analysis.modal is not None:
-            users.append("analysis.modal")
         dyn = study.analysis.dynamic
         if dyn is not None and dyn.method == "frequency":
-            users.append("analysis.dynamic.method: frequency")
-        for path, what in linear_model_gaps(study) if users else []:
-            if users == ["analysis.modal"] and path[-1] == "damping_transverse":
-                continue  # natural frequencies are undamped by definition
-            if users == ["analysis.modal"] and path[-1] == "drag_area":
-                continue  # drag does not enter undamped modes
-            loc = ".".join(str(p) for p in path)
-            line = src.line_of(path) or src.line_of(path[:1])
-            problems.append(
-                f"{line}: {loc}: {what} is modelled by the time domain only "
-                f"(analysis.dynamic.method: time or auto), not by {' or '.join(users)}; "
-                "allowed: remove the key, or run the time domain"
-            )
+            for path, what in linear_model_gaps(study):
+                loc = ".".join(str(p) for p in path)
+                problems.append(
+                    f"{src.line_of(path) or src.line_of(path[:1])}: {loc}: {what} is modelled "
+                    "by the time domain, not by analysis.dynamic.method: frequency; allowed: "
+                    "method time or auto, or remove the key"
+                )
         for i, att in enumerate(study.line.attachments):
             if att.drag_area > 0.0 and study.environment.has_current:
                 path = ("line", "attachments", i, "drag_area")
@@ -242,7 +230,7 @@ def solve_static(
     problem = static_problem(case.study)
     method = case.study.analysis.static.method
     solver = STATIC_SOLVERS[method]
-    missing = solver.unsupported(problem)
+    missing = unsupported_static(method, problem)
     if missing:
         # the CLI rejects these before any work (check_supported); a caller that skips
         # that check still gets a failure rather than a solution that ignores an input
@@ -340,6 +328,7 @@ def solve_modal(case: Case, static: StaticResult, deadline: float | None) -> Mod
             n_modes=settings.modes,
             include_added_mass=settings.include_added_mass,
             include_bending=settings.include_bending,
+            extras=dynamic_extras(case.study, mesh_static.position),
         ),
         deadline=deadline,
     )
@@ -406,26 +395,21 @@ def discrete_statics(
     from the static solution (cached per static problem, element count and dynamic line
     properties). The third item is an error message (empty when the equilibrium was
     found), the fourth the seabed friction anchors holding that equilibrium."""
-    from .dynamics.model import discretise, element_counts, static_equilibrium
+    from .dynamics.model import discretise_nodes, static_equilibrium, uniform_nodes
 
     dyn = case.study.analysis.dynamic
     assert dyn is not None
     lm = line_model(case.study)
     med = medium(case.study)
     # the clamp directions are the static tangents of the end elements of the mesh
-    counts = element_counts(lm.length, dyn.elements)
-    bounds = lm.segment_ends
-    s_nodes = np.concatenate(
-        [np.linspace(bounds[i], bounds[i + 1], counts[i] + 1)[:-1] for i in range(len(counts))]
-        + [bounds[-1:]]
-    )
+    s_nodes = uniform_nodes(lm, dyn.elements)
     start = np.stack([np.interp(s_nodes, static.s, static.position[:, k]) for k in range(3)], 1)
     extras = dynamic_extras(case.study, start)
     key = (case.static_hash, dyn.elements, repr(extras))
     cached = _DISCRETE_CACHE.get(key)
     if cached is not None:
         return cached
-    line = discretise(lm, med, dyn.elements, extras)
+    line = discretise_nodes(lm, med, s_nodes, extras)
     scale = float(np.nanmax(static.tension))
     if line.has_seabed:
         # the penalty seabed balances each laid node's weight by a penetration of its

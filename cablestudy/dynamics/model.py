@@ -243,14 +243,32 @@ def discretise(
     elements : target number of elements [-]
     extras : dynamic-only properties (bending ends, bodies, seabed contact, free ends)
     """
-    extras = extras or DynamicExtras()
+    return discretise_nodes(line, medium, uniform_nodes(line, elements), extras)
+
+
+def uniform_nodes(line: LineModel, elements: int) -> np.ndarray:
+    """Arc lengths [m] of about ``elements`` elements, equal within each segment, with a
+    node on every segment boundary (:func:`element_counts`)."""
     counts = element_counts(line.length, elements)
     bounds = line.segment_ends
-    s = np.concatenate(
+    return np.concatenate(
         [np.linspace(bounds[i], bounds[i + 1], counts[i] + 1)[:-1] for i in range(len(counts))]
         + [bounds[-1:]]
     )
-    seg = np.repeat(np.arange(len(counts)), counts)
+
+
+def discretise_nodes(
+    line: LineModel, medium: Medium, s: np.ndarray, extras: DynamicExtras | None = None
+) -> DiscreteLine:
+    """The lumped-mass model of ``line`` with nodes at the arc lengths ``s`` [m]
+    (increasing from 0 to the line length; an element straddling a segment boundary
+    takes the segment of its midpoint)."""
+    extras = extras or DynamicExtras()
+    s = np.asarray(s, dtype=float)
+    ends = line.segment_ends
+    seg = np.clip(
+        np.searchsorted(ends, 0.5 * (s[:-1] + s[1:]), side="right") - 1, 0, line.length.size - 1
+    )
     l0 = np.diff(s)
     rho = medium.density
     area = np.pi * line.diameter**2 / 4.0
