@@ -57,6 +57,12 @@ def check_supported(cases: list[Case], src: StudySource) -> None:
         if case.static_hash in seen:
             continue
         seen.add(case.static_hash)
+        if case.study.line.is_spring:
+            from .spring_cases import spring_problems
+
+            problems.extend(p for p in spring_problems(case, src) if p not in problems)
+            continue
+        problems.extend(p for p in _law_problems(case, src) if p not in problems)
         method = case.study.analysis.static.method
         problem = static_problem(case.study)
         missing = STATIC_SOLVERS[method].unsupported(problem)
@@ -82,6 +88,33 @@ def check_supported(cases: list[Case], src: StudySource) -> None:
     problems.extend(p for p in _dynamic_problems(cases, src) if p not in problems)
     if problems:
         raise StudyError(problems, src.source)
+
+
+def _law_problems(case: Case, src: StudySource) -> list[str]:
+    """A non-linear axial law is not yet in the dynamic line model: refuse it with
+    analysis.modal and analysis.dynamic, naming what supports it."""
+    study = case.study
+    wanted = [
+        name
+        for name, on in (
+            ("modal", study.analysis.modal is not None),
+            ("dynamic", study.analysis.dynamic is not None),
+        )
+        if on
+    ]
+    out = []
+    for i, seg in enumerate(study.line.segments):
+        if wanted and seg.is_nonlinear:
+            loc = ("line", "segments", str(i), "axial")
+            out.append(
+                f"{src.line_of(loc) or src.line_of(('line',))}: line.segments.{i}.axial: the "
+                f"{seg.axial.law} law (non-linear) is not supported by analysis."  # type: ignore[union-attr]
+                f"{' and analysis.'.join(wanted)} yet (their line model is linear-elastic); "
+                "it is supported by the statics (method 'catenary' without a seabed, or "
+                "'shooting'), and by a kind: spring line in statics and dynamics; allowed "
+                "here: axial_stiffness or {law: linear, stiffness}"
+            )
+    return out
 
 
 def warm_up(cases: list[Case]) -> None:
@@ -135,7 +168,7 @@ def _dynamic_problems(cases: list[Case], src: StudySource) -> list[str]:
                 "written on a 'frequency' dimension, and the sweep has an axis named "
                 "'frequency'; allowed: name the sweep axis otherwise (name: ...)"
             )
-        length = study.line.length
+        length = study.line.total_length
         if dyn.history is not None:
             for i, s in enumerate(dyn.history.points):
                 if s > length:
@@ -165,6 +198,10 @@ def solve_static(
     if cached is not None:
         _STATIC_CACHE.move_to_end(case.static_hash)
         return cached
+    if case.study.line.is_spring:
+        from .spring_cases import solve_spring_static
+
+        return solve_spring_static(case.study)
     problem = static_problem(case.study)
     method = case.study.analysis.static.method
     solver = STATIC_SOLVERS[method]
@@ -299,7 +336,7 @@ def static_outputs(res: StaticResult, study: Any = None) -> dict[str, np.ndarray
         "static_residual": np.asarray(res.residual),
         "drag_iterations": np.asarray(res.drag_iterations),
     }
-    if study is not None:
+    if study is not None and not study.line.is_spring:
         env = study.environment
         segs = study.line.segments
         ends = np.cumsum([seg.length for seg in segs])
@@ -309,13 +346,26 @@ def static_outputs(res: StaticResult, study: Any = None) -> dict[str, np.ndarray
                 res.s,
                 res.position,
                 res.tension,
-                axial_stiffness=np.array([segs[i].axial_stiffness for i in k]),
+                axial_stiffness=np.array([segs[i].elastic_stiffness for i in k]),
+                strain=_strain_along(segs, k, res.tension),
                 area=np.array([segs[i].area for i in k]),
                 density=env.density,
                 gravity=env.gravity,
             )
         )
     return out
+
+
+def _strain_along(segs: Any, k: np.ndarray, tension: np.ndarray) -> np.ndarray | None:
+    """Strain at each point from its segment's axial law (None: all linear, T / EA)."""
+    if not any(seg.is_nonlinear for seg in segs):
+        return None
+    strain = np.asarray(tension, dtype=float) / np.array([segs[i].elastic_stiffness for i in k])
+    for i, seg in enumerate(segs):
+        if seg.is_nonlinear:
+            on = k == i
+            strain[on] = seg.axial_law().strain(np.asarray(tension)[on])
+    return strain
 
 
 #: discrete static equilibria of the dynamic model, by (static hash, elements)
@@ -450,6 +500,10 @@ def run_dynamic(
 
     dyn = case.study.analysis.dynamic
     assert dyn is not None
+    if case.study.line.is_spring:
+        from .spring_cases import run_spring_dynamic
+
+        return run_spring_dynamic(case, static, deadline)
     linear: dict[str, np.ndarray] = {}
     if dyn.method in ("frequency", "auto"):
         why = auto_ineligible(dyn) if dyn.method == "auto" else ""
@@ -625,6 +679,8 @@ def presolve_statics(cases: list[Case]) -> tuple[dict[str, StaticResult], dict[s
     for case in cases:
         h = case.static_hash
         if h in todo or h in _STATIC_CACHE or case.study.analysis.static.method != "catenary":
+            continue
+        if case.study.line.is_spring:
             continue
         try:
             problem = static_problem(case.study)

@@ -49,7 +49,7 @@ def line_model(study: Study) -> LineModel:
         length=col("length"),
         weight=weight,
         mass=mass,
-        axial_stiffness=col("axial_stiffness"),
+        axial_stiffness=np.array([s.elastic_stiffness for s in segs], dtype=float),
         diameter=col("diameter"),
         drag_normal=col("drag_normal"),
         drag_tangential=col("drag_tangential"),
@@ -61,7 +61,16 @@ def line_model(study: Study) -> LineModel:
         attachment_force=att_force,
         attachment_mass=np.array([a.mass for a in atts], dtype=float),
         attachment_volume=np.array([a.volume for a in atts], dtype=float),
+        axial_law=_laws(segs),
     )
+
+
+def _laws(segs: list[Any]) -> tuple:
+    """Per segment its non-linear axial law, None where it is T = EA e (``axial_stiffness``,
+    ``{law: linear}`` or a polynomial with only its first coefficient); () when all are
+    linear, so linear lines keep the closed-form and compiled paths."""
+    laws = tuple(s.axial_law() if s.is_nonlinear else None for s in segs)
+    return laws if any(law is not None for law in laws) else ()
 
 
 def medium(study: Study) -> Medium:

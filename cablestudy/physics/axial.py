@@ -38,6 +38,7 @@ The laws (aqwa seed, section 5.8.1):
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import ClassVar
 
@@ -138,6 +139,43 @@ class AxialLaw:
                 break
         return np.where(pos, e, 0.0)
 
+    # ------------------------------------------------------- scalar (ODE right-hand sides)
+
+    def _tension_s(self, e: float) -> float:
+        return float(self._tension(np.asarray(e, dtype=float)))
+
+    def _stiffness_s(self, e: float) -> float:
+        return float(self._stiffness(np.asarray(e, dtype=float)))
+
+    def strain_scalar(self, tension: float) -> float:
+        """:meth:`strain` of one float, in plain Python (no array overhead: the shooting
+        solver calls it in its ODE right-hand side)."""
+        if not tension > 0.0:
+            return 0.0
+        k = self.reference_stiffness
+        lo, hi = 0.0, max(tension / k, 1e-300)
+        for _ in range(200):
+            if self._tension_s(hi) >= tension:
+                break
+            lo, hi = hi, 2.0 * hi
+        e = min(tension / k, hi) if tension / k > lo else 0.5 * (lo + hi)
+        for _ in range(100):
+            f = self._tension_s(e) - tension
+            if f < 0.0:
+                lo = e
+            elif f > 0.0:
+                hi = e
+            else:
+                return e
+            d = self._stiffness_s(e)
+            en = e - f / d if d > 0.0 else 0.5 * (lo + hi)
+            if not lo < en < hi:
+                en = 0.5 * (lo + hi)
+            if abs(en - e) <= _INVERSE_RTOL * abs(en):
+                return en
+            e = en
+        return e
+
     def complementary_energy(self, tension: np.ndarray | float) -> np.ndarray:
         """Phi(T) = int_0^T e(t) dt = T e(T) - W(e(T)) [N] (0 where T <= 0)."""
         T = _asarray(tension)
@@ -201,6 +239,9 @@ class LinearLaw(AxialLaw):
         T = _asarray(tension)
         return np.where(T > 0.0, T / self.stiffness, 0.0)
 
+    def strain_scalar(self, tension: float) -> float:
+        return tension / self.stiffness if tension > 0.0 else 0.0
+
     def first_decrease(self, max_strain: float) -> float | None:
         return None
 
@@ -245,6 +286,18 @@ class PolynomialLaw(AxialLaw):
         """c1 when positive, else the secant stiffness T(1)/1 of a unit argument."""
         c1 = float(self.coefficients[0])
         return c1 if c1 > 0.0 else max(float(sum(self.coefficients)), 1e-300)
+
+    def _tension_s(self, e: float) -> float:
+        out = 0.0
+        for c in reversed(self.coefficients):
+            out = (out + c) * e
+        return out
+
+    def _stiffness_s(self, e: float) -> float:
+        out = 0.0
+        for i in range(len(self.coefficients), 0, -1):
+            out = out * e + i * self.coefficients[i - 1]
+        return out
 
     @property
     def is_linear_only(self) -> bool:
@@ -315,6 +368,12 @@ class SteelWireLaw(AxialLaw):
 
     def _stiffness(self, e: np.ndarray) -> np.ndarray:
         return -self.stiffness * np.expm1(-e / self.offset)
+
+    def _tension_s(self, e: float) -> float:
+        return self.stiffness * (e + self.offset * math.expm1(-e / self.offset))
+
+    def _stiffness_s(self, e: float) -> float:
+        return -self.stiffness * math.expm1(-e / self.offset)
 
     def _strain_energy(self, e: np.ndarray) -> np.ndarray:
         # int_0^e k (x - d + d exp(-x/d)) dx = k (e^2/2 - d e - d^2 (exp(-e/d) - 1))
