@@ -38,6 +38,7 @@ The laws (aqwa seed, section 5.8.1):
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from typing import ClassVar
@@ -45,7 +46,7 @@ from typing import ClassVar
 import numpy as np
 
 #: relative step of the inverse's Newton iteration at which it stops
-_INVERSE_RTOL = 4e-16
+_INVERSE_RTOL = 1e-15
 
 
 def _asarray(x: np.ndarray | float) -> np.ndarray:
@@ -102,29 +103,27 @@ class AxialLaw:
         pos = e > 0.0
         return np.where(pos, self._strain_energy(np.where(pos, e, 0.0)), 0.0)
 
+    def _guess(self, T: np.ndarray) -> np.ndarray:
+        """Starting strain of the inverse's Newton iteration (T > 0)."""
+        return T / self.reference_stiffness
+
     def strain(self, tension: np.ndarray | float) -> np.ndarray:
         """The inverse: strain [-] at ``tension`` [N] (0 where tension <= 0).
 
-        A Newton iteration kept inside a bracket [lo, hi] of the root (a bisection step
-        where Newton would leave it), from e = T / reference_stiffness; it stops when the
-        step is below 4e-16 of the strain, i.e. at round-off. Requires a law that
-        increases over the strains reached (checked at input).
+        Newton's method from the law's own guess (:meth:`_guess`), kept inside the
+        bracket [lo, hi] of the root that its iterates build (a bisection step, or a
+        doubling while no upper bound is known, where Newton would leave it); it stops
+        when every step is below 1e-15 of the strain (a few ulps), i.e. at round-off (quadratic
+        convergence: a few iterations from the guesses of the laws here). Requires a law
+        that increases over the strains reached (checked at input).
         """
         T = _asarray(tension)
         pos = T > 0.0
-        Tp = np.where(pos, T, 0.0)
-        k = self.reference_stiffness
-        lo = np.zeros_like(Tp)
-        hi = np.maximum(Tp / k, 1e-300)
-        # grow the upper bracket until T(hi) >= T
+        Tp = np.where(pos, T, 1.0)
+        e = np.maximum(self._guess(Tp), 1e-300)
+        lo = np.zeros_like(e)
+        hi = np.full_like(e, np.inf)
         for _ in range(200):
-            short = self._tension(hi) < Tp
-            if not np.any(short):
-                break
-            hi = np.where(short, 2.0 * hi, hi)
-        e = 0.5 * (lo + hi)
-        e = np.where(pos, np.minimum(Tp / k, hi), 0.0)
-        for _ in range(100):
             f = self._tension(e) - Tp
             lo = np.where(f < 0.0, e, lo)
             hi = np.where(f > 0.0, e, hi)
@@ -132,10 +131,13 @@ class AxialLaw:
             with np.errstate(divide="ignore", invalid="ignore"):
                 en = e - f / d
             outside = ~np.isfinite(en) | (en <= lo) | (en >= hi)
-            en = np.where(outside, 0.5 * (lo + hi), en)
+            if np.any(outside):
+                fallback = np.where(np.isfinite(hi), 0.5 * (lo + hi), 2.0 * e)
+                en = np.where(outside, fallback, en)
             step = np.abs(en - e)
-            e = en
-            if not np.any(pos & (step > _INVERSE_RTOL * np.abs(e) + 1e-300)):
+            done = (step <= _INVERSE_RTOL * en) | (np.abs(f) <= 4e-16 * Tp)
+            e = np.where(np.abs(f) <= 4e-16 * Tp, e, en)
+            if np.all(done):
                 break
         return np.where(pos, e, 0.0)
 
@@ -175,6 +177,11 @@ class AxialLaw:
                 return en
             e = en
         return e
+
+    def breakpoints(self) -> np.ndarray:
+        """Tensions [N] where the law is not analytic (a table's knots): quadratures of
+        the law split there. Empty for the analytic laws."""
+        return np.zeros(0)
 
     def complementary_energy(self, tension: np.ndarray | float) -> np.ndarray:
         """Phi(T) = int_0^T e(t) dt = T e(T) - W(e(T)) [N] (0 where T <= 0)."""
@@ -328,6 +335,19 @@ class PolynomialLaw(AxialLaw):
         return real[0] if real else None
 
 
+def _x_plus_expm1(x: np.ndarray) -> np.ndarray:
+    """x + exp(-x) - 1 (>= 0) without cancellation: its Taylor series x^2/2 - x^3/6 + ...
+    to x^14 (truncation below 1e-17 relative) for x < 0.5, the plain form above."""
+    x = np.asarray(x, dtype=float)
+    small = x < 0.5
+    xs = np.where(small, x, 0.0)
+    acc = np.zeros_like(xs)
+    for m in range(12, -1, -1):  # x^2 sum_m (-x)^m / (m + 2)!
+        acc = acc * (-xs) + 1.0 / math.factorial(m + 2)
+    acc = acc * xs * xs
+    return np.where(small, acc, x + np.expm1(-np.where(small, 1.0, x)))
+
+
 @dataclass(frozen=True)
 class SteelWireLaw(AxialLaw):
     """Steel wire: T = k (e - d (1 - exp(-e / d))), asymptotic stiffness k, offset d.
@@ -364,7 +384,7 @@ class SteelWireLaw(AxialLaw):
 
     def _tension(self, e: np.ndarray) -> np.ndarray:
         d = self.offset
-        return self.stiffness * (e + d * np.expm1(-e / d))
+        return self.stiffness * d * _x_plus_expm1(e / d)
 
     def _stiffness(self, e: np.ndarray) -> np.ndarray:
         return -self.stiffness * np.expm1(-e / self.offset)
@@ -390,10 +410,12 @@ class SteelWireLaw(AxialLaw):
     def reference_stiffness(self) -> float:
         return float(self.stiffness)
 
-    def strain(self, tension: np.ndarray | float) -> np.ndarray:
-        """Inverse by the base Newton iteration from the upper bound T/k + d (the law is
-        convex, so Newton from the right converges monotonically)."""
-        return super().strain(tension)
+    def _guess(self, T: np.ndarray) -> np.ndarray:
+        """The larger of two lower bounds of the root, T/k (from T <= k e) and
+        sqrt(2 d T / k) (from T <= k e^2 / 2d): the law is convex, so Newton's first step
+        lands right of the root and the rest converge monotonically."""
+        k, d = self.stiffness, self.offset
+        return np.maximum(T / k, np.sqrt(2.0 * d * T / k))
 
     def first_decrease(self, max_strain: float) -> float | None:
         return None
@@ -492,6 +514,16 @@ class TableLaw(AxialLaw):
     def reference_stiffness(self) -> float:
         return float(self.tension_points[-1] / self.strain_points[-1])
 
+    def breakpoints(self) -> np.ndarray:
+        return np.asarray(self.tension_points[1:], dtype=float)
+
+    def _guess(self, T: np.ndarray) -> np.ndarray:
+        """Piecewise-linear inverse through the knots (and the linear continuation)."""
+        x = np.asarray(self.strain_points, dtype=float)
+        y = np.asarray(self.tension_points, dtype=float)
+        slope = (y[-1] - y[-2]) / (x[-1] - x[-2])
+        return np.where(T > y[-1], x[-1] + (T - y[-1]) / slope, np.interp(T, y, x))
+
     def first_decrease(self, max_strain: float) -> float | None:
         """With strictly increasing tensions PCHIP is monotone, and the slopes are
         positive except where the data flatten: the first knot where the tension does
@@ -516,11 +548,15 @@ def is_effectively_linear(law: AxialLaw | None) -> bool:
     return isinstance(law, PolynomialLaw) and law.is_linear_only
 
 
+@functools.lru_cache(maxsize=64)
 def gauss_legendre(n: int) -> tuple[np.ndarray, np.ndarray]:
     """Nodes in [0, 1] and weights (summing to 1) of the n-point Gauss-Legendre rule:
-    exact for polynomials of degree 2n - 1 [-]."""
+    exact for polynomials of degree 2n - 1 [-]. Cached: do not modify the arrays."""
     x, w = np.polynomial.legendre.leggauss(n)
-    return 0.5 * (x + 1.0), 0.5 * w
+    x, w = 0.5 * (x + 1.0), 0.5 * w
+    x.flags.writeable = False
+    w.flags.writeable = False
+    return x, w
 
 
 __all__ = [
