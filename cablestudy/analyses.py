@@ -26,7 +26,7 @@ from .config.ends import FixedEnd
 from .config.loader import StudyError, StudySource
 from .counters import COUNTERS
 from .physics.profile import profile_quantities
-from .problem import line_model, medium, static_problem
+from .problem import line_model, medium, static_limits, static_problem
 from .statics import (
     STATIC_SOLVERS,
     STATUS_NO_SOLUTION,
@@ -34,6 +34,7 @@ from .statics import (
     STATUS_OK,
     StaticResult,
 )
+from .statics.limits import apply_limits
 
 if TYPE_CHECKING:  # imported where used: `cablestudy validate` needs none of them
     from .dynamics.excitation import EndMotion
@@ -114,6 +115,22 @@ def _law_problems(case: Case, src: StudySource) -> list[str]:
                 "'shooting'), and by a kind: spring line in statics and dynamics; allowed "
                 "here: axial_stiffness or {law: linear, stiffness}"
             )
+    if study.analysis.dynamic is not None:
+        breaks = [("line",)] if study.line.break_ is not None else []
+        breaks += [
+            ("line", "segments", str(i))
+            for i, seg in enumerate(study.line.segments)
+            if seg.break_ is not None
+        ]
+        for loc in breaks:
+            where = src.line_of((*loc, "break")) or src.line_of(("line",))
+            out.append(
+                f"{where}: {'.'.join(loc)}.break: a break condition is not supported by "
+                "analysis.dynamic for a kind: catenary line yet (its time-domain model "
+                "cannot part); it is supported by the statics (every method: the case is "
+                "recorded as broken) and by a kind: spring line in dynamics (break_time); "
+                "allowed: omit analysis.dynamic or the break"
+            )
     return out
 
 
@@ -193,7 +210,7 @@ def solve_static(
     case: Case, deadline: float | None, presolved: dict[str, StaticResult] | None = None
 ) -> StaticResult:
     if presolved is not None and case.static_hash in presolved:
-        return presolved[case.static_hash]
+        return apply_limits(presolved[case.static_hash], static_limits(case.study))
     cached = _STATIC_CACHE.get(case.static_hash)
     if cached is not None:
         _STATIC_CACHE.move_to_end(case.static_hash)
@@ -201,7 +218,7 @@ def solve_static(
     if case.study.line.is_spring:
         from .spring_cases import solve_spring_static
 
-        return solve_spring_static(case.study)
+        return apply_limits(solve_spring_static(case.study), static_limits(case.study))
     problem = static_problem(case.study)
     method = case.study.analysis.static.method
     solver = STATIC_SOLVERS[method]
@@ -215,6 +232,7 @@ def solve_static(
             f"static method {method!r} does not support {'; '.join(missing)}",
         )
     result = solver.solve(problem, deadline=deadline).check_finite()
+    result = apply_limits(result, static_limits(case.study))
     COUNTERS["static_solves"] += 1
     _STATIC_CACHE[case.static_hash] = result
     while len(_STATIC_CACHE) > _STATIC_CACHE_SIZE:

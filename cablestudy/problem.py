@@ -12,6 +12,7 @@ from .config import FixedEnd, ForceEnd, MooringEnd, Study
 from .config.analysis import Installation
 from .config.ends import End
 from .statics import EndCondition, LineModel, Medium, StaticProblem
+from .statics.limits import StaticLimits
 
 
 def line_model(study: Study) -> LineModel:
@@ -71,6 +72,46 @@ def _laws(segs: list[Any]) -> tuple:
     linear, so linear lines keep the closed-form and compiled paths."""
     laws = tuple(s.axial_law() if s.is_nonlinear else None for s in segs)
     return laws if any(law is not None for law in laws) else ()
+
+
+def static_limits(study: Study) -> StaticLimits:
+    """Break limits per segment (a segment's own ``break``, else ``line.break``) and the
+    strain range each non-linear law was checked on."""
+    from .config.line import DEFAULT_MAX_STRAIN
+
+    line = study.line
+    if line.is_spring:
+        brk = line.break_
+        return StaticLimits(
+            segment_ends=np.array([0.0, line.total_length]),
+            break_tension=np.array([brk.limit if brk else np.inf]),
+            break_source=(_break_source(brk, "line.break"),),
+        )
+    tension, source = [], []
+    for i, seg in enumerate(line.segments):
+        brk = seg.break_ or line.break_
+        key = f"line.segments.{i}.break" if seg.break_ else "line.break"
+        tension.append(brk.limit if brk else np.inf)
+        source.append(_break_source(brk, key))
+    return StaticLimits(
+        segment_ends=np.concatenate(([0.0], np.cumsum([s.length for s in line.segments]))),
+        break_tension=np.array(tension, dtype=float),
+        break_source=tuple(source),
+        law=tuple(s.axial_law() if s.is_nonlinear else None for s in line.segments),
+        max_strain=tuple(
+            float((s.axial.max_strain if s.axial else None) or DEFAULT_MAX_STRAIN)
+            for s in line.segments
+        ),
+    )
+
+
+def _break_source(brk: Any, key: str) -> str:
+    if brk is None:
+        return ""
+    if brk.tension is not None:
+        return f"{key}.tension"
+    mbl, sf = brk.minimum_breaking_load, brk.safety_factor or 1.0
+    return f"{key}: minimum_breaking_load {mbl:g} N / safety_factor {sf:g}"
 
 
 def medium(study: Study) -> Medium:

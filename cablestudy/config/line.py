@@ -164,6 +164,46 @@ def check_axial(axial: Axial, max_strain: float, loc: tuple[str | int, ...], uni
     )
 
 
+class BreakCondition(StrictModel):
+    """``break: {tension: N}`` or ``{minimum_breaking_load: N, safety_factor: f}``: the
+    line (or a segment) breaks where its tension exceeds the limit (tension, or MBL /
+    safety factor). In statics a case over the limit is recorded as broken (status 10,
+    a message with where and by how much) with its static results kept; with
+    analysis.dynamic only a kind: spring line supports it (it parts at that instant and
+    records break_time)."""
+
+    tension: Positive | None = Field(None, description="tension limit [N]")
+    minimum_breaking_load: Positive | None = Field(
+        None, description="minimum breaking load MBL [N]; the limit is MBL / safety_factor"
+    )
+    safety_factor: Positive | None = Field(
+        None, ge=1.0, description="safety factor on the MBL [-] (>= 1; default 1)"
+    )
+
+    @model_validator(mode="after")
+    def _one_limit(self) -> BreakCondition:
+        if (self.tension is None) == (self.minimum_breaking_load is None):
+            raise ValueError(
+                "give either tension [N] or minimum_breaking_load [N] (with an optional "
+                "safety_factor), exactly one of them"
+            )
+        if self.tension is not None and self.safety_factor is not None:
+            raise FieldError(
+                ("safety_factor",),
+                "a safety_factor applies to minimum_breaking_load, not to a tension limit; "
+                "allowed: omit it, or give minimum_breaking_load instead of tension",
+                self.safety_factor,
+            )
+        return self
+
+    @property
+    def limit(self) -> float:
+        """The tension [N] at which the line breaks."""
+        if self.tension is not None:
+            return float(self.tension)
+        return float(self.minimum_breaking_load) / float(self.safety_factor or 1.0)  # type: ignore[arg-type]
+
+
 class Segment(StrictModel):
     """A uniform length of line. Give ``mass_per_length`` [kg/m] or
     ``weight_in_fluid`` [N/m] (or both: the weight then overrides mass minus
@@ -183,6 +223,12 @@ class Segment(StrictModel):
         description="axial law in strain: {law: linear, stiffness} | {law: polynomial, "
         "coefficients: [A, ..., E]} | {law: steel_wire, stiffness, offset} | {law: table, "
         "strain, tension}; exclusive with `axial_stiffness`",
+    )
+    break_: BreakCondition | None = Field(
+        None,
+        alias="break",
+        description="break condition of this segment (overrides line.break here): "
+        "{tension: N} or {minimum_breaking_load: N, safety_factor: f}",
     )
     drag_normal: NonNegative = Field(1.2, description="normal drag coefficient [-]")
     drag_tangential: NonNegative = Field(0.01, description="tangential drag coefficient [-]")
@@ -313,6 +359,12 @@ class Line(StrictModel):
     )
     attachments: list[Attachment] = []
     length: Positive | None = Field(None, description="kind spring: unstretched length [m]")
+    break_: BreakCondition | None = Field(
+        None,
+        alias="break",
+        description="break condition of the whole line: {tension: N} or "
+        "{minimum_breaking_load: N, safety_factor: f} (a segment's own break overrides it)",
+    )
     axial: Axial | None = Field(
         None,
         description="kind spring: tension [N] in the extension e [m] = distance between "

@@ -232,6 +232,12 @@ def _kind_tagged(models: list[type[BaseModel]], part: str | int) -> list[type[Ba
     ]
 
 
+def _fields(m: type[BaseModel]) -> dict[str, Any]:
+    """A model's fields by the key a study file uses (the alias where one is set, e.g.
+    'break' for the field ``break_``)."""
+    return {(f.alias or n): f for n, f in m.model_fields.items()}
+
+
 def _models_at(loc: Loc) -> list[type[BaseModel]]:
     """Candidate model classes at a pydantic error location."""
     current: list[type[BaseModel]] = [Study]
@@ -242,9 +248,9 @@ def _models_at(loc: Loc) -> list[type[BaseModel]]:
         if tagged:
             current = tagged
             continue
-        named = [m for m in current if part in m.model_fields]
+        named = [m for m in current if part in _fields(m)]
         if named:
-            current = [c for m in named for c in _unwrap(m.model_fields[part].annotation)]
+            current = [c for m in named for c in _unwrap(_fields(m)[part].annotation)]
             continue
         # a discriminator tag or a union member's class name
         tagged = []
@@ -270,13 +276,13 @@ def _clean_loc(loc: Loc) -> Loc:
         if tagged:
             models = tagged
             continue
-        if any(part in m.model_fields for m in models):
+        if any(part in _fields(m) for m in models):
             out.append(part)
             models = [
                 c
                 for m in models
-                if part in m.model_fields
-                for c in _unwrap(m.model_fields[part].annotation)
+                if part in _fields(m)
+                for c in _unwrap(_fields(m)[part].annotation)
             ]
             continue
         # union member names and tags ('fixed', 'CustomFluid', 'list[...]', ...)
@@ -317,7 +323,7 @@ def _field_description(loc: Loc) -> str:
     if not loc:
         return ""
     for model in _models_at(loc[:-1]):
-        info = model.model_fields.get(str(loc[-1]))
+        info = _fields(model).get(str(loc[-1]))
         if info is not None and info.description:
             return info.description
     return ""
@@ -333,7 +339,9 @@ def _describe(err: dict[str, Any]) -> tuple[Loc, str, Any, bool]:
         return cause.loc, cause.message, cause.value, True
     if kind == "extra_forbidden":
         key = str(raw[-1])
-        allowed = sorted({f for m in _models_at(raw[:-1]) for f in m.model_fields})
+        allowed = sorted(
+            {fi.alias or f for m in _models_at(raw[:-1]) for f, fi in m.model_fields.items()}
+        )
         close = difflib.get_close_matches(key, allowed, n=1)
         hint = f" (did you mean {close[0]!r}?)" if close else ""
         return (
@@ -348,17 +356,18 @@ def _describe(err: dict[str, Any]) -> tuple[Loc, str, Any, bool]:
         return (), f"required key {str(raw[-1])!r} is missing{what}", None, False
     if kind in ("union_tag_invalid", "union_tag_not_found"):
         tags = ctx.get("expected_tags", "")
+        key = str(ctx.get("discriminator", "'kind'")).strip("'")  # 'kind', or 'law' of axial
         if kind == "union_tag_not_found":
             if not tags:  # pydantic names the tags only when the given one is wrong
                 kinds = [
                     a
                     for m in _models_at(raw)
-                    if "kind" in m.model_fields
-                    for a in typing.get_args(m.model_fields["kind"].annotation)
+                    if key in m.model_fields
+                    for a in typing.get_args(m.model_fields[key].annotation)
                 ]
                 tags = ", ".join(repr(k) for k in kinds)
-            return (), f"needs a 'kind': one of {tags}", err["input"], True
-        return ("kind",), f"'kind' must be one of {tags}", ctx.get("tag", err["input"]), True
+            return (), f"needs a '{key}': one of {tags}", err["input"], True
+        return (key,), f"'{key}' must be one of {tags}", ctx.get("tag", err["input"]), True
     text = _TYPE_WORDS.get(kind, err["msg"])
     if text.startswith("Value error, "):
         text = text[len("Value error, ") :]

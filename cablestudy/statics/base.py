@@ -31,6 +31,9 @@ STATUS_NOT_CONVERGED = 1
 STATUS_NUMERICAL = 2
 STATUS_TIME_LIMIT = 3
 STATUS_NO_SOLUTION = 4
+#: the static line's tension exceeds its break limit (line.break): not a solver failure,
+#: the static results are kept (see :mod:`.limits`)
+STATUS_BROKEN = 10
 
 
 @dataclass(frozen=True, kw_only=True)
