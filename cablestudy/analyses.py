@@ -106,7 +106,7 @@ def _law_problems(case: Case, src: StudySource) -> list[str]:
     out = []
     for i, seg in enumerate(study.line.segments):
         if wanted and seg.is_nonlinear:
-            loc = ("line", "segments", str(i), "axial")
+            loc = ("line", "segments", i, "axial")
             out.append(
                 f"{src.line_of(loc) or src.line_of(('line',))}: line.segments.{i}.axial: the "
                 f"{seg.axial.law} law (non-linear) is not supported by analysis."  # type: ignore[union-attr]
@@ -116,20 +116,20 @@ def _law_problems(case: Case, src: StudySource) -> list[str]:
                 "here: axial_stiffness or {law: linear, stiffness}"
             )
     if study.analysis.dynamic is not None:
-        breaks = [("line",)] if study.line.break_ is not None else []
+        breaks = [("line",)] if study.line.failure is not None else []
         breaks += [
-            ("line", "segments", str(i))
+            ("line", "segments", i)
             for i, seg in enumerate(study.line.segments)
-            if seg.break_ is not None
+            if seg.failure is not None
         ]
         for loc in breaks:
-            where = src.line_of((*loc, "break")) or src.line_of(("line",))
+            where = src.line_of((*loc, "failure")) or src.line_of(("line",))
             out.append(
-                f"{where}: {'.'.join(loc)}.break: a break condition is not supported by "
-                "analysis.dynamic for a kind: catenary line yet (its time-domain model "
-                "cannot part); it is supported by the statics (every method: the case is "
-                "recorded as broken) and by a kind: spring line in dynamics (break_time); "
-                "allowed: omit analysis.dynamic or the break"
+                f"{where}: {'.'.join(map(str, loc))}.failure: a failure (break) condition "
+                "is not supported by analysis.dynamic for a kind: catenary line yet (its "
+                "time-domain model cannot part); it is supported by the statics (every "
+                "method: the case is recorded as broken) and by a kind: spring line in "
+                "dynamics (break_time); allowed: omit analysis.dynamic or the failure key"
             )
     return out
 

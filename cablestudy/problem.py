@@ -75,22 +75,22 @@ def _laws(segs: list[Any]) -> tuple:
 
 
 def static_limits(study: Study) -> StaticLimits:
-    """Break limits per segment (a segment's own ``break``, else ``line.break``) and the
+    """Break limits per segment (a segment's own ``failure``, else ``line.failure``) and the
     strain range each non-linear law was checked on."""
     from .config.line import DEFAULT_MAX_STRAIN
 
     line = study.line
     if line.is_spring:
-        brk = line.break_
+        brk = line.failure
         return StaticLimits(
             segment_ends=np.array([0.0, line.total_length]),
             break_tension=np.array([brk.limit if brk else np.inf]),
-            break_source=(_break_source(brk, "line.break"),),
+            break_source=(_break_source(brk, "line.failure"),),
         )
     tension, source = [], []
     for i, seg in enumerate(line.segments):
-        brk = seg.break_ or line.break_
-        key = f"line.segments.{i}.break" if seg.break_ else "line.break"
+        brk = seg.failure or line.failure
+        key = f"line.segments.{i}.failure" if seg.failure else "line.failure"
         tension.append(brk.limit if brk else np.inf)
         source.append(_break_source(brk, key))
     return StaticLimits(

@@ -58,7 +58,7 @@ OUTPUTS: dict[str, OutputVariable] = {
     "force_a": OutputVariable(("component",), "N", "force of the line on the attachment at end A"),
     "force_b": OutputVariable(("component",), "N", "force of the line on the attachment at end B"),
     "break_time": OutputVariable(
-        (), "s", "time at which the line parted (NaN: it did not), kind: spring with line.break"
+        (), "s", "time at which the line parted (NaN: it did not), kind: spring with line.failure"
     ),
     "tension_a": OutputVariable((), "N", "tension at end A"),
     "tension_b": OutputVariable((), "N", "tension at end B"),

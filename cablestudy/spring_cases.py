@@ -165,6 +165,6 @@ def run_spring_dynamic(
 
 
 def break_tension_of(line: Any) -> float | None:
-    """The line's breaking tension [N] (``line.break``), or None."""
-    brk = getattr(line, "break_", None)
+    """The line's breaking tension [N] (``line.failure``), or None."""
+    brk = line.failure
     return None if brk is None else float(brk.limit)

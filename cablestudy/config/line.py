@@ -165,7 +165,7 @@ def check_axial(axial: Axial, max_strain: float, loc: tuple[str | int, ...], uni
 
 
 class BreakCondition(StrictModel):
-    """``break: {tension: N}`` or ``{minimum_breaking_load: N, safety_factor: f}``: the
+    """``failure: {tension: N}`` or ``{minimum_breaking_load: N, safety_factor: f}``: the
     line (or a segment) breaks where its tension exceeds the limit (tension, or MBL /
     safety factor). In statics a case over the limit is recorded as broken (status 10,
     a message with where and by how much) with its static results kept; with
@@ -224,11 +224,10 @@ class Segment(StrictModel):
         "coefficients: [A, ..., E]} | {law: steel_wire, stiffness, offset} | {law: table, "
         "strain, tension}; exclusive with `axial_stiffness`",
     )
-    break_: BreakCondition | None = Field(
+    failure: BreakCondition | None = Field(
         None,
-        alias="break",
-        description="break condition of this segment (overrides line.break here): "
-        "{tension: N} or {minimum_breaking_load: N, safety_factor: f}",
+        description="failure (break) condition of this segment, overriding line.failure "
+        "here: {tension: N} or {minimum_breaking_load: N, safety_factor: f}",
     )
     drag_normal: NonNegative = Field(1.2, description="normal drag coefficient [-]")
     drag_tangential: NonNegative = Field(0.01, description="tangential drag coefficient [-]")
@@ -359,11 +358,12 @@ class Line(StrictModel):
     )
     attachments: list[Attachment] = []
     length: Positive | None = Field(None, description="kind spring: unstretched length [m]")
-    break_: BreakCondition | None = Field(
+    failure: BreakCondition | None = Field(
         None,
-        alias="break",
-        description="break condition of the whole line: {tension: N} or "
-        "{minimum_breaking_load: N, safety_factor: f} (a segment's own break overrides it)",
+        description="failure (break) condition of the whole line: {tension: N} or "
+        "{minimum_breaking_load: N, safety_factor: f} (a segment's own failure overrides "
+        "it); statics: a case over the limit is recorded as broken (status 10, data kept); "
+        "dynamics: kind spring only (parts at that instant, break_time)",
     )
     axial: Axial | None = Field(
         None,

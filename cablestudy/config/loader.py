@@ -232,12 +232,6 @@ def _kind_tagged(models: list[type[BaseModel]], part: str | int) -> list[type[Ba
     ]
 
 
-def _fields(m: type[BaseModel]) -> dict[str, Any]:
-    """A model's fields by the key a study file uses (the alias where one is set, e.g.
-    'break' for the field ``break_``)."""
-    return {(f.alias or n): f for n, f in m.model_fields.items()}
-
-
 def _models_at(loc: Loc) -> list[type[BaseModel]]:
     """Candidate model classes at a pydantic error location."""
     current: list[type[BaseModel]] = [Study]
@@ -248,9 +242,9 @@ def _models_at(loc: Loc) -> list[type[BaseModel]]:
         if tagged:
             current = tagged
             continue
-        named = [m for m in current if part in _fields(m)]
+        named = [m for m in current if part in m.model_fields]
         if named:
-            current = [c for m in named for c in _unwrap(_fields(m)[part].annotation)]
+            current = [c for m in named for c in _unwrap(m.model_fields[part].annotation)]
             continue
         # a discriminator tag or a union member's class name
         tagged = []
@@ -276,13 +270,13 @@ def _clean_loc(loc: Loc) -> Loc:
         if tagged:
             models = tagged
             continue
-        if any(part in _fields(m) for m in models):
+        if any(part in m.model_fields for m in models):
             out.append(part)
             models = [
                 c
                 for m in models
-                if part in _fields(m)
-                for c in _unwrap(_fields(m)[part].annotation)
+                if part in m.model_fields
+                for c in _unwrap(m.model_fields[part].annotation)
             ]
             continue
         # union member names and tags ('fixed', 'CustomFluid', 'list[...]', ...)
@@ -290,9 +284,9 @@ def _clean_loc(loc: Loc) -> Loc:
             m
             for m in models
             if m.__name__ == part
-            or (
-                "kind" in m.model_fields
-                and part in typing.get_args(m.model_fields["kind"].annotation)
+            or any(
+                tag in m.model_fields and part in typing.get_args(m.model_fields[tag].annotation)
+                for tag in ("kind", "law")  # discriminators: ends' kind, axial law
             )
         ]
         if narrowed:
@@ -323,7 +317,7 @@ def _field_description(loc: Loc) -> str:
     if not loc:
         return ""
     for model in _models_at(loc[:-1]):
-        info = _fields(model).get(str(loc[-1]))
+        info = model.model_fields.get(str(loc[-1]))
         if info is not None and info.description:
             return info.description
     return ""
@@ -339,9 +333,7 @@ def _describe(err: dict[str, Any]) -> tuple[Loc, str, Any, bool]:
         return cause.loc, cause.message, cause.value, True
     if kind == "extra_forbidden":
         key = str(raw[-1])
-        allowed = sorted(
-            {fi.alias or f for m in _models_at(raw[:-1]) for f, fi in m.model_fields.items()}
-        )
+        allowed = sorted({f for m in _models_at(raw[:-1]) for f in m.model_fields})
         close = difflib.get_close_matches(key, allowed, n=1)
         hint = f" (did you mean {close[0]!r}?)" if close else ""
         return (

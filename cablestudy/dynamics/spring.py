@@ -16,7 +16,7 @@ refined by golden-section search on its bracket to 1e-12 of the window; the mean
 the trapezoidal rule on the periodic grid (spectrally accurate for a smooth periodic
 tension; a slack phase makes it only as smooth as the law at zero).
 
-Break (``line.break``): when the tension first reaches the limit the spring parts at
+Break (``line.failure``): when the tension first reaches the limit the spring parts at
 that instant, found by bisection to 1e-12 s on the first grid interval where it
 crosses; ``break_time`` [s] is recorded and the tension is 0 from then on (the
 outputs over the window then include the parted state).

@@ -1,8 +1,8 @@
 """Limits checked on a static solution: break conditions and the strain range an axial
 law was checked on.
 
-A case whose tension exceeds its break limit (``line.break`` or a segment's own
-``break``) is recorded as broken: :data:`STATUS_BROKEN`, a message with where (the
+A case whose tension exceeds its break limit (``line.failure`` or a segment's own
+``failure``) is recorded as broken: :data:`STATUS_BROKEN`, a message with where (the
 arc length s [m]) and by how much, and its static results kept -- the solver did not
 fail. A case whose strain passes the range over which its non-linear law was checked to
 increase (``max_strain``) fails instead: the law is not trusted there.

@@ -144,7 +144,7 @@ line:
   kind: spring
   length: 50.0
   axial: {law: linear, stiffness: 2.0e5}
-  break: {tension: 2.0e5}
+  failure: {tension: 2.0e5}
 ends:
   a: {kind: fixed, position: [0.0, 0.0, 0.0]}
   b: {kind: fixed, position: [50.5, 0.0, 0.0]}
