@@ -29,6 +29,7 @@ from .physics.profile import profile_quantities
 from .problem import line_model, medium, static_limits, static_problem
 from .statics import (
     STATIC_SOLVERS,
+    STATUS_BROKEN,
     STATUS_NO_SOLUTION,
     STATUS_NUMERICAL,
     STATUS_OK,
@@ -64,6 +65,10 @@ def check_supported(cases: list[Case], src: StudySource) -> None:
             problems.extend(p for p in spring_problems(case, src) if p not in problems)
             continue
         problems.extend(p for p in _law_problems(case, src) if p not in problems)
+        if case.study.analysis.database is not None:
+            from .database import database_problems
+
+            problems.extend(p for p in database_problems(case, src) if p not in problems)
         method = case.study.analysis.static.method
         problem = static_problem(case.study)
         missing = STATIC_SOLVERS[method].unsupported(problem)
@@ -660,6 +665,10 @@ def evaluate_case(case: Case, *, presolved: dict[str, StaticResult] | None = Non
         if dyn is not None and status == STATUS_OK:
             status, message, dyn_out = run_dynamic(case, res, deadline)
             data.update(dyn_out)
+        if case.study.analysis.database is not None and status in (STATUS_OK, STATUS_BROKEN):
+            from .database import solve_database
+
+            data.update(solve_database(case.study, deadline))
     except Exception as exc:  # noqa: BLE001 - any solver fault is recorded as data
         status = STATUS_NUMERICAL
         tb = traceback.extract_tb(exc.__traceback__)

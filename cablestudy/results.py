@@ -60,6 +60,46 @@ OUTPUTS: dict[str, OutputVariable] = {
     "break_time": OutputVariable(
         (), "s", "time at which the line parted (NaN: it did not), kind: spring with line.failure"
     ),
+    "database_force_a": OutputVariable(
+        ("horizontal_distance", "height_difference", "component"),
+        "N",
+        "quasi-static database: force of the line on end A",
+    ),
+    "database_force_b": OutputVariable(
+        ("horizontal_distance", "height_difference", "component"),
+        "N",
+        "quasi-static database: force of the line on end B",
+    ),
+    "database_tension_a": OutputVariable(
+        ("horizontal_distance", "height_difference"), "N", "quasi-static database: tension at A"
+    ),
+    "database_tension_b": OutputVariable(
+        ("horizontal_distance", "height_difference"), "N", "quasi-static database: tension at B"
+    ),
+    "database_tension_max": OutputVariable(
+        ("horizontal_distance", "height_difference"),
+        "N",
+        "quasi-static database: largest tension along the line",
+    ),
+    "database_laid_length": OutputVariable(
+        ("horizontal_distance", "height_difference"),
+        "m",
+        "quasi-static database: unstretched length on the seabed",
+    ),
+    "database_status": OutputVariable(
+        ("horizontal_distance", "height_difference"),
+        "1",
+        "quasi-static database: static status per grid point (0 ok)",
+    ),
+    "database_distance_grid": OutputVariable(
+        ("horizontal_distance",), "m", "horizontal distance from end A to end B"
+    ),
+    "database_height_grid": OutputVariable(
+        ("height_difference",), "m", "height of end B above end A"
+    ),
+    "database_heading": OutputVariable(
+        (), "rad", "heading of the database plane from end A (from +x towards +y)"
+    ),
     "tension_a": OutputVariable((), "N", "tension at end A"),
     "tension_b": OutputVariable((), "N", "tension at end B"),
     "laid_length": OutputVariable((), "m", "unstretched length resting on the seabed"),
@@ -340,6 +380,21 @@ def assemble(
                 {"units": spec.units, "long_name": spec.long_name},
             )
             data_vars.pop("transfer_frequency")
+    for grid, dim in (
+        ("database_distance_grid", "horizontal_distance"),
+        ("database_height_grid", "height_difference"),
+    ):
+        # the quasi-static database's grid: a coordinate when every case has the same
+        if grid in data_vars and dim not in coords:
+            grids = [
+                np.asarray(r.data[grid])
+                for r in by_index.values()
+                if grid in r.data and r.status in KEPT_STATUSES
+            ]
+            if grids and all(np.array_equal(g, grids[0]) for g in grids):
+                spec = OUTPUTS[grid]
+                coords[dim] = (dim, grids[0], {"units": spec.units, "long_name": spec.long_name})
+                data_vars.pop(grid)
     if "arc_length" in data_vars and "s" not in coords:
         coords["s"] = ("s", np.arange(extent["s"]), {"units": "1", "long_name": "node index"})
 
