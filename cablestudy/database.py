@@ -11,15 +11,19 @@ dataset on the dimensions ``horizontal_distance`` and ``height_difference``.
 :class:`QuasiStaticDatabase` interpolates the table: bicubic Hermite patches whose node
 derivatives (d/dr, d/dh, d2/dr dh) are those of the not-a-knot bicubic spline through
 the nodes (:class:`scipy.interpolate.RectBivariateSpline`), so the interpolant and its
-first derivatives are continuous (C1) and the error falls as h^4 on a smooth table. One
+first derivatives are continuous (C1) and the error falls as h^4 on a smooth table
+(tension_max = max over the line has a kink where the largest tension moves from one
+place to another, and laid_length one where the line lifts off the seabed: there the
+error is first order in h). One
 lookup evaluates all quantities at once (a few microseconds); a point outside the grid
 is refused with the grid's range.
 """
 
 from __future__ import annotations
 
+import bisect
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -137,16 +141,6 @@ def solve_database(study: Study, deadline: float | None = None) -> dict[str, np.
     return data
 
 
-def _hermite(t: float, h: float) -> tuple[np.ndarray, np.ndarray]:
-    """Cubic Hermite basis on [0, 1] at t: value weights (node 0, node 1) and derivative
-    weights (scaled by the cell size h)."""
-    t2, t3 = t * t, t * t * t
-    return (
-        np.array([2 * t3 - 3 * t2 + 1, -2 * t3 + 3 * t2]),
-        np.array([(t3 - 2 * t2 + t) * h, (t3 - t2) * h]),
-    )
-
-
 @dataclass
 class QuasiStaticDatabase:
     """Interpolator of a quasi-static database (see the module docstring).
@@ -164,6 +158,44 @@ class QuasiStaticDatabase:
     d_h: np.ndarray
     d_rh: np.ndarray
     heading: float = 0.0
+    #: monomial coefficients of each cell's bicubic, (Q, nr - 1, nh - 1, 4, 4): value =
+    #: sum_mn C[m, n] t^m u^n with t, u the position in the cell in [0, 1]
+    coefficients: np.ndarray = field(default_factory=lambda: np.zeros((0, 0, 0, 4, 4)))
+
+    def __post_init__(self) -> None:
+        R, H = self.distance, self.height
+        hr, hh = np.diff(R), np.diff(H)
+        # Hermite basis as monomial coefficients in t: values (node 0, node 1) and
+        # derivatives (times the cell size)
+        P = np.array([[1.0, 0.0, -3.0, 2.0], [0.0, 0.0, 3.0, -2.0]])
+        D = np.array([[0.0, 1.0, -2.0, 1.0], [0.0, 0.0, -1.0, 1.0]])
+        Pr = np.broadcast_to(P, (len(hr), 2, 4))
+        Dr = D[None] * hr[:, None, None]
+        Ph = np.broadcast_to(P, (len(hh), 2, 4))
+        Dh = D[None] * hh[:, None, None]
+
+        def cells(A: np.ndarray) -> np.ndarray:
+            # (Q, nr-1, nh-1, 2, 2): the four corner values of every cell
+            return np.stack(
+                (
+                    np.stack((A[:, :-1, :-1], A[:, :-1, 1:]), -1),
+                    np.stack((A[:, 1:, :-1], A[:, 1:, 1:]), -1),
+                ),
+                -2,
+            )
+
+        C = np.einsum("qijab,iam,jbn->qijmn", cells(self.values), Pr, Ph)
+        C += np.einsum("qijab,iam,jbn->qijmn", cells(self.d_r), Dr, Ph)
+        C += np.einsum("qijab,iam,jbn->qijmn", cells(self.d_h), Pr, Dh)
+        C += np.einsum("qijab,iam,jbn->qijmn", cells(self.d_rh), Dr, Dh)
+        self.coefficients = np.ascontiguousarray(C)
+        # per cell a (Q, 16) matrix acting on (t^m u^n) flattened: one matrix-vector
+        # product per lookup
+        self._cells = np.ascontiguousarray(
+            C.transpose(1, 2, 0, 3, 4).reshape(C.shape[1], C.shape[2], C.shape[0], 16)
+        )
+        self._r = R.tolist()
+        self._h = H.tolist()
 
     @classmethod
     def from_arrays(
@@ -236,6 +268,28 @@ class QuasiStaticDatabase:
             ds["horizontal_distance"].values, ds["height_difference"].values, tables, th
         )
 
+    def lookup_array(self, distance: float, height: float) -> np.ndarray:
+        """All quantities at once as one array, in the order of ``names`` (the fast path
+        of :meth:`lookup`: one cell search and two small matrix products)."""
+        r, h = self._r, self._h
+        if not (r[0] <= distance <= r[-1] and h[0] <= height <= h[-1]):
+            raise ValueError(
+                f"position (horizontal distance {distance:g} m, height difference "
+                f"{height:g} m) lies outside the database; allowed: horizontal distance "
+                f"{r[0]:g} .. {r[-1]:g} m and height difference {h[0]:g} .. {h[-1]:g} m"
+            )
+        i = min(bisect.bisect_right(r, distance) - 1, len(r) - 2)
+        j = min(bisect.bisect_right(h, height) - 1, len(h) - 2)
+        t = (distance - r[i]) / (r[i + 1] - r[i])
+        u = (height - h[j]) / (h[j + 1] - h[j])
+        t2, u2 = t * t, u * u
+        t3, u3 = t2 * t, u2 * u
+        w = np.array(
+            (1.0, u, u2, u3, t, t * u, t * u2, t * u3, t2, t2 * u, t2 * u2, t2 * u3)
+            + (t3, t3 * u, t3 * u2, t3 * u3)
+        )
+        return self._cells[i, j] @ w
+
     def lookup(self, distance: float, height: float) -> dict[str, Any]:
         """Interpolated quantities at end B ``distance`` [m] horizontally from end A and
         ``height`` [m] above it: force_a, force_b [N] (3,), tension_a, tension_b,
@@ -246,25 +300,7 @@ class QuasiStaticDatabase:
         ValueError
             outside the grid, with the grid's range.
         """
-        R, H = self.distance, self.height
-        if not (R[0] <= distance <= R[-1] and H[0] <= height <= H[-1]):
-            raise ValueError(
-                f"position (horizontal distance {distance:g} m, height difference "
-                f"{height:g} m) lies outside the database; allowed: horizontal distance "
-                f"{R[0]:g} .. {R[-1]:g} m and height difference {H[0]:g} .. {H[-1]:g} m"
-            )
-        i = min(int(np.searchsorted(R, distance, side="right")) - 1, len(R) - 2)
-        j = min(int(np.searchsorted(H, height, side="right")) - 1, len(H) - 2)
-        hr, hh = R[i + 1] - R[i], H[j + 1] - H[j]
-        br, dr = _hermite((distance - R[i]) / hr, hr)
-        bh, dh = _hermite((height - H[j]) / hh, hh)
-        sl = (slice(None), slice(i, i + 2), slice(j, j + 2))
-        v = (
-            np.einsum("qab,a,b->q", self.values[sl], br, bh)
-            + np.einsum("qab,a,b->q", self.d_r[sl], dr, bh)
-            + np.einsum("qab,a,b->q", self.d_h[sl], br, dh)
-            + np.einsum("qab,a,b->q", self.d_rh[sl], dr, dh)
-        )
+        v = self.lookup_array(distance, height)
         out: dict[str, Any] = {}
         for (name, k), val in zip(self.names, v, strict=True):
             if k is None:
