@@ -237,6 +237,12 @@ class Segment(StrictModel):
     damping_ratio: NonNegative = Field(
         0.0, le=1.0, description="axial structural damping, fraction of critical [-]"
     )
+    damping_transverse: NonNegative = Field(
+        0.0,
+        description="transverse structural damping per length [N s/m^2]: a force -c v_n per "
+        "length on the velocity normal to the line (the ajayi seed's c); time and frequency "
+        "domain",
+    )
 
     @model_validator(mode="after")
     def _mass_or_weight(self) -> Segment:
@@ -321,6 +327,14 @@ class Attachment(StrictModel):
     force: Vec3 = Field([0.0, 0.0, 0.0], description="constant applied force [N]")
     mass: NonNegative = Field(0.0, description="lumped mass [kg] (weight and inertia)")
     volume: NonNegative = Field(0.0, description="displaced volume [m^3] (buoyancy)")
+    added_mass: NonNegative = Field(
+        0.0, description="isotropic added mass of the body [kg] (dynamic analyses)"
+    )
+    drag_area: NonNegative = Field(
+        0.0,
+        description="drag coefficient times projected area C_D A [m^2] of the body: isotropic "
+        "quadratic drag 1/2 rho C_D A |U| U on the relative velocity (time domain)",
+    )
     name: str | None = None
 
 
@@ -357,7 +371,11 @@ class Line(StrictModel):
         [], max_length=100, description="kind catenary: segments from end A to end B"
     )
     attachments: list[Attachment] = []
-    length: Positive | None = Field(None, description="kind spring: unstretched length [m]")
+    length: Positive | None = Field(
+        None,
+        description="kind spring: unstretched length [m]; kind catenary: the total of the "
+        "segments' lengths (filled in; if given it must equal that total)",
+    )
     failure: BreakCondition | None = Field(
         None,
         description="failure (break) condition of the whole line: {tension: N} or "
@@ -411,15 +429,23 @@ class Line(StrictModel):
                 "segments (or kind: spring with length and axial)",
                 [],
             )
-        for key in ("length", "axial"):
-            if getattr(self, key) is not None:
-                raise FieldError(
-                    (key,),
-                    f"'{key}' belongs to a kind: spring line; a catenary line takes its "
-                    "length and axial law per segment (line.segments.N.length, .axial)",
-                    getattr(self, key) if key == "length" else "axial",
-                )
+        if self.axial is not None:
+            raise FieldError(
+                ("axial",),
+                "'axial' belongs to a kind: spring line; a catenary line takes its axial "
+                "law per segment (line.segments.N.axial)",
+                "axial",
+            )
         total = self.total_length
+        if self.length is not None and abs(self.length - total) > 1e-12 * total:
+            raise FieldError(
+                ("length",),
+                "'length' of a kind: catenary line is the sum of its segments' lengths "
+                f"({total:g} m); give the lengths per segment (line.segments.N.length)",
+                self.length,
+            )
+        # ``line.length`` reads as the total unstretched length for either kind
+        object.__setattr__(self, "length", total)
         for i, att in enumerate(self.attachments):
             if att.s > total:
                 raise FieldError(
