@@ -98,6 +98,7 @@ def piece_increments(
     jacobian: bool = True,
     points: int | None = None,
     grades: int | None = None,
+    compiled: bool = True,
 ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
     """:func:`.pieces.piece_integrals` with each piece's own axial law.
 
@@ -112,29 +113,68 @@ def piece_increments(
         Gauss-Legendre nodes per sub-interval, and graded sub-intervals on each side of
         the point of least tension (:func:`_graded_nodes`); default the module's
         QUADRATURE_POINTS and QUADRATURE_GRADES.
+    compiled : bool
+        Use the numba kernel (:mod:`._law_fast`, same quadrature) where available.
 
     Returns
     -------
     dr [m] (P, 3), jac [m/N] (P, 3, 3) or None, energy [N m] (P,)
     """
-    dr, jac, energy = piece_integrals(T0, q, ell, EA, jacobian=jacobian)
-    if laws is None:
-        return dr, jac, energy
     groups: dict[int, tuple[AxialLaw, list[int]]] = {}
-    for p, law in enumerate(laws):
+    for p, law in enumerate(laws or ()):
         if law is None or law.is_linear:
             continue
         groups.setdefault(id(law), (law, []))[1].append(p)
     if not groups:
-        return dr, jac, energy
+        return piece_integrals(T0, q, ell, EA, jacobian=jacobian)
+    if compiled:
+        from . import _law_fast  # numba is imported on first use, not with the package
+
+        compiled = _law_fast.AVAILABLE
+    if compiled:
+        T0 = np.ascontiguousarray(T0, dtype=float)
+        q = np.ascontiguousarray(q, dtype=float)
+        ell = np.ascontiguousarray(ell, dtype=float)
+        EA = np.ascontiguousarray(EA, dtype=float)
+        P = len(ell)
+        dr, energy = np.empty((P, 3)), np.empty(P)
+        jac = np.empty((P, 3, 3)) if jacobian else None
+        _law_fast.linear_pieces(
+            T0, q, ell, EA, dr, jac if jac is not None else np.zeros((1, 3, 3)), energy, jacobian
+        )
+    else:
+        dr, jac, energy = piece_integrals(T0, q, ell, EA, jacobian=jacobian)
+        dr = dr.copy()
+        energy = energy.copy()
+        if jac is not None:
+            jac = jac.copy()
     points = QUADRATURE_POINTS if points is None else points
     grades = QUADRATURE_GRADES if grades is None else grades
-    dr = dr.copy()
-    energy = energy.copy()
-    if jac is not None:
-        jac = jac.copy()
     for law, idx_list in groups.values():
         idx = np.asarray(idx_list)
+        code = _law_fast.encode(law) if compiled else None
+        if code is not None:
+            xg, wg = gauss_legendre(points)
+            _law_fast.law_corrections(
+                T0,
+                q,
+                ell,
+                EA,
+                idx,
+                code[0],
+                code[1],
+                code[2],
+                code[3],
+                np.asarray(law.breakpoints(), dtype=float),
+                np.ascontiguousarray(xg),
+                np.ascontiguousarray(wg),
+                grades,
+                dr,
+                jac if jac is not None else np.zeros((1, 3, 3)),
+                energy,
+                jac is not None,
+            )
+            continue
         sig, wl = _graded_nodes(T0[idx], q[idx], ell[idx], points, grades, law.breakpoints())
         # tension vectors at the nodes: (p, j, 3)
         T = T0[idx][:, None, :] - q[idx][:, None, :] * sig[..., None]
