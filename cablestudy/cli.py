@@ -320,6 +320,7 @@ def build_parser() -> argparse.ArgumentParser:
         "--shape", action="store_true", help="draw profiles on s as line shapes in the x-z plane"
     )
     p.set_defaults(func=cmd_plot)
+    _add_lookup_parser(sub)
     return parser
 
 
@@ -334,6 +335,51 @@ def main(argv: list[str] | None = None) -> int:
     except StudyError as exc:
         print(f"invalid study:\n{exc}", file=sys.stderr)
         return 2
+
+
+def _add_lookup_parser(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+    p = sub.add_parser(
+        "lookup",
+        help="interpolate a quasi-static database (analysis.database) at an end-B position",
+    )
+    p.add_argument("database", help="result file holding the database")
+    p.add_argument(
+        "--at",
+        nargs=2,
+        type=float,
+        required=True,
+        metavar=("X", "Z"),
+        help="horizontal distance [m] and height difference [m] of end B from end A",
+    )
+    p.add_argument(
+        "--sel",
+        action="append",
+        default=None,
+        metavar="DIM=VALUE",
+        help="one case of a swept study, by dimension and value (repeatable)",
+    )
+    p.set_defaults(func=cmd_lookup)
+
+
+def cmd_lookup(args: argparse.Namespace) -> int:
+    """Print the interpolated end forces [N], tensions [N] and laid length [m] as JSON."""
+    from .database import open_database
+
+    sel: dict[str, object] = {}
+    for item in args.sel or []:
+        dim, _, value = item.partition("=")
+        try:
+            sel[dim] = float(value)
+        except ValueError:
+            sel[dim] = value
+    try:
+        db = open_database(args.database, **sel)
+        out = db.lookup(args.at[0], args.at[1])
+    except (ValueError, KeyError, OSError) as exc:
+        print(f"lookup: {exc}", file=sys.stderr)
+        return 2
+    print(json.dumps({k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in out.items()}))
+    return 0
 
 
 if __name__ == "__main__":

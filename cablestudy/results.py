@@ -30,6 +30,12 @@ class OutputVariable:
     dtype: str = "float64"
 
 
+#: status of a case whose line broke in statics (cablestudy.statics.base.STATUS_BROKEN):
+#: its data are kept, it is not counted as failed
+STATUS_BROKEN = 10
+#: statuses whose case data are written (others are NaN)
+KEPT_STATUSES = (0, STATUS_BROKEN)
+
 #: every data variable a case may produce: name -> extra dims, units, long name.
 #: Numeric outputs (counters included) are float64 so that a failed case is NaN in every
 #: one of them (DESIGN.md); dimensionless and text variables have units "1" (CF).
@@ -51,6 +57,49 @@ OUTPUTS: dict[str, OutputVariable] = {
     "arc_length": OutputVariable(("s",), "m", "unstretched arc length from end A"),
     "force_a": OutputVariable(("component",), "N", "force of the line on the attachment at end A"),
     "force_b": OutputVariable(("component",), "N", "force of the line on the attachment at end B"),
+    "break_time": OutputVariable(
+        (), "s", "time at which the line parted (NaN: it did not), kind: spring with line.failure"
+    ),
+    "database_force_a": OutputVariable(
+        ("horizontal_distance", "height_difference", "component"),
+        "N",
+        "quasi-static database: force of the line on end A",
+    ),
+    "database_force_b": OutputVariable(
+        ("horizontal_distance", "height_difference", "component"),
+        "N",
+        "quasi-static database: force of the line on end B",
+    ),
+    "database_tension_a": OutputVariable(
+        ("horizontal_distance", "height_difference"), "N", "quasi-static database: tension at A"
+    ),
+    "database_tension_b": OutputVariable(
+        ("horizontal_distance", "height_difference"), "N", "quasi-static database: tension at B"
+    ),
+    "database_tension_max": OutputVariable(
+        ("horizontal_distance", "height_difference"),
+        "N",
+        "quasi-static database: largest tension along the line",
+    ),
+    "database_laid_length": OutputVariable(
+        ("horizontal_distance", "height_difference"),
+        "m",
+        "quasi-static database: unstretched length on the seabed",
+    ),
+    "database_status": OutputVariable(
+        ("horizontal_distance", "height_difference"),
+        "1",
+        "quasi-static database: static status per grid point (0 ok)",
+    ),
+    "database_distance_grid": OutputVariable(
+        ("horizontal_distance",), "m", "horizontal distance from end A to end B"
+    ),
+    "database_height_grid": OutputVariable(
+        ("height_difference",), "m", "height of end B above end A"
+    ),
+    "database_heading": OutputVariable(
+        (), "rad", "heading of the database plane from end A (from +x towards +y)"
+    ),
     "tension_a": OutputVariable((), "N", "tension at end A"),
     "tension_b": OutputVariable((), "N", "tension at end B"),
     "laid_length": OutputVariable((), "m", "unstretched length resting on the seabed"),
@@ -151,7 +200,9 @@ OUTPUTS: dict[str, OutputVariable] = {
 
 #: per-case bookkeeping variables (always present)
 CASE_VARIABLES: dict[str, OutputVariable] = {
-    "status": OutputVariable((), "1", "case status: 0 ok, nonzero failed", "int64"),
+    "status": OutputVariable(
+        (), "1", "case status: 0 ok, 10 line broken (data kept), other nonzero failed", "int64"
+    ),
     "message": OutputVariable((), "1", "why the case failed (empty when ok)", "str"),
     "wall_time": OutputVariable((), "s", "wall time of the case"),
 }
@@ -236,7 +287,7 @@ def assemble(
             rows = [
                 (idx, np.asarray(rec.data[name]))
                 for idx, rec in by_index.items()
-                if name in rec.data and rec.status == 0
+                if name in rec.data and rec.status in KEPT_STATUSES
             ]
         if spec.dtype == "str":
             # text as Python str (not 0-d arrays), so that netCDF sees one type when
@@ -309,7 +360,7 @@ def assemble(
         arcs = [
             np.asarray(r.data["arc_length"])
             for r in by_index.values()
-            if "arc_length" in r.data and r.status == 0
+            if "arc_length" in r.data and r.status in KEPT_STATUSES
         ]
         if arcs and all(len(a) == extent["s"] and np.array_equal(a, arcs[0]) for a in arcs):
             coords["s"] = ("s", arcs[0], {"units": "m", "long_name": COORDINATES["s"][1]})
@@ -319,7 +370,7 @@ def assemble(
         freqs = [
             np.asarray(r.data["transfer_frequency"])
             for r in by_index.values()
-            if "transfer_frequency" in r.data and r.status == 0
+            if "transfer_frequency" in r.data and r.status in KEPT_STATUSES
         ]
         if freqs and all(np.array_equal(f, freqs[0]) for f in freqs):
             spec = OUTPUTS["transfer_frequency"]
@@ -329,14 +380,32 @@ def assemble(
                 {"units": spec.units, "long_name": spec.long_name},
             )
             data_vars.pop("transfer_frequency")
+    for grid, dim in (
+        ("database_distance_grid", "horizontal_distance"),
+        ("database_height_grid", "height_difference"),
+    ):
+        # the quasi-static database's grid: a coordinate when every case has the same
+        if grid in data_vars and dim not in coords:
+            grids = [
+                np.asarray(r.data[grid])
+                for r in by_index.values()
+                if grid in r.data and r.status in KEPT_STATUSES
+            ]
+            if grids and all(np.array_equal(g, grids[0]) for g in grids):
+                spec = OUTPUTS[grid]
+                coords[dim] = (dim, grids[0], {"units": spec.units, "long_name": spec.long_name})
+                data_vars.pop(grid)
     if "arc_length" in data_vars and "s" not in coords:
         coords["s"] = ("s", np.arange(extent["s"]), {"units": "1", "long_name": "node index"})
 
     ds = xr.Dataset(data_vars, coords=coords)
     ds.attrs.update(provenance(src, solver_settings or {}))
-    n_failed = int(np.count_nonzero(ds["status"].values != 0))
+    status = ds["status"].values
+    n_failed = int(np.count_nonzero((status != 0) & (status != STATUS_BROKEN)))
     ds.attrs["cases"] = int(np.prod(shape)) if shape else 1
     ds.attrs["cases_failed"] = n_failed
+    if np.any(status == STATUS_BROKEN):
+        ds.attrs["cases_broken"] = int(np.count_nonzero(status == STATUS_BROKEN))
     return ds
 
 

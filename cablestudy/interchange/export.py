@@ -77,6 +77,17 @@ def moordyn_input(
     env = study.environment
     rho, g = env.density, env.gravity
     segs = study.line.segments
+    if study.line.is_spring:
+        raise InterchangeError(
+            "line.kind: spring (a massless spring) has no MoorDyn line equivalent; "
+            "export a kind: catenary line"
+        )
+    for i, seg in enumerate(segs):
+        if seg.axial is not None and seg.axial.law != "linear":
+            raise InterchangeError(
+                f"line.segments.{i}.axial: the {seg.axial.law} law is not exported (the "
+                "MoorDyn file takes a linear EA here); give axial_stiffness to export"
+            )
     warnings: list[str] = []
     bounds = np.concatenate([[0.0], np.cumsum([s.length for s in segs])])
     total = float(bounds[-1])
@@ -114,7 +125,7 @@ def moordyn_input(
                 )
         ba = -seg.damping_ratio if seg.damping_ratio > 0.0 else 0.0
         type_rows.append(
-            f"seg{i + 1}  {_num(seg.diameter)}  {_num(m)}  {_num(seg.axial_stiffness)}  "
+            f"seg{i + 1}  {_num(seg.diameter)}  {_num(m)}  {_num(seg.elastic_stiffness)}  "
             f"{_num(ba)}  {_num(seg.bending_stiffness)}  {_num(seg.drag_normal)}  "
             f"{_num(seg.added_mass_normal)}  {_num(seg.drag_tangential)}  "
             f"{_num(seg.added_mass_tangential)}"
@@ -159,7 +170,8 @@ def moordyn_input(
         length = s1 - s0
         nseg = max(1, round(n_total * length / total))
         c = math.sqrt(
-            seg.axial_stiffness / (seg.mass_in(rho, g) + rho * seg.area * seg.added_mass_tangential)
+            seg.elastic_stiffness
+            / (seg.mass_in(rho, g) + rho * seg.area * seg.added_mass_tangential)
         )
         dt = min(dt, math.pi * (length / nseg) / (10.0 * c))
         line_rows.append(f"{k + 1}  seg{iseg + 1}  {k + 1}  {k + 2}  {_num(length)}  {nseg}  -")
