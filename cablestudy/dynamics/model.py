@@ -65,6 +65,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
+from ..physics.contact import default_seabed_stiffness as contact_stiffness
 from ..statics.base import LineModel, Medium
 
 
@@ -280,10 +281,9 @@ def seabed_plane(medium: Medium) -> tuple[np.ndarray, float]:
 
 
 def default_seabed_stiffness(line: LineModel) -> float:
-    """Default normal contact stiffness per length [N/m^2]: the heaviest segment's
-    weight in the fluid per metre of penetration over 1 mm (a static penetration of
-    1 mm), at least 1 kPa."""
-    return max(float(np.max(line.weight)) / 1e-3, 1e3)
+    """Default normal contact stiffness per length [N/m^2]
+    (:func:`cablestudy.physics.contact.default_seabed_stiffness` of the line's weights)."""
+    return contact_stiffness(line.weight)
 
 
 def discretise(
