@@ -7,15 +7,11 @@ The runner moves cases and records; it knows nothing of physics (it calls
 
 from __future__ import annotations
 
-import dataclasses
-import hashlib
 import json
 import math
 import os
-import pickle
 import re
 import sys
-import tempfile
 import time
 from collections import Counter
 from collections.abc import Callable
@@ -23,18 +19,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from .analyses import evaluate_chunk
+from .cache import LOST_PREFIX, TRANSIENT_PREFIXES, CaseCache  # noqa: F401 - re-exported
 from .cases import Case, SweepAxis
 from .config.loader import StudySource
 from .results import CaseRecord, assemble, write_atomic
 
 #: status of a case whose task failed outside the solvers (worker lost)
 STATUS_TASK_FAILED = 9
-#: messages of records that must not be cached (transient: a rerun may succeed)
-LOST_PREFIX = "task failed: "
-TRANSIENT_PREFIXES = ("time limit", LOST_PREFIX)
 
 SYNCHRONOUS = "synchronous"
 PROCESSES = "processes"
@@ -100,79 +92,6 @@ def make_chunks(
     # sizes differ by at most one
     bounds = [len(ordered) * i // n_chunks for i in range(n_chunks + 1)]
     return [ordered[lo:hi] for lo, hi in zip(bounds[:-1], bounds[1:], strict=True)]
-
-
-def _compact(record: CaseRecord) -> CaseRecord:
-    """The record with 0-d arrays as Python scalars (pickles three times faster)."""
-    data = {
-        k: (v.item() if isinstance(v, np.ndarray) and v.ndim == 0 else v)
-        for k, v in record.data.items()
-    }
-    return dataclasses.replace(record, data=data)
-
-
-class CaseCache:
-    """Finished case records on disk, one pickle file per finished chunk, keyed by case
-    hash. Written atomically (temporary file then rename)."""
-
-    def __init__(self, directory: Path | None) -> None:
-        self.directory = directory
-        self.records: dict[str, CaseRecord] = {}
-        if directory is not None and directory.is_dir():
-            for path in sorted(directory.glob("chunk-*.pkl")):
-                try:
-                    with open(path, "rb") as fh:
-                        for rec in pickle.load(fh):
-                            self.records[rec.hash] = rec
-                except Exception:  # noqa: BLE001 - an unreadable cache file is recomputed
-                    path.unlink(missing_ok=True)
-
-    def store(self, records: list[CaseRecord]) -> None:
-        """Keep ``records`` and write the cacheable ones (not time-limited, not lost with
-        their worker) to one new chunk file."""
-        cacheable = [r for r in records if not r.message.startswith(TRANSIENT_PREFIXES)]
-        for rec in records:
-            self.records[rec.hash] = rec
-        if self.directory is None or not cacheable:
-            return
-        key = hashlib.sha256("".join(r.hash for r in cacheable).encode()).hexdigest()[:24]
-        self._write(self.directory / f"chunk-{key}.pkl", [_compact(r) for r in cacheable])
-
-    def _write(self, path: Path, records: list[CaseRecord]) -> None:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".chunk-", suffix=".tmp")
-        try:
-            with os.fdopen(fd, "wb") as fh:
-                pickle.dump(records, fh, protocol=pickle.HIGHEST_PROTOCOL)
-                fh.flush()
-                os.fsync(fh.fileno())
-            os.replace(tmp, path)
-        finally:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
-
-    def compact(self, keep: set[str]) -> None:
-        """Rewrite the cache as one file holding the records in ``keep`` (the cases of the
-        study as it now stands), dropping records of edited-away cases. The new file is
-        in place before the old ones are removed, so a crash loses nothing."""
-        if self.directory is None or not self.directory.is_dir():
-            return
-        old = sorted(self.directory.glob("chunk-*.pkl"))
-        records = [
-            r
-            for h, r in self.records.items()
-            if h in keep and not r.message.startswith(TRANSIENT_PREFIXES)
-        ]
-        if not records:
-            return
-        key = hashlib.sha256("".join(sorted(r.hash for r in records)).encode()).hexdigest()
-        target = self.directory / f"chunk-{key[:24]}.pkl"
-        if old == [target]:
-            return
-        self._write(target, records)
-        for path in old:
-            if path != target:
-                path.unlink(missing_ok=True)
 
 
 @dataclass
