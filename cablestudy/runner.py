@@ -136,36 +136,36 @@ def group_failures(failures: dict[str, int]) -> dict[str, tuple[int, str]]:
 
 
 class Progress:
-    """A one-line progress bar on a terminal, shown only once a study has run for a few
-    seconds."""
+    """A tqdm progress bar of finished cases on standard error: only on a terminal (or
+    when ``enabled``), and only once the study has run for ``delay`` seconds, so quick
+    studies and logs stay clean."""
 
     def __init__(self, total: int, *, enabled: bool | None = None, delay: float = 2.0) -> None:
         self.total = total
         self.done = 0
-        self.t0 = time.monotonic()
-        self.delay = delay
         self.enabled = sys.stderr.isatty() if enabled is None else enabled
-        self.shown = False
+        self._bar = None
+        if self.enabled:
+            from tqdm import tqdm
+
+            self._bar = tqdm(
+                total=total,
+                file=sys.stderr,
+                delay=delay,
+                ascii=" #",
+                unit="case",
+                dynamic_ncols=True,
+                bar_format="[{bar:30}] {n_fmt}/{total_fmt} cases, {elapsed}, eta {remaining} ",
+            )
 
     def update(self, n: int) -> None:
         self.done += n
-        if not self.enabled:
-            return
-        elapsed = time.monotonic() - self.t0
-        if elapsed < self.delay and self.done < self.total:
-            return
-        frac = self.done / max(self.total, 1)
-        bar = "#" * int(30 * frac)
-        eta = elapsed / frac - elapsed if frac > 0 else float("nan")
-        sys.stderr.write(
-            f"\r[{bar:<30}] {self.done}/{self.total} cases, {elapsed:.0f} s, eta {eta:.0f} s "
-        )
-        sys.stderr.flush()
-        self.shown = True
+        if self._bar is not None:
+            self._bar.update(n)
 
     def close(self) -> None:
-        if self.shown:
-            sys.stderr.write("\n")
+        if self._bar is not None:
+            self._bar.close()
 
 
 def _run_local(

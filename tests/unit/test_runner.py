@@ -4,6 +4,7 @@ is exercised in tests/integration)."""
 
 from __future__ import annotations
 
+import time
 from collections import OrderedDict
 from pathlib import Path
 
@@ -369,6 +370,24 @@ def test_progress_bar_on_a_terminal(capsys: pytest.CaptureFixture[str]) -> None:
     quiet.update(4)
     quiet.close()
     assert capsys.readouterr().err == ""
+    # not a terminal (pytest captures stderr): no bar by default
+    default = Progress(4)
+    default.update(4)
+    default.close()
+    assert capsys.readouterr().err == ""
+    # a study finished before the delay shows nothing, even on a terminal
+    quick = Progress(4, enabled=True, delay=30.0)
+    quick.update(4)
+    quick.close()
+    assert capsys.readouterr().err == ""
+    # ... and one running past it does (tqdm: n/total, elapsed, remaining)
+    slow = Progress(4, enabled=True, delay=0.05)
+    slow.update(1)
+    time.sleep(0.1)
+    slow.update(1)
+    slow.close()
+    err = capsys.readouterr().err
+    assert "2/4 cases" in err and "eta" in err
 
 
 def test_auto_scheduler_keeps_a_quick_study_in_process(
