@@ -37,7 +37,7 @@ SCHEDULERS = (AUTO, SYNCHRONOUS, THREADS, PROCESSES)
 #: estimated remaining run time above which worker processes are started
 AUTO_PROBE_SECONDS = 0.5
 #: seconds to wait for a dask.distributed scheduler given by its address
-CONNECT_TIMEOUT = 10.0
+CONNECT_TIMEOUT = 3.0
 AUTO_PARALLEL_AFTER = 5.0
 
 
