@@ -74,6 +74,10 @@ def _count_evaluations(monkeypatch: pytest.MonkeyPatch, interrupt_after: int | N
     return counter
 
 
+def _key(c: Case) -> tuple[str, tuple[int, ...]]:
+    return (c.static_hash, c.index)
+
+
 def test_chunks_cover_every_case_once_and_batch_cheap_cases() -> None:
     _, _, cases = _expand()
     chunks = make_chunks(cases, workers=2)
@@ -84,9 +88,15 @@ def test_chunks_cover_every_case_once_and_batch_cheap_cases() -> None:
     many = [Case((i,), {}, cases[0].study, f"h{i}", f"s{i % 7}") for i in range(5000)]
     big = make_chunks(many, workers=2)
     assert len(big) == 25 and max(len(c) for c in big) == 200
-    # cases sharing a static problem are adjacent (the static solution is reused)
-    order = [c.static_hash for ch in big for c in ch]
-    assert order == sorted(order)
+    # a chunk is STRIPES runs of adjacent cases (cases sharing a static problem stay
+    # together, so its solution is reused): a run spans at most two static problems
+    for ch in big:
+        runs = [c.static_hash for c in ch]
+        assert len(set(runs)) <= 2 * runner.STRIPES
+        assert sum(a != b for a, b in zip(runs, runs[1:], strict=False)) <= 2 * runner.STRIPES
+    # submitted from both ends of the sweep inwards: the first and last cases start first
+    assert big[0][0] is sorted(many, key=_key)[0]
+    assert big[1][-1] is sorted(many, key=_key)[-1]
 
 
 def test_a_solver_exception_is_a_failed_case_and_the_study_finishes(
@@ -405,18 +415,57 @@ def test_auto_scheduler_keeps_a_quick_study_in_process(
 def test_auto_scheduler_hands_a_long_study_to_workers(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    handed: list[int] = []
+    handed: list[tuple[int, str, float | None]] = []
 
-    def fake_cluster(cases, scheduler, workers, on_done):  # noqa: ANN001, ANN202
-        handed.append(len(cases))
+    def fake_cluster(cases, scheduler, workers, on_done, *, per_case=None):  # noqa: ANN001, ANN202
+        handed.append((len(cases), scheduler, per_case))
         on_done(runner.run_chunk(cases))
 
     monkeypatch.setattr(runner, "_run_dask", fake_cluster)
     monkeypatch.setattr(runner, "AUTO_PROBE_SECONDS", 0.0)  # decide after one case
     monkeypatch.setattr(runner, "AUTO_PARALLEL_AFTER", 0.0)  # ... that anything is long
+    monkeypatch.setattr(runner, "THREAD_PROBE_SECONDS", 0.0)  # one case a thread
+    monkeypatch.setattr(runner, "THREADS_SCALE", 1e9)  # ... that never scale
     src, axes, cases = _expand()
     summary = run_study(src, axes, cases, tmp_path, scheduler="auto", workers=2, progress=False)
-    assert handed == [26] and summary.n_computed == 27
+    # one case probed alone, one on each of two threads, the rest to worker processes
+    assert [h[:2] for h in handed] == [(24, "processes")] and handed[0][2] > 0
+    assert summary.n_computed == 27 and summary.scheduler == "processes"
+    assert summary.report().endswith("s (processes)")
+
+
+def test_scheduler_choice_follows_the_probe() -> None:
+    from cablestudy.runner import Probe, choose_scheduler
+
+    _, _, cases = _expand()  # 27 cases
+    quick = Probe(cases, per_case=0.01)  # 0.27 s left: not worth starting anything
+    assert choose_scheduler(quick, workers=2) == "synchronous"
+    slow = Probe(cases, per_case=1.0, thread_speedup=1.9)  # 27 s, numba without the GIL
+    assert choose_scheduler(slow, workers=2) == "threads"
+    bound = Probe(cases, per_case=1.0, thread_speedup=1.05)  # the GIL serialises threads
+    assert choose_scheduler(bound, workers=2) == "processes"
+    assert choose_scheduler(bound, workers=1) == "synchronous"
+
+
+def test_chunks_take_about_a_second_at_the_measured_cost() -> None:
+    _, _, cases = _expand()
+    many = [Case((i,), {}, cases[0].study, f"h{i}", f"s{i % 7}") for i in range(5000)]
+    # 0.1 s a case: 10 cases a task
+    assert {len(c) for c in make_chunks(many, workers=2, per_case=0.1)} == {10}
+    # 5 s a case: one case a task; 1 us a case: as many as load balance allows
+    assert {len(c) for c in make_chunks(many, workers=2, per_case=5.0)} == {1}
+    assert [len(c) for c in make_chunks(many, workers=2, per_case=1e-6)] == [625] * 8
+    huge = [Case((i,), {}, cases[0].study, f"h{i}", "s") for i in range(100_000)]
+    sizes = {len(c) for c in make_chunks(huge, workers=2, per_case=1e-7)}
+    assert max(sizes) <= runner.MAX_CHUNK_CASES
+
+
+def test_probe_runs_each_case_once_in_doubling_chunks() -> None:
+    _, _, cases = _expand()
+    done: list[int] = []
+    probe = runner.probe_cost(cases, lambda recs: done.append(len(recs)), seconds=1e9)
+    assert done == [1, 2, 4, 8, 12] and probe.rest == []
+    assert probe.per_case > 0
 
 
 def test_time_limited_cases_fail_with_a_message_and_are_retried(tmp_path: Path) -> None:
