@@ -20,7 +20,9 @@ import os
 import re
 import sys
 import tempfile
+from collections import Counter
 from collections.abc import Callable, Iterable
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -209,4 +211,128 @@ class CaseCache:
         target = self._write(records)
         for path in old:
             if path != target:
+                path.unlink(missing_ok=True)
+
+
+GRID_FORMAT = "cablestudy-grid-chunk-1"
+_GRID_NAME = re.compile(r"^grid-([0-9a-f]{32})-([0-9a-f]{64})\.npz$")
+
+
+@dataclass
+class GridSummary:
+    """What the chunk files of a grid study hold, read one file at a time: the output
+    variables and their extra-dimension shapes, the arc lengths every successful case
+    shares (None if they differ), and the failure messages with their counts."""
+
+    names: list[str]
+    tails: dict[str, tuple[int, ...]]
+    arc: np.ndarray | None
+    failures: Counter[str]
+
+
+class GridChunkStore:
+    """Chunks of a study run as arrays (:class:`cablestudy.grid.GridChunk`), one data file
+    each, ``grid-<chunk key>-<sha256 of the file>.npz``: plain arrays, read with
+    ``allow_pickle=False``, checked against their hash before use (a damaged file is
+    reported once, removed and recomputed)."""
+
+    def __init__(self, directory: Path, *, warn: Callable[[str], None] = _warn_stderr) -> None:
+        self.directory = directory
+        self.warn = warn
+
+    def find(self, key: str) -> Path | None:
+        """The intact file of the chunk with content key ``key``, if any."""
+        if not self.directory.is_dir():
+            return None
+        for path in sorted(self.directory.glob(f"grid-{key[:32]}-*.npz")):
+            reason = self._check(path)
+            if not reason:
+                return path
+            self.warn(f"cache file {path} {reason}; its cases will be recomputed")
+            path.unlink(missing_ok=True)
+        return None
+
+    @staticmethod
+    def _check(path: Path) -> str:
+        match = _GRID_NAME.match(path.name)
+        if not match:
+            return "is not named grid-<key>-<sha256>.npz"
+        try:
+            payload = path.read_bytes()
+        except OSError as exc:
+            return f"cannot be read ({exc})"
+        digest = hashlib.sha256(payload).hexdigest()
+        if digest != match.group(2):
+            return f"is damaged (sha256 of its {len(payload)} bytes is {digest[:12]}...)"
+        try:
+            with np.load(io.BytesIO(payload), allow_pickle=False) as z:
+                if "format" not in z.files or str(z["format"]) != GRID_FORMAT:
+                    return "is not a grid chunk archive"
+                for k in z.files:  # every member loads as plain data
+                    z[k]
+        except Exception as exc:  # noqa: BLE001 - whatever is wrong, the cases are recomputed
+            return f"is not a grid chunk archive ({type(exc).__name__}: {exc})"
+        return ""
+
+    def write(self, chunk: object) -> Path:
+        """Write ``chunk`` (a GridChunk) atomically; returns its file."""
+        arrays: dict[str, np.ndarray] = {
+            "format": np.array(GRID_FORMAT),
+            "key": np.array(chunk.key),  # type: ignore[attr-defined]
+            "rows": np.array([chunk.lo, chunk.hi], dtype=np.int64),  # type: ignore[attr-defined]
+            "v_status": np.asarray(chunk.status, dtype=np.int64),  # type: ignore[attr-defined]
+            "v_message": np.asarray(chunk.message, dtype=str),  # type: ignore[attr-defined]
+            "v_wall_time": np.asarray(chunk.wall_time, dtype=np.float64),  # type: ignore[attr-defined]
+        }
+        for name, arr in chunk.data.items():  # type: ignore[attr-defined]
+            arrays[f"v_{name}"] = _as_data_array(name, arr)
+        buf = io.BytesIO()
+        np.savez(buf, **arrays)
+        payload = buf.getvalue()
+        digest = hashlib.sha256(payload).hexdigest()
+        path = self.directory / f"grid-{chunk.key[:32]}-{digest}.npz"  # type: ignore[attr-defined]
+        self.directory.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=self.directory, prefix=".grid-", suffix=".tmp")
+        try:
+            with os.fdopen(fd, "wb") as fh:
+                fh.write(payload)
+                fh.flush()
+                os.fsync(fh.fileno())
+            os.replace(tmp, path)
+        finally:
+            if os.path.exists(tmp):
+                os.unlink(tmp)
+        return path
+
+    @staticmethod
+    def summary(paths: list[Path]) -> GridSummary:
+        names: set[str] = set()
+        tails: dict[str, tuple[int, ...]] = {}
+        arc: np.ndarray | None = None
+        same_arc = True
+        failures: Counter[str] = Counter()
+        for path in paths:
+            with np.load(path, allow_pickle=False) as z:
+                status = z["v_status"]
+                bad = status != 0
+                if bad.any():
+                    failures.update(str(m) for m in z["v_message"][bad])
+                for k in z.files:
+                    if k.startswith("v_") and k not in ("v_status", "v_message", "v_wall_time"):
+                        names.add(k[2:])
+                        tails[k[2:]] = tuple(z[k].shape[1:])
+                if "v_arc_length" in z.files and same_arc:
+                    ok = z["v_arc_length"][~bad]
+                    if len(ok):
+                        ref = ok[0] if arc is None else arc
+                        if np.all(ok == ref):
+                            arc = ref
+                        else:
+                            same_arc = False
+        return GridSummary(sorted(names), tails, arc if same_arc else None, failures)
+
+    def keep(self, paths: set[Path]) -> None:
+        """Remove the grid chunk files not in ``paths`` (cases edited away)."""
+        for path in self.directory.glob("grid-*.npz"):
+            if path not in paths:
                 path.unlink(missing_ok=True)

@@ -12,6 +12,7 @@ import math
 import os
 import re
 import sys
+import tempfile
 import time
 from collections import Counter
 from collections.abc import Callable
@@ -479,3 +480,169 @@ def run_study(
         failures=dict(failures),
         scheduler=used,
     )
+
+
+#: cases per chunk of a study run as arrays (rows of the first axis are never split);
+#: fixed, so that a re-run finds the same chunks in its cache
+GRID_CHUNK_CASES = 10_000
+
+
+def grid_chunks(grid: Any) -> list[tuple[int, int]]:
+    """Rows ``lo:hi`` of the first axis per chunk: about :data:`GRID_CHUNK_CASES` cases."""
+    row = math.prod(grid.shape[1:])
+    step = max(1, GRID_CHUNK_CASES // max(row, 1))
+    n0 = grid.shape[0]
+    return [(lo, min(lo + step, n0)) for lo in range(0, n0, step)]
+
+
+def _grid_chunk_task(grid: Any, lo: int, hi: int) -> Any:
+    from .grid import evaluate_grid_chunk
+
+    return evaluate_grid_chunk(grid, lo, hi)
+
+
+def run_grid_study(
+    src: StudySource,
+    grid: Any,
+    out_dir: str | Path,
+    *,
+    scheduler: str = AUTO,
+    workers: int | None = None,
+    use_cache: bool = True,
+    progress: bool | None = None,
+) -> RunSummary:
+    """Run a study as arrays (:mod:`cablestudy.grid`) and write ``<out_dir>/<name>.nc``
+    chunk by chunk: each finished chunk goes to its own data file (the cache, or a
+    temporary folder with ``use_cache=False``), and the result file is written from
+    those files lazily, so memory holds about one chunk at a time whatever the number
+    of cases. A chunk that is in the cache, intact, is reused."""
+    import shutil
+
+    from .cache import GridChunkStore
+
+    t0 = time.perf_counter()
+    out_dir = Path(out_dir)
+    name = str(src.data["name"])
+    workers = workers or default_workers()
+    if use_cache:
+        folder = out_dir / ".cache" / name
+        scratch = None
+    else:
+        out_dir.mkdir(parents=True, exist_ok=True)
+        scratch = Path(tempfile.mkdtemp(prefix=f".{name}-chunks-", dir=out_dir))
+        folder = scratch
+    store = GridChunkStore(folder)
+    spans = grid_chunks(grid)
+    keys = {(lo, hi): grid.chunk_key(lo, hi) for lo, hi in spans}
+    files: dict[tuple[int, int], Path] = {}
+    for span, key in keys.items():
+        found = store.find(key)
+        if found is not None:
+            files[span] = found
+    row = math.prod(grid.shape[1:])
+    n_reused = sum((hi - lo) * row for lo, hi in files)
+    bar = Progress(grid.size, enabled=progress)
+    bar.update(n_reused)
+
+    def on_done(chunk: Any) -> None:
+        files[(chunk.lo, chunk.hi)] = store.write(chunk)
+        bar.update(chunk.n)
+
+    todo = [span for span in spans if span not in files]
+    used = ""
+    try:
+        if todo:
+            used = _execute_grid(grid, todo, scheduler, workers, on_done)
+    finally:
+        bar.close()
+    try:
+        ordered = [(lo, hi, files[(lo, hi)]) for lo, hi in spans]
+        summary = store.summary([p for _, _, p in ordered])
+        ds = grid_dataset_from(src, grid, ordered, summary)
+        import dask
+
+        with dask.config.set(scheduler="synchronous"):  # one chunk in memory at a time
+            path = write_atomic(ds, out_dir / f"{name}.nc")
+    finally:
+        if scratch is not None:
+            shutil.rmtree(scratch, ignore_errors=True)
+    if use_cache:
+        store.keep(set(files.values()))
+    return RunSummary(
+        path=path,
+        n_cases=grid.size,
+        n_reused=n_reused,
+        n_computed=grid.size - n_reused,
+        n_failed=sum(summary.failures.values()),
+        wall_time=time.perf_counter() - t0,
+        failures=dict(summary.failures),
+        scheduler=used,
+    )
+
+
+def grid_dataset_from(src: StudySource, grid: Any, ordered: list[Any], summary: Any) -> Any:
+    from .results import grid_dataset
+
+    settings = {
+        "analysis": grid.template.analysis.model_dump(mode="json"),
+        "static_methods": [grid.template.analysis.static.method],
+    }
+    return grid_dataset(
+        grid.axes,
+        ordered,
+        src,
+        names=summary.names,
+        tails=summary.tails,
+        arc=summary.arc,
+        solver_settings=settings,
+    )
+
+
+def _execute_grid(
+    grid: Any,
+    spans: list[tuple[int, int]],
+    scheduler: str,
+    workers: int,
+    on_done: Callable[[Any], None],
+) -> str:
+    """Evaluate the chunks ``spans`` of ``grid``: here, or on dask. 'auto' times the
+    first chunk here and goes on here unless the rest would take more than
+    :data:`AUTO_PARALLEL_AFTER` seconds (then worker processes)."""
+    rest = list(spans)
+    if scheduler in (AUTO, SYNCHRONOUS) or len(rest) == 1:
+        t0 = time.perf_counter()
+        on_done(_grid_chunk_task(grid, *rest.pop(0)))
+        per_chunk = time.perf_counter() - t0
+        if scheduler == AUTO and workers > 1 and per_chunk * len(rest) > AUTO_PARALLEL_AFTER:
+            scheduler = PROCESSES
+        else:
+            for lo, hi in rest:
+                on_done(_grid_chunk_task(grid, lo, hi))
+            return SYNCHRONOUS
+    if not rest:
+        return scheduler
+    from dask.distributed import Client, as_completed
+
+    cluster = None
+    if "://" in scheduler:
+        try:
+            client = Client(scheduler, timeout=CONNECT_TIMEOUT)
+        except (OSError, TimeoutError) as exc:
+            raise SchedulerUnreachable(
+                f"cannot reach the dask scheduler at {scheduler} within {CONNECT_TIMEOUT:g} s "
+                f"({type(exc).__name__}: {exc})"
+            ) from None
+    else:
+        cluster = _local_cluster(scheduler, workers)
+        client = Client(cluster)
+    try:
+        remote = client.scatter(grid, broadcast=True)
+        futures = [client.submit(_grid_chunk_task, remote, lo, hi, pure=False) for lo, hi in rest]
+        for future in as_completed(futures):
+            on_done(future.result())
+            future.release()
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+    return scheduler
