@@ -155,6 +155,8 @@ class RunSummary:
     failures: dict[str, int] = field(default_factory=dict)
     #: the scheduler that ran the cases after the in-process probe ('' if none ran)
     scheduler: str = ""
+    #: seconds per phase, where measured (solve, assembly, write)
+    timings: dict[str, float] = field(default_factory=dict)
 
     def report(self) -> str:
         """Text summary; failures grouped by message (numbers in messages masked so that
@@ -550,19 +552,26 @@ def run_grid_study(
 
     todo = [span for span in spans if span not in files]
     used = ""
+    timings: dict[str, float] = {}
+    t1 = time.perf_counter()
     try:
         if todo:
             used = _execute_grid(grid, todo, scheduler, workers, on_done)
     finally:
         bar.close()
+    t2 = time.perf_counter()
+    timings["solve"] = t2 - t1
     try:
         ordered = [(lo, hi, files[(lo, hi)]) for lo, hi in spans]
         summary = store.summary([p for _, _, p in ordered])
         ds = grid_dataset_from(src, grid, ordered, summary)
         import dask
 
+        t3 = time.perf_counter()
+        timings["assembly"] = t3 - t2
         with dask.config.set(scheduler="synchronous"):  # one chunk in memory at a time
             path = write_atomic(ds, out_dir / f"{name}.nc")
+        timings["write"] = time.perf_counter() - t3
     finally:
         if scratch is not None:
             shutil.rmtree(scratch, ignore_errors=True)
@@ -577,6 +586,7 @@ def run_grid_study(
         wall_time=time.perf_counter() - t0,
         failures=dict(summary.failures),
         scheduler=used,
+        timings=timings,
     )
 
 
