@@ -380,3 +380,18 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
         wall_time=np.full(n, wall),
         data=data,
     )
+
+
+def failed_grid_chunk(grid: CaseGrid, lo: int, hi: int, message: str) -> GridChunk:
+    """Rows ``lo:hi`` failed outside the solvers (a worker lost): status 9, the reason,
+    no data."""
+    n = (hi - lo) * math.prod(grid.shape[1:])
+    return GridChunk(
+        lo=lo,
+        hi=hi,
+        key=grid.chunk_key(lo, hi),
+        status=np.full(n, 9, dtype=np.int64),
+        message=np.array([message] * n, dtype=str).reshape(n),
+        wall_time=np.full(n, np.nan),
+        data={},
+    )

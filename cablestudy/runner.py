@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from .analyses import evaluate_chunk
-from .cache import LOST_PREFIX, TRANSIENT_PREFIXES, CaseCache  # noqa: F401 - re-exported
+from .cache import LOST_PREFIX, TRANSIENT_PREFIXES, CaseCache
 from .cases import Case, SweepAxis
 from .config.loader import StudySource
 from .results import CaseRecord, assemble, write_atomic
@@ -546,8 +546,13 @@ def run_grid_study(
     bar = Progress(grid.size, enabled=progress)
     bar.update(n_reused)
 
+    transient: set[Path] = set()
+
     def on_done(chunk: Any) -> None:
-        files[(chunk.lo, chunk.hi)] = store.write(chunk)
+        path = store.write(chunk)
+        files[(chunk.lo, chunk.hi)] = path
+        if any(str(m).startswith(TRANSIENT_PREFIXES) for m in chunk.message):
+            transient.add(path)  # in this result, but not kept: a re-run computes it
         bar.update(chunk.n)
 
     todo = [span for span in spans if span not in files]
@@ -575,8 +580,10 @@ def run_grid_study(
     finally:
         if scratch is not None:
             shutil.rmtree(scratch, ignore_errors=True)
+    for p in transient:
+        p.unlink(missing_ok=True)
     if use_cache:
-        store.keep(set(files.values()))
+        store.keep(set(files.values()) - transient)
     return RunSummary(
         path=path,
         n_cases=grid.size,
@@ -647,9 +654,17 @@ def _execute_grid(
         client = Client(cluster)
     try:
         remote = client.scatter(grid, broadcast=True)
-        futures = [client.submit(_grid_chunk_task, remote, lo, hi, pure=False) for lo, hi in rest]
-        for future in as_completed(futures):
-            on_done(future.result())
+        futures = {
+            client.submit(_grid_chunk_task, remote, lo, hi, pure=False): (lo, hi) for lo, hi in rest
+        }
+        for future in as_completed(list(futures)):
+            try:
+                chunk = future.result()
+            except Exception as exc:  # noqa: BLE001 - a lost task fails its cases, not the study
+                from .grid import failed_grid_chunk
+
+                chunk = failed_grid_chunk(grid, *futures[future], f"{LOST_PREFIX}{exc!r}")
+            on_done(chunk)
             future.release()
     finally:
         client.close()

@@ -155,3 +155,31 @@ def test_chunk_evaluation_matches_its_rows(tmp_path: Path) -> None:
         chunk.data["x"][ok, -1], np.repeat(grid.swept["ends.b.position.0"][1][2:4], 6)[ok]
     )
     assert np.allclose(chunk.wall_time, chunk.wall_time[0])  # the chunk's time shared out
+
+
+def test_array_chunks_on_worker_processes_give_the_serial_result(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from cablestudy import runner
+
+    monkeypatch.setattr(runner, "GRID_CHUNK_CASES", 12)
+    src = parse_study_text(TEXT, "gr.yaml")
+    grid = expand_grid(src)
+    par = run_grid_study(
+        src,
+        grid,
+        tmp_path / "p",
+        scheduler="processes",
+        workers=2,
+        use_cache=False,
+        progress=False,
+    )
+    ser = run_grid_study(
+        src, grid, tmp_path / "s", scheduler="synchronous", use_cache=False, progress=False
+    )
+    assert par.scheduler == "processes" and ser.scheduler == "synchronous"
+    a, b = xr.load_dataset(par.path), xr.load_dataset(ser.path)
+    xr.testing.assert_identical(
+        a.drop_vars("wall_time"), b.drop_vars("wall_time").assign_attrs(history=a.attrs["history"])
+    )
+    assert not list((tmp_path / "p").glob(".gr-chunks-*"))  # the scratch folder is gone
