@@ -46,7 +46,10 @@ class CaseGrid:
     axes: list[SweepAxis]
     #: per swept path: (axis number, values along that axis)
     swept: dict[str, tuple[int, np.ndarray]]
-    key: str  # content hash of everything that affects any case (code, template, axes)
+    #: content hash of what every case shares (solver code, template study with its
+    #: defaults, which path is on which axis, the shape of a row); a chunk's key adds its
+    #: swept values (:meth:`chunk_key`)
+    key: str
 
     @property
     def shape(self) -> tuple[int, ...]:
@@ -71,8 +74,15 @@ class CaseGrid:
 
     def chunk_key(self, lo: int, hi: int) -> str:
         """Content hash of the cases of rows ``lo:hi`` (the grid's key and their values)."""
-        first = {p: vals[lo:hi].tolist() for p, (ax, vals) in self.swept.items() if ax == 0}
-        return _hash([self.key, lo, hi, first])
+        values = {
+            p: (vals[lo:hi] if ax == 0 else vals).tolist() for p, (ax, vals) in self.swept.items()
+        }
+        return _hash([self.key, values])
+
+
+def grid_shape(axes: list[SweepAxis]) -> list[int]:
+    """Lengths of the axes after the first (a chunk holds whole rows of them)."""
+    return [a.size for a in axes[1:]]
 
 
 def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
@@ -128,7 +138,7 @@ def expand_grid(src: StudySource) -> CaseGrid | None:
         template,
         axes,
         swept,
-        _hash([code_fingerprint(), body, {p: v.tolist() for p, (_, v) in swept.items()}]),
+        _hash([code_fingerprint(), body, {p: k for p, (k, _) in swept.items()}, grid_shape(axes)]),
     )
     if not _combined_ok(grid):
         return None

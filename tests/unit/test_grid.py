@@ -183,3 +183,36 @@ def test_array_chunks_on_worker_processes_give_the_serial_result(
         a.drop_vars("wall_time"), b.drop_vars("wall_time").assign_attrs(history=a.attrs["history"])
     )
     assert not list((tmp_path / "p").glob(".gr-chunks-*"))  # the scratch folder is gone
+
+
+def test_an_extended_first_axis_reuses_the_cached_chunks(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from cablestudy import grid as grid_module
+    from cablestudy import runner
+
+    monkeypatch.setattr(runner, "GRID_CHUNK_CASES", 12)  # two spans a chunk
+    spans = "ends.b.position.0: {start: 60.0, stop: 100.5, num: 7, name: span}"
+    short = TEXT.replace(spans, "ends.b.position.0: {values: [60.0, 70.0, 80.0, 90.0], name: span}")
+    longer = short.replace("[60.0, 70.0, 80.0, 90.0]", "[60.0, 70.0, 80.0, 90.0, 95.0, 100.0]")
+    src = parse_study_text(short, "gr.yaml")
+    run_grid_study(src, expand_grid(src), tmp_path, scheduler="synchronous", progress=False)
+    calls: list[int] = []
+    real = grid_module.evaluate_grid_chunk
+
+    def counted(g, lo, hi):  # noqa: ANN001, ANN202
+        calls.append(lo)
+        return real(g, lo, hi)
+
+    monkeypatch.setattr(grid_module, "evaluate_grid_chunk", counted)
+    src2 = parse_study_text(longer, "gr.yaml")
+    again = run_grid_study(
+        src2, expand_grid(src2), tmp_path, scheduler="synchronous", progress=False
+    )
+    assert calls == [4] and again.n_reused == 24 and again.n_computed == 12
+    # a changed value of another axis changes every chunk
+    other = longer.replace("[-10.0, -20.0]", "[-10.0, -25.0]")
+    src3 = parse_study_text(other, "gr.yaml")
+    calls.clear()
+    run_grid_study(src3, expand_grid(src3), tmp_path, scheduler="synchronous", progress=False)
+    assert calls == [0, 2, 4]
