@@ -146,7 +146,7 @@ def moorpy_loop(spans: np.ndarray, stiffnesses: np.ndarray) -> tuple[float, np.n
         for j, ea in enumerate(stiffnesses):
             try:
                 _, _, fbh, fbv, _ = catenary(
-                    float(span), -RISE, L, float(ea), w, CB=-1e3, Tol=1e-6, MaxIter=200
+                    float(span), RISE, L, float(ea), w, CB=-1e3, Tol=1e-6, MaxIter=200
                 )
             except Exception:  # noqa: BLE001, S112 - a MoorPy failure is a missing point
                 continue
