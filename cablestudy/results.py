@@ -434,17 +434,16 @@ def grid_dataset(
     tails: dict[str, tuple[int, ...]],
     arc: np.ndarray | None,
     solver_settings: dict[str, Any],
+    lazy: bool = True,
 ) -> xr.Dataset:
     """The dataset of a study run as arrays (:mod:`cablestudy.grid`), with the same
     variables, dims, coordinates and attributes as :func:`assemble` would give, its large
     variables backed lazily (dask) by the chunk files ``(lo, hi, path)`` (rows ``lo:hi``
     of the first axis each, written by the runner), so that writing it streams chunk by
-    chunk. ``arc``: the arc lengths every successful case shares (then the ``s``
-    coordinate, as in :func:`assemble`), or None (then ``arc_length`` stays a variable
-    and ``s`` is the node index)."""
-    import dask
-    import dask.array as da
-
+    chunk; with ``lazy=False`` they are read into memory instead (small studies).
+    ``arc``: the arc lengths every successful case shares (then the ``s`` coordinate, as
+    in :func:`assemble`), or None (then ``arc_length`` stays a variable and ``s`` is the
+    node index)."""
     shape = tuple(a.size for a in axes)
     dims = tuple(a.name for a in axes)
     rest = shape[1:]
@@ -467,17 +466,28 @@ def grid_dataset(
     for name in sorted(present):
         spec = OUTPUTS[name]
         tail = tails[name]
-        blocks = [
-            da.from_delayed(
-                dask.delayed(load)(path, name).reshape((hi - lo, *rest, *tail)),
-                shape=(hi - lo, *rest, *tail),
-                dtype=np.float64,
+        if lazy:
+            import dask
+            import dask.array as da
+
+            values: Any = da.concatenate(
+                [
+                    da.from_delayed(
+                        dask.delayed(load)(path, name).reshape((hi - lo, *rest, *tail)),
+                        shape=(hi - lo, *rest, *tail),
+                        dtype=np.float64,
+                    )
+                    for lo, hi, path in chunks
+                ],
+                axis=0,
             )
-            for lo, hi, path in chunks
-        ]
+        else:  # small enough to hold: no dask needed
+            values = np.concatenate(
+                [load(path, name).reshape((hi - lo, *rest, *tail)) for lo, hi, path in chunks]
+            )
         data_vars[name] = (
             dims + spec.dims,
-            da.concatenate(blocks, axis=0),
+            values,
             {"units": spec.units, "long_name": spec.long_name},
         )
     coords = sweep_coordinates(axes)

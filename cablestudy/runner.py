@@ -489,6 +489,11 @@ def run_study(
 GRID_CHUNK_CASES = 10_000
 
 
+#: results of an array-run study up to this size [bytes] are assembled in memory before
+#: writing (no dask); larger ones are streamed from the chunk files one chunk at a time
+IN_MEMORY_BYTES = 256 << 20
+
+
 def grid_chunks(grid: Any) -> list[tuple[int, int]]:
     """Rows ``lo:hi`` of the first axis per chunk: about :data:`GRID_CHUNK_CASES` cases."""
     row = math.prod(grid.shape[1:])
@@ -569,12 +574,17 @@ def run_grid_study(
     try:
         ordered = [(lo, hi, files[(lo, hi)]) for lo, hi in spans]
         summary = store.summary([p for _, _, p in ordered])
-        ds = grid_dataset_from(src, grid, ordered, summary)
-        import dask
-
+        per_case = sum(math.prod(t) for t in summary.tails.values()) * 8
+        lazy = per_case * grid.size > IN_MEMORY_BYTES
+        ds = grid_dataset_from(src, grid, ordered, summary, lazy=lazy)
         t3 = time.perf_counter()
         timings["assembly"] = t3 - t2
-        with dask.config.set(scheduler="synchronous"):  # one chunk in memory at a time
+        if lazy:
+            import dask
+
+            with dask.config.set(scheduler="synchronous"):  # one chunk in memory at a time
+                path = write_atomic(ds, out_dir / f"{name}.nc")
+        else:
             path = write_atomic(ds, out_dir / f"{name}.nc")
         timings["write"] = time.perf_counter() - t3
     finally:
@@ -597,7 +607,9 @@ def run_grid_study(
     )
 
 
-def grid_dataset_from(src: StudySource, grid: Any, ordered: list[Any], summary: Any) -> Any:
+def grid_dataset_from(
+    src: StudySource, grid: Any, ordered: list[Any], summary: Any, *, lazy: bool = True
+) -> Any:
     from .results import grid_dataset
 
     settings = {
@@ -612,6 +624,7 @@ def grid_dataset_from(src: StudySource, grid: Any, ordered: list[Any], summary: 
         tails=summary.tails,
         arc=summary.arc,
         solver_settings=settings,
+        lazy=lazy,
     )
 
 

@@ -113,6 +113,7 @@ def test_streamed_result_opens_lazily_and_chunks_are_cached(
     from cablestudy import runner
 
     monkeypatch.setattr(runner, "GRID_CHUNK_CASES", 12)  # two rows of 6 cases a chunk
+    monkeypatch.setattr(runner, "IN_MEMORY_BYTES", 0)  # streamed, as a large study is
     src = parse_study_text(TEXT, "gr.yaml")
     grid = expand_grid(src)
     first = run_grid_study(src, grid, tmp_path, scheduler="synchronous", progress=False)
@@ -120,7 +121,19 @@ def test_streamed_result_opens_lazily_and_chunks_are_cached(
     assert len(files) == 4  # rows 0-1, 2-3, 4-5, 6
     lazy = xr.open_dataset(first.path, chunks={})
     assert lazy["x"].chunks is not None  # dask-backed: read on demand
+    # written with explicit netCDF chunks of whole blocks of cases (two spans)
+    assert lazy["x"].encoding["chunksizes"] == (2, 3, 2, 21)
     ref = xr.load_dataset(first.path)
+    # the streamed file is the one the in-memory assembly writes
+    monkeypatch.setattr(runner, "IN_MEMORY_BYTES", 1 << 30)
+    held = run_grid_study(
+        src, grid, tmp_path / "held", scheduler="synchronous", use_cache=False, progress=False
+    )
+    xr.testing.assert_identical(
+        xr.load_dataset(held.path).drop_vars("wall_time"),
+        ref.drop_vars("wall_time").assign_attrs(history=held_history(held.path)),
+    )
+    monkeypatch.setattr(runner, "IN_MEMORY_BYTES", 0)
     calls: list[int] = []
     real = grid_module.evaluate_grid_chunk
 
@@ -216,3 +229,8 @@ def test_an_extended_first_axis_reuses_the_cached_chunks(
     calls.clear()
     run_grid_study(src3, expand_grid(src3), tmp_path, scheduler="synchronous", progress=False)
     assert calls == [0, 2, 4]
+
+
+def held_history(path: Path) -> str:
+    with xr.open_dataset(path) as ds:
+        return str(ds.attrs["history"])
