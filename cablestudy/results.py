@@ -204,7 +204,9 @@ CASE_VARIABLES: dict[str, OutputVariable] = {
         (), "1", "case status: 0 ok, 10 line broken (data kept), other nonzero failed", "int64"
     ),
     "message": OutputVariable((), "1", "why the case failed (empty when ok)", "str"),
-    "wall_time": OutputVariable((), "s", "wall time of the case"),
+    "wall_time": OutputVariable(
+        (), "s", "wall time of the case (cases solved together as arrays share their time equally)"
+    ),
 }
 
 COORDINATES: dict[str, tuple[str, str]] = {
@@ -249,6 +251,53 @@ def _fill_rows(
     for idx, v in rows:
         if np.shape(v) != tail:
             arr[idx + tuple(slice(0, n) for n in np.shape(v))] = v
+
+
+def sweep_coordinates(axes: list[SweepAxis]) -> dict[str, Any]:
+    """The coordinates of the sweep dimensions (and, for axes of non-scalar values or zip
+    groups, their value coordinates), with units and long names."""
+    coords: dict[str, Any] = {}
+    for a in axes:
+        numeric = a.coordinate().dtype.kind in "iuf"
+        indexed = len(a.paths) > 1 or not all(
+            isinstance(v, int | float | str | bool) for v in a.values[0]
+        )
+        attrs = {
+            "units": (a.units or "1") if numeric else "1",
+            "long_name": a.long_name,
+            "sweep_paths": ", ".join(a.paths),
+        }
+        if indexed:
+            attrs["units"] = "1"
+            if len(a.paths) == 1:
+                attrs["long_name"] = f"index of the swept value of {a.paths[0]}"
+        coords[a.name] = (a.name, a.coordinate(), attrs)
+        if len(a.paths) == 1 and indexed:
+            # values that are not scalars (vectors, mappings): keep them as text
+            coords[f"{a.name}_value"] = (
+                a.name,
+                np.array([json.dumps(v) for v in a.values[0]], dtype=object),
+                {"long_name": f"swept value of {a.paths[0]} (JSON)", "units": "1"},
+            )
+        if len(a.paths) > 1:
+            for path, vals in zip(a.paths, a.values, strict=True):
+                cname = f"{a.name}_{path.split('.')[-1]}"
+                if cname in coords or cname == a.name:
+                    cname = f"{a.name}_{path.replace('.', '_')}"
+                units, long_name = _path_info(path)
+                if all(isinstance(v, int | float) and not isinstance(v, bool) for v in vals):
+                    coords[cname] = (
+                        a.name,
+                        np.asarray(vals, dtype=float),
+                        {"long_name": long_name, "units": units or "1"},
+                    )
+                else:
+                    coords[cname] = (
+                        a.name,
+                        np.array([json.dumps(v) for v in vals], dtype=object),
+                        {"long_name": f"{long_name} (JSON)", "units": "1"},
+                    )
+    return coords
 
 
 def assemble(
@@ -303,47 +352,7 @@ def assemble(
             {"units": spec.units, "long_name": spec.long_name},
         )
 
-    coords: dict[str, Any] = {}
-    for a in axes:
-        numeric = a.coordinate().dtype.kind in "iuf"
-        indexed = len(a.paths) > 1 or not all(
-            isinstance(v, int | float | str | bool) for v in a.values[0]
-        )
-        attrs = {
-            "units": (a.units or "1") if numeric else "1",
-            "long_name": a.long_name,
-            "sweep_paths": ", ".join(a.paths),
-        }
-        if indexed:
-            attrs["units"] = "1"
-            if len(a.paths) == 1:
-                attrs["long_name"] = f"index of the swept value of {a.paths[0]}"
-        coords[a.name] = (a.name, a.coordinate(), attrs)
-        if len(a.paths) == 1 and indexed:
-            # values that are not scalars (vectors, mappings): keep them as text
-            coords[f"{a.name}_value"] = (
-                a.name,
-                np.array([json.dumps(v) for v in a.values[0]], dtype=object),
-                {"long_name": f"swept value of {a.paths[0]} (JSON)", "units": "1"},
-            )
-        if len(a.paths) > 1:
-            for path, vals in zip(a.paths, a.values, strict=True):
-                cname = f"{a.name}_{path.split('.')[-1]}"
-                if cname in coords or cname == a.name:
-                    cname = f"{a.name}_{path.replace('.', '_')}"
-                units, long_name = _path_info(path)
-                if all(isinstance(v, int | float) and not isinstance(v, bool) for v in vals):
-                    coords[cname] = (
-                        a.name,
-                        np.asarray(vals, dtype=float),
-                        {"long_name": long_name, "units": units or "1"},
-                    )
-                else:
-                    coords[cname] = (
-                        a.name,
-                        np.array([json.dumps(v) for v in vals], dtype=object),
-                        {"long_name": f"{long_name} (JSON)", "units": "1"},
-                    )
+    coords: dict[str, Any] = sweep_coordinates(axes)
     if "component" in extent and any("component" in OUTPUTS[k].dims for k in present):
         coords["component"] = (
             "component",
@@ -461,11 +470,19 @@ def write_atomic(ds: xr.Dataset, path: str | Path) -> Path:
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     os.close(fd)
     try:
-        encoding = {
+        encoding: dict[str, dict[str, Any]] = {
             name: {"zlib": True, "complevel": 1, "shuffle": True}
             for name, v in ds.data_vars.items()
             if v.dtype.kind == "f"
         }
+        for name, v in ds.data_vars.items():
+            if v.chunks is not None and name in encoding:
+                # variables streamed from chunk files (dask): netCDF chunks of one block
+                # of cases (at most 4 MiB), so that reading one case touches little
+                block = [c[0] for c in v.chunks]
+                per_case = max(1, int(np.prod(block[1:])) * v.dtype.itemsize)
+                block[0] = max(1, min(block[0], (4 << 20) // per_case))
+                encoding[name]["chunksizes"] = tuple(block)
         ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
         with open(tmp, "rb+") as fh:  # on disk before the rename makes it visible
             os.fsync(fh.fileno())
@@ -475,3 +492,87 @@ def write_atomic(ds: xr.Dataset, path: str | Path) -> Path:
         if os.path.exists(tmp):
             os.unlink(tmp)
     return path
+
+
+def grid_dataset(
+    axes: list[SweepAxis],
+    chunks: list[tuple[int, int, Path]],
+    src: StudySource,
+    *,
+    names: list[str],
+    tails: dict[str, tuple[int, ...]],
+    arc: np.ndarray | None,
+    solver_settings: dict[str, Any],
+    lazy: bool = True,
+) -> xr.Dataset:
+    """The dataset of a study run as arrays (:mod:`cablestudy.grid`), with the same
+    variables, dims, coordinates and attributes as :func:`assemble` would give, its large
+    variables backed lazily (dask) by the chunk files ``(lo, hi, path)`` (rows ``lo:hi``
+    of the first axis each, written by the runner), so that writing it streams chunk by
+    chunk; with ``lazy=False`` they are read into memory instead (small studies).
+    ``arc``: the arc lengths every successful case shares (then the ``s`` coordinate, as
+    in :func:`assemble`), or None (then ``arc_length`` stays a variable and ``s`` is the
+    node index)."""
+    shape = tuple(a.size for a in axes)
+    dims = tuple(a.name for a in axes)
+    rest = shape[1:]
+
+    def load(path: Path, name: str) -> np.ndarray:
+        with np.load(path, allow_pickle=False) as z:
+            return z[f"v_{name}"]
+
+    def column(name: str) -> np.ndarray:
+        return np.concatenate([load(path, name) for _, _, path in chunks])
+
+    present = [k for k in names if not (k == "arc_length" and arc is not None)]
+    data_vars: dict[str, Any] = {}
+    status = column("status").reshape(shape)
+    message = column("message").astype(object).reshape(shape)
+    wall = column("wall_time").reshape(shape)
+    for name, arr in (("status", status), ("message", message), ("wall_time", wall)):
+        spec = CASE_VARIABLES[name]
+        data_vars[name] = (dims, arr, {"units": spec.units, "long_name": spec.long_name})
+    for name in sorted(present):
+        spec = OUTPUTS[name]
+        tail = tails[name]
+        if lazy:
+            import dask
+            import dask.array as da
+
+            values: Any = da.concatenate(
+                [
+                    da.from_delayed(
+                        dask.delayed(load)(path, name).reshape((hi - lo, *rest, *tail)),
+                        shape=(hi - lo, *rest, *tail),
+                        dtype=np.float64,
+                    )
+                    for lo, hi, path in chunks
+                ],
+                axis=0,
+            )
+        else:  # small enough to hold: no dask needed
+            values = np.concatenate(
+                [load(path, name).reshape((hi - lo, *rest, *tail)) for lo, hi, path in chunks]
+            )
+        data_vars[name] = (
+            dims + spec.dims,
+            values,
+            {"units": spec.units, "long_name": spec.long_name},
+        )
+    coords = sweep_coordinates(axes)
+    if any("component" in OUTPUTS[k].dims for k in present):
+        coords["component"] = (
+            "component",
+            np.array(["x", "y", "z"]),
+            {"units": COORDINATES["component"][0], "long_name": COORDINATES["component"][1]},
+        )
+    if arc is not None:
+        coords["s"] = ("s", arc, {"units": "m", "long_name": COORDINATES["s"][1]})
+    elif "arc_length" in present:
+        n_s = tails["arc_length"][0]
+        coords["s"] = ("s", np.arange(n_s), {"units": "1", "long_name": "node index"})
+    ds = xr.Dataset(data_vars, coords=coords)
+    ds.attrs.update(provenance(src, solver_settings))
+    ds.attrs["cases"] = int(np.prod(shape))
+    ds.attrs["cases_failed"] = int(np.count_nonzero(status != 0))
+    return ds
