@@ -63,7 +63,7 @@ times are noisy; whole module 137 s):
   1.4e-5). MoorDyn 10/20/40 segments: 3.0e-3, 2.5e-3, 6.4e-4 in 1.1, 2.7, 7.5 s. Ours:
   30 elements, T/64: 8.8e-4 in 0.33 s; 40 elements, T/16: 4.1e-4 in 0.35 s. Time ratio:
   3.3 at 1 % error (MoorDyn 10 segments), 22 at MoorDyn's best error (6.4e-4).
-* a second run an hour later (same errors: both codes are deterministic) gave time
+* a second run minutes later (same errors: both codes are deterministic) gave time
   ratios 2.8 (wave) and 1.5 (slow drift) at 1 % error, 9.6 and 17 at MoorDyn's best
   error: single timings on the shared machine move by up to a factor 2.
 * so the aim (ours >= 10 times faster at 1 % agreement) is not met: at 1 % MoorDyn needs
