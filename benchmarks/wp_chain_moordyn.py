@@ -51,29 +51,37 @@ solve), median of three runs where one run takes less than 3 s.
 Also (``chain_convergence``): the refinement sequences of the validation test with
 their observed orders.
 
-Results of one run (2026-11-24, MoorDyn 2.7.2, 2 cores shared with other jobs, so
-times are noisy; whole module 137 s):
+Results (2026-11-24, MoorDyn 2.7.2, 2 cores shared with other jobs; the errors are
+the same in every run, both codes being deterministic, the times are medians but move by
+up to a factor 2 between runs with the machine's load; numbers from the quietest of
+three runs, whole module 112 s):
 
 * wave (10 s, 2 m): reference T_max = 1172.74 kN, T_min = 574.64 kN (uncertainty 1.5e-4
-  of T_max: 160 against 320 elements). MoorDyn 10/20/40/80 segments: errors 2.7e-2,
-  7.8e-3, 1.4e-3, 6.3e-4 in 0.31, 0.43, 0.88, 3.7 s; at 40 segments the codes agree to
-  1.4e-3 (T_max) and 4e-5 (T_min), at 80 segments to 3.9e-4 and 6.3e-4. Ours: 40
-  elements, T/16: 7.1e-3 in 0.30 s; T/64: 9.6e-4 in 0.38 s; 160 elements, T/64:
-  1.5e-4 in 0.65 s. Time ratio MoorDyn / ours: 1.4 at 1 % error (MoorDyn 20 segments
-  against our 40 elements, T/16), 5.7 at MoorDyn's best error (6.3e-4).
+  of T_max: 160 against 320 elements). Agreement between the codes on the same mesh
+  (40 segments/elements, fine coupling/step): 1171.13/574.69 kN (MoorDyn, T/1024)
+  against 1171.59/574.54 kN (ours, T/256), 3.9e-4 of T_max; MoorDyn at 80 segments
+  against our reference: -3.9e-4 (T_max), -6.3e-4 (T_min). MoorDyn 10/20/40/80
+  segments at T/256: errors 2.8e-2, 9.0e-3, 5.9e-4, 1.5e-3 in 92, 169, 613 ms, 3.4 s.
+  Ours: 30 elements, T/16: 8.6e-3 in 75 ms; 40, T/64: 9.6e-4 in 143 ms; 160, T/64:
+  1.5e-4 in 329 ms. MoorDyn time / ours: 2.2 at 1 % error (MoorDyn 20 segments, T/256,
+  against our 30 elements, T/16), 1.9 at MoorDyn's best error (5.9e-4, 40 segments,
+  T/256, against our 160 elements, T/64; our 40 and 80 elements stop at 8-10e-4).
 * slow drift (100 s, 4 m): reference T_max = 980.59 kN, T_min = 768.50 kN (uncertainty
-  1.4e-5). MoorDyn 10/20/40 segments: 3.0e-3, 2.5e-3, 6.4e-4 in 1.1, 2.7, 7.5 s. Ours:
-  30 elements, T/64: 8.8e-4 in 0.33 s; 40 elements, T/16: 4.1e-4 in 0.35 s. Time ratio:
-  3.3 at 1 % error (MoorDyn 10 segments), 22 at MoorDyn's best error (6.4e-4).
-* a second run minutes later (same errors: both codes are deterministic) gave time
-  ratios 2.8 (wave) and 1.5 (slow drift) at 1 % error, 9.6 and 17 at MoorDyn's best
-  error: single timings on the shared machine move by up to a factor 2.
-* so the aim (ours >= 10 times faster at 1 % agreement) is not met: at 1 % MoorDyn needs
-  only 10-20 segments at a 5-10 ms step, while ours pays for (1) Newton failing on
-  seabed friction (slow drift, 40 elements, T/32: 220 rejected steps and 4132 Newton
-  iterations, against 17 and 775 with friction 0; 3.7 times the run time), (2) per-step
-  work outside the compiled kernel (half of ``simulate``'s time at 40 elements), and
-  (3) no 20-element mesh with friction (the discrete static equilibrium fails there).
+  1.4e-5). Same mesh (40): 979.96/768.27 kN (MoorDyn, T/512) against 980.32/768.29 kN
+  (ours, T/256), 3.7e-4 of T_max. MoorDyn needs a fine coupling here (10 segments:
+  1.3e-2 at T/64, 3.0e-3 at T/512); 10/20/40 segments at T/512: 3.0e-3, 2.5e-3, 6.4e-4
+  in 0.47, 1.3, 8.4 s. Ours: 30 elements, T/16: 8.7e-4 in 186 ms; 40, T/32: 4.1e-4 in
+  220 ms. MoorDyn time / ours: 2.1 at 1 % error (MoorDyn 10 segments, T/128, 380 ms),
+  38 at MoorDyn's best error (6.4e-4, 40 segments).
+* the two other runs gave 1.4 and 2.8 (wave), 3.3 and 1.5 (slow drift) at 1 % error.
+* so the aim (ours >= 10 times faster at 1 % agreement) is not met; it is met only at
+  MoorDyn's best error in slow drift, where its explicit step pays for 600 s of
+  simulated time. At 1 % MoorDyn needs only 10-20 segments at a 5-10 ms step, while
+  ours pays for (1) Newton failing on seabed friction (slow drift, 40 elements, T/32:
+  220 rejected steps and 4132 Newton iterations, against 17 and 775 with friction 0;
+  3.7 times the run time), (2) per-step work outside the compiled kernel (half of
+  ``simulate``'s time at 40 elements) and (3) no 20-element mesh with friction (the
+  discrete static equilibrium fails there).
 * convergence (``chain_convergence``): mesh 40/80/160/320 at the slow-drift period,
   observed order 2.02 +- 0.12 (T_max) and 2.13 +- 0.28 (T_min); step T/128..T/1024 at
   the wave period on 40 elements, T_min order 3.4 +- 0.2, T_max at the floor (1e-5)
