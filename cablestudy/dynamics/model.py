@@ -60,7 +60,7 @@ on short arrays, where interpreter overhead would dominate.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numba import njit
@@ -1131,18 +1131,67 @@ def static_equilibrium(
     work.anchor[:] = x
     if line.has_seabed:
         x, work.anchor[:] = _seated_start(line, x, work)
-    it, res, ok = _static_newton(
-        x,
-        work.anchor,
-        *line.kernel_args(),
-        *work.assemble_args(),
-        *work.solver_args(line),
-        tolerance,
-        max_iterations,
-    )
+    sliding = line.has_seabed and bool(np.any(line.friction > 0.0))
+    # With friction the equilibrium is found as plasticity is: Newton on the line held by
+    # sticking friction springs (smooth), then every node whose spring force exceeds
+    # mu N has its anchor moved so that it carries mu N (it slides), and again, until no
+    # spring exceeds its limit. A Newton across stick-slip switches would cycle: a
+    # sliding node has no tangent stiffness along the slip.
+    stick = replace(line, friction=np.full(2, np.inf)) if sliding else line
+    its_total = 0
+    for _ in range(_SLIP_PASSES if sliding else 1):
+        it, res, ok = _static_newton(
+            x,
+            work.anchor,
+            *stick.kernel_args(),
+            *work.assemble_args(),
+            *work.solver_args(line),
+            tolerance,
+            max_iterations,
+        )
+        its_total += int(it)
+        if not ok or not sliding:
+            break
+        excess = _slide_anchors(line, x, work)
+        if excess <= tolerance:
+            break
+    else:
+        ok = False  # still sliding after every pass
     anchor = work.anchor.copy()
     update_anchors(x, work.friction, line.seabed_stiffness, work.contact, anchor)
-    return x, int(it), float(res), bool(ok), anchor
+    return x, its_total, float(res), bool(ok), anchor
+
+
+#: passes of the static slide (return mapping) over the friction anchors
+_SLIP_PASSES = 2000
+
+
+def _friction_axes(line: DiscreteLine, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Unit directions along and across the line in the seabed plane at each node, as
+    the kernel's friction law takes them (the node tangent projected on the plane)."""
+    normal = line.seabed_normal
+    n = line.n_nodes
+    tan = x[np.minimum(np.arange(n) + 1, n - 1)] - x[np.maximum(np.arange(n) - 1, 0)]
+    along = tan - np.outer(tan @ normal, normal)
+    along /= np.maximum(np.linalg.norm(along, axis=1, keepdims=True), 1e-300)
+    return along, np.cross(normal, along)
+
+
+def _slide_anchors(line: DiscreteLine, x: np.ndarray, work: Workspace) -> float:
+    """Move the anchors of nodes whose friction spring force (in ``work``, evaluated at
+    ``x`` with sticking friction) exceeds mu N along or across the line, so that it is
+    mu N. Returns the largest excess [N]: the out-of-balance force the move leaves."""
+    along, across = _friction_axes(line, x)
+    k = np.maximum(line.seabed_stiffness, 1e-300)[:, None]
+    f = work.friction
+    excess = 0.0
+    for axis, mu in ((along, line.friction[0]), (across, line.friction[1])):
+        comp = np.einsum("ia,ia->i", f, axis)
+        cap = mu * work.contact
+        new = np.clip(comp, -cap, cap)
+        excess = max(excess, float(np.max(np.abs(new - comp))))
+        work.anchor[:] += ((new - comp)[:, None] * axis) / k
+    return excess
 
 
 def _seated_start(
