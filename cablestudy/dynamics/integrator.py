@@ -110,6 +110,8 @@ def alpha_step(
     taut0,
     contact,
     friction_force,
+    slip_state,
+    trial,
     J_d,
     J_o,
     J_o2,
@@ -149,7 +151,14 @@ def alpha_step(
     cm = (1.0 - alpha_m) / (beta * h * h)
     cv = gamma / (beta * h)
     lmin = rest_length.min()
-    for it in range(max_iterations + 1):
+    has_friction = (friction[0] > 0.0 or friction[1] > 0.0) and seabed_stiffness.max() > 0.0
+    fix_states = has_friction
+    for i in range(n):
+        for k in range(2):
+            slip_state[i, k] = 0
+    checks = 0
+    it = 0
+    while True:
         assemble(
             x1,
             v1,
@@ -194,7 +203,25 @@ def alpha_step(
             taut0,
             contact,
             friction_force,
+            slip_state,
+            trial,
         )
+        if fix_states:
+            # the predictor's trial decides which contact nodes stick and which slide;
+            # the Newton iterations then keep those states (a smooth force)
+            fix_states = False
+            for i in range(n):
+                for k in range(2):
+                    slip_state[i, k] = 0
+                    if contact[i] > 0.0 and friction[k] > 0.0:
+                        cap = friction[k] * contact[i]
+                        if trial[i, k] > cap:
+                            slip_state[i, k] = 1
+                        elif trial[i, k] < -cap:
+                            slip_state[i, k] = -1
+                        else:
+                            slip_state[i, k] = 2
+            continue
         res = 0.0
         for i in range(n):
             for c in range(3):
@@ -207,9 +234,15 @@ def alpha_step(
         if not math.isfinite(res):
             return it, False
         if res <= tol:
+            if has_friction and checks < MAX_STATE_CHECKS and _states_changed(
+                slip_state, trial, contact, friction
+            ):
+                checks += 1
+                continue  # converged with a wrong stick/slip guess: again with the new one
             return it, True
         if it == max_iterations or n_free == 0:
             break
+        it += 1
         for i in range(n):
             for c in range(3):
                 for b in range(3):
@@ -246,3 +279,37 @@ def alpha_step(
                 a1[i, c] += d / (beta * h * h)
                 v1[i, c] += gamma * d / (beta * h)
     return max_iterations, False
+
+
+#: stick/slip re-checks per time step after Newton converged with a wrong guess
+MAX_STATE_CHECKS = 4
+
+
+@njit(cache=True)
+def _states_changed(slip_state, trial, contact, friction):  # noqa: ANN001, ANN202
+    """Update the fixed stick/slip states from the converged state; True if any changed.
+
+    A sticking node whose spring force exceeds mu N slides (with the spring's sign); a
+    sliding node whose spring force is back within mu N, or points the other way,
+    sticks. Nodes that lost or gained contact take the trial rule (state 0)."""
+    changed = False
+    for i in range(slip_state.shape[0]):
+        for k in range(2):
+            state = slip_state[i, k]
+            if friction[k] <= 0.0:
+                continue
+            if contact[i] <= 0.0:
+                if state != 0:
+                    slip_state[i, k] = 0
+                continue
+            cap = friction[k] * contact[i] * (1.0 + 1e-9)
+            f = trial[i, k]
+            if state == 0:
+                continue
+            if state == 2 and abs(f) > cap:
+                slip_state[i, k] = 1 if f > 0.0 else -1
+                changed = True
+            elif (state == 1 or state == -1) and state * f < cap * (1.0 - 2e-9):
+                slip_state[i, k] = 2
+                changed = True
+    return changed

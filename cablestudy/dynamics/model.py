@@ -548,6 +548,8 @@ def assemble(
     taut0,
     contact,
     friction_force,
+    slip_state,
+    trial,
 ):  # noqa: ANN001, ANN201
     """Nodal out-of-balance force ``F = f_internal - f_external`` [N] (n + 1, 3) at
     positions ``x`` [m] and velocities ``v`` [m/s] (friction anchors ``anchor`` [m]),
@@ -765,14 +767,54 @@ def assemble(
                         K_d[i, a, b] += ks * nrm[a] * nrm[b]
                         C_d[i, a, b] += cs * nrm[a] * nrm[b]
                 if fn > 0.0 and (friction[0] > 0.0 or friction[1] > 0.0):
-                    _friction(i, x, anchor, tan, nrm, ks, fn, friction, F, K_d, friction_force)
+                    _friction(
+                        i,
+                        x,
+                        anchor,
+                        tan,
+                        nrm,
+                        ks,
+                        cs,
+                        fn,
+                        friction,
+                        F,
+                        K_d,
+                        C_d,
+                        friction_force,
+                        slip_state,
+                        trial,
+                    )
 
 
 @njit(cache=True)
-def _friction(i, x, anchor, tan, nrm, kt, fn, friction, F, K_d, friction_force):  # noqa: ANN001, ANN202
+def _friction(  # noqa: ANN202
+    i,  # noqa: ANN001
+    x,  # noqa: ANN001
+    anchor,  # noqa: ANN001
+    tan,  # noqa: ANN001
+    nrm,  # noqa: ANN001
+    kt,  # noqa: ANN001
+    cs,  # noqa: ANN001
+    fn,  # noqa: ANN001
+    friction,  # noqa: ANN001
+    F,  # noqa: ANN001
+    K_d,  # noqa: ANN001
+    C_d,  # noqa: ANN001
+    friction_force,  # noqa: ANN001
+    slip_state,  # noqa: ANN001
+    trial,  # noqa: ANN001
+):
     """Elastic-plastic Coulomb friction at contact node ``i``: along the line (the node
     tangent projected on the seabed) and across it, each a spring of stiffness ``kt``
-    [N/m] to the node's anchor, capped at ``mu N``."""
+    [N/m] to the node's anchor, capped at ``mu N``.
+
+    ``slip_state[i, k]`` (k = 0 along, 1 across) chooses how: 0 by the trial spring
+    force (stick below mu N, else slide at mu N); 2 stick (the spring, uncapped);
+    +1 / -1 slide at +- mu N, with the tangent of mu N through the normal force
+    (``mu k_n`` and ``mu c_n`` coupling the normal motion). The time step fixes the
+    states during its Newton iterations, so that they see a smooth force, and checks
+    them when it has converged (:func:`cablestudy.dynamics.integrator.alpha_step`).
+    The trial spring force is written to ``trial[i, k]`` [N]."""
     ea = np.empty(3)
     el = np.empty(3)
     tn = tan[0] * nrm[0] + tan[1] * nrm[1] + tan[2] * nrm[2]
@@ -804,13 +846,20 @@ def _friction(i, x, anchor, tan, nrm, kt, fn, friction, F, K_d, friction_force):
             continue
         e = ea if k == 0 else el
         f = -kt * (da if k == 0 else dl)
+        trial[i, k] = f
         cap = mu * fn
+        state = slip_state[i, k]
         stick = True
-        if f > cap:
-            f = cap
-            stick = False
-        elif f < -cap:
-            f = -cap
+        sign = 0.0
+        if state == 1 or state == -1:
+            sign = float(state)
+        elif state == 0:
+            if f > cap:
+                sign = 1.0
+            elif f < -cap:
+                sign = -1.0
+        if sign != 0.0:
+            f = sign * cap
             stick = False
         for a in range(3):
             F[i, a] -= f * e[a]
@@ -818,6 +867,11 @@ def _friction(i, x, anchor, tan, nrm, kt, fn, friction, F, K_d, friction_force):
             if stick:
                 for b in range(3):
                     K_d[i, a, b] += kt * e[a] * e[b]
+            elif state != 0:
+                # d(-f e)/dx with f = sign mu N(x, v): N = -k_n gap - c_n v_n
+                for b in range(3):
+                    K_d[i, a, b] += sign * mu * kt * e[a] * nrm[b]
+                    C_d[i, a, b] += sign * mu * cs * e[a] * nrm[b]
 
 
 @njit(cache=True)
@@ -915,6 +969,8 @@ class Workspace:
         self.contact = np.zeros(n)
         self.friction = np.zeros((n, 3))
         self.anchor = np.zeros((n, 3))
+        self.slip_state = np.zeros((n, 2), dtype=np.int64)
+        self.trial = np.zeros((n, 2))
         self.J_d = np.zeros((n, 3, 3))
         self.J_o = np.zeros((n - 1, 3, 3))
         self.J_o2 = np.zeros((max(n - 2, 0), 3, 3))
@@ -936,6 +992,8 @@ class Workspace:
             self.taut0,
             self.contact,
             self.friction,
+            self.slip_state,
+            self.trial,
         )
 
     def solver_args(self, line: DiscreteLine) -> tuple:
@@ -1011,6 +1069,8 @@ def _static_newton(
     taut0,
     contact,
     friction_force,
+    slip_state,
+    trial,
     J_d,
     J_o,
     J_o2,
@@ -1070,6 +1130,8 @@ def _static_newton(
             taut0,
             contact,
             friction_force,
+            slip_state,
+            trial,
         )
         res = 0.0
         for i in range(n):
