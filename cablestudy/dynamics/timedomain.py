@@ -184,6 +184,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     wargs = work.assemble_args()
     sargs = work.solver_args(line)
     held = line.held
+    seabed = line.has_seabed
 
     x0 = np.array(problem.static_position, dtype=float, copy=True)
     v0 = np.zeros_like(x0)
@@ -346,7 +347,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             continue
         # accept
         steps += 1
-        if line.has_seabed:
+        if seabed:
             update_anchors(x1, work.friction, line.seabed_stiffness, work.contact, work.anchor)
         past.append((t, x0.copy()))
         if len(past) > 2:
