@@ -32,6 +32,7 @@ from .statics import (
     STATUS_NO_SOLUTION,
     STATUS_NUMERICAL,
     STATUS_OK,
+    STATUS_TIME_LIMIT,
     StaticResult,
 )
 
@@ -564,43 +565,109 @@ def dynamic_outputs(res: DynamicResult, dyn: DynamicSettings) -> dict[str, np.nd
     return out
 
 
+#: status of an analysis that did not run because the static analysis it starts from
+#: failed (the code of :data:`cablestudy.dynamics.modal.STATUS_STATIC_FAILED`)
+STATUS_NOT_RUN = 5
+
+
+def _exception_message(exc: Exception) -> str:
+    tb = traceback.extract_tb(exc.__traceback__)
+    where = f" at {tb[-1].name}:{tb[-1].lineno}" if tb else ""
+    return f"{type(exc).__name__}: {exc}{where}"
+
+
+def _non_finite(data: dict[str, Any], analysis: str) -> list[str]:
+    """Float variables of ``analysis`` in ``data`` holding NaN or infinity where the
+    registry does not give NaN a meaning (e.g. 'no seabed contact')."""
+    from .results import OUTPUTS
+
+    bad = []
+    for k, v in data.items():
+        spec = OUTPUTS.get(k)
+        if spec is None or spec.analysis != analysis or np.asarray(v).dtype.kind != "f":
+            continue
+        v = np.asarray(v)
+        if spec.nan_means:
+            v = v[~np.isnan(v)]
+        if not np.all(np.isfinite(v)):
+            bad.append(k)
+    return sorted(bad)
+
+
 def evaluate_case(case: Case, *, presolved: dict[str, StaticResult] | None = None) -> CaseRecord:
     """Run every analysis the case asks for. Never raises: an exception inside a solver
-    becomes a failed record with the exception's text. ``presolved`` maps static hashes
-    to static solutions already computed (by :func:`evaluate_chunk`)."""
+    becomes a failure of that analysis with the exception's text. ``presolved`` maps
+    static hashes to static solutions already computed (by :func:`evaluate_chunk`).
+
+    Each analysis asked for records ``<analysis>_status`` (0 ok); a failed analysis
+    blanks only its own variables at assembly (:func:`cablestudy.results.analysis_ok`).
+    The modal and dynamic analyses start from the static shape and do not run when it
+    failed (:data:`STATUS_NOT_RUN`); a failed modal analysis does not stop the dynamics,
+    which does not use the modes. The case's ``status`` is that of the first failed
+    analysis (:data:`STATUS_TIME_LIMIT` if any hit the time limit, so that the runner
+    does not cache it); its ``message`` is the static solver's message, or names each
+    failed analysis ("modal analysis: ...; dynamic analysis: ...")."""
     from .results import CaseRecord
 
     t0 = time.perf_counter()
     deadline = time.monotonic() + case.study.analysis.time_limit
     data: dict[str, Any] = {}
-    try:
-        res = solve_static(case, deadline, presolved)
-        status, message = res.status, res.message
-        data.update(static_outputs(res, case.study))
-        modal = case.study.analysis.modal
-        if modal is not None and status == STATUS_OK:
-            mres = solve_modal(case, res, deadline)
-            data.update(modal_outputs(mres, res.s, mode_shapes=modal.mode_shapes))
-            if mres.status != STATUS_OK:
-                status, message = mres.status, f"modal analysis: {mres.message}"
+    outcome: dict[str, tuple[int, str]] = {}
 
-        dyn = case.study.analysis.dynamic
-        if dyn is not None and status == STATUS_OK:
-            status, message, dyn_out = run_dynamic(case, res, deadline)
-            data.update(dyn_out)
-    except Exception as exc:  # noqa: BLE001 - any solver fault is recorded as data
-        status = STATUS_NUMERICAL
-        tb = traceback.extract_tb(exc.__traceback__)
-        where = f" at {tb[-1].name}:{tb[-1].lineno}" if tb else ""
-        message = f"{type(exc).__name__}: {exc}{where}"
+    def run(analysis: str, solve: Any) -> None:
+        try:
+            status, message, out = solve()
+        except Exception as exc:  # noqa: BLE001 - any solver fault is recorded as data
+            status, message, out = STATUS_NUMERICAL, _exception_message(exc), {}
+        data.update(out)
+        if status == STATUS_OK:
+            bad = _non_finite(out, analysis)
+            if bad:
+                status, message = STATUS_NUMERICAL, f"non-finite values in {', '.join(bad)}"
+        outcome[analysis] = (int(status), message)
+
+    static: list[StaticResult] = []
+
+    def statics() -> tuple[int, str, dict[str, Any]]:
+        res = solve_static(case, deadline, presolved)
+        static.append(res)
+        return res.status, res.message, static_outputs(res, case.study)
+
+    def modal() -> tuple[int, str, dict[str, Any]]:
+        settings = case.study.analysis.modal
+        assert settings is not None
+        mres = solve_modal(case, static[0], deadline)
+        return (
+            mres.status,
+            mres.message,
+            modal_outputs(mres, static[0].s, mode_shapes=settings.mode_shapes),
+        )
+
+    def dynamic() -> tuple[int, str, dict[str, Any]]:
+        return run_dynamic(case, static[0], deadline)
+
+    run("static", statics)
+    asked = {
+        "modal": (case.study.analysis.modal is not None, modal),
+        "dynamic": (case.study.analysis.dynamic is not None, dynamic),
+    }
+    for name, (wanted, solve) in asked.items():
+        if not wanted:
+            continue
+        if outcome["static"][0] != STATUS_OK:
+            outcome[name] = (STATUS_NOT_RUN, "not run: the static analysis failed")
+        else:
+            run(name, solve)
+    for name, (st, _) in outcome.items():
+        data[f"{name}_status"] = np.asarray(st, dtype=np.int64)
+
+    status, message = outcome["static"]
     if status == STATUS_OK:
-        bad = [
-            k
-            for k, v in data.items()
-            if np.asarray(v).dtype.kind == "f" and not np.all(np.isfinite(v))
-        ]
-        if bad:
-            status, message = STATUS_NUMERICAL, f"non-finite values in {', '.join(sorted(bad))}"
+        failed = [(name, st, msg) for name, (st, msg) in outcome.items() if st != STATUS_OK]
+        if failed:
+            codes = [st for _, st, _ in failed]
+            status = STATUS_TIME_LIMIT if STATUS_TIME_LIMIT in codes else codes[0]
+            message = "; ".join(f"{name} analysis: {msg}" for name, _, msg in failed)
     wall = time.perf_counter() - t0
     if not math.isfinite(wall):
         wall = 0.0

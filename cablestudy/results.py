@@ -9,7 +9,7 @@ from __future__ import annotations
 import json
 import os
 import tempfile
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
@@ -24,16 +24,32 @@ from .config.loader import StudySource
 
 @dataclass(frozen=True)
 class OutputVariable:
+    """One output variable: extra dims, units, long name, dtype, and the analysis
+    (``static``, ``modal``, ``dynamic``) whose failure blanks it (None: written whatever
+    failed, as the per-analysis status variables). ``nan_means`` says what a NaN means
+    where NaN is a valid result of a successful analysis (empty: NaN is a failure)."""
+
     dims: tuple[str, ...]
     units: str
     long_name: str
     dtype: str = "float64"
+    analysis: str | None = "static"
+    nan_means: str = ""
+
+
+#: the analyses a case may run, in the order they run; each has a ``<name>_status``
+ANALYSES = ("static", "modal", "dynamic")
+
+
+def _of(analysis: str, table: dict[str, OutputVariable]) -> dict[str, OutputVariable]:
+    return {k: replace(v, analysis=analysis) for k, v in table.items()}
 
 
 #: every data variable a case may produce: name -> extra dims, units, long name.
-#: Numeric outputs (counters included) are float64 so that a failed case is NaN in every
-#: one of them (DESIGN.md); dimensionless and text variables have units "1" (CF).
-OUTPUTS: dict[str, OutputVariable] = {
+#: Numeric outputs (counters included) are float64 so that a failed analysis is NaN in
+#: every one of its variables (DESIGN.md); dimensionless and text variables have units
+#: "1" (CF).
+STATIC_OUTPUTS: dict[str, OutputVariable] = {
     "x": OutputVariable(("s",), "m", "x position along the line"),
     "y": OutputVariable(("s",), "m", "y position along the line"),
     "z": OutputVariable(("s",), "m", "z position (up) along the line"),
@@ -56,6 +72,10 @@ OUTPUTS: dict[str, OutputVariable] = {
     "laid_length": OutputVariable((), "m", "unstretched length resting on the seabed"),
     "static_iterations": OutputVariable((), "1", "iterations of the static solver"),
     "static_residual": OutputVariable((), "1", "final relative residual of the static solver"),
+    "drag_iterations": OutputVariable((), "1", "outer drag iterations of the static solver"),
+}
+
+MODAL_OUTPUTS: dict[str, OutputVariable] = {
     "natural_frequency": OutputVariable(
         ("mode",), "Hz", "natural frequency about the static shape"
     ),
@@ -65,7 +85,9 @@ OUTPUTS: dict[str, OutputVariable] = {
         "mode shape: node displacement scaled to a largest displacement of 1 m",
     ),
     "modal_dof": OutputVariable((), "1", "degrees of freedom of the modal model"),
-    "drag_iterations": OutputVariable((), "1", "outer drag iterations of the static solver"),
+}
+
+DYNAMIC_OUTPUTS: dict[str, OutputVariable] = {
     # dynamics (cablestudy.dynamics.timedomain): tensions at the excited end over the
     # steady-state window (the envelope of the last periods when steady_converged is 0)
     "tension_static": OutputVariable((), "N", "static tension at the excited end (dynamic model)"),
@@ -149,6 +171,25 @@ OUTPUTS: dict[str, OutputVariable] = {
     ),
 }
 
+#: per-analysis status, present when the study asks for that analysis
+STATUS_OUTPUTS: dict[str, OutputVariable] = {
+    f"{name}_status": OutputVariable(
+        (),
+        "1",
+        f"{name} analysis status: 0 ok, nonzero failed (5: not run, the static analysis failed)",
+        "int64",
+        None,
+    )
+    for name in ANALYSES
+}
+
+OUTPUTS: dict[str, OutputVariable] = {
+    **STATIC_OUTPUTS,
+    **_of("modal", MODAL_OUTPUTS),
+    **_of("dynamic", DYNAMIC_OUTPUTS),
+    **STATUS_OUTPUTS,
+}
+
 #: per-case bookkeeping variables (always present)
 CASE_VARIABLES: dict[str, OutputVariable] = {
     "status": OutputVariable((), "1", "case status: 0 ok, nonzero failed", "int64"),
@@ -174,6 +215,17 @@ class CaseRecord:
     wall_time: float
     data: dict[str, np.ndarray] = field(default_factory=dict)
     settings: dict[str, Any] = field(default_factory=dict)
+
+
+def analysis_ok(record: CaseRecord, analysis: str | None) -> bool:
+    """Whether ``analysis`` succeeded in ``record`` (its ``<analysis>_status``; a record
+    without one, e.g. of a lost task, counts by the case's ``status``)."""
+    if analysis is None:
+        return True
+    status = record.data.get(f"{analysis}_status")
+    if status is None:
+        return record.status == 0
+    return int(status) == 0
 
 
 def _fill(dtype: str) -> Any:
@@ -208,8 +260,9 @@ def assemble(
     *,
     solver_settings: dict[str, Any] | None = None,
 ) -> xr.Dataset:
-    """One Dataset on the sweep axes. A failed case is NaN (or -1 for counters) in its
-    data variables, never dropped."""
+    """One Dataset on the sweep axes. A failed analysis is NaN (or -1, or "") in its own
+    data variables (:attr:`OutputVariable.analysis`), the others are kept; a failed case
+    is never dropped."""
     shape = tuple(a.size for a in axes)
     dims = tuple(a.name for a in axes)
     by_index = {c.index: records[c.hash] for c in cases}
@@ -236,7 +289,7 @@ def assemble(
             rows = [
                 (idx, np.asarray(rec.data[name]))
                 for idx, rec in by_index.items()
-                if name in rec.data and rec.status == 0
+                if name in rec.data and analysis_ok(rec, spec.analysis)
             ]
         if spec.dtype == "str":
             # text as Python str (not 0-d arrays), so that netCDF sees one type when
@@ -309,7 +362,7 @@ def assemble(
         arcs = [
             np.asarray(r.data["arc_length"])
             for r in by_index.values()
-            if "arc_length" in r.data and r.status == 0
+            if "arc_length" in r.data and analysis_ok(r, "static")
         ]
         if arcs and all(len(a) == extent["s"] and np.array_equal(a, arcs[0]) for a in arcs):
             coords["s"] = ("s", arcs[0], {"units": "m", "long_name": COORDINATES["s"][1]})
@@ -319,7 +372,7 @@ def assemble(
         freqs = [
             np.asarray(r.data["transfer_frequency"])
             for r in by_index.values()
-            if "transfer_frequency" in r.data and r.status == 0
+            if "transfer_frequency" in r.data and analysis_ok(r, "dynamic")
         ]
         if freqs and all(np.array_equal(f, freqs[0]) for f in freqs):
             spec = OUTPUTS["transfer_frequency"]

@@ -29,12 +29,19 @@ from .analyses import evaluate_chunk
 from .cases import Case, SweepAxis
 from .config.loader import StudySource
 from .results import CaseRecord, assemble, write_atomic
+from .statics import STATUS_TIME_LIMIT
 
 #: status of a case whose task failed outside the solvers (worker lost)
 STATUS_TASK_FAILED = 9
 #: messages of records that must not be cached (transient: a rerun may succeed)
 LOST_PREFIX = "task failed: "
 TRANSIENT_PREFIXES = ("time limit", LOST_PREFIX)
+
+
+def transient(record: CaseRecord) -> bool:
+    """Whether a rerun may succeed where ``record`` failed (time limit, lost worker)."""
+    return record.status == STATUS_TIME_LIMIT or record.message.startswith(TRANSIENT_PREFIXES)
+
 
 SYNCHRONOUS = "synchronous"
 PROCESSES = "processes"
@@ -130,7 +137,7 @@ class CaseCache:
     def store(self, records: list[CaseRecord]) -> None:
         """Keep ``records`` and write the cacheable ones (not time-limited, not lost with
         their worker) to one new chunk file."""
-        cacheable = [r for r in records if not r.message.startswith(TRANSIENT_PREFIXES)]
+        cacheable = [r for r in records if not transient(r)]
         for rec in records:
             self.records[rec.hash] = rec
         if self.directory is None or not cacheable:
@@ -158,11 +165,7 @@ class CaseCache:
         if self.directory is None or not self.directory.is_dir():
             return
         old = sorted(self.directory.glob("chunk-*.pkl"))
-        records = [
-            r
-            for h, r in self.records.items()
-            if h in keep and not r.message.startswith(TRANSIENT_PREFIXES)
-        ]
+        records = [r for h, r in self.records.items() if h in keep and not transient(r)]
         if not records:
             return
         key = hashlib.sha256("".join(sorted(r.hash for r in records)).encode()).hexdigest()
