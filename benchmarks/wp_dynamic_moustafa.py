@@ -90,35 +90,17 @@ def study(frequency: float, amplitude: float, elements: int, ppp: int) -> dict:
 
 
 def prepare(data: dict):  # noqa: ANN201
-    """The DynamicProblem the pipeline would run for this study (as analyses.solve_dynamic
-    builds it)."""
-    from cablestudy.analyses import discrete_statics, end_motion, roundoff_force, solve_static
+    """The DynamicProblem the pipeline would run for this study
+    (:func:`cablestudy.analyses.dynamic_problem`)."""
+    from cablestudy.analyses import dynamic_problem, solve_static
     from cablestudy.cases import expand_cases
     from cablestudy.config.loader import parse_study_text
-    from cablestudy.dynamics.timedomain import DynamicProblem
 
     _, cases = expand_cases(parse_study_text(yaml.safe_dump(data), "<bench>"))
     case = cases[0]
-    static = solve_static(case, None)
-    line, x_static, msg = discrete_statics(case, static)
-    assert not msg, msg
-    dyn = case.study.analysis.dynamic
-    motion, period, step = end_motion(dyn)
-    return DynamicProblem(
-        line=line,
-        static_position=x_static,
-        motion=motion,
-        period=period,
-        step=step,
-        max_refinement=dyn.max_refinement,
-        spectral_radius=dyn.spectral_radius,
-        newton_tolerance=max(
-            dyn.newton_tolerance * float(np.nanmax(static.tension)),
-            4.0 * roundoff_force(line, x_static),
-        ),
-        max_newton_iterations=dyn.max_newton_iterations,
-        duration=dyn.duration,
-    )
+    problem = dynamic_problem(case, solve_static(case, None))
+    assert not isinstance(problem, str), problem
+    return problem
 
 
 def tensions(res) -> np.ndarray:  # noqa: ANN001

@@ -22,7 +22,7 @@ from .config.analysis import (
     SpectrumExcitation,
     TimeSeriesExcitation,
 )
-from .config.ends import FixedEnd
+from .config.ends import ForceEnd, MooringEnd
 from .config.loader import StudyError, StudySource
 from .counters import COUNTERS
 from .physics.profile import profile_quantities
@@ -40,7 +40,7 @@ if TYPE_CHECKING:  # imported where used: `cablestudy validate` needs none of th
     from .dynamics.excitation import EndMotion
     from .dynamics.modal import ModalResult
     from .dynamics.model import DiscreteLine
-    from .dynamics.timedomain import DynamicResult
+    from .dynamics.timedomain import DynamicProblem, DynamicResult
     from .results import CaseRecord
 
 #: static solutions already computed in this process, by static hash (a sweep over
@@ -60,7 +60,7 @@ def check_supported(cases: list[Case], src: StudySource) -> None:
         seen.add(case.static_hash)
         method = case.study.analysis.static.method
         problem = static_problem(case.study)
-        missing = STATIC_SOLVERS[method].unsupported(problem)
+        missing = unsupported_static(method, problem)
         if case.study.analysis.modal is not None:
             for i, mass in enumerate(problem.line.mass):
                 if not mass > 0.0:
@@ -81,8 +81,18 @@ def check_supported(cases: list[Case], src: StudySource) -> None:
             if msg not in problems:
                 problems.append(msg)
     problems.extend(p for p in _dynamic_problems(cases, src) if p not in problems)
+    problems.extend(p for p in _linear_model_problems(cases, src) if p not in problems)
     if problems:
         raise StudyError(problems, src.source)
+
+
+def unsupported_static(method: str, problem: Any) -> list[str]:
+    """What the static ``method`` cannot model in ``problem``: its own list, and bending
+    stiffness for the cable solvers (only method 'discrete' carries EI)."""
+    missing = list(STATIC_SOLVERS[method].unsupported(problem))
+    if method != "discrete" and np.any(problem.line.bending_stiffness > 0.0):
+        missing.append("bending stiffness (bending_stiffness > 0; method 'discrete' models it)")
+    return missing
 
 
 def warm_up(cases: list[Case]) -> None:
@@ -98,6 +108,47 @@ def warm_up(cases: list[Case]) -> None:
         warm_up_frequency()
 
 
+def linear_model_gaps(study: Any) -> list[tuple[tuple[str | int, ...], str]]:
+    """Keys of ``study`` set to something the frequency-domain solver does not represent
+    yet, as (YAML path, what it is): the drag of lumped bodies (its drag linearisation
+    covers the line's Morison drag). Modal analysis and the time domain model them all
+    (one line model, :mod:`cablestudy.dynamics.model`)."""
+    return [
+        (("line", "attachments", i, "drag_area"), "a lumped body's drag")
+        for i, att in enumerate(study.line.attachments)
+        if att.drag_area > 0.0
+    ]
+
+
+def _linear_model_problems(cases: list[Case], src: StudySource) -> list[str]:
+    """Keys that ``method: frequency`` would ignore, refused naming the method that
+    models them (``method: auto`` runs such cases in the time domain), and a body's drag
+    in a current, which no static solver models."""
+    problems: list[str] = []
+    for case in cases:
+        study = case.study
+        dyn = study.analysis.dynamic
+        if dyn is not None and dyn.method == "frequency":
+            for path, what in linear_model_gaps(study):
+                loc = ".".join(str(p) for p in path)
+                problems.append(
+                    f"{src.line_of(path) or src.line_of(path[:1])}: {loc}: {what} is modelled "
+                    "by the time domain, not by analysis.dynamic.method: frequency; allowed: "
+                    "method time or auto, or remove the key"
+                )
+        for i, att in enumerate(study.line.attachments):
+            if att.drag_area > 0.0 and study.environment.has_current:
+                path = ("line", "attachments", i, "drag_area")
+                problems.append(
+                    f"{src.line_of(path)}: line.attachments.{i}.drag_area: {att.drag_area:g} "
+                    "m^2 with a current: the static solvers do not load lumped bodies with drag "
+                    "(the time domain does, from rest in still water); allowed: 0 with a current"
+                )
+        if len(problems) > 20:
+            break
+    return problems
+
+
 def _dynamic_problems(cases: list[Case], src: StudySource) -> list[str]:
     """Config errors of the dynamic analysis that need the whole study (ends, length)."""
     problems: list[str] = []
@@ -111,14 +162,25 @@ def _dynamic_problems(cases: list[Case], src: StudySource) -> list[str]:
             end = getattr(study.ends, label)
             # a 'force' or 'mooring' end fixes the static equilibrium; an end the
             # excitation moves then moves about that static position (a vessel-attached
-            # end). An unexcited end must be held: the model has no free end node.
-            if not isinstance(end, FixedEnd) and label not in excited:
+            # end). An unexcited 'force' end is a free node carrying its force (a towed
+            # body); an unexcited 'mooring' end (a constant horizontal force at a held
+            # height) is no physical support: refused, saying what to write instead.
+            if isinstance(end, MooringEnd) and label not in excited:
                 line = src.line_of(("ends", label, "kind"))
                 problems.append(
-                    f"{line}: ends.{label}.kind: {end.kind!r} is not supported with "
-                    "analysis.dynamic unless the excitation moves this end (the time-domain "
-                    "model holds or moves each end along a prescribed path about its static "
-                    f"position); allowed: 'fixed', or an excitation with end: {label}"
+                    f"{line}: ends.{label}.kind: 'mooring' is not supported with "
+                    "analysis.dynamic unless the excitation moves this end: a fairlead held at "
+                    "a height with a constant horizontal force is no support the line can move "
+                    "against; allowed: an excitation with end: "
+                    f"{label} (the vessel's motion), kind 'fixed' at the static position "
+                    "(force_b in a statics run gives it), or kind 'force' for a free end"
+                )
+            if isinstance(end, ForceEnd) and label not in excited and dyn.method == "frequency":
+                line = src.line_of(("ends", label, "kind"))
+                problems.append(
+                    f"{line}: ends.{label}.kind: an unexcited 'force' end is a free end, "
+                    "modelled by the time domain only; allowed: analysis.dynamic.method: time "
+                    "or auto"
                 )
         if dyn.transfer_function is not None and "frequency" in case.coords:
             line = src.line_of(("analysis", "dynamic", "transfer_function"))
@@ -169,7 +231,7 @@ def solve_static(
     problem = static_problem(case.study)
     method = case.study.analysis.static.method
     solver = STATIC_SOLVERS[method]
-    missing = solver.unsupported(problem)
+    missing = unsupported_static(method, problem)
     if missing:
         # the CLI rejects these before any work (check_supported); a caller that skips
         # that check still gets a failure rather than a solution that ignores an input
@@ -267,6 +329,7 @@ def solve_modal(case: Case, static: StaticResult, deadline: float | None) -> Mod
             n_modes=settings.modes,
             include_added_mass=settings.include_added_mass,
             include_bending=settings.include_bending,
+            extras=dynamic_extras(case.study, mesh_static.position),
         ),
         deadline=deadline,
     )
@@ -319,26 +382,41 @@ def static_outputs(res: StaticResult, study: Any = None) -> dict[str, np.ndarray
     return out
 
 
-#: discrete static equilibria of the dynamic model, by (static hash, elements)
-_DISCRETE_CACHE: OrderedDict[tuple[str, int], tuple[DiscreteLine, np.ndarray, str]] = OrderedDict()
+#: discrete static equilibria of the dynamic model, by (static hash, elements, the
+#: dynamic-only line properties)
+_DISCRETE_CACHE: OrderedDict[tuple, tuple[DiscreteLine, np.ndarray, str, np.ndarray]] = (
+    OrderedDict()
+)
 
 
-def discrete_statics(case: Case, static: StaticResult) -> tuple[DiscreteLine, np.ndarray, str]:
+def discrete_statics(
+    case: Case, static: StaticResult
+) -> tuple[DiscreteLine, np.ndarray, str, np.ndarray]:
     """The lumped-mass line of the case and its own static equilibrium, found by Newton
-    from the static solution (cached per static problem and element count). The third
-    item is an error message (empty when the equilibrium was found)."""
-    from .dynamics.model import discretise, static_equilibrium
+    from the static solution (cached per static problem, element count and dynamic line
+    properties). The third item is an error message (empty when the equilibrium was
+    found), the fourth the seabed friction anchors holding that equilibrium."""
+    from .dynamics.model import discretise_nodes, static_equilibrium, uniform_nodes
 
     dyn = case.study.analysis.dynamic
     assert dyn is not None
-    key = (case.static_hash, dyn.elements)
+    lm = line_model(case.study)
+    med = medium(case.study)
+    # the clamp directions are the static tangents of the end elements of the mesh
+    s_nodes = uniform_nodes(lm, dyn.elements)
+    start = np.stack([np.interp(s_nodes, static.s, static.position[:, k]) for k in range(3)], 1)
+    extras = dynamic_extras(case.study, start)
+    key = (case.static_hash, dyn.elements, repr(extras))
     cached = _DISCRETE_CACHE.get(key)
     if cached is not None:
         return cached
-    line = discretise(line_model(case.study), medium(case.study), dyn.elements)
-    start = np.stack([np.interp(line.s, static.s, static.position[:, k]) for k in range(3)], 1)
+    line = discretise_nodes(lm, med, s_nodes, extras)
     scale = float(np.nanmax(static.tension))
-    x, its, res, ok = static_equilibrium(
+    if line.has_seabed:
+        # the penalty seabed balances each laid node's weight by a penetration of its
+        # own: allow the residual the contact stiffness makes of rounding in z
+        scale = max(scale, float(np.max(np.abs(line.force))))
+    x, its, res, ok, anchor = static_equilibrium(
         line, start, tolerance=max(1e-9 * scale, roundoff_force(line, start)), max_iterations=200
     )
     msg = (
@@ -349,10 +427,52 @@ def discrete_statics(case: Case, static: StaticResult) -> tuple[DiscreteLine, np
             f"converge ({its} iterations, residual {res:.3g} N)"
         )
     )
-    _DISCRETE_CACHE[key] = (line, x, msg)
+    _DISCRETE_CACHE[key] = (line, x, msg, anchor)
     while len(_DISCRETE_CACHE) > _STATIC_CACHE_SIZE:
         _DISCRETE_CACHE.popitem(last=False)
-    return line, x, msg
+    return line, x, msg, anchor
+
+
+def dynamic_extras(study: Any, start: np.ndarray) -> Any:
+    """The dynamic-only line properties of ``study``
+    (:class:`cablestudy.dynamics.model.DynamicExtras`): bodies, transverse damping,
+    free ends (an unexcited ``force`` end), clamped ends (holding the direction of the
+    end elements of ``start`` [m], the static shape at the mesh nodes) and the seabed
+    contact."""
+    from .dynamics.model import DynamicExtras, default_seabed_stiffness
+
+    dyn = study.analysis.dynamic
+    excited = {e.end for e in dyn.excitations} if dyn is not None else set()
+    end_force = np.zeros((2, 3))
+    free = [False, False]
+    clamp = np.zeros((2, 3))
+    for k, label in enumerate(("a", "b")):
+        end = getattr(study.ends, label)
+        if isinstance(end, ForceEnd) and label not in excited:
+            free[k] = True
+            end_force[k] = end.force
+        if end.bending == "clamped":
+            d = start[1] - start[0] if k == 0 else start[-1] - start[-2]
+            clamp[k] = d / np.linalg.norm(d)
+    env = study.environment
+    sb = env.seabed
+    lm = line_model(study)
+    stiffness = 0.0
+    if env.depth is not None:
+        stiffness = sb.stiffness if sb.stiffness is not None else default_seabed_stiffness(lm)
+    atts = study.line.attachments
+    return DynamicExtras(
+        transverse_damping=np.array([seg.damping_transverse for seg in study.line.segments]),
+        attachment_added_mass=np.array([a.added_mass for a in atts], dtype=float),
+        attachment_drag_area=np.array([a.drag_area for a in atts], dtype=float),
+        end_force=end_force,
+        free_end=(free[0], free[1]),
+        clamp_direction=clamp,
+        seabed_stiffness=float(stiffness),
+        seabed_damping_ratio=float(sb.damping_ratio),
+        friction_axial=float(sb.friction),
+        friction_lateral=float(sb.friction if sb.friction_lateral is None else sb.friction_lateral),
+    )
 
 
 def roundoff_force(line: DiscreteLine, x: np.ndarray) -> float:
@@ -424,9 +544,18 @@ def end_motion(dyn: DynamicSettings) -> tuple[EndMotion, float, float]:
     return motion, period, step
 
 
-def auto_ineligible(dyn: DynamicSettings) -> str:
+def auto_ineligible(dyn: DynamicSettings, study: Any = None) -> str:
     """Why ``method: auto`` cannot try the frequency domain for these settings ("" if it
-    can): it needs one harmonic frequency, and time histories come from the time domain."""
+    can): it needs one harmonic frequency, time histories come from the time domain, and
+    so do free ends and what the linearised model lacks (:func:`linear_model_gaps`)."""
+    if study is not None:
+        excited = {e.end for e in dyn.excitations}
+        for label in ("a", "b"):
+            if isinstance(getattr(study.ends, label), ForceEnd) and label not in excited:
+                return f"end {label} is free (time domain only)"
+        gaps = linear_model_gaps(study)
+        if gaps:
+            return f"{gaps[0][1]} (time domain only)"
     if not all(isinstance(e, HarmonicExcitation) for e in dyn.excitations):
         return "excitation is not harmonic"
     if len({e.frequency for e in dyn.excitations}) > 1:  # type: ignore[union-attr]
@@ -453,7 +582,7 @@ def run_dynamic(
     assert dyn is not None
     linear: dict[str, np.ndarray] = {}
     if dyn.method in ("frequency", "auto"):
-        why = auto_ineligible(dyn) if dyn.method == "auto" else ""
+        why = auto_ineligible(dyn, case.study) if dyn.method == "auto" else ""
         if not why:
             fres = solve_frequency(case, static, deadline)
             if dyn.method == "frequency" or (fres.status == STATUS_OK and not fres.distrust):
@@ -488,23 +617,28 @@ def run_dynamic(
 
 
 def solve_dynamic(case: Case, static: StaticResult, deadline: float | None) -> DynamicResult:
-    from .dynamics.timedomain import DynamicProblem, DynamicResult, simulate
+    from .dynamics.timedomain import DynamicResult, simulate
+
+    problem = dynamic_problem(case, static)
+    if isinstance(problem, str):
+        return DynamicResult(status=STATUS_NUMERICAL, message=problem)
+    return simulate(problem, deadline=deadline)
+
+
+def dynamic_problem(case: Case, static: StaticResult) -> DynamicProblem | str:
+    """The time-domain run of the case about its static solution (or why the discrete
+    static equilibrium it starts from was not found)."""
+    from .dynamics.timedomain import DynamicProblem
 
     dyn = case.study.analysis.dynamic
     assert dyn is not None
-    if static.laid_length > 0.0:
-        return DynamicResult(
-            status=STATUS_NO_SOLUTION,
-            message=f"the static line rests on the seabed over {static.laid_length:.4g} m; "
-            "the dynamic model has no seabed contact yet",
-        )
-    line, x_static, msg = discrete_statics(case, static)
+    line, x_static, msg, anchor = discrete_statics(case, static)
     if msg:
-        return DynamicResult(status=STATUS_NUMERICAL, message=msg)
+        return msg
     motion, period, step = end_motion(dyn)
     first = dyn.excitations[0]
     hist = dyn.history
-    problem = DynamicProblem(
+    return DynamicProblem(
         line=line,
         static_position=x_static,
         motion=motion,
@@ -528,8 +662,8 @@ def solve_dynamic(case: Case, static: StaticResult, deadline: float | None) -> D
         history_s=np.asarray(hist.points if hist else [], dtype=float),
         history_periods=hist.periods if hist else 0.0,
         history_samples=hist.samples_per_period if hist else 1,
+        anchor=anchor,
     )
-    return simulate(problem, deadline=deadline)
 
 
 def dynamic_outputs(res: DynamicResult, dyn: DynamicSettings) -> dict[str, np.ndarray]:

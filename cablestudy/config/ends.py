@@ -8,12 +8,21 @@ from pydantic import Field
 
 from .base import Finite, StrictModel, Vec2, Vec3
 
+#: end condition of the bending stiffness: moment-free, or the end's direction held
+Bending = Literal["pinned", "clamped"]
+BENDING_FIELD = Field(
+    "pinned",
+    description="bending end condition (with bending_stiffness > 0): pinned (no moment) or "
+    "clamped (the end's static direction held); time domain, modal and frequency domain",
+)
+
 
 class FixedEnd(StrictModel):
     """End held at a known position."""
 
     kind: Literal["fixed"]
     position: Vec3 = Field(description="position of the end [m]; z up, sea surface at z = 0")
+    bending: Bending = BENDING_FIELD
 
 
 class ForceEnd(StrictModel):
@@ -21,6 +30,7 @@ class ForceEnd(StrictModel):
 
     kind: Literal["force"]
     force: Vec3 = Field(description="force applied to the line at this end [N]")
+    bending: Bending = BENDING_FIELD
 
 
 class MooringEnd(StrictModel):
@@ -29,6 +39,7 @@ class MooringEnd(StrictModel):
     kind: Literal["mooring"]
     force: Vec2 = Field(description="horizontal force applied to the line [N]")
     z: Finite = Field(description="height of this end [m]")
+    bending: Bending = BENDING_FIELD
 
 
 End = Annotated[FixedEnd | ForceEnd | MooringEnd, Field(discriminator="kind")]

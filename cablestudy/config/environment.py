@@ -55,7 +55,28 @@ class Seabed(StrictModel):
 
     slope_deg: Finite = Field(0.0, ge=-60.0, le=60.0, description="seabed slope [deg]")
     slope_heading_deg: Finite = Field(0.0, description="direction of rising seabed [deg]")
-    friction: NonNegative = Field(0.0, description="Coulomb friction coefficient [-]")
+    friction: NonNegative = Field(
+        0.0,
+        description="Coulomb friction coefficient [-] (along the line; also across it "
+        "unless friction_lateral is given)",
+    )
+    friction_lateral: NonNegative | None = Field(
+        None,
+        description="Coulomb friction coefficient across the line [-] (time domain); "
+        "default: friction",
+    )
+    stiffness: Positive | None = Field(
+        None,
+        description="normal contact stiffness per length of line [N/m^2] (time domain, and "
+        "the laid line's linear spring in modal and frequency-domain analyses); default: the "
+        "heaviest segment's weight in the fluid per length over 1 mm, i.e. a static "
+        "penetration of 1 mm",
+    )
+    damping_ratio: NonNegative = Field(
+        1.0,
+        description="normal contact damping as a fraction of the critical damping of each "
+        "node on its contact spring [-] (time domain); default 1: critically damped",
+    )
 
 
 class CurrentPoint(StrictModel):

@@ -27,6 +27,12 @@ class Segment(StrictModel):
     damping_ratio: NonNegative = Field(
         0.0, le=1.0, description="axial structural damping, fraction of critical [-]"
     )
+    damping_transverse: NonNegative = Field(
+        0.0,
+        description="transverse structural damping per length [N s/m^2]: a force -c v_n per "
+        "length on the velocity normal to the line (the ajayi seed's c); time and frequency "
+        "domain",
+    )
 
     @model_validator(mode="after")
     def _mass_or_weight(self) -> Segment:
@@ -71,6 +77,14 @@ class Attachment(StrictModel):
     force: Vec3 = Field([0.0, 0.0, 0.0], description="constant applied force [N]")
     mass: NonNegative = Field(0.0, description="lumped mass [kg] (weight and inertia)")
     volume: NonNegative = Field(0.0, description="displaced volume [m^3] (buoyancy)")
+    added_mass: NonNegative = Field(
+        0.0, description="isotropic added mass of the body [kg] (dynamic analyses)"
+    )
+    drag_area: NonNegative = Field(
+        0.0,
+        description="drag coefficient times projected area C_D A [m^2] of the body: isotropic "
+        "quadratic drag 1/2 rho C_D A |U| U on the relative velocity (time domain)",
+    )
     name: str | None = None
 
 

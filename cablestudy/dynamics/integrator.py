@@ -15,9 +15,10 @@ linear problems, and damping the unresolved axial (elastic-wave) modes, so that 
 step is set by the motion, not by the axial wave speed. ``rho = 1`` is the
 trapezoidal rule (no numerical dissipation).
 
-Newton iterates on the free nodes' positions with the block-tridiagonal Jacobian
-``J = (1 - am)/(beta h^2) M + (1 - af) [K + gamma/(beta h) C]``; the end nodes follow
-their prescribed motion.
+Newton iterates on the free nodes' positions with the block-banded Jacobian
+``J = (1 - am)/(beta h^2) M + (1 - af) [K + gamma/(beta h) C]`` (block-tridiagonal, or
+pentadiagonal where the line bends); held nodes (fixed or excited ends) follow their
+prescribed motion, a free end node moves with the line.
 """
 
 from __future__ import annotations
@@ -27,7 +28,7 @@ from dataclasses import dataclass
 
 from numba import njit
 
-from .model import assemble, solve_block_tridiagonal
+from .model import assemble, solve_banded
 
 
 @dataclass(frozen=True)
@@ -68,6 +69,7 @@ def alpha_step(
     x1,
     v1,
     a1,
+    anchor,
     rest_length,
     axial_stiffness,
     internal_damping,
@@ -80,33 +82,47 @@ def alpha_step(
     current_z,
     current_velocity,
     has_drag,
+    bending,
+    clamp_direction,
+    transverse_damping,
+    body_added_mass,
+    body_drag,
+    held,
+    seabed_normal,
+    seabed_offset,
+    seabed_stiffness,
+    seabed_damping,
+    friction,
     F,
     K_d,
     K_o,
+    K_o2,
     C_d,
     C_o,
     M_d,
     tension,
     strain,
     taut0,
+    contact,
+    friction_force,
     J_d,
     J_o,
+    J_o2,
     r,
     dx,
-    Dinv,
-    y,
+    band,
 ):  # noqa: ANN001, ANN201
     """One step of length ``h`` [s] from (x0, v0, a0) with out-of-balance force F0.
 
     ``end_x, end_v, end_a`` (2, 3) are the prescribed position, velocity and
-    acceleration of end nodes A and B at the end of the step; ``x_pred`` (n + 1, 3) is
-    the predicted position of every node (Newton's start; velocity and acceleration
-    follow from the Newmark relations). On return x1, v1, a1 hold
-    the new state, and F, M_d, tension, strain are evaluated there. Returns (Newton
-    iterations, converged): converged when the largest residual force on a free node
-    is at most ``tol`` [N]."""
+    acceleration of end nodes A and B at the end of the step (used where the end node
+    is ``held``); ``x_pred`` (n + 1, 3) is the predicted position of every node
+    (Newton's start; velocity and acceleration follow from the Newmark relations);
+    ``anchor`` holds the seabed friction anchors of the start of the step. On return
+    x1, v1, a1 hold the new state, and F, M_d, tension, strain, contact and friction
+    are evaluated there. Returns (Newton iterations, converged): converged when the
+    largest residual force on a free node is at most ``tol`` [N]."""
     n = x0.shape[0]
-    m = n - 2
     for i in range(n):
         for c in range(3):
             x1[i, c] = x_pred[i, c]
@@ -114,13 +130,17 @@ def alpha_step(
                 beta * h * h
             )
             v1[i, c] = v0[i, c] + h * ((1.0 - gamma) * a0[i, c] + gamma * a1[i, c])
-    for c in range(3):
-        x1[0, c] = end_x[0, c]
-        v1[0, c] = end_v[0, c]
-        a1[0, c] = end_a[0, c]
-        x1[n - 1, c] = end_x[1, c]
-        v1[n - 1, c] = end_v[1, c]
-        a1[n - 1, c] = end_a[1, c]
+    for end in range(2):
+        node = 0 if end == 0 else n - 1
+        if held[node]:
+            for c in range(3):
+                x1[node, c] = end_x[end, c]
+                v1[node, c] = end_v[end, c]
+                a1[node, c] = end_a[end, c]
+    n_free = 0
+    for i in range(n):
+        if not held[i]:
+            n_free += 1
     cm = (1.0 - alpha_m) / (beta * h * h)
     cv = gamma / (beta * h)
     lmin = rest_length.min()
@@ -128,6 +148,7 @@ def alpha_step(
         assemble(
             x1,
             v1,
+            anchor,
             rest_length,
             axial_stiffness,
             internal_damping,
@@ -140,41 +161,60 @@ def alpha_step(
             current_z,
             current_velocity,
             has_drag,
+            bending,
+            clamp_direction,
+            transverse_damping,
+            body_added_mass,
+            body_drag,
+            held,
+            seabed_normal,
+            seabed_offset,
+            seabed_stiffness,
+            seabed_damping,
+            friction,
             F,
             K_d,
             K_o,
+            K_o2,
             C_d,
             C_o,
             M_d,
             tension,
             strain,
             taut0,
+            contact,
+            friction_force,
         )
         res = 0.0
-        for i in range(1, n - 1):
+        for i in range(n):
             for c in range(3):
                 acc = (1.0 - alpha_f) * F[i, c] + alpha_f * F0[i, c]
                 for b in range(3):
                     acc += M_d[i, c, b] * ((1.0 - alpha_m) * a1[i, b] + alpha_m * a0[i, b])
-                r[i - 1, c] = -acc
-                res = max(res, abs(acc))
+                r[i, c] = -acc
+                if not held[i]:
+                    res = max(res, abs(acc))
         if not math.isfinite(res):
             return it, False
         if res <= tol:
             return it, True
-        if it == max_iterations or m == 0:
+        if it == max_iterations or n_free == 0:
             break
-        for i in range(1, n - 1):
+        for i in range(n):
             for c in range(3):
                 for b in range(3):
-                    J_d[i - 1, c, b] = cm * M_d[i, c, b] + (1.0 - alpha_f) * (
+                    J_d[i, c, b] = cm * M_d[i, c, b] + (1.0 - alpha_f) * (
                         K_d[i, c, b] + cv * C_d[i, c, b]
                     )
-        for i in range(1, n - 2):
+        for i in range(n - 1):
             for c in range(3):
                 for b in range(3):
-                    J_o[i - 1, c, b] = (1.0 - alpha_f) * (K_o[i, c, b] + cv * C_o[i, c, b])
-        ok = solve_block_tridiagonal(J_d[:m], J_o[: max(m - 1, 0)], r[:m], dx[:m], Dinv[:m], y[:m])
+                    J_o[i, c, b] = (1.0 - alpha_f) * (K_o[i, c, b] + cv * C_o[i, c, b])
+        for i in range(J_o2.shape[0]):
+            for c in range(3):
+                for b in range(3):
+                    J_o2[i, c, b] = (1.0 - alpha_f) * K_o2[i, c, b]
+        ok = solve_banded(J_d, J_o, J_o2, held, r, dx, band)
         if not ok:
             return it, False
         # the start-of-step stiffness of elements gone slack in the predictor helps the
@@ -182,14 +222,16 @@ def alpha_step(
         for e in range(taut0.shape[0]):
             taut0[e] = False
         big = 0.0
-        for i in range(m):
+        for i in range(n):
             for c in range(3):
                 big = max(big, abs(dx[i, c]))
         if big > lmin or not math.isfinite(big):
             return it, False
-        for i in range(1, n - 1):
+        for i in range(n):
+            if held[i]:
+                continue
             for c in range(3):
-                d = dx[i - 1, c]
+                d = dx[i, c]
                 x1[i, c] += d
                 a1[i, c] += d / (beta * h * h)
                 v1[i, c] += gamma * d / (beta * h)

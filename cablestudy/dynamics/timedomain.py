@@ -35,7 +35,7 @@ import numpy as np
 from ..statics.base import STATUS_NUMERICAL, STATUS_OK, STATUS_TIME_LIMIT
 from .excitation import EndMotion
 from .integrator import AlphaParameters, alpha_step
-from .model import DiscreteLine, Workspace, evaluate, interpolate_nodes
+from .model import DiscreteLine, Workspace, evaluate, interpolate_nodes, update_anchors
 
 #: extra step halvings allowed beyond ``max_refinement`` when Newton fails
 NEWTON_RESCUE_HALVINGS = 8
@@ -69,6 +69,8 @@ class DynamicProblem:
     keep_steps : keep every accepted step's full state (for tests and diagnostics)
     tension_step : [N] largest change of the end tension in one step; a larger change
         halves the step (up to ``max_refinement`` times), so snap loads are resolved
+    anchor : [m] (n + 1, 3) seabed friction anchors of the static equilibrium (None:
+        at the static positions, no friction force stored)
     """
 
     line: DiscreteLine
@@ -92,6 +94,7 @@ class DynamicProblem:
     history_samples: int = 64
     keep_steps: bool = False
     tension_step: float = math.inf
+    anchor: np.ndarray | None = None
 
 
 @dataclass(kw_only=True)
@@ -131,12 +134,22 @@ class DynamicResult:
         return self.status == STATUS_OK
 
 
-def end_forces(work: Workspace, a: np.ndarray) -> np.ndarray:
+def end_forces(
+    work: Workspace, a: np.ndarray, x: np.ndarray | None = None, held: np.ndarray | None = None
+) -> np.ndarray:
     """Force of the line on the supports at A and B [N] (2, 3): minus the support
-    reaction ``M a + F`` of the end nodes."""
+    reaction ``M a + F`` of a held end node; at a free end node (a towed body, given
+    ``x`` [m] and ``held``) the pull of the end element on it."""
     out = np.empty((2, 3))
     out[0] = -(work.F[0] + work.M_d[0] @ a[0])
     out[1] = -(work.F[-1] + work.M_d[-1] @ a[-1])
+    if held is not None and x is not None:
+        if not held[0]:
+            d = x[1] - x[0]
+            out[0] = work.tension[0] * d / np.linalg.norm(d)
+        if not held[-1]:
+            d = x[-2] - x[-1]
+            out[1] = work.tension[-1] * d / np.linalg.norm(d)
     return out
 
 
@@ -169,18 +182,20 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     work = Workspace(line.n_elements)
     largs = line.kernel_args()
     wargs = work.assemble_args()
-    sargs = work.solver_args()
+    sargs = work.solver_args(line)
+    held = line.held
 
     x0 = np.array(problem.static_position, dtype=float, copy=True)
     v0 = np.zeros_like(x0)
     a0 = np.zeros_like(x0)
     x1, v1, a1 = x0.copy(), v0.copy(), a0.copy()
-    evaluate(line, x0, v0, work)
+    anchor0 = problem.anchor if problem.anchor is not None else x0
+    evaluate(line, x0, v0, work, anchor=anchor0)
     F0 = work.F.copy()
     strain_prev = work.strain.copy()
     base = np.stack([x0[0], x0[-1]])
     ex = problem.excited_end
-    t_static = float(np.linalg.norm(end_forces(work, a0)[ex]))
+    t_static = float(np.linalg.norm(end_forces(work, a0, x0, held)[ex]))
     result = DynamicResult(tension_static=t_static)
 
     T = problem.period
@@ -204,7 +219,9 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         while len(buf) > 2 and buf[1][0] < t - hist_span:
             buf.popleft()
 
-    rec: dict[str, list[np.ndarray]] = {k: [] for k in ("t", "x", "v", "a", "end_force", "tension")}
+    rec: dict[str, list[np.ndarray]] = {
+        k: [] for k in ("t", "x", "v", "a", "end_force", "tension", "friction")
+    }
 
     def keep(t: float, forces: np.ndarray) -> None:
         if problem.keep_steps:
@@ -214,8 +231,9 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             rec["a"].append(a0.copy())
             rec["end_force"].append(forces.copy())
             rec["tension"].append(work.tension.copy())
+            rec["friction"].append(work.friction.copy())
 
-    keep(0.0, end_forces(work, a0))
+    keep(0.0, end_forces(work, a0, x0, held))
     push(0.0, t_static)
 
     # per-period statistics (periods starting after the ramp only)
@@ -272,10 +290,12 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         # move the whole line with the ends' prescribed correction, shared linearly
         # along s, so that the predictor neither stretches nor compresses the end
         # elements
-        x_pred += (1.0 - frac) * (base[0] + disp[0] - x_pred[0])[None, :]
-        x_pred += frac * (base[1] + disp[1] - x_pred[-1])[None, :]
-        x_pred[0] = base[0] + disp[0]
-        x_pred[-1] = base[1] + disp[1]
+        if held[0]:
+            x_pred += (1.0 - frac) * (base[0] + disp[0] - x_pred[0])[None, :]
+            x_pred[0] = base[0] + disp[0]
+        if held[-1]:
+            x_pred += frac * (base[1] + disp[1] - x_pred[-1])[None, :]
+            x_pred[-1] = base[1] + disp[1]
         its, ok = alpha_step(
             x0,
             v0,
@@ -295,6 +315,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             x1,
             v1,
             a1,
+            work.anchor,
             *largs,
             *wargs,
             *sargs,
@@ -315,7 +336,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             clean = 0
             continue
         switched = bool(np.any((work.strain > 0.0) != (strain_prev > 0.0)))
-        forces = end_forces(work, a1)
+        forces = end_forces(work, a1, x1, held)
         tension = float(math.sqrt(forces[ex] @ forces[ex]))
         steep = abs(tension - t_prev_tension) > problem.tension_step
         if (switched or steep) and level < max_level:
@@ -325,6 +346,8 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             continue
         # accept
         steps += 1
+        if line.has_seabed:
+            update_anchors(x1, work.friction, line.seabed_stiffness, work.contact, work.anchor)
         past.append((t, x0.copy()))
         if len(past) > 2:
             past.popleft()

@@ -13,6 +13,7 @@ from .base import (
     StaticResult,
     StaticSolver,
 )
+from .discrete import DiscreteSolver
 from .elastic_catenary import ElasticCatenarySolver
 from .semi_analytic import SemiAnalyticSolver
 from .shooting import ShootingSolver
@@ -21,6 +22,7 @@ from .shooting import ShootingSolver
 STATIC_SOLVERS: dict[str, StaticSolver] = {
     "analytic": ElasticCatenarySolver(),
     "catenary": SemiAnalyticSolver(),
+    "discrete": DiscreteSolver(),
     "shooting": ShootingSolver(),
 }
 

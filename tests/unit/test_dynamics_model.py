@@ -10,7 +10,7 @@ from cablestudy.dynamics.model import (
     discretise,
     element_counts,
     evaluate,
-    solve_block_tridiagonal,
+    solve_banded,
     static_equilibrium,
 )
 from cablestudy.physics.hydro import drag_per_length
@@ -76,7 +76,7 @@ def test_discrete_statics_balance_the_weight() -> None:
     u = disc.s / disc.s[-1]
     x0 = a + np.outer(u, b - a)
     x0[:, 2] -= 1.5 * np.sin(np.pi * u)
-    x, _, res, ok = static_equilibrium(disc, x0, tolerance=1e-7)
+    x, _, res, ok, _ = static_equilibrium(disc, x0, tolerance=1e-7)
     assert ok, res
     work = evaluate(disc, x, np.zeros_like(x))
     # force of the line on the two supports = total weight (global equilibrium)
@@ -170,22 +170,36 @@ def test_nodal_drag_is_the_shared_morison_drag_times_the_tributary_length() -> N
     np.testing.assert_allclose(drag[interior], expected[interior], rtol=1e-10, atol=1e-12)
 
 
-def test_block_tridiagonal_solver_matches_dense() -> None:
+@pytest.mark.parametrize("reach", [1, 2])
+def test_banded_solver_matches_dense(reach: int) -> None:
+    """Block-tri/pentadiagonal systems (lower blocks the transposes of the upper ones,
+    diagonal blocks not symmetric: drag damping), with a held node: its row is the
+    identity with a zero right side, so its unknown is 0 and the rest solve the
+    remaining equations."""
     rng = np.random.default_rng(0)
     m = 7
-    D = rng.normal(size=(m, 3, 3))
-    D = D @ D.transpose(0, 2, 1) + 10 * np.eye(3)
+    D = rng.normal(size=(m, 3, 3)) + 12 * np.eye(3)
     O = rng.normal(size=(m - 1, 3, 3))  # noqa: E741
+    O2 = rng.normal(size=(m - 2, 3, 3)) if reach == 2 else np.zeros((0, 3, 3))
     J = np.zeros((3 * m, 3 * m))
     for i in range(m):
         J[3 * i : 3 * i + 3, 3 * i : 3 * i + 3] = D[i]
     for i in range(m - 1):
         J[3 * i : 3 * i + 3, 3 * i + 3 : 3 * i + 6] = O[i]
         J[3 * i + 3 : 3 * i + 6, 3 * i : 3 * i + 3] = O[i].T
+    for i in range(O2.shape[0]):
+        J[3 * i : 3 * i + 3, 3 * i + 6 : 3 * i + 9] = O2[i]
+        J[3 * i + 6 : 3 * i + 9, 3 * i : 3 * i + 3] = O2[i].T
+    held = np.zeros(m, dtype=bool)
+    held[0] = True
+    J[0:3, :] = 0.0
+    J[0:3, 0:3] = np.eye(3)
     b = rng.normal(size=(m, 3))
-    out, Dinv, y = np.zeros((m, 3)), np.zeros((m, 3, 3)), np.zeros((m, 3))
-    assert solve_block_tridiagonal(D, O, b, out, Dinv, y)
-    np.testing.assert_allclose(out.ravel(), np.linalg.solve(J, b.ravel()), rtol=1e-12)
+    out, band = np.zeros((m, 3)), np.zeros((3 * m, 17))
+    assert solve_banded(D, O, O2, held, b, out, band)
+    rhs = b.ravel().copy()
+    rhs[0:3] = 0.0
+    np.testing.assert_allclose(out.ravel(), np.linalg.solve(J, rhs), rtol=1e-11, atol=1e-13)
 
 
 def test_end_motion_ramp_and_derivatives() -> None:

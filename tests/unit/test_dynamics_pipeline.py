@@ -162,21 +162,22 @@ def test_excitation_errors_name_the_field_once() -> None:
     assert "missing" in problem
 
 
-def test_dynamics_needs_fixed_or_moved_ends(
+def test_unexcited_mooring_end_is_refused_saying_what_to_write(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    """An end that is neither fixed nor moved by the excitation would have to be a free
-    node, which the model does not have: rejected before any work."""
+    """A mooring end that the excitation does not move (a constant horizontal force at a
+    held height) is no support the line can move against: rejected before any work,
+    with what to write instead."""
     text = CONTRACT.replace("static: {method: analytic}", "static: {method: catenary}").replace(
         "a: {kind: fixed, position: [0.0, 0.0, 0.0]}",
-        "a: {kind: force, force: [-100.0, 0.0, -20.0]}",
+        "a: {kind: mooring, force: [-100.0, 0.0], z: 0.0}",
     )
-    cfg = tmp_path / "towed.yaml"
+    cfg = tmp_path / "moored.yaml"
     cfg.write_text(text)
     assert main(["run", str(cfg), "--out", str(tmp_path), "--scheduler", "synchronous"]) == 2
     err = capsys.readouterr().err
-    assert "ends.a.kind: 'force' is not supported with analysis.dynamic" in err
-    assert "allowed: 'fixed', or an excitation with end: a" in err
+    assert "ends.a.kind: 'mooring' is not supported with analysis.dynamic" in err
+    assert "kind 'fixed' at the static position" in err and "kind 'force' for a free end" in err
     assert not (tmp_path / "contract.nc").exists()  # nothing ran
 
 

@@ -4,16 +4,17 @@ and a direct run of the time-domain solver keeping every step."""
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
 import yaml
 
-from cablestudy.analyses import discrete_statics, end_motion, roundoff_force, solve_static
+from cablestudy.analyses import dynamic_problem, solve_static
 from cablestudy.cases import expand_cases
 from cablestudy.config.loader import parse_study_text
 from cablestudy.dynamics.model import DiscreteLine
-from cablestudy.dynamics.timedomain import DynamicProblem, DynamicResult, simulate
+from cablestudy.dynamics.timedomain import DynamicResult, simulate
 
 LENGTH, SPAN, MASS, EA, DIAMETER = 10.9774, 10.792, 0.61, 7.854e6, 0.01
 
@@ -62,32 +63,10 @@ def run_direct(
     case = cases[0]
     static = solve_static(case, None)
     assert static.success, static.message
-    line, x_static, msg = discrete_statics(case, static)
-    assert not msg, msg
-    dyn = case.study.analysis.dynamic
-    assert dyn is not None
-    motion, period, step = end_motion(dyn)
-    kwargs: dict[str, Any] = dict(
-        line=line,
-        static_position=x_static,
-        motion=motion,
-        period=period,
-        step=step,
-        max_refinement=dyn.max_refinement,
-        spectral_radius=dyn.spectral_radius,
-        newton_tolerance=max(
-            dyn.newton_tolerance * float(static.tension.max()), 4.0 * roundoff_force(line, x_static)
-        ),
-        tension_step=dyn.tension_resolution * float(static.tension.max()),
-        steady_tolerance=dyn.steady_tolerance,
-        steady_window=dyn.steady_window,
-        min_periods=dyn.min_periods,
-        max_periods=dyn.max_periods,
-        duration=dyn.duration,
-        keep_steps=True,
-    )
-    kwargs.update(overrides)
-    return simulate(DynamicProblem(**kwargs)), line, x_static
+    problem = dynamic_problem(case, static)
+    assert not isinstance(problem, str), problem
+    problem = replace(problem, **{"keep_steps": True, **overrides})
+    return simulate(problem), problem.line, problem.static_position
 
 
 def ring_after_pulse(duration: float = 40.0) -> tuple[np.ndarray, np.ndarray]:
