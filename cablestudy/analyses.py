@@ -607,7 +607,7 @@ def run_dynamic(
     else:
         reason = "method: time"
     dres = solve_dynamic(case, static, deadline)
-    out = dynamic_outputs(dres, dyn)
+    out = dynamic_outputs(dres, dyn, static.s)
     out["dynamic_method_reason"] = np.asarray(reason)
     out.update(linear)
     message = dres.message
@@ -663,10 +663,22 @@ def dynamic_problem(case: Case, static: StaticResult) -> DynamicProblem | str:
         history_periods=hist.periods if hist else 0.0,
         history_samples=hist.samples_per_period if hist else 1,
         anchor=anchor,
+        history_line=bool(hist and hist.whole_line),
+        # a node within a millionth of the line's length of the seabed touches it (the
+        # statics' rule); the penalty contact sinks laid nodes below the plane anyway
+        touchdown_tolerance=1e-6 * max(float(line.s[-1]), 1.0),
     )
 
 
-def dynamic_outputs(res: DynamicResult, dyn: DynamicSettings) -> dict[str, np.ndarray]:
+def dynamic_outputs(
+    res: DynamicResult, dyn: DynamicSettings, s_out: np.ndarray
+) -> dict[str, np.ndarray]:
+    """The time domain's outputs; along-line ones at the static output points ``s_out``
+    [m] (the dataset's ``s``)."""
+    from .dynamics.model import interpolate_nodes
+    from .frequency_cases import tension_along
+
+    s_out = np.asarray(s_out, dtype=float)
     out: dict[str, np.ndarray] = {
         "tension_static": np.asarray(res.tension_static),
         "tension_max": np.asarray(res.tension_max),
@@ -681,7 +693,26 @@ def dynamic_outputs(res: DynamicResult, dyn: DynamicSettings) -> dict[str, np.nd
         "newton_iterations": np.asarray(res.newton_iterations),
         "rejected_steps": np.asarray(res.rejected_steps),
         "dynamic_method": np.asarray("time"),
+        "touchdown_min": np.asarray(res.touchdown_min),
+        "touchdown_max": np.asarray(res.touchdown_max),
     }
+    if res.element_tension_max.size:
+        out["tension_envelope_max"] = tension_along(
+            s_out, res.line_s, res.element_tension_max, res.end_tension_max
+        )
+        out["tension_envelope_min"] = tension_along(
+            s_out, res.line_s, res.element_tension_min, res.end_tension_min
+        )
+    if res.history is not None and "line_position" in res.history:
+        h = res.history
+        out["history_line_position"] = interpolate_nodes(res.line_s, s_out, h["line_position"])
+        out["history_line_velocity"] = interpolate_nodes(res.line_s, s_out, h["line_velocity"])
+        out["history_line_tension"] = np.array(
+            [
+                tension_along(s_out, res.line_s, el, ends)
+                for el, ends in zip(h["line_element_tension"], h["line_end_tension"], strict=True)
+            ]
+        ).reshape(-1, s_out.size)
     if res.history is not None:
         h = res.history
         out.update(

@@ -112,12 +112,28 @@ DYNAMIC_OUTPUTS: dict[str, OutputVariable] = {
     "dynamic_method_reason": OutputVariable(
         (), "1", "why this dynamic method ran (method: auto records its checks)", "str"
     ),
-    # frequency domain (cablestudy.dynamics.frequency): static +/- harmonic amplitude
+    # the tension envelope (range graph), one definition for both methods: the time
+    # domain's per-step extremes of element and end tensions over the steady window,
+    # the frequency domain's static +/- harmonic amplitude (a spectrum: most probable
+    # maximum); element values at element midpoints interpolated to s
+    # (cablestudy.frequency_cases.tension_along)
     "tension_envelope_max": OutputVariable(
-        ("s",), "N", "largest tension along the line over the steady motion"
+        ("s",), "N", "largest effective tension along the line over the steady motion"
     ),
     "tension_envelope_min": OutputVariable(
-        ("s",), "N", "smallest tension along the line over the steady motion"
+        ("s",), "N", "smallest effective tension along the line over the steady motion"
+    ),
+    "touchdown_min": OutputVariable(
+        (),
+        "m",
+        "smallest arc length from end A of the touchdown point over the steady window",
+        nan_means="the line does not touch the seabed over the steady window",
+    ),
+    "touchdown_max": OutputVariable(
+        (),
+        "m",
+        "largest arc length from end A of the touchdown point over the steady window",
+        nan_means="the line does not touch the seabed over the steady window",
     ),
     "tension_amplitude_a": OutputVariable((), "N", "tension amplitude at end A"),
     "tension_amplitude_b": OutputVariable((), "N", "tension amplitude at end B"),
@@ -168,6 +184,15 @@ DYNAMIC_OUTPUTS: dict[str, OutputVariable] = {
     ),
     "history_acceleration": OutputVariable(
         ("point", "time", "component"), "m/s^2", "acceleration of the point"
+    ),
+    "history_line_position": OutputVariable(
+        ("time", "s", "component"), "m", "position along the whole line (history)"
+    ),
+    "history_line_velocity": OutputVariable(
+        ("time", "s", "component"), "m/s", "velocity along the whole line (history)"
+    ),
+    "history_line_tension": OutputVariable(
+        ("time", "s"), "N", "effective tension along the whole line (history)"
     ),
 }
 
