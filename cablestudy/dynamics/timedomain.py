@@ -272,12 +272,18 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     t_static = float(np.linalg.norm(f_static[ex]))
     result = DynamicResult(tension_static=t_static, line_s=line.s)
 
+    has_seabed = line.has_seabed
+    flat = bool(line.seabed_normal[0] == 0.0 and line.seabed_normal[1] == 0.0)
+
     def touchdown(x: np.ndarray) -> float:
         """Arc length [m] where the line leaves the seabed plane (NaN: no contact)."""
-        if not line.has_seabed:
+        if not has_seabed:
             return math.nan
         n = line.seabed_normal
-        bed = (line.seabed_offset - n[0] * x[:, 0] - n[1] * x[:, 1]) / n[2]
+        if flat:
+            bed: np.ndarray | float = line.seabed_offset / n[2]
+        else:
+            bed = (line.seabed_offset - n[0] * x[:, 0] - n[1] * x[:, 1]) / n[2]
         return touchdown_arc_length(line.s, x[:, 2], bed, problem.touchdown_tolerance)
 
     extremes = _LineExtremes(

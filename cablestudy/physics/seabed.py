@@ -39,15 +39,17 @@ def touchdown_arc_length(
     tol : [m] largest height above the seabed that counts as touching
     """
     s = np.asarray(s, dtype=float)
-    gap = np.asarray(z, dtype=float) - np.asarray(seabed_z, dtype=float)
+    gap = np.asarray(z, dtype=float) - seabed_z
     on = gap <= tol
-    if s.size < 2 or not np.any(on) or np.all(on):
+    first_on = int(on.argmax())
+    first_off = int((~on).argmax())
+    if s.size < 2 or not on[first_on] or on[first_off]:  # no contact, or nothing else
         return math.nan
-    if on[0]:
-        last = int(np.argmax(~on)) - 1  # last touching node of the run from A
+    if first_on == 0:
+        last = first_off - 1  # last touching node of the run from A
         step = 1
     else:
-        last = int(np.argmax(on))  # first touching node seen from A
+        last = first_on  # first touching node seen from A
         step = -1
     first = last + step  # the first suspended node beyond the run
     base = min(float(gap[last]), tol)  # level of the touching part
