@@ -693,9 +693,10 @@ def dynamic_outputs(
         "newton_iterations": np.asarray(res.newton_iterations),
         "rejected_steps": np.asarray(res.rejected_steps),
         "dynamic_method": np.asarray("time"),
-        "touchdown_min": np.asarray(res.touchdown_min),
-        "touchdown_max": np.asarray(res.touchdown_max),
     }
+    if res.touchdown_tracked:  # a seabed to touch: NaN when the line does not touch it
+        out["touchdown_min"] = np.asarray(res.touchdown_min)
+        out["touchdown_max"] = np.asarray(res.touchdown_max)
     if res.element_tension_max.size:
         out["tension_envelope_max"] = tension_along(
             s_out, res.line_s, res.element_tension_max, res.end_tension_max

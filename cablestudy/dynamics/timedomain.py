@@ -126,7 +126,8 @@ class DynamicResult:
     ``_min`` (2,) those at ends A and B (so ``end_tension_max[excited_end]`` is
     ``tension_max``); ``touchdown_min``/``_max`` [m] the range of the touchdown point's
     arc length from A over the steps where the line touches the seabed (NaN if none).
-    ``line_s`` [m] (n + 1,) are the nodes' arc lengths.
+    ``touchdown_tracked`` is whether the model has a seabed to touch; ``line_s`` [m]
+    (n + 1,) are the nodes' arc lengths.
     """
 
     status: int = STATUS_OK
@@ -152,6 +153,7 @@ class DynamicResult:
     end_tension_min: np.ndarray = field(default_factory=lambda: np.full(2, math.nan))
     touchdown_min: float = math.nan
     touchdown_max: float = math.nan
+    touchdown_tracked: bool = False
     line_s: np.ndarray = field(default_factory=lambda: np.zeros(0))
     history: dict[str, np.ndarray] | None = None
     record: dict[str, np.ndarray] | None = None
@@ -273,6 +275,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     result = DynamicResult(tension_static=t_static, line_s=line.s)
 
     has_seabed = line.has_seabed
+    result.touchdown_tracked = has_seabed
     flat = bool(line.seabed_normal[0] == 0.0 and line.seabed_normal[1] == 0.0)
 
     def touchdown(x: np.ndarray) -> float:
