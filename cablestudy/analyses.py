@@ -26,15 +26,17 @@ from .config.ends import ForceEnd, MooringEnd
 from .config.loader import StudyError, StudySource
 from .counters import COUNTERS
 from .physics.profile import profile_quantities
-from .problem import line_model, medium, static_problem
+from .problem import line_model, medium, static_limits, static_problem
 from .statics import (
     STATIC_SOLVERS,
+    STATUS_BROKEN,
     STATUS_NO_SOLUTION,
     STATUS_NUMERICAL,
     STATUS_OK,
     STATUS_TIME_LIMIT,
     StaticResult,
 )
+from .statics.limits import apply_limits
 
 if TYPE_CHECKING:  # imported where used: `cablestudy validate` needs none of them
     from .dynamics.excitation import EndMotion
@@ -58,6 +60,16 @@ def check_supported(cases: list[Case], src: StudySource) -> None:
         if case.static_hash in seen:
             continue
         seen.add(case.static_hash)
+        if case.study.line.is_spring:
+            from .spring_cases import spring_problems
+
+            problems.extend(p for p in spring_problems(case, src) if p not in problems)
+            continue
+        problems.extend(p for p in _law_problems(case, src) if p not in problems)
+        if case.study.analysis.database is not None:
+            from .database import database_problems
+
+            problems.extend(p for p in database_problems(case, src) if p not in problems)
         method = case.study.analysis.static.method
         problem = static_problem(case.study)
         missing = unsupported_static(method, problem)
@@ -84,6 +96,30 @@ def check_supported(cases: list[Case], src: StudySource) -> None:
     problems.extend(p for p in _linear_model_problems(cases, src) if p not in problems)
     if problems:
         raise StudyError(problems, src.source)
+
+
+def _law_problems(case: Case, src: StudySource) -> list[str]:
+    """Break conditions the time-domain catenary line cannot honour yet (a spring line
+    parts in its own dynamics)."""
+    study = case.study
+    out: list[str] = []
+    if study.analysis.dynamic is not None:
+        breaks = [("line",)] if study.line.failure is not None else []
+        breaks += [
+            ("line", "segments", i)
+            for i, seg in enumerate(study.line.segments)
+            if seg.failure is not None
+        ]
+        for loc in breaks:
+            where = src.line_of((*loc, "failure")) or src.line_of(("line",))
+            out.append(
+                f"{where}: {'.'.join(map(str, loc))}.failure: a failure (break) condition "
+                "is not supported by analysis.dynamic for a kind: catenary line yet (its "
+                "time-domain model cannot part); it is supported by the statics (every "
+                "method: the case is recorded as broken) and by a kind: spring line in "
+                "dynamics (break_time); allowed: omit analysis.dynamic or the failure key"
+            )
+    return out
 
 
 def unsupported_static(method: str, problem: Any) -> list[str]:
@@ -198,7 +234,7 @@ def _dynamic_problems(cases: list[Case], src: StudySource) -> list[str]:
                 "written on a 'frequency' dimension, and the sweep has an axis named "
                 "'frequency'; allowed: name the sweep axis otherwise (name: ...)"
             )
-        length = study.line.length
+        length = study.line.total_length
         if dyn.history is not None:
             for i, s in enumerate(dyn.history.points):
                 if s > length:
@@ -223,11 +259,15 @@ def solve_static(
     case: Case, deadline: float | None, presolved: dict[str, StaticResult] | None = None
 ) -> StaticResult:
     if presolved is not None and case.static_hash in presolved:
-        return presolved[case.static_hash]
+        return apply_limits(presolved[case.static_hash], static_limits(case.study))
     cached = _STATIC_CACHE.get(case.static_hash)
     if cached is not None:
         _STATIC_CACHE.move_to_end(case.static_hash)
         return cached
+    if case.study.line.is_spring:
+        from .spring_cases import solve_spring_static
+
+        return apply_limits(solve_spring_static(case.study), static_limits(case.study))
     problem = static_problem(case.study)
     method = case.study.analysis.static.method
     solver = STATIC_SOLVERS[method]
@@ -241,6 +281,7 @@ def solve_static(
             f"static method {method!r} does not support {'; '.join(missing)}",
         )
     result = solver.solve(problem, deadline=deadline).check_finite()
+    result = apply_limits(result, static_limits(case.study))
     COUNTERS["static_solves"] += 1
     _STATIC_CACHE[case.static_hash] = result
     while len(_STATIC_CACHE) > _STATIC_CACHE_SIZE:
@@ -363,7 +404,7 @@ def static_outputs(res: StaticResult, study: Any = None) -> dict[str, np.ndarray
         "static_residual": np.asarray(res.residual),
         "drag_iterations": np.asarray(res.drag_iterations),
     }
-    if study is not None:
+    if study is not None and not study.line.is_spring:
         env = study.environment
         segs = study.line.segments
         ends = np.cumsum([seg.length for seg in segs])
@@ -373,13 +414,26 @@ def static_outputs(res: StaticResult, study: Any = None) -> dict[str, np.ndarray
                 res.s,
                 res.position,
                 res.tension,
-                axial_stiffness=np.array([segs[i].axial_stiffness for i in k]),
+                axial_stiffness=np.array([segs[i].elastic_stiffness for i in k]),
+                strain=_strain_along(segs, k, res.tension),
                 area=np.array([segs[i].area for i in k]),
                 density=env.density,
                 gravity=env.gravity,
             )
         )
     return out
+
+
+def _strain_along(segs: Any, k: np.ndarray, tension: np.ndarray) -> np.ndarray | None:
+    """Strain at each point from its segment's axial law (None: all linear, T / EA)."""
+    if not any(seg.is_nonlinear for seg in segs):
+        return None
+    strain = np.asarray(tension, dtype=float) / np.array([segs[i].elastic_stiffness for i in k])
+    for i, seg in enumerate(segs):
+        if seg.is_nonlinear:
+            on = k == i
+            strain[on] = seg.axial_law().strain(np.asarray(tension)[on])
+    return strain
 
 
 #: discrete static equilibria of the dynamic model, by (static hash, elements, the
@@ -580,6 +634,10 @@ def run_dynamic(
 
     dyn = case.study.analysis.dynamic
     assert dyn is not None
+    if case.study.line.is_spring:
+        from .spring_cases import run_spring_dynamic
+
+        return run_spring_dynamic(case, static, deadline)
     linear: dict[str, np.ndarray] = {}
     if dyn.method in ("frequency", "auto"):
         why = auto_ineligible(dyn, case.study) if dyn.method == "auto" else ""
@@ -826,14 +884,36 @@ def evaluate_case(case: Case, *, presolved: dict[str, StaticResult] | None = Non
             run(name, solve)
     for name, (st, _) in outcome.items():
         data[f"{name}_status"] = np.asarray(st, dtype=np.int64)
+    if case.study.analysis.database is not None and outcome["static"][0] in (
+        STATUS_OK,
+        STATUS_BROKEN,
+    ):
+        # the quasi-static database: static solves of its own grid, kept with the case
+        from .database import solve_database
+
+        try:
+            data.update(solve_database(case.study, deadline))
+        except Exception as exc:  # noqa: BLE001 - any solver fault is recorded as data
+            outcome["static"] = (STATUS_NUMERICAL, _exception_message(exc))
+            data["static_status"] = np.asarray(STATUS_NUMERICAL, dtype=np.int64)
 
     status, message = outcome["static"]
     if status == STATUS_OK:
         failed = [(name, st, msg) for name, (st, msg) in outcome.items() if st != STATUS_OK]
+        # a time-limited analysis first, its message starting "time limit": the cache
+        # then knows a rerun may finish it (cablestudy.cache.TRANSIENT_PREFIXES)
+        failed.sort(key=lambda f: f[1] != STATUS_TIME_LIMIT)
         if failed:
-            codes = [st for _, st, _ in failed]
-            status = STATUS_TIME_LIMIT if STATUS_TIME_LIMIT in codes else codes[0]
-            message = "; ".join(f"{name} analysis: {msg}" for name, _, msg in failed)
+            status = failed[0][1]
+            message = "; ".join(
+                f"{name} analysis: "
+                + (
+                    f"time limit: {msg}"
+                    if st == STATUS_TIME_LIMIT and not msg.startswith("time limit")
+                    else msg
+                )
+                for name, st, msg in failed
+            )
     wall = time.perf_counter() - t0
     if not math.isfinite(wall):
         wall = 0.0
@@ -858,6 +938,8 @@ def presolve_statics(cases: list[Case]) -> tuple[dict[str, StaticResult], dict[s
     for case in cases:
         h = case.static_hash
         if h in todo or h in _STATIC_CACHE or case.study.analysis.static.method != "catenary":
+            continue
+        if case.study.line.is_spring:
             continue
         try:
             problem = static_problem(case.study)

@@ -25,31 +25,29 @@ from .config.loader import StudySource
 @dataclass(frozen=True)
 class OutputVariable:
     """One output variable: extra dims, units, long name, dtype, and the analysis
-    (``static``, ``modal``, ``dynamic``) whose failure blanks it (None: written whatever
-    failed, as the per-analysis status variables). ``nan_means`` says what a NaN means
-    where NaN is a valid result of a successful analysis (empty: NaN is a failure)."""
+    (``static``, ``modal``, ``dynamic``) whose failure blanks it (None:
+    written whatever failed, as the per-analysis status variables; set from
+    :data:`ANALYSIS_OF` below). ``nan_means`` says what a NaN means where NaN is a valid
+    result of a successful analysis (empty: NaN is a failure)."""
 
     dims: tuple[str, ...]
     units: str
     long_name: str
     dtype: str = "float64"
-    analysis: str | None = "static"
+    analysis: str | None = "dynamic"
     nan_means: str = ""
 
 
-#: the analyses a case may run, in the order they run; each has a ``<name>_status``
-ANALYSES = ("static", "modal", "dynamic")
-
-
-def _of(analysis: str, table: dict[str, OutputVariable]) -> dict[str, OutputVariable]:
-    return {k: replace(v, analysis=analysis) for k, v in table.items()}
-
+#: status of a case whose line broke in statics (cablestudy.statics.base.STATUS_BROKEN):
+#: its data are kept, it is not counted as failed
+STATUS_BROKEN = 10
+#: statuses whose case data are written (others are NaN)
+KEPT_STATUSES = (0, STATUS_BROKEN)
 
 #: every data variable a case may produce: name -> extra dims, units, long name.
-#: Numeric outputs (counters included) are float64 so that a failed analysis is NaN in
-#: every one of its variables (DESIGN.md); dimensionless and text variables have units
-#: "1" (CF).
-STATIC_OUTPUTS: dict[str, OutputVariable] = {
+#: Numeric outputs (counters included) are float64 so that a failed case is NaN in every
+#: one of them (DESIGN.md); dimensionless and text variables have units "1" (CF).
+OUTPUTS: dict[str, OutputVariable] = {
     "x": OutputVariable(("s",), "m", "x position along the line"),
     "y": OutputVariable(("s",), "m", "y position along the line"),
     "z": OutputVariable(("s",), "m", "z position (up) along the line"),
@@ -67,15 +65,54 @@ STATIC_OUTPUTS: dict[str, OutputVariable] = {
     "arc_length": OutputVariable(("s",), "m", "unstretched arc length from end A"),
     "force_a": OutputVariable(("component",), "N", "force of the line on the attachment at end A"),
     "force_b": OutputVariable(("component",), "N", "force of the line on the attachment at end B"),
+    "break_time": OutputVariable(
+        (), "s", "time at which the line parted (NaN: it did not), kind: spring with line.failure"
+    ),
+    "database_force_a": OutputVariable(
+        ("horizontal_distance", "height_difference", "component"),
+        "N",
+        "quasi-static database: force of the line on end A",
+    ),
+    "database_force_b": OutputVariable(
+        ("horizontal_distance", "height_difference", "component"),
+        "N",
+        "quasi-static database: force of the line on end B",
+    ),
+    "database_tension_a": OutputVariable(
+        ("horizontal_distance", "height_difference"), "N", "quasi-static database: tension at A"
+    ),
+    "database_tension_b": OutputVariable(
+        ("horizontal_distance", "height_difference"), "N", "quasi-static database: tension at B"
+    ),
+    "database_tension_max": OutputVariable(
+        ("horizontal_distance", "height_difference"),
+        "N",
+        "quasi-static database: largest tension along the line",
+    ),
+    "database_laid_length": OutputVariable(
+        ("horizontal_distance", "height_difference"),
+        "m",
+        "quasi-static database: unstretched length on the seabed",
+    ),
+    "database_status": OutputVariable(
+        ("horizontal_distance", "height_difference"),
+        "1",
+        "quasi-static database: static status per grid point (0 ok)",
+    ),
+    "database_distance_grid": OutputVariable(
+        ("horizontal_distance",), "m", "horizontal distance from end A to end B"
+    ),
+    "database_height_grid": OutputVariable(
+        ("height_difference",), "m", "height of end B above end A"
+    ),
+    "database_heading": OutputVariable(
+        (), "rad", "heading of the database plane from end A (from +x towards +y)"
+    ),
     "tension_a": OutputVariable((), "N", "tension at end A"),
     "tension_b": OutputVariable((), "N", "tension at end B"),
     "laid_length": OutputVariable((), "m", "unstretched length resting on the seabed"),
     "static_iterations": OutputVariable((), "1", "iterations of the static solver"),
     "static_residual": OutputVariable((), "1", "final relative residual of the static solver"),
-    "drag_iterations": OutputVariable((), "1", "outer drag iterations of the static solver"),
-}
-
-MODAL_OUTPUTS: dict[str, OutputVariable] = {
     "natural_frequency": OutputVariable(
         ("mode",), "Hz", "natural frequency about the static shape"
     ),
@@ -85,9 +122,7 @@ MODAL_OUTPUTS: dict[str, OutputVariable] = {
         "mode shape: node displacement scaled to a largest displacement of 1 m",
     ),
     "modal_dof": OutputVariable((), "1", "degrees of freedom of the modal model"),
-}
-
-DYNAMIC_OUTPUTS: dict[str, OutputVariable] = {
+    "drag_iterations": OutputVariable((), "1", "outer drag iterations of the static solver"),
     # dynamics (cablestudy.dynamics.timedomain): tensions at the excited end over the
     # steady-state window (the envelope of the last periods when steady_converged is 0)
     "tension_static": OutputVariable((), "N", "static tension at the excited end (dynamic model)"),
@@ -196,30 +231,63 @@ DYNAMIC_OUTPUTS: dict[str, OutputVariable] = {
     ),
 }
 
-#: per-analysis status, present when the study asks for that analysis
-STATUS_OUTPUTS: dict[str, OutputVariable] = {
-    f"{name}_status": OutputVariable(
-        (),
-        "1",
-        f"{name} analysis status: 0 ok, nonzero failed (5: not run, the static analysis failed)",
-        "int64",
-        None,
-    )
-    for name in ANALYSES
-}
+#: the analyses a case may run, each with a ``<name>_status`` where the study asks for it
+ANALYSES = ("static", "modal", "dynamic")
 
-OUTPUTS: dict[str, OutputVariable] = {
-    **STATIC_OUTPUTS,
-    **_of("modal", MODAL_OUTPUTS),
-    **_of("dynamic", DYNAMIC_OUTPUTS),
-    **STATUS_OUTPUTS,
+#: the analysis each output belongs to, where not the dynamic one (the default): its
+#: failure blanks the output. The quasi-static database (analysis.database: static
+#: solves on its own grid) counts as part of the static analysis.
+ANALYSIS_OF: dict[str, str] = {
+    **dict.fromkeys(
+        (
+            "x",
+            "y",
+            "z",
+            "tension",
+            "tension_wall",
+            "elevation",
+            "azimuth",
+            "elongation",
+            "arc_length",
+            "force_a",
+            "force_b",
+            "tension_a",
+            "tension_b",
+            "laid_length",
+            "static_iterations",
+            "static_residual",
+            "drag_iterations",
+        ),
+        "static",
+    ),
+    **dict.fromkeys(("natural_frequency", "mode_shape", "modal_dof"), "modal"),
+    **{k: "static" for k in OUTPUTS if k.startswith("database_")},
 }
+OUTPUTS = {k: replace(v, analysis=ANALYSIS_OF.get(k, "dynamic")) for k, v in OUTPUTS.items()}
+OUTPUTS["break_time"] = replace(OUTPUTS["break_time"], nan_means="the line did not part")
+OUTPUTS.update(
+    {
+        f"{name}_status": OutputVariable(
+            (),
+            "1",
+            f"{name} analysis status: 0 ok, nonzero failed (5: not run, the static "
+            "analysis failed)",
+            "int64",
+            None,
+        )
+        for name in ANALYSES
+    }
+)
 
 #: per-case bookkeeping variables (always present)
 CASE_VARIABLES: dict[str, OutputVariable] = {
-    "status": OutputVariable((), "1", "case status: 0 ok, nonzero failed", "int64"),
+    "status": OutputVariable(
+        (), "1", "case status: 0 ok, 10 line broken (data kept), other nonzero failed", "int64"
+    ),
     "message": OutputVariable((), "1", "why the case failed (empty when ok)", "str"),
-    "wall_time": OutputVariable((), "s", "wall time of the case"),
+    "wall_time": OutputVariable(
+        (), "s", "wall time of the case (cases solved together as arrays share their time equally)"
+    ),
 }
 
 COORDINATES: dict[str, tuple[str, str]] = {
@@ -243,14 +311,15 @@ class CaseRecord:
 
 
 def analysis_ok(record: CaseRecord, analysis: str | None) -> bool:
-    """Whether ``analysis`` succeeded in ``record`` (its ``<analysis>_status``; a record
-    without one, e.g. of a lost task, counts by the case's ``status``)."""
+    """Whether the data of ``analysis`` in ``record`` are written: its
+    ``<analysis>_status`` is one of :data:`KEPT_STATUSES`. A record without one (a lost
+    task, the database) counts by the case's ``status``."""
     if analysis is None:
         return True
-    status = record.data.get(f"{analysis}_status")
+    status = record.data.get(f"{analysis}_status") if analysis in ANALYSES else None
     if status is None:
-        return record.status == 0
-    return int(status) == 0
+        return record.status in KEPT_STATUSES
+    return int(status) in KEPT_STATUSES
 
 
 def _fill(dtype: str) -> Any:
@@ -275,6 +344,53 @@ def _fill_rows(
     for idx, v in rows:
         if np.shape(v) != tail:
             arr[idx + tuple(slice(0, n) for n in np.shape(v))] = v
+
+
+def sweep_coordinates(axes: list[SweepAxis]) -> dict[str, Any]:
+    """The coordinates of the sweep dimensions (and, for axes of non-scalar values or zip
+    groups, their value coordinates), with units and long names."""
+    coords: dict[str, Any] = {}
+    for a in axes:
+        numeric = a.coordinate().dtype.kind in "iuf"
+        indexed = len(a.paths) > 1 or not all(
+            isinstance(v, int | float | str | bool) for v in a.values[0]
+        )
+        attrs = {
+            "units": (a.units or "1") if numeric else "1",
+            "long_name": a.long_name,
+            "sweep_paths": ", ".join(a.paths),
+        }
+        if indexed:
+            attrs["units"] = "1"
+            if len(a.paths) == 1:
+                attrs["long_name"] = f"index of the swept value of {a.paths[0]}"
+        coords[a.name] = (a.name, a.coordinate(), attrs)
+        if len(a.paths) == 1 and indexed:
+            # values that are not scalars (vectors, mappings): keep them as text
+            coords[f"{a.name}_value"] = (
+                a.name,
+                np.array([json.dumps(v) for v in a.values[0]], dtype=object),
+                {"long_name": f"swept value of {a.paths[0]} (JSON)", "units": "1"},
+            )
+        if len(a.paths) > 1:
+            for path, vals in zip(a.paths, a.values, strict=True):
+                cname = f"{a.name}_{path.split('.')[-1]}"
+                if cname in coords or cname == a.name:
+                    cname = f"{a.name}_{path.replace('.', '_')}"
+                units, long_name = _path_info(path)
+                if all(isinstance(v, int | float) and not isinstance(v, bool) for v in vals):
+                    coords[cname] = (
+                        a.name,
+                        np.asarray(vals, dtype=float),
+                        {"long_name": long_name, "units": units or "1"},
+                    )
+                else:
+                    coords[cname] = (
+                        a.name,
+                        np.array([json.dumps(v) for v in vals], dtype=object),
+                        {"long_name": f"{long_name} (JSON)", "units": "1"},
+                    )
+    return coords
 
 
 def assemble(
@@ -330,47 +446,7 @@ def assemble(
             {"units": spec.units, "long_name": spec.long_name},
         )
 
-    coords: dict[str, Any] = {}
-    for a in axes:
-        numeric = a.coordinate().dtype.kind in "iuf"
-        indexed = len(a.paths) > 1 or not all(
-            isinstance(v, int | float | str | bool) for v in a.values[0]
-        )
-        attrs = {
-            "units": (a.units or "1") if numeric else "1",
-            "long_name": a.long_name,
-            "sweep_paths": ", ".join(a.paths),
-        }
-        if indexed:
-            attrs["units"] = "1"
-            if len(a.paths) == 1:
-                attrs["long_name"] = f"index of the swept value of {a.paths[0]}"
-        coords[a.name] = (a.name, a.coordinate(), attrs)
-        if len(a.paths) == 1 and indexed:
-            # values that are not scalars (vectors, mappings): keep them as text
-            coords[f"{a.name}_value"] = (
-                a.name,
-                np.array([json.dumps(v) for v in a.values[0]], dtype=object),
-                {"long_name": f"swept value of {a.paths[0]} (JSON)", "units": "1"},
-            )
-        if len(a.paths) > 1:
-            for path, vals in zip(a.paths, a.values, strict=True):
-                cname = f"{a.name}_{path.split('.')[-1]}"
-                if cname in coords or cname == a.name:
-                    cname = f"{a.name}_{path.replace('.', '_')}"
-                units, long_name = _path_info(path)
-                if all(isinstance(v, int | float) and not isinstance(v, bool) for v in vals):
-                    coords[cname] = (
-                        a.name,
-                        np.asarray(vals, dtype=float),
-                        {"long_name": long_name, "units": units or "1"},
-                    )
-                else:
-                    coords[cname] = (
-                        a.name,
-                        np.array([json.dumps(v) for v in vals], dtype=object),
-                        {"long_name": f"{long_name} (JSON)", "units": "1"},
-                    )
+    coords: dict[str, Any] = sweep_coordinates(axes)
     if "component" in extent and any("component" in OUTPUTS[k].dims for k in present):
         coords["component"] = (
             "component",
@@ -407,14 +483,32 @@ def assemble(
                 {"units": spec.units, "long_name": spec.long_name},
             )
             data_vars.pop("transfer_frequency")
+    for grid, dim in (
+        ("database_distance_grid", "horizontal_distance"),
+        ("database_height_grid", "height_difference"),
+    ):
+        # the quasi-static database's grid: a coordinate when every case has the same
+        if grid in data_vars and dim not in coords:
+            grids = [
+                np.asarray(r.data[grid])
+                for r in by_index.values()
+                if grid in r.data and analysis_ok(r, "static")
+            ]
+            if grids and all(np.array_equal(g, grids[0]) for g in grids):
+                spec = OUTPUTS[grid]
+                coords[dim] = (dim, grids[0], {"units": spec.units, "long_name": spec.long_name})
+                data_vars.pop(grid)
     if "arc_length" in data_vars and "s" not in coords:
         coords["s"] = ("s", np.arange(extent["s"]), {"units": "1", "long_name": "node index"})
 
     ds = xr.Dataset(data_vars, coords=coords)
     ds.attrs.update(provenance(src, solver_settings or {}))
-    n_failed = int(np.count_nonzero(ds["status"].values != 0))
+    status = ds["status"].values
+    n_failed = int(np.count_nonzero((status != 0) & (status != STATUS_BROKEN)))
     ds.attrs["cases"] = int(np.prod(shape)) if shape else 1
     ds.attrs["cases_failed"] = n_failed
+    if np.any(status == STATUS_BROKEN):
+        ds.attrs["cases_broken"] = int(np.count_nonzero(status == STATUS_BROKEN))
     return ds
 
 
@@ -470,11 +564,19 @@ def write_atomic(ds: xr.Dataset, path: str | Path) -> Path:
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     os.close(fd)
     try:
-        encoding = {
+        encoding: dict[str, dict[str, Any]] = {
             name: {"zlib": True, "complevel": 1, "shuffle": True}
             for name, v in ds.data_vars.items()
             if v.dtype.kind == "f"
         }
+        for name, v in ds.data_vars.items():
+            if v.chunks is not None and name in encoding:
+                # variables streamed from chunk files (dask): netCDF chunks of one block
+                # of cases (at most 4 MiB), so that reading one case touches little
+                block = [c[0] for c in v.chunks]
+                per_case = max(1, int(np.prod(block[1:])) * v.dtype.itemsize)
+                block[0] = max(1, min(block[0], (4 << 20) // per_case))
+                encoding[name]["chunksizes"] = tuple(block)
         ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
         with open(tmp, "rb+") as fh:  # on disk before the rename makes it visible
             os.fsync(fh.fileno())
@@ -484,3 +586,94 @@ def write_atomic(ds: xr.Dataset, path: str | Path) -> Path:
         if os.path.exists(tmp):
             os.unlink(tmp)
     return path
+
+
+def grid_dataset(
+    axes: list[SweepAxis],
+    chunks: list[tuple[int, int, Path]],
+    src: StudySource,
+    *,
+    names: list[str],
+    tails: dict[str, tuple[int, ...]],
+    arc: np.ndarray | None,
+    solver_settings: dict[str, Any],
+    lazy: bool = True,
+) -> xr.Dataset:
+    """The dataset of a study run as arrays (:mod:`cablestudy.grid`), with the same
+    variables, dims, coordinates and attributes as :func:`assemble` would give, its large
+    variables backed lazily (dask) by the chunk files ``(lo, hi, path)`` (rows ``lo:hi``
+    of the first axis each, written by the runner), so that writing it streams chunk by
+    chunk; with ``lazy=False`` they are read into memory instead (small studies).
+    ``arc``: the arc lengths every successful case shares (then the ``s`` coordinate, as
+    in :func:`assemble`), or None (then ``arc_length`` stays a variable and ``s`` is the
+    node index)."""
+    shape = tuple(a.size for a in axes)
+    dims = tuple(a.name for a in axes)
+    rest = shape[1:]
+
+    def load(path: Path, name: str) -> np.ndarray:
+        with np.load(path, allow_pickle=False) as z:
+            return z[f"v_{name}"]
+
+    def column(name: str) -> np.ndarray:
+        return np.concatenate([load(path, name) for _, _, path in chunks])
+
+    present = [k for k in names if not (k == "arc_length" and arc is not None)]
+    data_vars: dict[str, Any] = {}
+    status = column("status").reshape(shape)
+    message = column("message").astype(object).reshape(shape)
+    wall = column("wall_time").reshape(shape)
+    for name, arr in (("status", status), ("message", message), ("wall_time", wall)):
+        spec = CASE_VARIABLES[name]
+        data_vars[name] = (dims, arr, {"units": spec.units, "long_name": spec.long_name})
+    # the array path runs the statics only: its status is the case's
+    spec = OUTPUTS["static_status"]
+    data_vars["static_status"] = (
+        dims,
+        status.astype(np.int64),
+        {"units": spec.units, "long_name": spec.long_name},
+    )
+    for name in sorted(present):
+        spec = OUTPUTS[name]
+        tail = tails[name]
+        if lazy:
+            import dask
+            import dask.array as da
+
+            values: Any = da.concatenate(
+                [
+                    da.from_delayed(
+                        dask.delayed(load)(path, name).reshape((hi - lo, *rest, *tail)),
+                        shape=(hi - lo, *rest, *tail),
+                        dtype=np.float64,
+                    )
+                    for lo, hi, path in chunks
+                ],
+                axis=0,
+            )
+        else:  # small enough to hold: no dask needed
+            values = np.concatenate(
+                [load(path, name).reshape((hi - lo, *rest, *tail)) for lo, hi, path in chunks]
+            )
+        data_vars[name] = (
+            dims + spec.dims,
+            values,
+            {"units": spec.units, "long_name": spec.long_name},
+        )
+    coords = sweep_coordinates(axes)
+    if any("component" in OUTPUTS[k].dims for k in present):
+        coords["component"] = (
+            "component",
+            np.array(["x", "y", "z"]),
+            {"units": COORDINATES["component"][0], "long_name": COORDINATES["component"][1]},
+        )
+    if arc is not None:
+        coords["s"] = ("s", arc, {"units": "m", "long_name": COORDINATES["s"][1]})
+    elif "arc_length" in present:
+        n_s = tails["arc_length"][0]
+        coords["s"] = ("s", np.arange(n_s), {"units": "1", "long_name": "node index"})
+    ds = xr.Dataset(data_vars, coords=coords)
+    ds.attrs.update(provenance(src, solver_settings))
+    ds.attrs["cases"] = int(np.prod(shape))
+    ds.attrs["cases_failed"] = int(np.count_nonzero(status != 0))
+    return ds

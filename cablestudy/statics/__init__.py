@@ -1,6 +1,7 @@
 """Static solvers, found by name through :data:`STATIC_SOLVERS` (see :mod:`.base`)."""
 
 from .base import (
+    STATUS_BROKEN,
     STATUS_NO_SOLUTION,
     STATUS_NOT_CONVERGED,
     STATUS_NUMERICAL,
@@ -28,6 +29,7 @@ STATIC_SOLVERS: dict[str, StaticSolver] = {
 
 __all__ = [
     "STATIC_SOLVERS",
+    "STATUS_BROKEN",
     "STATUS_NO_SOLUTION",
     "STATUS_NOT_CONVERGED",
     "STATUS_NUMERICAL",
