@@ -1085,6 +1085,15 @@ def _static_newton(
     res = np.inf
     lmin = rest_length.min()
     reg = 1e-9 * (axial_stiffness.max() / lmin)
+    # a Newton correction below ~1000 ulp of the coordinates cannot lower the residual
+    # further (the solve of a stiff line, EA / T up to 1e10, carries its condition
+    # number's rounding): the equilibrium is then found to rounding
+    reach = 0.0
+    for i in range(n):
+        for a in range(3):
+            reach = max(reach, abs(x[i, a]))
+    reach += rest_length.sum()
+    floor = 1024.0 * 2.220446049250313e-16 * reach
     for it in range(max_iterations + 1):
         assemble(
             x,
@@ -1143,13 +1152,19 @@ def _static_newton(
             return it, res, True
         if it == max_iterations:
             break
+        # a little mass-like regularisation keeps slack nodes solvable; kept well below
+        # the geometric stiffness T / l of the taut elements, or a light line's soft
+        # modes would converge only linearly
+        tmax = 0.0
+        for e in range(tension.shape[0]):
+            tmax = max(tmax, tension[e])
+        reg_it = min(reg, max(1e-6 * tmax / lmin, 1e-6 * reg))
         for i in range(n):
             for a in range(3):
                 r[i, a] = -F[i, a]
                 for b in range(3):
                     J_d[i, a, b] = K_d[i, a, b]
-                # a little mass-like regularisation keeps slack nodes solvable
-                J_d[i, a, a] += reg
+                J_d[i, a, a] += reg_it
         for i in range(n - 1):
             for a in range(3):
                 for b in range(3):
@@ -1165,6 +1180,8 @@ def _static_newton(
         for i in range(n):
             for a in range(3):
                 big = max(big, abs(dx[i, a]))
+        if big <= floor:
+            return it, res, True
         scale = 1.0
         if big > 0.25 * lmin:
             scale = 0.25 * lmin / big
@@ -1174,8 +1191,30 @@ def _static_newton(
     return max_iterations, res, False
 
 
+def stretched_start(line: DiscreteLine, x0: np.ndarray, tension: np.ndarray) -> np.ndarray:
+    """Node positions with the directions of ``x0``'s chords and the lengths the element
+    ``tension`` [N] (n,) stretches them to, ``l0 (1 + T / EA)``, rebuilt from end A,
+    with the misclosure at end B (if held) spread along the line in proportion to arc
+    length. The chords of a smooth curve sampled at the nodes are shorter than its arcs
+    by O(h^2 kappa^2): on a stiff line that error times EA is a large spurious tension,
+    which this start removes before Newton."""
+    d = np.diff(x0, axis=0)
+    u = d / np.linalg.norm(d, axis=1, keepdims=True)
+    chord = line.rest_length * (1.0 + np.maximum(tension, 0.0) / line.axial_stiffness)
+    x = np.vstack([x0[:1], x0[0] + np.cumsum(u * chord[:, None], axis=0)])
+    if line.held[-1]:
+        frac = (line.s - line.s[0]) / (line.s[-1] - line.s[0])
+        x += frac[:, None] * (x0[-1] - x[-1])[None, :]
+    return x
+
+
 def static_equilibrium(
-    line: DiscreteLine, x0: np.ndarray, *, tolerance: float, max_iterations: int = 100
+    line: DiscreteLine,
+    x0: np.ndarray,
+    *,
+    tolerance: float,
+    max_iterations: int = 100,
+    tension: np.ndarray | None = None,
 ) -> tuple[np.ndarray, int, float, bool, np.ndarray]:
     """Equilibrium of the discrete line with its held nodes where ``x0`` puts them.
 
@@ -1184,11 +1223,16 @@ def static_equilibrium(
     starts from anchors at ``x0``: friction is mobilised by the small displacement
     from the continuous solution (at most ``mu N / k_t``), never beyond ``mu N``.
 
+    Given the element ``tension`` [N] (n,) of the continuous solution, Newton starts
+    from :func:`stretched_start`.
+
     Returns positions [m] (n + 1, 3), iterations, the largest nodal out-of-balance
     force [N], whether it fell below ``tolerance`` [N], and the friction anchors [m]
     that hold the friction forces of that equilibrium.
     """
     x = np.array(x0, dtype=float, copy=True)
+    if tension is not None:
+        x = stretched_start(line, x, np.asarray(tension, dtype=float))
     work = Workspace(line.n_elements)
     work.anchor[:] = x
     if line.has_seabed:
