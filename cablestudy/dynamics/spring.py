@@ -64,15 +64,39 @@ class SpringDynamicResult:
     message: str = ""
 
 
+def end_displacements(motion: EndMotion, t: np.ndarray) -> np.ndarray:
+    """Displacements [m] of ends A and B at times ``t`` [s], shape (n, 2, 3): the
+    displacement of :meth:`EndMotion.at` (harmonics and ramp vectorised over ``t``;
+    time tables point by point)."""
+    t = np.asarray(t, dtype=float).ravel()
+    out = np.zeros((t.size, 2, 3))
+    if motion.harmonic_amplitude.size:
+        om = 2.0 * math.pi * motion.harmonic_frequency
+        s = np.sin(np.outer(t, om) + motion.harmonic_phase)  # (n, k)
+        for k in range(motion.harmonic_amplitude.size):
+            e = int(motion.harmonic_end[k])
+            out[:, e, :] += (motion.harmonic_amplitude[k] * s[:, k])[:, None] * (
+                motion.harmonic_direction[k]
+            )
+    for tab in motion.tables:
+        u = np.array([tab.evaluate(float(ti))[0] for ti in t])
+        out[:, tab.end, :] += u[:, None] * tab.direction
+    tr = motion.ramp_time
+    if tr > 0.0:
+        ramp = np.where(
+            t >= tr, 1.0, np.where(t <= 0.0, 0.0, 0.5 * (1.0 - np.cos(math.pi * t / tr)))
+        )
+        out *= ramp[:, None, None]
+    return out
+
+
 def spring_tension_at(problem: SpringDynamicProblem, t: np.ndarray | float) -> np.ndarray:
     """Tension [N] at times ``t`` [s] (array), ignoring a break."""
     t = np.atleast_1d(np.asarray(t, dtype=float))
-    out = np.empty(t.shape)
-    for i, ti in enumerate(t.ravel()):
-        disp = problem.motion.at(float(ti))[0]
-        d = (problem.position_b + disp[1]) - (problem.position_a + disp[0])
-        out.flat[i] = math.sqrt(float(d @ d))
-    return problem.law.tension(out - problem.length)
+    disp = end_displacements(problem.motion, t)
+    d = (problem.position_b + disp[:, 1]) - (problem.position_a + disp[:, 0])
+    dist = np.sqrt(np.einsum("nk,nk->n", d, d)).reshape(t.shape)
+    return problem.law.tension(dist - problem.length)
 
 
 def _refine(f, a: float, b: float, sign: float, tol: float) -> tuple[float, float]:  # noqa: ANN001

@@ -197,3 +197,31 @@ def test_spring_config_faults_are_refused_before_work(
             assert fragment in str(exc)
             raise
         raise SystemExit(code)
+
+
+def test_vectorised_end_motion_is_the_time_domains() -> None:
+    """The spring's vectorised end displacements equal EndMotion.at (ramp, several
+    harmonics on both ends, a time table) at random times."""
+    from cablestudy.dynamics.excitation import EndMotion, TableMotion
+    from cablestudy.dynamics.spring import end_displacements
+
+    motion = EndMotion(
+        harmonic_end=np.array([0, 1, 1]),
+        harmonic_direction=np.array([[1.0, 0, 0], [0.6, 0.8, 0], [0, 0, 1.0]]),
+        harmonic_amplitude=np.array([0.2, 0.5, 0.1]),
+        harmonic_frequency=np.array([0.1, 0.25, 0.7]),
+        harmonic_phase=np.array([0.0, 1.0, -2.0]),
+        tables=(
+            TableMotion(
+                end=1,
+                direction=np.array([0.0, 1.0, 0.0]),
+                times=np.array([0.0, 5.0, 10.0, 20.0, 40.0]),
+                values=np.array([0.0, 0.3, -0.1, 0.2, 0.0]),
+            ),
+        ),
+        ramp_time=12.0,
+    )
+    t = np.random.default_rng(2).uniform(-1.0, 40.0, 50)
+    got = end_displacements(motion, t)
+    want = np.array([motion.at(float(ti))[0] for ti in t])
+    np.testing.assert_allclose(got, want, rtol=0, atol=1e-15)
