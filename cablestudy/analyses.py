@@ -121,6 +121,21 @@ def _law_problems(case: Case, src: StudySource) -> list[str]:
                 "'shooting'), and by a kind: spring line in statics and dynamics; allowed "
                 "here: axial_stiffness or {law: linear, stiffness}"
             )
+    timed = [("line",)] if study.line.failure and study.line.failure.time is not None else []
+    timed += [
+        ("line", "segments", i)
+        for i, seg in enumerate(study.line.segments)
+        if seg.failure is not None and seg.failure.time is not None
+    ]
+    if study.analysis.dynamic is None:
+        for loc in timed:
+            path = (*loc, "failure", "time")
+            out.append(
+                f"{src.line_of(path) or src.line_of(('line',))}: "
+                f"{'.'.join(map(str, path))}: a failure time applies to analysis.dynamic "
+                "(of a kind: spring line); the statics are the state before any time; "
+                "allowed: omit it"
+            )
     if study.analysis.dynamic is not None:
         breaks = [("line",)] if study.line.failure is not None else []
         breaks += [

@@ -86,6 +86,12 @@ def spring_problems(case: Case, src: StudySource) -> list[str]:
             "allowed: omit analysis.modal (or use kind: catenary)"
         )
     dyn = study.analysis.dynamic
+    if line.failure is not None and line.failure.time is not None and dyn is None:
+        out.append(
+            f"{at('line', 'failure', 'time')}: line.failure.time: a failure time applies to "
+            "analysis.dynamic (the statics are the state before any time); allowed: omit "
+            "it, or add analysis.dynamic"
+        )
     if dyn is not None:
         for key in ("transfer_function", "history"):
             if getattr(dyn, key) is not None:
@@ -146,6 +152,7 @@ def run_spring_dynamic(
         window=window,
         samples=samples,
         break_tension=break_tension_of(study.line),
+        break_at=study.line.failure.time if study.line.failure is not None else None,
     )
     res = spring_response(problem)
     out: dict[str, np.ndarray] = {
@@ -159,7 +166,7 @@ def run_spring_dynamic(
             "kind: spring: massless, tension algebraic in the end motion"
         ),
     }
-    if problem.break_tension is not None:
+    if study.line.failure is not None:
         out["break_time"] = np.asarray(res.break_time)
     return STATUS_OK, "", out
 
@@ -167,4 +174,6 @@ def run_spring_dynamic(
 def break_tension_of(line: Any) -> float | None:
     """The line's breaking tension [N] (``line.failure``), or None."""
     brk = line.failure
-    return None if brk is None else float(brk.limit)
+    if brk is None or not np.isfinite(brk.limit):
+        return None
+    return float(brk.limit)

@@ -165,12 +165,12 @@ def check_axial(axial: Axial, max_strain: float, loc: tuple[str | int, ...], uni
 
 
 class BreakCondition(StrictModel):
-    """``failure: {tension: N}`` or ``{minimum_breaking_load: N, safety_factor: f}``: the
-    line (or a segment) breaks where its tension exceeds the limit (tension, or MBL /
-    safety factor). In statics a case over the limit is recorded as broken (status 10,
-    a message with where and by how much) with its static results kept; with
-    analysis.dynamic only a kind: spring line supports it (it parts at that instant and
-    records break_time)."""
+    """``failure: {tension: N}``, ``{minimum_breaking_load: N, safety_factor: f}`` and/or
+    ``{time: s}``: the line (or a segment) breaks where its tension exceeds the limit
+    (tension, or MBL / safety factor), or at the given time. In statics a case over the
+    tension limit is recorded as broken (status 10, a message with where and by how
+    much) with its static results kept; with analysis.dynamic only a kind: spring line
+    supports it (it parts at that instant, or at ``time``, and records break_time)."""
 
     tension: Positive | None = Field(None, description="tension limit [N]")
     minimum_breaking_load: Positive | None = Field(
@@ -179,13 +179,23 @@ class BreakCondition(StrictModel):
     safety_factor: Positive | None = Field(
         None, ge=1.0, description="safety factor on the MBL [-] (>= 1; default 1)"
     )
+    time: NonNegative | None = Field(
+        None,
+        description="time at which the line fails [s] from the start of the run "
+        "(analysis.dynamic of a kind: spring line)",
+    )
 
     @model_validator(mode="after")
     def _one_limit(self) -> BreakCondition:
-        if (self.tension is None) == (self.minimum_breaking_load is None):
+        if self.tension is not None and self.minimum_breaking_load is not None:
             raise ValueError(
                 "give either tension [N] or minimum_breaking_load [N] (with an optional "
-                "safety_factor), exactly one of them"
+                "safety_factor), not both"
+            )
+        if self.tension is None and self.minimum_breaking_load is None and self.time is None:
+            raise ValueError(
+                "give a tension limit (tension [N], or minimum_breaking_load [N] with an "
+                "optional safety_factor) and/or a failure time [s]"
             )
         if self.tension is not None and self.safety_factor is not None:
             raise FieldError(
@@ -198,10 +208,12 @@ class BreakCondition(StrictModel):
 
     @property
     def limit(self) -> float:
-        """The tension [N] at which the line breaks."""
+        """The tension [N] at which the line breaks (inf: no tension limit)."""
         if self.tension is not None:
             return float(self.tension)
-        return float(self.minimum_breaking_load) / float(self.safety_factor or 1.0)  # type: ignore[arg-type]
+        if self.minimum_breaking_load is None:
+            return math.inf
+        return float(self.minimum_breaking_load) / float(self.safety_factor or 1.0)
 
 
 class Segment(StrictModel):

@@ -16,10 +16,11 @@ refined by golden-section search on its bracket to 1e-12 of the window; the mean
 the trapezoidal rule on the periodic grid (spectrally accurate for a smooth periodic
 tension; a slack phase makes it only as smooth as the law at zero).
 
-Break (``line.failure``): when the tension first reaches the limit the spring parts at
-that instant, found by bisection to 1e-12 s on the first grid interval where it
-crosses; ``break_time`` [s] is recorded and the tension is 0 from then on (the
-outputs over the window then include the parted state).
+Failure (``line.failure``): when the tension first reaches the limit the spring parts
+at that instant, found by bisection to 1e-12 s on the first grid interval where it
+crosses, or at ``failure.time`` if that comes first; ``break_time`` [s] is recorded
+(NaN: it did not part) and the tension is 0 from then on (the outputs over the window
+then include the parted state).
 """
 
 from __future__ import annotations
@@ -49,6 +50,8 @@ class SpringDynamicProblem:
     window: tuple[float, float]
     samples: int = 4096
     break_tension: float | None = None
+    #: time at which the line fails whatever its tension [s] (None: never)
+    break_at: float | None = None
 
 
 @dataclass(kw_only=True)
@@ -149,6 +152,8 @@ def spring_response(problem: SpringDynamicProblem) -> SpringDynamicResult:
                     else:
                         a = m
                 break_time = b
+    if problem.break_at is not None and not problem.break_at >= break_time:
+        break_time = float(problem.break_at)
     tol = 1e-12 * max(t1 - t0, 1e-300)
     h = (t1 - t0) / n
     i_max, i_min = int(np.argmax(T)), int(np.argmin(T))
@@ -169,7 +174,10 @@ def spring_response(problem: SpringDynamicProblem) -> SpringDynamicResult:
             if tmax >= break_time:
                 before = ~parted
                 k = int(np.argmax(np.where(before, T, -np.inf)))
-                Tmax, tmax = max(float(T[k]), float(limit)), break_time  # type: ignore[arg-type]
+                Tmax, tmax = float(T[k]), float(grid[k])
+                at_break = f(break_time)
+                if at_break > Tmax:
+                    Tmax, tmax = at_break, break_time
     return SpringDynamicResult(
         tension_static=static,
         tension_max=Tmax,

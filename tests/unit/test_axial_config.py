@@ -94,6 +94,11 @@ def test_the_base_study_is_valid(tmp_path: Path, capsys: pytest.CaptureFixture[s
             "  failure: {tension: 1.0e5}\nends:\n",
             [],
         ),
+        (  # a failure time with statics only: unused, so refused
+            "ends:\n",
+            "  failure: {time: 10.0}\nends:\n",
+            ["line.failure.time: a failure time applies to analysis.dynamic"],
+        ),
         (  # safety factor without an MBL
             "ends:\n",
             "  failure: {tension: 1.0e5, safety_factor: 2.0}\nends:\n",

@@ -225,3 +225,19 @@ def test_vectorised_end_motion_is_the_time_domains() -> None:
     got = end_displacements(motion, t)
     want = np.array([motion.at(float(ti))[0] for ti in t])
     np.testing.assert_allclose(got, want, rtol=0, atol=1e-15)
+
+
+def test_spring_fails_at_its_failure_time(tmp_path: Path) -> None:
+    """failure.time before the tension limit: the line parts then (window = the first
+    period, ramp 0): break_time is that time, the window's maximum is the tension's
+    maximum before it, k (0.5 + sin(2 pi f t)) over [0, 0.5 s]."""
+    text = BREAK.replace("failure: {tension: 2.0e5}", "failure: {tension: 1.0e6, time: 0.5}")
+    ds = run(tmp_path, text, "parted")
+    assert float(ds["break_time"]) == pytest.approx(0.5, rel=1e-12)
+    assert float(ds["tension_max"]) == pytest.approx(
+        2.0e5 * (0.5 + math.sin(math.pi * 0.1)), rel=1e-9
+    )
+    # a failure time without dynamics is refused (it would be unused)
+    cfg = tmp_path / "static.yaml"
+    cfg.write_text(text.split("analysis:")[0])
+    assert main(["validate", str(cfg)]) != 0
