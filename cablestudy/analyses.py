@@ -98,29 +98,10 @@ def check_supported(cases: list[Case], src: StudySource) -> None:
 
 
 def _law_problems(case: Case, src: StudySource) -> list[str]:
-    """A non-linear axial law is not yet in the dynamic line model: refuse it with
-    analysis.modal and analysis.dynamic, naming what supports it."""
+    """Break conditions the time-domain catenary line cannot honour yet (a spring line
+    parts in its own dynamics)."""
     study = case.study
-    wanted = [
-        name
-        for name, on in (
-            ("modal", study.analysis.modal is not None),
-            ("dynamic", study.analysis.dynamic is not None),
-        )
-        if on
-    ]
-    out = []
-    for i, seg in enumerate(study.line.segments):
-        if wanted and seg.is_nonlinear:
-            loc = ("line", "segments", i, "axial")
-            out.append(
-                f"{src.line_of(loc) or src.line_of(('line',))}: line.segments.{i}.axial: the "
-                f"{seg.axial.law} law (non-linear) is not supported by analysis."  # type: ignore[union-attr]
-                f"{' and analysis.'.join(wanted)} yet (their line model is linear-elastic); "
-                "it is supported by the statics (method 'catenary' without a seabed, or "
-                "'shooting'), and by a kind: spring line in statics and dynamics; allowed "
-                "here: axial_stiffness or {law: linear, stiffness}"
-            )
+    out: list[str] = []
     timed = [("line",)] if study.line.failure and study.line.failure.time is not None else []
     timed += [
         ("line", "segments", i)

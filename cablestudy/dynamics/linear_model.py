@@ -26,7 +26,7 @@ import scipy.sparse as sp
 from ..physics.current import current_velocity
 from ..statics.base import EndCondition
 from .frequency import LinearLine
-from .modal import ModalProblem, _segment_index, node_bases, tangents
+from .modal import ModalProblem, _segment_index, element_tangent, node_bases, tangents
 
 
 def linear_line(problem: ModalProblem) -> LinearLine:
@@ -42,8 +42,9 @@ def linear_line(problem: ModalProblem) -> LinearLine:
     chord = np.diff(pos, axis=0)
     t = chord / np.linalg.norm(chord, axis=1)[:, None]
     seg = _segment_index(line, 0.5 * (s[:-1] + s[1:]))
-    ea = line.axial_stiffness[seg]
-    c_axial = line.damping_ratio[seg] * l0 * np.sqrt(ea * line.mass[seg])
+    # the tension response of an element is its law's tangent at the static strain
+    ea = element_tangent(line, s, 0.5 * (st.tension[:-1] + st.tension[1:]))
+    c_axial = line.damping_ratio[seg] * l0 * np.sqrt(line.axial_stiffness[seg] * line.mass[seg])
 
     def lump(per_length: np.ndarray) -> np.ndarray:
         half = 0.5 * per_length[seg] * l0

@@ -217,7 +217,7 @@ def shared_model(problem: ModalProblem) -> tuple[DiscreteLine, np.ndarray]:
     disc = discretise_nodes(line, problem.medium, s, extras)
     chord = np.linalg.norm(np.diff(pos, axis=0), axis=1)
     T_e = 0.5 * (st.tension[:-1] + st.tension[1:])
-    changes: dict = {"rest_length": chord / (1.0 + T_e / disc.axial_stiffness), "has_drag": False}
+    changes: dict = {"rest_length": chord / (1.0 + element_strain(line, s, T_e)), "has_drag": False}
     if not problem.include_added_mass:
         zero = np.zeros(disc.n_nodes)
         changes.update(added_mass_normal=zero, added_mass_tangential=zero, body_added_mass=zero)
@@ -230,6 +230,32 @@ def shared_model(problem: ModalProblem) -> tuple[DiscreteLine, np.ndarray]:
         laid = gap <= 1e-6 * max(float(s[-1]), 1.0)
         x[laid] -= np.outer(gap[laid] + 1e-9, disc.seabed_normal)
     return disc, x
+
+
+def element_strain(line: LineModel, s: np.ndarray, tension: np.ndarray) -> np.ndarray:
+    """Strain [-] of the elements between nodes ``s`` [m] carrying ``tension`` [N] (n,),
+    by the inverse of each segment's axial law (T / EA where it is linear)."""
+    seg = _segment_index(line, 0.5 * (s[:-1] + s[1:]))
+    out = np.asarray(tension, dtype=float) / line.axial_stiffness[seg]
+    for i in range(line.length.size):
+        law = line.law_of(i)
+        if law is not None:
+            on = seg == i
+            out[on] = law.strain(np.asarray(tension, dtype=float)[on])
+    return out
+
+
+def element_tangent(line: LineModel, s: np.ndarray, tension: np.ndarray) -> np.ndarray:
+    """Tangent axial stiffness dT/d(strain) [N] of the elements at ``tension`` [N]."""
+    seg = _segment_index(line, 0.5 * (s[:-1] + s[1:]))
+    out = line.axial_stiffness[seg].astype(float)
+    strain = element_strain(line, s, tension)
+    for i in range(line.length.size):
+        law = line.law_of(i)
+        if law is not None:
+            on = seg == i
+            out[on] = law.tangent_stiffness(strain[on])
+    return out
 
 
 def default_extras(line: LineModel, medium: Medium) -> DynamicExtras:

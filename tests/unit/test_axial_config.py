@@ -79,16 +79,6 @@ def test_the_base_study_is_valid(tmp_path: Path, capsys: pytest.CaptureFixture[s
             "environment: {fluid: water, depth: 200.0}",
             ["'catenary' does not support a non-linear axial law", "use method 'shooting'"],
         ),
-        (  # the dynamic line model is linear
-            "  static: {method: catenary, nodes: 21}\n",
-            "  static: {method: catenary, nodes: 21}\n  modal: {modes: 3}\n",
-            [
-                "study.yaml:8: line.segments.0.axial",
-                "not supported by analysis.modal",
-                "'shooting'",
-                "kind: spring",
-            ],
-        ),
         (  # break with the catenary time domain
             "ends:\n",
             "  failure: {tension: 1.0e5}\nends:\n",
