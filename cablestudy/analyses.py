@@ -418,6 +418,8 @@ def static_outputs(res: StaticResult, study: Any = None) -> dict[str, np.ndarray
         "static_residual": np.asarray(res.residual),
         "drag_iterations": np.asarray(res.drag_iterations),
     }
+    if getattr(res, "pulley_force", None) is not None:  # a spring line over pulleys
+        out["pulley_force"] = np.asarray(res.pulley_force)
     if study is not None and not study.line.is_spring:
         env = study.environment
         segs = study.line.segments

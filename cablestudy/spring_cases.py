@@ -34,6 +34,8 @@ def spring_problem(study: Study) -> SpringProblem:
         end_b=end_condition(study.ends.b),
         n_nodes=study.analysis.static.nodes,
         tolerance=min(study.analysis.static.tolerance, 1e-12),
+        pulleys=np.array([p.position for p in line.pulleys], dtype=float).reshape(-1, 3),
+        friction=np.array([p.friction_factor for p in line.pulleys], dtype=float),
     )
 
 
@@ -107,6 +109,43 @@ def spring_problems(case: Case, src: StudySource) -> list[str]:
                 f"{at('ends', label, 'force')}: ends.{label}.force: a zero force on a "
                 "massless spring leaves its position undetermined; allowed: a nonzero force"
             )
+    if line.pulleys:
+        if a.kind != "fixed" or b.kind != "fixed":
+            out.append(
+                f"{at('line', 'pulleys')}: line.pulleys: a spring over pulleys needs both "
+                "ends fixed (the end forces then follow from the spans); allowed: ends of "
+                "kind fixed"
+            )
+            return out
+        pts = np.vstack((a.position, np.array([p.position for p in line.pulleys]), b.position))
+        spans = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+        if np.any(spans <= 1e-9 * float(np.sum(spans))):
+            out.append(
+                f"{at('line', 'pulleys')}: line.pulleys: a pulley coincides with an end or "
+                "another pulley (a span of zero length has no direction); allowed: "
+                "distinct points"
+            )
+            return out
+        if (
+            study.analysis.dynamic is not None
+            and line.failure is not None
+            and any(p.friction_factor > 1.0 for p in line.pulleys)
+        ):
+            out.append(
+                f"{at('line', 'failure')}: line.failure: not supported with pulley friction "
+                "in analysis.dynamic yet (the marching solution does not part); allowed: "
+                "frictionless pulleys (friction_factor 1), or no failure key"
+            )
+        D = float(np.sum(spans))
+        reach = max(D + motion_bound(study) - float(line.length), 0.0)
+        if line.axial.max_strain is not None:
+            reach = max(reach, line.axial.max_strain)
+        if reach > 0.0:
+            try:
+                check_axial(line.axial, reach, ("line", "axial"), "extension [m]")
+            except ValueError as exc:
+                out.append(f"{at('line', 'axial')}: line.axial: {exc}")
+        return out
     reach = reachable_extension(float(line.length), a, b, motion_bound(study))
     if reach is None:
         # a force end: the law must reach the force's tension within max_strain
@@ -153,6 +192,9 @@ def run_spring_dynamic(
         samples=samples,
         break_tension=break_tension_of(study.line),
         break_at=study.line.failure.time if study.line.failure is not None else None,
+        pulleys=np.array([p.position for p in study.line.pulleys], dtype=float).reshape(-1, 3),
+        friction=np.array([p.friction_factor for p in study.line.pulleys], dtype=float),
+        excited_end=0 if dyn.excitations[0].end == "a" else 1,
     )
     res = spring_response(problem)
     out: dict[str, np.ndarray] = {

@@ -350,6 +350,20 @@ class Attachment(StrictModel):
     name: str | None = None
 
 
+class Pulley(StrictModel):
+    """A pulley a kind: spring line passes over (aqwa seed 5.8.1.1): a fixed point; the
+    line's tensions on its two sides satisfy T_large / T_small <= factor^(wrap / 180 deg)
+    (the seed's friction factor, given for a 180-degree wrap; 1: frictionless)."""
+
+    position: Vec3 = Field(description="position of the pulley [m]")
+    friction_factor: Finite = Field(
+        1.0,
+        ge=1.0,
+        description="T_large / T_small at which the line slides for a 180-degree wrap [-] "
+        "(>= 1; 1: frictionless); scaled as factor^(wrap angle / 180 deg)",
+    )
+
+
 class MoorDynLineRef(StrictModel):
     """``line: {moordyn: path, line: N}``: the line is read from a MoorDyn input file (or
     a RAFT/MoorPy mooring YAML) when the study is loaded, into segments and attachments,
@@ -383,6 +397,11 @@ class Line(StrictModel):
         [], max_length=100, description="kind catenary: segments from end A to end B"
     )
     attachments: list[Attachment] = []
+    pulleys: list[Pulley] = Field(
+        [],
+        max_length=2,
+        description="kind spring: up to two pulleys the line passes over, from end A to end B",
+    )
     length: Positive | None = Field(
         None,
         description="kind spring: unstretched length [m]; kind catenary: the total of the "
@@ -416,6 +435,13 @@ class Line(StrictModel):
 
     @model_validator(mode="after")
     def _attachments_inside(self) -> Line:
+        if self.kind != "spring" and self.pulleys:
+            raise FieldError(
+                ("pulleys",),
+                "pulleys are supported on a kind: spring line (a massless cable between "
+                "points); allowed: kind: spring, or no pulleys",
+                len(self.pulleys),
+            )
         if self.kind == "spring":
             for key in ("segments", "attachments"):
                 if getattr(self, key):

@@ -241,3 +241,80 @@ def test_spring_fails_at_its_failure_time(tmp_path: Path) -> None:
     cfg = tmp_path / "static.yaml"
     cfg.write_text(text.split("analysis:")[0])
     assert main(["validate", str(cfg)]) != 0
+
+
+PULLEY = """\
+name: pulley
+line:
+  kind: spring
+  length: 30.0
+  axial: {law: linear, stiffness: 1.0e5}
+  pulleys:
+    - {position: [10.0, 0.0, 0.0]}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, 0.0]}
+  b: {kind: fixed, position: [10.0, 0.0, -21.0]}
+analysis:
+  static: {nodes: 7}
+"""
+
+
+def test_frictionless_pulley_gives_equal_tensions(tmp_path: Path) -> None:
+    """Path 10 + 21 m over a pulley for a 30 m spring: T = k (31 - 30) on both spans,
+    the pulley carries T (u_out - u_in) = T (-1, 0, -1)."""
+    ds = run(tmp_path, PULLEY, "pulley")
+    T = 1.0e5
+    assert float(ds["tension_a"]) == pytest.approx(T, rel=1e-13)
+    assert float(ds["tension_b"]) == pytest.approx(T, rel=1e-13)
+    np.testing.assert_allclose(ds["force_a"], [T, 0.0, 0.0], atol=1e-9)
+    np.testing.assert_allclose(ds["force_b"], [0.0, 0.0, T], atol=1e-9)
+    np.testing.assert_allclose(ds["pulley_force"].values[0], [-T, 0.0, -T], atol=1e-9)
+    # the line runs A -> pulley -> B along s (uniform strain: 10/31 of L on span 1)
+    assert float(ds["x"].isel(s=-1)) == pytest.approx(10.0)
+    assert float(ds["z"].isel(s=-1)) == pytest.approx(-21.0)
+
+
+@pytest.mark.parametrize(("wrap_deg", "factor"), [(180.0, 2.0), (90.0, 3.0)])
+def test_sliding_over_a_pulley_holds_the_seeds_friction_ratio(
+    wrap_deg: float, factor: float
+) -> None:
+    """End B pulled away, then back: while the line slides the larger tension over the
+    smaller is factor^(wrap / 180 deg) (the seed's law: the factor holds for a
+    180-degree wrap); while it sticks the ratio stays below that."""
+    from cablestudy.dynamics.excitation import EndMotion
+    from cablestudy.dynamics.spring import SpringDynamicProblem, march_with_friction
+    from cablestudy.physics.axial import PolynomialLaw
+
+    th = math.radians(wrap_deg)
+    pulley = np.array([10.0, 0.0, 0.0])
+    out_dir = np.array([math.cos(th), 0.0, -math.sin(th)])  # leaves turning by th
+    rB = pulley + 8.0 * out_dir
+    motion = EndMotion(
+        harmonic_end=np.array([1]),
+        harmonic_direction=out_dir[None, :],
+        harmonic_amplitude=np.array([0.5]),
+        harmonic_frequency=np.array([0.1]),
+        harmonic_phase=np.array([0.0]),
+    )
+    law = PolynomialLaw((1.0e5, 2.0e4))
+    prob = SpringDynamicProblem(
+        law=law,
+        length=17.5,
+        position_a=np.zeros(3),
+        position_b=rB,
+        motion=motion,
+        window=(0.0, 10.0),
+        pulleys=pulley[None, :],
+        friction=np.array([factor]),
+    )
+    t = np.linspace(0.0, 10.0, 2001)
+    T = march_with_friction(prob, t, 17.5 * np.array([10.0, 8.0]) / 18.0)
+    taut = np.minimum(T[:, 0], T[:, 1]) > 0.0
+    assert taut.sum() > 1000
+    ratio = np.maximum(T[:, 0], T[:, 1])[taut] / np.minimum(T[:, 0], T[:, 1])[taut]
+    bound = factor ** (wrap_deg / 180.0)
+    assert np.all(ratio <= bound * (1 + 1e-9))
+    # at the largest pull the line has slid: the ratio is at the bound
+    j = int(np.argmax(T[:, 1]))
+    assert T[j, 1] / T[j, 0] == pytest.approx(bound, rel=1e-9)
+    assert ratio.max() == pytest.approx(bound, rel=1e-9)
