@@ -49,7 +49,6 @@ from .base import (
     StaticResult,
 )
 from .law_pieces import piece_increments
-from .pieces import piece_integrals
 from .seabed import LaidPart, Plane, laid_part
 
 _Z = np.array([0.0, 0.0, 1.0])
@@ -494,7 +493,16 @@ def _laid(lay: Layout, s_td: float, T_td: np.ndarray, plane: Plane) -> LaidPart:
     e = T_td / tn if tn > 0.0 else plane.basis[0]
     mask = (lay.bounds < s_td) & np.any(lay.point != 0.0, axis=1)
     return laid_part(
-        s_td, tn, e, lay.bounds, lay.weight, lay.EA, lay.bounds[mask], lay.point[mask], plane
+        s_td,
+        tn,
+        e,
+        lay.bounds,
+        lay.weight,
+        lay.EA,
+        lay.bounds[mask],
+        lay.point[mask],
+        plane,
+        lay.law,
     )
 
 
@@ -504,15 +512,15 @@ def _contact_shape(
     laid = _laid(lay, s_td, T_td, plane)
     tn = float(np.linalg.norm(T_td))
     e = T_td / tn if tn > 0.0 else plane.basis[0]
-    s0l, elll, T0l, ql, EAl = [], [], [], [], []
+    s0l, elll, T0l, ql, EAl, lawl = [], [], [], [], [], []
     for j in range(len(laid.s) - 1):
         lo, hi = laid.s[j], laid.s[j + 1]
-        seg_ea = lay.EA[
-            min(
-                int(np.searchsorted(lay.bounds, 0.5 * (lo + hi), side="right")) - 1,
-                len(lay.ell) - 1,
-            )
-        ]
+        piece = min(
+            int(np.searchsorted(lay.bounds, 0.5 * (lo + hi), side="right")) - 1,
+            len(lay.ell) - 1,
+        )
+        seg_ea = lay.EA[piece]
+        seg_law = lay.law[piece] if lay.law is not None else None
         k = laid.rate[j]
         t_lo, t_hi = laid.tension_lo[j], laid.tension_hi[j]
         slack_len = 0.0
@@ -526,20 +534,23 @@ def _contact_shape(
             T0l.append(1e-150 * e)
             ql.append(np.zeros(3))
             EAl.append(seg_ea)
+            lawl.append(seg_law)
         if hi - lo - slack_len > 0.0:
             s0l.append(lo + slack_len)
             elll.append(hi - lo - slack_len)
             T0l.append(max(t_lo, 0.0) * e)
             ql.append(-k * e)
             EAl.append(seg_ea)
-    s0s, ells, EAs, qs, C, _, Cend = _suspended(lay, q, s_td)
+            lawl.append(seg_law)
+    s0s, ells, EAs, qs, C, k_td, Cend = _suspended(lay, q, s_td)
     T0s = T_td - C
     s0 = np.concatenate((np.array(s0l), s0s))
     ell = np.concatenate((np.array(elll), ells))
     T0 = np.concatenate((np.array(T0l).reshape(-1, 3), T0s))
     qa = np.concatenate((np.array(ql).reshape(-1, 3), qs))
     EA = np.concatenate((np.array(EAl), EAs))
-    dr, _, _ = piece_integrals(T0, qa, ell, EA, jacobian=False)
+    laws = None if lay.law is None else (*lawl, *lay.law[k_td:])
+    dr, _, _ = piece_increments(T0, qa, ell, EA, laws, jacobian=False)
     r0 = rA + np.concatenate((np.zeros((1, 3)), np.cumsum(dr, axis=0)))[:-1]
     force_a = laid.tension[0] * e
     return Shape(
@@ -553,6 +564,7 @@ def _contact_shape(
         tension_end=T_td - Cend,
         laid_length=s_td,
         contact=True,
+        law=laws,
     )
 
 
@@ -641,8 +653,9 @@ def solve_contact(
         tn = float(np.linalg.norm(T_td))
         e = T_td / tn
         laid = _laid(lay, s_td, T_td, plane)
-        s0, ell, EA, qs, C, _, Cend = _suspended(lay, q, s_td)
-        dr, jac, _ = piece_integrals(T_td - C, qs, ell, EA)
+        s0, ell, EA, qs, C, k_td, Cend = _suspended(lay, q, s_td)
+        laws = None if lay.law is None else lay.law[k_td:]
+        dr, jac, _ = piece_increments(T_td - C, qs, ell, EA, laws)
         assert jac is not None
         Js = jac.sum(axis=0)
         rB = ends.rA + e * laid.stretched + dr.sum(axis=0)
@@ -872,12 +885,6 @@ class SemiAnalyticSolver:
         if problem.stretched_drag_diameter and problem.medium.has_current:
             out.append(
                 "drag on the stretched diameter (drag_diameter: stretched): use method 'shooting'"
-            )
-        if problem.line.is_nonlinear and problem.medium.depth is not None:
-            out.append(
-                "a non-linear axial law (line.segments.N.axial) with a seabed "
-                "(environment.depth): its seabed contact is linear-elastic only; use method "
-                "'shooting', or omit the depth for a line that cannot reach the seabed"
             )
         return out
 
@@ -1148,6 +1155,14 @@ class SemiAnalyticSolver:
         shape = self._inner(lay, q, ends, None, state, tol, maxit, deadline, polish)
         if not _penetrates(shape, lay, plane, anchored=False):
             return shape
+        if lay.law is not None:
+            raise _Failure(
+                STATUS_NO_SOLUTION,
+                "the line sags onto the seabed between its ends, whose laid part this "
+                "method takes as linear-elastic: with a non-linear axial law use method "
+                "'shooting'",
+                final=True,
+            )
         guess = initial_midspan(shape, plane, lay.total)
         mshape = solve_midspan(
             lay, q, ends, plane, guess, tol=tol, max_iterations=maxit, deadline=deadline
@@ -1381,6 +1396,12 @@ def _laid_between(
     d = ends.rB - ends.rA
     chord = float(np.linalg.norm(d))
     L = line.total_length
+    if line.is_nonlinear:
+        raise _Failure(
+            STATUS_NO_SOLUTION,
+            "both ends lie on the seabed and the laid line's uniform stretch is taken "
+            "linear-elastic here: with a non-linear axial law use method 'shooting'",
+        )
     flex = float(np.sum(line.length / line.axial_stiffness))  # stretch per newton [m/N]
     if chord <= L:
         raise _Failure(

@@ -246,3 +246,58 @@ def test_compiled_kernel_matches_the_numpy_quadrature(name: str) -> None:
     b = piece_increments(T0, q, ell, EA, [law] * P, compiled=True)
     for x, y in zip(a, b, strict=True):
         assert np.allclose(x, y, rtol=1e-13, atol=1e-13 * np.max(np.abs(x)))
+
+
+@pytest.mark.parametrize("name", sorted(LAWS))
+@pytest.mark.parametrize(
+    "end_b",
+    [
+        {"kind": "mooring", "force": [2.0e5, 0.0], "z": -10.0},
+        {"kind": "fixed", "position": [560.0, 0.0, -10.0]},
+    ],
+)
+def test_moored_line_on_the_seabed_agrees_with_shooting(name: str, end_b: dict) -> None:
+    """A two-segment mooring resting on the seabed with friction 0.3: the catenary
+    method's laid part integrates the law exactly (complementary energy of the linear
+    laid tension) and its contact Newton carries the law's flexibility; the shooting
+    solver integrates the same law as an ODE at rtol 1e-12. End forces to 1e-10 of the
+    tension, positions and laid length to 1e-8 of the 600 m line (measured: 1e-12 and
+    1.3e-9 m)."""
+    axial, _, _ = LAWS[name]
+    scale_law = {"coefficients": [4.0e7, 2.0e8, 5.0e8]} if name == "polynomial" else {}
+    axial = {**axial, **scale_law}
+    if name == "steel_wire":
+        axial = {**axial, "stiffness": 9.0e7}
+    if name == "table":
+        axial = {**axial, "tension": [0.0, 2.0e5, 6.0e5, 1.2e6]}
+    out = {}
+    for method in ("catenary", "shooting"):
+        st = Study.model_validate(
+            {
+                "name": "moor",
+                "environment": {"fluid": "water", "depth": 200.0, "seabed": {"friction": 0.3}},
+                "line": {
+                    "segments": [
+                        {"length": 400.0, "diameter": 0.1, "mass_per_length": 60.0, "axial": axial},
+                        {
+                            "length": 200.0,
+                            "diameter": 0.08,
+                            "mass_per_length": 25.0,
+                            "axial": axial,
+                        },
+                    ]
+                },
+                "ends": {"a": {"kind": "fixed", "position": [0.0, 0.0, -200.0]}, "b": end_b},
+                "analysis": {"static": {"method": method, "nodes": 61, "tolerance": 1e-11}},
+            }
+        )
+        r = STATIC_SOLVERS[method].solve(static_problem(st))
+        assert r.status == STATUS_OK, r.message
+        out[method] = r
+    c, s = out["catenary"], out["shooting"]
+    assert c.laid_length > 10.0  # the case does rest on the seabed
+    scale = float(np.linalg.norm(c.force_b))
+    assert np.allclose(c.force_b, s.force_b, rtol=0, atol=1e-10 * scale)
+    assert np.allclose(c.force_a, s.force_a, rtol=0, atol=1e-10 * scale)
+    assert np.allclose(c.position, s.position, rtol=0, atol=1e-8 * 600.0)
+    assert abs(c.laid_length - s.laid_length) <= 1e-8 * 600.0
