@@ -1155,14 +1155,6 @@ class SemiAnalyticSolver:
         shape = self._inner(lay, q, ends, None, state, tol, maxit, deadline, polish)
         if not _penetrates(shape, lay, plane, anchored=False):
             return shape
-        if lay.law is not None:
-            raise _Failure(
-                STATUS_NO_SOLUTION,
-                "the line sags onto the seabed between its ends, whose laid part this "
-                "method takes as linear-elastic: with a non-linear axial law use method "
-                "'shooting'",
-                final=True,
-            )
         guess = initial_midspan(shape, plane, lay.total)
         mshape = solve_midspan(
             lay, q, ends, plane, guess, tol=tol, max_iterations=maxit, deadline=deadline
