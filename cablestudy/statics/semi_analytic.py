@@ -1388,12 +1388,6 @@ def _laid_between(
     d = ends.rB - ends.rA
     chord = float(np.linalg.norm(d))
     L = line.total_length
-    if line.is_nonlinear:
-        raise _Failure(
-            STATUS_NO_SOLUTION,
-            "both ends lie on the seabed and the laid line's uniform stretch is taken "
-            "linear-elastic here: with a non-linear axial law use method 'shooting'",
-        )
     flex = float(np.sum(line.length / line.axial_stiffness))  # stretch per newton [m/N]
     if chord <= L:
         raise _Failure(
@@ -1402,10 +1396,33 @@ def _laid_between(
             f"and the line ({L:.6g} m) is not shorter: it lies slack on the seabed "
             "and its shape is not determined",
         )
+
+    def strains(T: float) -> np.ndarray:
+        return np.array(
+            [
+                T / ea if (law := line.law_of(i)) is None else float(law.strain(T))
+                for i, ea in enumerate(line.axial_stiffness)
+            ]
+        )
+
     T = (chord - L) / flex
+    if line.is_nonlinear:
+        # sum l_i (1 + e_i(T)) = chord: increasing in T, bracketed and bisected
+        lo, hi = 0.0, max(T, 1.0)
+        while float(np.sum(line.length * strains(hi))) < chord - L:
+            lo, hi = hi, 2.0 * hi
+        for _ in range(200):
+            T = 0.5 * (lo + hi)
+            if float(np.sum(line.length * strains(T))) < chord - L:
+                lo = T
+            else:
+                hi = T
+            if hi - lo <= 1e-15 * hi:
+                break
+        T = 0.5 * (lo + hi)
     e = d / chord
     bounds = line.segment_ends
-    stretched = np.concatenate(([0.0], np.cumsum(line.length * (1.0 + T / line.axial_stiffness))))
+    stretched = np.concatenate(([0.0], np.cumsum(line.length * (1.0 + strains(T)))))
     along = np.interp(s_eval, bounds, stretched)
     pos = ends.rA + along[:, None] * e
     force_a, force_b = T * e, -T * e

@@ -341,3 +341,42 @@ def test_line_sagging_onto_the_seabed_between_its_ends_takes_the_law() -> None:
         scale = float(np.linalg.norm(c.force_b))
         assert np.max(np.abs(c.force_b - d.force_b)) <= 2e-5 * scale
         assert np.max(np.abs(c.position - d.position)) <= 5e-3
+
+
+def test_line_laid_straight_between_two_ends_on_the_seabed() -> None:
+    """Both ends on the seabed 151 m apart, a 100 m polynomial section and a 50 m linear
+    one: one uniform tension T with 100 (1 + e(T)) + 50 (1 + T / EA) = 151, checked in
+    closed form (the law's own tension at the solved strain)."""
+    st = Study.model_validate(
+        {
+            "name": "laid",
+            "environment": {"fluid": "water", "depth": 100.0},
+            "line": {
+                "segments": [
+                    {
+                        "length": 100.0,
+                        "diameter": 0.08,
+                        "mass_per_length": 25.0,
+                        "axial": {"law": "polynomial", "coefficients": [1e7, 2e8, 5e8]},
+                    },
+                    {
+                        "length": 50.0,
+                        "diameter": 0.08,
+                        "mass_per_length": 25.0,
+                        "axial_stiffness": 3e7,
+                    },
+                ]
+            },
+            "ends": {
+                "a": {"kind": "fixed", "position": [0.0, 0.0, -100.0]},
+                "b": {"kind": "fixed", "position": [151.0, 0.0, -100.0]},
+            },
+            "analysis": {"static": {"method": "catenary", "nodes": 11, "tolerance": 1e-11}},
+        }
+    )
+    r = STATIC_SOLVERS["catenary"].solve(static_problem(st))
+    assert r.status == STATUS_OK, r.message
+    T = float(r.tension[0])
+    e1 = (151.0 - 150.0 - 50.0 * T / 3e7) / 100.0  # the polynomial section's strain
+    assert float(PolynomialLaw((1e7, 2e8, 5e8)).tension(e1)) == pytest.approx(T, rel=1e-12)
+    np.testing.assert_allclose(r.position[-1], [151.0, 0.0, -100.0], atol=1e-12)
