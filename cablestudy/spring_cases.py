@@ -8,6 +8,7 @@ outputs named as for any line.
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -88,6 +89,29 @@ def spring_problems(case: Case, src: StudySource) -> list[str]:
             "allowed: omit analysis.modal (or use kind: catenary)"
         )
     dyn = study.analysis.dynamic
+    if line.winch is not None:
+        if dyn is None:
+            out.append(
+                f"{at('line', 'winch')}: line.winch: a winch changes the length in "
+                "analysis.dynamic (the statics are the state before it runs); allowed: "
+                "omit it, or add analysis.dynamic"
+            )
+        elif any(p.friction_factor > 1.0 for p in line.pulleys):
+            out.append(
+                f"{at('line', 'winch')}: line.winch: not supported with pulley friction yet "
+                "(the marching solution keeps the length); allowed: frictionless pulleys"
+            )
+        elif line.winch.speed < 0.0 and line.winch.stop is None:
+            out.append(
+                f"{at('line', 'winch')}: line.winch.stop: a winch hauling in (speed < 0) "
+                "needs a stop time, so that the extension it reaches (checked against the "
+                "law) is bounded; allowed: a stop time [s]"
+            )
+        elif line.winch.stop is not None and line.winch.stop <= line.winch.start:
+            out.append(
+                f"{at('line', 'winch', 'stop')}: line.winch.stop: {line.winch.stop:g} s is "
+                f"not after start {line.winch.start:g} s; allowed: stop > start"
+            )
     if line.failure is not None and line.failure.time is not None and dyn is None:
         out.append(
             f"{at('line', 'failure', 'time')}: line.failure.time: a failure time applies to "
@@ -146,7 +170,10 @@ def spring_problems(case: Case, src: StudySource) -> list[str]:
             except ValueError as exc:
                 out.append(f"{at('line', 'axial')}: line.axial: {exc}")
         return out
-    reach = reachable_extension(float(line.length), a, b, motion_bound(study))
+    hauled = 0.0
+    if line.winch is not None and line.winch.speed < 0.0 and line.winch.stop is not None:
+        hauled = -line.winch.speed * max(line.winch.stop - line.winch.start, 0.0)
+    reach = reachable_extension(float(line.length), a, b, motion_bound(study) + hauled)
     if reach is None:
         # a force end: the law must reach the force's tension within max_strain
         reach = line.axial.max_strain or DEFAULT_MAX_STRAIN * float(line.length)
@@ -195,6 +222,7 @@ def run_spring_dynamic(
         pulleys=np.array([p.position for p in study.line.pulleys], dtype=float).reshape(-1, 3),
         friction=np.array([p.friction_factor for p in study.line.pulleys], dtype=float),
         excited_end=0 if dyn.excitations[0].end == "a" else 1,
+        **_winch(study.line.winch),
     )
     res = spring_response(problem)
     out: dict[str, np.ndarray] = {
@@ -211,6 +239,17 @@ def run_spring_dynamic(
     if study.line.failure is not None:
         out["break_time"] = np.asarray(res.break_time)
     return STATUS_OK, "", out
+
+
+def _winch(winch: Any) -> dict[str, float]:
+    if winch is None:
+        return {}
+    stop = math.inf if winch.stop is None else float(winch.stop)
+    return {
+        "winch_speed": float(winch.speed),
+        "winch_start": float(winch.start),
+        "winch_stop": stop,
+    }
 
 
 def break_tension_of(line: Any) -> float | None:

@@ -364,6 +364,21 @@ class Pulley(StrictModel):
     )
 
 
+class Winch(StrictModel):
+    """A winch on a kind: spring line (aqwa seed 5.8.1: linear and polynomial cables can
+    be winched): in analysis.dynamic the unstretched length changes at ``speed`` [m/s]
+    (positive: paid out, longer) from ``start`` to ``stop`` [s]."""
+
+    speed: Finite = Field(description="rate of change of the unstretched length [m/s]")
+    start: NonNegative = Field(0.0, description="time the winch starts [s]")
+    stop: Positive | None = Field(None, description="time the winch stops [s]; omit: never")
+
+    def paid_out(self, t: float) -> float:
+        """Change of the unstretched length [m] by time ``t`` [s]."""
+        end = t if self.stop is None else min(t, self.stop)
+        return self.speed * max(end - self.start, 0.0)
+
+
 class MoorDynLineRef(StrictModel):
     """``line: {moordyn: path, line: N}``: the line is read from a MoorDyn input file (or
     a RAFT/MoorPy mooring YAML) when the study is loaded, into segments and attachments,
@@ -402,6 +417,11 @@ class Line(StrictModel):
         max_length=2,
         description="kind spring: up to two pulleys the line passes over, from end A to end B",
     )
+    winch: Winch | None = Field(
+        None,
+        description="kind spring, analysis.dynamic: the unstretched length changes at a "
+        "speed [m/s] from start to stop [s]",
+    )
     length: Positive | None = Field(
         None,
         description="kind spring: unstretched length [m]; kind catenary: the total of the "
@@ -435,6 +455,13 @@ class Line(StrictModel):
 
     @model_validator(mode="after")
     def _attachments_inside(self) -> Line:
+        if self.kind != "spring" and self.winch is not None:
+            raise FieldError(
+                ("winch",),
+                "a winch is supported on a kind: spring line (its length changes in the "
+                "dynamics); allowed: kind: spring, or no winch",
+                self.winch.speed,
+            )
         if self.kind != "spring" and self.pulleys:
             raise FieldError(
                 ("pulleys",),

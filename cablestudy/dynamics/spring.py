@@ -13,8 +13,9 @@ excitation period after the ramp; for a run of fixed ``duration``, the whole run
 
 The extremes are found on a uniform grid of ``samples`` points of the window, each
 refined by golden-section search on its bracket to 1e-12 of the window; the mean is
-the trapezoidal rule on the periodic grid (spectrally accurate for a smooth periodic
-tension; a slack phase makes it only as smooth as the law at zero).
+the trapezoidal rule on the grid (spectrally accurate for a smooth periodic tension,
+O(h^2) for a window that is not a period; a slack phase makes it only as smooth as the
+law at zero).
 
 Failure (``line.failure``): when the tension first reaches the limit the spring parts
 at that instant, found by bisection to 1e-12 s on the first grid interval where it
@@ -58,6 +59,17 @@ class SpringDynamicProblem:
     friction: np.ndarray = field(default_factory=lambda: np.zeros(0))
     #: end whose tension the outputs give (0: A, 1: B; they differ only with friction)
     excited_end: int = 1
+    #: winch: rate of change of the unstretched length [m/s] from ``winch_start`` to
+    #: ``winch_stop`` [s] (inf: never stops)
+    winch_speed: float = 0.0
+    winch_start: float = 0.0
+    winch_stop: float = math.inf
+
+    def unstretched(self, t: np.ndarray) -> np.ndarray:
+        """Unstretched length [m] at times ``t`` [s] (the winch's change included)."""
+        t = np.asarray(t, dtype=float)
+        run = np.clip(np.minimum(t, self.winch_stop) - self.winch_start, 0.0, None)
+        return self.length + self.winch_speed * run
 
     @property
     def sticks(self) -> bool:
@@ -129,7 +141,7 @@ def spring_tension_at(problem: SpringDynamicProblem, t: np.ndarray | float) -> n
     t = np.atleast_1d(np.asarray(t, dtype=float))
     d, _ = _spans(problem, t.ravel())
     dist = d.sum(axis=1).reshape(t.shape)
-    return problem.law.tension(dist - problem.length)
+    return problem.law.tension(dist - problem.unstretched(t))
 
 
 def _slide_to_bound(
@@ -230,7 +242,7 @@ def _friction_response(problem: SpringDynamicProblem) -> SpringDynamicResult:
     end = T[:, 0] if problem.excited_end == 0 else T[:, -1]
     win = end[before:]
     static = float(problem.law.tension(float(d0.sum()) - problem.length))
-    mean = float(np.mean(win[:-1]))
+    mean = float(np.sum(0.5 * (win[1:] + win[:-1]))) / (len(win) - 1)
     return SpringDynamicResult(
         tension_static=static,
         tension_max=float(win.max()),
@@ -282,7 +294,8 @@ def spring_response(problem: SpringDynamicProblem) -> SpringDynamicResult:
     tmax, Tmax = _refine(f, max(grid[i_max] - h, t0), min(grid[i_max] + h, t1), 1.0, tol)
     tmin, Tmin = _refine(f, max(grid[i_min] - h, t0), min(grid[i_min] + h, t1), -1.0, tol)
     Tmax, Tmin = max(Tmax, float(T[i_max])), min(Tmin, float(T[i_min]))
-    mean = float(np.mean(T[:-1]))  # trapezoid on a periodic grid
+    # trapezoidal rule: spectrally accurate on a periodic window, O(h^2) otherwise
+    mean = float(np.sum(0.5 * (T[1:] + T[:-1]))) / n
     if math.isfinite(break_time):
         parted = grid >= break_time
         if break_time <= t0:
@@ -290,7 +303,7 @@ def spring_response(problem: SpringDynamicProblem) -> SpringDynamicResult:
             tmax = tmin = t0
         else:
             Tp = np.where(parted, 0.0, T)
-            mean = float(np.mean(Tp[:-1]))
+            mean = float(np.sum(0.5 * (Tp[1:] + Tp[:-1]))) / n
             if break_time < t1:
                 Tmin, tmin = 0.0, break_time
             if tmax >= break_time:

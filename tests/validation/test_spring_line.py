@@ -318,3 +318,36 @@ def test_sliding_over_a_pulley_holds_the_seeds_friction_ratio(
     j = int(np.argmax(T[:, 1]))
     assert T[j, 1] / T[j, 0] == pytest.approx(bound, rel=1e-9)
     assert ratio.max() == pytest.approx(bound, rel=1e-9)
+
+
+WINCH = """\
+name: winch
+line:
+  kind: spring
+  length: 50.0
+  axial: {law: linear, stiffness: 2.0e5}
+  winch: {speed: -0.01, start: 10.0, stop: 60.0}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, 0.0]}
+  b: {kind: fixed, position: [50.2, 0.0, 0.0]}
+analysis:
+  dynamic:
+    excitation: {end: b, direction: [1.0, 0.0, 0.0], amplitude: 0.0, frequency: 0.1}
+    duration: 100.0
+    ramp_periods: 0.0
+"""
+
+
+def test_winch_hauling_in_a_spring(tmp_path: Path) -> None:
+    """Ends still, the winch hauls in 0.01 m/s from 10 s to 60 s: T = k (0.2 + 0.01
+    (t - 10)) between, k 0.2 before, k 0.7 after: over the 100 s run the minimum is
+    k 0.2, the maximum k 0.7 and the mean k (0.2 10 + mean ramp 0.45 50 + 0.7 40) / 100."""
+    ds = run(tmp_path, WINCH, "winch")
+    k = 2.0e5
+    assert float(ds["tension_static"]) == pytest.approx(k * 0.2, rel=1e-12)
+    assert float(ds["tension_min"]) == pytest.approx(k * 0.2, rel=1e-9)
+    assert float(ds["tension_max"]) == pytest.approx(k * 0.7, rel=1e-9)
+    mean = k * (0.2 * 10 + 0.45 * 50 + 0.7 * 40) / 100
+    # trapezoidal rule over the run, exact on the linear pieces; the two kinks between
+    # grid points cost O(h^2) (h = 100 s / 4096+): below 1e-6 relative
+    assert float(ds["tension_mean"]) == pytest.approx(mean, rel=1e-6)
