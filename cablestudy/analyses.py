@@ -103,6 +103,21 @@ def _law_problems(case: Case, src: StudySource) -> list[str]:
     parts in its own dynamics)."""
     study = case.study
     out: list[str] = []
+    timed = [("line",)] if study.line.failure and study.line.failure.time is not None else []
+    timed += [
+        ("line", "segments", i)
+        for i, seg in enumerate(study.line.segments)
+        if seg.failure is not None and seg.failure.time is not None
+    ]
+    if study.analysis.dynamic is None:
+        for loc in timed:
+            path = (*loc, "failure", "time")
+            out.append(
+                f"{src.line_of(path) or src.line_of(('line',))}: "
+                f"{'.'.join(map(str, path))}: a failure time applies to analysis.dynamic "
+                "(of a kind: spring line); the statics are the state before any time; "
+                "allowed: omit it"
+            )
     if study.analysis.dynamic is not None:
         breaks = [("line",)] if study.line.failure is not None else []
         breaks += [
@@ -404,6 +419,8 @@ def static_outputs(res: StaticResult, study: Any = None) -> dict[str, np.ndarray
         "static_residual": np.asarray(res.residual),
         "drag_iterations": np.asarray(res.drag_iterations),
     }
+    if getattr(res, "pulley_force", None) is not None:  # a spring line over pulleys
+        out["pulley_force"] = np.asarray(res.pulley_force)
     if study is not None and not study.line.is_spring:
         env = study.environment
         segs = study.line.segments

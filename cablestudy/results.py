@@ -65,6 +65,9 @@ OUTPUTS: dict[str, OutputVariable] = {
     "arc_length": OutputVariable(("s",), "m", "unstretched arc length from end A"),
     "force_a": OutputVariable(("component",), "N", "force of the line on the attachment at end A"),
     "force_b": OutputVariable(("component",), "N", "force of the line on the attachment at end B"),
+    "pulley_force": OutputVariable(
+        ("pulley", "component"), "N", "force of the line on each pulley (kind: spring)"
+    ),
     "break_time": OutputVariable(
         (), "s", "time at which the line parted (NaN: it did not), kind: spring with line.failure"
     ),

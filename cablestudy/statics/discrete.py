@@ -41,11 +41,6 @@ class DiscreteSolver:
         from .semi_analytic import SemiAnalyticSolver
 
         missing = list(SemiAnalyticSolver().unsupported(replace(problem, n_nodes=3)))
-        if problem.line.is_nonlinear:
-            missing.append(
-                "a non-linear axial law (line.segments.N.axial): the lumped-mass line model "
-                "is linear-elastic; use method 'catenary' or 'shooting'"
-            )
         if problem.is_installation:
             missing.append("steady cable installation (method 'shooting')")
         if problem.stretched_drag_diameter and problem.medium.has_current:
