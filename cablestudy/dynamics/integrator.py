@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 from numba import njit
 
-from .model import assemble, solve_banded
+from .model import _trial_states, assemble, solve_banded, states_changed
 
 
 @dataclass(frozen=True)
@@ -210,17 +210,7 @@ def alpha_step(
             # the predictor's trial decides which contact nodes stick and which slide;
             # the Newton iterations then keep those states (a smooth force)
             fix_states = False
-            for i in range(n):
-                for k in range(2):
-                    slip_state[i, k] = 0
-                    if contact[i] > 0.0 and friction[k] > 0.0:
-                        cap = friction[k] * contact[i]
-                        if trial[i, k] > cap:
-                            slip_state[i, k] = 1
-                        elif trial[i, k] < -cap:
-                            slip_state[i, k] = -1
-                        else:
-                            slip_state[i, k] = 2
+            _trial_states(slip_state, trial, contact, friction)
             continue
         res = 0.0
         for i in range(n):
@@ -234,8 +224,10 @@ def alpha_step(
         if not math.isfinite(res):
             return it, False
         if res <= tol:
-            if has_friction and checks < MAX_STATE_CHECKS and _states_changed(
-                slip_state, trial, contact, friction
+            if (
+                has_friction
+                and checks < MAX_STATE_CHECKS
+                and states_changed(slip_state, trial, contact, friction)
             ):
                 checks += 1
                 continue  # converged with a wrong stick/slip guess: again with the new one
@@ -283,33 +275,3 @@ def alpha_step(
 
 #: stick/slip re-checks per time step after Newton converged with a wrong guess
 MAX_STATE_CHECKS = 4
-
-
-@njit(cache=True)
-def _states_changed(slip_state, trial, contact, friction):  # noqa: ANN001, ANN202
-    """Update the fixed stick/slip states from the converged state; True if any changed.
-
-    A sticking node whose spring force exceeds mu N slides (with the spring's sign); a
-    sliding node whose spring force is back within mu N, or points the other way,
-    sticks. Nodes that lost or gained contact take the trial rule (state 0)."""
-    changed = False
-    for i in range(slip_state.shape[0]):
-        for k in range(2):
-            state = slip_state[i, k]
-            if friction[k] <= 0.0:
-                continue
-            if contact[i] <= 0.0:
-                if state != 0:
-                    slip_state[i, k] = 0
-                continue
-            cap = friction[k] * contact[i] * (1.0 + 1e-9)
-            f = trial[i, k]
-            if state == 0:
-                continue
-            if state == 2 and abs(f) > cap:
-                slip_state[i, k] = 1 if f > 0.0 else -1
-                changed = True
-            elif (state == 1 or state == -1) and state * f < cap * (1.0 - 2e-9):
-                slip_state[i, k] = 2
-                changed = True
-    return changed

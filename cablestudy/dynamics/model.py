@@ -60,7 +60,7 @@ on short arrays, where interpreter overhead would dominate.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 from numba import njit
@@ -1026,6 +1026,53 @@ def evaluate(
 
 
 @njit(cache=True)
+def _trial_states(slip_state, trial, contact, friction):  # noqa: ANN001, ANN202
+    """Stick/slip state of every contact node from its trial spring force: stick (2)
+    within mu N, else slide (+-1) with the force's sign; 0 off the seabed."""
+    for i in range(slip_state.shape[0]):
+        for k in range(2):
+            slip_state[i, k] = 0
+            if contact[i] > 0.0 and friction[k] > 0.0:
+                cap = friction[k] * contact[i]
+                if trial[i, k] > cap:
+                    slip_state[i, k] = 1
+                elif trial[i, k] < -cap:
+                    slip_state[i, k] = -1
+                else:
+                    slip_state[i, k] = 2
+
+
+@njit(cache=True)
+def states_changed(slip_state, trial, contact, friction):  # noqa: ANN001, ANN201
+    """Update fixed stick/slip states from a converged state; True if any changed.
+
+    A sticking node whose spring force exceeds mu N slides (with the spring's sign); a
+    sliding node whose spring force is back within mu N, or points the other way,
+    sticks. Nodes that lost contact, or gained it (state 0), take the trial rule."""
+    changed = False
+    for i in range(slip_state.shape[0]):
+        for k in range(2):
+            state = slip_state[i, k]
+            if friction[k] <= 0.0:
+                continue
+            if contact[i] <= 0.0:
+                if state != 0:
+                    slip_state[i, k] = 0
+                continue
+            cap = friction[k] * contact[i] * (1.0 + 1e-9)
+            f = trial[i, k]
+            if state == 0:
+                continue
+            if state == 2 and abs(f) > cap:
+                slip_state[i, k] = 1 if f > 0.0 else -1
+                changed = True
+            elif (state == 1 or state == -1) and state * f < cap * (1.0 - 2e-9):
+                slip_state[i, k] = 2
+                changed = True
+    return changed
+
+
+@njit(cache=True)
 def _static_newton(
     x,
     anchor,
@@ -1094,7 +1141,15 @@ def _static_newton(
             reach = max(reach, abs(x[i, a]))
     reach += rest_length.sum()
     floor = 1024.0 * 2.220446049250313e-16 * reach
-    for it in range(max_iterations + 1):
+    has_friction = (friction[0] > 0.0 or friction[1] > 0.0) and seabed_stiffness.max() > 0.0
+    has_friction = has_friction and math.isfinite(friction[0]) and math.isfinite(friction[1])
+    fix_states = has_friction
+    for i in range(n):
+        for k in range(2):
+            slip_state[i, k] = 0
+    checks = 0
+    it = 0
+    while True:
         assemble(
             x,
             v,
@@ -1142,6 +1197,12 @@ def _static_newton(
             slip_state,
             trial,
         )
+        if fix_states:
+            # friction as an active set, as in the time step: the trial decides which
+            # contact nodes stick and which slide, Newton keeps those states
+            fix_states = False
+            _trial_states(slip_state, trial, contact, friction)
+            continue
         res = 0.0
         for i in range(n):
             if held[i]:
@@ -1149,9 +1210,17 @@ def _static_newton(
             for a in range(3):
                 res = max(res, abs(F[i, a]))
         if res <= tol:
+            if (
+                has_friction
+                and checks < 20
+                and states_changed(slip_state, trial, contact, friction)
+            ):
+                checks += 1
+                continue
             return it, res, True
-        if it == max_iterations:
+        if it >= max_iterations:
             break
+        it += 1
         # a little mass-like regularisation keeps slack nodes solvable; kept well below
         # the geometric stiffness T / l of the taut elements, or a light line's soft
         # modes would converge only linearly
@@ -1237,67 +1306,18 @@ def static_equilibrium(
     work.anchor[:] = x
     if line.has_seabed:
         x, work.anchor[:] = _seated_start(line, x, work)
-    sliding = line.has_seabed and bool(np.any(line.friction > 0.0))
-    # With friction the equilibrium is found as plasticity is: Newton on the line held by
-    # sticking friction springs (smooth), then every node whose spring force exceeds
-    # mu N has its anchor moved so that it carries mu N (it slides), and again, until no
-    # spring exceeds its limit. A Newton across stick-slip switches would cycle: a
-    # sliding node has no tangent stiffness along the slip.
-    stick = replace(line, friction=np.full(2, np.inf)) if sliding else line
-    its_total = 0
-    for _ in range(_SLIP_PASSES if sliding else 1):
-        it, res, ok = _static_newton(
-            x,
-            work.anchor,
-            *stick.kernel_args(),
-            *work.assemble_args(),
-            *work.solver_args(line),
-            tolerance,
-            max_iterations,
-        )
-        its_total += int(it)
-        if not ok or not sliding:
-            break
-        excess = _slide_anchors(line, x, work)
-        if excess <= tolerance:
-            break
-    else:
-        ok = False  # still sliding after every pass
+    it, res, ok = _static_newton(
+        x,
+        work.anchor,
+        *line.kernel_args(),
+        *work.assemble_args(),
+        *work.solver_args(line),
+        tolerance,
+        max_iterations,
+    )
     anchor = work.anchor.copy()
     update_anchors(x, work.friction, line.seabed_stiffness, work.contact, anchor)
-    return x, its_total, float(res), bool(ok), anchor
-
-
-#: passes of the static slide (return mapping) over the friction anchors
-_SLIP_PASSES = 2000
-
-
-def _friction_axes(line: DiscreteLine, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Unit directions along and across the line in the seabed plane at each node, as
-    the kernel's friction law takes them (the node tangent projected on the plane)."""
-    normal = line.seabed_normal
-    n = line.n_nodes
-    tan = x[np.minimum(np.arange(n) + 1, n - 1)] - x[np.maximum(np.arange(n) - 1, 0)]
-    along = tan - np.outer(tan @ normal, normal)
-    along /= np.maximum(np.linalg.norm(along, axis=1, keepdims=True), 1e-300)
-    return along, np.cross(normal, along)
-
-
-def _slide_anchors(line: DiscreteLine, x: np.ndarray, work: Workspace) -> float:
-    """Move the anchors of nodes whose friction spring force (in ``work``, evaluated at
-    ``x`` with sticking friction) exceeds mu N along or across the line, so that it is
-    mu N. Returns the largest excess [N]: the out-of-balance force the move leaves."""
-    along, across = _friction_axes(line, x)
-    k = np.maximum(line.seabed_stiffness, 1e-300)[:, None]
-    f = work.friction
-    excess = 0.0
-    for axis, mu in ((along, line.friction[0]), (across, line.friction[1])):
-        comp = np.einsum("ia,ia->i", f, axis)
-        cap = mu * work.contact
-        new = np.clip(comp, -cap, cap)
-        excess = max(excess, float(np.max(np.abs(new - comp))))
-        work.anchor[:] += ((new - comp)[:, None] * axis) / k
-    return excess
+    return x, int(it), float(res), bool(ok), anchor
 
 
 def _seated_start(
