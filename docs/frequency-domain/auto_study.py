@@ -195,7 +195,7 @@ def figs2_5(out: Path) -> None:
 def chain(out: Path) -> None:
     auto = run_text(out, "chain-auto", chain_text("auto"))
     time_ = run_text(out, "chain-time", chain_text("time"))
-    rows = frequency_answers(chain_text("frequency"))
+    rows = frequency_answers(chain_text("auto"))
     defaults = AutoSettings()
     c = compare(auto, time_, rows)
     chose = c["chose"]
