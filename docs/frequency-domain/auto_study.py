@@ -41,7 +41,7 @@ CONFIG = REPO / "configs" / "moustafa-figs2-5.yaml"
 CHAIN = REPO / "configs" / "chain-mooring-surge.yaml"
 #: the chain sweep: amplitudes from well inside the linear range to near slack; slow
 #: drift (periods 100 s, 80 s), an intermediate 20 s and wave periods 12.5-8 s
-CHAIN_AMPLITUDES = [0.25, 0.5, 1.0, 2.0, 4.0]
+CHAIN_AMPLITUDES = [0.25, 0.5, 1.0, 2.0, 3.0, 4.0]
 CHAIN_FREQUENCIES = [0.01, 0.0125, 0.05, 0.08, 0.1, 0.125]
 
 
@@ -232,8 +232,8 @@ def chain(out: Path) -> None:
     }
     (HERE / "auto-study-chain.json").write_text(json.dumps(summary, indent=1))
 
-    fig, axes = plt.subplots(2, 4, figsize=(17, 8))
-    for k, ax in enumerate(axes.flat[:5]):
+    fig, axes = plt.subplots(3, 3, figsize=(15, 12))
+    for k, ax in enumerate(axes.flat[: amps.size]):
         for var, style in (("tension_max", "-"), ("tension_min", "--")):
             ax.plot(f, time_[var].values[k] / 1e3, style, color="k", lw=1, label=f"time {var[8:]}")
             fd = c["fmax" if var == "tension_max" else "fmin"][k]
@@ -256,7 +256,7 @@ def chain(out: Path) -> None:
         ("ratio", "min / static tension along the line [-]", defaults.min_tension_ratio),
         ("sag", "largest displacement amplitude / sag [-]", defaults.max_amplitude_sag_ratio),
     )
-    for ax, (key, label, threshold) in zip(axes.flat[5:], panels, strict=True):
+    for ax, (key, label, threshold) in zip(axes.flat[amps.size :], panels, strict=True):
         x = c[key].ravel()
         ch = chose.ravel()
         sc = ax.scatter(
@@ -284,6 +284,7 @@ def chain(out: Path) -> None:
         ax.axvline(threshold, color="C3", lw=1, label="default threshold")
         if key == "travel":
             ax.axvline(0.01, color="C3", lw=0.8, ls="--", label="former default 0.01")
+            ax.set_xscale("log")
         ax.axhline(2.0, color="k", lw=0.8, ls=":", label="2 %")
         ax.set_xlabel(label)
         ax.set_ylabel("frequency vs time domain, max |dT| / T [%]")
@@ -291,7 +292,7 @@ def chain(out: Path) -> None:
         ax.grid(alpha=0.3, which="both")
         if key == "travel":
             ax.legend(fontsize=7)
-    fig.colorbar(sc, ax=axes.flat[7], label="log10 amplitude [m]")
+    fig.colorbar(sc, ax=axes.flat[-1], label="log10 amplitude [m]")
     largest = summary["largest_error_where_frequency_chosen"]
     fig.suptitle(
         f"method auto on the chain mooring ({chose.size} cases): frequency chosen for "
