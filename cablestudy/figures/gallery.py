@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 import xarray as xr
+import yaml
 
 from .statics_figures import TABLE1, table1_chord_excess
 
@@ -213,6 +214,46 @@ def _beam_claim(data: Data) -> tuple[bool, str]:
     )
 
 
+TENSION_STUDIES = (
+    "umbilical-frequency-tension",
+    "umbilical-frequency-tension-30kg",
+    "umbilical-frequency-tension-60kg",
+)
+
+
+def _lowest_with_bending(ds: xr.Dataset) -> tuple[np.ndarray, np.ndarray]:
+    """Bottom tension [N] and lowest natural frequency [Hz] with EI, in tension order."""
+    sub = ds.isel(bending_stiffness=-1)
+    tension = sub["tension_a"].values
+    order = np.argsort(tension)
+    return tension[order], sub["natural_frequency"].isel(mode=0).values[order]
+
+
+def _tension_claim(data: Data) -> tuple[bool, str]:
+    out, holds = [], True
+    for name in TENSION_STUDIES:
+        tension, freq = _lowest_with_bending(data[name])
+        holds = holds and bool(np.all(np.diff(freq) > 0.0))
+        mass = yaml.safe_load(data[name].attrs["study_yaml"])["line"]["segments"][0]
+        out.append(
+            f"{mass['mass_per_length']:g} kg/m: {freq[0]:.4f} Hz at {tension[0] / 1e3:.0f} kN "
+            f"to {freq[-1]:.4f} Hz at {tension[-1] / 1e3:.0f} kN"
+        )
+    return holds, "lowest natural frequency with EI, " + "; ".join(out) + " (rising throughout)"
+
+
+def _mass_claim(data: Data) -> tuple[bool, str]:
+    t30, f30 = _lowest_with_bending(data["umbilical-frequency-tension-30kg"])
+    t60, f60 = _lowest_with_bending(data["umbilical-frequency-tension-60kg"])
+    same = bool(np.allclose(t30, t60, rtol=1e-4))  # the lengths set them to ~1e-6
+    ratio = f60 / f30
+    return same and bool(np.all(ratio > 1.0)), (
+        f"at each of the same bottom tensions the 60 kg/m line's lowest frequency is "
+        f"{ratio.min():.3f} to {ratio.max():.3f} times the 30 kg/m line's: the seed's tension "
+        "T0 + m g s grows with m faster than the inertia m + the 515 kg/m added mass"
+    )
+
+
 def _peak_positions(data: Data) -> tuple[float, float, float]:
     """Length and the arc lengths [m] where the normal displacement and the normal
     velocity are largest over the record."""
@@ -365,6 +406,19 @@ CLAIMS: list[Claim] = [
         "frequency grows the elastic stiffness (Young's modulus) becomes more important",
         ("moustafa-fig7",),
         _fig7_claim,
+    ),
+    Claim(
+        "ajayi",
+        "Figs. 9-12: an increase in tension results in an increase in the frequency of "
+        "oscillation in the normal and transverse directions",
+        TENSION_STUDIES,
+        _tension_claim,
+    ),
+    Claim(
+        "ajayi",
+        "Figs. 11-12: increasing the mass (30 to 60 kg/m) increases the frequency of oscillation",
+        TENSION_STUDIES[1:],
+        _mass_claim,
     ),
     Claim(
         "ajayi",
