@@ -18,7 +18,7 @@ import xarray as xr
 import yaml
 from scipy.optimize import curve_fit
 
-from . import register
+from . import Builder, register
 
 STUDY = "umbilical-time-response"
 
@@ -188,7 +188,8 @@ def _space_time(motion: xr.Dataset, variable: str, label: str, title: str, path:
     return path
 
 
-def _builder(number: int, variable: str, label: str):  # noqa: ANN202 (a registered builder)
+def _builder(number: int, variable: str, label: str) -> Builder:
+    """Register the space-time builder of one seed figure."""
     name = f"umbilical-fig{number}-{variable.replace('_', '-')}"
 
     def build(data: dict[str, xr.Dataset], out: Path) -> Path:
