@@ -155,6 +155,24 @@ def free_period(ds: xr.Dataset, component: str, s: float) -> tuple[float, float,
     return oscillation_period(t[keep], q.values[keep])
 
 
+def _excitation_text(ds: xr.Dataset) -> str:
+    """The end motion of the study in words, for the figure titles."""
+    exc = yaml.safe_load(ds.attrs["study_yaml"])["analysis"]["dynamic"]["excitation"]
+    if isinstance(exc, list):
+        return "under several end motions"
+    direction = np.asarray(exc["direction"], dtype=float)
+    angle = np.degrees(np.arctan2(direction[1], direction[0]))
+    where = f"{angle:.0f} deg from x (the plane of the current)"
+    if "table" in exc:
+        return f"under a {exc['table'][-1][1]:g} m offset of end {exc['end']}, {where}"
+    if "amplitude" in exc:
+        return (
+            f"under a {exc['amplitude']:g} m, {1.0 / exc['frequency']:g} s motion of end "
+            f"{exc['end']}, {where}"
+        )
+    return f"under end motion of end {exc['end']}"
+
+
 #: (seed figure, variable, colour-bar label)
 SEED_FIGURES = (
     (4, "normal_displacement", "normal displacement q [m]"),
@@ -196,8 +214,8 @@ def _builder(number: int, variable: str, label: str) -> Builder:
         ds = data[STUDY]
         motion = local_motion(ds)
         title = (
-            f"ajayi Fig. {number}: {label.split(' [')[0]} of the umbilical (EI, c) standing in "
-            "1200 m of water,\nfrom rest under a 0.5 m vessel offset 50 deg out of its plane"
+            f"ajayi Fig. {number}: {label.split(' [')[0]} of the umbilical (EI, c) standing "
+            f"in 1200 m of water,\nfrom rest, {_excitation_text(ds)}"
         )
         return _space_time(motion, variable, label, title, out / f"{name}.png")
 
