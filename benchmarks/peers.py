@@ -81,8 +81,6 @@ def moordyn_harmonic(
     with the ramp ``r = (1 - cos(pi t / t_r)) / 2`` over ``ramp_periods`` periods (the
     ramp of cablestudy's dynamics); max/min tension at end B over the last ``window``
     periods, sampled ``samples_per_period`` times a period."""
-    import moordyn
-
     text = f"""--------------------- MoorDyn Input File ------------------------------------
 cablestudy benchmark
 ----------------------- LINE TYPES ------------------------------------------
@@ -111,10 +109,49 @@ ID   LineType   AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
 FairTen1
 ------------------------- need this line --------------------------------------
 """
+    return moordyn_prescribed(
+        text,
+        x0=np.array([case.span, 0.0, -1.0 + case.rise]),
+        direction=np.array([1.0, 0.0, 0.0]),
+        amplitude=amplitude,
+        frequency=frequency,
+        periods=periods,
+        window=window,
+        ramp_periods=ramp_periods,
+        samples_per_period=samples_per_period,
+    )
+
+
+def moordyn_prescribed(
+    text: str,
+    *,
+    x0: np.ndarray,
+    direction: np.ndarray,
+    amplitude: float,
+    frequency: float,
+    periods: int,
+    window: int,
+    ramp_periods: float,
+    samples_per_period: int,
+    extra_files: dict[str, str] | None = None,
+) -> PeerDynamicResult:
+    """Run the MoorDyn input file ``text`` (one ``Coupled`` point, at ``x0`` [m]) with that
+    point moved ``amplitude * r(t) * sin(2 pi f t)`` [m] along the unit vector
+    ``direction``, ``r = (1 - cos(pi t / t_r)) / 2`` over ``ramp_periods`` periods (the
+    ramp of cablestudy's dynamics); the motion and its velocity are handed to MoorDyn
+    ``samples_per_period`` times a period. Returns the maximum and minimum magnitude of
+    the force on the coupled point over the last ``window`` periods [N], the time
+    stepping's and the initial state's wall times [s]. ``extra_files`` (name -> text)
+    are written beside the input file."""
+    import moordyn
+
+    direction = np.asarray(direction, dtype=float)
+    x0 = np.asarray(x0, dtype=float)
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "line.txt"
         path.write_text(text)
-        x0 = np.array([case.span, 0.0, -1.0 + case.rise])
+        for name, body in (extra_files or {}).items():
+            (Path(tmp) / name).write_text(body)
         with quiet_stdout():
             t0 = time.perf_counter()
             system = moordyn.Create(str(path))
@@ -135,8 +172,8 @@ FairTen1
                 else:
                     ramp, dramp = 1.0, 0.0
                 sin, cos = np.sin(omega * tn), np.cos(omega * tn)
-                xx = x0 + np.array([ramp * amplitude * sin, 0.0, 0.0])
-                vv = np.array([amplitude * (ramp * omega * cos + dramp * sin), 0.0, 0.0])
+                xx = x0 + ramp * amplitude * sin * direction
+                vv = amplitude * (ramp * omega * cos + dramp * sin) * direction
                 force = moordyn.Step(system, xx, vv, t, dt_out)
                 tension[i] = float(np.linalg.norm(force))
                 t = tn

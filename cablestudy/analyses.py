@@ -26,14 +26,16 @@ from .config.ends import ForceEnd, MooringEnd
 from .config.loader import StudyError, StudySource
 from .counters import COUNTERS
 from .physics.profile import profile_quantities
-from .problem import line_model, medium, static_problem
+from .problem import line_model, medium, static_limits, static_problem
 from .statics import (
     STATIC_SOLVERS,
+    STATUS_BROKEN,
     STATUS_NO_SOLUTION,
     STATUS_NUMERICAL,
     STATUS_OK,
     StaticResult,
 )
+from .statics.limits import apply_limits
 
 if TYPE_CHECKING:  # imported where used: `cablestudy validate` needs none of them
     from .dynamics.excitation import EndMotion
@@ -57,9 +59,19 @@ def check_supported(cases: list[Case], src: StudySource) -> None:
         if case.static_hash in seen:
             continue
         seen.add(case.static_hash)
+        if case.study.line.is_spring:
+            from .spring_cases import spring_problems
+
+            problems.extend(p for p in spring_problems(case, src) if p not in problems)
+            continue
+        problems.extend(p for p in _law_problems(case, src) if p not in problems)
+        if case.study.analysis.database is not None:
+            from .database import database_problems
+
+            problems.extend(p for p in database_problems(case, src) if p not in problems)
         method = case.study.analysis.static.method
         problem = static_problem(case.study)
-        missing = STATIC_SOLVERS[method].unsupported(problem)
+        missing = unsupported_static(method, problem)
         if case.study.analysis.modal is not None:
             for i, mass in enumerate(problem.line.mass):
                 if not mass > 0.0:
@@ -85,6 +97,39 @@ def check_supported(cases: list[Case], src: StudySource) -> None:
         raise StudyError(problems, src.source)
 
 
+def _law_problems(case: Case, src: StudySource) -> list[str]:
+    """Break conditions the time-domain catenary line cannot honour yet (a spring line
+    parts in its own dynamics)."""
+    study = case.study
+    out: list[str] = []
+    if study.analysis.dynamic is not None:
+        breaks = [("line",)] if study.line.failure is not None else []
+        breaks += [
+            ("line", "segments", i)
+            for i, seg in enumerate(study.line.segments)
+            if seg.failure is not None
+        ]
+        for loc in breaks:
+            where = src.line_of((*loc, "failure")) or src.line_of(("line",))
+            out.append(
+                f"{where}: {'.'.join(map(str, loc))}.failure: a failure (break) condition "
+                "is not supported by analysis.dynamic for a kind: catenary line yet (its "
+                "time-domain model cannot part); it is supported by the statics (every "
+                "method: the case is recorded as broken) and by a kind: spring line in "
+                "dynamics (break_time); allowed: omit analysis.dynamic or the failure key"
+            )
+    return out
+
+
+def unsupported_static(method: str, problem: Any) -> list[str]:
+    """What the static ``method`` cannot model in ``problem``: its own list, and bending
+    stiffness for the cable solvers (only method 'discrete' carries EI)."""
+    missing = list(STATIC_SOLVERS[method].unsupported(problem))
+    if method != "discrete" and np.any(problem.line.bending_stiffness > 0.0):
+        missing.append("bending stiffness (bending_stiffness > 0; method 'discrete' models it)")
+    return missing
+
+
 def warm_up(cases: list[Case]) -> None:
     """Load the compiled kernels the cases will need, before any case is timed (the
     runner's scheduler choice probes the first cases: a kernel's one-off load is
@@ -99,54 +144,33 @@ def warm_up(cases: list[Case]) -> None:
 
 
 def linear_model_gaps(study: Any) -> list[tuple[tuple[str | int, ...], str]]:
-    """Keys of ``study`` set to something the modal and frequency-domain (linearised)
-    line model does not represent yet, as (YAML path, what it is); the time-domain model
-    (:mod:`cablestudy.dynamics.model`) has them all."""
-    gaps: list[tuple[tuple[str | int, ...], str]] = []
-    for label in ("a", "b"):
-        if getattr(study.ends, label).bending == "clamped":
-            gaps.append((("ends", label, "bending"), "a clamped end (both ends pinned there)"))
-    for i, seg in enumerate(study.line.segments):
-        if seg.damping_transverse > 0.0:
-            gaps.append(
-                (("line", "segments", i, "damping_transverse"), "transverse structural damping")
-            )
-    for i, att in enumerate(study.line.attachments):
-        if att.added_mass > 0.0:
-            gaps.append((("line", "attachments", i, "added_mass"), "a body's added mass"))
-        if att.drag_area > 0.0:
-            gaps.append((("line", "attachments", i, "drag_area"), "a body's drag"))
-    if study.environment.seabed.stiffness is not None:
-        gaps.append(
-            (("environment", "seabed", "stiffness"), "a compliant seabed (rigid seabed there)")
-        )
-    return gaps
+    """Keys of ``study`` set to something the frequency-domain solver does not represent
+    yet, as (YAML path, what it is): the drag of lumped bodies (its drag linearisation
+    covers the line's Morison drag). Modal analysis and the time domain model them all
+    (one line model, :mod:`cablestudy.dynamics.model`)."""
+    return [
+        (("line", "attachments", i, "drag_area"), "a lumped body's drag")
+        for i, att in enumerate(study.line.attachments)
+        if att.drag_area > 0.0
+    ]
 
 
 def _linear_model_problems(cases: list[Case], src: StudySource) -> list[str]:
-    """Keys that modal analysis or ``method: frequency`` would ignore: refused with the
-    analysis that models them (``method: auto`` runs such cases in the time domain)."""
+    """Keys that ``method: frequency`` would ignore, refused naming the method that
+    models them (``method: auto`` runs such cases in the time domain), and a body's drag
+    in a current, which no static solver models."""
     problems: list[str] = []
     for case in cases:
         study = case.study
-        users = []
-        if study.analysis.modal is not None:
-            users.append("analysis.modal")
         dyn = study.analysis.dynamic
         if dyn is not None and dyn.method == "frequency":
-            users.append("analysis.dynamic.method: frequency")
-        for path, what in linear_model_gaps(study) if users else []:
-            if users == ["analysis.modal"] and path[-1] == "damping_transverse":
-                continue  # natural frequencies are undamped by definition
-            if users == ["analysis.modal"] and path[-1] == "drag_area":
-                continue  # drag does not enter undamped modes
-            loc = ".".join(str(p) for p in path)
-            line = src.line_of(path) or src.line_of(path[:1])
-            problems.append(
-                f"{line}: {loc}: {what} is modelled by the time domain only "
-                f"(analysis.dynamic.method: time or auto), not by {' or '.join(users)}; "
-                "allowed: remove the key, or run the time domain"
-            )
+            for path, what in linear_model_gaps(study):
+                loc = ".".join(str(p) for p in path)
+                problems.append(
+                    f"{src.line_of(path) or src.line_of(path[:1])}: {loc}: {what} is modelled "
+                    "by the time domain, not by analysis.dynamic.method: frequency; allowed: "
+                    "method time or auto, or remove the key"
+                )
         for i, att in enumerate(study.line.attachments):
             if att.drag_area > 0.0 and study.environment.has_current:
                 path = ("line", "attachments", i, "drag_area")
@@ -209,7 +233,7 @@ def _dynamic_problems(cases: list[Case], src: StudySource) -> list[str]:
                 "written on a 'frequency' dimension, and the sweep has an axis named "
                 "'frequency'; allowed: name the sweep axis otherwise (name: ...)"
             )
-        length = study.line.length
+        length = study.line.total_length
         if dyn.history is not None:
             for i, s in enumerate(dyn.history.points):
                 if s > length:
@@ -234,15 +258,19 @@ def solve_static(
     case: Case, deadline: float | None, presolved: dict[str, StaticResult] | None = None
 ) -> StaticResult:
     if presolved is not None and case.static_hash in presolved:
-        return presolved[case.static_hash]
+        return apply_limits(presolved[case.static_hash], static_limits(case.study))
     cached = _STATIC_CACHE.get(case.static_hash)
     if cached is not None:
         _STATIC_CACHE.move_to_end(case.static_hash)
         return cached
+    if case.study.line.is_spring:
+        from .spring_cases import solve_spring_static
+
+        return apply_limits(solve_spring_static(case.study), static_limits(case.study))
     problem = static_problem(case.study)
     method = case.study.analysis.static.method
     solver = STATIC_SOLVERS[method]
-    missing = solver.unsupported(problem)
+    missing = unsupported_static(method, problem)
     if missing:
         # the CLI rejects these before any work (check_supported); a caller that skips
         # that check still gets a failure rather than a solution that ignores an input
@@ -252,6 +280,7 @@ def solve_static(
             f"static method {method!r} does not support {'; '.join(missing)}",
         )
     result = solver.solve(problem, deadline=deadline).check_finite()
+    result = apply_limits(result, static_limits(case.study))
     COUNTERS["static_solves"] += 1
     _STATIC_CACHE[case.static_hash] = result
     while len(_STATIC_CACHE) > _STATIC_CACHE_SIZE:
@@ -340,6 +369,7 @@ def solve_modal(case: Case, static: StaticResult, deadline: float | None) -> Mod
             n_modes=settings.modes,
             include_added_mass=settings.include_added_mass,
             include_bending=settings.include_bending,
+            extras=dynamic_extras(case.study, mesh_static.position),
         ),
         deadline=deadline,
     )
@@ -373,7 +403,7 @@ def static_outputs(res: StaticResult, study: Any = None) -> dict[str, np.ndarray
         "static_residual": np.asarray(res.residual),
         "drag_iterations": np.asarray(res.drag_iterations),
     }
-    if study is not None:
+    if study is not None and not study.line.is_spring:
         env = study.environment
         segs = study.line.segments
         ends = np.cumsum([seg.length for seg in segs])
@@ -383,13 +413,26 @@ def static_outputs(res: StaticResult, study: Any = None) -> dict[str, np.ndarray
                 res.s,
                 res.position,
                 res.tension,
-                axial_stiffness=np.array([segs[i].axial_stiffness for i in k]),
+                axial_stiffness=np.array([segs[i].elastic_stiffness for i in k]),
+                strain=_strain_along(segs, k, res.tension),
                 area=np.array([segs[i].area for i in k]),
                 density=env.density,
                 gravity=env.gravity,
             )
         )
     return out
+
+
+def _strain_along(segs: Any, k: np.ndarray, tension: np.ndarray) -> np.ndarray | None:
+    """Strain at each point from its segment's axial law (None: all linear, T / EA)."""
+    if not any(seg.is_nonlinear for seg in segs):
+        return None
+    strain = np.asarray(tension, dtype=float) / np.array([segs[i].elastic_stiffness for i in k])
+    for i, seg in enumerate(segs):
+        if seg.is_nonlinear:
+            on = k == i
+            strain[on] = seg.axial_law().strain(np.asarray(tension)[on])
+    return strain
 
 
 #: discrete static equilibria of the dynamic model, by (static hash, elements, the
@@ -406,26 +449,21 @@ def discrete_statics(
     from the static solution (cached per static problem, element count and dynamic line
     properties). The third item is an error message (empty when the equilibrium was
     found), the fourth the seabed friction anchors holding that equilibrium."""
-    from .dynamics.model import discretise, element_counts, static_equilibrium
+    from .dynamics.model import discretise_nodes, static_equilibrium, uniform_nodes
 
     dyn = case.study.analysis.dynamic
     assert dyn is not None
     lm = line_model(case.study)
     med = medium(case.study)
     # the clamp directions are the static tangents of the end elements of the mesh
-    counts = element_counts(lm.length, dyn.elements)
-    bounds = lm.segment_ends
-    s_nodes = np.concatenate(
-        [np.linspace(bounds[i], bounds[i + 1], counts[i] + 1)[:-1] for i in range(len(counts))]
-        + [bounds[-1:]]
-    )
+    s_nodes = uniform_nodes(lm, dyn.elements)
     start = np.stack([np.interp(s_nodes, static.s, static.position[:, k]) for k in range(3)], 1)
     extras = dynamic_extras(case.study, start)
     key = (case.static_hash, dyn.elements, repr(extras))
     cached = _DISCRETE_CACHE.get(key)
     if cached is not None:
         return cached
-    line = discretise(lm, med, dyn.elements, extras)
+    line = discretise_nodes(lm, med, s_nodes, extras)
     scale = float(np.nanmax(static.tension))
     if line.has_seabed:
         # the penalty seabed balances each laid node's weight by a penetration of its
@@ -595,6 +633,10 @@ def run_dynamic(
 
     dyn = case.study.analysis.dynamic
     assert dyn is not None
+    if case.study.line.is_spring:
+        from .spring_cases import run_spring_dynamic
+
+        return run_spring_dynamic(case, static, deadline)
     linear: dict[str, np.ndarray] = {}
     if dyn.method in ("frequency", "auto"):
         why = auto_ineligible(dyn, case.study) if dyn.method == "auto" else ""
@@ -738,6 +780,10 @@ def evaluate_case(case: Case, *, presolved: dict[str, StaticResult] | None = Non
         if dyn is not None and status == STATUS_OK:
             status, message, dyn_out = run_dynamic(case, res, deadline)
             data.update(dyn_out)
+        if case.study.analysis.database is not None and status in (STATUS_OK, STATUS_BROKEN):
+            from .database import solve_database
+
+            data.update(solve_database(case.study, deadline))
     except Exception as exc:  # noqa: BLE001 - any solver fault is recorded as data
         status = STATUS_NUMERICAL
         tb = traceback.extract_tb(exc.__traceback__)
@@ -775,6 +821,8 @@ def presolve_statics(cases: list[Case]) -> tuple[dict[str, StaticResult], dict[s
     for case in cases:
         h = case.static_hash
         if h in todo or h in _STATIC_CACHE or case.study.analysis.static.method != "catenary":
+            continue
+        if case.study.line.is_spring:
             continue
         try:
             problem = static_problem(case.study)

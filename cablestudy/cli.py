@@ -28,15 +28,37 @@ def _load(path: str, max_bytes: int | None = None):  # noqa: ANN202
     src = read_study_source(path, max_bytes=max_bytes)
     for note in src.notes:
         print(f"warning: {note}", file=sys.stderr)
+    grid = _grid(src)
+    if grid is not None:
+        from .cases import Case, case_hashes
+
+        check_supported([Case((), {}, grid.template, *case_hashes(grid.template))], src)
+        return src, grid.axes, grid
     axes, cases = expand_cases(src)
     check_supported(cases, src)
     return src, axes, cases
 
 
+def _grid(src):  # noqa: ANN001, ANN202
+    """The study as an array grid (cablestudy.grid) when its sweep allows, else None.
+    Imported only for a sweep of the one kind it takes, so that validate stays light."""
+    sweep = src.data.get("sweep")
+    analysis = src.data.get("analysis")
+    if not isinstance(sweep, dict) or not sweep or not isinstance(analysis, dict):
+        return None
+    static = analysis.get("static")
+    if not isinstance(static, dict) or static.get("method") != "catenary":
+        return None
+    from .grid import expand_grid
+
+    return expand_grid(src)
+
+
 def cmd_validate(args: argparse.Namespace) -> int:
     src, axes, cases = _load(args.config, args.max_study_size)
     dims = ", ".join(f"{a.name}={a.size}" for a in axes) or "no sweep"
-    print(f"{args.config}: valid study {src.data['name']!r}: {len(cases)} cases ({dims})")
+    n = cases.size if not isinstance(cases, list) else len(cases)
+    print(f"{args.config}: valid study {src.data['name']!r}: {n} cases ({dims})")
     return 0
 
 
@@ -54,18 +76,31 @@ def cmd_run(args: argparse.Namespace) -> int:
     src, axes, cases = _load(args.config, args.max_study_size)
     from .analyses import warm_up
 
-    warm_up(cases)
     try:
-        summary = run_study(
-            src,
-            axes,
-            cases,
-            args.out,
-            scheduler=scheduler,
-            workers=args.workers,
-            use_cache=not args.no_cache,
-            progress=args.progress,
-        )
+        if not isinstance(cases, list):  # a sweep run as arrays (cablestudy.grid)
+            from .runner import run_grid_study
+
+            summary = run_grid_study(
+                src,
+                cases,
+                args.out,
+                scheduler=scheduler,
+                workers=args.workers,
+                use_cache=not args.no_cache,
+                progress=args.progress,
+            )
+        else:
+            warm_up(cases)
+            summary = run_study(
+                src,
+                axes,
+                cases,
+                args.out,
+                scheduler=scheduler,
+                workers=args.workers,
+                use_cache=not args.no_cache,
+                progress=args.progress,
+            )
     except KeyboardInterrupt:
         print(
             "\ninterrupted: finished cases are cached; run the same command again to resume",
@@ -320,6 +355,7 @@ def build_parser() -> argparse.ArgumentParser:
         "--shape", action="store_true", help="draw profiles on s as line shapes in the x-z plane"
     )
     p.set_defaults(func=cmd_plot)
+    _add_lookup_parser(sub)
     return parser
 
 
@@ -334,6 +370,51 @@ def main(argv: list[str] | None = None) -> int:
     except StudyError as exc:
         print(f"invalid study:\n{exc}", file=sys.stderr)
         return 2
+
+
+def _add_lookup_parser(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+    p = sub.add_parser(
+        "lookup",
+        help="interpolate a quasi-static database (analysis.database) at an end-B position",
+    )
+    p.add_argument("database", help="result file holding the database")
+    p.add_argument(
+        "--at",
+        nargs=2,
+        type=float,
+        required=True,
+        metavar=("X", "Z"),
+        help="horizontal distance [m] and height difference [m] of end B from end A",
+    )
+    p.add_argument(
+        "--sel",
+        action="append",
+        default=None,
+        metavar="DIM=VALUE",
+        help="one case of a swept study, by dimension and value (repeatable)",
+    )
+    p.set_defaults(func=cmd_lookup)
+
+
+def cmd_lookup(args: argparse.Namespace) -> int:
+    """Print the interpolated end forces [N], tensions [N] and laid length [m] as JSON."""
+    from .database import open_database
+
+    sel: dict[str, object] = {}
+    for item in args.sel or []:
+        dim, _, value = item.partition("=")
+        try:
+            sel[dim] = float(value)
+        except ValueError:
+            sel[dim] = value
+    try:
+        db = open_database(args.database, **sel)
+        out = db.lookup(args.at[0], args.at[1])
+    except (ValueError, KeyError, OSError) as exc:
+        print(f"lookup: {exc}", file=sys.stderr)
+        return 2
+    print(json.dumps({k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in out.items()}))
+    return 0
 
 
 if __name__ == "__main__":

@@ -51,7 +51,7 @@ def linearised(
 ) -> tuple[ReducedLine | None, str]:
     """The case's line linearised about its static shape at ``elements + 1`` equally
     spaced nodes (cached per static problem); or None and why not."""
-    from .analyses import _static_at
+    from .analyses import _static_at, dynamic_extras
 
     dyn = case.study.analysis.dynamic
     assert dyn is not None
@@ -85,6 +85,7 @@ def linearised(
                     end_a=problem.end_a,
                     end_b=problem.end_b,
                     static=mesh,
+                    extras=dynamic_extras(case.study, mesh.position),
                 )
             )
             COUNTERS["linear_assemblies"] += 1

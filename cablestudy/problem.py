@@ -12,6 +12,7 @@ from .config import FixedEnd, ForceEnd, MooringEnd, Study
 from .config.analysis import Installation
 from .config.ends import End
 from .statics import EndCondition, LineModel, Medium, StaticProblem
+from .statics.limits import StaticLimits
 
 
 def line_model(study: Study) -> LineModel:
@@ -49,7 +50,7 @@ def line_model(study: Study) -> LineModel:
         length=col("length"),
         weight=weight,
         mass=mass,
-        axial_stiffness=col("axial_stiffness"),
+        axial_stiffness=np.array([s.elastic_stiffness for s in segs], dtype=float),
         diameter=col("diameter"),
         drag_normal=col("drag_normal"),
         drag_tangential=col("drag_tangential"),
@@ -61,7 +62,56 @@ def line_model(study: Study) -> LineModel:
         attachment_force=att_force,
         attachment_mass=np.array([a.mass for a in atts], dtype=float),
         attachment_volume=np.array([a.volume for a in atts], dtype=float),
+        axial_law=_laws(segs),
     )
+
+
+def _laws(segs: list[Any]) -> tuple:
+    """Per segment its non-linear axial law, None where it is T = EA e (``axial_stiffness``,
+    ``{law: linear}`` or a polynomial with only its first coefficient); () when all are
+    linear, so linear lines keep the closed-form and compiled paths."""
+    laws = tuple(s.axial_law() if s.is_nonlinear else None for s in segs)
+    return laws if any(law is not None for law in laws) else ()
+
+
+def static_limits(study: Study) -> StaticLimits:
+    """Break limits per segment (a segment's own ``failure``, else ``line.failure``) and the
+    strain range each non-linear law was checked on."""
+    from .config.line import DEFAULT_MAX_STRAIN
+
+    line = study.line
+    if line.is_spring:
+        brk = line.failure
+        return StaticLimits(
+            segment_ends=np.array([0.0, line.total_length]),
+            break_tension=np.array([brk.limit if brk else np.inf]),
+            break_source=(_break_source(brk, "line.failure"),),
+        )
+    tension, source = [], []
+    for i, seg in enumerate(line.segments):
+        brk = seg.failure or line.failure
+        key = f"line.segments.{i}.failure" if seg.failure else "line.failure"
+        tension.append(brk.limit if brk else np.inf)
+        source.append(_break_source(brk, key))
+    return StaticLimits(
+        segment_ends=np.concatenate(([0.0], np.cumsum([s.length for s in line.segments]))),
+        break_tension=np.array(tension, dtype=float),
+        break_source=tuple(source),
+        law=tuple(s.axial_law() if s.is_nonlinear else None for s in line.segments),
+        max_strain=tuple(
+            float((s.axial.max_strain if s.axial else None) or DEFAULT_MAX_STRAIN)
+            for s in line.segments
+        ),
+    )
+
+
+def _break_source(brk: Any, key: str) -> str:
+    if brk is None:
+        return ""
+    if brk.tension is not None:
+        return f"{key}.tension"
+    mbl, sf = brk.minimum_breaking_load, brk.safety_factor or 1.0
+    return f"{key}: minimum_breaking_load {mbl:g} N / safety_factor {sf:g}"
 
 
 def medium(study: Study) -> Medium:
@@ -108,6 +158,9 @@ def static_problem(study: Study) -> StaticProblem:
         max_iterations=settings.max_iterations,
         drag_elements=settings.drag_elements or 0,
         stretched_drag_diameter=settings.drag_diameter == "stretched",
+        bending_ends=(study.ends.a.bending, study.ends.b.bending),
+        seabed_stiffness=study.environment.seabed.stiffness,
+        friction_lateral=study.environment.seabed.friction_lateral,
         **_installation(settings.installation),
     )
 

@@ -30,6 +30,12 @@ class OutputVariable:
     dtype: str = "float64"
 
 
+#: status of a case whose line broke in statics (cablestudy.statics.base.STATUS_BROKEN):
+#: its data are kept, it is not counted as failed
+STATUS_BROKEN = 10
+#: statuses whose case data are written (others are NaN)
+KEPT_STATUSES = (0, STATUS_BROKEN)
+
 #: every data variable a case may produce: name -> extra dims, units, long name.
 #: Numeric outputs (counters included) are float64 so that a failed case is NaN in every
 #: one of them (DESIGN.md); dimensionless and text variables have units "1" (CF).
@@ -51,6 +57,49 @@ OUTPUTS: dict[str, OutputVariable] = {
     "arc_length": OutputVariable(("s",), "m", "unstretched arc length from end A"),
     "force_a": OutputVariable(("component",), "N", "force of the line on the attachment at end A"),
     "force_b": OutputVariable(("component",), "N", "force of the line on the attachment at end B"),
+    "break_time": OutputVariable(
+        (), "s", "time at which the line parted (NaN: it did not), kind: spring with line.failure"
+    ),
+    "database_force_a": OutputVariable(
+        ("horizontal_distance", "height_difference", "component"),
+        "N",
+        "quasi-static database: force of the line on end A",
+    ),
+    "database_force_b": OutputVariable(
+        ("horizontal_distance", "height_difference", "component"),
+        "N",
+        "quasi-static database: force of the line on end B",
+    ),
+    "database_tension_a": OutputVariable(
+        ("horizontal_distance", "height_difference"), "N", "quasi-static database: tension at A"
+    ),
+    "database_tension_b": OutputVariable(
+        ("horizontal_distance", "height_difference"), "N", "quasi-static database: tension at B"
+    ),
+    "database_tension_max": OutputVariable(
+        ("horizontal_distance", "height_difference"),
+        "N",
+        "quasi-static database: largest tension along the line",
+    ),
+    "database_laid_length": OutputVariable(
+        ("horizontal_distance", "height_difference"),
+        "m",
+        "quasi-static database: unstretched length on the seabed",
+    ),
+    "database_status": OutputVariable(
+        ("horizontal_distance", "height_difference"),
+        "1",
+        "quasi-static database: static status per grid point (0 ok)",
+    ),
+    "database_distance_grid": OutputVariable(
+        ("horizontal_distance",), "m", "horizontal distance from end A to end B"
+    ),
+    "database_height_grid": OutputVariable(
+        ("height_difference",), "m", "height of end B above end A"
+    ),
+    "database_heading": OutputVariable(
+        (), "rad", "heading of the database plane from end A (from +x towards +y)"
+    ),
     "tension_a": OutputVariable((), "N", "tension at end A"),
     "tension_b": OutputVariable((), "N", "tension at end B"),
     "laid_length": OutputVariable((), "m", "unstretched length resting on the seabed"),
@@ -151,9 +200,13 @@ OUTPUTS: dict[str, OutputVariable] = {
 
 #: per-case bookkeeping variables (always present)
 CASE_VARIABLES: dict[str, OutputVariable] = {
-    "status": OutputVariable((), "1", "case status: 0 ok, nonzero failed", "int64"),
+    "status": OutputVariable(
+        (), "1", "case status: 0 ok, 10 line broken (data kept), other nonzero failed", "int64"
+    ),
     "message": OutputVariable((), "1", "why the case failed (empty when ok)", "str"),
-    "wall_time": OutputVariable((), "s", "wall time of the case"),
+    "wall_time": OutputVariable(
+        (), "s", "wall time of the case (cases solved together as arrays share their time equally)"
+    ),
 }
 
 COORDINATES: dict[str, tuple[str, str]] = {
@@ -200,58 +253,9 @@ def _fill_rows(
             arr[idx + tuple(slice(0, n) for n in np.shape(v))] = v
 
 
-def assemble(
-    axes: list[SweepAxis],
-    cases: list[Case],
-    records: dict[str, CaseRecord],
-    src: StudySource,
-    *,
-    solver_settings: dict[str, Any] | None = None,
-) -> xr.Dataset:
-    """One Dataset on the sweep axes. A failed case is NaN (or -1 for counters) in its
-    data variables, never dropped."""
-    shape = tuple(a.size for a in axes)
-    dims = tuple(a.name for a in axes)
-    by_index = {c.index: records[c.hash] for c in cases}
-    present = sorted({k for r in by_index.values() for k in r.data})
-    unknown = [k for k in present if k not in OUTPUTS]
-    if unknown:
-        raise KeyError(f"output variables not declared in results.OUTPUTS: {unknown}")
-
-    # lengths of extra dims: the largest any case produced
-    extent: dict[str, int] = {"component": 3}
-    for rec in by_index.values():
-        for name, arr in rec.data.items():
-            for d, n in zip(OUTPUTS[name].dims, np.shape(arr), strict=True):
-                extent[d] = max(extent.get(d, 0), n)
-
-    data_vars: dict[str, Any] = {}
-    for name, spec in {**CASE_VARIABLES, **{k: OUTPUTS[k] for k in present}}.items():
-        tail = tuple(extent[d] for d in spec.dims)
-        dtype = object if spec.dtype == "str" else spec.dtype
-        arr = np.full(shape + tail, _fill(spec.dtype), dtype=dtype)
-        if name in CASE_VARIABLES:
-            rows = [(idx, getattr(rec, name)) for idx, rec in by_index.items()]
-        else:
-            rows = [
-                (idx, np.asarray(rec.data[name]))
-                for idx, rec in by_index.items()
-                if name in rec.data and rec.status == 0
-            ]
-        if spec.dtype == "str":
-            # text as Python str (not 0-d arrays), so that netCDF sees one type when
-            # failed cases hold the fill value ""
-            rows = [
-                (idx, str(v.item()) if isinstance(v, np.ndarray) and v.ndim == 0 else v)
-                for idx, v in rows
-            ]
-        _fill_rows(arr, rows, tail)
-        data_vars[name] = (
-            dims + spec.dims,
-            arr,
-            {"units": spec.units, "long_name": spec.long_name},
-        )
-
+def sweep_coordinates(axes: list[SweepAxis]) -> dict[str, Any]:
+    """The coordinates of the sweep dimensions (and, for axes of non-scalar values or zip
+    groups, their value coordinates), with units and long names."""
     coords: dict[str, Any] = {}
     for a in axes:
         numeric = a.coordinate().dtype.kind in "iuf"
@@ -293,6 +297,62 @@ def assemble(
                         np.array([json.dumps(v) for v in vals], dtype=object),
                         {"long_name": f"{long_name} (JSON)", "units": "1"},
                     )
+    return coords
+
+
+def assemble(
+    axes: list[SweepAxis],
+    cases: list[Case],
+    records: dict[str, CaseRecord],
+    src: StudySource,
+    *,
+    solver_settings: dict[str, Any] | None = None,
+) -> xr.Dataset:
+    """One Dataset on the sweep axes. A failed case is NaN (or -1 for counters) in its
+    data variables, never dropped."""
+    shape = tuple(a.size for a in axes)
+    dims = tuple(a.name for a in axes)
+    by_index = {c.index: records[c.hash] for c in cases}
+    present = sorted({k for r in by_index.values() for k in r.data})
+    unknown = [k for k in present if k not in OUTPUTS]
+    if unknown:
+        raise KeyError(f"output variables not declared in results.OUTPUTS: {unknown}")
+
+    # lengths of extra dims: the largest any case produced
+    extent: dict[str, int] = {"component": 3}
+    for rec in by_index.values():
+        for name, arr in rec.data.items():
+            for d, n in zip(OUTPUTS[name].dims, np.shape(arr), strict=True):
+                extent[d] = max(extent.get(d, 0), n)
+
+    data_vars: dict[str, Any] = {}
+    for name, spec in {**CASE_VARIABLES, **{k: OUTPUTS[k] for k in present}}.items():
+        tail = tuple(extent[d] for d in spec.dims)
+        dtype = object if spec.dtype == "str" else spec.dtype
+        arr = np.full(shape + tail, _fill(spec.dtype), dtype=dtype)
+        if name in CASE_VARIABLES:
+            rows = [(idx, getattr(rec, name)) for idx, rec in by_index.items()]
+        else:
+            rows = [
+                (idx, np.asarray(rec.data[name]))
+                for idx, rec in by_index.items()
+                if name in rec.data and rec.status in KEPT_STATUSES
+            ]
+        if spec.dtype == "str":
+            # text as Python str (not 0-d arrays), so that netCDF sees one type when
+            # failed cases hold the fill value ""
+            rows = [
+                (idx, str(v.item()) if isinstance(v, np.ndarray) and v.ndim == 0 else v)
+                for idx, v in rows
+            ]
+        _fill_rows(arr, rows, tail)
+        data_vars[name] = (
+            dims + spec.dims,
+            arr,
+            {"units": spec.units, "long_name": spec.long_name},
+        )
+
+    coords: dict[str, Any] = sweep_coordinates(axes)
     if "component" in extent and any("component" in OUTPUTS[k].dims for k in present):
         coords["component"] = (
             "component",
@@ -309,7 +369,7 @@ def assemble(
         arcs = [
             np.asarray(r.data["arc_length"])
             for r in by_index.values()
-            if "arc_length" in r.data and r.status == 0
+            if "arc_length" in r.data and r.status in KEPT_STATUSES
         ]
         if arcs and all(len(a) == extent["s"] and np.array_equal(a, arcs[0]) for a in arcs):
             coords["s"] = ("s", arcs[0], {"units": "m", "long_name": COORDINATES["s"][1]})
@@ -319,7 +379,7 @@ def assemble(
         freqs = [
             np.asarray(r.data["transfer_frequency"])
             for r in by_index.values()
-            if "transfer_frequency" in r.data and r.status == 0
+            if "transfer_frequency" in r.data and r.status in KEPT_STATUSES
         ]
         if freqs and all(np.array_equal(f, freqs[0]) for f in freqs):
             spec = OUTPUTS["transfer_frequency"]
@@ -329,14 +389,32 @@ def assemble(
                 {"units": spec.units, "long_name": spec.long_name},
             )
             data_vars.pop("transfer_frequency")
+    for grid, dim in (
+        ("database_distance_grid", "horizontal_distance"),
+        ("database_height_grid", "height_difference"),
+    ):
+        # the quasi-static database's grid: a coordinate when every case has the same
+        if grid in data_vars and dim not in coords:
+            grids = [
+                np.asarray(r.data[grid])
+                for r in by_index.values()
+                if grid in r.data and r.status in KEPT_STATUSES
+            ]
+            if grids and all(np.array_equal(g, grids[0]) for g in grids):
+                spec = OUTPUTS[grid]
+                coords[dim] = (dim, grids[0], {"units": spec.units, "long_name": spec.long_name})
+                data_vars.pop(grid)
     if "arc_length" in data_vars and "s" not in coords:
         coords["s"] = ("s", np.arange(extent["s"]), {"units": "1", "long_name": "node index"})
 
     ds = xr.Dataset(data_vars, coords=coords)
     ds.attrs.update(provenance(src, solver_settings or {}))
-    n_failed = int(np.count_nonzero(ds["status"].values != 0))
+    status = ds["status"].values
+    n_failed = int(np.count_nonzero((status != 0) & (status != STATUS_BROKEN)))
     ds.attrs["cases"] = int(np.prod(shape)) if shape else 1
     ds.attrs["cases_failed"] = n_failed
+    if np.any(status == STATUS_BROKEN):
+        ds.attrs["cases_broken"] = int(np.count_nonzero(status == STATUS_BROKEN))
     return ds
 
 
@@ -392,11 +470,19 @@ def write_atomic(ds: xr.Dataset, path: str | Path) -> Path:
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     os.close(fd)
     try:
-        encoding = {
+        encoding: dict[str, dict[str, Any]] = {
             name: {"zlib": True, "complevel": 1, "shuffle": True}
             for name, v in ds.data_vars.items()
             if v.dtype.kind == "f"
         }
+        for name, v in ds.data_vars.items():
+            if v.chunks is not None and name in encoding:
+                # variables streamed from chunk files (dask): netCDF chunks of one block
+                # of cases (at most 4 MiB), so that reading one case touches little
+                block = [c[0] for c in v.chunks]
+                per_case = max(1, int(np.prod(block[1:])) * v.dtype.itemsize)
+                block[0] = max(1, min(block[0], (4 << 20) // per_case))
+                encoding[name]["chunksizes"] = tuple(block)
         ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
         with open(tmp, "rb+") as fh:  # on disk before the rename makes it visible
             os.fsync(fh.fileno())
@@ -406,3 +492,87 @@ def write_atomic(ds: xr.Dataset, path: str | Path) -> Path:
         if os.path.exists(tmp):
             os.unlink(tmp)
     return path
+
+
+def grid_dataset(
+    axes: list[SweepAxis],
+    chunks: list[tuple[int, int, Path]],
+    src: StudySource,
+    *,
+    names: list[str],
+    tails: dict[str, tuple[int, ...]],
+    arc: np.ndarray | None,
+    solver_settings: dict[str, Any],
+    lazy: bool = True,
+) -> xr.Dataset:
+    """The dataset of a study run as arrays (:mod:`cablestudy.grid`), with the same
+    variables, dims, coordinates and attributes as :func:`assemble` would give, its large
+    variables backed lazily (dask) by the chunk files ``(lo, hi, path)`` (rows ``lo:hi``
+    of the first axis each, written by the runner), so that writing it streams chunk by
+    chunk; with ``lazy=False`` they are read into memory instead (small studies).
+    ``arc``: the arc lengths every successful case shares (then the ``s`` coordinate, as
+    in :func:`assemble`), or None (then ``arc_length`` stays a variable and ``s`` is the
+    node index)."""
+    shape = tuple(a.size for a in axes)
+    dims = tuple(a.name for a in axes)
+    rest = shape[1:]
+
+    def load(path: Path, name: str) -> np.ndarray:
+        with np.load(path, allow_pickle=False) as z:
+            return z[f"v_{name}"]
+
+    def column(name: str) -> np.ndarray:
+        return np.concatenate([load(path, name) for _, _, path in chunks])
+
+    present = [k for k in names if not (k == "arc_length" and arc is not None)]
+    data_vars: dict[str, Any] = {}
+    status = column("status").reshape(shape)
+    message = column("message").astype(object).reshape(shape)
+    wall = column("wall_time").reshape(shape)
+    for name, arr in (("status", status), ("message", message), ("wall_time", wall)):
+        spec = CASE_VARIABLES[name]
+        data_vars[name] = (dims, arr, {"units": spec.units, "long_name": spec.long_name})
+    for name in sorted(present):
+        spec = OUTPUTS[name]
+        tail = tails[name]
+        if lazy:
+            import dask
+            import dask.array as da
+
+            values: Any = da.concatenate(
+                [
+                    da.from_delayed(
+                        dask.delayed(load)(path, name).reshape((hi - lo, *rest, *tail)),
+                        shape=(hi - lo, *rest, *tail),
+                        dtype=np.float64,
+                    )
+                    for lo, hi, path in chunks
+                ],
+                axis=0,
+            )
+        else:  # small enough to hold: no dask needed
+            values = np.concatenate(
+                [load(path, name).reshape((hi - lo, *rest, *tail)) for lo, hi, path in chunks]
+            )
+        data_vars[name] = (
+            dims + spec.dims,
+            values,
+            {"units": spec.units, "long_name": spec.long_name},
+        )
+    coords = sweep_coordinates(axes)
+    if any("component" in OUTPUTS[k].dims for k in present):
+        coords["component"] = (
+            "component",
+            np.array(["x", "y", "z"]),
+            {"units": COORDINATES["component"][0], "long_name": COORDINATES["component"][1]},
+        )
+    if arc is not None:
+        coords["s"] = ("s", arc, {"units": "m", "long_name": COORDINATES["s"][1]})
+    elif "arc_length" in present:
+        n_s = tails["arc_length"][0]
+        coords["s"] = ("s", np.arange(n_s), {"units": "1", "long_name": "node index"})
+    ds = xr.Dataset(data_vars, coords=coords)
+    ds.attrs.update(provenance(src, solver_settings))
+    ds.attrs["cases"] = int(np.prod(shape))
+    ds.attrs["cases_failed"] = int(np.count_nonzero(status != 0))
+    return ds

@@ -7,12 +7,9 @@ The runner moves cases and records; it knows nothing of physics (it calls
 
 from __future__ import annotations
 
-import dataclasses
-import hashlib
 import json
 import math
 import os
-import pickle
 import re
 import sys
 import tempfile
@@ -23,18 +20,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from .analyses import evaluate_chunk
+from .cache import LOST_PREFIX, TRANSIENT_PREFIXES, CaseCache
 from .cases import Case, SweepAxis
 from .config.loader import StudySource
 from .results import CaseRecord, assemble, write_atomic
 
 #: status of a case whose task failed outside the solvers (worker lost)
 STATUS_TASK_FAILED = 9
-#: messages of records that must not be cached (transient: a rerun may succeed)
-LOST_PREFIX = "task failed: "
-TRANSIENT_PREFIXES = ("time limit", LOST_PREFIX)
 
 SYNCHRONOUS = "synchronous"
 PROCESSES = "processes"
@@ -42,11 +35,26 @@ THREADS = "threads"
 AUTO = "auto"
 SCHEDULERS = (AUTO, SYNCHRONOUS, THREADS, PROCESSES)
 #: auto scheduler: seconds spent timing cases in this process before deciding, and the
-#: estimated remaining run time above which worker processes are started
+#: estimated remaining run time [s] above which it runs them in parallel (a local cluster
+#: of forked workers starts in about 0.3 s; threads need no start)
 AUTO_PROBE_SECONDS = 0.5
+AUTO_PARALLEL_AFTER = 2.0
+#: other local schedulers: seconds of cases timed here first (sizes the chunks)
+PROBE_SECONDS = 0.2
+#: seconds of work per chunk in the two-thread probe, and the speed-up of two threads
+#: over one above which threads are used rather than processes
+THREAD_PROBE_SECONDS = 0.15
+THREADS_SCALE = 1.5
+#: a task should take about this long [s]: dask's own cost is a few ms per task
+#: (README), so tasks of a second keep it under 1 %, and an interrupt loses little
+TARGET_TASK_SECONDS = 1.0
+#: cases per chunk when their cost is not known, and at most (bounds a task's memory)
+DEFAULT_CHUNK_CASES = 200
+MAX_CHUNK_CASES = 20_000
+#: runs of adjacent cases per chunk, from evenly spaced parts of the sweep (make_chunks)
+STRIPES = 4
 #: seconds to wait for a dask.distributed scheduler given by its address
-CONNECT_TIMEOUT = 10.0
-AUTO_PARALLEL_AFTER = 5.0
+CONNECT_TIMEOUT = 3.0
 
 
 class SchedulerUnreachable(RuntimeError):
@@ -85,94 +93,55 @@ def run_chunk(cases: list[Case]) -> list[CaseRecord]:
     return evaluate_chunk(cases)
 
 
+def chunk_limit(per_case: float | None) -> int:
+    """Cases per task: as many as take :data:`TARGET_TASK_SECONDS` at ``per_case``
+    seconds a case (between 1 and :data:`MAX_CHUNK_CASES`), or
+    :data:`DEFAULT_CHUNK_CASES` when the cost is not known."""
+    if per_case is None or not per_case > 0 or not math.isfinite(per_case):
+        return DEFAULT_CHUNK_CASES
+    return int(max(1, min(MAX_CHUNK_CASES, round(TARGET_TASK_SECONDS / per_case))))
+
+
 def make_chunks(
-    cases: list[Case], workers: int, *, min_chunks_per_worker: int = 4, max_chunk: int = 200
+    cases: list[Case],
+    workers: int,
+    *,
+    min_chunks_per_worker: int = 4,
+    max_chunk: int | None = None,
+    per_case: float | None = None,
 ) -> list[list[Case]]:
-    """Batch cases so that thousands of cheap cases are not drowned by task overhead,
-    while every worker gets several chunks (load balance) and an interrupt loses at most
-    one chunk per worker."""
+    """Batch cases so that a task takes about a second (``per_case``: the measured cost
+    of a case [s]; unknown: at most :data:`DEFAULT_CHUNK_CASES` cases), while every
+    worker gets several chunks (load balance) and an interrupt loses at most one chunk
+    per worker."""
     if not cases:
         return []
+    if max_chunk is None:
+        max_chunk = chunk_limit(per_case)
     ordered = sorted(cases, key=lambda c: (c.static_hash, c.index))
     n_chunks = max(
         min(len(ordered), workers * min_chunks_per_worker), math.ceil(len(ordered) / max_chunk)
     )
-    # sizes differ by at most one
-    bounds = [len(ordered) * i // n_chunks for i in range(n_chunks + 1)]
-    return [ordered[lo:hi] for lo, hi in zip(bounds[:-1], bounds[1:], strict=True)]
-
-
-def _compact(record: CaseRecord) -> CaseRecord:
-    """The record with 0-d arrays as Python scalars (pickles three times faster)."""
-    data = {
-        k: (v.item() if isinstance(v, np.ndarray) and v.ndim == 0 else v)
-        for k, v in record.data.items()
-    }
-    return dataclasses.replace(record, data=data)
-
-
-class CaseCache:
-    """Finished case records on disk, one pickle file per finished chunk, keyed by case
-    hash. Written atomically (temporary file then rename)."""
-
-    def __init__(self, directory: Path | None) -> None:
-        self.directory = directory
-        self.records: dict[str, CaseRecord] = {}
-        if directory is not None and directory.is_dir():
-            for path in sorted(directory.glob("chunk-*.pkl")):
-                try:
-                    with open(path, "rb") as fh:
-                        for rec in pickle.load(fh):
-                            self.records[rec.hash] = rec
-                except Exception:  # noqa: BLE001 - an unreadable cache file is recomputed
-                    path.unlink(missing_ok=True)
-
-    def store(self, records: list[CaseRecord]) -> None:
-        """Keep ``records`` and write the cacheable ones (not time-limited, not lost with
-        their worker) to one new chunk file."""
-        cacheable = [r for r in records if not r.message.startswith(TRANSIENT_PREFIXES)]
-        for rec in records:
-            self.records[rec.hash] = rec
-        if self.directory is None or not cacheable:
-            return
-        key = hashlib.sha256("".join(r.hash for r in cacheable).encode()).hexdigest()[:24]
-        self._write(self.directory / f"chunk-{key}.pkl", [_compact(r) for r in cacheable])
-
-    def _write(self, path: Path, records: list[CaseRecord]) -> None:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".chunk-", suffix=".tmp")
-        try:
-            with os.fdopen(fd, "wb") as fh:
-                pickle.dump(records, fh, protocol=pickle.HIGHEST_PROTOCOL)
-                fh.flush()
-                os.fsync(fh.fileno())
-            os.replace(tmp, path)
-        finally:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
-
-    def compact(self, keep: set[str]) -> None:
-        """Rewrite the cache as one file holding the records in ``keep`` (the cases of the
-        study as it now stands), dropping records of edited-away cases. The new file is
-        in place before the old ones are removed, so a crash loses nothing."""
-        if self.directory is None or not self.directory.is_dir():
-            return
-        old = sorted(self.directory.glob("chunk-*.pkl"))
-        records = [
-            r
-            for h, r in self.records.items()
-            if h in keep and not r.message.startswith(TRANSIENT_PREFIXES)
-        ]
-        if not records:
-            return
-        key = hashlib.sha256("".join(sorted(r.hash for r in records)).encode()).hexdigest()
-        target = self.directory / f"chunk-{key[:24]}.pkl"
-        if old == [target]:
-            return
-        self._write(target, records)
-        for path in old:
-            if path != target:
-                path.unlink(missing_ok=True)
+    # each chunk takes STRIPES runs of adjacent cases from evenly spaced parts of the
+    # sweep: neighbouring cases cost alike (a taut-slack corner of a dynamic sweep can
+    # cost 50 times the rest), so this spreads an expensive region over several tasks,
+    # while cases sharing a static problem stay mostly together. Chunk sizes differ by at
+    # most one.
+    n = len(ordered)
+    sizes = [n * (j + 1) // n_chunks - n * j // n_chunks for j in range(n_chunks)]
+    chunks: list[list[Case]] = [[] for _ in range(n_chunks)]
+    pos = 0
+    for k in range(STRIPES):  # stripe k of every chunk, then stripe k + 1 ...
+        for j, size in enumerate(sizes):
+            take = size * (k + 1) // STRIPES - size * k // STRIPES
+            chunks[j].extend(ordered[pos : pos + take])
+            pos += take
+    # in the order to submit them: from both ends of the sweep inwards. A case's cost
+    # mostly changes monotonically along an axis (larger amplitude, higher frequency,
+    # longer line), so the costliest chunk is at one end or the other: started first, it
+    # is not the tail of the study
+    order = [i // 2 if i % 2 == 0 else n_chunks - 1 - i // 2 for i in range(n_chunks)]
+    return [chunks[i] for i in order if chunks[i]]
 
 
 @dataclass
@@ -184,6 +153,10 @@ class RunSummary:
     n_failed: int
     wall_time: float
     failures: dict[str, int] = field(default_factory=dict)
+    #: the scheduler that ran the cases after the in-process probe ('' if none ran)
+    scheduler: str = ""
+    #: seconds per phase, where measured (solve, assembly, write)
+    timings: dict[str, float] = field(default_factory=dict)
 
     def report(self) -> str:
         """Text summary; failures grouped by message (numbers in messages masked so that
@@ -191,7 +164,7 @@ class RunSummary:
         lines = [
             f"wrote {self.path}: {self.n_cases} cases ({self.n_computed} computed, "
             f"{self.n_reused} reused from cache), {self.n_failed} failed, "
-            f"{self.wall_time:.2f} s"
+            f"{self.wall_time:.2f} s" + (f" ({self.scheduler})" if self.scheduler else "")
         ]
         for pattern, (count, example) in group_failures(self.failures).items():
             if len(lines) == 1:
@@ -217,77 +190,154 @@ def group_failures(failures: dict[str, int]) -> dict[str, tuple[int, str]]:
 
 
 class Progress:
-    """A one-line progress bar on a terminal, shown only once a study has run for a few
-    seconds."""
+    """A tqdm progress bar of finished cases on standard error: only on a terminal (or
+    when ``enabled``), and only once the study has run for ``delay`` seconds, so quick
+    studies and logs stay clean."""
 
     def __init__(self, total: int, *, enabled: bool | None = None, delay: float = 2.0) -> None:
         self.total = total
         self.done = 0
-        self.t0 = time.monotonic()
-        self.delay = delay
         self.enabled = sys.stderr.isatty() if enabled is None else enabled
-        self.shown = False
+        self._bar = None
+        if self.enabled:
+            from tqdm import tqdm
+
+            self._bar = tqdm(
+                total=total,
+                file=sys.stderr,
+                delay=delay,
+                ascii=" #",
+                unit="case",
+                dynamic_ncols=True,
+                bar_format="[{bar:30}] {n_fmt}/{total_fmt} cases, {elapsed}, eta {remaining} ",
+            )
 
     def update(self, n: int) -> None:
         self.done += n
-        if not self.enabled:
-            return
-        elapsed = time.monotonic() - self.t0
-        if elapsed < self.delay and self.done < self.total:
-            return
-        frac = self.done / max(self.total, 1)
-        bar = "#" * int(30 * frac)
-        eta = elapsed / frac - elapsed if frac > 0 else float("nan")
-        sys.stderr.write(
-            f"\r[{bar:<30}] {self.done}/{self.total} cases, {elapsed:.0f} s, eta {eta:.0f} s "
-        )
-        sys.stderr.flush()
-        self.shown = True
+        if self._bar is not None:
+            self._bar.update(n)
 
     def close(self) -> None:
-        if self.shown:
-            sys.stderr.write("\n")
+        if self._bar is not None:
+            self._bar.close()
 
 
-def _run_local(
-    cases: list[Case], workers: int, on_done: Callable[[list[CaseRecord]], None]
-) -> None:
-    for chunk in make_chunks(cases, workers):
+OnDone = Callable[[list[CaseRecord]], None]
+
+
+@dataclass
+class Probe:
+    """What the in-process probe learned: the cases it left, the cost of a case [s] at
+    the largest chunk it ran, and (if timed) the speed-up of two threads over one."""
+
+    rest: list[Case]
+    per_case: float
+    thread_speedup: float | None = None
+
+
+def probe_cost(cases: list[Case], on_done: OnDone, seconds: float) -> Probe:
+    """Run ``cases`` here in doubling chunks (1, 2, 4, ... cases, so that cheap cases
+    are timed batched as they will run) until ``seconds`` have passed; the cost of a
+    case is that of the last (largest) chunk. The probe's records count: nothing is
+    computed twice."""
+    rest = sorted(cases, key=lambda c: (c.static_hash, c.index))
+    t_start = time.perf_counter()
+    size, per_case = 1, math.nan
+    while rest:
+        chunk, rest = rest[:size], rest[size:]
+        t0 = time.perf_counter()
+        on_done(run_chunk(chunk))
+        per_case = (time.perf_counter() - t0) / len(chunk)
+        if time.perf_counter() - t_start >= seconds:
+            break
+        size *= 2
+    return Probe(rest, per_case)
+
+
+def probe_threads(probe: Probe, on_done: OnDone, workers: int) -> Probe:
+    """Time two chunks of about :data:`THREAD_PROBE_SECONDS` each on two threads at once
+    against the probe's serial cost: the speed-up threads give (numba kernels that
+    release the GIL scale, Python-bound work does not)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    n = min(len(probe.rest) // 2, max(1, round(THREAD_PROBE_SECONDS / probe.per_case)))
+    if n < 1 or workers < 2:
+        return probe
+    chunks, rest = [probe.rest[:n], probe.rest[n : 2 * n]], probe.rest[2 * n :]
+    t0 = time.perf_counter()
+    with ThreadPoolExecutor(2) as pool:
+        results = list(pool.map(run_chunk, chunks))
+    wall = time.perf_counter() - t0
+    for records in results:
+        on_done(records)
+    return Probe(rest, probe.per_case, (2 * n * probe.per_case) / max(wall, 1e-9))
+
+
+def choose_scheduler(probe: Probe, workers: int) -> str:
+    """The local scheduler for the cases the probe left: here (synchronous) when they
+    would take less than :data:`AUTO_PARALLEL_AFTER` seconds or there is one worker;
+    else threads when they scaled on two threads, else worker processes."""
+    remaining = probe.per_case * len(probe.rest)
+    if workers < 2 or not remaining > AUTO_PARALLEL_AFTER:
+        return SYNCHRONOUS
+    if probe.thread_speedup is not None and probe.thread_speedup >= THREADS_SCALE:
+        return THREADS
+    return PROCESSES
+
+
+def _run_local(cases: list[Case], on_done: OnDone, *, per_case: float | None = None) -> None:
+    for chunk in make_chunks(cases, 1, per_case=per_case):
         on_done(run_chunk(chunk))
 
 
-def _run_auto(cases: list[Case], workers: int, on_done: Callable[[list[CaseRecord]], None]) -> None:
-    """Probe the cost of a case in this process; keep going here when the whole study
-    would take less than :data:`AUTO_PARALLEL_AFTER` seconds (starting worker processes
-    costs a few seconds), else hand the rest to a local cluster of ``workers`` processes."""
-    t0 = time.perf_counter()
-    probe: list[CaseRecord] = []
-    rest = list(cases)
-    while rest and (not probe or time.perf_counter() - t0 < AUTO_PROBE_SECONDS):
-        probe.extend(run_chunk([rest.pop(0)]))
-    if probe:
-        on_done(probe)
-    per_case = (time.perf_counter() - t0) / max(len(probe), 1)
-    if workers > 1 and per_case * len(rest) > AUTO_PARALLEL_AFTER:
-        _run_dask(rest, PROCESSES, workers, on_done)
+def _run_auto(cases: list[Case], workers: int, on_done: OnDone) -> str:
+    """Probe the cost of a case in this process and choose (:func:`choose_scheduler`);
+    the probe's cases are done by then. Returns the scheduler used for the rest."""
+    probe = probe_cost(cases, on_done, AUTO_PROBE_SECONDS)
+    if workers > 1 and probe.per_case * len(probe.rest) > AUTO_PARALLEL_AFTER:
+        probe = probe_threads(probe, on_done, workers)
+    chosen = choose_scheduler(probe, workers)
+    if chosen == SYNCHRONOUS:
+        _run_local(probe.rest, on_done, per_case=probe.per_case)
     else:
-        _run_local(rest, 1, on_done)
+        _run_dask(probe.rest, chosen, workers, on_done, per_case=probe.per_case)
+    return chosen
 
 
-def _run_dask(
-    cases: list[Case], scheduler: str, workers: int, on_done: Callable[[list[CaseRecord]], None]
-) -> None:
-    from dask.distributed import Client, LocalCluster, as_completed
+def _local_cluster(scheduler: str, workers: int):  # noqa: ANN202 - dask type, imported late
+    """A local dask.distributed cluster. Worker processes are forked (on Linux) from this
+    process, which has by then imported the solvers and loaded their compiled kernels
+    (the probe ran cases here): a worker is ready in a fraction of a second instead of
+    importing everything again (about 3 s on a 2-core machine)."""
+    import dask
+    from dask.distributed import LocalCluster
 
-    cluster = None
-    if scheduler in (PROCESSES, THREADS):
-        cluster = LocalCluster(
+    method = "fork" if sys.platform.startswith("linux") else "spawn"
+    with dask.config.set({"distributed.worker.multiprocessing-method": method}):
+        return LocalCluster(
             n_workers=workers if scheduler == PROCESSES else 1,
             threads_per_worker=1 if scheduler == PROCESSES else workers,
             processes=scheduler == PROCESSES,
             dashboard_address=None,
             silence_logs=50,
         )
+
+
+def _run_dask(
+    cases: list[Case],
+    scheduler: str,
+    workers: int,
+    on_done: OnDone,
+    *,
+    per_case: float | None = None,
+) -> None:
+    from dask.distributed import Client, as_completed
+
+    if not cases:
+        return
+    cluster = None
+    if scheduler in (PROCESSES, THREADS):
+        cluster = _local_cluster(scheduler, workers)
         client = Client(cluster)
     else:
         try:
@@ -301,37 +351,64 @@ def _run_dask(
         info = client.scheduler_info()
         workers = max(1, sum(w.get("nthreads", 1) for w in info.get("workers", {}).values()))
     try:
-        chunks = make_chunks(cases, workers)
-        futures = client.map(run_chunk, chunks, pure=False)
-        chunk_of = {f.key: chunk for f, chunk in zip(futures, chunks, strict=True)}
-        for future in as_completed(futures):
+        pending = sorted(cases, key=lambda c: (c.static_hash, c.index))
+        first: list[list[Case]] = []
+        if per_case is None:
+            # the cost is not known yet: one case per worker slot first, timed on the
+            # cluster itself; the rest is chunked when the first of them is back
+            first = [[c] for c in pending[:workers]]
+            pending = pending[workers:]
+        chunk_of: dict[str, list[Case]] = {}
+
+        def submit(chunks: list[list[Case]]) -> list[Any]:
+            futures = client.map(run_chunk, chunks, pure=False)
+            chunk_of.update({f.key: chunk for f, chunk in zip(futures, chunks, strict=True)})
+            return futures
+
+        done = as_completed(submit(first) if first else [])
+        if per_case is not None:
+            done.update(submit(make_chunks(pending, workers, per_case=per_case)))
+            pending = []
+        for future in done:
             try:
                 records = future.result()
             except Exception as exc:  # noqa: BLE001 - a lost task fails its cases, not the study
                 records = failed_chunk(chunk_of[future.key], exc)
             on_done(records)
             future.release()
+            if pending:
+                times = [r.wall_time for r in records if math.isfinite(r.wall_time)]
+                cost = sum(times) / len(times) if times else None
+                done.update(submit(make_chunks(pending, workers, per_case=cost)))
+                pending = []
     finally:
         client.close()
         if cluster is not None:
             cluster.close()
 
 
-def execute(
-    cases: list[Case], scheduler: str, workers: int, on_done: Callable[[list[CaseRecord]], None]
-) -> None:
+def execute(cases: list[Case], scheduler: str, workers: int, on_done: OnDone) -> str:
     """Evaluate ``cases`` in chunks on ``scheduler``, calling ``on_done`` with each chunk's
-    records as it finishes (in the calling process)."""
+    records as it finishes (in the calling process). Every local scheduler first times
+    a few cases here (:func:`probe_cost`), which sizes the chunks to about a second each
+    and loads the compiled kernels before worker processes are forked. Returns the
+    scheduler that ran the cases after the probe."""
     if not cases:
-        return
-    if scheduler == SYNCHRONOUS:
-        _run_local(cases, workers, on_done)
-    elif scheduler == AUTO:
-        _run_auto(cases, workers, on_done)
-    elif scheduler in (PROCESSES, THREADS) and len(cases) == 1:
-        _run_local(cases, 1, on_done)
-    else:
+        return scheduler
+    if scheduler == AUTO:
+        return _run_auto(cases, workers, on_done)
+    if "://" in scheduler:
         _run_dask(cases, scheduler, workers, on_done)
+        return scheduler
+    if scheduler == SYNCHRONOUS or len(cases) <= 1:
+        probe = probe_cost(cases, on_done, PROBE_SECONDS)
+        _run_local(probe.rest, on_done, per_case=probe.per_case)
+    else:
+        # one case here loads the solvers and kernels the forked workers then share;
+        # the chunks are sized from the first cases timed on the workers
+        probe = probe_cost(cases, on_done, 0.0)
+        _run_dask(probe.rest, scheduler, workers, on_done)
+    return scheduler
 
 
 def default_solver_settings(cases: list[Case]) -> dict[str, Any]:
@@ -385,7 +462,7 @@ def run_study(
         bar.update(len(records))
 
     try:
-        execute(list(unique.values()), scheduler, workers, on_done)
+        used = execute(list(unique.values()), scheduler, workers, on_done) if unique else ""
     finally:
         bar.close()
     records = cache.records
@@ -403,4 +480,207 @@ def run_study(
         n_failed=sum(failures.values()),
         wall_time=time.perf_counter() - t0,
         failures=dict(failures),
+        scheduler=used,
     )
+
+
+#: cases per chunk of a study run as arrays (rows of the first axis are never split);
+#: fixed, so that a re-run finds the same chunks in its cache
+GRID_CHUNK_CASES = 10_000
+
+
+#: results of an array-run study up to this size [bytes] are assembled in memory before
+#: writing (no dask); larger ones are streamed from the chunk files one chunk at a time
+IN_MEMORY_BYTES = 256 << 20
+
+
+def grid_chunks(grid: Any) -> list[tuple[int, int]]:
+    """Rows ``lo:hi`` of the first axis per chunk: about :data:`GRID_CHUNK_CASES` cases."""
+    row = math.prod(grid.shape[1:])
+    step = max(1, GRID_CHUNK_CASES // max(row, 1))
+    n0 = grid.shape[0]
+    return [(lo, min(lo + step, n0)) for lo in range(0, n0, step)]
+
+
+def _grid_chunk_task(grid: Any, lo: int, hi: int) -> Any:
+    from .grid import evaluate_grid_chunk
+
+    return evaluate_grid_chunk(grid, lo, hi)
+
+
+def run_grid_study(
+    src: StudySource,
+    grid: Any,
+    out_dir: str | Path,
+    *,
+    scheduler: str = AUTO,
+    workers: int | None = None,
+    use_cache: bool = True,
+    progress: bool | None = None,
+) -> RunSummary:
+    """Run a study as arrays (:mod:`cablestudy.grid`) and write ``<out_dir>/<name>.nc``
+    chunk by chunk: each finished chunk goes to its own data file (the cache, or a
+    temporary folder with ``use_cache=False``), and the result file is written from
+    those files lazily, so memory holds about one chunk at a time whatever the number
+    of cases. A chunk that is in the cache, intact, is reused."""
+    import shutil
+
+    from .cache import GridChunkStore
+
+    t0 = time.perf_counter()
+    out_dir = Path(out_dir)
+    name = str(src.data["name"])
+    workers = workers or default_workers()
+    if use_cache:
+        folder = out_dir / ".cache" / name
+        scratch = None
+    else:
+        out_dir.mkdir(parents=True, exist_ok=True)
+        scratch = Path(tempfile.mkdtemp(prefix=f".{name}-chunks-", dir=out_dir))
+        folder = scratch
+    store = GridChunkStore(folder)
+    spans = grid_chunks(grid)
+    keys = {(lo, hi): grid.chunk_key(lo, hi) for lo, hi in spans}
+    files: dict[tuple[int, int], Path] = {}
+    for span, key in keys.items():
+        found = store.find(key)
+        if found is not None:
+            files[span] = found
+    row = math.prod(grid.shape[1:])
+    n_reused = sum((hi - lo) * row for lo, hi in files)
+    bar = Progress(grid.size, enabled=progress)
+    bar.update(n_reused)
+
+    transient: set[Path] = set()
+
+    def on_done(chunk: Any) -> None:
+        path = store.write(chunk)
+        files[(chunk.lo, chunk.hi)] = path
+        if any(str(m).startswith(TRANSIENT_PREFIXES) for m in chunk.message):
+            transient.add(path)  # in this result, but not kept: a re-run computes it
+        bar.update(chunk.n)
+
+    todo = [span for span in spans if span not in files]
+    used = ""
+    timings: dict[str, float] = {}
+    t1 = time.perf_counter()
+    try:
+        if todo:
+            used = _execute_grid(grid, todo, scheduler, workers, on_done)
+    finally:
+        bar.close()
+    t2 = time.perf_counter()
+    timings["solve"] = t2 - t1
+    try:
+        ordered = [(lo, hi, files[(lo, hi)]) for lo, hi in spans]
+        summary = store.summary([p for _, _, p in ordered])
+        per_case = sum(math.prod(t) for t in summary.tails.values()) * 8
+        lazy = per_case * grid.size > IN_MEMORY_BYTES
+        ds = grid_dataset_from(src, grid, ordered, summary, lazy=lazy)
+        t3 = time.perf_counter()
+        timings["assembly"] = t3 - t2
+        if lazy:
+            import dask
+
+            with dask.config.set(scheduler="synchronous"):  # one chunk in memory at a time
+                path = write_atomic(ds, out_dir / f"{name}.nc")
+        else:
+            path = write_atomic(ds, out_dir / f"{name}.nc")
+        timings["write"] = time.perf_counter() - t3
+    finally:
+        if scratch is not None:
+            shutil.rmtree(scratch, ignore_errors=True)
+    for p in transient:
+        p.unlink(missing_ok=True)
+    if use_cache:
+        store.keep(set(files.values()) - transient)
+    return RunSummary(
+        path=path,
+        n_cases=grid.size,
+        n_reused=n_reused,
+        n_computed=grid.size - n_reused,
+        n_failed=sum(summary.failures.values()),
+        wall_time=time.perf_counter() - t0,
+        failures=dict(summary.failures),
+        scheduler=used,
+        timings=timings,
+    )
+
+
+def grid_dataset_from(
+    src: StudySource, grid: Any, ordered: list[Any], summary: Any, *, lazy: bool = True
+) -> Any:
+    from .results import grid_dataset
+
+    settings = {
+        "analysis": grid.template.analysis.model_dump(mode="json"),
+        "static_methods": [grid.template.analysis.static.method],
+    }
+    return grid_dataset(
+        grid.axes,
+        ordered,
+        src,
+        names=summary.names,
+        tails=summary.tails,
+        arc=summary.arc,
+        solver_settings=settings,
+        lazy=lazy,
+    )
+
+
+def _execute_grid(
+    grid: Any,
+    spans: list[tuple[int, int]],
+    scheduler: str,
+    workers: int,
+    on_done: Callable[[Any], None],
+) -> str:
+    """Evaluate the chunks ``spans`` of ``grid``: here, or on dask. 'auto' times the
+    first chunk here and goes on here unless the rest would take more than
+    :data:`AUTO_PARALLEL_AFTER` seconds (then worker processes)."""
+    rest = list(spans)
+    if scheduler in (AUTO, SYNCHRONOUS) or len(rest) == 1:
+        t0 = time.perf_counter()
+        on_done(_grid_chunk_task(grid, *rest.pop(0)))
+        per_chunk = time.perf_counter() - t0
+        if scheduler == AUTO and workers > 1 and per_chunk * len(rest) > AUTO_PARALLEL_AFTER:
+            scheduler = PROCESSES
+        else:
+            for lo, hi in rest:
+                on_done(_grid_chunk_task(grid, lo, hi))
+            return SYNCHRONOUS
+    if not rest:
+        return scheduler
+    from dask.distributed import Client, as_completed
+
+    cluster = None
+    if "://" in scheduler:
+        try:
+            client = Client(scheduler, timeout=CONNECT_TIMEOUT)
+        except (OSError, TimeoutError) as exc:
+            raise SchedulerUnreachable(
+                f"cannot reach the dask scheduler at {scheduler} within {CONNECT_TIMEOUT:g} s "
+                f"({type(exc).__name__}: {exc})"
+            ) from None
+    else:
+        cluster = _local_cluster(scheduler, workers)
+        client = Client(cluster)
+    try:
+        remote = client.scatter(grid, broadcast=True)
+        futures = {
+            client.submit(_grid_chunk_task, remote, lo, hi, pure=False): (lo, hi) for lo, hi in rest
+        }
+        for future in as_completed(list(futures)):
+            try:
+                chunk = future.result()
+            except Exception as exc:  # noqa: BLE001 - a lost task fails its cases, not the study
+                from .grid import failed_grid_chunk
+
+                chunk = failed_grid_chunk(grid, *futures[future], f"{LOST_PREFIX}{exc!r}")
+            on_done(chunk)
+            future.release()
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+    return scheduler

@@ -544,8 +544,56 @@ class DynamicSettings(StrictModel):
         return list(self.excitation) if isinstance(self.excitation, list) else [self.excitation]
 
 
+class GridAxis(StrictModel):
+    """``num`` equally spaced values from ``start`` to ``stop`` (both included) [m]."""
+
+    start: Finite = Field(description="first value [m]")
+    stop: Finite = Field(description="last value [m]")
+    num: int = Field(ge=4, le=2000, description="number of values (>= 4: bicubic) [-]")
+
+    @model_validator(mode="after")
+    def _ordered(self) -> GridAxis:
+        if self.stop <= self.start:
+            raise ValueError(
+                f"stop must exceed start; allowed: stop > {self.start} (got {self.stop})"
+            )
+        return self
+
+    @property
+    def values(self) -> list[float]:
+        step = (self.stop - self.start) / (self.num - 1)
+        return [float(f"{self.start + i * step:.15g}") for i in range(self.num)]
+
+
+class DatabaseSettings(StrictModel):
+    """The quasi-static database (aqwa seed 5.8.1.4): the static line solved over a grid
+    of end-B positions relative to end A (fixed), in the vertical plane through A and the
+    study's end B. Written to the study's dataset on the dimensions
+    ``horizontal_distance`` and ``height_difference``; ``cablestudy lookup`` and
+    :func:`cablestudy.database.open_database` interpolate it (C1 bicubic)."""
+
+    horizontal_distance: GridAxis = Field(
+        description="horizontal distance from end A to end B [m] (>= 0)"
+    )
+    height_difference: GridAxis = Field(description="height of end B above end A, z_B - z_A [m]")
+
+    @model_validator(mode="after")
+    def _non_negative(self) -> DatabaseSettings:
+        if self.horizontal_distance.start < 0.0:
+            raise ValueError(
+                "horizontal_distance.start must be >= 0 (a distance; the direction is that "
+                f"from end A to end B) (got {self.horizontal_distance.start})"
+            )
+        return self
+
+
 class Analysis(StrictModel):
     static: StaticSettings = StaticSettings()
+    database: DatabaseSettings | None = Field(
+        None,
+        description="quasi-static database of end forces, laid length and tension over a "
+        "grid of end-B positions relative to end A; omit: none",
+    )
     modal: ModalSettings | None = Field(
         None, description="modal analysis about the static shape; omit: none"
     )

@@ -13,7 +13,7 @@ Bending = Literal["pinned", "clamped"]
 BENDING_FIELD = Field(
     "pinned",
     description="bending end condition (with bending_stiffness > 0): pinned (no moment) or "
-    "clamped (the end's static direction held); time domain",
+    "clamped (the end's static direction held); time domain, modal and frequency domain",
 )
 
 

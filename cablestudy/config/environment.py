@@ -67,8 +67,8 @@ class Seabed(StrictModel):
     )
     stiffness: Positive | None = Field(
         None,
-        description="normal contact stiffness per length of line [N/m^2] (time domain; "
-        "modal and frequency-domain analyses take the seabed as rigid); default: the "
+        description="normal contact stiffness per length of line [N/m^2] (time domain, and "
+        "the laid line's linear spring in modal and frequency-domain analyses); default: the "
         "heaviest segment's weight in the fluid per length over 1 mm, i.e. a static "
         "penetration of 1 mm",
     )

@@ -3,10 +3,205 @@
 from __future__ import annotations
 
 import math
+from typing import Annotated, Literal
 
 from pydantic import Field, model_validator
 
 from .base import FieldError, Finite, NonNegative, Positive, StrictModel, Vec3
+
+#: strain [-] (or extension [m] of a spring) up to which a law given without
+#: ``max_strain`` is checked to increase
+DEFAULT_MAX_STRAIN = 1.0
+
+
+class _AxialBase(StrictModel):
+    max_strain: Positive | None = Field(
+        None,
+        description="the law is checked to increase from 0 up to this strain [-] (a "
+        "spring: extension [m]); a static solution beyond it fails with a message. "
+        "Default: 1.0 for a segment; for a spring the largest extension its ends can "
+        "reach (from the end positions and the excitation amplitudes)",
+    )
+
+    def build(self):  # type: ignore[no-untyped-def]  # -> cablestudy.physics.axial.AxialLaw
+        raise NotImplementedError  # pragma: no cover - every subclass defines it
+
+
+class LinearAxial(_AxialBase):
+    """``{law: linear, stiffness}``: T = k e, tension-only (today's ``axial_stiffness``)."""
+
+    law: Literal["linear"] = Field(description="linear: T = stiffness * e")
+    stiffness: Positive = Field(
+        description="EA [N] in strain (segment), or [N/m] in extension (spring)"
+    )
+
+    def build(self):  # type: ignore[no-untyped-def]
+        from ..physics.axial import LinearLaw
+
+        return LinearLaw(self.stiffness)
+
+
+class PolynomialAxial(_AxialBase):
+    """``{law: polynomial, coefficients: [A, B, C, D, E]}``: T = A e + B e^2 + ... + E e^5
+    (aqwa seed 5.8.1.2), e the strain of a segment or the extension [m] of a spring."""
+
+    law: Literal["polynomial"] = Field(description="polynomial in e")
+    coefficients: list[Finite] = Field(
+        min_length=1,
+        max_length=5,
+        description="A, B, ... E of T = A e + B e^2 + ... [N] in strain, or "
+        "[N/m], [N/m^2], ... in extension (spring); no constant term",
+    )
+
+    def build(self):  # type: ignore[no-untyped-def]
+        from ..physics.axial import PolynomialLaw
+
+        return PolynomialLaw(tuple(float(c) for c in self.coefficients))
+
+
+class SteelWireAxial(_AxialBase):
+    """``{law: steel_wire, stiffness, offset}``: T = k (e - d (1 - exp(-e/d))), passing
+    through zero with zero slope and tending to k (e - d) (aqwa seed 5.8.1.3; the form
+    is justified in :class:`cablestudy.physics.axial.SteelWireLaw`)."""
+
+    law: Literal["steel_wire"] = Field(description="steel wire")
+    stiffness: Positive = Field(
+        description="asymptotic stiffness k [N] in strain, or [N/m] in extension (spring)"
+    )
+    offset: Positive = Field(
+        description="asymptotic offset d [-] in strain, or [m] in extension (spring)"
+    )
+
+    def build(self):  # type: ignore[no-untyped-def]
+        from ..physics.axial import SteelWireLaw
+
+        return SteelWireLaw(self.stiffness, self.offset)
+
+
+class TableAxial(_AxialBase):
+    """``{law: table, strain: [...], tension: [...]}``: a monotone tension-strain curve
+    through (0, 0), interpolated by monotone cubic Hermite polynomials (PCHIP) and
+    continued along the last interval's secant."""
+
+    law: Literal["table"] = Field(description="tabulated curve")
+    strain: list[NonNegative] = Field(
+        min_length=2,
+        max_length=10_000,
+        description="strain [-] (spring: extension [m]), strictly increasing, from 0",
+    )
+    tension: list[NonNegative] = Field(
+        min_length=2, max_length=10_000, description="tension [N] at each strain, from 0"
+    )
+
+    @model_validator(mode="after")
+    def _table(self) -> TableAxial:
+        if len(self.strain) != len(self.tension):
+            raise FieldError(
+                ("tension",),
+                f"needs one tension per strain ({len(self.strain)} strains); allowed: "
+                "lists of equal length",
+                len(self.tension),
+            )
+        if self.strain[0] != 0.0 or self.tension[0] != 0.0:
+            raise FieldError(
+                ("strain", 0),
+                "the table must start at strain 0 with tension 0 (a tension-only law "
+                f"passes through zero; got tension {self.tension[0]:g} N there); allowed: "
+                "strain[0] = 0 and tension[0] = 0",
+                self.strain[0],
+            )
+        for i in range(1, len(self.strain)):
+            if not self.strain[i] > self.strain[i - 1]:
+                raise FieldError(
+                    ("strain", i),
+                    f"strains must increase strictly (previous {self.strain[i - 1]:g}); "
+                    "allowed: > previous strain",
+                    self.strain[i],
+                )
+            if not self.tension[i] > self.tension[i - 1]:
+                raise FieldError(
+                    ("tension", i),
+                    f"tension does not increase at strain {self.strain[i]:g} (previous "
+                    f"tension {self.tension[i - 1]:g} N): the law would not be monotone "
+                    "there; allowed: > previous tension",
+                    self.tension[i],
+                )
+        return self
+
+    def build(self):  # type: ignore[no-untyped-def]
+        from ..physics.axial import TableLaw
+
+        return TableLaw(tuple(self.strain), tuple(self.tension))
+
+
+#: ``axial: {law: ...}``: one model per law, chosen by ``law``
+Axial = Annotated[
+    LinearAxial | PolynomialAxial | SteelWireAxial | TableAxial, Field(discriminator="law")
+]
+
+
+def check_axial(axial: Axial, max_strain: float, loc: tuple[str | int, ...], unit: str) -> None:
+    """Refuse a law whose tension does not increase over [0, max_strain] (it would turn
+    non-monotone or negative there), naming the strain where it happens.
+
+    Raises
+    ------
+    FieldError
+        at ``loc`` + the coefficients (or the law) of ``axial``.
+    """
+    law = axial.build()
+    bad = law.first_decrease(max_strain)
+    if bad is None:
+        return
+    slope = float(law.tangent_stiffness(bad * (1.0 + 1e-9) + 1e-300))
+    field = "coefficients" if isinstance(axial, PolynomialAxial) else "law"
+    raise FieldError(
+        (*loc, field),
+        f"the tension stops increasing at {unit} {bad:.6g} (dT/de = {slope:.6g} there), "
+        f"inside the range 0 .. {max_strain:g} the case can reach (max_strain), so it "
+        "would be non-monotone or negative; allowed: a law with dT/de > 0 over that range",
+        getattr(axial, "coefficients", axial.law),
+    )
+
+
+class BreakCondition(StrictModel):
+    """``failure: {tension: N}`` or ``{minimum_breaking_load: N, safety_factor: f}``: the
+    line (or a segment) breaks where its tension exceeds the limit (tension, or MBL /
+    safety factor). In statics a case over the limit is recorded as broken (status 10,
+    a message with where and by how much) with its static results kept; with
+    analysis.dynamic only a kind: spring line supports it (it parts at that instant and
+    records break_time)."""
+
+    tension: Positive | None = Field(None, description="tension limit [N]")
+    minimum_breaking_load: Positive | None = Field(
+        None, description="minimum breaking load MBL [N]; the limit is MBL / safety_factor"
+    )
+    safety_factor: Positive | None = Field(
+        None, ge=1.0, description="safety factor on the MBL [-] (>= 1; default 1)"
+    )
+
+    @model_validator(mode="after")
+    def _one_limit(self) -> BreakCondition:
+        if (self.tension is None) == (self.minimum_breaking_load is None):
+            raise ValueError(
+                "give either tension [N] or minimum_breaking_load [N] (with an optional "
+                "safety_factor), exactly one of them"
+            )
+        if self.tension is not None and self.safety_factor is not None:
+            raise FieldError(
+                ("safety_factor",),
+                "a safety_factor applies to minimum_breaking_load, not to a tension limit; "
+                "allowed: omit it, or give minimum_breaking_load instead of tension",
+                self.safety_factor,
+            )
+        return self
+
+    @property
+    def limit(self) -> float:
+        """The tension [N] at which the line breaks."""
+        if self.tension is not None:
+            return float(self.tension)
+        return float(self.minimum_breaking_load) / float(self.safety_factor or 1.0)  # type: ignore[arg-type]
 
 
 class Segment(StrictModel):
@@ -18,7 +213,22 @@ class Segment(StrictModel):
     diameter: Positive = Field(description="hydrodynamic (and buoyancy) diameter [m]")
     mass_per_length: NonNegative | None = Field(None, description="mass per length [kg/m]")
     weight_in_fluid: Finite | None = Field(None, description="submerged weight per length [N/m]")
-    axial_stiffness: Positive = Field(description="axial stiffness EA [N]")
+    axial_stiffness: Positive | None = Field(
+        None,
+        description="axial stiffness EA [N] of a linear tension-only law (the default "
+        "law); exclusive with `axial`",
+    )
+    axial: Axial | None = Field(
+        None,
+        description="axial law in strain: {law: linear, stiffness} | {law: polynomial, "
+        "coefficients: [A, ..., E]} | {law: steel_wire, stiffness, offset} | {law: table, "
+        "strain, tension}; exclusive with `axial_stiffness`",
+    )
+    failure: BreakCondition | None = Field(
+        None,
+        description="failure (break) condition of this segment, overriding line.failure "
+        "here: {tension: N} or {minimum_breaking_load: N, safety_factor: f}",
+    )
     drag_normal: NonNegative = Field(1.2, description="normal drag coefficient [-]")
     drag_tangential: NonNegative = Field(0.01, description="tangential drag coefficient [-]")
     added_mass_normal: NonNegative = Field(1.0, description="normal added-mass coefficient [-]")
@@ -40,7 +250,47 @@ class Segment(StrictModel):
             raise ValueError(
                 "give mass_per_length [kg/m] or weight_in_fluid [N/m] (neither was given)"
             )
+        if self.axial is not None and self.axial_stiffness is not None:
+            raise FieldError(
+                ("axial",),
+                "give either axial_stiffness (a linear EA [N]) or axial (a law), not both",
+                self.axial.law,
+            )
+        if self.axial is None and self.axial_stiffness is None:
+            raise FieldError(
+                ("axial_stiffness",),
+                "required key 'axial_stiffness' is missing: axial stiffness EA [N] of a "
+                "linear law; or give axial: {law: ...} instead",
+                None,
+            )
+        if self.axial is not None:
+            check_axial(
+                self.axial, self.axial.max_strain or DEFAULT_MAX_STRAIN, ("axial",), "strain"
+            )
         return self
+
+    def axial_law(self):  # type: ignore[no-untyped-def]  # -> physics.axial.AxialLaw
+        """The segment's axial law (:mod:`cablestudy.physics.axial`)."""
+        if self.axial is not None:
+            return self.axial.build()
+        from ..physics.axial import LinearLaw
+
+        return LinearLaw(float(self.axial_stiffness))  # type: ignore[arg-type]
+
+    @property
+    def elastic_stiffness(self) -> float:
+        """EA [N] of a linear law (``axial_stiffness`` or ``{law: linear}`` or a polynomial
+        with only A); the reference (initial or asymptotic) stiffness of another law."""
+        if self.axial_stiffness is not None:
+            return float(self.axial_stiffness)
+        return float(self.axial_law().reference_stiffness)
+
+    @property
+    def is_nonlinear(self) -> bool:
+        """True when the axial law is not T = EA e."""
+        from ..physics.axial import is_effectively_linear
+
+        return self.axial is not None and not is_effectively_linear(self.axial.build())
 
     @property
     def area(self) -> float:
@@ -107,16 +357,95 @@ class MoorDynLineRef(StrictModel):
 
 
 class Line(StrictModel):
-    segments: list[Segment] = Field(min_length=1, max_length=100)
+    """The line: ``kind: catenary`` (default), uniform segments from end A to end B with
+    attachments, or ``kind: spring``, a massless straight tension-only cable of
+    unstretched ``length`` whose ``axial`` law gives the tension [N] of its extension [m]
+    (aqwa seed 5.8.1.1-5.8.1.3: linear, polynomial and steel-wire cables)."""
+
+    kind: Literal["catenary", "spring"] = Field(
+        "catenary",
+        description="catenary: segments with weight (statics, modal, dynamics); spring: a "
+        "massless straight tension-only cable between the ends (length + axial)",
+    )
+    segments: list[Segment] = Field(
+        [], max_length=100, description="kind catenary: segments from end A to end B"
+    )
     attachments: list[Attachment] = []
+    length: Positive | None = Field(
+        None,
+        description="kind spring: unstretched length [m]; kind catenary: the total of the "
+        "segments' lengths (filled in; if given it must equal that total)",
+    )
+    failure: BreakCondition | None = Field(
+        None,
+        description="failure (break) condition of the whole line: {tension: N} or "
+        "{minimum_breaking_load: N, safety_factor: f} (a segment's own failure overrides "
+        "it); statics: a case over the limit is recorded as broken (status 10, data kept); "
+        "dynamics: kind spring only (parts at that instant, break_time)",
+    )
+    axial: Axial | None = Field(
+        None,
+        description="kind spring: tension [N] in the extension e [m] = distance between "
+        "the ends - length: {law: linear, stiffness [N/m]} | {law: polynomial, "
+        "coefficients [N/m], [N/m^2], ...} | {law: steel_wire, stiffness [N/m], offset "
+        "[m]} | {law: table, strain: extensions [m], tension [N]}",
+    )
 
     @property
-    def length(self) -> float:
+    def total_length(self) -> float:
+        """Unstretched length of the whole line [m]."""
+        if self.kind == "spring":
+            return float(self.length or 0.0)
         return float(sum(seg.length for seg in self.segments))
+
+    @property
+    def is_spring(self) -> bool:
+        return self.kind == "spring"
 
     @model_validator(mode="after")
     def _attachments_inside(self) -> Line:
-        total = self.length
+        if self.kind == "spring":
+            for key in ("segments", "attachments"):
+                if getattr(self, key):
+                    raise FieldError(
+                        (key,),
+                        f"a kind: spring line is massless and straight: it has no {key}; "
+                        "allowed: length and axial only (use kind: catenary for segments)",
+                        len(getattr(self, key)),
+                    )
+            for key in ("length", "axial"):
+                if getattr(self, key) is None:
+                    raise FieldError(
+                        (key,),
+                        f"a kind: spring line needs '{key}' (unstretched length [m] and "
+                        "axial law in extension)",
+                        None,
+                    )
+            return self
+        if not self.segments:
+            raise FieldError(
+                ("segments",),
+                "a kind: catenary line needs at least one segment; allowed: 1 to 100 "
+                "segments (or kind: spring with length and axial)",
+                [],
+            )
+        if self.axial is not None:
+            raise FieldError(
+                ("axial",),
+                "'axial' belongs to a kind: spring line; a catenary line takes its axial "
+                "law per segment (line.segments.N.axial)",
+                "axial",
+            )
+        total = self.total_length
+        if self.length is not None and abs(self.length - total) > 1e-12 * total:
+            raise FieldError(
+                ("length",),
+                "'length' of a kind: catenary line is the sum of its segments' lengths "
+                f"({total:g} m); give the lengths per segment (line.segments.N.length)",
+                self.length,
+            )
+        # ``line.length`` reads as the total unstretched length for either kind
+        object.__setattr__(self, "length", total)
         for i, att in enumerate(self.attachments):
             if att.s > total:
                 raise FieldError(

@@ -284,9 +284,9 @@ def _clean_loc(loc: Loc) -> Loc:
             m
             for m in models
             if m.__name__ == part
-            or (
-                "kind" in m.model_fields
-                and part in typing.get_args(m.model_fields["kind"].annotation)
+            or any(
+                tag in m.model_fields and part in typing.get_args(m.model_fields[tag].annotation)
+                for tag in ("kind", "law")  # discriminators: ends' kind, axial law
             )
         ]
         if narrowed:
@@ -348,17 +348,18 @@ def _describe(err: dict[str, Any]) -> tuple[Loc, str, Any, bool]:
         return (), f"required key {str(raw[-1])!r} is missing{what}", None, False
     if kind in ("union_tag_invalid", "union_tag_not_found"):
         tags = ctx.get("expected_tags", "")
+        key = str(ctx.get("discriminator", "'kind'")).strip("'")  # 'kind', or 'law' of axial
         if kind == "union_tag_not_found":
             if not tags:  # pydantic names the tags only when the given one is wrong
                 kinds = [
                     a
                     for m in _models_at(raw)
-                    if "kind" in m.model_fields
-                    for a in typing.get_args(m.model_fields["kind"].annotation)
+                    if key in m.model_fields
+                    for a in typing.get_args(m.model_fields[key].annotation)
                 ]
                 tags = ", ".join(repr(k) for k in kinds)
-            return (), f"needs a 'kind': one of {tags}", err["input"], True
-        return ("kind",), f"'kind' must be one of {tags}", ctx.get("tag", err["input"]), True
+            return (), f"needs a '{key}': one of {tags}", err["input"], True
+        return (key,), f"'{key}' must be one of {tags}", ctx.get("tag", err["input"]), True
     text = _TYPE_WORDS.get(kind, err["msg"])
     if text.startswith("Value error, "):
         text = text[len("Value error, ") :]

@@ -347,7 +347,16 @@ def compose_and_load(
             raise YamlRefused(shown)
         data = loader.construct_document(node) if node is not None else None
     except yaml.YAMLError as exc:
-        raise YamlRefused([_yaml_error(exc)]) from None
+        message = _yaml_error(exc)
+        if "maximum nesting depth" in message:
+            # the YAML reader's own nesting limit (libyaml since PyYAML 6.0.4, far above
+            # ours) tripped while scanning ahead, before the composer saw the levels
+            line = message.split(":", 1)[0]
+            message = (
+                f"{line}: {dotted(loader._loc)}: lists and mappings nested more than "
+                f"{max_depth} deep; allowed: at most {max_depth} levels"
+            )
+        raise YamlRefused([message]) from None
     except RecursionError:  # not expected within MAX_DEPTH; never a traceback
         raise YamlRefused(
             [f"1: <top>: nested too deeply to read; allowed: at most {max_depth} levels"]

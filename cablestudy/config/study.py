@@ -129,10 +129,10 @@ class Study(StrictModel):
                 "'fixed' for the static problem to have a unique solution",
                 {"a": a.kind, "b": b.kind},
             )
-        if isinstance(a, FixedEnd) and isinstance(b, FixedEnd):
+        if isinstance(a, FixedEnd) and isinstance(b, FixedEnd) and not self.line.is_spring:
             weights = [seg.weight_in(rho, g) for seg in self.line.segments]
             chord = math.dist(a.position, b.position)
-            length = self.line.length
+            length = self.line.total_length
             weightless = all(w == 0.0 for w in weights) and not any(
                 att.mass != rho * att.volume or any(att.force) for att in self.line.attachments
             )

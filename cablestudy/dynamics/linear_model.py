@@ -1,22 +1,18 @@
-"""The adapter from today's line assembly to the frequency-domain solver's input.
+"""The frequency-domain solver's input from the shared line model.
 
-:func:`linear_line` builds a :class:`~cablestudy.dynamics.frequency.LinearLine` from
-the modal assembly (:func:`~cablestudy.dynamics.modal.mass_blocks`,
-:func:`~cablestudy.dynamics.modal.stiffness_matrix`,
-:func:`~cablestudy.dynamics.modal.node_bases`) about a static shape sampled at the
-nodes. It is the only place that knows where those arrays come from: when the line
-model is unified, only this function changes.
-
-What it adds to the modal assembly, with the time-domain model's laws
-(:mod:`cablestudy.dynamics.model`): the axial structural damping of the elements,
-``c = zeta l0 sqrt(EA m)`` [N s] acting on the strain rate; the nodal drag
+:func:`linear_line` builds a :class:`~cablestudy.dynamics.frequency.LinearLine` about a
+static shape sampled at the nodes: mass, tangent stiffness and structural damping are
+the time-domain model's own tangents at rest in that shape
+(:func:`cablestudy.dynamics.modal.tangents`, which evaluates
+:func:`cablestudy.dynamics.model.assemble`): axial and geometric stiffness, bending with
+pinned or clamped ends, the seabed contact spring and dashpot, sticking seabed friction
+(for small motions static friction keeps the laid line from sliding: friction is
+linearised as its stick spring), the axial strain-rate and transverse structural
+damping, added mass of the line and of lumped bodies. What it adds: the nodal drag
 coefficients ``1/2 rho C_N d l`` and ``1/2 rho pi C_T d l`` over the node's tributary
-length ``l``; the current at the nodes; the node tangents (the chord of the two
-neighbouring nodes). Both end nodes are prescribed (held, or moved by the
-excitation), as in the time domain; nodes resting on the seabed are held as in
-:func:`~cablestudy.dynamics.modal.node_bases` (normal to the seabed always; in all
-directions where the seabed has friction: for small motions static friction keeps
-the laid line from sliding, i.e. seabed friction is linearised as sticking).
+length ``l``, the current at the nodes and the node tangents (the chord of the two
+neighbouring nodes), for the solver's own drag linearisation. Both end nodes are
+prescribed (held, or moved by the excitation), as in the time domain.
 """
 
 from __future__ import annotations
@@ -30,24 +26,7 @@ import scipy.sparse as sp
 from ..physics.current import current_velocity
 from ..statics.base import EndCondition
 from .frequency import LinearLine
-from .modal import ModalProblem, _segment_index, mass_blocks, node_bases, stiffness_matrix
-
-
-def _bar_matrix(coefficient: np.ndarray, direction: np.ndarray) -> sp.csr_matrix:
-    """Assembled ``coefficient_e t_e t_e^T`` acting on the element elongations
-    (3n, 3n)."""
-    n = coefficient.size + 1
-    blocks = coefficient[:, None, None] * direction[:, :, None] * direction[:, None, :]
-    ii, jj = np.meshgrid(np.arange(3), np.arange(3), indexing="ij")
-    a, b = np.arange(n - 1), np.arange(1, n)
-    rows, cols, vals = [], [], []
-    for ni, nj, sign in ((a, a, 1.0), (b, b, 1.0), (a, b, -1.0), (b, a, -1.0)):
-        rows.append((3 * ni[:, None, None] + ii).ravel())
-        cols.append((3 * nj[:, None, None] + jj).ravel())
-        vals.append((sign * blocks).ravel())
-    return sp.csr_matrix(
-        (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(3 * n, 3 * n)
-    )
+from .modal import ModalProblem, _segment_index, element_tangent, node_bases, tangents
 
 
 def linear_line(problem: ModalProblem) -> LinearLine:
@@ -63,8 +42,9 @@ def linear_line(problem: ModalProblem) -> LinearLine:
     chord = np.diff(pos, axis=0)
     t = chord / np.linalg.norm(chord, axis=1)[:, None]
     seg = _segment_index(line, 0.5 * (s[:-1] + s[1:]))
-    ea = line.axial_stiffness[seg]
-    c_axial = line.damping_ratio[seg] * l0 * np.sqrt(ea * line.mass[seg])
+    # the tension response of an element is its law's tangent at the static strain
+    ea = element_tangent(line, s, 0.5 * (st.tension[:-1] + st.tension[1:]))
+    c_axial = line.damping_ratio[seg] * l0 * np.sqrt(line.axial_stiffness[seg] * line.mass[seg])
 
     def lump(per_length: np.ndarray) -> np.ndarray:
         half = 0.5 * per_length[seg] * l0
@@ -103,12 +83,13 @@ def linear_line(problem: ModalProblem) -> LinearLine:
         ),
         shape=(3 * n, int(offsets[-1])),
     )
+    mass, stiffness, damping = tangents(prob)
     return LinearLine(
         s=s,
         position=pos,
-        mass=mass_blocks(prob),
-        stiffness=stiffness_matrix(prob),
-        damping=_bar_matrix(c_axial / l0, t),
+        mass=mass,
+        stiffness=stiffness,
+        damping=damping,
         rest_length=l0,
         direction=t,
         axial_stiffness=ea,

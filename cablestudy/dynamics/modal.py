@@ -5,41 +5,29 @@ into straight two-node bar elements (nodes at the static positions). Small motio
 ``u`` of the nodes about that shape obey ``M u'' + K u = 0``; the modes solve the
 generalized symmetric eigenproblem ``K phi = omega^2 M phi``.
 
-Mass (lumped, block-diagonal 3 x 3 per node). Element e between nodes e and e+1, with
-unstretched length l0, unit chord vector t and projector P = I - t t^T, gives each of
-its nodes half of::
+Model. Mass, stiffness and structural damping are those of the shared line model
+(:mod:`cablestudy.dynamics.model`, the one the time-domain solver integrates), taken at
+rest in the static shape by :func:`tangents`: the time-domain Jacobian's own blocks.
 
-    l0 [ (m + m_an) P + (m + m_at) t t^T ],   m_an = rho C_an pi d^2 / 4,
-                                             m_at = rho C_at pi d^2 / 4,
-
-so the fluid's added mass acts in the directions normal to the line only (and along
-it where ``added_mass_tangential`` is nonzero). Attachment masses are split between
-the two nodes of the element holding them (linear interpolation), without added mass.
-
-Stiffness (tangent of the bar forces). A bar of tension T = EA (l / l0 - 1) and
-current chord length l gives ``K_e = (EA / l0) t t^T + (T / l) P`` acting on the
-difference of its end displacements: the elastic term along the chord and the
-geometric (string) term across it. T is the static tension at the element midpoint
-(mean of the nodal tensions), not the chord strain, so the geometric stiffness is
-the static tension however stiff the line is.
-
-Bending (tensioned-beam terms, Euler-Bernoulli, EI [N m^2]). The discrete curvature
-at an interior node i is kappa_i = (t_i - t_{i-1}) / h_i with h_i the mean unstretched
-length of its two elements; the bending energy sum EI_i |t_i - t_{i-1}|^2 / (2 h_i) is
-linearised about the static shape (its Gauss-Newton part J^T J, which is exact for a
-straight line and drops terms of order EI times static curvature). No curvature is
-kept at the end nodes: both ends are moment-free (pinned).
+* Mass (lumped, block-diagonal 3 x 3 per node): structural mass, added mass normal to
+  the line (and along it where ``added_mass_tangential`` is nonzero) about the node
+  tangent, attachment masses and their added mass.
+* Stiffness: a bar of tension T and chord length l gives ``(EA / l0) t t^T +
+  (T / l) (I - t t^T)`` on the difference of its end displacements; the element rest
+  lengths are set so that T is the static tension at the element (mean of its end
+  samples), so the geometric stiffness is the static tension however stiff the line is.
+* Bending (tensioned-beam terms, EI [N m^2]): the discrete curvature at an interior
+  node, ``(t_i - t_{i-1}) / h_i``, in its Gauss-Newton linearisation (exact for a
+  straight line); a pinned end is moment-free, a clamped end holds its static direction.
+* Seabed: nodes resting on it sit on the contact spring (normal stiffness per length,
+  ``environment.seabed.stiffness``), and with friction on the stick spring of the
+  friction law (for small vibrations static friction does not let the laid line slide):
+  the seabed is a linear spring, as in the time domain.
 
 Boundary conditions. A ``fixed`` end node has no degree of freedom. A ``force`` end
 (towing) is free in all three directions: the applied force is a dead load (fixed
 magnitude and direction) and adds no stiffness; the node keeps its half-element
 mass. A ``mooring`` end is free horizontally and held at its height (z fixed).
-Nodes resting on the seabed (static ``laid_length`` > 0 and the node on the seabed
-plane) are held in the direction normal to the seabed (a bilateral, rigid seabed). On a
-frictionless seabed they are free along it; with friction they stick (held in all
-directions): for small vibrations static friction does not let the laid line slide,
-and where friction has taken all the tension out of the laid part a free node there
-would have no lateral stiffness at all (a singular eigenproblem).
 
 Solution. The constraints keep one orthonormal basis of free directions per node, so
 the reduced mass stays block-diagonal; with its block Cholesky factor L the problem
@@ -65,7 +53,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.sparse as sp
@@ -80,6 +68,13 @@ from ..statics.base import (
     LineModel,
     Medium,
     StaticResult,
+)
+from .model import (
+    DiscreteLine,
+    DynamicExtras,
+    default_seabed_stiffness,
+    discretise_nodes,
+    evaluate,
 )
 
 #: status of a modal analysis about a static solution that failed
@@ -111,6 +106,9 @@ class ModalProblem:
         ``added_mass_tangential`` along it).
     include_bending : bool
         Add the bending stiffness EI of the segments.
+    extras : DynamicExtras or None
+        Clamped ends, bodies' added mass, seabed contact stiffness and friction (the
+        time-domain model's; None: :func:`default_extras`).
     """
 
     line: LineModel
@@ -121,6 +119,7 @@ class ModalProblem:
     n_modes: int = 10
     include_added_mass: bool = True
     include_bending: bool = True
+    extras: DynamicExtras | None = None
 
 
 @dataclass(kw_only=True)
@@ -191,21 +190,6 @@ def node_bases(problem: ModalProblem) -> list[np.ndarray]:
     pos = problem.static.position
     n = len(pos)
     constraints: list[list[np.ndarray]] = [[] for _ in range(n)]
-    med = problem.medium
-    if med.depth is not None and problem.static.laid_length > 0.0:
-        ground = med.seabed_z(pos[:, 0], pos[:, 1])
-        tol = 1e-6 * max(float(problem.static.s[-1]), 1.0)
-        rise = math.tan(med.seabed_slope)
-        normal = np.array(
-            [-rise * math.cos(med.seabed_heading), -rise * math.sin(med.seabed_heading), 1.0]
-        )
-        normal /= np.linalg.norm(normal)
-        stick = med.friction > 0.0
-        for i in np.flatnonzero(np.abs(pos[:, 2] - ground) <= tol):
-            if stick:
-                constraints[i] = [np.eye(3)[:, j] for j in range(3)]
-            else:
-                constraints[i].append(normal)
     for node, end in ((0, problem.end_a), (n - 1, problem.end_b)):
         if end.kind == "fixed":
             constraints[node] = [np.eye(3)[:, j] for j in range(3)]
@@ -214,85 +198,123 @@ def node_bases(problem: ModalProblem) -> list[np.ndarray]:
     return [_free_basis(np.array(c).T if c else np.zeros((3, 0))) for c in constraints]
 
 
-def mass_blocks(problem: ModalProblem) -> np.ndarray:
-    """Lumped nodal mass blocks (n_nodes, 3, 3) [kg], see the module docstring."""
+def shared_model(problem: ModalProblem) -> tuple[DiscreteLine, np.ndarray]:
+    """The shared line model (:mod:`cablestudy.dynamics.model`) with nodes at the static
+    samples, and the positions at which its tangents are taken.
+
+    The element rest lengths are set to ``l / (1 + T / EA)``, with ``l`` the chord and
+    ``T`` the static tension at the element (mean of its end samples): the model's
+    chord tensions are then the static tensions of the continuous solution, so the
+    geometric stiffness is the static tension however stiff the line is (a chord strain
+    of the sampled curve would miss it by EA times the chord's O(h^2 kappa^2) shortening).
+    Masses are lumped over the true unstretched lengths. Nodes on the seabed are put
+    a nanometre inside it, so that the contact spring (and, with friction, the sticking
+    friction spring) acts on them: the seabed is a linear spring, as in the time domain.
+    """
     line, st = problem.line, problem.static
-    s, pos = st.s, st.position
-    l0 = np.diff(s)
-    chord = np.diff(pos, axis=0)
-    t = chord / np.linalg.norm(chord, axis=1)[:, None]
+    s, pos = np.asarray(st.s, dtype=float), np.asarray(st.position, dtype=float)
+    extras = problem.extras or default_extras(line, problem.medium)
+    disc = discretise_nodes(line, problem.medium, s, extras)
+    chord = np.linalg.norm(np.diff(pos, axis=0), axis=1)
+    T_e = 0.5 * (st.tension[:-1] + st.tension[1:])
+    changes: dict = {"rest_length": chord / (1.0 + element_strain(line, s, T_e)), "has_drag": False}
+    if not problem.include_added_mass:
+        zero = np.zeros(disc.n_nodes)
+        changes.update(added_mass_normal=zero, added_mass_tangential=zero, body_added_mass=zero)
+    if not problem.include_bending:
+        changes["bending"] = np.zeros(disc.n_nodes)
+    disc = replace(disc, **changes)
+    x = pos.copy()
+    if disc.has_seabed:
+        gap = x @ disc.seabed_normal - disc.seabed_offset
+        laid = gap <= 1e-6 * max(float(s[-1]), 1.0)
+        x[laid] -= np.outer(gap[laid] + 1e-9, disc.seabed_normal)
+    return disc, x
+
+
+def element_strain(line: LineModel, s: np.ndarray, tension: np.ndarray) -> np.ndarray:
+    """Strain [-] of the elements between nodes ``s`` [m] carrying ``tension`` [N] (n,),
+    by the inverse of each segment's axial law (T / EA where it is linear)."""
     seg = _segment_index(line, 0.5 * (s[:-1] + s[1:]))
-    area = math.pi * line.diameter[seg] ** 2 / 4.0
-    rho = problem.medium.density if problem.include_added_mass else 0.0
-    m = line.mass[seg]
-    m_n = m + rho * line.added_mass_normal[seg] * area
-    m_t = m + rho * line.added_mass_tangential[seg] * area
-    tt = t[:, :, None] * t[:, None, :]
-    blocks_e = (
-        0.5 * l0[:, None, None] * (m_n[:, None, None] * (np.eye(3) - tt) + m_t[:, None, None] * tt)
+    out = np.asarray(tension, dtype=float) / line.axial_stiffness[seg]
+    for i in range(line.length.size):
+        law = line.law_of(i)
+        if law is not None:
+            on = seg == i
+            out[on] = law.strain(np.asarray(tension, dtype=float)[on])
+    return out
+
+
+def element_tangent(line: LineModel, s: np.ndarray, tension: np.ndarray) -> np.ndarray:
+    """Tangent axial stiffness dT/d(strain) [N] of the elements at ``tension`` [N]."""
+    seg = _segment_index(line, 0.5 * (s[:-1] + s[1:]))
+    out = line.axial_stiffness[seg].astype(float)
+    strain = element_strain(line, s, tension)
+    for i in range(line.length.size):
+        law = line.law_of(i)
+        if law is not None:
+            on = seg == i
+            out[on] = law.tangent_stiffness(strain[on])
+    return out
+
+
+def default_extras(line: LineModel, medium: Medium) -> DynamicExtras:
+    """Dynamic line properties of a bare :class:`LineModel`: pinned ends, no bodies or
+    transverse damping, the default seabed stiffness and the medium's friction."""
+    stiffness = default_seabed_stiffness(line) if medium.depth is not None else 0.0
+    return DynamicExtras(
+        seabed_stiffness=stiffness, friction_axial=medium.friction, friction_lateral=medium.friction
     )
-    M = np.zeros((len(s), 3, 3))
-    M[:-1] += blocks_e
-    M[1:] += blocks_e
-    for s_att, mass in zip(line.attachment_s, line.attachment_mass, strict=True):
-        if mass == 0.0:
-            continue
-        e = int(np.clip(np.searchsorted(s, s_att, side="right") - 1, 0, len(l0) - 1))
-        xi = (s_att - s[e]) / l0[e]
-        M[e] += (1.0 - xi) * mass * np.eye(3)
-        M[e + 1] += xi * mass * np.eye(3)
-    return M
 
 
-def stiffness_matrix(problem: ModalProblem) -> sp.csr_matrix:
-    """Tangent stiffness (3 n_nodes, 3 n_nodes) [N/m] of all nodes, before constraints."""
-    line, st = problem.line, problem.static
-    s, pos, T = st.s, st.position, st.tension
-    n = len(s)
-    l0 = np.diff(s)
-    chord = np.diff(pos, axis=0)
-    l = np.linalg.norm(chord, axis=1)
-    t = chord / l[:, None]
-    seg = _segment_index(line, 0.5 * (s[:-1] + s[1:]))
-    T_e = 0.5 * (T[:-1] + T[1:])
-    tt = t[:, :, None] * t[:, None, :]
-    P = np.eye(3) - tt
-    K_e = (line.axial_stiffness[seg] / l0)[:, None, None] * tt + (T_e / l)[:, None, None] * P
+def tangents(problem: ModalProblem) -> tuple[np.ndarray, sp.csr_matrix, sp.csr_matrix]:
+    """Nodal mass blocks (n_nodes, 3, 3) [kg], tangent stiffness and structural damping
+    (3 n_nodes, 3 n_nodes) [N/m], [N s/m] of all nodes before constraints: the shared
+    line model's own tangents (:func:`cablestudy.dynamics.model.assemble`) at rest in
+    the static shape, without drag (the frequency domain linearises drag itself)."""
+    disc, x = shared_model(problem)
+    work = evaluate(disc, x, np.zeros_like(x), anchor=x)
+    n = disc.n_nodes
+    return (
+        work.M_d.copy(),
+        _block_matrix(n, work.K_d, work.K_o, work.K_o2),
+        _block_matrix(n, work.C_d, work.C_o, work.K_o2[:0]),
+    )
 
-    rows: list[np.ndarray] = []
-    cols: list[np.ndarray] = []
-    vals: list[np.ndarray] = []
+
+def _block_matrix(n: int, diag: np.ndarray, off1: np.ndarray, off2: np.ndarray) -> sp.csr_matrix:
+    """Sparse (3n, 3n) matrix of diagonal blocks and upper blocks one and two nodes off
+    the diagonal (the lower ones their transposes)."""
     ii, jj = np.meshgrid(np.arange(3), np.arange(3), indexing="ij")
+    rows, cols, vals = [], [], []
 
     def add(node_i: np.ndarray, node_j: np.ndarray, blocks: np.ndarray) -> None:
         rows.append((3 * node_i[:, None, None] + ii).ravel())
         cols.append((3 * node_j[:, None, None] + jj).ravel())
         vals.append(blocks.ravel())
 
-    a, b = np.arange(n - 1), np.arange(1, n)
-    add(a, a, K_e)
-    add(b, b, K_e)
-    add(a, b, -K_e)
-    add(b, a, -K_e)
-
-    if problem.include_bending and n >= 3:
-        seg_node = _segment_index(line, s[1:-1])
-        EI = line.bending_stiffness[seg_node]
-        if np.any(EI > 0.0):
-            h = 0.5 * (l0[:-1] + l0[1:])
-            G = P / l[:, None, None]  # d t_e / d x_{e+1} = G_e, d t_e / d x_e = -G_e
-            # d(t_i - t_{i-1}) / d(x_{i-1}, x_i, x_{i+1}) for interior nodes i = 1..n-2
-            J = [G[:-1], -G[:-1] - G[1:], G[1:]]
-            c = (EI / h)[:, None, None]
-            mid = np.arange(1, n - 1)
-            for p in range(3):
-                for q in range(3):
-                    blk = c * np.einsum("kji,kjl->kil", J[p], J[q])
-                    add(mid - 1 + p, mid - 1 + q, blk)
+    add(np.arange(n), np.arange(n), diag)
+    for k, blocks in ((1, off1), (2, off2)):
+        m = blocks.shape[0]
+        if m == 0:
+            continue
+        a = np.arange(m)
+        add(a, a + k, blocks)
+        add(a + k, a, np.transpose(blocks, (0, 2, 1)))
     return sp.csr_matrix(
-        (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-        shape=(3 * n, 3 * n),
+        (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(3 * n, 3 * n)
     )
+
+
+def mass_blocks(problem: ModalProblem) -> np.ndarray:
+    """Lumped nodal mass blocks (n_nodes, 3, 3) [kg] (:func:`tangents`)."""
+    return tangents(problem)[0]
+
+
+def stiffness_matrix(problem: ModalProblem) -> sp.csr_matrix:
+    """Tangent stiffness (3 n_nodes, 3 n_nodes) [N/m] of all nodes, before constraints
+    (:func:`tangents`)."""
+    return tangents(problem)[1]
 
 
 def transverse_mass(
@@ -452,8 +474,7 @@ def modal_analysis(problem: ModalProblem, *, deadline: float | None = None) -> M
             s, k, STATUS_TIME_LIMIT, "time limit reached before the modal eigenproblem", n_dof=n_dof
         )
 
-    M = mass_blocks(problem)
-    K = stiffness_matrix(problem)
+    M, K, _ = tangents(problem)
     # B: (3n, n_dof) block-diagonal free bases; Linv: inverse Cholesky factors of the
     # reduced nodal mass blocks (n_dof, n_dof), block-diagonal
     offsets = np.concatenate(([0], np.cumsum(dims)))

@@ -65,6 +65,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
+from ..physics.contact import default_seabed_stiffness as contact_stiffness
 from ..statics.base import LineModel, Medium
 
 
@@ -127,6 +128,11 @@ class DiscreteLine:
     seabed_stiffness : [N/m] (n + 1,) contact stiffness of each node (0: no seabed)
     seabed_damping : [N s/m] (n + 1,) contact damping of each node
     friction : (2,) [-] Coulomb coefficients (along, across the line)
+    law_code : (n,) axial law of each element (:data:`LAW_CODES`; 0: T = EA strain)
+    law_params : (n, 5) the law's numbers: polynomial coefficients c1..c5 [N], or the
+        steel wire's stiffness [N] and offset [-]
+    law_knots : (k, 3) the tabulated laws' knots: strain [-], tension [N], slope [N]
+    law_start, law_count : (n,) each element's rows of ``law_knots``
     """
 
     s: np.ndarray
@@ -153,6 +159,11 @@ class DiscreteLine:
     seabed_stiffness: np.ndarray
     seabed_damping: np.ndarray
     friction: np.ndarray
+    law_code: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    law_params: np.ndarray = field(default_factory=lambda: np.zeros((0, 5)))
+    law_knots: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    law_start: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    law_count: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
 
     @property
     def n_elements(self) -> int:
@@ -196,7 +207,53 @@ class DiscreteLine:
             self.seabed_stiffness,
             self.seabed_damping,
             self.friction,
+            self.law_code,
+            self.law_params,
+            self.law_knots,
+            self.law_start,
+            self.law_count,
         )
+
+
+#: axial laws of the compiled kernels (:mod:`cablestudy.physics.axial`)
+LAW_CODES = {"linear": 0, "polynomial": 1, "steel_wire": 2, "table": 3}
+
+
+def law_arrays(laws: list, n_elements_of: np.ndarray) -> tuple[np.ndarray, ...]:
+    """Per-element law arrays (code, params, knots, start, count) of segment ``laws``
+    (:class:`cablestudy.physics.axial.AxialLaw` or None for T = EA strain), element e
+    belonging to segment ``n_elements_of[e]``."""
+    from ..physics.axial import is_effectively_linear
+
+    seg_code = np.zeros(len(laws), dtype=np.int64)
+    seg_params = np.zeros((len(laws), 5))
+    seg_start = np.zeros(len(laws), dtype=np.int64)
+    seg_count = np.zeros(len(laws), dtype=np.int64)
+    knots: list[np.ndarray] = []
+    row = 0
+    for i, law in enumerate(laws):
+        if law is None or is_effectively_linear(law):
+            continue
+        seg_code[i] = LAW_CODES[law.name]
+        if law.name == "polynomial":
+            c = np.asarray(law.coefficients, dtype=float)
+            seg_params[i, : c.size] = c
+        elif law.name == "steel_wire":
+            seg_params[i, :2] = (law.stiffness, law.offset)
+        else:
+            x, y, m = law._knots()
+            knots.append(np.stack([x, y, m], 1))
+            seg_start[i], seg_count[i] = row, x.size
+            row += x.size
+    table = np.concatenate(knots) if knots else np.zeros((0, 3))
+    seg = np.asarray(n_elements_of)
+    return (
+        seg_code[seg],
+        np.ascontiguousarray(seg_params[seg]),
+        table,
+        seg_start[seg],
+        seg_count[seg],
+    )
 
 
 def element_counts(lengths: np.ndarray, elements: int) -> np.ndarray:
@@ -224,10 +281,9 @@ def seabed_plane(medium: Medium) -> tuple[np.ndarray, float]:
 
 
 def default_seabed_stiffness(line: LineModel) -> float:
-    """Default normal contact stiffness per length [N/m^2]: the heaviest segment's
-    weight in the fluid per metre of penetration over 1 mm (a static penetration of
-    1 mm), at least 1 kPa."""
-    return max(float(np.max(line.weight)) / 1e-3, 1e3)
+    """Default normal contact stiffness per length [N/m^2]
+    (:func:`cablestudy.physics.contact.default_seabed_stiffness` of the line's weights)."""
+    return contact_stiffness(line.weight)
 
 
 def discretise(
@@ -243,14 +299,32 @@ def discretise(
     elements : target number of elements [-]
     extras : dynamic-only properties (bending ends, bodies, seabed contact, free ends)
     """
-    extras = extras or DynamicExtras()
+    return discretise_nodes(line, medium, uniform_nodes(line, elements), extras)
+
+
+def uniform_nodes(line: LineModel, elements: int) -> np.ndarray:
+    """Arc lengths [m] of about ``elements`` elements, equal within each segment, with a
+    node on every segment boundary (:func:`element_counts`)."""
     counts = element_counts(line.length, elements)
     bounds = line.segment_ends
-    s = np.concatenate(
+    return np.concatenate(
         [np.linspace(bounds[i], bounds[i + 1], counts[i] + 1)[:-1] for i in range(len(counts))]
         + [bounds[-1:]]
     )
-    seg = np.repeat(np.arange(len(counts)), counts)
+
+
+def discretise_nodes(
+    line: LineModel, medium: Medium, s: np.ndarray, extras: DynamicExtras | None = None
+) -> DiscreteLine:
+    """The lumped-mass model of ``line`` with nodes at the arc lengths ``s`` [m]
+    (increasing from 0 to the line length; an element straddling a segment boundary
+    takes the segment of its midpoint)."""
+    extras = extras or DynamicExtras()
+    s = np.asarray(s, dtype=float)
+    ends = line.segment_ends
+    seg = np.clip(
+        np.searchsorted(ends, 0.5 * (s[:-1] + s[1:]), side="right") - 1, 0, line.length.size - 1
+    )
     l0 = np.diff(s)
     rho = medium.density
     area = np.pi * line.diameter**2 / 4.0
@@ -320,6 +394,8 @@ def discretise(
     has_drag = bool(
         rho > 0.0 and (np.any(drag_n > 0.0) or np.any(drag_t > 0.0) or np.any(body_drag > 0.0))
     )
+    laws = [line.law_of(i) for i in range(line.length.size)]
+    code, params, knots, start, count = law_arrays(laws, seg)
     return DiscreteLine(
         s=s,
         rest_length=l0,
@@ -345,6 +421,11 @@ def discretise(
         seabed_stiffness=k_sb,
         seabed_damping=c_sb,
         friction=np.array([extras.friction_axial, extras.friction_lateral], dtype=float),
+        law_code=code,
+        law_params=params,
+        law_knots=knots,
+        law_start=start,
+        law_count=count,
     )
 
 
@@ -382,6 +463,47 @@ def _add_bend_blocks(K_d, K_o, K_o2, kb, nodes, G, count):  # noqa: ANN001, ANN2
 
 
 @njit(cache=True)
+def axial_law(code, params, knots, start, count, ea, eps):  # noqa: ANN001, ANN201
+    """Tension [N] and tangent dT/d(strain) [N] of an element's axial law at strain
+    ``eps`` > 0 (the kernels' copy of :mod:`cablestudy.physics.axial`): 0 linear
+    ``ea eps``; 1 polynomial ``sum c_i eps^i``; 2 steel wire ``k (eps - d (1 -
+    exp(-eps/d)))``; 3 a table's monotone cubic Hermite curve, continued linearly."""
+    if code == 0:
+        return ea * eps, ea
+    if code == 1:
+        t = 0.0
+        dt = 0.0
+        for i in range(4, -1, -1):
+            t = (t + params[i]) * eps
+            dt = dt * eps + (i + 1) * params[i]
+        return t, dt
+    if code == 2:
+        k = params[0]
+        d = params[1]
+        return k * (eps + d * math.expm1(-eps / d)), -k * math.expm1(-eps / d)
+    lo = start
+    hi = start + count - 1
+    if eps >= knots[hi, 0]:
+        return knots[hi, 1] + knots[hi, 2] * (eps - knots[hi, 0]), knots[hi, 2]
+    j = lo
+    while j < hi - 1 and knots[j + 1, 0] <= eps:
+        j += 1
+    h = knots[j + 1, 0] - knots[j, 0]
+    u = (eps - knots[j, 0]) / h
+    y0, y1 = knots[j, 1], knots[j + 1, 1]
+    m0, m1 = knots[j, 2], knots[j + 1, 2]
+    h00 = 2 * u**3 - 3 * u**2 + 1
+    h10 = u**3 - 2 * u**2 + u
+    h01 = -2 * u**3 + 3 * u**2
+    h11 = u**3 - u**2
+    t = h00 * y0 + h10 * h * m0 + h01 * y1 + h11 * h * m1
+    dt = ((6 * u**2 - 6 * u) * y0 + (6 * u - 6 * u**2) * y1) / h + (
+        (3 * u**2 - 4 * u + 1) * m0 + (3 * u**2 - 2 * u) * m1
+    )
+    return t, dt
+
+
+@njit(cache=True)
 def assemble(
     x,
     v,
@@ -409,6 +531,11 @@ def assemble(
     seabed_stiffness,
     seabed_damping,
     friction,
+    law_code,
+    law_params,
+    law_knots,
+    law_start,
+    law_count,
     F,
     K_d,
     K_o,
@@ -475,9 +602,18 @@ def assemble(
         kax = 0.0
         cax = 0.0
         if eps > 0.0:
-            t = axial_stiffness[e] * eps + internal_damping[e] * rate / l0
+            t_el, k_el = axial_law(
+                law_code[e],
+                law_params[e],
+                law_knots,
+                law_start[e],
+                law_count[e],
+                axial_stiffness[e],
+                eps,
+            )
+            t = t_el + internal_damping[e] * rate / l0
             if t > 0.0:
-                kax = axial_stiffness[e] / l0
+                kax = k_el / l0
                 cax = internal_damping[e] / l0
             else:
                 t = 0.0
@@ -858,6 +994,11 @@ def _static_newton(
     seabed_stiffness,
     seabed_damping,
     friction,
+    law_code,
+    law_params,
+    law_knots,
+    law_start,
+    law_count,
     F,
     K_d,
     K_o,
@@ -912,6 +1053,11 @@ def _static_newton(
             seabed_stiffness,
             seabed_damping,
             friction,
+            law_code,
+            law_params,
+            law_knots,
+            law_start,
+            law_count,
             F,
             K_d,
             K_o,
@@ -1039,6 +1185,8 @@ def energies(
     """(kinetic, stored elastic, potential of the constant nodal forces) energy [J] of
     the discrete line; the stored energy is the axial strain energy plus the bending
     and seabed-spring energies, and the potential is ``-sum(force . x)``."""
+    if np.any(line.law_code != 0):
+        raise ValueError("energies: the stored axial energy is written for T = EA strain")
     work = evaluate(line, x, v, anchor=anchor if anchor is not None else x)
     kinetic = 0.5 * float(np.einsum("ia,iab,ib->", v, work.M_d, v))
     eps = np.maximum(work.strain, 0.0)

@@ -219,7 +219,9 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         while len(buf) > 2 and buf[1][0] < t - hist_span:
             buf.popleft()
 
-    rec: dict[str, list[np.ndarray]] = {k: [] for k in ("t", "x", "v", "a", "end_force", "tension")}
+    rec: dict[str, list[np.ndarray]] = {
+        k: [] for k in ("t", "x", "v", "a", "end_force", "tension", "friction")
+    }
 
     def keep(t: float, forces: np.ndarray) -> None:
         if problem.keep_steps:
@@ -229,6 +231,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             rec["a"].append(a0.copy())
             rec["end_force"].append(forces.copy())
             rec["tension"].append(work.tension.copy())
+            rec["friction"].append(work.friction.copy())
 
     keep(0.0, end_forces(work, a0, x0, held))
     push(0.0, t_static)

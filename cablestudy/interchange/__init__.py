@@ -145,4 +145,16 @@ def line_from_reference(
     imported = import_model(
         text, str(path), lines=lines, folder=resolved.parent if resolved else None
     )
-    return imported.data["line"], imported.warnings
+    notes = list(imported.warnings)
+    env = imported.data.get("environment", {})
+    keys = sorted(
+        f"{k}.{sub}" if isinstance(v, dict) else k
+        for k, v in env.items()
+        for sub in (v if isinstance(v, dict) else [None])
+    )
+    if keys:
+        notes.append(
+            f"the file's environment ({', '.join(keys)}) is not used: the study's "
+            "environment applies to a referenced line"
+        )
+    return imported.data["line"], notes

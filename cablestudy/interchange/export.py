@@ -22,7 +22,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..config import FixedEnd, Study
+from ..physics.contact import default_seabed_stiffness
+from ..problem import line_model
 from .moordyn_format import InterchangeError
+from .seabed import to_moordyn
 
 
 @dataclass(frozen=True)
@@ -77,6 +80,17 @@ def moordyn_input(
     env = study.environment
     rho, g = env.density, env.gravity
     segs = study.line.segments
+    if study.line.is_spring:
+        raise InterchangeError(
+            "line.kind: spring (a massless spring) has no MoorDyn line equivalent; "
+            "export a kind: catenary line"
+        )
+    for i, seg in enumerate(segs):
+        if seg.axial is not None and seg.axial.law != "linear":
+            raise InterchangeError(
+                f"line.segments.{i}.axial: the {seg.axial.law} law is not exported (the "
+                "MoorDyn file takes a linear EA here); give axial_stiffness to export"
+            )
     warnings: list[str] = []
     bounds = np.concatenate([[0.0], np.cumsum([s.length for s in segs])])
     total = float(bounds[-1])
@@ -87,7 +101,7 @@ def moordyn_input(
                 "equivalent (points carry mass and volume only); give it as mass or volume"
             )
     # break points: segment joints and attachments; point masses/volumes at each
-    cuts = {float(b): [0.0, 0.0] for b in bounds}
+    cuts = {float(b): [0.0, 0.0, 0.0, 0.0] for b in bounds}  # mass, volume, added mass, CdA
     for i, att in enumerate(study.line.attachments):
         if att.s <= 0.0 or att.s >= total:
             warnings.append(
@@ -97,9 +111,11 @@ def moordyn_input(
         key = min(cuts, key=lambda c, s=att.s: abs(c - s))
         if abs(key - att.s) > 1e-9 * total:
             key = float(att.s)
-            cuts[key] = [0.0, 0.0]
+            cuts[key] = [0.0, 0.0, 0.0, 0.0]
         cuts[key][0] += att.mass
         cuts[key][1] += att.volume
+        cuts[key][2] += att.added_mass
+        cuts[key][3] += att.drag_area
     positions = sorted(cuts)
     # line types: one per segment
     type_rows = []
@@ -114,7 +130,7 @@ def moordyn_input(
                 )
         ba = -seg.damping_ratio if seg.damping_ratio > 0.0 else 0.0
         type_rows.append(
-            f"seg{i + 1}  {_num(seg.diameter)}  {_num(m)}  {_num(seg.axial_stiffness)}  "
+            f"seg{i + 1}  {_num(seg.diameter)}  {_num(m)}  {_num(seg.elastic_stiffness)}  "
             f"{_num(ba)}  {_num(seg.bending_stiffness)}  {_num(seg.drag_normal)}  "
             f"{_num(seg.added_mass_normal)}  {_num(seg.drag_tangential)}  "
             f"{_num(seg.added_mass_tangential)}"
@@ -144,10 +160,18 @@ def moordyn_input(
             kind = "Free"
             pos = np.array([np.interp(s, s_nodes, position_at[:, j]) for j in range(3)])
             note = f"s = {s:g} m"
-        mass, vol = cuts[s]
+        mass, vol, added, cda = cuts[s]
+        # MoorDyn's point added mass is Ca rho V: a body with added mass and no volume
+        # has no Ca that gives it
+        ca = added / (rho * vol) if vol > 0.0 and rho > 0.0 else 0.0
+        if added > 0.0 and ca == 0.0:
+            warnings.append(
+                f"point {pid} (s = {s:g} m): added mass {added:g} kg with no displaced volume "
+                "has no MoorDyn Ca (MoorDyn's point added mass is Ca rho V); written as 0"
+            )
         point_rows.append(
             f"{pid}  {kind}  {_num(pos[0])}  {_num(pos[1])}  {_num(pos[2])}  {_num(mass)}  "
-            f"{_num(vol)}  0  0   ! {note}"
+            f"{_num(vol)}  {_num(cda)}  {_num(ca)}   ! {note}"
         )
     # lines between consecutive points
     line_rows = []
@@ -159,7 +183,8 @@ def moordyn_input(
         length = s1 - s0
         nseg = max(1, round(n_total * length / total))
         c = math.sqrt(
-            seg.axial_stiffness / (seg.mass_in(rho, g) + rho * seg.area * seg.added_mass_tangential)
+            seg.elastic_stiffness
+            / (seg.mass_in(rho, g) + rho * seg.area * seg.added_mass_tangential)
         )
         dt = min(dt, math.pi * (length / nseg) / (10.0 * c))
         line_rows.append(f"{k + 1}  seg{iseg + 1}  {k + 1}  {k + 2}  {_num(length)}  {nseg}  -")
@@ -168,10 +193,32 @@ def moordyn_input(
     lowest = min(end_a[2], end_b[2], float(position_at[:, 2].min()))
     opts = [f"{_num(g)}  g", f"{_num(rho)}  rho"]
     if env.depth is not None:
-        opts.append(
-            f"{_num(env.depth)}  WtrDpth   ! kBot, cBot: MoorDyn's default seabed penalty "
-            "(cablestudy's seabed is rigid)"
+        opts.append(f"{_num(env.depth)}  WtrDpth")
+        ref = max(range(len(segs)), key=lambda i: segs[i].diameter)
+        seg = segs[ref]
+        m_n = seg.mass_in(rho, g) + rho * seg.area * seg.added_mass_normal
+        stiffness = (
+            env.seabed.stiffness
+            if env.seabed.stiffness is not None
+            else default_seabed_stiffness(line_model(study).weight)
         )
+        kbot, cbot = to_moordyn(
+            stiffness, env.seabed.damping_ratio, diameter=seg.diameter, mass=m_n
+        )
+        opts.append(
+            f"{_num(kbot)}  kBot   ! the study's contact stiffness {stiffness:.6g} N/m^2 over "
+            f"the diameter of segment {ref + 1}"
+        )
+        opts.append(
+            f"{_num(cbot)}  cBot   ! damping ratio {env.seabed.damping_ratio:g} of that "
+            "segment's contact spring"
+        )
+        if len({sg.diameter for sg in segs}) > 1:
+            warnings.append(
+                "MoorDyn's seabed stiffness scales with each line type's diameter; kBot is "
+                f"the study's contact stiffness over segment {ref + 1}'s diameter, so the "
+                "thinner segments rest on a softer seabed in MoorDyn"
+            )
         if env.seabed.slope_deg != 0.0:
             warnings.append(
                 f"environment.seabed.slope_deg = {env.seabed.slope_deg:g}: MoorDyn's seabed "

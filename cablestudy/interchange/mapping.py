@@ -27,6 +27,7 @@ from .moordyn_format import (
     MoorDynFormatError,
     Point,
 )
+from .seabed import DEFAULT_CBOT, DEFAULT_KBOT, from_moordyn
 
 #: MoorDyn options that tune MoorDyn's own solvers (time step, scheme, initial-condition
 #: search, output): cablestudy's solvers choose their own settings, so these carry no
@@ -216,11 +217,53 @@ def _segment(md: MoorDynFile, lt: LineType, line: Line, warnings: list[str]) -> 
 
 
 def _point_load(pt: Point, md: MoorDynFile, warnings: list[str], role: str) -> None:
+    """A free end point's drag and added mass: a ``force`` end carries a constant force
+    only, so they are reported, not mapped."""
     where = f"{md.source}:{pt.source_line}"
     if pt.drag_area != 0.0 or pt.added_mass != 0.0:
         warnings.append(
             f"{where}: point {pt.id} ({role}): CdA = {pt.drag_area:g} m^2 and Ca = "
-            f"{pt.added_mass:g} (drag and added mass of a point) are not modelled"
+            f"{pt.added_mass:g} (drag and added mass of a point) are not modelled at a "
+            "free end (a force end carries its force only)"
+        )
+
+
+def _seabed_contact(
+    md: MoorDynFile,
+    env: dict[str, Any],
+    segments: list[dict[str, Any]],
+    rho: float,
+    comments: dict[tuple[str | int, ...], str],
+    warnings: list[str],
+) -> None:
+    """MoorDyn's kBot / cBot (or its defaults) as the study's contact stiffness and
+    damping ratio (:mod:`cablestudy.interchange.seabed`), on the segment of largest
+    diameter."""
+    src = md.source
+    kb = _float_option(md, ("kBot", "kb"))
+    cb = _float_option(md, ("cBot", "cb"))
+    ref = max(range(len(segments)), key=lambda i: segments[i]["diameter"])
+    seg = segments[ref]
+    d = seg["diameter"]
+    m_n = seg["mass_per_length"] + rho * math.pi * d * d / 4.0 * seg["added_mass_normal"]
+    kbot = kb[0] if kb else DEFAULT_KBOT
+    cbot = cb[0] if cb else DEFAULT_CBOT
+    stiffness, ratio = from_moordyn(kbot, cbot, diameter=d, mass=m_n)
+    seabed = env.setdefault("seabed", {})
+    seabed["stiffness"] = stiffness
+    seabed["damping_ratio"] = ratio
+    how = f"segment {ref}'s diameter {d:g} m"
+    comments[("environment", "seabed", "stiffness")] = (
+        f"{src}:{kb[1]} kBot" if kb else f"MoorDyn default kBot = {DEFAULT_KBOT:g} Pa/m"
+    ) + f" x {how}"
+    comments[("environment", "seabed", "damping_ratio")] = (
+        f"{src}:{cb[1]} cBot" if cb else f"MoorDyn default cBot = {DEFAULT_CBOT:g} Pa s/m"
+    ) + f" x {how}, over 2 sqrt(k m)"
+    if len({sg["diameter"] for sg in segments}) > 1:
+        warnings.append(
+            f"{src}: MoorDyn's seabed stiffness kBot acts on each line type's diameter; the "
+            f"study has one contact stiffness per length, kBot x {how} = {stiffness:.6g} "
+            "N/m^2, so the thinner segments rest on a stiffer seabed than in MoorDyn"
         )
 
 
@@ -290,10 +333,6 @@ def moordyn_to_study(
         env["current"] = current
         comments[("environment", "current")] = "from the steady current table (Currents 1)"
     unmodelled_opts = {
-        "kbot": "seabed stiffness (cablestudy's seabed is rigid)",
-        "kb": "seabed stiffness (cablestudy's seabed is rigid)",
-        "cbot": "seabed damping (cablestudy's seabed is rigid)",
-        "cb": "seabed damping (cablestudy's seabed is rigid)",
         "fricdamp": "friction smoothing velocity scale (Coulomb friction is used as is)",
         "cv": "friction smoothing velocity scale (Coulomb friction is used as is)",
         "statdynfricscale": "static/dynamic friction ratio (one coefficient is used)",
@@ -304,6 +343,7 @@ def moordyn_to_study(
         "currents": "current model",
     }
     used = {"rho", "rhow", "wtrdnsty", "g", "gravity", "wtrdpth", "depth"}
+    used |= {"kbot", "kb", "cbot", "cb"}
     used |= {"frictioncoefficient", "fricccoeff", "friccoeff", "mu_kt", "mu_ka"}
     solver_opts = []
     for key, opt in md.options.items():
@@ -359,8 +399,8 @@ def moordyn_to_study(
                     f"{pt.attachment!r}; a point between two lines of one cablestudy line must "
                     "be free (Free/Connect)"
                 )
-            _point_load(pt, md, warnings, "inside the line")
-            if pt.mass or pt.volume or any(pt.force):
+            body = pt.drag_area or (pt.added_mass and pt.volume)
+            if pt.mass or pt.volume or any(pt.force) or body:
                 att: dict[str, Any] = {"s": s}
                 if pt.mass:
                     att["mass"] = pt.mass
@@ -368,6 +408,18 @@ def moordyn_to_study(
                     att["volume"] = pt.volume
                 if any(pt.force):
                     att["force"] = list(pt.force)
+                if pt.added_mass and pt.volume:  # MoorDyn: Ca rho V
+                    att["added_mass"] = pt.added_mass * rho * pt.volume
+                if pt.drag_area:
+                    if current:
+                        warnings.append(
+                            f"{src}:{pt.source_line}: point {pt.id}: CdA = {pt.drag_area:g} "
+                            "m^2 with a current: not mapped (the static solvers do not load "
+                            "bodies with drag; set line.attachments.N.drag_area for a "
+                            "time-domain study in still water)"
+                        )
+                    else:
+                        att["drag_area"] = pt.drag_area
                 attachments.append(att)
                 comments[("line", "attachments", len(attachments) - 1)] = (
                     f"{src}:{pt.source_line} point {pt.id}"
@@ -422,6 +474,8 @@ def moordyn_to_study(
             f"{src}: both ends of the chosen lines are free points: the study has no fixed "
             "end, which cablestudy's statics need; fix one end before running it"
         )
+    if "depth" in env:
+        _seabed_contact(md, env, segments, rho, comments, warnings)
     data: dict[str, Any] = {
         "name": name,
         "description": f"imported from {src} (MoorDyn v{md.version}), lines "
@@ -432,9 +486,17 @@ def moordyn_to_study(
     }
     if attachments:
         data["line"]["attachments"] = attachments
+    static: dict[str, Any] = {}
     if all(ln.segments > 0 for ln, _ in chain):
-        data["analysis"] = {"static": {"nodes": nsegs + 1}}
+        static["nodes"] = nsegs + 1
         comments[("analysis", "static", "nodes")] = f"NumSegs {nsegs} of the chosen lines, + 1"
+    if any(seg["bending_stiffness"] > 0.0 for seg in segments):
+        static["method"] = "discrete"
+        comments[("analysis", "static", "method")] = (
+            "a line type has EI > 0: the static method that carries bending"
+        )
+    if static:
+        data["analysis"] = {"static": static}
     return ImportedStudy(data=data, comments=comments, warnings=warnings)
 
 

@@ -21,6 +21,7 @@ def profile_quantities(
     *,
     axial_stiffness: np.ndarray,
     area: np.ndarray,
+    strain: np.ndarray | None = None,
     density: float,
     gravity: float,
 ) -> dict[str, np.ndarray]:
@@ -38,6 +39,8 @@ def profile_quantities(
         EA of the segment at each point.
     area : (n,) [m^2]
         Displaced cross-section pi d^2 / 4 at each point.
+    strain : (n,) [-], optional
+        Axial strain at each point from a non-linear axial law (default T / EA).
     density : [kg/m^3]
     gravity : [m/s^2]
 
@@ -71,7 +74,8 @@ def profile_quantities(
             azimuth = azimuth[nearest]
         else:
             azimuth = np.zeros(n)
-    strain = tension / np.asarray(axial_stiffness, dtype=float)
+    if strain is None:
+        strain = tension / np.asarray(axial_stiffness, dtype=float)
     elongation = np.concatenate([[0.0], np.cumsum(0.5 * (strain[1:] + strain[:-1]) * np.diff(s))])
     tension_wall = tension + density * gravity * position[:, 2] * np.asarray(area, dtype=float)
     return {

@@ -1,6 +1,7 @@
 """Static solvers, found by name through :data:`STATIC_SOLVERS` (see :mod:`.base`)."""
 
 from .base import (
+    STATUS_BROKEN,
     STATUS_NO_SOLUTION,
     STATUS_NOT_CONVERGED,
     STATUS_NUMERICAL,
@@ -13,6 +14,7 @@ from .base import (
     StaticResult,
     StaticSolver,
 )
+from .discrete import DiscreteSolver
 from .elastic_catenary import ElasticCatenarySolver
 from .semi_analytic import SemiAnalyticSolver
 from .shooting import ShootingSolver
@@ -21,11 +23,13 @@ from .shooting import ShootingSolver
 STATIC_SOLVERS: dict[str, StaticSolver] = {
     "analytic": ElasticCatenarySolver(),
     "catenary": SemiAnalyticSolver(),
+    "discrete": DiscreteSolver(),
     "shooting": ShootingSolver(),
 }
 
 __all__ = [
     "STATIC_SOLVERS",
+    "STATUS_BROKEN",
     "STATUS_NO_SOLUTION",
     "STATUS_NOT_CONVERGED",
     "STATUS_NUMERICAL",

@@ -31,6 +31,9 @@ STATUS_NOT_CONVERGED = 1
 STATUS_NUMERICAL = 2
 STATUS_TIME_LIMIT = 3
 STATUS_NO_SOLUTION = 4
+#: the static line's tension exceeds its break limit (line.break): not a solver failure,
+#: the static results are kept (see :mod:`.limits`)
+STATUS_BROKEN = 10
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -52,6 +55,9 @@ class LineModel:
     attachment_force : [N] shape (n_att, 3), constant static force incl. weight/buoyancy
     attachment_mass : [kg] shape (n_att,)
     attachment_volume : [m^3] shape (n_att,)
+    axial_law : tuple of :class:`cablestudy.physics.axial.AxialLaw` or None, one per
+        segment (empty: all linear); None where the law is T = EA e. ``axial_stiffness``
+        is then the law's reference stiffness (guesses and scales only).
     """
 
     length: np.ndarray
@@ -69,6 +75,16 @@ class LineModel:
     attachment_force: np.ndarray
     attachment_mass: np.ndarray
     attachment_volume: np.ndarray
+    axial_law: tuple = ()
+
+    @property
+    def is_nonlinear(self) -> bool:
+        """True when some segment's axial law is not T = EA e."""
+        return any(law is not None for law in self.axial_law)
+
+    def law_of(self, segment: int):  # type: ignore[no-untyped-def]
+        """The axial law of ``segment`` (None: linear with ``axial_stiffness``)."""
+        return self.axial_law[segment] if self.axial_law else None
 
     @property
     def total_length(self) -> float:
@@ -84,6 +100,7 @@ class LineModel:
         return bool(
             np.all(self.weight == self.weight[0])
             and np.all(self.axial_stiffness == self.axial_stiffness[0])
+            and len(set(map(id, self.axial_law))) <= 1
         )
 
 
@@ -149,6 +166,12 @@ class StaticProblem:
     touchdown_velocity: np.ndarray = field(default_factory=lambda: np.zeros(3))
     #: drag on the stretched diameter d (1 + e)^(-1/2) (vaz-patel seed) instead of d
     stretched_drag_diameter: bool = False
+    #: bending end conditions of ends A and B ("pinned" or "clamped"), the seabed's
+    #: contact stiffness per length [N/m^2] (None: the default) and lateral friction
+    #: coefficient (None: ``medium.friction``): used by the methods that model them
+    bending_ends: tuple[str, str] = ("pinned", "pinned")
+    seabed_stiffness: float | None = None
+    friction_lateral: float | None = None
 
     @property
     def is_installation(self) -> bool:

@@ -27,10 +27,10 @@ from .semi_analytic import SemiAnalyticSolver, make_layout
 
 def batchable(problem: StaticProblem) -> bool:
     """Whether ``problem`` can take the batch path: still water (or no drag), end A
-    fixed, end A not resting on a seabed."""
+    fixed, end A not resting on a seabed, linear axial laws."""
     med = problem.medium
     line = problem.line
-    if problem.end_a.kind != "fixed":
+    if problem.end_a.kind != "fixed" or line.is_nonlinear:
         return False
     if (
         med.has_current

@@ -376,7 +376,12 @@ class ElasticCatenarySolver:
                 f"end kinds a={problem.end_a.kind!r}, b={problem.end_b.kind!r} "
                 "(only both ends 'fixed')"
             )
-        if not problem.line.is_uniform:
+        if problem.line.is_nonlinear:
+            out.append(
+                "a non-linear axial law (line.segments.N.axial: polynomial, steel_wire, "
+                "table); the closed form needs T = EA e: use method 'catenary' or 'shooting'"
+            )
+        elif not problem.line.is_uniform:
             out.append("segments of different weight or axial stiffness")
         if problem.line.attachment_s.size:
             out.append("attachments")

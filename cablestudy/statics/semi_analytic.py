@@ -48,6 +48,7 @@ from .base import (
     StaticProblem,
     StaticResult,
 )
+from .law_pieces import piece_increments
 from .pieces import piece_integrals
 from .seabed import LaidPart, Plane, laid_part
 
@@ -91,6 +92,8 @@ class Layout:
     weight: np.ndarray
     segment: np.ndarray
     point: np.ndarray
+    #: per piece its non-linear axial law (None where linear); None: all linear
+    law: tuple | None = None
 
     @property
     def gravity(self) -> np.ndarray:
@@ -132,6 +135,7 @@ def make_layout(line: LineModel, drag_elements: int = 0) -> Layout:
         weight=line.weight[seg].astype(float),
         segment=seg,
         point=point,
+        law=tuple(line.law_of(int(k)) for k in seg) if line.is_nonlinear else None,
     )
 
 
@@ -157,6 +161,7 @@ def reversed_line(line: LineModel) -> LineModel:
     }
     return LineModel(
         **seg,
+        axial_law=tuple(reversed(line.axial_law)),
         attachment_s=(L - line.attachment_s)[order],
         attachment_force=line.attachment_force[order],
         attachment_mass=line.attachment_mass[order],
@@ -189,13 +194,16 @@ class Shape:
     contact: bool = False
     #: positions at the piece boundaries (P + 1, 3) where known [m]
     nodes: np.ndarray | None = None
+    #: per piece its non-linear axial law (None: all linear)
+    law: tuple | None = None
 
     def sample(self, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Positions [m] (n, 3) and tension [N] (n,) at arc lengths ``s`` [m]."""
         s = np.asarray(s, dtype=float)
         k = np.clip(np.searchsorted(self.s0, s, side="right") - 1, 0, len(self.s0) - 1)
         sigma = np.clip(s - self.s0[k], 0.0, self.ell[k])
-        dr, _, _ = piece_integrals(self.T0[k], self.q[k], sigma, self.EA[k], jacobian=False)
+        laws = None if self.law is None else [self.law[i] for i in k]
+        dr, _, _ = piece_increments(self.T0[k], self.q[k], sigma, self.EA[k], laws, jacobian=False)
         pos = self.r0[k] + dr
         T = self.T0[k] - self.q[k] * sigma[:, None]
         tension = np.linalg.norm(T, axis=1)
@@ -211,7 +219,7 @@ def _free_shape(
     C, Cend = _offsets(lay, q)
     T0 = TA - C
     if dr is None:
-        dr, _, _ = piece_integrals(T0, q, lay.ell, lay.EA, jacobian=False)
+        dr, _, _ = piece_increments(T0, q, lay.ell, lay.EA, lay.law, jacobian=False)
     r0 = rA + np.concatenate((np.zeros((1, 3)), np.cumsum(dr, axis=0)))
     return Shape(
         s0=lay.bounds[:-1],
@@ -223,6 +231,7 @@ def _free_shape(
         force_a=TA.copy(),
         tension_end=TA - Cend,
         nodes=r0,
+        law=lay.law,
     )
 
 
@@ -358,7 +367,7 @@ def solve_free(
     last: list[np.ndarray] = []
     from . import _fast
 
-    if _fast.AVAILABLE:
+    if _fast.AVAILABLE and lay.law is None:
         qc = np.ascontiguousarray(q, dtype=float)
         Cc = np.ascontiguousarray(C)
 
@@ -374,7 +383,7 @@ def solve_free(
     else:
 
         def evaluate(T: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
-            dr, jac, en = piece_integrals(T - C, q, lay.ell, lay.EA)
+            dr, jac, en = piece_increments(T - C, q, lay.ell, lay.EA, lay.law)
             assert jac is not None
             last[:] = [dr]
             return dr.sum(axis=0), jac.sum(axis=0), float(en.sum())
@@ -863,6 +872,12 @@ class SemiAnalyticSolver:
         if problem.stretched_drag_diameter and problem.medium.has_current:
             out.append(
                 "drag on the stretched diameter (drag_diameter: stretched): use method 'shooting'"
+            )
+        if problem.line.is_nonlinear and problem.medium.depth is not None:
+            out.append(
+                "a non-linear axial law (line.segments.N.axial) with a seabed "
+                "(environment.depth): its seabed contact is linear-elastic only; use method "
+                "'shooting', or omit the depth for a line that cannot reach the seabed"
             )
         return out
 

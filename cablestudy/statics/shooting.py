@@ -89,9 +89,11 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
+from ..physics.axial import gauss_legendre
 from .base import (
     STATUS_NO_SOLUTION,
     STATUS_NOT_CONVERGED,
@@ -143,6 +145,15 @@ class _Line:
     added_mass_normal: tuple[float, ...]
     att_s: tuple[float, ...]  # sorted, merged positions of attachments
     att_force: tuple[tuple[float, float, float], ...]
+    #: per segment its non-linear axial law (None: T = EA e); () when all linear
+    laws: tuple = ()
+
+    def strain(self, k: int, T: float) -> float:
+        """Strain [-] of segment k at tension T [N] (its axial law; tension-only)."""
+        law = self.laws[k] if self.laws else None
+        if law is None:
+            return T / self.axial_stiffness[k]
+        return law.strain_scalar(T)
 
     @property
     def length(self) -> float:
@@ -197,6 +208,7 @@ def _make_line(model: LineModel, reverse: bool) -> _Line:
         added_mass_normal=col(model.added_mass_normal),
         att_s=tuple(keys),
         att_force=tuple(tuple(float(c) for c in merged[k]) for k in keys),  # type: ignore[misc]
+        laws=tuple(model.axial_law[order]) if model.axial_law else (),
     )
 
 
@@ -291,7 +303,7 @@ def _load(
         nx, ny, nz = ux - ut * t[0], uy - ut * t[1], uz - ut * t[2]
         ut += env.payout_speed
         un = math.sqrt(nx * nx + ny * ny + nz * nz)
-        stretch = 1.0 + T / line.axial_stiffness[k]
+        stretch = 1.0 + line.strain(k, T)
         # drag per stretched length times the stretch; the stretched diameter thins as
         # (1 + e)^(-1/2), so its drag per unstretched length grows as (1 + e)^(1/2)
         kk = (
@@ -387,6 +399,7 @@ class _Integrator:
         e3x, e3y, e3z = (float(v) for v in e3)
         line, env = self.line, self.env
         EA = line.axial_stiffness[k]
+        law = line.laws[k] if line.laws else None
         cos, sin = math.cos, math.sin
         m_flow, m_add = self._flow_mass(k)
 
@@ -407,7 +420,7 @@ class _Integrator:
             )
             bn = (-sps * e1x + cps * e2x, -sps * e1y + cps * e2y, -sps * e1z + cps * e2z)
             f = _load(env, line, k, t, z, T)
-            st = 1.0 + T / EA
+            st = 1.0 + (T / EA if law is None else law.strain_scalar(T))
             # pay-out: the cable flowing round its own curvature needs T - mu V^2 in the
             # normal equations (seed eqs. 4b-4c), mu the mass and added mass per
             # stretched length
@@ -437,7 +450,7 @@ class _Integrator:
     def effective_tension(self, k: int, T: float) -> float:
         """T - mu V^2 [N]: the tension that resists curvature under pay-out."""
         m_flow, m_add = self._flow_mass(k)
-        return T - m_flow / (1.0 + T / self.line.axial_stiffness[k]) - m_add
+        return T - m_flow / (1.0 + self.line.strain(k, T)) - m_add
 
     def run(self, s0: float, force: np.ndarray, position: np.ndarray, *, dense: bool) -> _Shot:
         """Integrate from s0 (force F(s0-) and position given) to the far end."""
@@ -602,6 +615,25 @@ def _clipped_integral(T_a: float, g: float, length: float) -> float:
     return 0.5 * T_a * x0 if T_a > 0.0 else 0.5 * T_b * (length - x0)
 
 
+def _laid_stretch(law: Any, EA: float, T_a: float, g: float, length: float) -> float:
+    """Stretch [m] of a straight laid piece over [0, length] whose tension is
+    max(0, T_a + g x) [N]: int e(T) dx, i.e. the clipped tension integral / EA for a
+    linear law, else (Phi(T_b) - Phi(T_a)) / g with Phi the law's complementary energy
+    (exact), or 16-point Gauss-Legendre where the tension hardly changes (|g| length
+    below 1e-3 of the tension, where that difference would cancel)."""
+    if law is None:
+        return _clipped_integral(T_a, g, length) / EA
+    T_b = T_a + g * length
+    if length <= 0.0 or (T_a <= 0.0 and T_b <= 0.0):
+        return 0.0
+    big = max(abs(T_a), abs(T_b))
+    if abs(T_b - T_a) > 1e-3 * big:
+        phi = law.complementary_energy(np.array([max(T_a, 0.0), max(T_b, 0.0)]))
+        return float(phi[1] - phi[0]) / g
+    x, w = gauss_legendre(16)
+    return float(length * np.sum(w * law.strain(np.maximum(T_a + g * length * x, 0.0))))
+
+
 def _laid_profile(
     line: _Line, bed: _Seabed, e: np.ndarray, q: float, t_tdp: float, s: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, float]:
@@ -612,13 +644,15 @@ def _laid_profile(
     tens = np.zeros(len(s))
     total = 0.0
     for a, b, T_a, g in pieces:
-        EA = line.axial_stiffness[line.segment_at(0.5 * (a + b))]
+        k = line.segment_at(0.5 * (a + b))
+        EA = line.axial_stiffness[k]
+        law = line.laws[k] if line.laws else None
         inside = (s >= a) & (s <= b)
         for j in np.nonzero(inside)[0]:
             x = float(s[j]) - a
-            dist[j] = total + x + _clipped_integral(T_a, g, x) / EA
+            dist[j] = total + x + _laid_stretch(law, EA, T_a, g, x)
             tens[j] = max(0.0, T_a + g * x)
-        total += (b - a) + _clipped_integral(T_a, g, b - a) / EA
+        total += (b - a) + _laid_stretch(law, EA, T_a, g, b - a)
     return dist, tens, total
 
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import numpy as np
@@ -170,16 +171,24 @@ analysis:
 
 
 def test_laid_line_sticks_on_a_frictional_seabed(tmp_path: Path) -> None:
-    """Seabed friction is linearised as sticking: the laid nodes are held, so nothing
-    of the motion reaches the anchor, and the laid stretch keeps its static tension."""
+    """Seabed friction is linearised as sticking: each laid node is held by its stick
+    spring (stiffness per length k_t, the contact stiffness: the line's submerged weight
+    over 1 mm), so the motion dies out into the laid stretch like exp(-d / lambda) with
+    lambda = sqrt(EA / k_t) (a bar on an elastic foundation): 31.6 m here. Three lambdas
+    from touchdown the tension amplitude is below 5 % of its largest value, and nothing
+    reaches the anchor."""
     ds = _run(tmp_path, MOORING, "moor")
     assert int(ds["status"]) == 0, str(ds["message"].values)
-    assert float(ds["laid_length"]) > 100.0
+    laid = float(ds["laid_length"])
+    assert laid > 100.0
     assert float(ds["tension_amplitude_b"]) > 0.0
     assert float(ds["tension_amplitude_a"]) == 0.0
-    laid = ds["s"].values < float(ds["laid_length"]) - 300.0 / 80
-    env = (ds["tension_envelope_max"] - ds["tension"]).values[laid]
-    np.testing.assert_array_equal(env, 0.0)
+    decay = math.sqrt(5.0e8 / (500.0 / 1e-3))
+    amp = (ds["tension_envelope_max"] - ds["tension"]).values
+    deep = ds["s"].values < laid - 3.0 * decay
+    assert deep.any()
+    assert np.all(amp[deep] <= 0.05 * amp.max())
+    assert amp[ds["s"].values > laid].min() > 0.1 * amp.max()  # the suspended part moves
 
 
 def test_auto_with_histories_runs_time_and_still_writes_the_transfer_function(

@@ -80,7 +80,10 @@ HOSTILE: dict[str, tuple[bytes, list[str], int, tuple[str, ...]]] = {
         [],
         2,
         # the top mapping is level 1, the list under 'line' level 2: level 33 is refused
-        ("2: line" + ".0" * (MAX_DEPTH - 1) + ": ", f"nested more than {MAX_DEPTH} deep"),
+        # at line.0.0... (with PyYAML >= 6.0.4 its reader's own nesting limit trips first
+        # while scanning ahead, before the composer reaches a level: the refusal then
+        # names the line and the limit only)
+        (f"nested more than {MAX_DEPTH} deep; allowed: at most {MAX_DEPTH} levels",),
     ),
     "not-utf8": (
         VALID.replace("in air\n", "in air \xe9t\xe9\n", 1).encode("latin-1"),

@@ -20,6 +20,7 @@ from cablestudy.interchange import (
     parse_moordyn,
 )
 from cablestudy.interchange.export import moordyn_input
+from cablestudy.physics.contact import default_seabed_stiffness
 from cablestudy.problem import line_model
 
 V2 = """--------------------- MoorDyn Input File ------------------------------------
@@ -226,8 +227,19 @@ analysis:
 
 
 def test_import_of_export_gives_back_the_study() -> None:
+    """Everything comes back as written, and the seabed contact comes back explicit:
+    the default stiffness (the heaviest segment's weight over 1 mm) and damping ratio,
+    through MoorDyn's kBot, cBot on the thickest segment's diameter."""
     study, back, exported = _roundtrip(STUDY)
-    assert back.environment == study.environment
+    sb = back.environment.seabed
+    assert sb.stiffness == pytest.approx(
+        default_seabed_stiffness(line_model(study).weight), rel=1e-14
+    )
+    assert sb.damping_ratio == pytest.approx(study.environment.seabed.damping_ratio, rel=1e-14)
+    explicit = study.environment.seabed.model_copy(
+        update={"stiffness": sb.stiffness, "damping_ratio": sb.damping_ratio}
+    )
+    assert back.environment == study.environment.model_copy(update={"seabed": explicit})
     assert back.line == study.line
     assert back.ends == study.ends
     assert back.analysis.static.nodes == study.analysis.static.nodes
@@ -313,6 +325,8 @@ line: {ref}
 ends:
   a: {{kind: fixed, position: [-800.0, 0.0, -200.0]}}
   b: {{kind: fixed, position: [-40.0, 0.0, -15.0]}}
+analysis:
+  static: {{method: discrete}}  # the poly line type bends (EI 12.5 N m^2)
 {extra}"""
     )
     return study
@@ -327,7 +341,7 @@ def test_study_refers_to_a_moordyn_file_and_sweeps_it(tmp_path: Path) -> None:
         "sweep:\n  line.segments.0.length: [440.0, 450.0]\n",
     )
     src = read_study_source(path)
-    assert any("kBot" in n for n in src.notes)
+    assert any("seabed.stiffness" in n and "is not used" in n for n in src.notes)
     axes, cases = expand_cases(src)
     assert [c.study.line.segments[0].length for c in cases] == [440.0, 450.0]
     assert cases[0].study.line.attachments[0].mass == 5000.0
@@ -478,3 +492,39 @@ def test_chain_between_two_free_points_is_imported_with_a_warning() -> None:
     assert {e["kind"] for e in imported.data["ends"].values()} == {"force"}
     assert any("no fixed end" in w for w in imported.warnings)
     assert "vessel frame" in imported_yaml(import_model(V1, "v1.dat"), "v1.dat")
+
+
+def test_seabed_contact_and_point_bodies_map_both_ways() -> None:
+    """kBot [Pa/m] x the thickest segment's diameter is the study's contact stiffness per
+    length; cBot (default 3e5 Pa s/m) over that spring's critical damping its damping
+    ratio; an inside point's CdA is a body's drag area and its Ca rho V its added mass;
+    exporting writes them back (to the last digit)."""
+    text = V2.replace(
+        "2     Free       -400    0     -190    5000   0.5     0      0",
+        "2     Free       -400    0     -190    5000   0.5     1.5    0.8",
+    )
+    imported = import_model(text, "v2.dat")
+    env = imported.data["environment"]["seabed"]
+    assert env["stiffness"] == pytest.approx(3e6 * 0.2, rel=1e-15)
+    m_n = 30.0 + 1025.0 * math.pi * 0.2**2 / 4 * 0.9
+    assert env["damping_ratio"] == pytest.approx(3e5 * 0.2 / (2 * math.sqrt(6e5 * m_n)))
+    att = imported.data["line"]["attachments"][0]
+    assert att["drag_area"] == 1.5
+    assert att["added_mass"] == pytest.approx(0.8 * 1025.0 * 0.5)
+    assert any("thinner segments rest on a stiffer seabed" in w for w in imported.warnings)
+    assert not any("CdA" in w for w in imported.warnings)
+    study, _ = _validated(imported)
+    a, b = (np.asarray(e.position, dtype=float) for e in (study.ends.a, study.ends.b))
+    s = np.linspace(0.0, study.line.length, 11)
+    exported = moordyn_input(
+        study,
+        end_positions=(a, b),
+        position_at=a + (b - a) * (s / s[-1])[:, None],
+        s_nodes=s,
+        coupled_ends={"b"},
+        title="t",
+    )
+    back = import_model(exported.text, "e.dat")
+    assert back.data["environment"]["seabed"]["stiffness"] == pytest.approx(6e5, rel=1e-14)
+    assert back.data["line"]["attachments"][0]["drag_area"] == 1.5
+    assert back.data["line"]["attachments"][0]["added_mass"] == pytest.approx(att["added_mass"])

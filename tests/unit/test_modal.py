@@ -174,7 +174,11 @@ def test_mooring_end_is_free_horizontally_and_held_vertically() -> None:
 
 
 def test_seabed_nodes_do_not_move_normal_to_the_seabed() -> None:
-    """Nodes resting on a flat seabed are held vertically, free horizontally."""
+    """Nodes resting on a flat frictionless seabed sit on the contact spring (stiffness
+    per length k = the line's weight in the fluid over 1 mm) and are free along it: the
+    low modes, whose frequencies are far below the bounce of a laid node on its spring
+    (sqrt(k / m)), barely move them normal to the seabed: by about (omega^2 m / k) of the
+    suspended motion, under 1e-2 here."""
     N, L0, T = 20, 40.0, 1.0e3
     s = np.linspace(0, L0, N + 1)
     pos = np.zeros((N + 1, 3))
@@ -200,11 +204,12 @@ def test_seabed_nodes_do_not_move_normal_to_the_seabed() -> None:
         n_modes=6,
     )
     dims = [b.shape[1] for b in node_bases(prob)]
-    assert dims[0] == 0 and dims[-1] == 0
-    assert dims[1:11] == [2] * 10 and dims[11:-1] == [3] * (N - 11)
+    assert dims[0] == 0 and dims[-1] == 0 and dims[1:-1] == [3] * (N - 1)
     res = modal_analysis(prob)
     assert res.success
-    assert np.abs(res.mode_shape[:, 1:11, 2]).max() < 1e-12
+    bounce = np.sqrt(prob.line.weight[0] / 1e-3 / prob.line.mass[0]) / (2 * np.pi)
+    assert res.frequency.max() < 0.2 * bounce
+    assert np.abs(res.mode_shape[:, 1:11, 2]).max() < 1e-2
 
 
 def test_mode_shapes_normalised_and_interpolated() -> None:

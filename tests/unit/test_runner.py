@@ -4,6 +4,7 @@ is exercised in tests/integration)."""
 
 from __future__ import annotations
 
+import time
 from collections import OrderedDict
 from pathlib import Path
 
@@ -73,6 +74,10 @@ def _count_evaluations(monkeypatch: pytest.MonkeyPatch, interrupt_after: int | N
     return counter
 
 
+def _key(c: Case) -> tuple[str, tuple[int, ...]]:
+    return (c.static_hash, c.index)
+
+
 def test_chunks_cover_every_case_once_and_batch_cheap_cases() -> None:
     _, _, cases = _expand()
     chunks = make_chunks(cases, workers=2)
@@ -83,9 +88,15 @@ def test_chunks_cover_every_case_once_and_batch_cheap_cases() -> None:
     many = [Case((i,), {}, cases[0].study, f"h{i}", f"s{i % 7}") for i in range(5000)]
     big = make_chunks(many, workers=2)
     assert len(big) == 25 and max(len(c) for c in big) == 200
-    # cases sharing a static problem are adjacent (the static solution is reused)
-    order = [c.static_hash for ch in big for c in ch]
-    assert order == sorted(order)
+    # a chunk is STRIPES runs of adjacent cases (cases sharing a static problem stay
+    # together, so its solution is reused): a run spans at most two static problems
+    for ch in big:
+        runs = [c.static_hash for c in ch]
+        assert len(set(runs)) <= 2 * runner.STRIPES
+        assert sum(a != b for a, b in zip(runs, runs[1:], strict=False)) <= 2 * runner.STRIPES
+    # submitted from both ends of the sweep inwards: the first and last cases start first
+    assert big[0][0] is sorted(many, key=_key)[0]
+    assert big[1][-1] is sorted(many, key=_key)[-1]
 
 
 def test_a_solver_exception_is_a_failed_case_and_the_study_finishes(
@@ -172,7 +183,9 @@ def test_interrupted_study_resumes_without_losing_or_redoing_work(
     )
 
 
-def test_cache_survives_a_corrupt_file_and_skips_transient_failures(tmp_path: Path) -> None:
+def test_cache_survives_a_corrupt_file_and_skips_transient_failures(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     from cablestudy.results import CaseRecord
 
     cache = CaseCache(tmp_path)
@@ -181,13 +194,166 @@ def test_cache_survives_a_corrupt_file_and_skips_transient_failures(tmp_path: Pa
         hash="b", index=(1,), status=3, message="time limit reached after 3", wall_time=0.1
     )
     cache.store([ok, slow])
-    (tmp_path / "chunk-garbage.pkl").write_bytes(b"not a pickle")
+    garbage = tmp_path / ("chunk-" + "0" * 64 + ".npz")
+    garbage.write_bytes(b"not an archive")
     again = CaseCache(tmp_path)
     assert set(again.records) == {"a"}  # the time-limited case will be retried
-    assert not (tmp_path / "chunk-garbage.pkl").exists()
+    assert not garbage.exists()
+    assert str(garbage) in capsys.readouterr().err
     again.compact({"a"})
-    assert len(list(tmp_path.glob("chunk-*.pkl"))) == 1
+    assert len(list(tmp_path.glob("chunk-*.npz"))) == 1
     assert set(CaseCache(tmp_path).records) == {"a"}
+    assert capsys.readouterr().err == ""  # reported once: the bad file is gone
+
+
+def test_cache_records_round_trip_exactly() -> None:
+    """Every kind of value a case produces comes back with its dtype, shape and bits."""
+    from cablestudy.cache import decode_records, encode_records
+    from cablestudy.results import CaseRecord
+
+    rng = np.random.default_rng(1)
+    recs = [
+        CaseRecord(
+            hash="h0",
+            index=(0, 2),
+            status=0,
+            message="",
+            wall_time=0.125,
+            data={
+                "x": rng.standard_normal(7),
+                "force_a": np.array([1.0, -0.0, np.nan]),
+                "tension_a": np.float64(1.0 / 3.0),
+                "static_iterations": 4.0,
+                "dynamic_method": "frequency",
+                "mode_shape": rng.standard_normal((2, 7, 3)),
+            },
+        ),
+        CaseRecord(
+            hash="h1",
+            index=(1, 0),
+            status=4,
+            message="did not converge: résidu 1e-3",
+            wall_time=float("nan"),
+            data={"x": rng.standard_normal(5), "dynamic_method": np.array("time")},
+        ),
+    ]
+    back = decode_records(encode_records(recs))
+    for a, b in zip(recs, back, strict=True):
+        assert (a.hash, a.index, a.status, a.message) == (b.hash, b.index, b.status, b.message)
+        assert np.array_equal(a.wall_time, b.wall_time, equal_nan=True)
+        assert set(a.data) == set(b.data)
+        for k, v in a.data.items():
+            want = np.asarray(v)
+            assert b.data[k].shape == want.shape and b.data[k].dtype.kind == want.dtype.kind
+            if want.dtype.kind == "f":
+                assert want.tobytes() == b.data[k].tobytes()  # bit for bit (-0.0, NaN)
+            else:
+                assert str(want) == str(b.data[k])
+
+
+def test_cache_refuses_to_store_python_objects(tmp_path: Path) -> None:
+    from cablestudy.cache import CacheFormatError
+    from cablestudy.results import CaseRecord
+
+    rec = CaseRecord("h", (0,), 0, "", 0.1, data={"x": np.array([object()], dtype=object)})
+    with pytest.raises(CacheFormatError, match="'x' holds Python objects"):
+        CaseCache(tmp_path).store([rec])
+
+
+def test_cached_rerun_is_bit_for_bit_the_uncached_run(tmp_path: Path) -> None:
+    src, axes, cases = _expand()
+    plain = run_study(
+        src,
+        axes,
+        cases,
+        tmp_path / "plain",
+        scheduler="synchronous",
+        use_cache=False,
+        progress=False,
+    )
+    first = run_study(src, axes, cases, tmp_path / "c", scheduler="synchronous", progress=False)
+    second = run_study(src, axes, cases, tmp_path / "c", scheduler="synchronous", progress=False)
+    assert second.n_reused == len(cases)
+    ref, a, b = (xr.load_dataset(p.path) for p in (plain, first, second))
+    # the cached rerun reproduces the run that filled the cache, wall times included
+    xr.testing.assert_identical(b.assign_attrs(history=a.attrs["history"]), a)
+    for name in a.data_vars:
+        if a[name].dtype.kind == "f":
+            assert a[name].values.tobytes() == b[name].values.tobytes(), name
+    # ... and agrees bit for bit with the uncached run (wall times aside)
+    for name in ref.data_vars:
+        if name != "wall_time":
+            assert ref[name].values.tobytes() == b[name].values.tobytes(), name
+
+
+@pytest.mark.parametrize("damage", ["truncate", "garble"])
+def test_damaged_cache_chunk_is_reported_once_and_recomputed(
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+    capsys: pytest.CaptureFixture[str],
+    damage: str,
+) -> None:
+    src, axes, cases = _expand()
+    first = run_study(src, axes, cases, tmp_path, scheduler="synchronous", progress=False)
+    ref = xr.load_dataset(first.path)
+    (chunk,) = (tmp_path / ".cache" / "rn").glob("chunk-*.npz")  # compacted to one
+    raw = bytearray(chunk.read_bytes())
+    if damage == "truncate":
+        chunk.write_bytes(bytes(raw[: len(raw) // 2]))
+    else:
+        raw[len(raw) // 2] ^= 0x01  # one bit
+        chunk.write_bytes(bytes(raw))
+    capsys.readouterr()
+    counter = _count_evaluations(monkeypatch)
+    second = run_study(src, axes, cases, tmp_path, scheduler="synchronous", progress=False)
+    err = capsys.readouterr().err
+    assert err.count("warning: cache file") == 1 and str(chunk) in err and "recomputed" in err
+    assert counter["cases"] == len(cases) and second.n_reused == 0
+    got = xr.load_dataset(second.path)
+    for name in ref.data_vars:
+        if name != "wall_time":
+            assert ref[name].values.tobytes() == got[name].values.tobytes(), name
+    third = run_study(src, axes, cases, tmp_path, scheduler="synchronous", progress=False)
+    assert third.n_reused == len(cases) and capsys.readouterr().err == ""
+
+
+class _Trap:
+    """Unpickling this writes a marker file: proof that a pickle was loaded."""
+
+    def __init__(self, marker: str) -> None:
+        self.marker = marker
+
+    def __reduce__(self):  # noqa: ANN204
+        return (Path.write_text, (Path(self.marker), "unpickled"))
+
+
+def test_a_pickle_in_the_cache_is_never_unpickled(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    import hashlib
+    import pickle
+
+    marker = tmp_path / "marker"
+    payload = pickle.dumps([_Trap(str(marker))])
+    cache_dir = tmp_path / "cache"
+    cache_dir.mkdir()
+    # as an old-style pickle chunk, and disguised as a data chunk with a valid hash name
+    (cache_dir / "chunk-0123456789abcdef01234567.pkl").write_bytes(payload)
+    disguised = cache_dir / f"chunk-{hashlib.sha256(payload).hexdigest()}.npz"
+    disguised.write_bytes(payload)
+    # a pickled object array inside a real .npz archive, also with a valid hash name
+    import io
+
+    buf = io.BytesIO()
+    np.savez(buf, format=np.array("cablestudy-case-cache-1"), hash=np.array([_Trap(str(marker))]))
+    inner = cache_dir / f"chunk-{hashlib.sha256(buf.getvalue()).hexdigest()}.npz"
+    inner.write_bytes(buf.getvalue())
+    cache = CaseCache(cache_dir)
+    assert not marker.exists()
+    assert cache.records == {}
+    err = capsys.readouterr().err
+    assert str(disguised) in err and str(inner) in err
+    assert sorted(cache.rejected) == sorted([disguised, inner])
 
 
 def test_failures_grouped_by_message_with_numbers_masked() -> None:
@@ -214,6 +380,24 @@ def test_progress_bar_on_a_terminal(capsys: pytest.CaptureFixture[str]) -> None:
     quiet.update(4)
     quiet.close()
     assert capsys.readouterr().err == ""
+    # not a terminal (pytest captures stderr): no bar by default
+    default = Progress(4)
+    default.update(4)
+    default.close()
+    assert capsys.readouterr().err == ""
+    # a study finished before the delay shows nothing, even on a terminal
+    quick = Progress(4, enabled=True, delay=30.0)
+    quick.update(4)
+    quick.close()
+    assert capsys.readouterr().err == ""
+    # ... and one running past it does (tqdm: n/total, elapsed, remaining)
+    slow = Progress(4, enabled=True, delay=0.05)
+    slow.update(1)
+    time.sleep(0.1)
+    slow.update(1)
+    slow.close()
+    err = capsys.readouterr().err
+    assert "2/4 cases" in err and "eta" in err
 
 
 def test_auto_scheduler_keeps_a_quick_study_in_process(
@@ -231,18 +415,57 @@ def test_auto_scheduler_keeps_a_quick_study_in_process(
 def test_auto_scheduler_hands_a_long_study_to_workers(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    handed: list[int] = []
+    handed: list[tuple[int, str, float | None]] = []
 
-    def fake_cluster(cases, scheduler, workers, on_done):  # noqa: ANN001, ANN202
-        handed.append(len(cases))
+    def fake_cluster(cases, scheduler, workers, on_done, *, per_case=None):  # noqa: ANN001, ANN202
+        handed.append((len(cases), scheduler, per_case))
         on_done(runner.run_chunk(cases))
 
     monkeypatch.setattr(runner, "_run_dask", fake_cluster)
     monkeypatch.setattr(runner, "AUTO_PROBE_SECONDS", 0.0)  # decide after one case
     monkeypatch.setattr(runner, "AUTO_PARALLEL_AFTER", 0.0)  # ... that anything is long
+    monkeypatch.setattr(runner, "THREAD_PROBE_SECONDS", 0.0)  # one case a thread
+    monkeypatch.setattr(runner, "THREADS_SCALE", 1e9)  # ... that never scale
     src, axes, cases = _expand()
     summary = run_study(src, axes, cases, tmp_path, scheduler="auto", workers=2, progress=False)
-    assert handed == [26] and summary.n_computed == 27
+    # one case probed alone, one on each of two threads, the rest to worker processes
+    assert [h[:2] for h in handed] == [(24, "processes")] and handed[0][2] > 0
+    assert summary.n_computed == 27 and summary.scheduler == "processes"
+    assert summary.report().endswith("s (processes)")
+
+
+def test_scheduler_choice_follows_the_probe() -> None:
+    from cablestudy.runner import Probe, choose_scheduler
+
+    _, _, cases = _expand()  # 27 cases
+    quick = Probe(cases, per_case=0.01)  # 0.27 s left: not worth starting anything
+    assert choose_scheduler(quick, workers=2) == "synchronous"
+    slow = Probe(cases, per_case=1.0, thread_speedup=1.9)  # 27 s, numba without the GIL
+    assert choose_scheduler(slow, workers=2) == "threads"
+    bound = Probe(cases, per_case=1.0, thread_speedup=1.05)  # the GIL serialises threads
+    assert choose_scheduler(bound, workers=2) == "processes"
+    assert choose_scheduler(bound, workers=1) == "synchronous"
+
+
+def test_chunks_take_about_a_second_at_the_measured_cost() -> None:
+    _, _, cases = _expand()
+    many = [Case((i,), {}, cases[0].study, f"h{i}", f"s{i % 7}") for i in range(5000)]
+    # 0.1 s a case: 10 cases a task
+    assert {len(c) for c in make_chunks(many, workers=2, per_case=0.1)} == {10}
+    # 5 s a case: one case a task; 1 us a case: as many as load balance allows
+    assert {len(c) for c in make_chunks(many, workers=2, per_case=5.0)} == {1}
+    assert [len(c) for c in make_chunks(many, workers=2, per_case=1e-6)] == [625] * 8
+    huge = [Case((i,), {}, cases[0].study, f"h{i}", "s") for i in range(100_000)]
+    sizes = {len(c) for c in make_chunks(huge, workers=2, per_case=1e-7)}
+    assert max(sizes) <= runner.MAX_CHUNK_CASES
+
+
+def test_probe_runs_each_case_once_in_doubling_chunks() -> None:
+    _, _, cases = _expand()
+    done: list[int] = []
+    probe = runner.probe_cost(cases, lambda recs: done.append(len(recs)), seconds=1e9)
+    assert done == [1, 2, 4, 8, 12] and probe.rest == []
+    assert probe.per_case > 0
 
 
 def test_time_limited_cases_fail_with_a_message_and_are_retried(tmp_path: Path) -> None:

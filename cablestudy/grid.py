@@ -1,0 +1,407 @@
+"""Sweeps as arrays: a case is its index into the grid of sweep axes.
+
+For a sweep whose cases differ only in settings the batched still-water catenary kernel
+takes as numbers (end positions of fixed ends, segment axial stiffnesses) and whose
+analysis is static with method ``catenary``, the study is validated once as a template,
+each swept value once at its own path, and the checks that combine fields (ends below
+the seabed, a weightless line shorter than its chord) over the whole grid with NumPy.
+No per-case pydantic object is built: a chunk of cases becomes arrays of end positions
+and stiffnesses, is solved by :func:`cablestudy.statics.batch.solve_batch`, and its
+outputs are stacked into one array per output variable (a :class:`GridChunk`), which the
+runner streams to disk.
+
+Anything else (another analysis, another swept path, a swept value or combination that
+fails validation) goes through :func:`cablestudy.cases.expand_cases`, which reports
+faults exactly as before.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import time
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .cases import SweepAxis, _copy_tree, _hash, _set_path, code_fingerprint, parse_sweep
+from .config.loader import StudyError, StudySource, validate_data
+from .config.study import Study
+
+#: swept paths the array path takes: (kind, end or segment, component)
+_POSITION = re.compile(r"^ends\.(a|b)\.position\.([012])$")
+_STIFFNESS = re.compile(r"^line\.segments\.(\d+)\.axial_stiffness$")
+
+#: status of a case whose solver raised inside an array chunk (as evaluate_case)
+STATUS_NUMERICAL = 4
+
+
+@dataclass(frozen=True)
+class CaseGrid:
+    """A swept study as a grid: the validated template, the axes, and per swept path the
+    values as a float array along its axis."""
+
+    template: Study
+    axes: list[SweepAxis]
+    #: per swept path: (axis number, values along that axis)
+    swept: dict[str, tuple[int, np.ndarray]]
+    #: content hash of what every case shares (solver code, template study with its
+    #: defaults, which path is on which axis, the shape of a row); a chunk's key adds its
+    #: swept values (:meth:`chunk_key`)
+    key: str
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        return tuple(a.size for a in self.axes)
+
+    @property
+    def size(self) -> int:
+        return math.prod(self.shape)
+
+    def rows(self, lo: int, hi: int) -> tuple[slice, ...]:
+        """The block of cases ``lo <= i0 < hi`` along the first axis."""
+        return (slice(lo, hi),) + tuple(slice(0, n) for n in self.shape[1:])
+
+    def values(self, path: str, lo: int, hi: int) -> np.ndarray:
+        """The value of ``path`` for every case of rows ``lo:hi``, flattened in C order."""
+        axis, vals = self.swept[path]
+        block = [hi - lo, *self.shape[1:]]
+        take = vals[lo:hi] if axis == 0 else vals
+        shape = [1] * len(block)
+        shape[axis] = len(take)
+        return np.broadcast_to(take.reshape(shape), block).reshape(-1)
+
+    def chunk_key(self, lo: int, hi: int) -> str:
+        """Content hash of the cases of rows ``lo:hi`` (the grid's key and their values)."""
+        values = {
+            p: (vals[lo:hi] if ax == 0 else vals).tolist() for p, (ax, vals) in self.swept.items()
+        }
+        return _hash([self.key, values])
+
+
+def grid_shape(axes: list[SweepAxis]) -> list[int]:
+    """Lengths of the axes after the first (a chunk holds whole rows of them)."""
+    return [a.size for a in axes[1:]]
+
+
+def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
+    """A static-only, still-water, method 'catenary' study whose swept paths are all
+    end positions of fixed ends or segment stiffnesses, with numeric values."""
+    an = template.analysis
+    if an.modal is not None or an.dynamic is not None or an.static.method != "catenary":
+        return False
+    if template.environment.current:
+        return False
+    if getattr(an.static, "installation", None) is not None:
+        return False
+    for axis in axes:
+        for path, vals in zip(axis.paths, axis.values, strict=True):
+            m = _POSITION.match(path)
+            if m:
+                if getattr(getattr(template.ends, m.group(1)), "kind", "") != "fixed":
+                    return False
+            elif not _STIFFNESS.match(path):
+                return False
+            if not all(isinstance(v, int | float) and not isinstance(v, bool) for v in vals):
+                return False
+    return bool(axes)
+
+
+def expand_grid(src: StudySource) -> CaseGrid | None:
+    """The study as a :class:`CaseGrid` when its sweep can run as arrays and every swept
+    value and combination is valid; ``None`` otherwise (the caller then expands the
+    cases one by one, which reports any fault at its line as before). A fault in the
+    template itself is raised here, as :func:`expand_cases` would."""
+    template = validate_data(src.data, src)
+    axes = parse_sweep(src)
+    if not _eligible(template, axes):
+        return None
+    base = {k: v for k, v in src.data.items() if k != "sweep"}
+    # each swept value once, at its own path (the others as in the template)
+    for axis in axes:
+        for i in range(axis.size):
+            data = _copy_tree(base)
+            try:
+                for path, vals in zip(axis.paths, axis.values, strict=True):
+                    _set_path(data, path, vals[i])
+                validate_data(data, src)
+            except (KeyError, StudyError):
+                return None
+    swept = {
+        p: (k, np.asarray(vals, dtype=float))
+        for k, axis in enumerate(axes)
+        for p, vals in zip(axis.paths, axis.values, strict=True)
+    }
+    body = template.model_dump(mode="json", exclude={"name", "description", "sweep"})
+    grid = CaseGrid(
+        template,
+        axes,
+        swept,
+        _hash([code_fingerprint(), body, {p: k for p, (k, _) in swept.items()}, grid_shape(axes)]),
+    )
+    if not _combined_ok(grid):
+        return None
+    return grid
+
+
+def _combined_ok(grid: CaseGrid) -> bool:
+    """The checks of :meth:`Study._physical` that involve swept fields, over the whole
+    grid at once (end positions against the seabed; a weightless line between fixed ends
+    closer than its length). Stiffness enters none of them."""
+    t = grid.template
+    env = t.environment
+
+    def position(end: str) -> list[np.ndarray]:
+        fixed = getattr(t.ends, end)
+        out = []
+        for c in range(3):
+            path = f"ends.{end}.position.{c}"
+            if path in grid.swept:
+                axis, vals = grid.swept[path]
+                shape = [1] * len(grid.shape)
+                shape[axis] = len(vals)
+                out.append(vals.reshape(shape))
+            else:
+                out.append(
+                    np.asarray(float(fixed.position[c]))
+                    if hasattr(fixed, "position")
+                    else np.asarray(math.nan)
+                )
+        return out
+
+    pa, pb = position("a"), position("b")
+    rho, g = env.density, env.gravity
+    weightless = all(seg.weight_in(rho, g) == 0.0 for seg in t.line.segments) and not any(
+        att.mass != rho * att.volume or any(att.force) for att in t.line.attachments
+    )
+    if weightless and t.ends.a.kind == "fixed" and t.ends.b.kind == "fixed":
+        chord = np.sqrt(sum((b - a) ** 2 for a, b in zip(pa, pb, strict=True)))
+        if np.any(chord <= t.line.length):
+            return False
+    if env.depth is not None:
+        rise = math.tan(math.radians(env.seabed.slope_deg))
+        heading = math.radians(env.seabed.slope_heading_deg)
+        for label, (x, y, z) in (("a", pa), ("b", pb)):
+            if getattr(t.ends, label).kind != "fixed":
+                continue
+            ground = -env.depth + rise * (x * math.cos(heading) + y * math.sin(heading))
+            if np.any(z < ground - 1e-9 * env.depth):
+                return False
+    return True
+
+
+@dataclass
+class GridChunk:
+    """The outputs of rows ``lo:hi`` of a grid: one array per variable, cases first in
+    C order (shape (n_cases, *extra dims)), and per case status, message and wall time
+    (the chunk's time shared out equally)."""
+
+    lo: int
+    hi: int
+    key: str
+    status: np.ndarray
+    message: np.ndarray  # unicode
+    wall_time: np.ndarray
+    data: dict[str, np.ndarray]
+
+    @property
+    def n(self) -> int:
+        return len(self.status)
+
+
+def _swept_inputs(grid: CaseGrid, lo: int, hi: int) -> tuple[Any, dict[str, Any], np.ndarray]:
+    """The template's static problem, per end the positions of rows ``lo:hi`` ((n, 3),
+    None for an end that is not fixed) and the segment stiffnesses ((n, n_segments))."""
+    from .problem import static_problem
+
+    base = static_problem(grid.template)
+    n = (hi - lo) * math.prod(grid.shape[1:])
+    pos: dict[str, Any] = {}
+    for end in "ab":
+        cond = getattr(base, f"end_{end}")
+        pos[end] = (
+            np.tile(np.asarray(cond.position, dtype=float), (n, 1))
+            if cond.kind == "fixed"
+            else None
+        )
+    ea = np.tile(base.line.axial_stiffness, (n, 1))
+    for path in grid.swept:
+        m = _POSITION.match(path)
+        if m:
+            pos[m.group(1)][:, int(m.group(2))] = grid.values(path, lo, hi)
+        else:
+            k = int(_STIFFNESS.match(path).group(1))  # type: ignore[union-attr]
+            ea[:, k] = grid.values(path, lo, hi)
+    return base, pos, ea
+
+
+def _problems(base: Any, pos: dict[str, Any], ea: np.ndarray) -> list[Any]:
+    """One static problem per case: the template's with the swept numbers put in
+    (shallow copies of the frozen dataclasses; every array shared but the swept ones)."""
+    ea_swept = not np.all(ea == base.line.axial_stiffness)
+    problems = []
+    for i in range(len(ea)):
+        changes: dict[str, Any] = {}
+        for end in "ab":
+            if pos[end] is not None:
+                changes[f"end_{end}"] = _with(getattr(base, f"end_{end}"), position=pos[end][i])
+        if ea_swept:
+            changes["line"] = _with(base.line, axial_stiffness=ea[i])
+        problems.append(_with(base, **changes))
+    return problems
+
+
+def _with(obj: Any, **changes: Any) -> Any:
+    """A shallow copy of the (frozen) dataclass ``obj`` with ``changes``: what
+    :func:`dataclasses.replace` gives for these plain-data classes, without running
+    ``__init__`` (a few hundred ns instead of ~10 us, which counts at a million cases)."""
+    new = object.__new__(type(obj))
+    new.__dict__.update(obj.__dict__)
+    new.__dict__.update(changes)
+    return new
+
+
+def stacked_outputs(
+    results: list[Any], template: Study, ea: np.ndarray
+) -> tuple[dict[str, np.ndarray], np.ndarray, list[str]]:
+    """:func:`cablestudy.analyses.static_outputs` of many static results at once: the
+    same variables, bit for bit (the same element-wise operations on stacked arrays;
+    the profile quantities are those of :func:`cablestudy.physics.profile.
+    profile_quantities`, evaluated along axis 1 of (cases, nodes) arrays). Returns the
+    outputs (cases first), status and messages, with a failed case's values NaN."""
+    from .physics.profile import profile_quantities
+
+    n = len(results)
+    results = list(results)
+    s = results[0].s
+    same_s = all(r.s.shape == s.shape and np.array_equal(r.s, s) for r in results)
+    if not same_s:
+        raise ValueError("cases of one chunk have different arc lengths")
+    position = np.stack([r.position for r in results])  # (n, m, 3)
+    tension = np.stack([r.tension for r in results])
+    force_a = np.stack([r.force_a for r in results])
+    force_b = np.stack([r.force_b for r in results])
+    core_finite = (
+        np.isfinite(position).all(axis=(1, 2))
+        & np.isfinite(tension).all(axis=1)
+        & np.isfinite(force_a).all(axis=1)
+        & np.isfinite(force_b).all(axis=1)
+    )
+    for i in np.flatnonzero(~core_finite):  # StaticResult.check_finite, where it matters
+        results[i] = results[i].check_finite()
+    status = np.array([r.status for r in results], dtype=np.int64)
+    messages = [r.message for r in results]
+    out: dict[str, np.ndarray] = {
+        "arc_length": np.broadcast_to(s, (n, s.size)).copy(),
+        "x": position[:, :, 0].copy(),
+        "y": position[:, :, 1].copy(),
+        "z": position[:, :, 2].copy(),
+        "tension": tension,
+        "force_a": force_a,
+        "force_b": force_b,
+        "tension_a": np.array([np.linalg.norm(f) for f in force_a]),
+        "tension_b": np.array([np.linalg.norm(f) for f in force_b]),
+        "laid_length": np.array([r.laid_length for r in results], dtype=float),
+        "static_iterations": np.array([r.iterations for r in results], dtype=float),
+        "static_residual": np.array([r.residual for r in results], dtype=float),
+        "drag_iterations": np.array([r.drag_iterations for r in results], dtype=float),
+    }
+    env, segs = template.environment, template.line.segments
+    seg_end = np.cumsum([seg.length for seg in segs])
+    k = np.minimum(np.searchsorted(seg_end, s, side="right"), len(segs) - 1)
+    area = np.array([segs[i].area for i in k])
+    m = s.size
+    if m >= 3:
+        d = np.gradient(position, s, axis=1, edge_order=2)
+    else:
+        d = np.repeat(np.diff(position, axis=1), m, axis=1)[:, :m]
+    norm = np.linalg.norm(d, axis=2)
+    t = d / np.where(norm > 0.0, norm, 1.0)[:, :, None]
+    horizontal = np.hypot(t[:, :, 0], t[:, :, 1])
+    elevation = np.arctan2(t[:, :, 2], horizontal)
+    azimuth = np.arctan2(t[:, :, 1], t[:, :, 0])
+    strain = tension / ea[:, k]
+    elongation = np.concatenate(
+        [np.zeros((n, 1)), np.cumsum(0.5 * (strain[:, 1:] + strain[:, :-1]) * np.diff(s), axis=1)],
+        axis=1,
+    )
+    tension_wall = tension + env.density * env.gravity * position[:, :, 2] * area
+    # a vertical tangent somewhere: that case's azimuths as profile_quantities gives them
+    for i in np.flatnonzero(~np.all(horizontal > 1e-12, axis=1)):
+        azimuth[i] = profile_quantities(
+            s,
+            position[i],
+            tension[i],
+            axial_stiffness=ea[i, k],
+            area=area,
+            density=env.density,
+            gravity=env.gravity,
+        )["azimuth"]
+    out.update(
+        elevation=elevation, azimuth=azimuth, elongation=elongation, tension_wall=tension_wall
+    )
+    ok = status == 0
+    finite = np.ones(n, dtype=bool)
+    bad_names: list[list[str]] = [[] for _ in range(n)]
+    for name, arr in out.items():
+        fin = np.isfinite(arr).reshape(n, -1).all(axis=1)
+        for i in np.flatnonzero(ok & ~fin):
+            bad_names[i].append(name)
+        finite &= fin
+    for i in np.flatnonzero(ok & ~finite):
+        status[i] = STATUS_NUMERICAL
+        messages[i] = f"non-finite values in {', '.join(sorted(bad_names[i]))}"
+    failed = status != 0
+    if failed.any():
+        for arr in out.values():
+            arr[failed] = np.nan
+    return out, status, messages
+
+
+def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
+    """Solve rows ``lo:hi`` of the grid as one batch and stack the outputs. Per case the
+    same outputs, status and message as :func:`cablestudy.analyses.evaluate_case`; a
+    fault inside the batch fails the chunk's cases with its text (never raises)."""
+    from .statics.batch import solve_batch
+
+    t0 = time.perf_counter()
+    n = (hi - lo) * math.prod(grid.shape[1:])
+    status = np.zeros(n, dtype=np.int64)
+    messages = [""] * n
+    data: dict[str, np.ndarray] = {}
+    try:
+        base, pos, ea = _swept_inputs(grid, lo, hi)
+        problems = _problems(base, pos, ea)
+        deadline = time.monotonic() + grid.template.analysis.time_limit * n
+        results = solve_batch(problems, deadline=deadline)
+        data, status, messages = stacked_outputs(results, grid.template, ea)
+    except Exception as exc:  # noqa: BLE001 - a fault in a chunk fails its cases, as data
+        status[:] = STATUS_NUMERICAL
+        messages = [f"{type(exc).__name__}: {exc}"] * n
+        data = {}
+    wall = (time.perf_counter() - t0) / max(n, 1)
+    return GridChunk(
+        lo=lo,
+        hi=hi,
+        key=grid.chunk_key(lo, hi),
+        status=status,
+        message=np.array(messages, dtype=str).reshape(n),
+        wall_time=np.full(n, wall),
+        data=data,
+    )
+
+
+def failed_grid_chunk(grid: CaseGrid, lo: int, hi: int, message: str) -> GridChunk:
+    """Rows ``lo:hi`` failed outside the solvers (a worker lost): status 9, the reason,
+    no data."""
+    n = (hi - lo) * math.prod(grid.shape[1:])
+    return GridChunk(
+        lo=lo,
+        hi=hi,
+        key=grid.chunk_key(lo, hi),
+        status=np.full(n, 9, dtype=np.int64),
+        message=np.array([message] * n, dtype=str).reshape(n),
+        wall_time=np.full(n, np.nan),
+        data={},
+    )

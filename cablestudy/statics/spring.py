@@ -1,0 +1,186 @@
+"""Statics of a massless tension-only spring line (``line.kind: spring``).
+
+A massless cable of unstretched length L [m] between its ends is straight when taut, and
+its tension is the axial law of its extension e = |r_B - r_A| - L [m] (aqwa seed
+5.8.1.1-5.8.1.3: "the extension is the distance between the end points minus the
+unstretched length ... if the distance is less than [L], the tension is zero").
+
+End conditions (A fixed, as every study; or B fixed and A given by force, solved as the
+reversed line):
+
+* both ends fixed: T = law(D - L), D = |r_B - r_A|; slack (T = 0) when D <= L. A slack
+  massless cable has no determined shape; its points are reported on the chord.
+* fixed + ``force`` F on the line at the other end: a massless line in equilibrium is
+  along the force, so it points along F, T = |F|, and the free end lies at
+  r_A + (L + e(|F|)) F / |F| (the law's inverse). F = 0 is refused at validation (no
+  unique position).
+* fixed + ``mooring`` (horizontal force H [N] on the line and the end's height z_B):
+  along the line T (u_h, u_z) with u_z = h / D, h = z_B - z_A, D = L + e(T), and
+  T sqrt(1 - (h / D)^2) = |H|: one equation in T, increasing in T once D > |h|, solved
+  by bracketed Newton (bisection fallback) to round-off.
+
+Outputs like any line: positions and tension on ``s`` (uniform strain along a taut
+spring, so a point at unstretched s lies at r_A + (s / L)(r_B - r_A)), end forces (the
+force of the line on the attachment: at A towards B), ``laid_length`` 0.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..physics.axial import AxialLaw
+from .base import STATUS_NO_SOLUTION, STATUS_NOT_CONVERGED, EndCondition, StaticResult
+
+
+@dataclass(frozen=True, kw_only=True)
+class SpringProblem:
+    """A massless spring line: ``law`` tension [N] of extension [m], ``length`` [m]
+    unstretched, the ends and the output points ``n_nodes``."""
+
+    law: AxialLaw
+    length: float
+    end_a: EndCondition
+    end_b: EndCondition
+    n_nodes: int = 101
+    tolerance: float = 1e-12
+
+
+def spring_tension(law: AxialLaw, length: float, distance: np.ndarray | float) -> np.ndarray:
+    """Tension [N] of a spring of unstretched ``length`` [m] whose ends are ``distance``
+    [m] apart (0 when slack)."""
+    return law.tension(np.asarray(distance, dtype=float) - length)
+
+
+def _straight(
+    s: np.ndarray, rA: np.ndarray, rB: np.ndarray, T: float, L: float, **extra: object
+) -> StaticResult:
+    d = rB - rA
+    D = float(np.linalg.norm(d))
+    u = d / D if D > 0.0 else np.zeros(3)
+    pos = rA + np.outer(s / L, d)
+    return StaticResult(
+        s=s,
+        position=pos,
+        tension=np.full(len(s), T),
+        force_a=T * u,
+        force_b=-T * u,
+        laid_length=0.0,
+        **extra,  # type: ignore[arg-type]
+    )
+
+
+def _mooring_tension(
+    law: AxialLaw, L: float, h: float, H: float, tol: float
+) -> tuple[float, int] | None:
+    """T with T sqrt(1 - (h / (L + e(T)))^2) = H (H > 0), or None. Bracketed: the left
+    side is 0 at the tension where L + e = |h| (or at T = 0 when L > |h|) and grows
+    past H by T = H + law(|h| + ... ) bounds found by doubling."""
+
+    def f(T: float) -> float:
+        D = L + law.strain_scalar(T)
+        if D <= abs(h):
+            return -H
+        return T * math.sqrt(max(1.0 - (h / D) ** 2, 0.0)) - H
+
+    lo = 0.0
+    if abs(h) > L:
+        lo = float(law.tension(abs(h) - L))
+    hi = max(lo, H) * 2.0 + 1.0
+    for _ in range(400):
+        if f(hi) >= 0.0:
+            break
+        lo, hi = hi, 2.0 * hi
+    else:
+        return None
+    it = 0
+    while it < 300 and hi - lo > tol * hi + 1e-300:
+        it += 1
+        mid = 0.5 * (lo + hi)
+        if f(mid) < 0.0:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi), it
+
+
+def solve_spring(problem: SpringProblem) -> StaticResult:
+    """Static solution of a massless spring line (see the module docstring)."""
+    L = problem.length
+    law = problem.law
+    s = np.linspace(0.0, L, problem.n_nodes)
+    a, b = problem.end_a, problem.end_b
+    reverse = a.kind != "fixed"
+    if reverse:
+        a, b = b, a
+    if a.kind != "fixed" or a.position is None:
+        return StaticResult.failed(s, STATUS_NO_SOLUTION, "neither end of the spring is fixed")
+    rA = np.asarray(a.position, dtype=float)
+    if b.kind == "fixed":
+        assert b.position is not None
+        rB = np.asarray(b.position, dtype=float)
+        T = float(spring_tension(law, L, float(np.linalg.norm(rB - rA))))
+        its = 0
+    elif b.kind == "force":
+        assert b.force is not None
+        F = np.asarray(b.force, dtype=float)
+        T = float(np.linalg.norm(F))
+        if T == 0.0:
+            return StaticResult.failed(
+                s, STATUS_NO_SOLUTION, "zero force on a massless spring: no unique position"
+            )
+        rB = rA + (L + law.strain_scalar(T)) * F / T
+        its = 0
+    else:
+        assert b.force is not None and b.z is not None
+        Hv = np.array([b.force[0], b.force[1], 0.0], dtype=float)
+        H = float(np.linalg.norm(Hv))
+        h = float(b.z) - float(rA[2])
+        if H == 0.0:
+            if abs(h) < L:
+                return StaticResult.failed(
+                    s,
+                    STATUS_NO_SOLUTION,
+                    f"zero horizontal force and a height difference {abs(h):.6g} m below "
+                    f"the spring length {L:.6g} m: the slack spring has no unique position",
+                )
+            T = float(law.tension(abs(h) - L))
+            rB = rA + np.array([0.0, 0.0, h])
+            its = 0
+        else:
+            found = _mooring_tension(law, L, h, H, problem.tolerance)
+            if found is None:
+                return StaticResult.failed(
+                    s, STATUS_NOT_CONVERGED, "no spring tension balances the mooring force"
+                )
+            T, its = found
+            D = L + law.strain_scalar(T)
+            horiz = math.sqrt(max(D * D - h * h, 0.0))
+            rB = rA + horiz * Hv / H + np.array([0.0, 0.0, h])
+    res = _straight(s, rA, rB, T, L, iterations=its)
+    if reverse:
+        # described from the fixed end: turn back to A -> B
+        res = StaticResult(
+            s=s,
+            position=res.position[::-1].copy(),
+            tension=res.tension[::-1].copy(),
+            force_a=res.force_b,
+            force_b=res.force_a,
+            iterations=its,
+        )
+    return res
+
+
+def reachable_extension(
+    length: float, end_a: EndCondition, end_b: EndCondition, motion_amplitude: float
+) -> float | None:
+    """Largest extension [m] the spring between fixed ends can reach: the end distance
+    plus the sum of the excitation amplitudes ``motion_amplitude`` [m], minus the length
+    (None when an end is given by force: the law's range is then what the force needs)."""
+    if end_a.kind != "fixed" or end_b.kind != "fixed":
+        return None
+    assert end_a.position is not None and end_b.position is not None
+    D = float(np.linalg.norm(np.asarray(end_b.position) - np.asarray(end_a.position)))
+    return max(D + motion_amplitude - length, 0.0)
