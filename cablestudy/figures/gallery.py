@@ -374,7 +374,7 @@ ROWS: list[Row] = [
         "its equations (a string's period goes as T^-1/2: 5 s against 200 s would need "
         "1600 times the tension). Ours "
         "is the transverse displacement at L/4 fitted as the row above: the same lowest "
-        "natural period in and out of the plane (modal analysis: they differ by 0.4 %)",
+        "natural period in and out of the plane (modal analysis: they differ by less than 1 %)",
     ),
 ]
 
