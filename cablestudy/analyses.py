@@ -33,6 +33,7 @@ from .statics import (
     STATUS_NO_SOLUTION,
     STATUS_NUMERICAL,
     STATUS_OK,
+    STATUS_TIME_LIMIT,
     StaticResult,
 )
 from .statics.limits import apply_limits
@@ -102,6 +103,21 @@ def _law_problems(case: Case, src: StudySource) -> list[str]:
     parts in its own dynamics)."""
     study = case.study
     out: list[str] = []
+    timed = [("line",)] if study.line.failure and study.line.failure.time is not None else []
+    timed += [
+        ("line", "segments", i)
+        for i, seg in enumerate(study.line.segments)
+        if seg.failure is not None and seg.failure.time is not None
+    ]
+    if study.analysis.dynamic is None:
+        for loc in timed:
+            path = (*loc, "failure", "time")
+            out.append(
+                f"{src.line_of(path) or src.line_of(('line',))}: "
+                f"{'.'.join(map(str, path))}: a failure time applies to analysis.dynamic "
+                "(of a kind: spring line); the statics are the state before any time; "
+                "allowed: omit it"
+            )
     if study.analysis.dynamic is not None:
         breaks = [("line",)] if study.line.failure is not None else []
         breaks += [
@@ -403,6 +419,8 @@ def static_outputs(res: StaticResult, study: Any = None) -> dict[str, np.ndarray
         "static_residual": np.asarray(res.residual),
         "drag_iterations": np.asarray(res.drag_iterations),
     }
+    if getattr(res, "pulley_force", None) is not None:  # a spring line over pulleys
+        out["pulley_force"] = np.asarray(res.pulley_force)
     if study is not None and not study.line.is_spring:
         env = study.environment
         segs = study.line.segments
@@ -664,7 +682,7 @@ def run_dynamic(
     else:
         reason = "method: time"
     dres = solve_dynamic(case, static, deadline)
-    out = dynamic_outputs(dres, dyn)
+    out = dynamic_outputs(dres, dyn, static.s)
     out["dynamic_method_reason"] = np.asarray(reason)
     out.update(linear)
     message = dres.message
@@ -720,10 +738,22 @@ def dynamic_problem(case: Case, static: StaticResult) -> DynamicProblem | str:
         history_periods=hist.periods if hist else 0.0,
         history_samples=hist.samples_per_period if hist else 1,
         anchor=anchor,
+        history_line=bool(hist and hist.whole_line),
+        # a node within a millionth of the line's length of the seabed touches it (the
+        # statics' rule); the penalty contact sinks laid nodes below the plane anyway
+        touchdown_tolerance=1e-6 * max(float(line.s[-1]), 1.0),
     )
 
 
-def dynamic_outputs(res: DynamicResult, dyn: DynamicSettings) -> dict[str, np.ndarray]:
+def dynamic_outputs(
+    res: DynamicResult, dyn: DynamicSettings, s_out: np.ndarray
+) -> dict[str, np.ndarray]:
+    """The time domain's outputs; along-line ones at the static output points ``s_out``
+    [m] (the dataset's ``s``)."""
+    from .dynamics.model import interpolate_nodes
+    from .frequency_cases import tension_along
+
+    s_out = np.asarray(s_out, dtype=float)
     out: dict[str, np.ndarray] = {
         "tension_static": np.asarray(res.tension_static),
         "tension_max": np.asarray(res.tension_max),
@@ -739,6 +769,26 @@ def dynamic_outputs(res: DynamicResult, dyn: DynamicSettings) -> dict[str, np.nd
         "rejected_steps": np.asarray(res.rejected_steps),
         "dynamic_method": np.asarray("time"),
     }
+    if res.touchdown_tracked:  # a seabed to touch: NaN when the line does not touch it
+        out["touchdown_min"] = np.asarray(res.touchdown_min)
+        out["touchdown_max"] = np.asarray(res.touchdown_max)
+    if res.element_tension_max.size:
+        out["tension_envelope_max"] = tension_along(
+            s_out, res.line_s, res.element_tension_max, res.end_tension_max
+        )
+        out["tension_envelope_min"] = tension_along(
+            s_out, res.line_s, res.element_tension_min, res.end_tension_min
+        )
+    if res.history is not None and "line_position" in res.history:
+        h = res.history
+        out["history_line_position"] = interpolate_nodes(res.line_s, s_out, h["line_position"])
+        out["history_line_velocity"] = interpolate_nodes(res.line_s, s_out, h["line_velocity"])
+        out["history_line_tension"] = np.array(
+            [
+                tension_along(s_out, res.line_s, el, ends)
+                for el, ends in zip(h["line_element_tension"], h["line_end_tension"], strict=True)
+            ]
+        ).reshape(-1, s_out.size)
     if res.history is not None:
         h = res.history
         out.update(
@@ -756,47 +806,131 @@ def dynamic_outputs(res: DynamicResult, dyn: DynamicSettings) -> dict[str, np.nd
     return out
 
 
+#: status of an analysis that did not run because the static analysis it starts from
+#: failed (the code of :data:`cablestudy.dynamics.modal.STATUS_STATIC_FAILED`)
+STATUS_NOT_RUN = 5
+
+
+def _exception_message(exc: Exception) -> str:
+    tb = traceback.extract_tb(exc.__traceback__)
+    where = f" at {tb[-1].name}:{tb[-1].lineno}" if tb else ""
+    return f"{type(exc).__name__}: {exc}{where}"
+
+
+def _non_finite(data: dict[str, Any], analysis: str) -> list[str]:
+    """Float variables of ``analysis`` in ``data`` holding NaN or infinity where the
+    registry does not give NaN a meaning (e.g. 'no seabed contact')."""
+    from .results import OUTPUTS
+
+    bad = []
+    for k, v in data.items():
+        spec = OUTPUTS.get(k)
+        if spec is None or spec.analysis != analysis or np.asarray(v).dtype.kind != "f":
+            continue
+        v = np.asarray(v)
+        if spec.nan_means:
+            v = v[~np.isnan(v)]
+        if not np.all(np.isfinite(v)):
+            bad.append(k)
+    return sorted(bad)
+
+
 def evaluate_case(case: Case, *, presolved: dict[str, StaticResult] | None = None) -> CaseRecord:
     """Run every analysis the case asks for. Never raises: an exception inside a solver
-    becomes a failed record with the exception's text. ``presolved`` maps static hashes
-    to static solutions already computed (by :func:`evaluate_chunk`)."""
+    becomes a failure of that analysis with the exception's text. ``presolved`` maps
+    static hashes to static solutions already computed (by :func:`evaluate_chunk`).
+
+    Each analysis asked for records ``<analysis>_status`` (0 ok); a failed analysis
+    blanks only its own variables at assembly (:func:`cablestudy.results.analysis_ok`).
+    The modal and dynamic analyses start from the static shape and do not run when it
+    failed (:data:`STATUS_NOT_RUN`); a failed modal analysis does not stop the dynamics,
+    which does not use the modes. The case's ``status`` is that of the first failed
+    analysis (:data:`STATUS_TIME_LIMIT` if any hit the time limit, so that the runner
+    does not cache it); its ``message`` is the static solver's message, or names each
+    failed analysis ("modal analysis: ...; dynamic analysis: ...")."""
     from .results import CaseRecord
 
     t0 = time.perf_counter()
     deadline = time.monotonic() + case.study.analysis.time_limit
     data: dict[str, Any] = {}
-    try:
+    outcome: dict[str, tuple[int, str]] = {}
+
+    def run(analysis: str, solve: Any) -> None:
+        try:
+            status, message, out = solve()
+        except Exception as exc:  # noqa: BLE001 - any solver fault is recorded as data
+            status, message, out = STATUS_NUMERICAL, _exception_message(exc), {}
+        data.update(out)
+        if status == STATUS_OK:
+            bad = _non_finite(out, analysis)
+            if bad:
+                status, message = STATUS_NUMERICAL, f"non-finite values in {', '.join(bad)}"
+        outcome[analysis] = (int(status), message)
+
+    static: list[StaticResult] = []
+
+    def statics() -> tuple[int, str, dict[str, Any]]:
         res = solve_static(case, deadline, presolved)
-        status, message = res.status, res.message
-        data.update(static_outputs(res, case.study))
-        modal = case.study.analysis.modal
-        if modal is not None and status == STATUS_OK:
-            mres = solve_modal(case, res, deadline)
-            data.update(modal_outputs(mres, res.s, mode_shapes=modal.mode_shapes))
-            if mres.status != STATUS_OK:
-                status, message = mres.status, f"modal analysis: {mres.message}"
+        static.append(res)
+        return res.status, res.message, static_outputs(res, case.study)
 
-        dyn = case.study.analysis.dynamic
-        if dyn is not None and status == STATUS_OK:
-            status, message, dyn_out = run_dynamic(case, res, deadline)
-            data.update(dyn_out)
-        if case.study.analysis.database is not None and status in (STATUS_OK, STATUS_BROKEN):
-            from .database import solve_database
+    def modal() -> tuple[int, str, dict[str, Any]]:
+        settings = case.study.analysis.modal
+        assert settings is not None
+        mres = solve_modal(case, static[0], deadline)
+        return (
+            mres.status,
+            mres.message,
+            modal_outputs(mres, static[0].s, mode_shapes=settings.mode_shapes),
+        )
 
+    def dynamic() -> tuple[int, str, dict[str, Any]]:
+        return run_dynamic(case, static[0], deadline)
+
+    run("static", statics)
+    asked = {
+        "modal": (case.study.analysis.modal is not None, modal),
+        "dynamic": (case.study.analysis.dynamic is not None, dynamic),
+    }
+    for name, (wanted, solve) in asked.items():
+        if not wanted:
+            continue
+        if outcome["static"][0] != STATUS_OK:
+            outcome[name] = (STATUS_NOT_RUN, "not run: the static analysis failed")
+        else:
+            run(name, solve)
+    for name, (st, _) in outcome.items():
+        data[f"{name}_status"] = np.asarray(st, dtype=np.int64)
+    if case.study.analysis.database is not None and outcome["static"][0] in (
+        STATUS_OK,
+        STATUS_BROKEN,
+    ):
+        # the quasi-static database: static solves of its own grid, kept with the case
+        from .database import solve_database
+
+        try:
             data.update(solve_database(case.study, deadline))
-    except Exception as exc:  # noqa: BLE001 - any solver fault is recorded as data
-        status = STATUS_NUMERICAL
-        tb = traceback.extract_tb(exc.__traceback__)
-        where = f" at {tb[-1].name}:{tb[-1].lineno}" if tb else ""
-        message = f"{type(exc).__name__}: {exc}{where}"
+        except Exception as exc:  # noqa: BLE001 - any solver fault is recorded as data
+            outcome["static"] = (STATUS_NUMERICAL, _exception_message(exc))
+            data["static_status"] = np.asarray(STATUS_NUMERICAL, dtype=np.int64)
+
+    status, message = outcome["static"]
     if status == STATUS_OK:
-        bad = [
-            k
-            for k, v in data.items()
-            if np.asarray(v).dtype.kind == "f" and not np.all(np.isfinite(v))
-        ]
-        if bad:
-            status, message = STATUS_NUMERICAL, f"non-finite values in {', '.join(sorted(bad))}"
+        failed = [(name, st, msg) for name, (st, msg) in outcome.items() if st != STATUS_OK]
+        # a time-limited analysis first, its message starting "time limit": the cache
+        # then knows a rerun may finish it (cablestudy.cache.TRANSIENT_PREFIXES)
+        failed.sort(key=lambda f: f[1] != STATUS_TIME_LIMIT)
+        if failed:
+            status = failed[0][1]
+            message = "; ".join(
+                f"{name} analysis: "
+                + (
+                    f"time limit: {msg}"
+                    if st == STATUS_TIME_LIMIT and not msg.startswith("time limit")
+                    else msg
+                )
+                for name, st, msg in failed
+            )
     wall = time.perf_counter() - t0
     if not math.isfinite(wall):
         wall = 0.0

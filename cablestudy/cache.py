@@ -31,7 +31,14 @@ from .results import CaseRecord
 
 #: messages of records that must not be cached (transient: a rerun may succeed)
 LOST_PREFIX = "task failed: "
-TRANSIENT_PREFIXES = ("time limit", LOST_PREFIX)
+TRANSIENT_PREFIXES = (
+    "time limit",
+    LOST_PREFIX,
+    # a modal or dynamic analysis over the time limit names itself first
+    # (cablestudy.analyses.evaluate_case)
+    "modal analysis: time limit",
+    "dynamic analysis: time limit",
+)
 
 FORMAT = "cablestudy-case-cache-1"
 _NAME = re.compile(r"^chunk-([0-9a-f]{64})\.npz$")

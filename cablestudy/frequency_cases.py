@@ -163,10 +163,12 @@ class FrequencyOutcome:
     drag_converged: bool = True
 
 
-def _along(
+def tension_along(
     s_out: np.ndarray, s_nodes: np.ndarray, element: np.ndarray, ends: np.ndarray
 ) -> np.ndarray:
-    """Element values (at element midpoints) with end values, interpolated to ``s_out``."""
+    """Element values (at element midpoints) with end values, interpolated to ``s_out``:
+    the one way a line model's element and end tensions [N] become a variable on the
+    dataset's ``s`` (the tension envelope of both dynamic methods, line histories)."""
     mid = 0.5 * (s_nodes[:-1] + s_nodes[1:])
     return np.interp(
         s_out,
@@ -198,7 +200,7 @@ def solve_frequency(case: Case, static: StaticResult, deadline: float | None) ->
     a_end = np.abs(res.end_tension)
     a_el = np.abs(res.element_tension)
     phase = np.degrees(np.angle(res.end_tension / ref))
-    env_amp = _along(static.s, line.s, a_el, a_end)
+    env_amp = tension_along(static.s, line.s, a_el, a_end)
     env_max = static.tension + env_amp
     env_min = static.tension - env_amp
     data: dict[str, np.ndarray] = {
@@ -300,7 +302,9 @@ def transfer_function(
         end_amp[k] = np.abs(res.end_tension) / scale
         end_phase[k] = np.degrees(np.angle(res.end_tension / ref))
         line_amp[k] = (
-            _along(static.s, red.line.s, np.abs(res.element_tension), np.abs(res.end_tension))
+            tension_along(
+                static.s, red.line.s, np.abs(res.element_tension), np.abs(res.end_tension)
+            )
             / scale
         )
     return {
@@ -348,7 +352,7 @@ def irregular(
     sd_el, mpm_el = mpm(np.abs(res.element_tension) ** 2)
     ex = 0 if spec.end == "a" else 1
     t_end = res.tension_static
-    env = _along(static.s, red.line.s, mpm_el, mpm_end)
+    env = tension_along(static.s, red.line.s, mpm_el, mpm_end)
     data: dict[str, np.ndarray] = {
         "tension_static": np.asarray(t_end[ex]),
         "tension_max": np.asarray(t_end[ex] + mpm_end[ex]),

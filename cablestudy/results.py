@@ -9,7 +9,7 @@ from __future__ import annotations
 import json
 import os
 import tempfile
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
@@ -24,10 +24,18 @@ from .config.loader import StudySource
 
 @dataclass(frozen=True)
 class OutputVariable:
+    """One output variable: extra dims, units, long name, dtype, and the analysis
+    (``static``, ``modal``, ``dynamic``) whose failure blanks it (None:
+    written whatever failed, as the per-analysis status variables; set from
+    :data:`ANALYSIS_OF` below). ``nan_means`` says what a NaN means where NaN is a valid
+    result of a successful analysis (empty: NaN is a failure)."""
+
     dims: tuple[str, ...]
     units: str
     long_name: str
     dtype: str = "float64"
+    analysis: str | None = "dynamic"
+    nan_means: str = ""
 
 
 #: status of a case whose line broke in statics (cablestudy.statics.base.STATUS_BROKEN):
@@ -57,6 +65,9 @@ OUTPUTS: dict[str, OutputVariable] = {
     "arc_length": OutputVariable(("s",), "m", "unstretched arc length from end A"),
     "force_a": OutputVariable(("component",), "N", "force of the line on the attachment at end A"),
     "force_b": OutputVariable(("component",), "N", "force of the line on the attachment at end B"),
+    "pulley_force": OutputVariable(
+        ("pulley", "component"), "N", "force of the line on each pulley (kind: spring)"
+    ),
     "break_time": OutputVariable(
         (), "s", "time at which the line parted (NaN: it did not), kind: spring with line.failure"
     ),
@@ -139,12 +150,28 @@ OUTPUTS: dict[str, OutputVariable] = {
     "dynamic_method_reason": OutputVariable(
         (), "1", "why this dynamic method ran (method: auto records its checks)", "str"
     ),
-    # frequency domain (cablestudy.dynamics.frequency): static +/- harmonic amplitude
+    # the tension envelope (range graph), one definition for both methods: the time
+    # domain's per-step extremes of element and end tensions over the steady window,
+    # the frequency domain's static +/- harmonic amplitude (a spectrum: most probable
+    # maximum); element values at element midpoints interpolated to s
+    # (cablestudy.frequency_cases.tension_along)
     "tension_envelope_max": OutputVariable(
-        ("s",), "N", "largest tension along the line over the steady motion"
+        ("s",), "N", "largest effective tension along the line over the steady motion"
     ),
     "tension_envelope_min": OutputVariable(
-        ("s",), "N", "smallest tension along the line over the steady motion"
+        ("s",), "N", "smallest effective tension along the line over the steady motion"
+    ),
+    "touchdown_min": OutputVariable(
+        (),
+        "m",
+        "smallest arc length from end A of the touchdown point over the steady window",
+        nan_means="the line does not touch the seabed over the steady window",
+    ),
+    "touchdown_max": OutputVariable(
+        (),
+        "m",
+        "largest arc length from end A of the touchdown point over the steady window",
+        nan_means="the line does not touch the seabed over the steady window",
     ),
     "tension_amplitude_a": OutputVariable((), "N", "tension amplitude at end A"),
     "tension_amplitude_b": OutputVariable((), "N", "tension amplitude at end B"),
@@ -196,7 +223,64 @@ OUTPUTS: dict[str, OutputVariable] = {
     "history_acceleration": OutputVariable(
         ("point", "time", "component"), "m/s^2", "acceleration of the point"
     ),
+    "history_line_position": OutputVariable(
+        ("time", "s", "component"), "m", "position along the whole line (history)"
+    ),
+    "history_line_velocity": OutputVariable(
+        ("time", "s", "component"), "m/s", "velocity along the whole line (history)"
+    ),
+    "history_line_tension": OutputVariable(
+        ("time", "s"), "N", "effective tension along the whole line (history)"
+    ),
 }
+
+#: the analyses a case may run, each with a ``<name>_status`` where the study asks for it
+ANALYSES = ("static", "modal", "dynamic")
+
+#: the analysis each output belongs to, where not the dynamic one (the default): its
+#: failure blanks the output. The quasi-static database (analysis.database: static
+#: solves on its own grid) counts as part of the static analysis.
+ANALYSIS_OF: dict[str, str] = {
+    **dict.fromkeys(
+        (
+            "x",
+            "y",
+            "z",
+            "tension",
+            "tension_wall",
+            "elevation",
+            "azimuth",
+            "elongation",
+            "arc_length",
+            "force_a",
+            "force_b",
+            "tension_a",
+            "tension_b",
+            "laid_length",
+            "static_iterations",
+            "static_residual",
+            "drag_iterations",
+        ),
+        "static",
+    ),
+    **dict.fromkeys(("natural_frequency", "mode_shape", "modal_dof"), "modal"),
+    **{k: "static" for k in OUTPUTS if k.startswith("database_")},
+}
+OUTPUTS = {k: replace(v, analysis=ANALYSIS_OF.get(k, "dynamic")) for k, v in OUTPUTS.items()}
+OUTPUTS["break_time"] = replace(OUTPUTS["break_time"], nan_means="the line did not part")
+OUTPUTS.update(
+    {
+        f"{name}_status": OutputVariable(
+            (),
+            "1",
+            f"{name} analysis status: 0 ok, nonzero failed (5: not run, the static "
+            "analysis failed)",
+            "int64",
+            None,
+        )
+        for name in ANALYSES
+    }
+)
 
 #: per-case bookkeeping variables (always present)
 CASE_VARIABLES: dict[str, OutputVariable] = {
@@ -227,6 +311,18 @@ class CaseRecord:
     wall_time: float
     data: dict[str, np.ndarray] = field(default_factory=dict)
     settings: dict[str, Any] = field(default_factory=dict)
+
+
+def analysis_ok(record: CaseRecord, analysis: str | None) -> bool:
+    """Whether the data of ``analysis`` in ``record`` are written: its
+    ``<analysis>_status`` is one of :data:`KEPT_STATUSES`. A record without one (a lost
+    task, the database) counts by the case's ``status``."""
+    if analysis is None:
+        return True
+    status = record.data.get(f"{analysis}_status") if analysis in ANALYSES else None
+    if status is None:
+        return record.status in KEPT_STATUSES
+    return int(status) in KEPT_STATUSES
 
 
 def _fill(dtype: str) -> Any:
@@ -308,8 +404,9 @@ def assemble(
     *,
     solver_settings: dict[str, Any] | None = None,
 ) -> xr.Dataset:
-    """One Dataset on the sweep axes. A failed case is NaN (or -1 for counters) in its
-    data variables, never dropped."""
+    """One Dataset on the sweep axes. A failed analysis is NaN (or -1, or "") in its own
+    data variables (:attr:`OutputVariable.analysis`), the others are kept; a failed case
+    is never dropped."""
     shape = tuple(a.size for a in axes)
     dims = tuple(a.name for a in axes)
     by_index = {c.index: records[c.hash] for c in cases}
@@ -336,7 +433,7 @@ def assemble(
             rows = [
                 (idx, np.asarray(rec.data[name]))
                 for idx, rec in by_index.items()
-                if name in rec.data and rec.status in KEPT_STATUSES
+                if name in rec.data and analysis_ok(rec, spec.analysis)
             ]
         if spec.dtype == "str":
             # text as Python str (not 0-d arrays), so that netCDF sees one type when
@@ -369,7 +466,7 @@ def assemble(
         arcs = [
             np.asarray(r.data["arc_length"])
             for r in by_index.values()
-            if "arc_length" in r.data and r.status in KEPT_STATUSES
+            if "arc_length" in r.data and analysis_ok(r, "static")
         ]
         if arcs and all(len(a) == extent["s"] and np.array_equal(a, arcs[0]) for a in arcs):
             coords["s"] = ("s", arcs[0], {"units": "m", "long_name": COORDINATES["s"][1]})
@@ -379,7 +476,7 @@ def assemble(
         freqs = [
             np.asarray(r.data["transfer_frequency"])
             for r in by_index.values()
-            if "transfer_frequency" in r.data and r.status in KEPT_STATUSES
+            if "transfer_frequency" in r.data and analysis_ok(r, "dynamic")
         ]
         if freqs and all(np.array_equal(f, freqs[0]) for f in freqs):
             spec = OUTPUTS["transfer_frequency"]
@@ -398,7 +495,7 @@ def assemble(
             grids = [
                 np.asarray(r.data[grid])
                 for r in by_index.values()
-                if grid in r.data and r.status in KEPT_STATUSES
+                if grid in r.data and analysis_ok(r, "static")
             ]
             if grids and all(np.array_equal(g, grids[0]) for g in grids):
                 spec = OUTPUTS[grid]
@@ -532,6 +629,13 @@ def grid_dataset(
     for name, arr in (("status", status), ("message", message), ("wall_time", wall)):
         spec = CASE_VARIABLES[name]
         data_vars[name] = (dims, arr, {"units": spec.units, "long_name": spec.long_name})
+    # the array path runs the statics only: its status is the case's
+    spec = OUTPUTS["static_status"]
+    data_vars["static_status"] = (
+        dims,
+        status.astype(np.int64),
+        {"units": spec.units, "long_name": spec.long_name},
+    )
     for name in sorted(present):
         spec = OUTPUTS[name]
         tail = tails[name]

@@ -8,6 +8,7 @@ outputs named as for any line.
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -34,6 +35,8 @@ def spring_problem(study: Study) -> SpringProblem:
         end_b=end_condition(study.ends.b),
         n_nodes=study.analysis.static.nodes,
         tolerance=min(study.analysis.static.tolerance, 1e-12),
+        pulleys=np.array([p.position for p in line.pulleys], dtype=float).reshape(-1, 3),
+        friction=np.array([p.friction_factor for p in line.pulleys], dtype=float),
     )
 
 
@@ -86,6 +89,35 @@ def spring_problems(case: Case, src: StudySource) -> list[str]:
             "allowed: omit analysis.modal (or use kind: catenary)"
         )
     dyn = study.analysis.dynamic
+    if line.winch is not None:
+        if dyn is None:
+            out.append(
+                f"{at('line', 'winch')}: line.winch: a winch changes the length in "
+                "analysis.dynamic (the statics are the state before it runs); allowed: "
+                "omit it, or add analysis.dynamic"
+            )
+        elif any(p.friction_factor > 1.0 for p in line.pulleys):
+            out.append(
+                f"{at('line', 'winch')}: line.winch: not supported with pulley friction yet "
+                "(the marching solution keeps the length); allowed: frictionless pulleys"
+            )
+        elif line.winch.speed < 0.0 and line.winch.stop is None:
+            out.append(
+                f"{at('line', 'winch')}: line.winch.stop: a winch hauling in (speed < 0) "
+                "needs a stop time, so that the extension it reaches (checked against the "
+                "law) is bounded; allowed: a stop time [s]"
+            )
+        elif line.winch.stop is not None and line.winch.stop <= line.winch.start:
+            out.append(
+                f"{at('line', 'winch', 'stop')}: line.winch.stop: {line.winch.stop:g} s is "
+                f"not after start {line.winch.start:g} s; allowed: stop > start"
+            )
+    if line.failure is not None and line.failure.time is not None and dyn is None:
+        out.append(
+            f"{at('line', 'failure', 'time')}: line.failure.time: a failure time applies to "
+            "analysis.dynamic (the statics are the state before any time); allowed: omit "
+            "it, or add analysis.dynamic"
+        )
     if dyn is not None:
         for key in ("transfer_function", "history"):
             if getattr(dyn, key) is not None:
@@ -101,7 +133,47 @@ def spring_problems(case: Case, src: StudySource) -> list[str]:
                 f"{at('ends', label, 'force')}: ends.{label}.force: a zero force on a "
                 "massless spring leaves its position undetermined; allowed: a nonzero force"
             )
-    reach = reachable_extension(float(line.length), a, b, motion_bound(study))
+    if line.pulleys:
+        if a.kind != "fixed" or b.kind != "fixed":
+            out.append(
+                f"{at('line', 'pulleys')}: line.pulleys: a spring over pulleys needs both "
+                "ends fixed (the end forces then follow from the spans); allowed: ends of "
+                "kind fixed"
+            )
+            return out
+        pts = np.vstack((a.position, np.array([p.position for p in line.pulleys]), b.position))
+        spans = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+        if np.any(spans <= 1e-9 * float(np.sum(spans))):
+            out.append(
+                f"{at('line', 'pulleys')}: line.pulleys: a pulley coincides with an end or "
+                "another pulley (a span of zero length has no direction); allowed: "
+                "distinct points"
+            )
+            return out
+        if (
+            study.analysis.dynamic is not None
+            and line.failure is not None
+            and any(p.friction_factor > 1.0 for p in line.pulleys)
+        ):
+            out.append(
+                f"{at('line', 'failure')}: line.failure: not supported with pulley friction "
+                "in analysis.dynamic yet (the marching solution does not part); allowed: "
+                "frictionless pulleys (friction_factor 1), or no failure key"
+            )
+        D = float(np.sum(spans))
+        reach = max(D + motion_bound(study) - float(line.length), 0.0)
+        if line.axial.max_strain is not None:
+            reach = max(reach, line.axial.max_strain)
+        if reach > 0.0:
+            try:
+                check_axial(line.axial, reach, ("line", "axial"), "extension [m]")
+            except ValueError as exc:
+                out.append(f"{at('line', 'axial')}: line.axial: {exc}")
+        return out
+    hauled = 0.0
+    if line.winch is not None and line.winch.speed < 0.0 and line.winch.stop is not None:
+        hauled = -line.winch.speed * max(line.winch.stop - line.winch.start, 0.0)
+    reach = reachable_extension(float(line.length), a, b, motion_bound(study) + hauled)
     if reach is None:
         # a force end: the law must reach the force's tension within max_strain
         reach = line.axial.max_strain or DEFAULT_MAX_STRAIN * float(line.length)
@@ -146,6 +218,11 @@ def run_spring_dynamic(
         window=window,
         samples=samples,
         break_tension=break_tension_of(study.line),
+        break_at=study.line.failure.time if study.line.failure is not None else None,
+        pulleys=np.array([p.position for p in study.line.pulleys], dtype=float).reshape(-1, 3),
+        friction=np.array([p.friction_factor for p in study.line.pulleys], dtype=float),
+        excited_end=0 if dyn.excitations[0].end == "a" else 1,
+        **_winch(study.line.winch),
     )
     res = spring_response(problem)
     out: dict[str, np.ndarray] = {
@@ -159,12 +236,25 @@ def run_spring_dynamic(
             "kind: spring: massless, tension algebraic in the end motion"
         ),
     }
-    if problem.break_tension is not None:
+    if study.line.failure is not None:
         out["break_time"] = np.asarray(res.break_time)
     return STATUS_OK, "", out
+
+
+def _winch(winch: Any) -> dict[str, float]:
+    if winch is None:
+        return {}
+    stop = math.inf if winch.stop is None else float(winch.stop)
+    return {
+        "winch_speed": float(winch.speed),
+        "winch_start": float(winch.start),
+        "winch_stop": stop,
+    }
 
 
 def break_tension_of(line: Any) -> float | None:
     """The line's breaking tension [N] (``line.failure``), or None."""
     brk = line.failure
-    return None if brk is None else float(brk.limit)
+    if brk is None or not np.isfinite(brk.limit):
+        return None
+    return float(brk.limit)

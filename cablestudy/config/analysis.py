@@ -377,6 +377,13 @@ class HistorySettings(StrictModel):
     )
     periods: Positive = Field(2.0, description="length of the kept record [periods]")
     samples_per_period: int = Field(64, ge=4, le=10_000, description="samples per period")
+    whole_line: bool = Field(
+        False,
+        description="also keep position, velocity and effective tension along the whole "
+        "line (history_line_position, history_line_velocity, history_line_tension on time "
+        "and s): at the static output points, so analysis.static.nodes decimates them "
+        "along the line and samples_per_period in time",
+    )
 
 
 class FrequencyRange(StrictModel):

@@ -165,12 +165,12 @@ def check_axial(axial: Axial, max_strain: float, loc: tuple[str | int, ...], uni
 
 
 class BreakCondition(StrictModel):
-    """``failure: {tension: N}`` or ``{minimum_breaking_load: N, safety_factor: f}``: the
-    line (or a segment) breaks where its tension exceeds the limit (tension, or MBL /
-    safety factor). In statics a case over the limit is recorded as broken (status 10,
-    a message with where and by how much) with its static results kept; with
-    analysis.dynamic only a kind: spring line supports it (it parts at that instant and
-    records break_time)."""
+    """``failure: {tension: N}``, ``{minimum_breaking_load: N, safety_factor: f}`` and/or
+    ``{time: s}``: the line (or a segment) breaks where its tension exceeds the limit
+    (tension, or MBL / safety factor), or at the given time. In statics a case over the
+    tension limit is recorded as broken (status 10, a message with where and by how
+    much) with its static results kept; with analysis.dynamic only a kind: spring line
+    supports it (it parts at that instant, or at ``time``, and records break_time)."""
 
     tension: Positive | None = Field(None, description="tension limit [N]")
     minimum_breaking_load: Positive | None = Field(
@@ -179,13 +179,23 @@ class BreakCondition(StrictModel):
     safety_factor: Positive | None = Field(
         None, ge=1.0, description="safety factor on the MBL [-] (>= 1; default 1)"
     )
+    time: NonNegative | None = Field(
+        None,
+        description="time at which the line fails [s] from the start of the run "
+        "(analysis.dynamic of a kind: spring line)",
+    )
 
     @model_validator(mode="after")
     def _one_limit(self) -> BreakCondition:
-        if (self.tension is None) == (self.minimum_breaking_load is None):
+        if self.tension is not None and self.minimum_breaking_load is not None:
             raise ValueError(
                 "give either tension [N] or minimum_breaking_load [N] (with an optional "
-                "safety_factor), exactly one of them"
+                "safety_factor), not both"
+            )
+        if self.tension is None and self.minimum_breaking_load is None and self.time is None:
+            raise ValueError(
+                "give a tension limit (tension [N], or minimum_breaking_load [N] with an "
+                "optional safety_factor) and/or a failure time [s]"
             )
         if self.tension is not None and self.safety_factor is not None:
             raise FieldError(
@@ -198,10 +208,12 @@ class BreakCondition(StrictModel):
 
     @property
     def limit(self) -> float:
-        """The tension [N] at which the line breaks."""
+        """The tension [N] at which the line breaks (inf: no tension limit)."""
         if self.tension is not None:
             return float(self.tension)
-        return float(self.minimum_breaking_load) / float(self.safety_factor or 1.0)  # type: ignore[arg-type]
+        if self.minimum_breaking_load is None:
+            return math.inf
+        return float(self.minimum_breaking_load) / float(self.safety_factor or 1.0)
 
 
 class Segment(StrictModel):
@@ -338,6 +350,35 @@ class Attachment(StrictModel):
     name: str | None = None
 
 
+class Pulley(StrictModel):
+    """A pulley a kind: spring line passes over (aqwa seed 5.8.1.1): a fixed point; the
+    line's tensions on its two sides satisfy T_large / T_small <= factor^(wrap / 180 deg)
+    (the seed's friction factor, given for a 180-degree wrap; 1: frictionless)."""
+
+    position: Vec3 = Field(description="position of the pulley [m]")
+    friction_factor: Finite = Field(
+        1.0,
+        ge=1.0,
+        description="T_large / T_small at which the line slides for a 180-degree wrap [-] "
+        "(>= 1; 1: frictionless); scaled as factor^(wrap angle / 180 deg)",
+    )
+
+
+class Winch(StrictModel):
+    """A winch on a kind: spring line (aqwa seed 5.8.1: linear and polynomial cables can
+    be winched): in analysis.dynamic the unstretched length changes at ``speed`` [m/s]
+    (positive: paid out, longer) from ``start`` to ``stop`` [s]."""
+
+    speed: Finite = Field(description="rate of change of the unstretched length [m/s]")
+    start: NonNegative = Field(0.0, description="time the winch starts [s]")
+    stop: Positive | None = Field(None, description="time the winch stops [s]; omit: never")
+
+    def paid_out(self, t: float) -> float:
+        """Change of the unstretched length [m] by time ``t`` [s]."""
+        end = t if self.stop is None else min(t, self.stop)
+        return self.speed * max(end - self.start, 0.0)
+
+
 class MoorDynLineRef(StrictModel):
     """``line: {moordyn: path, line: N}``: the line is read from a MoorDyn input file (or
     a RAFT/MoorPy mooring YAML) when the study is loaded, into segments and attachments,
@@ -371,6 +412,16 @@ class Line(StrictModel):
         [], max_length=100, description="kind catenary: segments from end A to end B"
     )
     attachments: list[Attachment] = []
+    pulleys: list[Pulley] = Field(
+        [],
+        max_length=2,
+        description="kind spring: up to two pulleys the line passes over, from end A to end B",
+    )
+    winch: Winch | None = Field(
+        None,
+        description="kind spring, analysis.dynamic: the unstretched length changes at a "
+        "speed [m/s] from start to stop [s]",
+    )
     length: Positive | None = Field(
         None,
         description="kind spring: unstretched length [m]; kind catenary: the total of the "
@@ -404,6 +455,20 @@ class Line(StrictModel):
 
     @model_validator(mode="after")
     def _attachments_inside(self) -> Line:
+        if self.kind != "spring" and self.winch is not None:
+            raise FieldError(
+                ("winch",),
+                "a winch is supported on a kind: spring line (its length changes in the "
+                "dynamics); allowed: kind: spring, or no winch",
+                self.winch.speed,
+            )
+        if self.kind != "spring" and self.pulleys:
+            raise FieldError(
+                ("pulleys",),
+                "pulleys are supported on a kind: spring line (a massless cable between "
+                "points); allowed: kind: spring, or no pulleys",
+                len(self.pulleys),
+            )
         if self.kind == "spring":
             for key in ("segments", "attachments"):
                 if getattr(self, key):

@@ -13,6 +13,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+from numba import njit
 from scipy.interpolate import CubicSpline
 
 
@@ -44,6 +45,23 @@ class TableMotion:
         elif t >= self.times[-1]:
             return float(self.values[-1]), 0.0, 0.0
         return (float(self.spline(t)), float(self.spline(t, 1)), float(self.spline(t, 2)))
+
+
+@njit(cache=True)
+def _harmonics(t, end, direction, amplitude, frequency, phase, out):  # noqa: ANN001, ANN202
+    """Add the harmonics' displacement, velocity and acceleration at time ``t`` [s] to
+    ``out`` (3, 2, 3): compiled, since the time step calls it once per step."""
+    for k in range(amplitude.shape[0]):
+        om = 2.0 * math.pi * frequency[k]
+        ph = om * t + phase[k]
+        s = math.sin(ph)
+        c = math.cos(ph)
+        e = end[k]
+        for a in range(3):
+            d = direction[k, a]
+            out[0, e, a] += amplitude[k] * s * d
+            out[1, e, a] += amplitude[k] * om * c * d
+            out[2, e, a] -= amplitude[k] * om * om * s * d
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -93,16 +111,15 @@ class EndMotion:
         [quantity, end, component]."""
         out = np.zeros((3, 2, 3))
         if self.harmonic_amplitude.size:
-            om = 2.0 * math.pi * self.harmonic_frequency
-            ph = om * t + self.harmonic_phase
-            s, c = np.sin(ph), np.cos(ph)
-            amp = self.harmonic_amplitude
-            for k in range(amp.size):
-                e = int(self.harmonic_end[k])
-                d = self.harmonic_direction[k]
-                out[0, e] += amp[k] * s[k] * d
-                out[1, e] += amp[k] * om[k] * c[k] * d
-                out[2, e] -= amp[k] * om[k] ** 2 * s[k] * d
+            _harmonics(
+                t,
+                self.harmonic_end,
+                self.harmonic_direction,
+                self.harmonic_amplitude,
+                self.harmonic_frequency,
+                self.harmonic_phase,
+                out,
+            )
         for tab in self.tables:
             u, du, ddu = tab.evaluate(t)
             out[0, tab.end] += u * tab.direction

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 from numba import njit
 
-from .model import assemble, solve_banded
+from .model import _trial_states, assemble, solve_banded, states_changed
 
 
 @dataclass(frozen=True)
@@ -110,6 +110,8 @@ def alpha_step(
     taut0,
     contact,
     friction_force,
+    slip_state,
+    trial,
     J_d,
     J_o,
     J_o2,
@@ -149,7 +151,14 @@ def alpha_step(
     cm = (1.0 - alpha_m) / (beta * h * h)
     cv = gamma / (beta * h)
     lmin = rest_length.min()
-    for it in range(max_iterations + 1):
+    has_friction = (friction[0] > 0.0 or friction[1] > 0.0) and seabed_stiffness.max() > 0.0
+    fix_states = has_friction
+    for i in range(n):
+        for k in range(2):
+            slip_state[i, k] = 0
+    checks = 0
+    it = 0
+    while True:
         assemble(
             x1,
             v1,
@@ -194,7 +203,15 @@ def alpha_step(
             taut0,
             contact,
             friction_force,
+            slip_state,
+            trial,
         )
+        if fix_states:
+            # the predictor's trial decides which contact nodes stick and which slide;
+            # the Newton iterations then keep those states (a smooth force)
+            fix_states = False
+            _trial_states(slip_state, trial, contact, friction)
+            continue
         res = 0.0
         for i in range(n):
             for c in range(3):
@@ -207,9 +224,17 @@ def alpha_step(
         if not math.isfinite(res):
             return it, False
         if res <= tol:
+            if (
+                has_friction
+                and checks < MAX_STATE_CHECKS
+                and states_changed(slip_state, trial, contact, friction)
+            ):
+                checks += 1
+                continue  # converged with a wrong stick/slip guess: again with the new one
             return it, True
         if it == max_iterations or n_free == 0:
             break
+        it += 1
         for i in range(n):
             for c in range(3):
                 for b in range(3):
@@ -246,3 +271,7 @@ def alpha_step(
                 a1[i, c] += d / (beta * h * h)
                 v1[i, c] += gamma * d / (beta * h)
     return max_iterations, False
+
+
+#: stick/slip re-checks per time step after Newton converged with a wrong guess
+MAX_STATE_CHECKS = 4

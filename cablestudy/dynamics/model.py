@@ -548,6 +548,8 @@ def assemble(
     taut0,
     contact,
     friction_force,
+    slip_state,
+    trial,
 ):  # noqa: ANN001, ANN201
     """Nodal out-of-balance force ``F = f_internal - f_external`` [N] (n + 1, 3) at
     positions ``x`` [m] and velocities ``v`` [m/s] (friction anchors ``anchor`` [m]),
@@ -765,14 +767,54 @@ def assemble(
                         K_d[i, a, b] += ks * nrm[a] * nrm[b]
                         C_d[i, a, b] += cs * nrm[a] * nrm[b]
                 if fn > 0.0 and (friction[0] > 0.0 or friction[1] > 0.0):
-                    _friction(i, x, anchor, tan, nrm, ks, fn, friction, F, K_d, friction_force)
+                    _friction(
+                        i,
+                        x,
+                        anchor,
+                        tan,
+                        nrm,
+                        ks,
+                        cs,
+                        fn,
+                        friction,
+                        F,
+                        K_d,
+                        C_d,
+                        friction_force,
+                        slip_state,
+                        trial,
+                    )
 
 
 @njit(cache=True)
-def _friction(i, x, anchor, tan, nrm, kt, fn, friction, F, K_d, friction_force):  # noqa: ANN001, ANN202
+def _friction(  # noqa: ANN202
+    i,  # noqa: ANN001
+    x,  # noqa: ANN001
+    anchor,  # noqa: ANN001
+    tan,  # noqa: ANN001
+    nrm,  # noqa: ANN001
+    kt,  # noqa: ANN001
+    cs,  # noqa: ANN001
+    fn,  # noqa: ANN001
+    friction,  # noqa: ANN001
+    F,  # noqa: ANN001
+    K_d,  # noqa: ANN001
+    C_d,  # noqa: ANN001
+    friction_force,  # noqa: ANN001
+    slip_state,  # noqa: ANN001
+    trial,  # noqa: ANN001
+):
     """Elastic-plastic Coulomb friction at contact node ``i``: along the line (the node
     tangent projected on the seabed) and across it, each a spring of stiffness ``kt``
-    [N/m] to the node's anchor, capped at ``mu N``."""
+    [N/m] to the node's anchor, capped at ``mu N``.
+
+    ``slip_state[i, k]`` (k = 0 along, 1 across) chooses how: 0 by the trial spring
+    force (stick below mu N, else slide at mu N); 2 stick (the spring, uncapped);
+    +1 / -1 slide at +- mu N, with the tangent of mu N through the normal force
+    (``mu k_n`` and ``mu c_n`` coupling the normal motion). The time step fixes the
+    states during its Newton iterations, so that they see a smooth force, and checks
+    them when it has converged (:func:`cablestudy.dynamics.integrator.alpha_step`).
+    The trial spring force is written to ``trial[i, k]`` [N]."""
     ea = np.empty(3)
     el = np.empty(3)
     tn = tan[0] * nrm[0] + tan[1] * nrm[1] + tan[2] * nrm[2]
@@ -804,13 +846,20 @@ def _friction(i, x, anchor, tan, nrm, kt, fn, friction, F, K_d, friction_force):
             continue
         e = ea if k == 0 else el
         f = -kt * (da if k == 0 else dl)
+        trial[i, k] = f
         cap = mu * fn
+        state = slip_state[i, k]
         stick = True
-        if f > cap:
-            f = cap
-            stick = False
-        elif f < -cap:
-            f = -cap
+        sign = 0.0
+        if state == 1 or state == -1:
+            sign = float(state)
+        elif state == 0:
+            if f > cap:
+                sign = 1.0
+            elif f < -cap:
+                sign = -1.0
+        if sign != 0.0:
+            f = sign * cap
             stick = False
         for a in range(3):
             F[i, a] -= f * e[a]
@@ -818,6 +867,11 @@ def _friction(i, x, anchor, tan, nrm, kt, fn, friction, F, K_d, friction_force):
             if stick:
                 for b in range(3):
                     K_d[i, a, b] += kt * e[a] * e[b]
+            elif state != 0:
+                # d(-f e)/dx with f = sign mu N(x, v): N = -k_n gap - c_n v_n
+                for b in range(3):
+                    K_d[i, a, b] += sign * mu * kt * e[a] * nrm[b]
+                    C_d[i, a, b] += sign * mu * cs * e[a] * nrm[b]
 
 
 @njit(cache=True)
@@ -915,6 +969,8 @@ class Workspace:
         self.contact = np.zeros(n)
         self.friction = np.zeros((n, 3))
         self.anchor = np.zeros((n, 3))
+        self.slip_state = np.zeros((n, 2), dtype=np.int64)
+        self.trial = np.zeros((n, 2))
         self.J_d = np.zeros((n, 3, 3))
         self.J_o = np.zeros((n - 1, 3, 3))
         self.J_o2 = np.zeros((max(n - 2, 0), 3, 3))
@@ -936,6 +992,8 @@ class Workspace:
             self.taut0,
             self.contact,
             self.friction,
+            self.slip_state,
+            self.trial,
         )
 
     def solver_args(self, line: DiscreteLine) -> tuple:
@@ -965,6 +1023,53 @@ def evaluate(
         *work.assemble_args(),
     )
     return work
+
+
+@njit(cache=True)
+def _trial_states(slip_state, trial, contact, friction):  # noqa: ANN001, ANN202
+    """Stick/slip state of every contact node from its trial spring force: stick (2)
+    within mu N, else slide (+-1) with the force's sign; 0 off the seabed."""
+    for i in range(slip_state.shape[0]):
+        for k in range(2):
+            slip_state[i, k] = 0
+            if contact[i] > 0.0 and friction[k] > 0.0:
+                cap = friction[k] * contact[i]
+                if trial[i, k] > cap:
+                    slip_state[i, k] = 1
+                elif trial[i, k] < -cap:
+                    slip_state[i, k] = -1
+                else:
+                    slip_state[i, k] = 2
+
+
+@njit(cache=True)
+def states_changed(slip_state, trial, contact, friction):  # noqa: ANN001, ANN201
+    """Update fixed stick/slip states from a converged state; True if any changed.
+
+    A sticking node whose spring force exceeds mu N slides (with the spring's sign); a
+    sliding node whose spring force is back within mu N, or points the other way,
+    sticks. Nodes that lost contact, or gained it (state 0), take the trial rule."""
+    changed = False
+    for i in range(slip_state.shape[0]):
+        for k in range(2):
+            state = slip_state[i, k]
+            if friction[k] <= 0.0:
+                continue
+            if contact[i] <= 0.0:
+                if state != 0:
+                    slip_state[i, k] = 0
+                continue
+            cap = friction[k] * contact[i] * (1.0 + 1e-9)
+            f = trial[i, k]
+            if state == 0:
+                continue
+            if state == 2 and abs(f) > cap:
+                slip_state[i, k] = 1 if f > 0.0 else -1
+                changed = True
+            elif (state == 1 or state == -1) and state * f < cap * (1.0 - 2e-9):
+                slip_state[i, k] = 2
+                changed = True
+    return changed
 
 
 @njit(cache=True)
@@ -1011,6 +1116,8 @@ def _static_newton(
     taut0,
     contact,
     friction_force,
+    slip_state,
+    trial,
     J_d,
     J_o,
     J_o2,
@@ -1025,7 +1132,24 @@ def _static_newton(
     res = np.inf
     lmin = rest_length.min()
     reg = 1e-9 * (axial_stiffness.max() / lmin)
-    for it in range(max_iterations + 1):
+    # a Newton correction below ~1000 ulp of the coordinates cannot lower the residual
+    # further (the solve of a stiff line, EA / T up to 1e10, carries its condition
+    # number's rounding): the equilibrium is then found to rounding
+    reach = 0.0
+    for i in range(n):
+        for a in range(3):
+            reach = max(reach, abs(x[i, a]))
+    reach += rest_length.sum()
+    floor = 1024.0 * 2.220446049250313e-16 * reach
+    has_friction = (friction[0] > 0.0 or friction[1] > 0.0) and seabed_stiffness.max() > 0.0
+    has_friction = has_friction and math.isfinite(friction[0]) and math.isfinite(friction[1])
+    fix_states = has_friction
+    for i in range(n):
+        for k in range(2):
+            slip_state[i, k] = 0
+    checks = 0
+    it = 0
+    while True:
         assemble(
             x,
             v,
@@ -1070,7 +1194,15 @@ def _static_newton(
             taut0,
             contact,
             friction_force,
+            slip_state,
+            trial,
         )
+        if fix_states:
+            # friction as an active set, as in the time step: the trial decides which
+            # contact nodes stick and which slide, Newton keeps those states
+            fix_states = False
+            _trial_states(slip_state, trial, contact, friction)
+            continue
         res = 0.0
         for i in range(n):
             if held[i]:
@@ -1078,16 +1210,30 @@ def _static_newton(
             for a in range(3):
                 res = max(res, abs(F[i, a]))
         if res <= tol:
+            if (
+                has_friction
+                and checks < 20
+                and states_changed(slip_state, trial, contact, friction)
+            ):
+                checks += 1
+                continue
             return it, res, True
-        if it == max_iterations:
+        if it >= max_iterations:
             break
+        it += 1
+        # a little mass-like regularisation keeps slack nodes solvable; kept well below
+        # the geometric stiffness T / l of the taut elements, or a light line's soft
+        # modes would converge only linearly
+        tmax = 0.0
+        for e in range(tension.shape[0]):
+            tmax = max(tmax, tension[e])
+        reg_it = min(reg, max(1e-6 * tmax / lmin, 1e-6 * reg))
         for i in range(n):
             for a in range(3):
                 r[i, a] = -F[i, a]
                 for b in range(3):
                     J_d[i, a, b] = K_d[i, a, b]
-                # a little mass-like regularisation keeps slack nodes solvable
-                J_d[i, a, a] += reg
+                J_d[i, a, a] += reg_it
         for i in range(n - 1):
             for a in range(3):
                 for b in range(3):
@@ -1103,6 +1249,8 @@ def _static_newton(
         for i in range(n):
             for a in range(3):
                 big = max(big, abs(dx[i, a]))
+        if big <= floor:
+            return it, res, True
         scale = 1.0
         if big > 0.25 * lmin:
             scale = 0.25 * lmin / big
@@ -1112,8 +1260,30 @@ def _static_newton(
     return max_iterations, res, False
 
 
+def stretched_start(line: DiscreteLine, x0: np.ndarray, tension: np.ndarray) -> np.ndarray:
+    """Node positions with the directions of ``x0``'s chords and the lengths the element
+    ``tension`` [N] (n,) stretches them to, ``l0 (1 + T / EA)``, rebuilt from end A,
+    with the misclosure at end B (if held) spread along the line in proportion to arc
+    length. The chords of a smooth curve sampled at the nodes are shorter than its arcs
+    by O(h^2 kappa^2): on a stiff line that error times EA is a large spurious tension,
+    which this start removes before Newton."""
+    d = np.diff(x0, axis=0)
+    u = d / np.linalg.norm(d, axis=1, keepdims=True)
+    chord = line.rest_length * (1.0 + np.maximum(tension, 0.0) / line.axial_stiffness)
+    x = np.vstack([x0[:1], x0[0] + np.cumsum(u * chord[:, None], axis=0)])
+    if line.held[-1]:
+        frac = (line.s - line.s[0]) / (line.s[-1] - line.s[0])
+        x += frac[:, None] * (x0[-1] - x[-1])[None, :]
+    return x
+
+
 def static_equilibrium(
-    line: DiscreteLine, x0: np.ndarray, *, tolerance: float, max_iterations: int = 100
+    line: DiscreteLine,
+    x0: np.ndarray,
+    *,
+    tolerance: float,
+    max_iterations: int = 100,
+    tension: np.ndarray | None = None,
 ) -> tuple[np.ndarray, int, float, bool, np.ndarray]:
     """Equilibrium of the discrete line with its held nodes where ``x0`` puts them.
 
@@ -1122,11 +1292,16 @@ def static_equilibrium(
     starts from anchors at ``x0``: friction is mobilised by the small displacement
     from the continuous solution (at most ``mu N / k_t``), never beyond ``mu N``.
 
+    Given the element ``tension`` [N] (n,) of the continuous solution, Newton starts
+    from :func:`stretched_start`.
+
     Returns positions [m] (n + 1, 3), iterations, the largest nodal out-of-balance
     force [N], whether it fell below ``tolerance`` [N], and the friction anchors [m]
     that hold the friction forces of that equilibrium.
     """
     x = np.array(x0, dtype=float, copy=True)
+    if tension is not None:
+        x = stretched_start(line, x, np.asarray(tension, dtype=float))
     work = Workspace(line.n_elements)
     work.anchor[:] = x
     if line.has_seabed:

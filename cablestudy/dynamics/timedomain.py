@@ -17,8 +17,13 @@ generalised-alpha method (:mod:`.integrator`) and
   converged: the spread of the per-period values over the last periods is reported
   with the result, so a response that does not settle (subharmonic, chaotic) is never
   mistaken for a final number);
+* records, per step, the tensions of every element and at both ends and the
+  touchdown point (:func:`cablestudy.physics.seabed.touchdown_arc_length`), whose
+  extremes over the steady window are the line's tension envelope and the touchdown
+  point's range of travel;
 * optionally keeps time histories of the end tension and of the motion of chosen
-  points, resampled uniformly over the last periods.
+  points, and of the whole line (node positions and velocities, element and end
+  tensions), resampled uniformly over the last periods.
 
 Pure: arrays in, a :class:`DynamicResult` out (status, message, counters).
 """
@@ -32,6 +37,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..physics.seabed import touchdown_arc_length
 from ..statics.base import STATUS_NUMERICAL, STATUS_OK, STATUS_TIME_LIMIT
 from .excitation import EndMotion
 from .integrator import AlphaParameters, alpha_step
@@ -71,6 +77,9 @@ class DynamicProblem:
         halves the step (up to ``max_refinement`` times), so snap loads are resolved
     anchor : [m] (n + 1, 3) seabed friction anchors of the static equilibrium (None:
         at the static positions, no friction force stored)
+    history_line : with ``history``, also keep the whole line's history (nodes)
+    touchdown_tolerance : [m] largest height above the seabed at which a node counts as
+        touching it (touchdown tracking; the penalty contact sinks laid nodes below it)
     """
 
     line: DiscreteLine
@@ -95,6 +104,8 @@ class DynamicProblem:
     keep_steps: bool = False
     tension_step: float = math.inf
     anchor: np.ndarray | None = None
+    history_line: bool = False
+    touchdown_tolerance: float = 0.0
 
 
 @dataclass(kw_only=True)
@@ -106,7 +117,17 @@ class DynamicResult:
     tension there; the spreads are the ranges of the per-period maxima and minima over
     the last ``steady_window + 1`` periods (below ``steady_tolerance`` times the
     maximum when ``steady_converged``). ``history`` holds ``time`` (nt,), ``tension``
-    (nt,), ``displacement``, ``velocity``, ``acceleration`` (p, nt, 3) when asked for.
+    (nt,), ``displacement``, ``velocity``, ``acceleration`` (p, nt, 3) when asked for,
+    and with ``history_line`` the nodes' ``line_position``, ``line_velocity``
+    (nt, n + 1, 3), ``line_element_tension`` (nt, n) and ``line_end_tension`` (nt, 2).
+
+    Over the same window as ``tension_max``: ``element_tension_max``/``_min`` (n,) are
+    each element's largest and smallest tension over the steps, ``end_tension_max``/
+    ``_min`` (2,) those at ends A and B (so ``end_tension_max[excited_end]`` is
+    ``tension_max``); ``touchdown_min``/``_max`` [m] the range of the touchdown point's
+    arc length from A over the steps where the line touches the seabed (NaN if none).
+    ``touchdown_tracked`` is whether the model has a seabed to touch; ``line_s`` [m]
+    (n + 1,) are the nodes' arc lengths.
     """
 
     status: int = STATUS_OK
@@ -126,6 +147,14 @@ class DynamicResult:
     simulated_time: float = 0.0
     period_max: np.ndarray = field(default_factory=lambda: np.zeros(0))
     period_min: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    element_tension_max: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    element_tension_min: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    end_tension_max: np.ndarray = field(default_factory=lambda: np.full(2, math.nan))
+    end_tension_min: np.ndarray = field(default_factory=lambda: np.full(2, math.nan))
+    touchdown_min: float = math.nan
+    touchdown_max: float = math.nan
+    touchdown_tracked: bool = False
+    line_s: np.ndarray = field(default_factory=lambda: np.zeros(0))
     history: dict[str, np.ndarray] | None = None
     record: dict[str, np.ndarray] | None = None
 
@@ -151,6 +180,52 @@ def end_forces(
             d = x[-2] - x[-1]
             out[1] = work.tension[-1] * d / np.linalg.norm(d)
     return out
+
+
+class _LineExtremes:
+    """Per-step extremes along the line over each period: element and end tensions
+    [N] (largest and smallest) and the touchdown arc length [m] (NaN where no contact).
+    Keeps the last ``keep`` periods (None: folds every period into one)."""
+
+    def __init__(self, keep: int | None, element: np.ndarray, ends: np.ndarray, td: float):
+        self.keep = keep
+        self.periods: deque[list] = deque()
+        self.start(element, ends, td)
+
+    def start(self, element: np.ndarray, ends: np.ndarray, td: float) -> None:
+        self.current = [element.copy(), element.copy(), ends.copy(), ends.copy(), td, td]
+
+    def add(self, element: np.ndarray, ends: np.ndarray, td: float) -> None:
+        c = self.current
+        np.maximum(c[0], element, out=c[0])
+        np.minimum(c[1], element, out=c[1])
+        np.maximum(c[2], ends, out=c[2])
+        np.minimum(c[3], ends, out=c[3])
+        c[4] = float(np.fmin(c[4], td))
+        c[5] = float(np.fmax(c[5], td))
+
+    def close(self) -> None:
+        """The current period is one of the steady-state periods: keep it."""
+        self.periods.append(self.current)
+        if self.keep is None and len(self.periods) > 1:
+            self.periods.appendleft(self._fold([self.periods.popleft(), self.periods.pop()]))
+        while self.keep is not None and len(self.periods) > self.keep:
+            self.periods.popleft()
+
+    @staticmethod
+    def _fold(items: list[list]) -> list:
+        return [
+            np.max([i[0] for i in items], axis=0),
+            np.min([i[1] for i in items], axis=0),
+            np.max([i[2] for i in items], axis=0),
+            np.min([i[3] for i in items], axis=0),
+            float(np.fmin.reduce([i[4] for i in items])),
+            float(np.fmax.reduce([i[5] for i in items])),
+        ]
+
+    def window(self) -> list:
+        """Extremes over the kept periods (the current partial one if none closed)."""
+        return self._fold(list(self.periods) or [self.current])
 
 
 def _hermite(t: np.ndarray, y: np.ndarray, dy: np.ndarray, tq: np.ndarray) -> np.ndarray:
@@ -184,6 +259,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     wargs = work.assemble_args()
     sargs = work.solver_args(line)
     held = line.held
+    seabed = line.has_seabed
 
     x0 = np.array(problem.static_position, dtype=float, copy=True)
     v0 = np.zeros_like(x0)
@@ -195,8 +271,31 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     strain_prev = work.strain.copy()
     base = np.stack([x0[0], x0[-1]])
     ex = problem.excited_end
-    t_static = float(np.linalg.norm(end_forces(work, a0, x0, held)[ex]))
-    result = DynamicResult(tension_static=t_static)
+    f_static = end_forces(work, a0, x0, held)
+    t_static = float(np.linalg.norm(f_static[ex]))
+    result = DynamicResult(tension_static=t_static, line_s=line.s)
+
+    has_seabed = line.has_seabed
+    result.touchdown_tracked = has_seabed
+    flat = bool(line.seabed_normal[0] == 0.0 and line.seabed_normal[1] == 0.0)
+
+    def touchdown(x: np.ndarray) -> float:
+        """Arc length [m] where the line leaves the seabed plane (NaN: no contact)."""
+        if not has_seabed:
+            return math.nan
+        n = line.seabed_normal
+        if flat:
+            bed: np.ndarray | float = line.seabed_offset / n[2]
+        else:
+            bed = (line.seabed_offset - n[0] * x[:, 0] - n[1] * x[:, 1]) / n[2]
+        return touchdown_arc_length(line.s, x[:, 2], bed, problem.touchdown_tolerance)
+
+    extremes = _LineExtremes(
+        None if problem.duration is not None else max(1, problem.steady_window),
+        work.tension,
+        np.sqrt(np.sum(f_static**2, 1)),
+        touchdown(x0),
+    )
 
     T = problem.period
     t_ramp = problem.motion.ramp_time
@@ -205,17 +304,23 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     max_level = problem.max_refinement
     eps_t = 1e-9 * T
 
-    # history buffer: (t, end tension, x, v, a at the history points)
+    # history buffer: (t, end tension, x, v, a at the history points, and with
+    # history_line: x, v, a of every node, element tensions, end tensions)
     hs = np.asarray(problem.history_s, dtype=float)
     keep_hist = problem.history
     hist_span = (problem.history_periods + 1.0) * T
-    buf: deque[tuple[float, float, np.ndarray, np.ndarray, np.ndarray]] = deque()
+    buf: deque[tuple] = deque()
 
-    def push(t: float, tension: float) -> None:
+    def push(t: float, tension: float, ends: np.ndarray) -> None:
         if not keep_hist:
             return
         xs = interpolate_nodes(line.s, hs, np.stack([x0, v0, a0]))
-        buf.append((t, tension, xs[0], xs[1], xs[2]))
+        whole = (
+            (x0.copy(), v0.copy(), a0.copy(), work.tension.copy(), ends.copy())
+            if problem.history_line
+            else ()
+        )
+        buf.append((t, tension, xs[0], xs[1], xs[2], *whole))
         while len(buf) > 2 and buf[1][0] < t - hist_span:
             buf.popleft()
 
@@ -233,8 +338,8 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             rec["tension"].append(work.tension.copy())
             rec["friction"].append(work.friction.copy())
 
-    keep(0.0, end_forces(work, a0, x0, held))
-    push(0.0, t_static)
+    keep(0.0, f_static)
+    push(0.0, t_static, np.sqrt(np.sum(f_static**2, 1)))
 
     # per-period statistics (periods starting after the ramp only)
     p_max: list[float] = []
@@ -346,7 +451,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             continue
         # accept
         steps += 1
-        if line.has_seabed:
+        if seabed:
             update_anchors(x1, work.friction, line.seabed_stiffness, work.contact, work.anchor)
         past.append((t, x0.copy()))
         if len(past) > 2:
@@ -357,14 +462,16 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         a0, a1 = a1, a0
         F0[:] = work.F
         strain_prev[:] = work.strain
-        line_max = max(float(work.tension.max()), float(np.sqrt(np.max(np.sum(forces**2, 1)))))
+        end_tensions = np.sqrt(np.sum(forces**2, 1))
+        line_max = max(float(work.tension.max()), float(end_tensions.max()))
+        extremes.add(work.tension, end_tensions, touchdown(x0))
         c_max = max(c_max, tension)
         c_min = min(c_min, tension)
         c_int += 0.5 * (t_prev_tension + tension) * h
         c_line = max(c_line, line_max)
         t_prev_tension = tension
         keep(t, forces)
-        push(t, tension)
+        push(t, tension, end_tensions)
         if switched or steep:
             clean = 0
         else:
@@ -379,6 +486,8 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
                 p_min.append(c_min)
                 p_mean.append(c_int / max(t - c_start, 1e-300))
                 p_line.append(c_line)
+                extremes.close()
+            extremes.start(work.tension, end_tensions, touchdown(x0))
             c_max = c_min = tension
             c_line = line_max
             c_int = 0.0
@@ -413,6 +522,14 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     result.simulated_time = t
     result.period_max = np.asarray(p_max)
     result.period_min = np.asarray(p_min)
+    (
+        result.element_tension_max,
+        result.element_tension_min,
+        result.end_tension_max,
+        result.end_tension_min,
+        result.touchdown_min,
+        result.touchdown_max,
+    ) = extremes.window()
     if keep_hist and len(buf) >= 2:
         result.history = _resample(
             buf, t, T, problem, interpolate_nodes(line.s, hs, problem.static_position[None])[0]
@@ -439,10 +556,30 @@ def _resample(
     for p in range(xs.shape[1]):
         for c in range(3):
             ai[:, p, c] = np.interp(tq, ts, acc[:, p, c])
-    return {
+    out = {
         "time": tq,
         "tension": np.interp(tq, ts, tension),
         "displacement": np.transpose(pos - static_points[None], (1, 0, 2)),
         "velocity": np.transpose(vel, (1, 0, 2)),
         "acceleration": np.transpose(ai, (1, 0, 2)),
     }
+    if problem.history_line:
+        # nodes as the points: positions and velocities cubic Hermite in time, the
+        # tensions (no derivative kept) linear
+        xn = np.array([b[5] for b in buf])  # (ns, n + 1, 3)
+        vn = np.array([b[6] for b in buf])
+        an = np.array([b[7] for b in buf])
+        out["line_position"] = _hermite(ts, xn, vn, tq)
+        out["line_velocity"] = _hermite(ts, vn, an, tq)
+        out["line_element_tension"] = _linear(ts, np.array([b[8] for b in buf]), tq)
+        out["line_end_tension"] = _linear(ts, np.array([b[9] for b in buf]), tq)
+    return out
+
+
+def _linear(t: np.ndarray, y: np.ndarray, tq: np.ndarray) -> np.ndarray:
+    """Linear interpolation of samples ``y`` (ns, m) at increasing times ``t`` (ns,) to
+    ``tq`` (clamped to the samples' range), column by column as :func:`numpy.interp`."""
+    tq = np.clip(tq, t[0], t[-1])
+    i = np.clip(np.searchsorted(t, tq, side="right") - 1, 0, t.size - 2)
+    w = ((tq - t[i]) / (t[i + 1] - t[i]))[:, None]
+    return (1.0 - w) * y[i] + w * y[i + 1]

@@ -41,11 +41,6 @@ class DiscreteSolver:
         from .semi_analytic import SemiAnalyticSolver
 
         missing = list(SemiAnalyticSolver().unsupported(replace(problem, n_nodes=3)))
-        if problem.line.is_nonlinear:
-            missing.append(
-                "a non-linear axial law (line.segments.N.axial): the lumped-mass line model "
-                "is linear-elastic; use method 'catenary' or 'shooting'"
-            )
         if problem.is_installation:
             missing.append("steady cable installation (method 'shooting')")
         if problem.stretched_drag_diameter and problem.medium.has_current:
@@ -102,17 +97,31 @@ class DiscreteSolver:
         disc = discretise_nodes(line, med, s, extras)
         scale = max(float(np.max(start.tension)), float(np.max(np.abs(disc.force))))
         # below the rounding of an element tension EA (l / l0 - 1) no Newton step helps:
-        # 16 ulp of the node coordinates times EA over the shortest element
+        # an ulp of the node coordinates times EA over the shortest element, times 256
+        # for the few ulp a converged Newton wanders and the node's several elements
         reach = float(np.max(np.abs(x0))) + float(np.sum(disc.rest_length))
         rounding = (
-            16.0 * np.finfo(float).eps * float(np.max(disc.axial_stiffness)) * reach
+            256.0 * np.finfo(float).eps * float(np.max(disc.axial_stiffness)) * reach
         ) / float(np.min(disc.rest_length))
-        x, its, res, ok, anchor = static_equilibrium(
-            disc,
-            x0,
-            tolerance=max(problem.tolerance * scale, rounding),
-            max_iterations=problem.max_iterations,
-        )
+        t_nodes = np.interp(s, start.s, start.tension)
+        # the residual summed over the nodes is what the end forces carry: ask each node
+        # for the tolerance shared out, so the supports balance the weight to it. Newton
+        # starts with the chords stretched by the cable's tension (a stiff line's chord
+        # error times EA is a large spurious force), else from the cable's nodes
+        tol = max(problem.tolerance * scale / s.size, rounding)
+        its_all = 0
+        for tension in (0.5 * (t_nodes[:-1] + t_nodes[1:]), None):
+            x, its, res, ok, anchor = static_equilibrium(
+                disc,
+                x0,
+                tolerance=tol,
+                max_iterations=max(problem.max_iterations, 200),
+                tension=tension,
+            )
+            its_all += its
+            if ok:
+                break
+        its = its_all
         work = evaluate(disc, x, np.zeros_like(x), anchor=anchor)
         tension = np.empty(s.size)
         tension[1:-1] = 0.5 * (work.tension[:-1] + work.tension[1:])

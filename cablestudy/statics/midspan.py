@@ -23,8 +23,8 @@ import time
 import numpy as np
 
 from .base import STATUS_NO_SOLUTION, STATUS_NOT_CONVERGED, STATUS_TIME_LIMIT
-from .pieces import piece_integrals
-from .seabed import Plane
+from .law_pieces import piece_increments
+from .seabed import Plane, _law_stretch
 from .semi_analytic import Ends, Layout, Shape, _Failure, _suspended
 
 
@@ -70,8 +70,14 @@ def _laid_mid(
                 "the laid part between the touchdown and lift-off "
                 "points would be slack (it slides down the slope)",
             )
-        out.append((float(a), float(b - a), t, rate, float(lay.EA[k])))
-        stretched += (b - a) + 0.5 * (b - a) * (t + t_end) / float(lay.EA[k])
+        law = lay.law[k] if lay.law is not None else None
+        out.append((float(a), float(b - a), t, rate, float(lay.EA[k]), law))
+        if law is None:
+            stretched += (b - a) + 0.5 * (b - a) * (t + t_end) / float(lay.EA[k])
+        else:
+            # the tension runs linearly from t to t_end (either way): the law's integral
+            lo_t, hi_t = min(t, t_end), max(t, t_end)
+            stretched += (b - a) + _law_stretch(law, lo_t, hi_t, b - a)[0]
         t = t_end
     return out, stretched, t
 
@@ -90,13 +96,15 @@ def _evaluate(
     s0p, ellp, EAp, qp, Cp, Cend1 = _prefix(lay, q, s1)
     TA = T_td + Cend1
     T0p = TA - Cp
-    drp, _, _ = piece_integrals(T0p, qp, ellp, EAp, jacobian=False)
+    lawp = None if lay.law is None else lay.law[: len(ellp)]
+    drp, _, _ = piece_increments(T0p, qp, ellp, EAp, lawp, jacobian=False)
     r1 = ends.rA + drp.sum(axis=0)
     laid, stretched, t2 = _laid_mid(lay, s1, s2, tn, e)
     r2 = r1 + e * stretched
-    s0s, ells, EAs, qs, C2, _, Cend2 = _suspended(lay, q, s2)
+    s0s, ells, EAs, qs, C2, k2, Cend2 = _suspended(lay, q, s2)
     T0s = t2 * e - C2
-    drs, _, _ = piece_integrals(T0s, qs, ells, EAs, jacobian=False)
+    laws = None if lay.law is None else lay.law[k2:]
+    drs, _, _ = piece_increments(T0s, qs, ells, EAs, laws, jacobian=False)
     rB = r2 + drs.sum(axis=0)
     R = np.concatenate(([float(plane.height_above(r1))], rB - ends.rB)) / L
     parts = dict(
@@ -118,6 +126,8 @@ def _evaluate(
         TL=t2 * e - Cend2,
         s1=s1,
         s2=s2,
+        lawp=lawp,
+        laws=laws,
     )
     return R, parts
 
@@ -129,19 +139,24 @@ def _shape(parts: dict, rA: np.ndarray) -> Shape:
     T0 = [parts["T0p"]]
     qq = [parts["qp"]]
     EA = [parts["EAp"]]
-    for a, length, t, rate, ea in parts["laid"]:
+    laws: list = list(parts["lawp"]) if parts["lawp"] is not None else []
+    for a, length, t, rate, ea, law in parts["laid"]:
         s0.append(np.array([a]))
         ell.append(np.array([length]))
         T0.append((t * e)[None, :])
         qq.append((-rate * e)[None, :])
         EA.append(np.array([ea]))
+        laws.append(law)
     s0 += [parts["s0s"]]
     ell += [parts["ells"]]
     T0 += [parts["T0s"]]
     qq += [parts["qs"]]
     EA += [parts["EAs"]]
+    if parts["laws"] is not None:
+        laws += list(parts["laws"])
+    all_laws = tuple(laws) if parts["lawp"] is not None else None
     s0a, ella, T0a, qa, EAa = (np.concatenate(x) for x in (s0, ell, T0, qq, EA))
-    dr, _, _ = piece_integrals(T0a, qa, ella, EAa, jacobian=False)
+    dr, _, _ = piece_increments(T0a, qa, ella, EAa, all_laws, jacobian=False)
     r0 = rA + np.concatenate((np.zeros((1, 3)), np.cumsum(dr, axis=0)))[:-1]
     return Shape(
         s0=s0a,
@@ -155,6 +170,7 @@ def _shape(parts: dict, rA: np.ndarray) -> Shape:
         laid_length=parts["s2"] - parts["s1"],
         laid_start=parts["s1"],
         contact=True,
+        law=all_laws,
     )
 
 

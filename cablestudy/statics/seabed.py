@@ -18,9 +18,13 @@ part is neglected.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
+
+from ..physics.axial import gauss_legendre
 
 
 @dataclass(frozen=True)
@@ -55,6 +59,24 @@ class Plane:
         return (r - np.array([0.0, 0.0, -self.depth])) @ self.normal
 
 
+def _law_stretch(law: Any, t_lo: float, t_hi: float, length: float) -> tuple[float, float]:
+    """(int e(T) ds, int de/dT ds) [m], [m/N] over ``length`` [m] of a laid piece whose
+    tension runs linearly from t_lo to t_hi [N]: exact through the law's complementary
+    energy where the tension changes, by 16-point Gauss-Legendre where it hardly does
+    (the difference would cancel)."""
+    if length <= 0.0 or t_hi <= 0.0:
+        return 0.0, 0.0
+    if t_hi - t_lo > 1e-3 * t_hi:
+        k = (t_hi - t_lo) / length
+        phi = law.complementary_energy(np.array([t_lo, t_hi]))
+        e = law.strain(np.array([t_lo, t_hi]))
+        return float(phi[1] - phi[0]) / k, float(e[1] - e[0]) / k
+    x, w = gauss_legendre(16)
+    T = t_lo + (t_hi - t_lo) * x
+    e = law.strain(T)
+    return float(length * np.sum(w * e)), float(length * np.sum(w / law.tangent_stiffness(e)))
+
+
 @dataclass
 class LaidPart:
     """The laid part from the anchor (s = 0) to the TDP s_td [m].
@@ -86,6 +108,7 @@ def laid_part(
     point_s: np.ndarray,
     point_force: np.ndarray,
     plane: Plane,
+    laws: Sequence[Any] | None = None,
 ) -> LaidPart:
     """Tension along the laid part, marching from the TDP to the anchor.
 
@@ -105,6 +128,10 @@ def laid_part(
         [m] (k,), [N] (k, 3): point loads (applied to the line) on the laid part.
     plane : Plane
         The seabed.
+    laws : sequence of AxialLaw or None, optional
+        [-] (P,) each piece's non-linear axial law (None: T = EA e): its stretch is then
+        int e(T) ds = (Phi(T_hi) - Phi(T_lo)) / k exactly (Phi the complementary energy,
+        k the tension rate), and its flexibility (e(T_hi) - e(T_lo)) / k.
     """
     n = plane.normal
     mu = plane.friction
@@ -146,8 +173,14 @@ def laid_part(
             positive, area = 0.0, 0.0
         tension[j] = max(t_lo, 0.0)
         t_los[j], t_his[j] = tension[j], max(t_hi, 0.0)
-        stretched += ell + area / ea
-        flex += positive / ea
+        law = laws[piece[j]] if laws is not None else None
+        if law is None:
+            stretched += ell + area / ea
+            flex += positive / ea
+        else:
+            s_, f_ = _law_stretch(law, tension[j], max(t_hi, 0.0), positive)
+            stretched += ell + s_
+            flex += f_
     rate_td = float(rates[-1]) if len(rates) else 0.0
     return LaidPart(
         s=pts,

@@ -49,7 +49,6 @@ from .base import (
     StaticResult,
 )
 from .law_pieces import piece_increments
-from .pieces import piece_integrals
 from .seabed import LaidPart, Plane, laid_part
 
 _Z = np.array([0.0, 0.0, 1.0])
@@ -494,7 +493,16 @@ def _laid(lay: Layout, s_td: float, T_td: np.ndarray, plane: Plane) -> LaidPart:
     e = T_td / tn if tn > 0.0 else plane.basis[0]
     mask = (lay.bounds < s_td) & np.any(lay.point != 0.0, axis=1)
     return laid_part(
-        s_td, tn, e, lay.bounds, lay.weight, lay.EA, lay.bounds[mask], lay.point[mask], plane
+        s_td,
+        tn,
+        e,
+        lay.bounds,
+        lay.weight,
+        lay.EA,
+        lay.bounds[mask],
+        lay.point[mask],
+        plane,
+        lay.law,
     )
 
 
@@ -504,15 +512,15 @@ def _contact_shape(
     laid = _laid(lay, s_td, T_td, plane)
     tn = float(np.linalg.norm(T_td))
     e = T_td / tn if tn > 0.0 else plane.basis[0]
-    s0l, elll, T0l, ql, EAl = [], [], [], [], []
+    s0l, elll, T0l, ql, EAl, lawl = [], [], [], [], [], []
     for j in range(len(laid.s) - 1):
         lo, hi = laid.s[j], laid.s[j + 1]
-        seg_ea = lay.EA[
-            min(
-                int(np.searchsorted(lay.bounds, 0.5 * (lo + hi), side="right")) - 1,
-                len(lay.ell) - 1,
-            )
-        ]
+        piece = min(
+            int(np.searchsorted(lay.bounds, 0.5 * (lo + hi), side="right")) - 1,
+            len(lay.ell) - 1,
+        )
+        seg_ea = lay.EA[piece]
+        seg_law = lay.law[piece] if lay.law is not None else None
         k = laid.rate[j]
         t_lo, t_hi = laid.tension_lo[j], laid.tension_hi[j]
         slack_len = 0.0
@@ -526,20 +534,23 @@ def _contact_shape(
             T0l.append(1e-150 * e)
             ql.append(np.zeros(3))
             EAl.append(seg_ea)
+            lawl.append(seg_law)
         if hi - lo - slack_len > 0.0:
             s0l.append(lo + slack_len)
             elll.append(hi - lo - slack_len)
             T0l.append(max(t_lo, 0.0) * e)
             ql.append(-k * e)
             EAl.append(seg_ea)
-    s0s, ells, EAs, qs, C, _, Cend = _suspended(lay, q, s_td)
+            lawl.append(seg_law)
+    s0s, ells, EAs, qs, C, k_td, Cend = _suspended(lay, q, s_td)
     T0s = T_td - C
     s0 = np.concatenate((np.array(s0l), s0s))
     ell = np.concatenate((np.array(elll), ells))
     T0 = np.concatenate((np.array(T0l).reshape(-1, 3), T0s))
     qa = np.concatenate((np.array(ql).reshape(-1, 3), qs))
     EA = np.concatenate((np.array(EAl), EAs))
-    dr, _, _ = piece_integrals(T0, qa, ell, EA, jacobian=False)
+    laws = None if lay.law is None else (*lawl, *lay.law[k_td:])
+    dr, _, _ = piece_increments(T0, qa, ell, EA, laws, jacobian=False)
     r0 = rA + np.concatenate((np.zeros((1, 3)), np.cumsum(dr, axis=0)))[:-1]
     force_a = laid.tension[0] * e
     return Shape(
@@ -553,6 +564,7 @@ def _contact_shape(
         tension_end=T_td - Cend,
         laid_length=s_td,
         contact=True,
+        law=laws,
     )
 
 
@@ -641,8 +653,9 @@ def solve_contact(
         tn = float(np.linalg.norm(T_td))
         e = T_td / tn
         laid = _laid(lay, s_td, T_td, plane)
-        s0, ell, EA, qs, C, _, Cend = _suspended(lay, q, s_td)
-        dr, jac, _ = piece_integrals(T_td - C, qs, ell, EA)
+        s0, ell, EA, qs, C, k_td, Cend = _suspended(lay, q, s_td)
+        laws = None if lay.law is None else lay.law[k_td:]
+        dr, jac, _ = piece_increments(T_td - C, qs, ell, EA, laws)
         assert jac is not None
         Js = jac.sum(axis=0)
         rB = ends.rA + e * laid.stretched + dr.sum(axis=0)
@@ -872,12 +885,6 @@ class SemiAnalyticSolver:
         if problem.stretched_drag_diameter and problem.medium.has_current:
             out.append(
                 "drag on the stretched diameter (drag_diameter: stretched): use method 'shooting'"
-            )
-        if problem.line.is_nonlinear and problem.medium.depth is not None:
-            out.append(
-                "a non-linear axial law (line.segments.N.axial) with a seabed "
-                "(environment.depth): its seabed contact is linear-elastic only; use method "
-                "'shooting', or omit the depth for a line that cannot reach the seabed"
             )
         return out
 
@@ -1389,10 +1396,33 @@ def _laid_between(
             f"and the line ({L:.6g} m) is not shorter: it lies slack on the seabed "
             "and its shape is not determined",
         )
+
+    def strains(T: float) -> np.ndarray:
+        return np.array(
+            [
+                T / ea if (law := line.law_of(i)) is None else float(law.strain(T))
+                for i, ea in enumerate(line.axial_stiffness)
+            ]
+        )
+
     T = (chord - L) / flex
+    if line.is_nonlinear:
+        # sum l_i (1 + e_i(T)) = chord: increasing in T, bracketed and bisected
+        lo, hi = 0.0, max(T, 1.0)
+        while float(np.sum(line.length * strains(hi))) < chord - L:
+            lo, hi = hi, 2.0 * hi
+        for _ in range(200):
+            T = 0.5 * (lo + hi)
+            if float(np.sum(line.length * strains(T))) < chord - L:
+                lo = T
+            else:
+                hi = T
+            if hi - lo <= 1e-15 * hi:
+                break
+        T = 0.5 * (lo + hi)
     e = d / chord
     bounds = line.segment_ends
-    stretched = np.concatenate(([0.0], np.cumsum(line.length * (1.0 + T / line.axial_stiffness))))
+    stretched = np.concatenate(([0.0], np.cumsum(line.length * (1.0 + strains(T)))))
     along = np.interp(s_eval, bounds, stretched)
     pos = ends.rA + along[:, None] * e
     force_a, force_b = T * e, -T * e

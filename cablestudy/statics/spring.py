@@ -27,7 +27,7 @@ force of the line on the attachment: at A towards B), ``laid_length`` 0.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -38,7 +38,8 @@ from .base import STATUS_NO_SOLUTION, STATUS_NOT_CONVERGED, EndCondition, Static
 @dataclass(frozen=True, kw_only=True)
 class SpringProblem:
     """A massless spring line: ``law`` tension [N] of extension [m], ``length`` [m]
-    unstretched, the ends and the output points ``n_nodes``."""
+    unstretched, the ends and the output points ``n_nodes``; ``pulleys`` [m] (m, 3)
+    fixed points it passes over (both ends then fixed) with their ``friction`` factors."""
 
     law: AxialLaw
     length: float
@@ -46,6 +47,61 @@ class SpringProblem:
     end_b: EndCondition
     n_nodes: int = 101
     tolerance: float = 1e-12
+    pulleys: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    friction: np.ndarray = field(default_factory=lambda: np.zeros(0))
+
+
+def wrap_angles(points: np.ndarray) -> np.ndarray:
+    """Angle [rad] through which the line turns at each inner point of the polyline
+    ``points`` (k + 2, 3): 0 straight on, pi doubled back."""
+    seg = np.diff(points, axis=0)
+    u = seg / np.linalg.norm(seg, axis=1)[:, None]
+    c = np.clip(np.einsum("ik,ik->i", u[:-1], u[1:]), -1.0, 1.0)
+    return np.arccos(c)
+
+
+def span_tensions(
+    law: AxialLaw, length: float, distances: np.ndarray, lengths: np.ndarray
+) -> np.ndarray:
+    """Tension [N] of each span of unstretched length ``lengths`` [m] stretched to
+    ``distances`` [m]: the cable's law at the extension its strain gives the whole
+    cable, length (d / l - 1)."""
+    return law.tension(length * (distances / lengths - 1.0))
+
+
+def over_pulleys(problem: SpringProblem, lengths: np.ndarray | None = None) -> StaticResult:
+    """A spring between fixed ends over fixed pulleys. Without ``lengths`` (unstretched
+    length of each span [m]) the line slides freely to the frictionless equilibrium:
+    one strain, T = law(path length - L) on every span -- the state of a line
+    tensioned sliding over its pulleys, which every friction factor >= 1 also holds
+    (with friction the static state depends on the history; the dynamics starts
+    from this one). Outputs on s follow the spans; ``pulley_force`` is the force of
+    the line on each pulley [N]."""
+    L = problem.length
+    rA = np.asarray(problem.end_a.position, dtype=float)
+    rB = np.asarray(problem.end_b.position, dtype=float)
+    P = np.vstack((rA, problem.pulleys, rB))
+    d = np.linalg.norm(np.diff(P, axis=0), axis=1)
+    D = float(np.sum(d))
+    if lengths is None:
+        lengths = L * d / D
+    T = span_tensions(problem.law, L, d, lengths) if D > 0.0 else np.zeros(len(d))
+    u = np.diff(P, axis=0) / np.where(d > 0.0, d, 1.0)[:, None]
+    s = np.linspace(0.0, L, problem.n_nodes)
+    S = np.concatenate(([0.0], np.cumsum(lengths)))
+    k = np.clip(np.searchsorted(S, s, side="right") - 1, 0, len(d) - 1)
+    frac = np.clip((s - S[k]) / lengths[k], 0.0, 1.0)
+    pos = P[k] + frac[:, None] * (P[k + 1] - P[k])
+    res = StaticResult(
+        s=s,
+        position=pos,
+        tension=T[k],
+        force_a=T[0] * u[0],
+        force_b=-T[-1] * u[-1],
+    )
+    res.pulley_force = T[1:, None] * u[1:] - T[:-1, None] * u[:-1]  # type: ignore[attr-defined]
+    res.span_length = lengths  # type: ignore[attr-defined]
+    return res
 
 
 def spring_tension(law: AxialLaw, length: float, distance: np.ndarray | float) -> np.ndarray:
@@ -112,6 +168,12 @@ def solve_spring(problem: SpringProblem) -> StaticResult:
     law = problem.law
     s = np.linspace(0.0, L, problem.n_nodes)
     a, b = problem.end_a, problem.end_b
+    if len(problem.pulleys):
+        if a.kind != "fixed" or b.kind != "fixed":
+            return StaticResult.failed(
+                s, STATUS_NO_SOLUTION, "a spring over pulleys needs both ends fixed"
+            )
+        return over_pulleys(problem)
     reverse = a.kind != "fixed"
     if reverse:
         a, b = b, a

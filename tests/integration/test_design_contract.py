@@ -24,6 +24,7 @@ import xarray as xr
 
 import cablestudy
 from cablestudy.cli import main
+from cablestudy.results import OUTPUTS
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -472,7 +473,8 @@ def test_failed_case_is_kept_with_nan_status_and_message(tmp_path: Path, schedul
     without a seabed) on the seabed between its supports; the static solver models that
     contact, but the dynamic model has no seabed contact, so the case fails before time
     stepping, and stays in the dataset with NaN data, a nonzero status and a message
-    naming the seabed, on either scheduler."""
+    naming the seabed, on either scheduler. Only the failed analysis is blank: its
+    variables are NaN, the statics it started from are kept (issue 9, item 6)."""
     text = _edit(DESIGN_EXAMPLE, FULL_SWEEP, "  environment.depth: [320.0, 20.0]\n")
     text = _edit(text, "amplitude: 0.05, frequency: 0.5", "amplitude: 0.05, frequency: 0.2")
     ds = run(tmp_path, text, "--scheduler", scheduler, "--workers", "2")
@@ -481,10 +483,20 @@ def test_failed_case_is_kept_with_nan_status_and_message(tmp_path: Path, schedul
     ok, bad = ds.sel(depth=320.0), ds.sel(depth=20.0)
     assert int(ok["status"]) == 0 and str(ok["message"].values) == ""
     assert int(bad["status"]) != 0 and "seabed" in str(bad["message"].values)
+    failed = {a for a in ("static", "modal", "dynamic") if int(bad[f"{a}_status"]) != 0}
+    assert failed and all(int(ok[f"{a}_status"]) == 0 for a in ("static", "modal", "dynamic"))
+    if "static" not in failed:  # the message names the failed analysis
+        assert str(bad["message"].values).startswith(tuple(f"{a} analysis: " for a in failed))
     for name, var in bad.data_vars.items():
-        if name not in ("status", "message", "wall_time") and var.dtype.kind in "fi":
+        spec = OUTPUTS.get(name)
+        if spec is None or spec.analysis is None or var.dtype.kind not in "fi":
+            continue
+        assert np.all(np.isfinite(ok[name].values)), name
+        # blank where its own analysis failed or could not start (static failed)
+        if spec.analysis in failed:
             assert np.all(np.isnan(var.values)), name
-            assert np.all(np.isfinite(ok[name].values)), name
+        else:
+            assert np.all(np.isfinite(var.values)), name
     assert ds.attrs["cases"] == 2 and ds.attrs["cases_failed"] == 1
 
 

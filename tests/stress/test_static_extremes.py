@@ -83,7 +83,13 @@ def test_extreme_static_case(name: str, overrides: dict, method: str) -> None:
     total = rec.data["force_a"] + rec.data["force_b"]
     scale = max(np.abs(rec.data["force_a"]).max(), np.abs(rec.data["force_b"]).max(), abs(w))
     expected = np.array([0.0, 0.0, -w * seg["length"]])
-    np.testing.assert_allclose(total, expected, atol=1e-7 * scale)
+    atol = 1e-7 * scale
+    if method == "discrete":
+        # the lumped model balances each node to its Newton residual: the supports carry
+        # the weight up to the residuals summed over the nodes (a stiff line's residual
+        # floor is EA times the rounding of the node coordinates over an element)
+        atol = max(atol, float(rec.data["static_residual"]) * len(rec.data["x"]))
+    np.testing.assert_allclose(total, expected, atol=atol)
     end = np.array([rec.data["x"][-1], rec.data["y"][-1], rec.data["z"][-1]])
     np.testing.assert_allclose(
         end, data["ends"]["b"]["position"], atol=1e-8 * max(seg["length"], 1.0)

@@ -74,15 +74,20 @@ def test_the_base_study_is_valid(tmp_path: Path, capsys: pytest.CaptureFixture[s
             "method: analytic",
             ["'analytic' does not support a non-linear axial law", "'catenary' or 'shooting'"],
         ),
-        (  # catenary: no seabed with a non-linear law
+        (  # catenary takes a non-linear law with a seabed too (a valid variant)
             "environment: {fluid: water}",
             "environment: {fluid: water, depth: 200.0}",
-            ["'catenary' does not support a non-linear axial law", "use method 'shooting'"],
+            [],
         ),
         (  # break with the catenary time domain
             "ends:\n",
             "  failure: {tension: 1.0e5}\nends:\n",
             [],
+        ),
+        (  # a failure time with statics only: unused, so refused
+            "ends:\n",
+            "  failure: {time: 10.0}\nends:\n",
+            ["line.failure.time: a failure time applies to analysis.dynamic"],
         ),
         (  # safety factor without an MBL
             "ends:\n",
