@@ -66,6 +66,7 @@ def build_all(
         dynamics_figures,
         modal_figures,
         statics_figures,
+        umbilical_figures,
         vaz_patel_figures,
     )
 

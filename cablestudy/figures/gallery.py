@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 import xarray as xr
+import yaml
 
 from .statics_figures import TABLE1, table1_chord_excess
 
@@ -50,12 +51,15 @@ class Row:
 @dataclass(frozen=True)
 class Claim:
     """A statement of a seed's text about its figures, checked on our results: ``check``
-    returns (holds, our numbers as text)."""
+    returns (holds, our numbers as text). ``differs``, when given, says why the statement
+    does not hold on our reading of the seed: the check must then fail (a test requires
+    it), so a difference is recorded rather than hidden, and noticed if it goes away."""
 
     seed: str
     statement: str
     studies: tuple[str, ...]
     check: Callable[[Data], tuple[bool, str]]
+    differs: str = ""
 
 
 # ------------------------------------------------------------------ dodaran-park
@@ -183,6 +187,124 @@ def _umbilical_period(data: Data) -> float:
     return float(1.0 / f.isel(bending_stiffness=-1))
 
 
+UMBILICAL_TIME = "umbilical-time-response"
+
+
+def _response_period(data: Data, component: str) -> float:
+    """Period [s] of our free response (Figs. 4 and 8) at a quarter of the length."""
+    from .umbilical_figures import free_period, local_motion
+
+    ds = data[UMBILICAL_TIME]
+    s = float(local_motion(ds)["s"].max()) / 4.0
+    return free_period(ds, component, s)[0]
+
+
+def _beam_claim(data: Data) -> tuple[bool, str]:
+    ds = data[UMBILICAL_TIME]
+    modal = 1.0 / ds["natural_frequency"].isel(mode=slice(0, 2)).values
+    ours = {c: _response_period(data, c) for c in ("normal", "transverse")}
+    worst = max(abs(p - m) / m for p in ours.values() for m in modal)
+    return worst < 0.03, (
+        f"free periods of our time response at L/4: normal {ours['normal']:.1f} s, "
+        f"transverse {ours['transverse']:.1f} s; lowest natural periods of the same line "
+        f"(modal analysis, EI, in the same study) {modal[0]:.1f} and {modal[1]:.1f} s; "
+        f"largest difference {100 * worst:.1f} % (held to 3 %: the damped period is "
+        "1/sqrt(1 - zeta^2) = 0.9 % longer at our zeta = 0.13, the second mode in the "
+        "record and the 4 kN the offset adds to the tension shift the fit by about 1 %)"
+    )
+
+
+TENSION_STUDIES = (
+    "umbilical-frequency-tension",
+    "umbilical-frequency-tension-30kg",
+    "umbilical-frequency-tension-60kg",
+)
+
+
+def _lowest_with_bending(ds: xr.Dataset) -> tuple[np.ndarray, np.ndarray]:
+    """Bottom tension [N] and lowest natural frequency [Hz] with EI, in tension order."""
+    sub = ds.isel(bending_stiffness=-1)
+    tension = sub["tension_a"].values
+    order = np.argsort(tension)
+    return tension[order], sub["natural_frequency"].isel(mode=0).values[order]
+
+
+def _tension_claim(data: Data) -> tuple[bool, str]:
+    out, holds = [], True
+    for name in TENSION_STUDIES:
+        tension, freq = _lowest_with_bending(data[name])
+        holds = holds and bool(np.all(np.diff(freq) > 0.0))
+        mass = yaml.safe_load(data[name].attrs["study_yaml"])["line"]["segments"][0]
+        out.append(
+            f"{mass['mass_per_length']:g} kg/m: {freq[0]:.4f} Hz at {tension[0] / 1e3:.0f} kN "
+            f"to {freq[-1]:.4f} Hz at {tension[-1] / 1e3:.0f} kN"
+        )
+    return holds, "lowest natural frequency with EI, " + "; ".join(out) + " (rising throughout)"
+
+
+def _mass_claim(data: Data) -> tuple[bool, str]:
+    t30, f30 = _lowest_with_bending(data["umbilical-frequency-tension-30kg"])
+    t60, f60 = _lowest_with_bending(data["umbilical-frequency-tension-60kg"])
+    same = bool(np.allclose(t30, t60, rtol=1e-4))  # the lengths set them to ~1e-6
+    ratio = f60 / f30
+    return same and bool(np.all(ratio > 1.0)), (
+        f"at each of the same bottom tensions the 60 kg/m line's lowest frequency is "
+        f"{ratio.min():.3f} to {ratio.max():.3f} times the 30 kg/m line's: the seed's tension "
+        "T0 + m g s grows with m faster than the inertia m + the 515 kg/m added mass"
+    )
+
+
+def _peak_positions(data: Data) -> tuple[float, float, float]:
+    """Length and the arc lengths [m] where the normal displacement and the normal
+    velocity are largest over the record."""
+    from .umbilical_figures import local_motion
+
+    motion = local_motion(data[UMBILICAL_TIME])
+    s = motion["s"].values
+    disp = np.abs(motion["normal_displacement"]).max("time").values
+    vel = np.abs(motion["normal_velocity"]).max("time").values
+    return float(s[-1]), float(s[np.argmax(disp)]), float(s[np.argmax(vel)])
+
+
+def _normal_peak_claim(data: Data) -> tuple[bool, str]:
+    length, s_disp, s_vel = _peak_positions(data)
+    holds = s_disp < length / 3.0 and s_vel <= s_disp
+    return holds, (
+        f"largest normal displacement at s = {s_disp:.0f} m ({s_disp / length:.3f} L), "
+        f"largest normal velocity at s = {s_vel:.0f} m ({s_vel / length:.3f} L); the seed's "
+        "1500 m and 1000 m are 0.15 L and 0.10 L of its 10 000 m: both in the lower part "
+        "of the line, where the tension is least"
+    )
+
+
+def _tangential_decay_claim(data: Data) -> tuple[bool, str]:
+    from .umbilical_figures import local_motion, ramp_end
+
+    ds = data[UMBILICAL_TIME]
+    v = np.abs(local_motion(ds)["tangential_velocity"])
+    start = ramp_end(ds) + 20.0
+    t_end = float(v["time"].max())
+    early = float(v.sel(time=slice(start, start + 100.0)).max())
+    late = float(v.sel(time=slice(t_end - 100.0, t_end)).max())
+    return late < 0.25 * early, (
+        f"largest tangential velocity {early:.2e} m/s from {start:g} s to {start + 100:g} s "
+        f"(the offset is reached at {start - 20:g} s), {late:.2e} m/s in the last 100 s "
+        "(drag and c damp the free response)"
+    )
+
+
+def _tangential_midpoint_claim(data: Data) -> tuple[bool, str]:
+    from .umbilical_figures import local_motion
+
+    motion = local_motion(data[UMBILICAL_TIME])
+    s = motion["s"].values
+    amp = np.abs(motion["tangential_displacement"]).max("time").values
+    peak = float(s[np.argmax(amp)])
+    return abs(peak / s[-1] - 0.5) < 0.1, (
+        f"largest tangential displacement at s = {peak:.0f} m ({peak / s[-1]:.3f} L)"
+    )
+
+
 ROWS: list[Row] = [
     *_table1_rows(),
     Row(
@@ -223,6 +345,37 @@ ROWS: list[Row] = [
         "the line lies or how it is excited, so only the order of magnitude compares "
         "(the tolerance says so)",
     ),
+    Row(
+        seed="ajayi",
+        what="period of the normal oscillation in Fig. 4 (text: 'about 200 seconds')",
+        printed=200.0,
+        units="s",
+        studies=(UMBILICAL_TIME,),
+        compute=lambda d: _response_period(d, "normal"),
+        tolerance=150.0,
+        why="the period of our Fig. 4: a damped oscillation fitted to the normal "
+        "displacement at L/4 of the umbilical standing in 1200 m of water, after a sudden "
+        "0.5 m vessel offset (configs/umbilical-time-response.yaml says why this reading); "
+        "it is the line's lowest natural period (the statement checked below), so it "
+        "differs from the seed's as the row above does: the seed's line is 10 000 m long "
+        "and driven by a current it does not give (its 1000 m/s cannot be)",
+    ),
+    Row(
+        seed="ajayi",
+        what="period of the transverse oscillation in Fig. 8 (text: 'about 5 seconds')",
+        printed=5.0,
+        units="s",
+        studies=(UMBILICAL_TIME,),
+        compute=lambda d: _response_period(d, "transverse"),
+        tolerance=60.0,
+        why="the seed's transverse equation (its section 2.2.3) is its normal equation "
+        "with the same m, c, EI, T and pinned ends, less the weight, so their free "
+        "periods are the same: the printed 5 s and 200 s cannot both be free periods of "
+        "its equations (a string's period goes as T^-1/2: 5 s against 200 s would need "
+        "1600 times the tension). Ours "
+        "is the transverse displacement at L/4 fitted as the row above: the same lowest "
+        "natural period in and out of the plane (modal analysis: they differ by less than 1 %)",
+    ),
 ]
 
 CLAIMS: list[Claim] = [
@@ -253,6 +406,51 @@ CLAIMS: list[Claim] = [
         "frequency grows the elastic stiffness (Young's modulus) becomes more important",
         ("moustafa-fig7",),
         _fig7_claim,
+    ),
+    Claim(
+        "ajayi",
+        "Figs. 9-12: an increase in tension results in an increase in the frequency of "
+        "oscillation in the normal and transverse directions",
+        TENSION_STUDIES,
+        _tension_claim,
+    ),
+    Claim(
+        "ajayi",
+        "Figs. 11-12: increasing the mass (30 to 60 kg/m) increases the frequency of oscillation",
+        TENSION_STUDIES[1:],
+        _mass_claim,
+    ),
+    Claim(
+        "ajayi",
+        "Fig. 5: the normal response conforms with the oscillatory motion of a vibrating "
+        "tensioned beam",
+        (UMBILICAL_TIME,),
+        _beam_claim,
+    ),
+    Claim(
+        "ajayi",
+        "Figs. 4-5: the normal displacement is largest around s = 1500 m and the normal "
+        "velocity around s = 1000 m (of 10 000 m, from the bottom)",
+        (UMBILICAL_TIME,),
+        _normal_peak_claim,
+    ),
+    Claim(
+        "ajayi",
+        "Fig. 7: the amplitude of the tangential velocity reduces with time",
+        (UMBILICAL_TIME,),
+        _tangential_decay_claim,
+    ),
+    Claim(
+        "ajayi",
+        "Figs. 6-7: in the tangential direction the mid-point of the umbilical is the most "
+        "responsive",
+        (UMBILICAL_TIME,),
+        _tangential_midpoint_claim,
+        differs="the seed's tangential equation is a string in p with p = 0 at both ends, "
+        "driven along its length by tangential current drag, whose response peaks at "
+        "mid-length; ours is driven by the top end, which moves across the line, so the "
+        "motion along the line is the stretch and slide of its curved static shape, "
+        "largest low on the line where the current bends it most and the tension is least",
     ),
 ]
 
@@ -300,7 +498,12 @@ def gallery_markdown(data: Data, figures: list[Path], image_dir: str) -> str:
     lines += ["| seed | statement | holds | ours |", "|---|---|---|---|"]
     for claim in CLAIMS:
         holds, text = claim.check(data)
-        lines.append(f"| {claim.seed} | {claim.statement} | {'yes' if holds else 'NO'} | {text} |")
+        if claim.differs and not holds:
+            verdict = "no, as our reading expects"
+            text = f"{text}; {claim.differs}"
+        else:
+            verdict = "yes" if holds else "NO"
+        lines.append(f"| {claim.seed} | {claim.statement} | {verdict} | {text} |")
     lines += [
         "",
         "## Not yet in this gallery",
@@ -308,10 +511,11 @@ def gallery_markdown(data: Data, figures: list[Path], image_dir: str) -> str:
         "- axis readings of the figures (the seeds print curves, not tables, for Figs. 2-8 "
         "of the excitation and statics seeds);",
         "- the cable-types seed (aqwa) prints no figures or numbers to compare;",
-        "- the umbilical seed's Figs. 4-8 (normal, tangential and transverse displacement "
-        "and velocity over length and time): they need bending stiffness in the time "
-        "domain, which the time-domain solver does not model yet (issue 9); its Figs. 9-12 "
-        "are here (umbilical-frequency-tension, from modal analysis with EI).",
+        "- the umbilical seed's Figs. 4-8 as printed: its 10 000 m line in 1200 m of water "
+        "and its 1000 m/s sea velocity cannot be followed, so ours are the same section "
+        "standing in 1200 m under a vessel offset (umbilical-time-response, whose config "
+        "states the reading), compared above by their periods and the text's statements, "
+        "not point by point.",
         "",
         "## Figures",
         "",

@@ -132,13 +132,29 @@ def irvine_lambda(data: dict[str, xr.Dataset], out: Path) -> Path:
 
 @register("umbilical-frequency-tension", ("umbilical-frequency-tension",))
 def umbilical_frequency_tension(data: dict[str, xr.Dataset], out: Path) -> Path:
-    """Lateral natural frequencies of the vertical umbilical against its bottom
-    tension, with and without EI, and the exact string (EI = 0) with linear tension."""
+    """ajayi Figs. 9-10: lateral natural frequencies of the vertical umbilical (1500
+    kg/m) against its bottom tension, with and without EI, and the exact string (EI = 0)
+    with linear tension."""
+    return _frequency_tension(data["umbilical-frequency-tension"], out, "Figs. 9-10")
+
+
+@register("umbilical-frequency-tension-30kg", ("umbilical-frequency-tension-30kg",))
+def umbilical_frequency_tension_30kg(data: dict[str, xr.Dataset], out: Path) -> Path:
+    """ajayi Fig. 11: as Figs. 9-10 for the umbilical tuned to 30 kg/m."""
+    return _frequency_tension(data["umbilical-frequency-tension-30kg"], out, "Fig. 11")
+
+
+@register("umbilical-frequency-tension-60kg", ("umbilical-frequency-tension-60kg",))
+def umbilical_frequency_tension_60kg(data: dict[str, xr.Dataset], out: Path) -> Path:
+    """ajayi Fig. 12: as Figs. 9-10 for the umbilical tuned to 60 kg/m."""
+    return _frequency_tension(data["umbilical-frequency-tension-60kg"], out, "Fig. 12")
+
+
+def _frequency_tension(ds: xr.Dataset, out: Path, figures: str) -> Path:
     from scipy.optimize import brentq
 
     from ..dynamics.strings import linear_tension_string
 
-    ds = data["umbilical-frequency-tension"]
     study = yaml.safe_load(ds.attrs["study_yaml"])
     seg = study["line"]["segments"][0]
     env = study["environment"]
@@ -146,7 +162,8 @@ def umbilical_frequency_tension(data: dict[str, xr.Dataset], out: Path) -> Path:
     gravity = float(env.get("gravity", 9.80665))
     area = math.pi * float(seg["diameter"]) ** 2 / 4
     m = float(seg["mass_per_length"])
-    w = (m - rho * area) * gravity
+    # the weight in water where the study gives it (it then overrides mass - buoyancy)
+    w = float(seg.get("weight_in_fluid", (m - rho * area) * gravity))
     m_total = m + rho * float(seg.get("added_mass_normal", 1.0)) * area
     EA = float(seg["axial_stiffness"])
     height = abs(study["ends"]["b"]["position"][2] - study["ends"]["a"]["position"][2])
@@ -196,12 +213,13 @@ def umbilical_frequency_tension(data: dict[str, xr.Dataset], out: Path) -> Path:
     ax.set_xlabel("bottom tension T0 [N]")
     ax.set_ylabel("natural frequency [Hz]")
     ax.set_title(
-        f"Vertical umbilical in 1200 m of water (ajayi Table 1): lateral modes 1-{n_lateral}",
-        fontsize=10,
+        f"ajayi {figures}: vertical umbilical of {m:g} kg/m in 1200 m of water (Table 1 "
+        f"section): lateral modes 1-{n_lateral}",
+        fontsize=9,
     )
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8)
-    path = out / "umbilical-frequency-tension.png"
+    path = out / f"{ds.attrs['study_name']}.png"
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
