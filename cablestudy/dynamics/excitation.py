@@ -14,25 +14,37 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from numba import njit
-from scipy.interpolate import CubicSpline
+from scipy.interpolate import CubicSpline, PchipInterpolator
 
 
 @dataclass(frozen=True, kw_only=True)
 class TableMotion:
     """Displacement ``value`` [m] along unit ``direction`` (3,) at ``times`` [s], for end
-    0 (A) or 1 (B); cubic spline (periodic when ``periodic``, the table's duration
-    being the period), held at its last value after the table otherwise."""
+    0 (A) or 1 (B).
+
+    A ``periodic`` table (its duration the period) is a periodic cubic spline (C2: the
+    acceleration is continuous). Otherwise it is a monotone piecewise cubic Hermite
+    curve (PCHIP, Fritsch-Carlson): it never leaves the range of neighbouring values, so
+    a ramp-and-hold table with sparse points moves as written (a not-a-knot spline
+    through 0, 2.5, 5, 5, 5 m at 0, 10, 20, 30, 300 s swung to -158 m in between); its
+    acceleration is piecewise continuous. After the table the motion holds its last
+    value; the curve's slope there is zero when the table ends on a flat interval (end
+    it so, or the end stops abruptly)."""
 
     end: int
     direction: np.ndarray
     times: np.ndarray
     values: np.ndarray
     periodic: bool = False
-    spline: CubicSpline = field(init=False, repr=False, compare=False)
+    spline: CubicSpline | PchipInterpolator = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        bc = "periodic" if self.periodic else "not-a-knot"
-        object.__setattr__(self, "spline", CubicSpline(self.times, self.values, bc_type=bc))
+        curve = (
+            CubicSpline(self.times, self.values, bc_type="periodic")
+            if self.periodic
+            else PchipInterpolator(self.times, self.values)
+        )
+        object.__setattr__(self, "spline", curve)
 
     @property
     def duration(self) -> float:
@@ -44,7 +56,11 @@ class TableMotion:
             t = self.times[0] + (t - self.times[0]) % self.duration
         elif t >= self.times[-1]:
             return float(self.values[-1]), 0.0, 0.0
-        return (float(self.spline(t)), float(self.spline(t, 1)), float(self.spline(t, 2)))
+        return (
+            float(self.spline(t)),
+            float(self.spline(t, 1)),
+            float(self.spline(t, 2)),
+        )
 
 
 @njit(cache=True)

@@ -233,3 +233,20 @@ def test_end_motion_ramp_and_derivatives() -> None:
     # after the ramp: exactly the harmonic at end B
     d, _, _ = motion.at(10.0)
     assert d[1, 0] == pytest.approx(0.05 * np.sin(2 * np.pi * 0.7 * 10.0 + 0.3))
+
+
+def test_a_sparse_ramp_and_hold_table_moves_as_written() -> None:
+    """A table 0, 2.5, 5, 5, 5 m at 0, 10, 20, 30, 300 s (a ramp, then a long hold):
+    the motion stays within the values written (a not-a-knot spline swung to -158 m in
+    the long interval), holds 5 m after 30 s, and stops with zero velocity at the
+    table's end (it ends on a flat interval)."""
+    table = TableMotion(
+        end=1,
+        direction=np.array([1.0, 0.0, 0.0]),
+        times=np.array([0.0, 10.0, 20.0, 30.0, 300.0]),
+        values=np.array([0.0, 2.5, 5.0, 5.0, 5.0]),
+    )
+    u = np.array([table.evaluate(t)[0] for t in np.linspace(0.0, 320.0, 3201)])
+    assert u.min() >= 0.0 and u.max() <= 5.0
+    assert table.evaluate(150.0) == (5.0, 0.0, 0.0)
+    assert abs(table.evaluate(299.999)[1]) < 1e-12 and table.evaluate(300.0)[1] == 0.0
