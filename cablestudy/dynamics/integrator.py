@@ -153,9 +153,6 @@ def alpha_step(
     lmin = rest_length.min()
     has_friction = (friction[0] > 0.0 or friction[1] > 0.0) and seabed_stiffness.max() > 0.0
     fix_states = has_friction
-    for i in range(n):
-        for k in range(2):
-            slip_state[i, k] = 0
     checks = 0
     it = 0
     while True:
@@ -207,10 +204,12 @@ def alpha_step(
             trial,
         )
         if fix_states:
-            # the predictor's trial decides which contact nodes stick and which slide;
-            # the Newton iterations then keep those states (a smooth force)
+            # a contact node keeps the stick/slip state it ended the last step with (a
+            # sliding stretch tends to go on sliding); a node new to the seabed takes
+            # the predictor's trial; the Newton iterations then keep those states (a
+            # smooth force), checked once converged
             fix_states = False
-            _trial_states(slip_state, trial, contact, friction)
+            _trial_states(slip_state, trial, contact, friction, True)
             continue
         res = 0.0
         for i in range(n):

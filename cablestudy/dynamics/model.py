@@ -1026,11 +1026,14 @@ def evaluate(
 
 
 @njit(cache=True)
-def _trial_states(slip_state, trial, contact, friction):  # noqa: ANN001, ANN202
+def _trial_states(slip_state, trial, contact, friction, keep=False):  # noqa: ANN001, ANN202
     """Stick/slip state of every contact node from its trial spring force: stick (2)
-    within mu N, else slide (+-1) with the force's sign; 0 off the seabed."""
+    within mu N, else slide (+-1) with the force's sign; 0 off the seabed. With
+    ``keep``, a contact node that has a state keeps it."""
     for i in range(slip_state.shape[0]):
         for k in range(2):
+            if keep and contact[i] > 0.0 and slip_state[i, k] != 0:
+                continue
             slip_state[i, k] = 0
             if contact[i] > 0.0 and friction[k] > 0.0:
                 cap = friction[k] * contact[i]
