@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from cablestudy.dynamics.modal import _block_matrix
 from cablestudy.dynamics.model import (
     DynamicExtras,
     Workspace,
@@ -48,6 +49,26 @@ def curved(disc, rng) -> np.ndarray:  # noqa: ANN001
     steps = disc.rest_length[:, None] * (1.001 + 1e-4 * rng.normal(size=(disc.n_elements, 1)))
     dirs = np.stack([np.cos(theta) * np.cos(phi), np.sin(phi), -np.sin(theta) * np.cos(phi)], 1)
     return np.vstack([np.zeros(3), np.cumsum(steps * dirs, axis=0)]) + np.array([0, 0, -4.0])
+
+
+def _central_difference(disc, x, v, anchor, which: str) -> np.ndarray:  # noqa: ANN001
+    """dF/dx (``which`` "x", step 1e-7 m) or dF/dv ("v", step 1e-6 m/s) by central
+    differences, (3n, 3n)."""
+    n = disc.n_nodes
+    h = 1e-7 if which == "x" else 1e-6
+    out = np.zeros((3 * n, 3 * n))
+    for j in range(3 * n):
+        d = np.zeros(3 * n)
+        d[j] = h
+        d = d.reshape(n, 3)
+        if which == "x":
+            plus = evaluate(disc, x + d, v, anchor=anchor).F
+            minus = evaluate(disc, x - d, v, anchor=anchor).F
+        else:
+            plus = evaluate(disc, x, v + d, anchor=anchor).F
+            minus = evaluate(disc, x, v - d, anchor=anchor).F
+        out[:, j] = (plus - minus).ravel() / (2 * h)
+    return out
 
 
 @pytest.mark.parametrize("clamped", [False, True])
@@ -99,55 +120,17 @@ def test_tangents_of_bending_seabed_bodies_and_damping_match_finite_differences(
     assert below.sum() >= 2 and (~below).sum() >= 2  # both regimes present
     anchor = x + 1e-6 * rng.normal(size=x.shape)  # tiny spring stretch: all stick
     work = evaluate(disc, x, v, anchor=anchor)
-    K_d, K_o, K_o2, C_d, C_o = (
-        w.copy() for w in (work.K_d, work.K_o, work.K_o2, work.C_d, work.C_o)
-    )
     n = disc.n_nodes
-    K = np.zeros((3 * n, 3 * n))
-    C = np.zeros((3 * n, 3 * n))
-    for i in range(n):
-        K[3 * i : 3 * i + 3, 3 * i : 3 * i + 3] = K_d[i]
-        C[3 * i : 3 * i + 3, 3 * i : 3 * i + 3] = C_d[i]
-    for i in range(n - 1):
-        K[3 * i : 3 * i + 3, 3 * i + 3 : 3 * i + 6] = K_o[i]
-        K[3 * i + 3 : 3 * i + 6, 3 * i : 3 * i + 3] = K_o[i].T
-        C[3 * i : 3 * i + 3, 3 * i + 3 : 3 * i + 6] = C_o[i]
-        C[3 * i + 3 : 3 * i + 6, 3 * i : 3 * i + 3] = C_o[i].T
-    for i in range(n - 2):
-        K[3 * i : 3 * i + 3, 3 * i + 6 : 3 * i + 9] = K_o2[i]
-        K[3 * i + 6 : 3 * i + 9, 3 * i : 3 * i + 3] = K_o2[i].T
-    h = 1e-7
-    Kfd = np.zeros_like(K)
-    Cfd = np.zeros_like(C)
-    for j in range(3 * n):
-        dx = np.zeros(3 * n)
-        dx[j] = h
-        dx = dx.reshape(n, 3)
-        Kfd[:, j] = (
-            evaluate(disc, x + dx, v, anchor=anchor).F - evaluate(disc, x - dx, v, anchor=anchor).F
-        ).ravel() / (2 * h)
-        dv = dx * 10.0
-        Cfd[:, j] = (
-            evaluate(disc, x, v + dv, anchor=anchor).F - evaluate(disc, x, v - dv, anchor=anchor).F
-        ).ravel() / (2 * 10 * h)
+    K = _block_matrix(n, work.K_d, work.K_o, work.K_o2).toarray()
+    C = _block_matrix(n, work.C_d, work.C_o, work.K_o2[:0]).toarray()
+    Kfd = _central_difference(disc, x, v, anchor, "x")
+    Cfd = _central_difference(disc, x, v, anchor, "v")
     scale = np.abs(K).max()
     # the same line without bending isolates the Gauss-Newton approximation
     flat = discretise(line(bending=0.0), medium, 12, extras)
-    Kflat_fd = np.zeros_like(K)
-    for j in range(3 * n):
-        dx = np.zeros(3 * n)
-        dx[j] = h
-        dx = dx.reshape(n, 3)
-        Kflat_fd[:, j] = (
-            evaluate(flat, x + dx, v, anchor=anchor).F - evaluate(flat, x - dx, v, anchor=anchor).F
-        ).ravel() / (2 * h)
     w = evaluate(flat, x, v, anchor=anchor)
-    Kflat = np.zeros_like(K)
-    for i in range(n):
-        Kflat[3 * i : 3 * i + 3, 3 * i : 3 * i + 3] = w.K_d[i]
-    for i in range(n - 1):
-        Kflat[3 * i : 3 * i + 3, 3 * i + 3 : 3 * i + 6] = w.K_o[i]
-        Kflat[3 * i + 3 : 3 * i + 6, 3 * i : 3 * i + 3] = w.K_o[i].T
+    Kflat = _block_matrix(n, w.K_d, w.K_o, w.K_o2).toarray()
+    Kflat_fd = _central_difference(flat, x, v, anchor, "x")
     # drag and added mass through the node tangent are not in K (quasi-Newton): compare
     # without velocity and current for the exact part
     assert np.abs(Kflat - Kflat_fd).max() <= 2e-2 * scale

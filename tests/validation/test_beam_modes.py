@@ -13,7 +13,9 @@ import yaml
 
 from cablestudy.dynamics.modal import ModalProblem, modal_analysis
 from cablestudy.dynamics.model import DynamicExtras
-from cablestudy.statics.base import EndCondition, LineModel, Medium, StaticResult
+from cablestudy.statics.base import EndCondition, Medium, StaticResult
+
+from ..line_models import one_segment
 
 L, M, EI, EA = 10.0, 2.0, 500.0, 1.0e9
 VACUUM = Medium(density=0.0, gravity=9.80665)
@@ -22,22 +24,8 @@ CLAMPED_BETA_L = np.array([4.730040745, 7.853204624, 10.99560784])
 
 def straight(n: int, tension: float, *, clamped: bool) -> ModalProblem:
     """A weightless straight beam along x between fixed ends, at ``tension`` [N]."""
-    line = LineModel(
-        length=np.array([L]),
-        weight=np.zeros(1),
-        mass=np.array([M]),
-        axial_stiffness=np.array([EA]),
-        diameter=np.array([0.05]),
-        drag_normal=np.zeros(1),
-        drag_tangential=np.zeros(1),
-        added_mass_normal=np.zeros(1),
-        added_mass_tangential=np.zeros(1),
-        bending_stiffness=np.array([EI]),
-        damping_ratio=np.zeros(1),
-        attachment_s=np.zeros(0),
-        attachment_force=np.zeros((0, 3)),
-        attachment_mass=np.zeros(0),
-        attachment_volume=np.zeros(0),
+    line = one_segment(
+        length=L, weight=0.0, mass=M, axial_stiffness=EA, bending_stiffness=EI, diameter=0.05
     )
     s = np.linspace(0.0, L, n + 1)
     span = L * (1.0 + tension / EA)

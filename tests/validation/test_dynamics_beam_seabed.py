@@ -15,7 +15,9 @@ import yaml
 
 from cablestudy.cli import main
 from cablestudy.dynamics.model import DynamicExtras, discretise, evaluate, static_equilibrium
-from cablestudy.statics.base import LineModel, Medium
+from cablestudy.statics.base import Medium
+
+from ..line_models import one_segment
 
 G = 9.80665
 
@@ -28,22 +30,8 @@ def beam(
     tension [N]."""
     ea = 1e10
     length = span / (1.0 + tension / ea)
-    model = LineModel(
-        length=np.array([length]),
-        weight=np.array([q]),
-        mass=np.array([q / G]),
-        axial_stiffness=np.array([ea]),
-        diameter=np.array([0.1]),
-        drag_normal=np.zeros(1),
-        drag_tangential=np.zeros(1),
-        added_mass_normal=np.zeros(1),
-        added_mass_tangential=np.zeros(1),
-        bending_stiffness=np.array([ei]),
-        damping_ratio=np.zeros(1),
-        attachment_s=np.zeros(0),
-        attachment_force=np.zeros((0, 3)),
-        attachment_mass=np.zeros(0),
-        attachment_volume=np.zeros(0),
+    model = one_segment(
+        length=length, weight=q, mass=q / G, axial_stiffness=ea, bending_stiffness=ei
     )
     disc = discretise(model, Medium(density=0.0, gravity=G), n, DynamicExtras())
     x0 = np.stack([np.linspace(0.0, span, n + 1), np.zeros(n + 1), np.zeros(n + 1)], 1)
