@@ -12,14 +12,16 @@ import tempfile
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import xarray as xr
 
 from . import __version__
 from .cases import Case, SweepAxis
 from .config.loader import StudySource
+
+if TYPE_CHECKING:  # imported where used: a sweep run as arrays writes without xarray
+    import xarray as xr
 
 
 @dataclass(frozen=True)
@@ -407,6 +409,8 @@ def assemble(
     if "arc_length" in data_vars and "s" not in coords:
         coords["s"] = ("s", np.arange(extent["s"]), {"units": "1", "long_name": "node index"})
 
+    import xarray as xr
+
     ds = xr.Dataset(data_vars, coords=coords)
     ds.attrs.update(provenance(src, solver_settings or {}))
     status = ds["status"].values
@@ -432,7 +436,6 @@ def provenance(src: StudySource, solver_settings: dict[str, Any]) -> dict[str, A
 
     import numpy
     import pydantic
-    import scipy
 
     from .cases import code_fingerprint
 
@@ -445,8 +448,10 @@ def provenance(src: StudySource, solver_settings: dict[str, Any]) -> dict[str, A
         "study_sha256": src.sha256,
         "cablestudy_version": __version__,
         "numpy_version": numpy.__version__,
-        "scipy_version": scipy.__version__,
-        "xarray_version": xr.__version__,
+        # from the installed metadata: the same strings as scipy.__version__ and
+        # xarray.__version__, without importing them (the array path needs neither)
+        "scipy_version": version("scipy"),
+        "xarray_version": version("xarray"),
         "pydantic_version": pydantic.VERSION,
         "dask_version": version("dask"),
         "python_version": platform.python_version(),
@@ -571,6 +576,8 @@ def grid_dataset(
     elif "arc_length" in present:
         n_s = tails["arc_length"][0]
         coords["s"] = ("s", np.arange(n_s), {"units": "1", "long_name": "node index"})
+    import xarray as xr
+
     ds = xr.Dataset(data_vars, coords=coords)
     ds.attrs.update(provenance(src, solver_settings))
     ds.attrs["cases"] = int(np.prod(shape))

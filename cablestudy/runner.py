@@ -20,7 +20,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from .analyses import evaluate_chunk
 from .cache import LOST_PREFIX, TRANSIENT_PREFIXES, CaseCache
 from .cases import Case, SweepAxis
 from .config.loader import StudySource
@@ -90,6 +89,8 @@ def failed_chunk(cases: list[Case], exc: BaseException) -> list[CaseRecord]:
 def run_chunk(cases: list[Case]) -> list[CaseRecord]:
     """Evaluate a chunk of cases in one task (cases sharing a static problem are
     adjacent, so its solution is reused; compatible static problems are batched)."""
+    from .analyses import evaluate_chunk  # the solvers: not needed by a sweep run as arrays
+
     return evaluate_chunk(cases)
 
 
