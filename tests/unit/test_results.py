@@ -191,6 +191,8 @@ def test_direct_netcdf_writer_writes_what_xarray_writes(tmp_path: Path, extra_co
         "wall_time": (("span", "ea"), rng.random((3, 2)), {"units": "s", "long_name": "t"}),
         "force_a": (("span", "ea", "component"), rng.normal(size=(3, 2, 3)), {"units": "N"}),
         "x": (("span", "ea", "s"), x, {"units": "m", "long_name": "x position"}),
+        # constant: worth compressing, unlike the random values
+        "y": (("span", "ea", "s"), np.zeros_like(x), {"units": "m"}),
     }
     coords = {
         "span": ("span", np.array([60.0, 70.0, 80.5]), {"units": "m", "sweep_paths": "p"}),
@@ -208,3 +210,5 @@ def test_direct_netcdf_writer_writes_what_xarray_writes(tmp_path: Path, extra_co
     assert _netcdf_layout(direct) == _netcdf_layout(ref)
     xr.testing.assert_identical(xr.load_dataset(direct), xr.load_dataset(ref))
     assert oct(direct.stat().st_mode & 0o777) == oct(ref.stat().st_mode & 0o777)
+    layout = _netcdf_layout(direct)
+    assert layout["y"][4]["zlib"] and not layout["x"][4]["zlib"]
