@@ -312,6 +312,24 @@ def assemble(
 ) -> xr.Dataset:
     """One Dataset on the sweep axes. A failed case is NaN (or -1 for counters) in its
     data variables, never dropped."""
+    import xarray as xr
+
+    data_vars, coords, attrs = assembled_variables(
+        axes, cases, records, src, solver_settings=solver_settings
+    )
+    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+
+def assembled_variables(
+    axes: list[SweepAxis],
+    cases: list[Case],
+    records: dict[str, CaseRecord],
+    src: StudySource,
+    *,
+    solver_settings: dict[str, Any] | None = None,
+) -> tuple[dict[str, VariableSpec], dict[str, VariableSpec], dict[str, Any]]:
+    """The (data variables, coordinates, attributes) of :func:`assemble`'s dataset, in
+    the form ``xarray.Dataset`` takes and :func:`write_variables_atomic` writes."""
     shape = tuple(a.size for a in axes)
     dims = tuple(a.name for a in axes)
     by_index = {c.index: records[c.hash] for c in cases}
@@ -409,17 +427,14 @@ def assemble(
     if "arc_length" in data_vars and "s" not in coords:
         coords["s"] = ("s", np.arange(extent["s"]), {"units": "1", "long_name": "node index"})
 
-    import xarray as xr
-
-    ds = xr.Dataset(data_vars, coords=coords)
-    ds.attrs.update(provenance(src, solver_settings or {}))
-    status = ds["status"].values
+    attrs = provenance(src, solver_settings or {})
+    status = np.asarray(data_vars["status"][1])
     n_failed = int(np.count_nonzero((status != 0) & (status != STATUS_BROKEN)))
-    ds.attrs["cases"] = int(np.prod(shape)) if shape else 1
-    ds.attrs["cases_failed"] = n_failed
+    attrs["cases"] = int(np.prod(shape)) if shape else 1
+    attrs["cases_failed"] = n_failed
     if np.any(status == STATUS_BROKEN):
-        ds.attrs["cases_broken"] = int(np.count_nonzero(status == STATUS_BROKEN))
-    return ds
+        attrs["cases_broken"] = int(np.count_nonzero(status == STATUS_BROKEN))
+    return data_vars, coords, attrs
 
 
 def _path_info(path: str) -> tuple[str, str]:

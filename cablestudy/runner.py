@@ -25,7 +25,7 @@ import numpy as np
 from .cache import LOST_PREFIX, TRANSIENT_PREFIXES, CaseCache
 from .cases import Case, SweepAxis
 from .config.loader import StudySource
-from .results import CaseRecord, assemble, write_atomic, write_variables_atomic
+from .results import CaseRecord, assembled_variables, write_atomic, write_variables_atomic
 
 #: status of a case whose task failed outside the solvers (worker lost)
 STATUS_TASK_FAILED = 9
@@ -471,8 +471,9 @@ def run_study(
     records = cache.records
     if solver_settings is None:
         solver_settings = default_solver_settings(cases)
-    ds = assemble(axes, cases, records, src, solver_settings=solver_settings)
-    path = write_atomic(ds, out_dir / f"{name}.nc")
+    # written by netCDF4 directly (the file xarray writes, without importing it)
+    variables = assembled_variables(axes, cases, records, src, solver_settings=solver_settings)
+    path = write_variables_atomic(*variables, out_dir / f"{name}.nc")
     cache.compact({c.hash for c in cases})
     failures = Counter(records[c.hash].message for c in cases if records[c.hash].status != 0)
     return RunSummary(
