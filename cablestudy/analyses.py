@@ -441,6 +441,25 @@ def static_outputs(res: StaticResult, study: Any = None) -> dict[str, np.ndarray
     return out
 
 
+#: the static outputs of the last static solution, with that solution: the cases of a
+#: chunk that share a static problem (adjacent in a chunk: a sweep over excitation)
+#: share its outputs instead of deriving them again per case
+_LAST_STATIC_OUTPUTS: dict[str, tuple[StaticResult, dict[str, np.ndarray]]] = {}
+
+
+def _shared_static_outputs(case: Case, res: StaticResult) -> dict[str, np.ndarray]:
+    """:func:`static_outputs` of ``res`` for ``case``, reused from the previous case when
+    it had the same static problem and the very same solution object (the arrays are
+    shared, as the static solution's own arrays already are between such cases)."""
+    hit = _LAST_STATIC_OUTPUTS.get(case.static_hash)
+    if hit is not None and hit[0] is res:
+        return dict(hit[1])
+    out = static_outputs(res, case.study)
+    _LAST_STATIC_OUTPUTS.clear()
+    _LAST_STATIC_OUTPUTS[case.static_hash] = (res, out)
+    return dict(out)
+
+
 def _strain_along(segs: Any, k: np.ndarray, tension: np.ndarray) -> np.ndarray | None:
     """Strain at each point from its segment's axial law (None: all linear, T / EA)."""
     if not any(seg.is_nonlinear for seg in segs):
@@ -872,7 +891,7 @@ def evaluate_case(case: Case, *, presolved: dict[str, StaticResult] | None = Non
     def statics() -> tuple[int, str, dict[str, Any]]:
         res = solve_static(case, deadline, presolved)
         static.append(res)
-        return res.status, res.message, static_outputs(res, case.study)
+        return res.status, res.message, _shared_static_outputs(case, res)
 
     def modal() -> tuple[int, str, dict[str, Any]]:
         settings = case.study.analysis.modal

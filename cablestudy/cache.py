@@ -237,6 +237,34 @@ class GridSummary:
     failures: Counter[str]
 
 
+def summarise(
+    chunks: Iterable[tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]],
+) -> GridSummary:
+    """The :class:`GridSummary` of chunks given as (status, message, outputs by name), in
+    the order of the grid's rows."""
+    names: set[str] = set()
+    tails: dict[str, tuple[int, ...]] = {}
+    arc: np.ndarray | None = None
+    same_arc = True
+    failures: Counter[str] = Counter()
+    for status, message, data in chunks:
+        bad = status != 0
+        if bad.any():
+            failures.update(str(m) for m in message[bad])
+        for k, v in data.items():
+            names.add(k)
+            tails[k] = tuple(v.shape[1:])
+        if "arc_length" in data and same_arc:
+            ok = data["arc_length"][~bad]
+            if len(ok):
+                ref = ok[0] if arc is None else arc
+                if np.all(ok == ref):
+                    arc = ref
+                else:
+                    same_arc = False
+    return GridSummary(sorted(names), tails, arc if same_arc else None, failures)
+
+
 class GridChunkStore:
     """Chunks of a study run as arrays (:class:`cablestudy.grid.GridChunk`), one data file
     each, ``grid-<chunk key>-<sha256 of the file>.npz``: plain arrays, read with
@@ -313,30 +341,26 @@ class GridChunkStore:
 
     @staticmethod
     def summary(paths: list[Path]) -> GridSummary:
-        names: set[str] = set()
-        tails: dict[str, tuple[int, ...]] = {}
-        arc: np.ndarray | None = None
-        same_arc = True
-        failures: Counter[str] = Counter()
-        for path in paths:
+        def columns(path: Path) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
             with np.load(path, allow_pickle=False) as z:
-                status = z["v_status"]
-                bad = status != 0
-                if bad.any():
-                    failures.update(str(m) for m in z["v_message"][bad])
-                for k in z.files:
-                    if k.startswith("v_") and k not in ("v_status", "v_message", "v_wall_time"):
-                        names.add(k[2:])
-                        tails[k[2:]] = tuple(z[k].shape[1:])
-                if "v_arc_length" in z.files and same_arc:
-                    ok = z["v_arc_length"][~bad]
-                    if len(ok):
-                        ref = ok[0] if arc is None else arc
-                        if np.all(ok == ref):
-                            arc = ref
-                        else:
-                            same_arc = False
-        return GridSummary(sorted(names), tails, arc if same_arc else None, failures)
+                data = {
+                    k[2:]: z[k]
+                    for k in z.files
+                    if k.startswith("v_") and k not in ("v_status", "v_message", "v_wall_time")
+                }
+                return z["v_status"], z["v_message"], data
+
+        return summarise(columns(path) for path in paths)
+
+    @staticmethod
+    def load(path: Path) -> dict[str, np.ndarray]:
+        """The arrays of a chunk file, by name without the ``v_`` prefix (``status``,
+        ``message``, ``wall_time`` and the outputs), plus ``key`` and ``rows``."""
+        with np.load(path, allow_pickle=False) as z:
+            out = {k[2:]: z[k] for k in z.files if k.startswith("v_")}
+            out["key"] = z["key"]
+            out["rows"] = z["rows"]
+            return out
 
     def keep(self, paths: set[Path]) -> None:
         """Remove the grid chunk files not in ``paths`` (cases edited away)."""

@@ -74,8 +74,6 @@ def cmd_run(args: argparse.Namespace) -> int:
         )
         return 2
     src, axes, cases = _load(args.config, args.max_study_size)
-    from .analyses import warm_up
-
     try:
         if not isinstance(cases, list):  # a sweep run as arrays (cablestudy.grid)
             from .runner import run_grid_study
@@ -90,6 +88,8 @@ def cmd_run(args: argparse.Namespace) -> int:
                 progress=args.progress,
             )
         else:
+            from .analyses import warm_up
+
             warm_up(cases)
             summary = run_study(
                 src,

@@ -31,6 +31,7 @@ from .dynamics.modal import ModalProblem
 from .dynamics.validity import Validity, measures
 from .problem import static_problem
 from .statics import STATUS_NO_SOLUTION, STATUS_NUMERICAL, STATUS_OK, StaticResult
+from .statics.base import StaticProblem
 
 #: outputs of the transfer function (analysis.dynamic.transfer_function)
 TRANSFER_OUTPUTS = (
@@ -44,6 +45,19 @@ TRANSFER_OUTPUTS = (
 
 _LINEAR_CACHE: OrderedDict[tuple[str, int], tuple[ReducedLine | None, str]] = OrderedDict()
 _LINEAR_CACHE_SIZE = 64
+#: the static problem of the last static hash (the cases of a frequency sweep share it)
+_LAST_PROBLEM: dict[str, StaticProblem] = {}
+
+
+def _problem(case: Case) -> StaticProblem:
+    """:func:`cablestudy.problem.static_problem` of the case's study, built once for the
+    cases that share its static hash (every input of the static problem is in it)."""
+    hit = _LAST_PROBLEM.get(case.static_hash)
+    if hit is None:
+        hit = static_problem(case.study)
+        _LAST_PROBLEM.clear()
+        _LAST_PROBLEM[case.static_hash] = hit
+    return hit
 
 
 def linearised(
@@ -221,7 +235,7 @@ def solve_frequency(case: Case, static: StaticResult, deadline: float | None) ->
     }
     if dyn.transfer_function is not None:
         data.update(transfer_function(red, dyn, static))
-    med = static_problem(case.study).medium
+    med = _problem(case).medium
     ground = med.seabed_z(line.position[:, 0], line.position[:, 1])
     on_bed = np.abs(line.position[:, 2] - ground) <= 1e-6 * max(float(line.s[-1]), 1.0)
     weight = _submerged_weight(case, line.s)
@@ -274,7 +288,7 @@ def solve_frequency(case: Case, static: StaticResult, deadline: float | None) ->
 
 def _submerged_weight(case: Case, s: np.ndarray) -> np.ndarray:
     """Submerged weight per length [N/m] at arc lengths ``s``."""
-    line = static_problem(case.study).line
+    line = _problem(case).line
     ends = line.segment_ends
     idx = np.clip(np.searchsorted(ends, s, side="right") - 1, 0, len(line.length) - 1)
     return line.weight[idx]

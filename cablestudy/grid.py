@@ -262,8 +262,220 @@ def _with(obj: Any, **changes: Any) -> Any:
     return new
 
 
+@dataclass
+class StaticArrays:
+    """Static results of a chunk's cases stacked along a leading case axis: what a list of
+    :class:`cablestudy.statics.base.StaticResult` holds, as arrays."""
+
+    s: np.ndarray  # (n, m) [m]
+    position: np.ndarray  # (n, m, 3) [m]
+    tension: np.ndarray  # (n, m) [N]
+    force_a: np.ndarray  # (n, 3) [N]
+    force_b: np.ndarray  # (n, 3) [N]
+    status: np.ndarray  # (n,) int64
+    messages: list[str]
+    laid_length: np.ndarray  # (n,) [m]
+    iterations: np.ndarray  # (n,) float
+    residual: np.ndarray  # (n,)
+    drag_iterations: np.ndarray  # (n,) float
+
+    @classmethod
+    def of(cls, results: list[Any]) -> StaticArrays:
+        """Stack static results (a status-0 result with non-finite values becomes the
+        failure :meth:`StaticResult.check_finite` gives, as case by case)."""
+        results = list(results)
+        position = np.stack([r.position for r in results])  # (n, m, 3)
+        tension = np.stack([r.tension for r in results])
+        force_a = np.stack([r.force_a for r in results])
+        force_b = np.stack([r.force_b for r in results])
+        core_finite = (
+            np.isfinite(position).all(axis=(1, 2))
+            & np.isfinite(tension).all(axis=1)
+            & np.isfinite(force_a).all(axis=1)
+            & np.isfinite(force_b).all(axis=1)
+        )
+        for i in np.flatnonzero(~core_finite):  # StaticResult.check_finite, where it matters
+            results[i] = results[i].check_finite()
+        return cls(
+            s=np.stack([r.s for r in results]),
+            position=position,
+            tension=tension,
+            force_a=force_a,
+            force_b=force_b,
+            status=np.array([r.status for r in results], dtype=np.int64),
+            messages=[r.message for r in results],
+            laid_length=np.array([r.laid_length for r in results], dtype=float),
+            iterations=np.array([r.iterations for r in results], dtype=float),
+            residual=np.array([r.residual for r in results], dtype=float),
+            drag_iterations=np.array([r.drag_iterations for r in results], dtype=float),
+        )
+
+    def put(self, rows: np.ndarray, other: StaticArrays) -> None:
+        """Overwrite cases ``rows`` with the cases of ``other`` (in order)."""
+        for name in (
+            "s",
+            "position",
+            "tension",
+            "force_a",
+            "force_b",
+            "status",
+            "laid_length",
+            "iterations",
+            "residual",
+            "drag_iterations",
+        ):
+            getattr(self, name)[rows] = getattr(other, name)
+        for i, msg in zip(rows.tolist(), other.messages, strict=True):
+            self.messages[i] = msg
+
+
+def _compiled_solve(
+    base: Any, pos: dict[str, Any], ea: np.ndarray
+) -> tuple[StaticArrays, np.ndarray] | None:
+    """The cases of a chunk (the template's static problem ``base`` with end positions
+    ``pos`` and segment stiffnesses ``ea`` per case) through the compiled batch kernel
+    straight from arrays: the inputs :func:`cablestudy.statics.batch._solve_group` builds
+    from one problem object per case, built here for all cases at once (so the same
+    numbers, bit for bit, without a per-case object). Returns the stacked results and the
+    cases the kernel leaves to the one-by-one solver (not converged, not finite, on or
+    touching the seabed: exactly the cases :func:`solve_batch` would hand on), or None
+    when the template does not take this path (then :func:`solve_batch` runs as before).
+    """
+    from .statics import _fast
+    from .statics.batch import _guess
+
+    line, med = base.line, base.medium
+    if (
+        not _fast.AVAILABLE
+        or base.end_a.kind != "fixed"
+        or base.end_b.kind != "fixed"
+        or line.is_nonlinear
+        or med.has_current
+    ):
+        return None
+    N = len(ea)
+    n_nodes = base.n_nodes
+    rA = np.ascontiguousarray(pos["a"], dtype=float)
+    rB = np.ascontiguousarray(pos["b"], dtype=float)
+    plane = None
+    rest = np.zeros(N, dtype=bool)
+    if med.depth is not None:
+        from .statics.seabed import Plane
+
+        plane = Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
+        limit = 1e-6 * line.total_length
+        rest |= _height_below(plane, rA[:, None, :], limit, strict=False)
+        rest |= _height_below(plane, rB[:, None, :], limit, strict=False)
+    if line.length.size == 1 and line.attachment_s.size == 0:
+        P = 1
+        ell = np.full((N, 1), line.length[0])
+        EA = np.ascontiguousarray(ea[:, :1], dtype=float)
+        q = np.zeros((N, 1, 3))
+        q[:, 0, 2] = -line.weight[0]
+        point = np.zeros((N, 2, 3))
+        bounds = np.empty((N, 2))
+        bounds[:, 0] = 0.0
+        bounds[:, 1] = ell[:, 0]
+    else:
+        from .statics.semi_analytic import make_layout
+
+        lay = make_layout(line)
+        P = len(lay.ell)
+        ell = np.tile(lay.ell, (N, 1))
+        EA = np.ascontiguousarray(ea[:, lay.segment], dtype=float)
+        q = np.zeros((N, P, 3))
+        q[:, :, 2] = -lay.weight
+        point = np.tile(lay.point, (N, 1, 1))
+        bounds = np.tile(lay.bounds, (N, 1))
+    Ltot = bounds[:, -1]
+    Q = q * ell[..., None]
+    Cend = point.sum(axis=1) + Q.sum(axis=1)
+    target = rB - rA
+    EAeff = Ltot / np.sum(ell / EA, axis=1)
+    TA0 = _guess(target, Ltot, Cend, EAeff, point[:, 0])
+    tol = np.full(N, base.tolerance, dtype=float)
+    maxit = np.full(N, base.max_iterations, dtype=np.int64)
+    s = np.linspace(np.zeros(N), Ltot, n_nodes, axis=1)
+    position = np.empty((N, n_nodes, 3))
+    tension = np.empty((N, n_nodes))
+    TL = np.empty((N, 3))
+    TA = np.empty((N, 3))
+    iters = np.zeros(N, dtype=np.int64)
+    resid = np.zeros(N)
+    status = np.zeros(N, dtype=np.int64)
+    _fast.solve_cases(
+        ell,
+        EA,
+        -q[..., 2].copy(),
+        point,
+        bounds,
+        np.zeros(N, dtype=np.int64),  # kind: end B fixed
+        rA,
+        target,
+        TA0,
+        tol,
+        maxit,
+        s,
+        position,
+        tension,
+        TA,
+        TL,
+        iters,
+        resid,
+        status,
+    )
+    good = (
+        (status == 0)
+        & np.all(np.isfinite(position), axis=(1, 2))
+        & np.all(np.isfinite(tension), axis=1)
+        & np.all(np.isfinite(TA), axis=1)
+        & np.all(np.isfinite(TL), axis=1)
+    )
+    rest |= ~good
+    if plane is not None:
+        rest |= _height_below(plane, position, -1e-6 * Ltot, strict=True)
+    out = StaticArrays(
+        s=s,
+        position=position,
+        tension=tension,
+        force_a=TA,
+        force_b=-TL,
+        status=np.zeros(N, dtype=np.int64),
+        messages=[""] * N,
+        laid_length=np.zeros(N),
+        iterations=iters.astype(float),
+        residual=resid,
+        drag_iterations=np.zeros(N),
+    )
+    return out, np.flatnonzero(rest)
+
+
+def _height_below(plane: Any, r: np.ndarray, limit: Any, *, strict: bool) -> np.ndarray:
+    """Per case (axis 0 of ``r``, points (n, m, 3)): whether some point's height above
+    ``plane`` is below ``limit`` (``strict``: <, else <=), with the result
+    :meth:`Plane.height_above` gives case by case (cases within round-off of the limit
+    are decided by that call itself)."""
+    limit = np.broadcast_to(np.asarray(limit, dtype=float), (r.shape[0],))
+    h = (r - np.array([0.0, 0.0, -plane.depth])) @ plane.normal  # (n, m)
+    low = h.min(axis=1)
+    out = low < limit if strict else low <= limit
+    near = np.flatnonzero(np.abs(low - limit) <= 1e-9 * (np.abs(limit) + np.abs(low) + 1.0))
+    for i in near:
+        hi = plane.height_above(r[i] if r.shape[1] > 1 else r[i, 0])
+        out[i] = bool(np.any(hi < limit[i])) if strict else bool(np.any(hi <= limit[i]))
+    return out
+
+
 def stacked_outputs(
     results: list[Any], template: Study, ea: np.ndarray
+) -> tuple[dict[str, np.ndarray], np.ndarray, list[str]]:
+    """:func:`cablestudy.analyses.static_outputs` of many static results at once (see
+    :func:`array_outputs`)."""
+    return array_outputs(StaticArrays.of(results), template, ea)
+
+
+def array_outputs(
+    st: StaticArrays, template: Study, ea: np.ndarray
 ) -> tuple[dict[str, np.ndarray], np.ndarray, list[str]]:
     """:func:`cablestudy.analyses.static_outputs` of many static results at once: the
     same variables, bit for bit (the same element-wise operations on stacked arrays;
@@ -272,40 +484,28 @@ def stacked_outputs(
     outputs (cases first), status and messages, with a failed case's values NaN."""
     from .physics.profile import profile_quantities
 
-    n = len(results)
-    results = list(results)
-    s = results[0].s
-    same_s = all(r.s.shape == s.shape and np.array_equal(r.s, s) for r in results)
-    if not same_s:
+    n = len(st.status)
+    s = st.s[0]
+    if not np.array_equal(st.s, np.broadcast_to(s, st.s.shape)):
         raise ValueError("cases of one chunk have different arc lengths")
-    position = np.stack([r.position for r in results])  # (n, m, 3)
-    tension = np.stack([r.tension for r in results])
-    force_a = np.stack([r.force_a for r in results])
-    force_b = np.stack([r.force_b for r in results])
-    core_finite = (
-        np.isfinite(position).all(axis=(1, 2))
-        & np.isfinite(tension).all(axis=1)
-        & np.isfinite(force_a).all(axis=1)
-        & np.isfinite(force_b).all(axis=1)
-    )
-    for i in np.flatnonzero(~core_finite):  # StaticResult.check_finite, where it matters
-        results[i] = results[i].check_finite()
-    status = np.array([r.status for r in results], dtype=np.int64)
-    messages = [r.message for r in results]
+    position, tension, force_a, force_b = st.position, st.tension, st.force_a, st.force_b
+    status = st.status.copy()
+    messages = list(st.messages)
     out: dict[str, np.ndarray] = {
         "arc_length": np.broadcast_to(s, (n, s.size)).copy(),
         "x": position[:, :, 0].copy(),
         "y": position[:, :, 1].copy(),
         "z": position[:, :, 2].copy(),
-        "tension": tension,
-        "force_a": force_a,
-        "force_b": force_b,
-        "tension_a": np.array([np.linalg.norm(f) for f in force_a]),
-        "tension_b": np.array([np.linalg.norm(f) for f in force_b]),
-        "laid_length": np.array([r.laid_length for r in results], dtype=float),
-        "static_iterations": np.array([r.iterations for r in results], dtype=float),
-        "static_residual": np.array([r.residual for r in results], dtype=float),
-        "drag_iterations": np.array([r.drag_iterations for r in results], dtype=float),
+        "tension": tension.copy(),
+        "force_a": force_a.copy(),
+        "force_b": force_b.copy(),
+        # np.linalg.norm of each (3,) force, bit for bit (the same dot product per row)
+        "tension_a": np.sqrt(np.vecdot(force_a, force_a)),
+        "tension_b": np.sqrt(np.vecdot(force_b, force_b)),
+        "laid_length": st.laid_length.copy(),
+        "static_iterations": st.iterations.copy(),
+        "static_residual": st.residual.copy(),
+        "drag_iterations": st.drag_iterations.copy(),
     }
     env, segs = template.environment, template.line.segments
     seg_end = np.cumsum([seg.length for seg in segs])
@@ -372,10 +572,19 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
     data: dict[str, np.ndarray] = {}
     try:
         base, pos, ea = _swept_inputs(grid, lo, hi)
-        problems = _problems(base, pos, ea)
         deadline = time.monotonic() + grid.template.analysis.time_limit * n
-        results = solve_batch(problems, deadline=deadline)
-        data, status, messages = stacked_outputs(results, grid.template, ea)
+        compiled = _compiled_solve(base, pos, ea)
+        if compiled is None:
+            st = StaticArrays.of(solve_batch(_problems(base, pos, ea), deadline=deadline))
+        else:
+            st, rest = compiled
+            if rest.size:  # what solve_batch hands to the one-by-one solver
+                sub = {k: (None if v is None else v[rest]) for k, v in pos.items()}
+                st.put(
+                    rest,
+                    StaticArrays.of(solve_batch(_problems(base, sub, ea[rest]), deadline=deadline)),
+                )
+        data, status, messages = array_outputs(st, grid.template, ea)
     except Exception as exc:  # noqa: BLE001 - a fault in a chunk fails its cases, as data
         status[:] = STATUS_NUMERICAL
         messages = [f"{type(exc).__name__}: {exc}"] * n

@@ -12,14 +12,16 @@ import tempfile
 from dataclasses import dataclass, field, replace
 from datetime import UTC, datetime
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import xarray as xr
 
 from . import __version__
 from .cases import Case, SweepAxis
 from .config.loader import StudySource
+
+if TYPE_CHECKING:  # imported where used: a sweep run as arrays writes without xarray
+    import xarray as xr
 
 
 @dataclass(frozen=True)
@@ -407,6 +409,24 @@ def assemble(
     """One Dataset on the sweep axes. A failed analysis is NaN (or -1, or "") in its own
     data variables (:attr:`OutputVariable.analysis`), the others are kept; a failed case
     is never dropped."""
+    import xarray as xr
+
+    data_vars, coords, attrs = assembled_variables(
+        axes, cases, records, src, solver_settings=solver_settings
+    )
+    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+
+def assembled_variables(
+    axes: list[SweepAxis],
+    cases: list[Case],
+    records: dict[str, CaseRecord],
+    src: StudySource,
+    *,
+    solver_settings: dict[str, Any] | None = None,
+) -> tuple[dict[str, VariableSpec], dict[str, VariableSpec], dict[str, Any]]:
+    """The (data variables, coordinates, attributes) of :func:`assemble`'s dataset, in
+    the form ``xarray.Dataset`` takes and :func:`write_variables_atomic` writes."""
     shape = tuple(a.size for a in axes)
     dims = tuple(a.name for a in axes)
     by_index = {c.index: records[c.hash] for c in cases}
@@ -504,15 +524,14 @@ def assemble(
     if "arc_length" in data_vars and "s" not in coords:
         coords["s"] = ("s", np.arange(extent["s"]), {"units": "1", "long_name": "node index"})
 
-    ds = xr.Dataset(data_vars, coords=coords)
-    ds.attrs.update(provenance(src, solver_settings or {}))
-    status = ds["status"].values
+    attrs = provenance(src, solver_settings or {})
+    status = np.asarray(data_vars["status"][1])
     n_failed = int(np.count_nonzero((status != 0) & (status != STATUS_BROKEN)))
-    ds.attrs["cases"] = int(np.prod(shape)) if shape else 1
-    ds.attrs["cases_failed"] = n_failed
+    attrs["cases"] = int(np.prod(shape)) if shape else 1
+    attrs["cases_failed"] = n_failed
     if np.any(status == STATUS_BROKEN):
-        ds.attrs["cases_broken"] = int(np.count_nonzero(status == STATUS_BROKEN))
-    return ds
+        attrs["cases_broken"] = int(np.count_nonzero(status == STATUS_BROKEN))
+    return data_vars, coords, attrs
 
 
 def _path_info(path: str) -> tuple[str, str]:
@@ -529,7 +548,6 @@ def provenance(src: StudySource, solver_settings: dict[str, Any]) -> dict[str, A
 
     import numpy
     import pydantic
-    import scipy
 
     from .cases import code_fingerprint
 
@@ -542,8 +560,10 @@ def provenance(src: StudySource, solver_settings: dict[str, Any]) -> dict[str, A
         "study_sha256": src.sha256,
         "cablestudy_version": __version__,
         "numpy_version": numpy.__version__,
-        "scipy_version": scipy.__version__,
-        "xarray_version": xr.__version__,
+        # from the installed metadata: the same strings as scipy.__version__ and
+        # xarray.__version__, without importing them (the array path needs neither)
+        "scipy_version": version("scipy"),
+        "xarray_version": version("xarray"),
         "pydantic_version": pydantic.VERSION,
         "dask_version": version("dask"),
         "python_version": platform.python_version(),
@@ -559,28 +579,16 @@ def _umask() -> int:
     return mask
 
 
-def write_atomic(ds: xr.Dataset, path: str | Path) -> Path:
-    """Write ``ds`` to netCDF at ``path`` through a temporary file in the same folder and
-    an atomic rename: a crash never leaves a half-written or corrupted result."""
+def _atomically(path: str | Path, write: Any) -> Path:
+    """Call ``write(tmp)`` on a temporary file in ``path``'s folder, then fsync it, give it
+    the permissions of a new file and rename it to ``path`` (atomic): a crash never
+    leaves a half-written or corrupted result."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     os.close(fd)
     try:
-        encoding: dict[str, dict[str, Any]] = {
-            name: {"zlib": True, "complevel": 1, "shuffle": True}
-            for name, v in ds.data_vars.items()
-            if v.dtype.kind == "f"
-        }
-        for name, v in ds.data_vars.items():
-            if v.chunks is not None and name in encoding:
-                # variables streamed from chunk files (dask): netCDF chunks of one block
-                # of cases (at most 4 MiB), so that reading one case touches little
-                block = [c[0] for c in v.chunks]
-                per_case = max(1, int(np.prod(block[1:])) * v.dtype.itemsize)
-                block[0] = max(1, min(block[0], (4 << 20) // per_case))
-                encoding[name]["chunksizes"] = tuple(block)
-        ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
+        write(tmp)
         with open(tmp, "rb+") as fh:  # on disk before the rename makes it visible
             os.fsync(fh.fileno())
         os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes it private (0600)
@@ -589,6 +597,130 @@ def write_atomic(ds: xr.Dataset, path: str | Path) -> Path:
         if os.path.exists(tmp):
             os.unlink(tmp)
     return path
+
+
+#: netCDF compression of a floating-point data variable that is worth it (coordinates
+#: are never compressed)
+FLOAT_ENCODING: dict[str, Any] = {"zlib": True, "complevel": 1, "shuffle": True}
+#: an in-memory variable is compressed when samples of it (SAMPLE_BLOCKS blocks of
+#: SAMPLE_BYTES, evenly spaced) shrink to at most COMPRESS_BELOW of their size: a
+#: constant or mostly-NaN variable shrinks a hundredfold, while the smooth profiles of a
+#: sweep shrink by a third at a cost that exceeds their solve (zlib runs at some 100 MB/s,
+#: the batch kernel at about 1 GB of output a second)
+COMPRESS_BELOW = 0.5
+SAMPLE_BYTES = 1 << 14
+SAMPLE_BLOCKS = 4
+
+
+def worth_compressing(values: Any) -> bool:
+    """Whether to store the float variable ``values`` zlib-compressed: always for a
+    lazily computed (dask) one, which is streamed in blocks; for a NumPy array, when
+    byte-shuffled samples of it compress to at most :data:`COMPRESS_BELOW`."""
+    import zlib
+
+    if not isinstance(values, np.ndarray):
+        return True
+    flat = np.ascontiguousarray(values).reshape(-1)
+    if flat.size == 0:
+        return False
+    block = max(1, SAMPLE_BYTES // flat.itemsize)
+    starts = np.unique(np.linspace(0, max(flat.size - block, 0), SAMPLE_BLOCKS).astype(int))
+    sample = np.concatenate([flat[i : i + block] for i in starts])
+    raw = sample.view(np.uint8).reshape(-1, sample.itemsize).T.tobytes()  # as HDF5 shuffles
+    return len(zlib.compress(raw, 1)) <= COMPRESS_BELOW * len(raw)
+
+
+def write_atomic(ds: xr.Dataset, path: str | Path) -> Path:
+    """Write ``ds`` to netCDF at ``path`` through a temporary file in the same folder and
+    an atomic rename: a crash never leaves a half-written or corrupted result."""
+    encoding: dict[str, dict[str, Any]] = {
+        name: dict(FLOAT_ENCODING)
+        for name, v in ds.data_vars.items()
+        if v.dtype.kind == "f" and worth_compressing(v.values if v.chunks is None else v.data)
+    }
+    for name, v in ds.data_vars.items():
+        if v.chunks is not None and name in encoding:
+            # variables streamed from chunk files (dask): netCDF chunks of one block
+            # of cases (at most 4 MiB), so that reading one case touches little
+            block = [c[0] for c in v.chunks]
+            per_case = max(1, int(np.prod(block[1:])) * v.dtype.itemsize)
+            block[0] = max(1, min(block[0], (4 << 20) // per_case))
+            encoding[name]["chunksizes"] = tuple(block)
+    return _atomically(path, lambda tmp: ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding))
+
+
+#: a variable as (dims, values, attrs), the tuple form xarray.Dataset takes
+VariableSpec = tuple[Any, Any, dict[str, Any]]
+
+
+def write_variables_atomic(
+    data_vars: dict[str, VariableSpec],
+    coords: dict[str, VariableSpec],
+    attrs: dict[str, Any],
+    path: str | Path,
+) -> Path:
+    """Write the dataset ``xarray.Dataset(data_vars, coords=coords, attrs=attrs)`` of
+    in-memory NumPy arrays to netCDF at ``path`` (atomically, as :func:`write_atomic`),
+    with the netCDF4 library directly: the file :func:`write_atomic` writes (the same
+    dimensions, variables in the same order, dtypes, attributes, ``_FillValue`` and
+    compression), without importing xarray (and the dask and distributed modules it
+    loads when they are installed), which costs a small study more than its solve. A
+    dataset this writer does not cover (a non-dimension coordinate, which xarray links
+    through a ``coordinates`` attribute; a dtype other than float, int and text) goes
+    through xarray."""
+    items = [
+        (k, (v[0],) if isinstance(v[0], str) else tuple(v[0]), v[1], v[2])
+        for k, v in data_vars.items()
+    ]
+    items += [
+        (k, (v[0],) if isinstance(v[0], str) else tuple(v[0]), v[1], v[2])
+        for k, v in coords.items()
+    ]
+    simple = all(dims == (k,) for k, dims, _, _ in items[len(data_vars) :]) and all(
+        isinstance(values, np.ndarray) and values.dtype.kind in "fiuUO" for _, _, values, _ in items
+    )
+    if not simple:
+        import xarray as xr
+
+        return write_atomic(xr.Dataset(data_vars, coords=coords, attrs=attrs), path)
+
+    def write(tmp: str) -> None:
+        import netCDF4
+
+        with netCDF4.Dataset(tmp, mode="w", clobber=True, format="NETCDF4") as nc:
+            for key, value in attrs.items():
+                nc.setncattr(key, value)
+            for _name, dims, values, _ in items:  # dimensions in order of first use
+                for dim, size in zip(dims, values.shape, strict=True):
+                    if dim not in nc.dimensions:
+                        nc.createDimension(dim, size)
+            for i, (name, dims, values, var_attrs) in enumerate(items):
+                kind = values.dtype.kind
+                text = kind in "UO"
+                compress = kind == "f" and i < len(data_vars) and worth_compressing(values)
+                encoding = FLOAT_ENCODING if compress else {}
+                var = nc.createVariable(
+                    varname=name,
+                    datatype=str if text else values.dtype,
+                    dimensions=dims,
+                    zlib=encoding.get("zlib", False),
+                    complevel=encoding.get("complevel", 4),
+                    shuffle=encoding.get("shuffle", True),
+                    fletcher32=False,
+                    contiguous=False,
+                    chunksizes=None,
+                    endian="native",
+                    least_significant_digit=None,
+                    fill_value=np.nan if kind == "f" else None,
+                )
+                var.setncatts(var_attrs)
+                var.set_auto_maskandscale(False)
+                var.set_auto_chartostring(False)
+                if text:
+                    values = values.astype(object)
+                var[...] = values
+
+    return _atomically(path, write)
 
 
 def grid_dataset(
@@ -610,40 +742,33 @@ def grid_dataset(
     ``arc``: the arc lengths every successful case shares (then the ``s`` coordinate, as
     in :func:`assemble`), or None (then ``arc_length`` stays a variable and ``s`` is the
     node index)."""
+    import xarray as xr
+
     shape = tuple(a.size for a in axes)
-    dims = tuple(a.name for a in axes)
     rest = shape[1:]
 
     def load(path: Path, name: str) -> np.ndarray:
         with np.load(path, allow_pickle=False) as z:
-            return z[f"v_{name}"]
+            key = f"v_{name}"
+            if key in z.files:
+                return z[key]
+            # a chunk that failed as a whole holds no data: NaN, as a failed case
+            n = len(z["v_status"])
+            return np.full((n, *tails[name]), np.nan)
 
     def column(name: str) -> np.ndarray:
         return np.concatenate([load(path, name) for _, _, path in chunks])
 
-    present = [k for k in names if not (k == "arc_length" and arc is not None)]
-    data_vars: dict[str, Any] = {}
-    status = column("status").reshape(shape)
-    message = column("message").astype(object).reshape(shape)
-    wall = column("wall_time").reshape(shape)
-    for name, arr in (("status", status), ("message", message), ("wall_time", wall)):
-        spec = CASE_VARIABLES[name]
-        data_vars[name] = (dims, arr, {"units": spec.units, "long_name": spec.long_name})
-    # the array path runs the statics only: its status is the case's
-    spec = OUTPUTS["static_status"]
-    data_vars["static_status"] = (
-        dims,
-        status.astype(np.int64),
-        {"units": spec.units, "long_name": spec.long_name},
-    )
-    for name in sorted(present):
-        spec = OUTPUTS[name]
+    values: dict[str, Any] = {}
+    for name in names:
+        if name == "arc_length" and arc is not None:
+            continue
         tail = tails[name]
         if lazy:
             import dask
             import dask.array as da
 
-            values: Any = da.concatenate(
+            values[name] = da.concatenate(
                 [
                     da.from_delayed(
                         dask.delayed(load)(path, name).reshape((hi - lo, *rest, *tail)),
@@ -655,16 +780,71 @@ def grid_dataset(
                 axis=0,
             )
         else:  # small enough to hold: no dask needed
-            values = np.concatenate(
+            values[name] = np.concatenate(
                 [load(path, name).reshape((hi - lo, *rest, *tail)) for lo, hi, path in chunks]
             )
+    data_vars, coords, attrs = grid_variables(
+        axes,
+        src,
+        status=column("status"),
+        message=column("message"),
+        wall_time=column("wall_time"),
+        values=values,
+        tails=tails,
+        arc=arc,
+        solver_settings=solver_settings,
+    )
+    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+
+def grid_variables(
+    axes: list[SweepAxis],
+    src: StudySource,
+    *,
+    status: np.ndarray,
+    message: np.ndarray,
+    wall_time: np.ndarray,
+    values: dict[str, Any],
+    tails: dict[str, tuple[int, ...]],
+    arc: np.ndarray | None,
+    solver_settings: dict[str, Any],
+) -> tuple[dict[str, VariableSpec], dict[str, VariableSpec], dict[str, Any]]:
+    """Data variables, coordinates and global attributes of a study run as arrays, in
+    the form ``xarray.Dataset(data_vars, coords=coords, attrs=attrs)`` takes (and
+    :func:`write_variables_atomic` writes): per case ``status``, ``message``,
+    ``wall_time`` (flat, cases in C order) and per output its values (shape
+    (*sweep shape, *tail), NumPy or dask) -- the variables, dims, coordinates and
+    attributes :func:`assemble` gives. ``arc``: the arc lengths every successful case
+    shares (then the ``s`` coordinate, and ``arc_length`` is not among ``values``), or
+    None (then ``s`` is the node index)."""
+    shape = tuple(a.size for a in axes)
+    dims = tuple(a.name for a in axes)
+    data_vars: dict[str, VariableSpec] = {}
+    status = status.reshape(shape)
+    case = (
+        ("status", status),
+        ("message", message.astype(object).reshape(shape)),
+        ("wall_time", wall_time.reshape(shape)),
+    )
+    for name, arr in case:
+        spec = CASE_VARIABLES[name]
+        data_vars[name] = (dims, arr, {"units": spec.units, "long_name": spec.long_name})
+    # the array path runs the statics only: its status is the case's
+    spec = OUTPUTS["static_status"]
+    data_vars["static_status"] = (
+        dims,
+        status.astype(np.int64),
+        {"units": spec.units, "long_name": spec.long_name},
+    )
+    for name in sorted(values):
+        spec = OUTPUTS[name]
         data_vars[name] = (
             dims + spec.dims,
-            values,
+            values[name],
             {"units": spec.units, "long_name": spec.long_name},
         )
     coords = sweep_coordinates(axes)
-    if any("component" in OUTPUTS[k].dims for k in present):
+    if any("component" in OUTPUTS[k].dims for k in values):
         coords["component"] = (
             "component",
             np.array(["x", "y", "z"]),
@@ -672,11 +852,10 @@ def grid_dataset(
         )
     if arc is not None:
         coords["s"] = ("s", arc, {"units": "m", "long_name": COORDINATES["s"][1]})
-    elif "arc_length" in present:
+    elif "arc_length" in values:
         n_s = tails["arc_length"][0]
         coords["s"] = ("s", np.arange(n_s), {"units": "1", "long_name": "node index"})
-    ds = xr.Dataset(data_vars, coords=coords)
-    ds.attrs.update(provenance(src, solver_settings))
-    ds.attrs["cases"] = int(np.prod(shape))
-    ds.attrs["cases_failed"] = int(np.count_nonzero(status != 0))
-    return ds
+    attrs = provenance(src, solver_settings)
+    attrs["cases"] = int(np.prod(shape))
+    attrs["cases_failed"] = int(np.count_nonzero(status != 0))
+    return data_vars, coords, attrs

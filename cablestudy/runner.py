@@ -20,11 +20,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from .analyses import evaluate_chunk
+import numpy as np
+
 from .cache import LOST_PREFIX, TRANSIENT_PREFIXES, CaseCache
 from .cases import Case, SweepAxis
 from .config.loader import StudySource
-from .results import CaseRecord, assemble, write_atomic
+from .results import CaseRecord, assembled_variables, write_atomic, write_variables_atomic
 
 #: status of a case whose task failed outside the solvers (worker lost)
 STATUS_TASK_FAILED = 9
@@ -90,6 +91,8 @@ def failed_chunk(cases: list[Case], exc: BaseException) -> list[CaseRecord]:
 def run_chunk(cases: list[Case]) -> list[CaseRecord]:
     """Evaluate a chunk of cases in one task (cases sharing a static problem are
     adjacent, so its solution is reused; compatible static problems are batched)."""
+    from .analyses import evaluate_chunk  # the solvers: not needed by a sweep run as arrays
+
     return evaluate_chunk(cases)
 
 
@@ -468,8 +471,9 @@ def run_study(
     records = cache.records
     if solver_settings is None:
         solver_settings = default_solver_settings(cases)
-    ds = assemble(axes, cases, records, src, solver_settings=solver_settings)
-    path = write_atomic(ds, out_dir / f"{name}.nc")
+    # written by netCDF4 directly (the file xarray writes, without importing it)
+    variables = assembled_variables(axes, cases, records, src, solver_settings=solver_settings)
+    path = write_variables_atomic(*variables, out_dir / f"{name}.nc")
     cache.compact({c.hash for c in cases})
     failures = Counter(records[c.hash].message for c in cases if records[c.hash].status != 0)
     return RunSummary(
@@ -552,12 +556,28 @@ def run_grid_study(
     bar.update(n_reused)
 
     transient: set[Path] = set()
+    #: chunks computed here, held in memory while the whole result fits in
+    #: IN_MEMORY_BYTES (decided at the first chunk with data); else every chunk goes to
+    #: its file and the result is streamed from the files
+    held: dict[tuple[int, int], Any] = {}
+    hold: list[bool | None] = [None]
 
     def on_done(chunk: Any) -> None:
-        path = store.write(chunk)
-        files[(chunk.lo, chunk.hi)] = path
-        if any(str(m).startswith(TRANSIENT_PREFIXES) for m in chunk.message):
-            transient.add(path)  # in this result, but not kept: a re-run computes it
+        span = (chunk.lo, chunk.hi)
+        if use_cache:
+            path = store.write(chunk)
+            files[span] = path
+            if any(str(m).startswith(TRANSIENT_PREFIXES) for m in chunk.message):
+                transient.add(path)  # in this result, but not kept: a re-run computes it
+        if hold[0] is None and chunk.data:
+            per_case = sum(v.nbytes for v in chunk.data.values()) / max(chunk.n, 1)
+            hold[0] = per_case * grid.size <= IN_MEMORY_BYTES
+        held[span] = chunk
+        if hold[0] is False:  # too large to hold: to files, streamed from there
+            for sp, ch in held.items():
+                if sp not in files:
+                    files[sp] = store.write(ch)
+            held.clear()
         bar.update(chunk.n)
 
     todo = [span for span in spans if span not in files]
@@ -571,21 +591,31 @@ def run_grid_study(
         bar.close()
     t2 = time.perf_counter()
     timings["solve"] = t2 - t1
+    target = out_dir / f"{name}.nc"
     try:
-        ordered = [(lo, hi, files[(lo, hi)]) for lo, hi in spans]
-        summary = store.summary([p for _, _, p in ordered])
-        per_case = sum(math.prod(t) for t in summary.tails.values()) * 8
-        lazy = per_case * grid.size > IN_MEMORY_BYTES
-        ds = grid_dataset_from(src, grid, ordered, summary, lazy=lazy)
-        t3 = time.perf_counter()
-        timings["assembly"] = t3 - t2
+        lazy = hold[0] is False
+        if not held and not lazy:  # everything from the cache: as large as it is
+            summary = store.summary([files[span] for span in spans])
+            per_case = sum(math.prod(t) for t in summary.tails.values()) * 8
+            lazy = per_case * grid.size > IN_MEMORY_BYTES
         if lazy:
+            ordered = [(lo, hi, files[(lo, hi)]) for lo, hi in spans]
+            summary = store.summary([p for _, _, p in ordered])
+            ds = grid_dataset_from(src, grid, ordered, summary, lazy=True)
+            t3 = time.perf_counter()
+            timings["assembly"] = t3 - t2
             import dask
 
             with dask.config.set(scheduler="synchronous"):  # one chunk in memory at a time
-                path = write_atomic(ds, out_dir / f"{name}.nc")
+                path = write_atomic(ds, target)
         else:
-            path = write_atomic(ds, out_dir / f"{name}.nc")
+            chunks = [
+                held[span] if span in held else _stored_chunk(store, files[span]) for span in spans
+            ]
+            summary, variables = _grid_variables(src, grid, chunks)
+            t3 = time.perf_counter()
+            timings["assembly"] = t3 - t2
+            path = write_variables_atomic(*variables, target)
         timings["write"] = time.perf_counter() - t3
     finally:
         if scratch is not None:
@@ -607,15 +637,74 @@ def run_grid_study(
     )
 
 
+def _stored_chunk(store: Any, path: Path) -> Any:
+    """A chunk file of the cache as a :class:`cablestudy.grid.GridChunk`."""
+    from .grid import GridChunk
+
+    z = store.load(path)
+    lo, hi = (int(v) for v in z.pop("rows"))
+    return GridChunk(
+        lo=lo,
+        hi=hi,
+        key=str(z.pop("key")),
+        status=z.pop("status"),
+        message=z.pop("message"),
+        wall_time=z.pop("wall_time"),
+        data=z,
+    )
+
+
+def _grid_settings(grid: Any) -> dict[str, Any]:
+    return {
+        "analysis": grid.template.analysis.model_dump(mode="json"),
+        "static_methods": [grid.template.analysis.static.method],
+    }
+
+
+def _grid_variables(src: StudySource, grid: Any, chunks: list[Any]) -> tuple[Any, tuple]:
+    """The summary of in-memory chunks (all rows of ``grid``, in order) and the dataset's
+    (data variables, coordinates, attributes): the dataset
+    :func:`cablestudy.results.grid_dataset` assembles from the chunk files."""
+    from .cache import summarise
+    from .results import grid_variables
+
+    summary = summarise((c.status, c.message, c.data) for c in chunks)
+    rest = grid.shape[1:]
+    values: dict[str, Any] = {}
+    for name in summary.names:
+        if name == "arc_length" and summary.arc is not None:
+            continue
+        tail = summary.tails[name]
+        values[name] = np.concatenate(
+            [
+                (
+                    c.data[name]
+                    if name in c.data
+                    else np.full((c.n, *tail), np.nan)  # a chunk failed as a whole
+                ).reshape((c.hi - c.lo, *rest, *tail))
+                for c in chunks
+            ]
+        )
+    variables = grid_variables(
+        grid.axes,
+        src,
+        status=np.concatenate([c.status for c in chunks]),
+        message=np.concatenate([c.message for c in chunks]),
+        wall_time=np.concatenate([c.wall_time for c in chunks]),
+        values=values,
+        tails=summary.tails,
+        arc=summary.arc,
+        solver_settings=_grid_settings(grid),
+    )
+    return summary, variables
+
+
 def grid_dataset_from(
     src: StudySource, grid: Any, ordered: list[Any], summary: Any, *, lazy: bool = True
 ) -> Any:
     from .results import grid_dataset
 
-    settings = {
-        "analysis": grid.template.analysis.model_dump(mode="json"),
-        "static_methods": [grid.template.analysis.static.method],
-    }
+    settings = _grid_settings(grid)
     return grid_dataset(
         grid.axes,
         ordered,

@@ -26,3 +26,26 @@ def test_figs2_5_sweep_solves_statics_and_assembles_once() -> None:
     assert all(str(r.data["dynamic_method"]) == "frequency" for r in records)
     assert frequency_cases.COUNTERS["static_solves"] == 2
     assert frequency_cases.COUNTERS["linear_assemblies"] == 1
+
+
+def test_shared_static_outputs_and_problem_give_each_case_its_own_result() -> None:
+    """Cases that share a static problem share its outputs and problem object within a
+    chunk; each record equals the one the case gets alone, in a fresh process state."""
+    import numpy as np
+
+    text = CONFIG.read_text().replace("method: auto", "method: frequency")
+    _, cases = expand_cases(parse_study_text(text))
+    picked = cases[::23] + cases[5:7]
+    chunk = analyses.evaluate_chunk(picked)
+    for case, rec in zip(picked, chunk, strict=True):
+        analyses._STATIC_CACHE.clear()
+        analyses._LAST_STATIC_OUTPUTS.clear()
+        frequency_cases._LINEAR_CACHE.clear()
+        frequency_cases._LAST_PROBLEM.clear()
+        alone = analyses.evaluate_case(case)
+        assert (rec.status, rec.message) == (alone.status, alone.message)
+        assert set(rec.data) == set(alone.data)
+        for name, value in alone.data.items():
+            assert np.asarray(rec.data[name]).tobytes() == np.asarray(value).tobytes(), name
+    # the shared arrays are the same objects, not copies made per case
+    assert chunk[0].data["elevation"] is chunk[1].data["elevation"]

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import os
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -148,3 +149,66 @@ def test_crash_during_write_keeps_the_earlier_result(
     assert path.read_bytes() == before  # untouched
     assert sorted(p.name for p in tmp_path.iterdir()) == ["res.nc"]  # no temporary left
     xr.testing.assert_equal(xr.load_dataset(path)["tension"], ds["tension"])
+
+
+def _netcdf_layout(path: Path) -> dict[str, Any]:
+    """Everything a netCDF file holds, as netCDF4 reads it (NaN-safe through repr)."""
+    import netCDF4
+
+    with netCDF4.Dataset(path) as nc:
+        out: dict[str, Any] = {
+            "format": nc.data_model,
+            "dims": [(d.name, d.size) for d in nc.dimensions.values()],
+            "attrs": [(k, repr(nc.getncattr(k)), type(nc.getncattr(k))) for k in nc.ncattrs()],
+        }
+        for name, var in nc.variables.items():
+            var.set_auto_maskandscale(False)
+            out[name] = (
+                var.dtype,
+                var.dimensions,
+                [(k, repr(var.getncattr(k))) for k in var.ncattrs()],
+                var.chunking(),
+                var.filters(),
+                repr(var[...].tolist()),
+            )
+        return out
+
+
+@pytest.mark.parametrize("extra_coord", [False, True], ids=["dimension-coords", "zip-coord"])
+def test_direct_netcdf_writer_writes_what_xarray_writes(tmp_path: Path, extra_coord: bool) -> None:
+    from cablestudy.results import write_variables_atomic
+
+    rng = np.random.default_rng(1)
+    x = rng.normal(size=(3, 2, 4))
+    x[1, 0, 2] = np.nan
+    data_vars = {
+        "status": (("span", "ea"), np.array([[0, 4], [0, 0], [9, 0]]), {"units": "1"}),
+        "message": (
+            ("span", "ea"),
+            np.array([["", "non-finite"], ["", ""], ["task failed: é", ""]], dtype=object),
+            {"units": "1", "long_name": "why"},
+        ),
+        "wall_time": (("span", "ea"), rng.random((3, 2)), {"units": "s", "long_name": "t"}),
+        "force_a": (("span", "ea", "component"), rng.normal(size=(3, 2, 3)), {"units": "N"}),
+        "x": (("span", "ea", "s"), x, {"units": "m", "long_name": "x position"}),
+        # constant: worth compressing, unlike the random values
+        "y": (("span", "ea", "s"), np.zeros_like(x), {"units": "m"}),
+    }
+    coords = {
+        "span": ("span", np.array([60.0, 70.0, 80.5]), {"units": "m", "sweep_paths": "p"}),
+        "ea": ("ea", np.array([1, 2]), {"units": "N"}),
+        "component": ("component", np.array(["x", "y", "z"]), {"units": "1"}),
+        "s": ("s", np.linspace(0.0, 1.0, 4), {"units": "m"}),
+    }
+    if extra_coord:
+        coords["span_0"] = ("span", np.array([1.0, 2.0, 3.0]), {"units": "m"})
+    attrs = {"title": "t", "study_yaml": "a: 1\n", "cases": 6, "cases_failed": 2}
+    direct = write_variables_atomic(data_vars, coords, attrs, tmp_path / "direct" / "r.nc")
+    ref = write_atomic(
+        xr.Dataset(data_vars, coords=coords, attrs=attrs), tmp_path / "xarray" / "r.nc"
+    )
+    assert _netcdf_layout(direct) == _netcdf_layout(ref)
+    xr.testing.assert_identical(xr.load_dataset(direct), xr.load_dataset(ref))
+    assert oct(direct.stat().st_mode & 0o777) == oct(ref.stat().st_mode & 0o777)
+    layout = _netcdf_layout(direct)
+    assert layout["y"][4]["zlib"] and not layout["x"][4]["zlib"]
