@@ -40,6 +40,7 @@ from __future__ import annotations
 
 import functools
 import math
+from abc import ABC, abstractmethod
 from dataclasses import dataclass
 from typing import ClassVar
 
@@ -54,7 +55,7 @@ def _asarray(x: np.ndarray | float) -> np.ndarray:
 
 
 @dataclass(frozen=True)
-class AxialLaw:
+class AxialLaw(ABC):
     """Base of the axial laws (see the module docstring for the contract).
 
     Subclasses implement ``_tension``, ``_stiffness`` and ``_strain_energy`` for e > 0;
@@ -67,20 +68,23 @@ class AxialLaw:
 
     # --------------------------------------------------------------- to implement
 
-    def _tension(self, e: np.ndarray) -> np.ndarray:  # pragma: no cover - abstract
-        raise NotImplementedError
+    @abstractmethod
+    def _tension(self, e: np.ndarray) -> np.ndarray:
+        """T(e) [N] for e > 0."""
 
-    def _stiffness(self, e: np.ndarray) -> np.ndarray:  # pragma: no cover - abstract
-        raise NotImplementedError
+    @abstractmethod
+    def _stiffness(self, e: np.ndarray) -> np.ndarray:
+        """dT/de [N] for e > 0."""
 
-    def _strain_energy(self, e: np.ndarray) -> np.ndarray:  # pragma: no cover - abstract
-        raise NotImplementedError
+    @abstractmethod
+    def _strain_energy(self, e: np.ndarray) -> np.ndarray:
+        """int_0^e T [N] for e > 0."""
 
     @property
-    def reference_stiffness(self) -> float:  # pragma: no cover - abstract
+    @abstractmethod
+    def reference_stiffness(self) -> float:
         """A representative stiffness [N] (EA for the linear law, the large-strain
         stiffness otherwise): used for initial guesses and scales only."""
-        raise NotImplementedError
 
     # ------------------------------------------------------------------- public
 
