@@ -157,6 +157,15 @@ def warm_up(cases: list[Case]) -> None:
         from .dynamics.frequency import warm_up as warm_up_frequency
 
         warm_up_frequency()
+    if any(
+        c.study.analysis.dynamic is not None
+        and c.study.analysis.dynamic.method != "frequency"
+        and c.study.line.kind != "spring"
+        for c in cases
+    ):
+        from .dynamics.timedomain import warm_up as warm_up_time
+
+        warm_up_time()
 
 
 def linear_model_gaps(study: Any) -> list[tuple[tuple[str | int, ...], str]]:

@@ -7,6 +7,7 @@ The runner moves cases and records; it knows nothing of physics (it calls
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
 import os
@@ -407,11 +408,24 @@ def execute(cases: list[Case], scheduler: str, workers: int, on_done: OnDone) ->
         probe = probe_cost(cases, on_done, PROBE_SECONDS)
         _run_local(probe.rest, on_done, per_case=probe.per_case)
     else:
-        # one case here loads the solvers and kernels the forked workers then share;
-        # the chunks are sized from the first cases timed on the workers
-        probe = probe_cost(cases, on_done, 0.0)
-        _run_dask(probe.rest, scheduler, workers, on_done)
+        # the forked workers share what this process has loaded: the compiled kernels
+        # (analyses.warm_up, called before this by `cablestudy run`) and the first
+        # case's static solution, solved here; no case runs here, so both workers start
+        # at once. The chunks are sized from the first cases timed on the workers.
+        _share_statics(cases)
+        _run_dask(cases, scheduler, workers, on_done)
     return scheduler
+
+
+def _share_statics(cases: list[Case]) -> None:
+    """Solve the first case's statics in this process (cached by static hash, so worker
+    processes forked afterwards reuse it). A failure is left for the case itself to
+    record where it runs."""
+    from .analyses import solve_static
+
+    first = min(cases, key=lambda c: (c.static_hash, c.index))
+    with contextlib.suppress(Exception):
+        solve_static(first, None)
 
 
 def default_solver_settings(cases: list[Case]) -> dict[str, Any]:

@@ -583,3 +583,55 @@ def _linear(t: np.ndarray, y: np.ndarray, tq: np.ndarray) -> np.ndarray:
     i = np.clip(np.searchsorted(t, tq, side="right") - 1, 0, t.size - 2)
     w = ((tq - t[i]) / (t[i + 1] - t[i]))[:, None]
     return (1.0 - w) * y[i] + w * y[i + 1]
+
+
+def warm_up() -> None:
+    """Load the compiled kernels of the time step (the line model's forces and tangents,
+    the banded solve, the discrete statics, the friction anchors, the end motion) on a
+    two-element line above a seabed, so that a process forked afterwards has them: a
+    kernel's first call in a process costs about a second, which is start-up, not the
+    cost of a case."""
+    from ..statics.base import LineModel, Medium
+    from .excitation import EndMotion
+    from .model import DynamicExtras, discretise, static_equilibrium
+
+    one = np.ones(1)
+    line = LineModel(
+        length=2.0 * one,
+        weight=10.0 * one,
+        mass=one,
+        axial_stiffness=1e6 * one,
+        diameter=0.01 * one,
+        drag_normal=one,
+        drag_tangential=0.0 * one,
+        added_mass_normal=one,
+        added_mass_tangential=0.0 * one,
+        bending_stiffness=0.0 * one,
+        damping_ratio=0.0 * one,
+        attachment_s=np.zeros(0),
+        attachment_force=np.zeros((0, 3)),
+        attachment_mass=np.zeros(0),
+        attachment_volume=np.zeros(0),
+    )
+    medium = Medium(density=1000.0, gravity=9.8, depth=10.0, friction=0.5)
+    disc = discretise(line, medium, 2, DynamicExtras(seabed_stiffness=1e4, friction_axial=0.5))
+    x0 = np.array([[0.0, 0.0, 0.0], [0.999, 0.0, -0.05], [1.998, 0.0, 0.0]])
+    x, _, _, _, anchor = static_equilibrium(disc, x0, tolerance=1e-6, max_iterations=20)
+    motion = EndMotion(
+        harmonic_end=np.array([1]),
+        harmonic_direction=np.array([[1.0, 0.0, 0.0]]),
+        harmonic_amplitude=np.array([1e-3]),
+        harmonic_frequency=np.array([1.0]),
+        harmonic_phase=np.zeros(1),
+    )
+    simulate(
+        DynamicProblem(
+            line=disc,
+            static_position=x,
+            motion=motion,
+            period=1.0,
+            step=0.25,
+            duration=0.5,
+            anchor=anchor,
+        )
+    )
