@@ -48,8 +48,9 @@ PROBE_SECONDS = 0.2
 THREAD_PROBE_SECONDS = 0.15
 THREADS_SCALE = 1.5
 #: a task should take about this long [s]: dask's own cost is a few ms per task
-#: (README), so tasks of a second keep it under 1 %, and an interrupt loses little
-TARGET_TASK_SECONDS = 1.0
+#: (README), about 1 % of a quarter second, and tasks this short balance two workers
+#: (1.47x on the 92-case dynamic sweep against 1.32-1.36x with tasks of a second)
+TARGET_TASK_SECONDS = 0.25
 #: cases per chunk when their cost is not known, and at most (bounds a task's memory)
 DEFAULT_CHUNK_CASES = 200
 MAX_CHUNK_CASES = 20_000
@@ -114,8 +115,9 @@ def make_chunks(
     max_chunk: int | None = None,
     per_case: float | None = None,
 ) -> list[list[Case]]:
-    """Batch cases so that a task takes about a second (``per_case``: the measured cost
-    of a case [s]; unknown: at most :data:`DEFAULT_CHUNK_CASES` cases), while every
+    """Batch cases so that a task takes about :data:`TARGET_TASK_SECONDS` (``per_case``:
+    the measured cost of a case [s]; unknown: at most :data:`DEFAULT_CHUNK_CASES` cases),
+    while every
     worker gets several chunks (load balance) and an interrupt loses at most one chunk
     per worker."""
     if not cases:
@@ -394,7 +396,7 @@ def _run_dask(
 def execute(cases: list[Case], scheduler: str, workers: int, on_done: OnDone) -> str:
     """Evaluate ``cases`` in chunks on ``scheduler``, calling ``on_done`` with each chunk's
     records as it finishes (in the calling process). Every local scheduler first times
-    a few cases here (:func:`probe_cost`), which sizes the chunks to about a second each
+    a few cases here (:func:`probe_cost`), which sizes the chunks to about a quarter second
     and loads the compiled kernels before worker processes are forked. Returns the
     scheduler that ran the cases after the probe."""
     if not cases:

@@ -447,11 +447,12 @@ def test_scheduler_choice_follows_the_probe() -> None:
     assert choose_scheduler(bound, workers=1) == "synchronous"
 
 
-def test_chunks_take_about_a_second_at_the_measured_cost() -> None:
+def test_chunks_take_the_target_time_at_the_measured_cost() -> None:
     _, _, cases = _expand()
     many = [Case((i,), {}, cases[0].study, f"h{i}", f"s{i % 7}") for i in range(5000)]
-    # 0.1 s a case: 10 cases a task
-    assert {len(c) for c in make_chunks(many, workers=2, per_case=0.1)} == {10}
+    # 0.01 s a case: TARGET_TASK_SECONDS / 0.01 cases a task
+    per_task = round(runner.TARGET_TASK_SECONDS / 0.01)
+    assert {len(c) for c in make_chunks(many, workers=2, per_case=0.01)} == {per_task}
     # 5 s a case: one case a task; 1 us a case: as many as load balance allows
     assert {len(c) for c in make_chunks(many, workers=2, per_case=5.0)} == {1}
     assert [len(c) for c in make_chunks(many, workers=2, per_case=1e-6)] == [625] * 8
