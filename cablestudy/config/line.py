@@ -23,9 +23,6 @@ class _AxialBase(StrictModel):
         "reach (from the end positions and the excitation amplitudes)",
     )
 
-    def build(self):  # type: ignore[no-untyped-def]  # -> cablestudy.physics.axial.AxialLaw
-        raise NotImplementedError  # pragma: no cover - every subclass defines it
-
 
 class LinearAxial(_AxialBase):
     """``{law: linear, stiffness}``: T = k e, tension-only (today's ``axial_stiffness``)."""
