@@ -26,9 +26,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
 from numba import njit
 
-from .model import _trial_states, assemble, solve_banded, states_changed
+from ..physics.seabed import touchdown_from_gap
+from .excitation import motion_at
+from .model import _trial_states, assemble, solve_banded, states_changed, update_anchors
 
 
 @dataclass(frozen=True)
@@ -274,3 +277,279 @@ def alpha_step(
 
 #: stick/slip re-checks per time step after Newton converged with a wrong guess
 MAX_STATE_CHECKS = 4
+
+
+#: :func:`march` return codes
+REACHED_BOUNDARY, ACCEPTED_STEP, NEWTON_FAILED, STEP_BUDGET = 0, 1, 2, 3
+
+
+@njit(cache=True, nogil=True)
+def march(  # noqa: ANN201, PLR0913, PLR0915
+    st_f,
+    st_i,
+    x0,
+    v0,
+    a0,
+    x1,
+    v1,
+    a1,
+    F0,
+    strain_prev,
+    x_pred,
+    past_x,
+    past_t,
+    base,
+    frac,
+    motion,
+    ends,
+    forces,
+    ext_element,
+    ext_end,
+    ext_touchdown,
+    s,
+    touchdown_tolerance,
+    step,
+    max_level,
+    rescue_level,
+    tension_step,
+    excited,
+    eps_t,
+    alpha_m,
+    alpha_f,
+    beta,
+    gamma,
+    tol,
+    max_iterations,
+    single,
+    budget,
+    anchor,
+    largs,
+    wargs,
+    sargs,
+):  # noqa: ANN001
+    """Time steps from ``st_f[0]`` towards the period boundary ``st_f[1]`` [s]: the
+    step control of :func:`cablestudy.dynamics.timedomain.simulate`, compiled (the
+    GIL released, so threads run cases in parallel).
+
+    Each step is predicted (quadratic extrapolation of the last three positions, the
+    held ends moved with the prescribed motion, shared linearly along ``frac``) and
+    solved by :func:`alpha_step`. A step whose Newton fails, or in which an element
+    changes between slack and taut, or the excited end's tension changes by more than
+    ``tension_step`` [N], is halved (the latter two up to ``max_level`` times, a Newton
+    failure up to ``rescue_level``); after two clean steps the step doubles back. An
+    accepted step updates the friction anchors, moves (x1, v1, a1) into (x0, v0, a0)
+    and folds the step into the current period's statistics:
+    ``st_f`` = [t, boundary, max, min, integral of the excited end's tension, largest
+    line tension, last end tension, last line maximum, last touchdown, last step],
+    ``ext_element`` (2, n) the elements' largest and smallest tension,
+    ``ext_end`` (2, 2) the ends', ``ext_touchdown`` (2,) the touchdown point's range;
+    ``st_i`` = [level, clean steps, steps, Newton iterations, rejected steps].
+    ``ends`` (2,) and ``forces`` (2, 3) hold the last accepted step's end tensions and
+    forces of the line on the ends.
+
+    Returns :data:`REACHED_BOUNDARY` on the boundary (``t`` set exactly to it),
+    :data:`ACCEPTED_STEP` after each accepted step when ``single``,
+    :data:`STEP_BUDGET` after ``budget`` accepted steps, :data:`NEWTON_FAILED` when
+    Newton failed at the smallest step (``st_f[9]`` the step tried).
+    """
+    F = wargs[0]
+    M_d = wargs[6]
+    tension = wargs[7]
+    strain = wargs[8]
+    taut0 = wargs[9]
+    contact = wargs[10]
+    friction_force = wargs[11]
+    held = largs[17]
+    seabed_normal = largs[18]
+    seabed_offset = largs[19]
+    seabed_stiffness = largs[20]
+    has_seabed = seabed_stiffness.max() > 0.0 if seabed_stiffness.shape[0] else False
+    n = x0.shape[0]
+    m = tension.shape[0]
+    raw = np.empty((3, 2, 3))
+    end_x = np.empty((2, 3))
+    corr = np.empty(3)
+    gap = np.empty(n)
+    accepted = 0
+    while True:
+        t = st_f[0]
+        boundary = st_f[1]
+        level = st_i[0]
+        h = step / 2.0**level
+        if boundary - t <= h * (1.0 + 1e-6):
+            h = boundary - t
+        tn = t + h
+        motion_at(tn, *motion, raw)
+        # predictor: quadratic through the last three accepted positions
+        npast = st_i[5]
+        if npast < 2:
+            for i in range(n):
+                for c in range(3):
+                    x_pred[i, c] = x0[i, c] + (tn - t) * v0[i, c]
+        else:
+            ta, tb, tc = past_t[0], past_t[1], t
+            la = (tn - tb) * (tn - tc) / ((ta - tb) * (ta - tc))
+            lb = (tn - ta) * (tn - tc) / ((tb - ta) * (tb - tc))
+            lc = (tn - ta) * (tn - tb) / ((tc - ta) * (tc - tb))
+            for i in range(n):
+                for c in range(3):
+                    x_pred[i, c] = past_x[0, i, c] * la + lb * past_x[1, i, c] + lc * x0[i, c]
+        for e in range(2):
+            for c in range(3):
+                end_x[e, c] = base[e, c] + raw[0, e, c]
+        for i in range(m):
+            taut0[i] = strain_prev[i] > 0.0
+        if held[0]:
+            for c in range(3):
+                corr[c] = end_x[0, c] - x_pred[0, c]
+            for i in range(n):
+                for c in range(3):
+                    x_pred[i, c] += (1.0 - frac[i]) * corr[c]
+            for c in range(3):
+                x_pred[0, c] = end_x[0, c]
+        if held[n - 1]:
+            for c in range(3):
+                corr[c] = end_x[1, c] - x_pred[n - 1, c]
+            for i in range(n):
+                for c in range(3):
+                    x_pred[i, c] += frac[i] * corr[c]
+            for c in range(3):
+                x_pred[n - 1, c] = end_x[1, c]
+        its, ok = alpha_step(
+            x0,
+            v0,
+            a0,
+            F0,
+            h,
+            end_x,
+            raw[1],
+            raw[2],
+            alpha_m,
+            alpha_f,
+            beta,
+            gamma,
+            tol,
+            max_iterations,
+            x_pred,
+            x1,
+            v1,
+            a1,
+            anchor,
+            *largs,
+            *wargs,
+            *sargs,
+        )
+        st_i[3] += its
+        if not ok:
+            st_i[4] += 1
+            if level >= rescue_level:
+                st_f[9] = h
+                return NEWTON_FAILED
+            st_i[0] = level + 1
+            st_i[1] = 0
+            continue
+        switched = False
+        for i in range(m):
+            if (strain[i] > 0.0) != (strain_prev[i] > 0.0):
+                switched = True
+                break
+        # force of the line on the ends: minus a held end node's support reaction, the
+        # end element's pull on a free end node
+        for e in range(2):
+            node = 0 if e == 0 else n - 1
+            if held[node]:
+                for c in range(3):
+                    acc = F[node, c]
+                    for b in range(3):
+                        acc += M_d[node, c, b] * a1[node, b]
+                    forces[e, c] = -acc
+            else:
+                other = 1 if e == 0 else n - 2
+                elem = 0 if e == 0 else m - 1
+                ln = 0.0
+                for c in range(3):
+                    ln += (x1[other, c] - x1[node, c]) ** 2
+                ln = math.sqrt(ln)
+                for c in range(3):
+                    forces[e, c] = tension[elem] * (x1[other, c] - x1[node, c]) / ln
+        fx = forces[excited]
+        t_end = math.sqrt(fx[0] * fx[0] + fx[1] * fx[1] + fx[2] * fx[2])
+        steep = abs(t_end - st_f[6]) > tension_step
+        if (switched or steep) and level < max_level:
+            st_i[4] += 1
+            st_i[0] = level + 1
+            st_i[1] = 0
+            continue
+        # accept
+        st_i[2] += 1
+        if has_seabed:
+            update_anchors(x1, friction_force, seabed_stiffness, contact, anchor)
+        if npast < 2:
+            for i in range(n):
+                for c in range(3):
+                    past_x[npast, i, c] = x0[i, c]
+            past_t[npast] = t
+            st_i[5] = npast + 1
+        else:
+            for i in range(n):
+                for c in range(3):
+                    past_x[0, i, c] = past_x[1, i, c]
+                    past_x[1, i, c] = x0[i, c]
+            past_t[0] = past_t[1]
+            past_t[1] = t
+        t = tn
+        for i in range(n):
+            for c in range(3):
+                x0[i, c] = x1[i, c]
+                v0[i, c] = v1[i, c]
+                a0[i, c] = a1[i, c]
+                F0[i, c] = F[i, c]
+        for i in range(m):
+            strain_prev[i] = strain[i]
+        line_max = -math.inf
+        for i in range(m):
+            line_max = max(line_max, tension[i])
+            ext_element[0, i] = max(ext_element[0, i], tension[i])
+            ext_element[1, i] = min(ext_element[1, i], tension[i])
+        for e in range(2):
+            fe = forces[e]
+            ends[e] = math.sqrt(fe[0] * fe[0] + fe[1] * fe[1] + fe[2] * fe[2])
+            line_max = max(line_max, ends[e])
+            ext_end[0, e] = max(ext_end[0, e], ends[e])
+            ext_end[1, e] = min(ext_end[1, e], ends[e])
+        td = math.nan
+        if has_seabed:
+            nz = seabed_normal[2]
+            for i in range(n):
+                bed = (
+                    seabed_offset - seabed_normal[0] * x0[i, 0] - seabed_normal[1] * x0[i, 1]
+                ) / nz
+                gap[i] = x0[i, 2] - bed
+            td = touchdown_from_gap(s, gap, touchdown_tolerance)
+            if not math.isnan(td):
+                ext_touchdown[0] = td if math.isnan(ext_touchdown[0]) else min(ext_touchdown[0], td)
+                ext_touchdown[1] = td if math.isnan(ext_touchdown[1]) else max(ext_touchdown[1], td)
+        st_f[2] = max(st_f[2], t_end)
+        st_f[3] = min(st_f[3], t_end)
+        st_f[4] += 0.5 * (st_f[6] + t_end) * h
+        st_f[5] = max(st_f[5], line_max)
+        st_f[6] = t_end
+        st_f[7] = line_max
+        st_f[8] = td
+        st_f[9] = h
+        if switched or steep:
+            st_i[1] = 0
+        else:
+            st_i[1] += 1
+            if st_i[1] >= 2 and st_i[0] > 0:
+                st_i[0] -= 1
+                st_i[1] = 0
+        accepted += 1
+        if abs(t - boundary) <= eps_t:
+            st_f[0] = boundary
+            return REACHED_BOUNDARY
+        st_f[0] = t
+        if single:
+            return ACCEPTED_STEP
+        if accepted >= budget:
+            return STEP_BUDGET

@@ -40,8 +40,8 @@ import numpy as np
 from ..physics.seabed import touchdown_arc_length
 from ..statics.base import STATUS_NUMERICAL, STATUS_OK, STATUS_TIME_LIMIT
 from .excitation import EndMotion
-from .integrator import AlphaParameters, alpha_step
-from .model import DiscreteLine, Workspace, evaluate, interpolate_nodes, update_anchors
+from .integrator import NEWTON_FAILED, REACHED_BOUNDARY, AlphaParameters, march
+from .model import DiscreteLine, Workspace, evaluate, interpolate_nodes
 
 #: extra step halvings allowed beyond ``max_refinement`` when Newton fails
 NEWTON_RESCUE_HALVINGS = 8
@@ -185,28 +185,37 @@ def end_forces(
 class _LineExtremes:
     """Per-step extremes along the line over each period: element and end tensions
     [N] (largest and smallest) and the touchdown arc length [m] (NaN where no contact).
-    Keeps the last ``keep`` periods (None: folds every period into one)."""
+    The current period's are arrays the compiled step loop updates in place
+    (``element`` (2, n) and ``end`` (2, 2): largest, smallest; ``touchdown`` (2,):
+    least, greatest). Keeps the last ``keep`` periods (None: folds every period into
+    one)."""
 
     def __init__(self, keep: int | None, element: np.ndarray, ends: np.ndarray, td: float):
         self.keep = keep
         self.periods: deque[list] = deque()
+        self.element = np.empty((2, element.size))
+        self.end = np.empty((2, 2))
+        self.touchdown = np.empty(2)
         self.start(element, ends, td)
 
     def start(self, element: np.ndarray, ends: np.ndarray, td: float) -> None:
-        self.current = [element.copy(), element.copy(), ends.copy(), ends.copy(), td, td]
+        self.element[:] = element[None, :]
+        self.end[:] = ends[None, :]
+        self.touchdown[:] = td
 
-    def add(self, element: np.ndarray, ends: np.ndarray, td: float) -> None:
-        c = self.current
-        np.maximum(c[0], element, out=c[0])
-        np.minimum(c[1], element, out=c[1])
-        np.maximum(c[2], ends, out=c[2])
-        np.minimum(c[3], ends, out=c[3])
-        c[4] = float(np.fmin(c[4], td))
-        c[5] = float(np.fmax(c[5], td))
+    def current(self) -> list:
+        return [
+            self.element[0].copy(),
+            self.element[1].copy(),
+            self.end[0].copy(),
+            self.end[1].copy(),
+            float(self.touchdown[0]),
+            float(self.touchdown[1]),
+        ]
 
     def close(self) -> None:
         """The current period is one of the steady-state periods: keep it."""
-        self.periods.append(self.current)
+        self.periods.append(self.current())
         if self.keep is None and len(self.periods) > 1:
             self.periods.appendleft(self._fold([self.periods.popleft(), self.periods.pop()]))
         while self.keep is not None and len(self.periods) > self.keep:
@@ -225,7 +234,7 @@ class _LineExtremes:
 
     def window(self) -> list:
         """Extremes over the kept periods (the current partial one if none closed)."""
-        return self._fold(list(self.periods) or [self.current])
+        return self._fold(list(self.periods) or [self.current()])
 
 
 def _hermite(t: np.ndarray, y: np.ndarray, dy: np.ndarray, tq: np.ndarray) -> np.ndarray:
@@ -259,7 +268,6 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     wargs = work.assemble_args()
     sargs = work.solver_args(line)
     held = line.held
-    seabed = line.has_seabed
 
     x0 = np.array(problem.static_position, dtype=float, copy=True)
     v0 = np.zeros_like(x0)
@@ -301,7 +309,6 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     t_ramp = problem.motion.ramp_time
     t_stop = problem.duration if problem.duration is not None else problem.max_periods * T
     tol = problem.newton_tolerance
-    max_level = problem.max_refinement
     eps_t = 1e-9 * T
 
     # history buffer: (t, end tension, x, v, a at the history points, and with
@@ -346,168 +353,126 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     p_min: list[float] = []
     p_mean: list[float] = []
     p_line: list[float] = []
-    c_max = c_min = t_static
-    c_int = 0.0
-    c_line = max(t_static, float(work.tension.max()))
     c_start = 0.0
-    t_prev_tension = t_static
-
+    # the compiled step loop's state (see integrator.march): t, period boundary, the
+    # current period's max, min, integral and largest line tension, the last end
+    # tension, line maximum, touchdown and step; level, clean steps, steps, Newton
+    # iterations, rejected steps, positions kept for the predictor
+    c_line0 = max(t_static, float(work.tension.max()))
+    st_f = np.array(
+        [0.0, min(T, t_stop), t_static, t_static, 0.0, c_line0, t_static, c_line0, 0.0, 0.0]
+    )
+    st_i = np.zeros(6, dtype=np.int64)
     # Newton starts from a quadratic extrapolation of the last three positions: the
     # positions are smooth, whereas the accelerations of generalised-alpha carry the
     # decaying unresolved axial modes, which a Taylor predictor would amplify into
     # large spurious stretches.
-    past: deque[tuple[float, np.ndarray]] = deque()
-    frac = (line.s / line.s[-1])[:, None]
+    past_x = np.zeros((2, *x0.shape))
+    past_t = np.zeros(2)
+    frac = line.s / line.s[-1]
     x_pred = np.empty_like(x0)
+    ends = np.zeros(2)
+    forces = np.zeros((2, 3))
+    single = problem.keep_steps or keep_hist
+    budget = 64 if deadline is not None else 2**62
+    margs = problem.motion.kernel_args()
 
-    def predict(t_new: float, out: np.ndarray) -> None:
-        if len(past) < 2:
-            np.add(x0, (t_new - t) * v0, out=out)
-            return
-        (ta, xa), (tb, xb) = past[0], past[1]
-        tc = t
-        la = (t_new - tb) * (t_new - tc) / ((ta - tb) * (ta - tc))
-        lb = (t_new - ta) * (t_new - tc) / ((tb - ta) * (tb - tc))
-        lc = (t_new - ta) * (t_new - tb) / ((tc - ta) * (tc - tb))
-        np.multiply(xa, la, out=out)
-        out += lb * xb
-        out += lc * x0
-
-    t = 0.0
-    level = 0
-    clean = 0
-    next_b = min(T, t_stop)
-    steps = newton = rejected = 0
     converged = False
     while True:
-        if deadline is not None and steps % 64 == 0 and time.monotonic() > deadline:
+        if deadline is not None and time.monotonic() > deadline:
             result.status, result.message = (
                 STATUS_TIME_LIMIT,
-                (f"time limit reached at t = {t:.4g} s of the dynamic run"),
+                (f"time limit reached at t = {st_f[0]:.4g} s of the dynamic run"),
             )
             return result
-        h = problem.step / 2**level
-        if next_b - t <= h * (1.0 + 1e-6):
-            h = next_b - t
-        disp, vel, acc = problem.motion.at(t + h)
-        predict(t + h, x_pred)
-        np.greater(strain_prev, 0.0, out=work.taut0)
-        # move the whole line with the ends' prescribed correction, shared linearly
-        # along s, so that the predictor neither stretches nor compresses the end
-        # elements
-        if held[0]:
-            x_pred += (1.0 - frac) * (base[0] + disp[0] - x_pred[0])[None, :]
-            x_pred[0] = base[0] + disp[0]
-        if held[-1]:
-            x_pred += frac * (base[1] + disp[1] - x_pred[-1])[None, :]
-            x_pred[-1] = base[1] + disp[1]
-        its, ok = alpha_step(
+        code = march(
+            st_f,
+            st_i,
             x0,
             v0,
             a0,
+            x1,
+            v1,
+            a1,
             F0,
-            h,
-            base + disp,
-            vel,
-            acc,
+            strain_prev,
+            x_pred,
+            past_x,
+            past_t,
+            base,
+            frac,
+            margs,
+            ends,
+            forces,
+            extremes.element,
+            extremes.end,
+            extremes.touchdown,
+            line.s,
+            problem.touchdown_tolerance,
+            problem.step,
+            problem.max_refinement,
+            problem.max_refinement + NEWTON_RESCUE_HALVINGS,
+            problem.tension_step,
+            ex,
+            eps_t,
             par.alpha_m,
             par.alpha_f,
             par.beta,
             par.gamma,
             tol,
             problem.max_newton_iterations,
-            x_pred,
-            x1,
-            v1,
-            a1,
+            single,
+            budget,
             work.anchor,
-            *largs,
-            *wargs,
-            *sargs,
+            largs,
+            wargs,
+            sargs,
         )
-        newton += its
-        if not ok:
-            rejected += 1
-            if level >= max_level + NEWTON_RESCUE_HALVINGS:
-                result.status = STATUS_NUMERICAL
-                result.message = (
-                    f"Newton did not converge at t = {t:.6g} s with step "
-                    f"{h:.3g} s ({problem.step:.3g} s halved {level} times)"
+        t = float(st_f[0])
+        if code == NEWTON_FAILED:
+            level = int(st_i[0])
+            result.status = STATUS_NUMERICAL
+            result.message = (
+                f"Newton did not converge at t = {t:.6g} s with step "
+                f"{st_f[9]:.3g} s ({problem.step:.3g} s halved {level} times)"
+            )
+            result.steps, result.newton_iterations = int(st_i[2]), int(st_i[3])
+            result.rejected_steps = int(st_i[4])
+            return result
+        if single:
+            keep(t, forces)
+            push(t, float(st_f[6]), ends)
+        if code != REACHED_BOUNDARY:
+            continue
+        tension = float(st_f[6])
+        if c_start >= t_ramp - eps_t:
+            p_max.append(float(st_f[2]))
+            p_min.append(float(st_f[3]))
+            p_mean.append(float(st_f[4]) / max(t - c_start, 1e-300))
+            p_line.append(float(st_f[5]))
+            extremes.close()
+        extremes.start(work.tension, ends, float(st_f[8]))
+        st_f[2] = st_f[3] = tension
+        st_f[4] = 0.0
+        st_f[5] = st_f[7]
+        c_start = t
+        if problem.duration is None:
+            w = problem.steady_window
+            if len(p_max) >= max(problem.min_periods, w + 1):
+                converged = all(
+                    abs(p_max[-j] - p_max[-j - 1]) <= problem.steady_tolerance * p_max[-j]
+                    and abs(p_min[-j] - p_min[-j - 1]) <= problem.steady_tolerance * p_max[-j]
+                    for j in range(1, w + 1)
                 )
-                result.steps, result.newton_iterations = steps, newton
-                result.rejected_steps = rejected
-                return result
-            level += 1
-            clean = 0
-            continue
-        switched = bool(np.any((work.strain > 0.0) != (strain_prev > 0.0)))
-        forces = end_forces(work, a1, x1, held)
-        tension = float(math.sqrt(forces[ex] @ forces[ex]))
-        steep = abs(tension - t_prev_tension) > problem.tension_step
-        if (switched or steep) and level < max_level:
-            rejected += 1
-            level += 1
-            clean = 0
-            continue
-        # accept
-        steps += 1
-        if seabed:
-            update_anchors(x1, work.friction, line.seabed_stiffness, work.contact, work.anchor)
-        past.append((t, x0.copy()))
-        if len(past) > 2:
-            past.popleft()
-        t += h
-        x0, x1 = x1, x0
-        v0, v1 = v1, v0
-        a0, a1 = a1, a0
-        F0[:] = work.F
-        strain_prev[:] = work.strain
-        end_tensions = np.sqrt(np.sum(forces**2, 1))
-        line_max = max(float(work.tension.max()), float(end_tensions.max()))
-        extremes.add(work.tension, end_tensions, touchdown(x0))
-        c_max = max(c_max, tension)
-        c_min = min(c_min, tension)
-        c_int += 0.5 * (t_prev_tension + tension) * h
-        c_line = max(c_line, line_max)
-        t_prev_tension = tension
-        keep(t, forces)
-        push(t, tension, end_tensions)
-        if switched or steep:
-            clean = 0
-        else:
-            clean += 1
-            if clean >= 2 and level > 0:
-                level -= 1
-                clean = 0
-        if abs(t - next_b) <= eps_t:
-            t = next_b
-            if c_start >= t_ramp - eps_t:
-                p_max.append(c_max)
-                p_min.append(c_min)
-                p_mean.append(c_int / max(t - c_start, 1e-300))
-                p_line.append(c_line)
-                extremes.close()
-            extremes.start(work.tension, end_tensions, touchdown(x0))
-            c_max = c_min = tension
-            c_line = line_max
-            c_int = 0.0
-            c_start = t
-            if problem.duration is None:
-                w = problem.steady_window
-                if len(p_max) >= max(problem.min_periods, w + 1):
-                    converged = all(
-                        abs(p_max[-j] - p_max[-j - 1]) <= problem.steady_tolerance * p_max[-j]
-                        and abs(p_min[-j] - p_min[-j - 1]) <= problem.steady_tolerance * p_max[-j]
-                        for j in range(1, w + 1)
-                    )
-            if converged or t >= t_stop - eps_t:
-                break
-            next_b = min(next_b + T, t_stop)
+        if converged or t >= t_stop - eps_t:
+            break
+        st_f[1] = min(st_f[1] + T, t_stop)
 
+    steps, newton, rejected = int(st_i[2]), int(st_i[3]), int(st_i[4])
     w = max(1, problem.steady_window) if problem.duration is None else len(p_max)
     if not p_max:  # the run ended inside the ramp: use the last (partial) window
-        p_max, p_min, p_line = [c_max], [c_min], [c_line]
-        p_mean = [c_int / max(t - c_start, 1e-300)]
+        p_max, p_min, p_line = [float(st_f[2])], [float(st_f[3])], [float(st_f[5])]
+        p_mean = [float(st_f[4]) / max(t - c_start, 1e-300)]
     sl = slice(-min(w, len(p_max)), None)
     sp = slice(-min(w + 1, len(p_max)), None)
     result.tension_max = max(p_max[sl])
