@@ -213,8 +213,7 @@ class QuasiStaticDatabase:
     def __post_init__(self) -> None:
         if self.grid not in DATABASE_LAYOUTS:
             raise ValueError(
-                f"grid {self.grid!r} is not a database grid; allowed: "
-                f"{', '.join(DATABASE_LAYOUTS)}"
+                f"grid {self.grid!r} is not a database grid; allowed: {', '.join(DATABASE_LAYOUTS)}"
             )
         P, Q = self.first, self.second
         hp, hq = np.diff(P), np.diff(Q)
@@ -310,8 +309,7 @@ class QuasiStaticDatabase:
                 "select one case (e.g. --sel DIM=VALUE)"
             )
         tables = {
-            name: ds[f"{prefix}{name}"].transpose(*layout.dims, ...).values
-            for name in QUANTITIES
+            name: ds[f"{prefix}{name}"].transpose(*layout.dims, ...).values for name in QUANTITIES
         }
         standalone = prefix == ""
         axes = []
@@ -402,7 +400,9 @@ def _range(grid: str, P: list[float], Q: list[float]) -> str:
     if grid == "radial":
         a0, a1 = (f"{math.degrees(a):.10g}" for a in (Q[0], Q[-1]))
         return f"distance {P[0]:g} .. {P[-1]:g} m and angle {a0} .. {a1} deg"
-    return f"horizontal distance {P[0]:g} .. {P[-1]:g} m and height difference {Q[0]:g} .. {Q[-1]:g} m"
+    return (
+        f"horizontal distance {P[0]:g} .. {P[-1]:g} m and height difference {Q[0]:g} .. {Q[-1]:g} m"
+    )
 
 
 def _layout_of(ds: xr.Dataset) -> tuple[str, str]:

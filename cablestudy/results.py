@@ -196,6 +196,7 @@ OUTPUTS: dict[str, OutputVariable] = {
     ),
 }
 
+
 @dataclass(frozen=True)
 class DatabaseLayout:
     """Where a quasi-static database grid kind (``analysis.database.grid``) puts its
@@ -239,7 +240,6 @@ DATABASE_QUANTITIES: dict[str, tuple[bool, str, str]] = {
     "laid_length": (False, "m", "unstretched length on the seabed"),
     "status": (False, "1", "static status per grid point (0 ok)"),
 }
-
 
 
 def _database_outputs() -> dict[str, OutputVariable]:
@@ -535,7 +535,9 @@ def assembled_variables(
             )
             data_vars.pop("transfer_frequency")
     for grid, dim in (
-        (g, d) for lay in DATABASE_LAYOUTS.values() for g, d in zip(lay.grid_variables, lay.dims, strict=True)
+        (g, d)
+        for lay in DATABASE_LAYOUTS.values()
+        for g, d in zip(lay.grid_variables, lay.dims, strict=True)
     ):
         # the quasi-static database's grid: a coordinate when every case has the same
         if grid in data_vars and dim not in coords:

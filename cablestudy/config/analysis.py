@@ -627,8 +627,7 @@ class DatabaseSettings(StrictModel):
                     )
                 if kind == self.grid and not given:
                     raise ValueError(
-                        f"{key}: required by grid {self.grid!r} (its axes: "
-                        f"{', '.join(wanted)})"
+                        f"{key}: required by grid {self.grid!r} (its axes: {', '.join(wanted)})"
                     )
         if self.horizontal_distance is not None and self.horizontal_distance.start < 0.0:
             raise ValueError(
