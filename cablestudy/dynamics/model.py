@@ -503,7 +503,7 @@ def axial_law(code, params, knots, start, count, ea, eps):  # noqa: ANN001, ANN2
     return t, dt
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def assemble(
     x,
     v,
@@ -1117,7 +1117,7 @@ def states_changed(slip_state, trial, contact, friction):  # noqa: ANN001, ANN20
     return changed
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _static_newton(
     x,
     anchor,
