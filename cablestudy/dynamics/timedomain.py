@@ -33,7 +33,7 @@ from __future__ import annotations
 import math
 import time
 from collections import deque
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -80,6 +80,19 @@ class DynamicProblem:
     history_line : with ``history``, also keep the whole line's history (nodes)
     touchdown_tolerance : [m] largest height above the seabed at which a node counts as
         touching it (touchdown tracking; the penalty contact sinks laid nodes below it)
+    break_tension : [N] (n,) tension at which each element parts (inf: never), or None
+    break_at : [s] time at which the line parts (at its most loaded element: the largest
+        tension over its limit, or the largest tension where no limit is finite), or None
+    after_break : ``continue`` (the parts move on, free where no end holds them, to
+        ``duration`` or ``max_periods`` periods) or ``stop`` (the run ends at the break)
+    break_tolerance : [-] the break instant is where the element tension is within this
+        fraction of its limit (regula falsi on the length of the step that reaches it)
+    winch_speed : [m/s] rate of change of the first element's unstretched length (a winch
+        at end A paying out, > 0, or hauling in, < 0), from ``winch_start`` to
+        ``winch_stop`` [s]; the element's lumped mass, weight, added mass, drag and seabed
+        contact follow its length (constant per unit unstretched length)
+    winch_limits : [-] (lower, upper) bounds of the first element's length over its
+        initial length; leaving them fails the run (no re-meshing)
     """
 
     line: DiscreteLine
@@ -106,6 +119,26 @@ class DynamicProblem:
     anchor: np.ndarray | None = None
     history_line: bool = False
     touchdown_tolerance: float = 0.0
+    break_tension: np.ndarray | None = None
+    break_at: float | None = None
+    after_break: str = "continue"
+    break_tolerance: float = 1e-6
+    winch_speed: float = 0.0
+    winch_start: float = 0.0
+    winch_stop: float = math.inf
+    winch_limits: tuple[float, float] = (0.25, 4.0)
+
+    @property
+    def breakable(self) -> bool:
+        """Whether the line can part in this run."""
+        finite = self.break_tension is not None and bool(np.any(np.isfinite(self.break_tension)))
+        return finite or self.break_at is not None
+
+    def paid_out(self, t: float) -> float:
+        """Change of the first element's unstretched length by time ``t`` [m]."""
+        if self.winch_speed == 0.0:
+            return 0.0
+        return self.winch_speed * max(min(t, self.winch_stop) - self.winch_start, 0.0)
 
 
 @dataclass(kw_only=True)
@@ -128,10 +161,20 @@ class DynamicResult:
     arc length from A over the steps where the line touches the seabed (NaN if none).
     ``touchdown_tracked`` is whether the model has a seabed to touch; ``line_s`` [m]
     (n + 1,) are the nodes' arc lengths.
+
+    ``break_time`` [s] is when the line parted (NaN: it did not), ``break_element`` which
+    element (-1: none) and ``break_s`` [m] the arc length of its midpoint then. After a
+    break (and with ``duration``) the statistics and extremes cover every period after
+    the ramp to the end of the run (the last one partial where the run stopped inside
+    it). ``winch_paid_out`` [m] is the change of the unstretched length at the end.
     """
 
     status: int = STATUS_OK
     message: str = ""
+    break_time: float = math.nan
+    break_element: int = -1
+    break_s: float = math.nan
+    winch_paid_out: float = 0.0
     tension_static: float = math.nan
     tension_max: float = math.nan
     tension_min: float = math.nan
@@ -190,6 +233,7 @@ class _LineExtremes:
     def __init__(self, keep: int | None, element: np.ndarray, ends: np.ndarray, td: float):
         self.keep = keep
         self.periods: deque[list] = deque()
+        self.every: list | None = None  # every closed period folded
         self.start(element, ends, td)
 
     def start(self, element: np.ndarray, ends: np.ndarray, td: float) -> None:
@@ -207,6 +251,7 @@ class _LineExtremes:
     def close(self) -> None:
         """The current period is one of the steady-state periods: keep it."""
         self.periods.append(self.current)
+        self.every = self.current if self.every is None else self._fold([self.every, self.current])
         if self.keep is None and len(self.periods) > 1:
             self.periods.appendleft(self._fold([self.periods.popleft(), self.periods.pop()]))
         while self.keep is not None and len(self.periods) > self.keep:
@@ -223,8 +268,11 @@ class _LineExtremes:
             float(np.fmax.reduce([i[5] for i in items])),
         ]
 
-    def window(self) -> list:
-        """Extremes over the kept periods (the current partial one if none closed)."""
+    def window(self, every: bool = False) -> list:
+        """Extremes over the kept periods (``every``: over all closed periods; the
+        current partial one if none closed)."""
+        if every and self.every is not None:
+            return self._fold([self.every])
         return self._fold(list(self.periods) or [self.current])
 
 
@@ -253,6 +301,16 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     gives :data:`STATUS_TIME_LIMIT`.
     """
     line = problem.line
+    winch = _Winch(line, problem) if problem.winch_speed != 0.0 else None
+    if winch is not None:
+        line = winch.line
+    if problem.breakable:
+        line = replace(line, broken=np.zeros(line.n_elements, dtype=np.bool_))
+    limit = (
+        np.full(line.n_elements, math.inf)
+        if problem.break_tension is None
+        else np.asarray(problem.break_tension, dtype=float)
+    )
     par = AlphaParameters.from_spectral_radius(problem.spectral_radius)
     work = Workspace(line.n_elements)
     largs = line.kernel_args()
@@ -379,16 +437,35 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     next_b = min(T, t_stop)
     steps = newton = rejected = 0
     converged = False
-    while True:
-        if deadline is not None and steps % 64 == 0 and time.monotonic() > deadline:
-            result.status, result.message = (
-                STATUS_TIME_LIMIT,
-                (f"time limit reached at t = {t:.4g} s of the dynamic run"),
-            )
+    broke = False
+    tension_prev = work.tension.copy()  # element tensions at the start of the step
+    break_at = problem.break_at
+    if problem.breakable and bool(np.any(work.tension > limit)):
+        # the model's own equilibrium is already over a limit: it parts at once
+        e = int(np.argmax(work.tension / limit))
+        line.broken[e] = True
+        broke = True
+        result.break_time, result.break_element = 0.0, e
+        result.break_s = float(0.5 * (line.s[e] + line.s[e + 1]))
+        evaluate(line, x0, v0, work)
+        F0[:] = work.F
+        for i in range(x0.shape[0]):
+            if not held[i]:
+                a0[i] = -np.linalg.solve(work.M_d[i], work.F[i])
+        strain_prev[:] = work.strain
+        tension_prev[:] = work.tension
+        if problem.after_break == "stop":
+            result.tension_max = result.tension_min = result.tension_mean = t_static
+            result.tension_max_line = float(tension_prev.max(initial=t_static))
             return result
-        h = problem.step / 2**level
-        if next_b - t <= h * (1.0 + 1e-6):
-            h = next_b - t
+
+    def attempt(h: float) -> tuple[int, bool]:
+        """One generalised-alpha step of length ``h`` from the accepted state at ``t``
+        into (x1, v1, a1): (Newton iterations, converged)."""
+        if winch is not None:
+            msg = winch.set(problem.paid_out(t + h))
+            if msg:
+                raise _WinchLimit(msg)
         disp, vel, acc = problem.motion.at(t + h)
         predict(t + h, x_pred)
         np.greater(strain_prev, 0.0, out=work.taut0)
@@ -396,12 +473,12 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         # along s, so that the predictor neither stretches nor compresses the end
         # elements
         if held[0]:
-            x_pred += (1.0 - frac) * (base[0] + disp[0] - x_pred[0])[None, :]
+            x_pred[:] += (1.0 - frac) * (base[0] + disp[0] - x_pred[0])[None, :]
             x_pred[0] = base[0] + disp[0]
         if held[-1]:
-            x_pred += frac * (base[1] + disp[1] - x_pred[-1])[None, :]
+            x_pred[:] += frac * (base[1] + disp[1] - x_pred[-1])[None, :]
             x_pred[-1] = base[1] + disp[1]
-        its, ok = alpha_step(
+        return alpha_step(
             x0,
             v0,
             a0,
@@ -425,6 +502,71 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             *wargs,
             *sargs,
         )
+
+    def locate_break(h: float) -> tuple[float, int, int, bool]:
+        """The step from ``t`` to the instant an element's tension reaches its limit,
+        given that the step ``h`` overshoots it: regula falsi (Illinois) on the step
+        length for the element that crosses first by linear interpolation. Leaves the
+        state at that instant in (x1, v1, a1) and the workspace. Returns (step,
+        element, Newton iterations, converged)."""
+        over = work.tension - limit
+        with np.errstate(divide="ignore", invalid="ignore"):
+            theta = np.where(
+                over > 0.0, (limit - tension_prev) / (work.tension - tension_prev), np.inf
+            )
+        e = int(np.argmin(theta))
+        lo, g_lo = 0.0, float(tension_prev[e] - limit[e])
+        hi, g_hi = h, float(work.tension[e] - limit[e])
+        tol_t = problem.break_tolerance * float(limit[e])
+        its_all = 0
+        side = 0
+        for _ in range(60):
+            h_try = lo + (hi - lo) * (-g_lo) / (g_hi - g_lo)
+            if not (lo < h_try < hi):
+                h_try = 0.5 * (lo + hi)
+            its, ok = attempt(h_try)
+            its_all += its
+            if not ok:  # Newton failed inside the bracket: bisect towards the start
+                hi, g_hi = 0.5 * (lo + hi), g_hi
+                continue
+            g = float(work.tension[e] - limit[e])
+            if abs(g) <= tol_t or hi - lo <= 1e-12 * T:
+                if g < 0.0:  # the last converged iterate is still below: take hi
+                    its, ok = attempt(hi)
+                    its_all += its
+                    return hi, e, its_all, ok
+                return h_try, e, its_all, True
+            if g > 0.0:
+                hi, g_hi = h_try, g
+                if side == 1:
+                    g_lo *= 0.5
+                side = 1
+            else:
+                lo, g_lo = h_try, g
+                if side == -1:
+                    g_hi *= 0.5
+                side = -1
+        its, ok = attempt(hi)
+        return hi, e, its_all + its, ok
+
+    while True:
+        if deadline is not None and steps % 64 == 0 and time.monotonic() > deadline:
+            result.status, result.message = (
+                STATUS_TIME_LIMIT,
+                (f"time limit reached at t = {t:.4g} s of the dynamic run"),
+            )
+            return result
+        h = problem.step / 2**level
+        if next_b - t <= h * (1.0 + 1e-6):
+            h = next_b - t
+        if not broke and break_at is not None and break_at - t <= h * (1.0 + 1e-6):
+            h = break_at - t  # land on the failure time
+        try:
+            its, ok = attempt(h)
+        except _WinchLimit as exc:
+            result.status, result.message = STATUS_NUMERICAL, str(exc)
+            result.steps, result.newton_iterations = steps, newton
+            return result
         newton += its
         if not ok:
             rejected += 1
@@ -449,6 +591,26 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             level += 1
             clean = 0
             continue
+        parting = -1
+        if not broke and bool(np.any(work.tension > limit)):
+            try:
+                h, parting, its, ok = locate_break(h)
+            except _WinchLimit as exc:
+                result.status, result.message = STATUS_NUMERICAL, str(exc)
+                return result
+            newton += its
+            if not ok:
+                result.status = STATUS_NUMERICAL
+                result.message = f"Newton did not converge locating the break after t = {t:.6g} s"
+                return result
+            forces = end_forces(work, a1, x1, held)
+            tension = float(math.sqrt(forces[ex] @ forces[ex]))
+        elif not broke and break_at is not None and abs(t + h - break_at) <= eps_t:
+            finite = np.isfinite(limit)
+            load = work.tension / np.where(finite, limit, 1.0) if finite.any() else work.tension
+            if finite.any():
+                load = np.where(finite, load, -np.inf)
+            parting = int(np.argmax(load))
         # accept
         steps += 1
         if seabed:
@@ -462,6 +624,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         a0, a1 = a1, a0
         F0[:] = work.F
         strain_prev[:] = work.strain
+        tension_prev[:] = work.tension
         end_tensions = np.sqrt(np.sum(forces**2, 1))
         line_max = max(float(work.tension.max()), float(end_tensions.max()))
         extremes.add(work.tension, end_tensions, touchdown(x0))
@@ -472,6 +635,36 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         t_prev_tension = tension
         keep(t, forces)
         push(t, tension, end_tensions)
+        if parting >= 0:
+            broke = True
+            line.broken[parting] = True
+            result.break_time = t
+            result.break_element = parting
+            result.break_s = float(0.5 * (line.s[parting] + line.s[parting + 1]))
+            # restart from the parted state: forces without the element, accelerations
+            # in balance with them at the free nodes (the held ones keep their motion)
+            evaluate(line, x0, v0, work)
+            F0[:] = work.F
+            for i in range(x0.shape[0]):
+                if not held[i]:
+                    a0[i] = -np.linalg.solve(work.M_d[i], work.F[i])
+            strain_prev[:] = work.strain
+            tension_prev[:] = work.tension
+            past.clear()
+            forces = end_forces(work, a0, x0, held)
+            end_tensions = np.sqrt(np.sum(forces**2, 1))
+            tension = float(end_tensions[ex])
+            extremes.add(work.tension, end_tensions, touchdown(x0))
+            c_max = max(c_max, tension)
+            c_min = min(c_min, tension)
+            t_prev_tension = tension
+            keep(t, forces)
+            push(t, tension, end_tensions)
+            level = 0
+            clean = 0
+            if problem.after_break == "stop":
+                t_stop = t
+                next_b = t
         if switched or steep:
             clean = 0
         else:
@@ -481,7 +674,8 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
                 clean = 0
         if abs(t - next_b) <= eps_t:
             t = next_b
-            if c_start >= t_ramp - eps_t:
+            final = t >= t_stop - eps_t
+            if c_start >= t_ramp - eps_t or (final and not p_max):
                 p_max.append(c_max)
                 p_min.append(c_min)
                 p_mean.append(c_int / max(t - c_start, 1e-300))
@@ -492,19 +686,24 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             c_line = line_max
             c_int = 0.0
             c_start = t
-            if problem.duration is None:
+            # steady state: not after a break (the parted line has no periodic state to
+            # settle on) nor while a winch runs (the periods must start after it stops)
+            if problem.duration is None and not broke:
                 w = problem.steady_window
-                if len(p_max) >= max(problem.min_periods, w + 1):
+                if len(p_max) >= max(problem.min_periods, w + 1) and (
+                    t - (w + 1) * T >= problem.winch_stop - eps_t or winch is None
+                ):
                     converged = all(
                         abs(p_max[-j] - p_max[-j - 1]) <= problem.steady_tolerance * p_max[-j]
                         and abs(p_min[-j] - p_min[-j - 1]) <= problem.steady_tolerance * p_max[-j]
                         for j in range(1, w + 1)
                     )
-            if converged or t >= t_stop - eps_t:
+            if converged or final:
                 break
             next_b = min(next_b + T, t_stop)
 
-    w = max(1, problem.steady_window) if problem.duration is None else len(p_max)
+    every = problem.duration is not None or broke
+    w = max(1, problem.steady_window) if not every else len(p_max)
     if not p_max:  # the run ended inside the ramp: use the last (partial) window
         p_max, p_min, p_line = [c_max], [c_min], [c_line]
         p_mean = [c_int / max(t - c_start, 1e-300)]
@@ -529,7 +728,8 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         result.end_tension_min,
         result.touchdown_min,
         result.touchdown_max,
-    ) = extremes.window()
+    ) = extremes.window(every)
+    result.winch_paid_out = problem.paid_out(t)
     if keep_hist and len(buf) >= 2:
         result.history = _resample(
             buf, t, T, problem, interpolate_nodes(line.s, hs, problem.static_position[None])[0]
@@ -635,3 +835,91 @@ def warm_up() -> None:
             anchor=anchor,
         )
     )
+
+
+class _WinchLimit(Exception):
+    """The winched element left the lengths the model allows (a failure of the run)."""
+
+
+class _Winch:
+    """A winch at end A: the first element's unstretched length follows the paid-out
+    length, and what the element lumps on its two nodes follows its length (mass,
+    weight, added mass, drag, transverse damping and seabed contact per unit unstretched
+    length stay constant, so the line's mass is that of its current unstretched
+    length; the internal damping ``zeta l0 sqrt(EA m)`` and the bending terms follow
+    l0 too). Works on a private copy of the line's arrays (the kernels read them in
+    place)."""
+
+    def __init__(self, line: DiscreteLine, problem: DynamicProblem) -> None:
+        copied = {
+            k: np.array(getattr(line, k), copy=True)
+            for k in (
+                "s",
+                "rest_length",
+                "internal_damping",
+                "mass",
+                "added_mass_normal",
+                "added_mass_tangential",
+                "drag_normal",
+                "drag_tangential",
+                "force",
+                "bending",
+                "transverse_damping",
+                "seabed_stiffness",
+                "seabed_damping",
+            )
+        }
+        self.line = replace(line, **copied)
+        self.initial = {k: v.copy() for k, v in copied.items()}
+        self.per_length = np.asarray(line.first_per_length, dtype=float)
+        self.limits = problem.winch_limits
+        self.clamped = bool(np.any(line.clamp_direction[0] != 0.0))
+
+    def set(self, paid: float) -> str:
+        """Set the first element's length to its initial one plus ``paid`` [m]; returns
+        why not ("" when set)."""
+        ini, cur, pl = self.initial, self.line, self.per_length
+        l_ini = float(ini["rest_length"][0])
+        l0 = l_ini + paid
+        lo, hi = self.limits
+        if not lo * l_ini <= l0 <= hi * l_ini:
+            return (
+                f"line.winch: the winched first element would be {l0 / l_ini:.3g} times its "
+                f"initial length {l_ini:.4g} m (paid out {paid:.4g} m); the model keeps it "
+                f"between {lo:g} and {hi:g} times (no re-meshing): use fewer elements "
+                "(analysis.dynamic.elements), a shorter first segment to winch, or a "
+                "shorter pay-out"
+            )
+        half = 0.5 * paid
+        cur.rest_length[0] = l0
+        cur.s[1:] = ini["s"][1:] + paid
+        for k, key in enumerate(
+            (
+                "mass",
+                "added_mass_normal",
+                "added_mass_tangential",
+                "drag_normal",
+                "drag_tangential",
+                "transverse_damping",
+            )
+        ):
+            getattr(cur, key)[:2] = ini[key][:2] + half * pl[k]
+        cur.force[:2, 2] = ini["force"][:2, 2] - half * pl[6]
+        cur.internal_damping[0] = ini["internal_damping"][0] * l0 / l_ini
+        if pl[7] > 0.0:
+            k_new = ini["seabed_stiffness"][:2] + half * pl[7]
+            body = cur.body_added_mass[:2]
+            inertia_ini = ini["mass"][:2] + ini["added_mass_normal"][:2] + body
+            inertia = cur.mass[:2] + cur.added_mass_normal[:2] + body
+            with np.errstate(divide="ignore", invalid="ignore"):
+                ratio = np.sqrt(k_new * inertia / (ini["seabed_stiffness"][:2] * inertia_ini))
+            cur.seabed_damping[:2] = np.where(
+                np.isfinite(ratio), ini["seabed_damping"][:2] * ratio, 0.0
+            )
+            cur.seabed_stiffness[:2] = k_new
+        if cur.bending.size > 2 and ini["bending"][1] > 0.0:
+            l1 = float(ini["rest_length"][1]) if ini["rest_length"].size > 1 else l_ini
+            cur.bending[1] = ini["bending"][1] * (l_ini + l1) / (l0 + l1)
+        if self.clamped:
+            cur.bending[0] = ini["bending"][0] * l_ini / l0
+        return ""
