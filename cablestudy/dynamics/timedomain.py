@@ -81,8 +81,9 @@ class DynamicProblem:
     touchdown_tolerance : [m] largest height above the seabed at which a node counts as
         touching it (touchdown tracking; the penalty contact sinks laid nodes below it)
     break_tension : [N] (n,) tension at which each element parts (inf: never), or None
-    break_at : [s] time at which the line parts (at its most loaded element: the largest
-        tension over its limit, or the largest tension where no limit is finite), or None
+    break_at : [s] (n,) time at which each element fails (inf: never), or None: at the
+        earliest of them the line parts at the most loaded element failing then (the
+        largest tension over its limit, or the largest tension where none is finite)
     after_break : ``continue`` (the parts move on, free where no end holds them, to
         ``duration`` or ``max_periods`` periods) or ``stop`` (the run ends at the break)
     break_tolerance : [-] the break instant is where the element tension is within this
@@ -120,7 +121,7 @@ class DynamicProblem:
     history_line: bool = False
     touchdown_tolerance: float = 0.0
     break_tension: np.ndarray | None = None
-    break_at: float | None = None
+    break_at: np.ndarray | None = None
     after_break: str = "continue"
     break_tolerance: float = 1e-6
     winch_speed: float = 0.0
@@ -132,7 +133,8 @@ class DynamicProblem:
     def breakable(self) -> bool:
         """Whether the line can part in this run."""
         finite = self.break_tension is not None and bool(np.any(np.isfinite(self.break_tension)))
-        return finite or self.break_at is not None
+        timed = self.break_at is not None and bool(np.any(np.isfinite(self.break_at)))
+        return finite or timed
 
     def paid_out(self, t: float) -> float:
         """Change of the first element's unstretched length by time ``t`` [m]."""
@@ -439,7 +441,12 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     converged = False
     broke = False
     tension_prev = work.tension.copy()  # element tensions at the start of the step
-    break_at = problem.break_at
+    timed = (
+        np.asarray(problem.break_at, dtype=float)
+        if problem.break_at is not None
+        else np.full(line.n_elements, math.inf)
+    )
+    break_at: float | None = float(timed.min()) if np.isfinite(timed).any() else None
     if problem.breakable and bool(np.any(work.tension > limit)):
         # the model's own equilibrium is already over a limit: it parts at once
         e = int(np.argmax(work.tension / limit))
@@ -606,11 +613,10 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             forces = end_forces(work, a1, x1, held)
             tension = float(math.sqrt(forces[ex] @ forces[ex]))
         elif not broke and break_at is not None and abs(t + h - break_at) <= eps_t:
-            finite = np.isfinite(limit)
+            due = timed <= break_at
+            finite = np.isfinite(limit) & due
             load = work.tension / np.where(finite, limit, 1.0) if finite.any() else work.tension
-            if finite.any():
-                load = np.where(finite, load, -np.inf)
-            parting = int(np.argmax(load))
+            parting = int(np.argmax(np.where(finite if finite.any() else due, load, -np.inf)))
         # accept
         steps += 1
         if seabed:
