@@ -307,3 +307,30 @@ def test_winch_and_break_keys_no_analysis_uses_are_refused(
     err = capsys.readouterr().err
     for f in fragments:
         assert f in err, f"{f!r} not in {err}"
+
+
+def test_after_break_is_refused_for_a_spring_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    text = """\
+name: spring
+line:
+  kind: spring
+  length: 50.0
+  axial: {law: linear, stiffness: 2.0e5}
+  failure: {tension: 1.0e5}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, 0.0]}
+  b: {kind: fixed, position: [50.1, 0.0, 0.0]}
+analysis:
+  dynamic:
+    after_break: stop
+    excitation: {end: b, direction: [1, 0, 0], amplitude: 0.5, frequency: 0.1}
+"""
+    cfg = tmp_path / "spring.yaml"
+    cfg.write_text(text)
+    assert main(["validate", str(cfg)]) != 0
+    err = capsys.readouterr().err
+    assert "analysis.dynamic.after_break: the massless spring's tension" in err
+    cfg.write_text(text.replace("    after_break: stop\n", ""))
+    assert main(["validate", str(cfg)]) == 0, capsys.readouterr().err
