@@ -537,12 +537,10 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
                 hi, g_hi = 0.5 * (lo + hi), g_hi
                 continue
             g = float(work.tension[e] - limit[e])
-            if abs(g) <= tol_t or hi - lo <= 1e-12 * T:
-                if g < 0.0:  # the last converged iterate is still below: take hi
-                    its, ok = attempt(hi)
-                    its_all += its
-                    return hi, e, its_all, ok
+            if abs(g) <= tol_t:
                 return h_try, e, its_all, True
+            if hi - lo <= 1e-12 * T:
+                break
             if g > 0.0:
                 hi, g_hi = h_try, g
                 if side == 1:
@@ -589,7 +587,10 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             level += 1
             clean = 0
             continue
-        switched = bool(np.any((work.strain > 0.0) != (strain_prev > 0.0)))
+        # a slack-taut change of an element that carries force (a parted one's ends
+        # just move past each other)
+        changed = (work.strain > 0.0) != (strain_prev > 0.0)
+        switched = bool(np.any(changed & ~line.broken)) if broke else bool(np.any(changed))
         forces = end_forces(work, a1, x1, held)
         tension = float(math.sqrt(forces[ex] @ forces[ex]))
         steep = abs(tension - t_prev_tension) > problem.tension_step
