@@ -166,9 +166,10 @@ class DynamicResult:
 
     ``break_time`` [s] is when the line parted (NaN: it did not), ``break_element`` which
     element (-1: none) and ``break_s`` [m] the arc length of its midpoint then. After a
-    break (and with ``duration``) the statistics and extremes cover every period after
-    the ramp to the end of the run (the last one partial where the run stopped inside
-    it). ``winch_paid_out`` [m] is the change of the unstretched length at the end.
+    break ``tension_max``/``_min``/``_mean``/``_max_line`` and the extremes along the
+    line cover the whole run from t = 0 (the ramp included: the break may come in it),
+    so that they hold the peak that broke the line. ``winch_paid_out`` [m] is the
+    change of the unstretched length at the end.
     """
 
     status: int = STATUS_OK
@@ -235,25 +236,24 @@ class _LineExtremes:
     def __init__(self, keep: int | None, element: np.ndarray, ends: np.ndarray, td: float):
         self.keep = keep
         self.periods: deque[list] = deque()
-        self.every: list | None = None  # every closed period folded
         self.start(element, ends, td)
+        self.run = [element.copy(), element.copy(), ends.copy(), ends.copy(), td, td]
 
     def start(self, element: np.ndarray, ends: np.ndarray, td: float) -> None:
         self.current = [element.copy(), element.copy(), ends.copy(), ends.copy(), td, td]
 
     def add(self, element: np.ndarray, ends: np.ndarray, td: float) -> None:
-        c = self.current
-        np.maximum(c[0], element, out=c[0])
-        np.minimum(c[1], element, out=c[1])
-        np.maximum(c[2], ends, out=c[2])
-        np.minimum(c[3], ends, out=c[3])
-        c[4] = float(np.fmin(c[4], td))
-        c[5] = float(np.fmax(c[5], td))
+        for c in (self.current, self.run):
+            np.maximum(c[0], element, out=c[0])
+            np.minimum(c[1], element, out=c[1])
+            np.maximum(c[2], ends, out=c[2])
+            np.minimum(c[3], ends, out=c[3])
+            c[4] = float(np.fmin(c[4], td))
+            c[5] = float(np.fmax(c[5], td))
 
     def close(self) -> None:
         """The current period is one of the steady-state periods: keep it."""
         self.periods.append(self.current)
-        self.every = self.current if self.every is None else self._fold([self.every, self.current])
         if self.keep is None and len(self.periods) > 1:
             self.periods.appendleft(self._fold([self.periods.popleft(), self.periods.pop()]))
         while self.keep is not None and len(self.periods) > self.keep:
@@ -270,11 +270,11 @@ class _LineExtremes:
             float(np.fmax.reduce([i[5] for i in items])),
         ]
 
-    def window(self, every: bool = False) -> list:
-        """Extremes over the kept periods (``every``: over all closed periods; the
-        current partial one if none closed)."""
-        if every and self.every is not None:
-            return self._fold([self.every])
+    def window(self, whole_run: bool = False) -> list:
+        """Extremes over the kept periods (the current partial one if none closed), or
+        over the whole run from its start (``whole_run``)."""
+        if whole_run:
+            return self._fold([self.run])
         return self._fold(list(self.periods) or [self.current])
 
 
@@ -411,6 +411,10 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     c_line = max(t_static, float(work.tension.max()))
     c_start = 0.0
     t_prev_tension = t_static
+    # the same over the whole run (what a run with a break reports)
+    r_max = r_min = t_static
+    r_int = 0.0
+    r_line = c_line
 
     # Newton starts from a quadratic extrapolation of the last three positions: the
     # positions are smooth, whereas the accelerations of generalised-alpha carry the
@@ -639,6 +643,9 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         c_min = min(c_min, tension)
         c_int += 0.5 * (t_prev_tension + tension) * h
         c_line = max(c_line, line_max)
+        r_max, r_min = max(r_max, tension), min(r_min, tension)
+        r_int += 0.5 * (t_prev_tension + tension) * h
+        r_line = max(r_line, line_max)
         t_prev_tension = tension
         keep(t, forces)
         push(t, tension, end_tensions)
@@ -664,6 +671,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             extremes.add(work.tension, end_tensions, touchdown(x0))
             c_max = max(c_max, tension)
             c_min = min(c_min, tension)
+            r_max, r_min = max(r_max, tension), min(r_min, tension)
             t_prev_tension = tension
             keep(t, forces)
             push(t, tension, end_tensions)
@@ -709,8 +717,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
                 break
             next_b = min(next_b + T, t_stop)
 
-    every = problem.duration is not None or broke
-    w = max(1, problem.steady_window) if not every else len(p_max)
+    w = max(1, problem.steady_window) if problem.duration is None else len(p_max)
     if not p_max:  # the run ended inside the ramp: use the last (partial) window
         p_max, p_min, p_line = [c_max], [c_min], [c_line]
         p_mean = [c_int / max(t - c_start, 1e-300)]
@@ -722,6 +729,10 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     result.tension_max_line = max(p_line[sl])
     result.tension_max_spread = max(p_max[sp]) - min(p_max[sp])
     result.tension_min_spread = max(p_min[sp]) - min(p_min[sp])
+    if broke:  # the whole run, ramp included (the break may come in it)
+        result.tension_max, result.tension_min = r_max, r_min
+        result.tension_mean = r_int / max(t, 1e-300)
+        result.tension_max_line = r_line
     result.steady_converged = converged
     result.steps, result.newton_iterations, result.rejected_steps = steps, newton, rejected
     result.periods = t / T
@@ -735,7 +746,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         result.end_tension_min,
         result.touchdown_min,
         result.touchdown_max,
-    ) = extremes.window(every)
+    ) = extremes.window(broke)
     result.winch_paid_out = problem.paid_out(t)
     if keep_hist and len(buf) >= 2:
         result.history = _resample(
