@@ -112,40 +112,124 @@ class EndMotion:
         }
         return ends | {t.end for t in self.tables}
 
-    def _ramp(self, t: float) -> tuple[float, float, float]:
-        tr = self.ramp_time
-        if tr <= 0.0 or t >= tr:
-            return 1.0, 0.0, 0.0
-        if t <= 0.0:
-            return 0.0, 0.0, 0.0
-        w = math.pi / tr
-        c, s = math.cos(w * t), math.sin(w * t)
-        return 0.5 * (1.0 - c), 0.5 * w * s, 0.5 * w * w * c
+    def __post_init__(self) -> None:
+        tabs = self.tables
+        xs = [np.asarray(t.spline.x, dtype=float) for t in tabs]
+        xo = np.cumsum([0] + [x.size for x in xs])
+        co = np.cumsum([0] + [x.size - 1 for x in xs])
+        args = (
+            np.asarray(self.harmonic_end, dtype=np.int64),
+            np.asarray(self.harmonic_direction, dtype=float).reshape(-1, 3),
+            np.asarray(self.harmonic_amplitude, dtype=float),
+            np.asarray(self.harmonic_frequency, dtype=float),
+            np.asarray(self.harmonic_phase, dtype=float),
+            float(self.ramp_time),
+            np.array([t.end for t in tabs], dtype=np.int64),
+            np.array([t.direction for t in tabs], dtype=float).reshape(-1, 3),
+            np.array([t.periodic for t in tabs], dtype=np.bool_),
+            np.array([t.values[-1] for t in tabs], dtype=float),
+            np.concatenate(xs) if xs else np.zeros(0),
+            np.concatenate([t.spline.c for t in tabs], axis=1) if tabs else np.zeros((4, 0)),
+            xo.astype(np.int64),
+            co.astype(np.int64),
+        )
+        object.__setattr__(self, "_kernel_args", args)
 
-    def unramped(self, t: float) -> np.ndarray:
-        """Displacement, velocity, acceleration without the ramp, shape (3, 2, 3):
-        [quantity, end, component]."""
-        out = np.zeros((3, 2, 3))
-        if self.harmonic_amplitude.size:
-            _harmonics(
-                t,
-                self.harmonic_end,
-                self.harmonic_direction,
-                self.harmonic_amplitude,
-                self.harmonic_frequency,
-                self.harmonic_phase,
-                out,
-            )
-        for tab in self.tables:
-            u, du, ddu = tab.evaluate(t)
-            out[0, tab.end] += u * tab.direction
-            out[1, tab.end] += du * tab.direction
-            out[2, tab.end] += ddu * tab.direction
-        return out
+    def kernel_args(self) -> tuple:
+        """The motion as the arrays :func:`motion_at` takes (harmonics, ramp, tables as
+        piecewise cubics)."""
+        return self._kernel_args  # type: ignore[attr-defined]
 
     def at(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Displacement [m], velocity [m/s], acceleration [m/s^2] of ends A and B at
         time ``t`` [s], each (2, 3), ramp included."""
-        raw = self.unramped(t)
-        r, dr, ddr = self._ramp(t)
-        return (r * raw[0], r * raw[1] + dr * raw[0], r * raw[2] + 2.0 * dr * raw[1] + ddr * raw[0])
+        out = np.zeros((3, 2, 3))
+        motion_at(t, *self.kernel_args(), out)
+        return out[0], out[1], out[2]
+
+
+@njit(cache=True)
+def _table(t, k, periodic, last, xs, cs, xo, co):  # noqa: ANN001, ANN202
+    """Displacement, velocity, acceleration of table ``k`` (a piecewise cubic, the
+    table's spline) at ``t`` [s]: wrapped into the period when periodic, the last value
+    held after a non-periodic table's end, extrapolated before its start."""
+    x0 = xs[xo[k]]
+    x1 = xs[xo[k + 1] - 1]
+    if periodic[k]:
+        t = x0 + (t - x0) % (x1 - x0)
+    elif t >= x1:
+        return last[k], 0.0, 0.0
+    lo = xo[k]
+    hi = xo[k + 1] - 2  # last interval's left breakpoint
+    i = lo
+    if t >= xs[hi]:
+        i = hi
+    elif t > xs[lo]:
+        a, b = lo, hi
+        while b - a > 1:  # xs[a] <= t < xs[b]
+            m = (a + b) // 2
+            if xs[m] <= t:
+                a = m
+            else:
+                b = m
+        i = a
+    j = co[k] + (i - lo)
+    d = t - xs[i]
+    c0, c1, c2, c3 = cs[0, j], cs[1, j], cs[2, j], cs[3, j]
+    return (
+        ((c0 * d + c1) * d + c2) * d + c3,
+        (3.0 * c0 * d + 2.0 * c1) * d + c2,
+        6.0 * c0 * d + 2.0 * c1,
+    )
+
+
+@njit(cache=True)
+def motion_at(  # noqa: ANN201
+    t,
+    h_end,
+    h_dir,
+    h_amp,
+    h_freq,
+    h_phase,
+    ramp_time,
+    tab_end,
+    tab_dir,
+    tab_periodic,
+    tab_last,
+    tab_x,
+    tab_c,
+    tab_xo,
+    tab_co,
+    out,
+):  # noqa: ANN001
+    """Displacement, velocity and acceleration of ends A and B at ``t`` [s], ramp
+    included, into ``out`` (3, 2, 3) [quantity, end, component] (overwritten): the
+    harmonics and the tables of :class:`EndMotion`'s :meth:`~EndMotion.kernel_args`."""
+    for q in range(3):
+        for e in range(2):
+            for a in range(3):
+                out[q, e, a] = 0.0
+    _harmonics(t, h_end, h_dir, h_amp, h_freq, h_phase, out)
+    for k in range(tab_end.shape[0]):
+        u, du, ddu = _table(t, k, tab_periodic, tab_last, tab_x, tab_c, tab_xo, tab_co)
+        e = tab_end[k]
+        for a in range(3):
+            d = tab_dir[k, a]
+            out[0, e, a] += u * d
+            out[1, e, a] += du * d
+            out[2, e, a] += ddu * d
+    tr = ramp_time
+    if tr <= 0.0 or t >= tr:
+        return
+    if t <= 0.0:
+        r = dr = ddr = 0.0
+    else:
+        w = math.pi / tr
+        c, s = math.cos(w * t), math.sin(w * t)
+        r, dr, ddr = 0.5 * (1.0 - c), 0.5 * w * s, 0.5 * w * w * c
+    for e in range(2):
+        for a in range(3):
+            u, du, ddu = out[0, e, a], out[1, e, a], out[2, e, a]
+            out[0, e, a] = r * u
+            out[1, e, a] = r * du + dr * u
+            out[2, e, a] = r * ddu + 2.0 * dr * du + ddr * u

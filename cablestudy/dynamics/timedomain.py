@@ -40,8 +40,15 @@ import numpy as np
 from ..physics.seabed import touchdown_arc_length
 from ..statics.base import STATUS_NUMERICAL, STATUS_OK, STATUS_TIME_LIMIT
 from .excitation import EndMotion
-from .integrator import AlphaParameters, alpha_step
-from .model import DiscreteLine, Workspace, evaluate, interpolate_nodes, update_anchors
+from .integrator import (
+    NEWTON_FAILED,
+    PARTED,
+    REACHED_BOUNDARY,
+    WINCH_LIMIT,
+    AlphaParameters,
+    march,
+)
+from .model import DiscreteLine, Workspace, evaluate, interpolate_nodes
 
 #: extra step halvings allowed beyond ``max_refinement`` when Newton fails
 NEWTON_RESCUE_HALVINGS = 8
@@ -231,29 +238,42 @@ def end_forces(
 class _LineExtremes:
     """Per-step extremes along the line over each period: element and end tensions
     [N] (largest and smallest) and the touchdown arc length [m] (NaN where no contact).
-    Keeps the last ``keep`` periods (None: folds every period into one)."""
+    The current period's are arrays the compiled step loop updates in place
+    (``element`` (2, n) and ``end`` (2, 2): largest, smallest; ``touchdown`` (2,):
+    least, greatest). Keeps the last ``keep`` periods (None: folds every period into
+    one)."""
 
     def __init__(self, keep: int | None, element: np.ndarray, ends: np.ndarray, td: float):
         self.keep = keep
         self.periods: deque[list] = deque()
+        self.element = np.empty((2, element.size))
+        self.end = np.empty((2, 2))
+        self.touchdown = np.empty(2)
         self.start(element, ends, td)
-        self.run = [element.copy(), element.copy(), ends.copy(), ends.copy(), td, td]
+        self.run = self.current()  # the whole run, folded at every period boundary
 
     def start(self, element: np.ndarray, ends: np.ndarray, td: float) -> None:
-        self.current = [element.copy(), element.copy(), ends.copy(), ends.copy(), td, td]
+        self.element[:] = element[None, :]
+        self.end[:] = ends[None, :]
+        self.touchdown[:] = td
 
-    def add(self, element: np.ndarray, ends: np.ndarray, td: float) -> None:
-        for c in (self.current, self.run):
-            np.maximum(c[0], element, out=c[0])
-            np.minimum(c[1], element, out=c[1])
-            np.maximum(c[2], ends, out=c[2])
-            np.minimum(c[3], ends, out=c[3])
-            c[4] = float(np.fmin(c[4], td))
-            c[5] = float(np.fmax(c[5], td))
+    def current(self) -> list:
+        return [
+            self.element[0].copy(),
+            self.element[1].copy(),
+            self.end[0].copy(),
+            self.end[1].copy(),
+            float(self.touchdown[0]),
+            float(self.touchdown[1]),
+        ]
+
+    def fold_run(self) -> None:
+        """Fold the current period into the whole run's extremes."""
+        self.run = self._fold([self.run, self.current()])
 
     def close(self) -> None:
         """The current period is one of the steady-state periods: keep it."""
-        self.periods.append(self.current)
+        self.periods.append(self.current())
         if self.keep is None and len(self.periods) > 1:
             self.periods.appendleft(self._fold([self.periods.popleft(), self.periods.pop()]))
         while self.keep is not None and len(self.periods) > self.keep:
@@ -272,10 +292,10 @@ class _LineExtremes:
 
     def window(self, whole_run: bool = False) -> list:
         """Extremes over the kept periods (the current partial one if none closed), or
-        over the whole run from its start (``whole_run``)."""
+        over the whole run (``whole_run``, the current period folded in)."""
         if whole_run:
-            return self._fold([self.run])
-        return self._fold(list(self.periods) or [self.current])
+            return self._fold([self.run, self.current()])
+        return self._fold(list(self.periods) or [self.current()])
 
 
 def _hermite(t: np.ndarray, y: np.ndarray, dy: np.ndarray, tq: np.ndarray) -> np.ndarray:
@@ -303,23 +323,43 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     gives :data:`STATUS_TIME_LIMIT`.
     """
     line = problem.line
-    winch = _Winch(line, problem) if problem.winch_speed != 0.0 else None
-    if winch is not None:
-        line = winch.line
+    winching = problem.winch_speed != 0.0
+    if winching:  # the winch changes these in place: a private copy
+        line = replace(line, **{k: np.array(getattr(line, k), copy=True) for k in _WINCHED})
     if problem.breakable:
         line = replace(line, broken=np.zeros(line.n_elements, dtype=np.bool_))
     limit = (
         np.full(line.n_elements, math.inf)
         if problem.break_tension is None
-        else np.asarray(problem.break_tension, dtype=float)
+        else np.array(problem.break_tension, dtype=float)
     )
+    timed = (
+        np.asarray(problem.break_at, dtype=float)
+        if problem.break_at is not None
+        else np.full(line.n_elements, math.inf)
+    )
+    break_at = float(timed.min()) if np.isfinite(timed).any() else math.inf
+    due = timed <= break_at
+    ctl = np.array(
+        [
+            break_at,
+            problem.break_tolerance,
+            float(problem.breakable),
+            problem.winch_speed,
+            problem.winch_start,
+            problem.winch_stop,
+            *problem.winch_limits,
+            float(np.any(line.clamp_direction[0] != 0.0)),
+        ]
+    )
+    wini = _winch_initial(line)
+    s_ini = line.s.copy()
     par = AlphaParameters.from_spectral_radius(problem.spectral_radius)
     work = Workspace(line.n_elements)
     largs = line.kernel_args()
     wargs = work.assemble_args()
     sargs = work.solver_args(line)
     held = line.held
-    seabed = line.has_seabed
 
     x0 = np.array(problem.static_position, dtype=float, copy=True)
     v0 = np.zeros_like(x0)
@@ -361,7 +401,6 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     t_ramp = problem.motion.ramp_time
     t_stop = problem.duration if problem.duration is not None else problem.max_periods * T
     tol = problem.newton_tolerance
-    max_level = problem.max_refinement
     eps_t = 1e-9 * T
 
     # history buffer: (t, end tension, x, v, a at the history points, and with
@@ -406,57 +445,41 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     p_min: list[float] = []
     p_mean: list[float] = []
     p_line: list[float] = []
-    c_max = c_min = t_static
-    c_int = 0.0
-    c_line = max(t_static, float(work.tension.max()))
     c_start = 0.0
-    t_prev_tension = t_static
-    # the same over the whole run (what a run with a break reports)
-    r_max = r_min = t_static
-    r_int = 0.0
-    r_line = c_line
-
+    # the compiled step loop's state (see integrator.march): t, period boundary, the
+    # current period's max, min, integral and largest line tension, the last end
+    # tension, line maximum, touchdown and step; level, clean steps, steps, Newton
+    # iterations, rejected steps, positions kept for the predictor, parted, element
+    c_line0 = max(t_static, float(work.tension.max()))
+    st_f = np.array(
+        [0.0, min(T, t_stop), t_static, t_static, 0.0, c_line0, t_static, c_line0, 0.0, 0.0]
+    )
+    st_i = np.zeros(8, dtype=np.int64)
+    # the same over the whole run (what a run with a break reports), folded at every
+    # period boundary
+    r_max, r_min, r_int, r_line = t_static, t_static, 0.0, c_line0
     # Newton starts from a quadratic extrapolation of the last three positions: the
     # positions are smooth, whereas the accelerations of generalised-alpha carry the
     # decaying unresolved axial modes, which a Taylor predictor would amplify into
     # large spurious stretches.
-    past: deque[tuple[float, np.ndarray]] = deque()
-    frac = (line.s / line.s[-1])[:, None]
+    past_x = np.zeros((2, *x0.shape))
+    past_t = np.zeros(2)
+    frac = line.s / line.s[-1]
     x_pred = np.empty_like(x0)
+    ends = np.zeros(2)
+    forces = np.zeros((2, 3))
+    single = problem.keep_steps or keep_hist
+    budget = 64 if deadline is not None else 2**62
+    margs = problem.motion.kernel_args()
+    tension_prev = work.tension.copy()
 
-    def predict(t_new: float, out: np.ndarray) -> None:
-        if len(past) < 2:
-            np.add(x0, (t_new - t) * v0, out=out)
-            return
-        (ta, xa), (tb, xb) = past[0], past[1]
-        tc = t
-        la = (t_new - tb) * (t_new - tc) / ((ta - tb) * (ta - tc))
-        lb = (t_new - ta) * (t_new - tc) / ((tb - ta) * (tb - tc))
-        lc = (t_new - ta) * (t_new - tb) / ((tc - ta) * (tc - tb))
-        np.multiply(xa, la, out=out)
-        out += lb * xb
-        out += lc * x0
-
-    t = 0.0
-    level = 0
-    clean = 0
-    next_b = min(T, t_stop)
-    steps = newton = rejected = 0
-    converged = False
-    broke = False
-    tension_prev = work.tension.copy()  # element tensions at the start of the step
-    timed = (
-        np.asarray(problem.break_at, dtype=float)
-        if problem.break_at is not None
-        else np.full(line.n_elements, math.inf)
-    )
-    break_at: float | None = float(timed.min()) if np.isfinite(timed).any() else None
-    if problem.breakable and bool(np.any(work.tension > limit)):
-        # the model's own equilibrium is already over a limit: it parts at once
-        e = int(np.argmax(work.tension / limit))
-        line.broken[e] = True
-        broke = True
-        result.break_time, result.break_element = 0.0, e
+    def part_restart() -> None:
+        """The line has parted (``line.broken``): forces without the element, and the
+        free nodes' accelerations in balance with them (the held ones keep their
+        motion), so the integrator restarts from the parted state."""
+        e = int(st_i[7])
+        result.break_time = float(st_f[0])
+        result.break_element = e
         result.break_s = float(0.5 * (line.s[e] + line.s[e + 1]))
         evaluate(line, x0, v0, work)
         F0[:] = work.F
@@ -465,262 +488,164 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
                 a0[i] = -np.linalg.solve(work.M_d[i], work.F[i])
         strain_prev[:] = work.strain
         tension_prev[:] = work.tension
+        st_i[5] = 0  # the predictor starts afresh
+        st_i[0] = st_i[1] = 0
+        f = end_forces(work, a0, x0, held)
+        forces[:] = f
+        ends[:] = np.sqrt(np.sum(f**2, 1))
+        st_f[6] = float(ends[ex])
+        st_f[2] = max(st_f[2], st_f[6])
+        st_f[3] = min(st_f[3], st_f[6])
+        np.minimum(extremes.element[1], work.tension, out=extremes.element[1])
+        np.minimum(extremes.end[1], ends, out=extremes.end[1])
+
+    if problem.breakable and bool(np.any(work.tension > limit)):
+        # the model's own equilibrium is already over a limit: it parts at once
+        st_i[7] = int(np.argmax(work.tension / limit))
+        st_i[6] = 1
+        line.broken[st_i[7]] = True
+        part_restart()
         if problem.after_break == "stop":
             result.tension_max = result.tension_min = result.tension_mean = t_static
-            result.tension_max_line = float(tension_prev.max(initial=t_static))
+            result.tension_max_line = c_line0
             return result
 
-    def attempt(h: float) -> tuple[int, bool]:
-        """One generalised-alpha step of length ``h`` from the accepted state at ``t``
-        into (x1, v1, a1): (Newton iterations, converged)."""
-        if winch is not None:
-            msg = winch.set(problem.paid_out(t + h))
-            if msg:
-                raise _WinchLimit(msg)
-        disp, vel, acc = problem.motion.at(t + h)
-        predict(t + h, x_pred)
-        np.greater(strain_prev, 0.0, out=work.taut0)
-        # move the whole line with the ends' prescribed correction, shared linearly
-        # along s, so that the predictor neither stretches nor compresses the end
-        # elements
-        if held[0]:
-            x_pred[:] += (1.0 - frac) * (base[0] + disp[0] - x_pred[0])[None, :]
-            x_pred[0] = base[0] + disp[0]
-        if held[-1]:
-            x_pred[:] += frac * (base[1] + disp[1] - x_pred[-1])[None, :]
-            x_pred[-1] = base[1] + disp[1]
-        return alpha_step(
+    converged = False
+    while True:
+        if deadline is not None and time.monotonic() > deadline:
+            result.status, result.message = (
+                STATUS_TIME_LIMIT,
+                (f"time limit reached at t = {st_f[0]:.4g} s of the dynamic run"),
+            )
+            return result
+        code = march(
+            st_f,
+            st_i,
             x0,
             v0,
             a0,
+            x1,
+            v1,
+            a1,
             F0,
-            h,
-            base + disp,
-            vel,
-            acc,
+            strain_prev,
+            x_pred,
+            past_x,
+            past_t,
+            base,
+            frac,
+            margs,
+            ends,
+            forces,
+            extremes.element,
+            extremes.end,
+            extremes.touchdown,
+            line.s,
+            problem.touchdown_tolerance,
+            problem.step,
+            problem.max_refinement,
+            problem.max_refinement + NEWTON_RESCUE_HALVINGS,
+            problem.tension_step,
+            ex,
+            eps_t,
             par.alpha_m,
             par.alpha_f,
             par.beta,
             par.gamma,
             tol,
             problem.max_newton_iterations,
-            x_pred,
-            x1,
-            v1,
-            a1,
+            single,
+            budget,
             work.anchor,
-            *largs,
-            *wargs,
-            *sargs,
+            largs,
+            wargs,
+            sargs,
+            ctl,
+            limit,
+            due,
+            tension_prev,
+            wini,
+            line.first_per_length,
+            s_ini,
         )
-
-    def locate_break(h: float) -> tuple[float, int, int, bool]:
-        """The step from ``t`` to the instant an element's tension reaches its limit,
-        given that the step ``h`` overshoots it: regula falsi (Illinois) on the step
-        length for the element that crosses first by linear interpolation. Leaves the
-        state at that instant in (x1, v1, a1) and the workspace. Returns (step,
-        element, Newton iterations, converged)."""
-        over = work.tension - limit
-        with np.errstate(divide="ignore", invalid="ignore"):
-            theta = np.where(
-                over > 0.0, (limit - tension_prev) / (work.tension - tension_prev), np.inf
+        t = float(st_f[0])
+        if code == NEWTON_FAILED:
+            level = int(st_i[0])
+            result.status = STATUS_NUMERICAL
+            result.message = (
+                f"Newton did not converge at t = {t:.6g} s with step "
+                f"{st_f[9]:.3g} s ({problem.step:.3g} s halved {level} times)"
             )
-        e = int(np.argmin(theta))
-        lo, g_lo = 0.0, float(tension_prev[e] - limit[e])
-        hi, g_hi = h, float(work.tension[e] - limit[e])
-        tol_t = problem.break_tolerance * float(limit[e])
-        its_all = 0
-        side = 0
-        for _ in range(60):
-            h_try = lo + (hi - lo) * (-g_lo) / (g_hi - g_lo)
-            if not (lo < h_try < hi):
-                h_try = 0.5 * (lo + hi)
-            its, ok = attempt(h_try)
-            its_all += its
-            if not ok:  # Newton failed inside the bracket: bisect towards the start
-                hi, g_hi = 0.5 * (lo + hi), g_hi
-                continue
-            g = float(work.tension[e] - limit[e])
-            if abs(g) <= tol_t:
-                return h_try, e, its_all, True
-            if hi - lo <= 1e-12 * T:
-                break
-            if g > 0.0:
-                hi, g_hi = h_try, g
-                if side == 1:
-                    g_lo *= 0.5
-                side = 1
-            else:
-                lo, g_lo = h_try, g
-                if side == -1:
-                    g_hi *= 0.5
-                side = -1
-        its, ok = attempt(hi)
-        return hi, e, its_all + its, ok
-
-    while True:
-        if deadline is not None and steps % 64 == 0 and time.monotonic() > deadline:
-            result.status, result.message = (
-                STATUS_TIME_LIMIT,
-                (f"time limit reached at t = {t:.4g} s of the dynamic run"),
+            result.steps, result.newton_iterations = int(st_i[2]), int(st_i[3])
+            result.rejected_steps = int(st_i[4])
+            return result
+        if code == WINCH_LIMIT:
+            paid, l_ini = float(st_f[9]), float(wini[0, 0])
+            lo, hi = problem.winch_limits
+            result.status = STATUS_NUMERICAL
+            result.message = (
+                f"line.winch: at t = {t:.4g} s the winched first element would be "
+                f"{(l_ini + paid) / l_ini:.3g} times its initial length {l_ini:.4g} m (paid "
+                f"out {paid:.4g} m); the model keeps it between {lo:g} and {hi:g} times (no "
+                "re-meshing): use fewer elements (analysis.dynamic.elements) or a shorter "
+                "pay-out"
             )
+            result.steps, result.newton_iterations = int(st_i[2]), int(st_i[3])
             return result
-        h = problem.step / 2**level
-        if next_b - t <= h * (1.0 + 1e-6):
-            h = next_b - t
-        if not broke and break_at is not None and break_at - t <= h * (1.0 + 1e-6):
-            h = break_at - t  # land on the failure time
-        try:
-            its, ok = attempt(h)
-        except _WinchLimit as exc:
-            result.status, result.message = STATUS_NUMERICAL, str(exc)
-            result.steps, result.newton_iterations = steps, newton
-            return result
-        newton += its
-        if not ok:
-            rejected += 1
-            if level >= max_level + NEWTON_RESCUE_HALVINGS:
-                result.status = STATUS_NUMERICAL
-                result.message = (
-                    f"Newton did not converge at t = {t:.6g} s with step "
-                    f"{h:.3g} s ({problem.step:.3g} s halved {level} times)"
-                )
-                result.steps, result.newton_iterations = steps, newton
-                result.rejected_steps = rejected
-                return result
-            level += 1
-            clean = 0
-            continue
-        # a slack-taut change of an element that carries force (a parted one's ends
-        # just move past each other)
-        changed = (work.strain > 0.0) != (strain_prev > 0.0)
-        switched = bool(np.any(changed & ~line.broken)) if broke else bool(np.any(changed))
-        forces = end_forces(work, a1, x1, held)
-        tension = float(math.sqrt(forces[ex] @ forces[ex]))
-        steep = abs(tension - t_prev_tension) > problem.tension_step
-        if (switched or steep) and level < max_level:
-            rejected += 1
-            level += 1
-            clean = 0
-            continue
-        parting = -1
-        if not broke and bool(np.any(work.tension > limit)):
-            try:
-                h, parting, its, ok = locate_break(h)
-            except _WinchLimit as exc:
-                result.status, result.message = STATUS_NUMERICAL, str(exc)
-                return result
-            newton += its
-            if not ok:
-                result.status = STATUS_NUMERICAL
-                result.message = f"Newton did not converge locating the break after t = {t:.6g} s"
-                return result
-            forces = end_forces(work, a1, x1, held)
-            tension = float(math.sqrt(forces[ex] @ forces[ex]))
-        elif not broke and break_at is not None and abs(t + h - break_at) <= eps_t:
-            due = timed <= break_at
-            finite = np.isfinite(limit) & due
-            load = work.tension / np.where(finite, limit, 1.0) if finite.any() else work.tension
-            parting = int(np.argmax(np.where(finite if finite.any() else due, load, -np.inf)))
-        # accept
-        steps += 1
-        if seabed:
-            update_anchors(x1, work.friction, line.seabed_stiffness, work.contact, work.anchor)
-        past.append((t, x0.copy()))
-        if len(past) > 2:
-            past.popleft()
-        t += h
-        x0, x1 = x1, x0
-        v0, v1 = v1, v0
-        a0, a1 = a1, a0
-        F0[:] = work.F
-        strain_prev[:] = work.strain
-        tension_prev[:] = work.tension
-        end_tensions = np.sqrt(np.sum(forces**2, 1))
-        line_max = max(float(work.tension.max()), float(end_tensions.max()))
-        extremes.add(work.tension, end_tensions, touchdown(x0))
-        c_max = max(c_max, tension)
-        c_min = min(c_min, tension)
-        c_int += 0.5 * (t_prev_tension + tension) * h
-        c_line = max(c_line, line_max)
-        r_max, r_min = max(r_max, tension), min(r_min, tension)
-        r_int += 0.5 * (t_prev_tension + tension) * h
-        r_line = max(r_line, line_max)
-        t_prev_tension = tension
-        keep(t, forces)
-        push(t, tension, end_tensions)
-        if parting >= 0:
-            broke = True
-            line.broken[parting] = True
-            result.break_time = t
-            result.break_element = parting
-            result.break_s = float(0.5 * (line.s[parting] + line.s[parting + 1]))
-            # restart from the parted state: forces without the element, accelerations
-            # in balance with them at the free nodes (the held ones keep their motion)
-            evaluate(line, x0, v0, work)
-            F0[:] = work.F
-            for i in range(x0.shape[0]):
-                if not held[i]:
-                    a0[i] = -np.linalg.solve(work.M_d[i], work.F[i])
-            strain_prev[:] = work.strain
-            tension_prev[:] = work.tension
-            past.clear()
-            forces = end_forces(work, a0, x0, held)
-            end_tensions = np.sqrt(np.sum(forces**2, 1))
-            tension = float(end_tensions[ex])
-            extremes.add(work.tension, end_tensions, touchdown(x0))
-            c_max = max(c_max, tension)
-            c_min = min(c_min, tension)
-            r_max, r_min = max(r_max, tension), min(r_min, tension)
-            t_prev_tension = tension
+        if single:
             keep(t, forces)
-            push(t, tension, end_tensions)
-            level = 0
-            clean = 0
+            push(t, float(st_f[6]), ends)
+        if code == PARTED:
+            part_restart()
+            if single:
+                keep(t, forces)
+                push(t, float(st_f[6]), ends)
             if problem.after_break == "stop":
                 t_stop = t
-                next_b = t
-        if switched or steep:
-            clean = 0
-        else:
-            clean += 1
-            if clean >= 2 and level > 0:
-                level -= 1
-                clean = 0
-        if abs(t - next_b) <= eps_t:
-            t = next_b
-            final = t >= t_stop - eps_t
-            if c_start >= t_ramp - eps_t or (final and not p_max):
-                p_max.append(c_max)
-                p_min.append(c_min)
-                p_mean.append(c_int / max(t - c_start, 1e-300))
-                p_line.append(c_line)
-                extremes.close()
-            extremes.start(work.tension, end_tensions, touchdown(x0))
-            c_max = c_min = tension
-            c_line = line_max
-            c_int = 0.0
-            c_start = t
-            # steady state: not after a break (the parted line has no periodic state to
-            # settle on) nor while a winch runs (the periods must start after it stops)
-            if problem.duration is None and not broke:
-                w = problem.steady_window
-                if len(p_max) >= max(problem.min_periods, w + 1) and (
-                    t - (w + 1) * T >= problem.winch_stop - eps_t or winch is None
-                ):
-                    converged = all(
-                        abs(p_max[-j] - p_max[-j - 1]) <= problem.steady_tolerance * p_max[-j]
-                        and abs(p_min[-j] - p_min[-j - 1]) <= problem.steady_tolerance * p_max[-j]
-                        for j in range(1, w + 1)
-                    )
-            if converged or final:
-                break
-            next_b = min(next_b + T, t_stop)
+            if abs(t - st_f[1]) > eps_t and t < t_stop - eps_t:
+                continue
+            st_f[1] = t  # a boundary here: the period (or the run) closes at the break
+        elif code != REACHED_BOUNDARY:
+            continue
+        tension = float(st_f[6])
+        final = t >= t_stop - eps_t
+        r_max, r_min = max(r_max, float(st_f[2])), min(r_min, float(st_f[3]))
+        r_int += float(st_f[4])
+        r_line = max(r_line, float(st_f[5]))
+        extremes.fold_run()
+        if c_start >= t_ramp - eps_t or (final and not p_max):
+            p_max.append(float(st_f[2]))
+            p_min.append(float(st_f[3]))
+            p_mean.append(float(st_f[4]) / max(t - c_start, 1e-300))
+            p_line.append(float(st_f[5]))
+            extremes.close()
+        extremes.start(work.tension, ends, float(st_f[8]))
+        st_f[2] = st_f[3] = tension
+        st_f[4] = 0.0
+        st_f[5] = st_f[7]
+        c_start = t
+        # steady state: not after a break (the parted line has no periodic state to
+        # settle on) nor while a winch runs (the periods must start after it stops)
+        if problem.duration is None and st_i[6] == 0:
+            w = problem.steady_window
+            if len(p_max) >= max(problem.min_periods, w + 1) and (
+                not winching or t - (w + 1) * T >= problem.winch_stop - eps_t
+            ):
+                converged = all(
+                    abs(p_max[-j] - p_max[-j - 1]) <= problem.steady_tolerance * p_max[-j]
+                    and abs(p_min[-j] - p_min[-j - 1]) <= problem.steady_tolerance * p_max[-j]
+                    for j in range(1, w + 1)
+                )
+        if converged or final:
+            break
+        st_f[1] = min(st_f[1] + T, t_stop)
 
+    broke = bool(st_i[6])
+    steps, newton, rejected = int(st_i[2]), int(st_i[3]), int(st_i[4])
     w = max(1, problem.steady_window) if problem.duration is None else len(p_max)
     if not p_max:  # the run ended inside the ramp: use the last (partial) window
-        p_max, p_min, p_line = [c_max], [c_min], [c_line]
-        p_mean = [c_int / max(t - c_start, 1e-300)]
+        p_max, p_min, p_line = [float(st_f[2])], [float(st_f[3])], [float(st_f[5])]
+        p_mean = [float(st_f[4]) / max(t - c_start, 1e-300)]
     sl = slice(-min(w, len(p_max)), None)
     sp = slice(-min(w + 1, len(p_max)), None)
     result.tension_max = max(p_max[sl])
@@ -855,89 +780,47 @@ def warm_up() -> None:
     )
 
 
-class _WinchLimit(Exception):
-    """The winched element left the lengths the model allows (a failure of the run)."""
+#: the line's arrays a winch changes (copied per run)
+_WINCHED = (
+    "s",
+    "rest_length",
+    "internal_damping",
+    "mass",
+    "added_mass_normal",
+    "added_mass_tangential",
+    "drag_normal",
+    "drag_tangential",
+    "force",
+    "bending",
+    "transverse_damping",
+    "seabed_stiffness",
+    "seabed_damping",
+)
 
 
-class _Winch:
-    """A winch at end A: the first element's unstretched length follows the paid-out
-    length, and what the element lumps on its two nodes follows its length (mass,
-    weight, added mass, drag, transverse damping and seabed contact per unit unstretched
-    length stay constant, so the line's mass is that of its current unstretched
-    length; the internal damping ``zeta l0 sqrt(EA m)`` and the bending terms follow
-    l0 too). Works on a private copy of the line's arrays (the kernels read them in
-    place)."""
-
-    def __init__(self, line: DiscreteLine, problem: DynamicProblem) -> None:
-        copied = {
-            k: np.array(getattr(line, k), copy=True)
-            for k in (
-                "s",
-                "rest_length",
-                "internal_damping",
-                "mass",
-                "added_mass_normal",
-                "added_mass_tangential",
-                "drag_normal",
-                "drag_tangential",
-                "force",
-                "bending",
-                "transverse_damping",
-                "seabed_stiffness",
-                "seabed_damping",
-            )
-        }
-        self.line = replace(line, **copied)
-        self.initial = {k: v.copy() for k, v in copied.items()}
-        self.per_length = np.asarray(line.first_per_length, dtype=float)
-        self.limits = problem.winch_limits
-        self.clamped = bool(np.any(line.clamp_direction[0] != 0.0))
-
-    def set(self, paid: float) -> str:
-        """Set the first element's length to its initial one plus ``paid`` [m]; returns
-        why not ("" when set)."""
-        ini, cur, pl = self.initial, self.line, self.per_length
-        l_ini = float(ini["rest_length"][0])
-        l0 = l_ini + paid
-        lo, hi = self.limits
-        if not lo * l_ini <= l0 <= hi * l_ini:
-            return (
-                f"line.winch: the winched first element would be {l0 / l_ini:.3g} times its "
-                f"initial length {l_ini:.4g} m (paid out {paid:.4g} m); the model keeps it "
-                f"between {lo:g} and {hi:g} times (no re-meshing): use fewer elements "
-                "(analysis.dynamic.elements), a shorter first segment to winch, or a "
-                "shorter pay-out"
-            )
-        half = 0.5 * paid
-        cur.rest_length[0] = l0
-        cur.s[1:] = ini["s"][1:] + paid
-        for k, key in enumerate(
-            (
-                "mass",
-                "added_mass_normal",
-                "added_mass_tangential",
-                "drag_normal",
-                "drag_tangential",
-                "transverse_damping",
-            )
-        ):
-            getattr(cur, key)[:2] = ini[key][:2] + half * pl[k]
-        cur.force[:2, 2] = ini["force"][:2, 2] - half * pl[6]
-        cur.internal_damping[0] = ini["internal_damping"][0] * l0 / l_ini
-        if pl[7] > 0.0:
-            k_new = ini["seabed_stiffness"][:2] + half * pl[7]
-            body = cur.body_added_mass[:2]
-            inertia_ini = ini["mass"][:2] + ini["added_mass_normal"][:2] + body
-            inertia = cur.mass[:2] + cur.added_mass_normal[:2] + body
-            with np.errstate(divide="ignore", invalid="ignore"):
-                ratio = np.sqrt(k_new * inertia / (ini["seabed_stiffness"][:2] * inertia_ini))
-            cur.seabed_damping[:2] = np.where(
-                np.isfinite(ratio), ini["seabed_damping"][:2] * ratio, 0.0
-            )
-            cur.seabed_stiffness[:2] = k_new
-        if cur.bending.size > 2 and ini["bending"][1] > 0.0:
-            l1 = float(ini["rest_length"][1]) if ini["rest_length"].size > 1 else l_ini
-            cur.bending[1] = ini["bending"][1] * (l_ini + l1) / (l0 + l1)
-        if self.clamped:
-            cur.bending[0] = ini["bending"][0] * l_ini / l0
-        return ""
+def _winch_initial(line: DiscreteLine) -> np.ndarray:
+    """The initial values :func:`cablestudy.dynamics.integrator.winch_set` starts from
+    (12, 2): lengths of elements 0 and 1, internal damping of element 0, then for nodes
+    0 and 1 mass, added mass normal and tangential, drag normal and tangential,
+    transverse damping, vertical force, seabed stiffness and damping, bending."""
+    out = np.zeros((12, 2))
+    l0 = line.rest_length
+    out[0] = (l0[0], l0[1] if l0.size > 1 else l0[0])
+    out[1, 0] = line.internal_damping[0]
+    for row, arr in enumerate(
+        (
+            line.mass,
+            line.added_mass_normal,
+            line.added_mass_tangential,
+            line.drag_normal,
+            line.drag_tangential,
+            line.transverse_damping,
+            line.force[:, 2],
+            line.seabed_stiffness,
+            line.seabed_damping,
+            line.bending,
+        ),
+        start=2,
+    ):
+        out[row] = arr[:2]
+    return out

@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numba import njit
 
 
 def touchdown_arc_length(
@@ -40,10 +41,25 @@ def touchdown_arc_length(
     """
     s = np.asarray(s, dtype=float)
     gap = np.asarray(z, dtype=float) - seabed_z
-    on = gap <= tol
-    first_on = int(on.argmax())
-    first_off = int((~on).argmax())
-    if s.size < 2 or not on[first_on] or on[first_off]:  # no contact, or nothing else
+    return touchdown_from_gap(s, np.ascontiguousarray(gap, dtype=float), float(tol))
+
+
+@njit(cache=True)
+def touchdown_from_gap(s, gap, tol):  # noqa: ANN001, ANN201
+    """:func:`touchdown_arc_length` from the nodes' heights above the seabed ``gap``
+    [m] (n,): compiled, since the time step tracks the touchdown point every step."""
+    n = s.shape[0]
+    if n < 2:
+        return math.nan
+    first_on = -1
+    first_off = -1
+    for i in range(n):
+        on_i = gap[i] <= tol
+        if on_i and first_on < 0:
+            first_on = i
+        if not on_i and first_off < 0:
+            first_off = i
+    if first_on < 0 or first_off < 0:  # no contact, or nothing else
         return math.nan
     if first_on == 0:
         last = first_off - 1  # last touching node of the run from A
@@ -52,17 +68,19 @@ def touchdown_arc_length(
         last = first_on  # first touching node seen from A
         step = -1
     first = last + step  # the first suspended node beyond the run
-    base = min(float(gap[last]), tol)  # level of the touching part
-    h1 = float(gap[first]) - base
+    base = min(gap[last], tol)  # level of the touching part
+    h1 = gap[first] - base
     second = first + step
-    lo = last - step if 0 <= last - step < s.size and on[last - step] else last
+    lo = last
+    if 0 <= last - step < n and gap[last - step] <= tol:
+        lo = last - step
     s_td = math.nan
-    if 0 <= second < s.size and not on[second]:
-        r1, r2 = math.sqrt(h1), math.sqrt(max(float(gap[second]) - base, 0.0))
+    if 0 <= second < n and not gap[second] <= tol:
+        r1, r2 = math.sqrt(h1), math.sqrt(max(gap[second] - base, 0.0))
         if r2 > r1:
-            s_td = float(s[first]) - r1 * float(s[second] - s[first]) / (r2 - r1)
+            s_td = s[first] - r1 * (s[second] - s[first]) / (r2 - r1)
     if math.isnan(s_td):
-        w = (tol - float(gap[last])) / (float(gap[first]) - float(gap[last]))
-        s_td = float(s[last]) + min(max(w, 0.0), 1.0) * float(s[first] - s[last])
-    a, b = sorted((float(s[lo]), float(s[first])))
+        w = (tol - gap[last]) / (gap[first] - gap[last])
+        s_td = s[last] + min(max(w, 0.0), 1.0) * (s[first] - s[last])
+    a, b = min(s[lo], s[first]), max(s[lo], s[first])
     return min(max(s_td, a), b)
