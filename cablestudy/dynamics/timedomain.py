@@ -23,7 +23,16 @@ generalised-alpha method (:mod:`.integrator`) and
   point's range of travel;
 * optionally keeps time histories of the end tension and of the motion of chosen
   points, and of the whole line (node positions and velocities, element and end
-  tensions), resampled uniformly over the last periods.
+  tensions), resampled uniformly over the last periods;
+* parts the line (``break_tension``, ``break_at``) at the instant an element's tension
+  reaches its limit, found inside the step by regula falsi on the step length (a
+  tension interpolated across the step would miss a snap load's curvature; re-solving
+  the step from its start costs a few Newton solves), or at the failure time; the
+  element is flagged broken (no force, no moment) and the run restarts from the parted
+  state with the free nodes' accelerations in balance, then goes on without
+  steady-state detection (or stops: ``after_break``);
+* winches end A (``winch_speed``): the first element's unstretched length changes
+  with its mass, weight, drag and contact per metre kept.
 
 Pure: arrays in, a :class:`DynamicResult` out (status, message, counters).
 """
