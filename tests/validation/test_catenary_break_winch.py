@@ -216,6 +216,14 @@ def test_break_yaml_to_netcdf_stop_and_continue(tmp_path: Path) -> None:
     ds = run_yaml(tmp_path, data)
     assert int(ds["status"]) == 0
     assert np.isnan(float(ds["break_time"])) and np.isnan(float(ds["break_s"]))
+    # a limit below the static tension (222.7 N at A): broken in statics as before
+    # (status 10, static data kept), the dynamics not run
+    data = study(failure={"tension": 100.0}, dynamic={"duration": 2.0})
+    data["name"] = "broken-static"
+    ds = run_yaml(tmp_path, data)
+    assert int(ds["status"]) == 10 and int(ds["dynamic_status"]) == 5
+    assert "broken" in str(ds["message"].values)
+    assert np.isfinite(ds["tension"].values).all()
 
 
 CLUMP = 10.0  # [N] hanging below end B
