@@ -1,15 +1,19 @@
 """Work precision of the quasi-static database (issue 12 item 7): a lookup against a
-direct static solve, at random end-B positions inside the grid.
+direct static solve, at random end-B positions inside the grid, for both grids.
 
 Line: a suspended two-section line in water (chain 60 m of 80 kg/m over wire 140 m of
-12 kg/m, EA 8e8 / 2e8 N), end A fixed, end B over horizontal distance 120..180 m and
-height difference 60..120 m (no seabed: the tabulated quantities are smooth, so the
-bicubic error falls as h^4; with touchdown the laid length has a kink where the line
-lifts off, which any smooth interpolant rounds). Reference: the `catenary` solver at
-tolerance 1e-12 at 200 random points (seeded). Error: the largest end-force component
-error over the points, relative to the largest end tension. Times: the median lookup
-(all quantities at once) and the median direct solve (compiled catenary, the fastest
-static path) at tolerance 1e-9 and 1e-12.
+12 kg/m, EA 8e8 / 2e8 N), end A fixed, no seabed (the tabulated quantities are smooth,
+so the bicubic error falls as h^4; with touchdown the laid length has a kink where the
+line lifts off, which any smooth interpolant rounds). End B over
+- grid cartesian: horizontal distance 110..150 m, height difference 50..100 m;
+- grid radial (the seed's grid for lines off the seabed): distance 100..150 m, chord
+  angle -30..30 deg (B from 75 m below A to 75 m above it).
+Reference: the `catenary` solver at tolerance 1e-12 at 200 random points (seeded,
+uniform in the grid's own coordinates). Error: the largest end-force component error
+over the points, relative to the largest end tension. Times: the median lookup by
+(x, z) (all quantities at once; the radial one converts to (d, a) first) and the
+median direct solve (compiled catenary, the fastest static path) at tolerance 1e-6,
+1e-9 and 1e-12.
 """
 
 from __future__ import annotations
@@ -19,9 +23,21 @@ import numpy as np
 from cablestudy.bench import WorkPrecision, median_time
 
 R0, R1, H0, H1 = 110.0, 150.0, 50.0, 100.0
+D0, D1, A0, A1 = 100.0, 150.0, -30.0, 30.0
 
 
-def study(n: int, tolerance: float = 1e-12):  # noqa: ANN201
+def study(n: int, tolerance: float = 1e-12, grid: str = "cartesian"):  # noqa: ANN201
+    if grid == "radial":
+        database = {
+            "grid": "radial",
+            "distance": {"start": D0, "stop": D1, "num": n},
+            "angle_deg": {"start": A0, "stop": A1, "num": n},
+        }
+    else:
+        database = {
+            "horizontal_distance": {"start": R0, "stop": R1, "num": n},
+            "height_difference": {"start": H0, "stop": H1, "num": n},
+        }
     from cablestudy.config import Study
 
     return Study.model_validate(
@@ -50,10 +66,7 @@ def study(n: int, tolerance: float = 1e-12):  # noqa: ANN201
             },
             "analysis": {
                 "static": {"method": "catenary", "nodes": 41, "tolerance": tolerance},
-                "database": {
-                    "horizontal_distance": {"start": R0, "stop": R1, "num": n},
-                    "height_difference": {"start": H0, "stop": H1, "num": n},
-                },
+                "database": database,
             },
         }
     )
@@ -70,15 +83,28 @@ def direct(st, r: float, h: float):  # noqa: ANN001, ANN201
     return replace(p, end_b=EndCondition(kind="fixed", position=rB))
 
 
-def run(quick: bool = False) -> WorkPrecision:
-    from cablestudy.database import QUANTITIES, QuasiStaticDatabase, solve_database
+def points(grid: str, n: int, rng: np.random.Generator) -> np.ndarray:
+    """``n`` random end-B positions (x, z) from end A inside the grid, uniform in its
+    own coordinates."""
+    if grid == "radial":
+        d = rng.uniform(D0, D1, n)
+        a = np.radians(rng.uniform(A0, A1, n))
+        return np.column_stack((d * np.cos(a), d * np.sin(a)))
+    return np.column_stack((rng.uniform(R0, R1, n), rng.uniform(H0, H1, n)))
+
+
+def work_precision(grid: str, quick: bool) -> WorkPrecision:
+    from cablestudy.database import QUANTITIES, QuasiStaticDatabase, grid_values, solve_database
+    from cablestudy.results import DATABASE_LAYOUTS
     from cablestudy.statics import STATIC_SOLVERS
 
     solver = STATIC_SOLVERS["catenary"]
+    prefix = DATABASE_LAYOUTS[grid].prefix
     rng = np.random.default_rng(12)
     npts = 60 if quick else 200
-    pts = np.column_stack((rng.uniform(R0, R1, npts), rng.uniform(H0, H1, npts)))
-    ref_study = study(4)
+    pts = points(grid, npts, rng)
+    probe = tuple(pts[0])
+    ref_study = study(4, grid=grid)
     refs = []
     for r, h in pts:
         res = solver.solve(direct(ref_study, r, h))
@@ -86,20 +112,20 @@ def run(quick: bool = False) -> WorkPrecision:
         refs.append(np.concatenate((res.force_a, res.force_b)))
     refs = np.array(refs)
     scale = float(np.max(np.linalg.norm(refs[:, 3:], axis=1)))
+    suffix = "" if grid == "cartesian" else "_radial"
     wp = WorkPrecision(
-        name="database_lookup",
-        title="Quasi-static database: lookup vs direct solve",
-        error_name="max end-force error / max end tension at 200 random points [-]",
+        name=f"database_lookup{suffix}",
+        title=f"Quasi-static database ({grid} grid): lookup vs direct solve",
+        error_name=f"max end-force error / max end tension at {npts} random points [-]",
         time_name="median wall time per evaluation [s]",
     )
-    c = wp.curve("cablestudy database lookup (bicubic C1)")
+    c = wp.curve(f"cablestudy database lookup ({grid} grid, bicubic C1)")
     for n in (5, 9, 17) if quick else (5, 9, 17, 33):
-        st = study(n)
+        st = study(n, grid=grid)
         data = solve_database(st)
+        P, Q = grid_values(st)
         db = QuasiStaticDatabase.from_arrays(
-            data["database_distance_grid"],
-            data["database_height_grid"],
-            {k: data[f"database_{k}"] for k in QUANTITIES},
+            P, Q, {k: data[f"{prefix}{k}"] for k in QUANTITIES}, grid=grid
         )
         got = np.array(
             [
@@ -108,13 +134,13 @@ def run(quick: bool = False) -> WorkPrecision:
             ]
         )
         err = float(np.max(np.abs(got - refs))) / scale
-        t = median_time(lambda db=db: db.lookup_array(130.3, 70.7), repeats=5)
-        t_dict = median_time(lambda db=db: db.lookup(130.3, 70.7), repeats=5)
+        t = median_time(lambda db=db: db.lookup_array(*probe), repeats=5)
+        t_dict = median_time(lambda db=db: db.lookup(*probe), repeats=5)
         wp.notes.append(f"{n}x{n}: lookup as a dict of named quantities {t_dict * 1e6:.1f} us")
         c.add(f"{n}x{n} grid", t, err)
     c = wp.curve("cablestudy catenary direct solve (compiled)")
     for tol in (1e-6, 1e-9, 1e-12):
-        st = study(4, tol)
+        st = study(4, tol, grid=grid)
         probs = [direct(st, r, h) for r, h in pts[:40]]
         got = np.array(
             [np.concatenate((x.force_a, x.force_b)) for x in (solver.solve(p) for p in probs)]
@@ -125,8 +151,12 @@ def run(quick: bool = False) -> WorkPrecision:
     return wp
 
 
+def run(quick: bool = False) -> list[WorkPrecision]:
+    return [work_precision(grid, quick) for grid in ("cartesian", "radial")]
+
+
 if __name__ == "__main__":
-    w = run()
-    for cv in w.curves:
-        for s, t, e in zip(cv.settings, cv.times, cv.errors, strict=True):
-            print(f"{cv.method:45s} {s:18s} {t * 1e6:10.1f} us  error {e:.2e}")
+    for w in run():
+        for cv in w.curves:
+            for s, t, e in zip(cv.settings, cv.times, cv.errors, strict=True):
+                print(f"{cv.method:50s} {s:18s} {t * 1e6:10.1f} us  error {e:.2e}")

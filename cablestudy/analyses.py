@@ -94,6 +94,16 @@ def check_supported(cases: list[Case], src: StudySource) -> None:
                 problems.append(msg)
     problems.extend(p for p in _dynamic_problems(cases, src) if p not in problems)
     problems.extend(p for p in _linear_model_problems(cases, src) if p not in problems)
+    grids = sorted(
+        {c.study.analysis.database.grid for c in cases if c.study.analysis.database is not None}
+    )
+    if len(grids) > 1:
+        where = src.line_of(("analysis", "database")) or ""
+        problems.append(
+            f"{where}: analysis.database.grid: the sweep gives grids {grids}; the database "
+            "file holds one grid kind; allowed: the same grid in every case (run one study "
+            "per grid kind)"
+        )
     if problems:
         raise StudyError(problems, src.source)
 

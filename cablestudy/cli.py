@@ -377,14 +377,18 @@ def _add_lookup_parser(sub: argparse._SubParsersAction) -> None:  # type: ignore
         "lookup",
         help="interpolate a quasi-static database (analysis.database) at an end-B position",
     )
-    p.add_argument("database", help="result file holding the database")
+    p.add_argument(
+        "database",
+        help="the database's own file (<name>.database.nc) or the study's result (<name>.nc)",
+    )
     p.add_argument(
         "--at",
         nargs=2,
         type=float,
         required=True,
         metavar=("X", "Z"),
-        help="horizontal distance [m] and height difference [m] of end B from end A",
+        help="horizontal distance [m] and height difference [m] of end B from end A (for a "
+        "radial grid too: converted to its distance and angle)",
     )
     p.add_argument(
         "--sel",

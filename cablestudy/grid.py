@@ -86,10 +86,13 @@ def grid_shape(axes: list[SweepAxis]) -> list[int]:
 
 
 def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
-    """A static-only, still-water, method 'catenary' study whose swept paths are all
-    end positions of fixed ends or segment stiffnesses, with numeric values."""
+    """A static-only, still-water, method 'catenary' study without a quasi-static
+    database (its grid of solves per case is not an array kernel) whose swept paths are
+    all end positions of fixed ends or segment stiffnesses, with numeric values."""
     an = template.analysis
     if an.modal is not None or an.dynamic is not None or an.static.method != "catenary":
+        return False
+    if an.database is not None:
         return False
     if template.environment.current:
         return False

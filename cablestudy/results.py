@@ -82,46 +82,6 @@ OUTPUTS: dict[str, OutputVariable] = {
     "winch_paid_out": OutputVariable(
         (), "m", "change of the unstretched length by the winch at the end of the run"
     ),
-    "database_force_a": OutputVariable(
-        ("horizontal_distance", "height_difference", "component"),
-        "N",
-        "quasi-static database: force of the line on end A",
-    ),
-    "database_force_b": OutputVariable(
-        ("horizontal_distance", "height_difference", "component"),
-        "N",
-        "quasi-static database: force of the line on end B",
-    ),
-    "database_tension_a": OutputVariable(
-        ("horizontal_distance", "height_difference"), "N", "quasi-static database: tension at A"
-    ),
-    "database_tension_b": OutputVariable(
-        ("horizontal_distance", "height_difference"), "N", "quasi-static database: tension at B"
-    ),
-    "database_tension_max": OutputVariable(
-        ("horizontal_distance", "height_difference"),
-        "N",
-        "quasi-static database: largest tension along the line",
-    ),
-    "database_laid_length": OutputVariable(
-        ("horizontal_distance", "height_difference"),
-        "m",
-        "quasi-static database: unstretched length on the seabed",
-    ),
-    "database_status": OutputVariable(
-        ("horizontal_distance", "height_difference"),
-        "1",
-        "quasi-static database: static status per grid point (0 ok)",
-    ),
-    "database_distance_grid": OutputVariable(
-        ("horizontal_distance",), "m", "horizontal distance from end A to end B"
-    ),
-    "database_height_grid": OutputVariable(
-        ("height_difference",), "m", "height of end B above end A"
-    ),
-    "database_heading": OutputVariable(
-        (), "rad", "heading of the database plane from end A (from +x towards +y)"
-    ),
     "tension_a": OutputVariable((), "N", "tension at end A"),
     "tension_b": OutputVariable((), "N", "tension at end B"),
     "laid_length": OutputVariable((), "m", "unstretched length resting on the seabed"),
@@ -244,6 +204,74 @@ OUTPUTS: dict[str, OutputVariable] = {
         ("time", "s"), "N", "effective tension along the whole line (history)"
     ),
 }
+
+
+@dataclass(frozen=True)
+class DatabaseLayout:
+    """Where a quasi-static database grid kind (``analysis.database.grid``) puts its
+    tables: the prefix of its variables in the study dataset, its two grid dimensions,
+    and the study-dataset variables holding the grid values (coordinates of those
+    dimensions when every case shares them)."""
+
+    prefix: str
+    dims: tuple[str, str]
+    grid_variables: tuple[str, str]
+    #: (units, long name) of each grid dimension
+    grid_attrs: tuple[tuple[str, str], tuple[str, str]]
+
+
+#: per grid kind of ``analysis.database``
+DATABASE_LAYOUTS: dict[str, DatabaseLayout] = {
+    "cartesian": DatabaseLayout(
+        "database_",
+        ("horizontal_distance", "height_difference"),
+        ("database_distance_grid", "database_height_grid"),
+        (("m", "horizontal distance from end A to end B"), ("m", "height of end B above end A")),
+    ),
+    "radial": DatabaseLayout(
+        "database_radial_",
+        ("distance", "angle"),
+        ("database_radial_distance_grid", "database_radial_angle_grid"),
+        (
+            ("m", "distance from end A to end B"),
+            ("rad", "angle of the chord from end A to end B above the horizontal"),
+        ),
+    ),
+}
+
+#: the tabulated quantities of a database: name -> (vector?, units, long name)
+DATABASE_QUANTITIES: dict[str, tuple[bool, str, str]] = {
+    "force_a": (True, "N", "force of the line on end A"),
+    "force_b": (True, "N", "force of the line on end B"),
+    "tension_a": (False, "N", "tension at A"),
+    "tension_b": (False, "N", "tension at B"),
+    "tension_max": (False, "N", "largest tension along the line"),
+    "laid_length": (False, "m", "unstretched length on the seabed"),
+    "status": (False, "1", "static status per grid point (0 ok)"),
+}
+
+
+def _database_outputs() -> dict[str, OutputVariable]:
+    """The study-dataset variables of every database layout (``database_*``)."""
+    out = {}
+    for lay in DATABASE_LAYOUTS.values():
+        for q, (vector, units, long_name) in DATABASE_QUANTITIES.items():
+            out[f"{lay.prefix}{q}"] = OutputVariable(
+                lay.dims + (("component",) if vector else ()),
+                units,
+                f"quasi-static database: {long_name}",
+            )
+        for dim, var, (units, long_name) in zip(
+            lay.dims, lay.grid_variables, lay.grid_attrs, strict=True
+        ):
+            out[var] = OutputVariable((dim,), units, long_name)
+    return out
+
+
+OUTPUTS.update(_database_outputs())
+OUTPUTS["database_heading"] = OutputVariable(
+    (), "rad", "heading of the database plane from end A (from +x towards +y)"
+)
 
 #: the analyses a case may run, each with a ``<name>_status`` where the study asks for it
 ANALYSES = ("static", "modal", "dynamic")
@@ -517,8 +545,9 @@ def assembled_variables(
             )
             data_vars.pop("transfer_frequency")
     for grid, dim in (
-        ("database_distance_grid", "horizontal_distance"),
-        ("database_height_grid", "height_difference"),
+        (g, d)
+        for lay in DATABASE_LAYOUTS.values()
+        for g, d in zip(lay.grid_variables, lay.dims, strict=True)
     ):
         # the quasi-static database's grid: a coordinate when every case has the same
         if grid in data_vars and dim not in coords:

@@ -163,6 +163,8 @@ class RunSummary:
     scheduler: str = ""
     #: seconds per phase, where measured (solve, assembly, write)
     timings: dict[str, float] = field(default_factory=dict)
+    #: the quasi-static database's own file, where the study has one
+    database_path: Path | None = None
 
     def report(self) -> str:
         """Text summary; failures grouped by message (numbers in messages masked so that
@@ -172,6 +174,8 @@ class RunSummary:
             f"{self.n_reused} reused from cache), {self.n_failed} failed, "
             f"{self.wall_time:.2f} s" + (f" ({self.scheduler})" if self.scheduler else "")
         ]
+        if self.database_path is not None:
+            lines.append(f"wrote {self.database_path}: the quasi-static database")
         for pattern, (count, example) in group_failures(self.failures).items():
             if len(lines) == 1:
                 lines.append("failures by message:")
@@ -490,6 +494,7 @@ def run_study(
     # written by netCDF4 directly (the file xarray writes, without importing it)
     variables = assembled_variables(axes, cases, records, src, solver_settings=solver_settings)
     path = write_variables_atomic(*variables, out_dir / f"{name}.nc")
+    database = write_database_file(variables, axes, cases, src, out_dir)
     cache.compact({c.hash for c in cases})
     failures = Counter(records[c.hash].message for c in cases if records[c.hash].status != 0)
     return RunSummary(
@@ -501,7 +506,29 @@ def run_study(
         wall_time=time.perf_counter() - t0,
         failures=dict(failures),
         scheduler=used,
+        database_path=database,
     )
+
+
+def write_database_file(
+    variables: tuple[Any, Any, Any],
+    axes: list[SweepAxis],
+    cases: list[Case],
+    src: StudySource,
+    out_dir: Path,
+) -> Path | None:
+    """Write ``<out_dir>/<name>.database.nc`` (:mod:`cablestudy.database_file`) from the
+    study dataset's variables when they hold a quasi-static database; otherwise remove a
+    file of that name left by an earlier run of the study, which would no longer
+    describe it."""
+    from .database_file import database_file_name, database_variables
+
+    target = out_dir / database_file_name(str(src.data["name"]))
+    db_vars = database_variables(variables, axes, cases, src)
+    if db_vars is None:
+        target.unlink(missing_ok=True)
+        return None
+    return write_variables_atomic(*db_vars, target)
 
 
 #: cases per chunk of a study run as arrays (rows of the first axis are never split);
@@ -638,6 +665,11 @@ def run_grid_study(
             shutil.rmtree(scratch, ignore_errors=True)
     for p in transient:
         p.unlink(missing_ok=True)
+    # a study run as arrays has no database (cablestudy.grid refuses one): a database
+    # file of this name is an earlier run's, which no longer describes the study
+    from .database_file import database_file_name
+
+    (out_dir / database_file_name(name)).unlink(missing_ok=True)
     if use_cache:
         store.keep(set(files.values()) - transient)
     return RunSummary(

@@ -564,10 +564,11 @@ class DynamicSettings(StrictModel):
 
 
 class GridAxis(StrictModel):
-    """``num`` equally spaced values from ``start`` to ``stop`` (both included) [m]."""
+    """``num`` equally spaced values from ``start`` to ``stop`` (both included), in the
+    unit of the key (m, or deg for ``angle_deg``)."""
 
-    start: Finite = Field(description="first value [m]")
-    stop: Finite = Field(description="last value [m]")
+    start: Finite = Field(description="first value [m, or deg for angle_deg]")
+    stop: Finite = Field(description="last value [m, or deg for angle_deg]")
     num: int = Field(ge=4, le=2000, description="number of values (>= 4: bicubic) [-]")
 
     @model_validator(mode="after")
@@ -584,26 +585,82 @@ class GridAxis(StrictModel):
         return [float(f"{self.start + i * step:.15g}") for i in range(self.num)]
 
 
+#: the keys of each database grid: (first axis, second axis)
+DATABASE_GRID_KEYS: dict[str, tuple[str, str]] = {
+    "cartesian": ("horizontal_distance", "height_difference"),
+    "radial": ("distance", "angle_deg"),
+}
+
+
 class DatabaseSettings(StrictModel):
     """The quasi-static database (aqwa seed 5.8.1.4): the static line solved over a grid
     of end-B positions relative to end A (fixed), in the vertical plane through A and the
-    study's end B. Written to the study's dataset on the dimensions
-    ``horizontal_distance`` and ``height_difference``; ``cablestudy lookup`` and
-    :func:`cablestudy.database.open_database` interpolate it (C1 bicubic)."""
+    study's end B. ``grid: cartesian`` (default) tabulates horizontal distance and height
+    difference; ``grid: radial`` (the seed's grid for lines off the seabed) the distance
+    from A to B and the angle of the chord A-B above the horizontal. Written to the
+    study's dataset (``database_*``) and to ``<name>.database.nc``; ``cablestudy lookup``
+    and :func:`cablestudy.database.open_database` interpolate it (C1 bicubic)."""
 
-    horizontal_distance: GridAxis = Field(
-        description="horizontal distance from end A to end B [m] (>= 0)"
+    grid: Literal["cartesian", "radial"] = Field(
+        "cartesian",
+        description="cartesian: horizontal_distance x height_difference; radial (lines "
+        "off the seabed, no environment.depth): distance x angle_deg",
     )
-    height_difference: GridAxis = Field(description="height of end B above end A, z_B - z_A [m]")
+    horizontal_distance: GridAxis | None = Field(
+        None, description="grid cartesian: horizontal distance from end A to end B [m] (>= 0)"
+    )
+    height_difference: GridAxis | None = Field(
+        None, description="grid cartesian: height of end B above end A, z_B - z_A [m]"
+    )
+    distance: GridAxis | None = Field(
+        None, description="grid radial: distance from end A to end B, |r_B - r_A| [m] (> 0)"
+    )
+    angle_deg: GridAxis | None = Field(
+        None,
+        description="grid radial: angle of the chord from A to B above the horizontal "
+        "[deg] (-90 .. 90)",
+    )
 
     @model_validator(mode="after")
-    def _non_negative(self) -> DatabaseSettings:
-        if self.horizontal_distance.start < 0.0:
+    def _grid_keys(self) -> DatabaseSettings:
+        wanted = DATABASE_GRID_KEYS[self.grid]
+        for kind, keys in DATABASE_GRID_KEYS.items():
+            for key in keys:
+                given = getattr(self, key) is not None
+                if kind != self.grid and given:
+                    raise ValueError(
+                        f"{key}: an axis of grid {kind!r}, not of grid {self.grid!r}; "
+                        f"allowed with grid {self.grid!r}: {', '.join(wanted)}"
+                    )
+                if kind == self.grid and not given:
+                    raise ValueError(
+                        f"{key}: required by grid {self.grid!r} (its axes: {', '.join(wanted)})"
+                    )
+        if self.horizontal_distance is not None and self.horizontal_distance.start < 0.0:
             raise ValueError(
                 "horizontal_distance.start must be >= 0 (a distance; the direction is that "
                 f"from end A to end B) (got {self.horizontal_distance.start})"
             )
+        if self.distance is not None and self.distance.start <= 0.0:
+            raise ValueError(
+                "distance.start must be > 0 (the angle of B about A is undefined at A itself) "
+                f"(got {self.distance.start})"
+            )
+        if self.angle_deg is not None and not (
+            -90.0 <= self.angle_deg.start and self.angle_deg.stop <= 90.0
+        ):
+            raise ValueError(
+                "angle_deg must lie in -90 .. 90 (above the horizontal, towards the study's "
+                f"end B) (got {self.angle_deg.start} .. {self.angle_deg.stop})"
+            )
         return self
+
+    @property
+    def axes(self) -> tuple[GridAxis, GridAxis]:
+        """The grid's two axes, in the order of :data:`DATABASE_GRID_KEYS`."""
+        a, b = (getattr(self, k) for k in DATABASE_GRID_KEYS[self.grid])
+        assert a is not None and b is not None
+        return a, b
 
 
 class Analysis(StrictModel):

@@ -31,7 +31,14 @@ from numba import njit
 
 from ..physics.seabed import touchdown_from_gap
 from .excitation import motion_at
-from .model import _trial_states, assemble, solve_banded, states_changed, update_anchors
+from .model import (
+    _trial_states,
+    assemble,
+    contact_states,
+    solve_banded,
+    states_changed,
+    update_anchors,
+)
 
 
 @dataclass(frozen=True)
@@ -155,9 +162,29 @@ def alpha_step(
     cm = (1.0 - alpha_m) / (beta * h * h)
     cv = gamma / (beta * h)
     lmin = rest_length.min()
-    has_friction = (friction[0] > 0.0 or friction[1] > 0.0) and seabed_stiffness.max() > 0.0
+    has_seabed = seabed_stiffness.max() > 0.0
+    has_friction = (friction[0] > 0.0 or friction[1] > 0.0) and has_seabed
     fix_states = has_friction
+    # contact is an active set like friction: each node's touching / not touching is
+    # held during the Newton iterations (the contact force then smooth: no jump of the
+    # damping force c v_n, no kink of the spring), taken from the predictor, and
+    # checked once they converge
+    fixed_contact = has_seabed and slip_state.shape[1] > 2
+    flips = np.zeros(n, dtype=np.int64)
+    if fixed_contact:
+        contact_states(
+            x1,
+            v1,
+            seabed_normal,
+            seabed_offset,
+            seabed_stiffness,
+            seabed_damping,
+            slip_state,
+            False,
+            flips,
+        )
     checks = 0
+    clips = 0
     it = 0
     while True:
         assemble(
@@ -228,13 +255,23 @@ def alpha_step(
         if not math.isfinite(res):
             return it, False
         if res <= tol:
-            if (
-                has_friction
-                and checks < MAX_STATE_CHECKS
-                and states_changed(slip_state, trial, contact, friction)
-            ):
-                checks += 1
-                continue  # converged with a wrong stick/slip guess: again with the new one
+            if checks < MAX_STATE_CHECKS:
+                changed = fixed_contact and contact_states(
+                    x1,
+                    v1,
+                    seabed_normal,
+                    seabed_offset,
+                    seabed_stiffness,
+                    seabed_damping,
+                    slip_state,
+                    True,
+                    flips,
+                )
+                if has_friction and states_changed(slip_state, trial, contact, friction):
+                    changed = True
+                if changed:
+                    checks += 1
+                    continue  # converged with a wrong guess of a state: again with the new
             return it, True
         if it == max_iterations or n_free == 0:
             break
@@ -266,11 +303,32 @@ def alpha_step(
                 big = max(big, abs(dx[i, c]))
         if big > lmin or not math.isfinite(big):
             return it, False
+        # a node that would cross the seabed plane (land or lift off) stops on it: the
+        # contact force has a kink there, across which the tangent of one side sends
+        # Newton back and forth between contact and none; from the plane, the next
+        # iteration sees the contact's own tangent. The whole correction is scaled
+        # (its direction kept), a few times per step at most.
+        scale = 1.0
+        if clips < MAX_LANDING_CLIPS:
+            for i in range(n):
+                if held[i] or seabed_stiffness[i] <= 0.0:
+                    continue
+                if slip_state.shape[1] > 2 and (slip_state[i, 2] == 1 or slip_state[i, 2] == 2):
+                    continue  # a held contact state: no kink to stop at
+                g0 = -seabed_offset
+                g1 = -seabed_offset
+                for c in range(3):
+                    g0 += seabed_normal[c] * x1[i, c]
+                    g1 += seabed_normal[c] * (x1[i, c] + dx[i, c])
+                if (g0 > 0.0 and g1 < 0.0) or (g0 < 0.0 and g1 > 0.0):
+                    scale = min(scale, max(g0 / (g0 - g1), MIN_CLIP))
+            if scale < 1.0:
+                clips += 1
         for i in range(n):
             if held[i]:
                 continue
             for c in range(3):
-                d = dx[i, c]
+                d = scale * dx[i, c]
                 x1[i, c] += d
                 a1[i, c] += d / (beta * h * h)
                 v1[i, c] += gamma * d / (beta * h)
@@ -279,6 +337,10 @@ def alpha_step(
 
 #: stick/slip re-checks per time step after Newton converged with a wrong guess
 MAX_STATE_CHECKS = 4
+#: Newton corrections per time step stopped where a node meets the seabed plane, and
+#: the smallest fraction of a correction kept (so that Newton never stalls)
+MAX_LANDING_CLIPS = 4
+MIN_CLIP = 0.05
 
 
 #: :func:`march` return codes

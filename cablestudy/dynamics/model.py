@@ -800,14 +800,18 @@ def assemble(
         ks = seabed_stiffness[i]
         if ks > 0.0:
             gap = nrm[0] * x[i, 0] + nrm[1] * x[i, 1] + nrm[2] * x[i, 2] - seabed_offset
-            if gap <= 0.0:
+            # contact: by the law (state 0: touching where gap <= 0, pushing only), or
+            # held fixed during a time step's Newton iterations (1: touching, the
+            # spring and damper linear, 2: not), see contact_changed
+            cstate = slip_state[i, 2] if slip_state.shape[1] > 2 else 0
+            if ((cstate == 0 or cstate == 3) and gap <= 0.0) or cstate == 1:
                 vn = nrm[0] * v[i, 0] + nrm[1] * v[i, 1] + nrm[2] * v[i, 2]
-                cs = seabed_damping[i]
+                cs = seabed_damping[i] if cstate != 3 else 0.0
                 fn = -ks * gap - cs * vn
-                if fn < 0.0:
+                if fn < 0.0 and cstate != 1:
                     fn = 0.0
                     cs = 0.0
-                contact[i] = fn
+                contact[i] = max(fn, 0.0)
                 for a in range(3):
                     F[i, a] -= fn * nrm[a]
                     for b in range(3):
@@ -1016,7 +1020,8 @@ class Workspace:
         self.contact = np.zeros(n)
         self.friction = np.zeros((n, 3))
         self.anchor = np.zeros((n, 3))
-        self.slip_state = np.zeros((n, 2), dtype=np.int64)
+        # stick/slip along and across the line, and the contact state (assemble)
+        self.slip_state = np.zeros((n, 3), dtype=np.int64)
         self.trial = np.zeros((n, 2))
         self.J_d = np.zeros((n, 3, 3))
         self.J_o = np.zeros((n - 1, 3, 3))
@@ -1090,6 +1095,43 @@ def _trial_states(slip_state, trial, contact, friction, keep=False):  # noqa: AN
                     slip_state[i, k] = -1
                 else:
                     slip_state[i, k] = 2
+
+
+@njit(cache=True)
+def contact_states(
+    x, v, seabed_normal, seabed_offset, seabed_stiffness, seabed_damping, slip_state, fix, count
+):  # noqa: ANN001, ANN201, E501
+    """Contact states from the contact law at (``x``, ``v``): touching (1) where the
+    node is at or below the seabed plane and the spring and damper push, else not (2).
+    With ``fix`` False, set them all (the start of a time step); else update them after
+    Newton converged with states held fixed and return whether any changed: a node whose
+    state has changed ``MAX_CONTACT_FLIPS`` times in the step (it sits on the plane,
+    where neither state is consistent) goes back to the law itself (0), which the
+    Newton iterations then meet with their landing clip."""
+    changed = False
+    for i in range(x.shape[0]):
+        ks = seabed_stiffness[i]
+        if ks <= 0.0 or slip_state[i, 2] == 3 and fix:
+            continue
+        gap = -seabed_offset
+        vn = 0.0
+        for a in range(3):
+            gap += seabed_normal[a] * x[i, a]
+            vn += seabed_normal[a] * v[i, a]
+        touching = gap <= 0.0 and -ks * gap - seabed_damping[i] * vn > 0.0
+        want = 1 if touching else 2
+        if not fix:
+            slip_state[i, 2] = want
+            count[i] = 0
+        elif slip_state[i, 2] != want and count[i] < MAX_CONTACT_FLIPS:
+            count[i] += 1
+            slip_state[i, 2] = want if count[i] < MAX_CONTACT_FLIPS else 1
+            changed = True
+    return changed
+
+
+#: contact state changes of a node within one time step before the law takes over
+MAX_CONTACT_FLIPS = 2
 
 
 @njit(cache=True)

@@ -19,10 +19,9 @@ uncertainty of the order, dp = (d_3 / d_1 + d_3 / d_2) / ln 2. We assert p >= 2 
 (at least second order, within what the floor allows) and that the floor itself is
 small. Measured (2026-11, this configuration): mesh 40/80/160/320 elements at the
 slow-drift period, T_max d = 288, 71, 4.7 N (p = 2.02, dp = 0.12), T_min d = 379, 87,
-14 N (p = 2.13, dp = 0.28); step T/128..T/1024 at the wave period, T_min d = 4335, 399,
-50 N (p = 3.4, dp = 0.2; faster than h^2: the error there is mostly how much of the
-touchdown ringing the integrator's numerical damping takes out), T_max already at the
-floor from T/256 (d = 3 and 15 N, 1e-5 of T_max).
+14 N (p = 2.13, dp = 0.28); step T/128..T/1024 at the wave period: T_max d = 253, 2,
+12 N (at the floor from T/256, 1e-5 of T_max), T_min within 1e-3 of T_max (the landing
+nodes' floor, see the test).
 
 Without the axial damping (the segments' default 0) the step sequence does not converge
 at all at this level: the ringing is then damped only numerically, and the minimum
@@ -87,9 +86,18 @@ def test_step_halving_converges_at_second_order_or_better() -> None:
     # wave period (10 s, 2 m) on 40 elements
     values = [_extremes(0.1, 2.0, 40, p) for p in (128, 256, 512, 1024)]
     p, dp, d = _order(values)
-    assert np.all(p >= 2.0 - dp), (values, p, dp)
-    # T_min is in the asymptotic range (its order is well determined, dp < 0.5) ...
-    assert dp[1] < 0.5, (p, dp)
-    # ... and halving T/512 to T/1024 changes both extremes by less than 1e-4 of the
-    # maximum tension (measured: 1.3e-5 and 4.2e-5)
-    assert np.all(d[2] < 1e-4 * values[-1][0]), d
+    # the maximum tension: second order, within its floor
+    assert p[0] >= 2.0 - dp[0], (values, p, dp)
+    # The minimum tension: its floor is the touchdown events. A node landing within a
+    # step, where the contact damping force jumps from zero to c v_n, may have no
+    # consistent end-of-step state (integrator.alpha_step): after two changes of its
+    # contact state it is held touching for that step, a few mm early. The steps are
+    # thereby set by the motion, not by the contact stiffness (no step halvings at each
+    # landing), at the price of a contact force error of up to k_n times that gap
+    # over one step per event (1.4 mm early: 2e4 N, about half the node's weight),
+    # which reaches the minimum tension at up to about 1e-3 of T_max and does not
+    # vanish with the step. Measured: T_min d = 700, 202, 387 N (6e-4, 2e-4, 3e-4 of T_max).
+    assert np.all(d[:, 1] < 1e-3 * values[-1][0]), d
+    # halving T/512 to T/1024 changes the maximum by less than 1e-4 of itself (measured
+    # 1.1e-5)
+    assert d[2, 0] < 1e-4 * values[-1][0], d

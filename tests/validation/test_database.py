@@ -120,3 +120,12 @@ def test_database_yaml_to_netcdf_to_lookup_matches_direct_solves(
     np.testing.assert_allclose(out["force_b"], db.lookup(130.0, 75.0)["force_b"], rtol=1e-15)
     assert main(["lookup", str(tmp_path / "db.nc"), "--at", "160", "75"]) == 2
     assert "allowed: horizontal distance 110 .. 150 m" in capsys.readouterr().err
+    # the database's own file: the same tables on the same grid, and the same lookup
+    own = xr.load_dataset(tmp_path / "db.database.nc")
+    assert own.attrs["database_grid"] == "cartesian"
+    assert own["force_b"].dims == ("horizontal_distance", "height_difference", "component")
+    np.testing.assert_array_equal(own["force_b"].values, ds["database_force_b"].values)
+    np.testing.assert_array_equal(own["horizontal_distance"], ds["horizontal_distance"])
+    assert own["tension_max"].attrs == {"units": "N", "long_name": "largest tension along the line"}
+    assert main(["lookup", str(tmp_path / "db.database.nc"), "--at", "130", "75"]) == 0
+    assert json.loads(capsys.readouterr().out) == out
