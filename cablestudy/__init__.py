@@ -1,3 +1,56 @@
 """cablestudy: configuration-driven batch studies of marine cable mechanics."""
 
+from __future__ import annotations
+
+import hashlib
+import os
+import sys
+from pathlib import Path
+
 __version__ = "0.1.0"
+
+
+def _numba_cache_dir() -> None:
+    """Keep the compiled kernels' on-disk cache per version of the source.
+
+    numba's cache (``cache=True``) is checked against the file that defines a kernel,
+    not the files of the kernels it calls: a kernel of integrator.py compiled with the
+    assemble of model.py kept its machine code after model.py changed. The cache goes
+    to ``$XDG_CACHE_HOME/cablestudy/numba/<hash of every source file>`` (about 5 ms to
+    hash), so any change to the package compiles afresh. A NUMBA_CACHE_DIR set by the
+    user is kept."""
+    if os.environ.get("NUMBA_CACHE_DIR"):
+        return
+    root = Path(__file__).resolve().parent
+    digest = hashlib.sha1()
+    for path in sorted(root.rglob("*.py")):
+        digest.update(path.relative_to(root).as_posix().encode())
+        digest.update(path.read_bytes())
+    home = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    base = Path(home) / "cablestudy" / "numba"
+    where = str(base / digest.hexdigest()[:16])
+    if not os.path.isdir(where):
+        _prune(base, KEEP_CACHES)
+    os.environ["NUMBA_CACHE_DIR"] = where
+    config = sys.modules.get("numba.core.config")
+    if config is not None:  # numba imported before cablestudy: tell it too
+        config.CACHE_DIR = where
+
+
+#: compiled-kernel caches kept (other versions of the source), the newest first
+KEEP_CACHES = 6
+
+
+def _prune(base: Path, keep: int) -> None:
+    """Remove all but the ``keep`` most recently modified caches under ``base``."""
+    import shutil
+
+    try:
+        old = sorted(base.iterdir(), key=lambda p: p.stat().st_mtime, reverse=True)[keep:]
+    except OSError:
+        return
+    for path in old:
+        shutil.rmtree(path, ignore_errors=True)
+
+
+_numba_cache_dir()

@@ -184,6 +184,7 @@ def alpha_step(
             flips,
         )
     checks = 0
+    checked_early = False
     clips = 0
     it = 0
     while True:
@@ -254,7 +255,13 @@ def alpha_step(
                     res = max(res, abs(acc))
         if not math.isfinite(res):
             return it, False
-        if res <= tol:
+        # the states are checked once Newton is close (STATE_CHECK_FACTOR times the
+        # tolerance: the trial forces that decide them are then settled), so that a
+        # wrong guess costs the iterations from there, not from full convergence; and
+        # again at convergence
+        early = res <= STATE_CHECK_FACTOR * tol and not checked_early
+        if res <= tol or early:
+            checked_early = True
             if checks < MAX_STATE_CHECKS:
                 changed = fixed_contact and contact_states(
                     x1,
@@ -271,8 +278,10 @@ def alpha_step(
                     changed = True
                 if changed:
                     checks += 1
+                    checked_early = False
                     continue  # converged with a wrong guess of a state: again with the new
-            return it, True
+            if res <= tol:
+                return it, True
         if it == max_iterations or n_free == 0:
             break
         it += 1
@@ -337,6 +346,8 @@ def alpha_step(
 
 #: stick/slip re-checks per time step after Newton converged with a wrong guess
 MAX_STATE_CHECKS = 4
+#: the states are first checked when the residual is this many times the tolerance
+STATE_CHECK_FACTOR = 1e3
 #: Newton corrections per time step stopped where a node meets the seabed plane, and
 #: the smallest fraction of a correction kept (so that Newton never stalls)
 MAX_LANDING_CLIPS = 4
