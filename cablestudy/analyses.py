@@ -109,9 +109,13 @@ def check_supported(cases: list[Case], src: StudySource) -> None:
 
 
 def _law_problems(case: Case, src: StudySource) -> list[str]:
-    """Break conditions the time-domain catenary line cannot honour yet (a spring line
-    parts in its own dynamics)."""
+    """Break conditions and winches of a kind: catenary line that no analysis of the
+    study would use: a failure time or a winch without analysis.dynamic (the statics
+    are the state before any time), ``after_break`` without a break condition, and a
+    winch whose stop is not after its start. (Method frequency refuses both through
+    :func:`linear_model_gaps`; the time domain parts and winches the line.)"""
     study = case.study
+    dyn = study.analysis.dynamic
     out: list[str] = []
     timed = [("line",)] if study.line.failure and study.line.failure.time is not None else []
     timed += [
@@ -119,31 +123,39 @@ def _law_problems(case: Case, src: StudySource) -> list[str]:
         for i, seg in enumerate(study.line.segments)
         if seg.failure is not None and seg.failure.time is not None
     ]
-    if study.analysis.dynamic is None:
+    if dyn is None:
         for loc in timed:
             path = (*loc, "failure", "time")
             out.append(
                 f"{src.line_of(path) or src.line_of(('line',))}: "
                 f"{'.'.join(map(str, path))}: a failure time applies to analysis.dynamic "
-                "(of a kind: spring line); the statics are the state before any time; "
-                "allowed: omit it"
+                "(the time domain); the statics are the state before any time; "
+                "allowed: omit it, or add analysis.dynamic"
             )
-    if study.analysis.dynamic is not None:
-        breaks = [("line",)] if study.line.failure is not None else []
-        breaks += [
-            ("line", "segments", i)
-            for i, seg in enumerate(study.line.segments)
-            if seg.failure is not None
-        ]
-        for loc in breaks:
-            where = src.line_of((*loc, "failure")) or src.line_of(("line",))
+    winch = study.line.winch
+    if winch is not None:
+        at = src.line_of(("line", "winch")) or src.line_of(("line",))
+        if dyn is None:
             out.append(
-                f"{where}: {'.'.join(map(str, loc))}.failure: a failure (break) condition "
-                "is not supported by analysis.dynamic for a kind: catenary line yet (its "
-                "time-domain model cannot part); it is supported by the statics (every "
-                "method: the case is recorded as broken) and by a kind: spring line in "
-                "dynamics (break_time); allowed: omit analysis.dynamic or the failure key"
+                f"{at}: line.winch: a winch changes the length in analysis.dynamic (the "
+                "time domain); the statics ignore it (the state before it runs); "
+                "allowed: omit it, or add analysis.dynamic"
             )
+        elif winch.stop is not None and winch.stop <= winch.start:
+            out.append(
+                f"{at}: line.winch.stop: {winch.stop:g} s is not after start "
+                f"{winch.start:g} s; allowed: stop > start"
+            )
+    breaks = study.line.failure is not None or any(
+        seg.failure is not None for seg in study.line.segments
+    )
+    if dyn is not None and "after_break" in dyn.model_fields_set and not breaks:
+        at = src.line_of(("analysis", "dynamic", "after_break")) or src.line_of(("analysis",))
+        out.append(
+            f"{at}: analysis.dynamic.after_break: {dyn.after_break!r} applies to a line "
+            "that can part (line.failure or line.segments.N.failure, time domain); "
+            "allowed: omit it, or add a failure condition"
+        )
     return out
 
 
@@ -183,11 +195,24 @@ def linear_model_gaps(study: Any) -> list[tuple[tuple[str | int, ...], str]]:
     yet, as (YAML path, what it is): the drag of lumped bodies (its drag linearisation
     covers the line's Morison drag). Modal analysis and the time domain model them all
     (one line model, :mod:`cablestudy.dynamics.model`)."""
-    return [
+    gaps: list[tuple[tuple[str | int, ...], str]] = [
         (("line", "attachments", i, "drag_area"), "a lumped body's drag")
         for i, att in enumerate(study.line.attachments)
         if att.drag_area > 0.0
     ]
+    if study.line.kind == "spring":
+        return gaps
+    # the linearised line cannot part or change its length
+    if study.line.failure is not None:
+        gaps.append((("line", "failure"), "a break condition (the line parts)"))
+    gaps += [
+        (("line", "segments", i, "failure"), "a break condition (the line parts)")
+        for i, seg in enumerate(study.line.segments)
+        if seg.failure is not None
+    ]
+    if study.line.winch is not None:
+        gaps.append((("line", "winch"), "a winch (the line's length changes)"))
+    return gaps
 
 
 def _linear_model_problems(cases: list[Case], src: StudySource) -> list[str]:
@@ -721,6 +746,12 @@ def run_dynamic(
         reason = "method: time"
     dres = solve_dynamic(case, static, deadline)
     out = dynamic_outputs(dres, dyn, static.s)
+    line_def = case.study.line
+    if line_def.failure is not None or any(seg.failure for seg in line_def.segments):
+        out["break_time"] = np.asarray(dres.break_time)
+        out["break_s"] = np.asarray(dres.break_s)
+    if case.study.line.winch is not None:
+        out["winch_paid_out"] = np.asarray(dres.winch_paid_out)
     out["dynamic_method_reason"] = np.asarray(reason)
     out.update(linear)
     message = dres.message
@@ -780,7 +811,40 @@ def dynamic_problem(case: Case, static: StaticResult) -> DynamicProblem | str:
         # a node within a millionth of the line's length of the seabed touches it (the
         # statics' rule); the penalty contact sinks laid nodes below the plane anyway
         touchdown_tolerance=1e-6 * max(float(line.s[-1]), 1.0),
+        after_break=dyn.after_break,
+        **_element_breaks(case.study, line),
+        **_catenary_winch(case.study.line.winch),
     )
+
+
+def _element_breaks(study: Any, line: DiscreteLine) -> dict[str, np.ndarray]:
+    """Per element of ``line`` its break tension [N] and failure time [s] (inf: none):
+    its segment's ``failure``, else ``line.failure`` (empty when neither is given)."""
+    segs = study.line.segments
+    if study.line.failure is None and all(seg.failure is None for seg in segs):
+        return {}
+    ends = np.concatenate(([0.0], np.cumsum([seg.length for seg in segs])))
+    mid = 0.5 * (line.s[:-1] + line.s[1:])
+    of = np.clip(np.searchsorted(ends, mid, side="right") - 1, 0, len(segs) - 1)
+    tension, when = np.full(len(segs), np.inf), np.full(len(segs), np.inf)
+    for i, seg in enumerate(segs):
+        brk = seg.failure or study.line.failure
+        if brk is not None:
+            tension[i] = brk.limit
+            if brk.time is not None:
+                when[i] = float(brk.time)
+    return {"break_tension": tension[of], "break_at": when[of]}
+
+
+def _catenary_winch(winch: Any) -> dict[str, float]:
+    """The time domain's winch settings (the first element's length changes)."""
+    if winch is None:
+        return {}
+    return {
+        "winch_speed": float(winch.speed),
+        "winch_start": float(winch.start),
+        "winch_stop": math.inf if winch.stop is None else float(winch.stop),
+    }
 
 
 def dynamic_outputs(

@@ -106,7 +106,7 @@ def static_limits(study: Study) -> StaticLimits:
 
 
 def _break_source(brk: Any, key: str) -> str:
-    if brk is None:
+    if brk is None or not math.isfinite(brk.limit):  # none, or a failure time only
         return ""
     if brk.tension is not None:
         return f"{key}.tension"

@@ -71,7 +71,16 @@ OUTPUTS: dict[str, OutputVariable] = {
         ("pulley", "component"), "N", "force of the line on each pulley (kind: spring)"
     ),
     "break_time": OutputVariable(
-        (), "s", "time at which the line parted (NaN: it did not), kind: spring with line.failure"
+        (), "s", "time at which the line parted in the dynamics (NaN: it did not)"
+    ),
+    "break_s": OutputVariable(
+        (),
+        "m",
+        "unstretched arc length from end A of the midpoint of the element that parted "
+        "(time domain of a kind: catenary line; NaN: it did not part)",
+    ),
+    "winch_paid_out": OutputVariable(
+        (), "m", "change of the unstretched length by the winch at the end of the run"
     ),
     "tension_a": OutputVariable((), "N", "tension at end A"),
     "tension_b": OutputVariable((), "N", "tension at end B"),
@@ -298,6 +307,7 @@ ANALYSIS_OF: dict[str, str] = {
 }
 OUTPUTS = {k: replace(v, analysis=ANALYSIS_OF.get(k, "dynamic")) for k, v in OUTPUTS.items()}
 OUTPUTS["break_time"] = replace(OUTPUTS["break_time"], nan_means="the line did not part")
+OUTPUTS["break_s"] = replace(OUTPUTS["break_s"], nan_means="the line did not part")
 OUTPUTS.update(
     {
         f"{name}_status": OutputVariable(

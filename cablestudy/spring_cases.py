@@ -118,6 +118,13 @@ def spring_problems(case: Case, src: StudySource) -> list[str]:
             "analysis.dynamic (the statics are the state before any time); allowed: omit "
             "it, or add analysis.dynamic"
         )
+    if dyn is not None and "after_break" in dyn.model_fields_set:
+        out.append(
+            f"{at('analysis', 'dynamic', 'after_break')}: analysis.dynamic.after_break: the "
+            "massless spring's tension is algebraic in the end motion and zero once it has "
+            "parted, so nothing runs on after a break; allowed: omit it (it applies to the "
+            "time domain of a kind: catenary line)"
+        )
     if dyn is not None:
         for key in ("transfer_function", "history"):
             if getattr(dyn, key) is not None:

@@ -134,6 +134,7 @@ TIME_ONLY_KEYS = (
     "period",
     "duration",
     "history",
+    "after_break",
 )
 
 
@@ -463,6 +464,12 @@ class DynamicSettings(StrictModel):
     )
     duration: Positive | None = Field(
         None, description="fixed run time [s] (no steady-state detection)"
+    )
+    after_break: Literal["continue", "stop"] = Field(
+        "continue",
+        description="with line.failure, time domain of a kind: catenary line: after the "
+        "line parts, continue (the parts move on, no steady-state detection, to duration "
+        "or max_periods) or stop the run at the break",
     )
     history: HistorySettings | None = None
     linearisation: LinearisationSettings | None = Field(

@@ -166,8 +166,10 @@ class BreakCondition(StrictModel):
     ``{time: s}``: the line (or a segment) breaks where its tension exceeds the limit
     (tension, or MBL / safety factor), or at the given time. In statics a case over the
     tension limit is recorded as broken (status 10, a message with where and by how
-    much) with its static results kept; with analysis.dynamic only a kind: spring line
-    supports it (it parts at that instant, or at ``time``, and records break_time)."""
+    much) with its static results kept; in analysis.dynamic
+    the time domain parts the line at that instant, or at ``time`` (kind spring: the
+    spring; kind catenary: the element that reached its limit, or the most loaded one at
+    ``time``), and records break_time (and break_s)."""
 
     tension: Positive | None = Field(None, description="tension limit [N]")
     minimum_breaking_load: Positive | None = Field(
@@ -179,7 +181,7 @@ class BreakCondition(StrictModel):
     time: NonNegative | None = Field(
         None,
         description="time at which the line fails [s] from the start of the run "
-        "(analysis.dynamic of a kind: spring line)",
+        "(analysis.dynamic, time domain)",
     )
 
     @model_validator(mode="after")
@@ -362,9 +364,10 @@ class Pulley(StrictModel):
 
 
 class Winch(StrictModel):
-    """A winch on a kind: spring line (aqwa seed 5.8.1: linear and polynomial cables can
-    be winched): in analysis.dynamic the unstretched length changes at ``speed`` [m/s]
-    (positive: paid out, longer) from ``start`` to ``stop`` [s]."""
+    """A winch (aqwa seed 5.8.1: linear and polynomial cables can be winched): in the
+    time domain of analysis.dynamic the unstretched length changes at ``speed`` [m/s]
+    (positive: paid out, longer) from ``start`` to ``stop`` [s]; on a kind: catenary
+    line at end A, as the length of its first element. The statics ignore it."""
 
     speed: Finite = Field(description="rate of change of the unstretched length [m/s]")
     start: NonNegative = Field(0.0, description="time the winch starts [s]")
@@ -416,8 +419,11 @@ class Line(StrictModel):
     )
     winch: Winch | None = Field(
         None,
-        description="kind spring, analysis.dynamic: the unstretched length changes at a "
-        "speed [m/s] from start to stop [s]",
+        description="analysis.dynamic (time domain) only: the unstretched length changes "
+        "at a speed [m/s] from start to stop [s]; kind catenary: at end A (the first "
+        "element's length, its mass per metre kept); the statics ignore it (the state "
+        "before it runs), modal analysis is about that static state, method frequency "
+        "refuses it",
     )
     length: Positive | None = Field(
         None,
@@ -429,7 +435,8 @@ class Line(StrictModel):
         description="failure (break) condition of the whole line: {tension: N} or "
         "{minimum_breaking_load: N, safety_factor: f} (a segment's own failure overrides "
         "it); statics: a case over the limit is recorded as broken (status 10, data kept); "
-        "dynamics: kind spring only (parts at that instant, break_time)",
+        "time domain: parts at that instant (break_time, break_s; "
+        "analysis.dynamic.after_break); method frequency refuses it",
     )
     axial: Axial | None = Field(
         None,
@@ -452,13 +459,6 @@ class Line(StrictModel):
 
     @model_validator(mode="after")
     def _attachments_inside(self) -> Line:
-        if self.kind != "spring" and self.winch is not None:
-            raise FieldError(
-                ("winch",),
-                "a winch is supported on a kind: spring line (its length changes in the "
-                "dynamics); allowed: kind: spring, or no winch",
-                self.winch.speed,
-            )
         if self.kind != "spring" and self.pulleys:
             raise FieldError(
                 ("pulleys",),

@@ -133,6 +133,13 @@ class DiscreteLine:
         steel wire's stiffness [N] and offset [-]
     law_knots : (k, 3) the tabulated laws' knots: strain [-], tension [N], slope [N]
     law_start, law_count : (n,) each element's rows of ``law_knots``
+    broken : (n,) elements that have parted (a break in the time domain): no axial
+        force, no bending across them, and the nodes beside them take their tangent
+        from their remaining element (default: none)
+    first_per_length : (8,) what the first element lumps per metre of its unstretched
+        length: mass [kg/m], normal and tangential added mass [kg/m], drag_normal and
+        drag_tangential [kg/m^2], transverse damping [N s/m^2], weight in the fluid
+        [N/m], seabed contact stiffness [N/m^2] (a winch at end A changes that length)
     """
 
     s: np.ndarray
@@ -164,6 +171,12 @@ class DiscreteLine:
     law_knots: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
     law_start: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
     law_count: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    broken: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.bool_))
+    first_per_length: np.ndarray = field(default_factory=lambda: np.zeros(8))
+
+    def __post_init__(self) -> None:
+        if self.broken.size != self.rest_length.size:
+            object.__setattr__(self, "broken", np.zeros(self.rest_length.size, dtype=np.bool_))
 
     @property
     def n_elements(self) -> int:
@@ -212,6 +225,7 @@ class DiscreteLine:
             self.law_knots,
             self.law_start,
             self.law_count,
+            self.broken,
         )
 
 
@@ -396,6 +410,20 @@ def discretise_nodes(
     )
     laws = [line.law_of(i) for i in range(line.length.size)]
     code, params, knots, start, count = law_arrays(laws, seg)
+    s0 = int(seg[0])
+    first = np.array(
+        [
+            line.mass[s0],
+            line.added_mass_normal[s0] * rho * area[s0],
+            line.added_mass_tangential[s0] * rho * area[s0],
+            0.5 * rho * line.drag_normal[s0] * line.diameter[s0],
+            0.5 * rho * np.pi * line.drag_tangential[s0] * line.diameter[s0],
+            float(np.asarray(c_tr, dtype=float)[s0]),
+            line.weight[s0],
+            extras.seabed_stiffness if np.any(k_sb > 0.0) else 0.0,
+        ],
+        dtype=float,
+    )
     return DiscreteLine(
         s=s,
         rest_length=l0,
@@ -426,6 +454,7 @@ def discretise_nodes(
         law_knots=knots,
         law_start=start,
         law_count=count,
+        first_per_length=first,
     )
 
 
@@ -536,6 +565,7 @@ def assemble(
     law_knots,
     law_start,
     law_count,
+    broken,
     F,
     K_d,
     K_o,
@@ -600,6 +630,13 @@ def assemble(
         l0 = rest_length[e]
         eps = length / l0 - 1.0
         strain[e] = eps
+        if broken[e]:
+            tension[e] = 0.0
+            for a in range(3):
+                for b in range(3):
+                    K_o[e, a, b] = 0.0
+                    C_o[e, a, b] = 0.0
+            continue
         t = 0.0
         kax = 0.0
         cax = 0.0
@@ -647,6 +684,8 @@ def assemble(
         if 0 < i < n - 1:
             ea_ = i - 1
             eb_ = i
+            if broken[ea_] or broken[eb_]:
+                continue  # no moment across a parted element
             la = lel[ea_]
             lb = lel[eb_]
             # r = u_b - u_a; E = kb/2 |r|^2; G_p = d r / d x_p
@@ -667,6 +706,8 @@ def assemble(
         else:
             end = 0 if i == 0 else 1
             e = 0 if i == 0 else n_el - 1
+            if broken[e]:
+                continue
             le = lel[e]
             # r = u_e - d; G for the element's first and second node
             for a in range(3):
@@ -694,6 +735,12 @@ def assemble(
     for i in range(n):
         lo = i - 1 if i > 0 else 0
         hi = i + 1 if i < n - 1 else n - 1
+        if 0 < i < n - 1:
+            # a node beside a parted element is the end of its part
+            if broken[i - 1]:
+                lo = i
+            elif broken[i]:
+                hi = i
         norm2 = 0.0
         for a in range(3):
             tan[a] = x[hi, a] - x[lo, a]
@@ -1149,6 +1196,7 @@ def _static_newton(
     law_knots,
     law_start,
     law_count,
+    broken,
     F,
     K_d,
     K_o,
@@ -1227,6 +1275,7 @@ def _static_newton(
             law_knots,
             law_start,
             law_count,
+            broken,
             F,
             K_d,
             K_o,

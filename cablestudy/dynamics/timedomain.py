@@ -23,7 +23,16 @@ generalised-alpha method (:mod:`.integrator`) and
   point's range of travel;
 * optionally keeps time histories of the end tension and of the motion of chosen
   points, and of the whole line (node positions and velocities, element and end
-  tensions), resampled uniformly over the last periods.
+  tensions), resampled uniformly over the last periods;
+* parts the line (``break_tension``, ``break_at``) at the instant an element's tension
+  reaches its limit, found inside the step by regula falsi on the step length (a
+  tension interpolated across the step would miss a snap load's curvature; re-solving
+  the step from its start costs a few Newton solves), or at the failure time; the
+  element is flagged broken (no force, no moment) and the run restarts from the parted
+  state with the free nodes' accelerations in balance, then goes on without
+  steady-state detection (or stops: ``after_break``);
+* winches end A (``winch_speed``): the first element's unstretched length changes
+  with its mass, weight, drag and contact per metre kept.
 
 Pure: arrays in, a :class:`DynamicResult` out (status, message, counters).
 """
@@ -33,14 +42,21 @@ from __future__ import annotations
 import math
 import time
 from collections import deque
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from ..physics.seabed import touchdown_arc_length
 from ..statics.base import STATUS_NUMERICAL, STATUS_OK, STATUS_TIME_LIMIT
 from .excitation import EndMotion
-from .integrator import NEWTON_FAILED, REACHED_BOUNDARY, AlphaParameters, march
+from .integrator import (
+    NEWTON_FAILED,
+    PARTED,
+    REACHED_BOUNDARY,
+    WINCH_LIMIT,
+    AlphaParameters,
+    march,
+)
 from .model import DiscreteLine, Workspace, evaluate, interpolate_nodes
 
 #: extra step halvings allowed beyond ``max_refinement`` when Newton fails
@@ -80,6 +96,20 @@ class DynamicProblem:
     history_line : with ``history``, also keep the whole line's history (nodes)
     touchdown_tolerance : [m] largest height above the seabed at which a node counts as
         touching it (touchdown tracking; the penalty contact sinks laid nodes below it)
+    break_tension : [N] (n,) tension at which each element parts (inf: never), or None
+    break_at : [s] (n,) time at which each element fails (inf: never), or None: at the
+        earliest of them the line parts at the most loaded element failing then (the
+        largest tension over its limit, or the largest tension where none is finite)
+    after_break : ``continue`` (the parts move on, free where no end holds them, to
+        ``duration`` or ``max_periods`` periods) or ``stop`` (the run ends at the break)
+    break_tolerance : [-] the break instant is where the element tension is within this
+        fraction of its limit (regula falsi on the length of the step that reaches it)
+    winch_speed : [m/s] rate of change of the first element's unstretched length (a winch
+        at end A paying out, > 0, or hauling in, < 0), from ``winch_start`` to
+        ``winch_stop`` [s]; the element's lumped mass, weight, added mass, drag and seabed
+        contact follow its length (constant per unit unstretched length)
+    winch_limits : [-] (lower, upper) bounds of the first element's length over its
+        initial length; leaving them fails the run (no re-meshing)
     """
 
     line: DiscreteLine
@@ -106,6 +136,27 @@ class DynamicProblem:
     anchor: np.ndarray | None = None
     history_line: bool = False
     touchdown_tolerance: float = 0.0
+    break_tension: np.ndarray | None = None
+    break_at: np.ndarray | None = None
+    after_break: str = "continue"
+    break_tolerance: float = 1e-6
+    winch_speed: float = 0.0
+    winch_start: float = 0.0
+    winch_stop: float = math.inf
+    winch_limits: tuple[float, float] = (0.25, 4.0)
+
+    @property
+    def breakable(self) -> bool:
+        """Whether the line can part in this run."""
+        finite = self.break_tension is not None and bool(np.any(np.isfinite(self.break_tension)))
+        timed = self.break_at is not None and bool(np.any(np.isfinite(self.break_at)))
+        return finite or timed
+
+    def paid_out(self, t: float) -> float:
+        """Change of the first element's unstretched length by time ``t`` [m]."""
+        if self.winch_speed == 0.0:
+            return 0.0
+        return self.winch_speed * max(min(t, self.winch_stop) - self.winch_start, 0.0)
 
 
 @dataclass(kw_only=True)
@@ -128,10 +179,21 @@ class DynamicResult:
     arc length from A over the steps where the line touches the seabed (NaN if none).
     ``touchdown_tracked`` is whether the model has a seabed to touch; ``line_s`` [m]
     (n + 1,) are the nodes' arc lengths.
+
+    ``break_time`` [s] is when the line parted (NaN: it did not), ``break_element`` which
+    element (-1: none) and ``break_s`` [m] the arc length of its midpoint then. After a
+    break ``tension_max``/``_min``/``_mean``/``_max_line`` and the extremes along the
+    line cover the whole run from t = 0 (the ramp included: the break may come in it),
+    so that they hold the peak that broke the line. ``winch_paid_out`` [m] is the
+    change of the unstretched length at the end.
     """
 
     status: int = STATUS_OK
     message: str = ""
+    break_time: float = math.nan
+    break_element: int = -1
+    break_s: float = math.nan
+    winch_paid_out: float = 0.0
     tension_static: float = math.nan
     tension_max: float = math.nan
     tension_min: float = math.nan
@@ -197,6 +259,7 @@ class _LineExtremes:
         self.end = np.empty((2, 2))
         self.touchdown = np.empty(2)
         self.start(element, ends, td)
+        self.run = self.current()  # the whole run, folded at every period boundary
 
     def start(self, element: np.ndarray, ends: np.ndarray, td: float) -> None:
         self.element[:] = element[None, :]
@@ -212,6 +275,10 @@ class _LineExtremes:
             float(self.touchdown[0]),
             float(self.touchdown[1]),
         ]
+
+    def fold_run(self) -> None:
+        """Fold the current period into the whole run's extremes."""
+        self.run = self._fold([self.run, self.current()])
 
     def close(self) -> None:
         """The current period is one of the steady-state periods: keep it."""
@@ -232,8 +299,11 @@ class _LineExtremes:
             float(np.fmax.reduce([i[5] for i in items])),
         ]
 
-    def window(self) -> list:
-        """Extremes over the kept periods (the current partial one if none closed)."""
+    def window(self, whole_run: bool = False) -> list:
+        """Extremes over the kept periods (the current partial one if none closed), or
+        over the whole run (``whole_run``, the current period folded in)."""
+        if whole_run:
+            return self._fold([self.run, self.current()])
         return self._fold(list(self.periods) or [self.current()])
 
 
@@ -262,6 +332,37 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     gives :data:`STATUS_TIME_LIMIT`.
     """
     line = problem.line
+    winching = problem.winch_speed != 0.0
+    if winching:  # the winch changes these in place: a private copy
+        line = replace(line, **{k: np.array(getattr(line, k), copy=True) for k in _WINCHED})
+    if problem.breakable:
+        line = replace(line, broken=np.zeros(line.n_elements, dtype=np.bool_))
+    limit = (
+        np.full(line.n_elements, math.inf)
+        if problem.break_tension is None
+        else np.array(problem.break_tension, dtype=float)
+    )
+    timed = (
+        np.asarray(problem.break_at, dtype=float)
+        if problem.break_at is not None
+        else np.full(line.n_elements, math.inf)
+    )
+    break_at = float(timed.min()) if np.isfinite(timed).any() else math.inf
+    due = timed <= break_at
+    ctl = np.array(
+        [
+            break_at,
+            problem.break_tolerance,
+            float(problem.breakable),
+            problem.winch_speed,
+            problem.winch_start,
+            problem.winch_stop,
+            *problem.winch_limits,
+            float(np.any(line.clamp_direction[0] != 0.0)),
+        ]
+    )
+    wini = _winch_initial(line)
+    s_ini = line.s.copy()
     par = AlphaParameters.from_spectral_radius(problem.spectral_radius)
     work = Workspace(line.n_elements)
     largs = line.kernel_args()
@@ -357,12 +458,15 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     # the compiled step loop's state (see integrator.march): t, period boundary, the
     # current period's max, min, integral and largest line tension, the last end
     # tension, line maximum, touchdown and step; level, clean steps, steps, Newton
-    # iterations, rejected steps, positions kept for the predictor
+    # iterations, rejected steps, positions kept for the predictor, parted, element
     c_line0 = max(t_static, float(work.tension.max()))
     st_f = np.array(
         [0.0, min(T, t_stop), t_static, t_static, 0.0, c_line0, t_static, c_line0, 0.0, 0.0]
     )
-    st_i = np.zeros(6, dtype=np.int64)
+    st_i = np.zeros(8, dtype=np.int64)
+    # the same over the whole run (what a run with a break reports), folded at every
+    # period boundary
+    r_max, r_min, r_int, r_line = t_static, t_static, 0.0, c_line0
     # Newton starts from a quadratic extrapolation of the last three positions: the
     # positions are smooth, whereas the accelerations of generalised-alpha carry the
     # decaying unresolved axial modes, which a Taylor predictor would amplify into
@@ -376,6 +480,44 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     single = problem.keep_steps or keep_hist
     budget = 64 if deadline is not None else 2**62
     margs = problem.motion.kernel_args()
+    tension_prev = work.tension.copy()
+
+    def part_restart() -> None:
+        """The line has parted (``line.broken``): forces without the element, and the
+        free nodes' accelerations in balance with them (the held ones keep their
+        motion), so the integrator restarts from the parted state."""
+        e = int(st_i[7])
+        result.break_time = float(st_f[0])
+        result.break_element = e
+        result.break_s = float(0.5 * (line.s[e] + line.s[e + 1]))
+        evaluate(line, x0, v0, work)
+        F0[:] = work.F
+        for i in range(x0.shape[0]):
+            if not held[i]:
+                a0[i] = -np.linalg.solve(work.M_d[i], work.F[i])
+        strain_prev[:] = work.strain
+        tension_prev[:] = work.tension
+        st_i[5] = 0  # the predictor starts afresh
+        st_i[0] = st_i[1] = 0
+        f = end_forces(work, a0, x0, held)
+        forces[:] = f
+        ends[:] = np.sqrt(np.sum(f**2, 1))
+        st_f[6] = float(ends[ex])
+        st_f[2] = max(st_f[2], st_f[6])
+        st_f[3] = min(st_f[3], st_f[6])
+        np.minimum(extremes.element[1], work.tension, out=extremes.element[1])
+        np.minimum(extremes.end[1], ends, out=extremes.end[1])
+
+    if problem.breakable and bool(np.any(work.tension > limit)):
+        # the model's own equilibrium is already over a limit: it parts at once
+        st_i[7] = int(np.argmax(work.tension / limit))
+        st_i[6] = 1
+        line.broken[st_i[7]] = True
+        part_restart()
+        if problem.after_break == "stop":
+            result.tension_max = result.tension_min = result.tension_mean = t_static
+            result.tension_max_line = c_line0
+            return result
 
     converged = False
     while True:
@@ -427,6 +569,13 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             largs,
             wargs,
             sargs,
+            ctl,
+            limit,
+            due,
+            tension_prev,
+            wini,
+            line.first_per_length,
+            s_ini,
         )
         t = float(st_f[0])
         if code == NEWTON_FAILED:
@@ -439,13 +588,41 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             result.steps, result.newton_iterations = int(st_i[2]), int(st_i[3])
             result.rejected_steps = int(st_i[4])
             return result
+        if code == WINCH_LIMIT:
+            paid, l_ini = float(st_f[9]), float(wini[0, 0])
+            lo, hi = problem.winch_limits
+            result.status = STATUS_NUMERICAL
+            result.message = (
+                f"line.winch: at t = {t:.4g} s the winched first element would be "
+                f"{(l_ini + paid) / l_ini:.3g} times its initial length {l_ini:.4g} m (paid "
+                f"out {paid:.4g} m); the model keeps it between {lo:g} and {hi:g} times (no "
+                "re-meshing): use fewer elements (analysis.dynamic.elements) or a shorter "
+                "pay-out"
+            )
+            result.steps, result.newton_iterations = int(st_i[2]), int(st_i[3])
+            return result
         if single:
             keep(t, forces)
             push(t, float(st_f[6]), ends)
-        if code != REACHED_BOUNDARY:
+        if code == PARTED:
+            part_restart()
+            if single:
+                keep(t, forces)
+                push(t, float(st_f[6]), ends)
+            if problem.after_break == "stop":
+                t_stop = t
+            if abs(t - st_f[1]) > eps_t and t < t_stop - eps_t:
+                continue
+            st_f[1] = t  # a boundary here: the period (or the run) closes at the break
+        elif code != REACHED_BOUNDARY:
             continue
         tension = float(st_f[6])
-        if c_start >= t_ramp - eps_t:
+        final = t >= t_stop - eps_t
+        r_max, r_min = max(r_max, float(st_f[2])), min(r_min, float(st_f[3]))
+        r_int += float(st_f[4])
+        r_line = max(r_line, float(st_f[5]))
+        extremes.fold_run()
+        if c_start >= t_ramp - eps_t or (final and not p_max):
             p_max.append(float(st_f[2]))
             p_min.append(float(st_f[3]))
             p_mean.append(float(st_f[4]) / max(t - c_start, 1e-300))
@@ -456,18 +633,23 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         st_f[4] = 0.0
         st_f[5] = st_f[7]
         c_start = t
-        if problem.duration is None:
+        # steady state: not after a break (the parted line has no periodic state to
+        # settle on) nor while a winch runs (the periods must start after it stops)
+        if problem.duration is None and st_i[6] == 0:
             w = problem.steady_window
-            if len(p_max) >= max(problem.min_periods, w + 1):
+            if len(p_max) >= max(problem.min_periods, w + 1) and (
+                not winching or t - (w + 1) * T >= problem.winch_stop - eps_t
+            ):
                 converged = all(
                     abs(p_max[-j] - p_max[-j - 1]) <= problem.steady_tolerance * p_max[-j]
                     and abs(p_min[-j] - p_min[-j - 1]) <= problem.steady_tolerance * p_max[-j]
                     for j in range(1, w + 1)
                 )
-        if converged or t >= t_stop - eps_t:
+        if converged or final:
             break
         st_f[1] = min(st_f[1] + T, t_stop)
 
+    broke = bool(st_i[6])
     steps, newton, rejected = int(st_i[2]), int(st_i[3]), int(st_i[4])
     w = max(1, problem.steady_window) if problem.duration is None else len(p_max)
     if not p_max:  # the run ended inside the ramp: use the last (partial) window
@@ -481,6 +663,10 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     result.tension_max_line = max(p_line[sl])
     result.tension_max_spread = max(p_max[sp]) - min(p_max[sp])
     result.tension_min_spread = max(p_min[sp]) - min(p_min[sp])
+    if broke:  # the whole run, ramp included (the break may come in it)
+        result.tension_max, result.tension_min = r_max, r_min
+        result.tension_mean = r_int / max(t, 1e-300)
+        result.tension_max_line = r_line
     result.steady_converged = converged
     result.steps, result.newton_iterations, result.rejected_steps = steps, newton, rejected
     result.periods = t / T
@@ -494,7 +680,8 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         result.end_tension_min,
         result.touchdown_min,
         result.touchdown_max,
-    ) = extremes.window()
+    ) = extremes.window(broke)
+    result.winch_paid_out = problem.paid_out(t)
     if keep_hist and len(buf) >= 2:
         result.history = _resample(
             buf, t, T, problem, interpolate_nodes(line.s, hs, problem.static_position[None])[0]
@@ -600,3 +787,49 @@ def warm_up() -> None:
             anchor=anchor,
         )
     )
+
+
+#: the line's arrays a winch changes (copied per run)
+_WINCHED = (
+    "s",
+    "rest_length",
+    "internal_damping",
+    "mass",
+    "added_mass_normal",
+    "added_mass_tangential",
+    "drag_normal",
+    "drag_tangential",
+    "force",
+    "bending",
+    "transverse_damping",
+    "seabed_stiffness",
+    "seabed_damping",
+)
+
+
+def _winch_initial(line: DiscreteLine) -> np.ndarray:
+    """The initial values :func:`cablestudy.dynamics.integrator.winch_set` starts from
+    (12, 2): lengths of elements 0 and 1, internal damping of element 0, then for nodes
+    0 and 1 mass, added mass normal and tangential, drag normal and tangential,
+    transverse damping, vertical force, seabed stiffness and damping, bending."""
+    out = np.zeros((12, 2))
+    l0 = line.rest_length
+    out[0] = (l0[0], l0[1] if l0.size > 1 else l0[0])
+    out[1, 0] = line.internal_damping[0]
+    for row, arr in enumerate(
+        (
+            line.mass,
+            line.added_mass_normal,
+            line.added_mass_tangential,
+            line.drag_normal,
+            line.drag_tangential,
+            line.transverse_damping,
+            line.force[:, 2],
+            line.seabed_stiffness,
+            line.seabed_damping,
+            line.bending,
+        ),
+        start=2,
+    ):
+        out[row] = arr[:2]
+    return out

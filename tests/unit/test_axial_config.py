@@ -109,23 +109,26 @@ def test_axial_faults_are_refused_at_their_line(
         assert f in err, f"{f!r} not in {err}"
 
 
-def test_break_is_refused_with_the_catenary_time_domain(
+def test_break_is_refused_by_the_frequency_domain_only(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    text = (
-        BASE.replace(
-            "axial: {law: polynomial, coefficients: [4.0e6, 2.0e7, 5.0e7]}",
-            "axial_stiffness: 4.0e7",
-        ).replace(
-            "ends:\n", "  failure: {minimum_breaking_load: 3.0e5, safety_factor: 1.67}\nends:\n"
-        )
-        + "  dynamic:\n    excitation: {end: b, direction: [1, 0, 0], amplitude: 0.5, "
-        "frequency: 0.2}\n"
+    """The linearised line cannot part: method frequency refuses a failure key naming
+    the methods that model it; time and auto (which then runs the time domain) accept."""
+    dynamic = (
+        "  dynamic:\n    method: {method}\n    excitation: {{end: b, direction: [1, 0, 0], "
+        "amplitude: 0.5, frequency: 0.2}}\n"
     )
-    code, err = validate(tmp_path, text, capsys)
+    base = BASE.replace(
+        "axial: {law: polynomial, coefficients: [4.0e6, 2.0e7, 5.0e7]}",
+        "axial_stiffness: 4.0e7",
+    ).replace("ends:\n", "  failure: {minimum_breaking_load: 3.0e5, safety_factor: 1.67}\nends:\n")
+    code, err = validate(tmp_path, base + dynamic.format(method="frequency"), capsys)
     assert code != 0
-    assert "line.failure: a failure (break) condition is not supported by analysis.dynamic" in err
-    assert "kind: spring" in err
+    assert "line.failure: a break condition (the line parts) is modelled by the time domain" in err
+    assert "allowed: method time or auto" in err
+    for method in ("time", "auto"):
+        code, err = validate(tmp_path, base + dynamic.format(method=method), capsys)
+        assert code == 0, err
 
 
 def test_static_break_is_recorded_with_where_and_by_how_much(
