@@ -165,6 +165,16 @@ def unsupported_static(method: str, problem: Any) -> list[str]:
     missing = list(STATIC_SOLVERS[method].unsupported(problem))
     if method != "discrete" and np.any(problem.line.bending_stiffness > 0.0):
         missing.append("bending stiffness (bending_stiffness > 0; method 'discrete' models it)")
+    if (
+        method != "discrete"
+        and problem.medium.has_current
+        and problem.medium.density > 0.0
+        and np.any(problem.line.attachment_drag_area > 0.0)
+    ):
+        missing.append(
+            "the drag of lumped bodies in a current (line.attachments.*.drag_area > 0; "
+            "method 'discrete' models it)"
+        )
     return missing
 
 
@@ -217,8 +227,7 @@ def linear_model_gaps(study: Any) -> list[tuple[tuple[str | int, ...], str]]:
 
 def _linear_model_problems(cases: list[Case], src: StudySource) -> list[str]:
     """Keys that ``method: frequency`` would ignore, refused naming the method that
-    models them (``method: auto`` runs such cases in the time domain), and a body's drag
-    in a current, which no static solver models."""
+    models them (``method: auto`` runs such cases in the time domain)."""
     problems: list[str] = []
     for case in cases:
         study = case.study
@@ -230,14 +239,6 @@ def _linear_model_problems(cases: list[Case], src: StudySource) -> list[str]:
                     f"{src.line_of(path) or src.line_of(path[:1])}: {loc}: {what} is modelled "
                     "by the time domain, not by analysis.dynamic.method: frequency; allowed: "
                     "method time or auto, or remove the key"
-                )
-        for i, att in enumerate(study.line.attachments):
-            if att.drag_area > 0.0 and study.environment.has_current:
-                path = ("line", "attachments", i, "drag_area")
-                problems.append(
-                    f"{src.line_of(path)}: line.attachments.{i}.drag_area: {att.drag_area:g} "
-                    "m^2 with a current: the static solvers do not load lumped bodies with drag "
-                    "(the time domain does, from rest in still water); allowed: 0 with a current"
                 )
         if len(problems) > 20:
             break

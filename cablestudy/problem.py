@@ -63,6 +63,7 @@ def line_model(study: Study) -> LineModel:
         attachment_mass=np.array([a.mass for a in atts], dtype=float),
         attachment_volume=np.array([a.volume for a in atts], dtype=float),
         axial_law=_laws(segs),
+        attachment_drag_area=np.array([a.drag_area for a in atts], dtype=float),
     )
 
 

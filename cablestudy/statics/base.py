@@ -76,6 +76,8 @@ class LineModel:
     attachment_mass: np.ndarray
     attachment_volume: np.ndarray
     axial_law: tuple = ()
+    #: [m^2] (n_att,) C_D A of the lumped bodies (isotropic drag; empty: none)
+    attachment_drag_area: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     @property
     def is_nonlinear(self) -> bool:

@@ -85,6 +85,7 @@ class DiscreteSolver:
                 else default_seabed_stiffness(line)
             )
         extras = DynamicExtras(
+            attachment_drag_area=line.attachment_drag_area,
             end_force=end_force,
             free_end=(free[0], free[1]),
             clamp_direction=clamp,

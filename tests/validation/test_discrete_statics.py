@@ -138,3 +138,74 @@ def test_discrete_statics_of_a_laid_chain_match_the_cable_solution(tmp_path: Pat
     assert int(disc["status"]) == 0, str(disc["message"].values)
     assert abs(float(disc["tension_b"]) / float(cable["tension_b"]) - 1.0) < 2e-3
     assert abs(float(disc["laid_length"]) - float(cable["laid_length"])) <= 2 * 800.0 / 80
+
+
+BODY_IN_CURRENT = {
+    "environment": {
+        "fluid": "water",
+        "depth": 100.0,
+        "current": [{"z": -100.0, "speed": 1.2}, {"z": 0.0, "speed": 1.2}],
+    },
+    "line": {
+        "segments": [
+            {
+                "length": 60.0,
+                "diameter": 0.05,
+                "mass_per_length": 8.0,
+                "axial_stiffness": 1.0e8,
+                "drag_normal": 1.2,
+                "drag_tangential": 0.02,
+            }
+        ],
+        "attachments": [{"s": 30.0, "mass": 50.0, "volume": 0.3, "drag_area": 0.8}],
+    },
+    "ends": {
+        "a": {"kind": "fixed", "position": [0.0, 0.0, -80.0]},
+        "b": {"kind": "fixed", "position": [30.0, 0.0, -30.0]},
+    },
+    "analysis": {"static": {"method": "discrete", "nodes": 41, "tolerance": 1e-12}},
+}
+
+
+def test_a_body_in_a_uniform_current_is_the_constant_force_of_its_drag(tmp_path: Path) -> None:
+    """A body at rest in a uniform current U carries the drag 1/2 rho C_D A U^2 along the
+    current, whatever its position: the discrete statics with the body's drag_area must
+    equal the same line with that force given as the attachment's constant force. Both
+    are then the same equations, solved from different starts down to the solver's
+    rounding floor per node, 256 eps EA (reach) / l_min (statics/discrete.py: about
+    5e-4 N here): the tensions must agree within ten times that, the positions within
+    ten times that force over the softest stiffness a node has, the transverse one
+    T / l (3000 N / 1.5 m): 2.6e-6 m."""
+    dragged = run(tmp_path, BODY_IN_CURRENT, "dragged")
+    data = yaml.safe_load(yaml.safe_dump(BODY_IN_CURRENT))
+    att = data["line"]["attachments"][0]
+    drag = 0.5 * 1025.0 * att.pop("drag_area") * 1.2**2
+    att["force"] = [drag, 0.0, 0.0]
+    forced = run(tmp_path, data, "forced")
+    assert int(dragged["status"]) == 0 and int(forced["status"]) == 0
+    floor = 256 * np.finfo(float).eps * 1.0e8 * (80.0 + 60.0) / 1.5
+    for var in ("tension_a", "tension_b", "tension"):
+        assert np.allclose(dragged[var].values, forced[var].values, rtol=0, atol=10 * floor), var
+    t_min = float(forced["tension"].min())
+    for var in ("x", "z"):
+        atol = 10 * floor / (t_min / 1.5)
+        assert np.allclose(dragged[var].values, forced[var].values, rtol=0, atol=atol), var
+    # and the drag matters: without it the line sits elsewhere, by far more than that
+    data["line"]["attachments"][0]["force"] = [0.0, 0.0, 0.0]
+    still = run(tmp_path, data, "still")
+    assert float(np.max(np.abs(still["x"].values - forced["x"].values))) > 1e3 * atol
+
+
+def test_cable_solvers_refuse_a_body_drag_in_a_current_naming_discrete(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    data = yaml.safe_load(yaml.safe_dump(BODY_IN_CURRENT))
+    data["analysis"]["static"]["method"] = "catenary"
+    cfg = tmp_path / "refused.yaml"
+    cfg.write_text(yaml.safe_dump({**data, "name": "refused"}))
+    capsys.readouterr()
+    assert main(["run", str(cfg), "--out", str(tmp_path), "--scheduler", "synchronous"]) == 2
+    err = capsys.readouterr().err
+    assert "'catenary' does not support the drag of lumped bodies in a current" in err
+    assert "method 'discrete' models it" in err
+    assert not (tmp_path / "refused.nc").exists()
