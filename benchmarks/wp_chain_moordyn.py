@@ -108,7 +108,10 @@ REGIMES = {"wave": (0.1, 2.0), "slow_drift": (0.01, 4.0)}
 REFERENCE = {"wave": (320, 1024), "slow_drift": (320, 512)}
 #: our settings: elements -> points per period
 OURS = {
+    12: (12, 16),
+    16: (12, 16, 32),
     20: (16, 32, 64),
+    24: (16, 32),
     30: (16, 32, 64),
     40: (16, 32, 64, 128, 256),
     80: (32, 64, 128, 256),
@@ -210,7 +213,7 @@ def regime(label: str, quick: bool) -> WorkPrecision:
     repeats = 1 if quick else 3
     rows = []
     for n, steps in OURS.items():
-        if quick and n not in (30, 40, 80):
+        if quick and n not in (16, 30, 40, 80):
             continue
         c = None
         for p in steps[:2] if quick else steps:
