@@ -467,7 +467,7 @@ def test_attachment_forces_reach_the_supports(tmp_path: Path) -> None:
 # ------------------------------------------------------------------ failures, sweeps
 
 
-@pytest.mark.parametrize("scheduler", ["synchronous", "processes"])
+@pytest.mark.parametrize("scheduler", ["synchronous", "threads", "processes"])
 def test_failed_case_is_kept_with_nan_status_and_message(tmp_path: Path, scheduler: str) -> None:
     """Sweeping the depth down to 20 m lays the sagging line (lowest point z = -21.5 m
     without a seabed) on the seabed between its supports; the static solver models that
