@@ -126,14 +126,14 @@ def _prepare(red: ReducedLine) -> _Prepared:
 
 
 @njit(cache=True)
-def drag_fit_samples(vr, vi, current, tangent, c_n, c_t, tangent_d, cos, sin, work, out):  # noqa: ANN001, ANN201, PLR0913
+def drag_fit_samples(vr, vi, current, tangent, c_n, c_t, tangent_d, cos, sin, W0, W1, W2, F0, F1, F2, out):  # noqa: ANN001, ANN201, PLR0913, E501
     """:func:`cablestudy.dynamics.frequency._drag_fit` with ``cos``, ``sin`` (samples,)
     given and the same operations in the same order, laid out for the compiler: the
     drag at every node and phase first, in a loop without running sums (which it can
-    vectorise), then the sums over the phases node by node; ``work`` (6, n, samples)."""
+    vectorise), then the sums over the phases node by node; ``W0`` .. ``F2`` (n,
+    samples) work arrays."""
     n = current.shape[0]
     samples = cos.shape[0]
-    W0, W1, W2, F0, F1, F2 = work[0], work[1], work[2], work[3], work[4], work[5]
     for i in range(n):
         t0, t1, t2 = tangent[i, 0], tangent[i, 1], tangent[i, 2]
         cn, ct = c_n[i], c_t[i]
@@ -244,14 +244,27 @@ def band_solve_rows(R, bw, reach, rhs, x):  # noqa: ANN001, ANN201
     for k in range(N):
         last = min(k + bw, N - 1)
         p = k
-        big = abs(R[k, bw])
+        z = R[k, bw]
+        big2 = z.real * z.real + z.imag * z.imag
+        big = -1.0  # abs of the candidate, computed only where needed
         for i in range(k + 1, last + 1):
             z = R[i, k - i + bw]
             if z.real == 0.0 and z.imag == 0.0:  # abs 0 is never the larger
                 continue
-            a = abs(z)
-            if a > big:
-                big, p = a, i
+            a2 = z.real * z.real + z.imag * z.imag
+            # squared magnitudes decide unless within round-off of each other; then
+            # abs (hypot) decides, as in _band_solve
+            clear = 1e-290 < a2 < 1e290 and 1e-290 < big2 < 1e290  # no under/overflow
+            if clear and a2 > big2 * (1.0 + 1e-12):
+                big2, p, big = a2, i, -1.0
+            elif not clear or a2 >= big2 * (1.0 - 1e-12):
+                if big < 0.0:
+                    big = abs(R[p, k - p + bw])
+                a = abs(z)
+                if a > big:
+                    big, big2, p = a, a2, i
+        if big < 0.0:
+            big = abs(R[p, k - p + bw])
         if not big > 0.0:
             return False
         if p != k:
@@ -402,7 +415,12 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
     prev_D = np.empty((n, 3, 3))
     prev_G = np.empty((n, 3, 3))
     end_rows = np.empty(3, dtype=np.complex128)
-    work = np.empty((6, n, samples))
+    W0 = np.empty((n, samples))
+    W1 = np.empty((n, samples))
+    W2 = np.empty((n, samples))
+    F0 = np.empty((n, samples))
+    F1 = np.empty((n, samples))
+    F2 = np.empty((n, samples))
     for case in range(omegas.shape[0]):
         omega = omegas[case]
         w2 = omega**2
@@ -438,7 +456,7 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                     v[i, a] = 1j * omega * u[i, a]
                     vr[i, a] = v[i, a].real
                     vi[i, a] = v[i, a].imag
-            drag_fit_samples(vr, vi, current, tangent, c_n, c_t, d_small, cos, sin, work, D)
+            drag_fit_samples(vr, vi, current, tangent, c_n, c_t, d_small, cos, sin, W0, W1, W2, F0, F1, F2, D)
             have_prev = False
             last = np.inf
             change = np.inf
@@ -499,7 +517,7 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                     for a in range(3):
                         vr[i, a] = v[i, a].real
                         vi[i, a] = v[i, a].imag
-                drag_fit_samples(vr, vi, current, tangent, c_n, c_t, d_small, cos, sin, work, G)
+                drag_fit_samples(vr, vi, current, tangent, c_n, c_t, d_small, cos, sin, W0, W1, W2, F0, F1, F2, G)
                 have_prev = _mixed(D, G, prev_D, prev_G, have_prev, change, last)
                 last = change
         else:
