@@ -846,21 +846,41 @@ def _exception_message(exc: Exception) -> str:
     return f"{type(exc).__name__}: {exc}{where}"
 
 
+#: the outputs last checked by :func:`_non_finite` per analysis, with the answer (holding
+#: the arrays, so that a later call with the very same objects can reuse it)
+_LAST_CHECKED: dict[str, tuple[dict[str, Any], list[str]]] = {}
+
+
 def _non_finite(data: dict[str, Any], analysis: str) -> list[str]:
     """Float variables of ``analysis`` in ``data`` holding NaN or infinity where the
     registry does not give NaN a meaning (e.g. 'no seabed contact')."""
     from .results import OUTPUTS
 
+    last = _LAST_CHECKED.get(analysis)
+    if (
+        last is not None
+        and len(last[0]) == len(data)
+        and all(k in data and data[k] is v for k, v in last[0].items())
+    ):
+        return list(last[1])  # the very same arrays (outputs shared between cases)
     bad = []
     for k, v in data.items():
         spec = OUTPUTS.get(k)
-        if spec is None or spec.analysis != analysis or np.asarray(v).dtype.kind != "f":
+        if spec is None or spec.analysis != analysis:
             continue
-        v = np.asarray(v)
+        v = v if isinstance(v, np.ndarray) else np.asarray(v)
+        if v.dtype.kind != "f":
+            continue
+        if v.ndim == 0:  # a number: no array reductions needed
+            x = float(v)
+            if not (math.isfinite(x) or (spec.nan_means and math.isnan(x))):
+                bad.append(k)
+            continue
         if spec.nan_means:
             v = v[~np.isnan(v)]
-        if not np.all(np.isfinite(v)):
+        if not np.isfinite(v).all():
             bad.append(k)
+    _LAST_CHECKED[analysis] = (dict(data), sorted(bad))
     return sorted(bad)
 
 
