@@ -296,7 +296,9 @@ def solve_frequency_cases(
             amplitude_sag_ratio=float(sag_ratio[k]),
             touchdown_travel=float(travel[k]),
         )
-        out.append(_judged(data, v, dyn, bool(res.converged[k]), int(res.iterations[k]), res.change[k]))
+        out.append(
+            _judged(data, v, dyn, bool(res.converged[k]), int(res.iterations[k]), res.change[k])
+        )
     return out
 
 

@@ -126,7 +126,9 @@ def _prepare(red: ReducedLine) -> _Prepared:
 
 
 @njit(cache=True)
-def drag_fit_samples(vr, vi, current, tangent, c_n, c_t, tangent_d, cos, sin, W0, W1, W2, F0, F1, F2, out):  # noqa: ANN001, ANN201, PLR0913, E501
+def drag_fit_samples(
+    vr, vi, current, tangent, c_n, c_t, tangent_d, cos, sin, W0, W1, W2, F0, F1, F2, out
+):  # noqa: ANN001, ANN201, PLR0913, E501
     """:func:`cablestudy.dynamics.frequency._drag_fit` with ``cos``, ``sin`` (samples,)
     given and the same operations in the same order, laid out for the compiler: the
     drag at every node and phase first, in a loop without running sums (which it can
@@ -340,7 +342,9 @@ def _mixed(D, G, prev_D, prev_G, have_prev, change, last):  # noqa: ANN001, ANN2
     for i in range(n):
         for a in range(3):
             for b in range(3):
-                nxt = G[i, a, b] - theta * (G[i, a, b] - prev_G[i, a, b]) if have_prev else G[i, a, b]
+                nxt = (
+                    G[i, a, b] - theta * (G[i, a, b] - prev_G[i, a, b]) if have_prev else G[i, a, b]
+                )
                 prev_D[i, a, b] = D[i, a, b]
                 prev_G[i, a, b] = G[i, a, b]
                 D[i, a, b] = nxt
@@ -456,7 +460,9 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                     v[i, a] = 1j * omega * u[i, a]
                     vr[i, a] = v[i, a].real
                     vi[i, a] = v[i, a].imag
-            drag_fit_samples(vr, vi, current, tangent, c_n, c_t, d_small, cos, sin, W0, W1, W2, F0, F1, F2, D)
+            drag_fit_samples(
+                vr, vi, current, tangent, c_n, c_t, d_small, cos, sin, W0, W1, W2, F0, F1, F2, D
+            )
             have_prev = False
             last = np.inf
             change = np.inf
@@ -517,7 +523,9 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                     for a in range(3):
                         vr[i, a] = v[i, a].real
                         vi[i, a] = v[i, a].imag
-                drag_fit_samples(vr, vi, current, tangent, c_n, c_t, d_small, cos, sin, W0, W1, W2, F0, F1, F2, G)
+                drag_fit_samples(
+                    vr, vi, current, tangent, c_n, c_t, d_small, cos, sin, W0, W1, W2, F0, F1, F2, G
+                )
                 have_prev = _mixed(D, G, prev_D, prev_G, have_prev, change, last)
                 last = change
         else:
@@ -582,8 +590,11 @@ def solve_harmonic_cases(
     :func:`~cablestudy.dynamics.frequency.solve_harmonic` (module docstring). Never
     raises for a numerical failure: a failed case has ``ok`` False and NaN arrays."""
     settings = settings or DragSettings()
-    p = _prepare(red)
     line = red.line
+    if not line.has_drag:
+        # one linear solve per case: LAPACK's, as solve_harmonic (no iteration to save)
+        return _one_by_one(red, omegas, end_motion, settings)
+    p = _prepare(red)
     n = line.n_nodes
     omegas = np.ascontiguousarray(omegas, dtype=float)
     motion = np.ascontiguousarray(end_motion, dtype=np.complex128)
@@ -649,6 +660,26 @@ def solve_harmonic_cases(
         converged=converged,
         change=change,
         ok=ok,
+    )
+
+
+def _one_by_one(
+    red: ReducedLine, omegas: np.ndarray, end_motion: np.ndarray, settings: DragSettings
+) -> HarmonicCases:
+    """:func:`solve_harmonic_cases` by :func:`~cablestudy.dynamics.frequency.solve_harmonic`
+    case by case."""
+    from .frequency import solve_harmonic
+
+    results = [solve_harmonic(red, w, X, settings) for w, X in zip(omegas, end_motion, strict=True)]
+    return HarmonicCases(
+        displacement=np.array([r.displacement for r in results]),
+        element_tension=np.array([r.element_tension for r in results]),
+        end_tension=np.array([r.end_tension for r in results]),
+        tension_static=np.linalg.norm(red.line.end_force, axis=1),
+        iterations=np.array([r.drag_iterations for r in results], dtype=np.int64),
+        converged=np.array([r.drag_converged for r in results], dtype=np.bool_),
+        change=np.array([r.drag_change for r in results], dtype=float),
+        ok=np.array([r.success for r in results], dtype=np.bool_),
     )
 
 
