@@ -946,6 +946,8 @@ def evaluate_case(
         )
 
     def dynamic() -> tuple[int, str, dict[str, Any]]:
+        if linear is None:
+            return run_dynamic(case, static[0], deadline)
         return run_dynamic(case, static[0], deadline, linear)
 
     run("static", statics)

@@ -166,7 +166,7 @@ def drag_fit_samples(
         fm0 /= samples
         fm1 /= samples
         fm2 /= samples
-        g00 = g01 = g02 = g10 = g11 = g12 = g20 = g21 = g22 = 0.0
+        g00 = g01 = g02 = g11 = g12 = g22 = 0.0
         h00 = h01 = h02 = h10 = h11 = h12 = h20 = h21 = h22 = 0.0
         for k in range(samples):
             w0, w1, w2 = W0[i, k], W1[i, k], W2[i, k]
@@ -174,11 +174,8 @@ def drag_fit_samples(
             g00 += w0 * w0
             g01 += w0 * w1
             g02 += w0 * w2
-            g10 += w1 * w0
             g11 += w1 * w1
             g12 += w1 * w2
-            g20 += w2 * w0
-            g21 += w2 * w1
             g22 += w2 * w2
             h00 += f0 * w0
             h01 += f0 * w1
@@ -197,8 +194,9 @@ def drag_fit_samples(
             continue
         eps = 1e-10 * trace
         G00, G01, G02 = g00 / samples + eps, g01 / samples, g02 / samples
-        G10, G11, G12 = g10 / samples, g11 / samples + eps, g12 / samples
-        G20, G21, G22 = g20 / samples, g21 / samples, g22 / samples + eps
+        # w1 w0 is w0 w1 exactly: the lower sums equal the upper ones bit for bit
+        G10, G11, G12 = g01 / samples, g11 / samples + eps, g12 / samples
+        G20, G21, G22 = g02 / samples, g12 / samples, g22 / samples + eps
         H00 = h00 / samples + eps * tangent_d[i, 0, 0]
         H01 = h01 / samples + eps * tangent_d[i, 0, 1]
         H02 = h02 / samples + eps * tangent_d[i, 0, 2]
@@ -316,6 +314,23 @@ def _csr_rows(ptr, idx, val, x, lo, hi, out):  # noqa: ANN001, ANN202
 
 
 @njit(cache=True)
+def _max_abs(z, sq, sq_max):  # noqa: ANN001, ANN202
+    """``max(abs(z))`` (0 for none) as a running max of ``abs`` gives it, computing
+    ``abs`` (hypot) only for the entries whose squared magnitude ``sq`` lies within
+    round-off of the largest, ``sq_max``: any other one is surely smaller."""
+    acc = 0.0
+    if 1e-290 < sq_max < 1e290:  # squares neither under- nor overflow
+        low = sq_max * (1.0 - 1e-12)
+        for j in range(z.shape[0]):
+            if sq[j] >= low:
+                acc = max(acc, abs(z[j]))
+        return acc
+    for j in range(z.shape[0]):
+        acc = max(acc, abs(z[j]))
+    return acc
+
+
+@njit(cache=True)
 def _mixed(D, G, prev_D, prev_G, have_prev, change, last):  # noqa: ANN001, ANN202
     """The next drag matrices of the iteration of ``_drag_iteration`` (halving after a
     change that grew, else Anderson of depth one); returns the new ``have_prev``."""
@@ -419,6 +434,10 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
     prev_D = np.empty((n, 3, 3))
     prev_G = np.empty((n, 3, 3))
     end_rows = np.empty(3, dtype=np.complex128)
+    dv = np.empty(3 * n, dtype=np.complex128)
+    vflat = np.empty(3 * n, dtype=np.complex128)
+    dsq = np.empty(3 * n)
+    vsq = np.empty(3 * n)
     W0 = np.empty((n, samples))
     W1 = np.empty((n, samples))
     W2 = np.empty((n, samples))
@@ -493,8 +512,8 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                     ok = False
                     iterations = it
                     break
-                vmax = 0.0
-                dmax = 0.0
+                d2max = 0.0
+                v2max = 0.0
                 finite = True
                 for i in range(n):
                     o = offsets[i]
@@ -506,14 +525,23 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                         vn = 1j * omega * acc
                         if not (np.isfinite(vn.real) and np.isfinite(vn.imag)):
                             finite = False
-                        dmax = max(dmax, abs(vn - v[i, a]))
-                        vmax = max(vmax, abs(vn))
+                        dz = vn - v[i, a]
+                        d2 = dz.real * dz.real + dz.imag * dz.imag
+                        v2 = vn.real * vn.real + vn.imag * vn.imag
+                        dv[3 * i + a] = dz
+                        dsq[3 * i + a] = d2
+                        vsq[3 * i + a] = v2
+                        d2max = max(d2max, d2)
+                        v2max = max(v2max, v2)
                         u[i, a] = acc
                         v[i, a] = vn
+                        vflat[3 * i + a] = vn
                 if not finite:
                     ok = False
                     iterations = it
                     break
+                dmax = _max_abs(dv, dsq, d2max)
+                vmax = _max_abs(vflat, vsq, v2max)
                 change = dmax / max(vmax, 1e-300)
                 if change <= tol:
                     converged = True
