@@ -302,6 +302,11 @@ def solve_frequency_cases(
     return out
 
 
+#: the checks of ``method: auto`` when a study sets none (built once: a model per case
+#: costs more than the checks)
+_DEFAULT_AUTO = AutoSettings()
+
+
 def _judged(
     data: dict[str, np.ndarray],
     v: Validity,
@@ -311,7 +316,7 @@ def _judged(
     change: float,
 ) -> FrequencyOutcome:
     """A solved case's outcome with the checks of ``method: auto`` on its measures."""
-    auto = dyn.auto or AutoSettings()
+    auto = dyn.auto or _DEFAULT_AUTO
     reasons = []
     if not converged:
         reasons.append(

@@ -127,13 +127,14 @@ def _prepare(red: ReducedLine) -> _Prepared:
 
 @njit(cache=True)
 def drag_fit_samples(
-    vr, vi, current, tangent, c_n, c_t, tangent_d, cos, sin, W0, W1, W2, F0, F1, F2, out
-):  # noqa: ANN001, ANN201, PLR0913, E501
+    vr, vi, current, tangent, c_n, c_t, tangent_d, cos, sin, W0, W1, W2, F0, F1, F2, planar, out
+):  # noqa: ANN001, ANN201, PLR0913
     """:func:`cablestudy.dynamics.frequency._drag_fit` with ``cos``, ``sin`` (samples,)
     given and the same operations in the same order, laid out for the compiler: the
     drag at every node and phase first, in a loop without running sums (which it can
     vectorise), then the sums over the phases node by node; ``W0`` .. ``F2`` (n,
-    samples) work arrays."""
+    samples) and ``planar`` (n,) bool are work arrays. A node whose motion, tangent and
+    current have no y component skips the y terms (zeros: the values are the same)."""
     n = current.shape[0]
     samples = cos.shape[0]
     for i in range(n):
@@ -142,6 +143,24 @@ def drag_fit_samples(
         u0, u1, u2 = current[i, 0], current[i, 1], current[i, 2]
         a0, a1, a2 = vr[i, 0], vr[i, 1], vr[i, 2]
         b0, b1, b2 = vi[i, 0], vi[i, 1], vi[i, 2]
+        if a1 == 0.0 and b1 == 0.0 and t1 == 0.0 and u1 == 0.0:
+            # motion, tangent and current in the x-z plane: every y term below is a
+            # zero, and leaving them out changes no value (at most the sign of a zero)
+            for k in range(samples):
+                c, s = cos[k], sin[k]
+                w0 = -(a0 * c - b0 * s)
+                w2 = -(a2 * c - b2 * s)
+                r0, r2 = u0 + w0, u2 + w2
+                wt = r0 * t0 + r2 * t2
+                n0, n2 = r0 - wt * t0, r2 - wt * t2
+                sn = np.sqrt(n0 * n0 + n2 * n2)
+                st = abs(wt) * wt * ct
+                W0[i, k], W2[i, k] = w0, w2
+                F0[i, k] = cn * sn * n0 + st * t0
+                F2[i, k] = cn * sn * n2 + st * t2
+            planar[i] = True
+            continue
+        planar[i] = False
         for k in range(samples):
             c, s = cos[k], sin[k]
             # Re((a + i b) e^{i th}) = a cos - b sin; the relative velocity is -v
@@ -159,33 +178,50 @@ def drag_fit_samples(
             F2[i, k] = cn * sn * n2 + st * t2
     for i in range(n):
         fm0 = fm1 = fm2 = 0.0
-        for k in range(samples):
-            fm0 += F0[i, k]
-            fm1 += F1[i, k]
-            fm2 += F2[i, k]
-        fm0 /= samples
-        fm1 /= samples
-        fm2 /= samples
         g00 = g01 = g02 = g11 = g12 = g22 = 0.0
         h00 = h01 = h02 = h10 = h11 = h12 = h20 = h21 = h22 = 0.0
-        for k in range(samples):
-            w0, w1, w2 = W0[i, k], W1[i, k], W2[i, k]
-            f0, f1, f2 = F0[i, k] - fm0, F1[i, k] - fm1, F2[i, k] - fm2
-            g00 += w0 * w0
-            g01 += w0 * w1
-            g02 += w0 * w2
-            g11 += w1 * w1
-            g12 += w1 * w2
-            g22 += w2 * w2
-            h00 += f0 * w0
-            h01 += f0 * w1
-            h02 += f0 * w2
-            h10 += f1 * w0
-            h11 += f1 * w1
-            h12 += f1 * w2
-            h20 += f2 * w0
-            h21 += f2 * w1
-            h22 += f2 * w2
+        if planar[i]:
+            for k in range(samples):
+                fm0 += F0[i, k]
+                fm2 += F2[i, k]
+            fm0 /= samples
+            fm2 /= samples
+            for k in range(samples):
+                w0, w2 = W0[i, k], W2[i, k]
+                f0, f2 = F0[i, k] - fm0, F2[i, k] - fm2
+                g00 += w0 * w0
+                g02 += w0 * w2
+                g22 += w2 * w2
+                h00 += f0 * w0
+                h02 += f0 * w2
+                h20 += f2 * w0
+                h22 += f2 * w2
+        else:
+            for k in range(samples):
+                fm0 += F0[i, k]
+                fm1 += F1[i, k]
+                fm2 += F2[i, k]
+            fm0 /= samples
+            fm1 /= samples
+            fm2 /= samples
+            for k in range(samples):
+                w0, w1, w2 = W0[i, k], W1[i, k], W2[i, k]
+                f0, f1, f2 = F0[i, k] - fm0, F1[i, k] - fm1, F2[i, k] - fm2
+                g00 += w0 * w0
+                g01 += w0 * w1
+                g02 += w0 * w2
+                g11 += w1 * w1
+                g12 += w1 * w2
+                g22 += w2 * w2
+                h00 += f0 * w0
+                h01 += f0 * w1
+                h02 += f0 * w2
+                h10 += f1 * w0
+                h11 += f1 * w1
+                h12 += f1 * w2
+                h20 += f2 * w0
+                h21 += f2 * w1
+                h22 += f2 * w2
         trace = (g00 + g11 + g22) / samples
         if not trace > 0.0:  # a node at rest: the small-motion tangent
             for a in range(3):
@@ -444,6 +480,7 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
     F0 = np.empty((n, samples))
     F1 = np.empty((n, samples))
     F2 = np.empty((n, samples))
+    planar = np.empty(n, dtype=np.bool_)
     for case in range(omegas.shape[0]):
         omega = omegas[case]
         w2 = omega**2
@@ -480,7 +517,23 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                     vr[i, a] = v[i, a].real
                     vi[i, a] = v[i, a].imag
             drag_fit_samples(
-                vr, vi, current, tangent, c_n, c_t, d_small, cos, sin, W0, W1, W2, F0, F1, F2, D
+                vr,
+                vi,
+                current,
+                tangent,
+                c_n,
+                c_t,
+                d_small,
+                cos,
+                sin,
+                W0,
+                W1,
+                W2,
+                F0,
+                F1,
+                F2,
+                planar,
+                D,
             )
             have_prev = False
             last = np.inf
@@ -552,7 +605,23 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                         vr[i, a] = v[i, a].real
                         vi[i, a] = v[i, a].imag
                 drag_fit_samples(
-                    vr, vi, current, tangent, c_n, c_t, d_small, cos, sin, W0, W1, W2, F0, F1, F2, G
+                    vr,
+                    vi,
+                    current,
+                    tangent,
+                    c_n,
+                    c_t,
+                    d_small,
+                    cos,
+                    sin,
+                    W0,
+                    W1,
+                    W2,
+                    F0,
+                    F1,
+                    F2,
+                    planar,
+                    G,
                 )
                 have_prev = _mixed(D, G, prev_D, prev_G, have_prev, change, last)
                 last = change
