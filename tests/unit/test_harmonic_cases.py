@@ -205,3 +205,23 @@ def test_validity_measures_as_arrays_match_the_per_case_function(text: str) -> N
         )
     if "depth" in text:
         assert static.laid_length > 0.0 and np.all(travel > 0.0)  # touchdown exercised
+
+
+def test_auto_sweep_in_a_chunk_gives_each_case_its_record_alone() -> None:
+    """``method: auto`` takes the batched frequency-domain answers of a chunk and falls
+    back to the time domain case by case as before: on cases of the Figs. 2-5 sweep
+    kept in the frequency domain (0.1, 0.35 Hz at 0.025 m) and one it refuses (0.7 Hz:
+    amplitude/sag 0.0754 > 0.075), every record equals the one the case gets alone."""
+    text = FIGS.read_text()
+    picked = _cases(text, [0, 5, 12])
+    chunk = analyses.evaluate_chunk(picked)
+    methods = [str(r.data["dynamic_method"]) for r in chunk]
+    assert methods == ["frequency", "frequency", "time"], methods
+    for case, rec in zip(picked, chunk, strict=True):
+        analyses._STATIC_CACHE.clear()
+        frequency_cases._LINEAR_CACHE.clear()
+        alone = analyses.evaluate_case(case)
+        assert (rec.status, rec.message) == (alone.status, alone.message)
+        assert set(rec.data) == set(alone.data)
+        for name, value in alone.data.items():
+            assert np.asarray(rec.data[name]).tobytes() == np.asarray(value).tobytes(), name
