@@ -219,13 +219,26 @@ def batch_key(case: Case) -> tuple | None:
     return (case.static_hash, dyn.elements, drag_settings(dyn))
 
 
+#: most (cases x nodes) solved in one call: its arrays (displacements, tensions) stay
+#: under about 100 MB however long the line and large the chunk
+BATCH_NODES = 1_000_000
+
+
 def solve_frequency_cases(
     cases: list[Case], static: StaticResult, red: ReducedLine
 ) -> list[FrequencyOutcome]:
     """:func:`solve_frequency` for harmonic cases that share a linearised line ``red``
     and its static solution ``static`` (the same :func:`batch_key`): one compiled call
     solves them all (:func:`cablestudy.dynamics.harmonic_cases.solve_harmonic_cases`),
-    and their outputs and validity measures are computed as arrays."""
+    and their outputs and validity measures are computed as arrays (in slices of at
+    most :data:`BATCH_NODES` case-nodes)."""
+    step = max(1, BATCH_NODES // red.line.n_nodes)
+    if len(cases) > step:
+        return [
+            outcome
+            for i in range(0, len(cases), step)
+            for outcome in solve_frequency_cases(cases[i : i + step], static, red)
+        ]
     line = red.line
     K = len(cases)
     dyns = [c.study.analysis.dynamic for c in cases]

@@ -225,3 +225,19 @@ def test_auto_sweep_in_a_chunk_gives_each_case_its_record_alone() -> None:
         assert set(rec.data) == set(alone.data)
         for name, value in alone.data.items():
             assert np.asarray(rec.data[name]).tobytes() == np.asarray(value).tobytes(), name
+
+
+def test_cases_beyond_one_call_are_solved_in_slices_with_the_same_outcomes(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A chunk larger than BATCH_NODES case-nodes is solved in slices; each case's
+    outcome is the one it gets in a single call."""
+    cases = _cases(_moustafa(), slice(0, 7))
+    static, red, *_ = _setup(cases)
+    whole = frequency_cases.solve_frequency_cases(cases, static, red)
+    monkeypatch.setattr(frequency_cases, "BATCH_NODES", 3 * red.line.n_nodes)  # 3 per slice
+    sliced = frequency_cases.solve_frequency_cases(cases, static, red)
+    for a, b in zip(whole, sliced, strict=True):
+        assert (a.status, a.distrust, a.summary) == (b.status, b.distrust, b.summary)
+        for name, value in a.data.items():
+            assert np.asarray(b.data[name]).tobytes() == np.asarray(value).tobytes(), name
