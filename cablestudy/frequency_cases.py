@@ -192,6 +192,30 @@ def tension_along(
     )
 
 
+def tension_along_cases(
+    s_out: np.ndarray, s_nodes: np.ndarray, element: np.ndarray, ends: np.ndarray
+) -> np.ndarray:
+    """:func:`tension_along` of K responses at once: ``element`` (K, n - 1) and ``ends``
+    (K, 2) [N] give (K, len(s_out)), with the operations of ``np.interp`` (the slope
+    of the interval times the distance from its left end, plus its left value; a knot
+    or a point beyond the ends takes the value there), so the same numbers."""
+    mid = 0.5 * (s_nodes[:-1] + s_nodes[1:])
+    xp = np.concatenate(([s_nodes[0]], mid, [s_nodes[-1]]))
+    fp = np.concatenate((ends[:, :1], element, ends[:, 1:]), axis=1)
+    j = np.searchsorted(xp, s_out, side="right") - 1  # xp[j] <= s < xp[j + 1]
+    inner = (j >= 0) & (j < xp.size - 1)
+    jj = np.clip(j, 0, xp.size - 2)
+    slope = (fp[:, jj + 1] - fp[:, jj]) / (xp[jj + 1] - xp[jj])
+    out = slope * (s_out - xp[jj]) + fp[:, jj]
+    if np.isnan(out).any():  # as np.interp: from the right end of the interval instead
+        other = slope * (s_out - xp[jj + 1]) + fp[:, jj + 1]
+        out = np.where(np.isnan(out), other, out)
+        out = np.where(np.isnan(out) & (fp[:, jj] == fp[:, jj + 1]), fp[:, jj], out)
+    knot = ~inner | (xp[np.clip(j, 0, xp.size - 1)] == s_out)
+    at = np.where(j < 0, 0, np.clip(j, 0, xp.size - 1))
+    return np.where(knot[None], fp[:, at], out)
+
+
 def solve_frequency(case: Case, static: StaticResult, deadline: float | None) -> FrequencyOutcome:
     """The harmonic response of the case, its outputs, and the auto checks (as one case
     of :func:`solve_frequency_cases`, so a case gives the same record alone or in a
@@ -274,6 +298,7 @@ def solve_frequency_cases(
         submerged_weight=_submerged_weight(cases[0], line.s),
         held=np.diff(line.free_basis.tocsr().indptr).reshape(-1, 3).sum(axis=1) == 0,
     )
+    envelope = tension_along_cases(static.s, line.s, a_el, a_end)
     out = []
     for k, dyn in enumerate(dyns):
         assert dyn is not None
@@ -284,7 +309,7 @@ def solve_frequency_cases(
             )
             continue
         ex = 0 if dyn.excitations[0].end == "a" else 1
-        env_amp = tension_along(static.s, line.s, a_el[k], a_end[k])
+        env_amp = envelope[k]
         env_max = static.tension + env_amp
         data: dict[str, np.ndarray] = {
             "tension_static": np.asarray(t_end[ex]),

@@ -246,3 +246,18 @@ def test_cases_beyond_one_call_are_solved_in_slices_with_the_same_outcomes(
         assert (a.status, a.distrust, a.summary) == (b.status, b.distrust, b.summary)
         for name, value in a.data.items():
             assert np.asarray(b.data[name]).tobytes() == np.asarray(value).tobytes(), name
+
+
+def test_tension_along_cases_gives_np_interp_numbers() -> None:
+    """The envelope of K responses at once equals tension_along (np.interp) row by row,
+    bit for bit, at output points between, on and beyond the element midpoints."""
+    rng = np.random.default_rng(11)
+    s_nodes = np.cumsum(np.r_[0.0, rng.uniform(0.5, 1.5, 20)])
+    mid = 0.5 * (s_nodes[:-1] + s_nodes[1:])
+    s_out = np.sort(np.r_[np.linspace(-0.5, s_nodes[-1] + 0.5, 57), mid[::3], s_nodes[[0, -1]]])
+    element = rng.uniform(0.0, 100.0, (6, s_nodes.size - 1))
+    ends = rng.uniform(0.0, 100.0, (6, 2))
+    got = frequency_cases.tension_along_cases(s_out, s_nodes, element, ends)
+    for k in range(6):
+        want = frequency_cases.tension_along(s_out, s_nodes, element[k], ends[k])
+        assert got[k].tobytes() == want.tobytes()
