@@ -5,11 +5,11 @@ A sweep over excitation frequency, amplitude or phase of one line shares its
 changes. :func:`solve_harmonic_cases` runs, for every case, the steps of
 :func:`~cablestudy.dynamics.frequency.solve_harmonic` (same right side, same starting
 guess, same drag fit, same Anderson-accelerated iteration, same pivoting of the band
-solve, so the same answer to round-off) inside one numba kernel, with:
+solve, each sum in the same order, so the same numbers) inside one numba kernel, with:
 
 * the band solve on row-major storage that follows the reach of each row (the
-  columns that row exchanges actually filled), so an elimination step touches only
-  non-zero entries; no value changes, since the skipped updates subtract exact zeros;
+  columns that row exchanges actually filled), so an elimination step skips columns
+  that are still zero; no value changes, since those updates subtract exact zeros;
 * the drag blocks of nodes whose free basis is the identity added directly (the
   projection ``b^T D b`` then is ``D`` exactly);
 * the drag fit laid out so that the compiler vectorises the drag over the phases
@@ -18,9 +18,11 @@ solve, so the same answer to round-off) inside one numba kernel, with:
 * for a line in the x-z plane moved in that plane, the system without its y unknowns,
   which stay zero (:func:`in_plane`: the same operations on the non-zero entries).
 
-The per-case :func:`~cablestudy.dynamics.frequency.solve_harmonic` stays the reference
-(tests compare the two on cases with and without drag and current). Pure: arrays in,
-a :class:`HarmonicCases` out.
+A line without drag (one linear solve per case, nothing to iterate) goes case by case
+through :func:`~cablestudy.dynamics.frequency.solve_harmonic`, whose LAPACK band solve
+rounds differently from this one. The per-case ``solve_harmonic`` stays the reference
+(tests/unit/test_harmonic_cases.py compares the two). Pure: arrays in, a
+:class:`HarmonicCases` out.
 """
 
 from __future__ import annotations
