@@ -186,6 +186,15 @@ def warm_up(cases: list[Case]) -> None:
         c.study.analysis.dynamic is not None and c.study.analysis.dynamic.method != "time"
         for c in cases
     ):
+        from .dynamics.harmonic_cases import warm_up as warm_up_harmonic
+
+        warm_up_harmonic()
+    if any(
+        c.study.analysis.dynamic is not None
+        and c.study.analysis.dynamic.method != "time"
+        and c.study.analysis.dynamic.transfer_function is not None
+        for c in cases
+    ):
         from .dynamics.frequency import warm_up as warm_up_frequency
 
         warm_up_frequency()
@@ -703,14 +712,15 @@ def auto_ineligible(dyn: DynamicSettings, study: Any = None) -> str:
 
 
 def run_dynamic(
-    case: Case, static: StaticResult, deadline: float | None
+    case: Case, static: StaticResult, deadline: float | None, outcome: Any = None
 ) -> tuple[int, str, dict[str, np.ndarray]]:
     """The case's dynamic analysis by its method: (status, message, outputs).
 
     ``time``: the time domain; ``frequency``: the linearised harmonic response;
     ``auto``: the frequency domain where :mod:`cablestudy.frequency_cases` trusts it,
     else the time domain. ``dynamic_method`` and ``dynamic_method_reason`` record
-    which ran and why."""
+    which ran and why. ``outcome``: the case's frequency-domain outcome when already
+    solved (with the other cases of its chunk, :func:`evaluate_chunk`)."""
     from .frequency_cases import TRANSFER_OUTPUTS, solve_frequency
 
     dyn = case.study.analysis.dynamic
@@ -723,7 +733,7 @@ def run_dynamic(
     if dyn.method in ("frequency", "auto"):
         why = auto_ineligible(dyn, case.study) if dyn.method == "auto" else ""
         if not why:
-            fres = solve_frequency(case, static, deadline)
+            fres = outcome if outcome is not None else solve_frequency(case, static, deadline)
             if dyn.method == "frequency" or (fres.status == STATUS_OK and not fres.distrust):
                 reason = (
                     "method: frequency"
@@ -920,28 +930,51 @@ def _exception_message(exc: Exception) -> str:
     return f"{type(exc).__name__}: {exc}{where}"
 
 
+#: the outputs last checked by :func:`_non_finite` per analysis, with the answer (holding
+#: the arrays, so that a later call with the very same objects can reuse it)
+_LAST_CHECKED: dict[str, tuple[dict[str, Any], list[str]]] = {}
+
+
 def _non_finite(data: dict[str, Any], analysis: str) -> list[str]:
     """Float variables of ``analysis`` in ``data`` holding NaN or infinity where the
     registry does not give NaN a meaning (e.g. 'no seabed contact')."""
     from .results import OUTPUTS
 
+    last = _LAST_CHECKED.get(analysis)
+    if (
+        last is not None
+        and len(last[0]) == len(data)
+        and all(k in data and data[k] is v for k, v in last[0].items())
+    ):
+        return list(last[1])  # the very same arrays (outputs shared between cases)
     bad = []
     for k, v in data.items():
         spec = OUTPUTS.get(k)
-        if spec is None or spec.analysis != analysis or np.asarray(v).dtype.kind != "f":
+        if spec is None or spec.analysis != analysis:
             continue
-        v = np.asarray(v)
+        v = v if isinstance(v, np.ndarray) else np.asarray(v)
+        if v.dtype.kind != "f":
+            continue
+        if v.ndim == 0:  # a number: no array reductions needed
+            x = float(v)
+            if not (math.isfinite(x) or (spec.nan_means and math.isnan(x))):
+                bad.append(k)
+            continue
         if spec.nan_means:
             v = v[~np.isnan(v)]
-        if not np.all(np.isfinite(v)):
+        if not np.isfinite(v).all():
             bad.append(k)
+    _LAST_CHECKED[analysis] = (dict(data), sorted(bad))
     return sorted(bad)
 
 
-def evaluate_case(case: Case, *, presolved: dict[str, StaticResult] | None = None) -> CaseRecord:
+def evaluate_case(
+    case: Case, *, presolved: dict[str, StaticResult] | None = None, linear: Any = None
+) -> CaseRecord:
     """Run every analysis the case asks for. Never raises: an exception inside a solver
     becomes a failure of that analysis with the exception's text. ``presolved`` maps
-    static hashes to static solutions already computed (by :func:`evaluate_chunk`).
+    static hashes to static solutions already computed (by :func:`evaluate_chunk`);
+    ``linear`` is the case's frequency-domain outcome when already solved (idem).
 
     Each analysis asked for records ``<analysis>_status`` (0 ok); a failed analysis
     blanks only its own variables at assembly (:func:`cablestudy.results.analysis_ok`).
@@ -988,7 +1021,9 @@ def evaluate_case(case: Case, *, presolved: dict[str, StaticResult] | None = Non
         )
 
     def dynamic() -> tuple[int, str, dict[str, Any]]:
-        return run_dynamic(case, static[0], deadline)
+        if linear is None:
+            return run_dynamic(case, static[0], deadline)
+        return run_dynamic(case, static[0], deadline, linear)
 
     run("static", statics)
     asked = {
@@ -1081,15 +1116,62 @@ def presolve_statics(cases: list[Case]) -> tuple[dict[str, StaticResult], dict[s
     return solved, dict.fromkeys(solved, share)
 
 
+def presolve_frequency(
+    cases: list[Case], presolved: dict[str, StaticResult]
+) -> tuple[dict[int, Any], dict[int, float]]:
+    """The frequency-domain outcomes of the cases that will ask for one (``method:
+    frequency``, or ``auto`` where the frequency domain may answer), solved together
+    per shared linear model (:func:`cablestudy.frequency_cases.solve_frequency_cases`):
+    by position in ``cases``, with each case's share of its group's wall time [s].
+    Anything unexpected leaves the cases to the one-by-one path (which records its own
+    errors), as does a group whose statics or linear model fail."""
+    from .frequency_cases import batch_key, linearised, solve_frequency_cases
+
+    groups: dict[tuple, list[int]] = {}
+    for i, case in enumerate(cases):
+        dyn = case.study.analysis.dynamic
+        if dyn is None or dyn.method == "time":
+            continue
+        if dyn.method == "auto" and auto_ineligible(dyn, case.study):
+            continue
+        key = batch_key(case)
+        if key is not None:
+            groups.setdefault(key, []).append(i)
+    outcomes: dict[int, Any] = {}
+    share: dict[int, float] = {}
+    for members in groups.values():
+        t0 = time.perf_counter()
+        first = cases[members[0]]
+        try:
+            deadline = time.monotonic() + first.study.analysis.time_limit
+            static = solve_static(first, deadline, presolved)
+            if not static.success:
+                continue
+            red, _ = linearised(first, static, deadline)
+            if red is None:
+                continue
+            solved = solve_frequency_cases([cases[i] for i in members], static, red)
+        except Exception:  # noqa: BLE001 - the per-case path reports it
+            continue
+        each = (time.perf_counter() - t0) / len(members)
+        for i, outcome in zip(members, solved, strict=True):
+            outcomes[i] = outcome
+            share[i] = each
+    return outcomes, share
+
+
 def evaluate_chunk(cases: list[Case]) -> list[CaseRecord]:
     """Evaluate a chunk of cases in one task: compatible static problems are solved as
-    one batch first, then every case runs as in :func:`evaluate_case` (its wall time
-    includes its share of the batch)."""
+    one batch first, and the frequency-domain responses of the cases that share a
+    linear model together; then every case runs as in :func:`evaluate_case` (its wall
+    time includes its share of the batches)."""
     solved, share = presolve_statics(cases)
+    linear, linear_share = presolve_frequency(cases, solved)
     records = []
-    for case in cases:
-        rec = evaluate_case(case, presolved=solved)
+    for i, case in enumerate(cases):
+        rec = evaluate_case(case, presolved=solved, linear=linear.get(i))
         if case.static_hash in share:
             rec.wall_time += share.pop(case.static_hash)
+        rec.wall_time += linear_share.get(i, 0.0)
         records.append(rec)
     return records

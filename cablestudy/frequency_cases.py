@@ -26,9 +26,10 @@ from .config.analysis import (
 )
 from .counters import COUNTERS  # noqa: F401 - re-exported: static solves, assemblies
 from .dynamics.frequency import DragSettings, ReducedLine, solve_harmonic, solve_spectrum
+from .dynamics.harmonic_cases import solve_harmonic_cases
 from .dynamics.linear_model import linear_line
 from .dynamics.modal import ModalProblem
-from .dynamics.validity import Validity, measures
+from .dynamics.validity import Validity, measures_cases
 from .problem import static_problem
 from .statics import STATUS_NO_SOLUTION, STATUS_NUMERICAL, STATUS_OK, StaticResult
 from .statics.base import StaticProblem
@@ -191,8 +192,34 @@ def tension_along(
     )
 
 
+def tension_along_cases(
+    s_out: np.ndarray, s_nodes: np.ndarray, element: np.ndarray, ends: np.ndarray
+) -> np.ndarray:
+    """:func:`tension_along` of K responses at once: ``element`` (K, n - 1) and ``ends``
+    (K, 2) [N] give (K, len(s_out)), with the operations of ``np.interp`` (the slope
+    of the interval times the distance from its left end, plus its left value; a knot
+    or a point beyond the ends takes the value there), so the same numbers."""
+    mid = 0.5 * (s_nodes[:-1] + s_nodes[1:])
+    xp = np.concatenate(([s_nodes[0]], mid, [s_nodes[-1]]))
+    fp = np.concatenate((ends[:, :1], element, ends[:, 1:]), axis=1)
+    j = np.searchsorted(xp, s_out, side="right") - 1  # xp[j] <= s < xp[j + 1]
+    inner = (j >= 0) & (j < xp.size - 1)
+    jj = np.clip(j, 0, xp.size - 2)
+    slope = (fp[:, jj + 1] - fp[:, jj]) / (xp[jj + 1] - xp[jj])
+    out = slope * (s_out - xp[jj]) + fp[:, jj]
+    if np.isnan(out).any():  # as np.interp: from the right end of the interval instead
+        other = slope * (s_out - xp[jj + 1]) + fp[:, jj + 1]
+        out = np.where(np.isnan(out), other, out)
+        out = np.where(np.isnan(out) & (fp[:, jj] == fp[:, jj + 1]), fp[:, jj], out)
+    knot = ~inner | (xp[np.clip(j, 0, xp.size - 1)] == s_out)
+    at = np.where(j < 0, 0, np.clip(j, 0, xp.size - 1))
+    return np.where(knot[None], fp[:, at], out)
+
+
 def solve_frequency(case: Case, static: StaticResult, deadline: float | None) -> FrequencyOutcome:
-    """The harmonic response of the case, its outputs, and the auto checks."""
+    """The harmonic response of the case, its outputs, and the auto checks (as one case
+    of :func:`solve_frequency_cases`, so a case gives the same record alone or in a
+    chunk)."""
     dyn = case.study.analysis.dynamic
     assert dyn is not None
     red, why = linearised(case, static, deadline)
@@ -201,45 +228,64 @@ def solve_frequency(case: Case, static: StaticResult, deadline: float | None) ->
     spectra = [e for e in dyn.excitations if isinstance(e, SpectrumExcitation)]
     if spectra:
         return irregular(red, spectra[0], dyn, static)
-    X, freq, ref = end_displacements(dyn)
-    res = solve_harmonic(red, 2.0 * math.pi * freq, X, drag_settings(dyn))
-    if not res.success:
-        return FrequencyOutcome(
-            status=STATUS_NUMERICAL, message=res.message, data={}, distrust=res.message
-        )
+    return solve_frequency_cases([case], static, red)[0]
+
+
+def batch_key(case: Case) -> tuple | None:
+    """What the cases of one :func:`solve_frequency_cases` call share (static problem,
+    dynamic nodes, drag settings); None for a case that call does not take (no
+    dynamics, a spectrum, a spring line)."""
+    dyn = case.study.analysis.dynamic
+    if dyn is None or case.study.line.is_spring:
+        return None
+    if not all(isinstance(e, HarmonicExcitation) for e in dyn.excitations):
+        return None
+    return (case.static_hash, dyn.elements, drag_settings(dyn))
+
+
+#: most (cases x nodes) solved in one call: its arrays (displacements, tensions) stay
+#: under about 100 MB however long the line and large the chunk
+BATCH_NODES = 1_000_000
+
+
+def solve_frequency_cases(
+    cases: list[Case], static: StaticResult, red: ReducedLine
+) -> list[FrequencyOutcome]:
+    """:func:`solve_frequency` for harmonic cases that share a linearised line ``red``
+    and its static solution ``static`` (the same :func:`batch_key`): one compiled call
+    solves them all (:func:`cablestudy.dynamics.harmonic_cases.solve_harmonic_cases`),
+    and their outputs and validity measures are computed as arrays (in slices of at
+    most :data:`BATCH_NODES` case-nodes)."""
+    step = max(1, BATCH_NODES // red.line.n_nodes)
+    if len(cases) > step:
+        return [
+            outcome
+            for i in range(0, len(cases), step)
+            for outcome in solve_frequency_cases(cases[i : i + step], static, red)
+        ]
     line = red.line
-    first = dyn.excitations[0]
-    ex = 0 if first.end == "a" else 1
+    K = len(cases)
+    dyns = [c.study.analysis.dynamic for c in cases]
+    omegas = np.empty(K)
+    motion = np.empty((K, 2, 3), dtype=complex)
+    refs = np.empty(K, dtype=complex)
+    for k, dyn in enumerate(dyns):
+        assert dyn is not None
+        X, freq, ref = end_displacements(dyn)
+        omegas[k] = 2.0 * math.pi * freq
+        motion[k] = X
+        refs[k] = ref
+    assert dyns[0] is not None
+    res = solve_harmonic_cases(red, omegas, motion, drag_settings(dyns[0]))
     t_end = res.tension_static
     a_end = np.abs(res.end_tension)
     a_el = np.abs(res.element_tension)
-    phase = np.degrees(np.angle(res.end_tension / ref))
-    env_amp = tension_along(static.s, line.s, a_el, a_end)
-    env_max = static.tension + env_amp
-    env_min = static.tension - env_amp
-    data: dict[str, np.ndarray] = {
-        "tension_static": np.asarray(t_end[ex]),
-        "tension_max": np.asarray(t_end[ex] + a_end[ex]),
-        "tension_min": np.asarray(t_end[ex] - a_end[ex]),
-        "tension_mean": np.asarray(t_end[ex]),
-        "tension_max_line": np.asarray(max(float(np.max(env_max)), float(np.max(t_end + a_end)))),
-        "tension_envelope_max": env_max,
-        "tension_envelope_min": env_min,
-        "tension_amplitude_a": np.asarray(a_end[0]),
-        "tension_amplitude_b": np.asarray(a_end[1]),
-        "tension_phase_a": np.asarray(phase[0]),
-        "tension_phase_b": np.asarray(phase[1]),
-        "steady_converged": np.asarray(1),
-        "linearisation_iterations": np.asarray(res.drag_iterations),
-        "linearisation_converged": np.asarray(int(res.drag_converged)),
-    }
-    if dyn.transfer_function is not None:
-        data.update(transfer_function(red, dyn, static))
-    med = _problem(case).medium
+    phase = np.degrees(np.angle(res.end_tension / refs[:, None]))
+    edge_max = np.max(t_end[None] + a_end, axis=1)
+    med = _problem(cases[0]).medium
     ground = med.seabed_z(line.position[:, 0], line.position[:, 1])
     on_bed = np.abs(line.position[:, 2] - ground) <= 1e-6 * max(float(line.s[-1]), 1.0)
-    weight = _submerged_weight(case, line.s)
-    v = measures(
+    ratio, sag_ratio, travel = measures_cases(
         s=line.s,
         position=line.position,
         displacement=res.displacement,
@@ -249,15 +295,70 @@ def solve_frequency(case: Case, static: StaticResult, deadline: float | None) ->
         end_tension_amplitude=a_end,
         laid_length=static.laid_length,
         on_seabed=on_bed,
-        submerged_weight=weight,
+        submerged_weight=_submerged_weight(cases[0], line.s),
         held=np.diff(line.free_basis.tocsr().indptr).reshape(-1, 3).sum(axis=1) == 0,
     )
-    auto = dyn.auto or AutoSettings()
+    envelope = tension_along_cases(static.s, line.s, a_el, a_end)
+    out = []
+    for k, dyn in enumerate(dyns):
+        assert dyn is not None
+        if not res.ok[k]:
+            why = f"singular dynamic matrix at {omegas[k] / (2 * math.pi):.6g} Hz"
+            out.append(
+                FrequencyOutcome(status=STATUS_NUMERICAL, message=why, data={}, distrust=why)
+            )
+            continue
+        ex = 0 if dyn.excitations[0].end == "a" else 1
+        env_amp = envelope[k]
+        env_max = static.tension + env_amp
+        data: dict[str, np.ndarray] = {
+            "tension_static": np.asarray(t_end[ex]),
+            "tension_max": np.asarray(t_end[ex] + a_end[k, ex]),
+            "tension_min": np.asarray(t_end[ex] - a_end[k, ex]),
+            "tension_mean": np.asarray(t_end[ex]),
+            "tension_max_line": np.asarray(max(float(np.max(env_max)), float(edge_max[k]))),
+            "tension_envelope_max": env_max,
+            "tension_envelope_min": static.tension - env_amp,
+            "tension_amplitude_a": np.asarray(a_end[k, 0]),
+            "tension_amplitude_b": np.asarray(a_end[k, 1]),
+            "tension_phase_a": np.asarray(phase[k, 0]),
+            "tension_phase_b": np.asarray(phase[k, 1]),
+            "steady_converged": np.asarray(1),
+            "linearisation_iterations": np.asarray(int(res.iterations[k])),
+            "linearisation_converged": np.asarray(int(res.converged[k])),
+        }
+        if dyn.transfer_function is not None:
+            data.update(transfer_function(red, dyn, static))
+        v = Validity(
+            min_tension_ratio=float(ratio[k]),
+            amplitude_sag_ratio=float(sag_ratio[k]),
+            touchdown_travel=float(travel[k]),
+        )
+        out.append(
+            _judged(data, v, dyn, bool(res.converged[k]), int(res.iterations[k]), res.change[k])
+        )
+    return out
+
+
+#: the checks of ``method: auto`` when a study sets none (built once: a model per case
+#: costs more than the checks)
+_DEFAULT_AUTO = AutoSettings()
+
+
+def _judged(
+    data: dict[str, np.ndarray],
+    v: Validity,
+    dyn: DynamicSettings,
+    converged: bool,
+    iterations: int,
+    change: float,
+) -> FrequencyOutcome:
+    """A solved case's outcome with the checks of ``method: auto`` on its measures."""
+    auto = dyn.auto or _DEFAULT_AUTO
     reasons = []
-    if not res.drag_converged:
+    if not converged:
         reasons.append(
-            f"drag linearisation not converged ({res.drag_iterations} iterations, change "
-            f"{res.drag_change:.2g})"
+            f"drag linearisation not converged ({iterations} iterations, change {change:.2g})"
         )
     if v.min_tension_ratio < auto.min_tension_ratio:
         reasons.append(
@@ -282,7 +383,7 @@ def solve_frequency(case: Case, static: StaticResult, deadline: float | None) ->
         distrust="; ".join(reasons),
         summary=summary,
         validity=v,
-        drag_converged=res.drag_converged,
+        drag_converged=converged,
     )
 
 

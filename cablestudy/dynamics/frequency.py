@@ -514,25 +514,29 @@ class ReducedLine:
         Cr = (B.T @ line.damping @ B).tocoo()
         bw = max(int(np.max(np.abs(m.row - m.col), initial=0)) for m in (Kr, Mr, Cr))
         n = line.n_nodes
-        dense = B.toarray() if B.shape[1] else np.zeros((3 * n, 0))
         # per node its free basis, padded with zero columns to (3, 3), and where each
-        # entry of the node's reduced 3 x 3 block lands in band storage
+        # entry of the node's reduced 3 x 3 block lands in band storage; a node's
+        # columns are those with a non-zero in its three rows, in column order
+        coo = sp.coo_matrix(B)
+        keep = coo.data != 0.0
+        row, col, val = coo.row[keep], coo.col[keep], coo.data[keep]
+        node = row // 3
+        pairs, where = np.unique(node * max(B.shape[1], 1) + col, return_inverse=True)
+        pair_node = pairs // max(B.shape[1], 1)
+        counts = np.bincount(pair_node, minlength=n)
+        first = np.concatenate(([0], np.cumsum(counts)[:-1]))
+        rank = np.arange(pairs.size) - first[pair_node]
         padded = np.zeros((n, 3, 3))
-        band_r, band_c, blk_i, blk_r, blk_c = [], [], [], [], []
-        offset = 0
-        counts = []
-        for i in range(n):
-            cols = np.flatnonzero(np.any(dense[3 * i : 3 * i + 3] != 0.0, axis=0))
-            k = cols.size
-            counts.append(k)
-            padded[i, :, :k] = dense[3 * i : 3 * i + 3, cols]
-            r, c = np.meshgrid(np.arange(k), np.arange(k), indexing="ij")
-            band_r.append(bw + r.ravel() - c.ravel())
-            band_c.append(offset + c.ravel())
-            blk_i.append(np.full(k * k, i))
-            blk_r.append(r.ravel())
-            blk_c.append(c.ravel())
-            offset += k
+        padded[node, row % 3, rank[where]] = val
+        sizes = counts**2
+        blk_i = np.repeat(np.arange(n), sizes)
+        local = np.arange(int(sizes.sum())) - np.repeat(np.cumsum(sizes) - sizes, sizes)
+        k_of = counts[blk_i]
+        blk_r = local // np.maximum(k_of, 1)
+        blk_c = local % np.maximum(k_of, 1)
+        offset = np.concatenate(([0], np.cumsum(counts)[:-1]))
+        band_r = bw + blk_r - blk_c
+        band_c = offset[blk_i] + blk_c
         return cls(
             line=line,
             K=_banded(Kr, bw),
@@ -540,8 +544,8 @@ class ReducedLine:
             C=_banded(Cr, bw),
             bandwidth=bw,
             node_basis=padded,
-            band_index=(np.concatenate(band_r), np.concatenate(band_c)),
-            block_index=(np.concatenate(blk_i), np.concatenate(blk_r), np.concatenate(blk_c)),
+            band_index=(band_r, band_c),
+            block_index=(blk_i, blk_r, blk_c),
             offsets=np.concatenate(([0], np.cumsum(counts))).astype(np.int64),
         )
 

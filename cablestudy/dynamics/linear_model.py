@@ -64,22 +64,16 @@ def linear_line(problem: ModalProblem) -> LinearLine:
     bases = node_bases(prob)
     dims = np.array([b.shape[1] for b in bases])
     offsets = np.concatenate(([0], np.cumsum(dims)))
-    rows, cols, vals = [], [], []
-    for i, basis in enumerate(bases):
-        k = basis.shape[1]
-        if k == 0:
-            continue
-        r3, ck = np.meshgrid(np.arange(3), np.arange(k), indexing="ij")
-        rows.append(3 * i + r3.ravel())
-        cols.append(offsets[i] + ck.ravel())
-        vals.append(basis.ravel())
+    # entry (r, c) of node i's basis (3, k) at row 3 i + r, column offsets[i] + c, in
+    # the order of the bases' rows
+    sizes = 3 * dims
+    node = np.repeat(np.arange(n), sizes)
+    local = np.arange(int(sizes.sum())) - np.repeat(np.cumsum(sizes) - sizes, sizes)
+    k_of = np.maximum(dims[node], 1)
     free = sp.csr_matrix(
         (
-            np.concatenate(vals) if vals else np.zeros(0),
-            (
-                np.concatenate(rows) if rows else np.zeros(0, int),
-                np.concatenate(cols) if cols else np.zeros(0, int),
-            ),
+            np.concatenate([b.ravel() for b in bases]) if n else np.zeros(0),
+            (3 * node + local // k_of, offsets[node] + local % k_of),
         ),
         shape=(3 * n, int(offsets[-1])),
     )

@@ -114,3 +114,55 @@ def measures(
         amplitude_sag_ratio=a / (d if d > 1e-9 * length else length),
         touchdown_travel=travel,
     )
+
+
+def measures_cases(
+    *,
+    s: np.ndarray,
+    position: np.ndarray,
+    displacement: np.ndarray,
+    element_tension_static: np.ndarray,
+    element_tension_amplitude: np.ndarray,
+    end_tension_static: np.ndarray,
+    end_tension_amplitude: np.ndarray,
+    laid_length: float,
+    on_seabed: np.ndarray,
+    submerged_weight: np.ndarray,
+    held: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`measures` of K responses of one line at once: ``displacement`` (K, n, 3),
+    ``element_tension_amplitude`` (K, n - 1) and ``end_tension_amplitude`` (K, 2) per
+    response, the rest shared. Returns (min_tension_ratio, amplitude_sag_ratio,
+    touchdown_travel), each (K,), with the same operations as :func:`measures`."""
+    moving = np.ones(element_tension_static.size, dtype=bool)
+    if held is not None:
+        moving = ~(held[:-1] & held[1:])
+    static = np.concatenate([element_tension_static[moving], end_tension_static])
+    amp = np.concatenate([element_tension_amplitude[:, moving], end_tension_amplitude], axis=1)
+    positive = static > 0.0
+    # a point with no static tension is active (and then means slack) only with motion
+    moving_unloaded = ~positive[None] & (amp > 1e-12 * float(np.max(static, initial=0.0)))
+    ratios = (static[positive] - amp[:, positive]) / static[positive]
+    ratio = np.min(ratios, axis=1, initial=math.inf)
+    ratio = np.where(np.any(moving_unloaded, axis=1), -math.inf, ratio)
+    length = float(s[-1] - s[0])
+    d = sag(position)
+    a = np.max(np.sqrt(np.sum(np.abs(displacement) ** 2, axis=2)), axis=1)
+    K = displacement.shape[0]
+    travel = np.zeros(K)
+    if laid_length > 0.0 and np.any(on_seabed) and not np.all(on_seabed):
+        n = on_seabed.size
+        travels = []
+        for e in np.flatnonzero(np.diff(on_seabed.astype(int)) != 0):
+            k, step = (e, 1) if on_seabed[e] else (e + 1, -1)
+            stretch = [k + step]
+            while 0 <= stretch[-1] + step < n and not on_seabed[stretch[-1] + step]:
+                stretch.append(stretch[-1] + step)
+            top = stretch[-1]
+            h = float(np.max(position[stretch, 2]) - position[k, 2])
+            w = max(float(submerged_weight[k]), 0.0)
+            v_top = w * abs(float(s[top] - s[k]))
+            d_t = element_tension_amplitude[:, min(e, element_tension_amplitude.shape[1] - 1)]
+            travels.append(h * d_t / v_top if v_top > 0.0 else np.full(K, math.inf))
+        travel = np.max(np.stack(travels), axis=0) / length
+    return ratio, a / (d if d > 1e-9 * length else length), travel

@@ -1,0 +1,860 @@
+"""Many harmonic responses of one linearised line in one compiled call.
+
+A sweep over excitation frequency, amplitude or phase of one line shares its
+:class:`~cablestudy.dynamics.frequency.ReducedLine`; per case only the excitation
+changes. :func:`solve_harmonic_cases` runs, for every case, the steps of
+:func:`~cablestudy.dynamics.frequency.solve_harmonic` (same right side, same starting
+guess, same drag fit, same Anderson-accelerated iteration, same pivoting of the band
+solve, each sum in the same order, so the same numbers) inside one numba kernel, with:
+
+* the band solve on row-major storage that follows the reach of each row (the
+  columns that row exchanges actually filled), so an elimination step skips columns
+  that are still zero; no value changes, since those updates subtract exact zeros;
+* the drag blocks of nodes whose free basis is the identity added directly (the
+  projection ``b^T D b`` then is ``D`` exactly);
+* the drag fit laid out so that the compiler vectorises the drag over the phases
+  (:func:`drag_fit_samples`: same operations, same order of the sums);
+* the right side and the end reactions from the sparse rows themselves;
+* for a line in the x-z plane moved in that plane, the system without its y unknowns,
+  which stay zero (:func:`in_plane`: the same operations on the non-zero entries).
+
+A line without drag (one linear solve per case, nothing to iterate) goes case by case
+through :func:`~cablestudy.dynamics.frequency.solve_harmonic`, whose LAPACK band solve
+rounds differently from this one. The per-case ``solve_harmonic`` stays the reference
+(tests/unit/test_harmonic_cases.py compares the two). Pure: arrays in, a
+:class:`HarmonicCases` out.
+"""
+
+from __future__ import annotations
+
+import math
+import weakref
+from dataclasses import dataclass, replace
+
+import numpy as np
+import scipy.sparse as sp
+from numba import njit
+
+from .frequency import DragSettings, ReducedLine, drag_tangent
+
+
+@dataclass(kw_only=True)
+class HarmonicCases:
+    """Harmonic responses of K cases (complex amplitudes of ``Re(Q e^{i w t})``).
+
+    displacement [m] (K, n, 3); element_tension [N] (K, n - 1) tension variation;
+    end_tension [N] (K, 2) variation of the end tensions at A and B; tension_static [N]
+    (2,) static end tensions; iterations (K,) drag iterations; converged (K,) bool;
+    change (K,) last relative change of the drag iteration; ok (K,) bool, False where
+    the dynamic matrix was singular (the case's arrays are then NaN).
+    """
+
+    displacement: np.ndarray
+    element_tension: np.ndarray
+    end_tension: np.ndarray
+    tension_static: np.ndarray
+    iterations: np.ndarray
+    converged: np.ndarray
+    change: np.ndarray
+    ok: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class _Prepared:
+    """Arrays of a :class:`ReducedLine` in the form the kernel takes (built once)."""
+
+    k_ptr: np.ndarray
+    k_idx: np.ndarray
+    k_val: np.ndarray
+    c_ptr: np.ndarray
+    c_idx: np.ndarray
+    c_val: np.ndarray
+    bt_ptr: np.ndarray
+    bt_idx: np.ndarray
+    bt_val: np.ndarray
+    rows_k: np.ndarray  # (N, 3 bw + 1) row-major bands of K, M, C
+    rows_m: np.ndarray
+    rows_c: np.ndarray
+    identity: np.ndarray  # (n,) bool: the node's free basis is the identity
+    frac: np.ndarray  # (n,) s / s_end
+    d_small: np.ndarray  # (n, 3, 3) drag tangent
+    has_drag: bool
+
+
+_PREPARED: weakref.WeakKeyDictionary[ReducedLine, _Prepared] = weakref.WeakKeyDictionary()
+
+
+def _rows(band: np.ndarray, bw: int) -> np.ndarray:
+    """LAPACK band storage (2 bw + 1, N) as rows: A[i, j] at out[i, j - i + bw] of
+    (N, 3 bw + 1) (room for the fill-in of row exchanges on the right)."""
+    N = band.shape[1]
+    out = np.zeros((N, 3 * bw + 1), dtype=band.dtype)
+    for d in range(-bw, bw + 1):  # d = j - i
+        i = np.arange(max(0, -d), min(N, N - d))
+        out[i, d + bw] = band[bw - d, i + d]
+    return out
+
+
+#: per reduced line its x-z system, or None where it has none (see :func:`in_plane`)
+_IN_PLANE: weakref.WeakKeyDictionary[ReducedLine, ReducedLine | None] = weakref.WeakKeyDictionary()
+
+
+def in_plane(red: ReducedLine) -> ReducedLine:
+    """``red`` without its y unknowns where they are decoupled: when the line's tangents
+    and current have no y component, every free direction is either y or in the x-z
+    plane, and the stiffness, damping and mass couple no y direction with an x-z one,
+    then for end motion in the x-z plane the y unknowns stay zero (their right side is
+    zero, and the drag fit of motion in the plane couples nothing to y), and the
+    elimination of the full system performs, on the non-zero entries, exactly the
+    operations of the x-z system alone (a decoupled row is never a pivot for the other
+    set, and its updates are zeros). So the same numbers come out of a smaller system.
+    Otherwise ``red`` itself."""
+    if red in _IN_PLANE:
+        return _IN_PLANE[red] or red
+    out = None
+    line = red.line
+    B = sp.csc_matrix(line.free_basis)
+    is_y = (np.arange(B.shape[0]) % 3) == 1
+    y_part = np.asarray(abs(B[is_y]).sum(axis=0)).ravel() > 0.0
+    plane_part = np.asarray(abs(B[~is_y]).sum(axis=0)).ravel() > 0.0
+
+    def decoupled(A: sp.spmatrix) -> bool:
+        coo = sp.coo_matrix(A)
+        cross = is_y[coo.row] != is_y[coo.col]
+        return not np.any(coo.data[cross] != 0.0)
+
+    if (
+        line.has_drag
+        and not np.any(line.tangent[:, 1])
+        and not np.any(line.current[:, 1])
+        and not np.any(y_part & plane_part)
+        and np.any(y_part)
+        and decoupled(line.stiffness)
+        and decoupled(line.damping)
+        and decoupled(line.mass_matrix())
+    ):
+        out = ReducedLine.of(replace(line, free_basis=B[:, ~y_part].tocsr()))
+    _IN_PLANE[red] = out
+    return out or red
+
+
+def _prepare(red: ReducedLine) -> _Prepared:
+    hit = _PREPARED.get(red)
+    if hit is not None:
+        return hit
+    line = red.line
+    bw = red.bandwidth
+    K = sp.csr_matrix(line.stiffness)
+    C = sp.csr_matrix(line.damping)
+    BT = line.free_basis.T.tocsr()
+    n = line.n_nodes
+    counts = np.diff(red.offsets)
+    identity = (counts == 3) & np.all(red.node_basis == np.eye(3)[None], axis=(1, 2))
+    out = _Prepared(
+        k_ptr=K.indptr.astype(np.int64),
+        k_idx=K.indices.astype(np.int64),
+        k_val=np.ascontiguousarray(K.data, dtype=float),
+        c_ptr=C.indptr.astype(np.int64),
+        c_idx=C.indices.astype(np.int64),
+        c_val=np.ascontiguousarray(C.data, dtype=float),
+        bt_ptr=BT.indptr.astype(np.int64),
+        bt_idx=BT.indices.astype(np.int64),
+        bt_val=np.ascontiguousarray(BT.data, dtype=float),
+        rows_k=_rows(red.K, bw),
+        rows_m=_rows(red.M, bw),
+        rows_c=_rows(red.C, bw),
+        identity=identity,
+        frac=line.s / line.s[-1] if n > 1 else np.zeros(n),
+        d_small=drag_tangent(line),
+        has_drag=line.has_drag,
+    )
+    _PREPARED[red] = out
+    return out
+
+
+@njit(cache=True)
+def drag_fit_samples(
+    vr, vi, current, tangent, c_n, c_t, tangent_d, cos, sin, W0, W1, W2, F0, F1, F2, planar, out
+):  # noqa: ANN001, ANN201, PLR0913
+    """:func:`cablestudy.dynamics.frequency._drag_fit` with ``cos``, ``sin`` (samples,)
+    given and the same operations in the same order, laid out for the compiler: the
+    drag at every node and phase first, in a loop without running sums (which it can
+    vectorise), then the sums over the phases node by node; ``W0`` .. ``F2`` (n,
+    samples) and ``planar`` (n,) bool are work arrays. A node whose motion, tangent and
+    current have no y component skips the y terms (zeros: the values are the same)."""
+    n = current.shape[0]
+    samples = cos.shape[0]
+    for i in range(n):
+        t0, t1, t2 = tangent[i, 0], tangent[i, 1], tangent[i, 2]
+        cn, ct = c_n[i], c_t[i]
+        u0, u1, u2 = current[i, 0], current[i, 1], current[i, 2]
+        a0, a1, a2 = vr[i, 0], vr[i, 1], vr[i, 2]
+        b0, b1, b2 = vi[i, 0], vi[i, 1], vi[i, 2]
+        if a1 == 0.0 and b1 == 0.0 and t1 == 0.0 and u1 == 0.0:
+            # motion, tangent and current in the x-z plane: every y term below is a
+            # zero, and leaving them out changes no value (at most the sign of a zero)
+            for k in range(samples):
+                c, s = cos[k], sin[k]
+                w0 = -(a0 * c - b0 * s)
+                w2 = -(a2 * c - b2 * s)
+                r0, r2 = u0 + w0, u2 + w2
+                wt = r0 * t0 + r2 * t2
+                n0, n2 = r0 - wt * t0, r2 - wt * t2
+                sn = np.sqrt(n0 * n0 + n2 * n2)
+                st = abs(wt) * wt * ct
+                W0[i, k], W2[i, k] = w0, w2
+                F0[i, k] = cn * sn * n0 + st * t0
+                F2[i, k] = cn * sn * n2 + st * t2
+            planar[i] = True
+            continue
+        planar[i] = False
+        for k in range(samples):
+            c, s = cos[k], sin[k]
+            # Re((a + i b) e^{i th}) = a cos - b sin; the relative velocity is -v
+            w0 = -(a0 * c - b0 * s)
+            w1 = -(a1 * c - b1 * s)
+            w2 = -(a2 * c - b2 * s)
+            r0, r1, r2 = u0 + w0, u1 + w1, u2 + w2
+            wt = r0 * t0 + r1 * t1 + r2 * t2
+            n0, n1, n2 = r0 - wt * t0, r1 - wt * t1, r2 - wt * t2
+            sn = np.sqrt(n0 * n0 + n1 * n1 + n2 * n2)
+            st = abs(wt) * wt * ct
+            W0[i, k], W1[i, k], W2[i, k] = w0, w1, w2
+            F0[i, k] = cn * sn * n0 + st * t0
+            F1[i, k] = cn * sn * n1 + st * t1
+            F2[i, k] = cn * sn * n2 + st * t2
+    for i in range(n):
+        fm0 = fm1 = fm2 = 0.0
+        g00 = g01 = g02 = g11 = g12 = g22 = 0.0
+        h00 = h01 = h02 = h10 = h11 = h12 = h20 = h21 = h22 = 0.0
+        if planar[i]:
+            for k in range(samples):
+                fm0 += F0[i, k]
+                fm2 += F2[i, k]
+            fm0 /= samples
+            fm2 /= samples
+            for k in range(samples):
+                w0, w2 = W0[i, k], W2[i, k]
+                f0, f2 = F0[i, k] - fm0, F2[i, k] - fm2
+                g00 += w0 * w0
+                g02 += w0 * w2
+                g22 += w2 * w2
+                h00 += f0 * w0
+                h02 += f0 * w2
+                h20 += f2 * w0
+                h22 += f2 * w2
+        else:
+            for k in range(samples):
+                fm0 += F0[i, k]
+                fm1 += F1[i, k]
+                fm2 += F2[i, k]
+            fm0 /= samples
+            fm1 /= samples
+            fm2 /= samples
+            for k in range(samples):
+                w0, w1, w2 = W0[i, k], W1[i, k], W2[i, k]
+                f0, f1, f2 = F0[i, k] - fm0, F1[i, k] - fm1, F2[i, k] - fm2
+                g00 += w0 * w0
+                g01 += w0 * w1
+                g02 += w0 * w2
+                g11 += w1 * w1
+                g12 += w1 * w2
+                g22 += w2 * w2
+                h00 += f0 * w0
+                h01 += f0 * w1
+                h02 += f0 * w2
+                h10 += f1 * w0
+                h11 += f1 * w1
+                h12 += f1 * w2
+                h20 += f2 * w0
+                h21 += f2 * w1
+                h22 += f2 * w2
+        trace = (g00 + g11 + g22) / samples
+        if not trace > 0.0:  # a node at rest: the small-motion tangent
+            for a in range(3):
+                for b in range(3):
+                    out[i, a, b] = tangent_d[i, a, b]
+            continue
+        eps = 1e-10 * trace
+        G00, G01, G02 = g00 / samples + eps, g01 / samples, g02 / samples
+        # w1 w0 is w0 w1 exactly: the lower sums equal the upper ones bit for bit
+        G10, G11, G12 = g01 / samples, g11 / samples + eps, g12 / samples
+        G20, G21, G22 = g02 / samples, g12 / samples, g22 / samples + eps
+        H00 = h00 / samples + eps * tangent_d[i, 0, 0]
+        H01 = h01 / samples + eps * tangent_d[i, 0, 1]
+        H02 = h02 / samples + eps * tangent_d[i, 0, 2]
+        H10 = h10 / samples + eps * tangent_d[i, 1, 0]
+        H11 = h11 / samples + eps * tangent_d[i, 1, 1]
+        H12 = h12 / samples + eps * tangent_d[i, 1, 2]
+        H20 = h20 / samples + eps * tangent_d[i, 2, 0]
+        H21 = h21 / samples + eps * tangent_d[i, 2, 1]
+        H22 = h22 / samples + eps * tangent_d[i, 2, 2]
+        # D G = H  ->  D = H G^-1 (G symmetric positive definite; cofactors)
+        i00 = G11 * G22 - G12 * G21
+        i01 = G02 * G21 - G01 * G22
+        i02 = G01 * G12 - G02 * G11
+        i10 = G12 * G20 - G10 * G22
+        i11 = G00 * G22 - G02 * G20
+        i12 = G02 * G10 - G00 * G12
+        i20 = G10 * G21 - G11 * G20
+        i21 = G01 * G20 - G00 * G21
+        i22 = G00 * G11 - G01 * G10
+        det = G00 * i00 + G01 * i10 + G02 * i20
+        i00, i01, i02 = i00 / det, i01 / det, i02 / det
+        i10, i11, i12 = i10 / det, i11 / det, i12 / det
+        i20, i21, i22 = i20 / det, i21 / det, i22 / det
+        out[i, 0, 0] = H00 * i00 + H01 * i10 + H02 * i20
+        out[i, 0, 1] = H00 * i01 + H01 * i11 + H02 * i21
+        out[i, 0, 2] = H00 * i02 + H01 * i12 + H02 * i22
+        out[i, 1, 0] = H10 * i00 + H11 * i10 + H12 * i20
+        out[i, 1, 1] = H10 * i01 + H11 * i11 + H12 * i21
+        out[i, 1, 2] = H10 * i02 + H11 * i12 + H12 * i22
+        out[i, 2, 0] = H20 * i00 + H21 * i10 + H22 * i20
+        out[i, 2, 1] = H20 * i01 + H21 * i11 + H22 * i21
+        out[i, 2, 2] = H20 * i02 + H21 * i12 + H22 * i22
+
+
+@njit(cache=True)
+def band_solve_rows(R, bw, reach, rhs, x):  # noqa: ANN001, ANN201
+    """:func:`cablestudy.dynamics.frequency._band_solve` on row storage ``R`` (N, 3 bw
+    + 1), A[i, j] at R[i, j - i + bw]: Gaussian elimination with the same partial
+    pivoting and the same operations on the non-zero entries (``reach`` (N,) int
+    work array: the last column of each row that may be non-zero). ``R`` and ``rhs``
+    are overwritten. Returns False for a zero pivot."""
+    N = rhs.shape[0]
+    for i in range(N):
+        reach[i] = min(i + bw, N - 1)
+    for k in range(N):
+        last = min(k + bw, N - 1)
+        p = k
+        z = R[k, bw]
+        big2 = z.real * z.real + z.imag * z.imag
+        big = -1.0  # abs of the candidate, computed only where needed
+        for i in range(k + 1, last + 1):
+            z = R[i, k - i + bw]
+            if z.real == 0.0 and z.imag == 0.0:  # abs 0 is never the larger
+                continue
+            a2 = z.real * z.real + z.imag * z.imag
+            # squared magnitudes decide unless within round-off of each other; then
+            # abs (hypot) decides, as in _band_solve
+            clear = 1e-290 < a2 < 1e290 and 1e-290 < big2 < 1e290  # no under/overflow
+            if clear and a2 > big2 * (1.0 + 1e-12):
+                big2, p, big = a2, i, -1.0
+            elif not clear or a2 >= big2 * (1.0 - 1e-12):
+                if big < 0.0:
+                    big = abs(R[p, k - p + bw])
+                a = abs(z)
+                if a > big:
+                    big, big2, p = a, a2, i
+        if big < 0.0:
+            big = abs(R[p, k - p + bw])
+        if not big > 0.0:
+            return False
+        if p != k:
+            right = max(reach[k], reach[p])
+            for j in range(k, right + 1):
+                t = R[k, j - k + bw]
+                R[k, j - k + bw] = R[p, j - p + bw]
+                R[p, j - p + bw] = t
+            t2 = reach[k]
+            reach[k] = reach[p]
+            reach[p] = t2
+            t = rhs[k]
+            rhs[k] = rhs[p]
+            rhs[p] = t
+        pivot = R[k, bw]
+        rk = reach[k]
+        for i in range(k + 1, last + 1):
+            z = R[i, k - i + bw]
+            if z.real == 0.0 and z.imag == 0.0:  # 0 / pivot is 0: nothing to eliminate
+                continue
+            f = z / pivot
+            if f == 0.0:
+                continue
+            off_i = bw - i
+            off_k = bw - k
+            for j in range(k + 1, rk + 1):
+                R[i, j + off_i] -= f * R[k, j + off_k]
+            rhs[i] -= f * rhs[k]
+            if rk > reach[i]:
+                reach[i] = rk
+    for i in range(N - 1, -1, -1):
+        acc = rhs[i]
+        for j in range(i + 1, reach[i] + 1):
+            acc -= R[i, j - i + bw] * x[j]
+        x[i] = acc / R[i, bw]
+    return True
+
+
+@njit(cache=True)
+def _csr_rows(ptr, idx, val, x, lo, hi, out):  # noqa: ANN001, ANN202
+    """out[r - lo] = (A x)[r] for rows lo <= r < hi of the CSR matrix (ptr, idx, val)."""
+    for r in range(lo, hi):
+        acc = 0j
+        for jj in range(ptr[r], ptr[r + 1]):
+            acc += val[jj] * x[idx[jj]]
+        out[r - lo] = acc
+
+
+@njit(cache=True)
+def _max_abs(z, sq, sq_max):  # noqa: ANN001, ANN202
+    """``max(abs(z))`` (0 for none) as a running max of ``abs`` gives it, computing
+    ``abs`` (hypot) only for the entries whose squared magnitude ``sq`` lies within
+    round-off of the largest, ``sq_max``: any other one is surely smaller."""
+    acc = 0.0
+    if 1e-290 < sq_max < 1e290:  # squares neither under- nor overflow
+        low = sq_max * (1.0 - 1e-12)
+        for j in range(z.shape[0]):
+            if sq[j] >= low:
+                acc = max(acc, abs(z[j]))
+        return acc
+    for j in range(z.shape[0]):
+        acc = max(acc, abs(z[j]))
+    return acc
+
+
+@njit(cache=True)
+def _mixed(D, G, prev_D, prev_G, have_prev, change, last):  # noqa: ANN001, ANN202
+    """The next drag matrices of the iteration of ``_drag_iteration`` (halving after a
+    change that grew, else Anderson of depth one); returns the new ``have_prev``."""
+    n = D.shape[0]
+    if change >= last:
+        for i in range(n):
+            for a in range(3):
+                for b in range(3):
+                    D[i, a, b] = 0.5 * (D[i, a, b] + G[i, a, b])
+        return False
+    theta = 0.0
+    if have_prev:
+        num = 0.0
+        den = 0.0
+        for i in range(n):
+            for a in range(3):
+                for b in range(3):
+                    R = G[i, a, b] - D[i, a, b]
+                    dR = R - (prev_G[i, a, b] - prev_D[i, a, b])
+                    num += R * dR
+                    den += dR * dR
+        if den > 0.0:
+            theta = num / den
+    for i in range(n):
+        for a in range(3):
+            for b in range(3):
+                nxt = (
+                    G[i, a, b] - theta * (G[i, a, b] - prev_G[i, a, b]) if have_prev else G[i, a, b]
+                )
+                prev_D[i, a, b] = D[i, a, b]
+                prev_G[i, a, b] = G[i, a, b]
+                D[i, a, b] = nxt
+    return True
+
+
+@njit(cache=True)
+def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
+    omegas,
+    motion,
+    k_ptr,
+    k_idx,
+    k_val,
+    c_ptr,
+    c_idx,
+    c_val,
+    bt_ptr,
+    bt_idx,
+    bt_val,
+    mass,
+    rows_k,
+    rows_m,
+    rows_c,
+    bw,
+    offsets,
+    basis,
+    identity,
+    frac,
+    current,
+    tangent,
+    c_n,
+    c_t,
+    d_small,
+    has_drag,
+    samples,
+    tol,
+    max_iterations,
+    u_out,
+    reaction_out,
+    iterations_out,
+    converged_out,
+    change_out,
+    ok_out,
+):  # noqa: ANN001
+    """Per case c: the displacement u_out[c] (n, 3) and the end rows (A u)[0], (A u)[-1]
+    in reaction_out[c] (2, 3), with A the dynamic matrix with the last drag."""
+    n = mass.shape[0]
+    N = rows_k.shape[0]
+    width = rows_k.shape[1]
+    cos = np.empty(samples)
+    sin = np.empty(samples)
+    for k in range(samples):
+        cos[k] = np.cos(2.0 * np.pi * k / samples)
+        sin[k] = np.sin(2.0 * np.pi * k / samples)
+    base = np.empty((N, width), dtype=np.complex128)
+    R = np.empty((N, width), dtype=np.complex128)
+    reach = np.empty(N, dtype=np.int64)
+    rhs0 = np.empty(N, dtype=np.complex128)
+    rhs = np.empty(N, dtype=np.complex128)
+    q = np.empty(N, dtype=np.complex128)
+    up = np.zeros((n, 3), dtype=np.complex128)
+    flat = np.zeros(3 * n, dtype=np.complex128)
+    y = np.empty(3 * n, dtype=np.complex128)
+    yk = np.empty(3 * n, dtype=np.complex128)
+    yc = np.empty(3 * n, dtype=np.complex128)
+    u = np.empty((n, 3), dtype=np.complex128)
+    v = np.empty((n, 3), dtype=np.complex128)
+    vr = np.empty((n, 3))
+    vi = np.empty((n, 3))
+    D = np.zeros((n, 3, 3))
+    G = np.empty((n, 3, 3))
+    prev_D = np.empty((n, 3, 3))
+    prev_G = np.empty((n, 3, 3))
+    end_rows = np.empty(3, dtype=np.complex128)
+    dv = np.empty(3 * n, dtype=np.complex128)
+    vflat = np.empty(3 * n, dtype=np.complex128)
+    dsq = np.empty(3 * n)
+    vsq = np.empty(3 * n)
+    W0 = np.empty((n, samples))
+    W1 = np.empty((n, samples))
+    W2 = np.empty((n, samples))
+    F0 = np.empty((n, samples))
+    F1 = np.empty((n, samples))
+    F2 = np.empty((n, samples))
+    planar = np.empty(n, dtype=np.bool_)
+    for case in range(omegas.shape[0]):
+        omega = omegas[case]
+        w2 = omega**2
+        flat[:] = 0.0
+        for a in range(3):
+            up[0, a] = motion[case, 0, a]
+            up[n - 1, a] = motion[case, 1, a]
+            flat[a] = up[0, a]
+            flat[3 * (n - 1) + a] = up[n - 1, a]
+        # rhs0 = -B^T [K - w^2 M + i w C] u_p (only the end nodes move)
+        _csr_rows(k_ptr, k_idx, k_val, flat, 0, 3 * n, yk)
+        _csr_rows(c_ptr, c_idx, c_val, flat, 0, 3 * n, yc)
+        for i in range(n):
+            for a in range(3):
+                mu = mass[i, a, 0] * up[i, 0] + mass[i, a, 1] * up[i, 1] + mass[i, a, 2] * up[i, 2]
+                y[3 * i + a] = (yk[3 * i + a] + 1j * omega * yc[3 * i + a]) - w2 * mu
+        for r in range(N):
+            acc = 0j
+            for jj in range(bt_ptr[r], bt_ptr[r + 1]):
+                acc += bt_val[jj] * y[bt_idx[jj]]
+            rhs0[r] = -acc
+        for r in range(N):
+            for j in range(width):
+                base[r, j] = (rows_k[r, j] - w2 * rows_m[r, j]) + 1j * omega * rows_c[r, j]
+        ok = True
+        converged = True
+        change = 0.0
+        iterations = 0
+        if has_drag:
+            for i in range(n):
+                for a in range(3):
+                    u[i, a] = (1.0 - frac[i]) * up[0, a] + frac[i] * up[n - 1, a]
+                    v[i, a] = 1j * omega * u[i, a]
+                    vr[i, a] = v[i, a].real
+                    vi[i, a] = v[i, a].imag
+            drag_fit_samples(
+                vr,
+                vi,
+                current,
+                tangent,
+                c_n,
+                c_t,
+                d_small,
+                cos,
+                sin,
+                W0,
+                W1,
+                W2,
+                F0,
+                F1,
+                F2,
+                planar,
+                D,
+            )
+            have_prev = False
+            last = np.inf
+            change = np.inf
+            converged = False
+            iterations = max_iterations
+            for it in range(1, max_iterations + 1):
+                for r in range(N):
+                    for j in range(width):
+                        R[r, j] = base[r, j]
+                for i in range(n):
+                    o = offsets[i]
+                    kk = offsets[i + 1] - o
+                    if identity[i]:
+                        for r in range(3):
+                            for c in range(3):
+                                R[o + r, c - r + bw] += 1j * omega * D[i, r, c]
+                        continue
+                    for r in range(kk):
+                        for c in range(kk):
+                            proj = 0.0
+                            for a in range(3):
+                                for b in range(3):
+                                    proj += basis[i, a, r] * D[i, a, b] * basis[i, b, c]
+                            R[o + r, c - r + bw] += 1j * omega * proj
+                for j in range(N):
+                    rhs[j] = rhs0[j]
+                if not band_solve_rows(R, bw, reach, rhs, q):
+                    ok = False
+                    iterations = it
+                    break
+                d2max = 0.0
+                v2max = 0.0
+                finite = True
+                for i in range(n):
+                    o = offsets[i]
+                    kk = offsets[i + 1] - o
+                    for a in range(3):
+                        acc = up[i, a]
+                        for r in range(kk):
+                            acc += basis[i, a, r] * q[o + r]
+                        vn = 1j * omega * acc
+                        if not (np.isfinite(vn.real) and np.isfinite(vn.imag)):
+                            finite = False
+                        dz = vn - v[i, a]
+                        d2 = dz.real * dz.real + dz.imag * dz.imag
+                        v2 = vn.real * vn.real + vn.imag * vn.imag
+                        dv[3 * i + a] = dz
+                        dsq[3 * i + a] = d2
+                        vsq[3 * i + a] = v2
+                        d2max = max(d2max, d2)
+                        v2max = max(v2max, v2)
+                        u[i, a] = acc
+                        v[i, a] = vn
+                        vflat[3 * i + a] = vn
+                if not finite:
+                    ok = False
+                    iterations = it
+                    break
+                dmax = _max_abs(dv, dsq, d2max)
+                vmax = _max_abs(vflat, vsq, v2max)
+                change = dmax / max(vmax, 1e-300)
+                if change <= tol:
+                    converged = True
+                    iterations = it
+                    break
+                for i in range(n):
+                    for a in range(3):
+                        vr[i, a] = v[i, a].real
+                        vi[i, a] = v[i, a].imag
+                drag_fit_samples(
+                    vr,
+                    vi,
+                    current,
+                    tangent,
+                    c_n,
+                    c_t,
+                    d_small,
+                    cos,
+                    sin,
+                    W0,
+                    W1,
+                    W2,
+                    F0,
+                    F1,
+                    F2,
+                    planar,
+                    G,
+                )
+                have_prev = _mixed(D, G, prev_D, prev_G, have_prev, change, last)
+                last = change
+        else:
+            for r in range(N):
+                for j in range(width):
+                    R[r, j] = base[r, j]
+                for j in range(N):
+                    rhs[j] = rhs0[j]
+            if N > 0 and not band_solve_rows(R, bw, reach, rhs, q):
+                ok = False
+            for i in range(n):
+                o = offsets[i]
+                kk = offsets[i + 1] - o
+                for a in range(3):
+                    acc = up[i, a]
+                    for r in range(kk):
+                        acc += basis[i, a, r] * q[o + r]
+                    u[i, a] = acc
+                    if not (np.isfinite(acc.real) and np.isfinite(acc.imag)):
+                        ok = False
+        ok_out[case] = ok
+        iterations_out[case] = iterations
+        converged_out[case] = converged
+        change_out[case] = change
+        if not ok:
+            continue
+        for i in range(n):
+            for a in range(3):
+                u_out[case, i, a] = u[i, a]
+                flat[3 * i + a] = u[i, a]
+        # the end rows of [K - w^2 M + i w (C + D)] u
+        for e in range(2):
+            node = 0 if e == 0 else n - 1
+            _csr_rows(k_ptr, k_idx, k_val, flat, 3 * node, 3 * node + 3, yk)
+            _csr_rows(c_ptr, c_idx, c_val, flat, 3 * node, 3 * node + 3, yc)
+            for a in range(3):
+                acc = mass[node, a, 0] * u[node, 0] + mass[node, a, 1] * u[node, 1]
+                acc += mass[node, a, 2] * u[node, 2]
+                val = (yk[a] + 1j * omega * yc[a]) - w2 * acc
+                if has_drag:
+                    dacc = D[node, a, 0] * u[node, 0] + D[node, a, 1] * u[node, 1]
+                    dacc += D[node, a, 2] * u[node, 2]
+                    val = val + 1j * omega * dacc
+                end_rows[a] = val
+            for a in range(3):
+                reaction_out[case, e, a] = end_rows[a]
+    for case in range(omegas.shape[0]):
+        if not ok_out[case]:
+            for i in range(n):
+                for a in range(3):
+                    u_out[case, i, a] = np.nan + 0j
+
+
+def solve_harmonic_cases(
+    red: ReducedLine,
+    omegas: np.ndarray,
+    end_motion: np.ndarray,
+    settings: DragSettings | None = None,
+) -> HarmonicCases:
+    """Steady harmonic responses of the line at angular frequencies ``omegas`` [rad/s]
+    (K,) to end displacements ``end_motion`` [m] (K, 2, 3) complex (A and B), each as
+    :func:`~cablestudy.dynamics.frequency.solve_harmonic` (module docstring). Never
+    raises for a numerical failure: a failed case has ``ok`` False and NaN arrays."""
+    settings = settings or DragSettings()
+    line = red.line
+    if not line.has_drag:
+        # one linear solve per case: LAPACK's, as solve_harmonic (no iteration to save)
+        return _one_by_one(red, omegas, end_motion, settings)
+    omegas = np.ascontiguousarray(omegas, dtype=float)
+    motion = np.ascontiguousarray(end_motion, dtype=np.complex128)
+    if not np.any(motion[:, :, 1]):
+        red = in_plane(red)  # the same numbers, a third fewer unknowns (module docstring)
+    p = _prepare(red)
+    n = line.n_nodes
+    K = omegas.size
+    u = np.empty((K, n, 3), dtype=np.complex128)
+    reaction = np.full((K, 2, 3), np.nan + 0j)
+    iterations = np.zeros(K, dtype=np.int64)
+    converged = np.zeros(K, dtype=np.bool_)
+    change = np.zeros(K)
+    ok = np.zeros(K, dtype=np.bool_)
+    _cases_kernel(
+        omegas,
+        motion,
+        p.k_ptr,
+        p.k_idx,
+        p.k_val,
+        p.c_ptr,
+        p.c_idx,
+        p.c_val,
+        p.bt_ptr,
+        p.bt_idx,
+        p.bt_val,
+        np.ascontiguousarray(line.mass, dtype=float),
+        p.rows_k,
+        p.rows_m,
+        p.rows_c,
+        red.bandwidth,
+        red.offsets,
+        np.ascontiguousarray(red.node_basis),
+        p.identity,
+        p.frac,
+        np.ascontiguousarray(line.current, dtype=float),
+        np.ascontiguousarray(line.tangent, dtype=float),
+        np.ascontiguousarray(line.drag_normal, dtype=float),
+        np.ascontiguousarray(line.drag_tangential, dtype=float),
+        p.d_small,
+        p.has_drag,
+        settings.samples,
+        settings.tolerance,
+        settings.max_iterations,
+        u,
+        reaction,
+        iterations,
+        converged,
+        change,
+        ok,
+    )
+    du = np.diff(u, axis=1)
+    axial = (line.axial_stiffness[None] + 1j * omegas[:, None] * line.axial_damping[None]) / (
+        line.rest_length[None]
+    )
+    element = axial * np.sum(line.direction[None] * du, axis=2)
+    static_mag = np.linalg.norm(line.end_force, axis=1)
+    unit = line.end_force / np.where(static_mag > 0.0, static_mag, 1.0)[:, None]
+    end_tension = np.sum(unit[None] * -reaction, axis=2)
+    end_tension[~ok] = np.nan + 0j
+    return HarmonicCases(
+        displacement=u,
+        element_tension=element,
+        end_tension=end_tension,
+        tension_static=static_mag,
+        iterations=iterations,
+        converged=converged,
+        change=change,
+        ok=ok,
+    )
+
+
+def _one_by_one(
+    red: ReducedLine, omegas: np.ndarray, end_motion: np.ndarray, settings: DragSettings
+) -> HarmonicCases:
+    """:func:`solve_harmonic_cases` by :func:`~cablestudy.dynamics.frequency.solve_harmonic`
+    case by case."""
+    from .frequency import solve_harmonic
+
+    results = [solve_harmonic(red, w, X, settings) for w, X in zip(omegas, end_motion, strict=True)]
+    return HarmonicCases(
+        displacement=np.array([r.displacement for r in results]),
+        element_tension=np.array([r.element_tension for r in results]),
+        end_tension=np.array([r.end_tension for r in results]),
+        tension_static=np.linalg.norm(red.line.end_force, axis=1),
+        iterations=np.array([r.drag_iterations for r in results], dtype=np.int64),
+        converged=np.array([r.drag_converged for r in results], dtype=np.bool_),
+        change=np.array([r.drag_change for r in results], dtype=float),
+        ok=np.array([r.success for r in results], dtype=np.bool_),
+    )
+
+
+def warm_up() -> None:
+    """Load the compiled kernel (see :func:`cablestudy.dynamics.frequency.warm_up`)."""
+    from .frequency import LinearLine
+
+    n = 3
+    eye = sp.identity(3 * n, format="csr")
+    basis = sp.csr_matrix(np.eye(3 * n)[:, 3:6])
+    z = np.zeros(n)
+    line = LinearLine(
+        s=np.arange(n, dtype=float),
+        position=np.zeros((n, 3)),
+        mass=np.tile(np.eye(3), (n, 1, 1)),
+        stiffness=eye,
+        damping=eye * 0.0,
+        rest_length=np.ones(n - 1),
+        direction=np.tile([1.0, 0.0, 0.0], (n - 1, 1)),
+        axial_stiffness=np.ones(n - 1),
+        axial_damping=np.zeros(n - 1),
+        tension=np.ones(n - 1),
+        end_force=np.array([[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]]),
+        drag_normal=np.ones(n),
+        drag_tangential=z,
+        current=np.zeros((n, 3)),
+        tangent=np.tile([1.0, 0.0, 0.0], (n, 1)),
+        free_basis=basis,
+    )
+    motion = np.zeros((1, 2, 3), dtype=complex)
+    motion[0, 1, 2] = 1.0
+    solve_harmonic_cases(ReducedLine.of(line), np.array([math.pi]), motion, DragSettings())

@@ -1,0 +1,263 @@
+"""The batched harmonic solver (cablestudy.dynamics.harmonic_cases) against the per-case
+reference solve_harmonic, case by case.
+
+Both run the same steps on the same numbers (same right side, starting guess, drag fit,
+Anderson mixing and pivoting), so they agree to round-off: the drag iteration takes the
+same number of steps and every output agrees to 1e-12 of its largest value (the kernel
+reorders no sum; the margin covers the sparse products done by hand instead of by
+scipy). Lines: the moustafa cable of the Figs. 2-5 sweep (drag in still water, several
+frequencies through the resonance and amplitudes), the same cable in a cross current,
+in vacuum (no drag: one linear solve, LAPACK's in both), a chain mooring on the seabed
+with drag, and that chain with nodes of 1 and 2 free directions."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from cablestudy import analyses, frequency_cases
+from cablestudy.cases import expand_cases
+from cablestudy.config.loader import parse_study_text
+from cablestudy.dynamics.frequency import ReducedLine, block_diagonal, solve_harmonic
+from cablestudy.dynamics.harmonic_cases import in_plane, solve_harmonic_cases
+from cablestudy.dynamics.validity import measures, measures_cases
+
+FIGS = Path(__file__).resolve().parents[2] / "configs" / "moustafa-figs2-5.yaml"
+
+CHAIN = """
+name: chain
+environment: {fluid: water, depth: 100.0, seabed: {friction: 0.0}}
+line:
+  segments:
+    - {length: 300.0, diameter: 0.1, weight_in_fluid: 500.0, axial_stiffness: 5.0e8,
+       drag_normal: 1.2, drag_tangential: 0.01}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -100.0]}
+  b: {kind: fixed, position: [240.0, 0.0, 0.0]}
+analysis:
+  static: {method: catenary, nodes: 101, tolerance: 1.0e-12}
+  dynamic:
+    excitation: {end: b, direction: [1.0, 0.0, 0.3], amplitude: 2.0, frequency: 0.05}
+    method: frequency
+    elements: 40
+sweep:
+  analysis.dynamic.excitation.frequency: [0.02, 0.05, 0.1]
+"""
+
+
+def _moustafa(fluid: str = "water", current: bool = False) -> str:
+    text = FIGS.read_text().replace("method: auto", "method: frequency")
+    if fluid != "water":
+        text = text.replace("fluid: water", f"fluid: {fluid}")
+    if current:
+        text = text.replace(
+            "  fluid: water\n",
+            "  fluid: water\n  current: [{z: 0.0, speed: 0.3, heading_deg: 90.0}]\n",
+        ).replace("method: analytic", "method: catenary")
+    return text
+
+
+def _cases(text: str, pick: slice | list[int]) -> list:
+    _, cases = expand_cases(parse_study_text(text))
+    if isinstance(pick, slice):
+        return cases[pick]
+    return [cases[i] for i in pick]
+
+
+def _setup(cases: list) -> tuple:
+    analyses._STATIC_CACHE.clear()
+    frequency_cases._LINEAR_CACHE.clear()
+    static = analyses.solve_static(cases[0], None)
+    red, why = frequency_cases.linearised(cases[0], static, None)
+    assert red is not None, why
+    omegas, motion = [], []
+    for case in cases:
+        X, f, _ = frequency_cases.end_displacements(case.study.analysis.dynamic)
+        omegas.append(2.0 * math.pi * f)
+        motion.append(X)
+    settings = frequency_cases.drag_settings(cases[0].study.analysis.dynamic)
+    return static, red, np.array(omegas), np.array(motion), settings
+
+
+def _close(a: np.ndarray, b: np.ndarray) -> None:
+    scale = max(float(np.max(np.abs(a))), 1e-300)
+    assert float(np.max(np.abs(a - b))) <= 1e-12 * scale
+
+
+@pytest.mark.parametrize(
+    ("text", "pick", "planar"),
+    [
+        # 0.1-1.2 Hz in 0.05 Hz steps: the resonance near 0.85-1.0 Hz takes the most
+        # drag iterations; amplitudes 0.025 and 0.1 m
+        (_moustafa(), [0, 5, 15, 17, 21, 69, 84, 87, 91], True),
+        (_moustafa(current=True), [3, 16, 40, 85], False),  # current along y
+        (_moustafa(fluid="vacuum"), [2, 16, 50], False),  # no drag: LAPACK, one by one
+        (CHAIN, slice(None), True),
+    ],
+    ids=["drag", "current", "vacuum", "seabed"],
+)
+def test_batched_cases_match_solve_harmonic(
+    text: str, pick: slice | list[int], planar: bool
+) -> None:
+    """Lines in the x-z plane are solved without their y unknowns (in_plane): same
+    numbers; the others in full."""
+    cases = _cases(text, pick)
+    _, red, omegas, motion, settings = _setup(cases)
+    assert (in_plane(red) is not red) == planar
+    batch = solve_harmonic_cases(red, omegas, motion, settings)
+    assert batch.ok.all()
+    for k in range(len(cases)):
+        ref = solve_harmonic(red, omegas[k], motion[k], settings)
+        assert ref.success, ref.message
+        assert batch.iterations[k] == ref.drag_iterations
+        assert bool(batch.converged[k]) == ref.drag_converged
+        _close(ref.displacement, batch.displacement[k])
+        _close(ref.element_tension, batch.element_tension[k])
+        _close(ref.end_tension, batch.end_tension[k])
+        np.testing.assert_array_equal(batch.tension_static, ref.tension_static)
+    if red.line.has_drag:
+        assert batch.iterations.max() > 1  # the drag iteration was exercised
+
+
+def test_partly_held_nodes_reduced_bands_and_batched_solve() -> None:
+    """With nodes of 0, 1, 2 and 3 free directions (some held along a random plane or
+    line, as a line model may hold nodes), the band storage of ReducedLine holds
+    B^T K B and B^T M B exactly and B^T D B for drag blocks D, and the batched solve
+    still matches solve_harmonic."""
+    cases = _cases(CHAIN, slice(None))
+    _, red0, omegas, motion, settings = _setup(cases)
+    line0 = red0.line
+    rng = np.random.default_rng(5)
+    blocks = []
+    for i in range(line0.n_nodes):
+        k = 0 if i in (0, line0.n_nodes - 1) else (3, 2, 1, 3)[i % 4]
+        q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+        blocks.append(q[:, :k] if k < 3 else np.eye(3))
+    basis = sp.block_diag([sp.csr_matrix(b) if b.size else sp.csr_matrix((3, 0)) for b in blocks])
+    red = ReducedLine.of(replace(line0, free_basis=basis.tocsr()))
+    assert set(np.diff(red.offsets).tolist()) == {0, 1, 2, 3}
+    B = basis.toarray()
+    bw = red.bandwidth
+
+    def dense(band: np.ndarray) -> np.ndarray:
+        N = band.shape[1]
+        out = np.zeros((N, N), dtype=band.dtype)
+        for i in range(N):
+            for j in range(max(0, i - bw), min(N, i + bw + 1)):
+                out[i, j] = band[bw + i - j, j]
+        return out
+
+    # the reduced matrices are sparse products of the same numbers: equal to round-off
+    scale = np.abs(line0.stiffness).max()
+    np.testing.assert_allclose(
+        dense(red.K), B.T @ line0.stiffness.toarray() @ B, atol=1e-14 * scale
+    )
+    mass = line0.mass_matrix().toarray()
+    np.testing.assert_allclose(dense(red.M), B.T @ mass @ B, atol=1e-14 * np.abs(mass).max())
+    D = rng.normal(size=(line0.n_nodes, 3, 3))
+    expect = B.T @ block_diagonal(D).toarray() @ B
+    np.testing.assert_allclose(dense(red.drag_band(D)), expect, atol=1e-14 * np.abs(D).max())
+    batch = solve_harmonic_cases(red, omegas, motion, settings)
+    for k in range(omegas.size):
+        ref = solve_harmonic(red, omegas[k], motion[k], settings)
+        assert batch.iterations[k] == ref.drag_iterations
+        _close(ref.displacement, batch.displacement[k])
+        _close(ref.end_tension, batch.end_tension[k])
+
+
+@pytest.mark.parametrize("text", [_moustafa(), CHAIN], ids=["span", "seabed"])
+def test_validity_measures_as_arrays_match_the_per_case_function(text: str) -> None:
+    cases = _cases(text, slice(0, None, 7))
+    static, red, omegas, motion, settings = _setup(cases)
+    line = red.line
+    res = solve_harmonic_cases(red, omegas, motion, settings)
+    med = frequency_cases._problem(cases[0]).medium
+    ground = med.seabed_z(line.position[:, 0], line.position[:, 1])
+    on_bed = np.abs(line.position[:, 2] - ground) <= 1e-6 * float(line.s[-1])
+    held = np.diff(line.free_basis.tocsr().indptr).reshape(-1, 3).sum(axis=1) == 0
+    common = dict(
+        s=line.s,
+        position=line.position,
+        element_tension_static=line.tension,
+        end_tension_static=res.tension_static,
+        laid_length=static.laid_length,
+        on_seabed=on_bed,
+        submerged_weight=frequency_cases._submerged_weight(cases[0], line.s),
+        held=held,
+    )
+    ratio, sag_ratio, travel = measures_cases(
+        displacement=res.displacement,
+        element_tension_amplitude=np.abs(res.element_tension),
+        end_tension_amplitude=np.abs(res.end_tension),
+        **common,
+    )
+    for k in range(len(cases)):
+        v = measures(
+            displacement=res.displacement[k],
+            element_tension_amplitude=np.abs(res.element_tension[k]),
+            end_tension_amplitude=np.abs(res.end_tension[k]),
+            **common,
+        )
+        assert (ratio[k], sag_ratio[k], travel[k]) == (
+            v.min_tension_ratio,
+            v.amplitude_sag_ratio,
+            v.touchdown_travel,
+        )
+    if "depth" in text:
+        assert static.laid_length > 0.0 and np.all(travel > 0.0)  # touchdown exercised
+
+
+def test_auto_sweep_in_a_chunk_gives_each_case_its_record_alone() -> None:
+    """``method: auto`` takes the batched frequency-domain answers of a chunk and falls
+    back to the time domain case by case as before: on cases of the Figs. 2-5 sweep
+    kept in the frequency domain (0.1, 0.35 Hz at 0.025 m) and one it refuses (0.7 Hz:
+    amplitude/sag 0.0754 > 0.075), every record equals the one the case gets alone."""
+    text = FIGS.read_text()
+    picked = _cases(text, [0, 5, 12])
+    chunk = analyses.evaluate_chunk(picked)
+    methods = [str(r.data["dynamic_method"]) for r in chunk]
+    assert methods == ["frequency", "frequency", "time"], methods
+    for case, rec in zip(picked, chunk, strict=True):
+        analyses._STATIC_CACHE.clear()
+        frequency_cases._LINEAR_CACHE.clear()
+        alone = analyses.evaluate_case(case)
+        assert (rec.status, rec.message) == (alone.status, alone.message)
+        assert set(rec.data) == set(alone.data)
+        for name, value in alone.data.items():
+            assert np.asarray(rec.data[name]).tobytes() == np.asarray(value).tobytes(), name
+
+
+def test_cases_beyond_one_call_are_solved_in_slices_with_the_same_outcomes(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A chunk larger than BATCH_NODES case-nodes is solved in slices; each case's
+    outcome is the one it gets in a single call."""
+    cases = _cases(_moustafa(), slice(0, 7))
+    static, red, *_ = _setup(cases)
+    whole = frequency_cases.solve_frequency_cases(cases, static, red)
+    monkeypatch.setattr(frequency_cases, "BATCH_NODES", 3 * red.line.n_nodes)  # 3 per slice
+    sliced = frequency_cases.solve_frequency_cases(cases, static, red)
+    for a, b in zip(whole, sliced, strict=True):
+        assert (a.status, a.distrust, a.summary) == (b.status, b.distrust, b.summary)
+        for name, value in a.data.items():
+            assert np.asarray(b.data[name]).tobytes() == np.asarray(value).tobytes(), name
+
+
+def test_tension_along_cases_gives_np_interp_numbers() -> None:
+    """The envelope of K responses at once equals tension_along (np.interp) row by row,
+    bit for bit, at output points between, on and beyond the element midpoints."""
+    rng = np.random.default_rng(11)
+    s_nodes = np.cumsum(np.r_[0.0, rng.uniform(0.5, 1.5, 20)])
+    mid = 0.5 * (s_nodes[:-1] + s_nodes[1:])
+    s_out = np.sort(np.r_[np.linspace(-0.5, s_nodes[-1] + 0.5, 57), mid[::3], s_nodes[[0, -1]]])
+    element = rng.uniform(0.0, 100.0, (6, s_nodes.size - 1))
+    ends = rng.uniform(0.0, 100.0, (6, 2))
+    got = frequency_cases.tension_along_cases(s_out, s_nodes, element, ends)
+    for k in range(6):
+        want = frequency_cases.tension_along(s_out, s_nodes, element[k], ends[k])
+        assert got[k].tobytes() == want.tobytes()
