@@ -600,17 +600,21 @@ def initial_contact(
                 "on the seabed and its laid shape is not determined",
                 final=True,
             )
-        if excess(hi) >= 0.0:
+        # the reach grows with H (a tauter line lifts more of itself off the seabed and
+        # reaches further), so the excess is increasing: bisect on its sign change
+        if excess(hi) <= 0.0:
             H = hi
-        elif excess(lo) <= 0.0:
+        elif excess(lo) >= 0.0:
             H = lo
         else:
-            for _ in range(100):
+            for _ in range(60):
                 mid = math.sqrt(lo * hi)
                 if excess(mid) > 0.0:
-                    lo = mid
-                else:
                     hi = mid
+                else:
+                    lo = mid
+                if hi <= lo * (1.0 + 1e-12):
+                    break
             H = math.sqrt(lo * hi)
     else:
         assert ends.force is not None
