@@ -10,7 +10,7 @@ import math
 import time
 import traceback
 from collections import OrderedDict
-from dataclasses import replace
+from dataclasses import fields, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -533,6 +533,18 @@ _DISCRETE_CACHE: OrderedDict[tuple, tuple[DiscreteLine, np.ndarray, str, np.ndar
 )
 
 
+def _fields_key(obj: Any) -> tuple:
+    """A hashable key of a dataclass of numbers, tuples and arrays (arrays by dtype,
+    shape and bytes: exact, and a hundred times cheaper than their repr)."""
+    out = []
+    for f in fields(obj):
+        v = getattr(obj, f.name)
+        if isinstance(v, np.ndarray):
+            v = (v.dtype.str, v.shape, v.tobytes())
+        out.append((f.name, v))
+    return tuple(out)
+
+
 def discrete_statics(
     case: Case, static: StaticResult
 ) -> tuple[DiscreteLine, np.ndarray, str, np.ndarray]:
@@ -550,7 +562,7 @@ def discrete_statics(
     s_nodes = uniform_nodes(lm, dyn.elements)
     start = np.stack([np.interp(s_nodes, static.s, static.position[:, k]) for k in range(3)], 1)
     extras = dynamic_extras(case.study, start)
-    key = (case.static_hash, dyn.elements, repr(extras))
+    key = (case.static_hash, dyn.elements, _fields_key(extras))
     cached = _DISCRETE_CACHE.get(key)
     if cached is not None:
         return cached

@@ -1075,6 +1075,27 @@ class SemiAnalyticSolver:
                 state.contact = (_td_tension(shape), shape.laid_length)
                 return shape
             state.contact = None
+        if plane is not None and state.TA is None and not np.any(q[:, :2]) and plane.slope == 0.0:
+            # first solve of a line anchored on a flat seabed in still water: when the
+            # classical mooring formula lays part of it, solve with the laid part at
+            # once (the free-hanging solve would only find the line through the seabed)
+            try:
+                guess = initial_contact(lay, ends, plane, still=True)
+            except _Failure:
+                guess = None
+            if guess is not None and guess[1] > 0.0:
+                try:
+                    cshape = solve_contact(
+                        lay, q, ends, plane, guess, tol=tol, max_iterations=maxit, deadline=deadline
+                    )
+                except _Failure as exc:  # the usual path below decides, as before
+                    if exc.status == STATUS_TIME_LIMIT:
+                        raise
+                    cshape = None
+                if cshape is not None:
+                    state.newton += cshape.iterations
+                    state.contact = (_td_tension(cshape), cshape.laid_length)
+                    return cshape
         TA = state.TA if state.TA is not None else initial_tension(lay, q, ends)
         try:
             try:
