@@ -39,7 +39,7 @@ SCHEDULERS = (AUTO, SYNCHRONOUS, THREADS, PROCESSES)
 #: auto scheduler: seconds spent timing cases in this process before deciding, and the
 #: estimated remaining run time [s] above which it runs them in parallel (a local cluster
 #: of forked workers starts in about 0.3 s; threads need no start)
-AUTO_PROBE_SECONDS = 0.5
+AUTO_PROBE_SECONDS = 0.25
 AUTO_PARALLEL_AFTER = 2.0
 #: other local schedulers: seconds of cases timed here first (sizes the chunks)
 PROBE_SECONDS = 0.2
@@ -250,18 +250,40 @@ def probe_cost(cases: list[Case], on_done: OnDone, seconds: float) -> Probe:
     are timed batched as they will run) until ``seconds`` have passed; the cost of a
     case is that of the last (largest) chunk. The probe's records count: nothing is
     computed twice."""
-    rest = sorted(cases, key=lambda c: (c.static_hash, c.index))
+    ordered = sorted(cases, key=lambda c: (c.static_hash, c.index))
+    # probe cases spread over the sweep (bit-reversed order: its ends, its middle, its
+    # quarters, ...): a sweep's cost changes along its axes (a dynamic sweep's large
+    # amplitudes and high frequencies cost many times its small ones), and its first
+    # cases alone would predict the cheap corner
+    spread = sorted(range(len(ordered)), key=lambda i: _radical_inverse(i))
+    probed: set[int] = set()
     t_start = time.perf_counter()
-    size, per_case = 1, math.nan
-    while rest:
-        chunk, rest = rest[:size], rest[size:]
+    size, per_case, pos = 1, math.nan, 0
+    while pos < len(spread):
+        take = spread[pos : pos + size]
+        pos += len(take)
+        chunk = [ordered[i] for i in sorted(take)]
         t0 = time.perf_counter()
         on_done(run_chunk(chunk))
         per_case = (time.perf_counter() - t0) / len(chunk)
+        probed.update(take)
         if time.perf_counter() - t_start >= seconds:
             break
         size *= 2
+    rest = [c for i, c in enumerate(ordered) if i not in probed]
     return Probe(rest, per_case)
+
+
+def _radical_inverse(i: int) -> float:
+    """The van der Corput point of ``i`` in base 2 (its bits mirrored about the binary
+    point): 0, 1/2, 1/4, 3/4, 1/8, ..., an ordering that spreads any prefix."""
+    out, f = 0.0, 0.5
+    while i:
+        if i & 1:
+            out += f
+        i >>= 1
+        f *= 0.5
+    return out
 
 
 def probe_threads(probe: Probe, on_done: OnDone, workers: int) -> Probe:
