@@ -1,0 +1,294 @@
+"""Statics of a catenary line over up to two fixed pulleys (aqwa seed 5.8.1.1, issue 12).
+
+A line A -> P1 (-> P2) -> B passing over fixed pulleys is a chain of sub-lines, each a
+catenary between fixed points (A, the pulleys, B: both line ends must be fixed), whose
+unstretched lengths L_1 + ... + L_{m+1} = L. The split S_k = L_1 + ... + L_k [m] (arc
+length from A at pulley k) is the unknown, one scalar per pulley; the segments and
+attachments of the line are cut where the split falls, so a composite line keeps its
+make-up along s.
+
+Frictionless equilibrium: the line slides until the tension magnitude is continuous
+over each pulley, |F_B of sub-line k| = |F_A of sub-line k + 1| (a frictionless sheave
+turns the tension's direction, not its magnitude). Each sub-line is solved by the
+study's static method as a fixed-fixed line; the m equations in the m split values are
+solved by Newton with a forward-difference Jacobian, steps kept inside the ordered
+interval 0 < S_1 < S_2 < L and halved until the mismatch falls. For one pulley the
+mismatch T_end(sub 1) - T_start(sub 2) falls monotonically as S_1 grows (the first
+sub-line slackens, the second tightens), so the root is unique; Newton is started from
+the split proportional to the chords (equal straight-line strain).
+
+With friction (``friction_factor`` f > 1) the seed's law lets the larger tension over
+the smaller reach f^(wrap / 180 deg) before the line slides, so every split whose
+tension ratio is within that bound is an equilibrium and the static state depends on
+the history that led to it. The statics report the frictionless equilibrium (ratio 1,
+within every bound), as the statics of a spring line over pulleys do: the state of a
+line tensioned while sliding over its pulleys. The friction acts in the dynamics.
+
+Outputs as any line: positions and tension on the whole line's ``s`` (each sub-line is
+solved at 8 times the output density and interpolated by a cubic spline in s: its error
+is of order (h / 8)^4 times the fourth derivative of the shape, far below the solver
+tolerance for lines whose curvature radius exceeds a few output spacings), end forces
+of the first and last sub-lines, ``laid_length`` the sum of the sub-lines', and
+``pulley_force`` [N] (m, 3), the force of the line on each pulley:
+F_B(sub k) + F_A(sub k + 1).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import replace
+
+import numpy as np
+from scipy.interpolate import Akima1DInterpolator, CubicSpline
+
+from .base import (
+    STATUS_NO_SOLUTION,
+    STATUS_NOT_CONVERGED,
+    STATUS_OK,
+    STATUS_TIME_LIMIT,
+    EndCondition,
+    LineModel,
+    StaticProblem,
+    StaticResult,
+    StaticSolver,
+)
+
+#: output points of a sub-line per output point of the whole line (cubic spline in s)
+OVERSAMPLE = 8
+
+
+def cut_line(line: LineModel, s0: float, s1: float) -> LineModel:
+    """The part of ``line`` between unstretched arc lengths ``s0`` < ``s1`` [m] from A:
+    its segments clipped to [s0, s1] (empty pieces dropped) and the attachments with
+    s0 <= s < s1 (s <= s1 for the part that ends at the line's end), measured from s0."""
+    ends = line.segment_ends
+    lo = np.maximum(ends[:-1], s0)
+    hi = np.minimum(ends[1:], s1)
+    keep = np.nonzero(hi - lo > 1e-12 * max(line.total_length, 1.0))[0]
+    if len(keep) == 0:
+        keep = np.array([int(np.clip(np.searchsorted(ends, s0, side="right") - 1, 0, len(lo) - 1))])
+        lengths = np.array([s1 - s0])
+    else:
+        lengths = hi[keep] - lo[keep]
+        lengths[-1] += (s1 - s0) - float(np.sum(lengths))  # exact total
+    last = s1 >= line.total_length
+    s_att = np.asarray(line.attachment_s, dtype=float)
+    on = (s_att >= s0) & ((s_att <= s1) if last else (s_att < s1))
+
+    def pick(a: np.ndarray) -> np.ndarray:
+        return np.asarray(a)[keep].copy()
+
+    return LineModel(
+        length=lengths,
+        weight=pick(line.weight),
+        mass=pick(line.mass),
+        axial_stiffness=pick(line.axial_stiffness),
+        diameter=pick(line.diameter),
+        drag_normal=pick(line.drag_normal),
+        drag_tangential=pick(line.drag_tangential),
+        added_mass_normal=pick(line.added_mass_normal),
+        added_mass_tangential=pick(line.added_mass_tangential),
+        bending_stiffness=pick(line.bending_stiffness),
+        damping_ratio=pick(line.damping_ratio),
+        attachment_s=s_att[on] - s0,
+        attachment_force=np.asarray(line.attachment_force, dtype=float).reshape(-1, 3)[on],
+        attachment_mass=np.asarray(line.attachment_mass, dtype=float)[on],
+        attachment_volume=np.asarray(line.attachment_volume, dtype=float)[on],
+        axial_law=tuple(line.axial_law[i] for i in keep) if line.axial_law else (),
+    )
+
+
+def chord_split(problem: StaticProblem, pulleys: np.ndarray) -> np.ndarray:
+    """Split points S_k [m] proportional to the chords A -> P1 (-> P2) -> B: the split
+    of a straight line of uniform strain, the Newton start."""
+    P = _points(problem, pulleys)
+    d = np.linalg.norm(np.diff(P, axis=0), axis=1)
+    return problem.line.total_length * np.cumsum(d)[:-1] / float(np.sum(d))
+
+
+def sub_problems(
+    problem: StaticProblem, pulleys: np.ndarray, split: np.ndarray, n_nodes: int = 3
+) -> list[StaticProblem]:
+    """The fixed-fixed sub-problems of the line cut at ``split`` [m]."""
+    P = _points(problem, pulleys)
+    S = np.concatenate(([0.0], split, [problem.line.total_length]))
+    return [
+        replace(
+            problem,
+            line=cut_line(problem.line, float(S[k]), float(S[k + 1])),
+            end_a=EndCondition(kind="fixed", position=P[k].copy()),
+            end_b=EndCondition(kind="fixed", position=P[k + 1].copy()),
+            n_nodes=n_nodes,
+        )
+        for k in range(len(S) - 1)
+    ]
+
+
+def _points(problem: StaticProblem, pulleys: np.ndarray) -> np.ndarray:
+    assert problem.end_a.position is not None and problem.end_b.position is not None
+    return np.vstack(
+        (
+            np.asarray(problem.end_a.position, dtype=float),
+            np.asarray(pulleys, dtype=float).reshape(-1, 3),
+            np.asarray(problem.end_b.position, dtype=float),
+        )
+    )
+
+
+class _SubFailed(Exception):
+    def __init__(self, status: int, message: str) -> None:
+        super().__init__(message)
+        self.status = status
+
+
+def solve_over_pulleys(
+    problem: StaticProblem,
+    pulleys: np.ndarray,
+    solver: StaticSolver,
+    *,
+    deadline: float | None = None,
+    max_iterations: int = 60,
+) -> StaticResult:
+    """Frictionless static equilibrium of ``problem``'s line over fixed ``pulleys`` [m]
+    (m, 3), m = 1 or 2, both ends fixed, each sub-line solved by ``solver`` (see the
+    module docstring). ``residual`` is the largest tension mismatch over a pulley
+    divided by the largest end tension; ``iterations`` the Newton steps on the split."""
+    L = problem.line.total_length
+    s_out = np.linspace(0.0, L, problem.n_nodes)
+    m = len(pulleys)
+    if problem.end_a.kind != "fixed" or problem.end_b.kind != "fixed":
+        return StaticResult.failed(
+            s_out, STATUS_NO_SOLUTION, "a line over pulleys needs both ends fixed"
+        )
+    sub_tol = max(problem.tolerance * 1e-2, 1e-13)
+    tol = max(problem.tolerance, 1e-12)
+
+    def solve(split: np.ndarray, n: int | list[int] = 3) -> list[StaticResult]:
+        if deadline is not None and time.monotonic() > deadline:
+            raise _SubFailed(STATUS_TIME_LIMIT, "time limit reached while splitting the line")
+        out = []
+        subs = sub_problems(problem, pulleys, split)
+        for k, sub in enumerate(subs):
+            nk = n[k] if isinstance(n, list) else n
+            r = solver.solve(
+                replace(sub, n_nodes=nk, tolerance=sub_tol), deadline=deadline
+            ).check_finite()
+            if r.status != STATUS_OK:
+                raise _SubFailed(r.status, f"sub-line {k + 1} of {len(subs)}: {r.message}")
+            out.append(r)
+        return out
+
+    def mismatch(res: list[StaticResult]) -> tuple[np.ndarray, float]:
+        Tb = np.array([np.linalg.norm(r.force_b) for r in res[:-1]])
+        Ta = np.array([np.linalg.norm(r.force_a) for r in res[1:]])
+        scale = max(float(np.max(Ta)), float(np.max(Tb)), 1e-300)
+        return (Tb - Ta) / scale, scale
+
+    def inside(split: np.ndarray) -> bool:
+        S = np.concatenate(([0.0], split, [L]))
+        return bool(np.all(np.diff(S) > 1e-9 * L))
+
+    split = chord_split(problem, pulleys)
+    its = 0
+    try:
+        res = solve(split)
+        r, scale = mismatch(res)
+        while np.max(np.abs(r)) > tol:
+            if its >= max_iterations:
+                return StaticResult.failed(
+                    s_out,
+                    STATUS_NOT_CONVERGED,
+                    f"the split of the line over its pulleys did not converge in {its} "
+                    f"iterations (tension mismatch {np.max(np.abs(r)):.3g} of the tension)",
+                    iterations=its,
+                    residual=float(np.max(np.abs(r))),
+                )
+            its += 1
+            # forward differences: a step well above the sub-solvers' noise (sub_tol of
+            # the tension) and small against the split
+            J = np.empty((m, m))
+            gaps = np.diff(np.concatenate(([0.0], split, [L])))
+            for j in range(m):
+                h = min(1e-6 * L, 0.25 * float(np.min(gaps)))
+                trial = split.copy()
+                trial[j] += h
+                if not inside(trial):
+                    trial[j] -= 2.0 * h
+                    h = -h
+                rj, _ = mismatch(solve(trial))
+                J[:, j] = (rj - r) / h
+            step = -np.linalg.solve(J, r) if m > 1 else np.array([-r[0] / J[0, 0]])
+            lam = 1.0
+            for _ in range(40):
+                trial = split + lam * step
+                if inside(trial):
+                    try:
+                        res_t = solve(trial)
+                    except _SubFailed as exc:
+                        if exc.status == STATUS_TIME_LIMIT:
+                            raise
+                        res_t = None
+                    if res_t is not None:
+                        r_t, scale_t = mismatch(res_t)
+                        if np.max(np.abs(r_t)) < np.max(np.abs(r)) or lam < 1e-6:
+                            break
+                lam *= 0.5
+            else:
+                raise _SubFailed(
+                    STATUS_NOT_CONVERGED, "no split step reduces the tension mismatch"
+                )
+            split, res, r, scale = trial, res_t, r_t, scale_t
+        # the converged split, sampled densely for the output points
+        S = np.concatenate(([0.0], split, [L]))
+        dense = [max(5, int(math.ceil(OVERSAMPLE * (problem.n_nodes - 1) * (S[k + 1] - S[k]) / L)) + 1) for k in range(m + 1)]
+        res = solve(split, dense)
+    except _SubFailed as exc:
+        return StaticResult.failed(
+            s_out, exc.status, f"line over pulleys: {exc}", iterations=its
+        )
+    kinked = [len(sub.line.attachment_s) > 0 for sub in sub_problems(problem, pulleys, split)]
+    return _assemble(s_out, S, res, its, float(np.max(np.abs(r))), kinked)
+
+
+def _assemble(
+    s_out: np.ndarray,
+    S: np.ndarray,
+    res: list[StaticResult],
+    its: int,
+    residual: float,
+    kinked: list[bool],
+) -> StaticResult:
+    """The whole line's result from its sub-lines' (cubic splines in s per sub-line)."""
+    pos = np.empty((len(s_out), 3))
+    ten = np.empty(len(s_out))
+    k_of = np.clip(np.searchsorted(S, s_out, side="right") - 1, 0, len(res) - 1)
+    for k, r in enumerate(res):
+        on = k_of == k
+        if not np.any(on):
+            continue
+        local = np.clip(s_out[on] - S[k], 0.0, r.s[-1])
+        if kinked[k]:
+            # a point load kinks the shape: a local (modified Akima) interpolant keeps
+            # the kink from ringing along the sub-line
+            pos[on] = Akima1DInterpolator(r.s, r.position, axis=0, method="makima")(local)
+            ten[on] = Akima1DInterpolator(r.s, r.tension, method="makima")(local)
+        else:
+            pos[on] = CubicSpline(r.s, r.position, axis=0)(local)
+            ten[on] = CubicSpline(r.s, r.tension)(local)
+    out = StaticResult(
+        s=s_out,
+        position=pos,
+        tension=ten,
+        force_a=res[0].force_a.copy(),
+        force_b=res[-1].force_b.copy(),
+        laid_length=float(sum(r.laid_length for r in res)),
+        iterations=its,
+        residual=residual,
+        drag_iterations=int(sum(r.drag_iterations for r in res)),
+    )
+    out.pulley_force = np.array(  # type: ignore[attr-defined]
+        [res[k].force_b + res[k + 1].force_a for k in range(len(res) - 1)]
+    )
+    out.split = S[1:-1].copy()  # type: ignore[attr-defined]
+    return out
