@@ -66,7 +66,11 @@ def check_supported(cases: list[Case], src: StudySource) -> None:
             problems.extend(p for p in spring_problems(case, src) if p not in problems)
             continue
         problems.extend(p for p in _law_problems(case, src) if p not in problems)
-        if case.study.analysis.database is not None:
+        if case.study.line.pulleys:
+            from .pulley_cases import pulley_problems
+
+            problems.extend(p for p in pulley_problems(case, src) if p not in problems)
+        if case.study.analysis.database is not None and not case.study.line.pulleys:
             from .database import database_problems
 
             problems.extend(p for p in database_problems(case, src) if p not in problems)
@@ -296,6 +300,16 @@ def solve_static(
     method = case.study.analysis.static.method
     solver = STATIC_SOLVERS[method]
     missing = unsupported_static(method, problem)
+    if case.study.line.pulleys and not missing:
+        from .pulley_cases import solve_pulley_static
+
+        result = solve_pulley_static(case.study, deadline).check_finite()
+        result = apply_limits(result, static_limits(case.study))
+        COUNTERS["static_solves"] += 1
+        _STATIC_CACHE[case.static_hash] = result
+        while len(_STATIC_CACHE) > _STATIC_CACHE_SIZE:
+            _STATIC_CACHE.popitem(last=False)
+        return result
     if missing:
         # the CLI rejects these before any work (check_supported); a caller that skips
         # that check still gets a failure rather than a solution that ignores an input
@@ -428,8 +442,10 @@ def static_outputs(res: StaticResult, study: Any = None) -> dict[str, np.ndarray
         "static_residual": np.asarray(res.residual),
         "drag_iterations": np.asarray(res.drag_iterations),
     }
-    if getattr(res, "pulley_force", None) is not None:  # a spring line over pulleys
+    if getattr(res, "pulley_force", None) is not None:  # a line over pulleys
         out["pulley_force"] = np.asarray(res.pulley_force)
+    if getattr(res, "split", None) is not None:  # a catenary line over pulleys
+        out["pulley_arc_length"] = np.asarray(res.split)
     if study is not None and not study.line.is_spring:
         env = study.environment
         segs = study.line.segments
@@ -984,7 +1000,7 @@ def presolve_statics(cases: list[Case]) -> tuple[dict[str, StaticResult], dict[s
         h = case.static_hash
         if h in todo or h in _STATIC_CACHE or case.study.analysis.static.method != "catenary":
             continue
-        if case.study.line.is_spring:
+        if case.study.line.is_spring or case.study.line.pulleys:
             continue
         try:
             problem = static_problem(case.study)

@@ -91,7 +91,7 @@ def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
     an = template.analysis
     if an.modal is not None or an.dynamic is not None or an.static.method != "catenary":
         return False
-    if template.environment.current:
+    if template.environment.current or template.line.pulleys:
         return False
     if getattr(an.static, "installation", None) is not None:
         return False

@@ -68,7 +68,10 @@ OUTPUTS: dict[str, OutputVariable] = {
     "force_a": OutputVariable(("component",), "N", "force of the line on the attachment at end A"),
     "force_b": OutputVariable(("component",), "N", "force of the line on the attachment at end B"),
     "pulley_force": OutputVariable(
-        ("pulley", "component"), "N", "force of the line on each pulley (kind: spring)"
+        ("pulley", "component"), "N", "force of the line on each pulley"
+    ),
+    "pulley_arc_length": OutputVariable(
+        ("pulley",), "m", "unstretched arc length from end A at each pulley (kind: catenary)"
     ),
     "break_time": OutputVariable(
         (), "s", "time at which the line parted (NaN: it did not), kind: spring with line.failure"

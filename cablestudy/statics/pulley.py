@@ -25,9 +25,11 @@ within every bound), as the statics of a spring line over pulleys do: the state 
 line tensioned while sliding over its pulleys. The friction acts in the dynamics.
 
 Outputs as any line: positions and tension on the whole line's ``s`` (each sub-line is
-solved at 8 times the output density and interpolated by a cubic spline in s: its error
-is of order (h / 8)^4 times the fourth derivative of the shape, far below the solver
-tolerance for lines whose curvature radius exceeds a few output spacings), end forces
+solved at 8 times the output density, and at least 8 points per smooth piece between
+its joints and loads, and interpolated by a cubic spline in s within each piece: its
+error is of order h^4 times the fourth derivative of the shape, h the sub-line's point
+spacing, far below the solver tolerance for lines whose curvature radius exceeds a few
+output spacings; a point on a load takes the tension after it, as the solvers do), end forces
 of the first and last sub-lines, ``laid_length`` the sum of the sub-lines', and
 ``pulley_force`` [N] (m, 3), the force of the line on each pulley:
 F_B(sub k) + F_A(sub k + 1).
@@ -40,7 +42,7 @@ import time
 from dataclasses import replace
 
 import numpy as np
-from scipy.interpolate import Akima1DInterpolator, CubicSpline
+from scipy.interpolate import CubicSpline
 
 from .base import (
     STATUS_NO_SOLUTION,
@@ -179,11 +181,11 @@ def solve_over_pulleys(
             out.append(r)
         return out
 
-    def mismatch(res: list[StaticResult]) -> tuple[np.ndarray, float]:
+    def mismatch(res: list[StaticResult]) -> np.ndarray:
+        """Tension arriving minus tension leaving each pulley, over the largest."""
         Tb = np.array([np.linalg.norm(r.force_b) for r in res[:-1]])
         Ta = np.array([np.linalg.norm(r.force_a) for r in res[1:]])
-        scale = max(float(np.max(Ta)), float(np.max(Tb)), 1e-300)
-        return (Tb - Ta) / scale, scale
+        return (Tb - Ta) / max(float(np.max(Ta)), float(np.max(Tb)), 1e-300)
 
     def inside(split: np.ndarray) -> bool:
         S = np.concatenate(([0.0], split, [L]))
@@ -193,7 +195,7 @@ def solve_over_pulleys(
     its = 0
     try:
         res = solve(split)
-        r, scale = mismatch(res)
+        r = mismatch(res)
         while np.max(np.abs(r)) > tol:
             if its >= max_iterations:
                 return StaticResult.failed(
@@ -216,7 +218,7 @@ def solve_over_pulleys(
                 if not inside(trial):
                     trial[j] -= 2.0 * h
                     h = -h
-                rj, _ = mismatch(solve(trial))
+                rj = mismatch(solve(trial))
                 J[:, j] = (rj - r) / h
             step = -np.linalg.solve(J, r) if m > 1 else np.array([-r[0] / J[0, 0]])
             lam = 1.0
@@ -230,25 +232,60 @@ def solve_over_pulleys(
                             raise
                         res_t = None
                     if res_t is not None:
-                        r_t, scale_t = mismatch(res_t)
+                        r_t = mismatch(res_t)
                         if np.max(np.abs(r_t)) < np.max(np.abs(r)) or lam < 1e-6:
                             break
                 lam *= 0.5
             else:
-                raise _SubFailed(
-                    STATUS_NOT_CONVERGED, "no split step reduces the tension mismatch"
-                )
-            split, res, r, scale = trial, res_t, r_t, scale_t
+                raise _SubFailed(STATUS_NOT_CONVERGED, "no split step reduces the tension mismatch")
+            split, res, r = trial, res_t, r_t
         # the converged split, sampled densely for the output points
         S = np.concatenate(([0.0], split, [L]))
-        dense = [max(5, int(math.ceil(OVERSAMPLE * (problem.n_nodes - 1) * (S[k + 1] - S[k]) / L)) + 1) for k in range(m + 1)]
-        res = solve(split, dense)
+        subs = sub_problems(problem, pulleys, split)
+        density = (problem.n_nodes - 1) / L
+        res = solve(split, [dense_nodes(sub.line, density) for sub in subs])
     except _SubFailed as exc:
-        return StaticResult.failed(
-            s_out, exc.status, f"line over pulleys: {exc}", iterations=its
-        )
-    kinked = [len(sub.line.attachment_s) > 0 for sub in sub_problems(problem, pulleys, split)]
-    return _assemble(s_out, S, res, its, float(np.max(np.abs(r))), kinked)
+        return StaticResult.failed(s_out, exc.status, f"line over pulleys: {exc}", iterations=its)
+    return _assemble(s_out, S, res, its, float(np.max(np.abs(r))), subs)
+
+
+def breakpoints(line: LineModel) -> np.ndarray:
+    """Arc lengths [m] from the sub-line's start where its shape or tension may be
+    non-smooth: its ends, the joints between segments and the attachments."""
+    pts = np.concatenate((line.segment_ends, np.asarray(line.attachment_s, dtype=float)))
+    return np.unique(np.clip(pts, 0.0, line.total_length))
+
+
+def dense_nodes(line: LineModel, n_out: float) -> int:
+    """Output points of a sub-line: ``OVERSAMPLE`` times the whole line's density
+    ``n_out`` [1/m], and at least 8 in each smooth piece (capped at 100,001)."""
+    pieces = np.diff(breakpoints(line))
+    pieces = pieces[pieces > 0.0]
+    L = line.total_length
+    need = max(OVERSAMPLE * n_out * L, 8.0 * L / float(np.min(pieces)))
+    return int(min(max(math.ceil(need) + 1, 5), 100_001))
+
+
+def _piecewise(s: np.ndarray, values: np.ndarray, breaks: np.ndarray, at: np.ndarray) -> np.ndarray:
+    """``values`` sampled at ``s`` (from 0 to the sub-line's length), interpolated at ``at``
+    by a cubic spline within each smooth piece between ``breaks``: a point on a break
+    belongs to the piece after it (as the solvers report a jump of tension at a load);
+    each piece's spline uses the samples strictly inside it and the sub-line's own end
+    samples (the side of a break a sample on it stands for is not known)."""
+    out = np.empty((len(at),) + values.shape[1:])
+    piece = np.clip(np.searchsorted(breaks, at, side="right") - 1, 0, len(breaks) - 2)
+    end = s[-1]
+    for p in np.unique(piece):
+        lo, hi = breaks[p], breaks[p + 1]
+        use = ((s > lo) & (s < hi)) | ((s == lo) & (lo == 0.0)) | ((s == hi) & (hi == end))
+        on = piece == p
+        if np.count_nonzero(use) >= 4:
+            out[on] = CubicSpline(s[use], values[use], axis=0)(at[on])
+        else:  # a piece shorter than the samples (the cap): linear between neighbours
+            k = np.clip(np.searchsorted(s, at[on]), 1, len(s) - 1)
+            w = ((at[on] - s[k - 1]) / (s[k] - s[k - 1])).reshape((-1,) + (1,) * (values.ndim - 1))
+            out[on] = (1.0 - w) * values[k - 1] + w * values[k]
+    return out
 
 
 def _assemble(
@@ -257,9 +294,9 @@ def _assemble(
     res: list[StaticResult],
     its: int,
     residual: float,
-    kinked: list[bool],
+    subs: list[StaticProblem],
 ) -> StaticResult:
-    """The whole line's result from its sub-lines' (cubic splines in s per sub-line)."""
+    """The whole line's result from its sub-lines' (piecewise cubic splines in s)."""
     pos = np.empty((len(s_out), 3))
     ten = np.empty(len(s_out))
     k_of = np.clip(np.searchsorted(S, s_out, side="right") - 1, 0, len(res) - 1)
@@ -268,14 +305,9 @@ def _assemble(
         if not np.any(on):
             continue
         local = np.clip(s_out[on] - S[k], 0.0, r.s[-1])
-        if kinked[k]:
-            # a point load kinks the shape: a local (modified Akima) interpolant keeps
-            # the kink from ringing along the sub-line
-            pos[on] = Akima1DInterpolator(r.s, r.position, axis=0, method="makima")(local)
-            ten[on] = Akima1DInterpolator(r.s, r.tension, method="makima")(local)
-        else:
-            pos[on] = CubicSpline(r.s, r.position, axis=0)(local)
-            ten[on] = CubicSpline(r.s, r.tension)(local)
+        breaks = breakpoints(subs[k].line)
+        pos[on] = _piecewise(r.s, r.position, breaks, local)
+        ten[on] = _piecewise(r.s, r.tension, breaks, local)
     out = StaticResult(
         s=s_out,
         position=pos,
