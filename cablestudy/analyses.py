@@ -176,12 +176,16 @@ def linear_model_gaps(study: Any) -> list[tuple[tuple[str | int, ...], str]]:
     """Keys of ``study`` set to something the frequency-domain solver does not represent
     yet, as (YAML path, what it is): the drag of lumped bodies (its drag linearisation
     covers the line's Morison drag). Modal analysis and the time domain model them all
-    (one line model, :mod:`cablestudy.dynamics.model`)."""
-    return [
+    (one line model, :mod:`cablestudy.dynamics.model`); a catenary line sliding over
+    pulleys, which the time domain models."""
+    gaps: list[tuple[tuple[str | int, ...], str]] = [
         (("line", "attachments", i, "drag_area"), "a lumped body's drag")
         for i, att in enumerate(study.line.attachments)
         if att.drag_area > 0.0
     ]
+    if study.line.pulleys and not study.line.is_spring:
+        gaps.append((("line", "pulleys"), "a line sliding over pulleys"))
+    return gaps
 
 
 def _linear_model_problems(cases: list[Case], src: StudySource) -> list[str]:
@@ -751,7 +755,13 @@ def dynamic_problem(case: Case, static: StaticResult) -> DynamicProblem | str:
 
     dyn = case.study.analysis.dynamic
     assert dyn is not None
-    line, x_static, msg, anchor = discrete_statics(case, static)
+    sliding = None
+    if case.study.line.pulleys:
+        from .pulley_cases import pulley_discrete_statics
+
+        line, x_static, msg, anchor, sliding = pulley_discrete_statics(case, static)
+    else:
+        line, x_static, msg, anchor = discrete_statics(case, static)
     if msg:
         return msg
     motion, period, step = end_motion(dyn)
@@ -786,6 +796,7 @@ def dynamic_problem(case: Case, static: StaticResult) -> DynamicProblem | str:
         # a node within a millionth of the line's length of the seabed touches it (the
         # statics' rule); the penalty contact sinks laid nodes below the plane anyway
         touchdown_tolerance=1e-6 * max(float(line.s[-1]), 1.0),
+        pulleys=sliding,
     )
 
 
@@ -816,7 +827,12 @@ def dynamic_outputs(
     if res.touchdown_tracked:  # a seabed to touch: NaN when the line does not touch it
         out["touchdown_min"] = np.asarray(res.touchdown_min)
         out["touchdown_max"] = np.asarray(res.touchdown_max)
-    if res.element_tension_max.size:
+    if res.split_min.size:
+        # a line over pulleys: its nodes move along the material as it slides, so the
+        # elements' extremes belong to no fixed point of the line (no envelope)
+        out["pulley_arc_length_min"] = res.split_min
+        out["pulley_arc_length_max"] = res.split_max
+    elif res.element_tension_max.size:
         out["tension_envelope_max"] = tension_along(
             s_out, res.line_s, res.element_tension_max, res.end_tension_max
         )

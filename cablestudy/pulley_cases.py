@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .problem import static_problem
+from .problem import line_model, medium, static_problem
 from .statics import STATIC_SOLVERS, StaticResult
 from .statics.pulley import chord_split, solve_over_pulleys, sub_problems
 
@@ -63,17 +63,31 @@ def pulley_problems(case: Case, src: StudySource) -> list[str]:
             "installation, or no line.pulleys"
         )
     an = study.analysis
-    for key, what in (
-        ("modal", "analysis.modal"),
-        ("dynamic", "analysis.dynamic"),
-        ("database", "analysis.database"),
-    ):
+    for key, what in (("modal", "analysis.modal"), ("database", "analysis.database")):
         if getattr(an, key) is not None:
             out.append(
                 f"{at('analysis', key)}: {what}: not supported for a kind: catenary line "
                 "over pulleys; pulleys on a catenary line are supported by the statics "
-                "(analysis.static), and pulleys in the dynamics by a kind: spring line; "
-                f"allowed: omit {what}, or no line.pulleys"
+                "(analysis.static) and the time domain (analysis.dynamic, method time or "
+                f"auto); allowed: omit {what}, or no line.pulleys"
+            )
+    dyn = an.dynamic
+    if dyn is not None:
+        for key in ("history", "transfer_function"):
+            if getattr(dyn, key) is not None:
+                out.append(
+                    f"{at('analysis', 'dynamic', key)}: analysis.dynamic.{key}: not "
+                    "available for a catenary line over pulleys (its nodes move along the "
+                    "line as it slides; the transfer function is the frequency domain's); "
+                    "tension_max/min/mean and pulley_arc_length_min/max are written; "
+                    "allowed: omit it"
+                )
+        if study.environment.depth is not None and study.environment.seabed.friction > 0.0:
+            out.append(
+                f"{at('environment', 'seabed', 'friction')}: environment.seabed.friction: "
+                f"{study.environment.seabed.friction:g} with a line sliding over pulleys in "
+                "analysis.dynamic: the friction anchors belong to nodes, which move along "
+                "the sliding line; allowed: 0 (frictionless contact), or no line.pulleys"
             )
     pts = np.vstack(
         (
@@ -111,3 +125,71 @@ def solve_pulley_static(study: Study, deadline: float | None) -> StaticResult:
     problem = static_problem(study)
     solver = STATIC_SOLVERS[study.analysis.static.method]
     return solve_over_pulleys(problem, pulley_positions(study), solver, deadline=deadline)
+
+
+def pulley_discrete_statics(case: Case, static: StaticResult) -> tuple[Any, ...]:
+    """The lumped-mass line of the case cut at its pulleys
+    (:func:`cablestudy.dynamics.pulley.sliding_pulleys`) in its own frictionless static
+    equilibrium: the split of the continuous statics, moved so that the discrete
+    model's element tensions on both sides of each pulley agree (they differ by the
+    discretisation error at the continuous split). Returns (line, positions [m], error
+    message or "", friction anchors [m], :class:`SlidingPulleys` at that split)."""
+    from dataclasses import replace
+
+    from .analyses import dynamic_extras, roundoff_force
+    from .dynamics.model import evaluate, static_equilibrium
+    from .dynamics.pulley import sliding_pulleys, solve_split, wrap_angle
+
+    study = case.study
+    dyn = study.analysis.dynamic
+    assert dyn is not None
+    lm, med = line_model(study), medium(study)
+    pulleys = pulley_positions(study)
+    split = np.asarray(static.split, dtype=float)  # type: ignore[attr-defined]
+    factor = np.array([p.friction_factor for p in study.line.pulleys], dtype=float)
+
+    def start_at(s_nodes: np.ndarray, node: np.ndarray) -> np.ndarray:
+        x = np.stack([np.interp(s_nodes, static.s, static.position[:, k]) for k in range(3)], 1)
+        x[node] = pulleys
+        return x
+
+    # the extras take only the end directions of the start (clamped ends)
+    extras = dynamic_extras(study, static.position)
+    sliding = sliding_pulleys(lm, med, extras, split=split, factor=factor, elements=dyn.elements)
+    node = sliding.node
+    scale = float(np.nanmax(static.tension))
+    found: dict[bytes, tuple] = {}
+
+    def solve(S: np.ndarray) -> tuple | None:
+        line = sliding.rebuild(S)
+        x0 = start_at(line.s, node)
+        tol = max(1e-9 * scale, roundoff_force(line, x0))
+        x, _, _, ok, anchor = static_equilibrium(line, x0, tolerance=tol, max_iterations=200)
+        if not ok:
+            return None
+        work = evaluate(line, x, np.zeros_like(x), anchor=anchor)
+        found[S.tobytes()] = (line, x, anchor, tol)
+        return (work.tension[node - 1].copy(), work.tension[node].copy()), wrap_angle(x, node)
+
+    first = solve(split)
+    if first is None:
+        return (
+            None,
+            None,
+            "the discrete static equilibrium over the pulleys did not converge",
+            None,
+            None,
+        )
+    frictionless = replace(sliding, factor=np.ones_like(factor))
+    tol = found[split.tobytes()][3]
+    S = solve_split(solve, frictionless, split, first, 10.0 * tol)
+    if S is None:
+        return (
+            None,
+            None,
+            "the split of the discrete line over its pulleys did not converge",
+            None,
+            None,
+        )
+    line, x, anchor, _ = found[S.tobytes()]
+    return line, x, "", anchor, replace(sliding, split=S.copy())

@@ -73,6 +73,16 @@ OUTPUTS: dict[str, OutputVariable] = {
     "pulley_arc_length": OutputVariable(
         ("pulley",), "m", "unstretched arc length from end A at each pulley (kind: catenary)"
     ),
+    "pulley_arc_length_min": OutputVariable(
+        ("pulley",),
+        "m",
+        "smallest arc length from end A at each pulley over the steady window (time domain)",
+    ),
+    "pulley_arc_length_max": OutputVariable(
+        ("pulley",),
+        "m",
+        "largest arc length from end A at each pulley over the steady window (time domain)",
+    ),
     "break_time": OutputVariable(
         (), "s", "time at which the line parted (NaN: it did not), kind: spring with line.failure"
     ),
@@ -265,6 +275,8 @@ ANALYSIS_OF: dict[str, str] = {
             "static_iterations",
             "static_residual",
             "drag_iterations",
+            "pulley_force",
+            "pulley_arc_length",
         ),
         "static",
     ),

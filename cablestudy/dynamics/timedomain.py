@@ -42,6 +42,7 @@ from ..statics.base import STATUS_NUMERICAL, STATUS_OK, STATUS_TIME_LIMIT
 from .excitation import EndMotion
 from .integrator import AlphaParameters, alpha_step
 from .model import DiscreteLine, Workspace, evaluate, interpolate_nodes, update_anchors
+from .pulley import SlidingPulleys, solve_split, wrap_angle
 
 #: extra step halvings allowed beyond ``max_refinement`` when Newton fails
 NEWTON_RESCUE_HALVINGS = 8
@@ -106,6 +107,8 @@ class DynamicProblem:
     anchor: np.ndarray | None = None
     history_line: bool = False
     touchdown_tolerance: float = 0.0
+    #: pulleys the line slides over (:mod:`.pulley`; None: none)
+    pulleys: SlidingPulleys | None = None
 
 
 @dataclass(kw_only=True)
@@ -155,6 +158,9 @@ class DynamicResult:
     touchdown_max: float = math.nan
     touchdown_tracked: bool = False
     line_s: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    #: with pulleys: the range [m] of each pulley's arc length from A over the window
+    split_min: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    split_max: np.ndarray = field(default_factory=lambda: np.zeros(0))
     history: dict[str, np.ndarray] | None = None
     record: dict[str, np.ndarray] | None = None
 
@@ -245,6 +251,50 @@ def _hermite(t: np.ndarray, y: np.ndarray, dy: np.ndarray, tq: np.ndarray) -> np
     return h00 * y[i] + h10 * hh * dy[i] + h01 * y[i + 1] + h11 * hh * dy[i + 1]
 
 
+def _advance(head: tuple, line_args: tuple, tail: tuple) -> int:
+    """One implicit step (:func:`.integrator.alpha_step`): its Newton iterations, or
+    -1 - iterations when it failed."""
+    its, ok = alpha_step(*head, *line_args, *tail)
+    return its if ok else -1 - its
+
+
+def _slide(
+    sliding: SlidingPulleys,
+    split: np.ndarray,
+    line: DiscreteLine,
+    head: tuple,
+    tail: tuple,
+    work: Workspace,
+    x1: np.ndarray,
+    tol: float,
+) -> tuple[np.ndarray | None, DiscreteLine, int]:
+    """The split [m] at the end of the step just solved with ``split`` (stick), the line
+    cut there, and the extra Newton iterations; (None, ...) when the split's outer
+    iteration failed. The state in ``work`` and ``x1`` is then that of the returned
+    split (:func:`.pulley.solve_split` evaluates it last)."""
+    trials: dict[bytes, DiscreteLine] = {split.tobytes(): line}
+    node = sliding.node
+    iterations = 0
+
+    def state() -> tuple[tuple[np.ndarray, np.ndarray], np.ndarray]:
+        T_in, T_out = work.tension[node - 1].copy(), work.tension[node].copy()
+        return (T_in, T_out), wrap_angle(x1, node)
+
+    def at_split(S: np.ndarray) -> tuple | None:
+        nonlocal iterations
+        key = S.tobytes()
+        if key not in trials:
+            trials[key] = sliding.rebuild(S)
+        got = _advance(head, trials[key].kernel_args(), tail)
+        iterations += got if got >= 0 else -1 - got
+        return state() if got >= 0 else None
+
+    found = solve_split(at_split, sliding, split, state(), tol)
+    if found is None:
+        return None, line, iterations
+    return found, trials[found.tobytes()], iterations
+
+
 def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> DynamicResult:
     """Integrate until steady state (or ``max_periods``, or ``duration``).
 
@@ -325,8 +375,12 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             buf.popleft()
 
     rec: dict[str, list[np.ndarray]] = {
-        k: [] for k in ("t", "x", "v", "a", "end_force", "tension", "friction")
+        k: [] for k in ("t", "x", "v", "a", "end_force", "tension", "friction", "split")
     }
+    sliding = problem.pulleys
+    split = sliding.split.copy() if sliding is not None else np.zeros(0)
+    # interior held nodes (pulleys) stay where the static state has them
+    inner_held = np.nonzero(held[1:-1])[0] + 1
 
     def keep(t: float, forces: np.ndarray) -> None:
         if problem.keep_steps:
@@ -337,6 +391,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             rec["end_force"].append(forces.copy())
             rec["tension"].append(work.tension.copy())
             rec["friction"].append(work.friction.copy())
+            rec["split"].append(split.copy())
 
     keep(0.0, f_static)
     push(0.0, t_static, np.sqrt(np.sum(f_static**2, 1)))
@@ -351,6 +406,8 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     c_line = max(t_static, float(work.tension.max()))
     c_start = 0.0
     t_prev_tension = t_static
+    c_split = [split.copy(), split.copy()]
+    p_split: list[list[np.ndarray]] = []
 
     # Newton starts from a quadratic extrapolation of the last three positions: the
     # positions are smooth, whereas the accelerations of generalised-alpha carry the
@@ -401,7 +458,10 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         if held[-1]:
             x_pred += frac * (base[1] + disp[1] - x_pred[-1])[None, :]
             x_pred[-1] = base[1] + disp[1]
-        its, ok = alpha_step(
+        if inner_held.size:
+            x_pred[inner_held] = problem.static_position[inner_held]
+
+        head = (
             x0,
             v0,
             a0,
@@ -421,11 +481,20 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             v1,
             a1,
             work.anchor,
-            *largs,
-            *wargs,
-            *sargs,
         )
-        newton += its
+        tail = (*wargs, *sargs)
+        its = _advance(head, largs, tail)
+        ok = its >= 0
+        newton += its if ok else -1 - its
+        new_line, new_split = line, split
+        if ok and sliding is not None:
+            # the split at the end of the step: stick, or slide to the friction bound
+            slid = _slide(sliding, split, line, head, tail, work, x1, tol)
+            newton += slid[2]
+            if slid[0] is None:
+                ok = False
+            else:
+                new_split, new_line = slid[0], slid[1]
         if not ok:
             rejected += 1
             if level >= max_level + NEWTON_RESCUE_HALVINGS:
@@ -451,6 +520,11 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             continue
         # accept
         steps += 1
+        if new_line is not line:
+            line, split = new_line, new_split
+            largs = line.kernel_args()
+            np.minimum(c_split[0], split, out=c_split[0])
+            np.maximum(c_split[1], split, out=c_split[1])
         if seabed:
             update_anchors(x1, work.friction, line.seabed_stiffness, work.contact, work.anchor)
         past.append((t, x0.copy()))
@@ -486,7 +560,9 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
                 p_min.append(c_min)
                 p_mean.append(c_int / max(t - c_start, 1e-300))
                 p_line.append(c_line)
+                p_split.append(c_split)
                 extremes.close()
+            c_split = [split.copy(), split.copy()]
             extremes.start(work.tension, end_tensions, touchdown(x0))
             c_max = c_min = tension
             c_line = line_max
@@ -517,6 +593,11 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     result.tension_max_spread = max(p_max[sp]) - min(p_max[sp])
     result.tension_min_spread = max(p_min[sp]) - min(p_min[sp])
     result.steady_converged = converged
+    if sliding is not None:
+        kept = p_split[sl] if p_split else [c_split]
+        result.split_min = np.min([k[0] for k in kept], axis=0)
+        result.split_max = np.max([k[1] for k in kept], axis=0)
+    result.line_s = line.s
     result.steps, result.newton_iterations, result.rejected_steps = steps, newton, rejected
     result.periods = t / T
     result.simulated_time = t
