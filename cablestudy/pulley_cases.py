@@ -171,8 +171,7 @@ def pulley_discrete_statics(case: Case, static: StaticResult) -> tuple[Any, ...]
         found[S.tobytes()] = (line, x, anchor, tol)
         return (work.tension[node - 1].copy(), work.tension[node].copy()), wrap_angle(x, node)
 
-    first = solve(split)
-    if first is None:
+    if solve(split) is None:
         return (
             None,
             None,
@@ -182,7 +181,7 @@ def pulley_discrete_statics(case: Case, static: StaticResult) -> tuple[Any, ...]
         )
     frictionless = replace(sliding, factor=np.ones_like(factor))
     tol = found[split.tobytes()][3]
-    S = solve_split(solve, frictionless, split, first, 10.0 * tol)
+    S, _ = solve_split(solve, frictionless, split, 10.0 * tol)
     if S is None:
         return (
             None,
@@ -192,4 +191,11 @@ def pulley_discrete_statics(case: Case, static: StaticResult) -> tuple[Any, ...]
             None,
         )
     line, x, anchor, _ = found[S.tobytes()]
-    return line, x, "", anchor, replace(sliding, split=S.copy())
+    # the run starts from the statics' dg/dS (frictionless has it from its solve)
+    return (
+        line,
+        x,
+        "",
+        anchor,
+        replace(sliding, split=S.copy(), jacobian=frictionless.jacobian.copy()),
+    )

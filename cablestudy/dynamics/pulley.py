@@ -58,6 +58,8 @@ class SlidingPulleys:
     split : (m,) [m] arc length from A at each pulley at the start
     length : [m] the line's unstretched length
     rebuild : the discretised line for a split (m,) [m]
+    jacobian : [N/m] (m, m) the last known dg/dS (see :func:`solve_split`), updated in
+        place as the run goes (zeros: unknown, taken by forward differences)
     """
 
     node: np.ndarray
@@ -65,6 +67,7 @@ class SlidingPulleys:
     split: np.ndarray
     length: float
     rebuild: Callable[[np.ndarray], DiscreteLine]
+    jacobian: np.ndarray
 
 
 def sub_line_elements(split: np.ndarray, length: float, elements: int) -> np.ndarray:
@@ -108,6 +111,7 @@ def sliding_pulleys(
         split=np.asarray(split, dtype=float).copy(),
         length=L,
         rebuild=rebuild,
+        jacobian=np.zeros((len(node), len(node))),
     )
 
 
@@ -127,29 +131,94 @@ def slide_bound(factor: np.ndarray, wrap: np.ndarray) -> np.ndarray:
 
 
 def solve_split(
-    evaluate: Callable[[np.ndarray], tuple[bool, np.ndarray, np.ndarray] | None],
+    evaluate: Callable[[np.ndarray], tuple | None],
     pulleys: SlidingPulleys,
     split: np.ndarray,
-    first: tuple[np.ndarray, np.ndarray],
     tolerance: float,
+    *,
+    predicted: np.ndarray | None = None,
+    direction: np.ndarray | None = None,
     max_iterations: int = 25,
-) -> np.ndarray | None:
+) -> tuple[np.ndarray | None, np.ndarray]:
     """The split [m] at the end of a step (see the module docstring).
 
     ``evaluate(S)`` solves the step with the line cut at S and returns the tensions
     (T_in, T_out) [N] at the pulleys and the wrap angles [rad], or None when the step
-    fails; ``first`` is that of ``split`` (the stick trial, already solved). Returns the
-    new split (``split`` itself when every pulley sticks), or None when the outer
+    fails. ``direction`` (m,) says how each pulley's line moved in the last step (+1:
+    towards the side leaving the pulley, -1: towards the side arriving, 0: stuck) and
+    ``predicted`` (m,) [m] the split change that motion extrapolates to over this step:
+    a pulley that slid starts from it, a stuck one from ``split`` (the stick trial).
+    Returns (the new split, the directions of this step), the split None when the outer
     iteration fails; the last ``evaluate`` call is at the returned split."""
-    (T_in, T_out), wrap = first
-    bound = slide_bound(pulleys.factor, wrap)
+    m_all = len(split)
+    direction = np.zeros(m_all) if direction is None else np.asarray(direction, dtype=float)
+    last: list[bytes] = [b""]
+    user_evaluate = evaluate
+
+    def evaluate(S: np.ndarray) -> tuple | None:  # remembers where it was called last
+        last[0] = S.tobytes()
+        return user_evaluate(S)
+
     frictionless = pulleys.factor <= 1.0
+    was = frictionless | (direction != 0.0)
+    start = split.copy()
+    if predicted is not None:
+        start[was] += np.asarray(predicted, dtype=float)[was]
+    if not np.all(np.diff(_bounds(start, pulleys)) > 0.0):
+        start = split.copy()
+    got = evaluate(start)
+    if got is None and np.any(start != split):
+        start = split.copy()
+        got = evaluate(start)
+    if got is None:
+        return None, direction
+    (T_in, T_out), wrap = got
+    bound = slide_bound(pulleys.factor, wrap)
     out_larger = T_out > T_in
     ratio = np.where(out_larger, T_out, T_in) / np.maximum(np.minimum(T_in, T_out), 1e-300)
-    active = frictionless | (ratio > bound)
-    g0 = _gap(T_in, T_out, bound, out_larger)
-    if not np.any(active) or np.all(np.abs(g0[active]) <= tolerance):
-        return split
+    # the side the line slides towards: as in the last step for a pulley that slid (its
+    # ratio may be just under the bound at the extrapolated split), else the larger
+    towards_out = np.where(was & ~frictionless, direction > 0.0, out_larger)
+    active = frictionless | was | (ratio > bound)
+    for _ in range(m_all + 1):
+        if not np.any(active):
+            if last[0] != split.tobytes() and evaluate(split) is None:
+                return None, direction
+            return split.copy(), np.zeros(m_all)
+        S = _solve_active(
+            evaluate,
+            pulleys,
+            np.where(active, start, split),
+            active,
+            towards_out,
+            tolerance,
+            max_iterations,
+        )
+        if S is None:
+            return None, direction
+        # material moves towards the larger tension: out (S falls) or in (S grows); a
+        # pulley whose solution moves it the other way sticks instead
+        moved = S - split
+        wrong = active & ~frictionless & np.where(towards_out, moved > 0.0, moved < 0.0)
+        if not np.any(wrong):
+            new_dir = np.where(active, np.where(moved < 0.0, 1.0, -1.0), 0.0)
+            return S, new_dir
+        active &= ~wrong
+        start = np.where(active, S, split)
+    return None, direction
+
+
+def _solve_active(
+    evaluate: Callable[[np.ndarray], tuple | None],
+    pulleys: SlidingPulleys,
+    start: np.ndarray,
+    active: np.ndarray,
+    towards_out: np.ndarray,
+    tolerance: float,
+    max_iterations: int,
+) -> np.ndarray | None:
+    """Broyden's method on the active pulleys' g_k(S) = 0 from ``start`` (the others
+    held); the last ``evaluate`` call is at the returned split."""
     idx = np.nonzero(active)[0]
     m = len(idx)
 
@@ -158,21 +227,30 @@ def solve_split(
         if got is None:
             return None
         (Ti, To), w = got
-        return _gap(Ti, To, slide_bound(pulleys.factor, w), out_larger)[idx]
+        return _gap(Ti, To, slide_bound(pulleys.factor, w), towards_out)[idx]
 
-    S = split.copy()
-    g = g0[idx]
-    # forward-difference Jacobian: a split change that moves the tensions by far more
-    # than the tolerance (dg/dS ~ EA / L_k when taut, ~ weight per length when slack)
-    J = np.empty((m, m))
-    for j in range(m):
-        d = np.zeros_like(S)
-        shortest = float(np.min(np.diff(_bounds(S, pulleys))))
-        d[idx[j]] = -1e-4 * math.copysign(1.0, g[j]) * shortest
-        gj = g_at(S + d)
-        if gj is None:
-            return None
-        J[:, j] = (gj - g) / d[idx[j]]
+    S = start.copy()
+    g = g_at(S)
+    if g is None:
+        return None
+    if np.all(np.abs(g) <= tolerance):
+        return S
+    known = pulleys.jacobian[np.ix_(idx, idx)]
+    if np.all(np.diag(known) > 0.0):
+        # the last step's (or the statics') Jacobian: Broyden's method goes on from it
+        J = known.copy()
+    else:
+        # forward differences, a split change of 1e-4 of the shortest sub-line (the
+        # statics, from rest: dg/dS ~ EA / L_k when taut, ~ weight per length when slack)
+        J = np.empty((m, m))
+        for j in range(m):
+            d = np.zeros_like(S)
+            shortest = float(np.min(np.diff(_bounds(S, pulleys))))
+            d[idx[j]] = -1e-4 * math.copysign(1.0, g[j]) * shortest
+            gj = g_at(S + d)
+            if gj is None:
+                return None
+            J[:, j] = (gj - g) / d[idx[j]]
     for _ in range(max_iterations):
         try:
             step = -np.linalg.solve(J, g)
@@ -190,6 +268,8 @@ def solve_split(
         J += np.outer(dg - J @ step, step) / float(step @ step)
         S, g = trial, g_new
         if np.all(np.abs(g) <= tolerance):
+            if np.all(np.diag(J) > 0.0):
+                pulleys.jacobian[np.ix_(idx, idx)] = J
             return S
     return None
 

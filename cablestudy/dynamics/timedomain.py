@@ -261,24 +261,25 @@ def _advance(head: tuple, line_args: tuple, tail: tuple) -> int:
 def _slide(
     sliding: SlidingPulleys,
     split: np.ndarray,
-    line: DiscreteLine,
+    direction: np.ndarray,
+    predicted: np.ndarray,
     head: tuple,
     tail: tuple,
     work: Workspace,
     x1: np.ndarray,
     tol: float,
-) -> tuple[np.ndarray | None, DiscreteLine, int]:
-    """The split [m] at the end of the step just solved with ``split`` (stick), the line
-    cut there, and the extra Newton iterations; (None, ...) when the split's outer
-    iteration failed. The state in ``work`` and ``x1`` is then that of the returned
-    split (:func:`.pulley.solve_split` evaluates it last)."""
-    trials: dict[bytes, DiscreteLine] = {split.tobytes(): line}
+) -> tuple[np.ndarray | None, np.ndarray, DiscreteLine | None, int]:
+    """The step solved with its split (:func:`.pulley.solve_split`: stick, or slide to
+    the friction bound): (the split [m] or None when it failed, the slide directions,
+    the line cut at that split, the Newton iterations). The state in ``work`` and
+    ``x1`` is that of the returned split."""
+    trials: dict[bytes, DiscreteLine] = {}
     node = sliding.node
     iterations = 0
-
-    def state() -> tuple[tuple[np.ndarray, np.ndarray], np.ndarray]:
-        T_in, T_out = work.tension[node - 1].copy(), work.tension[node].copy()
-        return (T_in, T_out), wrap_angle(x1, node)
+    # a trial split changes every element's rest length on both sides of a pulley: the
+    # sub-lines' axial (long-wave) adjustment takes Newton more iterations than a step
+    # of a fixed mesh
+    head = (*head[:13], max(4 * head[13], 40), *head[14:])
 
     def at_split(S: np.ndarray) -> tuple | None:
         nonlocal iterations
@@ -287,12 +288,17 @@ def _slide(
             trials[key] = sliding.rebuild(S)
         got = _advance(head, trials[key].kernel_args(), tail)
         iterations += got if got >= 0 else -1 - got
-        return state() if got >= 0 else None
+        if got < 0:
+            return None
+        T_in, T_out = work.tension[node - 1].copy(), work.tension[node].copy()
+        return (T_in, T_out), wrap_angle(x1, node)
 
-    found = solve_split(at_split, sliding, split, state(), tol)
+    found, new_dir = solve_split(
+        at_split, sliding, split, tol, predicted=predicted, direction=direction
+    )
     if found is None:
-        return None, line, iterations
-    return found, trials[found.tobytes()], iterations
+        return None, direction, None, iterations
+    return found, new_dir, trials[found.tobytes()], iterations
 
 
 def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> DynamicResult:
@@ -379,6 +385,8 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     }
     sliding = problem.pulleys
     split = sliding.split.copy() if sliding is not None else np.zeros(0)
+    slide_rate = np.zeros_like(split)  # [m/s] of the last step
+    slide_dir = np.zeros_like(split)  # +1 / -1 sliding out / in in the last step, 0 stuck
     # interior held nodes (pulleys) stay where the static state has them
     inner_held = np.nonzero(held[1:-1])[0] + 1
 
@@ -483,18 +491,20 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             work.anchor,
         )
         tail = (*wargs, *sargs)
-        its = _advance(head, largs, tail)
-        ok = its >= 0
-        newton += its if ok else -1 - its
         new_line, new_split = line, split
-        if ok and sliding is not None:
-            # the split at the end of the step: stick, or slide to the friction bound
-            slid = _slide(sliding, split, line, head, tail, work, x1, tol)
-            newton += slid[2]
-            if slid[0] is None:
-                ok = False
-            else:
-                new_split, new_line = slid[0], slid[1]
+        if sliding is None:
+            its = _advance(head, largs, tail)
+            ok = its >= 0
+            newton += its if ok else -1 - its
+        else:
+            # the step with its split: stick, or slide to the friction bound
+            found, new_dir, got_line, its = _slide(
+                sliding, split, slide_dir, slide_rate * h, head, tail, work, x1, tol
+            )
+            newton += its
+            ok = found is not None
+            if found is not None and got_line is not None:
+                new_split, new_line = found, got_line
         if not ok:
             rejected += 1
             if level >= max_level + NEWTON_RESCUE_HALVINGS:
@@ -520,6 +530,9 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             continue
         # accept
         steps += 1
+        if sliding is not None:
+            slide_rate = (new_split - split) / h
+            slide_dir = new_dir
         if new_line is not line:
             line, split = new_line, new_split
             largs = line.kernel_args()
