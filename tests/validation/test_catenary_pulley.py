@@ -194,3 +194,12 @@ def test_config_faults_are_refused_before_work(
     cfg.write_text(STUDY.replace(old, new).replace("METHOD", "catenary"))
     assert main(["validate", str(cfg)]) != 0
     assert fragment in capsys.readouterr().err
+
+
+def test_moordyn_export_refuses_pulleys(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """A MoorDyn point holds a line, it does not let it slide: no silent export."""
+    cfg = tmp_path / "pulley.yaml"
+    cfg.write_text(STUDY.replace("METHOD", "catenary"))
+    code = main(["export", "moordyn", str(cfg), "--case", "position_2=0.0"])
+    assert code != 0
+    assert "line.pulleys: a line over fixed pulleys has no MoorDyn" in capsys.readouterr().err
