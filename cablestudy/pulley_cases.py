@@ -138,7 +138,7 @@ def pulley_discrete_statics(case: Case, static: StaticResult) -> tuple[Any, ...]
 
     from .analyses import dynamic_extras, roundoff_force
     from .dynamics.model import evaluate, static_equilibrium
-    from .dynamics.pulley import sliding_pulleys, solve_split, wrap_angle
+    from .dynamics.pulley import pulley_tensions, sliding_pulleys, solve_split, wrap_angle
 
     study = case.study
     dyn = study.analysis.dynamic
@@ -169,7 +169,7 @@ def pulley_discrete_statics(case: Case, static: StaticResult) -> tuple[Any, ...]
             return None
         work = evaluate(line, x, np.zeros_like(x), anchor=anchor)
         found[S.tobytes()] = (line, x, anchor, tol)
-        return (work.tension[node - 1].copy(), work.tension[node].copy()), wrap_angle(x, node)
+        return pulley_tensions(line, x, work.tension, node), wrap_angle(x, node)
 
     if solve(split) is None:
         return (

@@ -42,7 +42,7 @@ from ..statics.base import STATUS_NUMERICAL, STATUS_OK, STATUS_TIME_LIMIT
 from .excitation import EndMotion
 from .integrator import AlphaParameters, alpha_step
 from .model import DiscreteLine, Workspace, evaluate, interpolate_nodes, update_anchors
-from .pulley import SlidingPulleys, solve_split, wrap_angle
+from .pulley import SlidingPulleys, pulley_tensions, solve_split, wrap_angle
 
 #: extra step halvings allowed beyond ``max_refinement`` when Newton fails
 NEWTON_RESCUE_HALVINGS = 8
@@ -290,8 +290,7 @@ def _slide(
         iterations += got if got >= 0 else -1 - got
         if got < 0:
             return None
-        T_in, T_out = work.tension[node - 1].copy(), work.tension[node].copy()
-        return (T_in, T_out), wrap_angle(x1, node)
+        return pulley_tensions(trials[key], x1, work.tension, node), wrap_angle(x1, node)
 
     found, new_dir = solve_split(
         at_split, sliding, split, tol, predicted=predicted, direction=direction
