@@ -276,21 +276,32 @@ def _slide(
     trials: dict[bytes, DiscreteLine] = {}
     node = sliding.node
     iterations = 0
-    # a trial split changes every element's rest length on both sides of a pulley: the
-    # sub-lines' axial (long-wave) adjustment takes Newton more iterations than a step
-    # of a fixed mesh
-    head = (*head[:13], max(4 * head[13], 40), *head[14:])
+    x_pred = head[14]
+    # a trial split changes every element's rest length on both sides of a pulley:
+    # Newton starts from the last solved trial's shape with the nodes moved along it to
+    # their new arc lengths (the material slides along the line); more iterations are
+    # allowed than for a fixed mesh, as a split far from the last one re-stretches the
+    # sub-lines
+    last: list[tuple[np.ndarray, np.ndarray]] = []
+    cap = max(4 * head[13], 40)
 
     def at_split(S: np.ndarray) -> tuple | None:
         nonlocal iterations
         key = S.tobytes()
         if key not in trials:
             trials[key] = sliding.rebuild(S)
-        got = _advance(head, trials[key].kernel_args(), tail)
+        trial = trials[key]
+        if last:
+            pred = interpolate_nodes(last[0][0], trial.s, last[0][1][None])[0]
+            pred[node] = x_pred[node]
+        else:
+            pred = x_pred
+        got = _advance((*head[:13], cap, pred, *head[15:]), trial.kernel_args(), tail)
         iterations += got if got >= 0 else -1 - got
         if got < 0:
             return None
-        return pulley_tensions(trials[key], x1, work.tension, node), wrap_angle(x1, node)
+        last[:] = [(trial.s, x1.copy())]
+        return pulley_tensions(trial, x1, work.tension, node), wrap_angle(x1, node)
 
     found, new_dir = solve_split(
         at_split, sliding, split, tol, predicted=predicted, direction=direction
