@@ -170,9 +170,9 @@ def test_yaml_to_netcdf(tmp_path: Path) -> None:
         ("method: METHOD", "method: discrete", "allowed with line.pulleys: analytic, catenary"),
         (
             "  static: {method: METHOD",
-            "  dynamic:\n    excitation: {end: b, direction: [1, 0, 0], amplitude: 0.1, "
-            "frequency: 0.2}\n  static: {method: catenary",
-            "pulleys in the dynamics by a kind: spring line",
+            "  database: {horizontal_distance: {start: 80, stop: 90, num: 4}, "
+            "height_difference: {start: -5, stop: 5, num: 4}}\n  static: {method: catenary",
+            "analysis.database: not supported for a kind: catenary line over pulleys",
         ),
         (
             "b: {kind: fixed, position: [90.0, 0.0, 0.0]}",
