@@ -20,10 +20,14 @@ f = 1), the split is the root of
 
     g_k(S) = T_out - r_k T_in,  r_k = bound^(+1) if T_out is the larger, bound^(-1) if not,
 
-each evaluation a full implicit step (its Newton solve) with the line cut at S. The
-outer iteration is Broyden's method (the secant method for one pulley) from a
-forward-difference Jacobian, stopped when |g_k| is within the step's Newton tolerance
-[N]: the tension ratio at each sliding pulley then holds the bound to the accuracy the
+each evaluation a full implicit step (its Newton solve) with the line cut at S. A
+pulley that slid in the last step starts from the split extrapolated at its last rate
+and keeps its direction (a solution that would move the line against the larger
+tension sticks instead). T_in, T_out are the adjacent elements' tensions carried to the
+pulley through the half-elements' lumped weight (:func:`pulley_tensions`, second order
+in the element length). The outer iteration is Broyden's method (the secant method for
+one pulley) from the last known Jacobian (first the statics', by forward differences),
+stopped when |g_k| is within the step's Newton tolerance [N]: the tension ratio at each sliding pulley then holds the bound to the accuracy the
 step itself has (an element tension is known to about the residual force Newton leaves
 on its nodes). A split that does not converge rejects the step, which is halved as for
 a failed Newton solve.
