@@ -12,7 +12,12 @@ over each pulley, |F_B of sub-line k| = |F_A of sub-line k + 1| (a frictionless 
 turns the tension's direction, not its magnitude). Each sub-line is solved by the
 study's static method as a fixed-fixed line; the m equations in the m split values are
 solved by Newton with a forward-difference Jacobian, steps kept inside the ordered
-interval 0 < S_1 < S_2 < L and halved until the mismatch falls. For one pulley the
+interval 0 < S_1 < S_2 < L and halved until the mismatch falls. Where Newton stalls
+(after 12 iterations, or a step no halving improves: a sub-line turning taut or lifting
+off within a step of the split, as a mooring over a fairlead pulley does), the split is
+bracketed instead: Illinois regula falsi on the mismatch of one pulley, nested (the
+second pulley's split solved for each trial of the first's) for two, a split where a
+sub-line has no solution shortening the step towards the bound. For one pulley the
 mismatch T_end(sub 1) - T_start(sub 2) falls monotonically as S_1 grows (the first
 sub-line slackens, the second tightens), so the root is unique; Newton is started from
 the split proportional to the chords (equal straight-line strain).
@@ -39,7 +44,9 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import replace
+from typing import Any
 
 import numpy as np
 from scipy.interpolate import CubicSpline
@@ -191,21 +198,27 @@ def solve_over_pulleys(
         S = np.concatenate(([0.0], split, [L]))
         return bool(np.all(np.diff(S) > 1e-9 * L))
 
+    def attempt(S: np.ndarray) -> tuple[list[StaticResult], np.ndarray] | None:
+        """The sub-lines and their mismatch at split S; None where a sub-line has no
+        solution (a split outside the feasible range: the time limit still stops)."""
+        try:
+            res = solve(S)
+        except _SubFailed as exc:
+            if exc.status == STATUS_TIME_LIMIT:
+                raise
+            return None
+        return res, mismatch(res)
+
     split = chord_split(problem, pulleys)
     its = 0
     try:
         res = solve(split)
         r = mismatch(res)
-        while np.max(np.abs(r)) > tol:
-            if its >= max_iterations:
-                return StaticResult.failed(
-                    s_out,
-                    STATUS_NOT_CONVERGED,
-                    f"the split of the line over its pulleys did not converge in {its} "
-                    f"iterations (tension mismatch {np.max(np.abs(r)):.3g} of the tension)",
-                    iterations=its,
-                    residual=float(np.max(np.abs(r))),
-                )
+        stalled = False
+        while np.max(np.abs(r)) > tol and not stalled:
+            if its >= NEWTON_ITERATIONS:
+                stalled = True
+                break
             its += 1
             # forward differences: a step well above the sub-solvers' noise (sub_tol of
             # the tension) and small against the split
@@ -218,27 +231,35 @@ def solve_over_pulleys(
                 if not inside(trial):
                     trial[j] -= 2.0 * h
                     h = -h
-                rj = mismatch(solve(trial))
-                J[:, j] = (rj - r) / h
-            step = -np.linalg.solve(J, r) if m > 1 else np.array([-r[0] / J[0, 0]])
+                got = attempt(trial)
+                if got is None:
+                    stalled = True
+                    break
+                J[:, j] = (got[1] - r) / h
+            if stalled:
+                break
+            try:
+                step = np.linalg.solve(J, -r)
+            except np.linalg.LinAlgError:
+                stalled = True
+                break
             lam = 1.0
-            for _ in range(40):
+            for _ in range(20):
                 trial = split + lam * step
-                if inside(trial):
-                    try:
-                        res_t = solve(trial)
-                    except _SubFailed as exc:
-                        if exc.status == STATUS_TIME_LIMIT:
-                            raise
-                        res_t = None
-                    if res_t is not None:
-                        r_t = mismatch(res_t)
-                        if np.max(np.abs(r_t)) < np.max(np.abs(r)) or lam < 1e-6:
-                            break
+                got = attempt(trial) if inside(trial) else None
+                if got is not None and np.max(np.abs(got[1])) < np.max(np.abs(r)):
+                    split, (res, r) = trial, got
+                    break
                 lam *= 0.5
             else:
-                raise _SubFailed(STATUS_NOT_CONVERGED, "no split step reduces the tension mismatch")
-            split, res, r = trial, res_t, r_t
+                stalled = True
+        if stalled:
+            # Newton stalls where a sub-line turns taut or lifts off within a step of
+            # the split: bracket each pulley's root instead (the mismatch falls as the
+            # split moves away from A: the sub-line before the pulley slackens, the one
+            # after tightens), with the sub-lines' feasible range found on the way
+            split, res, r, n_eval = _bracketed(attempt, split, L, m, tol)
+            its += n_eval
         # the converged split, sampled densely for the output points
         S = np.concatenate(([0.0], split, [L]))
         subs = sub_problems(problem, pulleys, split)
@@ -247,6 +268,148 @@ def solve_over_pulleys(
     except _SubFailed as exc:
         return StaticResult.failed(s_out, exc.status, f"line over pulleys: {exc}", iterations=its)
     return _assemble(s_out, S, res, its, float(np.max(np.abs(r))), subs)
+
+
+#: Newton iterations on the split before the bracketed fallback takes over
+NEWTON_ITERATIONS = 12
+
+
+def _bracketed(
+    attempt: Callable[[np.ndarray], tuple[list[StaticResult], np.ndarray] | None],
+    split: np.ndarray,
+    L: float,
+    m: int,
+    tol: float,
+) -> tuple[np.ndarray, list[StaticResult], np.ndarray, int]:
+    """The split by bracketing: one pulley, Illinois regula falsi on its mismatch; two,
+    the same on the first pulley's mismatch with the second's solved for each trial
+    (nested). Returns (split, sub-line results, mismatch, evaluations)."""
+    count = [0]
+
+    def at(S: np.ndarray) -> tuple[list[StaticResult], np.ndarray] | None:
+        count[0] += 1
+        return attempt(S)
+
+    if m == 1:
+
+        def f1(x: float) -> tuple[float, tuple] | None:
+            got = at(np.array([x]))
+            return None if got is None else (float(got[1][0]), got)
+
+        got0 = f1(float(split[0]))
+        if got0 is None:
+            raise _SubFailed(STATUS_NOT_CONVERGED, "no sub-line solution at the first split")
+        x, _, payload = _root_1d(f1, float(split[0]), got0, 0.0, L, tol, L)
+        return np.array([x]), payload[0], payload[1], count[0]
+
+    inner_guess = [float(split[1])]
+
+    def f_outer(x: float) -> tuple[float, tuple] | None:
+        def f_inner(y: float) -> tuple[float, tuple] | None:
+            got = at(np.array([x, y]))
+            return None if got is None else (float(got[1][1]), got)
+
+        y0 = min(max(inner_guess[0], x + 1e-6 * L), L - 1e-6 * L)
+        first = f_inner(y0)
+        if first is None:
+            return None
+        try:
+            y, _, payload = _root_1d(f_inner, y0, first, x, L, tol, L)
+        except _SubFailed as exc:
+            if exc.status == STATUS_TIME_LIMIT:
+                raise
+            return None
+        inner_guess[0] = y
+        return float(payload[1][0]), payload
+
+    got0 = f_outer(float(split[0]))
+    if got0 is None:
+        raise _SubFailed(STATUS_NOT_CONVERGED, "no sub-line solution at the first split")
+    _, _, payload = _root_1d(f_outer, float(split[0]), got0, 0.0, L, tol, L)
+    res, r = payload
+    return _splits_of(res), res, r, count[0]
+
+
+def _splits_of(res: list[StaticResult]) -> np.ndarray:
+    """The split [m] of sub-line results: their cumulative unstretched lengths."""
+    return np.cumsum([float(r.s[-1]) for r in res])[:-1]
+
+
+def _root_1d(
+    f: Callable[[float], tuple[float, Any] | None],
+    x0: float,
+    first: tuple[float, Any],
+    lo: float,
+    hi: float,
+    tol: float,
+    scale: float,
+) -> tuple[float, float, Any]:
+    """Root of a decreasing function on (lo, hi) from ``x0`` (``first`` = f(x0)), f
+    returning (value, payload) or None where undefined (outside the feasible range,
+    taken to be an interval): a bracket by halving the distance to the bound on the
+    side of the root (and the step where f is undefined), then Illinois regula falsi
+    until |f| <= ``tol`` or the bracket is a few ulps of ``scale`` wide (the mismatch is
+    then as small as the arithmetic allows). Returns (x, f(x), payload)."""
+    x, (fx, px) = x0, first
+    if abs(fx) <= tol:
+        return x, fx, px
+    bracket = None
+    for _ in range(200):
+        bound = hi if fx > 0.0 else lo
+        step = 0.5 * (bound - x)
+        got = None
+        while abs(step) > 4.0 * np.finfo(float).eps * scale:
+            got = f(x + step)
+            if got is not None:
+                break
+            step *= 0.5
+        if got is None:
+            break
+        y, (fy, py) = x + step, got
+        if abs(fy) <= tol:
+            return y, fy, py
+        if (fy > 0.0) != (fx > 0.0):
+            bracket = ((x, fx, px), (y, fy, py))
+            break
+        x, fx, px = y, fy, py
+    if bracket is None:
+        raise _SubFailed(
+            STATUS_NOT_CONVERGED,
+            f"no split brackets an equal tension over the pulley (last mismatch {fx:.3g} "
+            "of the tension): the line cannot pass over the pulleys as given",
+        )
+    (a, fa, pa), (b, fb, pb) = sorted(bracket, key=lambda item: item[0])
+    side = 0
+    for _ in range(200):
+        if b - a <= 8.0 * np.finfo(float).eps * scale:
+            break
+        c = b - fb * (b - a) / (fb - fa)
+        if not a < c < b:
+            c = 0.5 * (a + b)
+        got = f(c)
+        if got is None:
+            c = 0.5 * (a + b)
+            got = f(c)
+            if got is None:
+                raise _SubFailed(
+                    STATUS_NOT_CONVERGED,
+                    "a sub-line has no solution inside the bracket of the split",
+                )
+        fc, pc = got
+        if abs(fc) <= tol:
+            return c, fc, pc
+        if fc > 0.0:  # the root lies above c (f decreasing)
+            a, fa, pa = c, fc, pc
+            if side == -1:
+                fb *= 0.5  # Illinois: the end that stays loses half its weight
+            side = -1
+        else:
+            b, fb, pb = c, fc, pc
+            if side == 1:
+                fa *= 0.5
+            side = 1
+    # the bracket has closed to the arithmetic's resolution
+    return (a, fa, pa) if abs(fa) <= abs(fb) else (b, fb, pb)
 
 
 def breakpoints(line: LineModel) -> np.ndarray:

@@ -203,3 +203,64 @@ def test_moordyn_export_refuses_pulleys(tmp_path: Path, capsys: pytest.CaptureFi
     code = main(["export", "moordyn", str(cfg), "--case", "position_2=0.0"])
     assert code != 0
     assert "line.pulleys: a line over fixed pulleys has no MoorDyn" in capsys.readouterr().err
+
+
+def test_mooring_over_a_fairlead_pulley_where_newton_stalls() -> None:
+    """A chain from an anchor on the seabed over a fairlead pulley up to a deck point
+    2 m off the pulley's vertical: the short upper sub-line turns taut within
+    millimetres of the split and the lower one can only lengthen by lifting off, so
+    Newton on the split stalls; the bracketed fallback (regula falsi on the monotone
+    mismatch) finds the split. Re-solving the sub-lines there gives equal tensions to
+    the tolerance; supports, pulley and seabed carry the weight (the seabed the laid
+    part's: w times the laid length, rigid and frictionless). Method shooting agrees
+    (checked once: 1e-9 of the tensions, 1e-9 m of the split, 24 s)."""
+    from cablestudy.statics.base import Medium as Med
+
+    line = make_line([560.0], [1000.0], [6.0e8])
+    sea = Med(density=1025.0, gravity=9.80665, depth=100.0)
+    prob = StaticProblem(
+        line=line,
+        medium=sea,
+        end_a=fixed(0.0, 0.0, -100.0),
+        end_b=fixed(452.0, 0.0, 10.0),
+        n_nodes=101,
+        tolerance=1e-9,
+    )
+    pulley = np.array([[450.0, 0.0, -5.0]])
+    solver = STATIC_SOLVERS["catenary"]
+    res = solve_over_pulleys(prob, pulley, solver)
+    assert res.status == 0, res.message
+    assert res.iterations > 12  # the fallback ran
+    subs = [
+        solver.solve(replace(p, tolerance=1e-12))
+        for p in sub_problems(prob, pulley, res.split)  # type: ignore[attr-defined]
+    ]
+    T = np.linalg.norm(subs[0].force_b)
+    assert np.linalg.norm(subs[1].force_a) == pytest.approx(T, rel=2e-9)
+    W = 1000.0 * 560.0
+    laid = res.laid_length
+    assert 0.0 < laid < 560.0
+    total = res.force_a + res.force_b + res.pulley_force.sum(axis=0)  # type: ignore[attr-defined]
+    np.testing.assert_allclose(total, [0.0, 0.0, -(W - 1000.0 * laid)], atol=1e-6 * W)
+
+
+@pytest.mark.parametrize(
+    "pulleys",
+    [np.array([[45.0, 0.0, -30.0]]), np.array([[30.0, 5.0, -25.0], [70.0, -5.0, -20.0]])],
+)
+def test_bracketed_fallback_finds_newtons_split(
+    pulleys: np.ndarray, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """With no Newton iterations allowed the fallback alone (regula falsi; nested for two
+    pulleys) finds the split Newton finds, to the mismatch tolerance over dT/dS."""
+    import cablestudy.statics.pulley as pulley_module
+
+    prob = problem(COMPOSITE, (0.0, 0.0, 0.0), (100.0, 0.0, -5.0))
+    solver = STATIC_SOLVERS["catenary"]
+    newton = solve_over_pulleys(prob, pulleys, solver)
+    monkeypatch.setattr(pulley_module, "NEWTON_ITERATIONS", 0)
+    fallback = solve_over_pulleys(prob, pulleys, solver)
+    assert fallback.status == 0, fallback.message
+    assert fallback.residual <= 1e-10
+    np.testing.assert_allclose(fallback.split, newton.split, atol=1e-7)  # type: ignore[attr-defined]
+    np.testing.assert_allclose(fallback.force_a, newton.force_a, rtol=1e-8)
