@@ -66,7 +66,11 @@ def check_supported(cases: list[Case], src: StudySource) -> None:
             problems.extend(p for p in spring_problems(case, src) if p not in problems)
             continue
         problems.extend(p for p in _law_problems(case, src) if p not in problems)
-        if case.study.analysis.database is not None:
+        if case.study.line.pulleys:
+            from .pulley_cases import pulley_problems
+
+            problems.extend(p for p in pulley_problems(case, src) if p not in problems)
+        if case.study.analysis.database is not None and not case.study.line.pulleys:
             from .database import database_problems
 
             problems.extend(p for p in database_problems(case, src) if p not in problems)
@@ -213,7 +217,8 @@ def linear_model_gaps(study: Any) -> list[tuple[tuple[str | int, ...], str]]:
     """Keys of ``study`` set to something the frequency-domain solver does not represent
     yet, as (YAML path, what it is): the drag of lumped bodies (its drag linearisation
     covers the line's Morison drag). Modal analysis and the time domain model them all
-    (one line model, :mod:`cablestudy.dynamics.model`)."""
+    (one line model, :mod:`cablestudy.dynamics.model`); a catenary line sliding over
+    pulleys, which the time domain models."""
     gaps: list[tuple[tuple[str | int, ...], str]] = [
         (("line", "attachments", i, "drag_area"), "a lumped body's drag")
         for i, att in enumerate(study.line.attachments)
@@ -231,6 +236,8 @@ def linear_model_gaps(study: Any) -> list[tuple[tuple[str | int, ...], str]]:
     ]
     if study.line.winch is not None:
         gaps.append((("line", "winch"), "a winch (the line's length changes)"))
+    if study.line.pulleys:
+        gaps.append((("line", "pulleys"), "a line sliding over pulleys"))
     return gaps
 
 
@@ -341,6 +348,16 @@ def solve_static(
     method = case.study.analysis.static.method
     solver = STATIC_SOLVERS[method]
     missing = unsupported_static(method, problem)
+    if case.study.line.pulleys and not missing:
+        from .pulley_cases import solve_pulley_static
+
+        result = solve_pulley_static(case.study, deadline).check_finite()
+        result = apply_limits(result, static_limits(case.study))
+        COUNTERS["static_solves"] += 1
+        _STATIC_CACHE[case.static_hash] = result
+        while len(_STATIC_CACHE) > _STATIC_CACHE_SIZE:
+            _STATIC_CACHE.popitem(last=False)
+        return result
     if missing:
         # the CLI rejects these before any work (check_supported); a caller that skips
         # that check still gets a failure rather than a solution that ignores an input
@@ -473,8 +490,10 @@ def static_outputs(res: StaticResult, study: Any = None) -> dict[str, np.ndarray
         "static_residual": np.asarray(res.residual),
         "drag_iterations": np.asarray(res.drag_iterations),
     }
-    if getattr(res, "pulley_force", None) is not None:  # a spring line over pulleys
+    if getattr(res, "pulley_force", None) is not None:  # a line over pulleys
         out["pulley_force"] = np.asarray(res.pulley_force)
+    if getattr(res, "split", None) is not None:  # a catenary line over pulleys
+        out["pulley_arc_length"] = np.asarray(res.split)
     if study is not None and not study.line.is_spring:
         env = study.environment
         segs = study.line.segments
@@ -799,7 +818,13 @@ def dynamic_problem(case: Case, static: StaticResult) -> DynamicProblem | str:
 
     dyn = case.study.analysis.dynamic
     assert dyn is not None
-    line, x_static, msg, anchor = discrete_statics(case, static)
+    sliding = None
+    if case.study.line.pulleys:
+        from .pulley_cases import pulley_discrete_statics
+
+        line, x_static, msg, anchor, sliding = pulley_discrete_statics(case, static)
+    else:
+        line, x_static, msg, anchor = discrete_statics(case, static)
     if msg:
         return msg
     motion, period, step = end_motion(dyn)
@@ -837,6 +862,7 @@ def dynamic_problem(case: Case, static: StaticResult) -> DynamicProblem | str:
         after_break=dyn.after_break,
         **_element_breaks(case.study, line),
         **_catenary_winch(case.study.line.winch),
+        pulleys=sliding,
     )
 
 
@@ -897,7 +923,12 @@ def dynamic_outputs(
     if res.touchdown_tracked:  # a seabed to touch: NaN when the line does not touch it
         out["touchdown_min"] = np.asarray(res.touchdown_min)
         out["touchdown_max"] = np.asarray(res.touchdown_max)
-    if res.element_tension_max.size:
+    if res.split_min.size:
+        # a line over pulleys: its nodes move along the material as it slides, so the
+        # elements' extremes belong to no fixed point of the line (no envelope)
+        out["pulley_arc_length_min"] = res.split_min
+        out["pulley_arc_length_max"] = res.split_max
+    elif res.element_tension_max.size:
         out["tension_envelope_max"] = tension_along(
             s_out, res.line_s, res.element_tension_max, res.end_tension_max
         )
@@ -1106,7 +1137,7 @@ def presolve_statics(cases: list[Case]) -> tuple[dict[str, StaticResult], dict[s
         h = case.static_hash
         if h in todo or h in _STATIC_CACHE or case.study.analysis.static.method != "catenary":
             continue
-        if case.study.line.is_spring:
+        if case.study.line.is_spring or case.study.line.pulleys:
             continue
         try:
             problem = static_problem(case.study)

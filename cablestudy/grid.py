@@ -94,7 +94,7 @@ def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
         return False
     if an.database is not None:
         return False
-    if template.environment.current:
+    if template.environment.current or template.line.pulleys:
         return False
     if getattr(an.static, "installation", None) is not None:
         return False

@@ -68,7 +68,20 @@ OUTPUTS: dict[str, OutputVariable] = {
     "force_a": OutputVariable(("component",), "N", "force of the line on the attachment at end A"),
     "force_b": OutputVariable(("component",), "N", "force of the line on the attachment at end B"),
     "pulley_force": OutputVariable(
-        ("pulley", "component"), "N", "force of the line on each pulley (kind: spring)"
+        ("pulley", "component"), "N", "force of the line on each pulley"
+    ),
+    "pulley_arc_length": OutputVariable(
+        ("pulley",), "m", "unstretched arc length from end A at each pulley (kind: catenary)"
+    ),
+    "pulley_arc_length_min": OutputVariable(
+        ("pulley",),
+        "m",
+        "smallest arc length from end A at each pulley over the steady window (time domain)",
+    ),
+    "pulley_arc_length_max": OutputVariable(
+        ("pulley",),
+        "m",
+        "largest arc length from end A at each pulley over the steady window (time domain)",
     ),
     "break_time": OutputVariable(
         (), "s", "time at which the line parted in the dynamics (NaN: it did not)"
@@ -299,6 +312,8 @@ ANALYSIS_OF: dict[str, str] = {
             "static_iterations",
             "static_residual",
             "drag_iterations",
+            "pulley_force",
+            "pulley_arc_length",
         ),
         "static",
     ),

@@ -350,9 +350,11 @@ class Attachment(StrictModel):
 
 
 class Pulley(StrictModel):
-    """A pulley a kind: spring line passes over (aqwa seed 5.8.1.1): a fixed point; the
-    line's tensions on its two sides satisfy T_large / T_small <= factor^(wrap / 180 deg)
-    (the seed's friction factor, given for a 180-degree wrap; 1: frictionless)."""
+    """A pulley the line passes over (aqwa seed 5.8.1.1): a fixed point; the line's
+    tensions on its two sides satisfy T_large / T_small <= factor^(wrap / 180 deg) (the
+    seed's friction factor, given for a 180-degree wrap; 1: frictionless). A kind: spring
+    line is straight between pulleys; a kind: catenary line hangs as a catenary between
+    them (statics: the frictionless equilibrium, see cablestudy/statics/pulley.py)."""
 
     position: Vec3 = Field(description="position of the pulley [m]")
     friction_factor: Finite = Field(
@@ -415,7 +417,8 @@ class Line(StrictModel):
     pulleys: list[Pulley] = Field(
         [],
         max_length=2,
-        description="kind spring: up to two pulleys the line passes over, from end A to end B",
+        description="up to two fixed pulleys the line passes over, from end A to end B (both "
+        "ends fixed)",
     )
     winch: Winch | None = Field(
         None,
@@ -459,13 +462,6 @@ class Line(StrictModel):
 
     @model_validator(mode="after")
     def _attachments_inside(self) -> Line:
-        if self.kind != "spring" and self.pulleys:
-            raise FieldError(
-                ("pulleys",),
-                "pulleys are supported on a kind: spring line (a massless cable between "
-                "points); allowed: kind: spring, or no pulleys",
-                len(self.pulleys),
-            )
         if self.kind == "spring":
             for key in ("segments", "attachments"):
                 if getattr(self, key):

@@ -497,6 +497,11 @@ def _attempt(  # noqa: ANN202, PLR0913
                 x_pred[i, c] += frac[i] * corr[c]
         for c in range(3):
             x_pred[n - 1, c] = end_x[1, c]
+    # an interior held node (a pulley the line is fixed to) stays where it is
+    for i in range(1, n - 1):
+        if held[i]:
+            for c in range(3):
+                x_pred[i, c] = x0[i, c]
     its, ok = alpha_step(
         x0,
         v0,

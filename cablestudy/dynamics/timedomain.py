@@ -58,6 +58,7 @@ from .integrator import (
     march,
 )
 from .model import DiscreteLine, Workspace, evaluate, interpolate_nodes
+from .pulley import SlidingPulleys
 
 #: extra step halvings allowed beyond ``max_refinement`` when Newton fails
 NEWTON_RESCUE_HALVINGS = 8
@@ -144,6 +145,8 @@ class DynamicProblem:
     winch_start: float = 0.0
     winch_stop: float = math.inf
     winch_limits: tuple[float, float] = (0.25, 4.0)
+    #: pulleys the line slides over (:mod:`.pulley`; None: none)
+    pulleys: SlidingPulleys | None = None
 
     @property
     def breakable(self) -> bool:
@@ -194,6 +197,9 @@ class DynamicResult:
     break_element: int = -1
     break_s: float = math.nan
     winch_paid_out: float = 0.0
+    #: with pulleys: the range [m] of each pulley's arc length from A over the window
+    split_min: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    split_max: np.ndarray = field(default_factory=lambda: np.zeros(0))
     tension_static: float = math.nan
     tension_max: float = math.nan
     tension_min: float = math.nan
@@ -266,6 +272,16 @@ class _LineExtremes:
         self.end[:] = ends[None, :]
         self.touchdown[:] = td
 
+    def add(self, element: np.ndarray, ends: np.ndarray, td: float) -> None:
+        """Fold one step's element and end tensions and touchdown point in (the
+        compiled loop does this itself)."""
+        np.maximum(self.element[0], element, out=self.element[0])
+        np.minimum(self.element[1], element, out=self.element[1])
+        np.maximum(self.end[0], ends, out=self.end[0])
+        np.minimum(self.end[1], ends, out=self.end[1])
+        self.touchdown[0] = np.fmin(self.touchdown[0], td)
+        self.touchdown[1] = np.fmax(self.touchdown[1], td)
+
     def current(self) -> list:
         return [
             self.element[0].copy(),
@@ -329,8 +345,13 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
 
     A numerical failure (Newton failing at the smallest step) is returned as a result
     with nonzero status and a message; the deadline (a :func:`time.monotonic` value)
-    gives :data:`STATUS_TIME_LIMIT`.
+    gives :data:`STATUS_TIME_LIMIT`. A line over sliding pulleys is run by
+    :func:`.pulley_timedomain.simulate_sliding` (the split solved with each step).
     """
+    if problem.pulleys is not None:
+        from .pulley_timedomain import simulate_sliding
+
+        return simulate_sliding(problem, deadline=deadline)
     line = problem.line
     winching = problem.winch_speed != 0.0
     if winching:  # the winch changes these in place: a private copy

@@ -85,6 +85,12 @@ def moordyn_input(
             "line.kind: spring (a massless spring) has no MoorDyn line equivalent; "
             "export a kind: catenary line"
         )
+    if study.line.pulleys:
+        raise InterchangeError(
+            "line.pulleys: a line over fixed pulleys has no MoorDyn line equivalent (a "
+            "MoorDyn point holds the line, it does not let it slide); export the line "
+            "without pulleys"
+        )
     for i, seg in enumerate(segs):
         if seg.axial is not None and seg.axial.law != "linear":
             raise InterchangeError(

@@ -1,0 +1,423 @@
+"""The time domain of a line over sliding pulleys (``line.pulleys`` on a catenary line).
+
+Each step is solved together with the split of the line at each pulley
+(:func:`.pulley.solve_split`: the line sticks, or slides until the tension ratio is
+the friction bound): a trial split re-cuts the line and re-runs the implicit step, so
+the step loop stays in Python here, calling the compiled step
+(:func:`.integrator.alpha_step`) per trial; a line without pulleys runs the compiled
+loop of :func:`.timedomain.simulate`. Same step control, statistics and outputs.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections import deque
+
+import numpy as np
+
+from ..physics.seabed import touchdown_arc_length
+from ..statics.base import STATUS_NUMERICAL, STATUS_TIME_LIMIT
+from .integrator import AlphaParameters, alpha_step
+from .model import DiscreteLine, Workspace, evaluate, interpolate_nodes, update_anchors
+from .pulley import SlidingPulleys, pulley_tensions, solve_split, wrap_angle
+from .timedomain import (
+    NEWTON_RESCUE_HALVINGS,
+    DynamicProblem,
+    DynamicResult,
+    _LineExtremes,
+    _resample,
+    end_forces,
+)
+
+
+def _advance(head: tuple, line_args: tuple, tail: tuple) -> int:
+    """One implicit step (:func:`.integrator.alpha_step`): its Newton iterations, or
+    -1 - iterations when it failed."""
+    its, ok = alpha_step(*head, *line_args, *tail)
+    return its if ok else -1 - its
+
+
+def _slide(
+    sliding: SlidingPulleys,
+    split: np.ndarray,
+    direction: np.ndarray,
+    predicted: np.ndarray,
+    head: tuple,
+    tail: tuple,
+    work: Workspace,
+    x1: np.ndarray,
+    tol: float,
+) -> tuple[np.ndarray | None, np.ndarray, DiscreteLine | None, int]:
+    """The step solved with its split (:func:`.pulley.solve_split`: stick, or slide to
+    the friction bound): (the split [m] or None when it failed, the slide directions,
+    the line cut at that split, the Newton iterations). The state in ``work`` and
+    ``x1`` is that of the returned split."""
+    trials: dict[bytes, DiscreteLine] = {}
+    node = sliding.node
+    iterations = 0
+    x_pred = head[14]
+    # a trial split changes every element's rest length on both sides of a pulley:
+    # Newton starts from the last solved trial's shape with the nodes moved along it to
+    # their new arc lengths (the material slides along the line); more iterations are
+    # allowed than for a fixed mesh, as a split far from the last one re-stretches the
+    # sub-lines
+    last: list[tuple[np.ndarray, np.ndarray]] = []
+    cap = max(4 * head[13], 40)
+
+    def at_split(S: np.ndarray) -> tuple | None:
+        nonlocal iterations
+        key = S.tobytes()
+        if key not in trials:
+            trials[key] = sliding.rebuild(S)
+        trial = trials[key]
+        if last:
+            pred = interpolate_nodes(last[0][0], trial.s, last[0][1][None])[0]
+            pred[node] = x_pred[node]
+        else:
+            pred = x_pred
+        got = _advance((*head[:13], cap, pred, *head[15:]), trial.kernel_args(), tail)
+        iterations += got if got >= 0 else -1 - got
+        if got < 0:
+            return None
+        last[:] = [(trial.s, x1.copy())]
+        return pulley_tensions(trial, x1, work.tension, node), wrap_angle(x1, node)
+
+    found, new_dir = solve_split(
+        at_split, sliding, split, tol, predicted=predicted, direction=direction
+    )
+    if found is None:
+        return None, direction, None, iterations
+    return found, new_dir, trials[found.tobytes()], iterations
+
+
+def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) -> DynamicResult:
+    """Integrate until steady state (or ``max_periods``, or ``duration``).
+
+    A numerical failure (Newton failing at the smallest step) is returned as a result
+    with nonzero status and a message; the deadline (a :func:`time.monotonic` value)
+    gives :data:`STATUS_TIME_LIMIT`.
+    """
+    line = problem.line
+    par = AlphaParameters.from_spectral_radius(problem.spectral_radius)
+    work = Workspace(line.n_elements)
+    largs = line.kernel_args()
+    wargs = work.assemble_args()
+    sargs = work.solver_args(line)
+    held = line.held
+    seabed = line.has_seabed
+
+    x0 = np.array(problem.static_position, dtype=float, copy=True)
+    v0 = np.zeros_like(x0)
+    a0 = np.zeros_like(x0)
+    x1, v1, a1 = x0.copy(), v0.copy(), a0.copy()
+    anchor0 = problem.anchor if problem.anchor is not None else x0
+    evaluate(line, x0, v0, work, anchor=anchor0)
+    F0 = work.F.copy()
+    strain_prev = work.strain.copy()
+    base = np.stack([x0[0], x0[-1]])
+    ex = problem.excited_end
+    f_static = end_forces(work, a0, x0, held)
+    t_static = float(np.linalg.norm(f_static[ex]))
+    result = DynamicResult(tension_static=t_static, line_s=line.s)
+
+    has_seabed = line.has_seabed
+    result.touchdown_tracked = has_seabed
+    flat = bool(line.seabed_normal[0] == 0.0 and line.seabed_normal[1] == 0.0)
+
+    def touchdown(x: np.ndarray) -> float:
+        """Arc length [m] where the line leaves the seabed plane (NaN: no contact)."""
+        if not has_seabed:
+            return math.nan
+        n = line.seabed_normal
+        if flat:
+            bed: np.ndarray | float = line.seabed_offset / n[2]
+        else:
+            bed = (line.seabed_offset - n[0] * x[:, 0] - n[1] * x[:, 1]) / n[2]
+        return touchdown_arc_length(line.s, x[:, 2], bed, problem.touchdown_tolerance)
+
+    extremes = _LineExtremes(
+        None if problem.duration is not None else max(1, problem.steady_window),
+        work.tension,
+        np.sqrt(np.sum(f_static**2, 1)),
+        touchdown(x0),
+    )
+
+    T = problem.period
+    t_ramp = problem.motion.ramp_time
+    t_stop = problem.duration if problem.duration is not None else problem.max_periods * T
+    tol = problem.newton_tolerance
+    max_level = problem.max_refinement
+    eps_t = 1e-9 * T
+
+    # history buffer: (t, end tension, x, v, a at the history points, and with
+    # history_line: x, v, a of every node, element tensions, end tensions)
+    hs = np.asarray(problem.history_s, dtype=float)
+    keep_hist = problem.history
+    hist_span = (problem.history_periods + 1.0) * T
+    buf: deque[tuple] = deque()
+
+    def push(t: float, tension: float, ends: np.ndarray) -> None:
+        if not keep_hist:
+            return
+        xs = interpolate_nodes(line.s, hs, np.stack([x0, v0, a0]))
+        whole = (
+            (x0.copy(), v0.copy(), a0.copy(), work.tension.copy(), ends.copy())
+            if problem.history_line
+            else ()
+        )
+        buf.append((t, tension, xs[0], xs[1], xs[2], *whole))
+        while len(buf) > 2 and buf[1][0] < t - hist_span:
+            buf.popleft()
+
+    rec: dict[str, list[np.ndarray]] = {
+        k: [] for k in ("t", "x", "v", "a", "end_force", "tension", "friction", "split")
+    }
+    sliding = problem.pulleys
+    split = sliding.split.copy() if sliding is not None else np.zeros(0)
+    slide_rate = np.zeros_like(split)  # [m/s] of the last step
+    slide_dir = np.zeros_like(split)  # +1 / -1 sliding out / in in the last step, 0 stuck
+    # interior held nodes (pulleys) stay where the static state has them
+    inner_held = np.nonzero(held[1:-1])[0] + 1
+
+    def keep(t: float, forces: np.ndarray) -> None:
+        if problem.keep_steps:
+            rec["t"].append(np.asarray(t))
+            rec["x"].append(x0.copy())
+            rec["v"].append(v0.copy())
+            rec["a"].append(a0.copy())
+            rec["end_force"].append(forces.copy())
+            rec["tension"].append(work.tension.copy())
+            rec["friction"].append(work.friction.copy())
+            rec["split"].append(split.copy())
+
+    keep(0.0, f_static)
+    push(0.0, t_static, np.sqrt(np.sum(f_static**2, 1)))
+
+    # per-period statistics (periods starting after the ramp only)
+    p_max: list[float] = []
+    p_min: list[float] = []
+    p_mean: list[float] = []
+    p_line: list[float] = []
+    c_max = c_min = t_static
+    c_int = 0.0
+    c_line = max(t_static, float(work.tension.max()))
+    c_start = 0.0
+    t_prev_tension = t_static
+    c_split = [split.copy(), split.copy()]
+    p_split: list[list[np.ndarray]] = []
+
+    # Newton starts from a quadratic extrapolation of the last three positions: the
+    # positions are smooth, whereas the accelerations of generalised-alpha carry the
+    # decaying unresolved axial modes, which a Taylor predictor would amplify into
+    # large spurious stretches.
+    past: deque[tuple[float, np.ndarray]] = deque()
+    frac = (line.s / line.s[-1])[:, None]
+    x_pred = np.empty_like(x0)
+
+    def predict(t_new: float, out: np.ndarray) -> None:
+        if len(past) < 2:
+            np.add(x0, (t_new - t) * v0, out=out)
+            return
+        (ta, xa), (tb, xb) = past[0], past[1]
+        tc = t
+        la = (t_new - tb) * (t_new - tc) / ((ta - tb) * (ta - tc))
+        lb = (t_new - ta) * (t_new - tc) / ((tb - ta) * (tb - tc))
+        lc = (t_new - ta) * (t_new - tb) / ((tc - ta) * (tc - tb))
+        np.multiply(xa, la, out=out)
+        out += lb * xb
+        out += lc * x0
+
+    t = 0.0
+    level = 0
+    clean = 0
+    next_b = min(T, t_stop)
+    steps = newton = rejected = 0
+    converged = False
+    while True:
+        if deadline is not None and steps % 64 == 0 and time.monotonic() > deadline:
+            result.status, result.message = (
+                STATUS_TIME_LIMIT,
+                (f"time limit reached at t = {t:.4g} s of the dynamic run"),
+            )
+            return result
+        h = problem.step / 2**level
+        if next_b - t <= h * (1.0 + 1e-6):
+            h = next_b - t
+        disp, vel, acc = problem.motion.at(t + h)
+        predict(t + h, x_pred)
+        np.greater(strain_prev, 0.0, out=work.taut0)
+        # move the whole line with the ends' prescribed correction, shared linearly
+        # along s, so that the predictor neither stretches nor compresses the end
+        # elements
+        if held[0]:
+            x_pred += (1.0 - frac) * (base[0] + disp[0] - x_pred[0])[None, :]
+            x_pred[0] = base[0] + disp[0]
+        if held[-1]:
+            x_pred += frac * (base[1] + disp[1] - x_pred[-1])[None, :]
+            x_pred[-1] = base[1] + disp[1]
+        if inner_held.size:
+            x_pred[inner_held] = problem.static_position[inner_held]
+
+        head = (
+            x0,
+            v0,
+            a0,
+            F0,
+            h,
+            base + disp,
+            vel,
+            acc,
+            par.alpha_m,
+            par.alpha_f,
+            par.beta,
+            par.gamma,
+            tol,
+            problem.max_newton_iterations,
+            x_pred,
+            x1,
+            v1,
+            a1,
+            work.anchor,
+        )
+        tail = (*wargs, *sargs)
+        new_line, new_split = line, split
+        if sliding is None:
+            its = _advance(head, largs, tail)
+            ok = its >= 0
+            newton += its if ok else -1 - its
+        else:
+            # the step with its split: stick, or slide to the friction bound
+            found, new_dir, got_line, its = _slide(
+                sliding, split, slide_dir, slide_rate * h, head, tail, work, x1, tol
+            )
+            newton += its
+            ok = found is not None
+            if found is not None and got_line is not None:
+                new_split, new_line = found, got_line
+        if not ok:
+            rejected += 1
+            if level >= max_level + NEWTON_RESCUE_HALVINGS:
+                result.status = STATUS_NUMERICAL
+                result.message = (
+                    f"Newton did not converge at t = {t:.6g} s with step "
+                    f"{h:.3g} s ({problem.step:.3g} s halved {level} times)"
+                )
+                result.steps, result.newton_iterations = steps, newton
+                result.rejected_steps = rejected
+                return result
+            level += 1
+            clean = 0
+            continue
+        switched = bool(np.any((work.strain > 0.0) != (strain_prev > 0.0)))
+        forces = end_forces(work, a1, x1, held)
+        tension = float(math.sqrt(forces[ex] @ forces[ex]))
+        steep = abs(tension - t_prev_tension) > problem.tension_step
+        if (switched or steep) and level < max_level:
+            rejected += 1
+            level += 1
+            clean = 0
+            continue
+        # accept
+        steps += 1
+        if sliding is not None:
+            slide_rate = (new_split - split) / h
+            slide_dir = new_dir
+        if new_line is not line:
+            line, split = new_line, new_split
+            largs = line.kernel_args()
+            np.minimum(c_split[0], split, out=c_split[0])
+            np.maximum(c_split[1], split, out=c_split[1])
+        if seabed:
+            update_anchors(x1, work.friction, line.seabed_stiffness, work.contact, work.anchor)
+        past.append((t, x0.copy()))
+        if len(past) > 2:
+            past.popleft()
+        t += h
+        x0, x1 = x1, x0
+        v0, v1 = v1, v0
+        a0, a1 = a1, a0
+        F0[:] = work.F
+        strain_prev[:] = work.strain
+        end_tensions = np.sqrt(np.sum(forces**2, 1))
+        line_max = max(float(work.tension.max()), float(end_tensions.max()))
+        extremes.add(work.tension, end_tensions, touchdown(x0))
+        c_max = max(c_max, tension)
+        c_min = min(c_min, tension)
+        c_int += 0.5 * (t_prev_tension + tension) * h
+        c_line = max(c_line, line_max)
+        t_prev_tension = tension
+        keep(t, forces)
+        push(t, tension, end_tensions)
+        if switched or steep:
+            clean = 0
+        else:
+            clean += 1
+            if clean >= 2 and level > 0:
+                level -= 1
+                clean = 0
+        if abs(t - next_b) <= eps_t:
+            t = next_b
+            if c_start >= t_ramp - eps_t:
+                p_max.append(c_max)
+                p_min.append(c_min)
+                p_mean.append(c_int / max(t - c_start, 1e-300))
+                p_line.append(c_line)
+                p_split.append(c_split)
+                extremes.close()
+            c_split = [split.copy(), split.copy()]
+            extremes.start(work.tension, end_tensions, touchdown(x0))
+            c_max = c_min = tension
+            c_line = line_max
+            c_int = 0.0
+            c_start = t
+            if problem.duration is None:
+                w = problem.steady_window
+                if len(p_max) >= max(problem.min_periods, w + 1):
+                    converged = all(
+                        abs(p_max[-j] - p_max[-j - 1]) <= problem.steady_tolerance * p_max[-j]
+                        and abs(p_min[-j] - p_min[-j - 1]) <= problem.steady_tolerance * p_max[-j]
+                        for j in range(1, w + 1)
+                    )
+            if converged or t >= t_stop - eps_t:
+                break
+            next_b = min(next_b + T, t_stop)
+
+    w = max(1, problem.steady_window) if problem.duration is None else len(p_max)
+    if not p_max:  # the run ended inside the ramp: use the last (partial) window
+        p_max, p_min, p_line = [c_max], [c_min], [c_line]
+        p_mean = [c_int / max(t - c_start, 1e-300)]
+    sl = slice(-min(w, len(p_max)), None)
+    sp = slice(-min(w + 1, len(p_max)), None)
+    result.tension_max = max(p_max[sl])
+    result.tension_min = min(p_min[sl])
+    result.tension_mean = float(np.mean(p_mean[sl]))
+    result.tension_max_line = max(p_line[sl])
+    result.tension_max_spread = max(p_max[sp]) - min(p_max[sp])
+    result.tension_min_spread = max(p_min[sp]) - min(p_min[sp])
+    result.steady_converged = converged
+    if sliding is not None:
+        kept = p_split[sl] if p_split else [c_split]
+        result.split_min = np.min([k[0] for k in kept], axis=0)
+        result.split_max = np.max([k[1] for k in kept], axis=0)
+    result.line_s = line.s
+    result.steps, result.newton_iterations, result.rejected_steps = steps, newton, rejected
+    result.periods = t / T
+    result.simulated_time = t
+    result.period_max = np.asarray(p_max)
+    result.period_min = np.asarray(p_min)
+    (
+        result.element_tension_max,
+        result.element_tension_min,
+        result.end_tension_max,
+        result.end_tension_min,
+        result.touchdown_min,
+        result.touchdown_max,
+    ) = extremes.window()
+    if keep_hist and len(buf) >= 2:
+        result.history = _resample(
+            buf, t, T, problem, interpolate_nodes(line.s, hs, problem.static_position[None])[0]
+        )
+    if problem.keep_steps:
+        result.record = {k: np.asarray(v) for k, v in rec.items()}
+    return result
