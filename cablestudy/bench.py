@@ -26,7 +26,10 @@ REPO = Path(__file__).resolve().parents[1]
 
 def median_time(fn: Callable[[], object], *, repeats: int = 7, min_time: float = 0.05) -> float:
     """Median over ``repeats`` of the mean wall time of ``fn`` [s]; each repeat runs
-    ``fn`` enough times to last ``min_time`` (calibrated on the first call)."""
+    ``fn`` enough times to last ``min_time`` (calibrated on a second call: the first may
+    load compiled kernels, which would leave one call per repeat, timed to the clock's
+    grain)."""
+    fn()
     t0 = time.perf_counter()
     fn()
     once = max(time.perf_counter() - t0, 1e-7)

@@ -34,7 +34,6 @@ point outside the grid is refused with the grid's range.
 
 from __future__ import annotations
 
-import bisect
 import math
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
@@ -248,6 +247,8 @@ class QuasiStaticDatabase:
         )
         self._p = P.tolist()
         self._q = Q.tolist()
+        self._p_array = np.ascontiguousarray(P, dtype=float)
+        self._q_array = np.ascontiguousarray(Q, dtype=float)
 
     @classmethod
     def from_arrays(
@@ -334,8 +335,8 @@ class QuasiStaticDatabase:
 
     def lookup_grid(self, p: float, q: float) -> np.ndarray:
         """All quantities at once as one array, in the order of ``names``, at the grid
-        coordinates (p, q) (the fast path of :meth:`lookup`: one cell search and two
-        small matrix products).
+        coordinates (p, q) (the fast path of :meth:`lookup`: the range check here, then one
+        compiled call: the cell search and its bicubic patch).
 
         Raises
         ------
@@ -353,17 +354,9 @@ class QuasiStaticDatabase:
                 f"position ({where}{_describe(self.grid, p, q)}) lies outside the "
                 f"database; allowed: {_range(self.grid, P, Q)}"
             )
-        i = min(bisect.bisect_right(P, p) - 1, len(P) - 2)
-        j = min(bisect.bisect_right(Q, q) - 1, len(Q) - 2)
-        t = (p - P[i]) / (P[i + 1] - P[i])
-        u = (q - Q[j]) / (Q[j + 1] - Q[j])
-        t2, u2 = t * t, u * u
-        t3, u3 = t2 * t, u2 * u
-        w = np.array(
-            (1.0, u, u2, u3, t, t * u, t * u2, t * u3, t2, t2 * u, t2 * u2, t2 * u3)
-            + (t3, t3 * u, t3 * u2, t3 * u3)
-        )
-        return self._cells[i, j] @ w
+        from .database_kernel import evaluate_cell
+
+        return evaluate_cell(self._cells, self._p_array, self._q_array, p, q)
 
     def lookup_array(self, horizontal_distance: float, height_difference: float) -> np.ndarray:
         """:meth:`lookup` as one array in the order of ``names``."""
