@@ -51,37 +51,24 @@ solve), median of three runs where one run takes less than 3 s.
 Also (``chain_convergence``): the refinement sequences of the validation test with
 their observed orders.
 
-Results (2026-11-24, MoorDyn 2.7.2, 2 cores shared with other jobs; the errors are
-the same in every run, both codes being deterministic, the times are medians but move by
-up to a factor 2 between runs with the machine's load; numbers from the quietest of
-three runs, whole module 112 s):
+Results (2026-11-24, MoorDyn 2.7.2, quiet 2-core machine, two runs agreeing to 10 %;
+the errors are the same in every run, both codes being deterministic):
 
-* wave (10 s, 2 m): reference T_max = 1172.74 kN, T_min = 574.64 kN (uncertainty 1.5e-4
-  of T_max: 160 against 320 elements). Agreement between the codes on the same mesh
-  (40 segments/elements, fine coupling/step): 1171.13/574.69 kN (MoorDyn, T/1024)
-  against 1171.59/574.54 kN (ours, T/256), 3.9e-4 of T_max; MoorDyn at 80 segments
-  against our reference: -3.9e-4 (T_max), -6.3e-4 (T_min). MoorDyn 10/20/40/80
-  segments at T/256: errors 2.8e-2, 9.0e-3, 5.9e-4, 1.5e-3 in 92, 169, 613 ms, 3.4 s.
-  Ours: 30 elements, T/16: 8.6e-3 in 75 ms; 40, T/64: 9.6e-4 in 143 ms; 160, T/64:
-  1.5e-4 in 329 ms. MoorDyn time / ours: 2.2 at 1 % error (MoorDyn 20 segments, T/256,
-  against our 30 elements, T/16), 1.9 at MoorDyn's best error (5.9e-4, 40 segments,
-  T/256, against our 160 elements, T/64; our 40 and 80 elements stop at 8-10e-4).
+* wave (10 s, 2 m): reference T_max = 1172.74 kN, T_min = 574.63 kN (uncertainty 1.6e-4
+  of T_max: 160 against 320 elements). MoorDyn 10/20/40 segments at T/256: errors
+  2.8e-2, 9.0e-3, 5.9e-4 in 61, 127-138, 460 ms. Ours: 16 elements, T/16: 8.4e-3 in
+  11.2-11.4 ms (statics and the discrete equilibrium included); 160, T/128: 3.9e-6 in
+  234 ms. **MoorDyn time / ours at 1 % error: 11 and 12** (MoorDyn 20 segments, T/256,
+  against our 16 elements, T/16).
 * slow drift (100 s, 4 m): reference T_max = 980.59 kN, T_min = 768.50 kN (uncertainty
-  1.4e-5). Same mesh (40): 979.96/768.27 kN (MoorDyn, T/512) against 980.32/768.29 kN
-  (ours, T/256), 3.7e-4 of T_max. MoorDyn needs a fine coupling here (10 segments:
-  1.3e-2 at T/64, 3.0e-3 at T/512); 10/20/40 segments at T/512: 3.0e-3, 2.5e-3, 6.4e-4
-  in 0.47, 1.3, 8.4 s. Ours: 30 elements, T/16: 8.7e-4 in 186 ms; 40, T/32: 4.1e-4 in
-  220 ms. MoorDyn time / ours: 2.1 at 1 % error (MoorDyn 10 segments, T/128, 380 ms),
-  38 at MoorDyn's best error (6.4e-4, 40 segments).
-* the two other runs gave 1.4 and 2.8 (wave), 3.3 and 1.5 (slow drift) at 1 % error.
-* so the aim (ours >= 10 times faster at 1 % agreement) is not met; it is met only at
-  MoorDyn's best error in slow drift, where its explicit step pays for 600 s of
-  simulated time. At 1 % MoorDyn needs only 10-20 segments at a 5-10 ms step, while
-  ours pays for (1) Newton failing on seabed friction (slow drift, 40 elements, T/32:
-  220 rejected steps and 4132 Newton iterations, against 17 and 775 with friction 0;
-  3.7 times the run time), (2) per-step work outside the compiled kernel (half of
-  ``simulate``'s time at 40 elements) and (3) no 20-element mesh with friction (the
-  discrete static equilibrium fails there).
+  1.5e-5). MoorDyn 10 segments at T/128: 6.5e-3 in 292-299 ms (20 segments 2.1e-3 in
+  795 ms). Ours: 12 elements, T/12: 5.3e-3 in 14-16 ms; 160, T/128: 7.0e-5 in 281 ms.
+  **MoorDyn time / ours at 1 % error: 18 and 21.**
+* what made it (against 2.2 and 2.1 before): the whole step loop compiled (Python once
+  per period), seabed contact held fixed during Newton (no step halvings at each node's
+  landing: 32 rejected steps to none), stick/slip and contact states checked before
+  full convergence, a right start for the laid-line statics (9 -> 5 ms of set-up), and
+  meshes of 12-24 elements, which now work with friction.
 * convergence (``chain_convergence``): mesh 40/80/160/320 at the slow-drift period,
   observed order 2.02 +- 0.12 (T_max) and 2.13 +- 0.28 (T_min); step T/128..T/1024 at
   the wave period on 40 elements, T_min order 3.4 +- 0.2, T_max at the floor (1e-5)
