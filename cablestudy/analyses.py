@@ -6,6 +6,7 @@ This is the only place that knows which analyses exist; the runner calls
 
 from __future__ import annotations
 
+import contextlib
 import math
 import time
 import traceback
@@ -24,7 +25,7 @@ from .config.analysis import (
 )
 from .config.ends import ForceEnd, MooringEnd
 from .config.loader import StudyError, StudySource
-from .counters import COUNTERS
+from .counters import COUNTERS, trim_lru
 from .physics.profile import profile_quantities
 from .problem import line_model, medium, static_limits, static_problem
 from .statics import (
@@ -338,7 +339,8 @@ def solve_static(
         return apply_limits(presolved[case.static_hash], static_limits(case.study))
     cached = _STATIC_CACHE.get(case.static_hash)
     if cached is not None:
-        _STATIC_CACHE.move_to_end(case.static_hash)
+        with contextlib.suppress(KeyError):  # evicted by another thread
+            _STATIC_CACHE.move_to_end(case.static_hash)
         return cached
     if case.study.line.is_spring:
         from .spring_cases import solve_spring_static
@@ -355,8 +357,7 @@ def solve_static(
         result = apply_limits(result, static_limits(case.study))
         COUNTERS["static_solves"] += 1
         _STATIC_CACHE[case.static_hash] = result
-        while len(_STATIC_CACHE) > _STATIC_CACHE_SIZE:
-            _STATIC_CACHE.popitem(last=False)
+        trim_lru(_STATIC_CACHE, _STATIC_CACHE_SIZE)
         return result
     if missing:
         # the CLI rejects these before any work (check_supported); a caller that skips
@@ -370,8 +371,7 @@ def solve_static(
     result = apply_limits(result, static_limits(case.study))
     COUNTERS["static_solves"] += 1
     _STATIC_CACHE[case.static_hash] = result
-    while len(_STATIC_CACHE) > _STATIC_CACHE_SIZE:
-        _STATIC_CACHE.popitem(last=False)
+    trim_lru(_STATIC_CACHE, _STATIC_CACHE_SIZE)
     return result
 
 
@@ -389,8 +389,7 @@ def _static_at(case: Case, n_nodes: int, deadline: float | None) -> StaticResult
         cached = solver.solve(problem, deadline=deadline).check_finite()
         COUNTERS["static_solves"] += 1
         _STATIC_CACHE[key] = cached
-        while len(_STATIC_CACHE) > _STATIC_CACHE_SIZE:
-            _STATIC_CACHE.popitem(last=False)
+        trim_lru(_STATIC_CACHE, _STATIC_CACHE_SIZE)
     return cached
 
 
@@ -603,8 +602,7 @@ def discrete_statics(
         )
     )
     _DISCRETE_CACHE[key] = (line, x, msg, anchor)
-    while len(_DISCRETE_CACHE) > _STATIC_CACHE_SIZE:
-        _DISCRETE_CACHE.popitem(last=False)
+    trim_lru(_DISCRETE_CACHE, _STATIC_CACHE_SIZE)
     return line, x, msg, anchor
 
 

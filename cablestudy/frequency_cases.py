@@ -11,6 +11,7 @@ and checked by a test).
 
 from __future__ import annotations
 
+import contextlib
 import math
 from collections import OrderedDict
 from dataclasses import dataclass
@@ -24,7 +25,7 @@ from .config.analysis import (
     HarmonicExcitation,
     SpectrumExcitation,
 )
-from .counters import COUNTERS  # noqa: F401 - re-exported: static solves, assemblies
+from .counters import COUNTERS, trim_lru  # noqa: F401 - COUNTERS re-exported: static solves, assemblies
 from .dynamics.frequency import DragSettings, ReducedLine, solve_harmonic, solve_spectrum
 from .dynamics.harmonic_cases import solve_harmonic_cases
 from .dynamics.linear_model import linear_line
@@ -73,7 +74,8 @@ def linearised(
     key = (case.static_hash, dyn.elements)
     cached = _LINEAR_CACHE.get(key)
     if cached is not None:
-        _LINEAR_CACHE.move_to_end(key)
+        with contextlib.suppress(KeyError):  # evicted by another thread
+            _LINEAR_CACHE.move_to_end(key)
         return cached
     n_nodes = dyn.elements + 1
     mesh = static if len(static.s) == n_nodes else _static_at(case, n_nodes, deadline)
@@ -106,8 +108,7 @@ def linearised(
             COUNTERS["linear_assemblies"] += 1
             out = (ReducedLine.of(line), "")
     _LINEAR_CACHE[key] = out
-    while len(_LINEAR_CACHE) > _LINEAR_CACHE_SIZE:
-        _LINEAR_CACHE.popitem(last=False)
+    trim_lru(_LINEAR_CACHE, _LINEAR_CACHE_SIZE)
     return out
 
 
