@@ -16,18 +16,20 @@ from collections import deque
 
 import numpy as np
 
-from ..physics.seabed import touchdown_arc_length
 from ..statics.base import STATUS_NUMERICAL, STATUS_TIME_LIMIT
 from .integrator import AlphaParameters, alpha_step
-from .model import DiscreteLine, Workspace, evaluate, interpolate_nodes, update_anchors
+from .model import DiscreteLine, Workspace, interpolate_nodes, update_anchors
 from .pulley import SlidingPulleys, pulley_tensions, solve_split, wrap_angle
 from .timedomain import (
     NEWTON_RESCUE_HALVINGS,
     DynamicProblem,
     DynamicResult,
-    _LineExtremes,
-    _resample,
+    _History,
+    _start,
     end_forces,
+    is_steady,
+    touchdown_of,
+    window_statistics,
 )
 
 
@@ -100,48 +102,28 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
     """
     line = problem.line
     par = AlphaParameters.from_spectral_radius(problem.spectral_radius)
-    work = Workspace(line.n_elements)
-    largs = line.kernel_args()
-    wargs = work.assemble_args()
-    sargs = work.solver_args(line)
-    held = line.held
-    seabed = line.has_seabed
-
-    x0 = np.array(problem.static_position, dtype=float, copy=True)
-    v0 = np.zeros_like(x0)
-    a0 = np.zeros_like(x0)
-    x1, v1, a1 = x0.copy(), v0.copy(), a0.copy()
-    anchor0 = problem.anchor if problem.anchor is not None else x0
-    evaluate(line, x0, v0, work, anchor=anchor0)
-    F0 = work.F.copy()
-    strain_prev = work.strain.copy()
-    base = np.stack([x0[0], x0[-1]])
-    ex = problem.excited_end
-    f_static = end_forces(work, a0, x0, held)
-    t_static = float(np.linalg.norm(f_static[ex]))
-    result = DynamicResult(tension_static=t_static, line_s=line.s)
-
-    has_seabed = line.has_seabed
-    result.touchdown_tracked = has_seabed
-    flat = bool(line.seabed_normal[0] == 0.0 and line.seabed_normal[1] == 0.0)
-
-    def touchdown(x: np.ndarray) -> float:
-        """Arc length [m] where the line leaves the seabed plane (NaN: no contact)."""
-        if not has_seabed:
-            return math.nan
-        n = line.seabed_normal
-        if flat:
-            bed: np.ndarray | float = line.seabed_offset / n[2]
-        else:
-            bed = (line.seabed_offset - n[0] * x[:, 0] - n[1] * x[:, 1]) / n[2]
-        return touchdown_arc_length(line.s, x[:, 2], bed, problem.touchdown_tolerance)
-
-    extremes = _LineExtremes(
-        None if problem.duration is not None else max(1, problem.steady_window),
-        work.tension,
-        np.sqrt(np.sum(f_static**2, 1)),
-        touchdown(x0),
-    )
+    (
+        work,
+        largs,
+        wargs,
+        sargs,
+        held,
+        x0,
+        v0,
+        a0,
+        x1,
+        v1,
+        a1,
+        F0,
+        strain_prev,
+        base,
+        ex,
+        f_static,
+        t_static,
+        result,
+        extremes,
+    ) = _start(problem, line)
+    td_tol = problem.touchdown_tolerance
 
     T = problem.period
     t_ramp = problem.motion.ramp_time
@@ -150,25 +132,10 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
     max_level = problem.max_refinement
     eps_t = 1e-9 * T
 
-    # history buffer: (t, end tension, x, v, a at the history points, and with
-    # history_line: x, v, a of every node, element tensions, end tensions)
-    hs = np.asarray(problem.history_s, dtype=float)
-    keep_hist = problem.history
-    hist_span = (problem.history_periods + 1.0) * T
-    buf: deque[tuple] = deque()
+    hist = _History(problem, line)
 
     def push(t: float, tension: float, ends: np.ndarray) -> None:
-        if not keep_hist:
-            return
-        xs = interpolate_nodes(line.s, hs, np.stack([x0, v0, a0]))
-        whole = (
-            (x0.copy(), v0.copy(), a0.copy(), work.tension.copy(), ends.copy())
-            if problem.history_line
-            else ()
-        )
-        buf.append((t, tension, xs[0], xs[1], xs[2], *whole))
-        while len(buf) > 2 and buf[1][0] < t - hist_span:
-            buf.popleft()
+        hist.push(t, tension, ends, x0, v0, a0, work.tension)
 
     rec: dict[str, list[np.ndarray]] = {
         k: [] for k in ("t", "x", "v", "a", "end_force", "tension", "friction", "split")
@@ -328,7 +295,7 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
             largs = line.kernel_args()
             np.minimum(c_split[0], split, out=c_split[0])
             np.maximum(c_split[1], split, out=c_split[1])
-        if seabed:
+        if line.has_seabed:
             update_anchors(x1, work.friction, line.seabed_stiffness, work.contact, work.anchor)
         past.append((t, x0.copy()))
         if len(past) > 2:
@@ -341,7 +308,7 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
         strain_prev[:] = work.strain
         end_tensions = np.sqrt(np.sum(forces**2, 1))
         line_max = max(float(work.tension.max()), float(end_tensions.max()))
-        extremes.add(work.tension, end_tensions, touchdown(x0))
+        extremes.add(work.tension, end_tensions, touchdown_of(line, x0, td_tol))
         c_max = max(c_max, tension)
         c_min = min(c_min, tension)
         c_int += 0.5 * (t_prev_tension + tension) * h
@@ -366,35 +333,23 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
                 p_split.append(c_split)
                 extremes.close()
             c_split = [split.copy(), split.copy()]
-            extremes.start(work.tension, end_tensions, touchdown(x0))
+            extremes.start(work.tension, end_tensions, touchdown_of(line, x0, td_tol))
             c_max = c_min = tension
             c_line = line_max
             c_int = 0.0
             c_start = t
             if problem.duration is None:
-                w = problem.steady_window
-                if len(p_max) >= max(problem.min_periods, w + 1):
-                    converged = all(
-                        abs(p_max[-j] - p_max[-j - 1]) <= problem.steady_tolerance * p_max[-j]
-                        and abs(p_min[-j] - p_min[-j - 1]) <= problem.steady_tolerance * p_max[-j]
-                        for j in range(1, w + 1)
-                    )
+                converged = is_steady(problem, p_max, p_min)
             if converged or t >= t_stop - eps_t:
                 break
             next_b = min(next_b + T, t_stop)
 
-    w = max(1, problem.steady_window) if problem.duration is None else len(p_max)
-    if not p_max:  # the run ended inside the ramp: use the last (partial) window
-        p_max, p_min, p_line = [c_max], [c_min], [c_line]
-        p_mean = [c_int / max(t - c_start, 1e-300)]
-    sl = slice(-min(w, len(p_max)), None)
-    sp = slice(-min(w + 1, len(p_max)), None)
-    result.tension_max = max(p_max[sl])
-    result.tension_min = min(p_min[sl])
-    result.tension_mean = float(np.mean(p_mean[sl]))
-    result.tension_max_line = max(p_line[sl])
-    result.tension_max_spread = max(p_max[sp]) - min(p_max[sp])
-    result.tension_min_spread = max(p_min[sp]) - min(p_min[sp])
+    sl = window_statistics(
+        result,
+        problem,
+        (p_max, p_min, p_mean, p_line),
+        (c_max, c_min, c_int / max(t - c_start, 1e-300), c_line),
+    )
     result.steady_converged = converged
     if sliding is not None:
         kept = p_split[sl] if p_split else [c_split]
@@ -404,8 +359,6 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
     result.steps, result.newton_iterations, result.rejected_steps = steps, newton, rejected
     result.periods = t / T
     result.simulated_time = t
-    result.period_max = np.asarray(p_max)
-    result.period_min = np.asarray(p_min)
     (
         result.element_tension_max,
         result.element_tension_min,
@@ -414,10 +367,7 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
         result.touchdown_min,
         result.touchdown_max,
     ) = extremes.window()
-    if keep_hist and len(buf) >= 2:
-        result.history = _resample(
-            buf, t, T, problem, interpolate_nodes(line.s, hs, problem.static_position[None])[0]
-        )
+    result.history = hist.resampled(t)
     if problem.keep_steps:
         result.record = {k: np.asarray(v) for k, v in rec.items()}
     return result

@@ -43,6 +43,7 @@ import math
 import time
 from collections import deque
 from dataclasses import dataclass, field, replace
+from typing import NamedTuple
 
 import numpy as np
 
@@ -323,6 +324,173 @@ class _LineExtremes:
         return self._fold(list(self.periods) or [self.current()])
 
 
+class _History:
+    """The time histories a run keeps (``problem.history``): (t, end tension, x, v, a at
+    the history points, and with ``history_line`` x, v, a of every node, the element
+    and end tensions) over the last ``history_periods`` periods and one more,
+    resampled uniformly at the end (:func:`_resample`)."""
+
+    def __init__(self, problem: DynamicProblem, line: DiscreteLine) -> None:
+        self.problem = problem
+        self.line = line
+        self.points = np.asarray(problem.history_s, dtype=float)
+        self.span = (problem.history_periods + 1.0) * problem.period
+        self.buf: deque[tuple] = deque()
+
+    def push(
+        self,
+        t: float,
+        tension: float,
+        ends: np.ndarray,
+        x: np.ndarray,
+        v: np.ndarray,
+        a: np.ndarray,
+        element_tension: np.ndarray,
+    ) -> None:
+        if not self.problem.history:
+            return
+        xs = interpolate_nodes(self.line.s, self.points, np.stack([x, v, a]))
+        whole = (
+            (x.copy(), v.copy(), a.copy(), element_tension.copy(), ends.copy())
+            if self.problem.history_line
+            else ()
+        )
+        self.buf.append((t, tension, xs[0], xs[1], xs[2], *whole))
+        while len(self.buf) > 2 and self.buf[1][0] < t - self.span:
+            self.buf.popleft()
+
+    def resampled(self, t_end: float) -> dict[str, np.ndarray] | None:
+        """The kept record resampled over the periods ending at ``t_end`` (None: no
+        history asked for, or too short)."""
+        if not self.problem.history or len(self.buf) < 2:
+            return None
+        prob = self.problem
+        static = interpolate_nodes(self.line.s, self.points, prob.static_position[None])[0]
+        return _resample(self.buf, t_end, prob.period, prob, static)
+
+
+class _Start(NamedTuple):
+    """A run's work arrays and its start: the static equilibrium at rest."""
+
+    work: Workspace
+    largs: tuple
+    wargs: tuple
+    sargs: tuple
+    held: np.ndarray
+    x0: np.ndarray
+    v0: np.ndarray
+    a0: np.ndarray
+    x1: np.ndarray
+    v1: np.ndarray
+    a1: np.ndarray
+    F0: np.ndarray
+    strain_prev: np.ndarray
+    base: np.ndarray
+    ex: int
+    f_static: np.ndarray
+    t_static: float
+    result: DynamicResult
+    extremes: _LineExtremes
+
+
+def _start(problem: DynamicProblem, line: DiscreteLine) -> _Start:
+    """Work arrays of ``line``, the state at rest in ``problem.static_position`` (forces
+    with the static friction anchors), the force of the line on the ends there and the
+    excited end's tension, an empty result, and the line's extremes started there."""
+    work = Workspace(line.n_elements)
+    held = line.held
+    x0 = np.array(problem.static_position, dtype=float, copy=True)
+    v0 = np.zeros_like(x0)
+    a0 = np.zeros_like(x0)
+    anchor0 = problem.anchor if problem.anchor is not None else x0
+    evaluate(line, x0, v0, work, anchor=anchor0)
+    ex = problem.excited_end
+    f_static = end_forces(work, a0, x0, held)
+    t_static = float(np.linalg.norm(f_static[ex]))
+    result = DynamicResult(tension_static=t_static, line_s=line.s)
+    result.touchdown_tracked = line.has_seabed
+    extremes = _LineExtremes(
+        None if problem.duration is not None else max(1, problem.steady_window),
+        work.tension,
+        np.sqrt(np.sum(f_static**2, 1)),
+        touchdown_of(line, x0, problem.touchdown_tolerance),
+    )
+    return _Start(
+        work,
+        line.kernel_args(),
+        work.assemble_args(),
+        work.solver_args(line),
+        held,
+        x0,
+        v0,
+        a0,
+        x0.copy(),
+        v0.copy(),
+        a0.copy(),
+        work.F.copy(),
+        work.strain.copy(),
+        np.stack([x0[0], x0[-1]]),
+        ex,
+        f_static,
+        t_static,
+        result,
+        extremes,
+    )
+
+
+def touchdown_of(line: DiscreteLine, x: np.ndarray, tolerance: float) -> float:
+    """Arc length [m] where the line at nodes ``x`` leaves the seabed plane (NaN: no
+    contact, or no seabed)."""
+    if not line.has_seabed:
+        return math.nan
+    n = line.seabed_normal
+    if n[0] == 0.0 and n[1] == 0.0:
+        bed: np.ndarray | float = line.seabed_offset / n[2]
+    else:
+        bed = (line.seabed_offset - n[0] * x[:, 0] - n[1] * x[:, 1]) / n[2]
+    return touchdown_arc_length(line.s, x[:, 2], bed, tolerance)
+
+
+def is_steady(problem: DynamicProblem, p_max: list[float], p_min: list[float]) -> bool:
+    """Whether the last ``steady_window`` periods' maxima and minima each changed by at
+    most ``steady_tolerance`` times the period's maximum (after ``min_periods``)."""
+    w = problem.steady_window
+    if len(p_max) < max(problem.min_periods, w + 1):
+        return False
+    return all(
+        abs(p_max[-j] - p_max[-j - 1]) <= problem.steady_tolerance * p_max[-j]
+        and abs(p_min[-j] - p_min[-j - 1]) <= problem.steady_tolerance * p_max[-j]
+        for j in range(1, w + 1)
+    )
+
+
+def window_statistics(
+    result: DynamicResult,
+    problem: DynamicProblem,
+    periods: tuple[list[float], list[float], list[float], list[float]],
+    partial: tuple[float, float, float, float],
+) -> slice:
+    """Fill ``result``'s tensions from the per-period (max, min, mean, line max) lists:
+    over the last ``steady_window`` periods (every period with a fixed ``duration``;
+    ``partial``, the last unfinished period's, when the run ended inside the ramp), the
+    spreads over one period more. Returns the slice of the periods used."""
+    p_max, p_min, p_mean, p_line = (list(v) for v in periods)
+    w = max(1, problem.steady_window) if problem.duration is None else len(p_max)
+    if not p_max:  # the run ended inside the ramp: use the last (partial) window
+        p_max, p_min, p_mean, p_line = ([v] for v in partial)
+    sl = slice(-min(w, len(p_max)), None)
+    sp = slice(-min(w + 1, len(p_max)), None)
+    result.tension_max = max(p_max[sl])
+    result.tension_min = min(p_min[sl])
+    result.tension_mean = float(np.mean(p_mean[sl]))
+    result.tension_max_line = max(p_line[sl])
+    result.tension_max_spread = max(p_max[sp]) - min(p_max[sp])
+    result.tension_min_spread = max(p_min[sp]) - min(p_min[sp])
+    result.period_max = np.asarray(p_max)
+    result.period_min = np.asarray(p_min)
+    return sl
+
+
 def _hermite(t: np.ndarray, y: np.ndarray, dy: np.ndarray, tq: np.ndarray) -> np.ndarray:
     """Cubic Hermite interpolation of samples ``y`` (ns, ...) with derivatives ``dy``
     at increasing times ``t`` (ns,) to ``tq`` (clamped to the samples' range)."""
@@ -385,47 +553,27 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     wini = _winch_initial(line)
     s_ini = line.s.copy()
     par = AlphaParameters.from_spectral_radius(problem.spectral_radius)
-    work = Workspace(line.n_elements)
-    largs = line.kernel_args()
-    wargs = work.assemble_args()
-    sargs = work.solver_args(line)
-    held = line.held
-
-    x0 = np.array(problem.static_position, dtype=float, copy=True)
-    v0 = np.zeros_like(x0)
-    a0 = np.zeros_like(x0)
-    x1, v1, a1 = x0.copy(), v0.copy(), a0.copy()
-    anchor0 = problem.anchor if problem.anchor is not None else x0
-    evaluate(line, x0, v0, work, anchor=anchor0)
-    F0 = work.F.copy()
-    strain_prev = work.strain.copy()
-    base = np.stack([x0[0], x0[-1]])
-    ex = problem.excited_end
-    f_static = end_forces(work, a0, x0, held)
-    t_static = float(np.linalg.norm(f_static[ex]))
-    result = DynamicResult(tension_static=t_static, line_s=line.s)
-
-    has_seabed = line.has_seabed
-    result.touchdown_tracked = has_seabed
-    flat = bool(line.seabed_normal[0] == 0.0 and line.seabed_normal[1] == 0.0)
-
-    def touchdown(x: np.ndarray) -> float:
-        """Arc length [m] where the line leaves the seabed plane (NaN: no contact)."""
-        if not has_seabed:
-            return math.nan
-        n = line.seabed_normal
-        if flat:
-            bed: np.ndarray | float = line.seabed_offset / n[2]
-        else:
-            bed = (line.seabed_offset - n[0] * x[:, 0] - n[1] * x[:, 1]) / n[2]
-        return touchdown_arc_length(line.s, x[:, 2], bed, problem.touchdown_tolerance)
-
-    extremes = _LineExtremes(
-        None if problem.duration is not None else max(1, problem.steady_window),
-        work.tension,
-        np.sqrt(np.sum(f_static**2, 1)),
-        touchdown(x0),
-    )
+    (
+        work,
+        largs,
+        wargs,
+        sargs,
+        held,
+        x0,
+        v0,
+        a0,
+        x1,
+        v1,
+        a1,
+        F0,
+        strain_prev,
+        base,
+        ex,
+        f_static,
+        t_static,
+        result,
+        extremes,
+    ) = _start(problem, line)
 
     T = problem.period
     t_ramp = problem.motion.ramp_time
@@ -433,25 +581,11 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     tol = problem.newton_tolerance
     eps_t = 1e-9 * T
 
-    # history buffer: (t, end tension, x, v, a at the history points, and with
-    # history_line: x, v, a of every node, element tensions, end tensions)
-    hs = np.asarray(problem.history_s, dtype=float)
     keep_hist = problem.history
-    hist_span = (problem.history_periods + 1.0) * T
-    buf: deque[tuple] = deque()
+    hist = _History(problem, line)
 
     def push(t: float, tension: float, ends: np.ndarray) -> None:
-        if not keep_hist:
-            return
-        xs = interpolate_nodes(line.s, hs, np.stack([x0, v0, a0]))
-        whole = (
-            (x0.copy(), v0.copy(), a0.copy(), work.tension.copy(), ends.copy())
-            if problem.history_line
-            else ()
-        )
-        buf.append((t, tension, xs[0], xs[1], xs[2], *whole))
-        while len(buf) > 2 and buf[1][0] < t - hist_span:
-            buf.popleft()
+        hist.push(t, tension, ends, x0, v0, a0, work.tension)
 
     rec: dict[str, list[np.ndarray]] = {
         k: [] for k in ("t", "x", "v", "a", "end_force", "tension", "friction")
@@ -658,32 +792,25 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         # settle on) nor while a winch runs (the periods must start after it stops)
         if problem.duration is None and st_i[6] == 0:
             w = problem.steady_window
-            if len(p_max) >= max(problem.min_periods, w + 1) and (
-                not winching or t - (w + 1) * T >= problem.winch_stop - eps_t
-            ):
-                converged = all(
-                    abs(p_max[-j] - p_max[-j - 1]) <= problem.steady_tolerance * p_max[-j]
-                    and abs(p_min[-j] - p_min[-j - 1]) <= problem.steady_tolerance * p_max[-j]
-                    for j in range(1, w + 1)
-                )
+            if not winching or t - (w + 1) * T >= problem.winch_stop - eps_t:
+                converged = is_steady(problem, p_max, p_min)
         if converged or final:
             break
         st_f[1] = min(st_f[1] + T, t_stop)
 
     broke = bool(st_i[6])
     steps, newton, rejected = int(st_i[2]), int(st_i[3]), int(st_i[4])
-    w = max(1, problem.steady_window) if problem.duration is None else len(p_max)
-    if not p_max:  # the run ended inside the ramp: use the last (partial) window
-        p_max, p_min, p_line = [float(st_f[2])], [float(st_f[3])], [float(st_f[5])]
-        p_mean = [float(st_f[4]) / max(t - c_start, 1e-300)]
-    sl = slice(-min(w, len(p_max)), None)
-    sp = slice(-min(w + 1, len(p_max)), None)
-    result.tension_max = max(p_max[sl])
-    result.tension_min = min(p_min[sl])
-    result.tension_mean = float(np.mean(p_mean[sl]))
-    result.tension_max_line = max(p_line[sl])
-    result.tension_max_spread = max(p_max[sp]) - min(p_max[sp])
-    result.tension_min_spread = max(p_min[sp]) - min(p_min[sp])
+    window_statistics(
+        result,
+        problem,
+        (p_max, p_min, p_mean, p_line),
+        (
+            float(st_f[2]),
+            float(st_f[3]),
+            float(st_f[4]) / max(t - c_start, 1e-300),
+            float(st_f[5]),
+        ),
+    )
     if broke:  # the whole run, ramp included (the break may come in it)
         result.tension_max, result.tension_min = r_max, r_min
         result.tension_mean = r_int / max(t, 1e-300)
@@ -692,8 +819,6 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     result.steps, result.newton_iterations, result.rejected_steps = steps, newton, rejected
     result.periods = t / T
     result.simulated_time = t
-    result.period_max = np.asarray(p_max)
-    result.period_min = np.asarray(p_min)
     (
         result.element_tension_max,
         result.element_tension_min,
@@ -703,10 +828,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         result.touchdown_max,
     ) = extremes.window(broke)
     result.winch_paid_out = problem.paid_out(t)
-    if keep_hist and len(buf) >= 2:
-        result.history = _resample(
-            buf, t, T, problem, interpolate_nodes(line.s, hs, problem.static_position[None])[0]
-        )
+    result.history = hist.resampled(t)
     if problem.keep_steps:
         result.record = {k: np.asarray(v) for k, v in rec.items()}
     return result
