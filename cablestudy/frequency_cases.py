@@ -164,7 +164,10 @@ def drag_settings(dyn: DynamicSettings) -> DragSettings:
     if lin is None:
         return DragSettings()
     return DragSettings(
-        tolerance=lin.tolerance, max_iterations=lin.max_iterations, samples=lin.samples
+        tolerance=lin.tolerance,
+        max_iterations=lin.max_iterations,
+        samples=DragSettings.samples if lin.samples is None else lin.samples,
+        exact=lin.samples is None,
     )
 
 

@@ -147,8 +147,13 @@ class LinearisationSettings(StrictModel):
         1e-6, le=1e-2, description="relative change of the velocity amplitudes [-]"
     )
     max_iterations: int = Field(100, ge=1, le=10_000, description="drag iterations at most")
-    samples: int = Field(
-        32, ge=8, le=4096, description="phases per period in the drag fit (describing function)"
+    samples: int | None = Field(
+        None,
+        ge=8,
+        le=4096,
+        description="phases per period in the drag fit (describing function) at every "
+        "node; unset: a node whose motion, tangent and current lie in the x-z plane is fitted "
+        "in closed form (exact) and the others over 32 phases",
     )
 
 

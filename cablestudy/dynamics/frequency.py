@@ -55,12 +55,19 @@ current in 2 or 3 dimensions the same fit gives the matrix ``c (|U| I + U U^T / 
 on the normal plane in the limit ``a << |U|``. Directions in which a node does not
 move (``<w' w'^T>`` singular there) take that small-motion tangent.
 
+A node whose motion, tangent and current lie in the x-z plane (every node of a line
+hanging in that plane and moved in it) has scalar normal and tangential relative
+velocities, each a mean plus one harmonic, and the fit is then done in closed form
+(:func:`harmonic_gain`, :func:`planar_drag_fit`): exact, where 32 phases alias the
+odd harmonics of ``|x| x`` into the fit at about 1e-4 of it, and cheaper. The phases
+serve the other nodes, and every node when a study sets ``samples``.
+
 Since ``D`` depends on the motion, the solve is iterated: start from the quasi-static
 motion (the end motion spread linearly along the line), compute ``D``, solve, and
-repeat (compiled: :func:`_drag_iteration`), with Anderson acceleration of depth one
-on the fixed point ``D = G(D)`` (near a resonance the plain map behaves like
-``a -> c / a`` and oscillates; the secant step removes that), until the nodal
-velocities change by less than ``tolerance`` of their largest amplitude.
+repeat (compiled, in :mod:`cablestudy.dynamics.harmonic_cases`), with Anderson
+acceleration of depth one on the fixed point ``D = G(D)`` (near a resonance the plain
+map behaves like ``a -> c / a`` and oscillates; the secant step removes that), until
+the nodal velocities change by less than ``tolerance`` of their largest amplitude.
 
 Pure: arrays in, a :class:`FrequencyResult` out (status, message, counters).
 """
@@ -146,11 +153,14 @@ def block_diagonal(blocks: np.ndarray) -> sp.csr_matrix:
 @dataclass(frozen=True, kw_only=True)
 class DragSettings:
     """Drag iteration: ``tolerance`` [-] on the relative change of the nodal velocity
-    amplitudes, ``max_iterations``, and ``samples`` phases per period in the fit."""
+    amplitudes, ``max_iterations``, and ``samples`` phases per period in the fit; with
+    ``exact`` a node moving in the x-z plane is fitted in closed form
+    (:func:`planar_drag_fit`) and the phases serve the others."""
 
     tolerance: float = 1e-6
     max_iterations: int = 100
     samples: int = 32
+    exact: bool = True
 
 
 @dataclass(kw_only=True)
@@ -204,8 +214,79 @@ def drag_tangent(line: LinearLine) -> np.ndarray:
 
 
 @njit(cache=True)
-def _drag_fit(velocity_re, velocity_im, current, tangent, c_n, c_t, tangent_d, samples, out):  # noqa: ANN001, ANN202
-    """Kernel of :func:`drag_linearisation` (loops over nodes and phases)."""
+def harmonic_gain(U, c):  # noqa: ANN001, ANN201
+    """``b_1 / c`` [m/s] for ``g(x) = |x| x`` of ``x = U + c cos(psi)`` (``c >= 0``), with
+    ``b_1`` the first Fourier coefficient of ``g`` in ``psi``: the equivalent (energy)
+    gain of the quadratic law about a mean flow ``U`` for a harmonic oscillation of
+    amplitude ``c``. Where ``x`` changes sign (``|U| < c``), at ``psi_0 = arccos(-U /
+    c)``, integrating ``x^2 cos(psi)`` over ``[0, psi_0]`` and ``[psi_0, pi]`` gives, with
+    ``mu = U / c`` and ``s_0 = sin(psi_0) = sqrt(1 - mu^2)``,
+    ``b_1 / c = c (2 / pi) (2 mu psi_0 + 2 s_0 (2 + mu^2) / 3 - mu pi)``
+    (``8 c / (3 pi)`` in still water); otherwise ``x`` keeps its sign and ``b_1 / c = 2
+    |U|`` exactly (the tangent at the mean flow). Both meet at ``|mu| = 1``."""
+    if not c > 0.0:
+        return 2.0 * abs(U)
+    if U == 0.0:  # still water
+        return c * (8.0 / (3.0 * math.pi))
+    mu = U / c
+    if mu >= 1.0 or mu <= -1.0:
+        return 2.0 * abs(U)
+    psi0 = math.acos(-mu)
+    s0 = math.sqrt(1.0 - mu * mu)
+    return c * (2.0 / math.pi) * (2.0 * mu * psi0 + 2.0 * s0 * (2.0 + mu * mu) / 3.0 - mu * math.pi)
+
+
+@njit(cache=True)
+def is_planar(vr, vi, t, u):  # noqa: ANN001, ANN201
+    """The node's velocity amplitude ``vr + i vi``, tangent ``t`` and current ``u`` (3,)
+    have no y component."""
+    return vr[1] == 0.0 and vi[1] == 0.0 and t[1] == 0.0 and u[1] == 0.0
+
+
+@njit(cache=True)
+def at_rest(vr, vi):  # noqa: ANN001, ANN201
+    """The node does not move (its fit is the small-motion tangent)."""
+    return (vr[0] == 0.0 and vr[1] == 0.0 and vr[2] == 0.0) and (
+        vi[0] == 0.0 and vi[1] == 0.0 and vi[2] == 0.0
+    )
+
+
+@njit(cache=True)
+def planar_drag_fit(t0, t2, u0, u2, a0, a2, b0, b2, cn, ct, tangent_d, out):  # noqa: ANN001, ANN201, PLR0913
+    """The drag fit of one node whose tangent ``(t0, 0, t2)``, current ``(u0, 0, u2)``
+    and velocity amplitude ``(a0 + i b0, 0, a2 + i b2)`` lie in the x-z plane, in closed
+    form (the limit of the sampled fit as the phases grow, without its aliasing error,
+    which is about 1e-4 of the gain at 32 phases): in the plane the normal and
+    tangential relative velocities are scalars ``U_N + c_N cos(th + phi_N)`` and ``U_T +
+    c_T cos(th + phi_T)`` along ``nu = (-t2, 0, t0)`` and ``t``, the normal drag
+    ``c_N |w_N| w_N nu`` depends on the normal one alone and the tangential on the
+    tangential one alone, so the first harmonic of the drag is ``k_N w_N' nu + k_T
+    w_T' t`` with ``k = c harmonic_gain(U, c)``: ``D = k_N nu nu^T + k_T t t^T`` in the
+    plane. The y row and column are those of the small-motion tangent ``tangent_d``
+    (3, 3), as in the sampled fit for a direction in which the node does not move.
+    ``out`` (3, 3) receives ``D``."""
+    vn_re = -t2 * a0 + t0 * a2
+    vn_im = -t2 * b0 + t0 * b2
+    vt_re = t0 * a0 + t2 * a2
+    vt_im = t0 * b0 + t2 * b2
+    kn = cn * harmonic_gain(-t2 * u0 + t0 * u2, math.sqrt(vn_re * vn_re + vn_im * vn_im))
+    kt = ct * harmonic_gain(t0 * u0 + t2 * u2, math.sqrt(vt_re * vt_re + vt_im * vt_im))
+    out[0, 0] = kn * t2 * t2 + kt * t0 * t0
+    out[0, 2] = kt * t0 * t2 - kn * t2 * t0
+    out[2, 0] = out[0, 2]
+    out[2, 2] = kn * t0 * t0 + kt * t2 * t2
+    out[0, 1] = tangent_d[0, 1]
+    out[1, 1] = tangent_d[1, 1]
+    out[2, 1] = tangent_d[2, 1]
+    out[1, 0] = 0.0
+    out[1, 2] = 0.0
+
+
+@njit(cache=True)
+def _drag_fit(velocity_re, velocity_im, current, tangent, c_n, c_t, tangent_d, samples, exact, out):  # noqa: ANN001, ANN202, PLR0913
+    """Kernel of :func:`drag_linearisation` (loops over nodes and phases); with
+    ``exact``, a node whose motion, tangent and current lie in the x-z plane takes
+    :func:`planar_drag_fit` instead of the phases."""
     n = current.shape[0]
     cos = np.empty(samples)
     sin = np.empty(samples)
@@ -218,6 +299,25 @@ def _drag_fit(velocity_re, velocity_im, current, tangent, c_n, c_t, tangent_d, s
     G = np.empty((3, 3))
     H = np.empty((3, 3))
     for i in range(n):
+        if exact and is_planar(velocity_re[i], velocity_im[i], tangent[i], current[i]):
+            if at_rest(velocity_re[i], velocity_im[i]):
+                out[i] = tangent_d[i]
+            else:
+                planar_drag_fit(
+                    tangent[i, 0],
+                    tangent[i, 2],
+                    current[i, 0],
+                    current[i, 2],
+                    velocity_re[i, 0],
+                    velocity_re[i, 2],
+                    velocity_im[i, 0],
+                    velocity_im[i, 2],
+                    c_n[i],
+                    c_t[i],
+                    tangent_d[i],
+                    out[i],
+                )
+            continue
         fm0 = fm1 = fm2 = 0.0
         for k in range(samples):
             c, s = cos[k], sin[k]
@@ -287,184 +387,17 @@ def _drag_fit(velocity_re, velocity_im, current, tangent, c_n, c_t, tangent_d, s
                 out[i, a, b] = acc
 
 
-@njit(cache=True)
-def _band_solve(ab, bw, rhs, x):  # noqa: ANN001, ANN202
-    """Solve the complex banded system in ``ab`` (3 bw + 1, N): A[i, j] at
-    ab[2 bw + i - j, j], rows 0..bw-1 free for the fill-in of row exchanges) by
-    Gaussian elimination with partial pivoting (as LAPACK's gbsv); ``ab`` and ``rhs``
-    are overwritten. Returns False for a zero pivot."""
-    N = rhs.shape[0]
-    ku = 2 * bw
-    for k in range(N):
-        last = min(k + bw, N - 1)
-        p = k
-        big = abs(ab[ku, k])
-        for i in range(k + 1, last + 1):
-            a = abs(ab[ku + i - k, k])
-            if a > big:
-                big, p = a, i
-        if not big > 0.0:
-            return False
-        right = min(k + ku, N - 1)
-        if p != k:
-            for j in range(k, right + 1):
-                t = ab[ku + k - j, j]
-                ab[ku + k - j, j] = ab[ku + p - j, j]
-                ab[ku + p - j, j] = t
-            t = rhs[k]
-            rhs[k] = rhs[p]
-            rhs[p] = t
-        pivot = ab[ku, k]
-        for i in range(k + 1, last + 1):
-            f = ab[ku + i - k, k] / pivot
-            if f == 0.0:
-                continue
-            for j in range(k + 1, right + 1):
-                ab[ku + i - j, j] -= f * ab[ku + k - j, j]
-            rhs[i] -= f * rhs[k]
-    for i in range(N - 1, -1, -1):
-        acc = rhs[i]
-        for j in range(i + 1, min(i + ku, N - 1) + 1):
-            acc -= ab[ku + i - j, j] * x[j]
-        x[i] = acc / ab[ku, i]
-    return True
-
-
-@njit(cache=True)
-def _drag_iteration(  # noqa: ANN201, PLR0913
-    base,
-    bw,
-    omega,
-    rhs0,
-    up,
-    u,
-    offsets,
-    basis,
-    current,
-    tangent,
-    c_n,
-    c_t,
-    D_small,
-    samples,
-    tol,
-    max_iterations,
-    D,
-):  # noqa: ANN001
-    """The drag iteration of :func:`solve_harmonic` (same steps, compiled): ``u`` (n, 3)
-    complex holds the start and receives the answer, ``D`` (n, 3, 3) the last drag
-    matrices. Returns (iterations, converged, change, ok)."""
-    n = u.shape[0]
-    N = rhs0.shape[0]
-    ab = np.zeros((3 * bw + 1, N), dtype=np.complex128)
-    rhs = np.empty(N, dtype=np.complex128)
-    q = np.empty(N, dtype=np.complex128)
-    v = 1j * omega * u
-    _drag_fit(
-        np.ascontiguousarray(v.real),
-        np.ascontiguousarray(v.imag),
-        current,
-        tangent,
-        c_n,
-        c_t,
-        D_small,
-        samples,
-        D,
-    )
-    G = np.empty_like(D)
-    prev_D = np.empty_like(D)
-    prev_G = np.empty_like(D)
-    have_prev = False
-    last = np.inf
-    change = np.inf
-    for it in range(1, max_iterations + 1):
-        ab[:bw, :] = 0.0
-        ab[bw:, :] = base
-        for i in range(n):
-            o = offsets[i]
-            k = offsets[i + 1] - o
-            for r in range(k):
-                for c in range(k):
-                    acc = 0.0
-                    for a in range(3):
-                        for b in range(3):
-                            acc += basis[i, a, r] * D[i, a, b] * basis[i, b, c]
-                    ab[2 * bw + r - c, o + c] += 1j * omega * acc
-        for j in range(N):
-            rhs[j] = rhs0[j]
-        if not _band_solve(ab, bw, rhs, q):
-            return it, False, change, False
-        vmax = 0.0
-        dmax = 0.0
-        for i in range(n):
-            o = offsets[i]
-            k = offsets[i + 1] - o
-            for a in range(3):
-                acc = up[i, a]
-                for r in range(k):
-                    acc += basis[i, a, r] * q[o + r]
-                vn = 1j * omega * acc
-                if not (np.isfinite(vn.real) and np.isfinite(vn.imag)):
-                    return it, False, change, False
-                dmax = max(dmax, abs(vn - v[i, a]))
-                vmax = max(vmax, abs(vn))
-                u[i, a] = acc
-                v[i, a] = vn
-        change = dmax / max(vmax, 1e-300)
-        if change <= tol:
-            return it, True, change, True
-        _drag_fit(
-            np.ascontiguousarray(v.real),
-            np.ascontiguousarray(v.imag),
-            current,
-            tangent,
-            c_n,
-            c_t,
-            D_small,
-            samples,
-            G,
-        )
-        if change >= last:
-            for i in range(n):
-                for a in range(3):
-                    for b in range(3):
-                        D[i, a, b] = 0.5 * (D[i, a, b] + G[i, a, b])
-            have_prev = False
-        else:
-            theta = 0.0
-            if have_prev:
-                num = 0.0
-                den = 0.0
-                for i in range(n):
-                    for a in range(3):
-                        for b in range(3):
-                            R = G[i, a, b] - D[i, a, b]
-                            dR = R - (prev_G[i, a, b] - prev_D[i, a, b])
-                            num += R * dR
-                            den += dR * dR
-                if den > 0.0:
-                    theta = num / den
-            for i in range(n):
-                for a in range(3):
-                    for b in range(3):
-                        nxt = (
-                            G[i, a, b] - theta * (G[i, a, b] - prev_G[i, a, b])
-                            if have_prev
-                            else G[i, a, b]
-                        )
-                        prev_D[i, a, b] = D[i, a, b]
-                        prev_G[i, a, b] = G[i, a, b]
-                        D[i, a, b] = nxt
-            have_prev = True
-        last = change
-    return max_iterations, False, change, True
-
-
 def drag_linearisation(
-    line: LinearLine, velocity: np.ndarray, samples: int = 32, tangent: np.ndarray | None = None
+    line: LinearLine,
+    velocity: np.ndarray,
+    samples: int = 32,
+    tangent: np.ndarray | None = None,
+    exact: bool = False,
 ) -> np.ndarray:
     """Equivalent drag damping [N s/m] (n, 3, 3) for nodal velocity amplitudes
     ``velocity`` [m/s] (n, 3) complex: the mean-square (describing-function) fit of the
-    module docstring, over ``samples`` phases; ``tangent`` is :func:`drag_tangent`
+    module docstring, over ``samples`` phases (with ``exact``, a node moving in the x-z
+    plane in closed form: :func:`planar_drag_fit`); ``tangent`` is :func:`drag_tangent`
     (computed when not given)."""
     D0 = drag_tangent(line) if tangent is None else tangent
     out = np.empty((line.n_nodes, 3, 3))
@@ -477,6 +410,7 @@ def drag_linearisation(
         line.drag_tangential,
         D0,
         samples,
+        exact,
         out,
     )
     return out
@@ -580,12 +514,6 @@ def solve_harmonic(
     settings = settings or DragSettings()
     line = red.line
     n = line.n_nodes
-    B = line.free_basis
-    BT = B.T.tocsr()
-    bw = red.bandwidth
-    up = np.zeros((n, 3), dtype=complex)
-    up[0], up[-1] = end_motion[0], end_motion[-1]
-    base = red.K - omega**2 * red.M + 1j * omega * red.C
     static_mag = np.linalg.norm(line.end_force, axis=1)
     failed = FrequencyResult(
         displacement=np.full((n, 3), np.nan + 0j),
@@ -595,69 +523,48 @@ def solve_harmonic(
         status=STATUS_NUMERICAL,
         message=f"singular dynamic matrix at {omega / (2 * math.pi):.6g} Hz",
     )
+    if line.has_drag:
+        # the drag iteration is that of a sweep's cases (one compiled kernel), so a
+        # case gives the same numbers alone or in a sweep
+        from .harmonic_cases import solve_harmonic_cases
 
-    # right side: the prescribed end motion through the dynamic matrix; only the end
-    # nodes move, so the drag adds iw D_j u_j at those two nodes only
-    rhs0 = -(BT @ red.apply(up, omega, None).ravel())
-    ends = np.zeros((n, 3), dtype=complex)
-
-    def solve(D: np.ndarray | None) -> np.ndarray | None:
-        ab = base if D is None else base + 1j * omega * red.drag_band(D)
-        rhs = rhs0
-        if D is not None:
-            ends[0] = D[0] @ up[0]
-            ends[-1] = D[-1] @ up[-1]
-            rhs = rhs0 - 1j * omega * (BT @ ends.ravel())
-        if rhs.size == 0:
-            return up.copy()
+        one = solve_harmonic_cases(
+            red, np.array([float(omega)]), np.asarray(end_motion, dtype=complex)[None], settings
+        )
+        if not one.ok[0]:
+            return failed
+        return FrequencyResult(
+            displacement=one.displacement[0],
+            element_tension=one.element_tension[0],
+            end_tension=one.end_tension[0],
+            tension_static=static_mag,
+            drag_iterations=int(one.iterations[0]),
+            drag_converged=bool(one.converged[0]),
+            drag_change=float(one.change[0]),
+            status=STATUS_OK,
+            message="",
+        )
+    # no drag: one linear solve, LAPACK's band solver
+    B = line.free_basis
+    up = np.zeros((n, 3), dtype=complex)
+    up[0], up[-1] = end_motion[0], end_motion[-1]
+    # right side: the prescribed end motion through the dynamic matrix
+    rhs = -(B.T @ red.apply(up, omega, None).ravel())
+    u = up.copy()
+    if rhs.size:
+        ab = red.K - omega**2 * red.M + 1j * omega * red.C
+        bw = red.bandwidth
         try:
             q = solve_banded((bw, bw), ab, rhs, check_finite=False)
         except (np.linalg.LinAlgError, ValueError):
-            return None
+            return failed
         if not np.all(np.isfinite(q)):
-            return None
-        return (B @ q).reshape(n, 3) + up
-
-    D: np.ndarray | None = None
-    iterations = 0
-    converged = True
-    change = 0.0
-    if line.has_drag:
-        frac = (line.s / line.s[-1])[:, None]
-        u = (1.0 - frac) * up[0] + frac * up[-1]
-        D_small = drag_tangent(line)
-        D = np.empty((n, 3, 3))
-        u = np.ascontiguousarray(u, dtype=np.complex128)
-        iterations, converged, change, ok = _drag_iteration(
-            np.ascontiguousarray(base),
-            bw,
-            float(omega),
-            np.ascontiguousarray(rhs0, dtype=np.complex128),
-            up,
-            u,
-            red.offsets,
-            red.node_basis,
-            line.current,
-            line.tangent,
-            line.drag_normal,
-            line.drag_tangential,
-            D_small,
-            settings.samples,
-            settings.tolerance,
-            settings.max_iterations,
-            D,
-        )
-        if not ok:
             return failed
-    else:
-        u_solved = solve(None)
-        if u_solved is None:
-            return failed
-        u = u_solved
+        u = (B @ q).reshape(n, 3) + up
     du = np.diff(u, axis=0)
     axial = (line.axial_stiffness + 1j * omega * line.axial_damping) / line.rest_length
     element_tension = axial * np.sum(line.direction * du, axis=1)
-    reaction = red.apply(u, omega, D)
+    reaction = red.apply(u, omega, None)
     support = -np.stack([reaction[0], reaction[-1]])  # change of the force on the supports
     unit = line.end_force / np.where(static_mag > 0.0, static_mag, 1.0)[:, None]
     end_tension = np.sum(unit * support, axis=1)
@@ -666,9 +573,6 @@ def solve_harmonic(
         element_tension=element_tension,
         end_tension=end_tension,
         tension_static=static_mag,
-        drag_iterations=iterations,
-        drag_converged=converged,
-        drag_change=change,
         status=STATUS_OK,
         message="",
     )
@@ -677,33 +581,9 @@ def solve_harmonic(
 def warm_up() -> None:
     """Load the compiled drag kernels (numba's first call in a process costs about a
     second, mostly loading its own registries); callers do it before timing cases."""
-    n = 3
-    t = np.tile([1.0, 0.0, 0.0], (n, 1))
-    basis = np.zeros((n, 3, 3))
-    basis[1] = np.eye(3)
-    base = np.zeros((5, 3), dtype=np.complex128)
-    base[2] = 1.0
-    up = np.zeros((n, 3), dtype=np.complex128)
-    up[-1, 2] = 1.0
-    _drag_iteration(
-        base,
-        2,
-        1.0,
-        np.ones(3, dtype=np.complex128),
-        up,
-        up.copy(),
-        np.array([0, 0, 3, 3], dtype=np.int64),
-        basis,
-        np.zeros((n, 3)),
-        t,
-        np.ones(n),
-        np.zeros(n),
-        np.zeros((n, 3, 3)),
-        8,
-        1e-6,
-        2,
-        np.empty((n, 3, 3)),
-    )
+    from .harmonic_cases import warm_up as warm_up_cases
+
+    warm_up_cases()
 
 
 # ------------------------------------------------------------------ irregular motion

@@ -2,27 +2,28 @@
 
 A sweep over excitation frequency, amplitude or phase of one line shares its
 :class:`~cablestudy.dynamics.frequency.ReducedLine`; per case only the excitation
-changes. :func:`solve_harmonic_cases` runs, for every case, the steps of
-:func:`~cablestudy.dynamics.frequency.solve_harmonic` (same right side, same starting
-guess, same drag fit, same Anderson-accelerated iteration, same pivoting of the band
-solve, each sum in the same order, so the same numbers) inside one numba kernel, with:
+changes. :func:`solve_harmonic_cases` runs the drag iteration of every case (start
+from the quasi-static motion, fit the drag, solve, Anderson-accelerated; see
+:mod:`cablestudy.dynamics.frequency`) inside one numba kernel, and
+:func:`~cablestudy.dynamics.frequency.solve_harmonic` runs one case through the same
+kernel, so a case gives the same numbers alone or in a sweep. The kernel has:
 
-* the band solve on row-major storage that follows the reach of each row (the
-  columns that row exchanges actually filled), so an elimination step skips columns
-  that are still zero; no value changes, since those updates subtract exact zeros;
-* the drag blocks of nodes whose free basis is the identity added directly (the
-  projection ``b^T D b`` then is ``D`` exactly);
-* the drag fit laid out so that the compiler vectorises the drag over the phases
-  (:func:`drag_fit_samples`: same operations, same order of the sums);
+* a band solve on row-major storage that follows the reach of each row (the columns
+  that row exchanges actually filled), with threshold pivoting (a row exchange only
+  where the diagonal is under a tenth of the column's largest entry), so that an
+  elimination step skips columns that are still zero;
+* the drag blocks of nodes whose free basis picks coordinate directions added
+  directly (the projection ``b^T D b`` then picks entries of ``D``);
+* the drag fit in closed form for nodes moving in the x-z plane
+  (:func:`~cablestudy.dynamics.frequency.planar_drag_fit`), and over the phases laid
+  out so that the compiler vectorises it for the others (:func:`drag_fit_samples`);
 * the right side and the end reactions from the sparse rows themselves;
 * for a line in the x-z plane moved in that plane, the system without its y unknowns,
-  which stay zero (:func:`in_plane`: the same operations on the non-zero entries).
+  which stay zero (:func:`in_plane`).
 
 A line without drag (one linear solve per case, nothing to iterate) goes case by case
-through :func:`~cablestudy.dynamics.frequency.solve_harmonic`, whose LAPACK band solve
-rounds differently from this one. The per-case ``solve_harmonic`` stays the reference
-(tests/unit/test_harmonic_cases.py compares the two). Pure: arrays in, a
-:class:`HarmonicCases` out.
+through :func:`~cablestudy.dynamics.frequency.solve_harmonic` (LAPACK's band solve).
+Pure: arrays in, a :class:`HarmonicCases` out.
 """
 
 from __future__ import annotations
@@ -35,7 +36,7 @@ import numpy as np
 import scipy.sparse as sp
 from numba import njit
 
-from .frequency import DragSettings, ReducedLine, drag_tangent
+from .frequency import DragSettings, ReducedLine, at_rest, drag_tangent, is_planar, planar_drag_fit
 
 
 @dataclass(kw_only=True)
@@ -75,7 +76,9 @@ class _Prepared:
     rows_k: np.ndarray  # (N, 3 bw + 1) row-major bands of K, M, C
     rows_m: np.ndarray
     rows_c: np.ndarray
-    identity: np.ndarray  # (n,) bool: the node's free basis is the identity
+    selected: np.ndarray  # (n,) bool: the node's free basis columns are unit vectors
+    sel: np.ndarray  # (n, 3) int: the axis of each such column (-1 past the node's)
+    pos: np.ndarray  # (n, 3) int: the column of each axis (-1: held along it)
     frac: np.ndarray  # (n,) s / s_end
     d_small: np.ndarray  # (n, 3, 3) drag tangent
     has_drag: bool
@@ -149,7 +152,14 @@ def _prepare(red: ReducedLine) -> _Prepared:
     BT = line.free_basis.T.tocsr()
     n = line.n_nodes
     counts = np.diff(red.offsets)
-    identity = (counts == 3) & np.all(red.node_basis == np.eye(3)[None], axis=(1, 2))
+    nb = red.node_basis  # (n, 3, 3), columns past the node's count are zero
+    unit = (np.sum(nb == 1.0, axis=1) == 1) & (np.sum(nb == 0.0, axis=1) == 2)  # (n, 3)
+    selected = np.array([bool(np.all(unit[i, : counts[i]])) for i in range(n)])
+    sel = np.where(unit, np.argmax(nb == 1.0, axis=1), -1).astype(np.int64)
+    pos = np.full((n, 3), -1, dtype=np.int64)
+    for i in np.flatnonzero(selected):
+        for r in range(counts[i]):
+            pos[i, sel[i, r]] = r
     out = _Prepared(
         k_ptr=K.indptr.astype(np.int64),
         k_idx=K.indices.astype(np.int64),
@@ -163,7 +173,9 @@ def _prepare(red: ReducedLine) -> _Prepared:
         rows_k=_rows(red.K, bw),
         rows_m=_rows(red.M, bw),
         rows_c=_rows(red.C, bw),
-        identity=identity,
+        selected=selected,
+        sel=sel,
+        pos=pos,
         frac=line.s / line.s[-1] if n > 1 else np.zeros(n),
         d_small=drag_tangent(line),
         has_drag=line.has_drag,
@@ -173,18 +185,59 @@ def _prepare(red: ReducedLine) -> _Prepared:
 
 
 @njit(cache=True)
-def drag_fit_samples(
-    vr, vi, current, tangent, c_n, c_t, tangent_d, cos, sin, W0, W1, W2, F0, F1, F2, planar, out
+def drag_fit_samples(  # noqa: PLR0913
+    vr,
+    vi,
+    current,
+    tangent,
+    c_n,
+    c_t,
+    tangent_d,
+    cos,
+    sin,
+    exact,
+    W0,
+    W1,
+    W2,
+    F0,
+    F1,
+    F2,
+    kind,
+    out,
 ):  # noqa: ANN001, ANN201, PLR0913
     """:func:`cablestudy.dynamics.frequency._drag_fit` with ``cos``, ``sin`` (samples,)
     given and the same operations in the same order, laid out for the compiler: the
     drag at every node and phase first, in a loop without running sums (which it can
     vectorise), then the sums over the phases node by node; ``W0`` .. ``F2`` (n,
-    samples) and ``planar`` (n,) bool are work arrays. A node whose motion, tangent and
-    current have no y component skips the y terms (zeros: the values are the same)."""
+    samples) and ``kind`` (n,) int are work arrays. A node whose motion, tangent and
+    current have no y component skips the y terms (zeros: the values are the same);
+    with ``exact`` it takes :func:`~cablestudy.dynamics.frequency.planar_drag_fit`,
+    as ``_drag_fit`` does."""
     n = current.shape[0]
     samples = cos.shape[0]
     for i in range(n):
+        if exact and is_planar(vr[i], vi[i], tangent[i], current[i]):
+            kind[i] = 2
+            if at_rest(vr[i], vi[i]):
+                for a in range(3):
+                    for b in range(3):
+                        out[i, a, b] = tangent_d[i, a, b]
+            else:
+                planar_drag_fit(
+                    tangent[i, 0],
+                    tangent[i, 2],
+                    current[i, 0],
+                    current[i, 2],
+                    vr[i, 0],
+                    vr[i, 2],
+                    vi[i, 0],
+                    vi[i, 2],
+                    c_n[i],
+                    c_t[i],
+                    tangent_d[i],
+                    out[i],
+                )
+            continue
         t0, t1, t2 = tangent[i, 0], tangent[i, 1], tangent[i, 2]
         cn, ct = c_n[i], c_t[i]
         u0, u1, u2 = current[i, 0], current[i, 1], current[i, 2]
@@ -205,9 +258,9 @@ def drag_fit_samples(
                 W0[i, k], W2[i, k] = w0, w2
                 F0[i, k] = cn * sn * n0 + st * t0
                 F2[i, k] = cn * sn * n2 + st * t2
-            planar[i] = True
+            kind[i] = 1
             continue
-        planar[i] = False
+        kind[i] = 0
         for k in range(samples):
             c, s = cos[k], sin[k]
             # Re((a + i b) e^{i th}) = a cos - b sin; the relative velocity is -v
@@ -224,10 +277,12 @@ def drag_fit_samples(
             F1[i, k] = cn * sn * n1 + st * t1
             F2[i, k] = cn * sn * n2 + st * t2
     for i in range(n):
+        if kind[i] == 2:
+            continue
         fm0 = fm1 = fm2 = 0.0
         g00 = g01 = g02 = g11 = g12 = g22 = 0.0
         h00 = h01 = h02 = h10 = h11 = h12 = h20 = h21 = h22 = 0.0
-        if planar[i]:
+        if kind[i] == 1:
             for k in range(samples):
                 fm0 += F0[i, k]
                 fm2 += F2[i, k]
@@ -314,13 +369,25 @@ def drag_fit_samples(
         out[i, 2, 2] = H20 * i02 + H21 * i12 + H22 * i22
 
 
+#: threshold of the pivoting of :func:`band_solve_rows` (the diagonal is kept while
+#: at least this fraction of the column's largest entry)
+PIVOT_THRESHOLD = 0.1
+
+
 @njit(cache=True)
 def band_solve_rows(R, bw, reach, rhs, x):  # noqa: ANN001, ANN201
-    """:func:`cablestudy.dynamics.frequency._band_solve` on row storage ``R`` (N, 3 bw
-    + 1), A[i, j] at R[i, j - i + bw]: Gaussian elimination with the same partial
-    pivoting and the same operations on the non-zero entries (``reach`` (N,) int
-    work array: the last column of each row that may be non-zero). ``R`` and ``rhs``
-    are overwritten. Returns False for a zero pivot."""
+    """Solve the complex banded system on row storage ``R`` (N, 3 bw + 1), A[i, j] at
+    R[i, j - i + bw] (room on the right for the fill-in of row exchanges), by Gaussian
+    elimination with threshold partial pivoting: the diagonal is kept as the pivot
+    unless an entry below it is more than ``1 / PIVOT_THRESHOLD`` times larger (in
+    ``|re| + |im|``, LAPACK's measure), else the largest is taken. Each step's
+    multipliers are then at most ``1 / PIVOT_THRESHOLD`` (10) in size, which bounds the
+    growth as partial pivoting does (with 10 for 1; the threshold rule of sparse
+    direct solvers), and a dynamic matrix, whose diagonal dominates, needs no row
+    exchange, hence no fill-in beyond the band. ``reach`` (N,) int work array: the last
+    column of each row that may be non-zero, so that an elimination step skips
+    columns still zero. ``R`` and ``rhs`` are overwritten. Returns False for a zero
+    pivot."""
     N = rhs.shape[0]
     for i in range(N):
         reach[i] = min(i + bw, N - 1)
@@ -328,28 +395,17 @@ def band_solve_rows(R, bw, reach, rhs, x):  # noqa: ANN001, ANN201
         last = min(k + bw, N - 1)
         p = k
         z = R[k, bw]
-        big2 = z.real * z.real + z.imag * z.imag
-        big = -1.0  # abs of the candidate, computed only where needed
+        diag = abs(z.real) + abs(z.imag)
+        big = diag
         for i in range(k + 1, last + 1):
             z = R[i, k - i + bw]
-            if z.real == 0.0 and z.imag == 0.0:  # abs 0 is never the larger
-                continue
-            a2 = z.real * z.real + z.imag * z.imag
-            # squared magnitudes decide unless within round-off of each other; then
-            # abs (hypot) decides, as in _band_solve
-            clear = 1e-290 < a2 < 1e290 and 1e-290 < big2 < 1e290  # no under/overflow
-            if clear and a2 > big2 * (1.0 + 1e-12):
-                big2, p, big = a2, i, -1.0
-            elif not clear or a2 >= big2 * (1.0 - 1e-12):
-                if big < 0.0:
-                    big = abs(R[p, k - p + bw])
-                a = abs(z)
-                if a > big:
-                    big, big2, p = a, a2, i
-        if big < 0.0:
-            big = abs(R[p, k - p + bw])
+            a = abs(z.real) + abs(z.imag)
+            if a > big:
+                big, p = a, i
         if not big > 0.0:
             return False
+        if diag >= PIVOT_THRESHOLD * big:
+            p = k
         if p != k:
             right = max(reach[k], reach[p])
             for j in range(k, right + 1):
@@ -362,17 +418,15 @@ def band_solve_rows(R, bw, reach, rhs, x):  # noqa: ANN001, ANN201
             t = rhs[k]
             rhs[k] = rhs[p]
             rhs[p] = t
-        pivot = R[k, bw]
+        inv = 1.0 / R[k, bw]
         rk = reach[k]
+        off_k = bw - k
         for i in range(k + 1, last + 1):
             z = R[i, k - i + bw]
-            if z.real == 0.0 and z.imag == 0.0:  # 0 / pivot is 0: nothing to eliminate
+            if z.real == 0.0 and z.imag == 0.0:  # nothing to eliminate
                 continue
-            f = z / pivot
-            if f == 0.0:
-                continue
+            f = z * inv
             off_i = bw - i
-            off_k = bw - k
             for j in range(k + 1, rk + 1):
                 R[i, j + off_i] -= f * R[k, j + off_k]
             rhs[i] -= f * rhs[k]
@@ -394,23 +448,6 @@ def _csr_rows(ptr, idx, val, x, lo, hi, out):  # noqa: ANN001, ANN202
         for jj in range(ptr[r], ptr[r + 1]):
             acc += val[jj] * x[idx[jj]]
         out[r - lo] = acc
-
-
-@njit(cache=True)
-def _max_abs(z, sq, sq_max):  # noqa: ANN001, ANN202
-    """``max(abs(z))`` (0 for none) as a running max of ``abs`` gives it, computing
-    ``abs`` (hypot) only for the entries whose squared magnitude ``sq`` lies within
-    round-off of the largest, ``sq_max``: any other one is surely smaller."""
-    acc = 0.0
-    if 1e-290 < sq_max < 1e290:  # squares neither under- nor overflow
-        low = sq_max * (1.0 - 1e-12)
-        for j in range(z.shape[0]):
-            if sq[j] >= low:
-                acc = max(acc, abs(z[j]))
-        return acc
-    for j in range(z.shape[0]):
-        acc = max(acc, abs(z[j]))
-    return acc
 
 
 @njit(cache=True)
@@ -469,7 +506,9 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
     bw,
     offsets,
     basis,
-    identity,
+    selected,
+    sel,
+    pos,
     frac,
     current,
     tangent,
@@ -478,6 +517,7 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
     d_small,
     has_drag,
     samples,
+    exact,
     tol,
     max_iterations,
     u_out,
@@ -517,17 +557,13 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
     prev_D = np.empty((n, 3, 3))
     prev_G = np.empty((n, 3, 3))
     end_rows = np.empty(3, dtype=np.complex128)
-    dv = np.empty(3 * n, dtype=np.complex128)
-    vflat = np.empty(3 * n, dtype=np.complex128)
-    dsq = np.empty(3 * n)
-    vsq = np.empty(3 * n)
     W0 = np.empty((n, samples))
     W1 = np.empty((n, samples))
     W2 = np.empty((n, samples))
     F0 = np.empty((n, samples))
     F1 = np.empty((n, samples))
     F2 = np.empty((n, samples))
-    planar = np.empty(n, dtype=np.bool_)
+    kind = np.empty(n, dtype=np.int64)
     for case in range(omegas.shape[0]):
         omega = omegas[case]
         w2 = omega**2
@@ -573,13 +609,14 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                 d_small,
                 cos,
                 sin,
+                exact,
                 W0,
                 W1,
                 W2,
                 F0,
                 F1,
                 F2,
-                planar,
+                kind,
                 D,
             )
             have_prev = False
@@ -594,10 +631,10 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                 for i in range(n):
                     o = offsets[i]
                     kk = offsets[i + 1] - o
-                    if identity[i]:
-                        for r in range(3):
-                            for c in range(3):
-                                R[o + r, c - r + bw] += 1j * omega * D[i, r, c]
+                    if selected[i]:  # B^T D B picks entries of D
+                        for r in range(kk):
+                            for c in range(kk):
+                                R[o + r, c - r + bw] += 1j * omega * D[i, sel[i, r], sel[i, c]]
                         continue
                     for r in range(kk):
                         for c in range(kk):
@@ -614,35 +651,30 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                     break
                 d2max = 0.0
                 v2max = 0.0
-                finite = True
                 for i in range(n):
                     o = offsets[i]
                     kk = offsets[i + 1] - o
                     for a in range(3):
                         acc = up[i, a]
-                        for r in range(kk):
-                            acc += basis[i, a, r] * q[o + r]
+                        if selected[i]:
+                            if pos[i, a] >= 0:
+                                acc += q[o + pos[i, a]]
+                        else:
+                            for r in range(kk):
+                                acc += basis[i, a, r] * q[o + r]
                         vn = 1j * omega * acc
-                        if not (np.isfinite(vn.real) and np.isfinite(vn.imag)):
-                            finite = False
                         dz = vn - v[i, a]
                         d2 = dz.real * dz.real + dz.imag * dz.imag
                         v2 = vn.real * vn.real + vn.imag * vn.imag
-                        dv[3 * i + a] = dz
-                        dsq[3 * i + a] = d2
-                        vsq[3 * i + a] = v2
                         d2max = max(d2max, d2)
                         v2max = max(v2max, v2)
                         u[i, a] = acc
                         v[i, a] = vn
-                        vflat[3 * i + a] = vn
-                if not finite:
+                if not (d2max < np.inf and v2max < np.inf):  # not finite (or NaN)
                     ok = False
                     iterations = it
                     break
-                dmax = _max_abs(dv, dsq, d2max)
-                vmax = _max_abs(vflat, vsq, v2max)
-                change = dmax / max(vmax, 1e-300)
+                change = math.sqrt(d2max) / max(math.sqrt(v2max), 1e-300)
                 if change <= tol:
                     converged = True
                     iterations = it
@@ -661,13 +693,14 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                     d_small,
                     cos,
                     sin,
+                    exact,
                     W0,
                     W1,
                     W2,
                     F0,
                     F1,
                     F2,
-                    planar,
+                    kind,
                     G,
                 )
                 have_prev = _mixed(D, G, prev_D, prev_G, have_prev, change, last)
@@ -728,11 +761,14 @@ def solve_harmonic_cases(
     omegas: np.ndarray,
     end_motion: np.ndarray,
     settings: DragSettings | None = None,
+    *,
+    plane: bool = True,
 ) -> HarmonicCases:
     """Steady harmonic responses of the line at angular frequencies ``omegas`` [rad/s]
-    (K,) to end displacements ``end_motion`` [m] (K, 2, 3) complex (A and B), each as
-    :func:`~cablestudy.dynamics.frequency.solve_harmonic` (module docstring). Never
-    raises for a numerical failure: a failed case has ``ok`` False and NaN arrays."""
+    (K,) to end displacements ``end_motion`` [m] (K, 2, 3) complex (A and B), with the
+    drag linearised by iteration (module docstring); ``plane`` False keeps the y
+    unknowns of a line in the x-z plane (a test's reference). Never raises for a
+    numerical failure: a failed case has ``ok`` False and NaN arrays."""
     settings = settings or DragSettings()
     line = red.line
     if not line.has_drag:
@@ -740,7 +776,7 @@ def solve_harmonic_cases(
         return _one_by_one(red, omegas, end_motion, settings)
     omegas = np.ascontiguousarray(omegas, dtype=float)
     motion = np.ascontiguousarray(end_motion, dtype=np.complex128)
-    if not np.any(motion[:, :, 1]):
+    if plane and not np.any(motion[:, :, 1]):
         red = in_plane(red)  # the same numbers, a third fewer unknowns (module docstring)
     p = _prepare(red)
     n = line.n_nodes
@@ -770,7 +806,9 @@ def solve_harmonic_cases(
         red.bandwidth,
         red.offsets,
         np.ascontiguousarray(red.node_basis),
-        p.identity,
+        p.selected,
+        p.sel,
+        p.pos,
         p.frac,
         np.ascontiguousarray(line.current, dtype=float),
         np.ascontiguousarray(line.tangent, dtype=float),
@@ -779,6 +817,7 @@ def solve_harmonic_cases(
         p.d_small,
         p.has_drag,
         settings.samples,
+        settings.exact,
         settings.tolerance,
         settings.max_iterations,
         u,

@@ -1,14 +1,12 @@
-"""The batched harmonic solver (cablestudy.dynamics.harmonic_cases) against the per-case
-reference solve_harmonic, case by case.
-
-Both run the same steps on the same numbers (same right side, starting guess, drag fit,
-Anderson mixing and pivoting), so they agree to round-off: the drag iteration takes the
-same number of steps and every output agrees to 1e-12 of its largest value (the kernel
-reorders no sum; the margin covers the sparse products done by hand instead of by
-scipy). Lines: the moustafa cable of the Figs. 2-5 sweep (drag in still water, several
-frequencies through the resonance and amplitudes), the same cable in a cross current,
-in vacuum (no drag: one linear solve, LAPACK's in both), a chain mooring on the seabed
-with drag, and that chain with nodes of 1 and 2 free directions."""
+"""The batched harmonic solver (cablestudy.dynamics.harmonic_cases): a case gives the
+same numbers alone (solve_harmonic) or in a batch; the converged answer is the fixed
+point of the drag linearisation (checked against a dense solve with the drag fitted
+to it); a line in the x-z plane gives the same answer without its y unknowns; partly
+held nodes are projected right. Lines: the moustafa cable of the Figs. 2-5 sweep
+(drag in still water, several frequencies through the resonance and amplitudes), the
+same cable in a cross current, in vacuum (no drag: one linear solve, LAPACK's), a
+chain mooring on the seabed with drag, and that chain with nodes of 1 and 2 free
+directions."""
 
 from __future__ import annotations
 
@@ -23,7 +21,13 @@ import scipy.sparse as sp
 from cablestudy import analyses, frequency_cases
 from cablestudy.cases import expand_cases
 from cablestudy.config.loader import parse_study_text
-from cablestudy.dynamics.frequency import ReducedLine, block_diagonal, solve_harmonic
+from cablestudy.dynamics.frequency import (
+    ReducedLine,
+    block_diagonal,
+    drag_linearisation,
+    drag_tangent,
+    solve_harmonic,
+)
 from cablestudy.dynamics.harmonic_cases import in_plane, solve_harmonic_cases
 from cablestudy.dynamics.validity import measures, measures_cases
 
@@ -89,46 +93,121 @@ def _close(a: np.ndarray, b: np.ndarray) -> None:
     assert float(np.max(np.abs(a - b))) <= 1e-12 * scale
 
 
+def _dense_solve(red: ReducedLine, omega: float, X: np.ndarray, D: np.ndarray | None) -> np.ndarray:
+    """Displacements (n, 3) of the dynamic system with drag blocks ``D`` by a dense LU
+    solve of the projected system (the reference of the band solves)."""
+    line = red.line
+    n = line.n_nodes
+    B = line.free_basis.toarray()
+    A = (
+        line.stiffness.toarray()
+        - omega**2 * line.mass_matrix().toarray()
+        + 1j * omega * line.damping.toarray()
+    )
+    if D is not None:
+        A = A + 1j * omega * block_diagonal(D).toarray()
+    up = np.zeros((n, 3), dtype=complex)
+    up[0], up[-1] = X[0], X[-1]
+    q = np.linalg.solve(B.T @ A @ B, -B.T @ (A @ up.ravel()))
+    return (B @ q).reshape(n, 3) + up
+
+
+def _fit(red: ReducedLine, omega: float, u: np.ndarray, settings) -> np.ndarray | None:  # noqa: ANN001
+    """The reference drag fit (drag_linearisation) to displacements ``u``."""
+    line = red.line
+    if not line.has_drag:
+        return None
+    return drag_linearisation(
+        line, 1j * omega * u, settings.samples, drag_tangent(line), settings.exact
+    )
+
+
+def _fixed_point_error(
+    red: ReducedLine, omega: float, X: np.ndarray, u: np.ndarray, settings
+) -> float:  # noqa: ANN001
+    """Relative difference between ``u`` and the dense solve of the dynamic system
+    with the drag fitted to ``u`` itself."""
+    ref = _dense_solve(red, omega, X, _fit(red, omega, u, settings))
+    return float(np.abs(ref - u).max() / np.abs(ref).max())
+
+
 @pytest.mark.parametrize(
-    ("text", "pick", "planar"),
+    ("text", "pick", "planar", "bound"),
     [
         # 0.1-1.2 Hz in 0.05 Hz steps: the resonance near 0.85-1.0 Hz takes the most
         # drag iterations; amplitudes 0.025 and 0.1 m
-        (_moustafa(), [0, 5, 15, 17, 21, 69, 84, 87, 91], True),
-        (_moustafa(current=True), [3, 16, 40, 85], False),  # current along y
-        (_moustafa(fluid="vacuum"), [2, 16, 50], False),  # no drag: LAPACK, one by one
-        (CHAIN, slice(None), True),
+        (_moustafa(), [0, 5, 15, 17, 21, 69, 84, 87, 91], True, 1e-8),
+        # current along y: the nodes move out of the plane of tangent and current, and
+        # the fit is sampled; its iteration stalls between 1e-8 and 1e-5 (measured),
+        # so this line is checked at the default tolerance 1e-6 (fixed-point error
+        # measured 5e-8 to 7e-6: the tolerance times the conditioning near resonance)
+        (_moustafa(current=True), [3, 16, 40, 85], False, 1e-4),
+        (_moustafa(fluid="vacuum"), [2, 16, 50], False, 1e-8),  # no drag: one solve
+        (CHAIN, slice(None), True, 1e-8),
     ],
     ids=["drag", "current", "vacuum", "seabed"],
 )
-def test_batched_cases_match_solve_harmonic(
-    text: str, pick: slice | list[int], planar: bool
+def test_batched_cases_are_the_fixed_point_and_each_case_alone(
+    text: str, pick: slice | list[int], planar: bool, bound: float
 ) -> None:
-    """Lines in the x-z plane are solved without their y unknowns (in_plane): same
-    numbers; the others in full."""
+    """Each case of a batch equals, bit for bit, the case solved alone. The answer is
+    the fixed point of the drag linearisation: a dense LU solve with the drag fitted to
+    the answer gives it again, to ``bound``: with the closed-form fit the iteration
+    runs to 1e-11 and the two agree to 1e-8 (measured 1e-11 to 2e-10: the iteration's
+    tolerance times the conditioning near the resonance). Lines in the x-z plane are
+    solved without their y unknowns (in_plane)."""
     cases = _cases(text, pick)
     _, red, omegas, motion, settings = _setup(cases)
     assert (in_plane(red) is not red) == planar
     batch = solve_harmonic_cases(red, omegas, motion, settings)
-    assert batch.ok.all()
+    assert batch.ok.all() and batch.converged.all()
+    check = replace(settings, tolerance=1e-11) if bound < 1e-6 else settings
+    fixed = solve_harmonic_cases(red, omegas, motion, check)
+    assert fixed.converged.all()
     for k in range(len(cases)):
-        ref = solve_harmonic(red, omegas[k], motion[k], settings)
-        assert ref.success, ref.message
-        assert batch.iterations[k] == ref.drag_iterations
-        assert bool(batch.converged[k]) == ref.drag_converged
-        _close(ref.displacement, batch.displacement[k])
-        _close(ref.element_tension, batch.element_tension[k])
-        _close(ref.end_tension, batch.end_tension[k])
-        np.testing.assert_array_equal(batch.tension_static, ref.tension_static)
+        alone = solve_harmonic(red, omegas[k], motion[k], settings)
+        assert alone.success, alone.message
+        assert batch.iterations[k] == alone.drag_iterations
+        assert bool(batch.converged[k]) == alone.drag_converged
+        for got, want in (
+            (batch.displacement[k], alone.displacement),
+            (batch.element_tension[k], alone.element_tension),
+            (batch.end_tension[k], alone.end_tension),
+        ):
+            assert got.tobytes() == want.tobytes()
+        np.testing.assert_array_equal(batch.tension_static, alone.tension_static)
+        assert _fixed_point_error(red, omegas[k], motion[k], fixed.displacement[k], check) < bound
     if red.line.has_drag:
         assert batch.iterations.max() > 1  # the drag iteration was exercised
+
+
+def test_line_in_the_x_z_plane_gives_the_same_answer_without_its_y_unknowns() -> None:
+    """in_plane drops the y unknowns of a line in the x-z plane moved in it: they stay
+    zero, so the smaller system's answer is the full system's (to round-off: 1e-12 of
+    the largest value; the iteration takes the same steps)."""
+    cases = _cases(_moustafa(), [0, 17, 21, 87, 91])
+    _, red, omegas, motion, settings = _setup(cases)
+    assert in_plane(red) is not red
+    small = solve_harmonic_cases(red, omegas, motion, settings)
+    full = solve_harmonic_cases(red, omegas, motion, settings, plane=False)
+    np.testing.assert_array_equal(small.iterations, full.iterations)
+    for a, b in (
+        (small.displacement, full.displacement),
+        (small.end_tension, full.end_tension),
+        (small.element_tension, full.element_tension),
+    ):
+        _close(b, a)
+    assert not np.any(full.displacement[:, :, 1])
 
 
 def test_partly_held_nodes_reduced_bands_and_batched_solve() -> None:
     """With nodes of 0, 1, 2 and 3 free directions (some held along a random plane or
     line, as a line model may hold nodes), the band storage of ReducedLine holds
-    B^T K B and B^T M B exactly and B^T D B for drag blocks D, and the batched solve
-    still matches solve_harmonic."""
+    B^T K B and B^T M B exactly and B^T D B for drag blocks D, and a drag iteration of
+    the batched solve is the dense solve with the same drag (to 1e-10: round-off times
+    the conditioning). Its nodes move out of the x-z plane, so the fit is sampled; the
+    iteration of this artificial line does not converge in 1000 steps (measured), so
+    one step is checked."""
     cases = _cases(CHAIN, slice(None))
     _, red0, omegas, motion, settings = _setup(cases)
     line0 = red0.line
@@ -162,12 +241,14 @@ def test_partly_held_nodes_reduced_bands_and_batched_solve() -> None:
     D = rng.normal(size=(line0.n_nodes, 3, 3))
     expect = B.T @ block_diagonal(D).toarray() @ B
     np.testing.assert_allclose(dense(red.drag_band(D)), expect, atol=1e-14 * np.abs(D).max())
-    batch = solve_harmonic_cases(red, omegas, motion, settings)
+    # one drag iteration: the solve with the drag fitted to the quasi-static start (the
+    # end motion spread linearly along s), against the dense solve with that drag
+    one = solve_harmonic_cases(red, omegas, motion, replace(settings, max_iterations=1))
+    frac = (line0.s / line0.s[-1])[:, None]
     for k in range(omegas.size):
-        ref = solve_harmonic(red, omegas[k], motion[k], settings)
-        assert batch.iterations[k] == ref.drag_iterations
-        _close(ref.displacement, batch.displacement[k])
-        _close(ref.end_tension, batch.end_tension[k])
+        start = (1.0 - frac) * motion[k, 0] + frac * motion[k, 1]
+        ref = _dense_solve(red, omegas[k], motion[k], _fit(red, omegas[k], start, settings))
+        assert np.abs(one.displacement[k] - ref).max() <= 1e-10 * np.abs(ref).max()
 
 
 @pytest.mark.parametrize("text", [_moustafa(), CHAIN], ids=["span", "seabed"])
