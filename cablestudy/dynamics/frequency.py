@@ -237,23 +237,15 @@ def harmonic_gain(U, c):  # noqa: ANN001, ANN201
 
 
 @njit(cache=True)
-def is_planar(vr, vi, t, u):  # noqa: ANN001, ANN201
-    """The node's velocity amplitude ``vr + i vi``, tangent ``t`` and current ``u`` (3,)
-    have no y component."""
-    return vr[1] == 0.0 and vi[1] == 0.0 and t[1] == 0.0 and u[1] == 0.0
+def is_planar(vr, vi, t, u, i):  # noqa: ANN001, ANN201
+    """Node ``i``'s velocity amplitude ``vr + i vi``, tangent ``t`` and current ``u``
+    (n, 3) have no y component."""
+    return vr[i, 1] == 0.0 and vi[i, 1] == 0.0 and t[i, 1] == 0.0 and u[i, 1] == 0.0
 
 
 @njit(cache=True)
-def at_rest(vr, vi):  # noqa: ANN001, ANN201
-    """The node does not move (its fit is the small-motion tangent)."""
-    return (vr[0] == 0.0 and vr[1] == 0.0 and vr[2] == 0.0) and (
-        vi[0] == 0.0 and vi[1] == 0.0 and vi[2] == 0.0
-    )
-
-
-@njit(cache=True)
-def planar_drag_fit(t0, t2, u0, u2, a0, a2, b0, b2, cn, ct, tangent_d, out):  # noqa: ANN001, ANN201, PLR0913
-    """The drag fit of one node whose tangent ``(t0, 0, t2)``, current ``(u0, 0, u2)``
+def planar_drag_fit(vr, vi, t, u, c_n, c_t, tangent_d, i, out):  # noqa: ANN001, ANN201, PLR0913
+    """The drag fit of node ``i`` whose tangent ``(t0, 0, t2)``, current ``(u0, 0, u2)``
     and velocity amplitude ``(a0 + i b0, 0, a2 + i b2)`` lie in the x-z plane, in closed
     form (the limit of the sampled fit as the phases grow, without its aliasing error,
     which is about 1e-4 of the gain at 32 phases): in the plane the normal and
@@ -263,23 +255,33 @@ def planar_drag_fit(t0, t2, u0, u2, a0, a2, b0, b2, cn, ct, tangent_d, out):  # 
     tangential one alone, so the first harmonic of the drag is ``k_N w_N' nu + k_T
     w_T' t`` with ``k = c harmonic_gain(U, c)``: ``D = k_N nu nu^T + k_T t t^T`` in the
     plane. The y row and column are those of the small-motion tangent ``tangent_d``
-    (3, 3), as in the sampled fit for a direction in which the node does not move.
-    ``out`` (3, 3) receives ``D``."""
+    (n, 3, 3), as in the sampled fit for a direction in which the node does not move;
+    a node at rest takes that tangent whole. ``out`` (n, 3, 3) receives ``D`` at ``i``
+    (arrays and an index rather than a node's views: no view is made per node)."""
+    a0, a2 = vr[i, 0], vr[i, 2]
+    b0, b2 = vi[i, 0], vi[i, 2]
+    if a0 == 0.0 and a2 == 0.0 and b0 == 0.0 and b2 == 0.0:
+        for a in range(3):
+            for b in range(3):
+                out[i, a, b] = tangent_d[i, a, b]
+        return
+    t0, t2 = t[i, 0], t[i, 2]
     vn_re = -t2 * a0 + t0 * a2
     vn_im = -t2 * b0 + t0 * b2
     vt_re = t0 * a0 + t2 * a2
     vt_im = t0 * b0 + t2 * b2
-    kn = cn * harmonic_gain(-t2 * u0 + t0 * u2, math.sqrt(vn_re * vn_re + vn_im * vn_im))
-    kt = ct * harmonic_gain(t0 * u0 + t2 * u2, math.sqrt(vt_re * vt_re + vt_im * vt_im))
-    out[0, 0] = kn * t2 * t2 + kt * t0 * t0
-    out[0, 2] = kt * t0 * t2 - kn * t2 * t0
-    out[2, 0] = out[0, 2]
-    out[2, 2] = kn * t0 * t0 + kt * t2 * t2
-    out[0, 1] = tangent_d[0, 1]
-    out[1, 1] = tangent_d[1, 1]
-    out[2, 1] = tangent_d[2, 1]
-    out[1, 0] = 0.0
-    out[1, 2] = 0.0
+    u0, u2 = u[i, 0], u[i, 2]
+    kn = c_n[i] * harmonic_gain(-t2 * u0 + t0 * u2, math.sqrt(vn_re * vn_re + vn_im * vn_im))
+    kt = c_t[i] * harmonic_gain(t0 * u0 + t2 * u2, math.sqrt(vt_re * vt_re + vt_im * vt_im))
+    out[i, 0, 0] = kn * t2 * t2 + kt * t0 * t0
+    out[i, 0, 2] = kt * t0 * t2 - kn * t2 * t0
+    out[i, 2, 0] = out[i, 0, 2]
+    out[i, 2, 2] = kn * t0 * t0 + kt * t2 * t2
+    out[i, 0, 1] = tangent_d[i, 0, 1]
+    out[i, 1, 1] = tangent_d[i, 1, 1]
+    out[i, 2, 1] = tangent_d[i, 2, 1]
+    out[i, 1, 0] = 0.0
+    out[i, 1, 2] = 0.0
 
 
 @njit(cache=True)
@@ -299,24 +301,8 @@ def _drag_fit(velocity_re, velocity_im, current, tangent, c_n, c_t, tangent_d, s
     G = np.empty((3, 3))
     H = np.empty((3, 3))
     for i in range(n):
-        if exact and is_planar(velocity_re[i], velocity_im[i], tangent[i], current[i]):
-            if at_rest(velocity_re[i], velocity_im[i]):
-                out[i] = tangent_d[i]
-            else:
-                planar_drag_fit(
-                    tangent[i, 0],
-                    tangent[i, 2],
-                    current[i, 0],
-                    current[i, 2],
-                    velocity_re[i, 0],
-                    velocity_re[i, 2],
-                    velocity_im[i, 0],
-                    velocity_im[i, 2],
-                    c_n[i],
-                    c_t[i],
-                    tangent_d[i],
-                    out[i],
-                )
+        if exact and is_planar(velocity_re, velocity_im, tangent, current, i):
+            planar_drag_fit(velocity_re, velocity_im, tangent, current, c_n, c_t, tangent_d, i, out)
             continue
         fm0 = fm1 = fm2 = 0.0
         for k in range(samples):

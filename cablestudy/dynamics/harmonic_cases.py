@@ -36,7 +36,7 @@ import numpy as np
 import scipy.sparse as sp
 from numba import njit
 
-from .frequency import DragSettings, ReducedLine, at_rest, drag_tangent, is_planar, planar_drag_fit
+from .frequency import DragSettings, ReducedLine, drag_tangent, is_planar, planar_drag_fit
 
 
 @dataclass(kw_only=True)
@@ -216,27 +216,9 @@ def drag_fit_samples(  # noqa: PLR0913
     n = current.shape[0]
     samples = cos.shape[0]
     for i in range(n):
-        if exact and is_planar(vr[i], vi[i], tangent[i], current[i]):
+        if exact and is_planar(vr, vi, tangent, current, i):
             kind[i] = 2
-            if at_rest(vr[i], vi[i]):
-                for a in range(3):
-                    for b in range(3):
-                        out[i, a, b] = tangent_d[i, a, b]
-            else:
-                planar_drag_fit(
-                    tangent[i, 0],
-                    tangent[i, 2],
-                    current[i, 0],
-                    current[i, 2],
-                    vr[i, 0],
-                    vr[i, 2],
-                    vi[i, 0],
-                    vi[i, 2],
-                    c_n[i],
-                    c_t[i],
-                    tangent_d[i],
-                    out[i],
-                )
+            planar_drag_fit(vr, vi, tangent, current, c_n, c_t, tangent_d, i, out)
             continue
         t0, t1, t2 = tangent[i, 0], tangent[i, 1], tangent[i, 2]
         cn, ct = c_n[i], c_t[i]
@@ -450,40 +432,92 @@ def _csr_rows(ptr, idx, val, x, lo, hi, out):  # noqa: ANN001, ANN202
         out[r - lo] = acc
 
 
+#: secant pairs kept by the Anderson mixing of the drag iteration (:func:`_mixed`)
+ANDERSON_DEPTH = 3
+
+
 @njit(cache=True)
-def _mixed(D, G, prev_D, prev_G, have_prev, change, last):  # noqa: ANN001, ANN202
-    """The next drag matrices of the iteration of ``_drag_iteration`` (halving after a
-    change that grew, else Anderson of depth one); returns the new ``have_prev``."""
-    n = D.shape[0]
+def _mixed(D, G, hist_R, hist_G, gram, state, change, last):  # noqa: ANN001, ANN202, PLR0913
+    """The next drag matrices ``D`` of the fixed point ``D = G(D)`` (``G`` the fit to the
+    motion ``D`` gave): after a change that grew, the mean of the two with the history
+    dropped; else Anderson mixing over the last (residual ``R = G - D``, ``G``) pairs,
+    ``D = G - sum_j g_j (G - G_j)`` with ``g`` the least-squares fit of ``R`` by the
+    residual differences ``R - R_j`` (depth one: the secant step ``theta = R . dR / dR
+    . dR``). The pairs sit in the ring ``hist_R``, ``hist_G`` (depth + 1, n * 9) with
+    their Gram matrix ``gram`` (depth + 1, depth + 1); ``state`` (2,) int holds the
+    number of pairs and the ring's first slot."""
+    d = D.reshape(-1)
+    g = G.reshape(-1)
+    size = d.size
+    keep = hist_R.shape[0]
+    count, head = state[0], state[1]
     if change >= last:
-        for i in range(n):
-            for a in range(3):
-                for b in range(3):
-                    D[i, a, b] = 0.5 * (D[i, a, b] + G[i, a, b])
-        return False
-    theta = 0.0
-    if have_prev:
-        num = 0.0
-        den = 0.0
-        for i in range(n):
-            for a in range(3):
-                for b in range(3):
-                    R = G[i, a, b] - D[i, a, b]
-                    dR = R - (prev_G[i, a, b] - prev_D[i, a, b])
-                    num += R * dR
-                    den += dR * dR
-        if den > 0.0:
-            theta = num / den
-    for i in range(n):
-        for a in range(3):
-            for b in range(3):
-                nxt = (
-                    G[i, a, b] - theta * (G[i, a, b] - prev_G[i, a, b]) if have_prev else G[i, a, b]
-                )
-                prev_D[i, a, b] = D[i, a, b]
-                prev_G[i, a, b] = G[i, a, b]
-                D[i, a, b] = nxt
-    return True
+        for q in range(size):
+            d[q] = 0.5 * (d[q] + g[q])
+        state[0] = 0
+        state[1] = 0
+        return
+    if count == keep:  # the oldest pair leaves
+        slot = head
+        head = (head + 1) % keep
+    else:
+        slot = (head + count) % keep
+        count += 1
+    for q in range(size):
+        hist_R[slot, q] = g[q] - d[q]
+        hist_G[slot, q] = g[q]
+    for c in range(count):
+        j = (head + c) % keep
+        acc = 0.0
+        for q in range(size):
+            acc += hist_R[slot, q] * hist_R[j, q]
+        gram[slot, j] = acc
+        gram[j, slot] = acc
+    state[0] = count
+    state[1] = head
+    m = count - 1
+    if m == 0:
+        for q in range(size):
+            d[q] = g[q]
+        return
+    others = np.empty(m, dtype=np.int64)
+    c2 = 0
+    for c in range(count):
+        j = (head + c) % keep
+        if j != slot:
+            others[c2] = j
+            c2 += 1
+    A = np.empty((m, m))
+    rhs = np.empty(m)
+    rr = gram[slot, slot]
+    trace = 0.0
+    for a in range(m):
+        ja = others[a]
+        rhs[a] = rr - gram[slot, ja]
+        for b in range(m):
+            jb = others[b]
+            A[a, b] = rr - gram[slot, ja] - gram[slot, jb] + gram[ja, jb]
+        trace += A[a, a]
+    gam = np.zeros(m)
+    if trace > 0.0:
+        for a in range(m):
+            A[a, a] += 1e-12 * trace  # a near-dependent pair gets no weight
+        for k in range(m):  # symmetric positive definite: no pivoting
+            for i2 in range(k + 1, m):
+                f = A[i2, k] / A[k, k]
+                for j in range(k, m):
+                    A[i2, j] -= f * A[k, j]
+                rhs[i2] -= f * rhs[k]
+        for k in range(m - 1, -1, -1):
+            acc = rhs[k]
+            for j in range(k + 1, m):
+                acc -= A[k, j] * gam[j]
+            gam[k] = acc / A[k, k]
+    for q in range(size):
+        nxt = g[q]
+        for a in range(m):
+            nxt -= gam[a] * (g[q] - hist_G[others[a], q])
+        d[q] = nxt
 
 
 @njit(cache=True)
@@ -554,8 +588,10 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
     vi = np.empty((n, 3))
     D = np.zeros((n, 3, 3))
     G = np.empty((n, 3, 3))
-    prev_D = np.empty((n, 3, 3))
-    prev_G = np.empty((n, 3, 3))
+    hist_R = np.empty((ANDERSON_DEPTH + 1, 9 * n))
+    hist_G = np.empty((ANDERSON_DEPTH + 1, 9 * n))
+    gram = np.empty((ANDERSON_DEPTH + 1, ANDERSON_DEPTH + 1))
+    mix_state = np.zeros(2, dtype=np.int64)
     end_rows = np.empty(3, dtype=np.complex128)
     W0 = np.empty((n, samples))
     W1 = np.empty((n, samples))
@@ -619,7 +655,8 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                 kind,
                 D,
             )
-            have_prev = False
+            mix_state[0] = 0
+            mix_state[1] = 0
             last = np.inf
             change = np.inf
             converged = False
@@ -703,7 +740,7 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                     kind,
                     G,
                 )
-                have_prev = _mixed(D, G, prev_D, prev_G, have_prev, change, last)
+                _mixed(D, G, hist_R, hist_G, gram, mix_state, change, last)
                 last = change
         else:
             for r in range(N):
