@@ -600,6 +600,40 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
     F1 = np.empty((n, samples))
     F2 = np.empty((n, samples))
     kind = np.empty(n, dtype=np.int64)
+    # the columns of B^T K, B^T C and B^T M at the six end coordinates (their non-zero
+    # rows), from the sparse rows: y = A e_d, then B^T y
+    nz_ptr = np.zeros(7, dtype=np.int64)
+    nz_row = np.empty(6 * N, dtype=np.int64)
+    end_k = np.empty(6 * N)
+    end_c = np.empty(6 * N)
+    end_m = np.empty(6 * N)
+    for e in range(6):
+        node = 0 if e < 3 else n - 1
+        a = e % 3
+        flat[:] = 0.0
+        flat[3 * node + a] = 1.0
+        _csr_rows(k_ptr, k_idx, k_val, flat, 0, 3 * n, yk)
+        _csr_rows(c_ptr, c_idx, c_val, flat, 0, 3 * n, yc)
+        for i in range(3 * n):
+            y[i] = 0j
+        for b in range(3):
+            y[3 * node + b] = mass[node, b, a]
+        nz = nz_ptr[e]
+        for r in range(N):
+            ak = 0.0
+            ac = 0.0
+            am = 0.0
+            for jj in range(bt_ptr[r], bt_ptr[r + 1]):
+                ak += bt_val[jj] * yk[bt_idx[jj]].real
+                ac += bt_val[jj] * yc[bt_idx[jj]].real
+                am += bt_val[jj] * y[bt_idx[jj]].real
+            if ak != 0.0 or ac != 0.0 or am != 0.0:
+                nz_row[nz] = r
+                end_k[nz] = ak
+                end_c[nz] = ac
+                end_m[nz] = am
+                nz += 1
+        nz_ptr[e + 1] = nz
     for case in range(omegas.shape[0]):
         omega = omegas[case]
         w2 = omega**2
@@ -609,18 +643,16 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
             up[n - 1, a] = motion[case, 1, a]
             flat[a] = up[0, a]
             flat[3 * (n - 1) + a] = up[n - 1, a]
-        # rhs0 = -B^T [K - w^2 M + i w C] u_p (only the end nodes move)
-        _csr_rows(k_ptr, k_idx, k_val, flat, 0, 3 * n, yk)
-        _csr_rows(c_ptr, c_idx, c_val, flat, 0, 3 * n, yc)
-        for i in range(n):
-            for a in range(3):
-                mu = mass[i, a, 0] * up[i, 0] + mass[i, a, 1] * up[i, 1] + mass[i, a, 2] * up[i, 2]
-                y[3 * i + a] = (yk[3 * i + a] + 1j * omega * yc[3 * i + a]) - w2 * mu
+        # rhs0 = -B^T [K - w^2 M + i w C] u_p: only the six end coordinates move
         for r in range(N):
-            acc = 0j
-            for jj in range(bt_ptr[r], bt_ptr[r + 1]):
-                acc += bt_val[jj] * y[bt_idx[jj]]
-            rhs0[r] = -acc
+            rhs0[r] = 0j
+        for e in range(6):
+            ue = up[0, e] if e < 3 else up[n - 1, e - 3]
+            if ue == 0.0:
+                continue
+            for r in range(nz_ptr[e], nz_ptr[e + 1]):
+                row = nz_row[r]
+                rhs0[row] -= ((end_k[r] - w2 * end_m[r]) + 1j * omega * end_c[r]) * ue
         for r in range(N):
             for j in range(width):
                 base[r, j] = (rows_k[r, j] - w2 * rows_m[r, j]) + 1j * omega * rows_c[r, j]
