@@ -36,7 +36,14 @@ import numpy as np
 import scipy.sparse as sp
 from numba import njit
 
-from .frequency import DragSettings, ReducedLine, drag_tangent, is_planar, planar_drag_fit
+from .frequency import (
+    FIT_REGULARISATION,
+    DragSettings,
+    ReducedLine,
+    drag_tangent,
+    is_planar,
+    planar_drag_fit,
+)
 
 
 @dataclass(kw_only=True)
@@ -312,7 +319,7 @@ def drag_fit_samples(  # noqa: PLR0913
                 for b in range(3):
                     out[i, a, b] = tangent_d[i, a, b]
             continue
-        eps = 1e-10 * trace
+        eps = FIT_REGULARISATION * trace
         G00, G01, G02 = g00 / samples + eps, g01 / samples, g02 / samples
         # w1 w0 is w0 w1 exactly: the lower sums equal the upper ones bit for bit
         G10, G11, G12 = g01 / samples, g11 / samples + eps, g12 / samples
