@@ -111,6 +111,8 @@ class LinearLine:
     current : [m/s] (n, 3) current velocity at the nodes
     tangent : [-] (n, 3) unit tangent at the nodes
     free_basis : [-] (3n, k) orthonormal free directions, block per node
+    drag_body : [kg/m] (n,) isotropic drag coefficients 1/2 rho C_D A of lumped bodies
+        at the nodes (drag ``c |w| w``), or None for none
     """
 
     s: np.ndarray
@@ -129,14 +131,26 @@ class LinearLine:
     current: np.ndarray
     tangent: np.ndarray
     free_basis: sp.csr_matrix
+    drag_body: np.ndarray | None = None
 
     @property
     def n_nodes(self) -> int:
         return int(self.s.size)
 
     @property
+    def body_drag(self) -> np.ndarray:
+        """[kg/m] (n,) the bodies' drag coefficients (zeros without bodies)."""
+        if self.drag_body is None:
+            return np.zeros(self.n_nodes)
+        return np.ascontiguousarray(self.drag_body, dtype=float)
+
+    @property
     def has_drag(self) -> bool:
-        return bool(np.any(self.drag_normal > 0.0) or np.any(self.drag_tangential > 0.0))
+        return bool(
+            np.any(self.drag_normal > 0.0)
+            or np.any(self.drag_tangential > 0.0)
+            or np.any(self.body_drag > 0.0)
+        )
 
     def mass_matrix(self) -> sp.csr_matrix:
         """Block-diagonal mass (3n, 3n) [kg]."""
@@ -207,7 +221,11 @@ def drag_force(line: LinearLine, relative_velocity: np.ndarray) -> np.ndarray:
     wt = np.einsum("...ia,ia->...i", relative_velocity, t)[..., None]
     wn = relative_velocity - wt * t
     sn = np.sqrt(np.einsum("...a,...a->...", wn, wn))[..., None]
-    return line.drag_normal[:, None] * sn * wn + line.drag_tangential[:, None] * np.abs(wt) * wt * t
+    out = line.drag_normal[:, None] * sn * wn + line.drag_tangential[:, None] * np.abs(wt) * wt * t
+    if line.drag_body is not None:
+        sr = np.sqrt(np.einsum("...a,...a->...", relative_velocity, relative_velocity))[..., None]
+        out = out + line.body_drag[:, None] * sr * relative_velocity
+    return out
 
 
 def drag_tangent(line: LinearLine) -> np.ndarray:
@@ -223,7 +241,13 @@ def drag_tangent(line: LinearLine) -> np.ndarray:
         un[:, :, None] * un[:, None, :]
     )
     Dt = 2.0 * np.abs(ut)[:, None, None] * (t[:, :, None] * t[:, None, :])
-    return line.drag_normal[:, None, None] * Dn + line.drag_tangential[:, None, None] * Dt
+    out = line.drag_normal[:, None, None] * Dn + line.drag_tangential[:, None, None] * Dt
+    if line.drag_body is not None:  # c |U| I + c U U^T / |U|
+        su = np.linalg.norm(U, axis=1)
+        inv = np.where(su > 0.0, 1.0 / np.where(su > 0.0, su, 1.0), 0.0)
+        Db = su[:, None, None] * np.eye(3) + inv[:, None, None] * (U[:, :, None] * U[:, None, :])
+        out = out + line.body_drag[:, None, None] * Db
+    return out
 
 
 @njit(cache=True)
@@ -298,10 +322,13 @@ def planar_drag_fit(vr, vi, t, u, c_n, c_t, tangent_d, i, out):  # noqa: ANN001,
 
 
 @njit(cache=True)
-def _drag_fit(velocity_re, velocity_im, current, tangent, c_n, c_t, tangent_d, samples, exact, out):  # noqa: ANN001, ANN202, PLR0913
+def _drag_fit(  # noqa: PLR0913
+    velocity_re, velocity_im, current, tangent, c_n, c_t, c_b, tangent_d, samples, exact, out
+):  # noqa: ANN001, ANN202
     """Kernel of :func:`drag_linearisation` (loops over nodes and phases); with
     ``exact``, a node whose motion, tangent and current lie in the x-z plane takes
-    :func:`planar_drag_fit` instead of the phases."""
+    :func:`planar_drag_fit` instead of the phases, unless it carries a body (``c_b``
+    (n,): isotropic drag ``c_b |w| w``, whose plane motion is not two scalar ones)."""
     n = current.shape[0]
     cos = np.empty(samples)
     sin = np.empty(samples)
@@ -314,7 +341,7 @@ def _drag_fit(velocity_re, velocity_im, current, tangent, c_n, c_t, tangent_d, s
     G = np.empty((3, 3))
     H = np.empty((3, 3))
     for i in range(n):
-        if exact and is_planar(velocity_re, velocity_im, tangent, current, i):
+        if exact and c_b[i] == 0.0 and is_planar(velocity_re, velocity_im, tangent, current, i):
             planar_drag_fit(velocity_re, velocity_im, tangent, current, c_n, c_t, tangent_d, i, out)
             continue
         fm0 = fm1 = fm2 = 0.0
@@ -331,9 +358,10 @@ def _drag_fit(velocity_re, velocity_im, current, tangent, c_n, c_t, tangent_d, s
             n0, n1, n2 = r0 - wt * t0, r1 - wt * t1, r2 - wt * t2
             sn = np.sqrt(n0 * n0 + n1 * n1 + n2 * n2)
             st = abs(wt) * wt * c_t[i]
-            f[k, 0] = c_n[i] * sn * n0 + st * t0
-            f[k, 1] = c_n[i] * sn * n1 + st * t1
-            f[k, 2] = c_n[i] * sn * n2 + st * t2
+            sr = c_b[i] * np.sqrt(r0 * r0 + r1 * r1 + r2 * r2)
+            f[k, 0] = c_n[i] * sn * n0 + st * t0 + sr * r0
+            f[k, 1] = c_n[i] * sn * n1 + st * t1 + sr * r1
+            f[k, 2] = c_n[i] * sn * n2 + st * t2 + sr * r2
             fm0 += f[k, 0]
             fm1 += f[k, 1]
             fm2 += f[k, 2]
@@ -407,6 +435,7 @@ def drag_linearisation(
         line.tangent,
         line.drag_normal,
         line.drag_tangential,
+        line.body_drag,
         D0,
         samples,
         exact,

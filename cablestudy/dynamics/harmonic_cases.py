@@ -199,6 +199,7 @@ def drag_fit_samples(  # noqa: PLR0913
     tangent,
     c_n,
     c_t,
+    c_b,
     tangent_d,
     cos,
     sin,
@@ -218,17 +219,17 @@ def drag_fit_samples(  # noqa: PLR0913
     vectorise), then the sums over the phases node by node; ``W0`` .. ``F2`` (n,
     samples) and ``kind`` (n,) int are work arrays. A node whose motion, tangent and
     current have no y component skips the y terms (zeros: the values are the same);
-    with ``exact`` it takes :func:`~cablestudy.dynamics.frequency.planar_drag_fit`,
-    as ``_drag_fit`` does."""
+    with ``exact`` (and no body: ``c_b`` (n,) zero) it takes
+    :func:`~cablestudy.dynamics.frequency.planar_drag_fit`, as ``_drag_fit`` does."""
     n = current.shape[0]
     samples = cos.shape[0]
     for i in range(n):
-        if exact and is_planar(vr, vi, tangent, current, i):
+        if exact and c_b[i] == 0.0 and is_planar(vr, vi, tangent, current, i):
             kind[i] = 2
             planar_drag_fit(vr, vi, tangent, current, c_n, c_t, tangent_d, i, out)
             continue
         t0, t1, t2 = tangent[i, 0], tangent[i, 1], tangent[i, 2]
-        cn, ct = c_n[i], c_t[i]
+        cn, ct, cb = c_n[i], c_t[i], c_b[i]
         u0, u1, u2 = current[i, 0], current[i, 1], current[i, 2]
         a0, a1, a2 = vr[i, 0], vr[i, 1], vr[i, 2]
         b0, b1, b2 = vi[i, 0], vi[i, 1], vi[i, 2]
@@ -244,9 +245,10 @@ def drag_fit_samples(  # noqa: PLR0913
                 n0, n2 = r0 - wt * t0, r2 - wt * t2
                 sn = np.sqrt(n0 * n0 + n2 * n2)
                 st = abs(wt) * wt * ct
+                sr = cb * np.sqrt(r0 * r0 + r2 * r2)
                 W0[i, k], W2[i, k] = w0, w2
-                F0[i, k] = cn * sn * n0 + st * t0
-                F2[i, k] = cn * sn * n2 + st * t2
+                F0[i, k] = cn * sn * n0 + st * t0 + sr * r0
+                F2[i, k] = cn * sn * n2 + st * t2 + sr * r2
             kind[i] = 1
             continue
         kind[i] = 0
@@ -261,10 +263,11 @@ def drag_fit_samples(  # noqa: PLR0913
             n0, n1, n2 = r0 - wt * t0, r1 - wt * t1, r2 - wt * t2
             sn = np.sqrt(n0 * n0 + n1 * n1 + n2 * n2)
             st = abs(wt) * wt * ct
+            sr = cb * np.sqrt(r0 * r0 + r1 * r1 + r2 * r2)
             W0[i, k], W1[i, k], W2[i, k] = w0, w1, w2
-            F0[i, k] = cn * sn * n0 + st * t0
-            F1[i, k] = cn * sn * n1 + st * t1
-            F2[i, k] = cn * sn * n2 + st * t2
+            F0[i, k] = cn * sn * n0 + st * t0 + sr * r0
+            F1[i, k] = cn * sn * n1 + st * t1 + sr * r1
+            F2[i, k] = cn * sn * n2 + st * t2 + sr * r2
     for i in range(n):
         if kind[i] == 2:
             continue
@@ -555,6 +558,7 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
     tangent,
     c_n,
     c_t,
+    c_b,
     d_small,
     has_drag,
     samples,
@@ -681,6 +685,7 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                 tangent,
                 c_n,
                 c_t,
+                c_b,
                 d_small,
                 cos,
                 sin,
@@ -766,6 +771,7 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                     tangent,
                     c_n,
                     c_t,
+                    c_b,
                     d_small,
                     cos,
                     sin,
@@ -890,6 +896,7 @@ def solve_harmonic_cases(
         np.ascontiguousarray(line.tangent, dtype=float),
         np.ascontiguousarray(line.drag_normal, dtype=float),
         np.ascontiguousarray(line.drag_tangential, dtype=float),
+        line.body_drag,
         p.d_small,
         p.has_drag,
         settings.samples,
@@ -944,8 +951,8 @@ def _one_by_one(
     )
 
 
-def warm_up() -> None:
-    """Load the compiled kernel (see :func:`cablestudy.dynamics.frequency.warm_up`)."""
+def warm_up_line():  # noqa: ANN201
+    """A 3-node taut line with drag (the kernels' warm-up and tests' small case)."""
     from .frequency import LinearLine
 
     n = 3
@@ -970,6 +977,12 @@ def warm_up() -> None:
         tangent=np.tile([1.0, 0.0, 0.0], (n, 1)),
         free_basis=basis,
     )
+    return line
+
+
+def warm_up() -> None:
+    """Load the compiled kernel (see :func:`cablestudy.dynamics.frequency.warm_up`)."""
+    line = warm_up_line()
     motion = np.zeros((1, 2, 3), dtype=complex)
     motion[0, 1, 2] = 1.0
     solve_harmonic_cases(ReducedLine.of(line), np.array([math.pi]), motion, DragSettings())

@@ -124,7 +124,7 @@ def test_sampled_fit_converges_to_the_closed_form_at_third_order() -> None:
         t, vr, vi, u = _planar_node(rng)
         td = _tangent(t, u, cn, ct)
         closed = np.empty((1, 3, 3))
-        _drag_fit(vr, vi, u, t, np.array([cn]), np.array([ct]), td, 32, True, closed)
+        _drag_fit(vr, vi, u, t, np.array([cn]), np.array([ct]), np.zeros(1), td, 32, True, closed)
         # the sampled fit is regularised, D = (H + e D_0)(G + e I)^-1 with e =
         # FIT_REGULARISATION tr G; without aliasing H = D_closed G, and G = (a a^T + b
         # b^T) / 2 exactly at any number of phases, so its limit is
@@ -134,7 +134,19 @@ def test_sampled_fit_converges_to_the_closed_form_at_third_order() -> None:
         errs = []
         for samples in counts:
             got = np.empty((1, 3, 3))
-            _drag_fit(vr, vi, u, t, np.array([cn]), np.array([ct]), td, int(samples), False, got)
+            _drag_fit(
+                vr,
+                vi,
+                u,
+                t,
+                np.array([cn]),
+                np.array([ct]),
+                np.zeros(1),
+                td,
+                int(samples),
+                False,
+                got,
+            )
             errs.append(np.abs(got - exact)[0][np.ix_([0, 2], [0, 2])].max())
         errs = np.array(errs)
         assert np.all(errs * counts**3 / np.abs(exact).max() < 50.0), errs
@@ -152,7 +164,19 @@ def test_closed_form_fit_dissipates_the_mean_drag_power() -> None:
     for _ in range(5):
         t, vr, vi, u = _planar_node(rng)
         D = np.empty((1, 3, 3))
-        _drag_fit(vr, vi, u, t, np.array([cn]), np.array([ct]), _tangent(t, u, cn, ct), 8, True, D)
+        _drag_fit(
+            vr,
+            vi,
+            u,
+            t,
+            np.array([cn]),
+            np.array([ct]),
+            np.zeros(1),
+            _tangent(t, u, cn, ct),
+            8,
+            True,
+            D,
+        )
         w = -(vr[0][None] * np.cos(th)[:, None] - vi[0][None] * np.sin(th)[:, None])
         r = u[0][None] + w
         rt = r @ t[0]
@@ -167,7 +191,8 @@ def test_closed_form_fit_dissipates_the_mean_drag_power() -> None:
 @pytest.mark.parametrize("exact", [True, False])
 def test_batched_fit_is_the_reference_fit(exact: bool) -> None:
     """drag_fit_samples (the batched solver's layout) gives _drag_fit's numbers bit for
-    bit, on nodes in the x-z plane and out of it, moving and at rest, with a current."""
+    bit, on nodes in the x-z plane and out of it, moving and at rest, with a current,
+    with and without a body's drag."""
     rng = np.random.default_rng(10)
     n, samples = 12, 32
     vr = rng.normal(size=(n, 3))
@@ -182,11 +207,52 @@ def test_batched_fit_is_the_reference_fit(exact: bool) -> None:
     t /= np.linalg.norm(t, axis=1)[:, None]
     td = np.concatenate([_tangent(t[i : i + 1], u[i : i + 1], 1.1, 0.2) for i in range(n)])
     cn, ct = np.full(n, 1.1), np.full(n, 0.2)
+    cb = np.where(np.arange(n) % 3 == 1, 0.7, 0.0)  # bodies on some nodes
     ref = np.empty((n, 3, 3))
-    _drag_fit(vr, vi, u, t, cn, ct, td, samples, exact, ref)
+    _drag_fit(vr, vi, u, t, cn, ct, cb, td, samples, exact, ref)
     got = np.empty((n, 3, 3))
     cos = np.cos(2.0 * np.pi * np.arange(samples) / samples)
     sin = np.sin(2.0 * np.pi * np.arange(samples) / samples)
     work = [np.empty((n, samples)) for _ in range(6)]
-    drag_fit_samples(vr, vi, u, t, cn, ct, td, cos, sin, exact, *work, np.empty(n, np.int64), got)
+    drag_fit_samples(
+        vr, vi, u, t, cn, ct, cb, td, cos, sin, exact, *work, np.empty(n, np.int64), got
+    )
     assert got.tobytes() == ref.tobytes()
+
+
+def test_body_drag_fit_and_tangent() -> None:
+    """A lumped body's isotropic drag c |w| w: in still water and motion of velocity
+    amplitude a along one direction the fit is the classical 8 c a / (3 pi) along it
+    (4096 phases: aliasing below 1e-10; regularised as every sampled fit); its small-motion tangent at a current U is
+    c (|U| I + U U^T / |U|), the derivative of drag_force (central differences, step
+    1e-6 of |U|: error ~1e-12 relative)."""
+    from dataclasses import replace
+
+    from cablestudy.dynamics.frequency import drag_force, drag_linearisation, drag_tangent
+    from cablestudy.dynamics.harmonic_cases import warm_up_line
+
+    line = warm_up_line()
+    n = line.n_nodes
+    body = replace(
+        line,
+        drag_normal=np.zeros(n),
+        drag_tangential=np.zeros(n),
+        drag_body=np.full(n, 0.8),
+    )
+    v = np.zeros((n, 3), dtype=complex)
+    v[:, 2] = 0.3 * np.exp(1j * 0.4)  # a = 0.3 m/s along z
+    D = drag_linearisation(body, v, samples=4096)
+    # the fit's regularisation scales it by 1 / (1 + FIT_REGULARISATION) here (the
+    # small-motion tangent it leans to is zero in still water)
+    want = 0.8 * 8.0 * 0.3 / (3.0 * math.pi) / (1.0 + FIT_REGULARISATION)
+    assert D[:, 2, 2] == pytest.approx(want, rel=1e-10)
+    U = np.array([0.3, -0.2, 0.5])
+    current = replace(body, current=np.tile(U, (n, 1)))
+    T = drag_tangent(current)[1]
+    h = 1e-6 * np.linalg.norm(U)
+    fd = np.empty((3, 3))
+    for b in range(3):
+        dw = np.zeros((n, 3))
+        dw[:, b] = h
+        fd[:, b] = (drag_force(current, U + dw) - drag_force(current, U - dw))[1] / (2.0 * h)
+    np.testing.assert_allclose(T, fd, rtol=1e-8, atol=1e-10)
