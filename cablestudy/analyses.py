@@ -215,16 +215,10 @@ def warm_up(cases: list[Case]) -> None:
 
 
 def linear_model_gaps(study: Any) -> list[tuple[tuple[str | int, ...], str]]:
-    """Keys of ``study`` set to something the frequency-domain solver does not represent
-    yet, as (YAML path, what it is): the drag of lumped bodies (its drag linearisation
-    covers the line's Morison drag). Modal analysis and the time domain model them all
-    (one line model, :mod:`cablestudy.dynamics.model`); a catenary line sliding over
+    """Keys of ``study`` set to something the frequency-domain solver cannot represent,
+    as (YAML path, what it is): a line that parts, a winch, a catenary line sliding over
     pulleys, which the time domain models."""
-    gaps: list[tuple[tuple[str | int, ...], str]] = [
-        (("line", "attachments", i, "drag_area"), "a lumped body's drag")
-        for i, att in enumerate(study.line.attachments)
-        if att.drag_area > 0.0
-    ]
+    gaps: list[tuple[tuple[str | int, ...], str]] = []
     if study.line.kind == "spring":
         return gaps
     # the linearised line cannot part or change its length

@@ -56,6 +56,7 @@ def linear_line(problem: ModalProblem) -> LinearLine:
     rho = medium.density
     drag_n = lump(0.5 * rho * line.drag_normal * line.diameter)
     drag_t = lump(0.5 * rho * math.pi * line.drag_tangential * line.diameter)
+    drag_b = body_drag(line, prob.extras, s, rho)
     lo = np.maximum(np.arange(n) - 1, 0)
     hi = np.minimum(np.arange(n) + 1, n - 1)
     tangent = pos[hi] - pos[lo]
@@ -95,4 +96,26 @@ def linear_line(problem: ModalProblem) -> LinearLine:
         current=current_velocity(pos[:, 2], medium.current_z, medium.current_velocity),
         tangent=tangent,
         free_basis=free,
+        drag_body=drag_b if np.any(drag_b > 0.0) else None,
     )
+
+
+def body_drag(line: object, extras: object, s: np.ndarray, rho: float) -> np.ndarray:
+    """[kg/m] (n,) the lumped bodies' drag coefficients ``1/2 rho C_D A`` at nodes ``s``
+    [m]: each body's shared between the two nodes of its element in proportion to its
+    place along it, as the time-domain model lumps it (:func:`cablestudy.dynamics.model.
+    build_model`)."""
+    n = s.size
+    out = np.zeros(n)
+    s_att = np.asarray(getattr(line, "attachment_s", np.zeros(0)), dtype=float)
+    area = getattr(extras, "attachment_drag_area", None) if extras is not None else None
+    if s_att.size == 0 or area is None or np.size(area) == 0 or n < 2:
+        return out
+    area = np.asarray(area, dtype=float)
+    l0 = np.diff(s)
+    for k in range(s_att.size):
+        e = int(np.clip(np.searchsorted(s, s_att[k], side="right") - 1, 0, n - 2))
+        xi = (s_att[k] - s[e]) / l0[e]
+        out[e] += (1.0 - xi) * 0.5 * rho * area[k]
+        out[e + 1] += xi * 0.5 * rho * area[k]
+    return out
