@@ -129,8 +129,9 @@ def test_a_body_s_drag_agrees_with_the_time_domain_as_the_amplitude_falls() -> N
     """A body with drag (C_D A = 0.01 m^2, 0.5 kg) at mid-span: the frequency domain
     fits its isotropic drag c |w| w over the phases, the time domain integrates it; the
     neglected nonlinearities fall with the amplitude, so the disagreement must fall
-    (measured: see the assertion message), and the body must change the answer by more
-    than that (the key is used by both methods)."""
+    (measured at 40 elements: 1.9 % at 25 mm, 0.23 % at 5 mm; bound 0.5 % at 5 mm as
+    for the line's drag), and the body must change the answer by well more than that
+    (measured 13 %: the key is used)."""
     body = "  attachments: [{s: 5.49, mass: 0.5, drag_area: 0.01}]\n"
     freqs = np.array([0.25, 0.7, 1.0])
     errors, effect = [], []
@@ -158,6 +159,5 @@ def test_a_body_s_drag_agrees_with_the_time_domain_as_the_amplitude_falls() -> N
         fd, td = out[("frequency", True)], out[("time", True)]
         errors.append(float(np.max(np.abs(fd / td - 1.0))))
         effect.append(float(np.max(np.abs(fd / out[("frequency", False)] - 1.0))))
-    print("errors", errors, "effect", effect)
     assert errors[1] < errors[0] and errors[1] < 0.005, (errors, effect)
     assert min(effect) > 3.0 * max(errors[1], 1e-4), (errors, effect)
