@@ -188,6 +188,14 @@ class FrequencyResult:
         return self.status == STATUS_OK
 
 
+def sum_components(p: np.ndarray) -> np.ndarray:
+    """``np.sum(p, axis=-1)`` of ``p`` (..., 3), bit for bit (numpy adds from a zero:
+    ``((0 + x) + y) + z``, which fixes the sign of a sum of zeros and the order), with
+    three array additions instead of numpy's reduction over an axis of three (five
+    times slower on a sweep's (cases, nodes, 3) arrays)."""
+    return 0.0 + p[..., 0] + p[..., 1] + p[..., 2]
+
+
 def drag_force(line: LinearLine, relative_velocity: np.ndarray) -> np.ndarray:
     """Morison drag [N] (..., n, 3) on the nodes for relative velocities (..., n, 3)."""
     t = line.tangent

@@ -46,6 +46,7 @@ from .frequency import (
     is_planar,
     planar_drag_fit,
     selected_rows,
+    sum_components,
 )
 
 
@@ -891,10 +892,10 @@ def solve_harmonic_cases(
     axial = (line.axial_stiffness[None] + 1j * omegas[:, None] * line.axial_damping[None]) / (
         line.rest_length[None]
     )
-    element = axial * np.sum(line.direction[None] * du, axis=2)
+    element = axial * sum_components(line.direction[None] * du)
     static_mag = np.linalg.norm(line.end_force, axis=1)
     unit = line.end_force / np.where(static_mag > 0.0, static_mag, 1.0)[:, None]
-    end_tension = np.sum(unit[None] * -reaction, axis=2)
+    end_tension = sum_components(unit[None] * -reaction)
     end_tension[~ok] = np.nan + 0j
     return HarmonicCases(
         displacement=u,
