@@ -6,7 +6,6 @@ This is the only place that knows which analyses exist; the runner calls
 
 from __future__ import annotations
 
-import contextlib
 import math
 import time
 import traceback
@@ -339,8 +338,10 @@ def solve_static(
         return apply_limits(presolved[case.static_hash], static_limits(case.study))
     cached = _STATIC_CACHE.get(case.static_hash)
     if cached is not None:
-        with contextlib.suppress(KeyError):  # evicted by another thread
+        try:
             _STATIC_CACHE.move_to_end(case.static_hash)
+        except KeyError:  # evicted by another thread
+            pass
         return cached
     if case.study.line.is_spring:
         from .spring_cases import solve_spring_static
@@ -775,10 +776,10 @@ def run_dynamic(
                 if fres.non_finite is not None:
                     out.non_finite = fres.non_finite  # type: ignore[attr-defined]
                 out["dynamic_method"] = np.asarray("frequency")
-                out["dynamic_method_reason"] = np.asarray(
-                    "method: frequency"
+                out["dynamic_method_reason"] = (
+                    np.asarray("method: frequency")
                     if dyn.method == "frequency"
-                    else f"auto: linear ({fres.summary})"
+                    else np.asarray(f"auto: linear ({fres.summary})")
                 )
                 return fres.status, fres.message, out
             from .frequency_cases import TRANSFER_OUTPUTS

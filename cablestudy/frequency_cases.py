@@ -180,10 +180,14 @@ def _end_displacements(harmonics: list[HarmonicExcitation]) -> tuple[np.ndarray,
     return X, -1j * np.exp(1j * math.radians(first.phase_deg))
 
 
+#: the drag settings of a study that sets none (frozen: one object serves every case)
+_DEFAULT_DRAG = DragSettings()
+
+
 def drag_settings(dyn: DynamicSettings) -> DragSettings:
     lin = dyn.linearisation
     if lin is None:
-        return DragSettings()
+        return _DEFAULT_DRAG
     return DragSettings(
         tolerance=lin.tolerance,
         max_iterations=lin.max_iterations,
