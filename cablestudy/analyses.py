@@ -6,7 +6,6 @@ This is the only place that knows which analyses exist; the runner calls
 
 from __future__ import annotations
 
-import contextlib
 import math
 import time
 import traceback
@@ -28,6 +27,7 @@ from .config.loader import StudyError, StudySource
 from .counters import COUNTERS, trim_lru
 from .physics.profile import profile_quantities
 from .problem import line_model, medium, static_limits, static_problem
+from .results import OUTPUTS, CaseRecord
 from .statics import (
     STATIC_SOLVERS,
     STATUS_BROKEN,
@@ -44,7 +44,6 @@ if TYPE_CHECKING:  # imported where used: `cablestudy validate` needs none of th
     from .dynamics.modal import ModalResult
     from .dynamics.model import DiscreteLine
     from .dynamics.timedomain import DynamicProblem, DynamicResult
-    from .results import CaseRecord
 
 #: static solutions already computed in this process, by static hash (a sweep over
 #: excitation parameters solves each distinct static problem once)
@@ -333,8 +332,10 @@ def solve_static(
         return apply_limits(presolved[case.static_hash], static_limits(case.study))
     cached = _STATIC_CACHE.get(case.static_hash)
     if cached is not None:
-        with contextlib.suppress(KeyError):  # evicted by another thread
+        try:
             _STATIC_CACHE.move_to_end(case.static_hash)
+        except KeyError:  # evicted by another thread
+            pass
         return cached
     if case.study.line.is_spring:
         from .spring_cases import solve_spring_static
@@ -507,23 +508,27 @@ def static_outputs(res: StaticResult, study: Any = None) -> dict[str, np.ndarray
     return out
 
 
-#: the static outputs of the last static solution, with that solution: the cases of a
-#: chunk that share a static problem (adjacent in a chunk: a sweep over excitation)
-#: share its outputs instead of deriving them again per case
-_LAST_STATIC_OUTPUTS: dict[str, tuple[StaticResult, dict[str, np.ndarray]]] = {}
+#: the static outputs of the last static solution, with that solution and the names of
+#: its non-finite outputs: the cases of a chunk that share a static problem (adjacent in
+#: a chunk: a sweep over excitation) share its outputs instead of deriving (and
+#: checking) them again per case
+_LAST_STATIC_OUTPUTS: dict[str, tuple[StaticResult, dict[str, np.ndarray], list[str]]] = {}
 
 
-def _shared_static_outputs(case: Case, res: StaticResult) -> dict[str, np.ndarray]:
+def _shared_static_outputs(case: Case, res: StaticResult) -> CheckedOutputs:
     """:func:`static_outputs` of ``res`` for ``case``, reused from the previous case when
     it had the same static problem and the very same solution object (the arrays are
-    shared, as the static solution's own arrays already are between such cases)."""
+    shared, as the static solution's own arrays already are between such cases), with
+    their non-finite variables (:func:`_non_finite`)."""
     hit = _LAST_STATIC_OUTPUTS.get(case.static_hash)
-    if hit is not None and hit[0] is res:
-        return dict(hit[1])
-    out = static_outputs(res, case.study)
-    _LAST_STATIC_OUTPUTS.clear()
-    _LAST_STATIC_OUTPUTS[case.static_hash] = (res, out)
-    return dict(out)
+    if hit is None or hit[0] is not res:
+        out = static_outputs(res, case.study)
+        hit = (res, out, _non_finite(out, "static"))
+        _LAST_STATIC_OUTPUTS.clear()
+        _LAST_STATIC_OUTPUTS[case.static_hash] = hit
+    shared = CheckedOutputs(hit[1])
+    shared.non_finite = hit[2]
+    return shared
 
 
 def _strain_along(segs: Any, k: np.ndarray, tension: np.ndarray) -> np.ndarray | None:
@@ -744,8 +749,6 @@ def run_dynamic(
     else the time domain. ``dynamic_method`` and ``dynamic_method_reason`` record
     which ran and why. ``outcome``: the case's frequency-domain outcome when already
     solved (with the other cases of its chunk, :func:`evaluate_chunk`)."""
-    from .frequency_cases import TRANSFER_OUTPUTS, solve_frequency
-
     dyn = case.study.analysis.dynamic
     assert dyn is not None
     if case.study.line.is_spring:
@@ -756,23 +759,33 @@ def run_dynamic(
     if dyn.method in ("frequency", "auto"):
         why = auto_ineligible(dyn, case.study) if dyn.method == "auto" else ""
         if not why:
-            fres = outcome if outcome is not None else solve_frequency(case, static, deadline)
+            if outcome is not None:
+                fres = outcome
+            else:
+                from .frequency_cases import solve_frequency
+
+                fres = solve_frequency(case, static, deadline)
             if dyn.method == "frequency" or (fres.status == STATUS_OK and not fres.distrust):
-                reason = (
-                    "method: frequency"
-                    if dyn.method == "frequency"
-                    else f"auto: linear ({fres.summary})"
-                )
-                out = dict(fres.data)
+                out = dict(fres.data) if fres.non_finite is None else CheckedOutputs(fres.data)
+                if fres.non_finite is not None:
+                    out.non_finite = fres.non_finite  # type: ignore[attr-defined]
                 out["dynamic_method"] = np.asarray("frequency")
-                out["dynamic_method_reason"] = np.asarray(reason)
+                out["dynamic_method_reason"] = (
+                    np.asarray("method: frequency")
+                    if dyn.method == "frequency"
+                    else np.asarray(f"auto: linear ({fres.summary})")
+                )
                 return fres.status, fres.message, out
+            from .frequency_cases import TRANSFER_OUTPUTS
+
             why = fres.distrust or fres.message
             # the transfer function is a linear result whichever method answers the case
             linear = {k: v for k, v in fres.data.items() if k in TRANSFER_OUTPUTS}
         elif dyn.transfer_function is not None:
             # auto runs the time domain for this case; the transfer function asked for
             # is still the linear model's
+            from .frequency_cases import TRANSFER_OUTPUTS, solve_frequency
+
             fres = solve_frequency(case, static, deadline)
             linear = {k: v for k, v in fres.data.items() if k in TRANSFER_OUTPUTS}
         reason = f"auto: {why}"
@@ -973,8 +986,9 @@ _LAST_CHECKED: dict[str, tuple[dict[str, Any], list[str]]] = {}
 def _non_finite(data: dict[str, Any], analysis: str) -> list[str]:
     """Float variables of ``analysis`` in ``data`` holding NaN or infinity where the
     registry does not give NaN a meaning (e.g. 'no seabed contact')."""
-    from .results import OUTPUTS
-
+    known = getattr(data, "non_finite", None)
+    if known is not None:  # found on the arrays of a batch (CheckedOutputs)
+        return list(known)
     last = _LAST_CHECKED.get(analysis)
     if (
         last is not None
@@ -1003,6 +1017,32 @@ def _non_finite(data: dict[str, Any], analysis: str) -> list[str]:
     return sorted(bad)
 
 
+def non_finite_cases(columns: dict[str, np.ndarray], analysis: str) -> list[list[str]]:
+    """:func:`_non_finite` of K cases at once: ``columns`` maps output names to arrays
+    (K, ...) whose row k is case k's value; per case the sorted names found."""
+    n_cases = len(next(iter(columns.values()))) if columns else 0
+    bad: list[list[str]] = [[] for _ in range(n_cases)]
+    for name in sorted(columns):
+        spec = OUTPUTS.get(name)
+        v = columns[name]
+        if spec is None or spec.analysis != analysis or v.dtype.kind != "f":
+            continue
+        good = np.isfinite(v)
+        if spec.nan_means:
+            good |= np.isnan(v)
+        for k in np.flatnonzero(~good.reshape(n_cases, -1).all(axis=1)):
+            bad[k].append(name)
+    return bad
+
+
+class CheckedOutputs(dict):
+    """Outputs whose float variables holding NaN or infinity are known already
+    (``non_finite``, sorted names): :func:`_non_finite` takes them instead of scanning
+    the arrays."""
+
+    non_finite: list[str]
+
+
 def evaluate_case(
     case: Case, *, presolved: dict[str, StaticResult] | None = None, linear: Any = None
 ) -> CaseRecord:
@@ -1019,8 +1059,6 @@ def evaluate_case(
     analysis (:data:`STATUS_TIME_LIMIT` if any hit the time limit, so that the runner
     does not cache it); its ``message`` is the static solver's message, or names each
     failed analysis ("modal analysis: ...; dynamic analysis: ...")."""
-    from .results import CaseRecord
-
     t0 = time.perf_counter()
     deadline = time.monotonic() + case.study.analysis.time_limit
     data: dict[str, Any] = {}

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import contextlib
 import math
+import struct
 from collections import OrderedDict
 from dataclasses import dataclass
 
@@ -148,21 +149,45 @@ def end_displacements(dyn: DynamicSettings) -> tuple[np.ndarray, float, complex]
     frequency [Hz], and the complex phase factor of the first excitation (the
     reference of the tension phases). ``a sin(w t + phi) d`` is ``Re(-i a e^{i phi}
     d e^{i w t})``."""
-    X = np.zeros((2, 3), dtype=complex)
     harmonics = [e for e in dyn.excitations if isinstance(e, HarmonicExcitation)]
+    # the cases of a sweep over frequency share their motions: computed once per
+    # distinct (end, amplitude, phase, direction) list, keyed by the exact floats
+    key = tuple((e.end, _FLOATS(e.amplitude, e.phase_deg, *e.direction)) for e in harmonics)
+    hit = _MOTIONS.get(key)
+    if hit is None:
+        hit = _end_displacements(harmonics)
+        if len(_MOTIONS) >= _MOTIONS_SIZE:
+            _MOTIONS.clear()
+        _MOTIONS[key] = hit
+    return hit[0].copy(), harmonics[0].frequency, hit[1]
+
+
+#: :func:`_end_displacements` by excitation (see :func:`end_displacements`)
+_MOTIONS: dict[tuple, tuple[np.ndarray, complex]] = {}
+_MOTIONS_SIZE = 256
+#: the bytes of five floats (a key that tells -0.0 from 0.0)
+_FLOATS = struct.Struct("<5d").pack
+
+
+def _end_displacements(harmonics: list[HarmonicExcitation]) -> tuple[np.ndarray, complex]:
+    X = np.zeros((2, 3), dtype=complex)
     for e in harmonics:
         d = np.asarray(e.direction, dtype=float)
         X[0 if e.end == "a" else 1] += (
             -1j * e.amplitude * np.exp(1j * math.radians(e.phase_deg)) * (d / np.linalg.norm(d))
         )
     first = harmonics[0]
-    return X, first.frequency, -1j * np.exp(1j * math.radians(first.phase_deg))
+    return X, -1j * np.exp(1j * math.radians(first.phase_deg))
+
+
+#: the drag settings of a study that sets none (frozen: one object serves every case)
+_DEFAULT_DRAG = DragSettings()
 
 
 def drag_settings(dyn: DynamicSettings) -> DragSettings:
     lin = dyn.linearisation
     if lin is None:
-        return DragSettings()
+        return _DEFAULT_DRAG
     return DragSettings(
         tolerance=lin.tolerance,
         max_iterations=lin.max_iterations,
@@ -177,9 +202,22 @@ class FrequencyOutcome:
     message: str
     data: dict[str, np.ndarray]
     distrust: str = ""  # why method auto would not trust it ("" if it would)
-    summary: str = ""
     validity: Validity | None = None
     drag_converged: bool = True
+    #: the float outputs in ``data`` holding NaN or infinity (sorted names, as
+    #: :func:`cablestudy.analyses._non_finite` finds them), when already known
+    non_finite: list[str] | None = None
+
+    @property
+    def summary(self) -> str:
+        """The validity measures in words ("" without them)."""
+        v = self.validity
+        if v is None:
+            return ""
+        return (
+            f"min/static tension {v.min_tension_ratio:.3g}, "
+            f"amplitude/sag {v.amplitude_sag_ratio:.3g}"
+        )
 
 
 def tension_along(
@@ -303,6 +341,35 @@ def solve_frequency_cases(
         held=np.diff(line.free_basis.tocsr().indptr).reshape(-1, 3).sum(axis=1) == 0,
     )
     envelope = tension_along_cases(static.s, line.s, a_el, a_end)
+    # the outputs of every case as arrays (K, ...); a case's own are views of them
+    ex = np.array([0 if dyn.excitations[0].end == "a" else 1 for dyn in dyns])  # type: ignore[union-attr]
+    t_ex = t_end[ex]
+    a_ex = a_end[np.arange(K), ex]
+    env_max = static.tension + envelope
+    top = np.max(env_max, axis=1)
+    columns: dict[str, np.ndarray] = {
+        "tension_static": t_ex,
+        "tension_max": t_ex + a_ex,
+        "tension_min": t_ex - a_ex,
+        "tension_mean": t_ex,
+        # max(line, ends) as Python's max: the second only where larger
+        "tension_max_line": np.where(edge_max > top, edge_max, top),
+        "tension_envelope_max": env_max,
+        "tension_envelope_min": static.tension - envelope,
+        "tension_amplitude_a": a_end[:, 0],
+        "tension_amplitude_b": a_end[:, 1],
+        "tension_phase_a": phase[:, 0],
+        "tension_phase_b": phase[:, 1],
+        "steady_converged": np.ones(K, dtype=np.asarray(1).dtype),
+        "linearisation_iterations": res.iterations.astype(np.asarray(1).dtype),
+        "linearisation_converged": res.converged.astype(np.asarray(1).dtype),
+    }
+    from .analyses import non_finite_cases
+
+    bad = non_finite_cases(columns, "dynamic")
+    items = list(columns.items())
+    ratio_l, sag_l, travel_l = ratio.tolist(), sag_ratio.tolist(), travel.tolist()
+    iterations_l, converged_l = res.iterations.tolist(), res.converged.tolist()
     out = []
     for k, dyn in enumerate(dyns):
         assert dyn is not None
@@ -312,35 +379,19 @@ def solve_frequency_cases(
                 FrequencyOutcome(status=STATUS_NUMERICAL, message=why, data={}, distrust=why)
             )
             continue
-        ex = 0 if dyn.excitations[0].end == "a" else 1
-        env_amp = envelope[k]
-        env_max = static.tension + env_amp
-        data: dict[str, np.ndarray] = {
-            "tension_static": np.asarray(t_end[ex]),
-            "tension_max": np.asarray(t_end[ex] + a_end[k, ex]),
-            "tension_min": np.asarray(t_end[ex] - a_end[k, ex]),
-            "tension_mean": np.asarray(t_end[ex]),
-            "tension_max_line": np.asarray(max(float(np.max(env_max)), float(edge_max[k]))),
-            "tension_envelope_max": env_max,
-            "tension_envelope_min": static.tension - env_amp,
-            "tension_amplitude_a": np.asarray(a_end[k, 0]),
-            "tension_amplitude_b": np.asarray(a_end[k, 1]),
-            "tension_phase_a": np.asarray(phase[k, 0]),
-            "tension_phase_b": np.asarray(phase[k, 1]),
-            "steady_converged": np.asarray(1),
-            "linearisation_iterations": np.asarray(int(res.iterations[k])),
-            "linearisation_converged": np.asarray(int(res.converged[k])),
-        }
+        data: dict[str, np.ndarray] = {name: col[k, ...] for name, col in items}
+        known: list[str] | None = bad[k]
         if dyn.transfer_function is not None:
             data.update(transfer_function(red, dyn, static))
+            known = None
         v = Validity(
-            min_tension_ratio=float(ratio[k]),
-            amplitude_sag_ratio=float(sag_ratio[k]),
-            touchdown_travel=float(travel[k]),
+            min_tension_ratio=ratio_l[k],
+            amplitude_sag_ratio=sag_l[k],
+            touchdown_travel=travel_l[k],
         )
-        out.append(
-            _judged(data, v, dyn, bool(res.converged[k]), int(res.iterations[k]), res.change[k])
-        )
+        outcome = _judged(data, v, dyn, converged_l[k], iterations_l[k], res.change[k])
+        outcome.non_finite = known
+        out.append(outcome)
     return out
 
 
@@ -377,15 +428,11 @@ def _judged(
         reasons.append(
             f"touchdown travel {v.touchdown_travel:.3g} L > {auto.max_touchdown_travel:g} L"
         )
-    summary = (
-        f"min/static tension {v.min_tension_ratio:.3g}, amplitude/sag {v.amplitude_sag_ratio:.3g}"
-    )
     return FrequencyOutcome(
         status=STATUS_OK,
         message="",
         data=data,
         distrust="; ".join(reasons),
-        summary=summary,
         validity=v,
         drag_converged=converged,
     )

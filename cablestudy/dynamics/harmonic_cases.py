@@ -39,10 +39,14 @@ from numba import njit
 from .frequency import (
     FIT_REGULARISATION,
     DragSettings,
+    LinearLine,
     ReducedLine,
+    csr_entries,
     drag_tangent,
     is_planar,
     planar_drag_fit,
+    selected_rows,
+    sum_components,
 )
 
 
@@ -99,10 +103,24 @@ def _rows(band: np.ndarray, bw: int) -> np.ndarray:
     (N, 3 bw + 1) (room for the fill-in of row exchanges on the right)."""
     N = band.shape[1]
     out = np.zeros((N, 3 * bw + 1), dtype=band.dtype)
-    for d in range(-bw, bw + 1):  # d = j - i
-        i = np.arange(max(0, -d), min(N, N - d))
-        out[i, d + bw] = band[bw - d, i + d]
+    i = np.arange(N)[:, None]
+    d = np.arange(-bw, bw + 1)[None, :]  # d = j - i
+    inside = (i + d >= 0) & (i + d < N)
+    i, d = np.broadcast_arrays(i, d)
+    out[i[inside], d[inside] + bw] = band[bw - d[inside], (i + d)[inside]]
     return out
+
+
+def _transposed(B: sp.spmatrix) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(indptr, indices, data) of ``B.T.tocsr()`` (stored zeros kept), by a stable sort
+    of the entries of a canonical CSR ``B`` on their column."""
+    if not (sp.issparse(B) and B.format == "csr" and B.has_canonical_format):
+        BT = B.T.tocsr()
+        return BT.indptr, BT.indices, BT.data
+    order = np.argsort(B.indices, kind="stable")
+    row = np.repeat(np.arange(B.shape[0]), np.diff(B.indptr))
+    ptr = np.concatenate(([0], np.cumsum(np.bincount(B.indices, minlength=B.shape[1]))))
+    return ptr, row[order], B.data[order]
 
 
 #: per reduced line its x-z system, or None where it has none (see :func:`in_plane`)
@@ -121,8 +139,48 @@ def in_plane(red: ReducedLine) -> ReducedLine:
     Otherwise ``red`` itself."""
     if red in _IN_PLANE:
         return _IN_PLANE[red] or red
-    out = None
     line = red.line
+    out = None
+    if line.has_drag and not np.any(line.tangent[:, 1]) and not np.any(line.current[:, 1]):
+        basis = _plane_basis(line)
+        if basis is not None:
+            out = ReducedLine.of(replace(line, free_basis=basis))
+    _IN_PLANE[red] = out
+    return out or red
+
+
+def _plane_basis(line: LinearLine) -> sp.csr_matrix | None:
+    """The free basis of ``line`` without its y columns when every free direction is
+    either y or in the x-z plane, some are y, and the stiffness, damping and mass couple
+    no y direction with an x-z one (:func:`in_plane`); None otherwise."""
+    B = line.free_basis
+    rows = selected_rows(B)
+    entries = (csr_entries(line.stiffness), csr_entries(line.damping))
+    if rows is None or entries[0] is None or entries[1] is None:
+        return _plane_basis_general(line)
+    # coordinate directions (the free basis of linear_line): a column is y or in-plane
+    y_part = rows % 3 == 1
+    if not np.any(y_part):
+        return None
+    for row, col, val in entries:  # type: ignore[misc]
+        if np.any(val[(row % 3 == 1) != (col % 3 == 1)] != 0.0):
+            return None
+    m = line.mass
+    if np.any(m[:, 1, 0::2] != 0.0) or np.any(m[:, 0::2, 1] != 0.0):
+        return None
+    # the stored entries (zeros included) of the kept columns, renumbered, as
+    # B[:, ~y_part] keeps them
+    new_col = np.cumsum(~y_part) - 1
+    keep = ~y_part[B.indices]
+    kept_before = np.concatenate(([0], np.cumsum(keep)))
+    return sp.csr_matrix(
+        (B.data[keep], new_col[B.indices[keep]], kept_before[B.indptr]),
+        shape=(B.shape[0], int(np.count_nonzero(~y_part))),
+    )
+
+
+def _plane_basis_general(line: LinearLine) -> sp.csr_matrix | None:
+    """:func:`_plane_basis` for any free basis (with scipy's products)."""
     B = sp.csc_matrix(line.free_basis)
     is_y = (np.arange(B.shape[0]) % 3) == 1
     y_part = np.asarray(abs(B[is_y]).sum(axis=0)).ravel() > 0.0
@@ -134,18 +192,14 @@ def in_plane(red: ReducedLine) -> ReducedLine:
         return not np.any(coo.data[cross] != 0.0)
 
     if (
-        line.has_drag
-        and not np.any(line.tangent[:, 1])
-        and not np.any(line.current[:, 1])
-        and not np.any(y_part & plane_part)
+        not np.any(y_part & plane_part)
         and np.any(y_part)
         and decoupled(line.stiffness)
         and decoupled(line.damping)
         and decoupled(line.mass_matrix())
     ):
-        out = ReducedLine.of(replace(line, free_basis=B[:, ~y_part].tocsr()))
-    _IN_PLANE[red] = out
-    return out or red
+        return B[:, ~y_part].tocsr()
+    return None
 
 
 def _prepare(red: ReducedLine) -> _Prepared:
@@ -156,17 +210,17 @@ def _prepare(red: ReducedLine) -> _Prepared:
     bw = red.bandwidth
     K = sp.csr_matrix(line.stiffness)
     C = sp.csr_matrix(line.damping)
-    BT = line.free_basis.T.tocsr()
+    bt_ptr, bt_idx, bt_val = _transposed(line.free_basis)
     n = line.n_nodes
     counts = np.diff(red.offsets)
     nb = red.node_basis  # (n, 3, 3), columns past the node's count are zero
     unit = (np.sum(nb == 1.0, axis=1) == 1) & (np.sum(nb == 0.0, axis=1) == 2)  # (n, 3)
-    selected = np.array([bool(np.all(unit[i, : counts[i]])) for i in range(n)])
+    used = np.arange(3)[None, :] < counts[:, None]  # (n, 3): the node's columns
+    selected = np.all(unit | ~used, axis=1)
     sel = np.where(unit, np.argmax(nb == 1.0, axis=1), -1).astype(np.int64)
     pos = np.full((n, 3), -1, dtype=np.int64)
-    for i in np.flatnonzero(selected):
-        for r in range(counts[i]):
-            pos[i, sel[i, r]] = r
+    node, col = np.nonzero(selected[:, None] & used)
+    pos[node, sel[node, col]] = col
     out = _Prepared(
         k_ptr=K.indptr.astype(np.int64),
         k_idx=K.indices.astype(np.int64),
@@ -174,9 +228,9 @@ def _prepare(red: ReducedLine) -> _Prepared:
         c_ptr=C.indptr.astype(np.int64),
         c_idx=C.indices.astype(np.int64),
         c_val=np.ascontiguousarray(C.data, dtype=float),
-        bt_ptr=BT.indptr.astype(np.int64),
-        bt_idx=BT.indices.astype(np.int64),
-        bt_val=np.ascontiguousarray(BT.data, dtype=float),
+        bt_ptr=bt_ptr.astype(np.int64),
+        bt_idx=bt_idx.astype(np.int64),
+        bt_val=np.ascontiguousarray(bt_val, dtype=float),
         rows_k=_rows(red.K, bw),
         rows_m=_rows(red.M, bw),
         rows_c=_rows(red.C, bw),
@@ -914,10 +968,10 @@ def solve_harmonic_cases(
     axial = (line.axial_stiffness[None] + 1j * omegas[:, None] * line.axial_damping[None]) / (
         line.rest_length[None]
     )
-    element = axial * np.sum(line.direction[None] * du, axis=2)
+    element = axial * sum_components(line.direction[None] * du)
     static_mag = np.linalg.norm(line.end_force, axis=1)
     unit = line.end_force / np.where(static_mag > 0.0, static_mag, 1.0)[:, None]
-    end_tension = np.sum(unit[None] * -reaction, axis=2)
+    end_tension = sum_components(unit[None] * -reaction)
     end_tension[~ok] = np.nan + 0j
     return HarmonicCases(
         displacement=u,
@@ -951,10 +1005,8 @@ def _one_by_one(
     )
 
 
-def warm_up_line():  # noqa: ANN201
+def warm_up_line() -> LinearLine:
     """A 3-node taut line with drag (the kernels' warm-up and tests' small case)."""
-    from .frequency import LinearLine
-
     n = 3
     eye = sp.identity(3 * n, format="csr")
     basis = sp.csr_matrix(np.eye(3 * n)[:, 3:6])

@@ -17,6 +17,7 @@ prescribed (held, or moved by the excitation), as in the time domain.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import replace
 
@@ -26,7 +27,7 @@ import scipy.sparse as sp
 from ..physics.current import current_velocity
 from ..statics.base import EndCondition
 from .frequency import LinearLine
-from .modal import ModalProblem, _segment_index, element_tangent, node_bases, tangents
+from .modal import ModalProblem, _segment_index, element_tangent, tangents
 
 
 def linear_line(problem: ModalProblem) -> LinearLine:
@@ -62,22 +63,6 @@ def linear_line(problem: ModalProblem) -> LinearLine:
     tangent = pos[hi] - pos[lo]
     tangent /= np.linalg.norm(tangent, axis=1)[:, None]
 
-    bases = node_bases(prob)
-    dims = np.array([b.shape[1] for b in bases])
-    offsets = np.concatenate(([0], np.cumsum(dims)))
-    # entry (r, c) of node i's basis (3, k) at row 3 i + r, column offsets[i] + c, in
-    # the order of the bases' rows
-    sizes = 3 * dims
-    node = np.repeat(np.arange(n), sizes)
-    local = np.arange(int(sizes.sum())) - np.repeat(np.cumsum(sizes) - sizes, sizes)
-    k_of = np.maximum(dims[node], 1)
-    free = sp.csr_matrix(
-        (
-            np.concatenate([b.ravel() for b in bases]) if n else np.zeros(0),
-            (3 * node + local // k_of, offsets[node] + local % k_of),
-        ),
-        shape=(3 * n, int(offsets[-1])),
-    )
     mass, stiffness, damping = tangents(prob)
     return LinearLine(
         s=s,
@@ -95,7 +80,7 @@ def linear_line(problem: ModalProblem) -> LinearLine:
         drag_tangential=drag_t,
         current=current_velocity(pos[:, 2], medium.current_z, medium.current_velocity),
         tangent=tangent,
-        free_basis=free,
+        free_basis=held_ends_basis(n),
         drag_body=drag_b if np.any(drag_b > 0.0) else None,
     )
 
@@ -119,3 +104,28 @@ def body_drag(line: object, extras: object, s: np.ndarray, rho: float) -> np.nda
         out[e] += (1.0 - xi) * 0.5 * rho * area[k]
         out[e + 1] += xi * 0.5 * rho * area[k]
     return out
+
+
+def held_ends_basis(n: int) -> sp.csr_matrix:
+    """The free basis (3n, 3 (n - 2)) of ``n`` nodes whose two end nodes are held
+    (:func:`~cablestudy.dynamics.modal.node_bases` with fixed ends: no column at an end
+    node, the three axes at every other node, in node order), with each inner node's
+    identity block stored whole, its zeros too, as scipy stores the blocks given as
+    coordinates."""
+    data, indices, indptr = _held_ends_arrays(n)
+    return sp.csr_matrix(
+        (data.copy(), indices.copy(), indptr.copy()), shape=(3 * n, 3 * max(n - 2, 0))
+    )
+
+
+@functools.lru_cache(maxsize=16)
+def _held_ends_arrays(n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    inner = max(n - 2, 0)
+    per_row = np.zeros(3 * n, dtype=np.int32)
+    per_row[3 : 3 + 3 * inner] = 3
+    indptr = np.concatenate(([0], np.cumsum(per_row))).astype(np.int32)
+    indices = np.repeat(np.arange(3 * inner, dtype=np.int32).reshape(inner, 1, 3), 3, axis=1)
+    data = np.tile(np.eye(3).ravel(), inner)
+    for a in (data, indices, indptr):
+        a.flags.writeable = False
+    return data, indices.ravel(), indptr

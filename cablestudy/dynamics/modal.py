@@ -51,6 +51,7 @@ elsewhere but not convergence.
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from dataclasses import dataclass, replace
@@ -284,26 +285,49 @@ def tangents(problem: ModalProblem) -> tuple[np.ndarray, sp.csr_matrix, sp.csr_m
 
 def _block_matrix(n: int, diag: np.ndarray, off1: np.ndarray, off2: np.ndarray) -> sp.csr_matrix:
     """Sparse (3n, 3n) matrix of diagonal blocks and upper blocks one and two nodes off
-    the diagonal (the lower ones their transposes)."""
-    ii, jj = np.meshgrid(np.arange(3), np.arange(3), indexing="ij")
-    rows, cols, vals = [], [], []
-
-    def add(node_i: np.ndarray, node_j: np.ndarray, blocks: np.ndarray) -> None:
-        rows.append((3 * node_i[:, None, None] + ii).ravel())
-        cols.append((3 * node_j[:, None, None] + jj).ravel())
-        vals.append(blocks.ravel())
-
-    add(np.arange(n), np.arange(n), diag)
+    the diagonal (the lower ones their transposes), every entry of a block stored (zeros
+    too), in canonical CSR form (columns sorted in each row): the arrays scipy makes of
+    the same entries given as coordinates, built row by row from the blocks."""
+    m1, m2 = off1.shape[0], off2.shape[0]
+    reach = 2 if m2 else (1 if m1 else 0)
+    take, indices, indptr = _block_structure(n, m1, m2)
+    # rows[i, k, a, b]: entry (3 i + a, 3 (i + k - reach) + b)
+    rows = np.zeros((n, 2 * reach + 1, 3, 3))
+    rows[:, reach] = diag
     for k, blocks in ((1, off1), (2, off2)):
         m = blocks.shape[0]
-        if m == 0:
-            continue
-        a = np.arange(m)
-        add(a, a + k, blocks)
-        add(a + k, a, np.transpose(blocks, (0, 2, 1)))
-    return sp.csr_matrix(
-        (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(3 * n, 3 * n)
-    )
+        if m:
+            rows[:m, reach + k] = blocks
+            rows[k : m + k, reach - k] = np.transpose(blocks, (0, 2, 1))
+    data = np.ascontiguousarray(np.transpose(rows, (0, 2, 1, 3))).ravel()[take]
+    return sp.csr_matrix((data, indices.copy(), indptr.copy()), shape=(3 * n, 3 * n))
+
+
+@functools.lru_cache(maxsize=32)
+def _block_structure(n: int, m1: int, m2: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Of :func:`_block_matrix` with ``m1`` and ``m2`` blocks one and two nodes off the
+    diagonal: which entries of its (n, 3, 2 reach + 1, 3) row blocks are stored (flat),
+    their columns, and the row pointers (int32, as scipy picks for these sizes)."""
+    reach = 2 if m2 else (1 if m1 else 0)
+    width = 2 * reach + 1
+    present = np.zeros((n, width), dtype=bool)
+    present[:, reach] = True
+    for k, m in ((1, m1), (2, m2)):
+        if m:
+            present[:m, reach + k] = True
+            present[k : m + k, reach - k] = True
+    shape = (n, 3, width, 3)
+    take = np.empty(shape, dtype=bool)
+    take[...] = present[:, None, :, None]
+    cols = np.empty(shape, dtype=np.int32)
+    cols[...] = (3 * (np.arange(n)[:, None] + np.arange(width) - reach))[:, None, :, None]
+    cols += np.arange(3, dtype=np.int32)
+    indptr = np.zeros(3 * n + 1, dtype=np.int32)
+    np.cumsum(np.repeat(3 * np.count_nonzero(present, axis=1), 3), out=indptr[1:])
+    take = take.ravel()
+    for a in (take, cols, indptr):
+        a.flags.writeable = False
+    return take, cols.ravel()[take], indptr
 
 
 def mass_blocks(problem: ModalProblem) -> np.ndarray:

@@ -33,6 +33,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .frequency import sum_components
+
 
 @dataclass(frozen=True, kw_only=True)
 class Validity:
@@ -147,7 +149,7 @@ def measures_cases(
     ratio = np.where(np.any(moving_unloaded, axis=1), -math.inf, ratio)
     length = float(s[-1] - s[0])
     d = sag(position)
-    a = np.max(np.sqrt(np.sum(np.abs(displacement) ** 2, axis=2)), axis=1)
+    a = np.max(np.sqrt(sum_components(np.abs(displacement) ** 2)), axis=1)
     K = displacement.shape[0]
     travel = np.zeros(K)
     if laid_length > 0.0 and np.any(on_seabed) and not np.all(on_seabed):
