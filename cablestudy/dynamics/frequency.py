@@ -258,7 +258,7 @@ def drag_tangent(line: LinearLine) -> np.ndarray:
     return out
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def harmonic_gain(U, c):  # noqa: ANN001, ANN201
     """``b_1 / c`` [m/s] for ``g(x) = |x| x`` of ``x = U + c cos(psi)`` (``c >= 0``), with
     ``b_1`` the first Fourier coefficient of ``g`` in ``psi``: the equivalent (energy)
@@ -281,14 +281,14 @@ def harmonic_gain(U, c):  # noqa: ANN001, ANN201
     return c * (2.0 / math.pi) * (2.0 * mu * psi0 + 2.0 * s0 * (2.0 + mu * mu) / 3.0 - mu * math.pi)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def is_planar(vr, vi, t, u, i):  # noqa: ANN001, ANN201
     """Node ``i``'s velocity amplitude ``vr + i vi``, tangent ``t`` and current ``u``
     (n, 3) have no y component."""
     return vr[i, 1] == 0.0 and vi[i, 1] == 0.0 and t[i, 1] == 0.0 and u[i, 1] == 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def planar_drag_fit(vr, vi, t, u, c_n, c_t, tangent_d, i, out):  # noqa: ANN001, ANN201, PLR0913
     """The drag fit of node ``i`` whose tangent ``(t0, 0, t2)``, current ``(u0, 0, u2)``
     and velocity amplitude ``(a0 + i b0, 0, a2 + i b2)`` lie in the x-z plane, in closed

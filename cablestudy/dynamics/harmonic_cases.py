@@ -500,6 +500,23 @@ def _csr_rows(ptr, idx, val, x, lo, hi, out):  # noqa: ANN001, ANN202
 ANDERSON_DEPTH = 3
 
 
+@njit(cache=True, fastmath=True, inline="always")
+def _dot(x, y):  # noqa: ANN001, ANN202
+    """``x . y`` of two 1-D arrays (reassociated, so vectorised: the mixing weights
+    need no particular order of the sum)."""
+    acc = 0.0
+    for q in range(x.shape[0]):
+        acc += x[q] * y[q]
+    return acc
+
+
+@njit(cache=True, inline="always")
+def _axpy_difference(d, a, g, h):  # noqa: ANN001, ANN202
+    """``d -= a (g - h)`` in place (1-D arrays)."""
+    for q in range(d.shape[0]):
+        d[q] -= a * (g[q] - h[q])
+
+
 @njit(cache=True)
 def _mixed(D, G, hist_R, hist_G, gram, state, change, last):  # noqa: ANN001, ANN202, PLR0913
     """The next drag matrices ``D`` of the fixed point ``D = G(D)`` (``G`` the fit to the
@@ -532,9 +549,7 @@ def _mixed(D, G, hist_R, hist_G, gram, state, change, last):  # noqa: ANN001, AN
         hist_G[slot, q] = g[q]
     for c in range(count):
         j = (head + c) % keep
-        acc = 0.0
-        for q in range(size):
-            acc += hist_R[slot, q] * hist_R[j, q]
+        acc = _dot(hist_R[slot], hist_R[j])
         gram[slot, j] = acc
         gram[j, slot] = acc
     state[0] = count
@@ -578,10 +593,9 @@ def _mixed(D, G, hist_R, hist_G, gram, state, change, last):  # noqa: ANN001, AN
                 acc -= A[k, j] * gam[j]
             gam[k] = acc / A[k, k]
     for q in range(size):
-        nxt = g[q]
-        for a in range(m):
-            nxt -= gam[a] * (g[q] - hist_G[others[a], q])
-        d[q] = nxt
+        d[q] = g[q]
+    for a in range(m):
+        _axpy_difference(d, gam[a], g, hist_G[others[a]])
 
 
 @njit(cache=True)
