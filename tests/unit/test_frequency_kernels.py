@@ -88,6 +88,17 @@ def test_harmonic_gain_limits() -> None:
     assert harmonic_gain(1.0 - 1e-9, 1.0) == pytest.approx(2.0, abs=1e-8)
 
 
+def _fit_one(
+    node: tuple[np.ndarray, ...], cn: float, ct: float, samples: int, exact: bool
+) -> np.ndarray:
+    """_drag_fit of one node ``(t, vr, vi, u)`` without a body (1, 3, 3)."""
+    t, vr, vi, u = node
+    out = np.empty((1, 3, 3))
+    td = _tangent(t, u, cn, ct)
+    _drag_fit(vr, vi, u, t, np.array([cn]), np.array([ct]), np.zeros(1), td, samples, exact, out)
+    return out
+
+
 def _planar_node(rng: np.random.Generator) -> tuple[np.ndarray, ...]:
     th = rng.uniform(0.0, np.pi)
     t = np.array([[math.cos(th), 0.0, math.sin(th)]])
@@ -121,10 +132,10 @@ def test_sampled_fit_converges_to_the_closed_form_at_third_order() -> None:
     cn, ct = 1.7, 0.4
     counts = np.array([32, 64, 128, 256, 512, 1024])
     for _ in range(6):
-        t, vr, vi, u = _planar_node(rng)
+        node = _planar_node(rng)
+        t, vr, vi, u = node
         td = _tangent(t, u, cn, ct)
-        closed = np.empty((1, 3, 3))
-        _drag_fit(vr, vi, u, t, np.array([cn]), np.array([ct]), np.zeros(1), td, 32, True, closed)
+        closed = _fit_one(node, cn, ct, 32, True)
         # the sampled fit is regularised, D = (H + e D_0)(G + e I)^-1 with e =
         # FIT_REGULARISATION tr G; without aliasing H = D_closed G, and G = (a a^T + b
         # b^T) / 2 exactly at any number of phases, so its limit is
@@ -133,20 +144,7 @@ def test_sampled_fit_converges_to_the_closed_form_at_third_order() -> None:
         exact = ((closed[0] @ G + e * td[0]) @ np.linalg.inv(G + e * np.eye(3)))[None]
         errs = []
         for samples in counts:
-            got = np.empty((1, 3, 3))
-            _drag_fit(
-                vr,
-                vi,
-                u,
-                t,
-                np.array([cn]),
-                np.array([ct]),
-                np.zeros(1),
-                td,
-                int(samples),
-                False,
-                got,
-            )
+            got = _fit_one(node, cn, ct, int(samples), False)
             errs.append(np.abs(got - exact)[0][np.ix_([0, 2], [0, 2])].max())
         errs = np.array(errs)
         assert np.all(errs * counts**3 / np.abs(exact).max() < 50.0), errs
@@ -162,21 +160,9 @@ def test_closed_form_fit_dissipates_the_mean_drag_power() -> None:
     cn, ct = 1.2, 0.3
     th = 2.0 * np.pi * np.arange(200_000) / 200_000
     for _ in range(5):
-        t, vr, vi, u = _planar_node(rng)
-        D = np.empty((1, 3, 3))
-        _drag_fit(
-            vr,
-            vi,
-            u,
-            t,
-            np.array([cn]),
-            np.array([ct]),
-            np.zeros(1),
-            _tangent(t, u, cn, ct),
-            8,
-            True,
-            D,
-        )
+        node = _planar_node(rng)
+        t, vr, vi, u = node
+        D = _fit_one(node, cn, ct, 8, True)
         w = -(vr[0][None] * np.cos(th)[:, None] - vi[0][None] * np.sin(th)[:, None])
         r = u[0][None] + w
         rt = r @ t[0]
@@ -223,9 +209,9 @@ def test_batched_fit_is_the_reference_fit(exact: bool) -> None:
 def test_body_drag_fit_and_tangent() -> None:
     """A lumped body's isotropic drag c |w| w: in still water and motion of velocity
     amplitude a along one direction the fit is the classical 8 c a / (3 pi) along it
-    (4096 phases: aliasing below 1e-10; regularised as every sampled fit); its small-motion tangent at a current U is
-    c (|U| I + U U^T / |U|), the derivative of drag_force (central differences, step
-    1e-6 of |U|: error ~1e-12 relative)."""
+    (4096 phases: aliasing below 1e-10; regularised as every sampled fit); its
+    small-motion tangent at a current U is c (|U| I + U U^T / |U|), the derivative of
+    drag_force (central differences, step 1e-6 of |U|: error ~1e-12 relative)."""
     from dataclasses import replace
 
     from cablestudy.dynamics.frequency import drag_force, drag_linearisation, drag_tangent
