@@ -554,6 +554,17 @@ class DynamicSettings(StrictModel):
                 f"auto: thresholds of method 'auto', not used by method {method!r}; allowed: "
                 "method 'auto' (or remove the key)"
             )
+        if (
+            self.linearisation is not None
+            and self.linearisation.samples is not None
+            and any(isinstance(e, SpectrumExcitation) for e in self.excitations)
+        ):
+            raise ValueError(
+                f"linearisation.samples: {self.linearisation.samples} sets the phases of the "
+                "harmonic drag fit; a spectrum's drag is linearised statistically (Gauss-"
+                "Hermite over the velocity's distribution), which has no phases; allowed: "
+                "remove samples, or harmonic excitation"
+            )
         if self.transfer_function is not None and not all(
             isinstance(e, HarmonicExcitation) for e in self.excitations
         ):

@@ -3,7 +3,7 @@
 :func:`linear_line` builds a :class:`~cablestudy.dynamics.frequency.LinearLine` about a
 static shape sampled at the nodes: mass, tangent stiffness and structural damping are
 the time-domain model's own tangents at rest in that shape
-(:func:`cablestudy.dynamics.modal.tangents`, which evaluates
+(:func:`cablestudy.dynamics.modal.tangents_of`, which evaluates
 :func:`cablestudy.dynamics.model.assemble`): axial and geometric stiffness, bending with
 pinned or clamped ends, the seabed contact spring and dashpot, sticking seabed friction
 (for small motions static friction keeps the laid line from sliding: friction is
@@ -11,7 +11,8 @@ linearised as its stick spring), the axial strain-rate and transverse structural
 damping, added mass of the line and of lumped bodies. What it adds: the nodal drag
 coefficients ``1/2 rho C_N d l`` and ``1/2 rho pi C_T d l`` over the node's tributary
 length ``l``, the current at the nodes and the node tangents (the chord of the two
-neighbouring nodes), for the solver's own drag linearisation. Both end nodes are
+neighbouring nodes), and the lumped bodies' drag ``1/2 rho C_D A`` as the shared model
+lumps it, for the solver's own drag linearisation. Both end nodes are
 prescribed (held, or moved by the excitation), as in the time domain.
 """
 
@@ -27,7 +28,7 @@ import scipy.sparse as sp
 from ..physics.current import current_velocity
 from ..statics.base import EndCondition
 from .frequency import LinearLine
-from .modal import ModalProblem, _segment_index, element_tangent, tangents
+from .modal import ModalProblem, _segment_index, element_tangent, shared_model, tangents_of
 
 
 def linear_line(problem: ModalProblem) -> LinearLine:
@@ -57,13 +58,16 @@ def linear_line(problem: ModalProblem) -> LinearLine:
     rho = medium.density
     drag_n = lump(0.5 * rho * line.drag_normal * line.diameter)
     drag_t = lump(0.5 * rho * math.pi * line.drag_tangential * line.diameter)
-    drag_b = body_drag(line, prob.extras, s, rho)
     lo = np.maximum(np.arange(n) - 1, 0)
     hi = np.minimum(np.arange(n) + 1, n - 1)
     tangent = pos[hi] - pos[lo]
     tangent /= np.linalg.norm(tangent, axis=1)[:, None]
 
-    mass, stiffness, damping = tangents(prob)
+    disc, x = shared_model(prob)
+    mass, stiffness, damping = tangents_of(disc, x)
+    # the bodies' drag 1/2 rho C_D A, lumped on their elements' nodes by the shared
+    # model, as the time domain has it
+    drag_b = np.asarray(disc.body_drag, dtype=float)
     return LinearLine(
         s=s,
         position=pos,
@@ -83,27 +87,6 @@ def linear_line(problem: ModalProblem) -> LinearLine:
         free_basis=held_ends_basis(n),
         drag_body=drag_b if np.any(drag_b > 0.0) else None,
     )
-
-
-def body_drag(line: object, extras: object, s: np.ndarray, rho: float) -> np.ndarray:
-    """[kg/m] (n,) the lumped bodies' drag coefficients ``1/2 rho C_D A`` at nodes ``s``
-    [m]: each body's shared between the two nodes of its element in proportion to its
-    place along it, as the time-domain model lumps it (:func:`cablestudy.dynamics.model.
-    build_model`)."""
-    n = s.size
-    out = np.zeros(n)
-    s_att = np.asarray(getattr(line, "attachment_s", np.zeros(0)), dtype=float)
-    area = getattr(extras, "attachment_drag_area", None) if extras is not None else None
-    if s_att.size == 0 or area is None or np.size(area) == 0 or n < 2:
-        return out
-    area = np.asarray(area, dtype=float)
-    l0 = np.diff(s)
-    for k in range(s_att.size):
-        e = int(np.clip(np.searchsorted(s, s_att[k], side="right") - 1, 0, n - 2))
-        xi = (s_att[k] - s[e]) / l0[e]
-        out[e] += (1.0 - xi) * 0.5 * rho * area[k]
-        out[e + 1] += xi * 0.5 * rho * area[k]
-    return out
 
 
 def held_ends_basis(n: int) -> sp.csr_matrix:

@@ -273,7 +273,14 @@ def tangents(problem: ModalProblem) -> tuple[np.ndarray, sp.csr_matrix, sp.csr_m
     (3 n_nodes, 3 n_nodes) [N/m], [N s/m] of all nodes before constraints: the shared
     line model's own tangents (:func:`cablestudy.dynamics.model.assemble`) at rest in
     the static shape, without drag (the frequency domain linearises drag itself)."""
-    disc, x = shared_model(problem)
+    return tangents_of(*shared_model(problem))
+
+
+def tangents_of(
+    disc: DiscreteLine, x: np.ndarray
+) -> tuple[np.ndarray, sp.csr_matrix, sp.csr_matrix]:
+    """:func:`tangents` of the shared model ``disc`` at positions ``x`` (as
+    :func:`shared_model` returns them)."""
     work = evaluate(disc, x, np.zeros_like(x), anchor=x)
     n = disc.n_nodes
     return (

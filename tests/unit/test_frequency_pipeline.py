@@ -99,6 +99,14 @@ def test_frequency_study_runs_to_netcdf(tmp_path: Path) -> None:
             "    method: frequency\n    auto: {min_tension_ratio: 0.5}",
             "auto: thresholds of method 'auto'",
         ),
+        (  # the phases of the harmonic fit mean nothing to a spectrum's statistical one
+            "excitation: {end: b, direction: [1.0, 0.0, 0.0], amplitude: 0.05, frequency: 0.5}\n"
+            "    method: frequency",
+            "excitation: {end: b, direction: [1.0, 0.0, 0.0], components: 16, "
+            "spectrum: [[0.2, 1.0e-4], [0.8, 1.0e-4]]}\n    method: frequency\n"
+            "    linearisation: {samples: 64}",
+            "linearisation.samples: 64 sets the phases of the harmonic drag fit",
+        ),
     ],
 )
 def test_keys_another_method_needs_are_refused(old: str, new: str, words: str) -> None:
