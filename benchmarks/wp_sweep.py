@@ -44,7 +44,7 @@ ends:
   a: {{kind: fixed, position: [0.0, 0.0, 0.0]}}
   b: {{kind: fixed, position: [92.5, 0.0, {rise}]}}
 analysis:
-  static: {{method: catenary, nodes: 20}}
+  static: {{nodes: 20}}
 sweep:
   ends.b.position.0: {{start: {s0}, stop: {s1}, num: {n_span}, name: span}}
   line.segments.0.axial_stiffness: {{start: {e0}, stop: {e1}, num: {n_ea}}}

@@ -40,14 +40,12 @@ def _load(path: str, max_bytes: int | None = None):  # noqa: ANN202
 
 
 def _grid(src):  # noqa: ANN001, ANN202
-    """The study as an array grid (cablestudy.grid) when its sweep allows, else None.
-    Imported only for a sweep of the one kind it takes, so that validate stays light."""
+    """The study as an array grid (cablestudy.grid) when its validated template and sweep
+    allow, else None. Decided from the validated study (defaults included), never from
+    the raw text: a study that leaves ``analysis.static.method`` out runs on the same
+    kernel as one that writes its default ``catenary``."""
     sweep = src.data.get("sweep")
-    analysis = src.data.get("analysis")
-    if not isinstance(sweep, dict) or not sweep or not isinstance(analysis, dict):
-        return None
-    static = analysis.get("static")
-    if not isinstance(static, dict) or static.get("method") != "catenary":
+    if not isinstance(sweep, dict) or not sweep:
         return None
     from .grid import expand_grid
 

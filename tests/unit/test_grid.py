@@ -243,3 +243,17 @@ def test_an_extended_first_axis_reuses_the_cached_chunks(
 def held_history(path: Path) -> str:
     with xr.open_dataset(path) as ds:
         return str(ds.attrs["history"])
+
+
+def test_the_default_method_takes_the_array_path_as_the_written_one(tmp_path: Path) -> None:
+    """Which path a study takes is decided from the validated study, defaults included:
+    leaving out ``method: catenary`` (the default) must not send a sweep case by case."""
+    from cablestudy.cli import _load
+    from cablestudy.grid import CaseGrid
+
+    written, left_out = tmp_path / "written.yaml", tmp_path / "left_out.yaml"
+    written.write_text(TEXT)
+    left_out.write_text(TEXT.replace("method: catenary, ", ""))
+    (_, _, a), (_, _, b) = _load(str(written)), _load(str(left_out))
+    assert isinstance(a, CaseGrid) and isinstance(b, CaseGrid)
+    assert a.key == b.key  # the same template with its defaults: the same cases, one cache
