@@ -10,11 +10,13 @@ OUT ?= results
 
 install: $(STAMP)
 
-# Redone only when pyproject.toml changes.
+# Redone only when pyproject.toml changes. The numba kernels are compiled here, in
+# parallel, so that neither the first study nor the tests wait for them.
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet -e '.[dev,peers]'
+	$(BIN)/cablestudy compile
 	touch $(STAMP)
 
 study: install

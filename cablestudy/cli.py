@@ -72,6 +72,10 @@ def cmd_run(args: argparse.Namespace) -> int:
         )
         return 2
     src, axes, cases = _load(args.config, args.max_study_size)
+    from .kernels import ensure_compiled, kinds_of
+
+    studies = [cases.template] if not isinstance(cases, list) else [c.study for c in cases]
+    ensure_compiled(sorted({k for study in studies for k in kinds_of(study)}))
     try:
         if not isinstance(cases, list):  # a sweep run as arrays (cablestudy.grid)
             from .runner import run_grid_study
@@ -112,6 +116,20 @@ def cmd_run(args: argparse.Namespace) -> int:
         print(f"{exc}; finished cases are cached", file=sys.stderr)
         return 1
     print(summary.report())
+    return 0
+
+
+def cmd_compile(args: argparse.Namespace) -> int:
+    import time
+
+    from .kernels import KINDS, compile_all
+
+    t0 = time.perf_counter()
+    kinds = ", ".join(label for label, _ in KINDS.values())
+    print(f"compiling {kinds} (once per install) ...", flush=True)
+    seconds = compile_all(jobs=args.jobs)
+    each = ", ".join(f"{kind} {t:.1f} s" for kind, t in seconds.items())
+    print(f"compiled in {time.perf_counter() - t0:.1f} s ({each})")
     return 0
 
 
@@ -274,6 +292,13 @@ def build_parser() -> argparse.ArgumentParser:
     )
     _add_size_option(p)
     p.set_defaults(func=cmd_run)
+
+    p = sub.add_parser(
+        "compile",
+        help="compile the numba kernels now (make install does), so that no study waits for it",
+    )
+    p.add_argument("--jobs", type=int, default=None, help="processes at once (default: the cores)")
+    p.set_defaults(func=cmd_compile)
 
     p = sub.add_parser("validate", help="check a study file without running it")
     p.add_argument("config")

@@ -1,0 +1,163 @@
+"""Compiling the numba kernels before the first study, and saying so when a run must.
+
+numba compiles a kernel on its first call and keeps the machine code on disk
+(``cache=True``, in the per-source cache directory :mod:`cablestudy` chooses). That first
+call costs seconds to tens of seconds; without a word it looks like a slow study. So:
+
+- ``make install`` runs ``cablestudy compile``, which compiles every kind of kernel in
+  parallel processes (one kind a process, as many processes as cores) and prints what
+  it did and how long it took;
+- each kind, once compiled, leaves a marker file beside the machine code;
+- a run whose analyses need a kind without a marker says so before it starts
+  ("compiling the time-domain kernels, first run only, about 25 s"), compiles it in the
+  main process (so that worker processes load it instead of each compiling it again),
+  and leaves the marker.
+
+The warm-ups run the kernels on small problems of the same types the analyses pass, so
+that the signatures compiled are the ones a study needs.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import time
+from collections.abc import Callable, Iterable
+from pathlib import Path
+from typing import Any, TextIO
+
+#: per kind: what it is, for messages, and about how long its compilation takes on one
+#: core of the 2-core development machine [s] (measured by ``cablestudy compile``)
+KINDS: dict[str, tuple[str, float]] = {
+    "statics": ("the static kernels", 10.0),
+    "time": ("the time-domain kernels", 25.0),
+    "frequency": ("the frequency-domain kernels", 10.0),
+}
+
+
+def _warm_statics() -> None:
+    """The still-water catenary kernels (free-hanging batch, nonlinear axial laws) and
+    the quasi-static database lookup on small problems."""
+    import numpy as np
+
+    from .config.loader import parse_study_text, validate_data
+    from .problem import static_problem
+    from .statics import _fast
+    from .statics.semi_analytic import SemiAnalyticSolver
+
+    if not _fast.AVAILABLE:
+        return
+    text = """\
+name: warm
+environment: {fluid: water, depth: 60.0}
+line:
+  segments:
+    - {length: 60.0, diameter: 0.02, mass_per_length: 2.5, axial_stiffness: 6.0e7}
+    - {length: 40.0, diameter: 0.03, mass_per_length: 5.0, LAW}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -50.0]}
+  b: {kind: fixed, position: [85.0, 0.0, -10.0]}
+"""
+    for law in ("axial_stiffness: 2.0e8", "axial: {law: polynomial, coefficients: [2.0e8, 1.0e9]}"):
+        src = parse_study_text(text.replace("LAW", law), "warm.yaml")
+        SemiAnalyticSolver().solve(static_problem(validate_data(src.data, src)))
+    # the array path of sweeps calls the batch kernel with stacked cases
+    from .grid import evaluate_grid_chunk, expand_grid
+
+    sweep = (
+        "sweep:\n  ends.b.position.0: [80.0, 85.0]\n"
+        "  line.segments.0.axial_stiffness: [6.0e7, 7.0e7]\n"
+    )
+    src = parse_study_text(text.replace("LAW", "axial_stiffness: 2.0e8") + sweep, "warm.yaml")
+    grid = expand_grid(src)
+    if grid is not None:
+        evaluate_grid_chunk(grid, 0, grid.shape[0])
+    from . import database_kernel
+
+    grid = np.array([0.0, 1.0])
+    database_kernel.evaluate_cell(np.zeros((1, 1, 2, 16)), grid, grid, 0.5, 0.5)
+
+
+def _warm_time() -> None:
+    from .dynamics.timedomain import warm_up
+
+    warm_up()
+
+
+def _warm_frequency() -> None:
+    from .dynamics.frequency import warm_up
+
+    warm_up()
+
+
+_WARM: dict[str, Callable[[], None]] = {
+    "statics": _warm_statics,
+    "time": _warm_time,
+    "frequency": _warm_frequency,
+}
+
+
+def _marker(kind: str) -> Path:
+    return Path(os.environ.get("NUMBA_CACHE_DIR", ".")) / f"{kind}.compiled"
+
+
+def is_compiled(kind: str) -> bool:
+    """Whether the kernels of ``kind`` were compiled for this version of the source."""
+    return _marker(kind).is_file()
+
+
+def compile_kind(kind: str) -> float:
+    """Compile (or load) the kernels of ``kind`` and leave its marker; returns the wall
+    time [s]."""
+    t0 = time.perf_counter()
+    _WARM[kind]()
+    seconds = time.perf_counter() - t0
+    try:
+        marker = _marker(kind)
+        marker.parent.mkdir(parents=True, exist_ok=True)
+        marker.write_text(f"{seconds:.2f}\n")
+    except OSError:  # a read-only cache: it compiles again next time, nothing is wrong
+        pass
+    return seconds
+
+
+def compile_all(kinds: Iterable[str] | None = None, *, jobs: int | None = None) -> dict[str, float]:
+    """Compile ``kinds`` (default: all) in parallel processes, ``jobs`` at a time
+    (default: the number of cores). Returns the wall time per kind [s]."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    todo = list(kinds or KINDS)
+    jobs = max(1, min(jobs or os.cpu_count() or 1, len(todo)))
+    if jobs == 1:
+        return {k: compile_kind(k) for k in todo}
+    # the longest first, so that the others fill the remaining cores
+    todo.sort(key=lambda k: -KINDS[k][1])
+    with ProcessPoolExecutor(max_workers=jobs) as pool:
+        return dict(zip(todo, pool.map(compile_kind, todo), strict=True))
+
+
+def kinds_of(study: Any) -> list[str]:
+    """The kinds of kernels the analyses of ``study`` call."""
+    kinds = ["statics"]
+    dynamic = study.analysis.dynamic
+    if dynamic is not None:
+        if dynamic.method != "frequency" and study.line.kind != "spring":
+            kinds.append("time")
+        if dynamic.method != "time":
+            kinds.append("frequency")
+    return kinds
+
+
+def ensure_compiled(kinds: Iterable[str], stream: TextIO | None = None) -> None:
+    """Compile the ``kinds`` not yet compiled, saying so first, in this process (a run
+    then forks or spawns workers that load the machine code from disk)."""
+    for kind in kinds:
+        if is_compiled(kind):
+            continue
+        label, seconds = KINDS[kind]
+        print(
+            f"compiling {label}, first run only, about {seconds:.0f} s",
+            file=stream or sys.stderr,
+            flush=True,
+        )
+        compile_kind(kind)
