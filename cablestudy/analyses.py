@@ -584,6 +584,7 @@ def discrete_statics(
     if cached is not None:
         return cached
     line = discretise_nodes(lm, med, s_nodes, extras)
+    COUNTERS["line_assemblies"] += 1
     scale = float(np.nanmax(static.tension))
     if line.has_seabed:
         # the penalty seabed balances each laid node's weight by a penetration of its

@@ -6,7 +6,8 @@ from __future__ import annotations
 
 from collections import Counter, OrderedDict
 
-#: counts by kind of work: ``static_solves``, ``linear_assemblies``
+#: counts by kind of work: ``static_solves``, ``linear_assemblies`` (frequency domain),
+#: ``line_assemblies`` (the time domain's lumped-mass line and its discrete equilibrium)
 COUNTERS: Counter[str] = Counter()
 
 

@@ -49,3 +49,20 @@ def test_shared_static_outputs_and_problem_give_each_case_its_own_result() -> No
             assert np.asarray(rec.data[name]).tobytes() == np.asarray(value).tobytes(), name
     # the shared arrays are the same objects, not copies made per case
     assert chunk[0].data["elevation"] is chunk[1].data["elevation"]
+
+
+def test_a_time_domain_sweep_solves_its_statics_and_builds_its_line_once() -> None:
+    """Cases that differ only in excitation share one static solve and one lumped-mass
+    line with its discrete equilibrium in the time domain too (issue 20, item 3)."""
+    text = CONFIG.read_text().replace("method: auto", "method: time")
+    text = text.replace("{start: 0.1, stop: 1.2, num: 23}", "[0.3, 0.6]")
+    text = text.replace("[0.025, 0.05, 0.075, 0.1]", "[0.025, 0.05]")
+    _, cases = expand_cases(parse_study_text(text))
+    assert len(cases) == 4
+    analyses._STATIC_CACHE.clear()
+    analyses._DISCRETE_CACHE.clear()
+    frequency_cases.COUNTERS.clear()
+    records = analyses.evaluate_chunk(cases)
+    assert all(r.status == 0 for r in records), {r.message for r in records}
+    assert frequency_cases.COUNTERS["static_solves"] == 1
+    assert frequency_cases.COUNTERS["line_assemblies"] == 1
