@@ -45,6 +45,37 @@ class OutputVariable:
 STATUS_BROKEN = 10
 #: statuses whose case data are written (others are NaN)
 KEPT_STATUSES = (0, STATUS_BROKEN)
+#: every status code a case or an analysis may carry, with its CF flag meaning (one word):
+#: cablestudy.statics.base (0-4, 10), cablestudy.dynamics.modal (5, 6; analyses'
+#: STATUS_NOT_RUN is 5 too), cablestudy.dynamics.frequency (7), cablestudy.runner (9)
+STATUS_MEANINGS: dict[int, str] = {
+    0: "ok",
+    1: "not_converged",
+    2: "numerical_failure",
+    3: "time_limit",
+    4: "no_solution",
+    5: "not_run_static_failed",
+    6: "slack_no_stable_modes",
+    7: "linearisation_not_converged",
+    9: "task_failed",
+    STATUS_BROKEN: "line_broken",
+}
+
+
+def is_status_variable(name: str) -> bool:
+    """Whether a dataset variable holds status codes (``status``, ``<analysis>_status``,
+    ``database_status``, ...): it carries CF ``flag_values`` and ``flag_meanings``."""
+    return name == "status" or name.endswith("_status")
+
+
+def status_flag_attrs(dtype: Any) -> dict[str, Any]:
+    """CF ``flag_values`` (of the variable's ``dtype``) and ``flag_meanings`` of the
+    status codes (:data:`STATUS_MEANINGS`)."""
+    return {
+        "flag_values": np.array(list(STATUS_MEANINGS), dtype=dtype),
+        "flag_meanings": " ".join(STATUS_MEANINGS.values()),
+    }
+
 
 #: every data variable a case may produce: name -> extra dims, units, long name.
 #: Numeric outputs (counters included) are float64 so that a failed case is NaN in every
@@ -578,6 +609,7 @@ def assembled_variables(
     if "arc_length" in data_vars and "s" not in coords:
         coords["s"] = ("s", np.arange(extent["s"]), {"units": "1", "long_name": "node index"})
 
+    _flag_statuses(data_vars)
     attrs = provenance(src, solver_settings or {})
     status = np.asarray(data_vars["status"][1])
     n_failed = int(np.count_nonzero((status != 0) & (status != STATUS_BROKEN)))
@@ -586,6 +618,15 @@ def assembled_variables(
     if np.any(status == STATUS_BROKEN):
         attrs["cases_broken"] = int(np.count_nonzero(status == STATUS_BROKEN))
     return data_vars, coords, attrs
+
+
+def _flag_statuses(data_vars: dict[str, Any]) -> None:
+    """Add the CF status flags (:func:`status_flag_attrs`) to the status variables among
+    ``data_vars`` (name -> (dims, values, attrs)), in place."""
+    for name, (dims, values, var_attrs) in list(data_vars.items()):
+        dtype = getattr(values, "dtype", None)
+        if is_status_variable(name) and dtype is not None and dtype.kind in "if":
+            data_vars[name] = (dims, values, {**var_attrs, **status_flag_attrs(dtype)})
 
 
 def _path_info(path: str) -> tuple[str, str]:
@@ -623,8 +664,38 @@ def provenance(src: StudySource, solver_settings: dict[str, Any]) -> dict[str, A
         "python_version": platform.python_version(),
         "cablestudy_code_sha256": code_fingerprint(),
         "solver_settings": json.dumps(solver_settings, sort_keys=True),
-        "history": f"{datetime.now(UTC).isoformat(timespec='seconds')} cablestudy run",
+        "history": f"{datetime.now(UTC).isoformat(timespec='seconds')}: {command_line()}",
+        **_line_type_attrs(src),
     }
+
+
+def _line_type_attrs(src: StudySource) -> dict[str, str]:
+    """``line_types``: what the study's line types filled (:func:`.line_types.record`),
+    when a segment has one."""
+    line = src.data.get("line")
+    segments = line.get("segments") if isinstance(line, dict) else None
+    if not any(isinstance(s, dict) and "line_type" in s for s in segments or []):
+        return {}
+    from .cases import parse_sweep
+    from .line_types import record
+
+    sweep = {p: list(v) for a in parse_sweep(src) for p, v in zip(a.paths, a.values, strict=True)}
+    text = record(src.data, sweep)
+    return {"line_types": text} if text else {}
+
+
+#: the command that is writing results (set by the command line; see :func:`command_line`)
+COMMAND: list[str] = []
+
+
+def command_line() -> str:
+    """The command line for the CF ``history`` attribute: the ``cablestudy`` command as
+    typed (recorded by :func:`cablestudy.cli.main`), else the Python program and its
+    arguments (a script calling the library)."""
+    import shlex
+    import sys
+
+    return shlex.join(COMMAND or [Path(sys.argv[0]).name or "python", *sys.argv[1:]])
 
 
 def _umask() -> int:
@@ -687,6 +758,10 @@ def worth_compressing(values: Any) -> bool:
 def write_atomic(ds: xr.Dataset, path: str | Path) -> Path:
     """Write ``ds`` to netCDF at ``path`` through a temporary file in the same folder and
     an atomic rename: a crash never leaves a half-written or corrupted result."""
+    ds = ds.copy()
+    for name, v in ds.data_vars.items():
+        if is_status_variable(str(name)) and v.dtype.kind in "if":
+            v.attrs.update(status_flag_attrs(v.dtype))
     encoding: dict[str, dict[str, Any]] = {
         name: dict(FLOAT_ENCODING)
         for name, v in ds.data_vars.items()
@@ -767,6 +842,8 @@ def write_variables_atomic(
                     least_significant_digit=None,
                     fill_value=np.nan if kind == "f" else None,
                 )
+                if i < len(data_vars) and is_status_variable(name) and kind in "if":
+                    var_attrs = {**var_attrs, **status_flag_attrs(values.dtype)}
                 var.setncatts(var_attrs)
                 var.set_auto_maskandscale(False)
                 var.set_auto_chartostring(False)
@@ -909,6 +986,7 @@ def grid_variables(
     elif "arc_length" in values:
         n_s = tails["arc_length"][0]
         coords["s"] = ("s", np.arange(n_s), {"units": "1", "long_name": "node index"})
+    _flag_statuses(data_vars)
     attrs = provenance(src, solver_settings)
     attrs["cases"] = int(np.prod(shape))
     attrs["cases_failed"] = int(np.count_nonzero(status != 0))
