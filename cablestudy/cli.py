@@ -415,6 +415,8 @@ def main(argv: list[str] | None = None) -> int:
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
         return EXIT_BROKEN_PIPE
+    finally:
+        results.COMMAND.clear()  # a later library call in this process is not this command
 
 
 def _add_lookup_parser(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
