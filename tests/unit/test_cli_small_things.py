@@ -207,3 +207,21 @@ def test_licence_is_an_spdx_expression_with_its_file() -> None:
     # setuptools reads a licence expression from 77.0 on; older ones refuse the string
     (req,) = [r for r in meta["build-system"]["requires"] if r.startswith("setuptools")]
     assert req == "setuptools>=77.0.3"
+
+
+DATABASE = STATIC.replace(
+    "static: {method: catenary, nodes: 21}",
+    "static: {method: catenary, nodes: 21}\n  database:\n"
+    "    horizontal_distance: {start: 90.0, stop: 95.0, num: 4}\n"
+    "    height_difference: {start: -10.0, stop: -5.0, num: 4}",
+)
+
+
+def test_database_status_tables_carry_the_flags_in_both_files(tmp_path: Path) -> None:
+    ds, _ = _run(tmp_path, DATABASE, "small")
+    own = xr.load_dataset(tmp_path / "small.database.nc")
+    for var in (ds["database_status"], own["status"]):
+        assert var.attrs["flag_values"].dtype == var.dtype  # CF: the variable's type
+        assert var.attrs["flag_values"].tolist() == list(STATUS_MEANINGS)
+        assert var.attrs["flag_meanings"] == " ".join(STATUS_MEANINGS.values())
+        assert np.all(var == 0)
