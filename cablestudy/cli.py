@@ -392,10 +392,10 @@ EXIT_BROKEN_PIPE = 141
 
 
 def main(argv: list[str] | None = None) -> int:
-    from . import results
+    from .conventions import COMMAND
 
     args = build_parser().parse_args(argv)
-    results.COMMAND[:] = ["cablestudy", *(sys.argv[1:] if argv is None else argv)]
+    COMMAND[:] = ["cablestudy", *(sys.argv[1:] if argv is None else argv)]
     workers = getattr(args, "workers", None)
     if workers is not None and workers < 1:
         print(f"--workers {workers}: must be at least 1", file=sys.stderr)
@@ -416,7 +416,7 @@ def main(argv: list[str] | None = None) -> int:
         os.dup2(devnull, sys.stdout.fileno())
         return EXIT_BROKEN_PIPE
     finally:
-        results.COMMAND.clear()  # a later library call in this process is not this command
+        COMMAND.clear()  # a later library call in this process is not this command
 
 
 def _add_lookup_parser(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]

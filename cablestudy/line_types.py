@@ -130,3 +130,17 @@ def record(study_data: dict[str, Any], sweep: dict[str, list[Any]]) -> str:
             entry["swept"] = swept
         out.append(entry)
     return json.dumps(out, sort_keys=True) if out else ""
+
+
+def line_type_attrs(src: Any) -> dict[str, str]:
+    """The dataset attribute ``line_types`` (:func:`record`) of the study ``src`` (a
+    :class:`~cablestudy.config.loader.StudySource`), when a segment has a line type."""
+    line = src.data.get("line")
+    segments = line.get("segments") if isinstance(line, dict) else None
+    if not any(isinstance(s, dict) and "line_type" in s for s in segments or []):
+        return {}
+    from .cases import parse_sweep
+
+    sweep = {p: list(v) for a in parse_sweep(src) for p, v in zip(a.paths, a.values, strict=True)}
+    text = record(src.data, sweep)
+    return {"line_types": text} if text else {}

@@ -19,6 +19,8 @@ import numpy as np
 from . import __version__
 from .cases import Case, SweepAxis
 from .config.loader import StudySource
+from .conventions import command_line, is_status_variable, status_flag_attrs
+from .line_types import line_type_attrs
 
 if TYPE_CHECKING:  # imported where used: a sweep run as arrays writes without xarray
     import xarray as xr
@@ -45,37 +47,6 @@ class OutputVariable:
 STATUS_BROKEN = 10
 #: statuses whose case data are written (others are NaN)
 KEPT_STATUSES = (0, STATUS_BROKEN)
-#: every status code a case or an analysis may carry, with its CF flag meaning (one word):
-#: cablestudy.statics.base (0-4, 10), cablestudy.dynamics.modal (5, 6; analyses'
-#: STATUS_NOT_RUN is 5 too), cablestudy.dynamics.frequency (7), cablestudy.runner (9)
-STATUS_MEANINGS: dict[int, str] = {
-    0: "ok",
-    1: "not_converged",
-    2: "numerical_failure",
-    3: "time_limit",
-    4: "no_solution",
-    5: "not_run_static_failed",
-    6: "slack_no_stable_modes",
-    7: "linearisation_not_converged",
-    9: "task_failed",
-    STATUS_BROKEN: "line_broken",
-}
-
-
-def is_status_variable(name: str) -> bool:
-    """Whether a dataset variable holds status codes (``status``, ``<analysis>_status``,
-    ``database_status``, ...): it carries CF ``flag_values`` and ``flag_meanings``."""
-    return name == "status" or name.endswith("_status")
-
-
-def status_flag_attrs(dtype: Any) -> dict[str, Any]:
-    """CF ``flag_values`` (of the variable's ``dtype``) and ``flag_meanings`` of the
-    status codes (:data:`STATUS_MEANINGS`)."""
-    return {
-        "flag_values": np.array(list(STATUS_MEANINGS), dtype=dtype),
-        "flag_meanings": " ".join(STATUS_MEANINGS.values()),
-    }
-
 
 #: every data variable a case may produce: name -> extra dims, units, long name.
 #: Numeric outputs (counters included) are float64 so that a failed case is NaN in every
@@ -665,37 +636,8 @@ def provenance(src: StudySource, solver_settings: dict[str, Any]) -> dict[str, A
         "cablestudy_code_sha256": code_fingerprint(),
         "solver_settings": json.dumps(solver_settings, sort_keys=True),
         "history": f"{datetime.now(UTC).isoformat(timespec='seconds')}: {command_line()}",
-        **_line_type_attrs(src),
+        **line_type_attrs(src),
     }
-
-
-def _line_type_attrs(src: StudySource) -> dict[str, str]:
-    """``line_types``: what the study's line types filled (:func:`.line_types.record`),
-    when a segment has one."""
-    line = src.data.get("line")
-    segments = line.get("segments") if isinstance(line, dict) else None
-    if not any(isinstance(s, dict) and "line_type" in s for s in segments or []):
-        return {}
-    from .cases import parse_sweep
-    from .line_types import record
-
-    sweep = {p: list(v) for a in parse_sweep(src) for p, v in zip(a.paths, a.values, strict=True)}
-    text = record(src.data, sweep)
-    return {"line_types": text} if text else {}
-
-
-#: the command that is writing results (set by the command line; see :func:`command_line`)
-COMMAND: list[str] = []
-
-
-def command_line() -> str:
-    """The command line for the CF ``history`` attribute: the ``cablestudy`` command as
-    typed (recorded by :func:`cablestudy.cli.main`), else the Python program and its
-    arguments (a script calling the library)."""
-    import shlex
-    import sys
-
-    return shlex.join(COMMAND or [Path(sys.argv[0]).name or "python", *sys.argv[1:]])
 
 
 def _umask() -> int:

@@ -19,7 +19,7 @@ import xarray as xr
 import cablestudy
 from cablestudy.cli import EXIT_BROKEN_PIPE, main
 from cablestudy.config.loader import StudyError, parse_study_text, validate_data
-from cablestudy.results import STATUS_MEANINGS, is_status_variable
+from cablestudy.conventions import STATUS_MEANINGS, is_status_variable
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -225,3 +225,17 @@ def test_database_status_tables_carry_the_flags_in_both_files(tmp_path: Path) ->
         assert var.attrs["flag_values"].tolist() == list(STATUS_MEANINGS)
         assert var.attrs["flag_meanings"] == " ".join(STATUS_MEANINGS.values())
         assert np.all(var == 0)
+
+
+def test_every_status_code_of_the_package_has_a_flag_meaning() -> None:
+    from cablestudy import analyses, grid, results, runner
+    from cablestudy.dynamics import frequency, modal
+    from cablestudy.statics import base
+
+    codes = {
+        value
+        for module in (analyses, grid, results, runner, frequency, modal, base)
+        for name, value in vars(module).items()
+        if name.startswith("STATUS_") and isinstance(value, int)
+    }
+    assert codes == set(STATUS_MEANINGS)
