@@ -147,15 +147,19 @@ def cmd_schema(args: argparse.Namespace) -> int:
 
 
 def cmd_figures(args: argparse.Namespace) -> int:
-    from .figures import build_all
+    from .figures import MissingResult, build_all
 
-    written = build_all(
-        Path(args.results),
-        Path(args.out),
-        configs=Path(args.configs),
-        run_missing=not args.no_run,
-        docs=Path(args.docs) if args.docs else None,
-    )
+    try:
+        written = build_all(
+            Path(args.results),
+            Path(args.out),
+            configs=Path(args.configs),
+            run_missing=not args.no_run,
+            docs=Path(args.docs) if args.docs else None,
+        )
+    except MissingResult as exc:
+        print(f"cannot build the figures: {exc}", file=sys.stderr)
+        return 1
     for path in written:
         print(path)
     return 0
@@ -262,8 +266,18 @@ def cmd_plot(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_line_types(args: argparse.Namespace) -> int:
+    from .line_types import listing
+
+    sys.stdout.write(listing(args.diameter))
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
+    from . import __version__
+
     parser = argparse.ArgumentParser(prog="cablestudy", description=__doc__)
+    parser.add_argument("--version", action="version", version=f"cablestudy {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
 
     p = sub.add_parser("run", help="run a study file and write <out>/<name>.nc")
@@ -379,20 +393,53 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.set_defaults(func=cmd_plot)
     _add_lookup_parser(sub)
+
+    p = sub.add_parser(
+        "line-types",
+        help="list the line-type library (line.segments.N.line_type): materials, formulas, "
+        "coefficients and their sources",
+    )
+    p.add_argument(
+        "--diameter",
+        type=float,
+        default=None,
+        metavar="D",
+        help="also give every material's filled values at nominal diameter D [m]",
+    )
+    p.set_defaults(func=cmd_line_types)
     return parser
 
 
+#: exit status after the reader of the output went away (as a shell reports SIGPIPE)
+EXIT_BROKEN_PIPE = 141
+
+
 def main(argv: list[str] | None = None) -> int:
+    from .conventions import COMMAND
+
     args = build_parser().parse_args(argv)
+    COMMAND[:] = ["cablestudy", *(sys.argv[1:] if argv is None else argv)]
     workers = getattr(args, "workers", None)
     if workers is not None and workers < 1:
         print(f"--workers {workers}: must be at least 1", file=sys.stderr)
         return 2
     try:
-        return args.func(args)
+        code = args.func(args)
+        sys.stdout.flush()  # inside the try: a closed pipe surfaces here, not at exit
+        return code
     except StudyError as exc:
         print(f"invalid study:\n{exc}", file=sys.stderr)
         return 2
+    except BrokenPipeError:
+        # the reader stopped early (cablestudy schema | head): nothing more to say; stdout
+        # goes to /dev/null so that the interpreter's final flush raises nothing either
+        import os
+
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return EXIT_BROKEN_PIPE
+    finally:
+        COMMAND.clear()  # a later library call in this process is not this command
 
 
 def _add_lookup_parser(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]

@@ -29,12 +29,14 @@ from .cases import SweepAxis, _copy_tree, _hash, _set_path, code_fingerprint, pa
 from .config.loader import StudyError, StudySource, validate_data
 from .config.study import Study
 
+#: status of a case whose solver raised inside an array chunk or gave non-finite values:
+#: cablestudy.statics.base.STATUS_NUMERICAL, as evaluate_case gives it (not imported
+#: here: the statics package loads every solver)
+STATUS_NUMERICAL = 2
+
 #: swept paths the array path takes: (kind, end or segment, component)
 _POSITION = re.compile(r"^ends\.(a|b)\.position\.([012])$")
 _STIFFNESS = re.compile(r"^line\.segments\.(\d+)\.axial_stiffness$")
-
-#: status of a case whose solver raised inside an array chunk (as evaluate_case)
-STATUS_NUMERICAL = 4
 
 
 @dataclass(frozen=True)

@@ -19,6 +19,8 @@ import numpy as np
 from . import __version__
 from .cases import Case, SweepAxis
 from .config.loader import StudySource
+from .conventions import command_line, is_status_variable, status_flag_attrs
+from .line_types import line_type_attrs
 
 if TYPE_CHECKING:  # imported where used: a sweep run as arrays writes without xarray
     import xarray as xr
@@ -578,6 +580,7 @@ def assembled_variables(
     if "arc_length" in data_vars and "s" not in coords:
         coords["s"] = ("s", np.arange(extent["s"]), {"units": "1", "long_name": "node index"})
 
+    _flag_statuses(data_vars)
     attrs = provenance(src, solver_settings or {})
     status = np.asarray(data_vars["status"][1])
     n_failed = int(np.count_nonzero((status != 0) & (status != STATUS_BROKEN)))
@@ -586,6 +589,15 @@ def assembled_variables(
     if np.any(status == STATUS_BROKEN):
         attrs["cases_broken"] = int(np.count_nonzero(status == STATUS_BROKEN))
     return data_vars, coords, attrs
+
+
+def _flag_statuses(data_vars: dict[str, Any]) -> None:
+    """Add the CF status flags (:func:`status_flag_attrs`) to the status variables among
+    ``data_vars`` (name -> (dims, values, attrs)), in place."""
+    for name, (dims, values, var_attrs) in list(data_vars.items()):
+        dtype = getattr(values, "dtype", None)
+        if is_status_variable(name) and dtype is not None and dtype.kind in "if":
+            data_vars[name] = (dims, values, {**var_attrs, **status_flag_attrs(dtype)})
 
 
 def _path_info(path: str) -> tuple[str, str]:
@@ -623,7 +635,8 @@ def provenance(src: StudySource, solver_settings: dict[str, Any]) -> dict[str, A
         "python_version": platform.python_version(),
         "cablestudy_code_sha256": code_fingerprint(),
         "solver_settings": json.dumps(solver_settings, sort_keys=True),
-        "history": f"{datetime.now(UTC).isoformat(timespec='seconds')} cablestudy run",
+        "history": f"{datetime.now(UTC).isoformat(timespec='seconds')}: {command_line()}",
+        **line_type_attrs(src),
     }
 
 
@@ -687,6 +700,10 @@ def worth_compressing(values: Any) -> bool:
 def write_atomic(ds: xr.Dataset, path: str | Path) -> Path:
     """Write ``ds`` to netCDF at ``path`` through a temporary file in the same folder and
     an atomic rename: a crash never leaves a half-written or corrupted result."""
+    ds = ds.copy()
+    for name, v in ds.data_vars.items():
+        if is_status_variable(str(name)) and v.dtype.kind in "if":
+            v.attrs.update(status_flag_attrs(v.dtype))
     encoding: dict[str, dict[str, Any]] = {
         name: dict(FLOAT_ENCODING)
         for name, v in ds.data_vars.items()
@@ -767,6 +784,8 @@ def write_variables_atomic(
                     least_significant_digit=None,
                     fill_value=np.nan if kind == "f" else None,
                 )
+                if i < len(data_vars) and is_status_variable(name) and kind in "if":
+                    var_attrs = {**var_attrs, **status_flag_attrs(values.dtype)}
                 var.setncatts(var_attrs)
                 var.set_auto_maskandscale(False)
                 var.set_auto_chartostring(False)
@@ -909,6 +928,7 @@ def grid_variables(
     elif "arc_length" in values:
         n_s = tails["arc_length"][0]
         coords["s"] = ("s", np.arange(n_s), {"units": "1", "long_name": "node index"})
+    _flag_statuses(data_vars)
     attrs = provenance(src, solver_settings)
     attrs["cases"] = int(np.prod(shape))
     attrs["cases_failed"] = int(np.count_nonzero(status != 0))

@@ -14,7 +14,7 @@ from pydantic import (
     model_validator,
 )
 
-from .base import Finite, NonNegative, Positive, StrictModel, Vec2, Vec3
+from .base import FieldError, Finite, NonNegative, Positive, StrictModel, Vec2, Vec3
 
 
 class Installation(StrictModel):
@@ -195,15 +195,52 @@ def _unit_direction(value: list[float]) -> list[float]:
 
 class HarmonicExcitation(StrictModel):
     """Harmonic motion of one end about its static position:
-    ``amplitude * sin(2 pi frequency t + phase) * direction / |direction|``."""
+    ``amplitude * sin(2 pi frequency t + phase) * direction / |direction|``. Give the
+    ``frequency`` [Hz] or the ``period`` [s] (exactly one; either can be swept): a period
+    fills frequency = 1 / period."""
 
     end: Literal["a", "b"] = Field(description="the end that moves")
     direction: Annotated[Vec3, AfterValidator(_unit_direction)] = Field(
         description="direction of the motion [-] (normalised)"
     )
     amplitude: NonNegative = Field(description="excitation amplitude [m]")
-    frequency: Positive = Field(description="excitation frequency [Hz]")
+    frequency: Positive | None = Field(
+        None,
+        description="excitation frequency [Hz]; or give period instead (exactly one)",
+    )
+    period: Positive | None = Field(
+        None,
+        description="excitation period [s], instead of frequency (exactly one): frequency = "
+        "1 / period",
+    )
     phase_deg: Finite = Field(0.0, description="phase of the sine [deg]")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _frequency_or_period(cls, data: object) -> object:
+        if not isinstance(data, dict):
+            return data
+        has_f = data.get("frequency") is not None
+        has_t = data.get("period") is not None
+        if has_f and has_t:
+            raise FieldError(
+                ("period",),
+                f"give the excitation frequency [Hz] or its period [s], not both (frequency "
+                f"{data['frequency']!r} is given too); allowed: exactly one of them",
+                data["period"],
+            )
+        if not has_f and not has_t:
+            raise FieldError(
+                ("frequency",),
+                "required key 'frequency' is missing (excitation frequency [Hz]); or give "
+                "period [s] instead",
+                None,
+            )
+        period = data.get("period")
+        if has_t and isinstance(period, int | float) and not isinstance(period, bool):
+            if math.isfinite(period) and period > 0.0:
+                return {**data, "frequency": 1.0 / period}
+        return data
 
 
 class TimeSeriesExcitation(StrictModel):

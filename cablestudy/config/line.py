@@ -215,13 +215,111 @@ class BreakCondition(StrictModel):
         return float(self.minimum_breaking_load) / float(self.safety_factor or 1.0)
 
 
+class LineType(StrictModel):
+    """``line_type: {material, nominal_diameter}``: the segment's diameter, mass, EA,
+    breaking load and hydrodynamic coefficients from published rules of thumb
+    (:mod:`cablestudy.physics.line_types`, ``cablestudy line-types``). A key the segment
+    gives itself wins over the filled one."""
+
+    material: Literal[
+        "chain_studless",
+        "chain_studlink",
+        "wire_six_strand",
+        "wire_spiral_strand",
+        "polyester",
+        "nylon",
+        "hmpe",
+    ] = Field(description="material of the library (cablestudy line-types lists them)")
+    nominal_diameter: Positive = Field(
+        description="nominal diameter [m]: a chain's bar diameter, a rope's nominal diameter"
+    )
+    grade: Literal["R3", "R3S", "R4"] | None = Field(
+        None,
+        description="chain grade, setting the minimum breaking load (chain_studless and "
+        "chain_studlink only; default R3)",
+    )
+
+    @model_validator(mode="after")
+    def _applies(self) -> LineType:
+        from ..physics.line_types import CHAIN_MAX_DIAMETER, MATERIALS
+
+        chains = [k for k, m in MATERIALS.items() if m.chain]
+        if self.grade is not None and self.material not in chains:
+            raise FieldError(
+                ("grade",),
+                f"a grade applies to chain (material {' or '.join(chains)}), not to "
+                f"{self.material}; allowed: omit it",
+                self.grade,
+            )
+        if self.material in chains and self.nominal_diameter > CHAIN_MAX_DIAMETER:
+            raise FieldError(
+                ("nominal_diameter",),
+                f"the chain breaking-load rule c d^2 (44 - 0.08 d) peaks at d = "
+                f"{CHAIN_MAX_DIAMETER:.4f} m and falls beyond it; allowed: "
+                f"nominal_diameter <= {CHAIN_MAX_DIAMETER:.4f} m, or give the segment's own "
+                "keys without line_type",
+                self.nominal_diameter,
+            )
+        return self
+
+    def properties(self) -> dict[str, float]:
+        """The keys this line type fills (SI), see
+        :func:`cablestudy.physics.line_types.line_type_properties`."""
+        from ..physics.line_types import line_type_properties
+
+        return line_type_properties(self.material, self.nominal_diameter, self.grade)
+
+
+def fill_line_type(data: dict) -> dict:  # type: ignore[type-arg]
+    """The raw segment mapping ``data`` with the keys its valid ``line_type`` fills added
+    where the segment does not give them (the segment's own keys win): ``diameter``,
+    ``mass_per_length``, ``axial_stiffness`` (not with an ``axial`` law), the hydrodynamic
+    coefficients, and ``failure.minimum_breaking_load`` where the segment gives a
+    ``failure`` mapping with neither ``tension`` nor ``minimum_breaking_load`` and not
+    only a ``time``. An invalid ``line_type`` fills nothing (its own errors are
+    reported)."""
+    raw = data.get("line_type")
+    if raw is None:
+        return data
+    try:
+        props = LineType.model_validate(raw).properties()
+    except ValueError:
+        return data
+    out = dict(data)
+    mbl = props.pop("minimum_breaking_load")
+    for key, value in props.items():
+        if key == "axial_stiffness" and "axial" in data:
+            continue
+        out.setdefault(key, value)
+    failure = data.get("failure")
+    if (
+        isinstance(failure, dict)
+        and "tension" not in failure
+        and "minimum_breaking_load" not in failure
+        and set(failure) != {"time"}
+    ):
+        out["failure"] = {**failure, "minimum_breaking_load": mbl}
+    return out
+
+
 class Segment(StrictModel):
     """A uniform length of line. Give ``mass_per_length`` [kg/m] or
     ``weight_in_fluid`` [N/m] (or both: the weight then overrides mass minus
-    buoyancy in statics, and the mass is used for inertia)."""
+    buoyancy in statics, and the mass is used for inertia). ``line_type`` fills the
+    keys the segment does not give from the line-type library."""
 
     length: Positive = Field(description="unstretched length [m]")
-    diameter: Positive = Field(description="hydrodynamic (and buoyancy) diameter [m]")
+    line_type: LineType | None = Field(
+        None,
+        description="{material, nominal_diameter, grade}: fills diameter, mass_per_length, "
+        "axial_stiffness, drag and added-mass coefficients (and failure."
+        "minimum_breaking_load in a failure mapping without a limit) from the line-type "
+        "library (cablestudy line-types); keys given in the segment win",
+    )
+    diameter: Positive | None = Field(
+        None,
+        description="hydrodynamic (and buoyancy) diameter [m]; required unless line_type gives it",
+    )
     mass_per_length: NonNegative | None = Field(None, description="mass per length [kg/m]")
     weight_in_fluid: Finite | None = Field(None, description="submerged weight per length [N/m]")
     axial_stiffness: Positive | None = Field(
@@ -255,8 +353,20 @@ class Segment(StrictModel):
         "domain",
     )
 
+    @model_validator(mode="before")
+    @classmethod
+    def _line_type(cls, data: object) -> object:
+        return fill_line_type(data) if isinstance(data, dict) else data
+
     @model_validator(mode="after")
     def _mass_or_weight(self) -> Segment:
+        if self.diameter is None:
+            raise FieldError(
+                ("diameter",),
+                "required key 'diameter' is missing (hydrodynamic (and buoyancy) diameter "
+                "[m]); or give line_type: {material, nominal_diameter}",
+                None,
+            )
         if self.mass_per_length is None and self.weight_in_fluid is None:
             raise ValueError(
                 "give mass_per_length [kg/m] or weight_in_fluid [N/m] (neither was given)"

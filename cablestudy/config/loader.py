@@ -334,8 +334,9 @@ def _describe(err: dict[str, Any]) -> tuple[Loc, str, Any, bool]:
     if kind == "extra_forbidden":
         key = str(raw[-1])
         allowed = sorted({f for m in _models_at(raw[:-1]) for f in m.model_fields})
+        alias = alias_hint(key, allowed)
         close = difflib.get_close_matches(key, allowed, n=1)
-        hint = f" (did you mean {close[0]!r}?)" if close else ""
+        hint = f" ({alias})" if alias else f" (did you mean {close[0]!r}?)" if close else ""
         return (
             (),
             (f"unknown key {key!r}{hint}; allowed keys here: {', '.join(allowed)}"),
@@ -369,6 +370,49 @@ def _describe(err: dict[str, Any]) -> tuple[Loc, str, Any, bool]:
         word = "at least" if kind == "too_short" else "at most"
         text = f"must be a list of {word} {bound} items, not {ctx.get('actual_length', '?')}"
     return (), text, err.get("input"), True
+
+
+#: usual symbols and other tools' names -> (the study key, what it is); a key is
+#: suggested where the model at the faulty place has it
+ALIASES: dict[str, tuple[str, str]] = {
+    "ea": ("axial_stiffness", "the axial stiffness EA [N]"),
+    "ei": ("bending_stiffness", "the bending stiffness EI [N m^2]"),
+    "mbl": ("minimum_breaking_load", "the minimum breaking load [N]"),
+    "cd": ("drag_normal", "the normal drag coefficient"),
+    "cdn": ("drag_normal", "the normal drag coefficient"),
+    "cdt": ("drag_tangential", "the tangential drag coefficient"),
+    "cd_ax": ("drag_tangential", "the tangential (axial) drag coefficient"),
+    "ca": ("added_mass_normal", "the normal added-mass coefficient"),
+    "can": ("added_mass_normal", "the normal added-mass coefficient"),
+    "cat": ("added_mass_tangential", "the tangential added-mass coefficient"),
+    "ca_ax": ("added_mass_tangential", "the tangential (axial) added-mass coefficient"),
+    "w": ("weight_in_fluid", "the submerged weight per length [N/m]"),
+    "wet_weight": ("weight_in_fluid", "the submerged weight per length [N/m]"),
+    "massden": ("mass_per_length", "the mass per length [kg/m]"),
+    "mass": ("mass_per_length", "the mass per length [kg/m]"),
+    "d": ("diameter", "the hydrodynamic diameter [m]"),
+    "diam": ("diameter", "the hydrodynamic diameter [m]"),
+    "l": ("length", "the unstretched length [m]"),
+    "unstrlen": ("length", "the unstretched length [m]"),
+    "t": ("period", "the excitation period [s]"),
+    "f": ("frequency", "the excitation frequency [Hz]"),
+    "freq": ("frequency", "the excitation frequency [Hz]"),
+}
+
+
+def alias_hint(key: str, allowed: list[str]) -> str:
+    """'did you mean ...' for a usual symbol (``EA``, ``Cd``, ``MBL``, ...) whose study key
+    is allowed where ``key`` was given ('' otherwise). MBL in a segment or line, where
+    the key lives under ``failure``, points there."""
+    hit = ALIASES.get(key.lower())
+    if hit is None:
+        return ""
+    target, what = hit
+    if target in allowed:
+        return f"did you mean {target!r}? {key} is {what}"
+    if target == "minimum_breaking_load" and "failure" in allowed:
+        return f"did you mean 'failure: {{minimum_breaking_load: ...}}'? {key} is {what}"
+    return ""
 
 
 def _shown(value: Any) -> str:

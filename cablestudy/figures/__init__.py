@@ -25,10 +25,19 @@ def register(name: str, studies: tuple[str, ...]) -> Callable[[Builder], Builder
     return deco
 
 
+class MissingResult(FileNotFoundError):
+    """A figure needs a result file that is not there and may not be made here."""
+
+
 def _ensure_study(name: str, results: Path, configs: Path, run_missing: bool) -> Path:
     path = results / f"{name}.nc"
-    if path.exists() or not run_missing:
+    if path.exists():
         return path
+    if not run_missing:
+        raise MissingResult(
+            f"{path} is missing; make it with `cablestudy run {configs / name}.yaml --out "
+            f"{results}`, or run `cablestudy figures` without --no-run"
+        )
     from ..analyses import check_supported
     from ..cases import expand_cases
     from ..config.loader import read_study_source
@@ -36,7 +45,7 @@ def _ensure_study(name: str, results: Path, configs: Path, run_missing: bool) ->
 
     candidates = [p for p in sorted(configs.glob("*.yaml")) if p.stem == name]
     if not candidates:
-        raise FileNotFoundError(f"no results/{name}.nc and no configs/{name}.yaml to run")
+        raise MissingResult(f"{path} is missing and there is no {configs / name}.yaml to run")
     src = read_study_source(candidates[0])
     axes, cases = expand_cases(src)
     check_supported(cases, src)
