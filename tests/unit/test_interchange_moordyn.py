@@ -15,6 +15,7 @@ from cablestudy.cli import main
 from cablestudy.config.loader import StudyError, parse_study_text, read_study_source, validate_data
 from cablestudy.interchange import (
     InterchangeError,
+    NotModelledError,
     import_model,
     imported_yaml,
     parse_moordyn,
@@ -148,9 +149,15 @@ def test_v1_layout_maps_columns_by_version() -> None:
 
 
 def test_chosen_lines_and_free_end() -> None:
-    # line 1 alone: its B end is the free clump point, a towing end loaded by the
-    # clump's weight in water
-    imported = import_model(V2, "v2.dat", lines=[1])
+    # line 1 alone ends at the clump point 2, which also holds line 2: where it settles
+    # depends on line 2, so one line of it is refused, naming the junction
+    with pytest.raises(NotModelledError, match="free point 2 joins the chosen lines") as info:
+        import_model(V2, "v2.dat", lines=[1])
+    assert info.value.features == ("systems",)
+    # without line 2 the clump hangs on line 1 alone: a towing end loaded by the clump's
+    # weight in water
+    alone = V2.replace("2     poly        2        3        400        20       -\n", "")
+    imported = import_model(alone, "v2.dat", lines=[1])
     study, _ = _validated(imported)
     assert study.ends.b.kind == "force"
     expected = -(5000.0 * 9.80665 - 0.5 * 1025.0 * 9.80665)
@@ -161,7 +168,7 @@ def test_chosen_lines_and_free_end() -> None:
 @pytest.mark.parametrize(
     ("edit", "message"),
     [
-        (("poly       0.2     30.0       2e8", "poly 0.2 30.0 polyEA.txt"), "nonlinear"),
+        (("poly       0.2     30.0       2e8", "poly 0.2 30.0 polyEA.txt"), "tension-strain"),
         (("2     poly        2        3", "2     wire        2        3"), "line type 'wire'"),
         (("1     chain       1        2        450        30       -", "1 chain 1 2 450"), "needs"),
         (("2     Free       -400", "2     Fixed       -400"), "must be free"),
@@ -183,8 +190,9 @@ def test_branched_system_is_refused_with_advice() -> None:
     )
     with pytest.raises(InterchangeError, match="meet at point 2.*--line"):
         import_model(bridle, "bridle.dat")
-    # choosing one line of it works
-    assert import_model(bridle, "bridle.dat", lines=[1, 2]).data["line"]["segments"]
+    # one chain of it still meets line 3 at the free point 2, which line 3 pulls on
+    with pytest.raises(NotModelledError, match="point 2 joins the chosen lines to line.s. 3"):
+        import_model(bridle, "bridle.dat", lines=[1, 2])
 
 
 def _roundtrip(text: str) -> tuple:
@@ -295,9 +303,11 @@ def test_moorpy_mooring_yaml() -> None:
     warned = "\n".join(imported.warnings)
     for key in ("breaking_load", "cost", "anchor_types", "anchor_type"):
         assert key in warned
-    # a line by name
-    one = import_model(MOORPY, "design.yaml", lines=["bottom"])
-    assert one.data["line"]["segments"][0]["length"] == 450.0
+    # lines by name; one of them alone ends at the clump that the other holds too
+    both = import_model(MOORPY, "design.yaml", lines=["top", "bottom"])
+    assert both.data["line"]["segments"][0]["length"] == 850.0
+    with pytest.raises(NotModelledError, match="free point 2 joins"):
+        import_model(MOORPY, "design.yaml", lines=["bottom"])
 
 
 def test_current_table_is_read_beside_the_file(tmp_path: Path) -> None:
