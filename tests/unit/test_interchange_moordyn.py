@@ -14,6 +14,7 @@ import pytest
 from cablestudy.cli import main
 from cablestudy.config.loader import StudyError, parse_study_text, read_study_source, validate_data
 from cablestudy.interchange import (
+    FEATURES,
     InterchangeError,
     NotModelledError,
     import_model,
@@ -21,6 +22,7 @@ from cablestudy.interchange import (
     parse_moordyn,
 )
 from cablestudy.interchange.export import moordyn_input
+from cablestudy.interchange.moordyn_format import attachment_ref
 from cablestudy.physics.contact import default_seabed_stiffness
 from cablestudy.problem import line_model
 
@@ -538,3 +540,106 @@ def test_seabed_contact_and_point_bodies_map_both_ways() -> None:
     assert back.data["environment"]["seabed"]["stiffness"] == pytest.approx(6e5, rel=1e-14)
     assert back.data["line"]["attachments"][0]["drag_area"] == 1.5
     assert back.data["line"]["attachments"][0]["added_mass"] == pytest.approx(att["added_mass"])
+
+
+# ---------------------------------------------------------------- the peers' own files
+# Every MoorDyn input file of MoorDyn's and MoorPy's repositories (tests/data/README.md)
+# is read whole, and each of its lines imported alone with `cablestudy import moordyn
+# FILE --line N` (and all its lines as one chain where they form one): each import is
+# a study that validates and whose statics solve (status 0), or a refusal that names
+# features cablestudy does not have (FEATURES). A parse error fails the test.
+DATA = Path(__file__).parents[1] / "data"
+PEER_FILES = sorted(
+    p
+    for p in DATA.rglob("*")
+    if p.suffix in (".txt", ".dat")
+    and p.name != "current_profile.txt"
+    and not p.name.startswith("LICENSE")
+)
+#: a file MoorDyn itself refuses (moordyn 2.7.2 Create fails: "Rod ID must be sequential
+#: starting from 1"): the reader refuses it too, naming the fault
+MOORDYN_REFUSES = {"moordyn/bench/Mooring/floating_rods.txt": "rod ID 3 is defined twice"}
+#: imports whose statics the solvers do not settle today (reported to the solvers' owners;
+#: the import itself is right): (file, line or None for the whole chain) -> message
+SOLVER_GAPS = {
+    **{
+        ("moordyn/example/MHK_RM1_Floating/MHK_RM1_Floating_MoorDyn.dat", n): (
+            "discrete equilibrium did not converge"  # EI = 0.8 N m^2 chain on the seabed
+        )
+        for n in (1, 3, 4, 6)
+    },
+    # a 5 m line hanging in vacuum between fixed points exactly 5 m apart, vertically
+    ("moordyn/tests/Mooring/body_tests/pinnedBody.txt", 1): "line search failed",
+    # 890 m of line on a 700 m path: the slack lies on the seabed, its shape undetermined
+    ("moorpy/tests/case5.dat", 1): "laid shape is not determined",
+    ("moorpy/tests/case4.dat", None): "line search failed in the seabed-contact Newton",
+    ("moorpy/tests/case6.dat", None): "not shorter than the path down to the seabed",
+}
+
+
+def test_the_peer_files_are_all_here() -> None:
+    """54 MoorDyn inputs from MoorDyn (tests/Mooring, example, bench) and 13 from MoorPy."""
+    tops = [p.relative_to(DATA).parts[0] for p in PEER_FILES]
+    assert (tops.count("moordyn"), tops.count("moorpy")) == (54, 13)
+    for top in ("moordyn", "moorpy"):
+        assert "BSD 3-Clause" in (DATA / top / "LICENSE.txt").read_text()
+        assert all(
+            p.relative_to(DATA / top).as_posix() in (DATA / "README.md").read_text()
+            for p in PEER_FILES
+            if p.is_relative_to(DATA / top)
+        )
+
+
+def _import_cli(path: Path, line: int | None, capsys: pytest.CaptureFixture) -> tuple:
+    args = ["import", "moordyn", str(path)] + ([] if line is None else ["--line", str(line)])
+    code = main(args)
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+def _statics(study_text: str) -> tuple[int, str]:
+    from cablestudy.analyses import check_supported, solve_static
+    from cablestudy.cases import expand_cases
+
+    src = parse_study_text(study_text, "<imported>")
+    _, cases = expand_cases(src)
+    check_supported(cases, src)  # every key of the imported study is one a solver uses
+    result = solve_static(cases[0], None)
+    return result.status, result.message
+
+
+@pytest.mark.parametrize("path", PEER_FILES, ids=lambda p: p.relative_to(DATA).as_posix())
+def test_peer_file_imports_or_names_what_cablestudy_lacks(
+    path: Path, capsys: pytest.CaptureFixture
+) -> None:
+    rel = path.relative_to(DATA).as_posix()
+    if rel in MOORDYN_REFUSES:
+        with pytest.raises(InterchangeError, match=MOORDYN_REFUSES[rel]):
+            parse_moordyn(path.read_text(), rel)
+        return
+    md = parse_moordyn(path.read_text(), rel)
+    # the parse is whole: every line's type and ends, every rod's type, every body point's
+    # body are defined in the file
+    for ln in md.lines.values():
+        assert ln.line_type in md.line_types
+        for end in (ln.attach_a, ln.attach_b):
+            kind, number, _ = attachment_ref(end)
+            assert number in (md.rods if kind == "rod" else md.points), (rel, end)
+    assert all(rd.rod_type in md.rod_types for rd in md.rods.values())
+    assert all(pt.body in md.bodies for pt in md.points.values() if pt.kind == "body")
+    chains = [None] if len(md.lines) != 1 else []
+    for line in [*sorted(md.lines), *chains]:
+        code, out, err = _import_cli(path, line, capsys)
+        if code != 0:
+            assert err.startswith("cannot import:"), err
+            named = [key for key, phrase in FEATURES.items() if phrase in err]
+            assert named, f"{rel} line {line}: refused without naming a feature: {err}"
+            continue
+        study = parse_study_text(out, "<imported>")
+        validate_data(study.data, study)
+        status, message = _statics(out)
+        gap = SOLVER_GAPS.get((rel, line))
+        if gap is None:
+            assert status == 0, f"{rel} line {line}: {message}"
+        else:
+            assert status != 0 and gap in message, (rel, line, status, message)
