@@ -301,9 +301,8 @@ def moordyn_to_study(
     end_b_key = start
     for ln, rev in chain:
         end_b_key = ln.attach_a if rev else ln.attach_b
-    check_chain(md, [ln for ln, _ in chain], (start, end_b_key)).raise_if_any(
-        src, "line(s) " + ", ".join(str(ln.id) for ln, _ in chain)
-    )
+    scope = check_chain(md, [ln for ln, _ in chain], (start, end_b_key))
+    scope.raise_if_any(src, "line(s) " + ", ".join(str(ln.id) for ln, _ in chain))
     warnings.extend(md.notes)
 
     # ------------------------------------------------------------ environment
@@ -315,6 +314,13 @@ def moordyn_to_study(
     comments[("environment", "fluid")] = (
         f"{src}:{rho_opt[1]} rho" if rho_opt else f"MoorDyn default rho = {DEFAULT_DENSITY:g}"
     )
+    if scope.above_surface:
+        env["fluid"] = "vacuum"
+        comments[("environment", "fluid")] = (
+            "the line hangs wholly above z = 0, where MoorDyn gives it no buoyancy, added "
+            "mass or drag"
+        )
+        rho = 0.0
     g_opt = option_value(md, "g", "gravity")
     env["gravity"] = g_opt[0] if g_opt else DEFAULT_GRAVITY
     comments[("environment", "gravity")] = (

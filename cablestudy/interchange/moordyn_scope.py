@@ -83,7 +83,11 @@ FEATURES = {
     "seabed_3d": "3D seabed bathymetry (SeafloorFile)",
     "seabed_at_surface": "a seabed at z = 0 (no water depth and no point below the surface)",
     "vertical_current": "vertical current (uz in current_profile.txt)",
+    "surface_crossing": "lines crossing the sea surface (MoorDyn's partial submergence)",
 }
+
+#: allowance for the stretch of a line when bounding how low it can hang [-]
+STRETCH_ALLOWANCE = 0.01
 
 
 class NotModelledError(InterchangeError):
@@ -97,9 +101,12 @@ class NotModelledError(InterchangeError):
 
 @dataclass
 class Refusals:
-    """Features found missing, each with where and what."""
+    """Features found missing, each with where and what; and whether the chosen lines
+    lie wholly above the sea surface (where MoorDyn gives them no buoyancy, added mass or
+    drag: a study in vacuum)."""
 
     items: list[tuple[str, str]]
+    above_surface: bool = False
 
     def add(self, feature: str, where: str, detail: str) -> None:
         self.items.append((feature, f"{where}: {FEATURES[feature]}: {detail}"))
@@ -212,10 +219,29 @@ def check_chain(md: MoorDynFile, chain: list[Line], ends: tuple[str, str]) -> Re
     inside = {point_of(md, k) for ln in chain for k in (ln.attach_a, ln.attach_b)} - {
         point_of(md, k) for k in ends
     }
+    heights = []
     for key in ends:
         pt = point_of(md, key)
-        if pt is not None and pt.kind == "body":
-            absolute_position(md, pt, refusals)
+        if pt is not None:
+            position = absolute_position(md, pt, refusals)
+            if position is not None:
+                heights.append(position[2])
+    rho = option_value(md, "rho", "rhoW", "WtrDnsty")
+    if len(heights) == 2 and max(heights) > 0.0 and (rho is None or rho[0] > 0.0):
+        # MoorDyn's segments above z = 0 have no buoyancy, added mass or drag. A line
+        # hanging between ends at z_a, z_b no lower than (z_a + z_b - L) / 2 (it must go
+        # down and come back up; L stretched by STRETCH_ALLOWANCE) stays above the
+        # surface: a study in vacuum is then MoorDyn's line; otherwise it crosses it
+        length = sum(ln.length for ln in chain) * (1.0 + STRETCH_ALLOWANCE)
+        if min(heights) > 0.0 and sum(heights) - length > 0.0:
+            refusals.above_surface = True
+        else:
+            refusals.add(
+                "surface_crossing",
+                f"{src}:{chain[0].source_line}",
+                f"ends at z = {heights[0]:g} m and {heights[1]:g} m, length "
+                f"{length / (1.0 + STRETCH_ALLOWANCE):g} m: the line may pass above z = 0",
+            )
     for pt in [point_of(md, k) for k in ends] + sorted(
         (p for p in inside if p is not None), key=lambda p: p.id
     ):

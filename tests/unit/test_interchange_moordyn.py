@@ -643,3 +643,158 @@ def test_peer_file_imports_or_names_what_cablestudy_lacks(
             assert status == 0, f"{rel} line {line}: {message}"
         else:
             assert status != 0 and gap in message, (rel, line, status, message)
+
+
+def test_sections_open_by_key_word_and_tables_by_their_columns() -> None:
+    """MoorDyn's rules: a key word anywhere in a --- line opens a section; the layout of a
+    table is told by its columns (and, for lines, the header), not by the title."""
+    text = (
+        V2.replace(
+            "---------------------- LINE TYPES ----", "---- LINE TYPES Chain studless 0.1m --"
+        )
+        .replace("---------------------- POINTS ----", "---- CONNECTION PROPERTIES ----")
+        .replace("---------------------- LINES ----", "---- LINE PROPERTIES ----")
+        .replace("---------------------- OPTIONS ----", "---- SOLVER OPTIONS ----")
+    )
+    md = parse_moordyn(text, "t.dat")
+    assert (md.version, list(md.line_types), sorted(md.points)) == (2, ["chain", "poly"], [1, 2, 3])
+    assert md.option("WtrDpth").value == "200"
+    # a LINE DICTIONARY over 10 columns is the version 2 layout; 9 columns version 1
+    v1 = parse_moordyn(V1, "v1.dat")
+    assert v1.version == 1 and v1.line_types["nylon"].drag_normal == 1.6
+    as_dict = parse_moordyn(text.replace("LINE TYPES Chain studless", "LINE DICTIONARY"), "d")
+    assert as_dict.line_types["chain"].drag_tangential == 1.15  # CdAx, column 9
+    # a header naming the v1 hydrodynamic order over 10 columns: read by position, noted
+    mislabelled = text.replace("EI         Cd     Ca     CdAx    CaAx", "EI Can Cat Cdn Cdt")
+    md = parse_moordyn(mislabelled, "m.dat")
+    assert md.line_types["chain"].drag_normal == 2.4
+    assert any("read by position as Cd Ca CdAx CaAx" in n for n in md.notes)
+    # 12-column point rows carry a steady force, in either version
+    forced = text.replace(
+        "2     Free       -400    0     -190    5000   0.5     0      0",
+        "2     Free       -400    0     -190    5000   0.5  0 0 -100   0      0",
+    )
+    assert parse_moordyn(forced, "f").points[2].force == (0.0, 0.0, -100.0)
+    # the version 1 line order is told by the header's third column
+    assert parse_moordyn(V1, "v1.dat").lines[1].attach_a == "2"
+
+
+@pytest.mark.parametrize(
+    ("edit", "message"),
+    [
+        (
+            ("---- LINES ----", "---- LINES and POINTS ----"),
+            "names (lines and points|points and lines)",
+        ),
+        (("------------------------- need this line", "---- LINES ----\n"), "second"),
+        (("3     Coupled    -40", "3     Tethered    -40"), "not one MoorDyn reads"),
+        (("chain      0.1     150.0      1e9    -0.8 ", "chain 0.1 150.0 1e9 -0.8 0 1 "), "10, 11"),
+    ],
+)
+def test_format_errors_name_line_and_rule(edit: tuple[str, str], message: str) -> None:
+    text = V2.replace("---------------------- LINES ----", "---- LINES ----").replace(*edit)
+    assert text != V2
+    with pytest.raises(InterchangeError, match=message):
+        parse_moordyn(text, "bad.dat")
+
+
+def test_zero_gravity_rods_and_bodies_are_refused_by_name() -> None:
+    no_g = V2.replace("9.80665       g ", "0.0           g ")
+    with pytest.raises(NotModelledError, match=r"v2.dat:\d+: zero gravity \(option g = 0\)") as e:
+        import_model(no_g, "v2.dat")
+    assert e.value.features == ("zero_gravity",)
+    rods_only = V2.split("---------------------- POINTS")[0].replace(
+        "---------------------- LINE TYPES",
+        "---- ROD TYPES ----\nName Diam Mass Cd Ca CdEnd CaEnd\n(-) (m) (kg/m) (-) (-) (-) (-)\n"
+        "can 1 10 1 1 1 1\n---- RODS ----\nID Type Att Xa Ya Za Xb Yb Zb N Out\n"
+        "(#) (-) (-) (m) (m) (m) (m) (m) (m) (-) (-)\n1 can free 0 0 0 0 0 -5 3 -\n"
+        "---------------------- LINE TYPES",
+    )
+    md = parse_moordyn(rods_only, "r.dat")
+    assert md.rods[1].end_b == (0.0, 0.0, -5.0) and md.rod_types["can"].drag_end == 1.0
+    with pytest.raises(NotModelledError, match="no lines, only 1 rod") as e:
+        import_model(rods_only, "r.dat")
+    assert e.value.features == ("rods",)
+
+
+BODY = """--- MoorDyn Input File ---
+--- LINE TYPES ---
+TypeName Diam Mass/m EA BA/-zeta EI Cd Ca CdAx CaAx
+(name) (m) (kg/m) (N) (N-s/-) (N-m^2) (-) (-) (-) (-)
+chain 0.1 150.0 1e9 -0.8 0 2.4 1.0 1.15 0.5
+--- BODIES ---
+ID Attachment X0 Y0 Z0 r0 p0 y0 Mass CG* I* Volume CdA* Ca*
+(#) (-) (m) (m) (m) (deg) (deg) (deg) (kg) (m) (kg-m^2) (m^3) (m^2) (-)
+1 coupled 10 20 -5 0 0 0 1e6 0|0|-2 1e8 1e3 0 0
+--- POINTS ---
+ID Attachment X Y Z Mass Volume CdA Ca
+(#) (-) (m) (m) (m) (kg) (m^3) (m^2) (-)
+1 Fixed -400 20 -100 0 0 0 0
+2 Body1 -30 0 -10 0 0 0 0
+--- LINES ---
+ID LineType AttachA AttachB UnstrLen NumSegs LineOutputs
+(#) (name) (#) (#) (m) (-) (-)
+1 chain 1 2 450 30 -
+--- OPTIONS ---
+100 WtrDpth
+--- need this line ---
+"""
+
+
+def test_points_on_a_held_body_are_placed_by_it_and_moving_bodies_refused() -> None:
+    """A point on a coupled (or fixed) body is at the body's position plus its offset;
+    a free body is found by equilibrium, a pinned one turns, a rotated one turns its
+    offsets: each is refused by name."""
+    md = parse_moordyn(BODY, "b.dat")
+    body = md.bodies[1]
+    assert (body.center_of_gravity, body.inertia) == ((0.0, 0.0, -2.0), (1e8,) * 3)
+    study, _ = _validated(import_model(BODY, "b.dat"))
+    assert study.ends.b.position == [-20.0, 20.0, -15.0]
+    for word, feature in (("free", "free_bodies"), ("CoupledPinned", "pinned_bodies")):
+        with pytest.raises(NotModelledError) as e:
+            import_model(BODY.replace("1 coupled 10", f"1 {word} 10"), "b.dat")
+        assert e.value.features == (feature,)
+    with pytest.raises(NotModelledError, match=r"turned by \[0.0, 0.0, 30.0\] deg"):
+        import_model(BODY.replace("-5 0 0 0 1e6", "-5 0 0 30 1e6"), "b.dat")
+
+
+def test_water_depth_as_moordyn_sets_it() -> None:
+    """MoorDyn lowers the seabed to a point below WtrDpth (default 0)."""
+    deep = BODY.replace("100 WtrDpth", "50 WtrDpth")
+    imported = import_model(deep, "b.dat")
+    assert imported.data["environment"]["depth"] == 100.0
+    assert "point 1 lies below WtrDpth" in imported_yaml(imported, "b.dat")
+    assert import_model(BODY, "b.dat").data["environment"]["depth"] == 100.0
+
+
+def test_weightless_line_holding_a_mass_carries_its_weight() -> None:
+    """MoorDyn's lifting test (tests/data, MoorDyn tests/Mooring/lifting.txt): a line of
+    7.85398 kg/m, d = 0.1 m in water of 1000 kg/m^3 (nearly neutral) holds 1000 kg from a
+    fixed point; the force on that point is the total weight in water, 1000 g plus the
+    line's (m - rho pi d^2 / 4) g L, exactly, to the solver's relative tolerance 1e-9."""
+    from cablestudy.analyses import solve_static
+    from cablestudy.cases import expand_cases
+
+    path = DATA / "moordyn/tests/Mooring/lifting.txt"
+    imported = import_model(path.read_text(), path.name, folder=path.parent)
+    _, cases = expand_cases(parse_study_text(imported_yaml(imported, path.name), "<i>"))
+    result = solve_static(cases[0], None)
+    assert result.success
+    g = 9.80665
+    weight = 1000.0 * g + (7.85398 - 1000.0 * math.pi / 4.0 * 0.1**2) * g * 100.5
+    assert result.force_a == pytest.approx([0.0, 0.0, -weight], abs=1e-9 * weight)
+
+
+def test_lines_above_the_sea_surface() -> None:
+    """MoorDyn gives segments above z = 0 no buoyancy: a line that cannot reach the
+    surface from ends above it is a study in vacuum; one that may cross it is refused."""
+    beam = DATA / "moordyn/tests/Mooring/BeamSimplySupported.txt"
+    imported = import_model(beam.read_text(), beam.name)
+    assert imported.data["environment"]["fluid"] == "vacuum"
+    surface = DATA / "moordyn/tests/Mooring/wave_surface/wave_surface.txt"
+    assert import_model(surface.read_text(), "s", lines=[3]).data["environment"]["fluid"] == (
+        "water"
+    )
+    with pytest.raises(NotModelledError, match="ends at z = 3 m and 3 m, length 50 m") as e:
+        import_model(surface.read_text(), "s", lines=[4])
+    assert e.value.features == ("surface_crossing",)
