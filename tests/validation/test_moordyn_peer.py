@@ -23,7 +23,13 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from cablestudy.analyses import solve_static
+from cablestudy.cases import expand_cases
 from cablestudy.cli import main
+from cablestudy.config.loader import parse_study_text
+from cablestudy.interchange import InterchangeError, import_model, imported_yaml, parse_moordyn
+from cablestudy.interchange.mapping import select_chain
+from cablestudy.interchange.moordyn_scope import point_of
 
 PEERS = (
     "in the optional extra `peers` (pip install '.[peers]'); without it the exported file "
@@ -122,10 +128,6 @@ PEER_FILES = sorted(
 def _imported_statics(path: Path, line: int) -> tuple[Any, Any] | None:
     """(study, static result) of one line of a peer file imported alone, or None when it
     is refused or its statics do not settle (tests/unit/test_interchange_moordyn.py)."""
-    from cablestudy.analyses import solve_static
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import parse_study_text
-    from cablestudy.interchange import InterchangeError, import_model, imported_yaml
 
     try:
         imported = import_model(path.read_text(), path.name, lines=[line], folder=path.parent)
@@ -143,7 +145,8 @@ def _moorpy_end_forces(
     and the ends' positions (6,),
     from MoorPy's own reading of the file with MoorDyn's environment (gravity, density,
     depth, which MoorPy's defaults differ from); None when MoorPy finds no solution."""
-    from moorpy.Catenary import catenary
+
+    from moorpy.Catenary import catenary  # an optional peer, imported where used
 
     env = study.environment
     with _quiet():
@@ -202,14 +205,12 @@ def test_peer_files_lines_agree_with_moorpy() -> None:
     weight in water, w L / NumSegs, is added (MoorPy ignores EI; these lines are slender
     enough that bending is below that bound). Measured: see the README of tests/data."""
     mp = pytest.importorskip("moorpy", reason=f"MoorPy is {PEERS}")
-    agree, worst, left_out = 0, {"catenary": 0.0, "discrete": 0.0}, []
+    agree, worst, left_out = 0, {"catenary": [0, 0.0], "discrete": [0, 0.0]}, []
     for path in PEER_FILES:
         rel = path.relative_to(PEER_DATA).as_posix()
         try:
-            from cablestudy.interchange import parse_moordyn
-
             lines = sorted(parse_moordyn(path.read_text(), rel).lines)
-        except ValueError:
+        except InterchangeError:  # the one file MoorDyn refuses too (tests/unit)
             continue
         for line in lines:
             solved = _imported_statics(path, line)
@@ -244,7 +245,58 @@ def test_peer_files_lines_agree_with_moorpy() -> None:
             assert err <= tol, (rel, line, ours_f, theirs, tol)
             agree += 1
             how = study.analysis.static.method
-            worst[how] = max(worst[how], err / float(np.abs(ours_f).max()))
-    print(f"agree with MoorPy: {agree} lines; largest difference of the tension: {worst}")
+            worst[how][0] += 1
+            worst[how][1] = max(worst[how][1], err / float(np.abs(ours_f).max()))
+    print(f"agree with MoorPy: {agree} lines; by method [lines, largest difference / tension]:")
+    print(worst)
     print("left out:", left_out)
     assert agree >= 30, left_out
+
+
+def test_peer_files_chains_through_free_points_agree_with_moorpy() -> None:
+    """The peer files whose lines form one chain through free points (a clump, a buoy, a
+    junction), imported whole as one cablestudy line, against MoorPy's equilibrium of
+    the same file: the forces on the chain's two end points. Tolerance as for one line,
+    1e-9 (EA + T), plus MoorPy's equilibrium tolerance on the free points' positions
+    (1e-10 m) times the stiffest line's EA / L. The chains whose statics our solvers do
+    not settle (tests/unit SOLVER_GAPS) are left out."""
+    mp = pytest.importorskip("moorpy", reason=f"MoorPy is {PEERS}")
+
+    compared = []
+    for path in PEER_FILES:
+        rel = path.relative_to(PEER_DATA).as_posix()
+        try:
+            md = parse_moordyn(path.read_text(), rel)
+            imported = import_model(path.read_text(), path.name, folder=path.parent)
+        except InterchangeError:
+            continue
+        if len(md.lines) < 2:
+            continue
+        _, cases = expand_cases(parse_study_text(imported_yaml(imported, path.name), "<i>"))
+        ours = solve_static(cases[0], None)
+        if not ours.success:
+            continue
+        study = cases[0].study
+        chain, start = select_chain(md, None)
+        last, reversed_ = chain[-1]
+        end = last.attach_a if reversed_ else last.attach_b
+        with _quiet():
+            system = mp.System(file=str(path))
+            env = study.environment
+            system.g, system.rho, system.depth = env.gravity, env.density, env.depth
+            system.initialize()
+            assert system.solveEquilibrium(tol=1e-10)
+            theirs = np.hstack(
+                [system.pointList[point_of(md, k).id - 1].getForces() for k in (start, end)]
+            )
+        ours_f = np.hstack([ours.force_a, ours.force_b])
+        segs = study.line.segments
+        stiffness = max(md.line_types[ln.line_type].axial_stiffness for ln, _ in chain)
+        shortest = min(ln.length for ln, _ in chain)
+        tol = 1e-9 * (max(s.axial_stiffness for s in segs) + np.abs(ours_f).max())
+        tol += 1e-10 * float(stiffness) / shortest
+        err = float(np.abs(ours_f - theirs).max())
+        assert err <= tol, (rel, ours_f, theirs, tol)
+        compared.append((rel, err / float(np.abs(ours_f).max())))
+    print("chains against MoorPy:", compared)
+    assert len(compared) >= 3
