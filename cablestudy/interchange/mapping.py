@@ -3,13 +3,17 @@
 A cablestudy line runs from end A to end B through uniform segments, with point loads
 along it. A MoorDyn system is a graph of lines meeting at points; one cablestudy line
 is a chain of MoorDyn lines, joined end to end at free points. The chain's two outer
-points become the ends (a fixed or coupled point: a fixed end at its position; a free
-point: a towing end loaded by the point's weight, buoyancy and steady force), the
-points inside it become attachments (mass, volume, steady force), and consecutive
-MoorDyn lines of one line type merge into one segment.
+points become the ends (a fixed or coupled point, or a point on a held body: a fixed end
+at its position; a free point that no other line holds: a towing end loaded by the
+point's weight, buoyancy and steady force), the points inside it become attachments
+(mass, volume, steady force), and consecutive MoorDyn lines of one line type merge into
+one segment.
 
-What the file holds and cablestudy does not model is listed by name in
-:attr:`ImportedStudy.warnings`; nothing is dropped silently.
+What the chain needs and cablestudy lacks (rods, moving bodies, a free point other lines
+pull on, ...) is refused by name before anything is built
+(:mod:`cablestudy.interchange.moordyn_scope`); what the file holds and cablestudy does
+not model is listed by name in :attr:`ImportedStudy.warnings`; nothing is dropped
+silently.
 """
 
 from __future__ import annotations
