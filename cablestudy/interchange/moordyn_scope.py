@@ -52,9 +52,10 @@ SOLVER_OPTIONS = {
 
 #: options read and not modelled, with the reason; the study is imported, and says so
 NOT_MODELLED_OPTIONS = {
-    "wavekin": "wave kinematics act in dynamics only (MoorDyn itself switches them off "
-    "while it finds the initial state); cablestudy's statics are in still water and its "
-    "dynamics take a prescribed end motion",
+    "wavekin": "wave kinematics (read from water_grid.txt with wave_elevation.txt or "
+    "wave_frequencies.txt beside the file) act in dynamics only: MoorDyn itself switches "
+    "them off while it finds the initial state; cablestudy's statics are in still water "
+    "and its dynamics take a prescribed end motion, so these files are not read",
     "waterkin": "wave kinematics file (MoorDyn-F): dynamics only, as WaveKin",
     "dtwave": "time step of MoorDyn's wave grid (dynamics only)",
     "unifycurrentgrid": "interpolation of MoorDyn's current grid onto the wave grid",
