@@ -13,6 +13,7 @@ from typing import Any
 
 from .mapping import ImportedStudy, moordyn_to_study, parse_current_profile
 from .moordyn_format import InterchangeError, MoorDynFile, MoorDynFormatError, parse_moordyn
+from .moordyn_scope import FEATURES, NotModelledError
 from .moorpy_yaml import is_mooring_yaml, line_names, parse_mooring_yaml
 from .study_yaml import study_yaml
 
@@ -20,7 +21,9 @@ __all__ = [
     "ImportedStudy",
     "InterchangeError",
     "MoorDynFile",
+    "FEATURES",
     "MoorDynFormatError",
+    "NotModelledError",
     "import_model",
     "imported_yaml",
     "line_from_reference",
@@ -114,10 +117,11 @@ def import_model(
     md = parse_moordyn(text, source)
     current = None
     opt = md.option("Currents")
-    if opt is not None and opt.value.strip() == "1":
+    if opt is not None and opt.value.strip() in ("1", "3"):  # steady: grid or node approach
         if folder is None:
             raise InterchangeError(
-                f"{source}:{opt.source_line}: Currents 1 reads {CURRENT_FILE} beside the file, "
+                f"{source}:{opt.source_line}: Currents {opt.value.strip()} reads {CURRENT_FILE} "
+                "beside the file, "
                 "which is not available here"
             )
         cur_text, cur_path = read_in_scope(CURRENT_FILE, folder)

@@ -3,13 +3,17 @@
 A cablestudy line runs from end A to end B through uniform segments, with point loads
 along it. A MoorDyn system is a graph of lines meeting at points; one cablestudy line
 is a chain of MoorDyn lines, joined end to end at free points. The chain's two outer
-points become the ends (a fixed or coupled point: a fixed end at its position; a free
-point: a towing end loaded by the point's weight, buoyancy and steady force), the
-points inside it become attachments (mass, volume, steady force), and consecutive
-MoorDyn lines of one line type merge into one segment.
+points become the ends (a fixed or coupled point, or a point on a held body: a fixed end
+at its position; a free point that no other line holds: a towing end loaded by the
+point's weight, buoyancy and steady force), the points inside it become attachments
+(mass, volume, steady force), and consecutive MoorDyn lines of one line type merge into
+one segment.
 
-What the file holds and cablestudy does not model is listed by name in
-:attr:`ImportedStudy.warnings`; nothing is dropped silently.
+What the chain needs and cablestudy lacks (rods, moving bodies, a free point other lines
+pull on, ...) is refused by name before anything is built
+(:mod:`cablestudy.interchange.moordyn_scope`); what the file holds and cablestudy does
+not model is listed by name in :attr:`ImportedStudy.warnings`; nothing is dropped
+silently.
 """
 
 from __future__ import annotations
@@ -27,20 +31,22 @@ from .moordyn_format import (
     MoorDynFormatError,
     Point,
 )
+from .moordyn_scope import (
+    FEATURES,
+    NotModelledError,
+    Refusals,
+    absolute_position,
+    check_chain,
+    option_value,
+    option_warnings,
+    point_of,
+    water_depth,
+)
 from .seabed import DEFAULT_CBOT, DEFAULT_KBOT, from_moordyn
 
-#: MoorDyn options that tune MoorDyn's own solvers (time step, scheme, initial-condition
-#: search, output): cablestudy's solvers choose their own settings, so these carry no
-#: physics we could lose; they are listed together in one warning
-SOLVER_OPTIONS = {
-    "dtm", "cfl", "tscheme", "dtic", "tmaxic", "ictmax", "cdscaleic", "icdfac", "threshic",
-    "icthresh", "icgendynamic", "writelog", "dtout", "writeunits", "disableoutput",
-    "disableouttime", "echo", "outswitch", "dtwave", "unifycurrentgrid", "waterkin_rampt",
-    "wavekin_rampt", "inertialf", "inertialf_rampt",
-}  # fmt: skip
-
-#: MoorDyn's default gravity by file version (v2's C code uses 9.81)
-DEFAULT_GRAVITY = {1: 9.80665, 2: 9.81}
+#: MoorDyn's default gravity (MoorDyn2.cpp sets env->g = 9.80665; MoorDyn-F and the
+#: version 1 C code use the same value)
+DEFAULT_GRAVITY = 9.80665
 DEFAULT_DENSITY = 1025.0
 
 
@@ -51,18 +57,6 @@ class ImportedStudy:
     data: dict[str, Any]
     comments: dict[tuple[str | int, ...], str] = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)
-
-
-def _float_option(md: MoorDynFile, names: tuple[str, ...]) -> tuple[float, int] | None:
-    opt = md.option(*names)
-    if opt is None:
-        return None
-    try:
-        return float(opt.value), opt.source_line
-    except ValueError:
-        raise MoorDynFormatError(
-            f"{md.source}:{opt.source_line}: option {opt.key} must be a number (got {opt.value!r})"
-        ) from None
 
 
 def select_chain(md: MoorDynFile, ids: list[int] | None) -> tuple[list[tuple[Line, bool]], str]:
@@ -86,17 +80,20 @@ def select_chain(md: MoorDynFile, ids: list[int] | None) -> tuple[list[tuple[Lin
             touching.setdefault(key, []).append(ln)
     for key, lines in touching.items():
         if len(lines) > 2:
-            raise InterchangeError(
+            raise NotModelledError(
                 f"{md.source}: lines {', '.join(str(ln.id) for ln in lines)} meet at point "
-                f"{key}: a branched system (e.g. a bridle) is not one line; choose the lines "
-                "of one line from anchor to fairlead with --line (or line: [ids])"
+                f"{key}: a branched system (e.g. a bridle) is not one line ("
+                f"{FEATURES['systems']} are not modelled yet); choose the lines of one line "
+                "from anchor to fairlead with --line (or line: [ids])",
+                ["systems"],
             )
     ends = [k for k, lines in touching.items() if len(lines) == 1]
     if len(ends) != 2:
-        raise InterchangeError(
+        raise NotModelledError(
             f"{md.source}: lines {', '.join(str(ln.id) for ln in chosen)} do not form one "
             "chain end to end (a cablestudy line is a single chain of lines joined at "
-            "points); choose them with --line"
+            f"points; {FEATURES['systems']} are not modelled yet); choose them with --line",
+            ["systems"],
         )
 
     def fixed(key: str) -> bool:
@@ -127,22 +124,37 @@ def select_chain(md: MoorDynFile, ids: list[int] | None) -> tuple[list[tuple[Lin
     return order, start
 
 
+def _no_lines(md: MoorDynFile) -> None:
+    """Refuse a file without lines: by its rods and bodies if it has them."""
+    held = [f"{len(md.rods)} rod(s)"] * bool(md.rods) + [f"{len(md.bodies)} body(ies)"] * bool(
+        md.bodies
+    )
+    if not held:
+        raise MoorDynFormatError(
+            f"{md.source}: no lines found; a MoorDyn file needs a LINES section (or LINE "
+            "PROPERTIES, LINE LIST) with at least one line"
+        )
+    features = ["rods"] * bool(md.rods) + ["bodies"] * bool(md.bodies)
+    raise NotModelledError(
+        f"{md.source}: the file has no lines, only {' and '.join(held)}: "
+        + "; ".join(FEATURES[f] for f in features)
+        + " are not modelled by cablestudy",
+        features,
+    )
+
+
 def _point(md: MoorDynFile, key: str) -> Point | None:
-    if key.upper().startswith("R"):
-        return None
-    try:
-        return md.points.get(int(float(key)))
-    except ValueError:
-        return None
+    return point_of(md, key)
 
 
 def _need_point(md: MoorDynFile, key: str, line: Line) -> Point:
     pt = _point(md, key)
     if pt is None:
         if key.upper().startswith("R"):
-            raise InterchangeError(
+            raise NotModelledError(
                 f"{md.source}:{line.source_line}: line {line.id} is attached to rod end "
-                f"{key}; rods are not modelled by cablestudy (choose lines between points)"
+                f"{key}: {FEATURES['rods']} are not modelled by cablestudy",
+                ["rods"],
             )
         raise InterchangeError(
             f"{md.source}:{line.source_line}: line {line.id} is attached to point {key}, "
@@ -240,8 +252,8 @@ def _seabed_contact(
     damping ratio (:mod:`cablestudy.interchange.seabed`), on the segment of largest
     diameter."""
     src = md.source
-    kb = _float_option(md, ("kBot", "kb"))
-    cb = _float_option(md, ("cBot", "cb"))
+    kb = option_value(md, "kBot", "kb")
+    cb = option_value(md, "cBot", "cb")
     ref = max(range(len(segments)), key=lambda i: segments[i]["diameter"])
     seg = segments[ref]
     d = seg["diameter"]
@@ -287,41 +299,46 @@ def moordyn_to_study(
     warnings: list[str] = []
     comments: dict[tuple[str | int, ...], str] = {}
     src = md.source
+    if not md.lines:
+        _no_lines(md)
     chain, start = select_chain(md, ids)
+    end_b_key = start
+    for ln, rev in chain:
+        end_b_key = ln.attach_a if rev else ln.attach_b
+    scope = check_chain(md, [ln for ln, _ in chain], (start, end_b_key))
+    scope.raise_if_any(src, "line(s) " + ", ".join(str(ln.id) for ln, _ in chain))
+    warnings.extend(md.notes)
 
     # ------------------------------------------------------------ environment
     env: dict[str, Any] = {}
-    rho_opt = _float_option(md, ("rho", "rhoW", "WtrDnsty"))
+    rho_opt = option_value(md, "rho", "rhoW", "WtrDnsty")
     rho = rho_opt[0] if rho_opt else DEFAULT_DENSITY
     named = [k for k, v in FLUID_DENSITY.items() if v == rho]
     env["fluid"] = named[0] if named else {"density": rho}
     comments[("environment", "fluid")] = (
         f"{src}:{rho_opt[1]} rho" if rho_opt else f"MoorDyn default rho = {DEFAULT_DENSITY:g}"
     )
-    g_opt = _float_option(md, ("g", "gravity"))
-    env["gravity"] = g_opt[0] if g_opt else DEFAULT_GRAVITY[md.version]
+    if scope.above_surface:
+        env["fluid"] = "vacuum"
+        comments[("environment", "fluid")] = (
+            "the line hangs wholly above z = 0, where MoorDyn gives it no buoyancy, added "
+            "mass or drag"
+        )
+        rho = 0.0
+    g_opt = option_value(md, "g", "gravity")
+    env["gravity"] = g_opt[0] if g_opt else DEFAULT_GRAVITY
     comments[("environment", "gravity")] = (
-        f"{src}:{g_opt[1]} g" if g_opt else f"MoorDyn v{md.version} default g"
+        f"{src}:{g_opt[1]} g" if g_opt else f"MoorDyn default g = {DEFAULT_GRAVITY:g}"
     )
-    depth_opt = md.option("WtrDpth", "depth")
-    if depth_opt is not None:
-        try:
-            depth = float(depth_opt.value)
-        except ValueError:
-            depth = math.nan
-            warnings.append(
-                f"{src}:{depth_opt.source_line}: WtrDpth {depth_opt.value!r} (a bathymetry "
-                "file) is not read: a flat seabed needs a number; the study has no seabed"
-            )
-        if depth > 0.0:
-            env["depth"] = depth
-            comments[("environment", "depth")] = f"{src}:{depth_opt.source_line} WtrDpth"
+    depth, origin = water_depth(md)
+    env["depth"] = depth
+    comments[("environment", "depth")] = origin
     seabed: dict[str, Any] = {}
-    fric = _float_option(md, ("FrictionCoefficient", "FricCoeff", "MU_KT"))
+    fric = option_value(md, "FrictionCoefficient", "MU_KT")
     if fric is not None:
         seabed["friction"] = fric[0]
         comments[("environment", "seabed", "friction")] = f"{src}:{fric[1]}"
-        mu_ka = _float_option(md, ("MU_KA",))
+        mu_ka = option_value(md, "MU_KA")
         if mu_ka is not None and mu_ka[0] != fric[0]:
             warnings.append(
                 f"{src}:{mu_ka[1]}: MU_KA = {mu_ka[0]:g} (axial friction) differs from the "
@@ -332,41 +349,9 @@ def moordyn_to_study(
     if current:
         env["current"] = current
         comments[("environment", "current")] = "from the steady current table (Currents 1)"
-    unmodelled_opts = {
-        "fricdamp": "friction smoothing velocity scale (Coulomb friction is used as is)",
-        "cv": "friction smoothing velocity scale (Coulomb friction is used as is)",
-        "statdynfricscale": "static/dynamic friction ratio (one coefficient is used)",
-        "mc": "static/dynamic friction ratio (one coefficient is used)",
-        "seafloorfile": "bathymetry file (cablestudy's seabed is a plane)",
-        "wavekin": "wave kinematics",
-        "waterkin": "water kinematics file",
-        "currents": "current model",
-    }
-    used = {"rho", "rhow", "wtrdnsty", "g", "gravity", "wtrdpth", "depth"}
-    used |= {"kbot", "kb", "cbot", "cb"}
-    used |= {"frictioncoefficient", "fricccoeff", "friccoeff", "mu_kt", "mu_ka"}
-    solver_opts = []
-    for key, opt in md.options.items():
-        if key in used:
-            continue
-        if key in SOLVER_OPTIONS:
-            solver_opts.append(opt.key)
-            continue
-        what = unmodelled_opts.get(key, "option not known to cablestudy")
-        if key in ("wavekin", "currents") and opt.value.strip() in ("0", "0.0"):
-            continue
-        if key == "currents" and current is not None:
-            continue
-        if key in ("fricdamp", "cv", "statdynfricscale", "mc") and fric is None:
-            continue
-        warnings.append(
-            f"{src}:{opt.source_line}: option {opt.key} = {opt.value}: {what}; not modelled"
-        )
-    if solver_opts:
-        warnings.append(
-            "MoorDyn solver settings not used (cablestudy chooses its own): "
-            + ", ".join(solver_opts)
-        )
+    warnings.extend(
+        option_warnings(md, current_read=current is not None, friction=fric is not None)
+    )
     for title, line_no, count in md.other_sections:
         warnings.append(
             f"{src}:{line_no}: section {title} ({count} entries) is not modelled by cablestudy"
@@ -456,17 +441,21 @@ def moordyn_to_study(
             comments[("ends", label)] = f"{where}: weight, buoyancy and steady force"
             _point_load(pt, md, warnings, f"end {label}")
             continue
-        ends[label] = {"kind": "fixed", "position": list(pt.position)}
+        moving = Refusals([])
+        position = absolute_position(md, pt, moving)
+        moving.raise_if_any(src, f"end {label}")
+        assert position is not None  # a point on a moving body is refused just above
+        ends[label] = {"kind": "fixed", "position": position}
         comments[("ends", label)] = where
         if pt.kind == "coupled":
             comments[("ends", label)] += ": held at its initial position"
             if pt.attachment.lower() in ("vessel", "vec", "ves"):
                 comments[("ends", label)] += " (vessel frame taken at the origin)"
         elif pt.kind == "body":
-            warnings.append(
-                f"{src}:{pt.source_line}: point {pt.id} is attached to {pt.attachment}: its "
-                "coordinates are relative to that object; taken as absolute for end "
-                f"{label} (bodies are not modelled)"
+            body = md.bodies[pt.body or 0]
+            comments[("ends", label)] += (
+                f": body {body.id} ({body.attachment}) held at {list(body.position)} + the "
+                "point's offset"
             )
 
     if all(e["kind"] == "force" for e in ends.values()):
@@ -474,7 +463,7 @@ def moordyn_to_study(
             f"{src}: both ends of the chosen lines are free points: the study has no fixed "
             "end, which cablestudy's statics need; fix one end before running it"
         )
-    if "depth" in env:
+    if env.get("depth"):
         _seabed_contact(md, env, segments, rho, comments, warnings)
     data: dict[str, Any] = {
         "name": name,
@@ -515,9 +504,10 @@ def parse_current_profile(text: str, source: str) -> list[dict[str, float]]:
                 f"{source}:{n}: a current row is 'z ux uy uz' in m and m/s (got {raw.strip()!r})"
             ) from None
         if rest and rest[0] != 0.0:
-            raise MoorDynFormatError(
-                f"{source}:{n}: vertical current uz = {rest[0]:g} m/s is not modelled "
-                "(cablestudy's current is horizontal)"
+            raise NotModelledError(
+                f"{source}:{n}: {FEATURES['vertical_current']}: uz = {rest[0]:g} m/s is not "
+                "modelled (cablestudy's current is horizontal)",
+                ["vertical_current"],
             )
         speed = math.hypot(ux, uy)
         heading = math.degrees(math.atan2(uy, ux)) if speed > 0.0 else 0.0

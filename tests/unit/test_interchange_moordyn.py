@@ -14,12 +14,15 @@ import pytest
 from cablestudy.cli import main
 from cablestudy.config.loader import StudyError, parse_study_text, read_study_source, validate_data
 from cablestudy.interchange import (
+    FEATURES,
     InterchangeError,
+    NotModelledError,
     import_model,
     imported_yaml,
     parse_moordyn,
 )
 from cablestudy.interchange.export import moordyn_input
+from cablestudy.interchange.moordyn_format import attachment_ref
 from cablestudy.physics.contact import default_seabed_stiffness
 from cablestudy.problem import line_model
 
@@ -148,9 +151,15 @@ def test_v1_layout_maps_columns_by_version() -> None:
 
 
 def test_chosen_lines_and_free_end() -> None:
-    # line 1 alone: its B end is the free clump point, a towing end loaded by the
-    # clump's weight in water
-    imported = import_model(V2, "v2.dat", lines=[1])
+    # line 1 alone ends at the clump point 2, which also holds line 2: where it settles
+    # depends on line 2, so one line of it is refused, naming the junction
+    with pytest.raises(NotModelledError, match="free point 2 joins the chosen lines") as info:
+        import_model(V2, "v2.dat", lines=[1])
+    assert info.value.features == ("systems",)
+    # without line 2 the clump hangs on line 1 alone: a towing end loaded by the clump's
+    # weight in water
+    alone = V2.replace("2     poly        2        3        400        20       -\n", "")
+    imported = import_model(alone, "v2.dat", lines=[1])
     study, _ = _validated(imported)
     assert study.ends.b.kind == "force"
     expected = -(5000.0 * 9.80665 - 0.5 * 1025.0 * 9.80665)
@@ -161,7 +170,7 @@ def test_chosen_lines_and_free_end() -> None:
 @pytest.mark.parametrize(
     ("edit", "message"),
     [
-        (("poly       0.2     30.0       2e8", "poly 0.2 30.0 polyEA.txt"), "nonlinear"),
+        (("poly       0.2     30.0       2e8", "poly 0.2 30.0 polyEA.txt"), "tension-strain"),
         (("2     poly        2        3", "2     wire        2        3"), "line type 'wire'"),
         (("1     chain       1        2        450        30       -", "1 chain 1 2 450"), "needs"),
         (("2     Free       -400", "2     Fixed       -400"), "must be free"),
@@ -183,8 +192,9 @@ def test_branched_system_is_refused_with_advice() -> None:
     )
     with pytest.raises(InterchangeError, match="meet at point 2.*--line"):
         import_model(bridle, "bridle.dat")
-    # choosing one line of it works
-    assert import_model(bridle, "bridle.dat", lines=[1, 2]).data["line"]["segments"]
+    # one chain of it still meets line 3 at the free point 2, which line 3 pulls on
+    with pytest.raises(NotModelledError, match="point 2 joins the chosen lines to line.s. 3"):
+        import_model(bridle, "bridle.dat", lines=[1, 2])
 
 
 def _roundtrip(text: str) -> tuple:
@@ -295,9 +305,11 @@ def test_moorpy_mooring_yaml() -> None:
     warned = "\n".join(imported.warnings)
     for key in ("breaking_load", "cost", "anchor_types", "anchor_type"):
         assert key in warned
-    # a line by name
-    one = import_model(MOORPY, "design.yaml", lines=["bottom"])
-    assert one.data["line"]["segments"][0]["length"] == 450.0
+    # lines by name; one of them alone ends at the clump that the other holds too
+    both = import_model(MOORPY, "design.yaml", lines=["top", "bottom"])
+    assert both.data["line"]["segments"][0]["length"] == 850.0
+    with pytest.raises(NotModelledError, match="free point 2 joins"):
+        import_model(MOORPY, "design.yaml", lines=["bottom"])
 
 
 def test_current_table_is_read_beside_the_file(tmp_path: Path) -> None:
@@ -528,3 +540,261 @@ def test_seabed_contact_and_point_bodies_map_both_ways() -> None:
     assert back.data["environment"]["seabed"]["stiffness"] == pytest.approx(6e5, rel=1e-14)
     assert back.data["line"]["attachments"][0]["drag_area"] == 1.5
     assert back.data["line"]["attachments"][0]["added_mass"] == pytest.approx(att["added_mass"])
+
+
+# ---------------------------------------------------------------- the peers' own files
+# Every MoorDyn input file of MoorDyn's and MoorPy's repositories (tests/data/README.md)
+# is read whole, and each of its lines imported alone with `cablestudy import moordyn
+# FILE --line N` (and all its lines as one chain where they form one): each import is
+# a study that validates and whose statics solve (status 0), or a refusal that names
+# features cablestudy does not have (FEATURES). A parse error fails the test.
+DATA = Path(__file__).parents[1] / "data"
+PEER_FILES = sorted(
+    p
+    for p in DATA.rglob("*")
+    if p.suffix in (".txt", ".dat")
+    and p.name != "current_profile.txt"
+    and not p.name.startswith("LICENSE")
+)
+#: a file MoorDyn itself refuses (moordyn 2.7.2 Create fails: "Rod ID must be sequential
+#: starting from 1"): the reader refuses it too, naming the fault
+MOORDYN_REFUSES = {"moordyn/bench/Mooring/floating_rods.txt": "rod ID 3 is defined twice"}
+#: imports whose statics the solvers do not settle today (reported to the solvers' owners;
+#: the import itself is right): (file, line or None for the whole chain) -> message
+SOLVER_GAPS = {
+    **{
+        ("moordyn/example/MHK_RM1_Floating/MHK_RM1_Floating_MoorDyn.dat", n): (
+            "discrete equilibrium did not converge"  # EI = 0.8 N m^2 chain on the seabed
+        )
+        for n in (1, 3, 4, 6)
+    },
+    # a 5 m line hanging in vacuum between fixed points exactly 5 m apart, vertically
+    ("moordyn/tests/Mooring/body_tests/pinnedBody.txt", 1): "line search failed",
+    # 890 m of line on a 700 m path: the slack lies on the seabed, its shape undetermined
+    ("moorpy/tests/case5.dat", 1): "laid shape is not determined",
+    ("moorpy/tests/case4.dat", None): "line search failed in the seabed-contact Newton",
+    ("moorpy/tests/case6.dat", None): "not shorter than the path down to the seabed",
+}
+
+
+def test_the_peer_files_are_all_here() -> None:
+    """54 MoorDyn inputs from MoorDyn (tests/Mooring, example, bench) and 13 from MoorPy."""
+    tops = [p.relative_to(DATA).parts[0] for p in PEER_FILES]
+    assert (tops.count("moordyn"), tops.count("moorpy")) == (54, 13)
+    for top in ("moordyn", "moorpy"):
+        assert "BSD 3-Clause" in (DATA / top / "LICENSE.txt").read_text()
+        assert all(
+            p.relative_to(DATA / top).as_posix() in (DATA / "README.md").read_text()
+            for p in PEER_FILES
+            if p.is_relative_to(DATA / top)
+        )
+
+
+def _import_cli(path: Path, line: int | None, capsys: pytest.CaptureFixture) -> tuple:
+    args = ["import", "moordyn", str(path)] + ([] if line is None else ["--line", str(line)])
+    code = main(args)
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+def _statics(study_text: str) -> tuple[int, str]:
+    from cablestudy.analyses import check_supported, solve_static
+    from cablestudy.cases import expand_cases
+
+    src = parse_study_text(study_text, "<imported>")
+    _, cases = expand_cases(src)
+    check_supported(cases, src)  # every key of the imported study is one a solver uses
+    result = solve_static(cases[0], None)
+    return result.status, result.message
+
+
+@pytest.mark.parametrize("path", PEER_FILES, ids=lambda p: p.relative_to(DATA).as_posix())
+def test_peer_file_imports_or_names_what_cablestudy_lacks(
+    path: Path, capsys: pytest.CaptureFixture
+) -> None:
+    rel = path.relative_to(DATA).as_posix()
+    if rel in MOORDYN_REFUSES:
+        with pytest.raises(InterchangeError, match=MOORDYN_REFUSES[rel]):
+            parse_moordyn(path.read_text(), rel)
+        return
+    md = parse_moordyn(path.read_text(), rel)
+    # the parse is whole: every line's type and ends, every rod's type, every body point's
+    # body are defined in the file
+    for ln in md.lines.values():
+        assert ln.line_type in md.line_types
+        for end in (ln.attach_a, ln.attach_b):
+            kind, number, _ = attachment_ref(end)
+            assert number in (md.rods if kind == "rod" else md.points), (rel, end)
+    assert all(rd.rod_type in md.rod_types for rd in md.rods.values())
+    assert all(pt.body in md.bodies for pt in md.points.values() if pt.kind == "body")
+    chains = [None] if len(md.lines) != 1 else []
+    for line in [*sorted(md.lines), *chains]:
+        code, out, err = _import_cli(path, line, capsys)
+        if code != 0:
+            assert err.startswith("cannot import:"), err
+            named = [key for key, phrase in FEATURES.items() if phrase in err]
+            assert named, f"{rel} line {line}: refused without naming a feature: {err}"
+            continue
+        study = parse_study_text(out, "<imported>")
+        validate_data(study.data, study)
+        status, message = _statics(out)
+        gap = SOLVER_GAPS.get((rel, line))
+        if gap is None:
+            assert status == 0, f"{rel} line {line}: {message}"
+        else:
+            assert status != 0 and gap in message, (rel, line, status, message)
+
+
+def test_sections_open_by_key_word_and_tables_by_their_columns() -> None:
+    """MoorDyn's rules: a key word anywhere in a --- line opens a section; the layout of a
+    table is told by its columns (and, for lines, the header), not by the title."""
+    text = (
+        V2.replace(
+            "---------------------- LINE TYPES ----", "---- LINE TYPES Chain studless 0.1m --"
+        )
+        .replace("---------------------- POINTS ----", "---- CONNECTION PROPERTIES ----")
+        .replace("---------------------- LINES ----", "---- LINE PROPERTIES ----")
+        .replace("---------------------- OPTIONS ----", "---- SOLVER OPTIONS ----")
+    )
+    md = parse_moordyn(text, "t.dat")
+    assert (md.version, list(md.line_types), sorted(md.points)) == (2, ["chain", "poly"], [1, 2, 3])
+    assert md.option("WtrDpth").value == "200"
+    # a LINE DICTIONARY over 10 columns is the version 2 layout; 9 columns version 1
+    v1 = parse_moordyn(V1, "v1.dat")
+    assert v1.version == 1 and v1.line_types["nylon"].drag_normal == 1.6
+    as_dict = parse_moordyn(text.replace("LINE TYPES Chain studless", "LINE DICTIONARY"), "d")
+    assert as_dict.line_types["chain"].drag_tangential == 1.15  # CdAx, column 9
+    # a header naming the v1 hydrodynamic order over 10 columns: read by position, noted
+    mislabelled = text.replace("EI         Cd     Ca     CdAx    CaAx", "EI Can Cat Cdn Cdt")
+    md = parse_moordyn(mislabelled, "m.dat")
+    assert md.line_types["chain"].drag_normal == 2.4
+    assert any("read by position as Cd Ca CdAx CaAx" in n for n in md.notes)
+    # 12-column point rows carry a steady force, in either version
+    forced = text.replace(
+        "2     Free       -400    0     -190    5000   0.5     0      0",
+        "2     Free       -400    0     -190    5000   0.5  0 0 -100   0      0",
+    )
+    assert parse_moordyn(forced, "f").points[2].force == (0.0, 0.0, -100.0)
+    # the version 1 line order is told by the header's third column
+    assert parse_moordyn(V1, "v1.dat").lines[1].attach_a == "2"
+
+
+@pytest.mark.parametrize(
+    ("edit", "message"),
+    [
+        (
+            ("---- LINES ----", "---- LINES and POINTS ----"),
+            "names (lines and points|points and lines)",
+        ),
+        (("------------------------- need this line", "---- LINES ----\n"), "second"),
+        (("3     Coupled    -40", "3     Tethered    -40"), "not one MoorDyn reads"),
+        (("chain      0.1     150.0      1e9    -0.8 ", "chain 0.1 150.0 1e9 -0.8 0 1 "), "10, 11"),
+    ],
+)
+def test_format_errors_name_line_and_rule(edit: tuple[str, str], message: str) -> None:
+    text = V2.replace("---------------------- LINES ----", "---- LINES ----").replace(*edit)
+    assert text != V2
+    with pytest.raises(InterchangeError, match=message):
+        parse_moordyn(text, "bad.dat")
+
+
+def test_zero_gravity_rods_and_bodies_are_refused_by_name() -> None:
+    no_g = V2.replace("9.80665       g ", "0.0           g ")
+    with pytest.raises(NotModelledError, match=r"v2.dat:\d+: zero gravity \(option g = 0\)") as e:
+        import_model(no_g, "v2.dat")
+    assert e.value.features == ("zero_gravity",)
+    rods_only = V2.split("---------------------- POINTS")[0].replace(
+        "---------------------- LINE TYPES",
+        "---- ROD TYPES ----\nName Diam Mass Cd Ca CdEnd CaEnd\n(-) (m) (kg/m) (-) (-) (-) (-)\n"
+        "can 1 10 1 1 1 1\n---- RODS ----\nID Type Att Xa Ya Za Xb Yb Zb N Out\n"
+        "(#) (-) (-) (m) (m) (m) (m) (m) (m) (-) (-)\n1 can free 0 0 0 0 0 -5 3 -\n"
+        "---------------------- LINE TYPES",
+    )
+    md = parse_moordyn(rods_only, "r.dat")
+    assert md.rods[1].end_b == (0.0, 0.0, -5.0) and md.rod_types["can"].drag_end == 1.0
+    with pytest.raises(NotModelledError, match="no lines, only 1 rod") as e:
+        import_model(rods_only, "r.dat")
+    assert e.value.features == ("rods",)
+
+
+BODY = """--- MoorDyn Input File ---
+--- LINE TYPES ---
+TypeName Diam Mass/m EA BA/-zeta EI Cd Ca CdAx CaAx
+(name) (m) (kg/m) (N) (N-s/-) (N-m^2) (-) (-) (-) (-)
+chain 0.1 150.0 1e9 -0.8 0 2.4 1.0 1.15 0.5
+--- BODIES ---
+ID Attachment X0 Y0 Z0 r0 p0 y0 Mass CG* I* Volume CdA* Ca*
+(#) (-) (m) (m) (m) (deg) (deg) (deg) (kg) (m) (kg-m^2) (m^3) (m^2) (-)
+1 coupled 10 20 -5 0 0 0 1e6 0|0|-2 1e8 1e3 0 0
+--- POINTS ---
+ID Attachment X Y Z Mass Volume CdA Ca
+(#) (-) (m) (m) (m) (kg) (m^3) (m^2) (-)
+1 Fixed -400 20 -100 0 0 0 0
+2 Body1 -30 0 -10 0 0 0 0
+--- LINES ---
+ID LineType AttachA AttachB UnstrLen NumSegs LineOutputs
+(#) (name) (#) (#) (m) (-) (-)
+1 chain 1 2 450 30 -
+--- OPTIONS ---
+100 WtrDpth
+--- need this line ---
+"""
+
+
+def test_points_on_a_held_body_are_placed_by_it_and_moving_bodies_refused() -> None:
+    """A point on a coupled (or fixed) body is at the body's position plus its offset;
+    a free body is found by equilibrium, a pinned one turns, a rotated one turns its
+    offsets: each is refused by name."""
+    md = parse_moordyn(BODY, "b.dat")
+    body = md.bodies[1]
+    assert (body.center_of_gravity, body.inertia) == ((0.0, 0.0, -2.0), (1e8,) * 3)
+    study, _ = _validated(import_model(BODY, "b.dat"))
+    assert study.ends.b.position == [-20.0, 20.0, -15.0]
+    for word, feature in (("free", "free_bodies"), ("CoupledPinned", "pinned_bodies")):
+        with pytest.raises(NotModelledError) as e:
+            import_model(BODY.replace("1 coupled 10", f"1 {word} 10"), "b.dat")
+        assert e.value.features == (feature,)
+    with pytest.raises(NotModelledError, match=r"turned by \[0.0, 0.0, 30.0\] deg"):
+        import_model(BODY.replace("-5 0 0 0 1e6", "-5 0 0 30 1e6"), "b.dat")
+
+
+def test_water_depth_as_moordyn_sets_it() -> None:
+    """MoorDyn lowers the seabed to a point below WtrDpth (default 0)."""
+    deep = BODY.replace("100 WtrDpth", "50 WtrDpth")
+    imported = import_model(deep, "b.dat")
+    assert imported.data["environment"]["depth"] == 100.0
+    assert "point 1 lies below WtrDpth" in imported_yaml(imported, "b.dat")
+    assert import_model(BODY, "b.dat").data["environment"]["depth"] == 100.0
+
+
+def test_weightless_line_holding_a_mass_carries_its_weight() -> None:
+    """MoorDyn's lifting test (tests/data, MoorDyn tests/Mooring/lifting.txt): a line of
+    7.85398 kg/m, d = 0.1 m in water of 1000 kg/m^3 (nearly neutral) holds 1000 kg from a
+    fixed point; the force on that point is the total weight in water, 1000 g plus the
+    line's (m - rho pi d^2 / 4) g L, exactly, to the solver's relative tolerance 1e-9."""
+    from cablestudy.analyses import solve_static
+    from cablestudy.cases import expand_cases
+
+    path = DATA / "moordyn/tests/Mooring/lifting.txt"
+    imported = import_model(path.read_text(), path.name, folder=path.parent)
+    _, cases = expand_cases(parse_study_text(imported_yaml(imported, path.name), "<i>"))
+    result = solve_static(cases[0], None)
+    assert result.success
+    g = 9.80665
+    weight = 1000.0 * g + (7.85398 - 1000.0 * math.pi / 4.0 * 0.1**2) * g * 100.5
+    assert result.force_a == pytest.approx([0.0, 0.0, -weight], abs=1e-9 * weight)
+
+
+def test_lines_above_the_sea_surface() -> None:
+    """MoorDyn gives segments above z = 0 no buoyancy: a line that cannot reach the
+    surface from ends above it is a study in vacuum; one that may cross it is refused."""
+    beam = DATA / "moordyn/tests/Mooring/BeamSimplySupported.txt"
+    imported = import_model(beam.read_text(), beam.name)
+    assert imported.data["environment"]["fluid"] == "vacuum"
+    surface = DATA / "moordyn/tests/Mooring/wave_surface/wave_surface.txt"
+    assert import_model(surface.read_text(), "s", lines=[3]).data["environment"]["fluid"] == (
+        "water"
+    )
+    with pytest.raises(NotModelledError, match="ends at z = 3 m and 3 m, length 50 m") as e:
+        import_model(surface.read_text(), "s", lines=[4])
+    assert e.value.features == ("surface_crossing",)

@@ -17,12 +17,19 @@ import os
 import re
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
 import xarray as xr
 
+from cablestudy.analyses import solve_static
+from cablestudy.cases import expand_cases
 from cablestudy.cli import main
+from cablestudy.config.loader import parse_study_text
+from cablestudy.interchange import InterchangeError, import_model, imported_yaml, parse_moordyn
+from cablestudy.interchange.mapping import select_chain
+from cablestudy.interchange.moordyn_scope import point_of
 
 PEERS = (
     "in the optional extra `peers` (pip install '.[peers]'); without it the exported file "
@@ -105,3 +112,191 @@ def test_moorpy_reads_the_exported_file_to_the_same_equilibrium(tmp_path: Path) 
     np.testing.assert_array_equal(fairlead.r, [140.0, 0.0, -120.0])
     theirs = np.asarray(fairlead.getForces(), dtype=float)
     np.testing.assert_allclose(theirs, ours, atol=1e-6 * np.linalg.norm(ours))
+
+
+# ------------------------------------------------- the peers' own files, against MoorPy
+PEER_DATA = Path(__file__).parents[1] / "data"
+PEER_FILES = sorted(
+    p
+    for p in PEER_DATA.rglob("*")
+    if p.suffix in (".txt", ".dat")
+    and p.name != "current_profile.txt"
+    and not p.name.startswith("LICENSE")
+)
+
+
+def _imported_statics(path: Path, line: int) -> tuple[Any, Any] | None:
+    """(study, static result) of one line of a peer file imported alone, or None when it
+    is refused or its statics do not settle (tests/unit/test_interchange_moordyn.py)."""
+
+    try:
+        imported = import_model(path.read_text(), path.name, lines=[line], folder=path.parent)
+    except InterchangeError:
+        return None
+    _, cases = expand_cases(parse_study_text(imported_yaml(imported, path.name), "<i>"))
+    result = solve_static(cases[0], None)
+    return (cases[0].study, result) if result.success else None
+
+
+def _moorpy_end_forces(
+    mp: Any, path: Path, line: int, study: Any
+) -> tuple[np.ndarray, np.ndarray] | None:
+    """MoorPy's forces of the line on its ends A and B (6,), in the file's A-to-B order,
+    and the ends' positions (6,),
+    from MoorPy's own reading of the file with MoorDyn's environment (gravity, density,
+    depth, which MoorPy's defaults differ from); None when MoorPy finds no solution."""
+
+    from moorpy.Catenary import catenary  # an optional peer, imported where used
+
+    env = study.environment
+    with _quiet():
+        system = mp.System(file=str(path))
+        system.g, system.rho, system.depth = env.gravity, env.density, env.depth
+        system.initialize()
+        if any(e.kind == "force" for e in (study.ends.a, study.ends.b)):
+            if not system.solveEquilibrium(tol=1e-9):
+                return None
+            # MoorPy may stop short of equilibrium (a weightless line): its free points'
+            # net forces tell
+            scale = max(float(np.abs(p.getForces()).max()) for p in system.pointList)
+            for p in system.pointList:
+                if p.type == 0 and np.abs(p.getForces()).max() > 1e-6 * scale:
+                    return None
+        ln = system.lineList[line - 1]
+        mu = env.seabed.friction
+        if mu > 0.0:
+            # MoorPy's System zeroes the friction of a line anchored on the seabed; its
+            # catenary takes it as CB, with end A on the seabed
+            (seg,) = study.line.segments
+            w = (seg.mass_per_length - env.density * seg.area) * env.gravity
+            r_a, r_b = (np.asarray(r, dtype=float) for r in (ln.rA, ln.rB))
+            if r_a[2] > r_b[2]:
+                r_a, r_b = r_b, r_a
+            dx = r_b - r_a
+            h = float(np.hypot(dx[0], dx[1]))
+            fah, fav, fbh, fbv, _ = catenary(
+                h, dx[2], seg.length, seg.axial_stiffness, w, CB=mu, Tol=1e-12, MaxIter=200
+            )
+            u = dx[:2] / h
+            f_low = np.array([fah * u[0], fah * u[1], fav])
+            f_high = np.array([fbh * u[0], fbh * u[1], fbv])
+            forces = np.hstack([f_low, f_high])
+            if np.asarray(ln.rA)[2] > np.asarray(ln.rB)[2]:
+                forces = np.hstack([f_high, f_low])
+        else:
+            ln.staticSolve(tol=1e-10)
+            forces = np.hstack([ln.fA, ln.fB]).astype(float)
+        ends = np.hstack([ln.rA, ln.rB]).astype(float)
+    return (forces, ends) if np.all(np.isfinite(forces)) and np.all(np.isfinite(ends)) else None
+
+
+def test_peer_files_lines_agree_with_moorpy() -> None:
+    """Each line of the peer files that imports alone and settles (status 0) against
+    MoorPy reading the same file (its own parser), in still water: MoorPy's statics have
+    no current, so lines in a current are left out, and so are lines MoorPy finds no
+    solution for (it raises, returns NaN, or its equilibrium of a free end fails).
+
+    Tolerance, in each end-force component: both codes solve the elastic catenary to a
+    relative position error of at most ``tol`` = max(our 1e-9, MoorPy's 1e-10), so the end
+    forces agree to ``tol`` times the line's axial stiffness EA (a position error times
+    the stiffness EA / L, over the length L) plus ``tol`` times the tension. A line with
+    bending stiffness is solved by our discrete (lumped-mass) method, which places each
+    element's weight at its nodes and the touchdown within an element: one element's
+    weight in water, w L / NumSegs, is added (MoorPy ignores EI; these lines are slender
+    enough that bending is below that bound). Measured: see the README of tests/data."""
+    mp = pytest.importorskip("moorpy", reason=f"MoorPy is {PEERS}")
+    agree, worst, left_out = 0, {"catenary": [0, 0.0], "discrete": [0, 0.0]}, []
+    for path in PEER_FILES:
+        rel = path.relative_to(PEER_DATA).as_posix()
+        try:
+            lines = sorted(parse_moordyn(path.read_text(), rel).lines)
+        except InterchangeError:  # the one file MoorDyn refuses too (tests/unit)
+            continue
+        for line in lines:
+            solved = _imported_statics(path, line)
+            if solved is None:
+                continue
+            study, ours = solved
+            if study.environment.has_current:
+                left_out.append((rel, line, "current"))
+                continue
+            try:
+                peer = _moorpy_end_forces(mp, path, line, study)
+            except Exception as exc:  # MoorPy's LineError, CatenaryError, ...
+                left_out.append((rel, line, f"MoorPy: {exc}"))
+                continue
+            if peer is None:
+                left_out.append((rel, line, "MoorPy finds no solution"))
+                continue
+            theirs, r_ab = peer
+            ours_f = np.hstack([ours.force_a, ours.force_b])
+            ours_r = np.hstack([ours.position[0], ours.position[-1]])
+            if np.abs(ours_r - r_ab).max() > np.abs(ours_r[[3, 4, 5, 0, 1, 2]] - r_ab).max():
+                ours_f = ours_f[[3, 4, 5, 0, 1, 2]]  # imported from the file's B to its A
+            segs = study.line.segments
+            tol = 1e-9 * (max(s.axial_stiffness for s in segs) + np.abs(ours_f).max())
+            if any(s.bending_stiffness > 0.0 for s in segs):
+                rho, g = study.environment.density, study.environment.gravity
+                n_elements = study.analysis.static.nodes - 1
+                tol += max(abs(s.weight_in(rho, g)) for s in segs) * (
+                    study.line.total_length / n_elements
+                )
+            err = float(np.abs(ours_f - theirs).max())
+            assert err <= tol, (rel, line, ours_f, theirs, tol)
+            agree += 1
+            how = study.analysis.static.method
+            worst[how][0] += 1
+            worst[how][1] = max(worst[how][1], err / float(np.abs(ours_f).max()))
+    print(f"agree with MoorPy: {agree} lines; by method [lines, largest difference / tension]:")
+    print(worst)
+    print("left out:", left_out)
+    assert agree >= 30, left_out
+
+
+def test_peer_files_chains_through_free_points_agree_with_moorpy() -> None:
+    """The peer files whose lines form one chain through free points (a clump, a buoy, a
+    junction), imported whole as one cablestudy line, against MoorPy's equilibrium of
+    the same file: the forces on the chain's two end points. Tolerance as for one line,
+    1e-9 (EA + T), plus MoorPy's equilibrium tolerance on the free points' positions
+    (1e-10 m) times the stiffest line's EA / L. The chains whose statics our solvers do
+    not settle (tests/unit SOLVER_GAPS) are left out."""
+    mp = pytest.importorskip("moorpy", reason=f"MoorPy is {PEERS}")
+
+    compared = []
+    for path in PEER_FILES:
+        rel = path.relative_to(PEER_DATA).as_posix()
+        try:
+            md = parse_moordyn(path.read_text(), rel)
+            imported = import_model(path.read_text(), path.name, folder=path.parent)
+        except InterchangeError:
+            continue
+        if len(md.lines) < 2:
+            continue
+        _, cases = expand_cases(parse_study_text(imported_yaml(imported, path.name), "<i>"))
+        ours = solve_static(cases[0], None)
+        if not ours.success:
+            continue
+        study = cases[0].study
+        chain, start = select_chain(md, None)
+        last, reversed_ = chain[-1]
+        end = last.attach_a if reversed_ else last.attach_b
+        with _quiet():
+            system = mp.System(file=str(path))
+            env = study.environment
+            system.g, system.rho, system.depth = env.gravity, env.density, env.depth
+            system.initialize()
+            assert system.solveEquilibrium(tol=1e-10)
+            theirs = np.hstack(
+                [system.pointList[point_of(md, k).id - 1].getForces() for k in (start, end)]
+            )
+        ours_f = np.hstack([ours.force_a, ours.force_b])
+        segs = study.line.segments
+        stiffness = max(md.line_types[ln.line_type].axial_stiffness for ln, _ in chain)
+        shortest = min(ln.length for ln, _ in chain)
+        tol = 1e-9 * (max(s.axial_stiffness for s in segs) + np.abs(ours_f).max())
+        tol += 1e-10 * float(stiffness) / shortest
+        err = float(np.abs(ours_f - theirs).max())
+        assert err <= tol, (rel, ours_f, theirs, tol)
+        compared.append((rel, err / float(np.abs(ours_f).max())))
+    print("chains against MoorPy:", compared)
+    assert len(compared) >= 3
