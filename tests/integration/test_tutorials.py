@@ -78,9 +78,9 @@ def test_mooring_leg_restoring_curve(results: Path) -> None:
     suspended_weight = (weights * (lengths - on_bed)).sum(axis=1)
     np.testing.assert_allclose(vertical, suspended_weight, rtol=RTOL)
 
-    friction = yaml.safe_load((CONFIGS / "tutorial-mooring-leg.yaml").read_text())[
-        "environment"
-    ]["seabed"]["friction"]
+    friction = yaml.safe_load((CONFIGS / "tutorial-mooring-leg.yaml").read_text())["environment"][
+        "seabed"
+    ]["friction"]
     held = friction * (weights * on_bed).sum(axis=1)
     anchor = np.maximum(horizontal - held, 0.0)
     # relative to the horizontal pull: the anchor tension is a difference of two such forces
