@@ -28,6 +28,10 @@ _TIME_ONLY = "time domain (methods time, auto); method frequency refuses it"
 #: ("Model"), and which refuse it; the refusals are made at validation, naming the
 #: method that supports the key
 USED_BY: dict[str, str] = {
+    "Environment": "every analysis",
+    "CustomFluid": "every analysis",
+    "Line": "every analysis (a kind: spring line: statics and its algebraic dynamics)",
+    "FixedEnd": "every analysis",
     "Segment": "statics, modal, time and frequency domain",
     "Segment.axial": "statics: methods catenary, shooting, discrete (analytic refuses it); "
     "time domain; modal and frequency domain: the law's tangent at the static strain",
@@ -271,7 +275,8 @@ def reference_markdown(schema: dict[str, Any]) -> str:
         "in its name, `heading_deg`). *Default* is the value used when the key is left "
         "out (*required*: it must be given; *not set*: no value, and the description "
         "says what that means). A key that a chosen analysis or method cannot use is refused "
-        "before any work, naming the method that can (*Used by*).",
+        "before any work, naming the method that can (*used by*; where a row leaves it "
+        "empty, the key serves whatever its model's *Used by* line names).",
         "",
         "Models: " + ", ".join(f"[{name}](#{name.lower()})" for name in walker.models) + ".",
         "",
