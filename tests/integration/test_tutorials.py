@@ -187,3 +187,47 @@ def test_tutorial_code_runs(page: str, results: Path, tmp_path: Path) -> None:
         plt.close("all")
     for name in saved:
         assert (tmp_path / name).stat().st_size > 1000, name
+
+
+def _within(part: object, whole: object, path: str = "") -> list[str]:
+    """Where ``part`` (a YAML fragment) differs from ``whole`` (the study it is cut
+    from): every key and value of the fragment must be in the study."""
+    if isinstance(part, dict):
+        if not isinstance(whole, dict):
+            return [path or "(top)"]
+        return [
+            miss
+            for key, value in part.items()
+            for miss in (
+                _within(value, whole[key], f"{path}.{key}") if key in whole else [f"{path}.{key}"]
+            )
+        ]
+    if isinstance(part, list):
+        if not isinstance(whole, list) or len(part) != len(whole):
+            return [path]
+        return [
+            m
+            for i, (p, w) in enumerate(zip(part, whole, strict=True))
+            for m in _within(p, w, f"{path}.{i}")
+        ]
+    return [] if part == whole else [f"{path}: {part!r} != {whole!r}"]
+
+
+@pytest.mark.parametrize(
+    ("page", "config"),
+    [
+        ("mooring-leg.md", "tutorial-mooring-leg"),
+        ("tension-frequency.md", "moustafa-figs2-5"),
+        ("towed-cable.md", "tutorial-towed-cable"),
+    ],
+)
+def test_tutorial_yaml_is_the_study(page: str, config: str) -> None:
+    """Each YAML fragment a tutorial shows is part of the study it runs, as written, so
+    the page and the tested study cannot drift apart."""
+    study = yaml.safe_load((CONFIGS / f"{config}.yaml").read_text())
+    blocks = re.findall(r"```yaml\n(.*?)```", (TUTORIALS / page).read_text(), flags=re.DOTALL)
+    assert blocks
+    for block in blocks:
+        fragment = yaml.safe_load(block)
+        assert isinstance(fragment, dict)
+        assert _within(fragment, study) == [], block
