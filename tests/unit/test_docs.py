@@ -119,3 +119,19 @@ def test_bench_writes_into_benchmarks_page(tmp_path: Path) -> None:
     assert text.split(README_END)[1] == original.split(README_END)[1]
     for link in re.findall(r"!\[[^\]]*\]\(([^)]+)\)", original):
         assert (ROOT / "docs" / link).exists(), link
+
+
+def test_readme_layout_is_true() -> None:
+    """Every file and folder the README's layout names exists (a move of the package
+    must update it)."""
+    readme = (ROOT / "README.md").read_text()
+    layout = readme.split("## Layout", 1)[1].split("```")[1]
+    names = re.findall(r"([\w*]+(?:\.py|/))", layout)
+    assert len(names) > 20
+    for name in names:
+        where = (
+            ROOT if name in ("configs/", "docs/", "tests/", "benchmarks/") else ROOT / "cablestudy"
+        )
+        if name == "cablestudy/":
+            where = ROOT
+        assert list(where.glob(name.rstrip("/"))), name
