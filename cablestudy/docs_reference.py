@@ -303,10 +303,11 @@ def reference_markdown(schema: dict[str, Any]) -> str:
                     "{start, stop, step} or {values}, each with an optional name; and "
                     "`zip:` groups (see the sweeps guide)"
                 )
+            kind = walker.type_of(prop)
             row = [
                 f"`{key}`",
-                walker.type_of(prop),
-                _units(key, text),
+                kind,
+                "" if "](#" in kind else _units(key, text),  # a model's keys carry their own
                 _default(prop, key in required),
                 _allowed(prop),
                 text,
