@@ -6,7 +6,7 @@ STAMP := $(VENV)/.installed
 CONFIG ?= configs/catenary-in-air.yaml
 OUT ?= results
 
-.PHONY: install study test figures bench lint clean
+.PHONY: install study test figures bench docs reference lint clean
 
 install: $(STAMP)
 
@@ -29,11 +29,21 @@ figures: install
 	$(BIN)/cablestudy figures --results $(OUT) --out $(OUT)/figures --docs docs
 
 bench: install
-	$(BIN)/cablestudy bench --out $(OUT)/bench --readme README.md --docs docs/bench
+	$(BIN)/cablestudy bench --out $(OUT)/bench --readme docs/benchmarks.md --docs docs/bench
+
+# the user guide as a MkDocs site in site/; strict: a broken link, a page missing from
+# the nav or a stale key reference fails the build
+docs: install
+	$(BIN)/python -m cablestudy.docs_reference --check
+	$(BIN)/mkdocs build --strict -d site
+
+# regenerate docs/reference/keys.md from the study schema
+reference: install
+	$(BIN)/python -m cablestudy.docs_reference
 
 lint: install
 	$(BIN)/ruff check cablestudy tests benchmarks
 	$(BIN)/ruff format --check cablestudy tests benchmarks
 
 clean:
-	rm -rf $(VENV) .pytest_cache build *.egg-info
+	rm -rf $(VENV) .pytest_cache build *.egg-info site

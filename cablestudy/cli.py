@@ -330,7 +330,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--docs",
         default=None,
-        help="also write the checked gallery DOCS/figures.md with the figures in DOCS/figures/",
+        help="also write the checked gallery DOCS/validation.md with the figures in DOCS/figures/",
     )
     p.set_defaults(func=cmd_figures)
 

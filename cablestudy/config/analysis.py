@@ -30,8 +30,28 @@ class Installation(StrictModel):
     )
 
 
+#: static methods a study may name, and what each is (the registry
+#: ``cablestudy.statics.STATIC_SOLVERS`` holds the same names; a test keeps them equal;
+#: the solvers are not imported here so that validating a study stays light)
+STATIC_METHODS = {
+    "analytic": "exact elastic catenary of a uniform line between fixed ends (linear "
+    "EA; no current, attachments or non-linear law)",
+    "catenary": "semi-analytic elastic catenary (dodaran-park): seabed, point loads, "
+    "axial laws, current by drag elements",
+    "discrete": "equilibrium of the dynamic line model's nodes: bending stiffness EI, "
+    "compliant seabed, bodies' drag",
+    "shooting": "elevation/azimuth ODE (vaz-patel): sheared currents, seabed slope, "
+    "laying, stretched drag diameter",
+}
+
+
 class StaticSettings(StrictModel):
-    method: str = Field("catenary", description="static solver (see `cablestudy schema`)")
+    method: str = Field(
+        "catenary",
+        description="static solver: "
+        + "; ".join(f"{name}: {what}" for name, what in STATIC_METHODS.items()),
+        json_schema_extra={"enum": list(STATIC_METHODS)},
+    )
     nodes: int = Field(101, ge=2, le=100_000, description="output points along the line")
     tolerance: Positive = Field(1e-9, le=1e-2, description="relative tolerance [-]")
     max_iterations: int = Field(100, ge=1, le=100_000)
@@ -466,7 +486,12 @@ class DynamicSettings(StrictModel):
     """
 
     excitation: ExcitationOrList = Field(description="prescribed end motion")
-    method: str = Field("auto", description="auto | time | frequency")
+    method: str = Field(
+        "auto",
+        description="dynamic method: "
+        + "; ".join(f"{name}: {what}" for name, what in DYNAMIC_METHODS.items()),
+        json_schema_extra={"enum": list(DYNAMIC_METHODS)},
+    )
     elements: int = Field(80, ge=2, le=10_000, description="elements of the dynamic model")
     points_per_period: int = Field(
         64, ge=8, le=100_000, description="time steps per period of the fastest harmonic"

@@ -67,7 +67,7 @@ def build_all(
     """Build every registered figure (or those in ``only``); returns the PNG paths.
 
     With ``docs``, also copy the figures to ``docs/figures/`` and write the checked
-    gallery ``docs/figures.md`` (:mod:`.gallery`)."""
+    gallery ``docs/validation.md`` (:mod:`.gallery`)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -104,6 +104,6 @@ def build_all(
         for path in written:
             shutil.copyfile(path, images / path.name)
             copied.append(images / path.name)
-        (docs / "figures.md").write_text(gallery_markdown(data, copied, "figures"))
-        written.append(docs / "figures.md")
+        (docs / "validation.md").write_text(gallery_markdown(data, copied, "figures"))
+        written.append(docs / "validation.md")
     return written

@@ -1,6 +1,6 @@
 """The checked gallery: every number a seed prints that we can compute, our value and
 the difference, and the statements its text makes about its figures, checked on our
-results. ``make figures`` writes it to ``docs/figures.md`` beside the figures.
+results. ``make figures`` writes it to ``docs/validation.md`` beside the figures.
 
 Each :class:`Row` states the tolerance it is held to (a test recomputes every row from
 the studies and fails when a value leaves it); a difference over 2 % carries a
@@ -462,7 +462,7 @@ def studies_needed() -> list[str]:
 
 
 def gallery_markdown(data: Data, figures: list[Path], image_dir: str) -> str:
-    """The text of ``docs/figures.md``: the figures, the table of printed numbers and
+    """The text of ``docs/validation.md``: the figures, the table of printed numbers and
     the checked statements."""
     lines = [
         "# Gallery: the seeds' figures, regenerated and checked",

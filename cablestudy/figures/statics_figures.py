@@ -59,7 +59,7 @@ def fig4(data: dict[str, xr.Dataset], out: Path) -> Path:
         f"Table 1 lies {np.sqrt(np.mean(miss**2)):.2f} m rms from the exact curve: its points "
         f"at x = {TABLE1[6, 0]:g} m and {TABLE1[4, 0]:g} m\nlie {excess[5]:.2f} m and "
         f"{excess[3]:.2f} m above the chord of their neighbours, which no hanging line can "
-        "do\n(see docs/figures.md)",
+        "do\n(see docs/validation.md)",
         transform=ax.transAxes,
         fontsize=6.5,
     )

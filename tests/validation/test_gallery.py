@@ -1,4 +1,4 @@
-"""Every row of the checked gallery (docs/figures.md), recomputed from the studies run
+"""Every row of the checked gallery (docs/validation.md), recomputed from the studies run
 YAML to netCDF: a value that leaves its stated tolerance, or a statement of a seed that
 stops holding on our results, fails here."""
 
