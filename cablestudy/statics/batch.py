@@ -50,15 +50,160 @@ def batchable(problem: StaticProblem) -> bool:
     return True
 
 
+def _plane(problem: StaticProblem) -> Plane | None:
+    med = problem.medium
+    if med.depth is None:
+        return None
+    return Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
+
+
+def contact_eligible(problem: StaticProblem) -> bool:
+    """Whether ``problem`` can take the compiled seabed-contact kernel
+    (:mod:`._fast_contact`): still water (or no drag), linear axial laws, end A fixed on
+    the seabed (within 1e-6 L of it, not below) and end B fixed above it. The same
+    decisions as :meth:`.semi_analytic.SemiAnalyticSolver._solve` (a line anchored at A,
+    not reversed)."""
+    plane = _plane(problem)
+    line = problem.line
+    if plane is None or problem.end_a.kind != "fixed" or problem.end_b.kind != "fixed":
+        return False
+    if line.is_nonlinear or _has_drag(problem):
+        return False
+    assert problem.end_a.position is not None and problem.end_b.position is not None
+    limit = 1e-6 * line.total_length
+    ha = float(plane.height_above(problem.end_a.position))
+    hb = float(plane.height_above(problem.end_b.position))
+    return -limit <= ha <= limit and hb > limit
+
+
+def _has_drag(problem: StaticProblem) -> bool:
+    med, line = problem.medium, problem.line
+    return (
+        med.has_current
+        and med.density > 0.0
+        and bool(np.any(line.diameter * (line.drag_normal + line.drag_tangential) > 0.0))
+    )
+
+
+def solve_contact_arrays(
+    ell: np.ndarray,
+    EA: np.ndarray,
+    weight: np.ndarray,
+    point: np.ndarray,
+    bounds: np.ndarray,
+    rA: np.ndarray,
+    rB: np.ndarray,
+    plane: Plane,
+    tol: np.ndarray,
+    maxit: np.ndarray,
+    s: np.ndarray,
+) -> dict[str, np.ndarray]:
+    """Lines anchored at A on ``plane`` with B fixed above it, through the compiled kernel
+    :func:`._fast_contact.contact_cases` (arrays as there: (N, P) pieces, (N, P + 1, 3)
+    point loads, (N, 3) ends, (N, n) arc lengths [m]). Returns ``position``, ``tension``,
+    ``force_a``, ``force_b``, ``laid_length``, ``iterations``, ``residual`` and ``status``
+    (nonzero: the kernel did not settle the case, which is for the general solver)."""
+    from . import _fast_contact
+
+    N = ell.shape[0]
+    n = s.shape[1]
+    e1, e2 = plane.basis
+    out = {
+        "position": np.empty((N, n, 3)),
+        "tension": np.empty((N, n)),
+        "force_a": np.empty((N, 3)),
+        "force_b": np.empty((N, 3)),
+        "laid_length": np.empty(N),
+        "iterations": np.zeros(N, dtype=np.int64),
+        "residual": np.zeros(N),
+        "status": np.zeros(N, dtype=np.int64),
+    }
+    _fast_contact.contact_cases(
+        np.ascontiguousarray(ell, dtype=float),
+        np.ascontiguousarray(EA, dtype=float),
+        np.ascontiguousarray(weight, dtype=float),
+        np.ascontiguousarray(point, dtype=float),
+        np.ascontiguousarray(bounds, dtype=float),
+        np.ascontiguousarray(rA, dtype=float),
+        np.ascontiguousarray(rB, dtype=float),
+        np.tile(plane.normal, (N, 1)),
+        np.tile(np.stack((e1, e2), axis=1), (N, 1, 1)),
+        np.full(N, float(plane.depth)),
+        np.full(N, float(plane.friction)),
+        np.full(N, plane.slope == 0.0),
+        np.ascontiguousarray(tol, dtype=float),
+        np.ascontiguousarray(maxit, dtype=np.int64),
+        np.ascontiguousarray(s, dtype=float),
+        out["position"],
+        out["tension"],
+        out["force_a"],
+        out["force_b"],
+        out["laid_length"],
+        out["iterations"],
+        out["residual"],
+        out["status"],
+    )
+    return out
+
+
+def _contact_one(problem: StaticProblem) -> StaticResult | None:
+    """One problem through the seabed-contact kernel (the same arrays the grid builds for
+    it), or None when the kernel does not settle it."""
+    line = problem.line
+    if line.length.size == 1 and line.attachment_s.size == 0:
+        ell = np.array([[line.length[0]]])
+        EA = np.array([[line.axial_stiffness[0]]])
+        weight = np.array([[line.weight[0]]])
+        point = np.zeros((1, 2, 3))
+        bounds = np.array([[0.0, line.length[0]]])
+    else:
+        lay = make_layout(line)
+        ell, EA, weight = lay.ell[None], lay.EA[None], lay.weight[None]
+        point, bounds = lay.point[None], lay.bounds[None]
+    plane = _plane(problem)
+    assert plane is not None
+    L = bounds[:, -1]
+    s = np.linspace(np.zeros(1), L, problem.n_nodes, axis=1)
+    out = solve_contact_arrays(
+        ell,
+        EA,
+        weight,
+        point,
+        bounds,
+        np.asarray(problem.end_a.position, dtype=float)[None],
+        np.asarray(problem.end_b.position, dtype=float)[None],
+        plane,
+        np.array([problem.tolerance], dtype=float),
+        np.array([problem.max_iterations], dtype=np.int64),
+        s,
+    )
+    if out["status"][0] != 0:
+        return None
+    return StaticResult(
+        s=s[0],
+        position=out["position"][0],
+        tension=out["tension"][0],
+        force_a=out["force_a"][0],
+        force_b=out["force_b"][0],
+        status=STATUS_OK,
+        laid_length=float(out["laid_length"][0]),
+        iterations=int(out["iterations"][0]),
+        residual=float(out["residual"][0]),
+    )
+
+
 def solve_batch(
     problems: list[StaticProblem],
     *,
     deadline: float | None = None,
     solver: SemiAnalyticSolver | None = None,
+    contact: bool = True,
+    general: list[int] | None = None,
 ) -> list[StaticResult]:
     """Solve ``problems`` (any mix); batchable ones with equal piece and node counts are
-    solved together, the others (and any batch case that fails or touches the seabed)
-    one by one."""
+    solved together, lines anchored on the seabed (``contact``) by the compiled contact
+    kernel, the others (and any case a kernel does not settle) one by one by the general
+    solver; the indices of those are appended to ``general`` if given."""
     solver = solver or SemiAnalyticSolver()
     results: list[StaticResult | None] = [None] * len(problems)
     groups: dict[tuple[int, int], list[int]] = {}
@@ -89,16 +234,25 @@ def solve_batch(
     out = []
     for i, prob in enumerate(problems):
         res = results[i]
+        if res is None and contact and _fast.AVAILABLE and contact_eligible(prob):
+            res = _contact_one(prob)
         if res is None or not res.success:
             res = solver.solve(prob, deadline=deadline, compiled=False)
+            if general is not None:
+                general.append(i)
         out.append(res)
     return out
 
 
 def solve_compiled(problem: StaticProblem, *, deadline: float | None = None) -> StaticResult | None:
-    """One still-water problem through the compiled batch kernel, or None when it does
-    not take that path (or does not settle there)."""
-    if not _fast.AVAILABLE or not batchable(problem):
+    """One still-water problem through the compiled batch kernels (free-hanging, or
+    anchored on the seabed), or None when it does not take that path (or does not
+    settle there)."""
+    if not _fast.AVAILABLE:
+        return None
+    if contact_eligible(problem):
+        return _contact_one(problem)
+    if not batchable(problem):
         return None
     line = problem.line
     if line.length.size == 1 and line.attachment_s.size == 0:
