@@ -207,6 +207,8 @@ class GridChunk:
     message: np.ndarray  # unicode
     wall_time: np.ndarray
     data: dict[str, np.ndarray]
+    #: cases no array kernel settled, solved one by one by the general solver
+    fallback: int = 0
 
     @property
     def n(self) -> int:
@@ -362,13 +364,20 @@ def _compiled_solve(
     rB = np.ascontiguousarray(pos["b"], dtype=float)
     plane = None
     rest = np.zeros(N, dtype=bool)
+    contact = np.zeros(N, dtype=bool)
     if med.depth is not None:
         from .statics.seabed import Plane
 
         plane = Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
         limit = 1e-6 * line.total_length
-        rest |= _height_below(plane, rA[:, None, :], limit, strict=False)
-        rest |= _height_below(plane, rB[:, None, :], limit, strict=False)
+        grounded_a = _height_below(plane, rA[:, None, :], limit, strict=False)
+        grounded_b = _height_below(plane, rB[:, None, :], limit, strict=False)
+        # anchored at A (not below the seabed), B above: the contact kernel, as
+        # batch.contact_eligible decides for a case alone
+        contact = (
+            grounded_a & ~grounded_b & ~_height_below(plane, rA[:, None, :], -limit, strict=True)
+        )
+        rest |= (grounded_a | grounded_b) & ~contact
     if line.length.size == 1 and line.attachment_s.size == 0:
         P = 1
         ell = np.full((N, 1), line.length[0])
@@ -391,52 +400,76 @@ def _compiled_solve(
         point = np.tile(lay.point, (N, 1, 1))
         bounds = np.tile(lay.bounds, (N, 1))
     Ltot = bounds[:, -1]
-    Q = q * ell[..., None]
-    Cend = point.sum(axis=1) + Q.sum(axis=1)
-    target = rB - rA
-    EAeff = Ltot / np.sum(ell / EA, axis=1)
-    TA0 = _guess(target, Ltot, Cend, EAeff, point[:, 0])
     tol = np.full(N, base.tolerance, dtype=float)
     maxit = np.full(N, base.max_iterations, dtype=np.int64)
     s = np.linspace(np.zeros(N), Ltot, n_nodes, axis=1)
-    position = np.empty((N, n_nodes, 3))
-    tension = np.empty((N, n_nodes))
-    TL = np.empty((N, 3))
-    TA = np.empty((N, 3))
+    position = np.full((N, n_nodes, 3), np.nan)
+    tension = np.full((N, n_nodes), np.nan)
+    TL = np.full((N, 3), np.nan)
+    TA = np.full((N, 3), np.nan)
+    laid = np.zeros(N)
     iters = np.zeros(N, dtype=np.int64)
     resid = np.zeros(N)
-    status = np.zeros(N, dtype=np.int64)
-    _fast.solve_cases(
-        ell,
-        EA,
-        -q[..., 2].copy(),
-        point,
-        bounds,
-        np.zeros(N, dtype=np.int64),  # kind: end B fixed
-        rA,
-        target,
-        TA0,
-        tol,
-        maxit,
-        s,
-        position,
-        tension,
-        TA,
-        TL,
-        iters,
-        resid,
-        status,
-    )
-    good = (
-        (status == 0)
-        & np.all(np.isfinite(position), axis=(1, 2))
-        & np.all(np.isfinite(tension), axis=1)
-        & np.all(np.isfinite(TA), axis=1)
-        & np.all(np.isfinite(TL), axis=1)
-    )
-    rest |= ~good
-    if plane is not None:
-        rest |= _height_below(plane, position, -1e-6 * Ltot, strict=True)
+    free = np.flatnonzero(~rest & ~contact)
+    if free.size:
+        f = free
+        Q = q[f] * ell[f][..., None]
+        Cend = point[f].sum(axis=1) + Q.sum(axis=1)
+        target = rB[f] - rA[f]
+        EAeff = Ltot[f] / np.sum(ell[f] / EA[f], axis=1)
+        TA0 = _guess(target, Ltot[f], Cend, EAeff, point[f, 0])
+        pos_f = np.empty((f.size, n_nodes, 3))
+        ten_f, TA_f, TL_f = (
+            np.empty((f.size, n_nodes)),
+            np.empty((f.size, 3)),
+            np.empty((f.size, 3)),
+        )
+        it_f, res_f, st_f = np.zeros(f.size, np.int64), np.zeros(f.size), np.zeros(f.size, np.int64)
+        _fast.solve_cases(
+            ell[f],
+            EA[f],
+            np.ascontiguousarray(-q[f][..., 2]),
+            point[f],
+            bounds[f],
+            np.zeros(f.size, dtype=np.int64),  # kind: end B fixed
+            rA[f],
+            target,
+            TA0,
+            tol[f],
+            maxit[f],
+            s[f],
+            pos_f,
+            ten_f,
+            TA_f,
+            TL_f,
+            it_f,
+            res_f,
+            st_f,
+        )
+        good = (
+            (st_f == 0)
+            & np.all(np.isfinite(pos_f), axis=(1, 2))
+            & np.all(np.isfinite(ten_f), axis=1)
+            & np.all(np.isfinite(TA_f), axis=1)
+            & np.all(np.isfinite(TL_f), axis=1)
+        )
+        if plane is not None:
+            good &= ~_height_below(plane, pos_f, -1e-6 * Ltot[f], strict=True)
+        position[f], tension[f], TA[f], TL[f] = pos_f, ten_f, TA_f, TL_f
+        iters[f], resid[f] = it_f, res_f
+        rest[f[~good]] = True
+    if contact.any():
+        from .statics.batch import solve_contact_arrays
+
+        c = np.flatnonzero(contact)
+        got = solve_contact_arrays(
+            ell[c], EA[c], -q[c][..., 2], point[c], bounds[c], rA[c], rB[c], plane,
+            tol[c], maxit[c], s[c],
+        )  # fmt: skip
+        position[c], tension[c] = got["position"], got["tension"]
+        TA[c], TL[c] = got["force_a"], -got["force_b"]
+        laid[c], iters[c], resid[c] = got["laid_length"], got["iterations"], got["residual"]
+        rest[c[got["status"] != 0]] = True
     out = StaticArrays(
         s=s,
         position=position,
@@ -445,7 +478,7 @@ def _compiled_solve(
         force_b=-TL,
         status=np.zeros(N, dtype=np.int64),
         messages=[""] * N,
-        laid_length=np.zeros(N),
+        laid_length=laid,
         iterations=iters.astype(float),
         residual=resid,
         drag_iterations=np.zeros(N),
@@ -573,19 +606,29 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
     status = np.zeros(n, dtype=np.int64)
     messages = [""] * n
     data: dict[str, np.ndarray] = {}
+    fallback = n
     try:
         base, pos, ea = _swept_inputs(grid, lo, hi)
         deadline = time.monotonic() + grid.template.analysis.time_limit * n
         compiled = _compiled_solve(base, pos, ea)
         if compiled is None:
-            st = StaticArrays.of(solve_batch(_problems(base, pos, ea), deadline=deadline))
+            general: list[int] = []
+            st = StaticArrays.of(
+                solve_batch(_problems(base, pos, ea), deadline=deadline, general=general)
+            )
+            fallback = len(general)
         else:
             st, rest = compiled
-            if rest.size:  # what solve_batch hands to the one-by-one solver
+            fallback = int(rest.size)
+            if rest.size:  # what no kernel settled: the general solver, one by one
                 sub = {k: (None if v is None else v[rest]) for k, v in pos.items()}
                 st.put(
                     rest,
-                    StaticArrays.of(solve_batch(_problems(base, sub, ea[rest]), deadline=deadline)),
+                    StaticArrays.of(
+                        solve_batch(
+                            _problems(base, sub, ea[rest]), deadline=deadline, contact=False
+                        )
+                    ),
                 )
         data, status, messages = array_outputs(st, grid.template, ea)
     except Exception as exc:  # noqa: BLE001 - a fault in a chunk fails its cases, as data
@@ -601,6 +644,7 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
         message=np.array(messages, dtype=str).reshape(n),
         wall_time=np.full(n, wall),
         data=data,
+        fallback=fallback,
     )
 
 
