@@ -22,7 +22,7 @@ import math
 
 import numpy as np
 
-from ._fast import _piece, _piece_general, _solve3, njit
+from ._fast import _piece, _piece_general, njit
 
 #: statuses of :func:`contact_cases` (0: converged and checked)
 NOT_CONVERGED = 1
@@ -136,25 +136,29 @@ def _evaluate(
     mu: float,
     R: np.ndarray,
     Jm: np.ndarray,
-    work: np.ndarray,
+    T: np.ndarray,
+    e: np.ndarray,
+    t_lo: np.ndarray,
+    t_hi: np.ndarray,
+    rate: np.ndarray,
+    hi_s: np.ndarray,
+    lp: np.ndarray,
+    dr: np.ndarray,
+    jac: np.ndarray,
+    rs: np.ndarray,
+    Js: np.ndarray,
 ) -> None:
     """Residual ``R`` = (r_B(y) - r_B) / L and its Jacobian ``Jm`` (3, 3) with respect to
     y = (alpha, beta, s_td), T_td = alpha e1 + beta e2 (as the ``evaluate`` of
-    :func:`.semi_analytic.solve_contact` for a fixed end B)."""
+    :func:`.semi_analytic.solve_contact` for a fixed end B). The arrays after ``Jm`` are
+    scratch space (sizes as in :func:`contact_cases`)."""
     P = w.shape[0]
-    T = np.empty(3)
-    e = np.empty(3)
     for i in range(3):
         T[i] = basis[i, 0] * y[0] + basis[i, 1] * y[1]
     tn = math.sqrt(T[0] * T[0] + T[1] * T[1] + T[2] * T[2])
     for i in range(3):
         e[i] = T[i] / tn
     s_td = y[2]
-    t_lo = np.empty(P)
-    t_hi = np.empty(P)
-    rate = np.empty(P)
-    hi_s = np.empty(P)
-    lp = np.empty(4)
     _laid(s_td, tn, e, bounds, w, EA, point, normal, mu, t_lo, t_hi, rate, hi_s, lp)
     stretched, pf, rate_td = lp[0], lp[1], lp[2]
     # suspended pieces: from s_td to the end of its piece k, then k + 1 ... P - 1
@@ -162,10 +166,10 @@ def _evaluate(
     for p in range(1, P):
         if bounds[p] <= s_td:
             k = p
-    dr = np.zeros(3)
-    jac = np.zeros((3, 3))
-    rs = np.zeros(3)
-    Js = np.zeros((3, 3))
+    for i in range(3):
+        rs[i] = 0.0
+        for j in range(3):
+            Js[i, j] = 0.0
     Cx, Cy, Cz = 0.0, 0.0, 0.0
     for p in range(k, P):
         ell = bounds[p + 1] - (s_td if p == k else bounds[p])
@@ -193,7 +197,36 @@ def _evaluate(
                 v += d * basis[j, c]
             Jm[i, c] = v / L
         Jm[i, 2] = (Js[i, 2] * qz - e[i] * rate_td * pf) / L
-    work[0] = stretched
+
+
+@njit(cache=True, error_model="numpy")
+def _newton_step(J: np.ndarray, R: np.ndarray, A: np.ndarray, step: np.ndarray) -> bool:
+    """step = -J^-1 R for a 3 x 3 ``J`` (Gaussian elimination with partial pivoting in the
+    scratch ``A`` (3, 4)); False when ``J`` is singular or not finite."""
+    for i in range(3):
+        for j in range(3):
+            A[i, j] = J[i, j]
+        A[i, 3] = -R[i]
+    for c in range(3):
+        piv = c
+        for i in range(c + 1, 3):
+            if abs(A[i, c]) > abs(A[piv, c]):
+                piv = i
+        if A[piv, c] == 0.0 or not math.isfinite(A[piv, c]):
+            return False
+        if piv != c:
+            for j in range(4):
+                A[c, j], A[piv, j] = A[piv, j], A[c, j]
+        for i in range(c + 1, 3):
+            f = A[i, c] / A[c, c]
+            for j in range(c, 4):
+                A[i, j] -= f * A[c, j]
+    for i in range(2, -1, -1):
+        acc = A[i, 3]
+        for j in range(i + 1, 3):
+            acc -= A[i, j] * step[j]
+        step[i] = acc / A[i, i]
+    return True
 
 
 @njit(cache=True, error_model="numpy")
@@ -211,18 +244,15 @@ def _guess(
     for a fixed end B; returns 0, or :data:`SLACK` (``still`` and the line slack on the
     seabed) or :data:`LIFT_OFF` (the classical formula lays none of it)."""
     w = max(wbar * normal[2], 1e-12)
-    d = np.empty(3)
-    for i in range(3):
-        d[i] = rB[i] - rA[i]
-    dn = _dot3(d, normal)
+    d0, d1, d2 = rB[0] - rA[0], rB[1] - rA[1], rB[2] - rA[2]
+    dn = d0 * normal[0] + d1 * normal[1] + d2 * normal[2]
     h = max(dn, 1e-9 * L)
-    dp = np.empty(3)
-    for i in range(3):
-        dp[i] = d[i] - dn * normal[i]
-    X = math.sqrt(dp[0] * dp[0] + dp[1] * dp[1] + dp[2] * dp[2])
-    e = np.empty(3)
-    for i in range(3):
-        e[i] = dp[i] / X if X > 0.0 else basis[i, 0]
+    p0, p1, p2 = d0 - dn * normal[0], d1 - dn * normal[1], d2 - dn * normal[2]
+    X = math.sqrt(p0 * p0 + p1 * p1 + p2 * p2)
+    if X > 0.0:
+        e0, e1, e2 = p0 / X, p1 / X, p2 / X
+    else:
+        e0, e1, e2 = basis[0, 0], basis[1, 0], basis[2, 0]
     if still and L - h - X > 1e-9 * L:
         return SLACK
     Hmax = w * (L * L - h * h) / (2.0 * h) if L > h else w * L
@@ -251,8 +281,8 @@ def _guess(
                 break
         H = math.sqrt(lo * hi)
     Ls = min(math.sqrt(h * h + 2.0 * h * H / w), L)
-    y[0] = H * (e[0] * basis[0, 0] + e[1] * basis[1, 0] + e[2] * basis[2, 0])
-    y[1] = H * (e[0] * basis[0, 1] + e[1] * basis[1, 1] + e[2] * basis[2, 1])
+    y[0] = H * (e0 * basis[0, 0] + e1 * basis[1, 0] + e2 * basis[2, 0])
+    y[1] = H * (e0 * basis[0, 1] + e1 * basis[1, 1] + e2 * basis[2, 1])
     y[2] = max(L - Ls, 0.0)
     return LIFT_OFF if y[2] <= 0.0 else 0
 
@@ -306,8 +336,9 @@ def contact_cases(
     Jm = np.zeros((3, 3))
     Jn = np.zeros((3, 3))
     step = np.zeros(3)
-    free = np.ones(3, dtype=np.bool_)
-    work = np.zeros(1)
+    A = np.zeros((3, 4))
+    rs = np.zeros(3)
+    Js = np.zeros((3, 3))
     e = np.zeros(3)
     T = np.zeros(3)
     t_lo = np.empty(P)
@@ -340,8 +371,9 @@ def contact_cases(
         res = math.nan
         if st == 0:
             _evaluate(
-                y, bas, rA[c], rB[c], L, bounds[c], w[c], EA[c], point[c], nrm, mu[c], R, Jm, work
-            )
+                y, bas, rA[c], rB[c], L, bounds[c], w[c], EA[c], point[c], nrm, mu[c], R, Jm,
+                T, e, t_lo, t_hi, rate, hi_s, lp, dr, jac, rs, Js,
+            )  # fmt: skip
             res = max(abs(R[0]), max(abs(R[1]), abs(R[2])))
             polish = 0
             at_zero = 0
@@ -357,7 +389,7 @@ def contact_cases(
                     st = NOT_CONVERGED
                     break
                 it += 1
-                if not _solve3(Jm, R, free, step):
+                if not _newton_step(Jm, R, A, step):
                     st = NUMERICAL
                     break
                 norm0 = math.sqrt(R[0] * R[0] + R[1] * R[1] + R[2] * R[2])
@@ -374,7 +406,7 @@ def contact_cases(
                         yn[1] = y[1] * 1e-3
                     _evaluate(
                         yn, bas, rA[c], rB[c], L, bounds[c], w[c], EA[c], point[c], nrm, mu[c],
-                        Rn, Jn, work,
+                        Rn, Jn, T, e, t_lo, t_hi, rate, hi_s, lp, dr, jac, rs, Js,
                     )  # fmt: skip
                     nn = math.sqrt(Rn[0] * Rn[0] + Rn[1] * Rn[1] + Rn[2] * Rn[2])
                     if math.isfinite(nn) and nn <= (1.0 - 1e-4 * lam) * norm0 + 1e-15:
