@@ -242,7 +242,7 @@ def _guess(
 ) -> int:
     """The start y = (T_td . e1, T_td . e2, s_td) of :func:`.semi_analytic.initial_contact`
     for a fixed end B; returns 0, or :data:`SLACK` (``still`` and the line slack on the
-    seabed) or :data:`LIFT_OFF` (the classical formula lays none of it)."""
+    seabed)."""
     w = max(wbar * normal[2], 1e-12)
     d0, d1, d2 = rB[0] - rA[0], rB[1] - rA[1], rB[2] - rA[2]
     dn = d0 * normal[0] + d1 * normal[1] + d2 * normal[2]
@@ -284,7 +284,7 @@ def _guess(
     y[0] = H * (e0 * basis[0, 0] + e1 * basis[1, 0] + e2 * basis[2, 0])
     y[1] = H * (e0 * basis[0, 1] + e1 * basis[1, 1] + e2 * basis[2, 1])
     y[2] = max(L - Ls, 0.0)
-    return LIFT_OFF if y[2] <= 0.0 else 0
+    return 0  # from s_td = 0 too: the Newton iteration decides whether it lifts off
 
 
 @njit(cache=True, error_model="numpy")

@@ -102,7 +102,17 @@ def solve_contact_arrays(
     :func:`._fast_contact.contact_cases` (arrays as there: (N, P) pieces, (N, P + 1, 3)
     point loads, (N, 3) ends, (N, n) arc lengths [m]). Returns ``position``, ``tension``,
     ``force_a``, ``force_b``, ``laid_length``, ``iterations``, ``residual`` and ``status``
-    (nonzero: the kernel did not settle the case, which is for the general solver)."""
+    (nonzero: the kernels did not settle the case, which is for the general solver).
+
+    A line the contact Newton lifts off the seabed (the touchdown point driven to the
+    anchor), or does not settle, may hang free: it is solved by the free-hanging kernel
+    :func:`._fast.solve_cases` from the start :func:`_guess` gives, and kept (laid length
+    0) where it converges and stays above the seabed within the general solver's margin,
+    max(1e-6 L, 1e3 tol L). That is the general solver's answer for such a line: when
+    its seabed-contact solve lifts off from the same start it returns the free-hanging
+    solution; when that solve fails, it returns the free-hanging solution if that does
+    not dip into the seabed (for a contact failure the kernel keeps it only where that
+    is certain: see :func:`_hang_free`)."""
     from . import _fast_contact
 
     N = ell.shape[0]
@@ -143,7 +153,107 @@ def solve_contact_arrays(
         out["residual"],
         out["status"],
     )
+    st = out["status"]
+    free = np.flatnonzero(
+        (st == _fast_contact.LIFT_OFF)
+        | (st == _fast_contact.NOT_CONVERGED)
+        | (st == _fast_contact.NUMERICAL)
+    )
+    if free.size:
+        _hang_free(free, out, ell, EA, weight, point, bounds, rA, rB, plane, tol, maxit, s)
     return out
+
+
+def _hang_free(
+    rows: np.ndarray,
+    out: dict[str, np.ndarray],
+    ell: np.ndarray,
+    EA: np.ndarray,
+    weight: np.ndarray,
+    point: np.ndarray,
+    bounds: np.ndarray,
+    rA: np.ndarray,
+    rB: np.ndarray,
+    plane: Plane,
+    tol: np.ndarray,
+    maxit: np.ndarray,
+    s: np.ndarray,
+) -> None:
+    """Cases ``rows`` of :func:`solve_contact_arrays` the contact kernel did not settle,
+    solved hanging free (into ``out``; status 0 where settled).
+
+    A case that lifted off keeps the free-hanging solution (the general solver's answer).
+    One whose contact solve failed keeps it only where it certainly does not dip into the
+    seabed (where the general solver would keep it too): the anchor not below the plane
+    by more than 1e-9 L and the line's tension at it not pointing into the seabed
+    (T_A . n >= 0), with no load that turns the line back towards the seabed (weights
+    >= 0, point loads f . n <= 0). Then T . n grows along the line, and with it the
+    height above the seabed, d(r . n)/ds = (T . n)(1 / EA + 1 / |T|) >= 0."""
+    from . import _fast_contact
+
+    r = rows
+    lifted = out["status"][r] == _fast_contact.LIFT_OFF
+    m, n = r.size, s.shape[1]
+    Ltot = bounds[r, -1]
+    Cend = point[r].sum(axis=1)
+    Cend[:, 2] -= np.sum(weight[r] * ell[r], axis=1)
+    target = rB[r] - rA[r]
+    EAeff = Ltot / np.sum(ell[r] / EA[r], axis=1)
+    TA0 = _guess(target, Ltot, Cend, EAeff, point[r, 0])
+    pos = np.empty((m, n, 3))
+    tension = np.empty((m, n))
+    TA, TL = np.empty((m, 3)), np.empty((m, 3))
+    iters, resid = np.zeros(m, dtype=np.int64), np.zeros(m)
+    status = np.zeros(m, dtype=np.int64)
+    _fast.solve_cases(
+        np.ascontiguousarray(ell[r]),
+        np.ascontiguousarray(EA[r]),
+        np.ascontiguousarray(weight[r]),
+        np.ascontiguousarray(point[r]),
+        np.ascontiguousarray(bounds[r]),
+        np.zeros(m, dtype=np.int64),  # kind: end B fixed
+        np.ascontiguousarray(rA[r]),
+        target,
+        TA0,
+        np.ascontiguousarray(tol[r]),
+        np.ascontiguousarray(maxit[r]),
+        np.ascontiguousarray(s[r]),
+        pos,
+        tension,
+        TA,
+        TL,
+        iters,
+        resid,
+        status,
+    )
+    height = (pos - np.array([0.0, 0.0, -plane.depth])) @ plane.normal  # (m, n)
+    margin = np.maximum(1e-6 * Ltot, 1e3 * tol[r] * Ltot)
+    good = (
+        (status == 0)
+        & np.all(np.isfinite(pos), axis=(1, 2))
+        & np.all(np.isfinite(tension), axis=1)
+        & np.all(np.isfinite(TA), axis=1)
+        & np.all(np.isfinite(TL), axis=1)
+        & (-height.min(axis=1) <= margin)
+    )
+    n_up = plane.normal
+    anchor = (rA[r] - np.array([0.0, 0.0, -plane.depth])) @ n_up
+    clear = (
+        (TA @ n_up >= 0.0)
+        & (anchor >= -1e-9 * Ltot)
+        & np.all(weight[r] >= 0.0, axis=1)
+        & np.all(point[r] @ n_up <= 0.0, axis=1)
+    )
+    good &= lifted | clear
+    k = r[good]
+    out["position"][k] = pos[good]
+    out["tension"][k] = tension[good]
+    out["force_a"][k] = TA[good]
+    out["force_b"][k] = -TL[good]
+    out["laid_length"][k] = 0.0
+    out["iterations"][k] += iters[good]
+    out["residual"][k] = resid[good]
+    out["status"][k] = 0
 
 
 def _contact_one(problem: StaticProblem) -> StaticResult | None:
