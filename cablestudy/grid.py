@@ -6,9 +6,11 @@ analysis is static with method ``catenary``, the study is validated once as a te
 each swept value once at its own path, and the checks that combine fields (ends below
 the seabed, a weightless line shorter than its chord) over the whole grid with NumPy.
 No per-case pydantic object is built: a chunk of cases becomes arrays of end positions
-and stiffnesses, is solved by :func:`cablestudy.statics.batch.solve_batch`, and its
-outputs are stacked into one array per output variable (a :class:`GridChunk`), which the
-runner streams to disk.
+and stiffnesses, is solved by the compiled kernels (lines hanging free, and lines
+anchored on the seabed with friction), the cases they do not settle by
+:func:`cablestudy.statics.batch.solve_batch` (counted in :attr:`GridChunk.fallback`), and
+its outputs are stacked into one array per output variable (a :class:`GridChunk`), which
+the runner streams to disk.
 
 Anything else (another analysis, another swept path, a swept value or combination that
 fails validation) goes through :func:`cablestudy.cases.expand_cases`, which reports
@@ -339,12 +341,15 @@ def _compiled_solve(
 ) -> tuple[StaticArrays, np.ndarray] | None:
     """The cases of a chunk (the template's static problem ``base`` with end positions
     ``pos`` and segment stiffnesses ``ea`` per case) through the compiled batch kernel
-    straight from arrays: the inputs :func:`cablestudy.statics.batch._solve_group` builds
-    from one problem object per case, built here for all cases at once (so the same
-    numbers, bit for bit, without a per-case object). Returns the stacked results and the
-    cases the kernel leaves to the one-by-one solver (not converged, not finite, on or
-    touching the seabed: exactly the cases :func:`solve_batch` would hand on), or None
-    when the template does not take this path (then :func:`solve_batch` runs as before).
+    straight from arrays: the inputs :func:`cablestudy.statics.batch._solve_group` (lines
+    hanging free) and :func:`cablestudy.statics.batch._contact_one` (end A anchored on
+    the seabed, end B above it: :func:`cablestudy.statics.batch.solve_contact_arrays`)
+    build from one problem object per case, built here for all cases at once (so the
+    same numbers, bit for bit, without a per-case object). Returns the stacked results
+    and the cases the kernels leave to the one-by-one solver (not converged, not finite,
+    touching the seabed between the ends, end B on it, slack on it: exactly the cases
+    :func:`solve_batch` would hand on), or None when the template does not take this
+    path (then :func:`solve_batch` runs as before).
     """
     from .statics import _fast
     from .statics.batch import _guess

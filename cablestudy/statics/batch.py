@@ -7,9 +7,12 @@ that differ only in numbers. Here the cases of one chunk with the same number of
 pieces and output points are stacked along a leading axis and solved together by the
 same damped Newton iteration on the convex complementary energy as
 :func:`.semi_analytic.solve_free` (with a per-case Armijo line search and per-case
-convergence). Cases that need more (current, seabed contact, a weightless slack piece,
-no fixed end A) are solved one by one by :class:`.semi_analytic.SemiAnalyticSolver`,
-so the answer never depends on which path a case took beyond round-off.
+convergence). A line anchored at end A on the seabed with end B fixed above it takes
+the compiled seabed-contact kernel (:mod:`._fast_contact`, :func:`solve_contact_arrays`).
+Cases that need more (current, contact between the ends, a weightless slack piece, no
+fixed end A, a case a kernel does not settle) are solved one by one by
+:class:`.semi_analytic.SemiAnalyticSolver`, so the answer never depends on which path a
+case took beyond round-off.
 """
 
 from __future__ import annotations
