@@ -370,6 +370,7 @@ def _compiled_solve(
     plane = None
     rest = np.zeros(N, dtype=bool)
     contact = np.zeros(N, dtype=bool)
+    contact_b = np.zeros(N, dtype=bool)
     if med.depth is not None:
         from .statics.seabed import Plane
 
@@ -377,12 +378,16 @@ def _compiled_solve(
         limit = 1e-6 * line.total_length
         grounded_a = _height_below(plane, rA[:, None, :], limit, strict=False)
         grounded_b = _height_below(plane, rB[:, None, :], limit, strict=False)
-        # anchored at A (not below the seabed), B above: the contact kernel, as
-        # batch.contact_eligible decides for a case alone
+        # anchored at one end (not below the seabed), the other above: the contact
+        # kernel, as batch.contact_end decides for a case alone (anchored at B: on the
+        # reversed line)
         contact = (
             grounded_a & ~grounded_b & ~_height_below(plane, rA[:, None, :], -limit, strict=True)
         )
-        rest |= (grounded_a | grounded_b) & ~contact
+        contact_b = (
+            grounded_b & ~grounded_a & ~_height_below(plane, rB[:, None, :], -limit, strict=True)
+        )
+        rest |= (grounded_a | grounded_b) & ~contact & ~contact_b
     if line.length.size == 1 and line.attachment_s.size == 0:
         P = 1
         ell = np.full((N, 1), line.length[0])
@@ -415,7 +420,7 @@ def _compiled_solve(
     laid = np.zeros(N)
     iters = np.zeros(N, dtype=np.int64)
     resid = np.zeros(N)
-    free = np.flatnonzero(~rest & ~contact)
+    free = np.flatnonzero(~rest & ~contact & ~contact_b)
     if free.size:
         f = free
         Q = q[f] * ell[f][..., None]
@@ -473,6 +478,28 @@ def _compiled_solve(
         )  # fmt: skip
         position[c], tension[c] = got["position"], got["tension"]
         TA[c], TL[c] = got["force_a"], -got["force_b"]
+        laid[c], iters[c], resid[c] = got["laid_length"], got["iterations"], got["residual"]
+        rest[c[got["status"] != 0]] = True
+    if contact_b.any():
+        from .statics.batch import solve_contact_arrays
+        from .statics.semi_analytic import make_layout, reversed_line
+
+        c = np.flatnonzero(contact_b)
+        m = c.size
+        if line.length.size == 1 and line.attachment_s.size == 0:
+            ell_r, EA_r, w_r = ell[c], EA[c], -q[c][..., 2]
+            point_r, bounds_r = point[c], bounds[c]
+        else:
+            lay_r = make_layout(reversed_line(line))
+            ell_r, w_r = np.tile(lay_r.ell, (m, 1)), np.tile(lay_r.weight, (m, 1))
+            EA_r = ea[c][:, ::-1][:, lay_r.segment]
+            point_r, bounds_r = np.tile(lay_r.point, (m, 1, 1)), np.tile(lay_r.bounds, (m, 1))
+        got = solve_contact_arrays(
+            ell_r, EA_r, w_r, point_r, bounds_r, rB[c], rA[c], plane,
+            tol[c], maxit[c], Ltot[c, None] - s[c],
+        )  # fmt: skip
+        position[c], tension[c] = got["position"], got["tension"]
+        TA[c], TL[c] = got["force_b"], -got["force_a"]
         laid[c], iters[c], resid[c] = got["laid_length"], got["iterations"], got["residual"]
         rest[c[got["status"] != 0]] = True
     out = StaticArrays(

@@ -25,7 +25,7 @@ from . import _fast
 from .base import STATUS_OK, StaticProblem, StaticResult
 from .pieces import piece_integrals
 from .seabed import Plane
-from .semi_analytic import SemiAnalyticSolver, make_layout
+from .semi_analytic import SemiAnalyticSolver, make_layout, reversed_line
 
 
 def batchable(problem: StaticProblem) -> bool:
@@ -60,23 +60,33 @@ def _plane(problem: StaticProblem) -> Plane | None:
     return Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
 
 
-def contact_eligible(problem: StaticProblem) -> bool:
-    """Whether ``problem`` can take the compiled seabed-contact kernel
-    (:mod:`._fast_contact`): still water (or no drag), linear axial laws, end A fixed on
-    the seabed (within 1e-6 L of it, not below) and end B fixed above it. The same
-    decisions as :meth:`.semi_analytic.SemiAnalyticSolver._solve` (a line anchored at A,
-    not reversed)."""
+def contact_end(problem: StaticProblem) -> str | None:
+    """The end (``"a"`` or ``"b"``) anchored on the seabed when ``problem`` can take the
+    compiled seabed-contact kernel (:mod:`._fast_contact`), else None: still water (or
+    no drag), linear axial laws, both ends fixed, one on the seabed (within 1e-6 L of
+    it, not below) and the other above it. The same decisions as
+    :meth:`.semi_analytic.SemiAnalyticSolver._solve`, which describes a line anchored at
+    B from B (the reversed line)."""
     plane = _plane(problem)
     line = problem.line
     if plane is None or problem.end_a.kind != "fixed" or problem.end_b.kind != "fixed":
-        return False
+        return None
     if line.is_nonlinear or _has_drag(problem):
-        return False
+        return None
     assert problem.end_a.position is not None and problem.end_b.position is not None
     limit = 1e-6 * line.total_length
     ha = float(plane.height_above(problem.end_a.position))
     hb = float(plane.height_above(problem.end_b.position))
-    return -limit <= ha <= limit and hb > limit
+    if -limit <= ha <= limit and hb > limit:
+        return "a"
+    if -limit <= hb <= limit and ha > limit:
+        return "b"
+    return None
+
+
+def contact_eligible(problem: StaticProblem) -> bool:
+    """Whether ``problem`` can take the compiled seabed-contact kernel (:func:`contact_end`)."""
+    return contact_end(problem) is not None
 
 
 def _has_drag(problem: StaticProblem) -> bool:
@@ -261,8 +271,11 @@ def _hang_free(
 
 def _contact_one(problem: StaticProblem) -> StaticResult | None:
     """One problem through the seabed-contact kernel (the same arrays the grid builds for
-    it), or None when the kernel does not settle it."""
-    line = problem.line
+    it), or None when the kernel does not settle it. A line anchored at B is solved from
+    B, as the reversed line (sampled at L - s), as the general solver does."""
+    end = contact_end(problem)
+    assert end is not None
+    line = problem.line if end == "a" else reversed_line(problem.line)
     if line.length.size == 1 and line.attachment_s.size == 0:
         ell = np.array([[line.length[0]]])
         EA = np.array([[line.axial_stiffness[0]]])
@@ -273,6 +286,7 @@ def _contact_one(problem: StaticProblem) -> StaticResult | None:
         lay = make_layout(line)
         ell, EA, weight = lay.ell[None], lay.EA[None], lay.weight[None]
         point, bounds = lay.point[None], lay.bounds[None]
+    anchor, top = (problem.end_a, problem.end_b) if end == "a" else (problem.end_b, problem.end_a)
     plane = _plane(problem)
     assert plane is not None
     L = bounds[:, -1]
@@ -283,21 +297,22 @@ def _contact_one(problem: StaticProblem) -> StaticResult | None:
         weight,
         point,
         bounds,
-        np.asarray(problem.end_a.position, dtype=float)[None],
-        np.asarray(problem.end_b.position, dtype=float)[None],
+        np.asarray(anchor.position, dtype=float)[None],
+        np.asarray(top.position, dtype=float)[None],
         plane,
         np.array([problem.tolerance], dtype=float),
         np.array([problem.max_iterations], dtype=np.int64),
-        s,
+        s if end == "a" else L[:, None] - s,
     )
     if out["status"][0] != 0:
         return None
+    fa, fb = ("force_a", "force_b") if end == "a" else ("force_b", "force_a")
     return StaticResult(
         s=s[0],
         position=out["position"][0],
         tension=out["tension"][0],
-        force_a=out["force_a"][0],
-        force_b=out["force_b"][0],
+        force_a=out[fa][0],
+        force_b=out[fb][0],
         status=STATUS_OK,
         laid_length=float(out["laid_length"][0]),
         iterations=int(out["iterations"][0]),

@@ -71,8 +71,18 @@ ON_SLOPE = ON_SEABED.replace(
 )
 
 
+#: anchored at end B instead (A above): the contact kernel on the reversed line
+ON_SEABED_B = (
+    ON_SEABED.replace("depth: 30.0", "depth: 30.0, seabed: {friction: 0.5}")
+    .replace("[-10.0, -30.0]", "[-10.0, -12.0]")
+    .replace("[92.5, 0.0, -8.6]", "[92.5, 0.0, -30.0]")
+)
+
+
 @pytest.mark.parametrize(
-    "text", [TEXT, ON_SEABED, ON_SLOPE], ids=["free", "on-seabed", "on-sloped-seabed-friction"]
+    "text",
+    [TEXT, ON_SEABED, ON_SLOPE, ON_SEABED_B],
+    ids=["free", "on-seabed", "on-sloped-seabed-friction", "anchored-at-b"],
 )
 def test_array_path_writes_the_case_by_case_dataset_bit_for_bit(tmp_path: Path, text: str) -> None:
     fast, slow = _both(tmp_path, text)

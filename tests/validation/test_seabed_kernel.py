@@ -27,7 +27,7 @@ from cablestudy.config.loader import validate_data
 from cablestudy.grid import CaseGrid, evaluate_grid_chunk
 from cablestudy.problem import static_problem
 from cablestudy.statics import _fast_contact
-from cablestudy.statics.batch import contact_eligible, solve_batch, solve_compiled
+from cablestudy.statics.batch import contact_eligible, contact_end, solve_batch, solve_compiled
 from cablestudy.statics.semi_analytic import SemiAnalyticSolver
 
 TOL = 1e-9
@@ -61,8 +61,11 @@ ATTACH = """\
     - {s: 200.0, force: [0.0, 0.0, 15000.0]}"""
 
 
-def _problem(*, slope: float, heading: float, mu: float, multi: bool, xb: float, yb: float):
-    """The chain study as a static problem, anchored at A on the seabed."""
+def _problem(
+    *, slope: float, heading: float, mu: float, multi: bool, xb: float, yb: float, at_b=False
+):
+    """The chain study as a static problem, anchored at A on the seabed (``at_b``: the
+    ends swapped, anchored at B)."""
     za = -100.0
     text = CHAIN.format(
         slope=slope,
@@ -75,6 +78,10 @@ def _problem(*, slope: float, heading: float, mu: float, multi: bool, xb: float,
         yb=yb,
         tol=TOL,
     )
+    if at_b:
+        a = f"[0.0, 0.0, {za}]"
+        b = f"[{xb}, {yb}, -10.0]"
+        text = text.replace(a, "@A").replace(b, a).replace("@A", b)
     src = parse_study_text(text, "chain.yaml")
     return static_problem(validate_data(src.data, src))
 
@@ -101,12 +108,24 @@ def _reach(xb: float, multi: bool) -> float:
     return xb + 20.0 if multi else xb
 
 
-@pytest.mark.parametrize(("slope", "heading", "mu", "multi", "xb", "yb"), CASES)
+REVERSED = [
+    pytest.param(*p.values, True, id=f"{p.id}-anchored-at-b")
+    for p in CASES
+    if p.id in ("flat-mu0.5-1seg", "oblique-slope-mu0.5-3seg")
+]
+
+
+@pytest.mark.parametrize(
+    ("slope", "heading", "mu", "multi", "xb", "yb", "at_b"),
+    [pytest.param(*p.values, False, id=p.id) for p in CASES] + REVERSED,
+)
 def test_kernel_agrees_with_the_numpy_contact_solver(
-    slope: float, heading: float, mu: float, multi: bool, xb: float, yb: float
+    slope: float, heading: float, mu: float, multi: bool, xb: float, yb: float, at_b: bool
 ) -> None:
-    prob = _problem(slope=slope, heading=heading, mu=mu, multi=multi, xb=_reach(xb, multi), yb=yb)
-    assert contact_eligible(prob)
+    prob = _problem(
+        slope=slope, heading=heading, mu=mu, multi=multi, xb=_reach(xb, multi), yb=yb, at_b=at_b
+    )
+    assert contact_end(prob) == ("b" if at_b else "a")
     fast = solve_compiled(prob)
     assert fast is not None and fast.status == 0  # the kernel settled it
     ref = SemiAnalyticSolver().solve(prob, compiled=False)
