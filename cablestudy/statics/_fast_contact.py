@@ -230,6 +230,13 @@ def _newton_step(J: np.ndarray, R: np.ndarray, A: np.ndarray, step: np.ndarray) 
 
 
 @njit(cache=True, error_model="numpy")
+def _excess(H: float, L: float, h: float, w: float, X: float) -> float:
+    """Reach along the seabed minus the horizontal distance to B [m] of the inextensible
+    line of weight ``w`` [N/m] with horizontal tension ``H`` [N], height ``h`` [m]."""
+    return L - math.sqrt(h * h + 2.0 * h * H / w) + H / w * math.acosh(1.0 + w * h / H) - X
+
+
+@njit(cache=True, error_model="numpy")
 def _guess(
     L: float,
     wbar: float,
@@ -257,28 +264,38 @@ def _guess(
         return SLACK
     Hmax = w * (L * L - h * h) / (2.0 * h) if L > h else w * L
     lo, hi = 1e-9 * w * L, Hmax
-    # the reach grows with H: bisect the sign change of its excess over X
-    ex_hi = L - math.sqrt(h * h + 2.0 * h * hi / w) + hi / w * math.acosh(1.0 + w * h / hi) - X
-    ex_lo = L - math.sqrt(h * h + 2.0 * h * lo / w) + lo / w * math.acosh(1.0 + w * h / lo) - X
-    if ex_hi <= 0.0:
+    # the reach grows with H: bracket the sign change of its excess over X, narrowed by
+    # bisection (in log H) to 1 %, then by the Illinois false-position method (the
+    # bracket shrinks from both sides, superlinearly) to the 1e-12 of initial_contact's
+    # bisection: the same start to that precision, in about 10 evaluations instead of 45
+    f_hi = _excess(hi, L, h, w, X)
+    f_lo = _excess(lo, L, h, w, X)
+    if f_hi <= 0.0:
         H = hi
-    elif ex_lo >= 0.0:
+    elif f_lo >= 0.0:
         H = lo
     else:
-        for _ in range(60):
-            mid = math.sqrt(lo * hi)
-            ex = (
-                L
-                - math.sqrt(h * h + 2.0 * h * mid / w)
-                + mid / w * math.acosh(1.0 + w * h / mid)
-                - X
-            )
-            if ex > 0.0:
-                hi = mid
-            else:
-                lo = mid
+        side = 0
+        for _ in range(80):
             if hi <= lo * (1.0 + 1e-12):
                 break
+            if hi > lo * 1.01:
+                mid = math.sqrt(lo * hi)
+            else:
+                mid = hi - f_hi * (hi - lo) / (f_hi - f_lo)
+                if not lo < mid < hi:
+                    mid = 0.5 * (lo + hi)
+            f = _excess(mid, L, h, w, X)
+            if f > 0.0:
+                hi, f_hi = mid, f
+                if side == 1 and hi <= lo * 1.01:
+                    f_lo *= 0.5
+                side = 1
+            else:
+                lo, f_lo = mid, f
+                if side == -1 and hi <= lo * 1.01:
+                    f_hi *= 0.5
+                side = -1
         H = math.sqrt(lo * hi)
     Ls = min(math.sqrt(h * h + 2.0 * h * H / w), L)
     y[0] = H * (e0 * basis[0, 0] + e1 * basis[1, 0] + e2 * basis[2, 0])
