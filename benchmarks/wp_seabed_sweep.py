@@ -87,21 +87,24 @@ def _env() -> dict[str, str]:
     return env
 
 
-def cli_run(config: Path, out: Path) -> tuple[float, float]:
-    """`cablestudy run` end to end in a fresh process: wall time [s] and peak RSS [MB]
-    (as :func:`wp_sweep.cli_run`, with :func:`_env`)."""
+def cli_run(config: Path, out: Path) -> tuple[float, float, float]:
+    """`cablestudy run` end to end in a fresh process: wall time [s], peak RSS [MB] and
+    CPU time (user + system) [s] (as :func:`wp_sweep.cli_run`, with :func:`_env`)."""
     cli = [sys.executable, "-m", "cablestudy", "run", str(config), "--out", str(out)]
     cli += ["--no-cache", "--no-progress", "--scheduler", "synchronous"]
     timer = Path("/usr/bin/time")
     with tempfile.NamedTemporaryFile("r", suffix=".rss") as fh:
-        args = [str(timer), "-f", "%M", "-o", fh.name, *cli] if timer.exists() else cli
+        args = [str(timer), "-f", "%M %U %S", "-o", fh.name, *cli] if timer.exists() else cli
         t0 = time.perf_counter()
         proc = subprocess.run(args, env=_env(), capture_output=True, check=False)
         wall = time.perf_counter() - t0
         if proc.returncode != 0:
             raise RuntimeError(f"{' '.join(cli)} failed: {proc.stderr.decode()[-2000:]}")
-        rss = float(fh.read().split()[-1]) / 1024 if timer.exists() else math.nan
-    return wall, rss
+        rss, cpu = math.nan, math.nan
+        if timer.exists():
+            kb, user, system = fh.read().split()[-3:]
+            rss, cpu = float(kb) / 1024, float(user) + float(system)
+    return wall, rss, cpu
 
 
 def ours(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -121,9 +124,11 @@ def submerged_weight() -> float:
     return (MASS - 1025.0 * math.pi * DIAMETER**2 / 4.0) * 9.80665
 
 
-def moorpy_loop(offsets: np.ndarray, stiffnesses: np.ndarray) -> tuple[float, np.ndarray] | None:
+def moorpy_loop(
+    offsets: np.ndarray, stiffnesses: np.ndarray
+) -> tuple[float, float, np.ndarray] | None:
     """Time MoorPy's catenary with seabed friction over every (offset, EA) pair:
-    (seconds, fairlead tensions)."""
+    (wall seconds, CPU seconds, fairlead tensions)."""
     try:
         from moorpy.Catenary import catenary
     except ImportError:
@@ -131,7 +136,7 @@ def moorpy_loop(offsets: np.ndarray, stiffnesses: np.ndarray) -> tuple[float, np
     w = submerged_weight()
     h = FAIRLEAD + DEPTH
     out = np.full((len(offsets), len(stiffnesses)), np.nan)
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     for i, x in enumerate(offsets):
         for j, ea in enumerate(stiffnesses):
             try:
@@ -141,7 +146,7 @@ def moorpy_loop(offsets: np.ndarray, stiffnesses: np.ndarray) -> tuple[float, np
             except Exception:  # noqa: BLE001, S112 - a MoorPy failure is a missing point
                 continue
             out[i, j] = math.hypot(fbh, fbv)
-    return time.perf_counter() - t0, out
+    return time.perf_counter() - t0, time.process_time() - c0, out
 
 
 def run(quick: bool = False) -> WorkPrecision:
@@ -155,10 +160,11 @@ def run(quick: bool = False) -> WorkPrecision:
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)
         cfg = study(folder / "seabed20k.yaml", "seabed20k", 200, 100)
-        first, _ = cli_run(cfg, folder / "out")  # the installation's share (see above)
+        first = cli_run(cfg, folder / "out")[0]  # the installation's share (see above)
         runs = [cli_run(cfg, folder / "out") for _ in range(1 if quick else 3)]
         wall = statistics.median(r[0] for r in runs)
         rss = max(r[1] for r in runs)
+        cpu = statistics.median(r[2] for r in runs)
         offset, ea, tension, status = ours(folder / "out" / "seabed20k.nc")
         n = tension.size
         peer = moorpy_loop(offset, ea)
@@ -166,7 +172,7 @@ def run(quick: bool = False) -> WorkPrecision:
             err = math.nan
             wp.notes.append("MoorPy not installed (pip install '.[peers]'): its loop skipped")
         else:
-            t_peer, t_moorpy = peer
+            t_peer, cpu_peer, t_moorpy = peer
             both = np.isfinite(t_moorpy) & np.isfinite(tension)
             err = float(np.max(np.abs(t_moorpy[both] - tension[both]) / tension[both]))
             wp.curve("MoorPy catenary CB=0.5, Python loop", peer=True).add(
@@ -180,7 +186,9 @@ def run(quick: bool = False) -> WorkPrecision:
                 f"{' (PYTHONDONTWRITEBYTECODE set here, dropped for these runs)' if dont else ''}"
                 f"; peak RSS {rss:.0f} MB; "
                 f"{int(np.sum(status != 0))} failed) against the MoorPy loop {t_peer:.2f} s: "
-                f"{wall / t_peer:.2f} x its time (the issue's target: 0.25 x); "
+                f"{wall / t_peer:.2f} x its time (the issue's target: 0.25 x); CPU time "
+                f"(user + system, less sensitive to the machine's load) {cpu:.2f} s against "
+                f"{cpu_peer:.2f} s: {cpu / cpu_peer:.2f} x; "
                 f"{int(both.sum())} cases both solve agree to {err:.1e} of the fairlead tension"
             )
         wp.curve("cablestudy run (array path, contact kernel)").add(
