@@ -127,6 +127,9 @@ def _evaluate(
     basis: np.ndarray,
     rA: np.ndarray,
     target: np.ndarray,
+    kind: int,
+    force: np.ndarray,
+    Fscale: float,
     L: float,
     bounds: np.ndarray,
     w: np.ndarray,
@@ -148,10 +151,13 @@ def _evaluate(
     rs: np.ndarray,
     Js: np.ndarray,
 ) -> None:
-    """Residual ``R`` = (r_B(y) - r_B) / L and its Jacobian ``Jm`` (3, 3) with respect to
-    y = (alpha, beta, s_td), T_td = alpha e1 + beta e2 (as the ``evaluate`` of
-    :func:`.semi_analytic.solve_contact` for a fixed end B). The arrays after ``Jm`` are
-    scratch space (sizes as in :func:`contact_cases`)."""
+    """Residual ``R`` and its Jacobian ``Jm`` (3, 3) with respect to y = (alpha, beta,
+    s_td), T_td = alpha e1 + beta e2, as the ``evaluate`` of
+    :func:`.semi_analytic.solve_contact`: ``kind`` 0 (end B fixed at ``target``)
+    R = (r_B(y) - r_B) / L; 1 (mooring: horizontal ``force`` on the line at B and B's
+    height ``target[2]``) the horizontal components of (T(L) - force) / ``Fscale`` and
+    (z_B(y) - z_B) / L; 2 (a known ``force``) (T(L) - force) / ``Fscale``. The arrays
+    after ``Jm`` are scratch space (sizes as in :func:`contact_cases`)."""
     P = w.shape[0]
     for i in range(3):
         T[i] = basis[i, 0] * y[0] + basis[i, 1] * y[1]
@@ -197,6 +203,16 @@ def _evaluate(
                 v += d * basis[j, c]
             Jm[i, c] = v / L
         Jm[i, 2] = (Js[i, 2] * qz - e[i] * rate_td * pf) / L
+    if kind != 0:  # T(L) = T_td - C_end; d T(L) / d s_td = q of the touchdown piece
+        TL0 = T[0] - Cx - point[P, 0]
+        TL1 = T[1] - Cy - point[P, 1]
+        TL2 = T[2] - Cz - point[P, 2]
+        rows = 2 if kind == 1 else 3
+        for i in range(rows):
+            R[i] = ((TL0, TL1, TL2)[i] - force[i]) / Fscale
+            Jm[i, 0] = basis[i, 0] / Fscale
+            Jm[i, 1] = basis[i, 1] / Fscale
+            Jm[i, 2] = (qz if i == 2 else 0.0) / Fscale
 
 
 @njit(cache=True, error_model="numpy")
@@ -245,12 +261,30 @@ def _guess(
     normal: np.ndarray,
     basis: np.ndarray,
     still: bool,
+    kind: int,
+    force: np.ndarray,
     y: np.ndarray,
 ) -> int:
     """The start y = (T_td . e1, T_td . e2, s_td) of :func:`.semi_analytic.initial_contact`
-    for a fixed end B; returns 0, or :data:`SLACK` (``still`` and the line slack on the
-    seabed)."""
+    for a fixed end B (``kind`` 0; ``rB`` its position) or a known force at B (1, 2;
+    ``rB[2]`` B's height, 0 for a towed end, as there); returns 0, or :data:`SLACK`
+    (``still``, B fixed and the line slack on the seabed)."""
     w = max(wbar * normal[2], 1e-12)
+    if kind != 0:
+        h = max(rB[2] - rA[2], 1e-9 * L)
+        fn = force[0] * normal[0] + force[1] * normal[1]
+        p0, p1, p2 = force[0] - fn * normal[0], force[1] - fn * normal[1], -fn * normal[2]
+        H = math.sqrt(force[0] * force[0] + force[1] * force[1])
+        pn = math.sqrt(p0 * p0 + p1 * p1 + p2 * p2)
+        if pn > 0.0:
+            e0, e1, e2 = p0 / pn, p1 / pn, p2 / pn
+        else:
+            e0, e1, e2 = basis[0, 0], basis[1, 0], basis[2, 0]
+        Ls = min(math.sqrt(h * h + 2.0 * h * H / w), L)
+        y[0] = H * (e0 * basis[0, 0] + e1 * basis[1, 0] + e2 * basis[2, 0])
+        y[1] = H * (e0 * basis[0, 1] + e1 * basis[1, 1] + e2 * basis[2, 1])
+        y[2] = max(L - Ls, 0.0)
+        return 0
     d0, d1, d2 = rB[0] - rA[0], rB[1] - rA[1], rB[2] - rA[2]
     dn = d0 * normal[0] + d1 * normal[1] + d2 * normal[2]
     h = max(dn, 1e-9 * L)
@@ -313,6 +347,8 @@ def contact_cases(
     bounds: np.ndarray,
     rA: np.ndarray,
     rB: np.ndarray,
+    kind: np.ndarray,
+    force: np.ndarray,
     normal: np.ndarray,
     basis: np.ndarray,
     depth: np.ndarray,
@@ -334,8 +370,10 @@ def contact_cases(
     at ``s`` (N, n) [m].
 
     Per case: pieces ``ell``, ``EA``, ``w`` (N, P) [m, N, N/m] between ``bounds`` (N, P + 1)
-    [m], point loads on the line ``point`` (N, P + 1, 3) [N] at the boundaries, ends
-    ``rA``, ``rB`` (N, 3) [m]; the seabed through (0, 0, -``depth``) with upward unit
+    [m], point loads on the line ``point`` (N, P + 1, 3) [N] at the boundaries, the
+    anchor ``rA`` (N, 3) [m] and end B: ``kind`` (N,) 0 fixed at ``rB`` (N, 3) [m], 1
+    mooring (horizontal ``force`` (N, 3) [N] on the line, height ``rB[:, 2]``), 2 a known
+    ``force`` on the line (``rB[:, 2]`` 0); the seabed through (0, 0, -``depth``) with upward unit
     ``normal`` (N, 3), in-plane ``basis`` (N, 3, 2) (e1, e2 as columns), friction ``mu``;
     ``still`` (N,) True where the seabed is flat (a line longer than the path along the
     seabed and up to B is then refused as slack before the Newton iteration, as the
@@ -383,12 +421,17 @@ def contact_cases(
             Fscale += abs(w[c, p]) * ell[c, p]
             wsum += w[c, p] * ell[c, p]
         Fscale = max(Fscale, 1e-300)
-        st = _guess(L, wsum / L, rA[c], rB[c], nrm, bas, still[c], y)
+        kc = kind[c]
+        if kc != 0:
+            f = force[c]
+            Fscale = max(Fscale, math.sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]))
+        st = _guess(L, wsum / L, rA[c], rB[c], nrm, bas, still[c], kc, force[c], y)
         it = 0
         res = math.nan
         if st == 0:
             _evaluate(
-                y, bas, rA[c], rB[c], L, bounds[c], w[c], EA[c], point[c], nrm, mu[c], R, Jm,
+                y, bas, rA[c], rB[c], kc, force[c], Fscale, L, bounds[c], w[c], EA[c], point[c],
+                nrm, mu[c], R, Jm,
                 T, e, t_lo, t_hi, rate, hi_s, lp, dr, jac, rs, Js,
             )  # fmt: skip
             res = max(abs(R[0]), max(abs(R[1]), abs(R[2])))
@@ -422,8 +465,9 @@ def contact_cases(
                         yn[0] = y[0] * 1e-3
                         yn[1] = y[1] * 1e-3
                     _evaluate(
-                        yn, bas, rA[c], rB[c], L, bounds[c], w[c], EA[c], point[c], nrm, mu[c],
-                        Rn, Jn, T, e, t_lo, t_hi, rate, hi_s, lp, dr, jac, rs, Js,
+                        yn, bas, rA[c], rB[c], kc, force[c], Fscale, L, bounds[c], w[c], EA[c],
+                        point[c], nrm, mu[c], Rn, Jn,
+                        T, e, t_lo, t_hi, rate, hi_s, lp, dr, jac, rs, Js,
                     )  # fmt: skip
                     nn = math.sqrt(Rn[0] * Rn[0] + Rn[1] * Rn[1] + Rn[2] * Rn[2])
                     if math.isfinite(nn) and nn <= (1.0 - 1e-4 * lam) * norm0 + 1e-15:

@@ -64,18 +64,24 @@ def contact_end(problem: StaticProblem) -> str | None:
     """The end (``"a"`` or ``"b"``) anchored on the seabed when ``problem`` can take the
     compiled seabed-contact kernel (:mod:`._fast_contact`), else None: still water (or
     no drag), linear axial laws, both ends fixed, one on the seabed (within 1e-6 L of
-    it, not below) and the other above it. The same decisions as
+    it, not below) and the other above it; or end A fixed on the seabed and end B a
+    mooring or towed end (a known force). The same decisions as
     :meth:`.semi_analytic.SemiAnalyticSolver._solve`, which describes a line anchored at
     B from B (the reversed line)."""
     plane = _plane(problem)
     line = problem.line
-    if plane is None or problem.end_a.kind != "fixed" or problem.end_b.kind != "fixed":
+    if plane is None or problem.end_a.kind != "fixed":
         return None
     if line.is_nonlinear or _has_drag(problem):
         return None
-    assert problem.end_a.position is not None and problem.end_b.position is not None
+    assert problem.end_a.position is not None
     limit = 1e-6 * line.total_length
     ha = float(plane.height_above(problem.end_a.position))
+    if problem.end_b.kind in ("mooring", "force"):  # a known force at B: anchored at A
+        return "a" if -limit <= ha <= limit else None
+    if problem.end_b.kind != "fixed":
+        return None
+    assert problem.end_b.position is not None
     hb = float(plane.height_above(problem.end_b.position))
     if -limit <= ha <= limit and hb > limit:
         return "a"
@@ -110,12 +116,16 @@ def solve_contact_arrays(
     tol: np.ndarray,
     maxit: np.ndarray,
     s: np.ndarray,
+    kind: np.ndarray | None = None,
+    force: np.ndarray | None = None,
 ) -> dict[str, np.ndarray]:
-    """Lines anchored at A on ``plane`` with B fixed above it, through the compiled kernel
-    :func:`._fast_contact.contact_cases` (arrays as there: (N, P) pieces, (N, P + 1, 3)
-    point loads, (N, 3) ends, (N, n) arc lengths [m]). Returns ``position``, ``tension``,
-    ``force_a``, ``force_b``, ``laid_length``, ``iterations``, ``residual`` and ``status``
-    (nonzero: the kernels did not settle the case, which is for the general solver).
+    """Lines anchored at A on ``plane`` with B fixed above it (or, by ``kind`` (N,) 1 and
+    2, a mooring or towed end B with ``force`` (N, 3) [N] as there), through the compiled
+    kernel :func:`._fast_contact.contact_cases` (arrays as there: (N, P) pieces,
+    (N, P + 1, 3) point loads, (N, 3) ends, (N, n) arc lengths [m]). Returns ``position``,
+    ``tension``, ``force_a``, ``force_b``, ``laid_length``, ``iterations``, ``residual``
+    and ``status`` (nonzero: the kernels did not settle the case, which is for the
+    general solver).
 
     A line the contact Newton lifts off the seabed (the touchdown point driven to the
     anchor), or does not settle, may hang free: it is solved by the free-hanging kernel
@@ -149,6 +159,8 @@ def solve_contact_arrays(
         np.ascontiguousarray(bounds, dtype=float),
         np.ascontiguousarray(rA, dtype=float),
         np.ascontiguousarray(rB, dtype=float),
+        np.zeros(N, dtype=np.int64) if kind is None else np.ascontiguousarray(kind, np.int64),
+        np.zeros((N, 3)) if force is None else np.ascontiguousarray(force, dtype=float),
         np.tile(plane.normal, (N, 1)),
         np.tile(np.stack((e1, e2), axis=1), (N, 1, 1)),
         np.full(N, float(plane.depth)),
@@ -168,9 +180,12 @@ def solve_contact_arrays(
     )
     st = out["status"]
     free = np.flatnonzero(
-        (st == _fast_contact.LIFT_OFF)
-        | (st == _fast_contact.NOT_CONVERGED)
-        | (st == _fast_contact.NUMERICAL)
+        (
+            (st == _fast_contact.LIFT_OFF)
+            | (st == _fast_contact.NOT_CONVERGED)
+            | (st == _fast_contact.NUMERICAL)
+        )
+        & (True if kind is None else kind == 0)  # B fixed (else: the general solver)
     )
     if free.size:
         _hang_free(free, out, ell, EA, weight, point, bounds, rA, rB, plane, tol, maxit, s)
@@ -287,6 +302,17 @@ def _contact_one(problem: StaticProblem) -> StaticResult | None:
         ell, EA, weight = lay.ell[None], lay.EA[None], lay.weight[None]
         point, bounds = lay.point[None], lay.bounds[None]
     anchor, top = (problem.end_a, problem.end_b) if end == "a" else (problem.end_b, problem.end_a)
+    kind = {"fixed": 0, "mooring": 1, "force": 2}[top.kind]
+    force = np.zeros((1, 3))
+    if kind == 0:
+        target = np.asarray(top.position, dtype=float)[None]
+    else:  # the known force on the line at B (mooring: its horizontal part), B's height
+        assert top.force is not None
+        force[0] = np.asarray(top.force, dtype=float)
+        target = np.zeros((1, 3))
+        if kind == 1:
+            force[0, 2] = 0.0
+            target[0, 2] = float(top.z)
     plane = _plane(problem)
     assert plane is not None
     L = bounds[:, -1]
@@ -298,11 +324,13 @@ def _contact_one(problem: StaticProblem) -> StaticResult | None:
         point,
         bounds,
         np.asarray(anchor.position, dtype=float)[None],
-        np.asarray(top.position, dtype=float)[None],
+        target,
         plane,
         np.array([problem.tolerance], dtype=float),
         np.array([problem.max_iterations], dtype=np.int64),
         s if end == "a" else L[:, None] - s,
+        np.array([kind]),
+        force,
     )
     if out["status"][0] != 0:
         return None

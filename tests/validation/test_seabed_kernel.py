@@ -256,3 +256,52 @@ def test_a_seabed_sweep_without_method_key_runs_on_the_array_kernel(tmp_path) ->
     assert np.all(chunk.status == 0)
     laid = chunk.data["laid_length"]
     assert np.any(laid > 0.0) and np.any(laid == 0.0)  # on the seabed and lifted off
+
+
+@pytest.mark.parametrize("slope", [0.0, 3.0])
+@pytest.mark.parametrize("mu", [0.0, 0.5])
+@pytest.mark.parametrize(
+    "end_b",
+    [
+        "{kind: mooring, force: [47000.0, 5000.0], z: -10.0}",
+        "{kind: force, force: [47000.0, 0.0, 150000.0]}",
+    ],
+    ids=["mooring", "towed"],
+)
+@pytest.mark.parametrize("multi", [False, True], ids=["1seg", "3seg"])
+def test_a_known_force_at_b_agrees_with_the_numpy_contact_solver(
+    slope: float, mu: float, end_b: str, multi: bool
+) -> None:
+    # the contact Newton with the end-force residuals of solve_contact (the tension at B
+    # against the known force, scaled by the line's weight or that force): the same
+    # bounds as for a fixed B, the end condition now met to tol * Fscale in force
+    text = CHAIN.format(
+        slope=slope,
+        heading=30.0,
+        mu=mu,
+        segments=THREE if multi else ONE,
+        attachments=ATTACH if multi else "",
+        za=-100.0,
+        xb=250.0,
+        yb=0.0,
+        tol=TOL,
+    ).replace("{kind: fixed, position: [250.0, 0.0, -10.0]}", end_b)
+    src = parse_study_text(text, "chain.yaml")
+    prob = static_problem(validate_data(src.data, src))
+    assert contact_end(prob) == "a"
+    ref = SemiAnalyticSolver().solve(prob, compiled=False)
+    fast = solve_compiled(prob)
+    if "force," in end_b and multi and slope > 0.0:
+        # the towed three-piece line on the slope: neither path finds a contact solution
+        # (the same line search fails); the kernel leaves it to the general solver
+        assert ref.status != 0 and fast is None
+        return
+    assert ref.status == 0, ref.message
+    assert fast is not None and 0.0 < ref.laid_length < 310.0
+    L = prob.line.total_length
+    suspended = L - ref.laid_length
+    dT = 2.0 * TOL * L * 5e8 / suspended
+    np.testing.assert_allclose(fast.position, ref.position, rtol=0.0, atol=2.0 * TOL * L)
+    np.testing.assert_allclose(fast.tension, ref.tension, rtol=0.0, atol=dT)
+    np.testing.assert_allclose(fast.force_b, ref.force_b, rtol=0.0, atol=dT)
+    assert abs(fast.laid_length - ref.laid_length) <= 2.0 * TOL * L
