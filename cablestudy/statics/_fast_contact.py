@@ -8,9 +8,9 @@ with the analytic Jacobian and the same line search from the same start,
 straight along the touchdown tension, the tension falling towards the anchor at
 k = w (mu n_z + e_z) and never below zero; Coulomb friction on point loads resting on
 the seabed), for pieces under their weight only (:func:`._fast._piece`) with point loads
-at piece boundaries, end B fixed above the seabed. Where the tension has fallen to zero
-the laid line is slack: its tension is exactly 0 and it lies straight along the
-touchdown direction.
+at piece boundaries, end B fixed above the seabed or given a known force (mooring or
+towed end). Where the tension has fallen to zero the laid line is slack: its tension is
+exactly 0 and it lies straight along the touchdown direction.
 
 A case the kernel does not settle gets a nonzero status (:data:`LIFT_OFF`, ...) and is
 left to the general solver by the caller; the kernel never guesses.
