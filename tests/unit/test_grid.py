@@ -62,8 +62,8 @@ def _both(tmp_path: Path, text: str = TEXT) -> tuple[xr.Dataset, xr.Dataset]:
     return xr.load_dataset(fast.path), xr.load_dataset(slow.path)
 
 
-#: the same sweep with end A lowered onto a shallower seabed: most cases rest on it, so
-#: the compiled kernel hands them to the one-by-one solver (as solve_batch does)
+#: the same sweep with end A lowered onto a shallower seabed: most cases rest on it (the
+#: compiled contact kernel; slack ones and contact between the ends: the general solver)
 ON_SEABED = TEXT.replace("depth: 50.0", "depth: 30.0").replace("[-10.0, -20.0]", "[-10.0, -30.0]")
 #: the same on a sloped seabed with friction: the compiled contact kernel in both paths
 ON_SLOPE = ON_SEABED.replace(
