@@ -6,9 +6,11 @@ analysis is static with method ``catenary``, the study is validated once as a te
 each swept value once at its own path, and the checks that combine fields (ends below
 the seabed, a weightless line shorter than its chord) over the whole grid with NumPy.
 No per-case pydantic object is built: a chunk of cases becomes arrays of end positions
-and stiffnesses, is solved by :func:`cablestudy.statics.batch.solve_batch`, and its
-outputs are stacked into one array per output variable (a :class:`GridChunk`), which the
-runner streams to disk.
+and stiffnesses, is solved by the compiled kernels (lines hanging free, and lines
+anchored on the seabed with friction), the cases they do not settle by
+:func:`cablestudy.statics.batch.solve_batch` (counted in :attr:`GridChunk.fallback`), and
+its outputs are stacked into one array per output variable (a :class:`GridChunk`), which
+the runner streams to disk.
 
 Anything else (another analysis, another swept path, a swept value or combination that
 fails validation) goes through :func:`cablestudy.cases.expand_cases`, which reports
@@ -209,6 +211,8 @@ class GridChunk:
     message: np.ndarray  # unicode
     wall_time: np.ndarray
     data: dict[str, np.ndarray]
+    #: cases no array kernel settled, solved one by one by the general solver
+    fallback: int = 0
 
     @property
     def n(self) -> int:
@@ -339,12 +343,15 @@ def _compiled_solve(
 ) -> tuple[StaticArrays, np.ndarray] | None:
     """The cases of a chunk (the template's static problem ``base`` with end positions
     ``pos`` and segment stiffnesses ``ea`` per case) through the compiled batch kernel
-    straight from arrays: the inputs :func:`cablestudy.statics.batch._solve_group` builds
-    from one problem object per case, built here for all cases at once (so the same
-    numbers, bit for bit, without a per-case object). Returns the stacked results and the
-    cases the kernel leaves to the one-by-one solver (not converged, not finite, on or
-    touching the seabed: exactly the cases :func:`solve_batch` would hand on), or None
-    when the template does not take this path (then :func:`solve_batch` runs as before).
+    straight from arrays: the inputs :func:`cablestudy.statics.batch._solve_group` (lines
+    hanging free) and :func:`cablestudy.statics.batch._contact_one` (end A anchored on
+    the seabed, end B above it: :func:`cablestudy.statics.batch.solve_contact_arrays`)
+    build from one problem object per case, built here for all cases at once (so the
+    same numbers, bit for bit, without a per-case object). Returns the stacked results
+    and the cases the kernels leave to the one-by-one solver (not converged, not finite,
+    touching the seabed between the ends, end B on it, slack on it: exactly the cases
+    :func:`solve_batch` would hand on), or None when the template does not take this
+    path (then :func:`solve_batch` runs as before).
     """
     from .statics import _fast
     from .statics.batch import _guess
@@ -364,13 +371,25 @@ def _compiled_solve(
     rB = np.ascontiguousarray(pos["b"], dtype=float)
     plane = None
     rest = np.zeros(N, dtype=bool)
+    contact = np.zeros(N, dtype=bool)
+    contact_b = np.zeros(N, dtype=bool)
     if med.depth is not None:
         from .statics.seabed import Plane
 
         plane = Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
         limit = 1e-6 * line.total_length
-        rest |= _height_below(plane, rA[:, None, :], limit, strict=False)
-        rest |= _height_below(plane, rB[:, None, :], limit, strict=False)
+        grounded_a = _height_below(plane, rA[:, None, :], limit, strict=False)
+        grounded_b = _height_below(plane, rB[:, None, :], limit, strict=False)
+        # anchored at one end (not below the seabed), the other above: the contact
+        # kernel, as batch.contact_end decides for a case alone (anchored at B: on the
+        # reversed line)
+        contact = (
+            grounded_a & ~grounded_b & ~_height_below(plane, rA[:, None, :], -limit, strict=True)
+        )
+        contact_b = (
+            grounded_b & ~grounded_a & ~_height_below(plane, rB[:, None, :], -limit, strict=True)
+        )
+        rest |= (grounded_a | grounded_b) & ~contact & ~contact_b
     if line.length.size == 1 and line.attachment_s.size == 0:
         P = 1
         ell = np.full((N, 1), line.length[0])
@@ -393,52 +412,98 @@ def _compiled_solve(
         point = np.tile(lay.point, (N, 1, 1))
         bounds = np.tile(lay.bounds, (N, 1))
     Ltot = bounds[:, -1]
-    Q = q * ell[..., None]
-    Cend = point.sum(axis=1) + Q.sum(axis=1)
-    target = rB - rA
-    EAeff = Ltot / np.sum(ell / EA, axis=1)
-    TA0 = _guess(target, Ltot, Cend, EAeff, point[:, 0])
     tol = np.full(N, base.tolerance, dtype=float)
     maxit = np.full(N, base.max_iterations, dtype=np.int64)
     s = np.linspace(np.zeros(N), Ltot, n_nodes, axis=1)
-    position = np.empty((N, n_nodes, 3))
-    tension = np.empty((N, n_nodes))
-    TL = np.empty((N, 3))
-    TA = np.empty((N, 3))
+    position = np.full((N, n_nodes, 3), np.nan)
+    tension = np.full((N, n_nodes), np.nan)
+    TL = np.full((N, 3), np.nan)
+    TA = np.full((N, 3), np.nan)
+    laid = np.zeros(N)
     iters = np.zeros(N, dtype=np.int64)
     resid = np.zeros(N)
-    status = np.zeros(N, dtype=np.int64)
-    _fast.solve_cases(
-        ell,
-        EA,
-        -q[..., 2].copy(),
-        point,
-        bounds,
-        np.zeros(N, dtype=np.int64),  # kind: end B fixed
-        rA,
-        target,
-        TA0,
-        tol,
-        maxit,
-        s,
-        position,
-        tension,
-        TA,
-        TL,
-        iters,
-        resid,
-        status,
-    )
-    good = (
-        (status == 0)
-        & np.all(np.isfinite(position), axis=(1, 2))
-        & np.all(np.isfinite(tension), axis=1)
-        & np.all(np.isfinite(TA), axis=1)
-        & np.all(np.isfinite(TL), axis=1)
-    )
-    rest |= ~good
-    if plane is not None:
-        rest |= _height_below(plane, position, -1e-6 * Ltot, strict=True)
+    free = np.flatnonzero(~rest & ~contact & ~contact_b)
+    if free.size:
+        f = free
+        Q = q[f] * ell[f][..., None]
+        Cend = point[f].sum(axis=1) + Q.sum(axis=1)
+        target = rB[f] - rA[f]
+        EAeff = Ltot[f] / np.sum(ell[f] / EA[f], axis=1)
+        TA0 = _guess(target, Ltot[f], Cend, EAeff, point[f, 0])
+        pos_f = np.empty((f.size, n_nodes, 3))
+        ten_f, TA_f, TL_f = (
+            np.empty((f.size, n_nodes)),
+            np.empty((f.size, 3)),
+            np.empty((f.size, 3)),
+        )
+        it_f, res_f, st_f = np.zeros(f.size, np.int64), np.zeros(f.size), np.zeros(f.size, np.int64)
+        _fast.solve_cases(
+            ell[f],
+            EA[f],
+            np.ascontiguousarray(-q[f][..., 2]),
+            point[f],
+            bounds[f],
+            np.zeros(f.size, dtype=np.int64),  # kind: end B fixed
+            rA[f],
+            target,
+            TA0,
+            tol[f],
+            maxit[f],
+            s[f],
+            pos_f,
+            ten_f,
+            TA_f,
+            TL_f,
+            it_f,
+            res_f,
+            st_f,
+        )
+        good = (
+            (st_f == 0)
+            & np.all(np.isfinite(pos_f), axis=(1, 2))
+            & np.all(np.isfinite(ten_f), axis=1)
+            & np.all(np.isfinite(TA_f), axis=1)
+            & np.all(np.isfinite(TL_f), axis=1)
+        )
+        if plane is not None:
+            good &= ~_height_below(plane, pos_f, -1e-6 * Ltot[f], strict=True)
+        position[f], tension[f], TA[f], TL[f] = pos_f, ten_f, TA_f, TL_f
+        iters[f], resid[f] = it_f, res_f
+        rest[f[~good]] = True
+    if contact.any():
+        from .statics.batch import solve_contact_arrays
+
+        c = np.flatnonzero(contact)
+        got = solve_contact_arrays(
+            ell[c], EA[c], -q[c][..., 2], point[c], bounds[c], rA[c], rB[c], plane,
+            tol[c], maxit[c], s[c],
+        )  # fmt: skip
+        position[c], tension[c] = got["position"], got["tension"]
+        TA[c], TL[c] = got["force_a"], -got["force_b"]
+        laid[c], iters[c], resid[c] = got["laid_length"], got["iterations"], got["residual"]
+        rest[c[got["status"] != 0]] = True
+    if contact_b.any():
+        from .statics.batch import solve_contact_arrays
+        from .statics.semi_analytic import make_layout, reversed_line
+
+        c = np.flatnonzero(contact_b)
+        m = c.size
+        if line.length.size == 1 and line.attachment_s.size == 0:
+            ell_r, EA_r, w_r = ell[c], EA[c], -q[c][..., 2]
+            point_r, bounds_r = point[c], bounds[c]
+        else:
+            lay_r = make_layout(reversed_line(line))
+            ell_r, w_r = np.tile(lay_r.ell, (m, 1)), np.tile(lay_r.weight, (m, 1))
+            EA_r = ea[c][:, ::-1][:, lay_r.segment]
+            point_r, bounds_r = np.tile(lay_r.point, (m, 1, 1)), np.tile(lay_r.bounds, (m, 1))
+        got = solve_contact_arrays(
+            ell_r, EA_r, w_r, point_r, bounds_r, rB[c], rA[c], plane,
+            tol[c], maxit[c], Ltot[c, None] - s[c],
+        )  # fmt: skip
+        position[c], tension[c] = got["position"], got["tension"]
+        TA[c], TL[c] = got["force_b"], -got["force_a"]
+        laid[c], iters[c], resid[c] = got["laid_length"], got["iterations"], got["residual"]
+        rest[c[got["status"] != 0]] = True
     out = StaticArrays(
         s=s,
         position=position,
@@ -447,7 +512,7 @@ def _compiled_solve(
         force_b=-TL,
         status=np.zeros(N, dtype=np.int64),
         messages=[""] * N,
-        laid_length=np.zeros(N),
+        laid_length=laid,
         iterations=iters.astype(float),
         residual=resid,
         drag_iterations=np.zeros(N),
@@ -575,19 +640,29 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
     status = np.zeros(n, dtype=np.int64)
     messages = [""] * n
     data: dict[str, np.ndarray] = {}
+    fallback = n
     try:
         base, pos, ea = _swept_inputs(grid, lo, hi)
         deadline = time.monotonic() + grid.template.analysis.time_limit * n
         compiled = _compiled_solve(base, pos, ea)
         if compiled is None:
-            st = StaticArrays.of(solve_batch(_problems(base, pos, ea), deadline=deadline))
+            general: list[int] = []
+            st = StaticArrays.of(
+                solve_batch(_problems(base, pos, ea), deadline=deadline, general=general)
+            )
+            fallback = len(general)
         else:
             st, rest = compiled
-            if rest.size:  # what solve_batch hands to the one-by-one solver
+            fallback = int(rest.size)
+            if rest.size:  # what no kernel settled: the general solver, one by one
                 sub = {k: (None if v is None else v[rest]) for k, v in pos.items()}
                 st.put(
                     rest,
-                    StaticArrays.of(solve_batch(_problems(base, sub, ea[rest]), deadline=deadline)),
+                    StaticArrays.of(
+                        solve_batch(
+                            _problems(base, sub, ea[rest]), deadline=deadline, contact=False
+                        )
+                    ),
                 )
         data, status, messages = array_outputs(st, grid.template, ea)
     except Exception as exc:  # noqa: BLE001 - a fault in a chunk fails its cases, as data
@@ -603,6 +678,7 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
         message=np.array(messages, dtype=str).reshape(n),
         wall_time=np.full(n, wall),
         data=data,
+        fallback=fallback,
     )
 
 

@@ -478,8 +478,18 @@ def modal_analysis(problem: ModalProblem, *, deadline: float | None = None) -> M
             s, k, STATUS_NUMERICAL, "two static nodes coincide; the element direction is undefined"
         )
     T_e = 0.5 * (st.tension[:-1] + st.tension[1:])
-    if np.any(T_e <= 0.0):
-        i = int(np.argmin(T_e))
+    slack = T_e <= 0.0
+    med = problem.medium
+    if np.any(slack) and med.depth is not None and med.friction > 0.0:
+        # a laid element whose tension friction has taken out sticks: the contact and
+        # friction springs of the seabed hold it (its tension is exactly 0, not slack)
+        from ..statics.seabed import Plane
+
+        plane = Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
+        laid = plane.height_above(st.position) <= 1e-6 * max(float(s[-1]), 1.0)
+        slack &= ~(laid[:-1] & laid[1:])
+    if np.any(slack):
+        i = int(np.flatnonzero(slack)[np.argmin(T_e[slack])])
         return ModalResult.failed(
             s,
             k,

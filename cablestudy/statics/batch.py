@@ -7,9 +7,12 @@ that differ only in numbers. Here the cases of one chunk with the same number of
 pieces and output points are stacked along a leading axis and solved together by the
 same damped Newton iteration on the convex complementary energy as
 :func:`.semi_analytic.solve_free` (with a per-case Armijo line search and per-case
-convergence). Cases that need more (current, seabed contact, a weightless slack piece,
-no fixed end A) are solved one by one by :class:`.semi_analytic.SemiAnalyticSolver`,
-so the answer never depends on which path a case took beyond round-off.
+convergence). A line anchored at end A on the seabed with end B fixed above it takes
+the compiled seabed-contact kernel (:mod:`._fast_contact`, :func:`solve_contact_arrays`).
+Cases that need more (current, contact between the ends, a weightless slack piece, no
+fixed end A, a case a kernel does not settle) are solved one by one by
+:class:`.semi_analytic.SemiAnalyticSolver`, so the answer never depends on which path a
+case took beyond round-off.
 """
 
 from __future__ import annotations
@@ -22,7 +25,7 @@ from . import _fast
 from .base import STATUS_OK, StaticProblem, StaticResult
 from .pieces import piece_integrals
 from .seabed import Plane
-from .semi_analytic import SemiAnalyticSolver, make_layout
+from .semi_analytic import SemiAnalyticSolver, make_layout, reversed_line
 
 
 def batchable(problem: StaticProblem) -> bool:
@@ -50,15 +53,313 @@ def batchable(problem: StaticProblem) -> bool:
     return True
 
 
+def _plane(problem: StaticProblem) -> Plane | None:
+    med = problem.medium
+    if med.depth is None:
+        return None
+    return Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
+
+
+def contact_end(problem: StaticProblem) -> str | None:
+    """The end (``"a"`` or ``"b"``) anchored on the seabed when ``problem`` can take the
+    compiled seabed-contact kernel (:mod:`._fast_contact`), else None: still water (or
+    no drag), linear axial laws, both ends fixed, one on the seabed (within 1e-6 L of
+    it, not below) and the other above it; or end A fixed on the seabed and end B a
+    mooring or towed end (a known force). The same decisions as
+    :meth:`.semi_analytic.SemiAnalyticSolver._solve`, which describes a line anchored at
+    B from B (the reversed line)."""
+    plane = _plane(problem)
+    line = problem.line
+    if plane is None or problem.end_a.kind != "fixed":
+        return None
+    if line.is_nonlinear or _has_drag(problem):
+        return None
+    assert problem.end_a.position is not None
+    limit = 1e-6 * line.total_length
+    ha = float(plane.height_above(problem.end_a.position))
+    if problem.end_b.kind in ("mooring", "force"):  # a known force at B: anchored at A
+        return "a" if -limit <= ha <= limit else None
+    if problem.end_b.kind != "fixed":
+        return None
+    assert problem.end_b.position is not None
+    hb = float(plane.height_above(problem.end_b.position))
+    if -limit <= ha <= limit and hb > limit:
+        return "a"
+    if -limit <= hb <= limit and ha > limit:
+        return "b"
+    return None
+
+
+def contact_eligible(problem: StaticProblem) -> bool:
+    """Whether ``problem`` can take the compiled seabed-contact kernel (:func:`contact_end`)."""
+    return contact_end(problem) is not None
+
+
+def _has_drag(problem: StaticProblem) -> bool:
+    med, line = problem.medium, problem.line
+    return (
+        med.has_current
+        and med.density > 0.0
+        and bool(np.any(line.diameter * (line.drag_normal + line.drag_tangential) > 0.0))
+    )
+
+
+def solve_contact_arrays(
+    ell: np.ndarray,
+    EA: np.ndarray,
+    weight: np.ndarray,
+    point: np.ndarray,
+    bounds: np.ndarray,
+    rA: np.ndarray,
+    rB: np.ndarray,
+    plane: Plane,
+    tol: np.ndarray,
+    maxit: np.ndarray,
+    s: np.ndarray,
+    kind: np.ndarray | None = None,
+    force: np.ndarray | None = None,
+) -> dict[str, np.ndarray]:
+    """Lines anchored at A on ``plane`` with B fixed above it (or, by ``kind`` (N,) 1 and
+    2, a mooring or towed end B with ``force`` (N, 3) [N] as there), through the compiled
+    kernel :func:`._fast_contact.contact_cases` (arrays as there: (N, P) pieces,
+    (N, P + 1, 3) point loads, (N, 3) ends, (N, n) arc lengths [m]). Returns ``position``,
+    ``tension``, ``force_a``, ``force_b``, ``laid_length``, ``iterations``, ``residual``
+    and ``status`` (nonzero: the kernels did not settle the case, which is for the
+    general solver).
+
+    A line the contact Newton lifts off the seabed (the touchdown point driven to the
+    anchor), or does not settle, may hang free: it is solved by the free-hanging kernel
+    :func:`._fast.solve_cases` from the start :func:`_guess` gives, and kept (laid length
+    0) where it converges and stays above the seabed within the general solver's margin,
+    max(1e-6 L, 1e3 tol L). That is the general solver's answer for such a line: when
+    its seabed-contact solve lifts off from the same start it returns the free-hanging
+    solution; when that solve fails, it returns the free-hanging solution if that does
+    not dip into the seabed (for a contact failure the kernel keeps it only where that
+    is certain: see :func:`_hang_free`)."""
+    from . import _fast_contact
+
+    N = ell.shape[0]
+    n = s.shape[1]
+    e1, e2 = plane.basis
+    out = {
+        "position": np.empty((N, n, 3)),
+        "tension": np.empty((N, n)),
+        "force_a": np.empty((N, 3)),
+        "force_b": np.empty((N, 3)),
+        "laid_length": np.empty(N),
+        "iterations": np.zeros(N, dtype=np.int64),
+        "residual": np.zeros(N),
+        "status": np.zeros(N, dtype=np.int64),
+    }
+    _fast_contact.contact_cases(
+        np.ascontiguousarray(ell, dtype=float),
+        np.ascontiguousarray(EA, dtype=float),
+        np.ascontiguousarray(weight, dtype=float),
+        np.ascontiguousarray(point, dtype=float),
+        np.ascontiguousarray(bounds, dtype=float),
+        np.ascontiguousarray(rA, dtype=float),
+        np.ascontiguousarray(rB, dtype=float),
+        np.zeros(N, dtype=np.int64) if kind is None else np.ascontiguousarray(kind, np.int64),
+        np.zeros((N, 3)) if force is None else np.ascontiguousarray(force, dtype=float),
+        np.tile(plane.normal, (N, 1)),
+        np.tile(np.stack((e1, e2), axis=1), (N, 1, 1)),
+        np.full(N, float(plane.depth)),
+        np.full(N, float(plane.friction)),
+        np.full(N, plane.slope == 0.0),
+        np.ascontiguousarray(tol, dtype=float),
+        np.ascontiguousarray(maxit, dtype=np.int64),
+        np.ascontiguousarray(s, dtype=float),
+        out["position"],
+        out["tension"],
+        out["force_a"],
+        out["force_b"],
+        out["laid_length"],
+        out["iterations"],
+        out["residual"],
+        out["status"],
+    )
+    st = out["status"]
+    free = np.flatnonzero(
+        (
+            (st == _fast_contact.LIFT_OFF)
+            | (st == _fast_contact.NOT_CONVERGED)
+            | (st == _fast_contact.NUMERICAL)
+        )
+        & (True if kind is None else kind == 0)  # B fixed (else: the general solver)
+    )
+    if free.size:
+        _hang_free(free, out, ell, EA, weight, point, bounds, rA, rB, plane, tol, maxit, s)
+    return out
+
+
+def _hang_free(
+    rows: np.ndarray,
+    out: dict[str, np.ndarray],
+    ell: np.ndarray,
+    EA: np.ndarray,
+    weight: np.ndarray,
+    point: np.ndarray,
+    bounds: np.ndarray,
+    rA: np.ndarray,
+    rB: np.ndarray,
+    plane: Plane,
+    tol: np.ndarray,
+    maxit: np.ndarray,
+    s: np.ndarray,
+) -> None:
+    """Cases ``rows`` of :func:`solve_contact_arrays` the contact kernel did not settle,
+    solved hanging free (into ``out``; status 0 where settled).
+
+    A case that lifted off keeps the free-hanging solution (the general solver's answer).
+    One whose contact solve failed keeps it only where it certainly does not dip into the
+    seabed (where the general solver would keep it too): the anchor not below the plane
+    by more than 1e-9 L and the line's tension at it not pointing into the seabed
+    (T_A . n >= 0), with no load that turns the line back towards the seabed (weights
+    >= 0, point loads f . n <= 0). Then T . n grows along the line, and with it the
+    height above the seabed, d(r . n)/ds = (T . n)(1 / EA + 1 / |T|) >= 0."""
+    from . import _fast_contact
+
+    r = rows
+    lifted = out["status"][r] == _fast_contact.LIFT_OFF
+    m, n = r.size, s.shape[1]
+    Ltot = bounds[r, -1]
+    Cend = point[r].sum(axis=1)
+    Cend[:, 2] -= np.sum(weight[r] * ell[r], axis=1)
+    target = rB[r] - rA[r]
+    EAeff = Ltot / np.sum(ell[r] / EA[r], axis=1)
+    TA0 = _guess(target, Ltot, Cend, EAeff, point[r, 0])
+    pos = np.empty((m, n, 3))
+    tension = np.empty((m, n))
+    TA, TL = np.empty((m, 3)), np.empty((m, 3))
+    iters, resid = np.zeros(m, dtype=np.int64), np.zeros(m)
+    status = np.zeros(m, dtype=np.int64)
+    _fast.solve_cases(
+        np.ascontiguousarray(ell[r]),
+        np.ascontiguousarray(EA[r]),
+        np.ascontiguousarray(weight[r]),
+        np.ascontiguousarray(point[r]),
+        np.ascontiguousarray(bounds[r]),
+        np.zeros(m, dtype=np.int64),  # kind: end B fixed
+        np.ascontiguousarray(rA[r]),
+        target,
+        TA0,
+        np.ascontiguousarray(tol[r]),
+        np.ascontiguousarray(maxit[r]),
+        np.ascontiguousarray(s[r]),
+        pos,
+        tension,
+        TA,
+        TL,
+        iters,
+        resid,
+        status,
+    )
+    height = (pos - np.array([0.0, 0.0, -plane.depth])) @ plane.normal  # (m, n)
+    margin = np.maximum(1e-6 * Ltot, 1e3 * tol[r] * Ltot)
+    good = (
+        (status == 0)
+        & np.all(np.isfinite(pos), axis=(1, 2))
+        & np.all(np.isfinite(tension), axis=1)
+        & np.all(np.isfinite(TA), axis=1)
+        & np.all(np.isfinite(TL), axis=1)
+        & (-height.min(axis=1) <= margin)
+    )
+    n_up = plane.normal
+    anchor = (rA[r] - np.array([0.0, 0.0, -plane.depth])) @ n_up
+    clear = (
+        (TA @ n_up >= 0.0)
+        & (anchor >= -1e-9 * Ltot)
+        & np.all(weight[r] >= 0.0, axis=1)
+        & np.all(point[r] @ n_up <= 0.0, axis=1)
+    )
+    good &= lifted | clear
+    k = r[good]
+    out["position"][k] = pos[good]
+    out["tension"][k] = tension[good]
+    out["force_a"][k] = TA[good]
+    out["force_b"][k] = -TL[good]
+    out["laid_length"][k] = 0.0
+    out["iterations"][k] += iters[good]
+    out["residual"][k] = resid[good]
+    out["status"][k] = 0
+
+
+def _contact_one(problem: StaticProblem) -> StaticResult | None:
+    """One problem through the seabed-contact kernel (the same arrays the grid builds for
+    it), or None when the kernel does not settle it. A line anchored at B is solved from
+    B, as the reversed line (sampled at L - s), as the general solver does."""
+    end = contact_end(problem)
+    assert end is not None
+    line = problem.line if end == "a" else reversed_line(problem.line)
+    if line.length.size == 1 and line.attachment_s.size == 0:
+        ell = np.array([[line.length[0]]])
+        EA = np.array([[line.axial_stiffness[0]]])
+        weight = np.array([[line.weight[0]]])
+        point = np.zeros((1, 2, 3))
+        bounds = np.array([[0.0, line.length[0]]])
+    else:
+        lay = make_layout(line)
+        ell, EA, weight = lay.ell[None], lay.EA[None], lay.weight[None]
+        point, bounds = lay.point[None], lay.bounds[None]
+    anchor, top = (problem.end_a, problem.end_b) if end == "a" else (problem.end_b, problem.end_a)
+    kind = {"fixed": 0, "mooring": 1, "force": 2}[top.kind]
+    force = np.zeros((1, 3))
+    if kind == 0:
+        target = np.asarray(top.position, dtype=float)[None]
+    else:  # the known force on the line at B (mooring: its horizontal part), B's height
+        assert top.force is not None
+        force[0] = np.asarray(top.force, dtype=float)
+        target = np.zeros((1, 3))
+        if kind == 1:
+            force[0, 2] = 0.0
+            target[0, 2] = float(top.z)
+    plane = _plane(problem)
+    assert plane is not None
+    L = bounds[:, -1]
+    s = np.linspace(np.zeros(1), L, problem.n_nodes, axis=1)
+    out = solve_contact_arrays(
+        ell,
+        EA,
+        weight,
+        point,
+        bounds,
+        np.asarray(anchor.position, dtype=float)[None],
+        target,
+        plane,
+        np.array([problem.tolerance], dtype=float),
+        np.array([problem.max_iterations], dtype=np.int64),
+        s if end == "a" else L[:, None] - s,
+        np.array([kind]),
+        force,
+    )
+    if out["status"][0] != 0:
+        return None
+    fa, fb = ("force_a", "force_b") if end == "a" else ("force_b", "force_a")
+    return StaticResult(
+        s=s[0],
+        position=out["position"][0],
+        tension=out["tension"][0],
+        force_a=out[fa][0],
+        force_b=out[fb][0],
+        status=STATUS_OK,
+        laid_length=float(out["laid_length"][0]),
+        iterations=int(out["iterations"][0]),
+        residual=float(out["residual"][0]),
+    )
+
+
 def solve_batch(
     problems: list[StaticProblem],
     *,
     deadline: float | None = None,
     solver: SemiAnalyticSolver | None = None,
+    contact: bool = True,
+    general: list[int] | None = None,
 ) -> list[StaticResult]:
     """Solve ``problems`` (any mix); batchable ones with equal piece and node counts are
-    solved together, the others (and any batch case that fails or touches the seabed)
-    one by one."""
+    solved together, lines anchored on the seabed (``contact``) by the compiled contact
+    kernel, the others (and any case a kernel does not settle) one by one by the general
+    solver; the indices of those are appended to ``general`` if given."""
     solver = solver or SemiAnalyticSolver()
     results: list[StaticResult | None] = [None] * len(problems)
     groups: dict[tuple[int, int], list[int]] = {}
@@ -89,16 +390,25 @@ def solve_batch(
     out = []
     for i, prob in enumerate(problems):
         res = results[i]
+        if res is None and contact and _fast.AVAILABLE and contact_eligible(prob):
+            res = _contact_one(prob)
         if res is None or not res.success:
             res = solver.solve(prob, deadline=deadline, compiled=False)
+            if general is not None:
+                general.append(i)
         out.append(res)
     return out
 
 
 def solve_compiled(problem: StaticProblem, *, deadline: float | None = None) -> StaticResult | None:
-    """One still-water problem through the compiled batch kernel, or None when it does
-    not take that path (or does not settle there)."""
-    if not _fast.AVAILABLE or not batchable(problem):
+    """One still-water problem through the compiled batch kernels (free-hanging, or
+    anchored on the seabed), or None when it does not take that path (or does not
+    settle there)."""
+    if not _fast.AVAILABLE:
+        return None
+    if contact_eligible(problem):
+        return _contact_one(problem)
+    if not batchable(problem):
         return None
     line = problem.line
     if line.length.size == 1 and line.attachment_s.size == 0:

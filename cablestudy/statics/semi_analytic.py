@@ -902,9 +902,10 @@ class SemiAnalyticSolver:
         drag_elements: int | None = None,
         compiled: bool = True,
     ) -> StaticResult:
-        """Solve ``problem``. A still-water free-hanging problem first takes the compiled
-        kernel of :mod:`.batch` (when numba is available and ``compiled``); anything it
-        does not settle takes the general path below, which gives the same answer."""
+        """Solve ``problem``. A still-water problem hanging free, or anchored at end A on
+        the seabed with end B fixed above it, first takes the compiled kernels of
+        :mod:`.batch` (when numba is available and ``compiled``); anything they do not
+        settle takes the general path below, which gives the same answer."""
         from . import _fast  # numba is imported on first use, not with the package
 
         if compiled and _fast.AVAILABLE:

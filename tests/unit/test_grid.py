@@ -62,12 +62,28 @@ def _both(tmp_path: Path, text: str = TEXT) -> tuple[xr.Dataset, xr.Dataset]:
     return xr.load_dataset(fast.path), xr.load_dataset(slow.path)
 
 
-#: the same sweep with end A lowered onto a shallower seabed: most cases rest on it, so
-#: the compiled kernel hands them to the one-by-one solver (as solve_batch does)
+#: the same sweep with end A lowered onto a shallower seabed: most cases rest on it (the
+#: compiled contact kernel; slack ones and contact between the ends: the general solver)
 ON_SEABED = TEXT.replace("depth: 50.0", "depth: 30.0").replace("[-10.0, -20.0]", "[-10.0, -30.0]")
+#: the same on a sloped seabed with friction: the compiled contact kernel in both paths
+ON_SLOPE = ON_SEABED.replace(
+    "depth: 30.0", "depth: 30.0, seabed: {slope_deg: 2.0, slope_heading_deg: 10.0, friction: 0.5}"
+)
 
 
-@pytest.mark.parametrize("text", [TEXT, ON_SEABED], ids=["free", "on-seabed"])
+#: anchored at end B instead (A above): the contact kernel on the reversed line
+ON_SEABED_B = (
+    ON_SEABED.replace("depth: 30.0", "depth: 30.0, seabed: {friction: 0.5}")
+    .replace("[-10.0, -30.0]", "[-10.0, -12.0]")
+    .replace("[92.5, 0.0, -8.6]", "[92.5, 0.0, -30.0]")
+)
+
+
+@pytest.mark.parametrize(
+    "text",
+    [TEXT, ON_SEABED, ON_SLOPE, ON_SEABED_B],
+    ids=["free", "on-seabed", "on-sloped-seabed-friction", "anchored-at-b"],
+)
 def test_array_path_writes_the_case_by_case_dataset_bit_for_bit(tmp_path: Path, text: str) -> None:
     fast, slow = _both(tmp_path, text)
     if text == TEXT:
