@@ -36,8 +36,9 @@ KINDS: dict[str, tuple[str, float]] = {
 
 
 def _warm_statics() -> None:
-    """The still-water catenary kernels (free-hanging batch, nonlinear axial laws) and
-    the quasi-static database lookup on small problems."""
+    """The still-water catenary kernels (free-hanging and seabed-contact batches, alone
+    and stacked, nonlinear axial laws) and the quasi-static database lookup on small
+    problems."""
     import numpy as np
 
     from .config.loader import parse_study_text, validate_data
@@ -58,20 +59,23 @@ ends:
   a: {kind: fixed, position: [0.0, 0.0, -50.0]}
   b: {kind: fixed, position: [85.0, 0.0, -10.0]}
 """
-    for law in ("axial_stiffness: 2.0e8", "axial: {law: polynomial, coefficients: [2.0e8, 1.0e9]}"):
-        src = parse_study_text(text.replace("LAW", law), "warm.yaml")
+    linear = text.replace("LAW", "axial_stiffness: 2.0e8")
+    anchored = linear.replace("[0.0, 0.0, -50.0]", "[0.0, 0.0, -60.0]")  # on the seabed
+    nonlinear = text.replace("LAW", "axial: {law: polynomial, coefficients: [2.0e8, 1.0e9]}")
+    for body in (linear, anchored, nonlinear):
+        src = parse_study_text(body, "warm.yaml")
         SemiAnalyticSolver().solve(static_problem(validate_data(src.data, src)))
-    # the array path of sweeps calls the batch kernel with stacked cases
+    # the array path of sweeps calls the batch kernels with stacked cases
     from .grid import evaluate_grid_chunk, expand_grid
 
     sweep = (
         "sweep:\n  ends.b.position.0: [80.0, 85.0]\n"
         "  line.segments.0.axial_stiffness: [6.0e7, 7.0e7]\n"
     )
-    src = parse_study_text(text.replace("LAW", "axial_stiffness: 2.0e8") + sweep, "warm.yaml")
-    grid = expand_grid(src)
-    if grid is not None:
-        evaluate_grid_chunk(grid, 0, grid.shape[0])
+    for body in (linear, anchored):
+        grid = expand_grid(parse_study_text(body + sweep, "warm.yaml"))
+        if grid is not None:
+            evaluate_grid_chunk(grid, 0, grid.shape[0])
     from . import database_kernel
 
     grid = np.array([0.0, 1.0])
