@@ -26,6 +26,13 @@ from .config.ends import ForceEnd, MooringEnd
 from .config.loader import StudyError, StudySource
 from .counters import COUNTERS, trim_lru
 from .physics.profile import profile_quantities
+from .plausibility import (
+    dynamic_warnings,
+    fallback_warning,
+    joined,
+    largest_strain,
+    strain_warning,
+)
 from .problem import line_model, medium, static_limits, static_problem
 from .results import OUTPUTS, CaseRecord
 from .statics import (
@@ -1044,7 +1051,11 @@ class CheckedOutputs(dict):
 
 
 def evaluate_case(
-    case: Case, *, presolved: dict[str, StaticResult] | None = None, linear: Any = None
+    case: Case,
+    *,
+    presolved: dict[str, StaticResult] | None = None,
+    linear: Any = None,
+    fallback: str | None = None,
 ) -> CaseRecord:
     """Run every analysis the case asks for. Never raises: an exception inside a solver
     becomes a failure of that analysis with the exception's text. ``presolved`` maps
@@ -1058,7 +1069,10 @@ def evaluate_case(
     which does not use the modes. The case's ``status`` is that of the first failed
     analysis (:data:`STATUS_TIME_LIMIT` if any hit the time limit, so that the runner
     does not cache it); its ``message`` is the static solver's message, or names each
-    failed analysis ("modal analysis: ...; dynamic analysis: ...")."""
+    failed analysis ("modal analysis: ...; dynamic analysis: ...").
+
+    Results kept but implausible or risky get a ``warning`` (:func:`case_warnings`);
+    ``fallback``: why a batched kernel handed the case's statics to the general solver."""
     t0 = time.perf_counter()
     deadline = time.monotonic() + case.study.analysis.time_limit
     data: dict[str, Any] = {}
@@ -1142,6 +1156,8 @@ def evaluate_case(
                 )
                 for name, st, msg in failed
             )
+    ok = {name for name, (st, _) in outcome.items() if st == STATUS_OK}
+    warning = case_warnings(case, static[0] if "static" in ok else None, data, ok, fallback)
     wall = time.perf_counter() - t0
     if not math.isfinite(wall):
         wall = 0.0
@@ -1152,14 +1168,56 @@ def evaluate_case(
         message=message,
         wall_time=wall,
         data=data,
+        warning=warning,
     )
 
 
-def presolve_statics(cases: list[Case]) -> tuple[dict[str, StaticResult], dict[str, float]]:
+def largest_static_strain(study: Any, res: StaticResult) -> float:
+    """The largest strain [-] of a static solution: per point the axial law's strain
+    (T / EA where linear) of its segment; kind spring: the extension over the
+    unstretched length (the stretched length is the path through the points)."""
+    line = study.line
+    if line.is_spring:
+        stretched = float(np.linalg.norm(np.diff(res.position, axis=0), axis=1).sum())
+        return (stretched - line.total_length) / line.total_length
+    segs = line.segments
+    ends = np.cumsum([seg.length for seg in segs])
+    k = np.minimum(np.searchsorted(ends, res.s, side="right"), len(segs) - 1)
+    ea = np.array([segs[i].elastic_stiffness for i in k])
+    return float(largest_strain(res.tension, ea, _strain_along(segs, k, res.tension)))
+
+
+def case_warnings(
+    case: Case,
+    static: StaticResult | None,
+    data: dict[str, Any],
+    ok: set[str],
+    fallback: str | None,
+) -> str:
+    """The case's ``warning`` text (:mod:`cablestudy.plausibility`): strain above
+    ``analysis.static.strain_warning`` and a batched-kernel fallback (statics, when they
+    succeeded: ``static``), slack and an unsettled time-domain run (dynamics, when the
+    analysis named in ``ok`` succeeded)."""
+    found: list[str] = []
+    if static is not None:
+        limit = case.study.analysis.static.strain_warning
+        found.append(strain_warning(largest_static_strain(case.study, static), limit))
+        if fallback:
+            found.append(fallback_warning(fallback))
+    dyn = case.study.analysis.dynamic
+    if "dynamic" in ok and dyn is not None:
+        found.extend(dynamic_warnings(data, max_periods=dyn.max_periods))
+    return joined(found)
+
+
+def presolve_statics(
+    cases: list[Case],
+) -> tuple[dict[str, StaticResult], dict[str, float], dict[str, str]]:
     """Solve the distinct still-water static problems of method 'catenary' in ``cases``
     together (:func:`cablestudy.statics.batch.solve_batch`). Returns the solutions by
-    static hash and each one's share of the batch wall time [s]. Anything unexpected
-    leaves the cases to the one-by-one path (which records its own errors)."""
+    static hash, each one's share of the batch wall time [s], and the static hashes the
+    batch handed to the general solver with why (each such case is warned of). Anything
+    unexpected leaves the cases to the one-by-one path (which records its own errors)."""
     from .statics.batch import batchable, solve_batch
 
     todo: dict[str, Any] = {}
@@ -1176,17 +1234,20 @@ def presolve_statics(cases: list[Case]) -> tuple[dict[str, StaticResult], dict[s
         if batchable(problem):
             todo[h] = (problem, case.study.analysis.time_limit)
     if len(todo) < 2:
-        return {}, {}
+        return {}, {}, {}
     t0 = time.perf_counter()
+    handed_on: list[int] = []
     try:
         deadline = time.monotonic() + max(limit for _, limit in todo.values())
-        results = solve_batch([p for p, _ in todo.values()], deadline=deadline)
-    except Exception:  # noqa: BLE001 - fall back to one case at a time
-        return {}, {}
+        results = solve_batch([p for p, _ in todo.values()], deadline=deadline, handed_on=handed_on)
+    except Exception as exc:  # noqa: BLE001 - fall back to one case at a time
+        return {}, {}, dict.fromkeys(todo, f"the batch failed: {type(exc).__name__}: {exc}")
     COUNTERS["static_solves"] += len(todo)
     share = (time.perf_counter() - t0) / len(todo)
     solved = {h: r.check_finite() for h, r in zip(todo, results, strict=True)}
-    return solved, dict.fromkeys(solved, share)
+    hashes = list(todo)
+    fallback = {hashes[i]: "not settled there, or on the seabed" for i in handed_on}
+    return solved, dict.fromkeys(solved, share), fallback
 
 
 def presolve_frequency(
@@ -1238,11 +1299,13 @@ def evaluate_chunk(cases: list[Case]) -> list[CaseRecord]:
     one batch first, and the frequency-domain responses of the cases that share a
     linear model together; then every case runs as in :func:`evaluate_case` (its wall
     time includes its share of the batches)."""
-    solved, share = presolve_statics(cases)
+    solved, share, fallback = presolve_statics(cases)
     linear, linear_share = presolve_frequency(cases, solved)
     records = []
     for i, case in enumerate(cases):
-        rec = evaluate_case(case, presolved=solved, linear=linear.get(i))
+        rec = evaluate_case(
+            case, presolved=solved, linear=linear.get(i), fallback=fallback.get(case.static_hash)
+        )
         if case.static_hash in share:
             rec.wall_time += share.pop(case.static_hash)
         rec.wall_time += linear_share.get(i, 0.0)

@@ -22,7 +22,7 @@ import sys
 import tempfile
 from collections import Counter
 from collections.abc import Callable, Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -78,6 +78,7 @@ def encode_records(records: list[CaseRecord]) -> bytes:
         "index": np.array([r.index for r in records], dtype=np.int64).reshape(n, ndim),
         "status": np.array([r.status for r in records], dtype=np.int64),
         "message": np.array([r.message for r in records], dtype=str).reshape(n),
+        "warning": np.array([r.warning for r in records], dtype=str).reshape(n),
         "wall_time": np.array([r.wall_time for r in records], dtype=np.float64),
     }
     groups: dict[tuple[str, str, int], list[tuple[int, np.ndarray]]] = {}
@@ -108,6 +109,7 @@ def decode_records(payload: bytes) -> list[CaseRecord]:
         raise CacheFormatError("not a cablestudy case-cache archive")
     hashes, index = files["hash"], files["index"]
     status, message, wall = files["status"], files["message"], files["wall_time"]
+    warning = files.get("warning", np.full(len(hashes), ""))
     records = [
         CaseRecord(
             hash=str(hashes[i]),
@@ -115,6 +117,7 @@ def decode_records(payload: bytes) -> list[CaseRecord]:
             status=int(status[i]),
             message=str(message[i]),
             wall_time=float(wall[i]),
+            warning=str(warning[i]),
         )
         for i in range(len(hashes))
     ]
@@ -222,6 +225,8 @@ class CaseCache:
 
 
 GRID_FORMAT = "cablestudy-grid-chunk-1"
+#: the per-case columns of a grid chunk file (not output variables)
+_CASE_COLUMNS = ("status", "message", "warning", "wall_time")
 _GRID_NAME = re.compile(r"^grid-([0-9a-f]{32})-([0-9a-f]{64})\.npz$")
 
 
@@ -229,28 +234,36 @@ _GRID_NAME = re.compile(r"^grid-([0-9a-f]{32})-([0-9a-f]{64})\.npz$")
 class GridSummary:
     """What the chunk files of a grid study hold, read one file at a time: the output
     variables and their extra-dimension shapes, the arc lengths every successful case
-    shares (None if they differ), and the failure messages with their counts."""
+    shares (None if they differ), the failure messages and the warnings with their
+    counts, and the number of cases with a warning."""
 
     names: list[str]
     tails: dict[str, tuple[int, ...]]
     arc: np.ndarray | None
     failures: Counter[str]
+    warnings: Counter[str] = field(default_factory=Counter)
+    n_warned: int = 0
 
 
 def summarise(
-    chunks: Iterable[tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]],
+    chunks: Iterable[tuple[np.ndarray, np.ndarray, np.ndarray, dict[str, np.ndarray]]],
 ) -> GridSummary:
-    """The :class:`GridSummary` of chunks given as (status, message, outputs by name), in
-    the order of the grid's rows."""
+    """The :class:`GridSummary` of chunks given as (status, message, warning, outputs by
+    name), in the order of the grid's rows."""
     names: set[str] = set()
     tails: dict[str, tuple[int, ...]] = {}
     arc: np.ndarray | None = None
     same_arc = True
     failures: Counter[str] = Counter()
-    for status, message, data in chunks:
+    warnings: Counter[str] = Counter()
+    n_warned = 0
+    for status, message, warning, data in chunks:
         bad = status != 0
         if bad.any():
             failures.update(str(m) for m in message[bad])
+        warned = warning != ""
+        n_warned += int(np.count_nonzero(warned))
+        warnings.update(str(w) for w in warning[warned])
         for k, v in data.items():
             names.add(k)
             tails[k] = tuple(v.shape[1:])
@@ -262,7 +275,9 @@ def summarise(
                     arc = ref
                 else:
                     same_arc = False
-    return GridSummary(sorted(names), tails, arc if same_arc else None, failures)
+    return GridSummary(
+        sorted(names), tails, arc if same_arc else None, failures, warnings, n_warned
+    )
 
 
 class GridChunkStore:
@@ -317,6 +332,7 @@ class GridChunkStore:
             "rows": np.array([chunk.lo, chunk.hi], dtype=np.int64),  # type: ignore[attr-defined]
             "v_status": np.asarray(chunk.status, dtype=np.int64),  # type: ignore[attr-defined]
             "v_message": np.asarray(chunk.message, dtype=str),  # type: ignore[attr-defined]
+            "v_warning": np.asarray(chunk.warning, dtype=str),  # type: ignore[attr-defined]
             "v_wall_time": np.asarray(chunk.wall_time, dtype=np.float64),  # type: ignore[attr-defined]
         }
         for name, arr in chunk.data.items():  # type: ignore[attr-defined]
@@ -341,14 +357,18 @@ class GridChunkStore:
 
     @staticmethod
     def summary(paths: list[Path]) -> GridSummary:
-        def columns(path: Path) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
+        def columns(
+            path: Path,
+        ) -> tuple[np.ndarray, np.ndarray, np.ndarray, dict[str, np.ndarray]]:
             with np.load(path, allow_pickle=False) as z:
                 data = {
                     k[2:]: z[k]
                     for k in z.files
-                    if k.startswith("v_") and k not in ("v_status", "v_message", "v_wall_time")
+                    if k.startswith("v_") and k[2:] not in _CASE_COLUMNS
                 }
-                return z["v_status"], z["v_message"], data
+                status = z["v_status"]
+                warning = z["v_warning"] if "v_warning" in z.files else np.full(len(status), "")
+                return status, z["v_message"], warning, data
 
         return summarise(columns(path) for path in paths)
 

@@ -28,6 +28,7 @@ import numpy as np
 from .cases import SweepAxis, _copy_tree, _hash, _set_path, code_fingerprint, parse_sweep
 from .config.loader import StudyError, StudySource, validate_data
 from .config.study import Study
+from .plausibility import fallback_warning, joined, largest_strain, strain_warning
 
 #: swept paths the array path takes: (kind, end or segment, component)
 _POSITION = re.compile(r"^ends\.(a|b)\.position\.([012])$")
@@ -207,6 +208,12 @@ class GridChunk:
     message: np.ndarray  # unicode
     wall_time: np.ndarray
     data: dict[str, np.ndarray]
+    #: per case, why its kept results are implausible or risky (unicode, '' if not)
+    warning: np.ndarray | None = None
+
+    def __post_init__(self) -> None:
+        if self.warning is None:
+            self.warning = np.full(len(self.status), "")
 
     @property
     def n(self) -> int:
@@ -334,14 +341,15 @@ class StaticArrays:
 
 def _compiled_solve(
     base: Any, pos: dict[str, Any], ea: np.ndarray
-) -> tuple[StaticArrays, np.ndarray] | None:
+) -> tuple[StaticArrays, np.ndarray, list[str]] | None:
     """The cases of a chunk (the template's static problem ``base`` with end positions
     ``pos`` and segment stiffnesses ``ea`` per case) through the compiled batch kernel
     straight from arrays: the inputs :func:`cablestudy.statics.batch._solve_group` builds
     from one problem object per case, built here for all cases at once (so the same
-    numbers, bit for bit, without a per-case object). Returns the stacked results and the
+    numbers, bit for bit, without a per-case object). Returns the stacked results, the
     cases the kernel leaves to the one-by-one solver (not converged, not finite, on or
-    touching the seabed: exactly the cases :func:`solve_batch` would hand on), or None
+    touching the seabed: exactly the cases :func:`solve_batch` would hand on) and why
+    (per case: "not settled there" or "on the seabed"), or None
     when the template does not take this path (then :func:`solve_batch` runs as before).
     """
     from .statics import _fast
@@ -434,9 +442,11 @@ def _compiled_solve(
         & np.all(np.isfinite(TA), axis=1)
         & np.all(np.isfinite(TL), axis=1)
     )
+    on_seabed = rest.copy()  # an end on or below the seabed
     rest |= ~good
     if plane is not None:
-        rest |= _height_below(plane, position, -1e-6 * Ltot, strict=True)
+        on_seabed |= _height_below(plane, position, -1e-6 * Ltot, strict=True)
+        rest |= on_seabed
     out = StaticArrays(
         s=s,
         position=position,
@@ -450,7 +460,9 @@ def _compiled_solve(
         residual=resid,
         drag_iterations=np.zeros(N),
     )
-    return out, np.flatnonzero(rest)
+    left = np.flatnonzero(rest)
+    why = ["on the seabed" if on_seabed[i] else "not settled there" for i in left]
+    return out, left, why
 
 
 def _height_below(plane: Any, r: np.ndarray, limit: Any, *, strict: bool) -> np.ndarray:
@@ -562,6 +574,12 @@ def array_outputs(
     return out, status, messages
 
 
+def _segment_of(template: Study, s: np.ndarray) -> np.ndarray:
+    """The segment of each arc length ``s`` [m] of the template's line."""
+    seg_end = np.cumsum([seg.length for seg in template.line.segments])
+    return np.minimum(np.searchsorted(seg_end, s, side="right"), len(seg_end) - 1)
+
+
 def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
     """Solve rows ``lo:hi`` of the grid as one batch and stack the outputs. Per case the
     same outputs, status and message as :func:`cablestudy.analyses.evaluate_case`; a
@@ -572,25 +590,39 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
     n = (hi - lo) * math.prod(grid.shape[1:])
     status = np.zeros(n, dtype=np.int64)
     messages = [""] * n
+    warnings: list[list[str]] = [[] for _ in range(n)]
     data: dict[str, np.ndarray] = {}
     try:
         base, pos, ea = _swept_inputs(grid, lo, hi)
         deadline = time.monotonic() + grid.template.analysis.time_limit * n
         compiled = _compiled_solve(base, pos, ea)
+        handed_on: list[int] = []
         if compiled is None:
-            st = StaticArrays.of(solve_batch(_problems(base, pos, ea), deadline=deadline))
+            st = StaticArrays.of(
+                solve_batch(_problems(base, pos, ea), deadline=deadline, handed_on=handed_on)
+            )
+            fallback = dict.fromkeys(handed_on, "not settled there, or on the seabed")
         else:
-            st, rest = compiled
+            st, rest, why = compiled
             if rest.size:  # what solve_batch hands to the one-by-one solver
                 sub = {k: (None if v is None else v[rest]) for k, v in pos.items()}
                 st.put(
                     rest,
                     StaticArrays.of(solve_batch(_problems(base, sub, ea[rest]), deadline=deadline)),
                 )
+            fallback = dict(zip(rest.tolist(), why, strict=True))
         data, status, messages = array_outputs(st, grid.template, ea)
+        max_strain = largest_strain(st.tension, ea[:, _segment_of(grid.template, st.s[0])])
+        limit = grid.template.analysis.static.strain_warning
+        for i in np.flatnonzero((status == 0) & (max_strain > limit)):
+            warnings[i].append(strain_warning(float(max_strain[i]), limit))
+        for i, reason in fallback.items():
+            if status[i] == 0:
+                warnings[i].append(fallback_warning(reason))
     except Exception as exc:  # noqa: BLE001 - a fault in a chunk fails its cases, as data
         status[:] = STATUS_NUMERICAL
         messages = [f"{type(exc).__name__}: {exc}"] * n
+        warnings = [[] for _ in range(n)]
         data = {}
     wall = (time.perf_counter() - t0) / max(n, 1)
     return GridChunk(
@@ -601,6 +633,7 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
         message=np.array(messages, dtype=str).reshape(n),
         wall_time=np.full(n, wall),
         data=data,
+        warning=np.array([joined(w) for w in warnings], dtype=str).reshape(n),
     )
 
 

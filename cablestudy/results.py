@@ -343,6 +343,13 @@ CASE_VARIABLES: dict[str, OutputVariable] = {
         (), "1", "case status: 0 ok, 10 line broken (data kept), other nonzero failed", "int64"
     ),
     "message": OutputVariable((), "1", "why the case failed (empty when ok)", "str"),
+    "warning": OutputVariable(
+        (),
+        "1",
+        "why the case's results, though kept, are implausible or risky (strain, slack, "
+        "unsettled, fallback; empty when none)",
+        "str",
+    ),
     "wall_time": OutputVariable(
         (), "s", "wall time of the case (cases solved together as arrays share their time equally)"
     ),
@@ -366,6 +373,8 @@ class CaseRecord:
     wall_time: float
     data: dict[str, np.ndarray] = field(default_factory=dict)
     settings: dict[str, Any] = field(default_factory=dict)
+    #: why the kept results are implausible or risky (cablestudy.plausibility; '' if not)
+    warning: str = ""
 
 
 def analysis_ok(record: CaseRecord, analysis: str | None) -> bool:
@@ -583,6 +592,7 @@ def assembled_variables(
     n_failed = int(np.count_nonzero((status != 0) & (status != STATUS_BROKEN)))
     attrs["cases"] = int(np.prod(shape)) if shape else 1
     attrs["cases_failed"] = n_failed
+    attrs["cases_warned"] = int(np.count_nonzero(data_vars["warning"][1] != ""))
     if np.any(status == STATUS_BROKEN):
         attrs["cases_broken"] = int(np.count_nonzero(status == STATUS_BROKEN))
     return data_vars, coords, attrs
@@ -806,8 +816,10 @@ def grid_dataset(
             key = f"v_{name}"
             if key in z.files:
                 return z[key]
-            # a chunk that failed as a whole holds no data: NaN, as a failed case
             n = len(z["v_status"])
+            if name == "warning":  # a chunk with no warnings may not store the column
+                return np.full(n, "")
+            # a chunk that failed as a whole holds no data: NaN, as a failed case
             return np.full((n, *tails[name]), np.nan)
 
     def column(name: str) -> np.ndarray:
@@ -842,6 +854,7 @@ def grid_dataset(
         src,
         status=column("status"),
         message=column("message"),
+        warning=column("warning"),
         wall_time=column("wall_time"),
         values=values,
         tails=tails,
@@ -859,6 +872,7 @@ def grid_variables(
     message: np.ndarray,
     wall_time: np.ndarray,
     values: dict[str, Any],
+    warning: np.ndarray | None = None,
     tails: dict[str, tuple[int, ...]],
     arc: np.ndarray | None,
     solver_settings: dict[str, Any],
@@ -875,9 +889,15 @@ def grid_variables(
     dims = tuple(a.name for a in axes)
     data_vars: dict[str, VariableSpec] = {}
     status = status.reshape(shape)
+    warnings = (
+        np.full(shape, "", dtype=object)
+        if warning is None
+        else warning.astype(object).reshape(shape)
+    )
     case = (
         ("status", status),
         ("message", message.astype(object).reshape(shape)),
+        ("warning", warnings),
         ("wall_time", wall_time.reshape(shape)),
     )
     for name, arr in case:
@@ -912,4 +932,5 @@ def grid_variables(
     attrs = provenance(src, solver_settings)
     attrs["cases"] = int(np.prod(shape))
     attrs["cases_failed"] = int(np.count_nonzero(status != 0))
+    attrs["cases_warned"] = int(np.count_nonzero(warnings != ""))
     return data_vars, coords, attrs

@@ -165,6 +165,11 @@ class RunSummary:
     timings: dict[str, float] = field(default_factory=dict)
     #: the quasi-static database's own file, where the study has one
     database_path: Path | None = None
+    #: cases whose kept results carry a warning, and each warning with its count
+    n_warned: int = 0
+    warnings: dict[str, int] = field(default_factory=dict)
+    #: per warning text, the first case that has it (sweep coordinates), where known
+    warned_cases: dict[str, str] = field(default_factory=dict)
 
     def report(self) -> str:
         """Text summary; failures grouped by message (numbers in messages masked so that
@@ -172,7 +177,9 @@ class RunSummary:
         lines = [
             f"wrote {self.path}: {self.n_cases} cases ({self.n_computed} computed, "
             f"{self.n_reused} reused from cache), {self.n_failed} failed, "
-            f"{self.wall_time:.2f} s" + (f" ({self.scheduler})" if self.scheduler else "")
+            + (f"{self.n_warned} with warnings, " if self.n_warned else "")
+            + f"{self.wall_time:.2f} s"
+            + (f" ({self.scheduler})" if self.scheduler else "")
         ]
         if self.database_path is not None:
             lines.append(f"wrote {self.database_path}: the quasi-static database")
@@ -182,6 +189,12 @@ class RunSummary:
             single = count == self.failures.get(example)
             shown = example if single else f"{pattern}  (e.g. {example})"
             lines.append(f"  {count:6d} x {shown}")
+        kinds = group_warnings(self.warnings, self.warned_cases)
+        if kinds:
+            lines.append("warnings by kind (the cases keep status 0):")
+        for kind, (count, examples) in kinds.items():
+            lines.append(f"  {count:6d} x {kind}, e.g.:")
+            lines.extend(f"           {example}" for example in examples)
         return "\n".join(lines)
 
 
@@ -196,6 +209,32 @@ def group_failures(failures: dict[str, int]) -> dict[str, tuple[int, str]]:
         pattern = _NUMBER.sub("#", msg)
         n, example = groups.get(pattern, (0, msg))
         groups[pattern] = (n + count, example)
+    return dict(sorted(groups.items(), key=lambda kv: -kv[1][0]))
+
+
+#: example warnings shown per kind at the end of a run
+WARNING_EXAMPLES = 3
+
+
+def group_warnings(
+    warnings: dict[str, int], cases: dict[str, str] | None = None
+) -> dict[str, tuple[int, list[str]]]:
+    """Case warnings (each a case's ``warning`` text with its count) split into single
+    warnings and grouped by kind (the text before the first colon): kind -> (count, up to
+    :data:`WARNING_EXAMPLES` distinct examples, each after its case's coordinates where
+    ``cases`` gives them), most frequent first."""
+    from .plausibility import SEPARATOR
+
+    cases = cases or {}
+    groups: dict[str, tuple[int, list[str]]] = {}
+    for text, count in warnings.items():
+        for one in text.split(SEPARATOR):
+            kind = one.split(":", 1)[0]
+            n, examples = groups.get(kind, (0, []))
+            shown = f"{cases[text]}: {one}" if cases.get(text) else one
+            if len(examples) < WARNING_EXAMPLES and shown not in examples:
+                examples = [*examples, shown]
+            groups[kind] = (n + count, examples)
     return dict(sorted(groups.items(), key=lambda kv: -kv[1][0]))
 
 
@@ -554,6 +593,10 @@ def run_study(
     database = write_database_file(variables, axes, cases, src, out_dir)
     cache.compact({c.hash for c in cases})
     failures = Counter(records[c.hash].message for c in cases if records[c.hash].status != 0)
+    warned = [c for c in cases if records[c.hash].warning]
+    warned_cases: dict[str, str] = {}
+    for c in warned:
+        warned_cases.setdefault(records[c.hash].warning, case_label(axes, c.index))
     return RunSummary(
         path=path,
         n_cases=len(cases),
@@ -564,7 +607,21 @@ def run_study(
         failures=dict(failures),
         scheduler=used,
         database_path=database,
+        n_warned=len(warned),
+        warnings=dict(Counter(records[c.hash].warning for c in warned)),
+        warned_cases=warned_cases,
     )
+
+
+def case_label(axes: list[SweepAxis], index: tuple[int, ...]) -> str:
+    """The case at ``index`` by its sweep coordinates ("amplitude=0.05, frequency=0.2"), or
+    "the case" without a sweep."""
+    parts = []
+    for axis, i in zip(axes, index, strict=True):
+        value = axis.coordinate()[i]
+        shown = f"{value:g}" if isinstance(value, int | float | np.number) else str(value)
+        parts.append(f"{axis.name}={shown}")
+    return ", ".join(parts) or "the case"
 
 
 def write_database_file(
@@ -739,6 +796,8 @@ def run_grid_study(
         failures=dict(summary.failures),
         scheduler=used,
         timings=timings,
+        n_warned=summary.n_warned,
+        warnings=dict(summary.warnings),
     )
 
 
@@ -755,6 +814,7 @@ def _stored_chunk(store: Any, path: Path) -> Any:
         status=z.pop("status"),
         message=z.pop("message"),
         wall_time=z.pop("wall_time"),
+        warning=z.pop("warning", None),
         data=z,
     )
 
@@ -773,7 +833,7 @@ def _grid_variables(src: StudySource, grid: Any, chunks: list[Any]) -> tuple[Any
     from .cache import summarise
     from .results import grid_variables
 
-    summary = summarise((c.status, c.message, c.data) for c in chunks)
+    summary = summarise((c.status, c.message, c.warning, c.data) for c in chunks)
     rest = grid.shape[1:]
     values: dict[str, Any] = {}
     for name in summary.names:
@@ -795,6 +855,7 @@ def _grid_variables(src: StudySource, grid: Any, chunks: list[Any]) -> tuple[Any
         src,
         status=np.concatenate([c.status for c in chunks]),
         message=np.concatenate([c.message for c in chunks]),
+        warning=np.concatenate([c.warning for c in chunks]),
         wall_time=np.concatenate([c.wall_time for c in chunks]),
         values=values,
         tails=summary.tails,

@@ -55,10 +55,12 @@ def solve_batch(
     *,
     deadline: float | None = None,
     solver: SemiAnalyticSolver | None = None,
+    handed_on: list[int] | None = None,
 ) -> list[StaticResult]:
     """Solve ``problems`` (any mix); batchable ones with equal piece and node counts are
     solved together, the others (and any batch case that fails or touches the seabed)
-    one by one."""
+    one by one. ``handed_on``, if given, receives the indices of the batchable problems
+    the batch left to the one-by-one solver."""
     solver = solver or SemiAnalyticSolver()
     results: list[StaticResult | None] = [None] * len(problems)
     groups: dict[tuple[int, int], list[int]] = {}
@@ -86,10 +88,13 @@ def solve_batch(
             strict=True,
         ):
             results[i] = res
+    batched = {i for members in groups.values() for i in members}
     out = []
     for i, prob in enumerate(problems):
         res = results[i]
         if res is None or not res.success:
+            if handed_on is not None and i in batched:
+                handed_on.append(i)
             res = solver.solve(prob, deadline=deadline, compiled=False)
         out.append(res)
     return out
