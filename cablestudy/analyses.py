@@ -1236,7 +1236,7 @@ def presolve_statics(
     if len(todo) < 2:
         return {}, {}, {}
     t0 = time.perf_counter()
-    handed_on: list[int] = []
+    handed_on: dict[int, str] = {}
     try:
         deadline = time.monotonic() + max(limit for _, limit in todo.values())
         results = solve_batch([p for p, _ in todo.values()], deadline=deadline, handed_on=handed_on)
@@ -1246,7 +1246,7 @@ def presolve_statics(
     share = (time.perf_counter() - t0) / len(todo)
     solved = {h: r.check_finite() for h, r in zip(todo, results, strict=True)}
     hashes = list(todo)
-    fallback = {hashes[i]: "not settled there, or on the seabed" for i in handed_on}
+    fallback = {hashes[i]: why for i, why in handed_on.items()}
     return solved, dict.fromkeys(solved, share), fallback
 
 

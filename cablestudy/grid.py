@@ -349,11 +349,12 @@ def _compiled_solve(
     numbers, bit for bit, without a per-case object). Returns the stacked results, the
     cases the kernel leaves to the one-by-one solver (not converged, not finite, on or
     touching the seabed: exactly the cases :func:`solve_batch` would hand on) and why
-    (per case: "not settled there" or "on the seabed"), or None
+    (per case: :data:`~cablestudy.statics.batch.NOT_SETTLED`, ``ON_SEABED``, or '' for
+    a case the batch never takes, :func:`~cablestudy.statics.batch.batchable`), or None
     when the template does not take this path (then :func:`solve_batch` runs as before).
     """
     from .statics import _fast
-    from .statics.batch import _guess
+    from .statics.batch import NOT_SETTLED, ON_SEABED, _guess
 
     line, med = base.line, base.medium
     if (
@@ -442,10 +443,11 @@ def _compiled_solve(
         & np.all(np.isfinite(TA), axis=1)
         & np.all(np.isfinite(TL), axis=1)
     )
-    on_seabed = rest.copy()  # an end on or below the seabed
+    not_batchable = rest.copy()  # an end on the seabed: never the batch's (batchable)
     rest |= ~good
+    on_seabed = np.zeros(N, dtype=bool)
     if plane is not None:
-        on_seabed |= _height_below(plane, position, -1e-6 * Ltot, strict=True)
+        on_seabed = _height_below(plane, position, -1e-6 * Ltot, strict=True)
         rest |= on_seabed
     out = StaticArrays(
         s=s,
@@ -461,7 +463,7 @@ def _compiled_solve(
         drag_iterations=np.zeros(N),
     )
     left = np.flatnonzero(rest)
-    why = ["on the seabed" if on_seabed[i] else "not settled there" for i in left]
+    why = ["" if not_batchable[i] else (NOT_SETTLED if not good[i] else ON_SEABED) for i in left]
     return out, left, why
 
 
@@ -596,12 +598,11 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
         base, pos, ea = _swept_inputs(grid, lo, hi)
         deadline = time.monotonic() + grid.template.analysis.time_limit * n
         compiled = _compiled_solve(base, pos, ea)
-        handed_on: list[int] = []
+        fallback: dict[int, str] = {}
         if compiled is None:
             st = StaticArrays.of(
-                solve_batch(_problems(base, pos, ea), deadline=deadline, handed_on=handed_on)
+                solve_batch(_problems(base, pos, ea), deadline=deadline, handed_on=fallback)
             )
-            fallback = dict.fromkeys(handed_on, "not settled there, or on the seabed")
         else:
             st, rest, why = compiled
             if rest.size:  # what solve_batch hands to the one-by-one solver
@@ -610,7 +611,7 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
                     rest,
                     StaticArrays.of(solve_batch(_problems(base, sub, ea[rest]), deadline=deadline)),
                 )
-            fallback = dict(zip(rest.tolist(), why, strict=True))
+            fallback = {i: r for i, r in zip(rest.tolist(), why, strict=True) if r}
         data, status, messages = array_outputs(st, grid.template, ea)
         max_strain = largest_strain(st.tension, ea[:, _segment_of(grid.template, st.s[0])])
         limit = grid.template.analysis.static.strain_warning

@@ -24,6 +24,10 @@ from .pieces import piece_integrals
 from .seabed import Plane
 from .semi_analytic import SemiAnalyticSolver, make_layout
 
+#: why the batch kernel leaves a case to the one-by-one solver
+NOT_SETTLED = "not settled there"
+ON_SEABED = "its solution touches the seabed"
+
 
 def batchable(problem: StaticProblem) -> bool:
     """Whether ``problem`` can take the batch path: still water (or no drag), end A
@@ -55,12 +59,13 @@ def solve_batch(
     *,
     deadline: float | None = None,
     solver: SemiAnalyticSolver | None = None,
-    handed_on: list[int] | None = None,
+    handed_on: dict[int, str] | None = None,
 ) -> list[StaticResult]:
     """Solve ``problems`` (any mix); batchable ones with equal piece and node counts are
     solved together, the others (and any batch case that fails or touches the seabed)
-    one by one. ``handed_on``, if given, receives the indices of the batchable problems
-    the batch left to the one-by-one solver."""
+    one by one. ``handed_on``, if given, receives the batchable problems the batch left
+    to the one-by-one solver: their index and why (:data:`NOT_SETTLED`,
+    :data:`ON_SEABED`)."""
     solver = solver or SemiAnalyticSolver()
     results: list[StaticResult | None] = [None] * len(problems)
     groups: dict[tuple[int, int], list[int]] = {}
@@ -75,7 +80,9 @@ def solve_batch(
             layouts[i] = make_layout(line)
             P = len(layouts[i].ell)
         groups.setdefault((P, prob.n_nodes), []).append(i)
+    why: dict[int, str] = {}
     for (P, n_nodes), members in groups.items():
+        left: dict[int, str] = {}
         for i, res in zip(
             members,
             _solve_group(
@@ -84,17 +91,19 @@ def solve_batch(
                 n_nodes,
                 [layouts.get(i) for i in members],
                 deadline,
+                why=left,
             ),
             strict=True,
         ):
             results[i] = res
+        why.update({members[j]: reason for j, reason in left.items()})
     batched = {i for members in groups.values() for i in members}
     out = []
     for i, prob in enumerate(problems):
         res = results[i]
         if res is None or not res.success:
             if handed_on is not None and i in batched:
-                handed_on.append(i)
+                handed_on[i] = why.get(i, NOT_SETTLED)
             res = solver.solve(prob, deadline=deadline, compiled=False)
         out.append(res)
     return out
@@ -168,7 +177,11 @@ def _solve_group(
     layouts: list,
     deadline: float | None,
     use_compiled: bool = True,
+    why: dict[int, str] | None = None,
 ) -> list[StaticResult | None]:
+    """The problems of one group through the batch kernel; None for a case it leaves to
+    the one-by-one solver, with the reason in ``why`` (by position), if given."""
+    why = {} if why is None else why
     N = len(problems)
     ell = np.empty((N, P))
     EA = np.empty((N, P))
@@ -288,6 +301,7 @@ def _solve_group(
     resid_l = resid.tolist()
     for i, prob in enumerate(problems):
         if not good[i]:
+            why[i] = NOT_SETTLED
             out.append(None)
             continue
         res = StaticResult(
@@ -304,6 +318,7 @@ def _solve_group(
             med = prob.medium
             plane = Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
             if np.any(plane.height_above(res.position) < -1e-6 * Ltot[i]):
+                why[i] = ON_SEABED
                 out.append(None)  # touches the seabed: the one-by-one solver decides
                 continue
         out.append(res)
