@@ -27,6 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .outputs import read_regular, regular_file, temporary_prefix, written
 from .results import CaseRecord
 
 #: messages of records that must not be cached (transient: a rerun may succeed)
@@ -136,6 +137,40 @@ def decode_records(payload: bytes) -> list[CaseRecord]:
     return records
 
 
+def _write_atomic(path: Path, payload: bytes, stem: str) -> None:
+    """``payload`` to ``path`` through a temporary file named after this process
+    (:func:`cablestudy.outputs.temporary_prefix`), fsync and rename; a full disk raises
+    :class:`cablestudy.outputs.OutputWriteError`."""
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=temporary_prefix(stem), suffix=".tmp")
+
+    def complete() -> None:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(payload)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.replace(tmp, path)
+
+    try:
+        written(path, complete)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+
+
+#: temporary files of cache writes (removed by a later run once their writer is gone)
+TEMPORARY_PATTERNS = (".chunk-*.tmp", ".grid-*.tmp")
+
+
+def _odd_entry(path: Path) -> str:
+    """Why the cache entry ``path`` is left alone ('' for a regular file)."""
+    if regular_file(path):
+        return ""
+    return (
+        f"cache entry {path} is not a regular file (a folder, link, FIFO or device); "
+        "skipped and left in place"
+    )
+
+
 class CaseCache:
     """Finished case records of one study, in memory and (with a ``directory``) on disk
     as ``chunk-<sha256>.npz`` data files; see the module docstring."""
@@ -146,13 +181,21 @@ class CaseCache:
         self.directory = directory
         self.records: dict[str, CaseRecord] = {}
         self.rejected: list[Path] = []
+        #: the chunk files read or written by this run: the only ones compact removes
+        self.files: set[Path] = set()
         if directory is not None and directory.is_dir():
             for path in sorted(directory.glob("chunk-*.npz")):
+                odd = _odd_entry(path)
+                if odd:
+                    warn(odd)
+                    continue
                 reason = self._load(path)
                 if reason:
                     warn(f"cache file {path} {reason}; its cases will be recomputed")
                     self.rejected.append(path)
                     path.unlink(missing_ok=True)
+                else:
+                    self.files.add(path)
 
     def _load(self, path: Path) -> str:
         """Read one chunk file into :attr:`records`; '' if fine, else why not."""
@@ -160,7 +203,7 @@ class CaseCache:
         if not match:
             return "is not named chunk-<sha256>.npz"
         try:
-            payload = path.read_bytes()
+            payload = read_regular(path)
         except OSError as exc:
             return f"cannot be read ({exc})"
         digest = hashlib.sha256(payload).hexdigest()
@@ -189,25 +232,19 @@ class CaseCache:
         payload = encode_records(records)
         path = self.directory / f"chunk-{hashlib.sha256(payload).hexdigest()}.npz"
         path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".chunk-", suffix=".tmp")
-        try:
-            with os.fdopen(fd, "wb") as fh:
-                fh.write(payload)
-                fh.flush()
-                os.fsync(fh.fileno())
-            os.replace(tmp, path)
-        finally:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
+        _write_atomic(path, payload, ".chunk-")
+        self.files.add(path)
         return path
 
     def compact(self, keep: Iterable[str]) -> None:
         """Rewrite the cache as one file holding the records in ``keep`` (the cases of the
         study as it now stands), dropping records of edited-away cases. The new file is
-        in place before the old ones are removed, so a crash loses nothing."""
+        in place before the old ones are removed, so a crash loses nothing. Only files
+        this run read or wrote are removed (call it only when no other run of the study
+        is writing here: :class:`cablestudy.outputs.CacheLock`)."""
         if self.directory is None or not self.directory.is_dir():
             return
-        old = sorted(self.directory.glob("chunk-*.npz"))
+        old = sorted(p for p in self.files if regular_file(p))
         keep = set(keep)
         records = [
             self.records[h]
@@ -295,6 +332,10 @@ class GridChunkStore:
         if not self.directory.is_dir():
             return None
         for path in sorted(self.directory.glob(f"grid-{key[:32]}-*.npz")):
+            odd = _odd_entry(path)
+            if odd:
+                self.warn(odd)
+                continue
             reason = self._check(path)
             if not reason:
                 return path
@@ -308,7 +349,7 @@ class GridChunkStore:
         if not match:
             return "is not named grid-<key>-<sha256>.npz"
         try:
-            payload = path.read_bytes()
+            payload = read_regular(path)
         except OSError as exc:
             return f"cannot be read ({exc})"
         digest = hashlib.sha256(payload).hexdigest()
@@ -343,16 +384,7 @@ class GridChunkStore:
         digest = hashlib.sha256(payload).hexdigest()
         path = self.directory / f"grid-{chunk.key[:32]}-{digest}.npz"  # type: ignore[attr-defined]
         self.directory.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=self.directory, prefix=".grid-", suffix=".tmp")
-        try:
-            with os.fdopen(fd, "wb") as fh:
-                fh.write(payload)
-                fh.flush()
-                os.fsync(fh.fileno())
-            os.replace(tmp, path)
-        finally:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
+        _write_atomic(path, payload, ".grid-")
         return path
 
     @staticmethod
@@ -383,7 +415,10 @@ class GridChunkStore:
             return out
 
     def keep(self, paths: set[Path]) -> None:
-        """Remove the grid chunk files not in ``paths`` (cases edited away)."""
+        """Remove the grid chunk files not in ``paths`` (cases edited away); call it only
+        when no other run of the study is writing here
+        (:class:`cablestudy.outputs.CacheLock`). Entries that are not regular files are
+        left alone."""
         for path in self.directory.glob("grid-*.npz"):
-            if path not in paths:
+            if path not in paths and regular_file(path):
                 path.unlink(missing_ok=True)

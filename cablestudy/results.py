@@ -19,6 +19,7 @@ import numpy as np
 from . import __version__
 from .cases import Case, SweepAxis
 from .config.loader import StudySource
+from .outputs import temporary_prefix, written
 
 if TYPE_CHECKING:  # imported where used: a sweep run as arrays writes without xarray
     import xarray as xr
@@ -646,17 +647,26 @@ def _umask() -> int:
 def _atomically(path: str | Path, write: Any) -> Path:
     """Call ``write(tmp)`` on a temporary file in ``path``'s folder, then fsync it, give it
     the permissions of a new file and rename it to ``path`` (atomic): a crash never
-    leaves a half-written or corrupted result."""
+    leaves a half-written or corrupted result. The temporary file's name holds this
+    process's id (:func:`cablestudy.outputs.temporary_prefix`): a later run removes it
+    if this one is killed while writing. A full disk raises
+    :class:`cablestudy.outputs.OutputWriteError`."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    fd, tmp = tempfile.mkstemp(
+        prefix=temporary_prefix(f".{path.name}."), suffix=".tmp", dir=path.parent
+    )
     os.close(fd)
-    try:
+
+    def complete() -> None:
         write(tmp)
         with open(tmp, "rb+") as fh:  # on disk before the rename makes it visible
             os.fsync(fh.fileno())
         os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes it private (0600)
         os.replace(tmp, path)
+
+    try:
+        written(path, complete)  # a full disk named as such, whoever reports it
     finally:
         if os.path.exists(tmp):
             os.unlink(tmp)
