@@ -26,7 +26,7 @@ import socket
 import stat
 import tempfile
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from pathlib import Path
 from typing import TypeVar
 
@@ -79,10 +79,13 @@ def _reason(exc: OSError) -> str:
 
 def disk_full(exc: BaseException, folder: Path) -> bool:
     """Whether ``exc``, raised while writing in ``folder``, means the disk is full: an
-    OSError with errno ENOSPC or EDQUOT, or any error while the folder's file system has
-    less than :data:`FULL_BELOW_BYTES` free."""
+    OSError with errno ENOSPC or EDQUOT, or an I/O error (OSError, or RuntimeError as
+    netCDF4 raises) while the folder's file system has less than
+    :data:`FULL_BELOW_BYTES` free."""
     if isinstance(exc, OSError) and exc.errno in FULL_ERRNOS:
         return True
+    if not isinstance(exc, OSError | RuntimeError):  # not an I/O failure
+        return False
     try:
         return shutil.disk_usage(folder).free < FULL_BELOW_BYTES
     except OSError:
@@ -221,19 +224,6 @@ class CacheLock:
 
     def __exit__(self, *exc: object) -> None:
         self.release()
-
-
-@contextlib.contextmanager
-def held(folder: Path | None) -> Iterator[CacheLock | None]:
-    """A :class:`CacheLock` on ``folder`` for the ``with`` block (None: no folder)."""
-    if folder is None:
-        yield None
-        return
-    lock = CacheLock(folder)
-    try:
-        yield lock
-    finally:
-        lock.release()
 
 
 def now() -> float:
