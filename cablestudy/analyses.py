@@ -1157,7 +1157,10 @@ def evaluate_case(
                 for name, st, msg in failed
             )
     ok = {name for name, (st, _) in outcome.items() if st == STATUS_OK}
-    warning = case_warnings(case, static[0] if "static" in ok else None, data, ok, fallback)
+    try:
+        warning = case_warnings(case, static[0] if "static" in ok else None, data, ok, fallback)
+    except Exception as exc:  # noqa: BLE001 - the results stand; say they went unchecked
+        warning = f"unchecked: the plausibility checks failed ({_exception_message(exc)})"
     wall = time.perf_counter() - t0
     if not math.isfinite(wall):
         wall = 0.0
@@ -1206,7 +1209,11 @@ def case_warnings(
             found.append(fallback_warning(fallback))
     dyn = case.study.analysis.dynamic
     if "dynamic" in ok and dyn is not None:
-        found.extend(dynamic_warnings(data, max_periods=dyn.max_periods))
+        found.extend(
+            dynamic_warnings(
+                data, max_periods=dyn.max_periods, fixed_duration=dyn.duration is not None
+            )
+        )
     return joined(found)
 
 

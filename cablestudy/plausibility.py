@@ -17,8 +17,9 @@ STRAIN = "strain"
 SLACK = "slack"
 UNSETTLED = "unsettled"
 FALLBACK = "fallback"
+UNCHECKED = "unchecked"
 #: the kinds of warning, in the order a case lists them
-KINDS = (STRAIN, SLACK, UNSETTLED, FALLBACK)
+KINDS = (STRAIN, SLACK, UNSETTLED, FALLBACK, UNCHECKED)
 #: between the warnings of one case
 SEPARATOR = "; "
 
@@ -60,7 +61,7 @@ def slack_warning(tension_min: float, where: str) -> str:
 def unsettled_warning(periods: float, max_periods: int) -> str:
     """The warning of a time-domain run that stopped at ``max_periods`` without its
     per-period tension extremes settling; ``periods``: excitation periods simulated."""
-    shown = f"{periods:.4g}" if math.isfinite(periods) else "all"
+    shown = f"{periods:.4g}"
     return (
         f"{UNSETTLED}: no steady state after {shown} periods (analysis.dynamic.max_periods "
         f"{max_periods}): the tensions are the envelope of the last periods"
@@ -72,11 +73,17 @@ def fallback_warning(reason: str) -> str:
     return f"{FALLBACK}: solved one by one by the general solver, not the batched kernel ({reason})"
 
 
-def dynamic_warnings(data: dict[str, np.ndarray], *, max_periods: int) -> list[str]:
+def dynamic_warnings(
+    data: dict[str, np.ndarray], *, max_periods: int, fixed_duration: bool = False
+) -> list[str]:
     """The warnings of one case's successful dynamic outputs ``data`` (as
     :func:`cablestudy.analyses.run_dynamic` gives them): slack at the excited end or
-    along the line, and a time-domain run that did not settle."""
-    out = []
+    along the line, and a time-domain run that stopped at ``max_periods`` without
+    settling (not one of a ``fixed_duration``, which does not look for a steady state).
+    None for a line that parted (``break_time``): the break is the news."""
+    out: list[str] = []
+    if math.isfinite(_number(data.get("break_time"))):
+        return out  # the line parted: break_time and break_s say so, its tensions fall to 0
     t_end = _number(data.get("tension_min"))
     envelope = data.get("tension_envelope_min")
     t_line = float(np.nanmin(envelope)) if _any_finite(envelope) else math.nan
@@ -85,8 +92,9 @@ def dynamic_warnings(data: dict[str, np.ndarray], *, max_periods: int) -> list[s
     elif t_line <= 0.0:
         out.append(slack_warning(t_line, "along the line"))
     settled = _number(data.get("steady_converged"))
-    if settled == 0.0:
-        out.append(unsettled_warning(_number(data.get("periods")), max_periods))
+    periods = _number(data.get("periods"))
+    if settled == 0.0 and not fixed_duration and periods >= max_periods - 1e-9:
+        out.append(unsettled_warning(periods, max_periods))
     return out
 
 

@@ -195,3 +195,58 @@ def test_a_fallback_from_the_batch_kernel_is_warned_where_the_line_touches_the_s
     ]
     assert fallback == touches.tolist()
     assert re.search(rf"\n +{touches.sum()} x fallback, e\.g\.:\n", printed), printed
+
+
+def test_the_laws_max_strain_still_fails_the_case(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """A law checked to increase up to a strain of 0.1 fails the 14.4 % case (status
+    nonzero, the message naming max_strain), which then carries no warning: a warning is
+    about results kept with status 0."""
+    text = WIRE.replace("METHOD", "shooting").replace("STRAIN", "")
+    text = text.replace(
+        "axial_stiffness: 3.3e8}",
+        "axial: {law: polynomial, coefficients: [3.3e8, 1.0e6], max_strain: 0.1}}",
+    )
+    cfg = tmp_path / "wire.yaml"
+    cfg.write_text(text)
+    ds, printed = _run(cfg, tmp_path, capsys)
+    assert ds["status"].values[0] == 0 and ds["status"].values[1] != 0
+    assert "(line.segments.0.axial.max_strain)" in str(ds["message"].values[1])
+    assert ds["warning"].values.tolist() == ["", ""]
+    assert int(ds.attrs["cases_warned"]) == 0 and "warnings by kind" not in printed
+
+
+#: the aqwa seed's linear spring (configs/cable-spring-linear.yaml): 50 m, 2e5 N/m, towed
+#: at B by a known force
+SPRING = """\
+name: spring
+line:
+  kind: spring
+  length: 50.0
+  axial: {law: linear, stiffness: 2.0e5}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, 0.0]}
+  b: {kind: force, force: [3.0e4, 0.0, -4.0e4]}
+analysis:
+  static: {strain_warning: 0.006}
+sweep:
+  ends.b.force.0: {values: [1.0e4, 6.0e4], name: pull}
+"""
+
+
+def test_a_springs_strain_is_its_extension_over_its_length(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Towed by F, the spring stretches by |F| / k: a strain |F| / (k L) of 0.0041 at
+    F = (1e4, 0, -4e4) N and 0.0072 at (6e4, 0, -4e4) N, against a limit of 0.006."""
+    cfg = tmp_path / "spring.yaml"
+    cfg.write_text(SPRING)
+    ds, _ = _run(cfg, tmp_path, capsys)
+    assert ds["status"].values.tolist() == [0, 0]
+    low, high = (str(w) for w in ds["warning"].values)
+    assert low == ""
+    match = re.match(r"strain: largest strain (\S+) above the plausibility limit 0.006 ", high)
+    assert match, high
+    # printed to 4 significant digits (5e-4 relative)
+    assert float(match.group(1)) == pytest.approx(math.hypot(6e4, 4e4) / (2e5 * 50.0), rel=1e-3)
