@@ -1051,11 +1051,7 @@ class CheckedOutputs(dict):
 
 
 def evaluate_case(
-    case: Case,
-    *,
-    presolved: dict[str, StaticResult] | None = None,
-    linear: Any = None,
-    fallback: str | None = None,
+    case: Case, *, presolved: dict[str, StaticResult] | None = None, linear: Any = None
 ) -> CaseRecord:
     """Run every analysis the case asks for. Never raises: an exception inside a solver
     becomes a failure of that analysis with the exception's text. ``presolved`` maps
@@ -1071,8 +1067,7 @@ def evaluate_case(
     does not cache it); its ``message`` is the static solver's message, or names each
     failed analysis ("modal analysis: ...; dynamic analysis: ...").
 
-    Results kept but implausible or risky get a ``warning`` (:func:`case_warnings`);
-    ``fallback``: why a batched kernel handed the case's statics to the general solver."""
+    Results kept but implausible or risky get a ``warning`` (:func:`case_warnings`)."""
     t0 = time.perf_counter()
     deadline = time.monotonic() + case.study.analysis.time_limit
     data: dict[str, Any] = {}
@@ -1158,7 +1153,7 @@ def evaluate_case(
             )
     ok = {name for name, (st, _) in outcome.items() if st == STATUS_OK}
     try:
-        warning = case_warnings(case, static[0] if "static" in ok else None, data, ok, fallback)
+        warning = case_warnings(case, static[0] if "static" in ok else None, data, ok)
     except Exception as exc:  # noqa: BLE001 - the results stand; say they went unchecked
         warning = f"unchecked: the plausibility checks failed ({_exception_message(exc)})"
     wall = time.perf_counter() - t0
@@ -1195,18 +1190,18 @@ def case_warnings(
     static: StaticResult | None,
     data: dict[str, Any],
     ok: set[str],
-    fallback: str | None,
 ) -> str:
     """The case's ``warning`` text (:mod:`cablestudy.plausibility`): strain above
-    ``analysis.static.strain_warning`` and a batched-kernel fallback (statics, when they
-    succeeded: ``static``), slack and an unsettled time-domain run (dynamics, when the
-    analysis named in ``ok`` succeeded)."""
+    ``analysis.static.strain_warning`` and a batched-kernel fallback
+    (:attr:`StaticResult.fallback`) of the statics, when they succeeded (``static``);
+    slack and an unsettled time-domain run, when the dynamic analysis succeeded (named
+    in ``ok``)."""
     found: list[str] = []
     if static is not None:
         limit = case.study.analysis.static.strain_warning
         found.append(strain_warning(largest_static_strain(case.study, static), limit))
-        if fallback:
-            found.append(fallback_warning(fallback))
+        if static.fallback:
+            found.append(fallback_warning(static.fallback))
     dyn = case.study.analysis.dynamic
     if "dynamic" in ok and dyn is not None:
         found.extend(
@@ -1217,14 +1212,11 @@ def case_warnings(
     return joined(found)
 
 
-def presolve_statics(
-    cases: list[Case],
-) -> tuple[dict[str, StaticResult], dict[str, float], dict[str, str]]:
+def presolve_statics(cases: list[Case]) -> tuple[dict[str, StaticResult], dict[str, float]]:
     """Solve the distinct still-water static problems of method 'catenary' in ``cases``
     together (:func:`cablestudy.statics.batch.solve_batch`). Returns the solutions by
-    static hash, each one's share of the batch wall time [s], and the static hashes the
-    batch handed to the general solver with why (each such case is warned of). Anything
-    unexpected leaves the cases to the one-by-one path (which records its own errors)."""
+    static hash and each one's share of the batch wall time [s]. Anything unexpected
+    leaves the cases to the one-by-one path (which records its own errors)."""
     from .statics.batch import batchable, solve_batch
 
     todo: dict[str, Any] = {}
@@ -1241,20 +1233,17 @@ def presolve_statics(
         if batchable(problem):
             todo[h] = (problem, case.study.analysis.time_limit)
     if len(todo) < 2:
-        return {}, {}, {}
+        return {}, {}
     t0 = time.perf_counter()
-    handed_on: dict[int, str] = {}
     try:
         deadline = time.monotonic() + max(limit for _, limit in todo.values())
-        results = solve_batch([p for p, _ in todo.values()], deadline=deadline, handed_on=handed_on)
-    except Exception as exc:  # noqa: BLE001 - fall back to one case at a time
-        return {}, {}, dict.fromkeys(todo, f"the batch failed: {type(exc).__name__}: {exc}")
+        results = solve_batch([p for p, _ in todo.values()], deadline=deadline)
+    except Exception:  # noqa: BLE001 - fall back to one case at a time
+        return {}, {}
     COUNTERS["static_solves"] += len(todo)
     share = (time.perf_counter() - t0) / len(todo)
     solved = {h: r.check_finite() for h, r in zip(todo, results, strict=True)}
-    hashes = list(todo)
-    fallback = {hashes[i]: why for i, why in handed_on.items()}
-    return solved, dict.fromkeys(solved, share), fallback
+    return solved, dict.fromkeys(solved, share)
 
 
 def presolve_frequency(
@@ -1306,13 +1295,11 @@ def evaluate_chunk(cases: list[Case]) -> list[CaseRecord]:
     one batch first, and the frequency-domain responses of the cases that share a
     linear model together; then every case runs as in :func:`evaluate_case` (its wall
     time includes its share of the batches)."""
-    solved, share, fallback = presolve_statics(cases)
+    solved, share = presolve_statics(cases)
     linear, linear_share = presolve_frequency(cases, solved)
     records = []
     for i, case in enumerate(cases):
-        rec = evaluate_case(
-            case, presolved=solved, linear=linear.get(i), fallback=fallback.get(case.static_hash)
-        )
+        rec = evaluate_case(case, presolved=solved, linear=linear.get(i))
         if case.static_hash in share:
             rec.wall_time += share.pop(case.static_hash)
         rec.wall_time += linear_share.get(i, 0.0)

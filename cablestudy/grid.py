@@ -592,17 +592,16 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
     n = (hi - lo) * math.prod(grid.shape[1:])
     status = np.zeros(n, dtype=np.int64)
     messages = [""] * n
-    warnings: list[list[str]] = [[] for _ in range(n)]
+    warnings: dict[int, list[str]] = {}  # only the cases that have some
     data: dict[str, np.ndarray] = {}
     try:
         base, pos, ea = _swept_inputs(grid, lo, hi)
         deadline = time.monotonic() + grid.template.analysis.time_limit * n
         compiled = _compiled_solve(base, pos, ea)
-        fallback: dict[int, str] = {}
         if compiled is None:
-            st = StaticArrays.of(
-                solve_batch(_problems(base, pos, ea), deadline=deadline, handed_on=fallback)
-            )
+            results = solve_batch(_problems(base, pos, ea), deadline=deadline)
+            fallback = {i: r.fallback for i, r in enumerate(results) if r.fallback}
+            st = StaticArrays.of(results)
         else:
             st, rest, why = compiled
             if rest.size:  # what solve_batch hands to the one-by-one solver
@@ -616,14 +615,14 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
         max_strain = largest_strain(st.tension, ea[:, _segment_of(grid.template, st.s[0])])
         limit = grid.template.analysis.static.strain_warning
         for i in np.flatnonzero((status == 0) & (max_strain > limit)):
-            warnings[i].append(strain_warning(float(max_strain[i]), limit))
+            warnings.setdefault(int(i), []).append(strain_warning(float(max_strain[i]), limit))
         for i, reason in fallback.items():
             if status[i] == 0:
-                warnings[i].append(fallback_warning(reason))
+                warnings.setdefault(i, []).append(fallback_warning(reason))
     except Exception as exc:  # noqa: BLE001 - a fault in a chunk fails its cases, as data
         status[:] = STATUS_NUMERICAL
         messages = [f"{type(exc).__name__}: {exc}"] * n
-        warnings = [[] for _ in range(n)]
+        warnings = {}
         data = {}
     wall = (time.perf_counter() - t0) / max(n, 1)
     return GridChunk(
@@ -634,8 +633,18 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
         message=np.array(messages, dtype=str).reshape(n),
         wall_time=np.full(n, wall),
         data=data,
-        warning=np.array([joined(w) for w in warnings], dtype=str).reshape(n),
+        warning=_warning_column(n, warnings),
     )
+
+
+def _warning_column(n: int, warnings: dict[int, list[str]]) -> np.ndarray:
+    """The ``warning`` text of ``n`` cases, from the warnings of those that have some."""
+    texts = {i: joined(w) for i, w in warnings.items()}
+    width = max((len(t) for t in texts.values()), default=0)
+    column = np.full(n, "", dtype=f"<U{max(width, 1)}")
+    for i, text in texts.items():
+        column[i] = text
+    return column
 
 
 def failed_grid_chunk(grid: CaseGrid, lo: int, hi: int, message: str) -> GridChunk:

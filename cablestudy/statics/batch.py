@@ -59,13 +59,11 @@ def solve_batch(
     *,
     deadline: float | None = None,
     solver: SemiAnalyticSolver | None = None,
-    handed_on: dict[int, str] | None = None,
 ) -> list[StaticResult]:
     """Solve ``problems`` (any mix); batchable ones with equal piece and node counts are
     solved together, the others (and any batch case that fails or touches the seabed)
-    one by one. ``handed_on``, if given, receives the batchable problems the batch left
-    to the one-by-one solver: their index and why (:data:`NOT_SETTLED`,
-    :data:`ON_SEABED`)."""
+    one by one; a batch case handed on says why in its ``fallback``
+    (:data:`NOT_SETTLED`, :data:`ON_SEABED`)."""
     solver = solver or SemiAnalyticSolver()
     results: list[StaticResult | None] = [None] * len(problems)
     groups: dict[tuple[int, int], list[int]] = {}
@@ -102,16 +100,18 @@ def solve_batch(
     for i, prob in enumerate(problems):
         res = results[i]
         if res is None or not res.success:
-            if handed_on is not None and i in batched:
-                handed_on[i] = why.get(i, NOT_SETTLED)
             res = solver.solve(prob, deadline=deadline, compiled=False)
+            if i in batched:
+                res.fallback = why.get(i, NOT_SETTLED)
         out.append(res)
     return out
 
 
-def solve_compiled(problem: StaticProblem, *, deadline: float | None = None) -> StaticResult | None:
+def solve_compiled(
+    problem: StaticProblem, *, deadline: float | None = None, why: dict[int, str] | None = None
+) -> StaticResult | None:
     """One still-water problem through the compiled batch kernel, or None when it does
-    not take that path (or does not settle there)."""
+    not take that path (or does not settle there: then ``why[0]``, if given, says why)."""
     if not _fast.AVAILABLE or not batchable(problem):
         return None
     line = problem.line
@@ -120,7 +120,7 @@ def solve_compiled(problem: StaticProblem, *, deadline: float | None = None) -> 
     else:
         lay = make_layout(line)
         P = len(lay.ell)
-    return _solve_group([problem], P, problem.n_nodes, [lay], deadline)[0]
+    return _solve_group([problem], P, problem.n_nodes, [lay], deadline, why=why)[0]
 
 
 def _guess(

@@ -179,21 +179,26 @@ sweep:
 """
 
 
+@pytest.mark.parametrize("extra", ["", "  line.segments.0.drag_normal: [1.2]\n"])
 def test_a_fallback_from_the_batch_kernel_is_warned_where_the_line_touches_the_seabed(
-    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], extra: str
 ) -> None:
+    """On the array path (cablestudy.grid) and, with a swept path it does not take (drag
+    in still water: no effect), case by case: the same cases, those on the seabed."""
     cfg = tmp_path / "hanging.yaml"
-    cfg.write_text(HANGING)
+    cfg.write_text(HANGING + extra)
     ds, printed = _run(cfg, tmp_path, capsys)
-    assert ds["status"].values.tolist() == [0, 0, 0, 0]
-    touches = (ds["laid_length"] > 0.0).values
+    assert ds["status"].values.ravel().tolist() == [0, 0, 0, 0]
+    touches = (ds["laid_length"] > 0.0).values.ravel()
     assert touches.tolist()[0] and not touches.tolist()[-1]  # both kinds in the sweep
     fallback = [
         str(w) == "fallback: solved one by one by the general solver, not the batched kernel "
         "(its solution touches the seabed)"
-        for w in ds["warning"].values
+        for w in ds["warning"].values.ravel()
     ]
     assert fallback == touches.tolist()
+    # the case-by-case path names an example's case; the array path does not
+    assert ("e.g.:\n           distance=40, drag_normal=1.2: fallback: " in printed) == bool(extra)
     assert re.search(rf"\n +{touches.sum()} x fallback, e\.g\.:\n", printed), printed
 
 
