@@ -272,7 +272,8 @@ class GridSummary:
     """What the chunk files of a grid study hold, read one file at a time: the output
     variables and their extra-dimension shapes, the arc lengths every successful case
     shares (None if they differ), the failure messages and the warnings with their
-    counts, and the number of cases with a warning."""
+    counts, the number of cases with a warning, and per warning text the first case
+    that has it (its flat index in C order)."""
 
     names: list[str]
     tails: dict[str, tuple[int, ...]]
@@ -280,6 +281,7 @@ class GridSummary:
     failures: Counter[str]
     warnings: Counter[str] = field(default_factory=Counter)
     n_warned: int = 0
+    warned_at: dict[str, int] = field(default_factory=dict)
 
 
 def summarise(
@@ -294,13 +296,20 @@ def summarise(
     failures: Counter[str] = Counter()
     warnings: Counter[str] = Counter()
     n_warned = 0
+    warned_at: dict[str, int] = {}
+    offset = 0
     for status, message, warning, data in chunks:
         bad = status != 0
         if bad.any():
             failures.update(str(m) for m in message[bad])
-        warned = warning != ""
-        n_warned += int(np.count_nonzero(warned))
-        warnings.update(str(w) for w in warning[warned])
+        warned = np.flatnonzero(warning != "")
+        n_warned += len(warned)
+        if len(warned):
+            texts, first, counts = np.unique(warning[warned], return_index=True, return_counts=True)
+            for text, i, count in zip(texts.tolist(), first, counts, strict=True):
+                warnings[text] += int(count)
+                warned_at.setdefault(text, offset + int(warned[i]))
+        offset += len(status)
         for k, v in data.items():
             names.add(k)
             tails[k] = tuple(v.shape[1:])
@@ -313,7 +322,7 @@ def summarise(
                 else:
                     same_arc = False
     return GridSummary(
-        sorted(names), tails, arc if same_arc else None, failures, warnings, n_warned
+        sorted(names), tails, arc if same_arc else None, failures, warnings, n_warned, warned_at
     )
 
 

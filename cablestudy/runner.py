@@ -837,6 +837,10 @@ def run_grid_study(
         timings=timings,
         n_warned=summary.n_warned,
         warnings=dict(summary.warnings),
+        warned_cases={
+            text: case_label(grid.axes, np.unravel_index(i, grid.shape))
+            for text, i in summary.warned_at.items()
+        },
     )
 
 
