@@ -434,9 +434,9 @@ def test_temporary_files_of_killed_runs_are_removed_and_live_ones_kept(
     (scratch / "grid-part.npz").write_bytes(b"partial")
     code, out, err = _run(capsys, cfg, "--out", str(tmp_path))
     assert code == 0 and "wrote" in out
-    removed = sorted(str(p) for p in [*stale, scratch])
-    assert sorted(re.findall(r"warning: removed (\S+), left by a run that was stopped", err)) == (
-        removed
+    assert sorted(err.splitlines()) == sorted(
+        f"warning: removed {p}, left by a run that was stopped while writing it"
+        for p in [*stale, scratch]
     )
     assert not any(p.exists() for p in [*stale, scratch])
     assert all(p.exists() for p in live)
@@ -469,3 +469,32 @@ def test_a_run_never_removes_cache_files_while_another_run_holds_the_cache(
     assert pruned and not (pruned & before)  # alone: the first version's files pruned
     ds = xr.load_dataset(out / "wire.nc")
     assert ds["distance"].values.tolist() == [540.0, 560.0]
+
+
+def test_the_temporary_file_of_a_writer_killed_mid_write_is_removed(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """A process writing wire.nc the way a run does is killed (SIGKILL) in the middle:
+    its temporary file stays behind, and the next run removes it."""
+    import sys
+
+    root = Path(__file__).resolve().parents[2]
+    code = (
+        "import sys, time; from cablestudy.results import _atomically; "
+        "_atomically(sys.argv[1], lambda tmp: time.sleep(60))"
+    )
+    env = {**os.environ, "PYTHONPATH": str(root)}
+    proc = subprocess.Popen([sys.executable, "-c", code, str(tmp_path / "wire.nc")], env=env)
+    try:
+        deadline = time.monotonic() + 20.0
+        while not list(tmp_path.glob(".wire.nc.*.tmp")) and time.monotonic() < deadline:
+            time.sleep(0.05)
+        (left,) = tmp_path.glob(".wire.nc.*.tmp")
+    finally:
+        proc.kill()
+        proc.wait()
+    assert left.exists()
+    code, out, err = _run(capsys, str(_study(tmp_path)), "--out", str(tmp_path))
+    assert code == 0 and "wrote" in out
+    assert err == f"warning: removed {left}, left by a run that was stopped while writing it\n"
+    assert not left.exists() and (tmp_path / "wire.nc").is_file()
