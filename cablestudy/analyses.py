@@ -26,6 +26,13 @@ from .config.ends import ForceEnd, MooringEnd
 from .config.loader import StudyError, StudySource
 from .counters import COUNTERS, trim_lru
 from .physics.profile import profile_quantities
+from .plausibility import (
+    dynamic_warnings,
+    fallback_warning,
+    joined,
+    largest_strain,
+    strain_warning,
+)
 from .problem import line_model, medium, static_limits, static_problem
 from .results import OUTPUTS, CaseRecord
 from .statics import (
@@ -1059,7 +1066,9 @@ def evaluate_case(
     which does not use the modes. The case's ``status`` is that of the first failed
     analysis (:data:`STATUS_TIME_LIMIT` if any hit the time limit, so that the runner
     does not cache it); its ``message`` is the static solver's message, or names each
-    failed analysis ("modal analysis: ...; dynamic analysis: ...")."""
+    failed analysis ("modal analysis: ...; dynamic analysis: ...").
+
+    Results kept but implausible or risky get a ``warning`` (:func:`case_warnings`)."""
     t0 = time.perf_counter()
     deadline = time.monotonic() + case.study.analysis.time_limit
     data: dict[str, Any] = {}
@@ -1143,6 +1152,11 @@ def evaluate_case(
                 )
                 for name, st, msg in failed
             )
+    ok = {name for name, (st, _) in outcome.items() if st == STATUS_OK}
+    try:
+        warning = case_warnings(case, static[0] if "static" in ok else None, data, ok)
+    except Exception as exc:  # noqa: BLE001 - the results stand; say they went unchecked
+        warning = f"unchecked: the plausibility checks failed ({_exception_message(exc)})"
     wall = time.perf_counter() - t0
     if not math.isfinite(wall):
         wall = 0.0
@@ -1153,7 +1167,50 @@ def evaluate_case(
         message=message,
         wall_time=wall,
         data=data,
+        warning=warning,
     )
+
+
+def largest_static_strain(study: Any, res: StaticResult) -> float:
+    """The largest strain [-] of a static solution: per point the axial law's strain
+    (T / EA where linear) of its segment; kind spring: the extension over the
+    unstretched length (the stretched length is the path through the points)."""
+    line = study.line
+    if line.is_spring:
+        stretched = float(np.linalg.norm(np.diff(res.position, axis=0), axis=1).sum())
+        return (stretched - line.total_length) / line.total_length
+    segs = line.segments
+    ends = np.cumsum([seg.length for seg in segs])
+    k = np.minimum(np.searchsorted(ends, res.s, side="right"), len(segs) - 1)
+    ea = np.array([segs[i].elastic_stiffness for i in k])
+    return float(largest_strain(res.tension, ea, _strain_along(segs, k, res.tension)))
+
+
+def case_warnings(
+    case: Case,
+    static: StaticResult | None,
+    data: dict[str, Any],
+    ok: set[str],
+) -> str:
+    """The case's ``warning`` text (:mod:`cablestudy.plausibility`): strain above
+    ``analysis.static.strain_warning`` and a batched-kernel fallback
+    (:attr:`StaticResult.fallback`) of the statics, when they succeeded (``static``);
+    slack and an unsettled time-domain run, when the dynamic analysis succeeded (named
+    in ``ok``)."""
+    found: list[str] = []
+    if static is not None:
+        limit = case.study.analysis.static.strain_warning
+        found.append(strain_warning(largest_static_strain(case.study, static), limit))
+        if static.fallback:
+            found.append(fallback_warning(static.fallback))
+    dyn = case.study.analysis.dynamic
+    if "dynamic" in ok and dyn is not None:
+        found.extend(
+            dynamic_warnings(
+                data, max_periods=dyn.max_periods, fixed_duration=dyn.duration is not None
+            )
+        )
+    return joined(found)
 
 
 def presolve_statics(cases: list[Case]) -> tuple[dict[str, StaticResult], dict[str, float]]:

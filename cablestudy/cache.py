@@ -22,11 +22,12 @@ import sys
 import tempfile
 from collections import Counter
 from collections.abc import Callable, Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
+from .outputs import read_regular, regular_file, temporary_prefix, written
 from .results import CaseRecord
 
 #: messages of records that must not be cached (transient: a rerun may succeed)
@@ -78,6 +79,7 @@ def encode_records(records: list[CaseRecord]) -> bytes:
         "index": np.array([r.index for r in records], dtype=np.int64).reshape(n, ndim),
         "status": np.array([r.status for r in records], dtype=np.int64),
         "message": np.array([r.message for r in records], dtype=str).reshape(n),
+        "warning": np.array([r.warning for r in records], dtype=str).reshape(n),
         "wall_time": np.array([r.wall_time for r in records], dtype=np.float64),
     }
     groups: dict[tuple[str, str, int], list[tuple[int, np.ndarray]]] = {}
@@ -108,6 +110,7 @@ def decode_records(payload: bytes) -> list[CaseRecord]:
         raise CacheFormatError("not a cablestudy case-cache archive")
     hashes, index = files["hash"], files["index"]
     status, message, wall = files["status"], files["message"], files["wall_time"]
+    warning = files.get("warning", np.full(len(hashes), ""))
     records = [
         CaseRecord(
             hash=str(hashes[i]),
@@ -115,6 +118,7 @@ def decode_records(payload: bytes) -> list[CaseRecord]:
             status=int(status[i]),
             message=str(message[i]),
             wall_time=float(wall[i]),
+            warning=str(warning[i]),
         )
         for i in range(len(hashes))
     ]
@@ -133,6 +137,40 @@ def decode_records(payload: bytes) -> list[CaseRecord]:
     return records
 
 
+def _write_atomic(path: Path, payload: bytes, stem: str) -> None:
+    """``payload`` to ``path`` through a temporary file named after this process
+    (:func:`cablestudy.outputs.temporary_prefix`), fsync and rename; a full disk raises
+    :class:`cablestudy.outputs.OutputWriteError`."""
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=temporary_prefix(stem), suffix=".tmp")
+
+    def complete() -> None:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(payload)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.replace(tmp, path)
+
+    try:
+        written(path, complete)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+
+
+#: temporary files of cache writes (removed by a later run once their writer is gone)
+TEMPORARY_PATTERNS = (".chunk-*.tmp", ".grid-*.tmp")
+
+
+def _odd_entry(path: Path) -> str:
+    """Why the cache entry ``path`` is left alone ('' for a regular file)."""
+    if regular_file(path):
+        return ""
+    return (
+        f"cache entry {path} is not a regular file (a folder, link, FIFO or device); "
+        "skipped and left in place"
+    )
+
+
 class CaseCache:
     """Finished case records of one study, in memory and (with a ``directory``) on disk
     as ``chunk-<sha256>.npz`` data files; see the module docstring."""
@@ -143,13 +181,21 @@ class CaseCache:
         self.directory = directory
         self.records: dict[str, CaseRecord] = {}
         self.rejected: list[Path] = []
+        #: the chunk files read or written by this run: the only ones compact removes
+        self.files: set[Path] = set()
         if directory is not None and directory.is_dir():
             for path in sorted(directory.glob("chunk-*.npz")):
+                odd = _odd_entry(path)
+                if odd:
+                    warn(odd)
+                    continue
                 reason = self._load(path)
                 if reason:
                     warn(f"cache file {path} {reason}; its cases will be recomputed")
                     self.rejected.append(path)
                     path.unlink(missing_ok=True)
+                else:
+                    self.files.add(path)
 
     def _load(self, path: Path) -> str:
         """Read one chunk file into :attr:`records`; '' if fine, else why not."""
@@ -157,7 +203,7 @@ class CaseCache:
         if not match:
             return "is not named chunk-<sha256>.npz"
         try:
-            payload = path.read_bytes()
+            payload = read_regular(path)
         except OSError as exc:
             return f"cannot be read ({exc})"
         digest = hashlib.sha256(payload).hexdigest()
@@ -186,25 +232,19 @@ class CaseCache:
         payload = encode_records(records)
         path = self.directory / f"chunk-{hashlib.sha256(payload).hexdigest()}.npz"
         path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".chunk-", suffix=".tmp")
-        try:
-            with os.fdopen(fd, "wb") as fh:
-                fh.write(payload)
-                fh.flush()
-                os.fsync(fh.fileno())
-            os.replace(tmp, path)
-        finally:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
+        _write_atomic(path, payload, ".chunk-")
+        self.files.add(path)
         return path
 
     def compact(self, keep: Iterable[str]) -> None:
         """Rewrite the cache as one file holding the records in ``keep`` (the cases of the
         study as it now stands), dropping records of edited-away cases. The new file is
-        in place before the old ones are removed, so a crash loses nothing."""
+        in place before the old ones are removed, so a crash loses nothing. Only files
+        this run read or wrote are removed (call it only when no other run of the study
+        is writing here: :class:`cablestudy.outputs.CacheLock`)."""
         if self.directory is None or not self.directory.is_dir():
             return
-        old = sorted(self.directory.glob("chunk-*.npz"))
+        old = sorted(p for p in self.files if regular_file(p))
         keep = set(keep)
         records = [
             self.records[h]
@@ -222,6 +262,8 @@ class CaseCache:
 
 
 GRID_FORMAT = "cablestudy-grid-chunk-1"
+#: the per-case columns of a grid chunk file (not output variables)
+_CASE_COLUMNS = ("status", "message", "warning", "wall_time")
 _GRID_NAME = re.compile(r"^grid-([0-9a-f]{32})-([0-9a-f]{64})\.npz$")
 
 
@@ -229,28 +271,45 @@ _GRID_NAME = re.compile(r"^grid-([0-9a-f]{32})-([0-9a-f]{64})\.npz$")
 class GridSummary:
     """What the chunk files of a grid study hold, read one file at a time: the output
     variables and their extra-dimension shapes, the arc lengths every successful case
-    shares (None if they differ), and the failure messages with their counts."""
+    shares (None if they differ), the failure messages and the warnings with their
+    counts, the number of cases with a warning, and per warning text the first case
+    that has it (its flat index in C order)."""
 
     names: list[str]
     tails: dict[str, tuple[int, ...]]
     arc: np.ndarray | None
     failures: Counter[str]
+    warnings: Counter[str] = field(default_factory=Counter)
+    n_warned: int = 0
+    warned_at: dict[str, int] = field(default_factory=dict)
 
 
 def summarise(
-    chunks: Iterable[tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]],
+    chunks: Iterable[tuple[np.ndarray, np.ndarray, np.ndarray, dict[str, np.ndarray]]],
 ) -> GridSummary:
-    """The :class:`GridSummary` of chunks given as (status, message, outputs by name), in
-    the order of the grid's rows."""
+    """The :class:`GridSummary` of chunks given as (status, message, warning, outputs by
+    name), in the order of the grid's rows."""
     names: set[str] = set()
     tails: dict[str, tuple[int, ...]] = {}
     arc: np.ndarray | None = None
     same_arc = True
     failures: Counter[str] = Counter()
-    for status, message, data in chunks:
+    warnings: Counter[str] = Counter()
+    n_warned = 0
+    warned_at: dict[str, int] = {}
+    offset = 0
+    for status, message, warning, data in chunks:
         bad = status != 0
         if bad.any():
             failures.update(str(m) for m in message[bad])
+        warned = np.flatnonzero(warning != "")
+        n_warned += len(warned)
+        if len(warned):
+            texts, first, counts = np.unique(warning[warned], return_index=True, return_counts=True)
+            for text, i, count in zip(texts.tolist(), first, counts, strict=True):
+                warnings[text] += int(count)
+                warned_at.setdefault(text, offset + int(warned[i]))
+        offset += len(status)
         for k, v in data.items():
             names.add(k)
             tails[k] = tuple(v.shape[1:])
@@ -262,7 +321,9 @@ def summarise(
                     arc = ref
                 else:
                     same_arc = False
-    return GridSummary(sorted(names), tails, arc if same_arc else None, failures)
+    return GridSummary(
+        sorted(names), tails, arc if same_arc else None, failures, warnings, n_warned, warned_at
+    )
 
 
 class GridChunkStore:
@@ -280,6 +341,10 @@ class GridChunkStore:
         if not self.directory.is_dir():
             return None
         for path in sorted(self.directory.glob(f"grid-{key[:32]}-*.npz")):
+            odd = _odd_entry(path)
+            if odd:
+                self.warn(odd)
+                continue
             reason = self._check(path)
             if not reason:
                 return path
@@ -293,7 +358,7 @@ class GridChunkStore:
         if not match:
             return "is not named grid-<key>-<sha256>.npz"
         try:
-            payload = path.read_bytes()
+            payload = read_regular(path)
         except OSError as exc:
             return f"cannot be read ({exc})"
         digest = hashlib.sha256(payload).hexdigest()
@@ -317,6 +382,7 @@ class GridChunkStore:
             "rows": np.array([chunk.lo, chunk.hi], dtype=np.int64),  # type: ignore[attr-defined]
             "v_status": np.asarray(chunk.status, dtype=np.int64),  # type: ignore[attr-defined]
             "v_message": np.asarray(chunk.message, dtype=str),  # type: ignore[attr-defined]
+            "v_warning": np.asarray(chunk.warning, dtype=str),  # type: ignore[attr-defined]
             "v_wall_time": np.asarray(chunk.wall_time, dtype=np.float64),  # type: ignore[attr-defined]
         }
         for name, arr in chunk.data.items():  # type: ignore[attr-defined]
@@ -327,28 +393,23 @@ class GridChunkStore:
         digest = hashlib.sha256(payload).hexdigest()
         path = self.directory / f"grid-{chunk.key[:32]}-{digest}.npz"  # type: ignore[attr-defined]
         self.directory.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=self.directory, prefix=".grid-", suffix=".tmp")
-        try:
-            with os.fdopen(fd, "wb") as fh:
-                fh.write(payload)
-                fh.flush()
-                os.fsync(fh.fileno())
-            os.replace(tmp, path)
-        finally:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
+        _write_atomic(path, payload, ".grid-")
         return path
 
     @staticmethod
     def summary(paths: list[Path]) -> GridSummary:
-        def columns(path: Path) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
+        def columns(
+            path: Path,
+        ) -> tuple[np.ndarray, np.ndarray, np.ndarray, dict[str, np.ndarray]]:
             with np.load(path, allow_pickle=False) as z:
                 data = {
                     k[2:]: z[k]
                     for k in z.files
-                    if k.startswith("v_") and k not in ("v_status", "v_message", "v_wall_time")
+                    if k.startswith("v_") and k[2:] not in _CASE_COLUMNS
                 }
-                return z["v_status"], z["v_message"], data
+                status = z["v_status"]
+                warning = z["v_warning"] if "v_warning" in z.files else np.full(len(status), "")
+                return status, z["v_message"], warning, data
 
         return summarise(columns(path) for path in paths)
 
@@ -363,7 +424,10 @@ class GridChunkStore:
             return out
 
     def keep(self, paths: set[Path]) -> None:
-        """Remove the grid chunk files not in ``paths`` (cases edited away)."""
+        """Remove the grid chunk files not in ``paths`` (cases edited away); call it only
+        when no other run of the study is writing here
+        (:class:`cablestudy.outputs.CacheLock`). Entries that are not regular files are
+        left alone."""
         for path in self.directory.glob("grid-*.npz"):
-            if path not in paths:
+            if path not in paths and regular_file(path):
                 path.unlink(missing_ok=True)

@@ -471,7 +471,10 @@ def case_hashes(study: Study) -> tuple[str, str]:
     of what affects its static solution only."""
     body = study.model_dump(mode="json", exclude={"name", "description", "sweep"})
     static_body = {k: v for k, v in body.items() if k != "analysis"}
-    static_body["static"] = body["analysis"]["static"]
+    # the strain warning's limit judges the static solution, it does not change it
+    static_body["static"] = {
+        k: v for k, v in body["analysis"]["static"].items() if k != "strain_warning"
+    }
     code = code_fingerprint()
     return _hash([code, body]), _hash([code, static_body])
 

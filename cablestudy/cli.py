@@ -61,7 +61,15 @@ def cmd_validate(args: argparse.Namespace) -> int:
 
 
 def cmd_run(args: argparse.Namespace) -> int:
-    from .runner import AUTO, SCHEDULERS, SchedulerUnreachable, run_study
+    from .outputs import OutputPathError, OutputWriteError, check_output_paths
+    from .remote import (
+        SchedulerAddressError,
+        SchedulerUnreachable,
+        connect,
+        connect_timeout,
+        parse_address,
+    )
+    from .runner import AUTO, SCHEDULERS, run_study
 
     scheduler = args.scheduler or AUTO
     if scheduler not in SCHEDULERS and "://" not in scheduler:
@@ -71,7 +79,26 @@ def cmd_run(args: argparse.Namespace) -> int:
             file=sys.stderr,
         )
         return 2
+    try:
+        timeout = connect_timeout(args.connect_timeout)
+        if "://" in scheduler:
+            parse_address(scheduler)
+    except SchedulerAddressError as exc:
+        print(exc, file=sys.stderr)
+        return 2
     src, axes, cases = _load(args.config, args.max_study_size)
+    # before any work: the output folder can take the result, the scheduler answers
+    try:
+        check_output_paths(Path(args.out), str(src.data["name"]))
+    except OutputPathError as exc:
+        print(exc, file=sys.stderr)
+        return 2
+    if "://" in scheduler:
+        try:
+            connect(scheduler, timeout).close()
+        except SchedulerUnreachable as exc:
+            print(exc, file=sys.stderr)
+            return 1
     from .kernels import ensure_compiled, kinds_of
 
     studies = [cases.template] if not isinstance(cases, list) else [c.study for c in cases]
@@ -88,6 +115,7 @@ def cmd_run(args: argparse.Namespace) -> int:
                 workers=args.workers,
                 use_cache=not args.no_cache,
                 progress=args.progress,
+                timeout=timeout,
             )
         else:
             from .analyses import warm_up
@@ -102,6 +130,7 @@ def cmd_run(args: argparse.Namespace) -> int:
                 workers=args.workers,
                 use_cache=not args.no_cache,
                 progress=args.progress,
+                timeout=timeout,
             )
     except KeyboardInterrupt:
         print(
@@ -109,11 +138,15 @@ def cmd_run(args: argparse.Namespace) -> int:
             file=sys.stderr,
         )
         return 130
-    except PermissionError as exc:
-        print(f"cannot write the results: {exc}", file=sys.stderr)
-        return 1
     except SchedulerUnreachable as exc:
         print(f"{exc}; finished cases are cached", file=sys.stderr)
+        return 1
+    except OutputWriteError as exc:
+        print(f"cannot write the results: {exc.strerror}", file=sys.stderr)
+        return 1
+    except OSError as exc:  # the machine's state (permissions, I/O): one line, no traceback
+        where = f" at {exc.filename}" if exc.filename else ""
+        print(f"cannot write the results: {exc.strerror or exc}{where}", file=sys.stderr)
         return 1
     print(summary.report())
     return 0
@@ -296,6 +329,15 @@ def build_parser() -> argparse.ArgumentParser:
         "running dask.distributed scheduler (default: auto: run here, and "
         "start --workers processes when the study would take more than a "
         "few seconds)",
+    )
+    p.add_argument(
+        "--connect-timeout",
+        type=float,
+        default=None,
+        metavar="SECONDS",
+        help="with --scheduler tcp://host:port: seconds allowed for the scheduler's "
+        "handshake, and again for a worker to be there (default: "
+        "$CABLESTUDY_CONNECT_TIMEOUT, else 10)",
     )
     p.add_argument("--no-cache", action="store_true", help="recompute every case")
     p.add_argument(

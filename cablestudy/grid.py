@@ -30,6 +30,7 @@ import numpy as np
 from .cases import SweepAxis, _copy_tree, _hash, _set_path, code_fingerprint, parse_sweep
 from .config.loader import StudyError, StudySource, validate_data
 from .config.study import Study
+from .plausibility import fallback_warning, joined, largest_strain, strain_warning
 
 #: status of a case whose solver raised inside an array chunk or gave non-finite values:
 #: cablestudy.statics.base.STATUS_NUMERICAL, as evaluate_case gives it (not imported
@@ -213,6 +214,12 @@ class GridChunk:
     data: dict[str, np.ndarray]
     #: cases no array kernel settled, solved one by one by the general solver
     fallback: int = 0
+    #: per case, why its kept results are implausible or risky (unicode, '' if not)
+    warning: np.ndarray | None = None
+
+    def __post_init__(self) -> None:
+        if self.warning is None:
+            self.warning = np.full(len(self.status), "")
 
     @property
     def n(self) -> int:
@@ -340,21 +347,23 @@ class StaticArrays:
 
 def _compiled_solve(
     base: Any, pos: dict[str, Any], ea: np.ndarray
-) -> tuple[StaticArrays, np.ndarray] | None:
+) -> tuple[StaticArrays, np.ndarray, list[str]] | None:
     """The cases of a chunk (the template's static problem ``base`` with end positions
     ``pos`` and segment stiffnesses ``ea`` per case) through the compiled batch kernel
     straight from arrays: the inputs :func:`cablestudy.statics.batch._solve_group` (lines
     hanging free) and :func:`cablestudy.statics.batch._contact_one` (end A anchored on
     the seabed, end B above it: :func:`cablestudy.statics.batch.solve_contact_arrays`)
     build from one problem object per case, built here for all cases at once (so the
-    same numbers, bit for bit, without a per-case object). Returns the stacked results
-    and the cases the kernels leave to the one-by-one solver (not converged, not finite,
+    same numbers, bit for bit, without a per-case object). Returns the stacked results,
+    the cases the kernels leave to the one-by-one solver (not converged, not finite,
     touching the seabed between the ends, end B on it, slack on it: exactly the cases
-    :func:`solve_batch` would hand on), or None when the template does not take this
-    path (then :func:`solve_batch` runs as before).
+    :func:`solve_batch` would hand on) and why (per such case:
+    :data:`~cablestudy.statics.batch.NOT_SETTLED`, ``ON_SEABED``, or '' for a case no
+    kernel takes), or None when the template does not take this path (then
+    :func:`solve_batch` runs as before).
     """
     from .statics import _fast
-    from .statics.batch import _guess
+    from .statics.batch import NOT_SETTLED, ON_SEABED, _guess
 
     line, med = base.line, base.medium
     if (
@@ -422,6 +431,9 @@ def _compiled_solve(
     laid = np.zeros(N)
     iters = np.zeros(N, dtype=np.int64)
     resid = np.zeros(N)
+    # why the kernels hand a case to the general solver ('' for a case they never take:
+    # both ends on the seabed, an end below it)
+    why = [""] * N
     free = np.flatnonzero(~rest & ~contact & ~contact_b)
     if free.size:
         f = free
@@ -465,8 +477,13 @@ def _compiled_solve(
             & np.all(np.isfinite(TA_f), axis=1)
             & np.all(np.isfinite(TL_f), axis=1)
         )
+        for j in np.flatnonzero(~good):
+            why[f[j]] = NOT_SETTLED
         if plane is not None:
-            good &= ~_height_below(plane, pos_f, -1e-6 * Ltot[f], strict=True)
+            on_seabed = good & _height_below(plane, pos_f, -1e-6 * Ltot[f], strict=True)
+            for j in np.flatnonzero(on_seabed):
+                why[f[j]] = ON_SEABED
+            good &= ~on_seabed
         position[f], tension[f], TA[f], TL[f] = pos_f, ten_f, TA_f, TL_f
         iters[f], resid[f] = it_f, res_f
         rest[f[~good]] = True
@@ -481,7 +498,8 @@ def _compiled_solve(
         position[c], tension[c] = got["position"], got["tension"]
         TA[c], TL[c] = got["force_a"], -got["force_b"]
         laid[c], iters[c], resid[c] = got["laid_length"], got["iterations"], got["residual"]
-        rest[c[got["status"] != 0]] = True
+        for i in c[got["status"] != 0]:
+            rest[i], why[i] = True, NOT_SETTLED
     if contact_b.any():
         from .statics.batch import solve_contact_arrays
         from .statics.semi_analytic import make_layout, reversed_line
@@ -503,7 +521,8 @@ def _compiled_solve(
         position[c], tension[c] = got["position"], got["tension"]
         TA[c], TL[c] = got["force_b"], -got["force_a"]
         laid[c], iters[c], resid[c] = got["laid_length"], got["iterations"], got["residual"]
-        rest[c[got["status"] != 0]] = True
+        for i in c[got["status"] != 0]:
+            rest[i], why[i] = True, NOT_SETTLED
     out = StaticArrays(
         s=s,
         position=position,
@@ -517,7 +536,8 @@ def _compiled_solve(
         residual=resid,
         drag_iterations=np.zeros(N),
     )
-    return out, np.flatnonzero(rest)
+    left = np.flatnonzero(rest)
+    return out, left, [why[i] for i in left]
 
 
 def _height_below(plane: Any, r: np.ndarray, limit: Any, *, strict: bool) -> np.ndarray:
@@ -629,6 +649,12 @@ def array_outputs(
     return out, status, messages
 
 
+def _segment_of(template: Study, s: np.ndarray) -> np.ndarray:
+    """The segment of each arc length ``s`` [m] of the template's line."""
+    seg_end = np.cumsum([seg.length for seg in template.line.segments])
+    return np.minimum(np.searchsorted(seg_end, s, side="right"), len(seg_end) - 1)
+
+
 def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
     """Solve rows ``lo:hi`` of the grid as one batch and stack the outputs. Per case the
     same outputs, status and message as :func:`cablestudy.analyses.evaluate_case`; a
@@ -639,21 +665,22 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
     n = (hi - lo) * math.prod(grid.shape[1:])
     status = np.zeros(n, dtype=np.int64)
     messages = [""] * n
+    warnings: dict[int, list[str]] = {}  # only the cases that have some
     data: dict[str, np.ndarray] = {}
-    fallback = n
+    n_general = n
     try:
         base, pos, ea = _swept_inputs(grid, lo, hi)
         deadline = time.monotonic() + grid.template.analysis.time_limit * n
         compiled = _compiled_solve(base, pos, ea)
         if compiled is None:
             general: list[int] = []
-            st = StaticArrays.of(
-                solve_batch(_problems(base, pos, ea), deadline=deadline, general=general)
-            )
-            fallback = len(general)
+            results = solve_batch(_problems(base, pos, ea), deadline=deadline, general=general)
+            fallback = {i: r.fallback for i, r in enumerate(results) if r.fallback}
+            n_general = len(general)
+            st = StaticArrays.of(results)
         else:
-            st, rest = compiled
-            fallback = int(rest.size)
+            st, rest, why = compiled
+            n_general = int(rest.size)
             if rest.size:  # what no kernel settled: the general solver, one by one
                 sub = {k: (None if v is None else v[rest]) for k, v in pos.items()}
                 st.put(
@@ -664,10 +691,19 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
                         )
                     ),
                 )
+            fallback = {i: r for i, r in zip(rest.tolist(), why, strict=True) if r}
         data, status, messages = array_outputs(st, grid.template, ea)
+        max_strain = largest_strain(st.tension, ea[:, _segment_of(grid.template, st.s[0])])
+        limit = grid.template.analysis.static.strain_warning
+        for i in np.flatnonzero((status == 0) & (max_strain > limit)):
+            warnings.setdefault(int(i), []).append(strain_warning(float(max_strain[i]), limit))
+        for i, reason in fallback.items():
+            if status[i] == 0:
+                warnings.setdefault(i, []).append(fallback_warning(reason))
     except Exception as exc:  # noqa: BLE001 - a fault in a chunk fails its cases, as data
         status[:] = STATUS_NUMERICAL
         messages = [f"{type(exc).__name__}: {exc}"] * n
+        warnings = {}
         data = {}
     wall = (time.perf_counter() - t0) / max(n, 1)
     return GridChunk(
@@ -678,8 +714,19 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
         message=np.array(messages, dtype=str).reshape(n),
         wall_time=np.full(n, wall),
         data=data,
-        fallback=fallback,
+        fallback=n_general,
+        warning=_warning_column(n, warnings),
     )
+
+
+def _warning_column(n: int, warnings: dict[int, list[str]]) -> np.ndarray:
+    """The ``warning`` text of ``n`` cases, from the warnings of those that have some."""
+    texts = {i: joined(w) for i, w in warnings.items()}
+    width = max((len(t) for t in texts.values()), default=0)
+    column = np.full(n, "", dtype=f"<U{max(width, 1)}")
+    for i, text in texts.items():
+        column[i] = text
+    return column
 
 
 def failed_grid_chunk(grid: CaseGrid, lo: int, hi: int, message: str) -> GridChunk:

@@ -21,6 +21,7 @@ from .cases import Case, SweepAxis
 from .config.loader import StudySource
 from .conventions import command_line, is_status_variable, status_flag_attrs
 from .line_types import line_type_attrs
+from .outputs import temporary_prefix, written
 
 if TYPE_CHECKING:  # imported where used: a sweep run as arrays writes without xarray
     import xarray as xr
@@ -345,6 +346,13 @@ CASE_VARIABLES: dict[str, OutputVariable] = {
         (), "1", "case status: 0 ok, 10 line broken (data kept), other nonzero failed", "int64"
     ),
     "message": OutputVariable((), "1", "why the case failed (empty when ok)", "str"),
+    "warning": OutputVariable(
+        (),
+        "1",
+        "why the case's results, though kept, are implausible or risky (strain, slack, "
+        "unsettled, fallback; empty when none)",
+        "str",
+    ),
     "wall_time": OutputVariable(
         (), "s", "wall time of the case (cases solved together as arrays share their time equally)"
     ),
@@ -368,6 +376,8 @@ class CaseRecord:
     wall_time: float
     data: dict[str, np.ndarray] = field(default_factory=dict)
     settings: dict[str, Any] = field(default_factory=dict)
+    #: why the kept results are implausible or risky (cablestudy.plausibility; '' if not)
+    warning: str = ""
 
 
 def analysis_ok(record: CaseRecord, analysis: str | None) -> bool:
@@ -586,6 +596,7 @@ def assembled_variables(
     n_failed = int(np.count_nonzero((status != 0) & (status != STATUS_BROKEN)))
     attrs["cases"] = int(np.prod(shape)) if shape else 1
     attrs["cases_failed"] = n_failed
+    attrs["cases_warned"] = int(np.count_nonzero(data_vars["warning"][1] != ""))
     if np.any(status == STATUS_BROKEN):
         attrs["cases_broken"] = int(np.count_nonzero(status == STATUS_BROKEN))
     return data_vars, coords, attrs
@@ -649,17 +660,26 @@ def _umask() -> int:
 def _atomically(path: str | Path, write: Any) -> Path:
     """Call ``write(tmp)`` on a temporary file in ``path``'s folder, then fsync it, give it
     the permissions of a new file and rename it to ``path`` (atomic): a crash never
-    leaves a half-written or corrupted result."""
+    leaves a half-written or corrupted result. The temporary file's name holds this
+    process's id (:func:`cablestudy.outputs.temporary_prefix`): a later run removes it
+    if this one is killed while writing. A full disk raises
+    :class:`cablestudy.outputs.OutputWriteError`."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    fd, tmp = tempfile.mkstemp(
+        prefix=temporary_prefix(f".{path.name}."), suffix=".tmp", dir=path.parent
+    )
     os.close(fd)
-    try:
+
+    def complete() -> None:
         write(tmp)
         with open(tmp, "rb+") as fh:  # on disk before the rename makes it visible
             os.fsync(fh.fileno())
         os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes it private (0600)
         os.replace(tmp, path)
+
+    try:
+        written(path, complete)  # a full disk named as such, whoever reports it
     finally:
         if os.path.exists(tmp):
             os.unlink(tmp)
@@ -825,8 +845,10 @@ def grid_dataset(
             key = f"v_{name}"
             if key in z.files:
                 return z[key]
-            # a chunk that failed as a whole holds no data: NaN, as a failed case
             n = len(z["v_status"])
+            if name == "warning":  # a chunk with no warnings may not store the column
+                return np.full(n, "")
+            # a chunk that failed as a whole holds no data: NaN, as a failed case
             return np.full((n, *tails[name]), np.nan)
 
     def column(name: str) -> np.ndarray:
@@ -861,6 +883,7 @@ def grid_dataset(
         src,
         status=column("status"),
         message=column("message"),
+        warning=column("warning"),
         wall_time=column("wall_time"),
         values=values,
         tails=tails,
@@ -878,6 +901,7 @@ def grid_variables(
     message: np.ndarray,
     wall_time: np.ndarray,
     values: dict[str, Any],
+    warning: np.ndarray | None = None,
     tails: dict[str, tuple[int, ...]],
     arc: np.ndarray | None,
     solver_settings: dict[str, Any],
@@ -894,9 +918,15 @@ def grid_variables(
     dims = tuple(a.name for a in axes)
     data_vars: dict[str, VariableSpec] = {}
     status = status.reshape(shape)
+    warnings = (
+        np.full(shape, "", dtype=object)
+        if warning is None
+        else warning.astype(object).reshape(shape)
+    )
     case = (
         ("status", status),
         ("message", message.astype(object).reshape(shape)),
+        ("warning", warnings),
         ("wall_time", wall_time.reshape(shape)),
     )
     for name, arr in case:
@@ -932,4 +962,5 @@ def grid_variables(
     attrs = provenance(src, solver_settings)
     attrs["cases"] = int(np.prod(shape))
     attrs["cases_failed"] = int(np.count_nonzero(status != 0))
+    attrs["cases_warned"] = int(np.count_nonzero(warnings != ""))
     return data_vars, coords, attrs

@@ -8,6 +8,7 @@ The runner moves cases and records; it knows nothing of physics (it calls
 from __future__ import annotations
 
 import contextlib
+import glob
 import json
 import math
 import os
@@ -23,9 +24,12 @@ from typing import Any
 
 import numpy as np
 
-from .cache import LOST_PREFIX, TRANSIENT_PREFIXES, CaseCache
+from .cache import LOST_PREFIX, TEMPORARY_PATTERNS, TRANSIENT_PREFIXES, CaseCache
 from .cases import Case, SweepAxis
 from .config.loader import StudySource
+from .outputs import CacheLock, remove_stale_temporaries, temporary_prefix
+from .outputs import now as run_started
+from .remote import DEFAULT_TIMEOUT, connect
 from .results import CaseRecord, assembled_variables, write_atomic, write_variables_atomic
 
 #: status of a case whose task failed outside the solvers (worker lost)
@@ -56,12 +60,6 @@ DEFAULT_CHUNK_CASES = 200
 MAX_CHUNK_CASES = 20_000
 #: runs of adjacent cases per chunk, from evenly spaced parts of the sweep (make_chunks)
 STRIPES = 4
-#: seconds to wait for a dask.distributed scheduler given by its address
-CONNECT_TIMEOUT = 3.0
-
-
-class SchedulerUnreachable(RuntimeError):
-    """The dask.distributed scheduler named by ``--scheduler ADDRESS`` did not answer."""
 
 
 def default_workers() -> int:
@@ -165,6 +163,11 @@ class RunSummary:
     timings: dict[str, float] = field(default_factory=dict)
     #: the quasi-static database's own file, where the study has one
     database_path: Path | None = None
+    #: cases whose kept results carry a warning, and each warning with its count
+    n_warned: int = 0
+    warnings: dict[str, int] = field(default_factory=dict)
+    #: per warning text, the first case that has it (sweep coordinates), where known
+    warned_cases: dict[str, str] = field(default_factory=dict)
 
     def report(self) -> str:
         """Text summary; failures grouped by message (numbers in messages masked so that
@@ -172,7 +175,9 @@ class RunSummary:
         lines = [
             f"wrote {self.path}: {self.n_cases} cases ({self.n_computed} computed, "
             f"{self.n_reused} reused from cache), {self.n_failed} failed, "
-            f"{self.wall_time:.2f} s" + (f" ({self.scheduler})" if self.scheduler else "")
+            + (f"{self.n_warned} with warnings, " if self.n_warned else "")
+            + f"{self.wall_time:.2f} s"
+            + (f" ({self.scheduler})" if self.scheduler else "")
         ]
         if self.database_path is not None:
             lines.append(f"wrote {self.database_path}: the quasi-static database")
@@ -182,6 +187,12 @@ class RunSummary:
             single = count == self.failures.get(example)
             shown = example if single else f"{pattern}  (e.g. {example})"
             lines.append(f"  {count:6d} x {shown}")
+        kinds = group_warnings(self.warnings, self.warned_cases)
+        if kinds:
+            lines.append("warnings by kind (the cases keep status 0):")
+        for kind, (count, examples) in kinds.items():
+            lines.append(f"  {count:6d} x {kind}, e.g.:")
+            lines.extend(f"           {example}" for example in examples)
         return "\n".join(lines)
 
 
@@ -196,6 +207,32 @@ def group_failures(failures: dict[str, int]) -> dict[str, tuple[int, str]]:
         pattern = _NUMBER.sub("#", msg)
         n, example = groups.get(pattern, (0, msg))
         groups[pattern] = (n + count, example)
+    return dict(sorted(groups.items(), key=lambda kv: -kv[1][0]))
+
+
+#: example warnings shown per kind at the end of a run
+WARNING_EXAMPLES = 3
+
+
+def group_warnings(
+    warnings: dict[str, int], cases: dict[str, str] | None = None
+) -> dict[str, tuple[int, list[str]]]:
+    """Case warnings (each a case's ``warning`` text with its count) split into single
+    warnings and grouped by kind (the text before the first colon): kind -> (count, up to
+    :data:`WARNING_EXAMPLES` distinct examples, each after its case's coordinates where
+    ``cases`` gives them), most frequent first."""
+    from .plausibility import SEPARATOR
+
+    cases = cases or {}
+    groups: dict[str, tuple[int, list[str]]] = {}
+    for text, count in warnings.items():
+        for one in text.split(SEPARATOR):
+            kind = one.split(":", 1)[0]
+            n, examples = groups.get(kind, (0, []))
+            shown = f"{cases[text]}: {one}" if cases.get(text) else one
+            if len(examples) < WARNING_EXAMPLES and shown not in examples:
+                examples = [*examples, shown]
+            groups[kind] = (n + count, examples)
     return dict(sorted(groups.items(), key=lambda kv: -kv[1][0]))
 
 
@@ -362,6 +399,7 @@ def _run_dask(
     on_done: OnDone,
     *,
     per_case: float | None = None,
+    timeout: float = DEFAULT_TIMEOUT,
 ) -> None:
     if not cases:
         return
@@ -375,13 +413,7 @@ def _run_dask(
         cluster = _local_cluster(scheduler, workers)
         client = Client(cluster)
     else:
-        try:
-            client = Client(scheduler, timeout=CONNECT_TIMEOUT)
-        except (OSError, TimeoutError) as exc:
-            raise SchedulerUnreachable(
-                f"cannot reach the dask scheduler at {scheduler} within {CONNECT_TIMEOUT:g} s "
-                f"({type(exc).__name__}: {exc})"
-            ) from None
+        client = connect(scheduler, timeout)
         # chunk for the cluster as it is: one slot per worker thread
         info = client.scheduler_info()
         workers = max(1, sum(w.get("nthreads", 1) for w in info.get("workers", {}).values()))
@@ -454,7 +486,14 @@ def _run_threads(
         dask.threaded.get(graph, list(graph), num_workers=workers)
 
 
-def execute(cases: list[Case], scheduler: str, workers: int, on_done: OnDone) -> str:
+def execute(
+    cases: list[Case],
+    scheduler: str,
+    workers: int,
+    on_done: OnDone,
+    *,
+    timeout: float = DEFAULT_TIMEOUT,
+) -> str:
     """Evaluate ``cases`` in chunks on ``scheduler``, calling ``on_done`` with each chunk's
     records as it finishes (in the calling process). Every local scheduler first times
     a few cases here (:func:`probe_cost`), which sizes the chunks to about a quarter second
@@ -465,7 +504,7 @@ def execute(cases: list[Case], scheduler: str, workers: int, on_done: OnDone) ->
     if scheduler == AUTO:
         return _run_auto(cases, workers, on_done)
     if "://" in scheduler:
-        _run_dask(cases, scheduler, workers, on_done)
+        _run_dask(cases, scheduler, workers, on_done, timeout=timeout)
         return scheduler
     if scheduler == SYNCHRONOUS or len(cases) <= 1:
         probe = probe_cost(cases, on_done, PROBE_SECONDS)
@@ -515,12 +554,14 @@ def run_study(
     use_cache: bool = True,
     progress: bool | None = None,
     solver_settings: dict[str, Any] | None = None,
+    timeout: float = DEFAULT_TIMEOUT,
 ) -> RunSummary:
     """Run ``cases`` and write ``<out_dir>/<name>.nc``. ``scheduler`` is 'auto' (time a
     few cases here, start ``workers`` processes only when the study would take more than a
     few seconds), 'synchronous', 'threads', 'processes' (a local dask.distributed cluster
     of ``workers`` processes, default: the cores available) or the address of a running
-    dask.distributed scheduler (``workers`` is then ignored).
+    dask.distributed scheduler (``workers`` is then ignored; ``timeout`` [s] bounds its
+    handshake and the wait for a worker, :func:`cablestudy.remote.connect`).
 
     Finished chunks are cached under ``<out_dir>/.cache/<name>/`` as they complete, keyed
     by case hash: an unchanged or interrupted study re-run reuses them."""
@@ -528,7 +569,9 @@ def run_study(
     out_dir = Path(out_dir)
     name = str(src.data["name"])
     workers = workers or default_workers()
-    cache = CaseCache(out_dir / ".cache" / name if use_cache else None)
+    cache_dir = out_dir / ".cache" / name if use_cache else None
+    lock = tidy(out_dir, name, cache_dir)
+    cache = CaseCache(cache_dir)
     pending = [c for c in cases if c.hash not in cache.records]
     unique: dict[str, Case] = {}
     for c in pending:
@@ -542,7 +585,11 @@ def run_study(
         bar.update(len(records))
 
     try:
-        used = execute(list(unique.values()), scheduler, workers, on_done) if unique else ""
+        used = (
+            execute(list(unique.values()), scheduler, workers, on_done, timeout=timeout)
+            if unique
+            else ""
+        )
     finally:
         bar.close()
     records = cache.records
@@ -552,8 +599,15 @@ def run_study(
     variables = assembled_variables(axes, cases, records, src, solver_settings=solver_settings)
     path = write_variables_atomic(*variables, out_dir / f"{name}.nc")
     database = write_database_file(variables, axes, cases, src, out_dir)
-    cache.compact({c.hash for c in cases})
+    if lock is not None and lock.alone():  # no other run of the study writing here
+        cache.compact({c.hash for c in cases})
+    if lock is not None:
+        lock.release()
     failures = Counter(records[c.hash].message for c in cases if records[c.hash].status != 0)
+    warned = [c for c in cases if records[c.hash].warning]
+    warned_cases: dict[str, str] = {}
+    for c in warned:
+        warned_cases.setdefault(records[c.hash].warning, case_label(axes, c.index))
     return RunSummary(
         path=path,
         n_cases=len(cases),
@@ -564,7 +618,45 @@ def run_study(
         failures=dict(failures),
         scheduler=used,
         database_path=database,
+        n_warned=len(warned),
+        warnings=dict(Counter(records[c.hash].warning for c in warned)),
+        warned_cases=warned_cases,
     )
+
+
+def tidy(out_dir: Path, name: str, cache_dir: Path | None) -> CacheLock | None:
+    """Before a run of study ``name``: remove the temporary files and folders that runs
+    killed while writing left in ``out_dir`` and ``cache_dir``
+    (:func:`cablestudy.outputs.remove_stale_temporaries`), and take the shared lock on
+    ``cache_dir`` (None without a cache) that keeps other runs from removing its files."""
+    started = run_started()
+    study = glob.escape(name)
+    patterns = (
+        f".{study}.nc.*.tmp",
+        f".{study}.database.nc.*.tmp",
+        f".{study}-chunks-*",
+        f".{study}.write-check.*",
+    )
+    remove_stale_temporaries(out_dir, patterns, started, _warn)
+    if cache_dir is None:
+        return None
+    remove_stale_temporaries(cache_dir, TEMPORARY_PATTERNS, started, _warn)
+    return CacheLock(cache_dir)
+
+
+def _warn(message: str) -> None:
+    print(f"warning: {message}", file=sys.stderr)
+
+
+def case_label(axes: list[SweepAxis], index: tuple[int, ...]) -> str:
+    """The case at ``index`` by its sweep coordinates ("amplitude=0.05, frequency=0.2"), or
+    "the case" without a sweep."""
+    parts = []
+    for axis, i in zip(axes, index, strict=True):
+        value = axis.coordinate()[i]
+        shown = f"{value:g}" if isinstance(value, int | float | np.number) else str(value)
+        parts.append(f"{axis.name}={shown}")
+    return ", ".join(parts) or "the case"
 
 
 def write_database_file(
@@ -621,6 +713,7 @@ def run_grid_study(
     workers: int | None = None,
     use_cache: bool = True,
     progress: bool | None = None,
+    timeout: float = DEFAULT_TIMEOUT,
 ) -> RunSummary:
     """Run a study as arrays (:mod:`cablestudy.grid`) and write ``<out_dir>/<name>.nc``
     chunk by chunk: each finished chunk goes to its own data file (the cache, or a
@@ -635,12 +728,13 @@ def run_grid_study(
     out_dir = Path(out_dir)
     name = str(src.data["name"])
     workers = workers or default_workers()
+    lock = tidy(out_dir, name, out_dir / ".cache" / name if use_cache else None)
     if use_cache:
         folder = out_dir / ".cache" / name
         scratch = None
     else:
         out_dir.mkdir(parents=True, exist_ok=True)
-        scratch = Path(tempfile.mkdtemp(prefix=f".{name}-chunks-", dir=out_dir))
+        scratch = Path(tempfile.mkdtemp(prefix=temporary_prefix(f".{name}-chunks-"), dir=out_dir))
         folder = scratch
     store = GridChunkStore(folder)
     spans = grid_chunks(grid)
@@ -686,7 +780,7 @@ def run_grid_study(
     t1 = time.perf_counter()
     try:
         if todo:
-            used = _execute_grid(grid, todo, scheduler, workers, on_done)
+            used = _execute_grid(grid, todo, scheduler, workers, on_done, timeout=timeout)
     finally:
         bar.close()
     t2 = time.perf_counter()
@@ -727,8 +821,10 @@ def run_grid_study(
     from .database_file import database_file_name
 
     (out_dir / database_file_name(name)).unlink(missing_ok=True)
-    if use_cache:
-        store.keep(set(files.values()) - transient)
+    if lock is not None:
+        if lock.alone():  # no other run of the study writing here
+            store.keep(set(files.values()) - transient)
+        lock.release()
     return RunSummary(
         path=path,
         n_cases=grid.size,
@@ -739,6 +835,12 @@ def run_grid_study(
         failures=dict(summary.failures),
         scheduler=used,
         timings=timings,
+        n_warned=summary.n_warned,
+        warnings=dict(summary.warnings),
+        warned_cases={
+            text: case_label(grid.axes, np.unravel_index(i, grid.shape))
+            for text, i in summary.warned_at.items()
+        },
     )
 
 
@@ -755,6 +857,7 @@ def _stored_chunk(store: Any, path: Path) -> Any:
         status=z.pop("status"),
         message=z.pop("message"),
         wall_time=z.pop("wall_time"),
+        warning=z.pop("warning", None),
         data=z,
     )
 
@@ -773,7 +876,7 @@ def _grid_variables(src: StudySource, grid: Any, chunks: list[Any]) -> tuple[Any
     from .cache import summarise
     from .results import grid_variables
 
-    summary = summarise((c.status, c.message, c.data) for c in chunks)
+    summary = summarise((c.status, c.message, c.warning, c.data) for c in chunks)
     rest = grid.shape[1:]
     values: dict[str, Any] = {}
     for name in summary.names:
@@ -795,6 +898,7 @@ def _grid_variables(src: StudySource, grid: Any, chunks: list[Any]) -> tuple[Any
         src,
         status=np.concatenate([c.status for c in chunks]),
         message=np.concatenate([c.message for c in chunks]),
+        warning=np.concatenate([c.warning for c in chunks]),
         wall_time=np.concatenate([c.wall_time for c in chunks]),
         values=values,
         tails=summary.tails,
@@ -828,6 +932,8 @@ def _execute_grid(
     scheduler: str,
     workers: int,
     on_done: Callable[[Any], None],
+    *,
+    timeout: float = DEFAULT_TIMEOUT,
 ) -> str:
     """Evaluate the chunks ``spans`` of ``grid``: here, or on dask. 'auto' times the
     first chunk here and goes on here unless the rest would take more than
@@ -849,13 +955,7 @@ def _execute_grid(
 
     cluster = None
     if "://" in scheduler:
-        try:
-            client = Client(scheduler, timeout=CONNECT_TIMEOUT)
-        except (OSError, TimeoutError) as exc:
-            raise SchedulerUnreachable(
-                f"cannot reach the dask scheduler at {scheduler} within {CONNECT_TIMEOUT:g} s "
-                f"({type(exc).__name__}: {exc})"
-            ) from None
+        client = connect(scheduler, timeout)
     else:
         cluster = _local_cluster(scheduler, workers)
         client = Client(cluster)

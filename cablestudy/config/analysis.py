@@ -71,6 +71,14 @@ class StaticSettings(StrictModel):
         "'stretched' d (1 + e)^(-1/2), thinned as the line stretches at constant volume "
         "(vaz-patel; method shooting); matters only with current or laying",
     )
+    strain_warning: Positive = Field(
+        0.05,
+        le=10.0,
+        description="plausibility limit of the static strain [-]: a case whose largest "
+        "strain along the line (T / EA, or the axial law's strain; kind spring: extension "
+        "/ length) exceeds it keeps status 0 and gets a warning (a law's max_strain still "
+        "fails the case)",
+    )
 
     @field_validator("method")
     @classmethod

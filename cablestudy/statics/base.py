@@ -200,6 +200,9 @@ class StaticResult:
     residual: float = 0.0
     #: outer iterations of a drag (current) loop, 0 in still water
     drag_iterations: int = 0
+    #: why the batched (compiled) kernel, which tried this problem first, left it to the
+    #: general solver ('' if it settled it, or did not try: cablestudy.statics.batch)
+    fallback: str = ""
 
     @property
     def success(self) -> bool:

@@ -27,6 +27,10 @@ from .pieces import piece_integrals
 from .seabed import Plane
 from .semi_analytic import SemiAnalyticSolver, make_layout, reversed_line
 
+#: why the batch kernel leaves a case to the one-by-one solver
+NOT_SETTLED = "not settled there"
+ON_SEABED = "its solution touches the seabed"
+
 
 def batchable(problem: StaticProblem) -> bool:
     """Whether ``problem`` can take the batch path: still water (or no drag), end A
@@ -359,7 +363,9 @@ def solve_batch(
     """Solve ``problems`` (any mix); batchable ones with equal piece and node counts are
     solved together, lines anchored on the seabed (``contact``) by the compiled contact
     kernel, the others (and any case a kernel does not settle) one by one by the general
-    solver; the indices of those are appended to ``general`` if given."""
+    solver; the indices of those are appended to ``general`` if given. A case a kernel
+    tried and handed on says why in its ``fallback`` (:data:`NOT_SETTLED`,
+    :data:`ON_SEABED`)."""
     solver = solver or SemiAnalyticSolver()
     results: list[StaticResult | None] = [None] * len(problems)
     groups: dict[tuple[int, int], list[int]] = {}
@@ -374,7 +380,9 @@ def solve_batch(
             layouts[i] = make_layout(line)
             P = len(layouts[i].ell)
         groups.setdefault((P, prob.n_nodes), []).append(i)
+    why: dict[int, str] = {}
     for (P, n_nodes), members in groups.items():
+        left: dict[int, str] = {}
         for i, res in zip(
             members,
             _solve_group(
@@ -383,31 +391,45 @@ def solve_batch(
                 n_nodes,
                 [layouts.get(i) for i in members],
                 deadline,
+                why=left,
             ),
             strict=True,
         ):
             results[i] = res
+        why.update({members[j]: reason for j, reason in left.items()})
+    batched = {i for members in groups.values() for i in members}
     out = []
     for i, prob in enumerate(problems):
         res = results[i]
+        tried_contact = False
         if res is None and contact and _fast.AVAILABLE and contact_eligible(prob):
             res = _contact_one(prob)
+            tried_contact = True
         if res is None or not res.success:
             res = solver.solve(prob, deadline=deadline, compiled=False)
             if general is not None:
                 general.append(i)
+            if i in batched:
+                res.fallback = why.get(i, NOT_SETTLED)
+            elif tried_contact:
+                res.fallback = NOT_SETTLED
         out.append(res)
     return out
 
 
-def solve_compiled(problem: StaticProblem, *, deadline: float | None = None) -> StaticResult | None:
+def solve_compiled(
+    problem: StaticProblem, *, deadline: float | None = None, why: dict[int, str] | None = None
+) -> StaticResult | None:
     """One still-water problem through the compiled batch kernels (free-hanging, or
-    anchored on the seabed), or None when it does not take that path (or does not
-    settle there)."""
+    anchored on the seabed), or None when it does not take that path (or does not settle
+    there: then ``why[0]``, if given, says why)."""
     if not _fast.AVAILABLE:
         return None
     if contact_eligible(problem):
-        return _contact_one(problem)
+        res = _contact_one(problem)
+        if res is None and why is not None:
+            why[0] = NOT_SETTLED
+        return res
     if not batchable(problem):
         return None
     line = problem.line
@@ -416,7 +438,7 @@ def solve_compiled(problem: StaticProblem, *, deadline: float | None = None) -> 
     else:
         lay = make_layout(line)
         P = len(lay.ell)
-    return _solve_group([problem], P, problem.n_nodes, [lay], deadline)[0]
+    return _solve_group([problem], P, problem.n_nodes, [lay], deadline, why=why)[0]
 
 
 def _guess(
@@ -473,7 +495,11 @@ def _solve_group(
     layouts: list,
     deadline: float | None,
     use_compiled: bool = True,
+    why: dict[int, str] | None = None,
 ) -> list[StaticResult | None]:
+    """The problems of one group through the batch kernel; None for a case it leaves to
+    the one-by-one solver, with the reason in ``why`` (by position), if given."""
+    why = {} if why is None else why
     N = len(problems)
     ell = np.empty((N, P))
     EA = np.empty((N, P))
@@ -593,6 +619,7 @@ def _solve_group(
     resid_l = resid.tolist()
     for i, prob in enumerate(problems):
         if not good[i]:
+            why[i] = NOT_SETTLED
             out.append(None)
             continue
         res = StaticResult(
@@ -609,6 +636,7 @@ def _solve_group(
             med = prob.medium
             plane = Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
             if np.any(plane.height_above(res.position) < -1e-6 * Ltot[i]):
+                why[i] = ON_SEABED
                 out.append(None)  # touches the seabed: the one-by-one solver decides
                 continue
         out.append(res)

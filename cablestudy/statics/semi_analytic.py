@@ -911,9 +911,13 @@ class SemiAnalyticSolver:
         if compiled and _fast.AVAILABLE:
             from .batch import solve_compiled
 
-            fast = solve_compiled(problem, deadline=deadline)
+            left: dict[int, str] = {}
+            fast = solve_compiled(problem, deadline=deadline, why=left)
             if fast is not None:
                 return fast
+            fallback = left.get(0, "")
+        else:
+            fallback = ""
         line = problem.line
         L = line.total_length
         s = np.linspace(0.0, L, problem.n_nodes)
@@ -936,7 +940,9 @@ class SemiAnalyticSolver:
                 iterations=state.newton,
             )
         result.drag_iterations = state.drag
-        return result.check_finite()
+        result = result.check_finite()
+        result.fallback = fallback
+        return result
 
     # ------------------------------------------------------------------ internals
 

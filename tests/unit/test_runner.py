@@ -369,6 +369,28 @@ def test_failures_grouped_by_message_with_numbers_masked() -> None:
     assert "     1 x singular Jacobian" in report
 
 
+def test_warnings_grouped_by_kind_with_examples_of_their_cases() -> None:
+    """A case's warning text holds one warning per kind ('; '-separated): each counts once
+    under its kind, with at most three distinct examples, each after its case."""
+    slack = "slack: the dynamic tension at the excited end falls to -3 N (at or below zero)"
+    unsettled = "unsettled: no steady state after 80 periods (analysis.dynamic.max_periods 80)"
+    warnings = {f"{slack}; {unsettled}": 2, slack: 5, "strain: largest strain 0.2 above": 1}
+    cases = {f"{slack}; {unsettled}": "amplitude=1", slack: "amplitude=0.5"}
+    groups = runner.group_warnings(warnings, cases)
+    assert list(groups) == ["slack", "unsettled", "strain"]
+    assert groups["slack"] == (7, [f"amplitude=1: {slack}", f"amplitude=0.5: {slack}"])
+    assert groups["unsettled"] == (2, [f"amplitude=1: {unsettled}"])
+    assert groups["strain"] == (1, ["strain: largest strain 0.2 above"])
+    many = {f"slack: falls to {-i} N": 1 for i in range(6)}
+    assert len(runner.group_warnings(many)["slack"][1]) == runner.WARNING_EXAMPLES
+    report = RunSummary(
+        Path("x.nc"), 8, 0, 8, 0, 1.0, n_warned=8, warnings=warnings, warned_cases=cases
+    ).report()
+    assert "8 cases (8 computed, 0 reused from cache), 0 failed, 8 with warnings" in report
+    assert "warnings by kind (the cases keep status 0):\n       7 x slack, e.g.:\n" in report
+    assert f"\n           amplitude=0.5: {slack}\n" in report
+
+
 def test_progress_bar_on_a_terminal(capsys: pytest.CaptureFixture[str]) -> None:
     bar = Progress(4, enabled=True, delay=0.0)
     bar.update(2)
