@@ -1415,27 +1415,40 @@ def static_equilibrium(
 
 
 def _seated_start(
-    line: DiscreteLine, x: np.ndarray, work: Workspace
+    line: DiscreteLine, x: np.ndarray, work: Workspace, tension: np.ndarray | None = None
 ) -> tuple[np.ndarray, np.ndarray]:
     """Newton's start on a penalty seabed: nodes that the continuous (rigid-seabed)
     solution lays on the seabed sink by their own penetration (normal load over contact
     stiffness), and their friction anchors are placed so that the friction springs
     already carry the tangential force the laid line needs there (the continuous
     solution's mobilised friction), capped at ``mu N`` along and across the line.
-    Returns the positions [m] and anchors [m]."""
+    Given the element ``tension`` [N] (n,), the elements pull with it rather than with
+    the tension their chords' stretch gives (on a stiff line that is EA times the
+    chords' error). Returns the positions [m] and anchors [m]."""
     normal = line.seabed_normal
     scale = float(np.max(np.abs(x))) + float(np.sum(line.rest_length))
     laid = (x @ normal - line.seabed_offset <= 1e-9 * scale) & (line.seabed_stiffness > 0.0)
+    laid &= ~np.asarray(line.held, dtype=bool)  # a held node stays where it is held
     if not np.any(laid):
         return x, x.copy()
     x = x.copy()
     x[laid] += np.outer(line.seabed_offset - x[laid] @ normal, normal)  # onto the plane
     still = np.zeros_like(x)
-    press = evaluate(line, x, still, work, anchor=x).F @ normal  # load on the seabed
+
+    def out_of_balance(x: np.ndarray) -> np.ndarray:
+        if tension is None:
+            return evaluate(line, x, still, work, anchor=x).F.copy()
+        from .mixed import axial_forces, other_forces_line
+
+        f = evaluate(other_forces_line(line), x, still, work, anchor=x).F
+        return f + axial_forces(x, tension)[0]
+
+    press = out_of_balance(x) @ normal  # load on the seabed
     sink = np.where(laid, np.maximum(press, 0.0) / np.maximum(line.seabed_stiffness, 1e-300), 0.0)
     x -= sink[:, None] * normal
-    w = evaluate(line, x, still, work, anchor=x)
-    need = w.F - np.outer(w.F @ normal, normal)  # tangential out-of-balance: friction needed
+    out = out_of_balance(x)
+    w = work
+    need = out - np.outer(out @ normal, normal)  # tangential out-of-balance: friction needed
     n = line.n_nodes
     tan = x[np.minimum(np.arange(n) + 1, n - 1)] - x[np.maximum(np.arange(n) - 1, 0)]
     along = tan - np.outer(tan @ normal, normal)

@@ -52,8 +52,6 @@ class DiscreteSolver:
             DynamicExtras,
             default_seabed_stiffness,
             discretise_nodes,
-            evaluate,
-            static_equilibrium,
             uniform_nodes,
         )
         from .semi_analytic import SemiAnalyticSolver
@@ -96,59 +94,171 @@ class DiscreteSolver:
             else problem.friction_lateral,
         )
         disc = discretise_nodes(line, med, s, extras)
-        scale = max(float(np.max(start.tension)), float(np.max(np.abs(disc.force))))
-        # below the rounding of an element tension EA (l / l0 - 1) no Newton step helps:
-        # an ulp of the node coordinates times EA over the shortest element, times 256
-        # for the few ulp a converged Newton wanders and the node's several elements
-        reach = float(np.max(np.abs(x0))) + float(np.sum(disc.rest_length))
-        rounding = (
-            256.0 * np.finfo(float).eps * float(np.max(disc.axial_stiffness)) * reach
-        ) / float(np.min(disc.rest_length))
-        t_nodes = np.interp(s, start.s, start.tension)
-        # the residual summed over the nodes is what the end forces carry: ask each node
-        # for the tolerance shared out, so the supports balance the weight to it. Newton
-        # starts with the chords stretched by the cable's tension (a stiff line's chord
-        # error times EA is a large spurious force), else from the cable's nodes
-        tol = max(problem.tolerance * scale / s.size, rounding)
-        its_all = 0
-        for tension in (0.5 * (t_nodes[:-1] + t_nodes[1:]), None):
-            x, its, res, ok, anchor = static_equilibrium(
-                disc,
-                x0,
-                tolerance=tol,
-                max_iterations=max(problem.max_iterations, 200),
-                tension=tension,
-            )
-            its_all += its
-            if ok:
-                break
-        its = its_all
-        work = evaluate(disc, x, np.zeros_like(x), anchor=anchor)
-        tension = np.empty(s.size)
-        tension[1:-1] = 0.5 * (work.tension[:-1] + work.tension[1:])
-        tension[0], tension[-1] = work.tension[0], work.tension[-1]
-        forces = []
-        for k, node in ((0, 0), (1, -1)):
-            forces.append(-end_force[k] if free[k] else -work.F[node].copy())
-        on_bed = work.contact > 0.0
-        laid = float(np.sum(np.diff(s)[on_bed[:-1] & on_bed[1:]]))
-        if not ok:
-            return StaticResult.failed(
-                s,
-                STATUS_NOT_CONVERGED,
-                f"the discrete equilibrium did not converge ({its} Newton iterations, "
-                f"largest nodal force {res:.3g} N)",
-                iterations=its,
-                residual=res,
-            )
-        return StaticResult(
-            s=s,
-            position=x,
-            tension=tension,
-            force_a=forces[0],
-            force_b=forces[1],
-            laid_length=laid,
+        return _solve_discrete(problem, disc, x0, start, free, end_force)
+
+
+def _solve_discrete(problem, disc, x0, start, free, end_force):  # noqa: ANN001, ANN202
+    """Newton from the cable solution at the nodes, then the node-level verification."""
+    from ..dynamics.mixed import is_finite_line, mixed_equilibrium, node_forces
+    from ..dynamics.model import (
+        Workspace,
+        _seated_start,
+        evaluate,
+        static_equilibrium,
+    )
+
+    s = disc.s
+    t_nodes = np.interp(s, start.s, start.tension)
+    t_elements = 0.5 * (t_nodes[:-1] + t_nodes[1:])
+    # held ends exactly where the problem puts them (a mooring end: where the cable does)
+    for k, (end, node) in enumerate(((problem.end_a, 0), (problem.end_b, -1))):
+        if end.kind == "fixed" and not free[k]:
+            x0[node] = np.asarray(end.position, dtype=float)
+    tol, floor, load = _force_tolerance(problem, disc, x0, t_elements)
+    if is_finite_line(disc):
+        work = Workspace(disc.n_elements)
+        x1, anchor = x0, x0.copy()
+        if disc.has_seabed:
+            x1, anchor = _seated_start(disc, x1, work, t_elements)
+        sol = mixed_equilibrium(
+            disc,
+            x1,
+            t_elements,
+            anchor,
+            tol_force=tol,
+            relative=problem.tolerance,
+            max_iterations=max(problem.max_iterations, 200),
+        )
+        x, t_el, its, ok = sol.position, sol.tension, sol.iterations, sol.converged
+        res = sol.force_residual
+    else:
+        # a nonlinear axial law: Newton on positions, the tension from the chords' stretch
+        x, its, res, ok, anchor = static_equilibrium(
+            disc,
+            x0,
+            tolerance=tol,
+            max_iterations=max(problem.max_iterations, 200),
+            tension=t_elements,
+        )
+        t_el = evaluate(disc, x, np.zeros_like(x), anchor=anchor).tension.copy()
+    if not ok:
+        return StaticResult.failed(
+            s,
+            STATUS_NOT_CONVERGED,
+            f"the discrete equilibrium did not converge ({its} Newton iterations, "
+            f"largest nodal out-of-balance force {res:.3g} N against the tolerance "
+            f"{tol:.3g} N)",
             iterations=its,
             residual=res,
-            drag_iterations=start.drag_iterations,
         )
+    F, work = node_forces(disc, x, t_el, anchor)
+    tension = np.empty(s.size)
+    tension[1:-1] = 0.5 * (t_el[:-1] + t_el[1:])
+    tension[0], tension[-1] = t_el[0], t_el[-1]
+    forces = []
+    for k, node in ((0, 0), (1, -1)):
+        forces.append(-end_force[k] if free[k] else -F[node].copy())
+    problems = verify_nodes(problem, disc, x, F, work, tol=tol, floor=floor, load=load)
+    res = float(np.max(np.abs(F[~disc.held]), initial=0.0))
+    on_bed = work.contact > 0.0
+    laid = float(np.sum(np.diff(s)[on_bed[:-1] & on_bed[1:]]))
+    result = StaticResult(
+        s=s,
+        position=x,
+        tension=tension,
+        force_a=forces[0],
+        force_b=forces[1],
+        laid_length=laid,
+        iterations=its,
+        residual=res,
+        drag_iterations=start.drag_iterations,
+    )
+    if problems:
+        # the numbers are kept for inspection; the status says they are not verified
+        result.status = STATUS_NOT_CONVERGED
+        result.message = "not verified: " + "; ".join(problems)
+    return result
+
+
+def _force_tolerance(
+    problem: StaticProblem, disc, x0: np.ndarray, tension: np.ndarray
+) -> tuple[float, float, float]:  # noqa: ANN001
+    """(tolerance, rounding floor, load scale) [N] of a node's out-of-balance force.
+
+    The load scale is the largest load on a node: weight and buoyancy, attachments and
+    end forces (the model's constant nodal forces), and at the start the seabed's
+    reaction, friction, drag and bending (the other forces of the model). The
+    tolerance is the study's relative ``tolerance`` of it, but never below what the
+    residual's own evaluation rounds to: an element's tension times the relative
+    rounding of its direction (64 ulp of the coordinates' reach over the shortest
+    element), and a seabed node's contact stiffness times the rounding of its height.
+    Neither depends on EA."""
+    from ..dynamics.mixed import axial_forces, geometry_rounding, other_forces_line
+    from ..dynamics.model import evaluate
+
+    others = evaluate(other_forces_line(disc), x0, np.zeros_like(x0), anchor=x0).F
+    others = others + axial_forces(x0, np.zeros_like(tension))[0]
+    load = max(
+        float(np.max(np.linalg.norm(disc.force, axis=1))),
+        float(np.max(np.linalg.norm(others[~disc.held], axis=1), initial=0.0)),
+    )
+    tmax = float(np.max(tension))
+    reach = float(np.max(np.abs(x0))) + float(np.sum(disc.rest_length))
+    floor = geometry_rounding(disc, x0) * max(tmax, load)
+    floor += 64.0 * np.finfo(float).eps * reach * float(np.max(disc.seabed_stiffness))
+    if load == 0.0:
+        load = tmax / disc.n_elements  # a weightless line between its supports
+    return max(problem.tolerance * load, floor), floor, load
+
+
+def verify_nodes(  # noqa: PLR0913
+    problem: StaticProblem,
+    disc,  # noqa: ANN001
+    x: np.ndarray,
+    F: np.ndarray,
+    work,  # noqa: ANN001
+    *,
+    tol: float,
+    floor: float,
+    load: float,
+) -> list[str]:
+    """The checks a discrete equilibrium passes before status 0; what fails, in words.
+
+    ``F`` [N] (n + 1, 3) are the out-of-balance nodal forces, recomputed from the
+    positions ``x`` [m] and the element tensions (held nodes: their reactions). Checks:
+
+    * each free node within ``tol`` [N];
+    * the whole line: the forces on the supports equal the loads on the line (weight
+      and buoyancy, attachments, free end forces, seabed reaction and friction, drag),
+      within the free nodes' residuals allowed summed (``tol`` times their number);
+    * the held ends where the problem puts them (to the rounding of the coordinates);
+    * finite numbers everywhere.
+    """
+    out: list[str] = []
+    if not (np.all(np.isfinite(x)) and np.all(np.isfinite(F))):
+        return ["non-finite positions or forces"]
+    free = ~np.asarray(disc.held, dtype=bool)
+    node = float(np.max(np.abs(F[free]), initial=0.0))
+    if node > tol:
+        out.append(f"largest nodal out-of-balance force {node:.3g} N > tolerance {tol:.3g} N")
+    # loads on the line: the model's forces without the elements' (bending sums to 0)
+    loads = -(work.F.sum(axis=0))
+    supports = -F[~free].sum(axis=0)
+    whole = float(np.linalg.norm(supports - loads))
+    allowed = max(int(free.sum()), 1) * tol + floor
+    if whole > allowed:
+        out.append(
+            f"support forces {supports.tolist()} N do not balance the loads "
+            f"{loads.tolist()} N (residual {whole:.3g} N > {allowed:.3g} N)"
+        )
+    reach = float(np.max(np.abs(x))) + float(np.sum(disc.rest_length))
+    for end, node_i in ((problem.end_a, 0), (problem.end_b, -1)):
+        if end.kind == "fixed":
+            miss = float(np.linalg.norm(x[node_i] - np.asarray(end.position, dtype=float)))
+        elif end.kind == "mooring":
+            miss = abs(float(x[node_i, 2]) - float(end.z))
+        else:
+            continue
+        if miss > 16.0 * np.finfo(float).eps * reach:
+            out.append(f"end at s = {disc.s[node_i]:.6g} m is {miss:.3g} m from its position")
+    return out
