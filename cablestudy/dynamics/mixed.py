@@ -218,7 +218,9 @@ class _System:
         rhs[:nx][np.repeat(self.free, 3)] = -vec[:n_free]
         rhs[nx:] = -vec[n_free:]
         sol = splu(J).solve(rhs)
-        return sol[:nx].reshape(n, 3), sol[nx:]
+        dx = sol[:nx].reshape(n, 3)
+        dx[~self.free] = 0.0  # held exactly (the pivoting LU leaves rounding there)
+        return dx, sol[nx:]
 
 
 def _newton(

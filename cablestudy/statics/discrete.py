@@ -99,7 +99,12 @@ class DiscreteSolver:
 
 def _solve_discrete(problem, disc, x0, start, free, end_force):  # noqa: ANN001, ANN202
     """Newton from the cable solution at the nodes, then the node-level verification."""
-    from ..dynamics.mixed import is_finite_line, mixed_equilibrium, node_forces
+    from ..dynamics.mixed import (
+        geometry_rounding,
+        is_finite_line,
+        mixed_equilibrium,
+        node_forces,
+    )
     from ..dynamics.model import (
         Workspace,
         _seated_start,
@@ -141,6 +146,11 @@ def _solve_discrete(problem, disc, x0, start, free, end_force):  # noqa: ANN001,
             tension=t_elements,
         )
         t_el = evaluate(disc, x, np.zeros_like(x), anchor=anchor).tension.copy()
+        # its tension is a difference of rounded positions: its residual cannot fall
+        # below EA times their rounding (the mixed form, for T = EA strain, has no such
+        # floor)
+        rounding = float(np.max(disc.axial_stiffness)) * geometry_rounding(disc, x0)
+        tol, floor = max(tol, rounding), max(floor, rounding)
     if not ok:
         return StaticResult.failed(
             s,
@@ -156,9 +166,27 @@ def _solve_discrete(problem, disc, x0, start, free, end_force):  # noqa: ANN001,
     tension[1:-1] = 0.5 * (t_el[:-1] + t_el[1:])
     tension[0], tension[-1] = t_el[0], t_el[-1]
     forces = []
-    for k, node in ((0, 0), (1, -1)):
-        forces.append(-end_force[k] if free[k] else -F[node].copy())
-    problems = verify_nodes(problem, disc, x, F, work, tol=tol, floor=floor, load=load)
+    # a held end lying on the seabed with the line laid beside it (an anchor on the
+    # seabed): the seabed carries what presses the support into it (its node's own
+    # lumped weight, and the pull of the first element, tilted by the laid nodes'
+    # penetration w / k), as it carries the continuous laid line's weight there; left
+    # on the support it is an error of O(h) and of O(T w / (k h))
+    bed = np.zeros(3)
+    for k, (node, beside) in enumerate(((0, 1), (-1, -2))):
+        if free[k]:
+            forces.append(-end_force[k])
+            continue
+        force = -F[node].copy()
+        n_hat = disc.seabed_normal
+        gap = float(x[node] @ n_hat - disc.seabed_offset)
+        into = -float(force @ n_hat)  # the line pressing its support into the seabed
+        if disc.has_seabed and gap <= 0.0 and work.contact[beside] > 0.0 and into > 0.0:
+            force += into * n_hat
+            bed += into * n_hat
+        forces.append(force)
+    problems = verify_nodes(
+        problem, disc, x, F, work, tol=tol, floor=floor, load=load, held_on_bed=bed
+    )
     res = float(np.max(np.abs(F[~disc.held]), initial=0.0))
     on_bed = work.contact > 0.0
     laid = float(np.sum(np.diff(s)[on_bed[:-1] & on_bed[1:]]))
@@ -221,6 +249,7 @@ def verify_nodes(  # noqa: PLR0913
     tol: float,
     floor: float,
     load: float,
+    held_on_bed: np.ndarray | None = None,
 ) -> list[str]:
     """The checks a discrete equilibrium passes before status 0; what fails, in words.
 
@@ -243,7 +272,9 @@ def verify_nodes(  # noqa: PLR0913
         out.append(f"largest nodal out-of-balance force {node:.3g} N > tolerance {tol:.3g} N")
     # loads on the line: the model's forces without the elements' (bending sums to 0)
     loads = -(work.F.sum(axis=0))
-    supports = -F[~free].sum(axis=0)
+    if held_on_bed is not None:  # the seabed's reaction under held ends on it
+        loads = loads + held_on_bed
+    supports = -F[~free].sum(axis=0) + (0.0 if held_on_bed is None else held_on_bed)
     whole = float(np.linalg.norm(supports - loads))
     allowed = max(int(free.sum()), 1) * tol + floor
     if whole > allowed:
