@@ -41,7 +41,14 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import splu
 
-from .model import DiscreteLine, Workspace, _trial_states, evaluate, states_changed
+from .model import (
+    DiscreteLine,
+    Workspace,
+    _trial_states,
+    evaluate,
+    states_changed,
+    update_anchors,
+)
 
 EPS = float(np.finfo(float).eps)
 #: K of the slack branch of the element law (see _System.residual)
@@ -55,7 +62,8 @@ class MixedResult:
     position [m] (n + 1, 3); tension [N] (n,) element tensions; iterations (Newton,
     summed over the continuation); force_residual [N] the largest out-of-balance force
     of a free node; strain_residual [-] the largest element misfit ``|c T - g|`` of a
-    taut element; converged: both within their tolerances.
+    taut element; converged: both within their tolerances; anchor [m] (n + 1, 3) the
+    seabed friction anchors that hold the friction forces of that state.
     """
 
     position: np.ndarray
@@ -64,6 +72,7 @@ class MixedResult:
     force_residual: float
     strain_residual: float
     converged: bool
+    anchor: np.ndarray
 
 
 def other_forces_line(line: DiscreteLine) -> DiscreteLine:
@@ -335,7 +344,10 @@ def mixed_equilibrium(
                 break
     vec, F, misfit, taut = system.last
     free = ~np.asarray(line.held, dtype=bool)
+    held_anchor = np.array(anchor, dtype=float, copy=True)
+    update_anchors(xs, work.friction, line.seabed_stiffness, work.contact, held_anchor)
     return MixedResult(
+        anchor=held_anchor,
         position=xs,
         tension=ts,
         iterations=int(total),

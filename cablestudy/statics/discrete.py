@@ -135,6 +135,7 @@ def _solve_discrete(problem, disc, x0, start, free, end_force):  # noqa: ANN001,
             max_iterations=max(problem.max_iterations, 200),
         )
         x, t_el, its, ok = sol.position, sol.tension, sol.iterations, sol.converged
+        anchor = sol.anchor
         res = sol.force_residual
     else:
         # a nonlinear axial law: Newton on positions, the tension from the chords' stretch
