@@ -14,8 +14,9 @@ with ``g_e = l_e / l0_e - 1`` the geometric strain, ``c_e = 1 / EA_e`` the compl
 and ``f_i`` every other nodal force of the model (weight and buoyancy, attachments,
 bending, seabed contact and friction, drag), taken from the compiled model with the
 axial force switched off. The element row is the tension-only law, its branch chosen
-as a complementarity (taut: ``c T - g``; slack: ``K c T``, zero tension), each row
-in units of its tolerance so that every residual is judged against its own: the
+as the complementarity ``min(K c T, c T - g) = 0`` (taut: ``c T = g``; slack:
+``T = 0``), each row in units of its tolerance so that every residual is judged
+against its own: the
 force tolerance ``tol_F`` (set by the nodal loads) and the strain tolerance ``tol_g``
 (the relative tolerance of the line's strain, or the rounding of the geometry). The
 equations hold as EA grows without bound (``c`` -> 0: the inextensible line), so one
@@ -154,6 +155,16 @@ class _System:
         self.n = line.n_nodes
         self.m = line.n_elements
         self.broken = np.asarray(line.broken, dtype=bool)
+        self.weight = np.full(self.m, SLACK_WEIGHT)
+
+    def weigh_slack(self, x: np.ndarray, tension: np.ndarray) -> None:
+        """K of each element: 1e3, or 1e3 times the start's chord shortening over the
+        element's stretch where that is more, so that a loaded element starts taut."""
+        _, _, length = axial_forces(x, tension)
+        misfit = self.c * tension - (length / self.line.rest_length - 1.0)
+        stretch = self.c * tension
+        ratio = np.divide(misfit, stretch, out=np.zeros_like(misfit), where=stretch > 0.0)
+        self.weight = SLACK_WEIGHT * np.maximum(1.0, ratio)
 
     def forces(self, x: np.ndarray, tension: np.ndarray) -> np.ndarray:
         """Nodal out-of-balance forces [N] (held nodes: their reactions)."""
@@ -166,14 +177,16 @@ class _System:
         F = self.forces(x, tension)
         g = self.length / self.line.rest_length - 1.0
         misfit = self.c * tension - g
-        # c T = max(g, 0) as the complementarity min(K c T, c T - g) = 0: slack where
-        # the tension is small against the chord's shortening, K c T < -g - c T, so an
-        # element that the start gives a tension stays taut while Newton corrects its
-        # chord (K = 1e3: a chord 1e3 times shorter than its elastic stretch is slack)
-        slack_value = SLACK_WEIGHT * self.c * tension
+        # c T = max(g, 0) as the complementarity min(K c T, c T - g) = 0 (continuous,
+        # so the line search compares like with like): slack where K c T < c T - g,
+        # the chord shorter than K times the element's elastic stretch. K is 1e3, and
+        # more where the start's chord is short by more than that (a stiff line's
+        # chords of a smooth curve are shorter than its arcs by O(h^2 kappa^2), far
+        # more than its stretch): every element the start loads starts taut
+        slack_value = self.weight * self.c * tension
         taut = (misfit <= slack_value) & ~self.broken
-        phi = np.where(taut, misfit, slack_value)
-        vec = np.concatenate([(F[self.free] / self.tol_f).ravel(), phi / self.tol_g])
+        phi = np.where(taut, misfit, slack_value) / self.tol_g
+        vec = np.concatenate([(F[self.free] / self.tol_f).ravel(), phi])
         return vec, F, misfit, taut
 
     def step(self, x: np.ndarray, tension: np.ndarray, taut: np.ndarray, reg: float) -> tuple:
@@ -206,7 +219,7 @@ class _System:
             vals.append((sign * u[tt] / (l0[tt] * self.tol_g)[:, None]).ravel())
         rows.append(col_t)
         cols.append(col_t)
-        vals.append(np.where(tt, self.c, SLACK_WEIGHT * self.c) / self.tol_g)
+        vals.append(np.where(tt, 1.0, self.weight) * self.c / self.tol_g)
         R = np.concatenate(rows)
         C = np.concatenate(cols)
         V = np.concatenate(vals)
@@ -249,10 +262,10 @@ def _newton(
         _trial_states(work.slip_state, work.trial, work.contact, line.friction)
         system.last = system.residual(x, tension)
     checks = 0
+    restarts = 0
     for it in range(max_iterations + 1):
         vec, F, misfit, taut = system.last
-        slack_tension = np.max(np.abs(tension[~taut]), initial=0.0)
-        if np.max(np.abs(vec), initial=0.0) <= 1.0 and slack_tension <= system.tol_f:
+        if np.max(np.abs(vec), initial=0.0) <= 1.0:
             if (
                 has_friction
                 and checks < 20
@@ -283,9 +296,21 @@ def _newton(
             alpha *= 0.5
         else:
             system.last = system.residual(x, tension)
+            if has_friction and restarts < 20:
+                # the stick/slip states Newton holds are no longer those of this
+                # state (a node met the seabed): set them afresh and go on
+                restarts += 1
+                _trial_states(work.slip_state, work.trial, work.contact, line.friction)
+                system.last = system.residual(x, tension)
+                continue
             return x, tension, it, False
         x, tension = xt, tt
         system.last = trial
+        if has_friction:
+            # a node that has met the seabed takes a stick/slip state from its trial
+            # force, the others keep theirs (the friction Newton sees stays smooth)
+            _trial_states(work.slip_state, work.trial, work.contact, line.friction, True)
+            system.last = system.residual(x, tension)
     return x, tension, max_iterations, False
 
 
@@ -322,6 +347,7 @@ def mixed_equilibrium(
     tol_strain = max(relative * tmax / float(np.min(ea)), floor)
     work = Workspace(line.n_elements)
     system = _System(line, anchor, work, compliance, tol_force, tol_strain)
+    system.weigh_slack(x, tension)
     xs, ts, its, ok = _newton(system, x, tension, max_iterations)
     total = its
     if not ok:
@@ -338,6 +364,7 @@ def mixed_equilibrium(
             c = compliance if level is None else np.maximum(compliance, level)
             tol_g = tol_strain if level is None else max(tol_strain, relative * tmax * level)
             system = _System(line, anchor, work, c, tol_force, tol_g)
+            system.weigh_slack(xs, ts)
             xs, ts, its, ok = _newton(system, xs, ts, max_iterations)
             total += its
             if not ok:
