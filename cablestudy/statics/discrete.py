@@ -181,7 +181,10 @@ def _solve_discrete(problem, disc, x0, start, free, end_force):  # noqa: ANN001,
         n_hat = disc.seabed_normal
         gap = float(x[node] @ n_hat - disc.seabed_offset)
         into = -float(force @ n_hat)  # the line pressing its support into the seabed
-        if disc.has_seabed and gap <= 0.0 and work.contact[beside] > 0.0 and into > 0.0:
+        # on the seabed: within the depth the laid line sinks into it
+        sink = -(x @ n_hat - disc.seabed_offset)
+        on_bed = gap <= max(float(np.max(sink[work.contact > 0.0], initial=0.0)), 0.0)
+        if disc.has_seabed and on_bed and work.contact[beside] > 0.0 and into > 0.0:
             force += into * n_hat
             bed += into * n_hat
         forces.append(force)
