@@ -64,7 +64,8 @@ class MixedResult:
     summed over the continuation); force_residual [N] the largest out-of-balance force
     of a free node; strain_residual [-] the largest element misfit ``|c T - g|`` of a
     taut element; converged: both within their tolerances; anchor [m] (n + 1, 3) the
-    seabed friction anchors that hold the friction forces of that state.
+    seabed friction anchors that hold the friction forces of that state; stages: the
+    continuation's stiffness stages used (0: Newton converged from the start).
     """
 
     position: np.ndarray
@@ -74,6 +75,7 @@ class MixedResult:
     strain_residual: float
     converged: bool
     anchor: np.ndarray
+    stages: int = 0
 
 
 def other_forces_line(line: DiscreteLine) -> DiscreteLine:
@@ -350,15 +352,16 @@ def mixed_equilibrium(
     system.weigh_slack(x, tension)
     xs, ts, its, ok = _newton(system, x, tension, max_iterations)
     total = its
-    if not ok:
-        # continuation in stiffness: soften so that the largest strain is 1e-2, then
-        # stiffen tenfold at a time to the line's own compliance
-        soft = 1e-2 / tmax
-        stages = []
-        level = soft
-        while level > float(np.max(compliance)) * 10.0:
-            stages.append(level)
-            level *= 0.1
+    used = 0
+    # continuation in stiffness: soften so that the largest strain is 1e-2, then
+    # stiffen tenfold at a time to the line's own compliance (a line already that soft
+    # has none)
+    stages = []
+    level = 1e-2 / tmax
+    while level > float(np.max(compliance)) * 10.0:
+        stages.append(level)
+        level *= 0.1
+    if not ok and stages:
         xs, ts = x, tension
         for level in [*stages, None]:
             c = compliance if level is None else np.maximum(compliance, level)
@@ -367,6 +370,7 @@ def mixed_equilibrium(
             system.weigh_slack(xs, ts)
             xs, ts, its, ok = _newton(system, xs, ts, max_iterations)
             total += its
+            used += 1
             if not ok:
                 break
     vec, F, misfit, taut = system.last
@@ -381,6 +385,7 @@ def mixed_equilibrium(
         force_residual=float(np.max(np.abs(F[free]), initial=0.0)),
         strain_residual=float(np.max(np.abs(misfit[taut]), initial=0.0)),
         converged=bool(ok),
+        stages=used,
     )
 
 
