@@ -3,15 +3,33 @@
 The one line model the dynamic analyses use (:mod:`cablestudy.dynamics.model`) carries
 what a cable's static solvers leave out: bending stiffness EI (tensioned-beam
 curvature terms, pinned or clamped ends) and a compliant seabed (a contact spring of
-``environment.seabed.stiffness`` with stick-slip friction). Its static equilibrium is
-found by Newton on the nodal forces (the time-domain Jacobian without the inertia
-terms), started from the semi-analytic cable solution (method ``catenary``) at the
-same nodes: ``n_nodes - 1`` elements, equal within each segment.
+``environment.seabed.stiffness`` with stick-slip friction). ``n_nodes - 1`` elements,
+equal within each segment.
+
+Newton starts from the semi-analytic cable solution (method ``catenary``, seabed
+included) at the nodes and its tension at the element midpoints, laid nodes sunk by
+their own penetration with their friction already carried. For T = EA strain it solves
+for positions and element tensions together (:mod:`cablestudy.dynamics.mixed`): the
+tension never comes from a difference of rounded positions, so EA from 1 N to 1e15 N
+and lengths from 1 mm to 100 km are solved alike; a line search, and a continuation in
+stiffness where Newton cannot start. Lines with a nonlinear axial law use Newton on
+positions (their tension from the chords' stretch, to EA times the positions'
+rounding).
+
+Convergence is judged against the nodal loads, not EA: each free node's out-of-balance
+force within ``tolerance`` times the largest nodal load (weight and buoyancy,
+attachments, end forces, seabed, drag, bending), but not below the rounding of the
+residual itself (an element's tension times the relative rounding of its direction).
+
+Status 0 only after the node-level check (:func:`verify_nodes`): every free node in
+balance, the support forces balancing the loads on the whole line, the held ends where
+the problem puts them. A converged result that fails it keeps its numbers and gets
+status 1 with "not verified:" and the residuals in its message.
 
 Accuracy: lumped loads and straight elements converge as h^2 (a tensioned beam's
 deflection against the exact beam-string solution: 5e-4 at 40 elements; a catenary
-against the exact elastic catenary the same way). The equilibrium is reached to the
-``tolerance`` relative to the largest static tension, in force per node.
+against the exact elastic catenary the same way; on the seabed the touchdown sits at a
+node, with a larger constant).
 
 Ends: ``fixed`` ends are held; a ``force`` end is a free node carrying its force; a
 ``mooring`` end (known horizontal force at a known height) is held where the cable
@@ -19,8 +37,9 @@ solution puts it, so its horizontal force is the cable's to the discretisation e
 
 Outputs at the nodes: positions, tension (the mean of the adjacent element tensions,
 the end element's at the ends), the forces on the end supports (support reactions of
-held ends, minus the applied force at a free end), and the laid length (elements
-with both nodes on the seabed spring).
+held ends, minus the applied force at a free end; a held end on the seabed hands the
+seabed what presses it in), and the laid length (elements with both nodes on the
+seabed spring).
 """
 
 from __future__ import annotations
