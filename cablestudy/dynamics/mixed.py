@@ -36,6 +36,7 @@ Everything here is pure: arrays in, arrays out, SI units.
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -65,7 +66,8 @@ class MixedResult:
     of a free node; strain_residual [-] the largest element misfit ``|c T - g|`` of a
     taut element; converged: both within their tolerances; anchor [m] (n + 1, 3) the
     seabed friction anchors that hold the friction forces of that state; stages: the
-    continuation's stiffness stages used (0: Newton converged from the start).
+    continuation's stiffness stages used (0: Newton converged from the start);
+    timed_out: stopped by its deadline.
     """
 
     position: np.ndarray
@@ -76,6 +78,7 @@ class MixedResult:
     converged: bool
     anchor: np.ndarray
     stages: int = 0
+    timed_out: bool = False
 
 
 def other_forces_line(line: DiscreteLine) -> DiscreteLine:
@@ -248,10 +251,15 @@ class _System:
 
 
 def _newton(
-    system: _System, x: np.ndarray, tension: np.ndarray, max_iterations: int
+    system: _System,
+    x: np.ndarray,
+    tension: np.ndarray,
+    max_iterations: int,
+    deadline: float | None = None,
 ) -> tuple[np.ndarray, np.ndarray, int, bool]:
     """Newton with a backtracking line search; returns positions, tensions, iterations
-    and whether the scaled residual fell to 1 (every residual within its tolerance)."""
+    and whether the scaled residual fell to 1 (every residual within its tolerance).
+    Stops (not converged) when the :func:`time.monotonic` ``deadline`` passes."""
     line = system.line
     lmin = float(np.min(line.rest_length))
     has_friction = bool(
@@ -277,8 +285,8 @@ def _newton(
                 system.last = system.residual(x, tension)
                 continue
             return x, tension, it, True
-        if it == max_iterations:
-            break
+        if it == max_iterations or (deadline is not None and time.monotonic() > deadline):
+            return x, tension, it, False
         tmax = max(float(np.max(tension)), 0.0)
         reg = 1e-10 * max(tmax, system.tol_f) / lmin
         try:
@@ -325,6 +333,7 @@ def mixed_equilibrium(
     tol_force: float,
     relative: float,
     max_iterations: int = 200,
+    deadline: float | None = None,
 ) -> MixedResult:
     """Equilibrium of ``line`` in positions and element tensions.
 
@@ -337,6 +346,8 @@ def mixed_equilibrium(
     tol_force : [N] the largest out-of-balance force allowed on a free node
     relative : [-] the relative tolerance of the strain (the study's tolerance)
     max_iterations : Newton iterations per continuation stage
+    deadline : a :func:`time.monotonic` time after which Newton stops (not converged;
+        ``timed_out`` in the result)
     """
     if np.any(line.law_code != 0):
         raise ValueError("mixed_equilibrium: the element law is written for T = EA strain")
@@ -350,7 +361,7 @@ def mixed_equilibrium(
     work = Workspace(line.n_elements)
     system = _System(line, anchor, work, compliance, tol_force, tol_strain)
     system.weigh_slack(x, tension)
-    xs, ts, its, ok = _newton(system, x, tension, max_iterations)
+    xs, ts, its, ok = _newton(system, x, tension, max_iterations, deadline)
     total = its
     used = 0
     # continuation in stiffness: soften so that the largest strain is 1e-2, then
@@ -361,18 +372,20 @@ def mixed_equilibrium(
     while level > float(np.max(compliance)) * 10.0:
         stages.append(level)
         level *= 0.1
-    if not ok and stages:
+    late = deadline is not None and time.monotonic() > deadline
+    if not ok and stages and not late:
         xs, ts = x, tension
         for level in [*stages, None]:
             c = compliance if level is None else np.maximum(compliance, level)
             tol_g = tol_strain if level is None else max(tol_strain, relative * tmax * level)
             system = _System(line, anchor, work, c, tol_force, tol_g)
             system.weigh_slack(xs, ts)
-            xs, ts, its, ok = _newton(system, xs, ts, max_iterations)
+            xs, ts, its, ok = _newton(system, xs, ts, max_iterations, deadline)
             total += its
             used += 1
             if not ok:
                 break
+        late = deadline is not None and time.monotonic() > deadline
     vec, F, misfit, taut = system.last
     free = ~np.asarray(line.held, dtype=bool)
     held_anchor = np.array(anchor, dtype=float, copy=True)
@@ -386,6 +399,7 @@ def mixed_equilibrium(
         strain_residual=float(np.max(np.abs(misfit[taut]), initial=0.0)),
         converged=bool(ok),
         stages=used,
+        timed_out=bool(late and not ok),
     )
 
 

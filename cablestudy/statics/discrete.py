@@ -48,7 +48,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from .base import STATUS_NOT_CONVERGED, StaticProblem, StaticResult
+from .base import STATUS_NOT_CONVERGED, STATUS_TIME_LIMIT, StaticProblem, StaticResult
 
 
 class DiscreteSolver:
@@ -113,10 +113,10 @@ class DiscreteSolver:
             else problem.friction_lateral,
         )
         disc = discretise_nodes(line, med, s, extras)
-        return _solve_discrete(problem, disc, x0, start, free, end_force)
+        return _solve_discrete(problem, disc, x0, start, free, end_force, deadline)
 
 
-def _solve_discrete(problem, disc, x0, start, free, end_force):  # noqa: ANN001, ANN202
+def _solve_discrete(problem, disc, x0, start, free, end_force, deadline):  # noqa: ANN001, ANN202
     """Newton from the cable solution at the nodes, then the node-level verification."""
     from ..dynamics.mixed import (
         geometry_rounding,
@@ -152,10 +152,20 @@ def _solve_discrete(problem, disc, x0, start, free, end_force):  # noqa: ANN001,
             tol_force=tol,
             relative=problem.tolerance,
             max_iterations=max(problem.max_iterations, 200),
+            deadline=deadline,
         )
         x, t_el, its, ok = sol.position, sol.tension, sol.iterations, sol.converged
         anchor = sol.anchor
         res = sol.force_residual
+        if sol.timed_out:
+            return StaticResult.failed(
+                s,
+                STATUS_TIME_LIMIT,
+                f"time limit reached in the discrete equilibrium after {its} Newton "
+                f"iterations (largest nodal out-of-balance force {res:.3g} N)",
+                iterations=its,
+                residual=res,
+            )
     else:
         # a nonlinear axial law: Newton on positions, the tension from the chords' stretch
         x, its, res, ok, anchor = static_equilibrium(

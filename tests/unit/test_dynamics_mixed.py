@@ -72,3 +72,25 @@ def test_straight_start_reaches_the_equilibrium_of_the_cable_start(ea: float) ->
     u = d / np.linalg.norm(d, axis=1, keepdims=True)
     vertical = -sol.tension[0] * u[0, 2] + sol.tension[-1] * u[-1, 2] + 2 * lump
     assert abs(vertical - 2400.0) < 1e-6 * 2400.0
+
+
+def test_a_passed_deadline_stops_newton_and_says_so() -> None:
+    """A deadline already passed: the straight start is not an equilibrium, so Newton
+    stops unconverged at once and reports the time limit (not a false convergence)."""
+    import time
+
+    medium = Medium(density=0.0, gravity=9.80665)
+    disc = discretise(line_model(1e12), medium, 50)
+    b = np.array([80.0, 0.0, -20.0])
+    x0 = np.linspace(0.0, 1.0, 51)[:, None] * b[None, :]
+    sol = mixed_equilibrium(
+        disc,
+        x0,
+        np.full(50, 2400.0),
+        x0.copy(),
+        tol_force=1e-9 * 48.0,
+        relative=1e-9,
+        deadline=time.monotonic() - 1.0,
+    )
+    assert not sol.converged and sol.timed_out
+    assert sol.iterations == 0 and sol.stages == 0
