@@ -2,12 +2,19 @@
 EA, length and node count: converged and right (against method ``catenary``, the exact
 elastic catenary), with the error falling as h^2.
 
-Before the mixed (position and tension) Newton (measured on main at 5634c87):
-* 2 m wire, 1001 nodes: end tension 7.5 % low, status 0, 0 iterations (2001 nodes: 2 %);
-* 100 m line of 24 N/m, EA 1e13 and 1e15: tension 12 N against 1243 N, status 0;
-* a 1 mm line: 150x low, status 0;
-* MoorPy's 500 m line on a 210 m seabed: 400 iterations, not converged.
-After: all within 3e-7 of catenary at these meshes (the h^2 lumping error), status 0.
+Before the mixed (position and tension) Newton (measured on 5634c87, the branch point):
+* 2 m wire (2.466 kg/m, EA 6.283e7) at 1001 nodes: end tensions 40.16 / 35.91 N
+  against 43.30 / 39.14 N (7.3 % and 8.2 % low), status 0, 0 iterations; at 2001
+  nodes 2.1 % low;
+* 100 m line of 24 N/m to (80, 0, -20), EA 1e13 and 1e15: 12 N at both ends (the
+  half-element weight) against 1722.7 / 1242.7 N, status 0; the same line 1 mm long:
+  143x low, status 0;
+* MoorPy's 500 m line (800 N/m, EA 7.51e11) on a 210 m seabed: 400 iterations, not
+  converged (nodal force 1.5e11 N); its sloped-seabed mirror line at 1001 nodes:
+  status 0 with the anchor force 99.4 % off.
+After: the wire within 2.7e-7 (1001 nodes, 1 iteration) and 6.7e-8 (2001); EA 1e13,
+1e15 and the 1 mm line within 1.04e-5, the lumping error of 100 elements (2
+iterations); the seabed line within 1.2e-4 at 100 elements (5 iterations, 14 ms).
 
 Tolerance: lumped weight on straight elements errs by c (h/L)^2 with c below 0.2 on
 these sagging lines (measured 1.04e-5 at 100 elements: c = 0.1), so 0.5 (h/L)^2 + 1e-9
