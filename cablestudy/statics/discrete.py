@@ -269,7 +269,10 @@ def _force_tolerance(
     floor += 64.0 * np.finfo(float).eps * reach * float(np.max(disc.seabed_stiffness))
     if load == 0.0:
         load = tmax / disc.n_elements  # a weightless line between its supports
-    return max(problem.tolerance * load, floor), floor, load
+    # a line without load or tension (weightless, exactly at rest length) is in balance
+    # only at zero force: the smallest positive number leaves 0 / tol defined
+    tol = max(problem.tolerance * load, floor, np.finfo(float).tiny)
+    return tol, floor, load
 
 
 def verify_nodes(  # noqa: PLR0913
