@@ -248,17 +248,18 @@ def _force_tolerance(
 
     The load scale is the largest load on a node: weight and buoyancy, attachments and
     end forces (the model's constant nodal forces), and at the start the seabed's
-    reaction, friction, drag and bending (the other forces of the model). The
+    reaction, friction and drag (the model's other external forces). The
     tolerance is the study's relative ``tolerance`` of it, but never below what the
     residual's own evaluation rounds to: an element's tension times the relative
     rounding of its direction (64 ulp of the coordinates' reach over the shortest
     element), and a seabed node's contact stiffness times the rounding of its height.
     Neither depends on EA."""
-    from ..dynamics.mixed import axial_forces, geometry_rounding, other_forces_line
+    from ..dynamics.mixed import geometry_rounding, other_forces_line
     from ..dynamics.model import evaluate
 
-    others = evaluate(other_forces_line(disc), x0, np.zeros_like(x0), anchor=x0).F
-    others = others + axial_forces(x0, np.zeros_like(tension))[0]
+    # the external loads only: bending, like the tension, is internal to the line
+    external = replace(other_forces_line(disc), bending=np.zeros_like(disc.bending))
+    others = evaluate(external, x0, np.zeros_like(x0), anchor=x0).F
     load = max(
         float(np.max(np.linalg.norm(disc.force, axis=1))),
         float(np.max(np.linalg.norm(others[~disc.held], axis=1), initial=0.0)),
