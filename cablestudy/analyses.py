@@ -597,8 +597,15 @@ def discrete_statics(
         # the penalty seabed balances each laid node's weight by a penetration of its
         # own: allow the residual the contact stiffness makes of rounding in z
         scale = max(scale, float(np.max(np.abs(line.force))))
+    # the static tension at the element midpoints: where Newton on positions cannot
+    # start (a stiff line on a seabed), the positions-and-tensions form starts from it
+    t_nodes = np.interp(s_nodes, static.s, static.tension)
     x, its, res, ok, anchor = static_equilibrium(
-        line, start, tolerance=max(1e-9 * scale, roundoff_force(line, start)), max_iterations=200
+        line,
+        start,
+        tolerance=max(1e-9 * scale, roundoff_force(line, start)),
+        max_iterations=200,
+        fallback_tension=0.5 * (t_nodes[:-1] + t_nodes[1:]),
     )
     msg = (
         ""

@@ -1378,6 +1378,7 @@ def static_equilibrium(
     tolerance: float,
     max_iterations: int = 100,
     tension: np.ndarray | None = None,
+    fallback_tension: np.ndarray | None = None,
 ) -> tuple[np.ndarray, int, float, bool, np.ndarray]:
     """Equilibrium of the discrete line with its held nodes where ``x0`` puts them.
 
@@ -1387,7 +1388,11 @@ def static_equilibrium(
     from the continuous solution (at most ``mu N / k_t``), never beyond ``mu N``.
 
     Given the element ``tension`` [N] (n,) of the continuous solution, Newton starts
-    from :func:`stretched_start`.
+    from :func:`stretched_start`. Where Newton on positions fails (a stiff line, on a
+    seabed), Newton on positions and element tensions
+    (:func:`cablestudy.dynamics.mixed.mixed_equilibrium`) from ``x0`` and that tension
+    (or ``fallback_tension`` [N] (n,), which leaves the first start at ``x0``) gives
+    the equilibrium.
 
     Returns positions [m] (n + 1, 3), iterations, the largest nodal out-of-balance
     force [N], whether it fell below ``tolerance`` [N], and the friction anchors [m]
@@ -1400,6 +1405,7 @@ def static_equilibrium(
     work.anchor[:] = x
     if line.has_seabed:
         x, work.anchor[:] = _seated_start(line, x, work)
+    start, start_anchor = x.copy(), work.anchor.copy()
     it, res, ok = _static_newton(
         x,
         work.anchor,
@@ -1409,33 +1415,75 @@ def static_equilibrium(
         tolerance,
         max_iterations,
     )
+    if tension is None:
+        tension = fallback_tension
+    if not ok and tension is not None:
+        from .mixed import is_finite_line, mixed_equilibrium
+
+        if is_finite_line(line):
+            # Newton on positions cannot start (a stiff line: EA times the start's chord
+            # error is a large spurious force): Newton on positions and tensions from
+            # the same start, which has no such force
+            t0 = np.maximum(np.asarray(tension, dtype=float), 0.0)
+            xm = np.array(x0, dtype=float, copy=True)
+            anchor_m = xm.copy()
+            if line.has_seabed:
+                xm, anchor_m = _seated_start(line, xm, Workspace(line.n_elements), t0)
+            sol = mixed_equilibrium(
+                line,
+                xm,
+                t0,
+                anchor_m,
+                tol_force=tolerance,
+                relative=tolerance / max(float(np.max(t0)), tolerance),
+                max_iterations=max_iterations,
+            )
+            it += sol.iterations
+            if sol.converged:
+                return sol.position, int(it), sol.force_residual, True, sol.anchor
+            x = start
+            work.anchor[:] = start_anchor
+            evaluate(line, x, np.zeros_like(x), work)
     anchor = work.anchor.copy()
     update_anchors(x, work.friction, line.seabed_stiffness, work.contact, anchor)
     return x, int(it), float(res), bool(ok), anchor
 
 
 def _seated_start(
-    line: DiscreteLine, x: np.ndarray, work: Workspace
+    line: DiscreteLine, x: np.ndarray, work: Workspace, tension: np.ndarray | None = None
 ) -> tuple[np.ndarray, np.ndarray]:
     """Newton's start on a penalty seabed: nodes that the continuous (rigid-seabed)
     solution lays on the seabed sink by their own penetration (normal load over contact
     stiffness), and their friction anchors are placed so that the friction springs
     already carry the tangential force the laid line needs there (the continuous
     solution's mobilised friction), capped at ``mu N`` along and across the line.
-    Returns the positions [m] and anchors [m]."""
+    Given the element ``tension`` [N] (n,), the elements pull with it rather than with
+    the tension their chords' stretch gives (on a stiff line that is EA times the
+    chords' error). Returns the positions [m] and anchors [m]."""
     normal = line.seabed_normal
     scale = float(np.max(np.abs(x))) + float(np.sum(line.rest_length))
     laid = (x @ normal - line.seabed_offset <= 1e-9 * scale) & (line.seabed_stiffness > 0.0)
+    laid &= ~np.asarray(line.held, dtype=bool)  # a held node stays where it is held
     if not np.any(laid):
         return x, x.copy()
     x = x.copy()
     x[laid] += np.outer(line.seabed_offset - x[laid] @ normal, normal)  # onto the plane
     still = np.zeros_like(x)
-    press = evaluate(line, x, still, work, anchor=x).F @ normal  # load on the seabed
+
+    def out_of_balance(x: np.ndarray) -> np.ndarray:
+        if tension is None:
+            return evaluate(line, x, still, work, anchor=x).F.copy()
+        from .mixed import axial_forces, other_forces_line
+
+        f = evaluate(other_forces_line(line), x, still, work, anchor=x).F
+        return f + axial_forces(x, tension)[0]
+
+    press = out_of_balance(x) @ normal  # load on the seabed
     sink = np.where(laid, np.maximum(press, 0.0) / np.maximum(line.seabed_stiffness, 1e-300), 0.0)
     x -= sink[:, None] * normal
-    w = evaluate(line, x, still, work, anchor=x)
-    need = w.F - np.outer(w.F @ normal, normal)  # tangential out-of-balance: friction needed
+    out = out_of_balance(x)
+    w = work
+    need = out - np.outer(out @ normal, normal)  # tangential out-of-balance: friction needed
     n = line.n_nodes
     tan = x[np.minimum(np.arange(n) + 1, n - 1)] - x[np.maximum(np.arange(n) - 1, 0)]
     along = tan - np.outer(tan @ normal, normal)

@@ -3,15 +3,33 @@
 The one line model the dynamic analyses use (:mod:`cablestudy.dynamics.model`) carries
 what a cable's static solvers leave out: bending stiffness EI (tensioned-beam
 curvature terms, pinned or clamped ends) and a compliant seabed (a contact spring of
-``environment.seabed.stiffness`` with stick-slip friction). Its static equilibrium is
-found by Newton on the nodal forces (the time-domain Jacobian without the inertia
-terms), started from the semi-analytic cable solution (method ``catenary``) at the
-same nodes: ``n_nodes - 1`` elements, equal within each segment.
+``environment.seabed.stiffness`` with stick-slip friction). ``n_nodes - 1`` elements,
+equal within each segment.
+
+Newton starts from the semi-analytic cable solution (method ``catenary``, seabed
+included) at the nodes and its tension at the element midpoints, laid nodes sunk by
+their own penetration with their friction already carried. For T = EA strain it solves
+for positions and element tensions together (:mod:`cablestudy.dynamics.mixed`): the
+tension never comes from a difference of rounded positions, so EA from 1 N to 1e15 N
+and lengths from 1 mm to 100 km are solved alike; a line search, and a continuation in
+stiffness where Newton cannot start. Lines with a nonlinear axial law use Newton on
+positions (their tension from the chords' stretch, to EA times the positions'
+rounding).
+
+Convergence is judged against the nodal loads, not EA: each free node's out-of-balance
+force within ``tolerance`` times the largest nodal load (weight and buoyancy,
+attachments, end forces, seabed, drag, bending), but not below the rounding of the
+residual itself (an element's tension times the relative rounding of its direction).
+
+Status 0 only after the node-level check (:func:`verify_nodes`): every free node in
+balance, the support forces balancing the loads on the whole line, the held ends where
+the problem puts them. A converged result that fails it keeps its numbers and gets
+status 1 with "not verified:" and the residuals in its message.
 
 Accuracy: lumped loads and straight elements converge as h^2 (a tensioned beam's
 deflection against the exact beam-string solution: 5e-4 at 40 elements; a catenary
-against the exact elastic catenary the same way). The equilibrium is reached to the
-``tolerance`` relative to the largest static tension, in force per node.
+against the exact elastic catenary the same way; on the seabed the touchdown sits at a
+node, with a larger constant).
 
 Ends: ``fixed`` ends are held; a ``force`` end is a free node carrying its force; a
 ``mooring`` end (known horizontal force at a known height) is held where the cable
@@ -19,8 +37,9 @@ solution puts it, so its horizontal force is the cable's to the discretisation e
 
 Outputs at the nodes: positions, tension (the mean of the adjacent element tensions,
 the end element's at the ends), the forces on the end supports (support reactions of
-held ends, minus the applied force at a free end), and the laid length (elements
-with both nodes on the seabed spring).
+held ends, minus the applied force at a free end; a held end on the seabed hands the
+seabed what presses it in), and the laid length (elements with both nodes on the
+seabed spring).
 """
 
 from __future__ import annotations
@@ -29,7 +48,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from .base import STATUS_NOT_CONVERGED, StaticProblem, StaticResult
+from .base import STATUS_NOT_CONVERGED, STATUS_TIME_LIMIT, StaticProblem, StaticResult
 
 
 class DiscreteSolver:
@@ -52,8 +71,6 @@ class DiscreteSolver:
             DynamicExtras,
             default_seabed_stiffness,
             discretise_nodes,
-            evaluate,
-            static_equilibrium,
             uniform_nodes,
         )
         from .semi_analytic import SemiAnalyticSolver
@@ -96,59 +113,220 @@ class DiscreteSolver:
             else problem.friction_lateral,
         )
         disc = discretise_nodes(line, med, s, extras)
-        scale = max(float(np.max(start.tension)), float(np.max(np.abs(disc.force))))
-        # below the rounding of an element tension EA (l / l0 - 1) no Newton step helps:
-        # an ulp of the node coordinates times EA over the shortest element, times 256
-        # for the few ulp a converged Newton wanders and the node's several elements
-        reach = float(np.max(np.abs(x0))) + float(np.sum(disc.rest_length))
-        rounding = (
-            256.0 * np.finfo(float).eps * float(np.max(disc.axial_stiffness)) * reach
-        ) / float(np.min(disc.rest_length))
-        t_nodes = np.interp(s, start.s, start.tension)
-        # the residual summed over the nodes is what the end forces carry: ask each node
-        # for the tolerance shared out, so the supports balance the weight to it. Newton
-        # starts with the chords stretched by the cable's tension (a stiff line's chord
-        # error times EA is a large spurious force), else from the cable's nodes
-        tol = max(problem.tolerance * scale / s.size, rounding)
-        its_all = 0
-        for tension in (0.5 * (t_nodes[:-1] + t_nodes[1:]), None):
-            x, its, res, ok, anchor = static_equilibrium(
-                disc,
-                x0,
-                tolerance=tol,
-                max_iterations=max(problem.max_iterations, 200),
-                tension=tension,
-            )
-            its_all += its
-            if ok:
-                break
-        its = its_all
-        work = evaluate(disc, x, np.zeros_like(x), anchor=anchor)
-        tension = np.empty(s.size)
-        tension[1:-1] = 0.5 * (work.tension[:-1] + work.tension[1:])
-        tension[0], tension[-1] = work.tension[0], work.tension[-1]
-        forces = []
-        for k, node in ((0, 0), (1, -1)):
-            forces.append(-end_force[k] if free[k] else -work.F[node].copy())
-        on_bed = work.contact > 0.0
-        laid = float(np.sum(np.diff(s)[on_bed[:-1] & on_bed[1:]]))
-        if not ok:
+        return _solve_discrete(problem, disc, x0, start, free, end_force, deadline)
+
+
+def _solve_discrete(problem, disc, x0, start, free, end_force, deadline):  # noqa: ANN001, ANN202
+    """Newton from the cable solution at the nodes, then the node-level verification."""
+    from ..dynamics.mixed import (
+        geometry_rounding,
+        is_finite_line,
+        mixed_equilibrium,
+        node_forces,
+    )
+    from ..dynamics.model import (
+        Workspace,
+        _seated_start,
+        evaluate,
+        static_equilibrium,
+    )
+
+    s = disc.s
+    t_nodes = np.interp(s, start.s, start.tension)
+    t_elements = 0.5 * (t_nodes[:-1] + t_nodes[1:])
+    # held ends exactly where the problem puts them (a mooring end: where the cable does)
+    for k, (end, node) in enumerate(((problem.end_a, 0), (problem.end_b, -1))):
+        if end.kind == "fixed" and not free[k]:
+            x0[node] = np.asarray(end.position, dtype=float)
+    tol, floor, load = _force_tolerance(problem, disc, x0, t_elements)
+    if is_finite_line(disc):
+        work = Workspace(disc.n_elements)
+        x1, anchor = x0, x0.copy()
+        if disc.has_seabed:
+            x1, anchor = _seated_start(disc, x1, work, t_elements)
+        sol = mixed_equilibrium(
+            disc,
+            x1,
+            t_elements,
+            anchor,
+            tol_force=tol,
+            relative=problem.tolerance,
+            max_iterations=max(problem.max_iterations, 200),
+            deadline=deadline,
+        )
+        x, t_el, its, ok = sol.position, sol.tension, sol.iterations, sol.converged
+        anchor = sol.anchor
+        res = sol.force_residual
+        if sol.timed_out:
             return StaticResult.failed(
                 s,
-                STATUS_NOT_CONVERGED,
-                f"the discrete equilibrium did not converge ({its} Newton iterations, "
-                f"largest nodal force {res:.3g} N)",
+                STATUS_TIME_LIMIT,
+                f"time limit reached in the discrete equilibrium after {its} Newton "
+                f"iterations (largest nodal out-of-balance force {res:.3g} N)",
                 iterations=its,
                 residual=res,
             )
-        return StaticResult(
-            s=s,
-            position=x,
-            tension=tension,
-            force_a=forces[0],
-            force_b=forces[1],
-            laid_length=laid,
+    else:
+        # a nonlinear axial law: Newton on positions, the tension from the chords' stretch
+        x, its, res, ok, anchor = static_equilibrium(
+            disc,
+            x0,
+            tolerance=tol,
+            max_iterations=max(problem.max_iterations, 200),
+            tension=t_elements,
+        )
+        t_el = evaluate(disc, x, np.zeros_like(x), anchor=anchor).tension.copy()
+        # its tension is a difference of rounded positions: its residual cannot fall
+        # below EA times their rounding (the mixed form, for T = EA strain, has no such
+        # floor)
+        rounding = float(np.max(disc.axial_stiffness)) * geometry_rounding(disc, x0)
+        tol, floor = max(tol, rounding), max(floor, rounding)
+    if not ok:
+        return StaticResult.failed(
+            s,
+            STATUS_NOT_CONVERGED,
+            f"the discrete equilibrium did not converge ({its} Newton iterations, "
+            f"largest nodal out-of-balance force {res:.3g} N against the tolerance "
+            f"{tol:.3g} N)",
             iterations=its,
             residual=res,
-            drag_iterations=start.drag_iterations,
         )
+    F, work = node_forces(disc, x, t_el, anchor)
+    tension = np.empty(s.size)
+    tension[1:-1] = 0.5 * (t_el[:-1] + t_el[1:])
+    tension[0], tension[-1] = t_el[0], t_el[-1]
+    forces = []
+    # a held end lying on the seabed with the line laid beside it (an anchor on the
+    # seabed): the seabed carries what presses the support into it (its node's own
+    # lumped weight, and the pull of the first element, tilted by the laid nodes'
+    # penetration w / k), as it carries the continuous laid line's weight there; left
+    # on the support it is an error of O(h) and of O(T w / (k h))
+    bed = np.zeros(3)
+    for k, (node, beside) in enumerate(((0, 1), (-1, -2))):
+        if free[k]:
+            forces.append(-end_force[k])
+            continue
+        force = -F[node].copy()
+        n_hat = disc.seabed_normal
+        gap = float(x[node] @ n_hat - disc.seabed_offset)
+        into = -float(force @ n_hat)  # the line pressing its support into the seabed
+        # on the seabed: within the depth the laid line sinks into it
+        sink = -(x @ n_hat - disc.seabed_offset)
+        on_bed = gap <= max(float(np.max(sink[work.contact > 0.0], initial=0.0)), 0.0)
+        if disc.has_seabed and on_bed and work.contact[beside] > 0.0 and into > 0.0:
+            force += into * n_hat
+            bed += into * n_hat
+        forces.append(force)
+    problems = verify_nodes(
+        problem, disc, x, F, work, tol=tol, floor=floor, load=load, held_on_bed=bed
+    )
+    res = float(np.max(np.abs(F[~disc.held]), initial=0.0))
+    on_bed = work.contact > 0.0
+    laid = float(np.sum(np.diff(s)[on_bed[:-1] & on_bed[1:]]))
+    result = StaticResult(
+        s=s,
+        position=x,
+        tension=tension,
+        force_a=forces[0],
+        force_b=forces[1],
+        laid_length=laid,
+        iterations=its,
+        residual=res,
+        drag_iterations=start.drag_iterations,
+    )
+    if problems:
+        # the numbers are kept for inspection; the status says they are not verified
+        result.status = STATUS_NOT_CONVERGED
+        result.message = "not verified: " + "; ".join(problems)
+    return result
+
+
+def _force_tolerance(
+    problem: StaticProblem, disc, x0: np.ndarray, tension: np.ndarray
+) -> tuple[float, float, float]:  # noqa: ANN001
+    """(tolerance, rounding floor, load scale) [N] of a node's out-of-balance force.
+
+    The load scale is the largest load on a node: weight and buoyancy, attachments and
+    end forces (the model's constant nodal forces), and at the start the seabed's
+    reaction, friction and drag (the model's other external forces). The
+    tolerance is the study's relative ``tolerance`` of it, but never below what the
+    residual's own evaluation rounds to: an element's tension times the relative
+    rounding of its direction (64 ulp of the coordinates' reach over the shortest
+    element), and a seabed node's contact stiffness times the rounding of its height.
+    Neither depends on EA."""
+    from ..dynamics.mixed import geometry_rounding, other_forces_line
+    from ..dynamics.model import evaluate
+
+    # the external loads only: bending, like the tension, is internal to the line
+    external = replace(other_forces_line(disc), bending=np.zeros_like(disc.bending))
+    others = evaluate(external, x0, np.zeros_like(x0), anchor=x0).F
+    load = max(
+        float(np.max(np.linalg.norm(disc.force, axis=1))),
+        float(np.max(np.linalg.norm(others[~disc.held], axis=1), initial=0.0)),
+    )
+    tmax = float(np.max(tension))
+    reach = float(np.max(np.abs(x0))) + float(np.sum(disc.rest_length))
+    floor = geometry_rounding(disc, x0) * max(tmax, load)
+    floor += 64.0 * np.finfo(float).eps * reach * float(np.max(disc.seabed_stiffness))
+    if load == 0.0:
+        load = tmax / disc.n_elements  # a weightless line between its supports
+    # a line without load or tension (weightless, exactly at rest length) is in balance
+    # only at zero force: the smallest positive number leaves 0 / tol defined
+    tol = max(problem.tolerance * load, floor, np.finfo(float).tiny)
+    return tol, floor, load
+
+
+def verify_nodes(  # noqa: PLR0913
+    problem: StaticProblem,
+    disc,  # noqa: ANN001
+    x: np.ndarray,
+    F: np.ndarray,
+    work,  # noqa: ANN001
+    *,
+    tol: float,
+    floor: float,
+    load: float,
+    held_on_bed: np.ndarray | None = None,
+) -> list[str]:
+    """The checks a discrete equilibrium passes before status 0; what fails, in words.
+
+    ``F`` [N] (n + 1, 3) are the out-of-balance nodal forces, recomputed from the
+    positions ``x`` [m] and the element tensions (held nodes: their reactions). Checks:
+
+    * each free node within ``tol`` [N];
+    * the whole line: the forces on the supports equal the loads on the line (weight
+      and buoyancy, attachments, free end forces, seabed reaction and friction, drag),
+      within the free nodes' residuals allowed summed (``tol`` times their number);
+    * the held ends where the problem puts them (to the rounding of the coordinates);
+    * finite numbers everywhere.
+    """
+    out: list[str] = []
+    if not (np.all(np.isfinite(x)) and np.all(np.isfinite(F))):
+        return ["non-finite positions or forces"]
+    free = ~np.asarray(disc.held, dtype=bool)
+    node = float(np.max(np.abs(F[free]), initial=0.0))
+    if node > tol:
+        out.append(f"largest nodal out-of-balance force {node:.3g} N > tolerance {tol:.3g} N")
+    # loads on the line: the model's forces without the elements' (bending sums to 0)
+    loads = -(work.F.sum(axis=0))
+    if held_on_bed is not None:  # the seabed's reaction under held ends on it
+        loads = loads + held_on_bed
+    supports = -F[~free].sum(axis=0) + (0.0 if held_on_bed is None else held_on_bed)
+    whole = float(np.linalg.norm(supports - loads))
+    allowed = max(int(free.sum()), 1) * tol + floor
+    if whole > allowed:
+        out.append(
+            f"support forces {supports.tolist()} N do not balance the loads "
+            f"{loads.tolist()} N (residual {whole:.3g} N > {allowed:.3g} N)"
+        )
+    reach = float(np.max(np.abs(x))) + float(np.sum(disc.rest_length))
+    for end, node_i in ((problem.end_a, 0), (problem.end_b, -1)):
+        if end.kind == "fixed":
+            miss = float(np.linalg.norm(x[node_i] - np.asarray(end.position, dtype=float)))
+        elif end.kind == "mooring":
+            miss = abs(float(x[node_i, 2]) - float(end.z))
+        else:
+            continue
+        if miss > 16.0 * np.finfo(float).eps * reach:
+            out.append(f"end at s = {disc.s[node_i]:.6g} m is {miss:.3g} m from its position")
+    return out
