@@ -157,6 +157,24 @@ def _solve_discrete(problem, disc, x0, start, free, end_force, deadline):  # noq
         x, t_el, its, ok = sol.position, sol.tension, sol.iterations, sol.converged
         anchor = sol.anchor
         res = sol.force_residual
+        if not ok and not sol.timed_out:
+            # Newton on positions alone, which the mixed form's start can miss (a beam
+            # whose bending carries its weight between supports its own length apart);
+            # its tension is a difference of rounded positions, so its tolerance takes
+            # that rounding, and the node-level verification below still judges it
+            rounding = float(np.max(disc.axial_stiffness)) * geometry_rounding(disc, x0)
+            xp, its_p, res_p, ok_p, anchor_p = static_equilibrium(
+                disc,
+                x0,
+                tolerance=max(tol, rounding),
+                max_iterations=max(problem.max_iterations, 200),
+                tension=t_elements,
+            )
+            its += its_p
+            if ok_p:
+                x, anchor, res, ok = xp, anchor_p, res_p, True
+                t_el = evaluate(disc, x, np.zeros_like(x), anchor=anchor).tension.copy()
+                tol, floor = max(tol, rounding), max(floor, rounding)
         if sol.timed_out:
             return StaticResult.failed(
                 s,
