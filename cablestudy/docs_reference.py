@@ -73,6 +73,9 @@ USED_BY: dict[str, str] = {
     "the time and frequency domain (excite it, fix it, or make it a force end)",
     "StaticSettings": "statics (and the static state every other analysis starts from)",
     "StaticSettings.drag_elements": "method catenary with a current",
+    "StaticSettings.strain_warning": "statics, every method: a `strain` warning above it "
+    "(the case keeps status 0; an axial law's max_strain fails it)",
+    "Segment.line_type": "every analysis: fills the segment's unset keys (line types page)",
     "StaticSettings.installation": "method shooting (the others refuse it)",
     "StaticSettings.drag_diameter": "stretched: method shooting with a current (the other "
     "methods refuse it there)",
