@@ -346,6 +346,7 @@ def _compiled_solve(
     """
     from .statics import _fast
     from .statics.batch import _guess
+    from .statics.verify import Pieces, check_lines
 
     line, med = base.line, base.medium
     if (
@@ -434,6 +435,22 @@ def _compiled_solve(
         & np.all(np.isfinite(TA), axis=1)
         & np.all(np.isfinite(TL), axis=1)
     )
+    # status 0 means verified: what fails the whole-line check goes to the general solver
+    idx = np.flatnonzero(good)
+    checked = check_lines(
+        s=s[idx],
+        position=position[idx],
+        tension=tension[idx],
+        force_a=TA[idx],
+        force_b=-TL[idx],
+        pieces=Pieces(
+            bounds=bounds[idx], weight=-q[idx, :, 2], axial_stiffness=EA[idx], point=point[idx]
+        ),
+        tolerance=tol[idx],
+        position_a=rA[idx],
+        position_b=rB[idx],
+    )
+    good[idx] = checked.ok
     rest |= ~good
     if plane is not None:
         rest |= _height_below(plane, position, -1e-6 * Ltot, strict=True)
