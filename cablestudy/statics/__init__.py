@@ -19,7 +19,7 @@ from .discrete import DiscreteSolver
 from .elastic_catenary import ElasticCatenarySolver
 from .semi_analytic import SemiAnalyticSolver
 from .shooting import ShootingSolver
-from .verify import verified
+from .verify import tolerance_floor, verified
 
 
 class VerifiedSolver:
@@ -37,7 +37,9 @@ class VerifiedSolver:
         self, problem: StaticProblem, *, deadline: float | None = None, **options: object
     ) -> StaticResult:
         result = self.solver.solve(problem, deadline=deadline, **options)  # type: ignore[call-arg]
-        return verified(problem, result.check_finite(), method=self.name)
+        return verified(
+            problem, result.check_finite(), method=self.name, floor=tolerance_floor(self.solver)
+        )
 
     def __getattr__(self, name: str) -> object:
         return getattr(self.solver, name)

@@ -57,6 +57,15 @@ from .seabed import Plane
 #: scale: a converged solver meets its tolerance on its own residual, which differs from
 #: these sums by a few terms of the same size
 MULTIPLE = 10.0
+
+
+def tolerance_floor(solver: object) -> float:
+    """The smallest tolerance ``solver`` can meet [-]: 100 times the relative tolerance
+    of its ODE integration where it has one (method ``shooting`` stops its Newton at
+    max(tolerance, 100 rtol)), else 0."""
+    return 100.0 * float(getattr(solver, "rtol", 0.0))
+
+
 #: contact with the seabed: within this fraction of the line length of it (the solvers'
 #: own test of an end on the seabed)
 CONTACT_GAP = 1e-6
@@ -362,19 +371,25 @@ def _near_points(s: np.ndarray, pieces: Pieces) -> np.ndarray:
 # --------------------------------------------------------------------------- one case
 
 
-def verified(problem: StaticProblem, result: StaticResult, *, method: str = "") -> StaticResult:
+def verified(
+    problem: StaticProblem, result: StaticResult, *, method: str = "", floor: float = 0.0
+) -> StaticResult:
     """``result`` if it is not ok or passes every check; otherwise the same numbers with
-    status :data:`STATUS_NOT_VERIFIED` and the failing checks in the message."""
+    status :data:`STATUS_NOT_VERIFIED` and the failing checks in the message. ``floor``
+    [-] is the smallest tolerance the method can meet (its integration floor)."""
     if result.status != STATUS_OK:
         return result
-    checked = check_one(problem, result, method=method)
+    checked = check_one(problem, result, method=method, floor=floor)
     if bool(checked.ok[0]):
         return result
     return replace(result, status=STATUS_NOT_VERIFIED, message=checked.message(0))
 
 
-def check_one(problem: StaticProblem, result: StaticResult, *, method: str = "") -> Checked:
-    """The checks of the module docstring on one result (any problem)."""
+def check_one(
+    problem: StaticProblem, result: StaticResult, *, method: str = "", floor: float = 0.0
+) -> Checked:
+    """The checks of the module docstring on one result (any problem); the tolerance is
+    the problem's, or ``floor`` where that is larger."""
     from .semi_analytic import make_layout
 
     line, med = problem.line, problem.medium
@@ -396,7 +411,8 @@ def check_one(problem: StaticProblem, result: StaticResult, *, method: str = "")
     f_scale = float(np.sum(np.abs(line.weight) * line.length))
     f_scale += float(np.sum(np.linalg.norm(line.attachment_force, axis=1)))
     f_scale += float(np.linalg.norm(result.force_a)) + float(np.linalg.norm(result.force_b))
-    tol = max(problem.tolerance, 16.0 * float(np.finfo(float).eps) * s.shape[1])
+    requested = max(problem.tolerance, floor)
+    tol = max(requested, 16.0 * float(np.finfo(float).eps) * s.shape[1])
     for label, end, force, k in (("A", ea, result.force_a, 0), ("B", eb, result.force_b, -1)):
         if end.kind == "force":
             assert end.force is not None
@@ -462,7 +478,7 @@ def check_one(problem: StaticProblem, result: StaticResult, *, method: str = "")
         force_a=np.asarray(result.force_a, dtype=float)[None],
         force_b=np.asarray(result.force_b, dtype=float)[None],
         pieces=pieces,
-        tolerance=np.array([problem.tolerance]),
+        tolerance=np.array([requested]),
         position_a=None if ea.kind != "fixed" else np.asarray(ea.position, dtype=float)[None],
         position_b=None if eb.kind != "fixed" else np.asarray(eb.position, dtype=float)[None],
         laws=lay.law,
