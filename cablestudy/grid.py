@@ -28,6 +28,7 @@ import numpy as np
 from .cases import SweepAxis, _copy_tree, _hash, _set_path, code_fingerprint, parse_sweep
 from .config.loader import StudyError, StudySource, validate_data
 from .config.study import Study
+from .results import KEPT_STATUSES
 
 #: swept paths the array path takes: (kind, end or segment, component)
 _POSITION = re.compile(r"^ends\.(a|b)\.position\.([012])$")
@@ -572,7 +573,7 @@ def array_outputs(
     for i in np.flatnonzero(ok & ~finite):
         status[i] = STATUS_NUMERICAL
         messages[i] = f"non-finite values in {', '.join(sorted(bad_names[i]))}"
-    failed = status != 0
+    failed = ~np.isin(status, KEPT_STATUSES)  # a case not verified keeps its numbers
     if failed.any():
         for arr in out.values():
             arr[failed] = np.nan

@@ -139,9 +139,17 @@ def _strain_bound(
     s: np.ndarray, tension: np.ndarray, pieces: Pieces, laws: tuple | None
 ) -> np.ndarray:
     """Largest strain over each sample interval (N, n - 1): the strain at the larger end
-    tension in the softest piece the interval overlaps."""
+    tension in the softest piece the interval overlaps. Across a point load inside an
+    interval the tension jumps: there the bound adds its magnitude and the weight of
+    the interval (the most the tension can change on the way to it)."""
     tmax = np.maximum(tension[:, :-1], tension[:, 1:])
     b = pieces.bounds
+    if np.any(pieces.point):
+        mag = np.linalg.norm(pieces.point, axis=2)  # (N, P + 1)
+        inside = (s[:, :-1, None] < b[:, None, :]) & (b[:, None, :] < s[:, 1:, None])
+        jump = np.sum(np.where(inside, mag[:, None, :], 0.0), axis=2)
+        w = np.max(np.abs(pieces.weight), axis=1, keepdims=True)
+        tmax = tmax + np.where(jump > 0.0, jump + w * (s[:, 1:] - s[:, :-1]), 0.0)
     if b.shape[1] == 2 and not laws:
         return tmax / pieces.axial_stiffness[:, :1]
     out = np.zeros(tmax.shape)

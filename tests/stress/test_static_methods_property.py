@@ -99,10 +99,11 @@ def _allowed(prob: StaticProblem, cat, method: str) -> tuple[float, float]:  # n
     if method == "discrete":
         h = L / (prob.n_nodes - 1)
         t_min = float(np.min(cat.tension))
-        # kappa h at most 1: beyond it the chord-arc bound saturates (an element spans
-        # more than a radian of turn, its chord can be anything from 0 to h)
+        # the turn over an element, w h / T (at most 1: beyond a radian of turn the
+        # chord-arc bound saturates), on the stretched element length h (1 + T_max / EA)
         kh = min(abs(w) * h / t_min, 1.0) if t_min > 0.0 else 1.0
-        delta += L * kh * kh / 24.0 + kh * h / 8.0
+        stretch = 1.0 + float(np.max(cat.tension)) / EA
+        delta += stretch * (L * kh * kh / 24.0 + kh * h / 8.0)
     return 20.0 * tol * F + stiffness * delta, delta
 
 
