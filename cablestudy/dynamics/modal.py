@@ -478,8 +478,13 @@ def modal_analysis(problem: ModalProblem, *, deadline: float | None = None) -> M
             s, k, STATUS_NUMERICAL, "two static nodes coincide; the element direction is undefined"
         )
     T_e = 0.5 * (st.tension[:-1] + st.tension[1:])
-    if np.any(T_e <= 0.0):
-        i = int(np.argmin(T_e))
+    # a stretch laid on the seabed that friction has emptied of tension is held by the
+    # seabed, not a slack span: only a suspended element must be taut
+    ground = problem.medium.seabed_z(st.position[:, 0], st.position[:, 1])
+    on_bed = st.position[:, 2] - ground <= 1e-6 * max(float(s[-1] - s[0]), 1.0)
+    slack = (T_e <= 0.0) & ~(on_bed[:-1] & on_bed[1:])
+    if np.any(slack):
+        i = int(np.flatnonzero(slack)[np.argmin(T_e[slack])])
         return ModalResult.failed(
             s,
             k,

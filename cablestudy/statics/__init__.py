@@ -42,6 +42,8 @@ class VerifiedSolver:
         )
 
     def __getattr__(self, name: str) -> object:
+        if name == "solver":  # not set yet (e.g. while unpickling): no recursion
+            raise AttributeError(name)
         return getattr(self.solver, name)
 
 

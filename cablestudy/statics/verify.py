@@ -16,17 +16,23 @@ Checks (each a value against an allowance; a result passes when none exceeds it)
    the returned shape) and the seabed reaction. The seabed reaction is not returned by
    the solvers; it is what the balance leaves, and it must be one the seabed can give:
    its normal part between the normal weight of the sample intervals lying on the
-   seabed (both ends in contact) and of those touching it (either end), and its
-   tangential part (friction) at most ``mu`` times the normal part.
+   seabed (both ends on the plane to round-off, or pressed into it; the interval at
+   each end of such a run left out) and of those near it (either end within
+   ``CONTACT_GAP`` of the line length, plus the point loads there; no upper bound with
+   bending stiffness, which presses the touchdown region harder), and its tangential
+   part (friction) at most ``mu`` times the normal part (``mu`` the larger of the axial
+   and lateral coefficients).
 2. **Ends.** A fixed end where it was put; a mooring end at its height and carrying its
    horizontal force; a force end carrying its force; the end tensions equal the end
    forces' magnitudes.
 3. **Tension along s.** At each sample not separated from an end by seabed contact, the
    returned tension equals ``|T(s)|`` from that end's force and the loads (still water,
-   or with the recomputed drag; lines without bending stiffness).
+   or with the recomputed drag; lines without bending stiffness; samples at a point
+   load, whose tension is that of either side, left out).
 4. **Stretched length.** No sample interval's chord is longer than the stretched arc
    can be: ``h (1 + e(max T))`` (``e`` the axial law's strain; the tension of a
-   catenary piece is convex in s, so its largest value over an interval is at an end).
+   catenary piece is convex in s, so its largest value over an interval is at an end;
+   across a point load inside the interval, the load and the interval's weight added).
 
 Allowances are set by the loads, never by EA: ``10 * tol * F`` for forces, with ``F``
 the total load magnitude (weights, attachments, drag, end forces) and ``tol`` the
@@ -36,7 +42,12 @@ Methods that report a discretised tension (``discrete``: element tensions averag
 the nodes, attachments lumped on the nearest node) add their resolution: the largest
 load of one element or attachment. Drag recomputed from the samples carries a
 quadrature error; it is allowed four times its Richardson estimate (the same drag from
-intervals twice as long), since the solver's own lumping is of the same order.
+intervals twice as long), since the solver's own lumping is of the same order; in full
+on intervals near the touchdown point (partly laid: the solvers put no drag on the
+laid part), and for ``discrete`` (drag lumped on the nodes with node tangents) half
+its change from one interval to the next. Bodies (``attachment_drag_area``) add
+``1/2 rho C_D A |U| U`` at their place. ``shooting`` is held to its own floor,
+``100 rtol`` of its integration (:func:`tolerance_floor`).
 Steady installation adds the momentum flux ``m V^2`` of the paid-out cable at each end,
 which the whole-line balance allows rather than models.
 """
@@ -232,6 +243,7 @@ def _checks(
     drag: np.ndarray | None = None,
     drag_allow: np.ndarray | None = None,
     contact: np.ndarray | None = None,
+    laid: np.ndarray | None = None,
     seabed: Plane | None = None,
     friction: float = 0.0,
     bending: bool = False,
@@ -279,7 +291,10 @@ def _checks(
         nrm = seabed.normal
         h = np.diff(s, axis=1)
         normal_w = pieces_weight_at(s, pieces) * float(nrm[2])  # (N, n - 1) [N/m]
-        both = contact[:, :-1] & contact[:, 1:]
+        # lying on it for certain: on the plane to round-off (or pressed into it); near
+        # it: within the contact gap (a sample there may be lifting off)
+        on = contact if laid is None else laid
+        both = on[:, :-1] & on[:, 1:]
         either = contact[:, :-1] | contact[:, 1:]
         # a sample within the contact gap may already be lifting off: the interval at
         # each end of a run of contact is counted in the upper bound only
@@ -441,11 +456,15 @@ def check_one(
                 MULTIPLE * tol * max(L, float(np.max(np.abs(pos)))),
                 "m",
             )
-    contact = None
+    contact = laid = None
     plane = None
     if med.depth is not None:
         plane = Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
-        contact = (plane.height_above(pos[0]) <= CONTACT_GAP * L)[None]
+        height = plane.height_above(pos[0])
+        contact = (height <= CONTACT_GAP * L)[None]
+        # on the plane to the round-off of the coordinates
+        reach = max(L, float(np.max(np.abs(pos))), med.depth)
+        laid = (height <= 64.0 * float(np.finfo(float).eps) * reach)[None]
     drag = drag_allow = None
     if (
         (med.has_current or problem.is_installation)
@@ -455,7 +474,7 @@ def check_one(
             or np.any(line.attachment_drag_area > 0.0)
         )
     ):
-        drag, drag_allow = _drag(problem, s[0], pos[0], contact)
+        drag, drag_allow = _drag(problem, s[0], pos[0], contact, laid)
         if method in DISCRETISED and len(drag) > 1:
             # lumped on the nodes with node tangents: a second quadrature of the same
             # drag, differing from ours by at most half its change from one interval on
@@ -494,6 +513,7 @@ def check_one(
         drag=drag,
         drag_allow=drag_allow,
         contact=contact,
+        laid=laid,
         seabed=plane,
         friction=fric,
         bending=bool(np.any(line.bending_stiffness > 0.0)),
@@ -507,24 +527,27 @@ def check_one(
 
 
 def _drag(
-    problem: StaticProblem, s: np.ndarray, pos: np.ndarray, contact: np.ndarray | None
+    problem: StaticProblem,
+    s: np.ndarray,
+    pos: np.ndarray,
+    contact: np.ndarray | None,
+    laid: np.ndarray | None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Drag force on each sample interval (n - 1, 3) [N] from the returned shape (chord
     tangent, current at mid-height, relative to the laying frame and the pay-out; none
     on intervals lying on the seabed), and its allowance (n - 1,) [N]: four times the
     Richardson estimate of its quadrature error (see the module docstring)."""
     force = _interval_drag(problem, s, pos)
-    if contact is not None:
-        laid = contact[0, :-1] & contact[0, 1:]
-        force[laid] = 0.0
+    if laid is not None:
+        force[laid[0, :-1] & laid[0, 1:]] = 0.0
     mag = np.linalg.norm(force, axis=1)
     m = (len(s) - 1) // 2
     if m >= 1:
         idx = np.arange(0, 2 * m + 1, 2)
         coarse = _interval_drag(problem, s[idx], pos[idx])
         fine = force[: 2 * m].reshape(m, 2, 3).sum(axis=1)
-        if contact is not None:
-            coarse[contact[0, idx[:-1]] & contact[0, idx[1:]]] = 0.0
+        if laid is not None:
+            coarse[laid[0, idx[:-1]] & laid[0, idx[1:]]] = 0.0
         size = float(np.sum(np.linalg.norm(fine, axis=1)))
         diff = float(np.sum(np.linalg.norm(fine - coarse, axis=1)))
         rho = diff / size if size > 0.0 else 0.0
@@ -542,9 +565,9 @@ def _drag(
         k = np.clip(np.searchsorted(s, problem.line.attachment_s, side="right") - 1, 0, len(s) - 2)
         np.add.at(force, k, body)
         np.add.at(allow, k, 4.0 * min(rho, 1.0) * np.linalg.norm(body, axis=1))
-    if contact is not None:
-        # an interval across the touchdown point is partly laid (no drag there)
-        edge = contact[0, :-1] != contact[0, 1:]
+    if contact is not None and laid is not None:
+        # an interval near the touchdown point may be partly laid (no drag there)
+        edge = (contact[0, :-1] | contact[0, 1:]) & ~(laid[0, :-1] & laid[0, 1:])
         allow = np.where(edge, mag, allow)
     return force, allow
 

@@ -205,3 +205,43 @@ def test_mooring_and_force_ends_are_checked() -> None:
     assert verified(towed, res).status == STATUS_OK
     wrong = replace(res, force_b=res.force_b * (1 + 1e-6))
     assert "end B force" in verified(towed, wrong).message
+
+
+ISSUE_21_DISCRETE = {
+    # issue 21: method discrete returned these with status 0, 7.5 % low, 150x low, ...
+    "wire-2m-1001-nodes": replace(wire(), n_nodes=1001),
+    "ea-1e13": StaticProblem(
+        line=make_line([100.0], [24.0], 1e13),
+        medium=WATER,
+        end_a=fixed(0, 0, 0),
+        end_b=fixed(80, 0, -20),
+    ),
+    "ea-1e15": StaticProblem(
+        line=make_line([100.0], [24.0], 1e15),
+        medium=WATER,
+        end_a=fixed(0, 0, 0),
+        end_b=fixed(80, 0, -20),
+    ),
+    "one-millimetre": StaticProblem(
+        line=make_line([1e-3], [24.0], 1e8),
+        medium=WATER,
+        end_a=fixed(0, 0, 0),
+        end_b=fixed(8e-4, 0, -2e-4),
+    ),
+}
+
+
+@pytest.mark.parametrize("name", sorted(ISSUE_21_DISCRETE))
+def test_discrete_answers_of_issue_21_are_right_or_not_verified(name: str) -> None:
+    """Whatever method discrete returns for the lines of issue 21, a status-0 answer is
+    the cable's: end tension within 1e-3 of the catenary's (a discretisation error of
+    order (w h / T)^2, about 1e-6 at most on these meshes, plus the tolerance); otherwise it is
+    not verified (status nonzero, with a message)."""
+    prob = ISSUE_21_DISCRETE[name]
+    cat = STATIC_SOLVERS["catenary"].solve(prob)
+    res = STATIC_SOLVERS["discrete"].solve(prob)
+    if res.status == STATUS_OK:
+        t_cat = np.linalg.norm(cat.force_a)
+        assert abs(np.linalg.norm(res.force_a) / t_cat - 1.0) < 1e-3
+    else:
+        assert res.message
