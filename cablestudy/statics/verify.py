@@ -44,8 +44,9 @@ load of one element or attachment. Drag recomputed from the samples carries a
 quadrature error; it is allowed four times its Richardson estimate (the same drag from
 intervals twice as long), since the solver's own lumping is of the same order; in full
 on intervals near the touchdown point (partly laid: the solvers put no drag on the
-laid part), and for ``discrete`` (drag lumped on the nodes with node tangents) half
-its change from one interval to the next. Bodies (``attachment_drag_area``) add
+laid part), and for ``discrete`` (drag lumped on the nodes with node tangents, on the
+elements' rest length) half its change from one interval to the next plus the drag
+times the strain. Bodies (``attachment_drag_area``) add
 ``1/2 rho C_D A |U| U`` at their place. ``shooting`` is held to its own floor,
 ``100 rtol`` of its integration (:func:`tolerance_floor`).
 Steady installation adds the momentum flux ``m V^2`` of the paid-out cable at each end,
@@ -480,6 +481,12 @@ def check_one(
             # drag, differing from ours by at most half its change from one interval on
             jump = 0.25 * np.linalg.norm(np.diff(drag, axis=0), axis=1)
             drag_allow = drag_allow + np.pad(jump, (0, 1)) + np.pad(jump, (1, 0))
+            # and on the rest length of the elements, not the stretched one: the drag
+            # times the strain
+            h = np.diff(s[0])
+            lc = np.linalg.norm(np.diff(pos[0], axis=0), axis=1)
+            strain = np.abs(lc / np.where(h > 0.0, h, 1.0) - 1.0)
+            drag_allow = drag_allow + np.linalg.norm(drag, axis=1) * strain
         drag, drag_allow = drag[None], drag_allow[None]
     if problem.is_installation:
         # momentum flux of the paid-out cable at each end, allowed, not modelled
