@@ -526,11 +526,56 @@ def check_one(
         bending=bool(np.any(line.bending_stiffness > 0.0)),
         extra_allow=extra,
     )
+    if plane is not None and method not in DISCRETISED and drag is None:
+        end_vals["seabed penetration"] = (
+            _penetration(problem, result, plane, lay),
+            MULTIPLE * tol * max(L, float(np.max(np.abs(pos)))),
+            "m",
+        )
     for name, (v, a, u) in end_vals.items():
         checked.values[name] = np.array([v])
         checked.allowed[name] = np.array([a])
         checked.units[name] = u
     return checked
+
+
+def _penetration(problem: StaticProblem, result: StaticResult, plane: Plane, lay) -> float:  # noqa: ANN001
+    """How deep [m] the still-water line goes into a rigid seabed: at the samples, and
+    between them at the lowest point of each suspended interval (where the tension's
+    normal component turns from down to up: the closed-form piece increment from the
+    tension at the sample before, :func:`.pieces.piece_integrals`). Intervals across a
+    segment boundary or point load, and those beyond the first contact from A, are
+    checked at their samples only."""
+    from .pieces import piece_integrals
+
+    pos = np.asarray(result.position, dtype=float)
+    s = np.asarray(result.s, dtype=float)
+    height = plane.height_above(pos)
+    deepest = max(float(-np.min(height)), 0.0)
+    n = plane.normal
+    L = float(lay.bounds[-1])
+    touched = np.cumsum(height <= CONTACT_GAP * L) > 0
+    T = np.asarray(result.force_a, dtype=float).copy()
+    k = 0
+    for i in range(len(s) - 1):
+        while k + 1 < len(lay.ell) and lay.bounds[k + 1] <= s[i]:
+            k += 1
+        inside = (lay.bounds > s[i]) & (lay.bounds < s[i + 1])
+        if touched[i] and i > 0:
+            break
+        if np.any(inside) or (i > 0 and np.any(np.abs(lay.bounds - s[i]) <= 1e-12 * L)):
+            break  # the tension at the next samples needs the point loads: stop here
+        q = np.array([0.0, 0.0, -lay.weight[k]])
+        Ti = T  # the tension vector at sample i: force_a less the weight before it
+        qn = float(q @ n)
+        V0 = float(Ti @ n)
+        h = s[i + 1] - s[i]
+        if qn < 0.0 and V0 < 0.0 and V0 - qn * h > 0.0:
+            sigma = V0 / qn
+            dr, _, _ = piece_integrals(Ti, q, np.array(sigma), np.array(lay.EA[k]), jacobian=False)
+            deepest = max(deepest, -float(height[i] + dr @ n))
+        T = Ti - q * h
+    return deepest
 
 
 def _drag(

@@ -19,8 +19,11 @@ end position in the end force), so the forces must agree within
 * ``discrete`` (straight elements between nodes): each element's chord is shorter than
   its arc by ``h (kappa h)^2 / 24`` (kappa = w / T_min the largest curvature), so the
   lumped line is short by at most ``L (kappa h)^2 / 24`` and its nodes sit off the arc by
-  the element sagitta ``kappa h^2 / 8``: delta = both plus the tolerance term. That is
-  the h^2 error of the method, derived rather than fitted.
+  the element sagitta ``kappa h^2 / 8`` (both on the stretched length): delta = both
+  plus the tolerance term. That is the h^2 error of the method, derived rather than
+  fitted; it holds while an element turns by less than a radian (kappa h < 1). On a
+  coarser mesh no agreement is claimed: such a result is only required to pass the
+  verification.
 
 Positions at the same s must agree within the same delta plus the force difference over
 the stiffness (already in delta) - checked as ``10 tol reach + delta``.
@@ -85,7 +88,8 @@ def lines(draw: st.DrawFn) -> StaticProblem:
 
 
 def _allowed(prob: StaticProblem, cat, method: str) -> tuple[float, float]:  # noqa: ANN001
-    """(force, position) allowances of the module docstring [N], [m]."""
+    """(force, position) allowances of the module docstring [N], [m]; (inf, inf) where
+    the mesh does not resolve the line (an element turns by a radian or more)."""
     line = prob.line
     L, w, EA = float(line.length[0]), float(line.weight[0]), float(line.axial_stiffness[0])
     q = np.array([0.0, 0.0, -w])
@@ -99,9 +103,11 @@ def _allowed(prob: StaticProblem, cat, method: str) -> tuple[float, float]:  # n
     if method == "discrete":
         h = L / (prob.n_nodes - 1)
         t_min = float(np.min(cat.tension))
-        # the turn over an element, w h / T (at most 1: beyond a radian of turn the
-        # chord-arc bound saturates), on the stretched element length h (1 + T_max / EA)
-        kh = min(abs(w) * h / t_min, 1.0) if t_min > 0.0 else 1.0
+        # the turn over an element, w h / T, on the stretched element length
+        # h (1 + T_max / EA); the h^2 estimate holds for turns below a radian
+        kh = abs(w) * h / t_min if t_min > 0.0 else math.inf
+        if kh >= 1.0:
+            return math.inf, math.inf
         stretch = 1.0 + float(np.max(cat.tension)) / EA
         delta += stretch * (L * kh * kh / 24.0 + kh * h / 8.0)
     return 20.0 * tol * F + stiffness * delta, delta
@@ -112,7 +118,7 @@ def _solve(method: str, prob: StaticProblem):  # noqa: ANN202
 
 
 @settings(
-    max_examples=30,
+    max_examples=100,
     deadline=None,
     derandomize=True,
     suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much],
@@ -139,6 +145,8 @@ def test_every_method_is_verified_or_says_why(prob: StaticProblem) -> None:
         )
         dx = float(np.max(np.linalg.norm(res.position - cat.position, axis=1)))
         worst = max(df / f_allow, dx / x_allow)
+        if math.isinf(f_allow):
+            continue  # no agreement claimed on a mesh that does not resolve the line
         TALLY[method][2] = max(TALLY[method][2], worst)
         assert worst <= 1.0, (method, df, f_allow, dx, x_allow)
 
