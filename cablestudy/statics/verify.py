@@ -554,27 +554,33 @@ def _penetration(problem: StaticProblem, result: StaticResult, plane: Plane, lay
     deepest = max(float(-np.min(height)), 0.0)
     n = plane.normal
     L = float(lay.bounds[-1])
-    touched = np.cumsum(height <= CONTACT_GAP * L) > 0
-    T = np.asarray(result.force_a, dtype=float).copy()
-    k = 0
-    for i in range(len(s) - 1):
-        while k + 1 < len(lay.ell) and lay.bounds[k + 1] <= s[i]:
-            k += 1
-        inside = (lay.bounds > s[i]) & (lay.bounds < s[i + 1])
-        if touched[i] and i > 0:
-            break
-        if np.any(inside) or (i > 0 and np.any(np.abs(lay.bounds - s[i]) <= 1e-12 * L)):
-            break  # the tension at the next samples needs the point loads: stop here
-        q = np.array([0.0, 0.0, -lay.weight[k]])
-        Ti = T  # the tension vector at sample i: force_a less the weight before it
-        qn = float(q @ n)
-        V0 = float(Ti @ n)
-        h = s[i + 1] - s[i]
-        if qn < 0.0 and V0 < 0.0 and V0 - qn * h > 0.0:
-            sigma = V0 / qn
-            dr, _, _ = piece_integrals(Ti, q, np.array(sigma), np.array(lay.EA[k]), jacobian=False)
-            deepest = max(deepest, -float(height[i] + dr @ n))
-        T = Ti - q * h
+    pieces = Pieces(
+        bounds=lay.bounds[None],
+        weight=lay.weight[None],
+        axial_stiffness=lay.EA[None],
+        point=lay.point[None],
+    )
+    T = np.asarray(result.force_a, dtype=float)[None] - _loads_to_nodes(s[None], pieces)[0]
+    k = np.clip(np.searchsorted(lay.bounds, s[:-1], side="right") - 1, 0, len(lay.ell) - 1)
+    one_piece = s[1:] <= lay.bounds[k + 1] * (1.0 + 1e-12)
+    no_point = ~np.any(
+        (lay.bounds[None, :] >= s[:-1, None])
+        & (lay.bounds[None, :] < s[1:, None])
+        & np.any(lay.point != 0.0, axis=1)[None, :],
+        axis=1,
+    )
+    free = np.cumsum(height[:-1] <= CONTACT_GAP * L) <= (height[0] <= CONTACT_GAP * L)
+    q = np.zeros((len(k), 3))
+    q[:, 2] = -lay.weight[k]
+    qn = q @ n
+    V0 = T[:-1] @ n
+    V1 = V0 - qn * np.diff(s)
+    turn = one_piece & no_point & free & (qn < 0.0) & (V0 < 0.0) & (V1 > 0.0)
+    if np.any(turn):
+        sigma = V0[turn] / qn[turn]
+        dr, _, _ = piece_integrals(T[:-1][turn], q[turn], sigma, lay.EA[k[turn]], jacobian=False)
+        low = height[:-1][turn] + dr @ n
+        deepest = max(deepest, float(-np.min(low)))
     return deepest
 
 
