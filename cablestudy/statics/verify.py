@@ -543,10 +543,11 @@ def _penetration(problem: StaticProblem, result: StaticResult, plane: Plane, lay
     """How deep [m] the still-water line goes into a rigid seabed: at the samples, and
     between them at the lowest point of each suspended interval (where the tension's
     normal component turns from down to up: the closed-form piece increment from the
-    tension at the sample before, :func:`.pieces.piece_integrals`). Intervals across a
+    tension at the sample before, :func:`.law_pieces.piece_increments` with the piece's
+    axial law). Intervals across a
     segment boundary or point load, and those beyond the first contact from A, are
     checked at their samples only."""
-    from .pieces import piece_integrals
+    from .law_pieces import piece_increments
 
     pos = np.asarray(result.position, dtype=float)
     s = np.asarray(result.s, dtype=float)
@@ -578,7 +579,10 @@ def _penetration(problem: StaticProblem, result: StaticResult, plane: Plane, lay
     turn = one_piece & no_point & free & (qn < 0.0) & (V0 < 0.0) & (V1 > 0.0)
     if np.any(turn):
         sigma = V0[turn] / qn[turn]
-        dr, _, _ = piece_integrals(T[:-1][turn], q[turn], sigma, lay.EA[k[turn]], jacobian=False)
+        laws = None if lay.law is None else [lay.law[j] for j in k[turn]]
+        dr, _, _ = piece_increments(
+            T[:-1][turn], q[turn], sigma, lay.EA[k[turn]], laws, jacobian=False
+        )
         low = height[:-1][turn] + dr @ n
         deepest = max(deepest, float(-np.min(low)))
     return deepest
