@@ -544,9 +544,8 @@ def _penetration(problem: StaticProblem, result: StaticResult, plane: Plane, lay
     between them at the lowest point of each suspended interval (where the tension's
     normal component turns from down to up: the closed-form piece increment from the
     tension at the sample before, :func:`.law_pieces.piece_increments` with the piece's
-    axial law). Intervals across a
-    segment boundary or point load, and those beyond the first contact from A, are
-    checked at their samples only."""
+    axial law). Intervals across a segment boundary or point load, and those beyond the
+    first contact from A, are checked at their samples only."""
     from .law_pieces import piece_increments
 
     pos = np.asarray(result.position, dtype=float)
