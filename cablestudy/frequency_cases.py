@@ -87,8 +87,14 @@ def linearised(
         out = (None, f"static shape at the dynamic nodes: {mesh.message}")
     else:
         T_e = 0.5 * (mesh.tension[:-1] + mesh.tension[1:])
-        if np.any(T_e <= 0.0):
-            i = int(np.argmin(T_e))
+        # a stretch laid on the seabed that friction has emptied of tension is held by
+        # the seabed, not a slack span: only a suspended element must be taut
+        med = _problem(case).medium
+        ground = med.seabed_z(mesh.position[:, 0], mesh.position[:, 1])
+        on_bed = mesh.position[:, 2] - ground <= 1e-6 * max(float(mesh.s[-1]), 1.0)
+        slack = (T_e <= 0.0) & ~(on_bed[:-1] & on_bed[1:])
+        if np.any(slack):
+            i = int(np.flatnonzero(slack)[np.argmin(T_e[slack])])
             out = (
                 None,
                 f"the static line is slack near s = {0.5 * (mesh.s[i] + mesh.s[i + 1]):.6g} m "

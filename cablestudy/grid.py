@@ -31,6 +31,7 @@ from .cases import SweepAxis, _copy_tree, _hash, _set_path, code_fingerprint, pa
 from .config.loader import StudyError, StudySource, validate_data
 from .config.study import Study
 from .plausibility import fallback_warning, joined, largest_strain, strain_warning
+from .results import KEPT_STATUSES
 
 #: status of a case whose solver raised inside an array chunk or gave non-finite values:
 #: cablestudy.statics.base.STATUS_NUMERICAL, as evaluate_case gives it (not imported
@@ -364,6 +365,7 @@ def _compiled_solve(
     """
     from .statics import _fast
     from .statics.batch import NOT_SETTLED, ON_SEABED, _guess
+    from .statics.verify import Pieces, check_lines, check_seabed_lines
 
     line, med = base.line, base.medium
     if (
@@ -431,6 +433,34 @@ def _compiled_solve(
     laid = np.zeros(N)
     iters = np.zeros(N, dtype=np.int64)
     resid = np.zeros(N)
+
+    def seabed_checked(c: np.ndarray, settled: np.ndarray) -> np.ndarray:
+        """Of the contact kernel's cases ``c`` (settled where ``settled``), those that
+        pass the whole-line check with the seabed's admissible reaction (status 0 means
+        verified; the others go to the general solver). The line as defined A to B: the
+        kernel's arrays of a line anchored at B are already turned back."""
+        ok = np.zeros(c.size, dtype=bool)
+        idx = c[settled]
+        if idx.size:
+            ok[settled] = check_seabed_lines(
+                s=s[idx],
+                position=position[idx],
+                tension=tension[idx],
+                force_a=TA[idx],
+                force_b=-TL[idx],
+                pieces=Pieces(
+                    bounds=bounds[idx],
+                    weight=-q[idx, :, 2],
+                    axial_stiffness=EA[idx],
+                    point=point[idx],
+                ),
+                tolerance=tol[idx],
+                position_a=rA[idx],
+                position_b=rB[idx],
+                plane=plane,
+            ).ok
+        return ok
+
     # why the kernels hand a case to the general solver ('' for a case they never take:
     # both ends on the seabed, an end below it)
     why = [""] * N
@@ -477,6 +507,25 @@ def _compiled_solve(
             & np.all(np.isfinite(TA_f), axis=1)
             & np.all(np.isfinite(TL_f), axis=1)
         )
+        # status 0 means verified: what fails the whole-line check goes to the general
+        # solver
+        idx = np.flatnonzero(good)
+        good[idx] = check_lines(
+            s=s[f][idx],
+            position=pos_f[idx],
+            tension=ten_f[idx],
+            force_a=TA_f[idx],
+            force_b=-TL_f[idx],
+            pieces=Pieces(
+                bounds=bounds[f][idx],
+                weight=-q[f][idx, :, 2],
+                axial_stiffness=EA[f][idx],
+                point=point[f][idx],
+            ),
+            tolerance=tol[f][idx],
+            position_a=rA[f][idx],
+            position_b=rB[f][idx],
+        ).ok
         for j in np.flatnonzero(~good):
             why[f[j]] = NOT_SETTLED
         if plane is not None:
@@ -498,7 +547,9 @@ def _compiled_solve(
         position[c], tension[c] = got["position"], got["tension"]
         TA[c], TL[c] = got["force_a"], -got["force_b"]
         laid[c], iters[c], resid[c] = got["laid_length"], got["iterations"], got["residual"]
-        for i in c[got["status"] != 0]:
+        settled = got["status"] == 0
+        settled &= seabed_checked(c, settled)
+        for i in c[~settled]:
             rest[i], why[i] = True, NOT_SETTLED
     if contact_b.any():
         from .statics.batch import solve_contact_arrays
@@ -521,7 +572,9 @@ def _compiled_solve(
         position[c], tension[c] = got["position"], got["tension"]
         TA[c], TL[c] = got["force_b"], -got["force_a"]
         laid[c], iters[c], resid[c] = got["laid_length"], got["iterations"], got["residual"]
-        for i in c[got["status"] != 0]:
+        settled = got["status"] == 0
+        settled &= seabed_checked(c, settled)
+        for i in c[~settled]:
             rest[i], why[i] = True, NOT_SETTLED
     out = StaticArrays(
         s=s,
@@ -642,7 +695,7 @@ def array_outputs(
     for i in np.flatnonzero(ok & ~finite):
         status[i] = STATUS_NUMERICAL
         messages[i] = f"non-finite values in {', '.join(sorted(bad_names[i]))}"
-    failed = status != 0
+    failed = ~np.isin(status, KEPT_STATUSES)  # a case not verified keeps its numbers
     if failed.any():
         for arr in out.values():
             arr[failed] = np.nan

@@ -46,8 +46,12 @@ class OutputVariable:
 #: status of a case whose line broke in statics (cablestudy.statics.base.STATUS_BROKEN):
 #: its data are kept, it is not counted as failed
 STATUS_BROKEN = 10
+#: status of a case whose static result failed its verification
+#: (cablestudy.statics.base.STATUS_NOT_VERIFIED): its data are kept for inspection, it is
+#: counted as failed
+STATUS_NOT_VERIFIED = 11
 #: statuses whose case data are written (others are NaN)
-KEPT_STATUSES = (0, STATUS_BROKEN)
+KEPT_STATUSES = (0, STATUS_BROKEN, STATUS_NOT_VERIFIED)
 
 #: every data variable a case may produce: name -> extra dims, units, long name.
 #: Numeric outputs (counters included) are float64 so that a failed case is NaN in every
@@ -343,7 +347,11 @@ OUTPUTS.update(
 #: per-case bookkeeping variables (always present)
 CASE_VARIABLES: dict[str, OutputVariable] = {
     "status": OutputVariable(
-        (), "1", "case status: 0 ok, 10 line broken (data kept), other nonzero failed", "int64"
+        (),
+        "1",
+        "case status: 0 ok, 10 line broken (data kept), 11 static result not verified "
+        "(failed, data kept), other nonzero failed",
+        "int64",
     ),
     "message": OutputVariable((), "1", "why the case failed (empty when ok)", "str"),
     "warning": OutputVariable(

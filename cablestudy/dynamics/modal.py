@@ -478,16 +478,11 @@ def modal_analysis(problem: ModalProblem, *, deadline: float | None = None) -> M
             s, k, STATUS_NUMERICAL, "two static nodes coincide; the element direction is undefined"
         )
     T_e = 0.5 * (st.tension[:-1] + st.tension[1:])
-    slack = T_e <= 0.0
-    med = problem.medium
-    if np.any(slack) and med.depth is not None and med.friction > 0.0:
-        # a laid element whose tension friction has taken out sticks: the contact and
-        # friction springs of the seabed hold it (its tension is exactly 0, not slack)
-        from ..statics.seabed import Plane
-
-        plane = Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
-        laid = plane.height_above(st.position) <= 1e-6 * max(float(s[-1]), 1.0)
-        slack &= ~(laid[:-1] & laid[1:])
+    # a stretch laid on the seabed that friction has emptied of tension is held by the
+    # seabed, not a slack span: only a suspended element must be taut
+    ground = problem.medium.seabed_z(st.position[:, 0], st.position[:, 1])
+    on_bed = st.position[:, 2] - ground <= 1e-6 * max(float(s[-1] - s[0]), 1.0)
+    slack = (T_e <= 0.0) & ~(on_bed[:-1] & on_bed[1:])
     if np.any(slack):
         i = int(np.flatnonzero(slack)[np.argmin(T_e[slack])])
         return ModalResult.failed(

@@ -57,6 +57,48 @@ def sag(position: np.ndarray) -> float:
     return float(np.max(np.linalg.norm(rel - along[:, None] * (chord / length), axis=1)))
 
 
+def slack_ratio(
+    *,
+    element_tension_static: np.ndarray,
+    element_tension_amplitude: np.ndarray,
+    end_tension_static: np.ndarray,
+    end_tension_amplitude: np.ndarray,
+    on_seabed: np.ndarray,
+    held: np.ndarray | None = None,
+) -> np.ndarray:
+    """The slack measure of K responses (K,): the smallest (static - amplitude) / static
+    tension over the elements (n - 1,) and the ends (2,) that can go slack, with the
+    amplitudes (K, n - 1) and (K, 2) [N].
+
+    Left out: elements between two ``held`` nodes (they do not move), and elements and
+    ends laid on the seabed (``on_seabed`` (n,)) with no static tension (a laid stretch
+    or an anchor that friction has emptied of tension lies on the seabed; it is not a
+    slack span). A suspended point with no static tension that moves is measured
+    against the line's largest static tension, ``-amplitude / max(T_max, amplitude)``
+    (finite, below zero: slack). No point to measure: +inf (nothing can go slack)."""
+    keep = np.ones(element_tension_static.size, dtype=bool)
+    if held is not None:
+        keep = ~(held[:-1] & held[1:])
+    laid = np.asarray(on_seabed, dtype=bool)
+    keep &= ~(laid[:-1] & laid[1:] & (element_tension_static <= 0.0))
+    keep_end = ~(laid[[0, -1]] & (end_tension_static <= 0.0))
+    static = np.concatenate([element_tension_static[keep], end_tension_static[keep_end]])
+    amp = np.concatenate(
+        [element_tension_amplitude[:, keep], end_tension_amplitude[:, keep_end]], axis=1
+    )
+    top = float(np.max(static, initial=0.0))
+    positive = static > 0.0
+    # a point with no static tension and no motion is not near slack; one with motion is
+    active = positive[None] | (amp > 1e-12 * top)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratios = np.where(
+            positive[None],
+            (static - amp) / np.where(positive, static, 1.0)[None],
+            -amp / np.maximum(top, amp),
+        )
+    return np.min(np.where(active, ratios, math.inf), axis=1, initial=math.inf)
+
+
 def measures(
     *,
     s: np.ndarray,
@@ -78,19 +120,16 @@ def measures(
     (n,) bool, nodes with no free direction (elements between two of them do not move
     and are left out of the slack check: a laid stretch that friction has emptied of
     tension is not a slack span)."""
-    moving = np.ones(element_tension_static.size, dtype=bool)
-    if held is not None:
-        moving = ~(held[:-1] & held[1:])
-    static = np.concatenate([element_tension_static[moving], end_tension_static])
-    amp = np.concatenate([element_tension_amplitude[moving], end_tension_amplitude])
-    # a point with no static tension and no motion (an anchor that friction has
-    # emptied of tension) is not near slack; one with motion is
-    active = (static > 0.0) | (amp > 1e-12 * float(np.max(static, initial=0.0)))
-    static, amp = static[active], amp[active]
-    if np.all(static > 0.0):
-        ratio = float(np.min((static - amp) / static, initial=math.inf))
-    else:
-        ratio = -math.inf
+    ratio = float(
+        slack_ratio(
+            element_tension_static=element_tension_static,
+            element_tension_amplitude=element_tension_amplitude[None],
+            end_tension_static=end_tension_static,
+            end_tension_amplitude=end_tension_amplitude[None],
+            on_seabed=on_seabed,
+            held=held,
+        )[0]
+    )
     length = float(s[-1] - s[0])
     d = sag(position)
     a = float(np.max(np.sqrt(np.sum(np.abs(displacement) ** 2, axis=1))))
@@ -136,17 +175,14 @@ def measures_cases(
     ``element_tension_amplitude`` (K, n - 1) and ``end_tension_amplitude`` (K, 2) per
     response, the rest shared. Returns (min_tension_ratio, amplitude_sag_ratio,
     touchdown_travel), each (K,), with the same operations as :func:`measures`."""
-    moving = np.ones(element_tension_static.size, dtype=bool)
-    if held is not None:
-        moving = ~(held[:-1] & held[1:])
-    static = np.concatenate([element_tension_static[moving], end_tension_static])
-    amp = np.concatenate([element_tension_amplitude[:, moving], end_tension_amplitude], axis=1)
-    positive = static > 0.0
-    # a point with no static tension is active (and then means slack) only with motion
-    moving_unloaded = ~positive[None] & (amp > 1e-12 * float(np.max(static, initial=0.0)))
-    ratios = (static[positive] - amp[:, positive]) / static[positive]
-    ratio = np.min(ratios, axis=1, initial=math.inf)
-    ratio = np.where(np.any(moving_unloaded, axis=1), -math.inf, ratio)
+    ratio = slack_ratio(
+        element_tension_static=element_tension_static,
+        element_tension_amplitude=element_tension_amplitude,
+        end_tension_static=end_tension_static,
+        end_tension_amplitude=end_tension_amplitude,
+        on_seabed=on_seabed,
+        held=held,
+    )
     length = float(s[-1] - s[0])
     d = sag(position)
     a = np.max(np.sqrt(sum_components(np.abs(displacement) ** 2)), axis=1)

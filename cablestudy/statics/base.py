@@ -9,7 +9,8 @@ A static solver
    handle (checked for every case before any work starts: a config error);
 3. returns from :meth:`StaticSolver.solve` a :class:`StaticResult`; a numerical failure
    is a nonzero ``status`` with a ``message``, never an exception and never NaN with
-   status 0;
+   status 0; the registry (:data:`cablestudy.statics.STATIC_SOLVERS`) passes every
+   result through :func:`.verify.verified`, so status 0 means verified;
 4. checks ``deadline`` (a :func:`time.monotonic` value) in its loops and returns
    :data:`STATUS_TIME_LIMIT` when it passes.
 
@@ -31,6 +32,9 @@ STATUS_NOT_CONVERGED = 1
 STATUS_NUMERICAL = 2
 STATUS_TIME_LIMIT = 3
 STATUS_NO_SOLUTION = 4
+#: the solver reported convergence but the result fails the whole-line verification
+#: (:mod:`.verify`): its numbers are kept for inspection, the message holds the residuals
+STATUS_NOT_VERIFIED = 11
 #: the static line's tension exceeds its break limit (line.break): not a solver failure,
 #: the static results are kept (see :mod:`.limits`)
 STATUS_BROKEN = 10

@@ -26,6 +26,7 @@ from .base import STATUS_OK, StaticProblem, StaticResult
 from .pieces import piece_integrals
 from .seabed import Plane
 from .semi_analytic import SemiAnalyticSolver, make_layout, reversed_line
+from .verify import Pieces, check_lines, verified
 
 #: why the batch kernel leaves a case to the one-by-one solver
 NOT_SETTLED = "not settled there"
@@ -404,9 +405,15 @@ def solve_batch(
         tried_contact = False
         if res is None and contact and _fast.AVAILABLE and contact_eligible(prob):
             res = _contact_one(prob)
+            if res is not None:  # status 0 means verified: else the general solver
+                res = verified(prob, res, method=solver.name)
             tried_contact = True
         if res is None or not res.success:
-            res = solver.solve(prob, deadline=deadline, compiled=False)
+            res = verified(
+                prob,
+                solver.solve(prob, deadline=deadline, compiled=False).check_finite(),
+                method=solver.name,
+            )
             if general is not None:
                 general.append(i)
             if i in batched:
@@ -427,6 +434,8 @@ def solve_compiled(
         return None
     if contact_eligible(problem):
         res = _contact_one(problem)
+        if res is not None and not verified(problem, res, method="catenary").success:
+            res = None  # status 0 means verified: the general solver takes it
         if res is None and why is not None:
             why[0] = NOT_SETTLED
         return res
@@ -613,6 +622,9 @@ def _solve_group(
         & np.all(np.isfinite(TA), axis=1)
         & np.all(np.isfinite(TL), axis=1)
     )
+    good &= _verified_group(
+        problems, good, s, pos, tension, TA, -TL, bounds, -q[..., 2], EA, point, rA, tol
+    )
     out: list[StaticResult | None] = []
     force_b = -TL
     iters_l = iters.tolist()
@@ -641,6 +653,60 @@ def _solve_group(
                 continue
         out.append(res)
     return out
+
+
+def _verified_group(
+    problems: list[StaticProblem],
+    good: np.ndarray,
+    s: np.ndarray,
+    pos: np.ndarray,
+    tension: np.ndarray,
+    force_a: np.ndarray,
+    force_b: np.ndarray,
+    bounds: np.ndarray,
+    weight: np.ndarray,
+    EA: np.ndarray,
+    point: np.ndarray,
+    rA: np.ndarray,
+    tol: np.ndarray,
+) -> np.ndarray:
+    """Per case whether the kernel's answer passes :func:`.verify.check_lines` (cases not
+    ``good`` are False); the others go to the one-by-one solver, as any case the kernel
+    does not settle."""
+    idx = np.flatnonzero(good)
+    ok = np.zeros(len(problems), dtype=bool)
+    if not idx.size:
+        return ok
+    N = idx.size
+    pos_b = np.full((N, 3), np.nan)
+    f_b = np.full((N, 3), np.nan)
+    z_b = np.full(N, np.nan)
+    for j, i in enumerate(idx.tolist()):
+        end = problems[i].end_b
+        if end.kind == "fixed":
+            pos_b[j] = end.position
+        elif end.kind == "force":
+            f_b[j] = end.force
+        else:
+            f_b[j, :2] = end.force[:2]
+            z_b[j] = end.z
+    checked = check_lines(
+        s=s[idx],
+        position=pos[idx],
+        tension=tension[idx],
+        force_a=force_a[idx],
+        force_b=force_b[idx],
+        pieces=Pieces(
+            bounds=bounds[idx], weight=weight[idx], axial_stiffness=EA[idx], point=point[idx]
+        ),
+        tolerance=tol[idx],
+        position_a=rA[idx],
+        position_b=pos_b,
+        given_force_b=f_b,
+        given_height_b=z_b,
+    )
+    ok[idx] = checked.ok
+    return ok
 
 
 def _newton_numpy(

@@ -170,6 +170,11 @@ def reversed_line(line: LineModel) -> LineModel:
 
 # --------------------------------------------------------------------------- shape
 
+#: [N] tension vector magnitude of a piece that lies slack (no tension): carries only its
+#: direction through :func:`.pieces.piece_integrals` (a straight unloaded piece advances
+#: by ell T0/|T0| whatever |T0|); never an output (:attr:`Shape.slack` zeroes it)
+_DIRECTION_ONLY = 1e-150
+
 
 @dataclass
 class Shape:
@@ -195,6 +200,9 @@ class Shape:
     nodes: np.ndarray | None = None
     #: per piece its non-linear axial law (None: all linear)
     law: tuple | None = None
+    #: per piece True where it lies slack on the seabed (no tension; its ``T0`` holds
+    #: only the direction it lies in, at :data:`_DIRECTION_ONLY` newtons); None: none
+    slack: np.ndarray | None = None
 
     def sample(self, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Positions [m] (n, 3) and tension [N] (n,) at arc lengths ``s`` [m]."""
@@ -206,6 +214,8 @@ class Shape:
         pos = self.r0[k] + dr
         T = self.T0[k] - self.q[k] * sigma[:, None]
         tension = np.linalg.norm(T, axis=1)
+        if self.slack is not None:
+            tension = np.where(self.slack[k], 0.0, tension)  # zero tension is 0
         L = self.s0[-1] + self.ell[-1]
         tension = np.where(s <= 0.0, np.linalg.norm(self.force_a), tension)
         tension = np.where(s >= L, np.linalg.norm(self.tension_end), tension)
@@ -512,7 +522,7 @@ def _contact_shape(
     laid = _laid(lay, s_td, T_td, plane)
     tn = float(np.linalg.norm(T_td))
     e = T_td / tn if tn > 0.0 else plane.basis[0]
-    s0l, elll, T0l, ql, EAl, lawl = [], [], [], [], [], []
+    s0l, elll, T0l, ql, EAl, lawl, slack = [], [], [], [], [], [], []
     for j in range(len(laid.s) - 1):
         lo, hi = laid.s[j], laid.s[j + 1]
         piece = min(
@@ -531,10 +541,11 @@ def _contact_shape(
         if slack_len > 0.0:
             s0l.append(lo)
             elll.append(slack_len)
-            T0l.append(1e-150 * e)
+            T0l.append(_DIRECTION_ONLY * e)
             ql.append(np.zeros(3))
             EAl.append(seg_ea)
             lawl.append(seg_law)
+            slack.append(True)
         if hi - lo - slack_len > 0.0:
             s0l.append(lo + slack_len)
             elll.append(hi - lo - slack_len)
@@ -542,6 +553,7 @@ def _contact_shape(
             ql.append(-k * e)
             EAl.append(seg_ea)
             lawl.append(seg_law)
+            slack.append(False)
     s0s, ells, EAs, qs, C, k_td, Cend = _suspended(lay, q, s_td)
     T0s = T_td - C
     s0 = np.concatenate((np.array(s0l), s0s))
@@ -565,6 +577,7 @@ def _contact_shape(
         laid_length=s_td,
         contact=True,
         law=laws,
+        slack=np.array(slack + [False] * len(s0s), dtype=bool) if any(slack) else None,
     )
 
 
@@ -1400,7 +1413,7 @@ class SemiAnalyticSolver:
         return Shape(
             s0=np.zeros(1),
             ell=np.array([L]),
-            T0=(1e-150 * e)[None, :],
+            T0=(_DIRECTION_ONLY * e)[None, :],
             q=np.zeros((1, 3)),
             EA=np.array([1.0]),
             r0=ends.rA[None, :],

@@ -15,6 +15,7 @@ import pytest
 
 from cablestudy.statics import (
     STATIC_SOLVERS,
+    STATUS_NOT_VERIFIED,
     STATUS_OK,
     EndCondition,
     LineModel,
@@ -110,4 +111,8 @@ def test_random_problem_converges_or_says_why(seed: int) -> None:
         assert np.all(res.tension >= 0.0)
     else:
         assert res.message
-        assert np.all(np.isnan(res.position))
+        if res.status == STATUS_NOT_VERIFIED:
+            # converged but failed the whole-line check: its numbers are kept to inspect
+            assert res.message.startswith("not verified: ")
+        else:
+            assert np.all(np.isnan(res.position))

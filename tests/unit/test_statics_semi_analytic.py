@@ -30,7 +30,7 @@ def current(speed: float, heading_deg: float = 0.0) -> Medium:
 
 
 def test_registered_as_catenary_and_supports_everything() -> None:
-    assert isinstance(STATIC_SOLVERS["catenary"], SemiAnalyticSolver)
+    assert isinstance(STATIC_SOLVERS["catenary"].solver, SemiAnalyticSolver)
     prob = StaticProblem(
         line=make_line([10.0, 5.0], [3.0, 1.0], 1e6, attachments=[(4, (0, 0, 1))]),
         medium=current(1.0),
