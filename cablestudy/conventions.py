@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 
 #: every status code a case or an analysis may carry, with its CF flag meaning (one word):
-#: cablestudy.statics.base (0-4, 10), cablestudy.dynamics.modal (5, 6; analyses'
+#: cablestudy.statics.base (0-4, 10, 11), cablestudy.dynamics.modal (5, 6; analyses'
 #: STATUS_NOT_RUN is 5 too), cablestudy.dynamics.frequency (7), cablestudy.runner (9)
 STATUS_MEANINGS: dict[int, str] = {
     0: "ok",
@@ -25,6 +25,7 @@ STATUS_MEANINGS: dict[int, str] = {
     7: "linearisation_not_converged",
     9: "task_failed",
     10: "line_broken",
+    11: "not_verified",
 }
 
 

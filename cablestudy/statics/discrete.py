@@ -174,7 +174,24 @@ def _solve_discrete(problem, disc, x0, start, free, end_force, deadline):  # noq
             if ok_p:
                 x, anchor, res, ok = xp, anchor_p, res_p, True
                 t_el = evaluate(disc, x, np.zeros_like(x), anchor=anchor).tension.copy()
-                tol, floor = max(tol, rounding), max(floor, rounding)
+                # polished by the mixed form from there (its tension from equilibrium,
+                # not from rounded chords), which now starts close enough to converge
+                polish = mixed_equilibrium(
+                    disc,
+                    x,
+                    t_el,
+                    anchor,
+                    tol_force=tol,
+                    relative=problem.tolerance,
+                    max_iterations=max(problem.max_iterations, 200),
+                    deadline=deadline,
+                )
+                its += polish.iterations
+                if polish.converged:
+                    x, t_el, anchor = polish.position, polish.tension, polish.anchor
+                    res = polish.force_residual
+                else:
+                    tol, floor = max(tol, rounding), max(floor, rounding)
         if sol.timed_out:
             return StaticResult.failed(
                 s,

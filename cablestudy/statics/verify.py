@@ -338,8 +338,13 @@ def _checks(
         put("whole-line force balance", np.linalg.norm(needed, axis=1), f_allow, "N")
     else:
         nrm = seabed.normal
+        # the weight of each sample interval, exact across piece boundaries (an interval
+        # holding a chain-to-wire joint carries part of each), divided by its length so
+        # that normal_w * h below is that weight's normal part
         h = np.diff(s, axis=1)
-        normal_w = pieces_weight_at(s, pieces) * float(nrm[2])  # (N, n - 1) [N/m]
+        normal_w = (
+            interval_weight(s, pieces) / np.where(h > 0.0, h, 1.0) * float(nrm[2])
+        )  # (N, n - 1) [N/m]
         # lying on it for certain: on the plane to round-off (or pressed into it); near
         # it: within the contact gap (a sample there may be lifting off)
         on = contact if laid is None else laid
@@ -406,6 +411,19 @@ def _checks(
     excess = np.max(chord - arc, axis=1, initial=-np.inf)
     put("stretched length", np.maximum(excess, 0.0), x_allow, "m")
     return Checked(values=values, allowed=allowed, units=units)
+
+
+def interval_weight(s: np.ndarray, pieces: Pieces) -> np.ndarray:
+    """Weight [N] (N, n - 1) of each sample interval: the integral of the pieces' weight
+    per length over it (the pieces it spans each in their share)."""
+    b = pieces.bounds  # (N, P + 1)
+    ell = np.diff(b, axis=1)  # (N, P)
+
+    def cumulative(x: np.ndarray) -> np.ndarray:  # (N, n) [N]: weight from s = 0 to x
+        into = np.clip(x[:, :, None] - b[:, None, :-1], 0.0, ell[:, None, :])
+        return np.sum(pieces.weight[:, None, :] * into, axis=2)
+
+    return np.diff(cumulative(s), axis=1)
 
 
 def pieces_weight_at(s: np.ndarray, pieces: Pieces) -> np.ndarray:

@@ -26,7 +26,7 @@ from cablestudy.config import parse_study_text
 from cablestudy.config.loader import validate_data
 from cablestudy.grid import CaseGrid, evaluate_grid_chunk
 from cablestudy.problem import static_problem
-from cablestudy.statics import _fast_contact
+from cablestudy.statics import STATIC_SOLVERS, _fast_contact
 from cablestudy.statics.batch import contact_eligible, contact_end, solve_batch, solve_compiled
 from cablestudy.statics.semi_analytic import SemiAnalyticSolver
 
@@ -101,6 +101,22 @@ CASES = [
 ]
 
 
+def _slides(slope: float, heading: float, mu: float) -> bool:
+    """A frictionless line laid on a slope that does not fall along the laid direction
+    (every laid line here runs within 15 degrees of +x, so a slope heading other than 0
+    or 180 degrees): the slope's cross component of the laid weight, mu = 0, has nothing
+    to hold it. The laid-part model lays the line straight all the same, so its answer
+    balances only with a sideways seabed reaction that a frictionless seabed cannot give:
+    statics/verify.py refuses it (status 11, not verified) on either path."""
+    return mu == 0.0 and slope > 0.0 and heading % 180.0 != 0.0
+
+
+def _assert_refused_by_both_paths(prob) -> None:  # noqa: ANN001
+    assert solve_compiled(prob) is None  # the kernel's answer is not verified: handed on
+    res = STATIC_SOLVERS["catenary"].solve(prob)
+    assert res.status == 11 and "seabed reaction admissible" in res.message, res.message
+
+
 def _reach(xb: float, multi: bool) -> float:
     # the three-piece line is heavier at its anchor end and carries a buoy: it needs
     # more offset to hold its touchdown point off the anchor's side (at 250 m both the
@@ -111,8 +127,21 @@ def _reach(xb: float, multi: bool) -> float:
 REVERSED = [
     pytest.param(*p.values, True, id=f"{p.id}-anchored-at-b")
     for p in CASES
-    if p.id in ("flat-mu0.5-1seg", "oblique-slope-mu0.5-3seg")
+    if p.id in ("flat-mu0.5-1seg", "oblique-slope-mu0.5-1seg")
 ]
+
+
+def test_a_buoy_on_the_laid_part_is_refused_on_both_paths() -> None:
+    """The three-piece line anchored at B: its laid part (about 120 m from B) holds the
+    15 kN buoy at s = 200 m, which would lift some 90 m of the 164 N/m wire off the
+    seabed. The laid-part model keeps the line straight on the seabed, so the whole-line
+    balance needs the seabed to pull the line down there: not verified (status 11), by
+    the kernel (handed on) and by the general solver alike."""
+    prob = _problem(
+        slope=3.0, heading=30.0, mu=0.5, multi=True, xb=_reach(230.0, True), yb=60.0, at_b=True
+    )
+    assert contact_end(prob) == "b"
+    _assert_refused_by_both_paths(prob)
 
 
 @pytest.mark.parametrize(
@@ -126,6 +155,9 @@ def test_kernel_agrees_with_the_numpy_contact_solver(
         slope=slope, heading=heading, mu=mu, multi=multi, xb=_reach(xb, multi), yb=yb, at_b=at_b
     )
     assert contact_end(prob) == ("b" if at_b else "a")
+    if _slides(slope, heading, mu):
+        _assert_refused_by_both_paths(prob)
+        return
     fast = solve_compiled(prob)
     assert fast is not None and fast.status == 0  # the kernel settled it
     ref = SemiAnalyticSolver().solve(prob, compiled=False)
@@ -295,6 +327,9 @@ def test_a_known_force_at_b_agrees_with_the_numpy_contact_solver(
         # the towed three-piece line on the slope: neither path finds a contact solution
         # (the same line search fails); the kernel leaves it to the general solver
         assert ref.status != 0 and fast is None
+        return
+    if _slides(slope, 30.0, mu):
+        _assert_refused_by_both_paths(prob)
         return
     assert ref.status == 0, ref.message
     assert fast is not None and 0.0 < ref.laid_length < 310.0
