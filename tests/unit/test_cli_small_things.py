@@ -100,9 +100,9 @@ def test_status_flags_history_and_numeric_attributes(tmp_path: Path, sweep: str)
     for name in statuses:
         var = ds[name]
         assert var.attrs["flag_values"].dtype == var.dtype
-        assert var.attrs["flag_values"].tolist() == [0, 1, 2, 3, 4, 5, 6, 7, 9, 10]
+        assert var.attrs["flag_values"].tolist() == [0, 1, 2, 3, 4, 5, 6, 7, 9, 10, 11]
         meanings = var.attrs["flag_meanings"].split(" ")
-        assert meanings[0] == "ok" and meanings[-1] == "line_broken"
+        assert meanings[0] == "ok" and meanings[-2:] == ["line_broken", "not_verified"]
         assert meanings == list(STATUS_MEANINGS.values())
         assert set(np.unique(var.values)) <= set(STATUS_MEANINGS)  # every code is named
     # CF history: "time: command line", the command as typed
