@@ -430,7 +430,10 @@ def _judged(
             f"large motion: amplitude/sag {v.amplitude_sag_ratio:.3g} > "
             f"{auto.max_amplitude_sag_ratio:g}"
         )
-    if v.touchdown_travel > auto.max_touchdown_travel:
+    if not math.isfinite(v.touchdown_travel):
+        # no submerged weight at a touchdown point holds it: its travel has no bound
+        reasons.append("touchdown travel unbounded: no submerged weight at the touchdown point")
+    elif v.touchdown_travel > auto.max_touchdown_travel:
         reasons.append(
             f"touchdown travel {v.touchdown_travel:.3g} L > {auto.max_touchdown_travel:g} L"
         )

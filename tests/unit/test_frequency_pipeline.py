@@ -273,3 +273,22 @@ def test_jonswap_times_rao_spectrum() -> None:
             spectrum=[[0.1, 1.0], [0.5, 1.0]],
             rao=[[0.0, 1.0], [2.0, 1.0]],
         )
+
+
+def test_an_unbounded_touchdown_travel_is_said_in_words_not_as_inf() -> None:
+    """A touchdown point with no submerged weight to hold it has no travel bound: method
+    auto distrusts the frequency domain there and says why without a non-physical number
+    (issue 21: every number in a reason is a physical value)."""
+    import math
+
+    from cablestudy.config.analysis import DynamicSettings
+    from cablestudy.dynamics.validity import Validity
+    from cablestudy.frequency_cases import _judged
+
+    dyn = DynamicSettings.model_validate(
+        {"excitation": {"end": "b", "direction": [1, 0, 0], "amplitude": 0.1, "frequency": 0.1}}
+    )
+    v = Validity(min_tension_ratio=0.9, amplitude_sag_ratio=0.01, touchdown_travel=math.inf)
+    out = _judged({}, v, dyn, True, 3, 0.0)
+    assert out.distrust == "touchdown travel unbounded: no submerged weight at the touchdown point"
+    assert "inf" not in out.distrust
