@@ -1214,7 +1214,10 @@ def case_warnings(
     if "dynamic" in ok and dyn is not None:
         found.extend(
             dynamic_warnings(
-                data, max_periods=dyn.max_periods, fixed_duration=dyn.duration is not None
+                data,
+                max_periods=dyn.max_periods,
+                fixed_duration=dyn.duration is not None,
+                static_tension=None if static is None else static.tension,
             )
         )
     return joined(found)

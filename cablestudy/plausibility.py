@@ -74,11 +74,16 @@ def fallback_warning(reason: str) -> str:
 
 
 def dynamic_warnings(
-    data: dict[str, np.ndarray], *, max_periods: int, fixed_duration: bool = False
+    data: dict[str, np.ndarray],
+    *,
+    max_periods: int,
+    fixed_duration: bool = False,
+    static_tension: np.ndarray | None = None,
 ) -> list[str]:
     """The warnings of one case's successful dynamic outputs ``data`` (as
     :func:`cablestudy.analyses.run_dynamic` gives them): slack at the excited end or
-    along the line, and a time-domain run that stopped at ``max_periods`` without
+    along the line (where the static tension ``static_tension`` [N], on the same points,
+    is positive), and a time-domain run that stopped at ``max_periods`` without
     settling (not one of a ``fixed_duration``, which does not look for a steady state).
     None for a line that parted (``break_time``): the break is the news."""
     out: list[str] = []
@@ -86,6 +91,13 @@ def dynamic_warnings(
         return out  # the line parted: break_time and break_s say so, its tensions fall to 0
     t_end = _number(data.get("tension_min"))
     envelope = data.get("tension_envelope_min")
+    if envelope is not None and static_tension is not None:
+        # only where the static line is taut: a stretch already untensioned in statics (a
+        # laid stretch that seabed friction has emptied) does not go slack, it is slack
+        env = np.asarray(envelope, dtype=float)
+        st = np.asarray(static_tension, dtype=float)
+        if env.shape == st.shape:
+            envelope = np.where(st > 0.0, env, np.nan)
     t_line = float(np.nanmin(envelope)) if _any_finite(envelope) else math.nan
     if t_end <= 0.0:
         out.append(slack_warning(t_end, "at the excited end"))

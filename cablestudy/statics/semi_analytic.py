@@ -640,6 +640,30 @@ def initial_contact(
     return H * e, max(L - Ls, 0.0)
 
 
+def _slack_hint(lay: Layout, *, current: bool = False) -> str:
+    """Why the touchdown tension of a contact solve vanishes, for its message ("; ..."):
+    a buoyant piece (which the laid-part model would lay on the seabed, where it cannot
+    stay), else a line longer than the path along the seabed and up to B."""
+    buoyant = np.flatnonzero(lay.weight < 0.0)
+    if buoyant.size:
+        k = int(buoyant[0])
+        return (
+            "; the tension at the touchdown point tends to zero: the line holds a buoyant "
+            f"piece (weight in the fluid {float(lay.weight[k]):.4g} N/m, s = "
+            f"{float(lay.bounds[k]):.6g} to {float(lay.bounds[k + 1]):.6g} m), which "
+            "rises off the seabed; the seabed-contact model lays the line straight on "
+            "the seabed from the anchor to its touchdown point and cannot hold a piece "
+            "lighter than the fluid there (make it heavier than the fluid, or shorten "
+            "the laid part)"
+        )
+    why = " (or the current pushes it back towards the anchor)" if current else ""
+    return (
+        "; the tension at the touchdown point tends to zero: the line is longer than "
+        f"the straight path along the seabed and up to B{why}, so it lies slack on the "
+        "seabed and its laid shape is not determined"
+    )
+
+
 def solve_contact(
     lay: Layout,
     q: np.ndarray,
@@ -753,11 +777,7 @@ def solve_contact(
         else:
             hint = ""
             if float(np.linalg.norm(y[:2])) < 1e-3 * Fscale:
-                hint = (
-                    "; the tension at the touchdown point tends to zero: the line is longer "
-                    "than the straight path along the seabed and up to B, so it lies "
-                    "slack on the seabed and its laid shape is not determined"
-                )
+                hint = _slack_hint(lay)
             raise _Failure(
                 STATUS_NO_SOLUTION if hint else STATUS_NOT_CONVERGED,
                 "line search failed in the seabed-contact Newton iteration "
@@ -768,15 +788,7 @@ def solve_contact(
         y, R, Jm = yn, Rn, Jn
         res = float(np.max(np.abs(R)))
         if float(np.linalg.norm(y[:2])) < 1e-9 * Fscale and res > tol:
-            raise _Failure(
-                STATUS_NO_SOLUTION,
-                "the tension at the touchdown point tends to "
-                "zero: the line is longer than the straight path along the seabed "
-                "and up to B (or the current pushes it back towards the anchor), so "
-                "it lies slack on the seabed and its laid shape is not determined",
-                it,
-                res,
-            )
+            raise _Failure(STATUS_NO_SOLUTION, _slack_hint(lay, current=True)[2:], it, res)
         if y[2] <= 0.0:
             at_zero += 1
             if at_zero >= 2:

@@ -106,3 +106,24 @@ def test_a_fault_in_the_checks_leaves_the_case_ok_and_says_it_went_unchecked(
     assert rec.warning.startswith(
         "unchecked: the plausibility checks failed (ValueError: no such thing at broken:"
     )
+
+
+def test_a_stretch_slack_in_statics_is_not_warned_as_going_slack() -> None:
+    """A laid stretch that seabed friction has emptied of tension is slack in statics
+    already: its dynamic minimum of 0 (time domain) or a small negative linear swing
+    (frequency domain) is not the line going slack. A point taut in statics that reaches
+    zero still is (the new user's chain leg, issue 23's trial: 'linear' and 'slack' at
+    once)."""
+    import numpy as np
+
+    from cablestudy.plausibility import dynamic_warnings
+
+    static = np.array([0.0, 0.0, 0.0, 5.0e4, 6.0e4])
+    quiet = {
+        "tension_min": np.asarray(5.9e4),
+        "tension_envelope_min": np.array([-0.57, 0.0, -0.2, 4.9e4, 5.9e4]),
+    }
+    assert dynamic_warnings(quiet, max_periods=10, static_tension=static) == []
+    loud = dict(quiet, tension_envelope_min=np.array([-0.57, 0.0, -0.2, -3.0, 5.9e4]))
+    (warning,) = dynamic_warnings(loud, max_periods=10, static_tension=static)
+    assert warning.startswith("slack:") and "-3 N" in warning and "along the line" in warning

@@ -58,3 +58,31 @@ def test_one_suspended_node_falls_back_to_linear_interpolation() -> None:
     z = np.zeros(S.size)
     z[-1] = 1.0  # only the end node is lifted: the gap reaches tol = 0.25 a quarter of the way
     assert touchdown_arc_length(S, z, 0.0, 0.25) == pytest.approx(S[-2] + 0.25 * 2.5)
+
+
+def test_a_buoyant_piece_on_a_laid_leg_is_named_in_the_failure() -> None:
+    """Issue 23's new-user trial: a chain-polyester-chain leg whose polyester (8 kg/m,
+    0.16 m: about -124 N/m in water) is lighter than water. The seabed-contact model
+    cannot lay it; the message must say so, not that the line is longer than its path
+    (750 m against 785 m here)."""
+    from cablestudy.config.loader import parse_study_text, validate_data
+    from cablestudy.problem import static_problem
+    from cablestudy.statics import STATIC_SOLVERS
+
+    text = """\
+name: leg
+environment: {fluid: water, depth: 150.0, seabed: {friction: 0.5}}
+line:
+  segments:
+    - {length: 300.0, diameter: 0.151, mass_per_length: 141.0, axial_stiffness: 6.0e8}
+    - {length: 400.0, diameter: 0.16, mass_per_length: 8.0, axial_stiffness: 1.0e8}
+    - {length: 50.0, diameter: 0.151, mass_per_length: 141.0, axial_stiffness: 6.0e8}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -150.0]}
+  b: {kind: fixed, position: [650.0, 0.0, -15.0]}
+"""
+    src = parse_study_text(text, "leg.yaml")
+    res = STATIC_SOLVERS["catenary"].solve(static_problem(validate_data(src.data, src)))
+    assert res.status != 0
+    assert "buoyant piece" in res.message and "s = 300 to 700 m" in res.message, res.message
+    assert "longer than the straight path" not in res.message
