@@ -441,7 +441,7 @@ def sweep_coordinates(axes: list[SweepAxis]) -> dict[str, Any]:
         }
         if a.labels is not None:
             attrs["units"] = "1"
-            attrs["long_name"] = f"label of the swept value: {a.long_name}"
+            attrs["long_name"] = a.long_name or f"label of the swept value of {a.paths[0]}"
         elif indexed:
             attrs["units"] = "1"
             if len(a.paths) == 1:
