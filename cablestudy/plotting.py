@@ -149,6 +149,13 @@ def _select(da: xr.DataArray, ds: xr.Dataset, sel: list[str]) -> tuple[xr.DataAr
                 f"--sel {item!r}: {da.name} has no dimension {dim!r}; its dimensions: "
                 f"{', '.join(map(str, da.dims)) or 'none'}"
             )
+        swept = f"{dim}_value"
+        if value.lstrip().startswith(("[", "{")) and swept in ds.coords:
+            # a swept vector by its value: --sel motion=[0,0,1]
+            k = _vector_index(ds, dim, value, item)
+            da = da.isel({dim: k})
+            picked.append(f"{dim} = {_value_text(ds, dim, k)}")
+            continue
         if dim in ds.coords:
             coord = ds[dim]
             key = _coerce(coord, value)
@@ -174,6 +181,26 @@ def _select(da: xr.DataArray, ds: xr.Dataset, sel: list[str]) -> tuple[xr.DataAr
                 ) from None
             picked.append(f"{dim} = {index}")
     return da, picked
+
+
+def _vector_index(ds: xr.Dataset, dim: str, value: str, item: str) -> int:
+    """Index along ``dim`` of the swept value written as JSON/YAML flow text."""
+    try:
+        wanted = json.loads(value)
+    except ValueError:
+        raise PlotError(
+            f"--sel {item!r}: write the swept value as a list, e.g. [0, 0, 1]"
+        ) from None
+    texts = [str(v) for v in ds[f"{dim}_value"].values]
+    for k, text in enumerate(texts):
+        try:
+            if np.allclose(np.asarray(json.loads(text), float), np.asarray(wanted, float)):
+                return k
+        except (ValueError, TypeError):
+            if json.loads(text) == wanted:
+                return k
+    shown = ", ".join(_value_text(ds, dim, k) for k in range(len(texts)))
+    raise PlotError(f"--sel {item!r}: {dim} has no swept value {value}; values: {shown}")
 
 
 #: more curves than this get a colour bar instead of a legend
@@ -357,8 +384,7 @@ def quick_look(
     if len(names) == 1:
         ylabel = _label(ds[names[0]], names[0], shown)
     else:
-        long_names = [str(ds[n].attrs.get("long_name", n)) for n in names]
-        ylabel = f"{' / '.join(long_names)} [{shown}]"
+        ylabel = f"{_joined([str(ds[n].attrs.get('long_name', n)) for n in names])} [{shown}]"
     ax.set_ylabel(_wrap(ylabel, WRAP_Y))
     ax.set_title(_wrap(", ".join(picked) or study, WRAP_TITLE))
     return fig
@@ -415,6 +441,21 @@ def _draw(
         ax.legend(handles=handles, fontsize="small")
     elif several or (hue is not None and not many):
         ax.legend(fontsize="small")
+
+
+def _joined(long_names: list[str]) -> str:
+    """Long names joined on what differs: "tension at end A / B", "maximum / minimum
+    tension at the excited end"."""
+    words = [n.split() for n in long_names]
+    head = 0
+    while all(len(w) > head + 1 and w[head] == words[0][head] for w in words):
+        head += 1
+    tail = 0
+    while all(len(w) > head + tail + 1 and w[-1 - tail] == words[0][-1 - tail] for w in words):
+        tail += 1
+    middles = [" ".join(w[head : len(w) - tail]) for w in words]
+    parts = [*words[0][:head], " / ".join(middles), *words[0][len(words[0]) - tail :]]
+    return " ".join(parts)
 
 
 def _var_name(ds: xr.Dataset, name: str) -> str:
