@@ -1,5 +1,8 @@
-"""Quick-look plots of a result file: any variable against any dimension, labelled with
-its long name and units (xarray's plotting, matplotlib's Agg backend: no screen).
+"""Quick-look plots of a result file: one or several variables of one unit against any
+dimension, labelled with their long names and the unit shown (``--units`` converts by
+the small table :data:`UNITS`), on matplotlib's Agg backend (no screen). Labelled sweep
+axes and swept vectors read as their labels or values, never as an index; long labels
+wrap, the layout is constrained and the PNG is cut to a tight bounding box.
 
 ``quick_look(ds, var, ...)`` returns the matplotlib figure (tests inspect its labels);
 ``plot_result(path, var, ...)`` opens a result file and writes a PNG.
