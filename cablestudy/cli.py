@@ -437,7 +437,8 @@ def build_parser() -> argparse.ArgumentParser:
         action="append",
         default=None,
         metavar="DIM=VALUE",
-        help="pick the nearest value of a dimension (repeatable)",
+        help="pick one value of a dimension: the nearest number, a label, or a swept "
+        "vector as [0,0,1] (repeatable)",
     )
     p.add_argument("--out", default=None, help="PNG file (default: RESULT-VAR[-VAR...].png)")
     p.add_argument(
