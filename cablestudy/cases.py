@@ -8,11 +8,14 @@ by index, e.g. ``line.segments.0.length``)::
     path: {start: a, stop: b, num: n}          # n values, both ends included
     path: {start: a, stop: b, step: d}         # a, a + d, ... up to b (included)
     path: {values: [...], name: dim}           # any of the above with an explicit name
+    path: {values: [...], labels: [a, b, ...]} # and text labels, one per value
     zip:                                       # keys that vary together along one dim
       - {name: dim, path1: [...], path2: [...]}
 
 Each axis is a dataset dimension named after the last part of its path (an explicit
-``name`` where two would clash); the cases are the cartesian product of the axes.
+``name`` where two would clash); the cases are the cartesian product of the axes. An
+axis with ``labels`` (a zip group too) has them as its coordinate, so a swept vector
+reads ``motion = heave`` rather than an index.
 """
 
 from __future__ import annotations
@@ -59,13 +62,17 @@ class SweepAxis:
     values: tuple[tuple[Any, ...], ...]  # per path, the values along the axis
     units: str = ""
     long_name: str = ""
+    labels: tuple[str, ...] | None = None  # text coordinate given in the study
 
     @property
     def size(self) -> int:
         return len(self.values[0])
 
     def coordinate(self) -> np.ndarray:
-        """Coordinate values: the (single, scalar) path's values, else 0..n-1."""
+        """Coordinate values: the labels if given, else the (single, scalar) path's values,
+        else 0..n-1."""
+        if self.labels is not None:
+            return np.array(self.labels)
         if len(self.paths) == 1 and all(_is_scalar(v) for v in self.values[0]):
             return np.asarray(self.values[0])
         return np.arange(self.size)
@@ -115,13 +122,55 @@ def _tidy_range(values: list[float], start: float, stop: float | None) -> list[f
     return tidy if len(set(tidy)) == len(tidy) else values
 
 
+#: marks a mapping without the key ``labels``
+_ABSENT = object()
+
+
+def _labels(labels: Any, n: int, at: str) -> tuple[str, ...] | None:
+    """The ``labels`` of a sweep axis of ``n`` values checked (None if not given); raises
+    ValueError naming the key."""
+    if labels is _ABSENT:
+        return None
+    if (
+        not isinstance(labels, list)
+        or not labels
+        or not all(isinstance(v, str) and v.strip() and "=" not in v for v in labels)
+    ):
+        raise ValueError(
+            f"{at}.labels: must be a list of non-empty strings without '=', one per swept "
+            f"value (got {labels!r})"
+        )
+    if len(labels) != n:
+        raise ValueError(
+            f"{at}.labels: {len(labels)} labels for {n} values; allowed: one label per "
+            f"value (got {labels!r})"
+        )
+    twice = sorted({v for v in labels if labels.count(v) > 1})
+    if twice:
+        raise ValueError(
+            f"{at}.labels: {', '.join(map(repr, twice))} listed twice; allowed: distinct "
+            f"labels (each becomes one coordinate) (got {labels!r})"
+        )
+    return tuple(labels)
+
+
 def _axis_values(
     spec: Any, where: str, line: int | None, *, distinct: bool = True
-) -> tuple[list[Any], str | None]:
-    """Values of one sweep axis and its explicit name, or a StudyError message. Values
-    must be distinct where they become the dimension's coordinate (``distinct``); in a
-    zip group the coordinate is the case index, so a path may repeat a value there."""
+) -> tuple[list[Any], str | None, tuple[str, ...] | None]:
+    """Values of one sweep axis, its explicit name and its labels, or a StudyError
+    message. Values must be distinct where they become the dimension's coordinate
+    (``distinct``); in a zip group the coordinate is the case index, so a path may repeat
+    a value there."""
     at = f"{line if line is not None else '?'}: {where}"
+    labels: Any = _ABSENT
+    if isinstance(spec, dict) and "labels" in spec:
+        spec = dict(spec)
+        labels = spec.pop("labels")
+    values, name = _axis_values_only(spec, at, distinct=distinct)
+    return values, name, _labels(labels, len(values), at)
+
+
+def _axis_values_only(spec: Any, at: str, *, distinct: bool) -> tuple[list[Any], str | None]:
     name = None
     if isinstance(spec, dict):
         spec = dict(spec)
@@ -157,8 +206,8 @@ def _axis_values(
         else:
             raise ValueError(
                 f"{at}: a sweep axis is a list of values, {{start, stop, num}}, "
-                f"{{start, stop, step}} or {{values}}, each with an optional name "
-                f"(got keys {sorted(keys)})"
+                f"{{start, stop, step}} or {{values}}, each with an optional name and "
+                f"labels (got keys {sorted(keys)})"
             )
     if not isinstance(spec, list):
         raise ValueError(
@@ -259,7 +308,13 @@ def parse_sweep(src: StudySource) -> list[SweepAxis]:
     axes: list[SweepAxis] = []
     key_locs: dict[str, Loc] = {}
 
-    def add(name: str, paths: list[str], values: list[list[Any]], loc: Loc) -> None:
+    def add(
+        name: str,
+        paths: list[str],
+        values: list[list[Any]],
+        loc: Loc,
+        labels: tuple[str, ...] | None = None,
+    ) -> None:
         line = src.line_of(loc)
         if not _DIM.match(name) or name in RESERVED_DIMS:
             problems.append(
@@ -280,7 +335,7 @@ def parse_sweep(src: StudySource) -> list[SweepAxis]:
             long_name = "zipped: " + ", ".join(paths)
             units = ""
         axes.append(
-            SweepAxis(name, tuple(paths), tuple(tuple(v) for v in values), units, long_name)
+            SweepAxis(name, tuple(paths), tuple(tuple(v) for v in values), units, long_name, labels)
         )
 
     for key, spec in raw.items():
@@ -303,7 +358,7 @@ def parse_sweep(src: StudySource) -> list[SweepAxis]:
                         f"(got {group!r})"
                     )
                     continue
-                paths = [str(k) for k in group if k != "name"]
+                paths = [str(k) for k in group if k not in ("name", "labels")]
                 whys = [(p, check_path(src.data, p)) for p in paths]
                 whys = [(p, w) for p, w in whys if w is not None]
                 if whys:
@@ -316,9 +371,16 @@ def parse_sweep(src: StudySource) -> list[SweepAxis]:
                 vals = []
                 try:
                     for p in paths:
-                        v, _ = _axis_values(
-                            group[p], f"sweep.zip.{gi}.{p}", src.line_of((*gloc, p)), distinct=False
+                        where = f"sweep.zip.{gi}.{p}"
+                        v, _, own = _axis_values(
+                            group[p], where, src.line_of((*gloc, p)), distinct=False
                         )
+                        if own is not None:
+                            raise ValueError(
+                                f"{src.line_of((*gloc, p))}: {where}.labels: the labels of a "
+                                f"zip group go beside its name (sweep.zip.{gi}.labels), "
+                                "not on one of its paths"
+                            )
                         vals.append(v)
                 except ValueError as exc:
                     problems.append(str(exc))
@@ -333,7 +395,14 @@ def parse_sweep(src: StudySource) -> list[SweepAxis]:
                         + ", ".join(f"{p}: {len(v)}" for p, v in zip(paths, vals, strict=True))
                     )
                     continue
-                add(group["name"], paths, vals, gloc)
+                try:
+                    labels = _labels(
+                        group.get("labels", _ABSENT), len(vals[0]), f"{line}: sweep.zip.{gi}"
+                    )
+                except ValueError as exc:
+                    problems.append(str(exc))
+                    continue
+                add(group["name"], paths, vals, gloc, labels)
                 for p in paths:
                     key_locs[p] = (*gloc, p)
             continue
@@ -345,11 +414,11 @@ def parse_sweep(src: StudySource) -> list[SweepAxis]:
             )
             continue
         try:
-            values, name = _axis_values(spec, f"sweep.{key}", src.line_of(loc))
+            values, name, labels = _axis_values(spec, f"sweep.{key}", src.line_of(loc))
         except ValueError as exc:
             problems.append(str(exc))
             continue
-        add(name or _default_dim(tuple(str(key).split("."))), [str(key)], [values], loc)
+        add(name or _default_dim(tuple(str(key).split("."))), [str(key)], [values], loc, labels)
         key_locs[str(key)] = loc
     if problems:
         raise StudyError(problems, src.source)

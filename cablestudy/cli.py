@@ -287,6 +287,7 @@ def cmd_plot(args: argparse.Namespace) -> int:
             args.result,
             args.var,
             x=args.x,
+            units=args.units,
             hue=args.hue,
             sel=args.sel or [],
             out=args.out,
@@ -417,9 +418,18 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", default=None, help="output file (default: standard output)")
     p.set_defaults(func=cmd_export)
 
-    p = sub.add_parser("plot", help="quick-look plot of a variable of a result file")
+    p = sub.add_parser("plot", help="quick-look plot of variables of a result file")
     p.add_argument("result", help="a result file (.nc)")
-    p.add_argument("var", help="the variable to draw")
+    p.add_argument(
+        "var", nargs="+", help="the variable(s) to draw on one axes (of one unit, e.g. N)"
+    )
+    p.add_argument(
+        "--units",
+        default=None,
+        metavar="UNIT",
+        help="unit of the values drawn (N kN MN, N/m kN/m MN/m, m mm km, s min h, Hz rad/s, "
+        "rad deg; default: the file's SI unit)",
+    )
     p.add_argument("--x", default=None, help="dimension on the x axis")
     p.add_argument("--hue", default=None, help="dimension drawn as one curve per value")
     p.add_argument(
@@ -427,9 +437,10 @@ def build_parser() -> argparse.ArgumentParser:
         action="append",
         default=None,
         metavar="DIM=VALUE",
-        help="pick the nearest value of a dimension (repeatable)",
+        help="pick one value of a dimension: the nearest number, a label, or a swept "
+        "vector as [0,0,1] (repeatable)",
     )
-    p.add_argument("--out", default=None, help="PNG file (default: RESULT-VAR.png)")
+    p.add_argument("--out", default=None, help="PNG file (default: RESULT-VAR[-VAR...].png)")
     p.add_argument(
         "--shape", action="store_true", help="draw profiles on s as line shapes in the x-z plane"
     )

@@ -303,7 +303,7 @@ def reference_markdown(schema: dict[str, Any]) -> str:
             if key == "sweep" and name == "Study":
                 text = (
                     "parameter sweeps: dotted path -> a list of values, {start, stop, num}, "
-                    "{start, stop, step} or {values}, each with an optional name; and "
+                    "{start, stop, step} or {values}, each with an optional name and labels; and "
                     "`zip:` groups (see the sweeps guide)"
                 )
             kind = walker.type_of(prop)

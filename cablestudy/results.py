@@ -425,8 +425,9 @@ def _fill_rows(
 
 
 def sweep_coordinates(axes: list[SweepAxis]) -> dict[str, Any]:
-    """The coordinates of the sweep dimensions (and, for axes of non-scalar values or zip
-    groups, their value coordinates), with units and long names."""
+    """The coordinates of the sweep dimensions (and, for axes of non-scalar values, zip
+    groups or labels, their value coordinates), with units and long names. An axis with
+    labels has them as its coordinate; its values go to ``<dim>_value``."""
     coords: dict[str, Any] = {}
     for a in axes:
         numeric = a.coordinate().dtype.kind in "iuf"
@@ -438,11 +439,23 @@ def sweep_coordinates(axes: list[SweepAxis]) -> dict[str, Any]:
             "long_name": a.long_name,
             "sweep_paths": ", ".join(a.paths),
         }
-        if indexed:
+        if a.labels is not None:
+            attrs["units"] = "1"
+            attrs["long_name"] = a.long_name or f"label of the swept value of {a.paths[0]}"
+        elif indexed:
             attrs["units"] = "1"
             if len(a.paths) == 1:
                 attrs["long_name"] = f"index of the swept value of {a.paths[0]}"
         coords[a.name] = (a.name, a.coordinate(), attrs)
+        if len(a.paths) == 1 and a.labels is not None and not indexed:
+            # labelled scalars: the values themselves beside the labels
+            values = np.asarray(a.values[0])
+            scalar_units = (a.units or "1") if values.dtype.kind in "iuf" else "1"
+            coords[f"{a.name}_value"] = (
+                a.name,
+                values.astype(object) if values.dtype.kind == "U" else values,
+                {"long_name": a.long_name, "units": scalar_units},
+            )
         if len(a.paths) == 1 and indexed:
             # values that are not scalars (vectors, mappings): keep them as text
             coords[f"{a.name}_value"] = (

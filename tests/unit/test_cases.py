@@ -178,3 +178,79 @@ sweep:
     axes, cases = expand_cases(parse_study_text(text, "<zip>"))
     assert [a.name for a in axes] == ["case"]
     assert [c.study.line.segments[0].diameter for c in cases] == [0.02, 0.03, 0.03]
+
+
+def test_labels_are_the_coordinate_and_leave_the_cases_unchanged() -> None:
+    """Labels name the values, they do not change them: the labelled sweep gives the
+    same studies and case hashes as the unlabelled one, with text coordinates."""
+    plain_axes, plain = expand(
+        "sweep:\n"
+        "  ends.b.position: {values: [[80.0, 0.0, -8.6], [90.0, 0.0, -8.6]], name: place}\n"
+        "  zip:\n"
+        "    - {name: pair, ends.a.position.2: [0.0, 1.0],\n"
+        "       line.segments.0.axial_stiffness: [1.0e6, 1.0e7]}\n"
+    )
+    axes, cases = expand(
+        "sweep:\n"
+        "  ends.b.position: {values: [[80.0, 0.0, -8.6], [90.0, 0.0, -8.6]], name: place,\n"
+        "                    labels: [near, far]}\n"
+        "  zip:\n"
+        "    - {name: pair, labels: [low, high], ends.a.position.2: [0.0, 1.0],\n"
+        "       line.segments.0.axial_stiffness: [1.0e6, 1.0e7]}\n"
+    )
+    assert axes[0].labels == ("near", "far") and axes[1].labels == ("low", "high")
+    assert axes[0].coordinate().tolist() == ["near", "far"]
+    assert plain_axes[0].coordinate().tolist() == [0, 1]  # no labels: the index
+    assert axes[1].paths == plain_axes[1].paths  # 'labels' is not taken for a path
+    assert [c.hash for c in cases] == [c.hash for c in plain]
+    assert cases[3].coords == {"place": "far", "pair": "high"}
+    assert tuple(cases[3].study.ends.b.position) == (90.0, 0.0, -8.6)
+    assert tuple(cases[3].study.ends.a.position) == (0.0, 0.0, 1.0)
+
+
+@pytest.mark.parametrize(
+    ("sweep", "message"),
+    [
+        (
+            "{values: [1.0e6, 1.0e7], labels: [soft]}",
+            "sweep.line.segments.0.axial_stiffness.labels: 1 labels for 2 values; allowed: "
+            "one label per value (got ['soft'])",
+        ),
+        (
+            "{values: [1.0e6, 1.0e7], labels: [soft, soft]}",
+            "sweep.line.segments.0.axial_stiffness.labels: 'soft' listed twice; allowed: "
+            "distinct labels (each becomes one coordinate) (got ['soft', 'soft'])",
+        ),
+        (
+            "{values: [1.0e6, 1.0e7], labels: [soft, 2]}",
+            "sweep.line.segments.0.axial_stiffness.labels: must be a list of non-empty "
+            "strings without '=', one per swept value (got ['soft', 2])",
+        ),
+        (
+            "{start: 1.0e6, stop: 1.0e7, num: 2, labels: [soft, 'a=b']}",
+            "without '='",
+        ),
+        ("{values: [1.0e6, 1.0e7], labels: null}", "(got None)"),
+    ],
+)
+def test_labels_refused_naming_the_key(sweep: str, message: str) -> None:
+    from cablestudy.config import StudyError
+
+    with pytest.raises(StudyError) as err:
+        expand(f"sweep:\n  line.segments.0.axial_stiffness: {sweep}\n")
+    assert message in str(err.value)
+
+
+def test_labels_on_a_zipped_path_are_refused() -> None:
+    from cablestudy.config import StudyError
+
+    with pytest.raises(StudyError) as err:
+        expand(
+            "sweep:\n  zip:\n    - name: pair\n"
+            "      ends.a.position.2: {values: [0.0, 1.0], labels: [a, b]}\n"
+            "      ends.b.position.2: [-8.6, -7.6]\n"
+        )
+    assert (
+        "sweep.zip.0.ends.a.position.2.labels: the labels of a zip group go beside its "
+        "name (sweep.zip.0.labels), not on one of its paths"
+    ) in str(err.value)

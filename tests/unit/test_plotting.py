@@ -57,7 +57,7 @@ def test_profile_and_shape(result: Path) -> None:
         ax = fig.axes[0]
         assert ax.get_xlabel() == "unstretched arc length from end A [m]"
         assert ax.get_ylabel().endswith("[N]")
-        assert "span = 85.0" in ax.get_title()
+        assert "span = 85 m" in ax.get_title()  # the picked value with its unit
         shape = quick_look(ds, "z", shape=True, sel=["axial_stiffness=6.283e7"]).axes[0]
         assert shape.get_xlabel().endswith("[m]") and shape.get_ylabel().endswith("[m]")
         assert len(shape.get_lines()) == 3  # one shape per span
