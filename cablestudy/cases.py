@@ -372,9 +372,15 @@ def parse_sweep(src: StudySource) -> list[SweepAxis]:
                 try:
                     for p in paths:
                         where = f"sweep.zip.{gi}.{p}"
-                        v, _, own = _axis_values(
+                        v, own_name, own = _axis_values(
                             group[p], where, src.line_of((*gloc, p)), distinct=False
                         )
+                        if own_name is not None:
+                            raise ValueError(
+                                f"{src.line_of((*gloc, p))}: {where}.name: the dimension of a "
+                                f"zip group is named beside its paths (sweep.zip.{gi}.name), "
+                                "not on one of them"
+                            )
                         if own is not None:
                             raise ValueError(
                                 f"{src.line_of((*gloc, p))}: {where}.labels: the labels of a "

@@ -254,3 +254,33 @@ def test_labels_on_a_zipped_path_are_refused() -> None:
         "sweep.zip.0.ends.a.position.2.labels: the labels of a zip group go beside its "
         "name (sweep.zip.0.labels), not on one of its paths"
     ) in str(err.value)
+
+
+def test_a_name_on_one_path_of_a_zip_group_is_refused() -> None:
+    """A zip group is one dimension named beside its paths; a ``name`` on one of its paths
+    would be silently ignored, so it is refused naming the key."""
+    import pytest as _pytest
+
+    from cablestudy.cases import parse_sweep
+    from cablestudy.config.loader import StudyError, parse_study_text
+
+    text = """\
+name: z
+environment: {fluid: air}
+line:
+  segments:
+    - {length: 100.0, diameter: 0.02, mass_per_length: 2.466, axial_stiffness: 6.283e7}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, 0.0]}
+  b: {kind: fixed, position: [92.5, 0.0, -8.6]}
+sweep:
+  zip:
+    - name: support
+      ends.b.position.0: {values: [90.0, 95.0], name: span}
+      ends.b.position.2: [-8.6, -5.0]
+"""
+    with _pytest.raises(StudyError) as err:
+        parse_sweep(parse_study_text(text, "z.yaml"))
+    assert "sweep.zip.0.ends.b.position.0.name: the dimension of a zip group is named beside" in (
+        str(err.value)
+    )
