@@ -206,11 +206,17 @@ def check_path(data: dict[str, Any], path: str) -> str | None:
     models: list[Any] = [Study]
     node: Any = data
     done: list[str] = []
+    keyed = False  # at a mapping of named entries (a system's points, bodies, lines)
     for part in parts:
         here = ".".join(done) or "<top>"
         if part == "":
             return f"{path!r} has an empty part; allowed: keys joined by single dots"
-        if isinstance(node, list):
+        if keyed:
+            names = sorted(node) if isinstance(node, dict) else []
+            if part not in names:
+                return f"{here} has no entry {part!r}; allowed: {', '.join(names) or 'none'}"
+            node, keyed = node[part], False
+        elif isinstance(node, list):
             if not part.isdigit() or int(part) >= len(node):
                 return (
                     f"{here} is a list of {len(node)} items; {part!r} is not an index "
@@ -233,6 +239,11 @@ def check_path(data: dict[str, Any], path: str) -> str | None:
                     f"{'.'.join(done + [part])} does not exist{hint}; allowed keys under "
                     f"{here}: {', '.join(fields)}"
                 )
+            keyed = any(
+                typing.get_origin(m.model_fields[part].annotation) is dict
+                for m in models
+                if part in m.model_fields
+            )
             models = [
                 c
                 for m in models
