@@ -341,6 +341,11 @@ def _solve(
     it = 0
     res = 0.0
     if P.size:
+        cap = 0.1 * min(
+            ln.problem.line.total_length
+            for ln in system.lines
+            if free_mask[ln.a] or free_mask[ln.b]
+        )
         scale = max(
             max((float(np.max(r.tension)) for r in results), default=0.0),
             float(np.max(np.abs(pf))),
@@ -365,20 +370,22 @@ def _solve(
                 )
             it += 1
             step = np.linalg.solve(K[np.ix_(P, P)], R.ravel()).reshape(-1, 3)
-            lam = 1.0
-            norm0 = float(np.linalg.norm(R))
-            for _ in range(30):
-                xn = x + lam * step
-                try:
-                    out = _solve_lines(system, point_positions(system, xn), solver, deadline)
-                except SystemFailure:
-                    out = None
-                if out is not None:
-                    Rn = residual(out[1])
-                    if float(np.linalg.norm(Rn)) <= (1.0 - 1e-4 * lam) * norm0 + 1e-12 * scale:
-                        break
-                lam *= 0.5
-            else:
+            phi0 = float(R.ravel() @ step.ravel())
+            if not phi0 > 0.0:  # stiffness not positive definite here: go downhill
+                step = R / max(float(np.max(np.diag(K[np.ix_(P, P)]))), 1e-300)
+                phi0 = float(R.ravel() @ step.ravel())
+            longest = float(np.max(np.linalg.norm(step, axis=1)))
+            if longest > cap:
+                step *= cap / longest
+                phi0 *= cap / longest
+            found = _line_search(
+                lambda lam, x=x, step=step: _trial(
+                    system, x + lam * step, solver, deadline, residual, step
+                ),
+                phi0,
+                done=res <= system.tolerance,
+            )
+            if found is None:
                 if res <= system.tolerance:
                     break  # round-off: the polishing step cannot reduce it further
                 raise SystemFailure(
@@ -386,6 +393,9 @@ def _solve(
                     f"line search failed in the free-point equilibrium (net force / "
                     f"largest tension {res:.3g})",
                 )
+            lam, out = found
+            xn = x + lam * step
+            Rn = residual(out[1])
             assert out is not None
             x, (results, force, K), R = xn, out, Rn
             res = float(np.max(np.abs(R))) / scale
@@ -401,6 +411,59 @@ def _solve(
         iterations=it,
         residual=res,
     )
+
+
+def _trial(
+    system: MooringSystem,
+    x: np.ndarray,
+    solver: Any,
+    deadline: float | None,
+    residual: Any,
+    step: np.ndarray,
+) -> tuple[Any, float] | None:
+    """The lines with the free points at ``x``, and phi = R(x) . step (None if a line
+    cannot be solved there)."""
+    try:
+        out = _solve_lines(system, point_positions(system, x), solver, deadline)
+    except SystemFailure:
+        return None
+    return out, float(residual(out[1]).ravel() @ step.ravel())
+
+
+def _line_search(trial: Any, phi0: float, *, done: bool) -> tuple[float, Any] | None:
+    """A step length along the Newton direction s by the energy of the system: the lines
+    and the points' loads are conservative, so the potential energy along the step has
+    the slope -phi(lam) = -R(x + lam s) . s, negative at 0 (K positive definite). The
+    step is accepted where that slope has fallen to half its size (strong Wolfe
+    curvature condition, c2 = 0.5), or at lam = 1 while the energy still falls; else
+    its zero (the energy's minimum along s) is bracketed and found by regula falsi. A
+    straight step lets a point swinging on a taut line (stiff along it, soft across it)
+    move along its arc by several steps, where a residual-norm search stalls."""
+    lo, f_lo = 0.0, phi0
+    hi, f_hi = math.nan, math.nan
+    lam = 1.0
+    for _ in range(40):
+        t = trial(lam)
+        if t is None:  # a line could not be solved there: shorter
+            hi, f_hi = lam, math.nan
+            lam = 0.5 * (lo + lam)
+            continue
+        out, f = t
+        if abs(f) <= 0.5 * phi0 or (f > 0.0 and lam == 1.0) or (done and lam == 1.0):
+            return lam, out
+        if f > 0.0:
+            lo, f_lo = lam, f
+        else:
+            hi, f_hi = lam, f
+        if math.isnan(f_hi):
+            lam = 0.5 * (lo + hi)
+        else:
+            guess = lo + (hi - lo) * f_lo / (f_lo - f_hi)
+            width = hi - lo
+            lam = min(max(guess, lo + 0.1 * width), hi - 0.1 * width)
+        if hi - lo <= 1e-12:
+            break
+    return None
 
 
 def _bodies(
