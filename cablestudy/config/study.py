@@ -25,6 +25,8 @@ def _line_or_reference(schema: dict[str, Any]) -> None:
     if line is not None:
         ref = MoorDynLineRef.model_json_schema()
         schema["properties"]["line"] = {"anyOf": [line, ref]}
+    # one line (line and ends) or a system (lines between points)
+    schema["oneOf"] = [{"required": ["line", "ends"]}, {"required": ["lines", "points"]}]
 
 
 class Study(StrictModel):
