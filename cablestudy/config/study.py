@@ -24,7 +24,15 @@ def _line_or_reference(schema: dict[str, Any]) -> None:
     line = schema.get("properties", {}).get("line")
     if line is not None:
         ref = MoorDynLineRef.model_json_schema()
-        schema["properties"]["line"] = {"anyOf": [line, ref]}
+        # optional (a system has none) but never null when given
+        given = [alt for alt in line.get("anyOf", [line]) if alt.get("type") != "null"]
+        schema["properties"]["line"] = {"anyOf": [*given, ref]}
+        if "description" in line:
+            schema["properties"]["line"]["description"] = line["description"]
+    ends = schema.get("properties", {}).get("ends")
+    if ends is not None and "anyOf" in ends:
+        given = [alt for alt in ends["anyOf"] if alt.get("type") != "null"]
+        schema["properties"]["ends"] = {**given[0], "description": ends.get("description", "")}
     # one line (line and ends) or a system (lines between points)
     schema["oneOf"] = [{"required": ["line", "ends"]}, {"required": ["lines", "points"]}]
 
