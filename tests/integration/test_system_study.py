@@ -227,3 +227,22 @@ def test_a_point_on_no_line_and_both_line_and_lines_are_refused() -> None:
         ONE_LINE.split("environment:")[1].split("\n", 1)[1].split("analysis:")[0] + "bodies:",
     )
     assert "has no 'line'" in _error(both)
+
+
+def test_sweeps_reach_named_entries() -> None:
+    """A point's mass and a line's segment stiffness are swept like any key; each case
+    holds its value, and the dimension takes the sweep's name."""
+    text = SYSTEM.split("sweep:")[0] + (
+        "sweep:\n"
+        "  points.clump.mass: {values: [1000.0, 4000.0], name: clump_mass}\n"
+        "  lines.bridle.segments.0.axial_stiffness: [1.0e8, 5.0e8]\n"
+    )
+    axes, cases = expand_cases(parse_study_text(text, "sys.yaml"))
+    assert [a.name for a in axes] == ["clump_mass", "axial_stiffness"]
+    got = {
+        (c.study.points["clump"].mass, c.study.lines["bridle"].segments[0].axial_stiffness)
+        for c in cases
+    }
+    assert got == {(m, k) for m in (1000.0, 4000.0) for k in (1.0e8, 5.0e8)}
+    missing = _error(SYSTEM.replace("bodies.buoy.position.0", "bodies.boat.position.0"))
+    assert "bodies has no entry 'boat'; allowed: buoy" in missing
