@@ -270,7 +270,7 @@ def _solve_lines(
             end_a=EndCondition(kind="fixed", position=pos[ln.a].copy()),
             end_b=EndCondition(kind="fixed", position=pos[ln.b].copy()),
         )
-        res = solver.solve(prob, deadline=deadline)
+        res = solver.solve(prob, deadline=deadline).check_finite()
         if res.status != STATUS_OK:
             raise SystemFailure(res.status, f"line {ln.name}: {res.message}")
         results.append(res)
@@ -337,11 +337,23 @@ def _solve(
     pf = system.point_force[free_mask]
     P = _dof_index(free_mask)
     pos = point_positions(system, x)
-    results, force, K = _solve_lines(system, pos, solver, deadline)
+    # the Newton trials use the solver without its final verification (the registry's
+    # wrapper, cablestudy.statics.VerifiedSolver); the lines at the solution are verified
+    raw = getattr(solver, "solver", solver)
+    final = system
+    # and sample each line at its ends only: its shape is wanted at the solution
+    system = replace(
+        system,
+        lines=tuple(
+            replace(ln, problem=replace(ln.problem, n_nodes=min(ln.problem.n_nodes, 3)))
+            for ln in system.lines
+        ),
+    )
+    results, force, K = _solve_lines(system, pos, raw, deadline)
     it = 0
     res = 0.0
     if P.size:
-        cap = 0.1 * min(
+        cap = 0.5 * min(
             ln.problem.line.total_length
             for ln in system.lines
             if free_mask[ln.a] or free_mask[ln.b]
@@ -380,7 +392,7 @@ def _solve(
                 phi0 *= cap / longest
             found = _line_search(
                 lambda lam, x=x, step=step: _trial(
-                    system, x + lam * step, solver, deadline, residual, step
+                    system, x + lam * step, raw, deadline, residual, step
                 ),
                 phi0,
                 done=res <= system.tolerance,
@@ -402,7 +414,8 @@ def _solve(
             if polished:
                 break
         pos = point_positions(system, x)
-    body_force, body_stiffness = _bodies(system, pos, force, K, free_mask)
+    results, force, K = _solve_lines(final, pos, solver, deadline)
+    body_force, body_stiffness = _bodies(final, pos, force, K, free_mask)
     return SystemResult(
         lines=results,
         point_position=pos,
