@@ -83,10 +83,25 @@ def system_model(study: Study) -> MooringSystem:
         body_position=np.array([b.position for b in study.bodies.values()], dtype=float).reshape(
             -1, 6
         ),
+        body_free=np.array([b.kind == "free" for b in study.bodies.values()], dtype=bool),
+        body_weight=np.array([_of(b, "mass", 0.0) * g for b in study.bodies.values()]),
+        body_buoyancy=np.array([rho * _of(b, "volume", 0.0) * g for b in study.bodies.values()]),
+        body_cog=_rows([_of(b, "center_of_gravity", [0.0] * 3) for b in study.bodies.values()]),
+        body_cob=_rows([_of(b, "center_of_buoyancy", [0.0] * 3) for b in study.bodies.values()]),
+        body_applied=_rows([_of(b, "force", [0.0] * 3) for b in study.bodies.values()]),
         lines=lines,
         tolerance=settings.tolerance,
         max_iterations=settings.max_iterations,
     )
+
+
+def _of(body: Any, key: str, default: Any) -> Any:
+    """A free body's ``key`` (a prescribed body has none: ``default``)."""
+    return getattr(body, key, default)
+
+
+def _rows(values: list[Any]) -> np.ndarray:
+    return np.array(values, dtype=float).reshape(-1, 3)
 
 
 def system_outputs(system: MooringSystem, res: Any) -> dict[str, np.ndarray]:
@@ -122,7 +137,12 @@ def system_outputs(system: MooringSystem, res: Any) -> dict[str, np.ndarray]:
             res.point_position[free] if ok else np.full((int(free.sum()), 3), np.nan)
         )
     if len(system.body_names):
-        out["body_position"] = np.array(system.body_position, dtype=float)
+        if ok and res.body_position is not None:
+            out["body_position"] = np.array(res.body_position, dtype=float)
+        else:  # a free body's position is unknown when the solve failed
+            out["body_position"] = np.where(
+                system.body_free[:, None], np.nan, np.array(system.body_position, dtype=float)
+            )
         out["body_force"] = res.body_force
         out["body_stiffness"] = res.body_stiffness
     return out

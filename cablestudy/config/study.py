@@ -13,7 +13,7 @@ from .base import FieldError, StrictModel
 from .ends import Ends, FixedEnd, MooringEnd
 from .environment import Environment
 from .line import Line, MoorDynLineRef
-from .system import BodyPoint, FixedPoint, PrescribedBody, SystemLine, SystemPoint
+from .system import BodyPoint, FixedPoint, SystemBody, SystemLine, SystemPoint
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.\-]*$")
 
@@ -53,8 +53,10 @@ class Study(StrictModel):
     points: dict[str, SystemPoint] = Field(
         {}, description="system: points by name (fixed, free, or on a body)"
     )
-    bodies: dict[str, PrescribedBody] = Field(
-        {}, description="system: bodies by name (prescribed: a 6-DOF position)"
+    bodies: dict[str, SystemBody] = Field(
+        {},
+        description="system: bodies by name (prescribed: a 6-DOF position; free: found by "
+        "equilibrium)",
     )
     lines: dict[str, SystemLine] = Field(
         {}, description="system: lines by name, each between two points (a, b); statics only"

@@ -70,6 +70,32 @@ class PrescribedBody(StrictModel):
     )
 
 
+class FreeBody(StrictModel):
+    """A body found by equilibrium of its lines, its weight (at its centre of gravity),
+    its buoyancy (at its centre of buoyancy; the displaced volume is constant: no
+    waterplane) and a constant applied force at its reference point."""
+
+    kind: Literal["free"]
+    position: Vec6 = Field(
+        [0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        description="starting guess: surge, sway, heave [m], roll, pitch, yaw [rad]",
+    )
+    mass: NonNegative = Field(0.0, description="mass [kg] (weight m g at center_of_gravity)")
+    volume: NonNegative = Field(
+        0.0, description="displaced volume [m^3] (buoyancy rho V g at center_of_buoyancy)"
+    )
+    center_of_gravity: Vec3 = Field(
+        [0.0, 0.0, 0.0], description="in the body frame from the reference point [m]"
+    )
+    center_of_buoyancy: Vec3 = Field(
+        [0.0, 0.0, 0.0], description="in the body frame from the reference point [m]"
+    )
+    force: Vec3 = Field([0.0, 0.0, 0.0], description="constant force at the reference point [N]")
+
+
+SystemBody = Annotated[PrescribedBody | FreeBody, Field(discriminator="kind")]
+
+
 class SystemLine(Line):
     """A line of a system: its make-up as a study's ``line`` and its two end points."""
 

@@ -95,6 +95,17 @@ class MooringSystem:
     lines: tuple[SystemLine, ...] = ()
     tolerance: float = 1e-9
     max_iterations: int = 100
+    #: (m,) True where the body is free: its ``body_position`` is then the starting guess
+    #: of its equilibrium under the lines, its weight, buoyancy and applied force
+    body_free: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=bool))
+    #: [N] (m,) weight m g, acting down at ``body_cog``; buoyancy rho V g, up at ``body_cob``
+    body_weight: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    body_buoyancy: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    #: [m] (m, 3) centres of gravity and buoyancy in the body frame
+    body_cog: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    body_cob: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    #: [N] (m, 3) constant force at the reference point
+    body_applied: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
 
 
 @dataclass(kw_only=True)
@@ -113,6 +124,8 @@ class SystemResult:
     message: str = ""
     iterations: int = 0
     residual: float = 0.0
+    #: [m, rad] (m, 6) the bodies' positions (free bodies: in equilibrium)
+    body_position: np.ndarray | None = None
 
 
 class SystemFailure(Exception):
@@ -309,7 +322,13 @@ def solve_system(
     n, m = len(system.point_names), len(system.body_names)
     free_mask = system.point_kind == FREE
     try:
-        return _solve(system, solver, deadline, free_mask)
+        if system.body_free.size and np.any(system.body_free):
+            from .free_bodies import solve_free_bodies
+
+            return solve_free_bodies(system, lambda sys: _solve(sys, solver, deadline, free_mask))
+        res = _solve(system, solver, deadline, free_mask)
+        res.body_position = np.array(system.body_position, dtype=float)
+        return res
     except SystemFailure as exc:
         return SystemResult(
             lines=[],

@@ -205,7 +205,7 @@ def _error(text: str) -> str:
         (("static: {nodes: 11", "static: {method: discrete, nodes: 11"), 18, "catenary"),
         (("fluid: water,", "fluid: water, current: [{z: 0.0, speed: 1.0}],"), 2, "current"),
         (("[250.0, 0.0, -100.0]", "[250.0, 0.0, -101.0]"), 6, "below the seabed"),
-        (("kind: prescribed,", "kind: free,"), 11, "prescribed"),
+        (("kind: prescribed,", "kind: moored,"), 11, "prescribed"),
     ],
 )
 def test_system_faults_are_refused_at_their_line(
