@@ -246,3 +246,23 @@ def test_sweeps_reach_named_entries() -> None:
     assert got == {(m, k) for m in (1000.0, 4000.0) for k in (1.0e8, 5.0e8)}
     missing = _error(SYSTEM.replace("bodies.buoy.position.0", "bodies.boat.position.0"))
     assert "bodies has no entry 'boat'; allowed: buoy" in missing
+
+
+def test_a_free_body_through_the_study() -> None:
+    """The buoy let free (20 t, 30 m^3, centre of gravity below the centre of buoyancy):
+    its position is the equilibrium of the lines, weight and buoyancy."""
+    text = SYSTEM.split("sweep:")[0].replace(
+        "buoy: {kind: prescribed, position: [0.0, 0.0, 0.0, 0.0, 0.0, 0.0]}",
+        "buoy: {kind: free, mass: 20000.0, volume: 30.0, center_of_gravity: [0.0, 0.0, -8.0], "
+        "center_of_buoyancy: [0.0, 0.0, -2.0]}",
+    )
+    (_, [case]) = expand_cases(parse_study_text(text, "sys.yaml"))
+    rec = evaluate_system_case(case)
+    assert rec.status == 0, rec.message
+    pose = rec.data["body_position"][0]
+    force = rec.data["body_force"][0]
+    g, rho = 9.80665, 1025.0
+    # vertical: the lines hold the net buoyancy; horizontal: the lines balance
+    assert force[2] == pytest.approx(-(rho * 30.0 - 20000.0) * g, rel=1e-10)
+    assert np.max(np.abs(force[:2])) <= 1e-10 * abs(force[2])
+    assert abs(pose[2]) > 1e-3  # it moved from the starting guess
