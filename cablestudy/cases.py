@@ -91,6 +91,11 @@ def _field_info(path: tuple[str, ...]) -> tuple[str, str]:
     parts = [p for p in path if not p.isdigit()]
     if not parts:
         return "", ".".join(path)
+    if len(path) == 4 and path[0] == "bodies" and path[2] == "position" and path[3] in "012345":
+        # one coordinate of a body's position: its own name and unit
+        k = int(path[3])
+        dof = ("surge", "sway", "heave", "roll", "pitch", "yaw")[k]
+        return ("m" if k < 3 else "rad"), f"{dof} of body {path[1]} ({'.'.join(path)})"
     models = _models_at(tuple(parts[:-1]))
     for m in models:
         info = m.model_fields.get(parts[-1])

@@ -266,3 +266,13 @@ def test_a_free_body_through_the_study() -> None:
     assert force[2] == pytest.approx(-(rho * 30.0 - 20000.0) * g, rel=1e-10)
     assert np.max(np.abs(force[:2])) <= 1e-10 * abs(force[2])
     assert abs(pose[2]) > 1e-3  # it moved from the starting guess
+
+
+def test_body_position_sweep_coordinate_names_its_dof() -> None:
+    text = SYSTEM.replace("bodies.buoy.position.0", "bodies.buoy.position.5").replace(
+        "{start: -2.0, stop: 2.0, num: 9, name: surge}", "[0.0, 0.1]"
+    )
+    axes, _ = expand_cases(parse_study_text(text, "sys.yaml"))
+    assert axes[0].name == "position_5"
+    assert axes[0].units == "rad"
+    assert axes[0].long_name.startswith("yaw of body buoy")
