@@ -26,8 +26,8 @@ K_c = K_BB - K_BP K_PP^-1 K_PB of the assembled point stiffness), is
     K = sum_ij [I; [u_i]x] K_c,ij [I, A_j] + sum_i [0, 0; 0, [f_i]x A_i]
 
 where [v]x is the cross-product matrix; the last term is the moment arm's rotation
-(d u_i / d theta x f_i), which makes the rotational block unsymmetric when the lines
-pull with a net moment-free but offset load.
+(d u_i / d theta x f_i), which makes the rotational block unsymmetric in general
+(the moment of the lines' resultant turns with the body).
 """
 
 from __future__ import annotations
@@ -316,7 +316,8 @@ def solve_system(
     system: MooringSystem, solver: Any, *, deadline: float | None = None
 ) -> SystemResult:
     """Equilibrium of the free points (Newton with the lines' exact stiffness and a
-    backtracking line search on the net force), then the bodies' force and stiffness.
+    line search on the system's energy along the step, :func:`_line_search`), then the
+    bodies' force and stiffness; free bodies by :mod:`.free_bodies`.
     ``solver`` solves one line with both ends fixed (a registered static solver). A
     numerical failure is returned as status, message and NaN."""
     n, m = len(system.point_names), len(system.body_names)
