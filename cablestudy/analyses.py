@@ -67,6 +67,8 @@ def check_supported(cases: list[Case], src: StudySource) -> None:
         if case.static_hash in seen:
             continue
         seen.add(case.static_hash)
+        if case.study.is_system:
+            continue  # what a system cannot do is refused by the study model itself
         if case.study.line.is_spring:
             from .spring_cases import spring_problems
 
@@ -1305,7 +1307,12 @@ def evaluate_chunk(cases: list[Case]) -> list[CaseRecord]:
     """Evaluate a chunk of cases in one task: compatible static problems are solved as
     one batch first, and the frequency-domain responses of the cases that share a
     linear model together; then every case runs as in :func:`evaluate_case` (its wall
-    time includes its share of the batches)."""
+    time includes its share of the batches). A system study's cases go to
+    :func:`cablestudy.system_cases.evaluate_system_case`."""
+    if cases and cases[0].study.is_system:
+        from .system_cases import evaluate_system_case
+
+        return [evaluate_system_case(case) for case in cases]
     solved, share = presolve_statics(cases)
     linear, linear_share = presolve_frequency(cases, solved)
     records = []

@@ -98,6 +98,11 @@ def _field_info(path: tuple[str, ...]) -> tuple[str, str]:
     parts = [p for p in path if not p.isdigit()]
     if not parts:
         return "", ".".join(path)
+    if len(path) == 4 and path[0] == "bodies" and path[2] == "position" and path[3] in "012345":
+        # one coordinate of a body's position: its own name and unit
+        k = int(path[3])
+        dof = ("surge", "sway", "heave", "roll", "pitch", "yaw")[k]
+        return ("m" if k < 3 else "rad"), f"{dof} of body {path[1]} ({'.'.join(path)})"
     models = _models_at(tuple(parts[:-1]))
     for m in models:
         info = m.model_fields.get(parts[-1])
@@ -255,11 +260,17 @@ def check_path(data: dict[str, Any], path: str) -> str | None:
     models: list[Any] = [Study]
     node: Any = data
     done: list[str] = []
+    keyed = False  # at a mapping of named entries (a system's points, bodies, lines)
     for part in parts:
         here = ".".join(done) or "<top>"
         if part == "":
             return f"{path!r} has an empty part; allowed: keys joined by single dots"
-        if isinstance(node, list):
+        if keyed:
+            names = sorted(node) if isinstance(node, dict) else []
+            if part not in names:
+                return f"{here} has no entry {part!r}; allowed: {', '.join(names) or 'none'}"
+            node, keyed = node[part], False
+        elif isinstance(node, list):
             if not part.isdigit() or int(part) >= len(node):
                 return (
                     f"{here} is a list of {len(node)} items; {part!r} is not an index "
@@ -282,6 +293,11 @@ def check_path(data: dict[str, Any], path: str) -> str | None:
                     f"{'.'.join(done + [part])} does not exist{hint}; allowed keys under "
                     f"{here}: {', '.join(fields)}"
                 )
+            keyed = any(
+                typing.get_origin(m.model_fields[part].annotation) is dict
+                for m in models
+                if part in m.model_fields
+            )
             models = [
                 c
                 for m in models

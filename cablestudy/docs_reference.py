@@ -178,6 +178,8 @@ class _Walker:
                 self._visit(sub, path)
         if "items" in node and isinstance(node["items"], dict):
             self._visit(node["items"], f"{path}[]")
+        if isinstance(node.get("additionalProperties"), dict):  # named entries
+            self._visit(node["additionalProperties"], f"{path}.<name>")
 
     def type_of(self, node: dict[str, Any]) -> str:
         """A short type: number, integer, string, boolean, list of ..., a model link."""
@@ -203,6 +205,9 @@ class _Walker:
         if kind == "object":
             if "properties" in node and node.get("title") in self.models:
                 return f"[{node['title']}](#{node['title'].lower()})"
+            values = node.get("additionalProperties")
+            if isinstance(values, dict) and values:
+                return f"mapping of name to {self.type_of(values)}"
             return "mapping"
         return kind or "any"
 

@@ -344,6 +344,57 @@ OUTPUTS.update(
     }
 )
 
+#: the outputs of a system study (lines joined at points, bodies;
+#: cablestudy.system_cases): the one-line names gain a ``line`` dimension, and points and
+#: bodies have their own variables
+SYSTEM_OUTPUTS: dict[str, OutputVariable] = {
+    **{
+        k: replace(OUTPUTS[k], dims=("line", *OUTPUTS[k].dims))
+        for k in (
+            "x",
+            "y",
+            "z",
+            "tension",
+            "arc_length",
+            "force_a",
+            "force_b",
+            "tension_a",
+            "tension_b",
+            "laid_length",
+        )
+    },
+    **{k: OUTPUTS[k] for k in ("static_iterations", "static_residual", "static_status")},
+    "point_position": OutputVariable(
+        ("point", "component"), "m", "position of each free point in equilibrium", analysis="static"
+    ),
+    "body_position": OutputVariable(
+        ("body", "dof"),
+        "m, rad",
+        "position of each body's reference point: surge, sway, heave [m], roll, pitch, yaw [rad]",
+        analysis="static",
+    ),
+    "body_force": OutputVariable(
+        ("body", "dof"),
+        "N, N m",
+        "force [N] and moment [N m] of all lines on each body about its reference point",
+        analysis="static",
+    ),
+    "body_stiffness": OutputVariable(
+        ("body", "dof", "dof_j"),
+        "N/m, N/rad, N, N m/rad",
+        "mooring stiffness of each body: minus d body_force[dof] / d body_position[dof_j], "
+        "free points re-equilibrated",
+        analysis="static",
+    ),
+}
+SYSTEM_OUTPUTS["x"] = replace(SYSTEM_OUTPUTS["x"], long_name="x position along each line")
+SYSTEM_OUTPUTS["arc_length"] = replace(
+    SYSTEM_OUTPUTS["arc_length"], long_name="unstretched arc length from end A of each line"
+)
+
+#: the six degrees of freedom of a body (coordinate of ``dof`` and ``dof_j``)
+BODY_DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+
 #: per-case bookkeeping variables (always present)
 CASE_VARIABLES: dict[str, OutputVariable] = {
     "status": OutputVariable(
@@ -370,6 +421,11 @@ COORDINATES: dict[str, tuple[str, str]] = {
     "s": ("m", "unstretched arc length from end A"),
     "component": ("1", "vector component"),
     "mode": ("1", "mode number, by increasing natural frequency"),
+    "line": ("1", "name of the line"),
+    "point": ("1", "name of the free point"),
+    "body": ("1", "name of the body"),
+    "dof": ("1", "degree of freedom of the body"),
+    "dof_j": ("1", "degree of freedom of the body (stiffness column)"),
 }
 
 
@@ -517,7 +573,9 @@ def assembled_variables(
     dims = tuple(a.name for a in axes)
     by_index = {c.index: records[c.hash] for c in cases}
     present = sorted({k for r in by_index.values() for k in r.data})
-    unknown = [k for k in present if k not in OUTPUTS]
+    system = bool(cases) and cases[0].study.is_system
+    registry = SYSTEM_OUTPUTS if system else OUTPUTS
+    unknown = [k for k in present if k not in registry]
     if unknown:
         raise KeyError(f"output variables not declared in results.OUTPUTS: {unknown}")
 
@@ -525,11 +583,11 @@ def assembled_variables(
     extent: dict[str, int] = {"component": 3}
     for rec in by_index.values():
         for name, arr in rec.data.items():
-            for d, n in zip(OUTPUTS[name].dims, np.shape(arr), strict=True):
+            for d, n in zip(registry[name].dims, np.shape(arr), strict=True):
                 extent[d] = max(extent.get(d, 0), n)
 
     data_vars: dict[str, Any] = {}
-    for name, spec in {**CASE_VARIABLES, **{k: OUTPUTS[k] for k in present}}.items():
+    for name, spec in {**CASE_VARIABLES, **{k: registry[k] for k in present}}.items():
         tail = tuple(extent[d] for d in spec.dims)
         dtype = object if spec.dtype == "str" else spec.dtype
         arr = np.full(shape + tail, _fill(spec.dtype), dtype=dtype)
@@ -556,19 +614,36 @@ def assembled_variables(
         )
 
     coords: dict[str, Any] = sweep_coordinates(axes)
-    if "component" in extent and any("component" in OUTPUTS[k].dims for k in present):
+    if "component" in extent and any("component" in registry[k].dims for k in present):
         coords["component"] = (
             "component",
             np.array(["x", "y", "z"]),
             {"units": COORDINATES["component"][0], "long_name": COORDINATES["component"][1]},
         )
-    if "mode" in extent and any("mode" in OUTPUTS[k].dims for k in present):
+    if "mode" in extent and any("mode" in registry[k].dims for k in present):
         coords["mode"] = (
             "mode",
             np.arange(1, extent["mode"] + 1),
             {"units": COORDINATES["mode"][0], "long_name": COORDINATES["mode"][1]},
         )
-    if "s" in extent:
+    if system:
+        study = cases[0].study
+        named = {
+            "line": list(study.lines),
+            "point": [k for k, p in study.points.items() if p.kind == "free"],
+            "body": list(study.bodies),
+            "dof": list(BODY_DOFS),
+            "dof_j": list(BODY_DOFS),
+        }
+        for dim, names in named.items():
+            if dim in extent and any(dim in registry[k].dims for k in present):
+                coords[dim] = (
+                    dim,
+                    np.array(names),
+                    {"units": "1", "long_name": COORDINATES[dim][1]},
+                )
+        # s is the node index; each line's arc length is the variable arc_length beside it
+    if "s" in extent and not system:
         arcs = [
             np.asarray(r.data["arc_length"])
             for r in by_index.values()
@@ -585,7 +660,7 @@ def assembled_variables(
             if "transfer_frequency" in r.data and analysis_ok(r, "dynamic")
         ]
         if freqs and all(np.array_equal(f, freqs[0]) for f in freqs):
-            spec = OUTPUTS["transfer_frequency"]
+            spec = registry["transfer_frequency"]
             coords["frequency"] = (
                 "frequency",
                 freqs[0],
@@ -605,7 +680,7 @@ def assembled_variables(
                 if grid in r.data and analysis_ok(r, "static")
             ]
             if grids and all(np.array_equal(g, grids[0]) for g in grids):
-                spec = OUTPUTS[grid]
+                spec = registry[grid]
                 coords[dim] = (dim, grids[0], {"units": spec.units, "long_name": spec.long_name})
                 data_vars.pop(grid)
     if "arc_length" in data_vars and "s" not in coords:

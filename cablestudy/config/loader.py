@@ -232,11 +232,24 @@ def _kind_tagged(models: list[type[BaseModel]], part: str | int) -> list[type[Ba
     ]
 
 
+def _is_mapping(models: list[type[BaseModel]], part: str) -> bool:
+    """Whether field ``part`` of ``models`` is a mapping of named entries (dict[str, X])."""
+    return any(
+        typing.get_origin(m.model_fields[part].annotation) is dict
+        for m in models
+        if part in m.model_fields
+    )
+
+
 def _models_at(loc: Loc) -> list[type[BaseModel]]:
     """Candidate model classes at a pydantic error location."""
     current: list[type[BaseModel]] = [Study]
+    keyed = False  # at a mapping of named entries (a system's points, bodies, lines)
     for part in loc:
         if isinstance(part, int):
+            continue
+        if keyed:
+            keyed = False
             continue
         tagged = _kind_tagged(current, part)
         if tagged:
@@ -244,6 +257,7 @@ def _models_at(loc: Loc) -> list[type[BaseModel]]:
             continue
         named = [m for m in current if part in m.model_fields]
         if named:
+            keyed = _is_mapping(named, part)
             current = [c for m in named for c in _unwrap(m.model_fields[part].annotation)]
             continue
         # a discriminator tag or a union member's class name
@@ -262,9 +276,11 @@ def _clean_loc(loc: Loc) -> Loc:
     """Drop union-member and discriminator parts pydantic adds to error paths."""
     out: list[str | int] = []
     models: list[type[BaseModel]] = [Study]
+    keyed = False  # at a mapping of named entries (a system's points, bodies, lines)
     for i, part in enumerate(loc):
-        if isinstance(part, int):
+        if isinstance(part, int) or keyed:
             out.append(part)
+            keyed = False
             continue
         tagged = _kind_tagged(models, part)
         if tagged:
@@ -272,6 +288,7 @@ def _clean_loc(loc: Loc) -> Loc:
             continue
         if any(part in m.model_fields for m in models):
             out.append(part)
+            keyed = _is_mapping([m for m in models if part in m.model_fields], part)
             models = [
                 c
                 for m in models

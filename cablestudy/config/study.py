@@ -13,6 +13,7 @@ from .base import FieldError, StrictModel
 from .ends import Ends, FixedEnd, MooringEnd
 from .environment import Environment
 from .line import Line, MoorDynLineRef
+from .system import BodyPoint, FixedPoint, SystemBody, SystemLine, SystemPoint
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.\-]*$")
 
@@ -23,7 +24,17 @@ def _line_or_reference(schema: dict[str, Any]) -> None:
     line = schema.get("properties", {}).get("line")
     if line is not None:
         ref = MoorDynLineRef.model_json_schema()
-        schema["properties"]["line"] = {"anyOf": [line, ref]}
+        # optional (a system has none) but never null when given
+        given = [alt for alt in line.get("anyOf", [line]) if alt.get("type") != "null"]
+        schema["properties"]["line"] = {"anyOf": [*given, ref]}
+        if "description" in line:
+            schema["properties"]["line"]["description"] = line["description"]
+    ends = schema.get("properties", {}).get("ends")
+    if ends is not None and "anyOf" in ends:
+        given = [alt for alt in ends["anyOf"] if alt.get("type") != "null"]
+        schema["properties"]["ends"] = {**given[0], "description": ends.get("description", "")}
+    # one line (line and ends) or a system (lines between points)
+    schema["oneOf"] = [{"required": ["line", "ends"]}, {"required": ["lines", "points"]}]
 
 
 class Study(StrictModel):
@@ -35,8 +46,21 @@ class Study(StrictModel):
     name: str = Field(description="study name; results go to <out>/<name>.nc")
     description: str = ""
     environment: Environment = Environment()
-    line: Line
-    ends: Ends
+    line: Line | None = Field(
+        None, description="the line of a one-line study (with ends); omit for a system (lines)"
+    )
+    ends: Ends | None = Field(None, description="end conditions of the one-line study's line")
+    points: dict[str, SystemPoint] = Field(
+        {}, description="system: points by name (fixed, free, or on a body)"
+    )
+    bodies: dict[str, SystemBody] = Field(
+        {},
+        description="system: bodies by name (prescribed: a 6-DOF position; free: found by "
+        "equilibrium)",
+    )
+    lines: dict[str, SystemLine] = Field(
+        {}, description="system: lines by name, each between two points (a, b); statics only"
+    )
     analysis: Analysis = Analysis()
     sweep: dict[str, Any] = Field(
         {},
@@ -110,17 +134,17 @@ class Study(StrictModel):
         non-negative mass for every segment given by its weight in the fluid."""
         env = self.environment
         rho, g = env.density, env.gravity
-        for i, seg in enumerate(self.line.segments):
-            if seg.mass_per_length is None and seg.mass_in(rho, g) < 0.0:
-                assert seg.weight_in_fluid is not None
-                raise FieldError(
-                    ("line", "segments", i, "weight_in_fluid"),
-                    f"implies a negative mass per length w/g + rho*A = "
-                    f"{seg.mass_in(rho, g):.6g} kg/m (fluid density {rho:g} kg/m^3, "
-                    f"diameter {seg.diameter:g} m); allowed weight_in_fluid >= "
-                    f"-rho*g*A = {-rho * g * seg.area:.6g} N/m, or give mass_per_length",
-                    seg.weight_in_fluid,
-                )
+        if self.lines or self.points or self.bodies:
+            return self._system()
+        if self.line is None or self.ends is None:
+            missing = "line" if self.line is None else "ends"
+            raise FieldError(
+                (missing,),
+                f"the study has no '{missing}'; a study holds either one line (line and "
+                "ends) or a system (lines between points)",
+                None,
+            )
+        self._segment_masses(("line",), self.line)
         a, b = self.ends.a, self.ends.b
         if not isinstance(a, FixedEnd) and not isinstance(b, FixedEnd):
             raise FieldError(
@@ -168,3 +192,145 @@ class Study(StrictModel):
                         end.position if isinstance(end, FixedEnd) else end.z,
                     )
         return self
+
+    def _segment_masses(self, where: tuple[str, ...], line: Line) -> None:
+        """A non-negative mass for every segment given by its weight in the fluid."""
+        rho, g = self.environment.density, self.environment.gravity
+        for i, seg in enumerate(line.segments):
+            if seg.mass_per_length is None and seg.mass_in(rho, g) < 0.0:
+                assert seg.weight_in_fluid is not None
+                raise FieldError(
+                    (*where, "segments", i, "weight_in_fluid"),
+                    f"implies a negative mass per length w/g + rho*A = "
+                    f"{seg.mass_in(rho, g):.6g} kg/m (fluid density {rho:g} kg/m^3, "
+                    f"diameter {seg.diameter:g} m); allowed weight_in_fluid >= "
+                    f"-rho*g*A = {-rho * g * seg.area:.6g} N/m, or give mass_per_length",
+                    seg.weight_in_fluid,
+                )
+
+    def _system(self) -> Study:
+        """A system (lines between points): every reference resolved, every key used or
+        refused naming what supports it, fixed points above the seabed."""
+        one_line = "a one-line study (line and ends)"
+        for key in ("line", "ends"):
+            if getattr(self, key) is not None:
+                raise FieldError(
+                    (key,),
+                    f"a system study (lines, points, bodies) has no '{key}'; give each line "
+                    "under lines with its end points a and b",
+                    key,
+                )
+        if not self.lines:
+            raise FieldError(("lines",), "a system needs at least one line between two points", {})
+        for group in ("points", "bodies", "lines"):
+            for name in getattr(self, group):
+                if not _NAME.match(name):
+                    raise FieldError(
+                        (group, name),
+                        "names are letters, digits, '_', '-', '.', starting with a letter or digit",
+                        name,
+                    )
+        for name, point in self.points.items():
+            if isinstance(point, BodyPoint) and point.body not in self.bodies:
+                raise FieldError(
+                    ("points", name, "body"),
+                    f"no body of that name; allowed: {sorted(self.bodies) or 'none defined'}",
+                    point.body,
+                )
+        used: set[str] = set()
+        for name, line in self.lines.items():
+            for end in ("a", "b"):
+                ref = getattr(line, end)
+                if ref not in self.points:
+                    raise FieldError(
+                        ("lines", name, end),
+                        f"no point of that name; allowed: {sorted(self.points)}",
+                        ref,
+                    )
+                used.add(ref)
+            if line.a == line.b:
+                raise FieldError(("lines", name, "b"), "a line joins two different points", line.b)
+            refused = {
+                "kind": (line.kind != "catenary", "kind: spring"),
+                "pulleys": (bool(line.pulleys), "pulleys"),
+                "winch": (line.winch is not None, "a winch"),
+                "failure": (line.failure is not None, "a failure (break) condition"),
+            }
+            for key, (given, what) in refused.items():
+                if given:
+                    raise FieldError(
+                        ("lines", name, key),
+                        f"the system statics do not model {what}; it is supported by {one_line}",
+                        key,
+                    )
+            for i, seg in enumerate(line.segments):
+                if seg.failure is not None:
+                    raise FieldError(
+                        ("lines", name, "segments", i, "failure"),
+                        "the system statics do not model a failure (break) condition; it "
+                        f"is supported by {one_line}",
+                        "failure",
+                    )
+            self._segment_masses(("lines", name), line)
+        for name in self.points:
+            if name not in used:
+                raise FieldError(
+                    ("points", name), "the point is on no line; allowed: points lines use", name
+                )
+        an = self.analysis
+        refused_analyses = {
+            "modal": an.modal is not None,
+            "dynamic": an.dynamic is not None,
+            "database": an.database is not None,
+        }
+        for key, given in refused_analyses.items():
+            if given:
+                raise FieldError(
+                    ("analysis", key),
+                    f"analysis.{key} is not available for a system yet; it is supported by "
+                    f"{one_line}; a system runs analysis.static",
+                    key,
+                )
+        if an.static.method != "catenary":
+            raise FieldError(
+                ("analysis", "static", "method"),
+                "a system is solved with the exact end stiffness of method 'catenary' "
+                "only; allowed: catenary (other methods are supported by "
+                f"{one_line})",
+                an.static.method,
+            )
+        if an.static.installation is not None:
+            raise FieldError(
+                ("analysis", "static", "installation"),
+                f"cable laying is supported by {one_line}, not by a system",
+                "installation",
+            )
+        if self.environment.current:
+            raise FieldError(
+                ("environment", "current"),
+                "the system statics do not model current drag yet; allowed: no current "
+                f"(current is supported by {one_line})",
+                "current",
+            )
+        env = self.environment
+        if env.depth is not None:
+            rise = math.tan(math.radians(env.seabed.slope_deg))
+            heading = math.radians(env.seabed.slope_heading_deg)
+            for name, point in self.points.items():
+                if not isinstance(point, FixedPoint):
+                    continue
+                x, y, z = point.position
+                ground = -env.depth + rise * (x * math.cos(heading) + y * math.sin(heading))
+                if z < ground - 1e-9 * env.depth:
+                    raise FieldError(
+                        ("points", name, "position"),
+                        f"the point lies below the seabed (z = {z:g} m, seabed at "
+                        f"z = {ground:g} m there); allowed z >= seabed height",
+                        list(point.position),
+                    )
+        return self
+
+    @property
+    def is_system(self) -> bool:
+        """True for a system study (lines between points), False for a one-line study."""
+        return bool(self.lines)

@@ -68,6 +68,11 @@ def export_case(src: StudySource, selectors: list[str]) -> ExportedCase:
 
     case = choose_case(src, selectors)
     study = case.study
+    if study.is_system:
+        raise InterchangeError(
+            "the study is a system (lines between points); export writes a one-line "
+            "study (line and ends) for now"
+        )
     problem = static_problem(study)
     solver = STATIC_SOLVERS[study.analysis.static.method]
     missing = solver.unsupported(problem)

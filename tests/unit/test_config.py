@@ -119,7 +119,12 @@ def test_schema_command_prints_a_json_schema(capsys: pytest.CaptureFixture[str])
     schema = json.loads(capsys.readouterr().out)
     assert schema["$schema"].startswith("https://json-schema.org/")
     assert schema["additionalProperties"] is False
-    assert set(schema["required"]) == {"name", "line", "ends"}
+    assert set(schema["required"]) == {"name"}
+    # one line (line and ends) or a system (lines between points)
+    assert {tuple(sorted(alt["required"])) for alt in schema["oneOf"]} == {
+        ("ends", "line"),
+        ("lines", "points"),
+    }
     segment = schema["$defs"]["Segment"]
     assert segment["properties"]["length"]["exclusiveMinimum"] == 0.0
     assert "unstretched length [m]" in segment["properties"]["length"]["description"]

@@ -1,0 +1,539 @@
+"""Statics of a mooring system: lines joined at points, points on bodies.
+
+Pure: arrays and frozen dataclasses in, arrays out (SI units, no I/O).
+
+A system has points (fixed; free, found by equilibrium under a constant net force such
+as a clump's weight or a buoy's lift; or on a prescribed body at an offset in the body
+frame), prescribed bodies (6-DOF pose: surge, sway, heave [m] and roll, pitch, yaw [rad],
+the rotation being R = Rz(yaw) Ry(pitch) Rx(roll), exact at any angle) and lines, each a
+:class:`~.base.StaticProblem` whose ends are two of the points.
+
+Free points are found by Newton using each line's exact end-force stiffness from its
+cable solution (:func:`line_end_stiffness`): for a free-hanging line the flexibility
+F = d(r_B - r_A)/d(T_A) is the sum of the pieces' Jacobians (the matrix the end-force
+Newton of :mod:`.semi_analytic` builds), and its inverse G gives the four 3x3 blocks
+K_aa = K_bb = G, K_ab = K_ba = -G (K = minus the derivative of the force of the line on
+the end's attachment with respect to the end's position). A line lying on the seabed
+from an anchored end uses the Jacobian of the seabed-contact Newton (unknowns: the
+touchdown tension in the seabed plane and the touchdown arc length).
+
+Body force and stiffness: the points on a body move as r_i = X + R(theta) p_i. With
+f_i the force of the lines on point i, u_i = R p_i, and A_i = d(R p_i)/d(theta) (3x3),
+the body force is F = sum f_i, M = sum u_i x f_i, and its stiffness
+K = -d(F, M)/d(X, theta), with the free points re-equilibrated (the Schur complement
+K_c = K_BB - K_BP K_PP^-1 K_PB of the assembled point stiffness), is
+
+    K = sum_ij [I; [u_i]x] K_c,ij [I, A_j] + sum_i [0, 0; 0, [f_i]x A_i]
+
+where [v]x is the cross-product matrix; the last term is the moment arm's rotation
+(d u_i / d theta x f_i), which makes the rotational block unsymmetric in general
+(the moment of the lines' resultant turns with the body).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import numpy as np
+
+from .base import (
+    STATUS_NO_SOLUTION,
+    STATUS_NOT_CONVERGED,
+    STATUS_NUMERICAL,
+    STATUS_OK,
+    EndCondition,
+    StaticProblem,
+    StaticResult,
+)
+from .law_pieces import piece_increments
+from .seabed import Plane
+from .semi_analytic import _laid, _offsets, _suspended, make_layout, reversed_line
+
+FIXED, FREE, BODY = 0, 1, 2
+DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+
+
+@dataclass(frozen=True, kw_only=True)
+class SystemLine:
+    """A line between points ``a`` and ``b`` (indices into the system's points);
+    ``problem``'s end conditions are replaced by the points' positions."""
+
+    name: str
+    problem: StaticProblem
+    a: int
+    b: int
+
+
+@dataclass(frozen=True, kw_only=True)
+class MooringSystem:
+    """Points, prescribed bodies and lines.
+
+    Parameters
+    ----------
+    point_names : names of the points, (n,)
+    point_kind : (n,) int, FIXED, FREE or BODY
+    point_position : [m] (n, 3): position (fixed), starting guess (free), or offset from
+        the body's reference point in the body frame (body)
+    point_body : (n,) int, body index of BODY points (-1 otherwise)
+    point_force : [N] (n, 3) constant net force on free points (weight, buoyancy, force)
+    body_names : (m,)
+    body_position : [m, rad] (m, 6) surge, sway, heave, roll, pitch, yaw
+    lines : the lines
+    tolerance : [-] free-point equilibrium: largest net force / force scale
+    max_iterations : Newton iterations on the free points
+    """
+
+    point_names: tuple[str, ...]
+    point_kind: np.ndarray
+    point_position: np.ndarray
+    point_body: np.ndarray
+    point_force: np.ndarray
+    body_names: tuple[str, ...] = ()
+    body_position: np.ndarray = field(default_factory=lambda: np.zeros((0, 6)))
+    lines: tuple[SystemLine, ...] = ()
+    tolerance: float = 1e-9
+    max_iterations: int = 100
+    #: (m,) True where the body is free: its ``body_position`` is then the starting guess
+    #: of its equilibrium under the lines, its weight, buoyancy and applied force
+    body_free: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=bool))
+    #: [N] (m,) weight m g, acting down at ``body_cog``; buoyancy rho V g, up at ``body_cob``
+    body_weight: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    body_buoyancy: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    #: [m] (m, 3) centres of gravity and buoyancy in the body frame
+    body_cog: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    body_cob: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    #: [N] (m, 3) constant force at the reference point
+    body_applied: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+
+
+@dataclass(kw_only=True)
+class SystemResult:
+    """Static state of a system. ``lines``: each line's result (positions, tensions, end
+    forces on the attachments); ``point_position`` [m] (n, 3) of every point;
+    ``body_force`` [N, N m] (m, 6) of the lines on each body about its reference point;
+    ``body_stiffness`` (m, 6, 6) = -d body_force / d body_position, free points
+    re-equilibrated."""
+
+    lines: list[StaticResult]
+    point_position: np.ndarray
+    body_force: np.ndarray
+    body_stiffness: np.ndarray
+    status: int = STATUS_OK
+    message: str = ""
+    iterations: int = 0
+    residual: float = 0.0
+    #: [m, rad] (m, 6) the bodies' positions (free bodies: in equilibrium)
+    body_position: np.ndarray | None = None
+
+
+class SystemFailure(Exception):
+    """A numerical failure of a system solve (becomes status and message)."""
+
+    def __init__(self, status: int, message: str) -> None:
+        super().__init__(message)
+        self.status = status
+        self.message = message
+
+
+# --------------------------------------------------------------------------- rotation
+
+
+def _axis_rotations(angles: np.ndarray) -> tuple[np.ndarray, ...]:
+    """Rx(roll), Ry(pitch), Rz(yaw) and their derivatives."""
+    c1, s1 = math.cos(angles[0]), math.sin(angles[0])
+    c2, s2 = math.cos(angles[1]), math.sin(angles[1])
+    c3, s3 = math.cos(angles[2]), math.sin(angles[2])
+    rx = np.array([[1.0, 0.0, 0.0], [0.0, c1, -s1], [0.0, s1, c1]])
+    ry = np.array([[c2, 0.0, s2], [0.0, 1.0, 0.0], [-s2, 0.0, c2]])
+    rz = np.array([[c3, -s3, 0.0], [s3, c3, 0.0], [0.0, 0.0, 1.0]])
+    drx = np.array([[0.0, 0.0, 0.0], [0.0, -s1, -c1], [0.0, c1, -s1]])
+    dry = np.array([[-s2, 0.0, c2], [0.0, 0.0, 0.0], [-c2, 0.0, -s2]])
+    drz = np.array([[-s3, -c3, 0.0], [c3, -s3, 0.0], [0.0, 0.0, 0.0]])
+    return rx, ry, rz, drx, dry, drz
+
+
+def rotation(angles: np.ndarray) -> np.ndarray:
+    """R = Rz(yaw) Ry(pitch) Rx(roll) for ``angles`` = (roll, pitch, yaw) [rad]."""
+    rx, ry, rz, *_ = _axis_rotations(angles)
+    return rz @ ry @ rx
+
+
+def rotation_derivatives(angles: np.ndarray) -> np.ndarray:
+    """dR/d(roll), dR/d(pitch), dR/d(yaw), shape (3, 3, 3) (first axis: the angle)."""
+    rx, ry, rz, drx, dry, drz = _axis_rotations(angles)
+    return np.stack((rz @ ry @ drx, rz @ dry @ rx, drz @ ry @ rx))
+
+
+def _skew(v: np.ndarray) -> np.ndarray:
+    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
+
+
+# --------------------------------------------------------------------------- one line
+
+
+def _plane(problem: StaticProblem) -> Plane | None:
+    m = problem.medium
+    if m.depth is None:
+        return None
+    return Plane(m.depth, m.seabed_slope, m.seabed_heading, m.friction)
+
+
+def line_end_stiffness(problem: StaticProblem, result: StaticResult) -> np.ndarray:
+    """Exact end stiffness of a solved line with both ends fixed, shape (2, 2, 3, 3):
+    ``K[i, j]`` = -d f_i / d r_j for ends i, j in (A, B), f the force of the line on the
+    end's attachment. NaN blocks where the line's model does not give them (the end
+    of a line that lies on the seabed from that end). Raises :class:`SystemFailure` for
+    shapes whose stiffness is not modelled (a line touching the seabed between two
+    raised ends, or lying wholly on it).
+
+    The catenary model's complementary energy is the potential of the end forces, so
+    for a conservative line (no friction) K is symmetric."""
+    assert problem.end_a.position is not None and problem.end_b.position is not None
+    line = problem.line
+    L = line.total_length
+    plane = _plane(problem)
+    ra, rb = problem.end_a.position, problem.end_b.position
+    fa, fb = result.force_a, result.force_b
+    reverse = False
+    if plane is not None:
+        ha, hb = float(plane.height_above(ra)), float(plane.height_above(rb))
+        reverse = hb <= 1e-6 * L and ha > 1e-6 * L
+    if reverse:
+        line = reversed_line(line)
+        fa, fb = fb, fa
+    lay = make_layout(line)
+    q = lay.gravity
+    K = np.full((2, 2, 3, 3), np.nan)
+    if result.laid_length > 0.0:
+        assert plane is not None
+        grounded_end = rb if reverse else ra
+        if float(plane.height_above(grounded_end)) > 1e-6 * L:
+            raise SystemFailure(
+                STATUS_NO_SOLUTION,
+                "the line touches the seabed between two raised ends; its end stiffness "
+                "is modelled for a line lying on the seabed from an anchored end only",
+            )
+        s_td = float(result.laid_length)
+        if s_td >= L * (1.0 - 1e-9):
+            raise SystemFailure(
+                STATUS_NO_SOLUTION, "the line lies wholly on the seabed: no end stiffness"
+            )
+        _, ell, EA, qs, C, k_td, Cend = _suspended(lay, q, s_td)
+        T_td = -np.asarray(fb, dtype=float) + Cend
+        e1, e2 = plane.basis
+        basis = np.stack((e1, e2), axis=1)
+        tn = float(np.linalg.norm(T_td))
+        e = T_td / tn
+        laid = _laid(lay, s_td, T_td, plane)
+        laws = None if lay.law is None else lay.law[k_td:]
+        _, jac, _ = piece_increments(T_td - C, qs, ell, EA, laws)
+        assert jac is not None
+        Js = jac.sum(axis=0)
+        dlaid = (
+            laid.stretched * (np.eye(3) - np.outer(e, e)) / tn + np.outer(e, e) * laid.positive_flex
+        )
+        M = np.column_stack(
+            ((Js + dlaid) @ basis, Js @ qs[0] - e * laid.rate_td * laid.positive_flex)
+        )
+        N = np.column_stack((basis, qs[0]))  # d T(L) / d (alpha, beta, s_td)
+        # f_b = -T(L): K_bb = -d f_b / d r_B = N M^-1
+        K[1, 1] = np.linalg.solve(M.T, N.T).T
+    else:
+        C, _ = _offsets(lay, q)
+        TA = np.asarray(fa, dtype=float)
+        _, jac, _ = piece_increments(TA - C, q, lay.ell, lay.EA, lay.law)
+        assert jac is not None
+        G = np.linalg.inv(jac.sum(axis=0))
+        K[0, 0] = K[1, 1] = G
+        K[0, 1] = K[1, 0] = -G
+    if reverse:
+        K = K[::-1, ::-1].copy()
+    return K
+
+
+# --------------------------------------------------------------------------- system
+
+
+def point_positions(system: MooringSystem, free: np.ndarray) -> np.ndarray:
+    """Positions [m] (n, 3) of all points, given the free points' positions (k, 3)."""
+    pos = np.array(system.point_position, dtype=float, copy=True)
+    kind = system.point_kind
+    pos[kind == FREE] = free
+    for i in np.flatnonzero(kind == BODY):
+        b = int(system.point_body[i])
+        pose = system.body_position[b]
+        pos[i] = pose[:3] + rotation(pose[3:]) @ system.point_position[i]
+    return pos
+
+
+def _solve_lines(
+    system: MooringSystem, pos: np.ndarray, solver: Any, deadline: float | None
+) -> tuple[list[StaticResult], np.ndarray, np.ndarray]:
+    """Each line between the points at ``pos``: results, the net line force on each
+    point (n, 3) [N] and the assembled stiffness (3n, 3n) [N/m]."""
+    n = len(pos)
+    force = np.zeros((n, 3))
+    K = np.zeros((3 * n, 3 * n))
+    results = []
+    for ln in system.lines:
+        prob = replace(
+            ln.problem,
+            end_a=EndCondition(kind="fixed", position=pos[ln.a].copy()),
+            end_b=EndCondition(kind="fixed", position=pos[ln.b].copy()),
+        )
+        res = solver.solve(prob, deadline=deadline).check_finite()
+        if res.status != STATUS_OK:
+            raise SystemFailure(res.status, f"line {ln.name}: {res.message}")
+        results.append(res)
+        force[ln.a] += res.force_a
+        force[ln.b] += res.force_b
+        moving = [system.point_kind[ln.a] != FIXED, system.point_kind[ln.b] != FIXED]
+        if not any(moving):
+            continue
+        k = line_end_stiffness(prob, res)
+        ends = (ln.a, ln.b)
+        for i in range(2):
+            for j in range(2):
+                if not (moving[i] and moving[j]):
+                    continue
+                if not np.all(np.isfinite(k[i, j])):
+                    raise SystemFailure(
+                        STATUS_NO_SOLUTION,
+                        f"line {ln.name} lies on the seabed from an end that is not a "
+                        "fixed point; its stiffness there is not modelled (anchor it)",
+                    )
+                K[3 * ends[i] : 3 * ends[i] + 3, 3 * ends[j] : 3 * ends[j] + 3] += k[i, j]
+    return results, force, K
+
+
+def _dof_index(mask: np.ndarray) -> np.ndarray:
+    return (3 * np.flatnonzero(mask)[:, None] + np.arange(3)).ravel()
+
+
+def solve_system(
+    system: MooringSystem, solver: Any, *, deadline: float | None = None
+) -> SystemResult:
+    """Equilibrium of the free points (Newton with the lines' exact stiffness and a
+    line search on the system's energy along the step, :func:`_line_search`), then the
+    bodies' force and stiffness; free bodies by :mod:`.free_bodies`.
+    ``solver`` solves one line with both ends fixed (a registered static solver). A
+    numerical failure is returned as status, message and NaN."""
+    n, m = len(system.point_names), len(system.body_names)
+    free_mask = system.point_kind == FREE
+    try:
+        if system.body_free.size and np.any(system.body_free):
+            from .free_bodies import solve_free_bodies
+
+            return solve_free_bodies(system, lambda sys: _solve(sys, solver, deadline, free_mask))
+        res = _solve(system, solver, deadline, free_mask)
+        res.body_position = np.array(system.body_position, dtype=float)
+        return res
+    except SystemFailure as exc:
+        return SystemResult(
+            lines=[],
+            point_position=np.full((n, 3), np.nan),
+            body_force=np.full((m, 6), np.nan),
+            body_stiffness=np.full((m, 6, 6), np.nan),
+            status=exc.status,
+            message=exc.message,
+        )
+    except np.linalg.LinAlgError as exc:
+        return SystemResult(
+            lines=[],
+            point_position=np.full((n, 3), np.nan),
+            body_force=np.full((m, 6), np.nan),
+            body_stiffness=np.full((m, 6, 6), np.nan),
+            status=STATUS_NUMERICAL,
+            message=f"singular stiffness of the free points ({exc})",
+        )
+
+
+def _solve(
+    system: MooringSystem, solver: Any, deadline: float | None, free_mask: np.ndarray
+) -> SystemResult:
+    x = np.array(system.point_position[free_mask], dtype=float)
+    pf = system.point_force[free_mask]
+    P = _dof_index(free_mask)
+    pos = point_positions(system, x)
+    # the Newton trials use the solver without its final verification (the registry's
+    # wrapper, cablestudy.statics.VerifiedSolver); the lines at the solution are verified
+    raw = getattr(solver, "solver", solver)
+    final = system
+    # and sample each line at its ends only: its shape is wanted at the solution
+    system = replace(
+        system,
+        lines=tuple(
+            replace(ln, problem=replace(ln.problem, n_nodes=min(ln.problem.n_nodes, 3)))
+            for ln in system.lines
+        ),
+    )
+    results, force, K = _solve_lines(system, pos, raw, deadline)
+    it = 0
+    res = 0.0
+    if P.size:
+        cap = 0.5 * min(
+            ln.problem.line.total_length
+            for ln in system.lines
+            if free_mask[ln.a] or free_mask[ln.b]
+        )
+        scale = max(
+            max((float(np.max(r.tension)) for r in results), default=0.0),
+            float(np.max(np.abs(pf))),
+            1e-300,
+        )
+
+        def residual(force: np.ndarray) -> np.ndarray:
+            return force[free_mask] + pf
+
+        R = residual(force)
+        res = float(np.max(np.abs(R))) / scale
+        polished = 0
+        while res > system.tolerance or polished == 0:
+            if res <= system.tolerance:
+                polished = 1
+            if it >= system.max_iterations:
+                raise SystemFailure(
+                    STATUS_NOT_CONVERGED,
+                    f"free-point equilibrium did not converge in {system.max_iterations} "
+                    f"iterations (net force / largest tension {res:.3g}, tolerance "
+                    f"{system.tolerance:.3g})",
+                )
+            it += 1
+            step = np.linalg.solve(K[np.ix_(P, P)], R.ravel()).reshape(-1, 3)
+            phi0 = float(R.ravel() @ step.ravel())
+            if not phi0 > 0.0:  # stiffness not positive definite here: go downhill
+                step = R / max(float(np.max(np.diag(K[np.ix_(P, P)]))), 1e-300)
+                phi0 = float(R.ravel() @ step.ravel())
+            longest = float(np.max(np.linalg.norm(step, axis=1)))
+            if longest > cap:
+                step *= cap / longest
+                phi0 *= cap / longest
+            found = _line_search(
+                lambda lam, x=x, step=step: _trial(
+                    system, x + lam * step, raw, deadline, residual, step
+                ),
+                phi0,
+                done=res <= system.tolerance,
+            )
+            if found is None:
+                if res <= system.tolerance:
+                    break  # round-off: the polishing step cannot reduce it further
+                raise SystemFailure(
+                    STATUS_NOT_CONVERGED,
+                    f"line search failed in the free-point equilibrium (net force / "
+                    f"largest tension {res:.3g})",
+                )
+            lam, out = found
+            xn = x + lam * step
+            Rn = residual(out[1])
+            assert out is not None
+            x, (results, force, K), R = xn, out, Rn
+            res = float(np.max(np.abs(R))) / scale
+            if polished:
+                break
+        pos = point_positions(system, x)
+    results, force, K = _solve_lines(final, pos, solver, deadline)
+    body_force, body_stiffness = _bodies(final, pos, force, K, free_mask)
+    return SystemResult(
+        lines=results,
+        point_position=pos,
+        body_force=body_force,
+        body_stiffness=body_stiffness,
+        iterations=it,
+        residual=res,
+    )
+
+
+def _trial(
+    system: MooringSystem,
+    x: np.ndarray,
+    solver: Any,
+    deadline: float | None,
+    residual: Any,
+    step: np.ndarray,
+) -> tuple[Any, float] | None:
+    """The lines with the free points at ``x``, and phi = R(x) . step (None if a line
+    cannot be solved there)."""
+    try:
+        out = _solve_lines(system, point_positions(system, x), solver, deadline)
+    except SystemFailure:
+        return None
+    return out, float(residual(out[1]).ravel() @ step.ravel())
+
+
+def _line_search(trial: Any, phi0: float, *, done: bool) -> tuple[float, Any] | None:
+    """A step length along the Newton direction s by the energy of the system: the lines
+    and the points' loads are conservative, so the potential energy along the step has
+    the slope -phi(lam) = -R(x + lam s) . s, negative at 0 (K positive definite). The
+    step is accepted where that slope has fallen to half its size (strong Wolfe
+    curvature condition, c2 = 0.5), or at lam = 1 while the energy still falls; else
+    its zero (the energy's minimum along s) is bracketed and found by regula falsi. A
+    straight step lets a point swinging on a taut line (stiff along it, soft across it)
+    move along its arc by several steps, where a residual-norm search stalls."""
+    lo, f_lo = 0.0, phi0
+    hi, f_hi = math.nan, math.nan
+    lam = 1.0
+    for _ in range(40):
+        t = trial(lam)
+        if t is None:  # a line could not be solved there: shorter
+            hi, f_hi = lam, math.nan
+            lam = 0.5 * (lo + lam)
+            continue
+        out, f = t
+        if abs(f) <= 0.5 * phi0 or (f > 0.0 and lam == 1.0) or (done and lam == 1.0):
+            return lam, out
+        if f > 0.0:
+            lo, f_lo = lam, f
+        else:
+            hi, f_hi = lam, f
+        if math.isnan(f_hi):
+            lam = 0.5 * (lo + hi)
+        else:
+            guess = lo + (hi - lo) * f_lo / (f_lo - f_hi)
+            width = hi - lo
+            lam = min(max(guess, lo + 0.1 * width), hi - 0.1 * width)
+        if hi - lo <= 1e-12:
+            break
+    return None
+
+
+def _bodies(
+    system: MooringSystem,
+    pos: np.ndarray,
+    force: np.ndarray,
+    K: np.ndarray,
+    free_mask: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    m = len(system.body_names)
+    body_force = np.zeros((m, 6))
+    body_stiffness = np.zeros((m, 6, 6))
+    on_body = system.point_kind == BODY
+    if not np.any(on_body):
+        return body_force, body_stiffness
+    B, P = _dof_index(on_body), _dof_index(free_mask)
+    Kc = K[np.ix_(B, B)]
+    if P.size:
+        Kc = Kc - K[np.ix_(B, P)] @ np.linalg.solve(K[np.ix_(P, P)], K[np.ix_(P, B)])
+    idx = np.flatnonzero(on_body)
+    for b in range(m):
+        pose = system.body_position[b]
+        dR = rotation_derivatives(pose[3:])
+        mine = [k for k, i in enumerate(idx) if system.point_body[i] == b]
+        lever, trans = {}, {}
+        for k in mine:
+            i = idx[k]
+            u = pos[i] - pose[:3]
+            A = np.stack([dR[a] @ system.point_position[i] for a in range(3)], axis=1)
+            f = force[i]
+            body_force[b, :3] += f
+            body_force[b, 3:] += np.cross(u, f)
+            lever[k] = np.vstack((np.eye(3), _skew(u)))  # (6, 3)
+            trans[k] = np.hstack((np.eye(3), A))  # (3, 6)
+            body_stiffness[b, 3:, 3:] += _skew(f) @ A
+        for k in mine:
+            for j in mine:
+                block = Kc[3 * k : 3 * k + 3, 3 * j : 3 * j + 3]
+                body_stiffness[b] += lever[k] @ block @ trans[j]
+    return body_force, body_stiffness
