@@ -41,7 +41,12 @@ def _run(name: str, out: Path) -> xr.Dataset:
 def results(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """The tutorials' results, written once for this module into ``results/``."""
     out = tmp_path_factory.mktemp("tutorials") / "results"
-    for name in ("tutorial-mooring-leg", "tutorial-towed-cable", "moustafa-figs2-5"):
+    for name in (
+        "tutorial-mooring-leg",
+        "tutorial-towed-cable",
+        "moustafa-figs2-5",
+        "tutorial-moordyn-import",
+    ):
         _run(name, out)
     return out
 
@@ -162,7 +167,8 @@ def _python_blocks(page: Path) -> list[str]:
 
 
 @pytest.mark.parametrize(
-    "page", ["xarray.md", "mooring-leg.md", "tension-frequency.md", "towed-cable.md"]
+    "page",
+    ["xarray.md", "mooring-leg.md", "tension-frequency.md", "towed-cable.md", "moordyn-import.md"],
 )
 def test_tutorial_code_runs(page: str, results: Path, tmp_path: Path) -> None:
     """The Python of each tutorial page, run in order as a reader would, in a folder
@@ -219,6 +225,7 @@ def _within(part: object, whole: object, path: str = "") -> list[str]:
         ("mooring-leg.md", "tutorial-mooring-leg"),
         ("tension-frequency.md", "moustafa-figs2-5"),
         ("towed-cable.md", "tutorial-towed-cable"),
+        ("moordyn-import.md", "tutorial-moordyn-import"),
     ],
 )
 def test_tutorial_yaml_is_the_study(page: str, config: str) -> None:
@@ -231,3 +238,40 @@ def test_tutorial_yaml_is_the_study(page: str, config: str) -> None:
         fragment = yaml.safe_load(block)
         assert isinstance(fragment, dict)
         assert _within(fragment, study) == [], block
+
+
+def test_moordyn_import_tutorial(results: Path, tmp_path: Path, capsys) -> None:  # noqa: ANN001
+    """The MoorDyn tutorial's study is what `cablestudy import` writes from MoorDyn's own
+    WD0050_Chain.txt, plus the offset sweep the page shows (so the page, the config and
+    the importer cannot drift apart); the importer names what it leaves out; and the
+    restoring curve is physical: moving the vessel towards the anchor slackens the chain
+    (fairlead tension falls, laid length grows), the fairlead's vertical force is the
+    weight in water of the suspended length, and the anchor carries the horizontal pull
+    less the laid length's friction, or nothing."""
+    source = "tests/data/moordyn/tests/Mooring/WD0050_Chain.txt"
+    here = Path.cwd()
+    os.chdir(ROOT)
+    try:
+        code = main(
+            ["import", "moordyn", source, "--line", "1", "--name", "tutorial-moordyn-import"]
+        )
+    finally:
+        os.chdir(here)
+    assert code == 0
+    out = capsys.readouterr()
+    assert "not modelled by cablestudy (not imported)" in out.err and "fileIC" in out.err
+    sweep = "sweep:\n  ends.b.position.0: {start: 0.0, stop: 24.0, num: 9, name: offset}\n"
+    assert (CONFIGS / "tutorial-moordyn-import.yaml").read_text() == out.out + sweep
+
+    ds = xr.load_dataset(results / "tutorial-moordyn-import.nc")
+    assert (ds.status == 0).all()
+    tension, laid = ds.tension_b.values, ds.laid_length.values
+    assert np.all(np.diff(tension) < 0) and np.all(np.diff(laid) > 0)
+    seg = _segments("tutorial-moordyn-import")[0]
+    w = (seg["mass_per_length"] - 1025.0 * np.pi * seg["diameter"] ** 2 / 4.0) * 9.80665
+    vertical = -ds.force_b.sel(component="z").values
+    np.testing.assert_allclose(vertical, w * (seg["length"] - laid), rtol=RTOL)
+    horizontal = -ds.force_b.sel(component="x").values  # the line pulls B towards +x
+    anchor = np.hypot(*(ds.force_a.sel(component=c).values for c in ("x", "y")))
+    expected = np.maximum(-horizontal - 0.5 * w * laid, 0.0)
+    np.testing.assert_allclose(anchor, expected, rtol=RTOL, atol=RTOL * np.max(-horizontal))
