@@ -45,7 +45,7 @@ def _fresh_static_cache(monkeypatch: pytest.MonkeyPatch) -> None:
 def _both(tmp_path: Path, text: str = TEXT) -> tuple[xr.Dataset, xr.Dataset]:
     src = parse_study_text(text, "gr.yaml")
     grid = expand_grid(src)
-    assert grid is not None and grid.shape == (7, 3, 2)
+    assert grid is not None
     fast = run_grid_study(
         src, grid, tmp_path / "grid", scheduler="synchronous", use_cache=False, progress=False
     )
@@ -79,17 +79,102 @@ ON_SEABED_B = (
 )
 
 
+#: sweeps of keys no compiled array kernel takes straight from arrays: each case's study
+#: is the template with the validated values put in by copying (cablestudy.grid_static)
+SPANS = "ends.b.position.0: {start: 60.0, stop: 100.5, num: 7, name: span}"
+STIFF = "line.segments.0.axial_stiffness: [1.0e5, 1.0e6, 6.283e7]"
+#: a segment length: every case has its own arc lengths (s becomes the node index)
+LENGTHS = TEXT.replace("ends.a.position.2: [-10.0, -20.0]", "line.segments.1.length: [40.0, 47.5]")
+#: node counts: arrays of different lengths, padded as the case path pads them
+NODES = TEXT.replace(
+    "ends.a.position.2: [-10.0, -20.0]", "analysis.static.nodes: [11, 21]"
+).replace("method: catenary, nodes: 21", "method: catenary")
+#: a current with drag (the drag iteration per case, in the general solver)
+CURRENT = (
+    TEXT.replace(
+        "environment: {fluid: water, depth: 50.0}",
+        "environment:\n  fluid: water\n  depth: 50.0\n"
+        "  current: [{z: 0.0, speed: 0.5, heading_deg: 30.0}]",
+    )
+    .replace("axial_stiffness: 6.283e7}", "axial_stiffness: 6.283e7, drag_normal: 1.2}")
+    .replace(SPANS, "ends.b.position.0: [80.0, 95.0]")
+    .replace(STIFF, "environment.current.0.speed: [0.0, 0.5, 1.0]")
+    .replace("ends.a.position.2: [-10.0, -20.0]", "environment.current.0.heading_deg: [0.0, 90.0]")
+)
+#: a towed line: end B a known force, swept
+FORCE = (
+    TEXT.replace("{fluid: water, depth: 50.0}", "{fluid: water}")
+    .replace(
+        "b: {kind: fixed, position: [92.5, 0.0, -8.6]}",
+        "b: {kind: force, force: [2000.0, 0.0, 500.0]}",
+    )
+    .replace(SPANS, "ends.b.force.0: [500.0, 2000.0, 8000.0]")
+    .replace(STIFF, "ends.b.force.2: [-500.0, 0.0, 1500.0]")
+    .replace("ends.a.position.2: [-10.0, -20.0]", "line.segments.1.mass_per_length: [8.0, 12.0]")
+)
+#: friction on the seabed swept, with the depth (end A resting on it)
+FRICTION = (
+    ON_SEABED.replace("depth: 30.0", "depth: 30.0, seabed: {friction: 0.0}")
+    .replace(STIFF, "environment.seabed.friction: [0.0, 0.3, 1.0]")
+    .replace("ends.a.position.2: [-10.0, -30.0]", "environment.depth: [30.0, 31.0]")
+    .replace(
+        "a: {kind: fixed, position: [0.0, 0.0, -10.0]}",
+        "a: {kind: fixed, position: [0.0, 0.0, -30.0]}",
+    )
+)
+#: methods without a batch kernel: the registry solver per case, on a small sweep
+ONE_SEGMENT = """\
+name: gr
+environment: {fluid: air}
+line:
+  segments:
+    - {length: 100.0, diameter: 0.02, mass_per_length: 2.466, axial_stiffness: 6.283e7}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, 0.0]}
+  b: {kind: fixed, position: [92.5, 0.0, -8.6]}
+analysis:
+  static: {method: METHOD, nodes: 11}
+sweep:
+  ends.b.position.0: [80.0, 92.5]
+  line.segments.0.mass_per_length: [2.466, 5.0]
+"""
+ANALYTIC = ONE_SEGMENT.replace("METHOD", "analytic")
+DISCRETE = ONE_SEGMENT.replace("METHOD", "discrete")
+
+#: the attributes only the array path writes: how many cases no batch kernel took
+FALLBACK_ATTRS = {"cases_fallback", "fallback_reasons"}
+
+
 @pytest.mark.parametrize(
     "text",
-    [TEXT, ON_SEABED, ON_SLOPE, ON_SEABED_B],
-    ids=["free", "on-seabed", "on-sloped-seabed-friction", "anchored-at-b"],
+    [TEXT, ON_SEABED, ON_SLOPE, ON_SEABED_B, LENGTHS, NODES, CURRENT, FORCE, FRICTION]
+    + [ANALYTIC, DISCRETE],
+    ids=[
+        "free",
+        "on-seabed",
+        "on-sloped-seabed-friction",
+        "anchored-at-b",
+        "segment-length",
+        "node-count",
+        "current-speed-heading-drag",
+        "force-end",
+        "seabed-friction-depth",
+        "method-analytic",
+        "method-discrete",
+    ],
 )
 def test_array_path_writes_the_case_by_case_dataset_bit_for_bit(tmp_path: Path, text: str) -> None:
     fast, slow = _both(tmp_path, text)
     if text == TEXT:
         assert int((slow["status"] == 0).sum()) == 42  # slack to stretched, all solved
-    else:
+    elif text in (ON_SEABED, ON_SLOPE, ON_SEABED_B, FRICTION):
         assert float(slow["laid_length"].max()) > 0.0  # the seabed path did run
+    # a sweep that does not solve is no test of equality: most cases are verified
+    assert int((slow["status"] == 0).sum()) >= slow["status"].size // 2
+    if text in (LENGTHS, NODES):  # per case arc lengths: s is the node index
+        assert "arc_length" in fast.data_vars and fast["s"].attrs["long_name"] == "node index"
+    if text == NODES:  # the 11-node cases are padded with NaN after their last node
+        assert bool(np.isnan(fast["x"].sel(nodes=11).isel(s=slice(11, None))).all())
     assert set(fast.variables) == set(slow.variables)
     for name in slow.variables:
         a, b = fast[name], slow[name]
@@ -102,7 +187,7 @@ def test_array_path_writes_the_case_by_case_dataset_bit_for_bit(tmp_path: Path, 
             assert a.values.tobytes() == b.values.tobytes(), name
         else:
             assert np.array_equal(a.values, b.values), name
-    skip = {"history"}
+    skip = {"history"} | FALLBACK_ATTRS
     assert {k: v for k, v in fast.attrs.items() if k not in skip} == {
         k: v for k, v in slow.attrs.items() if k not in skip
     }
@@ -110,10 +195,23 @@ def test_array_path_writes_the_case_by_case_dataset_bit_for_bit(tmp_path: Path, 
 
 
 def test_a_sweep_the_arrays_cannot_take_is_left_to_the_case_path() -> None:
-    # a swept length changes the nodes' arc lengths: not an array sweep
+    # any numeric key of a static study is a grid; the compiled array route only for
+    # end positions and stiffnesses
     text = TEXT.replace("ends.a.position.2: [-10.0, -20.0]", "line.segments.1.length: [40.0, 41.0]")
-    assert expand_grid(parse_study_text(text, "gr.yaml")) is None
+    grid = expand_grid(parse_study_text(text, "gr.yaml"))
+    assert grid is not None and not grid.arrays
     text = TEXT.replace("method: catenary", "method: analytic")
+    grid = expand_grid(parse_study_text(text, "gr.yaml"))
+    assert grid is not None and not grid.arrays
+    # not a grid: a dynamic analysis, a value that is not a number
+    dynamic = TEXT.replace(
+        "static: {method: catenary, nodes: 21}",
+        "static: {method: catenary, nodes: 21}\n  modal: {modes: 2}",
+    )
+    assert expand_grid(parse_study_text(dynamic, "gr.yaml")) is None
+    text = TEXT.replace(
+        "ends.a.position.2: [-10.0, -20.0]", "analysis.static.method: [catenary, shooting]"
+    )
     assert expand_grid(parse_study_text(text, "gr.yaml")) is None
 
 
@@ -131,6 +229,28 @@ def test_faulty_swept_values_are_reported_as_before() -> None:
     assert expand_grid(parse_study_text(below, "gr.yaml")) is None
     seabed = below.replace("depth: 50.0", "depth: 70.0")
     assert expand_grid(parse_study_text(seabed, "gr.yaml")) is not None
+    # a combination no compiled kernel takes: a swept depth with a swept end height
+    # (each valid alone; depth 30 m with end A at -40 m is not): checked by the models'
+    # own validators on each case's copied study, reported by the case path as before
+    depth = TEXT.replace(STIFF, "environment.depth: [30.0, 70.0]").replace(
+        "[-10.0, -20.0]", "[-10.0, -40.0]"
+    )
+    src = parse_study_text(depth, "gr.yaml")
+    assert expand_grid(src) is None
+    with pytest.raises(StudyError) as exc:
+        expand_cases(src)
+    text = str(exc.value)
+    assert "lies below the seabed" in text and "of 28 sweep cases, first" in text, text
+    assert expand_grid(parse_study_text(depth.replace("-40.0", "-25.0"), "gr.yaml")) is not None
+    # a segment length that puts an attachment beyond the end of the line
+    beyond = LENGTHS.replace(
+        "ends:\n", "  attachments:\n    - {s: 95.0, force: [0.0, 0.0, -100.0]}\nends:\n"
+    ).replace("[40.0, 47.5]", "[30.0, 47.5]")
+    src = parse_study_text(beyond, "gr.yaml")
+    assert expand_grid(src) is None
+    with pytest.raises(StudyError) as exc:
+        expand_cases(src)
+    assert "beyond the end of the line" in str(exc.value)
 
 
 def test_streamed_result_opens_lazily_and_chunks_are_cached(
