@@ -15,7 +15,7 @@ from cablestudy import analyses
 from cablestudy.cases import expand_cases
 from cablestudy.config import parse_study_text
 from cablestudy.config.loader import StudyError
-from cablestudy.grid import evaluate_grid_chunk, expand_grid
+from cablestudy.grid import CaseGrid, evaluate_grid_chunk, expand_grid
 from cablestudy.runner import run_grid_study, run_study
 
 TEXT = """\
@@ -173,6 +173,10 @@ def test_array_path_writes_the_case_by_case_dataset_bit_for_bit(tmp_path: Path, 
     assert int((slow["status"] == 0).sum()) >= slow["status"].size // 2
     if text in (LENGTHS, NODES):  # per case arc lengths: s is the node index
         assert "arc_length" in fast.data_vars and fast["s"].attrs["long_name"] == "node index"
+    if text in (ANALYTIC, DISCRETE):  # no batch kernel: every case counted, with why
+        method = "analytic" if text == ANALYTIC else "discrete"
+        assert fast.attrs["cases_fallback"] == 4
+        assert fast.attrs["fallback_reasons"] == f"4 x method {method!r} has no batch kernel"
     if text == NODES:  # the 11-node cases are padded with NaN after their last node
         assert bool(np.isnan(fast["x"].sel(nodes=11).isel(s=slice(11, None))).all())
     assert set(fast.variables) == set(slow.variables)
@@ -395,3 +399,59 @@ def test_the_default_method_takes_the_array_path_as_the_written_one(tmp_path: Pa
     (_, _, a), (_, _, b) = _load(str(written)), _load(str(left_out))
     assert isinstance(a, CaseGrid) and isinstance(b, CaseGrid)
     assert a.key == b.key  # the same template with its defaults: the same cases, one cache
+
+
+def test_with_and_without_method_and_a_key_no_kernel_takes_share_one_path(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The method written, left out, and a swept key that no compiled kernel takes (a
+    current with drag): all three are grids run by the same runner, and the cases the
+    batch kernels did not settle are counted with their reason, in the dataset and the
+    summary."""
+    from cablestudy import cli
+    from cablestudy.grid import CaseGrid
+
+    left_out = TEXT.replace("method: catenary, ", "")
+    found = {}
+    for label, text in (("written", TEXT), ("left-out", left_out), ("current", CURRENT)):
+        path = tmp_path / f"{label}.yaml"
+        path.write_text(text)
+        _, _, grid = cli._load(str(path))
+        assert isinstance(grid, CaseGrid), label
+        assert cli.main(["run", str(path), "--out", str(tmp_path / label)]) == 0
+        report = capsys.readouterr().out
+        with xr.open_dataset(tmp_path / label / "gr.nc") as ds:
+            found[label] = (grid, dict(ds.attrs), report, int((ds["status"] == 0).sum()))
+    written, left, current = found["written"], found["left-out"], found["current"]
+    assert written[0].arrays and left[0].arrays and not current[0].arrays
+    # the same template with its defaults: the same kernel, the same cases and counts
+    assert written[0].key == left[0].key
+    assert written[1]["cases_fallback"] == left[1]["cases_fallback"]
+    # in air-free still water every case between separated ends is the kernel's
+    assert written[3] == 42
+    # every case with a current and drag (speeds 0.5 and 1.0 of [0, 0.5, 1.0]): the drag
+    # iteration in the general solver; still water (speed 0): the kernel
+    attrs, report = current[1], current[2]
+    n = current[0].size * 2 // 3
+    assert attrs["cases_fallback"] == n
+    assert attrs["fallback_reasons"] == f"{n} x current with drag: the drag iteration runs " + (
+        "in the general solver"
+    )
+    assert f"{n} cases solved by the general solver (no batch kernel took them)" in report
+    assert "cases solved by the general solver" not in written[2]
+
+
+@pytest.mark.parametrize("text", [LENGTHS, NODES, CURRENT, FORCE, FRICTION, ANALYTIC])
+def test_chunk_keys_change_with_every_swept_value(text: str) -> None:
+    """A chunk's cache key is a content hash of its cases: changing any one swept value
+    of any key (the last value of each axis) changes the key of the chunk holding it."""
+    src = parse_study_text(text, "gr.yaml")
+    grid = expand_grid(src)
+    assert grid is not None
+    n0 = grid.shape[0]
+    base = grid.chunk_key(0, n0)
+    for path, (axis, vals) in grid.swept.items():
+        other = {**grid.swept, path: (axis, np.concatenate([vals[:-1], [vals[-1] * 1.001]]))}
+        changed = CaseGrid(grid.template, grid.axes, other, grid.key, grid.validated, grid.arrays)
+        assert changed.chunk_key(0, n0) != base, path
+    assert expand_grid(src).chunk_key(0, n0) == base  # and it is reproducible
