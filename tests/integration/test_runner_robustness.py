@@ -76,8 +76,7 @@ def _case_path_study(tmp_path: Path) -> Path:
     cfg.write_text(
         cfg.read_text().replace(
             "ends.b.position.0: {values: [500.0, 520.0], name: distance}",
-            "ends.b.position: {values: [[500.0, 0.0, -10.0], [520.0, 0.0, -10.0]], "
-            "name: distance}",
+            "ends.b.position: {values: [[500.0, 0.0, -10.0], [520.0, 0.0, -10.0]], name: distance}",
         )
     )
     return cfg
