@@ -12,9 +12,16 @@ anchored on the seabed with friction), the cases they do not settle by
 its outputs are stacked into one array per output variable (a :class:`GridChunk`), which
 the runner streams to disk.
 
-Anything else (another analysis, another swept path, a swept value or combination that
-fails validation) goes through :func:`cablestudy.cases.expand_cases`, which reports
-faults exactly as before.
+Any other static-only sweep of numbers (lengths, diameters, weights, depth, friction,
+current, end forces, attachments, node counts, any static method) is a grid too: each
+case's study is the template with its validated swept values put in by copying, its
+combined checks run per case, and a chunk is solved as validated cases are
+(:mod:`cablestudy.grid_static`). The cases no batch kernel took are counted with their
+reason (:attr:`GridChunk.fallback_reason`).
+
+Anything else (a modal or dynamic analysis, the quasi-static database, a swept value that
+is not a number, a swept value or combination that fails validation) goes through
+:func:`cablestudy.cases.expand_cases`, which reports faults exactly as before.
 """
 
 from __future__ import annotations

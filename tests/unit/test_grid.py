@@ -455,3 +455,21 @@ def test_chunk_keys_change_with_every_swept_value(text: str) -> None:
         changed = CaseGrid(grid.template, grid.axes, other, grid.key, grid.validated, grid.arrays)
         assert changed.chunk_key(0, n0) != base, path
     assert expand_grid(src).chunk_key(0, n0) == base  # and it is reproducible
+
+
+@pytest.mark.parametrize("text", [LENGTHS, NODES, CURRENT, FORCE, FRICTION])
+def test_a_copied_case_study_is_the_validated_one(text: str) -> None:
+    """Each case's study built by copying the template (cablestudy.grid_static) is the
+    study the full validation of the case's YAML gives: every field, and what the
+    validators derive (a line's total length), but the sweep table itself."""
+    from cablestudy.grid_static import _case_values, case_study
+
+    src = parse_study_text(text, "gr.yaml")
+    grid = expand_grid(src)
+    _, cases = expand_cases(src)
+    assert len(cases) == grid.size
+    for case in cases:
+        copied = case_study(grid.template, _case_values(grid, case.index))
+        # the template keeps its sweep table, which no case's result reads
+        assert copied.model_dump(exclude={"sweep"}) == case.study.model_dump(exclude={"sweep"})
+        assert copied.line.length == case.study.line.length
