@@ -142,6 +142,13 @@ def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
         return False
     if template.environment.current or template.line.pulleys:
         return False
+    line = template.line
+    # the arrays' outputs take strain as T / EA and no break limits: a nonlinear law or
+    # a failure condition is solved as validated cases are (cablestudy.grid_static)
+    if line.is_spring or line.failure is not None:
+        return False
+    if any(seg.is_nonlinear or seg.failure is not None for seg in line.segments):
+        return False
     if getattr(an.static, "installation", None) is not None:
         return False
     for axis in axes:

@@ -974,8 +974,11 @@ def grid_variables(
     _flag_statuses(data_vars)
     attrs = provenance(src, solver_settings)
     attrs["cases"] = int(np.prod(shape))
-    attrs["cases_failed"] = int(np.count_nonzero(status != 0))
+    # as assemble counts them: a broken line is a result, not a failure
+    attrs["cases_failed"] = int(np.count_nonzero((status != 0) & (status != STATUS_BROKEN)))
     attrs["cases_warned"] = int(np.count_nonzero(warnings != ""))
+    if np.any(status == STATUS_BROKEN):
+        attrs["cases_broken"] = int(np.count_nonzero(status == STATUS_BROKEN))
     fallbacks = fallbacks or {}
     attrs["cases_fallback"] = int(sum(fallbacks.values()))
     attrs["fallback_reasons"] = "; ".join(
