@@ -156,6 +156,11 @@ def _case_values(grid: Any, index: tuple[int, ...]) -> dict[str, Any]:
     return {p: vals[index[axis]] for p, (axis, vals) in grid.validated.items()}
 
 
+#: why a case the batch kernels could take was solved by the general solver: it was the
+#: only one of its chunk
+ALONE = "the only case of its chunk: solved alone by the general solver"
+
+
 def fallback_reason(study: Study, problem: Any) -> str:
     """Why no batch kernel takes the case (it goes to the general solver)."""
     from .statics.batch import _has_drag
@@ -182,9 +187,10 @@ def evaluate_static_chunk(grid: Any, lo: int, hi: int) -> Any:
     chunk's cases with its text."""
     from . import analyses
     from .cases import Case, _hash
-    from .grid import STATUS_NUMERICAL, GridChunk, _warning_column
+    from .grid import NO_KERNEL, STATUS_NUMERICAL, GridChunk, _warning_column
     from .problem import static_problem
     from .results import ANALYSES, OUTPUTS, analysis_ok
+    from .statics.batch import batchable
 
     t0 = time.perf_counter()
     block = (hi - lo, *grid.shape[1:])
@@ -210,6 +216,9 @@ def evaluate_static_chunk(grid: Any, lo: int, hi: int) -> Any:
             else:
                 problem = None if case.study.line.is_spring else static_problem(case.study)
                 reasons[i] = fallback_reason(case.study, problem)
+                if reasons[i] == NO_KERNEL and batchable(problem):
+                    # presolve_statics batches two cases or more, as for a case list
+                    reasons[i] = ALONE
         records = []
         for case in cases:
             rec = analyses.evaluate_case(case, presolved=solved)

@@ -141,6 +141,7 @@ sweep:
 """
 ANALYTIC = ONE_SEGMENT.replace("METHOD", "analytic")
 DISCRETE = ONE_SEGMENT.replace("METHOD", "discrete")
+SHOOTING = ONE_SEGMENT.replace("METHOD", "shooting")
 #: a span sweep (end positions only) of a line with a nonlinear law, a buoy and a failure
 #: limit: strain from the law and broken cases, so not the compiled array route
 POLYNOMIAL = (Path(__file__).parents[2] / "configs" / "cable-polynomial-catenary.yaml").read_text()
@@ -152,7 +153,7 @@ FALLBACK_ATTRS = {"cases_fallback", "fallback_reasons"}
 @pytest.mark.parametrize(
     "text",
     [TEXT, ON_SEABED, ON_SLOPE, ON_SEABED_B, LENGTHS, NODES, CURRENT, FORCE, FRICTION]
-    + [ANALYTIC, DISCRETE, POLYNOMIAL],
+    + [ANALYTIC, DISCRETE, SHOOTING, POLYNOMIAL],
     ids=[
         "free",
         "on-seabed",
@@ -165,6 +166,7 @@ FALLBACK_ATTRS = {"cases_fallback", "fallback_reasons"}
         "seabed-friction-depth",
         "method-analytic",
         "method-discrete",
+        "method-shooting",
         "nonlinear-law-breaks",
     ],
 )
@@ -181,8 +183,8 @@ def test_array_path_writes_the_case_by_case_dataset_bit_for_bit(tmp_path: Path, 
         assert "arc_length" in fast.data_vars and fast["s"].attrs["long_name"] == "node index"
     if text == POLYNOMIAL:  # the stretched spans broke: kept, counted apart from failures
         assert fast.attrs["cases_broken"] == int((fast["status"] == 10).sum()) > 0
-    if text in (ANALYTIC, DISCRETE):  # no batch kernel: every case counted, with why
-        method = "analytic" if text == ANALYTIC else "discrete"
+    if text in (ANALYTIC, DISCRETE, SHOOTING):  # no batch kernel: every case counted, with why
+        method = {ANALYTIC: "analytic", DISCRETE: "discrete", SHOOTING: "shooting"}[text]
         assert fast.attrs["cases_fallback"] == 4
         assert fast.attrs["fallback_reasons"] == f"4 x method {method!r} has no batch kernel"
     if text == NODES:  # the 11-node cases are padded with NaN after their last node
@@ -481,3 +483,24 @@ def test_a_copied_case_study_is_the_validated_one(text: str) -> None:
         # the template keeps its sweep table, which no case's result reads
         assert copied.model_dump(exclude={"sweep"}) == case.study.model_dump(exclude={"sweep"})
         assert copied.line.length == case.study.line.length
+
+
+def test_a_grid_of_one_case_is_the_case_path_and_says_it_was_solved_alone(
+    tmp_path: Path,
+) -> None:
+    """One case (a one-value sweep of a key the compiled arrays do not take): a chunk of
+    one, the same record as the case path, counted as solved alone by the general
+    solver (the batch is for two cases or more, on both paths)."""
+    from cablestudy.grid_static import ALONE
+
+    one = (
+        LENGTHS.replace(SPANS, "ends.b.position.0: [92.5]")
+        .replace(STIFF, "line.segments.0.axial_stiffness: [6.283e7]")
+        .replace("[40.0, 47.5]", "[45.0]")
+    )
+    fast, slow = _both(tmp_path, one)
+    assert fast["status"].size == 1 and int(fast["status"].item()) == 0
+    for name in slow.data_vars:
+        if name != "wall_time" and slow[name].dtype.kind == "f":
+            assert fast[name].values.tobytes() == slow[name].values.tobytes(), name
+    assert fast.attrs["cases_fallback"] == 1 and fast.attrs["fallback_reasons"] == f"1 x {ALONE}"
