@@ -156,9 +156,12 @@ def _case_values(grid: Any, index: tuple[int, ...]) -> dict[str, Any]:
     return {p: vals[index[axis]] for p, (axis, vals) in grid.validated.items()}
 
 
-#: why a case the batch kernels could take was solved by the general solver: it was the
-#: only one of its chunk
-ALONE = "the only case of its chunk: solved alone by the general solver"
+def one_at_a_time(problem: Any) -> bool:
+    """Whether the catenary solver first takes the compiled kernels for ``problem`` on
+    its own (:func:`cablestudy.statics.batch.solve_compiled`)."""
+    from .statics.batch import batchable, contact_eligible
+
+    return bool(contact_eligible(problem) or batchable(problem))
 
 
 def fallback_reason(study: Study, problem: Any) -> str:
@@ -190,12 +193,13 @@ def evaluate_static_chunk(grid: Any, lo: int, hi: int) -> Any:
     from .grid import NO_KERNEL, STATUS_NUMERICAL, GridChunk, _warning_column
     from .problem import static_problem
     from .results import ANALYSES, OUTPUTS, analysis_ok
-    from .statics.batch import batchable
+    from .statics import _fast
 
     t0 = time.perf_counter()
     block = (hi - lo, *grid.shape[1:])
     n = math.prod(block)
     reasons = np.full(n, "", dtype=object)
+    single: set[int] = set()
     try:
         cases = []
         for index in itertools.product(*(range(k) for k in block)):
@@ -216,14 +220,20 @@ def evaluate_static_chunk(grid: Any, lo: int, hi: int) -> Any:
             else:
                 problem = None if case.study.line.is_spring else static_problem(case.study)
                 reasons[i] = fallback_reason(case.study, problem)
-                if reasons[i] == NO_KERNEL and batchable(problem):
-                    # presolve_statics batches two cases or more, as for a case list
-                    reasons[i] = ALONE
+                if reasons[i] == NO_KERNEL and _fast.AVAILABLE and one_at_a_time(problem):
+                    # the catenary solver takes the compiled kernels one case at a time
+                    # (a line anchored on the seabed, a case alone in its chunk): its
+                    # result says whether they settled it
+                    single.add(i)
         records = []
-        for case in cases:
+        for i, case in enumerate(cases):
             rec = analyses.evaluate_case(case, presolved=solved)
             rec.wall_time += share.pop(case.static_hash, 0.0)
             records.append(rec)
+            if i in single:
+                res = analyses._STATIC_CACHE.get(case.static_hash)  # just solved and kept
+                if res is not None:
+                    reasons[i] = res.fallback
         nodes = grid_nodes(grid)
         data: dict[str, np.ndarray] = {}
         names = sorted({k for r in records for k in r.data})

@@ -485,14 +485,10 @@ def test_a_copied_case_study_is_the_validated_one(text: str) -> None:
         assert copied.line.length == case.study.line.length
 
 
-def test_a_grid_of_one_case_is_the_case_path_and_says_it_was_solved_alone(
-    tmp_path: Path,
-) -> None:
+def test_a_grid_of_one_case_is_the_case_path_and_its_kernel_counts(tmp_path: Path) -> None:
     """One case (a one-value sweep of a key the compiled arrays do not take): a chunk of
-    one, the same record as the case path, counted as solved alone by the general
-    solver (the batch is for two cases or more, on both paths)."""
-    from cablestudy.grid_static import ALONE
-
+    one, the same record as the case path; the catenary solver takes the compiled kernel
+    for it alone, so it is no fallback."""
     one = (
         LENGTHS.replace(SPANS, "ends.b.position.0: [92.5]")
         .replace(STIFF, "line.segments.0.axial_stiffness: [6.283e7]")
@@ -503,4 +499,19 @@ def test_a_grid_of_one_case_is_the_case_path_and_says_it_was_solved_alone(
     for name in slow.data_vars:
         if name != "wall_time" and slow[name].dtype.kind == "f":
             assert fast[name].values.tobytes() == slow[name].values.tobytes(), name
-    assert fast.attrs["cases_fallback"] == 1 and fast.attrs["fallback_reasons"] == f"1 x {ALONE}"
+    assert fast.attrs["cases_fallback"] == 0 and fast.attrs["fallback_reasons"] == ""
+
+
+def test_lines_anchored_on_the_seabed_are_the_contact_kernels_one_by_one(tmp_path: Path) -> None:
+    """A friction x depth sweep of a line anchored on the seabed: the catenary solver takes
+    the compiled contact kernel per case; only the cases it did not settle (slack on
+    the seabed, say) count as solved by the general solver, with the kernel's reason."""
+    from cablestudy.statics.batch import NOT_SETTLED, ON_SEABED
+
+    fast, _ = _both(tmp_path, FRICTION)
+    laid = fast["laid_length"].values > 0.0
+    assert laid.sum() >= 12  # the contact kernel's cases: resting on the seabed
+    assert fast.attrs["cases_fallback"] < fast["status"].size
+    counted = [part.split(" x ", 1) for part in fast.attrs["fallback_reasons"].split("; ")]
+    assert {why for _, why in counted} <= {NOT_SETTLED, ON_SEABED}, counted
+    assert sum(int(k) for k, _ in counted) == fast.attrs["cases_fallback"]
