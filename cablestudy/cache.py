@@ -263,7 +263,7 @@ class CaseCache:
 
 GRID_FORMAT = "cablestudy-grid-chunk-1"
 #: the per-case columns of a grid chunk file (not output variables)
-_CASE_COLUMNS = ("status", "message", "warning", "wall_time")
+_CASE_COLUMNS = ("status", "message", "warning", "wall_time", "fallback")
 _GRID_NAME = re.compile(r"^grid-([0-9a-f]{32})-([0-9a-f]{64})\.npz$")
 
 
@@ -282,13 +282,17 @@ class GridSummary:
     warnings: Counter[str] = field(default_factory=Counter)
     n_warned: int = 0
     warned_at: dict[str, int] = field(default_factory=dict)
+    #: why cases were solved by the general solver (no batch kernel took them), counted
+    fallbacks: Counter[str] = field(default_factory=Counter)
 
 
 def summarise(
     chunks: Iterable[tuple[np.ndarray, np.ndarray, np.ndarray, dict[str, np.ndarray]]],
+    fallback: Iterable[np.ndarray] = (),
 ) -> GridSummary:
     """The :class:`GridSummary` of chunks given as (status, message, warning, outputs by
-    name), in the order of the grid's rows."""
+    name), in the order of the grid's rows; ``fallback``: per chunk, why each case went
+    to the general solver ('' where a batch kernel solved it)."""
     names: set[str] = set()
     tails: dict[str, tuple[int, ...]] = {}
     arc: np.ndarray | None = None
@@ -321,8 +325,18 @@ def summarise(
                     arc = ref
                 else:
                     same_arc = False
+    fallbacks: Counter[str] = Counter()
+    for reasons in fallback:
+        fallbacks.update(str(r) for r in reasons[reasons != ""])
     return GridSummary(
-        sorted(names), tails, arc if same_arc else None, failures, warnings, n_warned, warned_at
+        sorted(names),
+        tails,
+        arc if same_arc else None,
+        failures,
+        warnings,
+        n_warned,
+        warned_at,
+        fallbacks,
     )
 
 
@@ -384,6 +398,7 @@ class GridChunkStore:
             "v_message": np.asarray(chunk.message, dtype=str),  # type: ignore[attr-defined]
             "v_warning": np.asarray(chunk.warning, dtype=str),  # type: ignore[attr-defined]
             "v_wall_time": np.asarray(chunk.wall_time, dtype=np.float64),  # type: ignore[attr-defined]
+            "v_fallback": np.asarray(chunk.fallback_reason, dtype=str),  # type: ignore[attr-defined]
         }
         for name, arr in chunk.data.items():  # type: ignore[attr-defined]
             arrays[f"v_{name}"] = _as_data_array(name, arr)
@@ -411,7 +426,11 @@ class GridChunkStore:
                 warning = z["v_warning"] if "v_warning" in z.files else np.full(len(status), "")
                 return status, z["v_message"], warning, data
 
-        return summarise(columns(path) for path in paths)
+        def reasons(path: Path) -> np.ndarray:
+            with np.load(path, allow_pickle=False) as z:
+                return z["v_fallback"] if "v_fallback" in z.files else np.array([], dtype=str)
+
+        return summarise((columns(path) for path in paths), (reasons(p) for p in paths))
 
     @staticmethod
     def load(path: Path) -> dict[str, np.ndarray]:

@@ -31,8 +31,9 @@ def _load(path: str, max_bytes: int | None = None):  # noqa: ANN202
     grid = _grid(src)
     if grid is not None:
         from .cases import Case, case_hashes
+        from .grid_static import axis_studies
 
-        check_supported([Case((), {}, grid.template, *case_hashes(grid.template))], src)
+        check_supported([Case((), {}, st, *case_hashes(st)) for st in axis_studies(grid)], src)
         return src, grid.axes, grid
     axes, cases = expand_cases(src)
     check_supported(cases, src)

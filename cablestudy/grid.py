@@ -12,9 +12,16 @@ anchored on the seabed with friction), the cases they do not settle by
 its outputs are stacked into one array per output variable (a :class:`GridChunk`), which
 the runner streams to disk.
 
-Anything else (another analysis, another swept path, a swept value or combination that
-fails validation) goes through :func:`cablestudy.cases.expand_cases`, which reports
-faults exactly as before.
+Any other static-only sweep of numbers (lengths, diameters, weights, depth, friction,
+current, end forces, attachments, node counts, any static method) is a grid too: each
+case's study is the template with its validated swept values put in by copying, its
+combined checks run per case, and a chunk is solved as validated cases are
+(:mod:`cablestudy.grid_static`). The cases no batch kernel took are counted with their
+reason (:attr:`GridChunk.fallback_reason`).
+
+Anything else (a modal or dynamic analysis, the quasi-static database, a swept value that
+is not a number, a swept value or combination that fails validation) goes through
+:func:`cablestudy.cases.expand_cases`, which reports faults exactly as before.
 """
 
 from __future__ import annotations
@@ -22,7 +29,7 @@ from __future__ import annotations
 import math
 import re
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -37,6 +44,10 @@ from .results import KEPT_STATUSES
 #: cablestudy.statics.base.STATUS_NUMERICAL, as evaluate_case gives it (not imported
 #: here: the statics package loads every solver)
 STATUS_NUMERICAL = 2
+
+#: why the general solver solved a case no batch kernel takes (both ends on the seabed,
+#: an end below it, end A resting on it)
+NO_KERNEL = "no batch kernel takes these end conditions"
 
 #: swept paths the array path takes: (kind, end or segment, component)
 _POSITION = re.compile(r"^ends\.(a|b)\.position\.([012])$")
@@ -56,6 +67,12 @@ class CaseGrid:
     #: defaults, which path is on which axis, the shape of a row); a chunk's key adds its
     #: swept values (:meth:`chunk_key`)
     key: str
+    #: per swept path: (axis number, the validated value at each index of that axis)
+    validated: dict[str, tuple[int, tuple[Any, ...]]] = field(default_factory=dict)
+    #: whether the compiled catenary kernels take the chunks straight from arrays of end
+    #: positions and stiffnesses (else :func:`cablestudy.grid_static.evaluate_static_chunk`
+    #: builds each case's study by copying and solves the chunk as validated cases)
+    arrays: bool = True
 
     @property
     def shape(self) -> tuple[int, ...]:
@@ -91,6 +108,29 @@ def grid_shape(axes: list[SweepAxis]) -> list[int]:
     return [a.size for a in axes[1:]]
 
 
+def _numeric(axes: list[SweepAxis]) -> bool:
+    return all(
+        isinstance(v, int | float) and not isinstance(v, bool)
+        for axis in axes
+        for vals in axis.values
+        for v in vals
+    )
+
+
+def _static_sweep(template: Study, axes: list[SweepAxis]) -> bool:
+    """A static-only study without a quasi-static database (its own grid of solves per
+    case and its own file) whose swept paths all hold numbers that can be put into
+    copies of the template (:func:`cablestudy.grid_static.copyable`)."""
+    from .grid_static import copyable
+
+    an = template.analysis
+    if an.modal is not None or an.dynamic is not None or an.database is not None:
+        return False
+    if not axes or not _numeric(axes):
+        return False
+    return all(copyable(template, p) for axis in axes for p in axis.paths)
+
+
 def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
     """A static-only, still-water, method 'catenary' study without a quasi-static
     database (its grid of solves per case is not an array kernel) whose swept paths are
@@ -101,6 +141,13 @@ def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
     if an.database is not None:
         return False
     if template.environment.current or template.line.pulleys:
+        return False
+    line = template.line
+    # the arrays' outputs take strain as T / EA and no break limits: a nonlinear law or
+    # a failure condition is solved as validated cases are (cablestudy.grid_static)
+    if line.is_spring or line.failure is not None:
+        return False
+    if any(seg.is_nonlinear or seg.failure is not None for seg in line.segments):
         return False
     if getattr(an.static, "installation", None) is not None:
         return False
@@ -122,21 +169,29 @@ def expand_grid(src: StudySource) -> CaseGrid | None:
     value and combination is valid; ``None`` otherwise (the caller then expands the
     cases one by one, which reports any fault at its line as before). A fault in the
     template itself is raised here, as :func:`expand_cases` would."""
+    from .grid_static import combinations_ok, value_at
+
     template = validate_data(src.data, src)
     axes = parse_sweep(src)
-    if not _eligible(template, axes):
+    if not _static_sweep(template, axes):
         return None
+    arrays = _eligible(template, axes)
     base = {k: v for k, v in src.data.items() if k != "sweep"}
     # each swept value once, at its own path (the others as in the template)
+    validated: dict[str, tuple[int, list[Any]]] = {
+        p: (k, []) for k, axis in enumerate(axes) for p in axis.paths
+    }
     for axis in axes:
         for i in range(axis.size):
             data = _copy_tree(base)
             try:
                 for path, vals in zip(axis.paths, axis.values, strict=True):
                     _set_path(data, path, vals[i])
-                validate_data(data, src)
+                study = validate_data(data, src)
             except (KeyError, StudyError):
                 return None
+            for path in axis.paths:
+                validated[path][1].append(value_at(study, path))
     swept = {
         p: (k, np.asarray(vals, dtype=float))
         for k, axis in enumerate(axes)
@@ -148,8 +203,10 @@ def expand_grid(src: StudySource) -> CaseGrid | None:
         axes,
         swept,
         _hash([code_fingerprint(), body, {p: k for p, (k, _) in swept.items()}, grid_shape(axes)]),
+        {p: (k, tuple(v)) for p, (k, v) in validated.items()},
+        arrays,
     )
-    if not _combined_ok(grid):
+    if not (_combined_ok(grid) if arrays else combinations_ok(grid)):
         return None
     return grid
 
@@ -217,10 +274,14 @@ class GridChunk:
     fallback: int = 0
     #: per case, why its kept results are implausible or risky (unicode, '' if not)
     warning: np.ndarray | None = None
+    #: per case, why the general solver solved it (unicode, '' if a batch kernel did)
+    fallback_reason: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         if self.warning is None:
             self.warning = np.full(len(self.status), "")
+        if self.fallback_reason is None:
+            self.fallback_reason = np.full(len(self.status), "")
 
     @property
     def n(self) -> int:
@@ -714,8 +775,13 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
     fault inside the batch fails the chunk's cases with its text (never raises)."""
     from .statics.batch import solve_batch
 
+    if not grid.arrays:
+        from .grid_static import evaluate_static_chunk
+
+        return evaluate_static_chunk(grid, lo, hi)
     t0 = time.perf_counter()
     n = (hi - lo) * math.prod(grid.shape[1:])
+    reasons = np.full(n, "", dtype=object)
     status = np.zeros(n, dtype=np.int64)
     messages = [""] * n
     warnings: dict[int, list[str]] = {}  # only the cases that have some
@@ -730,6 +796,7 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
             results = solve_batch(_problems(base, pos, ea), deadline=deadline, general=general)
             fallback = {i: r.fallback for i, r in enumerate(results) if r.fallback}
             n_general = len(general)
+            reasons[general] = NO_KERNEL
             st = StaticArrays.of(results)
         else:
             st, rest, why = compiled
@@ -745,6 +812,9 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
                     ),
                 )
             fallback = {i: r for i, r in zip(rest.tolist(), why, strict=True) if r}
+            reasons[rest] = NO_KERNEL
+        for i, reason in fallback.items():
+            reasons[i] = reason
         data, status, messages = array_outputs(st, grid.template, ea)
         max_strain = largest_strain(st.tension, ea[:, _segment_of(grid.template, st.s[0])])
         limit = grid.template.analysis.static.strain_warning
@@ -769,6 +839,7 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
         data=data,
         fallback=n_general,
         warning=_warning_column(n, warnings),
+        fallback_reason=np.array(reasons.tolist(), dtype=str).reshape(n),
     )
 
 

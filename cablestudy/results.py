@@ -922,6 +922,7 @@ def grid_dataset(
     arc: np.ndarray | None,
     solver_settings: dict[str, Any],
     lazy: bool = True,
+    fallbacks: dict[str, int] | None = None,
 ) -> xr.Dataset:
     """The dataset of a study run as arrays (:mod:`cablestudy.grid`), with the same
     variables, dims, coordinates and attributes as :func:`assemble` would give, its large
@@ -985,6 +986,7 @@ def grid_dataset(
         tails=tails,
         arc=arc,
         solver_settings=solver_settings,
+        fallbacks=fallbacks,
     )
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
 
@@ -1001,6 +1003,7 @@ def grid_variables(
     tails: dict[str, tuple[int, ...]],
     arc: np.ndarray | None,
     solver_settings: dict[str, Any],
+    fallbacks: dict[str, int] | None = None,
 ) -> tuple[dict[str, VariableSpec], dict[str, VariableSpec], dict[str, Any]]:
     """Data variables, coordinates and global attributes of a study run as arrays, in
     the form ``xarray.Dataset(data_vars, coords=coords, attrs=attrs)`` takes (and
@@ -1009,7 +1012,9 @@ def grid_variables(
     (*sweep shape, *tail), NumPy or dask) -- the variables, dims, coordinates and
     attributes :func:`assemble` gives. ``arc``: the arc lengths every successful case
     shares (then the ``s`` coordinate, and ``arc_length`` is not among ``values``), or
-    None (then ``s`` is the node index)."""
+    None (then ``s`` is the node index). ``fallbacks``: why cases were solved by the
+    general solver, counted (the ``cases_fallback`` and ``fallback_reasons``
+    attributes)."""
     shape = tuple(a.size for a in axes)
     dims = tuple(a.name for a in axes)
     data_vars: dict[str, VariableSpec] = {}
@@ -1057,6 +1062,14 @@ def grid_variables(
     _flag_statuses(data_vars)
     attrs = provenance(src, solver_settings)
     attrs["cases"] = int(np.prod(shape))
-    attrs["cases_failed"] = int(np.count_nonzero(status != 0))
+    # as assemble counts them: a broken line is a result, not a failure
+    attrs["cases_failed"] = int(np.count_nonzero((status != 0) & (status != STATUS_BROKEN)))
     attrs["cases_warned"] = int(np.count_nonzero(warnings != ""))
+    if np.any(status == STATUS_BROKEN):
+        attrs["cases_broken"] = int(np.count_nonzero(status == STATUS_BROKEN))
+    fallbacks = fallbacks or {}
+    attrs["cases_fallback"] = int(sum(fallbacks.values()))
+    attrs["fallback_reasons"] = "; ".join(
+        f"{n} x {why}" for why, n in sorted(fallbacks.items(), key=lambda kv: -kv[1])
+    )
     return data_vars, coords, attrs

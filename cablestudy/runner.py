@@ -168,6 +168,9 @@ class RunSummary:
     warnings: dict[str, int] = field(default_factory=dict)
     #: per warning text, the first case that has it (sweep coordinates), where known
     warned_cases: dict[str, str] = field(default_factory=dict)
+    #: cases of a study run as arrays that no batch kernel took (solved by the general
+    #: solver), counted by reason
+    fallbacks: dict[str, int] = field(default_factory=dict)
 
     def report(self) -> str:
         """Text summary; failures grouped by message (numbers in messages masked so that
@@ -181,6 +184,15 @@ class RunSummary:
         ]
         if self.database_path is not None:
             lines.append(f"wrote {self.database_path}: the quasi-static database")
+        if self.fallbacks:
+            lines.append(
+                f"{sum(self.fallbacks.values())} cases solved by the general solver (no batch "
+                "kernel took them): "
+                + "; ".join(
+                    f"{n} x {why}"
+                    for why, n in sorted(self.fallbacks.items(), key=lambda kv: -kv[1])
+                )
+            )
         for pattern, (count, example) in group_failures(self.failures).items():
             if len(lines) == 1:
                 lines.append("failures by message:")
@@ -841,6 +853,7 @@ def run_grid_study(
             text: case_label(grid.axes, np.unravel_index(i, grid.shape))
             for text, i in summary.warned_at.items()
         },
+        fallbacks=dict(summary.fallbacks),
     )
 
 
@@ -858,15 +871,39 @@ def _stored_chunk(store: Any, path: Path) -> Any:
         message=z.pop("message"),
         wall_time=z.pop("wall_time"),
         warning=z.pop("warning", None),
+        fallback_reason=z.pop("fallback", None),
         data=z,
     )
 
 
 def _grid_settings(grid: Any) -> dict[str, Any]:
-    return {
-        "analysis": grid.template.analysis.model_dump(mode="json"),
-        "static_methods": [grid.template.analysis.static.method],
+    """:func:`default_solver_settings` of the grid's cases: the first case's analysis
+    settings and, where the sweep changes them, every distinct one."""
+    if not any(p.startswith("analysis.") for p in getattr(grid, "validated", {})):
+        return {
+            "analysis": grid.template.analysis.model_dump(mode="json"),
+            "static_methods": [grid.template.analysis.static.method],
+        }
+    import itertools
+
+    from .grid_static import case_study
+
+    swept = {p: v for p, v in grid.validated.items() if p.startswith("analysis.")}
+    axes = sorted({k for k, _ in swept.values()})
+    settings = []
+    for index in itertools.product(*(range(grid.shape[k]) for k in axes)):
+        at = dict(zip(axes, index, strict=True))
+        study = case_study(grid.template, {p: vals[at[k]] for p, (k, vals) in swept.items()})
+        settings.append(study.analysis)
+    dumps = [a.model_dump(mode="json") for a in settings]
+    out: dict[str, Any] = {
+        "analysis": dumps[0],
+        "static_methods": sorted({a.static.method for a in settings}),
     }
+    distinct = {json.dumps(d, sort_keys=True) for d in dumps}
+    if len(distinct) > 1:
+        out["analysis_per_case_distinct"] = [json.loads(d) for d in sorted(distinct)]
+    return out
 
 
 def _grid_variables(src: StudySource, grid: Any, chunks: list[Any]) -> tuple[Any, tuple]:
@@ -876,7 +913,10 @@ def _grid_variables(src: StudySource, grid: Any, chunks: list[Any]) -> tuple[Any
     from .cache import summarise
     from .results import grid_variables
 
-    summary = summarise((c.status, c.message, c.warning, c.data) for c in chunks)
+    summary = summarise(
+        ((c.status, c.message, c.warning, c.data) for c in chunks),
+        (c.fallback_reason for c in chunks),
+    )
     rest = grid.shape[1:]
     values: dict[str, Any] = {}
     for name in summary.names:
@@ -904,6 +944,7 @@ def _grid_variables(src: StudySource, grid: Any, chunks: list[Any]) -> tuple[Any
         tails=summary.tails,
         arc=summary.arc,
         solver_settings=_grid_settings(grid),
+        fallbacks=summary.fallbacks,
     )
     return summary, variables
 
@@ -923,6 +964,7 @@ def grid_dataset_from(
         arc=summary.arc,
         solver_settings=settings,
         lazy=lazy,
+        fallbacks=summary.fallbacks,
     )
 
 

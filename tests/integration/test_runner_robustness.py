@@ -25,7 +25,8 @@ from cablestudy import outputs, runner
 from cablestudy.cli import main
 
 #: a 550 m wire from an anchor 190 m down to a fairlead 10 m down, two distances: quick
-#: cases of the case-by-case path (method analytic) or the array path (catenary)
+#: cases of a static grid (cablestudy.grid: method catenary on the compiled array route,
+#: analytic solved per case in the chunk)
 STUDY = """\
 name: wire
 environment: {fluid: water, depth: 200.0}
@@ -65,6 +66,19 @@ def _study(tmp_path: Path, method: str = "analytic", values: str = "[500.0, 520.
     tmp_path.mkdir(parents=True, exist_ok=True)
     cfg = tmp_path / "wire.yaml"
     cfg.write_text(STUDY.replace("METHOD", method).replace("VALUES", values))
+    return cfg
+
+
+def _case_path_study(tmp_path: Path) -> Path:
+    """The same two distances swept as whole end positions (values that are not numbers):
+    a sweep the grid does not take, run case by case with the case cache."""
+    cfg = _study(tmp_path)
+    cfg.write_text(
+        cfg.read_text().replace(
+            "ends.b.position.0: {values: [500.0, 520.0], name: distance}",
+            "ends.b.position: {values: [[500.0, 0.0, -10.0], [520.0, 0.0, -10.0]], name: distance}",
+        )
+    )
     return cfg
 
 
@@ -337,7 +351,7 @@ def test_a_full_disk_at_the_cache_is_named_as_such(
 
     monkeypatch.setattr(os, "fsync", full)
     out = tmp_path / "out"
-    cfg = str(_study(tmp_path))
+    cfg = str(_case_path_study(tmp_path))
     code, _, err = _run(capsys, cfg, "--out", str(out), "--scheduler", "synchronous")
     assert code == 1
     cache = out / ".cache" / "wire"
@@ -364,7 +378,7 @@ def test_odd_entries_named_like_case_cache_chunks_are_skipped(
 ) -> None:
     """A folder and a FIFO named like chunk files: each run warns and finishes (a FIFO
     opened for reading would block until a writer came), and leaves them in place."""
-    cfg = str(_study(tmp_path))
+    cfg = str(_case_path_study(tmp_path))
     cache = tmp_path / ".cache" / "wire"
     cache.mkdir(parents=True)
     folder = cache / f"chunk-{'a' * 64}.npz"

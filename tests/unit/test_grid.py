@@ -15,7 +15,8 @@ from cablestudy import analyses
 from cablestudy.cases import expand_cases
 from cablestudy.config import parse_study_text
 from cablestudy.config.loader import StudyError
-from cablestudy.grid import evaluate_grid_chunk, expand_grid
+from cablestudy.grid import CaseGrid, evaluate_grid_chunk, expand_grid
+from cablestudy.results import KEPT_STATUSES
 from cablestudy.runner import run_grid_study, run_study
 
 TEXT = """\
@@ -45,7 +46,7 @@ def _fresh_static_cache(monkeypatch: pytest.MonkeyPatch) -> None:
 def _both(tmp_path: Path, text: str = TEXT) -> tuple[xr.Dataset, xr.Dataset]:
     src = parse_study_text(text, "gr.yaml")
     grid = expand_grid(src)
-    assert grid is not None and grid.shape == (7, 3, 2)
+    assert grid is not None
     fast = run_grid_study(
         src, grid, tmp_path / "grid", scheduler="synchronous", use_cache=False, progress=False
     )
@@ -79,17 +80,115 @@ ON_SEABED_B = (
 )
 
 
+#: sweeps of keys no compiled array kernel takes straight from arrays: each case's study
+#: is the template with the validated values put in by copying (cablestudy.grid_static)
+SPANS = "ends.b.position.0: {start: 60.0, stop: 100.5, num: 7, name: span}"
+STIFF = "line.segments.0.axial_stiffness: [1.0e5, 1.0e6, 6.283e7]"
+#: a segment length: every case has its own arc lengths (s becomes the node index)
+LENGTHS = TEXT.replace("ends.a.position.2: [-10.0, -20.0]", "line.segments.1.length: [40.0, 47.5]")
+#: node counts: arrays of different lengths, padded as the case path pads them
+NODES = TEXT.replace(
+    "ends.a.position.2: [-10.0, -20.0]", "analysis.static.nodes: [11, 21]"
+).replace("method: catenary, nodes: 21", "method: catenary")
+#: a current with drag (the drag iteration per case, in the general solver)
+CURRENT = (
+    TEXT.replace(
+        "environment: {fluid: water, depth: 50.0}",
+        "environment:\n  fluid: water\n  depth: 50.0\n"
+        "  current: [{z: 0.0, speed: 0.5, heading_deg: 30.0}]",
+    )
+    .replace("axial_stiffness: 6.283e7}", "axial_stiffness: 6.283e7, drag_normal: 1.2}")
+    .replace(SPANS, "ends.b.position.0: [80.0, 95.0]")
+    .replace(STIFF, "environment.current.0.speed: [0.0, 0.5, 1.0]")
+    .replace("ends.a.position.2: [-10.0, -20.0]", "environment.current.0.heading_deg: [0.0, 90.0]")
+)
+#: a towed line: end B a known force, swept
+FORCE = (
+    TEXT.replace("{fluid: water, depth: 50.0}", "{fluid: water}")
+    .replace(
+        "b: {kind: fixed, position: [92.5, 0.0, -8.6]}",
+        "b: {kind: force, force: [2000.0, 0.0, 500.0]}",
+    )
+    .replace(SPANS, "ends.b.force.0: [500.0, 2000.0, 8000.0]")
+    .replace(STIFF, "ends.b.force.2: [-500.0, 0.0, 1500.0]")
+    .replace("ends.a.position.2: [-10.0, -20.0]", "line.segments.1.mass_per_length: [8.0, 12.0]")
+)
+#: friction on the seabed swept, with the depth (end A resting on it)
+FRICTION = (
+    ON_SEABED.replace("depth: 30.0", "depth: 30.0, seabed: {friction: 0.0}")
+    .replace(STIFF, "environment.seabed.friction: [0.0, 0.3, 1.0]")
+    .replace("ends.a.position.2: [-10.0, -30.0]", "environment.depth: [30.0, 31.0]")
+    .replace(
+        "a: {kind: fixed, position: [0.0, 0.0, -10.0]}",
+        "a: {kind: fixed, position: [0.0, 0.0, -30.0]}",
+    )
+)
+#: methods without a batch kernel: the registry solver per case, on a small sweep
+ONE_SEGMENT = """\
+name: gr
+environment: {fluid: air}
+line:
+  segments:
+    - {length: 100.0, diameter: 0.02, mass_per_length: 2.466, axial_stiffness: 6.283e7}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, 0.0]}
+  b: {kind: fixed, position: [92.5, 0.0, -8.6]}
+analysis:
+  static: {method: METHOD, nodes: 11}
+sweep:
+  ends.b.position.0: [80.0, 92.5]
+  line.segments.0.mass_per_length: [2.466, 5.0]
+"""
+ANALYTIC = ONE_SEGMENT.replace("METHOD", "analytic")
+DISCRETE = ONE_SEGMENT.replace("METHOD", "discrete")
+SHOOTING = ONE_SEGMENT.replace("METHOD", "shooting")
+#: a span sweep (end positions only) of a line with a nonlinear law, a buoy and a failure
+#: limit: strain from the law and broken cases, so not the compiled array route
+POLYNOMIAL = (Path(__file__).parents[2] / "configs" / "cable-polynomial-catenary.yaml").read_text()
+
+#: the attributes only the array path writes: how many cases no batch kernel took
+FALLBACK_ATTRS = {"cases_fallback", "fallback_reasons"}
+
+
 @pytest.mark.parametrize(
     "text",
-    [TEXT, ON_SEABED, ON_SLOPE, ON_SEABED_B],
-    ids=["free", "on-seabed", "on-sloped-seabed-friction", "anchored-at-b"],
+    [TEXT, ON_SEABED, ON_SLOPE, ON_SEABED_B, LENGTHS, NODES, CURRENT, FORCE, FRICTION]
+    + [ANALYTIC, DISCRETE, SHOOTING, POLYNOMIAL],
+    ids=[
+        "free",
+        "on-seabed",
+        "on-sloped-seabed-friction",
+        "anchored-at-b",
+        "segment-length",
+        "node-count",
+        "current-speed-heading-drag",
+        "force-end",
+        "seabed-friction-depth",
+        "method-analytic",
+        "method-discrete",
+        "method-shooting",
+        "nonlinear-law-breaks",
+    ],
 )
 def test_array_path_writes_the_case_by_case_dataset_bit_for_bit(tmp_path: Path, text: str) -> None:
     fast, slow = _both(tmp_path, text)
     if text == TEXT:
         assert int((slow["status"] == 0).sum()) == 42  # slack to stretched, all solved
-    else:
+    elif text in (ON_SEABED, ON_SLOPE, ON_SEABED_B, FRICTION):
         assert float(slow["laid_length"].max()) > 0.0  # the seabed path did run
+    # a sweep that does not solve is no test of equality: most cases keep their results
+    kept = np.isin(slow["status"].values, KEPT_STATUSES)
+    assert int(kept.sum()) >= kept.size // 2
+    if text in (LENGTHS, NODES):  # per case arc lengths: s is the node index
+        assert "arc_length" in fast.data_vars and fast["s"].attrs["long_name"] == "node index"
+    if text == POLYNOMIAL:  # the stretched spans broke: kept, counted apart from failures
+        assert fast.attrs["cases_broken"] == int((fast["status"] == 10).sum()) > 0
+    if text in (ANALYTIC, DISCRETE, SHOOTING):  # no batch kernel: every case counted, with why
+        method = {ANALYTIC: "analytic", DISCRETE: "discrete", SHOOTING: "shooting"}[text]
+        assert fast.attrs["cases_fallback"] == 4
+        assert fast.attrs["fallback_reasons"] == f"4 x method {method!r} has no batch kernel"
+    if text == NODES:  # the 11-node cases are padded with NaN after their last node
+        assert bool(np.isnan(fast["x"].sel(nodes=11).isel(s=slice(11, None))).all())
     assert set(fast.variables) == set(slow.variables)
     for name in slow.variables:
         a, b = fast[name], slow[name]
@@ -102,7 +201,7 @@ def test_array_path_writes_the_case_by_case_dataset_bit_for_bit(tmp_path: Path, 
             assert a.values.tobytes() == b.values.tobytes(), name
         else:
             assert np.array_equal(a.values, b.values), name
-    skip = {"history"}
+    skip = {"history"} | FALLBACK_ATTRS
     assert {k: v for k, v in fast.attrs.items() if k not in skip} == {
         k: v for k, v in slow.attrs.items() if k not in skip
     }
@@ -110,10 +209,23 @@ def test_array_path_writes_the_case_by_case_dataset_bit_for_bit(tmp_path: Path, 
 
 
 def test_a_sweep_the_arrays_cannot_take_is_left_to_the_case_path() -> None:
-    # a swept length changes the nodes' arc lengths: not an array sweep
+    # any numeric key of a static study is a grid; the compiled array route only for
+    # end positions and stiffnesses
     text = TEXT.replace("ends.a.position.2: [-10.0, -20.0]", "line.segments.1.length: [40.0, 41.0]")
-    assert expand_grid(parse_study_text(text, "gr.yaml")) is None
+    grid = expand_grid(parse_study_text(text, "gr.yaml"))
+    assert grid is not None and not grid.arrays
     text = TEXT.replace("method: catenary", "method: analytic")
+    grid = expand_grid(parse_study_text(text, "gr.yaml"))
+    assert grid is not None and not grid.arrays
+    # not a grid: a dynamic analysis, a value that is not a number
+    dynamic = TEXT.replace(
+        "static: {method: catenary, nodes: 21}",
+        "static: {method: catenary, nodes: 21}\n  modal: {modes: 2}",
+    )
+    assert expand_grid(parse_study_text(dynamic, "gr.yaml")) is None
+    text = TEXT.replace(
+        "ends.a.position.2: [-10.0, -20.0]", "analysis.static.method: [catenary, shooting]"
+    )
     assert expand_grid(parse_study_text(text, "gr.yaml")) is None
 
 
@@ -131,6 +243,28 @@ def test_faulty_swept_values_are_reported_as_before() -> None:
     assert expand_grid(parse_study_text(below, "gr.yaml")) is None
     seabed = below.replace("depth: 50.0", "depth: 70.0")
     assert expand_grid(parse_study_text(seabed, "gr.yaml")) is not None
+    # a combination no compiled kernel takes: a swept depth with a swept end height
+    # (each valid alone; depth 30 m with end A at -40 m is not): checked by the models'
+    # own validators on each case's copied study, reported by the case path as before
+    depth = TEXT.replace(STIFF, "environment.depth: [30.0, 70.0]").replace(
+        "[-10.0, -20.0]", "[-10.0, -40.0]"
+    )
+    src = parse_study_text(depth, "gr.yaml")
+    assert expand_grid(src) is None
+    with pytest.raises(StudyError) as exc:
+        expand_cases(src)
+    text = str(exc.value)
+    assert "lies below the seabed" in text and "of 28 sweep cases, first" in text, text
+    assert expand_grid(parse_study_text(depth.replace("-40.0", "-25.0"), "gr.yaml")) is not None
+    # a segment length that puts an attachment beyond the end of the line
+    beyond = LENGTHS.replace(
+        "ends:\n", "  attachments:\n    - {s: 95.0, force: [0.0, 0.0, -100.0]}\nends:\n"
+    ).replace("[40.0, 47.5]", "[30.0, 47.5]")
+    src = parse_study_text(beyond, "gr.yaml")
+    assert expand_grid(src) is None
+    with pytest.raises(StudyError) as exc:
+        expand_cases(src)
+    assert "beyond the end of the line" in str(exc.value)
 
 
 def test_streamed_result_opens_lazily_and_chunks_are_cached(
@@ -275,3 +409,109 @@ def test_the_default_method_takes_the_array_path_as_the_written_one(tmp_path: Pa
     (_, _, a), (_, _, b) = _load(str(written)), _load(str(left_out))
     assert isinstance(a, CaseGrid) and isinstance(b, CaseGrid)
     assert a.key == b.key  # the same template with its defaults: the same cases, one cache
+
+
+def test_with_and_without_method_and_a_key_no_kernel_takes_share_one_path(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The method written, left out, and a swept key that no compiled kernel takes (a
+    current with drag): all three are grids run by the same runner, and the cases the
+    batch kernels did not settle are counted with their reason, in the dataset and the
+    summary."""
+    from cablestudy import cli
+    from cablestudy.grid import CaseGrid
+
+    left_out = TEXT.replace("method: catenary, ", "")
+    found = {}
+    for label, text in (("written", TEXT), ("left-out", left_out), ("current", CURRENT)):
+        path = tmp_path / f"{label}.yaml"
+        path.write_text(text)
+        _, _, grid = cli._load(str(path))
+        assert isinstance(grid, CaseGrid), label
+        assert cli.main(["run", str(path), "--out", str(tmp_path / label)]) == 0
+        report = capsys.readouterr().out
+        with xr.open_dataset(tmp_path / label / "gr.nc") as ds:
+            found[label] = (grid, dict(ds.attrs), report, int((ds["status"] == 0).sum()))
+    written, left, current = found["written"], found["left-out"], found["current"]
+    assert written[0].arrays and left[0].arrays and not current[0].arrays
+    # the same template with its defaults: the same kernel, the same cases and counts
+    assert written[0].key == left[0].key
+    assert written[1]["cases_fallback"] == left[1]["cases_fallback"]
+    # in air-free still water every case between separated ends is the kernel's
+    assert written[3] == 42
+    # every case with a current and drag (speeds 0.5 and 1.0 of [0, 0.5, 1.0]): the drag
+    # iteration in the general solver; still water (speed 0): the kernel
+    attrs, report = current[1], current[2]
+    n = current[0].size * 2 // 3
+    assert attrs["cases_fallback"] == n
+    assert attrs["fallback_reasons"] == f"{n} x current with drag: the drag iteration runs " + (
+        "in the general solver"
+    )
+    assert f"{n} cases solved by the general solver (no batch kernel took them)" in report
+    assert "cases solved by the general solver" not in written[2]
+
+
+@pytest.mark.parametrize("text", [LENGTHS, NODES, CURRENT, FORCE, FRICTION, ANALYTIC])
+def test_chunk_keys_change_with_every_swept_value(text: str) -> None:
+    """A chunk's cache key is a content hash of its cases: changing any one swept value
+    of any key (the last value of each axis) changes the key of the chunk holding it."""
+    src = parse_study_text(text, "gr.yaml")
+    grid = expand_grid(src)
+    assert grid is not None
+    n0 = grid.shape[0]
+    base = grid.chunk_key(0, n0)
+    for path, (axis, vals) in grid.swept.items():
+        other = {**grid.swept, path: (axis, np.concatenate([vals[:-1], [vals[-1] * 1.001]]))}
+        changed = CaseGrid(grid.template, grid.axes, other, grid.key, grid.validated, grid.arrays)
+        assert changed.chunk_key(0, n0) != base, path
+    assert expand_grid(src).chunk_key(0, n0) == base  # and it is reproducible
+
+
+@pytest.mark.parametrize("text", [LENGTHS, NODES, CURRENT, FORCE, FRICTION])
+def test_a_copied_case_study_is_the_validated_one(text: str) -> None:
+    """Each case's study built by copying the template (cablestudy.grid_static) is the
+    study the full validation of the case's YAML gives: every field, and what the
+    validators derive (a line's total length), but the sweep table itself."""
+    from cablestudy.grid_static import _case_values, case_study
+
+    src = parse_study_text(text, "gr.yaml")
+    grid = expand_grid(src)
+    _, cases = expand_cases(src)
+    assert len(cases) == grid.size
+    for case in cases:
+        copied = case_study(grid.template, _case_values(grid, case.index))
+        # the template keeps its sweep table, which no case's result reads
+        assert copied.model_dump(exclude={"sweep"}) == case.study.model_dump(exclude={"sweep"})
+        assert copied.line.length == case.study.line.length
+
+
+def test_a_grid_of_one_case_is_the_case_path_and_its_kernel_counts(tmp_path: Path) -> None:
+    """One case (a one-value sweep of a key the compiled arrays do not take): a chunk of
+    one, the same record as the case path; the catenary solver takes the compiled kernel
+    for it alone, so it is no fallback."""
+    one = (
+        LENGTHS.replace(SPANS, "ends.b.position.0: [92.5]")
+        .replace(STIFF, "line.segments.0.axial_stiffness: [6.283e7]")
+        .replace("[40.0, 47.5]", "[45.0]")
+    )
+    fast, slow = _both(tmp_path, one)
+    assert fast["status"].size == 1 and int(fast["status"].item()) == 0
+    for name in slow.data_vars:
+        if name != "wall_time" and slow[name].dtype.kind == "f":
+            assert fast[name].values.tobytes() == slow[name].values.tobytes(), name
+    assert fast.attrs["cases_fallback"] == 0 and fast.attrs["fallback_reasons"] == ""
+
+
+def test_lines_anchored_on_the_seabed_are_the_contact_kernels_one_by_one(tmp_path: Path) -> None:
+    """A friction x depth sweep of a line anchored on the seabed: the catenary solver takes
+    the compiled contact kernel per case; only the cases it did not settle (slack on
+    the seabed, say) count as solved by the general solver, with the kernel's reason."""
+    from cablestudy.statics.batch import NOT_SETTLED, ON_SEABED
+
+    fast, _ = _both(tmp_path, FRICTION)
+    laid = fast["laid_length"].values > 0.0
+    assert laid.sum() >= 12  # the contact kernel's cases: resting on the seabed
+    assert fast.attrs["cases_fallback"] < fast["status"].size
+    counted = [part.split(" x ", 1) for part in fast.attrs["fallback_reasons"].split("; ")]
+    assert {why for _, why in counted} <= {NOT_SETTLED, ON_SEABED}, counted
+    assert sum(int(k) for k, _ in counted) == fast.attrs["cases_fallback"]
