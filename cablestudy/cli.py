@@ -48,8 +48,6 @@ def _grid(src):  # noqa: ANN001, ANN202
     sweep = src.data.get("sweep")
     if not isinstance(sweep, dict) or not sweep:
         return None
-    if src.data.get("lines"):  # a system: case by case (cablestudy.system_cases)
-        return None
     from .grid import expand_grid
 
     return expand_grid(src)

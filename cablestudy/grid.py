@@ -172,6 +172,8 @@ def expand_grid(src: StudySource) -> CaseGrid | None:
     from .grid_static import combinations_ok, value_at
 
     template = validate_data(src.data, src)
+    if template.lines:  # a system of lines: case by case (cablestudy.system_cases)
+        return None
     axes = parse_sweep(src)
     if not _static_sweep(template, axes):
         return None
