@@ -428,7 +428,7 @@ def _compiled_solve(
     """
     from .statics import _fast
     from .statics.batch import NOT_SETTLED, ON_SEABED, _guess
-    from .statics.verify import Pieces, check_lines, check_seabed_lines
+    from .statics.verify import Pieces, check_lines
 
     line, med = base.line, base.medium
     if (
@@ -505,7 +505,7 @@ def _compiled_solve(
         ok = np.zeros(c.size, dtype=bool)
         idx = c[settled]
         if idx.size:
-            ok[settled] = check_seabed_lines(
+            ok[settled] = check_lines(
                 s=s[idx],
                 position=position[idx],
                 tension=tension[idx],

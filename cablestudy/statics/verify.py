@@ -191,15 +191,32 @@ def check_lines(
     resolution: np.ndarray | float = 0.0,
     given_force_b: np.ndarray | None = None,
     given_height_b: np.ndarray | None = None,
+    plane: Plane | None = None,
 ) -> Checked:
-    """The checks of the module docstring for N still-water lines without seabed contact
-    or bending stiffness: arrays with a leading case axis, ``s`` [m] (N, n), ``position``
-    [m] (N, n, 3), ``tension`` [N] (N, n), end forces [N] (N, 3), ``tolerance`` [-] (N,);
+    """The checks of the module docstring for N still-water lines without bending
+    stiffness: arrays with a leading case axis, ``s`` [m] (N, n), ``position`` [m]
+    (N, n, 3), ``tension`` [N] (N, n), end forces [N] (N, 3), ``tolerance`` [-] (N,);
     ``position_a``, ``position_b`` [m] (N, 3) where the end is fixed (rows of NaN, or
     None, where it is not); ``laws`` one axial law (or None) per piece, shared by the
     cases; ``resolution`` [N] the tension resolution of the method (0 for the exact
     ones); ``given_force_b`` [N] (N, 3) the force given on the line at B (NaN where not
-    given: a mooring end gives x and y) and ``given_height_b`` [m] (N,) its given z."""
+    given: a mooring end gives x and y) and ``given_height_b`` [m] (N,) its given z.
+    With ``plane``, the lines rest on that rigid seabed (the compiled contact kernel's
+    cases): the whole-line balance leaves a seabed reaction that the laid weight and
+    Coulomb friction admit (as :func:`check_one`), and no sample lies below it."""
+    seabed: dict[str, object] = {}
+    if plane is not None:
+        L = pieces.bounds[:, -1]
+        height = (position - np.array([0.0, 0.0, -plane.depth])) @ plane.normal  # (N, n)
+        reach = np.maximum(
+            np.maximum(L, np.max(np.abs(position), axis=(1, 2), initial=0.0)), plane.depth
+        )
+        seabed = {
+            "contact": height <= CONTACT_GAP * L[:, None],
+            "laid": height <= 64.0 * float(np.finfo(float).eps) * reach[:, None],
+            "seabed": plane,
+            "friction": plane.friction,
+        }
     checked = _checks(
         s=s,
         position=position,
@@ -212,9 +229,15 @@ def check_lines(
         position_b=position_b,
         laws=laws,
         resolution=np.broadcast_to(np.asarray(resolution, dtype=float), tolerance.shape),
+        **seabed,  # type: ignore[arg-type]
     )
     f_allow = checked.allowed["end tension"]
     x_allow = checked.allowed["stretched length"]
+    if plane is not None:
+        tol = np.maximum(tolerance, 16.0 * float(np.finfo(float).eps) * s.shape[1])
+        checked.values["seabed penetration"] = np.maximum(-np.min(height, axis=1), 0.0)
+        checked.allowed["seabed penetration"] = MULTIPLE * tol * reach
+        checked.units["seabed penetration"] = "m"
     if given_force_b is not None:
         off = np.where(np.isfinite(given_force_b), force_b + given_force_b, 0.0)
         checked.values["end B force"] = np.linalg.norm(off, axis=1)
@@ -225,54 +248,6 @@ def check_lines(
         checked.values["end B height"] = np.abs(off_z)
         checked.allowed["end B height"] = x_allow
         checked.units["end B height"] = "m"
-    return checked
-
-
-def check_seabed_lines(
-    *,
-    s: np.ndarray,
-    position: np.ndarray,
-    tension: np.ndarray,
-    force_a: np.ndarray,
-    force_b: np.ndarray,
-    pieces: Pieces,
-    tolerance: np.ndarray,
-    position_a: np.ndarray,
-    position_b: np.ndarray,
-    plane: Plane,
-) -> Checked:
-    """:func:`check_lines` for N still-water lines between fixed ends that rest on the
-    rigid seabed ``plane`` (the compiled contact kernel's cases): the whole-line balance
-    leaves a seabed reaction that the laid weight and Coulomb friction admit (as
-    :func:`check_one`), and no sample lies below the seabed."""
-    L = pieces.bounds[:, -1]
-    height = (position - np.array([0.0, 0.0, -plane.depth])) @ plane.normal  # (N, n)
-    contact = height <= CONTACT_GAP * L[:, None]
-    reach = np.maximum(
-        np.maximum(L, np.max(np.abs(position), axis=(1, 2), initial=0.0)), plane.depth
-    )
-    laid = height <= 64.0 * float(np.finfo(float).eps) * reach[:, None]
-    checked = _checks(
-        s=s,
-        position=position,
-        tension=tension,
-        force_a=force_a,
-        force_b=force_b,
-        pieces=pieces,
-        tolerance=tolerance,
-        position_a=position_a,
-        position_b=position_b,
-        laws=None,
-        resolution=np.zeros_like(tolerance),
-        contact=contact,
-        laid=laid,
-        seabed=plane,
-        friction=plane.friction,
-    )
-    tol = np.maximum(tolerance, 16.0 * float(np.finfo(float).eps) * s.shape[1])
-    checked.values["seabed penetration"] = np.maximum(-np.min(height, axis=1), 0.0)
-    checked.allowed["seabed penetration"] = MULTIPLE * tol * reach
-    checked.units["seabed penetration"] = "m"
     return checked
 
 
