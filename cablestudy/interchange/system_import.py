@@ -25,6 +25,7 @@ anything is built; what it does not use is listed in the warnings.
 from __future__ import annotations
 
 import math
+import re
 from typing import Any
 
 from .mapping import ImportedStudy, _seabed_contact, _segment, environment
@@ -87,6 +88,14 @@ def moordyn_system_to_study(
     for bid in bodies_used:
         body = md.bodies[bid]
         where = f"{src}:{body.source_line}"
+        for rod in md.rods.values():
+            held = re.fullmatch(r"body(\d+)\w*", rod.attachment, flags=re.IGNORECASE)
+            if held and int(held.group(1)) == bid:
+                refusals.add(
+                    "rods",
+                    f"{src}:{rod.source_line}",
+                    f"rod {rod.id} on body {bid} loads it with its weight and buoyancy",
+                )
         if body.kind == "coupled_pinned":
             refusals.add("pinned_bodies", where, f"body {body.id} ({body.attachment})")
         if sum(a != 0.0 for a in body.rotation_deg) > 1:
