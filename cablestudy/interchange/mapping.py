@@ -83,8 +83,8 @@ def select_chain(md: MoorDynFile, ids: list[int] | None) -> tuple[list[tuple[Lin
             raise NotModelledError(
                 f"{md.source}: lines {', '.join(str(ln.id) for ln in lines)} meet at point "
                 f"{key}: a branched system (e.g. a bridle) is not one line ("
-                f"{FEATURES['systems']} are not modelled yet); choose the lines of one line "
-                "from anchor to fairlead with --line (or line: [ids])",
+                f"{FEATURES['systems']} are imported whole, without --line); choose the lines "
+                "of one line from anchor to fairlead with --line (or line: [ids])",
                 ["systems"],
             )
     ends = [k for k, lines in touching.items() if len(lines) == 1]
@@ -92,7 +92,8 @@ def select_chain(md: MoorDynFile, ids: list[int] | None) -> tuple[list[tuple[Lin
         raise NotModelledError(
             f"{md.source}: lines {', '.join(str(ln.id) for ln in chosen)} do not form one "
             "chain end to end (a cablestudy line is a single chain of lines joined at "
-            f"points; {FEATURES['systems']} are not modelled yet); choose them with --line",
+            f"points; {FEATURES['systems']} are imported whole, without --line); choose "
+            "them with --line",
             ["systems"],
         )
 
