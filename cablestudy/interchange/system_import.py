@@ -126,6 +126,9 @@ def moordyn_system_to_study(
     refusals.raise_if_any(src, "the system of lines " + ", ".join(str(ln.id) for ln in lines))
 
     env, rho = environment(md, None, False, comments, warnings)
+    if "bodies" in md.sections:  # the system imports the bodies its lines hang on
+        where = f"{src}:{md.sections['bodies'][1]}: section "
+        warnings[:] = [w for w in warnings if not w.startswith(where)]
 
     # ----------------------------------------------------------------- bodies
     bodies: dict[str, Any] = {}
