@@ -11,8 +11,8 @@ the attachments' mass and volume), numbered after the study's single lines.
 
 What MoorDyn v2 cannot hold is refused naming the key: a steady force on a point or a
 free body, a centre of buoyancy off a free body's reference point (MoorDyn's buoyancy
-acts there), a body turned about more than one axis (the order of the rotations is not
-mapped), nonlinear axial laws.
+acts there), nonlinear axial laws. Body angles are converted to MoorDyn's order of
+rotations (:func:`.system_import.moordyn_angles`).
 """
 
 from __future__ import annotations
@@ -30,6 +30,7 @@ from ..problem import line_model
 from .export import ExportedCase, _floor125, _num
 from .moordyn_format import InterchangeError
 from .seabed import to_moordyn
+from .system_import import moordyn_angles
 
 
 def _refuse(study: Study) -> None:
@@ -40,12 +41,6 @@ def _refuse(study: Study) -> None:
                 "equivalent (points carry mass and volume only); give it as mass or volume"
             )
     for name, body in study.bodies.items():
-        if sum(a != 0.0 for a in body.position[3:]) > 1:
-            raise InterchangeError(
-                f"bodies.{name}.position: turned about more than one axis "
-                f"({body.position[3:]} rad); the order of MoorDyn's body rotations is not "
-                "mapped, one axis is"
-            )
         if isinstance(body, FreeBody):
             if any(body.force):
                 raise InterchangeError(
@@ -95,7 +90,7 @@ def system_moordyn_input(study: Study, result: Any, *, title: str) -> ExportedCa
             if result.body_position is not None
             else np.asarray(body.position, dtype=float)
         )
-        angles = [math.degrees(a) for a in pos[3:]]
+        angles = moordyn_angles(pos[3:])
         if isinstance(body, FreeBody):
             cg = "|".join(_num(c) for c in body.center_of_gravity)
             row = f"Free  {_num(body.mass)}  {cg}  0  {_num(body.volume)}  0  0"

@@ -17,8 +17,11 @@ with ``points``, ``bodies`` and ``lines`` (:mod:`cablestudy.config.system`):
   centre of gravity;
 - the options map as the one-line importer maps them (:func:`.mapping.environment`).
 
-What a system study cannot hold (rods, pinned bodies, bodies turned about more than one
-axis, nonlinear EA, current, lines near the sea surface) is refused by name before
+A body's roll, pitch and yaw are converted between MoorDyn's order of rotations
+(R = Rx Ry Rz) and the study's (R = Rz Ry Rx): the same rotation matrix.
+
+What a system study cannot hold (rods, pinned bodies, nonlinear EA, current, lines near
+the sea surface) is refused by name before
 anything is built; what it does not use is listed in the warnings.
 """
 
@@ -28,12 +31,45 @@ import math
 import re
 from typing import Any
 
+import numpy as np
+
+from ..statics.system import rotation
 from .mapping import ImportedStudy, _seabed_contact, _segment, environment
 from .moordyn_format import InterchangeError, MoorDynFile
 from .moordyn_scope import check_chain, point_of
 
 #: the body that holds a file's Coupled / Vessel points
 VESSEL = "vessel"
+
+
+def _moordyn_rotation(angles: np.ndarray) -> np.ndarray:
+    """MoorDyn's body rotation R = Rx(roll) Ry(pitch) Rz(yaw) of ``angles`` [rad]
+    (MoorDyn v2's EulerXYZ, checked against the moordyn package's point positions)."""
+    (cr, cp, cy), (sr, sp, sy) = np.cos(angles), np.sin(angles)
+    rx = np.array([[1.0, 0.0, 0.0], [0.0, cr, -sr], [0.0, sr, cr]])
+    ry = np.array([[cp, 0.0, sp], [0.0, 1.0, 0.0], [-sp, 0.0, cp]])
+    rz = np.array([[cy, -sy, 0.0], [sy, cy, 0.0], [0.0, 0.0, 1.0]])
+    return rx @ ry @ rz
+
+
+def study_angles(rotation_deg: tuple[float, float, float] | list[float]) -> list[float]:
+    """A study body's roll, pitch, yaw [rad] (R = Rz Ry Rx) turning it as MoorDyn's
+    ``r0 p0 y0`` [deg] (R = Rx Ry Rz) do: the same rotation matrix."""
+    r = _moordyn_rotation(np.radians(np.asarray(rotation_deg, dtype=float)))
+    pitch = math.asin(max(-1.0, min(1.0, -r[2, 0])))
+    return [math.atan2(r[2, 1], r[2, 2]), pitch, math.atan2(r[1, 0], r[0, 0])]
+
+
+def moordyn_angles(angles: list[float] | np.ndarray) -> list[float]:
+    """MoorDyn's ``r0 p0 y0`` [deg] of a study body's roll, pitch, yaw [rad]: the inverse
+    of :func:`study_angles`."""
+    r = rotation(np.asarray(angles, dtype=float))
+    pitch = math.asin(max(-1.0, min(1.0, r[0, 2])))
+    return [
+        math.degrees(math.atan2(-r[1, 2], r[2, 2])),
+        math.degrees(pitch),
+        math.degrees(math.atan2(-r[0, 1], r[0, 0])),
+    ]
 
 
 def _point_name(number: int) -> str:
@@ -98,13 +134,6 @@ def moordyn_system_to_study(
                 )
         if body.kind == "coupled_pinned":
             refusals.add("pinned_bodies", where, f"body {body.id} ({body.attachment})")
-        if sum(a != 0.0 for a in body.rotation_deg) > 1:
-            refusals.add(
-                "rotated_bodies",
-                where,
-                f"body {body.id} turned by {list(body.rotation_deg)} deg about more than one "
-                "axis (the order of MoorDyn's rotations is not mapped; one axis is)",
-            )
     rho_opt = md.option("rho", "rhoW", "WtrDnsty")
     dry = rho_opt is not None and float(rho_opt.value) == 0.0
     for ln in lines:
@@ -115,7 +144,8 @@ def moordyn_system_to_study(
             z = pt.position[2]
             if pt.kind == "body":
                 body = md.bodies[pt.body or 0]
-                z += body.position[2]
+                turned = _moordyn_rotation(np.radians(body.rotation_deg)) @ pt.position
+                z = body.position[2] + float(turned[2])
             if z > 0.0:
                 refusals.add(
                     "surface_crossing",
@@ -136,7 +166,7 @@ def moordyn_system_to_study(
         body = md.bodies[bid]
         bname = _body_name(bid)
         where = f"{src}:{body.source_line} body {body.id} ({body.attachment})"
-        position = [*body.position, *(math.radians(a) for a in body.rotation_deg)]
+        position = [*body.position, *study_angles(body.rotation_deg)]
         if body.kind == "free":
             bodies[bname] = {
                 "kind": "free",
