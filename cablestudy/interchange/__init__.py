@@ -164,6 +164,12 @@ def line_from_reference(
     imported = import_model(
         text, str(path), lines=lines, folder=resolved.parent if resolved else None
     )
+    if "line" not in imported.data:
+        raise InterchangeError(
+            f"{path}: its lines do not form one chain (a system of lines); a study's line "
+            "is one chain: choose its lines with line: [ids], or import the whole system "
+            "with `cablestudy import moordyn`"
+        )
     notes = list(imported.warnings)
     env = imported.data.get("environment", {})
     keys = sorted(

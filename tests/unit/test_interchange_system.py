@@ -244,3 +244,14 @@ def test_a_current_is_refused_for_a_system_naming_it(tmp_path: Path) -> None:
     with pytest.raises(NotModelledError, match="current on a system of lines") as info:
         import_model(text, "spread.dat", folder=tmp_path)
     assert info.value.features == ("system_current",)
+
+
+def test_a_study_line_from_a_system_file_asks_for_its_lines(tmp_path: Path) -> None:
+    """``line: {moordyn: FILE}`` takes one chain; a whole system is not one line."""
+    from cablestudy.interchange import InterchangeError, line_from_reference
+
+    (tmp_path / "spread.dat").write_text(SPREAD)
+    with pytest.raises(InterchangeError, match="do not form one chain.*line: \\[ids\\]"):
+        line_from_reference("spread.dat", None, tmp_path)
+    line, _ = line_from_reference("spread.dat", [5], tmp_path)  # anchor to coupled point
+    assert [s["length"] for s in line["segments"]] == [320.0]
