@@ -271,7 +271,14 @@ def moordyn_system_to_study(
             f"{src}:{ln.source_line} line {ln.id}; {src}:{lt.source_line} type {lt.name}"
         )
     if env.get("depth"):
+        before = len(warnings)
         _seabed_contact(md, env, segments, rho, comments, warnings)
+        # each line is one segment: name the line the contact is scaled on
+        ref = max(range(len(segments)), key=lambda i: segments[i]["diameter"])
+        word, name = f"segment {ref}'s", f"line {lines[ref].id}'s"
+        for key in (("environment", "seabed", k) for k in ("stiffness", "damping_ratio")):
+            comments[key] = comments[key].replace(word, name)
+        warnings[before:] = [w.replace(word, name) for w in warnings[before:]]
     data: dict[str, Any] = {
         "name": name,
         "description": f"imported from {src} (MoorDyn v{md.version}), the whole system: "
