@@ -275,10 +275,10 @@ def moordyn_system_to_study(
         _seabed_contact(md, env, segments, rho, comments, warnings)
         # each line is one segment: name the line the contact is scaled on
         ref = max(range(len(segments)), key=lambda i: segments[i]["diameter"])
-        word, name = f"segment {ref}'s", f"line {lines[ref].id}'s"
+        word, said = f"segment {ref}'s", f"line {lines[ref].id}'s"
         for key in (("environment", "seabed", k) for k in ("stiffness", "damping_ratio")):
-            comments[key] = comments[key].replace(word, name)
-        warnings[before:] = [w.replace(word, name) for w in warnings[before:]]
+            comments[key] = comments[key].replace(word, said)
+        warnings[before:] = [w.replace(word, said) for w in warnings[before:]]
     data: dict[str, Any] = {
         "name": name,
         "description": f"imported from {src} (MoorDyn v{md.version}), the whole system: "
