@@ -401,7 +401,8 @@ def build_parser() -> argparse.ArgumentParser:
         action="append",
         default=None,
         help="a line ID (MoorDyn) or name (mooring YAML) of the line, end to end; repeat "
-        "for a line of several (default: all lines, which must form one chain)",
+        "for a line of several (default: all lines: one line where they form one chain, "
+        "else one system study of every line, point and body)",
     )
     p.add_argument("--name", default=None, help="study name (default: from the file name)")
     p.set_defaults(func=cmd_import)

@@ -16,6 +16,7 @@ from .moordyn_format import InterchangeError, MoorDynFile, MoorDynFormatError, p
 from .moordyn_scope import FEATURES, NotModelledError
 from .moorpy_yaml import is_mooring_yaml, line_names, parse_mooring_yaml
 from .study_yaml import study_yaml
+from .system_import import moordyn_system_to_study
 
 __all__ = [
     "ImportedStudy",
@@ -103,7 +104,8 @@ def import_model(
     ----------
     text, source : the file's text and its name (for messages and comments)
     lines : line IDs (MoorDyn) or names/numbers (mooring YAML) of one line, end to end;
-        None: all lines (they must form one chain)
+        None: all lines, as one line where they form one chain, else as a system study
+        (points, bodies, lines)
     name : the study's name
     folder : the file's folder, where MoorDyn's ``current_profile.txt`` is read when
         the file sets ``Currents 1`` (None: the current table is not read, and says so)
@@ -111,7 +113,7 @@ def import_model(
     if is_mooring_yaml(text):
         md, warnings = parse_mooring_yaml(text, source)
         ids = _line_ids(lines, line_names(text))
-        imported = moordyn_to_study(md, ids, name=name)
+        imported = _study(md, ids, name=name, current=None)
         imported.warnings[:0] = warnings
         return imported
     md = parse_moordyn(text, source)
@@ -126,7 +128,20 @@ def import_model(
             )
         cur_text, cur_path = read_in_scope(CURRENT_FILE, folder)
         current = parse_current_profile(cur_text, str(cur_path))
-    return moordyn_to_study(md, _line_ids(lines, None), name=name, current=current)
+    return _study(md, _line_ids(lines, None), name=name, current=current)
+
+
+def _study(
+    md: MoorDynFile, ids: list[int] | None, *, name: str, current: list[dict[str, float]] | None
+) -> ImportedStudy:
+    """One line (or chain) of ``md``; without chosen ``ids``, a file whose lines do not
+    form one chain is imported whole as a system study."""
+    try:
+        return moordyn_to_study(md, ids, name=name, current=current)
+    except NotModelledError as exc:
+        if ids is not None or exc.features != ("systems",):
+            raise
+    return moordyn_system_to_study(md, name=name, current=current)
 
 
 def imported_yaml(imported: ImportedStudy, source: str) -> str:
@@ -149,6 +164,12 @@ def line_from_reference(
     imported = import_model(
         text, str(path), lines=lines, folder=resolved.parent if resolved else None
     )
+    if "line" not in imported.data:
+        raise InterchangeError(
+            f"{path}: its lines do not form one chain (a system of lines); a study's line "
+            "is one chain: choose its lines with line: [ids], or import the whole system "
+            "with `cablestudy import moordyn`"
+        )
     notes = list(imported.warnings)
     env = imported.data.get("environment", {})
     keys = sorted(

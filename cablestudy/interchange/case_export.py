@@ -68,11 +68,10 @@ def export_case(src: StudySource, selectors: list[str]) -> ExportedCase:
 
     case = choose_case(src, selectors)
     study = case.study
+    coords = ", ".join(f"{k}={v}" for k, v in case.coords.items())
+    title = f"study {study.name}" + (f", case {coords}" if coords else "")
     if study.is_system:
-        raise InterchangeError(
-            "the study is a system (lines between points); export writes a one-line "
-            "study (line and ends) for now"
-        )
+        return _system(study, title)
     problem = static_problem(study)
     solver = STATIC_SOLVERS[study.analysis.static.method]
     missing = solver.unsupported(problem)
@@ -91,8 +90,6 @@ def export_case(src: StudySource, selectors: list[str]) -> ExportedCase:
         coupled = {e.end for e in study.analysis.dynamic.excitations}
     else:
         coupled = {"b"}
-    coords = ", ".join(f"{k}={v}" for k, v in case.coords.items())
-    title = f"study {study.name}" + (f", case {coords}" if coords else "")
     return moordyn_input(
         study,
         end_positions=(pos[0], pos[-1]),
@@ -101,3 +98,18 @@ def export_case(src: StudySource, selectors: list[str]) -> ExportedCase:
         coupled_ends=coupled,
         title=title,
     )
+
+
+def _system(study: Any, title: str) -> ExportedCase:
+    """The MoorDyn file of a system case, at its solved statics."""
+    from ..statics import STATIC_SOLVERS, STATUS_OK
+    from ..statics.system import solve_system
+    from ..system_cases import system_model
+    from .system_export import system_moordyn_input
+
+    res = solve_system(system_model(study), STATIC_SOLVERS["catenary"], deadline=None)
+    if res.status != STATUS_OK:
+        raise InterchangeError(
+            f"the case's statics failed ({res.message}); its free points' positions are unknown"
+        )
+    return system_moordyn_input(study, res, title=title)

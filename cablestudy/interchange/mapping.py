@@ -83,8 +83,8 @@ def select_chain(md: MoorDynFile, ids: list[int] | None) -> tuple[list[tuple[Lin
             raise NotModelledError(
                 f"{md.source}: lines {', '.join(str(ln.id) for ln in lines)} meet at point "
                 f"{key}: a branched system (e.g. a bridle) is not one line ("
-                f"{FEATURES['systems']} are not modelled yet); choose the lines of one line "
-                "from anchor to fairlead with --line (or line: [ids])",
+                f"{FEATURES['systems']} are imported whole, without --line); choose the lines "
+                "of one line from anchor to fairlead with --line (or line: [ids])",
                 ["systems"],
             )
     ends = [k for k, lines in touching.items() if len(lines) == 1]
@@ -92,7 +92,8 @@ def select_chain(md: MoorDynFile, ids: list[int] | None) -> tuple[list[tuple[Lin
         raise NotModelledError(
             f"{md.source}: lines {', '.join(str(ln.id) for ln in chosen)} do not form one "
             "chain end to end (a cablestudy line is a single chain of lines joined at "
-            f"points; {FEATURES['systems']} are not modelled yet); choose them with --line",
+            f"points; {FEATURES['systems']} are imported whole, without --line); choose "
+            "them with --line",
             ["systems"],
         )
 
@@ -310,57 +311,7 @@ def moordyn_to_study(
     warnings.extend(md.notes)
 
     # ------------------------------------------------------------ environment
-    env: dict[str, Any] = {}
-    rho_opt = option_value(md, "rho", "rhoW", "WtrDnsty")
-    rho = rho_opt[0] if rho_opt else DEFAULT_DENSITY
-    named = [k for k, v in FLUID_DENSITY.items() if v == rho]
-    env["fluid"] = named[0] if named else {"density": rho}
-    comments[("environment", "fluid")] = (
-        f"{src}:{rho_opt[1]} rho" if rho_opt else f"MoorDyn default rho = {DEFAULT_DENSITY:g}"
-    )
-    if scope.above_surface:
-        env["fluid"] = "vacuum"
-        comments[("environment", "fluid")] = (
-            "the line hangs wholly above z = 0, where MoorDyn gives it no buoyancy, added "
-            "mass or drag"
-        )
-        rho = 0.0
-    g_opt = option_value(md, "g", "gravity")
-    env["gravity"] = g_opt[0] if g_opt else DEFAULT_GRAVITY
-    comments[("environment", "gravity")] = (
-        f"{src}:{g_opt[1]} g" if g_opt else f"MoorDyn default g = {DEFAULT_GRAVITY:g}"
-    )
-    depth, origin = water_depth(md)
-    env["depth"] = depth
-    comments[("environment", "depth")] = origin
-    seabed: dict[str, Any] = {}
-    fric = option_value(md, "FrictionCoefficient", "MU_KT")
-    if fric is not None:
-        seabed["friction"] = fric[0]
-        comments[("environment", "seabed", "friction")] = f"{src}:{fric[1]}"
-        mu_ka = option_value(md, "MU_KA")
-        if mu_ka is not None and mu_ka[0] != fric[0]:
-            warnings.append(
-                f"{src}:{mu_ka[1]}: MU_KA = {mu_ka[0]:g} (axial friction) differs from the "
-                f"transverse {fric[0]:g}; cablestudy has one Coulomb coefficient (used {fric[0]:g})"
-            )
-    if seabed:
-        env["seabed"] = seabed
-    if current:
-        env["current"] = current
-        comments[("environment", "current")] = "from the steady current table (Currents 1)"
-    warnings.extend(
-        option_warnings(md, current_read=current is not None, friction=fric is not None)
-    )
-    for title, line_no, count in md.other_sections:
-        warnings.append(
-            f"{src}:{line_no}: section {title} ({count} entries) is not modelled by cablestudy"
-        )
-    if md.outputs:
-        warnings.append(
-            "MoorDyn output channels not used (cablestudy writes every output): "
-            + ", ".join(md.outputs)
-        )
+    env, rho = environment(md, current, scope.above_surface, comments, warnings)
 
     # ------------------------------------------------------------------- line
     segments: list[dict[str, Any]] = []
@@ -487,6 +438,71 @@ def moordyn_to_study(
     if static:
         data["analysis"] = {"static": static}
     return ImportedStudy(data=data, comments=comments, warnings=warnings)
+
+
+def environment(
+    md: MoorDynFile,
+    current: list[dict[str, float]] | None,
+    above_surface: bool,
+    comments: dict[tuple[str | int, ...], str],
+    warnings: list[str],
+) -> tuple[dict[str, Any], float]:
+    """The study's ``environment`` from the file's options (fluid, gravity, depth,
+    friction, current), with comments naming their source lines, warnings for the options
+    not modelled, and the fluid density used [kg/m^3]."""
+    src = md.source
+    env: dict[str, Any] = {}
+    rho_opt = option_value(md, "rho", "rhoW", "WtrDnsty")
+    rho = rho_opt[0] if rho_opt else DEFAULT_DENSITY
+    named = [k for k, v in FLUID_DENSITY.items() if v == rho]
+    env["fluid"] = named[0] if named else {"density": rho}
+    comments[("environment", "fluid")] = (
+        f"{src}:{rho_opt[1]} rho" if rho_opt else f"MoorDyn default rho = {DEFAULT_DENSITY:g}"
+    )
+    if above_surface:
+        env["fluid"] = "vacuum"
+        comments[("environment", "fluid")] = (
+            "the line hangs wholly above z = 0, where MoorDyn gives it no buoyancy, added "
+            "mass or drag"
+        )
+        rho = 0.0
+    g_opt = option_value(md, "g", "gravity")
+    env["gravity"] = g_opt[0] if g_opt else DEFAULT_GRAVITY
+    comments[("environment", "gravity")] = (
+        f"{src}:{g_opt[1]} g" if g_opt else f"MoorDyn default g = {DEFAULT_GRAVITY:g}"
+    )
+    depth, origin = water_depth(md)
+    env["depth"] = depth
+    comments[("environment", "depth")] = origin
+    seabed: dict[str, Any] = {}
+    fric = option_value(md, "FrictionCoefficient", "MU_KT")
+    if fric is not None:
+        seabed["friction"] = fric[0]
+        comments[("environment", "seabed", "friction")] = f"{src}:{fric[1]}"
+        mu_ka = option_value(md, "MU_KA")
+        if mu_ka is not None and mu_ka[0] != fric[0]:
+            warnings.append(
+                f"{src}:{mu_ka[1]}: MU_KA = {mu_ka[0]:g} (axial friction) differs from the "
+                f"transverse {fric[0]:g}; cablestudy has one Coulomb coefficient (used {fric[0]:g})"
+            )
+    if seabed:
+        env["seabed"] = seabed
+    if current:
+        env["current"] = current
+        comments[("environment", "current")] = "from the steady current table (Currents 1)"
+    warnings.extend(
+        option_warnings(md, current_read=current is not None, friction=fric is not None)
+    )
+    for title, line_no, count in md.other_sections:
+        warnings.append(
+            f"{src}:{line_no}: section {title} ({count} entries) is not modelled by cablestudy"
+        )
+    if md.outputs:
+        warnings.append(
+            "MoorDyn output channels not used (cablestudy writes every output): "
+            + ", ".join(md.outputs)
+        )
+    return env, rho
 
 
 def parse_current_profile(text: str, source: str) -> list[dict[str, float]]:

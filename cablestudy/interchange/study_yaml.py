@@ -27,9 +27,18 @@ def scalar(value: Any) -> str:
     if value is None:
         return "null"
     text = str(value)
-    if _PLAIN.match(text) and text.lower() not in _RESERVED:
+    if _PLAIN.match(text) and text.lower() not in _RESERVED and not _numeric(text):
         return text
     return json.dumps(text)
+
+
+def _numeric(text: str) -> bool:
+    """True for text YAML reads as a number (a line named "1" is written "1", quoted)."""
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
 
 
 def _flow(value: Any, path: Path_ = (), comments: dict | None = None) -> str | None:
@@ -43,7 +52,7 @@ def _flow(value: Any, path: Path_ = (), comments: dict | None = None) -> str | N
         and len(value) <= 3
         and all(not isinstance(v, dict | list) for v in value.values())
     ):
-        return "{" + ", ".join(f"{k}: {scalar(v)}" for k, v in value.items()) + "}"
+        return "{" + ", ".join(f"{scalar(k)}: {scalar(v)}" for k, v in value.items()) + "}"
     return None
 
 
@@ -54,8 +63,9 @@ def _tail(comments: dict[Path_, str], path: Path_) -> str:
 
 def _mapping(d: dict[str, Any], path: Path_, indent: int, comments: dict, out: list[str]) -> None:
     pad = " " * indent
-    for key, value in d.items():
-        sub = path + (key,)
+    for name, value in d.items():
+        sub = path + (name,)
+        key = scalar(name)
         flow = (
             _flow(value, sub, comments) if not isinstance(value, str | int | float | bool) else None
         )

@@ -190,8 +190,12 @@ def test_branched_system_is_refused_with_advice() -> None:
         "2     poly        2        3        400        20       -",
         "2     poly        2        3        400        20       -\n3 poly 2 1 100 5 -",
     )
-    with pytest.raises(InterchangeError, match="meet at point 2.*--line"):
-        import_model(bridle, "bridle.dat")
+    with pytest.raises(InterchangeError, match="meet at point 2.*without --line"):
+        import_model(bridle, "bridle.dat", lines=[1, 2, 3])
+    # without --line the whole file is one system study: the junction is a free point
+    study, _ = _validated(import_model(bridle, "bridle.dat"))
+    assert list(study.lines) == ["1", "2", "3"]
+    assert study.points["point2"].kind == "free" and study.points["point2"].mass == 5000.0
     # one chain of it still meets line 3 at the free point 2, which line 3 pulls on
     with pytest.raises(NotModelledError, match="point 2 joins the chosen lines to line.s. 3"):
         import_model(bridle, "bridle.dat", lines=[1, 2])
@@ -570,6 +574,19 @@ SOLVER_GAPS = {
     ("moorpy/tests/case6.dat", None): "not shorter than the path down to the seabed",
 }
 
+#: files whose lines do not form one chain and which import whole (no --line) as one
+#: system study; the others refused as systems name what a system lacks (README)
+SYSTEMS = {
+    "moordyn/example/MHK_RM1_Floating/MHK_RM1_Floating_MoorDyn.dat",
+    "moordyn/example/body.txt",
+    "moordyn/example/lines.txt",
+    "moordyn/tests/Mooring/lines.txt",
+    "moordyn/tests/Mooring/local_euler/duplicated.txt",
+    "moorpy/examples/sample.txt",
+    "moorpy/tests/case8.dat",
+    "moorpy/tests/case9.dat",
+}
+
 
 def test_the_peer_files_are_all_here() -> None:
     """54 MoorDyn inputs from MoorDyn (tests/Mooring, example, bench) and 13 from MoorPy."""
@@ -597,6 +614,11 @@ def _statics(study_text: str) -> tuple[int, str]:
 
     src = parse_study_text(study_text, "<imported>")
     _, cases = expand_cases(src)
+    if cases[0].study.is_system:  # a whole file of lines joined at points
+        from cablestudy.system_cases import evaluate_system_case
+
+        record = evaluate_system_case(cases[0])
+        return record.status, record.message
     check_supported(cases, src)  # every key of the imported study is one a solver uses
     result = solve_static(cases[0], None)
     return result.status, result.message
@@ -631,6 +653,7 @@ def test_peer_file_imports_or_names_what_cablestudy_lacks(
             continue
         study = parse_study_text(out, "<imported>")
         validate_data(study.data, study)
+        assert ("lines" in study.data) == (line is None and rel in SYSTEMS), (rel, line)
         status, message = _statics(out)
         gap = SOLVER_GAPS.get((rel, line))
         if gap is None:
