@@ -223,3 +223,47 @@ def test_program_exit_skips_the_final_collection(how: str) -> None:
     code, before, after = (int(v) for v in done.stdout.split())
     assert code == 0 and before == 0
     assert (after > 0) == (how == "program")
+
+
+_PAUSE_CHILD = textwrap.dedent(
+    """
+    import contextlib, gc, io, json, sys
+    import cablestudy.runner as runner
+    from cablestudy.cli import main
+
+    seen = {}
+    study = runner.run_study
+
+    def spy(*args, **kwargs):
+        seen.update(enabled=gc.isenabled(), frozen=gc.get_freeze_count())
+        return study(*args, **kwargs)
+
+    runner.run_study = spy
+    sys.argv = ["cablestudy", *sys.argv[1:]]
+    with contextlib.redirect_stdout(io.StringIO()):
+        code = main()
+    print(json.dumps({"code": code, "enabled_after": gc.isenabled(), **seen}))
+    """
+)
+
+
+def test_run_collects_garbage_during_its_study(tmp_path: Path) -> None:
+    """``cablestudy run`` pauses the garbage collector over its start-up only: the study
+    (which may run for hours and make cyclic garbage) runs with it on, the start-up's
+    objects frozen out of its collections."""
+    args = ["run", "configs/catenary-in-air.yaml", "--out", str(tmp_path), "--no-cache"]
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    done = subprocess.run(
+        [sys.executable, "-c", _PAUSE_CHILD, *args],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        env=env,
+        timeout=300,
+    )
+    assert done.returncode == 0, done.stderr[-3000:]
+    result = json.loads(done.stdout)
+    assert result["code"] == 0
+    assert result["enabled"] and result["enabled_after"]
+    # numpy, pydantic and the solvers alone leave tens of thousands of objects
+    assert result["frozen"] > 10_000
