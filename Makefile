@@ -16,6 +16,7 @@ $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet -e '.[dev,peers]'
+	$(BIN)/python -m compileall -q cablestudy  # bytecode read even where PYTHONDONTWRITEBYTECODE is set
 	$(BIN)/cablestudy compile
 	touch $(STAMP)
 

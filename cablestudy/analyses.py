@@ -1275,17 +1275,23 @@ def presolve_frequency(
     per shared linear model (:func:`cablestudy.frequency_cases.solve_frequency_cases`):
     by position in ``cases``, with each case's share of its group's wall time [s].
     Anything unexpected leaves the cases to the one-by-one path (which records its own
-    errors), as does a group whose statics or linear model fail."""
-    from .frequency_cases import batch_key, linearised, solve_frequency_cases
-
-    groups: dict[tuple, list[int]] = {}
+    errors), as does a group whose statics or linear model fail. A chunk without such a
+    case loads nothing of the frequency domain."""
+    asking = []
     for i, case in enumerate(cases):
         dyn = case.study.analysis.dynamic
         if dyn is None or dyn.method == "time":
             continue
         if dyn.method == "auto" and auto_ineligible(dyn, case.study):
             continue
-        key = batch_key(case)
+        asking.append(i)
+    if not asking:
+        return {}, {}
+    from .frequency_cases import batch_key, linearised, solve_frequency_cases
+
+    groups: dict[tuple, list[int]] = {}
+    for i in asking:
+        key = batch_key(cases[i])
         if key is not None:
             groups.setdefault(key, []).append(i)
     outcomes: dict[int, Any] = {}

@@ -11,10 +11,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numba import njit
-from scipy.interpolate import CubicSpline, PchipInterpolator
+
+if TYPE_CHECKING:  # imported where a table is built: a harmonic-only run never loads it
+    from scipy.interpolate import CubicSpline, PchipInterpolator
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -39,6 +42,8 @@ class TableMotion:
     spline: CubicSpline | PchipInterpolator = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
+        from scipy.interpolate import CubicSpline, PchipInterpolator
+
         curve = (
             CubicSpline(self.times, self.values, bc_type="periodic")
             if self.periodic
