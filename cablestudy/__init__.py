@@ -16,8 +16,10 @@ def _numba_cache_dir() -> None:
     numba's cache (``cache=True``) is checked against the file that defines a kernel,
     not the files of the kernels it calls: a kernel of integrator.py compiled with the
     assemble of model.py kept its machine code after model.py changed. The cache goes
-    to ``$XDG_CACHE_HOME/cablestudy/numba/<hash of every source file's name, size and
-    modification time>`` (about 2 ms), so any change to the package compiles afresh. A
+    to ``$XDG_CACHE_HOME/cablestudy/numba/<checkout>/<hash of every source file's name,
+    size and modification time>`` (about 2 ms), so any change to the package compiles
+    afresh. Each checkout of the package (a clone, a worktree) prunes only its own old
+    versions, so checkouts side by side do not evict each other's kernels. A
     NUMBA_CACHE_DIR set by the user is kept."""
     if os.environ.get("NUMBA_CACHE_DIR"):
         return
@@ -28,10 +30,13 @@ def _numba_cache_dir() -> None:
         name = path.relative_to(root).as_posix()
         digest.update(f"{name}:{st.st_size}:{st.st_mtime_ns};".encode())
     home = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
-    base = Path(home) / "cablestudy" / "numba"
+    numba_base = Path(home) / "cablestudy" / "numba"
+    checkout = hashlib.sha1(str(root).encode()).hexdigest()[:8]
+    base = numba_base / checkout
     where = str(base / digest.hexdigest()[:16])
     if not os.path.isdir(where):
         _prune(base, KEEP_CACHES)
+        _prune(numba_base, KEEP_CHECKOUTS)
     os.environ["NUMBA_CACHE_DIR"] = where
     config = sys.modules.get("numba.core.config")
     if config is not None:  # numba imported before cablestudy: tell it too
@@ -39,7 +44,9 @@ def _numba_cache_dir() -> None:
 
 
 #: compiled-kernel caches kept (other versions of the source), the newest first
-KEEP_CACHES = 6
+KEEP_CACHES = 3
+#: checkouts whose caches are kept, the most recently used first
+KEEP_CHECKOUTS = 12
 
 
 def _prune(base: Path, keep: int) -> None:
