@@ -15,6 +15,16 @@ from pydantic import (
 )
 
 from .base import FieldError, Finite, NonNegative, Positive, StrictModel, Vec2, Vec3
+from .system_dynamics import (
+    SYSTEM_HARMONICS,
+    SYSTEM_TABLES,
+    BodyHarmonic,
+    BodySpectrum,
+    BodyTable,
+    PointHarmonic,
+    PointTable,
+    system_tag,
+)
 
 
 class Installation(StrictModel):
@@ -418,6 +428,9 @@ class SpectrumExcitation(StrictModel):
 
 def _excitation_tag(value: Any) -> str:
     if isinstance(value, dict):
+        tag = system_tag(value)  # a system's body or point motion
+        if tag is not None:
+            return tag
         if "spectrum" in value or "wave_spectrum" in value:
             return "SpectrumExcitation"
         return "TimeSeriesExcitation" if "table" in value else "HarmonicExcitation"
@@ -427,7 +440,12 @@ def _excitation_tag(value: Any) -> str:
 Excitation = Annotated[
     Annotated[HarmonicExcitation, Tag("HarmonicExcitation")]
     | Annotated[TimeSeriesExcitation, Tag("TimeSeriesExcitation")]
-    | Annotated[SpectrumExcitation, Tag("SpectrumExcitation")],
+    | Annotated[SpectrumExcitation, Tag("SpectrumExcitation")]
+    | Annotated[BodyHarmonic, Tag("BodyHarmonic")]
+    | Annotated[BodyTable, Tag("BodyTable")]
+    | Annotated[PointHarmonic, Tag("PointHarmonic")]
+    | Annotated[PointTable, Tag("PointTable")]
+    | Annotated[BodySpectrum, Tag("BodySpectrum")],
     Discriminator(_excitation_tag),
 ]
 
@@ -571,8 +589,10 @@ class DynamicSettings(StrictModel):
         items = self.excitation if isinstance(self.excitation, list) else [self.excitation]
         if not items:
             raise ValueError("excitation: list at least one motion")
-        harmonic = any(isinstance(e, HarmonicExcitation) for e in items)
-        periodic = any(isinstance(e, TimeSeriesExcitation) and e.periodic for e in items) or any(
+        harmonic = any(isinstance(e, (HarmonicExcitation, *SYSTEM_HARMONICS)) for e in items)
+        periodic = any(
+            isinstance(e, (TimeSeriesExcitation, *SYSTEM_TABLES)) and e.periodic for e in items
+        ) or any(
             isinstance(e, SpectrumExcitation) for e in items
         )
         if not (harmonic or periodic) and self.period is None and self.duration is None:

@@ -13,6 +13,7 @@ from .base import FieldError, StrictModel
 from .ends import Ends, FixedEnd, MooringEnd
 from .environment import Environment
 from .line import Line, MoorDynLineRef
+from .system_dynamics import check_one_line_excitation, check_system_dynamics
 from .system import BodyPoint, FixedPoint, SystemBody, SystemLine, SystemPoint
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.\-]*$")
@@ -59,7 +60,7 @@ class Study(StrictModel):
         "equilibrium)",
     )
     lines: dict[str, SystemLine] = Field(
-        {}, description="system: lines by name, each between two points (a, b); statics only"
+        {}, description="system: lines by name, each between two points (a, b)"
     )
     analysis: Analysis = Analysis()
     sweep: dict[str, Any] = Field(
@@ -145,6 +146,8 @@ class Study(StrictModel):
                 None,
             )
         self._segment_masses(("line",), self.line)
+        if self.analysis.dynamic is not None:
+            check_one_line_excitation(self)  # body / point motions need a system
         a, b = self.ends.a, self.ends.b
         if not isinstance(a, FixedEnd) and not isinstance(b, FixedEnd):
             raise FieldError(
@@ -280,9 +283,10 @@ class Study(StrictModel):
         an = self.analysis
         refused_analyses = {
             "modal": an.modal is not None,
-            "dynamic": an.dynamic is not None,
             "database": an.database is not None,
         }
+        if an.dynamic is not None:  # the system time domain (dynamics/system_*.py)
+            check_system_dynamics(self)
         for key, given in refused_analyses.items():
             if given:
                 raise FieldError(

@@ -47,6 +47,14 @@ class FreePoint(StrictModel):
     mass: NonNegative = Field(0.0, description="lumped mass [kg] (weight m g, down)")
     volume: NonNegative = Field(0.0, description="displaced volume [m^3] (buoyancy rho V g)")
     force: Vec3 = Field([0.0, 0.0, 0.0], description="constant applied force [N]")
+    added_mass: NonNegative = Field(
+        0.0, description="dynamics: isotropic added mass [kg] (moves with the point's mass)"
+    )
+    drag_area: NonNegative = Field(
+        0.0,
+        description="dynamics: drag coefficient times area C_D A [m^2] (isotropic drag "
+        "1/2 rho C_D A |u| u on the point's velocity u)",
+    )
 
 
 class BodyPoint(StrictModel):
