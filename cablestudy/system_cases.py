@@ -21,6 +21,7 @@ from .config.system import BodyPoint, FixedPoint, FreePoint
 from .problem import line_model, medium
 from .results import CaseRecord
 from .statics import STATIC_SOLVERS, STATUS_NUMERICAL, STATUS_OK, EndCondition, StaticProblem
+
 from .statics.system import BODY, FIXED, FREE, MooringSystem, SystemLine, solve_system
 
 
@@ -154,8 +155,18 @@ def evaluate_system_case(case: Case) -> CaseRecord:
     study = case.study
     deadline = time.monotonic() + study.analysis.time_limit
     system = system_model(study)
+    res = None
     try:
-        res = solve_system(system, STATIC_SOLVERS["catenary"], deadline=deadline)
+        if study.analysis.dynamic is not None:  # a sweep of the motion shares the statics
+            from .system_dynamic_cases import system_statics
+
+            res = system_statics(
+                case,
+                system,
+                lambda: solve_system(system, STATIC_SOLVERS["catenary"], deadline=deadline),
+            )
+        else:
+            res = solve_system(system, STATIC_SOLVERS["catenary"], deadline=deadline)
         status, message = res.status, res.message
         data = system_outputs(system, res)
     except Exception as exc:  # noqa: BLE001 - any solver fault is recorded as data
@@ -166,6 +177,8 @@ def evaluate_system_case(case: Case) -> CaseRecord:
         if bad:
             status, message = STATUS_NUMERICAL, f"non-finite values in {', '.join(bad)}"
     data["static_status"] = np.asarray(status, dtype=np.int64)
+    if study.analysis.dynamic is not None:  # the system time domain (system_dynamic_cases)
+        status, message = _dynamics(case, system, res, status, message, deadline, data)
     return CaseRecord(
         hash=case.hash,
         index=case.index,
@@ -174,3 +187,26 @@ def evaluate_system_case(case: Case) -> CaseRecord:
         wall_time=time.perf_counter() - t0,
         data=data,
     )
+
+
+def _dynamics(
+    case: Case, system: MooringSystem, res: Any, status: int, message: str, deadline: float,
+    data: dict[str, Any],
+) -> tuple[int, str]:
+    """Run the case's dynamics after its statics (not run when they failed) into
+    ``data``; the case's status and message."""
+    from .analyses import STATUS_NOT_RUN
+    from .system_dynamic_cases import run_system_dynamic
+
+    if status != STATUS_OK:
+        data["dynamic_status"] = np.asarray(STATUS_NOT_RUN, dtype=np.int64)
+        return status, message
+    try:
+        d_status, d_message, d_data = run_system_dynamic(case, system, res, deadline)
+    except Exception as exc:  # noqa: BLE001 - any solver fault is recorded as data
+        d_status, d_message, d_data = STATUS_NUMERICAL, f"{type(exc).__name__}: {exc}", {}
+    data.update(d_data)
+    data["dynamic_status"] = np.asarray(d_status, dtype=np.int64)
+    if d_status != STATUS_OK:
+        return d_status, f"dynamic analysis: {d_message}"
+    return status, message
