@@ -14,7 +14,7 @@ from .ends import Ends, FixedEnd, MooringEnd
 from .environment import Environment
 from .line import Line, MoorDynLineRef
 from .system_dynamics import check_one_line_excitation, check_system_dynamics
-from .system import BodyPoint, FixedPoint, SystemBody, SystemLine, SystemPoint
+from .system import BodyPoint, FixedPoint, FreePoint, SystemBody, SystemLine, SystemPoint
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.\-]*$")
 
@@ -287,6 +287,16 @@ class Study(StrictModel):
         }
         if an.dynamic is not None:  # the system time domain (dynamics/system_*.py)
             check_system_dynamics(self)
+        else:
+            for name, point in self.points.items():
+                for key in ("added_mass", "drag_area"):
+                    if isinstance(point, FreePoint) and getattr(point, key) != 0.0:
+                        raise FieldError(
+                            ("points", name, key),
+                            f"{key} acts in the dynamics only (the system statics have no "
+                            "current); allowed: add analysis.dynamic, or remove the key",
+                            getattr(point, key),
+                        )
         for key, given in refused_analyses.items():
             if given:
                 raise FieldError(
