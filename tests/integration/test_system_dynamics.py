@@ -1,0 +1,208 @@
+"""Mooring systems in the time domain (issue 24), from the study file to the dataset:
+every line driven by its body's motion, the free points integrated with the lines.
+
+Physics checks: a system of one line is the one-line study bit for bit; two lines
+joined at a massless, dragless point are one two-segment line; a slowly moved body
+follows the static offset curve of the system statics; the body points follow the exact
+rigid-body motion (tests/unit/test_system_kinematics.py)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from cablestudy.analyses import evaluate_case
+from cablestudy.cases import expand_cases
+from cablestudy.cli import main
+from cablestudy.config import parse_study_text
+from cablestudy.config.loader import StudyError
+from cablestudy.counters import COUNTERS
+from cablestudy.results import SYSTEM_OUTPUTS
+from cablestudy.statics import STATIC_SOLVERS
+from cablestudy.statics.system import solve_system
+from cablestudy.system_cases import evaluate_system_case, system_model
+
+SEG = "{length: %s, diameter: 0.1, mass_per_length: 20.0, axial_stiffness: 5.0e8%s}"
+
+DYN = """\
+  dynamic:
+    excitation: %s
+    method: time
+    elements: %d
+    points_per_period: 32
+"""
+
+#: a line from an anchor to a fairlead 10 m below the surface, in deep water (no
+#: seabed: the one-line time domain's contact active set is not the system's)
+ONE_LINE = f"""\
+name: one
+environment: {{fluid: water}}
+line:
+  segments: [{SEG % (290.0, "")}]
+ends:
+  a: {{kind: fixed, position: [-250.0, 10.0, -100.0]}}
+  b: {{kind: fixed, position: [0.0, 0.0, -10.0]}}
+analysis:
+  static: {{nodes: 11, tolerance: 1.0e-11}}
+""" + DYN % ("{end: b, direction: [1.0, 0.0, 0.0], amplitude: 3.0, frequency: 0.1}", 20)
+
+AS_SYSTEM = f"""\
+name: sys
+environment: {{fluid: water}}
+points:
+  p: {{kind: fixed, position: [-250.0, 10.0, -100.0]}}
+  q: {{kind: body, body: ship, offset: [0.0, 0.0, -10.0]}}
+bodies:
+  ship: {{kind: prescribed}}
+lines:
+  only: {{a: p, b: q, segments: [{SEG % (290.0, "")}]}}
+analysis:
+  static: {{nodes: 11, tolerance: 1.0e-11}}
+""" + DYN % ("{body: ship, dof: surge, amplitude: 3.0, frequency: 0.1}", 20)
+
+
+def _case(text: str, name: str = "sys.yaml"):  # noqa: ANN202
+    (_, [case]) = expand_cases(parse_study_text(text, name))
+    return case
+
+
+def test_a_system_of_one_line_is_the_one_line_study_bit_for_bit() -> None:
+    """Same line, same end motion (the body surges, so its fairlead moves exactly as the
+    one-line study's end b): the same discrete statics, the same steps, the same
+    numbers, to the last bit."""
+    one = evaluate_case(_case(ONE_LINE, "one.yaml"))
+    sys = evaluate_system_case(_case(AS_SYSTEM))
+    assert one.status == 0 and sys.status == 0, (one.message, sys.message)
+    for k in ("dynamic_steps", "newton_iterations", "periods"):
+        assert sys.data[k] == one.data[k], k
+    for mine, theirs in (
+        ("tension_max_b", "tension_max"),
+        ("tension_min_b", "tension_min"),
+        ("tension_mean_b", "tension_mean"),
+    ):
+        assert sys.data[mine][0] == one.data[theirs], mine
+    np.testing.assert_array_equal(sys.data["tension_envelope_max"][0], one.data["tension_envelope_max"])
+    np.testing.assert_array_equal(sys.data["tension_envelope_min"][0], one.data["tension_envelope_min"])
+
+
+#: no drag, no added mass: then a junction node of two lines and the node between two
+#: segments of one line carry the same forces (drag and added mass would take the
+#: node's tangent, which differs: the chord of its two elements against each line's own)
+BARE = ", drag_normal: 0.0, drag_tangential: 0.0, added_mass_normal: 0.0"
+SERIES = f"""\
+name: series
+environment: {{fluid: water}}
+points:
+  anchor: {{kind: fixed, position: [-250.0, 0.0, -100.0]}}
+  mid: {{kind: free, position: [-120.0, 0.0, -80.0]}}
+  fair: {{kind: body, body: ship, offset: [0.0, 0.0, -10.0]}}
+bodies:
+  ship: {{kind: prescribed}}
+lines:
+  lower: {{a: anchor, b: mid, segments: [{SEG % (145.0, BARE)}]}}
+  upper: {{a: mid, b: fair, segments: [{SEG % (145.0, BARE)}]}}
+analysis:
+  static: {{nodes: 11, tolerance: 1.0e-11}}
+""" + DYN % ("{body: ship, dof: surge, amplitude: 3.0, frequency: 0.1}", 10) + (
+    "    duration: 30.0\n    ramp_periods: 1.0\n"
+)
+WHOLE = f"""\
+name: whole
+environment: {{fluid: water}}
+points:
+  anchor: {{kind: fixed, position: [-250.0, 0.0, -100.0]}}
+  fair: {{kind: body, body: ship, offset: [0.0, 0.0, -10.0]}}
+bodies:
+  ship: {{kind: prescribed}}
+lines:
+  both: {{a: anchor, b: fair, segments: [{SEG % (145.0, BARE)}, {SEG % (145.0, BARE)}]}}
+analysis:
+  static: {{nodes: 11, tolerance: 1.0e-11}}
+""" + DYN % ("{body: ship, dof: surge, amplitude: 3.0, frequency: 0.1}", 20) + (
+    "    duration: 30.0\n    ramp_periods: 1.0\n"
+)
+
+
+def test_two_lines_at_a_bare_junction_are_one_two_segment_line() -> None:
+    """The junction's three unknowns solved by the bordered (Schur) solve give the same
+    motion as the same node inside one banded line: the end tensions agree to the
+    accuracy the Newton iterations leave. Each step converges to a residual force of
+    newton_tolerance (1e-7) times the largest static tension; that force error moves the
+    tensions by about as much relative to them, amplified over the run by the few
+    hundred steps (each step's error feeds the next): 1e-5 relative bounds it with a
+    factor of a hundred in hand (measured: 1.3e-8)."""
+    two = evaluate_system_case(_case(SERIES))
+    one = evaluate_system_case(_case(WHOLE))
+    assert two.status == 0 and one.status == 0, (two.message, one.message)
+    for k in ("tension_max", "tension_min"):
+        np.testing.assert_allclose(two.data[f"{k}_a"][0], one.data[f"{k}_a"][0], rtol=1e-5)
+        np.testing.assert_allclose(two.data[f"{k}_b"][1], one.data[f"{k}_b"][0], rtol=1e-5)
+    np.testing.assert_allclose(two.data["body_force_max"], one.data["body_force_max"], rtol=1e-5, atol=1e-3)
+
+
+#: a clump between two anchored legs and a bridle to the body, a third leg to the body
+CLUMP = f"""\
+name: clump
+environment: {{fluid: water}}
+points:
+  anchor1: {{kind: fixed, position: [-300.0, -40.0, -100.0]}}
+  anchor2: {{kind: fixed, position: [-300.0, 40.0, -100.0]}}
+  anchor3: {{kind: fixed, position: [250.0, 0.0, -100.0]}}
+  clump: {{kind: free, position: [-60.0, 0.0, -60.0], mass: 3000.0, volume: 0.2, added_mass: 400.0, drag_area: 0.5}}
+  fair1: {{kind: body, body: buoy, offset: [-5.0, 0.0, -10.0]}}
+  fair2: {{kind: body, body: buoy, offset: [5.0, 0.0, -10.0]}}
+bodies:
+  buoy: {{kind: prescribed, position: [0.0, 0.0, 0.0, 0.0, 0.0, 0.0]}}
+lines:
+  leg1: {{a: anchor1, b: clump, segments: [{SEG % (260.0, "")}]}}
+  leg2: {{a: anchor2, b: clump, segments: [{SEG % (260.0, "")}]}}
+  bridle: {{a: clump, b: fair1, segments: [{SEG % (70.0, "")}]}}
+  leg3: {{a: anchor3, b: fair2, segments: [{SEG % (275.0, "")}]}}
+analysis:
+  static: {{nodes: 11, tolerance: 1.0e-11}}
+"""
+
+
+def _slow(elements: int) -> dict:
+    text = CLUMP + DYN % ("{body: buoy, dof: surge, amplitude: 4.0, period: 400.0}", elements)
+    rec = evaluate_system_case(
+        _case(text + "    steady_window: 1\n    min_periods: 1\n    ramp_periods: 0.5\n")
+    )
+    assert rec.status == 0, rec.message
+    return rec.data
+
+
+def test_a_slowly_moved_body_follows_the_static_offset_curve() -> None:
+    """Surge 4 m over 400 s (the lines' lowest periods are seconds): the extremes of the
+    surge force of the lines on the body are the system statics' at -4 m and +4 m, but
+    for what moves the lines there. Inertia: at most the whole moving mass (lines with
+    their added mass, the clump with its own) times the body's peak acceleration
+    A (2 pi / T)^2, about 27 N; drag at v = 2 pi A / T = 0.06 m/s is a few newtons.
+    Discretisation: second order in the element length, estimated by refinement (the
+    change from 20 to 40 elements per line, doubled to bound the 40-element error).
+    Measured: 19 N and 27 N off, against a tolerance of 27 N + 26 N."""
+    case = _case(CLUMP + DYN % ("{body: buoy, dof: surge, amplitude: 4.0, period: 400.0}", 20))
+    system = system_model(case.study)
+    static = {}
+    for x in (-4.0, 4.0):
+        moved = system.__class__(
+            **{**system.__dict__, "body_position": np.array([[x, 0.0, 0.0, 0.0, 0.0, 0.0]])}
+        )
+        static[x] = solve_system(moved, STATIC_SOLVERS["catenary"]).body_force[0, 0]
+    coarse, fine = _slow(20), _slow(40)
+    st = case.study
+    rho = st.environment.density
+    moving = sum(
+        (seg.mass_per_length + rho * seg.added_mass_normal * seg.area) * seg.length
+        for line in st.lines.values()
+        for seg in line.segments
+    )
+    moving += st.points["clump"].mass + st.points["clump"].added_mass
+    inertia = moving * 4.0 * (2.0 * math.pi / 400.0) ** 2
+    for key, x in (("body_force_max", -4.0), ("body_force_min", 4.0)):
+        refinement = 2.0 * abs(coarse[key][0, 0] - fine[key][0, 0])
+        assert abs(fine[key][0, 0] - static[x]) <= inertia + refinement, (key, fine[key], static[x])
+    assert static[-4.0] - static[4.0] > 100.0 * (inertia + refinement)  # a real offset curve
