@@ -206,3 +206,162 @@ def test_a_slowly_moved_body_follows_the_static_offset_curve() -> None:
         refinement = 2.0 * abs(coarse[key][0, 0] - fine[key][0, 0])
         assert abs(fine[key][0, 0] - static[x]) <= inertia + refinement, (key, fine[key], static[x])
     assert static[-4.0] - static[4.0] > 100.0 * (inertia + refinement)  # a real offset curve
+
+
+@pytest.fixture(scope="module")
+def case8(tmp_path_factory: pytest.TempPathFactory) -> xr.Dataset:
+    """MoorPy's case8 (nine polyester lines, three junctions, a spar) surged 2 m at
+    0.1 Hz, run by the command line from its config file (10 elements per line)."""
+    from pathlib import Path
+
+    tmp = tmp_path_factory.mktemp("case8")
+    text = (Path(__file__).parents[2] / "configs" / "system-case8-surge.yaml").read_text()
+    cfg = tmp / "case8.yaml"
+    cfg.write_text(text.replace("elements: 20", "elements: 10"))
+    args = ["run", str(cfg), "--out", str(tmp), "--no-cache", "--no-progress"]
+    assert main([*args, "--scheduler", "synchronous"]) == 0
+    return xr.load_dataset(tmp / "system-case8-surge.nc")
+
+
+def test_case8_runs_end_to_end_with_the_contract_names(case8: xr.Dataset) -> None:
+    ds = case8
+    assert int(ds.status) == 0 and int(ds.dynamic_status) == 0, str(ds.message.values)
+    n_lines = ds.sizes["line"]
+    assert n_lines == 9
+    for end in ("a", "b"):
+        for q in ("max", "min", "mean"):
+            var = ds[f"tension_{q}_{end}"]
+            assert var.dims == ("line",) and var.attrs["units"] == "N"
+            assert np.all(np.isfinite(var))
+    for k in ("tension_envelope_max", "tension_envelope_min"):
+        assert ds[k].dims == ("line", "s")
+    for k in ("body_force_max", "body_force_min"):
+        assert ds[k].dims == ("body", "dof")
+        assert list(ds.dof.values) == ["surge", "sway", "heave", "roll", "pitch", "yaw"]
+    assert str(ds.dynamic_method.values) == "time"
+    assert "frequency domain of a system is not built" in str(ds.dynamic_method_reason.values)
+    for k in ("tension_a", "body_stiffness", "point_position"):  # the statics stay
+        assert k in ds
+    # the static tension lies within each end's range, but for the 10-element model's
+    # own rest tension, up to 7.5e-4 off the continuous statics' (measured on the leg
+    # across the motion, whose tension barely moves: 1e-3 bounds it); the ends of the
+    # envelope are the end extremes; the spar's surge force swings about its static value
+    for end in ("a", "b"):
+        stat = ds[f"tension_{end}"].values
+        assert np.all(ds[f"tension_min_{end}"].values <= stat * (1.0 + 1e-3))
+        assert np.all(stat <= ds[f"tension_max_{end}"].values * (1.0 + 1e-3))
+    np.testing.assert_allclose(ds.tension_envelope_max[:, 0], ds.tension_max_a, rtol=1e-12)
+    np.testing.assert_allclose(ds.tension_envelope_max[:, -1], ds.tension_max_b, rtol=1e-12)
+    surge = ds.body_force.sel(dof="surge").values[0]
+    assert ds.body_force_min.sel(dof="surge").values[0] < surge
+    assert surge < ds.body_force_max.sel(dof="surge").values[0]
+    # MoorDyn case8's layout: legs 1, 3 mirror each other about the spar's x-z plane
+    names = list(ds.line.values)
+    np.testing.assert_allclose(
+        ds.tension_max_b.sel(line=names[2]), ds.tension_max_b.sel(line=names[8]), rtol=1e-6
+    )
+
+
+def test_a_sweep_of_the_motion_shares_the_statics_and_the_model() -> None:
+    """Amplitude and frequency swept over a system: one static solve and one model
+    assembly (the lines discretised, packed, at their discrete equilibrium) serve all
+    four cases; larger motion, larger range."""
+    text = CLUMP + DYN % ("{body: buoy, dof: surge, amplitude: 1.0, frequency: 0.1}", 10) + (
+        "sweep:\n  analysis.dynamic.excitation.amplitude: [0.5, 1.0]\n"
+        "  analysis.dynamic.excitation.frequency: [0.1, 0.125]\n"
+    )
+    axes, cases = expand_cases(parse_study_text(text, "sys.yaml"))
+    assert [a.name for a in axes] == ["amplitude", "frequency"]
+    from cablestudy import system_dynamic_cases
+
+    system_dynamic_cases._STATIC_CACHE.clear()  # earlier tests solved the same statics
+    system_dynamic_cases._MODEL_CACHE.clear()
+    before = COUNTERS.copy()
+    recs = [evaluate_system_case(c) for c in cases]
+    assert all(r.status == 0 for r in recs), [r.message for r in recs]
+    assert COUNTERS["system_static_solves"] - before["system_static_solves"] == 1
+    assert COUNTERS["system_assemblies"] - before["system_assemblies"] == 1
+    ranges = [r.data["tension_max_b"] - r.data["tension_min_b"] for r in recs]
+    assert np.all(ranges[2] > ranges[0]) and np.all(ranges[3] > ranges[1])
+
+
+def test_pitch_yaw_and_tables_run_through_the_study() -> None:
+    """A body pitched harmonically and yawed by a periodic table, a point moved on its
+    own: the motions reach the lines (the yaw moment swings both ways about zero)."""
+    exc = (
+        "\n      - {body: buoy, dof: pitch, amplitude: 0.05, frequency: 0.1}"
+        "\n      - {body: buoy, dof: yaw, table: [[0, 0.0], [2.5, 0.1], [5, 0.0], "
+        "[7.5, -0.1], [10, 0.0]], periodic: true}"
+        "\n      - {point: anchor3, direction: [0, 0, 1], amplitude: 0.2, period: 10.0}"
+    )
+    rec = evaluate_system_case(_case(CLUMP + DYN % (exc, 10)))
+    assert rec.status == 0, rec.message
+    yaw = SYSTEM_OUTPUTS["body_force_max"].dims.index("dof")
+    assert yaw == 1
+    assert rec.data["body_force_max"][0, 5] > 0.0 > rec.data["body_force_min"][0, 5]
+    assert rec.data["body_force_max"][0, 4] > rec.data["body_force_min"][0, 4]
+
+
+def _error(text: str) -> str:
+    with pytest.raises(StudyError) as info:
+        expand_cases(parse_study_text(text, "sys.yaml"))
+    return str(info.value)
+
+
+@pytest.mark.parametrize(
+    ("excitation", "extra", "words"),
+    [
+        ("{body: boat, dof: surge, amplitude: 1.0, frequency: 0.1}", "", "no body of that name"),
+        ("{body: buoy, dof: swing, amplitude: 1.0, frequency: 0.1}", "", "'surge'"),
+        ("{point: fairX, direction: [1, 0, 0], amplitude: 1.0, frequency: 0.1}", "", "fairX"),
+        ("{point: clump, direction: [1, 0, 0], amplitude: 1.0, frequency: 0.1}", "", "free point"),
+        ("{end: b, direction: [1, 0, 0], amplitude: 1.0, frequency: 0.1}", "", "dof"),
+        (
+            "[{body: buoy, dof: yaw, table: [[0, 0], [1, 1], [2, 0], [3, 0]]}, "
+            "{body: buoy, dof: yaw, table: [[0, 0], [1, 2], [2, 0], [3, 0]]}]",
+            "    duration: 10.0\n",
+            "already moved by a table",
+        ),
+        (
+            "{body: buoy, dof: surge, amplitude: 1.0, frequency: 0.1}",
+            "    method: frequency\n",
+            "method 'time'",
+        ),
+        (
+            "{body: buoy, dof: surge, spectrum: [[0.05, 1.0], [0.2, 1.0]]}",
+            "",
+            "motion spectrum of a body",
+        ),
+        (
+            "{body: buoy, dof: surge, amplitude: 1.0, frequency: 0.1}",
+            "    history: {points: [10.0]}\n",
+            "history_tension_a",
+        ),
+    ],
+)
+def test_system_dynamics_faults_name_the_field(excitation: str, extra: str, words: str) -> None:
+    text = CLUMP + (DYN % (excitation, 10)).replace("    method: time\n", "") + extra
+    if "method: frequency" in extra:
+        text = text.replace("    elements:", "    elements:", 1)
+    message = _error(text)
+    assert words in message, message
+
+
+def test_a_one_line_study_refuses_a_body_motion() -> None:
+    text = ONE_LINE.replace(
+        "{end: b, direction: [1.0, 0.0, 0.0], amplitude: 3.0, frequency: 0.1}",
+        "{body: ship, dof: surge, amplitude: 3.0, frequency: 0.1}",
+    )
+    assert "a one-line study moves its ends" in _error(text)
+
+
+def test_history_has_a_line_dimension() -> None:
+    text = CLUMP + DYN % ("{body: buoy, dof: surge, amplitude: 1.0, frequency: 0.1}", 10)
+    rec = evaluate_system_case(_case(text + "    history: {periods: 1.0, samples_per_period: 16}\n"))
+    assert rec.status == 0, rec.message
+    assert SYSTEM_OUTPUTS["history_tension_b"].dims == ("line", "time")
+    h = rec.data["history_tension_b"]
+    assert h.shape == (4, 17) and rec.data["history_time"].shape == (17,)
+    # the record lies within the steady window's extremes (it is one of its periods)
+    assert np.all(h <= rec.data["tension_max_b"][:, None] * (1 + 1e-9))
+    assert np.all(h >= rec.data["tension_min_b"][:, None] * (1 - 1e-9))
