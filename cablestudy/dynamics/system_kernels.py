@@ -437,21 +437,29 @@ def coupled_solve(S, W, cm, kf, cf, reg, r, rp, dx, dp):  # noqa: ANN001, ANN201
             for a in range(3):
                 for b in range(3):
                     Smat[3 * p + a, 3 * p + b] += jd[node, a, b]
+            lo, hi = max(node - 2, 0), min(node + 3, n)  # the band's reach of the end
             for c in range(3):
                 z = Z[end, c, n0:n1]
                 for i in range(n):
                     for a in range(3):
+                        z[i, a] = 0.0
+                for i in range(lo, hi):
+                    if el[i]:
+                        continue
+                    for a in range(3):
                         # J[i, node] column c = J[node, i]^T entry (c, a)
-                        z[i, a] = 0.0 if el[i] else _coupling(jo, jo2, n, end, i, c, a)
+                        z[i, a] = _coupling(jo, jo2, n, end, i, c, a)
                 _band_solve(band, reach, z)
         # S -= J_PI Z, g -= J_PI y; direct end-to-end coupling within the band
         for ei in range(2):
             p = end_point[l, ei]
             if p < 0:
                 continue
+            node_i = 0 if ei == 0 else n - 1
+            lo, hi = max(node_i - 2, 0), min(node_i + 3, n)  # J_PI is zero beyond
             for a in range(3):
                 acc = 0.0
-                for i in range(n):
+                for i in range(lo, hi):
                     if el[i]:
                         continue
                     for b in range(3):
@@ -467,7 +475,7 @@ def coupled_solve(S, W, cm, kf, cf, reg, r, rp, dx, dp):  # noqa: ANN001, ANN201
                         acc = 0.0
                         if ej != ei:
                             acc -= _coupling(jo, jo2, n, ei, node_j, a, c)
-                        for i in range(n):
+                        for i in range(lo, hi):
                             if el[i]:
                                 continue
                             for b in range(3):
