@@ -311,23 +311,23 @@ def _band_factor(J_d, J_o, J_o2, elim, band, reach):  # noqa: ANN001, ANN201
 
 
 @njit(cache=True)
-def _band_solve(band, reach, y):  # noqa: ANN001, ANN201
-    """Solve with the factored band, ``y`` (m, 3) in place."""
-    N = y.shape[0] * 3
+def _band_solve(band, reach, f, off, N):  # noqa: ANN001, ANN201
+    """Solve with the factored band for the ``N`` unknowns ``f[off:off + N]`` of a flat
+    array (a line's slice of the packed nodes' components), in place."""
     bw = 3 * reach + 2
     for k in range(N):
-        top = min(k + bw + 1, N)
-        fk = y[k // 3, k % 3]
+        fk = f[off + k]
         if fk == 0.0:
             continue
+        top = min(k + bw + 1, N)
         for r_ in range(k + 1, top):
-            y[r_ // 3, r_ % 3] -= band[r_, bw + k - r_] * fk
+            f[off + r_] -= band[r_, bw + k - r_] * fk
     for k in range(N - 1, -1, -1):
-        acc = y[k // 3, k % 3]
+        acc = f[off + k]
         top = min(k + bw + 1, N)
         for c in range(k + 1, top):
-            acc -= band[k, bw + c - k] * y[c // 3, c % 3]
-        y[k // 3, k % 3] = acc / band[k, bw]
+            acc -= band[k, bw + c - k] * f[off + c]
+        f[off + k] = acc / band[k, bw]
 
 
 @njit(cache=True)
@@ -370,6 +370,9 @@ def coupled_solve(S, W, cm, kf, cf, reg, r, rp, dx, dp):  # noqa: ANN001, ANN201
     v1 = W[22]
     n_lines = no.shape[0] - 1
     n_p = rp.shape[0]
+    n_all = dx.shape[0]
+    dx_flat = dx.reshape(3 * n_all)
+    Z_flat = Z.reshape(Z.size)
     for i in range(3 * n_p):
         g[i] = rp[i // 3, i % 3]
         for j in range(3 * n_p):
@@ -427,7 +430,7 @@ def coupled_solve(S, W, cm, kf, cf, reg, r, rp, dx, dp):  # noqa: ANN001, ANN201
         for i in range(n):
             for a in range(3):
                 y[i, a] = 0.0 if el[i] else r[n0 + i, a]
-        _band_solve(band, reach, y)
+        _band_solve(band, reach, dx_flat, 3 * n0, 3 * n)
         # junction columns: Z[end, c] = J_II^-1 J_I,end e_c
         for end in range(2):
             p = end_point[l, end]
@@ -449,7 +452,7 @@ def coupled_solve(S, W, cm, kf, cf, reg, r, rp, dx, dp):  # noqa: ANN001, ANN201
                     for a in range(3):
                         # J[i, node] column c = J[node, i]^T entry (c, a)
                         z[i, a] = _coupling(jo, jo2, n, end, i, c, a)
-                _band_solve(band, reach, z)
+                _band_solve(band, reach, Z_flat, 3 * ((end * 3 + c) * n_all + n0), 3 * n)
         # S -= J_PI Z, g -= J_PI y; direct end-to-end coupling within the band
         for ei in range(2):
             p = end_point[l, ei]
