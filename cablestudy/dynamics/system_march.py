@@ -20,11 +20,48 @@ import math
 import numpy as np
 from numba import njit
 
-from .model import update_anchors
+from .integrator import MAX_LANDING_CLIPS, MAX_STATE_CHECKS, MIN_CLIP, STATE_CHECK_FACTOR
+from .model import _trial_states, contact_states, states_changed, update_anchors
 from .system_kernels import assemble_line, coupled_solve, drives_at, point_forces
 
 #: :func:`system_march` return codes
 BOUNDARY, ACCEPTED, FAILED = 0, 1, 2
+
+
+@njit(cache=True)
+def _contact_states(S, W, x, v, fix, flips):  # noqa: ANN001, ANN201
+    """:func:`.model.contact_states` line by line (each line's seabed offset); True if
+    any state changed."""
+    no = S[0]
+    changed = False
+    for l in range(no.shape[0] - 1):  # noqa: E741
+        n0, n1 = no[l], no[l + 1]
+        if contact_states(
+            x[n0:n1], v[n0:n1], S[22], S[23][l], S[24][n0:n1], S[25][n0:n1], W[12][n0:n1],
+            fix, flips[n0:n1],
+        ):  # fmt: skip
+            changed = True
+    return changed
+
+
+@njit(cache=True)
+def _friction_states(S, W, check):  # noqa: ANN001, ANN201
+    """Stick/slip states line by line (each line's friction coefficients): from the
+    trial forces keeping a contact node's state (``check`` False), or checked after
+    convergence (:func:`.model.states_changed`, ``check`` True: whether any changed)."""
+    no = S[0]
+    changed = False
+    for l in range(no.shape[0] - 1):  # noqa: E741
+        n0, n1 = no[l], no[l + 1]
+        fr = S[26][l]
+        if fr[0] <= 0.0 and fr[1] <= 0.0:
+            continue
+        if check:
+            if states_changed(W[12][n0:n1], W[13][n0:n1], W[10][n0:n1], fr):
+                changed = True
+        else:
+            _trial_states(W[12][n0:n1], W[13][n0:n1], W[10][n0:n1], fr, True)
+    return changed
 
 
 @njit(cache=True)
@@ -58,6 +95,31 @@ def _residuals(S, W, x1, a0, a1, F0, Fp0, Fp, am, af, r, rp):  # noqa: ANN001, A
 
 
 @njit(cache=True)
+def _landing_clip(S, W, x1, dx, sbn, sbo, ksb):  # noqa: ANN001, ANN201
+    """The fraction of a Newton correction that stops the first node crossing the
+    seabed plane on it (a node whose contact state is not held), at least
+    :data:`.integrator.MIN_CLIP` (as the single line's step)."""
+    no, held = S[0], S[21]
+    slip = W[12]
+    scale = 1.0
+    for l in range(no.shape[0] - 1):  # noqa: E741
+        off = sbo[l]
+        for i in range(no[l], no[l + 1]):
+            if held[i] or ksb[i] <= 0.0:
+                continue
+            if slip[i, 2] == 1 or slip[i, 2] == 2:
+                continue
+            g0 = -off
+            g1 = -off
+            for c in range(3):
+                g0 += sbn[c] * x1[i, c]
+                g1 += sbn[c] * (x1[i, c] + dx[i, c])
+            if (g0 > 0.0 and g1 < 0.0) or (g0 < 0.0 and g1 > 0.0):
+                scale = min(scale, max(g0 / (g0 - g1), MIN_CLIP))
+    return scale
+
+
+@njit(cache=True)
 def system_step(  # noqa: ANN201
     h, x0, v0, a0, F0, Fp0, x1, v1, a1, x_pred, am, af, beta, gamma, tol, max_it, anchor,
     S, W, r, rp, dx, dp, Fp, lmin,
@@ -83,16 +145,45 @@ def system_step(  # noqa: ANN201
     cm = (1.0 - am) / (beta * h * h)
     cv = gamma / (beta * h)
     taut0 = W[9]
+    # seabed contact and friction as active sets, as the single line's step
+    # (:func:`.integrator.alpha_step`): held during the Newton iterations, from the
+    # predictor, checked near and at convergence
+    ksb, sbn, sbo = S[24], S[22], S[23]
+    has_seabed = ksb.shape[0] > 0 and ksb.max() > 0.0
+    fr = S[26]
+    has_friction = has_seabed and (fr.max() > 0.0)
+    fix_states = has_friction
+    flips = np.zeros(n, dtype=np.int64)
+    if has_seabed:
+        _contact_states(S, W, x1, v1, False, flips)
+    checks = 0
+    checked_early = False
+    clips = 0
     it = 0
     while True:
         for l in range(n_lines):  # noqa: E741
             assemble_line(l, x1, v1, anchor, S, W)
+        if fix_states:
+            fix_states = False
+            _friction_states(S, W, False)
+            continue
         point_forces(S, x1, v1, Fp)
         res = _residuals(S, W, x1, a0, a1, F0, Fp0, Fp, am, af, r, rp)
         if not math.isfinite(res):
             return it, False
-        if res <= tol:
-            return it, True
+        early = res <= STATE_CHECK_FACTOR * tol and not checked_early
+        if res <= tol or early:
+            checked_early = True
+            if has_seabed and checks < MAX_STATE_CHECKS:
+                changed = _contact_states(S, W, x1, v1, True, flips)
+                if has_friction and _friction_states(S, W, True):
+                    changed = True
+                if changed:
+                    checks += 1
+                    checked_early = False
+                    continue
+            if res <= tol:
+                return it, True
         if it >= max_it:
             return it, False
         it += 1
@@ -106,11 +197,16 @@ def system_step(  # noqa: ANN201
                 big = max(big, abs(dx[i, c]))
         if big > lmin or not math.isfinite(big):
             return it, False
+        scale = 1.0
+        if has_seabed and clips < MAX_LANDING_CLIPS:
+            scale = _landing_clip(S, W, x1, dx, sbn, sbo, ksb)
+            if scale < 1.0:
+                clips += 1
         for i in range(n):
             if held[i]:
                 continue
             for c in range(3):
-                d = dx[i, c]
+                d = scale * dx[i, c]
                 x1[i, c] += d
                 a1[i, c] += d / (beta * h * h)
                 v1[i, c] += gamma * d / (beta * h)

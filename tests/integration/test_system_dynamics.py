@@ -35,8 +35,7 @@ DYN = """\
     points_per_period: 32
 """
 
-#: a line from an anchor to a fairlead 10 m below the surface, in deep water (no
-#: seabed: the one-line time domain's contact active set is not the system's)
+#: a line from an anchor to a fairlead 10 m below the surface
 ONE_LINE = f"""\
 name: one
 environment: {{fluid: water}}
@@ -69,13 +68,21 @@ def _case(text: str, name: str = "sys.yaml"):  # noqa: ANN202
     return case
 
 
-def test_a_system_of_one_line_is_the_one_line_study_bit_for_bit() -> None:
+@pytest.mark.parametrize("seabed", [False, True])
+def test_a_system_of_one_line_is_the_one_line_study_bit_for_bit(seabed: bool) -> None:
     """Same line, same end motion (the body surges, so its fairlead moves exactly as the
     one-line study's end b): the same discrete statics, the same steps, the same
-    numbers, to the last bit."""
-    one = evaluate_case(_case(ONE_LINE, "one.yaml"))
-    sys = evaluate_system_case(_case(AS_SYSTEM))
+    numbers, to the last bit; in deep water, and on a seabed (a third of the line laid:
+    contact and friction as active sets, as the one-line step holds them)."""
+    one_text, sys_text = ONE_LINE, AS_SYSTEM
+    if seabed:
+        water = "{fluid: water, depth: 100.0, seabed: {friction: 0.5}}"
+        one_text = one_text.replace("{fluid: water}", water)
+        sys_text = sys_text.replace("{fluid: water}", water)
+    one = evaluate_case(_case(one_text, "one.yaml"))
+    sys = evaluate_system_case(_case(sys_text))
     assert one.status == 0 and sys.status == 0, (one.message, sys.message)
+    assert (sys.data["laid_length"][0] > 50.0) == seabed
     for k in ("dynamic_steps", "newton_iterations", "periods"):
         assert sys.data[k] == one.data[k], k
     for mine, theirs in (
