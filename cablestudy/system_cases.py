@@ -177,8 +177,15 @@ def evaluate_system_case(case: Case) -> CaseRecord:
         if bad:
             status, message = STATUS_NUMERICAL, f"non-finite values in {', '.join(bad)}"
     data["static_status"] = np.asarray(status, dtype=np.int64)
+    warning = ""
     if study.analysis.dynamic is not None:  # the system time domain (system_dynamic_cases)
         status, message = _dynamics(case, system, res, status, message, deadline, data)
+        if int(data.get("steady_converged", 1)) == 0 and study.analysis.dynamic.duration is None:
+            warning = (
+                f"unsettled: the line end tensions did not settle within max_periods "
+                f"({study.analysis.dynamic.max_periods}); the extremes are those of the last "
+                "periods run"
+            )
     return CaseRecord(
         hash=case.hash,
         index=case.index,
@@ -186,6 +193,7 @@ def evaluate_system_case(case: Case) -> CaseRecord:
         message=message,
         wall_time=time.perf_counter() - t0,
         data=data,
+        warning=warning,
     )
 
 

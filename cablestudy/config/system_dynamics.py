@@ -285,7 +285,7 @@ def check_system_dynamics(study: object) -> None:
             "method 'time' (or 'auto', which picks 'time')",
             dyn.method,
         )
-    for key in ("linearisation", "transfer_function"):
+    for key in ("linearisation", "transfer_function", "auto"):
         if getattr(dyn, key) is not None:
             raise FieldError(
                 (*root, key),

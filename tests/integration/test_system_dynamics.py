@@ -344,6 +344,11 @@ def _error(text: str) -> str:
             "    history: {points: [10.0]}\n",
             "history_tension_a",
         ),
+        (
+            "{body: buoy, dof: surge, amplitude: 1.0, frequency: 0.1}",
+            "    auto: {min_tension_ratio: 0.1}\n",
+            "frequency domain, which a system does not have",
+        ),
     ],
 )
 def test_system_dynamics_faults_name_the_field(excitation: str, extra: str, words: str) -> None:
@@ -372,3 +377,12 @@ def test_history_has_a_line_dimension() -> None:
     # the record lies within the steady window's extremes (it is one of its periods)
     assert np.all(h <= rec.data["tension_max_b"][:, None] * (1 + 1e-9))
     assert np.all(h >= rec.data["tension_min_b"][:, None] * (1 - 1e-9))
+
+
+def test_an_unsettled_run_says_so() -> None:
+    """Three periods, two of them the ramp: the end tensions cannot be shown settled,
+    and the case says so (its extremes kept, as a one-line study's)."""
+    text = CLUMP + DYN % ("{body: buoy, dof: surge, amplitude: 1.0, frequency: 0.1}", 10)
+    rec = evaluate_system_case(_case(text + "    max_periods: 3\n"))
+    assert rec.status == 0 and int(rec.data["steady_converged"]) == 0
+    assert rec.warning.startswith("unsettled")
