@@ -393,8 +393,9 @@ SYSTEM_OUTPUTS.update(
     {
         **{
             f"tension_{q}_{end}": OutputVariable(
-                ("line",), "N", f"{what} tension at end {end.upper()} of each line over the "
-                "steady motion"
+                ("line",),
+                "N",
+                f"{what} tension at end {end.upper()} of each line over the steady motion",
             )
             for q, what in (("max", "largest"), ("min", "smallest"), ("mean", "mean"))
             for end in ("a", "b")
@@ -404,12 +405,16 @@ SYSTEM_OUTPUTS.update(
             for k in ("tension_envelope_max", "tension_envelope_min")
         },
         "body_force_max": OutputVariable(
-            ("body", "dof"), "N, N m", "largest force and moment of all lines on each body "
-            "about its reference point over the steady motion"
+            ("body", "dof"),
+            "N, N m",
+            "largest force and moment of all lines on each body "
+            "about its reference point over the steady motion",
         ),
         "body_force_min": OutputVariable(
-            ("body", "dof"), "N, N m", "smallest force and moment of all lines on each body "
-            "about its reference point over the steady motion"
+            ("body", "dof"),
+            "N, N m",
+            "smallest force and moment of all lines on each body "
+            "about its reference point over the steady motion",
         ),
         "history_tension_a": OutputVariable(
             ("line", "time"), "N", "tension at end A of each line (history)"

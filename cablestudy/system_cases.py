@@ -21,7 +21,6 @@ from .config.system import BodyPoint, FixedPoint, FreePoint
 from .problem import line_model, medium
 from .results import CaseRecord
 from .statics import STATIC_SOLVERS, STATUS_NUMERICAL, STATUS_OK, EndCondition, StaticProblem
-
 from .statics.system import BODY, FIXED, FREE, MooringSystem, SystemLine, solve_system
 
 
@@ -198,7 +197,12 @@ def evaluate_system_case(case: Case) -> CaseRecord:
 
 
 def _dynamics(
-    case: Case, system: MooringSystem, res: Any, status: int, message: str, deadline: float,
+    case: Case,
+    system: MooringSystem,
+    res: Any,
+    status: int,
+    message: str,
+    deadline: float,
     data: dict[str, Any],
 ) -> tuple[int, str]:
     """Run the case's dynamics after its statics (not run when they failed) into

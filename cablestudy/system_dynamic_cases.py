@@ -148,9 +148,24 @@ def system_model_dynamic(case: Case, system: Any, static: Any) -> tuple[Any, ...
     scale = max(float(np.nanmax(r.tension)) for r in static.lines)
     newton = max(
         dyn.newton_tolerance * scale,
-        max(4.0 * roundoff_force(ln, x[packed.no[k] : packed.no[k + 1]]) for k, ln in enumerate(lines)),
+        max(
+            4.0 * roundoff_force(ln, x[packed.no[k] : packed.no[k + 1]])
+            for k, ln in enumerate(lines)
+        ),
     )
-    out = (packed, x, anchor, driven, drive_body, offsets, d_static, body_base, body_R0, scale, newton)
+    out = (
+        packed,
+        x,
+        anchor,
+        driven,
+        drive_body,
+        offsets,
+        d_static,
+        body_base,
+        body_R0,
+        scale,
+        newton,
+    )
     _MODEL_CACHE[key] = out
     trim_lru(_MODEL_CACHE, _CACHE_SIZE)
     return out
@@ -302,4 +317,3 @@ def run_system_dynamic(
     if bad:
         return STATUS_NUMERICAL, f"non-finite values in {', '.join(bad)}", head
     return STATUS_OK, "", out
-

@@ -592,9 +592,7 @@ class DynamicSettings(StrictModel):
         harmonic = any(isinstance(e, (HarmonicExcitation, *SYSTEM_HARMONICS)) for e in items)
         periodic = any(
             isinstance(e, (TimeSeriesExcitation, *SYSTEM_TABLES)) and e.periodic for e in items
-        ) or any(
-            isinstance(e, SpectrumExcitation) for e in items
-        )
+        ) or any(isinstance(e, SpectrumExcitation) for e in items)
         if not (harmonic or periodic) and self.period is None and self.duration is None:
             raise ValueError(
                 "excitation has no period (only non-periodic tables): give "

@@ -405,8 +405,10 @@ def coupled_solve(S, W, cm, kf, cf, reg, r, rp, dx, dp):  # noqa: ANN001, ANN201
         n = n1 - n0
         reach = 2 if bends[l] else 1
         for i in range(n0, n1):
-            elim[i - n0] = held[i] or (i == n0 and end_point[l, 0] >= 0) or (
-                i == n1 - 1 and end_point[l, 1] >= 0
+            elim[i - n0] = (
+                held[i]
+                or (i == n0 and end_point[l, 0] >= 0)
+                or (i == n1 - 1 and end_point[l, 1] >= 0)
             )
             for a in range(3):
                 for b in range(3):

@@ -101,9 +101,13 @@ def equilibrium(
                 ln, start[sl], tolerance=tolerance[l], max_iterations=max_iterations
             )
             if not ok:
-                return x, anchor, (
-                    f"the discrete static equilibrium of line {l} did not converge ({its} "
-                    f"iterations, residual {res:.3g} N)"
+                return (
+                    x,
+                    anchor,
+                    (
+                        f"the discrete static equilibrium of line {l} did not converge ({its} "
+                        f"iterations, residual {res:.3g} N)"
+                    ),
                 )
             x[sl], anchor[sl] = xl, anc
         return x, anchor, ""
@@ -117,20 +121,25 @@ def equilibrium(
         packed.lmin,
     )  # fmt: skip
     if not ok:
-        return x, anchor, (
-            f"the discrete static equilibrium of the system model did not converge ({its} "
-            f"iterations, residual {res:.3g} N)"
+        return (
+            x,
+            anchor,
+            (
+                f"the discrete static equilibrium of the system model did not converge ({its} "
+                f"iterations, residual {res:.3g} N)"
+            ),
         )
     return x, anchor, ""
 
 
-def simulate_system(problem: SystemProblem, *, deadline: float | None = None) -> SystemDynamicResult:
+def simulate_system(
+    problem: SystemProblem, *, deadline: float | None = None
+) -> SystemDynamicResult:
     """Integrate the system until steady state (or ``max_periods``, or ``duration``).
     A numerical failure is a result with nonzero status and a message."""
     pk = problem.packed
     S = pk.S
     L = len(pk.lines)
-    E = pk.n_elements
     B = problem.drives.body_base.shape[0]
     par = AlphaParameters.from_spectral_radius(problem.spectral_radius)
     x0 = np.array(problem.static_position, dtype=float, copy=True)

@@ -36,7 +36,8 @@ DYN = """\
 """
 
 #: a line from an anchor to a fairlead 10 m below the surface
-ONE_LINE = f"""\
+ONE_LINE = (
+    f"""\
 name: one
 environment: {{fluid: water}}
 line:
@@ -46,9 +47,12 @@ ends:
   b: {{kind: fixed, position: [0.0, 0.0, -10.0]}}
 analysis:
   static: {{nodes: 11, tolerance: 1.0e-11}}
-""" + DYN % ("{end: b, direction: [1.0, 0.0, 0.0], amplitude: 3.0, frequency: 0.1}", 20)
+"""
+    + DYN % ("{end: b, direction: [1.0, 0.0, 0.0], amplitude: 3.0, frequency: 0.1}", 20)
+)
 
-AS_SYSTEM = f"""\
+AS_SYSTEM = (
+    f"""\
 name: sys
 environment: {{fluid: water}}
 points:
@@ -60,7 +64,9 @@ lines:
   only: {{a: p, b: q, segments: [{SEG % (290.0, "")}]}}
 analysis:
   static: {{nodes: 11, tolerance: 1.0e-11}}
-""" + DYN % ("{body: ship, dof: surge, amplitude: 3.0, frequency: 0.1}", 20)
+"""
+    + DYN % ("{body: ship, dof: surge, amplitude: 3.0, frequency: 0.1}", 20)
+)
 
 
 def _case(text: str, name: str = "sys.yaml"):  # noqa: ANN202
@@ -91,15 +97,20 @@ def test_a_system_of_one_line_is_the_one_line_study_bit_for_bit(seabed: bool) ->
         ("tension_mean_b", "tension_mean"),
     ):
         assert sys.data[mine][0] == one.data[theirs], mine
-    np.testing.assert_array_equal(sys.data["tension_envelope_max"][0], one.data["tension_envelope_max"])
-    np.testing.assert_array_equal(sys.data["tension_envelope_min"][0], one.data["tension_envelope_min"])
+    np.testing.assert_array_equal(
+        sys.data["tension_envelope_max"][0], one.data["tension_envelope_max"]
+    )
+    np.testing.assert_array_equal(
+        sys.data["tension_envelope_min"][0], one.data["tension_envelope_min"]
+    )
 
 
 #: no drag, no added mass: then a junction node of two lines and the node between two
 #: segments of one line carry the same forces (drag and added mass would take the
 #: node's tangent, which differs: the chord of its two elements against each line's own)
 BARE = ", drag_normal: 0.0, drag_tangential: 0.0, added_mass_normal: 0.0"
-SERIES = f"""\
+SERIES = (
+    f"""\
 name: series
 environment: {{fluid: water}}
 points:
@@ -113,10 +124,12 @@ lines:
   upper: {{a: mid, b: fair, segments: [{SEG % (145.0, BARE)}]}}
 analysis:
   static: {{nodes: 11, tolerance: 1.0e-11}}
-""" + DYN % ("{body: ship, dof: surge, amplitude: 3.0, frequency: 0.1}", 10) + (
-    "    duration: 30.0\n    ramp_periods: 1.0\n"
+"""
+    + DYN % ("{body: ship, dof: surge, amplitude: 3.0, frequency: 0.1}", 10)
+    + ("    duration: 30.0\n    ramp_periods: 1.0\n")
 )
-WHOLE = f"""\
+WHOLE = (
+    f"""\
 name: whole
 environment: {{fluid: water}}
 points:
@@ -128,8 +141,9 @@ lines:
   both: {{a: anchor, b: fair, segments: [{SEG % (145.0, BARE)}, {SEG % (145.0, BARE)}]}}
 analysis:
   static: {{nodes: 11, tolerance: 1.0e-11}}
-""" + DYN % ("{body: ship, dof: surge, amplitude: 3.0, frequency: 0.1}", 20) + (
-    "    duration: 30.0\n    ramp_periods: 1.0\n"
+"""
+    + DYN % ("{body: ship, dof: surge, amplitude: 3.0, frequency: 0.1}", 20)
+    + ("    duration: 30.0\n    ramp_periods: 1.0\n")
 )
 
 
@@ -147,7 +161,9 @@ def test_two_lines_at_a_bare_junction_are_one_two_segment_line() -> None:
     for k in ("tension_max", "tension_min"):
         np.testing.assert_allclose(two.data[f"{k}_a"][0], one.data[f"{k}_a"][0], rtol=1e-5)
         np.testing.assert_allclose(two.data[f"{k}_b"][1], one.data[f"{k}_b"][0], rtol=1e-5)
-    np.testing.assert_allclose(two.data["body_force_max"], one.data["body_force_max"], rtol=1e-5, atol=1e-3)
+    np.testing.assert_allclose(
+        two.data["body_force_max"], one.data["body_force_max"], rtol=1e-5, atol=1e-3
+    )
 
 
 #: a clump between two anchored legs and a bridle to the body, a third leg to the body
@@ -158,7 +174,9 @@ points:
   anchor1: {{kind: fixed, position: [-300.0, -40.0, -100.0]}}
   anchor2: {{kind: fixed, position: [-300.0, 40.0, -100.0]}}
   anchor3: {{kind: fixed, position: [250.0, 0.0, -100.0]}}
-  clump: {{kind: free, position: [-60.0, 0.0, -60.0], mass: 3000.0, volume: 0.2, added_mass: 400.0, drag_area: 0.5}}
+  clump:
+    {{kind: free, position: [-60.0, 0.0, -60.0], mass: 3000.0, volume: 0.2, added_mass: 400.0,
+     drag_area: 0.5}}
   fair1: {{kind: body, body: buoy, offset: [-5.0, 0.0, -10.0]}}
   fair2: {{kind: body, body: buoy, offset: [5.0, 0.0, -10.0]}}
 bodies:
@@ -273,9 +291,13 @@ def test_a_sweep_of_the_motion_shares_the_statics_and_the_model() -> None:
     """Amplitude and frequency swept over a system: one static solve and one model
     assembly (the lines discretised, packed, at their discrete equilibrium) serve all
     four cases; larger motion, larger range."""
-    text = CLUMP + DYN % ("{body: buoy, dof: surge, amplitude: 1.0, frequency: 0.1}", 10) + (
-        "sweep:\n  analysis.dynamic.excitation.amplitude: [0.5, 1.0]\n"
-        "  analysis.dynamic.excitation.frequency: [0.1, 0.125]\n"
+    text = (
+        CLUMP
+        + DYN % ("{body: buoy, dof: surge, amplitude: 1.0, frequency: 0.1}", 10)
+        + (
+            "sweep:\n  analysis.dynamic.excitation.amplitude: [0.5, 1.0]\n"
+            "  analysis.dynamic.excitation.frequency: [0.1, 0.125]\n"
+        )
     )
     axes, cases = expand_cases(parse_study_text(text, "sys.yaml"))
     assert [a.name for a in axes] == ["amplitude", "frequency"]
@@ -369,7 +391,9 @@ def test_a_one_line_study_refuses_a_body_motion() -> None:
 
 def test_history_has_a_line_dimension() -> None:
     text = CLUMP + DYN % ("{body: buoy, dof: surge, amplitude: 1.0, frequency: 0.1}", 10)
-    rec = evaluate_system_case(_case(text + "    history: {periods: 1.0, samples_per_period: 16}\n"))
+    rec = evaluate_system_case(
+        _case(text + "    history: {periods: 1.0, samples_per_period: 16}\n")
+    )
     assert rec.status == 0, rec.message
     assert SYSTEM_OUTPUTS["history_tension_b"].dims == ("line", "time")
     h = rec.data["history_tension_b"]
