@@ -109,61 +109,58 @@ def test_a_system_of_one_line_is_the_one_line_study_bit_for_bit(seabed: bool) ->
 #: segments of one line carry the same forces (drag and added mass would take the
 #: node's tangent, which differs: the chord of its two elements against each line's own)
 BARE = ", drag_normal: 0.0, drag_tangential: 0.0, added_mass_normal: 0.0"
-SERIES = (
-    f"""\
+SERIES = f"""\
 name: series
 environment: {{fluid: water}}
 points:
-  anchor: {{kind: fixed, position: [-250.0, 0.0, -100.0]}}
-  mid: {{kind: free, position: [-120.0, 0.0, -80.0]}}
+  anchor: {{kind: fixed, position: [-270.0, 0.0, -100.0]}}
+  m1: {{kind: free, position: [-160.0, 0.0, -85.0]}}
+  m2: {{kind: free, position: [-80.0, 0.0, -60.0]}}
   fair: {{kind: body, body: ship, offset: [0.0, 0.0, -10.0]}}
 bodies:
   ship: {{kind: prescribed}}
 lines:
-  lower: {{a: anchor, b: mid, segments: [{SEG % (145.0, BARE)}]}}
-  upper: {{a: mid, b: fair, segments: [{SEG % (145.0, BARE)}]}}
+  lower: {{a: anchor, b: m1, segments: [{SEG % (100.0, BARE)}]}}
+  middle: {{a: m1, b: m2, segments: [{SEG % (100.0, BARE)}]}}
+  upper: {{a: m2, b: fair, segments: [{SEG % (100.0, BARE)}]}}
 analysis:
   static: {{nodes: 11, tolerance: 1.0e-11}}
 """
-    + DYN % ("{body: ship, dof: surge, amplitude: 3.0, frequency: 0.1}", 10)
-    + ("    duration: 30.0\n    ramp_periods: 1.0\n")
-)
-WHOLE = (
-    f"""\
+WHOLE = f"""\
 name: whole
 environment: {{fluid: water}}
 points:
-  anchor: {{kind: fixed, position: [-250.0, 0.0, -100.0]}}
+  anchor: {{kind: fixed, position: [-270.0, 0.0, -100.0]}}
   fair: {{kind: body, body: ship, offset: [0.0, 0.0, -10.0]}}
 bodies:
   ship: {{kind: prescribed}}
 lines:
-  both: {{a: anchor, b: fair, segments: [{SEG % (145.0, BARE)}, {SEG % (145.0, BARE)}]}}
+  all: {{a: anchor, b: fair, segments: [{", ".join([SEG % (100.0, BARE)] * 3)}]}}
 analysis:
   static: {{nodes: 11, tolerance: 1.0e-11}}
 """
-    + DYN % ("{body: ship, dof: surge, amplitude: 3.0, frequency: 0.1}", 20)
-    + ("    duration: 30.0\n    ramp_periods: 1.0\n")
-)
+RUN = "    duration: 30.0\n    ramp_periods: 1.0\n"
+SURGE = "{body: ship, dof: surge, amplitude: 3.0, frequency: 0.1}"
 
 
-def test_two_lines_at_a_bare_junction_are_one_two_segment_line() -> None:
-    """The junction's three unknowns solved by the bordered (Schur) solve give the same
-    motion as the same node inside one banded line: the end tensions agree to the
-    accuracy the Newton iterations leave. Each step converges to a residual force of
+def test_lines_at_bare_junctions_are_one_line_of_segments() -> None:
+    """Three lines in series joined at two massless, dragless free points (the middle
+    line has both ends on them) against one line of the three segments, 10 elements
+    each in both: the junctions' unknowns solved by the bordered (Schur) solve give the
+    motion of the same nodes inside one banded line, so the end tensions agree to what
+    the Newton iterations leave. Each step converges to a residual force of
     newton_tolerance (1e-7) times the largest static tension; that force error moves the
-    tensions by about as much relative to them, amplified over the run by the few
-    hundred steps (each step's error feeds the next): 1e-5 relative bounds it with a
-    factor of a hundred in hand (measured: 1.3e-8)."""
-    two = evaluate_system_case(_case(SERIES))
-    one = evaluate_system_case(_case(WHOLE))
-    assert two.status == 0 and one.status == 0, (two.message, one.message)
+    tensions by about as much relative to them, fed on over the run's few hundred steps:
+    1e-5 relative bounds it with a factor of a thousand in hand (measured: 3e-9)."""
+    three = evaluate_system_case(_case(SERIES + DYN % (SURGE, 10) + RUN))
+    one = evaluate_system_case(_case(WHOLE + DYN % (SURGE, 30) + RUN))
+    assert three.status == 0 and one.status == 0, (three.message, one.message)
+    assert three.data["dynamic_steps"] == one.data["dynamic_steps"]
     for k in ("tension_max", "tension_min"):
-        np.testing.assert_allclose(two.data[f"{k}_a"][0], one.data[f"{k}_a"][0], rtol=1e-5)
-        np.testing.assert_allclose(two.data[f"{k}_b"][1], one.data[f"{k}_b"][0], rtol=1e-5)
-    np.testing.assert_allclose(
-        two.data["body_force_max"], one.data["body_force_max"], rtol=1e-5, atol=1e-3
-    )
+        np.testing.assert_allclose(three.data[f"{k}_a"][0], one.data[f"{k}_a"][0], rtol=1e-5)
+        np.testing.assert_allclose(three.data[f"{k}_b"][2], one.data[f"{k}_b"][0], rtol=1e-5)
+    for k in ("body_force_max", "body_force_min"):
+        np.testing.assert_allclose(three.data[k], one.data[k], rtol=1e-5, atol=1e-3)
 
 
 #: a clump between two anchored legs and a bridle to the body, a third leg to the body
