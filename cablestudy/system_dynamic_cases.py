@@ -18,6 +18,7 @@ from typing import Any
 import numpy as np
 
 from .cases import Case
+from .config.analysis import BodySpectrumExcitation, SpectrumExcitation
 from .config.system import BodyPoint, FreePoint
 from .config.system_dynamics import BODY_DOFS, BodyHarmonic, BodyTable, PointHarmonic
 from .counters import COUNTERS, trim_lru
@@ -187,14 +188,25 @@ def slot_motion(study: Any, driven: list[int]) -> tuple[Any, np.ndarray, float, 
     slots, dirs, amps, freqs, phases, tables = [], [], [], [], [], []
     periods: list[float] = []
     for e in dyn.excitations:
-        if isinstance(e, BodyHarmonic | BodyTable):
+        if isinstance(e, BodyHarmonic | BodyTable | BodySpectrumExcitation):
             k = BODY_DOFS.index(e.dof)
             slot = 2 * bodies.index(e.body) + (0 if k < 3 else 1)
             direction = np.eye(3)[k % 3]
         else:
             slot = own_slot[e.point]
             direction = np.asarray(e.direction, dtype=float) / np.linalg.norm(e.direction)
-        if isinstance(e, BodyHarmonic | PointHarmonic):
+        if isinstance(e, SpectrumExcitation):
+            # a spectrum runs as its lines with random phases (seeded), as a line end's
+            # (cablestudy.analyses.end_motion): periodic with its lowest line's period
+            draws = np.random.default_rng(e.seed).uniform(0.0, 2.0 * math.pi, e.components)
+            for f, a, ph in zip(e.line_frequencies, e.line_amplitudes, draws, strict=True):
+                slots.append(slot)
+                dirs.append(direction)
+                amps.append(a)
+                freqs.append(f)
+                phases.append(float(ph))
+                periods.append(1.0 / f)
+        elif isinstance(e, BodyHarmonic | PointHarmonic):
             slots.append(slot)
             dirs.append(direction)
             amps.append(e.amplitude)

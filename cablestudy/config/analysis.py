@@ -19,7 +19,6 @@ from .system_dynamics import (
     SYSTEM_HARMONICS,
     SYSTEM_TABLES,
     BodyHarmonic,
-    BodySpectrum,
     BodyTable,
     PointHarmonic,
     PointTable,
@@ -426,6 +425,27 @@ class SpectrumExcitation(StrictModel):
         return [math.sqrt(2.0 * self.density(f) * df) for f in self.line_frequencies]
 
 
+class BodySpectrumExcitation(SpectrumExcitation):
+    """Irregular motion of one degree of freedom of a body of a system (issue 24): the
+    spectrum of a line end's motion (a density table, or JONSWAP waves times the
+    degree of freedom's RAO, m/m or rad/m), the same spectral lines and seeded phases."""
+
+    end: None = Field(None, description="(a line end's key: a body moves by dof)")
+    direction: None = Field(None, description="(a line end's key: a body moves by dof)")
+    body: str = Field(description="the body that moves (a key of bodies)")
+    dof: Literal["surge", "sway", "heave", "roll", "pitch", "yaw"] = Field(
+        description="degree of freedom moved [m or rad]"
+    )
+
+
+class PointSpectrumExcitation(SpectrumExcitation):
+    """Irregular motion of a point of a system on its own along ``direction``: the
+    spectrum of a line end's motion."""
+
+    end: None = Field(None, description="(a line end's key: a point moves by name)")
+    point: str = Field(description="the point that moves (a key of points)")
+
+
 def _excitation_tag(value: Any) -> str:
     if isinstance(value, dict):
         tag = system_tag(value)  # a system's body or point motion
@@ -445,7 +465,8 @@ Excitation = Annotated[
     | Annotated[BodyTable, Tag("BodyTable")]
     | Annotated[PointHarmonic, Tag("PointHarmonic")]
     | Annotated[PointTable, Tag("PointTable")]
-    | Annotated[BodySpectrum, Tag("BodySpectrum")],
+    | Annotated[BodySpectrumExcitation, Tag("BodySpectrum")]
+    | Annotated[PointSpectrumExcitation, Tag("PointSpectrum")],
     Discriminator(_excitation_tag),
 ]
 

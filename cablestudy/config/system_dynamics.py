@@ -180,35 +180,20 @@ def system_tag(value: dict) -> str | None:
         return "BodyTable" if "table" in value else "BodyHarmonic"
     if "point" in value:
         if "spectrum" in value or "wave_spectrum" in value:
-            return "BodySpectrum"
+            return "PointSpectrum"
         return "PointTable" if "table" in value else "PointHarmonic"
     return None
-
-
-class BodySpectrum(StrictModel):
-    """Refused: a body or point moved by a motion spectrum is not modelled yet."""
-
-    model_config = {"extra": "allow", "frozen": True, "strict": True}
-
-    @model_validator(mode="before")
-    @classmethod
-    def _refuse(cls, data: object) -> object:
-        key = "spectrum" if isinstance(data, dict) and "spectrum" in data else "wave_spectrum"
-        raise FieldError(
-            (key,),
-            "a motion spectrum of a body or a point of a system is not modelled yet; "
-            "allowed for a system: harmonic motion (amplitude, frequency) or a time table "
-            "(table) of a body degree of freedom or of a point; a spectrum is supported "
-            "by a one-line study's end motion (end: a or b)",
-            key,
-        )
 
 
 def check_system_dynamics(study: object) -> None:
     """Refuse (naming the field, the value and what supports it) what the system time
     domain does not model; resolve every body and point an excitation names. Called by
     the study model for a system with ``analysis.dynamic``."""
+    from .analysis import BodySpectrumExcitation, PointSpectrumExcitation  # noqa: PLC0415
     from .system import FreePoint  # noqa: PLC0415
+
+    bodily = (BodyHarmonic, BodyTable, BodySpectrumExcitation)
+    kinds = (*SYSTEM_EXCITATIONS, BodySpectrumExcitation, PointSpectrumExcitation)
 
     dyn = study.analysis.dynamic  # type: ignore[attr-defined]
     points = study.points  # type: ignore[attr-defined]
@@ -222,7 +207,7 @@ def check_system_dynamics(study: object) -> None:
 
     tables: set[tuple[str, str]] = set()
     for i, e in enumerate(items):
-        if not isinstance(e, SYSTEM_EXCITATIONS):
+        if not isinstance(e, kinds):
             raise FieldError(
                 at(i, "end"),
                 "a system's motion is given per body degree of freedom (body, dof) or per "
@@ -231,7 +216,7 @@ def check_system_dynamics(study: object) -> None:
                 f"{list(BODY_DOFS)}, or point: one of {sorted(points)} with direction",
                 getattr(e, "end", None),
             )
-        if isinstance(e, (BodyHarmonic, BodyTable)):
+        if isinstance(e, bodily):
             if e.body not in bodies:
                 raise FieldError(
                     at(i, "body"),
@@ -316,10 +301,13 @@ def check_system_dynamics(study: object) -> None:
 def check_one_line_excitation(study: object) -> None:
     """A one-line study's motions are per line end: a body or point motion needs a
     system."""
+    from .analysis import BodySpectrumExcitation, PointSpectrumExcitation  # noqa: PLC0415
+
     dyn = study.analysis.dynamic  # type: ignore[attr-defined]
     many = isinstance(dyn.excitation, list)
+    kinds = (*SYSTEM_EXCITATIONS, BodySpectrumExcitation, PointSpectrumExcitation)
     for i, e in enumerate(dyn.excitations):
-        if isinstance(e, SYSTEM_EXCITATIONS):
+        if isinstance(e, kinds):
             key = "body" if hasattr(e, "body") else "point"
             raise FieldError(
                 ("analysis", "dynamic", "excitation", *((i,) if many else ()), key),

@@ -301,7 +301,7 @@ def set_drives(t, D, x1, v1, a1, he_node, he_drive, dX, dV, dA, bx, bR):  # noqa
             a1[i, c] = dA[d, c]
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def system_march(  # noqa: ANN201, PLR0913, PLR0915
     st_f,
     st_i,
@@ -508,7 +508,7 @@ def system_march(  # noqa: ANN201, PLR0913, PLR0915
             return ACCEPTED
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def system_static(x, anchor, S, W, r, rp, dx, dp, Fp, tol, max_it, lmin):  # noqa: ANN001, ANN201
     """Newton on the discrete static equilibrium of the system (all lines and free
     points at rest, held nodes where ``x`` puts them), with the single line's small

@@ -354,9 +354,9 @@ def _error(text: str) -> str:
             "method 'time'",
         ),
         (
-            "{body: buoy, dof: surge, spectrum: [[0.05, 1.0], [0.2, 1.0]]}",
+            "{body: buoy, dof: surge, spectrum: [[0.05, 1.0], [0.2, 1.0]], end: a}",
             "",
-            "motion spectrum of a body",
+            "end",
         ),
         (
             "{body: buoy, dof: surge, amplitude: 1.0, frequency: 0.1}",
@@ -407,3 +407,24 @@ def test_an_unsettled_run_says_so() -> None:
     rec = evaluate_system_case(_case(text + "    max_periods: 3\n"))
     assert rec.status == 0 and int(rec.data["steady_converged"]) == 0
     assert rec.warning.startswith("unsettled")
+
+
+def test_a_body_moved_by_a_spectrum() -> None:
+    """JONSWAP waves times a heave RAO of one (the body follows the sea surface): the
+    motion runs as the spectrum's lines with seeded phases, as a line end's; the run is
+    periodic in the lowest line's period (here 16 lines up to 0.25 Hz: 64 s). Heaving
+    harder (Hs doubled) widens every line's tension range."""
+    exc = (
+        "{body: buoy, dof: heave, wave_spectrum: {hs: %s, tp: 10.0}, "
+        "rao: [[0.0, 1.0], [0.25, 1.0]], components: 16, seed: 3}"
+    )
+    recs = [
+        evaluate_system_case(
+            _case(CLUMP + DYN % (exc % hs, 10) + "    ramp_periods: 0.25\n    max_periods: 3\n")
+        )
+        for hs in ("1.0", "2.0")
+    ]
+    assert all(r.status == 0 for r in recs), [r.message for r in recs]
+    ranges = [r.data["tension_max_b"] - r.data["tension_min_b"] for r in recs]
+    assert np.all(ranges[1] > ranges[0])
+    assert recs[0].data["periods"] == 3.0
