@@ -147,12 +147,10 @@ def system_model_dynamic(case: Case, system: Any, static: Any) -> tuple[Any, ...
     body_base = np.asarray(body_pos, dtype=float).reshape(-1, 6)
     body_R0 = np.array([rotation(b[3:]) for b in body_base]).reshape(-1, 3, 3)
     scale = max(float(np.nanmax(r.tension)) for r in static.lines)
-    newton = max(
-        dyn.newton_tolerance * scale,
-        max(
-            4.0 * roundoff_force(ln, x[packed.no[k] : packed.no[k + 1]])
-            for k, ln in enumerate(lines)
-        ),
+    # rounding of the element forces: the Newton tolerance's floor (the tolerance itself,
+    # relative to the static tension, is a dynamic setting: applied per case)
+    floor = max(
+        4.0 * roundoff_force(ln, x[packed.no[k] : packed.no[k + 1]]) for k, ln in enumerate(lines)
     )
     out = (
         packed,
@@ -165,7 +163,7 @@ def system_model_dynamic(case: Case, system: Any, static: Any) -> tuple[Any, ...
         body_base,
         body_R0,
         scale,
-        newton,
+        floor,
     )
     _MODEL_CACHE[key] = out
     trim_lru(_MODEL_CACHE, _CACHE_SIZE)
@@ -260,7 +258,10 @@ def run_system_dynamic(
     head = {"dynamic_method": np.asarray("time"), "dynamic_method_reason": np.asarray(reason)}
     if isinstance(model, str):
         return STATUS_NUMERICAL, model, head
-    packed, x, anchor, driven, drive_body, offsets, d_static, body_base, body_R0, scale, tol = model
+    packed, x, anchor, driven, drive_body, offsets, d_static, body_base, body_R0, scale, floor = (
+        model
+    )
+    tol = max(dyn.newton_tolerance * scale, floor)
     motion, d_slot, period, step = slot_motion(case.study, driven)
     hist = dyn.history
     problem = SystemProblem(
