@@ -346,7 +346,7 @@ def system_march(  # noqa: ANN201, PLR0913, PLR0915
     gamma,
     tol,
     max_it,
-    single,
+    budget,
     anchor,
     S,
     W,
@@ -358,8 +358,8 @@ def system_march(  # noqa: ANN201, PLR0913, PLR0915
     lmin,
     eps_t,
 ):  # noqa: ANN001
-    """Time steps from ``st_f[0]`` to the period boundary ``st_f[1]`` [s] (or one
-    accepted step when ``single``). ``st_i`` = [level, clean steps, steps, Newton
+    """Time steps from ``st_f[0]`` to the period boundary ``st_f[1]`` [s] (or
+    ``budget`` accepted steps: :data:`ACCEPTED`). ``st_i`` = [level, clean steps, steps, Newton
     iterations, rejected steps, positions kept]. After each accepted step: the lines'
     end forces ``forces`` (L, 2, 3) and the bodies' ``body_f`` (B, 6); folded into the
     period's extremes ``ext_end`` (2, L, 2) of the end tensions (max, min) and their
@@ -374,6 +374,7 @@ def system_march(  # noqa: ANN201, PLR0913, PLR0915
     n = x0.shape[0]
     m = tension.shape[0]
     corr = np.empty(3)
+    accepted = 0
     while True:
         t = st_f[0]
         boundary = st_f[1]
@@ -504,7 +505,8 @@ def system_march(  # noqa: ANN201, PLR0913, PLR0915
         st_f[0] = boundary if at_boundary else tn
         if at_boundary:
             return BOUNDARY
-        if single:
+        accepted += 1
+        if accepted >= budget:
             return ACCEPTED
 
 

@@ -203,6 +203,8 @@ def simulate_system(
     hist_t: list[float] = [0.0]
     hist_f: list[np.ndarray] = [ends_prev.copy()]
     single = problem.history
+    # one step at a time for the history; with a deadline, back every 64 steps to check it
+    budget = 1 if single else (64 if deadline is not None else 2**62)
     result = SystemDynamicResult(end_static=end_static)
     c_start = 0.0
     converged = False
@@ -219,7 +221,7 @@ def simulate_system(
             problem.step, problem.max_refinement,
             problem.max_refinement + NEWTON_RESCUE_HALVINGS, problem.tension_step,
             par.alpha_m, par.alpha_f, par.beta, par.gamma, problem.newton_tolerance,
-            problem.max_newton_iterations, single, anchor, S, W, r, rp, dx, dp, Fp, lmin, eps_t,
+            problem.max_newton_iterations, budget, anchor, S, W, r, rp, dx, dp, Fp, lmin, eps_t,
         )  # fmt: skip
         t = float(st_f[0])
         if code == FAILED:
