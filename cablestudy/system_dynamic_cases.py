@@ -90,7 +90,7 @@ def system_model_dynamic(case: Case, system: Any, static: Any) -> tuple[Any, ...
         return hit
     study = case.study
     names = list(study.lines)
-    lines, starts, tol = [], [], []
+    lines, starts, tol, fallback = [], [], [], []
     for k, sl in enumerate(system.lines):
         lm = sl.problem.line
         med = sl.problem.medium
@@ -103,6 +103,8 @@ def system_model_dynamic(case: Case, system: Any, static: Any) -> tuple[Any, ...
             scale = max(scale, float(np.max(np.abs(line.force))))
         lines.append(line)
         starts.append(start)
+        t_nodes = np.interp(s_nodes, res.s, res.tension)
+        fallback.append(0.5 * (t_nodes[:-1] + t_nodes[1:]))
         tol.append(max(1e-9 * scale, roundoff_force(line, start)))
     COUNTERS["system_assemblies"] += 1
     kind = system.point_kind
@@ -130,7 +132,9 @@ def system_model_dynamic(case: Case, system: Any, static: Any) -> tuple[Any, ...
     driven = [i for i in range(kind.size) if kind[i] != FREE]
     drive_body = np.array([system.point_body[i] for i in driven], dtype=np.int64)
     packed = pack(lines, end_point, end_drive, points, drive_body)
-    x, anchor, msg = equilibrium(packed, np.concatenate(starts), tolerance=np.array(tol))
+    x, anchor, msg = equilibrium(
+        packed, np.concatenate(starts), tolerance=np.array(tol), fallback_tension=fallback
+    )
     if msg:
         _MODEL_CACHE[key] = msg
         return msg

@@ -65,6 +65,17 @@ def _friction_states(S, W, check):  # noqa: ANN001, ANN201
 
 
 @njit(cache=True)
+def _static_friction_states(S, W):  # noqa: ANN001, ANN201
+    """Every contact node's stick/slip state from its trial force, line by line."""
+    no = S[0]
+    for l in range(no.shape[0] - 1):  # noqa: E741
+        n0, n1 = no[l], no[l + 1]
+        fr = S[26][l]
+        if fr[0] > 0.0 or fr[1] > 0.0:
+            _trial_states(W[12][n0:n1], W[13][n0:n1], W[10][n0:n1], fr)
+
+
+@njit(cache=True)
 def _residuals(S, W, x1, a0, a1, F0, Fp0, Fp, am, af, r, rp):  # noqa: ANN001, ANN201
     """Residuals ``r`` of the nodes and ``rp`` of the free points of the generalised-
     alpha balance; returns the largest over the free unknowns [N]."""
@@ -531,10 +542,25 @@ def system_static(x, anchor, S, W, r, rp, dx, dp, Fp, tol, max_it, lmin):  # noq
             reach = max(reach, abs(x[i, a]))
     floor = 1024.0 * 2.220446049250313e-16 * (reach + lmin)
     res = math.inf
+    # friction as an active set, as the single line's statics: the trial forces decide
+    # which contact nodes stick and which slide, Newton keeps those states, checked once
+    # converged
+    ksb = S[24]
+    has_friction = ksb.shape[0] > 0 and ksb.max() > 0.0 and S[26].max() > 0.0
+    fix_states = has_friction
+    slip = W[12]
+    for i in range(n):
+        slip[i, 0] = 0
+        slip[i, 1] = 0
+    checks = 0
     it = 0
     while True:
         for l in range(n_lines):  # noqa: E741
             assemble_line(l, x, v, anchor, S, W)
+        if fix_states:
+            fix_states = False
+            _static_friction_states(S, W)
+            continue
         point_forces(S, x, v, Fp)
         res = 0.0
         for i in range(n):
@@ -550,6 +576,9 @@ def system_static(x, anchor, S, W, r, rp, dx, dp, Fp, tol, max_it, lmin):  # noq
                 rp[p, a] = tot
                 res = max(res, abs(tot))
         if res <= tol:
+            if has_friction and checks < 20 and _friction_states(S, W, True):
+                checks += 1
+                continue
             return it, res, True
         if it >= max_it or not math.isfinite(res):
             return it, res, False

@@ -84,32 +84,45 @@ class SystemDynamicResult:
 
 
 def equilibrium(
-    packed: PackedSystem, start: np.ndarray, *, tolerance: float, max_iterations: int = 200
+    packed: PackedSystem,
+    start: np.ndarray,
+    *,
+    tolerance: np.ndarray,
+    fallback_tension: list[np.ndarray] | None = None,
+    max_iterations: int = 200,
 ) -> tuple[np.ndarray, np.ndarray, str]:
     """Discrete static equilibrium of the system model from ``start`` [m] (N, 3) (the
-    continuous statics at the nodes). Without free points each line is on its own: the
-    single line's :func:`.model.static_equilibrium` per line (so that a system of one
-    line starts exactly where the one-line study does); with free points the coupled
-    Newton (:func:`.system_march.system_static`). Returns positions, friction anchors
-    and an error message ("" when found)."""
+    continuous statics at the nodes). First each line on its own, its ends where the
+    continuous statics put them: the single line's :func:`.model.static_equilibrium`
+    (its seabed seating, friction anchors and fallbacks; so that a system of one line
+    starts exactly where the one-line study does). Then, with free points, the coupled
+    Newton (:func:`.system_march.system_static`) moves the junctions to the discrete
+    model's own balance, from that near start. ``tolerance`` [N] (L,) per line;
+    ``fallback_tension`` [N] per line (n,) the continuous statics' element tensions,
+    from which a stiff line's Newton restarts on positions and tensions. Returns
+    positions, friction anchors and an error message ("" when found)."""
     x = np.array(start, dtype=float, copy=True)
     anchor = x.copy()
-    if packed.n_points == 0:
-        for l, ln in enumerate(packed.lines):  # noqa: E741
-            sl = slice(packed.no[l], packed.no[l + 1])
-            xl, its, res, ok, anc = static_equilibrium(
-                ln, start[sl], tolerance=tolerance[l], max_iterations=max_iterations
+    for l, ln in enumerate(packed.lines):  # noqa: E741
+        sl = slice(packed.no[l], packed.no[l + 1])
+        xl, its, res, ok, anc = static_equilibrium(
+            ln,
+            start[sl],
+            tolerance=tolerance[l],
+            max_iterations=max_iterations,
+            fallback_tension=None if fallback_tension is None else fallback_tension[l],
+        )
+        if not ok:
+            return (
+                x,
+                anchor,
+                (
+                    f"the discrete static equilibrium of line {l} did not converge ({its} "
+                    f"iterations, residual {res:.3g} N)"
+                ),
             )
-            if not ok:
-                return (
-                    x,
-                    anchor,
-                    (
-                        f"the discrete static equilibrium of line {l} did not converge ({its} "
-                        f"iterations, residual {res:.3g} N)"
-                    ),
-                )
-            x[sl], anchor[sl] = xl, anc
+        x[sl], anchor[sl] = xl, anc
+    if packed.n_points == 0:
         return x, anchor, ""
     v = np.zeros_like(x)
     W = work_arrays(packed, x, v)
