@@ -56,7 +56,8 @@ def test_a_body_point_moves_by_the_exact_rotation() -> None:
         dx, _, _ = _drives(t)
         np.testing.assert_allclose(dx[0], x + rotation(theta) @ OFFSET[0], rtol=0, atol=1e-12)
         np.testing.assert_allclose(dx[1], x, rtol=0, atol=1e-12)
-    # not small-angle: at the largest yaw the exact point is metres from the linearised one
+    # not small-angle: at the largest yaw the exact point is metres from the point turned
+    # by the angle changes taken as a small rotation vector
     t = (0.25 / 0.03 - 1.1 / (2.0 * math.pi * 0.03)) % (1.0 / 0.03)
     x, theta = _pose(t)
     lin = x + (rotation(BASE[0, 3:]) @ OFFSET[0]) + np.cross(theta - BASE[0, 3:], OFFSET[0])
@@ -64,9 +65,12 @@ def test_a_body_point_moves_by_the_exact_rotation() -> None:
 
 
 def test_velocity_and_acceleration_are_the_derivatives_of_the_position() -> None:
-    """Central differences of the position with step h = 1e-3 s: truncation h^2/6 x'''
-    and h^2/12 x'''' (x''' <= |p| (sum A w)^3-ish, about 1e-2 m/s^3 here: 2e-9 m/s),
-    rounding 1e-12 m / h and 4e-12 m / h^2 (4e-6 m/s^2): 1e-5 bounds both."""
+    """Central differences of the position with step h = 1e-3 s. Truncation: h^2/6
+    times the third derivative for the velocity, h^2/12 times the fourth for the
+    acceleration; those derivatives are at most |p| (sum of the angles' A w)^3 and ^4
+    plus the surge's A w^3 and A w^4, below 1 m/s^3 and 1 m/s^4 here: under 2e-7 m/s
+    and 1e-7 m/s^2. Rounding: 1e-12 m / h = 1e-9 m/s and 4e-12 m / h^2 = 4e-6 m/s^2.
+    So 1e-6 m/s and 1e-5 m/s^2 bound both."""
     h = 1e-3
     for t in (3.0, 11.7, 25.2):
         xm, x0, xp = (_drives(t + d)[0] for d in (-h, 0.0, h))
