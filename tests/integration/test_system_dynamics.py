@@ -74,13 +74,27 @@ def _case(text: str, name: str = "sys.yaml"):  # noqa: ANN202
     return case
 
 
-@pytest.mark.parametrize("seabed", [False, True])
-def test_a_system_of_one_line_is_the_one_line_study_bit_for_bit(seabed: bool) -> None:
+@pytest.mark.parametrize(("seabed", "point"), [(False, False), (True, False), (False, True)])
+def test_a_system_of_one_line_is_the_one_line_study_bit_for_bit(seabed: bool, point: bool) -> None:
     """Same line, same end motion (the body surges, so its fairlead moves exactly as the
-    one-line study's end b): the same discrete statics, the same steps, the same
-    numbers, to the last bit; in deep water, and on a seabed (a third of the line laid:
-    contact and friction as active sets, as the one-line step holds them)."""
+    one-line study's end b; or, with no body, the fixed point moves on its own): the
+    same discrete statics, the same steps, the same numbers, to the last bit; in deep
+    water, and on a seabed (a third of the line laid: contact and friction as active
+    sets, as the one-line step holds them)."""
     one_text, sys_text = ONE_LINE, AS_SYSTEM
+    if point:
+        sys_text = (
+            sys_text.replace(
+                "q: {kind: body, body: ship, offset: [0.0, 0.0, -10.0]}",
+                "q: {kind: fixed, position: [0.0, 0.0, -10.0]}",
+            )
+            .replace("bodies:\n  ship: {kind: prescribed}\n", "")
+            .replace(
+                "{body: ship, dof: surge, amplitude: 3.0, frequency: 0.1}",
+                "{point: q, direction: [1.0, 0.0, 0.0], amplitude: 3.0, frequency: 0.1}",
+            )
+        )
+        assert "bodies" not in sys_text and "point: q" in sys_text
     if seabed:
         water = "{fluid: water, depth: 100.0, seabed: {friction: 0.5}}"
         one_text = one_text.replace("{fluid: water}", water)
