@@ -48,6 +48,7 @@ from .base import (
     StaticResult,
 )
 from .law_pieces import piece_increments
+from .line_state import CatenaryState, DiscreteState, discrete_end_stiffness
 from .seabed import Plane
 from .semi_analytic import _laid, _offsets, _suspended, make_layout, reversed_line
 
@@ -191,6 +192,8 @@ def line_end_stiffness(problem: StaticProblem, result: StaticResult) -> np.ndarr
     The catenary model's complementary energy is the potential of the end forces, so
     for a conservative line (no friction) K is symmetric."""
     assert problem.end_a.position is not None and problem.end_b.position is not None
+    if isinstance(result.state, DiscreteState):  # method discrete: its condensed tangent
+        return discrete_end_stiffness(result.state)
     line = problem.line
     L = line.total_length
     plane = _plane(problem)
