@@ -65,6 +65,9 @@ def system_model(study: Study) -> MooringSystem:
                 n_nodes=settings.nodes,
                 tolerance=settings.tolerance,
                 max_iterations=settings.max_iterations,
+                # the drag elements fixed here (default max(nodes - 1, 20), as for one
+                # line): the free-point Newton samples the lines at fewer nodes
+                drag_elements=settings.drag_elements or max(settings.nodes - 1, 20),
                 seabed_stiffness=env.seabed.stiffness,
                 friction_lateral=env.seabed.friction_lateral,
             ),
@@ -155,7 +158,8 @@ def evaluate_system_case(case: Case) -> CaseRecord:
     deadline = time.monotonic() + study.analysis.time_limit
     system = system_model(study)
     try:
-        res = solve_system(system, STATIC_SOLVERS["catenary"], deadline=deadline)
+        method = study.analysis.static.method  # catenary or discrete (config.study)
+        res = solve_system(system, STATIC_SOLVERS[method], deadline=deadline)
         status, message = res.status, res.message
         data = system_outputs(system, res)
     except Exception as exc:  # noqa: BLE001 - any solver fault is recorded as data

@@ -291,14 +291,7 @@ class Study(StrictModel):
                     f"{one_line}; a system runs analysis.static",
                     key,
                 )
-        if an.static.method != "catenary":
-            raise FieldError(
-                ("analysis", "static", "method"),
-                "a system is solved with the exact end stiffness of method 'catenary' "
-                "only; allowed: catenary (other methods are supported by "
-                f"{one_line})",
-                an.static.method,
-            )
+        self._system_method(one_line)
         if an.static.installation is not None:
             raise FieldError(
                 ("analysis", "static", "installation"),
@@ -329,6 +322,49 @@ class Study(StrictModel):
                         list(point.position),
                     )
         return self
+
+    def _system_method(self, one_line: str) -> None:
+        """The static method of a system: one that gives each line's exact end stiffness
+        (catenary, discrete), and what the cable method cannot carry refused by name."""
+        static = self.analysis.static
+        method = static.method
+        if method not in ("catenary", "discrete"):
+            raise FieldError(
+                ("analysis", "static", "method"),
+                "a system is solved with the end stiffness of methods 'catenary' and "
+                f"'discrete' only; allowed: catenary, discrete ({method!r} is supported by "
+                f"{one_line})",
+                method,
+            )
+        current = self.environment.has_current and self.environment.density > 0.0
+        if current and static.drag_diameter != "unstretched":
+            raise FieldError(
+                ("analysis", "static", "drag_diameter"),
+                f"drag on the stretched diameter is modelled by method 'shooting', which "
+                f"{one_line} supports, not by a system; allowed: unstretched",
+                static.drag_diameter,
+            )
+        if method == "discrete":
+            return
+        for name, line in self.lines.items():
+            for i, seg in enumerate(line.segments):
+                if seg.bending_stiffness > 0.0:
+                    raise FieldError(
+                        ("lines", name, "segments", i, "bending_stiffness"),
+                        f"EI = {seg.bending_stiffness:g} N m^2: method 'catenary' carries no "
+                        "bending; allowed: 0, or analysis.static.method: discrete (which "
+                        "models it)",
+                        seg.bending_stiffness,
+                    )
+            for i, att in enumerate(line.attachments):
+                if current and att.drag_area > 0.0:
+                    raise FieldError(
+                        ("lines", name, "attachments", i, "drag_area"),
+                        f"C_D A = {att.drag_area:g} m^2 in a current: method 'catenary' has "
+                        "no drag of lumped bodies; allowed: 0, or analysis.static.method: "
+                        "discrete (which models it)",
+                        att.drag_area,
+                    )
 
     @property
     def is_system(self) -> bool:

@@ -205,6 +205,13 @@ def discrete_end_stiffness(state: DiscreteState) -> np.ndarray:
     J_ei = J[ends][:, inner]
     J_ie = J[inner][:, ends].toarray()
     J_ii = J[inner][:, inner].tocsc()
+    # the mixed Newton's regularisation of the free nodes (1e-10 of the largest tension
+    # over the shortest element): a slack stretch on a frictionless seabed leaves its
+    # nodes free to slide, a neutral mode the ends do not feel (K changes by ~1e-10)
+    n_free = 3 * (line.n_nodes - 2)
+    t_max = max(float(np.max(state.tension)), 1e-300)
+    reg = 1e-10 * t_max / float(np.min(line.rest_length))
+    J_ii = (J_ii + sp.diags(np.r_[np.full(n_free, reg), np.zeros(size - 6 - n_free)])).tocsc()
     K = J_ee - J_ei @ splu(J_ii).solve(J_ie)
     out = np.empty((2, 2, 3, 3))
     for i in range(2):

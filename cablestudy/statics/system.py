@@ -375,14 +375,16 @@ def _solve(
     # wrapper, cablestudy.statics.VerifiedSolver); the lines at the solution are verified
     raw = getattr(solver, "solver", solver)
     final = system
-    # and sample each line at its ends only: its shape is wanted at the solution
-    system = replace(
-        system,
-        lines=tuple(
-            replace(ln, problem=replace(ln.problem, n_nodes=min(ln.problem.n_nodes, 3)))
-            for ln in system.lines
-        ),
-    )
+    # and, for the cable solver, sample each line at its ends only: its shape is wanted
+    # at the solution (the discrete model's nodes are its mesh: kept)
+    if getattr(solver, "name", "") == "catenary":
+        system = replace(
+            system,
+            lines=tuple(
+                replace(ln, problem=replace(ln.problem, n_nodes=min(ln.problem.n_nodes, 3)))
+                for ln in system.lines
+            ),
+        )
     results, force, K = _solve_lines(system, pos, raw, deadline)
     it = 0
     res = 0.0
