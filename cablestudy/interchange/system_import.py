@@ -249,12 +249,6 @@ def moordyn_system_to_study(
                 f"the file does not define; defined: {', '.join(md.line_types) or 'none'}"
             )
         seg = _segment(md, lt, ln, warnings)
-        if seg["bending_stiffness"] > 0.0:
-            warnings.append(
-                f"{src}:{lt.source_line}: line type {lt.name!r}: EI = "
-                f"{seg['bending_stiffness']:g} N m^2 is carried by the system's catenary "
-                "statics as a cable (no bending), as MoorPy does"
-            )
         if ln.outputs not in ("-", ""):
             warnings.append(
                 f"{src}:{ln.source_line}: line {ln.id} outputs {ln.outputs!r} not used "
@@ -289,8 +283,17 @@ def moordyn_system_to_study(
     if bodies:
         data["bodies"] = bodies
     data["lines"] = study_lines
+    static: dict[str, Any] = {}
     if all(ln.segments > 0 for ln in lines):
         most = max(ln.segments for ln in lines)
-        data["analysis"] = {"static": {"nodes": most + 1}}
+        static["nodes"] = most + 1
         comments[("analysis", "static", "nodes")] = f"the largest NumSegs {most} of the lines, + 1"
+    if any(seg["bending_stiffness"] > 0.0 for seg in segments):
+        static["method"] = "discrete"
+        comments[("analysis", "static", "method")] = (
+            "a line type has EI > 0: the static method that carries bending (each line "
+            "pinned at its ends, as MoorDyn's lines are)"
+        )
+    if static:
+        data["analysis"] = {"static": static}
     return ImportedStudy(data=data, comments=comments, warnings=warnings)
