@@ -21,7 +21,8 @@ from .config.system import BodyPoint, FixedPoint, FreePoint
 from .problem import line_model, medium
 from .results import CaseRecord
 from .statics import STATIC_SOLVERS, STATUS_NUMERICAL, STATUS_OK, EndCondition, StaticProblem
-from .statics.system import BODY, FIXED, FREE, MooringSystem, SystemLine, solve_system
+from .statics.system import BODY, FIXED, FREE, MooringSystem, SystemLine
+from .statics.system_methods import solve_system_by
 
 
 def system_model(study: Study) -> MooringSystem:
@@ -159,7 +160,7 @@ def evaluate_system_case(case: Case) -> CaseRecord:
     system = system_model(study)
     try:
         method = study.analysis.static.method  # catenary or discrete (config.study)
-        res = solve_system(system, STATIC_SOLVERS[method], deadline=deadline)
+        res = solve_system_by(system, method, STATIC_SOLVERS, deadline=deadline)
         status, message = res.status, res.message
         data = system_outputs(system, res)
     except Exception as exc:  # noqa: BLE001 - any solver fault is recorded as data

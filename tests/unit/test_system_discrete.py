@@ -14,7 +14,8 @@ from cablestudy.cases import expand_cases
 from cablestudy.config import parse_study_text
 from cablestudy.config.loader import StudyError
 from cablestudy.statics import STATIC_SOLVERS, EndCondition
-from cablestudy.statics.system import SystemResult, line_end_stiffness, solve_system
+from cablestudy.statics.system import SystemResult, line_end_stiffness
+from cablestudy.statics.system_methods import solve_system_by
 from cablestudy.system_cases import system_model
 from tests.system_models import polyester
 
@@ -49,7 +50,7 @@ analysis:
 def _solve(text: str) -> SystemResult:
     _, cases = expand_cases(parse_study_text(text, "hang.yaml"))
     study = cases[0].study
-    res = solve_system(system_model(study), STATIC_SOLVERS[study.analysis.static.method])
+    res = solve_system_by(system_model(study), study.analysis.static.method, STATIC_SOLVERS)
     assert res.status == 0, res.message
     return res
 
