@@ -32,10 +32,11 @@ def system_model(study: Study) -> MooringSystem:
     names = tuple(study.points)
     index = {name: i for i, name in enumerate(names)}
     bodies = tuple(study.bodies)
-    kind, position, body, force = [], [], [], []
+    kind, position, body, force, drag = [], [], [], [], []
     for point in study.points.values():
         f = np.zeros(3)
         b = -1
+        drag.append(0.5 * rho * point.drag_area if isinstance(point, FreePoint) else 0.0)
         if isinstance(point, FixedPoint):
             kind.append(FIXED)
             position.append(point.position)
@@ -83,6 +84,7 @@ def system_model(study: Study) -> MooringSystem:
         point_position=np.array(position, dtype=float).reshape(-1, 3),
         point_body=np.array(body, dtype=int),
         point_force=np.array(force, dtype=float).reshape(-1, 3),
+        point_drag=np.array(drag, dtype=float),
         body_names=bodies,
         body_position=np.array([b.position for b in study.bodies.values()], dtype=float).reshape(
             -1, 6

@@ -13,7 +13,7 @@ from .base import FieldError, StrictModel
 from .ends import Ends, FixedEnd, MooringEnd
 from .environment import Environment
 from .line import Line, MoorDynLineRef
-from .system import BodyPoint, FixedPoint, SystemBody, SystemLine, SystemPoint
+from .system import BodyPoint, FixedPoint, FreePoint, SystemBody, SystemLine, SystemPoint
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.\-]*$")
 
@@ -231,6 +231,13 @@ class Study(StrictModel):
                         name,
                     )
         for name, point in self.points.items():
+            if isinstance(point, FreePoint) and point.drag_area > 0.0 and not self.environment.current:
+                raise FieldError(
+                    ("points", name, "drag_area"),
+                    f"C_D A = {point.drag_area:g} m^2: a point's drag acts in a current only; "
+                    "allowed: 0, or give environment.current",
+                    point.drag_area,
+                )
             if isinstance(point, BodyPoint) and point.body not in self.bodies:
                 raise FieldError(
                     ("points", name, "body"),
@@ -297,13 +304,6 @@ class Study(StrictModel):
                 ("analysis", "static", "installation"),
                 f"cable laying is supported by {one_line}, not by a system",
                 "installation",
-            )
-        if self.environment.current:
-            raise FieldError(
-                ("environment", "current"),
-                "the system statics do not model current drag yet; allowed: no current "
-                f"(current is supported by {one_line})",
-                "current",
             )
         env = self.environment
         if env.depth is not None:

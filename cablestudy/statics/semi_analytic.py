@@ -49,6 +49,7 @@ from .base import (
     StaticResult,
 )
 from .law_pieces import piece_increments
+from .line_state import CatenaryState
 from .seabed import LaidPart, Plane, laid_part
 
 _Z = np.array([0.0, 0.0, 1.0])
@@ -1038,6 +1039,7 @@ class SemiAnalyticSolver:
                 lay, q, ends, plane, state, tol_inner, maxit, deadline, polish, grounded
             )
 
+        loads = None  # the drag-frozen loads per piece (line_state), in a current
         if not has_current:
             shape = inner(grav, tol)
             drag_res = 0.0
@@ -1051,7 +1053,10 @@ class SemiAnalyticSolver:
                 medium.current_z,
                 medium.current_velocity,
             )
-            shape, drag_res = self._drag_loop(lay, grav, drag, inner, tol, deadline, state, ends)
+            shape, drag_res, D = self._drag_loop(
+                lay, grav, drag, inner, tol, deadline, state, ends
+            )
+            loads = CatenaryState(layout=lay, q=grav + D, reversed=reverse)
         pos, tension = shape.sample(s_eval)
         if plane is not None:
             height = plane.height_above(pos)
@@ -1079,6 +1084,7 @@ class SemiAnalyticSolver:
             laid_length=shape.laid_length,
             iterations=state.newton,
             residual=res,
+            state=loads,
         )
 
     def _inner(
@@ -1293,8 +1299,9 @@ class SemiAnalyticSolver:
         deadline: float | None,
         state: _State,
         ends: Ends,
-    ) -> tuple[Shape, float]:
-        """Outer iteration on the drag loads; continuation in current speed on failure."""
+    ) -> tuple[Shape, float, np.ndarray]:
+        """Outer iteration on the drag loads; continuation in current speed on failure.
+        Returns the shape, the load residual and the converged drag loads (P, 3)."""
         Fscale = float(np.sum(np.abs(lay.weight) * lay.ell) + np.sum(np.abs(lay.point)))
         attempts: list[int] = [1, *self.continuation_steps]
         last: _Failure | None = None
@@ -1324,7 +1331,7 @@ class SemiAnalyticSolver:
                         lenient=not final,
                     )
                 assert shape is not None
-                return shape, res
+                return shape, res, D
             except _Failure as exc:
                 if exc.status == STATUS_TIME_LIMIT:
                     raise

@@ -107,6 +107,9 @@ class MooringSystem:
     body_cob: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
     #: [N] (m, 3) constant force at the reference point
     body_applied: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    #: [kg/m] (n,) 1/2 rho C_D A of the free points: drag in the lines' current
+    #: (:func:`.system_methods.point_drag`); empty: none
+    point_drag: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
 
 @dataclass(kw_only=True)
@@ -206,8 +209,13 @@ def line_end_stiffness(problem: StaticProblem, result: StaticResult) -> np.ndarr
     if reverse:
         line = reversed_line(line)
         fa, fb = fb, fa
-    lay = make_layout(line)
-    q = lay.gravity
+    if isinstance(result.state, CatenaryState):
+        # in a current: the solver's pieces and their converged loads, drag frozen
+        assert result.state.reversed == reverse
+        lay, q = result.state.layout, result.state.q
+    else:
+        lay = make_layout(line)
+        q = lay.gravity
     K = np.full((2, 2, 3, 3), np.nan)
     if result.laid_length > 0.0:
         assert plane is not None
@@ -280,6 +288,8 @@ def _solve_lines(
     force = np.zeros((n, 3))
     K = np.zeros((3 * n, 3 * n))
     results = []
+    from .system_methods import point_drag
+
     problems = [
         replace(
             ln.problem,
@@ -319,6 +329,10 @@ def _solve_lines(
                         "fixed point; its stiffness there is not modelled (anchor it)",
                     )
                 K[3 * ends[i] : 3 * ends[i] + 3, 3 * ends[j] : 3 * ends[j] + 3] += k[i, j]
+    drag = point_drag(system, pos)  # current drag on free points, if any
+    if drag is not None:
+        force += drag[0]
+        K += drag[1]
     return results, force, K
 
 
@@ -375,9 +389,11 @@ def _solve(
     # wrapper, cablestudy.statics.VerifiedSolver); the lines at the solution are verified
     raw = getattr(solver, "solver", solver)
     final = system
-    # and, for the cable solver, sample each line at its ends only: its shape is wanted
-    # at the solution (the discrete model's nodes are its mesh: kept)
-    if getattr(solver, "name", "") == "catenary":
+    # and, for the cable solver in still water, sample each line at its ends only: its
+    # shape is wanted at the solution (the discrete model's nodes are its mesh, and the
+    # check of a line in a current sums its drag over the samples: both kept)
+    still = not any(ln.problem.medium.has_current for ln in system.lines)
+    if getattr(solver, "name", "") == "catenary" and still:
         system = replace(
             system,
             lines=tuple(

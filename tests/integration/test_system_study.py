@@ -203,7 +203,6 @@ def _error(text: str) -> str:
         (("body: buoy, offset: [5.0", "body: boat, offset: [5.0"), 9, "boat"),
         (("static: {nodes", "modal: {modes: 3}\n  static: {nodes"), 18, "one-line study"),
         (("static: {nodes: 11", "static: {method: shooting, nodes: 11"), 18, "catenary, discrete"),
-        (("fluid: water,", "fluid: water, current: [{z: 0.0, speed: 1.0}],"), 2, "current"),
         (("[250.0, 0.0, -100.0]", "[250.0, 0.0, -101.0]"), 6, "below the seabed"),
         (("kind: prescribed,", "kind: moored,"), 11, "prescribed"),
     ],
