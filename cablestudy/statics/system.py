@@ -223,13 +223,16 @@ def line_end_stiffness(problem: StaticProblem, result: StaticResult) -> np.ndarr
         if float(plane.height_above(grounded_end)) > 1e-6 * L:
             raise SystemFailure(
                 STATUS_NO_SOLUTION,
-                "the line touches the seabed between two raised ends; its end stiffness "
-                "is modelled for a line lying on the seabed from an anchored end only",
+                "the line touches the seabed between two raised ends; method catenary "
+                "models its end stiffness for a line lying on the seabed from an anchored "
+                "end only (analysis.static.method: discrete models it)",
             )
         s_td = float(result.laid_length)
         if s_td >= L * (1.0 - 1e-9):
             raise SystemFailure(
-                STATUS_NO_SOLUTION, "the line lies wholly on the seabed: no end stiffness"
+                STATUS_NO_SOLUTION,
+                "the line lies wholly on the seabed: method catenary gives no end stiffness "
+                "(analysis.static.method: discrete models it)",
             )
         _, ell, EA, qs, C, k_td, Cend = _suspended(lay, q, s_td)
         T_td = -np.asarray(fb, dtype=float) + Cend
@@ -326,7 +329,8 @@ def _solve_lines(
                     raise SystemFailure(
                         STATUS_NO_SOLUTION,
                         f"line {ln.name} lies on the seabed from an end that is not a "
-                        "fixed point; its stiffness there is not modelled (anchor it)",
+                        "fixed point; method catenary does not model its stiffness there "
+                        "(anchor it, or analysis.static.method: discrete models it)",
                     )
                 K[3 * ends[i] : 3 * ends[i] + 3, 3 * ends[j] : 3 * ends[j] + 3] += k[i, j]
     drag = point_drag(system, pos)  # current drag on free points, if any

@@ -20,6 +20,7 @@ from cablestudy.system_cases import evaluate_system_case, system_model
 from tests.integration.test_system_study import SYSTEM
 
 RHO, G = 1025.0, 9.80665
+SEG = "{length: %s, diameter: 0.1, mass_per_length: 20.0, axial_stiffness: 5.0e8%s}"
 
 #: the integration system (legs on the seabed, a clump, a bridle, a body) with EI on
 #: every line, by method discrete, and the body offset by -1 cm, 0, +1 cm in surge
@@ -226,3 +227,48 @@ def test_what_a_system_in_a_current_cannot_use_is_refused_by_name(
     with pytest.raises(StudyError) as info:
         expand_cases(parse_study_text(text, "sys.yaml"))
     assert words in str(info.value)
+
+
+# ------------------------------------------------- a line on the seabed from free points
+
+#: a buoy held by a riser from an anchor, and a shared line from the buoy to a floater
+#: that lies on the seabed between them (a shared mooring's sagging line)
+SAGGING = f"""\
+name: sag
+environment: {{fluid: water, depth: 50.0}}
+points:
+  anchor: {{kind: fixed, position: [-200.0, 0.0, -50.0]}}
+  buoy: {{kind: free, position: [-120.0, 0.0, -20.0], mass: 500.0, volume: 1.5}}
+  fair: {{kind: body, body: float, offset: [0.0, 0.0, -5.0]}}
+bodies:
+  float: {{kind: prescribed, position: [60.0, 0.0, 0.0, 0.0, 0.0, 0.0]}}
+lines:
+  riser: {{a: anchor, b: buoy, segments: [{SEG % (60.0, "")}]}}
+  shared: {{a: buoy, b: fair, segments: [{SEG % (250.0, "")}]}}
+analysis:
+  static: {{method: discrete, nodes: 31, tolerance: 1.0e-10}}
+"""
+
+
+def test_a_line_on_the_seabed_between_free_and_body_points_by_method_discrete(
+    tmp_path: Path,
+) -> None:
+    """Method discrete solves a line lying on the seabed between a free point and a body
+    point (its end stiffness from the model's tangent, seabed springs included); the
+    buoy balances the lines' pull, its weight and its buoyancy to the system's
+    tolerance. Method catenary, whose end stiffness needs the laid part to start at an
+    anchor, fails the case naming the line and method discrete."""
+    ds = run(tmp_path, SAGGING, "sag").squeeze()
+    assert int(ds["status"]) == 0, str(ds["message"].values)
+    assert float(ds["laid_length"].sel(line="shared")) > 100.0  # most of it on the seabed
+    pull = ds["force_b"].sel(line="riser") + ds["force_a"].sel(line="shared")
+    load = np.array([0.0, 0.0, -(500.0 - RHO * 1.5) * G])
+    scale = float(ds["tension_a"].max())
+    np.testing.assert_allclose(pull.values + load, 0.0, atol=1e-8 * scale)
+    (_, [case]) = expand_cases(
+        parse_study_text(SAGGING.replace("method: discrete", "method: catenary"), "s.yaml")
+    )
+    record = evaluate_system_case(case)
+    assert record.status != 0
+    assert "line shared" in record.message or "seabed" in record.message
+    assert "discrete" in record.message
