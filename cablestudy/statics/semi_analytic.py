@@ -50,6 +50,7 @@ from .base import (
 )
 from .law_pieces import piece_increments
 from .line_state import CatenaryState
+from .vertical import solve_vertical
 from .seabed import LaidPart, Plane, laid_part
 
 _Z = np.array([0.0, 0.0, 1.0])
@@ -981,6 +982,9 @@ class SemiAnalyticSolver:
         state: _State,
     ) -> StaticResult:
         a, b = problem.end_a, problem.end_b
+        vertical = solve_vertical(problem, s)  # ends on one vertical: closed form
+        if vertical is not None:
+            return vertical
         line = problem.line
         L = line.total_length
         medium = problem.medium

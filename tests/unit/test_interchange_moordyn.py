@@ -566,8 +566,6 @@ MOORDYN_REFUSES = {"moordyn/bench/Mooring/floating_rods.txt": "rod ID 3 is defin
 #: imports whose statics the solvers do not settle today (reported to the solvers' owners;
 #: the import itself is right): (file, line or None for the whole chain) -> message
 SOLVER_GAPS = {
-    # a 5 m line hanging in vacuum between fixed points exactly 5 m apart, vertically
-    ("moordyn/tests/Mooring/body_tests/pinnedBody.txt", 1): "line search failed",
     # 890 m of line on a 700 m path: the slack lies on the seabed, its shape undetermined
     ("moorpy/tests/case5.dat", 1): "laid shape is not determined",
     ("moorpy/tests/case4.dat", None): "line search failed in the seabed-contact Newton",
