@@ -639,7 +639,14 @@ def initial_contact(
         e = fh - (fh @ n) * n
         e = e / np.linalg.norm(e) if np.linalg.norm(e) > 0.0 else e1
     Ls = min(math.sqrt(h * h + 2.0 * h * H / w), L)
-    return H * e, max(L - Ls, 0.0)
+    s_td = max(L - Ls, 0.0)
+    buoyant = np.flatnonzero(lay.weight < 0.0)
+    if buoyant.size:
+        # the uniform line's guess can lay a buoyant piece (a lazy wave's floats), which
+        # the laid part cannot hold and Newton cannot leave: start the touchdown halfway
+        # to the first buoyant piece
+        s_td = min(s_td, 0.5 * float(lay.bounds[buoyant[0]]))
+    return H * e, s_td
 
 
 def _slack_hint(lay: Layout, *, current: bool = False) -> str:

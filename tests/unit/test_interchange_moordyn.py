@@ -568,7 +568,6 @@ MOORDYN_REFUSES = {"moordyn/bench/Mooring/floating_rods.txt": "rod ID 3 is defin
 SOLVER_GAPS = {
     # 890 m of line on a 700 m path: the slack lies on the seabed, its shape undetermined
     ("moorpy/tests/case5.dat", 1): "laid shape is not determined",
-    ("moorpy/tests/case4.dat", None): "line search failed in the seabed-contact Newton",
     ("moorpy/tests/case6.dat", None): "not shorter than the path down to the seabed",
 }
 
