@@ -231,7 +231,11 @@ class Study(StrictModel):
                         name,
                     )
         for name, point in self.points.items():
-            if isinstance(point, FreePoint) and point.drag_area > 0.0 and not self.environment.current:
+            if (
+                isinstance(point, FreePoint)
+                and point.drag_area > 0.0
+                and not self.environment.current
+            ):
                 raise FieldError(
                     ("points", name, "drag_area"),
                     f"C_D A = {point.drag_area:g} m^2: a point's drag acts in a current only; "

@@ -160,9 +160,7 @@ def discrete_jacobian(state: DiscreteState) -> sp.csc_matrix:
         col_t = 3 * n + e
         # d(node force) / d T_e: +u at node e + 1, -u at node e (the model's sign)
         for node, sign in ((e + 1, 1.0), (e, -1.0)):
-            parts.append(
-                ((3 * node[:, None] + a).ravel(), np.repeat(col_t, 3), (sign * u).ravel())
-            )
+            parts.append(((3 * node[:, None] + a).ravel(), np.repeat(col_t, 3), (sign * u).ravel()))
         # element law c T = max(g, 0), g = l / l0 - 1: taut rows c T - g, slack rows T
         l0 = line.rest_length
         c = 1.0 / np.asarray(line.axial_stiffness, dtype=float)

@@ -50,8 +50,8 @@ from .base import (
 )
 from .law_pieces import piece_increments
 from .line_state import CatenaryState
-from .vertical import solve_vertical
 from .seabed import LaidPart, Plane, laid_part
+from .vertical import solve_vertical
 
 _Z = np.array([0.0, 0.0, 1.0])
 
@@ -1064,9 +1064,7 @@ class SemiAnalyticSolver:
                 medium.current_z,
                 medium.current_velocity,
             )
-            shape, drag_res, D = self._drag_loop(
-                lay, grav, drag, inner, tol, deadline, state, ends
-            )
+            shape, drag_res, D = self._drag_loop(lay, grav, drag, inner, tol, deadline, state, ends)
             loads = CatenaryState(layout=lay, q=grav + D, reversed=reverse)
         pos, tension = shape.sample(s_eval)
         if plane is not None:

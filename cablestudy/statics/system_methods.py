@@ -64,9 +64,7 @@ def solve_system_by(
     return solve_system(system, solver, deadline=deadline)
 
 
-def point_drag(
-    system: MooringSystem, pos: np.ndarray
-) -> tuple[np.ndarray, np.ndarray] | None:
+def point_drag(system: MooringSystem, pos: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
     """Current drag on the free points at positions ``pos`` [m] (n, 3): the force
     ``c |U| U`` [N] (n, 3) with ``c = 1/2 rho C_D A`` [kg/m] (``system.point_drag``) and U
     the current at the point's height, and its stiffness ``-d f / d r`` (3n, 3n), exact:

@@ -33,7 +33,9 @@ from .base import StaticProblem, StaticResult
 _Z = np.array([0.0, 0.0, 1.0])
 
 
-def _stretched(bounds: np.ndarray, w: np.ndarray, ea: np.ndarray, s0: float, s1: float, t0: float) -> float:
+def _stretched(
+    bounds: np.ndarray, w: np.ndarray, ea: np.ndarray, s0: float, s1: float, t0: float
+) -> float:
     """Stretched length of [s0, s1] hanging with tension t0 at s1 growing by the weight
     towards s0 (the leg's upper end at s0): sum l (1 + T_mid / EA) over the pieces."""
     total, t = 0.0, t0
@@ -128,11 +130,26 @@ def solve_vertical(problem: StaticProblem, s: np.ndarray) -> StaticResult | None
         if upper_is_a:
             t_of_s = t_low + (total - W(s))
             force_a, force_b = -(t_low + total) * _Z, t_low * _Z
-            z = np.array([ra[2] - _stretched(bounds, w, ea, 0.0, si, float(t_low + total - W(np.array(si)))) for si in s])
+            z = np.array(
+                [
+                    ra[2]
+                    - _stretched(bounds, w, ea, 0.0, si, float(t_low + total - W(np.array(si))))
+                    for si in s
+                ]
+            )
         else:
             t_of_s = t_low + W(s)
             force_a, force_b = t_low * _Z, -(t_low + total) * _Z
-            z = np.array([ra[2] + (_stretched_up(bounds, w, ea, 0.0, si) + t_low * float(np.sum(np.diff(np.clip(bounds, 0.0, si)) / ea))) for si in s])
+            z = np.array(
+                [
+                    ra[2]
+                    + (
+                        _stretched_up(bounds, w, ea, 0.0, si)
+                        + t_low * float(np.sum(np.diff(np.clip(bounds, 0.0, si)) / ea))
+                    )
+                    for si in s
+                ]
+            )
         tension = np.asarray(t_of_s, dtype=float)
     if med.depth is not None:
         ground = float(med.seabed_z(np.array(ra[0]), np.array(ra[1])))

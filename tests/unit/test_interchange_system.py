@@ -281,7 +281,10 @@ def test_a_system_in_a_current_survives_export_and_import(tmp_path: Path, capsys
         "{z: -100.0, speed: 0.2, heading_deg: 30.0}]\n",
     )
     for k in "123":
-        text = text.replace(f"junction{k}: {{kind: free, position: [", f"junction{k}: {{kind: free, drag_area: 3.0, position: [")
+        text = text.replace(
+            f"junction{k}: {{kind: free, position: [",
+            f"junction{k}: {{kind: free, drag_area: 3.0, position: [",
+        )
     config.write_text(text)
     exported, back = _round_trip(config, tmp_path, capsys, ["--case", "surge=4.0"])
     assert "1  Currents" in exported and (tmp_path / "current_profile.txt").exists()

@@ -135,7 +135,7 @@ def test_without_bending_the_discrete_system_converges_to_the_catenary_at_order_
         for n in (11, 21, 41)
     ]
     assert 0.0 < errors[-1] < 1e-3  # 41 nodes: within 1e-3 of the tensions (1e4 N) etc.
-    for coarse, fine in zip(errors, errors[1:]):
+    for coarse, fine in zip(errors, errors[1:], strict=False):
         assert 3.6 <= coarse / fine <= 4.4, errors
 
 
@@ -145,8 +145,8 @@ def test_with_bending_the_system_converges_and_bending_changes_it() -> None:
     than its mesh error (the bending stiffness is used, not dropped)."""
     ei = ", bending_stiffness: 3.0e5"
     runs = [_numbers(_solve(hanging_system("discrete", n, ei))) for n in (11, 21, 41, 81)]
-    steps = [float(np.max(np.abs(b - a))) for a, b in zip(runs, runs[1:])]
-    for coarse, fine in zip(steps, steps[1:]):
+    steps = [float(np.max(np.abs(b - a))) for a, b in zip(runs, runs[1:], strict=False)]
+    for coarse, fine in zip(steps, steps[1:], strict=False):
         assert 3.6 <= coarse / fine <= 4.4, steps
     mesh_error = steps[-1] / 3.0  # Richardson: the error of the finest is step / (4 - 1)
     cable = _numbers(_solve(hanging_system("discrete", 81)))
