@@ -180,4 +180,24 @@ def evaluate_system_case(case: Case) -> CaseRecord:
         message=message,
         wall_time=time.perf_counter() - t0,
         data=data,
+        warning=_strain_warning(study, res) if status == STATUS_OK else "",
     )
+
+
+def _strain_warning(study: Study, res: Any) -> str:
+    """``analysis.static.strain_warning`` of a system: the largest strain of each line
+    (as for one line), the lines above the limit named."""
+    from .analyses import largest_static_strain
+    from .plausibility import strain_warning
+
+    limit = study.analysis.static.strain_warning
+    strains = {
+        name: largest_static_strain(SimpleNamespace(line=line), r)
+        for (name, line), r in zip(study.lines.items(), res.lines, strict=True)
+    }
+    worst = max(strains, key=lambda k: strains[k] if math.isfinite(strains[k]) else -1.0)
+    text = strain_warning(strains[worst], limit)
+    if not text:
+        return ""
+    over = [k for k, v in strains.items() if v > limit]
+    return f"{text} (lines {', '.join(over)})"

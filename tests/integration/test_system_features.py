@@ -272,3 +272,22 @@ def test_a_line_on_the_seabed_between_free_and_body_points_by_method_discrete(
     assert record.status != 0
     assert "line shared" in record.message or "seabed" in record.message
     assert "discrete" in record.message
+
+
+def test_strain_warning_of_a_system_names_its_lines(tmp_path: Path) -> None:
+    """analysis.static.strain_warning is used by a system as by one line: each line's
+    largest strain T / EA (EA 5e8 N, tensions 6 to 46 kN: strains 1e-5 to 1e-4) against
+    it; with the limit at 1e-6 the case keeps status 0 with a warning naming the lines
+    above it, with the default-like 1.0 none."""
+    text = SYSTEM.replace("tolerance: 1.0e-11}", "tolerance: 1.0e-11, strain_warning: 1.0e-6}")
+    text = text.replace("{start: -2.0, stop: 2.0, num: 9, name: surge}", "{values: [0.0]}")
+    ds = run(tmp_path, text, "strained").squeeze()
+    assert int(ds["status"]) == 0
+    warning = str(ds["warning"].values)
+    assert "strain" in warning and "strain_warning" in warning
+    # T / EA of each line from the file: the lines above 1e-6 are the ones named
+    strain = ds["tension"].max("s") / 5.0e8
+    named = warning.rsplit("(lines ", 1)[1].rstrip(")").split(", ")
+    assert named == [str(n) for n in ds["line"].values[strain.values > 1e-6]]
+    plain = run(tmp_path, text.replace("strain_warning: 1.0e-6", "strain_warning: 1.0"), "calm")
+    assert str(plain["warning"].squeeze().values) == ""
