@@ -30,8 +30,6 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-import scipy.sparse as sp
-from scipy.sparse.linalg import splu
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -129,10 +127,13 @@ def _bending_curvature_triplets(line: Any, x: np.ndarray) -> list[tuple]:
     ]
 
 
-def discrete_jacobian(state: DiscreteState) -> sp.csc_matrix:
+def discrete_jacobian(state: DiscreteState) -> Any:
     """The Jacobian of the discrete equilibrium at ``state``: rows the nodal
     out-of-balance forces (3 (n + 1)) and, in the mixed form, the element laws (n);
-    columns the node positions and, in the mixed form, the element tensions."""
+    columns the node positions and, in the mixed form, the element tensions (a scipy
+    sparse matrix; scipy is imported here, not with the solvers)."""
+    import scipy.sparse as sp
+
     from ..dynamics.mixed import SLACK_WEIGHT, axial_forces, other_forces_line
     from ..dynamics.model import Workspace, _trial_states, evaluate
 
@@ -190,6 +191,9 @@ def discrete_end_stiffness(state: DiscreteState) -> np.ndarray:
     free node and element tension re-equilibrated). f is the force of the line on the
     attachment, minus the end node's out-of-balance force, so K is the condensed
     Jacobian itself."""
+    import scipy.sparse as sp
+    from scipy.sparse.linalg import splu
+
     line = state.line
     held = np.flatnonzero(np.asarray(line.held, dtype=bool))
     last = line.n_nodes - 1

@@ -607,7 +607,10 @@ def initial_contact(
 
         Hmax = w * (L * L - h * h) / (2.0 * h) if L > h else w * L
         lo, hi = 1e-9 * w * L, Hmax
-        if still and L - h - X > 1e-9 * L:
+        # a piece lighter than the fluid (or an attachment pulling up) can hold a line
+        # longer than that path off the seabed: then the contact Newton decides
+        lifted = bool(np.any(lay.weight < 0.0)) or bool(np.any(lay.point @ plane.normal > 0.0))
+        if still and L - h - X > 1e-9 * L and not lifted:
             raise _Failure(
                 STATUS_NO_SOLUTION,
                 f"the line ({L:.6g} m) is longer than the path "
