@@ -92,9 +92,11 @@ IN_CURRENT = (
 )
 
 
-@pytest.fixture(scope="module")
-def current(tmp_path_factory: pytest.TempPathFactory) -> xr.Dataset:
-    return run(tmp_path_factory.mktemp("current"), IN_CURRENT, "current")
+@pytest.fixture(scope="module", params=["catenary", "discrete"])
+def current(request: pytest.FixtureRequest, tmp_path_factory: pytest.TempPathFactory) -> xr.Dataset:
+    """The system in a current by each method (discrete: the drag of its nodes)."""
+    text = IN_CURRENT.replace("static: {", f"static: {{method: {request.param}, ")
+    return run(tmp_path_factory.mktemp("current"), text, "current")
 
 
 def test_system_in_a_current_runs_end_to_end_with_mirror_symmetry(current: xr.Dataset) -> None:
