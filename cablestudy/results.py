@@ -383,7 +383,8 @@ SYSTEM_OUTPUTS: dict[str, OutputVariable] = {
         ("body", "dof", "dof_j"),
         "N/m, N/rad, N, N m/rad",
         "mooring stiffness of each body: minus d body_force[dof] / d body_position[dof_j], "
-        "free points re-equilibrated",
+        "free points re-equilibrated (in a current: with the lines' drag loads held at "
+        "their equilibrium values)",
         analysis="static",
     ),
 }

@@ -15,8 +15,8 @@ lines:
 A body's ``position`` is surge, sway, heave [m] and roll, pitch, yaw [rad] of its
 reference point (rotation R = Rz(yaw) Ry(pitch) Rx(roll)); a body point's ``offset`` is
 in the body frame from the reference point. A free point is placed by equilibrium under
-the lines' pull, its weight ``mass`` g, the buoyancy rho ``volume`` g and ``force``;
-its ``position`` is the starting guess.
+the lines' pull, its weight ``mass`` g, the buoyancy rho ``volume`` g, ``force`` and,
+in a current, its drag; its ``position`` is the starting guess.
 """
 
 from __future__ import annotations
@@ -52,8 +52,9 @@ class FreePoint(StrictModel):
     )
     drag_area: NonNegative = Field(
         0.0,
-        description="dynamics: drag coefficient times area C_D A [m^2] (isotropic drag "
-        "1/2 rho C_D A |u| u on the point's velocity u)",
+        description="drag coefficient times projected area C_D A [m^2]: drag "
+        "1/2 rho C_D A |U| U on the point's velocity U relative to the current (statics: "
+        "in environment.current; dynamics: also on the point's motion)",
     )
 
 
