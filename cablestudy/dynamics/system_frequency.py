@@ -1,0 +1,532 @@
+"""Frequency-domain response of a mooring system: every line and free point linearised
+together about the static state, driven by harmonic motion of the bodies.
+
+Each line is the single-line frequency domain's linear model
+(:class:`~cablestudy.dynamics.frequency.LinearLine`, both end nodes prescribed; its
+matrices projected once on the inner nodes, :class:`~.frequency.ReducedLine`). Lines
+meet at points: fixed (at rest), on a prescribed body (moved rigidly with it) or free
+(junctions, clumps, buoys: unknown). Every quantity is ``Re(Q exp(i w t))``.
+
+The model. With ``A = K - w^2 M + i w (C + D)`` a line's dynamic matrix (``D`` its
+linearised drag, below), split into the inner nodes ``I`` and its two end nodes ``E``,
+the inner nodes carry no external load and the end rows give the force the line needs
+at its end nodes (minus the force of the line on the point):
+
+    A_II u_I + A_IE u_E = 0,        f_E = A_EI u_I + A_EE u_E.
+
+Per line, one band factorisation of ``A_II`` (the line's band) solves ``A_II X =
+-A_IE`` for the six end unit motions, so ``u_I = X u_E`` and ``f_E = S u_E`` with the
+condensed end dynamic stiffness ``S = A_EE + A_EI X`` (6 x 6, the Schur complement).
+A free point ``p`` of mass ``m_p`` (added mass included; 3 x 3) and linearised drag
+``D_p`` balances the forces it applies to the lines' end nodes:
+
+    (-w^2 m_p + i w D_p) u_p + sum over line ends at p of (S u_E)_end = 0,
+
+a dense system of three unknowns per free point (the junction system), whose right
+side carries the prescribed motion of the other line ends. No matrix over all nodes
+is ever formed: per line a banded solve with six right sides, and one small dense solve.
+
+Body motion. A body's complex amplitudes ``(X, Theta)`` (surge, sway, heave [m], roll,
+pitch, yaw [rad]) move its point at global offset ``a = R p`` from the reference point
+by ``X + Theta x a`` (small rotation: the rotation matrices' first order, whatever
+their order).
+
+Drag. Each line's nodal Morison drag is linearised as in the single-line frequency
+domain (:func:`~.frequency.drag_linearisation`: the mean-square, describing-function
+fit of ``c_N |w_N| w_N + c_T |w_T| w_T``, closed form for motion in the x-z plane); a
+free point's isotropic drag ``c |w| w`` (``c = rho C_d A / 2``) is fitted the same way
+over ``samples`` phases. Since ``D`` depends on the motion the solve is iterated from
+the quasi-static motion (``w = 0``: the stiffness alone, the velocity then ``i w u``),
+with under-relaxation where the change stops halving, until the velocity amplitudes of
+every node change by less than ``tolerance`` of the largest.
+
+Output per line: end tension variations at A and B (``F_hat . dF``, ``F_hat`` the unit
+static force of the line on the point, as in the single-line frequency domain), the
+element tension variations (the envelope ``T_static +- |dT|``) and the displacements;
+per point its displacement. Status 0 only when the assembled equations hold: every
+line's inner rows and every free point's balance are checked on the solution (the
+residual against the largest end force amplitude, :data:`RESIDUAL_BAR`).
+
+Pure: arrays and frozen dataclasses in, a :class:`SystemFrequencyResult` out.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.linalg import solve_banded
+
+from ..physics.current import current_velocity
+from ..statics.base import STATUS_NUMERICAL, STATUS_OK, EndCondition
+from ..statics.system import BODY, FREE, MooringSystem, SystemResult
+from .frequency import (
+    FIT_REGULARISATION,
+    STATUS_NOT_CONVERGED,
+    DragSettings,
+    ReducedLine,
+    drag_linearisation,
+    drag_tangent,
+)
+from .linear_model import linear_line
+from .modal import ModalProblem
+
+#: largest residual of the assembled equations on the solution (inner rows of every
+#: line, balance of every free point), relative to the largest end-force amplitude and
+#: the largest inertial/stiffness force scale: LAPACK's band and dense solves leave
+#: about the condition number times 1e-16; 1e-8 allows condition numbers to 1e8
+RESIDUAL_BAR = 1e-8
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class SystemLinear:
+    """A mooring system linearised about its static state.
+
+    Parameters
+    ----------
+    names : line names, (L,)
+    lines : each line's reduced linear model (both end nodes prescribed), (L,)
+    ends : (L, 2) int, the point at end A and at end B of each line
+    point_kind : (P,) int, FIXED, FREE or BODY (:mod:`cablestudy.statics.system`)
+    point_body : (P,) int, body index of BODY points (-1 otherwise)
+    point_arm : [m] (P, 3) global offset ``R p`` of a BODY point from its body's
+        reference point in the static state (zeros otherwise)
+    point_mass : [kg] (P, 3, 3) mass and added mass of the free points
+    point_drag : [kg/m] (P,) isotropic drag coefficient ``rho C_d A / 2`` of free points
+    point_current : [m/s] (P, 3) current at the points
+    n_bodies : number of bodies
+    """
+
+    names: tuple[str, ...]
+    lines: tuple[ReducedLine, ...]
+    ends: np.ndarray
+    point_kind: np.ndarray
+    point_body: np.ndarray
+    point_arm: np.ndarray
+    point_mass: np.ndarray
+    point_drag: np.ndarray
+    point_current: np.ndarray
+    n_bodies: int
+
+    @property
+    def free_points(self) -> np.ndarray:
+        return np.flatnonzero(self.point_kind == FREE)
+
+    @property
+    def has_drag(self) -> bool:
+        return bool(np.any(self.point_drag > 0.0)) or any(r.line.has_drag for r in self.lines)
+
+
+@dataclass(kw_only=True)
+class SystemFrequencyResult:
+    """Harmonic response of a system (complex amplitudes of ``Re(Q e^{i w t})``).
+
+    end_tension [N] (L, 2) variation of each line's end tensions at A and B;
+    tension_static [N] (L, 2); element_tension [N] per line (n_l - 1,) complex;
+    displacement [m] per line (n_l, 3) complex; point_displacement [m] (P, 3) complex;
+    iterations, converged, change (drag iteration); residual (relative, see
+    :data:`RESIDUAL_BAR`); status, message.
+    """
+
+    end_tension: np.ndarray
+    tension_static: np.ndarray
+    element_tension: list[np.ndarray]
+    displacement: list[np.ndarray]
+    point_displacement: np.ndarray
+    iterations: int = 0
+    converged: bool = True
+    change: float = 0.0
+    residual: float = 0.0
+    status: int = STATUS_OK
+    message: str = ""
+    element_tension_static: list[np.ndarray] = field(default_factory=list)
+
+    @property
+    def tension_amplitude(self) -> np.ndarray:
+        """[N] (L, 2) amplitudes of the end tension variations at A and B."""
+        return np.abs(self.end_tension)
+
+    def envelope(self) -> tuple[list[np.ndarray], list[np.ndarray]]:
+        """Per line the linear tension envelope over its elements [N]: static plus and
+        minus the amplitude of the variation."""
+        hi = [t + np.abs(d) for t, d in zip(self.element_tension_static, self.element_tension, strict=True)]
+        lo = [t - np.abs(d) for t, d in zip(self.element_tension_static, self.element_tension, strict=True)]
+        return hi, lo
+
+
+# ------------------------------------------------------------------------ building
+
+
+def system_linear(
+    system: MooringSystem,
+    static: SystemResult,
+    *,
+    point_mass: np.ndarray | None = None,
+    point_added_mass: np.ndarray | None = None,
+    point_drag: np.ndarray | None = None,
+    extras: list | None = None,
+) -> tuple[SystemLinear | None, str]:
+    """The system linearised about its solved static state ``static`` (each line's
+    static samples are its nodes), or None and why not. ``point_mass`` and
+    ``point_added_mass`` [kg] (P,) (isotropic) and ``point_drag`` [kg/m] (P,)
+    (``rho C_d A / 2``) of the free points (zeros when not given); ``extras`` per line
+    the :class:`~cablestudy.dynamics.model.DynamicExtras` (None: the line's defaults)."""
+    P = len(system.point_names)
+    held = EndCondition(kind="fixed")
+    reduced = []
+    for i, (sl, st) in enumerate(zip(system.lines, static.lines, strict=True)):
+        T_e = 0.5 * (st.tension[:-1] + st.tension[1:])
+        med = sl.problem.medium
+        if med.depth is not None:
+            ground = med.seabed_z(st.position[:, 0], st.position[:, 1])
+            on_bed = st.position[:, 2] - ground <= 1e-6 * max(float(st.s[-1]), 1.0)
+        else:
+            on_bed = np.zeros(len(st.s), dtype=bool)
+        slack = (T_e <= 0.0) & ~(on_bed[:-1] & on_bed[1:])
+        if np.any(slack):
+            return None, (
+                f"line {sl.name!r} is slack in the static state (element tension "
+                f"{float(T_e[slack].min()):.4g} N); the frequency domain needs taut lines"
+            )
+        line = linear_line(
+            ModalProblem(
+                line=sl.problem.line,
+                medium=med,
+                end_a=held,
+                end_b=held,
+                static=st,
+                extras=None if extras is None else extras[i],
+            )
+        )
+        ends = static.point_position[[sl.a, sl.b]]
+        gap = float(np.max(np.abs(line.position[[0, -1]] - ends)))
+        if gap > 1e-6 * max(float(st.s[-1]), 1.0):
+            return None, f"line {sl.name!r} does not end at its points (gap {gap:.3g} m)"
+        reduced.append(ReducedLine.of(line))
+    arm = np.zeros((P, 3))
+    on_body = system.point_kind == BODY
+    if np.any(on_body):
+        bodies = static.body_position if static.body_position is not None else system.body_position
+        arm[on_body] = static.point_position[on_body] - bodies[system.point_body[on_body], :3]
+    m = np.zeros(P) if point_mass is None else np.asarray(point_mass, dtype=float)
+    ma = np.zeros(P) if point_added_mass is None else np.asarray(point_added_mass, dtype=float)
+    mass = (m + ma)[:, None, None] * np.eye(3)[None]
+    medium = system.lines[0].problem.medium
+    current = current_velocity(
+        static.point_position[:, 2], medium.current_z, medium.current_velocity
+    ) if medium.current_velocity.size else np.zeros((P, 3))
+    return (
+        SystemLinear(
+            names=tuple(sl.name for sl in system.lines),
+            lines=tuple(reduced),
+            ends=np.array([[sl.a, sl.b] for sl in system.lines], dtype=int).reshape(-1, 2),
+            point_kind=np.asarray(system.point_kind, dtype=int),
+            point_body=np.asarray(system.point_body, dtype=int),
+            point_arm=arm,
+            point_mass=mass,
+            point_drag=np.zeros(P) if point_drag is None else np.asarray(point_drag, dtype=float),
+            point_current=np.asarray(current, dtype=float).reshape(P, 3),
+            n_bodies=len(system.body_names),
+        ),
+        "",
+    )
+
+
+def point_motion(model: SystemLinear, body_motion: np.ndarray) -> np.ndarray:
+    """Complex displacements [m] (P, 3) of the points for the bodies' complex motion
+    amplitudes ``body_motion`` (B, 6) [m, rad]: ``X + Theta x a`` on a body, zero
+    elsewhere (free points are unknowns: zero here)."""
+    u = np.zeros((model.point_kind.size, 3), dtype=complex)
+    on = np.flatnonzero(model.point_kind == BODY)
+    if on.size:
+        q = np.asarray(body_motion, dtype=complex).reshape(model.n_bodies, 6)[model.point_body[on]]
+        u[on] = q[:, :3] + np.cross(q[:, 3:], model.point_arm[on])
+    return u
+
+
+# ------------------------------------------------------------------------ solving
+
+
+def _end_unit(n: int) -> np.ndarray:
+    """(6, n, 3): the six unit displacements of the end nodes (A x, y, z; B x, y, z)."""
+    E = np.zeros((6, n, 3))
+    for k in range(3):
+        E[k, 0, k] = 1.0
+        E[3 + k, -1, k] = 1.0
+    return E
+
+
+def _condense(
+    red: ReducedLine, omega: float, D: np.ndarray | None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+    """Per line: ``X`` (k, 6) inner response per unit end motion, ``S`` (6, 6) condensed
+    end dynamic stiffness, and the full unit responses (6, n, 3); None if ``A_II`` is
+    singular."""
+    line = red.line
+    n = line.n_nodes
+    B = line.free_basis
+    E = _end_unit(n)
+    rhs = np.stack([-(B.T @ red.apply(E[e], omega, D).ravel()) for e in range(6)], axis=1)
+    U = E.astype(complex)
+    if rhs.shape[0]:
+        ab = red.K - omega**2 * red.M + 1j * omega * red.C
+        if D is not None:
+            ab = ab + 1j * omega * red.drag_band(D)
+        bw = red.bandwidth
+        try:
+            X = solve_banded((bw, bw), ab, rhs, check_finite=False)
+        except (np.linalg.LinAlgError, ValueError):
+            return None
+        if not np.all(np.isfinite(X)):
+            return None
+        U = U + (B @ X).T.reshape(6, n, 3)
+    else:
+        X = np.zeros((0, 6), dtype=complex)
+    S = np.empty((6, 6), dtype=complex)
+    for e in range(6):
+        r = red.apply(U[e], omega, D)
+        S[:3, e], S[3:, e] = r[0], r[-1]
+    return X, S, U
+
+
+def point_drag_fit(
+    c: np.ndarray, current: np.ndarray, velocity: np.ndarray, samples: int
+) -> np.ndarray:
+    """Equivalent drag damping [N s/m] (P, 3, 3) of isotropic drag ``c |w| w`` at points
+    moving with complex velocity amplitudes ``velocity`` (P, 3) in the current
+    ``current`` (P, 3): the mean-square fit over ``samples`` phases, ``D = <f' w'^T>
+    <w' w'^T>^-1``, leaning towards the small-motion tangent ``c (|U| I + U U^T / |U|)``
+    in directions without motion (:data:`~.frequency.FIT_REGULARISATION`)."""
+    th = 2.0 * np.pi * np.arange(samples) / samples
+    w = -(velocity.real[None] * np.cos(th)[:, None, None] - velocity.imag[None] * np.sin(th)[:, None, None])
+    r = current[None] + w
+    f = c[None, :, None] * np.linalg.norm(r, axis=2)[..., None] * r
+    f = f - f.mean(axis=0)
+    G = np.einsum("kpa,kpb->pab", w, w) / samples
+    H = np.einsum("kpa,kpb->pab", f, w) / samples
+    su = np.linalg.norm(current, axis=1)
+    inv = np.where(su > 0.0, 1.0 / np.where(su > 0.0, su, 1.0), 0.0)
+    D0 = c[:, None, None] * (
+        su[:, None, None] * np.eye(3) + inv[:, None, None] * (current[:, :, None] * current[:, None, :])
+    )
+    trace = np.trace(G, axis1=1, axis2=2)
+    eps = np.where(trace > 0.0, FIT_REGULARISATION * trace, 1.0)[:, None, None]
+    lhs = G + eps * np.eye(3)
+    rhs = np.where((trace > 0.0)[:, None, None], H + eps * D0, D0)
+    # D lhs = rhs -> lhs^T D^T = rhs^T (lhs symmetric)
+    return np.swapaxes(np.linalg.solve(lhs, np.swapaxes(rhs, 1, 2)), 1, 2)
+
+
+def _solve_linear(
+    model: SystemLinear,
+    omega: float,
+    prescribed: np.ndarray,
+    D_lines: list[np.ndarray | None],
+    D_points: np.ndarray | None,
+    *,
+    quasi_static: bool = False,
+) -> tuple[np.ndarray, list[np.ndarray], list[np.ndarray]] | str:
+    """One linear solve at fixed drag: point displacements (P, 3), per line the nodal
+    displacements (n, 3) and end forces ``S u_E`` (6,); or the reason it failed."""
+    w = 0.0 if quasi_static else omega
+    free = model.free_points
+    slot = np.full(model.point_kind.size, -1)
+    slot[free] = np.arange(free.size)
+    G = np.zeros((3 * free.size, 3 * free.size), dtype=complex)
+    rhs = np.zeros(3 * free.size, dtype=complex)
+    for j, p in enumerate(free):
+        Z = -(w**2) * model.point_mass[p]
+        if D_points is not None and not quasi_static:
+            Z = Z + 1j * w * D_points[p]
+        G[3 * j : 3 * j + 3, 3 * j : 3 * j + 3] += Z
+    condensed = []
+    for i, red in enumerate(model.lines):
+        c = _condense(red, w, None if quasi_static else D_lines[i])
+        if c is None:
+            return f"singular dynamic matrix of line {model.names[i]!r} at {omega / (2 * math.pi):.6g} Hz"
+        condensed.append(c)
+        _, S, _ = c
+        for ea in range(2):
+            p = model.ends[i, ea]
+            if slot[p] < 0:
+                continue
+            rows = slice(3 * slot[p], 3 * slot[p] + 3)
+            for eb in range(2):
+                q = model.ends[i, eb]
+                block = S[3 * ea : 3 * ea + 3, 3 * eb : 3 * eb + 3]
+                if slot[q] >= 0:
+                    G[rows, 3 * slot[q] : 3 * slot[q] + 3] += block
+                else:
+                    rhs[rows] -= block @ prescribed[q]
+    u_points = prescribed.astype(complex).copy()
+    if free.size:
+        try:
+            sol = np.linalg.solve(G, rhs)
+        except np.linalg.LinAlgError:
+            return f"singular junction system at {omega / (2 * math.pi):.6g} Hz"
+        if not np.all(np.isfinite(sol)):
+            return f"singular junction system at {omega / (2 * math.pi):.6g} Hz"
+        u_points[free] = sol.reshape(-1, 3)
+    displacement, forces = [], []
+    for i, (_, S, U) in enumerate(condensed):
+        uE = u_points[model.ends[i]].ravel()
+        displacement.append(np.tensordot(uE, U, axes=(0, 0)))
+        forces.append(S @ uE)
+    return u_points, displacement, forces
+
+
+def _velocity_change(old: list[np.ndarray], new: list[np.ndarray]) -> float:
+    big = max(float(np.max(np.abs(v))) for v in new)
+    diff = max(float(np.max(np.abs(a - b))) for a, b in zip(old, new, strict=True))
+    return diff / max(big, 1e-300)
+
+
+def solve_system_harmonic(
+    model: SystemLinear,
+    omega: float,
+    body_motion: np.ndarray,
+    settings: DragSettings | None = None,
+) -> SystemFrequencyResult:
+    """Steady harmonic response at ``omega`` [rad/s] to the bodies' complex motion
+    amplitudes ``body_motion`` [m, rad] (B, 6), the drag linearised by iteration (module
+    docstring). Never raises for a numerical failure: status and message."""
+    settings = settings or DragSettings()
+    L = len(model.lines)
+    static = np.array(
+        [np.linalg.norm(r.line.end_force, axis=1) for r in model.lines]
+    ).reshape(L, 2)
+    prescribed = point_motion(model, body_motion)
+
+    def failed(status: int, message: str, iterations: int = 0) -> SystemFrequencyResult:
+        return SystemFrequencyResult(
+            end_tension=np.full((L, 2), np.nan + 0j),
+            tension_static=static,
+            element_tension=[np.full(r.line.n_nodes - 1, np.nan + 0j) for r in model.lines],
+            displacement=[np.full((r.line.n_nodes, 3), np.nan + 0j) for r in model.lines],
+            point_displacement=np.full(prescribed.shape, np.nan + 0j),
+            iterations=iterations,
+            converged=False,
+            status=status,
+            message=message,
+            element_tension_static=[r.line.tension.copy() for r in model.lines],
+        )
+
+    D_lines: list[np.ndarray | None] = [None] * L
+    D_points: np.ndarray | None = None
+    iterations, converged, change = 0, True, 0.0
+    if model.has_drag:
+        start = _solve_linear(model, omega, prescribed, D_lines, None, quasi_static=True)
+        if isinstance(start, str):
+            return failed(STATUS_NUMERICAL, f"quasi-static start: {start}")
+        u_pts, disp, _ = start
+        tangents = [drag_tangent(r.line) for r in model.lines]
+
+        def fit(u_pts: np.ndarray, disp: list[np.ndarray]) -> tuple[list, np.ndarray]:
+            Dl = [
+                drag_linearisation(r.line, 1j * omega * u, settings.samples, tangents[i], settings.exact)
+                for i, (r, u) in enumerate(zip(model.lines, disp, strict=True))
+            ]
+            Dp = point_drag_fit(model.point_drag, model.point_current, 1j * omega * u_pts, settings.samples)
+            return Dl, Dp
+
+        D_lines, D_points = fit(u_pts, disp)
+        previous = [*disp, u_pts]
+        converged, last, relax = False, math.inf, 1.0
+        for iterations in range(1, settings.max_iterations + 1):  # noqa: B007
+            out = _solve_linear(model, omega, prescribed, D_lines, D_points)
+            if isinstance(out, str):
+                return failed(STATUS_NUMERICAL, out, iterations)
+            u_pts, disp, _ = out
+            change = _velocity_change(previous, [*disp, u_pts])
+            previous = [*disp, u_pts]
+            if change <= settings.tolerance:
+                converged = True
+                break
+            relax = 0.5 if change >= 0.5 * last else min(1.0, 2.0 * relax)
+            last = change
+            new_l, new_p = fit(u_pts, disp)
+            D_lines = [(1.0 - relax) * a + relax * b for a, b in zip(D_lines, new_l, strict=True)]
+            D_points = (1.0 - relax) * D_points + relax * new_p
+        if not converged:
+            return failed(
+                STATUS_NOT_CONVERGED,
+                f"drag linearisation did not converge in {settings.max_iterations} iterations "
+                f"(last change {change:.3g}, tolerance {settings.tolerance:.3g})",
+                iterations,
+            )
+    out = _solve_linear(model, omega, prescribed, D_lines, D_points)
+    if isinstance(out, str):
+        return failed(STATUS_NUMERICAL, out, iterations)
+    u_pts, disp, forces = out
+    residual = _residual(model, omega, u_pts, disp, D_lines, D_points)
+    if not residual <= RESIDUAL_BAR:
+        return failed(
+            STATUS_NUMERICAL,
+            f"the solution leaves a residual of {residual:.3g} of the force scale "
+            f"(bar {RESIDUAL_BAR:g}): ill-conditioned at {omega / (2 * math.pi):.6g} Hz",
+            iterations,
+        )
+    end_tension = np.empty((L, 2), dtype=complex)
+    element = []
+    for i, red in enumerate(model.lines):
+        line = red.line
+        unit = line.end_force / np.where(static[i] > 0.0, static[i], 1.0)[:, None]
+        support = -forces[i].reshape(2, 3)  # change of the force of the line on the points
+        end_tension[i] = np.sum(unit * support, axis=1)
+        axial = (line.axial_stiffness + 1j * omega * line.axial_damping) / line.rest_length
+        element.append(axial * np.sum(line.direction * np.diff(disp[i], axis=0), axis=1))
+    return SystemFrequencyResult(
+        end_tension=end_tension,
+        tension_static=static,
+        element_tension=element,
+        displacement=disp,
+        point_displacement=u_pts,
+        iterations=iterations,
+        converged=converged,
+        change=change,
+        residual=residual,
+        element_tension_static=[r.line.tension.copy() for r in model.lines],
+    )
+
+
+def _residual(
+    model: SystemLinear,
+    omega: float,
+    u_pts: np.ndarray,
+    disp: list[np.ndarray],
+    D_lines: list[np.ndarray | None],
+    D_points: np.ndarray | None,
+) -> float:
+    """Largest residual of the assembled equations (inner rows of every line, balance of
+    every free point) relative to the force scale: the
+    largest end force amplitude or stiffness force."""
+    scale = 0.0
+    worst = 0.0
+    balance = np.zeros(u_pts.shape, dtype=complex)
+    for i, red in enumerate(model.lines):
+        r = red.apply(disp[i], omega, D_lines[i])
+        ku = (red.line.stiffness @ disp[i].ravel()).reshape(-1, 3)
+        scale = max(scale, float(np.max(np.abs(r[[0, -1]]))), float(np.max(np.abs(ku))))
+        worst = max(worst, float(np.max(np.abs(r[1:-1]), initial=0.0)))
+        balance[model.ends[i, 0]] += r[0]
+        balance[model.ends[i, 1]] += r[-1]
+    free = model.free_points
+    if free.size:
+        Z = -(omega**2) * model.point_mass[free]
+        if D_points is not None:
+            Z = Z + 1j * omega * D_points[free]
+        balance[free] += np.einsum("pab,pb->pa", Z, u_pts[free])
+        worst = max(worst, float(np.max(np.abs(balance[free]))))
+    return worst / max(scale, 1e-300)
+
+
+__all__ = [
+    "RESIDUAL_BAR",
+    "SystemFrequencyResult",
+    "SystemLinear",
+    "point_drag_fit",
+    "point_motion",
+    "solve_system_harmonic",
+    "system_linear",
+]
