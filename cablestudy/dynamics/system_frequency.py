@@ -125,6 +125,10 @@ class SystemFrequencyResult:
     end_tension [N] (L, 2) variation of each line's end tensions at A and B;
     tension_static [N] (L, 2); element_tension [N] per line (n_l - 1,) complex;
     displacement [m] per line (n_l, 3) complex; point_displacement [m] (P, 3) complex;
+    end_force [N] (L, 2, 3) variation of the force of each line on its points at A and
+    B; body_force [N, N m] (B, 6) variation of the force and moment of the lines on each
+    body about its reference point, ``sum dF`` and ``sum (a x dF + (Theta x a) x F)``
+    (the static force ``F`` turning with the arm);
     iterations, converged, change (drag iteration); residual (relative, see
     :data:`RESIDUAL_BAR`); status, message.
     """
@@ -134,6 +138,8 @@ class SystemFrequencyResult:
     element_tension: list[np.ndarray]
     displacement: list[np.ndarray]
     point_displacement: np.ndarray
+    end_force: np.ndarray
+    body_force: np.ndarray
     iterations: int = 0
     converged: bool = True
     change: float = 0.0
@@ -405,6 +411,8 @@ def solve_system_harmonic(
             element_tension=[np.full(r.line.n_nodes - 1, np.nan + 0j) for r in model.lines],
             displacement=[np.full((r.line.n_nodes, 3), np.nan + 0j) for r in model.lines],
             point_displacement=np.full(prescribed.shape, np.nan + 0j),
+            end_force=np.full((L, 2, 3), np.nan + 0j),
+            body_force=np.full((model.n_bodies, 6), np.nan + 0j),
             iterations=iterations,
             converged=False,
             status=status,
@@ -468,12 +476,24 @@ def solve_system_harmonic(
             iterations,
         )
     end_tension = np.empty((L, 2), dtype=complex)
+    end_force = np.empty((L, 2, 3), dtype=complex)
+    body_force = np.zeros((model.n_bodies, 6), dtype=complex)
+    theta = np.asarray(body_motion, dtype=complex).reshape(model.n_bodies, 6)[:, 3:]
     element = []
     for i, red in enumerate(model.lines):
         line = red.line
         unit = line.end_force / np.where(static[i] > 0.0, static[i], 1.0)[:, None]
         support = -forces[i].reshape(2, 3)  # change of the force of the line on the points
+        end_force[i] = support
         end_tension[i] = np.sum(unit * support, axis=1)
+        for k in range(2):
+            p = model.ends[i, k]
+            if model.point_kind[p] == BODY:
+                b, a = model.point_body[p], model.point_arm[p]
+                body_force[b, :3] += support[k]
+                body_force[b, 3:] += np.cross(a, support[k]) + np.cross(
+                    np.cross(theta[b], a), line.end_force[k]
+                )
         axial = (line.axial_stiffness + 1j * omega * line.axial_damping) / line.rest_length
         element.append(axial * np.sum(line.direction * np.diff(disp[i], axis=0), axis=1))
     return SystemFrequencyResult(
@@ -482,6 +502,8 @@ def solve_system_harmonic(
         element_tension=element,
         displacement=disp,
         point_displacement=u_pts,
+        end_force=end_force,
+        body_force=body_force,
         iterations=iterations,
         converged=converged,
         change=change,
