@@ -393,16 +393,24 @@ def solve_system_harmonic(
     omega: float,
     body_motion: np.ndarray,
     settings: DragSettings | None = None,
+    point_excitation: np.ndarray | None = None,
 ) -> SystemFrequencyResult:
     """Steady harmonic response at ``omega`` [rad/s] to the bodies' complex motion
-    amplitudes ``body_motion`` [m, rad] (B, 6), the drag linearised by iteration (module
-    docstring). Never raises for a numerical failure: status and message."""
+    amplitudes ``body_motion`` [m, rad] (B, 6) and the points' own complex displacement
+    amplitudes ``point_excitation`` [m] (P, 3) (fixed or body points moved on their own,
+    added to their bodies' motion; None: none), the drag linearised by iteration
+    (module docstring). Never raises for a numerical failure: status and message."""
     settings = settings or DragSettings()
     L = len(model.lines)
     static = np.array(
         [np.linalg.norm(r.line.end_force, axis=1) for r in model.lines]
     ).reshape(L, 2)
     prescribed = point_motion(model, body_motion)
+    if point_excitation is not None:
+        own = np.asarray(point_excitation, dtype=complex).reshape(prescribed.shape)
+        if np.any(own[model.point_kind == FREE] != 0.0):
+            raise ValueError("a free point cannot be moved on its own: it is an unknown")
+        prescribed = prescribed + own
 
     def failed(status: int, message: str, iterations: int = 0) -> SystemFrequencyResult:
         return SystemFrequencyResult(
@@ -543,7 +551,40 @@ def _residual(
     return worst / max(scale, 1e-300)
 
 
+def system_frequency_outputs(
+    result: SystemFrequencyResult, body_force_static: np.ndarray | None = None
+) -> dict[str, np.ndarray]:
+    """The issue's outputs of one solved case (linear response: extremes are the static
+    value plus and minus the amplitude, the mean the static value): on ``line``
+    ``tension_amplitude_a``/``_b``, ``tension_max_a``, ``tension_min_a``,
+    ``tension_mean_a`` (and ``_b``); per line on its elements ``tension_envelope_max``/
+    ``_min`` (list of arrays: the caller puts them on its ``s`` grid); with the bodies'
+    static force and moment ``body_force_static`` (B, 6) [N, N m], ``body_force_max``/
+    ``_min`` on (``body``, ``dof``). NaN where the case failed (status says why)."""
+    amp = result.tension_amplitude
+    T = result.tension_static
+    hi, lo = result.envelope()
+    out: dict[str, np.ndarray | list[np.ndarray]] = {
+        "tension_amplitude_a": amp[:, 0],
+        "tension_amplitude_b": amp[:, 1],
+        "tension_mean_a": np.where(np.isfinite(amp[:, 0]), T[:, 0], np.nan),
+        "tension_mean_b": np.where(np.isfinite(amp[:, 1]), T[:, 1], np.nan),
+        "tension_max_a": T[:, 0] + amp[:, 0],
+        "tension_min_a": T[:, 0] - amp[:, 0],
+        "tension_max_b": T[:, 1] + amp[:, 1],
+        "tension_min_b": T[:, 1] - amp[:, 1],
+        "tension_envelope_max": hi,
+        "tension_envelope_min": lo,
+    }
+    if body_force_static is not None and result.body_force.size:
+        F = np.asarray(body_force_static, dtype=float).reshape(result.body_force.shape)
+        out["body_force_max"] = F + np.abs(result.body_force)
+        out["body_force_min"] = F - np.abs(result.body_force)
+    return out  # type: ignore[return-value]
+
+
 __all__ = [
+    "system_frequency_outputs",
     "RESIDUAL_BAR",
     "SystemFrequencyResult",
     "SystemLinear",

@@ -31,6 +31,7 @@ from cablestudy.dynamics.system_frequency import (
     point_drag_fit,
     point_motion,
     solve_system_harmonic,
+    system_frequency_outputs,
     system_linear,
 )
 from cablestudy.statics import STATIC_SOLVERS, EndCondition
@@ -221,3 +222,21 @@ def test_point_drag_fit_is_the_describing_function() -> None:
     c, a = 7.0, 0.8
     D = point_drag_fit(np.array([c]), np.zeros((1, 3)), np.array([[a, 0.0, 0.0]], dtype=complex), 32)
     assert D[0, 0, 0] == pytest.approx(c * 8.0 * a / (3.0 * np.pi), rel=1e-3)
+
+
+def test_point_moved_on_its_own_equals_its_body_moved() -> None:
+    """A body point moved on its own by u is the same excitation as its body translated
+    by u when the point is the body's only point; outputs are static +- amplitude."""
+    red, model, _ = _series(1, added_mass=1.0, drag=1.2)
+    w = 2.0 * np.pi * 0.3
+    by_body = solve_system_harmonic(model, w, np.array([[*(-1j * MOTION), 0.0, 0.0, 0.0]]))
+    own = np.zeros((3, 3), dtype=complex)
+    own[2] = -1j * MOTION
+    by_point = solve_system_harmonic(model, w, np.zeros((1, 6)), point_excitation=own)
+    assert by_body.status == 0 and by_point.status == 0
+    np.testing.assert_array_equal(by_point.end_tension, by_body.end_tension)
+    out = system_frequency_outputs(by_body, np.zeros((1, 6)))
+    np.testing.assert_allclose(
+        out["tension_max_a"] - out["tension_min_a"], 2.0 * np.abs(by_body.end_tension[:, 0])
+    )
+    assert out["body_force_max"].shape == (1, 6)
