@@ -156,8 +156,14 @@ class SystemFrequencyResult:
     def envelope(self) -> tuple[list[np.ndarray], list[np.ndarray]]:
         """Per line the linear tension envelope over its elements [N]: static plus and
         minus the amplitude of the variation."""
-        hi = [t + np.abs(d) for t, d in zip(self.element_tension_static, self.element_tension, strict=True)]
-        lo = [t - np.abs(d) for t, d in zip(self.element_tension_static, self.element_tension, strict=True)]
+        hi = [
+            t + np.abs(d)
+            for t, d in zip(self.element_tension_static, self.element_tension, strict=True)
+        ]
+        lo = [
+            t - np.abs(d)
+            for t, d in zip(self.element_tension_static, self.element_tension, strict=True)
+        ]
         return hi, lo
 
 
@@ -219,9 +225,11 @@ def system_linear(
     ma = np.zeros(P) if point_added_mass is None else np.asarray(point_added_mass, dtype=float)
     mass = (m + ma)[:, None, None] * np.eye(3)[None]
     medium = system.lines[0].problem.medium
-    current = current_velocity(
-        static.point_position[:, 2], medium.current_z, medium.current_velocity
-    ) if medium.current_velocity.size else np.zeros((P, 3))
+    current = (
+        current_velocity(static.point_position[:, 2], medium.current_z, medium.current_velocity)
+        if medium.current_velocity.size
+        else np.zeros((P, 3))
+    )
     return (
         SystemLinear(
             names=tuple(sl.name for sl in system.lines),
@@ -305,7 +313,10 @@ def point_drag_fit(
     <w' w'^T>^-1``, leaning towards the small-motion tangent ``c (|U| I + U U^T / |U|)``
     in directions without motion (:data:`~.frequency.FIT_REGULARISATION`)."""
     th = 2.0 * np.pi * np.arange(samples) / samples
-    w = -(velocity.real[None] * np.cos(th)[:, None, None] - velocity.imag[None] * np.sin(th)[:, None, None])
+    w = -(
+        velocity.real[None] * np.cos(th)[:, None, None]
+        - velocity.imag[None] * np.sin(th)[:, None, None]
+    )
     r = current[None] + w
     f = c[None, :, None] * np.linalg.norm(r, axis=2)[..., None] * r
     f = f - f.mean(axis=0)
@@ -314,7 +325,8 @@ def point_drag_fit(
     su = np.linalg.norm(current, axis=1)
     inv = np.where(su > 0.0, 1.0 / np.where(su > 0.0, su, 1.0), 0.0)
     D0 = c[:, None, None] * (
-        su[:, None, None] * np.eye(3) + inv[:, None, None] * (current[:, :, None] * current[:, None, :])
+        su[:, None, None] * np.eye(3)
+        + inv[:, None, None] * (current[:, :, None] * current[:, None, :])
     )
     trace = np.trace(G, axis1=1, axis2=2)
     eps = np.where(trace > 0.0, FIT_REGULARISATION * trace, 1.0)[:, None, None]
@@ -350,7 +362,8 @@ def _solve_linear(
     for i, red in enumerate(model.lines):
         c = _condense(red, w, None if quasi_static else D_lines[i])
         if c is None:
-            return f"singular dynamic matrix of line {model.names[i]!r} at {omega / (2 * math.pi):.6g} Hz"
+            hz = omega / (2 * math.pi)
+            return f"singular dynamic matrix of line {model.names[i]!r} at {hz:.6g} Hz"
         condensed.append(c)
         _, S, _ = c
         for ea in range(2):
@@ -402,9 +415,7 @@ def solve_system_harmonic(
     (module docstring). Never raises for a numerical failure: status and message."""
     settings = settings or DragSettings()
     L = len(model.lines)
-    static = np.array(
-        [np.linalg.norm(r.line.end_force, axis=1) for r in model.lines]
-    ).reshape(L, 2)
+    static = np.array([np.linalg.norm(r.line.end_force, axis=1) for r in model.lines]).reshape(L, 2)
     prescribed = point_motion(model, body_motion)
     if point_excitation is not None:
         own = np.asarray(point_excitation, dtype=complex).reshape(prescribed.shape)
@@ -440,10 +451,14 @@ def solve_system_harmonic(
 
         def fit(u_pts: np.ndarray, disp: list[np.ndarray]) -> tuple[list, np.ndarray]:
             Dl = [
-                drag_linearisation(r.line, 1j * omega * u, settings.samples, tangents[i], settings.exact)
+                drag_linearisation(
+                    r.line, 1j * omega * u, settings.samples, tangents[i], settings.exact
+                )
                 for i, (r, u) in enumerate(zip(model.lines, disp, strict=True))
             ]
-            Dp = point_drag_fit(model.point_drag, model.point_current, 1j * omega * u_pts, settings.samples)
+            Dp = point_drag_fit(
+                model.point_drag, model.point_current, 1j * omega * u_pts, settings.samples
+            )
             return Dl, Dp
 
         D_lines, D_points = fit(u_pts, disp)

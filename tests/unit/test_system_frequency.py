@@ -75,8 +75,12 @@ def _series(scale: int, *, added_mass: float, drag: float):  # noqa: ANN202
         body_names=("body",),
         body_position=np.zeros((1, 6)),
         lines=(
-            SystemLine(name="1", problem=_polyester(60.0, n1, added_mass=added_mass, drag=drag), a=0, b=1),
-            SystemLine(name="2", problem=_polyester(40.0, n2, added_mass=added_mass, drag=drag), a=1, b=2),
+            SystemLine(
+                name="1", problem=_polyester(60.0, n1, added_mass=added_mass, drag=drag), a=0, b=1
+            ),
+            SystemLine(
+                name="2", problem=_polyester(40.0, n2, added_mass=added_mass, drag=drag), a=1, b=2
+            ),
         ),
         tolerance=1e-12,
     )
@@ -87,7 +91,11 @@ def _series(scale: int, *, added_mass: float, drag: float):  # noqa: ANN202
     red = ReducedLine.of(
         linear_line(
             ModalProblem(
-                line=single.line, medium=single.medium, end_a=single.end_a, end_b=single.end_b, static=st
+                line=single.line,
+                medium=single.medium,
+                end_a=single.end_a,
+                end_b=single.end_b,
+                static=st,
             )
         )
     )
@@ -220,7 +228,9 @@ def test_point_drag_fit_is_the_describing_function() -> None:
     equivalent damping is c 8 a / (3 pi) along the motion (the classical describing
     function), to the phase sampling's aliasing (about 1e-4 at 32 phases: bar 1e-3)."""
     c, a = 7.0, 0.8
-    D = point_drag_fit(np.array([c]), np.zeros((1, 3)), np.array([[a, 0.0, 0.0]], dtype=complex), 32)
+    D = point_drag_fit(
+        np.array([c]), np.zeros((1, 3)), np.array([[a, 0.0, 0.0]], dtype=complex), 32
+    )
     assert D[0, 0, 0] == pytest.approx(c * 8.0 * a / (3.0 * np.pi), rel=1e-3)
 
 
