@@ -53,10 +53,12 @@ Pure: arrays and frozen dataclasses in, a :class:`SystemFrequencyResult` out.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
+from numba import njit
 from scipy.linalg import solve_banded
 
 from ..physics.current import current_velocity
@@ -114,9 +116,50 @@ class SystemLinear:
     def free_points(self) -> np.ndarray:
         return np.flatnonzero(self.point_kind == FREE)
 
+    @functools.cached_property
+    def couplings(self) -> tuple[EndCoupling, ...]:
+        """Per line the blocks that couple its end nodes (built once)."""
+        return tuple(EndCoupling.of(r) for r in self.lines)
+
     @property
     def has_drag(self) -> bool:
         return bool(np.any(self.point_drag > 0.0)) or any(r.line.has_drag for r in self.lines)
+
+
+#: the end nodes' six coordinates in a line's 3n (A x, y, z; B x, y, z)
+def _end_index(n: int) -> np.ndarray:
+    return np.array([0, 1, 2, 3 * n - 3, 3 * n - 2, 3 * n - 1])
+
+
+@dataclass(frozen=True, eq=False)
+class EndCoupling:
+    """The stiffness, mass and damping blocks of a line between its inner free
+    directions ``I`` and its end nodes' coordinates ``E`` (dense: ``IE`` (k, 6), ``EI``
+    (6, k), ``EE`` (6, 6)), so that a frequency's condensation needs no product with the
+    line's sparse matrices. The drag is per node, so it couples no inner node to an
+    end: only its end blocks enter ``EE``."""
+
+    K: tuple[np.ndarray, np.ndarray, np.ndarray]
+    M: tuple[np.ndarray, np.ndarray, np.ndarray]
+    C: tuple[np.ndarray, np.ndarray, np.ndarray]
+
+    @classmethod
+    def of(cls, red: ReducedLine) -> EndCoupling:
+        line = red.line
+        B = line.free_basis.tocsc()
+        e = _end_index(line.n_nodes)
+
+        def blocks(Q: object) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+            Q = Q.tocsr()  # type: ignore[attr-defined]
+            cols = Q[:, e]
+            rows = Q[e, :]
+            return (
+                np.asarray((B.T @ cols).todense()),
+                np.asarray((rows @ B).todense()),
+                np.asarray(rows[:, e].todense()),
+            )
+
+        return cls(K=blocks(line.stiffness), M=blocks(line.mass_matrix()), C=blocks(line.damping))
 
 
 @dataclass(kw_only=True)
@@ -263,46 +306,31 @@ def point_motion(model: SystemLinear, body_motion: np.ndarray) -> np.ndarray:
 # ------------------------------------------------------------------------ solving
 
 
-def _end_unit(n: int) -> np.ndarray:
-    """(6, n, 3): the six unit displacements of the end nodes (A x, y, z; B x, y, z)."""
-    E = np.zeros((6, n, 3))
-    for k in range(3):
-        E[k, 0, k] = 1.0
-        E[3 + k, -1, k] = 1.0
-    return E
-
-
 def _condense(
-    red: ReducedLine, omega: float, D: np.ndarray | None
-) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
-    """Per line: ``X`` (k, 6) inner response per unit end motion, ``S`` (6, 6) condensed
-    end dynamic stiffness, and the full unit responses (6, n, 3); None if ``A_II`` is
-    singular."""
-    line = red.line
-    n = line.n_nodes
-    B = line.free_basis
-    E = _end_unit(n)
-    rhs = np.stack([-(B.T @ red.apply(E[e], omega, D).ravel()) for e in range(6)], axis=1)
-    U = E.astype(complex)
-    if rhs.shape[0]:
-        ab = red.K - omega**2 * red.M + 1j * omega * red.C
-        if D is not None:
-            ab = ab + 1j * omega * red.drag_band(D)
-        bw = red.bandwidth
-        try:
-            X = solve_banded((bw, bw), ab, rhs, check_finite=False)
-        except (np.linalg.LinAlgError, ValueError):
-            return None
-        if not np.all(np.isfinite(X)):
-            return None
-        U = U + (B @ X).T.reshape(6, n, 3)
-    else:
-        X = np.zeros((0, 6), dtype=complex)
-    S = np.empty((6, 6), dtype=complex)
-    for e in range(6):
-        r = red.apply(U[e], omega, D)
-        S[:3, e], S[3:, e] = r[0], r[-1]
-    return X, S, U
+    red: ReducedLine, ec: EndCoupling, omega: float, D: np.ndarray | None
+) -> tuple[np.ndarray, np.ndarray] | None:
+    """Per line: ``X`` (k, 6), the inner response per unit end motion (``A_II X =
+    -A_IE``, one band solve with six right sides), and ``S = A_EE + A_EI X`` (6, 6), the
+    condensed end dynamic stiffness; None if ``A_II`` is singular."""
+    w2, iw = omega**2, 1j * omega
+    A_IE, A_EI, A_EE = (ec.K[j] - w2 * ec.M[j] + iw * ec.C[j] for j in range(3))
+    if D is not None:
+        A_EE = A_EE.copy()
+        A_EE[:3, :3] += iw * D[0]
+        A_EE[3:, 3:] += iw * D[-1]
+    if A_IE.shape[0] == 0:
+        return np.zeros((0, 6), dtype=complex), A_EE
+    ab = red.K - w2 * red.M + iw * red.C
+    if D is not None:
+        ab = ab + iw * red.drag_band(D)
+    bw = red.bandwidth
+    try:
+        X = solve_banded((bw, bw), ab, -A_IE, check_finite=False)
+    except (np.linalg.LinAlgError, ValueError):
+        return None
+    if not np.all(np.isfinite(X)):
+        return None
+    return X, A_EE + A_EI @ X
 
 
 def mean_drag_jacobian(line: LinearLine, velocity: np.ndarray, samples: int) -> np.ndarray:
@@ -319,31 +347,52 @@ def mean_drag_jacobian(line: LinearLine, velocity: np.ndarray, samples: int) -> 
     from nearly straight to straight, and the iteration of a system in three
     dimensions then wanders (case8 under surge above 0.2 Hz: no convergence in 100
     iterations; with this lean, 6 to 20)."""
-    th = 2.0 * np.pi * np.arange(samples) / samples
-    w = line.current[None] - (
-        velocity.real[None] * np.cos(th)[:, None, None]
-        - velocity.imag[None] * np.sin(th)[:, None, None]
-    )  # (k, n, 3)
-    t = line.tangent
-    tt = t[:, :, None] * t[:, None, :]
-    wt = np.einsum("kia,ia->ki", w, t)
-    wn = w - wt[..., None] * t[None]
-    sn = np.linalg.norm(wn, axis=2)
-    inv = np.where(sn > 0.0, 1.0 / np.where(sn > 0.0, sn, 1.0), 0.0)
-    P = np.eye(3)[None] - tt
-    Jn = sn[..., None, None] * P[None] + inv[..., None, None] * (
-        wn[..., :, None] * wn[..., None, :]
+    out = np.empty((line.n_nodes, 3, 3))
+    _mean_jacobian(
+        np.ascontiguousarray(velocity.real),
+        np.ascontiguousarray(velocity.imag),
+        line.current,
+        line.tangent,
+        line.drag_normal,
+        line.drag_tangential,
+        line.body_drag,
+        samples,
+        out,
     )
-    out = line.drag_normal[:, None, None] * Jn.mean(axis=0)
-    out += line.drag_tangential[:, None, None] * 2.0 * np.abs(wt).mean(axis=0)[:, None, None] * tt
-    if line.drag_body is not None:
-        sr = np.linalg.norm(w, axis=2)
-        ir = np.where(sr > 0.0, 1.0 / np.where(sr > 0.0, sr, 1.0), 0.0)
-        Jb = sr[..., None, None] * np.eye(3) + ir[..., None, None] * (
-            w[..., :, None] * w[..., None, :]
-        )
-        out += line.body_drag[:, None, None] * Jb.mean(axis=0)
     return out
+
+
+@njit(cache=True)
+def _mean_jacobian(vr, vi, current, tangent, c_n, c_t, c_b, samples, out):  # noqa: ANN001, ANN202, PLR0913
+    """Kernel of :func:`mean_drag_jacobian` (loops over nodes and phases)."""
+    n = current.shape[0]
+    w = np.empty(3)
+    wn = np.empty(3)
+    for i in range(n):
+        t0, t1, t2 = tangent[i, 0], tangent[i, 1], tangent[i, 2]
+        t = (t0, t1, t2)
+        acc = np.zeros((3, 3))
+        abs_t = 0.0
+        for k in range(samples):
+            c = math.cos(2.0 * math.pi * k / samples)
+            s = math.sin(2.0 * math.pi * k / samples)
+            for a in range(3):
+                w[a] = current[i, a] - (vr[i, a] * c - vi[i, a] * s)
+            wt = w[0] * t0 + w[1] * t1 + w[2] * t2
+            abs_t += abs(wt)
+            for a in range(3):
+                wn[a] = w[a] - wt * t[a]
+            sn = math.sqrt(wn[0] * wn[0] + wn[1] * wn[1] + wn[2] * wn[2])
+            sr = math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
+            for a in range(3):
+                for b in range(3):
+                    p_ab = (1.0 if a == b else 0.0) - t[a] * t[b]
+                    jn = sn * p_ab + (wn[a] * wn[b] / sn if sn > 0.0 else 0.0)
+                    jb = sr * (1.0 if a == b else 0.0) + (w[a] * w[b] / sr if sr > 0.0 else 0.0)
+                    acc[a, b] += c_n[i] * jn + c_b[i] * jb
+        for a in range(3):
+            for b in range(3):
+                out[i, a, b] = acc[a, b] / samples + c_t[i] * 2.0 * (abs_t / samples) * t[a] * t[b]
 
 
 def point_drag_fit(
@@ -401,13 +450,13 @@ def _solve_linear(
             Z = Z + 1j * w * D_points[p]
         G[3 * j : 3 * j + 3, 3 * j : 3 * j + 3] += Z
     condensed = []
-    for i, red in enumerate(model.lines):
-        c = _condense(red, w, None if quasi_static else D_lines[i])
+    for i, (red, ec) in enumerate(zip(model.lines, model.couplings, strict=True)):
+        c = _condense(red, ec, w, None if quasi_static else D_lines[i])
         if c is None:
             hz = omega / (2 * math.pi)
             return f"singular dynamic matrix of line {model.names[i]!r} at {hz:.6g} Hz"
         condensed.append(c)
-        _, S, _ = c
+        _, S = c
         for ea in range(2):
             p = model.ends[i, ea]
             if slot[p] < 0:
@@ -430,9 +479,13 @@ def _solve_linear(
             return f"singular junction system at {omega / (2 * math.pi):.6g} Hz"
         u_points[free] = sol.reshape(-1, 3)
     displacement, forces = [], []
-    for i, (_, S, U) in enumerate(condensed):
+    for i, (X, S) in enumerate(condensed):
         uE = u_points[model.ends[i]].ravel()
-        displacement.append(np.tensordot(uE, U, axes=(0, 0)))
+        line = model.lines[i].line
+        u = (line.free_basis @ (X @ uE)).reshape(-1, 3).astype(complex)
+        u[0] += uE[:3]
+        u[-1] += uE[3:]
+        displacement.append(u)
         forces.append(S @ uE)
     return u_points, displacement, forces
 
