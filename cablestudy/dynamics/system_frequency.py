@@ -55,14 +55,21 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass, field
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numba import njit
 from scipy.linalg import solve_banded
 
 from ..physics.current import current_velocity
-from ..statics.base import STATUS_NUMERICAL, STATUS_OK, EndCondition
+from ..statics.base import (
+    STATUS_NUMERICAL,
+    STATUS_OK,
+    EndCondition,
+    StaticProblem,
+    StaticResult,
+)
 from ..statics.system import BODY, FREE, MooringSystem, SystemResult
 from .frequency import (
     FIT_REGULARISATION,
@@ -222,16 +229,33 @@ def system_linear(
     point_added_mass: np.ndarray | None = None,
     point_drag: np.ndarray | None = None,
     extras: list | None = None,
+    nodes: int | None = None,
+    solve: Callable[[StaticProblem], StaticResult] | None = None,
 ) -> tuple[SystemLinear | None, str]:
-    """The system linearised about its solved static state ``static`` (each line's
-    static samples are its nodes), or None and why not. ``point_mass`` and
-    ``point_added_mass`` [kg] (P,) (isotropic) and ``point_drag`` [kg/m] (P,)
-    (``rho C_d A / 2``) of the free points (zeros when not given); ``extras`` per line
-    the :class:`~cablestudy.dynamics.model.DynamicExtras` (None: the line's defaults)."""
+    """The system linearised about its solved static state ``static``, or None and why
+    not. ``point_mass`` and ``point_added_mass`` [kg] (P,) (isotropic) and
+    ``point_drag`` [kg/m] (P,) (``rho C_d A / 2``) of the free points (zeros when not
+    given); ``extras`` per line the :class:`~cablestudy.dynamics.model.DynamicExtras`
+    (None: the line's defaults). The nodes of each line are its static samples, or with
+    ``nodes`` that many equally spaced ones: each line solved again by ``solve`` (a
+    static solver's ``solve``) between its points where the system put them."""
     P = len(system.point_names)
     held = EndCondition(kind="fixed")
     reduced = []
     for i, (sl, st) in enumerate(zip(system.lines, static.lines, strict=True)):
+        if nodes is not None and len(st.s) != nodes:
+            if solve is None:
+                raise ValueError("system_linear: nodes needs a static solver (solve)")
+            st = solve(
+                replace(
+                    sl.problem,
+                    end_a=EndCondition(kind="fixed", position=static.point_position[sl.a]),
+                    end_b=EndCondition(kind="fixed", position=static.point_position[sl.b]),
+                    n_nodes=nodes,
+                )
+            )
+            if not st.success:
+                return None, f"line {sl.name!r} at {nodes} nodes: {st.message}"
         T_e = 0.5 * (st.tension[:-1] + st.tension[1:])
         med = sl.problem.medium
         if med.depth is not None:
