@@ -55,7 +55,7 @@ the largest (tests/validation/test_system_frequency_moordyn.py); at the referenc
 5.6e-4. Where lines lie on the seabed the contact is linearised as the time domain's
 spring held closed, and a touchdown that lifts is not: on MoorDyn's lines.txt (chains,
 0.2 m surge at 0.05 Hz) the amplitudes are 8-10 % above the time domains' (ours and
-MoorDyn's agree within 3 %); ``method: auto`` should send such cases to the time domain.
+MoorDyn's agree within 4 %); ``method: auto`` should send such cases to the time domain.
 
 Pure: arrays and frozen dataclasses in, a :class:`SystemFrequencyResult` out.
 """
