@@ -17,8 +17,11 @@ The cases (the issue's validation list):
   radius to three coupled fairleads at 70 m draft and 5.2 m radius), the fairleads moved
   as one rigid body about the platform's reference point (0, 0, 0) (still water line on
   the spar's axis): surge 5 m at 0.05 Hz (a spar's surge in a 20 s swell), pitch 3 deg
-  at 0.1 Hz (the fairleads 70 m below the reference move 3.7 m horizontally and 0.27 m
-  vertically; the rotation is exact, not small-angle). Not surge 5 m at 0.1 Hz: the
+  at 0.05 Hz (the fairleads 70 m below the reference move 3.7 m horizontally and 0.27 m
+  vertically; the rotation is exact, not small-angle). Pitch 3 deg at 0.1 Hz
+  (``lines_pitch_10s``) is kept but not converged: leg 1's tension at its anchor falls
+  to 107 kN as the chain lands on the seabed there, and that minimum moves by 4e-3 of
+  the maximum with each doubling of the segments from 40 to 160. Not surge 5 m at 0.1 Hz: the
   fairleads' 3.1 m/s then slacken leg 1 at its anchor (minimum tension -0.2 kN, MoorDyn
   at the file's mesh): snap loads, a test of the slack model rather than of the system.
 
@@ -107,7 +110,13 @@ CASES = {
     "case8_surge": Case("moorpy/tests/case8.dat", "surge", 2.0, 0.1),
     "case8_heave": Case("moorpy/tests/case8.dat", "heave", 1.0, 0.1),
     "lines_surge": Case("moordyn/tests/Mooring/lines.txt", "surge", 5.0, 0.05),
-    "lines_pitch": Case("moordyn/tests/Mooring/lines.txt", "pitch", float(np.radians(3.0)), 0.1),
+    "lines_pitch": Case("moordyn/tests/Mooring/lines.txt", "pitch", float(np.radians(3.0)), 0.05),
+    # kept for the record: leg 1's anchor-end minimum (107 kN, the chain landing on the
+    # seabed at the anchor) does not converge (changes 4.9e-3, 4.2e-3, 4.0e-3 of its
+    # maximum from 40 to 160 segments); its other 11 extremes are within 4e-4
+    "lines_pitch_10s": Case(
+        "moordyn/tests/Mooring/lines.txt", "pitch", float(np.radians(3.0)), 0.1
+    ),
 }
 
 
