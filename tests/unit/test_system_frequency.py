@@ -313,3 +313,39 @@ def test_resampled_nodes_converge() -> None:
         assert out.status == 0, out.message
         amps.append(out.tension_amplitude)
     np.testing.assert_allclose(amps[0], amps[1], rtol=1e-8)
+
+
+def test_seabed_spread_low_frequency_is_the_static_body_stiffness() -> None:
+    """MoorDyn's lines.txt (three chains, 135 m of each laid on the seabed): at 1e-3
+    rad/s, without drag or damping, the surge force of the lines on the body is the
+    static system's surge stiffness (exact catenary with its touchdown free to move).
+    The linear model holds the laid nodes on the seabed's contact spring, so its
+    touchdown moves only by whole elements: measured 3e-3 at 40 elements a line (22 m),
+    1e-3 at 160: bar 5e-3 at 40."""
+    from pathlib import Path
+
+    from cablestudy.cases import expand_cases
+    from cablestudy.config.loader import parse_study_text
+    from cablestudy.interchange import import_model, imported_yaml
+    from cablestudy.system_cases import system_model
+
+    rel = "moordyn/tests/Mooring/lines.txt"
+    path = Path(__file__).parents[1] / "data" / rel
+    imported = import_model(path.read_text(), rel, folder=path.parent)
+    _, cases = expand_cases(parse_study_text(imported_yaml(imported, rel), "<imported>"))
+    system = system_model(cases[0].study)
+    zero = np.zeros(1)
+    lines = []
+    for sl in system.lines:
+        line = replace(sl.problem.line, drag_normal=zero, drag_tangential=zero, damping_ratio=zero)
+        lines.append(replace(sl, problem=replace(sl.problem, line=line, n_nodes=41)))
+    system = replace(system, lines=tuple(lines))
+    res = solve_system(system, SOLVER)
+    assert res.status == 0, res.message
+    assert all(r.laid_length > 100.0 for r in res.lines)  # on the seabed: the point
+    model, why = system_linear(system, res)
+    assert model is not None, why
+    out = solve_system_harmonic(model, 1e-3, np.array([[1.0, 0, 0, 0, 0, 0]], dtype=complex))
+    assert out.status == 0, out.message
+    K = res.body_stiffness[0, 0, 0]
+    assert -out.body_force[0, 0].real == pytest.approx(K, rel=5e-3)
