@@ -349,3 +349,22 @@ def test_seabed_spread_low_frequency_is_the_static_body_stiffness() -> None:
     assert out.status == 0, out.message
     K = res.body_stiffness[0, 0, 0]
     assert -out.body_force[0, 0].real == pytest.approx(K, rel=5e-3)
+
+
+def test_unconverged_drag_iteration_is_a_recorded_failure() -> None:
+    """A drag iteration stopped before it converges is status 7 with the reason, and
+    NaN outputs: never a number that was not verified."""
+    from cablestudy.dynamics.frequency import STATUS_NOT_CONVERGED, DragSettings
+
+    _, model, _ = _series(1, added_mass=1.0, drag=1.2)
+    out = solve_system_harmonic(
+        model,
+        2.0 * np.pi * 0.3,
+        np.array([[*(-1j * MOTION), 0.0, 0.0, 0.0]]),
+        settings=DragSettings(max_iterations=2),
+    )
+    assert out.status == STATUS_NOT_CONVERGED
+    assert "did not converge in 2 iterations" in out.message
+    assert np.all(np.isnan(out.end_tension)) and np.all(np.isnan(out.body_force))
+    values = system_frequency_outputs(out, np.zeros((1, 6)))
+    assert np.all(np.isnan(values["tension_max_a"])) and np.all(np.isnan(values["body_force_max"]))
