@@ -19,8 +19,8 @@ The cases (the issue's validation list):
   the spar's axis): surge 5 m at 0.05 Hz (a spar's surge in a 20 s swell), pitch 3 deg
   at 0.05 Hz (the fairleads 70 m below the reference move 3.7 m horizontally and 0.27 m
   vertically; the rotation is exact, not small-angle); and pitch 3 deg at 0.1 Hz
-  (``lines_pitch_10s``), where leg 1's tension at its anchor falls to 107 kN as the
-  chain lands on the seabed there: that minimum converges slowly (it moves by 4e-3 of
+  (``lines_pitch_10s``), where leg 1's tension at its anchor falls to 110 kN as the
+  chain lands on the seabed there: its minima converge slowly (they move by 4e-3 of
   the maximum with each doubling of the segments from 40 to 160, 2e-3 to 320), so
   this case refines once more (k = 16). Not surge 5 m at 0.1 Hz: the
   fairleads' 3.1 m/s then slacken leg 1 at its anchor (minimum tension -0.2 kN, MoorDyn

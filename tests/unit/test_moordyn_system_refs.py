@@ -33,15 +33,14 @@ MIRRORS = {
     "lines_pitch": [(2, 3)],
     "lines_pitch_10s": [(2, 3)],
 }
-#: kept for the record, not converged (benchmarks/make_moordyn_system_refs.py says why)
-UNCONVERGED = {"lines_pitch_10s"}
+
 
 
 def _load(name: str) -> dict:
     return json.loads((REFS / f"{name}.json").read_text())
 
 
-@pytest.mark.parametrize("name", sorted(set(MIRRORS) - UNCONVERGED))
+@pytest.mark.parametrize("name", sorted(MIRRORS))
 def test_reference_converged_and_finest(name: str) -> None:
     ref = _load(name)
     assert ref["converged"], name
