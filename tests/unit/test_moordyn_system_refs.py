@@ -35,7 +35,6 @@ MIRRORS = {
 }
 
 
-
 def _load(name: str) -> dict:
     return json.loads((REFS / f"{name}.json").read_text())
 
