@@ -21,7 +21,6 @@ import time
 
 import numpy as np
 
-from . import _fast
 from .base import STATUS_OK, StaticProblem, StaticResult
 from .pieces import piece_integrals
 from .seabed import Plane
@@ -222,7 +221,7 @@ def _hang_free(
     (T_A . n >= 0), with no load that turns the line back towards the seabed (weights
     >= 0, point loads f . n <= 0). Then T . n grows along the line, and with it the
     height above the seabed, d(r . n)/ds = (T . n)(1 / EA + 1 / |T|) >= 0."""
-    from . import _fast_contact
+    from . import _fast, _fast_contact
 
     r = rows
     lifted = out["status"][r] == _fast_contact.LIFT_OFF
@@ -367,6 +366,8 @@ def solve_batch(
     solver; the indices of those are appended to ``general`` if given. A case a kernel
     tried and handed on says why in its ``fallback`` (:data:`NOT_SETTLED`,
     :data:`ON_SEABED`)."""
+    from . import _fast  # imports numba: on first use, not with this module
+
     solver = solver or SemiAnalyticSolver()
     results: list[StaticResult | None] = [None] * len(problems)
     groups: dict[tuple[int, int], list[int]] = {}
@@ -430,6 +431,8 @@ def solve_compiled(
     """One still-water problem through the compiled batch kernels (free-hanging, or
     anchored on the seabed), or None when it does not take that path (or does not settle
     there: then ``why[0]``, if given, says why)."""
+    from . import _fast  # imports numba: on first use, not with this module
+
     if not _fast.AVAILABLE:
         return None
     if contact_eligible(problem):
@@ -508,6 +511,8 @@ def _solve_group(
 ) -> list[StaticResult | None]:
     """The problems of one group through the batch kernel; None for a case it leaves to
     the one-by-one solver, with the reason in ``why`` (by position), if given."""
+    from . import _fast  # imports numba: on first use, not with this module
+
     why = {} if why is None else why
     N = len(problems)
     ell = np.empty((N, P))

@@ -1,0 +1,113 @@
+"""The free-hanging batch kernel compiled ahead of time, so that a sweep of lines hanging
+free starts without numba.
+
+numba compiles a kernel on its first call and keeps the machine code on disk, but even
+a cached kernel is loaded through numba: importing it (about 0.12 s on the 2-core
+development machine), setting up its target context (about 0.1 s, and 0.07 s more for
+the scipy.linalg it imports to look for a BLAS), then the kernel itself (6 ms). For the
+commonest sweep, lines hanging free between fixed ends (:func:`cablestudy.grid.
+_compiled_solve`), that was 40 % of a 20,000-case run end to end.
+
+``numba.pycc`` compiles the same Python function, :func:`._fast.solve_cases` with the
+kernels it calls, into a plain extension module, which imports in well under a
+millisecond and needs neither numba nor scipy. It computes the same numbers bit for bit
+(numba's lowering of the same function, without fast-math; tested against the JIT
+kernel). :func:`build` writes it beside numba's cache, in the directory per version of
+the source that :mod:`cablestudy` chooses (a change to any source file builds afresh),
+when the static kernels are compiled (``cablestudy compile``, or the first run that
+compiles them: :mod:`cablestudy.kernels`). Where it cannot be built (no C compiler, no
+numba) or loaded, :func:`free_hanging_kernel` returns numba's kernel: the same answer,
+a slower start.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import os
+import shutil
+import sysconfig
+import tempfile
+import warnings
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+#: the extension module's name (its init function is PyInit_<name>)
+MODULE = "cablestudy_free_hanging"
+
+#: the types :func:`cablestudy.grid._compiled_solve` passes (any layout: 'A' arrays)
+SIGNATURE = (
+    "void(f8[:,:], f8[:,:], f8[:,:], f8[:,:,:], f8[:,:], i8[:], f8[:,:], f8[:,:], f8[:,:], "
+    "f8[:], i8[:], f8[:,:], f8[:,:,:], f8[:,:], f8[:,:], f8[:,:], i8[:], f8[:], i8[:])"
+)
+
+#: per module path, the kernel loaded from it (or numba's, or None)
+_LOADED: dict[str, Callable[..., None] | None] = {}
+
+
+def module_path() -> Path:
+    """Where the compiled module of this version of the source lives."""
+    where = os.environ.get("NUMBA_CACHE_DIR") or "."
+    return Path(where) / f"{MODULE}{sysconfig.get_config_var('EXT_SUFFIX') or '.so'}"
+
+
+def build() -> bool:
+    """Compile the module unless it is there; True when it is there afterwards. A failure
+    (no C compiler, no numba) leaves nothing behind and is not an error: the kernel then
+    comes from numba. Built in a temporary folder and moved into place in one rename, so
+    that processes compiling at the same time never load a half-written file."""
+    target = module_path()
+    if target.is_file():
+        return True
+    tmp = None
+    try:
+        target.parent.mkdir(parents=True, exist_ok=True)
+        tmp = tempfile.mkdtemp(prefix=".aot-", dir=target.parent)
+        with warnings.catch_warnings():
+            # numba.pycc announces its pending deprecation on import; it is the only
+            # ahead-of-time compiler numba ships, and a failure here only costs start-up
+            warnings.simplefilter("ignore")
+            from numba.pycc import CC
+
+            from . import _fast
+
+            cc = CC(MODULE)
+            cc.output_dir = tmp
+            cc.export("solve_cases", SIGNATURE)(_fast.solve_cases.py_func)
+            cc.compile()
+        built = next(Path(tmp).glob(f"{MODULE}*"))
+        os.replace(built, target)
+    except Exception:  # noqa: BLE001 - no compiler, no numba: numba's kernel is used
+        return False
+    finally:
+        if tmp is not None:
+            shutil.rmtree(tmp, ignore_errors=True)
+    return target.is_file()
+
+
+def _load(path: Path) -> Callable[..., None] | None:
+    try:
+        spec = importlib.util.spec_from_file_location(MODULE, path)
+        if spec is None or spec.loader is None:
+            return None
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        return module.solve_cases  # type: ignore[no-any-return]
+    except (ImportError, OSError, AttributeError):
+        return None
+
+
+def free_hanging_kernel() -> Callable[..., Any] | None:
+    """:func:`._fast.solve_cases` (same arguments, same results): the module compiled
+    ahead of time when it is built for this source, else numba's kernel (loaded, or
+    compiled, on first call); None when neither is available (no numba)."""
+    path = module_path()
+    key = str(path)
+    if key not in _LOADED:
+        kernel = _load(path) if path.is_file() else None
+        if kernel is None:
+            from . import _fast
+
+            kernel = _fast.solve_cases if _fast.AVAILABLE else None
+        _LOADED[key] = kernel
+    return _LOADED[key]
