@@ -29,7 +29,7 @@ from typing import Any, TextIO
 #: per kind: what it is, for messages, and about how long its compilation takes on one
 #: core of the 2-core development machine [s] (measured by ``cablestudy compile``)
 KINDS: dict[str, tuple[str, float]] = {
-    "statics": ("the static kernels", 10.0),
+    "statics": ("the static kernels", 18.0),
     "time": ("the time-domain kernels", 25.0),
     "frequency": ("the frequency-domain kernels", 10.0),
 }
