@@ -38,7 +38,7 @@ KINDS: dict[str, tuple[str, float]] = {
 def _warm_statics() -> None:
     """The still-water catenary kernels (free-hanging and seabed-contact batches, alone
     and stacked, nonlinear axial laws) and the quasi-static database lookup on small
-    problems; then the free-hanging batch kernel compiled ahead of time."""
+    problems; then the still-water batch kernels compiled ahead of time."""
     import numpy as np
 
     from .config.loader import parse_study_text, validate_data
@@ -80,8 +80,8 @@ ends:
 
     grid = np.array([0.0, 1.0])
     database_kernel.evaluate_cell(np.zeros((1, 1, 2, 16)), grid, grid, 0.5, 0.5)
-    # the free-hanging kernel as an extension module: sweeps of lines hanging free then
-    # start without numba (cablestudy.statics.aot; where it cannot be built, numba's)
+    # the still-water batch kernels as an extension module: array sweeps then start
+    # without numba (cablestudy.statics.aot; where it cannot be built, numba's)
     from .statics.aot import build
 
     build()

@@ -1,23 +1,24 @@
-"""The free-hanging batch kernel compiled ahead of time, so that a sweep of lines hanging
-free starts without numba.
+"""The still-water batch kernels compiled ahead of time, so that the commonest sweeps start
+without numba.
 
 numba compiles a kernel on its first call and keeps the machine code on disk, but even
 a cached kernel is loaded through numba: importing it (about 0.12 s on the 2-core
 development machine), setting up its target context (about 0.1 s, and 0.07 s more for
 the scipy.linalg it imports to look for a BLAS), then the kernel itself (6 ms). For the
-commonest sweep, lines hanging free between fixed ends (:func:`cablestudy.grid.
-_compiled_solve`), that was 40 % of a 20,000-case run end to end.
+commonest sweeps, run as arrays (:func:`cablestudy.grid._compiled_solve`) -- lines
+hanging free between fixed ends, and lines from an anchor on the seabed to a fairlead
+-- that was 40 % of a 20,000-case run end to end.
 
-``numba.pycc`` compiles the same Python function, :func:`._fast.solve_cases` with the
-kernels it calls, into a plain extension module, which imports in well under a
-millisecond and needs neither numba nor scipy. It computes the same numbers bit for bit
-(numba's lowering of the same function, without fast-math; tested against the JIT
-kernel). :func:`build` writes it beside numba's cache, in the directory per version of
-the source that :mod:`cablestudy` chooses (a change to any source file builds afresh),
-when the static kernels are compiled (``cablestudy compile``, or the first run that
-compiles them: :mod:`cablestudy.kernels`). Where it cannot be built (no C compiler, no
-numba) or loaded, :func:`free_hanging_kernel` returns numba's kernel: the same answer,
-a slower start.
+``numba.pycc`` compiles the same Python functions, :func:`._fast.solve_cases` and
+:func:`._fast_contact.contact_cases` with the kernels they call, into a plain extension
+module, which imports in well under a millisecond and needs neither numba nor scipy. It
+computes the same numbers bit for bit (numba's lowering of the same functions, without
+fast-math; tested against the JIT kernels). :func:`build` writes it beside numba's
+cache, in the directory per version of the source that :mod:`cablestudy` chooses (a
+change to any source file builds afresh), when the static kernels are compiled
+(``cablestudy compile``, or the first run that compiles them: :mod:`cablestudy.kernels`).
+Where it cannot be built (no C compiler, no numba) or loaded, :func:`kernel` returns
+numba's kernel: the same answer, a slower start.
 """
 
 from __future__ import annotations
@@ -33,16 +34,27 @@ from pathlib import Path
 from typing import Any
 
 #: the extension module's name (its init function is PyInit_<name>)
-MODULE = "cablestudy_free_hanging"
+MODULE = "cablestudy_static_kernels"
 
-#: the types :func:`cablestudy.grid._compiled_solve` passes (any layout: 'A' arrays)
-SIGNATURE = (
-    "void(f8[:,:], f8[:,:], f8[:,:], f8[:,:,:], f8[:,:], i8[:], f8[:,:], f8[:,:], f8[:,:], "
-    "f8[:], i8[:], f8[:,:], f8[:,:,:], f8[:,:], f8[:,:], f8[:,:], i8[:], f8[:], i8[:])"
-)
+#: per kernel: its numba module (in this package) and the types its callers pass (any
+#: layout: 'A' arrays)
+KERNELS = {
+    "solve_cases": (
+        "_fast",
+        "void(f8[:,:], f8[:,:], f8[:,:], f8[:,:,:], f8[:,:], i8[:], f8[:,:], f8[:,:], "
+        "f8[:,:], f8[:], i8[:], f8[:,:], f8[:,:,:], f8[:,:], f8[:,:], f8[:,:], i8[:], f8[:], "
+        "i8[:])",
+    ),
+    "contact_cases": (
+        "_fast_contact",
+        "void(f8[:,:], f8[:,:], f8[:,:], f8[:,:,:], f8[:,:], f8[:,:], f8[:,:], i8[:], "
+        "f8[:,:], f8[:,:], f8[:,:,:], f8[:], f8[:], b1[:], f8[:], i8[:], f8[:,:], f8[:,:,:], "
+        "f8[:,:], f8[:,:], f8[:,:], f8[:], i8[:], f8[:], i8[:])",
+    ),
+}
 
-#: per module path, the kernel loaded from it (or numba's, or None)
-_LOADED: dict[str, Callable[..., None] | None] = {}
+#: per module path, the kernels loaded from it (None where it is missing or broken)
+_LOADED: dict[str, Any] = {}
 
 
 def module_path() -> Path:
@@ -69,11 +81,11 @@ def build() -> bool:
             warnings.simplefilter("ignore")
             from numba.pycc import CC
 
-            from . import _fast
-
             cc = CC(MODULE)
             cc.output_dir = tmp
-            cc.export("solve_cases", SIGNATURE)(_fast.solve_cases.py_func)
+            for name, (where, signature) in KERNELS.items():
+                jitted = getattr(importlib.import_module(f"{__package__}.{where}"), name)
+                cc.export(name, signature)(jitted.py_func)
             cc.compile()
         built = next(Path(tmp).glob(f"{MODULE}*"))
         os.replace(built, target)
@@ -85,29 +97,37 @@ def build() -> bool:
     return target.is_file()
 
 
-def _load(path: Path) -> Callable[..., None] | None:
+def _load(path: Path) -> Any:
+    """The compiled module at ``path``, or None when it cannot be loaded or lacks a kernel
+    (a truncated copy, a module of another version)."""
     try:
         spec = importlib.util.spec_from_file_location(MODULE, path)
         if spec is None or spec.loader is None:
             return None
         module = importlib.util.module_from_spec(spec)
         spec.loader.exec_module(module)
-        return module.solve_cases  # type: ignore[no-any-return]
-    except (ImportError, OSError, AttributeError):
+    except (ImportError, OSError):
         return None
+    return module if all(hasattr(module, name) for name in KERNELS) else None
 
 
-def free_hanging_kernel() -> Callable[..., Any] | None:
-    """:func:`._fast.solve_cases` (same arguments, same results): the module compiled
-    ahead of time when it is built for this source, else numba's kernel (loaded, or
-    compiled, on first call); None when neither is available (no numba)."""
+def kernel(name: str) -> Callable[..., Any] | None:
+    """The batch kernel ``name`` of :data:`KERNELS` (same arguments, same results as
+    numba's): compiled ahead of time when the module is built for this source, else
+    numba's (loaded, or compiled, on first call); None without numba."""
     path = module_path()
     key = str(path)
     if key not in _LOADED:
-        kernel = _load(path) if path.is_file() else None
-        if kernel is None:
-            from . import _fast
+        _LOADED[key] = _load(path) if path.is_file() else None
+    module = _LOADED[key]
+    if module is not None:
+        return getattr(module, name)  # type: ignore[no-any-return]
+    jitted = importlib.import_module(f"{__package__}.{KERNELS[name][0]}")
+    from . import _fast
 
-            kernel = _fast.solve_cases if _fast.AVAILABLE else None
-        _LOADED[key] = kernel
-    return _LOADED[key]
+    return getattr(jitted, name) if _fast.AVAILABLE else None
+
+
+def free_hanging_kernel() -> Callable[..., Any] | None:
+    """:func:`._fast.solve_cases`, as :func:`kernel` finds it."""
+    return kernel("solve_cases")

@@ -1,7 +1,7 @@
-"""The free-hanging batch kernel compiled ahead of time (cablestudy.statics.aot, issue 20,
-"Speed"): the same numbers as numba's kernel bit for bit, a sweep of lines hanging free
-run end to end without importing numba or scipy, and numba's kernel wherever the module
-cannot be built or loaded.
+"""The still-water batch kernels compiled ahead of time (cablestudy.statics.aot, issue 20,
+"Speed"): the same numbers as numba's kernels bit for bit, sweeps of lines hanging free
+and of lines resting on the seabed run end to end without importing numba or scipy, and
+numba's kernels wherever the module cannot be built or loaded.
 
 The module is built once per version of the source with the static kernels, as
 ``cablestudy compile`` builds it (about 8 s on the development machine, the price of
@@ -82,15 +82,35 @@ def loaded(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(aot, "_LOADED", {})
 
 
+#: lines from an anchor on a flat seabed with friction (most with a laid part, some
+#: lifting off at the anchor, some hanging free of the seabed: both kernels run)
+SEABED = """\
+name: bed
+environment: {fluid: water, depth: 100.0, seabed: {friction: 0.5}}
+line:
+  segments:
+    - {length: 300.0, diameter: 0.076, mass_per_length: 126.0, axial_stiffness: 5.0e8}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -100.0]}
+  b: {kind: fixed, position: [250.0, 0.0, -10.0]}
+analysis:
+  static: {nodes: 20}
+sweep:
+  ends.b.position.0: {start: 215.0, stop: 295.0, num: 16, name: offset}
+  line.segments.0.axial_stiffness: [1.0e6, 1.0e8, 2.0e9]
+"""
+
+
+@pytest.mark.parametrize("text", [SWEEP, SEABED], ids=["hanging", "seabed"])
 def test_the_module_gives_numba_s_numbers_bit_for_bit(
-    built: Path, loaded: None, monkeypatch: pytest.MonkeyPatch
+    text: str, built: Path, loaded: None, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    grid = expand_grid(parse_study_text(SWEEP, "aot.yaml"))
+    grid = expand_grid(parse_study_text(text, "aot.yaml"))
     assert grid is not None and grid.arrays
-    kernel = aot.free_hanging_kernel()
-    assert kernel is not None and kernel is not _fast.solve_cases  # the built module
+    assert aot.kernel("solve_cases") is not _fast.solve_cases  # the built module
     ahead = evaluate_grid_chunk(grid, 0, grid.shape[0])
-    monkeypatch.setattr(aot, "free_hanging_kernel", lambda: _fast.solve_cases)
+    monkeypatch.setitem(aot._LOADED, str(built), None)  # as if not built: numba's kernels
+    assert aot.kernel("solve_cases") is _fast.solve_cases
     jit = evaluate_grid_chunk(grid, 0, grid.shape[0])
     assert ahead.fallback == jit.fallback
     assert np.array_equal(ahead.status, jit.status)
@@ -98,11 +118,15 @@ def test_the_module_gives_numba_s_numbers_bit_for_bit(
     assert np.array_equal(ahead.fallback_reason, jit.fallback_reason)
     assert ahead.data.keys() == jit.data.keys()
     for name, values in jit.data.items():
-        # the same function through the same lowering without fast-math: identical bits
+        # the same functions through the same lowering without fast-math: identical bits
         assert ahead.data[name].tobytes() == values.tobytes(), name
-    # the sweep did exercise the kernel: most cases settled there, verified
+    # the sweep did exercise the kernels: most cases settled there, verified
     assert np.count_nonzero(jit.fallback_reason == "") > 0.5 * grid.size
     assert np.count_nonzero(jit.status == 0) > 0.5 * grid.size
+    if text is SEABED:
+        laid = jit.data["laid_length"]
+        assert np.count_nonzero(laid > 0.0) > 0.25 * grid.size  # the contact kernel
+        assert np.count_nonzero(laid == 0.0) > 0  # and lines hanging free
 
 
 _CHILD = textwrap.dedent(
@@ -117,11 +141,16 @@ _CHILD = textwrap.dedent(
 )
 
 
-def test_a_free_hanging_sweep_runs_without_numba(built: Path, tmp_path: Path) -> None:
+@pytest.mark.parametrize(
+    ("text", "name", "shape"), [(IN_AIR, "light", (14, 2)), (SEABED, "bed", (16, 3))]
+)
+def test_a_still_water_sweep_runs_without_numba(
+    built: Path, tmp_path: Path, text: str, name: str, shape: tuple[int, int]
+) -> None:
     """End to end, YAML to netCDF, in a fresh interpreter (the module is found in the
     cache directory of this source version, which the child inherits)."""
-    config = tmp_path / "light.yaml"
-    config.write_text(IN_AIR)
+    config = tmp_path / f"{name}.yaml"
+    config.write_text(text)
     args = ["run", str(config), "--out", str(tmp_path / "out"), "--no-cache"]
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     done = subprocess.run(
@@ -137,10 +166,11 @@ def test_a_free_hanging_sweep_runs_without_numba(built: Path, tmp_path: Path) ->
     assert result["code"] == 0
     import netCDF4
 
-    with netCDF4.Dataset(tmp_path / "out" / "light.nc") as nc:
-        assert nc.variables["tension_b"].shape == (14, 2)
-        assert int(nc.cases_fallback) == 0  # every case from the (compiled) kernel
+    with netCDF4.Dataset(tmp_path / "out" / f"{name}.nc") as nc:
+        assert nc.variables["tension_b"].shape == shape
         assert np.all(nc.variables["status"][...] == 0)
+        if text is IN_AIR:
+            assert int(nc.cases_fallback) == 0  # every case from the (compiled) kernel
     heavy = ("numba", "llvmlite", "scipy")
     loaded = sorted({m.split(".")[0] for m in result["modules"] if m.split(".")[0] in heavy})
     assert not loaded, f"the run imported {loaded}"
@@ -150,12 +180,15 @@ def test_a_free_hanging_sweep_runs_without_numba(built: Path, tmp_path: Path) ->
 def test_numba_s_kernel_where_the_module_is_missing_or_broken(
     tmp_path: Path, loaded: None, monkeypatch: pytest.MonkeyPatch
 ) -> None:
+    from cablestudy.statics import _fast_contact
+
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
     assert not aot.module_path().exists()
-    assert aot.free_hanging_kernel() is _fast.solve_cases
+    assert aot.kernel("solve_cases") is _fast.solve_cases
+    assert aot.kernel("contact_cases") is _fast_contact.contact_cases
     monkeypatch.setattr(aot, "_LOADED", {})
     aot.module_path().write_bytes(b"not a shared object")  # e.g. a truncated copy
-    assert aot.free_hanging_kernel() is _fast.solve_cases
+    assert aot.kernel("solve_cases") is _fast.solve_cases
 
 
 def test_a_failed_build_leaves_nothing(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
