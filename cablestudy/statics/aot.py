@@ -24,6 +24,7 @@ numba's kernel: the same answer, a slower start.
 from __future__ import annotations
 
 import importlib.util
+import inspect
 import os
 import shutil
 import sysconfig
@@ -85,7 +86,7 @@ def build() -> bool:
             cc.output_dir = tmp
             for name, (where, signature) in KERNELS.items():
                 jitted = getattr(importlib.import_module(f"{__package__}.{where}"), name)
-                cc.export(name, signature)(jitted.py_func)
+                cc.export(name, signature)(_entry(jitted))
             cc.compile()
         built = next(Path(tmp).glob(f"{MODULE}*"))
         os.replace(built, target)
@@ -95,6 +96,20 @@ def build() -> bool:
         if tmp is not None:
             shutil.rmtree(tmp, ignore_errors=True)
     return target.is_file()
+
+
+def _entry(jitted: Any) -> Callable[..., None]:
+    """A function of the kernel's own arguments that calls the numba kernel ``jitted``:
+    what is exported. pycc compiles an exported function with its default options
+    (``error_model="python"``: a division by zero raises), not the kernel's own; called
+    from this entry, the kernel is compiled with its options (``error_model="numpy"``: a
+    division by zero gives inf or NaN, which the kernel's checks then catch), so that it
+    computes what numba's kernel computes in every case, not only where nothing divides
+    by zero. The entry holds no arithmetic of its own."""
+    names = ", ".join(inspect.signature(jitted.py_func).parameters)
+    scope: dict[str, Any] = {"kernel": jitted}
+    exec(f"def entry({names}):\n    kernel({names})\n", scope)  # noqa: S102 - our names
+    return scope["entry"]  # type: ignore[no-any-return]
 
 
 def _load(path: Path) -> Any:

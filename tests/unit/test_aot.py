@@ -129,6 +129,47 @@ def test_the_module_gives_numba_s_numbers_bit_for_bit(
         assert np.count_nonzero(laid == 0.0) > 0  # and lines hanging free
 
 
+def _degenerate() -> list[np.ndarray]:
+    """The arguments of :func:`._fast.solve_cases` for a line of zero length between
+    coincident ends: its residual scale is 0, so the kernel divides by zero."""
+    N, P, n = 1, 1, 5
+    return [
+        np.zeros((N, P)),  # piece lengths
+        np.full((N, P), 1e6),
+        np.full((N, P), 10.0),
+        np.zeros((N, P + 1, 3)),
+        np.zeros((N, P + 1)),  # bounds
+        np.zeros(N, dtype=np.int64),
+        np.zeros((N, 3)),
+        np.zeros((N, 3)),  # B at A
+        np.array([[0.0, 0.0, 1.0]]),
+        np.full(N, 1e-9),
+        np.full(N, 50, dtype=np.int64),
+        np.zeros((N, n)),
+        np.zeros((N, n, 3)),
+        np.zeros((N, n)),
+        np.zeros((N, 3)),
+        np.zeros((N, 3)),
+        np.zeros(N, dtype=np.int64),
+        np.zeros(N),
+        np.zeros(N, dtype=np.int64),
+    ]
+
+
+def test_a_division_by_zero_is_numba_s_not_an_exception(built: Path, loaded: None) -> None:
+    """The kernels' own error model (``error_model="numpy"``: inf or NaN, then the
+    kernel's finiteness checks), not pycc's default (which raises ZeroDivisionError and
+    would fail the whole chunk of cases)."""
+    expected, got = _degenerate(), _degenerate()
+    _fast.solve_cases(*expected)
+    kernel = aot.kernel("solve_cases")
+    assert kernel is not _fast.solve_cases
+    kernel(*got)
+    assert expected[-1][0] == 1 and np.isnan(expected[-2][0])  # not converged, said so
+    for a, b in zip(expected, got, strict=True):
+        assert a.tobytes() == b.tobytes()
+
+
 _CHILD = textwrap.dedent(
     """
     import contextlib, io, json, sys
