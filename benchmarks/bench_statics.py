@@ -171,8 +171,8 @@ def bench_still_water(n: int, repeats: int) -> list[str]:
 def bench_chunk(n: int, repeats: int) -> list[str]:
     """Whole chunk evaluation from a validated study (what the runner's task does)."""
     from cablestudy import analyses
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import read_study_source
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import read_study_source
 
     src = read_study_source(ROOT / "configs" / "dodaran-fig4-semi-analytic.yaml")
     src.data["analysis"]["static"]["tolerance"] = 1e-9
@@ -258,8 +258,8 @@ def bench_drag(repeats: int) -> list[str]:
 
 def bench_figures() -> list[str]:
     from cablestudy import analyses
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import read_study_source
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import read_study_source
 
     out = [
         "dodaran-park figure studies (per case: status, drag iterations, Newton iterations, "

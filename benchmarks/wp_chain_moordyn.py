@@ -129,8 +129,8 @@ def study(frequency: float, amplitude: float, elements: int, ppp: int) -> dict[s
 
 
 def _case(data: dict):  # noqa: ANN202
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import parse_study_text
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import parse_study_text
 
     _, cases = expand_cases(parse_study_text(yaml.safe_dump(data), "<bench>"))
     return cases[0]
@@ -231,9 +231,9 @@ def moordyn_text(f: float, a: float, segments: int) -> tuple[str, np.ndarray, fl
     """The exported MoorDyn file of the case with our seabed set (module notes), the
     coupled point's position [m] and its time step dtM [s]."""
     from cablestudy.analyses import line_model
-    from cablestudy.config.loader import parse_study_text
     from cablestudy.dynamics.model import default_seabed_stiffness
     from cablestudy.interchange.case_export import export_case
+    from cablestudy.study.loader import parse_study_text
 
     data = study(f, a, segments, 64)
     src = parse_study_text(yaml.safe_dump(data), "<bench>")

@@ -48,9 +48,9 @@ FIGS = REPO / "configs" / "moustafa-figs2-5.yaml"
 def frequency_case(elements: int):  # noqa: ANN201
     """(reduced linear line, omega, end motion, drag settings) of the regime."""
     from cablestudy.analyses import solve_static
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import parse_study_text
     from cablestudy.frequency_cases import drag_settings, end_displacements, linearised
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import parse_study_text
 
     d = study(FREQUENCY, AMPLITUDE, elements, 64)
     dyn = d["analysis"]["dynamic"]
@@ -116,8 +116,8 @@ def linear_regime(quick: bool) -> WorkPrecision:
 
 
 def _cases(method: str):  # noqa: ANN202
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import parse_study_text
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import parse_study_text
 
     text = FIGS.read_text().replace("method: auto", f"method: {method}")
     return expand_cases(parse_study_text(text))[1]

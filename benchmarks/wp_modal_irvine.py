@@ -46,8 +46,8 @@ MODES = 4
 
 
 def case(elements: int, mesh: str):  # noqa: ANN201
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import parse_study_text
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import parse_study_text
 
     d = copy.deepcopy(BASE)
     d["analysis"]["modal"].update(elements=elements, mesh=mesh)

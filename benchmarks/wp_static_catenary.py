@@ -80,10 +80,10 @@ def pipeline_overhead(repeats: int) -> tuple[float, float]:
     import yaml
 
     from cablestudy import analyses
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import parse_study_text
-    from cablestudy.problem import static_problem
     from cablestudy.statics import STATIC_SOLVERS
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import parse_study_text
+    from cablestudy.study.problem import static_problem
 
     data = {
         "name": "bench",

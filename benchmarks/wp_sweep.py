@@ -54,7 +54,7 @@ sweep:
 DRIVER = """
 import json, resource, sys, time
 t0 = time.perf_counter()
-from cablestudy.config.loader import read_study_source, validate_data
+from cablestudy.study.loader import read_study_source, validate_data
 from cablestudy.grid import expand_grid
 from cablestudy.runner import run_grid_study
 t1 = time.perf_counter()

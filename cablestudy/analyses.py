@@ -15,15 +15,6 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .cases import Case
-from .config.analysis import (
-    DynamicSettings,
-    HarmonicExcitation,
-    SpectrumExcitation,
-    TimeSeriesExcitation,
-)
-from .config.ends import ForceEnd, MooringEnd
-from .config.loader import StudyError, StudySource
 from .counters import COUNTERS, trim_lru
 from .physics.profile import profile_quantities
 from .plausibility import (
@@ -33,7 +24,6 @@ from .plausibility import (
     largest_strain,
     strain_warning,
 )
-from .problem import line_model, medium, static_limits, static_problem
 from .results import OUTPUTS, CaseRecord
 from .statics import (
     STATIC_SOLVERS,
@@ -45,6 +35,16 @@ from .statics import (
     StaticResult,
 )
 from .statics.limits import apply_limits
+from .study.analysis import (
+    DynamicSettings,
+    HarmonicExcitation,
+    SpectrumExcitation,
+    TimeSeriesExcitation,
+)
+from .study.cases import Case
+from .study.ends import ForceEnd, MooringEnd
+from .study.loader import StudyError, StudySource
+from .study.problem import line_model, medium, static_limits, static_problem
 
 if TYPE_CHECKING:  # imported where used: `cablestudy validate` needs none of them
     from .dynamics.excitation import EndMotion

@@ -10,7 +10,7 @@ from pathlib import Path
 
 
 def _size(text: str) -> int:
-    from .config.safe_yaml import parse_size
+    from .study.safe_yaml import parse_size
 
     try:
         return parse_size(text)
@@ -20,16 +20,16 @@ def _size(text: str) -> int:
 
 def _load(path: str, max_bytes: int | None = None):  # noqa: ANN202
     from .analyses import check_supported
-    from .cases import expand_cases
-    from .config.loader import read_study_source
+    from .study.cases import expand_cases
+    from .study.loader import read_study_source
 
     src = read_study_source(path, max_bytes=max_bytes)
     for note in src.notes:
         print(f"warning: {note}", file=sys.stderr)
     grid = _grid(src)
     if grid is not None:
-        from .cases import Case, case_hashes
-        from .grid_static import axis_studies
+        from .study.cases import Case, case_hashes
+        from .study.grid_studies import axis_studies
 
         check_supported([Case((), {}, st, *case_hashes(st)) for st in axis_studies(grid)], src)
         return src, grid.axes, grid
@@ -46,7 +46,7 @@ def _grid(src):  # noqa: ANN001, ANN202
     sweep = src.data.get("sweep")
     if not isinstance(sweep, dict) or not sweep:
         return None
-    from .grid import expand_grid
+    from .study.grid import expand_grid
 
     return expand_grid(src)
 
@@ -168,7 +168,7 @@ def cmd_compile(args: argparse.Namespace) -> int:
 
 
 def cmd_schema(args: argparse.Namespace) -> int:
-    from .config import Study
+    from .study import Study
 
     schema = {
         "$schema": "https://json-schema.org/draft/2020-12/schema",
@@ -247,9 +247,9 @@ def cmd_import(args: argparse.Namespace) -> int:
 
 
 def cmd_export(args: argparse.Namespace) -> int:
-    from .config.loader import read_study_source
     from .interchange import InterchangeError
     from .interchange.case_export import export_case
+    from .study.loader import read_study_source
 
     src = read_study_source(args.config)
     for note in src.notes:
@@ -302,7 +302,7 @@ def cmd_plot(args: argparse.Namespace) -> int:
 
 
 def cmd_line_types(args: argparse.Namespace) -> int:
-    from .line_types import listing
+    from .study.line_types import listing
 
     sys.stdout.write(listing(args.diameter))
     return 0
@@ -477,7 +477,7 @@ def main(argv: list[str] | None = None) -> int:
         _skip_final_collection()
         if args.func is cmd_run:
             _pause_collection()
-    from .config.loader import StudyError  # pydantic and the models: after the pause
+    from .study.loader import StudyError  # pydantic and the models: after the pause
 
     COMMAND[:] = ["cablestudy", *(sys.argv[1:] if argv is None else argv)]
     workers = getattr(args, "workers", None)

@@ -40,16 +40,16 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .problem import static_problem
 from .results import DATABASE_LAYOUTS, DATABASE_QUANTITIES
 from .statics import STATIC_SOLVERS, EndCondition
+from .study.problem import static_problem
 
 if TYPE_CHECKING:
     import xarray as xr
 
-    from .cases import Case
-    from .config import Study
-    from .config.loader import StudySource
+    from .study import Study
+    from .study.cases import Case
+    from .study.loader import StudySource
 
 #: the interpolated quantities (the tables but the per-point status)
 QUANTITIES = tuple(q for q in DATABASE_QUANTITIES if q != "status")

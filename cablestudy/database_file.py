@@ -36,8 +36,8 @@ import numpy as np
 from .results import DATABASE_LAYOUTS, DATABASE_QUANTITIES, VariableSpec
 
 if TYPE_CHECKING:
-    from .cases import Case, SweepAxis
-    from .config.loader import StudySource
+    from .study.cases import Case, SweepAxis
+    from .study.loader import StudySource
 
 PREFIX = "quasi-static database: "
 

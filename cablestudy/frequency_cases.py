@@ -19,22 +19,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .cases import Case
-from .config.analysis import (
-    AutoSettings,
-    DynamicSettings,
-    HarmonicExcitation,
-    SpectrumExcitation,
-)
 from .counters import COUNTERS, trim_lru  # noqa: F401 - COUNTERS re-exported: static solves, assemblies
 from .dynamics.frequency import DragSettings, ReducedLine, solve_harmonic, solve_spectrum
 from .dynamics.harmonic_cases import solve_harmonic_cases
 from .dynamics.linear_model import linear_line
 from .dynamics.modal import ModalProblem
 from .dynamics.validity import Validity, measures_cases
-from .problem import static_problem
 from .statics import STATUS_NO_SOLUTION, STATUS_NUMERICAL, STATUS_OK, StaticResult
 from .statics.base import StaticProblem
+from .study.analysis import AutoSettings, DynamicSettings, HarmonicExcitation, SpectrumExcitation
+from .study.cases import Case
+from .study.problem import static_problem
 
 #: outputs of the transfer function (analysis.dynamic.transfer_function)
 TRANSFER_OUTPUTS = (
@@ -53,7 +48,7 @@ _LAST_PROBLEM: dict[str, StaticProblem] = {}
 
 
 def _problem(case: Case) -> StaticProblem:
-    """:func:`cablestudy.problem.static_problem` of the case's study, built once for the
+    """:func:`cablestudy.study.problem.static_problem` of the case's study, built once for the
     cases that share its static hash (every input of the static problem is in it)."""
     hit = _LAST_PROBLEM.get(case.static_hash)
     if hit is None:

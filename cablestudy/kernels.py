@@ -41,10 +41,10 @@ def _warm_statics() -> None:
     problems."""
     import numpy as np
 
-    from .config.loader import parse_study_text, validate_data
-    from .problem import static_problem
     from .statics import _fast
     from .statics.semi_analytic import SemiAnalyticSolver
+    from .study.loader import parse_study_text, validate_data
+    from .study.problem import static_problem
 
     if not _fast.AVAILABLE:
         return
@@ -66,7 +66,8 @@ ends:
         src = parse_study_text(body, "warm.yaml")
         SemiAnalyticSolver().solve(static_problem(validate_data(src.data, src)))
     # the array path of sweeps calls the batch kernels with stacked cases
-    from .grid import evaluate_grid_chunk, expand_grid
+    from .grid import evaluate_grid_chunk
+    from .study.grid import expand_grid
 
     sweep = (
         "sweep:\n  ends.b.position.0: [80.0, 85.0]\n"

@@ -8,14 +8,14 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .problem import line_model, medium, static_problem
 from .statics import STATIC_SOLVERS, StaticResult
 from .statics.pulley import chord_split, solve_over_pulleys, sub_problems
+from .study.problem import line_model, medium, static_problem
 
 if TYPE_CHECKING:
-    from .cases import Case
-    from .config import Study
-    from .config.loader import StudySource
+    from .study import Study
+    from .study.cases import Case
+    from .study.loader import StudySource
 
 #: static methods that solve a line over pulleys (each sub-line a fixed-fixed line whose
 #: solution does not depend on the output points); 'discrete' does not: its mesh is its

@@ -17,11 +17,11 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from . import __version__
-from .cases import Case, SweepAxis
-from .config.loader import StudySource
 from .conventions import command_line, is_status_variable, status_flag_attrs
-from .line_types import line_type_attrs
 from .outputs import temporary_prefix, written
+from .study.cases import Case, SweepAxis
+from .study.line_types import line_type_attrs
+from .study.loader import StudySource
 
 if TYPE_CHECKING:  # imported where used: a sweep run as arrays writes without xarray
     import xarray as xr
@@ -708,7 +708,7 @@ def _flag_statuses(data_vars: dict[str, Any]) -> None:
 
 
 def _path_info(path: str) -> tuple[str, str]:
-    from .cases import _field_info
+    from .study.cases import _field_info
 
     return _field_info(tuple(path.split(".")))
 
@@ -722,7 +722,7 @@ def provenance(src: StudySource, solver_settings: dict[str, Any]) -> dict[str, A
     import numpy
     import pydantic
 
-    from .cases import code_fingerprint
+    from .study.cases import code_fingerprint
 
     return {
         "Conventions": "CF-1.8",

@@ -25,12 +25,12 @@ from typing import Any
 import numpy as np
 
 from .cache import LOST_PREFIX, TEMPORARY_PATTERNS, TRANSIENT_PREFIXES, CaseCache
-from .cases import Case, SweepAxis
-from .config.loader import StudySource
 from .outputs import CacheLock, remove_stale_temporaries, temporary_prefix
 from .outputs import now as run_started
 from .remote import DEFAULT_TIMEOUT, connect
 from .results import CaseRecord, assembled_variables, write_atomic, write_variables_atomic
+from .study.cases import Case, SweepAxis
+from .study.loader import StudySource
 
 #: status of a case whose task failed outside the solvers (worker lost)
 STATUS_TASK_FAILED = 9
@@ -886,7 +886,7 @@ def _grid_settings(grid: Any) -> dict[str, Any]:
         }
     import itertools
 
-    from .grid_static import case_study
+    from .study.grid_studies import case_study
 
     swept = {p: v for p, v in grid.validated.items() if p.startswith("analysis.")}
     axes = sorted({k for k, _ in swept.values()})

@@ -13,16 +13,16 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .config.analysis import HarmonicExcitation, SpectrumExcitation, TimeSeriesExcitation
-from .config.line import DEFAULT_MAX_STRAIN, check_axial
-from .problem import end_condition
 from .statics import STATUS_OK, StaticResult
 from .statics.spring import SpringProblem, reachable_extension, solve_spring
+from .study.analysis import HarmonicExcitation, SpectrumExcitation, TimeSeriesExcitation
+from .study.line import DEFAULT_MAX_STRAIN, check_axial
+from .study.problem import end_condition
 
 if TYPE_CHECKING:
-    from .cases import Case
-    from .config import Study
-    from .config.loader import StudySource
+    from .study import Study
+    from .study.cases import Case
+    from .study.loader import StudySource
 
 
 def spring_problem(study: Study) -> SpringProblem:

@@ -15,13 +15,13 @@ from typing import Any
 
 import numpy as np
 
-from .cases import Case
-from .config import Study
-from .config.system import BodyPoint, FixedPoint, FreePoint
-from .problem import line_model, medium
 from .results import CaseRecord
 from .statics import STATIC_SOLVERS, STATUS_NUMERICAL, STATUS_OK, EndCondition, StaticProblem
 from .statics.system import BODY, FIXED, FREE, MooringSystem, SystemLine, solve_system
+from .study import Study
+from .study.cases import Case
+from .study.problem import line_model, medium
+from .study.system import BodyPoint, FixedPoint, FreePoint
 
 
 def system_model(study: Study) -> MooringSystem:

@@ -39,9 +39,9 @@ def _ensure_study(name: str, results: Path, configs: Path, run_missing: bool) ->
             f"{results}`, or run `cablestudy figures` without --no-run"
         )
     from ..analyses import check_supported
-    from ..cases import expand_cases
-    from ..config.loader import read_study_source
     from ..runner import run_study
+    from ..study.cases import expand_cases
+    from ..study.loader import read_study_source
 
     candidates = [p for p in sorted(configs.glob("*.yaml")) if p.stem == name]
     if not candidates:

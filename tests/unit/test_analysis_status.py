@@ -15,12 +15,12 @@ import pytest
 import xarray as xr
 
 from cablestudy import analyses
-from cablestudy.cases import expand_cases
 from cablestudy.cli import main
-from cablestudy.config.loader import parse_study_text
 from cablestudy.results import OUTPUTS, CaseRecord, assemble
 from cablestudy.runner import run_study
 from cablestudy.statics import STATUS_NUMERICAL, STATUS_TIME_LIMIT
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 CABLE = """
 environment: {fluid: water}

@@ -17,12 +17,12 @@ import pytest
 import scipy.sparse as sp
 
 from cablestudy import analyses, frequency_cases
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
 from cablestudy.dynamics import harmonic_cases
 from cablestudy.dynamics.frequency import ReducedLine, selected_rows, sum_components
 from cablestudy.dynamics.linear_model import held_ends_basis
 from cablestudy.dynamics.modal import _block_matrix, _free_basis
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 FIGS = Path(__file__).resolve().parents[2] / "configs" / "moustafa-figs2-5.yaml"
 

@@ -8,8 +8,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from cablestudy import analyses, frequency_cases
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 CONFIG = Path(__file__).resolve().parents[2] / "configs" / "moustafa-figs2-5.yaml"
 

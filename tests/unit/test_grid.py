@@ -12,12 +12,13 @@ import pytest
 import xarray as xr
 
 from cablestudy import analyses
-from cablestudy.cases import expand_cases
-from cablestudy.config import parse_study_text
-from cablestudy.config.loader import StudyError
-from cablestudy.grid import CaseGrid, evaluate_grid_chunk, expand_grid
+from cablestudy.grid import evaluate_grid_chunk
 from cablestudy.results import KEPT_STATUSES
 from cablestudy.runner import run_grid_study, run_study
+from cablestudy.study import parse_study_text
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import CaseGrid, expand_grid
+from cablestudy.study.loader import StudyError
 
 TEXT = """\
 name: gr
@@ -401,7 +402,7 @@ def test_the_default_method_takes_the_array_path_as_the_written_one(tmp_path: Pa
     """Which path a study takes is decided from the validated study, defaults included:
     leaving out ``method: catenary`` (the default) must not send a sweep case by case."""
     from cablestudy.cli import _load
-    from cablestudy.grid import CaseGrid
+    from cablestudy.study.grid import CaseGrid
 
     written, left_out = tmp_path / "written.yaml", tmp_path / "left_out.yaml"
     written.write_text(TEXT)
@@ -419,7 +420,7 @@ def test_with_and_without_method_and_a_key_no_kernel_takes_share_one_path(
     batch kernels did not settle are counted with their reason, in the dataset and the
     summary."""
     from cablestudy import cli
-    from cablestudy.grid import CaseGrid
+    from cablestudy.study.grid import CaseGrid
 
     left_out = TEXT.replace("method: catenary, ", "")
     found = {}
@@ -472,7 +473,7 @@ def test_a_copied_case_study_is_the_validated_one(text: str) -> None:
     """Each case's study built by copying the template (cablestudy.grid_static) is the
     study the full validation of the case's YAML gives: every field, and what the
     validators derive (a line's total length), but the sweep table itself."""
-    from cablestudy.grid_static import _case_values, case_study
+    from cablestudy.study.grid_studies import _case_values, case_study
 
     src = parse_study_text(text, "gr.yaml")
     grid = expand_grid(src)

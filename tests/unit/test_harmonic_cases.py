@@ -19,8 +19,6 @@ import pytest
 import scipy.sparse as sp
 
 from cablestudy import analyses, frequency_cases
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
 from cablestudy.dynamics.frequency import (
     ReducedLine,
     block_diagonal,
@@ -30,6 +28,8 @@ from cablestudy.dynamics.frequency import (
 )
 from cablestudy.dynamics.harmonic_cases import in_plane, solve_harmonic_cases
 from cablestudy.dynamics.validity import measures, measures_cases
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 FIGS = Path(__file__).resolve().parents[2] / "configs" / "moustafa-figs2-5.yaml"
 

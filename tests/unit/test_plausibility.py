@@ -9,8 +9,6 @@ import numpy as np
 import pytest
 
 from cablestudy import analyses
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
 from cablestudy.plausibility import (
     dynamic_warnings,
     joined,
@@ -19,6 +17,8 @@ from cablestudy.plausibility import (
     strain_warning,
     unsettled_warning,
 )
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 
 def test_largest_strain_takes_the_laws_strain_or_t_over_ea_and_skips_nan() -> None:

@@ -17,9 +17,9 @@ from matplotlib.figure import Figure
 from matplotlib.text import Text
 
 from cablestudy.cli import main
-from cablestudy.config import parse_study_text
-from cablestudy.grid import expand_grid
 from cablestudy.plotting import UNITS, unit_scale
+from cablestudy.study import parse_study_text
+from cablestudy.study.grid import expand_grid
 
 LINE = """
 environment: {fluid: air}

@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from cablestudy.cases import expand_cases
-from cablestudy.config import parse_study_text
 from cablestudy.results import OUTPUTS, CaseRecord, assemble, write_atomic
+from cablestudy.study import parse_study_text
+from cablestudy.study.cases import expand_cases
 
 TEXT = """\
 name: res

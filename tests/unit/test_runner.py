@@ -13,8 +13,6 @@ import pytest
 import xarray as xr
 
 from cablestudy import analyses, runner
-from cablestudy.cases import Case, expand_cases
-from cablestudy.config import parse_study_text
 from cablestudy.runner import (
     CaseCache,
     Progress,
@@ -24,6 +22,8 @@ from cablestudy.runner import (
     run_study,
 )
 from cablestudy.statics import STATIC_SOLVERS, STATUS_OK
+from cablestudy.study import parse_study_text
+from cablestudy.study.cases import Case, expand_cases
 
 TEXT = """\
 name: rn
@@ -512,8 +512,8 @@ def test_case_evaluation_refuses_features_its_solver_lacks() -> None:
     import yaml
 
     from cablestudy.analyses import evaluate_case
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import parse_study_text
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import parse_study_text
 
     data = {
         "name": "unsupported",

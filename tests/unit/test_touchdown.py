@@ -65,9 +65,9 @@ def test_a_buoyant_piece_on_a_laid_leg_is_named_in_the_failure() -> None:
     0.16 m: about -124 N/m in water) is lighter than water. The seabed-contact model
     cannot lay it; the message must say so, not that the line is longer than its path
     (750 m against 785 m here)."""
-    from cablestudy.config.loader import parse_study_text, validate_data
-    from cablestudy.problem import static_problem
     from cablestudy.statics import STATIC_SOLVERS
+    from cablestudy.study.loader import parse_study_text, validate_data
+    from cablestudy.study.problem import static_problem
 
     text = """\
 name: leg

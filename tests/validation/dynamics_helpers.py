@@ -11,10 +11,10 @@ import numpy as np
 import yaml
 
 from cablestudy.analyses import dynamic_problem, solve_static
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
 from cablestudy.dynamics.model import DiscreteLine
 from cablestudy.dynamics.timedomain import DynamicResult, simulate
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 LENGTH, SPAN, MASS, EA, DIAMETER = 10.9774, 10.792, 0.61, 7.854e6, 0.01
 

@@ -21,15 +21,15 @@ import pytest
 import xarray as xr
 
 from cablestudy import analyses
-from cablestudy.cases import expand_cases
 from cablestudy.cli import main
-from cablestudy.config.loader import read_study_source
 from cablestudy.dynamics.pulley import pulley_tensions, slide_bound, wrap_angle
 from cablestudy.dynamics.timedomain import simulate
-from cablestudy.problem import static_problem
 from cablestudy.statics import STATIC_SOLVERS
 from cablestudy.statics.base import EndCondition
 from cablestudy.statics.pulley import solve_over_pulleys
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import read_study_source
+from cablestudy.study.problem import static_problem
 
 STUDY = """\
 name: pulley-dynamics

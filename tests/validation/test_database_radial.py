@@ -20,7 +20,6 @@ import pytest
 import xarray as xr
 
 from cablestudy.cli import main
-from cablestudy.config import Study, load_study
 from cablestudy.database import (
     QUANTITIES,
     QuasiStaticDatabase,
@@ -28,8 +27,9 @@ from cablestudy.database import (
     open_database,
     solve_database,
 )
-from cablestudy.problem import static_problem
 from cablestudy.statics import STATIC_SOLVERS, EndCondition
+from cablestudy.study import Study, load_study
+from cablestudy.study.problem import static_problem
 
 D0, D1, A0, A1 = 100.0, 150.0, -30.0, 30.0
 

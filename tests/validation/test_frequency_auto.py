@@ -11,8 +11,8 @@ from pathlib import Path
 import numpy as np
 
 from cablestudy import analyses
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 CONFIG = Path(__file__).resolve().parents[2] / "configs" / "moustafa-figs2-5.yaml"
 

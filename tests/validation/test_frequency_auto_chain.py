@@ -14,9 +14,9 @@ from pathlib import Path
 import numpy as np
 
 from cablestudy import analyses
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
 from cablestudy.frequency_cases import solve_frequency
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 CONFIG = Path(__file__).resolve().parents[2] / "configs" / "chain-mooring-surge.yaml"
 AMPLITUDES = [0.5, 1.0, 2.0]

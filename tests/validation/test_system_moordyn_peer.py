@@ -26,9 +26,9 @@ import moorpy as mp
 import numpy as np
 import pytest
 
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
 from cablestudy.interchange import import_model, imported_yaml
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 from cablestudy.system_cases import evaluate_system_case
 
 DATA = Path(__file__).parents[1] / "data"

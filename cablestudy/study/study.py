@@ -39,7 +39,7 @@ def _line_or_reference(schema: dict[str, Any]) -> None:
 
 class Study(StrictModel):
     """A whole study file. ``sweep`` is kept raw here and expanded by
-    :func:`cablestudy.cases.expand_cases`."""
+    :func:`cablestudy.study.cases.expand_cases`."""
 
     model_config = ConfigDict(**StrictModel.model_config, json_schema_extra=_line_or_reference)
 
@@ -64,7 +64,7 @@ class Study(StrictModel):
     analysis: Analysis = Analysis()
     sweep: dict[str, Any] = Field(
         {},
-        description="parameter sweeps: dotted path -> values; expanded by cablestudy.cases",
+        description="parameter sweeps: dotted path -> values; expanded by cablestudy.study.cases",
         json_schema_extra={
             "propertyNames": {"pattern": r"^(zip|[A-Za-z_][A-Za-z0-9_]*(\.[A-Za-z0-9_]+)*)$"},
             "additionalProperties": {

@@ -1,4 +1,4 @@
-"""Conversion of a validated :class:`~cablestudy.config.Study` into the plain inputs of
+"""Conversion of a validated :class:`~cablestudy.study.Study` into the plain inputs of
 the physics solvers (frozen dataclasses of arrays, SI units)."""
 
 from __future__ import annotations
@@ -8,11 +8,11 @@ from typing import Any
 
 import numpy as np
 
-from .config import FixedEnd, ForceEnd, MooringEnd, Study
-from .config.analysis import Installation
-from .config.ends import End
-from .statics import EndCondition, LineModel, Medium, StaticProblem
-from .statics.limits import StaticLimits
+from ..statics import EndCondition, LineModel, Medium, StaticProblem
+from ..statics.limits import StaticLimits
+from . import FixedEnd, ForceEnd, MooringEnd, Study
+from .analysis import Installation
+from .ends import End
 
 
 def line_model(study: Study) -> LineModel:
@@ -78,7 +78,7 @@ def _laws(segs: list[Any]) -> tuple:
 def static_limits(study: Study) -> StaticLimits:
     """Break limits per segment (a segment's own ``failure``, else ``line.failure``) and the
     strain range each non-linear law was checked on."""
-    from .config.line import DEFAULT_MAX_STRAIN
+    from .line import DEFAULT_MAX_STRAIN
 
     line = study.line
     if line.is_spring:

@@ -14,14 +14,7 @@ import yaml
 from pydantic import BaseModel, ValidationError
 
 from .base import FieldError
-from .safe_yaml import (
-    YamlRefused,
-    compose_and_load,
-    dotted,
-    max_study_bytes,
-    printable,
-    too_large,
-)
+from .safe_yaml import YamlRefused, compose_and_load, dotted, max_study_bytes, printable, too_large
 from .study import Study
 
 Loc = tuple[str | int, ...]
@@ -82,7 +75,7 @@ def _byte_size(text: str) -> int:
 def parse_study_text(
     text: str, source: str = "<study>", *, max_bytes: int | None = None
 ) -> StudySource:
-    """Parse YAML text within the limits of :mod:`cablestudy.config.safe_yaml`, keeping
+    """Parse YAML text within the limits of :mod:`cablestudy.study.safe_yaml`, keeping
     line numbers. ``max_bytes`` [bytes] defaults to the configured study size limit.
     Raises :class:`StudyError`."""
     try:
@@ -150,7 +143,7 @@ def read_study_source(path: str | Path, *, max_bytes: int | None = None) -> Stud
 
 def resolve_references(src: StudySource, folder: Path) -> StudySource:
     """Replace ``line: {moordyn: path, line: N}`` by the segments and attachments it
-    names (see :class:`~cablestudy.config.line.MoorDynLineRef`); other studies pass
+    names (see :class:`~cablestudy.study.line.MoorDynLineRef`); other studies pass
     through unchanged. Raises :class:`StudyError` at the ``line:`` key's line."""
     from .line import MoorDynLineRef
 

@@ -35,17 +35,9 @@ from typing import Any
 
 import numpy as np
 
-from . import __version__
-from .config.loader import (
-    Loc,
-    StudyError,
-    StudySource,
-    _models_at,
-    _unwrap,
-    dotted,
-    validate_data,
-)
-from .config.study import Study
+from .. import __version__
+from .loader import Loc, StudyError, StudySource, _models_at, _unwrap, dotted, validate_data
+from .study import Study
 
 #: dimension names used by output variables; a sweep axis may not take them
 RESERVED_DIMS = frozenset({"s", "component", "mode", "time", "complex", "point", "harmonic"})
@@ -545,7 +537,7 @@ _NOT_PHYSICS = ("figures/", "cli.py", "bench.py", "runner.py", "results.py", "__
 def code_fingerprint() -> str:
     """Hash of the package source that computes results (solvers, physics, config
     defaults, case evaluation): a changed solver invalidates cached cases."""
-    root = Path(__file__).resolve().parent
+    root = Path(__file__).resolve().parents[1]  # the package
     digest = hashlib.sha256(__version__.encode())
     for path in sorted(root.rglob("*.py")):
         rel = path.relative_to(root).as_posix()

@@ -7,7 +7,7 @@ from __future__ import annotations
 import json
 from typing import Any
 
-from .physics.line_types import (
+from ..physics.line_types import (
     CHAIN_GRADES,
     CHAIN_MAX_DIAMETER,
     DEFAULT_CHAIN_GRADE,
@@ -31,7 +31,7 @@ FILLED_KEYS = (
 def listing(nominal_diameter: float | None = None) -> str:
     """The text of ``cablestudy line-types``: per material its coefficients, formulas
     and sources; with ``nominal_diameter`` [m], the filled values at that diameter."""
-    from .physics import line_types as lib
+    from ..physics import line_types as lib
 
     lines = [
         "Line types: line.segments.N.line_type: {material, nominal_diameter [m], grade}",
@@ -134,7 +134,7 @@ def record(study_data: dict[str, Any], sweep: dict[str, list[Any]]) -> str:
 
 def line_type_attrs(src: Any) -> dict[str, str]:
     """The dataset attribute ``line_types`` (:func:`record`) of the study ``src`` (a
-    :class:`~cablestudy.config.loader.StudySource`), when a segment has a line type."""
+    :class:`~cablestudy.study.loader.StudySource`), when a segment has a line type."""
     line = src.data.get("line")
     segments = line.get("segments") if isinstance(line, dict) else None
     if not any(isinstance(s, dict) and "line_type" in s for s in segments or []):
