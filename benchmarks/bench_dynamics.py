@@ -35,7 +35,7 @@ CONFIG = ROOT / "configs" / "moustafa-figs2-5.yaml"
 FIRST_RUN = """
 import time
 t0 = time.perf_counter()
-from cablestudy.analyses import evaluate_case
+from cablestudy.analyses.evaluate import evaluate_case
 from cablestudy.study.cases import expand_cases
 from cablestudy.study.loader import read_study_source
 src = read_study_source({config!r})
@@ -64,7 +64,7 @@ def compile_cost(cache_dir: str) -> tuple[float, float, float]:
 
 
 def run_sweep(data: dict, out: Path, workers: int, scheduler: str) -> tuple[xr.Dataset, float]:
-    from cablestudy.analyses import check_supported
+    from cablestudy.analyses.evaluate import check_supported
     from cablestudy.runner import run_study
     from cablestudy.study.cases import expand_cases
     from cablestudy.study.loader import parse_study_text

@@ -140,14 +140,16 @@ def prepare(data: dict, *, fresh: bool = False) -> tuple[Any, float]:
     """The DynamicProblem the pipeline would run, and the time to build it [s] (static
     solution and discrete static equilibrium; with ``fresh`` their caches are emptied
     first so that the time is that of a first run)."""
-    from cablestudy import analyses
+    from cablestudy.analyses.line_model import _DISCRETE_CACHE
+    from cablestudy.analyses.static import _STATIC_CACHE, solve_static
+    from cablestudy.analyses.time import dynamic_problem
 
     if fresh:
-        analyses._STATIC_CACHE.clear()
-        analyses._DISCRETE_CACHE.clear()
+        _STATIC_CACHE.clear()
+        _DISCRETE_CACHE.clear()
     case = _case(data)
     t0 = time.perf_counter()
-    problem = analyses.dynamic_problem(case, analyses.solve_static(case, None))
+    problem = dynamic_problem(case, solve_static(case, None))
     elapsed = time.perf_counter() - t0
     if isinstance(problem, str):
         raise RuntimeError(problem)

@@ -94,8 +94,13 @@ def points(grid: str, n: int, rng: np.random.Generator) -> np.ndarray:
 
 
 def work_precision(grid: str, quick: bool) -> WorkPrecision:
-    from cablestudy.database import QUANTITIES, QuasiStaticDatabase, grid_values, solve_database
-    from cablestudy.results import DATABASE_LAYOUTS
+    from cablestudy.analyses.database import (
+        QUANTITIES,
+        QuasiStaticDatabase,
+        grid_values,
+        solve_database,
+    )
+    from cablestudy.analyses.variables import DATABASE_LAYOUTS
     from cablestudy.statics import STATIC_SOLVERS
 
     solver = STATIC_SOLVERS["catenary"]

@@ -56,7 +56,8 @@ def case(elements: int, mesh: str):  # noqa: ANN201
 
 
 def run(quick: bool = False) -> list[WorkPrecision]:
-    from cablestudy.analyses import solve_modal, solve_static
+    from cablestudy.analyses.modal import solve_modal
+    from cablestudy.analyses.static import solve_static
     from cablestudy.dynamics.irvine import cable_parameter, lowest_frequencies
 
     c0 = case(100, "uniform")

@@ -55,7 +55,7 @@ DRIVER = """
 import json, resource, sys, time
 t0 = time.perf_counter()
 from cablestudy.study.loader import read_study_source, validate_data
-from cablestudy.grid import expand_grid
+from cablestudy.study.grid import expand_grid
 from cablestudy.runner import run_grid_study
 t1 = time.perf_counter()
 src = read_study_source(sys.argv[1])

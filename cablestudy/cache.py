@@ -27,8 +27,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .analyses.variables import CaseRecord
 from .outputs import read_regular, regular_file, temporary_prefix, written
-from .results import CaseRecord
 
 #: messages of records that must not be cached (transient: a rerun may succeed)
 LOST_PREFIX = "task failed: "
@@ -36,7 +36,7 @@ TRANSIENT_PREFIXES = (
     "time limit",
     LOST_PREFIX,
     # a modal or dynamic analysis over the time limit names itself first
-    # (cablestudy.analyses.evaluate_case)
+    # (cablestudy.analyses.evaluate.evaluate_case)
     "modal analysis: time limit",
     "dynamic analysis: time limit",
 )
@@ -341,7 +341,8 @@ def summarise(
 
 
 class GridChunkStore:
-    """Chunks of a study run as arrays (:class:`cablestudy.grid.GridChunk`), one data file
+    """Chunks of a study run as arrays (:class:`cablestudy.analyses.grid_chunk.GridChunk`), one
+    data file
     each, ``grid-<chunk key>-<sha256 of the file>.npz``: plain arrays, read with
     ``allow_pickle=False``, checked against their hash before use (a damaged file is
     reported once, removed and recomputed)."""

@@ -19,7 +19,7 @@ def _size(text: str) -> int:
 
 
 def _load(path: str, max_bytes: int | None = None):  # noqa: ANN202
-    from .analyses import check_supported
+    from .analyses.evaluate import check_supported
     from .study.cases import expand_cases
     from .study.loader import read_study_source
 
@@ -39,7 +39,8 @@ def _load(path: str, max_bytes: int | None = None):  # noqa: ANN202
 
 
 def _grid(src):  # noqa: ANN001, ANN202
-    """The study as an array grid (cablestudy.grid) when its validated template and sweep
+    """The study as an array grid (cablestudy.analyses.static_grid) when its validated template and
+    sweep
     allow, else None. Decided from the validated study (defaults included), never from
     the raw text: a study that leaves ``analysis.static.method`` out runs on the same
     kernel as one that writes its default ``catenary``."""
@@ -103,7 +104,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     studies = [cases.template] if not isinstance(cases, list) else [c.study for c in cases]
     ensure_compiled(sorted({k for study in studies for k in kinds_of(study)}))
     try:
-        if not isinstance(cases, list):  # a sweep run as arrays (cablestudy.grid)
+        if not isinstance(cases, list):  # a sweep run as arrays (cablestudy.analyses.static_grid)
             from .runner import run_grid_study
 
             _resume_collection()
@@ -118,7 +119,7 @@ def cmd_run(args: argparse.Namespace) -> int:
                 timeout=timeout,
             )
         else:
-            from .analyses import warm_up
+            from .analyses.evaluate import warm_up
 
             warm_up(cases)
             _resume_collection()
@@ -576,7 +577,7 @@ def _add_lookup_parser(sub: argparse._SubParsersAction) -> None:  # type: ignore
 
 def cmd_lookup(args: argparse.Namespace) -> int:
     """Print the interpolated end forces [N], tensions [N] and laid length [m] as JSON."""
-    from .database import open_database
+    from .analyses.database import open_database
 
     sel: dict[str, object] = {}
     for item in args.sel or []:

@@ -2,7 +2,7 @@
 so that a repeated or interrupted study resumes, progress, and the final dataset.
 
 The runner moves cases and records; it knows nothing of physics (it calls
-:func:`cablestudy.analyses.evaluate_case`).
+:func:`cablestudy.analyses.evaluate.evaluate_case`).
 """
 
 from __future__ import annotations
@@ -24,11 +24,12 @@ from typing import Any
 
 import numpy as np
 
+from .analyses.variables import CaseRecord
 from .cache import LOST_PREFIX, TEMPORARY_PATTERNS, TRANSIENT_PREFIXES, CaseCache
 from .outputs import CacheLock, remove_stale_temporaries, temporary_prefix
 from .outputs import now as run_started
 from .remote import DEFAULT_TIMEOUT, connect
-from .results import CaseRecord, assembled_variables, write_atomic, write_variables_atomic
+from .results import assembled_variables, write_atomic, write_variables_atomic
 from .study.cases import Case, SweepAxis
 from .study.loader import StudySource
 
@@ -91,7 +92,9 @@ def failed_chunk(cases: list[Case], exc: BaseException) -> list[CaseRecord]:
 def run_chunk(cases: list[Case]) -> list[CaseRecord]:
     """Evaluate a chunk of cases in one task (cases sharing a static problem are
     adjacent, so its solution is reused; compatible static problems are batched)."""
-    from .analyses import evaluate_chunk  # the solvers: not needed by a sweep run as arrays
+    from .analyses.evaluate import (
+        evaluate_chunk,  # the solvers: not needed by a sweep run as arrays
+    )
 
     return evaluate_chunk(cases)
 
@@ -233,7 +236,7 @@ def group_warnings(
     warnings and grouped by kind (the text before the first colon): kind -> (count, up to
     :data:`WARNING_EXAMPLES` distinct examples, each after its case's coordinates where
     ``cases`` gives them), most frequent first."""
-    from .plausibility import SEPARATOR
+    from .analyses.plausibility import SEPARATOR
 
     cases = cases or {}
     groups: dict[str, tuple[int, list[str]]] = {}
@@ -535,7 +538,7 @@ def _share_statics(cases: list[Case]) -> None:
     """Solve the first case's statics in this process (cached by static hash, so worker
     processes forked afterwards reuse it). A failure is left for the case itself to
     record where it runs."""
-    from .analyses import solve_static
+    from .analyses.static import solve_static
 
     first = min(cases, key=lambda c: (c.static_hash, c.index))
     with contextlib.suppress(Exception):
@@ -678,11 +681,11 @@ def write_database_file(
     src: StudySource,
     out_dir: Path,
 ) -> Path | None:
-    """Write ``<out_dir>/<name>.database.nc`` (:mod:`cablestudy.database_file`) from the
+    """Write ``<out_dir>/<name>.database.nc`` (:mod:`cablestudy.analyses.database_file`) from the
     study dataset's variables when they hold a quasi-static database; otherwise remove a
     file of that name left by an earlier run of the study, which would no longer
     describe it."""
-    from .database_file import database_file_name, database_variables
+    from .analyses.database_file import database_file_name, database_variables
 
     target = out_dir / database_file_name(str(src.data["name"]))
     db_vars = database_variables(variables, axes, cases, src)
@@ -711,7 +714,7 @@ def grid_chunks(grid: Any) -> list[tuple[int, int]]:
 
 
 def _grid_chunk_task(grid: Any, lo: int, hi: int) -> Any:
-    from .grid import evaluate_grid_chunk
+    from .analyses.static_grid import evaluate_grid_chunk
 
     return evaluate_grid_chunk(grid, lo, hi)
 
@@ -727,7 +730,8 @@ def run_grid_study(
     progress: bool | None = None,
     timeout: float = DEFAULT_TIMEOUT,
 ) -> RunSummary:
-    """Run a study as arrays (:mod:`cablestudy.grid`) and write ``<out_dir>/<name>.nc``
+    """Run a study as arrays (:mod:`cablestudy.analyses.static_grid`) and write
+    ``<out_dir>/<name>.nc``
     chunk by chunk: each finished chunk goes to its own data file (the cache, or a
     temporary folder with ``use_cache=False``), and the result file is written from
     those files lazily, so memory holds about one chunk at a time whatever the number
@@ -828,9 +832,10 @@ def run_grid_study(
             shutil.rmtree(scratch, ignore_errors=True)
     for p in transient:
         p.unlink(missing_ok=True)
-    # a study run as arrays has no database (cablestudy.grid refuses one): a database
+    # a study run as arrays has no database (cablestudy.analyses.static_grid refuses one): a
+    # database
     # file of this name is an earlier run's, which no longer describes the study
-    from .database_file import database_file_name
+    from .analyses.database_file import database_file_name
 
     (out_dir / database_file_name(name)).unlink(missing_ok=True)
     if lock is not None:
@@ -858,8 +863,8 @@ def run_grid_study(
 
 
 def _stored_chunk(store: Any, path: Path) -> Any:
-    """A chunk file of the cache as a :class:`cablestudy.grid.GridChunk`."""
-    from .grid import GridChunk
+    """A chunk file of the cache as a :class:`cablestudy.analyses.grid_chunk.GridChunk`."""
+    from .analyses.grid_chunk import GridChunk
 
     z = store.load(path)
     lo, hi = (int(v) for v in z.pop("rows"))
@@ -1010,7 +1015,7 @@ def _execute_grid(
             try:
                 chunk = future.result()
             except Exception as exc:  # noqa: BLE001 - a lost task fails its cases, not the study
-                from .grid import failed_grid_chunk
+                from .analyses.grid_chunk import failed_grid_chunk
 
                 chunk = failed_grid_chunk(grid, *futures[future], f"{LOST_PREFIX}{exc!r}")
             on_done(chunk)

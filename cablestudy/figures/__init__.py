@@ -38,7 +38,7 @@ def _ensure_study(name: str, results: Path, configs: Path, run_missing: bool) ->
             f"{path} is missing; make it with `cablestudy run {configs / name}.yaml --out "
             f"{results}`, or run `cablestudy figures` without --no-run"
         )
-    from ..analyses import check_supported
+    from ..analyses.evaluate import check_supported
     from ..runner import run_study
     from ..study.cases import expand_cases
     from ..study.loader import read_study_source

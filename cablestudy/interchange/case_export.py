@@ -102,9 +102,9 @@ def export_case(src: StudySource, selectors: list[str]) -> ExportedCase:
 
 def _system(study: Any, title: str) -> ExportedCase:
     """The MoorDyn file of a system case, at its solved statics."""
+    from ..analyses.system import system_model
     from ..statics import STATIC_SOLVERS, STATUS_OK
     from ..statics.system import solve_system
-    from ..system_cases import system_model
     from .system_export import system_moordyn_input
 
     res = solve_system(system_model(study), STATIC_SOLVERS["catenary"], deadline=None)

@@ -685,7 +685,7 @@ class DatabaseSettings(StrictModel):
     difference; ``grid: radial`` (the seed's grid for lines off the seabed) the distance
     from A to B and the angle of the chord A-B above the horizontal. Written to the
     study's dataset (``database_*``) and to ``<name>.database.nc``; ``cablestudy lookup``
-    and :func:`cablestudy.database.open_database` interpolate it (C1 bicubic)."""
+    and :func:`cablestudy.analyses.database.open_database` interpolate it (C1 bicubic)."""
 
     grid: Literal["cartesian", "radial"] = Field(
         "cartesian",

@@ -5,7 +5,8 @@ the checks that combine fields (ends below the seabed, a weightless line shorter
 chord) over the whole grid with NumPy (:func:`expand_grid`). No per-case pydantic object
 is built. A grid whose cases differ only in settings the batched still-water catenary
 kernel takes as numbers (end positions of fixed ends, segment axial stiffnesses) runs as
-arrays (:attr:`CaseGrid.arrays`, :mod:`cablestudy.grid`); any other static-only sweep of
+arrays (:attr:`CaseGrid.arrays`, :mod:`cablestudy.analyses.static_grid`); any other static-only
+sweep of
 numbers (lengths, diameters, weights, depth, friction, current, end forces, attachments,
 node counts, any static method) is a grid too, each case's study the template with its
 validated swept values copied in (:mod:`cablestudy.study.grid_studies`).
@@ -49,7 +50,8 @@ class CaseGrid:
     #: per swept path: (axis number, the validated value at each index of that axis)
     validated: dict[str, tuple[int, tuple[Any, ...]]] = field(default_factory=dict)
     #: whether the compiled catenary kernels take the chunks straight from arrays of end
-    #: positions and stiffnesses (else :func:`cablestudy.grid_static.evaluate_static_chunk`
+    #: positions and stiffnesses (else
+    #: :func:`cablestudy.analyses.static_grid_cases.evaluate_static_chunk`
     #: builds each case's study by copying and solves the chunk as validated cases)
     arrays: bool = True
 
@@ -123,7 +125,7 @@ def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
         return False
     line = template.line
     # the arrays' outputs take strain as T / EA and no break limits: a nonlinear law or
-    # a failure condition is solved as validated cases are (cablestudy.grid_static)
+    # a failure condition is solved as validated cases are (cablestudy.analyses.static_grid_cases)
     if line.is_spring or line.failure is not None:
         return False
     if any(seg.is_nonlinear or seg.failure is not None for seg in line.segments):
@@ -151,7 +153,7 @@ def expand_grid(src: StudySource) -> CaseGrid | None:
     from .grid_studies import combinations_ok, value_at
 
     template = validate_data(src.data, src)
-    if template.lines:  # a system of lines: case by case (cablestudy.system_cases)
+    if template.lines:  # a system of lines: case by case (cablestudy.analyses.system)
         return None
     axes = parse_sweep(src)
     if not _static_sweep(template, axes):

@@ -135,7 +135,7 @@ def combinations_ok(grid: Any) -> bool:
 
 def axis_studies(grid: Any) -> list[Study]:
     """The template and, per swept value, the template with that value alone put in: what
-    :func:`cablestudy.analyses.check_supported` is asked about before any work (whether
+    :func:`cablestudy.analyses.evaluate.check_supported` is asked about before any work (whether
     the static method supports every setting a case may have)."""
     studies = [grid.template]
     for path, (_, vals) in grid.validated.items():

@@ -23,8 +23,8 @@ import pytest
 import xarray as xr
 
 import cablestudy
+from cablestudy.analyses.variables import OUTPUTS
 from cablestudy.cli import main
-from cablestudy.results import OUTPUTS
 
 ROOT = Path(__file__).resolve().parents[2]
 

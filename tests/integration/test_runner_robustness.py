@@ -25,7 +25,8 @@ from cablestudy import outputs, runner
 from cablestudy.cli import main
 
 #: a 550 m wire from an anchor 190 m down to a fairlead 10 m down, two distances: quick
-#: cases of a static grid (cablestudy.grid: method catenary on the compiled array route,
+#: cases of a static grid (cablestudy.analyses.static_grid: method catenary on the compiled array
+#: route,
 #: analytic solved per case in the chunk)
 STUDY = """\
 name: wire

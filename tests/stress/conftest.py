@@ -7,8 +7,8 @@ from typing import Any
 import numpy as np
 import yaml
 
-from cablestudy.analyses import check_supported, evaluate_case
-from cablestudy.results import OUTPUTS, CaseRecord
+from cablestudy.analyses.evaluate import check_supported, evaluate_case
+from cablestudy.analyses.variables import OUTPUTS, CaseRecord
 from cablestudy.study.cases import expand_cases
 from cablestudy.study.loader import parse_study_text
 

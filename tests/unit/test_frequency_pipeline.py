@@ -147,7 +147,7 @@ def test_transfer_function_on_a_frequency_dimension(tmp_path: Path) -> None:
 
 
 def test_transfer_function_refuses_a_frequency_sweep_axis() -> None:
-    from cablestudy.analyses import check_supported
+    from cablestudy.analyses.evaluate import check_supported
 
     text = STUDY.replace(
         "    elements: 40\n", "    elements: 40\n    transfer_function: {start: 0.1, stop: 1.0}\n"
@@ -281,8 +281,8 @@ def test_an_unbounded_touchdown_travel_is_said_in_words_not_as_inf() -> None:
     (issue 21: every number in a reason is a physical value)."""
     import math
 
+    from cablestudy.analyses.frequency import _judged
     from cablestudy.dynamics.validity import Validity
-    from cablestudy.frequency_cases import _judged
     from cablestudy.study.analysis import DynamicSettings
 
     dyn = DynamicSettings.model_validate(

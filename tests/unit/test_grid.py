@@ -1,4 +1,5 @@
-"""Sweeps as arrays (cablestudy.grid): the same dataset as the case-by-case path, bit
+"""Sweeps as arrays (cablestudy.analyses.static_grid): the same dataset as the case-by-case path,
+bit
 for bit; per-axis validation with the old path's reports for faulty sweeps; streamed
 output with a safe chunk cache."""
 
@@ -11,9 +12,9 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from cablestudy import analyses
-from cablestudy.grid import evaluate_grid_chunk
-from cablestudy.results import KEPT_STATUSES
+from cablestudy.analyses import static as static_analysis
+from cablestudy.analyses.static_grid import evaluate_grid_chunk
+from cablestudy.analyses.variables import KEPT_STATUSES
 from cablestudy.runner import run_grid_study, run_study
 from cablestudy.study import parse_study_text
 from cablestudy.study.cases import expand_cases
@@ -41,7 +42,7 @@ sweep:
 
 @pytest.fixture(autouse=True)
 def _fresh_static_cache(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(analyses, "_STATIC_CACHE", OrderedDict())
+    monkeypatch.setattr(static_analysis, "_STATIC_CACHE", OrderedDict())
 
 
 def _both(tmp_path: Path, text: str = TEXT) -> tuple[xr.Dataset, xr.Dataset]:
@@ -82,7 +83,8 @@ ON_SEABED_B = (
 
 
 #: sweeps of keys no compiled array kernel takes straight from arrays: each case's study
-#: is the template with the validated values put in by copying (cablestudy.grid_static)
+#: is the template with the validated values put in by copying
+#: (cablestudy.analyses.static_grid_cases)
 SPANS = "ends.b.position.0: {start: 60.0, stop: 100.5, num: 7, name: span}"
 STIFF = "line.segments.0.axial_stiffness: [1.0e5, 1.0e6, 6.283e7]"
 #: a segment length: every case has its own arc lengths (s becomes the node index)
@@ -271,8 +273,8 @@ def test_faulty_swept_values_are_reported_as_before() -> None:
 def test_streamed_result_opens_lazily_and_chunks_are_cached(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    from cablestudy import grid as grid_module
     from cablestudy import runner
+    from cablestudy.analyses import static_grid as grid_module
 
     monkeypatch.setattr(runner, "GRID_CHUNK_CASES", 12)  # two rows of 6 cases a chunk
     monkeypatch.setattr(runner, "IN_MEMORY_BYTES", 0)  # streamed, as a large study is
@@ -297,7 +299,7 @@ def test_streamed_result_opens_lazily_and_chunks_are_cached(
     )
     monkeypatch.setattr(runner, "IN_MEMORY_BYTES", 0)
     calls: list[int] = []
-    real = grid_module.evaluate_grid_chunk
+    real = evaluate_grid_chunk
 
     def counted(g, lo, hi):  # noqa: ANN001, ANN202
         calls.append(lo)
@@ -363,8 +365,8 @@ def test_array_chunks_on_worker_processes_give_the_serial_result(
 def test_an_extended_first_axis_reuses_the_cached_chunks(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    from cablestudy import grid as grid_module
     from cablestudy import runner
+    from cablestudy.analyses import static_grid as grid_module
 
     monkeypatch.setattr(runner, "GRID_CHUNK_CASES", 12)  # two spans a chunk
     spans = "ends.b.position.0: {start: 60.0, stop: 100.5, num: 7, name: span}"
@@ -373,7 +375,7 @@ def test_an_extended_first_axis_reuses_the_cached_chunks(
     src = parse_study_text(short, "gr.yaml")
     run_grid_study(src, expand_grid(src), tmp_path, scheduler="synchronous", progress=False)
     calls: list[int] = []
-    real = grid_module.evaluate_grid_chunk
+    real = evaluate_grid_chunk
 
     def counted(g, lo, hi):  # noqa: ANN001, ANN202
         calls.append(lo)
@@ -470,7 +472,8 @@ def test_chunk_keys_change_with_every_swept_value(text: str) -> None:
 
 @pytest.mark.parametrize("text", [LENGTHS, NODES, CURRENT, FORCE, FRICTION])
 def test_a_copied_case_study_is_the_validated_one(text: str) -> None:
-    """Each case's study built by copying the template (cablestudy.grid_static) is the
+    """Each case's study built by copying the template (cablestudy.analyses.static_grid_cases) is
+    the
     study the full validation of the case's YAML gives: every field, and what the
     validators derive (a line's total length), but the sweep table itself."""
     from cablestudy.study.grid_studies import _case_values, case_study

@@ -609,13 +609,14 @@ def _import_cli(path: Path, line: int | None, capsys: pytest.CaptureFixture) -> 
 
 
 def _statics(study_text: str) -> tuple[int, str]:
-    from cablestudy.analyses import check_supported, solve_static
+    from cablestudy.analyses.evaluate import check_supported
+    from cablestudy.analyses.static import solve_static
     from cablestudy.study.cases import expand_cases
 
     src = parse_study_text(study_text, "<imported>")
     _, cases = expand_cases(src)
     if cases[0].study.is_system:  # a whole file of lines joined at points
-        from cablestudy.system_cases import evaluate_system_case
+        from cablestudy.analyses.system import evaluate_system_case
 
         record = evaluate_system_case(cases[0])
         return record.status, record.message
@@ -789,7 +790,7 @@ def test_weightless_line_holding_a_mass_carries_its_weight() -> None:
     7.85398 kg/m, d = 0.1 m in water of 1000 kg/m^3 (nearly neutral) holds 1000 kg from a
     fixed point; the force on that point is the total weight in water, 1000 g plus the
     line's (m - rho pi d^2 / 4) g L, exactly, to the solver's relative tolerance 1e-9."""
-    from cablestudy.analyses import solve_static
+    from cablestudy.analyses.static import solve_static
     from cablestudy.study.cases import expand_cases
 
     path = DATA / "moordyn/tests/Mooring/lifting.txt"

@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from cablestudy.results import OUTPUTS, CaseRecord, assemble, write_atomic
+from cablestudy.analyses.variables import OUTPUTS, CaseRecord
+from cablestudy.results import assemble, write_atomic
 from cablestudy.study import parse_study_text
 from cablestudy.study.cases import expand_cases
 

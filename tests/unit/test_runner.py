@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from cablestudy import analyses, runner
+from cablestudy import runner
+from cablestudy.analyses import static as static_analysis
 from cablestudy.runner import (
     CaseCache,
     Progress,
@@ -54,7 +55,7 @@ _RUN_CHUNK = runner.run_chunk
 @pytest.fixture(autouse=True)
 def _fresh_static_cache(monkeypatch: pytest.MonkeyPatch) -> None:
     # evaluate_case memoises static solutions per process: start each test empty
-    monkeypatch.setattr(analyses, "_STATIC_CACHE", OrderedDict())
+    monkeypatch.setattr(static_analysis, "_STATIC_CACHE", OrderedDict())
 
 
 def _count_evaluations(monkeypatch: pytest.MonkeyPatch, interrupt_after: int | None = None):  # noqa: ANN202
@@ -119,7 +120,7 @@ def test_a_solver_exception_is_a_failed_case_and_the_study_finishes(
                 res.tension[2] = np.nan  # NaN with status 0: must become a failure
             return res
 
-    monkeypatch.setitem(analyses.STATIC_SOLVERS, "analytic", Flaky())
+    monkeypatch.setitem(STATIC_SOLVERS, "analytic", Flaky())
     src, axes, cases = _expand()
     summary = run_study(src, axes, cases, tmp_path, scheduler="synchronous", progress=False)
     ds = xr.load_dataset(summary.path)
@@ -186,7 +187,7 @@ def test_interrupted_study_resumes_without_losing_or_redoing_work(
 def test_cache_survives_a_corrupt_file_and_skips_transient_failures(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    from cablestudy.results import CaseRecord
+    from cablestudy.analyses.variables import CaseRecord
 
     cache = CaseCache(tmp_path)
     ok = CaseRecord(hash="a", index=(0,), status=0, message="", wall_time=0.1)
@@ -208,8 +209,8 @@ def test_cache_survives_a_corrupt_file_and_skips_transient_failures(
 
 def test_cache_records_round_trip_exactly() -> None:
     """Every kind of value a case produces comes back with its dtype, shape and bits."""
+    from cablestudy.analyses.variables import CaseRecord
     from cablestudy.cache import decode_records, encode_records
-    from cablestudy.results import CaseRecord
 
     rng = np.random.default_rng(1)
     recs = [
@@ -252,8 +253,8 @@ def test_cache_records_round_trip_exactly() -> None:
 
 
 def test_cache_refuses_to_store_python_objects(tmp_path: Path) -> None:
+    from cablestudy.analyses.variables import CaseRecord
     from cablestudy.cache import CacheFormatError
-    from cablestudy.results import CaseRecord
 
     rec = CaseRecord("h", (0,), 0, "", 0.1, data={"x": np.array([object()], dtype=object)})
     with pytest.raises(CacheFormatError, match="'x' holds Python objects"):
@@ -511,7 +512,7 @@ def test_case_evaluation_refuses_features_its_solver_lacks() -> None:
     quietly solve a current-loaded line with the still-water exact solver."""
     import yaml
 
-    from cablestudy.analyses import evaluate_case
+    from cablestudy.analyses.evaluate import evaluate_case
     from cablestudy.study.cases import expand_cases
     from cablestudy.study.loader import parse_study_text
 

@@ -10,7 +10,8 @@ from typing import Any
 import numpy as np
 import yaml
 
-from cablestudy.analyses import dynamic_problem, solve_static
+from cablestudy.analyses.static import solve_static
+from cablestudy.analyses.time import dynamic_problem
 from cablestudy.dynamics.model import DiscreteLine
 from cablestudy.dynamics.timedomain import DynamicResult, simulate
 from cablestudy.study.cases import expand_cases

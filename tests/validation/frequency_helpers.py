@@ -4,8 +4,8 @@ EA = 7.854e6 N) with the fluid, excitation and method given, evaluated in proces
 
 from __future__ import annotations
 
-from cablestudy.analyses import evaluate_case
-from cablestudy.results import CaseRecord
+from cablestudy.analyses.evaluate import evaluate_case
+from cablestudy.analyses.variables import CaseRecord
 from cablestudy.study.cases import expand_cases
 from cablestudy.study.loader import parse_study_text
 

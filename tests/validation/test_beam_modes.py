@@ -154,7 +154,8 @@ def test_time_domain_ring_down_of_a_bending_beam_rings_at_the_modal_frequency() 
     res, line, _ = run_direct(study)
     assert res.status == 0, res.message
 
-    from cablestudy.analyses import solve_modal, solve_static
+    from cablestudy.analyses.modal import solve_modal
+    from cablestudy.analyses.static import solve_static
     from cablestudy.study.cases import expand_cases
     from cablestudy.study.loader import parse_study_text
 

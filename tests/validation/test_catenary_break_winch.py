@@ -31,7 +31,8 @@ import pytest
 import xarray as xr
 import yaml
 
-from cablestudy.analyses import dynamic_problem, solve_static
+from cablestudy.analyses.static import solve_static
+from cablestudy.analyses.time import dynamic_problem
 from cablestudy.cli import main
 from cablestudy.dynamics.timedomain import DynamicProblem, DynamicResult, simulate
 from cablestudy.study.cases import expand_cases

@@ -86,7 +86,7 @@ def test_dynamic_start_of_a_chain_on_the_seabed_at_10_m_elements() -> None:
     elements (measured 0.31 %)."""
     import yaml
 
-    from cablestudy.analyses import discrete_statics
+    from cablestudy.analyses.line_model import discrete_statics
     from cablestudy.dynamics.model import evaluate
     from cablestudy.statics import STATIC_SOLVERS
     from cablestudy.study.cases import expand_cases

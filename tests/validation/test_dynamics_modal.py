@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 import yaml
 
-from cablestudy.analyses import evaluate_case
+from cablestudy.analyses.evaluate import evaluate_case
 from cablestudy.study.cases import expand_cases
 from cablestudy.study.loader import parse_study_text
 

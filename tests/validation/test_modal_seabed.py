@@ -16,8 +16,8 @@ from __future__ import annotations
 import numpy as np
 import yaml
 
-from cablestudy.analyses import evaluate_case
-from cablestudy.results import CaseRecord
+from cablestudy.analyses.evaluate import evaluate_case
+from cablestudy.analyses.variables import CaseRecord
 from cablestudy.study.cases import expand_cases
 from cablestudy.study.loader import parse_study_text
 

@@ -23,7 +23,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from cablestudy.analyses import solve_static
+from cablestudy.analyses.static import solve_static
 from cablestudy.cli import main
 from cablestudy.interchange import InterchangeError, import_model, imported_yaml, parse_moordyn
 from cablestudy.interchange.mapping import select_chain

@@ -32,7 +32,7 @@ import numpy as np
 import pytest
 import yaml
 
-from cablestudy.analyses import check_supported, evaluate_case
+from cablestudy.analyses.evaluate import check_supported, evaluate_case
 from cablestudy.statics import STATIC_SOLVERS
 from cablestudy.study.cases import expand_cases
 from cablestudy.study.loader import parse_study_text

@@ -22,7 +22,7 @@ import numpy as np
 import pytest
 
 from cablestudy import cli
-from cablestudy.grid import evaluate_grid_chunk
+from cablestudy.analyses.static_grid import evaluate_grid_chunk
 from cablestudy.statics import STATIC_SOLVERS, _fast_contact
 from cablestudy.statics.batch import contact_eligible, contact_end, solve_batch, solve_compiled
 from cablestudy.statics.semi_analytic import SemiAnalyticSolver

@@ -33,11 +33,12 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .results import DATABASE_LAYOUTS, DATABASE_QUANTITIES, VariableSpec
+from ..results import VariableSpec
+from .variables import DATABASE_LAYOUTS, DATABASE_QUANTITIES
 
 if TYPE_CHECKING:
-    from .study.cases import Case, SweepAxis
-    from .study.loader import StudySource
+    from ..study.cases import Case, SweepAxis
+    from ..study.loader import StudySource
 
 PREFIX = "quasi-static database: "
 

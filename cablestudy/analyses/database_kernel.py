@@ -1,4 +1,4 @@
-"""The compiled cell evaluation of :class:`cablestudy.database.QuasiStaticDatabase`
+"""The compiled cell evaluation of :class:`cablestudy.analyses.database.QuasiStaticDatabase`
 (imported at the first lookup, so that validating a study does not load numba)."""
 
 from __future__ import annotations

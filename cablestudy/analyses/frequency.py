@@ -19,17 +19,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .counters import COUNTERS, trim_lru  # noqa: F401 - COUNTERS re-exported: static solves, assemblies
-from .dynamics.frequency import DragSettings, ReducedLine, solve_harmonic, solve_spectrum
-from .dynamics.harmonic_cases import solve_harmonic_cases
-from .dynamics.linear_model import linear_line
-from .dynamics.modal import ModalProblem
-from .dynamics.validity import Validity, measures_cases
-from .statics import STATUS_NO_SOLUTION, STATUS_NUMERICAL, STATUS_OK, StaticResult
-from .statics.base import StaticProblem
-from .study.analysis import AutoSettings, DynamicSettings, HarmonicExcitation, SpectrumExcitation
-from .study.cases import Case
-from .study.problem import static_problem
+from ..dynamics.frequency import DragSettings, ReducedLine, solve_harmonic, solve_spectrum
+from ..dynamics.harmonic_cases import solve_harmonic_cases
+from ..dynamics.linear_model import linear_line
+from ..dynamics.modal import ModalProblem
+from ..dynamics.validity import Validity, measures_cases
+from ..statics import STATUS_NO_SOLUTION, STATUS_NUMERICAL, STATUS_OK, StaticResult
+from ..statics.base import StaticProblem
+from ..study.analysis import AutoSettings, DynamicSettings, HarmonicExcitation, SpectrumExcitation
+from ..study.cases import Case
+from ..study.problem import static_problem
+from .along_line import tension_along, tension_along_cases
+from .counters import COUNTERS, trim_lru
 
 #: outputs of the transfer function (analysis.dynamic.transfer_function)
 TRANSFER_OUTPUTS = (
@@ -63,7 +64,8 @@ def linearised(
 ) -> tuple[ReducedLine | None, str]:
     """The case's line linearised about its static shape at ``elements + 1`` equally
     spaced nodes (cached per static problem); or None and why not."""
-    from .analyses import _static_at, dynamic_extras
+    from .line_model import dynamic_extras
+    from .static import static_at
 
     dyn = case.study.analysis.dynamic
     assert dyn is not None
@@ -74,7 +76,7 @@ def linearised(
             _LINEAR_CACHE.move_to_end(key)
         return cached
     n_nodes = dyn.elements + 1
-    mesh = static if len(static.s) == n_nodes else _static_at(case, n_nodes, deadline)
+    mesh = static if len(static.s) == n_nodes else static_at(case, n_nodes, deadline)
     if mesh.success and static.laid_length > 0.0:
         mesh = _with_touchdown_nodes(case, static, dyn.elements, deadline) or mesh
     out: tuple[ReducedLine | None, str]
@@ -125,11 +127,11 @@ def _with_touchdown_nodes(
     """The uniform nodes plus a node at each touchdown point (the last laid one of
     ``TOUCHDOWN_SAMPLES`` static samples per element), so that the held laid nodes end
     where the line leaves the seabed, as in the modal mesh
-    (:func:`cablestudy.analyses.solve_modal`); None if the fine sampling fails."""
-    from .analyses import _static_at
-    from .dynamics.modal import snap_to_samples, subset_static
+    (:func:`cablestudy.analyses.modal.solve_modal`); None if the fine sampling fails."""
+    from ..dynamics.modal import snap_to_samples, subset_static
+    from .static import static_at
 
-    fine = _static_at(case, elements * TOUCHDOWN_SAMPLES + 1, deadline)
+    fine = static_at(case, elements * TOUCHDOWN_SAMPLES + 1, deadline)
     if not fine.success:
         return None
     length = float(fine.s[-1])
@@ -206,7 +208,7 @@ class FrequencyOutcome:
     validity: Validity | None = None
     drag_converged: bool = True
     #: the float outputs in ``data`` holding NaN or infinity (sorted names, as
-    #: :func:`cablestudy.analyses._non_finite` finds them), when already known
+    #: :func:`cablestudy.analyses.common.non_finite_outputs` finds them), when already known
     non_finite: list[str] | None = None
 
     @property
@@ -219,44 +221,6 @@ class FrequencyOutcome:
             f"min/static tension {v.min_tension_ratio:.3g}, "
             f"amplitude/sag {v.amplitude_sag_ratio:.3g}"
         )
-
-
-def tension_along(
-    s_out: np.ndarray, s_nodes: np.ndarray, element: np.ndarray, ends: np.ndarray
-) -> np.ndarray:
-    """Element values (at element midpoints) with end values, interpolated to ``s_out``:
-    the one way a line model's element and end tensions [N] become a variable on the
-    dataset's ``s`` (the tension envelope of both dynamic methods, line histories)."""
-    mid = 0.5 * (s_nodes[:-1] + s_nodes[1:])
-    return np.interp(
-        s_out,
-        np.concatenate(([s_nodes[0]], mid, [s_nodes[-1]])),
-        np.concatenate(([ends[0]], element, [ends[1]])),
-    )
-
-
-def tension_along_cases(
-    s_out: np.ndarray, s_nodes: np.ndarray, element: np.ndarray, ends: np.ndarray
-) -> np.ndarray:
-    """:func:`tension_along` of K responses at once: ``element`` (K, n - 1) and ``ends``
-    (K, 2) [N] give (K, len(s_out)), with the operations of ``np.interp`` (the slope
-    of the interval times the distance from its left end, plus its left value; a knot
-    or a point beyond the ends takes the value there), so the same numbers."""
-    mid = 0.5 * (s_nodes[:-1] + s_nodes[1:])
-    xp = np.concatenate(([s_nodes[0]], mid, [s_nodes[-1]]))
-    fp = np.concatenate((ends[:, :1], element, ends[:, 1:]), axis=1)
-    j = np.searchsorted(xp, s_out, side="right") - 1  # xp[j] <= s < xp[j + 1]
-    inner = (j >= 0) & (j < xp.size - 1)
-    jj = np.clip(j, 0, xp.size - 2)
-    slope = (fp[:, jj + 1] - fp[:, jj]) / (xp[jj + 1] - xp[jj])
-    out = slope * (s_out - xp[jj]) + fp[:, jj]
-    if np.isnan(out).any():  # as np.interp: from the right end of the interval instead
-        other = slope * (s_out - xp[jj + 1]) + fp[:, jj + 1]
-        out = np.where(np.isnan(out), other, out)
-        out = np.where(np.isnan(out) & (fp[:, jj] == fp[:, jj + 1]), fp[:, jj], out)
-    knot = ~inner | (xp[np.clip(j, 0, xp.size - 1)] == s_out)
-    at = np.where(j < 0, 0, np.clip(j, 0, xp.size - 1))
-    return np.where(knot[None], fp[:, at], out)
 
 
 def solve_frequency(case: Case, static: StaticResult, deadline: float | None) -> FrequencyOutcome:
@@ -365,7 +329,7 @@ def solve_frequency_cases(
         "linearisation_iterations": res.iterations.astype(np.asarray(1).dtype),
         "linearisation_converged": res.converged.astype(np.asarray(1).dtype),
     }
-    from .analyses import non_finite_cases
+    from .common import non_finite_cases
 
     bad = non_finite_cases(columns, "dynamic")
     items = list(columns.items())

@@ -81,7 +81,7 @@ def dynamic_warnings(
     static_tension: np.ndarray | None = None,
 ) -> list[str]:
     """The warnings of one case's successful dynamic outputs ``data`` (as
-    :func:`cablestudy.analyses.run_dynamic` gives them): slack at the excited end or
+    :func:`cablestudy.analyses.dynamic.run_dynamic` gives them): slack at the excited end or
     along the line (where the static tension ``static_tension`` [N], on the same points,
     is positive), and a time-domain run that stopped at ``max_periods`` without
     settling (not one of a ``fixed_duration``, which does not look for a steady state).

@@ -1,7 +1,7 @@
 """System studies (lines joined at points, bodies) case by case: the validated study as
 a :class:`~cablestudy.statics.system.MooringSystem`, and one case's outputs.
 
-Outputs (names and dimensions in :data:`cablestudy.results.SYSTEM_OUTPUTS`): per line
+Outputs (names and dimensions in :data:`cablestudy.analyses.variables.SYSTEM_OUTPUTS`): per line
 its end tensions and forces, positions and tension along it (node index ``s``, with
 ``arc_length`` beside); the free points' positions; per body its position, the force
 and moment of the lines on it and its mooring stiffness."""
@@ -15,13 +15,13 @@ from typing import Any
 
 import numpy as np
 
-from .results import CaseRecord
-from .statics import STATIC_SOLVERS, STATUS_NUMERICAL, STATUS_OK, EndCondition, StaticProblem
-from .statics.system import BODY, FIXED, FREE, MooringSystem, SystemLine, solve_system
-from .study import Study
-from .study.cases import Case
-from .study.problem import line_model, medium
-from .study.system import BodyPoint, FixedPoint, FreePoint
+from ..statics import STATIC_SOLVERS, STATUS_NUMERICAL, STATUS_OK, EndCondition, StaticProblem
+from ..statics.system import BODY, FIXED, FREE, MooringSystem, SystemLine, solve_system
+from ..study import Study
+from ..study.cases import Case
+from ..study.problem import line_model, medium
+from ..study.system import BodyPoint, FixedPoint, FreePoint
+from .variables import CaseRecord
 
 
 def system_model(study: Study) -> MooringSystem:

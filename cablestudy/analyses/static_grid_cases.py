@@ -1,4 +1,5 @@
-"""Static sweeps of any numeric key as a grid (:mod:`cablestudy.grid`), without a pydantic
+"""Static sweeps of any numeric key as a grid (:mod:`cablestudy.analyses.static_grid`), without a
+pydantic
 validation per case.
 
 The template is validated once and each swept value once at its own path
@@ -11,10 +12,11 @@ each swept path (:func:`case_study`), and the checks that combine fields -- the 
 validation would. A study whose combinations fail leaves the grid for
 :func:`cablestudy.study.cases.expand_cases`, which reports them as before.
 
-A chunk of cases is then solved as :func:`cablestudy.analyses.evaluate_chunk` solves a
+A chunk of cases is then solved as :func:`cablestudy.analyses.evaluate.evaluate_chunk` solves a
 chunk of validated cases (one :func:`cablestudy.statics.batch.solve_batch` call for the
 cases a batch kernel may take, the registry solver per case otherwise, the drag
-iteration per case) and its records are stacked into a :class:`cablestudy.grid.GridChunk`
+iteration per case) and its records are stacked into a
+:class:`cablestudy.analyses.grid_chunk.GridChunk`
 with the values :func:`cablestudy.results.assemble` would write, bit for bit.
 """
 
@@ -27,21 +29,21 @@ from typing import Any
 
 import numpy as np
 
-from .study.grid_studies import _case_values, case_study
-from .study.study import Study
+from ..study.grid_studies import _case_values, case_study
+from ..study.study import Study
 
 
 def one_at_a_time(problem: Any) -> bool:
     """Whether the catenary solver first takes the compiled kernels for ``problem`` on
     its own (:func:`cablestudy.statics.batch.solve_compiled`)."""
-    from .statics.batch import batchable, contact_eligible
+    from ..statics.batch import batchable, contact_eligible
 
     return bool(contact_eligible(problem) or batchable(problem))
 
 
 def fallback_reason(study: Study, problem: Any) -> str:
     """Why no batch kernel takes the case (it goes to the general solver)."""
-    from .statics.batch import _has_drag
+    from ..statics.batch import _has_drag
 
     method = study.analysis.static.method
     if method != "catenary":
@@ -54,21 +56,22 @@ def fallback_reason(study: Study, problem: Any) -> str:
         return "a nonlinear axial law has no batch kernel"
     if problem is not None and problem.medium.has_current and _has_drag(problem):
         return "current with drag: the drag iteration runs in the general solver"
-    from .grid import NO_KERNEL
+    from .grid_chunk import NO_KERNEL
 
     return NO_KERNEL
 
 
 def evaluate_static_chunk(grid: Any, lo: int, hi: int) -> Any:
-    """Solve rows ``lo:hi`` of a static grid as :func:`cablestudy.analyses.evaluate_chunk`
+    """Solve rows ``lo:hi`` of a static grid as :func:`cablestudy.analyses.evaluate.evaluate_chunk`
     solves validated cases, and stack the records. Never raises: a fault fails the
     chunk's cases with its text."""
-    from . import analyses
-    from .grid import NO_KERNEL, STATUS_NUMERICAL, GridChunk, _warning_column
-    from .results import ANALYSES, OUTPUTS, analysis_ok
-    from .statics import _fast
-    from .study.cases import Case, _hash
-    from .study.problem import static_problem
+    from ..statics import _fast
+    from ..study.cases import Case, _hash
+    from ..study.problem import static_problem
+    from .evaluate import evaluate_case
+    from .grid_chunk import NO_KERNEL, STATUS_NUMERICAL, GridChunk, warning_column
+    from .static import _STATIC_CACHE, presolve_statics
+    from .variables import ANALYSES, OUTPUTS, analysis_ok
 
     t0 = time.perf_counter()
     block = (hi - lo, *grid.shape[1:])
@@ -84,7 +87,7 @@ def evaluate_static_chunk(grid: Any, lo: int, hi: int) -> Any:
             h = _hash([grid.key, sorted(values.items())])
             cases.append(Case(index, {}, study, h, "static:" + h))
         general: list[str] = []
-        solved, share = analyses.presolve_statics(cases, general=general)
+        solved, share = presolve_statics(cases, general=general)
         gone = set(general)
         for i, case in enumerate(cases):
             if case.static_hash in solved:
@@ -102,11 +105,11 @@ def evaluate_static_chunk(grid: Any, lo: int, hi: int) -> Any:
                     single.add(i)
         records = []
         for i, case in enumerate(cases):
-            rec = analyses.evaluate_case(case, presolved=solved)
+            rec = evaluate_case(case, presolved=solved)
             rec.wall_time += share.pop(case.static_hash, 0.0)
             records.append(rec)
             if i in single:
-                res = analyses._STATIC_CACHE.get(case.static_hash)  # just solved and kept
+                res = _STATIC_CACHE.get(case.static_hash)  # just solved and kept
                 if res is not None:
                     reasons[i] = res.fallback
         nodes = grid_nodes(grid)
@@ -130,7 +133,7 @@ def evaluate_static_chunk(grid: Any, lo: int, hi: int) -> Any:
             data[name] = arr
         status = np.array([r.status for r in records], dtype=np.int64)
         messages = [r.message for r in records]
-        warning = _warning_column(n, {i: [r.warning] for i, r in enumerate(records) if r.warning})
+        warning = warning_column(n, {i: [r.warning] for i, r in enumerate(records) if r.warning})
         wall = np.array([r.wall_time for r in records], dtype=float)
     except Exception as exc:  # noqa: BLE001 - a fault in a chunk fails its cases, as data
         status = np.full(n, STATUS_NUMERICAL, dtype=np.int64)

@@ -17,7 +17,7 @@ and the end forces, end tensions, largest tension and laid length are tabulated
   horizontal, so r = d cos a, h = d sin a, on the dimensions ``distance`` and ``angle``.
 
 They are written to the study's dataset (``database_*``, ``database_radial_*``) and to
-a dataset of their own (:mod:`cablestudy.database_file`).
+a dataset of their own (:mod:`cablestudy.analyses.database_file`).
 
 :class:`QuasiStaticDatabase` interpolates the table: bicubic Hermite patches in the
 grid's own coordinates whose node derivatives (d/dp, d/dq, d2/dp dq) are those of the
@@ -40,16 +40,16 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .results import DATABASE_LAYOUTS, DATABASE_QUANTITIES
-from .statics import STATIC_SOLVERS, EndCondition
-from .study.problem import static_problem
+from ..statics import STATIC_SOLVERS, EndCondition
+from ..study.problem import static_problem
+from .variables import DATABASE_LAYOUTS, DATABASE_QUANTITIES
 
 if TYPE_CHECKING:
     import xarray as xr
 
-    from .study import Study
-    from .study.cases import Case
-    from .study.loader import StudySource
+    from ..study import Study
+    from ..study.cases import Case
+    from ..study.loader import StudySource
 
 #: the interpolated quantities (the tables but the per-point status)
 QUANTITIES = tuple(q for q in DATABASE_QUANTITIES if q != "status")
@@ -141,7 +141,7 @@ def grid_to_plane(grid: str, p: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, 
 
 def solve_database(study: Study, deadline: float | None = None) -> dict[str, np.ndarray]:
     """The database of one case: the outputs of its layout
-    (:data:`cablestudy.results.DATABASE_LAYOUTS`), ``database_*`` on
+    (:data:`cablestudy.analyses.variables.DATABASE_LAYOUTS`), ``database_*`` on
     (horizontal_distance, height_difference[, component]) or ``database_radial_*`` on
     (distance, angle[, component]), the grid values and the heading."""
     db = study.analysis.database
@@ -299,7 +299,7 @@ class QuasiStaticDatabase:
     def from_dataset(cls, ds: xr.Dataset) -> QuasiStaticDatabase:
         """From a dataset holding one case's database: the study's dataset
         (``database_*`` or ``database_radial_*``) or the database's own
-        (``<name>.database.nc``, :mod:`cablestudy.database_file`). Select a case first
+        (``<name>.database.nc``, :mod:`cablestudy.analyses.database_file`). Select a case first
         with ``ds.sel(...)`` when the study has sweep dimensions."""
         grid, prefix = _layout_of(ds)
         layout = DATABASE_LAYOUTS[grid]

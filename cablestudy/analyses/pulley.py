@@ -8,14 +8,14 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .statics import STATIC_SOLVERS, StaticResult
-from .statics.pulley import chord_split, solve_over_pulleys, sub_problems
-from .study.problem import line_model, medium, static_problem
+from ..statics import STATIC_SOLVERS, StaticResult
+from ..statics.pulley import chord_split, solve_over_pulleys, sub_problems
+from ..study.problem import line_model, medium, static_problem
 
 if TYPE_CHECKING:
-    from .study import Study
-    from .study.cases import Case
-    from .study.loader import StudySource
+    from ..study import Study
+    from ..study.cases import Case
+    from ..study.loader import StudySource
 
 #: static methods that solve a line over pulleys (each sub-line a fixed-fixed line whose
 #: solution does not depend on the output points); 'discrete' does not: its mesh is its
@@ -30,7 +30,7 @@ def pulley_positions(study: Study) -> np.ndarray:
 
 def pulley_problems(case: Case, src: StudySource) -> list[str]:
     """Config errors of a catenary line over pulleys (raised before any work by
-    :func:`cablestudy.analyses.check_supported`); the method's own list of unsupported
+    :func:`cablestudy.analyses.evaluate.check_supported`); the method's own list of unsupported
     features is checked there on the whole line and here on its sub-lines."""
     study = case.study
     out: list[str] = []
@@ -152,9 +152,9 @@ def pulley_discrete_statics(case: Case, static: StaticResult) -> tuple[Any, ...]
     message or "", friction anchors [m], :class:`SlidingPulleys` at that split)."""
     from dataclasses import replace
 
-    from .analyses import dynamic_extras, roundoff_force
-    from .dynamics.model import evaluate, static_equilibrium
-    from .dynamics.pulley import pulley_tensions, sliding_pulleys, solve_split, wrap_angle
+    from ..dynamics.model import evaluate, static_equilibrium
+    from ..dynamics.pulley import pulley_tensions, sliding_pulleys, solve_split, wrap_angle
+    from .line_model import dynamic_extras, roundoff_force
 
     study = case.study
     dyn = study.analysis.dynamic

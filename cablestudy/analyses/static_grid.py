@@ -16,7 +16,8 @@ Any other static-only sweep of numbers (lengths, diameters, weights, depth, fric
 current, end forces, attachments, node counts, any static method) is a grid too: each
 case's study is the template with its validated swept values put in by copying, its
 combined checks run per case, and a chunk is solved as validated cases are
-(:mod:`cablestudy.grid_static`). The cases no batch kernel took are counted with their
+(:mod:`cablestudy.analyses.static_grid_cases`). The cases no batch kernel took are counted with
+their
 reason (:attr:`GridChunk.fallback_reason`).
 
 Anything else (a modal or dynamic analysis, the quasi-static database, a swept value that
@@ -33,56 +34,17 @@ from typing import Any
 
 import numpy as np
 
-from .plausibility import fallback_warning, joined, largest_strain, strain_warning
-from .results import KEPT_STATUSES
-from .study.grid import _POSITION, _STIFFNESS, CaseGrid
-from .study.study import Study
-
-#: status of a case whose solver raised inside an array chunk or gave non-finite values:
-#: cablestudy.statics.base.STATUS_NUMERICAL, as evaluate_case gives it (not imported
-#: here: the statics package loads every solver)
-STATUS_NUMERICAL = 2
-
-#: why the general solver solved a case no batch kernel takes (both ends on the seabed,
-#: an end below it, end A resting on it)
-NO_KERNEL = "no batch kernel takes these end conditions"
-
-
-@dataclass
-class GridChunk:
-    """The outputs of rows ``lo:hi`` of a grid: one array per variable, cases first in
-    C order (shape (n_cases, *extra dims)), and per case status, message and wall time
-    (the chunk's time shared out equally)."""
-
-    lo: int
-    hi: int
-    key: str
-    status: np.ndarray
-    message: np.ndarray  # unicode
-    wall_time: np.ndarray
-    data: dict[str, np.ndarray]
-    #: cases no array kernel settled, solved one by one by the general solver
-    fallback: int = 0
-    #: per case, why its kept results are implausible or risky (unicode, '' if not)
-    warning: np.ndarray | None = None
-    #: per case, why the general solver solved it (unicode, '' if a batch kernel did)
-    fallback_reason: np.ndarray | None = None
-
-    def __post_init__(self) -> None:
-        if self.warning is None:
-            self.warning = np.full(len(self.status), "")
-        if self.fallback_reason is None:
-            self.fallback_reason = np.full(len(self.status), "")
-
-    @property
-    def n(self) -> int:
-        return len(self.status)
+from ..study.grid import _POSITION, _STIFFNESS, CaseGrid
+from ..study.study import Study
+from .grid_chunk import NO_KERNEL, STATUS_NUMERICAL, GridChunk, warning_column
+from .plausibility import fallback_warning, largest_strain, strain_warning
+from .variables import KEPT_STATUSES
 
 
 def _swept_inputs(grid: CaseGrid, lo: int, hi: int) -> tuple[Any, dict[str, Any], np.ndarray]:
     """The template's static problem, per end the positions of rows ``lo:hi`` ((n, 3),
     None for an end that is not fixed) and the segment stiffnesses ((n, n_segments))."""
-    from .study.problem import static_problem
+    from ..study.problem import static_problem
 
     base = static_problem(grid.template)
     n = (hi - lo) * math.prod(grid.shape[1:])
@@ -215,9 +177,9 @@ def _compiled_solve(
     kernel takes), or None when the template does not take this path (then
     :func:`solve_batch` runs as before).
     """
-    from .statics import _fast
-    from .statics.batch import NOT_SETTLED, ON_SEABED, _guess
-    from .statics.verify import Pieces, check_lines
+    from ..statics import _fast
+    from ..statics.batch import NOT_SETTLED, ON_SEABED, _guess
+    from ..statics.verify import Pieces, check_lines
 
     line, med = base.line, base.medium
     if (
@@ -237,7 +199,7 @@ def _compiled_solve(
     contact = np.zeros(N, dtype=bool)
     contact_b = np.zeros(N, dtype=bool)
     if med.depth is not None:
-        from .statics.seabed import Plane
+        from ..statics.seabed import Plane
 
         plane = Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
         limit = 1e-6 * line.total_length
@@ -264,7 +226,7 @@ def _compiled_solve(
         bounds[:, 0] = 0.0
         bounds[:, 1] = ell[:, 0]
     else:
-        from .statics.semi_analytic import make_layout
+        from ..statics.semi_analytic import make_layout
 
         lay = make_layout(line)
         P = len(lay.ell)
@@ -389,7 +351,7 @@ def _compiled_solve(
         iters[f], resid[f] = it_f, res_f
         rest[f[~good]] = True
     if contact.any():
-        from .statics.batch import solve_contact_arrays
+        from ..statics.batch import solve_contact_arrays
 
         c = np.flatnonzero(contact)
         got = solve_contact_arrays(
@@ -404,8 +366,8 @@ def _compiled_solve(
         for i in c[~settled]:
             rest[i], why[i] = True, NOT_SETTLED
     if contact_b.any():
-        from .statics.batch import solve_contact_arrays
-        from .statics.semi_analytic import make_layout, reversed_line
+        from ..statics.batch import solve_contact_arrays
+        from ..statics.semi_analytic import make_layout, reversed_line
 
         c = np.flatnonzero(contact_b)
         m = c.size
@@ -464,7 +426,7 @@ def _height_below(plane: Any, r: np.ndarray, limit: Any, *, strict: bool) -> np.
 def stacked_outputs(
     results: list[Any], template: Study, ea: np.ndarray
 ) -> tuple[dict[str, np.ndarray], np.ndarray, list[str]]:
-    """:func:`cablestudy.analyses.static_outputs` of many static results at once (see
+    """:func:`cablestudy.analyses.static.static_outputs` of many static results at once (see
     :func:`array_outputs`)."""
     return array_outputs(StaticArrays.of(results), template, ea)
 
@@ -472,12 +434,12 @@ def stacked_outputs(
 def array_outputs(
     st: StaticArrays, template: Study, ea: np.ndarray
 ) -> tuple[dict[str, np.ndarray], np.ndarray, list[str]]:
-    """:func:`cablestudy.analyses.static_outputs` of many static results at once: the
+    """:func:`cablestudy.analyses.static.static_outputs` of many static results at once: the
     same variables, bit for bit (the same element-wise operations on stacked arrays;
     the profile quantities are those of :func:`cablestudy.physics.profile.
     profile_quantities`, evaluated along axis 1 of (cases, nodes) arrays). Returns the
     outputs (cases first), status and messages, with a failed case's values NaN."""
-    from .physics.profile import profile_quantities
+    from ..physics.profile import profile_quantities
 
     n = len(st.status)
     s = st.s[0]
@@ -562,12 +524,12 @@ def _segment_of(template: Study, s: np.ndarray) -> np.ndarray:
 
 def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
     """Solve rows ``lo:hi`` of the grid as one batch and stack the outputs. Per case the
-    same outputs, status and message as :func:`cablestudy.analyses.evaluate_case`; a
+    same outputs, status and message as :func:`cablestudy.analyses.evaluate.evaluate_case`; a
     fault inside the batch fails the chunk's cases with its text (never raises)."""
-    from .statics.batch import solve_batch
+    from ..statics.batch import solve_batch
 
     if not grid.arrays:
-        from .grid_static import evaluate_static_chunk
+        from .static_grid_cases import evaluate_static_chunk
 
         return evaluate_static_chunk(grid, lo, hi)
     t0 = time.perf_counter()
@@ -629,31 +591,6 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
         wall_time=np.full(n, wall),
         data=data,
         fallback=n_general,
-        warning=_warning_column(n, warnings),
+        warning=warning_column(n, warnings),
         fallback_reason=np.array(reasons.tolist(), dtype=str).reshape(n),
-    )
-
-
-def _warning_column(n: int, warnings: dict[int, list[str]]) -> np.ndarray:
-    """The ``warning`` text of ``n`` cases, from the warnings of those that have some."""
-    texts = {i: joined(w) for i, w in warnings.items()}
-    width = max((len(t) for t in texts.values()), default=0)
-    column = np.full(n, "", dtype=f"<U{max(width, 1)}")
-    for i, text in texts.items():
-        column[i] = text
-    return column
-
-
-def failed_grid_chunk(grid: CaseGrid, lo: int, hi: int, message: str) -> GridChunk:
-    """Rows ``lo:hi`` failed outside the solvers (a worker lost): status 9, the reason,
-    no data."""
-    n = (hi - lo) * math.prod(grid.shape[1:])
-    return GridChunk(
-        lo=lo,
-        hi=hi,
-        key=grid.chunk_key(lo, hi),
-        status=np.full(n, 9, dtype=np.int64),
-        message=np.array([message] * n, dtype=str).reshape(n),
-        wall_time=np.full(n, np.nan),
-        data={},
     )

@@ -13,16 +13,16 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .statics import STATUS_OK, StaticResult
-from .statics.spring import SpringProblem, reachable_extension, solve_spring
-from .study.analysis import HarmonicExcitation, SpectrumExcitation, TimeSeriesExcitation
-from .study.line import DEFAULT_MAX_STRAIN, check_axial
-from .study.problem import end_condition
+from ..statics import STATUS_OK, StaticResult
+from ..statics.spring import SpringProblem, reachable_extension, solve_spring
+from ..study.analysis import HarmonicExcitation, SpectrumExcitation, TimeSeriesExcitation
+from ..study.line import DEFAULT_MAX_STRAIN, check_axial
+from ..study.problem import end_condition
 
 if TYPE_CHECKING:
-    from .study import Study
-    from .study.cases import Case
-    from .study.loader import StudySource
+    from ..study import Study
+    from ..study.cases import Case
+    from ..study.loader import StudySource
 
 
 def spring_problem(study: Study) -> SpringProblem:
@@ -60,7 +60,7 @@ def motion_bound(study: Study) -> float:
 
 def spring_problems(case: Case, src: StudySource) -> list[str]:
     """Config errors of a spring-line case (raised before any work by
-    :func:`cablestudy.analyses.check_supported`)."""
+    :func:`cablestudy.analyses.evaluate.check_supported`)."""
     study = case.study
     line = study.line
     out: list[str] = []
@@ -204,8 +204,8 @@ def run_spring_dynamic(
 ) -> tuple[int, str, dict[str, np.ndarray]]:
     """The dynamic outputs of a spring line under its end motion: (status, message,
     outputs named as the time domain's)."""
-    from .analyses import end_motion
-    from .dynamics.spring import SpringDynamicProblem, spring_response
+    from ..dynamics.spring import SpringDynamicProblem, spring_response
+    from .line_model import end_motion
 
     study = case.study
     dyn = study.analysis.dynamic
