@@ -65,7 +65,7 @@ def compile_cost(cache_dir: str) -> tuple[float, float, float]:
 
 def run_sweep(data: dict, out: Path, workers: int, scheduler: str) -> tuple[xr.Dataset, float]:
     from cablestudy.analyses.evaluate import check_supported
-    from cablestudy.runner import run_study
+    from cablestudy.run.runner import run_study
     from cablestudy.study.cases import expand_cases
     from cablestudy.study.loader import parse_study_text
 

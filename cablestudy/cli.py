@@ -61,15 +61,16 @@ def cmd_validate(args: argparse.Namespace) -> int:
 
 
 def cmd_run(args: argparse.Namespace) -> int:
-    from .outputs import OutputPathError, OutputWriteError, check_output_paths
-    from .remote import (
+    from .run.outputs import OutputPathError, OutputWriteError, check_output_paths
+    from .run.remote import (
         SchedulerAddressError,
         SchedulerUnreachable,
         connect,
         connect_timeout,
         parse_address,
     )
-    from .runner import AUTO, SCHEDULERS, run_study
+    from .run.runner import run_study
+    from .run.scheduler import AUTO, SCHEDULERS
 
     scheduler = args.scheduler or AUTO
     if scheduler not in SCHEDULERS and "://" not in scheduler:
@@ -105,7 +106,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     ensure_compiled(sorted({k for study in studies for k in kinds_of(study)}))
     try:
         if not isinstance(cases, list):  # a sweep run as arrays (cablestudy.analyses.static_grid)
-            from .runner import run_grid_study
+            from .run.grid_runner import run_grid_study
 
             _resume_collection()
             summary = run_grid_study(
@@ -471,7 +472,7 @@ EXIT_BROKEN_PIPE = 141
 
 
 def main(argv: list[str] | None = None) -> int:
-    from .conventions import COMMAND
+    from .run.conventions import COMMAND
 
     args = build_parser().parse_args(argv)
     if argv is None:  # the program itself (not a caller in its own process)

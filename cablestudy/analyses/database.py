@@ -17,7 +17,7 @@ and the end forces, end tensions, largest tension and laid length are tabulated
   horizontal, so r = d cos a, h = d sin a, on the dimensions ``distance`` and ``angle``.
 
 They are written to the study's dataset (``database_*``, ``database_radial_*``) and to
-a dataset of their own (:mod:`cablestudy.analyses.database_file`).
+a dataset of their own (:mod:`cablestudy.run.database_file`).
 
 :class:`QuasiStaticDatabase` interpolates the table: bicubic Hermite patches in the
 grid's own coordinates whose node derivatives (d/dp, d/dq, d2/dp dq) are those of the
@@ -299,7 +299,7 @@ class QuasiStaticDatabase:
     def from_dataset(cls, ds: xr.Dataset) -> QuasiStaticDatabase:
         """From a dataset holding one case's database: the study's dataset
         (``database_*`` or ``database_radial_*``) or the database's own
-        (``<name>.database.nc``, :mod:`cablestudy.analyses.database_file`). Select a case first
+        (``<name>.database.nc``, :mod:`cablestudy.run.database_file`). Select a case first
         with ``ds.sel(...)`` when the study has sweep dimensions."""
         grid, prefix = _layout_of(ds)
         layout = DATABASE_LAYOUTS[grid]

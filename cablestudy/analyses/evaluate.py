@@ -220,7 +220,7 @@ def evaluate_case(
     if status == STATUS_OK:
         failed = [(name, st, msg) for name, (st, msg) in outcome.items() if st != STATUS_OK]
         # a time-limited analysis first, its message starting "time limit": the cache
-        # then knows a rerun may finish it (cablestudy.cache.TRANSIENT_PREFIXES)
+        # then knows a rerun may finish it (cablestudy.run.cache.TRANSIENT_PREFIXES)
         failed.sort(key=lambda f: f[1] != STATUS_TIME_LIMIT)
         if failed:
             status = failed[0][1]

@@ -17,7 +17,7 @@ chunk of validated cases (one :func:`cablestudy.statics.batch.solve_batch` call 
 cases a batch kernel may take, the registry solver per case otherwise, the drag
 iteration per case) and its records are stacked into a
 :class:`cablestudy.analyses.grid_chunk.GridChunk`
-with the values :func:`cablestudy.results.assemble` would write, bit for bit.
+with the values :func:`cablestudy.run.dataset.assemble` would write, bit for bit.
 """
 
 from __future__ import annotations

@@ -39,7 +39,7 @@ def _ensure_study(name: str, results: Path, configs: Path, run_missing: bool) ->
             f"{results}`, or run `cablestudy figures` without --no-run"
         )
     from ..analyses.evaluate import check_supported
-    from ..runner import run_study
+    from ..run.runner import run_study
     from ..study.cases import expand_cases
     from ..study.loader import read_study_source
 

@@ -530,7 +530,7 @@ def _hash(payload: Any) -> str:
 
 
 #: package files whose content does not affect any case's numbers
-_NOT_PHYSICS = ("figures/", "cli.py", "bench.py", "runner.py", "results.py", "__main__.py")
+_NOT_PHYSICS = ("figures/", "run/", "cli.py", "bench.py", "__main__.py")
 
 
 @functools.cache

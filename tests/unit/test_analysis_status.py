@@ -20,8 +20,8 @@ from cablestudy.analyses.common import STATUS_NOT_RUN
 from cablestudy.analyses.dynamic import run_dynamic
 from cablestudy.analyses.variables import OUTPUTS, CaseRecord
 from cablestudy.cli import main
-from cablestudy.results import assemble
-from cablestudy.runner import run_study
+from cablestudy.run.dataset import assemble
+from cablestudy.run.runner import run_study
 from cablestudy.statics import STATUS_NUMERICAL, STATUS_TIME_LIMIT
 from cablestudy.study.cases import expand_cases
 from cablestudy.study.loader import parse_study_text

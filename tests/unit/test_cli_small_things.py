@@ -18,7 +18,7 @@ import xarray as xr
 
 import cablestudy
 from cablestudy.cli import EXIT_BROKEN_PIPE, main
-from cablestudy.conventions import STATUS_MEANINGS, is_status_variable
+from cablestudy.run.conventions import STATUS_MEANINGS, is_status_variable
 from cablestudy.study.loader import StudyError, parse_study_text, validate_data
 
 ROOT = Path(__file__).resolve().parents[2]

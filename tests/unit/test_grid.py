@@ -15,7 +15,9 @@ import xarray as xr
 from cablestudy.analyses import static as static_analysis
 from cablestudy.analyses.static_grid import evaluate_grid_chunk
 from cablestudy.analyses.variables import KEPT_STATUSES
-from cablestudy.runner import run_grid_study, run_study
+from cablestudy.run import grid_runner
+from cablestudy.run.grid_runner import run_grid_study
+from cablestudy.run.runner import run_study
 from cablestudy.study import parse_study_text
 from cablestudy.study.cases import expand_cases
 from cablestudy.study.grid import CaseGrid, expand_grid
@@ -273,11 +275,11 @@ def test_faulty_swept_values_are_reported_as_before() -> None:
 def test_streamed_result_opens_lazily_and_chunks_are_cached(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    from cablestudy import runner
+    pass
     from cablestudy.analyses import static_grid as grid_module
 
-    monkeypatch.setattr(runner, "GRID_CHUNK_CASES", 12)  # two rows of 6 cases a chunk
-    monkeypatch.setattr(runner, "IN_MEMORY_BYTES", 0)  # streamed, as a large study is
+    monkeypatch.setattr(grid_runner, "GRID_CHUNK_CASES", 12)  # two rows of 6 cases a chunk
+    monkeypatch.setattr(grid_runner, "IN_MEMORY_BYTES", 0)  # streamed, as a large study is
     src = parse_study_text(TEXT, "gr.yaml")
     grid = expand_grid(src)
     first = run_grid_study(src, grid, tmp_path, scheduler="synchronous", progress=False)
@@ -289,7 +291,7 @@ def test_streamed_result_opens_lazily_and_chunks_are_cached(
     assert lazy["x"].encoding["chunksizes"] == (2, 3, 2, 21)
     ref = xr.load_dataset(first.path)
     # the streamed file is the one the in-memory assembly writes
-    monkeypatch.setattr(runner, "IN_MEMORY_BYTES", 1 << 30)
+    monkeypatch.setattr(grid_runner, "IN_MEMORY_BYTES", 1 << 30)
     held = run_grid_study(
         src, grid, tmp_path / "held", scheduler="synchronous", use_cache=False, progress=False
     )
@@ -297,7 +299,7 @@ def test_streamed_result_opens_lazily_and_chunks_are_cached(
         xr.load_dataset(held.path).drop_vars("wall_time"),
         ref.drop_vars("wall_time").assign_attrs(history=held_history(held.path)),
     )
-    monkeypatch.setattr(runner, "IN_MEMORY_BYTES", 0)
+    monkeypatch.setattr(grid_runner, "IN_MEMORY_BYTES", 0)
     calls: list[int] = []
     real = evaluate_grid_chunk
 
@@ -337,9 +339,9 @@ def test_chunk_evaluation_matches_its_rows(tmp_path: Path) -> None:
 def test_array_chunks_on_worker_processes_give_the_serial_result(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    from cablestudy import runner
+    pass
 
-    monkeypatch.setattr(runner, "GRID_CHUNK_CASES", 12)
+    monkeypatch.setattr(grid_runner, "GRID_CHUNK_CASES", 12)
     src = parse_study_text(TEXT, "gr.yaml")
     grid = expand_grid(src)
     par = run_grid_study(
@@ -365,10 +367,10 @@ def test_array_chunks_on_worker_processes_give_the_serial_result(
 def test_an_extended_first_axis_reuses_the_cached_chunks(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    from cablestudy import runner
+    pass
     from cablestudy.analyses import static_grid as grid_module
 
-    monkeypatch.setattr(runner, "GRID_CHUNK_CASES", 12)  # two spans a chunk
+    monkeypatch.setattr(grid_runner, "GRID_CHUNK_CASES", 12)  # two spans a chunk
     spans = "ends.b.position.0: {start: 60.0, stop: 100.5, num: 7, name: span}"
     short = TEXT.replace(spans, "ends.b.position.0: {values: [60.0, 70.0, 80.0, 90.0], name: span}")
     longer = short.replace("[60.0, 70.0, 80.0, 90.0]", "[60.0, 70.0, 80.0, 90.0, 95.0, 100.0]")

@@ -12,7 +12,8 @@ import pytest
 import xarray as xr
 
 from cablestudy.analyses.variables import OUTPUTS, CaseRecord
-from cablestudy.results import assemble, write_atomic
+from cablestudy.run.dataset import assemble
+from cablestudy.run.writer import write_atomic
 from cablestudy.study import parse_study_text
 from cablestudy.study.cases import expand_cases
 
@@ -177,7 +178,7 @@ def _netcdf_layout(path: Path) -> dict[str, Any]:
 
 @pytest.mark.parametrize("extra_coord", [False, True], ids=["dimension-coords", "zip-coord"])
 def test_direct_netcdf_writer_writes_what_xarray_writes(tmp_path: Path, extra_coord: bool) -> None:
-    from cablestudy.results import write_variables_atomic
+    from cablestudy.run.writer import write_variables_atomic
 
     rng = np.random.default_rng(1)
     x = rng.normal(size=(3, 2, 4))

@@ -229,7 +229,7 @@ def test_program_exit_skips_the_final_collection(how: str) -> None:
 _PAUSE_CHILD = textwrap.dedent(
     """
     import contextlib, gc, io, json, sys
-    import cablestudy.runner as runner
+    import cablestudy.run.runner as runner
     from cablestudy.cli import main
 
     seen = {}

@@ -27,7 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .analyses.variables import CaseRecord
+from ..analyses.variables import CaseRecord
 from .outputs import read_regular, regular_file, temporary_prefix, written
 
 #: messages of records that must not be cached (transient: a rerun may succeed)
@@ -139,8 +139,8 @@ def decode_records(payload: bytes) -> list[CaseRecord]:
 
 def _write_atomic(path: Path, payload: bytes, stem: str) -> None:
     """``payload`` to ``path`` through a temporary file named after this process
-    (:func:`cablestudy.outputs.temporary_prefix`), fsync and rename; a full disk raises
-    :class:`cablestudy.outputs.OutputWriteError`."""
+    (:func:`cablestudy.run.outputs.temporary_prefix`), fsync and rename; a full disk raises
+    :class:`cablestudy.run.outputs.OutputWriteError`."""
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=temporary_prefix(stem), suffix=".tmp")
 
     def complete() -> None:
@@ -241,7 +241,7 @@ class CaseCache:
         study as it now stands), dropping records of edited-away cases. The new file is
         in place before the old ones are removed, so a crash loses nothing. Only files
         this run read or wrote are removed (call it only when no other run of the study
-        is writing here: :class:`cablestudy.outputs.CacheLock`)."""
+        is writing here: :class:`cablestudy.run.outputs.CacheLock`)."""
         if self.directory is None or not self.directory.is_dir():
             return
         old = sorted(p for p in self.files if regular_file(p))
@@ -446,7 +446,7 @@ class GridChunkStore:
     def keep(self, paths: set[Path]) -> None:
         """Remove the grid chunk files not in ``paths`` (cases edited away); call it only
         when no other run of the study is writing here
-        (:class:`cablestudy.outputs.CacheLock`). Entries that are not regular files are
+        (:class:`cablestudy.run.outputs.CacheLock`). Entries that are not regular files are
         left alone."""
         for path in self.directory.glob("grid-*.npz"):
             if path not in paths and regular_file(path):

@@ -1,6 +1,6 @@
 """CF conventions of the result files that are not one variable's units and long name:
 the status flags every status variable carries, and the command line for ``history``.
-No I/O here (the writers in :mod:`cablestudy.results` apply them)."""
+No I/O here (the writers in :mod:`cablestudy.run.dataset` apply them)."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ import numpy as np
 
 #: every status code a case or an analysis may carry, with its CF flag meaning (one word):
 #: cablestudy.statics.base (0-4, 10, 11), cablestudy.dynamics.modal (5, 6; analyses'
-#: STATUS_NOT_RUN is 5 too), cablestudy.dynamics.frequency (7), cablestudy.runner (9)
+#: STATUS_NOT_RUN is 5 too), cablestudy.dynamics.frequency (7), cablestudy.run.scheduler (9)
 STATUS_MEANINGS: dict[int, str] = {
     0: "ok",
     1: "not_converged",

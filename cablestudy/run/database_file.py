@@ -3,7 +3,7 @@
 A study with ``analysis.database`` writes, beside its result ``<name>.nc``, the file
 ``<name>.database.nc`` holding the database alone, for a vessel simulation or any other
 user that needs the lookup table and not the study. It is derived from the study
-dataset's variables (:func:`cablestudy.results.assembled_variables`), so the two always
+dataset's variables (:func:`cablestudy.run.dataset.assembled_variables`), so the two always
 agree and a rerun that resumes from the cache writes the same file.
 
 Cases map to a dimension, not to files: one file per study, its tables on the study's
@@ -33,8 +33,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..results import VariableSpec
-from .variables import DATABASE_LAYOUTS, DATABASE_QUANTITIES
+from ..analyses.variables import DATABASE_LAYOUTS, DATABASE_QUANTITIES
+from .writer import VariableSpec
 
 if TYPE_CHECKING:
     from ..study.cases import Case, SweepAxis
