@@ -27,7 +27,8 @@ from pathlib import Path
 import numpy as np
 
 from cablestudy.statics import EndCondition, LineModel, Medium, StaticProblem
-from cablestudy.statics.batch import _solve_group, solve_batch
+from cablestudy.statics.batch import solve_batch
+from cablestudy.statics.batch_kernels import _solve_group
 from cablestudy.statics.elastic_catenary import solve_between
 from cablestudy.statics.semi_analytic import SemiAnalyticSolver
 

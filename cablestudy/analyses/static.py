@@ -264,7 +264,8 @@ def presolve_statics(
     those no batch kernel settled (solved by the general solver) are appended to
     ``general`` if given. Anything unexpected leaves the cases to the one-by-one path
     (which records its own errors)."""
-    from ..statics.batch import batchable, solve_batch
+    from ..statics.batch import solve_batch
+    from ..statics.batch_kernels import batchable
 
     todo: dict[str, Any] = {}
     for case in cases:

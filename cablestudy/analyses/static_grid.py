@@ -165,20 +165,20 @@ def _compiled_solve(
 ) -> tuple[StaticArrays, np.ndarray, list[str]] | None:
     """The cases of a chunk (the template's static problem ``base`` with end positions
     ``pos`` and segment stiffnesses ``ea`` per case) through the compiled batch kernel
-    straight from arrays: the inputs :func:`cablestudy.statics.batch._solve_group` (lines
-    hanging free) and :func:`cablestudy.statics.batch._contact_one` (end A anchored on
-    the seabed, end B above it: :func:`cablestudy.statics.batch.solve_contact_arrays`)
+    straight from arrays: the inputs :func:`cablestudy.statics.batch_kernels._solve_group` (lines
+    hanging free) and :func:`cablestudy.statics.batch_kernels._contact_one` (end A anchored on
+    the seabed, end B above it: :func:`cablestudy.statics.batch_kernels.solve_contact_arrays`)
     build from one problem object per case, built here for all cases at once (so the
     same numbers, bit for bit, without a per-case object). Returns the stacked results,
     the cases the kernels leave to the one-by-one solver (not converged, not finite,
     touching the seabed between the ends, end B on it, slack on it: exactly the cases
     :func:`solve_batch` would hand on) and why (per such case:
-    :data:`~cablestudy.statics.batch.NOT_SETTLED`, ``ON_SEABED``, or '' for a case no
+    :data:`~cablestudy.statics.batch_kernels.NOT_SETTLED`, ``ON_SEABED``, or '' for a case no
     kernel takes), or None when the template does not take this path (then
     :func:`solve_batch` runs as before).
     """
     from ..statics import _fast
-    from ..statics.batch import NOT_SETTLED, ON_SEABED, _guess
+    from ..statics.batch_kernels import NOT_SETTLED, ON_SEABED, _guess
     from ..statics.verify import Pieces, check_lines
 
     line, med = base.line, base.medium
@@ -226,7 +226,7 @@ def _compiled_solve(
         bounds[:, 0] = 0.0
         bounds[:, 1] = ell[:, 0]
     else:
-        from ..statics.semi_analytic import make_layout
+        from ..statics.semi_analytic_shape import make_layout
 
         lay = make_layout(line)
         P = len(lay.ell)
@@ -351,7 +351,7 @@ def _compiled_solve(
         iters[f], resid[f] = it_f, res_f
         rest[f[~good]] = True
     if contact.any():
-        from ..statics.batch import solve_contact_arrays
+        from ..statics.batch_kernels import solve_contact_arrays
 
         c = np.flatnonzero(contact)
         got = solve_contact_arrays(
@@ -366,8 +366,8 @@ def _compiled_solve(
         for i in c[~settled]:
             rest[i], why[i] = True, NOT_SETTLED
     if contact_b.any():
-        from ..statics.batch import solve_contact_arrays
-        from ..statics.semi_analytic import make_layout, reversed_line
+        from ..statics.batch_kernels import solve_contact_arrays
+        from ..statics.semi_analytic_shape import make_layout, reversed_line
 
         c = np.flatnonzero(contact_b)
         m = c.size

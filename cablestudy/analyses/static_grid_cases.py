@@ -35,15 +35,15 @@ from ..study.study import Study
 
 def one_at_a_time(problem: Any) -> bool:
     """Whether the catenary solver first takes the compiled kernels for ``problem`` on
-    its own (:func:`cablestudy.statics.batch.solve_compiled`)."""
-    from ..statics.batch import batchable, contact_eligible
+    its own (:func:`cablestudy.statics.batch_kernels.solve_compiled`)."""
+    from ..statics.batch_kernels import batchable, contact_eligible
 
     return bool(contact_eligible(problem) or batchable(problem))
 
 
 def fallback_reason(study: Study, problem: Any) -> str:
     """Why no batch kernel takes the case (it goes to the general solver)."""
-    from ..statics.batch import _has_drag
+    from ..statics.batch_kernels import _has_drag
 
     method = study.analysis.static.method
     if method != "catenary":

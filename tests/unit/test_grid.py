@@ -512,7 +512,7 @@ def test_lines_anchored_on_the_seabed_are_the_contact_kernels_one_by_one(tmp_pat
     """A friction x depth sweep of a line anchored on the seabed: the catenary solver takes
     the compiled contact kernel per case; only the cases it did not settle (slack on
     the seabed, say) count as solved by the general solver, with the kernel's reason."""
-    from cablestudy.statics.batch import NOT_SETTLED, ON_SEABED
+    from cablestudy.statics.batch_kernels import NOT_SETTLED, ON_SEABED
 
     fast, _ = _both(tmp_path, FRICTION)
     laid = fast["laid_length"].values > 0.0
