@@ -1,13 +1,18 @@
-"""Per-case evaluation: which solvers a case needs, run in order, into a record.
+"""Per-case evaluation: which analyses a case asks for, run in order, into a record.
 
-This is the only place that knows which analyses exist; the runner calls
-:func:`evaluate_case` and moves records, knowing nothing of physics.
+This is the only place that knows which analyses exist: a chunk goes to the evaluator of
+its study's kind (:data:`CHUNK_KINDS`: a system of lines, or one line), and a line's case
+runs its statics, then each analysis of :data:`AFTER_STATICS` it asks for. A new
+analysis kind is one module and one entry there. The runner calls
+:func:`evaluate_chunk` and moves records, knowing nothing of physics.
 """
 
 from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -23,6 +28,7 @@ from ..statics import (
 from ..study.cases import Case
 from ..study.loader import StudyError, StudySource
 from ..study.problem import static_problem
+from ..study.study import Study
 from .common import STATUS_NOT_RUN, exception_message, non_finite_outputs
 from .dynamic import dynamic_problems, linear_model_problems, presolve_frequency, run_dynamic
 from .modal import modal_outputs, solve_modal
@@ -132,6 +138,47 @@ def warm_up(cases: list[Case]) -> None:
         warm_up_time()
 
 
+@dataclass(frozen=True)
+class AfterStatics:
+    """An analysis that starts from a case's static solution: whether the case asks for
+    it, and how it runs: ``solve(case, static, deadline, linear)`` gives (status,
+    message, outputs), ``linear`` being the case's frequency-domain outcome when the
+    chunk solved it already (None otherwise)."""
+
+    asked: Callable[[Study], bool]
+    solve: Callable[[Case, StaticResult, float | None, Any], tuple[int, str, dict[str, Any]]]
+
+
+def _modal(
+    case: Case, static: StaticResult, deadline: float | None, linear: Any
+) -> tuple[int, str, dict[str, Any]]:
+    settings = case.study.analysis.modal
+    assert settings is not None
+    mres = solve_modal(case, static, deadline)
+    return (
+        mres.status,
+        mres.message,
+        modal_outputs(mres, static.s, mode_shapes=settings.mode_shapes),
+    )
+
+
+def _dynamic(
+    case: Case, static: StaticResult, deadline: float | None, linear: Any
+) -> tuple[int, str, dict[str, Any]]:
+    if linear is None:
+        return run_dynamic(case, static, deadline)
+    return run_dynamic(case, static, deadline, linear)
+
+
+#: the analyses that start from the static solution, by the name of their status
+#: variable (``<name>_status``), in the order they run; they do not run when the statics
+#: failed (:data:`STATUS_NOT_RUN`)
+AFTER_STATICS: dict[str, AfterStatics] = {
+    "modal": AfterStatics(lambda study: study.analysis.modal is not None, _modal),
+    "dynamic": AfterStatics(lambda study: study.analysis.dynamic is not None, _dynamic),
+}
+
+
 def evaluate_case(
     case: Case, *, presolved: dict[str, StaticResult] | None = None, linear: Any = None
 ) -> CaseRecord:
@@ -174,33 +221,14 @@ def evaluate_case(
         static.append(res)
         return res.status, res.message, shared_static_outputs(case, res)
 
-    def modal() -> tuple[int, str, dict[str, Any]]:
-        settings = case.study.analysis.modal
-        assert settings is not None
-        mres = solve_modal(case, static[0], deadline)
-        return (
-            mres.status,
-            mres.message,
-            modal_outputs(mres, static[0].s, mode_shapes=settings.mode_shapes),
-        )
-
-    def dynamic() -> tuple[int, str, dict[str, Any]]:
-        if linear is None:
-            return run_dynamic(case, static[0], deadline)
-        return run_dynamic(case, static[0], deadline, linear)
-
     run("static", statics)
-    asked = {
-        "modal": (case.study.analysis.modal is not None, modal),
-        "dynamic": (case.study.analysis.dynamic is not None, dynamic),
-    }
-    for name, (wanted, solve) in asked.items():
-        if not wanted:
+    for name, kind in AFTER_STATICS.items():
+        if not kind.asked(case.study):
             continue
         if outcome["static"][0] != STATUS_OK:
             outcome[name] = (STATUS_NOT_RUN, "not run: the static analysis failed")
         else:
-            run(name, solve)
+            run(name, lambda kind=kind: kind.solve(case, static[0], deadline, linear))
     for name, (st, _) in outcome.items():
         data[f"{name}_status"] = np.asarray(st, dtype=np.int64)
     if case.study.analysis.database is not None and outcome["static"][0] in (
@@ -282,16 +310,18 @@ def case_warnings(
     return joined(found)
 
 
-def evaluate_chunk(cases: list[Case]) -> list[CaseRecord]:
-    """Evaluate a chunk of cases in one task: compatible static problems are solved as
-    one batch first, and the frequency-domain responses of the cases that share a
-    linear model together; then every case runs as in :func:`evaluate_case` (its wall
-    time includes its share of the batches). A system study's cases go to
-    :func:`cablestudy.analyses.system.evaluate_system_case`."""
-    if cases and cases[0].study.is_system:
-        from .system import evaluate_system_case
+def _system_chunk(cases: list[Case]) -> list[CaseRecord]:
+    """A system study's cases, each by :func:`cablestudy.analyses.system.evaluate_system_case`."""
+    from .system import evaluate_system_case
 
-        return [evaluate_system_case(case) for case in cases]
+    return [evaluate_system_case(case) for case in cases]
+
+
+def _line_chunk(cases: list[Case]) -> list[CaseRecord]:
+    """One line's cases: compatible static problems solved as one batch first, and the
+    frequency-domain responses of the cases that share a linear model together; then
+    every case as in :func:`evaluate_case` (its wall time includes its share of the
+    batches)."""
     solved, share = presolve_statics(cases)
     linear, linear_share = presolve_frequency(cases, solved)
     records = []
@@ -302,3 +332,18 @@ def evaluate_chunk(cases: list[Case]) -> list[CaseRecord]:
         rec.wall_time += linear_share.get(i, 0.0)
         records.append(rec)
     return records
+
+
+#: how a chunk of cases is evaluated, by the kind of its study (a chunk holds the cases
+#: of one study)
+CHUNK_KINDS: dict[str, Callable[[list[Case]], list[CaseRecord]]] = {
+    "system": _system_chunk,
+    "line": _line_chunk,
+}
+
+
+def evaluate_chunk(cases: list[Case]) -> list[CaseRecord]:
+    """Evaluate a chunk of cases in one task, by the evaluator of its study's kind
+    (:data:`CHUNK_KINDS`)."""
+    kind = "system" if cases and cases[0].study.is_system else "line"
+    return CHUNK_KINDS[kind](cases)

@@ -6,23 +6,11 @@ runs any missing study from ``configs/`` (unless told not to) and writes PNGs.
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from pathlib import Path
 
 import xarray as xr
 
-Builder = Callable[[dict[str, xr.Dataset], Path], Path]
-
-#: figure name -> (study names read, builder writing the PNG and returning its path)
-FIGURES: dict[str, tuple[tuple[str, ...], Builder]] = {}
-
-
-def register(name: str, studies: tuple[str, ...]) -> Callable[[Builder], Builder]:
-    def deco(fn: Builder) -> Builder:
-        FIGURES[name] = (studies, fn)
-        return fn
-
-    return deco
+from .registry import FIGURES
 
 
 class MissingResult(FileNotFoundError):
