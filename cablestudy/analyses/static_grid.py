@@ -1,28 +1,16 @@
-"""Sweeps as arrays: a case is its index into the grid of sweep axes.
+"""The static analysis of a chunk of a case grid (:class:`cablestudy.study.grid.CaseGrid`)
+as arrays: a case is its index into the grid of sweep axes.
 
-For a sweep whose cases differ only in settings the batched still-water catenary kernel
-takes as numbers (end positions of fixed ends, segment axial stiffnesses) and whose
-analysis is static with method ``catenary``, the study is validated once as a template,
-each swept value once at its own path, and the checks that combine fields (ends below
-the seabed, a weightless line shorter than its chord) over the whole grid with NumPy.
-No per-case pydantic object is built: a chunk of cases becomes arrays of end positions
-and stiffnesses, is solved by the compiled kernels (lines hanging free, and lines
-anchored on the seabed with friction), the cases they do not settle by
-:func:`cablestudy.statics.batch.solve_batch` (counted in :attr:`GridChunk.fallback`), and
+For a grid whose cases differ only in settings the batched still-water catenary kernel
+takes as numbers (end positions of fixed ends, segment axial stiffnesses;
+:attr:`CaseGrid.arrays`), no per-case pydantic object is built: a chunk of cases becomes
+arrays of end positions and stiffnesses, is solved by the compiled kernels (lines
+hanging free, and lines anchored on the seabed with friction), the cases they do not
+settle by :func:`cablestudy.statics.batch.solve_batch` (counted in
+:attr:`GridChunk.fallback`, with the reason in :attr:`GridChunk.fallback_reason`), and
 its outputs are stacked into one array per output variable (a :class:`GridChunk`), which
-the runner streams to disk.
-
-Any other static-only sweep of numbers (lengths, diameters, weights, depth, friction,
-current, end forces, attachments, node counts, any static method) is a grid too: each
-case's study is the template with its validated swept values put in by copying, its
-combined checks run per case, and a chunk is solved as validated cases are
-(:mod:`cablestudy.analyses.static_grid_cases`). The cases no batch kernel took are counted with
-their
-reason (:attr:`GridChunk.fallback_reason`).
-
-Anything else (a modal or dynamic analysis, the quasi-static database, a swept value that
-is not a number, a swept value or combination that fails validation) goes through
-:func:`cablestudy.study.cases.expand_cases`, which reports faults exactly as before.
+the runner streams to disk. Any other static grid's chunk is solved as validated cases
+are (:mod:`cablestudy.analyses.static_grid_cases`).
 """
 
 from __future__ import annotations
@@ -421,14 +409,6 @@ def _height_below(plane: Any, r: np.ndarray, limit: Any, *, strict: bool) -> np.
         hi = plane.height_above(r[i] if r.shape[1] > 1 else r[i, 0])
         out[i] = bool(np.any(hi < limit[i])) if strict else bool(np.any(hi <= limit[i]))
     return out
-
-
-def stacked_outputs(
-    results: list[Any], template: Study, ea: np.ndarray
-) -> tuple[dict[str, np.ndarray], np.ndarray, list[str]]:
-    """:func:`cablestudy.analyses.static.static_outputs` of many static results at once (see
-    :func:`array_outputs`)."""
-    return array_outputs(StaticArrays.of(results), template, ea)
 
 
 def array_outputs(

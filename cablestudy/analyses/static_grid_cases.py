@@ -1,23 +1,11 @@
-"""Static sweeps of any numeric key as a grid (:mod:`cablestudy.analyses.static_grid`), without a
-pydantic
-validation per case.
-
-The template is validated once and each swept value once at its own path
-(:func:`cablestudy.study.grid.expand_grid`). A case's :class:`~cablestudy.study.study.Study`
-is then the template with the validated swept values put in by copying the models along
-each swept path (:func:`case_study`), and the checks that combine fields -- the models'
-``mode="after"`` validators (a segment's mass or weight, attachments inside the line,
-:meth:`Study._physical`: ends above the seabed, a weightless line longer than its chord)
--- run on every copied model, so that a combination fails exactly where the full
-validation would. A study whose combinations fail leaves the grid for
-:func:`cablestudy.study.cases.expand_cases`, which reports them as before.
-
-A chunk of cases is then solved as :func:`cablestudy.analyses.evaluate.evaluate_chunk` solves a
-chunk of validated cases (one :func:`cablestudy.statics.batch.solve_batch` call for the
-cases a batch kernel may take, the registry solver per case otherwise, the drag
-iteration per case) and its records are stacked into a
-:class:`cablestudy.analyses.grid_chunk.GridChunk`
-with the values :func:`cablestudy.run.dataset.assemble` would write, bit for bit.
+"""A chunk of a static grid whose cases the arrays do not take, solved as validated
+cases: each case's study is the template with its swept values copied in
+(:func:`cablestudy.study.grid_studies.case_study`), and the chunk is solved as
+:func:`cablestudy.analyses.evaluate.evaluate_chunk` solves a chunk of validated cases (one
+:func:`cablestudy.statics.batch.solve_batch` call for the cases a batch kernel may take,
+the registry solver per case otherwise, the drag iteration per case); its records are
+stacked into a :class:`cablestudy.analyses.grid_chunk.GridChunk` with the values
+:func:`cablestudy.run.dataset.assemble` would write, bit for bit.
 """
 
 from __future__ import annotations
