@@ -1,4 +1,8 @@
-"""Study-file models (pydantic v2): strict, frozen, SI units."""
+"""The study: the study file's models (pydantic v2: strict, frozen, SI units) and its
+hardened YAML loader, then its cases: the sweep expansion and case hashes
+(:mod:`.cases`), the case grid validated once per swept value (:mod:`.grid`,
+:mod:`.grid_studies`), and a validated study as the solvers' plain inputs
+(:mod:`.problem`). The models are importable from here."""
 
 from .analysis import Analysis, ModalSettings, StaticSettings
 from .ends import End, Ends, FixedEnd, ForceEnd, MooringEnd
