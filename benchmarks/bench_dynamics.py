@@ -35,9 +35,9 @@ CONFIG = ROOT / "configs" / "moustafa-figs2-5.yaml"
 FIRST_RUN = """
 import time
 t0 = time.perf_counter()
-from cablestudy.analyses import evaluate_case
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import read_study_source
+from cablestudy.analyses.evaluate import evaluate_case
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import read_study_source
 src = read_study_source({config!r})
 _, cases = expand_cases(src)
 t1 = time.perf_counter()
@@ -64,10 +64,10 @@ def compile_cost(cache_dir: str) -> tuple[float, float, float]:
 
 
 def run_sweep(data: dict, out: Path, workers: int, scheduler: str) -> tuple[xr.Dataset, float]:
-    from cablestudy.analyses import check_supported
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import parse_study_text
-    from cablestudy.runner import run_study
+    from cablestudy.analyses.evaluate import check_supported
+    from cablestudy.run.runner import run_study
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import parse_study_text
 
     src = parse_study_text(yaml.safe_dump(data, sort_keys=False), "bench")
     axes, cases = expand_cases(src)

@@ -22,12 +22,12 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from cablestudy.cases import expand_cases  # noqa: E402
-from cablestudy.config.loader import read_study_source  # noqa: E402
-from cablestudy.problem import static_problem  # noqa: E402
 from cablestudy.statics import EndCondition, LineModel, Medium, StaticProblem  # noqa: E402
 from cablestudy.statics.elastic_catenary import solve_between  # noqa: E402
 from cablestudy.statics.shooting import ShootingSolver  # noqa: E402
+from cablestudy.study.cases import expand_cases  # noqa: E402
+from cablestudy.study.loader import read_study_source  # noqa: E402
+from cablestudy.study.problem import static_problem  # noqa: E402
 
 
 def _line(lengths: list[float], w: float, ea: float, d: float = 0.08) -> LineModel:

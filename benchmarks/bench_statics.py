@@ -27,7 +27,8 @@ from pathlib import Path
 import numpy as np
 
 from cablestudy.statics import EndCondition, LineModel, Medium, StaticProblem
-from cablestudy.statics.batch import _solve_group, solve_batch
+from cablestudy.statics.batch import solve_batch
+from cablestudy.statics.batch_kernels import _solve_group
 from cablestudy.statics.elastic_catenary import solve_between
 from cablestudy.statics.semi_analytic import SemiAnalyticSolver
 
@@ -170,9 +171,10 @@ def bench_still_water(n: int, repeats: int) -> list[str]:
 
 def bench_chunk(n: int, repeats: int) -> list[str]:
     """Whole chunk evaluation from a validated study (what the runner's task does)."""
-    from cablestudy import analyses
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import read_study_source
+    from cablestudy.analyses.evaluate import evaluate_case, evaluate_chunk
+    from cablestudy.analyses.static import _STATIC_CACHE
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import read_study_source
 
     src = read_study_source(ROOT / "configs" / "dodaran-fig4-semi-analytic.yaml")
     src.data["analysis"]["static"]["tolerance"] = 1e-9
@@ -182,15 +184,15 @@ def bench_chunk(n: int, repeats: int) -> list[str]:
     _, cases = expand_cases(src)
 
     def run() -> None:
-        analyses._STATIC_CACHE.clear()
-        analyses.evaluate_chunk(cases)
+        _STATIC_CACHE.clear()
+        evaluate_chunk(cases)
 
     t_chunk = median_time(run, repeats=repeats, per=len(cases))
 
     def run_one() -> None:
-        analyses._STATIC_CACHE.clear()
+        _STATIC_CACHE.clear()
         for c in cases:
-            analyses.evaluate_case(c)
+            evaluate_case(c)
 
     t_single = median_time(run_one, repeats=max(1, repeats // 2), per=len(cases))
     return [
@@ -257,9 +259,10 @@ def bench_drag(repeats: int) -> list[str]:
 
 
 def bench_figures() -> list[str]:
-    from cablestudy import analyses
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import read_study_source
+    from cablestudy.analyses.evaluate import evaluate_case
+    from cablestudy.analyses.static import _STATIC_CACHE
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import read_study_source
 
     out = [
         "dodaran-park figure studies (per case: status, drag iterations, Newton iterations, "
@@ -273,9 +276,9 @@ def bench_figures() -> list[str]:
         "dodaran-fig8-submersible-3d",
     ):
         _, cases = expand_cases(read_study_source(ROOT / "configs" / f"{name}.yaml"))
-        analyses._STATIC_CACHE.clear()
+        _STATIC_CACHE.clear()
         for case in cases:
-            rec = analyses.evaluate_case(case)
+            rec = evaluate_case(case)
             d = rec.data
             out.append(
                 f"  {name} {dict((k, round(float(v), 4)) for k, v in case.coords.items())}: "

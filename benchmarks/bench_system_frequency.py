@@ -23,13 +23,13 @@ CASE8 = "moorpy/tests/case8.dat"
 
 
 def run(nodes: int, cases: int = 50) -> dict[str, float]:
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import parse_study_text
+    from cablestudy.analyses.system import system_model
     from cablestudy.dynamics.system_frequency import solve_system_harmonic, system_linear
     from cablestudy.interchange import import_model, imported_yaml
     from cablestudy.statics import STATIC_SOLVERS
     from cablestudy.statics.system import solve_system
-    from cablestudy.system_cases import system_model
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import parse_study_text
 
     path = ROOT / "tests" / "data" / CASE8
     imported = import_model(path.read_text(), CASE8, folder=path.parent)

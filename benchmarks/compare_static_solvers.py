@@ -24,9 +24,6 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from cablestudy.cases import expand_cases  # noqa: E402
-from cablestudy.config.loader import read_study_source  # noqa: E402
-from cablestudy.problem import static_problem  # noqa: E402
 from cablestudy.statics import (  # noqa: E402
     STATIC_SOLVERS,
     EndCondition,
@@ -34,6 +31,9 @@ from cablestudy.statics import (  # noqa: E402
     Medium,
     StaticProblem,
 )
+from cablestudy.study.cases import expand_cases  # noqa: E402
+from cablestudy.study.loader import read_study_source  # noqa: E402
+from cablestudy.study.problem import static_problem  # noqa: E402
 
 
 def _line(

@@ -32,8 +32,8 @@ LAWS = {
 
 
 def problem(axial: dict, tolerance: float):  # noqa: ANN201
-    from cablestudy.config import Study
-    from cablestudy.problem import static_problem
+    from cablestudy.study import Study
+    from cablestudy.study.problem import static_problem
 
     seg = {"length": 60.0, "diameter": 0.08, "mass_per_length": 30.0, **axial}
     return static_problem(

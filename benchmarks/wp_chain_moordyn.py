@@ -129,8 +129,8 @@ def study(frequency: float, amplitude: float, elements: int, ppp: int) -> dict[s
 
 
 def _case(data: dict):  # noqa: ANN202
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import parse_study_text
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import parse_study_text
 
     _, cases = expand_cases(parse_study_text(yaml.safe_dump(data), "<bench>"))
     return cases[0]
@@ -140,14 +140,16 @@ def prepare(data: dict, *, fresh: bool = False) -> tuple[Any, float]:
     """The DynamicProblem the pipeline would run, and the time to build it [s] (static
     solution and discrete static equilibrium; with ``fresh`` their caches are emptied
     first so that the time is that of a first run)."""
-    from cablestudy import analyses
+    from cablestudy.analyses.line_model import _DISCRETE_CACHE
+    from cablestudy.analyses.static import _STATIC_CACHE, solve_static
+    from cablestudy.analyses.time import dynamic_problem
 
     if fresh:
-        analyses._STATIC_CACHE.clear()
-        analyses._DISCRETE_CACHE.clear()
+        _STATIC_CACHE.clear()
+        _DISCRETE_CACHE.clear()
     case = _case(data)
     t0 = time.perf_counter()
-    problem = analyses.dynamic_problem(case, analyses.solve_static(case, None))
+    problem = dynamic_problem(case, solve_static(case, None))
     elapsed = time.perf_counter() - t0
     if isinstance(problem, str):
         raise RuntimeError(problem)
@@ -231,9 +233,9 @@ def moordyn_text(f: float, a: float, segments: int) -> tuple[str, np.ndarray, fl
     """The exported MoorDyn file of the case with our seabed set (module notes), the
     coupled point's position [m] and its time step dtM [s]."""
     from cablestudy.analyses import line_model
-    from cablestudy.config.loader import parse_study_text
     from cablestudy.dynamics.model import default_seabed_stiffness
     from cablestudy.interchange.case_export import export_case
+    from cablestudy.study.loader import parse_study_text
 
     data = study(f, a, segments, 64)
     src = parse_study_text(yaml.safe_dump(data), "<bench>")

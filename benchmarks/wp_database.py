@@ -38,7 +38,7 @@ def study(n: int, tolerance: float = 1e-12, grid: str = "cartesian"):  # noqa: A
             "horizontal_distance": {"start": R0, "stop": R1, "num": n},
             "height_difference": {"start": H0, "stop": H1, "num": n},
         }
-    from cablestudy.config import Study
+    from cablestudy.study import Study
 
     return Study.model_validate(
         {
@@ -75,8 +75,8 @@ def study(n: int, tolerance: float = 1e-12, grid: str = "cartesian"):  # noqa: A
 def direct(st, r: float, h: float):  # noqa: ANN001, ANN201
     from dataclasses import replace
 
-    from cablestudy.problem import static_problem
     from cablestudy.statics import EndCondition
+    from cablestudy.study.problem import static_problem
 
     p = static_problem(st)
     rB = np.asarray(p.end_a.position) + np.array([r, 0.0, h])
@@ -94,8 +94,13 @@ def points(grid: str, n: int, rng: np.random.Generator) -> np.ndarray:
 
 
 def work_precision(grid: str, quick: bool) -> WorkPrecision:
-    from cablestudy.database import QUANTITIES, QuasiStaticDatabase, grid_values, solve_database
-    from cablestudy.results import DATABASE_LAYOUTS
+    from cablestudy.analyses.database import (
+        QUANTITIES,
+        QuasiStaticDatabase,
+        grid_values,
+        solve_database,
+    )
+    from cablestudy.analyses.variables import DATABASE_LAYOUTS
     from cablestudy.statics import STATIC_SOLVERS
 
     solver = STATIC_SOLVERS["catenary"]

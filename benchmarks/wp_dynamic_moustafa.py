@@ -91,10 +91,11 @@ def study(frequency: float, amplitude: float, elements: int, ppp: int) -> dict:
 
 def prepare(data: dict):  # noqa: ANN201
     """The DynamicProblem the pipeline would run for this study
-    (:func:`cablestudy.analyses.dynamic_problem`)."""
-    from cablestudy.analyses import dynamic_problem, solve_static
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import parse_study_text
+    (:func:`cablestudy.analyses.time.dynamic_problem`)."""
+    from cablestudy.analyses.static import solve_static
+    from cablestudy.analyses.time import dynamic_problem
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import parse_study_text
 
     _, cases = expand_cases(parse_study_text(yaml.safe_dump(data), "<bench>"))
     case = cases[0]
@@ -110,9 +111,9 @@ def tensions(res) -> np.ndarray:  # noqa: ANN001
 
 def first_mode() -> float:
     """First natural frequency [Hz] of the cable (modal analysis, 200 elements)."""
-    from cablestudy.analyses import evaluate_case
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import parse_study_text
+    from cablestudy.analyses.evaluate import evaluate_case
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import parse_study_text
 
     d = study(0.5, 0.05, 20, 32)
     del d["analysis"]["dynamic"]

@@ -47,10 +47,10 @@ FIGS = REPO / "configs" / "moustafa-figs2-5.yaml"
 
 def frequency_case(elements: int):  # noqa: ANN201
     """(reduced linear line, omega, end motion, drag settings) of the regime."""
-    from cablestudy.analyses import solve_static
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import parse_study_text
-    from cablestudy.frequency_cases import drag_settings, end_displacements, linearised
+    from cablestudy.analyses.frequency import drag_settings, end_displacements, linearised
+    from cablestudy.analyses.static import solve_static
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import parse_study_text
 
     d = study(FREQUENCY, AMPLITUDE, elements, 64)
     dyn = d["analysis"]["dynamic"]
@@ -116,39 +116,49 @@ def linear_regime(quick: bool) -> WorkPrecision:
 
 
 def _cases(method: str):  # noqa: ANN202
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import parse_study_text
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import parse_study_text
 
     text = FIGS.read_text().replace("method: auto", f"method: {method}")
     return expand_cases(parse_study_text(text))[1]
 
 
 def _clear_caches() -> None:
-    from cablestudy import analyses, frequency_cases
+    from cablestudy.analyses.common import _LAST_CHECKED
+    from cablestudy.analyses.counters import COUNTERS
+    from cablestudy.analyses.frequency import (
+        _LINEAR_CACHE,
+    )
+    from cablestudy.analyses.static import _LAST_STATIC_OUTPUTS, _STATIC_CACHE
 
-    analyses._STATIC_CACHE.clear()
-    frequency_cases._LINEAR_CACHE.clear()
-    frequency_cases.COUNTERS.clear()
-    analyses._LAST_STATIC_OUTPUTS.clear()
-    analyses._LAST_CHECKED.clear()
+    _STATIC_CACHE.clear()
+    _LINEAR_CACHE.clear()
+    COUNTERS.clear()
+    _LAST_STATIC_OUTPUTS.clear()
+    _LAST_CHECKED.clear()
 
 
 def _kernel_time(cases: list, repeats: int) -> tuple[float, int]:
     """Median time of the batched solve of all cases on the cached linear model (the
     per-case work: drag iterations, complex solves, end and element tensions), and the
     drag iterations it took."""
-    from cablestudy import analyses, frequency_cases
+    from cablestudy.analyses.frequency import (
+        drag_settings,
+        end_displacements,
+        linearised,
+    )
+    from cablestudy.analyses.static import solve_static
     from cablestudy.dynamics.harmonic_cases import solve_harmonic_cases
 
-    static = analyses.solve_static(cases[0], None)
-    red, why = frequency_cases.linearised(cases[0], static, None)
+    static = solve_static(cases[0], None)
+    red, why = linearised(cases[0], static, None)
     assert red is not None, why
     omegas, motion = [], []
     for case in cases:
-        X, f, _ = frequency_cases.end_displacements(case.study.analysis.dynamic)
+        X, f, _ = end_displacements(case.study.analysis.dynamic)
         omegas.append(2.0 * math.pi * f)
         motion.append(X)
-    settings = frequency_cases.drag_settings(cases[0].study.analysis.dynamic)
+    settings = drag_settings(cases[0].study.analysis.dynamic)
     om, mo = np.array(omegas), np.array(motion)
     res = solve_harmonic_cases(red, om, mo, settings)
     times = []
@@ -161,19 +171,20 @@ def _kernel_time(cases: list, repeats: int) -> tuple[float, int]:
 
 def sweep_notes(quick: bool) -> list[str]:
     """Frequency-domain sweep: compute, counters, CLI wall time; time-domain per case."""
-    from cablestudy import analyses, frequency_cases
+    from cablestudy.analyses.counters import COUNTERS
+    from cablestudy.analyses.evaluate import evaluate_chunk, warm_up
 
     cases = _cases("frequency")
-    analyses.warm_up(cases)  # the compiled kernels' one-off load, as `cablestudy run`
+    warm_up(cases)  # the compiled kernels' one-off load, as `cablestudy run`
     computes, compute_cpus = [], []
     for _ in range(3 if quick else 9):
         _clear_caches()
         t0, c0 = time.perf_counter(), time.process_time()
-        records = analyses.evaluate_chunk(cases)
+        records = evaluate_chunk(cases)
         computes.append(time.perf_counter() - t0)
         compute_cpus.append(time.process_time() - c0)
         assert all(r.status == 0 for r in records)
-    counts = dict(frequency_cases.COUNTERS)
+    counts = dict(COUNTERS)
     compute = float(np.median(computes))
     compute_cpu = float(np.median(compute_cpus))
     kernel, iterations = _kernel_time(cases, 3 if quick else 9)
@@ -202,7 +213,7 @@ def sweep_notes(quick: bool) -> list[str]:
         td_cases = td_cases[::12]
     _clear_caches()
     t0, c0 = time.perf_counter(), time.process_time()
-    td = analyses.evaluate_chunk(td_cases)
+    td = evaluate_chunk(td_cases)
     td_per_case = (time.perf_counter() - t0) / len(td_cases)
     td_cpu = (time.process_time() - c0) / len(td_cases)
     assert all(r.status == 0 for r in td)

@@ -46,8 +46,8 @@ MODES = 4
 
 
 def case(elements: int, mesh: str):  # noqa: ANN201
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import parse_study_text
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import parse_study_text
 
     d = copy.deepcopy(BASE)
     d["analysis"]["modal"].update(elements=elements, mesh=mesh)
@@ -56,7 +56,8 @@ def case(elements: int, mesh: str):  # noqa: ANN201
 
 
 def run(quick: bool = False) -> list[WorkPrecision]:
-    from cablestudy.analyses import solve_modal, solve_static
+    from cablestudy.analyses.modal import solve_modal
+    from cablestudy.analyses.static import solve_static
     from cablestudy.dynamics.irvine import cable_parameter, lowest_frequencies
 
     c0 = case(100, "uniform")

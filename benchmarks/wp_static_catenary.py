@@ -79,11 +79,12 @@ def pipeline_overhead(repeats: int) -> tuple[float, float]:
     method catenary at tolerance 1e-12, static cache cleared before every call."""
     import yaml
 
-    from cablestudy import analyses
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import parse_study_text
-    from cablestudy.problem import static_problem
+    from cablestudy.analyses.evaluate import evaluate_case
+    from cablestudy.analyses.static import _STATIC_CACHE
     from cablestudy.statics import STATIC_SOLVERS
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import parse_study_text
+    from cablestudy.study.problem import static_problem
 
     data = {
         "name": "bench",
@@ -102,8 +103,8 @@ def pipeline_overhead(repeats: int) -> tuple[float, float]:
     _, cases = expand_cases(parse_study_text(yaml.safe_dump(data), "<bench>"))
 
     def whole() -> None:
-        analyses._STATIC_CACHE.clear()
-        analyses.evaluate_case(cases[0])
+        _STATIC_CACHE.clear()
+        evaluate_case(cases[0])
 
     prob = static_problem(cases[0].study)
     solve = STATIC_SOLVERS["catenary"].solve

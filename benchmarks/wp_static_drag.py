@@ -31,11 +31,11 @@ import numpy as np
 import yaml
 
 from cablestudy.bench import WorkPrecision, median_time
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
-from cablestudy.problem import static_problem
 from cablestudy.statics import STATIC_SOLVERS, StaticProblem, StaticResult
 from cablestudy.statics.shooting import ShootingSolver
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
+from cablestudy.study.problem import static_problem
 
 FIG8 = {
     "name": "bench-fig8",

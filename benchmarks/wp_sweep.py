@@ -54,9 +54,9 @@ sweep:
 DRIVER = """
 import json, resource, sys, time
 t0 = time.perf_counter()
-from cablestudy.config.loader import read_study_source, validate_data
-from cablestudy.grid import expand_grid
-from cablestudy.runner import run_grid_study
+from cablestudy.study.loader import read_study_source, validate_data
+from cablestudy.study.grid import expand_grid
+from cablestudy.run.grid_runner import run_grid_study
 t1 = time.perf_counter()
 src = read_study_source(sys.argv[1])
 validate_data(src.data, src)

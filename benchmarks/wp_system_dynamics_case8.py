@@ -21,10 +21,10 @@ from pathlib import Path
 
 import numpy as np
 
-from cablestudy import system_dynamic_cases as sdc
-from cablestudy.cases import expand_cases
-from cablestudy.config import parse_study_text
-from cablestudy.system_cases import evaluate_system_case
+from cablestudy.analyses import system_dynamic as sdc
+from cablestudy.analyses.system import evaluate_system_case
+from cablestudy.study import parse_study_text
+from cablestudy.study.cases import expand_cases
 
 ROOT = Path(__file__).parents[1]
 CONFIG = ROOT / "configs" / "system-case8-surge.yaml"

@@ -10,7 +10,7 @@ from pathlib import Path
 
 
 def _size(text: str) -> int:
-    from .config.safe_yaml import parse_size
+    from .study.safe_yaml import parse_size
 
     try:
         return parse_size(text)
@@ -19,17 +19,17 @@ def _size(text: str) -> int:
 
 
 def _load(path: str, max_bytes: int | None = None):  # noqa: ANN202
-    from .analyses import check_supported
-    from .cases import expand_cases
-    from .config.loader import read_study_source
+    from .analyses.evaluate import check_supported
+    from .study.cases import expand_cases
+    from .study.loader import read_study_source
 
     src = read_study_source(path, max_bytes=max_bytes)
     for note in src.notes:
         print(f"warning: {note}", file=sys.stderr)
     grid = _grid(src)
     if grid is not None:
-        from .cases import Case, case_hashes
-        from .grid_static import axis_studies
+        from .study.cases import Case, case_hashes
+        from .study.grid_studies import axis_studies
 
         # an array grid sweeps end positions of fixed ends and segment stiffnesses only,
         # which no support check reads (end kinds, laws, attachments, analyses): its
@@ -43,14 +43,15 @@ def _load(path: str, max_bytes: int | None = None):  # noqa: ANN202
 
 
 def _grid(src):  # noqa: ANN001, ANN202
-    """The study as an array grid (cablestudy.grid) when its validated template and sweep
+    """The study as an array grid (cablestudy.analyses.static_grid) when its validated template and
+    sweep
     allow, else None. Decided from the validated study (defaults included), never from
     the raw text: a study that leaves ``analysis.static.method`` out runs on the same
     kernel as one that writes its default ``catenary``."""
     sweep = src.data.get("sweep")
     if not isinstance(sweep, dict) or not sweep:
         return None
-    from .grid import expand_grid
+    from .study.grid import expand_grid
 
     return expand_grid(src)
 
@@ -64,15 +65,16 @@ def cmd_validate(args: argparse.Namespace) -> int:
 
 
 def cmd_run(args: argparse.Namespace) -> int:
-    from .outputs import OutputPathError, OutputWriteError, check_output_paths
-    from .remote import (
+    from .run.outputs import OutputPathError, OutputWriteError, check_output_paths
+    from .run.remote import (
         SchedulerAddressError,
         SchedulerUnreachable,
         connect,
         connect_timeout,
         parse_address,
     )
-    from .runner import AUTO, SCHEDULERS, run_study
+    from .run.runner import run_study
+    from .run.scheduler import AUTO, SCHEDULERS
 
     scheduler = args.scheduler or AUTO
     if scheduler not in SCHEDULERS and "://" not in scheduler:
@@ -107,8 +109,8 @@ def cmd_run(args: argparse.Namespace) -> int:
     studies = [cases.template] if not isinstance(cases, list) else [c.study for c in cases]
     ensure_compiled(sorted({k for study in studies for k in kinds_of(study)}))
     try:
-        if not isinstance(cases, list):  # a sweep run as arrays (cablestudy.grid)
-            from .runner import run_grid_study
+        if not isinstance(cases, list):  # a sweep run as arrays (cablestudy.analyses.static_grid)
+            from .run.grid_runner import run_grid_study
 
             _resume_collection()
             summary = run_grid_study(
@@ -122,7 +124,7 @@ def cmd_run(args: argparse.Namespace) -> int:
                 timeout=timeout,
             )
         else:
-            from .analyses import warm_up
+            from .analyses.evaluate import warm_up
 
             warm_up(cases)
             _resume_collection()
@@ -172,7 +174,7 @@ def cmd_compile(args: argparse.Namespace) -> int:
 
 
 def cmd_schema(args: argparse.Namespace) -> int:
-    from .config import Study
+    from .study import Study
 
     schema = {
         "$schema": "https://json-schema.org/draft/2020-12/schema",
@@ -251,9 +253,9 @@ def cmd_import(args: argparse.Namespace) -> int:
 
 
 def cmd_export(args: argparse.Namespace) -> int:
-    from .config.loader import read_study_source
     from .interchange import InterchangeError
     from .interchange.case_export import export_case
+    from .study.loader import read_study_source
 
     src = read_study_source(args.config)
     for note in src.notes:
@@ -306,7 +308,7 @@ def cmd_plot(args: argparse.Namespace) -> int:
 
 
 def cmd_line_types(args: argparse.Namespace) -> int:
-    from .line_types import listing
+    from .study.line_types import listing
 
     sys.stdout.write(listing(args.diameter))
     return 0
@@ -474,14 +476,14 @@ EXIT_BROKEN_PIPE = 141
 
 
 def main(argv: list[str] | None = None) -> int:
-    from .conventions import COMMAND
+    from .run.conventions import COMMAND
 
     args = build_parser().parse_args(argv)
     if argv is None:  # the program itself (not a caller in its own process)
         _skip_final_collection()
         if args.func is cmd_run:
             _pause_collection()
-    from .config.loader import StudyError  # pydantic and the models: after the pause
+    from .study.loader import StudyError  # pydantic and the models: after the pause
 
     COMMAND[:] = ["cablestudy", *(sys.argv[1:] if argv is None else argv)]
     workers = getattr(args, "workers", None)
@@ -580,7 +582,7 @@ def _add_lookup_parser(sub: argparse._SubParsersAction) -> None:  # type: ignore
 
 def cmd_lookup(args: argparse.Namespace) -> int:
     """Print the interpolated end forces [N], tensions [N] and laid length [m] as JSON."""
-    from .database import open_database
+    from .analyses.database import open_database
 
     sel: dict[str, object] = {}
     for item in args.sel or []:

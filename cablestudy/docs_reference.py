@@ -1,5 +1,5 @@
 """The key reference of the user guide, ``docs/reference/keys.md``, generated from the
-study schema (:meth:`cablestudy.config.Study.model_json_schema`).
+study schema (:meth:`cablestudy.study.Study.model_json_schema`).
 
 One section per model of the study file (the root first, then in the order a reader
 meets them), each with the paths where it appears and a table of its keys: type,
@@ -19,7 +19,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from .config.analysis import TIME_ONLY_KEYS
+from .study.analysis import TIME_ONLY_KEYS
 
 #: where the reference goes, relative to the repository root
 REFERENCE = Path("docs/reference/keys.md")
@@ -319,7 +319,7 @@ def reference_markdown(schema: dict[str, Any]) -> str:
 
 def current_reference() -> str:
     """The reference for the schema of the installed code."""
-    from .config import Study
+    from .study import Study
 
     return reference_markdown(Study.model_json_schema())
 

@@ -41,10 +41,10 @@ def _warm_statics() -> None:
     problems; then the still-water batch kernels compiled ahead of time."""
     import numpy as np
 
-    from .config.loader import parse_study_text, validate_data
-    from .problem import static_problem
     from .statics import _fast
     from .statics.semi_analytic import SemiAnalyticSolver
+    from .study.loader import parse_study_text, validate_data
+    from .study.problem import static_problem
 
     if not _fast.AVAILABLE:
         return
@@ -66,7 +66,8 @@ ends:
         src = parse_study_text(body, "warm.yaml")
         SemiAnalyticSolver().solve(static_problem(validate_data(src.data, src)))
     # the array path of sweeps calls the batch kernels with stacked cases
-    from .grid import evaluate_grid_chunk, expand_grid
+    from .analyses.static_grid import evaluate_grid_chunk
+    from .study.grid import expand_grid
 
     sweep = (
         "sweep:\n  ends.b.position.0: [80.0, 85.0]\n"
@@ -76,7 +77,7 @@ ends:
         grid = expand_grid(parse_study_text(body + sweep, "warm.yaml"))
         if grid is not None:
             evaluate_grid_chunk(grid, 0, grid.shape[0])
-    from . import database_kernel
+    from .analyses import database_kernel
 
     grid = np.array([0.0, 1.0])
     database_kernel.evaluate_cell(np.zeros((1, 1, 2, 16)), grid, grid, 0.5, 0.5)

@@ -44,7 +44,7 @@ for a taut string the discrete frequencies are exactly
 (a riser whose bottom tension is small against its weight), elements of equal length
 miss the short waves at the low-tension end; :func:`graded_arc_lengths` places the
 nodes at equal transverse-wave travel time instead (the caller samples the static
-solution there, see :func:`cablestudy.analyses.solve_modal`). The grading uses the
+solution there, see :func:`cablestudy.analyses.modal.solve_modal`). The grading uses the
 tension only; with EI the low-tension end is over-resolved, which costs accuracy
 elsewhere but not convergence.
 """

@@ -6,23 +6,11 @@ runs any missing study from ``configs/`` (unless told not to) and writes PNGs.
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from pathlib import Path
 
 import xarray as xr
 
-Builder = Callable[[dict[str, xr.Dataset], Path], Path]
-
-#: figure name -> (study names read, builder writing the PNG and returning its path)
-FIGURES: dict[str, tuple[tuple[str, ...], Builder]] = {}
-
-
-def register(name: str, studies: tuple[str, ...]) -> Callable[[Builder], Builder]:
-    def deco(fn: Builder) -> Builder:
-        FIGURES[name] = (studies, fn)
-        return fn
-
-    return deco
+from .registry import FIGURES
 
 
 class MissingResult(FileNotFoundError):
@@ -38,10 +26,10 @@ def _ensure_study(name: str, results: Path, configs: Path, run_missing: bool) ->
             f"{path} is missing; make it with `cablestudy run {configs / name}.yaml --out "
             f"{results}`, or run `cablestudy figures` without --no-run"
         )
-    from ..analyses import check_supported
-    from ..cases import expand_cases
-    from ..config.loader import read_study_source
-    from ..runner import run_study
+    from ..analyses.evaluate import check_supported
+    from ..run.runner import run_study
+    from ..study.cases import expand_cases
+    from ..study.loader import read_study_source
 
     candidates = [p for p in sorted(configs.glob("*.yaml")) if p.stem == name]
     if not candidates:

@@ -10,7 +10,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import xarray as xr
 
-from . import register
+from .registry import register
 
 
 def _curves(ax: plt.Axes, ds: xr.Dataset, dim: str, value: float, label: str, color: str) -> None:

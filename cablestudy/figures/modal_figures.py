@@ -12,7 +12,7 @@ import xarray as xr
 import yaml
 
 from ..dynamics import irvine
-from . import register
+from .registry import register
 
 #: marker and label of each mode family
 FAMILIES = {

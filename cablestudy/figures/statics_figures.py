@@ -8,7 +8,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import xarray as xr
 
-from . import register
+from .registry import register
 
 #: dodaran-park seed, Table 1: points of the steel catenary of Fig. 4 (x, z) [m]
 TABLE1 = np.array(

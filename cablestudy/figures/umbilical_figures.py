@@ -18,7 +18,7 @@ import xarray as xr
 import yaml
 from scipy.optimize import curve_fit
 
-from . import Builder, register
+from .registry import Builder, register
 
 STUDY = "umbilical-time-response"
 

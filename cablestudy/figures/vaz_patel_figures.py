@@ -10,7 +10,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import xarray as xr
 
-from . import register
+from .registry import register
 
 
 def _labels(ds: xr.Dataset, dim: str, unit: str) -> list[str]:

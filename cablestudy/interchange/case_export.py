@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-from ..config.loader import StudySource
+from ..study.loader import StudySource
 from .export import ExportedCase, moordyn_input
 from .moordyn_format import InterchangeError
 
@@ -26,7 +26,7 @@ def choose_case(src: StudySource, selectors: list[str]) -> Any:
     """The one case of the study whose coordinates match ``dim=value`` selectors.
 
     Raises :class:`InterchangeError` naming the bad dimension or value and the valid ones."""
-    from ..cases import expand_cases
+    from ..study.cases import expand_cases
 
     axes, cases = expand_cases(src)
     wanted: dict[str, str] = {}
@@ -63,8 +63,8 @@ def choose_case(src: StudySource, selectors: list[str]) -> Any:
 
 def export_case(src: StudySource, selectors: list[str]) -> ExportedCase:
     """The MoorDyn input file of one case of ``src`` (chosen by ``selectors``)."""
-    from ..problem import static_problem
     from ..statics import STATIC_SOLVERS, STATUS_OK
+    from ..study.problem import static_problem
 
     case = choose_case(src, selectors)
     study = case.study
@@ -102,9 +102,9 @@ def export_case(src: StudySource, selectors: list[str]) -> ExportedCase:
 
 def _system(study: Any, title: str) -> ExportedCase:
     """The MoorDyn file of a system case, at its solved statics."""
+    from ..analyses.system import system_model
     from ..statics import STATIC_SOLVERS, STATUS_OK
     from ..statics.system import solve_system
-    from ..system_cases import system_model
     from .system_export import system_moordyn_input
 
     res = solve_system(system_model(study), STATIC_SOLVERS["catenary"], deadline=None)

@@ -21,9 +21,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..config import FixedEnd, Study
 from ..physics.contact import default_seabed_stiffness
-from ..problem import line_model
+from ..study import FixedEnd, Study
+from ..study.problem import line_model
 from .moordyn_format import InterchangeError
 from .seabed import to_moordyn
 

@@ -22,7 +22,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..config.environment import FLUID_DENSITY
+from ..study.environment import FLUID_DENSITY
 from .moordyn_format import (
     InterchangeError,
     Line,

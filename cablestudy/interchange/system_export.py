@@ -23,10 +23,10 @@ from typing import Any
 
 import numpy as np
 
-from ..config import Study
-from ..config.system import BodyPoint, FixedPoint, FreeBody, FreePoint
 from ..physics.contact import default_seabed_stiffness
-from ..problem import line_model
+from ..study import Study
+from ..study.problem import line_model
+from ..study.system import BodyPoint, FixedPoint, FreeBody, FreePoint
 from .export import ExportedCase, _floor125, _num, current_table
 from .moordyn_format import InterchangeError
 from .seabed import to_moordyn

@@ -1,7 +1,7 @@
 """From a whole MoorDyn file to one system study: every line, point and body.
 
 A MoorDyn file whose lines do not form one chain is a mooring system; it becomes a study
-with ``points``, ``bodies`` and ``lines`` (:mod:`cablestudy.config.system`):
+with ``points``, ``bodies`` and ``lines`` (:mod:`cablestudy.study.system`):
 
 - each line keeps its ID as its name (``"1"``, ``"2"``...) and becomes one segment of its
   line type between its two points;

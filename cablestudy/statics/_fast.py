@@ -1,5 +1,5 @@
 """Compiled (numba) kernels of the still-water semi-analytic solve, for batches of
-cases. The mathematics is that of :mod:`.pieces` and :func:`.semi_analytic.solve_free`
+cases. The mathematics is that of :mod:`.pieces` and :func:`.semi_analytic_newton.solve_free`
 with the load of every piece vertical (weight only) and point loads at piece
 boundaries; numba compiles it once per machine (cached on disk). When numba is not
 installed, :data:`AVAILABLE` is False and the numpy batch path is used instead.

@@ -1,10 +1,10 @@
 """Compiled (numba) kernel of a still-water line anchored at end A on a plane seabed,
 for batches of cases.
 
-The mathematics is that of :func:`.semi_analytic.solve_contact` (Newton on the tension
+The mathematics is that of :func:`.semi_analytic_newton.solve_contact` (Newton on the tension
 at the touchdown point in the seabed plane and the arc length of the touchdown point,
 with the analytic Jacobian and the same line search from the same start,
-:func:`.semi_analytic.initial_contact`) and of :func:`.seabed.laid_part` (the laid part
+:func:`.semi_analytic_newton.initial_contact`) and of :func:`.seabed.laid_part` (the laid part
 straight along the touchdown tension, the tension falling towards the anchor at
 k = w (mu n_z + e_z) and never below zero; Coulomb friction on point loads resting on
 the seabed), for pieces under their weight only (:func:`._fast._piece`) with point loads
@@ -144,7 +144,7 @@ def _evaluate(
 ) -> None:
     """Residual ``R`` and its Jacobian ``Jm`` (3, 3) with respect to y = (alpha, beta,
     s_td), T_td = alpha e1 + beta e2, as the ``evaluate`` of
-    :func:`.semi_analytic.solve_contact`: ``kind`` 0 (end B fixed at ``target``)
+    :func:`.semi_analytic_newton.solve_contact`: ``kind`` 0 (end B fixed at ``target``)
     R = (r_B(y) - r_B) / L; 1 (mooring: horizontal ``force`` on the line at B and B's
     height ``target[2]``) the horizontal components of (T(L) - force) / ``Fscale`` and
     (z_B(y) - z_B) / L; 2 (a known ``force``) (T(L) - force) / ``Fscale``. The arrays
@@ -256,7 +256,7 @@ def _guess(
     force: np.ndarray,
     y: np.ndarray,
 ) -> int:
-    """The start y = (T_td . e1, T_td . e2, s_td) of :func:`.semi_analytic.initial_contact`
+    """The start y = (T_td . e1, T_td . e2, s_td) of :func:`.semi_analytic_newton.initial_contact`
     for a fixed end B (``kind`` 0; ``rB`` its position) or a known force at B (1, 2;
     ``rB[2]`` B's height, 0 for a towed end, as there); returns 0, or :data:`SLACK`
     (``still``, B fixed and the line slack on the seabed)."""

@@ -5,7 +5,7 @@ numba compiles a kernel on its first call and keeps the machine code on disk, bu
 a cached kernel is loaded through numba: importing it (about 0.12 s on the 2-core
 development machine), setting up its target context (about 0.1 s, and 0.07 s more for
 the scipy.linalg it imports to look for a BLAS), then the kernel itself (6 ms). For the
-commonest sweeps, run as arrays (:func:`cablestudy.grid._compiled_solve`) -- lines
+commonest sweeps, run as arrays (:func:`cablestudy.analyses.static_grid._compiled_solve`) -- lines
 hanging free between fixed ends, and lines from an anchor on the seabed to a fairlead
 -- that was 40 % of a 20,000-case run end to end.
 

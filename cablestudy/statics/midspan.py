@@ -25,7 +25,7 @@ import numpy as np
 from .base import STATUS_NO_SOLUTION, STATUS_NOT_CONVERGED, STATUS_TIME_LIMIT
 from .law_pieces import piece_increments
 from .seabed import Plane, _law_stretch
-from .semi_analytic import Ends, Layout, Shape, _Failure, _suspended
+from .semi_analytic_shape import Ends, Layout, Shape, _Failure, _suspended
 
 
 def _prefix(lay: Layout, q: np.ndarray, s1: float) -> tuple[np.ndarray, ...]:

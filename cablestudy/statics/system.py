@@ -50,7 +50,7 @@ from .base import (
 from .law_pieces import piece_increments
 from .line_state import CatenaryState, DiscreteState, discrete_end_stiffness
 from .seabed import Plane
-from .semi_analytic import _laid, _offsets, _suspended, make_layout, reversed_line
+from .semi_analytic_shape import _laid, _offsets, _suspended, make_layout, reversed_line
 
 FIXED, FREE, BODY = 0, 1, 2
 DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")

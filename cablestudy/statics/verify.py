@@ -455,7 +455,7 @@ def check_one(
 ) -> Checked:
     """The checks of the module docstring on one result (any problem); the tolerance is
     the problem's, or ``floor`` where that is larger."""
-    from .semi_analytic import make_layout
+    from .semi_analytic_shape import make_layout
 
     line, med = problem.line, problem.medium
     lay = make_layout(line)

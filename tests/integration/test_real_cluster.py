@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from cablestudy.remote import DEFAULT_TIMEOUT
+from cablestudy.run.remote import DEFAULT_TIMEOUT
 
 ROOT = Path(__file__).resolve().parents[2]
 BIN = Path(sys.executable).parent

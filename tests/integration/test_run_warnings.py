@@ -55,7 +55,8 @@ def test_a_wire_stretched_beyond_the_plausible_is_warned_not_failed(
 ) -> None:
     """The 600 m case stretches the wire by about chord / length - 1 = 14.4 %, well above
     the default limit of 5 %: status 0, its numbers kept, and a warning naming the strain.
-    Method catenary runs the sweep as arrays (cablestudy.grid), analytic case by case."""
+    Method catenary runs the sweep as arrays (cablestudy.analyses.static_grid), analytic case by
+    case."""
     ds, printed = _run(_wire(tmp_path, method), tmp_path / "out", capsys)
     assert ds["status"].values.tolist() == [0, 0]
     assert ds["warning"].attrs["units"] == "1"
@@ -183,7 +184,8 @@ sweep:
 def test_a_fallback_from_the_batch_kernel_is_warned_where_the_line_touches_the_seabed(
     tmp_path: Path, capsys: pytest.CaptureFixture[str], extra: str
 ) -> None:
-    """On the array path (cablestudy.grid) and, with a swept path it does not take (drag
+    """On the array path (cablestudy.analyses.static_grid) and, with a swept path it does not take
+    (drag
     in still water: no effect), case by case: the same cases, those on the seabed."""
     cfg = tmp_path / "hanging.yaml"
     cfg.write_text(HANGING + extra)

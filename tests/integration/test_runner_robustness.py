@@ -21,11 +21,12 @@ from pathlib import Path
 import pytest
 import xarray as xr
 
-from cablestudy import outputs, runner
 from cablestudy.cli import main
+from cablestudy.run import grid_runner, outputs, runner
 
 #: a 550 m wire from an anchor 190 m down to a fairlead 10 m down, two distances: quick
-#: cases of a static grid (cablestudy.grid: method catenary on the compiled array route,
+#: cases of a static grid (cablestudy.analyses.static_grid: method catenary on the compiled array
+#: route,
 #: analytic solved per case in the chunk)
 STUDY = """\
 name: wire
@@ -96,7 +97,7 @@ def no_work(monkeypatch: pytest.MonkeyPatch) -> None:
         raise AssertionError("work started before the check")
 
     monkeypatch.setattr(runner, "run_study", refuse)
-    monkeypatch.setattr(runner, "run_grid_study", refuse)
+    monkeypatch.setattr(grid_runner, "run_grid_study", refuse)
 
 
 # --- the scheduler address --------------------------------------------------------------
@@ -494,7 +495,7 @@ def test_the_temporary_file_of_a_writer_killed_mid_write_is_removed(
 
     root = Path(__file__).resolve().parents[2]
     code = (
-        "import sys, time; from cablestudy.results import _atomically; "
+        "import sys, time; from cablestudy.run.writer import _atomically; "
         "_atomically(sys.argv[1], lambda tmp: time.sleep(60))"
     )
     env = {**os.environ, "PYTHONPATH": str(root)}

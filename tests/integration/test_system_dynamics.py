@@ -14,16 +14,16 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from cablestudy.analyses import evaluate_case
-from cablestudy.cases import expand_cases
+from cablestudy.analyses.counters import COUNTERS
+from cablestudy.analyses.evaluate import evaluate_case
+from cablestudy.analyses.system import evaluate_system_case, system_model
+from cablestudy.analyses.variables import SYSTEM_OUTPUTS
 from cablestudy.cli import main
-from cablestudy.config import parse_study_text
-from cablestudy.config.loader import StudyError
-from cablestudy.counters import COUNTERS
-from cablestudy.results import SYSTEM_OUTPUTS
 from cablestudy.statics import STATIC_SOLVERS
 from cablestudy.statics.system import solve_system
-from cablestudy.system_cases import evaluate_system_case, system_model
+from cablestudy.study import parse_study_text
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import StudyError
 
 SEG = "{length: %s, diameter: 0.1, mass_per_length: 20.0, axial_stiffness: 5.0e8%s}"
 
@@ -312,7 +312,7 @@ def test_a_sweep_of_the_motion_shares_the_statics_and_the_model() -> None:
     )
     axes, cases = expand_cases(parse_study_text(text, "sys.yaml"))
     assert [a.name for a in axes] == ["amplitude", "frequency"]
-    from cablestudy import system_dynamic_cases
+    from cablestudy.analyses import system_dynamic as system_dynamic_cases
 
     system_dynamic_cases._STATIC_CACHE.clear()  # earlier tests solved the same statics
     system_dynamic_cases._MODEL_CACHE.clear()

@@ -9,14 +9,14 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from cablestudy.analyses import evaluate_case
-from cablestudy.cases import expand_cases
+from cablestudy.analyses.evaluate import evaluate_case
+from cablestudy.analyses.system import evaluate_system_case, system_model
 from cablestudy.cli import main
-from cablestudy.config import parse_study_text
-from cablestudy.config.loader import StudyError
 from cablestudy.statics import STATIC_SOLVERS
 from cablestudy.statics.system_methods import solve_system_by
-from cablestudy.system_cases import evaluate_system_case, system_model
+from cablestudy.study import parse_study_text
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import StudyError
 from tests.integration.test_system_study import SYSTEM
 
 RHO, G = 1025.0, 9.80665

@@ -17,9 +17,9 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from cablestudy.analyses.counters import COUNTERS
 from cablestudy.cli import main
-from cablestudy.config.loader import StudyError, parse_study_text
-from cablestudy.counters import COUNTERS
+from cablestudy.study.loader import StudyError, parse_study_text
 
 CONFIG = Path(__file__).parents[2] / "configs" / "system-case8-surge.yaml"
 
@@ -80,13 +80,14 @@ def test_case8_frequency_domain_end_to_end(case8: xr.Dataset) -> None:
 def test_the_dataset_is_the_pure_module(case8: xr.Dataset) -> None:
     """The runner adds nothing: the amplitudes are those of system_linear and
     solve_system_harmonic called on the study's own system."""
-    from cablestudy.cases import expand_cases
+    from cablestudy.analyses.frequency import drag_settings
+
+    from cablestudy.analyses.system import system_model
+    from cablestudy.analyses.system_frequency import harmonic_motion, system_frequency_model
     from cablestudy.dynamics.system_frequency import solve_system_harmonic
-    from cablestudy.frequency_cases import drag_settings
     from cablestudy.statics import STATIC_SOLVERS
     from cablestudy.statics.system import solve_system
-    from cablestudy.system_cases import system_model
-    from cablestudy.system_frequency_cases import harmonic_motion, system_frequency_model
+    from cablestudy.study.cases import expand_cases
 
     _, cases = expand_cases(parse_study_text(_text(FREQUENCY), "case8.yaml"))
     case = cases[1]  # amplitude 2 m
@@ -127,7 +128,7 @@ def test_the_dataset_is_the_pure_module(case8: xr.Dataset) -> None:
 def test_what_the_system_frequency_domain_does_not_solve_is_refused(
     dynamic: str, words: str
 ) -> None:
-    from cablestudy.cases import expand_cases
+    from cablestudy.study.cases import expand_cases
 
     with pytest.raises(StudyError) as err:
         expand_cases(parse_study_text(_text(dynamic), "case8.yaml"))

@@ -9,15 +9,15 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from cablestudy.analyses import evaluate_case
-from cablestudy.cases import expand_cases
+from cablestudy.analyses.evaluate import evaluate_case
+from cablestudy.analyses.system import evaluate_system_case, system_model
+from cablestudy.analyses.variables import SYSTEM_OUTPUTS
 from cablestudy.cli import main
-from cablestudy.config import parse_study_text
-from cablestudy.config.loader import StudyError
-from cablestudy.results import SYSTEM_OUTPUTS
 from cablestudy.statics import STATIC_SOLVERS
 from cablestudy.statics.system import solve_system
-from cablestudy.system_cases import evaluate_system_case, system_model
+from cablestudy.study import parse_study_text
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import StudyError
 
 SEG = "{length: %s, diameter: 0.1, mass_per_length: 20.0, axial_stiffness: 5.0e8}"
 

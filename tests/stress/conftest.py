@@ -7,10 +7,10 @@ from typing import Any
 import numpy as np
 import yaml
 
-from cablestudy.analyses import check_supported, evaluate_case
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
-from cablestudy.results import OUTPUTS, CaseRecord
+from cablestudy.analyses.evaluate import check_supported, evaluate_case
+from cablestudy.analyses.variables import OUTPUTS, CaseRecord
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 
 def study_dict(

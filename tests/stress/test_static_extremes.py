@@ -15,8 +15,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from cablestudy.problem import static_problem
 from cablestudy.statics import STATIC_SOLVERS
+from cablestudy.study.problem import static_problem
 
 from .conftest import assert_honest, evaluate, study_dict
 
@@ -45,8 +45,8 @@ EXTREMES = [
 def _solvers_for(data: dict) -> list[str]:
     import yaml
 
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import parse_study_text
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import parse_study_text
 
     _, cases = expand_cases(parse_study_text(yaml.safe_dump(data), "<x>"))
     problem = static_problem(cases[0].study)
@@ -99,7 +99,7 @@ def test_extreme_static_case(name: str, overrides: dict, method: str) -> None:
 def test_weightless_slack_line_is_rejected_before_work() -> None:
     """A weightless line whose chord is shorter than its length has no unique shape:
     the honest answer is a config error naming the field, not an arbitrary shape."""
-    from cablestudy.config.loader import StudyError
+    from cablestudy.study.loader import StudyError
 
     with pytest.raises(StudyError, match=r"ends\.b\.position.*undetermined"):
         evaluate(study_dict(weight=0.0, mass=None, b=(50.0, 0.0, 0.0)))

@@ -14,13 +14,17 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from cablestudy import analyses
-from cablestudy.cases import expand_cases
+from cablestudy.analyses import evaluate, line_model
+from cablestudy.analyses import static as static_analysis
+from cablestudy.analyses.common import STATUS_NOT_RUN
+from cablestudy.analyses.dynamic import run_dynamic
+from cablestudy.analyses.variables import OUTPUTS, CaseRecord
 from cablestudy.cli import main
-from cablestudy.config.loader import parse_study_text
-from cablestudy.results import OUTPUTS, CaseRecord, assemble
-from cablestudy.runner import run_study
+from cablestudy.run.dataset import assemble
+from cablestudy.run.runner import run_study
 from cablestudy.statics import STATUS_NUMERICAL, STATUS_TIME_LIMIT
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 CABLE = """
 environment: {fluid: water}
@@ -59,8 +63,8 @@ def _study(name: str, *analysis: str) -> str:
 @pytest.fixture(autouse=True)
 def _fresh_caches(monkeypatch: pytest.MonkeyPatch) -> None:
     # each run solves its statics afresh: equal statics are then equal by computation
-    monkeypatch.setattr(analyses, "_STATIC_CACHE", OrderedDict())
-    monkeypatch.setattr(analyses, "_DISCRETE_CACHE", OrderedDict())
+    monkeypatch.setattr(static_analysis, "_STATIC_CACHE", OrderedDict())
+    monkeypatch.setattr(line_model, "_DISCRETE_CACHE", OrderedDict())
 
 
 def _run(tmp_path: Path, text: str) -> xr.Dataset:
@@ -69,8 +73,8 @@ def _run(tmp_path: Path, text: str) -> xr.Dataset:
     cfg.write_text(text)
     argv = ["run", str(cfg), "--out", str(tmp_path), "--scheduler", "synchronous", "--no-cache"]
     main(argv)
-    analyses._STATIC_CACHE.clear()
-    analyses._DISCRETE_CACHE.clear()
+    static_analysis._STATIC_CACHE.clear()
+    line_model._DISCRETE_CACHE.clear()
     return xr.load_dataset(tmp_path / f"{name}.nc")
 
 
@@ -114,7 +118,7 @@ def test_modal_failure_keeps_statics_and_still_runs_the_dynamics(
         return ModalResult.failed(static.s, 3, STATUS_SLACK, "the static line is slack")
 
     ok = _run(tmp_path, _study("modal-ok", STATIC, MODAL, GENTLE_DYNAMIC))
-    monkeypatch.setattr(analyses, "solve_modal", slack)
+    monkeypatch.setattr(evaluate, "solve_modal", slack)
     ds = _run(tmp_path, _study("modal-fails", STATIC, MODAL, GENTLE_DYNAMIC))
     assert int(ok["status"]) == 0 and int(ok["modal_status"]) == 0
     assert int(ds["modal_status"]) == STATUS_SLACK and int(ds["status"]) == STATUS_SLACK
@@ -133,8 +137,8 @@ def test_static_failure_leaves_the_other_analyses_not_run(tmp_path: Path) -> Non
     )
     ds = _run(tmp_path, text)
     assert int(ds["static_status"]) == STATUS_TIME_LIMIT == int(ds["status"])
-    assert int(ds["modal_status"]) == analyses.STATUS_NOT_RUN
-    assert int(ds["dynamic_status"]) == analyses.STATUS_NOT_RUN
+    assert int(ds["modal_status"]) == STATUS_NOT_RUN
+    assert int(ds["dynamic_status"]) == STATUS_NOT_RUN
     assert str(ds["message"].item()).startswith("time limit")  # the static solver's own
     assert np.all(np.isnan(ds["tension"]))
 
@@ -142,14 +146,14 @@ def test_static_failure_leaves_the_other_analyses_not_run(tmp_path: Path) -> Non
 def test_non_finite_values_are_charged_to_their_analysis(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    real = analyses.run_dynamic
+    real = run_dynamic
 
     def nan_max(case, static, deadline):  # noqa: ANN001, ANN202
         status, message, out = real(case, static, deadline)
         out["tension_max"] = np.asarray(np.nan)
         return status, message, out
 
-    monkeypatch.setattr(analyses, "run_dynamic", nan_max)
+    monkeypatch.setattr(evaluate, "run_dynamic", nan_max)
     ds = _run(tmp_path, _study("nan-dyn", STATIC, GENTLE_DYNAMIC))
     assert int(ds["static_status"]) == 0 and int(ds["dynamic_status"]) == STATUS_NUMERICAL
     assert str(ds["message"].item()) == "dynamic analysis: non-finite values in tension_max"
@@ -168,7 +172,7 @@ def test_cache_keeps_a_dynamic_failure_but_retries_a_dynamic_time_limit(
     src = parse_study_text(_study("cached", STATIC, GENTLE_DYNAMIC), "cached.yaml")
     axes, cases = expand_cases(src)
     for solver, reused in ((timed_out, 0), (broken, 0), (broken, 1)):
-        monkeypatch.setattr(analyses, "run_dynamic", solver)
+        monkeypatch.setattr(evaluate, "run_dynamic", solver)
         summary = run_study(src, axes, cases, tmp_path, scheduler="synchronous", progress=False)
         ds = xr.load_dataset(summary.path)
         assert summary.n_reused == reused

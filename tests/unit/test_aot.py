@@ -21,9 +21,10 @@ import numpy as np
 import pytest
 
 from cablestudy import kernels
-from cablestudy.config import parse_study_text
-from cablestudy.grid import evaluate_grid_chunk, expand_grid
+from cablestudy.analyses.static_grid import evaluate_grid_chunk
 from cablestudy.statics import _fast, aot
+from cablestudy.study import parse_study_text
+from cablestudy.study.grid import expand_grid
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -10,8 +10,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from cablestudy.cases import Case, SweepAxis, expand_cases, parse_sweep
-from cablestudy.config import parse_study_text
+from cablestudy.study import parse_study_text
+from cablestudy.study.cases import Case, SweepAxis, expand_cases, parse_sweep
 
 BASE = """\
 name: sw
@@ -158,8 +158,8 @@ def test_every_case_holds_its_coordinates(sizes: list[int]) -> None:
 def test_zip_group_paths_may_repeat_values() -> None:
     """In a zip group the dimension's coordinate is the case index, so one path may
     repeat a value (the moustafa Figs. 8-10 pairs (0.075 m, 1 Hz) and (0.1 m, 1 Hz))."""
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import parse_study_text
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import parse_study_text
 
     text = """
 name: zipped
@@ -234,7 +234,7 @@ def test_labels_are_the_coordinate_and_leave_the_cases_unchanged() -> None:
     ],
 )
 def test_labels_refused_naming_the_key(sweep: str, message: str) -> None:
-    from cablestudy.config import StudyError
+    from cablestudy.study import StudyError
 
     with pytest.raises(StudyError) as err:
         expand(f"sweep:\n  line.segments.0.axial_stiffness: {sweep}\n")
@@ -242,7 +242,7 @@ def test_labels_refused_naming_the_key(sweep: str, message: str) -> None:
 
 
 def test_labels_on_a_zipped_path_are_refused() -> None:
-    from cablestudy.config import StudyError
+    from cablestudy.study import StudyError
 
     with pytest.raises(StudyError) as err:
         expand(
@@ -261,8 +261,8 @@ def test_a_name_on_one_path_of_a_zip_group_is_refused() -> None:
     would be silently ignored, so it is refused naming the key."""
     import pytest as _pytest
 
-    from cablestudy.cases import parse_sweep
-    from cablestudy.config.loader import StudyError, parse_study_text
+    from cablestudy.study.cases import parse_sweep
+    from cablestudy.study.loader import StudyError, parse_study_text
 
     text = """\
 name: z

@@ -1,7 +1,7 @@
 """A case alone is a chunk of one through the same code, with the same record bit for bit
 (issue 20, "Tests"): for every analysis kind, the records of a sweep evaluated as one
 chunk -- where compatible statics are solved as one batch and the frequency-domain cases
-that share a linear model together (:func:`cablestudy.analyses.evaluate_chunk`) -- equal
+that share a linear model together (:func:`cablestudy.analyses.evaluate.evaluate_chunk`) -- equal
 those of each case evaluated as a chunk of one: status, message, warning and every
 output, to the bit. The static-solution caches are emptied before each evaluation, so
 that equal statics are equal by computation, not by reuse."""
@@ -13,10 +13,10 @@ from collections import OrderedDict
 import numpy as np
 import pytest
 
-from cablestudy import analyses
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
-from cablestudy.results import CaseRecord
+from cablestudy.analyses import evaluate as analyses
+from cablestudy.analyses.variables import CaseRecord
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 CABLE = """\
 name: one

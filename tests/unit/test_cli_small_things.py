@@ -18,8 +18,8 @@ import xarray as xr
 
 import cablestudy
 from cablestudy.cli import EXIT_BROKEN_PIPE, main
-from cablestudy.config.loader import StudyError, parse_study_text, validate_data
-from cablestudy.conventions import STATUS_MEANINGS, is_status_variable
+from cablestudy.run.conventions import STATUS_MEANINGS, is_status_variable
+from cablestudy.study.loader import StudyError, parse_study_text, validate_data
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -228,13 +228,19 @@ def test_database_status_tables_carry_the_flags_in_both_files(tmp_path: Path) ->
 
 
 def test_every_status_code_of_the_package_has_a_flag_meaning() -> None:
-    from cablestudy import analyses, grid, results, runner
-    from cablestudy.dynamics import frequency, modal
-    from cablestudy.statics import base
+    """Every ``STATUS_*`` integer of every module of the package (wherever a move puts
+    it) is one of the flags the result files explain."""
+    import importlib
+    import pkgutil
 
+    modules = [
+        importlib.import_module(info.name)
+        for info in pkgutil.walk_packages(cablestudy.__path__, "cablestudy.")
+        if info.name != "cablestudy.__main__"
+    ]
     codes = {
         value
-        for module in (analyses, grid, results, runner, frequency, modal, base)
+        for module in modules
         for name, value in vars(module).items()
         if name.startswith("STATUS_") and isinstance(value, int)
     }

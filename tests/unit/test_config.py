@@ -10,9 +10,9 @@ from pathlib import Path
 import pytest
 
 from cablestudy.cli import main
-from cablestudy.config import Study, StudyError, load_study, parse_study_text
-from cablestudy.config.environment import FLUID_DENSITY
-from cablestudy.config.loader import validate_data
+from cablestudy.study import Study, StudyError, load_study, parse_study_text
+from cablestudy.study.environment import FLUID_DENSITY
+from cablestudy.study.loader import validate_data
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -12,9 +12,9 @@ from pathlib import Path
 
 import pytest
 
-from cablestudy.config import Study
-from cablestudy.config.analysis import DYNAMIC_METHODS, STATIC_METHODS
 from cablestudy.docs_reference import REFERENCE, current_reference
+from cablestudy.study import Study
+from cablestudy.study.analysis import DYNAMIC_METHODS, STATIC_METHODS
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -126,7 +126,7 @@ def test_readme_layout_is_true() -> None:
     must update it)."""
     readme = (ROOT / "README.md").read_text()
     layout = readme.split("## Layout", 1)[1].split("```")[1]
-    names = re.findall(r"([\w*]+(?:\.py|/))", layout)
+    names = re.findall(r"([\w*]+(?:/[\w*]+)*(?:\.py|/))", layout)  # folder/file.py too
     assert len(names) > 20
     for name in names:
         where = (

@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from cablestudy import analyses
+from cablestudy.analyses import line_model
+from cablestudy.analyses import static as static_analysis
 from cablestudy.cli import main
 
 #: a sagging 11 m cable between supports at one level (the moustafa seed's cable)
@@ -27,8 +28,8 @@ ends:
 
 @pytest.fixture(autouse=True)
 def _fresh_caches(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(analyses, "_STATIC_CACHE", OrderedDict())
-    monkeypatch.setattr(analyses, "_DISCRETE_CACHE", OrderedDict())
+    monkeypatch.setattr(static_analysis, "_STATIC_CACHE", OrderedDict())
+    monkeypatch.setattr(line_model, "_DISCRETE_CACHE", OrderedDict())
 
 
 def _run(tmp_path: Path, name: str, text: str) -> xr.Dataset:

@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from cablestudy.cases import expand_cases
 from cablestudy.cli import main
-from cablestudy.config.loader import StudyError, parse_study_text
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import StudyError, parse_study_text
 
 CABLE = """
 environment: {fluid: water}

@@ -16,13 +16,16 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from cablestudy import analyses, frequency_cases
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
+from cablestudy.analyses.common import _LAST_CHECKED, non_finite_cases, non_finite_outputs
+from cablestudy.analyses.frequency import _LINEAR_CACHE, linearised
+from cablestudy.analyses.static import _STATIC_CACHE, solve_static
+from cablestudy.analyses.variables import OUTPUTS
 from cablestudy.dynamics import harmonic_cases
 from cablestudy.dynamics.frequency import ReducedLine, selected_rows, sum_components
 from cablestudy.dynamics.linear_model import held_ends_basis
 from cablestudy.dynamics.modal import _block_matrix, _free_basis
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 FIGS = Path(__file__).resolve().parents[2] / "configs" / "moustafa-figs2-5.yaml"
 
@@ -121,10 +124,10 @@ def _lines() -> list:
     out = []
     for t in (text, current):
         _, cases = expand_cases(parse_study_text(t))
-        analyses._STATIC_CACHE.clear()
-        frequency_cases._LINEAR_CACHE.clear()
-        static = analyses.solve_static(cases[0], None)
-        red, why = frequency_cases.linearised(cases[0], static, None)
+        _STATIC_CACHE.clear()
+        _LINEAR_CACHE.clear()
+        static = solve_static(cases[0], None)
+        red, why = linearised(cases[0], static, None)
         assert red is not None, why
         out.append(red)
     return out
@@ -168,7 +171,7 @@ def test_coordinate_basis_projection_and_x_z_system_are_scipys() -> None:
 
 
 def test_non_finite_of_a_batch_is_that_of_each_case() -> None:
-    """non_finite_cases names, per case, what _non_finite finds in its outputs (NaN
+    """non_finite_cases names, per case, what non_finite_outputs finds in its outputs (NaN
     where the registry gives it a meaning is not counted)."""
     rng = np.random.default_rng(3)
     K = 6
@@ -184,12 +187,12 @@ def test_non_finite_of_a_batch_is_that_of_each_case() -> None:
     columns["tension_envelope_max"][1, 0] = -math.inf
     columns["touchdown_min"][[3, 4]] = [math.nan, math.inf]
     columns["tension"][5, 0] = math.nan
-    names = [k for k in columns if k in analyses.OUTPUTS]
-    assert "touchdown_min" in names and analyses.OUTPUTS["touchdown_min"].nan_means
-    batch = analyses.non_finite_cases({k: columns[k] for k in names}, "dynamic")
+    names = [k for k in columns if k in OUTPUTS]
+    assert "touchdown_min" in names and OUTPUTS["touchdown_min"].nan_means
+    batch = non_finite_cases({k: columns[k] for k in names}, "dynamic")
     for k in range(K):
-        analyses._LAST_CHECKED.clear()
-        alone = analyses._non_finite({n: columns[n][k, ...] for n in names}, "dynamic")
+        _LAST_CHECKED.clear()
+        alone = non_finite_outputs({n: columns[n][k, ...] for n in names}, "dynamic")
         assert batch[k] == alone
     assert batch[1] == ["tension_envelope_max", "tension_max"]
     assert batch[4] == ["touchdown_min"] and batch[3] == [] and batch[5] == []

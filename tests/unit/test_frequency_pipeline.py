@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from cablestudy.cases import expand_cases
 from cablestudy.cli import main
-from cablestudy.config.loader import StudyError, parse_study_text
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import StudyError, parse_study_text
 
 STUDY = """
 name: freq
@@ -147,7 +147,7 @@ def test_transfer_function_on_a_frequency_dimension(tmp_path: Path) -> None:
 
 
 def test_transfer_function_refuses_a_frequency_sweep_axis() -> None:
-    from cablestudy.analyses import check_supported
+    from cablestudy.analyses.evaluate import check_supported
 
     text = STUDY.replace(
         "    elements: 40\n", "    elements: 40\n    transfer_function: {start: 0.1, stop: 1.0}\n"
@@ -253,7 +253,7 @@ def test_spectrum_and_harmonics_together_are_refused_by_frequency() -> None:
 
 
 def test_jonswap_times_rao_spectrum() -> None:
-    from cablestudy.config.analysis import SpectrumExcitation
+    from cablestudy.study.analysis import SpectrumExcitation
 
     ex = SpectrumExcitation(
         end="b",
@@ -281,9 +281,9 @@ def test_an_unbounded_touchdown_travel_is_said_in_words_not_as_inf() -> None:
     (issue 21: every number in a reason is a physical value)."""
     import math
 
-    from cablestudy.config.analysis import DynamicSettings
+    from cablestudy.analyses.frequency import _judged
     from cablestudy.dynamics.validity import Validity
-    from cablestudy.frequency_cases import _judged
+    from cablestudy.study.analysis import DynamicSettings
 
     dyn = DynamicSettings.model_validate(
         {"excitation": {"end": "b", "direction": [1, 0, 0], "amplitude": 0.1, "frequency": 0.1}}

@@ -7,9 +7,13 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from cablestudy import analyses, frequency_cases
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
+from cablestudy.analyses.counters import COUNTERS
+from cablestudy.analyses.evaluate import evaluate_case, evaluate_chunk
+from cablestudy.analyses.frequency import _LAST_PROBLEM, _LINEAR_CACHE
+from cablestudy.analyses.line_model import _DISCRETE_CACHE
+from cablestudy.analyses.static import _LAST_STATIC_OUTPUTS, _STATIC_CACHE
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 CONFIG = Path(__file__).resolve().parents[2] / "configs" / "moustafa-figs2-5.yaml"
 
@@ -18,14 +22,14 @@ def test_figs2_5_sweep_solves_statics_and_assembles_once() -> None:
     text = CONFIG.read_text().replace("method: auto", "method: frequency")
     _, cases = expand_cases(parse_study_text(text))
     assert len(cases) == 92 and len({c.static_hash for c in cases}) == 1
-    analyses._STATIC_CACHE.clear()
-    frequency_cases._LINEAR_CACHE.clear()
-    frequency_cases.COUNTERS.clear()
-    records = analyses.evaluate_chunk(cases)
+    _STATIC_CACHE.clear()
+    _LINEAR_CACHE.clear()
+    COUNTERS.clear()
+    records = evaluate_chunk(cases)
     assert all(r.status == 0 for r in records), {r.message for r in records}
     assert all(str(r.data["dynamic_method"]) == "frequency" for r in records)
-    assert frequency_cases.COUNTERS["static_solves"] == 2
-    assert frequency_cases.COUNTERS["linear_assemblies"] == 1
+    assert COUNTERS["static_solves"] == 2
+    assert COUNTERS["linear_assemblies"] == 1
 
 
 def test_shared_static_outputs_and_problem_give_each_case_its_own_result() -> None:
@@ -36,13 +40,13 @@ def test_shared_static_outputs_and_problem_give_each_case_its_own_result() -> No
     text = CONFIG.read_text().replace("method: auto", "method: frequency")
     _, cases = expand_cases(parse_study_text(text))
     picked = cases[::23] + cases[5:7]
-    chunk = analyses.evaluate_chunk(picked)
+    chunk = evaluate_chunk(picked)
     for case, rec in zip(picked, chunk, strict=True):
-        analyses._STATIC_CACHE.clear()
-        analyses._LAST_STATIC_OUTPUTS.clear()
-        frequency_cases._LINEAR_CACHE.clear()
-        frequency_cases._LAST_PROBLEM.clear()
-        alone = analyses.evaluate_case(case)
+        _STATIC_CACHE.clear()
+        _LAST_STATIC_OUTPUTS.clear()
+        _LINEAR_CACHE.clear()
+        _LAST_PROBLEM.clear()
+        alone = evaluate_case(case)
         assert (rec.status, rec.message) == (alone.status, alone.message)
         assert set(rec.data) == set(alone.data)
         for name, value in alone.data.items():
@@ -59,10 +63,10 @@ def test_a_time_domain_sweep_solves_its_statics_and_builds_its_line_once() -> No
     text = text.replace("[0.025, 0.05, 0.075, 0.1]", "[0.025, 0.05]")
     _, cases = expand_cases(parse_study_text(text))
     assert len(cases) == 4
-    analyses._STATIC_CACHE.clear()
-    analyses._DISCRETE_CACHE.clear()
-    frequency_cases.COUNTERS.clear()
-    records = analyses.evaluate_chunk(cases)
+    _STATIC_CACHE.clear()
+    _DISCRETE_CACHE.clear()
+    COUNTERS.clear()
+    records = evaluate_chunk(cases)
     assert all(r.status == 0 for r in records), {r.message for r in records}
-    assert frequency_cases.COUNTERS["static_solves"] == 1
-    assert frequency_cases.COUNTERS["line_assemblies"] == 1
+    assert COUNTERS["static_solves"] == 1
+    assert COUNTERS["line_assemblies"] == 1

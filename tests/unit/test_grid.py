@@ -1,4 +1,5 @@
-"""Sweeps as arrays (cablestudy.grid): the same dataset as the case-by-case path, bit
+"""Sweeps as arrays (cablestudy.analyses.static_grid): the same dataset as the case-by-case path,
+bit
 for bit; per-axis validation with the old path's reports for faulty sweeps; streamed
 output with a safe chunk cache."""
 
@@ -11,13 +12,16 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from cablestudy import analyses
-from cablestudy.cases import expand_cases
-from cablestudy.config import parse_study_text
-from cablestudy.config.loader import StudyError
-from cablestudy.grid import CaseGrid, evaluate_grid_chunk, expand_grid
-from cablestudy.results import KEPT_STATUSES
-from cablestudy.runner import run_grid_study, run_study
+from cablestudy.analyses import static as static_analysis
+from cablestudy.analyses.static_grid import evaluate_grid_chunk
+from cablestudy.analyses.variables import KEPT_STATUSES
+from cablestudy.run import grid_runner
+from cablestudy.run.grid_runner import run_grid_study
+from cablestudy.run.runner import run_study
+from cablestudy.study import parse_study_text
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import CaseGrid, expand_grid
+from cablestudy.study.loader import StudyError
 
 TEXT = """\
 name: gr
@@ -40,7 +44,7 @@ sweep:
 
 @pytest.fixture(autouse=True)
 def _fresh_static_cache(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(analyses, "_STATIC_CACHE", OrderedDict())
+    monkeypatch.setattr(static_analysis, "_STATIC_CACHE", OrderedDict())
 
 
 def _both(tmp_path: Path, text: str = TEXT) -> tuple[xr.Dataset, xr.Dataset]:
@@ -81,7 +85,8 @@ ON_SEABED_B = (
 
 
 #: sweeps of keys no compiled array kernel takes straight from arrays: each case's study
-#: is the template with the validated values put in by copying (cablestudy.grid_static)
+#: is the template with the validated values put in by copying
+#: (cablestudy.analyses.static_grid_cases)
 SPANS = "ends.b.position.0: {start: 60.0, stop: 100.5, num: 7, name: span}"
 STIFF = "line.segments.0.axial_stiffness: [1.0e5, 1.0e6, 6.283e7]"
 #: a segment length: every case has its own arc lengths (s becomes the node index)
@@ -270,11 +275,11 @@ def test_faulty_swept_values_are_reported_as_before() -> None:
 def test_streamed_result_opens_lazily_and_chunks_are_cached(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    from cablestudy import grid as grid_module
-    from cablestudy import runner
+    pass
+    from cablestudy.analyses import static_grid as grid_module
 
-    monkeypatch.setattr(runner, "GRID_CHUNK_CASES", 12)  # two rows of 6 cases a chunk
-    monkeypatch.setattr(runner, "IN_MEMORY_BYTES", 0)  # streamed, as a large study is
+    monkeypatch.setattr(grid_runner, "GRID_CHUNK_CASES", 12)  # two rows of 6 cases a chunk
+    monkeypatch.setattr(grid_runner, "IN_MEMORY_BYTES", 0)  # streamed, as a large study is
     src = parse_study_text(TEXT, "gr.yaml")
     grid = expand_grid(src)
     first = run_grid_study(src, grid, tmp_path, scheduler="synchronous", progress=False)
@@ -286,7 +291,7 @@ def test_streamed_result_opens_lazily_and_chunks_are_cached(
     assert lazy["x"].encoding["chunksizes"] == (2, 3, 2, 21)
     ref = xr.load_dataset(first.path)
     # the streamed file is the one the in-memory assembly writes
-    monkeypatch.setattr(runner, "IN_MEMORY_BYTES", 1 << 30)
+    monkeypatch.setattr(grid_runner, "IN_MEMORY_BYTES", 1 << 30)
     held = run_grid_study(
         src, grid, tmp_path / "held", scheduler="synchronous", use_cache=False, progress=False
     )
@@ -294,9 +299,9 @@ def test_streamed_result_opens_lazily_and_chunks_are_cached(
         xr.load_dataset(held.path).drop_vars("wall_time"),
         ref.drop_vars("wall_time").assign_attrs(history=held_history(held.path)),
     )
-    monkeypatch.setattr(runner, "IN_MEMORY_BYTES", 0)
+    monkeypatch.setattr(grid_runner, "IN_MEMORY_BYTES", 0)
     calls: list[int] = []
-    real = grid_module.evaluate_grid_chunk
+    real = evaluate_grid_chunk
 
     def counted(g, lo, hi):  # noqa: ANN001, ANN202
         calls.append(lo)
@@ -334,9 +339,9 @@ def test_chunk_evaluation_matches_its_rows(tmp_path: Path) -> None:
 def test_array_chunks_on_worker_processes_give_the_serial_result(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    from cablestudy import runner
+    pass
 
-    monkeypatch.setattr(runner, "GRID_CHUNK_CASES", 12)
+    monkeypatch.setattr(grid_runner, "GRID_CHUNK_CASES", 12)
     src = parse_study_text(TEXT, "gr.yaml")
     grid = expand_grid(src)
     par = run_grid_study(
@@ -362,17 +367,17 @@ def test_array_chunks_on_worker_processes_give_the_serial_result(
 def test_an_extended_first_axis_reuses_the_cached_chunks(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    from cablestudy import grid as grid_module
-    from cablestudy import runner
+    pass
+    from cablestudy.analyses import static_grid as grid_module
 
-    monkeypatch.setattr(runner, "GRID_CHUNK_CASES", 12)  # two spans a chunk
+    monkeypatch.setattr(grid_runner, "GRID_CHUNK_CASES", 12)  # two spans a chunk
     spans = "ends.b.position.0: {start: 60.0, stop: 100.5, num: 7, name: span}"
     short = TEXT.replace(spans, "ends.b.position.0: {values: [60.0, 70.0, 80.0, 90.0], name: span}")
     longer = short.replace("[60.0, 70.0, 80.0, 90.0]", "[60.0, 70.0, 80.0, 90.0, 95.0, 100.0]")
     src = parse_study_text(short, "gr.yaml")
     run_grid_study(src, expand_grid(src), tmp_path, scheduler="synchronous", progress=False)
     calls: list[int] = []
-    real = grid_module.evaluate_grid_chunk
+    real = evaluate_grid_chunk
 
     def counted(g, lo, hi):  # noqa: ANN001, ANN202
         calls.append(lo)
@@ -401,7 +406,7 @@ def test_the_default_method_takes_the_array_path_as_the_written_one(tmp_path: Pa
     """Which path a study takes is decided from the validated study, defaults included:
     leaving out ``method: catenary`` (the default) must not send a sweep case by case."""
     from cablestudy.cli import _load
-    from cablestudy.grid import CaseGrid
+    from cablestudy.study.grid import CaseGrid
 
     written, left_out = tmp_path / "written.yaml", tmp_path / "left_out.yaml"
     written.write_text(TEXT)
@@ -419,7 +424,7 @@ def test_with_and_without_method_and_a_key_no_kernel_takes_share_one_path(
     batch kernels did not settle are counted with their reason, in the dataset and the
     summary."""
     from cablestudy import cli
-    from cablestudy.grid import CaseGrid
+    from cablestudy.study.grid import CaseGrid
 
     left_out = TEXT.replace("method: catenary, ", "")
     found = {}
@@ -469,10 +474,11 @@ def test_chunk_keys_change_with_every_swept_value(text: str) -> None:
 
 @pytest.mark.parametrize("text", [LENGTHS, NODES, CURRENT, FORCE, FRICTION])
 def test_a_copied_case_study_is_the_validated_one(text: str) -> None:
-    """Each case's study built by copying the template (cablestudy.grid_static) is the
+    """Each case's study built by copying the template (cablestudy.analyses.static_grid_cases) is
+    the
     study the full validation of the case's YAML gives: every field, and what the
     validators derive (a line's total length), but the sweep table itself."""
-    from cablestudy.grid_static import _case_values, case_study
+    from cablestudy.study.grid_studies import _case_values, case_study
 
     src = parse_study_text(text, "gr.yaml")
     grid = expand_grid(src)
@@ -506,7 +512,7 @@ def test_lines_anchored_on_the_seabed_are_the_contact_kernels_one_by_one(tmp_pat
     """A friction x depth sweep of a line anchored on the seabed: the catenary solver takes
     the compiled contact kernel per case; only the cases it did not settle (slack on
     the seabed, say) count as solved by the general solver, with the kernel's reason."""
-    from cablestudy.statics.batch import NOT_SETTLED, ON_SEABED
+    from cablestudy.statics.batch_kernels import NOT_SETTLED, ON_SEABED
 
     fast, _ = _both(tmp_path, FRICTION)
     laid = fast["laid_length"].values > 0.0

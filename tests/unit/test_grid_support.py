@@ -10,11 +10,11 @@ from pathlib import Path
 import pytest
 
 from cablestudy import cli
-from cablestudy.analyses import check_supported
-from cablestudy.cases import Case, case_hashes
-from cablestudy.config.loader import StudyError, read_study_source
-from cablestudy.grid import expand_grid
-from cablestudy.grid_static import axis_studies
+from cablestudy.analyses.evaluate import check_supported
+from cablestudy.study.cases import Case, case_hashes
+from cablestudy.study.grid import expand_grid
+from cablestudy.study.grid_studies import axis_studies
+from cablestudy.study.loader import StudyError, read_study_source
 
 STUDY = """\
 name: eib

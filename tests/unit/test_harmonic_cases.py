@@ -18,9 +18,19 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from cablestudy import analyses, frequency_cases
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
+from cablestudy.analyses import frequency as frequency_analysis
+from cablestudy.analyses.along_line import tension_along, tension_along_cases
+from cablestudy.analyses.evaluate import evaluate_case, evaluate_chunk
+from cablestudy.analyses.frequency import (
+    _LINEAR_CACHE,
+    _problem,
+    _submerged_weight,
+    drag_settings,
+    end_displacements,
+    linearised,
+    solve_frequency_cases,
+)
+from cablestudy.analyses.static import _STATIC_CACHE, solve_static
 from cablestudy.dynamics.frequency import (
     ReducedLine,
     block_diagonal,
@@ -30,6 +40,8 @@ from cablestudy.dynamics.frequency import (
 )
 from cablestudy.dynamics.harmonic_cases import in_plane, solve_harmonic_cases
 from cablestudy.dynamics.validity import measures, measures_cases
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 FIGS = Path(__file__).resolve().parents[2] / "configs" / "moustafa-figs2-5.yaml"
 
@@ -74,17 +86,17 @@ def _cases(text: str, pick: slice | list[int]) -> list:
 
 
 def _setup(cases: list) -> tuple:
-    analyses._STATIC_CACHE.clear()
-    frequency_cases._LINEAR_CACHE.clear()
-    static = analyses.solve_static(cases[0], None)
-    red, why = frequency_cases.linearised(cases[0], static, None)
+    _STATIC_CACHE.clear()
+    _LINEAR_CACHE.clear()
+    static = solve_static(cases[0], None)
+    red, why = linearised(cases[0], static, None)
     assert red is not None, why
     omegas, motion = [], []
     for case in cases:
-        X, f, _ = frequency_cases.end_displacements(case.study.analysis.dynamic)
+        X, f, _ = end_displacements(case.study.analysis.dynamic)
         omegas.append(2.0 * math.pi * f)
         motion.append(X)
-    settings = frequency_cases.drag_settings(cases[0].study.analysis.dynamic)
+    settings = drag_settings(cases[0].study.analysis.dynamic)
     return static, red, np.array(omegas), np.array(motion), settings
 
 
@@ -264,7 +276,7 @@ def test_validity_measures_as_arrays_match_the_per_case_function(text: str) -> N
     static, red, omegas, motion, settings = _setup(cases)
     line = red.line
     res = solve_harmonic_cases(red, omegas, motion, settings)
-    med = frequency_cases._problem(cases[0]).medium
+    med = _problem(cases[0]).medium
     ground = med.seabed_z(line.position[:, 0], line.position[:, 1])
     on_bed = np.abs(line.position[:, 2] - ground) <= 1e-6 * float(line.s[-1])
     held = np.diff(line.free_basis.tocsr().indptr).reshape(-1, 3).sum(axis=1) == 0
@@ -275,7 +287,7 @@ def test_validity_measures_as_arrays_match_the_per_case_function(text: str) -> N
         end_tension_static=res.tension_static,
         laid_length=static.laid_length,
         on_seabed=on_bed,
-        submerged_weight=frequency_cases._submerged_weight(cases[0], line.s),
+        submerged_weight=_submerged_weight(cases[0], line.s),
         held=held,
     )
     ratio, sag_ratio, travel = measures_cases(
@@ -307,13 +319,13 @@ def test_auto_sweep_in_a_chunk_gives_each_case_its_record_alone() -> None:
     amplitude/sag 0.0754 > 0.075), every record equals the one the case gets alone."""
     text = FIGS.read_text()
     picked = _cases(text, [0, 5, 12])
-    chunk = analyses.evaluate_chunk(picked)
+    chunk = evaluate_chunk(picked)
     methods = [str(r.data["dynamic_method"]) for r in chunk]
     assert methods == ["frequency", "frequency", "time"], methods
     for case, rec in zip(picked, chunk, strict=True):
-        analyses._STATIC_CACHE.clear()
-        frequency_cases._LINEAR_CACHE.clear()
-        alone = analyses.evaluate_case(case)
+        _STATIC_CACHE.clear()
+        _LINEAR_CACHE.clear()
+        alone = evaluate_case(case)
         assert (rec.status, rec.message) == (alone.status, alone.message)
         assert set(rec.data) == set(alone.data)
         for name, value in alone.data.items():
@@ -327,9 +339,9 @@ def test_cases_beyond_one_call_are_solved_in_slices_with_the_same_outcomes(
     outcome is the one it gets in a single call."""
     cases = _cases(_moustafa(), slice(0, 7))
     static, red, *_ = _setup(cases)
-    whole = frequency_cases.solve_frequency_cases(cases, static, red)
-    monkeypatch.setattr(frequency_cases, "BATCH_NODES", 3 * red.line.n_nodes)  # 3 per slice
-    sliced = frequency_cases.solve_frequency_cases(cases, static, red)
+    whole = solve_frequency_cases(cases, static, red)
+    monkeypatch.setattr(frequency_analysis, "BATCH_NODES", 3 * red.line.n_nodes)  # 3 per slice
+    sliced = solve_frequency_cases(cases, static, red)
     for a, b in zip(whole, sliced, strict=True):
         assert (a.status, a.distrust, a.summary) == (b.status, b.distrust, b.summary)
         for name, value in a.data.items():
@@ -345,7 +357,7 @@ def test_tension_along_cases_gives_np_interp_numbers() -> None:
     s_out = np.sort(np.r_[np.linspace(-0.5, s_nodes[-1] + 0.5, 57), mid[::3], s_nodes[[0, -1]]])
     element = rng.uniform(0.0, 100.0, (6, s_nodes.size - 1))
     ends = rng.uniform(0.0, 100.0, (6, 2))
-    got = frequency_cases.tension_along_cases(s_out, s_nodes, element, ends)
+    got = tension_along_cases(s_out, s_nodes, element, ends)
     for k in range(6):
-        want = frequency_cases.tension_along(s_out, s_nodes, element[k], ends[k])
+        want = tension_along(s_out, s_nodes, element[k], ends[k])
         assert got[k].tobytes() == want.tobytes()

@@ -24,7 +24,7 @@ import pytest
 import xarray as xr
 
 from cablestudy.cli import main
-from cablestudy.config.safe_yaml import MAX_DEPTH, MAX_NODES, SIZE_ENV
+from cablestudy.study.safe_yaml import MAX_DEPTH, MAX_NODES, SIZE_ENV
 
 ROOT = Path(__file__).resolve().parents[2]
 VALID = (ROOT / "configs" / "catenary-in-air.yaml").read_text()

@@ -12,7 +12,6 @@ import numpy as np
 import pytest
 
 from cablestudy.cli import main
-from cablestudy.config.loader import StudyError, parse_study_text, read_study_source, validate_data
 from cablestudy.interchange import (
     FEATURES,
     InterchangeError,
@@ -24,7 +23,8 @@ from cablestudy.interchange import (
 from cablestudy.interchange.export import moordyn_input
 from cablestudy.interchange.moordyn_format import attachment_ref
 from cablestudy.physics.contact import default_seabed_stiffness
-from cablestudy.problem import line_model
+from cablestudy.study.loader import StudyError, parse_study_text, read_study_source, validate_data
+from cablestudy.study.problem import line_model
 
 V2 = """--------------------- MoorDyn Input File ------------------------------------
 Chain - clump - polyester, version 2 layout
@@ -349,7 +349,7 @@ analysis:
 
 
 def test_study_refers_to_a_moordyn_file_and_sweeps_it(tmp_path: Path) -> None:
-    from cablestudy.cases import expand_cases
+    from cablestudy.study.cases import expand_cases
 
     path = _write_ref(
         tmp_path,
@@ -376,7 +376,7 @@ def test_study_refers_to_a_moordyn_file_and_sweeps_it(tmp_path: Path) -> None:
 
 
 def test_schema_allows_a_line_reference() -> None:
-    from cablestudy.config import Study
+    from cablestudy.study import Study
 
     line = Study.model_json_schema()["properties"]["line"]
     assert line["anyOf"][0] == {"$ref": "#/$defs/Line"}
@@ -611,13 +611,14 @@ def _import_cli(path: Path, line: int | None, capsys: pytest.CaptureFixture) -> 
 
 
 def _statics(study_text: str) -> tuple[int, str]:
-    from cablestudy.analyses import check_supported, solve_static
-    from cablestudy.cases import expand_cases
+    from cablestudy.analyses.evaluate import check_supported
+    from cablestudy.analyses.static import solve_static
+    from cablestudy.study.cases import expand_cases
 
     src = parse_study_text(study_text, "<imported>")
     _, cases = expand_cases(src)
     if cases[0].study.is_system:  # a whole file of lines joined at points
-        from cablestudy.system_cases import evaluate_system_case
+        from cablestudy.analyses.system import evaluate_system_case
 
         record = evaluate_system_case(cases[0])
         return record.status, record.message
@@ -791,8 +792,8 @@ def test_weightless_line_holding_a_mass_carries_its_weight() -> None:
     7.85398 kg/m, d = 0.1 m in water of 1000 kg/m^3 (nearly neutral) holds 1000 kg from a
     fixed point; the force on that point is the total weight in water, 1000 g plus the
     line's (m - rho pi d^2 / 4) g L, exactly, to the solver's relative tolerance 1e-9."""
-    from cablestudy.analyses import solve_static
-    from cablestudy.cases import expand_cases
+    from cablestudy.analyses.static import solve_static
+    from cablestudy.study.cases import expand_cases
 
     path = DATA / "moordyn/tests/Mooring/lifting.txt"
     imported = import_model(path.read_text(), path.name, folder=path.parent)

@@ -16,12 +16,12 @@ import moordyn
 import numpy as np
 import pytest
 
-from cablestudy.cases import expand_cases
+from cablestudy.analyses.system import evaluate_system_case
 from cablestudy.cli import main
-from cablestudy.config.loader import parse_study_text, read_study_source
 from cablestudy.interchange import NotModelledError, import_model, imported_yaml
 from cablestudy.statics.system import rotation
-from cablestudy.system_cases import evaluate_system_case
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text, read_study_source
 
 CONFIGS = Path(__file__).parents[2] / "configs"
 

@@ -12,8 +12,8 @@ from pathlib import Path
 import pytest
 
 from cablestudy import cli, kernels
-from cablestudy.config.loader import parse_study_text, validate_data
 from cablestudy.statics import aot
+from cablestudy.study.loader import parse_study_text, validate_data
 
 STUDY = """\
 name: k

@@ -12,10 +12,10 @@ import pytest
 import xarray as xr
 
 from cablestudy.cli import main
-from cablestudy.config.line import Segment
-from cablestudy.config.loader import StudyError, parse_study_text, validate_data
 from cablestudy.physics.hydro import drag_per_length
 from cablestudy.physics.line_types import MATERIALS, chain_mbl, line_type_properties
+from cablestudy.study.line import Segment
+from cablestudy.study.loader import StudyError, parse_study_text, validate_data
 
 RHO = 1025.0
 G = 9.80665

@@ -10,7 +10,6 @@ import numpy as np
 import pytest
 from pydantic import ValidationError
 
-from cablestudy.config import ModalSettings
 from cablestudy.dynamics.modal import (
     STATUS_SLACK,
     STATUS_STATIC_FAILED,
@@ -31,6 +30,7 @@ from cablestudy.statics import (
     StaticProblem,
     StaticResult,
 )
+from cablestudy.study import ModalSettings
 
 G = 9.81
 

@@ -1,4 +1,4 @@
-"""cablestudy.plausibility: which kept results are warned of, and how a case's warnings
+"""cablestudy.analyses.plausibility: which kept results are warned of, and how a case's warnings
 are joined (the end-to-end cases are in tests/integration/test_run_warnings.py)."""
 
 from __future__ import annotations
@@ -8,10 +8,9 @@ import math
 import numpy as np
 import pytest
 
-from cablestudy import analyses
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
-from cablestudy.plausibility import (
+from cablestudy.analyses import evaluate
+from cablestudy.analyses.evaluate import evaluate_case
+from cablestudy.analyses.plausibility import (
     dynamic_warnings,
     joined,
     largest_strain,
@@ -19,6 +18,8 @@ from cablestudy.plausibility import (
     strain_warning,
     unsettled_warning,
 )
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 
 def test_largest_strain_takes_the_laws_strain_or_t_over_ea_and_skips_nan() -> None:
@@ -99,9 +100,9 @@ def test_a_fault_in_the_checks_leaves_the_case_ok_and_says_it_went_unchecked(
         raise ValueError("no such thing")
 
     # chord hypot(600, 180) m over 550 m: strain 0.139
-    assert analyses.evaluate_case(case).warning.startswith("strain: largest strain 0.139 ")
-    monkeypatch.setattr(analyses, "case_warnings", broken)
-    rec = analyses.evaluate_case(case)
+    assert evaluate_case(case).warning.startswith("strain: largest strain 0.139 ")
+    monkeypatch.setattr(evaluate, "case_warnings", broken)
+    rec = evaluate_case(case)
     assert rec.status == 0 and "tension" in rec.data
     assert rec.warning.startswith(
         "unchecked: the plausibility checks failed (ValueError: no such thing at broken:"
@@ -116,7 +117,7 @@ def test_a_stretch_slack_in_statics_is_not_warned_as_going_slack() -> None:
     once)."""
     import numpy as np
 
-    from cablestudy.plausibility import dynamic_warnings
+    from cablestudy.analyses.plausibility import dynamic_warnings
 
     static = np.array([0.0, 0.0, 0.0, 5.0e4, 6.0e4])
     quiet = {

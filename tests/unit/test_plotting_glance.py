@@ -17,9 +17,9 @@ from matplotlib.figure import Figure
 from matplotlib.text import Text
 
 from cablestudy.cli import main
-from cablestudy.config import parse_study_text
-from cablestudy.grid import expand_grid
 from cablestudy.plotting import UNITS, unit_scale
+from cablestudy.study import parse_study_text
+from cablestudy.study.grid import expand_grid
 
 LINE = """
 environment: {fluid: air}
@@ -32,7 +32,7 @@ ends:
 analysis:
   static: {nodes: 21}
 """
-#: a labelled swept vector: the case-by-case writer (results.py)
+#: a labelled swept vector: the case-by-case writer (run/dataset.py)
 PLACES = (
     "name: places\n"
     + LINE
@@ -42,7 +42,7 @@ PLACES = (
         "  line.segments.0.axial_stiffness: [1.0e6, 6.283e7]\n"
     )
 )
-#: labelled scalars on fixed-end positions and stiffnesses: the array grid (grid.py)
+#: labelled scalars on fixed-end positions and stiffnesses: the array grid (analyses/static_grid.py)
 SPANS = (
     "name: spans\n"
     + LINE

@@ -11,9 +11,11 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from cablestudy.cases import expand_cases
-from cablestudy.config import parse_study_text
-from cablestudy.results import OUTPUTS, CaseRecord, assemble, write_atomic
+from cablestudy.analyses.variables import OUTPUTS, CaseRecord
+from cablestudy.run.dataset import assemble
+from cablestudy.run.writer import write_atomic
+from cablestudy.study import parse_study_text
+from cablestudy.study.cases import expand_cases
 
 TEXT = """\
 name: res
@@ -176,7 +178,7 @@ def _netcdf_layout(path: Path) -> dict[str, Any]:
 
 @pytest.mark.parametrize("extra_coord", [False, True], ids=["dimension-coords", "zip-coord"])
 def test_direct_netcdf_writer_writes_what_xarray_writes(tmp_path: Path, extra_coord: bool) -> None:
-    from cablestudy.results import write_variables_atomic
+    from cablestudy.run.writer import write_variables_atomic
 
     rng = np.random.default_rng(1)
     x = rng.normal(size=(3, 2, 4))

@@ -12,18 +12,28 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from cablestudy import analyses, runner
-from cablestudy.cases import Case, expand_cases
-from cablestudy.config import parse_study_text
-from cablestudy.runner import (
-    CaseCache,
+from cablestudy.analyses import static as static_analysis
+from cablestudy.run import scheduler
+from cablestudy.run.cache import CaseCache
+from cablestudy.run.progress import (
+    WARNING_EXAMPLES,
     Progress,
     RunSummary,
     group_failures,
+    group_warnings,
+)
+from cablestudy.run.runner import run_study
+from cablestudy.run.scheduler import (
+    MAX_CHUNK_CASES,
+    STRIPES,
+    TARGET_TASK_SECONDS,
     make_chunks,
-    run_study,
+    probe_cost,
+    run_chunk,
 )
 from cablestudy.statics import STATIC_SOLVERS, STATUS_OK
+from cablestudy.study import parse_study_text
+from cablestudy.study.cases import Case, expand_cases
 
 TEXT = """\
 name: rn
@@ -48,13 +58,13 @@ def _expand(text: str = TEXT):  # noqa: ANN202
     return src, axes, cases
 
 
-_RUN_CHUNK = runner.run_chunk
+_RUN_CHUNK = run_chunk
 
 
 @pytest.fixture(autouse=True)
 def _fresh_static_cache(monkeypatch: pytest.MonkeyPatch) -> None:
     # evaluate_case memoises static solutions per process: start each test empty
-    monkeypatch.setattr(analyses, "_STATIC_CACHE", OrderedDict())
+    monkeypatch.setattr(static_analysis, "_STATIC_CACHE", OrderedDict())
 
 
 def _count_evaluations(monkeypatch: pytest.MonkeyPatch, interrupt_after: int | None = None):  # noqa: ANN202
@@ -70,7 +80,7 @@ def _count_evaluations(monkeypatch: pytest.MonkeyPatch, interrupt_after: int | N
         counter["cases"] += len(chunk)
         return real(chunk)
 
-    monkeypatch.setattr(runner, "run_chunk", counted)
+    monkeypatch.setattr(scheduler, "run_chunk", counted)
     return counter
 
 
@@ -92,8 +102,8 @@ def test_chunks_cover_every_case_once_and_batch_cheap_cases() -> None:
     # together, so its solution is reused): a run spans at most two static problems
     for ch in big:
         runs = [c.static_hash for c in ch]
-        assert len(set(runs)) <= 2 * runner.STRIPES
-        assert sum(a != b for a, b in zip(runs, runs[1:], strict=False)) <= 2 * runner.STRIPES
+        assert len(set(runs)) <= 2 * STRIPES
+        assert sum(a != b for a, b in zip(runs, runs[1:], strict=False)) <= 2 * STRIPES
     # submitted from both ends of the sweep inwards: the first and last cases start first
     assert big[0][0] is sorted(many, key=_key)[0]
     assert big[1][-1] is sorted(many, key=_key)[-1]
@@ -119,7 +129,7 @@ def test_a_solver_exception_is_a_failed_case_and_the_study_finishes(
                 res.tension[2] = np.nan  # NaN with status 0: must become a failure
             return res
 
-    monkeypatch.setitem(analyses.STATIC_SOLVERS, "analytic", Flaky())
+    monkeypatch.setitem(STATIC_SOLVERS, "analytic", Flaky())
     src, axes, cases = _expand()
     summary = run_study(src, axes, cases, tmp_path, scheduler="synchronous", progress=False)
     ds = xr.load_dataset(summary.path)
@@ -186,7 +196,7 @@ def test_interrupted_study_resumes_without_losing_or_redoing_work(
 def test_cache_survives_a_corrupt_file_and_skips_transient_failures(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    from cablestudy.results import CaseRecord
+    from cablestudy.analyses.variables import CaseRecord
 
     cache = CaseCache(tmp_path)
     ok = CaseRecord(hash="a", index=(0,), status=0, message="", wall_time=0.1)
@@ -208,8 +218,8 @@ def test_cache_survives_a_corrupt_file_and_skips_transient_failures(
 
 def test_cache_records_round_trip_exactly() -> None:
     """Every kind of value a case produces comes back with its dtype, shape and bits."""
-    from cablestudy.cache import decode_records, encode_records
-    from cablestudy.results import CaseRecord
+    from cablestudy.analyses.variables import CaseRecord
+    from cablestudy.run.cache import decode_records, encode_records
 
     rng = np.random.default_rng(1)
     recs = [
@@ -252,8 +262,8 @@ def test_cache_records_round_trip_exactly() -> None:
 
 
 def test_cache_refuses_to_store_python_objects(tmp_path: Path) -> None:
-    from cablestudy.cache import CacheFormatError
-    from cablestudy.results import CaseRecord
+    from cablestudy.analyses.variables import CaseRecord
+    from cablestudy.run.cache import CacheFormatError
 
     rec = CaseRecord("h", (0,), 0, "", 0.1, data={"x": np.array([object()], dtype=object)})
     with pytest.raises(CacheFormatError, match="'x' holds Python objects"):
@@ -376,13 +386,13 @@ def test_warnings_grouped_by_kind_with_examples_of_their_cases() -> None:
     unsettled = "unsettled: no steady state after 80 periods (analysis.dynamic.max_periods 80)"
     warnings = {f"{slack}; {unsettled}": 2, slack: 5, "strain: largest strain 0.2 above": 1}
     cases = {f"{slack}; {unsettled}": "amplitude=1", slack: "amplitude=0.5"}
-    groups = runner.group_warnings(warnings, cases)
+    groups = group_warnings(warnings, cases)
     assert list(groups) == ["slack", "unsettled", "strain"]
     assert groups["slack"] == (7, [f"amplitude=1: {slack}", f"amplitude=0.5: {slack}"])
     assert groups["unsettled"] == (2, [f"amplitude=1: {unsettled}"])
     assert groups["strain"] == (1, ["strain: largest strain 0.2 above"])
     many = {f"slack: falls to {-i} N": 1 for i in range(6)}
-    assert len(runner.group_warnings(many)["slack"][1]) == runner.WARNING_EXAMPLES
+    assert len(group_warnings(many)["slack"][1]) == WARNING_EXAMPLES
     report = RunSummary(
         Path("x.nc"), 8, 0, 8, 0, 1.0, n_warned=8, warnings=warnings, warned_cases=cases
     ).report()
@@ -428,7 +438,7 @@ def test_auto_scheduler_keeps_a_quick_study_in_process(
     def no_cluster(*args: object, **kwargs: object) -> None:
         raise AssertionError("a 27-case catenary study must not start worker processes")
 
-    monkeypatch.setattr(runner, "_run_dask", no_cluster)
+    monkeypatch.setattr(scheduler, "_run_dask", no_cluster)
     src, axes, cases = _expand()
     summary = run_study(src, axes, cases, tmp_path, scheduler="auto", progress=False)
     assert summary.n_computed == 27 and summary.n_failed == 0
@@ -441,13 +451,13 @@ def test_auto_scheduler_hands_a_long_study_to_workers(
 
     def fake_cluster(cases, scheduler, workers, on_done, *, per_case=None):  # noqa: ANN001, ANN202
         handed.append((len(cases), scheduler, per_case))
-        on_done(runner.run_chunk(cases))
+        on_done(run_chunk(cases))
 
-    monkeypatch.setattr(runner, "_run_dask", fake_cluster)
-    monkeypatch.setattr(runner, "AUTO_PROBE_SECONDS", 0.0)  # decide after one case
-    monkeypatch.setattr(runner, "AUTO_PARALLEL_AFTER", 0.0)  # ... that anything is long
-    monkeypatch.setattr(runner, "THREAD_PROBE_SECONDS", 0.0)  # one case a thread
-    monkeypatch.setattr(runner, "THREADS_SCALE", 1e9)  # ... that never scale
+    monkeypatch.setattr(scheduler, "_run_dask", fake_cluster)
+    monkeypatch.setattr(scheduler, "AUTO_PROBE_SECONDS", 0.0)  # decide after one case
+    monkeypatch.setattr(scheduler, "AUTO_PARALLEL_AFTER", 0.0)  # ... that anything is long
+    monkeypatch.setattr(scheduler, "THREAD_PROBE_SECONDS", 0.0)  # one case a thread
+    monkeypatch.setattr(scheduler, "THREADS_SCALE", 1e9)  # ... that never scale
     src, axes, cases = _expand()
     summary = run_study(src, axes, cases, tmp_path, scheduler="auto", workers=2, progress=False)
     # one case probed alone, one on each of two threads, the rest to worker processes
@@ -457,7 +467,7 @@ def test_auto_scheduler_hands_a_long_study_to_workers(
 
 
 def test_scheduler_choice_follows_the_probe() -> None:
-    from cablestudy.runner import Probe, choose_scheduler
+    from cablestudy.run.scheduler import Probe, choose_scheduler
 
     _, _, cases = _expand()  # 27 cases
     quick = Probe(cases, per_case=0.01)  # 0.27 s left: not worth starting anything
@@ -473,20 +483,20 @@ def test_chunks_take_the_target_time_at_the_measured_cost() -> None:
     _, _, cases = _expand()
     many = [Case((i,), {}, cases[0].study, f"h{i}", f"s{i % 7}") for i in range(5000)]
     # 0.01 s a case: TARGET_TASK_SECONDS / 0.01 cases a task
-    per_task = round(runner.TARGET_TASK_SECONDS / 0.01)
+    per_task = round(TARGET_TASK_SECONDS / 0.01)
     assert {len(c) for c in make_chunks(many, workers=2, per_case=0.01)} == {per_task}
     # 5 s a case: one case a task; 1 us a case: as many as load balance allows
     assert {len(c) for c in make_chunks(many, workers=2, per_case=5.0)} == {1}
     assert [len(c) for c in make_chunks(many, workers=2, per_case=1e-6)] == [625] * 8
     huge = [Case((i,), {}, cases[0].study, f"h{i}", "s") for i in range(100_000)]
     sizes = {len(c) for c in make_chunks(huge, workers=2, per_case=1e-7)}
-    assert max(sizes) <= runner.MAX_CHUNK_CASES
+    assert max(sizes) <= MAX_CHUNK_CASES
 
 
 def test_probe_runs_each_case_once_in_doubling_chunks() -> None:
     _, _, cases = _expand()
     done: list[int] = []
-    probe = runner.probe_cost(cases, lambda recs: done.append(len(recs)), seconds=1e9)
+    probe = probe_cost(cases, lambda recs: done.append(len(recs)), seconds=1e9)
     assert done == [1, 2, 4, 8, 12] and probe.rest == []
     assert probe.per_case > 0
 
@@ -511,9 +521,9 @@ def test_case_evaluation_refuses_features_its_solver_lacks() -> None:
     quietly solve a current-loaded line with the still-water exact solver."""
     import yaml
 
-    from cablestudy.analyses import evaluate_case
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import parse_study_text
+    from cablestudy.analyses.evaluate import evaluate_case
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import parse_study_text
 
     data = {
         "name": "unsupported",

@@ -75,10 +75,10 @@ def test_command_imports_no_heavy_library(args: list[str]) -> None:
     assert not loaded, f"{' '.join(args)} imported {sorted({m.split('.')[0] for m in loaded})}"
 
 
-#: a static catenary sweep run as arrays (cablestudy.grid) needs the compiled batch kernel
-#: (numba, which loads scipy.linalg, unless the module compiled ahead of time is built:
-#: tests/unit/test_aot.py) and netCDF4; not xarray with pandas, dask or distributed
-#: (xarray imports the last two when they are installed), nor the rest of scipy
+#: a static catenary sweep run as arrays (cablestudy.analyses.static_grid) needs the
+#: compiled batch kernel (numba, which loads scipy.linalg, unless the module compiled ahead
+#: of time is built: tests/unit/test_aot.py) and netCDF4; not xarray with pandas, dask or
+#: distributed (xarray imports the last two when they are installed), nor the rest of scipy
 ARRAY_RUN_HEAVY = tuple(h for h in HEAVY if h not in ("numba", "llvmlite", "netCDF4"))
 
 ARRAY_SWEEP = """\
@@ -150,7 +150,7 @@ def _loaded(modules: list[str], names: tuple[str, ...]) -> list[str]:
 
 #: what a run of statics alone never needs: the line model and both dynamic solvers
 #: (about 0.3 s of imports and kernel loads), and dask's cluster
-STATIC_RUN_ABSENT = ("cablestudy.dynamics", "cablestudy.frequency_cases", "distributed")
+STATIC_RUN_ABSENT = ("cablestudy.dynamics", "cablestudy.analyses.frequency", "distributed")
 #: what a frequency-domain run never needs: the time integrator and its end motions
 #: (scipy.interpolate comes with a time table only), and dask's cluster
 FREQUENCY_RUN_ABSENT = (
@@ -229,7 +229,7 @@ def test_program_exit_skips_the_final_collection(how: str) -> None:
 _PAUSE_CHILD = textwrap.dedent(
     """
     import contextlib, gc, io, json, sys
-    import cablestudy.runner as runner
+    import cablestudy.run.runner as runner
     from cablestudy.cli import main
 
     seen = {}

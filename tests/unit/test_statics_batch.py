@@ -8,8 +8,10 @@ import numpy as np
 import pytest
 
 from cablestudy.statics import EndCondition, LineModel, Medium, StaticProblem
-from cablestudy.statics.batch import _solve_group, batchable, solve_batch
-from cablestudy.statics.semi_analytic import SemiAnalyticSolver, make_layout
+from cablestudy.statics.batch import solve_batch
+from cablestudy.statics.batch_kernels import _solve_group, batchable
+from cablestudy.statics.semi_analytic import SemiAnalyticSolver
+from cablestudy.statics.semi_analytic_shape import make_layout
 
 
 def make_line(L: float, w: float, EA: float, atts=()) -> LineModel:  # noqa: ANN001

@@ -70,10 +70,10 @@ def test_the_peer_file_with_a_vertical_line_now_solves() -> None:
     """MoorDyn's pinnedBody.txt line 1: 5 m hanging in vacuum between points exactly
     5 m apart on one vertical (a line search failure before): stretched by its weight,
     it folds by a fraction of a millimetre below B, which carries that leg's weight."""
-    from cablestudy.analyses import solve_static
-    from cablestudy.cases import expand_cases
-    from cablestudy.config import parse_study_text
+    from cablestudy.analyses.static import solve_static
     from cablestudy.interchange import import_model, imported_yaml
+    from cablestudy.study import parse_study_text
+    from cablestudy.study.cases import expand_cases
 
     rel = "moordyn/tests/Mooring/body_tests/pinnedBody.txt"
     path = Path(__file__).parents[1] / "data" / rel

@@ -10,13 +10,13 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from cablestudy.cases import expand_cases
-from cablestudy.config import parse_study_text
-from cablestudy.config.loader import StudyError
+from cablestudy.analyses.system import system_model
 from cablestudy.statics import STATIC_SOLVERS, EndCondition
 from cablestudy.statics.system import SystemResult, line_end_stiffness
 from cablestudy.statics.system_methods import solve_system_by
-from cablestudy.system_cases import system_model
+from cablestudy.study import parse_study_text
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import StudyError
 from tests.system_models import polyester
 
 SEG = "{length: %s, diameter: 0.1, mass_per_length: 20.0, axial_stiffness: 5.0e8%s}"

@@ -331,10 +331,10 @@ def test_seabed_spread_low_frequency_is_the_static_body_stiffness() -> None:
     1e-3 at 160: bar 5e-3 at 40."""
     from pathlib import Path
 
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import parse_study_text
+    from cablestudy.analyses.system import system_model
     from cablestudy.interchange import import_model, imported_yaml
-    from cablestudy.system_cases import system_model
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import parse_study_text
 
     rel = "moordyn/tests/Mooring/lines.txt"
     path = Path(__file__).parents[1] / "data" / rel

@@ -77,9 +77,9 @@ ends:
 def _leg(span: float, method: str):  # type: ignore[no-untyped-def]
     from dataclasses import replace
 
-    from cablestudy.config.loader import parse_study_text, validate_data
-    from cablestudy.problem import static_problem
     from cablestudy.statics import STATIC_SOLVERS
+    from cablestudy.study.loader import parse_study_text, validate_data
+    from cablestudy.study.problem import static_problem
 
     src = parse_study_text(LEG.replace("SPAN", f"{span:.1f}"), "leg.yaml")
     problem = replace(static_problem(validate_data(src.data, src)), n_nodes=31)

@@ -10,11 +10,12 @@ from typing import Any
 import numpy as np
 import yaml
 
-from cablestudy.analyses import dynamic_problem, solve_static
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
+from cablestudy.analyses.static import solve_static
+from cablestudy.analyses.time import dynamic_problem
 from cablestudy.dynamics.model import DiscreteLine
 from cablestudy.dynamics.timedomain import DynamicResult, simulate
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 LENGTH, SPAN, MASS, EA, DIAMETER = 10.9774, 10.792, 0.61, 7.854e6, 0.01
 

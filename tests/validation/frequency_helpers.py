@@ -4,10 +4,10 @@ EA = 7.854e6 N) with the fluid, excitation and method given, evaluated in proces
 
 from __future__ import annotations
 
-from cablestudy.analyses import evaluate_case
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
-from cablestudy.results import CaseRecord
+from cablestudy.analyses.evaluate import evaluate_case
+from cablestudy.analyses.variables import CaseRecord
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 LENGTH = 10.9774
 SPAN = 10.792

@@ -23,11 +23,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from cablestudy.config import Study
 from cablestudy.physics.axial import PolynomialLaw, SteelWireLaw, TableLaw
-from cablestudy.problem import static_problem
 from cablestudy.statics import STATIC_SOLVERS, STATUS_OK
 from cablestudy.statics.law_pieces import piece_increments
+from cablestudy.study import Study
+from cablestudy.study.problem import static_problem
 
 L = 100.0
 G = 9.80665

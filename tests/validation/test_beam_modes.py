@@ -154,9 +154,10 @@ def test_time_domain_ring_down_of_a_bending_beam_rings_at_the_modal_frequency() 
     res, line, _ = run_direct(study)
     assert res.status == 0, res.message
 
-    from cablestudy.analyses import solve_modal, solve_static
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import parse_study_text
+    from cablestudy.analyses.modal import solve_modal
+    from cablestudy.analyses.static import solve_static
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import parse_study_text
 
     _, cases = expand_cases(parse_study_text(yaml.safe_dump(study)))
     modes = solve_modal(cases[0], solve_static(cases[0], None), None)

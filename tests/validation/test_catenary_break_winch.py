@@ -31,12 +31,13 @@ import pytest
 import xarray as xr
 import yaml
 
-from cablestudy.analyses import dynamic_problem, solve_static
-from cablestudy.cases import expand_cases
+from cablestudy.analyses.static import solve_static
+from cablestudy.analyses.time import dynamic_problem
 from cablestudy.cli import main
-from cablestudy.config.environment import FLUID_DENSITY
-from cablestudy.config.loader import parse_study_text
 from cablestudy.dynamics.timedomain import DynamicProblem, DynamicResult, simulate
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.environment import FLUID_DENSITY
+from cablestudy.study.loader import parse_study_text
 
 L, MASS, EA, D = 10.0, 1.0, 1.0e6, 0.02
 G = 9.80665

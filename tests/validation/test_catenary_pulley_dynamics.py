@@ -20,16 +20,17 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from cablestudy import analyses
-from cablestudy.cases import expand_cases
+from cablestudy.analyses.static import solve_static
+from cablestudy.analyses.time import dynamic_problem
 from cablestudy.cli import main
-from cablestudy.config.loader import read_study_source
 from cablestudy.dynamics.pulley import pulley_tensions, slide_bound, wrap_angle
 from cablestudy.dynamics.timedomain import simulate
-from cablestudy.problem import static_problem
 from cablestudy.statics import STATIC_SOLVERS
 from cablestudy.statics.base import EndCondition
 from cablestudy.statics.pulley import solve_over_pulleys
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import read_study_source
+from cablestudy.study.problem import static_problem
 
 STUDY = """\
 name: pulley-dynamics
@@ -60,9 +61,9 @@ def runs(tmp_path: Path) -> dict[float, tuple]:
     _, cases = expand_cases(read_study_source(cfg))
     out = {}
     for case in cases:
-        static = analyses.solve_static(case, None)
+        static = solve_static(case, None)
         assert static.status == 0, static.message
-        prob = analyses.dynamic_problem(case, static)
+        prob = dynamic_problem(case, static)
         assert not isinstance(prob, str), prob
         prob = replace(prob, keep_steps=True, duration=30.0)
         res = simulate(prob)
@@ -205,8 +206,8 @@ def test_slow_surge_converges_to_the_statics_over_the_pulley(tmp_path: Path) -> 
         text = text.replace("amplitude: 1.0, frequency: 0.1", "amplitude: 2.0, frequency: 0.002")
         cfg.write_text(text.split("sweep:")[0])
         _, (case,) = expand_cases(read_study_source(cfg))
-        static = analyses.solve_static(case, None)
-        prob = analyses.dynamic_problem(case, static)
+        static = solve_static(case, None)
+        prob = dynamic_problem(case, static)
         assert not isinstance(prob, str), prob
         prob = replace(prob, keep_steps=True, duration=prob.motion.ramp_time + 250.0)
         res = simulate(prob)
@@ -238,8 +239,8 @@ def test_a_line_at_rest_over_a_frictionless_pulley_stays_at_rest(tmp_path: Path)
     text = STUDY.replace("METHOD", "time").replace("amplitude: 1.0", "amplitude: 0.0")
     cfg.write_text(text.split("sweep:")[0])
     _, (case,) = expand_cases(read_study_source(cfg))
-    static = analyses.solve_static(case, None)
-    prob = analyses.dynamic_problem(case, static)
+    static = solve_static(case, None)
+    prob = dynamic_problem(case, static)
     assert not isinstance(prob, str), prob
     res = simulate(replace(prob, keep_steps=True, duration=30.0))
     assert res.status == 0, res.message

@@ -18,11 +18,11 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from cablestudy.analyses.database import QuasiStaticDatabase, open_database
 from cablestudy.cli import main
-from cablestudy.config import load_study
-from cablestudy.database import QuasiStaticDatabase, open_database
-from cablestudy.problem import static_problem
 from cablestudy.statics import STATIC_SOLVERS, EndCondition
+from cablestudy.study import load_study
+from cablestudy.study.problem import static_problem
 
 
 def poly(r: np.ndarray, h: np.ndarray) -> np.ndarray:

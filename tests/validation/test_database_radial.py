@@ -19,17 +19,17 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from cablestudy.cli import main
-from cablestudy.config import Study, load_study
-from cablestudy.database import (
+from cablestudy.analyses.database import (
     QUANTITIES,
     QuasiStaticDatabase,
     grid_values,
     open_database,
     solve_database,
 )
-from cablestudy.problem import static_problem
+from cablestudy.cli import main
 from cablestudy.statics import STATIC_SOLVERS, EndCondition
+from cablestudy.study import Study, load_study
+from cablestudy.study.problem import static_problem
 
 D0, D1, A0, A1 = 100.0, 150.0, -30.0, 30.0
 
@@ -231,7 +231,7 @@ def test_swept_database_file_holds_a_case_dimension_and_a_resumed_run_rewrites_i
     assert _run(cfg, tmp_path) == 0  # with the cache
     path = tmp_path / "swept.database.nc"
     first = xr.load_dataset(path)
-    # a catenary sweep over a stiffness would run as arrays (cablestudy.grid), which
+    # a catenary sweep over a stiffness would run as arrays (cablestudy.analyses.static_grid), which
     # has no database: the study runs case by case and keeps it
     assert first["force_b"].dims == ("axial_stiffness", "distance", "angle", "component")
     assert list(first["axial_stiffness"].values) == [8.0e8, 2.0e6]

@@ -86,12 +86,12 @@ def test_dynamic_start_of_a_chain_on_the_seabed_at_10_m_elements() -> None:
     elements (measured 0.31 %)."""
     import yaml
 
-    from cablestudy.analyses import discrete_statics
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import parse_study_text
+    from cablestudy.analyses.line_model import discrete_statics
     from cablestudy.dynamics.model import evaluate
-    from cablestudy.problem import static_problem
     from cablestudy.statics import STATIC_SOLVERS
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import parse_study_text
+    from cablestudy.study.problem import static_problem
 
     data = {
         "name": "chain",

@@ -18,9 +18,9 @@ from __future__ import annotations
 import numpy as np
 import yaml
 
-from cablestudy.analyses import evaluate_case
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
+from cablestudy.analyses.evaluate import evaluate_case
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 from .dynamics_helpers import moustafa_study, ring_after_pulse
 from .test_dynamics_irvine import dominant_frequency

@@ -82,9 +82,9 @@ def test_slow_motion_with_a_nonlinear_law_reproduces_its_static_tensions(axial: 
     of the law would miss by the law's departure from it."""
     import yaml
 
-    from cablestudy.analyses import solve_static
-    from cablestudy.cases import expand_cases
-    from cablestudy.config.loader import parse_study_text
+    from cablestudy.analyses.static import solve_static
+    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.loader import parse_study_text
 
     amplitude, frequency, taut = 0.002, 0.01, 10.985
     study = moustafa_study(

@@ -10,9 +10,9 @@ from pathlib import Path
 
 import numpy as np
 
-from cablestudy import analyses
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
+from cablestudy.analyses.evaluate import evaluate_chunk
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 CONFIG = Path(__file__).resolve().parents[2] / "configs" / "moustafa-figs2-5.yaml"
 
@@ -21,7 +21,7 @@ def _records(method: str) -> list:
     text = CONFIG.read_text().replace("method: auto", f"method: {method}")
     text = text.replace("[0.025, 0.05, 0.075, 0.1]", "[0.025, 0.05]")
     _, cases = expand_cases(parse_study_text(text))
-    return analyses.evaluate_chunk(cases)
+    return evaluate_chunk(cases)
 
 
 def test_auto_keeps_the_frequency_domain_only_where_it_agrees_within_2_percent() -> None:

@@ -13,10 +13,11 @@ from pathlib import Path
 
 import numpy as np
 
-from cablestudy import analyses
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
-from cablestudy.frequency_cases import solve_frequency
+from cablestudy.analyses.evaluate import evaluate_chunk
+from cablestudy.analyses.frequency import solve_frequency
+from cablestudy.analyses.static import solve_static
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 CONFIG = Path(__file__).resolve().parents[2] / "configs" / "chain-mooring-surge.yaml"
 AMPLITUDES = [0.5, 1.0, 2.0]
@@ -37,8 +38,8 @@ def _text(method: str) -> str:
 
 def test_auto_on_the_chain_keeps_the_frequency_domain_only_where_it_agrees() -> None:
     _, cases = expand_cases(parse_study_text(_text("auto")))
-    auto = analyses.evaluate_chunk(cases)
-    time_ = analyses.evaluate_chunk(expand_cases(parse_study_text(_text("time")))[1])
+    auto = evaluate_chunk(cases)
+    time_ = evaluate_chunk(expand_cases(parse_study_text(_text("time")))[1])
     assert all(r.status == 0 for r in auto + time_)
     chose = np.array([str(r.data["dynamic_method"]) == "frequency" for r in auto])
     reasons = [str(r.data["dynamic_method_reason"]) for r in auto]
@@ -53,7 +54,7 @@ def test_auto_on_the_chain_keeps_the_frequency_domain_only_where_it_agrees() -> 
     # it and says why
     worst = cases[-1]
     assert worst.coords == {"amplitude": 2.0, "frequency": 0.125}
-    static = analyses.solve_static(worst, None)
+    static = solve_static(worst, None)
     fd = solve_frequency(worst, static, None)
     t_min = float(time_[-1].data["tension_min"])
     assert abs(float(fd.data["tension_min"]) / t_min - 1.0) > 0.02
@@ -75,12 +76,12 @@ def test_touchdown_travel_estimate_matches_the_static_laid_length_change() -> No
             "[0.01, 0.0125, 0.08, 0.1, 0.125]", "[0.01]"
         )
         case = expand_cases(parse_study_text(study))[1][0]
-        v = solve_frequency(case, analyses.solve_static(case, None), None).validity
+        v = solve_frequency(case, solve_static(case, None), None).validity
         assert v is not None
         laid = []
         for dx in (-amplitude, amplitude):
             moved = study.replace("[750.0, 0.0, -10.0]", f"[{750.0 + dx}, 0.0, -10.0]")
             c = expand_cases(parse_study_text(moved))[1][0]
-            laid.append(analyses.solve_static(c, None).laid_length)
+            laid.append(solve_static(c, None).laid_length)
         static_travel = 0.5 * (laid[0] - laid[1])  # moving out lifts chain off the bed
         np.testing.assert_allclose(v.touchdown_travel * 800.0, static_travel, rtol=0.02)

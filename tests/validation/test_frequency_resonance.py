@@ -14,13 +14,13 @@ import math
 
 import numpy as np
 
-from cablestudy.analyses import solve_static
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
+from cablestudy.analyses.frequency import end_displacements, linearised
+from cablestudy.analyses.static import solve_static
 from cablestudy.dynamics.frequency import solve_harmonic
 from cablestudy.dynamics.modal import ModalProblem, modal_analysis
-from cablestudy.frequency_cases import end_displacements, linearised
-from cablestudy.problem import static_problem
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
+from cablestudy.study.problem import static_problem
 
 from .frequency_helpers import study_text
 

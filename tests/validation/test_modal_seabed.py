@@ -16,10 +16,10 @@ from __future__ import annotations
 import numpy as np
 import yaml
 
-from cablestudy.analyses import evaluate_case
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
-from cablestudy.results import CaseRecord
+from cablestudy.analyses.evaluate import evaluate_case
+from cablestudy.analyses.variables import CaseRecord
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 
 def _study(length: float, anchor: list[float], current: bool = False) -> dict:

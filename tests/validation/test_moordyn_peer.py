@@ -23,13 +23,13 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from cablestudy.analyses import solve_static
-from cablestudy.cases import expand_cases
+from cablestudy.analyses.static import solve_static
 from cablestudy.cli import main
-from cablestudy.config.loader import parse_study_text
 from cablestudy.interchange import InterchangeError, import_model, imported_yaml, parse_moordyn
 from cablestudy.interchange.mapping import select_chain
 from cablestudy.interchange.moordyn_scope import point_of
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 PEERS = (
     "in the optional extra `peers` (pip install '.[peers]'); without it the exported file "

@@ -32,11 +32,11 @@ import numpy as np
 import pytest
 import yaml
 
-from cablestudy.analyses import check_supported, evaluate_case
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
-from cablestudy.problem import static_problem
+from cablestudy.analyses.evaluate import check_supported, evaluate_case
 from cablestudy.statics import STATIC_SOLVERS
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
+from cablestudy.study.problem import static_problem
 
 DATA = yaml.safe_load((Path(__file__).parents[1] / "data/moorpy/catenary_cases.yaml").read_text())
 CABLE_METHODS = ("catenary", "shooting", "analytic")

@@ -22,13 +22,15 @@ import numpy as np
 import pytest
 
 from cablestudy import cli
-from cablestudy.config import parse_study_text
-from cablestudy.config.loader import validate_data
-from cablestudy.grid import CaseGrid, evaluate_grid_chunk
-from cablestudy.problem import static_problem
+from cablestudy.analyses.static_grid import evaluate_grid_chunk
 from cablestudy.statics import STATIC_SOLVERS, _fast_contact
-from cablestudy.statics.batch import contact_eligible, contact_end, solve_batch, solve_compiled
+from cablestudy.statics.batch import solve_batch
+from cablestudy.statics.batch_kernels import contact_eligible, contact_end, solve_compiled
 from cablestudy.statics.semi_analytic import SemiAnalyticSolver
+from cablestudy.study import parse_study_text
+from cablestudy.study.grid import CaseGrid
+from cablestudy.study.loader import validate_data
+from cablestudy.study.problem import static_problem
 
 TOL = 1e-9
 

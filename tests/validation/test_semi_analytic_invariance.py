@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 
 from cablestudy.statics import EndCondition, LineModel, Medium, StaticProblem
-from cablestudy.statics.semi_analytic import SemiAnalyticSolver, reversed_line
+from cablestudy.statics.semi_analytic import SemiAnalyticSolver
+from cablestudy.statics.semi_analytic_shape import reversed_line
 
 SOLVER = SemiAnalyticSolver()
 TOL = 1e-11

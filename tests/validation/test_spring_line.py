@@ -19,7 +19,7 @@ import pytest
 import xarray as xr
 
 from cablestudy.cli import main
-from cablestudy.config.loader import StudyError
+from cablestudy.study.loader import StudyError
 
 POLY = (2.0e5, 1.0e4, 3.0e2)
 

@@ -27,10 +27,10 @@ import numpy as np
 import pytest
 import yaml
 
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
-from cablestudy.problem import static_problem
 from cablestudy.statics import STATIC_SOLVERS, StaticResult
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
+from cablestudy.study.problem import static_problem
 
 FIG8 = {
     "name": "xcheck",

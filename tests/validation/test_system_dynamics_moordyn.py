@@ -20,9 +20,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from cablestudy.cases import expand_cases
-from cablestudy.config import parse_study_text
-from cablestudy.system_cases import evaluate_system_case
+from cablestudy.analyses.system import evaluate_system_case
+from cablestudy.study import parse_study_text
+from cablestudy.study.cases import expand_cases
 
 ROOT = Path(__file__).parents[2]
 REFS = ROOT / "tests" / "data" / "moordyn_system_refs" / "case8_surge.json"

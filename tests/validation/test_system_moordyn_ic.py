@@ -52,10 +52,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
+from cablestudy.analyses.system import evaluate_system_case
 from cablestudy.interchange import import_model, imported_yaml, parse_moordyn
-from cablestudy.system_cases import evaluate_system_case
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 moordyn = pytest.importorskip("moordyn", reason="MoorDyn is in the optional extra `peers`")
 

@@ -27,10 +27,10 @@ import moorpy as mp
 import numpy as np
 import pytest
 
-from cablestudy.cases import expand_cases
-from cablestudy.config.loader import parse_study_text
+from cablestudy.analyses.system import evaluate_system_case
 from cablestudy.interchange import import_model, imported_yaml
-from cablestudy.system_cases import evaluate_system_case
+from cablestudy.study.cases import expand_cases
+from cablestudy.study.loader import parse_study_text
 
 DATA = Path(__file__).parents[1] / "data"
 #: the peer files refused before only as systems of lines, which now import whole

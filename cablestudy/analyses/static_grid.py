@@ -1,0 +1,578 @@
+"""The static analysis of a chunk of a case grid (:class:`cablestudy.study.grid.CaseGrid`)
+as arrays: a case is its index into the grid of sweep axes.
+
+For a grid whose cases differ only in settings the batched still-water catenary kernel
+takes as numbers (end positions of fixed ends, segment axial stiffnesses;
+:attr:`CaseGrid.arrays`), no per-case pydantic object is built: a chunk of cases becomes
+arrays of end positions and stiffnesses, is solved by the compiled kernels (lines
+hanging free, and lines anchored on the seabed with friction), the cases they do not
+settle by :func:`cablestudy.statics.batch.solve_batch` (counted in
+:attr:`GridChunk.fallback`, with the reason in :attr:`GridChunk.fallback_reason`), and
+its outputs are stacked into one array per output variable (a :class:`GridChunk`), which
+the runner streams to disk. Any other static grid's chunk is solved as validated cases
+are (:mod:`cablestudy.analyses.static_grid_cases`).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..study.grid import _POSITION, _STIFFNESS, CaseGrid
+from ..study.study import Study
+from .grid_chunk import NO_KERNEL, STATUS_NUMERICAL, GridChunk, warning_column
+from .plausibility import fallback_warning, largest_strain, strain_warning
+from .variables import KEPT_STATUSES
+
+
+def _swept_inputs(grid: CaseGrid, lo: int, hi: int) -> tuple[Any, dict[str, Any], np.ndarray]:
+    """The template's static problem, per end the positions of rows ``lo:hi`` ((n, 3),
+    None for an end that is not fixed) and the segment stiffnesses ((n, n_segments))."""
+    from ..study.problem import static_problem
+
+    base = static_problem(grid.template)
+    n = (hi - lo) * math.prod(grid.shape[1:])
+    pos: dict[str, Any] = {}
+    for end in "ab":
+        cond = getattr(base, f"end_{end}")
+        pos[end] = (
+            np.tile(np.asarray(cond.position, dtype=float), (n, 1))
+            if cond.kind == "fixed"
+            else None
+        )
+    ea = np.tile(base.line.axial_stiffness, (n, 1))
+    for path in grid.swept:
+        m = _POSITION.match(path)
+        if m:
+            pos[m.group(1)][:, int(m.group(2))] = grid.values(path, lo, hi)
+        else:
+            k = int(_STIFFNESS.match(path).group(1))  # type: ignore[union-attr]
+            ea[:, k] = grid.values(path, lo, hi)
+    return base, pos, ea
+
+
+def _problems(base: Any, pos: dict[str, Any], ea: np.ndarray) -> list[Any]:
+    """One static problem per case: the template's with the swept numbers put in
+    (shallow copies of the frozen dataclasses; every array shared but the swept ones)."""
+    ea_swept = not np.all(ea == base.line.axial_stiffness)
+    problems = []
+    for i in range(len(ea)):
+        changes: dict[str, Any] = {}
+        for end in "ab":
+            if pos[end] is not None:
+                changes[f"end_{end}"] = _with(getattr(base, f"end_{end}"), position=pos[end][i])
+        if ea_swept:
+            changes["line"] = _with(base.line, axial_stiffness=ea[i])
+        problems.append(_with(base, **changes))
+    return problems
+
+
+def _with(obj: Any, **changes: Any) -> Any:
+    """A shallow copy of the (frozen) dataclass ``obj`` with ``changes``: what
+    :func:`dataclasses.replace` gives for these plain-data classes, without running
+    ``__init__`` (a few hundred ns instead of ~10 us, which counts at a million cases)."""
+    new = object.__new__(type(obj))
+    new.__dict__.update(obj.__dict__)
+    new.__dict__.update(changes)
+    return new
+
+
+@dataclass
+class StaticArrays:
+    """Static results of a chunk's cases stacked along a leading case axis: what a list of
+    :class:`cablestudy.statics.base.StaticResult` holds, as arrays."""
+
+    s: np.ndarray  # (n, m) [m]
+    position: np.ndarray  # (n, m, 3) [m]
+    tension: np.ndarray  # (n, m) [N]
+    force_a: np.ndarray  # (n, 3) [N]
+    force_b: np.ndarray  # (n, 3) [N]
+    status: np.ndarray  # (n,) int64
+    messages: list[str]
+    laid_length: np.ndarray  # (n,) [m]
+    iterations: np.ndarray  # (n,) float
+    residual: np.ndarray  # (n,)
+    drag_iterations: np.ndarray  # (n,) float
+
+    @classmethod
+    def of(cls, results: list[Any]) -> StaticArrays:
+        """Stack static results (a status-0 result with non-finite values becomes the
+        failure :meth:`StaticResult.check_finite` gives, as case by case)."""
+        results = list(results)
+        position = np.stack([r.position for r in results])  # (n, m, 3)
+        tension = np.stack([r.tension for r in results])
+        force_a = np.stack([r.force_a for r in results])
+        force_b = np.stack([r.force_b for r in results])
+        core_finite = (
+            np.isfinite(position).all(axis=(1, 2))
+            & np.isfinite(tension).all(axis=1)
+            & np.isfinite(force_a).all(axis=1)
+            & np.isfinite(force_b).all(axis=1)
+        )
+        for i in np.flatnonzero(~core_finite):  # StaticResult.check_finite, where it matters
+            results[i] = results[i].check_finite()
+        return cls(
+            s=np.stack([r.s for r in results]),
+            position=position,
+            tension=tension,
+            force_a=force_a,
+            force_b=force_b,
+            status=np.array([r.status for r in results], dtype=np.int64),
+            messages=[r.message for r in results],
+            laid_length=np.array([r.laid_length for r in results], dtype=float),
+            iterations=np.array([r.iterations for r in results], dtype=float),
+            residual=np.array([r.residual for r in results], dtype=float),
+            drag_iterations=np.array([r.drag_iterations for r in results], dtype=float),
+        )
+
+    def put(self, rows: np.ndarray, other: StaticArrays) -> None:
+        """Overwrite cases ``rows`` with the cases of ``other`` (in order)."""
+        for name in (
+            "s",
+            "position",
+            "tension",
+            "force_a",
+            "force_b",
+            "status",
+            "laid_length",
+            "iterations",
+            "residual",
+            "drag_iterations",
+        ):
+            getattr(self, name)[rows] = getattr(other, name)
+        for i, msg in zip(rows.tolist(), other.messages, strict=True):
+            self.messages[i] = msg
+
+
+def _compiled_solve(
+    base: Any, pos: dict[str, Any], ea: np.ndarray
+) -> tuple[StaticArrays, np.ndarray, list[str]] | None:
+    """The cases of a chunk (the template's static problem ``base`` with end positions
+    ``pos`` and segment stiffnesses ``ea`` per case) through the compiled batch kernel
+    straight from arrays: the inputs :func:`cablestudy.statics.batch_kernels._solve_group` (lines
+    hanging free) and :func:`cablestudy.statics.batch_kernels._contact_one` (end A anchored on
+    the seabed, end B above it: :func:`cablestudy.statics.batch_kernels.solve_contact_arrays`)
+    build from one problem object per case, built here for all cases at once (so the
+    same numbers, bit for bit, without a per-case object). Returns the stacked results,
+    the cases the kernels leave to the one-by-one solver (not converged, not finite,
+    touching the seabed between the ends, end B on it, slack on it: exactly the cases
+    :func:`solve_batch` would hand on) and why (per such case:
+    :data:`~cablestudy.statics.batch_kernels.NOT_SETTLED`, ``ON_SEABED``, or '' for a case no
+    kernel takes), or None when the template does not take this path (then
+    :func:`solve_batch` runs as before).
+    """
+    from ..statics.aot import free_hanging_kernel
+    from ..statics.batch_kernels import NOT_SETTLED, ON_SEABED, _guess
+    from ..statics.verify import Pieces, check_lines
+
+    line, med = base.line, base.medium
+    # the kernel compiled ahead of time where it is built: no numba to load (issue 20)
+    solve_cases = free_hanging_kernel()
+    if (
+        solve_cases is None
+        or base.end_a.kind != "fixed"
+        or base.end_b.kind != "fixed"
+        or line.is_nonlinear
+        or med.has_current
+    ):
+        return None
+    N = len(ea)
+    n_nodes = base.n_nodes
+    rA = np.ascontiguousarray(pos["a"], dtype=float)
+    rB = np.ascontiguousarray(pos["b"], dtype=float)
+    plane = None
+    rest = np.zeros(N, dtype=bool)
+    contact = np.zeros(N, dtype=bool)
+    contact_b = np.zeros(N, dtype=bool)
+    if med.depth is not None:
+        from ..statics.seabed import Plane
+
+        plane = Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
+        limit = 1e-6 * line.total_length
+        grounded_a = _height_below(plane, rA[:, None, :], limit, strict=False)
+        grounded_b = _height_below(plane, rB[:, None, :], limit, strict=False)
+        # anchored at one end (not below the seabed), the other above: the contact
+        # kernel, as batch.contact_end decides for a case alone (anchored at B: on the
+        # reversed line)
+        contact = (
+            grounded_a & ~grounded_b & ~_height_below(plane, rA[:, None, :], -limit, strict=True)
+        )
+        contact_b = (
+            grounded_b & ~grounded_a & ~_height_below(plane, rB[:, None, :], -limit, strict=True)
+        )
+        rest |= (grounded_a | grounded_b) & ~contact & ~contact_b
+    if line.length.size == 1 and line.attachment_s.size == 0:
+        P = 1
+        ell = np.full((N, 1), line.length[0])
+        EA = np.ascontiguousarray(ea[:, :1], dtype=float)
+        q = np.zeros((N, 1, 3))
+        q[:, 0, 2] = -line.weight[0]
+        point = np.zeros((N, 2, 3))
+        bounds = np.empty((N, 2))
+        bounds[:, 0] = 0.0
+        bounds[:, 1] = ell[:, 0]
+    else:
+        from ..statics.semi_analytic_shape import make_layout
+
+        lay = make_layout(line)
+        P = len(lay.ell)
+        ell = np.tile(lay.ell, (N, 1))
+        EA = np.ascontiguousarray(ea[:, lay.segment], dtype=float)
+        q = np.zeros((N, P, 3))
+        q[:, :, 2] = -lay.weight
+        point = np.tile(lay.point, (N, 1, 1))
+        bounds = np.tile(lay.bounds, (N, 1))
+    Ltot = bounds[:, -1]
+    tol = np.full(N, base.tolerance, dtype=float)
+    maxit = np.full(N, base.max_iterations, dtype=np.int64)
+    s = np.linspace(np.zeros(N), Ltot, n_nodes, axis=1)
+    position = np.full((N, n_nodes, 3), np.nan)
+    tension = np.full((N, n_nodes), np.nan)
+    TL = np.full((N, 3), np.nan)
+    TA = np.full((N, 3), np.nan)
+    laid = np.zeros(N)
+    iters = np.zeros(N, dtype=np.int64)
+    resid = np.zeros(N)
+
+    def seabed_checked(c: np.ndarray, settled: np.ndarray) -> np.ndarray:
+        """Of the contact kernel's cases ``c`` (settled where ``settled``), those that
+        pass the whole-line check with the seabed's admissible reaction (status 0 means
+        verified; the others go to the general solver). The line as defined A to B: the
+        kernel's arrays of a line anchored at B are already turned back."""
+        ok = np.zeros(c.size, dtype=bool)
+        idx = c[settled]
+        if idx.size:
+            ok[settled] = check_lines(
+                s=s[idx],
+                position=position[idx],
+                tension=tension[idx],
+                force_a=TA[idx],
+                force_b=-TL[idx],
+                pieces=Pieces(
+                    bounds=bounds[idx],
+                    weight=-q[idx, :, 2],
+                    axial_stiffness=EA[idx],
+                    point=point[idx],
+                ),
+                tolerance=tol[idx],
+                position_a=rA[idx],
+                position_b=rB[idx],
+                plane=plane,
+            ).ok
+        return ok
+
+    # why the kernels hand a case to the general solver ('' for a case they never take:
+    # both ends on the seabed, an end below it)
+    why = [""] * N
+    free = np.flatnonzero(~rest & ~contact & ~contact_b)
+    if free.size:
+        f = free
+        Q = q[f] * ell[f][..., None]
+        Cend = point[f].sum(axis=1) + Q.sum(axis=1)
+        target = rB[f] - rA[f]
+        EAeff = Ltot[f] / np.sum(ell[f] / EA[f], axis=1)
+        TA0 = _guess(target, Ltot[f], Cend, EAeff, point[f, 0])
+        pos_f = np.empty((f.size, n_nodes, 3))
+        ten_f, TA_f, TL_f = (
+            np.empty((f.size, n_nodes)),
+            np.empty((f.size, 3)),
+            np.empty((f.size, 3)),
+        )
+        it_f, res_f, st_f = np.zeros(f.size, np.int64), np.zeros(f.size), np.zeros(f.size, np.int64)
+        solve_cases(
+            ell[f],
+            EA[f],
+            np.ascontiguousarray(-q[f][..., 2]),
+            point[f],
+            bounds[f],
+            np.zeros(f.size, dtype=np.int64),  # kind: end B fixed
+            rA[f],
+            target,
+            TA0,
+            tol[f],
+            maxit[f],
+            s[f],
+            pos_f,
+            ten_f,
+            TA_f,
+            TL_f,
+            it_f,
+            res_f,
+            st_f,
+        )
+        good = (
+            (st_f == 0)
+            & np.all(np.isfinite(pos_f), axis=(1, 2))
+            & np.all(np.isfinite(ten_f), axis=1)
+            & np.all(np.isfinite(TA_f), axis=1)
+            & np.all(np.isfinite(TL_f), axis=1)
+        )
+        # status 0 means verified: what fails the whole-line check goes to the general
+        # solver
+        idx = np.flatnonzero(good)
+        good[idx] = check_lines(
+            s=s[f][idx],
+            position=pos_f[idx],
+            tension=ten_f[idx],
+            force_a=TA_f[idx],
+            force_b=-TL_f[idx],
+            pieces=Pieces(
+                bounds=bounds[f][idx],
+                weight=-q[f][idx, :, 2],
+                axial_stiffness=EA[f][idx],
+                point=point[f][idx],
+            ),
+            tolerance=tol[f][idx],
+            position_a=rA[f][idx],
+            position_b=rB[f][idx],
+        ).ok
+        for j in np.flatnonzero(~good):
+            why[f[j]] = NOT_SETTLED
+        if plane is not None:
+            on_seabed = good & _height_below(plane, pos_f, -1e-6 * Ltot[f], strict=True)
+            for j in np.flatnonzero(on_seabed):
+                why[f[j]] = ON_SEABED
+            good &= ~on_seabed
+        position[f], tension[f], TA[f], TL[f] = pos_f, ten_f, TA_f, TL_f
+        iters[f], resid[f] = it_f, res_f
+        rest[f[~good]] = True
+    if contact.any():
+        from ..statics.batch_kernels import solve_contact_arrays
+
+        c = np.flatnonzero(contact)
+        got = solve_contact_arrays(
+            ell[c], EA[c], -q[c][..., 2], point[c], bounds[c], rA[c], rB[c], plane,
+            tol[c], maxit[c], s[c],
+        )  # fmt: skip
+        position[c], tension[c] = got["position"], got["tension"]
+        TA[c], TL[c] = got["force_a"], -got["force_b"]
+        laid[c], iters[c], resid[c] = got["laid_length"], got["iterations"], got["residual"]
+        settled = got["status"] == 0
+        settled &= seabed_checked(c, settled)
+        for i in c[~settled]:
+            rest[i], why[i] = True, NOT_SETTLED
+    if contact_b.any():
+        from ..statics.batch_kernels import solve_contact_arrays
+        from ..statics.semi_analytic_shape import make_layout, reversed_line
+
+        c = np.flatnonzero(contact_b)
+        m = c.size
+        if line.length.size == 1 and line.attachment_s.size == 0:
+            ell_r, EA_r, w_r = ell[c], EA[c], -q[c][..., 2]
+            point_r, bounds_r = point[c], bounds[c]
+        else:
+            lay_r = make_layout(reversed_line(line))
+            ell_r, w_r = np.tile(lay_r.ell, (m, 1)), np.tile(lay_r.weight, (m, 1))
+            EA_r = ea[c][:, ::-1][:, lay_r.segment]
+            point_r, bounds_r = np.tile(lay_r.point, (m, 1, 1)), np.tile(lay_r.bounds, (m, 1))
+        got = solve_contact_arrays(
+            ell_r, EA_r, w_r, point_r, bounds_r, rB[c], rA[c], plane,
+            tol[c], maxit[c], Ltot[c, None] - s[c],
+        )  # fmt: skip
+        position[c], tension[c] = got["position"], got["tension"]
+        TA[c], TL[c] = got["force_b"], -got["force_a"]
+        laid[c], iters[c], resid[c] = got["laid_length"], got["iterations"], got["residual"]
+        settled = got["status"] == 0
+        settled &= seabed_checked(c, settled)
+        for i in c[~settled]:
+            rest[i], why[i] = True, NOT_SETTLED
+    out = StaticArrays(
+        s=s,
+        position=position,
+        tension=tension,
+        force_a=TA,
+        force_b=-TL,
+        status=np.zeros(N, dtype=np.int64),
+        messages=[""] * N,
+        laid_length=laid,
+        iterations=iters.astype(float),
+        residual=resid,
+        drag_iterations=np.zeros(N),
+    )
+    left = np.flatnonzero(rest)
+    return out, left, [why[i] for i in left]
+
+
+def _height_below(plane: Any, r: np.ndarray, limit: Any, *, strict: bool) -> np.ndarray:
+    """Per case (axis 0 of ``r``, points (n, m, 3)): whether some point's height above
+    ``plane`` is below ``limit`` (``strict``: <, else <=), with the result
+    :meth:`Plane.height_above` gives case by case (cases within round-off of the limit
+    are decided by that call itself)."""
+    limit = np.broadcast_to(np.asarray(limit, dtype=float), (r.shape[0],))
+    h = (r - np.array([0.0, 0.0, -plane.depth])) @ plane.normal  # (n, m)
+    low = h.min(axis=1)
+    out = low < limit if strict else low <= limit
+    near = np.flatnonzero(np.abs(low - limit) <= 1e-9 * (np.abs(limit) + np.abs(low) + 1.0))
+    for i in near:
+        hi = plane.height_above(r[i] if r.shape[1] > 1 else r[i, 0])
+        out[i] = bool(np.any(hi < limit[i])) if strict else bool(np.any(hi <= limit[i]))
+    return out
+
+
+def array_outputs(
+    st: StaticArrays, template: Study, ea: np.ndarray
+) -> tuple[dict[str, np.ndarray], np.ndarray, list[str]]:
+    """:func:`cablestudy.analyses.static.static_outputs` of many static results at once: the
+    same variables, bit for bit (the same element-wise operations on stacked arrays;
+    the profile quantities are those of :func:`cablestudy.physics.profile.
+    profile_quantities`, evaluated along axis 1 of (cases, nodes) arrays). Returns the
+    outputs (cases first), status and messages, with a failed case's values NaN."""
+    from ..physics.profile import profile_quantities
+
+    n = len(st.status)
+    s = st.s[0]
+    if not np.array_equal(st.s, np.broadcast_to(s, st.s.shape)):
+        raise ValueError("cases of one chunk have different arc lengths")
+    position, tension, force_a, force_b = st.position, st.tension, st.force_a, st.force_b
+    status = st.status.copy()
+    messages = list(st.messages)
+    out: dict[str, np.ndarray] = {
+        "arc_length": np.broadcast_to(s, (n, s.size)).copy(),
+        "x": position[:, :, 0].copy(),
+        "y": position[:, :, 1].copy(),
+        "z": position[:, :, 2].copy(),
+        "tension": tension.copy(),
+        "force_a": force_a.copy(),
+        "force_b": force_b.copy(),
+        # np.linalg.norm of each (3,) force, bit for bit (the same dot product per row)
+        "tension_a": np.sqrt(np.vecdot(force_a, force_a)),
+        "tension_b": np.sqrt(np.vecdot(force_b, force_b)),
+        "laid_length": st.laid_length.copy(),
+        "static_iterations": st.iterations.copy(),
+        "static_residual": st.residual.copy(),
+        "drag_iterations": st.drag_iterations.copy(),
+    }
+    env, segs = template.environment, template.line.segments
+    seg_end = np.cumsum([seg.length for seg in segs])
+    k = np.minimum(np.searchsorted(seg_end, s, side="right"), len(segs) - 1)
+    area = np.array([segs[i].area for i in k])
+    m = s.size
+    if m >= 3:
+        d = np.gradient(position, s, axis=1, edge_order=2)
+    else:
+        d = np.repeat(np.diff(position, axis=1), m, axis=1)[:, :m]
+    norm = np.linalg.norm(d, axis=2)
+    t = d / np.where(norm > 0.0, norm, 1.0)[:, :, None]
+    horizontal = np.hypot(t[:, :, 0], t[:, :, 1])
+    elevation = np.arctan2(t[:, :, 2], horizontal)
+    azimuth = np.arctan2(t[:, :, 1], t[:, :, 0])
+    strain = tension / ea[:, k]
+    elongation = np.concatenate(
+        [np.zeros((n, 1)), np.cumsum(0.5 * (strain[:, 1:] + strain[:, :-1]) * np.diff(s), axis=1)],
+        axis=1,
+    )
+    tension_wall = tension + env.density * env.gravity * position[:, :, 2] * area
+    # a vertical tangent somewhere: that case's azimuths as profile_quantities gives them
+    for i in np.flatnonzero(~np.all(horizontal > 1e-12, axis=1)):
+        azimuth[i] = profile_quantities(
+            s,
+            position[i],
+            tension[i],
+            axial_stiffness=ea[i, k],
+            area=area,
+            density=env.density,
+            gravity=env.gravity,
+        )["azimuth"]
+    out.update(
+        elevation=elevation, azimuth=azimuth, elongation=elongation, tension_wall=tension_wall
+    )
+    ok = status == 0
+    finite = np.ones(n, dtype=bool)
+    bad_names: list[list[str]] = [[] for _ in range(n)]
+    for name, arr in out.items():
+        fin = np.isfinite(arr).reshape(n, -1).all(axis=1)
+        for i in np.flatnonzero(ok & ~fin):
+            bad_names[i].append(name)
+        finite &= fin
+    for i in np.flatnonzero(ok & ~finite):
+        status[i] = STATUS_NUMERICAL
+        messages[i] = f"non-finite values in {', '.join(sorted(bad_names[i]))}"
+    failed = ~np.isin(status, KEPT_STATUSES)  # a case not verified keeps its numbers
+    if failed.any():
+        for arr in out.values():
+            arr[failed] = np.nan
+    return out, status, messages
+
+
+def _segment_of(template: Study, s: np.ndarray) -> np.ndarray:
+    """The segment of each arc length ``s`` [m] of the template's line."""
+    seg_end = np.cumsum([seg.length for seg in template.line.segments])
+    return np.minimum(np.searchsorted(seg_end, s, side="right"), len(seg_end) - 1)
+
+
+def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
+    """Solve rows ``lo:hi`` of the grid as one batch and stack the outputs. Per case the
+    same outputs, status and message as :func:`cablestudy.analyses.evaluate.evaluate_case`; a
+    fault inside the batch fails the chunk's cases with its text (never raises)."""
+    from ..statics.batch import solve_batch
+
+    if not grid.arrays:
+        from .static_grid_cases import evaluate_static_chunk
+
+        return evaluate_static_chunk(grid, lo, hi)
+    t0 = time.perf_counter()
+    n = (hi - lo) * math.prod(grid.shape[1:])
+    reasons = np.full(n, "", dtype=object)
+    status = np.zeros(n, dtype=np.int64)
+    messages = [""] * n
+    warnings: dict[int, list[str]] = {}  # only the cases that have some
+    data: dict[str, np.ndarray] = {}
+    n_general = n
+    try:
+        base, pos, ea = _swept_inputs(grid, lo, hi)
+        deadline = time.monotonic() + grid.template.analysis.time_limit * n
+        compiled = _compiled_solve(base, pos, ea)
+        if compiled is None:
+            general: list[int] = []
+            results = solve_batch(_problems(base, pos, ea), deadline=deadline, general=general)
+            fallback = {i: r.fallback for i, r in enumerate(results) if r.fallback}
+            n_general = len(general)
+            reasons[general] = NO_KERNEL
+            st = StaticArrays.of(results)
+        else:
+            st, rest, why = compiled
+            n_general = int(rest.size)
+            if rest.size:  # what no kernel settled: the general solver, one by one
+                sub = {k: (None if v is None else v[rest]) for k, v in pos.items()}
+                st.put(
+                    rest,
+                    StaticArrays.of(
+                        solve_batch(
+                            _problems(base, sub, ea[rest]), deadline=deadline, contact=False
+                        )
+                    ),
+                )
+            fallback = {i: r for i, r in zip(rest.tolist(), why, strict=True) if r}
+            reasons[rest] = NO_KERNEL
+        for i, reason in fallback.items():
+            reasons[i] = reason
+        data, status, messages = array_outputs(st, grid.template, ea)
+        max_strain = largest_strain(st.tension, ea[:, _segment_of(grid.template, st.s[0])])
+        limit = grid.template.analysis.static.strain_warning
+        for i in np.flatnonzero((status == 0) & (max_strain > limit)):
+            warnings.setdefault(int(i), []).append(strain_warning(float(max_strain[i]), limit))
+        for i, reason in fallback.items():
+            if status[i] == 0:
+                warnings.setdefault(i, []).append(fallback_warning(reason))
+    except Exception as exc:  # noqa: BLE001 - a fault in a chunk fails its cases, as data
+        status[:] = STATUS_NUMERICAL
+        messages = [f"{type(exc).__name__}: {exc}"] * n
+        warnings = {}
+        data = {}
+    wall = (time.perf_counter() - t0) / max(n, 1)
+    return GridChunk(
+        lo=lo,
+        hi=hi,
+        key=grid.chunk_key(lo, hi),
+        status=status,
+        message=np.array(messages, dtype=str).reshape(n),
+        wall_time=np.full(n, wall),
+        data=data,
+        fallback=n_general,
+        warning=warning_column(n, warnings),
+        fallback_reason=np.array(reasons.tolist(), dtype=str).reshape(n),
+    )

@@ -1,0 +1,251 @@
+"""System studies (lines joined at points, bodies) case by case: the validated study as
+a :class:`~cablestudy.statics.system.MooringSystem`, and one case's outputs.
+
+Outputs (names and dimensions in :data:`cablestudy.analyses.variables.SYSTEM_OUTPUTS`): per line
+its end tensions and forces, positions and tension along it (node index ``s``, with
+``arc_length`` beside); the free points' positions; per body its position, the force
+and moment of the lines on it and its mooring stiffness."""
+
+from __future__ import annotations
+
+import math
+import time
+from types import SimpleNamespace
+from typing import Any
+
+import numpy as np
+
+from ..statics import STATIC_SOLVERS, STATUS_NUMERICAL, STATUS_OK, EndCondition, StaticProblem
+from ..statics.system import BODY, FIXED, FREE, MooringSystem, SystemLine
+from ..statics.system_methods import solve_system_by
+from ..study import Study
+from ..study.cases import Case
+from ..study.problem import line_model, medium
+from ..study.system import BodyPoint, FixedPoint, FreePoint
+from .variables import CaseRecord
+
+
+def system_model(study: Study) -> MooringSystem:
+    """The system of a validated system study (SI units)."""
+    env = study.environment
+    rho, g = env.density, env.gravity
+    names = tuple(study.points)
+    index = {name: i for i, name in enumerate(names)}
+    bodies = tuple(study.bodies)
+    kind, position, body, force, drag = [], [], [], [], []
+    for point in study.points.values():
+        f = np.zeros(3)
+        b = -1
+        drag.append(0.5 * rho * point.drag_area if isinstance(point, FreePoint) else 0.0)
+        if isinstance(point, FixedPoint):
+            kind.append(FIXED)
+            position.append(point.position)
+        elif isinstance(point, FreePoint):
+            kind.append(FREE)
+            position.append(point.position)
+            f = np.asarray(point.force, dtype=float) + np.array(
+                [0.0, 0.0, -(point.mass - rho * point.volume) * g]
+            )
+        else:
+            assert isinstance(point, BodyPoint)
+            kind.append(BODY)
+            position.append(point.offset)
+            b = bodies.index(point.body)
+        body.append(b)
+        force.append(f)
+    settings = study.analysis.static
+    med = medium(study)
+    placeholder = EndCondition(kind="fixed", position=np.zeros(3))
+    lines = tuple(
+        SystemLine(
+            name=name,
+            problem=StaticProblem(
+                line=line_model(SimpleNamespace(environment=env, line=line)),  # type: ignore[arg-type]
+                medium=med,
+                end_a=placeholder,
+                end_b=placeholder,
+                n_nodes=settings.nodes,
+                tolerance=settings.tolerance,
+                max_iterations=settings.max_iterations,
+                # the drag elements fixed here (default max(nodes - 1, 20), as for one
+                # line): the free-point Newton samples the lines at fewer nodes
+                drag_elements=settings.drag_elements or max(settings.nodes - 1, 20),
+                seabed_stiffness=env.seabed.stiffness,
+                friction_lateral=env.seabed.friction_lateral,
+            ),
+            a=index[line.a],
+            b=index[line.b],
+        )
+        for name, line in study.lines.items()
+    )
+    return MooringSystem(
+        point_names=names,
+        point_kind=np.array(kind, dtype=int),
+        point_position=np.array(position, dtype=float).reshape(-1, 3),
+        point_body=np.array(body, dtype=int),
+        point_force=np.array(force, dtype=float).reshape(-1, 3),
+        point_drag=np.array(drag, dtype=float),
+        body_names=bodies,
+        body_position=np.array([b.position for b in study.bodies.values()], dtype=float).reshape(
+            -1, 6
+        ),
+        body_free=np.array([b.kind == "free" for b in study.bodies.values()], dtype=bool),
+        body_weight=np.array([_of(b, "mass", 0.0) * g for b in study.bodies.values()]),
+        body_buoyancy=np.array([rho * _of(b, "volume", 0.0) * g for b in study.bodies.values()]),
+        body_cog=_rows([_of(b, "center_of_gravity", [0.0] * 3) for b in study.bodies.values()]),
+        body_cob=_rows([_of(b, "center_of_buoyancy", [0.0] * 3) for b in study.bodies.values()]),
+        body_applied=_rows([_of(b, "force", [0.0] * 3) for b in study.bodies.values()]),
+        lines=lines,
+        tolerance=settings.tolerance,
+        max_iterations=settings.max_iterations,
+    )
+
+
+def _of(body: Any, key: str, default: Any) -> Any:
+    """A free body's ``key`` (a prescribed body has none: ``default``)."""
+    return getattr(body, key, default)
+
+
+def _rows(values: list[Any]) -> np.ndarray:
+    return np.array(values, dtype=float).reshape(-1, 3)
+
+
+def system_outputs(system: MooringSystem, res: Any) -> dict[str, np.ndarray]:
+    """The output arrays of one solved system (NaN where it failed)."""
+    n_lines = len(system.lines)
+    n_nodes = system.lines[0].problem.n_nodes
+    ok = res.status == STATUS_OK and len(res.lines) == n_lines
+    free = system.point_kind == FREE
+
+    def per_line(get: Any, shape: tuple[int, ...]) -> np.ndarray:
+        if not ok:
+            return np.full((n_lines, *shape), np.nan)
+        return np.array([get(r) for r in res.lines], dtype=float).reshape(n_lines, *shape)
+
+    out = {
+        "tension_a": per_line(lambda r: np.linalg.norm(r.force_a), ()),
+        "tension_b": per_line(lambda r: np.linalg.norm(r.force_b), ()),
+        "force_a": per_line(lambda r: r.force_a, (3,)),
+        "force_b": per_line(lambda r: r.force_b, (3,)),
+        "x": per_line(lambda r: r.position[:, 0], (n_nodes,)),
+        "y": per_line(lambda r: r.position[:, 1], (n_nodes,)),
+        "z": per_line(lambda r: r.position[:, 2], (n_nodes,)),
+        "tension": per_line(lambda r: r.tension, (n_nodes,)),
+        "laid_length": per_line(lambda r: r.laid_length, ()),
+        "arc_length": np.array(
+            [np.linspace(0.0, ln.problem.line.total_length, n_nodes) for ln in system.lines]
+        ),
+        "static_iterations": np.asarray(float(res.iterations)),
+        "static_residual": np.asarray(float(res.residual) if ok else math.nan),
+    }
+    if np.any(free):
+        out["point_position"] = (
+            res.point_position[free] if ok else np.full((int(free.sum()), 3), np.nan)
+        )
+    if len(system.body_names):
+        if ok and res.body_position is not None:
+            out["body_position"] = np.array(res.body_position, dtype=float)
+        else:  # a free body's position is unknown when the solve failed
+            out["body_position"] = np.where(
+                system.body_free[:, None], np.nan, np.array(system.body_position, dtype=float)
+            )
+        out["body_force"] = res.body_force
+        out["body_stiffness"] = res.body_stiffness
+    return out
+
+
+def evaluate_system_case(case: Case) -> CaseRecord:
+    """Solve one case of a system study. Never raises: a fault is status and message."""
+    t0 = time.perf_counter()
+    study = case.study
+    deadline = time.monotonic() + study.analysis.time_limit
+    system = system_model(study)
+    res = None
+    try:
+        method = study.analysis.static.method  # catenary or discrete (config.study)
+        if study.analysis.dynamic is not None:  # a sweep of the motion shares the statics
+            from .system_dynamic import system_statics
+
+            res = system_statics(
+                case,
+                system,
+                lambda: solve_system_by(system, method, STATIC_SOLVERS, deadline=deadline),
+            )
+        else:
+            res = solve_system_by(system, method, STATIC_SOLVERS, deadline=deadline)
+        status, message = res.status, res.message
+        data = system_outputs(system, res)
+    except Exception as exc:  # noqa: BLE001 - any solver fault is recorded as data
+        status, message = STATUS_NUMERICAL, f"{type(exc).__name__}: {exc}"
+        data = {}
+    if status == STATUS_OK:
+        bad = [k for k, v in data.items() if not np.all(np.isfinite(v))]
+        if bad:
+            status, message = STATUS_NUMERICAL, f"non-finite values in {', '.join(bad)}"
+    data["static_status"] = np.asarray(status, dtype=np.int64)
+    warnings = [_strain_warning(study, res) if status == STATUS_OK else ""]
+    if study.analysis.dynamic is not None:  # the system time domain (analyses.system_dynamic)
+        status, message = _dynamics(case, system, res, status, message, deadline, data)
+        if int(data.get("steady_converged", 1)) == 0 and study.analysis.dynamic.duration is None:
+            warnings.append(
+                f"unsettled: the line end tensions did not settle within max_periods "
+                f"({study.analysis.dynamic.max_periods}); the extremes are those of the last "
+                "periods run"
+            )
+    warning = "; ".join(w for w in warnings if w)
+    return CaseRecord(
+        hash=case.hash,
+        index=case.index,
+        status=int(status),
+        message=message,
+        wall_time=time.perf_counter() - t0,
+        data=data,
+        warning=warning,
+    )
+
+
+def _dynamics(
+    case: Case,
+    system: MooringSystem,
+    res: Any,
+    status: int,
+    message: str,
+    deadline: float,
+    data: dict[str, Any],
+) -> tuple[int, str]:
+    """Run the case's dynamics after its statics (not run when they failed) into
+    ``data``; the case's status and message."""
+    from .common import STATUS_NOT_RUN
+    from .system_dynamic import run_system_dynamic
+
+    if status != STATUS_OK:
+        data["dynamic_status"] = np.asarray(STATUS_NOT_RUN, dtype=np.int64)
+        return status, message
+    try:
+        d_status, d_message, d_data = run_system_dynamic(case, system, res, deadline)
+    except Exception as exc:  # noqa: BLE001 - any solver fault is recorded as data
+        d_status, d_message, d_data = STATUS_NUMERICAL, f"{type(exc).__name__}: {exc}", {}
+    data.update(d_data)
+    data["dynamic_status"] = np.asarray(d_status, dtype=np.int64)
+    if d_status != STATUS_OK:
+        return d_status, f"dynamic analysis: {d_message}"
+    return status, message
+
+
+def _strain_warning(study: Study, res: Any) -> str:
+    """``analysis.static.strain_warning`` of a system: the largest strain of each line
+    (as for one line), the lines above the limit named."""
+    from .plausibility import strain_warning
+    from .static import largest_static_strain
+
+    limit = study.analysis.static.strain_warning
+    strains = {
+        name: largest_static_strain(SimpleNamespace(line=line), r)
+        for (name, line), r in zip(study.lines.items(), res.lines, strict=True)
+    }
+    worst = max(strains, key=lambda k: strains[k] if math.isfinite(strains[k]) else -1.0)
+    text = strain_warning(strains[worst], limit)
+    if not text:
+        return ""
+    over = [k for k, v in strains.items() if v > limit]
+    return f"{text} (lines {', '.join(over)})"

@@ -1,0 +1,453 @@
+"""The per-study case cache: finished case records on disk as data, never as code.
+
+One file per finished chunk, ``chunk-<sha256>.npz``: a NumPy ``.npz`` archive of plain
+numeric and text arrays (no object arrays), read back with ``allow_pickle=False`` so
+that nothing in the cache folder can run code when it is loaded. The file is named by
+the sha256 of its own bytes: on load the bytes are hashed again and a file whose hash
+does not match its name (truncated, garbled, edited) is reported once on standard error,
+removed, and its cases are recomputed. Records are keyed by case hash (a content hash of
+everything that affects a case), so a record is only ever reused for the same case.
+
+Files written atomically (temporary file, fsync, rename). Files of other names (e.g. the
+``chunk-*.pkl`` pickles of earlier versions) are never opened.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import io
+import os
+import re
+import sys
+import tempfile
+from collections import Counter
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..analyses.variables import CaseRecord
+from .outputs import read_regular, regular_file, temporary_prefix, written
+
+#: messages of records that must not be cached (transient: a rerun may succeed)
+LOST_PREFIX = "task failed: "
+TRANSIENT_PREFIXES = (
+    "time limit",
+    LOST_PREFIX,
+    # a modal or dynamic analysis over the time limit names itself first
+    # (cablestudy.analyses.evaluate.evaluate_case)
+    "modal analysis: time limit",
+    "dynamic analysis: time limit",
+)
+
+FORMAT = "cablestudy-case-cache-1"
+_NAME = re.compile(r"^chunk-([0-9a-f]{64})\.npz$")
+
+
+class CacheFormatError(ValueError):
+    """A cache file that is not a chunk of case records in this format."""
+
+
+def _warn_stderr(message: str) -> None:
+    print(f"warning: {message}", file=sys.stderr)
+
+
+def _as_data_array(name: str, value: object) -> np.ndarray:
+    """``value`` as a plain (numeric, boolean or unicode) array; text held as Python
+    objects becomes unicode. Anything else is refused (it could not be stored as data)."""
+    arr = np.asarray(value)
+    if arr.dtype.kind == "O":
+        if all(isinstance(v, str) for v in arr.ravel()):
+            arr = arr.astype(str)
+        else:
+            raise CacheFormatError(f"output {name!r} holds Python objects ({arr.dtype})")
+    if arr.dtype.kind not in "biufcU":
+        raise CacheFormatError(f"output {name!r} has dtype {arr.dtype}, not plain data")
+    return arr
+
+
+def encode_records(records: list[CaseRecord]) -> bytes:
+    """The bytes of a ``.npz`` archive holding ``records``: per-case columns (hash, sweep
+    index, status, message, wall time) and, per output variable and dtype, the values of
+    the cases that have it flattened end to end, with their rows and shapes."""
+    n = len(records)
+    ndim = len(records[0].index) if records else 0
+    arrays: dict[str, np.ndarray] = {
+        "format": np.array(FORMAT),
+        "hash": np.array([r.hash for r in records], dtype=str),
+        "index": np.array([r.index for r in records], dtype=np.int64).reshape(n, ndim),
+        "status": np.array([r.status for r in records], dtype=np.int64),
+        "message": np.array([r.message for r in records], dtype=str).reshape(n),
+        "warning": np.array([r.warning for r in records], dtype=str).reshape(n),
+        "wall_time": np.array([r.wall_time for r in records], dtype=np.float64),
+    }
+    groups: dict[tuple[str, str, int], list[tuple[int, np.ndarray]]] = {}
+    for row, rec in enumerate(records):
+        for name, value in rec.data.items():
+            arr = _as_data_array(name, value)
+            groups.setdefault((name, arr.dtype.str, arr.ndim), []).append((row, arr))
+    for j, ((name, _, nd), items) in enumerate(sorted(groups.items())):
+        prefix = f"d{j}"
+        arrays[f"{prefix}_name"] = np.array(name)
+        arrays[f"{prefix}_rows"] = np.array([r for r, _ in items], dtype=np.int64)
+        arrays[f"{prefix}_shapes"] = np.array([a.shape for _, a in items], dtype=np.int64).reshape(
+            len(items), nd
+        )
+        arrays[f"{prefix}_values"] = np.concatenate([a.ravel() for _, a in items])
+    buf = io.BytesIO()
+    np.savez(buf, **arrays)
+    return buf.getvalue()
+
+
+def decode_records(payload: bytes) -> list[CaseRecord]:
+    """The records of an archive written by :func:`encode_records`; loaded with
+    ``allow_pickle=False``. Raises :class:`CacheFormatError` (or NumPy's own error) for
+    anything else."""
+    with np.load(io.BytesIO(payload), allow_pickle=False) as z:
+        files = {k: z[k] for k in z.files}
+    if "format" not in files or str(files["format"]) != FORMAT:
+        raise CacheFormatError("not a cablestudy case-cache archive")
+    hashes, index = files["hash"], files["index"]
+    status, message, wall = files["status"], files["message"], files["wall_time"]
+    warning = files.get("warning", np.full(len(hashes), ""))
+    records = [
+        CaseRecord(
+            hash=str(hashes[i]),
+            index=tuple(int(v) for v in index[i]),
+            status=int(status[i]),
+            message=str(message[i]),
+            wall_time=float(wall[i]),
+            warning=str(warning[i]),
+        )
+        for i in range(len(hashes))
+    ]
+    j = 0
+    while f"d{j}_name" in files:
+        name = str(files[f"d{j}_name"])
+        rows, shapes, values = (files[f"d{j}_{k}"] for k in ("rows", "shapes", "values"))
+        offset = 0
+        for row, shape in zip(rows, shapes, strict=True):
+            size = int(np.prod(shape)) if len(shape) else 1
+            records[int(row)].data[name] = values[offset : offset + size].reshape(tuple(shape))
+            offset += size
+        if offset != values.size:
+            raise CacheFormatError(f"values of {name!r} do not match their shapes")
+        j += 1
+    return records
+
+
+def _write_atomic(path: Path, payload: bytes, stem: str) -> None:
+    """``payload`` to ``path`` through a temporary file named after this process
+    (:func:`cablestudy.run.outputs.temporary_prefix`), fsync and rename; a full disk raises
+    :class:`cablestudy.run.outputs.OutputWriteError`."""
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=temporary_prefix(stem), suffix=".tmp")
+
+    def complete() -> None:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(payload)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.replace(tmp, path)
+
+    try:
+        written(path, complete)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+
+
+#: temporary files of cache writes (removed by a later run once their writer is gone)
+TEMPORARY_PATTERNS = (".chunk-*.tmp", ".grid-*.tmp")
+
+
+def _odd_entry(path: Path) -> str:
+    """Why the cache entry ``path`` is left alone ('' for a regular file)."""
+    if regular_file(path):
+        return ""
+    return (
+        f"cache entry {path} is not a regular file (a folder, link, FIFO or device); "
+        "skipped and left in place"
+    )
+
+
+class CaseCache:
+    """Finished case records of one study, in memory and (with a ``directory``) on disk
+    as ``chunk-<sha256>.npz`` data files; see the module docstring."""
+
+    def __init__(
+        self, directory: Path | None, *, warn: Callable[[str], None] = _warn_stderr
+    ) -> None:
+        self.directory = directory
+        self.records: dict[str, CaseRecord] = {}
+        self.rejected: list[Path] = []
+        #: the chunk files read or written by this run: the only ones compact removes
+        self.files: set[Path] = set()
+        if directory is not None and directory.is_dir():
+            for path in sorted(directory.glob("chunk-*.npz")):
+                odd = _odd_entry(path)
+                if odd:
+                    warn(odd)
+                    continue
+                reason = self._load(path)
+                if reason:
+                    warn(f"cache file {path} {reason}; its cases will be recomputed")
+                    self.rejected.append(path)
+                    path.unlink(missing_ok=True)
+                else:
+                    self.files.add(path)
+
+    def _load(self, path: Path) -> str:
+        """Read one chunk file into :attr:`records`; '' if fine, else why not."""
+        match = _NAME.match(path.name)
+        if not match:
+            return "is not named chunk-<sha256>.npz"
+        try:
+            payload = read_regular(path)
+        except OSError as exc:
+            return f"cannot be read ({exc})"
+        digest = hashlib.sha256(payload).hexdigest()
+        if digest != match.group(1):
+            return f"is damaged (sha256 of its {len(payload)} bytes is {digest[:12]}...)"
+        try:
+            records = decode_records(payload)
+        except Exception as exc:  # noqa: BLE001 - whatever is wrong, the cases are recomputed
+            return f"is not a case-cache archive ({type(exc).__name__}: {exc})"
+        for rec in records:
+            self.records[rec.hash] = rec
+        return ""
+
+    def store(self, records: list[CaseRecord]) -> None:
+        """Keep ``records`` and write the cacheable ones (not time-limited, not lost with
+        their worker) to one new chunk file."""
+        for rec in records:
+            self.records[rec.hash] = rec
+        cacheable = [r for r in records if not r.message.startswith(TRANSIENT_PREFIXES)]
+        if self.directory is None or not cacheable:
+            return
+        self._write(cacheable)
+
+    def _write(self, records: list[CaseRecord]) -> Path:
+        assert self.directory is not None
+        payload = encode_records(records)
+        path = self.directory / f"chunk-{hashlib.sha256(payload).hexdigest()}.npz"
+        path.parent.mkdir(parents=True, exist_ok=True)
+        _write_atomic(path, payload, ".chunk-")
+        self.files.add(path)
+        return path
+
+    def compact(self, keep: Iterable[str]) -> None:
+        """Rewrite the cache as one file holding the records in ``keep`` (the cases of the
+        study as it now stands), dropping records of edited-away cases. The new file is
+        in place before the old ones are removed, so a crash loses nothing. Only files
+        this run read or wrote are removed (call it only when no other run of the study
+        is writing here: :class:`cablestudy.run.outputs.CacheLock`)."""
+        if self.directory is None or not self.directory.is_dir():
+            return
+        old = sorted(p for p in self.files if regular_file(p))
+        keep = set(keep)
+        records = [
+            self.records[h]
+            for h in sorted(keep)
+            if h in self.records and not self.records[h].message.startswith(TRANSIENT_PREFIXES)
+        ]
+        if not records:
+            return
+        if len(old) == 1 and len(records) == len(self.records):
+            return  # already one file holding exactly these records
+        target = self._write(records)
+        for path in old:
+            if path != target:
+                path.unlink(missing_ok=True)
+
+
+GRID_FORMAT = "cablestudy-grid-chunk-1"
+#: the per-case columns of a grid chunk file (not output variables)
+_CASE_COLUMNS = ("status", "message", "warning", "wall_time", "fallback")
+_GRID_NAME = re.compile(r"^grid-([0-9a-f]{32})-([0-9a-f]{64})\.npz$")
+
+
+@dataclass
+class GridSummary:
+    """What the chunk files of a grid study hold, read one file at a time: the output
+    variables and their extra-dimension shapes, the arc lengths every successful case
+    shares (None if they differ), the failure messages and the warnings with their
+    counts, the number of cases with a warning, and per warning text the first case
+    that has it (its flat index in C order)."""
+
+    names: list[str]
+    tails: dict[str, tuple[int, ...]]
+    arc: np.ndarray | None
+    failures: Counter[str]
+    warnings: Counter[str] = field(default_factory=Counter)
+    n_warned: int = 0
+    warned_at: dict[str, int] = field(default_factory=dict)
+    #: why cases were solved by the general solver (no batch kernel took them), counted
+    fallbacks: Counter[str] = field(default_factory=Counter)
+
+
+def summarise(
+    chunks: Iterable[tuple[np.ndarray, np.ndarray, np.ndarray, dict[str, np.ndarray]]],
+    fallback: Iterable[np.ndarray] = (),
+) -> GridSummary:
+    """The :class:`GridSummary` of chunks given as (status, message, warning, outputs by
+    name), in the order of the grid's rows; ``fallback``: per chunk, why each case went
+    to the general solver ('' where a batch kernel solved it)."""
+    names: set[str] = set()
+    tails: dict[str, tuple[int, ...]] = {}
+    arc: np.ndarray | None = None
+    same_arc = True
+    failures: Counter[str] = Counter()
+    warnings: Counter[str] = Counter()
+    n_warned = 0
+    warned_at: dict[str, int] = {}
+    offset = 0
+    for status, message, warning, data in chunks:
+        bad = status != 0
+        if bad.any():
+            failures.update(str(m) for m in message[bad])
+        warned = np.flatnonzero(warning != "")
+        n_warned += len(warned)
+        if len(warned):
+            texts, first, counts = np.unique(warning[warned], return_index=True, return_counts=True)
+            for text, i, count in zip(texts.tolist(), first, counts, strict=True):
+                warnings[text] += int(count)
+                warned_at.setdefault(text, offset + int(warned[i]))
+        offset += len(status)
+        for k, v in data.items():
+            names.add(k)
+            tails[k] = tuple(v.shape[1:])
+        if "arc_length" in data and same_arc:
+            ok = data["arc_length"][~bad]
+            if len(ok):
+                ref = ok[0] if arc is None else arc
+                if np.all(ok == ref):
+                    arc = ref
+                else:
+                    same_arc = False
+    fallbacks: Counter[str] = Counter()
+    for reasons in fallback:
+        fallbacks.update(str(r) for r in reasons[reasons != ""])
+    return GridSummary(
+        sorted(names),
+        tails,
+        arc if same_arc else None,
+        failures,
+        warnings,
+        n_warned,
+        warned_at,
+        fallbacks,
+    )
+
+
+class GridChunkStore:
+    """Chunks of a study run as arrays (:class:`cablestudy.analyses.grid_chunk.GridChunk`), one
+    data file
+    each, ``grid-<chunk key>-<sha256 of the file>.npz``: plain arrays, read with
+    ``allow_pickle=False``, checked against their hash before use (a damaged file is
+    reported once, removed and recomputed)."""
+
+    def __init__(self, directory: Path, *, warn: Callable[[str], None] = _warn_stderr) -> None:
+        self.directory = directory
+        self.warn = warn
+
+    def find(self, key: str) -> Path | None:
+        """The intact file of the chunk with content key ``key``, if any."""
+        if not self.directory.is_dir():
+            return None
+        for path in sorted(self.directory.glob(f"grid-{key[:32]}-*.npz")):
+            odd = _odd_entry(path)
+            if odd:
+                self.warn(odd)
+                continue
+            reason = self._check(path)
+            if not reason:
+                return path
+            self.warn(f"cache file {path} {reason}; its cases will be recomputed")
+            path.unlink(missing_ok=True)
+        return None
+
+    @staticmethod
+    def _check(path: Path) -> str:
+        match = _GRID_NAME.match(path.name)
+        if not match:
+            return "is not named grid-<key>-<sha256>.npz"
+        try:
+            payload = read_regular(path)
+        except OSError as exc:
+            return f"cannot be read ({exc})"
+        digest = hashlib.sha256(payload).hexdigest()
+        if digest != match.group(2):
+            return f"is damaged (sha256 of its {len(payload)} bytes is {digest[:12]}...)"
+        try:
+            with np.load(io.BytesIO(payload), allow_pickle=False) as z:
+                if "format" not in z.files or str(z["format"]) != GRID_FORMAT:
+                    return "is not a grid chunk archive"
+                for k in z.files:  # every member loads as plain data
+                    z[k]
+        except Exception as exc:  # noqa: BLE001 - whatever is wrong, the cases are recomputed
+            return f"is not a grid chunk archive ({type(exc).__name__}: {exc})"
+        return ""
+
+    def write(self, chunk: object) -> Path:
+        """Write ``chunk`` (a GridChunk) atomically; returns its file."""
+        arrays: dict[str, np.ndarray] = {
+            "format": np.array(GRID_FORMAT),
+            "key": np.array(chunk.key),  # type: ignore[attr-defined]
+            "rows": np.array([chunk.lo, chunk.hi], dtype=np.int64),  # type: ignore[attr-defined]
+            "v_status": np.asarray(chunk.status, dtype=np.int64),  # type: ignore[attr-defined]
+            "v_message": np.asarray(chunk.message, dtype=str),  # type: ignore[attr-defined]
+            "v_warning": np.asarray(chunk.warning, dtype=str),  # type: ignore[attr-defined]
+            "v_wall_time": np.asarray(chunk.wall_time, dtype=np.float64),  # type: ignore[attr-defined]
+            "v_fallback": np.asarray(chunk.fallback_reason, dtype=str),  # type: ignore[attr-defined]
+        }
+        for name, arr in chunk.data.items():  # type: ignore[attr-defined]
+            arrays[f"v_{name}"] = _as_data_array(name, arr)
+        buf = io.BytesIO()
+        np.savez(buf, **arrays)
+        payload = buf.getvalue()
+        digest = hashlib.sha256(payload).hexdigest()
+        path = self.directory / f"grid-{chunk.key[:32]}-{digest}.npz"  # type: ignore[attr-defined]
+        self.directory.mkdir(parents=True, exist_ok=True)
+        _write_atomic(path, payload, ".grid-")
+        return path
+
+    @staticmethod
+    def summary(paths: list[Path]) -> GridSummary:
+        def columns(
+            path: Path,
+        ) -> tuple[np.ndarray, np.ndarray, np.ndarray, dict[str, np.ndarray]]:
+            with np.load(path, allow_pickle=False) as z:
+                data = {
+                    k[2:]: z[k]
+                    for k in z.files
+                    if k.startswith("v_") and k[2:] not in _CASE_COLUMNS
+                }
+                status = z["v_status"]
+                warning = z["v_warning"] if "v_warning" in z.files else np.full(len(status), "")
+                return status, z["v_message"], warning, data
+
+        def reasons(path: Path) -> np.ndarray:
+            with np.load(path, allow_pickle=False) as z:
+                return z["v_fallback"] if "v_fallback" in z.files else np.array([], dtype=str)
+
+        return summarise((columns(path) for path in paths), (reasons(p) for p in paths))
+
+    @staticmethod
+    def load(path: Path) -> dict[str, np.ndarray]:
+        """The arrays of a chunk file, by name without the ``v_`` prefix (``status``,
+        ``message``, ``wall_time`` and the outputs), plus ``key`` and ``rows``."""
+        with np.load(path, allow_pickle=False) as z:
+            out = {k[2:]: z[k] for k in z.files if k.startswith("v_")}
+            out["key"] = z["key"]
+            out["rows"] = z["rows"]
+            return out
+
+    def keep(self, paths: set[Path]) -> None:
+        """Remove the grid chunk files not in ``paths`` (cases edited away); call it only
+        when no other run of the study is writing here
+        (:class:`cablestudy.run.outputs.CacheLock`). Entries that are not regular files are
+        left alone."""
+        for path in self.directory.glob("grid-*.npz"):
+            if path not in paths and regular_file(path):
+                path.unlink(missing_ok=True)

@@ -1,0 +1,489 @@
+"""Assembly of case records (or a grid's chunk arrays) into one labelled dataset on the
+sweep axes, with the coordinates, the CF status flags and the provenance attributes
+that trace it to its inputs. The variables are declared in
+:mod:`cablestudy.analyses.variables`; the writing is :mod:`cablestudy.run.writer`'s.
+"""
+
+from __future__ import annotations
+
+import json
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from .. import __version__
+from ..analyses.variables import (
+    BODY_DOFS,
+    CASE_VARIABLES,
+    COORDINATES,
+    DATABASE_LAYOUTS,
+    OUTPUTS,
+    STATUS_BROKEN,
+    SYSTEM_OUTPUTS,
+    CaseRecord,
+    analysis_ok,
+)
+from ..study.cases import Case, SweepAxis
+from ..study.line_types import line_type_attrs
+from ..study.loader import StudySource
+from .conventions import command_line, is_status_variable, status_flag_attrs
+from .writer import VariableSpec
+
+if TYPE_CHECKING:  # imported where used: a sweep run as arrays writes without xarray
+    import xarray as xr
+
+
+def _fill(dtype: str) -> Any:
+    return {"int64": -1, "str": ""}.get(dtype, np.nan)
+
+
+def _fill_rows(
+    arr: np.ndarray, rows: list[tuple[tuple[int, ...], Any]], tail: tuple[int, ...]
+) -> None:
+    """Put each case's value at its sweep index; values of the full extent in one
+    vectorised assignment, shorter ones (fewer nodes) padded by the fill value."""
+    full = [(idx, v) for idx, v in rows if np.shape(v) == tail]
+    if full and len(full[0][0]) > 0:
+        where = tuple(
+            np.array(col, dtype=np.intp) for col in zip(*(i for i, _ in full), strict=True)
+        )
+        values = [v for _, v in full]
+        arr[where] = values if arr.dtype == object else np.asarray(values, dtype=arr.dtype)
+    else:
+        for idx, v in full:
+            arr[idx] = v
+    for idx, v in rows:
+        if np.shape(v) != tail:
+            arr[idx + tuple(slice(0, n) for n in np.shape(v))] = v
+
+
+def sweep_coordinates(axes: list[SweepAxis]) -> dict[str, Any]:
+    """The coordinates of the sweep dimensions (and, for axes of non-scalar values, zip
+    groups or labels, their value coordinates), with units and long names. An axis with
+    labels has them as its coordinate; its values go to ``<dim>_value``."""
+    coords: dict[str, Any] = {}
+    for a in axes:
+        numeric = a.coordinate().dtype.kind in "iuf"
+        indexed = len(a.paths) > 1 or not all(
+            isinstance(v, int | float | str | bool) for v in a.values[0]
+        )
+        attrs = {
+            "units": (a.units or "1") if numeric else "1",
+            "long_name": a.long_name,
+            "sweep_paths": ", ".join(a.paths),
+        }
+        if a.labels is not None:
+            attrs["units"] = "1"
+            attrs["long_name"] = a.long_name or f"label of the swept value of {a.paths[0]}"
+        elif indexed:
+            attrs["units"] = "1"
+            if len(a.paths) == 1:
+                attrs["long_name"] = f"index of the swept value of {a.paths[0]}"
+        coords[a.name] = (a.name, a.coordinate(), attrs)
+        if len(a.paths) == 1 and a.labels is not None and not indexed:
+            # labelled scalars: the values themselves beside the labels
+            values = np.asarray(a.values[0])
+            scalar_units = (a.units or "1") if values.dtype.kind in "iuf" else "1"
+            coords[f"{a.name}_value"] = (
+                a.name,
+                values.astype(object) if values.dtype.kind == "U" else values,
+                {"long_name": a.long_name, "units": scalar_units},
+            )
+        if len(a.paths) == 1 and indexed:
+            # values that are not scalars (vectors, mappings): keep them as text
+            coords[f"{a.name}_value"] = (
+                a.name,
+                np.array([json.dumps(v) for v in a.values[0]], dtype=object),
+                {"long_name": f"swept value of {a.paths[0]} (JSON)", "units": "1"},
+            )
+        if len(a.paths) > 1:
+            for path, vals in zip(a.paths, a.values, strict=True):
+                cname = f"{a.name}_{path.split('.')[-1]}"
+                if cname in coords or cname == a.name:
+                    cname = f"{a.name}_{path.replace('.', '_')}"
+                units, long_name = _path_info(path)
+                if all(isinstance(v, int | float) and not isinstance(v, bool) for v in vals):
+                    coords[cname] = (
+                        a.name,
+                        np.asarray(vals, dtype=float),
+                        {"long_name": long_name, "units": units or "1"},
+                    )
+                else:
+                    coords[cname] = (
+                        a.name,
+                        np.array([json.dumps(v) for v in vals], dtype=object),
+                        {"long_name": f"{long_name} (JSON)", "units": "1"},
+                    )
+    return coords
+
+
+def assemble(
+    axes: list[SweepAxis],
+    cases: list[Case],
+    records: dict[str, CaseRecord],
+    src: StudySource,
+    *,
+    solver_settings: dict[str, Any] | None = None,
+) -> xr.Dataset:
+    """One Dataset on the sweep axes. A failed analysis is NaN (or -1, or "") in its own
+    data variables (:attr:`OutputVariable.analysis`), the others are kept; a failed case
+    is never dropped."""
+    import xarray as xr
+
+    data_vars, coords, attrs = assembled_variables(
+        axes, cases, records, src, solver_settings=solver_settings
+    )
+    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+
+def assembled_variables(
+    axes: list[SweepAxis],
+    cases: list[Case],
+    records: dict[str, CaseRecord],
+    src: StudySource,
+    *,
+    solver_settings: dict[str, Any] | None = None,
+) -> tuple[dict[str, VariableSpec], dict[str, VariableSpec], dict[str, Any]]:
+    """The (data variables, coordinates, attributes) of :func:`assemble`'s dataset, in
+    the form ``xarray.Dataset`` takes and :func:`write_variables_atomic` writes."""
+    shape = tuple(a.size for a in axes)
+    dims = tuple(a.name for a in axes)
+    by_index = {c.index: records[c.hash] for c in cases}
+    present = sorted({k for r in by_index.values() for k in r.data})
+    system = bool(cases) and cases[0].study.is_system
+    registry = SYSTEM_OUTPUTS if system else OUTPUTS
+    unknown = [k for k in present if k not in registry]
+    if unknown:
+        raise KeyError(f"output variables not declared in results.OUTPUTS: {unknown}")
+
+    # lengths of extra dims: the largest any case produced
+    extent: dict[str, int] = {"component": 3}
+    for rec in by_index.values():
+        for name, arr in rec.data.items():
+            for d, n in zip(registry[name].dims, np.shape(arr), strict=True):
+                extent[d] = max(extent.get(d, 0), n)
+
+    data_vars: dict[str, Any] = {}
+    for name, spec in {**CASE_VARIABLES, **{k: registry[k] for k in present}}.items():
+        tail = tuple(extent[d] for d in spec.dims)
+        dtype = object if spec.dtype == "str" else spec.dtype
+        arr = np.full(shape + tail, _fill(spec.dtype), dtype=dtype)
+        if name in CASE_VARIABLES:
+            rows = [(idx, getattr(rec, name)) for idx, rec in by_index.items()]
+        else:
+            rows = [
+                (idx, np.asarray(rec.data[name]))
+                for idx, rec in by_index.items()
+                if name in rec.data and analysis_ok(rec, spec.analysis)
+            ]
+        if spec.dtype == "str":
+            # text as Python str (not 0-d arrays), so that netCDF sees one type when
+            # failed cases hold the fill value ""
+            rows = [
+                (idx, str(v.item()) if isinstance(v, np.ndarray) and v.ndim == 0 else v)
+                for idx, v in rows
+            ]
+        _fill_rows(arr, rows, tail)
+        data_vars[name] = (
+            dims + spec.dims,
+            arr,
+            {"units": spec.units, "long_name": spec.long_name},
+        )
+
+    coords: dict[str, Any] = sweep_coordinates(axes)
+    if "component" in extent and any("component" in registry[k].dims for k in present):
+        coords["component"] = (
+            "component",
+            np.array(["x", "y", "z"]),
+            {"units": COORDINATES["component"][0], "long_name": COORDINATES["component"][1]},
+        )
+    if "mode" in extent and any("mode" in registry[k].dims for k in present):
+        coords["mode"] = (
+            "mode",
+            np.arange(1, extent["mode"] + 1),
+            {"units": COORDINATES["mode"][0], "long_name": COORDINATES["mode"][1]},
+        )
+    if system:
+        study = cases[0].study
+        named = {
+            "line": list(study.lines),
+            "point": [k for k, p in study.points.items() if p.kind == "free"],
+            "body": list(study.bodies),
+            "dof": list(BODY_DOFS),
+            "dof_j": list(BODY_DOFS),
+        }
+        for dim, names in named.items():
+            if dim in extent and any(dim in registry[k].dims for k in present):
+                coords[dim] = (
+                    dim,
+                    np.array(names),
+                    {"units": "1", "long_name": COORDINATES[dim][1]},
+                )
+        # s is the node index; each line's arc length is the variable arc_length beside it
+    if "s" in extent and not system:
+        arcs = [
+            np.asarray(r.data["arc_length"])
+            for r in by_index.values()
+            if "arc_length" in r.data and analysis_ok(r, "static")
+        ]
+        if arcs and all(len(a) == extent["s"] and np.array_equal(a, arcs[0]) for a in arcs):
+            coords["s"] = ("s", arcs[0], {"units": "m", "long_name": COORDINATES["s"][1]})
+            data_vars.pop("arc_length", None)
+    if "transfer_frequency" in data_vars and "frequency" not in coords:
+        # the transfer function's frequencies: a coordinate when every case has the same
+        freqs = [
+            np.asarray(r.data["transfer_frequency"])
+            for r in by_index.values()
+            if "transfer_frequency" in r.data and analysis_ok(r, "dynamic")
+        ]
+        if freqs and all(np.array_equal(f, freqs[0]) for f in freqs):
+            spec = registry["transfer_frequency"]
+            coords["frequency"] = (
+                "frequency",
+                freqs[0],
+                {"units": spec.units, "long_name": spec.long_name},
+            )
+            data_vars.pop("transfer_frequency")
+    for grid, dim in (
+        (g, d)
+        for lay in DATABASE_LAYOUTS.values()
+        for g, d in zip(lay.grid_variables, lay.dims, strict=True)
+    ):
+        # the quasi-static database's grid: a coordinate when every case has the same
+        if grid in data_vars and dim not in coords:
+            grids = [
+                np.asarray(r.data[grid])
+                for r in by_index.values()
+                if grid in r.data and analysis_ok(r, "static")
+            ]
+            if grids and all(np.array_equal(g, grids[0]) for g in grids):
+                spec = registry[grid]
+                coords[dim] = (dim, grids[0], {"units": spec.units, "long_name": spec.long_name})
+                data_vars.pop(grid)
+    if "arc_length" in data_vars and "s" not in coords:
+        coords["s"] = ("s", np.arange(extent["s"]), {"units": "1", "long_name": "node index"})
+
+    _flag_statuses(data_vars)
+    attrs = provenance(src, solver_settings or {})
+    status = np.asarray(data_vars["status"][1])
+    n_failed = int(np.count_nonzero((status != 0) & (status != STATUS_BROKEN)))
+    attrs["cases"] = int(np.prod(shape)) if shape else 1
+    attrs["cases_failed"] = n_failed
+    attrs["cases_warned"] = int(np.count_nonzero(data_vars["warning"][1] != ""))
+    if np.any(status == STATUS_BROKEN):
+        attrs["cases_broken"] = int(np.count_nonzero(status == STATUS_BROKEN))
+    return data_vars, coords, attrs
+
+
+def _flag_statuses(data_vars: dict[str, Any]) -> None:
+    """Add the CF status flags (:func:`status_flag_attrs`) to the status variables among
+    ``data_vars`` (name -> (dims, values, attrs)), in place."""
+    for name, (dims, values, var_attrs) in list(data_vars.items()):
+        dtype = getattr(values, "dtype", None)
+        if is_status_variable(name) and dtype is not None and dtype.kind in "if":
+            data_vars[name] = (dims, values, {**var_attrs, **status_flag_attrs(dtype)})
+
+
+def _path_info(path: str) -> tuple[str, str]:
+    from ..study.cases import _field_info
+
+    return _field_info(tuple(path.split(".")))
+
+
+def provenance(src: StudySource, solver_settings: dict[str, Any]) -> dict[str, Any]:
+    """Global attributes that trace a dataset to its inputs: the study YAML and its hash,
+    package versions, the solver-code fingerprint and the solver settings."""
+    import platform
+    from importlib.metadata import version
+
+    import numpy
+    import pydantic
+
+    from ..study.cases import code_fingerprint
+
+    return {
+        "Conventions": "CF-1.8",
+        "title": str(src.data.get("name", "")),
+        "study_name": str(src.data.get("name", "")),
+        "study_description": str(src.data.get("description", "")),
+        "study_yaml": src.text,
+        "study_sha256": src.sha256,
+        "cablestudy_version": __version__,
+        "numpy_version": numpy.__version__,
+        # from the installed metadata: the same strings as scipy.__version__ and
+        # xarray.__version__, without importing them (the array path needs neither)
+        "scipy_version": version("scipy"),
+        "xarray_version": version("xarray"),
+        "pydantic_version": pydantic.VERSION,
+        "dask_version": version("dask"),
+        "python_version": platform.python_version(),
+        "cablestudy_code_sha256": code_fingerprint(),
+        "solver_settings": json.dumps(solver_settings, sort_keys=True),
+        "history": f"{datetime.now(UTC).isoformat(timespec='seconds')}: {command_line()}",
+        **line_type_attrs(src),
+    }
+
+
+def grid_dataset(
+    axes: list[SweepAxis],
+    chunks: list[tuple[int, int, Path]],
+    src: StudySource,
+    *,
+    names: list[str],
+    tails: dict[str, tuple[int, ...]],
+    arc: np.ndarray | None,
+    solver_settings: dict[str, Any],
+    lazy: bool = True,
+    fallbacks: dict[str, int] | None = None,
+) -> xr.Dataset:
+    """The dataset of a study run as arrays (:mod:`cablestudy.analyses.static_grid`), with the same
+    variables, dims, coordinates and attributes as :func:`assemble` would give, its large
+    variables backed lazily (dask) by the chunk files ``(lo, hi, path)`` (rows ``lo:hi``
+    of the first axis each, written by the runner), so that writing it streams chunk by
+    chunk; with ``lazy=False`` they are read into memory instead (small studies).
+    ``arc``: the arc lengths every successful case shares (then the ``s`` coordinate, as
+    in :func:`assemble`), or None (then ``arc_length`` stays a variable and ``s`` is the
+    node index)."""
+    import xarray as xr
+
+    shape = tuple(a.size for a in axes)
+    rest = shape[1:]
+
+    def load(path: Path, name: str) -> np.ndarray:
+        with np.load(path, allow_pickle=False) as z:
+            key = f"v_{name}"
+            if key in z.files:
+                return z[key]
+            n = len(z["v_status"])
+            if name == "warning":  # a chunk with no warnings may not store the column
+                return np.full(n, "")
+            # a chunk that failed as a whole holds no data: NaN, as a failed case
+            return np.full((n, *tails[name]), np.nan)
+
+    def column(name: str) -> np.ndarray:
+        return np.concatenate([load(path, name) for _, _, path in chunks])
+
+    values: dict[str, Any] = {}
+    for name in names:
+        if name == "arc_length" and arc is not None:
+            continue
+        tail = tails[name]
+        if lazy:
+            import dask
+            import dask.array as da
+
+            values[name] = da.concatenate(
+                [
+                    da.from_delayed(
+                        dask.delayed(load)(path, name).reshape((hi - lo, *rest, *tail)),
+                        shape=(hi - lo, *rest, *tail),
+                        dtype=np.float64,
+                    )
+                    for lo, hi, path in chunks
+                ],
+                axis=0,
+            )
+        else:  # small enough to hold: no dask needed
+            values[name] = np.concatenate(
+                [load(path, name).reshape((hi - lo, *rest, *tail)) for lo, hi, path in chunks]
+            )
+    data_vars, coords, attrs = grid_variables(
+        axes,
+        src,
+        status=column("status"),
+        message=column("message"),
+        warning=column("warning"),
+        wall_time=column("wall_time"),
+        values=values,
+        tails=tails,
+        arc=arc,
+        solver_settings=solver_settings,
+        fallbacks=fallbacks,
+    )
+    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+
+def grid_variables(
+    axes: list[SweepAxis],
+    src: StudySource,
+    *,
+    status: np.ndarray,
+    message: np.ndarray,
+    wall_time: np.ndarray,
+    values: dict[str, Any],
+    warning: np.ndarray | None = None,
+    tails: dict[str, tuple[int, ...]],
+    arc: np.ndarray | None,
+    solver_settings: dict[str, Any],
+    fallbacks: dict[str, int] | None = None,
+) -> tuple[dict[str, VariableSpec], dict[str, VariableSpec], dict[str, Any]]:
+    """Data variables, coordinates and global attributes of a study run as arrays, in
+    the form ``xarray.Dataset(data_vars, coords=coords, attrs=attrs)`` takes (and
+    :func:`write_variables_atomic` writes): per case ``status``, ``message``,
+    ``wall_time`` (flat, cases in C order) and per output its values (shape
+    (*sweep shape, *tail), NumPy or dask) -- the variables, dims, coordinates and
+    attributes :func:`assemble` gives. ``arc``: the arc lengths every successful case
+    shares (then the ``s`` coordinate, and ``arc_length`` is not among ``values``), or
+    None (then ``s`` is the node index). ``fallbacks``: why cases were solved by the
+    general solver, counted (the ``cases_fallback`` and ``fallback_reasons``
+    attributes)."""
+    shape = tuple(a.size for a in axes)
+    dims = tuple(a.name for a in axes)
+    data_vars: dict[str, VariableSpec] = {}
+    status = status.reshape(shape)
+    warnings = (
+        np.full(shape, "", dtype=object)
+        if warning is None
+        else warning.astype(object).reshape(shape)
+    )
+    case = (
+        ("status", status),
+        ("message", message.astype(object).reshape(shape)),
+        ("warning", warnings),
+        ("wall_time", wall_time.reshape(shape)),
+    )
+    for name, arr in case:
+        spec = CASE_VARIABLES[name]
+        data_vars[name] = (dims, arr, {"units": spec.units, "long_name": spec.long_name})
+    # the array path runs the statics only: its status is the case's
+    spec = OUTPUTS["static_status"]
+    data_vars["static_status"] = (
+        dims,
+        status.astype(np.int64),
+        {"units": spec.units, "long_name": spec.long_name},
+    )
+    for name in sorted(values):
+        spec = OUTPUTS[name]
+        data_vars[name] = (
+            dims + spec.dims,
+            values[name],
+            {"units": spec.units, "long_name": spec.long_name},
+        )
+    coords = sweep_coordinates(axes)
+    if any("component" in OUTPUTS[k].dims for k in values):
+        coords["component"] = (
+            "component",
+            np.array(["x", "y", "z"]),
+            {"units": COORDINATES["component"][0], "long_name": COORDINATES["component"][1]},
+        )
+    if arc is not None:
+        coords["s"] = ("s", arc, {"units": "m", "long_name": COORDINATES["s"][1]})
+    elif "arc_length" in values:
+        n_s = tails["arc_length"][0]
+        coords["s"] = ("s", np.arange(n_s), {"units": "1", "long_name": "node index"})
+    _flag_statuses(data_vars)
+    attrs = provenance(src, solver_settings)
+    attrs["cases"] = int(np.prod(shape))
+    # as assemble counts them: a broken line is a result, not a failure
+    attrs["cases_failed"] = int(np.count_nonzero((status != 0) & (status != STATUS_BROKEN)))
+    attrs["cases_warned"] = int(np.count_nonzero(warnings != ""))
+    if np.any(status == STATUS_BROKEN):
+        attrs["cases_broken"] = int(np.count_nonzero(status == STATUS_BROKEN))
+    fallbacks = fallbacks or {}
+    attrs["cases_fallback"] = int(sum(fallbacks.values()))
+    attrs["fallback_reasons"] = "; ".join(
+        f"{n} x {why}" for why, n in sorted(fallbacks.items(), key=lambda kv: -kv[1])
+    )
+    return data_vars, coords, attrs

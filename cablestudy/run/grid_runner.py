@@ -1,0 +1,364 @@
+"""A study run as arrays (:class:`cablestudy.study.grid.CaseGrid`): rows of the
+grid as chunks (:func:`cablestudy.analyses.static_grid.evaluate_grid_chunk`), each
+chunk's arrays kept in the cache, held in memory or streamed to disk by size, and the
+dataset written from them.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import tempfile
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..study.loader import StudySource
+from .cache import LOST_PREFIX, TRANSIENT_PREFIXES
+from .outputs import temporary_prefix
+from .progress import Progress, RunSummary
+from .remote import DEFAULT_TIMEOUT, connect
+from .runner import case_label, tidy
+from .scheduler import (
+    AUTO,
+    AUTO_PARALLEL_AFTER,
+    PROCESSES,
+    SYNCHRONOUS,
+    _local_cluster,
+    default_workers,
+)
+from .writer import write_atomic, write_variables_atomic
+
+#: cases per chunk of a study run as arrays (rows of the first axis are never split);
+#: fixed, so that a re-run finds the same chunks in its cache
+GRID_CHUNK_CASES = 10_000
+
+
+#: results of an array-run study up to this size [bytes] are assembled in memory before
+#: writing (no dask); larger ones are streamed from the chunk files one chunk at a time
+IN_MEMORY_BYTES = 256 << 20
+
+
+def grid_chunks(grid: Any) -> list[tuple[int, int]]:
+    """Rows ``lo:hi`` of the first axis per chunk: about :data:`GRID_CHUNK_CASES` cases."""
+    row = math.prod(grid.shape[1:])
+    step = max(1, GRID_CHUNK_CASES // max(row, 1))
+    n0 = grid.shape[0]
+    return [(lo, min(lo + step, n0)) for lo in range(0, n0, step)]
+
+
+def _grid_chunk_task(grid: Any, lo: int, hi: int) -> Any:
+    from ..analyses.static_grid import evaluate_grid_chunk
+
+    return evaluate_grid_chunk(grid, lo, hi)
+
+
+def run_grid_study(
+    src: StudySource,
+    grid: Any,
+    out_dir: str | Path,
+    *,
+    scheduler: str = AUTO,
+    workers: int | None = None,
+    use_cache: bool = True,
+    progress: bool | None = None,
+    timeout: float = DEFAULT_TIMEOUT,
+) -> RunSummary:
+    """Run a study as arrays (:mod:`cablestudy.analyses.static_grid`) and write
+    ``<out_dir>/<name>.nc``
+    chunk by chunk: each finished chunk goes to its own data file (the cache, or a
+    temporary folder with ``use_cache=False``), and the result file is written from
+    those files lazily, so memory holds about one chunk at a time whatever the number
+    of cases. A chunk that is in the cache, intact, is reused."""
+    import shutil
+
+    from .cache import GridChunkStore
+
+    t0 = time.perf_counter()
+    out_dir = Path(out_dir)
+    name = str(src.data["name"])
+    workers = workers or default_workers()
+    lock = tidy(out_dir, name, out_dir / ".cache" / name if use_cache else None)
+    if use_cache:
+        folder = out_dir / ".cache" / name
+        scratch = None
+    else:
+        out_dir.mkdir(parents=True, exist_ok=True)
+        scratch = Path(tempfile.mkdtemp(prefix=temporary_prefix(f".{name}-chunks-"), dir=out_dir))
+        folder = scratch
+    store = GridChunkStore(folder)
+    spans = grid_chunks(grid)
+    keys = {(lo, hi): grid.chunk_key(lo, hi) for lo, hi in spans}
+    files: dict[tuple[int, int], Path] = {}
+    for span, key in keys.items():
+        found = store.find(key)
+        if found is not None:
+            files[span] = found
+    row = math.prod(grid.shape[1:])
+    n_reused = sum((hi - lo) * row for lo, hi in files)
+    bar = Progress(grid.size, enabled=progress)
+    bar.update(n_reused)
+
+    transient: set[Path] = set()
+    #: chunks computed here, held in memory while the whole result fits in
+    #: IN_MEMORY_BYTES (decided at the first chunk with data); else every chunk goes to
+    #: its file and the result is streamed from the files
+    held: dict[tuple[int, int], Any] = {}
+    hold: list[bool | None] = [None]
+
+    def on_done(chunk: Any) -> None:
+        span = (chunk.lo, chunk.hi)
+        if use_cache:
+            path = store.write(chunk)
+            files[span] = path
+            if any(str(m).startswith(TRANSIENT_PREFIXES) for m in chunk.message):
+                transient.add(path)  # in this result, but not kept: a re-run computes it
+        if hold[0] is None and chunk.data:
+            per_case = sum(v.nbytes for v in chunk.data.values()) / max(chunk.n, 1)
+            hold[0] = per_case * grid.size <= IN_MEMORY_BYTES
+        held[span] = chunk
+        if hold[0] is False:  # too large to hold: to files, streamed from there
+            for sp, ch in held.items():
+                if sp not in files:
+                    files[sp] = store.write(ch)
+            held.clear()
+        bar.update(chunk.n)
+
+    todo = [span for span in spans if span not in files]
+    used = ""
+    timings: dict[str, float] = {}
+    t1 = time.perf_counter()
+    try:
+        if todo:
+            used = _execute_grid(grid, todo, scheduler, workers, on_done, timeout=timeout)
+    finally:
+        bar.close()
+    t2 = time.perf_counter()
+    timings["solve"] = t2 - t1
+    target = out_dir / f"{name}.nc"
+    try:
+        lazy = hold[0] is False
+        if not held and not lazy:  # everything from the cache: as large as it is
+            summary = store.summary([files[span] for span in spans])
+            per_case = sum(math.prod(t) for t in summary.tails.values()) * 8
+            lazy = per_case * grid.size > IN_MEMORY_BYTES
+        if lazy:
+            ordered = [(lo, hi, files[(lo, hi)]) for lo, hi in spans]
+            summary = store.summary([p for _, _, p in ordered])
+            ds = grid_dataset_from(src, grid, ordered, summary, lazy=True)
+            t3 = time.perf_counter()
+            timings["assembly"] = t3 - t2
+            import dask
+
+            with dask.config.set(scheduler="synchronous"):  # one chunk in memory at a time
+                path = write_atomic(ds, target)
+        else:
+            chunks = [
+                held[span] if span in held else _stored_chunk(store, files[span]) for span in spans
+            ]
+            summary, variables = _grid_variables(src, grid, chunks)
+            t3 = time.perf_counter()
+            timings["assembly"] = t3 - t2
+            path = write_variables_atomic(*variables, target)
+        timings["write"] = time.perf_counter() - t3
+    finally:
+        if scratch is not None:
+            shutil.rmtree(scratch, ignore_errors=True)
+    for p in transient:
+        p.unlink(missing_ok=True)
+    # a study run as arrays has no database (cablestudy.analyses.static_grid refuses one): a
+    # database
+    # file of this name is an earlier run's, which no longer describes the study
+    from .database_file import database_file_name
+
+    (out_dir / database_file_name(name)).unlink(missing_ok=True)
+    if lock is not None:
+        if lock.alone():  # no other run of the study writing here
+            store.keep(set(files.values()) - transient)
+        lock.release()
+    return RunSummary(
+        path=path,
+        n_cases=grid.size,
+        n_reused=n_reused,
+        n_computed=grid.size - n_reused,
+        n_failed=sum(summary.failures.values()),
+        wall_time=time.perf_counter() - t0,
+        failures=dict(summary.failures),
+        scheduler=used,
+        timings=timings,
+        n_warned=summary.n_warned,
+        warnings=dict(summary.warnings),
+        warned_cases={
+            text: case_label(grid.axes, np.unravel_index(i, grid.shape))
+            for text, i in summary.warned_at.items()
+        },
+        fallbacks=dict(summary.fallbacks),
+    )
+
+
+def _stored_chunk(store: Any, path: Path) -> Any:
+    """A chunk file of the cache as a :class:`cablestudy.analyses.grid_chunk.GridChunk`."""
+    from ..analyses.grid_chunk import GridChunk
+
+    z = store.load(path)
+    lo, hi = (int(v) for v in z.pop("rows"))
+    return GridChunk(
+        lo=lo,
+        hi=hi,
+        key=str(z.pop("key")),
+        status=z.pop("status"),
+        message=z.pop("message"),
+        wall_time=z.pop("wall_time"),
+        warning=z.pop("warning", None),
+        fallback_reason=z.pop("fallback", None),
+        data=z,
+    )
+
+
+def _grid_settings(grid: Any) -> dict[str, Any]:
+    """:func:`default_solver_settings` of the grid's cases: the first case's analysis
+    settings and, where the sweep changes them, every distinct one."""
+    if not any(p.startswith("analysis.") for p in getattr(grid, "validated", {})):
+        return {
+            "analysis": grid.template.analysis.model_dump(mode="json"),
+            "static_methods": [grid.template.analysis.static.method],
+        }
+    import itertools
+
+    from ..study.grid_studies import case_study
+
+    swept = {p: v for p, v in grid.validated.items() if p.startswith("analysis.")}
+    axes = sorted({k for k, _ in swept.values()})
+    settings = []
+    for index in itertools.product(*(range(grid.shape[k]) for k in axes)):
+        at = dict(zip(axes, index, strict=True))
+        study = case_study(grid.template, {p: vals[at[k]] for p, (k, vals) in swept.items()})
+        settings.append(study.analysis)
+    dumps = [a.model_dump(mode="json") for a in settings]
+    out: dict[str, Any] = {
+        "analysis": dumps[0],
+        "static_methods": sorted({a.static.method for a in settings}),
+    }
+    distinct = {json.dumps(d, sort_keys=True) for d in dumps}
+    if len(distinct) > 1:
+        out["analysis_per_case_distinct"] = [json.loads(d) for d in sorted(distinct)]
+    return out
+
+
+def _grid_variables(src: StudySource, grid: Any, chunks: list[Any]) -> tuple[Any, tuple]:
+    """The summary of in-memory chunks (all rows of ``grid``, in order) and the dataset's
+    (data variables, coordinates, attributes): the dataset
+    :func:`cablestudy.run.dataset.grid_dataset` assembles from the chunk files."""
+    from .cache import summarise
+    from .dataset import grid_variables
+
+    summary = summarise(
+        ((c.status, c.message, c.warning, c.data) for c in chunks),
+        (c.fallback_reason for c in chunks),
+    )
+    rest = grid.shape[1:]
+    values: dict[str, Any] = {}
+    for name in summary.names:
+        if name == "arc_length" and summary.arc is not None:
+            continue
+        tail = summary.tails[name]
+        values[name] = np.concatenate(
+            [
+                (
+                    c.data[name]
+                    if name in c.data
+                    else np.full((c.n, *tail), np.nan)  # a chunk failed as a whole
+                ).reshape((c.hi - c.lo, *rest, *tail))
+                for c in chunks
+            ]
+        )
+    variables = grid_variables(
+        grid.axes,
+        src,
+        status=np.concatenate([c.status for c in chunks]),
+        message=np.concatenate([c.message for c in chunks]),
+        warning=np.concatenate([c.warning for c in chunks]),
+        wall_time=np.concatenate([c.wall_time for c in chunks]),
+        values=values,
+        tails=summary.tails,
+        arc=summary.arc,
+        solver_settings=_grid_settings(grid),
+        fallbacks=summary.fallbacks,
+    )
+    return summary, variables
+
+
+def grid_dataset_from(
+    src: StudySource, grid: Any, ordered: list[Any], summary: Any, *, lazy: bool = True
+) -> Any:
+    from .dataset import grid_dataset
+
+    settings = _grid_settings(grid)
+    return grid_dataset(
+        grid.axes,
+        ordered,
+        src,
+        names=summary.names,
+        tails=summary.tails,
+        arc=summary.arc,
+        solver_settings=settings,
+        lazy=lazy,
+        fallbacks=summary.fallbacks,
+    )
+
+
+def _execute_grid(
+    grid: Any,
+    spans: list[tuple[int, int]],
+    scheduler: str,
+    workers: int,
+    on_done: Callable[[Any], None],
+    *,
+    timeout: float = DEFAULT_TIMEOUT,
+) -> str:
+    """Evaluate the chunks ``spans`` of ``grid``: here, or on dask. 'auto' times the
+    first chunk here and goes on here unless the rest would take more than
+    :data:`AUTO_PARALLEL_AFTER` seconds (then worker processes)."""
+    rest = list(spans)
+    if scheduler in (AUTO, SYNCHRONOUS) or len(rest) == 1:
+        t0 = time.perf_counter()
+        on_done(_grid_chunk_task(grid, *rest.pop(0)))
+        per_chunk = time.perf_counter() - t0
+        if scheduler == AUTO and workers > 1 and per_chunk * len(rest) > AUTO_PARALLEL_AFTER:
+            scheduler = PROCESSES
+        else:
+            for lo, hi in rest:
+                on_done(_grid_chunk_task(grid, lo, hi))
+            return SYNCHRONOUS
+    if not rest:
+        return scheduler
+    from dask.distributed import Client, as_completed
+
+    cluster = None
+    if "://" in scheduler:
+        client = connect(scheduler, timeout)
+    else:
+        cluster = _local_cluster(scheduler, workers)
+        client = Client(cluster)
+    try:
+        remote = client.scatter(grid, broadcast=True)
+        futures = {
+            client.submit(_grid_chunk_task, remote, lo, hi, pure=False): (lo, hi) for lo, hi in rest
+        }
+        for future in as_completed(list(futures)):
+            try:
+                chunk = future.result()
+            except Exception as exc:  # noqa: BLE001 - a lost task fails its cases, not the study
+                from ..analyses.grid_chunk import failed_grid_chunk
+
+                chunk = failed_grid_chunk(grid, *futures[future], f"{LOST_PREFIX}{exc!r}")
+            on_done(chunk)
+            future.release()
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+    return scheduler

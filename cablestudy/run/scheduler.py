@@ -1,0 +1,397 @@
+"""Chunks of cases on a scheduler: serially, on threads, on local processes or a
+dask cluster (``auto`` probes the first cases' cost and chooses), a chunk per task sized
+to take about :data:`TARGET_TASK_SECONDS`, a task that dies failing its cases (not the
+study).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import os
+import sys
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from ..analyses.variables import CaseRecord
+from ..study.cases import Case
+from .cache import LOST_PREFIX
+from .remote import DEFAULT_TIMEOUT, connect
+
+#: status of a case whose task failed outside the solvers (worker lost)
+STATUS_TASK_FAILED = 9
+
+SYNCHRONOUS = "synchronous"
+PROCESSES = "processes"
+THREADS = "threads"
+AUTO = "auto"
+SCHEDULERS = (AUTO, SYNCHRONOUS, THREADS, PROCESSES)
+#: auto scheduler: seconds spent timing cases in this process before deciding, and the
+#: estimated remaining run time [s] above which it runs them in parallel (a local cluster
+#: of forked workers starts in about 0.3 s; threads need no start)
+AUTO_PROBE_SECONDS = 0.25
+AUTO_PARALLEL_AFTER = 2.0
+#: other local schedulers: seconds of cases timed here first (sizes the chunks)
+PROBE_SECONDS = 0.2
+#: seconds of work per chunk in the two-thread probe, and the speed-up of two threads
+#: over one above which threads are used rather than processes
+THREAD_PROBE_SECONDS = 0.15
+THREADS_SCALE = 1.5
+#: a task should take about this long [s]: dask's own cost is a few ms per task
+#: (README), about 1 % of a quarter second, and tasks this short balance two workers
+#: (1.47x on the 92-case dynamic sweep against 1.32-1.36x with tasks of a second)
+TARGET_TASK_SECONDS = 0.25
+#: cases per chunk when their cost is not known, and at most (bounds a task's memory)
+DEFAULT_CHUNK_CASES = 200
+MAX_CHUNK_CASES = 20_000
+#: runs of adjacent cases per chunk, from evenly spaced parts of the sweep (make_chunks)
+STRIPES = 4
+
+
+def default_workers() -> int:
+    """Worker processes for a local run: the cores this process may use (so 2 on a
+    2-core machine), at most 8."""
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        cores = os.cpu_count() or 1
+    return max(1, min(cores, 8))
+
+
+def failed_chunk(cases: list[Case], exc: BaseException) -> list[CaseRecord]:
+    """Records for a chunk whose task died outside the solvers (a worker lost, an
+    unpicklable result): every case failed with the reason, NaN data, not cached."""
+    message = f"{LOST_PREFIX}{type(exc).__name__}: {exc}"
+    return [
+        CaseRecord(
+            hash=c.hash,
+            index=c.index,
+            status=STATUS_TASK_FAILED,
+            message=message,
+            wall_time=math.nan,
+        )
+        for c in cases
+    ]
+
+
+def run_chunk(cases: list[Case]) -> list[CaseRecord]:
+    """Evaluate a chunk of cases in one task (cases sharing a static problem are
+    adjacent, so its solution is reused; compatible static problems are batched)."""
+    from ..analyses.evaluate import evaluate_chunk
+
+    return evaluate_chunk(cases)
+
+
+def chunk_limit(per_case: float | None) -> int:
+    """Cases per task: as many as take :data:`TARGET_TASK_SECONDS` at ``per_case``
+    seconds a case (between 1 and :data:`MAX_CHUNK_CASES`), or
+    :data:`DEFAULT_CHUNK_CASES` when the cost is not known."""
+    if per_case is None or not per_case > 0 or not math.isfinite(per_case):
+        return DEFAULT_CHUNK_CASES
+    return int(max(1, min(MAX_CHUNK_CASES, round(TARGET_TASK_SECONDS / per_case))))
+
+
+def make_chunks(
+    cases: list[Case],
+    workers: int,
+    *,
+    min_chunks_per_worker: int = 4,
+    max_chunk: int | None = None,
+    per_case: float | None = None,
+) -> list[list[Case]]:
+    """Batch cases so that a task takes about :data:`TARGET_TASK_SECONDS` (``per_case``:
+    the measured cost of a case [s]; unknown: at most :data:`DEFAULT_CHUNK_CASES` cases),
+    while every
+    worker gets several chunks (load balance) and an interrupt loses at most one chunk
+    per worker."""
+    if not cases:
+        return []
+    if max_chunk is None:
+        max_chunk = chunk_limit(per_case)
+    ordered = sorted(cases, key=lambda c: (c.static_hash, c.index))
+    n_chunks = max(
+        min(len(ordered), workers * min_chunks_per_worker), math.ceil(len(ordered) / max_chunk)
+    )
+    # each chunk takes STRIPES runs of adjacent cases from evenly spaced parts of the
+    # sweep: neighbouring cases cost alike (a taut-slack corner of a dynamic sweep can
+    # cost 50 times the rest), so this spreads an expensive region over several tasks,
+    # while cases sharing a static problem stay mostly together. Chunk sizes differ by at
+    # most one.
+    n = len(ordered)
+    sizes = [n * (j + 1) // n_chunks - n * j // n_chunks for j in range(n_chunks)]
+    chunks: list[list[Case]] = [[] for _ in range(n_chunks)]
+    pos = 0
+    for k in range(STRIPES):  # stripe k of every chunk, then stripe k + 1 ...
+        for j, size in enumerate(sizes):
+            take = size * (k + 1) // STRIPES - size * k // STRIPES
+            chunks[j].extend(ordered[pos : pos + take])
+            pos += take
+    # in the order to submit them: from both ends of the sweep inwards. A case's cost
+    # mostly changes monotonically along an axis (larger amplitude, higher frequency,
+    # longer line), so the costliest chunk is at one end or the other: started first, it
+    # is not the tail of the study
+    order = [i // 2 if i % 2 == 0 else n_chunks - 1 - i // 2 for i in range(n_chunks)]
+    return [chunks[i] for i in order if chunks[i]]
+
+
+OnDone = Callable[[list[CaseRecord]], None]
+
+
+@dataclass
+class Probe:
+    """What the in-process probe learned: the cases it left, the cost of a case [s] at
+    the largest chunk it ran, and (if timed) the speed-up of two threads over one."""
+
+    rest: list[Case]
+    per_case: float
+    thread_speedup: float | None = None
+
+
+def probe_cost(cases: list[Case], on_done: OnDone, seconds: float) -> Probe:
+    """Run ``cases`` here in doubling chunks (1, 2, 4, ... cases, so that cheap cases
+    are timed batched as they will run) until ``seconds`` have passed; the cost of a
+    case is that of the last (largest) chunk. The probe's records count: nothing is
+    computed twice."""
+    ordered = sorted(cases, key=lambda c: (c.static_hash, c.index))
+    # probe cases spread over the sweep (bit-reversed order: its ends, its middle, its
+    # quarters, ...): a sweep's cost changes along its axes (a dynamic sweep's large
+    # amplitudes and high frequencies cost many times its small ones), and its first
+    # cases alone would predict the cheap corner
+    spread = sorted(range(len(ordered)), key=lambda i: _radical_inverse(i))
+    probed: set[int] = set()
+    t_start = time.perf_counter()
+    size, per_case, pos = 1, math.nan, 0
+    while pos < len(spread):
+        take = spread[pos : pos + size]
+        pos += len(take)
+        chunk = [ordered[i] for i in sorted(take)]
+        t0 = time.perf_counter()
+        on_done(run_chunk(chunk))
+        per_case = (time.perf_counter() - t0) / len(chunk)
+        probed.update(take)
+        if time.perf_counter() - t_start >= seconds:
+            break
+        size *= 2
+    rest = [c for i, c in enumerate(ordered) if i not in probed]
+    return Probe(rest, per_case)
+
+
+def _radical_inverse(i: int) -> float:
+    """The van der Corput point of ``i`` in base 2 (its bits mirrored about the binary
+    point): 0, 1/2, 1/4, 3/4, 1/8, ..., an ordering that spreads any prefix."""
+    out, f = 0.0, 0.5
+    while i:
+        if i & 1:
+            out += f
+        i >>= 1
+        f *= 0.5
+    return out
+
+
+def probe_threads(probe: Probe, on_done: OnDone, workers: int) -> Probe:
+    """Time two chunks of about :data:`THREAD_PROBE_SECONDS` each on two threads at once
+    against the probe's serial cost: the speed-up threads give (numba kernels that
+    release the GIL scale, Python-bound work does not)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    n = min(len(probe.rest) // 2, max(1, round(THREAD_PROBE_SECONDS / probe.per_case)))
+    if n < 1 or workers < 2:
+        return probe
+    chunks, rest = [probe.rest[:n], probe.rest[n : 2 * n]], probe.rest[2 * n :]
+    t0 = time.perf_counter()
+    with ThreadPoolExecutor(2) as pool:
+        results = list(pool.map(run_chunk, chunks))
+    wall = time.perf_counter() - t0
+    for records in results:
+        on_done(records)
+    return Probe(rest, probe.per_case, (2 * n * probe.per_case) / max(wall, 1e-9))
+
+
+def choose_scheduler(probe: Probe, workers: int) -> str:
+    """The local scheduler for the cases the probe left: here (synchronous) when they
+    would take less than :data:`AUTO_PARALLEL_AFTER` seconds or there is one worker;
+    else threads when they scaled on two threads, else worker processes."""
+    remaining = probe.per_case * len(probe.rest)
+    if workers < 2 or not remaining > AUTO_PARALLEL_AFTER:
+        return SYNCHRONOUS
+    if probe.thread_speedup is not None and probe.thread_speedup >= THREADS_SCALE:
+        return THREADS
+    return PROCESSES
+
+
+def _run_local(cases: list[Case], on_done: OnDone, *, per_case: float | None = None) -> None:
+    for chunk in make_chunks(cases, 1, per_case=per_case):
+        on_done(run_chunk(chunk))
+
+
+def _run_auto(cases: list[Case], workers: int, on_done: OnDone) -> str:
+    """Probe the cost of a case in this process and choose (:func:`choose_scheduler`);
+    the probe's cases are done by then. Returns the scheduler used for the rest."""
+    probe = probe_cost(cases, on_done, AUTO_PROBE_SECONDS)
+    if workers > 1 and probe.per_case * len(probe.rest) > AUTO_PARALLEL_AFTER:
+        probe = probe_threads(probe, on_done, workers)
+    chosen = choose_scheduler(probe, workers)
+    if chosen == SYNCHRONOUS:
+        _run_local(probe.rest, on_done, per_case=probe.per_case)
+    else:
+        _run_dask(probe.rest, chosen, workers, on_done, per_case=probe.per_case)
+    return chosen
+
+
+def _local_cluster(scheduler: str, workers: int):  # noqa: ANN202 - dask type, imported late
+    """A local dask.distributed cluster. Worker processes are forked (on Linux) from this
+    process, which has by then imported the solvers and loaded their compiled kernels
+    (the probe ran cases here): a worker is ready in a fraction of a second instead of
+    importing everything again (about 3 s on a 2-core machine)."""
+    import dask
+    from dask.distributed import LocalCluster
+
+    method = "fork" if sys.platform.startswith("linux") else "spawn"
+    with dask.config.set({"distributed.worker.multiprocessing-method": method}):
+        return LocalCluster(
+            n_workers=workers if scheduler == PROCESSES else 1,
+            threads_per_worker=1 if scheduler == PROCESSES else workers,
+            processes=scheduler == PROCESSES,
+            dashboard_address=None,
+            silence_logs=50,
+        )
+
+
+def _run_dask(
+    cases: list[Case],
+    scheduler: str,
+    workers: int,
+    on_done: OnDone,
+    *,
+    per_case: float | None = None,
+    timeout: float = DEFAULT_TIMEOUT,
+) -> None:
+    if not cases:
+        return
+    if scheduler == THREADS:
+        _run_threads(cases, workers, on_done, per_case=per_case)
+        return
+    from dask.distributed import Client, as_completed
+
+    cluster = None
+    if scheduler in (PROCESSES, THREADS):
+        cluster = _local_cluster(scheduler, workers)
+        client = Client(cluster)
+    else:
+        client = connect(scheduler, timeout)
+        # chunk for the cluster as it is: one slot per worker thread
+        info = client.scheduler_info()
+        workers = max(1, sum(w.get("nthreads", 1) for w in info.get("workers", {}).values()))
+    try:
+        pending = sorted(cases, key=lambda c: (c.static_hash, c.index))
+        first: list[list[Case]] = []
+        if per_case is None:
+            # the cost is not known yet: one case per worker slot first, timed on the
+            # cluster itself; the rest is chunked when the first of them is back
+            first = [[c] for c in pending[:workers]]
+            pending = pending[workers:]
+        chunk_of: dict[str, list[Case]] = {}
+
+        def submit(chunks: list[list[Case]]) -> list[Any]:
+            futures = client.map(run_chunk, chunks, pure=False)
+            chunk_of.update({f.key: chunk for f, chunk in zip(futures, chunks, strict=True)})
+            return futures
+
+        done = as_completed(submit(first) if first else [])
+        if per_case is not None:
+            done.update(submit(make_chunks(pending, workers, per_case=per_case)))
+            pending = []
+        for future in done:
+            try:
+                records = future.result()
+            except Exception as exc:  # noqa: BLE001 - a lost task fails its cases, not the study
+                records = failed_chunk(chunk_of[future.key], exc)
+            on_done(records)
+            future.release()
+            if pending:
+                times = [r.wall_time for r in records if math.isfinite(r.wall_time)]
+                cost = sum(times) / len(times) if times else None
+                done.update(submit(make_chunks(pending, workers, per_case=cost)))
+                pending = []
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+
+
+def _guarded_chunk(cases: list[Case]) -> list[CaseRecord]:
+    """:func:`run_chunk`, its cases failed (not the study) if the task itself dies."""
+    try:
+        return run_chunk(cases)
+    except Exception as exc:  # noqa: BLE001 - a lost task fails its cases, not the study
+        return failed_chunk(cases, exc)
+
+
+def _run_threads(
+    cases: list[Case], workers: int, on_done: OnDone, *, per_case: float | None = None
+) -> None:
+    """The chunks on dask's local threaded scheduler (no dask.distributed: its import
+    alone is about 0.4 s, a tenth of a few-second study). The solvers' compiled kernels
+    release the GIL, so threads run cases in parallel. Each chunk's records reach
+    ``on_done`` in this thread as the chunk finishes, and no copy is kept (bounded
+    memory); chunks start in :func:`make_chunks` order (the scheduler takes the largest
+    key first, hence the keys count down)."""
+    import dask.threaded
+    from dask.callbacks import Callback
+
+    chunks = make_chunks(cases, workers, per_case=per_case)
+    n = len(chunks)
+    graph = {f"chunk-{n - 1 - i:08d}": (_guarded_chunk, chunk) for i, chunk in enumerate(chunks)}
+
+    def posttask(key: str, result: Any, dsk: Any, state: dict, worker_id: Any) -> None:
+        on_done(result)
+        state["cache"][key] = None
+
+    with Callback(posttask=posttask):
+        dask.threaded.get(graph, list(graph), num_workers=workers)
+
+
+def _share_statics(cases: list[Case]) -> None:
+    """Solve the first case's statics in this process (cached by static hash, so worker
+    processes forked afterwards reuse it). A failure is left for the case itself to
+    record where it runs."""
+    from ..analyses.static import solve_static
+
+    first = min(cases, key=lambda c: (c.static_hash, c.index))
+    with contextlib.suppress(Exception):
+        solve_static(first, None)
+
+
+def execute(
+    cases: list[Case],
+    scheduler: str,
+    workers: int,
+    on_done: OnDone,
+    *,
+    timeout: float = DEFAULT_TIMEOUT,
+) -> str:
+    """Evaluate ``cases`` in chunks on ``scheduler``, calling ``on_done`` with each chunk's
+    records as it finishes (in the calling process). Every local scheduler first times
+    a few cases here (:func:`probe_cost`), which sizes the chunks to about a quarter second
+    and loads the compiled kernels before worker processes are forked. Returns the
+    scheduler that ran the cases after the probe."""
+    if not cases:
+        return scheduler
+    if scheduler == AUTO:
+        return _run_auto(cases, workers, on_done)
+    if "://" in scheduler:
+        _run_dask(cases, scheduler, workers, on_done, timeout=timeout)
+        return scheduler
+    if scheduler == SYNCHRONOUS or len(cases) <= 1:
+        probe = probe_cost(cases, on_done, PROBE_SECONDS)
+        _run_local(probe.rest, on_done, per_case=probe.per_case)
+    else:
+        # the forked workers share what this process has loaded: the compiled kernels
+        # (analyses.warm_up, called before this by `cablestudy run`) and the first
+        # case's static solution, solved here; no case runs here, so both workers start
+        # at once. The chunks are sized from the first cases timed on the workers.
+        _share_statics(cases)
+        _run_dask(cases, scheduler, workers, on_done)
+    return scheduler

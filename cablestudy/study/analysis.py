@@ -1,0 +1,809 @@
+"""Analysis settings: statics, modal analysis, dynamics and the per-case time limit."""
+
+from __future__ import annotations
+
+import math
+from typing import Annotated, Any, Literal
+
+from pydantic import (
+    AfterValidator,
+    Discriminator,
+    Field,
+    Tag,
+    field_validator,
+    model_validator,
+)
+
+from .base import FieldError, Finite, NonNegative, Positive, StrictModel, Vec2, Vec3
+from .system_dynamics import (
+    SYSTEM_HARMONICS,
+    SYSTEM_TABLES,
+    BodyHarmonic,
+    BodyTable,
+    PointHarmonic,
+    PointTable,
+    system_tag,
+)
+
+
+class Installation(StrictModel):
+    """Steady cable laying (vaz-patel seed, eqs. 3b-4c): the laying frame (ship and
+    touchdown point) moves at a constant horizontal velocity and the cable is paid out
+    along itself from end B towards end A (A is the touchdown end)."""
+
+    payout_speed: Finite = Field(
+        0.0, description="speed of the cable along itself from end B towards end A [m/s]"
+    )
+    touchdown_velocity: Vec2 = Field(
+        [0.0, 0.0], description="horizontal velocity of the ship and touchdown point [m/s]"
+    )
+
+
+#: static methods a study may name, and what each is (the registry
+#: ``cablestudy.statics.STATIC_SOLVERS`` holds the same names; a test keeps them equal;
+#: the solvers are not imported here so that validating a study stays light)
+STATIC_METHODS = {
+    "analytic": "exact elastic catenary of a uniform line between fixed ends (linear "
+    "EA; no current, attachments or non-linear law)",
+    "catenary": "semi-analytic elastic catenary (dodaran-park): seabed, point loads, "
+    "axial laws, current by drag elements",
+    "discrete": "equilibrium of the dynamic line model's nodes: bending stiffness EI, "
+    "compliant seabed, bodies' drag",
+    "shooting": "elevation/azimuth ODE (vaz-patel): sheared currents, seabed slope, "
+    "laying, stretched drag diameter",
+}
+
+
+class StaticSettings(StrictModel):
+    method: str = Field(
+        "catenary",
+        description="static solver: "
+        + "; ".join(f"{name}: {what}" for name, what in STATIC_METHODS.items()),
+        json_schema_extra={"enum": list(STATIC_METHODS)},
+    )
+    nodes: int = Field(101, ge=2, le=100_000, description="output points along the line")
+    tolerance: Positive = Field(1e-9, le=1e-2, description="relative tolerance [-]")
+    max_iterations: int = Field(100, ge=1, le=100_000)
+    drag_elements: int | None = Field(
+        None,
+        ge=1,
+        le=100_000,
+        description="drag elements along the line (method catenary, with current); "
+        "default: nodes - 1, at least 20",
+    )
+    installation: Installation | None = Field(
+        None, description="steady cable laying; omit for a line at rest (static)"
+    )
+    drag_diameter: Literal["unstretched", "stretched"] = Field(
+        "unstretched",
+        description="diameter in the static drag law: 'unstretched' d (dodaran-park), or "
+        "'stretched' d (1 + e)^(-1/2), thinned as the line stretches at constant volume "
+        "(vaz-patel; method shooting); matters only with current or laying",
+    )
+    strain_warning: Positive = Field(
+        0.05,
+        le=10.0,
+        description="plausibility limit of the static strain [-]: a case whose largest "
+        "strain along the line (T / EA, or the axial law's strain; kind spring: extension "
+        "/ length) exceeds it keeps status 0 and gets a warning (a law's max_strain still "
+        "fails the case)",
+    )
+
+    @field_validator("method")
+    @classmethod
+    def _known_method(cls, value: str) -> str:
+        from ..statics import STATIC_SOLVERS
+
+        if value not in STATIC_SOLVERS:
+            raise ValueError(
+                f"unknown static method {value!r}; allowed: {', '.join(sorted(STATIC_SOLVERS))}"
+            )
+        return value
+
+
+class ModalSettings(StrictModel):
+    """Natural frequencies and mode shapes about the static shape
+    (:mod:`cablestudy.dynamics.modal`)."""
+
+    modes: int = Field(10, ge=1, le=1000, description="number of lowest modes [-]")
+    elements: int | None = Field(
+        None,
+        ge=2,
+        le=100_000,
+        description="bar elements of the modal model [-]; omit: max(100, 20 * modes)",
+    )
+    mesh: Literal["graded", "uniform"] = Field(
+        "graded",
+        description="element lengths: 'graded' to equal transverse-wave travel time "
+        "(short where the tension is low), or 'uniform' in arc length",
+    )
+    include_added_mass: bool = Field(
+        True, description="add the fluid's added mass (normal, and tangential if given)"
+    )
+    include_bending: bool = Field(True, description="add the segments' bending stiffness EI")
+    mode_shapes: bool = Field(True, description="write mode shapes (mode, s, component)")
+
+    @model_validator(mode="after")
+    def _enough_freedom(self) -> ModalSettings:
+        n = self.n_elements
+        if 3 * (n - 1) < self.modes:
+            raise ValueError(
+                f"elements = {n} gives at most {3 * (n - 1)} degrees of freedom but modes = "
+                f"{self.modes}; allowed: elements >= {-(-self.modes // 3) + 1} for this many modes"
+            )
+        return self
+
+    @property
+    def n_elements(self) -> int:
+        """Elements used: as given, or max(100, 20 * modes) (lumped-mass elements converge
+        as h^2; on a graded mesh 20 elements per mode keep the highest string mode within
+        about (pi / 20)^2 / 24 = 0.1 %)."""
+        if self.elements is not None:
+            return self.elements
+        return min(max(100, 20 * self.modes), 100_000)
+
+
+# ------------------------------------------------------------------ dynamics
+# (time-domain response to prescribed end motion; see cablestudy.dynamics)
+
+#: dynamic methods a study may name, and what each means
+DYNAMIC_METHODS = {
+    "auto": "per case: 'frequency' where the linear answer can be trusted "
+    "(analysis.dynamic.auto), else 'time'",
+    "time": "implicit time integration of the discretised line",
+    "frequency": "linearised about the static shape, harmonic response per excitation "
+    "frequency, drag linearised (cablestudy.dynamics.frequency)",
+}
+
+#: settings of the time integration only: refused with method 'frequency'
+TIME_ONLY_KEYS = (
+    "points_per_period",
+    "max_refinement",
+    "tension_resolution",
+    "spectral_radius",
+    "newton_tolerance",
+    "max_newton_iterations",
+    "ramp_periods",
+    "steady_tolerance",
+    "steady_window",
+    "min_periods",
+    "max_periods",
+    "period",
+    "duration",
+    "history",
+    "after_break",
+)
+
+
+class LinearisationSettings(StrictModel):
+    """Drag linearisation of the frequency-domain method (methods 'frequency' and
+    'auto'): the equivalent damping is iterated until the nodal velocity amplitudes
+    change by less than ``tolerance`` of the largest."""
+
+    tolerance: Positive = Field(
+        1e-6, le=1e-2, description="relative change of the velocity amplitudes [-]"
+    )
+    max_iterations: int = Field(100, ge=1, le=10_000, description="drag iterations at most")
+    samples: int | None = Field(
+        None,
+        ge=8,
+        le=4096,
+        description="phases per period in the drag fit (describing function) at every "
+        "node; unset: a node whose motion, tangent and current lie in the x-z plane is fitted "
+        "in closed form (exact) and the others over 32 phases",
+    )
+
+
+class AutoSettings(StrictModel):
+    """When ``method: auto`` trusts the frequency domain (all must hold), else it runs
+    the time domain. Defaults from the study in docs/frequency-domain.md (the Figs. 2-5
+    sweep and the chain mooring run by both methods: where these pick the frequency
+    domain, max and min tension agree with the time domain within 1 % on Figs. 2-5 and
+    1.25 % on the chain, against the 2 % asked for)."""
+
+    min_tension_ratio: float = Field(
+        0.7,
+        ge=0.0,
+        le=1.0,
+        description="smallest (static - amplitude) / static element tension along the line "
+        "[-]; below it the line nears slack",
+    )
+    max_amplitude_sag_ratio: NonNegative = Field(
+        0.075,
+        description="largest nodal displacement amplitude over the static sag (largest "
+        "distance of the line from its end chord) [-]; above it geometry is nonlinear",
+    )
+    max_touchdown_travel: NonNegative = Field(
+        0.03,
+        description="largest estimated touchdown-point travel amplitude (catenary: touchdown "
+        "tension amplitude x height / vertical tension at the top of the suspended stretch) "
+        "over the line length [-]; above it the held laid nodes misrepresent the line (chain "
+        "mooring: the difference to the time domain grows as the travel squared, about 1.5 % "
+        "at 0.043)",
+    )
+
+
+def _unit_direction(value: list[float]) -> list[float]:
+    norm = math.sqrt(sum(v * v for v in value))
+    if norm == 0.0:
+        raise ValueError("must be a nonzero vector; allowed: any direction of length > 0")
+    return value
+
+
+class HarmonicExcitation(StrictModel):
+    """Harmonic motion of one end about its static position:
+    ``amplitude * sin(2 pi frequency t + phase) * direction / |direction|``. Give the
+    ``frequency`` [Hz] or the ``period`` [s] (exactly one; either can be swept): a period
+    fills frequency = 1 / period."""
+
+    end: Literal["a", "b"] = Field(description="the end that moves")
+    direction: Annotated[Vec3, AfterValidator(_unit_direction)] = Field(
+        description="direction of the motion [-] (normalised)"
+    )
+    amplitude: NonNegative = Field(description="excitation amplitude [m]")
+    frequency: Positive | None = Field(
+        None,
+        description="excitation frequency [Hz]; or give period instead (exactly one)",
+    )
+    period: Positive | None = Field(
+        None,
+        description="excitation period [s], instead of frequency (exactly one): frequency = "
+        "1 / period",
+    )
+    phase_deg: Finite = Field(0.0, description="phase of the sine [deg]")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _frequency_or_period(cls, data: object) -> object:
+        if not isinstance(data, dict):
+            return data
+        has_f = data.get("frequency") is not None
+        has_t = data.get("period") is not None
+        if has_f and has_t:
+            raise FieldError(
+                ("period",),
+                f"give the excitation frequency [Hz] or its period [s], not both (frequency "
+                f"{data['frequency']!r} is given too); allowed: exactly one of them",
+                data["period"],
+            )
+        if not has_f and not has_t:
+            raise FieldError(
+                ("frequency",),
+                "required key 'frequency' is missing (excitation frequency [Hz]); or give "
+                "period [s] instead",
+                None,
+            )
+        period = data.get("period")
+        if has_t and isinstance(period, int | float) and not isinstance(period, bool):
+            if math.isfinite(period) and period > 0.0:
+                return {**data, "frequency": 1.0 / period}
+        return data
+
+
+class TimeSeriesExcitation(StrictModel):
+    """Motion of one end along ``direction`` given as a table of (time [s], displacement
+    [m]) pairs, interpolated by a cubic spline (continuous acceleration). With
+    ``periodic`` the table repeats with its duration as period (the last displacement
+    must equal the first); otherwise the motion holds its last value after the table."""
+
+    end: Literal["a", "b"] = Field(description="the end that moves")
+    direction: Annotated[Vec3, AfterValidator(_unit_direction)] = Field(
+        description="direction of the motion [-] (normalised)"
+    )
+    table: list[Vec2] = Field(min_length=4, description="rows [time s, displacement m]")
+    periodic: bool = Field(False, description="repeat the table with its duration as period")
+
+    @field_validator("table")
+    @classmethod
+    def _increasing(cls, value: list[list[float]]) -> list[list[float]]:
+        times = [row[0] for row in value]
+        if any(b <= a for a, b in zip(times, times[1:], strict=False)):
+            raise ValueError(f"table times must increase strictly, got t = {times}")
+        if times[0] != 0.0:
+            raise ValueError(f"the table must start at t = 0, got t = {times[0]}")
+        return value
+
+    @model_validator(mode="after")
+    def _closes(self) -> TimeSeriesExcitation:
+        if self.periodic:
+            first, last = self.table[0][1], self.table[-1][1]
+            if abs(last - first) > 1e-9 * max(1.0, abs(first)):
+                raise ValueError(
+                    f"a periodic table must end where it starts: displacement {last} at the "
+                    f"end, {first} at t = 0"
+                )
+        return self
+
+
+class Jonswap(StrictModel):
+    """JONSWAP wave spectrum (DNV-RP-C205 3.5.5): significant wave height, peak
+    period and peak enhancement factor."""
+
+    hs: Positive = Field(description="significant wave height [m]")
+    tp: Positive = Field(description="peak period [s]")
+    gamma: float = Field(3.3, ge=1.0, le=7.0, description="peak enhancement factor [-]")
+
+    def density(self, f: float) -> float:
+        """Wave elevation spectral density [m^2/Hz] at frequency ``f`` [Hz]."""
+        if f <= 0.0:
+            return 0.0
+        w, wp = 2.0 * math.pi * f, 2.0 * math.pi / self.tp
+        sigma = 0.07 if w <= wp else 0.09
+        pm = 5.0 / 16.0 * self.hs**2 * wp**4 * w**-5 * math.exp(-1.25 * (w / wp) ** -4)
+        peak = self.gamma ** math.exp(-0.5 * ((w - wp) / (sigma * wp)) ** 2)
+        return (1.0 - 0.287 * math.log(self.gamma)) * pm * peak * 2.0 * math.pi
+
+
+def _interp(table: list[list[float]], f: float) -> float:
+    """Linear interpolation in a (x, y) table, zero outside it."""
+    xs = [r[0] for r in table]
+    if f < xs[0] or f > xs[-1]:
+        return 0.0
+    i = max(j for j in range(len(xs)) if xs[j] <= f)
+    if i == len(xs) - 1:
+        return table[-1][1]
+    w = (f - xs[i]) / (xs[i + 1] - xs[i])
+    return (1.0 - w) * table[i][1] + w * table[i + 1][1]
+
+
+class SpectrumExcitation(StrictModel):
+    """Irregular motion of one end along ``direction``: a one-sided displacement spectral
+    density S(f) [m^2/Hz], either given as a table ``spectrum`` of (frequency [Hz],
+    density [m^2/Hz]) rows, or as a JONSWAP wave spectrum ``wave_spectrum`` times the
+    squared motion RAO ``rao`` (rows of frequency [Hz] and displacement per wave
+    amplitude [m/m]); tables are interpolated linearly, zero outside. It is represented
+    by ``components`` spectral lines ``f_k = k df``, ``df = f_max / components``
+    (``f_max`` the last frequency of the table or the RAO), of amplitude
+    ``sqrt(2 S(f_k) df)``: the frequency domain sums their responses (variance), the
+    time domain runs the realisation with random phases drawn with ``seed``; it repeats
+    after ``1 / df``."""
+
+    end: Literal["a", "b"] = Field(description="the end that moves")
+    direction: Annotated[Vec3, AfterValidator(_unit_direction)] = Field(
+        description="direction of the motion [-] (normalised)"
+    )
+    spectrum: list[Vec2] | None = Field(
+        None,
+        min_length=2,
+        description="rows [frequency Hz, displacement spectral density m^2/Hz]",
+    )
+    wave_spectrum: Jonswap | None = Field(None, description="JONSWAP waves (with rao)")
+    rao: list[Vec2] | None = Field(
+        None, min_length=2, description="rows [frequency Hz, motion per wave amplitude m/m]"
+    )
+    components: int = Field(64, ge=4, le=4096, description="spectral lines [-]")
+    seed: int = Field(0, ge=0, description="seed of the random phases (time domain) [-]")
+    storm_duration: Positive = Field(
+        10800.0, description="duration of the most probable maximum (frequency domain) [s]"
+    )
+
+    @field_validator("spectrum", "rao")
+    @classmethod
+    def _valid_table(cls, value: list[list[float]] | None) -> list[list[float]] | None:
+        if value is None:
+            return value
+        freqs = [row[0] for row in value]
+        if any(b <= a for a, b in zip(freqs, freqs[1:], strict=False)) or freqs[0] < 0.0:
+            raise ValueError(f"frequencies must be >= 0 and increase strictly, got {freqs}")
+        if any(row[1] < 0.0 for row in value) or not any(row[1] > 0.0 for row in value):
+            raise ValueError("values must be >= 0 and not all zero")
+        return value
+
+    @model_validator(mode="after")
+    def _one_form(self) -> SpectrumExcitation:
+        table = self.spectrum is not None
+        waves = self.wave_spectrum is not None or self.rao is not None
+        if table == waves or (waves and (self.wave_spectrum is None or self.rao is None)):
+            raise ValueError(
+                "give either spectrum (a displacement density table) or wave_spectrum "
+                "together with rao; allowed: one of the two forms"
+            )
+        return self
+
+    @property
+    def f_max(self) -> float:
+        table = self.spectrum if self.spectrum is not None else self.rao
+        assert table is not None
+        return table[-1][0]
+
+    @property
+    def line_frequencies(self) -> list[float]:
+        df = self.f_max / self.components
+        return [df * k for k in range(1, self.components + 1)]
+
+    def density(self, f: float) -> float:
+        """Displacement spectral density [m^2/Hz] at ``f`` [Hz]."""
+        if self.spectrum is not None:
+            return _interp(self.spectrum, f)
+        assert self.wave_spectrum is not None and self.rao is not None
+        return self.wave_spectrum.density(f) * _interp(self.rao, f) ** 2
+
+    @property
+    def line_amplitudes(self) -> list[float]:
+        """Amplitudes [m] of the spectral lines: sqrt(2 S(f_k) df)."""
+        df = self.f_max / self.components
+        return [math.sqrt(2.0 * self.density(f) * df) for f in self.line_frequencies]
+
+
+class BodySpectrumExcitation(SpectrumExcitation):
+    """Irregular motion of one degree of freedom of a body of a system (issue 24): the
+    spectrum of a line end's motion (a density table, or JONSWAP waves times the
+    degree of freedom's RAO, m/m or rad/m), the same spectral lines and seeded phases."""
+
+    end: None = Field(None, description="(a line end's key: a body moves by dof)")
+    direction: None = Field(None, description="(a line end's key: a body moves by dof)")
+    body: str = Field(description="the body that moves (a key of bodies)")
+    dof: Literal["surge", "sway", "heave", "roll", "pitch", "yaw"] = Field(
+        description="degree of freedom moved [m or rad]"
+    )
+
+
+class PointSpectrumExcitation(SpectrumExcitation):
+    """Irregular motion of a point of a system on its own along ``direction``: the
+    spectrum of a line end's motion."""
+
+    end: None = Field(None, description="(a line end's key: a point moves by name)")
+    point: str = Field(description="the point that moves (a key of points)")
+
+
+def _excitation_tag(value: Any) -> str:
+    if isinstance(value, dict):
+        tag = system_tag(value)  # a system's body or point motion
+        if tag is not None:
+            return tag
+        if "spectrum" in value or "wave_spectrum" in value:
+            return "SpectrumExcitation"
+        return "TimeSeriesExcitation" if "table" in value else "HarmonicExcitation"
+    return type(value).__name__
+
+
+Excitation = Annotated[
+    Annotated[HarmonicExcitation, Tag("HarmonicExcitation")]
+    | Annotated[TimeSeriesExcitation, Tag("TimeSeriesExcitation")]
+    | Annotated[SpectrumExcitation, Tag("SpectrumExcitation")]
+    | Annotated[BodyHarmonic, Tag("BodyHarmonic")]
+    | Annotated[BodyTable, Tag("BodyTable")]
+    | Annotated[PointHarmonic, Tag("PointHarmonic")]
+    | Annotated[PointTable, Tag("PointTable")]
+    | Annotated[BodySpectrumExcitation, Tag("BodySpectrum")]
+    | Annotated[PointSpectrumExcitation, Tag("PointSpectrum")],
+    Discriminator(_excitation_tag),
+]
+
+
+def _one_or_many(value: Any) -> str:
+    # tag names with brackets are dropped from error paths by the loader
+    return "list[motions]" if isinstance(value, list) else "single[motion]"
+
+
+#: one motion, or a list of motions that add up (errors report only the form given)
+ExcitationOrList = Annotated[
+    Annotated[Excitation, Tag("single[motion]")]
+    | Annotated[list[Excitation], Tag("list[motions]")],
+    Discriminator(_one_or_many),
+]
+
+
+class HistorySettings(StrictModel):
+    """Time histories to keep, resampled uniformly over the last periods of the run."""
+
+    points: list[NonNegative] = Field(
+        [], description="arc lengths from end A of the points whose motion is kept [m]"
+    )
+    periods: Positive = Field(2.0, description="length of the kept record [periods]")
+    samples_per_period: int = Field(64, ge=4, le=10_000, description="samples per period")
+    whole_line: bool = Field(
+        False,
+        description="also keep position, velocity and effective tension along the whole "
+        "line (history_line_position, history_line_velocity, history_line_tension on time "
+        "and s): at the static output points, so analysis.static.nodes decimates them "
+        "along the line and samples_per_period in time",
+    )
+
+
+class FrequencyRange(StrictModel):
+    """Frequencies [Hz] from ``start`` to ``stop`` (included), ``num`` of them."""
+
+    start: Positive = Field(description="lowest frequency [Hz]")
+    stop: Positive = Field(description="highest frequency [Hz]")
+    num: int = Field(200, ge=2, le=100_000, description="number of frequencies [-]")
+
+    @model_validator(mode="after")
+    def _ordered(self) -> FrequencyRange:
+        if self.stop <= self.start:
+            raise ValueError(
+                f"stop must exceed start; allowed: stop > {self.start} (got {self.stop})"
+            )
+        return self
+
+    @property
+    def values(self) -> list[float]:
+        step = (self.stop - self.start) / (self.num - 1)
+        return [float(f"{self.start + i * step:.15g}") for i in range(self.num)]
+
+
+class DynamicSettings(StrictModel):
+    """Time-domain dynamics about the static shape under prescribed end motion.
+
+    ``excitation`` is one motion or a list of motions summed (harmonics at either or both
+    ends, or time tables). The run lasts until the per-period maximum and minimum end
+    tension change by less than ``steady_tolerance`` (relative to the period's maximum)
+    over ``steady_window`` consecutive periods, or ``max_periods`` periods; with
+    ``duration`` it lasts that long instead and steady-state detection is off.
+    """
+
+    excitation: ExcitationOrList = Field(description="prescribed end motion")
+    method: str = Field(
+        "auto",
+        description="dynamic method: "
+        + "; ".join(f"{name}: {what}" for name, what in DYNAMIC_METHODS.items()),
+        json_schema_extra={"enum": list(DYNAMIC_METHODS)},
+    )
+    elements: int = Field(80, ge=2, le=10_000, description="elements of the dynamic model")
+    points_per_period: int = Field(
+        64, ge=8, le=100_000, description="time steps per period of the fastest harmonic"
+    )
+    max_refinement: int = Field(
+        6, ge=0, le=12, description="step halvings allowed around slack-taut transitions"
+    )
+    tension_resolution: Positive = Field(
+        0.2,
+        le=10.0,
+        description="largest end-tension change in one step, relative to the static "
+        "tension [-]; a larger change halves the step (snap loads)",
+    )
+    spectral_radius: float = Field(
+        0.3,
+        ge=0.0,
+        le=1.0,
+        description="generalised-alpha high-frequency spectral radius [-] (1: no damping)",
+    )
+    newton_tolerance: Positive = Field(
+        1e-7, le=1e-2, description="Newton force residual relative to the static tension [-]"
+    )
+    max_newton_iterations: int = Field(12, ge=2, le=200)
+    ramp_periods: NonNegative = Field(
+        2.0, description="smooth start of the motion over this many periods [periods]"
+    )
+    steady_tolerance: Positive = Field(
+        0.002, le=0.5, description="steady state: change of per-period max and min tension [-]"
+    )
+    steady_window: int = Field(2, ge=1, le=100, description="periods that must agree")
+    min_periods: int = Field(3, ge=1, description="periods run after the ramp at least")
+    max_periods: int = Field(80, ge=1, le=100_000, description="periods run at most")
+    period: Positive | None = Field(
+        None,
+        description="steady-state period [s]; default: the longest harmonic or "
+        "periodic-table period",
+    )
+    duration: Positive | None = Field(
+        None, description="fixed run time [s] (no steady-state detection)"
+    )
+    after_break: Literal["continue", "stop"] = Field(
+        "continue",
+        description="with line.failure, time domain of a kind: catenary line: after the "
+        "line parts, continue (the parts move on, no steady-state detection, to duration "
+        "or max_periods) or stop the run at the break",
+    )
+    history: HistorySettings | None = None
+    linearisation: LinearisationSettings | None = Field(
+        None, description="drag linearisation (methods frequency and auto); omit: defaults"
+    )
+    auto: AutoSettings | None = Field(None, description="thresholds of method auto; omit: defaults")
+    transfer_function: FrequencyRange | None = Field(
+        None,
+        description="methods frequency and auto: also write the end and line tension per unit "
+        "excitation amplitude at these frequencies, on a 'frequency' dimension",
+    )
+
+    @field_validator("method")
+    @classmethod
+    def _known_dynamic_method(cls, value: str) -> str:
+        if value not in DYNAMIC_METHODS:
+            raise ValueError(
+                f"unknown dynamic method {value!r}; allowed: {', '.join(DYNAMIC_METHODS)}"
+            )
+        return value
+
+    @model_validator(mode="after")
+    def _period_known(self) -> DynamicSettings:
+        items = self.excitation if isinstance(self.excitation, list) else [self.excitation]
+        if not items:
+            raise ValueError("excitation: list at least one motion")
+        harmonic = any(isinstance(e, (HarmonicExcitation, *SYSTEM_HARMONICS)) for e in items)
+        periodic = any(
+            isinstance(e, (TimeSeriesExcitation, *SYSTEM_TABLES)) and e.periodic for e in items
+        ) or any(isinstance(e, SpectrumExcitation) for e in items)
+        if not (harmonic or periodic) and self.period is None and self.duration is None:
+            raise ValueError(
+                "excitation has no period (only non-periodic tables): give "
+                "analysis.dynamic.duration [s] or analysis.dynamic.period [s]"
+            )
+        return self
+
+    @model_validator(mode="after")
+    def _keys_of_the_method(self) -> DynamicSettings:
+        method = self.method
+        if method == "frequency":
+            given = [k for k in TIME_ONLY_KEYS if k in self.model_fields_set]
+            if given:
+                raise ValueError(
+                    f"{', '.join(given)}: used by the time domain only, not by method "
+                    "'frequency'; allowed: method 'time' or 'auto' (or remove the key)"
+                )
+            items = self.excitations
+            spectra = [e for e in items if isinstance(e, SpectrumExcitation)]
+            if spectra and len(items) != 1:
+                raise ValueError(
+                    "method 'frequency' solves harmonic motions of one frequency, or one "
+                    "spectrum alone; allowed: one spectrum, or method 'time'"
+                )
+            harmonic = (HarmonicExcitation, *SYSTEM_HARMONICS)  # a system's too (issue 24)
+            if not spectra and not all(isinstance(e, harmonic) for e in items):
+                raise ValueError(
+                    "method 'frequency' needs harmonic excitation or a spectrum (a time table "
+                    "is solved by method 'time'); allowed: harmonic motions of one frequency, "
+                    "or one spectrum"
+                )
+            freqs = {e.frequency for e in items if isinstance(e, harmonic)}
+            if len(freqs) > 1:
+                raise ValueError(
+                    f"method 'frequency' solves one excitation frequency per case (got "
+                    f"{sorted(freqs)} Hz); allowed: harmonic motions of one frequency, or "
+                    "method 'time'"
+                )
+        if method == "time":
+            for key in ("linearisation", "transfer_function"):
+                if key in self.model_fields_set:
+                    raise ValueError(
+                        f"{key}: used by methods 'frequency' and 'auto', not by method "
+                        "'time'; allowed: method 'frequency' or 'auto' (or remove the key)"
+                    )
+        if self.auto is not None and method != "auto":
+            raise ValueError(
+                f"auto: thresholds of method 'auto', not used by method {method!r}; allowed: "
+                "method 'auto' (or remove the key)"
+            )
+        if (
+            self.linearisation is not None
+            and self.linearisation.samples is not None
+            and any(isinstance(e, SpectrumExcitation) for e in self.excitations)
+        ):
+            raise ValueError(
+                f"linearisation.samples: {self.linearisation.samples} sets the phases of the "
+                "harmonic drag fit; a spectrum's drag is linearised statistically (Gauss-"
+                "Hermite over the velocity's distribution), which has no phases; allowed: "
+                "remove samples, or harmonic excitation"
+            )
+        if self.transfer_function is not None and not all(
+            isinstance(e, HarmonicExcitation) for e in self.excitations
+        ):
+            raise ValueError(
+                "transfer_function: needs harmonic excitation (the tension per unit amplitude "
+                "of a harmonic end motion); allowed: harmonic motions"
+            )
+        return self
+
+    @property
+    def excitations(self) -> list[HarmonicExcitation | TimeSeriesExcitation | SpectrumExcitation]:
+        return list(self.excitation) if isinstance(self.excitation, list) else [self.excitation]
+
+
+class GridAxis(StrictModel):
+    """``num`` equally spaced values from ``start`` to ``stop`` (both included), in the
+    unit of the key (m, or deg for ``angle_deg``)."""
+
+    start: Finite = Field(description="first value [m, or deg for angle_deg]")
+    stop: Finite = Field(description="last value [m, or deg for angle_deg]")
+    num: int = Field(ge=4, le=2000, description="number of values (>= 4: bicubic) [-]")
+
+    @model_validator(mode="after")
+    def _ordered(self) -> GridAxis:
+        if self.stop <= self.start:
+            raise ValueError(
+                f"stop must exceed start; allowed: stop > {self.start} (got {self.stop})"
+            )
+        return self
+
+    @property
+    def values(self) -> list[float]:
+        step = (self.stop - self.start) / (self.num - 1)
+        return [float(f"{self.start + i * step:.15g}") for i in range(self.num)]
+
+
+#: the keys of each database grid: (first axis, second axis)
+DATABASE_GRID_KEYS: dict[str, tuple[str, str]] = {
+    "cartesian": ("horizontal_distance", "height_difference"),
+    "radial": ("distance", "angle_deg"),
+}
+
+
+class DatabaseSettings(StrictModel):
+    """The quasi-static database (aqwa seed 5.8.1.4): the static line solved over a grid
+    of end-B positions relative to end A (fixed), in the vertical plane through A and the
+    study's end B. ``grid: cartesian`` (default) tabulates horizontal distance and height
+    difference; ``grid: radial`` (the seed's grid for lines off the seabed) the distance
+    from A to B and the angle of the chord A-B above the horizontal. Written to the
+    study's dataset (``database_*``) and to ``<name>.database.nc``; ``cablestudy lookup``
+    and :func:`cablestudy.analyses.database.open_database` interpolate it (C1 bicubic)."""
+
+    grid: Literal["cartesian", "radial"] = Field(
+        "cartesian",
+        description="cartesian: horizontal_distance x height_difference; radial (lines "
+        "off the seabed, no environment.depth): distance x angle_deg",
+    )
+    horizontal_distance: GridAxis | None = Field(
+        None, description="grid cartesian: horizontal distance from end A to end B [m] (>= 0)"
+    )
+    height_difference: GridAxis | None = Field(
+        None, description="grid cartesian: height of end B above end A, z_B - z_A [m]"
+    )
+    distance: GridAxis | None = Field(
+        None, description="grid radial: distance from end A to end B, |r_B - r_A| [m] (> 0)"
+    )
+    angle_deg: GridAxis | None = Field(
+        None,
+        description="grid radial: angle of the chord from A to B above the horizontal "
+        "[deg] (-90 .. 90)",
+    )
+
+    @model_validator(mode="after")
+    def _grid_keys(self) -> DatabaseSettings:
+        wanted = DATABASE_GRID_KEYS[self.grid]
+        for kind, keys in DATABASE_GRID_KEYS.items():
+            for key in keys:
+                given = getattr(self, key) is not None
+                if kind != self.grid and given:
+                    raise ValueError(
+                        f"{key}: an axis of grid {kind!r}, not of grid {self.grid!r}; "
+                        f"allowed with grid {self.grid!r}: {', '.join(wanted)}"
+                    )
+                if kind == self.grid and not given:
+                    raise ValueError(
+                        f"{key}: required by grid {self.grid!r} (its axes: {', '.join(wanted)})"
+                    )
+        if self.horizontal_distance is not None and self.horizontal_distance.start < 0.0:
+            raise ValueError(
+                "horizontal_distance.start must be >= 0 (a distance; the direction is that "
+                f"from end A to end B) (got {self.horizontal_distance.start})"
+            )
+        if self.distance is not None and self.distance.start <= 0.0:
+            raise ValueError(
+                "distance.start must be > 0 (the angle of B about A is undefined at A itself) "
+                f"(got {self.distance.start})"
+            )
+        if self.angle_deg is not None and not (
+            -90.0 <= self.angle_deg.start and self.angle_deg.stop <= 90.0
+        ):
+            raise ValueError(
+                "angle_deg must lie in -90 .. 90 (above the horizontal, towards the study's "
+                f"end B) (got {self.angle_deg.start} .. {self.angle_deg.stop})"
+            )
+        return self
+
+    @property
+    def axes(self) -> tuple[GridAxis, GridAxis]:
+        """The grid's two axes, in the order of :data:`DATABASE_GRID_KEYS`."""
+        a, b = (getattr(self, k) for k in DATABASE_GRID_KEYS[self.grid])
+        assert a is not None and b is not None
+        return a, b
+
+
+class Analysis(StrictModel):
+    static: StaticSettings = StaticSettings()
+    database: DatabaseSettings | None = Field(
+        None,
+        description="quasi-static database of end forces, laid length and tension over a "
+        "grid of end-B positions relative to end A; omit: none",
+    )
+    modal: ModalSettings | None = Field(
+        None, description="modal analysis about the static shape; omit: none"
+    )
+    time_limit: Positive = Field(
+        600.0, description="wall-time limit per case [s]; a case over it fails with a message"
+    )
+    dynamic: DynamicSettings | None = Field(
+        None,
+        description="dynamics under prescribed end motion (time or frequency domain); "
+        "omit: statics only",
+    )

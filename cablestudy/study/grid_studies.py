@@ -1,0 +1,147 @@
+"""The Study of a case of a static grid (:mod:`cablestudy.study.grid`), without a
+pydantic validation per case.
+
+The template is validated once and each swept value once at its own path
+(:func:`cablestudy.study.grid.expand_grid`). A case's :class:`~cablestudy.study.study.Study`
+is then the template with the validated swept values put in by copying the models along
+each swept path (:func:`case_study`), and the checks that combine fields -- the models'
+``mode="after"`` validators (a segment's mass or weight, attachments inside the line,
+:meth:`Study._physical`: ends above the seabed, a weightless line longer than its chord)
+-- run on every copied model, so that a combination fails exactly where the full
+validation would. A study whose combinations fail leaves the grid for
+:func:`cablestudy.study.cases.expand_cases`, which reports them as before.
+"""
+
+from __future__ import annotations
+
+import itertools
+from typing import Any
+
+from pydantic import BaseModel
+from pydantic_core import PydanticUndefined
+
+from .line import Segment
+from .study import Study
+
+#: swept paths through a model with a ``mode="before"`` validator that derives other
+#: fields from the swept one are not put in by copying: a segment given by ``line_type``
+#: (its diameter, mass and stiffness come from the material)
+_DERIVING = {Segment: "line_type"}
+
+
+def copyable(template: Study, path: str) -> bool:
+    """Whether the swept ``path`` can be put into copies of ``template`` (every model on
+    the way has its value set as its own field, none derives other fields from it)."""
+    node: Any = template
+    for part in path.split("."):
+        if isinstance(node, BaseModel):
+            field = _DERIVING.get(type(node))
+            if field is not None and getattr(node, field, None) is not None:
+                return False
+            if part not in type(node).model_fields:
+                return False
+            node = getattr(node, part)
+        elif isinstance(node, list | tuple):
+            if not part.isdigit() or int(part) >= len(node):
+                return False
+            node = node[int(part)]
+        else:
+            return False
+    return not isinstance(node, BaseModel | list | tuple | dict)
+
+
+def value_at(study: Study, path: str) -> Any:
+    """The validated value at dotted ``path`` of ``study``."""
+    node: Any = study
+    for part in path.split("."):
+        node = node[int(part)] if isinstance(node, list | tuple) else getattr(node, part)
+    return node
+
+
+def _after_validators(cls: type) -> list[Any]:
+    found = _AFTER.get(cls)
+    if found is None:
+        decs = cls.__pydantic_decorators__.model_validators.values()  # type: ignore[attr-defined]
+        found = [d.func for d in decs if d.info.mode == "after"]
+        _AFTER[cls] = found
+    return found
+
+
+_AFTER: dict[type, list[Any]] = {}
+
+
+def _defaults(cls: type) -> list[tuple[str, Any]]:
+    """The fields of model ``cls`` with a plain default (what a field the user left out
+    holds before any validator derives it)."""
+    found = _DEFAULTS.get(cls)
+    if found is None:
+        found = [
+            (name, info.default)
+            for name, info in cls.model_fields.items()  # type: ignore[attr-defined]
+            if info.default is not PydanticUndefined and info.default_factory is None
+        ]
+        _DEFAULTS[cls] = found
+    return found
+
+
+_DEFAULTS: dict[type, list[tuple[str, Any]]] = {}
+
+
+def _rebuilt(node: Any, updates: dict[tuple[str, ...], Any]) -> Any:
+    """``node`` with the values ``updates`` (relative path -> value) put in: models on
+    the way are shallow copies, with fields their validators derived reset to what the
+    user gave and every ``mode="after"`` validator run again (raising as in a full
+    validation)."""
+    if () in updates:
+        return updates[()]
+    groups: dict[str, dict[tuple[str, ...], Any]] = {}
+    for rel, value in updates.items():
+        groups.setdefault(rel[0], {})[rel[1:]] = value
+    if isinstance(node, list | tuple):
+        items = list(node)
+        for key, sub in groups.items():
+            items[int(key)] = _rebuilt(items[int(key)], sub)
+        return type(node)(items)
+    new = node.model_copy(update={k: _rebuilt(getattr(node, k), sub) for k, sub in groups.items()})
+    unset = new.model_fields_set
+    for name, default in _defaults(type(new)):
+        # a field left out that a validator filled in (e.g. a line's total length)
+        if name not in unset and name not in groups and getattr(new, name) is not default:
+            object.__setattr__(new, name, default)
+    for check in _after_validators(type(new)):
+        result = check(new)
+        if result is not None:
+            new = result
+    return new
+
+
+def case_study(template: Study, values: dict[str, Any]) -> Study:
+    """The study of one case: ``template`` with the validated ``values`` (dotted path ->
+    value) put in, its combined checks run (raises as :meth:`Study.model_validate`
+    would on the whole study)."""
+    return _rebuilt(template, {tuple(p.split(".")): v for p, v in values.items()})
+
+
+def combinations_ok(grid: Any) -> bool:
+    """Whether every case of ``grid`` passes the checks that combine fields (the models'
+    ``mode="after"`` validators on the case's study)."""
+    try:
+        for index in itertools.product(*(range(n) for n in grid.shape)):
+            case_study(grid.template, _case_values(grid, index))
+    except (ValueError, AssertionError, TypeError):
+        return False
+    return True
+
+
+def axis_studies(grid: Any) -> list[Study]:
+    """The template and, per swept value, the template with that value alone put in: what
+    :func:`cablestudy.analyses.evaluate.check_supported` is asked about before any work (whether
+    the static method supports every setting a case may have)."""
+    studies = [grid.template]
+    for path, (_, vals) in grid.validated.items():
+        studies.extend(case_study(grid.template, {path: v}) for v in vals)
+    return studies
+
+
+def _case_values(grid: Any, index: tuple[int, ...]) -> dict[str, Any]:
+    return {p: vals[index[axis]] for p, (axis, vals) in grid.validated.items()}
