@@ -126,6 +126,9 @@ class SystemResult:
     residual: float = 0.0
     #: [m, rad] (m, 6) the bodies' positions (free bodies: in equilibrium)
     body_position: np.ndarray | None = None
+    #: why the compiled system Newton (:mod:`.system_fast`) left the system to this
+    #: general path ('' if it solved it, or was not asked: a method other than catenary)
+    fallback: str = ""
 
 
 class SystemFailure(Exception):
@@ -333,13 +336,29 @@ def solve_system(
     numerical failure is returned as status, message and NaN."""
     n, m = len(system.point_names), len(system.body_names)
     free_mask = system.point_kind == FREE
+    # the compiled system Newton first where it takes the system (statics.system_fast);
+    # what it leaves comes here, with its reason in ``fallback``
+    fallback: list[str] = []
+
+    def solve(sys: MooringSystem) -> SystemResult:
+        if getattr(solver, "name", "") == "catenary":
+            from .system_fast import solve_fast
+
+            fast, why = solve_fast(sys, prescribed=True)
+            if fast is not None:
+                return fast
+            fallback.append(why)
+        return _solve(sys, solver, deadline, free_mask)
+
     try:
         if system.body_free.size and np.any(system.body_free):
             from .free_bodies import solve_free_bodies
 
-            return solve_free_bodies(system, lambda sys: _solve(sys, solver, deadline, free_mask))
-        res = _solve(system, solver, deadline, free_mask)
-        res.body_position = np.array(system.body_position, dtype=float)
+            res = solve_free_bodies(system, solve)
+        else:
+            res = solve(system)
+            res.body_position = np.array(system.body_position, dtype=float)
+        res.fallback = fallback[0] if fallback else ""
         return res
     except SystemFailure as exc:
         return SystemResult(

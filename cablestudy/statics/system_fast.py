@@ -72,10 +72,12 @@ class Packed:
         return self.la.shape[0]
 
 
-def ineligible(system: MooringSystem) -> str:
+def ineligible(system: MooringSystem, *, prescribed: bool = False) -> str:
     """Why the compiled path does not take ``system`` ('' when it does, as far as the
-    system's definition says; the end positions decide the rest in :func:`pack`)."""
-    if system.body_free.size and np.any(system.body_free):
+    system's definition says; the end positions decide the rest in :func:`pack`).
+    ``prescribed``: free bodies are taken where they are (one evaluation of the free-body
+    Newton of :mod:`.free_bodies`)."""
+    if not prescribed and system.body_free.size and np.any(system.body_free):
         return "free bodies are solved by the general path"
     if not _fast.AVAILABLE:
         return "numba is not installed"
@@ -550,13 +552,14 @@ def _bodies_many(
     return body_force, body_stiffness
 
 
-def solve_fast(system: MooringSystem) -> tuple[object | None, str]:
+def solve_fast(system: MooringSystem, *, prescribed: bool = False) -> tuple[object | None, str]:
     """``system`` through the compiled path: (its :class:`.system.SystemResult`, '') or
-    (None, why the general path must solve it)."""
+    (None, why the general path must solve it). ``prescribed``: free bodies taken where
+    ``system`` puts them (see :func:`ineligible`)."""
     from .base import StaticResult
     from .system import SystemResult, point_positions
 
-    why = ineligible(system)
+    why = ineligible(system, prescribed=prescribed)
     if why:
         return None, why
     free = system.point_kind == FREE
@@ -564,7 +567,10 @@ def solve_fast(system: MooringSystem) -> tuple[object | None, str]:
     pk, whys = pack(system, pos[None])
     if pk is None:
         return None, str(whys[0])
-    sol = solve_packed(system, pk, np.asarray(system.body_position, dtype=float)[None])
+    try:
+        sol = solve_packed(system, pk, np.asarray(system.body_position, dtype=float)[None])
+    except np.linalg.LinAlgError as exc:  # a singular point stiffness: the general path
+        return None, f"{NOT_SETTLED} ({exc})"
     if sol.fallback[0]:
         return None, str(sol.fallback[0])
     lines = [
