@@ -327,13 +327,14 @@ def _dof_index(mask: np.ndarray) -> np.ndarray:
 
 
 def solve_system(
-    system: MooringSystem, solver: Any, *, deadline: float | None = None
+    system: MooringSystem, solver: Any, *, deadline: float | None = None, compiled: bool = True
 ) -> SystemResult:
     """Equilibrium of the free points (Newton with the lines' exact stiffness and a
     line search on the system's energy along the step, :func:`_line_search`), then the
     bodies' force and stiffness; free bodies by :mod:`.free_bodies`.
     ``solver`` solves one line with both ends fixed (a registered static solver). A
-    numerical failure is returned as status, message and NaN."""
+    numerical failure is returned as status, message and NaN. With ``compiled`` (the
+    default) the compiled system Newton takes what it can (:mod:`.system_fast`)."""
     n, m = len(system.point_names), len(system.body_names)
     free_mask = system.point_kind == FREE
     # the compiled system Newton first where it takes the system (statics.system_fast);
@@ -341,7 +342,7 @@ def solve_system(
     fallback: list[str] = []
 
     def solve(sys: MooringSystem) -> SystemResult:
-        if getattr(solver, "name", "") == "catenary":
+        if compiled and getattr(solver, "name", "") == "catenary":
             from .system_fast import solve_fast
 
             fast, why = solve_fast(sys, prescribed=True)
