@@ -172,8 +172,10 @@ def expand_grid(src: StudySource) -> CaseGrid | None:
     from .grid_static import combinations_ok, value_at
 
     template = validate_data(src.data, src)
-    if template.lines:  # a system of lines: case by case (cablestudy.system_cases)
-        return None
+    if template.lines:  # a system of lines: its position sweeps (cablestudy.system_grid)
+        from .system_grid import expand_system_grid
+
+        return expand_system_grid(src, template)
     axes = parse_sweep(src)
     if not _static_sweep(template, axes):
         return None
@@ -777,6 +779,10 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
     fault inside the batch fails the chunk's cases with its text (never raises)."""
     from .statics.batch import solve_batch
 
+    if getattr(grid, "is_system", False):  # a system's position sweep
+        from .system_grid import evaluate_system_chunk
+
+        return evaluate_system_chunk(grid, lo, hi)
     if not grid.arrays:
         from .grid_static import evaluate_static_chunk
 

@@ -945,6 +945,7 @@ def _grid_variables(src: StudySource, grid: Any, chunks: list[Any]) -> tuple[Any
         arc=summary.arc,
         solver_settings=_grid_settings(grid),
         fallbacks=summary.fallbacks,
+        named=getattr(grid, "named", None),  # a system's (cablestudy.system_grid)
     )
     return summary, variables
 
@@ -965,6 +966,7 @@ def grid_dataset_from(
         solver_settings=settings,
         lazy=lazy,
         fallbacks=summary.fallbacks,
+        named=getattr(grid, "named", None),  # a system's (cablestudy.system_grid)
     )
 
 

@@ -1,0 +1,336 @@
+"""Sweeps of a system study's positions as a grid (:mod:`cablestudy.grid`), solved by the
+compiled system Newton many cases at a time.
+
+A system study whose sweep moves only positions -- a prescribed body's pose
+(``bodies.<b>.position.<i>``), a fixed point (``points.<p>.position.<i>``), a body
+point's offset (``points.<p>.offset.<i>``) -- is validated once as a template and each
+swept value once at its own path (as :func:`cablestudy.grid.expand_grid` does); the
+only check that combines swept fields, a fixed point above the seabed, runs over the
+whole grid with NumPy. No per-case pydantic model or :class:`MooringSystem` is built: a
+chunk of cases is the template's system with arrays of point positions and body poses,
+solved by :func:`cablestudy.statics.system_fast.solve_packed` (the compiled Newton, then
+every line re-solved, sampled and verified, the equilibrium checked, the bodies' force
+and stiffness), and its outputs stacked into one array per variable with the names,
+dims and values of :func:`cablestudy.system_cases.system_outputs`.
+
+Every case starts its Newton from the template's own equilibrium (solved once per
+sweep, with the free points' positions the study gives as the start), never from
+another case, so a case's record does not depend on the chunking or on the order of the
+cases. A case the compiled path does not take or settle is solved by the general path
+(:func:`cablestudy.statics.system.solve_system`) from the study's starting positions and
+counted with its reason (the dataset's ``cases_fallback`` and ``fallback_reasons``).
+
+Anything else (another swept key, free bodies, a system the compiled path does not take
+at all) runs case by case (:mod:`cablestudy.system_cases`), where the compiled path
+still solves each case it takes.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import time
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import numpy as np
+
+from .cases import _copy_tree, _hash, _set_path, code_fingerprint, parse_sweep
+from .config.loader import StudyError, StudySource, validate_data
+from .config.study import Study
+from .grid import STATUS_NUMERICAL, CaseGrid, GridChunk, _numeric, _warning_column, grid_shape
+
+#: swept paths the system grid takes: (group, name, field, component)
+_PATH = re.compile(r"^(bodies|points)\.([^.]+)\.(position|offset)\.(\d)$")
+
+
+@dataclass(frozen=True)
+class SystemGrid(CaseGrid):
+    """A system study's position sweep as a grid (see the module docstring); the
+    template's :class:`MooringSystem` and the free points' start."""
+
+    system: Any = None
+    #: the free points' start of every case (k, 3) [m]: the template's equilibrium
+    start: np.ndarray | None = None
+    #: names of the system's coordinates: line, point (free points), body, dof, dof_j
+    named: dict[str, list[str]] = field(default_factory=dict)
+    #: per swept path: (what it sets, index, component): ('pose', body, dof),
+    #: ('fixed', point, xyz) or ('offset', point, xyz)
+    targets: dict[str, tuple[str, int, int]] = field(default_factory=dict)
+
+    @property
+    def is_system(self) -> bool:
+        return True
+
+
+def expand_system_grid(src: StudySource, template: Study) -> SystemGrid | None:
+    """The system study as a :class:`SystemGrid` when its sweep moves positions only and
+    every swept value and combination is valid, else None (then case by case)."""
+    from .config.system import BodyPoint, FixedPoint
+    from .statics.system_fast import ineligible
+    from .system_cases import system_model
+
+    axes = parse_sweep(src)
+    if not axes or not _numeric(axes):
+        return None
+    points, bodies = list(template.points), list(template.bodies)
+    targets: dict[str, tuple[str, int, int]] = {}
+    for axis in axes:
+        for path in axis.paths:
+            m = _PATH.match(path)
+            if m is None:
+                return None
+            group, name, key, comp = m.group(1), m.group(2), m.group(3), int(m.group(4))
+            if group == "bodies":
+                body = template.bodies.get(name)
+                if body is None or body.kind != "prescribed" or key != "position" or comp > 5:
+                    return None
+                targets[path] = ("pose", bodies.index(name), comp)
+            else:
+                point = template.points.get(name)
+                if point is None or comp > 2:
+                    return None
+                if key == "position" and isinstance(point, FixedPoint):
+                    targets[path] = ("fixed", points.index(name), comp)
+                elif key == "offset" and isinstance(point, BodyPoint):
+                    targets[path] = ("offset", points.index(name), comp)
+                else:
+                    return None
+    system = system_model(template)
+    if ineligible(system):
+        return None
+    base = {k: v for k, v in src.data.items() if k != "sweep"}
+    # each swept value once, at its own path (a fault is reported case by case)
+    for axis in axes:
+        for i in range(axis.size):
+            data = _copy_tree(base)
+            try:
+                for path, vals in zip(axis.paths, axis.values, strict=True):
+                    _set_path(data, path, vals[i])
+                validate_data(data, src)
+            except (KeyError, StudyError):
+                return None
+    swept = {
+        p: (k, np.asarray(vals, dtype=float))
+        for k, axis in enumerate(axes)
+        for p, vals in zip(axis.paths, axis.values, strict=True)
+    }
+    if not _fixed_points_above_seabed(template, swept, targets, [a.size for a in axes]):
+        return None
+    from .statics import STATIC_SOLVERS
+    from .statics.system import solve_system
+
+    equilibrium = solve_system(system, STATIC_SOLVERS["catenary"])
+    free = system.point_kind == 1
+    start = None
+    if equilibrium.status == 0 and not any(t[0] == "fixed" for t in targets.values()):
+        # (a swept anchor changes where the free points hang: they start as the study says)
+        start = np.array(equilibrium.point_position[free], dtype=float)
+    body = template.model_dump(mode="json", exclude={"name", "description", "sweep"})
+    return SystemGrid(
+        template=template,
+        axes=axes,
+        swept=swept,
+        key=_hash(
+            [
+                code_fingerprint(),
+                body,
+                {p: k for p, (k, _) in swept.items()},
+                grid_shape(axes),
+                "system",
+            ]
+        ),
+        validated={},
+        arrays=True,
+        system=system,
+        start=start,
+        named={
+            "line": list(template.lines),
+            "point": [k for k, p in template.points.items() if p.kind == "free"],
+            "body": bodies,
+        },
+        targets=targets,
+    )
+
+
+def _fixed_points_above_seabed(
+    template: Study,
+    swept: dict[str, tuple[int, np.ndarray]],
+    targets: dict[str, tuple[str, int, int]],
+    shape: list[int],
+) -> bool:
+    """:meth:`Study._system`'s check that combines swept fields, over the whole grid: every
+    fixed point whose position is swept above the seabed."""
+    env = template.environment
+    if env.depth is None:
+        return True
+    rise = math.tan(math.radians(env.seabed.slope_deg))
+    heading = math.radians(env.seabed.slope_heading_deg)
+    names = list(template.points)
+    moved = {targets[p][1] for p in swept if targets[p][0] == "fixed"}
+    for i in moved:
+        xyz = []
+        for c in range(3):
+            path = f"points.{names[i]}.position.{c}"
+            if path in swept:
+                axis, vals = swept[path]
+                s = [1] * len(shape)
+                s[axis] = len(vals)
+                xyz.append(vals.reshape(s))
+            else:
+                xyz.append(np.asarray(float(template.points[names[i]].position[c])))
+        x, y, z = xyz
+        ground = -env.depth + rise * (x * math.cos(heading) + y * math.sin(heading))
+        if np.any(z < ground - 1e-9 * env.depth):
+            return False
+    return True
+
+
+def _case_inputs(grid: SystemGrid, lo: int, hi: int) -> tuple[np.ndarray, np.ndarray]:
+    """Per case of rows ``lo:hi``: the bodies' poses (n, m, 6) and the points' base
+    positions (n, n_points, 3) (fixed points where they are, free points' start as the
+    study gives, body points' offsets)."""
+    system = grid.system
+    n = (hi - lo) * math.prod(grid.shape[1:])
+    poses = np.broadcast_to(system.body_position, (n, *system.body_position.shape)).copy()
+    base = np.broadcast_to(system.point_position, (n, *system.point_position.shape)).copy()
+    for path, (what, i, c) in grid.targets.items():
+        vals = grid.values(path, lo, hi)
+        if what == "pose":
+            poses[:, i, c] = vals
+        else:
+            base[:, i, c] = vals
+    return poses, base
+
+
+def evaluate_system_chunk(grid: SystemGrid, lo: int, hi: int) -> GridChunk:
+    """Solve rows ``lo:hi`` of a system grid and stack the outputs (see the module
+    docstring). Never raises: a fault fails the chunk's cases with its text."""
+    from .plausibility import fallback_warning
+    from .statics.system import BODY
+    from .statics.system_fast import pack, point_positions_many, solve_packed
+
+    t0 = time.perf_counter()
+    system = grid.system
+    n = (hi - lo) * math.prod(grid.shape[1:])
+    reasons = np.full(n, "", dtype=object)
+    status = np.zeros(n, dtype=np.int64)
+    messages = [""] * n
+    warnings: dict[int, list[str]] = {}
+    data: dict[str, np.ndarray] = {}
+    try:
+        poses, base = _case_inputs(grid, lo, hi)
+        body_pts = system.point_kind == BODY
+        pos = point_positions_many(system, poses, base if np.any(body_pts) else None, base)
+        pk, why = pack(system, pos, grid.start)
+        keep = np.flatnonzero(why == "")
+        out = _empty_outputs(system, n)
+        if pk is not None:
+            sol = solve_packed(system, pk, poses[keep])
+            _put(out, keep, sol, system)
+            why[keep] = sol.fallback
+        if "body_position" in out:
+            out["body_position"] = poses.copy()
+        for i in np.flatnonzero(why != ""):
+            reasons[i] = str(why[i])
+            st, msg = _general(system, poses[i], base[i], out, int(i))
+            status[i], messages[i] = st, msg
+        for i in np.flatnonzero((reasons != "") & (status == 0)):
+            warnings.setdefault(int(i), []).append(fallback_warning(str(reasons[i])))
+        bad = status != 0
+        for arr in out.values():  # a failed case keeps no static output (as assemble)
+            arr[bad] = np.nan
+        data = out
+    except Exception as exc:  # noqa: BLE001 - a fault in a chunk fails its cases, as data
+        status[:] = STATUS_NUMERICAL
+        messages = [f"{type(exc).__name__}: {exc}"] * n
+        warnings = {}
+        data = {}
+    wall = (time.perf_counter() - t0) / max(n, 1)
+    return GridChunk(
+        lo=lo,
+        hi=hi,
+        key=grid.chunk_key(lo, hi),
+        status=status,
+        message=np.array(messages, dtype=str).reshape(n),
+        wall_time=np.full(n, wall),
+        data=data,
+        fallback=int(np.count_nonzero(reasons != "")),
+        warning=_warning_column(n, warnings),
+        fallback_reason=np.array(reasons.tolist(), dtype=str).reshape(n),
+    )
+
+
+def _empty_outputs(system: Any, n: int) -> dict[str, np.ndarray]:
+    """The output arrays of ``n`` cases (NaN), as :func:`system_cases.system_outputs`
+    names and shapes them per case."""
+    from .statics.system import FREE
+
+    M = len(system.lines)
+    nn = system.lines[0].problem.n_nodes
+    k = int(np.count_nonzero(system.point_kind == FREE))
+    m = len(system.body_names)
+    out = {
+        "tension_a": np.full((n, M), np.nan),
+        "tension_b": np.full((n, M), np.nan),
+        "force_a": np.full((n, M, 3), np.nan),
+        "force_b": np.full((n, M, 3), np.nan),
+        "x": np.full((n, M, nn), np.nan),
+        "y": np.full((n, M, nn), np.nan),
+        "z": np.full((n, M, nn), np.nan),
+        "tension": np.full((n, M, nn), np.nan),
+        "laid_length": np.full((n, M), np.nan),
+        "arc_length": np.broadcast_to(
+            np.array([np.linspace(0.0, ln.problem.line.total_length, nn) for ln in system.lines]),
+            (n, M, nn),
+        ).copy(),
+        "static_iterations": np.full(n, np.nan),
+        "static_residual": np.full(n, np.nan),
+    }
+    if k:
+        out["point_position"] = np.full((n, k, 3), np.nan)
+    if m:
+        out["body_position"] = np.full((n, m, 6), np.nan)
+        out["body_force"] = np.full((n, m, 6), np.nan)
+        out["body_stiffness"] = np.full((n, m, 6, 6), np.nan)
+    return out
+
+
+def _put(out: dict[str, np.ndarray], rows: np.ndarray, sol: Any, system: Any) -> None:
+    """The compiled path's solutions ``sol`` into rows ``rows`` of ``out``."""
+    from .statics.system import FREE
+
+    out["tension_a"][rows] = np.linalg.norm(sol.force_a, axis=2)
+    out["tension_b"][rows] = np.linalg.norm(sol.force_b, axis=2)
+    out["force_a"][rows] = sol.force_a
+    out["force_b"][rows] = sol.force_b
+    out["x"][rows] = sol.position[..., 0]
+    out["y"][rows] = sol.position[..., 1]
+    out["z"][rows] = sol.position[..., 2]
+    out["tension"][rows] = sol.tension
+    out["laid_length"][rows] = sol.laid_length
+    out["static_iterations"][rows] = sol.iterations.astype(float)
+    out["static_residual"][rows] = sol.residual
+    if "point_position" in out:
+        out["point_position"][rows] = sol.point_position[:, system.point_kind == FREE]
+    if "body_force" in out:
+        out["body_force"][rows] = sol.body_force
+        out["body_stiffness"][rows] = sol.body_stiffness
+
+
+def _general(
+    system: Any, poses: np.ndarray, base: np.ndarray, out: dict[str, np.ndarray], i: int
+) -> tuple[int, str]:
+    """Case ``i`` by the general path (from the study's starting positions): its outputs
+    into row ``i`` of ``out``; returns its status and message."""
+    from .statics import STATIC_SOLVERS
+    from .statics.system import solve_system
+    from .system_cases import system_outputs
+
+    case = replace(system, body_position=poses, point_position=base)
+    res = solve_system(case, STATIC_SOLVERS["catenary"], compiled=False)
+    data = system_outputs(case, res)
+    for name, arr in out.items():
+        if name in data and name != "body_position":
+            arr[i] = data[name]
+    return int(res.status), res.message
