@@ -166,6 +166,12 @@ def evaluate_system_case(case: Case) -> CaseRecord:
         if bad:
             status, message = STATUS_NUMERICAL, f"non-finite values in {', '.join(bad)}"
     data["static_status"] = np.asarray(status, dtype=np.int64)
+    warning = ""
+    if status == STATUS_OK and getattr(res, "fallback", ""):
+        # the compiled system Newton left it to the general path: said, as for one line
+        from .plausibility import fallback_warning
+
+        warning = fallback_warning(res.fallback)
     return CaseRecord(
         hash=case.hash,
         index=case.index,
@@ -173,4 +179,5 @@ def evaluate_system_case(case: Case) -> CaseRecord:
         message=message,
         wall_time=time.perf_counter() - t0,
         data=data,
+        warning=warning,
     )
