@@ -369,6 +369,7 @@ def solve_system(
             body_stiffness=np.full((m, 6, 6), np.nan),
             status=exc.status,
             message=exc.message,
+            fallback=fallback[0] if fallback else "",
         )
     except np.linalg.LinAlgError as exc:
         return SystemResult(
@@ -378,6 +379,7 @@ def solve_system(
             body_stiffness=np.full((m, 6, 6), np.nan),
             status=STATUS_NUMERICAL,
             message=f"singular stiffness of the free points ({exc})",
+            fallback=fallback[0] if fallback else "",
         )
 
 
