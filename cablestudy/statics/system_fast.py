@@ -557,14 +557,15 @@ def solve_fast(system: MooringSystem, *, prescribed: bool = False) -> tuple[obje
     (None, why the general path must solve it). ``prescribed``: free bodies taken where
     ``system`` puts them (see :func:`ineligible`)."""
     from .base import StaticResult
-    from .system import SystemResult, point_positions
+    from .system import SystemResult
 
     why = ineligible(system, prescribed=prescribed)
     if why:
         return None, why
-    free = system.point_kind == FREE
-    pos = point_positions(system, np.asarray(system.point_position[free], dtype=float))
-    pk, whys = pack(system, pos[None])
+    # the points as a sweep's chunk places them (cablestudy.system_grid): the same bits
+    base = np.asarray(system.point_position, dtype=float)[None]
+    pos = point_positions_many(system, np.asarray(system.body_position, dtype=float)[None], None, base)
+    pk, whys = pack(system, pos)
     if pk is None:
         return None, str(whys[0])
     try:

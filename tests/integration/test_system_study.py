@@ -4,6 +4,7 @@ its validation, and the one-line study as a system of one line."""
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -16,7 +17,7 @@ from cablestudy.config import parse_study_text
 from cablestudy.config.loader import StudyError
 from cablestudy.results import SYSTEM_OUTPUTS
 from cablestudy.statics import STATIC_SOLVERS
-from cablestudy.statics.system import solve_system
+from cablestudy.statics.system import FREE, solve_system
 from cablestudy.system_cases import evaluate_system_case, system_model
 
 SEG = "{length: %s, diameter: 0.1, mass_per_length: 20.0, axial_stiffness: 5.0e8}"
@@ -108,10 +109,19 @@ def test_outputs_names_dims_units(dataset: xr.Dataset) -> None:
 
 
 def test_run_equals_the_solver(dataset: xr.Dataset) -> None:
-    """The file holds what the pure solver gives for the same system (bit for bit)."""
-    _, cases = expand_cases(parse_study_text(SYSTEM, "sys.yaml"))
+    """The file holds what the pure solver gives for the same system (bit for bit),
+    started where a sweep starts every case: the free points at the template's (the
+    study without its sweep) equilibrium (cablestudy.system_grid)."""
+    src = parse_study_text(SYSTEM, "sys.yaml")
+    template = system_model(expand_cases(parse_study_text(SYSTEM.split("sweep:")[0], "t"))[1][0].study)
+    free = template.point_kind == FREE
+    start = solve_system(template, STATIC_SOLVERS["catenary"]).point_position[free]
+    _, cases = expand_cases(src)
     for case in cases[:: len(cases) - 1]:
-        res = solve_system(system_model(case.study), STATIC_SOLVERS["catenary"])
+        system = system_model(case.study)
+        guess = np.array(system.point_position)
+        guess[free] = start
+        res = solve_system(replace(system, point_position=guess), STATIC_SOLVERS["catenary"])
         here = dataset.isel(surge=case.index[0])
         np.testing.assert_array_equal(here["body_force"].values[0], res.body_force[0])
         np.testing.assert_array_equal(here["body_stiffness"].values[0], res.body_stiffness[0])
