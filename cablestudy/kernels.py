@@ -87,11 +87,13 @@ points:
 bodies:
   hull: {kind: prescribed, position: [0.0, 0.0, 0.0, 0.0, 0.0, 0.0]}
 lines:
-  leg: {a: anchor, b: joint, segments: [{length: 70.0, diameter: 0.05, mass_per_length: 10.0, axial_stiffness: 1.0e8}]}
-  top: {a: joint, b: fair, segments: [{length: 35.0, diameter: 0.05, mass_per_length: 10.0, axial_stiffness: 1.0e8}]}
+  leg: {a: anchor, b: joint, segments: [SEG70]}
+  top: {a: joint, b: fair, segments: [SEG35]}
 sweep:
   bodies.hull.position.0: [0.0, 2.0]
 """
+    seg = "{length: %s, diameter: 0.05, mass_per_length: 10.0, axial_stiffness: 1.0e8}"
+    system = system.replace("SEG70", seg % 70.0).replace("SEG35", seg % 35.0)
     grid = expand_grid(parse_study_text(system, "warm.yaml"))
     if grid is not None:
         evaluate_grid_chunk(grid, 0, grid.shape[0])

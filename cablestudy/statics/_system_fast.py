@@ -31,7 +31,7 @@ import math
 
 import numpy as np
 
-from ._fast import _piece, _solve3, _total, njit
+from ._fast import _solve3, _total, njit
 from ._fast_contact import LIFT_OFF, NOT_CONVERGED, NUMERICAL, SLACK, _evaluate, _guess, _laid
 from ._fast_contact import _newton_step as _step3
 
@@ -471,7 +471,10 @@ def _eval_lines(
                 ell_m, EA_m, w_m, C, L, d, TA_out[m], ltol, lmaxit, J, r, rn, Jn, Tn, g, stp, free3
             )
             if ok and anchored[c, m]:  # kept where the line leaves the anchor upwards
-                ok = TA_out[m, 0] * normal[0] + TA_out[m, 1] * normal[1] + TA_out[m, 2] * normal[2] >= 0.0
+                ok = (
+                    TA_out[m, 0] * normal[0] + TA_out[m, 1] * normal[1] + TA_out[m, 2] * normal[2]
+                    >= 0.0
+                )
             if ok:
                 done = True
                 mode_out[m] = 0
@@ -680,7 +683,9 @@ def system_cases(
         if not ok:
             st = SYS_LINE_FAILED
         elif k > 0:
-            _assemble(c, la, lb, fidx, modeS, fa_out[c], fb_out[c], K_out[c], pforce, free_pts, R, Kff)
+            _assemble(
+                c, la, lb, fidx, modeS, fa_out[c], fb_out[c], K_out[c], pforce, free_pts, R, Kff
+            )
             scale = 1e-300
             for m in range(M):
                 ta = math.sqrt(fa_out[c, m, 0] ** 2 + fa_out[c, m, 1] ** 2 + fa_out[c, m, 2] ** 2)
@@ -717,7 +722,9 @@ def system_cases(
                         phi0 += R[i] * stepv[i]
                 longest = 0.0
                 for i in range(k):
-                    ln = math.sqrt(stepv[3 * i] ** 2 + stepv[3 * i + 1] ** 2 + stepv[3 * i + 2] ** 2)
+                    ln = math.sqrt(
+                        stepv[3 * i] ** 2 + stepv[3 * i + 1] ** 2 + stepv[3 * i + 2] ** 2
+                    )
                     longest = max(longest, ln)
                 if longest > cap[c]:
                     f = cap[c] / longest

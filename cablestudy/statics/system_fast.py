@@ -91,8 +91,10 @@ def ineligible(system: MooringSystem, *, prescribed: bool = False) -> str:
         line, med = prob.line, prob.medium
         if line.is_nonlinear:
             return f"line {ln.name}: a nonlinear axial law has no compiled kernel"
-        if med.has_current and med.density > 0.0 and bool(
-            np.any(line.diameter * (line.drag_normal + line.drag_tangential) > 0.0)
+        if (
+            med.has_current
+            and med.density > 0.0
+            and bool(np.any(line.diameter * (line.drag_normal + line.drag_tangential) > 0.0))
         ):
             return f"line {ln.name}: current with drag has no compiled kernel"
         if getattr(line, "is_spring", False):
@@ -122,8 +124,9 @@ def _plane(system: MooringSystem) -> Plane | None:
     return Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
 
 
-def point_positions_many(system: MooringSystem, poses: np.ndarray, offsets: np.ndarray | None,
-                         base: np.ndarray) -> np.ndarray:
+def point_positions_many(
+    system: MooringSystem, poses: np.ndarray, offsets: np.ndarray | None, base: np.ndarray
+) -> np.ndarray:
     """Positions (N, n, 3) of all points for N body poses (N, m, 6): fixed and free points
     from ``base`` (N, n, 3), body points at pose + R offset (``offsets`` (N, n, 3), or the
     system's)."""
@@ -133,8 +136,9 @@ def point_positions_many(system: MooringSystem, poses: np.ndarray, offsets: np.n
         R = rotations(poses[..., 3:])  # (N, m, 3, 3)
         b = system.point_body[on]
         off = system.point_position[on][None] if offsets is None else offsets[:, on]
-        pos[:, on] = poses[:, b, :3] + np.einsum("nkij,nkj->nki", R[:, b], np.broadcast_to(
-            off, (len(pos), on.size, 3)))
+        pos[:, on] = poses[:, b, :3] + np.einsum(
+            "nkij,nkj->nki", R[:, b], np.broadcast_to(off, (len(pos), on.size, 3))
+        )
     return pos
 
 
@@ -234,8 +238,11 @@ def pack(
     fidx = np.full(n, -1, dtype=np.int64)
     fidx[free_pts] = np.arange(free_pts.size)
     moving = np.array([kind[ln.a] == FREE or kind[ln.b] == FREE for ln in system.lines])
-    on_free = [ln.problem.line.total_length for ln in system.lines if kind[ln.a] == FREE
-               or kind[ln.b] == FREE]
+    on_free = [
+        ln.problem.line.total_length
+        for ln in system.lines
+        if kind[ln.a] == FREE or kind[ln.b] == FREE
+    ]
     cap = 0.5 * min(on_free) if on_free else math.inf
     pforce = np.broadcast_to(system.point_force, (N, n, 3)).copy()
     prob = system.lines[0].problem
@@ -325,7 +332,9 @@ def solve_packed(system: MooringSystem, pk: Packed, poses: np.ndarray) -> Solved
     )  # fmt: skip
     fallback = np.where(status == 0, "", NOT_SETTLED).astype(object)
     n = pk.n_nodes
-    L_line = np.array([pk.bounds[0, pk.poff[m] + m + pk.poff[m + 1] - pk.poff[m]] for m in range(M)])
+    L_line = np.array(
+        [pk.bounds[0, pk.poff[m] + m + pk.poff[m + 1] - pk.poff[m]] for m in range(M)]
+    )
     s_all = np.linspace(np.zeros(M), L_line, n, axis=1)  # (M, n), as np.linspace(0, L, n)
     out_pos = np.full((N, M, n, 3), np.nan)
     out_ten = np.full((N, M, n), np.nan)
@@ -371,7 +380,10 @@ def solve_packed(system: MooringSystem, pk: Packed, poses: np.ndarray) -> Solved
                     tol[g], maxit[g], sg,
                 )  # fmt: skip
                 P_[g], T_[g], FA[g], FB[g] = (
-                    got["position"], got["tension"], got["force_a"], got["force_b"],
+                    got["position"],
+                    got["tension"],
+                    got["force_a"],
+                    got["force_b"],
                 )
                 LL[g] = got["laid_length"]
                 settled = got["status"] == 0
@@ -385,7 +397,9 @@ def solve_packed(system: MooringSystem, pk: Packed, poses: np.ndarray) -> Solved
                 TA0 = _guess(target, L[g], Cend, EAeff, point[g, 0])
                 TAo, TL = np.empty((g.size, 3)), np.empty((g.size, 3))
                 it_, rs_, st_ = (
-                    np.zeros(g.size, np.int64), np.zeros(g.size), np.zeros(g.size, np.int64)
+                    np.zeros(g.size, np.int64),
+                    np.zeros(g.size),
+                    np.zeros(g.size, np.int64),
                 )
                 pg, tg = np.empty((g.size, n, 3)), np.empty((g.size, n))
                 _fast.solve_cases(
@@ -410,7 +424,10 @@ def solve_packed(system: MooringSystem, pk: Packed, poses: np.ndarray) -> Solved
             idx = g[settled]
             if idx.size:
                 fl = flip[idx]
-                fw = lambda x: np.where(fl.reshape(-1, *[1] * (x.ndim - 1)), x[:, ::-1], x)  # noqa: E731
+
+                def fw(x: np.ndarray, fl: np.ndarray = fl) -> np.ndarray:
+                    return np.where(fl.reshape(-1, *[1] * (x.ndim - 1)), x[:, ::-1], x)
+
                 bd = np.where(fl[:, None], L[idx, None] - bounds[idx][:, ::-1], bounds[idx])
                 checked = check_lines(
                     s=s[idx],
@@ -419,7 +436,9 @@ def solve_packed(system: MooringSystem, pk: Packed, poses: np.ndarray) -> Solved
                     force_a=np.where(fl[:, None], FB[idx], FA[idx]),
                     force_b=np.where(fl[:, None], FA[idx], FB[idx]),
                     pieces=Pieces(
-                        bounds=bd, weight=fw(w[idx]), axial_stiffness=fw(EA[idx]),
+                        bounds=bd,
+                        weight=fw(w[idx]),
+                        axial_stiffness=fw(EA[idx]),
                         point=fw(point[idx]),
                     ),
                     tolerance=tol[idx],
@@ -564,7 +583,9 @@ def solve_fast(system: MooringSystem, *, prescribed: bool = False) -> tuple[obje
         return None, why
     # the points as a sweep's chunk places them (cablestudy.system_grid): the same bits
     base = np.asarray(system.point_position, dtype=float)[None]
-    pos = point_positions_many(system, np.asarray(system.body_position, dtype=float)[None], None, base)
+    pos = point_positions_many(
+        system, np.asarray(system.body_position, dtype=float)[None], None, base
+    )
     pk, whys = pack(system, pos)
     if pk is None:
         return None, str(whys[0])

@@ -113,7 +113,9 @@ def test_run_equals_the_solver(dataset: xr.Dataset) -> None:
     started where a sweep starts every case: the free points at the template's (the
     study without its sweep) equilibrium (cablestudy.system_grid)."""
     src = parse_study_text(SYSTEM, "sys.yaml")
-    template = system_model(expand_cases(parse_study_text(SYSTEM.split("sweep:")[0], "t"))[1][0].study)
+    template = system_model(
+        expand_cases(parse_study_text(SYSTEM.split("sweep:")[0], "t"))[1][0].study
+    )
     free = template.point_kind == FREE
     start = solve_system(template, STATIC_SOLVERS["catenary"]).point_position[free]
     _, cases = expand_cases(src)
