@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 
 from .cases import _copy_tree, _hash, _set_path, code_fingerprint, parse_sweep
-from .config.loader import StudyError, StudySource, validate_data
+from .config.loader import StudySource
 from .config.study import Study
 from .grid import STATUS_NUMERICAL, CaseGrid, GridChunk, _numeric, _warning_column, grid_shape
 
@@ -99,17 +99,24 @@ def expand_system_grid(src: StudySource, template: Study) -> SystemGrid | None:
     system = system_model(template)
     if ineligible(system):
         return None
-    base = {k: v for k, v in src.data.items() if k != "sweep"}
-    # each swept value once, at its own path (a fault is reported case by case)
+    # each swept value once, in the model that holds it (a prescribed body, a fixed or a
+    # body point: no check of the whole study involves a position but a fixed point's
+    # height above the seabed, checked over the grid below); any fault leaves the grid,
+    # and expand_cases reports it at its line
     for axis in axes:
-        for i in range(axis.size):
-            data = _copy_tree(base)
-            try:
-                for path, vals in zip(axis.paths, axis.values, strict=True):
-                    _set_path(data, path, vals[i])
-                validate_data(data, src)
-            except (KeyError, StudyError):
+        for path, vals in zip(axis.paths, axis.values, strict=True):
+            group, name, rest = path.split(".", 2)
+            model = getattr(template, group)[name]
+            raw = src.data.get(group, {}).get(name)
+            if not isinstance(raw, dict):
                 return None
+            for v in vals:
+                data = _copy_tree(raw)
+                try:
+                    _set_path(data, rest, v)
+                    type(model).model_validate(data)
+                except (KeyError, ValueError, TypeError):
+                    return None
     swept = {
         p: (k, np.asarray(vals, dtype=float))
         for k, axis in enumerate(axes)
