@@ -50,8 +50,11 @@ class SystemGrid(CaseGrid):
     template's :class:`MooringSystem` and the free points' start."""
 
     system: Any = None
-    #: the free points' start of every case (k, 3) [m]: the template's equilibrium
-    start: np.ndarray | None = None
+    #: where every case starts (:func:`cablestudy.statics.system_fast.template_start`):
+    #: the template's equilibrium of the free points (k, 3) [m], all points there (n, 3)
+    #: [m] and the free points' first-order response to the others' displacements (3k,
+    #: 3n); None where the compiled path does not settle the template
+    start: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
     #: names of the system's coordinates: line, point (free points), body, dof, dof_j
     named: dict[str, list[str]] = field(default_factory=dict)
     #: per swept path: (what it sets, index, component): ('pose', body, dof),
@@ -124,15 +127,9 @@ def expand_system_grid(src: StudySource, template: Study) -> SystemGrid | None:
     }
     if not _fixed_points_above_seabed(template, swept, targets, [a.size for a in axes]):
         return None
-    from .statics import STATIC_SOLVERS
-    from .statics.system import solve_system
+    from .statics.system_fast import template_start
 
-    equilibrium = solve_system(system, STATIC_SOLVERS["catenary"])
-    free = system.point_kind == 1
-    start = None
-    if equilibrium.status == 0 and not any(t[0] == "fixed" for t in targets.values()):
-        # (a swept anchor changes where the free points hang: they start as the study says)
-        start = np.array(equilibrium.point_position[free], dtype=float)
+    start = template_start(system)
     body = template.model_dump(mode="json", exclude={"name", "description", "sweep"})
     return SystemGrid(
         template=template,
@@ -229,13 +226,22 @@ def evaluate_system_chunk(grid: SystemGrid, lo: int, hi: int) -> GridChunk:
         poses, base = _case_inputs(grid, lo, hi)
         body_pts = system.point_kind == BODY
         pos = point_positions_many(system, poses, base if np.any(body_pts) else None, base)
-        pk, why = pack(system, pos, grid.start)
-        keep = np.flatnonzero(why == "")
         out = _empty_outputs(system, n)
-        if pk is not None:
-            sol = solve_packed(system, pk, poses[keep])
-            _put(out, keep, sol, system)
-            why[keep] = sol.fallback
+        why = np.full(n, "", dtype=object)
+        todo = np.arange(n)
+        for start in _starts(grid, pos):
+            # the template's equilibrium moved to first order with the case's points, then
+            # (what that does not settle) the template's equilibrium itself
+            pk, why_pk = pack(system, pos[todo], start if start is None else start[todo])
+            why[todo] = why_pk
+            keep = todo[why_pk == ""]
+            if pk is not None:
+                sol = solve_packed(system, pk, poses[keep])
+                _put(out, keep, sol, system)
+                why[keep] = sol.fallback
+            todo = keep[sol.fallback != ""] if pk is not None else keep
+            if not todo.size:
+                break
         if "body_position" in out:
             out["body_position"] = poses.copy()
         for i in np.flatnonzero(why != ""):
@@ -266,6 +272,20 @@ def evaluate_system_chunk(grid: SystemGrid, lo: int, hi: int) -> GridChunk:
         warning=_warning_column(n, warnings),
         fallback_reason=np.array(reasons.tolist(), dtype=str).reshape(n),
     )
+
+
+def _starts(grid: SystemGrid, pos: np.ndarray) -> list[np.ndarray | None]:
+    """The free points' starts (N, k, 3) of the cases whose points are at ``pos``
+    (N, n, 3), in the order tried: the template's equilibrium plus its first-order
+    response to the case's displacements of the other points, then the equilibrium
+    alone; the study's own positions (None) where the template is not settled."""
+    if grid.start is None:
+        return [None]
+    x, at, S = grid.start
+    N = len(pos)
+    moved = (pos - at).reshape(N, -1) @ S.T
+    first = x[None] + moved.reshape(N, -1, 3)
+    return [first, np.broadcast_to(x, first.shape)]
 
 
 def _empty_outputs(system: Any, n: int) -> dict[str, np.ndarray]:

@@ -415,13 +415,21 @@ def _eval_lines(
     hi_s: np.ndarray,
     A4: np.ndarray,
     free3: np.ndarray,
+    K_in: np.ndarray,
+    d_in: np.ndarray,
+    d_out: np.ndarray,
 ) -> bool:
     """Every line of case ``c`` between the points at ``pos`` (n, 3) (with
     ``only_moving``, the lines with an end on a free point; the others keep their
     state), each from its state ``*_in`` to ``*_out``: mode (0 hanging free, 1 on the
     seabed from end A), tension at A, touchdown unknowns, end forces and end stiffness
     (hanging free: G = J^-1, K_AA = K_BB = G, K_AB = K_BA = -G; on the seabed: K_BB in
-    ``K_out[m]``). False where a line cannot be solved there."""
+    ``K_out[m]``). False where a line cannot be solved there.
+
+    In a trial (``only_moving``) a line hanging free starts from its tension at the
+    iterate moved to first order with its ends, T_A + G (d - d_in) (``K_in`` its G there,
+    ``d_in`` its r_B - r_A; ``d_out`` the new one), and from T_A alone where that start
+    does not converge."""
     M = la.shape[1]
     d = sc[10]
     Cend = sc[11]
@@ -438,6 +446,7 @@ def _eval_lines(
             for k in range(3):
                 TA_out[m, k] = TA_in[m, k]
                 y_out[m, k] = y_in[m, k]
+                d_out[m, k] = d_in[m, k]
             continue
         a = la[c, m]
         b = lb[c, m]
@@ -467,9 +476,24 @@ def _eval_lines(
             y_out[m, k] = y_in[m, k]
         done = False
         if not anchored[c, m] or (mode_in[m] == 0 and clear[c, m]):
+            predicted = only_moving and mode_in[m] == 0
+            if predicted:
+                for k in range(3):
+                    TA_out[m, k] = TA_in[m, k] + (
+                        K_in[m, k, 0] * (d[0] - d_in[m, 0])
+                        + K_in[m, k, 1] * (d[1] - d_in[m, 1])
+                        + K_in[m, k, 2] * (d[2] - d_in[m, 2])
+                    )
             ok = _free_line(
                 ell_m, EA_m, w_m, C, L, d, TA_out[m], ltol, lmaxit, J, r, rn, Jn, Tn, g, stp, free3
             )
+            if not ok and predicted:
+                for k in range(3):
+                    TA_out[m, k] = TA_in[m, k]
+                ok = _free_line(
+                    ell_m, EA_m, w_m, C, L, d, TA_out[m], ltol, lmaxit, J, r, rn, Jn, Tn, g, stp,
+                    free3,
+                )  # fmt: skip
             if ok and anchored[c, m]:  # kept where the line leaves the anchor upwards
                 ok = (
                     TA_out[m, 0] * normal[0] + TA_out[m, 1] * normal[1] + TA_out[m, 2] * normal[2]
@@ -498,6 +522,8 @@ def _eval_lines(
                 )  # fmt: skip
             if st == 0:
                 mode_out[m] = 1
+                for k in range(3):
+                    d_out[m, k] = d[k]
                 continue
             if st != LIFT_OFF and st != NOT_CONVERGED and st != NUMERICAL:
                 return False
@@ -514,6 +540,7 @@ def _eval_lines(
             mode_out[m] = 0
         # hanging free: forces and G = J^-1 at the solution
         for k in range(3):
+            d_out[m, k] = d[k]
             fa_out[m, k] = TA_out[m, k]
             fb_out[m, k] = -(TA_out[m, k] - Cend[k])
         if not _inv3(J, K_out[m]):
@@ -649,6 +676,8 @@ def system_cases(
     faT = np.zeros((M, 3))
     fbT = np.zeros((M, 3))
     KT = np.zeros((M, 3, 3))
+    dS = np.zeros((M, 3))
+    dT = np.zeros((M, 3))
     R = np.zeros(k3)
     Rn = np.zeros(k3)
     Kff = np.zeros((k3, k3))
@@ -675,7 +704,7 @@ def system_cases(
             c, post, False, moving, la, lb, poff, ell, EA, w, bounds, point, anchored, clear,
             normal[c], basis[c], depth[c], mu[c], still[c], plane_c, ltol[c], lmaxit[c],
             modeS, TAS, yS, modeS, TAS, yS, fa_out[c], fb_out[c], K_out[c],
-            C, sc, sc3, t_lo, t_hi, rate, hi_s, A4, free3,
+            C, sc, sc3, t_lo, t_hi, rate, hi_s, A4, free3, K_out[c], dS, dS,
         )  # fmt: skip
         it = 0
         res = 0.0
@@ -747,7 +776,7 @@ def system_cases(
                         c, post, True, moving, la, lb, poff, ell, EA, w, bounds, point, anchored,
                         clear, normal[c], basis[c], depth[c], mu[c], still[c], plane_c, ltol[c],
                         lmaxit[c], modeS, TAS, yS, modeT, TAT, yT, faT, fbT, KT,
-                        C, sc, sc3, t_lo, t_hi, rate, hi_s, A4, free3,
+                        C, sc, sc3, t_lo, t_hi, rate, hi_s, A4, free3, K_out[c], dS, dT,
                     )  # fmt: skip
                     if not good:
                         hi, f_hi = lam, math.nan
@@ -797,6 +826,7 @@ def system_cases(
                     for q in range(3):
                         TAS[m, q] = TAT[m, q]
                         yS[m, q] = yT[m, q]
+                        dS[m, q] = dT[m, q]
                         fa_out[c, m, q] = faT[m, q]
                         fb_out[c, m, q] = fbT[m, q]
                         for s in range(3):

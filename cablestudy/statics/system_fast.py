@@ -175,7 +175,8 @@ def pack(
 ) -> tuple[Packed | None, np.ndarray]:
     """The arrays of N cases of ``system`` that differ only in the points' positions
     ``pos`` (N, n, 3) (fixed and body points where they are; free points: the start, or
-    ``start`` (k, 3) for all). Returns the packed cases the kernel takes and, per case,
+    ``start``: (k, 3) for all cases or (N, k, 3) per case). Returns the packed cases the
+    kernel takes and, per case,
     why it does not ('' where it does)."""
     N, n = pos.shape[0], len(system.point_names)
     M = len(system.lines)
@@ -296,6 +297,9 @@ class Solved:
     iterations: np.ndarray
     residual: np.ndarray
     fallback: np.ndarray
+    #: (N, M, 2, 2, 3, 3) [N/m] each line's end stiffness blocks K[i, j] = -d f_i / d r_j
+    #: (ends A, B as defined; NaN at an end anchored on the seabed)
+    stiffness: np.ndarray | None = None
 
 
 def solve_packed(system: MooringSystem, pk: Packed, poses: np.ndarray) -> Solved:
@@ -495,7 +499,7 @@ def solve_packed(system: MooringSystem, pk: Packed, poses: np.ndarray) -> Solved
         s=s_all, position=out_pos, tension=out_ten, force_a=out_fa, force_b=out_fb,
         laid_length=laid, point_position=pos, body_force=body_force,
         body_stiffness=body_stiffness, iterations=iters, residual=resid,
-        fallback=fallback,
+        fallback=fallback, stiffness=Kl,
     )  # fmt: skip
 
 
@@ -618,3 +622,40 @@ def solve_fast(system: MooringSystem, *, prescribed: bool = False) -> tuple[obje
         ),
         "",
     )
+
+
+def template_start(system: MooringSystem) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+    """Where a sweep starts its cases: the free points' equilibrium of ``system`` (k, 3)
+    [m] by the compiled path, all points' positions there (n, 3) [m], and the free
+    points' first-order response to the other points' displacements, S = -K_FF^-1 K_FP
+    (3k, 3n) (zero columns for the free points, and for an end anchored on the seabed,
+    whose stiffness is not modelled). None where the compiled path does not settle it."""
+    why = ineligible(system)
+    if why:
+        return None
+    base = np.asarray(system.point_position, dtype=float)[None]
+    poses = np.asarray(system.body_position, dtype=float)[None]
+    pk, whys = pack(system, point_positions_many(system, poses, None, base))
+    if pk is None:
+        return None
+    try:
+        sol = solve_packed(system, pk, poses)
+    except np.linalg.LinAlgError:
+        return None
+    if sol.fallback[0]:
+        return None
+    n = len(system.point_names)
+    free = np.flatnonzero(system.point_kind == FREE)
+    K = np.zeros((3 * n, 3 * n))
+    for m, ln in enumerate(system.lines):
+        ends = (ln.a, ln.b)
+        for i in range(2):
+            for j in range(2):
+                blk = np.nan_to_num(sol.stiffness[0, m, i, j])
+                K[3 * ends[i] : 3 * ends[i] + 3, 3 * ends[j] : 3 * ends[j] + 3] += blk
+    F = (3 * free[:, None] + np.arange(3)).ravel()
+    S = np.zeros((3 * free.size, 3 * n))
+    if free.size:
+        S = -np.linalg.solve(K[np.ix_(F, F)], K[F])
+        S[:, F] = 0.0
+    return sol.point_position[0][free], sol.point_position[0], S
