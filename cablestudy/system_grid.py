@@ -246,7 +246,8 @@ def evaluate_system_chunk(grid: SystemGrid, lo: int, hi: int) -> GridChunk:
             out["body_position"] = poses.copy()
         for i in np.flatnonzero(why != ""):
             reasons[i] = str(why[i])
-            st, msg = _general(system, poses[i], base[i], out, int(i))
+            limit = grid.template.analysis.time_limit
+            st, msg = _general(system, poses[i], base[i], out, int(i), limit)
             status[i], messages[i] = st, msg
         for i in np.flatnonzero((reasons != "") & (status == 0)):
             warnings.setdefault(int(i), []).append(fallback_warning(str(reasons[i])))
@@ -346,7 +347,12 @@ def _put(out: dict[str, np.ndarray], rows: np.ndarray, sol: Any, system: Any) ->
 
 
 def _general(
-    system: Any, poses: np.ndarray, base: np.ndarray, out: dict[str, np.ndarray], i: int
+    system: Any,
+    poses: np.ndarray,
+    base: np.ndarray,
+    out: dict[str, np.ndarray],
+    i: int,
+    time_limit: float,
 ) -> tuple[int, str]:
     """Case ``i`` by the general path (from the study's starting positions): its outputs
     into row ``i`` of ``out``; returns its status and message."""
@@ -355,7 +361,8 @@ def _general(
     from .system_cases import system_outputs
 
     case = replace(system, body_position=poses, point_position=base)
-    res = solve_system(case, STATIC_SOLVERS["catenary"], compiled=False)
+    deadline = time.monotonic() + time_limit  # analysis.time_limit, as case by case
+    res = solve_system(case, STATIC_SOLVERS["catenary"], deadline=deadline, compiled=False)
     data = system_outputs(case, res)
     for name, arr in out.items():
         if name in data and name != "body_position":

@@ -334,7 +334,10 @@ def solve_packed(system: MooringSystem, pk: Packed, poses: np.ndarray) -> Solved
         depth, mu, still, has, pk.ltol, pk.lmaxit, pk.tol, pk.maxit, pk.cap,
         mode, fa, fb, K, iters, resid, status,
     )  # fmt: skip
-    fallback = np.where(status == 0, "", NOT_SETTLED).astype(object)
+    fallback = np.full(N, "", dtype=object)
+    for code, text in ks.SYS_REASONS.items():
+        fallback[status == code] = f"{NOT_SETTLED} ({text})"
+    fallback[(status != 0) & (fallback == "")] = NOT_SETTLED
     n = pk.n_nodes
     L_line = np.array(
         [pk.bounds[0, pk.poff[m] + m + pk.poff[m + 1] - pk.poff[m]] for m in range(M)]
