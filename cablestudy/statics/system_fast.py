@@ -349,120 +349,16 @@ def solve_packed(system: MooringSystem, pk: Packed, poses: np.ndarray) -> Solved
     out_fb = np.full((N, M, 3), np.nan)
     laid = np.zeros((N, M))
     ok = status == 0
-    for m in range(M):
+    # every line of every settled case, grouped by piece count: one call of each batch
+    # kernel and of the verification per group
+    sizes = np.diff(pk.poff)
+    for p in np.unique(sizes):
         rows = np.flatnonzero(ok)
         if not rows.size:
             break
-        o, p = pk.poff[m], pk.poff[m + 1] - pk.poff[m]
-        ob = o + m
-        ell = pk.ell[rows, o : o + p]
-        EA = pk.EA[rows, o : o + p]
-        w = pk.w[rows, o : o + p]
-        bounds = pk.bounds[rows, ob : ob + p + 1]
-        point = pk.point[rows, ob : ob + p + 1]
-        rA = pos[rows, pk.la[rows, m]]
-        rB = pos[rows, pk.lb[rows, m]]
-        L = bounds[:, -1]
-        tol = pk.ltol[rows]
-        maxit = pk.lmaxit[rows]
-        s = np.linspace(np.zeros(rows.size), L, n, axis=1)
-        flip = pk.flip[rows, m]
-        anch = pk.anchored[rows, m]
-        good = np.zeros(rows.size, dtype=bool)
-        P_ = np.empty((rows.size, n, 3))
-        T_ = np.empty((rows.size, n))
-        FA = np.empty((rows.size, 3))
-        FB = np.empty((rows.size, 3))
-        LL = np.zeros(rows.size)
-        for grp in (np.flatnonzero(~anch), np.flatnonzero(anch)):
-            if not grp.size:
-                continue
-            g = grp
-            sg = np.where(flip[g, None], L[g, None] - s[g], s[g])
-            if anch[g[0]]:
-                from .batch import solve_contact_arrays
-
-                got = solve_contact_arrays(
-                    ell[g], EA[g], w[g], point[g], bounds[g], rA[g], rB[g], plane,
-                    tol[g], maxit[g], sg,
-                )  # fmt: skip
-                P_[g], T_[g], FA[g], FB[g] = (
-                    got["position"],
-                    got["tension"],
-                    got["force_a"],
-                    got["force_b"],
-                )
-                LL[g] = got["laid_length"]
-                settled = got["status"] == 0
-            else:
-                from .batch import _guess
-
-                Cend = point[g].sum(axis=1)
-                Cend[:, 2] -= np.sum(w[g] * ell[g], axis=1)
-                target = rB[g] - rA[g]
-                EAeff = L[g] / np.sum(ell[g] / EA[g], axis=1)
-                TA0 = _guess(target, L[g], Cend, EAeff, point[g, 0])
-                TAo, TL = np.empty((g.size, 3)), np.empty((g.size, 3))
-                it_, rs_, st_ = (
-                    np.zeros(g.size, np.int64),
-                    np.zeros(g.size),
-                    np.zeros(g.size, np.int64),
-                )
-                pg, tg = np.empty((g.size, n, 3)), np.empty((g.size, n))
-                _fast.solve_cases(
-                    np.ascontiguousarray(ell[g]), np.ascontiguousarray(EA[g]),
-                    np.ascontiguousarray(w[g]), np.ascontiguousarray(point[g]),
-                    np.ascontiguousarray(bounds[g]), np.zeros(g.size, dtype=np.int64),
-                    np.ascontiguousarray(rA[g]), target, TA0, tol[g], maxit[g],
-                    np.ascontiguousarray(s[g]), pg, tg, TAo, TL, it_, rs_, st_,
-                )  # fmt: skip
-                P_[g], T_[g], FA[g], FB[g] = pg, tg, TAo, -TL
-                settled = st_ == 0
-                if plane is not None:
-                    height = (pg - np.array([0.0, 0.0, -plane.depth])) @ plane.normal
-                    settled &= ~np.any(height < -1e-6 * L[g, None], axis=1)
-            settled &= (
-                np.all(np.isfinite(P_[g]), axis=(1, 2))
-                & np.all(np.isfinite(T_[g]), axis=1)
-                & np.all(np.isfinite(FA[g]), axis=1)
-                & np.all(np.isfinite(FB[g]), axis=1)
-            )
-            # checked as the line is defined, A to B (grid._compiled_solve's seabed_checked)
-            idx = g[settled]
-            if idx.size:
-                fl = flip[idx]
-
-                def fw(x: np.ndarray, fl: np.ndarray = fl) -> np.ndarray:
-                    return np.where(fl.reshape(-1, *[1] * (x.ndim - 1)), x[:, ::-1], x)
-
-                bd = np.where(fl[:, None], L[idx, None] - bounds[idx][:, ::-1], bounds[idx])
-                checked = check_lines(
-                    s=s[idx],
-                    position=P_[idx],
-                    tension=T_[idx],
-                    force_a=np.where(fl[:, None], FB[idx], FA[idx]),
-                    force_b=np.where(fl[:, None], FA[idx], FB[idx]),
-                    pieces=Pieces(
-                        bounds=bd,
-                        weight=fw(w[idx]),
-                        axial_stiffness=fw(EA[idx]),
-                        point=fw(point[idx]),
-                    ),
-                    tolerance=tol[idx],
-                    position_a=np.where(fl[:, None], rB[idx], rA[idx]),
-                    position_b=np.where(fl[:, None], rA[idx], rB[idx]),
-                    plane=plane if anch[g[0]] else None,
-                ).ok
-                good[idx[checked]] = True
-        # back to the line as defined (A to B)
-        FA2 = np.where(flip[:, None], FB, FA)
-        FB2 = np.where(flip[:, None], FA, FB)
-        out_pos[rows, m] = P_
-        out_ten[rows, m] = T_
-        out_fa[rows, m] = FA2
-        out_fb[rows, m] = FB2
-        laid[rows, m] = LL
-        bad = rows[~good]
+        ms = np.flatnonzero(sizes == p)
+        good = _final_lines(pk, pos, rows, ms, int(p), n, out_pos, out_ten, out_fa, out_fb, laid)
+        bad = rows[~np.all(good, axis=1)]
         fallback[bad] = NOT_VERIFIED
         ok[bad] = False
     # the free points' equilibrium from the verified lines' forces
@@ -506,6 +402,126 @@ def solve_packed(system: MooringSystem, pk: Packed, poses: np.ndarray) -> Solved
     )  # fmt: skip
 
 
+def _final_lines(
+    pk: Packed,
+    pos: np.ndarray,
+    rows: np.ndarray,
+    ms: np.ndarray,
+    p: int,
+    n: int,
+    out_pos: np.ndarray,
+    out_ten: np.ndarray,
+    out_fa: np.ndarray,
+    out_fb: np.ndarray,
+    laid: np.ndarray,
+) -> np.ndarray:
+    """Lines ``ms`` (all of ``p`` pieces) of cases ``rows`` solved again at the points
+    ``pos`` and sampled at ``n`` nodes by the batch kernels (hanging free:
+    :func:`._fast.solve_cases` from :func:`.batch._guess`, as :func:`.batch.solve_batch`
+    does; anchored on the seabed: :func:`.batch.solve_contact_arrays`), written as each
+    line is defined (A to B) into the ``out_*`` arrays (N, M, ...), and verified
+    (:func:`.verify.check_lines`, with the seabed for the anchored ones). Returns per
+    case and line (len(rows), len(ms)) whether the line is settled and verified."""
+    from .batch import _guess, solve_contact_arrays
+
+    R, nm = rows.size, ms.size
+    cols = pk.poff[ms][:, None] + np.arange(p)  # (nm, p)
+    bcols = (pk.poff[ms] + ms)[:, None] + np.arange(p + 1)  # (nm, p + 1)
+    r2, c2 = rows[:, None, None], cols[None]
+    ell = pk.ell[r2, c2].reshape(R * nm, p)
+    EA = pk.EA[r2, c2].reshape(R * nm, p)
+    w = pk.w[r2, c2].reshape(R * nm, p)
+    bounds = pk.bounds[rows[:, None, None], bcols[None]].reshape(R * nm, p + 1)
+    point = pk.point[rows[:, None, None], bcols[None]].reshape(R * nm, p + 1, 3)
+    rA = pos[rows[:, None], pk.la[rows][:, ms]].reshape(R * nm, 3)
+    rB = pos[rows[:, None], pk.lb[rows][:, ms]].reshape(R * nm, 3)
+    flip = pk.flip[rows][:, ms].reshape(-1)
+    anch = pk.anchored[rows][:, ms].reshape(-1)
+    tol = np.repeat(pk.ltol[rows], nm)
+    maxit = np.repeat(pk.lmaxit[rows], nm)
+    plane = pk.plane
+    L = bounds[:, -1]
+    s = np.linspace(np.zeros(R * nm), L, n, axis=1)
+    good = np.zeros(R * nm, dtype=bool)
+    P_ = np.full((R * nm, n, 3), np.nan)
+    T_ = np.full((R * nm, n), np.nan)
+    FA = np.full((R * nm, 3), np.nan)
+    FB = np.full((R * nm, 3), np.nan)
+    LL = np.zeros(R * nm)
+    for g in (np.flatnonzero(~anch), np.flatnonzero(anch)):
+        if not g.size:
+            continue
+        sg = np.where(flip[g, None], L[g, None] - s[g], s[g])
+        if anch[g[0]]:
+            got = solve_contact_arrays(
+                ell[g], EA[g], w[g], point[g], bounds[g], rA[g], rB[g], plane,
+                tol[g], maxit[g], sg,
+            )  # fmt: skip
+            P_[g], T_[g] = got["position"], got["tension"]
+            FA[g], FB[g] = got["force_a"], got["force_b"]
+            LL[g] = got["laid_length"]
+            settled = got["status"] == 0
+        else:
+            Cend = point[g].sum(axis=1)
+            Cend[:, 2] -= np.sum(w[g] * ell[g], axis=1)
+            target = rB[g] - rA[g]
+            EAeff = L[g] / np.sum(ell[g] / EA[g], axis=1)
+            TA0 = _guess(target, L[g], Cend, EAeff, point[g, 0])
+            TAo, TL = np.empty((g.size, 3)), np.empty((g.size, 3))
+            it_, rs_ = np.zeros(g.size, np.int64), np.zeros(g.size)
+            st_ = np.zeros(g.size, np.int64)
+            pg, tg = np.empty((g.size, n, 3)), np.empty((g.size, n))
+            _fast.solve_cases(
+                ell[g], EA[g], w[g], point[g], bounds[g], np.zeros(g.size, dtype=np.int64),
+                rA[g], target, TA0, tol[g], maxit[g], s[g], pg, tg, TAo, TL, it_, rs_, st_,
+            )  # fmt: skip
+            P_[g], T_[g], FA[g], FB[g] = pg, tg, TAo, -TL
+            settled = st_ == 0
+            if plane is not None:  # a line touching the seabed between raised ends
+                height = (pg - np.array([0.0, 0.0, -plane.depth])) @ plane.normal
+                settled &= ~np.any(height < -1e-6 * L[g, None], axis=1)
+        settled &= (
+            np.all(np.isfinite(P_[g]), axis=(1, 2))
+            & np.all(np.isfinite(T_[g]), axis=1)
+            & np.all(np.isfinite(FA[g]), axis=1)
+            & np.all(np.isfinite(FB[g]), axis=1)
+        )
+        # checked as the line is defined, A to B (grid._compiled_solve's seabed_checked)
+        idx = g[settled]
+        if idx.size:
+            fl = flip[idx]
+
+            def fw(x: np.ndarray, fl: np.ndarray = fl) -> np.ndarray:
+                return np.where(fl.reshape(-1, *[1] * (x.ndim - 1)), x[:, ::-1], x)
+
+            bd = np.where(fl[:, None], L[idx, None] - bounds[idx][:, ::-1], bounds[idx])
+            good[idx] = check_lines(
+                s=s[idx],
+                position=P_[idx],
+                tension=T_[idx],
+                force_a=np.where(fl[:, None], FB[idx], FA[idx]),
+                force_b=np.where(fl[:, None], FA[idx], FB[idx]),
+                pieces=Pieces(
+                    bounds=bd,
+                    weight=fw(w[idx]),
+                    axial_stiffness=fw(EA[idx]),
+                    point=fw(point[idx]),
+                ),
+                tolerance=tol[idx],
+                position_a=np.where(fl[:, None], rB[idx], rA[idx]),
+                position_b=np.where(fl[:, None], rA[idx], rB[idx]),
+                plane=plane if anch[g[0]] else None,
+            ).ok
+    # back to the line as defined (A to B)
+    at = (rows[:, None], ms[None])
+    out_pos[at] = P_.reshape(R, nm, n, 3)
+    out_ten[at] = T_.reshape(R, nm, n)
+    out_fa[at] = np.where(flip[:, None], FB, FA).reshape(R, nm, 3)
+    out_fb[at] = np.where(flip[:, None], FA, FB).reshape(R, nm, 3)
+    laid[at] = LL.reshape(R, nm)
+    return good.reshape(R, nm)
+
+
 def _skew_many(v: np.ndarray) -> np.ndarray:
     z = np.zeros(v.shape[:-1])
     x, y, w = v[..., 0], v[..., 1], v[..., 2]
@@ -538,23 +554,14 @@ def _bodies_many(
     where = np.full(n, -1)
     where[sel] = np.arange(sel.size)
     Kall = np.zeros((N, 3 * sel.size, 3 * sel.size))
-    rows = np.arange(N)
     for line in range(Kl.shape[1]):
-        ends = (ka[:, line], kb[:, line])
+        ends = (int(ka[0, line]), int(kb[0, line]))  # the line's own ends: every case's
         for i in range(2):
             for j in range(2):
                 wi, wj = where[ends[i]], where[ends[j]]
-                use = (wi >= 0) & (wj >= 0)
-                if not np.any(use):
-                    continue
-                blk = np.nan_to_num(Kl[:, line, i, j])
-                for q in range(3):
-                    for r in range(3):
-                        np.add.at(
-                            Kall,
-                            (rows[use], 3 * wi[use] + q, 3 * wj[use] + r),
-                            blk[use, q, r],
-                        )
+                if wi >= 0 and wj >= 0:
+                    blk = np.nan_to_num(Kl[:, line, i, j])
+                    Kall[:, 3 * wi : 3 * wi + 3, 3 * wj : 3 * wj + 3] += blk
     nb = 3 * on.size
     Kc = Kall[:, :nb, :nb]
     if fr.size:
