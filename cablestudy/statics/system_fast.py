@@ -254,15 +254,18 @@ def pack(
         # each line's starting tension hanging free (batch._guess, as _solve_group)
         from .batch import _guess
 
-        TA0 = np.empty((int(k.sum()), M, 3))
+        Nk = int(k.sum())
+        args = np.empty((Nk, M, 11))  # d, L, Cend, EA_eff, point at A: one _guess call
         for m in range(M):
             o, ob, p = poff[m], poff[m] + m, P[m]
-            Ltot = bounds[k, ob + p]
-            Cend = point[k, ob : ob + p + 1].sum(axis=1)
-            Cend[:, 2] -= np.sum(w[k, o : o + p] * ell[k, o : o + p], axis=1)
-            d = pos[k, lb[k, m]] - pos[k, la[k, m]]
-            EAeff = Ltot / np.sum(ell[k, o : o + p] / EA[k, o : o + p], axis=1)
-            TA0[:, m] = _guess(d, Ltot, Cend, EAeff, point[k, ob])
+            args[:, m, 3] = bounds[k, ob + p]
+            args[:, m, 4:7] = point[k, ob : ob + p + 1].sum(axis=1)
+            args[:, m, 6] -= np.sum(w[k, o : o + p] * ell[k, o : o + p], axis=1)
+            args[:, m, :3] = pos[k, lb[k, m]] - pos[k, la[k, m]]
+            args[:, m, 7] = args[:, m, 3] / np.sum(ell[k, o : o + p] / EA[k, o : o + p], axis=1)
+            args[:, m, 8:] = point[k, ob]
+        a = args.reshape(Nk * M, 11)
+        TA0 = _guess(a[:, :3], a[:, 3], a[:, 4:7], a[:, 7], a[:, 8:]).reshape(Nk, M, 3)
         Nk = int(k.sum())
         packed = Packed(
             la=la[k], lb=lb[k], flip=flip[k], poff=poff, ell=ell[k], EA=EA[k], w=w[k],
