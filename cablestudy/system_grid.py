@@ -1,22 +1,25 @@
-"""Sweeps of a system study's positions as a grid (:mod:`cablestudy.grid`), solved by the
-compiled system Newton many cases at a time.
+"""Sweeps of a system study's positions and loads as a grid (:mod:`cablestudy.grid`),
+solved by the compiled system Newton many cases at a time.
 
-A system study whose sweep moves only positions -- a prescribed body's pose
-(``bodies.<b>.position.<i>``), a fixed point (``points.<p>.position.<i>``), a body
-point's offset (``points.<p>.offset.<i>``) -- is validated once as a template and each
-swept value once at its own path (as :func:`cablestudy.grid.expand_grid` does); the
-only check that combines swept fields, a fixed point above the seabed, runs over the
-whole grid with NumPy. No per-case pydantic model or :class:`MooringSystem` is built: a
-chunk of cases is the template's system with arrays of point positions and body poses,
+A system study whose sweep moves only positions and free points' loads -- a prescribed
+body's pose (``bodies.<b>.position.<i>``), a fixed point (``points.<p>.position.<i>``),
+a body point's offset (``points.<p>.offset.<i>``), a free point's ``mass``, ``volume``
+or ``force.<i>`` -- is validated once as a template and each swept value once in the
+model that holds it; the only check that combines swept fields, a fixed point above the
+seabed, runs over the whole grid with NumPy. No per-case pydantic model or
+:class:`MooringSystem` is built: a chunk of cases is the template's system with arrays
+of point positions, body poses and free points' loads,
 solved by :func:`cablestudy.statics.system_fast.solve_packed` (the compiled Newton, then
 every line re-solved, sampled and verified, the equilibrium checked, the bodies' force
 and stiffness), and its outputs stacked into one array per variable with the names,
 dims and values of :func:`cablestudy.system_cases.system_outputs`.
 
 Every case starts its Newton from the template's own equilibrium (solved once per
-sweep, with the free points' positions the study gives as the start), never from
-another case, so a case's record does not depend on the chunking or on the order of the
-cases. A case the compiled path does not take or settle is solved by the general path
+sweep, with the free points' positions the study gives as the start) moved to first
+order with the case's own inputs (the template's stiffness), never from another case,
+so a case's record does not depend on the chunking or on the order of the cases. A case
+the compiled path does not settle from there is tried from the equilibrium alone; what it
+does not take or settle is solved by the general path
 (:func:`cablestudy.statics.system.solve_system`) from the study's starting positions and
 counted with its reason (the dataset's ``cases_fallback`` and ``fallback_reasons``).
 
@@ -39,9 +42,12 @@ from .cases import _copy_tree, _hash, _set_path, code_fingerprint, parse_sweep
 from .config.loader import StudySource
 from .config.study import Study
 from .grid import STATUS_NUMERICAL, CaseGrid, GridChunk, _numeric, _warning_column, grid_shape
+from .statics.system import FREE
 
 #: swept paths the system grid takes: (group, name, field, component)
-_PATH = re.compile(r"^(bodies|points)\.([^.]+)\.(position|offset)\.(\d)$")
+_PATH = re.compile(r"^(bodies|points)\.([^.]+)\.(position|offset|force)\.(\d)$")
+#: a free point's load: (name, field)
+_LOAD = re.compile(r"^points\.([^.]+)\.(mass|volume)$")
 
 
 @dataclass(frozen=True)
@@ -52,9 +58,9 @@ class SystemGrid(CaseGrid):
     system: Any = None
     #: where every case starts (:func:`cablestudy.statics.system_fast.template_start`):
     #: the template's equilibrium of the free points (k, 3) [m], all points there (n, 3)
-    #: [m] and the free points' first-order response to the others' displacements (3k,
-    #: 3n); None where the compiled path does not settle the template
-    start: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+    #: [m], the free points' first-order response to the others' displacements (3k, 3n),
+    #: their loads (k, 3) [N] and K_FF^-1 (3k, 3k); None where the template is unsettled
+    start: tuple[np.ndarray, ...] | None = None
     #: names of the system's coordinates: line, point (free points), body, dof, dof_j
     named: dict[str, list[str]] = field(default_factory=dict)
     #: per swept path: (what it sets, index, component): ('pose', body, dof),
@@ -69,7 +75,7 @@ class SystemGrid(CaseGrid):
 def expand_system_grid(src: StudySource, template: Study) -> SystemGrid | None:
     """The system study as a :class:`SystemGrid` when its sweep moves positions only and
     every swept value and combination is valid, else None (then case by case)."""
-    from .config.system import BodyPoint, FixedPoint
+    from .config.system import BodyPoint, FixedPoint, FreePoint
     from .statics.system_fast import ineligible
     from .system_cases import system_model
 
@@ -80,6 +86,12 @@ def expand_system_grid(src: StudySource, template: Study) -> SystemGrid | None:
     targets: dict[str, tuple[str, int, int]] = {}
     for axis in axes:
         for path in axis.paths:
+            load = _LOAD.match(path)
+            if load is not None:
+                if not isinstance(template.points.get(load.group(1)), FreePoint):
+                    return None
+                targets[path] = (load.group(2), points.index(load.group(1)), -1)
+                continue
             m = _PATH.match(path)
             if m is None:
                 return None
@@ -97,6 +109,8 @@ def expand_system_grid(src: StudySource, template: Study) -> SystemGrid | None:
                     targets[path] = ("fixed", points.index(name), comp)
                 elif key == "offset" and isinstance(point, BodyPoint):
                     targets[path] = ("offset", points.index(name), comp)
+                elif key == "force" and isinstance(point, FreePoint):
+                    targets[path] = ("force", points.index(name), comp)
                 else:
                     return None
     system = system_model(template)
@@ -190,21 +204,38 @@ def _fixed_points_above_seabed(
     return True
 
 
-def _case_inputs(grid: SystemGrid, lo: int, hi: int) -> tuple[np.ndarray, np.ndarray]:
-    """Per case of rows ``lo:hi``: the bodies' poses (n, m, 6) and the points' base
+def _case_inputs(grid: SystemGrid, lo: int, hi: int) -> tuple[np.ndarray, ...]:
+    """Per case of rows ``lo:hi``: the bodies' poses (n, m, 6), the points' base
     positions (n, n_points, 3) (fixed points where they are, free points' start as the
-    study gives, body points' offsets)."""
+    study gives, body points' offsets) and the free points' constant force (n, n_points,
+    3) [N] (their force plus weight and buoyancy, as system_cases.system_model)."""
     system = grid.system
     n = (hi - lo) * math.prod(grid.shape[1:])
     poses = np.broadcast_to(system.body_position, (n, *system.body_position.shape)).copy()
     base = np.broadcast_to(system.point_position, (n, *system.point_position.shape)).copy()
+    pforce = np.broadcast_to(system.point_force, (n, *system.point_force.shape)).copy()
+    loads: dict[int, dict[str, Any]] = {}
     for path, (what, i, c) in grid.targets.items():
         vals = grid.values(path, lo, hi)
         if what == "pose":
             poses[:, i, c] = vals
-        else:
+        elif what in ("fixed", "offset"):
             base[:, i, c] = vals
-    return poses, base
+        else:
+            loads.setdefault(i, {})[what if c < 0 else f"force{c}"] = vals
+    env = grid.template.environment
+    names = list(grid.template.points)
+    for i, given in loads.items():
+        point = grid.template.points[names[i]]
+        mass = given.get("mass", point.mass)
+        volume = given.get("volume", point.volume)
+        force = np.stack(
+            [np.broadcast_to(given.get(f"force{c}", point.force[c]), (n,)) for c in range(3)],
+            axis=1,
+        ).astype(float)
+        force[:, 2] += -(mass - env.density * volume) * env.gravity
+        pforce[:, i] = force
+    return poses, base, pforce
 
 
 def evaluate_system_chunk(grid: SystemGrid, lo: int, hi: int) -> GridChunk:
@@ -223,16 +254,18 @@ def evaluate_system_chunk(grid: SystemGrid, lo: int, hi: int) -> GridChunk:
     warnings: dict[int, list[str]] = {}
     data: dict[str, np.ndarray] = {}
     try:
-        poses, base = _case_inputs(grid, lo, hi)
+        poses, base, pforce = _case_inputs(grid, lo, hi)
         body_pts = system.point_kind == BODY
         pos = point_positions_many(system, poses, base if np.any(body_pts) else None, base)
         out = _empty_outputs(system, n)
         why = np.full(n, "", dtype=object)
         todo = np.arange(n)
-        for start in _starts(grid, pos):
-            # the template's equilibrium moved to first order with the case's points, then
-            # (what that does not settle) the template's equilibrium itself
-            pk, why_pk = pack(system, pos[todo], start if start is None else start[todo])
+        for start in _starts(grid, pos, pforce):
+            # the template's equilibrium moved to first order with the case's points and
+            # loads, then (what that does not settle) the template's equilibrium itself
+            pk, why_pk = pack(
+                system, pos[todo], None if start is None else start[todo], pforce[todo]
+            )
             why[todo] = why_pk
             keep = todo[why_pk == ""]
             if pk is not None:
@@ -247,7 +280,7 @@ def evaluate_system_chunk(grid: SystemGrid, lo: int, hi: int) -> GridChunk:
         for i in np.flatnonzero(why != ""):
             reasons[i] = str(why[i])
             limit = grid.template.analysis.time_limit
-            st, msg = _general(system, poses[i], base[i], out, int(i), limit)
+            st, msg = _general(system, poses[i], base[i], pforce[i], out, int(i), limit)
             status[i], messages[i] = st, msg
         for i in np.flatnonzero((reasons != "") & (status == 0)):
             warnings.setdefault(int(i), []).append(fallback_warning(str(reasons[i])))
@@ -275,16 +308,18 @@ def evaluate_system_chunk(grid: SystemGrid, lo: int, hi: int) -> GridChunk:
     )
 
 
-def _starts(grid: SystemGrid, pos: np.ndarray) -> list[np.ndarray | None]:
+def _starts(grid: SystemGrid, pos: np.ndarray, pforce: np.ndarray) -> list[np.ndarray | None]:
     """The free points' starts (N, k, 3) of the cases whose points are at ``pos``
-    (N, n, 3), in the order tried: the template's equilibrium plus its first-order
-    response to the case's displacements of the other points, then the equilibrium
-    alone; the study's own positions (None) where the template is not settled."""
+    (N, n, 3) under the constant forces ``pforce`` (N, n, 3), in the order tried: the
+    template's equilibrium plus its first-order response to the case's displacements of
+    the other points and changes of the free points' loads, then the equilibrium alone;
+    the study's own positions (None) where the template is not settled."""
     if grid.start is None:
         return [None]
-    x, at, S = grid.start
+    x, at, S, load, flex = grid.start
     N = len(pos)
-    moved = (pos - at).reshape(N, -1) @ S.T
+    free = grid.system.point_kind == FREE
+    moved = (pos - at).reshape(N, -1) @ S.T + (pforce[:, free] - load).reshape(N, -1) @ flex.T
     first = x[None] + moved.reshape(N, -1, 3)
     return [first, np.broadcast_to(x, first.shape)]
 
@@ -350,6 +385,7 @@ def _general(
     system: Any,
     poses: np.ndarray,
     base: np.ndarray,
+    pforce: np.ndarray,
     out: dict[str, np.ndarray],
     i: int,
     time_limit: float,
@@ -360,7 +396,7 @@ def _general(
     from .statics.system import solve_system
     from .system_cases import system_outputs
 
-    case = replace(system, body_position=poses, point_position=base)
+    case = replace(system, body_position=poses, point_position=base, point_force=pforce)
     deadline = time.monotonic() + time_limit  # analysis.time_limit, as case by case
     res = solve_system(case, STATIC_SOLVERS["catenary"], deadline=deadline, compiled=False)
     data = system_outputs(case, res)

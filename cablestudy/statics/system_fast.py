@@ -171,7 +171,10 @@ def rotation_derivatives_many(angles: np.ndarray) -> np.ndarray:
 
 
 def pack(
-    system: MooringSystem, pos: np.ndarray, start: np.ndarray | None = None
+    system: MooringSystem,
+    pos: np.ndarray,
+    start: np.ndarray | None = None,
+    pforce: np.ndarray | None = None,
 ) -> tuple[Packed | None, np.ndarray]:
     """The arrays of N cases of ``system`` that differ only in the points' positions
     ``pos`` (N, n, 3) (fixed and body points where they are; free points: the start, or
@@ -245,7 +248,9 @@ def pack(
         if kind[ln.a] == FREE or kind[ln.b] == FREE
     ]
     cap = 0.5 * min(on_free) if on_free else math.inf
-    pforce = np.broadcast_to(system.point_force, (N, n, 3)).copy()
+    if pforce is None:  # the free points' constant forces (N, n, 3) [N], or the system's
+        pforce = np.broadcast_to(system.point_force, (N, n, 3))
+    pforce = np.array(pforce, dtype=float, copy=True)
     prob = system.lines[0].problem
     keep = why == ""
     packed = None
@@ -637,12 +642,13 @@ def solve_fast(system: MooringSystem, *, prescribed: bool = False) -> tuple[obje
     )
 
 
-def template_start(system: MooringSystem) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+def template_start(system: MooringSystem) -> tuple[np.ndarray, ...] | None:
     """Where a sweep starts its cases: the free points' equilibrium of ``system`` (k, 3)
-    [m] by the compiled path, all points' positions there (n, 3) [m], and the free
-    points' first-order response to the other points' displacements, S = -K_FF^-1 K_FP
-    (3k, 3n) (zero columns for the free points, and for an end anchored on the seabed,
-    whose stiffness is not modelled). None where the compiled path does not settle it."""
+    [m] by the compiled path, all points' positions there (n, 3) [m], the free points'
+    first-order response to the other points' displacements, S = -K_FF^-1 K_FP (3k, 3n)
+    (zero columns for the free points, and for an end anchored on the seabed, whose
+    stiffness is not modelled), their loads (k, 3) [N] and K_FF^-1 (3k, 3k), their
+    response to a change of load. None where the compiled path does not settle it."""
     why = ineligible(system)
     if why:
         return None
@@ -668,7 +674,10 @@ def template_start(system: MooringSystem) -> tuple[np.ndarray, np.ndarray, np.nd
                 K[3 * ends[i] : 3 * ends[i] + 3, 3 * ends[j] : 3 * ends[j] + 3] += blk
     F = (3 * free[:, None] + np.arange(3)).ravel()
     S = np.zeros((3 * free.size, 3 * n))
+    flex = np.zeros((3 * free.size, 3 * free.size))
     if free.size:
-        S = -np.linalg.solve(K[np.ix_(F, F)], K[F])
+        flex = np.linalg.inv(K[np.ix_(F, F)])
+        S = -flex @ K[F]
         S[:, F] = 0.0
-    return sol.point_position[0][free], sol.point_position[0], S
+    load = np.array(system.point_force[free], dtype=float)
+    return sol.point_position[0][free], sol.point_position[0], S, load, flex

@@ -115,10 +115,32 @@ def test_cases_the_compiled_path_does_not_take_are_counted_with_their_reason(tmp
         np.testing.assert_allclose(grid[name].values, cases[name].values, atol=1e-9 * scale)
 
 
+def test_load_and_anchor_sweeps_run_as_a_grid_and_equal_the_case_by_case_run(tmp_path) -> None:  # noqa: ANN001
+    """The clump's mass and volume, a vertical force on it and an anchor's position, on
+    two axes: the grid (each case from the template's equilibrium moved to first order
+    with its loads and points) equals the case-by-case run."""
+    text = SYSTEM.split("sweep:")[0].replace(
+        "mass: 3000.0, volume: 0.2}", "mass: 3000.0, volume: 0.2, force: [0.0, 0.0, 0.0]}"
+    ) + (
+        "sweep:\n"
+        "  zip:\n"
+        "    - name: clump\n"
+        "      points.clump.mass: [1000.0, 4000.0, 6000.0]\n"
+        "      points.clump.volume: [0.1, 0.3, 0.2]\n"
+        "    - name: pull\n"
+        "      points.clump.force.2: [0.0, -2.0e4]\n"
+        "      points.anchor3.position.0: [250.0, 240.0]\n"
+    )
+    assert isinstance(expand_grid(parse_study_text(text, "sys.yaml")), SystemGrid)
+    grid = _run_cli(tmp_path, text, "loads")
+    assert grid.attrs["cases_fallback"] == 0 and np.all(grid["status"].values == 0)
+    _same(grid, _run_cases(tmp_path, text))
+
+
 @pytest.mark.parametrize(
     "sweep",
     [
-        "  points.clump.mass: [1000.0, 4000.0]\n",  # not a position: case by case
+        "  lines.bridle.segments.0.length: [69.0, 70.0]\n",  # a line's property
         "  bodies.buoy.position: [[0, 0, 0, 0, 0, 0], [1, 0, 0, 0, 0, 0]]\n",  # whole vector
     ],
 )
