@@ -14,11 +14,14 @@ the contact Newton's Jacobian, N = d T(L) / dy, y = (alpha, beta, s_td)), as
 Each line of a trial starts from its own solution at the current iterate (its tension
 at A hanging free, or its touchdown unknowns on the seabed), so a system iteration
 costs a few line iterations; the answer is the same equilibrium to the tolerance. A
-line anchored on the seabed that hangs free at the current iterate is solved free first
-and kept where its anchor tension does not point into the seabed (then, its weights
-being downward, no point of it is below the seabed: :func:`.batch._hang_free`), else
-on the seabed; a line on the seabed that lifts off hangs free. Whatever a trial cannot
-solve makes the line search shorten the step, as :func:`.system._trial` does.
+line anchored on the seabed whose loads all point down is solved hanging free first and
+kept where its anchor tension does not point into the seabed (then no point of it is
+below the seabed: :func:`.batch._hang_free`), else on the seabed; a line on the seabed
+that lifts off hangs free. That choice is made by the ends' positions alone, never by
+the line's state at the iterate: the net force on the free points is then a function of
+their positions (chosen by history it jumps where a line touches down, and the line
+search fails there: measured on case8 at 14.35 m surge). Whatever a trial cannot solve
+makes the line search shorten the step, as :func:`.system._trial` does.
 
 The kernel gives the free points' positions, each line's end forces and end stiffness
 at the last iterate, and a status; the caller re-solves and verifies the lines at the
@@ -185,7 +188,7 @@ def _eval_lines(
             TA_out[m, k] = TA_in[m, k]
             y_out[m, k] = y_in[m, k]
         done = False
-        if not anchored[c, m] or (mode_in[m] == 0 and clear[c, m]):
+        if not anchored[c, m] or clear[c, m]:
             predicted = only_moving and mode_in[m] == 0
             if predicted:
                 for k in range(3):

@@ -169,3 +169,23 @@ def test_a_swept_anchor_below_the_seabed_leaves_the_grid_for_the_case_by_case_re
     assert expand_grid(src) is None
     with pytest.raises(StudyError, match="anchor3.position: the point lies below the seabed"):
         expand_cases(src)
+
+
+def test_surge_where_a_leg_touches_down_is_settled_by_the_compiled_path() -> None:
+    """case8 around 14.35 m of surge, where a leg's touchdown point reaches its anchor:
+    each line's branch (hanging free or on the seabed) is chosen by its ends' positions
+    alone, so the net force on the junctions is a function of their positions and the
+    line search settles every case (chosen by the line's state at the iterate, it
+    jumped there, and these cases went to the general path)."""
+    from pathlib import Path
+
+    text = (Path(__file__).parents[2] / "configs" / "system-spread-bridles.yaml").read_text()
+    text = text.replace(
+        "{start: 0.0, stop: 10.0, num: 6, name: surge}",
+        "{start: -14.36, stop: -14.34, num: 11, name: surge}",
+    )
+    grid = expand_grid(parse_study_text(text, "case8.yaml"))
+    assert isinstance(grid, SystemGrid)
+    chunk = evaluate_grid_chunk(grid, 0, grid.shape[0])
+    assert np.all(chunk.status == 0)
+    assert list(chunk.fallback_reason) == [""] * 11
