@@ -195,6 +195,8 @@ def warm_up(cases: list[Case]) -> None:
     """Load the compiled kernels the cases will need, before any case is timed (the
     runner's scheduler choice probes the first cases: a kernel's one-off load is
     start-up, not case cost). Not part of validation, which must stay light."""
+    if cases and cases[0].study.is_system:
+        return  # a system's kernels load with its first case (shared by the sweep)
     if any(
         c.study.analysis.dynamic is not None and c.study.analysis.dynamic.method != "time"
         for c in cases
@@ -251,7 +253,7 @@ def _linear_model_problems(cases: list[Case], src: StudySource) -> list[str]:
     for case in cases:
         study = case.study
         dyn = study.analysis.dynamic
-        if dyn is not None and dyn.method == "frequency":
+        if dyn is not None and dyn.method == "frequency" and not study.is_system:
             for path, what in linear_model_gaps(study):
                 loc = ".".join(str(p) for p in path)
                 problems.append(
@@ -269,7 +271,7 @@ def _dynamic_problems(cases: list[Case], src: StudySource) -> list[str]:
     problems: list[str] = []
     for case in cases:
         dyn = case.study.analysis.dynamic
-        if dyn is None:
+        if dyn is None or case.study.is_system:  # a system's: config.system_dynamics
             continue
         study = case.study
         excited = {e.end for e in dyn.excitations}

@@ -74,6 +74,10 @@ USED_BY: dict[str, str] = {
     "MooringEnd": "statics (methods catenary, shooting, discrete); unexcited: refused by "
     "the time and frequency domain (excite it, fix it, or make it a force end)",
     "StaticSettings": "statics (and the static state every other analysis starts from)",
+    "FreePoint.drag_area": "system statics with a current (refused without one): the "
+    "point's drag in the current at its height",
+    "StaticSettings.method": "statics; a system (lines, points): catenary or discrete "
+    "(discrete for lines with EI > 0; analytic and shooting refused)",
     "StaticSettings.drag_elements": "method catenary with a current",
     "StaticSettings.strain_warning": "statics, every method: a `strain` warning above it "
     "(the case keeps status 0; an axial law's max_strain fails it)",

@@ -165,6 +165,8 @@ def kinds_of(study: Any) -> list[str]:
     """The kinds of kernels the analyses of ``study`` call."""
     kinds = ["statics"]
     dynamic = study.analysis.dynamic
+    if dynamic is not None and study.is_system:
+        return kinds  # the system time domain compiles with its first case
     if dynamic is not None:
         if dynamic.method != "frequency" and study.line.kind != "spring":
             kinds.append("time")

@@ -383,10 +383,62 @@ SYSTEM_OUTPUTS: dict[str, OutputVariable] = {
         ("body", "dof", "dof_j"),
         "N/m, N/rad, N, N m/rad",
         "mooring stiffness of each body: minus d body_force[dof] / d body_position[dof_j], "
-        "free points re-equilibrated",
+        "free points re-equilibrated (in a current: with the lines' drag loads held at "
+        "their equilibrium values)",
         analysis="static",
     ),
 }
+# the system time domain (cablestudy.system_dynamic_cases): per line over the steady
+# window, per body the lines' force and moment
+SYSTEM_OUTPUTS.update(
+    {
+        **{
+            f"tension_{q}_{end}": OutputVariable(
+                ("line",),
+                "N",
+                f"{what} tension at end {end.upper()} of each line over the steady motion",
+            )
+            for q, what in (("max", "largest"), ("min", "smallest"), ("mean", "mean"))
+            for end in ("a", "b")
+        },
+        **{
+            k: replace(OUTPUTS[k], dims=("line", "s"))
+            for k in ("tension_envelope_max", "tension_envelope_min")
+        },
+        "body_force_max": OutputVariable(
+            ("body", "dof"),
+            "N, N m",
+            "largest force and moment of all lines on each body "
+            "about its reference point over the steady motion",
+        ),
+        "body_force_min": OutputVariable(
+            ("body", "dof"),
+            "N, N m",
+            "smallest force and moment of all lines on each body "
+            "about its reference point over the steady motion",
+        ),
+        "history_tension_a": OutputVariable(
+            ("line", "time"), "N", "tension at end A of each line (history)"
+        ),
+        "history_tension_b": OutputVariable(
+            ("line", "time"), "N", "tension at end B of each line (history)"
+        ),
+        **{
+            k: OUTPUTS[k]
+            for k in (
+                "dynamic_method",
+                "dynamic_method_reason",
+                "steady_converged",
+                "periods",
+                "dynamic_steps",
+                "newton_iterations",
+                "rejected_steps",
+                "history_time",
+                "dynamic_status",
+            )
+        },
+    }
+)
 SYSTEM_OUTPUTS["x"] = replace(SYSTEM_OUTPUTS["x"], long_name="x position along each line")
 SYSTEM_OUTPUTS["arc_length"] = replace(
     SYSTEM_OUTPUTS["arc_length"], long_name="unstretched arc length from end A of each line"

@@ -21,7 +21,8 @@ from .config.system import BodyPoint, FixedPoint, FreePoint
 from .problem import line_model, medium
 from .results import CaseRecord
 from .statics import STATIC_SOLVERS, STATUS_NUMERICAL, STATUS_OK, EndCondition, StaticProblem
-from .statics.system import BODY, FIXED, FREE, MooringSystem, SystemLine, solve_system
+from .statics.system import BODY, FIXED, FREE, MooringSystem, SystemLine
+from .statics.system_methods import solve_system_by
 
 
 def system_model(study: Study) -> MooringSystem:
@@ -31,10 +32,11 @@ def system_model(study: Study) -> MooringSystem:
     names = tuple(study.points)
     index = {name: i for i, name in enumerate(names)}
     bodies = tuple(study.bodies)
-    kind, position, body, force = [], [], [], []
+    kind, position, body, force, drag = [], [], [], [], []
     for point in study.points.values():
         f = np.zeros(3)
         b = -1
+        drag.append(0.5 * rho * point.drag_area if isinstance(point, FreePoint) else 0.0)
         if isinstance(point, FixedPoint):
             kind.append(FIXED)
             position.append(point.position)
@@ -65,6 +67,9 @@ def system_model(study: Study) -> MooringSystem:
                 n_nodes=settings.nodes,
                 tolerance=settings.tolerance,
                 max_iterations=settings.max_iterations,
+                # the drag elements fixed here (default max(nodes - 1, 20), as for one
+                # line): the free-point Newton samples the lines at fewer nodes
+                drag_elements=settings.drag_elements or max(settings.nodes - 1, 20),
                 seabed_stiffness=env.seabed.stiffness,
                 friction_lateral=env.seabed.friction_lateral,
             ),
@@ -79,6 +84,7 @@ def system_model(study: Study) -> MooringSystem:
         point_position=np.array(position, dtype=float).reshape(-1, 3),
         point_body=np.array(body, dtype=int),
         point_force=np.array(force, dtype=float).reshape(-1, 3),
+        point_drag=np.array(drag, dtype=float),
         body_names=bodies,
         body_position=np.array([b.position for b in study.bodies.values()], dtype=float).reshape(
             -1, 6
@@ -154,8 +160,19 @@ def evaluate_system_case(case: Case) -> CaseRecord:
     study = case.study
     deadline = time.monotonic() + study.analysis.time_limit
     system = system_model(study)
+    res = None
     try:
-        res = solve_system(system, STATIC_SOLVERS["catenary"], deadline=deadline)
+        method = study.analysis.static.method  # catenary or discrete (config.study)
+        if study.analysis.dynamic is not None:  # a sweep of the motion shares the statics
+            from .system_dynamic_cases import system_statics
+
+            res = system_statics(
+                case,
+                system,
+                lambda: solve_system_by(system, method, STATIC_SOLVERS, deadline=deadline),
+            )
+        else:
+            res = solve_system_by(system, method, STATIC_SOLVERS, deadline=deadline)
         status, message = res.status, res.message
         data = system_outputs(system, res)
     except Exception as exc:  # noqa: BLE001 - any solver fault is recorded as data
@@ -166,12 +183,21 @@ def evaluate_system_case(case: Case) -> CaseRecord:
         if bad:
             status, message = STATUS_NUMERICAL, f"non-finite values in {', '.join(bad)}"
     data["static_status"] = np.asarray(status, dtype=np.int64)
-    warning = ""
+    warnings = [_strain_warning(study, res) if status == STATUS_OK else ""]
     if status == STATUS_OK and getattr(res, "fallback", ""):
         # the compiled system Newton left it to the general path: said, as for one line
         from .plausibility import fallback_warning
 
-        warning = fallback_warning(res.fallback)
+        warnings.append(fallback_warning(res.fallback))
+    if study.analysis.dynamic is not None:  # the system time domain (system_dynamic_cases)
+        status, message = _dynamics(case, system, res, status, message, deadline, data)
+        if int(data.get("steady_converged", 1)) == 0 and study.analysis.dynamic.duration is None:
+            warnings.append(
+                f"unsettled: the line end tensions did not settle within max_periods "
+                f"({study.analysis.dynamic.max_periods}); the extremes are those of the last "
+                "periods run"
+            )
+    warning = "; ".join(w for w in warnings if w)
     return CaseRecord(
         hash=case.hash,
         index=case.index,
@@ -181,3 +207,50 @@ def evaluate_system_case(case: Case) -> CaseRecord:
         data=data,
         warning=warning,
     )
+
+
+def _dynamics(
+    case: Case,
+    system: MooringSystem,
+    res: Any,
+    status: int,
+    message: str,
+    deadline: float,
+    data: dict[str, Any],
+) -> tuple[int, str]:
+    """Run the case's dynamics after its statics (not run when they failed) into
+    ``data``; the case's status and message."""
+    from .analyses import STATUS_NOT_RUN
+    from .system_dynamic_cases import run_system_dynamic
+
+    if status != STATUS_OK:
+        data["dynamic_status"] = np.asarray(STATUS_NOT_RUN, dtype=np.int64)
+        return status, message
+    try:
+        d_status, d_message, d_data = run_system_dynamic(case, system, res, deadline)
+    except Exception as exc:  # noqa: BLE001 - any solver fault is recorded as data
+        d_status, d_message, d_data = STATUS_NUMERICAL, f"{type(exc).__name__}: {exc}", {}
+    data.update(d_data)
+    data["dynamic_status"] = np.asarray(d_status, dtype=np.int64)
+    if d_status != STATUS_OK:
+        return d_status, f"dynamic analysis: {d_message}"
+    return status, message
+
+
+def _strain_warning(study: Study, res: Any) -> str:
+    """``analysis.static.strain_warning`` of a system: the largest strain of each line
+    (as for one line), the lines above the limit named."""
+    from .analyses import largest_static_strain
+    from .plausibility import strain_warning
+
+    limit = study.analysis.static.strain_warning
+    strains = {
+        name: largest_static_strain(SimpleNamespace(line=line), r)
+        for (name, line), r in zip(study.lines.items(), res.lines, strict=True)
+    }
+    worst = max(strains, key=lambda k: strains[k] if math.isfinite(strains[k]) else -1.0)
+    text = strain_warning(strains[worst], limit)
+    if not text:
+        return ""
+    over = [k for k, v in strains.items() if v > limit]
+    return f"{text} (lines {', '.join(over)})"

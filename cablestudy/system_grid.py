@@ -82,6 +82,9 @@ def expand_system_grid(src: StudySource, template: Study) -> SystemGrid | None:
     axes = parse_sweep(src)
     if not axes or not _numeric(axes):
         return None
+    an = template.analysis
+    if an.dynamic is not None or an.static.method != "catenary":
+        return None  # the dynamics, method discrete: case by case (system_cases)
     points, bodies = list(template.points), list(template.bodies)
     targets: dict[str, tuple[str, int, int]] = {}
     for axis in axes:
@@ -282,6 +285,8 @@ def evaluate_system_chunk(grid: SystemGrid, lo: int, hi: int) -> GridChunk:
             limit = grid.template.analysis.time_limit
             st, msg = _general(system, poses[i], base[i], pforce[i], out, int(i), limit)
             status[i], messages[i] = st, msg
+        for i, text in _strain_warnings(grid, out, status).items():
+            warnings.setdefault(i, []).append(text)
         for i in np.flatnonzero((reasons != "") & (status == 0)):
             warnings.setdefault(int(i), []).append(fallback_warning(str(reasons[i])))
         bad = status != 0
@@ -322,6 +327,30 @@ def _starts(grid: SystemGrid, pos: np.ndarray, pforce: np.ndarray) -> list[np.nd
     moved = (pos - at).reshape(N, -1) @ S.T + (pforce[:, free] - load).reshape(N, -1) @ flex.T
     first = x[None] + moved.reshape(N, -1, 3)
     return [first, np.broadcast_to(x, first.shape)]
+
+
+def _strain_warnings(grid: SystemGrid, out: dict[str, np.ndarray], status: np.ndarray) -> dict:
+    """``analysis.static.strain_warning`` per case, as case by case
+    (:func:`cablestudy.system_cases._strain_warning`): asked only of the cases whose
+    largest tension over the softest segment's EA (a bound of a linear line's strain; a
+    grid's lines are linear, :func:`cablestudy.statics.system_fast.ineligible`) exceeds
+    the limit."""
+    from types import SimpleNamespace
+
+    from .system_cases import _strain_warning
+
+    t = grid.template
+    limit = t.analysis.static.strain_warning
+    ea = np.array([min(seg.elastic_stiffness for seg in ln.segments) for ln in t.lines.values()])
+    bound = np.nanmax(out["tension"], axis=2) / ea  # (n, M)
+    found = {}
+    for i in np.flatnonzero((status == 0) & np.any(bound > limit, axis=1)):
+        s = out["arc_length"][i]
+        lines = [SimpleNamespace(s=s[m], tension=out["tension"][i, m]) for m in range(len(t.lines))]
+        text = _strain_warning(t, SimpleNamespace(lines=lines))
+        if text:
+            found[int(i)] = text
+    return found
 
 
 def _empty_outputs(system: Any, n: int) -> dict[str, np.ndarray]:

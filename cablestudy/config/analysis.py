@@ -15,6 +15,15 @@ from pydantic import (
 )
 
 from .base import FieldError, Finite, NonNegative, Positive, StrictModel, Vec2, Vec3
+from .system_dynamics import (
+    SYSTEM_HARMONICS,
+    SYSTEM_TABLES,
+    BodyHarmonic,
+    BodyTable,
+    PointHarmonic,
+    PointTable,
+    system_tag,
+)
 
 
 class Installation(StrictModel):
@@ -416,8 +425,32 @@ class SpectrumExcitation(StrictModel):
         return [math.sqrt(2.0 * self.density(f) * df) for f in self.line_frequencies]
 
 
+class BodySpectrumExcitation(SpectrumExcitation):
+    """Irregular motion of one degree of freedom of a body of a system (issue 24): the
+    spectrum of a line end's motion (a density table, or JONSWAP waves times the
+    degree of freedom's RAO, m/m or rad/m), the same spectral lines and seeded phases."""
+
+    end: None = Field(None, description="(a line end's key: a body moves by dof)")
+    direction: None = Field(None, description="(a line end's key: a body moves by dof)")
+    body: str = Field(description="the body that moves (a key of bodies)")
+    dof: Literal["surge", "sway", "heave", "roll", "pitch", "yaw"] = Field(
+        description="degree of freedom moved [m or rad]"
+    )
+
+
+class PointSpectrumExcitation(SpectrumExcitation):
+    """Irregular motion of a point of a system on its own along ``direction``: the
+    spectrum of a line end's motion."""
+
+    end: None = Field(None, description="(a line end's key: a point moves by name)")
+    point: str = Field(description="the point that moves (a key of points)")
+
+
 def _excitation_tag(value: Any) -> str:
     if isinstance(value, dict):
+        tag = system_tag(value)  # a system's body or point motion
+        if tag is not None:
+            return tag
         if "spectrum" in value or "wave_spectrum" in value:
             return "SpectrumExcitation"
         return "TimeSeriesExcitation" if "table" in value else "HarmonicExcitation"
@@ -427,7 +460,13 @@ def _excitation_tag(value: Any) -> str:
 Excitation = Annotated[
     Annotated[HarmonicExcitation, Tag("HarmonicExcitation")]
     | Annotated[TimeSeriesExcitation, Tag("TimeSeriesExcitation")]
-    | Annotated[SpectrumExcitation, Tag("SpectrumExcitation")],
+    | Annotated[SpectrumExcitation, Tag("SpectrumExcitation")]
+    | Annotated[BodyHarmonic, Tag("BodyHarmonic")]
+    | Annotated[BodyTable, Tag("BodyTable")]
+    | Annotated[PointHarmonic, Tag("PointHarmonic")]
+    | Annotated[PointTable, Tag("PointTable")]
+    | Annotated[BodySpectrumExcitation, Tag("BodySpectrum")]
+    | Annotated[PointSpectrumExcitation, Tag("PointSpectrum")],
     Discriminator(_excitation_tag),
 ]
 
@@ -571,10 +610,10 @@ class DynamicSettings(StrictModel):
         items = self.excitation if isinstance(self.excitation, list) else [self.excitation]
         if not items:
             raise ValueError("excitation: list at least one motion")
-        harmonic = any(isinstance(e, HarmonicExcitation) for e in items)
-        periodic = any(isinstance(e, TimeSeriesExcitation) and e.periodic for e in items) or any(
-            isinstance(e, SpectrumExcitation) for e in items
-        )
+        harmonic = any(isinstance(e, (HarmonicExcitation, *SYSTEM_HARMONICS)) for e in items)
+        periodic = any(
+            isinstance(e, (TimeSeriesExcitation, *SYSTEM_TABLES)) and e.periodic for e in items
+        ) or any(isinstance(e, SpectrumExcitation) for e in items)
         if not (harmonic or periodic) and self.period is None and self.duration is None:
             raise ValueError(
                 "excitation has no period (only non-periodic tables): give "

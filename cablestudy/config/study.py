@@ -13,7 +13,8 @@ from .base import FieldError, StrictModel
 from .ends import Ends, FixedEnd, MooringEnd
 from .environment import Environment
 from .line import Line, MoorDynLineRef
-from .system import BodyPoint, FixedPoint, SystemBody, SystemLine, SystemPoint
+from .system import BodyPoint, FixedPoint, FreePoint, SystemBody, SystemLine, SystemPoint
+from .system_dynamics import check_one_line_excitation, check_system_dynamics
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.\-]*$")
 
@@ -59,7 +60,7 @@ class Study(StrictModel):
         "equilibrium)",
     )
     lines: dict[str, SystemLine] = Field(
-        {}, description="system: lines by name, each between two points (a, b); statics only"
+        {}, description="system: lines by name, each between two points (a, b)"
     )
     analysis: Analysis = Analysis()
     sweep: dict[str, Any] = Field(
@@ -145,6 +146,8 @@ class Study(StrictModel):
                 None,
             )
         self._segment_masses(("line",), self.line)
+        if self.analysis.dynamic is not None:
+            check_one_line_excitation(self)  # body / point motions need a system
         a, b = self.ends.a, self.ends.b
         if not isinstance(a, FixedEnd) and not isinstance(b, FixedEnd):
             raise FieldError(
@@ -231,6 +234,19 @@ class Study(StrictModel):
                         name,
                     )
         for name, point in self.points.items():
+            if (
+                isinstance(point, FreePoint)
+                and point.drag_area > 0.0
+                and not self.environment.current
+                and self.analysis.dynamic is None  # the dynamics drag a moving point
+            ):
+                raise FieldError(
+                    ("points", name, "drag_area"),
+                    f"C_D A = {point.drag_area:g} m^2: a point's drag acts in a current, or "
+                    "on its motion in analysis.dynamic; allowed: 0, or give "
+                    "environment.current or analysis.dynamic",
+                    point.drag_area,
+                )
             if isinstance(point, BodyPoint) and point.body not in self.bodies:
                 raise FieldError(
                     ("points", name, "body"),
@@ -280,9 +296,19 @@ class Study(StrictModel):
         an = self.analysis
         refused_analyses = {
             "modal": an.modal is not None,
-            "dynamic": an.dynamic is not None,
             "database": an.database is not None,
         }
+        if an.dynamic is not None:  # the system time domain (dynamics/system_*.py)
+            check_system_dynamics(self)
+        else:
+            for name, point in self.points.items():
+                if isinstance(point, FreePoint) and point.added_mass != 0.0:
+                    raise FieldError(
+                        ("points", name, "added_mass"),
+                        "added_mass acts in the dynamics only; allowed: add "
+                        "analysis.dynamic, or remove the key",
+                        point.added_mass,
+                    )
         for key, given in refused_analyses.items():
             if given:
                 raise FieldError(
@@ -291,26 +317,12 @@ class Study(StrictModel):
                     f"{one_line}; a system runs analysis.static",
                     key,
                 )
-        if an.static.method != "catenary":
-            raise FieldError(
-                ("analysis", "static", "method"),
-                "a system is solved with the exact end stiffness of method 'catenary' "
-                "only; allowed: catenary (other methods are supported by "
-                f"{one_line})",
-                an.static.method,
-            )
+        self._system_method(one_line)
         if an.static.installation is not None:
             raise FieldError(
                 ("analysis", "static", "installation"),
                 f"cable laying is supported by {one_line}, not by a system",
                 "installation",
-            )
-        if self.environment.current:
-            raise FieldError(
-                ("environment", "current"),
-                "the system statics do not model current drag yet; allowed: no current "
-                f"(current is supported by {one_line})",
-                "current",
             )
         env = self.environment
         if env.depth is not None:
@@ -329,6 +341,49 @@ class Study(StrictModel):
                         list(point.position),
                     )
         return self
+
+    def _system_method(self, one_line: str) -> None:
+        """The static method of a system: one that gives each line's exact end stiffness
+        (catenary, discrete), and what the cable method cannot carry refused by name."""
+        static = self.analysis.static
+        method = static.method
+        if method not in ("catenary", "discrete"):
+            raise FieldError(
+                ("analysis", "static", "method"),
+                "a system is solved with the end stiffness of methods 'catenary' and "
+                f"'discrete' only; allowed: catenary, discrete ({method!r} is supported by "
+                f"{one_line})",
+                method,
+            )
+        current = self.environment.has_current and self.environment.density > 0.0
+        if current and static.drag_diameter != "unstretched":
+            raise FieldError(
+                ("analysis", "static", "drag_diameter"),
+                f"drag on the stretched diameter is modelled by method 'shooting', which "
+                f"{one_line} supports, not by a system; allowed: unstretched",
+                static.drag_diameter,
+            )
+        if method == "discrete":
+            return
+        for name, line in self.lines.items():
+            for i, seg in enumerate(line.segments):
+                if seg.bending_stiffness > 0.0:
+                    raise FieldError(
+                        ("lines", name, "segments", i, "bending_stiffness"),
+                        f"EI = {seg.bending_stiffness:g} N m^2: method 'catenary' carries no "
+                        "bending; allowed: 0, or analysis.static.method: discrete (which "
+                        "models it)",
+                        seg.bending_stiffness,
+                    )
+            for i, att in enumerate(line.attachments):
+                if current and att.drag_area > 0.0:
+                    raise FieldError(
+                        ("lines", name, "attachments", i, "drag_area"),
+                        f"C_D A = {att.drag_area:g} m^2 in a current: method 'catenary' has "
+                        "no drag of lumped bodies; allowed: 0, or analysis.static.method: "
+                        "discrete (which models it)",
+                        att.drag_area,
+                    )
 
     @property
     def is_system(self) -> bool:

@@ -15,8 +15,8 @@ lines:
 A body's ``position`` is surge, sway, heave [m] and roll, pitch, yaw [rad] of its
 reference point (rotation R = Rz(yaw) Ry(pitch) Rx(roll)); a body point's ``offset`` is
 in the body frame from the reference point. A free point is placed by equilibrium under
-the lines' pull, its weight ``mass`` g, the buoyancy rho ``volume`` g and ``force``;
-its ``position`` is the starting guess.
+the lines' pull, its weight ``mass`` g, the buoyancy rho ``volume`` g, ``force`` and,
+in a current, its drag; its ``position`` is the starting guess.
 """
 
 from __future__ import annotations
@@ -47,6 +47,15 @@ class FreePoint(StrictModel):
     mass: NonNegative = Field(0.0, description="lumped mass [kg] (weight m g, down)")
     volume: NonNegative = Field(0.0, description="displaced volume [m^3] (buoyancy rho V g)")
     force: Vec3 = Field([0.0, 0.0, 0.0], description="constant applied force [N]")
+    added_mass: NonNegative = Field(
+        0.0, description="dynamics: isotropic added mass [kg] (moves with the point's mass)"
+    )
+    drag_area: NonNegative = Field(
+        0.0,
+        description="drag coefficient times projected area C_D A [m^2]: drag "
+        "1/2 rho C_D A |U| U on the point's velocity U relative to the current (statics: "
+        "in environment.current; dynamics: also on the point's motion)",
+    )
 
 
 class BodyPoint(StrictModel):

@@ -40,6 +40,27 @@ class ExportedCase:
     time_step: float  # dtM [s]
 
 
+def current_table(study: Study, opts: list[str]) -> dict[str, str]:
+    """MoorDyn's steady current of ``study`` (a one-line or a system study): the option
+    row ``Currents 1`` appended to ``opts`` and the table file beside the input file
+    (name -> text); nothing without a current."""
+    env = study.environment
+    if not env.current:
+        return {}
+    opts.append("1  Currents   ! steady current table in current_profile.txt")
+    rows = []
+    for p in sorted(env.current, key=lambda p: p.z):
+        h = math.radians(p.heading_deg)
+        rows.append(f"{_num(p.z)} {_num(p.speed * math.cos(h))} {_num(p.speed * math.sin(h))} 0")
+    return {
+        "current_profile.txt": (
+            "--------------------- MoorDyn steady currents File ----------------------\n"
+            f"written by cablestudy for {study.name}\n"
+            "z (m), ux (m/s), uy (m/s), uz (m/s)\n" + "\n".join(rows) + "\n"
+        )
+    }
+
+
 def _num(v: float) -> str:
     return (
         np.format_float_positional(v, unique=True, trim="-")
@@ -244,20 +265,7 @@ def moordyn_input(
         "0.001  threshIC",
         "300  TmaxIC",
     ]
-    extra: dict[str, str] = {}
-    if env.current:
-        opts.append("1  Currents   ! steady current table in current_profile.txt")
-        rows = []
-        for p in sorted(env.current, key=lambda p: p.z):
-            h = math.radians(p.heading_deg)
-            rows.append(
-                f"{_num(p.z)} {_num(p.speed * math.cos(h))} {_num(p.speed * math.sin(h))} 0"
-            )
-        extra["current_profile.txt"] = (
-            "--------------------- MoorDyn steady currents File ----------------------\n"
-            f"written by cablestudy for {study.name}\n"
-            "z (m), ux (m/s), uy (m/s), uz (m/s)\n" + "\n".join(rows) + "\n"
-        )
+    extra = current_table(study, opts)
     front = [f"MoorDyn v2 input file written by cablestudy: {title}"]
     if dyn is not None:
         for e in dyn.excitations:

@@ -75,7 +75,6 @@ FEATURES = {
     "pinned_bodies": "pinned bodies (a body held in position and free to rotate)",
     "rotated_bodies": "rotated bodies (a body at nonzero roll, pitch or yaw)",
     "systems": "systems of lines (a free point joining several lines)",
-    "system_current": "current on a system of lines (the system statics have no drag)",
     "viscoelastic": "viscoelastic axial stiffness (EA as static|dynamic parts)",
     "syrope": "the Syrope rope model (EA 'SYROPE:...')",
     "tension_table": "tabulated tension-strain curves (EA from a file)",

@@ -27,7 +27,7 @@ from ..config import Study
 from ..config.system import BodyPoint, FixedPoint, FreeBody, FreePoint
 from ..physics.contact import default_seabed_stiffness
 from ..problem import line_model
-from .export import ExportedCase, _floor125, _num
+from .export import ExportedCase, _floor125, _num, current_table
 from .moordyn_format import InterchangeError
 from .seabed import to_moordyn
 from .system_import import moordyn_angles
@@ -117,9 +117,10 @@ def system_moordyn_input(study: Study, result: Any, *, title: str) -> ExportedCa
         else:
             assert isinstance(point, BodyPoint)
             kind, xyz, mass, vol = f"Body{body_ids[point.body]}", point.offset, 0.0, 0.0
+        cda = point.drag_area if isinstance(point, FreePoint) else 0.0
         point_rows.append(
             f"{pid}  {kind}  {'  '.join(_num(v) for v in xyz)}  {_num(mass)}  {_num(vol)}  "
-            f"0  0   ! {name}"
+            f"{_num(cda)}  0   ! {name}"
         )
     n_nodes = study.analysis.static.nodes
     type_rows: list[str] = []
@@ -248,6 +249,7 @@ def system_moordyn_input(study: Study, result: Any, *, title: str) -> ExportedCa
         "0.001  threshIC",
         "300  TmaxIC",
     ]
+    extra = current_table(study, opts)
     sections = [
         "--------------------- MoorDyn Input File ------------------------------------",
         f"MoorDyn v2 input file written by cablestudy: {title}",
@@ -279,4 +281,4 @@ def system_moordyn_input(study: Study, result: Any, *, title: str) -> ExportedCa
         "END",
         "------------------------- need this line -----------------------------------",
     ]
-    return ExportedCase("\n".join(sections) + "\n", {}, warnings, {}, 1, dtm)
+    return ExportedCase("\n".join(sections) + "\n", extra, warnings, {}, 1, dtm)

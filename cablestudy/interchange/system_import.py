@@ -20,8 +20,9 @@ with ``points``, ``bodies`` and ``lines`` (:mod:`cablestudy.config.system`):
 A body's roll, pitch and yaw are converted between MoorDyn's order of rotations
 (R = Rx Ry Rz) and the study's (R = Rz Ry Rx): the same rotation matrix.
 
-What a system study cannot hold (rods, pinned bodies, nonlinear EA, current, lines near
-the sea surface) is refused by name before
+A steady current (``Currents 1``, its table beside the file) drags the lines and, by their
+``CdA``, the free points. What a system study cannot hold (rods, pinned bodies, nonlinear
+EA, lines near the sea surface) is refused by name before
 anything is built; what it does not use is listed in the warnings.
 """
 
@@ -89,14 +90,6 @@ def moordyn_system_to_study(
     comments: dict[tuple[str | int, ...], str] = {}
     lines = [md.lines[i] for i in sorted(md.lines)]
     refusals = check_chain(md, lines, ())
-    if current:
-        cur = md.option("Currents")
-        refusals.add(
-            "system_current",
-            f"{src}:{cur.source_line if cur else 0}",
-            "the system statics have no current drag (current is supported by a one-line "
-            "study: import one line with --line)",
-        )
     used: dict[int, None] = {}
     for ln in lines:
         for key in (ln.attach_a, ln.attach_b):
@@ -155,7 +148,7 @@ def moordyn_system_to_study(
                 )
     refusals.raise_if_any(src, "the system of lines " + ", ".join(str(ln.id) for ln in lines))
 
-    env, rho = environment(md, None, False, comments, warnings)
+    env, rho = environment(md, current, False, comments, warnings)
     if "bodies" in md.sections:  # the system imports the bodies its lines hang on
         where = f"{src}:{md.sections['bodies'][1]}: section "
         warnings[:] = [w for w in warnings if not w.startswith(where)]
@@ -208,13 +201,17 @@ def moordyn_system_to_study(
                 entry["volume"] = pt.volume
             if any(pt.force):
                 entry["force"] = list(pt.force)
+            if current and pt.drag_area:
+                entry["drag_area"] = pt.drag_area  # its drag in the steady current
             points[pname] = entry
             where += ": found by equilibrium, position is the starting guess"
-            if pt.drag_area or pt.added_mass:
+            unused = [] if current else [f"CdA = {pt.drag_area:g} m^2"] * bool(pt.drag_area)
+            unused += [f"Ca = {pt.added_mass:g}"] * bool(pt.added_mass)
+            if unused:
                 warnings.append(
-                    f"{src}:{pt.source_line}: point {pt.id}: CdA = {pt.drag_area:g} m^2 and "
-                    f"Ca = {pt.added_mass:g} (drag and added mass of a point) act in dynamics "
-                    "only: not used in statics"
+                    f"{src}:{pt.source_line}: point {pt.id}: {' and '.join(unused)} (a "
+                    "point's drag without a current, its added mass) act in dynamics only: "
+                    "not used in statics"
                 )
         elif pt.kind == "coupled":
             points[pname] = {"kind": "body", "body": VESSEL, "offset": list(pt.position)}
@@ -249,12 +246,6 @@ def moordyn_system_to_study(
                 f"the file does not define; defined: {', '.join(md.line_types) or 'none'}"
             )
         seg = _segment(md, lt, ln, warnings)
-        if seg["bending_stiffness"] > 0.0:
-            warnings.append(
-                f"{src}:{lt.source_line}: line type {lt.name!r}: EI = "
-                f"{seg['bending_stiffness']:g} N m^2 is carried by the system's catenary "
-                "statics as a cable (no bending), as MoorPy does"
-            )
         if ln.outputs not in ("-", ""):
             warnings.append(
                 f"{src}:{ln.source_line}: line {ln.id} outputs {ln.outputs!r} not used "
@@ -289,8 +280,17 @@ def moordyn_system_to_study(
     if bodies:
         data["bodies"] = bodies
     data["lines"] = study_lines
+    static: dict[str, Any] = {}
     if all(ln.segments > 0 for ln in lines):
         most = max(ln.segments for ln in lines)
-        data["analysis"] = {"static": {"nodes": most + 1}}
+        static["nodes"] = most + 1
         comments[("analysis", "static", "nodes")] = f"the largest NumSegs {most} of the lines, + 1"
+    if any(seg["bending_stiffness"] > 0.0 for seg in segments):
+        static["method"] = "discrete"
+        comments[("analysis", "static", "method")] = (
+            "a line type has EI > 0: the static method that carries bending (each line "
+            "pinned at its ends, as MoorDyn's lines are)"
+        )
+    if static:
+        data["analysis"] = {"static": static}
     return ImportedStudy(data=data, comments=comments, warnings=warnings)

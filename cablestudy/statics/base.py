@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Protocol
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -207,6 +207,9 @@ class StaticResult:
     #: why the batched (compiled) kernel, which tried this problem first, left it to the
     #: general solver ('' if it settled it, or did not try: cablestudy.statics.batch)
     fallback: str = ""
+    #: the solver's converged state where it gives the line's end stiffness
+    #: (:mod:`.line_state`: method discrete, and catenary in a current); None otherwise
+    state: Any = None
 
     @property
     def success(self) -> bool:

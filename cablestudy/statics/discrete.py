@@ -49,6 +49,7 @@ from dataclasses import replace
 import numpy as np
 
 from .base import STATUS_NOT_CONVERGED, STATUS_TIME_LIMIT, StaticProblem, StaticResult
+from .line_state import DiscreteState
 
 
 class DiscreteSolver:
@@ -268,6 +269,10 @@ def _solve_discrete(problem, disc, x0, start, free, end_force, deadline):  # noq
         iterations=its,
         residual=res,
         drag_iterations=start.drag_iterations,
+        # the converged state, for the end stiffness of a system's line (line_state)
+        state=DiscreteState(
+            line=disc, position=x, tension=t_el, anchor=anchor, mixed=is_finite_line(disc)
+        ),
     )
     if problems:
         # the numbers are kept for inspection; the status says they are not verified

@@ -216,6 +216,23 @@ def solve_midspan(
     hb = float(plane.height_above(ends.rB))  # type: ignore[arg-type]
     d = ends.rB - ends.rA  # type: ignore[operator]
     along = float(np.linalg.norm(d - (d @ n) * n))
+    # arc lengths of upward loads: attachments pulling up, pieces lighter than the fluid
+    lifted = np.concatenate(
+        (lay.bounds[1:-1][lay.point[1:-1] @ n > 0.0], lay.bounds[:-1][lay.weight < 0.0])
+    )
+    if L >= ha + along + hb and lifted.size:
+        # an upward load inside can hold the line off the seabed between two laid
+        # stretches: a shape with several contacts, not this one
+        raise _Failure(
+            STATUS_NO_SOLUTION,
+            f"the line ({L:.6g} m) is not shorter than the path down to the seabed, along "
+            f"it and up to the other end ({ha + along + hb:.6g} m) and holds an upward load "
+            f"at s = {float(np.min(lifted)):.6g} m (a buoyant attachment or "
+            "piece): it would rest on the seabed on both sides of it (a W shape); seabed "
+            "contact in several stretches is not modelled (one laid stretch between two "
+            "raised ends is)",
+            final=True,
+        )
     if L >= ha + along + hb:
         raise _Failure(
             STATUS_NO_SOLUTION,

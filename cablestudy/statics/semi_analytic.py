@@ -49,7 +49,9 @@ from .base import (
     StaticResult,
 )
 from .law_pieces import piece_increments
+from .line_state import CatenaryState
 from .seabed import LaidPart, Plane, laid_part
+from .vertical import solve_vertical
 
 _Z = np.array([0.0, 0.0, 1.0])
 
@@ -605,7 +607,10 @@ def initial_contact(
 
         Hmax = w * (L * L - h * h) / (2.0 * h) if L > h else w * L
         lo, hi = 1e-9 * w * L, Hmax
-        if still and L - h - X > 1e-9 * L:
+        # a piece lighter than the fluid (or an attachment pulling up) can hold a line
+        # longer than that path off the seabed: then the contact Newton decides
+        lifted = bool(np.any(lay.weight < 0.0)) or bool(np.any(lay.point @ plane.normal > 0.0))
+        if still and L - h - X > 1e-9 * L and not lifted:
             raise _Failure(
                 STATUS_NO_SOLUTION,
                 f"the line ({L:.6g} m) is longer than the path "
@@ -637,7 +642,14 @@ def initial_contact(
         e = fh - (fh @ n) * n
         e = e / np.linalg.norm(e) if np.linalg.norm(e) > 0.0 else e1
     Ls = min(math.sqrt(h * h + 2.0 * h * H / w), L)
-    return H * e, max(L - Ls, 0.0)
+    s_td = max(L - Ls, 0.0)
+    buoyant = np.flatnonzero(lay.weight < 0.0)
+    if buoyant.size:
+        # the uniform line's guess can lay a buoyant piece (a lazy wave's floats), which
+        # the laid part cannot hold and Newton cannot leave: start the touchdown halfway
+        # to the first buoyant piece
+        s_td = min(s_td, 0.5 * float(lay.bounds[buoyant[0]]))
+    return H * e, s_td
 
 
 def _slack_hint(lay: Layout, *, current: bool = False) -> str:
@@ -980,6 +992,9 @@ class SemiAnalyticSolver:
         state: _State,
     ) -> StaticResult:
         a, b = problem.end_a, problem.end_b
+        vertical = solve_vertical(problem, s)  # ends on one vertical: closed form
+        if vertical is not None:
+            return vertical
         line = problem.line
         L = line.total_length
         medium = problem.medium
@@ -1038,6 +1053,7 @@ class SemiAnalyticSolver:
                 lay, q, ends, plane, state, tol_inner, maxit, deadline, polish, grounded
             )
 
+        loads = None  # the drag-frozen loads per piece (line_state), in a current
         if not has_current:
             shape = inner(grav, tol)
             drag_res = 0.0
@@ -1051,7 +1067,8 @@ class SemiAnalyticSolver:
                 medium.current_z,
                 medium.current_velocity,
             )
-            shape, drag_res = self._drag_loop(lay, grav, drag, inner, tol, deadline, state, ends)
+            shape, drag_res, D = self._drag_loop(lay, grav, drag, inner, tol, deadline, state, ends)
+            loads = CatenaryState(layout=lay, q=grav + D, reversed=reverse)
         pos, tension = shape.sample(s_eval)
         if plane is not None:
             height = plane.height_above(pos)
@@ -1079,6 +1096,7 @@ class SemiAnalyticSolver:
             laid_length=shape.laid_length,
             iterations=state.newton,
             residual=res,
+            state=loads,
         )
 
     def _inner(
@@ -1293,8 +1311,9 @@ class SemiAnalyticSolver:
         deadline: float | None,
         state: _State,
         ends: Ends,
-    ) -> tuple[Shape, float]:
-        """Outer iteration on the drag loads; continuation in current speed on failure."""
+    ) -> tuple[Shape, float, np.ndarray]:
+        """Outer iteration on the drag loads; continuation in current speed on failure.
+        Returns the shape, the load residual and the converged drag loads (P, 3)."""
         Fscale = float(np.sum(np.abs(lay.weight) * lay.ell) + np.sum(np.abs(lay.point)))
         attempts: list[int] = [1, *self.continuation_steps]
         last: _Failure | None = None
@@ -1324,7 +1343,7 @@ class SemiAnalyticSolver:
                         lenient=not final,
                     )
                 assert shape is not None
-                return shape, res
+                return shape, res, D
             except _Failure as exc:
                 if exc.status == STATUS_TIME_LIMIT:
                     raise

@@ -48,6 +48,7 @@ from .base import (
     StaticResult,
 )
 from .law_pieces import piece_increments
+from .line_state import CatenaryState, DiscreteState, discrete_end_stiffness
 from .seabed import Plane
 from .semi_analytic import _laid, _offsets, _suspended, make_layout, reversed_line
 
@@ -106,6 +107,9 @@ class MooringSystem:
     body_cob: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
     #: [N] (m, 3) constant force at the reference point
     body_applied: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    #: [kg/m] (n,) 1/2 rho C_D A of the free points: drag in the lines' current
+    #: (:func:`.system_methods.point_drag`); empty: none
+    point_drag: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
 
 @dataclass(kw_only=True)
@@ -194,6 +198,8 @@ def line_end_stiffness(problem: StaticProblem, result: StaticResult) -> np.ndarr
     The catenary model's complementary energy is the potential of the end forces, so
     for a conservative line (no friction) K is symmetric."""
     assert problem.end_a.position is not None and problem.end_b.position is not None
+    if isinstance(result.state, DiscreteState):  # method discrete: its condensed tangent
+        return discrete_end_stiffness(result.state)
     line = problem.line
     L = line.total_length
     plane = _plane(problem)
@@ -206,8 +212,13 @@ def line_end_stiffness(problem: StaticProblem, result: StaticResult) -> np.ndarr
     if reverse:
         line = reversed_line(line)
         fa, fb = fb, fa
-    lay = make_layout(line)
-    q = lay.gravity
+    if isinstance(result.state, CatenaryState):
+        # in a current: the solver's pieces and their converged loads, drag frozen
+        assert result.state.reversed == reverse
+        lay, q = result.state.layout, result.state.q
+    else:
+        lay = make_layout(line)
+        q = lay.gravity
     K = np.full((2, 2, 3, 3), np.nan)
     if result.laid_length > 0.0:
         assert plane is not None
@@ -215,13 +226,16 @@ def line_end_stiffness(problem: StaticProblem, result: StaticResult) -> np.ndarr
         if float(plane.height_above(grounded_end)) > 1e-6 * L:
             raise SystemFailure(
                 STATUS_NO_SOLUTION,
-                "the line touches the seabed between two raised ends; its end stiffness "
-                "is modelled for a line lying on the seabed from an anchored end only",
+                "the line touches the seabed between two raised ends; method catenary "
+                "models its end stiffness for a line lying on the seabed from an anchored "
+                "end only (analysis.static.method: discrete models it)",
             )
         s_td = float(result.laid_length)
         if s_td >= L * (1.0 - 1e-9):
             raise SystemFailure(
-                STATUS_NO_SOLUTION, "the line lies wholly on the seabed: no end stiffness"
+                STATUS_NO_SOLUTION,
+                "the line lies wholly on the seabed: method catenary gives no end stiffness "
+                "(analysis.static.method: discrete models it)",
             )
         _, ell, EA, qs, C, k_td, Cend = _suspended(lay, q, s_td)
         T_td = -np.asarray(fb, dtype=float) + Cend
@@ -280,6 +294,8 @@ def _solve_lines(
     force = np.zeros((n, 3))
     K = np.zeros((3 * n, 3 * n))
     results = []
+    from .system_methods import point_drag
+
     problems = [
         replace(
             ln.problem,
@@ -316,9 +332,14 @@ def _solve_lines(
                     raise SystemFailure(
                         STATUS_NO_SOLUTION,
                         f"line {ln.name} lies on the seabed from an end that is not a "
-                        "fixed point; its stiffness there is not modelled (anchor it)",
+                        "fixed point; method catenary does not model its stiffness there "
+                        "(anchor it, or analysis.static.method: discrete models it)",
                     )
                 K[3 * ends[i] : 3 * ends[i] + 3, 3 * ends[j] : 3 * ends[j] + 3] += k[i, j]
+    drag = point_drag(system, pos)  # current drag on free points, if any
+    if drag is not None:
+        force += drag[0]
+        K += drag[1]
     return results, force, K
 
 
@@ -394,14 +415,18 @@ def _solve(
     # wrapper, cablestudy.statics.VerifiedSolver); the lines at the solution are verified
     raw = getattr(solver, "solver", solver)
     final = system
-    # and sample each line at its ends only: its shape is wanted at the solution
-    system = replace(
-        system,
-        lines=tuple(
-            replace(ln, problem=replace(ln.problem, n_nodes=min(ln.problem.n_nodes, 3)))
-            for ln in system.lines
-        ),
-    )
+    # and, for the cable solver in still water, sample each line at its ends only: its
+    # shape is wanted at the solution (the discrete model's nodes are its mesh, and the
+    # check of a line in a current sums its drag over the samples: both kept)
+    still = not any(ln.problem.medium.has_current for ln in system.lines)
+    if getattr(solver, "name", "") == "catenary" and still:
+        system = replace(
+            system,
+            lines=tuple(
+                replace(ln, problem=replace(ln.problem, n_nodes=min(ln.problem.n_nodes, 3)))
+                for ln in system.lines
+            ),
+        )
     results, force, K = _solve_lines(system, pos, raw, deadline)
     it = 0
     res = 0.0

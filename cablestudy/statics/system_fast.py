@@ -89,6 +89,8 @@ def ineligible(system: MooringSystem, *, prescribed: bool = False) -> str:
     for ln in system.lines:
         prob = ln.problem
         line, med = prob.line, prob.medium
+        if med.has_current:  # drag on lines and free points: the general path's iteration
+            return "current: the compiled kernels solve still water"
         if line.is_nonlinear:
             return f"line {ln.name}: a nonlinear axial law has no compiled kernel"
         if (

@@ -189,3 +189,16 @@ def test_surge_where_a_leg_touches_down_is_settled_by_the_compiled_path() -> Non
     chunk = evaluate_grid_chunk(grid, 0, grid.shape[0])
     assert np.all(chunk.status == 0)
     assert list(chunk.fallback_reason) == [""] * 11
+
+
+def test_strain_warning_in_the_grid_is_the_case_by_case_one(tmp_path) -> None:  # noqa: ANN001
+    """analysis.static.strain_warning set low: the lines above it are named in each
+    case's warning exactly as case by case."""
+    text = SYSTEM.replace(
+        "static: {nodes: 11, tolerance: 1.0e-11}",
+        "static: {nodes: 11, tolerance: 1.0e-11, strain_warning: 1.0e-4}",
+    )
+    grid = _run_cli(tmp_path, text, "strain")
+    assert any("strain" in w for w in grid["warning"].values)
+    cases = _run_cases(tmp_path, text)
+    assert list(grid["warning"].values) == list(cases["warning"].values)

@@ -238,12 +238,23 @@ def test_what_a_system_cannot_hold_is_refused_by_name(
     assert feature in info.value.features
 
 
-def test_a_current_is_refused_for_a_system_naming_it(tmp_path: Path) -> None:
+def test_a_system_in_a_current_imports_with_its_drag_and_solves(tmp_path: Path) -> None:
+    """``Currents 1`` with its table beside the file: the system study carries the
+    current, the free point its CdA as drag_area (its drag in the current, as MoorDyn
+    gives it in the initial condition), and its statics solve."""
     (tmp_path / "current_profile.txt").write_text("a\nb\nc\n0 0.5 0 0\n-100 0.1 0 0\n")
     text = SPREAD.replace("100 WtrDpth", "100 WtrDpth\n1 Currents")
-    with pytest.raises(NotModelledError, match="current on a system of lines") as info:
-        import_model(text, "spread.dat", folder=tmp_path)
-    assert info.value.features == ("system_current",)
+    imported = import_model(text, "spread.dat", folder=tmp_path)
+    data = imported.data
+    assert [p["speed"] for p in data["environment"]["current"]] == [0.5, 0.1]
+    assert data["points"]["point5"]["drag_area"] == 2.0
+    assert not any("CdA = 2" in w for w in imported.warnings)  # used, not listed
+    (_, [case]) = expand_cases(parse_study_text(imported_yaml(imported, "s.dat"), "<imported>"))
+    record = evaluate_system_case(case)
+    assert record.status == 0, record.message
+    still = import_model(SPREAD, "spread.dat")  # no current: CdA acts in dynamics only
+    assert "drag_area" not in still.data["points"]["point5"]
+    assert any("CdA = 2" in w for w in still.warnings)
 
 
 def test_a_study_line_from_a_system_file_asks_for_its_lines(tmp_path: Path) -> None:
@@ -255,3 +266,34 @@ def test_a_study_line_from_a_system_file_asks_for_its_lines(tmp_path: Path) -> N
         line_from_reference("spread.dat", None, tmp_path)
     line, _ = line_from_reference("spread.dat", [5], tmp_path)  # anchor to coupled point
     assert [s["length"] for s in line["segments"]] == [320.0]
+
+
+def test_a_system_in_a_current_survives_export_and_import(tmp_path: Path, capsys) -> None:
+    """The current table and the free points' drag (MoorDyn's CdA) are written and read
+    back: the re-imported system (the same lines, each its own drag elements: NumSegs 20
+    as nodes 21) has the same statics, to 1e-9 of the largest tension (the two solves'
+    tolerance 1e-10; only Newton's start differs)."""
+    config = tmp_path / "cur.yaml"
+    text = (CONFIGS / "system-spread-bridles.yaml").read_text()
+    text = text.replace(
+        "  depth: 100.0\n",
+        "  depth: 100.0\n  current: [{z: 0.0, speed: 0.8, heading_deg: 30.0}, "
+        "{z: -100.0, speed: 0.2, heading_deg: 30.0}]\n",
+    )
+    for k in "123":
+        text = text.replace(
+            f"junction{k}: {{kind: free, position: [",
+            f"junction{k}: {{kind: free, drag_area: 3.0, position: [",
+        )
+    config.write_text(text)
+    exported, back = _round_trip(config, tmp_path, capsys, ["--case", "surge=4.0"])
+    assert "1  Currents" in exported and (tmp_path / "current_profile.txt").exists()
+    assert [p.get("drag_area", 0.0) for p in back.data["points"].values()].count(3.0) == 3
+    _, cases = expand_cases(read_study_source(config))
+    (case,) = [c for c in cases if c.coords["surge"] == 4.0]
+    original = evaluate_system_case(case)
+    assert original.status == 0, original.message
+    again = _solve(back)
+    largest = float(np.max(original.data["tension_b"]))
+    for key in ("tension_a", "tension_b"):
+        np.testing.assert_allclose(again[key], original.data[key], rtol=0.0, atol=1e-9 * largest)

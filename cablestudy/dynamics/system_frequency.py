@@ -1,0 +1,792 @@
+"""Frequency-domain response of a mooring system: every line and free point linearised
+together about the static state, driven by harmonic motion of the bodies.
+
+Each line is the single-line frequency domain's linear model
+(:class:`~cablestudy.dynamics.frequency.LinearLine`, both end nodes prescribed; its
+matrices projected once on the inner nodes, :class:`~.frequency.ReducedLine`). Lines
+meet at points: fixed (at rest), on a prescribed body (moved rigidly with it) or free
+(junctions, clumps, buoys: unknown). Every quantity is ``Re(Q exp(i w t))``.
+
+The model. With ``A = K - w^2 M + i w (C + D)`` a line's dynamic matrix (``D`` its
+linearised drag, below), split into the inner nodes ``I`` and its two end nodes ``E``,
+the inner nodes carry no external load and the end rows give the force the line needs
+at its end nodes (minus the force of the line on the point):
+
+    A_II u_I + A_IE u_E = 0,        f_E = A_EI u_I + A_EE u_E.
+
+Per line, one band factorisation of ``A_II`` (the line's band) solves ``A_II X =
+-A_IE`` for the six end unit motions, so ``u_I = X u_E`` and ``f_E = S u_E`` with the
+condensed end dynamic stiffness ``S = A_EE + A_EI X`` (6 x 6, the Schur complement).
+A free point ``p`` of mass ``m_p`` (added mass included; 3 x 3) and linearised drag
+``D_p`` balances the forces it applies to the lines' end nodes:
+
+    (-w^2 m_p + i w D_p) u_p + sum over line ends at p of (S u_E)_end = 0,
+
+a dense system of three unknowns per free point (the junction system), whose right
+side carries the prescribed motion of the other line ends. No matrix over all nodes
+is ever formed: per line a banded solve with six right sides, and one small dense solve.
+
+Body motion. A body's complex amplitudes ``(X, Theta)`` (surge, sway, heave [m], roll,
+pitch, yaw [rad]) move its point at global offset ``a = R p`` from the reference point
+by ``X + Theta x a`` (small rotation: the rotation matrices' first order, whatever
+their order).
+
+Drag. Each line's nodal Morison drag is linearised as in the single-line frequency
+domain (:func:`~.frequency.drag_linearisation`: the mean-square, describing-function
+fit of ``c_N |w_N| w_N + c_T |w_T| w_T``, closed form for motion in the x-z plane); a
+free point's isotropic drag ``c |w| w`` (``c = rho C_d A / 2``) is fitted the same way
+over ``samples`` phases. Since ``D`` depends on the motion the solve is iterated from
+the quasi-static motion (``w = 0``: the stiffness alone, the velocity then ``i w u``),
+with the single-line iteration's Anderson mixing (depth 3; after a change that grew,
+the mean of the last two with the history dropped), until the velocity amplitudes of
+every node change by less than ``tolerance`` of the largest.
+
+Output per line: end tension variations at A and B (``F_hat . dF``, ``F_hat`` the unit
+static force of the line on the point, as in the single-line frequency domain), the
+element tension variations (the envelope ``T_static +- |dT|``) and the displacements;
+per point its displacement. Status 0 only when the assembled equations hold: every
+line's inner rows and every free point's balance are checked on the solution (the
+residual against the largest end force amplitude, :data:`RESIDUAL_BAR`).
+
+Measured (issue 24; case8 imported whole, 40 elements a line): against MoorDyn at
+0.1 m, 0.1 Hz every end tension amplitude within 1.7e-3 (surge) and 3.6e-4 (heave) of
+the largest (tests/validation/test_system_frequency_moordyn.py); at the references'
+2 m surge the linear answer is 1.6e-2 of T_max off MoorDyn's extremes, at 1 m heave
+5.6e-4. Where lines lie on the seabed the contact is linearised as the time domain's
+spring held closed: on MoorDyn's lines.txt (chains, 135 m laid; surge at 0.05 Hz) the
+quasi-static body stiffness is the exact catenary's within 3e-3, but the amplitudes
+are 8-15 % above the time domains' at 0.2 m (ours and MoorDyn's agree within 4 %), and
+those are not linear there themselves (per metre of motion, 0.05 m and 0.2 m differ
+by 4 % on leg 1 and 15 % on legs 2 and 3): ``method: auto`` should send such cases to
+the time domain.
+
+Pure: arrays and frozen dataclasses in, a :class:`SystemFrequencyResult` out.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+from numba import njit
+from scipy.linalg import solve_banded
+
+from ..physics.current import current_velocity
+from ..statics.base import (
+    STATUS_NUMERICAL,
+    STATUS_OK,
+    EndCondition,
+    StaticProblem,
+    StaticResult,
+)
+from ..statics.system import BODY, FREE, MooringSystem, SystemResult
+from .frequency import (
+    FIT_REGULARISATION,
+    STATUS_NOT_CONVERGED,
+    DragSettings,
+    LinearLine,
+    ReducedLine,
+    drag_linearisation,
+)
+from .linear_model import linear_line
+from .modal import ModalProblem
+
+#: largest residual of the assembled equations on the solution (inner rows of every
+#: line, balance of every free point), relative to the largest end-force amplitude and
+#: the largest inertial/stiffness force scale: LAPACK's band and dense solves leave
+#: about the condition number times 1e-16; 1e-8 allows condition numbers to 1e8
+RESIDUAL_BAR = 1e-8
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class SystemLinear:
+    """A mooring system linearised about its static state.
+
+    Parameters
+    ----------
+    names : line names, (L,)
+    lines : each line's reduced linear model (both end nodes prescribed), (L,)
+    ends : (L, 2) int, the point at end A and at end B of each line
+    point_kind : (P,) int, FIXED, FREE or BODY (:mod:`cablestudy.statics.system`)
+    point_body : (P,) int, body index of BODY points (-1 otherwise)
+    point_arm : [m] (P, 3) global offset ``R p`` of a BODY point from its body's
+        reference point in the static state (zeros otherwise)
+    point_mass : [kg] (P, 3, 3) mass and added mass of the free points
+    point_drag : [kg/m] (P,) isotropic drag coefficient ``rho C_d A / 2`` of free points
+    point_current : [m/s] (P, 3) current at the points
+    n_bodies : number of bodies
+    """
+
+    names: tuple[str, ...]
+    lines: tuple[ReducedLine, ...]
+    ends: np.ndarray
+    point_kind: np.ndarray
+    point_body: np.ndarray
+    point_arm: np.ndarray
+    point_mass: np.ndarray
+    point_drag: np.ndarray
+    point_current: np.ndarray
+    n_bodies: int
+
+    @property
+    def free_points(self) -> np.ndarray:
+        return np.flatnonzero(self.point_kind == FREE)
+
+    @functools.cached_property
+    def couplings(self) -> tuple[EndCoupling, ...]:
+        """Per line the blocks that couple its end nodes (built once)."""
+        return tuple(EndCoupling.of(r) for r in self.lines)
+
+    @property
+    def has_drag(self) -> bool:
+        return bool(np.any(self.point_drag > 0.0)) or any(r.line.has_drag for r in self.lines)
+
+
+#: the end nodes' six coordinates in a line's 3n (A x, y, z; B x, y, z)
+def _end_index(n: int) -> np.ndarray:
+    return np.array([0, 1, 2, 3 * n - 3, 3 * n - 2, 3 * n - 1])
+
+
+@dataclass(frozen=True, eq=False)
+class EndCoupling:
+    """The stiffness, mass and damping blocks of a line between its inner free
+    directions ``I`` and its end nodes' coordinates ``E`` (dense: ``IE`` (k, 6), ``EI``
+    (6, k), ``EE`` (6, 6)), so that a frequency's condensation needs no product with the
+    line's sparse matrices. The drag is per node, so it couples no inner node to an
+    end: only its end blocks enter ``EE``."""
+
+    K: tuple[np.ndarray, np.ndarray, np.ndarray]
+    M: tuple[np.ndarray, np.ndarray, np.ndarray]
+    C: tuple[np.ndarray, np.ndarray, np.ndarray]
+
+    @classmethod
+    def of(cls, red: ReducedLine) -> EndCoupling:
+        line = red.line
+        B = line.free_basis.tocsc()
+        e = _end_index(line.n_nodes)
+
+        def blocks(Q: object) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+            Q = Q.tocsr()  # type: ignore[attr-defined]
+            cols = Q[:, e]
+            rows = Q[e, :]
+            return (
+                np.asarray((B.T @ cols).todense()),
+                np.asarray((rows @ B).todense()),
+                np.asarray(rows[:, e].todense()),
+            )
+
+        return cls(K=blocks(line.stiffness), M=blocks(line.mass_matrix()), C=blocks(line.damping))
+
+
+@dataclass(kw_only=True)
+class SystemFrequencyResult:
+    """Harmonic response of a system (complex amplitudes of ``Re(Q e^{i w t})``).
+
+    end_tension [N] (L, 2) variation of each line's end tensions at A and B;
+    tension_static [N] (L, 2); element_tension [N] per line (n_l - 1,) complex;
+    displacement [m] per line (n_l, 3) complex; point_displacement [m] (P, 3) complex;
+    end_force [N] (L, 2, 3) variation of the force of each line on its points at A and
+    B; body_force [N, N m] (B, 6) variation of the force and moment of the lines on each
+    body about its reference point, ``sum dF`` and ``sum (a x dF + (Theta x a) x F)``
+    (the static force ``F`` turning with the arm);
+    iterations, converged, change (drag iteration); residual (relative, see
+    :data:`RESIDUAL_BAR`); status, message.
+    """
+
+    end_tension: np.ndarray
+    tension_static: np.ndarray
+    element_tension: list[np.ndarray]
+    displacement: list[np.ndarray]
+    point_displacement: np.ndarray
+    end_force: np.ndarray
+    body_force: np.ndarray
+    iterations: int = 0
+    converged: bool = True
+    change: float = 0.0
+    residual: float = 0.0
+    status: int = STATUS_OK
+    message: str = ""
+    element_tension_static: list[np.ndarray] = field(default_factory=list)
+
+    @property
+    def tension_amplitude(self) -> np.ndarray:
+        """[N] (L, 2) amplitudes of the end tension variations at A and B."""
+        return np.abs(self.end_tension)
+
+    def envelope(self) -> tuple[list[np.ndarray], list[np.ndarray]]:
+        """Per line the linear tension envelope over its elements [N]: static plus and
+        minus the amplitude of the variation."""
+        hi = [
+            t + np.abs(d)
+            for t, d in zip(self.element_tension_static, self.element_tension, strict=True)
+        ]
+        lo = [
+            t - np.abs(d)
+            for t, d in zip(self.element_tension_static, self.element_tension, strict=True)
+        ]
+        return hi, lo
+
+
+# ------------------------------------------------------------------------ building
+
+
+def system_linear(
+    system: MooringSystem,
+    static: SystemResult,
+    *,
+    point_mass: np.ndarray | None = None,
+    point_added_mass: np.ndarray | None = None,
+    point_drag: np.ndarray | None = None,
+    extras: list | None = None,
+    nodes: int | None = None,
+    solve: Callable[[StaticProblem], StaticResult] | None = None,
+) -> tuple[SystemLinear | None, str]:
+    """The system linearised about its solved static state ``static``, or None and why
+    not. ``point_mass`` and ``point_added_mass`` [kg] (P,) (isotropic) and
+    ``point_drag`` [kg/m] (P,) (``rho C_d A / 2``) of the free points (zeros when not
+    given); ``extras`` per line the :class:`~cablestudy.dynamics.model.DynamicExtras`
+    (None: the line's defaults). The nodes of each line are its static samples, or with
+    ``nodes`` that many equally spaced ones: each line solved again by ``solve`` (a
+    static solver's ``solve``) between its points where the system put them."""
+    P = len(system.point_names)
+    held = EndCondition(kind="fixed")
+    reduced = []
+    for i, (sl, st) in enumerate(zip(system.lines, static.lines, strict=True)):
+        if nodes is not None and len(st.s) != nodes:
+            if solve is None:
+                raise ValueError("system_linear: nodes needs a static solver (solve)")
+            st = solve(
+                replace(
+                    sl.problem,
+                    end_a=EndCondition(kind="fixed", position=static.point_position[sl.a]),
+                    end_b=EndCondition(kind="fixed", position=static.point_position[sl.b]),
+                    n_nodes=nodes,
+                )
+            )
+            if not st.success:
+                return None, f"line {sl.name!r} at {nodes} nodes: {st.message}"
+        T_e = 0.5 * (st.tension[:-1] + st.tension[1:])
+        med = sl.problem.medium
+        if med.depth is not None:
+            ground = med.seabed_z(st.position[:, 0], st.position[:, 1])
+            on_bed = st.position[:, 2] - ground <= 1e-6 * max(float(st.s[-1]), 1.0)
+        else:
+            on_bed = np.zeros(len(st.s), dtype=bool)
+        slack = (T_e <= 0.0) & ~(on_bed[:-1] & on_bed[1:])
+        if np.any(slack):
+            return None, (
+                f"line {sl.name!r} is slack in the static state (element tension "
+                f"{float(T_e[slack].min()):.4g} N); the frequency domain needs taut lines"
+            )
+        line = linear_line(
+            ModalProblem(
+                line=sl.problem.line,
+                medium=med,
+                end_a=held,
+                end_b=held,
+                static=st,
+                extras=None if extras is None else extras[i],
+            )
+        )
+        ends = static.point_position[[sl.a, sl.b]]
+        gap = float(np.max(np.abs(line.position[[0, -1]] - ends)))
+        if gap > 1e-6 * max(float(st.s[-1]), 1.0):
+            return None, f"line {sl.name!r} does not end at its points (gap {gap:.3g} m)"
+        reduced.append(ReducedLine.of(line))
+    arm = np.zeros((P, 3))
+    on_body = system.point_kind == BODY
+    if np.any(on_body):
+        bodies = static.body_position if static.body_position is not None else system.body_position
+        arm[on_body] = static.point_position[on_body] - bodies[system.point_body[on_body], :3]
+    m = np.zeros(P) if point_mass is None else np.asarray(point_mass, dtype=float)
+    ma = np.zeros(P) if point_added_mass is None else np.asarray(point_added_mass, dtype=float)
+    mass = (m + ma)[:, None, None] * np.eye(3)[None]
+    medium = system.lines[0].problem.medium
+    current = (
+        current_velocity(static.point_position[:, 2], medium.current_z, medium.current_velocity)
+        if medium.current_velocity.size
+        else np.zeros((P, 3))
+    )
+    return (
+        SystemLinear(
+            names=tuple(sl.name for sl in system.lines),
+            lines=tuple(reduced),
+            ends=np.array([[sl.a, sl.b] for sl in system.lines], dtype=int).reshape(-1, 2),
+            point_kind=np.asarray(system.point_kind, dtype=int),
+            point_body=np.asarray(system.point_body, dtype=int),
+            point_arm=arm,
+            point_mass=mass,
+            point_drag=np.zeros(P) if point_drag is None else np.asarray(point_drag, dtype=float),
+            point_current=np.asarray(current, dtype=float).reshape(P, 3),
+            n_bodies=len(system.body_names),
+        ),
+        "",
+    )
+
+
+def point_motion(model: SystemLinear, body_motion: np.ndarray) -> np.ndarray:
+    """Complex displacements [m] (P, 3) of the points for the bodies' complex motion
+    amplitudes ``body_motion`` (B, 6) [m, rad]: ``X + Theta x a`` on a body, zero
+    elsewhere (free points are unknowns: zero here)."""
+    u = np.zeros((model.point_kind.size, 3), dtype=complex)
+    on = np.flatnonzero(model.point_kind == BODY)
+    if on.size:
+        q = np.asarray(body_motion, dtype=complex).reshape(model.n_bodies, 6)[model.point_body[on]]
+        u[on] = q[:, :3] + np.cross(q[:, 3:], model.point_arm[on])
+    return u
+
+
+# ------------------------------------------------------------------------ solving
+
+
+def _condense(
+    red: ReducedLine, ec: EndCoupling, omega: float, D: np.ndarray | None
+) -> tuple[np.ndarray, np.ndarray] | None:
+    """Per line: ``X`` (k, 6), the inner response per unit end motion (``A_II X =
+    -A_IE``, one band solve with six right sides), and ``S = A_EE + A_EI X`` (6, 6), the
+    condensed end dynamic stiffness; None if ``A_II`` is singular."""
+    w2, iw = omega**2, 1j * omega
+    A_IE, A_EI, A_EE = (ec.K[j] - w2 * ec.M[j] + iw * ec.C[j] for j in range(3))
+    if D is not None:
+        A_EE = A_EE.copy()
+        A_EE[:3, :3] += iw * D[0]
+        A_EE[3:, 3:] += iw * D[-1]
+    if A_IE.shape[0] == 0:
+        return np.zeros((0, 6), dtype=complex), A_EE
+    ab = red.K - w2 * red.M + iw * red.C
+    if D is not None:
+        ab = ab + iw * red.drag_band(D)
+    bw = red.bandwidth
+    try:
+        X = solve_banded((bw, bw), ab, -A_IE, check_finite=False)
+    except (np.linalg.LinAlgError, ValueError):
+        return None
+    if not np.all(np.isfinite(X)):
+        return None
+    return X, A_EE + A_EI @ X
+
+
+def mean_drag_jacobian(line: LinearLine, velocity: np.ndarray, samples: int) -> np.ndarray:
+    """The drag's Jacobian ``d f / d w`` [N s/m] (n, 3, 3) averaged over ``samples``
+    phases of the nodes' motion (complex velocity amplitudes ``velocity`` (n, 3)):
+    ``c_N (|w_N| P + w_N w_N^T / |w_N|) + 2 c_T |w_T| t t^T + c_B (|w| I + w w^T / |w|)``
+    at ``w = U - Re(v e^{i th})``. What the drag fit leans towards in directions in
+    which a node hardly moves (:data:`~.frequency.FIT_REGULARISATION`): there it is the
+    damping a small motion across the node's own motion feels (``c_N 2 a / pi`` across a
+    one-dimensional oscillation of amplitude ``a`` in still water), the limit of the
+    fit as the motion in that direction vanishes; at rest it is the tangent at the
+    mean flow (:func:`~.frequency.drag_tangent`). Leaning towards the latter instead
+    (zero in still water) makes the fit jump between the two as a node's motion turns
+    from nearly straight to straight, and the iteration of a system in three
+    dimensions then wanders (case8 under surge above 0.2 Hz: no convergence in 100
+    iterations; with this lean, 6 to 20)."""
+    out = np.empty((line.n_nodes, 3, 3))
+    _mean_jacobian(
+        np.ascontiguousarray(velocity.real),
+        np.ascontiguousarray(velocity.imag),
+        line.current,
+        line.tangent,
+        line.drag_normal,
+        line.drag_tangential,
+        line.body_drag,
+        samples,
+        out,
+    )
+    return out
+
+
+@njit(cache=True)
+def _mean_jacobian(vr, vi, current, tangent, c_n, c_t, c_b, samples, out):  # noqa: ANN001, ANN202, PLR0913
+    """Kernel of :func:`mean_drag_jacobian` (loops over nodes and phases)."""
+    n = current.shape[0]
+    w = np.empty(3)
+    wn = np.empty(3)
+    for i in range(n):
+        t0, t1, t2 = tangent[i, 0], tangent[i, 1], tangent[i, 2]
+        t = (t0, t1, t2)
+        acc = np.zeros((3, 3))
+        abs_t = 0.0
+        for k in range(samples):
+            c = math.cos(2.0 * math.pi * k / samples)
+            s = math.sin(2.0 * math.pi * k / samples)
+            for a in range(3):
+                w[a] = current[i, a] - (vr[i, a] * c - vi[i, a] * s)
+            wt = w[0] * t0 + w[1] * t1 + w[2] * t2
+            abs_t += abs(wt)
+            for a in range(3):
+                wn[a] = w[a] - wt * t[a]
+            sn = math.sqrt(wn[0] * wn[0] + wn[1] * wn[1] + wn[2] * wn[2])
+            sr = math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
+            for a in range(3):
+                for b in range(3):
+                    p_ab = (1.0 if a == b else 0.0) - t[a] * t[b]
+                    jn = sn * p_ab + (wn[a] * wn[b] / sn if sn > 0.0 else 0.0)
+                    jb = sr * (1.0 if a == b else 0.0) + (w[a] * w[b] / sr if sr > 0.0 else 0.0)
+                    acc[a, b] += c_n[i] * jn + c_b[i] * jb
+        for a in range(3):
+            for b in range(3):
+                out[i, a, b] = acc[a, b] / samples + c_t[i] * 2.0 * (abs_t / samples) * t[a] * t[b]
+
+
+def point_drag_fit(
+    c: np.ndarray, current: np.ndarray, velocity: np.ndarray, samples: int
+) -> np.ndarray:
+    """Equivalent drag damping [N s/m] (P, 3, 3) of isotropic drag ``c |w| w`` at points
+    moving with complex velocity amplitudes ``velocity`` (P, 3) in the current
+    ``current`` (P, 3): the mean-square fit over ``samples`` phases, ``D = <f' w'^T>
+    <w' w'^T>^-1``, leaning towards the small-motion tangent ``c (|U| I + U U^T / |U|)``
+    in directions without motion (:data:`~.frequency.FIT_REGULARISATION`)."""
+    th = 2.0 * np.pi * np.arange(samples) / samples
+    w = -(
+        velocity.real[None] * np.cos(th)[:, None, None]
+        - velocity.imag[None] * np.sin(th)[:, None, None]
+    )
+    r = current[None] + w
+    f = c[None, :, None] * np.linalg.norm(r, axis=2)[..., None] * r
+    f = f - f.mean(axis=0)
+    G = np.einsum("kpa,kpb->pab", w, w) / samples
+    H = np.einsum("kpa,kpb->pab", f, w) / samples
+    su = np.linalg.norm(current, axis=1)
+    inv = np.where(su > 0.0, 1.0 / np.where(su > 0.0, su, 1.0), 0.0)
+    D0 = c[:, None, None] * (
+        su[:, None, None] * np.eye(3)
+        + inv[:, None, None] * (current[:, :, None] * current[:, None, :])
+    )
+    trace = np.trace(G, axis1=1, axis2=2)
+    eps = np.where(trace > 0.0, FIT_REGULARISATION * trace, 1.0)[:, None, None]
+    lhs = G + eps * np.eye(3)
+    rhs = np.where((trace > 0.0)[:, None, None], H + eps * D0, D0)
+    # D lhs = rhs -> lhs^T D^T = rhs^T (lhs symmetric)
+    return np.swapaxes(np.linalg.solve(lhs, np.swapaxes(rhs, 1, 2)), 1, 2)
+
+
+def _solve_linear(
+    model: SystemLinear,
+    omega: float,
+    prescribed: np.ndarray,
+    D_lines: list[np.ndarray | None],
+    D_points: np.ndarray | None,
+    *,
+    quasi_static: bool = False,
+) -> tuple[np.ndarray, list[np.ndarray], list[np.ndarray]] | str:
+    """One linear solve at fixed drag: point displacements (P, 3), per line the nodal
+    displacements (n, 3) and end forces ``S u_E`` (6,); or the reason it failed."""
+    w = 0.0 if quasi_static else omega
+    free = model.free_points
+    slot = np.full(model.point_kind.size, -1)
+    slot[free] = np.arange(free.size)
+    G = np.zeros((3 * free.size, 3 * free.size), dtype=complex)
+    rhs = np.zeros(3 * free.size, dtype=complex)
+    for j, p in enumerate(free):
+        Z = -(w**2) * model.point_mass[p]
+        if D_points is not None and not quasi_static:
+            Z = Z + 1j * w * D_points[p]
+        G[3 * j : 3 * j + 3, 3 * j : 3 * j + 3] += Z
+    condensed = []
+    for i, (red, ec) in enumerate(zip(model.lines, model.couplings, strict=True)):
+        c = _condense(red, ec, w, None if quasi_static else D_lines[i])
+        if c is None:
+            hz = omega / (2 * math.pi)
+            return f"singular dynamic matrix of line {model.names[i]!r} at {hz:.6g} Hz"
+        condensed.append(c)
+        _, S = c
+        for ea in range(2):
+            p = model.ends[i, ea]
+            if slot[p] < 0:
+                continue
+            rows = slice(3 * slot[p], 3 * slot[p] + 3)
+            for eb in range(2):
+                q = model.ends[i, eb]
+                block = S[3 * ea : 3 * ea + 3, 3 * eb : 3 * eb + 3]
+                if slot[q] >= 0:
+                    G[rows, 3 * slot[q] : 3 * slot[q] + 3] += block
+                else:
+                    rhs[rows] -= block @ prescribed[q]
+    u_points = prescribed.astype(complex).copy()
+    if free.size:
+        try:
+            sol = np.linalg.solve(G, rhs)
+        except np.linalg.LinAlgError:
+            return f"singular junction system at {omega / (2 * math.pi):.6g} Hz"
+        if not np.all(np.isfinite(sol)):
+            return f"singular junction system at {omega / (2 * math.pi):.6g} Hz"
+        u_points[free] = sol.reshape(-1, 3)
+    displacement, forces = [], []
+    for i, (X, S) in enumerate(condensed):
+        uE = u_points[model.ends[i]].ravel()
+        line = model.lines[i].line
+        u = (line.free_basis @ (X @ uE)).reshape(-1, 3).astype(complex)
+        u[0] += uE[:3]
+        u[-1] += uE[3:]
+        displacement.append(u)
+        forces.append(S @ uE)
+    return u_points, displacement, forces
+
+
+def _flat(D_lines: list, D_points: np.ndarray) -> np.ndarray:
+    return np.concatenate([*(d.ravel() for d in D_lines), D_points.ravel()])
+
+
+def _unflat(
+    flat: np.ndarray, sizes: list[int], like_lines: list, like_points: np.ndarray
+) -> tuple[list[np.ndarray], np.ndarray]:
+    out, start = [], 0
+    for size, like in zip(sizes, like_lines, strict=True):
+        out.append(flat[start : start + size].reshape(like.shape))
+        start += size
+    return out, flat[start:].reshape(like_points.shape)
+
+
+#: secant pairs kept by the Anderson mixing of the drag iteration (as the single line's,
+#: :data:`cablestudy.dynamics.harmonic_cases.ANDERSON_DEPTH`)
+ANDERSON_DEPTH = 3
+
+
+class _Anderson:
+    """Mixing of the fixed point ``D = G(D)`` (``G`` the drag fit to the motion ``D``
+    gave), the single-line iteration's rule: after a change that grew, the mean of ``D``
+    and ``G`` with the history dropped; else Anderson mixing over the last pairs of
+    residual ``R = G - D`` and ``G``: ``D = G - sum_j g_j (G - G_j)`` with ``g`` the
+    least-squares fit of ``R`` by the residual differences ``R - R_j``."""
+
+    def __init__(self) -> None:
+        self.R: list[np.ndarray] = []
+        self.G: list[np.ndarray] = []
+
+    def step(self, d: np.ndarray, g: np.ndarray, change: float, last: float) -> np.ndarray:
+        if change >= last:
+            self.R.clear()
+            self.G.clear()
+            return 0.5 * (d + g)
+        self.R.append(g - d)
+        self.G.append(g)
+        if len(self.R) > ANDERSON_DEPTH + 1:
+            del self.R[0], self.G[0]
+        if len(self.R) == 1:
+            return g
+        r = self.R[-1]
+        dR = np.array([r - Rj for Rj in self.R[:-1]])
+        A = dR @ dR.T
+        trace = float(np.trace(A))
+        if not trace > 0.0:
+            return g
+        A += 1e-12 * trace * np.eye(A.shape[0])  # a near-dependent pair gets no weight
+        gam = np.linalg.solve(A, dR @ r)
+        return g - sum(c * (g - Gj) for c, Gj in zip(gam, self.G[:-1], strict=True))
+
+
+def _velocity_change(old: list[np.ndarray], new: list[np.ndarray]) -> float:
+    big = max(float(np.max(np.abs(v))) for v in new)
+    diff = max(float(np.max(np.abs(a - b))) for a, b in zip(old, new, strict=True))
+    return diff / max(big, 1e-300)
+
+
+def solve_system_harmonic(
+    model: SystemLinear,
+    omega: float,
+    body_motion: np.ndarray,
+    settings: DragSettings | None = None,
+    point_excitation: np.ndarray | None = None,
+) -> SystemFrequencyResult:
+    """Steady harmonic response at ``omega`` [rad/s] to the bodies' complex motion
+    amplitudes ``body_motion`` [m, rad] (B, 6) and the points' own complex displacement
+    amplitudes ``point_excitation`` [m] (P, 3) (fixed or body points moved on their own,
+    added to their bodies' motion; None: none), the drag linearised by iteration
+    (module docstring). Never raises for a numerical failure: status and message."""
+    settings = settings or DragSettings()
+    L = len(model.lines)
+    static = np.array([np.linalg.norm(r.line.end_force, axis=1) for r in model.lines]).reshape(L, 2)
+    prescribed = point_motion(model, body_motion)
+    if point_excitation is not None:
+        own = np.asarray(point_excitation, dtype=complex).reshape(prescribed.shape)
+        if np.any(own[model.point_kind == FREE] != 0.0):
+            raise ValueError("a free point cannot be moved on its own: it is an unknown")
+        prescribed = prescribed + own
+
+    def failed(status: int, message: str, iterations: int = 0) -> SystemFrequencyResult:
+        return SystemFrequencyResult(
+            end_tension=np.full((L, 2), np.nan + 0j),
+            tension_static=static,
+            element_tension=[np.full(r.line.n_nodes - 1, np.nan + 0j) for r in model.lines],
+            displacement=[np.full((r.line.n_nodes, 3), np.nan + 0j) for r in model.lines],
+            point_displacement=np.full(prescribed.shape, np.nan + 0j),
+            end_force=np.full((L, 2, 3), np.nan + 0j),
+            body_force=np.full((model.n_bodies, 6), np.nan + 0j),
+            iterations=iterations,
+            converged=False,
+            status=status,
+            message=message,
+            element_tension_static=[r.line.tension.copy() for r in model.lines],
+        )
+
+    D_lines: list[np.ndarray | None] = [None] * L
+    D_points: np.ndarray | None = None
+    iterations, converged, change = 0, True, 0.0
+    if model.has_drag:
+        start = _solve_linear(model, omega, prescribed, D_lines, None, quasi_static=True)
+        if isinstance(start, str):
+            return failed(STATUS_NUMERICAL, f"quasi-static start: {start}")
+        u_pts, disp, _ = start
+
+        def fit(u_pts: np.ndarray, disp: list[np.ndarray]) -> tuple[list, np.ndarray]:
+            Dl = []
+            for r, u in zip(model.lines, disp, strict=True):
+                v = 1j * omega * u
+                lean = mean_drag_jacobian(r.line, v, settings.samples)
+                Dl.append(drag_linearisation(r.line, v, settings.samples, lean, settings.exact))
+            Dp = point_drag_fit(
+                model.point_drag, model.point_current, 1j * omega * u_pts, settings.samples
+            )
+            return Dl, Dp
+
+        D_lines, D_points = fit(u_pts, disp)
+        sizes = [d.size for d in D_lines]
+        mixer = _Anderson()
+        previous = [*disp, u_pts]
+        converged, last = False, math.inf
+        for iterations in range(1, settings.max_iterations + 1):  # noqa: B007
+            out = _solve_linear(model, omega, prescribed, D_lines, D_points)
+            if isinstance(out, str):
+                return failed(STATUS_NUMERICAL, out, iterations)
+            u_pts, disp, _ = out
+            change = _velocity_change(previous, [*disp, u_pts])
+            previous = [*disp, u_pts]
+            if change <= settings.tolerance:
+                converged = True
+                break
+            new_l, new_p = fit(u_pts, disp)
+            flat = mixer.step(_flat(D_lines, D_points), _flat(new_l, new_p), change, last)
+            last = change
+            D_lines, D_points = _unflat(flat, sizes, D_lines, D_points)
+        if not converged:
+            return failed(
+                STATUS_NOT_CONVERGED,
+                f"drag linearisation did not converge in {settings.max_iterations} iterations "
+                f"(last change {change:.3g}, tolerance {settings.tolerance:.3g})",
+                iterations,
+            )
+    out = _solve_linear(model, omega, prescribed, D_lines, D_points)
+    if isinstance(out, str):
+        return failed(STATUS_NUMERICAL, out, iterations)
+    u_pts, disp, forces = out
+    residual = _residual(model, omega, u_pts, disp, D_lines, D_points)
+    if not residual <= RESIDUAL_BAR:
+        return failed(
+            STATUS_NUMERICAL,
+            f"the solution leaves a residual of {residual:.3g} of the force scale "
+            f"(bar {RESIDUAL_BAR:g}): ill-conditioned at {omega / (2 * math.pi):.6g} Hz",
+            iterations,
+        )
+    end_tension = np.empty((L, 2), dtype=complex)
+    end_force = np.empty((L, 2, 3), dtype=complex)
+    body_force = np.zeros((model.n_bodies, 6), dtype=complex)
+    theta = np.asarray(body_motion, dtype=complex).reshape(model.n_bodies, 6)[:, 3:]
+    element = []
+    for i, red in enumerate(model.lines):
+        line = red.line
+        unit = line.end_force / np.where(static[i] > 0.0, static[i], 1.0)[:, None]
+        support = -forces[i].reshape(2, 3)  # change of the force of the line on the points
+        end_force[i] = support
+        end_tension[i] = np.sum(unit * support, axis=1)
+        for k in range(2):
+            p = model.ends[i, k]
+            if model.point_kind[p] == BODY:
+                b, a = model.point_body[p], model.point_arm[p]
+                body_force[b, :3] += support[k]
+                body_force[b, 3:] += np.cross(a, support[k]) + np.cross(
+                    np.cross(theta[b], a), line.end_force[k]
+                )
+        axial = (line.axial_stiffness + 1j * omega * line.axial_damping) / line.rest_length
+        element.append(axial * np.sum(line.direction * np.diff(disp[i], axis=0), axis=1))
+    return SystemFrequencyResult(
+        end_tension=end_tension,
+        tension_static=static,
+        element_tension=element,
+        displacement=disp,
+        point_displacement=u_pts,
+        end_force=end_force,
+        body_force=body_force,
+        iterations=iterations,
+        converged=converged,
+        change=change,
+        residual=residual,
+        element_tension_static=[r.line.tension.copy() for r in model.lines],
+    )
+
+
+def _residual(
+    model: SystemLinear,
+    omega: float,
+    u_pts: np.ndarray,
+    disp: list[np.ndarray],
+    D_lines: list[np.ndarray | None],
+    D_points: np.ndarray | None,
+) -> float:
+    """Largest residual of the assembled equations (inner rows of every line, balance of
+    every free point) relative to the force scale: the
+    largest end force amplitude or stiffness force."""
+    scale = 0.0
+    worst = 0.0
+    balance = np.zeros(u_pts.shape, dtype=complex)
+    for i, red in enumerate(model.lines):
+        r = red.apply(disp[i], omega, D_lines[i])
+        ku = (red.line.stiffness @ disp[i].ravel()).reshape(-1, 3)
+        scale = max(scale, float(np.max(np.abs(r[[0, -1]]))), float(np.max(np.abs(ku))))
+        worst = max(worst, float(np.max(np.abs(r[1:-1]), initial=0.0)))
+        balance[model.ends[i, 0]] += r[0]
+        balance[model.ends[i, 1]] += r[-1]
+    free = model.free_points
+    if free.size:
+        Z = -(omega**2) * model.point_mass[free]
+        if D_points is not None:
+            Z = Z + 1j * omega * D_points[free]
+        balance[free] += np.einsum("pab,pb->pa", Z, u_pts[free])
+        worst = max(worst, float(np.max(np.abs(balance[free]))))
+    return worst / max(scale, 1e-300)
+
+
+def system_frequency_outputs(
+    result: SystemFrequencyResult, body_force_static: np.ndarray | None = None
+) -> dict[str, np.ndarray]:
+    """The issue's outputs of one solved case (linear response: extremes are the static
+    value plus and minus the amplitude, the mean the static value): on ``line``
+    ``tension_amplitude_a``/``_b``, ``tension_max_a``, ``tension_min_a``,
+    ``tension_mean_a`` (and ``_b``); per line on its elements ``tension_envelope_max``/
+    ``_min`` (list of arrays: the caller puts them on its ``s`` grid); with the bodies'
+    static force and moment ``body_force_static`` (B, 6) [N, N m], ``body_force_max``/
+    ``_min`` on (``body``, ``dof``). NaN where the case failed (status says why)."""
+    amp = result.tension_amplitude
+    T = result.tension_static
+    hi, lo = result.envelope()
+    out: dict[str, np.ndarray | list[np.ndarray]] = {
+        "tension_amplitude_a": amp[:, 0],
+        "tension_amplitude_b": amp[:, 1],
+        "tension_mean_a": np.where(np.isfinite(amp[:, 0]), T[:, 0], np.nan),
+        "tension_mean_b": np.where(np.isfinite(amp[:, 1]), T[:, 1], np.nan),
+        "tension_max_a": T[:, 0] + amp[:, 0],
+        "tension_min_a": T[:, 0] - amp[:, 0],
+        "tension_max_b": T[:, 1] + amp[:, 1],
+        "tension_min_b": T[:, 1] - amp[:, 1],
+        "tension_envelope_max": hi,
+        "tension_envelope_min": lo,
+    }
+    if body_force_static is not None and result.body_force.size:
+        F = np.asarray(body_force_static, dtype=float).reshape(result.body_force.shape)
+        out["body_force_max"] = F + np.abs(result.body_force)
+        out["body_force_min"] = F - np.abs(result.body_force)
+    return out  # type: ignore[return-value]
+
+
+__all__ = [
+    "system_frequency_outputs",
+    "RESIDUAL_BAR",
+    "SystemFrequencyResult",
+    "SystemLinear",
+    "point_drag_fit",
+    "point_motion",
+    "solve_system_harmonic",
+    "system_linear",
+]

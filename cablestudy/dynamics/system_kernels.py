@@ -1,0 +1,542 @@
+"""Compiled kernels of the system time domain: rigid-body kinematics of the driven
+points, and the coupled Newton solve of all lines and free points.
+
+The lines' nodes are packed one line after another (line ``l`` owns nodes
+``no[l]:no[l+1]`` and elements ``eo[l]:eo[l+1]``); each line keeps its own
+block-banded Jacobian (:func:`cablestudy.dynamics.model.assemble` on its slice). A
+line end on a free point (a junction, a clump, a buoy) is a free node shared with the
+other lines' ends on that point: its three unknowns are the point's. The Newton
+correction is a bordered solve (Schur complement on the junction unknowns): per line,
+the band with its junction rows set aside is factored once, solved for the residual
+``y`` and for the (at most six) junction columns ``Z``; the point's dense matrix
+
+    S = J_PP - sum_lines J_PI Z,    g = r_P - sum_lines J_PI y
+
+(3 x 3 blocks per point: the lines' end-node blocks, the point's own mass, added mass
+and drag) is solved for the points' corrections ``dp``, and each line's interior
+correction is ``y - Z dp``. No matrix over all nodes is ever formed.
+
+Pure: arrays in, arrays out (SI units), compiled with numba.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .excitation import _harmonics, _table
+from .model import assemble
+
+# ------------------------------------------------------------------ kinematics
+
+
+@njit(cache=True)
+def _mm3(a, b, out):  # noqa: ANN001, ANN202
+    for i in range(3):
+        for j in range(3):
+            acc = 0.0
+            for k in range(3):
+                acc += a[i, k] * b[k, j]
+            out[i, j] = acc
+
+
+@njit(cache=True)
+def _triple(a, b, c, out, tmp):  # noqa: ANN001, ANN202
+    _mm3(a, b, tmp)
+    _mm3(tmp, c, out)
+
+
+@njit(cache=True)
+def _elementary(axis, angle, m0, m1, m2):  # noqa: ANN001, ANN202
+    """Rotation about ``axis`` (0 x, 1 y, 2 z) by ``angle`` and its first and second
+    derivatives with respect to the angle, into m0, m1, m2 (3, 3)."""
+    c = math.cos(angle)
+    s = math.sin(angle)
+    for i in range(3):
+        for j in range(3):
+            m0[i, j] = 0.0
+            m1[i, j] = 0.0
+            m2[i, j] = 0.0
+    i = (axis + 1) % 3
+    j = (axis + 2) % 3
+    m0[axis, axis] = 1.0
+    # R[i, i] = c, R[i, j] = -s, R[j, i] = s, R[j, j] = c (right-handed about axis)
+    m0[i, i], m0[i, j], m0[j, i], m0[j, j] = c, -s, s, c
+    m1[i, i], m1[i, j], m1[j, i], m1[j, j] = -s, -c, c, -s
+    m2[i, i], m2[i, j], m2[j, i], m2[j, j] = -c, s, -s, -c
+
+
+@njit(cache=True)
+def rotation_motion(angle, rate, accel, R, Rd, Rdd):  # noqa: ANN001, ANN201
+    """R = Rz(yaw) Ry(pitch) Rx(roll) at ``angle`` (roll, pitch, yaw) [rad], and its
+    first and second time derivatives for angle rates ``rate`` [rad/s] and
+    accelerations ``accel`` [rad/s^2] (exact, by the product and chain rules), into
+    R, Rd, Rdd (3, 3)."""
+    E = np.zeros((3, 3, 3, 3))  # [axis, derivative order, 3, 3]
+    for ax in range(3):
+        _elementary(ax, angle[ax], E[ax, 0], E[ax, 1], E[ax, 2])
+    out = np.empty((3, 3))
+    tmp = np.empty((3, 3))
+    for i in range(3):
+        for j in range(3):
+            R[i, j] = 0.0
+            Rd[i, j] = 0.0
+            Rdd[i, j] = 0.0
+    # R = Z Y X: term with derivative orders (dz, dy, dx) and its factor
+    for dz in range(3):
+        for dy in range(3 - dz):
+            for dx in range(3 - dz - dy):
+                _triple(E[2, dz], E[1, dy], E[0, dx], out, tmp)
+                order = dz + dy + dx
+                if order == 0:
+                    for i in range(3):
+                        for j in range(3):
+                            R[i, j] += out[i, j]
+                    continue
+                if order == 1:
+                    k = 2 if dz == 1 else (1 if dy == 1 else 0)
+                    f1 = rate[k]
+                    f2 = accel[k]
+                    for i in range(3):
+                        for j in range(3):
+                            Rd[i, j] += f1 * out[i, j]
+                            Rdd[i, j] += f2 * out[i, j]
+                    continue
+                # second order: one angle twice, or two angles once each (twice over)
+                if dz == 2:
+                    f = rate[2] * rate[2]
+                elif dy == 2:
+                    f = rate[1] * rate[1]
+                elif dx == 2:
+                    f = rate[0] * rate[0]
+                else:
+                    f = 2.0
+                    if dz == 1:
+                        f *= rate[2]
+                    if dy == 1:
+                        f *= rate[1]
+                    if dx == 1:
+                        f *= rate[0]
+                for i in range(3):
+                    for j in range(3):
+                        Rdd[i, j] += f * out[i, j]
+
+
+@njit(cache=True)
+def movers_at(  # noqa: ANN201
+    t,
+    h_slot,
+    h_dir,
+    h_amp,
+    h_freq,
+    h_phase,
+    ramp_time,
+    tab_slot,
+    tab_dir,
+    tab_periodic,
+    tab_last,
+    tab_x,
+    tab_c,
+    tab_xo,
+    tab_co,
+    out,
+):  # noqa: ANN001
+    """Displacement, velocity, acceleration of every motion slot at ``t`` [s] into
+    ``out`` (3, slots, 3): slot 2b a body's translation, 2b + 1 its rotation angles
+    (roll, pitch, yaw), 2B + q a point's own motion; harmonics and tables as a line
+    end's (:mod:`.excitation`), the same smooth ramp."""
+    for q in range(3):
+        for e in range(out.shape[1]):
+            for a in range(3):
+                out[q, e, a] = 0.0
+    _harmonics(t, h_slot, h_dir, h_amp, h_freq, h_phase, out)
+    for k in range(tab_slot.shape[0]):
+        u, du, ddu = _table(t, k, tab_periodic, tab_last, tab_x, tab_c, tab_xo, tab_co)
+        e = tab_slot[k]
+        for a in range(3):
+            d = tab_dir[k, a]
+            out[0, e, a] += u * d
+            out[1, e, a] += du * d
+            out[2, e, a] += ddu * d
+    tr = ramp_time
+    if tr <= 0.0 or t >= tr:
+        return
+    if t <= 0.0:
+        r = dr = ddr = 0.0
+    else:
+        w = math.pi / tr
+        c, s = math.cos(w * t), math.sin(w * t)
+        r, dr, ddr = 0.5 * (1.0 - c), 0.5 * w * s, 0.5 * w * w * c
+    for e in range(out.shape[1]):
+        for a in range(3):
+            u, du, ddu = out[0, e, a], out[1, e, a], out[2, e, a]
+            out[0, e, a] = r * u
+            out[1, e, a] = r * du + dr * u
+            out[2, e, a] = r * ddu + 2.0 * dr * du + ddr * u
+
+
+@njit(cache=True)
+def drives_at(  # noqa: ANN201
+    t, margs, body_base, body_R0, d_body, d_slot, d_offset, d_static, dx, dv, da, bx, bR
+):  # noqa: ANN001
+    """Position, velocity, acceleration [m, m/s, m/s^2] of every driven point at ``t``
+    into dx, dv, da (D, 3), and each body's reference point ``bx`` (B, 3) and rotation
+    ``bR`` (B, 3, 3). A body point (``d_body`` >= 0, offset p = ``d_offset`` in the
+    body frame) is at X + R p with the body's exact rotation R, written as its static
+    position ``d_static`` plus the reference point's displacement plus (R - R0) p (R0
+    the static rotation ``body_R0``), so that a body that only translates moves its
+    points by exactly its displacement. A point with a motion of its own
+    (``d_slot`` >= 0) adds it."""
+    n_body = body_base.shape[0]
+    n_slot = 2 * n_body
+    for d in range(d_slot.shape[0]):
+        n_slot = max(n_slot, d_slot[d] + 1)
+    out = np.zeros((3, max(n_slot, 1), 3))
+    movers_at(t, *margs, out)
+    R = np.empty((3, 3))
+    Rd = np.empty((3, 3))
+    Rdd = np.empty((3, 3))
+    ang = np.empty(3)
+    Rds = np.empty((n_body, 3, 3))
+    Rdds = np.empty((n_body, 3, 3))
+    for b in range(n_body):
+        for k in range(3):
+            ang[k] = body_base[b, 3 + k] + out[0, 2 * b + 1, k]
+        rotation_motion(ang, out[1, 2 * b + 1], out[2, 2 * b + 1], R, Rd, Rdd)
+        for i in range(3):
+            bx[b, i] = body_base[b, i] + out[0, 2 * b, i]
+            for j in range(3):
+                bR[b, i, j] = R[i, j]
+                Rds[b, i, j] = Rd[i, j]
+                Rdds[b, i, j] = Rdd[i, j]
+    for d in range(d_body.shape[0]):
+        b = d_body[d]
+        for i in range(3):
+            dx[d, i] = d_static[d, i]
+            dv[d, i] = 0.0
+            da[d, i] = 0.0
+            if b >= 0:
+                p_now = 0.0
+                p_static = 0.0
+                pv = 0.0
+                pa = 0.0
+                for j in range(3):
+                    p_now += bR[b, i, j] * d_offset[d, j]
+                    p_static += body_R0[b, i, j] * d_offset[d, j]
+                    pv += Rds[b, i, j] * d_offset[d, j]
+                    pa += Rdds[b, i, j] * d_offset[d, j]
+                dx[d, i] += out[0, 2 * b, i]
+                dx[d, i] += p_now - p_static
+                dv[d, i] += out[1, 2 * b, i]
+                dv[d, i] += pv
+                da[d, i] += out[2, 2 * b, i]
+                da[d, i] += pa
+            s = d_slot[d]
+            if s >= 0:
+                dx[d, i] += out[0, s, i]
+                dv[d, i] += out[1, s, i]
+                da[d, i] += out[2, s, i]
+
+
+# ------------------------------------------------------------------ the coupled solve
+
+
+@njit(cache=True)
+def assemble_line(l, x, v, anchor, S, W):  # noqa: ANN001, ANN201, E741
+    """The line model's forces and tangents of line ``l`` on its slices of the packed
+    system ``S`` and work ``W`` (:func:`cablestudy.dynamics.system_model.pack`)."""
+    no, eo, o2, ko = S[0], S[1], S[2], S[3]
+    n0, n1 = no[l], no[l + 1]
+    e0, e1 = eo[l], eo[l + 1]
+    q0, q1 = o2[l], o2[l + 1]
+    k0, k1 = ko[l], ko[l + 1]
+    assemble(
+        x[n0:n1], v[n0:n1], anchor[n0:n1],
+        S[4][e0:e1], S[5][e0:e1], S[6][e0:e1], S[7][n0:n1], S[8][n0:n1], S[9][n0:n1],
+        S[10][n0:n1], S[11][n0:n1], S[12][n0:n1], S[13], S[14], S[15][l], S[16][n0:n1],
+        S[17][l], S[18][n0:n1], S[19][n0:n1], S[20][n0:n1], S[21][n0:n1], S[22],
+        S[23][l], S[24][n0:n1], S[25][n0:n1], S[26][l], S[27][e0:e1], S[28][e0:e1],
+        S[29][k0:k1], S[30][e0:e1], S[31][e0:e1], S[32][e0:e1],
+        W[0][n0:n1], W[1][n0:n1], W[2][e0:e1], W[3][q0:q1], W[4][n0:n1], W[5][e0:e1],
+        W[6][n0:n1], W[7][e0:e1], W[8][e0:e1], W[9][e0:e1], W[10][n0:n1], W[11][n0:n1],
+        W[12][n0:n1], W[13][n0:n1],
+    )  # fmt: skip
+
+
+@njit(cache=True)
+def _band_factor(J_d, J_o, J_o2, elim, band, reach):  # noqa: ANN001, ANN201
+    """Build and factor (LU, no pivoting) the scalar band of a line's block-banded
+    matrix, rows of ``elim`` nodes replaced by the identity (as
+    :func:`cablestudy.dynamics.model.solve_banded`). Returns False on a bad pivot."""
+    m = J_d.shape[0]
+    N = 3 * m
+    bw = 3 * reach + 2
+    W = 2 * bw + 1
+    for r_ in range(N):
+        for c in range(W):
+            band[r_, c] = 0.0
+    for i in range(m):
+        for a in range(3):
+            row = 3 * i + a
+            if elim[i]:
+                band[row, bw] = 1.0
+                continue
+            for b in range(3):
+                band[row, bw + b - a] += J_d[i, a, b]
+                if i + 1 < m and not elim[i + 1]:
+                    band[row, bw + 3 + b - a] += J_o[i, a, b]
+                if i >= 1 and not elim[i - 1]:
+                    band[row, bw - 3 + b - a] += J_o[i - 1, b, a]
+                if reach == 2:
+                    if i + 2 < m and not elim[i + 2]:
+                        band[row, bw + 6 + b - a] += J_o2[i, a, b]
+                    if i >= 2 and not elim[i - 2]:
+                        band[row, bw - 6 + b - a] += J_o2[i - 2, b, a]
+    for k in range(N):
+        piv = band[k, bw]
+        if not (abs(piv) > 0.0) or not math.isfinite(piv):
+            return False
+        top = min(k + bw + 1, N)
+        for r_ in range(k + 1, top):
+            lf = band[r_, bw + k - r_]
+            if lf == 0.0:
+                continue
+            lf /= piv
+            band[r_, bw + k - r_] = lf
+            for c in range(k + 1, top):
+                band[r_, bw + c - r_] -= lf * band[k, bw + c - k]
+    return True
+
+
+@njit(cache=True)
+def _band_solve(band, reach, f, off, N):  # noqa: ANN001, ANN201
+    """Solve with the factored band for the ``N`` unknowns ``f[off:off + N]`` of a flat
+    array (a line's slice of the packed nodes' components), in place."""
+    bw = 3 * reach + 2
+    for k in range(N):
+        fk = f[off + k]
+        if fk == 0.0:
+            continue
+        top = min(k + bw + 1, N)
+        for r_ in range(k + 1, top):
+            f[off + r_] -= band[r_, bw + k - r_] * fk
+    for k in range(N - 1, -1, -1):
+        acc = f[off + k]
+        top = min(k + bw + 1, N)
+        for c in range(k + 1, top):
+            acc -= band[k, bw + c - k] * f[off + c]
+        f[off + k] = acc / band[k, bw]
+
+
+@njit(cache=True)
+def _coupling(J_o, J_o2, n, end, other, a, c):  # noqa: ANN001, ANN201
+    """Entry (a, c) of the block J[row end node, col ``other`` node] of a line of ``n``
+    nodes (``end`` 0: node 0, 1: node n - 1); zero beyond the band."""
+    i = 0 if end == 0 else n - 1
+    j = other
+    if j == i:
+        return 0.0
+    lo, hi = (i, j) if i < j else (j, i)
+    d = hi - lo
+    if d == 1:
+        blk = J_o[lo]
+    elif d == 2 and J_o2.shape[0] > 0:
+        blk = J_o2[lo]
+    else:
+        return 0.0
+    return blk[a, c] if i < j else blk[c, a]
+
+
+@njit(cache=True)
+def coupled_solve(S, W, cm, kf, cf, reg, r, rp, dx, dp):  # noqa: ANN001, ANN201
+    """Newton correction of the system: J = cm M + kf (K + cf C) (+ ``reg`` on the
+    diagonal) per line from the assembled blocks in ``W``, the free points' own mass
+    and drag added; residuals ``r`` (N, 3) of the nodes and ``rp`` (P, 3) of the points
+    (each the sum of its end nodes' and its own). Corrections into ``dx`` (N, 3, held
+    nodes zero, junction nodes their point's) and ``dp`` (P, 3). Returns False when a
+    factorisation fails."""
+    no, eo, o2 = S[0], S[1], S[2]
+    bends = S[33]
+    held = S[21]
+    end_point = S[34]
+    p_mass = S[35]
+    p_drag = S[37]
+    p_nodes, p_off = S[38], S[39]
+    cz, cvel = S[13], S[14]
+    K_d, K_o, K_o2, C_d, C_o, M_d = W[1], W[2], W[3], W[4], W[5], W[6]
+    J_d, J_o, J_o2, band, Z, Smat, g, elim = W[14], W[15], W[16], W[17], W[18], W[19], W[20], W[21]
+    v1 = W[22]
+    n_lines = no.shape[0] - 1
+    n_p = rp.shape[0]
+    n_all = dx.shape[0]
+    dx_flat = dx.reshape(3 * n_all)
+    Z_flat = Z.reshape(Z.size)
+    for i in range(3 * n_p):
+        g[i] = rp[i // 3, i % 3]
+        for j in range(3 * n_p):
+            Smat[i, j] = 0.0
+    # the points' own inertia and drag tangent
+    for p in range(n_p):
+        node = p_nodes[p_off[p]]
+        cd = p_drag[p]
+        rel = np.zeros(3)
+        sr = 0.0
+        if cd > 0.0:
+            for a in range(3):
+                cur = 0.0
+                if cz.shape[0] > 0:
+                    cur = np.interp(W[23][node, 2], cz, cvel[:, a])
+                rel[a] = cur - v1[node, a]
+            sr = math.sqrt(rel[0] ** 2 + rel[1] ** 2 + rel[2] ** 2)
+        for a in range(3):
+            Smat[3 * p + a, 3 * p + a] += cm * p_mass[p] + reg
+            if cd > 0.0:
+                for b in range(3):
+                    c = cd * rel[a] * rel[b] / sr if sr > 0.0 else 0.0
+                    if a == b:
+                        c += cd * sr
+                    Smat[3 * p + a, 3 * p + b] += kf * cf * c
+    for l in range(n_lines):  # noqa: E741
+        n0, n1 = no[l], no[l + 1]
+        e0, e1 = eo[l], eo[l + 1]
+        q0, q1 = o2[l], o2[l + 1]
+        n = n1 - n0
+        reach = 2 if bends[l] else 1
+        for i in range(n0, n1):
+            elim[i - n0] = (
+                held[i]
+                or (i == n0 and end_point[l, 0] >= 0)
+                or (i == n1 - 1 and end_point[l, 1] >= 0)
+            )
+            for a in range(3):
+                for b in range(3):
+                    J_d[i, a, b] = cm * M_d[i, a, b] + kf * (K_d[i, a, b] + cf * C_d[i, a, b])
+                J_d[i, a, a] += reg
+        for e in range(e0, e1):
+            for a in range(3):
+                for b in range(3):
+                    J_o[e, a, b] = kf * (K_o[e, a, b] + cf * C_o[e, a, b])
+        for q in range(q0, q1):
+            for a in range(3):
+                for b in range(3):
+                    J_o2[q, a, b] = kf * K_o2[q, a, b]
+        jd = J_d[n0:n1]
+        jo = J_o[e0:e1]
+        jo2 = J_o2[q0:q1] if bends[l] else J_o2[q0:q0]
+        el = elim[:n]
+        if not _band_factor(jd, jo, jo2, el, band, reach):
+            return False
+        y = dx[n0:n1]
+        for i in range(n):
+            for a in range(3):
+                y[i, a] = 0.0 if el[i] else r[n0 + i, a]
+        _band_solve(band, reach, dx_flat, 3 * n0, 3 * n)
+        # junction columns: Z[end, c] = J_II^-1 J_I,end e_c
+        for end in range(2):
+            p = end_point[l, end]
+            if p < 0:
+                continue
+            node = 0 if end == 0 else n - 1
+            for a in range(3):
+                for b in range(3):
+                    Smat[3 * p + a, 3 * p + b] += jd[node, a, b]
+            lo, hi = max(node - 2, 0), min(node + 3, n)  # the band's reach of the end
+            for c in range(3):
+                z = Z[end, c, n0:n1]
+                for i in range(n):
+                    for a in range(3):
+                        z[i, a] = 0.0
+                for i in range(lo, hi):
+                    if el[i]:
+                        continue
+                    for a in range(3):
+                        # J[i, node] column c = J[node, i]^T entry (c, a)
+                        z[i, a] = _coupling(jo, jo2, n, end, i, c, a)
+                _band_solve(band, reach, Z_flat, 3 * ((end * 3 + c) * n_all + n0), 3 * n)
+        # S -= J_PI Z, g -= J_PI y; direct end-to-end coupling within the band
+        for ei in range(2):
+            p = end_point[l, ei]
+            if p < 0:
+                continue
+            node_i = 0 if ei == 0 else n - 1
+            lo, hi = max(node_i - 2, 0), min(node_i + 3, n)  # J_PI is zero beyond
+            for a in range(3):
+                acc = 0.0
+                for i in range(lo, hi):
+                    if el[i]:
+                        continue
+                    for b in range(3):
+                        acc += _coupling(jo, jo2, n, ei, i, a, b) * y[i, b]
+                g[3 * p + a] -= acc
+            for ej in range(2):
+                q = end_point[l, ej]
+                if q < 0:
+                    continue
+                node_j = 0 if ej == 0 else n - 1
+                for a in range(3):
+                    for c in range(3):
+                        acc = 0.0
+                        if ej != ei:
+                            acc -= _coupling(jo, jo2, n, ei, node_j, a, c)
+                        for i in range(lo, hi):
+                            if el[i]:
+                                continue
+                            for b in range(3):
+                                acc += _coupling(jo, jo2, n, ei, i, a, b) * Z[ej, c, n0 + i, b]
+                        Smat[3 * p + a, 3 * q + c] -= acc
+    if n_p > 0:
+        sol = np.linalg.solve(Smat, g)
+        for p in range(n_p):
+            for a in range(3):
+                dp[p, a] = sol[3 * p + a]
+    for l in range(n_lines):  # noqa: E741
+        n0, n1 = no[l], no[l + 1]
+        n = n1 - n0
+        for end in range(2):
+            p = end_point[l, end]
+            if p < 0:
+                continue
+            node = n0 if end == 0 else n1 - 1
+            for i in range(n0, n1):
+                if i == node:
+                    continue
+                for a in range(3):
+                    for c in range(3):
+                        dx[i, a] -= Z[end, c, i, a] * dp[p, c]
+        for end in range(2):
+            p = end_point[l, end]
+            if p >= 0:
+                node = n0 if end == 0 else n1 - 1
+                for a in range(3):
+                    dx[node, a] = dp[p, a]
+        for i in range(n0, n1):
+            if held[i]:
+                for a in range(3):
+                    dx[i, a] = 0.0
+    return True
+
+
+@njit(cache=True)
+def point_forces(S, x, v, Fp):  # noqa: ANN001, ANN201
+    """Each free point's own out-of-balance force [N] (P, 3) into ``Fp``: minus its
+    constant force (weight, buoyancy, applied) plus its drag on the relative velocity."""
+    p_force, p_drag = S[36], S[37]
+    p_nodes, p_off = S[38], S[39]
+    cz, cvel = S[13], S[14]
+    for p in range(Fp.shape[0]):
+        node = p_nodes[p_off[p]]
+        for a in range(3):
+            Fp[p, a] = -p_force[p, a]
+        cd = p_drag[p]
+        if cd > 0.0:
+            rel = np.zeros(3)
+            for a in range(3):
+                cur = 0.0
+                if cz.shape[0] > 0:
+                    cur = np.interp(x[node, 2], cz, cvel[:, a])
+                rel[a] = cur - v[node, a]
+            sr = math.sqrt(rel[0] ** 2 + rel[1] ** 2 + rel[2] ** 2)
+            for a in range(3):
+                Fp[p, a] -= cd * sr * rel[a]

@@ -1,0 +1,605 @@
+"""Compiled time stepping of a mooring system: the generalised-alpha step of all lines
+and free points together (Newton with the bordered solve of
+:func:`.system_kernels.coupled_solve`), the step control, the per-period extremes, and
+the discrete static equilibrium the run starts from.
+
+The step is the single line's (:mod:`.integrator`): the same generalised-alpha
+coefficients and Newmark relations, the same predictor (quadratic through the last
+three accepted positions, the held ends moved to their prescribed positions with the
+correction spread along each line), halving the step when Newton fails, when an
+element switches between slack and taut, or when a line end's tension changes by more
+than ``tension_step`` in a step, and doubling it back after two clean steps.
+
+Pure: arrays in, arrays out (SI units).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .integrator import MAX_LANDING_CLIPS, MAX_STATE_CHECKS, MIN_CLIP, STATE_CHECK_FACTOR
+from .model import _trial_states, contact_states, states_changed, update_anchors
+from .system_kernels import assemble_line, coupled_solve, drives_at, point_forces
+
+#: :func:`system_march` return codes
+BOUNDARY, ACCEPTED, FAILED = 0, 1, 2
+
+
+@njit(cache=True)
+def _contact_states(S, W, x, v, fix, flips):  # noqa: ANN001, ANN201
+    """:func:`.model.contact_states` line by line (each line's seabed offset); True if
+    any state changed."""
+    no = S[0]
+    changed = False
+    for l in range(no.shape[0] - 1):  # noqa: E741
+        n0, n1 = no[l], no[l + 1]
+        if contact_states(
+            x[n0:n1], v[n0:n1], S[22], S[23][l], S[24][n0:n1], S[25][n0:n1], W[12][n0:n1],
+            fix, flips[n0:n1],
+        ):  # fmt: skip
+            changed = True
+    return changed
+
+
+@njit(cache=True)
+def _friction_states(S, W, check):  # noqa: ANN001, ANN201
+    """Stick/slip states line by line (each line's friction coefficients): from the
+    trial forces keeping a contact node's state (``check`` False), or checked after
+    convergence (:func:`.model.states_changed`, ``check`` True: whether any changed)."""
+    no = S[0]
+    changed = False
+    for l in range(no.shape[0] - 1):  # noqa: E741
+        n0, n1 = no[l], no[l + 1]
+        fr = S[26][l]
+        if fr[0] <= 0.0 and fr[1] <= 0.0:
+            continue
+        if check:
+            if states_changed(W[12][n0:n1], W[13][n0:n1], W[10][n0:n1], fr):
+                changed = True
+        else:
+            _trial_states(W[12][n0:n1], W[13][n0:n1], W[10][n0:n1], fr, True)
+    return changed
+
+
+@njit(cache=True)
+def _static_friction_states(S, W):  # noqa: ANN001, ANN201
+    """Every contact node's stick/slip state from its trial force, line by line."""
+    no = S[0]
+    for l in range(no.shape[0] - 1):  # noqa: E741
+        n0, n1 = no[l], no[l + 1]
+        fr = S[26][l]
+        if fr[0] > 0.0 or fr[1] > 0.0:
+            _trial_states(W[12][n0:n1], W[13][n0:n1], W[10][n0:n1], fr)
+
+
+@njit(cache=True)
+def _residuals(S, W, x1, a0, a1, F0, Fp0, Fp, am, af, r, rp):  # noqa: ANN001, ANN201
+    """Residuals ``r`` of the nodes and ``rp`` of the free points of the generalised-
+    alpha balance; returns the largest over the free unknowns [N]."""
+    held, is_junction = S[21], S[40]
+    p_mass, p_nodes, p_off = S[35], S[38], S[39]
+    F, M_d = W[0], W[6]
+    n = x1.shape[0]
+    res = 0.0
+    for i in range(n):
+        for c in range(3):
+            acc = (1.0 - af) * F[i, c] + af * F0[i, c]
+            for b in range(3):
+                acc += M_d[i, c, b] * ((1.0 - am) * a1[i, b] + am * a0[i, b])
+            r[i, c] = -acc
+            if not held[i] and not is_junction[i]:
+                res = max(res, abs(acc))
+    for p in range(rp.shape[0]):
+        first = p_nodes[p_off[p]]
+        for c in range(3):
+            acc = (1.0 - af) * Fp[p, c] + af * Fp0[p, c]
+            acc += p_mass[p] * ((1.0 - am) * a1[first, c] + am * a0[first, c])
+            tot = -acc
+            for k in range(p_off[p], p_off[p + 1]):
+                tot += r[p_nodes[k], c]
+            rp[p, c] = tot
+            res = max(res, abs(tot))
+    return res
+
+
+@njit(cache=True)
+def _landing_clip(S, W, x1, dx, sbn, sbo, ksb):  # noqa: ANN001, ANN201
+    """The fraction of a Newton correction that stops the first node crossing the
+    seabed plane on it (a node whose contact state is not held), at least
+    :data:`.integrator.MIN_CLIP` (as the single line's step)."""
+    no, held = S[0], S[21]
+    slip = W[12]
+    scale = 1.0
+    for l in range(no.shape[0] - 1):  # noqa: E741
+        off = sbo[l]
+        for i in range(no[l], no[l + 1]):
+            if held[i] or ksb[i] <= 0.0:
+                continue
+            if slip[i, 2] == 1 or slip[i, 2] == 2:
+                continue
+            g0 = -off
+            g1 = -off
+            for c in range(3):
+                g0 += sbn[c] * x1[i, c]
+                g1 += sbn[c] * (x1[i, c] + dx[i, c])
+            if (g0 > 0.0 and g1 < 0.0) or (g0 < 0.0 and g1 > 0.0):
+                scale = min(scale, max(g0 / (g0 - g1), MIN_CLIP))
+    return scale
+
+
+@njit(cache=True)
+def system_step(  # noqa: ANN201
+    h,
+    x0,
+    v0,
+    a0,
+    F0,
+    Fp0,
+    x1,
+    v1,
+    a1,
+    x_pred,
+    am,
+    af,
+    beta,
+    gamma,
+    tol,
+    max_it,
+    anchor,
+    S,
+    W,
+    r,
+    rp,
+    dx,
+    dp,
+    Fp,
+    lmin,
+):  # noqa: ANN001
+    """One generalised-alpha step of length ``h`` [s] from (x0, v0, a0); ``x_pred`` the
+    predicted positions with the held nodes at their prescribed positions, whose
+    velocity and acceleration are already in ``v1``, ``a1``. Returns (Newton
+    iterations, converged)."""
+    held = S[21]
+    n = x0.shape[0]
+    n_lines = S[0].shape[0] - 1
+    for i in range(n):
+        if held[i]:
+            for c in range(3):
+                x1[i, c] = x_pred[i, c]
+            continue
+        for c in range(3):
+            x1[i, c] = x_pred[i, c]
+            a1[i, c] = (x1[i, c] - x0[i, c] - h * v0[i, c] - h * h * (0.5 - beta) * a0[i, c]) / (
+                beta * h * h
+            )
+            v1[i, c] = v0[i, c] + h * ((1.0 - gamma) * a0[i, c] + gamma * a1[i, c])
+    cm = (1.0 - am) / (beta * h * h)
+    cv = gamma / (beta * h)
+    taut0 = W[9]
+    # seabed contact and friction as active sets, as the single line's step
+    # (:func:`.integrator.alpha_step`): held during the Newton iterations, from the
+    # predictor, checked near and at convergence
+    ksb, sbn, sbo = S[24], S[22], S[23]
+    has_seabed = ksb.shape[0] > 0 and ksb.max() > 0.0
+    fr = S[26]
+    has_friction = has_seabed and (fr.max() > 0.0)
+    fix_states = has_friction
+    flips = np.zeros(n, dtype=np.int64)
+    if has_seabed:
+        _contact_states(S, W, x1, v1, False, flips)
+    checks = 0
+    checked_early = False
+    clips = 0
+    it = 0
+    while True:
+        for l in range(n_lines):  # noqa: E741
+            assemble_line(l, x1, v1, anchor, S, W)
+        if fix_states:
+            fix_states = False
+            _friction_states(S, W, False)
+            continue
+        point_forces(S, x1, v1, Fp)
+        res = _residuals(S, W, x1, a0, a1, F0, Fp0, Fp, am, af, r, rp)
+        if not math.isfinite(res):
+            return it, False
+        early = res <= STATE_CHECK_FACTOR * tol and not checked_early
+        if res <= tol or early:
+            checked_early = True
+            if has_seabed and checks < MAX_STATE_CHECKS:
+                changed = _contact_states(S, W, x1, v1, True, flips)
+                if has_friction and _friction_states(S, W, True):
+                    changed = True
+                if changed:
+                    checks += 1
+                    checked_early = False
+                    continue
+            if res <= tol:
+                return it, True
+        if it >= max_it:
+            return it, False
+        it += 1
+        if not coupled_solve(S, W, cm, 1.0 - af, cv, 0.0, r, rp, dx, dp):
+            return it, False
+        for e in range(taut0.shape[0]):
+            taut0[e] = False
+        big = 0.0
+        for i in range(n):
+            for c in range(3):
+                big = max(big, abs(dx[i, c]))
+        if big > lmin or not math.isfinite(big):
+            return it, False
+        scale = 1.0
+        if has_seabed and clips < MAX_LANDING_CLIPS:
+            scale = _landing_clip(S, W, x1, dx, sbn, sbo, ksb)
+            if scale < 1.0:
+                clips += 1
+        for i in range(n):
+            if held[i]:
+                continue
+            for c in range(3):
+                d = scale * dx[i, c]
+                x1[i, c] += d
+                a1[i, c] += d / (beta * h * h)
+                v1[i, c] += gamma * d / (beta * h)
+
+
+@njit(cache=True)
+def end_forces(S, W, x, a, he_node, forces):  # noqa: ANN001, ANN201
+    """Force of each line on its end points [N] (L, 2, 3): minus the support reaction
+    ``F + M a`` of a held end node; the pull of the end element on a junction."""
+    no, eo, end_point = S[0], S[1], S[34]
+    F, M_d, tension = W[0], W[6], W[7]
+    for l in range(no.shape[0] - 1):  # noqa: E741
+        for end in range(2):
+            node = no[l] if end == 0 else no[l + 1] - 1
+            if end_point[l, end] < 0:
+                for c in range(3):
+                    acc = F[node, c]
+                    for b in range(3):
+                        acc += M_d[node, c, b] * a[node, b]
+                    forces[l, end, c] = -acc
+            else:
+                other = node + 1 if end == 0 else node - 1
+                elem = eo[l] if end == 0 else eo[l + 1] - 1
+                ln = 0.0
+                for c in range(3):
+                    ln += (x[other, c] - x[node, c]) ** 2
+                ln = math.sqrt(ln)
+                for c in range(3):
+                    forces[l, end, c] = tension[elem] * (x[other, c] - x[node, c]) / ln
+
+
+@njit(cache=True)
+def body_forces(S, x, forces, he_line, he_end, he_body, bx, out):  # noqa: ANN001, ANN201
+    """Force and moment [N, N m] (B, 6) of the lines on each body about its reference
+    point ``bx`` (B, 3): the lines' forces on the held ends on the body."""
+    no = S[0]
+    for b in range(out.shape[0]):
+        for k in range(6):
+            out[b, k] = 0.0
+    for k in range(he_line.shape[0]):
+        b = he_body[k]
+        if b < 0:
+            continue
+        l = he_line[k]  # noqa: E741
+        end = he_end[k]
+        node = no[l] if end == 0 else no[l + 1] - 1
+        f = forces[l, end]
+        rx = x[node, 0] - bx[b, 0]
+        ry = x[node, 1] - bx[b, 1]
+        rz = x[node, 2] - bx[b, 2]
+        out[b, 0] += f[0]
+        out[b, 1] += f[1]
+        out[b, 2] += f[2]
+        out[b, 3] += ry * f[2] - rz * f[1]
+        out[b, 4] += rz * f[0] - rx * f[2]
+        out[b, 5] += rx * f[1] - ry * f[0]
+
+
+@njit(cache=True)
+def set_drives(t, D, x1, v1, a1, he_node, he_drive, dX, dV, dA, bx, bR):  # noqa: ANN001, ANN201
+    """The held ends' prescribed state at ``t`` into (x1, v1, a1)."""
+    drives_at(t, D[0], D[1], D[2], D[3], D[4], D[5], D[6], dX, dV, dA, bx, bR)
+    for k in range(he_node.shape[0]):
+        i = he_node[k]
+        d = he_drive[k]
+        for c in range(3):
+            x1[i, c] = dX[d, c]
+            v1[i, c] = dV[d, c]
+            a1[i, c] = dA[d, c]
+
+
+@njit(cache=True, nogil=True)
+def system_march(  # noqa: ANN201, PLR0913, PLR0915
+    st_f,
+    st_i,
+    x0,
+    v0,
+    a0,
+    F0,
+    Fp0,
+    x1,
+    v1,
+    a1,
+    x_pred,
+    past_x,
+    past_t,
+    frac,
+    strain_prev,
+    D,
+    he_node,
+    he_drive,
+    he_line,
+    he_end,
+    he_body,
+    dX,
+    dV,
+    dA,
+    bx,
+    bR,
+    forces,
+    ends_prev,
+    ext_end,
+    int_end,
+    ext_el,
+    ext_body,
+    body_f,
+    step,
+    max_level,
+    rescue_level,
+    tension_step,
+    am,
+    af,
+    beta,
+    gamma,
+    tol,
+    max_it,
+    budget,
+    anchor,
+    S,
+    W,
+    r,
+    rp,
+    dx,
+    dp,
+    Fp,
+    lmin,
+    eps_t,
+):  # noqa: ANN001
+    """Time steps from ``st_f[0]`` to the period boundary ``st_f[1]`` [s] (or
+    ``budget`` accepted steps: :data:`ACCEPTED`). ``st_i`` = [level, clean steps, steps, Newton
+    iterations, rejected steps, positions kept]. After each accepted step: the lines'
+    end forces ``forces`` (L, 2, 3) and the bodies' ``body_f`` (B, 6); folded into the
+    period's extremes ``ext_end`` (2, L, 2) of the end tensions (max, min) and their
+    integral ``int_end``, ``ext_el`` (2, E) of the element tensions and ``ext_body``
+    (2, B, 6) of the body forces. ``st_f[2]`` holds the step tried when Newton failed."""
+    held = S[21]
+    no = S[0]
+    n_lines = no.shape[0] - 1
+    tension, strain, friction_force, contact = W[7], W[8], W[11], W[10]
+    ksb = S[24]
+    has_seabed = ksb.max() > 0.0
+    n = x0.shape[0]
+    m = tension.shape[0]
+    corr = np.empty(3)
+    accepted = 0
+    while True:
+        t = st_f[0]
+        boundary = st_f[1]
+        level = st_i[0]
+        h = step / 2.0**level
+        if boundary - t <= h * (1.0 + 1e-6):
+            h = boundary - t
+        tn = t + h
+        npast = st_i[5]
+        la = lb = lc = 0.0
+        # predictor
+        if npast < 2:
+            for i in range(n):
+                for c in range(3):
+                    x_pred[i, c] = x0[i, c] + (tn - t) * v0[i, c]
+        else:
+            ta, tb, tc = past_t[0], past_t[1], t
+            la = (tn - tb) * (tn - tc) / ((ta - tb) * (ta - tc))
+            lb = (tn - ta) * (tn - tc) / ((tb - ta) * (tb - tc))
+            lc = (tn - ta) * (tn - tb) / ((tc - ta) * (tc - tb))
+            for i in range(n):
+                for c in range(3):
+                    x_pred[i, c] = past_x[0, i, c] * la + lb * past_x[1, i, c] + lc * x0[i, c]
+        set_drives(tn, D, x_pred, v1, a1, he_node, he_drive, dX, dV, dA, bx, bR)
+        # spread each held end's correction along its line (the ends were extrapolated)
+        for k in range(he_node.shape[0]):
+            l = he_line[k]  # noqa: E741
+            node = he_node[k]
+            # x_pred of the node was overwritten: its extrapolation is recomputed
+            if npast < 2:
+                for c in range(3):
+                    corr[c] = x_pred[node, c] - (x0[node, c] + (tn - t) * v0[node, c])
+            else:
+                for c in range(3):
+                    corr[c] = x_pred[node, c] - (
+                        past_x[0, node, c] * la + lb * past_x[1, node, c] + lc * x0[node, c]
+                    )
+            for i in range(no[l], no[l + 1]):
+                if held[i]:
+                    continue
+                w = frac[i] if he_end[k] == 1 else 1.0 - frac[i]
+                for c in range(3):
+                    x_pred[i, c] += w * corr[c]
+        for e in range(m):
+            W[9][e] = strain_prev[e] > 0.0
+        its, ok = system_step(
+            h, x0, v0, a0, F0, Fp0, x1, v1, a1, x_pred, am, af, beta, gamma, tol, max_it,
+            anchor, S, W, r, rp, dx, dp, Fp, lmin,
+        )  # fmt: skip
+        st_i[3] += its
+        if not ok:
+            st_i[4] += 1
+            if level >= rescue_level:
+                st_f[2] = h
+                return FAILED
+            st_i[0] = level + 1
+            st_i[1] = 0
+            continue
+        switched = False
+        for i in range(m):
+            if (strain[i] > 0.0) != (strain_prev[i] > 0.0):
+                switched = True
+                break
+        end_forces(S, W, x1, a1, he_node, forces)
+        steep = False
+        for l in range(n_lines):  # noqa: E741
+            for end in range(2):
+                f = forces[l, end]
+                te = math.sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2])
+                if abs(te - ends_prev[l, end]) > tension_step:
+                    steep = True
+        if (switched or steep) and level < max_level:
+            st_i[4] += 1
+            st_i[0] = level + 1
+            st_i[1] = 0
+            continue
+        # accept
+        st_i[2] += 1
+        if has_seabed:
+            update_anchors(x1, friction_force, ksb, contact, anchor)
+        if npast < 2:
+            for i in range(n):
+                for c in range(3):
+                    past_x[npast, i, c] = x0[i, c]
+            past_t[npast] = t
+            st_i[5] = npast + 1
+        else:
+            for i in range(n):
+                for c in range(3):
+                    past_x[0, i, c] = past_x[1, i, c]
+                    past_x[1, i, c] = x0[i, c]
+            past_t[0] = past_t[1]
+            past_t[1] = t
+        for i in range(n):
+            for c in range(3):
+                x0[i, c] = x1[i, c]
+                v0[i, c] = v1[i, c]
+                a0[i, c] = a1[i, c]
+                F0[i, c] = W[0][i, c]
+        for p in range(Fp0.shape[0]):
+            for c in range(3):
+                Fp0[p, c] = Fp[p, c]
+        for i in range(m):
+            strain_prev[i] = strain[i]
+            ext_el[0, i] = max(ext_el[0, i], tension[i])
+            ext_el[1, i] = min(ext_el[1, i], tension[i])
+        for l in range(n_lines):  # noqa: E741
+            for end in range(2):
+                f = forces[l, end]
+                te = math.sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2])
+                ext_end[0, l, end] = max(ext_end[0, l, end], te)
+                ext_end[1, l, end] = min(ext_end[1, l, end], te)
+                int_end[l, end] += 0.5 * (ends_prev[l, end] + te) * h
+                ends_prev[l, end] = te
+        body_forces(S, x0, forces, he_line, he_end, he_body, bx, body_f)
+        for b in range(body_f.shape[0]):
+            for k in range(6):
+                ext_body[0, b, k] = max(ext_body[0, b, k], body_f[b, k])
+                ext_body[1, b, k] = min(ext_body[1, b, k], body_f[b, k])
+        if switched or steep:
+            st_i[1] = 0
+        else:
+            st_i[1] += 1
+            if st_i[1] >= 2 and st_i[0] > 0:
+                st_i[0] -= 1
+                st_i[1] = 0
+        at_boundary = abs(tn - boundary) <= eps_t
+        st_f[0] = boundary if at_boundary else tn
+        if at_boundary:
+            return BOUNDARY
+        accepted += 1
+        if accepted >= budget:
+            return ACCEPTED
+
+
+@njit(cache=True, nogil=True)
+def system_static(x, anchor, S, W, r, rp, dx, dp, Fp, tol, max_it, lmin):  # noqa: ANN001, ANN201
+    """Newton on the discrete static equilibrium of the system (all lines and free
+    points at rest, held nodes where ``x`` puts them), with the single line's small
+    regularisation of slack nodes and its step limit (a quarter of the shortest element
+    per iteration). Returns (iterations, largest residual [N], converged)."""
+    held, is_junction = S[21], S[40]
+    p_nodes, p_off = S[38], S[39]
+    ea = S[5]
+    n = x.shape[0]
+    n_lines = S[0].shape[0] - 1
+    v = np.zeros_like(x)
+    F = W[0]
+    tension = W[7]
+    reg = 1e-9 * (ea.max() / lmin)
+    reach = 0.0
+    for i in range(n):
+        for a in range(3):
+            reach = max(reach, abs(x[i, a]))
+    floor = 1024.0 * 2.220446049250313e-16 * (reach + lmin)
+    res = math.inf
+    # friction as an active set, as the single line's statics: the trial forces decide
+    # which contact nodes stick and which slide, Newton keeps those states, checked once
+    # converged
+    ksb = S[24]
+    has_friction = ksb.shape[0] > 0 and ksb.max() > 0.0 and S[26].max() > 0.0
+    fix_states = has_friction
+    slip = W[12]
+    for i in range(n):
+        slip[i, 0] = 0
+        slip[i, 1] = 0
+    checks = 0
+    it = 0
+    while True:
+        for l in range(n_lines):  # noqa: E741
+            assemble_line(l, x, v, anchor, S, W)
+        if fix_states:
+            fix_states = False
+            _static_friction_states(S, W)
+            continue
+        point_forces(S, x, v, Fp)
+        res = 0.0
+        for i in range(n):
+            for a in range(3):
+                r[i, a] = -F[i, a]
+                if not held[i] and not is_junction[i]:
+                    res = max(res, abs(F[i, a]))
+        for p in range(rp.shape[0]):
+            for a in range(3):
+                tot = -Fp[p, a]
+                for k in range(p_off[p], p_off[p + 1]):
+                    tot += r[p_nodes[k], a]
+                rp[p, a] = tot
+                res = max(res, abs(tot))
+        if res <= tol:
+            if has_friction and checks < 20 and _friction_states(S, W, True):
+                checks += 1
+                continue
+            return it, res, True
+        if it >= max_it or not math.isfinite(res):
+            return it, res, False
+        it += 1
+        tmax = 0.0
+        for e in range(tension.shape[0]):
+            tmax = max(tmax, tension[e])
+        reg_it = min(reg, max(1e-6 * tmax / lmin, 1e-6 * reg))
+        if not coupled_solve(S, W, 0.0, 1.0, 0.0, reg_it, r, rp, dx, dp):
+            return it, res, False
+        big = 0.0
+        for i in range(n):
+            for a in range(3):
+                big = max(big, abs(dx[i, a]))
+        if big <= floor:
+            return it, res, True
+        scale = 1.0
+        if big > 0.25 * lmin:
+            scale = 0.25 * lmin / big
+        for i in range(n):
+            if held[i]:
+                continue
+            for a in range(3):
+                x[i, a] += scale * dx[i, a]

@@ -1,0 +1,314 @@
+"""Steady periodic response of a mooring system to prescribed body and point motion.
+
+All lines and free points are integrated together (:mod:`.system_march`): the single
+line's generalised-alpha step with Newton, the Jacobian banded per line and the free
+points coupling the lines through a bordered (Schur complement) solve. The run starts at
+rest in the discrete static equilibrium of the system model (:func:`equilibrium`),
+steps at ``step`` landing on period boundaries, and stops when every line's end
+tensions have settled: the per-period maximum and minimum of each line end changed by
+at most ``steady_tolerance`` times the largest end tension over ``steady_window``
+consecutive periods (or after ``max_periods``; with ``duration`` it runs that long and
+the statistics cover every period after the ramp, as for a single line).
+
+Pure: arrays in, a :class:`SystemDynamicResult` out (status, message, counters).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..statics.base import STATUS_NUMERICAL, STATUS_OK, STATUS_TIME_LIMIT
+from .integrator import AlphaParameters
+from .model import static_equilibrium
+from .system_kernels import assemble_line, point_forces
+from .system_march import BOUNDARY, FAILED, end_forces, set_drives, system_march, system_static
+from .system_model import Drives, PackedSystem, SlotMotion, work_arrays
+
+#: extra step halvings allowed beyond ``max_refinement`` when Newton fails
+NEWTON_RESCUE_HALVINGS = 8
+
+
+@dataclass(frozen=True, kw_only=True)
+class SystemProblem:
+    """A time-domain run of a system (see :class:`.timedomain.DynamicProblem` for the
+    settings, which mean the same here)."""
+
+    packed: PackedSystem
+    static_position: np.ndarray
+    anchor: np.ndarray
+    drives: Drives
+    motion: SlotMotion
+    period: float
+    step: float
+    max_refinement: int = 3
+    spectral_radius: float = 0.3
+    newton_tolerance: float = 1e-5
+    max_newton_iterations: int = 12
+    tension_step: float = math.inf
+    steady_tolerance: float = 0.002
+    steady_window: int = 2
+    min_periods: int = 3
+    max_periods: int = 80
+    duration: float | None = None
+    history: bool = False
+    history_periods: float = 2.0
+    history_samples: int = 64
+
+
+@dataclass(kw_only=True)
+class SystemDynamicResult:
+    """Outcome of :func:`simulate_system` over the steady window: end tensions [N]
+    (L, 2) (max, min, mean; ends A, B), element tensions (E,) packed line after line,
+    body forces and moments (B, 6) (max, min); the static end tensions (L, 2)."""
+
+    status: int = STATUS_OK
+    message: str = ""
+    end_max: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    end_min: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    end_mean: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    end_static: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    element_max: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    element_min: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    body_max: np.ndarray = field(default_factory=lambda: np.zeros((0, 6)))
+    body_min: np.ndarray = field(default_factory=lambda: np.zeros((0, 6)))
+    steady_converged: bool = False
+    steps: int = 0
+    newton_iterations: int = 0
+    rejected_steps: int = 0
+    periods: float = 0.0
+    history: dict[str, np.ndarray] | None = None
+
+
+def equilibrium(
+    packed: PackedSystem,
+    start: np.ndarray,
+    *,
+    tolerance: np.ndarray,
+    fallback_tension: list[np.ndarray] | None = None,
+    max_iterations: int = 200,
+) -> tuple[np.ndarray, np.ndarray, str]:
+    """Discrete static equilibrium of the system model from ``start`` [m] (N, 3) (the
+    continuous statics at the nodes). First each line on its own, its ends where the
+    continuous statics put them: the single line's :func:`.model.static_equilibrium`
+    (its seabed seating, friction anchors and fallbacks; so that a system of one line
+    starts exactly where the one-line study does). Then, with free points, the coupled
+    Newton (:func:`.system_march.system_static`) moves the junctions to the discrete
+    model's own balance, from that near start. ``tolerance`` [N] (L,) per line;
+    ``fallback_tension`` [N] per line (n,) the continuous statics' element tensions,
+    from which a stiff line's Newton restarts on positions and tensions. Returns
+    positions, friction anchors and an error message ("" when found)."""
+    x = np.array(start, dtype=float, copy=True)
+    anchor = x.copy()
+    for l, ln in enumerate(packed.lines):  # noqa: E741
+        sl = slice(packed.no[l], packed.no[l + 1])
+        xl, its, res, ok, anc = static_equilibrium(
+            ln,
+            start[sl],
+            tolerance=tolerance[l],
+            max_iterations=max_iterations,
+            fallback_tension=None if fallback_tension is None else fallback_tension[l],
+        )
+        if not ok:
+            return (
+                x,
+                anchor,
+                (
+                    f"the discrete static equilibrium of line {l} did not converge ({its} "
+                    f"iterations, residual {res:.3g} N)"
+                ),
+            )
+        x[sl], anchor[sl] = xl, anc
+    if packed.n_points == 0:
+        return x, anchor, ""
+    v = np.zeros_like(x)
+    W = work_arrays(packed, x, v)
+    r, dx = np.zeros_like(x), np.zeros_like(x)
+    rp = np.zeros((packed.n_points, 3))
+    dp, Fp = np.zeros_like(rp), np.zeros_like(rp)
+    its, res, ok = system_static(
+        x, anchor, packed.S, W, r, rp, dx, dp, Fp, float(np.min(tolerance)), max_iterations,
+        packed.lmin,
+    )  # fmt: skip
+    if not ok:
+        return (
+            x,
+            anchor,
+            (
+                f"the discrete static equilibrium of the system model did not converge ({its} "
+                f"iterations, residual {res:.3g} N)"
+            ),
+        )
+    return x, anchor, ""
+
+
+def simulate_system(
+    problem: SystemProblem, *, deadline: float | None = None
+) -> SystemDynamicResult:
+    """Integrate the system until steady state (or ``max_periods``, or ``duration``).
+    A numerical failure is a result with nonzero status and a message."""
+    pk = problem.packed
+    S = pk.S
+    L = len(pk.lines)
+    B = problem.drives.body_base.shape[0]
+    par = AlphaParameters.from_spectral_radius(problem.spectral_radius)
+    x0 = np.array(problem.static_position, dtype=float, copy=True)
+    v0, a0 = np.zeros_like(x0), np.zeros_like(x0)
+    x1, v1, a1 = x0.copy(), v0.copy(), a0.copy()
+    W = work_arrays(pk, x1, v1)
+    anchor = np.array(problem.anchor, dtype=float, copy=True)
+    for l in range(L):  # noqa: E741
+        assemble_line(l, x0, v0, anchor, S, W)
+    P = pk.n_points
+    Fp0 = np.zeros((P, 3))
+    point_forces(S, x0, v0, Fp0)
+    F0 = W[0].copy()
+    strain_prev = W[8].copy()
+    forces = np.zeros((L, 2, 3))
+    end_forces(S, W, x0, a0, pk.he_node, forces)
+    ends_prev = np.sqrt(np.sum(forces**2, axis=2))
+    end_static = ends_prev.copy()
+    dr = problem.drives
+    D = (
+        problem.motion.kernel_args(),
+        dr.body_base,
+        dr.body_R0,
+        dr.body,
+        dr.slot,
+        dr.offset,
+        dr.static,
+    )
+    nD = dr.body.size
+    dX, dV, dA = np.zeros((nD, 3)), np.zeros((nD, 3)), np.zeros((nD, 3))
+    bx, bR = np.zeros((B, 3)), np.zeros((B, 3, 3))
+    body_f = np.zeros((B, 6))
+    # the bodies' static forces (drives at t = 0: the static state)
+    set_drives(0.0, D, x1.copy(), v1.copy(), a1.copy(), pk.he_node, pk.he_drive, dX, dV, dA, bx, bR)
+    from .system_march import body_forces
+
+    body_forces(S, x0, forces, pk.he_line, pk.he_end, pk.he_body, bx, body_f)
+
+    T = problem.period
+    t_stop = problem.duration if problem.duration is not None else problem.max_periods * T
+    t_ramp = problem.motion.ramp_time
+    eps_t = 1e-9 * T
+    st_f = np.array([0.0, min(T, t_stop), 0.0])
+    st_i = np.zeros(6, dtype=np.int64)
+    past_x = np.zeros((2, *x0.shape))
+    past_t = np.zeros(2)
+    x_pred = np.empty_like(x0)
+    r, dx = np.zeros_like(x0), np.zeros_like(x0)
+    rp, dp, Fp = np.zeros((P, 3)), np.zeros((P, 3)), np.zeros((P, 3))
+
+    def fresh() -> tuple[np.ndarray, ...]:
+        return (
+            np.stack([ends_prev, ends_prev]).copy(),
+            np.zeros((L, 2)),
+            np.stack([W[7], W[7]]).copy(),
+            np.stack([body_f, body_f]).copy(),
+        )
+
+    ext_end, int_end, ext_el, ext_body = fresh()
+    periods: list[tuple[np.ndarray, ...]] = []
+    hist_t: list[float] = [0.0]
+    hist_f: list[np.ndarray] = [ends_prev.copy()]
+    single = problem.history
+    # one step at a time for the history; with a deadline, back every 64 steps to check it
+    budget = 1 if single else (64 if deadline is not None else 2**62)
+    result = SystemDynamicResult(end_static=end_static)
+    c_start = 0.0
+    converged = False
+    lmin = pk.lmin
+    while True:
+        if deadline is not None and time.monotonic() > deadline:
+            result.status = STATUS_TIME_LIMIT
+            result.message = f"time limit reached at t = {st_f[0]:.4g} s of the dynamic run"
+            return result
+        code = system_march(
+            st_f, st_i, x0, v0, a0, F0, Fp0, x1, v1, a1, x_pred, past_x, past_t, pk.frac,
+            strain_prev, D, pk.he_node, pk.he_drive, pk.he_line, pk.he_end, pk.he_body,
+            dX, dV, dA, bx, bR, forces, ends_prev, ext_end, int_end, ext_el, ext_body, body_f,
+            problem.step, problem.max_refinement,
+            problem.max_refinement + NEWTON_RESCUE_HALVINGS, problem.tension_step,
+            par.alpha_m, par.alpha_f, par.beta, par.gamma, problem.newton_tolerance,
+            problem.max_newton_iterations, budget, anchor, S, W, r, rp, dx, dp, Fp, lmin, eps_t,
+        )  # fmt: skip
+        t = float(st_f[0])
+        if code == FAILED:
+            result.status = STATUS_NUMERICAL
+            result.message = (
+                f"Newton did not converge at t = {t:.6g} s with step {st_f[2]:.3g} s "
+                f"({problem.step:.3g} s halved {int(st_i[0])} times)"
+            )
+            result.steps, result.newton_iterations = int(st_i[2]), int(st_i[3])
+            result.rejected_steps = int(st_i[4])
+            return result
+        if single:
+            hist_t.append(t)
+            hist_f.append(ends_prev.copy())
+        if code != BOUNDARY:
+            continue
+        final = t >= t_stop - eps_t
+        if c_start >= t_ramp - eps_t or (final and not periods):
+            periods.append(
+                (ext_end[0].copy(), ext_end[1].copy(), int_end / max(t - c_start, 1e-300),
+                 ext_el[0].copy(), ext_el[1].copy(), ext_body[0].copy(), ext_body[1].copy())
+            )  # fmt: skip
+        ext_end, int_end, ext_el, ext_body = fresh()
+        c_start = t
+        if problem.duration is None:
+            converged = _steady(problem, periods)
+        if converged or final:
+            break
+        st_f[1] = min(st_f[1] + T, t_stop)
+    w = max(1, problem.steady_window) if problem.duration is None else len(periods)
+    win = periods[-min(w, len(periods)) :]
+    result.end_max = np.max([p[0] for p in win], axis=0)
+    result.end_min = np.min([p[1] for p in win], axis=0)
+    result.end_mean = np.mean([p[2] for p in win], axis=0)
+    result.element_max = np.max([p[3] for p in win], axis=0)
+    result.element_min = np.min([p[4] for p in win], axis=0)
+    result.body_max = np.max([p[5] for p in win], axis=0)
+    result.body_min = np.min([p[6] for p in win], axis=0)
+    result.steady_converged = converged
+    result.steps, result.newton_iterations = int(st_i[2]), int(st_i[3])
+    result.rejected_steps = int(st_i[4])
+    result.periods = t / T
+    if single:
+        result.history = _resample(np.array(hist_t), np.array(hist_f), t, problem)
+    return result
+
+
+def _steady(problem: SystemProblem, periods: list[tuple[np.ndarray, ...]]) -> bool:
+    """Every line end's per-period maximum and minimum changed by at most
+    ``steady_tolerance`` times the largest end tension over the last ``steady_window``
+    periods (after ``min_periods``)."""
+    w = problem.steady_window
+    if len(periods) < max(problem.min_periods, w + 1):
+        return False
+    for j in range(1, w + 1):
+        hi, lo = periods[-j][0], periods[-j][1]
+        hi0, lo0 = periods[-j - 1][0], periods[-j - 1][1]
+        scale = problem.steady_tolerance * float(np.max(hi))
+        if np.any(np.abs(hi - hi0) > scale) or np.any(np.abs(lo - lo0) > scale):
+            return False
+    return True
+
+
+def _resample(
+    t: np.ndarray, f: np.ndarray, t_end: float, problem: SystemProblem
+) -> dict[str, np.ndarray]:
+    """End tensions (L, 2) per accepted step resampled uniformly over the last
+    ``history_periods`` periods: ``time`` (nt,), ``tension`` (L, 2, nt)."""
+    nt = int(round(problem.history_periods * problem.history_samples)) + 1
+    T = problem.period
+    tq = t_end - problem.history_periods * T + np.arange(nt) * T / problem.history_samples
+    L = f.shape[1]
+    out = np.empty((L, 2, nt))
+    for l in range(L):  # noqa: E741
+        for e in range(2):
+            out[l, e] = np.interp(tq, t, f[:, l, e])
+    return {"time": tq, "tension": out}

@@ -1,0 +1,336 @@
+"""The dynamics of a system study case by case: the time-domain model of the system
+(every line's lumped-mass model, the free points, the driven points) built from the
+study and its static solution, the motion of the bodies and points from
+``analysis.dynamic.excitation``, and one case's outputs.
+
+A sweep of the motion (amplitude, frequency, phase, tables) over a system shares the
+static solve and the model (lines discretised, packed, brought to their discrete
+equilibrium): both are cached per static problem (``case.static_hash``) and element
+count, and counted in :data:`cablestudy.counters.COUNTERS` (``system_static_solves``,
+``system_assemblies``)."""
+
+from __future__ import annotations
+
+import math
+from collections import OrderedDict
+from typing import Any
+
+import numpy as np
+
+from .cases import Case
+from .config.analysis import BodySpectrumExcitation, SpectrumExcitation
+from .config.system import BodyPoint, FreePoint
+from .config.system_dynamics import BODY_DOFS, BodyHarmonic, BodyTable, PointHarmonic
+from .counters import COUNTERS, trim_lru
+from .statics import STATUS_NUMERICAL, STATUS_OK
+
+#: why method auto runs the time domain for a system
+AUTO_REASON = "auto: the frequency domain of a system is not built yet (time domain only)"
+
+_MODEL_CACHE: OrderedDict[tuple, Any] = OrderedDict()
+_STATIC_CACHE: OrderedDict[str, Any] = OrderedDict()
+_CACHE_SIZE = 16
+
+
+def system_statics(case: Case, system: Any, solve: Any) -> Any:
+    """The case's system static solution, solved once per static problem."""
+    hit = _STATIC_CACHE.get(case.static_hash)
+    if hit is not None:
+        _STATIC_CACHE.move_to_end(case.static_hash)
+        return hit
+    res = solve()
+    COUNTERS["system_static_solves"] += 1
+    _STATIC_CACHE[case.static_hash] = res
+    trim_lru(_STATIC_CACHE, _CACHE_SIZE)
+    return res
+
+
+def _line_extras(study: Any, name: str, lm: Any) -> Any:
+    """The dynamic-only properties of line ``name`` (as a one-line study's: transverse
+    damping, attachment added mass and drag, the seabed contact; pinned ends)."""
+    from .dynamics.model import DynamicExtras, default_seabed_stiffness
+
+    line = study.lines[name]
+    env = study.environment
+    sb = env.seabed
+    stiffness = 0.0
+    if env.depth is not None:
+        stiffness = sb.stiffness if sb.stiffness is not None else default_seabed_stiffness(lm)
+    atts = line.attachments
+    return DynamicExtras(
+        transverse_damping=np.array([seg.damping_transverse for seg in line.segments]),
+        attachment_added_mass=np.array([a.added_mass for a in atts], dtype=float),
+        attachment_drag_area=np.array([a.drag_area for a in atts], dtype=float),
+        end_force=np.zeros((2, 3)),
+        free_end=(False, False),
+        clamp_direction=np.zeros((2, 3)),
+        seabed_stiffness=float(stiffness),
+        seabed_damping_ratio=float(sb.damping_ratio),
+        friction_axial=float(sb.friction),
+        friction_lateral=float(sb.friction if sb.friction_lateral is None else sb.friction_lateral),
+    )
+
+
+def system_model_dynamic(case: Case, system: Any, static: Any) -> tuple[Any, ...] | str:
+    """The packed time-domain model of the case's system at its discrete static
+    equilibrium, cached per static problem and element count: (packed, positions,
+    anchors, drive arrays (body, slot owner point, offset, static position), the
+    Newton and tension-step scale [N]), or why the equilibrium was not found."""
+    from .analyses import roundoff_force
+    from .dynamics.model import discretise_nodes, uniform_nodes
+    from .dynamics.system_model import FreePoints, pack
+    from .dynamics.system_timedomain import equilibrium
+    from .statics.system import FREE, rotation
+
+    dyn = case.study.analysis.dynamic
+    key = (case.static_hash, dyn.elements)
+    hit = _MODEL_CACHE.get(key)
+    if hit is not None:
+        _MODEL_CACHE.move_to_end(key)
+        return hit
+    study = case.study
+    names = list(study.lines)
+    lines, starts, tol, fallback = [], [], [], []
+    for k, sl in enumerate(system.lines):
+        lm = sl.problem.line
+        med = sl.problem.medium
+        res = static.lines[k]
+        s_nodes = uniform_nodes(lm, dyn.elements)
+        start = np.stack([np.interp(s_nodes, res.s, res.position[:, c]) for c in range(3)], 1)
+        line = discretise_nodes(lm, med, s_nodes, _line_extras(study, names[k], lm))
+        scale = float(np.nanmax(res.tension))
+        if line.has_seabed:
+            scale = max(scale, float(np.max(np.abs(line.force))))
+        lines.append(line)
+        starts.append(start)
+        t_nodes = np.interp(s_nodes, res.s, res.tension)
+        fallback.append(0.5 * (t_nodes[:-1] + t_nodes[1:]))
+        tol.append(max(1e-9 * scale, roundoff_force(line, start)))
+    COUNTERS["system_assemblies"] += 1
+    kind = system.point_kind
+    free_index = -np.ones(kind.size, dtype=int)
+    free_index[kind == FREE] = np.arange(int(np.sum(kind == FREE)))
+    drive_index = -np.ones(kind.size, dtype=int)
+    drive_index[kind != FREE] = np.arange(int(np.sum(kind != FREE)))
+    end_point = np.array([[free_index[sl.a], free_index[sl.b]] for sl in system.lines])
+    end_drive = np.array([[drive_index[sl.a], drive_index[sl.b]] for sl in system.lines])
+    pts = list(study.points.values())
+    free_pts = [p for p in pts if isinstance(p, FreePoint)]
+    rho = study.environment.density
+    g = study.environment.gravity
+    points = FreePoints(
+        mass=np.array([p.mass + p.added_mass for p in free_pts], dtype=float),
+        force=np.array(
+            [
+                np.asarray(p.force, dtype=float) + [0.0, 0.0, -(p.mass - rho * p.volume) * g]
+                for p in free_pts
+            ],
+            dtype=float,
+        ).reshape(-1, 3),
+        drag=np.array([0.5 * rho * p.drag_area for p in free_pts], dtype=float),
+    )
+    driven = [i for i in range(kind.size) if kind[i] != FREE]
+    drive_body = np.array([system.point_body[i] for i in driven], dtype=np.int64)
+    packed = pack(lines, end_point, end_drive, points, drive_body)
+    x, anchor, msg = equilibrium(
+        packed, np.concatenate(starts), tolerance=np.array(tol), fallback_tension=fallback
+    )
+    if msg:
+        _MODEL_CACHE[key] = msg
+        return msg
+    # each drive's static position: the node of a line end on it (exactly where the
+    # discrete statics left it)
+    d_static = np.zeros((len(driven), 3))
+    for k in range(packed.he_node.size):
+        d_static[packed.he_drive[k]] = x[packed.he_node[k]]
+    offsets = np.array(
+        [pts[i].offset if isinstance(pts[i], BodyPoint) else [0.0] * 3 for i in driven],
+        dtype=float,
+    ).reshape(-1, 3)
+    body_pos = static.body_position if static.body_position is not None else system.body_position
+    body_base = np.asarray(body_pos, dtype=float).reshape(-1, 6)
+    body_R0 = np.array([rotation(b[3:]) for b in body_base]).reshape(-1, 3, 3)
+    scale = max(float(np.nanmax(r.tension)) for r in static.lines)
+    # rounding of the element forces: the Newton tolerance's floor (the tolerance itself,
+    # relative to the static tension, is a dynamic setting: applied per case)
+    floor = max(
+        4.0 * roundoff_force(ln, x[packed.no[k] : packed.no[k + 1]]) for k, ln in enumerate(lines)
+    )
+    out = (
+        packed,
+        x,
+        anchor,
+        driven,
+        drive_body,
+        offsets,
+        d_static,
+        body_base,
+        body_R0,
+        scale,
+        floor,
+    )
+    _MODEL_CACHE[key] = out
+    trim_lru(_MODEL_CACHE, _CACHE_SIZE)
+    return out
+
+
+def slot_motion(study: Any, driven: list[int]) -> tuple[Any, np.ndarray, float, float]:
+    """The motion slots of the excitation (:class:`.dynamics.system_model.SlotMotion`),
+    each drive's own slot (-1: none), the steady-state period [s] and the base step [s]
+    (as a one-line study's: the fastest harmonic over ``points_per_period``)."""
+    from .dynamics.excitation import TableMotion
+    from .dynamics.system_model import SlotMotion
+
+    dyn = study.analysis.dynamic
+    bodies = list(study.bodies)
+    names = list(study.points)
+    B = len(bodies)
+    own = sorted({e.point for e in dyn.excitations if hasattr(e, "point")}, key=names.index)
+    own_slot = {p: 2 * B + q for q, p in enumerate(own)}
+    slots, dirs, amps, freqs, phases, tables = [], [], [], [], [], []
+    periods: list[float] = []
+    for e in dyn.excitations:
+        if isinstance(e, BodyHarmonic | BodyTable | BodySpectrumExcitation):
+            k = BODY_DOFS.index(e.dof)
+            slot = 2 * bodies.index(e.body) + (0 if k < 3 else 1)
+            direction = np.eye(3)[k % 3]
+        else:
+            slot = own_slot[e.point]
+            direction = np.asarray(e.direction, dtype=float) / np.linalg.norm(e.direction)
+        if isinstance(e, SpectrumExcitation):
+            # a spectrum runs as its lines with random phases (seeded), as a line end's
+            # (cablestudy.analyses.end_motion): periodic with its lowest line's period
+            draws = np.random.default_rng(e.seed).uniform(0.0, 2.0 * math.pi, e.components)
+            for f, a, ph in zip(e.line_frequencies, e.line_amplitudes, draws, strict=True):
+                slots.append(slot)
+                dirs.append(direction)
+                amps.append(a)
+                freqs.append(f)
+                phases.append(float(ph))
+                periods.append(1.0 / f)
+        elif isinstance(e, BodyHarmonic | PointHarmonic):
+            slots.append(slot)
+            dirs.append(direction)
+            amps.append(e.amplitude)
+            freqs.append(e.frequency)
+            phases.append(math.radians(e.phase_deg))
+            periods.append(1.0 / e.frequency)
+        else:
+            tm = TableMotion(
+                end=0,
+                direction=direction,
+                times=np.array([r[0] for r in e.table]),
+                values=np.array([r[1] for r in e.table]),
+                periodic=e.periodic,
+            )
+            tables.append((slot, tm))
+            if e.periodic:
+                periods.append(tm.duration)
+    if dyn.period is not None:
+        period = dyn.period
+    elif periods:
+        period = max(periods)
+    else:
+        period = dyn.duration
+    fastest = min(periods) if periods else period
+    step = fastest / dyn.points_per_period
+    step = period / math.ceil(period / step * (1.0 - 1e-12))
+    motion = SlotMotion(
+        slot=np.array(slots, dtype=np.int64),
+        direction=np.array(dirs, dtype=float).reshape(-1, 3),
+        amplitude=np.array(amps, dtype=float),
+        frequency=np.array(freqs, dtype=float),
+        phase=np.array(phases, dtype=float),
+        tables=tuple(tables),
+        ramp_time=dyn.ramp_periods * period,
+    )
+    d_slot = np.array([own_slot.get(names[i], -1) for i in driven], dtype=np.int64)
+    return motion, d_slot, period, step
+
+
+def run_system_dynamic(
+    case: Case, system: Any, static: Any, deadline: float | None
+) -> tuple[int, str, dict[str, np.ndarray]]:
+    """The case's time-domain run and its outputs: (status, message, outputs)."""
+    from .dynamics.system_model import Drives
+    from .dynamics.system_timedomain import SystemProblem, simulate_system
+    from .frequency_cases import tension_along
+
+    dyn = case.study.analysis.dynamic
+    model = system_model_dynamic(case, system, static)
+    reason = AUTO_REASON if dyn.method == "auto" else "method: time"
+    head = {"dynamic_method": np.asarray("time"), "dynamic_method_reason": np.asarray(reason)}
+    if isinstance(model, str):
+        return STATUS_NUMERICAL, model, head
+    packed, x, anchor, driven, drive_body, offsets, d_static, body_base, body_R0, scale, floor = (
+        model
+    )
+    tol = max(dyn.newton_tolerance * scale, floor)
+    motion, d_slot, period, step = slot_motion(case.study, driven)
+    hist = dyn.history
+    problem = SystemProblem(
+        packed=packed,
+        static_position=x,
+        anchor=anchor,
+        drives=Drives(
+            body=drive_body,
+            slot=d_slot,
+            offset=offsets,
+            static=d_static,
+            body_base=body_base,
+            body_R0=body_R0,
+        ),
+        motion=motion,
+        period=period,
+        step=step,
+        max_refinement=dyn.max_refinement,
+        spectral_radius=dyn.spectral_radius,
+        newton_tolerance=tol,
+        max_newton_iterations=dyn.max_newton_iterations,
+        tension_step=dyn.tension_resolution * scale,
+        steady_tolerance=dyn.steady_tolerance,
+        steady_window=dyn.steady_window,
+        min_periods=dyn.min_periods,
+        max_periods=dyn.max_periods,
+        duration=dyn.duration,
+        history=hist is not None,
+        history_periods=hist.periods if hist else 2.0,
+        history_samples=hist.samples_per_period if hist else 64,
+    )
+    res = simulate_system(problem, deadline=deadline)
+    if res.status != STATUS_OK:
+        return res.status, res.message, head
+    n_out = system.lines[0].problem.n_nodes
+    env_max, env_min = [], []
+    for k, ln in enumerate(packed.lines):
+        s_out = np.linspace(0.0, float(ln.s[-1]), n_out)
+        el = slice(packed.eo[k], packed.eo[k + 1])
+        env_max.append(tension_along(s_out, ln.s, res.element_max[el], res.end_max[k]))
+        env_min.append(tension_along(s_out, ln.s, res.element_min[el], res.end_min[k]))
+    out = {
+        **head,
+        "tension_max_a": res.end_max[:, 0],
+        "tension_min_a": res.end_min[:, 0],
+        "tension_mean_a": res.end_mean[:, 0],
+        "tension_max_b": res.end_max[:, 1],
+        "tension_min_b": res.end_min[:, 1],
+        "tension_mean_b": res.end_mean[:, 1],
+        "tension_envelope_max": np.array(env_max),
+        "tension_envelope_min": np.array(env_min),
+        "steady_converged": np.asarray(int(res.steady_converged)),
+        "periods": np.asarray(res.periods),
+        "dynamic_steps": np.asarray(res.steps),
+        "newton_iterations": np.asarray(res.newton_iterations),
+        "rejected_steps": np.asarray(res.rejected_steps),
+    }
+    if body_base.shape[0]:
+        out["body_force_max"] = res.body_max
+        out["body_force_min"] = res.body_min
+    if res.history is not None:
+        out["history_time"] = res.history["time"]
+        out["history_tension_a"] = res.history["tension"][:, 0]
+        out["history_tension_b"] = res.history["tension"][:, 1]
+    bad = [k for k, v in out.items() if v.dtype.kind == "f" and not np.all(np.isfinite(v))]
+    if bad:
+        return STATUS_NUMERICAL, f"non-finite values in {', '.join(bad)}", head
+    return STATUS_OK, "", out
