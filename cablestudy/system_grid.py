@@ -330,26 +330,29 @@ def _starts(grid: SystemGrid, pos: np.ndarray, pforce: np.ndarray) -> list[np.nd
 
 
 def _strain_warnings(grid: SystemGrid, out: dict[str, np.ndarray], status: np.ndarray) -> dict:
-    """``analysis.static.strain_warning`` per case, as case by case
-    (:func:`cablestudy.system_cases._strain_warning`): asked only of the cases whose
-    largest tension over the softest segment's EA (a bound of a linear line's strain; a
-    grid's lines are linear, :func:`cablestudy.statics.system_fast.ineligible`) exceeds
-    the limit."""
-    from types import SimpleNamespace
-
-    from .system_cases import _strain_warning
+    """``analysis.static.strain_warning`` per case, worded as case by case
+    (:func:`cablestudy.system_cases._strain_warning`): each line's largest strain, T / EA
+    of the segment at each node (a grid's lines are linear,
+    :func:`cablestudy.statics.system_fast.ineligible`), the lines above the limit named."""
+    from .plausibility import largest_strain, strain_warning
 
     t = grid.template
     limit = t.analysis.static.strain_warning
-    ea = np.array([min(seg.elastic_stiffness for seg in ln.segments) for ln in t.lines.values()])
-    bound = np.nanmax(out["tension"], axis=2) / ea  # (n, M)
+    names = list(t.lines)
+    ea = []
+    for m, line in enumerate(t.lines.values()):
+        segs = line.segments
+        ends = np.cumsum([seg.length for seg in segs])
+        k = np.minimum(np.searchsorted(ends, out["arc_length"][0, m], side="right"), len(segs) - 1)
+        ea.append([segs[i].elastic_stiffness for i in k])
+    strains = largest_strain(out["tension"], np.array(ea))  # (n, M)
     found = {}
-    for i in np.flatnonzero((status == 0) & np.any(bound > limit, axis=1)):
-        s = out["arc_length"][i]
-        lines = [SimpleNamespace(s=s[m], tension=out["tension"][i, m]) for m in range(len(t.lines))]
-        text = _strain_warning(t, SimpleNamespace(lines=lines))
+    for i in np.flatnonzero((status == 0) & np.any(strains > limit, axis=1)):
+        row = np.where(np.isfinite(strains[i]), strains[i], -1.0)
+        text = strain_warning(float(strains[i, int(np.argmax(row))]), limit)
         if text:
-            found[int(i)] = text
+            over = [names[m] for m in np.flatnonzero(strains[i] > limit)]
+            found[int(i)] = f"{text} (lines {', '.join(over)})"
     return found
 
 
