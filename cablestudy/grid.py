@@ -428,13 +428,15 @@ def _compiled_solve(
     kernel takes), or None when the template does not take this path (then
     :func:`solve_batch` runs as before).
     """
-    from .statics import _fast
+    from .statics.aot import free_hanging_kernel
     from .statics.batch import NOT_SETTLED, ON_SEABED, _guess
     from .statics.verify import Pieces, check_lines
 
     line, med = base.line, base.medium
+    # the kernel compiled ahead of time where it is built: no numba to load (issue 20)
+    solve_cases = free_hanging_kernel()
     if (
-        not _fast.AVAILABLE
+        solve_cases is None
         or base.end_a.kind != "fixed"
         or base.end_b.kind != "fixed"
         or line.is_nonlinear
@@ -544,7 +546,7 @@ def _compiled_solve(
             np.empty((f.size, 3)),
         )
         it_f, res_f, st_f = np.zeros(f.size, np.int64), np.zeros(f.size), np.zeros(f.size, np.int64)
-        _fast.solve_cases(
+        solve_cases(
             ell[f],
             EA[f],
             np.ascontiguousarray(-q[f][..., 2]),

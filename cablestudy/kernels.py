@@ -29,7 +29,7 @@ from typing import Any, TextIO
 #: per kind: what it is, for messages, and about how long its compilation takes on one
 #: core of the 2-core development machine [s] (measured by ``cablestudy compile``)
 KINDS: dict[str, tuple[str, float]] = {
-    "statics": ("the static kernels", 10.0),
+    "statics": ("the static kernels", 18.0),
     "time": ("the time-domain kernels", 25.0),
     "frequency": ("the frequency-domain kernels", 10.0),
 }
@@ -38,7 +38,7 @@ KINDS: dict[str, tuple[str, float]] = {
 def _warm_statics() -> None:
     """The still-water catenary kernels (free-hanging and seabed-contact batches, alone
     and stacked, nonlinear axial laws) and the quasi-static database lookup on small
-    problems."""
+    problems; then the still-water batch kernels compiled ahead of time."""
     import numpy as np
 
     from .config.loader import parse_study_text, validate_data
@@ -101,6 +101,11 @@ sweep:
 
     grid = np.array([0.0, 1.0])
     database_kernel.evaluate_cell(np.zeros((1, 1, 2, 16)), grid, grid, 0.5, 0.5)
+    # the still-water batch kernels as an extension module: array sweeps then start
+    # without numba (cablestudy.statics.aot; where it cannot be built, numba's)
+    from .statics.aot import build
+
+    build()
 
 
 def _warm_time() -> None:

@@ -417,6 +417,15 @@ SYSTEM_OUTPUTS.update(
             "smallest force and moment of all lines on each body "
             "about its reference point over the steady motion",
         ),
+        **{  # the system frequency domain (issue 24)
+            f"tension_amplitude_{end}": OutputVariable(
+                ("line",),
+                "N",
+                f"amplitude of the harmonic tension variation at end {end.upper()} of each "
+                "line (frequency domain)",
+            )
+            for end in ("a", "b")
+        },
         "history_tension_a": OutputVariable(
             ("line", "time"), "N", "tension at end A of each line (history)"
         ),
@@ -433,6 +442,7 @@ SYSTEM_OUTPUTS.update(
                 "dynamic_steps",
                 "newton_iterations",
                 "rejected_steps",
+                "linearisation_iterations",
                 "history_time",
                 "dynamic_status",
             )

@@ -25,7 +25,10 @@ from .counters import COUNTERS, trim_lru
 from .statics import STATUS_NUMERICAL, STATUS_OK
 
 #: why method auto runs the time domain for a system
-AUTO_REASON = "auto: the frequency domain of a system is not built yet (time domain only)"
+AUTO_REASON = (
+    "auto: a system runs the time domain (its frequency domain runs with method "
+    "'frequency'; auto's criteria for systems are not built)"
+)
 
 _MODEL_CACHE: OrderedDict[tuple, Any] = OrderedDict()
 _STATIC_CACHE: OrderedDict[str, Any] = OrderedDict()
@@ -257,6 +260,10 @@ def run_system_dynamic(
     from .frequency_cases import tension_along
 
     dyn = case.study.analysis.dynamic
+    if dyn.method == "frequency":  # the system frequency domain (issue 24)
+        from .system_frequency_cases import run_system_frequency
+
+        return run_system_frequency(case, system, static)
     model = system_model_dynamic(case, system, static)
     reason = AUTO_REASON if dyn.method == "auto" else "method: time"
     head = {"dynamic_method": np.asarray("time"), "dynamic_method_reason": np.asarray(reason)}

@@ -638,13 +638,14 @@ class DynamicSettings(StrictModel):
                     "method 'frequency' solves harmonic motions of one frequency, or one "
                     "spectrum alone; allowed: one spectrum, or method 'time'"
                 )
-            if not spectra and not all(isinstance(e, HarmonicExcitation) for e in items):
+            harmonic = (HarmonicExcitation, *SYSTEM_HARMONICS)  # a system's too (issue 24)
+            if not spectra and not all(isinstance(e, harmonic) for e in items):
                 raise ValueError(
                     "method 'frequency' needs harmonic excitation or a spectrum (a time table "
                     "is solved by method 'time'); allowed: harmonic motions of one frequency, "
                     "or one spectrum"
                 )
-            freqs = {e.frequency for e in items if isinstance(e, HarmonicExcitation)}
+            freqs = {e.frequency for e in items if isinstance(e, harmonic)}
             if len(freqs) > 1:
                 raise ValueError(
                     f"method 'frequency' solves one excitation frequency per case (got "

@@ -263,21 +263,33 @@ def check_system_dynamics(study: object) -> None:
                 "analysis.static)",
                 body.kind,
             )
-    if dyn.method == "frequency":
-        raise FieldError(
-            (*root, "method"),
-            "the frequency domain of a system is not built yet; allowed for a system: "
-            "method 'time' (or 'auto', which picks 'time')",
-            dyn.method,
-        )
-    for key in ("linearisation", "transfer_function", "auto"):
+    if dyn.method == "frequency":  # the system frequency domain (dynamics/system_frequency)
+        for i, e in enumerate(items):
+            if not isinstance(e, SYSTEM_HARMONICS):
+                raise FieldError(
+                    at(i, "spectrum" if hasattr(e, "spectrum") else "table"),
+                    "a system's frequency domain solves harmonic motions of one frequency; "
+                    "allowed with method 'frequency': body or point harmonics (a spectrum or "
+                    "a table is solved by method 'time')",
+                    type(e).__name__,
+                )
+    for key in ("transfer_function", "auto"):
         if getattr(dyn, key) is not None:
             raise FieldError(
                 (*root, key),
-                f"{key} is used by the frequency domain, which a system does not have yet; "
-                "allowed for a system: remove the key (the time domain runs)",
+                f"{key} is not built for a system's frequency domain; allowed for a system: "
+                "remove the key (method 'frequency' runs the harmonic response, 'time' and "
+                "'auto' the time domain)",
                 key,
             )
+    if dyn.linearisation is not None and dyn.method != "frequency":
+        raise FieldError(
+            (*root, "linearisation"),
+            "linearisation is used by a system's frequency domain only (method 'auto' "
+            "runs the time domain for a system); allowed: method 'frequency', or remove "
+            "the key",
+            "linearisation",
+        )
     if "after_break" in dyn.model_fields_set:
         raise FieldError(
             (*root, "after_break"),

@@ -217,16 +217,21 @@ class SystemFrequencyResult:
         return np.abs(self.end_tension)
 
     def envelope(self) -> tuple[list[np.ndarray], list[np.ndarray]]:
-        """Per line the linear tension envelope over its elements [N]: static plus and
-        minus the amplitude of the variation."""
-        hi = [
-            t + np.abs(d)
-            for t, d in zip(self.element_tension_static, self.element_tension, strict=True)
-        ]
-        lo = [
-            t - np.abs(d)
-            for t, d in zip(self.element_tension_static, self.element_tension, strict=True)
-        ]
+        """Per line the linear tension envelope at its nodes [N] (n_l,): static plus
+        and minus the amplitude of the variation; at the ends the end tensions, inside
+        the mean of the two elements a node joins (static and complex variation)."""
+        hi, lo = [], []
+        for i, (t, d) in enumerate(
+            zip(self.element_tension_static, self.element_tension, strict=True)
+        ):
+            static = np.concatenate(
+                ([self.tension_static[i, 0]], 0.5 * (t[:-1] + t[1:]), [self.tension_static[i, 1]])
+            )
+            var = np.concatenate(
+                ([self.end_tension[i, 0]], 0.5 * (d[:-1] + d[1:]), [self.end_tension[i, 1]])
+            )
+            hi.append(static + np.abs(var))
+            lo.append(static - np.abs(var))
         return hi, lo
 
 
@@ -754,7 +759,7 @@ def system_frequency_outputs(
     """The issue's outputs of one solved case (linear response: extremes are the static
     value plus and minus the amplitude, the mean the static value): on ``line``
     ``tension_amplitude_a``/``_b``, ``tension_max_a``, ``tension_min_a``,
-    ``tension_mean_a`` (and ``_b``); per line on its elements ``tension_envelope_max``/
+    ``tension_mean_a`` (and ``_b``); per line at its nodes ``tension_envelope_max``/
     ``_min`` (list of arrays: the caller puts them on its ``s`` grid); with the bodies'
     static force and moment ``body_force_static`` (B, 6) [N, N m], ``body_force_max``/
     ``_min`` on (``body``, ``dof``). NaN where the case failed (status says why)."""

@@ -24,25 +24,16 @@ import numpy as np
 
 from ._fast import _piece, _piece_general, njit
 
-#: statuses of :func:`contact_cases` (0: converged and checked)
-NOT_CONVERGED = 1
-#: the touchdown point reaches the anchor: the line hangs free (the suspended solver's case)
-LIFT_OFF = 2
-#: the line is longer than the path along the seabed and up to B: slack on the seabed,
-#: the laid shape is not determined
-SLACK = 3
-#: a singular Jacobian or non-finite values
-NUMERICAL = 4
-#: the solved line passes below the seabed (a contact this model does not describe)
-BELOW_SEABED = 5
-
-REASONS = {
-    NOT_CONVERGED: "seabed-contact Newton did not converge",
-    LIFT_OFF: "the line lifts off the seabed at the anchor",
-    SLACK: "slack on the seabed",
-    NUMERICAL: "non-finite values or a singular Jacobian",
-    BELOW_SEABED: "the line passes below the seabed",
-}
+# statuses of :func:`contact_cases` and why each hands a case on: in a module without
+# numba, so that callers of the kernel compiled ahead of time read them without it
+from .contact_status import (  # noqa: F401 - re-exported
+    BELOW_SEABED,
+    LIFT_OFF,
+    NOT_CONVERGED,
+    NUMERICAL,
+    REASONS,
+    SLACK,
+)
 
 
 @njit(cache=True, error_model="numpy")

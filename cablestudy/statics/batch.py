@@ -21,7 +21,6 @@ import time
 
 import numpy as np
 
-from . import _fast
 from .base import STATUS_OK, StaticProblem, StaticResult
 from .pieces import piece_integrals
 from .seabed import Plane
@@ -141,7 +140,8 @@ def solve_contact_arrays(
     solution; when that solve fails, it returns the free-hanging solution if that does
     not dip into the seabed (for a contact failure the kernel keeps it only where that
     is certain: see :func:`_hang_free`)."""
-    from . import _fast_contact
+    from .aot import kernel
+    from .contact_status import LIFT_OFF, NOT_CONVERGED, NUMERICAL
 
     N = ell.shape[0]
     n = s.shape[1]
@@ -156,7 +156,7 @@ def solve_contact_arrays(
         "residual": np.zeros(N),
         "status": np.zeros(N, dtype=np.int64),
     }
-    _fast_contact.contact_cases(
+    kernel("contact_cases")(  # compiled ahead of time where built: no numba to load
         np.ascontiguousarray(ell, dtype=float),
         np.ascontiguousarray(EA, dtype=float),
         np.ascontiguousarray(weight, dtype=float),
@@ -185,11 +185,7 @@ def solve_contact_arrays(
     )
     st = out["status"]
     free = np.flatnonzero(
-        (
-            (st == _fast_contact.LIFT_OFF)
-            | (st == _fast_contact.NOT_CONVERGED)
-            | (st == _fast_contact.NUMERICAL)
-        )
+        ((st == LIFT_OFF) | (st == NOT_CONVERGED) | (st == NUMERICAL))
         & (True if kind is None else kind == 0)  # B fixed (else: the general solver)
     )
     if free.size:
@@ -222,10 +218,11 @@ def _hang_free(
     (T_A . n >= 0), with no load that turns the line back towards the seabed (weights
     >= 0, point loads f . n <= 0). Then T . n grows along the line, and with it the
     height above the seabed, d(r . n)/ds = (T . n)(1 / EA + 1 / |T|) >= 0."""
-    from . import _fast_contact
+    from .aot import kernel
+    from .contact_status import LIFT_OFF
 
     r = rows
-    lifted = out["status"][r] == _fast_contact.LIFT_OFF
+    lifted = out["status"][r] == LIFT_OFF
     m, n = r.size, s.shape[1]
     Ltot = bounds[r, -1]
     Cend = point[r].sum(axis=1)
@@ -238,7 +235,7 @@ def _hang_free(
     TA, TL = np.empty((m, 3)), np.empty((m, 3))
     iters, resid = np.zeros(m, dtype=np.int64), np.zeros(m)
     status = np.zeros(m, dtype=np.int64)
-    _fast.solve_cases(
+    kernel("solve_cases")(
         np.ascontiguousarray(ell[r]),
         np.ascontiguousarray(EA[r]),
         np.ascontiguousarray(weight[r]),
@@ -367,6 +364,8 @@ def solve_batch(
     solver; the indices of those are appended to ``general`` if given. A case a kernel
     tried and handed on says why in its ``fallback`` (:data:`NOT_SETTLED`,
     :data:`ON_SEABED`)."""
+    from . import _fast  # imports numba: on first use, not with this module
+
     solver = solver or SemiAnalyticSolver()
     results: list[StaticResult | None] = [None] * len(problems)
     groups: dict[tuple[int, int], list[int]] = {}
@@ -430,6 +429,8 @@ def solve_compiled(
     """One still-water problem through the compiled batch kernels (free-hanging, or
     anchored on the seabed), or None when it does not take that path (or does not settle
     there: then ``why[0]``, if given, says why)."""
+    from . import _fast  # imports numba: on first use, not with this module
+
     if not _fast.AVAILABLE:
         return None
     if contact_eligible(problem):
@@ -508,6 +509,8 @@ def _solve_group(
 ) -> list[StaticResult | None]:
     """The problems of one group through the batch kernel; None for a case it leaves to
     the one-by-one solver, with the reason in ``why`` (by position), if given."""
+    from . import _fast  # imports numba: on first use, not with this module
+
     why = {} if why is None else why
     N = len(problems)
     ell = np.empty((N, P))

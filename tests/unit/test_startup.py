@@ -76,8 +76,9 @@ def test_command_imports_no_heavy_library(args: list[str]) -> None:
 
 
 #: a static catenary sweep run as arrays (cablestudy.grid) needs the compiled batch kernel
-#: (numba, which loads scipy.linalg) and netCDF4; not xarray with pandas, dask or
-#: distributed (xarray imports the last two when they are installed), nor the rest of scipy
+#: (numba, which loads scipy.linalg, unless the module compiled ahead of time is built:
+#: tests/unit/test_aot.py) and netCDF4; not xarray with pandas, dask or distributed
+#: (xarray imports the last two when they are installed), nor the rest of scipy
 ARRAY_RUN_HEAVY = tuple(h for h in HEAVY if h not in ("numba", "llvmlite", "netCDF4"))
 
 ARRAY_SWEEP = """\

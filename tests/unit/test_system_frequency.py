@@ -251,6 +251,13 @@ def test_point_moved_on_its_own_equals_its_body_moved() -> None:
         out["tension_max_a"] - out["tension_min_a"], 2.0 * np.abs(by_body.end_tension[:, 0])
     )
     assert out["body_force_max"].shape == (1, 6)
+    # the envelope at the nodes ends on the end tensions' extremes
+    for i, (hi, lo) in enumerate(
+        zip(out["tension_envelope_max"], out["tension_envelope_min"], strict=True)
+    ):
+        assert hi.shape == (model.lines[i].line.n_nodes,)
+        assert hi[0] == out["tension_max_a"][i] and lo[-1] == out["tension_min_b"][i]
+        assert np.all(hi >= lo)
 
 
 def test_mean_drag_jacobian_closed_form() -> None:

@@ -1,0 +1,26 @@
+"""Statuses of the seabed-contact batch kernel (:func:`._fast_contact.contact_cases`, and
+the same kernel compiled ahead of time, :mod:`.aot`): 0 converged and checked, else why
+the case is left to the general solver. Kept apart from the kernel so that reading them
+does not import numba."""
+
+from __future__ import annotations
+
+#: the Newton iteration did not converge
+NOT_CONVERGED = 1
+#: the touchdown point reaches the anchor: the line hangs free (the suspended solver's case)
+LIFT_OFF = 2
+#: the line is longer than the path along the seabed and up to B: slack on the seabed,
+#: the laid shape is not determined
+SLACK = 3
+#: a singular Jacobian or non-finite values
+NUMERICAL = 4
+#: the solved line passes below the seabed (a contact this model does not describe)
+BELOW_SEABED = 5
+
+REASONS = {
+    NOT_CONVERGED: "seabed-contact Newton did not converge",
+    LIFT_OFF: "the line lifts off the seabed at the anchor",
+    SLACK: "slack on the seabed",
+    NUMERICAL: "non-finite values or a singular Jacobian",
+    BELOW_SEABED: "the line passes below the seabed",
+}

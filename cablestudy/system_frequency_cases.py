@@ -1,0 +1,137 @@
+"""The frequency domain of a system study case by case (``method: frequency``; issue 24).
+
+The system linearised about its static state
+(:func:`cablestudy.dynamics.system_frequency.system_linear`: each line re-solved
+between the points the statics found at ``elements + 1`` nodes, its dynamic
+properties as the time domain's, the free points' mass, added mass and drag) is built
+once per static problem and element count and shared by the cases of a sweep of the
+motion (amplitude, frequency, phase, degree of freedom); per case the harmonic
+response (:func:`~cablestudy.dynamics.system_frequency.solve_system_harmonic`) runs.
+
+Outputs (the issue's names): ``tension_amplitude_a``/``_b`` on ``line``; the linear
+extremes ``tension_max_a`` ... (static plus and minus the amplitude, mean the static
+tension), ``tension_envelope_max``/``_min`` on (``line``, ``s``), ``body_force_max``/
+``_min`` on (``body``, ``dof``), ``dynamic_method`` and its reason, ``linearisation_iterations``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import OrderedDict
+from typing import Any
+
+import numpy as np
+
+from .cases import Case
+from .config.system import FreePoint
+from .config.system_dynamics import BODY_DOFS, BodyHarmonic, PointHarmonic
+from .counters import COUNTERS, trim_lru
+from .statics import STATIC_SOLVERS, STATUS_NUMERICAL, STATUS_OK
+
+_MODEL_CACHE: OrderedDict[tuple, Any] = OrderedDict()
+_CACHE_SIZE = 16
+
+
+def system_frequency_model(case: Case, system: Any, static: Any) -> Any:
+    """The case's linearised system (cached per static problem and element count), or
+    why it cannot be built (a string)."""
+    from .dynamics.system_frequency import system_linear
+    from .system_dynamic_cases import _line_extras
+
+    study = case.study
+    dyn = study.analysis.dynamic
+    key = (case.static_hash, dyn.elements)
+    hit = _MODEL_CACHE.get(key)
+    if hit is not None:
+        _MODEL_CACHE.move_to_end(key)
+        return hit
+    rho = study.environment.density
+    points = list(study.points.values())
+    free = [isinstance(p, FreePoint) for p in points]
+    model, why = system_linear(
+        system,
+        static,
+        point_mass=np.array([p.mass if f else 0.0 for p, f in zip(points, free, strict=True)]),
+        point_added_mass=np.array(
+            [p.added_mass if f else 0.0 for p, f in zip(points, free, strict=True)]
+        ),
+        point_drag=np.array(
+            [0.5 * rho * p.drag_area if f else 0.0 for p, f in zip(points, free, strict=True)]
+        ),
+        extras=[
+            _line_extras(study, name, sl.problem.line)
+            for name, sl in zip(study.lines, system.lines, strict=True)
+        ],
+        nodes=dyn.elements + 1,
+        solve=STATIC_SOLVERS["catenary"].solve,
+    )
+    out = model if model is not None else why
+    COUNTERS["system_assemblies"] += 1
+    _MODEL_CACHE[key] = out
+    trim_lru(_MODEL_CACHE, _CACHE_SIZE)
+    return out
+
+
+def harmonic_motion(study: Any) -> tuple[np.ndarray, np.ndarray, float]:
+    """The complex amplitudes of ``Re(X e^{i w t})`` of the bodies (B, 6) [m, rad] and of
+    the points moved on their own (P, 3) [m], and the frequency [Hz]:
+    ``a sin(w t + phi)`` is ``Re(-i a e^{i phi} e^{i w t})``."""
+    dyn = study.analysis.dynamic
+    bodies, points = list(study.bodies), list(study.points)
+    X = np.zeros((len(bodies), 6), dtype=complex)
+    U = np.zeros((len(points), 3), dtype=complex)
+    freqs = set()
+    for e in dyn.excitations:
+        amp = -1j * e.amplitude * np.exp(1j * math.radians(e.phase_deg))
+        freqs.add(e.frequency)
+        if isinstance(e, BodyHarmonic):
+            X[bodies.index(e.body), BODY_DOFS.index(e.dof)] += amp
+        else:
+            assert isinstance(e, PointHarmonic)
+            d = np.asarray(e.direction, dtype=float)
+            U[points.index(e.point)] += amp * d / np.linalg.norm(d)
+    (frequency,) = freqs  # one frequency: the study model checked it
+    return X, U, float(frequency)
+
+
+def run_system_frequency(
+    case: Case, system: Any, static: Any
+) -> tuple[int, str, dict[str, np.ndarray]]:
+    """The case's harmonic response and its outputs: (status, message, outputs)."""
+    from .dynamics.system_frequency import solve_system_harmonic, system_frequency_outputs
+    from .frequency_cases import drag_settings
+
+    dyn = case.study.analysis.dynamic
+    head = {
+        "dynamic_method": np.asarray("frequency"),
+        "dynamic_method_reason": np.asarray("method: frequency"),
+    }
+    model = system_frequency_model(case, system, static)
+    if isinstance(model, str):
+        return STATUS_NUMERICAL, model, head
+    X, U, frequency = harmonic_motion(case.study)
+    res = solve_system_harmonic(
+        model, 2.0 * math.pi * frequency, X, drag_settings(dyn), point_excitation=U
+    )
+    if res.status != STATUS_OK:
+        return res.status, res.message, head
+    bodies = len(system.body_names)
+    values = system_frequency_outputs(res, static.body_force if bodies else None)
+    n_out = system.lines[0].problem.n_nodes
+    env = {}
+    for key in ("tension_envelope_max", "tension_envelope_min"):
+        rows = []
+        for red, v in zip(model.lines, values[key], strict=True):
+            s = red.line.s
+            rows.append(np.interp(np.linspace(0.0, float(s[-1]), n_out), s, v))
+        env[key] = np.array(rows)
+    out = {
+        **head,
+        **{k: np.asarray(v) for k, v in values.items() if not k.startswith("tension_envelope")},
+        **env,
+        "linearisation_iterations": np.asarray(res.iterations),
+    }
+    bad = [k for k, v in out.items() if v.dtype.kind == "f" and not np.all(np.isfinite(v))]
+    if bad:
+        return STATUS_NUMERICAL, f"non-finite values in {', '.join(bad)}", head
+    return STATUS_OK, "", out
