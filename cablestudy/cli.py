@@ -51,9 +51,9 @@ def _grid(src):  # noqa: ANN001, ANN202
     sweep = src.data.get("sweep")
     if not isinstance(sweep, dict) or not sweep:
         return None
-    from .study.grid import expand_grid
+    from .run.grid_runner import study_grid
 
-    return expand_grid(src)
+    return study_grid(src)
 
 
 def cmd_validate(args: argparse.Namespace) -> int:

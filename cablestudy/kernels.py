@@ -77,6 +77,29 @@ ends:
         grid = expand_grid(parse_study_text(body + sweep, "warm.yaml"))
         if grid is not None:
             evaluate_grid_chunk(grid, 0, grid.shape[0])
+    # a system's position sweep: the compiled system Newton (cablestudy.analyses.system_grid)
+    system = """\
+name: warm-system
+environment: {fluid: water, depth: 60.0}
+points:
+  anchor: {kind: fixed, position: [-90.0, 0.0, -60.0]}
+  joint: {kind: free, position: [-30.0, 0.0, -30.0], mass: 200.0}
+  fair: {kind: body, body: hull, offset: [0.0, 0.0, -5.0]}
+bodies:
+  hull: {kind: prescribed, position: [0.0, 0.0, 0.0, 0.0, 0.0, 0.0]}
+lines:
+  leg: {a: anchor, b: joint, segments: [SEG70]}
+  top: {a: joint, b: fair, segments: [SEG35]}
+sweep:
+  bodies.hull.position.0: [0.0, 2.0]
+"""
+    seg = "{length: %s, diameter: 0.05, mass_per_length: 10.0, axial_stiffness: 1.0e8}"
+    system = system.replace("SEG70", seg % 70.0).replace("SEG35", seg % 35.0)
+    from .run.grid_runner import study_grid
+
+    grid = study_grid(parse_study_text(system, "warm.yaml"))
+    if grid is not None:
+        evaluate_grid_chunk(grid, 0, grid.shape[0])
     from .analyses import database_kernel
 
     grid = np.array([0.0, 1.0])

@@ -510,6 +510,10 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
     fault inside the batch fails the chunk's cases with its text (never raises)."""
     from ..statics.batch import solve_batch
 
+    if getattr(grid, "is_system", False):  # a system's position sweep
+        from .system_grid import evaluate_system_chunk
+
+        return evaluate_system_chunk(grid, lo, hi)
     if not grid.arrays:
         from .static_grid_cases import evaluate_static_chunk
 

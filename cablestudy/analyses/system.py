@@ -184,6 +184,11 @@ def evaluate_system_case(case: Case) -> CaseRecord:
             status, message = STATUS_NUMERICAL, f"non-finite values in {', '.join(bad)}"
     data["static_status"] = np.asarray(status, dtype=np.int64)
     warnings = [_strain_warning(study, res) if status == STATUS_OK else ""]
+    if status == STATUS_OK and getattr(res, "fallback", ""):
+        # the compiled system Newton left it to the general path: said, as for one line
+        from .plausibility import fallback_warning
+
+        warnings.append(fallback_warning(res.fallback))
     if study.analysis.dynamic is not None:  # the system time domain (analyses.system_dynamic)
         status, message = _dynamics(case, system, res, status, message, deadline, data)
         if int(data.get("steady_converged", 1)) == 0 and study.analysis.dynamic.duration is None:

@@ -317,7 +317,9 @@ def summarise(
         for k, v in data.items():
             names.add(k)
             tails[k] = tuple(v.shape[1:])
-        if "arc_length" in data and same_arc:
+        # (a shared coordinate where each case has one arc length per node; a system's
+        # arc_length per line and node stays a variable)
+        if "arc_length" in data and same_arc and data["arc_length"].ndim == 2:
             ok = data["arc_length"][~bad]
             if len(ok):
                 ref = ok[0] if arc is None else arc

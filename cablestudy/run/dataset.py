@@ -337,6 +337,7 @@ def grid_dataset(
     solver_settings: dict[str, Any],
     lazy: bool = True,
     fallbacks: dict[str, int] | None = None,
+    named: dict[str, list[str]] | None = None,
 ) -> xr.Dataset:
     """The dataset of a study run as arrays (:mod:`cablestudy.analyses.static_grid`), with the same
     variables, dims, coordinates and attributes as :func:`assemble` would give, its large
@@ -401,6 +402,7 @@ def grid_dataset(
         arc=arc,
         solver_settings=solver_settings,
         fallbacks=fallbacks,
+        named=named,
     )
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
 
@@ -418,6 +420,7 @@ def grid_variables(
     arc: np.ndarray | None,
     solver_settings: dict[str, Any],
     fallbacks: dict[str, int] | None = None,
+    named: dict[str, list[str]] | None = None,
 ) -> tuple[dict[str, VariableSpec], dict[str, VariableSpec], dict[str, Any]]:
     """Data variables, coordinates and global attributes of a study run as arrays, in
     the form ``xarray.Dataset(data_vars, coords=coords, attrs=attrs)`` takes (and
@@ -428,7 +431,9 @@ def grid_variables(
     shares (then the ``s`` coordinate, and ``arc_length`` is not among ``values``), or
     None (then ``s`` is the node index). ``fallbacks``: why cases were solved by the
     general solver, counted (the ``cases_fallback`` and ``fallback_reasons``
-    attributes)."""
+    attributes). ``named``: a system study's coordinates by dimension (line, point,
+    body; cablestudy.analyses.system_grid), whose outputs are :data:`SYSTEM_OUTPUTS`."""
+    registry = OUTPUTS if named is None else SYSTEM_OUTPUTS
     shape = tuple(a.size for a in axes)
     dims = tuple(a.name for a in axes)
     data_vars: dict[str, VariableSpec] = {}
@@ -455,14 +460,23 @@ def grid_variables(
         {"units": spec.units, "long_name": spec.long_name},
     )
     for name in sorted(values):
-        spec = OUTPUTS[name]
+        spec = registry[name]
         data_vars[name] = (
             dims + spec.dims,
             values[name],
             {"units": spec.units, "long_name": spec.long_name},
         )
     coords = sweep_coordinates(axes)
-    if any("component" in OUTPUTS[k].dims for k in values):
+    if named is not None:  # a system: its named dimensions (as assemble gives them)
+        named = {**named, "dof": list(BODY_DOFS), "dof_j": list(BODY_DOFS)}
+        for dim, names in named.items():
+            if any(dim in registry[k].dims for k in values):
+                coords[dim] = (
+                    dim,
+                    np.array(names),
+                    {"units": "1", "long_name": COORDINATES[dim][1]},
+                )
+    if any("component" in registry[k].dims for k in values):
         coords["component"] = (
             "component",
             np.array(["x", "y", "z"]),
@@ -471,7 +485,7 @@ def grid_variables(
     if arc is not None:
         coords["s"] = ("s", arc, {"units": "m", "long_name": COORDINATES["s"][1]})
     elif "arc_length" in values:
-        n_s = tails["arc_length"][0]
+        n_s = tails["arc_length"][-1]  # (s,) per case, or a system's (line, s)
         coords["s"] = ("s", np.arange(n_s), {"units": "1", "long_name": "node index"})
     _flag_statuses(data_vars)
     attrs = provenance(src, solver_settings)

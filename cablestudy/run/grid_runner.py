@@ -287,6 +287,7 @@ def _grid_variables(src: StudySource, grid: Any, chunks: list[Any]) -> tuple[Any
         arc=summary.arc,
         solver_settings=_grid_settings(grid),
         fallbacks=summary.fallbacks,
+        named=getattr(grid, "named", None),  # a system's (cablestudy.system_grid)
     )
     return summary, variables
 
@@ -307,6 +308,7 @@ def grid_dataset_from(
         solver_settings=settings,
         lazy=lazy,
         fallbacks=summary.fallbacks,
+        named=getattr(grid, "named", None),  # a system's (cablestudy.system_grid)
     )
 
 
@@ -362,3 +364,19 @@ def _execute_grid(
         if cluster is not None:
             cluster.close()
     return scheduler
+
+
+def study_grid(src: StudySource) -> Any:
+    """The study as a grid of cases run as arrays, or None (then it runs case by case):
+    a system's position sweep (:mod:`cablestudy.analyses.system_grid`), else a one-line
+    static sweep (:func:`cablestudy.study.grid.expand_grid`). Decided from the validated
+    template, never from the raw text."""
+    from ..study.grid import expand_grid
+    from ..study.loader import validate_data
+
+    template = validate_data(src.data, src)
+    if template.is_system:
+        from ..analyses.system_grid import expand_system_grid
+
+        return expand_system_grid(src, template)
+    return expand_grid(src, template)

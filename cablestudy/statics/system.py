@@ -130,6 +130,9 @@ class SystemResult:
     residual: float = 0.0
     #: [m, rad] (m, 6) the bodies' positions (free bodies: in equilibrium)
     body_position: np.ndarray | None = None
+    #: why the compiled system Newton (:mod:`.system_fast`) left the system to this
+    #: general path ('' if it solved it, or was not asked: a method other than catenary)
+    fallback: str = ""
 
 
 class SystemFailure(Exception):
@@ -345,22 +348,39 @@ def _dof_index(mask: np.ndarray) -> np.ndarray:
 
 
 def solve_system(
-    system: MooringSystem, solver: Any, *, deadline: float | None = None
+    system: MooringSystem, solver: Any, *, deadline: float | None = None, compiled: bool = True
 ) -> SystemResult:
     """Equilibrium of the free points (Newton with the lines' exact stiffness and a
     line search on the system's energy along the step, :func:`_line_search`), then the
     bodies' force and stiffness; free bodies by :mod:`.free_bodies`.
     ``solver`` solves one line with both ends fixed (a registered static solver). A
-    numerical failure is returned as status, message and NaN."""
+    numerical failure is returned as status, message and NaN. With ``compiled`` (the
+    default) the compiled system Newton takes what it can (:mod:`.system_fast`)."""
     n, m = len(system.point_names), len(system.body_names)
     free_mask = system.point_kind == FREE
+    # the compiled system Newton first where it takes the system (statics.system_fast);
+    # what it leaves comes here, with its reason in ``fallback``
+    fallback: list[str] = []
+
+    def solve(sys: MooringSystem) -> SystemResult:
+        if compiled and getattr(solver, "name", "") == "catenary":
+            from .system_fast import solve_fast
+
+            fast, why = solve_fast(sys, prescribed=True)
+            if fast is not None:
+                return fast
+            fallback.append(why)
+        return _solve(sys, solver, deadline, free_mask)
+
     try:
         if system.body_free.size and np.any(system.body_free):
             from .free_bodies import solve_free_bodies
 
-            return solve_free_bodies(system, lambda sys: _solve(sys, solver, deadline, free_mask))
-        res = _solve(system, solver, deadline, free_mask)
-        res.body_position = np.array(system.body_position, dtype=float)
+            res = solve_free_bodies(system, solve)
+        else:
+            res = solve(system)
+            res.body_position = np.array(system.body_position, dtype=float)
+        res.fallback = fallback[0] if fallback else ""
         return res
     except SystemFailure as exc:
         return SystemResult(
@@ -370,6 +390,7 @@ def solve_system(
             body_stiffness=np.full((m, 6, 6), np.nan),
             status=exc.status,
             message=exc.message,
+            fallback=fallback[0] if fallback else "",
         )
     except np.linalg.LinAlgError as exc:
         return SystemResult(
@@ -379,6 +400,7 @@ def solve_system(
             body_stiffness=np.full((m, 6, 6), np.nan),
             status=STATUS_NUMERICAL,
             message=f"singular stiffness of the free points ({exc})",
+            fallback=fallback[0] if fallback else "",
         )
 
 

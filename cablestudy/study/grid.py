@@ -145,15 +145,16 @@ def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
     return bool(axes)
 
 
-def expand_grid(src: StudySource) -> CaseGrid | None:
+def expand_grid(src: StudySource, template: Study | None = None) -> CaseGrid | None:
     """The study as a :class:`CaseGrid` when its sweep can run as arrays and every swept
     value and combination is valid; ``None`` otherwise (the caller then expands the
     cases one by one, which reports any fault at its line as before). A fault in the
     template itself is raised here, as :func:`expand_cases` would."""
     from .grid_studies import combinations_ok, value_at
 
-    template = validate_data(src.data, src)
-    if template.lines:  # a system of lines: case by case (cablestudy.analyses.system)
+    if template is None:
+        template = validate_data(src.data, src)
+    if template.lines:  # a system: cablestudy.run.grid_runner.study_grid
         return None
     axes = parse_sweep(src)
     if not _static_sweep(template, axes):

@@ -81,7 +81,6 @@ def test_the_dataset_is_the_pure_module(case8: xr.Dataset) -> None:
     """The runner adds nothing: the amplitudes are those of system_linear and
     solve_system_harmonic called on the study's own system."""
     from cablestudy.analyses.frequency import drag_settings
-
     from cablestudy.analyses.system import system_model
     from cablestudy.analyses.system_frequency import harmonic_motion, system_frequency_model
     from cablestudy.dynamics.system_frequency import solve_system_harmonic

@@ -1,0 +1,310 @@
+"""Compiled (numba) solves of one line between two given end positions, with the line's
+exact end stiffness, for the system Newton of :mod:`._system_fast`.
+
+A line hanging free: the Newton of :func:`._fast.solve_cases` (end B fixed) on the
+tension at A, and G = J^-1 from its flexibility J = d(r_B - r_A)/d T_A at the solution.
+A line anchored at A on the seabed: the Newton of :func:`._fast_contact.contact_cases`
+on y = (alpha, beta, s_td), and K_BB = N M^-1 (M = d r_B / dy, N = d T(L) / dy), as
+:func:`.system.line_end_stiffness`. Pure: arrays in, arrays out.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ._fast import _solve3, _total, njit
+from ._fast_contact import LIFT_OFF, NOT_CONVERGED, NUMERICAL, SLACK, _evaluate, _guess, _laid
+from ._fast_contact import _newton_step as _step3
+
+
+@njit(cache=True, error_model="numpy")
+def _inv3(A: np.ndarray, out: np.ndarray) -> bool:
+    """``out`` = A^-1 for a 3 x 3 ``A`` (cofactors); False if singular or not finite."""
+    c00 = A[1, 1] * A[2, 2] - A[1, 2] * A[2, 1]
+    c01 = A[1, 2] * A[2, 0] - A[1, 0] * A[2, 2]
+    c02 = A[1, 0] * A[2, 1] - A[1, 1] * A[2, 0]
+    det = A[0, 0] * c00 + A[0, 1] * c01 + A[0, 2] * c02
+    if det == 0.0 or not math.isfinite(det):
+        return False
+    inv = 1.0 / det
+    out[0, 0] = c00 * inv
+    out[1, 0] = c01 * inv
+    out[2, 0] = c02 * inv
+    out[0, 1] = (A[0, 2] * A[2, 1] - A[0, 1] * A[2, 2]) * inv
+    out[1, 1] = (A[0, 0] * A[2, 2] - A[0, 2] * A[2, 0]) * inv
+    out[2, 1] = (A[0, 1] * A[2, 0] - A[0, 0] * A[2, 1]) * inv
+    out[0, 2] = (A[0, 1] * A[1, 2] - A[0, 2] * A[1, 1]) * inv
+    out[1, 2] = (A[0, 2] * A[1, 0] - A[0, 0] * A[1, 2]) * inv
+    out[2, 2] = (A[0, 0] * A[1, 1] - A[0, 1] * A[1, 0]) * inv
+    for i in range(3):
+        for j in range(3):
+            if not math.isfinite(out[i, j]):
+                return False
+    return True
+
+
+@njit(cache=True, error_model="numpy")
+def _offsets(w: np.ndarray, ell: np.ndarray, point: np.ndarray, C: np.ndarray, Cend: np.ndarray):
+    """T at the start of piece p = T_A - C[p]; ``Cend`` the loads on the whole line."""
+    P = ell.shape[0]
+    a0 = 0.0
+    a1 = 0.0
+    a2 = 0.0
+    for p in range(P):
+        a0 += point[p, 0]
+        a1 += point[p, 1]
+        a2 += point[p, 2]
+        C[p, 0] = a0
+        C[p, 1] = a1
+        C[p, 2] = a2
+        a2 += -w[p] * ell[p]
+    Cend[0] = a0 + point[P, 0]
+    Cend[1] = a1 + point[P, 1]
+    Cend[2] = a2 + point[P, 2]
+
+
+@njit(cache=True, error_model="numpy")
+def _free_line(
+    ell: np.ndarray,
+    EA: np.ndarray,
+    w: np.ndarray,
+    C: np.ndarray,
+    L: float,
+    d: np.ndarray,
+    TA: np.ndarray,
+    tol: float,
+    maxit: int,
+    J: np.ndarray,
+    r: np.ndarray,
+    rn: np.ndarray,
+    Jn: np.ndarray,
+    Tn: np.ndarray,
+    g: np.ndarray,
+    step: np.ndarray,
+    free: np.ndarray,
+) -> bool:
+    """A line hanging free with r_B - r_A = ``d``: Newton on T_A (in/out ``TA``) on the
+    complementary energy, as :func:`._fast.solve_cases` with end B fixed; ``J`` the
+    flexibility at the solution. False where it does not converge."""
+    for k in range(3):
+        free[k] = True
+    tn = math.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])
+    scale = max(L, tn)
+    it = 0
+    E = _total(TA, C, w, ell, EA, r, J, True)
+    polished = False
+    while True:
+        res = 0.0
+        for k in range(3):
+            g[k] = r[k] - d[k]
+            res = max(res, abs(g[k]))
+        res /= scale
+        if not math.isfinite(res):
+            return False
+        if res <= tol:
+            if polished or res <= 1e-15:
+                return True
+            polished = True
+        if it >= maxit:
+            return False
+        it += 1
+        if not _solve3(J, g, free, step):
+            return False
+        slope = 0.0
+        dot = 0.0
+        for k in range(3):
+            slope += g[k] * step[k]
+            dot += d[k] * TA[k]
+        psi = E - dot
+        slack = 1e-13 * (abs(E) + abs(dot))
+        lam = 1.0
+        accepted = False
+        En = 0.0
+        for _ in range(80):
+            dotn = 0.0
+            for k in range(3):
+                Tn[k] = TA[k] + lam * step[k]
+                dotn += d[k] * Tn[k]
+            En = _total(Tn, C, w, ell, EA, rn, Jn, True)
+            psin = En - dotn
+            if math.isfinite(psin) and psin <= psi + 1e-4 * lam * slope + slack:
+                accepted = True
+                break
+            lam *= 0.5
+        if not accepted:
+            return False
+        for k in range(3):
+            TA[k] = Tn[k]
+            r[k] = rn[k]
+            for m in range(3):
+                J[k, m] = Jn[k, m]
+        E = En
+
+
+@njit(cache=True, error_model="numpy")
+def _contact_line(
+    ell: np.ndarray,
+    EA: np.ndarray,
+    w: np.ndarray,
+    point: np.ndarray,
+    bounds: np.ndarray,
+    rA: np.ndarray,
+    rB: np.ndarray,
+    normal: np.ndarray,
+    bas: np.ndarray,
+    mu: float,
+    still: bool,
+    tol: float,
+    maxit: int,
+    y: np.ndarray,
+    warm: bool,
+    fa: np.ndarray,
+    fb: np.ndarray,
+    Kbb: np.ndarray,
+    sc: np.ndarray,
+    sc3: np.ndarray,
+    t_lo: np.ndarray,
+    t_hi: np.ndarray,
+    rate: np.ndarray,
+    hi_s: np.ndarray,
+    A: np.ndarray,
+) -> int:
+    """A line anchored at A on the seabed, B fixed above it: the Newton of
+    :func:`._fast_contact.contact_cases` on y = (alpha, beta, s_td) (in/out ``y``, from
+    its start :func:`._fast_contact._guess` unless ``warm``); at the solution the end
+    forces ``fa``, ``fb`` and K_BB = N M^-1. Returns 0 or the contact kernel's status."""
+    P = w.shape[0]
+    L = bounds[P]
+    Fscale = 0.0
+    wsum = 0.0
+    for p in range(P):
+        Fscale += abs(w[p]) * ell[p]
+        wsum += w[p] * ell[p]
+    Fscale = max(Fscale, 1e-300)
+    zero3 = sc[0]
+    if not warm:
+        st = _guess(L, wsum / L, rA, rB, normal, bas, still, 0, zero3, y)
+        if st != 0:
+            return st
+    R = sc[1]
+    Rn = sc[2]
+    yn = sc[3]
+    stp = sc[4]
+    rs = sc[5]
+    e = sc[6]
+    T = sc[7]
+    dr = sc[8]
+    lp = sc[9]
+    Jm = sc3[0]
+    Jn = sc3[1]
+    Js = sc3[2]
+    jac = sc3[3]
+    _evaluate(
+        y, bas, rA, rB, 0, zero3, Fscale, L, bounds, w, EA, point, normal, mu, R, Jm,
+        T, e, t_lo, t_hi, rate, hi_s, lp, dr, jac, rs, Js,
+    )  # fmt: skip
+    res = max(abs(R[0]), max(abs(R[1]), abs(R[2])))
+    polish = 0
+    at_zero = 0
+    it = 0
+    st = 0
+    while True:
+        if not math.isfinite(res):
+            st = NUMERICAL
+            break
+        if res <= tol:
+            if polish >= 1 or res <= 1e-15:
+                break
+            polish += 1
+        if it >= maxit:
+            st = NOT_CONVERGED
+            break
+        it += 1
+        if not _step3(Jm, R, A, stp):
+            st = NUMERICAL
+            break
+        norm0 = math.sqrt(R[0] * R[0] + R[1] * R[1] + R[2] * R[2])
+        ny = math.sqrt(y[0] * y[0] + y[1] * y[1])
+        lam = 1.0
+        accepted = False
+        for _ in range(40):
+            for k in range(3):
+                yn[k] = y[k] + lam * stp[k]
+            yn[2] = min(max(yn[2], 0.0), L * (1.0 - 1e-9))
+            if math.sqrt(yn[0] * yn[0] + yn[1] * yn[1]) <= 1e-3 * ny:
+                yn[0] = y[0] * 1e-3
+                yn[1] = y[1] * 1e-3
+            _evaluate(
+                yn, bas, rA, rB, 0, zero3, Fscale, L, bounds, w, EA, point, normal, mu, Rn, Jn,
+                T, e, t_lo, t_hi, rate, hi_s, lp, dr, jac, rs, Js,
+            )  # fmt: skip
+            nn = math.sqrt(Rn[0] * Rn[0] + Rn[1] * Rn[1] + Rn[2] * Rn[2])
+            if math.isfinite(nn) and nn <= (1.0 - 1e-4 * lam) * norm0 + 1e-15:
+                accepted = True
+                break
+            lam *= 0.5
+        if not accepted:
+            st = SLACK if ny < 1e-3 * Fscale else NOT_CONVERGED
+            break
+        for k in range(3):
+            y[k] = yn[k]
+            R[k] = Rn[k]
+            for m in range(3):
+                Jm[k, m] = Jn[k, m]
+        res = max(abs(R[0]), max(abs(R[1]), abs(R[2])))
+        if math.sqrt(y[0] * y[0] + y[1] * y[1]) < 1e-9 * Fscale and res > tol:
+            st = SLACK
+            break
+        if y[2] <= 0.0:
+            at_zero += 1
+            if at_zero >= 2:
+                st = LIFT_OFF
+                break
+        else:
+            at_zero = 0
+    if st == 0 and y[2] <= 0.0:
+        st = LIFT_OFF
+    if st != 0:
+        return st
+    # the end forces at the solution
+    s_td = y[2]
+    for i in range(3):
+        T[i] = bas[i, 0] * y[0] + bas[i, 1] * y[1]
+    tn = math.sqrt(T[0] * T[0] + T[1] * T[1] + T[2] * T[2])
+    for i in range(3):
+        e[i] = T[i] / tn
+    _laid(s_td, tn, e, bounds, w, EA, point, normal, mu, t_lo, t_hi, rate, hi_s, lp)
+    kt = 0
+    for p in range(1, P):
+        if bounds[p] <= s_td:
+            kt = p
+    Cx, Cy, Cz = 0.0, 0.0, 0.0
+    for p in range(kt, P):
+        if p > kt:
+            Cx += point[p, 0]
+            Cy += point[p, 1]
+            Cz += point[p, 2]
+        Cz -= w[p] * (bounds[p + 1] - (s_td if p == kt else bounds[p]))
+    Cx += point[P, 0]
+    Cy += point[P, 1]
+    Cz += point[P, 2]
+    for k in range(3):
+        fa[k] = lp[3] * e[k]
+    fb[0] = -(T[0] - Cx)
+    fb[1] = -(T[1] - Cy)
+    fb[2] = -(T[2] - Cz)
+    # K_BB = N M^-1: M = L Jm (d r_B / dy), N = [e1, e2, q of the touchdown piece]
+    for i in range(3):
+        for j in range(3):
+            Jn[i, j] = L * Jm[i, j]
+    if not _inv3(Jn, Js):
+        return NUMERICAL
+    for i in range(3):
+        n0 = bas[i, 0]
+        n1 = bas[i, 1]
+        n2 = -w[kt] if i == 2 else 0.0
+        for j in range(3):
+            Kbb[i, j] = n0 * Js[0, j] + n1 * Js[1, j] + n2 * Js[2, j]
+    return 0

@@ -1,0 +1,685 @@
+"""Mooring systems through the compiled system Newton (:mod:`._system_fast`), many cases
+at once.
+
+A system whose lines the still-water catenary kernels take (linear axial laws, no drag
+in a current, each line hanging free above the seabed or anchored on it at a fixed
+point with its other end above it) and whose bodies are prescribed is packed into
+arrays (:func:`pack`), its free points solved by the compiled Newton, and then, as
+:func:`.system._solve` ends: every line solved again at the solution, sampled at its
+nodes, by the batch kernels (:func:`._fast.solve_cases` hanging free,
+:func:`.batch.solve_contact_arrays` on the seabed: the numbers :func:`.batch.solve_batch`
+gives for those end positions), every line verified (:func:`.verify.check_lines`,
+vectorised over lines and cases: status 0 means verified), the free points' equilibrium
+checked from those lines' forces, and the bodies' force and stiffness (the Schur
+complement of the assembled point stiffness, :func:`.system._bodies`, vectorised).
+
+What the compiled path does not take is said by :func:`ineligible` (a reason) or, for a
+case it does not settle, by the case's ``fallback`` text; the caller then solves it by
+the general path (:func:`.system.solve_system`), counted. Pure: arrays in, arrays out.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _fast
+from .seabed import Plane
+from .semi_analytic import make_layout, reversed_line
+from .system import BODY, FIXED, FREE, MooringSystem
+from .verify import MULTIPLE, Pieces, check_lines
+
+#: why a case the compiled system Newton tried went to the general path
+NOT_SETTLED = "the compiled system Newton did not settle it"
+NOT_VERIFIED = "a line at the compiled solution failed verification"
+NOT_BALANCED = "the free points' net force at the compiled solution exceeds the tolerance"
+
+
+@dataclass
+class Packed:
+    """The arrays of :func:`._system_fast.system_cases` for N cases of one layout, and
+    what the final stage needs (see there for the kernel's arrays)."""
+
+    la: np.ndarray
+    lb: np.ndarray
+    flip: np.ndarray  # (N, M) the line is solved from B (anchored at B)
+    poff: np.ndarray
+    ell: np.ndarray
+    EA: np.ndarray
+    w: np.ndarray
+    bounds: np.ndarray
+    point: np.ndarray
+    anchored: np.ndarray
+    clear: np.ndarray
+    moving: np.ndarray
+    fidx: np.ndarray
+    free_pts: np.ndarray
+    pos: np.ndarray
+    pforce: np.ndarray
+    plane: Plane | None
+    TA0: np.ndarray  # (N, M, 3) each line's starting tension at A hanging free
+    ltol: np.ndarray
+    lmaxit: np.ndarray
+    tol: np.ndarray
+    maxit: np.ndarray
+    cap: np.ndarray
+    n_nodes: int
+
+    @property
+    def n(self) -> int:
+        return self.la.shape[0]
+
+
+def ineligible(system: MooringSystem, *, prescribed: bool = False) -> str:
+    """Why the compiled path does not take ``system`` ('' when it does, as far as the
+    system's definition says; the end positions decide the rest in :func:`pack`).
+    ``prescribed``: free bodies are taken where they are (one evaluation of the free-body
+    Newton of :mod:`.free_bodies`)."""
+    if not prescribed and system.body_free.size and np.any(system.body_free):
+        return "free bodies are solved by the general path"
+    if not _fast.AVAILABLE:
+        return "numba is not installed"
+    if not system.lines:
+        return "no lines"
+    nodes = {ln.problem.n_nodes for ln in system.lines}
+    if len(nodes) != 1:
+        return "lines with different node counts"
+    for ln in system.lines:
+        prob = ln.problem
+        line, med = prob.line, prob.medium
+        if med.has_current:  # drag on lines and free points: the general path's iteration
+            return "current: the compiled kernels solve still water"
+        if line.is_nonlinear:
+            return f"line {ln.name}: a nonlinear axial law has no compiled kernel"
+        if (
+            med.has_current
+            and med.density > 0.0
+            and bool(np.any(line.diameter * (line.drag_normal + line.drag_tangential) > 0.0))
+        ):
+            return f"line {ln.name}: current with drag has no compiled kernel"
+        if getattr(line, "is_spring", False):
+            return f"line {ln.name}: a spring line has no compiled kernel"
+    return ""
+
+
+def _pieces(line) -> tuple[np.ndarray, ...]:  # noqa: ANN001
+    """ell, EA, weight, point, bounds as the batch kernels build them for ``line``."""
+    if line.length.size == 1 and line.attachment_s.size == 0:
+        L = float(line.length[0])
+        return (
+            np.array([L]),
+            np.array([float(line.axial_stiffness[0])]),
+            np.array([float(line.weight[0])]),
+            np.zeros((2, 3)),
+            np.array([0.0, L]),
+        )
+    lay = make_layout(line)
+    return lay.ell, lay.EA, lay.weight, lay.point, lay.bounds
+
+
+def _plane(system: MooringSystem) -> Plane | None:
+    med = system.lines[0].problem.medium
+    if med.depth is None:
+        return None
+    return Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
+
+
+def point_positions_many(
+    system: MooringSystem, poses: np.ndarray, offsets: np.ndarray | None, base: np.ndarray
+) -> np.ndarray:
+    """Positions (N, n, 3) of all points for N body poses (N, m, 6): fixed and free points
+    from ``base`` (N, n, 3), body points at pose + R offset (``offsets`` (N, n, 3), or the
+    system's)."""
+    pos = np.array(base, dtype=float, copy=True)
+    on = np.flatnonzero(system.point_kind == BODY)
+    if on.size:
+        R = rotations(poses[..., 3:])  # (N, m, 3, 3)
+        b = system.point_body[on]
+        off = system.point_position[on][None] if offsets is None else offsets[:, on]
+        pos[:, on] = poses[:, b, :3] + np.einsum(
+            "nkij,nkj->nki", R[:, b], np.broadcast_to(off, (len(pos), on.size, 3))
+        )
+    return pos
+
+
+def rotations(angles: np.ndarray) -> np.ndarray:
+    """R = Rz(yaw) Ry(pitch) Rx(roll) for angles (..., 3), as :func:`.system.rotation`."""
+    c1, s1 = np.cos(angles[..., 0]), np.sin(angles[..., 0])
+    c2, s2 = np.cos(angles[..., 1]), np.sin(angles[..., 1])
+    c3, s3 = np.cos(angles[..., 2]), np.sin(angles[..., 2])
+    z, o = np.zeros_like(c1), np.ones_like(c1)
+    rx = np.stack([o, z, z, z, c1, -s1, z, s1, c1], -1).reshape(*c1.shape, 3, 3)
+    ry = np.stack([c2, z, s2, z, o, z, -s2, z, c2], -1).reshape(*c1.shape, 3, 3)
+    rz = np.stack([c3, -s3, z, s3, c3, z, z, z, o], -1).reshape(*c1.shape, 3, 3)
+    return rz @ ry @ rx
+
+
+def rotation_derivatives_many(angles: np.ndarray) -> np.ndarray:
+    """dR/d(roll, pitch, yaw) (..., 3, 3, 3), as :func:`.system.rotation_derivatives`."""
+    c1, s1 = np.cos(angles[..., 0]), np.sin(angles[..., 0])
+    c2, s2 = np.cos(angles[..., 1]), np.sin(angles[..., 1])
+    c3, s3 = np.cos(angles[..., 2]), np.sin(angles[..., 2])
+    z, o = np.zeros_like(c1), np.ones_like(c1)
+    sh = (*c1.shape, 3, 3)
+    rx = np.stack([o, z, z, z, c1, -s1, z, s1, c1], -1).reshape(sh)
+    ry = np.stack([c2, z, s2, z, o, z, -s2, z, c2], -1).reshape(sh)
+    rz = np.stack([c3, -s3, z, s3, c3, z, z, z, o], -1).reshape(sh)
+    drx = np.stack([z, z, z, z, -s1, -c1, z, c1, -s1], -1).reshape(sh)
+    dry = np.stack([-s2, z, c2, z, z, z, -c2, z, -s2], -1).reshape(sh)
+    drz = np.stack([-s3, -c3, z, c3, -s3, z, z, z, z], -1).reshape(sh)
+    return np.stack((rz @ ry @ drx, rz @ dry @ rx, drz @ ry @ rx), axis=-3)
+
+
+def pack(
+    system: MooringSystem,
+    pos: np.ndarray,
+    start: np.ndarray | None = None,
+    pforce: np.ndarray | None = None,
+) -> tuple[Packed | None, np.ndarray]:
+    """The arrays of N cases of ``system`` that differ only in the points' positions
+    ``pos`` (N, n, 3) (fixed and body points where they are; free points: the start, or
+    ``start``: (k, 3) for all cases or (N, k, 3) per case). Returns the packed cases the
+    kernel takes and, per case,
+    why it does not ('' where it does)."""
+    N, n = pos.shape[0], len(system.point_names)
+    M = len(system.lines)
+    kind = system.point_kind
+    free_pts = np.flatnonzero(kind == FREE).astype(np.int64)
+    pos = np.array(pos, dtype=float, copy=True)
+    if start is not None:
+        pos[:, free_pts] = start
+    plane = _plane(system)
+    why = np.full(N, "", dtype=object)
+    fwd = [_pieces(ln.problem.line) for ln in system.lines]
+    P = np.array([len(f[0]) for f in fwd])
+    poff = np.concatenate(([0], np.cumsum(P))).astype(np.int64)
+    Ptot = int(poff[-1])
+    ell = np.empty((N, Ptot))
+    EA = np.empty((N, Ptot))
+    w = np.empty((N, Ptot))
+    bounds = np.empty((N, Ptot + M))
+    point = np.empty((N, Ptot + M, 3))
+    la = np.empty((N, M), dtype=np.int64)
+    lb = np.empty((N, M), dtype=np.int64)
+    flip = np.zeros((N, M), dtype=bool)
+    anchored = np.zeros((N, M), dtype=bool)
+    clear = np.zeros((N, M), dtype=bool)
+    for m, ln in enumerate(system.lines):
+        o, ob, p = poff[m], poff[m] + m, P[m]
+        L = float(fwd[m][4][-1])
+        a, b = ln.a, ln.b
+        if plane is not None:
+            limit = 1e-6 * L
+            ha, hb = plane.height_above(pos[:, a]), plane.height_above(pos[:, b])
+            gra = (np.abs(ha) <= limit) & (kind[a] == FIXED) & (hb > limit)
+            grb = (np.abs(hb) <= limit) & (kind[b] == FIXED) & (ha > limit)
+            hang = (ha > limit) & (hb > limit)
+            bad = ~(gra | grb | hang)
+            why[bad & (why == "")] = (
+                f"line {ln.name} has an end on or below the seabed that is not an anchor "
+                "(a fixed point with the line's other end above the seabed)"
+            )
+        else:
+            gra = grb = np.zeros(N, dtype=bool)
+        rev = _pieces(reversed_line(ln.problem.line)) if np.any(grb) else None
+        for src, rows in ((fwd[m], ~grb), (rev, grb)):
+            if src is None or not np.any(rows):
+                continue
+            e_, ea_, w_, pt_, bd_ = src
+            ell[rows, o : o + p] = e_
+            EA[rows, o : o + p] = ea_
+            w[rows, o : o + p] = w_
+            bounds[rows, ob : ob + p + 1] = bd_
+            point[rows, ob : ob + p + 1] = pt_
+            down = bool(np.all(w_ >= 0.0))
+            if plane is not None:
+                down = down and bool(np.all(pt_ @ plane.normal <= 0.0))
+            clear[rows, m] = down
+        la[:, m] = np.where(grb, b, a)
+        lb[:, m] = np.where(grb, a, b)
+        flip[:, m] = grb
+        anchored[:, m] = gra | grb
+    fidx = np.full(n, -1, dtype=np.int64)
+    fidx[free_pts] = np.arange(free_pts.size)
+    moving = np.array([kind[ln.a] == FREE or kind[ln.b] == FREE for ln in system.lines])
+    on_free = [
+        ln.problem.line.total_length
+        for ln in system.lines
+        if kind[ln.a] == FREE or kind[ln.b] == FREE
+    ]
+    cap = 0.5 * min(on_free) if on_free else math.inf
+    if pforce is None:  # the free points' constant forces (N, n, 3) [N], or the system's
+        pforce = np.broadcast_to(system.point_force, (N, n, 3))
+    pforce = np.array(pforce, dtype=float, copy=True)
+    prob = system.lines[0].problem
+    keep = why == ""
+    packed = None
+    if np.any(keep):
+        k = keep
+        # each line's starting tension hanging free (batch._guess, as _solve_group)
+        from .batch import _guess
+
+        Nk = int(k.sum())
+        args = np.empty((Nk, M, 11))  # d, L, Cend, EA_eff, point at A: one _guess call
+        for m in range(M):
+            o, ob, p = poff[m], poff[m] + m, P[m]
+            args[:, m, 3] = bounds[k, ob + p]
+            args[:, m, 4:7] = point[k, ob : ob + p + 1].sum(axis=1)
+            args[:, m, 6] -= np.sum(w[k, o : o + p] * ell[k, o : o + p], axis=1)
+            args[:, m, :3] = pos[k, lb[k, m]] - pos[k, la[k, m]]
+            args[:, m, 7] = args[:, m, 3] / np.sum(ell[k, o : o + p] / EA[k, o : o + p], axis=1)
+            args[:, m, 8:] = point[k, ob]
+        a = args.reshape(Nk * M, 11)
+        TA0 = _guess(a[:, :3], a[:, 3], a[:, 4:7], a[:, 7], a[:, 8:]).reshape(Nk, M, 3)
+        Nk = int(k.sum())
+        packed = Packed(
+            la=la[k], lb=lb[k], flip=flip[k], poff=poff, ell=ell[k], EA=EA[k], w=w[k],
+            bounds=bounds[k], point=point[k], anchored=anchored[k], clear=clear[k],
+            moving=moving, fidx=fidx, free_pts=free_pts, pos=pos[k], pforce=pforce[k],
+            plane=plane, TA0=TA0,
+            ltol=np.full(Nk, prob.tolerance), lmaxit=np.full(Nk, prob.max_iterations, np.int64),
+            tol=np.full(Nk, system.tolerance), maxit=np.full(Nk, system.max_iterations, np.int64),
+            cap=np.full(Nk, cap), n_nodes=int(prob.n_nodes),
+        )  # fmt: skip
+    return packed, why
+
+
+@dataclass
+class Solved:
+    """N cases solved by :func:`solve_packed`: per case and line (the lines as defined, A
+    to B) ``position`` (N, M, n, 3) [m], ``tension`` (N, M, n) [N], ``force_a``,
+    ``force_b`` (N, M, 3) [N], ``laid_length`` (N, M) [m]; per case the points'
+    positions (N, n, 3) [m], the bodies' force (N, m, 6) and stiffness (N, m, 6, 6),
+    Newton ``iterations`` and ``residual``, and ``fallback``: '' where verified, else why
+    the case is for the general path (its other values are then NaN)."""
+
+    s: np.ndarray
+    position: np.ndarray
+    tension: np.ndarray
+    force_a: np.ndarray
+    force_b: np.ndarray
+    laid_length: np.ndarray
+    point_position: np.ndarray
+    body_force: np.ndarray
+    body_stiffness: np.ndarray
+    iterations: np.ndarray
+    residual: np.ndarray
+    fallback: np.ndarray
+    #: (N, M, 2, 2, 3, 3) [N/m] each line's end stiffness blocks K[i, j] = -d f_i / d r_j
+    #: (ends A, B as defined; NaN at an end anchored on the seabed)
+    stiffness: np.ndarray | None = None
+
+
+def solve_packed(system: MooringSystem, pk: Packed, poses: np.ndarray) -> Solved:
+    """The free points of the packed cases by the compiled Newton, then the lines
+    re-solved, sampled and verified at the solution, the equilibrium checked, and the
+    bodies' force and stiffness at ``poses`` (N, m, 6) (see the module docstring)."""
+    from . import _system_fast as ks
+
+    N, M = pk.la.shape
+    n_pts = pk.pos.shape[1]
+    plane = pk.plane
+    if plane is not None:
+        e1, e2 = plane.basis
+        normal, basis = np.tile(plane.normal, (N, 1)), np.tile(np.stack((e1, e2), 1), (N, 1, 1))
+        depth, mu = np.full(N, plane.depth), np.full(N, plane.friction)
+        still, has = np.full(N, plane.slope == 0.0), np.ones(N, dtype=bool)
+    else:
+        normal, basis = np.zeros((N, 3)), np.zeros((N, 3, 2))
+        depth, mu = np.zeros(N), np.zeros(N)
+        still, has = np.zeros(N, dtype=bool), np.zeros(N, dtype=bool)
+    pos = np.ascontiguousarray(pk.pos, dtype=float).copy()
+    mode = np.zeros((N, M), dtype=np.int64)
+    fa = np.zeros((N, M, 3))
+    fb = np.zeros((N, M, 3))
+    K = np.zeros((N, M, 3, 3))
+    iters = np.zeros(N, dtype=np.int64)
+    resid = np.zeros(N)
+    status = np.zeros(N, dtype=np.int64)
+    ks.system_cases(
+        pk.la, pk.lb, pk.poff, pk.ell, pk.EA, pk.w, pk.bounds, pk.point, pk.anchored,
+        pk.clear, pk.moving, pk.fidx, pk.free_pts, pos, pk.pforce, pk.TA0, normal, basis,
+        depth, mu, still, has, pk.ltol, pk.lmaxit, pk.tol, pk.maxit, pk.cap,
+        mode, fa, fb, K, iters, resid, status,
+    )  # fmt: skip
+    fallback = np.full(N, "", dtype=object)
+    for code, text in ks.SYS_REASONS.items():
+        fallback[status == code] = f"{NOT_SETTLED} ({text})"
+    fallback[(status != 0) & (fallback == "")] = NOT_SETTLED
+    n = pk.n_nodes
+    L_line = np.array(
+        [pk.bounds[0, pk.poff[m] + m + pk.poff[m + 1] - pk.poff[m]] for m in range(M)]
+    )
+    s_all = np.linspace(np.zeros(M), L_line, n, axis=1)  # (M, n), as np.linspace(0, L, n)
+    out_pos = np.full((N, M, n, 3), np.nan)
+    out_ten = np.full((N, M, n), np.nan)
+    out_fa = np.full((N, M, 3), np.nan)
+    out_fb = np.full((N, M, 3), np.nan)
+    laid = np.zeros((N, M))
+    ok = status == 0
+    # every line of every settled case, grouped by piece count: one call of each batch
+    # kernel and of the verification per group
+    sizes = np.diff(pk.poff)
+    for p in np.unique(sizes):
+        rows = np.flatnonzero(ok)
+        if not rows.size:
+            break
+        ms = np.flatnonzero(sizes == p)
+        good = _final_lines(pk, pos, rows, ms, int(p), n, out_pos, out_ten, out_fa, out_fb, laid)
+        bad = rows[~np.all(good, axis=1)]
+        fallback[bad] = NOT_VERIFIED
+        ok[bad] = False
+    # the free points' equilibrium from the verified lines' forces
+    ka = np.where(pk.flip, pk.lb, pk.la)  # the lines' own ends A, B
+    kb = np.where(pk.flip, pk.la, pk.lb)
+    net = np.zeros((N, n_pts, 3))
+    rows_n = np.arange(N)[:, None]
+    np.add.at(net, (rows_n, ka), np.nan_to_num(out_fa))
+    np.add.at(net, (rows_n, kb), np.nan_to_num(out_fb))
+    net += pk.pforce
+    fr = pk.free_pts
+    if fr.size:
+        scale = np.maximum(
+            np.max(np.linalg.norm(np.concatenate((out_fa, out_fb), axis=1), axis=2), axis=1),
+            np.max(np.abs(pk.pforce[:, fr]).reshape(N, -1), axis=1),
+        )
+        eps = float(np.finfo(float).eps)
+        allow = MULTIPLE * np.maximum(pk.tol, 64.0 * eps) * scale
+        off = np.max(np.abs(net[:, fr]).reshape(N, -1), axis=1)
+        unbalanced = ok & ~(off <= allow)
+        fallback[unbalanced] = NOT_BALANCED
+        ok &= ~unbalanced
+    # stiffness blocks per line as defined: (N, M, 2, 2, 3, 3)
+    Kl = np.full((N, M, 2, 2, 3, 3), np.nan)
+    free_mode = (mode == 0)[..., None, None]
+    Kl[:, :, 0, 0] = np.where(free_mode, K, np.nan)
+    Kl[:, :, 0, 1] = np.where(free_mode, -K, np.nan)
+    Kl[:, :, 1, 0] = np.where(free_mode, -K, np.nan)
+    Kl[:, :, 1, 1] = K
+    Kl = np.where(pk.flip[..., None, None, None, None], Kl[:, :, ::-1, ::-1], Kl)
+    body_force, body_stiffness = _bodies_many(system, pos, poses, net - pk.pforce, Kl, ka, kb)
+    bad = ~ok
+    for arr in (out_pos, out_ten, out_fa, out_fb, laid, body_force, body_stiffness):
+        arr[bad] = np.nan
+    pos[bad] = np.nan
+    return Solved(
+        s=s_all, position=out_pos, tension=out_ten, force_a=out_fa, force_b=out_fb,
+        laid_length=laid, point_position=pos, body_force=body_force,
+        body_stiffness=body_stiffness, iterations=iters, residual=resid,
+        fallback=fallback, stiffness=Kl,
+    )  # fmt: skip
+
+
+def _final_lines(
+    pk: Packed,
+    pos: np.ndarray,
+    rows: np.ndarray,
+    ms: np.ndarray,
+    p: int,
+    n: int,
+    out_pos: np.ndarray,
+    out_ten: np.ndarray,
+    out_fa: np.ndarray,
+    out_fb: np.ndarray,
+    laid: np.ndarray,
+) -> np.ndarray:
+    """Lines ``ms`` (all of ``p`` pieces) of cases ``rows`` solved again at the points
+    ``pos`` and sampled at ``n`` nodes by the batch kernels (hanging free:
+    :func:`._fast.solve_cases` from :func:`.batch._guess`, as :func:`.batch.solve_batch`
+    does; anchored on the seabed: :func:`.batch.solve_contact_arrays`), written as each
+    line is defined (A to B) into the ``out_*`` arrays (N, M, ...), and verified
+    (:func:`.verify.check_lines`, with the seabed for the anchored ones). Returns per
+    case and line (len(rows), len(ms)) whether the line is settled and verified."""
+    from .batch import _guess, solve_contact_arrays
+
+    R, nm = rows.size, ms.size
+    cols = pk.poff[ms][:, None] + np.arange(p)  # (nm, p)
+    bcols = (pk.poff[ms] + ms)[:, None] + np.arange(p + 1)  # (nm, p + 1)
+    r2, c2 = rows[:, None, None], cols[None]
+    ell = pk.ell[r2, c2].reshape(R * nm, p)
+    EA = pk.EA[r2, c2].reshape(R * nm, p)
+    w = pk.w[r2, c2].reshape(R * nm, p)
+    bounds = pk.bounds[rows[:, None, None], bcols[None]].reshape(R * nm, p + 1)
+    point = pk.point[rows[:, None, None], bcols[None]].reshape(R * nm, p + 1, 3)
+    rA = pos[rows[:, None], pk.la[rows][:, ms]].reshape(R * nm, 3)
+    rB = pos[rows[:, None], pk.lb[rows][:, ms]].reshape(R * nm, 3)
+    flip = pk.flip[rows][:, ms].reshape(-1)
+    anch = pk.anchored[rows][:, ms].reshape(-1)
+    tol = np.repeat(pk.ltol[rows], nm)
+    maxit = np.repeat(pk.lmaxit[rows], nm)
+    plane = pk.plane
+    L = bounds[:, -1]
+    s = np.linspace(np.zeros(R * nm), L, n, axis=1)
+    good = np.zeros(R * nm, dtype=bool)
+    P_ = np.full((R * nm, n, 3), np.nan)
+    T_ = np.full((R * nm, n), np.nan)
+    FA = np.full((R * nm, 3), np.nan)
+    FB = np.full((R * nm, 3), np.nan)
+    LL = np.zeros(R * nm)
+    for g in (np.flatnonzero(~anch), np.flatnonzero(anch)):
+        if not g.size:
+            continue
+        sg = np.where(flip[g, None], L[g, None] - s[g], s[g])
+        if anch[g[0]]:
+            got = solve_contact_arrays(
+                ell[g], EA[g], w[g], point[g], bounds[g], rA[g], rB[g], plane,
+                tol[g], maxit[g], sg,
+            )  # fmt: skip
+            P_[g], T_[g] = got["position"], got["tension"]
+            FA[g], FB[g] = got["force_a"], got["force_b"]
+            LL[g] = got["laid_length"]
+            settled = got["status"] == 0
+        else:
+            Cend = point[g].sum(axis=1)
+            Cend[:, 2] -= np.sum(w[g] * ell[g], axis=1)
+            target = rB[g] - rA[g]
+            EAeff = L[g] / np.sum(ell[g] / EA[g], axis=1)
+            TA0 = _guess(target, L[g], Cend, EAeff, point[g, 0])
+            TAo, TL = np.empty((g.size, 3)), np.empty((g.size, 3))
+            it_, rs_ = np.zeros(g.size, np.int64), np.zeros(g.size)
+            st_ = np.zeros(g.size, np.int64)
+            pg, tg = np.empty((g.size, n, 3)), np.empty((g.size, n))
+            _fast.solve_cases(
+                ell[g], EA[g], w[g], point[g], bounds[g], np.zeros(g.size, dtype=np.int64),
+                rA[g], target, TA0, tol[g], maxit[g], s[g], pg, tg, TAo, TL, it_, rs_, st_,
+            )  # fmt: skip
+            P_[g], T_[g], FA[g], FB[g] = pg, tg, TAo, -TL
+            settled = st_ == 0
+            if plane is not None:  # a line touching the seabed between raised ends
+                height = (pg - np.array([0.0, 0.0, -plane.depth])) @ plane.normal
+                settled &= ~np.any(height < -1e-6 * L[g, None], axis=1)
+        settled &= (
+            np.all(np.isfinite(P_[g]), axis=(1, 2))
+            & np.all(np.isfinite(T_[g]), axis=1)
+            & np.all(np.isfinite(FA[g]), axis=1)
+            & np.all(np.isfinite(FB[g]), axis=1)
+        )
+        # checked as the line is defined, A to B (grid._compiled_solve's seabed_checked)
+        idx = g[settled]
+        if idx.size:
+            fl = flip[idx]
+
+            def fw(x: np.ndarray, fl: np.ndarray = fl) -> np.ndarray:
+                return np.where(fl.reshape(-1, *[1] * (x.ndim - 1)), x[:, ::-1], x)
+
+            bd = np.where(fl[:, None], L[idx, None] - bounds[idx][:, ::-1], bounds[idx])
+            good[idx] = check_lines(
+                s=s[idx],
+                position=P_[idx],
+                tension=T_[idx],
+                force_a=np.where(fl[:, None], FB[idx], FA[idx]),
+                force_b=np.where(fl[:, None], FA[idx], FB[idx]),
+                pieces=Pieces(
+                    bounds=bd,
+                    weight=fw(w[idx]),
+                    axial_stiffness=fw(EA[idx]),
+                    point=fw(point[idx]),
+                ),
+                tolerance=tol[idx],
+                position_a=np.where(fl[:, None], rB[idx], rA[idx]),
+                position_b=np.where(fl[:, None], rA[idx], rB[idx]),
+                plane=plane if anch[g[0]] else None,
+            ).ok
+    # back to the line as defined (A to B)
+    at = (rows[:, None], ms[None])
+    out_pos[at] = P_.reshape(R, nm, n, 3)
+    out_ten[at] = T_.reshape(R, nm, n)
+    out_fa[at] = np.where(flip[:, None], FB, FA).reshape(R, nm, 3)
+    out_fb[at] = np.where(flip[:, None], FA, FB).reshape(R, nm, 3)
+    laid[at] = LL.reshape(R, nm)
+    return good.reshape(R, nm)
+
+
+def _skew_many(v: np.ndarray) -> np.ndarray:
+    z = np.zeros(v.shape[:-1])
+    x, y, w = v[..., 0], v[..., 1], v[..., 2]
+    return np.stack([z, -w, y, w, z, -x, -y, x, z], -1).reshape(*v.shape[:-1], 3, 3)
+
+
+def _bodies_many(
+    system: MooringSystem,
+    pos: np.ndarray,
+    poses: np.ndarray,
+    force: np.ndarray,
+    Kl: np.ndarray,
+    ka: np.ndarray,
+    kb: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`.system._bodies` for N cases: the bodies' force (N, m, 6) and stiffness
+    (N, m, 6, 6) from the lines' forces on the points ``force`` (N, n, 3) and their end
+    stiffness blocks ``Kl`` (N, M, 2, 2, 3, 3) between points ``ka``, ``kb`` (N, M)."""
+    N, n = pos.shape[:2]
+    m = len(system.body_names)
+    body_force = np.zeros((N, m, 6))
+    body_stiffness = np.zeros((N, m, 6, 6))
+    kind = system.point_kind
+    on = np.flatnonzero(kind == BODY)
+    if not on.size:
+        return body_force, body_stiffness
+    fr = np.flatnonzero(kind == FREE)
+    # the assembled stiffness of the body and free points (moving ones only)
+    sel = np.concatenate((on, fr))
+    where = np.full(n, -1)
+    where[sel] = np.arange(sel.size)
+    Kall = np.zeros((N, 3 * sel.size, 3 * sel.size))
+    for line in range(Kl.shape[1]):
+        ends = (int(ka[0, line]), int(kb[0, line]))  # the line's own ends: every case's
+        for i in range(2):
+            for j in range(2):
+                wi, wj = where[ends[i]], where[ends[j]]
+                if wi >= 0 and wj >= 0:
+                    blk = np.nan_to_num(Kl[:, line, i, j])
+                    Kall[:, 3 * wi : 3 * wi + 3, 3 * wj : 3 * wj + 3] += blk
+    nb = 3 * on.size
+    Kc = Kall[:, :nb, :nb]
+    if fr.size:
+        Kc = Kc - Kall[:, :nb, nb:] @ np.linalg.solve(Kall[:, nb:, nb:], Kall[:, nb:, :nb])
+    dR = rotation_derivatives_many(poses[..., 3:])  # (N, m, 3 angles, 3, 3)
+    for b in range(m):
+        mine = np.flatnonzero(system.point_body[on] == b)
+        if not mine.size:
+            continue
+        pts = on[mine]
+        u = pos[:, pts] - poses[:, b, None, :3]  # (N, p, 3)
+        f = force[:, pts]
+        A = np.einsum("naij,pj->npia", dR[:, b], system.point_position[pts])  # (N, p, 3, 3)
+        body_force[:, b, :3] = f.sum(axis=1)
+        body_force[:, b, 3:] = np.cross(u, f).sum(axis=1)
+        lever = np.concatenate((np.broadcast_to(np.eye(3), u.shape + (3,)), _skew_many(u)), axis=2)
+        trans = np.concatenate((np.broadcast_to(np.eye(3), u.shape + (3,)), A), axis=3)
+        body_stiffness[:, b, 3:, 3:] += np.einsum("npij,npjk->nik", _skew_many(f), A)
+        blk = Kc.reshape(N, on.size, 3, on.size, 3)[:, mine][:, :, :, mine].transpose(0, 1, 3, 2, 4)
+        body_stiffness[:, b] += np.einsum("npia,npqab,nqbj->nij", lever, blk, trans)
+    return body_force, body_stiffness
+
+
+def solve_fast(system: MooringSystem, *, prescribed: bool = False) -> tuple[object | None, str]:
+    """``system`` through the compiled path: (its :class:`.system.SystemResult`, '') or
+    (None, why the general path must solve it). ``prescribed``: free bodies taken where
+    ``system`` puts them (see :func:`ineligible`)."""
+    from .base import StaticResult
+    from .system import SystemResult
+
+    why = ineligible(system, prescribed=prescribed)
+    if why:
+        return None, why
+    # the points as a sweep's chunk places them (cablestudy.system_grid): the same bits
+    base = np.asarray(system.point_position, dtype=float)[None]
+    pos = point_positions_many(
+        system, np.asarray(system.body_position, dtype=float)[None], None, base
+    )
+    pk, whys = pack(system, pos)
+    if pk is None:
+        return None, str(whys[0])
+    try:
+        sol = solve_packed(system, pk, np.asarray(system.body_position, dtype=float)[None])
+    except np.linalg.LinAlgError as exc:  # a singular point stiffness: the general path
+        return None, f"{NOT_SETTLED} ({exc})"
+    if sol.fallback[0]:
+        return None, str(sol.fallback[0])
+    lines = [
+        StaticResult(
+            s=sol.s[m],
+            position=sol.position[0, m],
+            tension=sol.tension[0, m],
+            force_a=sol.force_a[0, m],
+            force_b=sol.force_b[0, m],
+            laid_length=float(sol.laid_length[0, m]),
+        )
+        for m in range(len(system.lines))
+    ]
+    return (
+        SystemResult(
+            lines=lines,
+            point_position=sol.point_position[0],
+            body_force=sol.body_force[0],
+            body_stiffness=sol.body_stiffness[0],
+            iterations=int(sol.iterations[0]),
+            residual=float(sol.residual[0]),
+            body_position=np.array(system.body_position, dtype=float),
+        ),
+        "",
+    )
+
+
+def template_start(system: MooringSystem) -> tuple[np.ndarray, ...] | None:
+    """Where a sweep starts its cases: the free points' equilibrium of ``system`` (k, 3)
+    [m] by the compiled path, all points' positions there (n, 3) [m], the free points'
+    first-order response to the other points' displacements, S = -K_FF^-1 K_FP (3k, 3n)
+    (zero columns for the free points, and for an end anchored on the seabed, whose
+    stiffness is not modelled), their loads (k, 3) [N] and K_FF^-1 (3k, 3k), their
+    response to a change of load. None where the compiled path does not settle it."""
+    why = ineligible(system)
+    if why:
+        return None
+    base = np.asarray(system.point_position, dtype=float)[None]
+    poses = np.asarray(system.body_position, dtype=float)[None]
+    pk, whys = pack(system, point_positions_many(system, poses, None, base))
+    if pk is None:
+        return None
+    try:
+        sol = solve_packed(system, pk, poses)
+    except np.linalg.LinAlgError:
+        return None
+    if sol.fallback[0]:
+        return None
+    n = len(system.point_names)
+    free = np.flatnonzero(system.point_kind == FREE)
+    K = np.zeros((3 * n, 3 * n))
+    for m, ln in enumerate(system.lines):
+        ends = (ln.a, ln.b)
+        for i in range(2):
+            for j in range(2):
+                blk = np.nan_to_num(sol.stiffness[0, m, i, j])
+                K[3 * ends[i] : 3 * ends[i] + 3, 3 * ends[j] : 3 * ends[j] + 3] += blk
+    F = (3 * free[:, None] + np.arange(3)).ravel()
+    S = np.zeros((3 * free.size, 3 * n))
+    flex = np.zeros((3 * free.size, 3 * free.size))
+    if free.size:
+        flex = np.linalg.inv(K[np.ix_(F, F)])
+        S = -flex @ K[F]
+        S[:, F] = 0.0
+    load = np.array(system.point_force[free], dtype=float)
+    return sol.point_position[0][free], sol.point_position[0], S, load, flex
