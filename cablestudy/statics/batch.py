@@ -360,13 +360,16 @@ def solve_batch(
     solver: SemiAnalyticSolver | None = None,
     contact: bool = True,
     general: list[int] | None = None,
+    verify: bool = True,
 ) -> list[StaticResult]:
     """Solve ``problems`` (any mix); batchable ones with equal piece and node counts are
     solved together, lines anchored on the seabed (``contact``) by the compiled contact
     kernel, the others (and any case a kernel does not settle) one by one by the general
     solver; the indices of those are appended to ``general`` if given. A case a kernel
     tried and handed on says why in its ``fallback`` (:data:`NOT_SETTLED`,
-    :data:`ON_SEABED`)."""
+    :data:`ON_SEABED`). ``verify=False`` takes the kernels' settled answers without
+    :mod:`.verify`'s checks: only for intermediate iterates whose answer is re-solved
+    verified (the system Newton's trials, :func:`.system._solve`)."""
     solver = solver or SemiAnalyticSolver()
     results: list[StaticResult | None] = [None] * len(problems)
     groups: dict[tuple[int, int], list[int]] = {}
@@ -393,6 +396,7 @@ def solve_batch(
                 [layouts.get(i) for i in members],
                 deadline,
                 why=left,
+                verify=verify,
             ),
             strict=True,
         ):
@@ -405,8 +409,8 @@ def solve_batch(
         tried_contact = False
         if res is None and contact and _fast.AVAILABLE and contact_eligible(prob):
             res = _contact_one(prob)
-            if res is not None:  # status 0 means verified: else the general solver
-                res = verified(prob, res, method=solver.name)
+            if res is not None and verify:  # status 0 means verified: else the general
+                res = verified(prob, res, method=solver.name)  # solver
             tried_contact = True
         if res is None or not res.success:
             res = verified(
@@ -505,6 +509,7 @@ def _solve_group(
     deadline: float | None,
     use_compiled: bool = True,
     why: dict[int, str] | None = None,
+    verify: bool = True,
 ) -> list[StaticResult | None]:
     """The problems of one group through the batch kernel; None for a case it leaves to
     the one-by-one solver, with the reason in ``why`` (by position), if given."""
@@ -622,9 +627,10 @@ def _solve_group(
         & np.all(np.isfinite(TA), axis=1)
         & np.all(np.isfinite(TL), axis=1)
     )
-    good &= _verified_group(
-        problems, good, s, pos, tension, TA, -TL, bounds, -q[..., 2], EA, point, rA, tol
-    )
+    if verify:
+        good &= _verified_group(
+            problems, good, s, pos, tension, TA, -TL, bounds, -q[..., 2], EA, point, rA, tol
+        )
     out: list[StaticResult | None] = []
     force_b = -TL
     iters_l = iters.tolist()
