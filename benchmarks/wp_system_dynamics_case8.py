@@ -161,7 +161,9 @@ def moordyn_run(level: float, dtm: float, periods: float) -> dict | None:
             cpu += time.process_time() - c0
             x_now = x_next
             if k >= last:
-                ten = np.array([refs.end_tensions(h, n) for h, n in zip(handles, segs, strict=True)])
+                ten = np.array(
+                    [refs.end_tensions(h, n) for h, n in zip(handles, segs, strict=True)]
+                )
                 np.maximum(hi, ten, out=hi)
                 np.minimum(lo, ten, out=lo)
         moordyn.Close(system)
