@@ -21,13 +21,16 @@ def solve_batch(
     solver: SemiAnalyticSolver | None = None,
     contact: bool = True,
     general: list[int] | None = None,
+    verify: bool = True,
 ) -> list[StaticResult]:
     """Solve ``problems`` (any mix); batchable ones with equal piece and node counts are
     solved together, lines anchored on the seabed (``contact``) by the compiled contact
     kernel, the others (and any case a kernel does not settle) one by one by the general
     solver; the indices of those are appended to ``general`` if given. A case a kernel
     tried and handed on says why in its ``fallback`` (:data:`NOT_SETTLED`,
-    :data:`ON_SEABED`)."""
+    :data:`ON_SEABED`). ``verify=False`` takes the kernels' settled answers without
+    :mod:`.verify`'s checks: only for intermediate iterates whose answer is re-solved
+    verified (the system Newton's trials, :func:`.system._solve`)."""
     from . import _fast  # imports numba: on first use, not with this module
 
     solver = solver or SemiAnalyticSolver()
@@ -56,6 +59,7 @@ def solve_batch(
                 [layouts.get(i) for i in members],
                 deadline,
                 why=left,
+                verify=verify,
             ),
             strict=True,
         ):
@@ -68,8 +72,8 @@ def solve_batch(
         tried_contact = False
         if res is None and contact and _fast.AVAILABLE and contact_eligible(prob):
             res = _contact_one(prob)
-            if res is not None:  # status 0 means verified: else the general solver
-                res = verified(prob, res, method=solver.name)
+            if res is not None and verify:  # status 0 means verified: else the general
+                res = verified(prob, res, method=solver.name)  # solver
             tried_contact = True
         if res is None or not res.success:
             res = verified(

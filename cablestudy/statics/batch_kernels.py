@@ -433,6 +433,7 @@ def _solve_group(
     deadline: float | None,
     use_compiled: bool = True,
     why: dict[int, str] | None = None,
+    verify: bool = True,
 ) -> list[StaticResult | None]:
     """The problems of one group through the batch kernel; None for a case it leaves to
     the one-by-one solver, with the reason in ``why`` (by position), if given."""
@@ -552,9 +553,10 @@ def _solve_group(
         & np.all(np.isfinite(TA), axis=1)
         & np.all(np.isfinite(TL), axis=1)
     )
-    good &= _verified_group(
-        problems, good, s, pos, tension, TA, -TL, bounds, -q[..., 2], EA, point, rA, tol
-    )
+    if verify:
+        good &= _verified_group(
+            problems, good, s, pos, tension, TA, -TL, bounds, -q[..., 2], EA, point, rA, tol
+        )
     out: list[StaticResult | None] = []
     force_b = -TL
     iters_l = iters.tolist()

@@ -286,10 +286,16 @@ def point_positions(system: MooringSystem, free: np.ndarray) -> np.ndarray:
 
 
 def _solve_lines(
-    system: MooringSystem, pos: np.ndarray, solver: Any, deadline: float | None
+    system: MooringSystem,
+    pos: np.ndarray,
+    solver: Any,
+    deadline: float | None,
+    verify: bool = True,
 ) -> tuple[list[StaticResult], np.ndarray, np.ndarray]:
     """Each line between the points at ``pos``: results, the net line force on each
-    point (n, 3) [N] and the assembled stiffness (3n, 3n) [N/m]."""
+    point (n, 3) [N] and the assembled stiffness (3n, 3n) [N/m]. ``verify=False``: the
+    catenary kernels' answers unchecked (Newton iterates, re-solved verified at the
+    solution)."""
     n = len(pos)
     force = np.zeros((n, 3))
     K = np.zeros((3 * n, 3 * n))
@@ -309,7 +315,7 @@ def _solve_lines(
         # registry's solver verifies; the same numbers as one line at a time)
         from .batch import solve_batch
 
-        solved = solve_batch(problems, deadline=deadline)
+        solved = solve_batch(problems, deadline=deadline, verify=verify)
     else:
         solved = [solver.solve(prob, deadline=deadline) for prob in problems]
     for ln, prob, res in zip(system.lines, problems, solved, strict=True):
@@ -427,7 +433,7 @@ def _solve(
                 for ln in system.lines
             ),
         )
-    results, force, K = _solve_lines(system, pos, raw, deadline)
+    results, force, K = _solve_lines(system, pos, raw, deadline, verify=False)
     it = 0
     res = 0.0
     if P.size:
@@ -493,6 +499,17 @@ def _solve(
                 break
         pos = point_positions(system, x)
     results, force, K = _solve_lines(final, pos, solver, deadline)
+    if P.size:
+        # the Newton's lines were unverified (the kernels' answers, for speed): the
+        # verified lines at the solution must hold the points in equilibrium as well
+        final_res = float(np.max(np.abs(force[free_mask] + pf))) / scale
+        if not final_res <= max(100.0 * system.tolerance, 1e-10):
+            raise SystemFailure(
+                STATUS_NOT_CONVERGED,
+                f"free-point equilibrium: the verified lines at the Newton's solution leave "
+                f"a net force of {final_res:.3g} of the largest tension (tolerance "
+                f"{system.tolerance:.3g})",
+            )
     body_force, body_stiffness = _bodies(final, pos, force, K, free_mask)
     return SystemResult(
         lines=results,
@@ -515,7 +532,7 @@ def _trial(
     """The lines with the free points at ``x``, and phi = R(x) . step (None if a line
     cannot be solved there)."""
     try:
-        out = _solve_lines(system, point_positions(system, x), solver, deadline)
+        out = _solve_lines(system, point_positions(system, x), solver, deadline, verify=False)
     except SystemFailure:
         return None
     return out, float(residual(out[1]).ravel() @ step.ravel())
