@@ -14,10 +14,10 @@ import sys
 import time
 
 import numpy as np
-from cablestudy.cases import expand_cases
-from cablestudy.system_cases import evaluate_system_case
 
-from cablestudy.config import parse_study_text
+from cablestudy.analyses.system import evaluate_system_case
+from cablestudy.study import parse_study_text
+from cablestudy.study.cases import expand_cases
 from tests.validation.test_system_dynamics_moordyn import KEYS, REFS, study_text
 
 

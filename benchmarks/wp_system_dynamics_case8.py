@@ -67,9 +67,8 @@ def study_text(mesh: str) -> str:
 
 
 def _case(mesh: str):  # noqa: ANN202
-    from cablestudy.cases import expand_cases
-
-    from cablestudy.config import parse_study_text
+    from cablestudy.study import parse_study_text
+    from cablestudy.study.cases import expand_cases
 
     (_, [case]) = expand_cases(parse_study_text(study_text(mesh), "case8.yaml"))
     return case
@@ -78,9 +77,8 @@ def _case(mesh: str):  # noqa: ANN202
 def ours(mesh: str, repeats: int) -> dict:
     """Our case at ``mesh``: outputs and CPU times [s] (whole case; statics, model,
     dynamics apart), medians of ``repeats``."""
-    from cablestudy.system_cases import STATIC_SOLVERS, evaluate_system_case, system_model
-
-    from cablestudy import system_dynamic_cases as sdc
+    from cablestudy.analyses import system_dynamic as sdc
+    from cablestudy.analyses.system import STATIC_SOLVERS, evaluate_system_case, system_model
     from cablestudy.statics.system_methods import solve_system_by
 
     case = _case(mesh)
