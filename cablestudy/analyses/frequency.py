@@ -19,7 +19,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..dynamics.frequency import DragSettings, ReducedLine, solve_harmonic, solve_spectrum
+from ..dynamics.frequency import solve_harmonic, solve_spectrum
+from ..dynamics.frequency_model import DragSettings, ReducedLine
 from ..dynamics.harmonic_cases import solve_harmonic_cases
 from ..dynamics.linear_model import linear_line
 from ..dynamics.modal import ModalProblem

@@ -28,8 +28,8 @@ from ..study.problem import line_model, medium
 from .counters import COUNTERS, trim_lru
 
 if TYPE_CHECKING:  # imported where used: `cablestudy validate` needs none of them
+    from ..dynamics.discrete_line import DiscreteLine
     from ..dynamics.excitation import EndMotion
-    from ..dynamics.model import DiscreteLine
 
 
 #: discrete static equilibria of the dynamic model, by (static hash, elements, the
@@ -60,7 +60,8 @@ def discrete_statics(
     from the static solution (cached per static problem, element count and dynamic line
     properties). The third item is an error message (empty when the equilibrium was
     found), the fourth the seabed friction anchors holding that equilibrium."""
-    from ..dynamics.model import discretise_nodes, static_equilibrium, uniform_nodes
+    from ..dynamics.discrete_line import discretise_nodes, uniform_nodes
+    from ..dynamics.model import static_equilibrium
 
     dyn = case.study.analysis.dynamic
     assert dyn is not None
@@ -106,11 +107,11 @@ def discrete_statics(
 
 def dynamic_extras(study: Any, start: np.ndarray) -> Any:
     """The dynamic-only line properties of ``study``
-    (:class:`cablestudy.dynamics.model.DynamicExtras`): bodies, transverse damping,
+    (:class:`cablestudy.dynamics.discrete_line.DynamicExtras`): bodies, transverse damping,
     free ends (an unexcited ``force`` end), clamped ends (holding the direction of the
     end elements of ``start`` [m], the static shape at the mesh nodes) and the seabed
     contact."""
-    from ..dynamics.model import DynamicExtras, default_seabed_stiffness
+    from ..dynamics.discrete_line import DynamicExtras, default_seabed_stiffness
 
     dyn = study.analysis.dynamic
     excited = {e.end for e in dyn.excitations} if dyn is not None else set()

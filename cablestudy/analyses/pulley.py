@@ -152,7 +152,8 @@ def pulley_discrete_statics(case: Case, static: StaticResult) -> tuple[Any, ...]
     message or "", friction anchors [m], :class:`SlidingPulleys` at that split)."""
     from dataclasses import replace
 
-    from ..dynamics.model import evaluate, static_equilibrium
+    from ..dynamics.assembly import evaluate
+    from ..dynamics.model import static_equilibrium
     from ..dynamics.pulley import pulley_tensions, sliding_pulleys, solve_split, wrap_angle
     from .line_model import dynamic_extras, roundoff_force
 

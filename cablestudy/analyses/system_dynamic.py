@@ -51,7 +51,7 @@ def system_statics(case: Case, system: Any, solve: Any) -> Any:
 def _line_extras(study: Any, name: str, lm: Any) -> Any:
     """The dynamic-only properties of line ``name`` (as a one-line study's: transverse
     damping, attachment added mass and drag, the seabed contact; pinned ends)."""
-    from ..dynamics.model import DynamicExtras, default_seabed_stiffness
+    from ..dynamics.discrete_line import DynamicExtras, default_seabed_stiffness
 
     line = study.lines[name]
     env = study.environment
@@ -79,7 +79,7 @@ def system_model_dynamic(case: Case, system: Any, static: Any) -> tuple[Any, ...
     equilibrium, cached per static problem and element count: (packed, positions,
     anchors, drive arrays (body, slot owner point, offset, static position), the
     Newton and tension-step scale [N]), or why the equilibrium was not found."""
-    from ..dynamics.model import discretise_nodes, uniform_nodes
+    from ..dynamics.discrete_line import discretise_nodes, uniform_nodes
     from ..dynamics.system_model import FreePoints, pack
     from ..dynamics.system_timedomain import equilibrium
     from ..statics.system import FREE, rotation

@@ -19,11 +19,12 @@ from ..study.cases import Case
 from .line_model import catenary_winch, discrete_statics, element_breaks, end_motion, roundoff_force
 
 if TYPE_CHECKING:  # imported where used: `cablestudy validate` needs none of them
-    from ..dynamics.timedomain import DynamicProblem, DynamicResult
+    from ..dynamics.time_problem import DynamicProblem, DynamicResult
 
 
 def solve_dynamic(case: Case, static: StaticResult, deadline: float | None) -> DynamicResult:
-    from ..dynamics.timedomain import DynamicResult, simulate
+    from ..dynamics.time_problem import DynamicResult
+    from ..dynamics.timedomain import simulate
 
     problem = dynamic_problem(case, static)
     if isinstance(problem, str):
@@ -34,7 +35,7 @@ def solve_dynamic(case: Case, static: StaticResult, deadline: float | None) -> D
 def dynamic_problem(case: Case, static: StaticResult) -> DynamicProblem | str:
     """The time-domain run of the case about its static solution (or why the discrete
     static equilibrium it starts from was not found)."""
-    from ..dynamics.timedomain import DynamicProblem
+    from ..dynamics.time_problem import DynamicProblem
 
     dyn = case.study.analysis.dynamic
     assert dyn is not None
@@ -91,7 +92,7 @@ def dynamic_outputs(
 ) -> dict[str, np.ndarray]:
     """The time domain's outputs; along-line ones at the static output points ``s_out``
     [m] (the dataset's ``s``)."""
-    from ..dynamics.model import interpolate_nodes
+    from ..dynamics.discrete_line import interpolate_nodes
     from .along_line import tension_along
 
     s_out = np.asarray(s_out, dtype=float)

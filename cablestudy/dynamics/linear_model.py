@@ -1,10 +1,10 @@
 """The frequency-domain solver's input from the shared line model.
 
-:func:`linear_line` builds a :class:`~cablestudy.dynamics.frequency.LinearLine` about a
+:func:`linear_line` builds a :class:`~cablestudy.dynamics.frequency_model.LinearLine` about a
 static shape sampled at the nodes: mass, tangent stiffness and structural damping are
 the time-domain model's own tangents at rest in that shape
 (:func:`cablestudy.dynamics.modal.tangents_of`, which evaluates
-:func:`cablestudy.dynamics.model.assemble`): axial and geometric stiffness, bending with
+:func:`cablestudy.dynamics.assembly.assemble`): axial and geometric stiffness, bending with
 pinned or clamped ends, the seabed contact spring and dashpot, sticking seabed friction
 (for small motions static friction keeps the laid line from sliding: friction is
 linearised as its stick spring), the axial strain-rate and transverse structural
@@ -27,7 +27,7 @@ import scipy.sparse as sp
 
 from ..physics.current import current_velocity
 from ..statics.base import EndCondition
-from .frequency import LinearLine
+from .frequency_model import LinearLine
 from .modal import ModalProblem, _segment_index, element_tangent, shared_model, tangents_of
 
 

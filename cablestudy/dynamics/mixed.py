@@ -43,14 +43,8 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import splu
 
-from .model import (
-    DiscreteLine,
-    Workspace,
-    _trial_states,
-    evaluate,
-    states_changed,
-    update_anchors,
-)
+from .assembly import Workspace, _trial_states, evaluate, states_changed, update_anchors
+from .discrete_line import DiscreteLine
 
 EPS = float(np.finfo(float).eps)
 #: K of the slack branch of the element law (see _System.residual)

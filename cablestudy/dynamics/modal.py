@@ -70,13 +70,8 @@ from ..statics.base import (
     Medium,
     StaticResult,
 )
-from .model import (
-    DiscreteLine,
-    DynamicExtras,
-    default_seabed_stiffness,
-    discretise_nodes,
-    evaluate,
-)
+from .assembly import evaluate
+from .discrete_line import DiscreteLine, DynamicExtras, default_seabed_stiffness, discretise_nodes
 
 #: status of a modal analysis about a static solution that failed
 STATUS_STATIC_FAILED = 5
@@ -271,7 +266,7 @@ def default_extras(line: LineModel, medium: Medium) -> DynamicExtras:
 def tangents(problem: ModalProblem) -> tuple[np.ndarray, sp.csr_matrix, sp.csr_matrix]:
     """Nodal mass blocks (n_nodes, 3, 3) [kg], tangent stiffness and structural damping
     (3 n_nodes, 3 n_nodes) [N/m], [N s/m] of all nodes before constraints: the shared
-    line model's own tangents (:func:`cablestudy.dynamics.model.assemble`) at rest in
+    line model's own tangents (:func:`cablestudy.dynamics.assembly.assemble`) at rest in
     the static shape, without drag (the frequency domain linearises drag itself)."""
     return tangents_of(*shared_model(problem))
 

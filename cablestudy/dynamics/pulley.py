@@ -50,7 +50,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..statics.base import LineModel, Medium
-from .model import DiscreteLine, DynamicExtras, discretise_nodes
+from .discrete_line import DiscreteLine, DynamicExtras, discretise_nodes
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -4,7 +4,7 @@ Each step is solved together with the split of the line at each pulley
 (:func:`.pulley.solve_split`: the line sticks, or slides until the tension ratio is
 the friction bound): a trial split re-cuts the line and re-runs the implicit step, so
 the step loop stays in Python here, calling the compiled step
-(:func:`.integrator.alpha_step`) per trial; a line without pulleys runs the compiled
+(:func:`.alpha_step.alpha_step`) per trial; a line without pulleys runs the compiled
 loop of :func:`.timedomain.simulate`. Same step control, statistics and outputs.
 """
 
@@ -17,10 +17,11 @@ from collections import deque
 import numpy as np
 
 from ..statics.base import STATUS_NUMERICAL, STATUS_TIME_LIMIT
-from .integrator import AlphaParameters, alpha_step
-from .model import DiscreteLine, Workspace, interpolate_nodes, update_anchors
+from .alpha_step import AlphaParameters, alpha_step
+from .assembly import Workspace, update_anchors
+from .discrete_line import DiscreteLine, interpolate_nodes
 from .pulley import SlidingPulleys, pulley_tensions, solve_split, wrap_angle
-from .timedomain import (
+from .time_problem import (
     NEWTON_RESCUE_HALVINGS,
     DynamicProblem,
     DynamicResult,
@@ -34,7 +35,7 @@ from .timedomain import (
 
 
 def _advance(head: tuple, line_args: tuple, tail: tuple) -> int:
-    """One implicit step (:func:`.integrator.alpha_step`): its Newton iterations, or
+    """One implicit step (:func:`.alpha_step.alpha_step`): its Newton iterations, or
     -1 - iterations when it failed."""
     its, ok = alpha_step(*head, *line_args, *tail)
     return its if ok else -1 - its

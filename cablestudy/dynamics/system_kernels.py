@@ -26,8 +26,8 @@ import math
 import numpy as np
 from numba import njit
 
+from .assembly import assemble
 from .excitation import _harmonics, _table
-from .model import assemble
 
 # ------------------------------------------------------------------ kinematics
 

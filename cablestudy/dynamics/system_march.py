@@ -20,8 +20,8 @@ import math
 import numpy as np
 from numba import njit
 
-from .integrator import MAX_LANDING_CLIPS, MAX_STATE_CHECKS, MIN_CLIP, STATE_CHECK_FACTOR
-from .model import _trial_states, contact_states, states_changed, update_anchors
+from .alpha_step import MAX_LANDING_CLIPS, MAX_STATE_CHECKS, MIN_CLIP, STATE_CHECK_FACTOR
+from .assembly import _trial_states, contact_states, states_changed, update_anchors
 from .system_kernels import assemble_line, coupled_solve, drives_at, point_forces
 
 #: :func:`system_march` return codes

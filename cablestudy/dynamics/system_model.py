@@ -15,8 +15,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .discrete_line import DiscreteLine
 from .excitation import TableMotion
-from .model import DiscreteLine
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..statics.base import STATUS_NUMERICAL, STATUS_OK, STATUS_TIME_LIMIT
-from .integrator import AlphaParameters
+from .alpha_step import AlphaParameters
 from .model import static_equilibrium
 from .system_kernels import assemble_line, point_forces
 from .system_march import BOUNDARY, FAILED, end_forces, set_drives, system_march, system_static

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .frequency import sum_components
+from .frequency_model import sum_components
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -68,7 +68,7 @@ class DiscreteSolver:
         return missing
 
     def solve(self, problem: StaticProblem, *, deadline: float | None = None) -> StaticResult:
-        from ..dynamics.model import (
+        from ..dynamics.discrete_line import (
             DynamicExtras,
             default_seabed_stiffness,
             discretise_nodes,
@@ -119,18 +119,14 @@ class DiscreteSolver:
 
 def _solve_discrete(problem, disc, x0, start, free, end_force, deadline):  # noqa: ANN001, ANN202
     """Newton from the cable solution at the nodes, then the node-level verification."""
+    from ..dynamics.assembly import Workspace, evaluate
     from ..dynamics.mixed import (
         geometry_rounding,
         is_finite_line,
         mixed_equilibrium,
         node_forces,
     )
-    from ..dynamics.model import (
-        Workspace,
-        _seated_start,
-        evaluate,
-        static_equilibrium,
-    )
+    from ..dynamics.model import _seated_start, static_equilibrium
 
     s = disc.s
     t_nodes = np.interp(s, start.s, start.tension)
@@ -294,8 +290,8 @@ def _force_tolerance(
     rounding of its direction (64 ulp of the coordinates' reach over the shortest
     element), and a seabed node's contact stiffness times the rounding of its height.
     Neither depends on EA."""
+    from ..dynamics.assembly import evaluate
     from ..dynamics.mixed import geometry_rounding, other_forces_line
-    from ..dynamics.model import evaluate
 
     # the external loads only: bending, like the tension, is internal to the line
     external = replace(other_forces_line(disc), bending=np.zeros_like(disc.bending))

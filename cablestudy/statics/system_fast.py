@@ -259,7 +259,7 @@ def pack(
     if np.any(keep):
         k = keep
         # each line's starting tension hanging free (batch._guess, as _solve_group)
-        from .batch import _guess
+        from .batch_kernels import _guess
 
         Nk = int(k.sum())
         args = np.empty((Nk, M, 11))  # d, L, Cend, EA_eff, point at A: one _guess call
@@ -432,7 +432,7 @@ def _final_lines(
     line is defined (A to B) into the ``out_*`` arrays (N, M, ...), and verified
     (:func:`.verify.check_lines`, with the seabed for the anchored ones). Returns per
     case and line (len(rows), len(ms)) whether the line is settled and verified."""
-    from .batch import _guess, solve_contact_arrays
+    from .batch_kernels import _guess, solve_contact_arrays
 
     R, nm = rows.size, ms.size
     cols = pk.poff[ms][:, None] + np.arange(p)  # (nm, p)

@@ -6,8 +6,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from cablestudy.dynamics.discrete_line import discretise
 from cablestudy.dynamics.mixed import mixed_equilibrium, node_forces
-from cablestudy.dynamics.model import discretise
 from cablestudy.statics.base import EndCondition, Medium, StaticProblem
 from cablestudy.statics.discrete import verify_nodes
 

@@ -9,8 +9,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from cablestudy.dynamics.discrete_line import discretise
 from cablestudy.dynamics.mixed import mixed_equilibrium
-from cablestudy.dynamics.model import discretise
 from cablestudy.statics.base import EndCondition, LineModel, Medium, StaticProblem
 from cablestudy.statics.discrete import DiscreteSolver
 

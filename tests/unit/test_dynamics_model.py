@@ -5,14 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from cablestudy.dynamics.assembly import evaluate, solve_banded
+from cablestudy.dynamics.discrete_line import discretise, element_counts
 from cablestudy.dynamics.excitation import EndMotion, TableMotion
-from cablestudy.dynamics.model import (
-    discretise,
-    element_counts,
-    evaluate,
-    solve_banded,
-    static_equilibrium,
-)
+from cablestudy.dynamics.model import static_equilibrium
 from cablestudy.physics.hydro import drag_per_length
 from cablestudy.statics.base import LineModel, Medium
 

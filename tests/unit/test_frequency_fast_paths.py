@@ -20,8 +20,8 @@ from cablestudy.analyses.common import _LAST_CHECKED, non_finite_cases, non_fini
 from cablestudy.analyses.frequency import _LINEAR_CACHE, linearised
 from cablestudy.analyses.static import _STATIC_CACHE, solve_static
 from cablestudy.analyses.variables import OUTPUTS
-from cablestudy.dynamics import harmonic_cases
-from cablestudy.dynamics.frequency import ReducedLine, selected_rows, sum_components
+from cablestudy.dynamics.frequency_model import ReducedLine, selected_rows, sum_components
+from cablestudy.dynamics.harmonic_cases import _transposed, in_plane
 from cablestudy.dynamics.linear_model import held_ends_basis
 from cablestudy.dynamics.modal import _block_matrix, _free_basis
 from cablestudy.study.cases import expand_cases
@@ -156,15 +156,15 @@ def test_coordinate_basis_projection_and_x_z_system_are_scipys() -> None:
         assert selected_rows(red.line.free_basis) is not None  # the short cut applies
         assert _same_reduced(red, _general(red.line))
     # the x-z system: its basis is scipy's column slicing, its bands scipy's products
-    plane = harmonic_cases.in_plane(planar)
+    plane = in_plane(planar)
     assert plane is not planar
     B = sp.csc_matrix(planar.line.free_basis)
     y = np.asarray(abs(B[1::3]).sum(axis=0)).ravel() > 0.0
     assert _same_csr(plane.line.free_basis, B[:, ~y].tocsr())
     assert _same_reduced(plane, _general(plane.line))
-    assert harmonic_cases.in_plane(across) is across  # the current couples y
+    assert in_plane(across) is across  # the current couples y
     # the transposed basis of the kernel is scipy's
-    ptr, idx, val = harmonic_cases._transposed(plane.line.free_basis)
+    ptr, idx, val = _transposed(plane.line.free_basis)
     BT = plane.line.free_basis.T.tocsr()
     assert np.array_equal(ptr, BT.indptr) and np.array_equal(idx, BT.indices)
     assert _same(val, BT.data)

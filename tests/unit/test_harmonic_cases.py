@@ -31,12 +31,12 @@ from cablestudy.analyses.frequency import (
     solve_frequency_cases,
 )
 from cablestudy.analyses.static import _STATIC_CACHE, solve_static
-from cablestudy.dynamics.frequency import (
+from cablestudy.dynamics.frequency import solve_harmonic
+from cablestudy.dynamics.frequency_model import (
     ReducedLine,
     block_diagonal,
     drag_linearisation,
     drag_tangent,
-    solve_harmonic,
 )
 from cablestudy.dynamics.harmonic_cases import in_plane, solve_harmonic_cases
 from cablestudy.dynamics.validity import measures, measures_cases

@@ -26,25 +26,6 @@ ABOVE_ANALYSES = ("cablestudy.run", "cablestudy.cli")
 
 MAX_LINES = 800
 
-#: circles still inside the packages other branches are editing while this layout lands
-#: (the systems dynamics, the system statics): split pending the systems-dynamics merge.
-#: Each entry is one strongly connected set of modules; the test fails when one of them
-#: is gone (remove it here) or when any other circle appears.
-PENDING_CIRCLES = {
-    frozenset({"cablestudy.dynamics.model", "cablestudy.dynamics.mixed"}),
-    frozenset({"cablestudy.dynamics.frequency", "cablestudy.dynamics.harmonic_cases"}),
-    frozenset({"cablestudy.dynamics.timedomain", "cablestudy.dynamics.pulley_timedomain"}),
-    frozenset({"cablestudy.statics.system", "cablestudy.statics.free_bodies"}),
-}
-#: modules over MAX_LINES for the same reason (split pending the systems-dynamics merge)
-PENDING_LONG = {
-    "cablestudy.dynamics.model",
-    "cablestudy.dynamics.integrator",
-    "cablestudy.dynamics.timedomain",
-    "cablestudy.dynamics.frequency",
-    "cablestudy.dynamics.harmonic_cases",
-}
-
 
 def _modules() -> dict[str, tuple[Path, bool]]:
     """Module name -> (file, whether it is a package's ``__init__``)."""
@@ -220,13 +201,9 @@ def test_the_graph_sees_every_kind_of_import() -> None:
 
 
 def test_no_import_circles() -> None:
-    """No module imports, directly or through others, a module that imports it (only the
-    pending circles listed above, each still present, so that the list shrinks)."""
+    """No module imports, directly or through others, a module that imports it."""
     found = _circles(GRAPH)
-    unexpected = [cycle for members, cycle in found if members not in PENDING_CIRCLES]
-    assert not unexpected, "import circles:\n" + "\n".join(_shown(GRAPH, c) for c in unexpected)
-    gone = PENDING_CIRCLES - {members for members, _ in found}
-    assert not gone, f"these circles are broken now; remove them from PENDING_CIRCLES: {gone}"
+    assert not found, "import circles:\n" + "\n".join(_shown(GRAPH, c) for _, c in found)
 
 
 def test_the_core_never_imports_the_layers_above_it() -> None:
@@ -247,11 +224,7 @@ def test_the_core_never_imports_the_layers_above_it() -> None:
 
 
 def test_no_module_over_800_lines() -> None:
-    """No module over :data:`MAX_LINES` lines (only the pending ones listed above, each
-    still over, so that the list shrinks)."""
+    """No module over :data:`MAX_LINES` lines."""
     lines = {name: len(path.read_text().splitlines()) for name, (path, _) in MODULES.items()}
-    long = {name for name, n in lines.items() if n > MAX_LINES}
-    unexpected = sorted(long - PENDING_LONG)
-    assert not unexpected, "over 800 lines: " + ", ".join(f"{m} ({lines[m]})" for m in unexpected)
-    shorter = sorted(PENDING_LONG - long)
-    assert not shorter, f"now at most {MAX_LINES} lines; remove from PENDING_LONG: {shorter}"
+    long = sorted(name for name, n in lines.items() if n > MAX_LINES)
+    assert not long, "over 800 lines: " + ", ".join(f"{m} ({lines[m]})" for m in long)

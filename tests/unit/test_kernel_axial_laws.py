@@ -7,7 +7,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from cablestudy.dynamics.model import axial_law, discretise, evaluate, law_arrays
+from cablestudy.dynamics.assembly import axial_law, evaluate
+from cablestudy.dynamics.discrete_line import discretise, law_arrays
 from cablestudy.physics.axial import LinearLaw, PolynomialLaw, SteelWireLaw, TableLaw
 from cablestudy.statics.base import LineModel, Medium
 

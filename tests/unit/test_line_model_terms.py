@@ -7,14 +7,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from cablestudy.dynamics.assembly import Workspace, evaluate, update_anchors
+from cablestudy.dynamics.discrete_line import DynamicExtras, discretise
 from cablestudy.dynamics.modal import _block_matrix
-from cablestudy.dynamics.model import (
-    DynamicExtras,
-    Workspace,
-    discretise,
-    evaluate,
-    update_anchors,
-)
 from cablestudy.statics.base import LineModel, Medium
 
 G = 9.80665

@@ -239,7 +239,7 @@ def _free_spar(applied_x: float):  # type: ignore[no-untyped-def]
 
 
 def test_free_body_is_in_equilibrium_and_responds_through_its_stiffness() -> None:
-    from cablestudy.statics.free_bodies import body_loads
+    from cablestudy.statics.system import body_loads
 
     rest = solve_system(_free_spar(0.0), SOLVER)
     assert rest.status == 0, rest.message

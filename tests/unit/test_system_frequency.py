@@ -361,7 +361,7 @@ def test_seabed_spread_low_frequency_is_the_static_body_stiffness() -> None:
 def test_unconverged_drag_iteration_is_a_recorded_failure() -> None:
     """A drag iteration stopped before it converges is status 7 with the reason, and
     NaN outputs: never a number that was not verified."""
-    from cablestudy.dynamics.frequency import STATUS_NOT_CONVERGED, DragSettings
+    from cablestudy.dynamics.frequency_model import STATUS_NOT_CONVERGED, DragSettings
 
     _, model, _ = _series(1, added_mass=1.0, drag=1.2)
     out = solve_system_harmonic(

@@ -12,8 +12,9 @@ import yaml
 
 from cablestudy.analyses.static import solve_static
 from cablestudy.analyses.time import dynamic_problem
-from cablestudy.dynamics.model import DiscreteLine
-from cablestudy.dynamics.timedomain import DynamicResult, simulate
+from cablestudy.dynamics.discrete_line import DiscreteLine
+from cablestudy.dynamics.time_problem import DynamicResult
+from cablestudy.dynamics.timedomain import simulate
 from cablestudy.study.cases import expand_cases
 from cablestudy.study.loader import parse_study_text
 

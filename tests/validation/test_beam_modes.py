@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 import yaml
 
+from cablestudy.dynamics.discrete_line import DynamicExtras
 from cablestudy.dynamics.modal import ModalProblem, modal_analysis
-from cablestudy.dynamics.model import DynamicExtras
 from cablestudy.statics.base import EndCondition, Medium, StaticResult
 
 from ..line_models import one_segment

@@ -34,7 +34,8 @@ import yaml
 from cablestudy.analyses.static import solve_static
 from cablestudy.analyses.time import dynamic_problem
 from cablestudy.cli import main
-from cablestudy.dynamics.timedomain import DynamicProblem, DynamicResult, simulate
+from cablestudy.dynamics.time_problem import DynamicProblem, DynamicResult
+from cablestudy.dynamics.timedomain import simulate
 from cablestudy.study.cases import expand_cases
 from cablestudy.study.environment import FLUID_DENSITY
 from cablestudy.study.loader import parse_study_text

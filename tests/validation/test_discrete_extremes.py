@@ -87,7 +87,7 @@ def test_dynamic_start_of_a_chain_on_the_seabed_at_10_m_elements() -> None:
     import yaml
 
     from cablestudy.analyses.line_model import discrete_statics
-    from cablestudy.dynamics.model import evaluate
+    from cablestudy.dynamics.assembly import evaluate
     from cablestudy.statics import STATIC_SOLVERS
     from cablestudy.study.cases import expand_cases
     from cablestudy.study.loader import parse_study_text

@@ -14,7 +14,9 @@ import xarray as xr
 import yaml
 
 from cablestudy.cli import main
-from cablestudy.dynamics.model import DynamicExtras, discretise, evaluate, static_equilibrium
+from cablestudy.dynamics.assembly import evaluate
+from cablestudy.dynamics.discrete_line import DynamicExtras, discretise
+from cablestudy.dynamics.model import static_equilibrium
 from cablestudy.statics.base import Medium
 
 from ..line_models import one_segment

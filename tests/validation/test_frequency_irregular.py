@@ -22,7 +22,8 @@ import math
 import numpy as np
 import scipy.sparse as sp
 
-from cablestudy.dynamics.frequency import LinearLine, drag_stochastic, drag_tangent
+from cablestudy.dynamics.frequency import drag_stochastic
+from cablestudy.dynamics.frequency_model import LinearLine, drag_tangent
 
 from .frequency_helpers import LENGTH, SPAN, evaluate
 
