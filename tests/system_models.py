@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from cablestudy.statics import EndCondition, Medium, StaticProblem
-from cablestudy.statics.system import BODY, FIXED, FREE, MooringSystem, SystemLine
+from cablestudy.statics.system_model import BODY, FIXED, FREE, MooringSystem, SystemLine
 from tests.line_models import one_segment
 
 RHO, G = 1025.0, 9.81

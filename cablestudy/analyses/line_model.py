@@ -244,3 +244,29 @@ def catenary_winch(winch: Any) -> dict[str, float]:
         "winch_start": float(winch.start),
         "winch_stop": math.inf if winch.stop is None else float(winch.stop),
     }
+
+
+def system_line_extras(study: Any, name: str, lm: Any) -> Any:
+    """The dynamic-only properties of line ``name`` (as a one-line study's: transverse
+    damping, attachment added mass and drag, the seabed contact; pinned ends)."""
+    from ..dynamics.discrete_line import DynamicExtras, default_seabed_stiffness
+
+    line = study.lines[name]
+    env = study.environment
+    sb = env.seabed
+    stiffness = 0.0
+    if env.depth is not None:
+        stiffness = sb.stiffness if sb.stiffness is not None else default_seabed_stiffness(lm)
+    atts = line.attachments
+    return DynamicExtras(
+        transverse_damping=np.array([seg.damping_transverse for seg in line.segments]),
+        attachment_added_mass=np.array([a.added_mass for a in atts], dtype=float),
+        attachment_drag_area=np.array([a.drag_area for a in atts], dtype=float),
+        end_force=np.zeros((2, 3)),
+        free_end=(False, False),
+        clamp_direction=np.zeros((2, 3)),
+        seabed_stiffness=float(stiffness),
+        seabed_damping_ratio=float(sb.damping_ratio),
+        friction_axial=float(sb.friction),
+        friction_lateral=float(sb.friction if sb.friction_lateral is None else sb.friction_lateral),
+    )

@@ -16,8 +16,8 @@ from typing import Any
 import numpy as np
 
 from ..statics import STATIC_SOLVERS, STATUS_NUMERICAL, STATUS_OK, EndCondition, StaticProblem
-from ..statics.system import BODY, FIXED, FREE, MooringSystem, SystemLine
 from ..statics.system_methods import solve_system_by
+from ..statics.system_model import BODY, FIXED, FREE, MooringSystem, SystemLine
 from ..study import Study
 from ..study.cases import Case
 from ..study.problem import line_model, medium

@@ -23,6 +23,7 @@ from ..study.cases import Case
 from ..study.system import BodyPoint, FreePoint
 from ..study.system_dynamics import BODY_DOFS, BodyHarmonic, BodyTable, PointHarmonic
 from .counters import COUNTERS, trim_lru
+from .line_model import system_line_extras
 
 #: why method auto runs the time domain for a system
 AUTO_REASON = (
@@ -48,32 +49,6 @@ def system_statics(case: Case, system: Any, solve: Any) -> Any:
     return res
 
 
-def _line_extras(study: Any, name: str, lm: Any) -> Any:
-    """The dynamic-only properties of line ``name`` (as a one-line study's: transverse
-    damping, attachment added mass and drag, the seabed contact; pinned ends)."""
-    from ..dynamics.discrete_line import DynamicExtras, default_seabed_stiffness
-
-    line = study.lines[name]
-    env = study.environment
-    sb = env.seabed
-    stiffness = 0.0
-    if env.depth is not None:
-        stiffness = sb.stiffness if sb.stiffness is not None else default_seabed_stiffness(lm)
-    atts = line.attachments
-    return DynamicExtras(
-        transverse_damping=np.array([seg.damping_transverse for seg in line.segments]),
-        attachment_added_mass=np.array([a.added_mass for a in atts], dtype=float),
-        attachment_drag_area=np.array([a.drag_area for a in atts], dtype=float),
-        end_force=np.zeros((2, 3)),
-        free_end=(False, False),
-        clamp_direction=np.zeros((2, 3)),
-        seabed_stiffness=float(stiffness),
-        seabed_damping_ratio=float(sb.damping_ratio),
-        friction_axial=float(sb.friction),
-        friction_lateral=float(sb.friction if sb.friction_lateral is None else sb.friction_lateral),
-    )
-
-
 def system_model_dynamic(case: Case, system: Any, static: Any) -> tuple[Any, ...] | str:
     """The packed time-domain model of the case's system at its discrete static
     equilibrium, cached per static problem and element count: (packed, positions,
@@ -82,7 +57,8 @@ def system_model_dynamic(case: Case, system: Any, static: Any) -> tuple[Any, ...
     from ..dynamics.discrete_line import discretise_nodes, uniform_nodes
     from ..dynamics.system_model import FreePoints, pack
     from ..dynamics.system_timedomain import equilibrium
-    from ..statics.system import FREE, rotation
+    from ..statics.system import rotation
+    from ..statics.system_model import FREE
     from .line_model import roundoff_force
 
     dyn = case.study.analysis.dynamic
@@ -100,7 +76,7 @@ def system_model_dynamic(case: Case, system: Any, static: Any) -> tuple[Any, ...
         res = static.lines[k]
         s_nodes = uniform_nodes(lm, dyn.elements)
         start = np.stack([np.interp(s_nodes, res.s, res.position[:, c]) for c in range(3)], 1)
-        line = discretise_nodes(lm, med, s_nodes, _line_extras(study, names[k], lm))
+        line = discretise_nodes(lm, med, s_nodes, system_line_extras(study, names[k], lm))
         scale = float(np.nanmax(res.tension))
         if line.has_seabed:
             scale = max(scale, float(np.max(np.abs(line.force))))

@@ -36,7 +36,7 @@ def system_frequency_model(case: Case, system: Any, static: Any) -> Any:
     """The case's linearised system (cached per static problem and element count), or
     why it cannot be built (a string)."""
     from ..dynamics.system_frequency import system_linear
-    from .system_dynamic import _line_extras
+    from .line_model import system_line_extras
 
     study = case.study
     dyn = study.analysis.dynamic
@@ -59,7 +59,7 @@ def system_frequency_model(case: Case, system: Any, static: Any) -> Any:
             [0.5 * rho * p.drag_area if f else 0.0 for p, f in zip(points, free, strict=True)]
         ),
         extras=[
-            _line_extras(study, name, sl.problem.line)
+            system_line_extras(study, name, sl.problem.line)
             for name, sl in zip(study.lines, system.lines, strict=True)
         ],
         nodes=dyn.elements + 1,

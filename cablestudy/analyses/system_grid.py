@@ -38,7 +38,7 @@ from typing import Any
 
 import numpy as np
 
-from ..statics.system import FREE
+from ..statics.system_model import FREE
 from ..study.cases import _copy_tree, _hash, _set_path, code_fingerprint, parse_sweep
 from ..study.grid import CaseGrid, _numeric, grid_shape
 from ..study.loader import StudySource
@@ -245,8 +245,8 @@ def _case_inputs(grid: SystemGrid, lo: int, hi: int) -> tuple[np.ndarray, ...]:
 def evaluate_system_chunk(grid: SystemGrid, lo: int, hi: int) -> GridChunk:
     """Solve rows ``lo:hi`` of a system grid and stack the outputs (see the module
     docstring). Never raises: a fault fails the chunk's cases with its text."""
-    from ..statics.system import BODY
     from ..statics.system_fast import pack, point_positions_many, solve_packed
+    from ..statics.system_model import BODY
     from .plausibility import fallback_warning
 
     t0 = time.perf_counter()
@@ -360,7 +360,7 @@ def _strain_warnings(grid: SystemGrid, out: dict[str, np.ndarray], status: np.nd
 def _empty_outputs(system: Any, n: int) -> dict[str, np.ndarray]:
     """The output arrays of ``n`` cases (NaN), as :func:`system_cases.system_outputs`
     names and shapes them per case."""
-    from ..statics.system import FREE
+    from ..statics.system_model import FREE
 
     M = len(system.lines)
     nn = system.lines[0].problem.n_nodes
@@ -394,7 +394,7 @@ def _empty_outputs(system: Any, n: int) -> dict[str, np.ndarray]:
 
 def _put(out: dict[str, np.ndarray], rows: np.ndarray, sol: Any, system: Any) -> None:
     """The compiled path's solutions ``sol`` into rows ``rows`` of ``out``."""
-    from ..statics.system import FREE
+    from ..statics.system_model import FREE
 
     out["tension_a"][rows] = np.linalg.norm(sol.force_a, axis=2)
     out["tension_b"][rows] = np.linalg.norm(sol.force_b, axis=2)

@@ -76,7 +76,7 @@ from scipy.linalg import solve_banded
 
 from ..physics.current import current_velocity
 from ..statics.base import STATUS_NUMERICAL, STATUS_OK, EndCondition, StaticProblem, StaticResult
-from ..statics.system import BODY, FREE, MooringSystem, SystemResult
+from ..statics.system_model import BODY, FREE, MooringSystem, SystemResult
 from .frequency_model import (
     FIT_REGULARISATION,
     STATUS_NOT_CONVERGED,

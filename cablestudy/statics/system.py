@@ -33,7 +33,7 @@ where [v]x is the cross-product matrix; the last term is the moment arm's rotati
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -51,100 +51,15 @@ from .law_pieces import piece_increments
 from .line_state import CatenaryState, DiscreteState, discrete_end_stiffness
 from .seabed import Plane
 from .semi_analytic_shape import _laid, _offsets, _suspended, make_layout, reversed_line
-
-FIXED, FREE, BODY = 0, 1, 2
-DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
-
-
-@dataclass(frozen=True, kw_only=True)
-class SystemLine:
-    """A line between points ``a`` and ``b`` (indices into the system's points);
-    ``problem``'s end conditions are replaced by the points' positions."""
-
-    name: str
-    problem: StaticProblem
-    a: int
-    b: int
-
-
-@dataclass(frozen=True, kw_only=True)
-class MooringSystem:
-    """Points, prescribed bodies and lines.
-
-    Parameters
-    ----------
-    point_names : names of the points, (n,)
-    point_kind : (n,) int, FIXED, FREE or BODY
-    point_position : [m] (n, 3): position (fixed), starting guess (free), or offset from
-        the body's reference point in the body frame (body)
-    point_body : (n,) int, body index of BODY points (-1 otherwise)
-    point_force : [N] (n, 3) constant net force on free points (weight, buoyancy, force)
-    body_names : (m,)
-    body_position : [m, rad] (m, 6) surge, sway, heave, roll, pitch, yaw
-    lines : the lines
-    tolerance : [-] free-point equilibrium: largest net force / force scale
-    max_iterations : Newton iterations on the free points
-    """
-
-    point_names: tuple[str, ...]
-    point_kind: np.ndarray
-    point_position: np.ndarray
-    point_body: np.ndarray
-    point_force: np.ndarray
-    body_names: tuple[str, ...] = ()
-    body_position: np.ndarray = field(default_factory=lambda: np.zeros((0, 6)))
-    lines: tuple[SystemLine, ...] = ()
-    tolerance: float = 1e-9
-    max_iterations: int = 100
-    #: (m,) True where the body is free: its ``body_position`` is then the starting guess
-    #: of its equilibrium under the lines, its weight, buoyancy and applied force
-    body_free: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=bool))
-    #: [N] (m,) weight m g, acting down at ``body_cog``; buoyancy rho V g, up at ``body_cob``
-    body_weight: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    body_buoyancy: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    #: [m] (m, 3) centres of gravity and buoyancy in the body frame
-    body_cog: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
-    body_cob: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
-    #: [N] (m, 3) constant force at the reference point
-    body_applied: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
-    #: [kg/m] (n,) 1/2 rho C_D A of the free points: drag in the lines' current
-    #: (:func:`.system_methods.point_drag`); empty: none
-    point_drag: np.ndarray = field(default_factory=lambda: np.zeros(0))
-
-
-@dataclass(kw_only=True)
-class SystemResult:
-    """Static state of a system. ``lines``: each line's result (positions, tensions, end
-    forces on the attachments); ``point_position`` [m] (n, 3) of every point;
-    ``body_force`` [N, N m] (m, 6) of the lines on each body about its reference point;
-    ``body_stiffness`` (m, 6, 6) = -d body_force / d body_position, free points
-    re-equilibrated."""
-
-    lines: list[StaticResult]
-    point_position: np.ndarray
-    body_force: np.ndarray
-    body_stiffness: np.ndarray
-    status: int = STATUS_OK
-    message: str = ""
-    iterations: int = 0
-    residual: float = 0.0
-    #: [m, rad] (m, 6) the bodies' positions (free bodies: in equilibrium)
-    body_position: np.ndarray | None = None
-    #: why the compiled system Newton (:mod:`.system_fast`) left the system to this
-    #: general path ('' if it solved it, or was not asked: a method other than catenary)
-    fallback: str = ""
-
-
-class SystemFailure(Exception):
-    """A numerical failure of a system solve (becomes status and message)."""
-
-    def __init__(self, status: int, message: str) -> None:
-        super().__init__(message)
-        self.status = status
-        self.message = message
-
-
-# --------------------------------------------------------------------------- rotation
+from .system_model import (
+    BODY,
+    FIXED,
+    FREE,
+    MooringSystem,
+    SystemFailure,
+    SystemResult,
+    point_drag,
+)
 
 
 def _axis_rotations(angles: np.ndarray) -> tuple[np.ndarray, ...]:
@@ -300,8 +215,6 @@ def _solve_lines(
     force = np.zeros((n, 3))
     K = np.zeros((3 * n, 3 * n))
     results = []
-    from .system_methods import point_drag
-
     problems = [
         replace(
             ln.problem,

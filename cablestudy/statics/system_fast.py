@@ -28,7 +28,7 @@ import numpy as np
 from . import _fast
 from .seabed import Plane
 from .semi_analytic import make_layout, reversed_line
-from .system import BODY, FIXED, FREE, MooringSystem
+from .system_model import BODY, FIXED, FREE, MooringSystem
 from .verify import MULTIPLE, Pieces, check_lines
 
 #: why a case the compiled system Newton tried went to the general path
@@ -600,7 +600,7 @@ def solve_fast(system: MooringSystem, *, prescribed: bool = False) -> tuple[obje
     (None, why the general path must solve it). ``prescribed``: free bodies taken where
     ``system`` puts them (see :func:`ineligible`)."""
     from .base import StaticResult
-    from .system import SystemResult
+    from .system_model import SystemResult
 
     why = ineligible(system, prescribed=prescribed)
     if why:

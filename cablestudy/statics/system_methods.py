@@ -21,7 +21,8 @@ from typing import Any
 import numpy as np
 
 from .base import STATUS_OK
-from .system import FREE, MooringSystem, SystemResult, solve_system
+from .system import solve_system
+from .system_model import FREE, MooringSystem, SystemResult
 
 
 def as_cables(system: MooringSystem) -> MooringSystem:
@@ -62,34 +63,3 @@ def solve_system_by(
             poses = np.where(system.body_free[:, None], start.body_position, system.body_position)
             system = replace(system, body_position=poses)
     return solve_system(system, solver, deadline=deadline)
-
-
-def point_drag(system: MooringSystem, pos: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
-    """Current drag on the free points at positions ``pos`` [m] (n, 3): the force
-    ``c |U| U`` [N] (n, 3) with ``c = 1/2 rho C_D A`` [kg/m] (``system.point_drag``) and U
-    the current at the point's height, and its stiffness ``-d f / d r`` (3n, 3n), exact:
-    the force changes with the point's height only, through the profile's slope U'(z)
-    (piecewise linear: the slope of the piece the point is in, 0 beyond the profile's
-    ends), ``d f / d z = c (|U| I + U U^T / |U|) U'``. None when no point has drag."""
-    c = np.asarray(system.point_drag, dtype=float)
-    if c.size == 0 or not np.any(c > 0.0) or not system.lines:
-        return None
-    medium = system.lines[0].problem.medium
-    pz, pv = medium.current_z, medium.current_velocity
-    n = len(pos)
-    force = np.zeros((n, 3))
-    K = np.zeros((3 * n, 3 * n))
-    if pz.size == 0:
-        return force, K
-    for i in np.flatnonzero(c > 0.0):
-        z = float(pos[i, 2])
-        U = np.array([np.interp(z, pz, pv[:, k]) for k in range(3)])
-        speed = float(np.linalg.norm(U))
-        force[i] = c[i] * speed * U
-        k = int(np.searchsorted(pz, z, side="right")) - 1
-        if speed == 0.0 or k < 0 or k >= pz.size - 1:
-            continue  # beyond the profile's ends the current is constant
-        slope = (pv[k + 1] - pv[k]) / (pz[k + 1] - pz[k])
-        dfdz = c[i] * (speed * np.eye(3) + np.outer(U, U) / speed) @ slope
-        K[3 * i : 3 * i + 3, 3 * i + 2] -= dfdz
-    return force, K

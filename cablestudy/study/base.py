@@ -55,3 +55,11 @@ NonNegative = Annotated[float, Field(ge=0.0, allow_inf_nan=True), BeforeValidato
 Vec3 = Annotated[list[Finite], Field(min_length=3, max_length=3)]
 #: A 2-vector of finite numbers.
 Vec2 = Annotated[list[Finite], Field(min_length=2, max_length=2)]
+
+
+def unit_direction(value: list[float]) -> list[float]:
+    """A direction vector must not be zero (it is normalised where used)."""
+    norm = math.sqrt(sum(v * v for v in value))
+    if norm == 0.0:
+        raise ValueError("must be a nonzero vector; allowed: any direction of length > 0")
+    return value

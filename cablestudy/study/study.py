@@ -14,7 +14,7 @@ from .ends import Ends, FixedEnd, MooringEnd
 from .environment import Environment
 from .line import Line, MoorDynLineRef
 from .system import BodyPoint, FixedPoint, FreePoint, SystemBody, SystemLine, SystemPoint
-from .system_dynamics import check_one_line_excitation, check_system_dynamics
+from .system_checks import check_one_line_excitation, check_system_dynamics
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.\-]*$")
 

@@ -14,6 +14,8 @@ import numpy as np
 import pytest
 
 from cablestudy.analyses import evaluate as analyses
+from cablestudy.analyses import line_model
+from cablestudy.analyses import static as static_analysis
 from cablestudy.analyses.variables import CaseRecord
 from cablestudy.study.cases import expand_cases
 from cablestudy.study.loader import parse_study_text
@@ -73,8 +75,8 @@ KINDS = {
 
 
 def _fresh(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(analyses, "_STATIC_CACHE", OrderedDict())
-    monkeypatch.setattr(analyses, "_DISCRETE_CACHE", OrderedDict())
+    monkeypatch.setattr(static_analysis, "_STATIC_CACHE", OrderedDict())
+    monkeypatch.setattr(line_model, "_DISCRETE_CACHE", OrderedDict())
 
 
 def _same(a: CaseRecord, b: CaseRecord) -> None:

@@ -12,14 +12,12 @@ import numpy as np
 
 from cablestudy.statics import STATIC_SOLVERS, EndCondition
 from cablestudy.statics.system import (
-    BODY,
-    FIXED,
-    FREE,
     line_end_stiffness,
     rotation,
     rotation_derivatives,
     solve_system,
 )
+from cablestudy.statics.system_model import BODY, FIXED, FREE
 from tests.system_models import (
     CASE8_LINES,
     CASE8_POINTS,

@@ -36,7 +36,8 @@ from cablestudy.dynamics.system_frequency import (
     system_linear,
 )
 from cablestudy.statics import STATIC_SOLVERS, EndCondition
-from cablestudy.statics.system import BODY, FIXED, FREE, MooringSystem, SystemLine, solve_system
+from cablestudy.statics.system import solve_system
+from cablestudy.statics.system_model import BODY, FIXED, FREE, MooringSystem, SystemLine
 from tests.system_models import CASE8_LINES, CASE8_POINTS, polyester, system_of
 
 SOLVER = STATIC_SOLVERS["catenary"]
