@@ -1,4 +1,4 @@
-"""Method ``discrete``: a status-0 answer never depends on the machine's load.
+"""A status-0 answer never depends on the machine's load (methods ``discrete`` and ``catenary``).
 
 When the mixed Newton fails, the solver falls back to Newton on positions and then
 polishes with the mixed form under the caller's deadline. A polish stopped by the
@@ -71,3 +71,36 @@ def test_polish_stopped_by_the_deadline_is_a_time_limit(monkeypatch: pytest.Monk
     assert loaded.status == STATUS_TIME_LIMIT, (loaded.status, loaded.message)
     assert "time limit" in loaded.message
     assert np.all(np.isnan(loaded.force_a))
+
+
+def test_catenary_time_limit_is_not_a_switch_to_the_contact_path(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """Method ``catenary``, a line anchored on a sloping seabed: when the free-hanging
+    solve runs out of time, the answer is the time limit, not the seabed-contact path
+    tried instead (which would answer only on a loaded machine)."""
+    from cablestudy.statics import semi_analytic
+    from cablestudy.statics.semi_analytic_shape import _Failure
+
+    line = make_line([120.0], [50.0], 1e8)
+    slope = 0.05
+    prob = StaticProblem(
+        line=line,
+        medium=Medium(density=1025.0, gravity=9.80665, depth=100.0, seabed_slope=slope),
+        end_a=fixed(0.0, 0.0, -100.0),
+        end_b=fixed(100.0, 0.0, -100.0 + 100.0 * np.tan(slope) + 40.0),
+        n_nodes=21,
+        tolerance=1e-9,
+    )
+    idle = STATIC_SOLVERS["catenary"].solve(prob, compiled=False)  # the general path
+    assert idle.status == STATUS_OK, idle.message
+
+    def out_of_time(*args, **kwargs):  # noqa: ANN002, ANN003, ANN202
+        raise _Failure(STATUS_TIME_LIMIT, "time limit reached in the test's free solve")
+
+    monkeypatch.setattr(semi_analytic, "solve_free", out_of_time)
+    loaded = STATIC_SOLVERS["catenary"].solve(
+        prob, deadline=time.monotonic() + 60.0, compiled=False
+    )
+    assert loaded.status == STATUS_TIME_LIMIT, (loaded.status, loaded.message)
+    assert "time limit" in loaded.message
