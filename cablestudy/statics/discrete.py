@@ -154,6 +154,7 @@ def _solve_discrete(problem, disc, x0, start, free, end_force, deadline):  # noq
         x, t_el, its, ok = sol.position, sol.tension, sol.iterations, sol.converged
         anchor = sol.anchor
         res = sol.force_residual
+        timed_out = sol.timed_out
         if not ok and not sol.timed_out:
             # Newton on positions alone, which the mixed form's start can miss (a beam
             # whose bending carries its weight between supports its own length apart);
@@ -187,9 +188,14 @@ def _solve_discrete(problem, disc, x0, start, free, end_force, deadline):  # noq
                 if polish.converged:
                     x, t_el, anchor = polish.position, polish.tension, polish.anchor
                     res = polish.force_residual
+                elif polish.timed_out:
+                    # not the unpolished answer at the rounding tolerance: which answer
+                    # comes back must not depend on the machine's load (a deadline is a
+                    # status, never a fallback)
+                    timed_out = True
                 else:
                     tol, floor = max(tol, rounding), max(floor, rounding)
-        if sol.timed_out:
+        if timed_out:
             return StaticResult.failed(
                 s,
                 STATUS_TIME_LIMIT,

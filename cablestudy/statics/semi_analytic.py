@@ -415,8 +415,10 @@ class SemiAnalyticSolver:
                     raise
                 shape = self._regularised(lay, q, ends, tol, maxit, deadline, polish, exc)
             free_ok = True
-        except _Failure:
-            if plane is None:
+        except _Failure as exc:
+            # a time limit is the answer's status, never a switch to the contact path
+            # (which path answered would depend on the machine's load)
+            if plane is None or exc.status == STATUS_TIME_LIMIT:
                 raise
             free_ok = False
             shape = None
