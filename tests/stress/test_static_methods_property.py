@@ -39,6 +39,7 @@ import numpy as np
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from cablestudy.dynamics.discrete_line import default_seabed_stiffness
 from cablestudy.statics import STATIC_SOLVERS, STATUS_OK, Medium, StaticProblem
 from cablestudy.statics.pieces import piece_integrals
 from cablestudy.statics.verify import check_one
@@ -110,6 +111,22 @@ def _allowed(prob: StaticProblem, cat, method: str) -> tuple[float, float]:  # n
             return math.inf, math.inf
         stretch = 1.0 + float(np.max(cat.tension)) / EA
         delta += stretch * (L * kh * kh / 24.0 + kh * h / 8.0)
+        if prob.medium.depth is not None and float(cat.laid_length or 0.0) > 0.0:
+            # on the seabed the discrete model differs from the catenary in two more
+            # ways, each bounded here: (1) its seabed is compliant, so laid nodes sink
+            # by the weight over the seabed stiffness, w / k; (2) an element across the
+            # touchdown cannot follow the kink from the laid to the hanging part: where
+            # the hanging part is shorter than an element its whole turn (the fairlead
+            # angle above the seabed, theta) happens inside one element, whose chord is
+            # short of the arc by h theta^2 / 8 (the same estimate as above, with the
+            # turn concentrated). And a laid line is held axially by its laid part, so
+            # its end stiffness is up to EA / L, not only the hanging part's.
+            k_seabed = float(default_seabed_stiffness(line))
+            delta += abs(w) / k_seabed
+            fb = np.asarray(cat.force_b, dtype=float)
+            theta = math.atan2(abs(fb[2]), max(float(np.hypot(fb[0], fb[1])), 1e-300))
+            delta += stretch * h * theta * theta / 8.0
+            stiffness = max(stiffness, EA / L)
     return 20.0 * tol * F + stiffness * delta, delta
 
 
