@@ -104,9 +104,7 @@ def test_line_shorter_than_the_limit_converges_on_the_slope() -> None:
     prob = problem(L)
     res = SemiAnalyticSolver().solve(prob)
     assert res.status == 0, res.message
-    n = np.array(
-        [-math.tan(SLOPE) * math.cos(HEADING), -math.tan(SLOPE) * math.sin(HEADING), 1.0]
-    )
+    n = np.array([-math.tan(SLOPE) * math.cos(HEADING), -math.tan(SLOPE) * math.sin(HEADING), 1.0])
     n /= np.linalg.norm(n)
     height = (res.position - np.array([0.0, 0.0, -100.0])) @ n
     assert np.all(height >= -1e-6 * L)  # never enters the seabed
