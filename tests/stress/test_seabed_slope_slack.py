@@ -99,7 +99,9 @@ def test_same_line_on_a_flat_seabed_converges() -> None:
 def test_line_shorter_than_the_limit_converges_on_the_slope() -> None:
     """0.3 m below the slack limit (margin > the 0.05 m the closed form leaves out; the
     solver's switch was measured within 0.03 m of it) the laid part keeps a positive
-    tension: converged, on the seabed, reaching B."""
+    tension: converged, on the seabed, reaching B. (The pipeline's whole-line force
+    balance flags this shape, status 11: the frictionless straight laid part does not
+    carry the weight's across-slope component; a separate, pre-existing gap.)"""
     L = longest_taut_length() - 0.3
     prob = problem(L)
     res = SemiAnalyticSolver().solve(prob)
