@@ -7,7 +7,10 @@ the seabed carries the normal part of its weight, and the tension changes along 
 laid part only by the component of the weight along it, w (e . z) per metre, and by the
 along-line part of point loads resting there. No friction acts on a laid part between
 two suspended parts: the usual convention (friction mobilised towards an anchor) has no
-anchor to point to here, so this is the frictionless equilibrium.
+anchor to point to here, so this is the frictionless equilibrium. On a slope the laid
+tension grows uphill, so a line longer than its taut shape with zero tension at the
+laid part's lower end has no straight laid part: the excess slides down and lies slack
+(refused as such, not as a non-convergence).
 
 Unknowns: the tension at s1 in the seabed plane (two components), s1 and s2. Equations:
 the touchdown point lies on the seabed, and the end B is reached (three components).
