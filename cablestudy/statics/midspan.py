@@ -7,7 +7,10 @@ the seabed carries the normal part of its weight, and the tension changes along 
 laid part only by the component of the weight along it, w (e . z) per metre, and by the
 along-line part of point loads resting there. No friction acts on a laid part between
 two suspended parts: the usual convention (friction mobilised towards an anchor) has no
-anchor to point to here, so this is the frictionless equilibrium.
+anchor to point to here, so this is the frictionless equilibrium. On a slope the laid
+tension grows uphill, so a line longer than its taut shape with zero tension at the
+laid part's lower end has no straight laid part: the excess slides down and lies slack
+(refused as such, not as a non-convergence).
 
 Unknowns: the tension at s1 in the seabed plane (two components), s1 and s2. Equations:
 the touchdown point lies on the seabed, and the end B is reached (three components).
@@ -130,6 +133,35 @@ def _evaluate(
         laws=laws,
     )
     return R, parts
+
+
+# A stalled Newton whose iterate has driven the laid part's lowest tension below this
+# fraction of the line's weight is at the slack limit, not near a solution: a laid part
+# with a determined shape carries a tension bounded away from zero (the regression
+# examples stall at 1e-68 to 1e-80 of the weight; a converging one never goes below it).
+SLID_SLACK_TENSION = 1e-6
+
+
+def _refuse_if_slid_slack(parts: dict, weight: float, it: int, res: float) -> None:
+    """On a sloping seabed the laid part's tension grows uphill by w (e . z) per metre,
+    so its lower end carries the least. If the line is longer than the taut shape with
+    zero tension there (the lower end hanging straight down, the upper one lifted off
+    with the tension the laid weight gives it), no straight laid part fits: the excess
+    slides down the slope and lies slack at its foot, with no determined shape. The
+    Newton then drives that lowest tension to zero and stalls with a finite residual:
+    say so, in place of a bare non-convergence."""
+    lowest = min(min(t, t + rate * length) for _, length, t, rate, _, _ in parts["laid"])
+    if lowest < SLID_SLACK_TENSION * weight:
+        raise _Failure(
+            STATUS_NO_SOLUTION,
+            f"the tension at the lower end of the part resting on the seabed between the "
+            f"ends falls to zero ({lowest:.3g} N) while B is still not reached (residual "
+            f"{res:.3g}): the line is longer than its taut shape over the sloping seabed, "
+            "the excess slides down the slope and lies slack there, so its laid shape is "
+            "not determined",
+            it,
+            res,
+        )
 
 
 def _shape(parts: dict, rA: np.ndarray) -> Shape:
@@ -256,6 +288,7 @@ def solve_midspan(
                 break
             polished = True
         if it >= max_iterations:
+            _refuse_if_slid_slack(parts, weight, it, res)
             raise _Failure(
                 STATUS_NOT_CONVERGED,
                 "seabed-contact (between the ends) Newton did "
@@ -297,6 +330,7 @@ def solve_midspan(
                 break
             lam *= 0.5
         else:
+            _refuse_if_slid_slack(parts, weight, it, res)
             tn = float(np.linalg.norm(y[:2]))
             if tn < 1e-2 * weight:
                 raise _Failure(
