@@ -184,9 +184,8 @@ def run_system_auto(
         med = sl.problem.medium
         if med.depth is not None:
             ground = med.seabed_z(line.position[:, 0], line.position[:, 1])
-            on_bed.append(
-                np.abs(line.position[:, 2] - ground) <= 1e-6 * max(float(line.s[-1]), 1.0)
-            )
+            # as system_linear finds the laid nodes
+            on_bed.append(line.position[:, 2] - ground <= 1e-6 * max(float(line.s[-1]), 1.0))
         else:
             on_bed.append(np.zeros(line.s.size, dtype=bool))
         lm = sl.problem.line

@@ -9,6 +9,19 @@ displacements, element and end tension amplitudes against its static tensions. T
 frequency domain is trusted only when every line passes; the line that decides is
 named: the first line that fails (with all of its failed checks), or when all pass
 the line nearest its limits (the largest share of a threshold used).
+
+One measure differs from the single line's: the geometric one takes the nodes'
+displacement relative to the motion of the line's chord, ``u(s) - (1 - s/L) u_A -
+(s/L) u_B`` (``L`` the unstretched length), over the sag. A single line is held at
+one end, where the two agree within the other end's motion; but in a system both ends
+of a line move (a bridle between a spar and a junction, a leg between an anchor and
+a junction), and the rigid translation and the axial stretch of a taut line change
+no shape: they carry none of the geometric terms the linearisation drops. Measured on
+MoorPy's case8 surged 0.1 m at 0.1 Hz (21 nodes a line): the total displacement over
+the sag is 3.1 to 3.3 on the bridles (sag 3 cm, both ends moving about 0.09 to 0.1 m
+together) and 0.42 on the legs, where the frequency domain agrees with the time
+domain within 2.1e-3 of the largest tension amplitude; relative to the chord, 0.012
+to 0.03. On MoorDyn's lines.txt (chains, anchored) both are 5e-3 at 0.2 m.
 """
 
 from __future__ import annotations
@@ -32,10 +45,14 @@ def system_measures(
     ``model`` a :class:`~.system_frequency.SystemLinear`, ``result`` its
     :class:`~.system_frequency.SystemFrequencyResult` (status 0); per line
     ``on_seabed`` (n_l,) bool, the nodes laid on the seabed in the static state, and
-    ``submerged_weight`` [N/m] (n_l,) at the nodes."""
+    ``submerged_weight`` [N/m] (n_l,) at the nodes. The geometric measure is on the
+    displacement relative to the chord's motion (module docstring)."""
     out = []
     for i, red in enumerate(model.lines):  # type: ignore[attr-defined]
         line = red.line
+        u = result.displacement[i]  # type: ignore[attr-defined]
+        xi = ((line.s - line.s[0]) / (line.s[-1] - line.s[0]))[:, None]
+        deformation = u - (1.0 - xi) * u[0] - xi * u[-1]
         bed = np.asarray(on_seabed[i], dtype=bool)
         laid = float(np.sum(line.rest_length[bed[:-1] & bed[1:]]))
         held = np.diff(line.free_basis.tocsr().indptr).reshape(-1, 3).sum(axis=1) == 0
@@ -43,7 +60,7 @@ def system_measures(
             measures(
                 s=line.s,
                 position=line.position,
-                displacement=result.displacement[i],  # type: ignore[attr-defined]
+                displacement=deformation,
                 element_tension_static=line.tension,
                 element_tension_amplitude=np.abs(result.element_tension[i]),  # type: ignore[attr-defined]
                 end_tension_static=result.tension_static[i],  # type: ignore[attr-defined]
