@@ -347,28 +347,45 @@ def point_motion(model: SystemLinear, body_motion: np.ndarray) -> np.ndarray:
 # ------------------------------------------------------------------------ solving
 
 
+def _dynamic_parts(
+    model: SystemLinear, omega: float
+) -> list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]:
+    """Per line the parts of its dynamic matrix without drag at ``omega``, shared by
+    the drag iterations of a case: the band of ``A_II`` and the blocks ``A_IE``,
+    ``A_EI``, ``A_EE``."""
+    w2, iw = omega**2, 1j * omega
+    out = []
+    for red, ec in zip(model.lines, model.couplings, strict=True):
+        blocks = tuple(ec.K[j] - w2 * ec.M[j] + iw * ec.C[j] for j in range(3))
+        out.append((red.K - w2 * red.M + iw * red.C, *blocks))
+    return out
+
+
 def _condense(
-    red: ReducedLine, ec: EndCoupling, omega: float, D: np.ndarray | None
+    red: ReducedLine,
+    parts: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
+    omega: float,
+    D: np.ndarray | None,
 ) -> tuple[np.ndarray, np.ndarray] | None:
     """Per line: ``X`` (k, 6), the inner response per unit end motion (``A_II X =
     -A_IE``, one band solve with six right sides), and ``S = A_EE + A_EI X`` (6, 6), the
-    condensed end dynamic stiffness; None if ``A_II`` is singular."""
-    w2, iw = omega**2, 1j * omega
-    A_IE, A_EI, A_EE = (ec.K[j] - w2 * ec.M[j] + iw * ec.C[j] for j in range(3))
+    condensed end dynamic stiffness; None if ``A_II`` is singular. ``parts``: the
+    line's :func:`_dynamic_parts` at ``omega``."""
+    iw = 1j * omega
+    ab, A_IE, A_EI, A_EE = parts
     if D is not None:
         A_EE = A_EE.copy()
         A_EE[:3, :3] += iw * D[0]
         A_EE[3:, 3:] += iw * D[-1]
     if A_IE.shape[0] == 0:
         return np.zeros((0, 6), dtype=complex), A_EE
-    ab = red.K - w2 * red.M + iw * red.C
-    if D is not None:
-        ab = ab + iw * red.drag_band(D)
     bw = red.bandwidth
     # LAPACK's banded LU with partial pivoting (what solve_banded calls), without
     # solve_banded's argument checks: the band padded by bw rows for the fill-in
     work = np.zeros((3 * bw + 1, ab.shape[1]), dtype=complex)
     work[bw:] = ab
+    if D is not None:
+        work[bw:] += iw * red.drag_band(D)
     _, _, X, info = _zgbsv(bw, bw, work, -A_IE, overwrite_ab=1, overwrite_b=1)
     if info != 0 or not np.all(np.isfinite(X)):
         return None
@@ -502,11 +519,13 @@ def _solve_linear(
     prescribed: np.ndarray,
     D_lines: list[np.ndarray | None],
     D_points: np.ndarray | None,
+    parts: list,
     *,
     quasi_static: bool = False,
 ) -> tuple[np.ndarray, list[np.ndarray], list[np.ndarray]] | str:
     """One linear solve at fixed drag: point displacements (P, 3), per line the nodal
-    displacements (n, 3) and end forces ``S u_E`` (6,); or the reason it failed."""
+    displacements (n, 3) and end forces ``S u_E`` (6,); or the reason it failed.
+    ``parts``: :func:`_dynamic_parts` at the solve's frequency (0 if quasi-static)."""
     w = 0.0 if quasi_static else omega
     free = model.free_points
     slot = np.full(model.point_kind.size, -1)
@@ -519,8 +538,8 @@ def _solve_linear(
             Z = Z + 1j * w * D_points[p]
         G[3 * j : 3 * j + 3, 3 * j : 3 * j + 3] += Z
     condensed = []
-    for i, (red, ec) in enumerate(zip(model.lines, model.couplings, strict=True)):
-        c = _condense(red, ec, w, None if quasi_static else D_lines[i])
+    for i, red in enumerate(model.lines):
+        c = _condense(red, parts[i], w, None if quasi_static else D_lines[i])
         if c is None:
             hz = omega / (2 * math.pi)
             return f"singular dynamic matrix of line {model.names[i]!r} at {hz:.6g} Hz"
@@ -658,8 +677,11 @@ def solve_system_harmonic(
     D_lines: list[np.ndarray | None] = [None] * L
     D_points: np.ndarray | None = None
     iterations, converged, change = 0, True, 0.0
+    parts = _dynamic_parts(model, omega)
     if model.has_drag:
-        start = _solve_linear(model, omega, prescribed, D_lines, None, quasi_static=True)
+        start = _solve_linear(
+            model, omega, prescribed, D_lines, None, _dynamic_parts(model, 0.0), quasi_static=True
+        )
         if isinstance(start, str):
             return failed(STATUS_NUMERICAL, f"quasi-static start: {start}")
         u_pts, disp, _ = start
@@ -681,7 +703,7 @@ def solve_system_harmonic(
         previous = [*disp, u_pts]
         converged, last = False, math.inf
         for iterations in range(1, settings.max_iterations + 1):  # noqa: B007
-            out = _solve_linear(model, omega, prescribed, D_lines, D_points)
+            out = _solve_linear(model, omega, prescribed, D_lines, D_points, parts)
             if isinstance(out, str):
                 return failed(STATUS_NUMERICAL, out, iterations)
             u_pts, disp, _ = out
@@ -701,7 +723,7 @@ def solve_system_harmonic(
                 f"(last change {change:.3g}, tolerance {settings.tolerance:.3g})",
                 iterations,
             )
-    out = _solve_linear(model, omega, prescribed, D_lines, D_points)
+    out = _solve_linear(model, omega, prescribed, D_lines, D_points, parts)
     if isinstance(out, str):
         return failed(STATUS_NUMERICAL, out, iterations)
     u_pts, disp, forces = out
