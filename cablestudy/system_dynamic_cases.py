@@ -24,7 +24,6 @@ from .config.system_dynamics import BODY_DOFS, BodyHarmonic, BodyTable, PointHar
 from .counters import COUNTERS, trim_lru
 from .statics import STATUS_NUMERICAL, STATUS_OK
 
-
 _MODEL_CACHE: OrderedDict[tuple, Any] = OrderedDict()
 _STATIC_CACHE: OrderedDict[str, Any] = OrderedDict()
 _CACHE_SIZE = 16

@@ -469,14 +469,13 @@ def _mean_jacobian(vr, vi, current, tangent, c_n, c_t, c_b, samples, out):  # no
                     for a in range(3):
                         for b in range(a, 3):
                             Wb[a, b] += w[a] * w[b] / sr
+        along = c_t[i] * 2.0 * (abs_t / samples)
         for a in range(3):
             for b in range(a, 3):
                 eye = 1.0 if a == b else 0.0
                 jn = sum_n * (eye - t[a] * t[b]) + Wn[a, b]
                 jb = sum_r * eye + Wb[a, b]
-                v = (c_n[i] * jn + c_b[i] * jb) / samples + c_t[i] * 2.0 * (
-                    abs_t / samples
-                ) * t[a] * t[b]
+                v = (c_n[i] * jn + c_b[i] * jb) / samples + along * t[a] * t[b]
                 out[i, a, b] = v
                 out[i, b, a] = v
 

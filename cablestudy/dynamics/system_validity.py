@@ -28,10 +28,14 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .validity import Validity, measures
+
+if TYPE_CHECKING:
+    from ..config.analysis import AutoSettings
 
 
 def system_measures(
@@ -74,47 +78,44 @@ def system_measures(
     return out
 
 
-def line_failures(v: Validity, auto: object) -> list[str]:
+def line_failures(v: Validity, auto: AutoSettings) -> list[str]:
     """The checks of ``method: auto`` (``auto``: its
     :class:`~cablestudy.config.analysis.AutoSettings`) one line's measures fail, in
     words (empty: it passes)."""
     reasons = []
-    if v.min_tension_ratio < auto.min_tension_ratio:  # type: ignore[attr-defined]
+    if v.min_tension_ratio < auto.min_tension_ratio:
         reasons.append(
-            f"near slack: min/static tension {v.min_tension_ratio:.3g} < "
-            f"{auto.min_tension_ratio:g}"  # type: ignore[attr-defined]
+            f"near slack: min/static tension {v.min_tension_ratio:.3g} < {auto.min_tension_ratio:g}"
         )
-    if v.amplitude_sag_ratio > auto.max_amplitude_sag_ratio:  # type: ignore[attr-defined]
+    if v.amplitude_sag_ratio > auto.max_amplitude_sag_ratio:
         reasons.append(
             f"large motion: amplitude/sag {v.amplitude_sag_ratio:.3g} > "
-            f"{auto.max_amplitude_sag_ratio:g}"  # type: ignore[attr-defined]
+            f"{auto.max_amplitude_sag_ratio:g}"
         )
     if not math.isfinite(v.touchdown_travel):
         reasons.append("touchdown travel unbounded: no submerged weight at the touchdown point")
-    elif v.touchdown_travel > auto.max_touchdown_travel:  # type: ignore[attr-defined]
+    elif v.touchdown_travel > auto.max_touchdown_travel:
         reasons.append(
-            f"touchdown travel {v.touchdown_travel:.3g} L > {auto.max_touchdown_travel:g} L"  # type: ignore[attr-defined]
+            f"touchdown travel {v.touchdown_travel:.3g} L > {auto.max_touchdown_travel:g} L"
         )
     return reasons
 
 
-def _share(v: Validity, auto: object) -> float:
+def _share(v: Validity, auto: AutoSettings) -> float:
     """The largest share of a threshold a passing line uses (1: at a limit)."""
-    slack_room = 1.0 - auto.min_tension_ratio  # type: ignore[attr-defined]
+    slack_room = 1.0 - auto.min_tension_ratio
     shares = [
         (1.0 - v.min_tension_ratio) / slack_room if slack_room > 0.0 else 0.0,
-        v.amplitude_sag_ratio / auto.max_amplitude_sag_ratio  # type: ignore[attr-defined]
-        if auto.max_amplitude_sag_ratio > 0.0  # type: ignore[attr-defined]
+        v.amplitude_sag_ratio / auto.max_amplitude_sag_ratio
+        if auto.max_amplitude_sag_ratio > 0.0
         else 0.0,
-        v.touchdown_travel / auto.max_touchdown_travel  # type: ignore[attr-defined]
-        if auto.max_touchdown_travel > 0.0  # type: ignore[attr-defined]
-        else 0.0,
+        v.touchdown_travel / auto.max_touchdown_travel if auto.max_touchdown_travel > 0.0 else 0.0,
     ]
     return max(shares)
 
 
 def judge_system(
-    names: Sequence[str], validities: Sequence[Validity], auto: object
+    names: Sequence[str], validities: Sequence[Validity], auto: AutoSettings
 ) -> tuple[bool, str]:
     """(trusted, reason): the frequency domain is trusted when every line passes
     :func:`line_failures`; the reason names the deciding line (module docstring)."""
