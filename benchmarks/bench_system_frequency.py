@@ -7,6 +7,12 @@ and the band solves run. Reported: CPU time (``time.process_time``; the machine 
 shared) of the statics, of the linear model, and per case; drag iterations.
 
     PYTHONPATH=$PWD .venv/bin/python benchmarks/bench_system_frequency.py [--nodes 41]
+
+With ``--pipeline ELEMENTS``: the same 50-case sweep of frequency through the command
+line (configs/system-case8-surge.yaml, surge 2 m, the time domain at its default
+settings) by ``method: frequency`` and by ``method: time`` in one process, each run
+twice (the first loads the compiled kernels); reported: CPU time a case of the second
+runs and their ratio.
 """
 
 from __future__ import annotations
@@ -67,10 +73,46 @@ def run(nodes: int, cases: int = 50) -> dict[str, float]:
     }
 
 
+def pipeline(elements: int, cases: int = 50) -> dict[str, float]:
+    """CPU time a case [s] of the frequency and the time domain through the command line
+    on the same sweep of ``cases`` frequencies (module docstring)."""
+    import tempfile
+
+    from cablestudy.cli import main as cli
+
+    text = (ROOT / "configs" / "system-case8-surge.yaml").read_text()
+    head = text[: text.index("  dynamic:")]
+    freqs = ", ".join(f"{f:.6g}" for f in np.linspace(0.02, 0.5, cases))
+    out: dict[str, float] = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        for method in ("frequency", "time", "frequency", "time"):
+            cfg = Path(tmp) / f"{method}.yaml"
+            cfg.write_text(
+                head + "  dynamic:\n"
+                "    excitation: {body: body1, dof: surge, amplitude: 2.0, frequency: 0.1}\n"
+                f"    method: {method}\n    elements: {elements}\n"
+                f"sweep:\n  analysis.dynamic.excitation.frequency: [{freqs}]\n"
+            )
+            args = ["run", str(cfg), "--out", str(Path(tmp) / method), "--no-cache"]
+            c0 = time.process_time()
+            assert cli([*args, "--no-progress", "--scheduler", "synchronous"]) == 0
+            out[method] = (time.process_time() - c0) / cases
+    return out
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--nodes", type=int, default=41)
+    parser.add_argument("--pipeline", type=int, default=0, metavar="ELEMENTS")
     args = parser.parse_args()
+    if args.pipeline:
+        p = pipeline(args.pipeline)
+        print(
+            f"case8 surge 2 m, 50 frequencies 0.02-0.5 Hz, {args.pipeline} elements a line, "
+            f"through the command line: frequency {p['frequency'] * 1e3:.1f} ms a case, time "
+            f"{p['time'] * 1e3:.1f} ms a case (CPU): ratio {p['time'] / p['frequency']:.1f}"
+        )
+        return
     r = run(args.nodes)
     print(
         f"case8 surge 2 m, 50 frequencies 0.02-0.5 Hz, {args.nodes} nodes a line: statics "

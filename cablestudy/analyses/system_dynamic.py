@@ -25,12 +25,6 @@ from ..study.system_dynamics import BODY_DOFS, BodyHarmonic, BodyTable, PointHar
 from .counters import COUNTERS, trim_lru
 from .line_model import system_line_extras
 
-#: why method auto runs the time domain for a system
-AUTO_REASON = (
-    "auto: a system runs the time domain (its frequency domain runs with method "
-    "'frequency'; auto's criteria for systems are not built)"
-)
-
 _MODEL_CACHE: OrderedDict[tuple, Any] = OrderedDict()
 _STATIC_CACHE: OrderedDict[str, Any] = OrderedDict()
 _CACHE_SIZE = 16
@@ -240,8 +234,14 @@ def run_system_dynamic(
         from .system_frequency import run_system_frequency
 
         return run_system_frequency(case, system, static)
+    reason = "method: time"
+    if dyn.method == "auto":  # the frequency domain where every line passes its checks
+        from .system_frequency import run_system_auto
+
+        done, reason = run_system_auto(case, system, static)
+        if done is not None:
+            return done
     model = system_model_dynamic(case, system, static)
-    reason = AUTO_REASON if dyn.method == "auto" else "method: time"
     head = {"dynamic_method": np.asarray("time"), "dynamic_method_reason": np.asarray(reason)}
     if isinstance(model, str):
         return STATUS_NUMERICAL, model, head

@@ -98,23 +98,32 @@ def run_system_frequency(
     case: Case, system: Any, static: Any
 ) -> tuple[int, str, dict[str, np.ndarray]]:
     """The case's harmonic response and its outputs: (status, message, outputs)."""
+    status, message, out, _, _ = _solve_frequency(case, system, static, "method: frequency")
+    return status, message, out
+
+
+def _solve_frequency(
+    case: Case, system: Any, static: Any, reason: str
+) -> tuple[int, str, dict[str, np.ndarray], Any, Any]:
+    """(status, message, outputs, result, model) of the case's harmonic response, its
+    outputs marked as the frequency domain's with ``reason``."""
     from ..dynamics.system_frequency import solve_system_harmonic, system_frequency_outputs
     from .frequency import drag_settings
 
     dyn = case.study.analysis.dynamic
     head = {
         "dynamic_method": np.asarray("frequency"),
-        "dynamic_method_reason": np.asarray("method: frequency"),
+        "dynamic_method_reason": np.asarray(reason),
     }
     model = system_frequency_model(case, system, static)
     if isinstance(model, str):
-        return STATUS_NUMERICAL, model, head
+        return STATUS_NUMERICAL, model, head, None, None
     X, U, frequency = harmonic_motion(case.study)
     res = solve_system_harmonic(
         model, 2.0 * math.pi * frequency, X, drag_settings(dyn), point_excitation=U
     )
     if res.status != STATUS_OK:
-        return res.status, res.message, head
+        return res.status, res.message, head, res, model
     bodies = len(system.body_names)
     values = system_frequency_outputs(res, static.body_force if bodies else None)
     n_out = system.lines[0].problem.n_nodes
@@ -133,5 +142,59 @@ def run_system_frequency(
     }
     bad = [k for k, v in out.items() if v.dtype.kind == "f" and not np.all(np.isfinite(v))]
     if bad:
-        return STATUS_NUMERICAL, f"non-finite values in {', '.join(bad)}", head
-    return STATUS_OK, "", out
+        return STATUS_NUMERICAL, f"non-finite values in {', '.join(bad)}", head, res, model
+    return STATUS_OK, "", out, res, model
+
+
+def auto_ineligible_system(dyn: Any) -> str:
+    """Why ``method: auto`` cannot try a system's frequency domain ("" if it can): it
+    solves harmonic motions of one frequency; histories and a fixed duration are the
+    time domain's."""
+    if not all(isinstance(e, (BodyHarmonic, PointHarmonic)) for e in dyn.excitations):
+        return "excitation is not harmonic (time domain only)"
+    if len({e.frequency for e in dyn.excitations}) > 1:
+        return "excitation has several frequencies (time domain only)"
+    if dyn.history is not None:
+        return "time histories asked for (time domain only)"
+    if dyn.duration is not None:
+        return "a fixed run duration asked for (time domain only)"
+    return ""
+
+
+def run_system_auto(
+    case: Case, system: Any, static: Any
+) -> tuple[tuple[int, str, dict[str, np.ndarray]] | None, str]:
+    """``method: auto`` for a system: the frequency domain's (status, message,
+    outputs) where every line passes the single line's checks
+    (:mod:`cablestudy.dynamics.system_validity`), else None and why the time domain
+    runs (the reason written to ``dynamic_method_reason``, naming the deciding line)."""
+    from ..dynamics.system_validity import judge_system, system_measures
+    from ..study.analysis import AutoSettings
+
+    dyn = case.study.analysis.dynamic
+    why = auto_ineligible_system(dyn)
+    if why:
+        return None, f"auto: {why}"
+    status, message, out, res, model = _solve_frequency(case, system, static, "auto")
+    if status != STATUS_OK:
+        return None, f"auto: frequency domain failed ({message})"
+    on_bed, weight = [], []
+    for red, sl in zip(model.lines, system.lines, strict=True):
+        line = red.line
+        med = sl.problem.medium
+        if med.depth is not None:
+            ground = med.seabed_z(line.position[:, 0], line.position[:, 1])
+            # as system_linear finds the laid nodes
+            on_bed.append(line.position[:, 2] - ground <= 1e-6 * max(float(line.s[-1]), 1.0))
+        else:
+            on_bed.append(np.zeros(line.s.size, dtype=bool))
+        lm = sl.problem.line
+        idx = np.searchsorted(lm.segment_ends, line.s, side="right") - 1
+        weight.append(lm.weight[np.clip(idx, 0, len(lm.length) - 1)])
+    trusted, reason = judge_system(
+        model.names, system_measures(model, res, on_bed, weight), dyn.auto or AutoSettings()
+    )
+    if not trusted:
+        return None, f"auto: {reason}"
+    out["dynamic_method_reason"] = np.asarray(f"auto: {reason}")
+    return (status, message, out), ""

@@ -71,22 +71,20 @@ from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 
 import numpy as np
-from numba import njit
-from scipy.linalg import solve_banded
+from scipy.linalg.lapack import zgbsv as _zgbsv
 
 from ..physics.current import current_velocity
 from ..statics.base import STATUS_NUMERICAL, STATUS_OK, EndCondition, StaticProblem, StaticResult
 from ..statics.system_model import BODY, FREE, MooringSystem, SystemResult
 from .frequency_model import (
-    FIT_REGULARISATION,
     STATUS_NOT_CONVERGED,
     DragSettings,
-    LinearLine,
     ReducedLine,
     drag_linearisation,
 )
 from .linear_model import linear_line
 from .modal import ModalProblem
+from .system_drag import mean_drag_jacobian, point_drag_fit
 
 #: largest residual of the assembled equations on the solution (inner rows of every
 #: line, balance of every free point), relative to the largest end-force amplitude and
@@ -341,125 +339,49 @@ def point_motion(model: SystemLinear, body_motion: np.ndarray) -> np.ndarray:
 # ------------------------------------------------------------------------ solving
 
 
+def _dynamic_parts(
+    model: SystemLinear, omega: float
+) -> list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]:
+    """Per line the parts of its dynamic matrix without drag at ``omega``, shared by
+    the drag iterations of a case: the band of ``A_II`` and the blocks ``A_IE``,
+    ``A_EI``, ``A_EE``."""
+    w2, iw = omega**2, 1j * omega
+    out = []
+    for red, ec in zip(model.lines, model.couplings, strict=True):
+        blocks = tuple(ec.K[j] - w2 * ec.M[j] + iw * ec.C[j] for j in range(3))
+        out.append((red.K - w2 * red.M + iw * red.C, *blocks))
+    return out
+
+
 def _condense(
-    red: ReducedLine, ec: EndCoupling, omega: float, D: np.ndarray | None
+    red: ReducedLine,
+    parts: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
+    omega: float,
+    D: np.ndarray | None,
 ) -> tuple[np.ndarray, np.ndarray] | None:
     """Per line: ``X`` (k, 6), the inner response per unit end motion (``A_II X =
     -A_IE``, one band solve with six right sides), and ``S = A_EE + A_EI X`` (6, 6), the
-    condensed end dynamic stiffness; None if ``A_II`` is singular."""
-    w2, iw = omega**2, 1j * omega
-    A_IE, A_EI, A_EE = (ec.K[j] - w2 * ec.M[j] + iw * ec.C[j] for j in range(3))
+    condensed end dynamic stiffness; None if ``A_II`` is singular. ``parts``: the
+    line's :func:`_dynamic_parts` at ``omega``."""
+    iw = 1j * omega
+    ab, A_IE, A_EI, A_EE = parts
     if D is not None:
         A_EE = A_EE.copy()
         A_EE[:3, :3] += iw * D[0]
         A_EE[3:, 3:] += iw * D[-1]
     if A_IE.shape[0] == 0:
         return np.zeros((0, 6), dtype=complex), A_EE
-    ab = red.K - w2 * red.M + iw * red.C
-    if D is not None:
-        ab = ab + iw * red.drag_band(D)
     bw = red.bandwidth
-    try:
-        X = solve_banded((bw, bw), ab, -A_IE, check_finite=False)
-    except (np.linalg.LinAlgError, ValueError):
-        return None
-    if not np.all(np.isfinite(X)):
+    # LAPACK's banded LU with partial pivoting (what solve_banded calls), without
+    # solve_banded's argument checks: the band padded by bw rows for the fill-in
+    work = np.zeros((3 * bw + 1, ab.shape[1]), dtype=complex)
+    work[bw:] = ab
+    if D is not None:
+        work[bw:] += iw * red.drag_band(D)
+    _, _, X, info = _zgbsv(bw, bw, work, -A_IE, overwrite_ab=1, overwrite_b=1)
+    if info != 0 or not np.all(np.isfinite(X)):
         return None
     return X, A_EE + A_EI @ X
-
-
-def mean_drag_jacobian(line: LinearLine, velocity: np.ndarray, samples: int) -> np.ndarray:
-    """The drag's Jacobian ``d f / d w`` [N s/m] (n, 3, 3) averaged over ``samples``
-    phases of the nodes' motion (complex velocity amplitudes ``velocity`` (n, 3)):
-    ``c_N (|w_N| P + w_N w_N^T / |w_N|) + 2 c_T |w_T| t t^T + c_B (|w| I + w w^T / |w|)``
-    at ``w = U - Re(v e^{i th})``. What the drag fit leans towards in directions in
-    which a node hardly moves (:data:`~.frequency.FIT_REGULARISATION`): there it is the
-    damping a small motion across the node's own motion feels (``c_N 2 a / pi`` across a
-    one-dimensional oscillation of amplitude ``a`` in still water), the limit of the
-    fit as the motion in that direction vanishes; at rest it is the tangent at the
-    mean flow (:func:`~.frequency.drag_tangent`). Leaning towards the latter instead
-    (zero in still water) makes the fit jump between the two as a node's motion turns
-    from nearly straight to straight, and the iteration of a system in three
-    dimensions then wanders (case8 under surge above 0.2 Hz: no convergence in 100
-    iterations; with this lean, 6 to 20)."""
-    out = np.empty((line.n_nodes, 3, 3))
-    _mean_jacobian(
-        np.ascontiguousarray(velocity.real),
-        np.ascontiguousarray(velocity.imag),
-        line.current,
-        line.tangent,
-        line.drag_normal,
-        line.drag_tangential,
-        line.body_drag,
-        samples,
-        out,
-    )
-    return out
-
-
-@njit(cache=True)
-def _mean_jacobian(vr, vi, current, tangent, c_n, c_t, c_b, samples, out):  # noqa: ANN001, ANN202, PLR0913
-    """Kernel of :func:`mean_drag_jacobian` (loops over nodes and phases)."""
-    n = current.shape[0]
-    w = np.empty(3)
-    wn = np.empty(3)
-    for i in range(n):
-        t0, t1, t2 = tangent[i, 0], tangent[i, 1], tangent[i, 2]
-        t = (t0, t1, t2)
-        acc = np.zeros((3, 3))
-        abs_t = 0.0
-        for k in range(samples):
-            c = math.cos(2.0 * math.pi * k / samples)
-            s = math.sin(2.0 * math.pi * k / samples)
-            for a in range(3):
-                w[a] = current[i, a] - (vr[i, a] * c - vi[i, a] * s)
-            wt = w[0] * t0 + w[1] * t1 + w[2] * t2
-            abs_t += abs(wt)
-            for a in range(3):
-                wn[a] = w[a] - wt * t[a]
-            sn = math.sqrt(wn[0] * wn[0] + wn[1] * wn[1] + wn[2] * wn[2])
-            sr = math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
-            for a in range(3):
-                for b in range(3):
-                    p_ab = (1.0 if a == b else 0.0) - t[a] * t[b]
-                    jn = sn * p_ab + (wn[a] * wn[b] / sn if sn > 0.0 else 0.0)
-                    jb = sr * (1.0 if a == b else 0.0) + (w[a] * w[b] / sr if sr > 0.0 else 0.0)
-                    acc[a, b] += c_n[i] * jn + c_b[i] * jb
-        for a in range(3):
-            for b in range(3):
-                out[i, a, b] = acc[a, b] / samples + c_t[i] * 2.0 * (abs_t / samples) * t[a] * t[b]
-
-
-def point_drag_fit(
-    c: np.ndarray, current: np.ndarray, velocity: np.ndarray, samples: int
-) -> np.ndarray:
-    """Equivalent drag damping [N s/m] (P, 3, 3) of isotropic drag ``c |w| w`` at points
-    moving with complex velocity amplitudes ``velocity`` (P, 3) in the current
-    ``current`` (P, 3): the mean-square fit over ``samples`` phases, ``D = <f' w'^T>
-    <w' w'^T>^-1``, leaning towards the small-motion tangent ``c (|U| I + U U^T / |U|)``
-    in directions without motion (:data:`~.frequency.FIT_REGULARISATION`)."""
-    th = 2.0 * np.pi * np.arange(samples) / samples
-    w = -(
-        velocity.real[None] * np.cos(th)[:, None, None]
-        - velocity.imag[None] * np.sin(th)[:, None, None]
-    )
-    r = current[None] + w
-    f = c[None, :, None] * np.linalg.norm(r, axis=2)[..., None] * r
-    f = f - f.mean(axis=0)
-    G = np.einsum("kpa,kpb->pab", w, w) / samples
-    H = np.einsum("kpa,kpb->pab", f, w) / samples
-    su = np.linalg.norm(current, axis=1)
-    inv = np.where(su > 0.0, 1.0 / np.where(su > 0.0, su, 1.0), 0.0)
-    D0 = c[:, None, None] * (
-        su[:, None, None] * np.eye(3)
-        + inv[:, None, None] * (current[:, :, None] * current[:, None, :])
-    )
-    trace = np.trace(G, axis1=1, axis2=2)
-    eps = np.where(trace > 0.0, FIT_REGULARISATION * trace, 1.0)[:, None, None]
-    lhs = G + eps * np.eye(3)
-    rhs = np.where((trace > 0.0)[:, None, None], H + eps * D0, D0)
-    # D lhs = rhs -> lhs^T D^T = rhs^T (lhs symmetric)
-    return np.swapaxes(np.linalg.solve(lhs, np.swapaxes(rhs, 1, 2)), 1, 2)
 
 
 def _solve_linear(
@@ -468,11 +390,13 @@ def _solve_linear(
     prescribed: np.ndarray,
     D_lines: list[np.ndarray | None],
     D_points: np.ndarray | None,
+    parts: list,
     *,
     quasi_static: bool = False,
 ) -> tuple[np.ndarray, list[np.ndarray], list[np.ndarray]] | str:
     """One linear solve at fixed drag: point displacements (P, 3), per line the nodal
-    displacements (n, 3) and end forces ``S u_E`` (6,); or the reason it failed."""
+    displacements (n, 3) and end forces ``S u_E`` (6,); or the reason it failed.
+    ``parts``: :func:`_dynamic_parts` at the solve's frequency (0 if quasi-static)."""
     w = 0.0 if quasi_static else omega
     free = model.free_points
     slot = np.full(model.point_kind.size, -1)
@@ -485,8 +409,8 @@ def _solve_linear(
             Z = Z + 1j * w * D_points[p]
         G[3 * j : 3 * j + 3, 3 * j : 3 * j + 3] += Z
     condensed = []
-    for i, (red, ec) in enumerate(zip(model.lines, model.couplings, strict=True)):
-        c = _condense(red, ec, w, None if quasi_static else D_lines[i])
+    for i, red in enumerate(model.lines):
+        c = _condense(red, parts[i], w, None if quasi_static else D_lines[i])
         if c is None:
             hz = omega / (2 * math.pi)
             return f"singular dynamic matrix of line {model.names[i]!r} at {hz:.6g} Hz"
@@ -624,8 +548,11 @@ def solve_system_harmonic(
     D_lines: list[np.ndarray | None] = [None] * L
     D_points: np.ndarray | None = None
     iterations, converged, change = 0, True, 0.0
+    parts = _dynamic_parts(model, omega)
     if model.has_drag:
-        start = _solve_linear(model, omega, prescribed, D_lines, None, quasi_static=True)
+        start = _solve_linear(
+            model, omega, prescribed, D_lines, None, _dynamic_parts(model, 0.0), quasi_static=True
+        )
         if isinstance(start, str):
             return failed(STATUS_NUMERICAL, f"quasi-static start: {start}")
         u_pts, disp, _ = start
@@ -647,7 +574,7 @@ def solve_system_harmonic(
         previous = [*disp, u_pts]
         converged, last = False, math.inf
         for iterations in range(1, settings.max_iterations + 1):  # noqa: B007
-            out = _solve_linear(model, omega, prescribed, D_lines, D_points)
+            out = _solve_linear(model, omega, prescribed, D_lines, D_points, parts)
             if isinstance(out, str):
                 return failed(STATUS_NUMERICAL, out, iterations)
             u_pts, disp, _ = out
@@ -667,7 +594,7 @@ def solve_system_harmonic(
                 f"(last change {change:.3g}, tolerance {settings.tolerance:.3g})",
                 iterations,
             )
-    out = _solve_linear(model, omega, prescribed, D_lines, D_points)
+    out = _solve_linear(model, omega, prescribed, D_lines, D_points, parts)
     if isinstance(out, str):
         return failed(STATUS_NUMERICAL, out, iterations)
     u_pts, disp, forces = out

@@ -104,22 +104,13 @@ def check_system_dynamics(study: object) -> None:
                     "a table is solved by method 'time')",
                     type(e).__name__,
                 )
-    for key in ("transfer_function", "auto"):
-        if getattr(dyn, key) is not None:
-            raise FieldError(
-                (*root, key),
-                f"{key} is not built for a system's frequency domain; allowed for a system: "
-                "remove the key (method 'frequency' runs the harmonic response, 'time' and "
-                "'auto' the time domain)",
-                key,
-            )
-    if dyn.linearisation is not None and dyn.method != "frequency":
+    if dyn.transfer_function is not None:
         raise FieldError(
-            (*root, "linearisation"),
-            "linearisation is used by a system's frequency domain only (method 'auto' "
-            "runs the time domain for a system); allowed: method 'frequency', or remove "
-            "the key",
-            "linearisation",
+            (*root, "transfer_function"),
+            "transfer_function is not built for a system's frequency domain; allowed for "
+            "a system: remove the key (method 'frequency' runs the harmonic response, "
+            "'time' the time domain, 'auto' either per case)",
+            "transfer_function",
         )
     if "after_break" in dyn.model_fields_set:
         raise FieldError(

@@ -275,7 +275,9 @@ def test_case8_runs_end_to_end_with_the_contract_names(case8: xr.Dataset) -> Non
         assert ds[k].dims == ("body", "dof")
         assert list(ds.dof.values) == ["surge", "sway", "heave", "roll", "pitch", "yaw"]
     assert str(ds.dynamic_method.values) == "time"
-    assert "auto: a system runs the time domain" in str(ds.dynamic_method_reason.values)
+    # auto: at 2 m the bridles' shape changes by more than their sag allows
+    reason = str(ds.dynamic_method_reason.values)
+    assert reason.startswith("auto: line '") and "large motion" in reason, reason
     for k in ("tension_a", "body_stiffness", "point_position"):  # the statics stay
         assert k in ds
     # the static tension lies within each end's range, but for the 10-element model's
@@ -376,11 +378,6 @@ def _error(text: str) -> str:
             "{body: buoy, dof: surge, amplitude: 1.0, frequency: 0.1}",
             "    history: {points: [10.0]}\n",
             "history_tension_a",
-        ),
-        (
-            "{body: buoy, dof: surge, amplitude: 1.0, frequency: 0.1}",
-            "    auto: {min_tension_ratio: 0.1}\n",
-            "not built for a system's frequency domain",
         ),
     ],
 )
