@@ -129,3 +129,20 @@ def test_lines_on_the_seabed_decided_per_line_by_touchdown_travel(tmp_path: Path
     reason = str(ds.dynamic_method_reason.values)
     assert reason.startswith("auto: line '1': touchdown travel"), reason
     assert "> 0.001 L" in reason, reason
+
+
+def test_auto_runs_the_time_domain_where_the_frequency_domain_cannot_be_built() -> None:
+    """Two elements a line: the frequency domain's reduced model of a line with a single
+    free node cannot be built (it raised IndexError inside auto, failing the case); auto
+    must then run the time domain and say why, as it does for a failed frequency solve."""
+    from cablestudy.analyses.system import evaluate_system_case
+    from cablestudy.study import parse_study_text
+    from cablestudy.study.cases import expand_cases
+
+    text = CASE8.read_text().replace("elements: 20", "elements: 2")
+    assert "elements: 2  #" in text and "method:" not in text  # auto, the default
+    (_, [case]) = expand_cases(parse_study_text(text, "case8.yaml"))
+    rec = evaluate_system_case(case)
+    assert rec.status == 0, rec.message
+    assert str(rec.data["dynamic_method"]) == "time"
+    assert "frequency domain failed" in str(rec.data["dynamic_method_reason"])
