@@ -41,6 +41,7 @@ from .static import (
     solve_static,
     unsupported_static,
 )
+from .surface import static_surface_warning
 from .variables import CaseRecord
 
 
@@ -299,6 +300,7 @@ def case_warnings(
         found.append(strain_warning(largest_static_strain(case.study, static), limit))
         if static.fallback:
             found.append(fallback_warning(static.fallback))
+        found.append(static_surface_warning(case.study, static))  # above the water
     dyn = case.study.analysis.dynamic
     if "dynamic" in ok and dyn is not None:
         found.extend(

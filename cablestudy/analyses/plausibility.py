@@ -14,12 +14,13 @@ import math
 import numpy as np
 
 STRAIN = "strain"
+SURFACE = "surface"
 SLACK = "slack"
 UNSETTLED = "unsettled"
 FALLBACK = "fallback"
 UNCHECKED = "unchecked"
 #: the kinds of warning, in the order a case lists them
-KINDS = (STRAIN, SLACK, UNSETTLED, FALLBACK, UNCHECKED)
+KINDS = (STRAIN, SURFACE, SLACK, UNSETTLED, FALLBACK, UNCHECKED)
 #: between the warnings of one case
 SEPARATOR = "; "
 
@@ -44,6 +45,81 @@ def strain_warning(max_strain: float, limit: float) -> str:
         f"{limit:g} (analysis.static.strain_warning): check the line's length and end "
         "positions, or its axial law"
     )
+
+
+#: fluids denser than this [kg/m^3] are liquids, with their free surface at z = 0 (the
+#: sea's, cablestudy's frame); gases (air, 1.2 kg/m^3; even at 100 bar about 120) and
+#: vacuum have none, and a line in them may be anywhere
+LIQUID_DENSITY = 200.0
+#: how far above z = 0 a node must be, relative to its line's length, to count as out of
+#: the water: a held end at z = 0 is met to the static tolerance (1e-9 of the length and
+#: below), a millimetre per kilometre is far above that and far below a physical rise
+SURFACE_TOLERANCE = 1e-6
+
+
+def has_free_surface(density: float) -> bool:
+    """Whether a fluid of ``density`` [kg/m^3] has a free surface at z = 0 (a liquid:
+    :data:`LIQUID_DENSITY`)."""
+    return density > LIQUID_DENSITY
+
+
+def highest_points(s: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The highest node of each line: its height z [m] and arc length s [m]. ``z`` (...,
+    nodes), ``s`` broadcastable to it; (...) out, NaN where every node is NaN."""
+    z = np.asarray(z, dtype=float)
+    s = np.broadcast_to(np.asarray(s, dtype=float), z.shape)
+    blank = np.all(np.isnan(z), axis=-1)
+    k = np.argmax(np.where(np.isnan(z), -np.inf, z), axis=-1)[..., None]
+    top = np.take_along_axis(z, k, axis=-1)[..., 0]
+    at = np.take_along_axis(s, k, axis=-1)[..., 0]
+    return np.where(blank, np.nan, top), np.where(blank, np.nan, at)
+
+
+def surface_warning(
+    s: np.ndarray, z: np.ndarray, names: list[str] | None = None, *, when: str = "static"
+) -> str:
+    """The warning of a line (``z`` (nodes,), names None) or of lines (``z`` (lines,
+    nodes), their ``names``) in a liquid that rise above its surface z = 0 by more than
+    :data:`SURFACE_TOLERANCE` of their length (``s`` [m]: arc lengths, broadcastable to
+    ``z`` [m]). It names the line that rises highest, its highest node (z, s) and, when
+    more than one is above, all of them; '' when none is. ``when``: 'static' (the
+    static shape), or the dynamic envelope it judges (worded into the text)."""
+    z = np.atleast_2d(np.asarray(z, dtype=float))
+    s = np.broadcast_to(np.asarray(s, dtype=float), z.shape)
+    top, at = highest_points(s, z)
+    length = np.nanmax(s, axis=-1) - np.nanmin(s, axis=-1)
+    above = top > SURFACE_TOLERANCE * np.maximum(length, 1.0)  # NaN: False
+    if not np.any(above):
+        return ""
+    worst = int(np.argmax(np.where(above, top, -np.inf)))
+    who = "the line" if names is None else f"line {names[worst]}"
+    text = (
+        f"{SURFACE}: {who} rises above the water's surface (z = 0) to z = {top[worst]:.4g} m "
+        f"at s = {at[worst]:.4g} m (its highest node{'' if when == 'static' else ', ' + when}), "
+        "where the model still gives it buoyancy and added mass, which out of the water do "
+        "not exist: check the buoyancy (diameters, attachments) and the end positions"
+    )
+    if names is not None and np.count_nonzero(above) > 1:
+        listed = ", ".join(n for n, a in zip(names, above, strict=True) if a)
+        text += f" (lines above the surface: {listed})"
+    return text
+
+
+def surface_warnings(
+    s: np.ndarray, z: np.ndarray, ok: np.ndarray, names: list[str] | None = None
+) -> dict[int, str]:
+    """:func:`surface_warning` of each case of a batch whose ``ok`` (cases,) is true:
+    ``z`` (cases, nodes) of one line or (cases, lines, nodes) with their ``names``, ``s``
+    broadcastable to it; {case: text} of the cases that have one."""
+    z = np.asarray(z, dtype=float)
+    s = np.broadcast_to(np.asarray(s, dtype=float), z.shape)
+    top = np.fmax.reduce(z.reshape(len(z), -1), axis=-1) if z.size else np.zeros(len(z))
+    found: dict[int, str] = {}
+    for i in np.flatnonzero(np.asarray(ok, dtype=bool) & (top > 0.0)):
+        text = surface_warning(s[i], z[i], names)
+        if text:
+            found[int(i)] = text
+    return found
 
 
 def slack_warning(tension_min: float, where: str) -> str:

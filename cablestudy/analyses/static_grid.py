@@ -26,6 +26,7 @@ from ..study.grid import _POSITION, _STIFFNESS, CaseGrid
 from ..study.study import Study
 from .grid_chunk import NO_KERNEL, STATUS_NUMERICAL, GridChunk, warning_column
 from .plausibility import fallback_warning, largest_strain, strain_warning
+from .surface import template_surface_warnings
 from .variables import KEPT_STATUSES
 
 
@@ -562,6 +563,9 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
         for i, reason in fallback.items():
             if status[i] == 0:
                 warnings.setdefault(i, []).append(fallback_warning(reason))
+        # a line above the water's surface (cablestudy.analyses.plausibility)
+        for i, text in template_surface_warnings(grid.template, st.s, st.position, status):
+            warnings.setdefault(i, []).append(text)
     except Exception as exc:  # noqa: BLE001 - a fault in a chunk fails its cases, as data
         status[:] = STATUS_NUMERICAL
         messages = [f"{type(exc).__name__}: {exc}"] * n

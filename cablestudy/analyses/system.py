@@ -184,6 +184,10 @@ def evaluate_system_case(case: Case) -> CaseRecord:
             status, message = STATUS_NUMERICAL, f"non-finite values in {', '.join(bad)}"
     data["static_status"] = np.asarray(status, dtype=np.int64)
     warnings = [_strain_warning(study, res) if status == STATUS_OK else ""]
+    if status == STATUS_OK:  # a line above the water's surface
+        from .surface import system_surface_warning
+
+        warnings.append(system_surface_warning(study, res))
     if status == STATUS_OK and getattr(res, "fallback", ""):
         # the compiled system Newton left it to the general path: said, as for one line
         from .plausibility import fallback_warning

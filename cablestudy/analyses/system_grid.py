@@ -288,6 +288,10 @@ def evaluate_system_chunk(grid: SystemGrid, lo: int, hi: int) -> GridChunk:
             status[i], messages[i] = st, msg
         for i, text in _strain_warnings(grid, out, status).items():
             warnings.setdefault(i, []).append(text)
+        from .surface import system_grid_surface_warnings  # a line above the water
+
+        for i, text in system_grid_surface_warnings(grid.template, out, status):
+            warnings.setdefault(i, []).append(text)
         for i in np.flatnonzero((reasons != "") & (status == 0)):
             warnings.setdefault(int(i), []).append(fallback_warning(str(reasons[i])))
         bad = status != 0
