@@ -41,7 +41,7 @@ from .static import (
     solve_static,
     unsupported_static,
 )
-from .surface import static_surface_warning
+from .surface import case_surface_warning
 from .variables import CaseRecord
 
 
@@ -291,7 +291,8 @@ def case_warnings(
 ) -> str:
     """The case's ``warning`` text (:mod:`cablestudy.analyses.plausibility`): strain above
     ``analysis.static.strain_warning`` and a batched-kernel fallback
-    (:attr:`StaticResult.fallback`) of the statics, when they succeeded (``static``);
+    (:attr:`StaticResult.fallback`) of the statics, when they succeeded (``static``), and
+    a line above the water's surface (:func:`cablestudy.analyses.surface.case_surface_warning`);
     slack and an unsettled time-domain run, when the dynamic analysis succeeded (named
     in ``ok``)."""
     found: list[str] = []
@@ -300,7 +301,7 @@ def case_warnings(
         found.append(strain_warning(largest_static_strain(case.study, static), limit))
         if static.fallback:
             found.append(fallback_warning(static.fallback))
-        found.append(static_surface_warning(case.study, static))  # above the water
+    found.append(case_surface_warning(case.study, static, data, ok))  # above the water
     dyn = case.study.analysis.dynamic
     if "dynamic" in ok and dyn is not None:
         found.extend(

@@ -10,7 +10,8 @@ and says so in its ``warning``: the line (by name in a system), its highest node
 and arc length. A line in a gas or vacuum (:func:`has_free_surface`) is never judged.
 
 One function per path, each a few lines over the pure checks: a case alone
-(:func:`static_surface_warning`, from :func:`cablestudy.analyses.evaluate.case_warnings`),
+(:func:`case_surface_warning`, from :func:`cablestudy.analyses.evaluate.case_warnings`:
+the statics, then the kept whole-line time history if there is one),
 a sweep run as arrays (:func:`template_surface_warnings`, from
 :mod:`cablestudy.analyses.static_grid`), a system case (:func:`system_surface_warning`,
 :mod:`cablestudy.analyses.system`) and a system sweep run as arrays
@@ -37,6 +38,26 @@ def static_surface_warning(study: Any, res: Any) -> str:
     if not _liquid(study):
         return ""
     return surface_warning(np.asarray(res.s), np.asarray(res.position)[:, 2])
+
+
+def case_surface_warning(study: Any, static: Any, data: dict[str, Any], ok: set[str]) -> str:
+    """The ``surface`` warning of one line's case: of its static solution ``static``
+    (None: it failed), else, where the time domain kept the whole line's history
+    (``analysis.dynamic.history.whole_line``: ``history_line_position`` (time, s, 3) [m]
+    in ``data``, at the static nodes) and the dynamic analysis succeeded (in ``ok``), of
+    the line's highest position over that record. Without that history the motion is
+    not judged: no envelope of the positions is kept."""
+    if static is None or not _liquid(study):
+        return ""
+    text = static_surface_warning(study, static)
+    history = data.get("history_line_position")
+    if text or history is None or "dynamic" not in ok:
+        return text
+    z = np.asarray(history, dtype=float)[..., 2]  # (time, s)
+    s = np.asarray(static.s, dtype=float)
+    if z.ndim != 2 or z.shape[1] != s.size or not z.size:
+        return ""
+    return surface_warning(s, np.max(z, axis=0), when="in the kept time history")
 
 
 def template_surface_warnings(

@@ -1,0 +1,170 @@
+"""A line above the water's surface, YAML -> netCDF through the command line: a lazy wave
+whose buoyancy section arches out of the water keeps status 0 and its numbers, and its
+``warning`` names the line and its highest node (z and s); the same line with a deeper
+anchor stays under water and is not warned. Every static path: a sweep of end positions
+run as arrays (catenary), case by case (shooting), one line alone, a system case and a
+system sweep run as arrays.
+
+The lazy wave: 360 m from an anchor (end A) to a fairlead 5 m down (end B), 250 m
+away: 200 m of riser (60 kg/m, 0.2 m: 28 kg/m heavier than the water it displaces),
+100 m of buoyancy section (0.6 m: 230 kg/m lighter) and 60 m of riser. With the anchor
+150 m down the buoyancy lifts its section some 45 m out of the water; 220 m down the
+taut line holds the hog bend's top about 1 m under the surface (its static shape gives
+it, below).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from cablestudy.analyses.plausibility import SURFACE_TOLERANCE
+from cablestudy.analyses.system_grid import SystemGrid
+from cablestudy.cli import main
+from cablestudy.run.grid_runner import study_grid
+from cablestudy.study import parse_study_text
+
+SEGMENTS = """\
+      - {length: 200.0, diameter: 0.2, mass_per_length: 60.0, axial_stiffness: 1.0e9}
+      - {length: 100.0, diameter: 0.6, mass_per_length: 60.0, axial_stiffness: 1.0e9}
+      - {length: 60.0, diameter: 0.2, mass_per_length: 60.0, axial_stiffness: 1.0e9}
+"""
+
+LINE = f"""\
+name: wave
+environment: {{fluid: water}}
+line:
+  segments:
+{SEGMENTS.replace("      -", "    -")}ends:
+  a: {{kind: fixed, position: [0.0, 0.0, -150.0]}}
+  b: {{kind: fixed, position: [250.0, 0.0, -5.0]}}
+analysis:
+  static: {{nodes: 73METHOD}}
+sweep:
+  ends.a.position.2: {{values: [-150.0, -220.0], name: anchor_z}}
+"""
+
+SYSTEM = f"""\
+name: wave
+environment: {{fluid: water}}
+points:
+  anchor: {{kind: fixed, position: [0.0, 0.0, -150.0]}}
+  fair: {{kind: fixed, position: [250.0, 0.0, -5.0]}}
+  anchor2: {{kind: fixed, position: [500.0, 0.0, -150.0]}}
+lines:
+  riser:
+    a: anchor
+    b: fair
+    segments:
+{SEGMENTS}  leg:
+    a: fair
+    b: anchor2
+    segments: [{{length: 300.0, diameter: 0.2, mass_per_length: 60.0, axial_stiffness: 1.0e9}}]
+analysis:
+  static: {{nodes: 73}}
+sweep:
+  points.anchor.position.2: {{values: [-150.0, -220.0], name: anchor_z}}
+"""
+
+WARNING = re.compile(
+    r"surface: (the line|line riser) rises above the water's surface \(z = 0\) to "
+    r"z = (\S+) m at s = (\S+) m \(its highest node\)"
+)
+
+
+def _run(tmp_path: Path, text: str) -> tuple[xr.Dataset, str, int]:
+    tmp_path.mkdir(parents=True, exist_ok=True)
+    cfg = tmp_path / "wave.yaml"
+    cfg.write_text(text)
+    code = main(["run", str(cfg), "--out", str(tmp_path), "--scheduler", "synchronous"])
+    return xr.load_dataset(tmp_path / "wave.nc"), cfg.read_text(), code
+
+
+def _check(ds: xr.Dataset, line: str | None = None) -> None:
+    """The shallow anchor's case warns with its own highest node; the deep one does not."""
+    if line is not None:
+        ds = ds.sel(line=line)
+    assert ds["status"].values.tolist() == [0, 0]  # kept: a warning, not a failure
+    shallow, deep = (ds.sel(anchor_z=v) for v in (-150.0, -220.0))
+    match = WARNING.search(str(shallow["warning"].values))
+    assert match, str(shallow["warning"].values)
+    assert match.group(1) == ("the line" if line is None else f"line {line}")
+    # the numbers are the dataset's own highest node, printed to 4 significant digits
+    # (5e-4 relative): no second computation to disagree with
+    k = int(shallow["z"].argmax("s"))
+    z_top = float(shallow["z"][k])
+    # arc length: the s coordinate where every case has the same (else per case)
+    s_top = float((shallow["arc_length"] if "arc_length" in shallow else shallow["s"])[k])
+    assert float(match.group(2)) == pytest.approx(z_top, rel=5e-4)
+    assert float(match.group(3)) == pytest.approx(s_top, rel=5e-4)
+    # out of the water by far more than any tolerance, on the buoyancy section (its top
+    # is where the net upward load ends: within 200-300 m of the anchor)
+    assert z_top > 10.0 and 200.0 <= s_top <= 300.0
+    # the deep anchor: the hog bend's top is an interior maximum, under the surface
+    assert str(deep["warning"].values) == ""
+    z = deep["z"].values
+    interior = int(np.argmax(z[1:-1])) + 1
+    assert z[interior] > z[interior - 1] and z[interior] > z[interior + 1]  # a hog bend
+    assert -5.0 < z[interior] < -SURFACE_TOLERANCE * 360.0  # near, but under, the surface
+
+
+@pytest.mark.parametrize("method", ["", ", method: shooting"])
+def test_a_lazy_wave_out_of_the_water_is_warned(tmp_path: Path, method: str) -> None:
+    """catenary: the end-position sweep runs as arrays (analyses.static_grid); shooting:
+    case by case (analyses.evaluate)."""
+    text = LINE.replace("METHOD", method)
+    grid = study_grid(parse_study_text(text, "wave.yaml"))
+    assert (grid is not None and grid.arrays) == (method == "")  # the path named above
+    ds, _, code = _run(tmp_path, text)
+    assert code == 0
+    _check(ds)
+    assert int(ds.attrs["cases_warned"]) == 1
+
+
+def test_one_line_alone_is_warned(tmp_path: Path) -> None:
+    text = LINE.split("sweep:")[0]
+    ds, _, code = _run(tmp_path, text.replace("METHOD", ""))
+    assert code == 0 and int(ds["status"]) == 0
+    match = WARNING.search(str(ds["warning"].values))
+    assert match and float(match.group(2)) == pytest.approx(float(ds["z"].max()), rel=5e-4)
+
+
+def test_the_same_line_in_air_is_not_judged(tmp_path: Path) -> None:
+    """In air there is no surface: a line strung above z = 0 (a catenary between two
+    supports 20 m up) is where it should be."""
+    text = (
+        LINE.split("sweep:")[0]
+        .replace("fluid: water", "fluid: air")
+        .replace("[0.0, 0.0, -150.0]", "[0.0, 0.0, 20.0]")
+        .replace("[250.0, 0.0, -5.0]", "[300.0, 0.0, 20.0]")
+        .replace("METHOD", "")
+    )
+    ds, _, code = _run(tmp_path, text)
+    assert code == 0 and int(ds["status"]) == 0
+    assert float(ds["z"].max()) == pytest.approx(20.0)  # held at the supports
+    assert str(ds["warning"].values) == ""
+
+
+def test_a_system_names_the_line_out_of_the_water(tmp_path: Path) -> None:
+    """The anchor sweep of a system runs as arrays (analyses.system_grid); without the
+    sweep, case by case (analyses.system). Only the lazy wave, riser, is named: leg hangs
+    from the same fairlead 5 m down."""
+    assert isinstance(study_grid(parse_study_text(SYSTEM, "wave.yaml")), SystemGrid)
+    ds, _, code = _run(tmp_path, SYSTEM)
+    assert code == 0
+    _check(ds, "riser")
+    assert "leg" not in str(ds["warning"].sel(anchor_z=-150.0).values)
+    assert float(ds["z"].sel(line="leg").max()) == pytest.approx(-5.0, abs=1e-6)
+    one, _, code = _run(tmp_path / "one", SYSTEM.split("sweep:")[0])
+    assert code == 0
+    match = WARNING.search(str(one["warning"].values))
+    assert match and match.group(1) == "line riser"
+    assert float(match.group(2)) == pytest.approx(float(one["z"].sel(line="riser").max()), rel=5e-4)
+    assert math.isclose(
+        float(match.group(2)), float(ds["z"].sel(line="riser", anchor_z=-150.0).max()), rel_tol=5e-4
+    )
