@@ -168,3 +168,33 @@ def test_a_system_names_the_line_out_of_the_water(tmp_path: Path) -> None:
     assert math.isclose(
         float(match.group(2)), float(ds["z"].sel(line="riser", anchor_z=-150.0).max()), rel_tol=5e-4
     )
+
+
+def test_a_time_history_out_of_the_water_is_warned(tmp_path: Path) -> None:
+    """The deep anchor's lazy wave (statics: its top about 1 m under the surface) surged
+    at its fairlead: 0.5 m keeps it under water, 4 m throws the buoyancy section out
+    (checked on the kept whole-line history, which the warning then cites)."""
+    text = (
+        LINE.split("sweep:")[0]
+        .replace("-150.0]", "-220.0]")
+        .replace("nodes: 73METHOD}", "nodes: 37}")
+        + """\
+  dynamic:
+    excitation: {end: b, direction: [1.0, 0.0, 0.0], amplitude: 0.5, frequency: 0.05}
+    method: time
+    elements: 36
+    history: {whole_line: true, samples_per_period: 32}
+sweep:
+  analysis.dynamic.excitation.amplitude: [0.5, 4.0]
+"""
+    )
+    ds, _, code = _run(tmp_path, text)
+    assert code == 0 and ds["status"].values.tolist() == [0, 0]
+    assert -5.0 < float(ds["z"].isel(amplitude=0).max()) < 0.0  # statics: just under
+    z_hist = ds["history_line_position"].sel(component="z").max(["time", "s"])
+    calm, rough = (str(w) for w in ds["warning"].values)
+    assert calm == "" and float(z_hist.isel(amplitude=0)) < 0.0
+    match = WARNING.search(rough)
+    assert match and "in the kept time history" in rough
+    assert float(match.group(2)) == pytest.approx(float(z_hist.isel(amplitude=1)), rel=5e-4)
+    assert float(match.group(2)) > 0.0
