@@ -73,7 +73,7 @@ sweep:
 
 WARNING = re.compile(
     r"surface: (the line|line riser) rises above the water's surface \(z = 0\) to "
-    r"z = (\S+) m at s = (\S+) m \(its highest node\)"
+    r"z = (\S+) m at s = (\S+) m \(its highest node"
 )
 
 
