@@ -98,7 +98,9 @@ OUTPUTS: dict[str, OutputVariable] = {
     "mode_shape": OutputVariable(
         ("mode", "s", "component"),
         "m",
-        "mode shape: node displacement scaled to a largest displacement of 1 m",
+        "mode shape: node displacement scaled to a largest displacement of 1 m, signed so "
+        "that its largest component is positive (on the modal model's nodes; of tied nodes "
+        "the first from end A, of tied components the first of x, y, z)",
     ),
     "modal_dof": OutputVariable((), "1", "degrees of freedom of the modal model"),
     "drag_iterations": OutputVariable((), "1", "outer drag iterations of the static solver"),

@@ -34,8 +34,10 @@ the reduced mass stays block-diagonal; with its block Cholesky factor L the prob
 becomes the standard banded symmetric eigenproblem ``L^-1 K L^-T y = omega^2 y``
 (half-bandwidth at most 8 degrees of freedom), solved for the lowest modes only: by
 ARPACK in shift-invert mode about 0 (:func:`scipy.sparse.linalg.eigsh` on a sparse
-LU of the banded matrix), or for small models and when half or more of the modes are
-wanted by LAPACK's banded solver (:func:`scipy.linalg.eig_banded`).
+LU of the banded matrix) from a fixed start vector, or for small models and when half
+or more of the modes are wanted by LAPACK's banded solver
+(:func:`scipy.linalg.eig_banded`). Both are repeatable: the same model gives the same
+bits, and each mode shape's sign is fixed by :func:`normalise_modes`.
 
 Accuracy. Lumped masses and linear elements make the frequencies converge as h^2:
 for a taut string the discrete frequencies are exactly
@@ -123,9 +125,12 @@ class ModalResult:
     """Lowest natural frequencies and mode shapes.
 
     frequency [Hz] (n_modes,), increasing; mode_shape [m] (n_modes, n_nodes, 3): nodal
-    displacements scaled so that the largest nodal displacement is 1 m and its largest
-    component is positive; s [m] (n_nodes,) the nodes; n_dof the number of degrees of
-    freedom; status, message as for static results.
+    displacements scaled so that the largest nodal displacement is 1 m, signed so that
+    the largest component of the largest displacement is positive (the first node, from
+    end A, and the first component, x, y, z, of those tied: :func:`normalise_modes`);
+    s [m] (n_nodes,) the nodes; n_dof the number of degrees of freedom; status, message
+    as for static results. The same model gives the same bits run after run
+    (:func:`start_vector`).
     """
 
     s: np.ndarray
@@ -428,6 +433,44 @@ def snap_to_samples(s_fine: np.ndarray, targets: np.ndarray) -> np.ndarray:
 BANDED_LIMIT = 60
 
 
+#: seed of the Lanczos start vector (:func:`start_vector`)
+START_SEED = 20_260_101
+
+
+def start_vector(n: int) -> np.ndarray:
+    """The start vector of the Lanczos iteration for ``n`` unknowns: fixed (the same for
+    the same ``n``, run after run, in any process), and with Gaussian pseudo-random
+    entries so that it has a part along every eigenvector (a constant or a smooth vector
+    would be orthogonal to every antisymmetric mode of a symmetric line)."""
+    return np.random.default_rng(START_SEED).standard_normal(n)
+
+
+#: two nodal displacements (or components) whose magnitudes differ by less than this
+#: fraction of the largest are ties for the sign convention (:func:`normalise_modes`):
+#: far above the eigenvectors' round-off (ARPACK's tolerance 1e-13, LAPACK's ~1e-15 over
+#: the spectral gap), so that a symmetric mode's two equal extremes never swap roles
+#: from one run or platform to the next
+SIGN_TIE = 1e-6
+
+
+def normalise_modes(U: np.ndarray) -> np.ndarray:
+    """Mode shapes ``U`` (modes, nodes, 3) scaled so that the largest nodal displacement
+    is 1 m, with the sign convention: the first node (smallest s) whose displacement is
+    within :data:`SIGN_TIE` of the largest, and of its components the first (x, y, z
+    order) within :data:`SIGN_TIE` of its largest, is positive. A new array."""
+    U = np.array(U, dtype=float)
+    mag = np.linalg.norm(U, axis=2)
+    for j in range(U.shape[0]):
+        top = float(np.max(mag[j]))
+        if not top > 0.0:
+            continue
+        node = int(np.flatnonzero(mag[j] >= (1.0 - SIGN_TIE) * top)[0])
+        size = np.abs(U[j, node])
+        comp = int(np.flatnonzero(size >= (1.0 - SIGN_TIE) * np.max(size))[0])
+        U[j] *= (1.0 if U[j, node, comp] > 0.0 else -1.0) / top
+    return U
+
+
 def lowest_eigenpairs(A: sp.coo_matrix, k: int) -> tuple[np.ndarray, np.ndarray]:
     """The ``k`` lowest eigenvalues (increasing) and eigenvectors (columns) of the
     symmetric banded matrix ``A``."""
@@ -438,8 +481,11 @@ def lowest_eigenpairs(A: sp.coo_matrix, k: int) -> tuple[np.ndarray, np.ndarray]
         ab = np.zeros((bw + 1, n))
         ab[bw + A.row[upper] - A.col[upper], A.col[upper]] = A.data[upper]
         return eig_banded(ab, lower=False, select="i", select_range=(0, k - 1))
-    # eigenvalues nearest 0 are the lowest (and any negative ones, which are reported)
-    lam, Y = eigsh(A.tocsc(), k=k, sigma=0.0, which="LM", tol=1e-13)
+    # eigenvalues nearest 0 are the lowest (and any negative ones, which are reported);
+    # from a fixed start vector: ARPACK's own is random, drawn from a generator whose state
+    # carries over between calls, so the same model gave frequencies that differ in the
+    # 13th digit and mode shapes mixed differently within (near-)repeated frequencies
+    lam, Y = eigsh(A.tocsc(), k=k, sigma=0.0, which="LM", tol=1e-13, v0=start_vector(n))
     order = np.argsort(lam)
     return lam[order], Y[:, order]
 
@@ -558,12 +604,5 @@ def modal_analysis(problem: ModalProblem, *, deadline: float | None = None) -> M
             n_dof=n_dof,
         )
     freq = np.sqrt(np.clip(lam, 0.0, None)) / (2.0 * math.pi)
-    U = (B @ (Linv.T @ Y)).T.reshape(k, n, 3)
-    mag = np.linalg.norm(U, axis=2)
-    for j in range(k):
-        node = int(np.argmax(mag[j]))
-        U[j] /= mag[j, node]
-        comp = int(np.argmax(np.abs(U[j, node])))
-        if U[j, node, comp] < 0.0:
-            U[j] *= -1.0
+    U = normalise_modes((B @ (Linv.T @ Y)).T.reshape(k, n, 3))
     return ModalResult(s=s, frequency=freq, mode_shape=U, n_dof=n_dof, status=STATUS_OK, message="")
