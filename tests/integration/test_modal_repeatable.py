@@ -73,9 +73,7 @@ def test_two_runs_give_the_same_bits(tmp_path: Path) -> None:
 
 def test_the_sign_convention_holds_on_every_mode(tmp_path: Path) -> None:
     ds = _run(tmp_path)
-    assert "signed so that its largest component is positive" in ds["mode_shape"].attrs[
-        "long_name"
-    ]
+    assert "signed so that its largest component is positive" in ds["mode_shape"].attrs["long_name"]
     shapes = ds["mode_shape"].transpose(..., "mode", "s", "component").values
     tied = 0
     for U in shapes.reshape(-1, *shapes.shape[-2:]):
