@@ -55,8 +55,8 @@ class RunSummary:
                     for why, n in sorted(self.fallbacks.items(), key=lambda kv: -kv[1])
                 )
             )
-        for pattern, (count, example) in group_failures(self.failures).items():
-            if len(lines) == 1:
+        for i, (pattern, (count, example)) in enumerate(group_failures(self.failures).items()):
+            if i == 0:  # (not after the summary line alone: the lines above may be there)
                 lines.append("failures by message:")
             single = count == self.failures.get(example)
             shown = example if single else f"{pattern}  (e.g. {example})"

@@ -86,3 +86,17 @@ def test_the_process_exit_status_is_the_commands(tmp_path: Path) -> None:
     )
     assert run.returncode == EXIT_NO_CASE_SUCCEEDED, run.stderr
     assert (tmp_path / "wire.nc").is_file()
+
+
+def test_the_failures_are_listed_under_their_heading(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The run's summary lists the failures under "failures by message:" also when a line
+    on the general solver's cases comes first (these cases touch the seabed: no batch
+    kernel takes them)."""
+    cfg = _study(tmp_path, "[250.0, 300.0]")
+    main(["run", str(cfg), "--out", str(tmp_path), "--scheduler", "synchronous"])
+    out = capsys.readouterr().out
+    assert "cases solved by the general solver" in out
+    _, _, listed = out.partition("failures by message:\n")
+    assert listed.lstrip().startswith("2 x the line (# m) is not shorter"), out
