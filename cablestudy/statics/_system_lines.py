@@ -15,8 +15,7 @@ import math
 import numpy as np
 
 from ._fast import _solve3, _total, njit
-from ._fast_contact import LIFT_OFF, NOT_CONVERGED, NUMERICAL, SLACK, _evaluate, _guess, _laid
-from ._fast_contact import _newton_step as _step3
+from ._fast_contact import NUMERICAL, _contact_newton, _guess, _laid
 
 
 @njit(cache=True, error_model="numpy")
@@ -201,71 +200,10 @@ def _contact_line(
     Jn = sc3[1]
     Js = sc3[2]
     jac = sc3[3]
-    _evaluate(
-        y, bas, rA, rB, 0, zero3, Fscale, L, bounds, w, EA, point, normal, mu, R, Jm,
-        T, e, t_lo, t_hi, rate, hi_s, lp, dr, jac, rs, Js,
+    st, _, _ = _contact_newton(
+        y, bas, rA, rB, 0, zero3, Fscale, L, bounds, w, EA, point, normal, mu, tol, maxit,
+        R, Rn, Jm, Jn, yn, stp, A, T, e, t_lo, t_hi, rate, hi_s, lp, dr, jac, rs, Js,
     )  # fmt: skip
-    res = max(abs(R[0]), max(abs(R[1]), abs(R[2])))
-    polish = 0
-    at_zero = 0
-    it = 0
-    st = 0
-    while True:
-        if not math.isfinite(res):
-            st = NUMERICAL
-            break
-        if res <= tol:
-            if polish >= 1 or res <= 1e-15:
-                break
-            polish += 1
-        if it >= maxit:
-            st = NOT_CONVERGED
-            break
-        it += 1
-        if not _step3(Jm, R, A, stp):
-            st = NUMERICAL
-            break
-        norm0 = math.sqrt(R[0] * R[0] + R[1] * R[1] + R[2] * R[2])
-        ny = math.sqrt(y[0] * y[0] + y[1] * y[1])
-        lam = 1.0
-        accepted = False
-        for _ in range(40):
-            for k in range(3):
-                yn[k] = y[k] + lam * stp[k]
-            yn[2] = min(max(yn[2], 0.0), L * (1.0 - 1e-9))
-            if math.sqrt(yn[0] * yn[0] + yn[1] * yn[1]) <= 1e-3 * ny:
-                yn[0] = y[0] * 1e-3
-                yn[1] = y[1] * 1e-3
-            _evaluate(
-                yn, bas, rA, rB, 0, zero3, Fscale, L, bounds, w, EA, point, normal, mu, Rn, Jn,
-                T, e, t_lo, t_hi, rate, hi_s, lp, dr, jac, rs, Js,
-            )  # fmt: skip
-            nn = math.sqrt(Rn[0] * Rn[0] + Rn[1] * Rn[1] + Rn[2] * Rn[2])
-            if math.isfinite(nn) and nn <= (1.0 - 1e-4 * lam) * norm0 + 1e-15:
-                accepted = True
-                break
-            lam *= 0.5
-        if not accepted:
-            st = SLACK if ny < 1e-3 * Fscale else NOT_CONVERGED
-            break
-        for k in range(3):
-            y[k] = yn[k]
-            R[k] = Rn[k]
-            for m in range(3):
-                Jm[k, m] = Jn[k, m]
-        res = max(abs(R[0]), max(abs(R[1]), abs(R[2])))
-        if math.sqrt(y[0] * y[0] + y[1] * y[1]) < 1e-9 * Fscale and res > tol:
-            st = SLACK
-            break
-        if y[2] <= 0.0:
-            at_zero += 1
-            if at_zero >= 2:
-                st = LIFT_OFF
-                break
-        else:
-            at_zero = 0
-    if st == 0 and y[2] <= 0.0:
-        st = LIFT_OFF
     if st != 0:
         return st
     # the end forces at the solution
