@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from ._fast import _solve3, _total, njit
+from ._fast import _free_newton, _offsets, njit  # noqa: F401 - _offsets re-exported
 from ._fast_contact import NUMERICAL, _contact_newton, _guess, _laid
 
 
@@ -45,26 +45,6 @@ def _inv3(A: np.ndarray, out: np.ndarray) -> bool:
 
 
 @njit(cache=True, error_model="numpy")
-def _offsets(w: np.ndarray, ell: np.ndarray, point: np.ndarray, C: np.ndarray, Cend: np.ndarray):
-    """T at the start of piece p = T_A - C[p]; ``Cend`` the loads on the whole line."""
-    P = ell.shape[0]
-    a0 = 0.0
-    a1 = 0.0
-    a2 = 0.0
-    for p in range(P):
-        a0 += point[p, 0]
-        a1 += point[p, 1]
-        a2 += point[p, 2]
-        C[p, 0] = a0
-        C[p, 1] = a1
-        C[p, 2] = a2
-        a2 += -w[p] * ell[p]
-    Cend[0] = a0 + point[P, 0]
-    Cend[1] = a1 + point[P, 1]
-    Cend[2] = a2 + point[P, 2]
-
-
-@njit(cache=True, error_model="numpy")
 def _free_line(
     ell: np.ndarray,
     EA: np.ndarray,
@@ -90,56 +70,10 @@ def _free_line(
     for k in range(3):
         free[k] = True
     tn = math.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])
-    scale = max(L, tn)
-    it = 0
-    E = _total(TA, C, w, ell, EA, r, J, True)
-    polished = False
-    while True:
-        res = 0.0
-        for k in range(3):
-            g[k] = r[k] - d[k]
-            res = max(res, abs(g[k]))
-        res /= scale
-        if not math.isfinite(res):
-            return False
-        if res <= tol:
-            if polished or res <= 1e-15:
-                return True
-            polished = True
-        if it >= maxit:
-            return False
-        it += 1
-        if not _solve3(J, g, free, step):
-            return False
-        slope = 0.0
-        dot = 0.0
-        for k in range(3):
-            slope += g[k] * step[k]
-            dot += d[k] * TA[k]
-        psi = E - dot
-        slack = 1e-13 * (abs(E) + abs(dot))
-        lam = 1.0
-        accepted = False
-        En = 0.0
-        for _ in range(80):
-            dotn = 0.0
-            for k in range(3):
-                Tn[k] = TA[k] + lam * step[k]
-                dotn += d[k] * Tn[k]
-            En = _total(Tn, C, w, ell, EA, rn, Jn, True)
-            psin = En - dotn
-            if math.isfinite(psin) and psin <= psi + 1e-4 * lam * slope + slack:
-                accepted = True
-                break
-            lam *= 0.5
-        if not accepted:
-            return False
-        for k in range(3):
-            TA[k] = Tn[k]
-            r[k] = rn[k]
-            for m in range(3):
-                J[k, m] = Jn[k, m]
-        E = En
+    ok, _, _ = _free_newton(
+        TA, C, w, ell, EA, d, free, max(L, tn), tol, maxit, r, J, rn, Jn, Tn, g, step
+    )
+    return ok
 
 
 @njit(cache=True, error_model="numpy")
