@@ -27,16 +27,19 @@ from typing import Annotated, Literal
 
 from pydantic import AfterValidator, Field, field_validator, model_validator
 
-from .base import FieldError, Finite, NonNegative, Positive, StrictModel, Vec2, Vec3
+from .base import (
+    FieldError,
+    Finite,
+    NonNegative,
+    Positive,
+    StrictModel,
+    Vec2,
+    Vec3,
+    unit_direction,
+)
 
 #: degrees of freedom of a body, in the order of its 6-DOF position
 BODY_DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
-
-
-def _unit(value: list[float]) -> list[float]:
-    if math.sqrt(sum(v * v for v in value)) <= 0.0:
-        raise ValueError("must be a nonzero vector; allowed: any direction of length > 0")
-    return value
 
 
 def _frequency_or_period(data: object) -> object:
@@ -130,7 +133,7 @@ class PointHarmonic(StrictModel):
     """Harmonic motion of a point on its own along ``direction`` (as a line end)."""
 
     point: str = Field(description="the point that moves (a key of points)")
-    direction: Annotated[Vec3, AfterValidator(_unit)] = Field(
+    direction: Annotated[Vec3, AfterValidator(unit_direction)] = Field(
         description="direction of the motion [-] (normalised)"
     )
     amplitude: NonNegative = Field(description="amplitude [m]")
@@ -148,7 +151,7 @@ class PointTable(StrictModel):
     """Motion of a point on its own along ``direction`` as a time table."""
 
     point: str = Field(description="the point that moves (a key of points)")
-    direction: Annotated[Vec3, AfterValidator(_unit)] = Field(
+    direction: Annotated[Vec3, AfterValidator(unit_direction)] = Field(
         description="direction of the motion [-] (normalised)"
     )
     table: list[Vec2] = Field(min_length=4, description="rows [time s, displacement m]")
