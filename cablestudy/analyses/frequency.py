@@ -484,7 +484,7 @@ def irregular(
         return np.sqrt(m0), np.sqrt(m0) * np.sqrt(2.0 * np.log(n_peaks))
 
     sd_end, mpm_end = mpm(np.abs(res.end_tension) ** 2)
-    sd_el, mpm_el = mpm(np.abs(res.element_tension) ** 2)
+    _, mpm_el = mpm(np.abs(res.element_tension) ** 2)
     ex = 0 if spec.end == "a" else 1
     t_end = res.tension_static
     env = tension_along(static.s, red.line.s, mpm_el, mpm_end)
