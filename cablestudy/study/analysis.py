@@ -28,11 +28,10 @@ from .system_dynamics import (
     SYSTEM_TABLES,
     BodyHarmonic,
     BodyTable,
+    HarmonicMotion,
     PointHarmonic,
     PointTable,
-    _closed,
-    _frequency_or_period,
-    _table_rows,
+    TableMotion,
     system_tag,
 )
 
@@ -234,7 +233,7 @@ class AutoSettings(StrictModel):
     )
 
 
-class HarmonicExcitation(StrictModel):
+class HarmonicExcitation(HarmonicMotion):
     """Harmonic motion of one end about its static position:
     ``amplitude * sin(2 pi frequency t + phase) * direction / |direction|``. Give the
     ``frequency`` [Hz] or the ``period`` [s] (exactly one; either can be swept): a period
@@ -256,13 +255,8 @@ class HarmonicExcitation(StrictModel):
     )
     phase_deg: Finite = Field(0.0, description="phase of the sine [deg]")
 
-    @model_validator(mode="before")
-    @classmethod
-    def _fill_frequency(cls, data: object) -> object:
-        return _frequency_or_period(data)
 
-
-class TimeSeriesExcitation(StrictModel):
+class TimeSeriesExcitation(TableMotion):
     """Motion of one end along ``direction`` given as a table of (time [s], displacement
     [m]) pairs, interpolated by a cubic spline (continuous acceleration). With
     ``periodic`` the table repeats with its duration as period (the last displacement
@@ -274,16 +268,6 @@ class TimeSeriesExcitation(StrictModel):
     )
     table: list[Vec2] = Field(min_length=4, description="rows [time s, displacement m]")
     periodic: bool = Field(False, description="repeat the table with its duration as period")
-
-    @field_validator("table")
-    @classmethod
-    def _increasing(cls, value: list[list[float]]) -> list[list[float]]:
-        return _table_rows(value)
-
-    @model_validator(mode="after")
-    def _closes(self) -> TimeSeriesExcitation:
-        _closed(self.table, self.periodic)
-        return self
 
 
 def _excitation_tag(value: Any) -> str:
