@@ -79,7 +79,7 @@ def linearised(
     n_nodes = dyn.elements + 1
     mesh = static if len(static.s) == n_nodes else static_at(case, n_nodes, deadline)
     if mesh.success and static.laid_length > 0.0:
-        mesh = _with_touchdown_nodes(case, static, dyn.elements, deadline) or mesh
+        mesh = _with_touchdown_nodes(case, dyn.elements, deadline) or mesh
     out: tuple[ReducedLine | None, str]
     if not mesh.success:
         out = (None, f"static shape at the dynamic nodes: {mesh.message}")
@@ -122,9 +122,7 @@ def linearised(
 TOUCHDOWN_SAMPLES = 16
 
 
-def _with_touchdown_nodes(
-    case: Case, static: StaticResult, elements: int, deadline: float | None
-) -> StaticResult | None:
+def _with_touchdown_nodes(case: Case, elements: int, deadline: float | None) -> StaticResult | None:
     """The uniform nodes plus a node at each touchdown point (the last laid one of
     ``TOUCHDOWN_SAMPLES`` static samples per element), so that the held laid nodes end
     where the line leaves the seabed, as in the modal mesh
