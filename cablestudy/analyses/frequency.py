@@ -79,7 +79,7 @@ def linearised(
     n_nodes = dyn.elements + 1
     mesh = static if len(static.s) == n_nodes else static_at(case, n_nodes, deadline)
     if mesh.success and static.laid_length > 0.0:
-        mesh = _with_touchdown_nodes(case, static, dyn.elements, deadline) or mesh
+        mesh = _with_touchdown_nodes(case, dyn.elements, deadline) or mesh
     out: tuple[ReducedLine | None, str]
     if not mesh.success:
         out = (None, f"static shape at the dynamic nodes: {mesh.message}")
@@ -122,9 +122,7 @@ def linearised(
 TOUCHDOWN_SAMPLES = 16
 
 
-def _with_touchdown_nodes(
-    case: Case, static: StaticResult, elements: int, deadline: float | None
-) -> StaticResult | None:
+def _with_touchdown_nodes(case: Case, elements: int, deadline: float | None) -> StaticResult | None:
     """The uniform nodes plus a node at each touchdown point (the last laid one of
     ``TOUCHDOWN_SAMPLES`` static samples per element), so that the held laid nodes end
     where the line leaves the seabed, as in the modal mesh
@@ -484,7 +482,7 @@ def irregular(
         return np.sqrt(m0), np.sqrt(m0) * np.sqrt(2.0 * np.log(n_peaks))
 
     sd_end, mpm_end = mpm(np.abs(res.end_tension) ** 2)
-    sd_el, mpm_el = mpm(np.abs(res.element_tension) ** 2)
+    _, mpm_el = mpm(np.abs(res.element_tension) ** 2)
     ex = 0 if spec.end == "a" else 1
     t_end = res.tension_static
     env = tension_along(static.s, red.line.s, mpm_el, mpm_end)

@@ -108,15 +108,6 @@ class EndMotion:
     tables: tuple[TableMotion, ...] = ()
     ramp_time: float = 0.0
 
-    @property
-    def moving_ends(self) -> set[int]:
-        ends = {
-            int(e)
-            for e, a in zip(self.harmonic_end, self.harmonic_amplitude, strict=True)
-            if a > 0.0
-        }
-        return ends | {t.end for t in self.tables}
-
     def __post_init__(self) -> None:
         tabs = self.tables
         xs = [np.asarray(t.spline.x, dtype=float) for t in tabs]

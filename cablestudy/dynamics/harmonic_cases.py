@@ -260,7 +260,7 @@ def solve_harmonic_cases(
     line = red.line
     if not line.has_drag:
         # one linear solve per case: LAPACK's, as solve_harmonic (no iteration to save)
-        return _one_by_one(red, omegas, end_motion, settings)
+        return _one_by_one(red, omegas, end_motion)
     omegas = np.ascontiguousarray(omegas, dtype=float)
     motion = np.ascontiguousarray(end_motion, dtype=np.complex128)
     if plane and not np.any(motion[:, :, 1]):
@@ -336,9 +336,7 @@ def solve_harmonic_cases(
     )
 
 
-def _one_by_one(
-    red: ReducedLine, omegas: np.ndarray, end_motion: np.ndarray, settings: DragSettings
-) -> HarmonicCases:
+def _one_by_one(red: ReducedLine, omegas: np.ndarray, end_motion: np.ndarray) -> HarmonicCases:
     """:func:`solve_harmonic_cases` of a line without drag, case by case
     (:func:`~cablestudy.dynamics.frequency_model.solve_undamped`, which
     :func:`~cablestudy.dynamics.frequency.solve_harmonic` gives such a line)."""

@@ -1,4 +1,5 @@
-"""Closed-form natural frequencies of strings and tensioned beams (pure, SI units)."""
+"""Closed-form natural frequencies of a string under linearly varying tension (pure, SI
+units)."""
 
 from __future__ import annotations
 
@@ -7,30 +8,6 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 from scipy.special import j0, y0
-
-
-def tensioned_beam(
-    *, length: float, tension: float, mass: float, bending_stiffness: float, count: int
-) -> np.ndarray:
-    """Pinned-pinned uniform tensioned beam, f_n = n / (2 L) sqrt(T / m (1 + EI n^2 pi^2 /
-    (T L^2))) [Hz], n = 1..count.
-
-    Parameters
-    ----------
-    length : float  [m]
-    tension : float  [N]
-    mass : float  [kg/m] including added mass
-    bending_stiffness : float  [N m^2]
-    count : int
-    """
-    n = np.arange(1, count + 1)
-    return (
-        n
-        / (2 * length)
-        * np.sqrt(
-            tension / mass * (1 + bending_stiffness * n**2 * math.pi**2 / (tension * length**2))
-        )
-    )
 
 
 def linear_tension_string(

@@ -120,40 +120,23 @@ def measures(
     (n,) bool, nodes with no free direction (elements between two of them do not move
     and are left out of the slack check: a laid stretch that friction has emptied of
     tension is not a slack span)."""
-    ratio = float(
-        slack_ratio(
-            element_tension_static=element_tension_static,
-            element_tension_amplitude=element_tension_amplitude[None],
-            end_tension_static=end_tension_static,
-            end_tension_amplitude=end_tension_amplitude[None],
-            on_seabed=on_seabed,
-            held=held,
-        )[0]
+    ratio, amp, travel = measures_cases(
+        s=s,
+        position=position,
+        displacement=displacement[None],
+        element_tension_static=element_tension_static,
+        element_tension_amplitude=element_tension_amplitude[None],
+        end_tension_static=end_tension_static,
+        end_tension_amplitude=end_tension_amplitude[None],
+        laid_length=laid_length,
+        on_seabed=on_seabed,
+        submerged_weight=submerged_weight,
+        held=held,
     )
-    length = float(s[-1] - s[0])
-    d = sag(position)
-    a = float(np.max(np.sqrt(np.sum(np.abs(displacement) ** 2, axis=1))))
-    travel = 0.0
-    if laid_length > 0.0 and np.any(on_seabed) and not np.all(on_seabed):
-        n = on_seabed.size
-        travels = []
-        # each edge between a laid and a suspended node: a touchdown point
-        for e in np.flatnonzero(np.diff(on_seabed.astype(int)) != 0):
-            k, step = (e, 1) if on_seabed[e] else (e + 1, -1)  # laid node, way up
-            stretch = [k + step]  # the suspended stretch up to the next laid node or end
-            while 0 <= stretch[-1] + step < n and not on_seabed[stretch[-1] + step]:
-                stretch.append(stretch[-1] + step)
-            top = stretch[-1]
-            h = float(np.max(position[stretch, 2]) - position[k, 2])
-            w = max(float(submerged_weight[k]), 0.0)
-            v_top = w * abs(float(s[top] - s[k]))  # vertical tension at the top
-            d_t = float(element_tension_amplitude[min(e, element_tension_amplitude.size - 1)])
-            travels.append(h * d_t / v_top if v_top > 0.0 else math.inf)
-        travel = max(travels) / length
     return Validity(
-        min_tension_ratio=ratio,
-        amplitude_sag_ratio=a / (d if d > 1e-9 * length else length),
-        touchdown_travel=travel,
+        min_tension_ratio=float(ratio[0]),
+        amplitude_sag_ratio=float(amp[0]),
+        touchdown_travel=float(travel[0]),
     )
 
 
@@ -174,7 +157,7 @@ def measures_cases(
     """:func:`measures` of K responses of one line at once: ``displacement`` (K, n, 3),
     ``element_tension_amplitude`` (K, n - 1) and ``end_tension_amplitude`` (K, 2) per
     response, the rest shared. Returns (min_tension_ratio, amplitude_sag_ratio,
-    touchdown_travel), each (K,), with the same operations as :func:`measures`."""
+    touchdown_travel), each (K,); :func:`measures` is its K = 1."""
     ratio = slack_ratio(
         element_tension_static=element_tension_static,
         element_tension_amplitude=element_tension_amplitude,

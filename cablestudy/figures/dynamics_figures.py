@@ -10,7 +10,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import xarray as xr
 
-from .registry import register
+from .registry import register, save
 
 
 def _curves(ax: plt.Axes, ds: xr.Dataset, dim: str, value: float, label: str, color: str) -> None:
@@ -27,16 +27,8 @@ def _curves(ax: plt.Axes, ds: xr.Dataset, dim: str, value: float, label: str, co
 
 
 def _finish(fig: plt.Figure, ax: plt.Axes, title: str, path: Path) -> Path:
-    ax.set_xlabel("excitation frequency [Hz]")
-    ax.set_ylabel("tension at the excited end [N]")
-    ax.set_title(title, fontsize=9)
-    ax.set_ylim(bottom=0.0)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, ncol=2)
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    _finish_axes(ax, title)
+    return save(fig, path)
 
 
 @register("moustafa-figs2-5", ("moustafa-figs2-5", "moustafa-figs2-5-methods"))
@@ -102,11 +94,7 @@ def figs2_5(data: dict[str, xr.Dataset], out: Path) -> Path:
         "frequency domain (blue), method auto's choice (markers)",
         fontsize=9,
     )
-    fig.tight_layout()
-    path = out / "moustafa-figs2-5.png"
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return save(fig, out / "moustafa-figs2-5.png")
 
 
 @register("moustafa-fig6", ("moustafa-fig6",))
@@ -173,11 +161,7 @@ def sensitivity(data: dict[str, xr.Dataset], out: Path) -> Path:
                     va="top",
                 )
     fig.suptitle("Sensitivity to the seed's readings: fluid and EA", fontsize=10)
-    fig.tight_layout()
-    path = out / "moustafa-sensitivity.png"
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return save(fig, out / "moustafa-sensitivity.png")
 
 
 def _finish_axes(ax: plt.Axes, title: str) -> None:
@@ -213,8 +197,4 @@ def figs8_10(data: dict[str, xr.Dataset], out: Path) -> Path:
         axes[0, j].set_title(f"Fig. {8 + j}: midpoint, {amps[j]:g} m, {freqs[j]:g} Hz", fontsize=9)
         axes[-1, j].set_xlabel("time in the steady window [s]")
     fig.suptitle("Moustafa Figs. 8-10: vertical response of the cable midpoint (z up)", fontsize=10)
-    fig.tight_layout()
-    path = out / "moustafa-figs8-10.png"
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return save(fig, out / "moustafa-figs8-10.png")

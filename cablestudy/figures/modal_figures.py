@@ -12,7 +12,7 @@ import xarray as xr
 import yaml
 
 from ..dynamics import irvine
-from .registry import register
+from .registry import register, save
 
 #: marker and label of each mode family
 FAMILIES = {
@@ -123,11 +123,7 @@ def irvine_lambda(data: dict[str, xr.Dataset], out: Path) -> Path:
     ax.set_title("Shallow level cable, sag/span 1/40: natural frequencies vs lambda^2")
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7, loc="upper left", ncol=2)
-    path = out / "irvine-modal-lambda.png"
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return save(fig, out / "irvine-modal-lambda.png")
 
 
 @register("umbilical-frequency-tension", ("umbilical-frequency-tension",))
@@ -219,8 +215,4 @@ def _frequency_tension(ds: xr.Dataset, out: Path, figures: str) -> Path:
     )
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8)
-    path = out / f"{ds.attrs['study_name']}.png"
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return save(fig, out / f"{ds.attrs['study_name']}.png")

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import xarray as xr
 
@@ -20,3 +21,14 @@ def register(name: str, studies: tuple[str, ...]) -> Callable[[Builder], Builder
         return fn
 
     return deco
+
+
+def save(fig: Any, path: Path) -> Path:
+    """Lay out the matplotlib figure ``fig``, write it to ``path`` (PNG, 120 dpi) and close
+    it; returns ``path``."""
+    import matplotlib.pyplot as plt
+
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path

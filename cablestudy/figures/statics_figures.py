@@ -8,7 +8,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import xarray as xr
 
-from .registry import register
+from .registry import register, save
 
 #: dodaran-park seed, Table 1: points of the steel catenary of Fig. 4 (x, z) [m]
 TABLE1 = np.array(
@@ -69,19 +69,7 @@ def fig4(data: dict[str, xr.Dataset], out: Path) -> Path:
     ax.set_aspect("equal", adjustable="datalim")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
-    path = out / "dodaran-fig4.png"
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
-
-
-def _save(fig: plt.Figure, out: Path, name: str) -> Path:
-    path = out / f"{name}.png"
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return save(fig, out / "dodaran-fig4.png")
 
 
 @register("dodaran-fig5", ("dodaran-fig5-point-load",))
@@ -97,7 +85,7 @@ def fig5(data: dict[str, xr.Dataset], out: Path) -> Path:
     ax.set_aspect("equal", adjustable="datalim")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
-    return _save(fig, out, "dodaran-fig5")
+    return save(fig, out / "dodaran-fig5.png")
 
 
 def _current_figure(ds: xr.Dataset, title: str, out: Path, name: str) -> Path:
@@ -113,7 +101,7 @@ def _current_figure(ds: xr.Dataset, title: str, out: Path, name: str) -> Path:
     ax.set_aspect("equal", adjustable="datalim")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
-    return _save(fig, out, name)
+    return save(fig, out / f"{name}.png")
 
 
 @register("dodaran-fig6", ("dodaran-fig6-marine-cable-340",))
@@ -157,4 +145,4 @@ def fig8(data: dict[str, xr.Dataset], out: Path) -> Path:
     ax2.set_title("plan view (dodaran-park Fig. 8)", fontsize=9)
     ax2.grid(alpha=0.3)
     ax2.legend(fontsize=8)
-    return _save(fig, out, "dodaran-fig8")
+    return save(fig, out / "dodaran-fig8.png")

@@ -18,7 +18,7 @@ import xarray as xr
 import yaml
 from scipy.optimize import curve_fit
 
-from .registry import Builder, register
+from .registry import Builder, register, save
 
 STUDY = "umbilical-time-response"
 
@@ -200,10 +200,7 @@ def _space_time(motion: xr.Dataset, variable: str, label: str, title: str, path:
     ax.set_xlabel("time t [s]")
     ax.set_ylabel("arc length s from the bottom end [m]")
     ax.set_title(title, fontsize=9)
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return save(fig, path)
 
 
 def _builder(number: int, variable: str, label: str) -> Builder:

@@ -10,7 +10,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import xarray as xr
 
-from .registry import register
+from .registry import register, save
 
 
 def _labels(ds: xr.Dataset, dim: str, unit: str) -> list[str]:
@@ -90,11 +90,7 @@ def mooring(data: dict[str, xr.Dataset], out: Path) -> Path:
         "Segmented deep-water mooring in a sheared current (vaz-patel example 2, shooting solver)",
         fontsize=10,
     )
-    path = out / "vaz-patel-mooring.png"
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return save(fig, out / "vaz-patel-mooring.png")
 
 
 @register("vaz-patel-turning-current", ("vaz-patel-turning-current",))
@@ -135,11 +131,7 @@ def turning_current(data: dict[str, xr.Dataset], out: Path) -> Path:
         "(vaz-patel example 3, shooting solver)",
         fontsize=10,
     )
-    path = out / "vaz-patel-turning-current.png"
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return save(fig, out / "vaz-patel-turning-current.png")
 
 
 @register("vaz-patel-cable-installation", ("vaz-patel-cable-installation",))
@@ -173,8 +165,4 @@ def cable_installation(data: dict[str, xr.Dataset], out: Path) -> Path:
         "1.05 m/s, in a transverse sheared current (vaz-patel example 1)",
         fontsize=10,
     )
-    path = out / "vaz-patel-cable-installation.png"
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return save(fig, out / "vaz-patel-cable-installation.png")

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -76,6 +77,74 @@ def _floor125(x: float) -> float:
         if m * 10.0**e <= x * (1 + 1e-12):
             return m * 10.0**e
     return 10.0**e
+
+
+def type_row(name: str, seg: Any, mass: float) -> str:
+    """The LINE TYPES row ``name`` of segment ``seg`` with mass ``mass`` [kg/m] in the
+    fluid's terms (internal damping as MoorDyn's -zeta)."""
+    ba = -seg.damping_ratio if seg.damping_ratio > 0.0 else 0.0
+    return (
+        f"{name}  {_num(seg.diameter)}  {_num(mass)}  {_num(seg.elastic_stiffness)}  "
+        f"{_num(ba)}  {_num(seg.bending_stiffness)}  {_num(seg.drag_normal)}  "
+        f"{_num(seg.added_mass_normal)}  {_num(seg.drag_tangential)}  "
+        f"{_num(seg.added_mass_tangential)}"
+    )
+
+
+def time_options(dt: float) -> list[str]:
+    """The OPTIONS rows of the time step (``dt`` [s] the axial stability limit, rounded
+    down to 1-2-5) and the initial-condition settings."""
+    return [
+        f"{_num(_floor125(dt))}  dtM   ! explicit RK2: about 20 steps per period of the "
+        f"fastest (axial) segment mode, pi l / (10 c) = {dt:.3g} s rounded down",
+        "0.001  threshIC",
+        "300  TmaxIC",
+    ]
+
+
+def file_text(
+    front: list[str],
+    type_rows: list[str],
+    body_rows: list[str],
+    point_rows: list[str],
+    line_rows: list[str],
+    opts: list[str],
+    outputs: list[str],
+) -> str:
+    """A MoorDyn v2 input file of these sections' rows (no BODIES section without
+    ``body_rows``)."""
+    rows = [
+        "--------------------- MoorDyn Input File ------------------------------------",
+        *front,
+        "---------------------- LINE TYPES ------------------------------------------",
+        "TypeName Diam Mass/m EA BA/-zeta EI Cd Ca CdAx CaAx",
+        "(name) (m) (kg/m) (N) (N-s/-) (N-m^2) (-) (-) (-) (-)",
+        *type_rows,
+    ]
+    if body_rows:
+        rows += [
+            "---------------------- BODIES ----------------------------------------------",
+            "ID Attachment X0 Y0 Z0 r0 p0 y0 Mass CG* I* Volume CdA* Ca*",
+            "(#) (-) (m) (m) (m) (deg) (deg) (deg) (kg) (m) (kg-m^2) (m^3) (m^2) (-)",
+            *body_rows,
+        ]
+    rows += [
+        "---------------------- POINTS ----------------------------------------------",
+        "ID Attachment X Y Z Mass Volume CdA Ca",
+        "(#) (-) (m) (m) (m) (kg) (m^3) (m^2) (-)",
+        *point_rows,
+        "---------------------- LINES -----------------------------------------------",
+        "ID LineType AttachA AttachB UnstrLen NumSegs LineOutputs",
+        "(#) (name) (#) (#) (m) (-) (-)",
+        *line_rows,
+        "---------------------- OPTIONS ---------------------------------------------",
+        *opts,
+        "---------------------- OUTPUTS ---------------------------------------------",
+        *outputs,
+        "END",
+        "------------------------- need this line -----------------------------------",
+    ]
+    return "\n".join(rows) + "\n"
 
 
 def moordyn_input(
@@ -155,13 +224,7 @@ def moordyn_input(
                     f"line.segments.{i}: weight_in_fluid {seg.weight_in_fluid:g} N/m differs "
                     f"from (mass - rho A) g = {implied:g} N/m; MoorDyn uses mass and diameter"
                 )
-        ba = -seg.damping_ratio if seg.damping_ratio > 0.0 else 0.0
-        type_rows.append(
-            f"seg{i + 1}  {_num(seg.diameter)}  {_num(m)}  {_num(seg.elastic_stiffness)}  "
-            f"{_num(ba)}  {_num(seg.bending_stiffness)}  {_num(seg.drag_normal)}  "
-            f"{_num(seg.added_mass_normal)}  {_num(seg.drag_tangential)}  "
-            f"{_num(seg.added_mass_tangential)}"
-        )
+        type_rows.append(type_row(f"seg{i + 1}", seg, m))
     dyn = study.analysis.dynamic
     n_total = dyn.elements if dyn is not None else study.analysis.static.nodes - 1
     # points
@@ -259,12 +322,7 @@ def moordyn_input(
             f"{deep}  WtrDpth   ! the study has no seabed: placed 10 line lengths below the "
             "lowest point, out of reach"
         )
-    opts += [
-        f"{_num(dtm)}  dtM   ! explicit RK2: about 20 steps per period of the fastest (axial) "
-        f"segment mode, pi l / (10 c) = {dt:.3g} s rounded down",
-        "0.001  threshIC",
-        "300  TmaxIC",
-    ]
+    opts += time_options(dt)
     extra = current_table(study, opts)
     front = [f"MoorDyn v2 input file written by cablestudy: {title}"]
     if dyn is not None:
@@ -279,29 +337,7 @@ def moordyn_input(
                 + ": drive the Coupled point through MoorDyn's Step"
             )
     n_lines = len(line_rows)
-    text = "\n".join(
-        [
-            "--------------------- MoorDyn Input File ------------------------------------",
-            *front,
-            "---------------------- LINE TYPES ------------------------------------------",
-            "TypeName Diam Mass/m EA BA/-zeta EI Cd Ca CdAx CaAx",
-            "(name) (m) (kg/m) (N) (N-s/-) (N-m^2) (-) (-) (-) (-)",
-            *type_rows,
-            "---------------------- POINTS ----------------------------------------------",
-            "ID Attachment X Y Z Mass Volume CdA Ca",
-            "(#) (-) (m) (m) (m) (kg) (m^3) (m^2) (-)",
-            *point_rows,
-            "---------------------- LINES -----------------------------------------------",
-            "ID LineType AttachA AttachB UnstrLen NumSegs LineOutputs",
-            "(#) (name) (#) (#) (m) (-) (-)",
-            *line_rows,
-            "---------------------- OPTIONS ---------------------------------------------",
-            *opts,
-            "---------------------- OUTPUTS ---------------------------------------------",
-            f"FairTen{n_lines}",
-            "AnchTen1",
-            "END",
-            "------------------------- need this line -----------------------------------",
-        ]
+    text = file_text(
+        front, type_rows, [], point_rows, line_rows, opts, [f"FairTen{n_lines}", "AnchTen1"]
     )
-    return ExportedCase(text + "\n", extra, warnings, coupled, n_lines, dtm)
+    return ExportedCase(text, extra, warnings, coupled, n_lines, dtm)

@@ -27,7 +27,15 @@ from ..physics.contact import default_seabed_stiffness
 from ..study import Study
 from ..study.problem import line_model
 from ..study.system import BodyPoint, FixedPoint, FreeBody, FreePoint
-from .export import ExportedCase, _floor125, _num, current_table
+from .export import (
+    ExportedCase,
+    _floor125,
+    _num,
+    current_table,
+    file_text,
+    time_options,
+    type_row,
+)
 from .moordyn_format import InterchangeError
 from .seabed import to_moordyn
 from .system_import import moordyn_angles
@@ -133,13 +141,7 @@ def system_moordyn_input(study: Study, result: Any, *, title: str) -> ExportedCa
         nonlocal dt
         m = seg.mass_in(rho, g)
         tname = f"type{len(type_rows) + 1}"
-        ba = -seg.damping_ratio if seg.damping_ratio > 0.0 else 0.0
-        type_rows.append(
-            f"{tname}  {_num(seg.diameter)}  {_num(m)}  {_num(seg.elastic_stiffness)}  "
-            f"{_num(ba)}  {_num(seg.bending_stiffness)}  {_num(seg.drag_normal)}  "
-            f"{_num(seg.added_mass_normal)}  {_num(seg.drag_tangential)}  "
-            f"{_num(seg.added_mass_tangential)}"
-        )
+        type_rows.append(type_row(tname, seg, m))
         line_rows.append(f"{lid}  {tname}  {a}  {b}  {_num(length)}  {nseg}  -   ! {note}")
         c = math.sqrt(seg.elastic_stiffness / (m + rho * seg.area * seg.added_mass_tangential))
         dt = min(dt, math.pi * (length / nseg) / (10.0 * c))
@@ -243,42 +245,15 @@ def system_moordyn_input(study: Study, result: Any, *, title: str) -> ExportedCa
             "lowest point, out of reach"
         )
     dtm = _floor125(dt)
-    opts += [
-        f"{_num(dtm)}  dtM   ! explicit RK2: about 20 steps per period of the fastest (axial) "
-        f"segment mode, pi l / (10 c) = {dt:.3g} s rounded down",
-        "0.001  threshIC",
-        "300  TmaxIC",
-    ]
+    opts += time_options(dt)
     extra = current_table(study, opts)
-    sections = [
-        "--------------------- MoorDyn Input File ------------------------------------",
-        f"MoorDyn v2 input file written by cablestudy: {title}",
-        "---------------------- LINE TYPES ------------------------------------------",
-        "TypeName Diam Mass/m EA BA/-zeta EI Cd Ca CdAx CaAx",
-        "(name) (m) (kg/m) (N) (N-s/-) (N-m^2) (-) (-) (-) (-)",
-        *type_rows,
-    ]
-    if body_rows:
-        sections += [
-            "---------------------- BODIES ----------------------------------------------",
-            "ID Attachment X0 Y0 Z0 r0 p0 y0 Mass CG* I* Volume CdA* Ca*",
-            "(#) (-) (m) (m) (m) (deg) (deg) (deg) (kg) (m) (kg-m^2) (m^3) (m^2) (-)",
-            *body_rows,
-        ]
-    sections += [
-        "---------------------- POINTS ----------------------------------------------",
-        "ID Attachment X Y Z Mass Volume CdA Ca",
-        "(#) (-) (m) (m) (m) (kg) (m^3) (m^2) (-)",
-        *point_rows,
-        "---------------------- LINES -----------------------------------------------",
-        "ID LineType AttachA AttachB UnstrLen NumSegs LineOutputs",
-        "(#) (name) (#) (#) (m) (-) (-)",
-        *line_rows,
-        "---------------------- OPTIONS ---------------------------------------------",
-        *opts,
-        "---------------------- OUTPUTS ---------------------------------------------",
-        "FairTen1",
-        "END",
-        "------------------------- need this line -----------------------------------",
-    ]
-    return ExportedCase("\n".join(sections) + "\n", extra, warnings, {}, 1, dtm)
+    text = file_text(
+        [f"MoorDyn v2 input file written by cablestudy: {title}"],
+        type_rows,
+        body_rows,
+        point_rows,
+        line_rows,
+        opts,
+        ["FairTen1"],
+    )
+    return ExportedCase(text, extra, warnings, {}, 1, dtm)

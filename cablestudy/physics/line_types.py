@@ -63,9 +63,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-#: steel density [kg/m^3] (for the listing's explanation only)
-STEEL_DENSITY = 7850.0
-
 #: chain grades and their MBL factor c [kN/mm^2] of MBL = c d^2 (44 - 0.08 d) (dnv-os-e302)
 CHAIN_GRADES: dict[str, float] = {"R3": 0.0223, "R3S": 0.0249, "R4": 0.0274}
 #: the grade used when a chain's line_type names none

@@ -199,6 +199,106 @@ def _solve3(J: np.ndarray, g: np.ndarray, free: np.ndarray, step: np.ndarray) ->
 
 
 @njit(cache=True, error_model="numpy")
+def _offsets(w: np.ndarray, ell: np.ndarray, point: np.ndarray, C: np.ndarray, Cend: np.ndarray):
+    """T at the start of piece p = T_A - C[p]; ``Cend`` the loads on the whole line."""
+    P = ell.shape[0]
+    a0 = 0.0
+    a1 = 0.0
+    a2 = 0.0
+    for p in range(P):
+        a0 += point[p, 0]
+        a1 += point[p, 1]
+        a2 += point[p, 2]
+        C[p, 0] = a0
+        C[p, 1] = a1
+        C[p, 2] = a2
+        a2 += -w[p] * ell[p]
+    Cend[0] = a0 + point[P, 0]
+    Cend[1] = a1 + point[P, 1]
+    Cend[2] = a2 + point[P, 2]
+
+
+@njit(cache=True, error_model="numpy")
+def _free_newton(
+    TA: np.ndarray,
+    C: np.ndarray,
+    w: np.ndarray,
+    ell: np.ndarray,
+    EA: np.ndarray,
+    target: np.ndarray,
+    free: np.ndarray,
+    scale: float,
+    tol: float,
+    maxit: int,
+    r: np.ndarray,
+    J: np.ndarray,
+    rn: np.ndarray,
+    Jn: np.ndarray,
+    Tn: np.ndarray,
+    g: np.ndarray,
+    step: np.ndarray,
+) -> tuple[bool, int, float]:
+    """Newton with line search on the complementary energy for the tension at A (in/out
+    ``TA``) of a line hanging free whose ``free`` components of r_B - r_A are the
+    ``target``'s, shared by :func:`solve_cases` and the system's
+    :func:`._system_lines._free_line`: ``r``, ``J`` the span and flexibility at the final
+    ``TA`` (the rest scratch). Returns (converged, iterations, final residual max |g| /
+    ``scale``)."""
+    it = 0
+    res = 0.0
+    E = _total(TA, C, w, ell, EA, r, J, True)
+    polished = False
+    while True:
+        res = 0.0
+        for k in range(3):
+            g[k] = r[k] - target[k] if free[k] else 0.0
+            res = max(res, abs(g[k]))
+        res /= scale
+        if not math.isfinite(res):
+            return False, it, res
+        if res <= tol:
+            if polished or res <= 1e-15:
+                return True, it, res
+            polished = True
+        if it >= maxit:
+            return False, it, res
+        it += 1
+        if not _solve3(J, g, free, step):
+            return False, it, res
+        slope = 0.0
+        dot = 0.0
+        for k in range(3):
+            slope += g[k] * step[k]
+            if free[k]:
+                dot += target[k] * TA[k]
+        psi = E - dot
+        slack = 1e-13 * (abs(E) + abs(dot))
+        lam = 1.0
+        accepted = False
+        En = 0.0
+        for _ in range(80):
+            dotn = 0.0
+            for k in range(3):
+                Tn[k] = TA[k] + lam * step[k]
+                if free[k]:
+                    dotn += target[k] * Tn[k]
+            En = _total(Tn, C, w, ell, EA, rn, Jn, True)
+            psin = En - dotn
+            if math.isfinite(psin) and psin <= psi + 1e-4 * lam * slope + slack:
+                accepted = True
+                break
+            lam *= 0.5
+        if not accepted:
+            return False, it, res
+        for k in range(3):
+            TA[k] = Tn[k]
+            r[k] = rn[k]
+            for m in range(3):
+                J[k, m] = Jn[k, m]
+        E = En
+
+
+@njit(cache=True, error_model="numpy")
 def solve_cases(
     ell: np.ndarray,
     EA: np.ndarray,
@@ -226,6 +326,7 @@ def solve_cases(
     N, P = ell.shape
     n = s.shape[1]
     C = np.zeros((P, 3))
+    Cend = np.zeros(3)
     r = np.zeros(3)
     J = np.zeros((3, 3))
     rn = np.zeros(3)
@@ -238,21 +339,7 @@ def solve_cases(
     dr = np.zeros(3)
     jac = np.zeros((3, 3))
     for c in range(N):
-        # offsets: T at the start of piece p = T_A - C[p]
-        acc0 = 0.0
-        acc1 = 0.0
-        acc2 = 0.0
-        for p in range(P):
-            acc0 += point[c, p, 0]
-            acc1 += point[c, p, 1]
-            acc2 += point[c, p, 2]
-            C[p, 0] = acc0
-            C[p, 1] = acc1
-            C[p, 2] = acc2
-            acc2 += -w[c, p] * ell[c, p]
-        Cend0 = acc0 + point[c, P, 0]
-        Cend1 = acc1 + point[c, P, 1]
-        Cend2 = acc2 + point[c, P, 2]
+        _offsets(w[c], ell[c], point[c], C, Cend)
         for k in range(3):
             TA[k] = TA0[c, k]
         free[0] = kind[c] == 0
@@ -265,67 +352,17 @@ def solve_cases(
         ok = True
         res = 0.0
         if kind[c] != 2:
-            E = _total(TA, C, w[c], ell[c], EA[c], r, J, True)
-            polished = False
-            while True:
-                res = 0.0
-                for k in range(3):
-                    g[k] = r[k] - target[c, k] if free[k] else 0.0
-                    res = max(res, abs(g[k]))
-                res /= scale
-                if not math.isfinite(res):
-                    ok = False
-                    break
-                if res <= tol[c]:
-                    if polished or res <= 1e-15:
-                        break
-                    polished = True
-                if it >= maxit[c]:
-                    ok = False
-                    break
-                it += 1
-                if not _solve3(J, g, free, step):
-                    ok = False
-                    break
-                slope = 0.0
-                dot = 0.0
-                for k in range(3):
-                    slope += g[k] * step[k]
-                    if free[k]:
-                        dot += target[c, k] * TA[k]
-                psi = E - dot
-                slack = 1e-13 * (abs(E) + abs(dot))
-                lam = 1.0
-                accepted = False
-                for _ in range(80):
-                    dotn = 0.0
-                    for k in range(3):
-                        Tn[k] = TA[k] + lam * step[k]
-                        if free[k]:
-                            dotn += target[c, k] * Tn[k]
-                    En = _total(Tn, C, w[c], ell[c], EA[c], rn, Jn, True)
-                    psin = En - dotn
-                    if math.isfinite(psin) and psin <= psi + 1e-4 * lam * slope + slack:
-                        accepted = True
-                        break
-                    lam *= 0.5
-                if not accepted:
-                    ok = False
-                    break
-                for k in range(3):
-                    TA[k] = Tn[k]
-                    r[k] = rn[k]
-                    for m in range(3):
-                        J[k, m] = Jn[k, m]
-                E = En
+            ok, it, res = _free_newton(
+                TA, C, w[c], ell[c], EA[c], target[c], free, scale, tol[c], maxit[c],
+                r, J, rn, Jn, Tn, g, step,
+            )  # fmt: skip
         iters[c] = it
         resid[c] = res
         status[c] = 0 if ok else 1
         for k in range(3):
             TA_out[c, k] = TA[k]
-        TL_out[c, 0] = TA[0] - Cend0
-        TL_out[c, 1] = TA[1] - Cend1
-        TL_out[c, 2] = TA[2] - Cend2
+        for k in range(3):
+            TL_out[c, k] = TA[k] - Cend[k]
         # sample: positions of the piece starts, then each output point in its piece
         p = 0
         x0, y0, z0 = rA[c, 0], rA[c, 1], rA[c, 2]

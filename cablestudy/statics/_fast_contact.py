@@ -330,6 +330,118 @@ def _guess(
 
 
 @njit(cache=True, error_model="numpy")
+def _contact_newton(
+    y: np.ndarray,
+    bas: np.ndarray,
+    rA: np.ndarray,
+    target: np.ndarray,
+    kind: int,
+    force: np.ndarray,
+    Fscale: float,
+    L: float,
+    bounds: np.ndarray,
+    w: np.ndarray,
+    EA: np.ndarray,
+    point: np.ndarray,
+    nrm: np.ndarray,
+    mu: float,
+    tol: float,
+    maxit: int,
+    R: np.ndarray,
+    Rn: np.ndarray,
+    Jm: np.ndarray,
+    Jn: np.ndarray,
+    yn: np.ndarray,
+    step: np.ndarray,
+    A: np.ndarray,
+    T: np.ndarray,
+    e: np.ndarray,
+    t_lo: np.ndarray,
+    t_hi: np.ndarray,
+    rate: np.ndarray,
+    hi_s: np.ndarray,
+    lp: np.ndarray,
+    dr: np.ndarray,
+    jac: np.ndarray,
+    rs: np.ndarray,
+    Js: np.ndarray,
+) -> tuple[int, int, float]:
+    """The Newton iteration with line search on y = (alpha, beta, s_td) (in/out ``y``,
+    from its start), shared by :func:`contact_cases` and the system's
+    :func:`._system_lines._contact_line`: arguments as :func:`_evaluate` (``R``, ``Jm``
+    the residual and Jacobian at the final ``y``; the rest scratch). Returns (status,
+    iterations, final residual max |R|): 0, or :data:`NOT_CONVERGED`, :data:`LIFT_OFF`,
+    :data:`SLACK` or :data:`NUMERICAL`."""
+    _evaluate(
+        y, bas, rA, target, kind, force, Fscale, L, bounds, w, EA, point, nrm, mu, R, Jm,
+        T, e, t_lo, t_hi, rate, hi_s, lp, dr, jac, rs, Js,
+    )  # fmt: skip
+    res = max(abs(R[0]), max(abs(R[1]), abs(R[2])))
+    polish = 0
+    at_zero = 0
+    it = 0
+    st = 0
+    while True:
+        if not math.isfinite(res):
+            st = NUMERICAL
+            break
+        if res <= tol:
+            if polish >= 1 or res <= 1e-15:
+                break
+            polish += 1
+        if it >= maxit:
+            st = NOT_CONVERGED
+            break
+        it += 1
+        if not _newton_step(Jm, R, A, step):
+            st = NUMERICAL
+            break
+        norm0 = math.sqrt(R[0] * R[0] + R[1] * R[1] + R[2] * R[2])
+        ny = math.sqrt(y[0] * y[0] + y[1] * y[1])
+        lam = 1.0
+        accepted = False
+        for _ in range(40):
+            for k in range(3):
+                yn[k] = y[k] + lam * step[k]
+            # keep the TDP on the line and the tension positive
+            yn[2] = min(max(yn[2], 0.0), L * (1.0 - 1e-9))
+            if math.sqrt(yn[0] * yn[0] + yn[1] * yn[1]) <= 1e-3 * ny:
+                yn[0] = y[0] * 1e-3
+                yn[1] = y[1] * 1e-3
+            _evaluate(
+                yn, bas, rA, target, kind, force, Fscale, L, bounds, w, EA, point, nrm, mu, Rn,
+                Jn, T, e, t_lo, t_hi, rate, hi_s, lp, dr, jac, rs, Js,
+            )  # fmt: skip
+            nn = math.sqrt(Rn[0] * Rn[0] + Rn[1] * Rn[1] + Rn[2] * Rn[2])
+            if math.isfinite(nn) and nn <= (1.0 - 1e-4 * lam) * norm0 + 1e-15:
+                accepted = True
+                break
+            lam *= 0.5
+        if not accepted:
+            st = SLACK if ny < 1e-3 * Fscale else NOT_CONVERGED
+            break
+        for k in range(3):
+            y[k] = yn[k]
+            R[k] = Rn[k]
+            for m in range(3):
+                Jm[k, m] = Jn[k, m]
+        res = max(abs(R[0]), max(abs(R[1]), abs(R[2])))
+        if math.sqrt(y[0] * y[0] + y[1] * y[1]) < 1e-9 * Fscale and res > tol:
+            st = SLACK
+            break
+        if y[2] <= 0.0:
+            at_zero += 1
+            if at_zero >= 2:
+                st = LIFT_OFF
+                break
+        else:
+            at_zero = 0
+    if st == 0 and y[2] <= 0.0:
+        st = LIFT_OFF
+    return st, it, res
+
+
+@njit(cache=True, error_model="numpy")
 def contact_cases(
     ell: np.ndarray,
     EA: np.ndarray,
@@ -420,72 +532,11 @@ def contact_cases(
         it = 0
         res = math.nan
         if st == 0:
-            _evaluate(
+            st, it, res = _contact_newton(
                 y, bas, rA[c], rB[c], kc, force[c], Fscale, L, bounds[c], w[c], EA[c], point[c],
-                nrm, mu[c], R, Jm,
+                nrm, mu[c], tol[c], maxit[c], R, Rn, Jm, Jn, yn, step, A,
                 T, e, t_lo, t_hi, rate, hi_s, lp, dr, jac, rs, Js,
             )  # fmt: skip
-            res = max(abs(R[0]), max(abs(R[1]), abs(R[2])))
-            polish = 0
-            at_zero = 0
-            while True:
-                if not math.isfinite(res):
-                    st = NUMERICAL
-                    break
-                if res <= tol[c]:
-                    if polish >= 1 or res <= 1e-15:
-                        break
-                    polish += 1
-                if it >= maxit[c]:
-                    st = NOT_CONVERGED
-                    break
-                it += 1
-                if not _newton_step(Jm, R, A, step):
-                    st = NUMERICAL
-                    break
-                norm0 = math.sqrt(R[0] * R[0] + R[1] * R[1] + R[2] * R[2])
-                ny = math.sqrt(y[0] * y[0] + y[1] * y[1])
-                lam = 1.0
-                accepted = False
-                for _ in range(40):
-                    for k in range(3):
-                        yn[k] = y[k] + lam * step[k]
-                    # keep the TDP on the line and the tension positive
-                    yn[2] = min(max(yn[2], 0.0), L * (1.0 - 1e-9))
-                    if math.sqrt(yn[0] * yn[0] + yn[1] * yn[1]) <= 1e-3 * ny:
-                        yn[0] = y[0] * 1e-3
-                        yn[1] = y[1] * 1e-3
-                    _evaluate(
-                        yn, bas, rA[c], rB[c], kc, force[c], Fscale, L, bounds[c], w[c], EA[c],
-                        point[c], nrm, mu[c], Rn, Jn,
-                        T, e, t_lo, t_hi, rate, hi_s, lp, dr, jac, rs, Js,
-                    )  # fmt: skip
-                    nn = math.sqrt(Rn[0] * Rn[0] + Rn[1] * Rn[1] + Rn[2] * Rn[2])
-                    if math.isfinite(nn) and nn <= (1.0 - 1e-4 * lam) * norm0 + 1e-15:
-                        accepted = True
-                        break
-                    lam *= 0.5
-                if not accepted:
-                    st = SLACK if ny < 1e-3 * Fscale else NOT_CONVERGED
-                    break
-                for k in range(3):
-                    y[k] = yn[k]
-                    R[k] = Rn[k]
-                    for m in range(3):
-                        Jm[k, m] = Jn[k, m]
-                res = max(abs(R[0]), max(abs(R[1]), abs(R[2])))
-                if math.sqrt(y[0] * y[0] + y[1] * y[1]) < 1e-9 * Fscale and res > tol[c]:
-                    st = SLACK
-                    break
-                if y[2] <= 0.0:
-                    at_zero += 1
-                    if at_zero >= 2:
-                        st = LIFT_OFF
-                        break
-                else:
-                    at_zero = 0
-            if st == 0 and y[2] <= 0.0:
-                st = LIFT_OFF
         iters[c] = it
         resid[c] = res
         laid_length[c] = y[2] if st == 0 else math.nan

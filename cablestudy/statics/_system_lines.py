@@ -14,9 +14,8 @@ import math
 
 import numpy as np
 
-from ._fast import _solve3, _total, njit
-from ._fast_contact import LIFT_OFF, NOT_CONVERGED, NUMERICAL, SLACK, _evaluate, _guess, _laid
-from ._fast_contact import _newton_step as _step3
+from ._fast import _free_newton, _offsets, njit  # noqa: F401 - _offsets re-exported
+from ._fast_contact import NUMERICAL, _contact_newton, _guess, _laid
 
 
 @njit(cache=True, error_model="numpy")
@@ -46,26 +45,6 @@ def _inv3(A: np.ndarray, out: np.ndarray) -> bool:
 
 
 @njit(cache=True, error_model="numpy")
-def _offsets(w: np.ndarray, ell: np.ndarray, point: np.ndarray, C: np.ndarray, Cend: np.ndarray):
-    """T at the start of piece p = T_A - C[p]; ``Cend`` the loads on the whole line."""
-    P = ell.shape[0]
-    a0 = 0.0
-    a1 = 0.0
-    a2 = 0.0
-    for p in range(P):
-        a0 += point[p, 0]
-        a1 += point[p, 1]
-        a2 += point[p, 2]
-        C[p, 0] = a0
-        C[p, 1] = a1
-        C[p, 2] = a2
-        a2 += -w[p] * ell[p]
-    Cend[0] = a0 + point[P, 0]
-    Cend[1] = a1 + point[P, 1]
-    Cend[2] = a2 + point[P, 2]
-
-
-@njit(cache=True, error_model="numpy")
 def _free_line(
     ell: np.ndarray,
     EA: np.ndarray,
@@ -91,56 +70,10 @@ def _free_line(
     for k in range(3):
         free[k] = True
     tn = math.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])
-    scale = max(L, tn)
-    it = 0
-    E = _total(TA, C, w, ell, EA, r, J, True)
-    polished = False
-    while True:
-        res = 0.0
-        for k in range(3):
-            g[k] = r[k] - d[k]
-            res = max(res, abs(g[k]))
-        res /= scale
-        if not math.isfinite(res):
-            return False
-        if res <= tol:
-            if polished or res <= 1e-15:
-                return True
-            polished = True
-        if it >= maxit:
-            return False
-        it += 1
-        if not _solve3(J, g, free, step):
-            return False
-        slope = 0.0
-        dot = 0.0
-        for k in range(3):
-            slope += g[k] * step[k]
-            dot += d[k] * TA[k]
-        psi = E - dot
-        slack = 1e-13 * (abs(E) + abs(dot))
-        lam = 1.0
-        accepted = False
-        En = 0.0
-        for _ in range(80):
-            dotn = 0.0
-            for k in range(3):
-                Tn[k] = TA[k] + lam * step[k]
-                dotn += d[k] * Tn[k]
-            En = _total(Tn, C, w, ell, EA, rn, Jn, True)
-            psin = En - dotn
-            if math.isfinite(psin) and psin <= psi + 1e-4 * lam * slope + slack:
-                accepted = True
-                break
-            lam *= 0.5
-        if not accepted:
-            return False
-        for k in range(3):
-            TA[k] = Tn[k]
-            r[k] = rn[k]
-            for m in range(3):
-                J[k, m] = Jn[k, m]
-        E = En
+    ok, _, _ = _free_newton(
+        TA, C, w, ell, EA, d, free, max(L, tn), tol, maxit, r, J, rn, Jn, Tn, g, step
+    )
+    return ok
 
 
 @njit(cache=True, error_model="numpy")
@@ -201,71 +134,10 @@ def _contact_line(
     Jn = sc3[1]
     Js = sc3[2]
     jac = sc3[3]
-    _evaluate(
-        y, bas, rA, rB, 0, zero3, Fscale, L, bounds, w, EA, point, normal, mu, R, Jm,
-        T, e, t_lo, t_hi, rate, hi_s, lp, dr, jac, rs, Js,
+    st, _, _ = _contact_newton(
+        y, bas, rA, rB, 0, zero3, Fscale, L, bounds, w, EA, point, normal, mu, tol, maxit,
+        R, Rn, Jm, Jn, yn, stp, A, T, e, t_lo, t_hi, rate, hi_s, lp, dr, jac, rs, Js,
     )  # fmt: skip
-    res = max(abs(R[0]), max(abs(R[1]), abs(R[2])))
-    polish = 0
-    at_zero = 0
-    it = 0
-    st = 0
-    while True:
-        if not math.isfinite(res):
-            st = NUMERICAL
-            break
-        if res <= tol:
-            if polish >= 1 or res <= 1e-15:
-                break
-            polish += 1
-        if it >= maxit:
-            st = NOT_CONVERGED
-            break
-        it += 1
-        if not _step3(Jm, R, A, stp):
-            st = NUMERICAL
-            break
-        norm0 = math.sqrt(R[0] * R[0] + R[1] * R[1] + R[2] * R[2])
-        ny = math.sqrt(y[0] * y[0] + y[1] * y[1])
-        lam = 1.0
-        accepted = False
-        for _ in range(40):
-            for k in range(3):
-                yn[k] = y[k] + lam * stp[k]
-            yn[2] = min(max(yn[2], 0.0), L * (1.0 - 1e-9))
-            if math.sqrt(yn[0] * yn[0] + yn[1] * yn[1]) <= 1e-3 * ny:
-                yn[0] = y[0] * 1e-3
-                yn[1] = y[1] * 1e-3
-            _evaluate(
-                yn, bas, rA, rB, 0, zero3, Fscale, L, bounds, w, EA, point, normal, mu, Rn, Jn,
-                T, e, t_lo, t_hi, rate, hi_s, lp, dr, jac, rs, Js,
-            )  # fmt: skip
-            nn = math.sqrt(Rn[0] * Rn[0] + Rn[1] * Rn[1] + Rn[2] * Rn[2])
-            if math.isfinite(nn) and nn <= (1.0 - 1e-4 * lam) * norm0 + 1e-15:
-                accepted = True
-                break
-            lam *= 0.5
-        if not accepted:
-            st = SLACK if ny < 1e-3 * Fscale else NOT_CONVERGED
-            break
-        for k in range(3):
-            y[k] = yn[k]
-            R[k] = Rn[k]
-            for m in range(3):
-                Jm[k, m] = Jn[k, m]
-        res = max(abs(R[0]), max(abs(R[1]), abs(R[2])))
-        if math.sqrt(y[0] * y[0] + y[1] * y[1]) < 1e-9 * Fscale and res > tol:
-            st = SLACK
-            break
-        if y[2] <= 0.0:
-            at_zero += 1
-            if at_zero >= 2:
-                st = LIFT_OFF
-                break
-        else:
-            at_zero = 0
-    if st == 0 and y[2] <= 0.0:
-        st = LIFT_OFF
     if st != 0:
         return st
     # the end forces at the solution

@@ -157,7 +157,6 @@ def solve_over_pulleys(
     solver: StaticSolver,
     *,
     deadline: float | None = None,
-    max_iterations: int = 60,
 ) -> StaticResult:
     """Frictionless static equilibrium of ``problem``'s line over fixed ``pulleys`` [m]
     (m, 3), m = 1 or 2, both ends fixed, each sub-line solved by ``solver`` (see the

@@ -280,7 +280,7 @@ class SemiAnalyticSolver:
         if grounded and ends.kind == "fixed" and plane is not None:
             assert ends.rB is not None
             if float(plane.height_above(ends.rB)) <= 1e-6 * L:
-                return _laid_between(line, ends, plane, s_eval, s, reverse)
+                return _laid_between(line, ends, s_eval, s, reverse)
         has_current = (
             medium.has_current
             and medium.density > 0.0

@@ -360,7 +360,7 @@ def _contact_shape(
 
 
 def _laid_between(
-    line: LineModel, ends: Ends, plane: Plane, s_eval: np.ndarray, s: np.ndarray, reverse: bool
+    line: LineModel, ends: Ends, s_eval: np.ndarray, s: np.ndarray, reverse: bool
 ) -> StaticResult:
     """Both ends fixed on the seabed: a line no longer than the distance between them
     lies straight on the seabed with the uniform tension that stretches it to that

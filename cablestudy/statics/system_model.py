@@ -11,7 +11,6 @@ import numpy as np
 from .base import STATUS_OK, StaticProblem, StaticResult
 
 FIXED, FREE, BODY = 0, 1, 2
-DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 
 
 @dataclass(frozen=True, kw_only=True)

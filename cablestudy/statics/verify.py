@@ -569,7 +569,7 @@ def check_one(
     )
     if plane is not None and method not in DISCRETISED and drag is None:
         end_vals["seabed penetration"] = (
-            _penetration(problem, result, plane, lay),
+            _penetration(result, plane, lay),
             MULTIPLE * tol * max(L, float(np.max(np.abs(pos)))),
             "m",
         )
@@ -580,7 +580,7 @@ def check_one(
     return checked
 
 
-def _penetration(problem: StaticProblem, result: StaticResult, plane: Plane, lay) -> float:  # noqa: ANN001
+def _penetration(result: StaticResult, plane: Plane, lay) -> float:  # noqa: ANN001
     """How deep [m] the still-water line goes into a rigid seabed: at the samples, and
     between them at the lowest point of each suspended interval (where the tension's
     normal component turns from down to up: the closed-form piece increment from the

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 from typing import Annotated, Any, Literal
 
 from pydantic import (
@@ -15,7 +14,6 @@ from pydantic import (
 )
 
 from .base import (
-    FieldError,
     Finite,
     NonNegative,
     Positive,
@@ -30,8 +28,10 @@ from .system_dynamics import (
     SYSTEM_TABLES,
     BodyHarmonic,
     BodyTable,
+    HarmonicMotion,
     PointHarmonic,
     PointTable,
+    TableMotion,
     system_tag,
 )
 
@@ -233,17 +233,14 @@ class AutoSettings(StrictModel):
     )
 
 
-_unit_direction = unit_direction
-
-
-class HarmonicExcitation(StrictModel):
+class HarmonicExcitation(HarmonicMotion):
     """Harmonic motion of one end about its static position:
     ``amplitude * sin(2 pi frequency t + phase) * direction / |direction|``. Give the
     ``frequency`` [Hz] or the ``period`` [s] (exactly one; either can be swept): a period
     fills frequency = 1 / period."""
 
     end: Literal["a", "b"] = Field(description="the end that moves")
-    direction: Annotated[Vec3, AfterValidator(_unit_direction)] = Field(
+    direction: Annotated[Vec3, AfterValidator(unit_direction)] = Field(
         description="direction of the motion [-] (normalised)"
     )
     amplitude: NonNegative = Field(description="excitation amplitude [m]")
@@ -258,67 +255,19 @@ class HarmonicExcitation(StrictModel):
     )
     phase_deg: Finite = Field(0.0, description="phase of the sine [deg]")
 
-    @model_validator(mode="before")
-    @classmethod
-    def _frequency_or_period(cls, data: object) -> object:
-        if not isinstance(data, dict):
-            return data
-        has_f = data.get("frequency") is not None
-        has_t = data.get("period") is not None
-        if has_f and has_t:
-            raise FieldError(
-                ("period",),
-                f"give the excitation frequency [Hz] or its period [s], not both (frequency "
-                f"{data['frequency']!r} is given too); allowed: exactly one of them",
-                data["period"],
-            )
-        if not has_f and not has_t:
-            raise FieldError(
-                ("frequency",),
-                "required key 'frequency' is missing (excitation frequency [Hz]); or give "
-                "period [s] instead",
-                None,
-            )
-        period = data.get("period")
-        if has_t and isinstance(period, int | float) and not isinstance(period, bool):
-            if math.isfinite(period) and period > 0.0:
-                return {**data, "frequency": 1.0 / period}
-        return data
 
-
-class TimeSeriesExcitation(StrictModel):
+class TimeSeriesExcitation(TableMotion):
     """Motion of one end along ``direction`` given as a table of (time [s], displacement
     [m]) pairs, interpolated by a cubic spline (continuous acceleration). With
     ``periodic`` the table repeats with its duration as period (the last displacement
     must equal the first); otherwise the motion holds its last value after the table."""
 
     end: Literal["a", "b"] = Field(description="the end that moves")
-    direction: Annotated[Vec3, AfterValidator(_unit_direction)] = Field(
+    direction: Annotated[Vec3, AfterValidator(unit_direction)] = Field(
         description="direction of the motion [-] (normalised)"
     )
     table: list[Vec2] = Field(min_length=4, description="rows [time s, displacement m]")
     periodic: bool = Field(False, description="repeat the table with its duration as period")
-
-    @field_validator("table")
-    @classmethod
-    def _increasing(cls, value: list[list[float]]) -> list[list[float]]:
-        times = [row[0] for row in value]
-        if any(b <= a for a, b in zip(times, times[1:], strict=False)):
-            raise ValueError(f"table times must increase strictly, got t = {times}")
-        if times[0] != 0.0:
-            raise ValueError(f"the table must start at t = 0, got t = {times[0]}")
-        return value
-
-    @model_validator(mode="after")
-    def _closes(self) -> TimeSeriesExcitation:
-        if self.periodic:
-            first, last = self.table[0][1], self.table[-1][1]
-            if abs(last - first) > 1e-9 * max(1.0, abs(first)):
-                raise ValueError(
-                    f"a periodic table must end where it starts: displacement {last} at the "
-                    f"end, {first} at t = 0"
-                )
-        return self
 
 
 def _excitation_tag(value: Any) -> str:

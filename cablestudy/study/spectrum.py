@@ -10,8 +10,6 @@ from pydantic import AfterValidator, Field, field_validator, model_validator
 
 from .base import Positive, StrictModel, Vec2, Vec3, unit_direction
 
-_unit_direction = unit_direction
-
 
 class Jonswap(StrictModel):
     """JONSWAP wave spectrum (DNV-RP-C205 3.5.5): significant wave height, peak
@@ -57,7 +55,7 @@ class SpectrumExcitation(StrictModel):
     after ``1 / df``."""
 
     end: Literal["a", "b"] = Field(description="the end that moves")
-    direction: Annotated[Vec3, AfterValidator(_unit_direction)] = Field(
+    direction: Annotated[Vec3, AfterValidator(unit_direction)] = Field(
         description="direction of the motion [-] (normalised)"
     )
     spectrum: list[Vec2] | None = Field(

@@ -27,65 +27,81 @@ from typing import Annotated, Literal
 
 from pydantic import AfterValidator, Field, field_validator, model_validator
 
-from .base import FieldError, Finite, NonNegative, Positive, StrictModel, Vec2, Vec3
+from .base import (
+    FieldError,
+    Finite,
+    NonNegative,
+    Positive,
+    StrictModel,
+    Vec2,
+    Vec3,
+    unit_direction,
+)
 
 #: degrees of freedom of a body, in the order of its 6-DOF position
 BODY_DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 
 
-def _unit(value: list[float]) -> list[float]:
-    if math.sqrt(sum(v * v for v in value)) <= 0.0:
-        raise ValueError("must be a nonzero vector; allowed: any direction of length > 0")
-    return value
+class HarmonicMotion(StrictModel):
+    """The check shared by the harmonic motions (of an end, a body or a point): exactly one
+    of ``frequency`` and ``period``, a period filling frequency = 1 / period."""
 
-
-def _frequency_or_period(data: object) -> object:
-    """Fill ``frequency`` from ``period`` (exactly one of them given)."""
-    if not isinstance(data, dict):
-        return data
-    has_f = data.get("frequency") is not None
-    has_t = data.get("period") is not None
-    if has_f and has_t:
-        raise FieldError(
-            ("period",),
-            f"give the excitation frequency [Hz] or its period [s], not both (frequency "
-            f"{data['frequency']!r} is given too); allowed: exactly one of them",
-            data["period"],
-        )
-    if not has_f and not has_t:
-        raise FieldError(
-            ("frequency",),
-            "required key 'frequency' is missing (excitation frequency [Hz]); or give "
-            "period [s] instead",
-            None,
-        )
-    period = data.get("period")
-    if has_t and isinstance(period, int | float) and not isinstance(period, bool):
-        if math.isfinite(period) and period > 0.0:
-            return {**data, "frequency": 1.0 / period}
-    return data
-
-
-def _table_rows(value: list[list[float]]) -> list[list[float]]:
-    times = [row[0] for row in value]
-    if any(b <= a for a, b in zip(times, times[1:], strict=False)):
-        raise ValueError(f"table times must increase strictly, got t = {times}")
-    if times[0] != 0.0:
-        raise ValueError(f"the table must start at t = 0, got t = {times[0]}")
-    return value
-
-
-def _closed(table: list[list[float]], periodic: bool) -> None:
-    if periodic:
-        first, last = table[0][1], table[-1][1]
-        if abs(last - first) > 1e-9 * max(1.0, abs(first)):
-            raise ValueError(
-                f"a periodic table must end where it starts: displacement {last} at the "
-                f"end, {first} at t = 0"
+    @model_validator(mode="before")
+    @classmethod
+    def _fill_frequency(cls, data: object) -> object:
+        if not isinstance(data, dict):
+            return data
+        has_f = data.get("frequency") is not None
+        has_t = data.get("period") is not None
+        if has_f and has_t:
+            raise FieldError(
+                ("period",),
+                f"give the excitation frequency [Hz] or its period [s], not both (frequency "
+                f"{data['frequency']!r} is given too); allowed: exactly one of them",
+                data["period"],
             )
+        if not has_f and not has_t:
+            raise FieldError(
+                ("frequency",),
+                "required key 'frequency' is missing (excitation frequency [Hz]); or give "
+                "period [s] instead",
+                None,
+            )
+        period = data.get("period")
+        if has_t and isinstance(period, int | float) and not isinstance(period, bool):
+            if math.isfinite(period) and period > 0.0:
+                return {**data, "frequency": 1.0 / period}
+        return data
 
 
-class BodyHarmonic(StrictModel):
+class TableMotion(StrictModel):
+    """The checks shared by the time-table motions (of an end, a body or a point): the
+    ``table``'s times start at 0 and increase strictly; a ``periodic`` table ends where
+    it starts."""
+
+    @field_validator("table", check_fields=False)
+    @classmethod
+    def _increasing(cls, value: list[list[float]]) -> list[list[float]]:
+        times = [row[0] for row in value]
+        if any(b <= a for a, b in zip(times, times[1:], strict=False)):
+            raise ValueError(f"table times must increase strictly, got t = {times}")
+        if times[0] != 0.0:
+            raise ValueError(f"the table must start at t = 0, got t = {times[0]}")
+        return value
+
+    @model_validator(mode="after")
+    def _closes(self) -> TableMotion:
+        if self.periodic:  # type: ignore[attr-defined]
+            first, last = self.table[0][1], self.table[-1][1]  # type: ignore[attr-defined]
+            if abs(last - first) > 1e-9 * max(1.0, abs(first)):
+                raise ValueError(
+                    f"a periodic table must end where it starts: displacement {last} at the "
+                    f"end, {first} at t = 0"
+                )
+        return self
+
+
+class BodyHarmonic(HarmonicMotion):
     """Harmonic motion of one degree of freedom of a body about its static position:
     ``amplitude * sin(2 pi frequency t + phase)``."""
 
@@ -98,13 +114,8 @@ class BodyHarmonic(StrictModel):
     period: Positive | None = Field(None, description="period [s], instead of frequency")
     phase_deg: Finite = Field(0.0, description="phase of the sine [deg]")
 
-    @model_validator(mode="before")
-    @classmethod
-    def _fill_frequency(cls, data: object) -> object:
-        return _frequency_or_period(data)
 
-
-class BodyTable(StrictModel):
+class BodyTable(TableMotion):
     """Motion of one degree of freedom of a body as a table of (time [s], displacement
     [m] or rotation [rad]) rows, a cubic spline as a line end's table."""
 
@@ -115,22 +126,12 @@ class BodyTable(StrictModel):
     table: list[Vec2] = Field(min_length=4, description="rows [time s, displacement m or rad]")
     periodic: bool = Field(False, description="repeat the table with its duration as period")
 
-    @field_validator("table")
-    @classmethod
-    def _increasing(cls, value: list[list[float]]) -> list[list[float]]:
-        return _table_rows(value)
 
-    @model_validator(mode="after")
-    def _closes(self) -> BodyTable:
-        _closed(self.table, self.periodic)
-        return self
-
-
-class PointHarmonic(StrictModel):
+class PointHarmonic(HarmonicMotion):
     """Harmonic motion of a point on its own along ``direction`` (as a line end)."""
 
     point: str = Field(description="the point that moves (a key of points)")
-    direction: Annotated[Vec3, AfterValidator(_unit)] = Field(
+    direction: Annotated[Vec3, AfterValidator(unit_direction)] = Field(
         description="direction of the motion [-] (normalised)"
     )
     amplitude: NonNegative = Field(description="amplitude [m]")
@@ -138,31 +139,16 @@ class PointHarmonic(StrictModel):
     period: Positive | None = Field(None, description="period [s], instead of frequency")
     phase_deg: Finite = Field(0.0, description="phase of the sine [deg]")
 
-    @model_validator(mode="before")
-    @classmethod
-    def _fill_frequency(cls, data: object) -> object:
-        return _frequency_or_period(data)
 
-
-class PointTable(StrictModel):
+class PointTable(TableMotion):
     """Motion of a point on its own along ``direction`` as a time table."""
 
     point: str = Field(description="the point that moves (a key of points)")
-    direction: Annotated[Vec3, AfterValidator(_unit)] = Field(
+    direction: Annotated[Vec3, AfterValidator(unit_direction)] = Field(
         description="direction of the motion [-] (normalised)"
     )
     table: list[Vec2] = Field(min_length=4, description="rows [time s, displacement m]")
     periodic: bool = Field(False, description="repeat the table with its duration as period")
-
-    @field_validator("table")
-    @classmethod
-    def _increasing(cls, value: list[list[float]]) -> list[list[float]]:
-        return _table_rows(value)
-
-    @model_validator(mode="after")
-    def _closes(self) -> PointTable:
-        _closed(self.table, self.periodic)
-        return self
 
 
 #: the system excitations (a study model checks that a system uses only these, and a
