@@ -367,10 +367,9 @@ def _execute_grid(
 
 
 def study_grid(src: StudySource) -> Any:
-    """The study as a grid of cases run as arrays, or None (then it runs case by case):
-    a system's position sweep (:mod:`cablestudy.analyses.system_grid`), else a one-line
-    static sweep (:func:`cablestudy.study.grid.expand_grid`). Decided from the validated
-    template, never from the raw text."""
+    """The study as a grid of cases (:func:`cablestudy.study.grid.expand_grid`), or a
+    system's position sweep as one (:mod:`cablestudy.analyses.system_grid`). Decided from
+    the validated template, never from the raw text."""
     from ..study.grid import expand_grid
     from ..study.loader import validate_data
 
@@ -378,5 +377,7 @@ def study_grid(src: StudySource) -> Any:
     if template.is_system:
         from ..analyses.system_grid import expand_system_grid
 
-        return expand_system_grid(src, template)
+        grid = expand_system_grid(src, template)
+        if grid is not None:
+            return grid
     return expand_grid(src, template)

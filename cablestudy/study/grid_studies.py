@@ -20,13 +20,21 @@ from typing import Any
 from pydantic import BaseModel
 from pydantic_core import PydanticUndefined
 
+from .analysis import HarmonicExcitation
 from .line import Segment
 from .study import Study
+from .system_dynamics import BodyHarmonic, PointHarmonic
 
 #: swept paths through a model with a ``mode="before"`` validator that derives other
 #: fields from the swept one are not put in by copying: a segment given by ``line_type``
-#: (its diameter, mass and stiffness come from the material)
-_DERIVING = {Segment: "line_type"}
+#: (its diameter, mass and stiffness come from the material), a harmonic motion given by
+#: its ``period`` (its frequency is 1 / period)
+_DERIVING: dict[type, str] = {
+    Segment: "line_type",
+    HarmonicExcitation: "period",
+    BodyHarmonic: "period",
+    PointHarmonic: "period",
+}
 
 
 def copyable(template: Study, path: str) -> bool:
@@ -36,7 +44,7 @@ def copyable(template: Study, path: str) -> bool:
     for part in path.split("."):
         if isinstance(node, BaseModel):
             field = _DERIVING.get(type(node))
-            if field is not None and getattr(node, field, None) is not None:
+            if field is not None and (getattr(node, field, None) is not None or part == field):
                 return False
             if part not in type(node).model_fields:
                 return False

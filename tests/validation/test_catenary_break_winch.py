@@ -36,7 +36,7 @@ from cablestudy.analyses.time import dynamic_problem
 from cablestudy.cli import main
 from cablestudy.dynamics.time_problem import DynamicProblem, DynamicResult
 from cablestudy.dynamics.timedomain import simulate
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.environment import FLUID_DENSITY
 from cablestudy.study.loader import parse_study_text
 
