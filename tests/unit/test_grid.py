@@ -474,21 +474,24 @@ def test_chunk_keys_change_with_every_swept_value(text: str) -> None:
 
 @pytest.mark.parametrize("text", [LENGTHS, NODES, CURRENT, FORCE, FRICTION])
 def test_a_copied_case_study_is_the_validated_one(text: str) -> None:
-    """Each case's study built by copying the template (cablestudy.analyses.static_grid_cases) is
-    the
-    study the full validation of the case's YAML gives: every field, and what the
-    validators derive (a line's total length), but the sweep table itself."""
-    from cablestudy.study.grid_studies import _case_values, case_study
+    """Each case's study built by copying the template (CaseGrid.study_at) is the study
+    the full validation of the case's YAML gives: every field, and what the validators
+    derive (a line's total length), but the sweep table itself."""
+    from cablestudy.study.cases import _copy_tree, _set_path
+    from cablestudy.study.loader import validate_data
 
     src = parse_study_text(text, "gr.yaml")
     grid = expand_grid(src)
-    _, cases = expand_cases(src)
-    assert len(cases) == grid.size
-    for case in cases:
-        copied = case_study(grid.template, _case_values(grid, case.index))
+    assert len(grid.cases()) == grid.size
+    for case in grid.cases():
+        data = _copy_tree({k: v for k, v in src.data.items() if k != "sweep"})
+        for axis, a in enumerate(grid.axes):
+            _set_path(data, a.paths[0], a.values[0][case.index[axis]])
+        full = validate_data(data, src)
+        copied = grid.study_at(case.index)
         # the template keeps its sweep table, which no case's result reads
-        assert copied.model_dump(exclude={"sweep"}) == case.study.model_dump(exclude={"sweep"})
-        assert copied.line.length == case.study.line.length
+        assert copied.model_dump(exclude={"sweep"}) == full.model_dump(exclude={"sweep"})
+        assert copied.line.length == full.line.length
 
 
 def test_a_grid_of_one_case_is_the_case_path_and_its_kernel_counts(tmp_path: Path) -> None:

@@ -30,9 +30,20 @@ def test_every_case_of_the_grid_is_its_fully_validated_study(path: Path) -> None
     grid = expand_grid(src)
     cases = grid.cases()
     assert len(cases) == grid.size
+    full = {case.index: case_hashes(_full(src, grid, case.index)) for case in cases}
     for case in cases:
-        # the content hashes cover every validated setting with its defaults filled in
-        assert (case.hash, case.static_hash) == case_hashes(_full(src, grid, case.index))
+        # the content hashes of case_hashes cover every validated setting with its
+        # defaults filled in: equal hashes, equal studies
+        assert case_hashes(case.study) == full[case.index]
+    # the grid's own hashes (template and swept values) group the cases as the content
+    # hashes do: a case's cache entry, and the static solution cases share
+    for k in (0, 1):
+        by_grid: dict[str, set] = {}
+        by_content: dict[str, set] = {}
+        for case in cases:
+            by_grid.setdefault((case.hash, case.static_hash)[k], set()).add(case.index)
+            by_content.setdefault(full[case.index][k], set()).add(case.index)
+        assert sorted(map(sorted, by_grid.values())) == sorted(map(sorted, by_content.values()))
 
 
 def test_a_swept_period_is_validated_as_a_whole_study() -> None:
