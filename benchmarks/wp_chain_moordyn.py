@@ -232,10 +232,10 @@ def regime(label: str, quick: bool) -> WorkPrecision:
 def moordyn_text(f: float, a: float, segments: int) -> tuple[str, np.ndarray, float]:
     """The exported MoorDyn file of the case with our seabed set (module notes), the
     coupled point's position [m] and its time step dtM [s]."""
-    from cablestudy.study.problem import line_model
     from cablestudy.dynamics.discrete_line import default_seabed_stiffness
     from cablestudy.interchange.case_export import export_case
     from cablestudy.study.loader import parse_study_text
+    from cablestudy.study.problem import line_model
 
     data = study(f, a, segments, 64)
     src = parse_study_text(yaml.safe_dump(data), "<bench>")

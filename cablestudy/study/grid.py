@@ -107,7 +107,6 @@ class CaseGrid:
         }
         return _hash([self.key, values])
 
-
     def study_at(self, index: tuple[int, ...]) -> Study:
         """The validated study of the case at ``index``: the template (or the whole study
         of its :attr:`whole` values) with its other validated swept values copied in;
@@ -117,7 +116,9 @@ class CaseGrid:
         base = self.template
         if self.whole:
             picks = tuple(
-                (p, index[axis]) for axis, a in enumerate(self.axes) for p in a.paths
+                (p, index[axis])
+                for axis, a in enumerate(self.axes)
+                for p in a.paths
                 if p in self.whole
             )
             base = self.memo.get(picks)
@@ -125,8 +126,11 @@ class CaseGrid:
                 assert self.src is not None
                 data = {k: v for k, v in self.src.data.items() if k != "sweep"}
                 data = _copy_tree(data)
-                values = {p: v for axis, a in enumerate(self.axes)
-                          for p, v in zip(a.paths, a.values, strict=True)}
+                values = {
+                    p: v
+                    for axis, a in enumerate(self.axes)
+                    for p, v in zip(a.paths, a.values, strict=True)
+                }
                 for p, i in picks:
                     _set_path(data, p, _copy_tree(values[p][i]))
                 base = self.memo[picks] = validate_data(data, self.src)

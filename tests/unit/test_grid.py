@@ -19,8 +19,7 @@ from cablestudy.run import grid_runner
 from cablestudy.run.grid_runner import run_grid_study
 from cablestudy.run.runner import run_study
 from cablestudy.study import parse_study_text
-from cablestudy.study.grid import expand_cases
-from cablestudy.study.grid import CaseGrid, expand_grid
+from cablestudy.study.grid import CaseGrid, expand_cases, expand_grid
 from cablestudy.study.loader import StudyError
 
 TEXT = """\

@@ -11,7 +11,7 @@ import pytest
 
 from cablestudy.study.cases import _copy_tree, _set_path, case_hashes
 from cablestudy.study.grid import expand_grid
-from cablestudy.study.loader import read_study_source, parse_study_text, validate_data
+from cablestudy.study.loader import parse_study_text, read_study_source, validate_data
 
 CONFIGS = sorted((Path(__file__).resolve().parents[2] / "configs").glob("*.yaml"))
 
