@@ -45,10 +45,14 @@ def _load(path: str, max_bytes: int | None = None):  # noqa: ANN202
 
 
 def cmd_validate(args: argparse.Namespace) -> int:
-    src, axes, cases = _load(args.config, args.max_study_size)
+    src, axes, grid = _load(args.config, args.max_study_size)
     dims = ", ".join(f"{a.name}={a.size}" for a in axes) or "no sweep"
-    n = cases.size
-    print(f"{args.config}: valid study {src.data['name']!r}: {n} cases ({dims})")
+    print(f"{args.config}: valid study {src.data['name']!r}: {grid.size} cases ({dims})")
+    if grid.whole:
+        print(
+            "  validated as whole studies, once per combination of their values (they "
+            f"cannot be copied into the validated template): {', '.join(grid.whole)}"
+        )
     return 0
 
 
@@ -79,7 +83,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     except SchedulerAddressError as exc:
         print(exc, file=sys.stderr)
         return 2
-    src, axes, cases = _load(args.config, args.max_study_size)
+    src, axes, grid = _load(args.config, args.max_study_size)
     # before any work: the output folder can take the result, the scheduler answers
     try:
         check_output_paths(Path(args.out), str(src.data["name"]))
@@ -94,7 +98,6 @@ def cmd_run(args: argparse.Namespace) -> int:
             return 1
     from .kernels import ensure_compiled, kinds_of
 
-    grid = cases
     studies = [c.study for c in grid.cases()] if not grid.chunked else [grid.template]
     ensure_compiled(sorted({k for study in studies for k in kinds_of(study)}))
     try:

@@ -9,6 +9,7 @@ from pathlib import Path
 
 import pytest
 
+from cablestudy.cli import main
 from cablestudy.study.cases import _copy_tree, _set_path, case_hashes
 from cablestudy.study.grid import expand_grid
 from cablestudy.study.loader import parse_study_text, read_study_source, validate_data
@@ -46,7 +47,9 @@ def test_every_case_of_the_grid_is_its_fully_validated_study(path: Path) -> None
         assert sorted(map(sorted, by_grid.values())) == sorted(map(sorted, by_content.values()))
 
 
-def test_a_swept_period_is_validated_as_a_whole_study() -> None:
+def test_a_swept_period_is_validated_as_a_whole_study(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     """A harmonic excitation given by its period derives its frequency (a validator
     before the fields): the period cannot be copied into the template."""
     text = """\
@@ -72,3 +75,10 @@ sweep:
     assert grid.whole == ("analysis.dynamic.excitation.period",)
     freqs = [c.study.analysis.dynamic.excitation.frequency for c in grid.cases()]
     assert freqs == [1.0 / 8.0, 1.0 / 12.0]
+    # `cablestudy validate` says which paths are validated as whole studies
+    study = tmp_path / "per.yaml"
+    study.write_text(text)
+    assert main(["validate", str(study)]) == 0
+    out = capsys.readouterr().out
+    assert "2 cases (period=2)" in out
+    assert "validated as whole studies" in out and "analysis.dynamic.excitation.period" in out
