@@ -142,22 +142,14 @@ class CaseGrid:
         return case_study(base, copied) if copied else base
 
     def case_hashes(self, index: tuple[int, ...]) -> tuple[str, str]:
-        """(case hash, static hash) of the case at ``index``: content hashes of the
-        template (validated, with its defaults, and as written) and the case's swept
-        values, all of them and those that can change its static solution (a path
-        outside ``analysis``, or into ``analysis.static`` but its strain warning)."""
+        """(case hash, static hash) of the case at ``index``: the content hashes of the
+        template (:func:`cablestudy.study.cases.case_hashes`: every validated setting with
+        its defaults, and the solver code) with the case's swept values, all of them and
+        those that can change its static solution (a path outside ``analysis``, or into
+        ``analysis.static`` but its strain warning). No dump of the case's study."""
         found = self.memo.get("keys")
         if found is None:
-            assert self.src is not None
-            raw = {k: v for k, v in self.src.data.items() if k not in _NOT_HASHED}
-            static_raw = {k: v for k, v in raw.items() if k != "analysis"}
-            analysis = raw.get("analysis")
-            if isinstance(analysis, dict) and isinstance(analysis.get("static"), dict):
-                static_raw["static"] = {
-                    k: v for k, v in analysis["static"].items() if k != "strain_warning"
-                }
-            whole, static = case_hashes(self.template)
-            found = self.memo["keys"] = (_hash([whole, raw]), _hash([static, static_raw]))
+            found = self.memo["keys"] = case_hashes(self.template)
         values = {
             p: vals[index[axis]]
             for axis, a in enumerate(self.axes)
@@ -184,18 +176,13 @@ class CaseGrid:
         return found
 
 
-#: top-level keys of a study file that do not change its results
-_NOT_HASHED = ("name", "description", "sweep")
-
-
 def _static_path(path: str) -> bool:
     """Whether a swept ``path`` can change a case's static solution (every path outside
     ``analysis``, and the static settings but the strain warning's limit)."""
     if not path.startswith("analysis"):
         return True
     return path == "analysis" or (
-        path.startswith(("analysis.static", "analysis.static."))
-        and not path.startswith("analysis.static.strain_warning")
+        path.startswith("analysis.static") and not path.startswith("analysis.static.strain_warning")
     )
 
 
