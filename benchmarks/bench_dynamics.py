@@ -36,7 +36,7 @@ FIRST_RUN = """
 import time
 t0 = time.perf_counter()
 from cablestudy.analyses.evaluate import evaluate_case
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import read_study_source
 src = read_study_source({config!r})
 _, cases = expand_cases(src)
@@ -66,7 +66,7 @@ def compile_cost(cache_dir: str) -> tuple[float, float, float]:
 def run_sweep(data: dict, out: Path, workers: int, scheduler: str) -> tuple[xr.Dataset, float]:
     from cablestudy.analyses.evaluate import check_supported
     from cablestudy.run.runner import run_study
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
     from cablestudy.study.loader import parse_study_text
 
     src = parse_study_text(yaml.safe_dump(data, sort_keys=False), "bench")

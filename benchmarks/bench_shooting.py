@@ -25,7 +25,7 @@ sys.path.insert(0, str(ROOT))
 from cablestudy.statics import EndCondition, LineModel, Medium, StaticProblem  # noqa: E402
 from cablestudy.statics.elastic_catenary import solve_between  # noqa: E402
 from cablestudy.statics.shooting import ShootingSolver  # noqa: E402
-from cablestudy.study.cases import expand_cases  # noqa: E402
+from cablestudy.study.grid import expand_cases  # noqa: E402
 from cablestudy.study.loader import read_study_source  # noqa: E402
 from cablestudy.study.problem import static_problem  # noqa: E402
 

@@ -173,7 +173,7 @@ def bench_chunk(n: int, repeats: int) -> list[str]:
     """Whole chunk evaluation from a validated study (what the runner's task does)."""
     from cablestudy.analyses.evaluate import evaluate_case, evaluate_chunk
     from cablestudy.analyses.static import _STATIC_CACHE
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
     from cablestudy.study.loader import read_study_source
 
     src = read_study_source(ROOT / "configs" / "dodaran-fig4-semi-analytic.yaml")
@@ -261,7 +261,7 @@ def bench_drag(repeats: int) -> list[str]:
 def bench_figures() -> list[str]:
     from cablestudy.analyses.evaluate import evaluate_case
     from cablestudy.analyses.static import _STATIC_CACHE
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
     from cablestudy.study.loader import read_study_source
 
     out = [

@@ -34,7 +34,7 @@ def run(nodes: int, cases: int = 50) -> dict[str, float]:
     from cablestudy.interchange import import_model, imported_yaml
     from cablestudy.statics import STATIC_SOLVERS
     from cablestudy.statics.system import solve_system
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
     from cablestudy.study.loader import parse_study_text
 
     path = ROOT / "tests" / "data" / CASE8

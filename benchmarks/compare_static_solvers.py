@@ -31,7 +31,7 @@ from cablestudy.statics import (  # noqa: E402
     Medium,
     StaticProblem,
 )
-from cablestudy.study.cases import expand_cases  # noqa: E402
+from cablestudy.study.grid import expand_cases  # noqa: E402
 from cablestudy.study.loader import read_study_source  # noqa: E402
 from cablestudy.study.problem import static_problem  # noqa: E402
 

@@ -17,7 +17,7 @@ import numpy as np
 
 from cablestudy.analyses.system import evaluate_system_case
 from cablestudy.study import parse_study_text
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from tests.validation.test_system_dynamics_moordyn import KEYS, REFS, study_text
 
 

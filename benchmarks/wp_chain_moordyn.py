@@ -129,7 +129,7 @@ def study(frequency: float, amplitude: float, elements: int, ppp: int) -> dict[s
 
 
 def _case(data: dict):  # noqa: ANN202
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
     from cablestudy.study.loader import parse_study_text
 
     _, cases = expand_cases(parse_study_text(yaml.safe_dump(data), "<bench>"))

@@ -94,7 +94,7 @@ def prepare(data: dict):  # noqa: ANN201
     (:func:`cablestudy.analyses.time.dynamic_problem`)."""
     from cablestudy.analyses.static import solve_static
     from cablestudy.analyses.time import dynamic_problem
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
     from cablestudy.study.loader import parse_study_text
 
     _, cases = expand_cases(parse_study_text(yaml.safe_dump(data), "<bench>"))
@@ -112,7 +112,7 @@ def tensions(res) -> np.ndarray:  # noqa: ANN001
 def first_mode() -> float:
     """First natural frequency [Hz] of the cable (modal analysis, 200 elements)."""
     from cablestudy.analyses.evaluate import evaluate_case
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
     from cablestudy.study.loader import parse_study_text
 
     d = study(0.5, 0.05, 20, 32)

@@ -49,7 +49,7 @@ def frequency_case(elements: int):  # noqa: ANN201
     """(reduced linear line, omega, end motion, drag settings) of the regime."""
     from cablestudy.analyses.frequency import drag_settings, end_displacements, linearised
     from cablestudy.analyses.static import solve_static
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
     from cablestudy.study.loader import parse_study_text
 
     d = study(FREQUENCY, AMPLITUDE, elements, 64)
@@ -116,7 +116,7 @@ def linear_regime(quick: bool) -> WorkPrecision:
 
 
 def _cases(method: str):  # noqa: ANN202
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
     from cablestudy.study.loader import parse_study_text
 
     text = FIGS.read_text().replace("method: auto", f"method: {method}")

@@ -46,7 +46,7 @@ MODES = 4
 
 
 def case(elements: int, mesh: str):  # noqa: ANN201
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
     from cablestudy.study.loader import parse_study_text
 
     d = copy.deepcopy(BASE)

@@ -82,7 +82,7 @@ def pipeline_overhead(repeats: int) -> tuple[float, float]:
     from cablestudy.analyses.evaluate import evaluate_case
     from cablestudy.analyses.static import _STATIC_CACHE
     from cablestudy.statics import STATIC_SOLVERS
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
     from cablestudy.study.loader import parse_study_text
     from cablestudy.study.problem import static_problem
 

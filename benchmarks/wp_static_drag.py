@@ -33,7 +33,7 @@ import yaml
 from cablestudy.bench import WorkPrecision, median_time
 from cablestudy.statics import STATIC_SOLVERS, StaticProblem, StaticResult
 from cablestudy.statics.shooting import ShootingSolver
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
 from cablestudy.study.problem import static_problem
 

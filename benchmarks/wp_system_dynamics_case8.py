@@ -68,7 +68,7 @@ def study_text(mesh: str) -> str:
 
 def _case(mesh: str):  # noqa: ANN202
     from cablestudy.study import parse_study_text
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
 
     (_, [case]) = expand_cases(parse_study_text(study_text(mesh), "case8.yaml"))
     return case

@@ -19,48 +19,40 @@ def _size(text: str) -> int:
 
 
 def _load(path: str, max_bytes: int | None = None):  # noqa: ANN202
+    """The study source and its grid of cases (:func:`cablestudy.run.grid_runner.study_grid`),
+    every case checked against what the solvers support before any work."""
     from .analyses.evaluate import check_supported
-    from .study.cases import expand_cases
+    from .run.grid_runner import study_grid
+    from .study.cases import Case, case_hashes
+    from .study.grid_studies import axis_studies
     from .study.loader import read_study_source
 
     src = read_study_source(path, max_bytes=max_bytes)
     for note in src.notes:
         print(f"warning: {note}", file=sys.stderr)
-    grid = _grid(src)
-    if grid is not None:
-        from .study.cases import Case, case_hashes
-        from .study.grid_studies import axis_studies
-
+    grid = study_grid(src)
+    if not grid.chunked:
+        check_supported(grid.cases(), src)
+    elif grid.arrays:
         # an array grid sweeps end positions of fixed ends and segment stiffnesses only,
         # which no support check reads (end kinds, laws, attachments, analyses): its
         # template answers for every case (and 300 axis studies cost 20 ms of a 0.5 s run)
-        studies = [grid.template] if grid.arrays else axis_studies(grid)
+        check_supported([Case((), {}, grid.template, *case_hashes(grid.template))], src)
+    else:
+        studies = axis_studies(grid)
         check_supported([Case((), {}, st, *case_hashes(st)) for st in studies], src)
-        return src, grid.axes, grid
-    axes, cases = expand_cases(src)
-    check_supported(cases, src)
-    return src, axes, cases
-
-
-def _grid(src):  # noqa: ANN001, ANN202
-    """The study as an array grid (cablestudy.analyses.static_grid) when its validated template and
-    sweep
-    allow, else None. Decided from the validated study (defaults included), never from
-    the raw text: a study that leaves ``analysis.static.method`` out runs on the same
-    kernel as one that writes its default ``catenary``."""
-    sweep = src.data.get("sweep")
-    if not isinstance(sweep, dict) or not sweep:
-        return None
-    from .run.grid_runner import study_grid
-
-    return study_grid(src)
+    return src, grid.axes, grid
 
 
 def cmd_validate(args: argparse.Namespace) -> int:
-    src, axes, cases = _load(args.config, args.max_study_size)
+    src, axes, grid = _load(args.config, args.max_study_size)
     dims = ", ".join(f"{a.name}={a.size}" for a in axes) or "no sweep"
-    n = cases.size if not isinstance(cases, list) else len(cases)
-    print(f"{args.config}: valid study {src.data['name']!r}: {n} cases ({dims})")
+    print(f"{args.config}: valid study {src.data['name']!r}: {grid.size} cases ({dims})")
+    if grid.whole:
+        print(
+            "  validated as whole studies, once per combination of their values (they "
+            f"cannot be copied into the validated template): {', '.join(grid.whole)}"
+        )
     return 0
 
 
@@ -91,7 +83,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     except SchedulerAddressError as exc:
         print(exc, file=sys.stderr)
         return 2
-    src, axes, cases = _load(args.config, args.max_study_size)
+    src, axes, grid = _load(args.config, args.max_study_size)
     # before any work: the output folder can take the result, the scheduler answers
     try:
         check_output_paths(Path(args.out), str(src.data["name"]))
@@ -106,16 +98,16 @@ def cmd_run(args: argparse.Namespace) -> int:
             return 1
     from .kernels import ensure_compiled, kinds_of
 
-    studies = [cases.template] if not isinstance(cases, list) else [c.study for c in cases]
+    studies = [c.study for c in grid.cases()] if not grid.chunked else [grid.template]
     ensure_compiled(sorted({k for study in studies for k in kinds_of(study)}))
     try:
-        if not isinstance(cases, list):  # a sweep run as arrays (cablestudy.analyses.static_grid)
+        if grid.chunked:  # in chunks of rows (cablestudy.run.grid_runner)
             from .run.grid_runner import run_grid_study
 
             _resume_collection()
             summary = run_grid_study(
                 src,
-                cases,
+                grid,
                 args.out,
                 scheduler=scheduler,
                 workers=args.workers,
@@ -126,12 +118,12 @@ def cmd_run(args: argparse.Namespace) -> int:
         else:
             from .analyses.evaluate import warm_up
 
-            warm_up(cases)
+            warm_up(grid.cases())
             _resume_collection()
             summary = run_study(
                 src,
                 axes,
-                cases,
+                grid.cases(),
                 args.out,
                 scheduler=scheduler,
                 workers=args.workers,

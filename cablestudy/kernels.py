@@ -75,7 +75,7 @@ ends:
     )
     for body in (linear, anchored):
         grid = expand_grid(parse_study_text(body + sweep, "warm.yaml"))
-        if grid is not None:
+        if grid.chunked:
             evaluate_grid_chunk(grid, 0, grid.shape[0])
     # a system's position sweep: the compiled system Newton (cablestudy.analyses.system_grid)
     system = """\

@@ -1,6 +1,6 @@
 """A chunk of a static grid whose cases the arrays do not take, solved as validated
 cases: each case's study is the template with its swept values copied in
-(:func:`cablestudy.study.grid_studies.case_study`), and the chunk is solved as
+(:meth:`cablestudy.study.grid.CaseGrid.study_at`), and the chunk is solved as
 :func:`cablestudy.analyses.evaluate.evaluate_chunk` solves a chunk of validated cases (one
 :func:`cablestudy.statics.batch.solve_batch` call for the cases a batch kernel may take,
 the registry solver per case otherwise, the drag iteration per case); its records are
@@ -17,7 +17,6 @@ from typing import Any
 
 import numpy as np
 
-from ..study.grid_studies import _case_values, case_study
 from ..study.study import Study
 
 
@@ -54,7 +53,7 @@ def evaluate_static_chunk(grid: Any, lo: int, hi: int) -> Any:
     solves validated cases, and stack the records. Never raises: a fault fails the
     chunk's cases with its text."""
     from ..statics import _fast
-    from ..study.cases import Case, _hash
+    from ..study.cases import Case
     from ..study.problem import static_problem
     from .evaluate import evaluate_case
     from .grid_chunk import NO_KERNEL, STATUS_NUMERICAL, GridChunk, warning_column
@@ -70,10 +69,7 @@ def evaluate_static_chunk(grid: Any, lo: int, hi: int) -> Any:
         cases = []
         for index in itertools.product(*(range(k) for k in block)):
             index = (index[0] + lo, *index[1:])
-            values = _case_values(grid, index)
-            study = case_study(grid.template, values)
-            h = _hash([grid.key, sorted(values.items())])
-            cases.append(Case(index, {}, study, h, "static:" + h))
+            cases.append(Case(index, {}, grid.study_at(index), *grid.case_hashes(index)))
         general: list[str] = []
         solved, share = presolve_statics(cases, general=general)
         gone = set(general)

@@ -28,7 +28,7 @@ def _ensure_study(name: str, results: Path, configs: Path, run_missing: bool) ->
         )
     from ..analyses.evaluate import check_supported
     from ..run.runner import run_study
-    from ..study.cases import expand_cases
+    from ..study.grid import expand_cases
     from ..study.loader import read_study_source
 
     candidates = [p for p in sorted(configs.glob("*.yaml")) if p.stem == name]

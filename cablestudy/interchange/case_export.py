@@ -26,7 +26,7 @@ def choose_case(src: StudySource, selectors: list[str]) -> Any:
     """The one case of the study whose coordinates match ``dim=value`` selectors.
 
     Raises :class:`InterchangeError` naming the bad dimension or value and the valid ones."""
-    from ..study.cases import expand_cases
+    from ..study.grid import expand_cases
 
     axes, cases = expand_cases(src)
     wanted: dict[str, str] = {}

@@ -6,7 +6,6 @@ dataset written from them.
 
 from __future__ import annotations
 
-import json
 import math
 import tempfile
 import time
@@ -219,33 +218,25 @@ def _stored_chunk(store: Any, path: Path) -> Any:
 
 
 def _grid_settings(grid: Any) -> dict[str, Any]:
-    """:func:`default_solver_settings` of the grid's cases: the first case's analysis
-    settings and, where the sweep changes them, every distinct one."""
-    if not any(p.startswith("analysis.") for p in getattr(grid, "validated", {})):
-        return {
-            "analysis": grid.template.analysis.model_dump(mode="json"),
-            "static_methods": [grid.template.analysis.static.method],
-        }
+    """:func:`cablestudy.run.runner.default_solver_settings` of the grid's cases: their
+    analysis settings change only along the axes that sweep ``analysis`` paths, so one
+    case per combination of those axes (the others at their first value) stands for
+    all."""
     import itertools
+    from types import SimpleNamespace
 
-    from ..study.grid_studies import case_study
+    from .runner import default_solver_settings
 
-    swept = {p: v for p, v in grid.validated.items() if p.startswith("analysis.")}
-    axes = sorted({k for k, _ in swept.values()})
-    settings = []
-    for index in itertools.product(*(range(grid.shape[k]) for k in axes)):
-        at = dict(zip(axes, index, strict=True))
-        study = case_study(grid.template, {p: vals[at[k]] for p, (k, vals) in swept.items()})
-        settings.append(study.analysis)
-    dumps = [a.model_dump(mode="json") for a in settings]
-    out: dict[str, Any] = {
-        "analysis": dumps[0],
-        "static_methods": sorted({a.static.method for a in settings}),
-    }
-    distinct = {json.dumps(d, sort_keys=True) for d in dumps}
-    if len(distinct) > 1:
-        out["analysis_per_case_distinct"] = [json.loads(d) for d in sorted(distinct)]
-    return out
+    swept = sorted(
+        {k for k, a in enumerate(grid.axes) if any(p.startswith("analysis") for p in a.paths)}
+    )
+    studies = []
+    for picks in itertools.product(*(range(grid.shape[k]) for k in swept)):
+        index = [0] * len(grid.shape)
+        for k, i in zip(swept, picks, strict=True):
+            index[k] = i
+        studies.append(SimpleNamespace(study=grid.study_at(tuple(index))))
+    return default_solver_settings(studies)  # type: ignore[arg-type]
 
 
 def _grid_variables(src: StudySource, grid: Any, chunks: list[Any]) -> tuple[Any, tuple]:
@@ -367,10 +358,9 @@ def _execute_grid(
 
 
 def study_grid(src: StudySource) -> Any:
-    """The study as a grid of cases run as arrays, or None (then it runs case by case):
-    a system's position sweep (:mod:`cablestudy.analyses.system_grid`), else a one-line
-    static sweep (:func:`cablestudy.study.grid.expand_grid`). Decided from the validated
-    template, never from the raw text."""
+    """The study as a grid of cases (:func:`cablestudy.study.grid.expand_grid`), or a
+    system's position sweep as one (:mod:`cablestudy.analyses.system_grid`). Decided from
+    the validated template, never from the raw text."""
     from ..study.grid import expand_grid
     from ..study.loader import validate_data
 
@@ -378,5 +368,7 @@ def study_grid(src: StudySource) -> Any:
     if template.is_system:
         from ..analyses.system_grid import expand_system_grid
 
-        return expand_system_grid(src, template)
+        grid = expand_system_grid(src, template)
+        if grid is not None:
+            return grid
     return expand_grid(src, template)

@@ -595,16 +595,13 @@ def _study_loc(path: str) -> Loc:
     return tuple(int(p) if p.isdigit() else p for p in path.split("."))
 
 
-def expand_cases(src: StudySource) -> tuple[list[SweepAxis], list[Case]]:
-    """Validate the study and every case of its sweep (all before any work starts).
-
-    A fault in a swept value is reported at the sweep key's line; a fault elsewhere that
-    only some sweep cases have names the first such case and how many there are."""
-    base = validate_data(src.data, src)
-    axes = parse_sweep(src)
-    if not axes:
-        h, sh = case_hashes(base)
-        return axes, [Case((), {}, base, h, sh)]
+def report_sweep_faults(src: StudySource, axes: list[SweepAxis]) -> None:
+    """Raise :class:`StudyError` naming every fault of the sweep's cases, each at its line:
+    a fault in a swept value at the sweep key's line; a fault elsewhere that only some
+    sweep cases have names the first such case and how many there are. Called by
+    :func:`cablestudy.study.grid.expand_grid` when a swept value or a combination of
+    them fails (the grid itself validates each value once); returns when every case is
+    valid."""
     key_locs = {p: sweep_key_loc(src, p) for a in axes for p in a.paths}
     # per axis, path and index: (study location, (sweep key, location of the value))
     value_locs = [
@@ -618,7 +615,6 @@ def expand_cases(src: StudySource) -> tuple[list[SweepAxis], list[Case]]:
         for a in axes
     ]
     faults: dict[str, list[dict[str, Any]]] = {}
-    cases: list[Case] = []
     template = {k: v for k, v in src.data.items() if k != "sweep"}
     coordinates = [a.coordinate() for a in axes]
     n_cases = math.prod(a.size for a in axes)
@@ -641,28 +637,25 @@ def expand_cases(src: StudySource) -> tuple[list[SweepAxis], list[Case]]:
         if bad:
             continue
         try:
-            study = validate_data(data, src, swept=swept)
+            validate_data(data, src, swept=swept)
         except StudyError as exc:
             for p in exc.problems:
                 faults.setdefault(p, []).append(dict(coords))
             if len(faults) > 20:
                 break
-            continue
-        h, sh = case_hashes(study)
-        cases.append(Case(tuple(index), coords, study, h, sh))
-    if faults:
-        problems = []
-        sweep_lines = sorted({src.line_of(loc) or 0 for loc in key_locs.values()})
-        lines_note = f"; swept on line{'s' if len(sweep_lines) > 1 else ''} " + ", ".join(
-            str(n) for n in sweep_lines
-        )
-        for p, where in faults.items():
-            note = "" if "(value from sweep" in p else lines_note
-            if len(where) == 1:
-                problems.append(f"{p} [in sweep case {where[0]}{note}]")
-            else:
-                problems.append(
-                    f"{p} [in {len(where)} of {n_cases} sweep cases, first {where[0]}{note}]"
-                )
-        raise StudyError(problems, src.source)
-    return axes, cases
+    if not faults:
+        return
+    problems = []
+    sweep_lines = sorted({src.line_of(loc) or 0 for loc in key_locs.values()})
+    lines_note = f"; swept on line{'s' if len(sweep_lines) > 1 else ''} " + ", ".join(
+        str(n) for n in sweep_lines
+    )
+    for p, where in faults.items():
+        note = "" if "(value from sweep" in p else lines_note
+        if len(where) == 1:
+            problems.append(f"{p} [in sweep case {where[0]}{note}]")
+        else:
+            problems.append(
+                f"{p} [in {len(where)} of {n_cases} sweep cases, first {where[0]}{note}]"
+            )
+    raise StudyError(problems, src.source)

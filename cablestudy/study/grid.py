@@ -1,31 +1,44 @@
-"""Sweeps as arrays: a case is its index into the grid of sweep axes.
+"""Every study as a grid of cases: a case is its index into the grid of sweep axes.
 
 The study is validated once as a template, each swept value once at its own path, and
-the checks that combine fields (ends below the seabed, a weightless line shorter than its
-chord) over the whole grid with NumPy (:func:`expand_grid`). No per-case pydantic object
-is built. A grid whose cases differ only in settings the batched still-water catenary
-kernel takes as numbers (end positions of fixed ends, segment axial stiffnesses) runs as
-arrays (:attr:`CaseGrid.arrays`, :mod:`cablestudy.analyses.static_grid`); any other static-only
-sweep of
-numbers (lengths, diameters, weights, depth, friction, current, end forces, attachments,
-node counts, any static method) is a grid too, each case's study the template with its
-validated swept values copied in (:mod:`cablestudy.study.grid_studies`).
+the checks that combine fields over the grid (:func:`expand_grid`): with NumPy where the
+compiled catenary kernels take the grid as arrays (end positions of fixed ends, segment
+stiffnesses: :attr:`CaseGrid.arrays`, :mod:`cablestudy.analyses.static_grid`), else by the
+models' own ``mode="after"`` validators on each case's study, which is the template with
+its validated swept values copied in (:mod:`cablestudy.study.grid_studies`). A swept path
+that cannot be copied into the template (a model whose validator derives other fields
+from it, a keyed entry of a system, a value that is not a number or a string) is named
+in :attr:`CaseGrid.whole`: each combination of its values is validated as a whole study,
+once, and the other swept values copied in. No study is validated case by case unless a
+value or a combination fails: then :func:`cablestudy.study.cases.report_sweep_faults`
+names every fault at its line.
 
-Anything else (a modal or dynamic analysis, the quasi-static database, a swept value
-that is not a number, a swept value or combination that fails validation) goes through
-:func:`cablestudy.study.cases.expand_cases`, which reports faults exactly as before.
+A static-only one-line sweep of numbers runs in chunks of rows of the grid
+(:attr:`CaseGrid.chunked`, :mod:`cablestudy.run.grid_runner`); any other study runs its
+cases (:meth:`CaseGrid.cases`) through the per-case evaluators.
 """
 
 from __future__ import annotations
 
+import itertools
 import math
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
 
-from .cases import SweepAxis, _copy_tree, _hash, _set_path, code_fingerprint, parse_sweep
+from .cases import (
+    Case,
+    SweepAxis,
+    _copy_tree,
+    _hash,
+    _set_path,
+    case_hashes,
+    code_fingerprint,
+    parse_sweep,
+    report_sweep_faults,
+)
 from .loader import StudyError, StudySource, validate_data
 from .study import Study
 
@@ -54,6 +67,17 @@ class CaseGrid:
     #: :func:`cablestudy.analyses.static_grid_cases.evaluate_static_chunk`
     #: builds each case's study by copying and solves the chunk as validated cases)
     arrays: bool = True
+    #: whether the grid runs in chunks of rows (:mod:`cablestudy.run.grid_runner`): a
+    #: static-only one-line sweep of numbers, or a system's position sweep; else its
+    #: cases (:meth:`cases`) run through the per-case evaluators
+    chunked: bool = True
+    #: swept paths that cannot be copied into the template: each combination of their
+    #: values is validated as a whole study (:meth:`study_at`)
+    whole: tuple[str, ...] = ()
+    #: the study source (to validate the combinations of :attr:`whole` paths)
+    src: StudySource | None = None
+    #: studies of the combinations of :attr:`whole` values, and the cases, once built
+    memo: dict[Any, Any] = field(default_factory=dict, compare=False, repr=False)
 
     @property
     def shape(self) -> tuple[int, ...]:
@@ -82,6 +106,84 @@ class CaseGrid:
             p: (vals[lo:hi] if ax == 0 else vals).tolist() for p, (ax, vals) in self.swept.items()
         }
         return _hash([self.key, values])
+
+    def study_at(self, index: tuple[int, ...]) -> Study:
+        """The validated study of the case at ``index``: the template (or the whole study
+        of its :attr:`whole` values) with its other validated swept values copied in;
+        raises as a full validation of the case would."""
+        from .grid_studies import case_study
+
+        base = self.template
+        if self.whole:
+            picks = tuple(
+                (p, index[axis])
+                for axis, a in enumerate(self.axes)
+                for p in a.paths
+                if p in self.whole
+            )
+            base = self.memo.get(picks)
+            if base is None:
+                assert self.src is not None
+                data = {k: v for k, v in self.src.data.items() if k != "sweep"}
+                data = _copy_tree(data)
+                values = {
+                    p: v
+                    for axis, a in enumerate(self.axes)
+                    for p, v in zip(a.paths, a.values, strict=True)
+                }
+                for p, i in picks:
+                    _set_path(data, p, _copy_tree(values[p][i]))
+                base = self.memo[picks] = validate_data(data, self.src)
+        copied = {
+            p: vals[index[axis]]
+            for p, (axis, vals) in self.validated.items()
+            if p not in self.whole
+        }
+        return case_study(base, copied) if copied else base
+
+    def case_hashes(self, index: tuple[int, ...]) -> tuple[str, str]:
+        """(case hash, static hash) of the case at ``index``: the content hashes of the
+        template (:func:`cablestudy.study.cases.case_hashes`: every validated setting with
+        its defaults, and the solver code) with the case's swept values, all of them and
+        those that can change its static solution (a path outside ``analysis``, or into
+        ``analysis.static`` but its strain warning). No dump of the case's study."""
+        found = self.memo.get("keys")
+        if found is None:
+            found = self.memo["keys"] = case_hashes(self.template)
+        values = {
+            p: vals[index[axis]]
+            for axis, a in enumerate(self.axes)
+            for p, vals in zip(a.paths, a.values, strict=True)
+        }
+        statics = {p: v for p, v in values.items() if _static_path(p)}
+        return _hash([found[0], values]), _hash([found[1], statics])
+
+    def cases(self) -> list[Case]:
+        """Every case in C order of the grid, with its coordinates and content hashes
+        (built once)."""
+        found = self.memo.get("cases")
+        if found is None:
+            coordinates = [a.coordinate() for a in self.axes]
+            found = []
+            for index in itertools.product(*(range(n) for n in self.shape)):
+                study = self.study_at(index)
+                coords = {
+                    a.name: c[i].item()
+                    for a, c, i in zip(self.axes, coordinates, index, strict=True)
+                }
+                found.append(Case(index, coords, study, *self.case_hashes(index)))
+            self.memo["cases"] = found
+        return found
+
+
+def _static_path(path: str) -> bool:
+    """Whether a swept ``path`` can change a case's static solution (every path outside
+    ``analysis``, and the static settings but the strain warning's limit)."""
+    if not path.startswith("analysis"):
+        return True
+    return path == "analysis" or (
+        path.startswith("analysis.static") and not path.startswith("analysis.static.strain_warning")
+    )
 
 
 def grid_shape(axes: list[SweepAxis]) -> list[int]:
@@ -145,42 +247,47 @@ def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
     return bool(axes)
 
 
-def expand_grid(src: StudySource, template: Study | None = None) -> CaseGrid | None:
-    """The study as a :class:`CaseGrid` when its sweep can run as arrays and every swept
-    value and combination is valid; ``None`` otherwise (the caller then expands the
-    cases one by one, which reports any fault at its line as before). A fault in the
-    template itself is raised here, as :func:`expand_cases` would."""
-    from .grid_studies import combinations_ok, value_at
+def expand_grid(src: StudySource, template: Study | None = None) -> CaseGrid:
+    """The study as a :class:`CaseGrid` (one case without a sweep). Raises
+    :class:`StudyError` naming every fault when the template, a swept value or a
+    combination of them is invalid, before any work."""
+    from .grid_studies import combinations_ok, copyable, value_at
 
     if template is None:
         template = validate_data(src.data, src)
-    if template.lines:  # a system: cablestudy.run.grid_runner.study_grid
-        return None
     axes = parse_sweep(src)
-    if not _static_sweep(template, axes):
-        return None
-    arrays = _eligible(template, axes)
+    whole = tuple(p for axis in axes for p in axis.paths if not copyable(template, p))
+    chunked = not template.lines and _static_sweep(template, axes)
+    arrays = chunked and _eligible(template, axes)
     base = {k: v for k, v in src.data.items() if k != "sweep"}
     # each swept value once, at its own path (the others as in the template)
     validated: dict[str, tuple[int, list[Any]]] = {
         p: (k, []) for k, axis in enumerate(axes) for p in axis.paths
     }
+    alone = True  # every swept value valid at its own path
     for axis in axes:
         for i in range(axis.size):
             data = _copy_tree(base)
             try:
                 for path, vals in zip(axis.paths, axis.values, strict=True):
-                    _set_path(data, path, vals[i])
+                    _set_path(data, path, _copy_tree(vals[i]))
                 study = validate_data(data, src)
             except (KeyError, StudyError):
-                return None
+                alone = False
+                break
             for path in axis.paths:
-                validated[path][1].append(value_at(study, path))
-    swept = {
-        p: (k, np.asarray(vals, dtype=float))
-        for k, axis in enumerate(axes)
-        for p, vals in zip(axis.paths, axis.values, strict=True)
-    }
+                validated[path][1].append(None if path in whole else value_at(study, path))
+        if not alone:
+            break
+    swept = (
+        {
+            p: (k, np.asarray(vals, dtype=float))
+            for k, axis in enumerate(axes)
+            for p, vals in zip(axis.paths, axis.values, strict=True)
+        }
+        if chunked
+        else {}
+    )
     body = template.model_dump(mode="json", exclude={"name", "description", "sweep"})
     grid = CaseGrid(
         template,
@@ -189,10 +296,31 @@ def expand_grid(src: StudySource, template: Study | None = None) -> CaseGrid | N
         _hash([code_fingerprint(), body, {p: k for p, (k, _) in swept.items()}, grid_shape(axes)]),
         {p: (k, tuple(v)) for p, (k, v) in validated.items()},
         arrays,
+        chunked,
+        whole,
+        src,
     )
-    if not (_combined_ok(grid) if arrays else combinations_ok(grid)):
-        return None
+    if alone and chunked and (_combined_ok(grid) if arrays else combinations_ok(grid)):
+        return grid
+    if alone and not chunked:
+        try:
+            grid.cases()
+            return grid
+        except (ValueError, AssertionError, TypeError, StudyError):
+            pass
+    # a value or a combination fails (or the arrays' own checks refuse one): name every
+    # fault at its line; if the whole studies are all valid, each is validated as a whole
+    report_sweep_faults(src, axes)
+    every = tuple(p for axis in axes for p in axis.paths)
+    grid = replace(grid, arrays=False, chunked=False, whole=every, swept={}, memo={})
+    grid.cases()
     return grid
+
+
+def expand_cases(src: StudySource) -> tuple[list[SweepAxis], list[Case]]:
+    """The sweep axes and every case of the study (:meth:`CaseGrid.cases`)."""
+    grid = expand_grid(src)
+    return grid.axes, grid.cases()
 
 
 def _combined_ok(grid: CaseGrid) -> bool:

@@ -1,4 +1,4 @@
-"""The Study of a case of a static grid (:mod:`cablestudy.study.grid`), without a
+"""The Study of a case of a grid (:mod:`cablestudy.study.grid`), without a
 pydantic validation per case.
 
 The template is validated once and each swept value once at its own path
@@ -8,8 +8,8 @@ each swept path (:func:`case_study`), and the checks that combine fields -- the 
 ``mode="after"`` validators (a segment's mass or weight, attachments inside the line,
 :meth:`Study._physical`: ends above the seabed, a weightless line longer than its chord)
 -- run on every copied model, so that a combination fails exactly where the full
-validation would. A study whose combinations fail leaves the grid for
-:func:`cablestudy.study.cases.expand_cases`, which reports them as before.
+validation would; a study whose combinations fail has its faults named at their lines
+(:func:`cablestudy.study.cases.report_sweep_faults`).
 """
 
 from __future__ import annotations
@@ -20,13 +20,21 @@ from typing import Any
 from pydantic import BaseModel
 from pydantic_core import PydanticUndefined
 
+from .analysis import HarmonicExcitation
 from .line import Segment
 from .study import Study
+from .system_dynamics import BodyHarmonic, PointHarmonic
 
 #: swept paths through a model with a ``mode="before"`` validator that derives other
 #: fields from the swept one are not put in by copying: a segment given by ``line_type``
-#: (its diameter, mass and stiffness come from the material)
-_DERIVING = {Segment: "line_type"}
+#: (its diameter, mass and stiffness come from the material), a harmonic motion given by
+#: its ``period`` (its frequency is 1 / period)
+_DERIVING: dict[type, str] = {
+    Segment: "line_type",
+    HarmonicExcitation: "period",
+    BodyHarmonic: "period",
+    PointHarmonic: "period",
+}
 
 
 def copyable(template: Study, path: str) -> bool:
@@ -36,7 +44,7 @@ def copyable(template: Study, path: str) -> bool:
     for part in path.split("."):
         if isinstance(node, BaseModel):
             field = _DERIVING.get(type(node))
-            if field is not None and getattr(node, field, None) is not None:
+            if field is not None and (getattr(node, field, None) is not None or part == field):
                 return False
             if part not in type(node).model_fields:
                 return False
@@ -127,7 +135,7 @@ def combinations_ok(grid: Any) -> bool:
     ``mode="after"`` validators on the case's study)."""
     try:
         for index in itertools.product(*(range(n) for n in grid.shape)):
-            case_study(grid.template, _case_values(grid, index))
+            grid.study_at(index)
     except (ValueError, AssertionError, TypeError):
         return False
     return True
@@ -141,7 +149,3 @@ def axis_studies(grid: Any) -> list[Study]:
     for path, (_, vals) in grid.validated.items():
         studies.extend(case_study(grid.template, {path: v}) for v in vals)
     return studies
-
-
-def _case_values(grid: Any, index: tuple[int, ...]) -> dict[str, Any]:
-    return {p: vals[index[axis]] for p, (axis, vals) in grid.validated.items()}

@@ -144,7 +144,7 @@ def test_example_full_sweep_coordinates_are_the_decimals_written() -> None:
     """{start: 0.1, stop: 1.2, num: 23} gives 0.1, 0.15, ..., 1.2 as written (not
     0.44999999999999996), so that ``ds.sel(frequency=0.45)`` finds its case."""
     from cablestudy.study import parse_study_text
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
 
     axes, cases = expand_cases(parse_study_text(DESIGN_EXAMPLE, "design.yaml"))
     assert [a.name for a in axes] == ["amplitude", "frequency"] and len(cases) == 92

@@ -137,7 +137,7 @@ def test_auto_runs_the_time_domain_where_the_frequency_domain_cannot_be_built() 
     must then run the time domain and say why, as it does for a failed frequency solve."""
     from cablestudy.analyses.system import evaluate_system_case
     from cablestudy.study import parse_study_text
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
 
     text = CASE8.read_text().replace("elements: 20", "elements: 2")
     assert "elements: 2  #" in text and "method:" not in text  # auto, the default

@@ -22,7 +22,7 @@ from cablestudy.cli import main
 from cablestudy.statics import STATIC_SOLVERS
 from cablestudy.statics.system import solve_system
 from cablestudy.study import parse_study_text
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import StudyError
 
 SEG = "{length: %s, diameter: 0.1, mass_per_length: 20.0, axial_stiffness: 5.0e8%s}"

@@ -15,7 +15,7 @@ from cablestudy.cli import main
 from cablestudy.statics import STATIC_SOLVERS
 from cablestudy.statics.system_methods import solve_system_by
 from cablestudy.study import parse_study_text
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import StudyError
 from tests.integration.test_system_study import SYSTEM
 

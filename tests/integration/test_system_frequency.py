@@ -86,7 +86,7 @@ def test_the_dataset_is_the_pure_module(case8: xr.Dataset) -> None:
     from cablestudy.dynamics.system_frequency import solve_system_harmonic
     from cablestudy.statics import STATIC_SOLVERS
     from cablestudy.statics.system import solve_system
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
 
     _, cases = expand_cases(parse_study_text(_text(FREQUENCY), "case8.yaml"))
     case = cases[1]  # amplitude 2 m
@@ -127,7 +127,7 @@ def test_the_dataset_is_the_pure_module(case8: xr.Dataset) -> None:
 def test_what_the_system_frequency_domain_does_not_solve_is_refused(
     dynamic: str, words: str
 ) -> None:
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
 
     with pytest.raises(StudyError) as err:
         expand_cases(parse_study_text(_text(dynamic), "case8.yaml"))

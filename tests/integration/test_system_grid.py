@@ -24,7 +24,7 @@ from cablestudy.cli import main
 from cablestudy.run.grid_runner import study_grid
 from cablestudy.run.runner import run_study
 from cablestudy.study import parse_study_text
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from tests.integration.test_system_study import SYSTEM
 
 #: a laid line between two anchors on the seabed: no compiled kernel takes a line with
@@ -147,13 +147,13 @@ def test_load_and_anchor_sweeps_run_as_a_grid_and_equal_the_case_by_case_run(tmp
 )
 def test_other_sweeps_run_case_by_case(sweep: str) -> None:
     text = SYSTEM.split("sweep:")[0] + "sweep:\n" + sweep
-    assert study_grid(parse_study_text(text, "sys.yaml")) is None
+    assert not study_grid(parse_study_text(text, "sys.yaml")).chunked
 
 
 def test_a_swept_anchor_below_the_seabed_leaves_the_grid_for_the_case_by_case_report() -> None:
     """Two axes moving one anchor over a seabed rising towards +x (1 degree): each value
     alone is valid, one combination lies below the seabed. The grid refuses the study
-    (study_grid gives None) and the case-by-case validation names the point."""
+    and the report of the sweep's faults names the point."""
     from cablestudy.study.loader import StudyError
 
     text = (
@@ -167,9 +167,8 @@ def test_a_swept_anchor_below_the_seabed_leaves_the_grid_for_the_case_by_case_re
         + "  points.anchor3.position.2: [-90.0, -99.0]\n"
     )
     src = parse_study_text(text, "sys.yaml")
-    assert study_grid(src) is None
     with pytest.raises(StudyError, match="anchor3.position: the point lies below the seabed"):
-        expand_cases(src)
+        study_grid(src)
 
 
 def test_surge_where_a_leg_touches_down_is_settled_by_the_compiled_path() -> None:

@@ -9,7 +9,7 @@ import yaml
 
 from cablestudy.analyses.evaluate import check_supported, evaluate_case
 from cablestudy.analyses.variables import OUTPUTS, CaseRecord
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
 
 

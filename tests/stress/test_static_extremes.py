@@ -45,7 +45,7 @@ EXTREMES = [
 def _solvers_for(data: dict) -> list[str]:
     import yaml
 
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
     from cablestudy.study.loader import parse_study_text
 
     _, cases = expand_cases(parse_study_text(yaml.safe_dump(data), "<x>"))

@@ -23,7 +23,7 @@ from cablestudy.cli import main
 from cablestudy.run.dataset import assemble
 from cablestudy.run.runner import run_study
 from cablestudy.statics import STATUS_NUMERICAL, STATUS_TIME_LIMIT
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
 
 CABLE = """

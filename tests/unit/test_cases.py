@@ -11,7 +11,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from cablestudy.study import parse_study_text
-from cablestudy.study.cases import Case, SweepAxis, expand_cases, parse_sweep
+from cablestudy.study.cases import Case, SweepAxis, parse_sweep
+from cablestudy.study.grid import expand_cases
 
 BASE = """\
 name: sw
@@ -158,7 +159,7 @@ def test_every_case_holds_its_coordinates(sizes: list[int]) -> None:
 def test_zip_group_paths_may_repeat_values() -> None:
     """In a zip group the dimension's coordinate is the case index, so one path may
     repeat a value (the moustafa Figs. 8-10 pairs (0.075 m, 1 Hz) and (0.1 m, 1 Hz))."""
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
     from cablestudy.study.loader import parse_study_text
 
     text = """

@@ -17,7 +17,7 @@ from cablestudy.analyses import evaluate as analyses
 from cablestudy.analyses import line_model
 from cablestudy.analyses import static as static_analysis
 from cablestudy.analyses.variables import CaseRecord
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
 
 CABLE = """\

@@ -10,7 +10,7 @@ import pytest
 import xarray as xr
 
 from cablestudy.cli import main
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import StudyError, parse_study_text
 
 CABLE = """

@@ -24,7 +24,7 @@ from cablestudy.dynamics.frequency_model import ReducedLine, selected_rows, sum_
 from cablestudy.dynamics.harmonic_cases import _transposed, in_plane
 from cablestudy.dynamics.linear_model import held_ends_basis
 from cablestudy.dynamics.modal import _block_matrix, _free_basis
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
 
 FIGS = Path(__file__).resolve().parents[2] / "configs" / "moustafa-figs2-5.yaml"

@@ -12,7 +12,7 @@ from cablestudy.analyses.evaluate import evaluate_case, evaluate_chunk
 from cablestudy.analyses.frequency import _LAST_PROBLEM, _LINEAR_CACHE
 from cablestudy.analyses.line_model import _DISCRETE_CACHE
 from cablestudy.analyses.static import _LAST_STATIC_OUTPUTS, _STATIC_CACHE
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
 
 CONFIG = Path(__file__).resolve().parents[2] / "configs" / "moustafa-figs2-5.yaml"

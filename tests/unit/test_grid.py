@@ -19,8 +19,7 @@ from cablestudy.run import grid_runner
 from cablestudy.run.grid_runner import run_grid_study
 from cablestudy.run.runner import run_study
 from cablestudy.study import parse_study_text
-from cablestudy.study.cases import expand_cases
-from cablestudy.study.grid import CaseGrid, expand_grid
+from cablestudy.study.grid import CaseGrid, expand_cases, expand_grid
 from cablestudy.study.loader import StudyError
 
 TEXT = """\
@@ -50,7 +49,7 @@ def _fresh_static_cache(monkeypatch: pytest.MonkeyPatch) -> None:
 def _both(tmp_path: Path, text: str = TEXT) -> tuple[xr.Dataset, xr.Dataset]:
     src = parse_study_text(text, "gr.yaml")
     grid = expand_grid(src)
-    assert grid is not None
+    assert grid.chunked
     fast = run_grid_study(
         src, grid, tmp_path / "grid", scheduler="synchronous", use_cache=False, progress=False
     )
@@ -218,36 +217,38 @@ def test_a_sweep_the_arrays_cannot_take_is_left_to_the_case_path() -> None:
     # end positions and stiffnesses
     text = TEXT.replace("ends.a.position.2: [-10.0, -20.0]", "line.segments.1.length: [40.0, 41.0]")
     grid = expand_grid(parse_study_text(text, "gr.yaml"))
-    assert grid is not None and not grid.arrays
+    assert grid.chunked and not grid.arrays
     text = TEXT.replace("method: catenary", "method: analytic")
     grid = expand_grid(parse_study_text(text, "gr.yaml"))
-    assert grid is not None and not grid.arrays
-    # not a grid: a dynamic analysis, a value that is not a number
+    assert grid.chunked and not grid.arrays
+    # not in chunks of rows (their cases through the per-case evaluators): a dynamic
+    # analysis, a value that is not a number
     dynamic = TEXT.replace(
         "static: {method: catenary, nodes: 21}",
         "static: {method: catenary, nodes: 21}\n  modal: {modes: 2}",
     )
-    assert expand_grid(parse_study_text(dynamic, "gr.yaml")) is None
+    assert not expand_grid(parse_study_text(dynamic, "gr.yaml")).chunked
     text = TEXT.replace(
         "ends.a.position.2: [-10.0, -20.0]", "analysis.static.method: [catenary, shooting]"
     )
-    assert expand_grid(parse_study_text(text, "gr.yaml")) is None
+    grid = expand_grid(parse_study_text(text, "gr.yaml"))
+    assert not grid.chunked and grid.whole == ()  # the methods copied into the template
 
 
 def test_faulty_swept_values_are_reported_as_before() -> None:
-    """A bad swept value or combination leaves the array path; the case path reports it at
-    its line with the sweep case, exactly as before."""
+    """A bad swept value or combination is reported at its line with the sweep case,
+    exactly as the case-by-case validation reported it."""
     bad_value = TEXT.replace("[1.0e5, 1.0e6, 6.283e7]", "[1.0e5, -1.0e6, 6.283e7]")
     src = parse_study_text(bad_value, "gr.yaml")
-    assert expand_grid(src) is None
     with pytest.raises(StudyError) as exc:
-        expand_cases(src)
+        expand_grid(src)
     assert "line.segments.0.axial_stiffness" in str(exc.value)
     # each value valid on its own, but end A below the seabed only with another axis
     below = TEXT.replace("ends.a.position.2: [-10.0, -20.0]", "ends.a.position.2: [-10.0, -60.0]")
-    assert expand_grid(parse_study_text(below, "gr.yaml")) is None
+    with pytest.raises(StudyError, match="below the seabed"):
+        expand_grid(parse_study_text(below, "gr.yaml"))
     seabed = below.replace("depth: 50.0", "depth: 70.0")
-    assert expand_grid(parse_study_text(seabed, "gr.yaml")) is not None
+    assert expand_grid(parse_study_text(seabed, "gr.yaml")).arrays
     # a combination no compiled kernel takes: a swept depth with a swept end height
     # (each valid alone; depth 30 m with end A at -40 m is not): checked by the models'
     # own validators on each case's copied study, reported by the case path as before
@@ -255,20 +256,18 @@ def test_faulty_swept_values_are_reported_as_before() -> None:
         "[-10.0, -20.0]", "[-10.0, -40.0]"
     )
     src = parse_study_text(depth, "gr.yaml")
-    assert expand_grid(src) is None
     with pytest.raises(StudyError) as exc:
-        expand_cases(src)
+        expand_grid(src)
     text = str(exc.value)
     assert "lies below the seabed" in text and "of 28 sweep cases, first" in text, text
-    assert expand_grid(parse_study_text(depth.replace("-40.0", "-25.0"), "gr.yaml")) is not None
+    assert expand_grid(parse_study_text(depth.replace("-40.0", "-25.0"), "gr.yaml")).chunked
     # a segment length that puts an attachment beyond the end of the line
     beyond = LENGTHS.replace(
         "ends:\n", "  attachments:\n    - {s: 95.0, force: [0.0, 0.0, -100.0]}\nends:\n"
     ).replace("[40.0, 47.5]", "[30.0, 47.5]")
     src = parse_study_text(beyond, "gr.yaml")
-    assert expand_grid(src) is None
     with pytest.raises(StudyError) as exc:
-        expand_cases(src)
+        expand_grid(src)
     assert "beyond the end of the line" in str(exc.value)
 
 
@@ -474,21 +473,24 @@ def test_chunk_keys_change_with_every_swept_value(text: str) -> None:
 
 @pytest.mark.parametrize("text", [LENGTHS, NODES, CURRENT, FORCE, FRICTION])
 def test_a_copied_case_study_is_the_validated_one(text: str) -> None:
-    """Each case's study built by copying the template (cablestudy.analyses.static_grid_cases) is
-    the
-    study the full validation of the case's YAML gives: every field, and what the
-    validators derive (a line's total length), but the sweep table itself."""
-    from cablestudy.study.grid_studies import _case_values, case_study
+    """Each case's study built by copying the template (CaseGrid.study_at) is the study
+    the full validation of the case's YAML gives: every field, and what the validators
+    derive (a line's total length), but the sweep table itself."""
+    from cablestudy.study.cases import _copy_tree, _set_path
+    from cablestudy.study.loader import validate_data
 
     src = parse_study_text(text, "gr.yaml")
     grid = expand_grid(src)
-    _, cases = expand_cases(src)
-    assert len(cases) == grid.size
-    for case in cases:
-        copied = case_study(grid.template, _case_values(grid, case.index))
+    assert len(grid.cases()) == grid.size
+    for case in grid.cases():
+        data = _copy_tree({k: v for k, v in src.data.items() if k != "sweep"})
+        for axis, a in enumerate(grid.axes):
+            _set_path(data, a.paths[0], a.values[0][case.index[axis]])
+        full = validate_data(data, src)
+        copied = grid.study_at(case.index)
         # the template keeps its sweep table, which no case's result reads
-        assert copied.model_dump(exclude={"sweep"}) == case.study.model_dump(exclude={"sweep"})
-        assert copied.line.length == case.study.line.length
+        assert copied.model_dump(exclude={"sweep"}) == full.model_dump(exclude={"sweep"})
+        assert copied.line.length == full.line.length
 
 
 def test_a_grid_of_one_case_is_the_case_path_and_its_kernel_counts(tmp_path: Path) -> None:

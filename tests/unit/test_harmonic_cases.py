@@ -40,7 +40,7 @@ from cablestudy.dynamics.frequency_model import (
 )
 from cablestudy.dynamics.harmonic_cases import in_plane, solve_harmonic_cases
 from cablestudy.dynamics.validity import measures, measures_cases
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
 
 FIGS = Path(__file__).resolve().parents[2] / "configs" / "moustafa-figs2-5.yaml"

@@ -349,7 +349,7 @@ analysis:
 
 
 def test_study_refers_to_a_moordyn_file_and_sweeps_it(tmp_path: Path) -> None:
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
 
     path = _write_ref(
         tmp_path,
@@ -613,7 +613,7 @@ def _import_cli(path: Path, line: int | None, capsys: pytest.CaptureFixture) -> 
 def _statics(study_text: str) -> tuple[int, str]:
     from cablestudy.analyses.evaluate import check_supported
     from cablestudy.analyses.static import solve_static
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
 
     src = parse_study_text(study_text, "<imported>")
     _, cases = expand_cases(src)
@@ -793,7 +793,7 @@ def test_weightless_line_holding_a_mass_carries_its_weight() -> None:
     fixed point; the force on that point is the total weight in water, 1000 g plus the
     line's (m - rho pi d^2 / 4) g L, exactly, to the solver's relative tolerance 1e-9."""
     from cablestudy.analyses.static import solve_static
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
 
     path = DATA / "moordyn/tests/Mooring/lifting.txt"
     imported = import_model(path.read_text(), path.name, folder=path.parent)

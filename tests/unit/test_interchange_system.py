@@ -20,7 +20,7 @@ from cablestudy.analyses.system import evaluate_system_case
 from cablestudy.cli import main
 from cablestudy.interchange import NotModelledError, import_model, imported_yaml
 from cablestudy.statics.system import rotation
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text, read_study_source
 
 CONFIGS = Path(__file__).parents[2] / "configs"

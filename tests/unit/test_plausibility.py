@@ -18,7 +18,7 @@ from cablestudy.analyses.plausibility import (
     strain_warning,
     unsettled_warning,
 )
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
 
 

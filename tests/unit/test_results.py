@@ -15,7 +15,7 @@ from cablestudy.analyses.variables import OUTPUTS, CaseRecord
 from cablestudy.run.dataset import assemble
 from cablestudy.run.writer import write_atomic
 from cablestudy.study import parse_study_text
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 
 TEXT = """\
 name: res

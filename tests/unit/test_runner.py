@@ -33,7 +33,8 @@ from cablestudy.run.scheduler import (
 )
 from cablestudy.statics import STATIC_SOLVERS, STATUS_OK
 from cablestudy.study import parse_study_text
-from cablestudy.study.cases import Case, expand_cases
+from cablestudy.study.cases import Case
+from cablestudy.study.grid import expand_cases
 
 TEXT = """\
 name: rn
@@ -522,7 +523,7 @@ def test_case_evaluation_refuses_features_its_solver_lacks() -> None:
     import yaml
 
     from cablestudy.analyses.evaluate import evaluate_case
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
     from cablestudy.study.loader import parse_study_text
 
     data = {

@@ -73,7 +73,7 @@ def test_the_peer_file_with_a_vertical_line_now_solves() -> None:
     from cablestudy.analyses.static import solve_static
     from cablestudy.interchange import import_model, imported_yaml
     from cablestudy.study import parse_study_text
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
 
     rel = "moordyn/tests/Mooring/body_tests/pinnedBody.txt"
     path = Path(__file__).parents[1] / "data" / rel

@@ -16,7 +16,7 @@ from cablestudy.statics.system import line_end_stiffness
 from cablestudy.statics.system_methods import solve_system_by
 from cablestudy.statics.system_model import SystemResult
 from cablestudy.study import parse_study_text
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import StudyError
 from tests.system_models import polyester
 

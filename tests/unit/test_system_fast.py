@@ -26,7 +26,7 @@ from cablestudy.interchange import import_model, imported_yaml
 from cablestudy.statics import STATIC_SOLVERS
 from cablestudy.statics.system import solve_system
 from cablestudy.statics.system_fast import solve_fast
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
 from tests.system_models import CASE8_LINES, CASE8_POINTS, system_of
 

@@ -334,7 +334,7 @@ def test_seabed_spread_low_frequency_is_the_static_body_stiffness() -> None:
 
     from cablestudy.analyses.system import system_model
     from cablestudy.interchange import import_model, imported_yaml
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
     from cablestudy.study.loader import parse_study_text
 
     rel = "moordyn/tests/Mooring/lines.txt"

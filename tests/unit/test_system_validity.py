@@ -21,7 +21,7 @@ def _case8_model():  # noqa: ANN202
     from cablestudy.interchange import import_model, imported_yaml
     from cablestudy.statics import STATIC_SOLVERS
     from cablestudy.statics.system import solve_system
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
     from cablestudy.study.loader import parse_study_text
 
     rel = "moorpy/tests/case8.dat"

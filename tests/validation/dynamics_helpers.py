@@ -15,7 +15,7 @@ from cablestudy.analyses.time import dynamic_problem
 from cablestudy.dynamics.discrete_line import DiscreteLine
 from cablestudy.dynamics.time_problem import DynamicResult
 from cablestudy.dynamics.timedomain import simulate
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
 
 LENGTH, SPAN, MASS, EA, DIAMETER = 10.9774, 10.792, 0.61, 7.854e6, 0.01

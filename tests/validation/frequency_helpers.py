@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from cablestudy.analyses.evaluate import evaluate_case
 from cablestudy.analyses.variables import CaseRecord
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
 
 LENGTH = 10.9774

@@ -156,7 +156,7 @@ def test_time_domain_ring_down_of_a_bending_beam_rings_at_the_modal_frequency() 
 
     from cablestudy.analyses.modal import solve_modal
     from cablestudy.analyses.static import solve_static
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
     from cablestudy.study.loader import parse_study_text
 
     _, cases = expand_cases(parse_study_text(yaml.safe_dump(study)))

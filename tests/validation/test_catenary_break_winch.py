@@ -36,8 +36,8 @@ from cablestudy.analyses.time import dynamic_problem
 from cablestudy.cli import EXIT_NO_CASE_SUCCEEDED, main
 from cablestudy.dynamics.time_problem import DynamicProblem, DynamicResult
 from cablestudy.dynamics.timedomain import simulate
-from cablestudy.study.cases import expand_cases
 from cablestudy.study.environment import FLUID_DENSITY
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
 
 L, MASS, EA, D = 10.0, 1.0, 1.0e6, 0.02

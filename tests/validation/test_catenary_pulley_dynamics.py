@@ -28,7 +28,7 @@ from cablestudy.dynamics.timedomain import simulate
 from cablestudy.statics import STATIC_SOLVERS
 from cablestudy.statics.base import EndCondition
 from cablestudy.statics.pulley import solve_over_pulleys
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import read_study_source
 from cablestudy.study.problem import static_problem
 

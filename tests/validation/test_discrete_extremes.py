@@ -89,7 +89,7 @@ def test_dynamic_start_of_a_chain_on_the_seabed_at_10_m_elements() -> None:
     from cablestudy.analyses.line_model import discrete_statics
     from cablestudy.dynamics.assembly import evaluate
     from cablestudy.statics import STATIC_SOLVERS
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
     from cablestudy.study.loader import parse_study_text
     from cablestudy.study.problem import static_problem
 

@@ -19,7 +19,7 @@ import numpy as np
 import yaml
 
 from cablestudy.analyses.evaluate import evaluate_case
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
 
 from .dynamics_helpers import moustafa_study, ring_after_pulse

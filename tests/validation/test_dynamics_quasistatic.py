@@ -83,7 +83,7 @@ def test_slow_motion_with_a_nonlinear_law_reproduces_its_static_tensions(axial: 
     import yaml
 
     from cablestudy.analyses.static import solve_static
-    from cablestudy.study.cases import expand_cases
+    from cablestudy.study.grid import expand_cases
     from cablestudy.study.loader import parse_study_text
 
     amplitude, frequency, taut = 0.002, 0.01, 10.985

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from cablestudy.analyses.evaluate import evaluate_chunk
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
 
 CONFIG = Path(__file__).resolve().parents[2] / "configs" / "moustafa-figs2-5.yaml"

@@ -16,7 +16,7 @@ import numpy as np
 from cablestudy.analyses.evaluate import evaluate_chunk
 from cablestudy.analyses.frequency import solve_frequency
 from cablestudy.analyses.static import solve_static
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
 
 CONFIG = Path(__file__).resolve().parents[2] / "configs" / "chain-mooring-surge.yaml"

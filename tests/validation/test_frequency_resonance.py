@@ -18,7 +18,7 @@ from cablestudy.analyses.frequency import end_displacements, linearised
 from cablestudy.analyses.static import solve_static
 from cablestudy.dynamics.frequency import solve_harmonic
 from cablestudy.dynamics.modal import ModalProblem, modal_analysis
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
 from cablestudy.study.problem import static_problem
 

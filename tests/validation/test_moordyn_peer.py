@@ -28,7 +28,7 @@ from cablestudy.cli import main
 from cablestudy.interchange import InterchangeError, import_model, imported_yaml, parse_moordyn
 from cablestudy.interchange.mapping import select_chain
 from cablestudy.interchange.moordyn_scope import point_of
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
 
 PEERS = (

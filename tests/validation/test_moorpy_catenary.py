@@ -34,7 +34,7 @@ import yaml
 
 from cablestudy.analyses.evaluate import check_supported, evaluate_case
 from cablestudy.statics import STATIC_SOLVERS
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
 from cablestudy.study.problem import static_problem
 

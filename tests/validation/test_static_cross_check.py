@@ -28,7 +28,7 @@ import pytest
 import yaml
 
 from cablestudy.statics import STATIC_SOLVERS, StaticResult
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
 from cablestudy.study.problem import static_problem
 

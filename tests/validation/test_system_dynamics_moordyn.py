@@ -77,7 +77,7 @@ import pytest
 
 from cablestudy.analyses.system import evaluate_system_case
 from cablestudy.study import parse_study_text
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 
 ROOT = Path(__file__).parents[2]
 REFS = ROOT / "tests" / "data" / "moordyn_system_refs"

@@ -39,7 +39,7 @@ from cablestudy.dynamics.system_frequency import solve_system_harmonic, system_l
 from cablestudy.interchange import import_model, imported_yaml
 from cablestudy.statics import STATIC_SOLVERS
 from cablestudy.statics.system import solve_system
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
 from tests.validation.test_system_moordyn_ic import _quiet, settled_input
 

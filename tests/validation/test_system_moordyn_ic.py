@@ -54,7 +54,7 @@ import pytest
 
 from cablestudy.analyses.system import evaluate_system_case
 from cablestudy.interchange import import_model, imported_yaml, parse_moordyn
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
 
 moordyn = pytest.importorskip("moordyn", reason="MoorDyn is in the optional extra `peers`")

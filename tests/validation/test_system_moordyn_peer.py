@@ -29,7 +29,7 @@ import pytest
 
 from cablestudy.analyses.system import evaluate_system_case
 from cablestudy.interchange import import_model, imported_yaml
-from cablestudy.study.cases import expand_cases
+from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
 
 DATA = Path(__file__).parents[1] / "data"
