@@ -32,7 +32,7 @@ import xarray as xr  # noqa: E402
 from cablestudy import analyses  # noqa: E402
 from cablestudy.analyses.frequency import solve_frequency  # noqa: E402
 from cablestudy.study.analysis import AutoSettings  # noqa: E402
-from cablestudy.study.cases import expand_cases  # noqa: E402
+from cablestudy.study.grid import expand_cases  # noqa: E402
 from cablestudy.study.loader import parse_study_text  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
