@@ -18,7 +18,7 @@ from numba import njit
 from .frequency_model import FIT_REGULARISATION, is_planar, planar_drag_fit
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy", fastmath={"reassoc", "contract", "arcp", "nsz"})
 def fit_node(i, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, out):  # noqa: ANN001, ANN202, PLR0913, PLR0915
     """The small-motion lean (:func:`.system_drag.mean_drag_jacobian`) into ``lean[i]``
     and the drag fit leaning on it (:func:`.frequency_model.drag_linearisation`) into
@@ -169,7 +169,7 @@ def fit_node(i, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, out):  # 
     out[i, 2, 2] = H20 * i02 + H21 * i12 + H22 * i22
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def fit_points(c_p, cur, u_pts, omega, cs, sn_, Dp):  # noqa: ANN001, ANN202
     """:func:`.system_drag.point_drag_fit` of every point at velocities ``i omega u_pts``
     into ``Dp`` (P, 3, 3)."""
@@ -222,7 +222,7 @@ def fit_points(c_p, cur, u_pts, omega, cs, sn_, Dp):  # noqa: ANN001, ANN202
         Dp[p] = rhs @ np.linalg.inv(lhs)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def fit_all(
     omega, disp, u_pts, cur, tan, c_n, c_t, c_b, c_p, pcur, cs, sn_, exact, vr, vi, lean, D, Dp
 ):  # noqa: ANN001, ANN202, PLR0913
@@ -242,7 +242,7 @@ def fit_all(
 DEPTH = 3
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def anderson(d, g, hist_R, hist_G, state, change, last):  # noqa: ANN001, ANN202, PLR0913
     """``_Anderson.step`` of :mod:`.system_frequency` on the flat drag ``d`` (overwritten
     by the next iterate) and its fit ``g``; the pairs in rows ``0 .. state[0]-1`` of

@@ -38,6 +38,9 @@ from numba import njit
 from .system_fd_fit import DEPTH, anderson, fit_all
 from .harmonic_kernel import PIVOT_THRESHOLD
 
+#: the compiler may reassociate and contract sums and products (rounding only); NaN
+#: and infinity keep their meaning (the failure checks rely on them)
+_SAFE_FAST = {"reassoc", "contract", "arcp", "nsz"}
 #: codes of the kernel's outcome (``info[0]``)
 OK, SINGULAR_LINE, SINGULAR_JUNCTION, NOT_CONVERGED = 0, 1, 2, 3
 #: point kinds (:mod:`cablestudy.statics.system_model`), passed as arrays
@@ -178,7 +181,7 @@ def pack_system(model) -> PackedSystem:  # noqa: ANN001 - SystemLinear (no impor
 # ------------------------------------------------------------------------ kernels
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy", fastmath=_SAFE_FAST)
 def _band_solve(R, bw, N, reach, B, m):  # noqa: ANN001, ANN201
     """Solve the complex band system on row storage ``R`` (>= N, 3 bw + 1) (``A[i, j]``
     at ``R[i, j - i + bw]``) for the ``m`` right sides ``B[:N, :m]`` in place, by the
@@ -241,7 +244,7 @@ def _band_solve(R, bw, N, reach, B, m):  # noqa: ANN001, ANN201
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _dense_solve(G, rhs, n):  # noqa: ANN001, ANN202
     """Solve ``G[:n, :n] x = rhs[:n]`` in place (Gaussian elimination, partial
     pivoting); False for a zero pivot or a non-finite answer."""
@@ -278,7 +281,7 @@ def _dense_solve(G, rhs, n):  # noqa: ANN001, ANN202
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy", fastmath=_SAFE_FAST)
 def _parts(w, KR, MR, CR, IEK, IEM, IEC, EIK, EIM, EIC, EEK, EEM, EEC, Rb, IE, EI, EE):  # noqa: ANN001, ANN202, PLR0913
     """The dynamic matrix without drag at ``w`` (``K - w^2 M + i w C``): band rows
     ``Rb``, couplings ``IE`` (dofs, 6), ``EI`` (6, dofs), ``EE`` (L, 6, 6), shared by
@@ -297,7 +300,7 @@ def _parts(w, KR, MR, CR, IEK, IEM, IEC, EIK, EIM, EIC, EEK, EEM, EEC, Rb, IE, E
                 EE[line, r, c] = EEK[line, r, c] - w2 * EEM[line, r, c] + iw * EEC[line, r, c]
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy", fastmath=_SAFE_FAST)
 def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
     w,
     drag,
@@ -494,7 +497,7 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
     return OK, -1
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _residual(
     omega, drag, D, Dp, disp, u_pts, noff, mass, kp, ki, kv, cp, ci, cv, ends, free, pmass
 ):  # noqa: ANN001, ANN202, PLR0913
@@ -551,7 +554,7 @@ def _residual(
     return worst / max(scale, 1e-300)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def solve_case(  # noqa: ANN201, PLR0913, PLR0915
     omega,
     prescribed,

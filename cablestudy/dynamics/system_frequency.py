@@ -144,9 +144,66 @@ class SystemLinear:
         """The model in the compiled iteration's flat arrays (built once)."""
         return pack_system(self)
 
+    @functools.cached_property
+    def post(self) -> _Post:
+        """What turns a solution into outputs, per line and element (built once)."""
+        return _Post.of(self)
+
     @property
     def has_drag(self) -> bool:
         return bool(np.any(self.point_drag > 0.0)) or any(r.line.has_drag for r in self.lines)
+
+
+@dataclass(frozen=True, eq=False)
+class _Post:
+    """A model's constants of the outputs: ``unit`` (L, 2, 3) the static end forces'
+    directions; per line end on a body (``body_line``, ``body_end``) its ``body``, the
+    ``body_arm`` (k, 3) and the static end force ``body_static`` (k, 3); per element
+    of all lines (node ``element`` to the next, flat over the lines' nodes) its
+    ``direction``, ``axial_stiffness`` and ``axial_damping`` over its rest length, and
+    where the lines' elements split (``element_split``)."""
+
+    unit: np.ndarray
+    body_line: np.ndarray
+    body_end: np.ndarray
+    body: np.ndarray
+    body_arm: np.ndarray
+    body_static: np.ndarray
+    element: np.ndarray
+    direction: np.ndarray
+    axial_stiffness: np.ndarray
+    axial_damping: np.ndarray
+    element_split: np.ndarray
+
+    @classmethod
+    def of(cls, model: SystemLinear) -> _Post:
+        lines = [r.line for r in model.lines]
+        L = len(lines)
+        static = np.array([np.linalg.norm(ln.end_force, axis=1) for ln in lines]).reshape(L, 2)
+        unit = (
+            np.array([ln.end_force for ln in lines]).reshape(L, 2, 3)
+            / np.where(static > 0.0, static, 1.0)[:, :, None]
+        )
+        on = [
+            (i, k) for i in range(L) for k in range(2) if model.point_kind[model.ends[i, k]] == BODY
+        ]
+        li = np.array([i for i, _ in on], dtype=int)
+        ki = np.array([k for _, k in on], dtype=int)
+        pts = model.ends[li, ki]
+        start = np.cumsum([0] + [ln.n_nodes for ln in lines])[:-1]
+        return cls(
+            unit=unit,
+            body_line=li,
+            body_end=ki,
+            body=model.point_body[pts],
+            body_arm=model.point_arm[pts].reshape(-1, 3),
+            body_static=np.array([lines[i].end_force[k] for i, k in on]).reshape(-1, 3),
+            element=np.concatenate([s + np.arange(ln.n_nodes - 1) for s, ln in zip(start, lines, strict=True)]),
+            direction=np.concatenate([ln.direction for ln in lines]),
+            axial_stiffness=np.concatenate([ln.axial_stiffness / ln.rest_length for ln in lines]),
+            axial_damping=np.concatenate([ln.axial_damping / ln.rest_length for ln in lines]),
+            element_split=np.cumsum([ln.n_nodes - 1 for ln in lines])[:-1],
+        )
 
 
 #: the end nodes' six coordinates in a line's 3n (A x, y, z; B x, y, z)
@@ -418,34 +475,29 @@ def solve_system_harmonic(
             f"(bar {RESIDUAL_BAR:g}): ill-conditioned at {omega / (2 * math.pi):.6g} Hz",
             iterations,
         )
-    end_tension = np.empty((L, 2), dtype=complex)
-    end_force = np.empty((L, 2, 3), dtype=complex)
+    post = model.post
+    support = -np.asarray(forces).reshape(L, 2, 3)  # change of the force on the points
+    end_tension = np.sum(post.unit * support, axis=2)
     body_force = np.zeros((model.n_bodies, 6), dtype=complex)
-    theta = np.asarray(body_motion, dtype=complex).reshape(model.n_bodies, 6)[:, 3:]
-    element = []
-    for i, red in enumerate(model.lines):
-        line = red.line
-        unit = line.end_force / np.where(static[i] > 0.0, static[i], 1.0)[:, None]
-        support = -forces[i].reshape(2, 3)  # change of the force of the line on the points
-        end_force[i] = support
-        end_tension[i] = np.sum(unit * support, axis=1)
-        for k in range(2):
-            p = model.ends[i, k]
-            if model.point_kind[p] == BODY:
-                b, a = model.point_body[p], model.point_arm[p]
-                body_force[b, :3] += support[k]
-                body_force[b, 3:] += np.cross(a, support[k]) + np.cross(
-                    np.cross(theta[b], a), line.end_force[k]
-                )
-        axial = (line.axial_stiffness + 1j * omega * line.axial_damping) / line.rest_length
-        element.append(axial * np.sum(line.direction * np.diff(disp[i], axis=0), axis=1))
+    if post.body_line.size:
+        theta = np.asarray(body_motion, dtype=complex).reshape(model.n_bodies, 6)[:, 3:]
+        sup = support[post.body_line, post.body_end]
+        arm = post.body_arm
+        moment = np.cross(arm, sup) + np.cross(np.cross(theta[post.body], arm), post.body_static)
+        np.add.at(body_force, (post.body, slice(0, 3)), sup)
+        np.add.at(body_force, (post.body, slice(3, 6)), moment)
+    flat = np.concatenate(disp) if isinstance(disp, list) else disp
+    du = flat[post.element + 1] - flat[post.element]
+    axial = post.axial_stiffness + 1j * omega * post.axial_damping
+    tension = axial * np.sum(post.direction * du, axis=1)
+    element = np.split(tension, post.element_split)
     return SystemFrequencyResult(
         end_tension=end_tension,
         tension_static=static,
         element_tension=element,
         displacement=disp,
         point_displacement=u_pts,
-        end_force=end_force,
+        end_force=support,
         body_force=body_force,
         iterations=iterations,
         converged=converged,
