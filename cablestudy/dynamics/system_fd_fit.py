@@ -115,7 +115,8 @@ def fit_node(i, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, out):  # 
         h20 -= fm2 * w0s
         h21 -= fm2 * w1s
         h22 -= fm2 * w2s
-    # the lean: c_N (sum |w_N| (I - t t^T) + sum w_N w_N^T / |w_N|) + c_B (...) + 2 c_T <|w_T|> t t^T
+    # the lean: c_N (sum |w_N| (I - t t^T) + sum w_N w_N^T / |w_N|) + c_B (...)
+    # + 2 c_T <|w_T|> t t^T
     along = ct * 2.0 * (abs_t / samples)
     t = (t0, t1, t2)
     Wn = ((n00, n01, n02), (n01, n11, n12), (n02, n12, n22))

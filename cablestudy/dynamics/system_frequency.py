@@ -82,15 +82,9 @@ from .frequency_model import (
 )
 from .linear_model import linear_line
 from .modal import ModalProblem
-from .system_drag import point_drag_fit
-from .system_fd_kernel import (
-    NOT_CONVERGED,
-    SINGULAR_JUNCTION,
-    SINGULAR_LINE,
-    PackedSystem,
-    pack_system,
-    solve_case,
-)
+from .system_drag import mean_drag_jacobian, point_drag_fit
+from .system_fd_kernel import NOT_CONVERGED, SINGULAR_JUNCTION, SINGULAR_LINE, solve_case
+from .system_fd_pack import PackedSystem, pack_system
 from .system_frequency_reference import iterate_reference
 
 #: largest residual of the assembled equations on the solution (inner rows of every
@@ -198,7 +192,9 @@ class _Post:
             body=model.point_body[pts],
             body_arm=model.point_arm[pts].reshape(-1, 3),
             body_static=np.array([lines[i].end_force[k] for i, k in on]).reshape(-1, 3),
-            element=np.concatenate([s + np.arange(ln.n_nodes - 1) for s, ln in zip(start, lines, strict=True)]),
+            element=np.concatenate(
+                [s + np.arange(ln.n_nodes - 1) for s, ln in zip(start, lines, strict=True)]
+            ),
             direction=np.concatenate([ln.direction for ln in lines]),
             axial_stiffness=np.concatenate([ln.axial_stiffness / ln.rest_length for ln in lines]),
             axial_damping=np.concatenate([ln.axial_damping / ln.rest_length for ln in lines]),
@@ -593,6 +589,7 @@ __all__ = [
     "RESIDUAL_BAR",
     "SystemFrequencyResult",
     "SystemLinear",
+    "mean_drag_jacobian",
     "point_drag_fit",
     "point_motion",
     "solve_system_harmonic",
