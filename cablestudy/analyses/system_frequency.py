@@ -175,10 +175,7 @@ def run_system_auto(
     why = auto_ineligible_system(dyn)
     if why:
         return None, f"auto: {why}"
-    try:
-        status, message, out, res, model = _solve_frequency(case, system, static, "auto")
-    except Exception as exc:  # noqa: BLE001 - auto then runs the time domain, saying why
-        status, message = STATUS_NUMERICAL, f"{type(exc).__name__}: {exc}"
+    status, message, out, res, model = _solve_frequency(case, system, static, "auto")
     if status != STATUS_OK:
         return None, f"auto: frequency domain failed ({message})"
     on_bed, weight = [], []
