@@ -155,7 +155,11 @@ class _Post:
     ``body_arm`` (k, 3) and the static end force ``body_static`` (k, 3); per element
     of all lines (node ``element`` to the next, flat over the lines' nodes) its
     ``direction``, ``axial_stiffness`` and ``axial_damping`` over its rest length, and
-    where the lines' elements split (``element_split``)."""
+    where the lines' elements split (``element_split``); the static end tensions
+    ``static`` (L, 2) and, flat over the lines' nodes, the static tension of the
+    envelope ``node_static``, the inner nodes ``inner`` and the flat elements ``left``
+    and ``right`` of each, each line's ``first`` and ``last`` node and where they
+    split."""
 
     unit: np.ndarray
     body_line: np.ndarray
@@ -168,6 +172,14 @@ class _Post:
     axial_stiffness: np.ndarray
     axial_damping: np.ndarray
     element_split: np.ndarray
+    static: np.ndarray
+    node_static: np.ndarray
+    inner: np.ndarray
+    left: np.ndarray
+    right: np.ndarray
+    first: np.ndarray
+    last: np.ndarray
+    node_split: np.ndarray
 
     @classmethod
     def of(cls, model: SystemLinear) -> _Post:
@@ -185,6 +197,10 @@ class _Post:
         ki = np.array([k for _, k in on], dtype=int)
         pts = model.ends[li, ki]
         start = np.cumsum([0] + [ln.n_nodes for ln in lines])[:-1]
+        inner = np.concatenate(
+            [s + np.arange(1, ln.n_nodes - 1) for s, ln in zip(start, lines, strict=True)]
+        ).astype(int)
+        line_of = np.repeat(np.arange(L), [ln.n_nodes - 2 for ln in lines])
         return cls(
             unit=unit,
             body_line=li,
@@ -199,6 +215,19 @@ class _Post:
             axial_stiffness=np.concatenate([ln.axial_stiffness / ln.rest_length for ln in lines]),
             axial_damping=np.concatenate([ln.axial_damping / ln.rest_length for ln in lines]),
             element_split=np.cumsum([ln.n_nodes - 1 for ln in lines])[:-1],
+            static=static,
+            node_static=np.concatenate(
+                [
+                    np.concatenate(([static[i, 0]], 0.5 * (t[:-1] + t[1:]), [static[i, 1]]))
+                    for i, t in enumerate(ln.tension for ln in lines)
+                ]
+            ),
+            inner=inner,
+            left=inner - line_of - 1,
+            right=inner - line_of,
+            first=start.astype(int),
+            last=(start + [ln.n_nodes - 1 for ln in lines]).astype(int),
+            node_split=np.cumsum([ln.n_nodes for ln in lines])[:-1],
         )
 
 
@@ -267,6 +296,8 @@ class SystemFrequencyResult:
     status: int = STATUS_OK
     message: str = ""
     element_tension_static: list[np.ndarray] = field(default_factory=list)
+    #: the envelope (:meth:`envelope`) when the solve computed it over all lines at once
+    envelope_lines: tuple[list[np.ndarray], list[np.ndarray]] | None = None
 
     @property
     def tension_amplitude(self) -> np.ndarray:
@@ -277,6 +308,8 @@ class SystemFrequencyResult:
         """Per line the linear tension envelope at its nodes [N] (n_l,): static plus
         and minus the amplitude of the variation; at the ends the end tensions, inside
         the mean of the two elements a node joins (static and complex variation)."""
+        if self.envelope_lines is not None:
+            return self.envelope_lines
         hi, lo = [], []
         for i, (t, d) in enumerate(
             zip(self.element_tension_static, self.element_tension, strict=True)
@@ -423,7 +456,7 @@ def solve_system_harmonic(
     and message."""
     settings = settings or DragSettings()
     L = len(model.lines)
-    static = np.array([np.linalg.norm(r.line.end_force, axis=1) for r in model.lines]).reshape(L, 2)
+    static = model.post.static
     prescribed = point_motion(model, body_motion)
     if point_excitation is not None:
         own = np.asarray(point_excitation, dtype=complex).reshape(prescribed.shape)
@@ -487,6 +520,15 @@ def solve_system_harmonic(
     axial = post.axial_stiffness + 1j * omega * post.axial_damping
     tension = axial * np.sum(post.direction * du, axis=1)
     element = np.split(tension, post.element_split)
+    var = np.empty(post.node_static.size, dtype=complex)
+    var[post.inner] = 0.5 * (tension[post.left] + tension[post.right])
+    var[post.first] = end_tension[:, 0]
+    var[post.last] = end_tension[:, 1]
+    amp = np.abs(var)
+    envelope = (
+        np.split(post.node_static + amp, post.node_split),
+        np.split(post.node_static - amp, post.node_split),
+    )
     return SystemFrequencyResult(
         end_tension=end_tension,
         tension_static=static,
@@ -500,6 +542,7 @@ def solve_system_harmonic(
         change=change,
         residual=residual,
         element_tension_static=[r.line.tension.copy() for r in model.lines],
+        envelope_lines=envelope,
     )
 
 
