@@ -239,15 +239,16 @@ def fit_all(
     fit_points(c_p, pcur, u_pts, omega, cs, sn_, Dp)
 
 
-#: secant pairs kept by the Anderson mixing (:data:`.system_frequency.ANDERSON_DEPTH`)
+#: secant pairs kept by the Anderson mixing (as the reference:
+#: :data:`.system_frequency_reference.ANDERSON_DEPTH`)
 DEPTH = 3
 
 
 @njit(cache=True, error_model="numpy")
 def anderson(d, g, hist_R, hist_G, state, change, last):  # noqa: ANN001, ANN202, PLR0913
-    """``_Anderson.step`` of :mod:`.system_frequency` on the flat drag ``d`` (overwritten
-    by the next iterate) and its fit ``g``; the pairs in rows ``0 .. state[0]-1`` of
-    ``hist_R``, ``hist_G`` (oldest first)."""
+    """``_Anderson.step`` of :mod:`.system_frequency_reference` on the flat drag ``d``
+    (overwritten by the next iterate) and its fit ``g``; the pairs in rows ``0 ..
+    state[0]-1`` of ``hist_R``, ``hist_G`` (oldest first)."""
     size = d.shape[0]
     if change >= last:
         state[0] = 0

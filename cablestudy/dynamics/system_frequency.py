@@ -60,6 +60,14 @@ those are not linear there themselves (per metre of motion, 0.05 m and 0.2 m dif
 by 4 % on leg 1 and 15 % on legs 2 and 3): ``method: auto`` should send such cases to
 the time domain.
 
+The iteration of a case runs in one compiled call for all lines
+(:mod:`.system_fd_kernel`, the model packed once in flat arrays: :mod:`.system_fd_pack`;
+per line only the junction's right sides are solved, four on a line from a junction
+to a body); the NumPy/LAPACK iteration line by line (:mod:`.system_frequency_reference`,
+``reference=True``) is the reference it is tested against: the same iteration counts
+and answers within 1e-7 of the largest (tests/unit/test_system_fd_kernel.py). At two
+elements a line (one inner node) the band is widened to a node's drag block.
+
 Pure: arrays and frozen dataclasses in, a :class:`SystemFrequencyResult` out.
 """
 
