@@ -72,6 +72,39 @@ def system_frequency_model(case: Case, system: Any, static: Any) -> Any:
     return out
 
 
+_GRID_CACHE: OrderedDict[tuple[int, int], tuple[Any, Any]] = OrderedDict()
+
+
+def _envelope_grid(model: Any, n_out: int) -> Any:
+    """The linear interpolation (as ``np.interp``) of values at every line's nodes, flat
+    over the lines, onto ``n_out`` equally spaced arc lengths of each line: a sparse
+    (lines x n_out, nodes) matrix, built once per model."""
+    import scipy.sparse as sp
+
+    key = (id(model), n_out)
+    hit = _GRID_CACHE.get(key)
+    if hit is not None and hit[0] is model:
+        return hit[1]
+    rows, cols, vals, start = [], [], [], 0
+    for i, red in enumerate(model.lines):
+        s = red.line.s
+        x = np.linspace(0.0, float(s[-1]), n_out)
+        j = np.clip(np.searchsorted(s, x, side="right") - 1, 0, s.size - 2)
+        t = (x - s[j]) / (s[j + 1] - s[j])
+        q = i * n_out + np.arange(n_out)
+        rows += [q, q]
+        cols += [start + j, start + j + 1]
+        vals += [1.0 - t, t]
+        start += s.size
+    grid = sp.csr_matrix(
+        (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+        shape=(len(model.lines) * n_out, start),
+    )
+    _GRID_CACHE[key] = (model, grid)
+    trim_lru(_GRID_CACHE, _CACHE_SIZE)
+    return grid
+
+
 def harmonic_motion(study: Any) -> tuple[np.ndarray, np.ndarray, float]:
     """The complex amplitudes of ``Re(X e^{i w t})`` of the bodies (B, 6) [m, rad] and of
     the points moved on their own (P, 3) [m], and the frequency [Hz]:
@@ -127,13 +160,11 @@ def _solve_frequency(
     bodies = len(system.body_names)
     values = system_frequency_outputs(res, static.body_force if bodies else None)
     n_out = system.lines[0].problem.n_nodes
-    env = {}
-    for key in ("tension_envelope_max", "tension_envelope_min"):
-        rows = []
-        for red, v in zip(model.lines, values[key], strict=True):
-            s = red.line.s
-            rows.append(np.interp(np.linspace(0.0, float(s[-1]), n_out), s, v))
-        env[key] = np.array(rows)
+    grid = _envelope_grid(model, n_out)
+    env = {
+        key: (grid @ np.concatenate(values[key])).reshape(len(model.lines), n_out)
+        for key in ("tension_envelope_max", "tension_envelope_min")
+    }
     out = {
         **head,
         **{k: np.asarray(v) for k, v in values.items() if not k.startswith("tension_envelope")},
@@ -175,10 +206,7 @@ def run_system_auto(
     why = auto_ineligible_system(dyn)
     if why:
         return None, f"auto: {why}"
-    try:
-        status, message, out, res, model = _solve_frequency(case, system, static, "auto")
-    except Exception as exc:  # noqa: BLE001 - auto then runs the time domain, saying why
-        status, message = STATUS_NUMERICAL, f"{type(exc).__name__}: {exc}"
+    status, message, out, res, model = _solve_frequency(case, system, static, "auto")
     if status != STATUS_OK:
         return None, f"auto: frequency domain failed ({message})"
     on_bed, weight = [], []

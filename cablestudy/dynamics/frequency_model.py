@@ -509,6 +509,10 @@ class ReducedLine:
             padded = np.zeros((n, 3, 3))
             padded[node, row % 3, rank[where]] = val
         bw = max(int(np.max(np.abs(r - c), initial=0)) for r, c, _ in reduced)
+        # wide enough for a node's whole block, which the drag fills even where the
+        # stiffness leaves zeros (a single inner node of a line in the y-z plane: x
+        # uncoupled, band 1 from the entries, a drag block of band 2)
+        bw = max(bw, int(np.max(counts, initial=1)) - 1)
         size = B.shape[1]
         # where each entry of a node's reduced 3 x 3 block lands in band storage
         sizes = counts**2

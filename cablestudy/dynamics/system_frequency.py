@@ -60,6 +60,14 @@ those are not linear there themselves (per metre of motion, 0.05 m and 0.2 m dif
 by 4 % on leg 1 and 15 % on legs 2 and 3): ``method: auto`` should send such cases to
 the time domain.
 
+The iteration of a case runs in one compiled call for all lines
+(:mod:`.system_fd_kernel`, the model packed once in flat arrays: :mod:`.system_fd_pack`;
+per line only the junction's right sides are solved, four on a line from a junction
+to a body); the NumPy/LAPACK iteration line by line (:mod:`.system_frequency_reference`,
+``reference=True``) is the reference it is tested against: the same iteration counts
+and answers within 1e-7 of the largest (tests/unit/test_system_fd_kernel.py). At two
+elements a line (one inner node) the band is widened to a node's drag block.
+
 Pure: arrays and frozen dataclasses in, a :class:`SystemFrequencyResult` out.
 """
 
@@ -71,7 +79,6 @@ from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 
 import numpy as np
-from scipy.linalg.lapack import zgbsv as _zgbsv
 
 from ..physics.current import current_velocity
 from ..statics.base import STATUS_NUMERICAL, STATUS_OK, EndCondition, StaticProblem, StaticResult
@@ -80,11 +87,13 @@ from .frequency_model import (
     STATUS_NOT_CONVERGED,
     DragSettings,
     ReducedLine,
-    drag_linearisation,
 )
 from .linear_model import linear_line
 from .modal import ModalProblem
 from .system_drag import mean_drag_jacobian, point_drag_fit
+from .system_fd_kernel import NOT_CONVERGED, SINGULAR_JUNCTION, SINGULAR_LINE, solve_case
+from .system_fd_pack import PackedSystem, pack_system
+from .system_frequency_reference import iterate_reference
 
 #: largest residual of the assembled equations on the solution (inner rows of every
 #: line, balance of every free point), relative to the largest end-force amplitude and
@@ -132,9 +141,102 @@ class SystemLinear:
         """Per line the blocks that couple its end nodes (built once)."""
         return tuple(EndCoupling.of(r) for r in self.lines)
 
+    @functools.cached_property
+    def packed(self) -> PackedSystem:
+        """The model in the compiled iteration's flat arrays (built once)."""
+        return pack_system(self)
+
+    @functools.cached_property
+    def post(self) -> _Post:
+        """What turns a solution into outputs, per line and element (built once)."""
+        return _Post.of(self)
+
     @property
     def has_drag(self) -> bool:
         return bool(np.any(self.point_drag > 0.0)) or any(r.line.has_drag for r in self.lines)
+
+
+@dataclass(frozen=True, eq=False)
+class _Post:
+    """A model's constants of the outputs: ``unit`` (L, 2, 3) the static end forces'
+    directions; per line end on a body (``body_line``, ``body_end``) its ``body``, the
+    ``body_arm`` (k, 3) and the static end force ``body_static`` (k, 3); per element
+    of all lines (node ``element`` to the next, flat over the lines' nodes) its
+    ``direction``, ``axial_stiffness`` and ``axial_damping`` over its rest length, and
+    where the lines' elements split (``element_split``); the static end tensions
+    ``static`` (L, 2) and, flat over the lines' nodes, the static tension of the
+    envelope ``node_static``, the inner nodes ``inner`` and the flat elements ``left``
+    and ``right`` of each, each line's ``first`` and ``last`` node and where they
+    split."""
+
+    unit: np.ndarray
+    body_line: np.ndarray
+    body_end: np.ndarray
+    body: np.ndarray
+    body_arm: np.ndarray
+    body_static: np.ndarray
+    element: np.ndarray
+    direction: np.ndarray
+    axial_stiffness: np.ndarray
+    axial_damping: np.ndarray
+    element_split: np.ndarray
+    static: np.ndarray
+    node_static: np.ndarray
+    inner: np.ndarray
+    left: np.ndarray
+    right: np.ndarray
+    first: np.ndarray
+    last: np.ndarray
+    node_split: np.ndarray
+
+    @classmethod
+    def of(cls, model: SystemLinear) -> _Post:
+        lines = [r.line for r in model.lines]
+        L = len(lines)
+        static = np.array([np.linalg.norm(ln.end_force, axis=1) for ln in lines]).reshape(L, 2)
+        unit = (
+            np.array([ln.end_force for ln in lines]).reshape(L, 2, 3)
+            / np.where(static > 0.0, static, 1.0)[:, :, None]
+        )
+        on = [
+            (i, k) for i in range(L) for k in range(2) if model.point_kind[model.ends[i, k]] == BODY
+        ]
+        li = np.array([i for i, _ in on], dtype=int)
+        ki = np.array([k for _, k in on], dtype=int)
+        pts = model.ends[li, ki]
+        start = np.cumsum([0] + [ln.n_nodes for ln in lines])[:-1]
+        inner = np.concatenate(
+            [s + np.arange(1, ln.n_nodes - 1) for s, ln in zip(start, lines, strict=True)]
+        ).astype(int)
+        line_of = np.repeat(np.arange(L), [ln.n_nodes - 2 for ln in lines])
+        return cls(
+            unit=unit,
+            body_line=li,
+            body_end=ki,
+            body=model.point_body[pts],
+            body_arm=model.point_arm[pts].reshape(-1, 3),
+            body_static=np.array([lines[i].end_force[k] for i, k in on]).reshape(-1, 3),
+            element=np.concatenate(
+                [s + np.arange(ln.n_nodes - 1) for s, ln in zip(start, lines, strict=True)]
+            ),
+            direction=np.concatenate([ln.direction for ln in lines]),
+            axial_stiffness=np.concatenate([ln.axial_stiffness / ln.rest_length for ln in lines]),
+            axial_damping=np.concatenate([ln.axial_damping / ln.rest_length for ln in lines]),
+            element_split=np.cumsum([ln.n_nodes - 1 for ln in lines])[:-1],
+            static=static,
+            node_static=np.concatenate(
+                [
+                    np.concatenate(([static[i, 0]], 0.5 * (t[:-1] + t[1:]), [static[i, 1]]))
+                    for i, t in enumerate(ln.tension for ln in lines)
+                ]
+            ),
+            inner=inner,
+            left=inner - line_of - 1,
+            right=inner - line_of,
+            first=start.astype(int),
+            last=(start + [ln.n_nodes - 1 for ln in lines]).astype(int),
+            node_split=np.cumsum([ln.n_nodes for ln in lines])[:-1],
+        )
 
 
 #: the end nodes' six coordinates in a line's 3n (A x, y, z; B x, y, z)
@@ -202,6 +304,8 @@ class SystemFrequencyResult:
     status: int = STATUS_OK
     message: str = ""
     element_tension_static: list[np.ndarray] = field(default_factory=list)
+    #: the envelope (:meth:`envelope`) when the solve computed it over all lines at once
+    envelope_lines: tuple[list[np.ndarray], list[np.ndarray]] | None = None
 
     @property
     def tension_amplitude(self) -> np.ndarray:
@@ -212,6 +316,8 @@ class SystemFrequencyResult:
         """Per line the linear tension envelope at its nodes [N] (n_l,): static plus
         and minus the amplitude of the variation; at the ends the end tensions, inside
         the mean of the two elements a node joins (static and complex variation)."""
+        if self.envelope_lines is not None:
+            return self.envelope_lines
         hi, lo = [], []
         for i, (t, d) in enumerate(
             zip(self.element_tension_static, self.element_tension, strict=True)
@@ -339,189 +445,26 @@ def point_motion(model: SystemLinear, body_motion: np.ndarray) -> np.ndarray:
 # ------------------------------------------------------------------------ solving
 
 
-def _dynamic_parts(
-    model: SystemLinear, omega: float
-) -> list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]:
-    """Per line the parts of its dynamic matrix without drag at ``omega``, shared by
-    the drag iterations of a case: the band of ``A_II`` and the blocks ``A_IE``,
-    ``A_EI``, ``A_EE``."""
-    w2, iw = omega**2, 1j * omega
-    out = []
-    for red, ec in zip(model.lines, model.couplings, strict=True):
-        blocks = tuple(ec.K[j] - w2 * ec.M[j] + iw * ec.C[j] for j in range(3))
-        out.append((red.K - w2 * red.M + iw * red.C, *blocks))
-    return out
-
-
-def _condense(
-    red: ReducedLine,
-    parts: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
-    omega: float,
-    D: np.ndarray | None,
-) -> tuple[np.ndarray, np.ndarray] | None:
-    """Per line: ``X`` (k, 6), the inner response per unit end motion (``A_II X =
-    -A_IE``, one band solve with six right sides), and ``S = A_EE + A_EI X`` (6, 6), the
-    condensed end dynamic stiffness; None if ``A_II`` is singular. ``parts``: the
-    line's :func:`_dynamic_parts` at ``omega``."""
-    iw = 1j * omega
-    ab, A_IE, A_EI, A_EE = parts
-    if D is not None:
-        A_EE = A_EE.copy()
-        A_EE[:3, :3] += iw * D[0]
-        A_EE[3:, 3:] += iw * D[-1]
-    if A_IE.shape[0] == 0:
-        return np.zeros((0, 6), dtype=complex), A_EE
-    bw = red.bandwidth
-    # LAPACK's banded LU with partial pivoting (what solve_banded calls), without
-    # solve_banded's argument checks: the band padded by bw rows for the fill-in
-    work = np.zeros((3 * bw + 1, ab.shape[1]), dtype=complex)
-    work[bw:] = ab
-    if D is not None:
-        work[bw:] += iw * red.drag_band(D)
-    _, _, X, info = _zgbsv(bw, bw, work, -A_IE, overwrite_ab=1, overwrite_b=1)
-    if info != 0 or not np.all(np.isfinite(X)):
-        return None
-    return X, A_EE + A_EI @ X
-
-
-def _solve_linear(
-    model: SystemLinear,
-    omega: float,
-    prescribed: np.ndarray,
-    D_lines: list[np.ndarray | None],
-    D_points: np.ndarray | None,
-    parts: list,
-    *,
-    quasi_static: bool = False,
-) -> tuple[np.ndarray, list[np.ndarray], list[np.ndarray]] | str:
-    """One linear solve at fixed drag: point displacements (P, 3), per line the nodal
-    displacements (n, 3) and end forces ``S u_E`` (6,); or the reason it failed.
-    ``parts``: :func:`_dynamic_parts` at the solve's frequency (0 if quasi-static)."""
-    w = 0.0 if quasi_static else omega
-    free = model.free_points
-    slot = np.full(model.point_kind.size, -1)
-    slot[free] = np.arange(free.size)
-    G = np.zeros((3 * free.size, 3 * free.size), dtype=complex)
-    rhs = np.zeros(3 * free.size, dtype=complex)
-    for j, p in enumerate(free):
-        Z = -(w**2) * model.point_mass[p]
-        if D_points is not None and not quasi_static:
-            Z = Z + 1j * w * D_points[p]
-        G[3 * j : 3 * j + 3, 3 * j : 3 * j + 3] += Z
-    condensed = []
-    for i, red in enumerate(model.lines):
-        c = _condense(red, parts[i], w, None if quasi_static else D_lines[i])
-        if c is None:
-            hz = omega / (2 * math.pi)
-            return f"singular dynamic matrix of line {model.names[i]!r} at {hz:.6g} Hz"
-        condensed.append(c)
-        _, S = c
-        for ea in range(2):
-            p = model.ends[i, ea]
-            if slot[p] < 0:
-                continue
-            rows = slice(3 * slot[p], 3 * slot[p] + 3)
-            for eb in range(2):
-                q = model.ends[i, eb]
-                block = S[3 * ea : 3 * ea + 3, 3 * eb : 3 * eb + 3]
-                if slot[q] >= 0:
-                    G[rows, 3 * slot[q] : 3 * slot[q] + 3] += block
-                else:
-                    rhs[rows] -= block @ prescribed[q]
-    u_points = prescribed.astype(complex).copy()
-    if free.size:
-        try:
-            sol = np.linalg.solve(G, rhs)
-        except np.linalg.LinAlgError:
-            return f"singular junction system at {omega / (2 * math.pi):.6g} Hz"
-        if not np.all(np.isfinite(sol)):
-            return f"singular junction system at {omega / (2 * math.pi):.6g} Hz"
-        u_points[free] = sol.reshape(-1, 3)
-    displacement, forces = [], []
-    for i, (X, S) in enumerate(condensed):
-        uE = u_points[model.ends[i]].ravel()
-        line = model.lines[i].line
-        u = (line.free_basis @ (X @ uE)).reshape(-1, 3).astype(complex)
-        u[0] += uE[:3]
-        u[-1] += uE[3:]
-        displacement.append(u)
-        forces.append(S @ uE)
-    return u_points, displacement, forces
-
-
-def _flat(D_lines: list, D_points: np.ndarray) -> np.ndarray:
-    return np.concatenate([*(d.ravel() for d in D_lines), D_points.ravel()])
-
-
-def _unflat(
-    flat: np.ndarray, sizes: list[int], like_lines: list, like_points: np.ndarray
-) -> tuple[list[np.ndarray], np.ndarray]:
-    out, start = [], 0
-    for size, like in zip(sizes, like_lines, strict=True):
-        out.append(flat[start : start + size].reshape(like.shape))
-        start += size
-    return out, flat[start:].reshape(like_points.shape)
-
-
-#: secant pairs kept by the Anderson mixing of the drag iteration (as the single line's,
-#: :data:`cablestudy.dynamics.harmonic_cases.ANDERSON_DEPTH`)
-ANDERSON_DEPTH = 3
-
-
-class _Anderson:
-    """Mixing of the fixed point ``D = G(D)`` (``G`` the drag fit to the motion ``D``
-    gave), the single-line iteration's rule: after a change that grew, the mean of ``D``
-    and ``G`` with the history dropped; else Anderson mixing over the last pairs of
-    residual ``R = G - D`` and ``G``: ``D = G - sum_j g_j (G - G_j)`` with ``g`` the
-    least-squares fit of ``R`` by the residual differences ``R - R_j``."""
-
-    def __init__(self) -> None:
-        self.R: list[np.ndarray] = []
-        self.G: list[np.ndarray] = []
-
-    def step(self, d: np.ndarray, g: np.ndarray, change: float, last: float) -> np.ndarray:
-        if change >= last:
-            self.R.clear()
-            self.G.clear()
-            return 0.5 * (d + g)
-        self.R.append(g - d)
-        self.G.append(g)
-        if len(self.R) > ANDERSON_DEPTH + 1:
-            del self.R[0], self.G[0]
-        if len(self.R) == 1:
-            return g
-        r = self.R[-1]
-        dR = np.array([r - Rj for Rj in self.R[:-1]])
-        A = dR @ dR.T
-        trace = float(np.trace(A))
-        if not trace > 0.0:
-            return g
-        A += 1e-12 * trace * np.eye(A.shape[0])  # a near-dependent pair gets no weight
-        gam = np.linalg.solve(A, dR @ r)
-        return g - sum(c * (g - Gj) for c, Gj in zip(gam, self.G[:-1], strict=True))
-
-
-def _velocity_change(old: list[np.ndarray], new: list[np.ndarray]) -> float:
-    big = max(float(np.max(np.abs(v))) for v in new)
-    diff = max(float(np.max(np.abs(a - b))) for a, b in zip(old, new, strict=True))
-    return diff / max(big, 1e-300)
-
-
 def solve_system_harmonic(
     model: SystemLinear,
     omega: float,
     body_motion: np.ndarray,
     settings: DragSettings | None = None,
     point_excitation: np.ndarray | None = None,
+    *,
+    reference: bool = False,
 ) -> SystemFrequencyResult:
     """Steady harmonic response at ``omega`` [rad/s] to the bodies' complex motion
     amplitudes ``body_motion`` [m, rad] (B, 6) and the points' own complex displacement
     amplitudes ``point_excitation`` [m] (P, 3) (fixed or body points moved on their own,
     added to their bodies' motion; None: none), the drag linearised by iteration
-    (module docstring). Never raises for a numerical failure: status and message."""
+    (module docstring), by the compiled iteration (:mod:`.system_fd_kernel`; with
+    ``reference``, by NumPy and LAPACK line by line:
+    :mod:`.system_frequency_reference`). Never raises for a numerical failure: status
+    and message."""
     settings = settings or DragSettings()
     L = len(model.lines)
-    static = np.array([np.linalg.norm(r.line.end_force, axis=1) for r in model.lines]).reshape(L, 2)
+    static = model.post.static
     prescribed = point_motion(model, body_motion)
     if point_excitation is not None:
         own = np.asarray(point_excitation, dtype=complex).reshape(prescribed.shape)
@@ -545,60 +488,23 @@ def solve_system_harmonic(
             element_tension_static=[r.line.tension.copy() for r in model.lines],
         )
 
-    D_lines: list[np.ndarray | None] = [None] * L
-    D_points: np.ndarray | None = None
-    iterations, converged, change = 0, True, 0.0
-    parts = _dynamic_parts(model, omega)
-    if model.has_drag:
-        start = _solve_linear(
-            model, omega, prescribed, D_lines, None, _dynamic_parts(model, 0.0), quasi_static=True
+    if reference:
+        kind, message, iterations, converged, change, u_pts, disp, forces, residual = (
+            iterate_reference(model, omega, prescribed, settings)
         )
-        if isinstance(start, str):
-            return failed(STATUS_NUMERICAL, f"quasi-static start: {start}")
-        u_pts, disp, _ = start
-
-        def fit(u_pts: np.ndarray, disp: list[np.ndarray]) -> tuple[list, np.ndarray]:
-            Dl = []
-            for r, u in zip(model.lines, disp, strict=True):
-                v = 1j * omega * u
-                lean = mean_drag_jacobian(r.line, v, settings.samples)
-                Dl.append(drag_linearisation(r.line, v, settings.samples, lean, settings.exact))
-            Dp = point_drag_fit(
-                model.point_drag, model.point_current, 1j * omega * u_pts, settings.samples
-            )
-            return Dl, Dp
-
-        D_lines, D_points = fit(u_pts, disp)
-        sizes = [d.size for d in D_lines]
-        mixer = _Anderson()
-        previous = [*disp, u_pts]
-        converged, last = False, math.inf
-        for iterations in range(1, settings.max_iterations + 1):  # noqa: B007
-            out = _solve_linear(model, omega, prescribed, D_lines, D_points, parts)
-            if isinstance(out, str):
-                return failed(STATUS_NUMERICAL, out, iterations)
-            u_pts, disp, _ = out
-            change = _velocity_change(previous, [*disp, u_pts])
-            previous = [*disp, u_pts]
-            if change <= settings.tolerance:
-                converged = True
-                break
-            new_l, new_p = fit(u_pts, disp)
-            flat = mixer.step(_flat(D_lines, D_points), _flat(new_l, new_p), change, last)
-            last = change
-            D_lines, D_points = _unflat(flat, sizes, D_lines, D_points)
-        if not converged:
-            return failed(
-                STATUS_NOT_CONVERGED,
-                f"drag linearisation did not converge in {settings.max_iterations} iterations "
-                f"(last change {change:.3g}, tolerance {settings.tolerance:.3g})",
-                iterations,
-            )
-    out = _solve_linear(model, omega, prescribed, D_lines, D_points, parts)
-    if isinstance(out, str):
-        return failed(STATUS_NUMERICAL, out, iterations)
-    u_pts, disp, forces = out
-    residual = _residual(model, omega, u_pts, disp, D_lines, D_points)
+    else:
+        kind, message, iterations, converged, change, u_pts, disp, forces, residual = (
+            _iterate_compiled(model, omega, prescribed, settings)
+        )
+    if kind == "numerical":
+        return failed(STATUS_NUMERICAL, message, iterations)
+    if kind == "not converged":
+        return failed(
+            STATUS_NOT_CONVERGED,
+            f"drag linearisation did not converge in {settings.max_iterations} iterations "
+            f"(last change {change:.3g}, tolerance {settings.tolerance:.3g})",
+            iterations,
+        )
     if not residual <= RESIDUAL_BAR:
         return failed(
             STATUS_NUMERICAL,
@@ -606,72 +512,95 @@ def solve_system_harmonic(
             f"(bar {RESIDUAL_BAR:g}): ill-conditioned at {omega / (2 * math.pi):.6g} Hz",
             iterations,
         )
-    end_tension = np.empty((L, 2), dtype=complex)
-    end_force = np.empty((L, 2, 3), dtype=complex)
+    post = model.post
+    support = -np.asarray(forces).reshape(L, 2, 3)  # change of the force on the points
+    end_tension = np.sum(post.unit * support, axis=2)
     body_force = np.zeros((model.n_bodies, 6), dtype=complex)
-    theta = np.asarray(body_motion, dtype=complex).reshape(model.n_bodies, 6)[:, 3:]
-    element = []
-    for i, red in enumerate(model.lines):
-        line = red.line
-        unit = line.end_force / np.where(static[i] > 0.0, static[i], 1.0)[:, None]
-        support = -forces[i].reshape(2, 3)  # change of the force of the line on the points
-        end_force[i] = support
-        end_tension[i] = np.sum(unit * support, axis=1)
-        for k in range(2):
-            p = model.ends[i, k]
-            if model.point_kind[p] == BODY:
-                b, a = model.point_body[p], model.point_arm[p]
-                body_force[b, :3] += support[k]
-                body_force[b, 3:] += np.cross(a, support[k]) + np.cross(
-                    np.cross(theta[b], a), line.end_force[k]
-                )
-        axial = (line.axial_stiffness + 1j * omega * line.axial_damping) / line.rest_length
-        element.append(axial * np.sum(line.direction * np.diff(disp[i], axis=0), axis=1))
+    if post.body_line.size:
+        theta = np.asarray(body_motion, dtype=complex).reshape(model.n_bodies, 6)[:, 3:]
+        sup = support[post.body_line, post.body_end]
+        arm = post.body_arm
+        moment = np.cross(arm, sup) + np.cross(np.cross(theta[post.body], arm), post.body_static)
+        np.add.at(body_force, (post.body, slice(0, 3)), sup)
+        np.add.at(body_force, (post.body, slice(3, 6)), moment)
+    flat = np.concatenate(disp) if isinstance(disp, list) else disp
+    du = flat[post.element + 1] - flat[post.element]
+    axial = post.axial_stiffness + 1j * omega * post.axial_damping
+    tension = axial * np.sum(post.direction * du, axis=1)
+    element = np.split(tension, post.element_split)
+    var = np.empty(post.node_static.size, dtype=complex)
+    var[post.inner] = 0.5 * (tension[post.left] + tension[post.right])
+    var[post.first] = end_tension[:, 0]
+    var[post.last] = end_tension[:, 1]
+    amp = np.abs(var)
+    envelope = (
+        np.split(post.node_static + amp, post.node_split),
+        np.split(post.node_static - amp, post.node_split),
+    )
     return SystemFrequencyResult(
         end_tension=end_tension,
         tension_static=static,
         element_tension=element,
         displacement=disp,
         point_displacement=u_pts,
-        end_force=end_force,
+        end_force=support,
         body_force=body_force,
         iterations=iterations,
         converged=converged,
         change=change,
         residual=residual,
         element_tension_static=[r.line.tension.copy() for r in model.lines],
+        envelope_lines=envelope,
     )
 
 
-def _residual(
-    model: SystemLinear,
-    omega: float,
-    u_pts: np.ndarray,
-    disp: list[np.ndarray],
-    D_lines: list[np.ndarray | None],
-    D_points: np.ndarray | None,
-) -> float:
-    """Largest residual of the assembled equations (inner rows of every line, balance of
-    every free point) relative to the force scale: the
-    largest end force amplitude or stiffness force."""
-    scale = 0.0
-    worst = 0.0
-    balance = np.zeros(u_pts.shape, dtype=complex)
-    for i, red in enumerate(model.lines):
-        r = red.apply(disp[i], omega, D_lines[i])
-        ku = (red.line.stiffness @ disp[i].ravel()).reshape(-1, 3)
-        scale = max(scale, float(np.max(np.abs(r[[0, -1]]))), float(np.max(np.abs(ku))))
-        worst = max(worst, float(np.max(np.abs(r[1:-1]), initial=0.0)))
-        balance[model.ends[i, 0]] += r[0]
-        balance[model.ends[i, 1]] += r[-1]
-    free = model.free_points
-    if free.size:
-        Z = -(omega**2) * model.point_mass[free]
-        if D_points is not None:
-            Z = Z + 1j * omega * D_points[free]
-        balance[free] += np.einsum("pab,pb->pa", Z, u_pts[free])
-        worst = max(worst, float(np.max(np.abs(balance[free]))))
-    return worst / max(scale, 1e-300)
+def _iterate_compiled(
+    model: SystemLinear, omega: float, prescribed: np.ndarray, settings: DragSettings
+) -> tuple:
+    """:func:`~.system_frequency_reference.iterate_reference` by the compiled kernel
+    (:func:`.system_fd_kernel.solve_case`), its outcome in the same form."""
+    packed = model.packed
+    a = packed.arrays
+    noff = packed.node_offset
+    L = len(model.lines)
+    disp = np.empty((int(noff[-1]), 3), dtype=complex)
+    u_pts = np.empty((model.point_kind.size, 3), dtype=complex)
+    forces = np.empty((L, 6), dtype=complex)
+    info = np.zeros(4, dtype=np.int64)
+    finfo = np.zeros(2)
+    solve_case(
+        float(omega),
+        np.ascontiguousarray(prescribed, dtype=complex),
+        float(settings.tolerance),
+        int(settings.max_iterations),
+        int(settings.samples),
+        bool(settings.exact),
+        a[0],
+        a[1],
+        packed.bw,
+        *a[2:],
+        disp,
+        u_pts,
+        forces,
+        info,
+        finfo,
+    )
+    code, iterations, bad, at_start = (int(v) for v in info)
+    change, residual = float(finfo[0]), float(finfo[1])
+    hz = omega / (2 * math.pi)
+    if code in (SINGULAR_LINE, SINGULAR_JUNCTION):
+        why = (
+            f"singular dynamic matrix of line {model.names[bad]!r} at {hz:.6g} Hz"
+            if code == SINGULAR_LINE
+            else f"singular junction system at {hz:.6g} Hz"
+        )
+        message = f"quasi-static start: {why}" if at_start else why
+        return "numerical", message, iterations, False, change, None, None, None, math.nan
+    if code == NOT_CONVERGED:
+        return "not converged", "", iterations, False, change, None, None, None, math.nan
+    parts = [disp[noff[i] : noff[i + 1]] for i in range(L)]
+    converged = True
+    return "", "", iterations, converged, change, u_pts, parts, forces, residual
 
 
 def system_frequency_outputs(
@@ -711,6 +640,7 @@ __all__ = [
     "RESIDUAL_BAR",
     "SystemFrequencyResult",
     "SystemLinear",
+    "mean_drag_jacobian",
     "point_drag_fit",
     "point_motion",
     "solve_system_harmonic",

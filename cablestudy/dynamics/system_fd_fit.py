@@ -1,0 +1,292 @@
+"""The compiled drag fit and mixing of a system's frequency domain
+(:mod:`.system_fd_kernel`): per node the small-motion lean and the drag fit in one pass
+over the phases (:func:`fit_node`), the free points' isotropic drag fit
+(:func:`fit_points`), all of a system's nodes and points (:func:`fit_all`) and the
+Anderson mixing of the iteration (:func:`anderson`), each the compiled form of the
+NumPy reference's step (:mod:`.system_frequency_reference`).
+
+Pure: arrays in, arrays out.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .frequency_model import FIT_REGULARISATION, is_planar, planar_drag_fit
+
+
+@njit(cache=True, error_model="numpy", fastmath={"reassoc", "contract", "arcp", "nsz"})
+def fit_node(i, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, out):  # noqa: ANN001, ANN202, PLR0913, PLR0915
+    """The small-motion lean (:func:`.system_drag.mean_drag_jacobian`) into ``lean[i]``
+    and the drag fit leaning on it (:func:`.frequency_model.drag_linearisation`) into
+    ``out[i]`` of node ``i``, one pass over the phases for both. Without current at the
+    node and with an even number of phases, the phases of half a period serve (each
+    sum twice; the mean force is zero)."""
+    samples = cs.shape[0]
+    t0, t1, t2 = tan[i, 0], tan[i, 1], tan[i, 2]
+    u0, u1, u2 = cur[i, 0], cur[i, 1], cur[i, 2]
+    a0, a1, a2 = vr[i, 0], vr[i, 1], vr[i, 2]
+    b0, b1, b2 = vi[i, 0], vi[i, 1], vi[i, 2]
+    cn, ct, cb = c_n[i], c_t[i], c_b[i]
+    body = cb != 0.0
+    odd = u0 == 0.0 and u1 == 0.0 and u2 == 0.0 and samples % 2 == 0
+    ns = samples // 2 if odd else samples
+    sum_n = sum_r = abs_t = 0.0
+    n00 = n01 = n02 = n11 = n12 = n22 = 0.0
+    q00 = q01 = q02 = q11 = q12 = q22 = 0.0
+    g00 = g01 = g02 = g11 = g12 = g22 = 0.0
+    h00 = h01 = h02 = h10 = h11 = h12 = h20 = h21 = h22 = 0.0
+    f0s = f1s = f2s = w0s = w1s = w2s = 0.0
+    for k in range(ns):
+        c, s = cs[k], sn_[k]
+        w0 = -(a0 * c - b0 * s)
+        w1 = -(a1 * c - b1 * s)
+        w2 = -(a2 * c - b2 * s)
+        r0, r1, r2 = u0 + w0, u1 + w1, u2 + w2
+        wt = r0 * t0 + r1 * t1 + r2 * t2
+        x0, x1, x2 = r0 - wt * t0, r1 - wt * t1, r2 - wt * t2
+        sn = math.sqrt(x0 * x0 + x1 * x1 + x2 * x2)
+        abs_t += abs(wt)
+        sum_n += sn
+        if sn > 0.0:
+            inv = 1.0 / sn
+            n00 += x0 * x0 * inv
+            n01 += x0 * x1 * inv
+            n02 += x0 * x2 * inv
+            n11 += x1 * x1 * inv
+            n12 += x1 * x2 * inv
+            n22 += x2 * x2 * inv
+        st = abs(wt) * wt * ct
+        sr = 0.0
+        if body:
+            rr = math.sqrt(r0 * r0 + r1 * r1 + r2 * r2)
+            sum_r += rr
+            if rr > 0.0:
+                inv = 1.0 / rr
+                q00 += r0 * r0 * inv
+                q01 += r0 * r1 * inv
+                q02 += r0 * r2 * inv
+                q11 += r1 * r1 * inv
+                q12 += r1 * r2 * inv
+                q22 += r2 * r2 * inv
+            sr = cb * rr
+        f0 = cn * sn * x0 + st * t0 + sr * r0
+        f1 = cn * sn * x1 + st * t1 + sr * r1
+        f2 = cn * sn * x2 + st * t2 + sr * r2
+        f0s += f0
+        f1s += f1
+        f2s += f2
+        w0s += w0
+        w1s += w1
+        w2s += w2
+        g00 += w0 * w0
+        g01 += w0 * w1
+        g02 += w0 * w2
+        g11 += w1 * w1
+        g12 += w1 * w2
+        g22 += w2 * w2
+        h00 += f0 * w0
+        h01 += f0 * w1
+        h02 += f0 * w2
+        h10 += f1 * w0
+        h11 += f1 * w1
+        h12 += f1 * w2
+        h20 += f2 * w0
+        h21 += f2 * w1
+        h22 += f2 * w2
+    if odd:  # the other half period: the same sums; sum of f zero
+        sum_n, sum_r, abs_t = 2.0 * sum_n, 2.0 * sum_r, 2.0 * abs_t
+        n00, n01, n02, n11, n12, n22 = 2 * n00, 2 * n01, 2 * n02, 2 * n11, 2 * n12, 2 * n22
+        q00, q01, q02, q11, q12, q22 = 2 * q00, 2 * q01, 2 * q02, 2 * q11, 2 * q12, 2 * q22
+        g00, g01, g02, g11, g12, g22 = 2 * g00, 2 * g01, 2 * g02, 2 * g11, 2 * g12, 2 * g22
+        h00, h01, h02, h10, h11, h12 = 2 * h00, 2 * h01, 2 * h02, 2 * h10, 2 * h11, 2 * h12
+        h20, h21, h22 = 2 * h20, 2 * h21, 2 * h22
+    else:  # sum (f - fm) w^T = sum f w^T - fm sum w^T
+        fm0, fm1, fm2 = f0s / samples, f1s / samples, f2s / samples
+        h00 -= fm0 * w0s
+        h01 -= fm0 * w1s
+        h02 -= fm0 * w2s
+        h10 -= fm1 * w0s
+        h11 -= fm1 * w1s
+        h12 -= fm1 * w2s
+        h20 -= fm2 * w0s
+        h21 -= fm2 * w1s
+        h22 -= fm2 * w2s
+    # the lean: c_N (sum |w_N| (I - t t^T) + sum w_N w_N^T / |w_N|) + c_B (...)
+    # + 2 c_T <|w_T|> t t^T
+    along = ct * 2.0 * (abs_t / samples)
+    t = (t0, t1, t2)
+    Wn = ((n00, n01, n02), (n01, n11, n12), (n02, n12, n22))
+    Wb = ((q00, q01, q02), (q01, q11, q12), (q02, q12, q22))
+    for a in range(3):
+        for b in range(a, 3):
+            eye = 1.0 if a == b else 0.0
+            jn = sum_n * (eye - t[a] * t[b]) + Wn[a][b]
+            jb = sum_r * eye + Wb[a][b]
+            v = (cn * jn + cb * jb) / samples + along * t[a] * t[b]
+            lean[i, a, b] = v
+            lean[i, b, a] = v
+    if exact and not body and is_planar(vr, vi, tan, cur, i):
+        planar_drag_fit(vr, vi, tan, cur, c_n, c_t, lean, i, out)
+        return
+    trace = (g00 + g11 + g22) / samples
+    if not trace > 0.0:
+        for a in range(3):
+            for b in range(3):
+                out[i, a, b] = lean[i, a, b]
+        return
+    eps = FIT_REGULARISATION * trace
+    G00, G01, G02 = g00 / samples + eps, g01 / samples, g02 / samples
+    G11, G12, G22 = g11 / samples + eps, g12 / samples, g22 / samples + eps
+    H00 = h00 / samples + eps * lean[i, 0, 0]
+    H01 = h01 / samples + eps * lean[i, 0, 1]
+    H02 = h02 / samples + eps * lean[i, 0, 2]
+    H10 = h10 / samples + eps * lean[i, 1, 0]
+    H11 = h11 / samples + eps * lean[i, 1, 1]
+    H12 = h12 / samples + eps * lean[i, 1, 2]
+    H20 = h20 / samples + eps * lean[i, 2, 0]
+    H21 = h21 / samples + eps * lean[i, 2, 1]
+    H22 = h22 / samples + eps * lean[i, 2, 2]
+    # D G = H, G symmetric: D = H G^-1 by cofactors
+    i00 = G11 * G22 - G12 * G12
+    i01 = G02 * G12 - G01 * G22
+    i02 = G01 * G12 - G02 * G11
+    i11 = G00 * G22 - G02 * G02
+    i12 = G02 * G01 - G00 * G12
+    i22 = G00 * G11 - G01 * G01
+    det = G00 * i00 + G01 * i01 + G02 * i02
+    i00, i01, i02, i11, i12, i22 = i00 / det, i01 / det, i02 / det, i11 / det, i12 / det, i22 / det
+    out[i, 0, 0] = H00 * i00 + H01 * i01 + H02 * i02
+    out[i, 0, 1] = H00 * i01 + H01 * i11 + H02 * i12
+    out[i, 0, 2] = H00 * i02 + H01 * i12 + H02 * i22
+    out[i, 1, 0] = H10 * i00 + H11 * i01 + H12 * i02
+    out[i, 1, 1] = H10 * i01 + H11 * i11 + H12 * i12
+    out[i, 1, 2] = H10 * i02 + H11 * i12 + H12 * i22
+    out[i, 2, 0] = H20 * i00 + H21 * i01 + H22 * i02
+    out[i, 2, 1] = H20 * i01 + H21 * i11 + H22 * i12
+    out[i, 2, 2] = H20 * i02 + H21 * i12 + H22 * i22
+
+
+@njit(cache=True, error_model="numpy")
+def fit_points(c_p, cur, u_pts, omega, cs, sn_, Dp):  # noqa: ANN001, ANN202
+    """:func:`.system_drag.point_drag_fit` of every point at velocities ``i omega u_pts``
+    into ``Dp`` (P, 3, 3)."""
+    samples = cs.shape[0]
+    P = c_p.shape[0]
+    w = np.empty((samples, 3))
+    f = np.empty((samples, 3))
+    lhs = np.empty((3, 3))
+    rhs = np.empty((3, 3))
+    vr = np.empty(3)
+    vi = np.empty(3)
+    fm = np.empty(3)
+    r = np.empty(3)
+    for p in range(P):
+        if c_p[p] == 0.0:  # no drag: the fit is zero (H and D_0 are)
+            Dp[p] = 0.0
+            continue
+        for a in range(3):
+            v = 1j * omega * u_pts[p, a]
+            vr[a] = v.real
+            vi[a] = v.imag
+        fm[:] = 0.0
+        for k in range(samples):
+            for a in range(3):
+                w[k, a] = -(vr[a] * cs[k] - vi[a] * sn_[k])
+                r[a] = cur[p, a] + w[k, a]
+            nr = math.sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2])
+            for a in range(3):
+                f[k, a] = c_p[p] * nr * r[a]
+                fm[a] += f[k, a]
+        su = math.sqrt(cur[p, 0] ** 2 + cur[p, 1] ** 2 + cur[p, 2] ** 2)
+        inv = 1.0 / su if su > 0.0 else 0.0
+        trace = 0.0
+        for a in range(3):
+            for b in range(3):
+                g = 0.0
+                h = 0.0
+                for k in range(samples):
+                    g += w[k, a] * w[k, b]
+                    h += (f[k, a] - fm[a] / samples) * w[k, b]
+                lhs[a, b] = g / samples
+                rhs[a, b] = h / samples
+            trace += lhs[a, a]
+        eps = FIT_REGULARISATION * trace if trace > 0.0 else 1.0
+        for a in range(3):
+            for b in range(3):
+                d0 = c_p[p] * ((su if a == b else 0.0) + inv * cur[p, a] * cur[p, b])
+                rhs[a, b] = rhs[a, b] + eps * d0 if trace > 0.0 else d0
+            lhs[a, a] += eps
+        Dp[p] = rhs @ np.linalg.inv(lhs)
+
+
+@njit(cache=True, error_model="numpy")
+def fit_all(
+    omega, disp, u_pts, cur, tan, c_n, c_t, c_b, c_p, pcur, cs, sn_, exact, vr, vi, lean, D, Dp
+):  # noqa: ANN001, ANN202, PLR0913
+    """The drag fit of every node (into ``D``) and point (into ``Dp``) at velocities
+    ``i omega u``."""
+    for g in range(disp.shape[0]):
+        for a in range(3):
+            v = 1j * omega * disp[g, a]
+            vr[g, a] = v.real
+            vi[g, a] = v.imag
+    for g in range(disp.shape[0]):
+        fit_node(g, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, D)
+    fit_points(c_p, pcur, u_pts, omega, cs, sn_, Dp)
+
+
+#: secant pairs kept by the Anderson mixing (as the reference:
+#: :data:`.system_frequency_reference.ANDERSON_DEPTH`)
+DEPTH = 3
+
+
+@njit(cache=True, error_model="numpy")
+def anderson(d, g, hist_R, hist_G, state, change, last):  # noqa: ANN001, ANN202, PLR0913
+    """``_Anderson.step`` of :mod:`.system_frequency_reference` on the flat drag ``d``
+    (overwritten by the next iterate) and its fit ``g``; the pairs in rows ``0 ..
+    state[0]-1`` of ``hist_R``, ``hist_G`` (oldest first)."""
+    size = d.shape[0]
+    if change >= last:
+        state[0] = 0
+        for q in range(size):
+            d[q] = 0.5 * (d[q] + g[q])
+        return
+    count = state[0]
+    if count == DEPTH + 1:  # the oldest pair leaves
+        for j in range(count - 1):
+            hist_R[j] = hist_R[j + 1]
+            hist_G[j] = hist_G[j + 1]
+        count -= 1
+    for q in range(size):
+        hist_R[count, q] = g[q] - d[q]
+        hist_G[count, q] = g[q]
+    count += 1
+    state[0] = count
+    if count == 1:
+        for q in range(size):
+            d[q] = g[q]
+        return
+    m = count - 1
+    r = hist_R[m]
+    dR = np.empty((m, size))
+    for j in range(m):
+        for q in range(size):
+            dR[j, q] = r[q] - hist_R[j, q]
+    A = dR @ dR.T
+    trace = 0.0
+    for j in range(m):
+        trace += A[j, j]
+    for q in range(size):
+        d[q] = g[q]
+    if not trace > 0.0:
+        return
+    for j in range(m):
+        A[j, j] += 1e-12 * trace
+    gam = np.linalg.solve(A, dR @ r)
+    for j in range(m):
+        for q in range(size):
+            d[q] -= gam[j] * (g[q] - hist_G[j, q])

@@ -1,0 +1,711 @@
+"""The compiled drag iteration of a system's frequency domain
+(:func:`cablestudy.dynamics.system_frequency.solve_system_harmonic`): one call does a
+case's whole iteration for all lines at once: per line the condensation onto its end
+nodes (banded LU of the inner rows), the junction system of the free points, the drag
+fit of every node and free point, Anderson mixing and the convergence test, and at the
+end the check of the assembled equations.
+
+The lines come packed once per linear model in flat arrays with offsets
+(:func:`.system_fd_pack.pack_system`). Same equations, same drag criterion and the same iteration
+(start, mixing, tolerance) as the module docstring of :mod:`.system_frequency` gives;
+the arithmetic differs from a per-line NumPy/LAPACK sequence only in rounding:
+
+- per line only the columns the junction needs are solved for: three unit motions per
+  free end and one column for the prescribed ends' motion together (four right sides
+  instead of six on a line from a junction to a body); the end forces are then
+  ``A_EE u_E + A_EI u_I``, the same quantity as ``S u_E``;
+- the band LU pivots by threshold (:data:`.harmonic_kernel.PIVOT_THRESHOLD`, as the
+  single line's kernel), not by LAPACK's partial pivoting;
+- the drag fit and the small-motion Jacobian it leans on share one pass over the
+  phases, and at a node without current (drag odd in the relative velocity: the phase
+  ``th + pi`` gives the opposite velocity and force) the phases of a half period are
+  summed twice, the mean force being zero (:func:`.system_fd_fit.fit_node`);
+- the junction system is solved by Gaussian elimination with partial pivoting of its
+  own (:func:`_dense_solve`), as LAPACK's but not its blocked order.
+
+Pure: arrays in, arrays out.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .harmonic_kernel import PIVOT_THRESHOLD
+from .system_fd_fit import DEPTH, anderson, fit_all
+
+#: the compiler may reassociate and contract sums and products (rounding only); NaN
+#: and infinity keep their meaning (the failure checks rely on them)
+_SAFE_FAST = {"reassoc", "contract", "arcp", "nsz"}
+#: codes of the kernel's outcome (``info[0]``)
+OK, SINGULAR_LINE, SINGULAR_JUNCTION, NOT_CONVERGED = 0, 1, 2, 3
+
+
+# ------------------------------------------------------------------------ kernels
+
+
+@njit(cache=True, error_model="numpy", fastmath=_SAFE_FAST)
+def _band_solve(R, bw, N, reach, B, m):  # noqa: ANN001, ANN201
+    """Solve the complex band system on row storage ``R`` (>= N, 3 bw + 1) (``A[i, j]``
+    at ``R[i, j - i + bw]``) for the ``m`` right sides ``B[:N, :m]`` in place, by the
+    threshold pivoting of :func:`.harmonic_kernel.band_solve_rows`; False for a zero
+    pivot. ``reach`` (>= N,) int work."""
+    for i in range(N):
+        reach[i] = min(i + bw, N - 1)
+    for k in range(N):
+        last = min(k + bw, N - 1)
+        p = k
+        z = R[k, bw]
+        diag = abs(z.real) + abs(z.imag)
+        big = diag
+        for i in range(k + 1, last + 1):
+            z = R[i, k - i + bw]
+            a = abs(z.real) + abs(z.imag)
+            if a > big:
+                big, p = a, i
+        if not big > 0.0:
+            return False
+        if diag >= PIVOT_THRESHOLD * big:
+            p = k
+        if p != k:
+            right = max(reach[k], reach[p])
+            for j in range(k, right + 1):
+                t = R[k, j - k + bw]
+                R[k, j - k + bw] = R[p, j - p + bw]
+                R[p, j - p + bw] = t
+            t2 = reach[k]
+            reach[k] = reach[p]
+            reach[p] = t2
+            for c in range(m):
+                t = B[k, c]
+                B[k, c] = B[p, c]
+                B[p, c] = t
+        inv = 1.0 / R[k, bw]
+        rk = reach[k]
+        for i in range(k + 1, last + 1):
+            z = R[i, k - i + bw]
+            if z.real == 0.0 and z.imag == 0.0:
+                continue
+            f = z * inv
+            for j in range(k + 1, rk + 1):
+                R[i, j - i + bw] -= f * R[k, j - k + bw]
+            for c in range(m):
+                B[i, c] -= f * B[k, c]
+            if rk > reach[i]:
+                reach[i] = rk
+    for i in range(N - 1, -1, -1):
+        inv = 1.0 / R[i, bw]
+        for c in range(m):
+            acc = B[i, c]
+            for j in range(i + 1, reach[i] + 1):
+                acc -= R[i, j - i + bw] * B[j, c]
+            B[i, c] = acc * inv
+    for i in range(N):
+        for c in range(m):
+            if not (math.isfinite(B[i, c].real) and math.isfinite(B[i, c].imag)):
+                return False
+    return True
+
+
+@njit(cache=True, error_model="numpy")
+def _dense_solve(G, rhs, n):  # noqa: ANN001, ANN202
+    """Solve ``G[:n, :n] x = rhs[:n]`` in place (Gaussian elimination, partial
+    pivoting); False for a zero pivot or a non-finite answer."""
+    for k in range(n):
+        p = k
+        big = abs(G[k, k])
+        for i in range(k + 1, n):
+            if abs(G[i, k]) > big:
+                big, p = abs(G[i, k]), i
+        if not big > 0.0:
+            return False
+        if p != k:
+            for j in range(n):
+                t = G[k, j]
+                G[k, j] = G[p, j]
+                G[p, j] = t
+            t = rhs[k]
+            rhs[k] = rhs[p]
+            rhs[p] = t
+        for i in range(k + 1, n):
+            f = G[i, k] / G[k, k]
+            if f == 0.0:
+                continue
+            for j in range(k + 1, n):
+                G[i, j] -= f * G[k, j]
+            rhs[i] -= f * rhs[k]
+    for i in range(n - 1, -1, -1):
+        acc = rhs[i]
+        for j in range(i + 1, n):
+            acc -= G[i, j] * rhs[j]
+        rhs[i] = acc / G[i, i]
+        if not (math.isfinite(rhs[i].real) and math.isfinite(rhs[i].imag)):
+            return False
+    return True
+
+
+@njit(cache=True, error_model="numpy", fastmath=_SAFE_FAST)
+def _parts(w, KR, MR, CR, IEK, IEM, IEC, EIK, EIM, EIC, EEK, EEM, EEC, Rb, IE, EI, EE):  # noqa: ANN001, ANN202, PLR0913
+    """The dynamic matrix without drag at ``w`` (``K - w^2 M + i w C``): band rows
+    ``Rb``, couplings ``IE`` (dofs, 6), ``EI`` (6, dofs), ``EE`` (L, 6, 6), shared by
+    the iterations of a case."""
+    iw = 1j * w
+    w2 = w * w
+    for i in range(KR.shape[0]):
+        for c in range(KR.shape[1]):
+            Rb[i, c] = KR[i, c] - w2 * MR[i, c] + iw * CR[i, c]
+        for c in range(6):
+            IE[i, c] = IEK[i, c] - w2 * IEM[i, c] + iw * IEC[i, c]
+            EI[c, i] = EIK[c, i] - w2 * EIM[c, i] + iw * EIC[c, i]
+    for line in range(EEK.shape[0]):
+        for r in range(6):
+            for c in range(6):
+                EE[line, r, c] = EEK[line, r, c] - w2 * EEM[line, r, c] + iw * EEC[line, r, c]
+
+
+@njit(cache=True, error_model="numpy", fastmath=_SAFE_FAST)
+def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
+    w,
+    drag,
+    D,
+    Dp,
+    prescribed,
+    noff,
+    koff,
+    bw,
+    Rb,
+    IE,
+    EI,
+    EE,
+    couple,
+    coff,
+    basis,
+    ncount,
+    nfirst,
+    ends,
+    slot,
+    free,
+    pmass,
+    R,
+    reach,
+    X,
+    A_EE,
+    uI,
+    ncol,
+    uE,
+    G,
+    rhs,
+    disp,
+    u_pts,
+    forces,
+):
+    """One linear solve at fixed drag (``drag``: ``D`` (nodes, 3, 3) and ``Dp`` (P, 3,
+    3) enter) at ``w`` [rad/s] with :func:`_parts` ``Rb`` ... ``EE`` at ``w``:
+    ``u_pts`` (P, 3), ``disp`` (nodes, 3), ``forces`` (L, 6) (the force each line
+    needs at its end nodes, ``A_EE u_E + A_EI u_I``). ``couple[coff[l]:coff[l+1]]``:
+    the dofs of line ``l`` coupled to its end nodes (the non-zero columns of ``A_EI``
+    and rows of ``A_IE``). Returns (code, line)."""
+    L = ends.shape[0]
+    F = free.shape[0]
+    iw = 1j * w
+    w2 = w * w
+    width = 2 * bw + 1
+    G[:, :] = 0.0
+    rhs[:] = 0.0
+    for j in range(F):
+        p = free[j]
+        for a in range(3):
+            for b in range(3):
+                z = -w2 * pmass[p, a, b]
+                if drag:
+                    z += iw * Dp[p, a, b]
+                G[3 * j + a, 3 * j + b] += z
+    for line in range(L):
+        k0 = koff[line]
+        k = koff[line + 1] - k0
+        na, nb = noff[line], noff[line + 1] - 1
+        c0, c1 = coff[line], coff[line + 1]
+        for r in range(6):
+            for c in range(6):
+                A_EE[line, r, c] = EE[line, r, c]
+        if drag:
+            for a in range(3):
+                for b in range(3):
+                    A_EE[line, a, b] += iw * D[na, a, b]
+                    A_EE[line, 3 + a, 3 + b] += iw * D[nb, a, b]
+        # right sides: unit motions of the free ends, the prescribed ends' motion together
+        m = 0
+        for e in range(2):
+            if slot[ends[line, e]] >= 0:
+                for a in range(3):
+                    for i in range(k):
+                        X[k0 + i, m] = 0.0
+                    for q in range(c0, c1):
+                        i = couple[q]
+                        X[k0 + i, m] = -IE[k0 + i, 3 * e + a]
+                    m += 1
+        if slot[ends[line, 0]] < 0 or slot[ends[line, 1]] < 0:
+            for i in range(k):
+                X[k0 + i, m] = 0.0
+            for q in range(c0, c1):
+                i = couple[q]
+                acc = 0j
+                for e in range(2):
+                    pt = ends[line, e]
+                    if slot[pt] < 0:
+                        for a in range(3):
+                            acc -= IE[k0 + i, 3 * e + a] * prescribed[pt, a]
+                X[k0 + i, m] = acc
+            m += 1
+        ncol[line] = m
+        if k > 0:
+            for i in range(k):
+                for c in range(width):
+                    R[i, c] = Rb[k0 + i, c]
+                for c in range(width, 3 * bw + 1):
+                    R[i, c] = 0.0
+            if drag:
+                for g in range(na, nb + 1):
+                    cnt = ncount[g]
+                    f0 = nfirst[g]
+                    for r in range(cnt):
+                        for c in range(cnt):
+                            val = 0.0
+                            for a in range(3):
+                                ba = basis[g, a, r]
+                                if ba == 0.0:
+                                    continue
+                                for b in range(3):
+                                    val += ba * D[g, a, b] * basis[g, b, c]
+                            R[f0 + r, c - r + bw] += iw * val
+            if not _band_solve(R, bw, k, reach, X[k0:], m):
+                return SINGULAR_LINE, line
+        # the junction rows of the free ends: S u_E = A_EE u_E + A_EI X u_E
+        for ea in range(2):
+            sa = slot[ends[line, ea]]
+            if sa < 0:
+                continue
+            for al in range(3):
+                row = 3 * ea + al
+                c = 0
+                for eb in range(2):
+                    sb = slot[ends[line, eb]]
+                    if sb < 0:
+                        continue
+                    for be in range(3):
+                        acc = A_EE[line, row, 3 * eb + be]
+                        for q in range(c0, c1):
+                            i = couple[q]
+                            acc += EI[row, k0 + i] * X[k0 + i, c]
+                        G[3 * sa + al, 3 * sb + be] += acc
+                        c += 1
+                if c < m:  # the prescribed column
+                    acc = 0j
+                    for eb in range(2):
+                        pt = ends[line, eb]
+                        if slot[pt] < 0:
+                            for be in range(3):
+                                acc += A_EE[line, row, 3 * eb + be] * prescribed[pt, be]
+                    for q in range(c0, c1):
+                        i = couple[q]
+                        acc += EI[row, k0 + i] * X[k0 + i, c]
+                    rhs[3 * sa + al] -= acc
+    for p in range(prescribed.shape[0]):
+        for a in range(3):
+            u_pts[p, a] = prescribed[p, a]
+    if F:
+        if not _dense_solve(G, rhs, 3 * F):
+            return SINGULAR_JUNCTION, -1
+        for j in range(F):
+            for a in range(3):
+                u_pts[free[j], a] = rhs[3 * j + a]
+    for line in range(L):
+        k0 = koff[line]
+        k = koff[line + 1] - k0
+        na, nb = noff[line], noff[line + 1] - 1
+        c0, c1 = coff[line], coff[line + 1]
+        m = ncol[line]
+        for e in range(2):
+            for a in range(3):
+                uE[3 * e + a] = u_pts[ends[line, e], a]
+        for i in range(k):
+            acc = 0j
+            c = 0
+            for e in range(2):
+                if slot[ends[line, e]] >= 0:
+                    for a in range(3):
+                        acc += X[k0 + i, c] * uE[3 * e + a]
+                        c += 1
+            if c < m:
+                acc += X[k0 + i, c]
+            uI[k0 + i] = acc
+        for g in range(na, nb + 1):
+            f0 = nfirst[g]
+            for a in range(3):
+                acc = 0j
+                for r in range(ncount[g]):
+                    acc += basis[g, a, r] * uI[k0 + f0 + r]
+                disp[g, a] = acc
+        for a in range(3):
+            disp[na, a] += uE[a]
+            disp[nb, a] += uE[3 + a]
+        for row in range(6):
+            acc = 0j
+            for b in range(6):
+                acc += A_EE[line, row, b] * uE[b]
+            for q in range(c0, c1):
+                i = couple[q]
+                acc += EI[row, k0 + i] * uI[k0 + i]
+            forces[line, row] = acc
+    return OK, -1
+
+
+@njit(cache=True, error_model="numpy")
+def _residual(
+    omega, drag, D, Dp, disp, u_pts, noff, mass, kp, ki, kv, cp, ci, cv, ends, free, pmass
+):  # noqa: ANN001, ANN202, PLR0913
+    """:func:`.system_frequency._residual`: the largest residual of every line's inner
+    rows and every free point's balance relative to the force scale."""
+    L = ends.shape[0]
+    scale = 0.0
+    worst = 0.0
+    balance = np.zeros(u_pts.shape, dtype=np.complex128)
+    iw = 1j * omega
+    w2 = omega * omega
+    r = np.empty(3, dtype=np.complex128)
+    for line in range(L):
+        n0, n1 = noff[line], noff[line + 1]
+        for g in range(n0, n1):
+            for a in range(3):
+                row = 3 * g + a
+                ku = 0j
+                for jj in range(kp[row], kp[row + 1]):
+                    ku += kv[jj] * disp[n0 + ki[jj] // 3, ki[jj] % 3]
+                cu = 0j
+                for jj in range(cp[row], cp[row + 1]):
+                    cu += cv[jj] * disp[n0 + ci[jj] // 3, ci[jj] % 3]
+                acc = ku + iw * cu
+                mu = 0j
+                du = 0j
+                for b in range(3):
+                    mu += mass[g, a, b] * disp[g, b]
+                    if drag:
+                        du += D[g, a, b] * disp[g, b]
+                acc -= w2 * mu
+                if drag:
+                    acc += iw * du
+                r[a] = acc
+                scale = max(scale, abs(ku))
+            if g == n0 or g == n1 - 1:
+                e = 0 if g == n0 else 1
+                for a in range(3):
+                    scale = max(scale, abs(r[a]))
+                    balance[ends[line, e], a] += r[a]
+            else:
+                for a in range(3):
+                    worst = max(worst, abs(r[a]))
+    for j in range(free.shape[0]):
+        p = free[j]
+        for a in range(3):
+            acc = balance[p, a]
+            for b in range(3):
+                z = -w2 * pmass[p, a, b]
+                if drag:
+                    z += iw * Dp[p, a, b]
+                acc += z * u_pts[p, b]
+            worst = max(worst, abs(acc))
+    return worst / max(scale, 1e-300)
+
+
+@njit(cache=True, error_model="numpy")
+def solve_case(  # noqa: ANN201, PLR0913, PLR0915
+    omega,
+    prescribed,
+    tolerance,
+    max_iterations,
+    samples,
+    exact,
+    noff,
+    koff,
+    bw,
+    KR,
+    MR,
+    CR,
+    IEK,
+    IEM,
+    IEC,
+    EIK,
+    EIM,
+    EIC,
+    EEK,
+    EEM,
+    EEC,
+    couple,
+    coff,
+    basis,
+    ncount,
+    nfirst,
+    cur,
+    tan,
+    c_n,
+    c_t,
+    c_b,
+    mass,
+    kp,
+    ki,
+    kv,
+    cp,
+    ci,
+    cv,
+    ends,
+    slot,
+    free,
+    pmass,
+    c_p,
+    pcur,
+    has_drag,
+    disp,
+    u_pts,
+    forces,
+    info,
+    finfo,
+):
+    """A case's harmonic response (:func:`.system_frequency.solve_system_harmonic`):
+    ``disp`` (nodes, 3), ``u_pts`` (P, 3), ``forces`` (L, 6) out; ``info`` (4,) int:
+    code (:data:`OK`, :data:`SINGULAR_LINE`, :data:`SINGULAR_JUNCTION`,
+    :data:`NOT_CONVERGED`), iterations, failing line, 1 if it failed in the quasi-static
+    start; ``finfo`` (2,): last change, residual (NaN when failed)."""
+    N = disp.shape[0]
+    P = u_pts.shape[0]
+    L = ends.shape[0]
+    K = KR.shape[0]
+    F = free.shape[0]
+    R = np.empty((max(K, 1), 3 * bw + 1), dtype=np.complex128)
+    reach = np.empty(max(K, 1), dtype=np.int64)
+    X = np.empty((K, 6), dtype=np.complex128)
+    A_EE = np.empty((L, 6, 6), dtype=np.complex128)
+    uI = np.empty(K, dtype=np.complex128)
+    ncol = np.empty(L, dtype=np.int64)
+    uE = np.empty(6, dtype=np.complex128)
+    G = np.empty((3 * F, 3 * F), dtype=np.complex128)
+    rhs = np.empty(3 * F, dtype=np.complex128)
+    Rb = np.empty(KR.shape, dtype=np.complex128)
+    IE = np.empty((K, 6), dtype=np.complex128)
+    EI = np.empty((6, K), dtype=np.complex128)
+    EE = np.empty((L, 6, 6), dtype=np.complex128)
+    size = 9 * (N + P)
+    flat = np.zeros(size)
+    fit = np.zeros(size)
+    D = flat[: 9 * N].reshape(N, 3, 3)
+    Dp = flat[9 * N :].reshape(P, 3, 3)
+    GD = fit[: 9 * N].reshape(N, 3, 3)
+    GDp = fit[9 * N :].reshape(P, 3, 3)
+    info[0] = OK
+    info[1] = 0
+    info[2] = -1
+    info[3] = 0
+    finfo[0] = 0.0
+    finfo[1] = np.nan
+    if has_drag:
+        cs = np.empty(samples)
+        sn_ = np.empty(samples)
+        for k in range(samples):
+            cs[k] = math.cos(2.0 * math.pi * k / samples)
+            sn_[k] = math.sin(2.0 * math.pi * k / samples)
+        vr = np.empty((N, 3))
+        vi = np.empty((N, 3))
+        lean = np.empty((N, 3, 3))
+        _parts(0.0, KR, MR, CR, IEK, IEM, IEC, EIK, EIM, EIC, EEK, EEM, EEC, Rb, IE, EI, EE)
+        code, bad = _solve(
+            0.0,
+            False,
+            D,
+            Dp,
+            prescribed,
+            noff,
+            koff,
+            bw,
+            Rb,
+            IE,
+            EI,
+            EE,
+            couple,
+            coff,
+            basis,
+            ncount,
+            nfirst,
+            ends,
+            slot,
+            free,
+            pmass,
+            R,
+            reach,
+            X,
+            A_EE,
+            uI,
+            ncol,
+            uE,
+            G,
+            rhs,
+            disp,
+            u_pts,
+            forces,
+        )
+        if code != OK:
+            info[0], info[2], info[3] = code, bad, 1
+            return
+        fit_all(
+            omega,
+            disp,
+            u_pts,
+            cur,
+            tan,
+            c_n,
+            c_t,
+            c_b,
+            c_p,
+            pcur,
+            cs,
+            sn_,
+            exact,
+            vr,
+            vi,
+            lean,
+            D,
+            Dp,
+        )
+        _parts(omega, KR, MR, CR, IEK, IEM, IEC, EIK, EIM, EIC, EEK, EEM, EEC, Rb, IE, EI, EE)
+        prev_d = disp.copy()
+        prev_p = u_pts.copy()
+        hist_R = np.empty((DEPTH + 1, size))
+        hist_G = np.empty((DEPTH + 1, size))
+        state = np.zeros(1, dtype=np.int64)
+        last = np.inf
+        converged = False
+        for it in range(1, max_iterations + 1):
+            info[1] = it
+            code, bad = _solve(
+                omega,
+                True,
+                D,
+                Dp,
+                prescribed,
+                noff,
+                koff,
+                bw,
+                Rb,
+                IE,
+                EI,
+                EE,
+                couple,
+                coff,
+                basis,
+                ncount,
+                nfirst,
+                ends,
+                slot,
+                free,
+                pmass,
+                R,
+                reach,
+                X,
+                A_EE,
+                uI,
+                ncol,
+                uE,
+                G,
+                rhs,
+                disp,
+                u_pts,
+                forces,
+            )
+            if code != OK:
+                info[0], info[2] = code, bad
+                return
+            big = 0.0
+            diff = 0.0
+            for g in range(N):
+                for a in range(3):
+                    big = max(big, abs(disp[g, a]))
+                    diff = max(diff, abs(disp[g, a] - prev_d[g, a]))
+                    prev_d[g, a] = disp[g, a]
+            for p in range(P):
+                for a in range(3):
+                    big = max(big, abs(u_pts[p, a]))
+                    diff = max(diff, abs(u_pts[p, a] - prev_p[p, a]))
+                    prev_p[p, a] = u_pts[p, a]
+            change = diff / max(big, 1e-300)
+            finfo[0] = change
+            if change <= tolerance:
+                converged = True
+                break
+            fit_all(
+                omega,
+                disp,
+                u_pts,
+                cur,
+                tan,
+                c_n,
+                c_t,
+                c_b,
+                c_p,
+                pcur,
+                cs,
+                sn_,
+                exact,
+                vr,
+                vi,
+                lean,
+                GD,
+                GDp,
+            )
+            anderson(flat, fit, hist_R, hist_G, state, change, last)
+            last = change
+        if not converged:
+            info[0] = NOT_CONVERGED
+            return
+    else:
+        _parts(omega, KR, MR, CR, IEK, IEM, IEC, EIK, EIM, EIC, EEK, EEM, EEC, Rb, IE, EI, EE)
+        code, bad = _solve(
+            omega,
+            False,
+            D,
+            Dp,
+            prescribed,
+            noff,
+            koff,
+            bw,
+            Rb,
+            IE,
+            EI,
+            EE,
+            couple,
+            coff,
+            basis,
+            ncount,
+            nfirst,
+            ends,
+            slot,
+            free,
+            pmass,
+            R,
+            reach,
+            X,
+            A_EE,
+            uI,
+            ncol,
+            uE,
+            G,
+            rhs,
+            disp,
+            u_pts,
+            forces,
+        )
+        if code != OK:
+            info[0], info[2] = code, bad
+            return
+    finfo[1] = _residual(
+        omega, has_drag, D, Dp, disp, u_pts, noff, mass, kp, ki, kv, cp, ci, cv, ends, free, pmass
+    )
