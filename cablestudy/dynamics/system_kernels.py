@@ -26,7 +26,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .assembly import assemble
+from .assembly import assemble_lines
 from .excitation import _harmonics, _table
 
 # ------------------------------------------------------------------ kinematics
@@ -244,24 +244,17 @@ def drives_at(  # noqa: ANN201
 
 
 @njit(cache=True)
-def assemble_line(l, x, v, anchor, S, W):  # noqa: ANN001, ANN201, E741
-    """The line model's forces and tangents of line ``l`` on its slices of the packed
-    system ``S`` and work ``W`` (:func:`cablestudy.dynamics.system_model.pack`)."""
-    no, eo, o2, ko = S[0], S[1], S[2], S[3]
-    n0, n1 = no[l], no[l + 1]
-    e0, e1 = eo[l], eo[l + 1]
-    q0, q1 = o2[l], o2[l + 1]
-    k0, k1 = ko[l], ko[l + 1]
-    assemble(
-        x[n0:n1], v[n0:n1], anchor[n0:n1],
-        S[4][e0:e1], S[5][e0:e1], S[6][e0:e1], S[7][n0:n1], S[8][n0:n1], S[9][n0:n1],
-        S[10][n0:n1], S[11][n0:n1], S[12][n0:n1], S[13], S[14], S[15][l], S[16][n0:n1],
-        S[17][l], S[18][n0:n1], S[19][n0:n1], S[20][n0:n1], S[21][n0:n1], S[22],
-        S[23][l], S[24][n0:n1], S[25][n0:n1], S[26][l], S[27][e0:e1], S[28][e0:e1],
-        S[29][k0:k1], S[30][e0:e1], S[31][e0:e1], S[32][e0:e1],
-        W[0][n0:n1], W[1][n0:n1], W[2][e0:e1], W[3][q0:q1], W[4][n0:n1], W[5][e0:e1],
-        W[6][n0:n1], W[7][e0:e1], W[8][e0:e1], W[9][e0:e1], W[10][n0:n1], W[11][n0:n1],
-        W[12][n0:n1], W[13][n0:n1],
+def assemble_all(x, v, anchor, S, W):  # noqa: ANN001, ANN201
+    """The line model's forces and tangents of every line of the packed system ``S``
+    into the work ``W`` (:func:`cablestudy.dynamics.system_model.pack`), all lines in
+    one call (:func:`cablestudy.dynamics.assembly.assemble_lines`)."""
+    assemble_lines(
+        S[0], S[1], S[2], S[3], x, v, anchor,
+        S[4], S[5], S[6], S[7], S[8], S[9], S[10], S[11], S[12], S[13], S[14], S[15], S[16],
+        S[17], S[18], S[19], S[20], S[21], S[22], S[23], S[24], S[25], S[26], S[27], S[28],
+        S[29], S[30], S[31], S[32],
+        W[0], W[1], W[2], W[3], W[4], W[5], W[6], W[7], W[8], W[9], W[10], W[11], W[12],
+        W[13], W[24], W[25],
     )  # fmt: skip
 
 

@@ -22,7 +22,7 @@ from numba import njit
 
 from .alpha_step import MAX_LANDING_CLIPS, MAX_STATE_CHECKS, MIN_CLIP, STATE_CHECK_FACTOR
 from .assembly import _trial_states, contact_states, states_changed, update_anchors
-from .system_kernels import assemble_line, coupled_solve, drives_at, point_forces
+from .system_kernels import assemble_all, coupled_solve, drives_at, point_forces
 
 #: :func:`system_march` return codes
 BOUNDARY, ACCEPTED, FAILED = 0, 1, 2
@@ -164,7 +164,6 @@ def system_step(  # noqa: ANN201
     iterations, converged)."""
     held = S[21]
     n = x0.shape[0]
-    n_lines = S[0].shape[0] - 1
     for i in range(n):
         if held[i]:
             for c in range(3):
@@ -195,8 +194,7 @@ def system_step(  # noqa: ANN201
     clips = 0
     it = 0
     while True:
-        for l in range(n_lines):  # noqa: E741
-            assemble_line(l, x1, v1, anchor, S, W)
+        assemble_all(x1, v1, anchor, S, W)
         if fix_states:
             fix_states = False
             _friction_states(S, W, False)
@@ -531,7 +529,6 @@ def system_static(x, anchor, S, W, r, rp, dx, dp, Fp, tol, max_it, lmin):  # noq
     p_nodes, p_off = S[38], S[39]
     ea = S[5]
     n = x.shape[0]
-    n_lines = S[0].shape[0] - 1
     v = np.zeros_like(x)
     F = W[0]
     tension = W[7]
@@ -555,8 +552,7 @@ def system_static(x, anchor, S, W, r, rp, dx, dp, Fp, tol, max_it, lmin):  # noq
     checks = 0
     it = 0
     while True:
-        for l in range(n_lines):  # noqa: E741
-            assemble_line(l, x, v, anchor, S, W)
+        assemble_all(x, v, anchor, S, W)
         if fix_states:
             fix_states = False
             _static_friction_states(S, W)
