@@ -255,4 +255,6 @@ def work_arrays(packed: PackedSystem, x: np.ndarray, v: np.ndarray) -> tuple:
         x,
         np.zeros((E, 3)),
         np.zeros(E),
+        np.zeros((2, 2, 3, 3)),
+        np.zeros(3),
     )
