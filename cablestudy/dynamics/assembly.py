@@ -681,26 +681,43 @@ def contact_states(
     Newton converged with states held fixed and return whether any changed: a node whose
     state has changed ``MAX_CONTACT_FLIPS`` times in the step (it sits on the plane,
     where neither state is consistent) goes back to the law itself (0), which the
-    Newton iterations then meet with their landing clip."""
+    Newton iterations then meet with their landing clip. One line:
+    :func:`contact_states_lines`."""
+    no = np.empty(2, dtype=np.int64)
+    no[0], no[1] = 0, x.shape[0]
+    offset = np.empty(1)
+    offset[0] = seabed_offset
+    return contact_states_lines(
+        no, x, v, seabed_normal, offset, seabed_stiffness, seabed_damping, slip_state, fix, count
+    )
+
+
+@njit(cache=True)
+def contact_states_lines(
+    no, x, v, seabed_normal, seabed_offset, seabed_stiffness, seabed_damping, slip_state, fix, count
+):  # noqa: ANN001, ANN201, E501
+    """:func:`contact_states` of lines packed one after another (line ``l`` the nodes
+    ``no[l]:no[l + 1]``, its seabed plane's offset ``seabed_offset[l]``), in one call."""
     changed = False
-    for i in range(x.shape[0]):
-        ks = seabed_stiffness[i]
-        if ks <= 0.0 or slip_state[i, 2] == 3 and fix:
-            continue
-        gap = -seabed_offset
-        vn = 0.0
-        for a in range(3):
-            gap += seabed_normal[a] * x[i, a]
-            vn += seabed_normal[a] * v[i, a]
-        touching = gap <= 0.0 and -ks * gap - seabed_damping[i] * vn > 0.0
-        want = 1 if touching else 2
-        if not fix:
-            slip_state[i, 2] = want
-            count[i] = 0
-        elif slip_state[i, 2] != want and count[i] < MAX_CONTACT_FLIPS:
-            count[i] += 1
-            slip_state[i, 2] = want if count[i] < MAX_CONTACT_FLIPS else 1
-            changed = True
+    for l in range(no.shape[0] - 1):  # noqa: E741
+        for i in range(no[l], no[l + 1]):
+            ks = seabed_stiffness[i]
+            if ks <= 0.0 or slip_state[i, 2] == 3 and fix:
+                continue
+            gap = -seabed_offset[l]
+            vn = 0.0
+            for a in range(3):
+                gap += seabed_normal[a] * x[i, a]
+                vn += seabed_normal[a] * v[i, a]
+            touching = gap <= 0.0 and -ks * gap - seabed_damping[i] * vn > 0.0
+            want = 1 if touching else 2
+            if not fix:
+                slip_state[i, 2] = want
+                count[i] = 0
+            elif slip_state[i, 2] != want and count[i] < MAX_CONTACT_FLIPS:
+                count[i] += 1
+                slip_state[i, 2] = want if count[i] < MAX_CONTACT_FLIPS else 1
+                changed = True
     return changed
 
 
