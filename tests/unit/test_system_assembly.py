@@ -59,7 +59,9 @@ def test_all_lines_in_one_call_are_each_line_bit_for_bit() -> None:
             medium,
             7,
             DynamicExtras(
-                seabed_stiffness=3e5, friction_axial=0.6, friction_lateral=0.9,
+                seabed_stiffness=3e5,
+                friction_axial=0.6,
+                friction_lateral=0.9,
                 transverse_damping=np.array([3.0, 1.0]),
             ),  # fmt: skip
         ),
