@@ -111,16 +111,37 @@ def assemble(  # noqa: ANN201
     micrometres short would drop the axial stiffness of a taut element, and Newton
     would take a huge step along the line's soft (inextensional) modes.
 
-    One line: :func:`assemble_lines` (which holds the formulation) with one line."""
-    n_el = rest_length.shape[0]
+    One line: :func:`assemble_lines` (which holds the formulation) with one line
+    (:func:`one_line`; a Newton loop takes those once and calls :func:`assemble_lines`)."""
+    no, eo, o2, ko, drag, clamp, offset, mu, uel, lel = one_line(
+        rest_length.shape[0], K_o2.shape[0], law_knots.shape[0], has_drag, clamp_direction,
+        seabed_offset, friction,
+    )  # fmt: skip
+    assemble_lines(
+        no, eo, o2, ko, x, v, anchor, rest_length, axial_stiffness, internal_damping, force,
+        drag_normal, drag_tangential, added_mass_normal, added_mass_tangential, mass,
+        current_z, current_velocity, drag, bending, clamp, transverse_damping,
+        body_added_mass, body_drag, held, seabed_normal, offset, seabed_stiffness,
+        seabed_damping, mu, law_code, law_params, law_knots, law_start, law_count, broken,
+        F, K_d, K_o, K_o2, C_d, C_o, M_d, tension, strain, taut0, contact, friction_force,
+        slip_state, trial, uel, lel,
+    )  # fmt: skip
+
+
+@njit(cache=True)
+def one_line(n_el, n_o2, n_knots, has_drag, clamp_direction, seabed_offset, friction):  # noqa: ANN001, ANN201
+    """The arguments by which :func:`assemble_lines` takes one line of ``n_el``
+    elements (its offsets ``no``, ``eo``, ``o2``, ``ko``; its ``has_drag``,
+    ``clamp_direction``, ``seabed_offset`` and ``friction`` as arrays over one line)
+    and its scratch ``uel``, ``lel``."""
     no = np.empty(2, dtype=np.int64)
     eo = np.empty(2, dtype=np.int64)
     o2 = np.empty(2, dtype=np.int64)
     ko = np.empty(2, dtype=np.int64)
     no[0], no[1] = 0, n_el + 1
     eo[0], eo[1] = 0, n_el
-    o2[0], o2[1] = 0, K_o2.shape[0]
-    ko[0], ko[1] = 0, law_knots.shape[0]
+    o2[0], o2[1] = 0, n_o2
+    ko[0], ko[1] = 0, n_knots
     drag = np.empty(1, dtype=np.bool_)
     drag[0] = has_drag
     clamp = np.empty((1, 2, 3))
@@ -131,15 +152,7 @@ def assemble(  # noqa: ANN201
     offset[0] = seabed_offset
     mu = np.empty((1, 2))
     mu[0, 0], mu[0, 1] = friction[0], friction[1]
-    assemble_lines(
-        no, eo, o2, ko, x, v, anchor, rest_length, axial_stiffness, internal_damping, force,
-        drag_normal, drag_tangential, added_mass_normal, added_mass_tangential, mass,
-        current_z, current_velocity, drag, bending, clamp, transverse_damping,
-        body_added_mass, body_drag, held, seabed_normal, offset, seabed_stiffness,
-        seabed_damping, mu, law_code, law_params, law_knots, law_start, law_count, broken,
-        F, K_d, K_o, K_o2, C_d, C_o, M_d, tension, strain, taut0, contact, friction_force,
-        slip_state, trial, np.empty((n_el, 3)), np.empty(n_el),
-    )  # fmt: skip
+    return no, eo, o2, ko, drag, clamp, offset, mu, np.empty((n_el, 3)), np.empty(n_el)
 
 
 # fmt: off
