@@ -115,3 +115,25 @@ def test_all_lines_in_one_call_are_each_line_bit_for_bit() -> None:
     # the case exercises what it claims: contact, friction, slack and taut elements
     assert np.any(W[10] > 0.0) and np.any(W[11] != 0.0)
     assert np.any(W[7] == 0.0) and np.any(W[7] > 0.0)
+
+
+def test_lines_share_a_discretisation_only_when_alike_in_every_input() -> None:
+    """The system model discretises lines alike in every input once
+    (:func:`cablestudy.analyses.system_dynamic._equal`): a copy is alike; a line that
+    differs in one array entry, in one scalar of its extras, or in its medium is not."""
+    from dataclasses import replace
+
+    from cablestudy.analyses.system_dynamic import _equal
+
+    table = TableLaw((0.0, 0.005, 0.01, 0.02, 0.04), (0.0, 1.0e4, 3.0e4, 9.0e4, 2.5e5))
+    lm = _line(40.0, 0.0, table)
+    med = Medium(density=1025.0, gravity=G, depth=30.0)
+    ex = DynamicExtras(seabed_stiffness=3e5, transverse_damping=np.array([3.0, 1.0]))
+    same = (_line(40.0, 0.0, table), replace(med), replace(ex))
+    assert _equal((lm, med, ex), same)
+    mass = lm.mass.copy()
+    mass[1] *= 1.0 + 1e-12
+    assert not _equal((lm, med, ex), (replace(lm, mass=mass), med, ex))
+    assert not _equal((lm, med, ex), (lm, med, replace(ex, friction_axial=0.1)))
+    assert not _equal((lm, med, ex), (lm, replace(med, depth=31.0), ex))
+    assert not _equal((lm, med, ex), (_line(40.0, 0.0, None), med, ex))
