@@ -14,7 +14,7 @@ from numba import njit
 from .assembly import (
     _trial_states,
     assemble_lines,
-    contact_states,
+    contact_states_lines,
     one_line,
     solve_banded,
     states_changed,
@@ -151,27 +151,20 @@ def alpha_step(
     # checked once they converge
     fixed_contact = has_seabed and slip_state.shape[1] > 2
     flips = np.zeros(n, dtype=np.int64)
-    if fixed_contact:
-        contact_states(
-            x1,
-            v1,
-            seabed_normal,
-            seabed_offset,
-            seabed_stiffness,
-            seabed_damping,
-            slip_state,
-            False,
-            flips,
-        )
-    checks = 0
-    checked_early = False
-    clips = 0
-    it = 0
-    # the line as assemble_lines takes it, once for the step's iterations
+    # the line as assemble_lines and contact_states_lines take it, once for the step
     one = one_line(
         rest_length.shape[0], K_o2.shape[0], law_knots.shape[0], has_drag, clamp_direction,
         seabed_offset, friction,
     )  # fmt: skip
+    if fixed_contact:
+        contact_states_lines(
+            one[0], x1, v1, seabed_normal, one[6], seabed_stiffness, seabed_damping,
+            slip_state, False, flips,
+        )  # fmt: skip
+    checks = 0
+    checked_early = False
+    clips = 0
+    it = 0
     while True:
         assemble_lines(
             one[0], one[1], one[2], one[3], x1, v1, anchor, rest_length, axial_stiffness,
@@ -210,17 +203,10 @@ def alpha_step(
         if res <= tol or early:
             checked_early = True
             if checks < MAX_STATE_CHECKS:
-                changed = fixed_contact and contact_states(
-                    x1,
-                    v1,
-                    seabed_normal,
-                    seabed_offset,
-                    seabed_stiffness,
-                    seabed_damping,
-                    slip_state,
-                    True,
-                    flips,
-                )
+                changed = fixed_contact and contact_states_lines(
+                    one[0], x1, v1, seabed_normal, one[6], seabed_stiffness, seabed_damping,
+                    slip_state, True, flips,
+                )  # fmt: skip
                 if has_friction and states_changed(slip_state, trial, contact, friction):
                     changed = True
                 if changed:

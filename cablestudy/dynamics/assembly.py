@@ -316,8 +316,7 @@ def assemble_lines(  # noqa: ANN201, PLR0912, PLR0915
                     F[node, a] += kb * acc
             _add_bend_blocks(K_d, K_o, K_o2, kb, nodes, G, count, n0, e0, q0)
         drag = has_drag[l]
-        mu = friction[l]
-        sliding = mu[0] > 0.0 or mu[1] > 0.0
+        sliding = friction[l, 0] > 0.0 or friction[l, 1] > 0.0
         for j in range(n):
             i = n0 + j
             lo = j - 1 if j > 0 else 0
@@ -414,7 +413,7 @@ def assemble_lines(  # noqa: ANN201, PLR0912, PLR0915
                             ks,
                             cs,
                             fn,
-                            mu,
+                            friction[l],
                             F,
                             K_d,
                             C_d,
