@@ -11,6 +11,7 @@ count, and counted in :data:`cablestudy.counters.COUNTERS` (``system_static_solv
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections import OrderedDict
 from typing import Any
@@ -64,13 +65,21 @@ def system_model_dynamic(case: Case, system: Any, static: Any) -> tuple[Any, ...
     study = case.study
     names = list(study.lines)
     lines, starts, tol, fallback = [], [], [], []
+    made: list[tuple[tuple, np.ndarray, Any]] = []  # (inputs, nodes, model) of each kind
     for k, sl in enumerate(system.lines):
         lm = sl.problem.line
         med = sl.problem.medium
         res = static.lines[k]
-        s_nodes = uniform_nodes(lm, dyn.elements)
+        extras = system_line_extras(study, names[k], lm)
+        # lines alike in every input (a spread's legs, a spar's bridles) share one
+        # discretisation: it depends on these alone, not on where the line lies
+        same = next((m for m in made if _equal(m[0], (lm, med, extras))), None)
+        if same is None:
+            s_nodes = uniform_nodes(lm, dyn.elements)
+            same = ((lm, med, extras), s_nodes, discretise_nodes(lm, med, s_nodes, extras))
+            made.append(same)
+        s_nodes, line = same[1], same[2]
         start = np.stack([np.interp(s_nodes, res.s, res.position[:, c]) for c in range(3)], 1)
-        line = discretise_nodes(lm, med, s_nodes, system_line_extras(study, names[k], lm))
         scale = float(np.nanmax(res.tension))
         if line.has_seabed:
             scale = max(scale, float(np.max(np.abs(line.force))))
@@ -145,6 +154,22 @@ def system_model_dynamic(case: Case, system: Any, static: Any) -> tuple[Any, ...
     _MODEL_CACHE[key] = out
     trim_lru(_MODEL_CACHE, _CACHE_SIZE)
     return out
+
+
+def _equal(a: Any, b: Any) -> bool:
+    """Whether two model inputs are equal in every field (dataclasses field by field,
+    arrays element by element with their shapes and types, sequences item by item)."""
+    if a is b:
+        return True
+    if type(a) is not type(b):
+        return False
+    if isinstance(a, np.ndarray):
+        return a.shape == b.shape and a.dtype == b.dtype and bool(np.array_equal(a, b))
+    if dataclasses.is_dataclass(a):
+        return all(_equal(getattr(a, f.name), getattr(b, f.name)) for f in dataclasses.fields(a))
+    if isinstance(a, tuple | list):
+        return len(a) == len(b) and all(_equal(x, y) for x, y in zip(a, b, strict=True))
+    return bool(a == b)
 
 
 def slot_motion(study: Any, driven: list[int]) -> tuple[Any, np.ndarray, float, float]:

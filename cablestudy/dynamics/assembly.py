@@ -18,9 +18,11 @@ from .discrete_line import DiscreteLine
 
 
 @njit(cache=True)
-def _add_bend_blocks(K_d, K_o, K_o2, kb, nodes, G, count):  # noqa: ANN001, ANN202
+def _add_bend_blocks(K_d, K_o, K_o2, kb, nodes, G, count, n0, e0, q0):  # noqa: ANN001, ANN202
     """Add the Gauss-Newton blocks ``kb G_p G_q`` of one curvature term over the
-    ``count`` nodes in ``nodes`` (increasing, consecutive) with 3 x 3 blocks ``G``."""
+    ``count`` nodes in ``nodes`` (increasing, consecutive; counted within the line
+    whose first node, element and two-off block are ``n0``, ``e0``, ``q0``) with
+    3 x 3 blocks ``G``."""
     for p in range(count):
         for q in range(p, count):
             i = nodes[p]
@@ -32,11 +34,11 @@ def _add_bend_blocks(K_d, K_o, K_o2, kb, nodes, G, count):  # noqa: ANN001, ANN2
                         acc += G[p, a, c] * G[q, c, b]
                     acc *= kb
                     if j == i:
-                        K_d[i, a, b] += acc
+                        K_d[n0 + i, a, b] += acc
                     elif j == i + 1:
-                        K_o[i, a, b] += acc
+                        K_o[e0 + i, a, b] += acc
                     else:
-                        K_o2[i, a, b] += acc
+                        K_o2[q0 + i, a, b] += acc
 
 
 @njit(cache=True)
@@ -80,55 +82,18 @@ def axial_law(code, params, knots, start, count, ea, eps):  # noqa: ANN001, ANN2
     return t, dt
 
 
+# fmt: off
 @njit(cache=True, nogil=True)
-def assemble(
-    x,
-    v,
-    anchor,
-    rest_length,
-    axial_stiffness,
-    internal_damping,
-    force,
-    drag_normal,
-    drag_tangential,
-    added_mass_normal,
-    added_mass_tangential,
-    mass,
-    current_z,
-    current_velocity,
-    has_drag,
-    bending,
-    clamp_direction,
-    transverse_damping,
-    body_added_mass,
-    body_drag,
-    held,
-    seabed_normal,
-    seabed_offset,
-    seabed_stiffness,
-    seabed_damping,
-    friction,
-    law_code,
-    law_params,
-    law_knots,
-    law_start,
-    law_count,
-    broken,
-    F,
-    K_d,
-    K_o,
-    K_o2,
-    C_d,
-    C_o,
-    M_d,
-    tension,
-    strain,
-    taut0,
-    contact,
-    friction_force,
-    slip_state,
-    trial,
-):  # noqa: ANN001, ANN201
+def assemble(  # noqa: ANN201
+    x, v, anchor, rest_length, axial_stiffness, internal_damping, force, drag_normal,
+    drag_tangential, added_mass_normal, added_mass_tangential, mass, current_z,
+    current_velocity, has_drag, bending, clamp_direction, transverse_damping,
+    body_added_mass, body_drag, held, seabed_normal, seabed_offset, seabed_stiffness,
+    seabed_damping, friction, law_code, law_params, law_knots, law_start, law_count,
+    broken, F, K_d, K_o, K_o2, C_d, C_o, M_d, tension, strain, taut0, contact,
+    friction_force, slip_state, trial,
+):  # noqa: ANN001
+    # fmt: on
     """Nodal out-of-balance force ``F = f_internal - f_external`` [N] (n + 1, 3) at
     positions ``x`` [m] and velocities ``v`` [m/s] (friction anchors ``anchor`` [m]),
     so that ``M a + F = 0``; its tangents: stiffness ``K = dF/dx`` and damping
@@ -144,245 +109,318 @@ def assemble(
     in ``taut0`` (taut at the start of the time step) keeps its axial stiffness in
     ``K`` even where this iterate makes it slack: otherwise a predictor a few
     micrometres short would drop the axial stiffness of a taut element, and Newton
-    would take a huge step along the line's soft (inextensional) modes."""
-    n_el = rest_length.shape[0]
-    n = n_el + 1
-    for i in range(n):
-        contact[i] = 0.0
+    would take a huge step along the line's soft (inextensional) modes.
+
+    One line: :func:`assemble_lines` (which holds the formulation) with one line
+    (:func:`one_line`; a Newton loop takes those once and calls :func:`assemble_lines`)."""
+    no, eo, o2, ko, drag, clamp, offset, mu, uel, lel = one_line(
+        rest_length.shape[0], K_o2.shape[0], law_knots.shape[0], has_drag, clamp_direction,
+        seabed_offset, friction,
+    )  # fmt: skip
+    assemble_lines(
+        no, eo, o2, ko, x, v, anchor, rest_length, axial_stiffness, internal_damping, force,
+        drag_normal, drag_tangential, added_mass_normal, added_mass_tangential, mass,
+        current_z, current_velocity, drag, bending, clamp, transverse_damping,
+        body_added_mass, body_drag, held, seabed_normal, offset, seabed_stiffness,
+        seabed_damping, mu, law_code, law_params, law_knots, law_start, law_count, broken,
+        F, K_d, K_o, K_o2, C_d, C_o, M_d, tension, strain, taut0, contact, friction_force,
+        slip_state, trial, uel, lel,
+    )  # fmt: skip
+
+
+@njit(cache=True)
+def one_line(n_el, n_o2, n_knots, has_drag, clamp_direction, seabed_offset, friction):  # noqa: ANN001, ANN201
+    """The arguments by which :func:`assemble_lines` takes one line of ``n_el``
+    elements (its offsets ``no``, ``eo``, ``o2``, ``ko``; its ``has_drag``,
+    ``clamp_direction``, ``seabed_offset`` and ``friction`` as arrays over one line)
+    and its scratch ``uel``, ``lel``."""
+    no = np.empty(2, dtype=np.int64)
+    eo = np.empty(2, dtype=np.int64)
+    o2 = np.empty(2, dtype=np.int64)
+    ko = np.empty(2, dtype=np.int64)
+    no[0], no[1] = 0, n_el + 1
+    eo[0], eo[1] = 0, n_el
+    o2[0], o2[1] = 0, n_o2
+    ko[0], ko[1] = 0, n_knots
+    drag = np.empty(1, dtype=np.bool_)
+    drag[0] = has_drag
+    clamp = np.empty((1, 2, 3))
+    for end in range(2):
         for a in range(3):
-            F[i, a] = -force[i, a]
-            friction_force[i, a] = 0.0
-            for b in range(3):
-                K_d[i, a, b] = 0.0
-                C_d[i, a, b] = 0.0
-                M_d[i, a, b] = 0.0
-    for e in range(K_o2.shape[0]):
-        for a in range(3):
-            for b in range(3):
-                K_o2[e, a, b] = 0.0
-    uel = np.empty((n_el, 3))
-    lel = np.empty(n_el)
+            clamp[0, end, a] = clamp_direction[end, a]
+    offset = np.empty(1)
+    offset[0] = seabed_offset
+    mu = np.empty((1, 2))
+    mu[0, 0], mu[0, 1] = friction[0], friction[1]
+    return no, eo, o2, ko, drag, clamp, offset, mu, np.empty((n_el, 3)), np.empty(n_el)
+
+
+# fmt: off
+@njit(cache=True, nogil=True)
+def assemble_lines(  # noqa: ANN201, PLR0912, PLR0915
+    no, eo, o2, ko, x, v, anchor, rest_length, axial_stiffness, internal_damping, force,
+    drag_normal, drag_tangential, added_mass_normal, added_mass_tangential, mass,
+    current_z, current_velocity, has_drag, bending, clamp_direction, transverse_damping,
+    body_added_mass, body_drag, held, seabed_normal, seabed_offset, seabed_stiffness,
+    seabed_damping, friction, law_code, law_params, law_knots, law_start, law_count,
+    broken, F, K_d, K_o, K_o2, C_d, C_o, M_d, tension, strain, taut0, contact,
+    friction_force, slip_state, trial, uel, lel,
+):  # noqa: ANN001
+    # fmt: on
+    """:func:`assemble` of lines packed one after another in flat arrays, all in one
+    call (no allocation per line: a system's Newton iteration assembles every line at
+    once). Line ``l`` owns nodes ``no[l]:no[l + 1]``, elements ``eo[l]:eo[l + 1]``,
+    two-off blocks ``o2[l]:o2[l + 1]`` and law knots ``ko[l]:ko[l + 1]`` (its
+    ``law_start`` counted from ``ko[l]``); per line ``has_drag`` (L,),
+    ``clamp_direction`` (L, 2, 3), ``seabed_offset`` (L,), ``friction`` (L, 2); the
+    rest per node or element as :func:`assemble`'s. ``uel`` (E, 3), ``lel`` (E,):
+    scratch (the elements' unit vectors and lengths)."""
     u = np.empty(3)
-    for e in range(n_el):
-        length2 = 0.0
-        for a in range(3):
-            u[a] = x[e + 1, a] - x[e, a]
-            length2 += u[a] * u[a]
-        length = math.sqrt(length2)
-        rate = 0.0
-        for a in range(3):
-            u[a] /= length
-            uel[e, a] = u[a]
-            rate += u[a] * (v[e + 1, a] - v[e, a])
-        lel[e] = length
-        l0 = rest_length[e]
-        eps = length / l0 - 1.0
-        strain[e] = eps
-        if broken[e]:
-            tension[e] = 0.0
-            for a in range(3):
-                for b in range(3):
-                    K_o[e, a, b] = 0.0
-                    C_o[e, a, b] = 0.0
-            continue
-        t = 0.0
-        kax = 0.0
-        cax = 0.0
-        if eps > 0.0:
-            t_el, k_el = axial_law(
-                law_code[e],
-                law_params[e],
-                law_knots,
-                law_start[e],
-                law_count[e],
-                axial_stiffness[e],
-                eps,
-            )
-            t = t_el + internal_damping[e] * rate / l0
-            if t > 0.0:
-                kax = k_el / l0
-                cax = internal_damping[e] / l0
-            else:
-                t = 0.0
-        if taut0[e] and kax == 0.0:
-            kax = axial_stiffness[e] / l0
-        tension[e] = t
-        kg = t / length
-        for a in range(3):
-            F[e + 1, a] += t * u[a]
-            F[e, a] -= t * u[a]
-            for b in range(3):
-                k = (kax - kg) * u[a] * u[b]
-                if a == b:
-                    k += kg
-                c = cax * u[a] * u[b]
-                K_d[e, a, b] += k
-                K_d[e + 1, a, b] += k
-                K_o[e, a, b] = -k
-                C_d[e, a, b] += c
-                C_d[e + 1, a, b] += c
-                C_o[e, a, b] = -c
-    # bending: curvature terms at interior nodes and clamped ends
     G = np.zeros((3, 3, 3))
     nodes = np.zeros(3, dtype=np.int64)
-    for i in range(n):
-        kb = bending[i]
-        if kb == 0.0:
-            continue
-        if 0 < i < n - 1:
-            ea_ = i - 1
-            eb_ = i
-            if broken[ea_] or broken[eb_]:
-                continue  # no moment across a parted element
-            la = lel[ea_]
-            lb = lel[eb_]
-            # r = u_b - u_a; E = kb/2 |r|^2; G_p = d r / d x_p
-            for a in range(3):
-                for b in range(3):
-                    pa = (1.0 if a == b else 0.0) - uel[ea_, a] * uel[ea_, b]
-                    pb = (1.0 if a == b else 0.0) - uel[eb_, a] * uel[eb_, b]
-                    G[0, a, b] = pa / la
-                    G[1, a, b] = -pa / la - pb / lb
-                    G[2, a, b] = pb / lb
-            nodes[0] = i - 1
-            nodes[1] = i
-            nodes[2] = i + 1
-            count = 3
-            for a in range(3):
-                r_a = uel[eb_, a] - uel[ea_, a]
-                u[a] = r_a
-        else:
-            end = 0 if i == 0 else 1
-            e = 0 if i == 0 else n_el - 1
-            if broken[e]:
-                continue
-            le = lel[e]
-            # r = u_e - d; G for the element's first and second node
-            for a in range(3):
-                for b in range(3):
-                    p = (1.0 if a == b else 0.0) - uel[e, a] * uel[e, b]
-                    G[0, a, b] = -p / le
-                    G[1, a, b] = p / le
-                u[a] = uel[e, a] - clamp_direction[end, a]
-            nodes[0] = e
-            nodes[1] = e + 1
-            count = 2
-        # force: kb G_p^T r (G symmetric)
-        for p in range(count):
-            node = nodes[p]
-            for a in range(3):
-                acc = 0.0
-                for c in range(3):
-                    acc += G[p, a, c] * u[c]
-                F[node, a] += kb * acc
-        _add_bend_blocks(K_d, K_o, K_o2, kb, nodes, G, count)
     tan = np.empty(3)
     rel = np.empty(3)
     un = np.empty(3)
     nrm = seabed_normal
-    for i in range(n):
-        lo = i - 1 if i > 0 else 0
-        hi = i + 1 if i < n - 1 else n - 1
-        if 0 < i < n - 1:
-            # a node beside a parted element is the end of its part
-            if broken[i - 1]:
-                lo = i
-            elif broken[i]:
-                hi = i
-        norm2 = 0.0
-        for a in range(3):
-            tan[a] = x[hi, a] - x[lo, a]
-            norm2 += tan[a] * tan[a]
-        norm = math.sqrt(norm2)
-        for a in range(3):
-            tan[a] /= norm
-        mn = added_mass_normal[i]
-        mt = added_mass_tangential[i]
-        for a in range(3):
-            for b in range(3):
-                M_d[i, a, b] = (mt - mn) * tan[a] * tan[b]
-            M_d[i, a, a] += mass[i] + mn + body_added_mass[i]
-        ctr = transverse_damping[i]
-        if ctr > 0.0:
-            vt = v[i, 0] * tan[0] + v[i, 1] * tan[1] + v[i, 2] * tan[2]
+    for l in range(no.shape[0] - 1):  # noqa: E741
+        n0 = no[l]
+        n = no[l + 1] - n0
+        n_el = n - 1
+        e0 = eo[l]
+        q0 = o2[l]
+        k0 = ko[l]
+        for i in range(n0, n0 + n):
+            contact[i] = 0.0
             for a in range(3):
-                F[i, a] += ctr * (v[i, a] - vt * tan[a])
+                F[i, a] = -force[i, a]
+                friction_force[i, a] = 0.0
                 for b in range(3):
-                    C_d[i, a, b] += ctr * ((1.0 if a == b else 0.0) - tan[a] * tan[b])
-        if has_drag:
+                    K_d[i, a, b] = 0.0
+                    C_d[i, a, b] = 0.0
+                    M_d[i, a, b] = 0.0
+        for e in range(q0, o2[l + 1]):
             for a in range(3):
-                if current_z.shape[0] > 0:
-                    rel[a] = np.interp(x[i, 2], current_z, current_velocity[:, a]) - v[i, a]
+                for b in range(3):
+                    K_o2[e, a, b] = 0.0
+        for el in range(n_el):
+            e = e0 + el
+            i0 = n0 + el
+            length2 = 0.0
+            for a in range(3):
+                u[a] = x[i0 + 1, a] - x[i0, a]
+                length2 += u[a] * u[a]
+            length = math.sqrt(length2)
+            rate = 0.0
+            for a in range(3):
+                u[a] /= length
+                uel[e, a] = u[a]
+                rate += u[a] * (v[i0 + 1, a] - v[i0, a])
+            lel[e] = length
+            l0 = rest_length[e]
+            eps = length / l0 - 1.0
+            strain[e] = eps
+            if broken[e]:
+                tension[e] = 0.0
+                for a in range(3):
+                    for b in range(3):
+                        K_o[e, a, b] = 0.0
+                        C_o[e, a, b] = 0.0
+                continue
+            t = 0.0
+            kax = 0.0
+            cax = 0.0
+            if eps > 0.0:
+                t_el, k_el = axial_law(
+                    law_code[e],
+                    law_params[e],
+                    law_knots,
+                    k0 + law_start[e],
+                    law_count[e],
+                    axial_stiffness[e],
+                    eps,
+                )
+                t = t_el + internal_damping[e] * rate / l0
+                if t > 0.0:
+                    kax = k_el / l0
+                    cax = internal_damping[e] / l0
                 else:
-                    rel[a] = -v[i, a]
-            rt = rel[0] * tan[0] + rel[1] * tan[1] + rel[2] * tan[2]
-            sn2 = 0.0
+                    t = 0.0
+            if taut0[e] and kax == 0.0:
+                kax = axial_stiffness[e] / l0
+            tension[e] = t
+            kg = t / length
             for a in range(3):
-                un[a] = rel[a] - rt * tan[a]
-                sn2 += un[a] * un[a]
-            sn = math.sqrt(sn2)
-            cn = drag_normal[i]
-            ct = drag_tangential[i]
-            st = abs(rt)
-            for a in range(3):
-                F[i, a] -= cn * sn * un[a] + ct * st * rt * tan[a]
+                F[i0 + 1, a] += t * u[a]
+                F[i0, a] -= t * u[a]
                 for b in range(3):
-                    c = 2.0 * ct * st * tan[a] * tan[b] - cn * sn * tan[a] * tan[b]
-                    if sn > 0.0:
-                        c += cn * un[a] * un[b] / sn
+                    k = (kax - kg) * u[a] * u[b]
                     if a == b:
-                        c += cn * sn
-                    C_d[i, a, b] += c
-            cb = body_drag[i]
-            if cb > 0.0:
-                sr = math.sqrt(rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2])
+                        k += kg
+                    c = cax * u[a] * u[b]
+                    K_d[i0, a, b] += k
+                    K_d[i0 + 1, a, b] += k
+                    K_o[e, a, b] = -k
+                    C_d[i0, a, b] += c
+                    C_d[i0 + 1, a, b] += c
+                    C_o[e, a, b] = -c
+        # bending: curvature terms at interior nodes and clamped ends
+        for i in range(n):
+            kb = bending[n0 + i]
+            if kb == 0.0:
+                continue
+            if 0 < i < n - 1:
+                ea_ = e0 + i - 1
+                eb_ = e0 + i
+                if broken[ea_] or broken[eb_]:
+                    continue  # no moment across a parted element
+                la = lel[ea_]
+                lb = lel[eb_]
+                # r = u_b - u_a; E = kb/2 |r|^2; G_p = d r / d x_p
                 for a in range(3):
-                    F[i, a] -= cb * sr * rel[a]
                     for b in range(3):
-                        c = 0.0
-                        if sr > 0.0:
-                            c = cb * rel[a] * rel[b] / sr
+                        pa = (1.0 if a == b else 0.0) - uel[ea_, a] * uel[ea_, b]
+                        pb = (1.0 if a == b else 0.0) - uel[eb_, a] * uel[eb_, b]
+                        G[0, a, b] = pa / la
+                        G[1, a, b] = -pa / la - pb / lb
+                        G[2, a, b] = pb / lb
+                nodes[0] = i - 1
+                nodes[1] = i
+                nodes[2] = i + 1
+                count = 3
+                for a in range(3):
+                    r_a = uel[eb_, a] - uel[ea_, a]
+                    u[a] = r_a
+            else:
+                end = 0 if i == 0 else 1
+                e = 0 if i == 0 else n_el - 1
+                if broken[e0 + e]:
+                    continue
+                le = lel[e0 + e]
+                # r = u_e - d; G for the element's first and second node
+                for a in range(3):
+                    for b in range(3):
+                        p = (1.0 if a == b else 0.0) - uel[e0 + e, a] * uel[e0 + e, b]
+                        G[0, a, b] = -p / le
+                        G[1, a, b] = p / le
+                    u[a] = uel[e0 + e, a] - clamp_direction[l, end, a]
+                nodes[0] = e
+                nodes[1] = e + 1
+                count = 2
+            # force: kb G_p^T r (G symmetric)
+            for p in range(count):
+                node = n0 + nodes[p]
+                for a in range(3):
+                    acc = 0.0
+                    for c in range(3):
+                        acc += G[p, a, c] * u[c]
+                    F[node, a] += kb * acc
+            _add_bend_blocks(K_d, K_o, K_o2, kb, nodes, G, count, n0, e0, q0)
+        drag = has_drag[l]
+        sliding = friction[l, 0] > 0.0 or friction[l, 1] > 0.0
+        for j in range(n):
+            i = n0 + j
+            lo = j - 1 if j > 0 else 0
+            hi = j + 1 if j < n - 1 else n - 1
+            if 0 < j < n - 1:
+                # a node beside a parted element is the end of its part
+                if broken[e0 + j - 1]:
+                    lo = j
+                elif broken[e0 + j]:
+                    hi = j
+            norm2 = 0.0
+            for a in range(3):
+                tan[a] = x[n0 + hi, a] - x[n0 + lo, a]
+                norm2 += tan[a] * tan[a]
+            norm = math.sqrt(norm2)
+            for a in range(3):
+                tan[a] /= norm
+            mn = added_mass_normal[i]
+            mt = added_mass_tangential[i]
+            for a in range(3):
+                for b in range(3):
+                    M_d[i, a, b] = (mt - mn) * tan[a] * tan[b]
+                M_d[i, a, a] += mass[i] + mn + body_added_mass[i]
+            ctr = transverse_damping[i]
+            if ctr > 0.0:
+                vt = v[i, 0] * tan[0] + v[i, 1] * tan[1] + v[i, 2] * tan[2]
+                for a in range(3):
+                    F[i, a] += ctr * (v[i, a] - vt * tan[a])
+                    for b in range(3):
+                        C_d[i, a, b] += ctr * ((1.0 if a == b else 0.0) - tan[a] * tan[b])
+            if drag:
+                for a in range(3):
+                    if current_z.shape[0] > 0:
+                        rel[a] = np.interp(x[i, 2], current_z, current_velocity[:, a]) - v[i, a]
+                    else:
+                        rel[a] = -v[i, a]
+                rt = rel[0] * tan[0] + rel[1] * tan[1] + rel[2] * tan[2]
+                sn2 = 0.0
+                for a in range(3):
+                    un[a] = rel[a] - rt * tan[a]
+                    sn2 += un[a] * un[a]
+                sn = math.sqrt(sn2)
+                cn = drag_normal[i]
+                ct = drag_tangential[i]
+                st = abs(rt)
+                for a in range(3):
+                    F[i, a] -= cn * sn * un[a] + ct * st * rt * tan[a]
+                    for b in range(3):
+                        c = 2.0 * ct * st * tan[a] * tan[b] - cn * sn * tan[a] * tan[b]
+                        if sn > 0.0:
+                            c += cn * un[a] * un[b] / sn
                         if a == b:
-                            c += cb * sr
+                            c += cn * sn
                         C_d[i, a, b] += c
-        ks = seabed_stiffness[i]
-        if ks > 0.0:
-            gap = nrm[0] * x[i, 0] + nrm[1] * x[i, 1] + nrm[2] * x[i, 2] - seabed_offset
-            # contact: by the law (state 0: touching where gap <= 0, pushing only), or
-            # held fixed during a time step's Newton iterations (1: touching, the
-            # spring and damper linear, 2: not), see contact_changed
-            cstate = slip_state[i, 2] if slip_state.shape[1] > 2 else 0
-            if ((cstate == 0 or cstate == 3) and gap <= 0.0) or cstate == 1:
-                vn = nrm[0] * v[i, 0] + nrm[1] * v[i, 1] + nrm[2] * v[i, 2]
-                cs = seabed_damping[i] if cstate != 3 else 0.0
-                fn = -ks * gap - cs * vn
-                if fn < 0.0 and cstate != 1:
-                    fn = 0.0
-                    cs = 0.0
-                contact[i] = max(fn, 0.0)
-                for a in range(3):
-                    F[i, a] -= fn * nrm[a]
-                    for b in range(3):
-                        K_d[i, a, b] += ks * nrm[a] * nrm[b]
-                        C_d[i, a, b] += cs * nrm[a] * nrm[b]
-                if fn > 0.0 and (friction[0] > 0.0 or friction[1] > 0.0):
-                    _friction(
-                        i,
-                        x,
-                        anchor,
-                        tan,
-                        nrm,
-                        ks,
-                        cs,
-                        fn,
-                        friction,
-                        F,
-                        K_d,
-                        C_d,
-                        friction_force,
-                        slip_state,
-                        trial,
-                    )
+                cb = body_drag[i]
+                if cb > 0.0:
+                    sr = math.sqrt(rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2])
+                    for a in range(3):
+                        F[i, a] -= cb * sr * rel[a]
+                        for b in range(3):
+                            c = 0.0
+                            if sr > 0.0:
+                                c = cb * rel[a] * rel[b] / sr
+                            if a == b:
+                                c += cb * sr
+                            C_d[i, a, b] += c
+            ks = seabed_stiffness[i]
+            if ks > 0.0:
+                gap = nrm[0] * x[i, 0] + nrm[1] * x[i, 1] + nrm[2] * x[i, 2] - seabed_offset[l]
+                # contact: by the law (state 0: touching where gap <= 0, pushing only), or
+                # held fixed during a time step's Newton iterations (1: touching, the
+                # spring and damper linear, 2: not), see contact_changed
+                cstate = slip_state[i, 2] if slip_state.shape[1] > 2 else 0
+                if ((cstate == 0 or cstate == 3) and gap <= 0.0) or cstate == 1:
+                    vn = nrm[0] * v[i, 0] + nrm[1] * v[i, 1] + nrm[2] * v[i, 2]
+                    cs = seabed_damping[i] if cstate != 3 else 0.0
+                    fn = -ks * gap - cs * vn
+                    if fn < 0.0 and cstate != 1:
+                        fn = 0.0
+                        cs = 0.0
+                    contact[i] = max(fn, 0.0)
+                    for a in range(3):
+                        F[i, a] -= fn * nrm[a]
+                        for b in range(3):
+                            K_d[i, a, b] += ks * nrm[a] * nrm[b]
+                            C_d[i, a, b] += cs * nrm[a] * nrm[b]
+                    if fn > 0.0 and sliding:
+                        _friction(
+                            i,
+                            x,
+                            anchor,
+                            tan,
+                            nrm,
+                            ks,
+                            cs,
+                            fn,
+                            friction[l],
+                            F,
+                            K_d,
+                            C_d,
+                            friction_force,
+                            slip_state,
+                            trial,
+                        )
 
 
 @njit(cache=True)
@@ -655,26 +693,43 @@ def contact_states(
     Newton converged with states held fixed and return whether any changed: a node whose
     state has changed ``MAX_CONTACT_FLIPS`` times in the step (it sits on the plane,
     where neither state is consistent) goes back to the law itself (0), which the
-    Newton iterations then meet with their landing clip."""
+    Newton iterations then meet with their landing clip. One line:
+    :func:`contact_states_lines`."""
+    no = np.empty(2, dtype=np.int64)
+    no[0], no[1] = 0, x.shape[0]
+    offset = np.empty(1)
+    offset[0] = seabed_offset
+    return contact_states_lines(
+        no, x, v, seabed_normal, offset, seabed_stiffness, seabed_damping, slip_state, fix, count
+    )
+
+
+@njit(cache=True)
+def contact_states_lines(
+    no, x, v, seabed_normal, seabed_offset, seabed_stiffness, seabed_damping, slip_state, fix, count
+):  # noqa: ANN001, ANN201, E501
+    """:func:`contact_states` of lines packed one after another (line ``l`` the nodes
+    ``no[l]:no[l + 1]``, its seabed plane's offset ``seabed_offset[l]``), in one call."""
     changed = False
-    for i in range(x.shape[0]):
-        ks = seabed_stiffness[i]
-        if ks <= 0.0 or slip_state[i, 2] == 3 and fix:
-            continue
-        gap = -seabed_offset
-        vn = 0.0
-        for a in range(3):
-            gap += seabed_normal[a] * x[i, a]
-            vn += seabed_normal[a] * v[i, a]
-        touching = gap <= 0.0 and -ks * gap - seabed_damping[i] * vn > 0.0
-        want = 1 if touching else 2
-        if not fix:
-            slip_state[i, 2] = want
-            count[i] = 0
-        elif slip_state[i, 2] != want and count[i] < MAX_CONTACT_FLIPS:
-            count[i] += 1
-            slip_state[i, 2] = want if count[i] < MAX_CONTACT_FLIPS else 1
-            changed = True
+    for l in range(no.shape[0] - 1):  # noqa: E741
+        for i in range(no[l], no[l + 1]):
+            ks = seabed_stiffness[i]
+            if ks <= 0.0 or slip_state[i, 2] == 3 and fix:
+                continue
+            gap = -seabed_offset[l]
+            vn = 0.0
+            for a in range(3):
+                gap += seabed_normal[a] * x[i, a]
+                vn += seabed_normal[a] * v[i, a]
+            touching = gap <= 0.0 and -ks * gap - seabed_damping[i] * vn > 0.0
+            want = 1 if touching else 2
+            if not fix:
+                slip_state[i, 2] = want
+                count[i] = 0
+            elif slip_state[i, 2] != want and count[i] < MAX_CONTACT_FLIPS:
+                count[i] += 1
+                slip_state[i, 2] = want if count[i] < MAX_CONTACT_FLIPS else 1
+                changed = True
     return changed
 
 

@@ -26,7 +26,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .assembly import assemble
+from .assembly import assemble_lines
 from .excitation import _harmonics, _table
 
 # ------------------------------------------------------------------ kinematics
@@ -244,24 +244,17 @@ def drives_at(  # noqa: ANN201
 
 
 @njit(cache=True)
-def assemble_line(l, x, v, anchor, S, W):  # noqa: ANN001, ANN201, E741
-    """The line model's forces and tangents of line ``l`` on its slices of the packed
-    system ``S`` and work ``W`` (:func:`cablestudy.dynamics.system_model.pack`)."""
-    no, eo, o2, ko = S[0], S[1], S[2], S[3]
-    n0, n1 = no[l], no[l + 1]
-    e0, e1 = eo[l], eo[l + 1]
-    q0, q1 = o2[l], o2[l + 1]
-    k0, k1 = ko[l], ko[l + 1]
-    assemble(
-        x[n0:n1], v[n0:n1], anchor[n0:n1],
-        S[4][e0:e1], S[5][e0:e1], S[6][e0:e1], S[7][n0:n1], S[8][n0:n1], S[9][n0:n1],
-        S[10][n0:n1], S[11][n0:n1], S[12][n0:n1], S[13], S[14], S[15][l], S[16][n0:n1],
-        S[17][l], S[18][n0:n1], S[19][n0:n1], S[20][n0:n1], S[21][n0:n1], S[22],
-        S[23][l], S[24][n0:n1], S[25][n0:n1], S[26][l], S[27][e0:e1], S[28][e0:e1],
-        S[29][k0:k1], S[30][e0:e1], S[31][e0:e1], S[32][e0:e1],
-        W[0][n0:n1], W[1][n0:n1], W[2][e0:e1], W[3][q0:q1], W[4][n0:n1], W[5][e0:e1],
-        W[6][n0:n1], W[7][e0:e1], W[8][e0:e1], W[9][e0:e1], W[10][n0:n1], W[11][n0:n1],
-        W[12][n0:n1], W[13][n0:n1],
+def assemble_all(x, v, anchor, S, W):  # noqa: ANN001, ANN201
+    """The line model's forces and tangents of every line of the packed system ``S``
+    into the work ``W`` (:func:`cablestudy.dynamics.system_model.pack`), all lines in
+    one call (:func:`cablestudy.dynamics.assembly.assemble_lines`)."""
+    assemble_lines(
+        S[0], S[1], S[2], S[3], x, v, anchor,
+        S[4], S[5], S[6], S[7], S[8], S[9], S[10], S[11], S[12], S[13], S[14], S[15], S[16],
+        S[17], S[18], S[19], S[20], S[21], S[22], S[23], S[24], S[25], S[26], S[27], S[28],
+        S[29], S[30], S[31], S[32],
+        W[0], W[1], W[2], W[3], W[4], W[5], W[6], W[7], W[8], W[9], W[10], W[11], W[12],
+        W[13], W[24], W[25],
     )  # fmt: skip
 
 
@@ -331,32 +324,16 @@ def _band_solve(band, reach, f, off, N):  # noqa: ANN001, ANN201
 
 
 @njit(cache=True)
-def _coupling(J_o, J_o2, n, end, other, a, c):  # noqa: ANN001, ANN201
-    """Entry (a, c) of the block J[row end node, col ``other`` node] of a line of ``n``
-    nodes (``end`` 0: node 0, 1: node n - 1); zero beyond the band."""
-    i = 0 if end == 0 else n - 1
-    j = other
-    if j == i:
-        return 0.0
-    lo, hi = (i, j) if i < j else (j, i)
-    d = hi - lo
-    if d == 1:
-        blk = J_o[lo]
-    elif d == 2 and J_o2.shape[0] > 0:
-        blk = J_o2[lo]
-    else:
-        return 0.0
-    return blk[a, c] if i < j else blk[c, a]
-
-
-@njit(cache=True)
-def coupled_solve(S, W, cm, kf, cf, reg, r, rp, dx, dp):  # noqa: ANN001, ANN201
+def coupled_solve(S, W, cm, kf, cf, reg, r, rp, dx, dp):  # noqa: ANN001, ANN201, PLR0912, PLR0915
     """Newton correction of the system: J = cm M + kf (K + cf C) (+ ``reg`` on the
     diagonal) per line from the assembled blocks in ``W``, the free points' own mass
     and drag added; residuals ``r`` (N, 3) of the nodes and ``rp`` (P, 3) of the points
     (each the sum of its end nodes' and its own). Corrections into ``dx`` (N, 3, held
     nodes zero, junction nodes their point's) and ``dp`` (P, 3). Returns False when a
-    factorisation fails."""
+    factorisation fails. A line end's coupling to its interior, ``J_PI``, is the
+    blocks to its (at most ``reach``) neighbours within the band, gathered once per
+    end into ``W[26]`` (2, 2, 3, 3): block ``[end, d - 1]`` couples the end node to the
+    node ``d`` along the line."""
     no, eo, o2 = S[0], S[1], S[2]
     bends = S[33]
     held = S[21]
@@ -368,6 +345,8 @@ def coupled_solve(S, W, cm, kf, cf, reg, r, rp, dx, dp):  # noqa: ANN001, ANN201
     K_d, K_o, K_o2, C_d, C_o, M_d = W[1], W[2], W[3], W[4], W[5], W[6]
     J_d, J_o, J_o2, band, Z, Smat, g, elim = W[14], W[15], W[16], W[17], W[18], W[19], W[20], W[21]
     v1 = W[22]
+    Cb = W[26]
+    rel = W[27]
     n_lines = no.shape[0] - 1
     n_p = rp.shape[0]
     n_all = dx.shape[0]
@@ -381,7 +360,6 @@ def coupled_solve(S, W, cm, kf, cf, reg, r, rp, dx, dp):  # noqa: ANN001, ANN201
     for p in range(n_p):
         node = p_nodes[p_off[p]]
         cd = p_drag[p]
-        rel = np.zeros(3)
         sr = 0.0
         if cd > 0.0:
             for a in range(3):
@@ -422,18 +400,16 @@ def coupled_solve(S, W, cm, kf, cf, reg, r, rp, dx, dp):  # noqa: ANN001, ANN201
             for a in range(3):
                 for b in range(3):
                     J_o2[q, a, b] = kf * K_o2[q, a, b]
-        jd = J_d[n0:n1]
-        jo = J_o[e0:e1]
         jo2 = J_o2[q0:q1] if bends[l] else J_o2[q0:q0]
-        el = elim[:n]
-        if not _band_factor(jd, jo, jo2, el, band, reach):
+        if not _band_factor(J_d[n0:n1], J_o[e0:e1], jo2, elim[:n], band, reach):
             return False
-        y = dx[n0:n1]
         for i in range(n):
             for a in range(3):
-                y[i, a] = 0.0 if el[i] else r[n0 + i, a]
-        _band_solve(band, reach, dx_flat, 3 * n0, 3 * n)
-        # junction columns: Z[end, c] = J_II^-1 J_I,end e_c
+                dx[n0 + i, a] = 0.0 if elim[i] else r[n0 + i, a]
+        _band_solve(band, reach, dx_flat, 3 * n0, 3 * n)  # y, in dx
+        if end_point[l, 0] < 0 and end_point[l, 1] < 0:
+            continue
+        # each junction end: its coupling blocks, its columns Z[end, c] = J_II^-1 J_I,end e_c
         for end in range(2):
             p = end_point[l, end]
             if p < 0:
@@ -441,19 +417,31 @@ def coupled_solve(S, W, cm, kf, cf, reg, r, rp, dx, dp):  # noqa: ANN001, ANN201
             node = 0 if end == 0 else n - 1
             for a in range(3):
                 for b in range(3):
-                    Smat[3 * p + a, 3 * p + b] += jd[node, a, b]
-            lo, hi = max(node - 2, 0), min(node + 3, n)  # the band's reach of the end
+                    Smat[3 * p + a, 3 * p + b] += J_d[n0 + node, a, b]
+            for d in range(1, 3):
+                j = node + d if end == 0 else node - d
+                lo = node if end == 0 else j
+                inside = d <= reach and 0 <= j < n
+                for a in range(3):
+                    for c in range(3):
+                        val = 0.0
+                        if inside:
+                            if d == 1:
+                                val = J_o[e0 + lo, a, c] if end == 0 else J_o[e0 + lo, c, a]
+                            else:
+                                val = J_o2[q0 + lo, a, c] if end == 0 else J_o2[q0 + lo, c, a]
+                        Cb[end, d - 1, a, c] = val
             for c in range(3):
-                z = Z[end, c, n0:n1]
-                for i in range(n):
+                for i in range(n0, n1):
                     for a in range(3):
-                        z[i, a] = 0.0
-                for i in range(lo, hi):
-                    if el[i]:
+                        Z[end, c, i, a] = 0.0
+                for d in range(1, reach + 1):
+                    j = node + d if end == 0 else node - d
+                    if j < 0 or j >= n or elim[j]:
                         continue
                     for a in range(3):
                         # J[i, node] column c = J[node, i]^T entry (c, a)
-                        z[i, a] = _coupling(jo, jo2, n, end, i, c, a)
+                        Z[end, c, n0 + j, a] = Cb[end, d - 1, c, a]
                 _band_solve(band, reach, Z_flat, 3 * ((end * 3 + c) * n_all + n0), 3 * n)
         # S -= J_PI Z, g -= J_PI y; direct end-to-end coupling within the band
         for ei in range(2):
@@ -465,26 +453,29 @@ def coupled_solve(S, W, cm, kf, cf, reg, r, rp, dx, dp):  # noqa: ANN001, ANN201
             for a in range(3):
                 acc = 0.0
                 for i in range(lo, hi):
-                    if el[i]:
+                    d = abs(i - node_i)
+                    if elim[i] or d == 0 or d > reach:
                         continue
                     for b in range(3):
-                        acc += _coupling(jo, jo2, n, ei, i, a, b) * y[i, b]
+                        acc += Cb[ei, d - 1, a, b] * dx[n0 + i, b]
                 g[3 * p + a] -= acc
             for ej in range(2):
                 q = end_point[l, ej]
                 if q < 0:
                     continue
                 node_j = 0 if ej == 0 else n - 1
+                dj = abs(node_j - node_i)
                 for a in range(3):
                     for c in range(3):
                         acc = 0.0
-                        if ej != ei:
-                            acc -= _coupling(jo, jo2, n, ei, node_j, a, c)
+                        if ej != ei and 0 < dj <= reach:
+                            acc -= Cb[ei, dj - 1, a, c]
                         for i in range(lo, hi):
-                            if el[i]:
+                            d = abs(i - node_i)
+                            if elim[i] or d == 0 or d > reach:
                                 continue
                             for b in range(3):
-                                acc += _coupling(jo, jo2, n, ei, i, a, b) * Z[ej, c, n0 + i, b]
+                                acc += Cb[ei, d - 1, a, b] * Z[ej, c, n0 + i, b]
                         Smat[3 * p + a, 3 * q + c] -= acc
     if n_p > 0:
         sol = np.linalg.solve(Smat, g)
@@ -493,7 +484,6 @@ def coupled_solve(S, W, cm, kf, cf, reg, r, rp, dx, dp):  # noqa: ANN001, ANN201
                 dp[p, a] = sol[3 * p + a]
     for l in range(n_lines):  # noqa: E741
         n0, n1 = no[l], no[l + 1]
-        n = n1 - n0
         for end in range(2):
             p = end_point[l, end]
             if p < 0:

@@ -21,8 +21,8 @@ import numpy as np
 from numba import njit
 
 from .alpha_step import MAX_LANDING_CLIPS, MAX_STATE_CHECKS, MIN_CLIP, STATE_CHECK_FACTOR
-from .assembly import _trial_states, contact_states, states_changed, update_anchors
-from .system_kernels import assemble_line, coupled_solve, drives_at, point_forces
+from .assembly import _trial_states, contact_states_lines, states_changed, update_anchors
+from .system_kernels import assemble_all, coupled_solve, drives_at, point_forces
 
 #: :func:`system_march` return codes
 BOUNDARY, ACCEPTED, FAILED = 0, 1, 2
@@ -30,18 +30,9 @@ BOUNDARY, ACCEPTED, FAILED = 0, 1, 2
 
 @njit(cache=True)
 def _contact_states(S, W, x, v, fix, flips):  # noqa: ANN001, ANN201
-    """:func:`.model.contact_states` line by line (each line's seabed offset); True if
-    any state changed."""
-    no = S[0]
-    changed = False
-    for l in range(no.shape[0] - 1):  # noqa: E741
-        n0, n1 = no[l], no[l + 1]
-        if contact_states(
-            x[n0:n1], v[n0:n1], S[22], S[23][l], S[24][n0:n1], S[25][n0:n1], W[12][n0:n1],
-            fix, flips[n0:n1],
-        ):  # fmt: skip
-            changed = True
-    return changed
+    """:func:`.assembly.contact_states` of every line (each line's seabed offset), in
+    one call; True if any state changed."""
+    return contact_states_lines(S[0], x, v, S[22], S[23], S[24], S[25], W[12], fix, flips)
 
 
 @njit(cache=True)
@@ -164,7 +155,6 @@ def system_step(  # noqa: ANN201
     iterations, converged)."""
     held = S[21]
     n = x0.shape[0]
-    n_lines = S[0].shape[0] - 1
     for i in range(n):
         if held[i]:
             for c in range(3):
@@ -195,8 +185,7 @@ def system_step(  # noqa: ANN201
     clips = 0
     it = 0
     while True:
-        for l in range(n_lines):  # noqa: E741
-            assemble_line(l, x1, v1, anchor, S, W)
+        assemble_all(x1, v1, anchor, S, W)
         if fix_states:
             fix_states = False
             _friction_states(S, W, False)
@@ -531,7 +520,6 @@ def system_static(x, anchor, S, W, r, rp, dx, dp, Fp, tol, max_it, lmin):  # noq
     p_nodes, p_off = S[38], S[39]
     ea = S[5]
     n = x.shape[0]
-    n_lines = S[0].shape[0] - 1
     v = np.zeros_like(x)
     F = W[0]
     tension = W[7]
@@ -555,8 +543,7 @@ def system_static(x, anchor, S, W, r, rp, dx, dp, Fp, tol, max_it, lmin):  # noq
     checks = 0
     it = 0
     while True:
-        for l in range(n_lines):  # noqa: E741
-            assemble_line(l, x, v, anchor, S, W)
+        assemble_all(x, v, anchor, S, W)
         if fix_states:
             fix_states = False
             _static_friction_states(S, W)

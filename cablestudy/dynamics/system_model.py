@@ -253,4 +253,8 @@ def work_arrays(packed: PackedSystem, x: np.ndarray, v: np.ndarray) -> tuple:
         np.zeros(nmax, dtype=np.bool_),
         v,
         x,
+        np.zeros((E, 3)),
+        np.zeros(E),
+        np.zeros((2, 2, 3, 3)),
+        np.zeros(3),
     )

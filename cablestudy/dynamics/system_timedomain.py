@@ -24,7 +24,7 @@ import numpy as np
 from ..statics.base import STATUS_NUMERICAL, STATUS_OK, STATUS_TIME_LIMIT
 from .alpha_step import AlphaParameters
 from .model import static_equilibrium
-from .system_kernels import assemble_line, point_forces
+from .system_kernels import assemble_all, point_forces
 from .system_march import BOUNDARY, FAILED, end_forces, set_drives, system_march, system_static
 from .system_model import Drives, PackedSystem, SlotMotion, work_arrays
 
@@ -160,8 +160,7 @@ def simulate_system(
     x1, v1, a1 = x0.copy(), v0.copy(), a0.copy()
     W = work_arrays(pk, x1, v1)
     anchor = np.array(problem.anchor, dtype=float, copy=True)
-    for l in range(L):  # noqa: E741
-        assemble_line(l, x0, v0, anchor, S, W)
+    assemble_all(x0, v0, anchor, S, W)
     P = pk.n_points
     Fp0 = np.zeros((P, 3))
     point_forces(S, x0, v0, Fp0)
