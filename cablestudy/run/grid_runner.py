@@ -6,6 +6,7 @@ dataset written from them.
 
 from __future__ import annotations
 
+import json
 import math
 import tempfile
 import time
@@ -15,12 +16,12 @@ from typing import Any
 
 import numpy as np
 
+from ..study.cases import Case, SweepAxis
 from ..study.loader import StudySource
 from .cache import LOST_PREFIX, TRANSIENT_PREFIXES
-from .outputs import temporary_prefix
+from .outputs import CacheLock, temporary_prefix
 from .progress import Progress, RunSummary
 from .remote import DEFAULT_TIMEOUT, connect
-from .runner import case_label, tidy
 from .scheduler import (
     AUTO,
     AUTO_PARALLEL_AFTER,
@@ -55,34 +56,31 @@ def _grid_chunk_task(grid: Any, lo: int, hi: int) -> Any:
     return evaluate_grid_chunk(grid, lo, hi)
 
 
-def run_grid_study(
+def run_arrays(
     src: StudySource,
     grid: Any,
-    out_dir: str | Path,
-    *,
-    scheduler: str = AUTO,
-    workers: int | None = None,
-    use_cache: bool = True,
-    progress: bool | None = None,
-    timeout: float = DEFAULT_TIMEOUT,
+    out_dir: Path,
+    cache_dir: Path | None,
+    lock: CacheLock | None,
+    scheduler: str,
+    workers: int,
+    progress: bool | None,
+    timeout: float,
 ) -> RunSummary:
-    """Run a study as arrays (:mod:`cablestudy.analyses.static_grid`) and write
-    ``<out_dir>/<name>.nc``
-    chunk by chunk: each finished chunk goes to its own data file (the cache, or a
-    temporary folder with ``use_cache=False``), and the result file is written from
-    those files lazily, so memory holds about one chunk at a time whatever the number
-    of cases. A chunk that is in the cache, intact, is reused."""
+    """The rows of ``grid`` as arrays (:mod:`cablestudy.analyses.static_grid`), for
+    :func:`cablestudy.run.runner.run_study`, and ``<out_dir>/<name>.nc`` written
+    chunk by chunk: each finished chunk goes to its own data file (the cache
+    ``cache_dir``, or a temporary folder without one), and the result file is written
+    from those files lazily, so memory holds about one chunk at a time whatever the
+    number of cases. A chunk that is in the cache, intact, is reused."""
     import shutil
 
     from .cache import GridChunkStore
 
-    t0 = time.perf_counter()
-    out_dir = Path(out_dir)
     name = str(src.data["name"])
-    workers = workers or default_workers()
-    lock = tidy(out_dir, name, out_dir / ".cache" / name if use_cache else None)
-    if use_cache:
-        folder = out_dir / ".cache" / name
+    use_cache = cache_dir is not None
+    if cache_dir is not None:
+        folder = cache_dir
         scratch = None
     else:
         out_dir.mkdir(parents=True, exist_ok=True)
@@ -174,17 +172,15 @@ def run_grid_study(
     from .database_file import database_file_name
 
     (out_dir / database_file_name(name)).unlink(missing_ok=True)
-    if lock is not None:
-        if lock.alone():  # no other run of the study writing here
-            store.keep(set(files.values()) - transient)
-        lock.release()
+    if lock is not None and lock.alone():  # no other run of the study writing here
+        store.keep(set(files.values()) - transient)
     return RunSummary(
         path=path,
         n_cases=grid.size,
         n_reused=n_reused,
         n_computed=grid.size - n_reused,
         n_failed=sum(summary.failures.values()),
-        wall_time=time.perf_counter() - t0,
+        wall_time=math.nan,
         failures=dict(summary.failures),
         scheduler=used,
         timings=timings,
@@ -224,8 +220,6 @@ def _grid_settings(grid: Any) -> dict[str, Any]:
     all."""
     import itertools
     from types import SimpleNamespace
-
-    from .runner import default_solver_settings
 
     swept = sorted(
         {k for k, a in enumerate(grid.axes) if any(p.startswith("analysis") for p in a.paths)}
@@ -372,3 +366,27 @@ def study_grid(src: StudySource) -> Any:
         if grid is not None:
             return grid
     return expand_grid(src, template)
+
+
+def default_solver_settings(cases: list[Case]) -> dict[str, Any]:
+    """The analysis settings of the study (defaults filled in), and every distinct value a
+    sweep gave them."""
+    settings = [c.study.analysis.model_dump(mode="json") for c in cases]
+    out: dict[str, Any] = {"analysis": settings[0] if settings else {}}
+    methods = sorted({c.study.analysis.static.method for c in cases})
+    out["static_methods"] = methods
+    distinct = {json.dumps(s, sort_keys=True) for s in settings}
+    if len(distinct) > 1:
+        out["analysis_per_case_distinct"] = [json.loads(d) for d in sorted(distinct)]
+    return out
+
+
+def case_label(axes: list[SweepAxis], index: tuple[int, ...]) -> str:
+    """The case at ``index`` by its sweep coordinates ("amplitude=0.05, frequency=0.2"), or
+    "the case" without a sweep."""
+    parts = []
+    for axis, i in zip(axes, index, strict=True):
+        value = axis.coordinate()[i]
+        shown = f"{value:g}" if isinstance(value, int | float | np.number) else str(value)
+        parts.append(f"{axis.name}={shown}")
+    return ", ".join(parts) or "the case"

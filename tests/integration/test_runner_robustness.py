@@ -97,7 +97,7 @@ def no_work(monkeypatch: pytest.MonkeyPatch) -> None:
         raise AssertionError("work started before the check")
 
     monkeypatch.setattr(runner, "run_study", refuse)
-    monkeypatch.setattr(grid_runner, "run_grid_study", refuse)
+    monkeypatch.setattr(grid_runner, "run_arrays", refuse)
 
 
 # --- the scheduler address --------------------------------------------------------------
