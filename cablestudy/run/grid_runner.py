@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from ..study.cases import Case, SweepAxis
+from ..study.cases import SweepAxis
 from ..study.loader import StudySource
 from .cache import LOST_PREFIX, TRANSIENT_PREFIXES
 from .outputs import CacheLock, temporary_prefix
@@ -28,7 +28,6 @@ from .scheduler import (
     PROCESSES,
     SYNCHRONOUS,
     _local_cluster,
-    default_workers,
 )
 from .writer import write_atomic, write_variables_atomic
 
@@ -76,6 +75,7 @@ def run_arrays(
     import shutil
 
     from .cache import GridChunkStore
+    from .dataset import grid_dataset
 
     name = str(src.data["name"])
     use_cache = cache_dir is not None
@@ -145,7 +145,18 @@ def run_arrays(
         if lazy:
             ordered = [(lo, hi, files[(lo, hi)]) for lo, hi in spans]
             summary = store.summary([p for _, _, p in ordered])
-            ds = grid_dataset_from(src, grid, ordered, summary, lazy=True)
+            ds = grid_dataset(
+                grid.axes,
+                ordered,
+                src,
+                names=summary.names,
+                tails=summary.tails,
+                arc=summary.arc,
+                solver_settings=grid_settings(grid),
+                lazy=True,
+                fallbacks=summary.fallbacks,
+                named=getattr(grid, "named", None),  # a system's (cablestudy.system_grid)
+            )
             t3 = time.perf_counter()
             timings["assembly"] = t3 - t2
             import dask
@@ -167,8 +178,7 @@ def run_arrays(
     for p in transient:
         p.unlink(missing_ok=True)
     # a study run as arrays has no database (cablestudy.analyses.static_grid refuses one): a
-    # database
-    # file of this name is an earlier run's, which no longer describes the study
+    # database file of this name is an earlier run's, which no longer describes the study
     from .database_file import database_file_name
 
     (out_dir / database_file_name(name)).unlink(missing_ok=True)
@@ -213,24 +223,29 @@ def _stored_chunk(store: Any, path: Path) -> Any:
     )
 
 
-def _grid_settings(grid: Any) -> dict[str, Any]:
-    """:func:`cablestudy.run.runner.default_solver_settings` of the grid's cases: their
-    analysis settings change only along the axes that sweep ``analysis`` paths, so one
-    case per combination of those axes (the others at their first value) stands for
-    all."""
+def grid_settings(grid: Any) -> dict[str, Any]:
+    """The analysis settings of the study (defaults filled in), and every distinct value a
+    sweep gave them. A case's analysis settings change only along the axes that sweep
+    ``analysis`` paths, so one case per combination of those axes (the others at their
+    first value) stands for all."""
     import itertools
-    from types import SimpleNamespace
 
     swept = sorted(
         {k for k, a in enumerate(grid.axes) if any(p.startswith("analysis") for p in a.paths)}
     )
-    studies = []
+    analyses = []
     for picks in itertools.product(*(range(grid.shape[k]) for k in swept)):
         index = [0] * len(grid.shape)
         for k, i in zip(swept, picks, strict=True):
             index[k] = i
-        studies.append(SimpleNamespace(study=grid.study_at(tuple(index))))
-    return default_solver_settings(studies)  # type: ignore[arg-type]
+        analyses.append(grid.study_at(tuple(index)).analysis)
+    settings = [a.model_dump(mode="json") for a in analyses]
+    out: dict[str, Any] = {"analysis": settings[0] if settings else {}}
+    out["static_methods"] = sorted({a.static.method for a in analyses})
+    distinct = {json.dumps(s, sort_keys=True) for s in settings}
+    if len(distinct) > 1:
+        out["analysis_per_case_distinct"] = [json.loads(d) for d in sorted(distinct)]
+    return out
 
 
 def _grid_variables(src: StudySource, grid: Any, chunks: list[Any]) -> tuple[Any, tuple]:
@@ -270,31 +285,11 @@ def _grid_variables(src: StudySource, grid: Any, chunks: list[Any]) -> tuple[Any
         values=values,
         tails=summary.tails,
         arc=summary.arc,
-        solver_settings=_grid_settings(grid),
+        solver_settings=grid_settings(grid),
         fallbacks=summary.fallbacks,
         named=getattr(grid, "named", None),  # a system's (cablestudy.system_grid)
     )
     return summary, variables
-
-
-def grid_dataset_from(
-    src: StudySource, grid: Any, ordered: list[Any], summary: Any, *, lazy: bool = True
-) -> Any:
-    from .dataset import grid_dataset
-
-    settings = _grid_settings(grid)
-    return grid_dataset(
-        grid.axes,
-        ordered,
-        src,
-        names=summary.names,
-        tails=summary.tails,
-        arc=summary.arc,
-        solver_settings=settings,
-        lazy=lazy,
-        fallbacks=summary.fallbacks,
-        named=getattr(grid, "named", None),  # a system's (cablestudy.system_grid)
-    )
 
 
 def _execute_grid(
@@ -366,19 +361,6 @@ def study_grid(src: StudySource) -> Any:
         if grid is not None:
             return grid
     return expand_grid(src, template)
-
-
-def default_solver_settings(cases: list[Case]) -> dict[str, Any]:
-    """The analysis settings of the study (defaults filled in), and every distinct value a
-    sweep gave them."""
-    settings = [c.study.analysis.model_dump(mode="json") for c in cases]
-    out: dict[str, Any] = {"analysis": settings[0] if settings else {}}
-    methods = sorted({c.study.analysis.static.method for c in cases})
-    out["static_methods"] = methods
-    distinct = {json.dumps(s, sort_keys=True) for s in settings}
-    if len(distinct) > 1:
-        out["analysis_per_case_distinct"] = [json.loads(d) for d in sorted(distinct)]
-    return out
 
 
 def case_label(axes: list[SweepAxis], index: tuple[int, ...]) -> str:

@@ -25,7 +25,7 @@ from ..study.grid import CaseGrid
 from ..study.loader import StudySource
 from .cache import TEMPORARY_PATTERNS, CaseCache
 from .dataset import assembled_variables
-from .grid_runner import case_label, default_solver_settings, run_arrays
+from .grid_runner import case_label, grid_settings, run_arrays
 from .outputs import CacheLock, remove_stale_temporaries
 from .outputs import now as run_started
 from .progress import Progress, RunSummary
@@ -113,16 +113,14 @@ def _run_records(
         bar.close()
     t2 = time.perf_counter()
     records = cache.records
-    fallbacks = Counter(
-        why for c in cases for why in fallback_reasons(records[c.hash].warning)
-    )
+    fallbacks = Counter(why for c in cases for why in fallback_reasons(records[c.hash].warning))
     # written by netCDF4 directly (the file xarray writes, without importing it)
     variables = assembled_variables(
         axes,
         cases,
         records,
         src,
-        solver_settings=default_solver_settings(cases),
+        solver_settings=grid_settings(grid),
         fallbacks=fallbacks,
     )
     t3 = time.perf_counter()

@@ -382,9 +382,7 @@ def test_an_extended_first_axis_reuses_the_cached_chunks(
 
     monkeypatch.setattr(grid_module, "evaluate_grid_chunk", counted)
     src2 = parse_study_text(longer, "gr.yaml")
-    again = run_study(
-        src2, expand_grid(src2), tmp_path, scheduler="synchronous", progress=False
-    )
+    again = run_study(src2, expand_grid(src2), tmp_path, scheduler="synchronous", progress=False)
     assert calls == [4] and again.n_reused == 24 and again.n_computed == 12
     # a changed value of another axis changes every chunk
     other = longer.replace("[-10.0, -20.0]", "[-10.0, -25.0]")
