@@ -145,11 +145,9 @@ def assembled_variables(
     src: StudySource,
     *,
     solver_settings: dict[str, Any] | None = None,
-    fallbacks: dict[str, int] | None = None,
 ) -> tuple[dict[str, VariableSpec], dict[str, VariableSpec], dict[str, Any]]:
     """The (data variables, coordinates, attributes) of :func:`assemble`'s dataset, in
-    the form ``xarray.Dataset`` takes and :func:`write_variables_atomic` writes
-    (``fallbacks``: cases the batched kernels handed to the general solver, by reason)."""
+    the form ``xarray.Dataset`` takes and :func:`write_variables_atomic` writes."""
     shape = tuple(a.size for a in axes)
     dims = tuple(a.name for a in axes)
     by_index = {c.index: records[c.hash] for c in cases}
@@ -276,7 +274,6 @@ def assembled_variables(
     attrs["cases_warned"] = int(np.count_nonzero(data_vars["warning"][1] != ""))
     if np.any(status == STATUS_BROKEN):
         attrs["cases_broken"] = int(np.count_nonzero(status == STATUS_BROKEN))
-    attrs.update(fallback_attrs(fallbacks))
     return data_vars, coords, attrs
 
 
@@ -498,17 +495,9 @@ def grid_variables(
     attrs["cases_warned"] = int(np.count_nonzero(warnings != ""))
     if np.any(status == STATUS_BROKEN):
         attrs["cases_broken"] = int(np.count_nonzero(status == STATUS_BROKEN))
-    attrs.update(fallback_attrs(fallbacks))
-    return data_vars, coords, attrs
-
-
-def fallback_attrs(fallbacks: dict[str, int] | None) -> dict[str, Any]:
-    """``cases_fallback`` and ``fallback_reasons``: how many cases the batched kernels
-    handed to the general solver, and why (counted, most frequent first)."""
     fallbacks = fallbacks or {}
-    return {
-        "cases_fallback": int(sum(fallbacks.values())),
-        "fallback_reasons": "; ".join(
-            f"{n} x {why}" for why, n in sorted(fallbacks.items(), key=lambda kv: -kv[1])
-        ),
-    }
+    attrs["cases_fallback"] = int(sum(fallbacks.values()))
+    attrs["fallback_reasons"] = "; ".join(
+        f"{n} x {why}" for why, n in sorted(fallbacks.items(), key=lambda kv: -kv[1])
+    )
+    return data_vars, coords, attrs

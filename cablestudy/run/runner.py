@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import glob
 import math
-import re
 import sys
 import time
 from collections import Counter
@@ -113,7 +112,6 @@ def _run_records(
         bar.close()
     t2 = time.perf_counter()
     records = cache.records
-    fallbacks = Counter(why for c in cases for why in fallback_reasons(records[c.hash].warning))
     # written by netCDF4 directly (the file xarray writes, without importing it)
     variables = assembled_variables(
         axes,
@@ -121,7 +119,6 @@ def _run_records(
         records,
         src,
         solver_settings=grid_settings(grid),
-        fallbacks=fallbacks,
     )
     t3 = time.perf_counter()
     path = write_variables_atomic(*variables, out_dir / f"{src.data['name']}.nc")
@@ -147,19 +144,7 @@ def _run_records(
         n_warned=len(warned),
         warnings=dict(Counter(records[c.hash].warning for c in warned)),
         warned_cases=warned_cases,
-        fallbacks=dict(fallbacks),
     )
-
-
-def fallback_reasons(warning: str) -> list[str]:
-    """Why the batched kernel handed a case to the general solver, read back from its
-    ``warning`` text (:func:`cablestudy.analyses.plausibility.fallback_warning`; none if
-    it did not)."""
-    from ..analyses.plausibility import SEPARATOR, fallback_warning
-
-    head, tail = fallback_warning("\0").split("\0")
-    pattern = re.escape(head) + r"(.*?)" + re.escape(tail) + f"(?:{re.escape(SEPARATOR)}|$)"
-    return re.findall(pattern, warning) if warning else []
 
 
 def tidy(out_dir: Path, name: str, cache_dir: Path | None) -> CacheLock | None:
