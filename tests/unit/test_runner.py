@@ -549,3 +549,34 @@ def test_case_evaluation_refuses_features_its_solver_lacks() -> None:
     record = evaluate_case(cases[0])
     assert record.status != 0
     assert "analytic" in record.message and "current" in record.message
+
+
+def test_the_cli_runs_every_study_through_the_one_runner(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A static sweep (a grid in chunks of rows, as arrays) and a modal sweep (its cases
+    as records on the probing scheduler) both go through run.runner.run_study, and a
+    re-run of each is all reused from its cache."""
+    from cablestudy.cli import main
+    from cablestudy.run import runner
+
+    seen: list[tuple[bool, int]] = []
+    real = runner.run_study
+
+    def spy(src, grid, out, **kw):  # noqa: ANN001, ANN003, ANN202
+        summary = real(src, grid, out, **kw)
+        seen.append((grid.chunked, summary.n_reused))
+        return summary
+
+    monkeypatch.setattr(runner, "run_study", spy)
+    modal = TEXT.replace("name: rn", "name: rm").replace(
+        "nodes: 5}", "nodes: 5}\n  modal: {modes: 2, elements: 10}"
+    )
+    for label, text in (("static", TEXT), ("modal", modal)):
+        cfg = tmp_path / f"{label}.yaml"
+        cfg.write_text(text)
+        for _ in range(2):
+            args = ["run", str(cfg), "--out", str(tmp_path), "--no-progress"]
+            assert main([*args, "--scheduler", "synchronous"]) == 0
+    n = expand_grid(parse_study_text(TEXT, "rn.yaml")).size
+    assert seen == [(True, 0), (True, n), (False, 0), (False, n)]
