@@ -66,15 +66,15 @@ def compile_cost(cache_dir: str) -> tuple[float, float, float]:
 def run_sweep(data: dict, out: Path, workers: int, scheduler: str) -> tuple[xr.Dataset, float]:
     from cablestudy.analyses.evaluate import check_supported
     from cablestudy.run.runner import run_study
-    from cablestudy.study.grid import expand_cases
+    from cablestudy.study.grid import expand_grid
     from cablestudy.study.loader import parse_study_text
 
     src = parse_study_text(yaml.safe_dump(data, sort_keys=False), "bench")
-    axes, cases = expand_cases(src)
-    check_supported(cases, src)
+    grid = expand_grid(src)
+    check_supported(grid.cases(), src)
     t0 = time.perf_counter()
     summary = run_study(
-        src, axes, cases, out, scheduler=scheduler, workers=workers, use_cache=False, progress=False
+        src, grid, out, scheduler=scheduler, workers=workers, use_cache=False, progress=False
     )
     wall = time.perf_counter() - t0
     return xr.load_dataset(summary.path), wall

@@ -56,14 +56,14 @@ import json, resource, sys, time
 t0 = time.perf_counter()
 from cablestudy.study.loader import read_study_source, validate_data
 from cablestudy.study.grid import expand_grid
-from cablestudy.run.grid_runner import run_grid_study
+from cablestudy.run.runner import run_study
 t1 = time.perf_counter()
 src = read_study_source(sys.argv[1])
 validate_data(src.data, src)
 t2 = time.perf_counter()
 grid = expand_grid(src)
 t3 = time.perf_counter()
-summary = run_grid_study(src, grid, sys.argv[2], scheduler="synchronous", use_cache=False,
+summary = run_study(src, grid, sys.argv[2], scheduler="synchronous", use_cache=False,
                          progress=False)
 t4 = time.perf_counter()
 print(json.dumps({"start-up (imports)": t1 - t0, "validation (template)": t2 - t1,

@@ -101,36 +101,21 @@ def cmd_run(args: argparse.Namespace) -> int:
     studies = [c.study for c in grid.cases()] if not grid.chunked else [grid.template]
     ensure_compiled(sorted({k for study in studies for k in kinds_of(study)}))
     try:
-        if grid.chunked:  # in chunks of rows (cablestudy.run.grid_runner)
-            from .run.grid_runner import run_grid_study
-
-            _resume_collection()
-            summary = run_grid_study(
-                src,
-                grid,
-                args.out,
-                scheduler=scheduler,
-                workers=args.workers,
-                use_cache=not args.no_cache,
-                progress=args.progress,
-                timeout=timeout,
-            )
-        else:
+        if not grid.chunked:  # the kernels its cases need, loaded before any is timed
             from .analyses.evaluate import warm_up
 
             warm_up(grid.cases())
-            _resume_collection()
-            summary = run_study(
-                src,
-                axes,
-                grid.cases(),
-                args.out,
-                scheduler=scheduler,
-                workers=args.workers,
-                use_cache=not args.no_cache,
-                progress=args.progress,
-                timeout=timeout,
-            )
+        _resume_collection()
+        summary = run_study(
+            src,
+            grid,
+            args.out,
+            scheduler=scheduler,
+            workers=args.workers,
+            use_cache=not args.no_cache,
+            progress=args.progress,
+            timeout=timeout,
+        )
     except KeyboardInterrupt:
         print(
             "\ninterrupted: finished cases are cached; run the same command again to resume",

@@ -28,18 +28,16 @@ def _ensure_study(name: str, results: Path, configs: Path, run_missing: bool) ->
         )
     from ..analyses.evaluate import check_supported
     from ..run.runner import run_study
-    from ..study.grid import expand_cases
+    from ..study.grid import expand_grid
     from ..study.loader import read_study_source
 
     candidates = [p for p in sorted(configs.glob("*.yaml")) if p.stem == name]
     if not candidates:
         raise MissingResult(f"{path} is missing and there is no {configs / name}.yaml to run")
     src = read_study_source(candidates[0])
-    axes, cases = expand_cases(src)
-    check_supported(cases, src)
-    run_study(
-        src, axes, cases, results, scheduler="synchronous" if len(cases) <= 8 else "processes"
-    )
+    grid = expand_grid(src)
+    check_supported(grid.cases(), src)
+    run_study(src, grid, results, scheduler="synchronous" if grid.size <= 8 else "processes")
     return path
 
 

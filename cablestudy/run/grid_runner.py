@@ -6,6 +6,7 @@ dataset written from them.
 
 from __future__ import annotations
 
+import json
 import math
 import tempfile
 import time
@@ -15,19 +16,18 @@ from typing import Any
 
 import numpy as np
 
+from ..study.cases import SweepAxis
 from ..study.loader import StudySource
 from .cache import LOST_PREFIX, TRANSIENT_PREFIXES
-from .outputs import temporary_prefix
+from .outputs import CacheLock, temporary_prefix
 from .progress import Progress, RunSummary
 from .remote import DEFAULT_TIMEOUT, connect
-from .runner import case_label, tidy
 from .scheduler import (
     AUTO,
     AUTO_PARALLEL_AFTER,
     PROCESSES,
     SYNCHRONOUS,
     _local_cluster,
-    default_workers,
 )
 from .writer import write_atomic, write_variables_atomic
 
@@ -55,34 +55,32 @@ def _grid_chunk_task(grid: Any, lo: int, hi: int) -> Any:
     return evaluate_grid_chunk(grid, lo, hi)
 
 
-def run_grid_study(
+def run_arrays(
     src: StudySource,
     grid: Any,
-    out_dir: str | Path,
-    *,
-    scheduler: str = AUTO,
-    workers: int | None = None,
-    use_cache: bool = True,
-    progress: bool | None = None,
-    timeout: float = DEFAULT_TIMEOUT,
+    out_dir: Path,
+    cache_dir: Path | None,
+    lock: CacheLock | None,
+    scheduler: str,
+    workers: int,
+    progress: bool | None,
+    timeout: float,
 ) -> RunSummary:
-    """Run a study as arrays (:mod:`cablestudy.analyses.static_grid`) and write
-    ``<out_dir>/<name>.nc``
-    chunk by chunk: each finished chunk goes to its own data file (the cache, or a
-    temporary folder with ``use_cache=False``), and the result file is written from
-    those files lazily, so memory holds about one chunk at a time whatever the number
-    of cases. A chunk that is in the cache, intact, is reused."""
+    """The rows of ``grid`` as arrays (:mod:`cablestudy.analyses.static_grid`), for
+    :func:`cablestudy.run.runner.run_study`, and ``<out_dir>/<name>.nc`` written
+    chunk by chunk: each finished chunk goes to its own data file (the cache
+    ``cache_dir``, or a temporary folder without one), and the result file is written
+    from those files lazily, so memory holds about one chunk at a time whatever the
+    number of cases. A chunk that is in the cache, intact, is reused."""
     import shutil
 
     from .cache import GridChunkStore
+    from .dataset import grid_dataset
 
-    t0 = time.perf_counter()
-    out_dir = Path(out_dir)
     name = str(src.data["name"])
-    workers = workers or default_workers()
-    lock = tidy(out_dir, name, out_dir / ".cache" / name if use_cache else None)
-    if use_cache:
-        folder = out_dir / ".cache" / name
+    use_cache = cache_dir is not None
+    if cache_dir is not None:
+        folder = cache_dir
         scratch = None
     else:
         out_dir.mkdir(parents=True, exist_ok=True)
@@ -147,7 +145,18 @@ def run_grid_study(
         if lazy:
             ordered = [(lo, hi, files[(lo, hi)]) for lo, hi in spans]
             summary = store.summary([p for _, _, p in ordered])
-            ds = grid_dataset_from(src, grid, ordered, summary, lazy=True)
+            ds = grid_dataset(
+                grid.axes,
+                ordered,
+                src,
+                names=summary.names,
+                tails=summary.tails,
+                arc=summary.arc,
+                solver_settings=grid_settings(grid),
+                lazy=True,
+                fallbacks=summary.fallbacks,
+                named=getattr(grid, "named", None),  # a system's (cablestudy.system_grid)
+            )
             t3 = time.perf_counter()
             timings["assembly"] = t3 - t2
             import dask
@@ -169,22 +178,19 @@ def run_grid_study(
     for p in transient:
         p.unlink(missing_ok=True)
     # a study run as arrays has no database (cablestudy.analyses.static_grid refuses one): a
-    # database
-    # file of this name is an earlier run's, which no longer describes the study
+    # database file of this name is an earlier run's, which no longer describes the study
     from .database_file import database_file_name
 
     (out_dir / database_file_name(name)).unlink(missing_ok=True)
-    if lock is not None:
-        if lock.alone():  # no other run of the study writing here
-            store.keep(set(files.values()) - transient)
-        lock.release()
+    if lock is not None and lock.alone():  # no other run of the study writing here
+        store.keep(set(files.values()) - transient)
     return RunSummary(
         path=path,
         n_cases=grid.size,
         n_reused=n_reused,
         n_computed=grid.size - n_reused,
         n_failed=sum(summary.failures.values()),
-        wall_time=time.perf_counter() - t0,
+        wall_time=math.nan,
         failures=dict(summary.failures),
         scheduler=used,
         timings=timings,
@@ -217,26 +223,29 @@ def _stored_chunk(store: Any, path: Path) -> Any:
     )
 
 
-def _grid_settings(grid: Any) -> dict[str, Any]:
-    """:func:`cablestudy.run.runner.default_solver_settings` of the grid's cases: their
-    analysis settings change only along the axes that sweep ``analysis`` paths, so one
-    case per combination of those axes (the others at their first value) stands for
-    all."""
+def grid_settings(grid: Any) -> dict[str, Any]:
+    """The analysis settings of the study (defaults filled in), and every distinct value a
+    sweep gave them. A case's analysis settings change only along the axes that sweep
+    ``analysis`` paths, so one case per combination of those axes (the others at their
+    first value) stands for all."""
     import itertools
-    from types import SimpleNamespace
-
-    from .runner import default_solver_settings
 
     swept = sorted(
         {k for k, a in enumerate(grid.axes) if any(p.startswith("analysis") for p in a.paths)}
     )
-    studies = []
+    analyses = []
     for picks in itertools.product(*(range(grid.shape[k]) for k in swept)):
         index = [0] * len(grid.shape)
         for k, i in zip(swept, picks, strict=True):
             index[k] = i
-        studies.append(SimpleNamespace(study=grid.study_at(tuple(index))))
-    return default_solver_settings(studies)  # type: ignore[arg-type]
+        analyses.append(grid.study_at(tuple(index)).analysis)
+    settings = [a.model_dump(mode="json") for a in analyses]
+    out: dict[str, Any] = {"analysis": settings[0] if settings else {}}
+    out["static_methods"] = sorted({a.static.method for a in analyses})
+    distinct = {json.dumps(s, sort_keys=True) for s in settings}
+    if len(distinct) > 1:
+        out["analysis_per_case_distinct"] = [json.loads(d) for d in sorted(distinct)]
+    return out
 
 
 def _grid_variables(src: StudySource, grid: Any, chunks: list[Any]) -> tuple[Any, tuple]:
@@ -276,31 +285,11 @@ def _grid_variables(src: StudySource, grid: Any, chunks: list[Any]) -> tuple[Any
         values=values,
         tails=summary.tails,
         arc=summary.arc,
-        solver_settings=_grid_settings(grid),
+        solver_settings=grid_settings(grid),
         fallbacks=summary.fallbacks,
         named=getattr(grid, "named", None),  # a system's (cablestudy.system_grid)
     )
     return summary, variables
-
-
-def grid_dataset_from(
-    src: StudySource, grid: Any, ordered: list[Any], summary: Any, *, lazy: bool = True
-) -> Any:
-    from .dataset import grid_dataset
-
-    settings = _grid_settings(grid)
-    return grid_dataset(
-        grid.axes,
-        ordered,
-        src,
-        names=summary.names,
-        tails=summary.tails,
-        arc=summary.arc,
-        solver_settings=settings,
-        lazy=lazy,
-        fallbacks=summary.fallbacks,
-        named=getattr(grid, "named", None),  # a system's (cablestudy.system_grid)
-    )
 
 
 def _execute_grid(
@@ -372,3 +361,14 @@ def study_grid(src: StudySource) -> Any:
         if grid is not None:
             return grid
     return expand_grid(src, template)
+
+
+def case_label(axes: list[SweepAxis], index: tuple[int, ...]) -> str:
+    """The case at ``index`` by its sweep coordinates ("amplitude=0.05, frequency=0.2"), or
+    "the case" without a sweep."""
+    parts = []
+    for axis, i in zip(axes, index, strict=True):
+        value = axis.coordinate()[i]
+        shown = f"{value:g}" if isinstance(value, int | float | np.number) else str(value)
+        parts.append(f"{axis.name}={shown}")
+    return ", ".join(parts) or "the case"

@@ -1,30 +1,30 @@
-"""A study run case by case: its cases in chunks on the scheduler
+"""The one runner of every study (:func:`run_study`): its grid of cases in chunks on the
+scheduler, as arrays (:mod:`cablestudy.run.grid_runner`) or as case records
 (:mod:`cablestudy.run.scheduler`), finished chunks kept in the per-study cache so that a
 repeated or interrupted study resumes, progress, and the final dataset written
 atomically (with the quasi-static database's own file when the study has one).
 
 The runner moves cases and records; it knows nothing of physics (it calls
-:func:`cablestudy.analyses.evaluate.evaluate_chunk`). A sweep that runs as arrays goes
-to :mod:`cablestudy.run.grid_runner` instead.
+:func:`cablestudy.analyses.evaluate.evaluate_chunk` and the array chunk evaluators).
 """
 
 from __future__ import annotations
 
 import glob
-import json
+import math
 import sys
 import time
 from collections import Counter
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from ..analyses.variables import CaseRecord
 from ..study.cases import Case, SweepAxis
+from ..study.grid import CaseGrid
 from ..study.loader import StudySource
 from .cache import TEMPORARY_PATTERNS, CaseCache
 from .dataset import assembled_variables
+from .grid_runner import case_label, grid_settings, run_arrays
 from .outputs import CacheLock, remove_stale_temporaries
 from .outputs import now as run_started
 from .progress import Progress, RunSummary
@@ -33,47 +33,61 @@ from .scheduler import AUTO, default_workers, execute
 from .writer import write_variables_atomic
 
 
-def default_solver_settings(cases: list[Case]) -> dict[str, Any]:
-    """The analysis settings of the study (defaults filled in), and every distinct value a
-    sweep gave them."""
-    settings = [c.study.analysis.model_dump(mode="json") for c in cases]
-    out: dict[str, Any] = {"analysis": settings[0] if settings else {}}
-    methods = sorted({c.study.analysis.static.method for c in cases})
-    out["static_methods"] = methods
-    distinct = {json.dumps(s, sort_keys=True) for s in settings}
-    if len(distinct) > 1:
-        out["analysis_per_case_distinct"] = [json.loads(d) for d in sorted(distinct)]
-    return out
-
-
 def run_study(
     src: StudySource,
-    axes: list[SweepAxis],
-    cases: list[Case],
+    grid: CaseGrid,
     out_dir: str | Path,
     *,
     scheduler: str = AUTO,
     workers: int | None = None,
     use_cache: bool = True,
     progress: bool | None = None,
-    solver_settings: dict[str, Any] | None = None,
     timeout: float = DEFAULT_TIMEOUT,
 ) -> RunSummary:
-    """Run ``cases`` and write ``<out_dir>/<name>.nc``. ``scheduler`` is 'auto' (time a
-    few cases here, start ``workers`` processes only when the study would take more than a
-    few seconds), 'synchronous', 'threads', 'processes' (a local dask.distributed cluster
-    of ``workers`` processes, default: the cores available) or the address of a running
-    dask.distributed scheduler (``workers`` is then ignored; ``timeout`` [s] bounds its
-    handshake and the wait for a worker, :func:`cablestudy.run.remote.connect`).
+    """Run every case of ``grid`` (:func:`cablestudy.run.grid_runner.study_grid`) and write
+    ``<out_dir>/<name>.nc``: the one runner of every study. ``scheduler`` is 'auto' (time
+    a few cases here, start ``workers`` processes only when the study would take more
+    than a few seconds), 'synchronous', 'threads', 'processes' (a local dask.distributed
+    cluster of ``workers`` processes, default: the cores available) or the address of a
+    running dask.distributed scheduler (``workers`` is then ignored; ``timeout`` [s]
+    bounds its handshake and the wait for a worker, :func:`cablestudy.run.remote.connect`).
 
-    Finished chunks are cached under ``<out_dir>/.cache/<name>/`` as they complete, keyed
-    by case hash: an unchanged or interrupted study re-run reuses them."""
+    A grid run in chunks of rows (:attr:`CaseGrid.chunked`) goes as arrays
+    (:func:`cablestudy.run.grid_runner.run_arrays`); any other as chunks of case records
+    sized by their measured cost (:mod:`cablestudy.run.scheduler`). Either way finished
+    chunks are cached under ``<out_dir>/.cache/<name>/`` as they complete: an unchanged or
+    interrupted study re-run reuses them."""
     t0 = time.perf_counter()
     out_dir = Path(out_dir)
     name = str(src.data["name"])
     workers = workers or default_workers()
     cache_dir = out_dir / ".cache" / name if use_cache else None
     lock = tidy(out_dir, name, cache_dir)
+    try:
+        run = run_arrays if grid.chunked else _run_records
+        summary = run(src, grid, out_dir, cache_dir, lock, scheduler, workers, progress, timeout)
+    finally:
+        if lock is not None:
+            lock.release()
+    summary.wall_time = time.perf_counter() - t0
+    return summary
+
+
+def _run_records(
+    src: StudySource,
+    grid: CaseGrid,
+    out_dir: Path,
+    cache_dir: Path | None,
+    lock: CacheLock | None,
+    scheduler: str,
+    workers: int,
+    progress: bool | None,
+    timeout: float,
+) -> RunSummary:
+    """The cases of ``grid`` in chunks of records on the scheduler, each finished chunk
+    in the per-case cache (keyed by case hash), and the dataset assembled from the
+    records (with the quasi-static database's own file when the study has one)."""
+    axes, cases = grid.axes, grid.cases()
     cache = CaseCache(cache_dir)
     pending = [c for c in cases if c.hash not in cache.records]
     unique: dict[str, Case] = {}
@@ -87,6 +101,7 @@ def run_study(
         cache.store(records)
         bar.update(len(records))
 
+    t1 = time.perf_counter()
     try:
         used = (
             execute(list(unique.values()), scheduler, workers, on_done, timeout=timeout)
@@ -95,17 +110,21 @@ def run_study(
         )
     finally:
         bar.close()
+    t2 = time.perf_counter()
     records = cache.records
-    if solver_settings is None:
-        solver_settings = default_solver_settings(cases)
     # written by netCDF4 directly (the file xarray writes, without importing it)
-    variables = assembled_variables(axes, cases, records, src, solver_settings=solver_settings)
-    path = write_variables_atomic(*variables, out_dir / f"{name}.nc")
+    variables = assembled_variables(
+        axes,
+        cases,
+        records,
+        src,
+        solver_settings=grid_settings(grid),
+    )
+    t3 = time.perf_counter()
+    path = write_variables_atomic(*variables, out_dir / f"{src.data['name']}.nc")
     database = write_database_file(variables, axes, cases, src, out_dir)
     if lock is not None and lock.alone():  # no other run of the study writing here
         cache.compact({c.hash for c in cases})
-    if lock is not None:
-        lock.release()
     failures = Counter(records[c.hash].message for c in cases if records[c.hash].status != 0)
     warned = [c for c in cases if records[c.hash].warning]
     warned_cases: dict[str, str] = {}
@@ -117,9 +136,10 @@ def run_study(
         n_reused=n_reused,
         n_computed=len(unique),
         n_failed=sum(failures.values()),
-        wall_time=time.perf_counter() - t0,
+        wall_time=math.nan,
         failures=dict(failures),
         scheduler=used,
+        timings={"solve": t2 - t1, "assembly": t3 - t2, "write": time.perf_counter() - t3},
         database_path=database,
         n_warned=len(warned),
         warnings=dict(Counter(records[c.hash].warning for c in warned)),
@@ -149,17 +169,6 @@ def tidy(out_dir: Path, name: str, cache_dir: Path | None) -> CacheLock | None:
 
 def _warn(message: str) -> None:
     print(f"warning: {message}", file=sys.stderr)
-
-
-def case_label(axes: list[SweepAxis], index: tuple[int, ...]) -> str:
-    """The case at ``index`` by its sweep coordinates ("amplitude=0.05, frequency=0.2"), or
-    "the case" without a sweep."""
-    parts = []
-    for axis, i in zip(axes, index, strict=True):
-        value = axis.coordinate()[i]
-        shown = f"{value:g}" if isinstance(value, int | float | np.number) else str(value)
-        parts.append(f"{axis.name}={shown}")
-    return ", ".join(parts) or "the case"
 
 
 def write_database_file(

@@ -22,7 +22,7 @@ import pytest
 import xarray as xr
 
 from cablestudy.cli import main
-from cablestudy.run import grid_runner, outputs, runner
+from cablestudy.run import outputs, runner
 
 #: a 550 m wire from an anchor 190 m down to a fairlead 10 m down, two distances: quick
 #: cases of a static grid (cablestudy.analyses.static_grid: method catenary on the compiled array
@@ -96,8 +96,7 @@ def no_work(monkeypatch: pytest.MonkeyPatch) -> None:
     def refuse(*args: object, **kwargs: object) -> None:
         raise AssertionError("work started before the check")
 
-    monkeypatch.setattr(runner, "run_study", refuse)
-    monkeypatch.setattr(grid_runner, "run_grid_study", refuse)
+    monkeypatch.setattr(runner, "run_study", refuse)  # the one runner of every study
 
 
 # --- the scheduler address --------------------------------------------------------------

@@ -24,7 +24,7 @@ from cablestudy.cli import main
 from cablestudy.run.grid_runner import study_grid
 from cablestudy.run.runner import run_study
 from cablestudy.study import parse_study_text
-from cablestudy.study.grid import expand_cases
+from cablestudy.study.grid import expand_grid
 from tests.integration.test_system_study import SYSTEM
 
 #: a laid line between two anchors on the seabed: no compiled kernel takes a line with
@@ -49,9 +49,8 @@ def _run_cli(tmp, text: str, name: str) -> xr.Dataset:  # noqa: ANN001
 
 def _run_cases(tmp, text: str) -> xr.Dataset:  # noqa: ANN001
     src = parse_study_text(text, "sys.yaml")
-    axes, cases = expand_cases(src)
     out = tmp / "cases"
-    run_study(src, axes, cases, out, scheduler="synchronous", use_cache=False, progress=False)
+    run_study(src, expand_grid(src), out, scheduler="synchronous", use_cache=False, progress=False)
     return xr.load_dataset(out / "sys.nc")
 
 

@@ -23,7 +23,7 @@ from cablestudy.cli import main
 from cablestudy.run.dataset import assemble
 from cablestudy.run.runner import run_study
 from cablestudy.statics import STATUS_NUMERICAL, STATUS_TIME_LIMIT
-from cablestudy.study.grid import expand_cases
+from cablestudy.study.grid import expand_cases, expand_grid
 from cablestudy.study.loader import parse_study_text
 
 CABLE = """
@@ -170,10 +170,10 @@ def test_cache_keeps_a_dynamic_failure_but_retries_a_dynamic_time_limit(
         return STATUS_NUMERICAL, "Newton did not converge", {}
 
     src = parse_study_text(_study("cached", STATIC, GENTLE_DYNAMIC), "cached.yaml")
-    axes, cases = expand_cases(src)
+    grid = expand_grid(src)
     for solver, reused in ((timed_out, 0), (broken, 0), (broken, 1)):
         monkeypatch.setattr(evaluate, "run_dynamic", solver)
-        summary = run_study(src, axes, cases, tmp_path, scheduler="synchronous", progress=False)
+        summary = run_study(src, grid, tmp_path, scheduler="synchronous", progress=False)
         ds = xr.load_dataset(summary.path)
         assert summary.n_reused == reused
         assert int(ds["dynamic_status"]) != 0 and np.all(np.isfinite(ds["tension"]))

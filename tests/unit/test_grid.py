@@ -6,6 +6,7 @@ output with a safe chunk cache."""
 from __future__ import annotations
 
 from collections import OrderedDict
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -16,10 +17,9 @@ from cablestudy.analyses import static as static_analysis
 from cablestudy.analyses.static_grid import evaluate_grid_chunk
 from cablestudy.analyses.variables import KEPT_STATUSES
 from cablestudy.run import grid_runner
-from cablestudy.run.grid_runner import run_grid_study
 from cablestudy.run.runner import run_study
 from cablestudy.study import parse_study_text
-from cablestudy.study.grid import CaseGrid, expand_cases, expand_grid
+from cablestudy.study.grid import CaseGrid, expand_grid
 from cablestudy.study.loader import StudyError
 
 TEXT = """\
@@ -50,14 +50,12 @@ def _both(tmp_path: Path, text: str = TEXT) -> tuple[xr.Dataset, xr.Dataset]:
     src = parse_study_text(text, "gr.yaml")
     grid = expand_grid(src)
     assert grid.chunked
-    fast = run_grid_study(
+    fast = run_study(
         src, grid, tmp_path / "grid", scheduler="synchronous", use_cache=False, progress=False
     )
-    axes, cases = expand_cases(src)
-    slow = run_study(
+    slow = run_study(  # the same cases as case records (the path of unchunked grids)
         src,
-        axes,
-        cases,
+        replace(grid, chunked=False),
         tmp_path / "case",
         scheduler="synchronous",
         use_cache=False,
@@ -281,7 +279,7 @@ def test_streamed_result_opens_lazily_and_chunks_are_cached(
     monkeypatch.setattr(grid_runner, "IN_MEMORY_BYTES", 0)  # streamed, as a large study is
     src = parse_study_text(TEXT, "gr.yaml")
     grid = expand_grid(src)
-    first = run_grid_study(src, grid, tmp_path, scheduler="synchronous", progress=False)
+    first = run_study(src, grid, tmp_path, scheduler="synchronous", progress=False)
     files = sorted((tmp_path / ".cache" / "gr").glob("grid-*.npz"))
     assert len(files) == 4  # rows 0-1, 2-3, 4-5, 6
     lazy = xr.open_dataset(first.path, chunks={})
@@ -291,7 +289,7 @@ def test_streamed_result_opens_lazily_and_chunks_are_cached(
     ref = xr.load_dataset(first.path)
     # the streamed file is the one the in-memory assembly writes
     monkeypatch.setattr(grid_runner, "IN_MEMORY_BYTES", 1 << 30)
-    held = run_grid_study(
+    held = run_study(
         src, grid, tmp_path / "held", scheduler="synchronous", use_cache=False, progress=False
     )
     xr.testing.assert_identical(
@@ -311,7 +309,7 @@ def test_streamed_result_opens_lazily_and_chunks_are_cached(
     raw[len(raw) // 3] ^= 0x10
     files[1].write_bytes(bytes(raw))
     capsys.readouterr()
-    second = run_grid_study(src, grid, tmp_path, scheduler="synchronous", progress=False)
+    second = run_study(src, grid, tmp_path, scheduler="synchronous", progress=False)
     err = capsys.readouterr().err
     assert err.count("warning: cache file") == 1 and str(files[1]) in err
     assert len(calls) == 1  # only the damaged chunk is recomputed
@@ -343,7 +341,7 @@ def test_array_chunks_on_worker_processes_give_the_serial_result(
     monkeypatch.setattr(grid_runner, "GRID_CHUNK_CASES", 12)
     src = parse_study_text(TEXT, "gr.yaml")
     grid = expand_grid(src)
-    par = run_grid_study(
+    par = run_study(
         src,
         grid,
         tmp_path / "p",
@@ -352,7 +350,7 @@ def test_array_chunks_on_worker_processes_give_the_serial_result(
         use_cache=False,
         progress=False,
     )
-    ser = run_grid_study(
+    ser = run_study(
         src, grid, tmp_path / "s", scheduler="synchronous", use_cache=False, progress=False
     )
     assert par.scheduler == "processes" and ser.scheduler == "synchronous"
@@ -374,7 +372,7 @@ def test_an_extended_first_axis_reuses_the_cached_chunks(
     short = TEXT.replace(spans, "ends.b.position.0: {values: [60.0, 70.0, 80.0, 90.0], name: span}")
     longer = short.replace("[60.0, 70.0, 80.0, 90.0]", "[60.0, 70.0, 80.0, 90.0, 95.0, 100.0]")
     src = parse_study_text(short, "gr.yaml")
-    run_grid_study(src, expand_grid(src), tmp_path, scheduler="synchronous", progress=False)
+    run_study(src, expand_grid(src), tmp_path, scheduler="synchronous", progress=False)
     calls: list[int] = []
     real = evaluate_grid_chunk
 
@@ -384,15 +382,13 @@ def test_an_extended_first_axis_reuses_the_cached_chunks(
 
     monkeypatch.setattr(grid_module, "evaluate_grid_chunk", counted)
     src2 = parse_study_text(longer, "gr.yaml")
-    again = run_grid_study(
-        src2, expand_grid(src2), tmp_path, scheduler="synchronous", progress=False
-    )
+    again = run_study(src2, expand_grid(src2), tmp_path, scheduler="synchronous", progress=False)
     assert calls == [4] and again.n_reused == 24 and again.n_computed == 12
     # a changed value of another axis changes every chunk
     other = longer.replace("[-10.0, -20.0]", "[-10.0, -25.0]")
     src3 = parse_study_text(other, "gr.yaml")
     calls.clear()
-    run_grid_study(src3, expand_grid(src3), tmp_path, scheduler="synchronous", progress=False)
+    run_study(src3, expand_grid(src3), tmp_path, scheduler="synchronous", progress=False)
     assert calls == [0, 2, 4]
 
 

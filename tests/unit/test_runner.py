@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import time
 from collections import OrderedDict
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -34,7 +35,7 @@ from cablestudy.run.scheduler import (
 from cablestudy.statics import STATIC_SOLVERS, STATUS_OK
 from cablestudy.study import parse_study_text
 from cablestudy.study.cases import Case
-from cablestudy.study.grid import expand_cases
+from cablestudy.study.grid import expand_grid
 
 TEXT = """\
 name: rn
@@ -55,8 +56,10 @@ sweep:
 
 def _expand(text: str = TEXT):  # noqa: ANN202
     src = parse_study_text(text, "rn.yaml")
-    axes, cases = expand_cases(src)
-    return src, axes, cases
+    # the records path (chunks of case records on the probing scheduler, the per-case
+    # cache), which runs every grid that is not chunked, for this static sweep too
+    grid = replace(expand_grid(src), chunked=False)
+    return src, grid, grid.cases()
 
 
 _RUN_CHUNK = run_chunk
@@ -131,8 +134,8 @@ def test_a_solver_exception_is_a_failed_case_and_the_study_finishes(
             return res
 
     monkeypatch.setitem(STATIC_SOLVERS, "analytic", Flaky())
-    src, axes, cases = _expand()
-    summary = run_study(src, axes, cases, tmp_path, scheduler="synchronous", progress=False)
+    src, grid, cases = _expand()
+    summary = run_study(src, grid, tmp_path, scheduler="synchronous", progress=False)
     ds = xr.load_dataset(summary.path)
     failed = ds["status"].sel(axial_stiffness=1.0e6)
     assert np.all(failed != STATUS_OK)
@@ -155,36 +158,36 @@ def test_a_solver_exception_is_a_failed_case_and_the_study_finishes(
 
 
 def test_rerun_reuses_every_finished_case(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    src, axes, cases = _expand()
-    first = run_study(src, axes, cases, tmp_path, scheduler="synchronous", progress=False)
+    src, grid, cases = _expand()
+    first = run_study(src, grid, tmp_path, scheduler="synchronous", progress=False)
     assert (first.n_computed, first.n_reused) == (27, 0)
     counter = _count_evaluations(monkeypatch)
-    second = run_study(src, axes, cases, tmp_path, scheduler="synchronous", progress=False)
+    second = run_study(src, grid, tmp_path, scheduler="synchronous", progress=False)
     assert counter["cases"] == 0 and (second.n_computed, second.n_reused) == (0, 27)
     # an added sweep value computes only the new cases
-    src3, axes3, cases3 = _expand(
+    src3, grid3, cases3 = _expand(
         TEXT.replace("[1.0e6, 1.0e7, 6.283e7]", "[1.0e6, 1.0e7, 6.283e7, 1.0e8]")
     )
-    third = run_study(src3, axes3, cases3, tmp_path, scheduler="synchronous", progress=False)
+    third = run_study(src3, grid3, tmp_path, scheduler="synchronous", progress=False)
     assert counter["cases"] == 9 and third.n_reused == 27
 
 
 def test_interrupted_study_resumes_without_losing_or_redoing_work(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    src, axes, cases = _expand()
+    src, grid, cases = _expand()
     reference = run_study(
-        src, axes, cases, tmp_path / "ref", scheduler="synchronous", use_cache=False, progress=False
+        src, grid, tmp_path / "ref", scheduler="synchronous", use_cache=False, progress=False
     )
     out = tmp_path / "run"
     counter = _count_evaluations(monkeypatch, interrupt_after=3)
     with pytest.raises(KeyboardInterrupt):
-        run_study(src, axes, cases, out, scheduler="synchronous", progress=False)
+        run_study(src, grid, out, scheduler="synchronous", progress=False)
     done = counter["cases"]
     assert 0 < done < len(cases)
     assert not (out / "rn.nc").exists()  # no partial result file
     counter = _count_evaluations(monkeypatch)
-    summary = run_study(src, axes, cases, out, scheduler="synchronous", progress=False)
+    summary = run_study(src, grid, out, scheduler="synchronous", progress=False)
     assert counter["cases"] == len(cases) - done  # finished cases were not recomputed
     assert summary.n_reused == done
     got, ref = xr.load_dataset(summary.path), xr.load_dataset(reference.path)
@@ -272,18 +275,17 @@ def test_cache_refuses_to_store_python_objects(tmp_path: Path) -> None:
 
 
 def test_cached_rerun_is_bit_for_bit_the_uncached_run(tmp_path: Path) -> None:
-    src, axes, cases = _expand()
+    src, grid, cases = _expand()
     plain = run_study(
         src,
-        axes,
-        cases,
+        grid,
         tmp_path / "plain",
         scheduler="synchronous",
         use_cache=False,
         progress=False,
     )
-    first = run_study(src, axes, cases, tmp_path / "c", scheduler="synchronous", progress=False)
-    second = run_study(src, axes, cases, tmp_path / "c", scheduler="synchronous", progress=False)
+    first = run_study(src, grid, tmp_path / "c", scheduler="synchronous", progress=False)
+    second = run_study(src, grid, tmp_path / "c", scheduler="synchronous", progress=False)
     assert second.n_reused == len(cases)
     ref, a, b = (xr.load_dataset(p.path) for p in (plain, first, second))
     # the cached rerun reproduces the run that filled the cache, wall times included
@@ -304,8 +306,8 @@ def test_damaged_cache_chunk_is_reported_once_and_recomputed(
     capsys: pytest.CaptureFixture[str],
     damage: str,
 ) -> None:
-    src, axes, cases = _expand()
-    first = run_study(src, axes, cases, tmp_path, scheduler="synchronous", progress=False)
+    src, grid, cases = _expand()
+    first = run_study(src, grid, tmp_path, scheduler="synchronous", progress=False)
     ref = xr.load_dataset(first.path)
     (chunk,) = (tmp_path / ".cache" / "rn").glob("chunk-*.npz")  # compacted to one
     raw = bytearray(chunk.read_bytes())
@@ -316,7 +318,7 @@ def test_damaged_cache_chunk_is_reported_once_and_recomputed(
         chunk.write_bytes(bytes(raw))
     capsys.readouterr()
     counter = _count_evaluations(monkeypatch)
-    second = run_study(src, axes, cases, tmp_path, scheduler="synchronous", progress=False)
+    second = run_study(src, grid, tmp_path, scheduler="synchronous", progress=False)
     err = capsys.readouterr().err
     assert err.count("warning: cache file") == 1 and str(chunk) in err and "recomputed" in err
     assert counter["cases"] == len(cases) and second.n_reused == 0
@@ -324,7 +326,7 @@ def test_damaged_cache_chunk_is_reported_once_and_recomputed(
     for name in ref.data_vars:
         if name != "wall_time":
             assert ref[name].values.tobytes() == got[name].values.tobytes(), name
-    third = run_study(src, axes, cases, tmp_path, scheduler="synchronous", progress=False)
+    third = run_study(src, grid, tmp_path, scheduler="synchronous", progress=False)
     assert third.n_reused == len(cases) and capsys.readouterr().err == ""
 
 
@@ -440,8 +442,8 @@ def test_auto_scheduler_keeps_a_quick_study_in_process(
         raise AssertionError("a 27-case catenary study must not start worker processes")
 
     monkeypatch.setattr(scheduler, "_run_dask", no_cluster)
-    src, axes, cases = _expand()
-    summary = run_study(src, axes, cases, tmp_path, scheduler="auto", progress=False)
+    src, grid, cases = _expand()
+    summary = run_study(src, grid, tmp_path, scheduler="auto", progress=False)
     assert summary.n_computed == 27 and summary.n_failed == 0
 
 
@@ -459,8 +461,8 @@ def test_auto_scheduler_hands_a_long_study_to_workers(
     monkeypatch.setattr(scheduler, "AUTO_PARALLEL_AFTER", 0.0)  # ... that anything is long
     monkeypatch.setattr(scheduler, "THREAD_PROBE_SECONDS", 0.0)  # one case a thread
     monkeypatch.setattr(scheduler, "THREADS_SCALE", 1e9)  # ... that never scale
-    src, axes, cases = _expand()
-    summary = run_study(src, axes, cases, tmp_path, scheduler="auto", workers=2, progress=False)
+    src, grid, cases = _expand()
+    summary = run_study(src, grid, tmp_path, scheduler="auto", workers=2, progress=False)
     # one case probed alone, one on each of two threads, the rest to worker processes
     assert [h[:2] for h in handed] == [(24, "processes")] and handed[0][2] > 0
     assert summary.n_computed == 27 and summary.scheduler == "processes"
@@ -506,14 +508,14 @@ def test_time_limited_cases_fail_with_a_message_and_are_retried(tmp_path: Path) 
     """A case over analysis.time_limit is a failure with a message (data NaN), and it is
     not cached: on a less loaded machine a re-run may finish it."""
     text = TEXT.replace("analysis:\n", "analysis:\n  time_limit: 1.0e-9\n")
-    src, axes, cases = _expand(text)
-    summary = run_study(src, axes, cases, tmp_path, scheduler="synchronous", progress=False)
+    src, grid, cases = _expand(text)
+    summary = run_study(src, grid, tmp_path, scheduler="synchronous", progress=False)
     ds = xr.load_dataset(summary.path)
     assert np.all(ds["status"] == 3)
     assert all(str(m).startswith("time limit") for m in ds["message"].values.ravel())
     assert np.all(np.isnan(ds["tension_a"]))
     assert "    27 x time limit" in summary.report()
-    again = run_study(src, axes, cases, tmp_path, scheduler="synchronous", progress=False)
+    again = run_study(src, grid, tmp_path, scheduler="synchronous", progress=False)
     assert again.n_reused == 0 and again.n_computed == 27
 
 
@@ -523,7 +525,7 @@ def test_case_evaluation_refuses_features_its_solver_lacks() -> None:
     import yaml
 
     from cablestudy.analyses.evaluate import evaluate_case
-    from cablestudy.study.grid import expand_cases
+    from cablestudy.study.grid import expand_grid
     from cablestudy.study.loader import parse_study_text
 
     data = {
@@ -543,7 +545,38 @@ def test_case_evaluation_refuses_features_its_solver_lacks() -> None:
         },
         "analysis": {"static": {"method": "analytic"}},
     }
-    _, cases = expand_cases(parse_study_text(yaml.safe_dump(data), "<x>"))
+    cases = expand_grid(parse_study_text(yaml.safe_dump(data), "<x>")).cases()
     record = evaluate_case(cases[0])
     assert record.status != 0
     assert "analytic" in record.message and "current" in record.message
+
+
+def test_the_cli_runs_every_study_through_the_one_runner(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A static sweep (a grid in chunks of rows, as arrays) and a modal sweep (its cases
+    as records on the probing scheduler) both go through run.runner.run_study, and a
+    re-run of each is all reused from its cache."""
+    from cablestudy.cli import main
+    from cablestudy.run import runner
+
+    seen: list[tuple[bool, int]] = []
+    real = runner.run_study
+
+    def spy(src, grid, out, **kw):  # noqa: ANN001, ANN003, ANN202
+        summary = real(src, grid, out, **kw)
+        seen.append((grid.chunked, summary.n_reused))
+        return summary
+
+    monkeypatch.setattr(runner, "run_study", spy)
+    modal = TEXT.replace("name: rn", "name: rm").replace(
+        "nodes: 5}", "nodes: 5}\n  modal: {modes: 2, elements: 10}"
+    )
+    for label, text in (("static", TEXT), ("modal", modal)):
+        cfg = tmp_path / f"{label}.yaml"
+        cfg.write_text(text)
+        for _ in range(2):
+            args = ["run", str(cfg), "--out", str(tmp_path), "--no-progress"]
+            assert main([*args, "--scheduler", "synchronous"]) == 0
+    n = expand_grid(parse_study_text(TEXT, "rn.yaml")).size
+    assert seen == [(True, 0), (True, n), (False, 0), (False, n)]
