@@ -82,7 +82,14 @@ def _cold() -> None:
     interpreter's start and the loading of the compiled kernels."""
     import importlib
 
-    for name in ("static", "line_model", "frequency", "system_dynamic", "system_frequency"):
+    for name in (
+        "static",
+        "line_model",
+        "frequency",
+        "system",
+        "system_dynamic",
+        "system_frequency",
+    ):
         module = importlib.import_module(f"cablestudy.analyses.{name}")
         for attr, value in vars(module).items():
             if "CACHE" in attr and hasattr(value, "clear"):

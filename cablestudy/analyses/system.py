@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections import OrderedDict
 from types import SimpleNamespace
 from typing import Any
 
@@ -22,7 +23,15 @@ from ..study import Study
 from ..study.cases import Case
 from ..study.problem import line_model, medium
 from ..study.system import BodyPoint, FixedPoint, FreePoint
+from .counters import trim_lru
 from .variables import CaseRecord
+
+#: per static problem of a study with dynamics (``case.static_hash``, which covers every
+#: swept path outside ``analysis`` and the static settings, and the strain-warning
+#: limit): the system, its verified static solution, outputs and warnings, shared by the
+#: cases of a motion sweep (they are the same numbers computed again otherwise)
+_STATICS_CACHE: OrderedDict[tuple, tuple] = OrderedDict()
+_CACHE_SIZE = 16
 
 
 def system_model(study: Study) -> MooringSystem:
@@ -159,6 +168,43 @@ def evaluate_system_case(case: Case) -> CaseRecord:
     t0 = time.perf_counter()
     study = case.study
     deadline = time.monotonic() + study.analysis.time_limit
+    key = None
+    if study.analysis.dynamic is not None and case.static_hash:
+        key = (case.static_hash, study.analysis.static.strain_warning)
+    hit = _STATICS_CACHE.get(key) if key is not None else None
+    if hit is not None:
+        _STATICS_CACHE.move_to_end(key)
+        system, res, status, message, shared, shared_warnings = hit
+        data, warnings = dict(shared), list(shared_warnings)
+    else:
+        system, res, status, message, data, warnings = _statics(case, deadline)
+        if key is not None and status == STATUS_OK:  # a failure is tried again
+            _STATICS_CACHE[key] = (system, res, status, message, dict(data), list(warnings))
+            trim_lru(_STATICS_CACHE, _CACHE_SIZE)
+    if study.analysis.dynamic is not None:  # the system time domain (analyses.system_dynamic)
+        status, message = _dynamics(case, system, res, status, message, deadline, data)
+        if int(data.get("steady_converged", 1)) == 0 and study.analysis.dynamic.duration is None:
+            warnings.append(
+                f"unsettled: the line end tensions did not settle within max_periods "
+                f"({study.analysis.dynamic.max_periods}); the extremes are those of the last "
+                "periods run"
+            )
+    warning = "; ".join(w for w in warnings if w)
+    return CaseRecord(
+        hash=case.hash,
+        index=case.index,
+        status=int(status),
+        message=message,
+        wall_time=time.perf_counter() - t0,
+        data=data,
+        warning=warning,
+    )
+
+
+def _statics(case: Case, deadline: float) -> tuple[Any, Any, int, str, dict, list[str]]:
+    """The case's system, static solution, status, message, static outputs and
+    warnings."""
+    study = case.study
     system = system_model(study)
     res = None
     try:
@@ -193,24 +239,7 @@ def evaluate_system_case(case: Case) -> CaseRecord:
         from .plausibility import fallback_warning
 
         warnings.append(fallback_warning(res.fallback))
-    if study.analysis.dynamic is not None:  # the system time domain (analyses.system_dynamic)
-        status, message = _dynamics(case, system, res, status, message, deadline, data)
-        if int(data.get("steady_converged", 1)) == 0 and study.analysis.dynamic.duration is None:
-            warnings.append(
-                f"unsettled: the line end tensions did not settle within max_periods "
-                f"({study.analysis.dynamic.max_periods}); the extremes are those of the last "
-                "periods run"
-            )
-    warning = "; ".join(w for w in warnings if w)
-    return CaseRecord(
-        hash=case.hash,
-        index=case.index,
-        status=int(status),
-        message=message,
-        wall_time=time.perf_counter() - t0,
-        data=data,
-        warning=warning,
-    )
+    return system, res, status, message, data, warnings
 
 
 def _dynamics(

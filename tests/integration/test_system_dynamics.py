@@ -314,15 +314,32 @@ def test_a_sweep_of_the_motion_shares_the_statics_and_the_model() -> None:
     )
     axes, cases = expand_cases(parse_study_text(text, "sys.yaml"))
     assert [a.name for a in axes] == ["amplitude", "frequency"]
+    from cablestudy.analyses import system as system_cases
     from cablestudy.analyses import system_dynamic as system_dynamic_cases
 
-    system_dynamic_cases._STATIC_CACHE.clear()  # earlier tests solved the same statics
-    system_dynamic_cases._MODEL_CACHE.clear()
+    def cold() -> None:  # earlier tests solved the same statics
+        system_cases._STATICS_CACHE.clear()
+        system_dynamic_cases._STATIC_CACHE.clear()
+        system_dynamic_cases._MODEL_CACHE.clear()
+
+    cold()
     before = COUNTERS.copy()
     recs = [evaluate_system_case(c) for c in cases]
     assert all(r.status == 0 for r in recs), [r.message for r in recs]
     assert COUNTERS["system_static_solves"] - before["system_static_solves"] == 1
     assert COUNTERS["system_assemblies"] - before["system_assemblies"] == 1
+    # what the sweep shares is what each case alone computes, bit for bit
+    for case, shared in zip(cases, recs, strict=True):
+        cold()
+        alone = evaluate_system_case(case)
+        assert (alone.status, alone.message, alone.warning) == (
+            shared.status,
+            shared.message,
+            shared.warning,
+        )
+        assert alone.data.keys() == shared.data.keys()
+        for name, value in alone.data.items():
+            np.testing.assert_array_equal(value, shared.data[name], err_msg=name)
     ranges = [r.data["tension_max_b"] - r.data["tension_min_b"] for r in recs]
     assert np.all(ranges[2] > ranges[0]) and np.all(ranges[3] > ranges[1])
 
