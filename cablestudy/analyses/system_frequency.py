@@ -63,13 +63,24 @@ def system_frequency_model(case: Case, system: Any, static: Any) -> Any:
             for name, sl in zip(study.lines, system.lines, strict=True)
         ],
         nodes=dyn.elements + 1,
-        solve=STATIC_SOLVERS["catenary"].solve,
+        solve_many=_catenary_many,
     )
     out = model if model is not None else why
     COUNTERS["system_assemblies"] += 1
     _MODEL_CACHE[key] = out
     trim_lru(_MODEL_CACHE, _CACHE_SIZE)
     return out
+
+
+def _catenary_many(problems: list[Any]) -> list[Any]:
+    """The catenary solver's ``solve`` of each problem, those its compiled kernels take
+    stacked into one call per group (:func:`~cablestudy.statics.batch_kernels.
+    solve_compiled_many`: the same answers, verified as ``solve`` verifies them)."""
+    from ..statics.batch_kernels import solve_compiled_many
+
+    solve = STATIC_SOLVERS["catenary"].solve
+    fast = solve_compiled_many(problems)
+    return [r if r is not None else solve(p) for r, p in zip(fast, problems, strict=True)]
 
 
 _GRID_CACHE: OrderedDict[tuple[int, int], tuple[Any, Any]] = OrderedDict()

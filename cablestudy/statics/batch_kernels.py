@@ -378,6 +378,38 @@ def solve_compiled(
     return _solve_group([problem], P, problem.n_nodes, [lay], deadline, why=why)[0]
 
 
+def solve_compiled_many(problems: list[StaticProblem]) -> list[StaticResult | None]:
+    """:func:`solve_compiled` of each problem (no deadline), the batchable ones of the
+    same pieces and nodes stacked into one kernel call: the same answers (the kernel
+    and the verification go case by case), without a call per problem. None where
+    :func:`solve_compiled` gives None (the general solver's then)."""
+    from . import _fast  # imports numba: on first use, not with this module
+
+    out: list[StaticResult | None] = [None] * len(problems)
+    if not _fast.AVAILABLE:
+        return out
+    groups: dict[tuple, list[int]] = {}
+    layouts: list = [None] * len(problems)
+    for i, problem in enumerate(problems):
+        if contact_eligible(problem):
+            out[i] = solve_compiled(problem)
+            continue
+        if not batchable(problem):
+            continue
+        line = problem.line
+        if line.length.size == 1 and line.attachment_s.size == 0:
+            key: tuple = (1, problem.n_nodes, False)
+        else:
+            layouts[i] = make_layout(line)
+            key = (len(layouts[i].ell), problem.n_nodes, True)
+        groups.setdefault(key, []).append(i)
+    for (P, n_nodes, _), idx in groups.items():
+        solved = _solve_group([problems[i] for i in idx], P, n_nodes, [layouts[i] for i in idx], None)
+        for i, res in zip(idx, solved, strict=True):
+            out[i] = res
+    return out
+
+
 def _guess(
     d: np.ndarray, L: np.ndarray, Cend: np.ndarray, EA: np.ndarray, point0: np.ndarray
 ) -> np.ndarray:
