@@ -290,6 +290,12 @@ def _contact_one(problem: StaticProblem) -> StaticResult | None:
     """One problem through the seabed-contact kernel (the same arrays the grid builds for
     it), or None when the kernel does not settle it. A line anchored at B is solved from
     B, as the reversed line (sampled at L - s), as the general solver does."""
+    return _contact_many([problem])[0]
+
+
+def _contact_inputs(problem: StaticProblem) -> dict:
+    """The arrays of ``problem`` for :func:`solve_contact_arrays` (a leading axis of
+    one), its plane, and which end it is anchored at (``end``)."""
     end = contact_end(problem)
     assert end is not None
     line = problem.line if end == "a" else reversed_line(problem.line)
@@ -319,35 +325,73 @@ def _contact_one(problem: StaticProblem) -> StaticResult | None:
     assert plane is not None
     L = bounds[:, -1]
     s = np.linspace(np.zeros(1), L, problem.n_nodes, axis=1)
-    out = solve_contact_arrays(
-        ell,
-        EA,
-        weight,
-        point,
-        bounds,
-        np.asarray(anchor.position, dtype=float)[None],
-        target,
-        plane,
-        np.array([problem.tolerance], dtype=float),
-        np.array([problem.max_iterations], dtype=np.int64),
-        s if end == "a" else L[:, None] - s,
-        np.array([kind]),
-        force,
-    )
-    if out["status"][0] != 0:
-        return None
-    fa, fb = ("force_a", "force_b") if end == "a" else ("force_b", "force_a")
-    return StaticResult(
-        s=s[0],
-        position=out["position"][0],
-        tension=out["tension"][0],
-        force_a=out[fa][0],
-        force_b=out[fb][0],
-        status=STATUS_OK,
-        laid_length=float(out["laid_length"][0]),
-        iterations=int(out["iterations"][0]),
-        residual=float(out["residual"][0]),
-    )
+    return {
+        "end": end,
+        "plane": plane,
+        "s": s,
+        "arrays": (
+            ell,
+            EA,
+            weight,
+            point,
+            bounds,
+            np.asarray(anchor.position, dtype=float)[None],
+            target,
+        ),
+        "tol": np.array([problem.tolerance], dtype=float),
+        "maxit": np.array([problem.max_iterations], dtype=np.int64),
+        "sample": s if end == "a" else L[:, None] - s,
+        "kind": np.array([kind]),
+        "force": force,
+    }
+
+
+def _contact_many(problems: list[StaticProblem]) -> list[StaticResult | None]:
+    """:func:`_contact_one` of each problem, those of the same pieces, nodes and plane
+    in one call of the kernels (which solve case by case: the same answers)."""
+    inputs = [_contact_inputs(p) for p in problems]
+    groups: dict[tuple, list[int]] = {}
+    for i, x in enumerate(inputs):
+        pl = x["plane"]
+        key = (
+            x["arrays"][0].shape[1],
+            x["s"].shape[1],
+            float(pl.depth),
+            float(pl.slope),
+            float(pl.heading),
+            float(pl.friction),
+        )
+        groups.setdefault(key, []).append(i)
+    results: list[StaticResult | None] = [None] * len(problems)
+    for idx in groups.values():
+        xs = [inputs[i] for i in idx]
+        cat = [np.concatenate([x["arrays"][k] for x in xs]) for k in range(7)]
+        out = solve_contact_arrays(
+            *cat[:6],
+            cat[6],
+            xs[0]["plane"],
+            np.concatenate([x["tol"] for x in xs]),
+            np.concatenate([x["maxit"] for x in xs]),
+            np.concatenate([x["sample"] for x in xs]),
+            np.concatenate([x["kind"] for x in xs]),
+            np.concatenate([x["force"] for x in xs]),
+        )
+        for j, (i, x) in enumerate(zip(idx, xs, strict=True)):
+            if out["status"][j] != 0:
+                continue
+            fa, fb = ("force_a", "force_b") if x["end"] == "a" else ("force_b", "force_a")
+            results[i] = StaticResult(
+                s=x["s"][0],
+                position=out["position"][j],
+                tension=out["tension"][j],
+                force_a=out[fa][j],
+                force_b=out[fb][j],
+                status=STATUS_OK,
+                laid_length=float(out["laid_length"][j]),
+                iterations=int(out["iterations"][j]),
+                residual=float(out["residual"][j]),
+            )
+    return results
 
 
 def solve_compiled(
@@ -390,9 +434,10 @@ def solve_compiled_many(problems: list[StaticProblem]) -> list[StaticResult | No
         return out
     groups: dict[tuple, list[int]] = {}
     layouts: list = [None] * len(problems)
+    contact = []
     for i, problem in enumerate(problems):
         if contact_eligible(problem):
-            out[i] = solve_compiled(problem)
+            contact.append(i)
             continue
         if not batchable(problem):
             continue
@@ -403,6 +448,11 @@ def solve_compiled_many(problems: list[StaticProblem]) -> list[StaticResult | No
             layouts[i] = make_layout(line)
             key = (len(layouts[i].ell), problem.n_nodes, True)
         groups.setdefault(key, []).append(i)
+    if contact:  # as solve_compiled: verified one by one, else the general solver's
+        solved = _contact_many([problems[i] for i in contact])
+        for i, res in zip(contact, solved, strict=True):
+            if res is not None and verified(problems[i], res, method="catenary").success:
+                out[i] = res
     for (P, n_nodes, _), idx in groups.items():
         solved = _solve_group([problems[i] for i in idx], P, n_nodes, [layouts[i] for i in idx], None)
         for i, res in zip(idx, solved, strict=True):
