@@ -262,24 +262,27 @@ class EndCoupling:
 
     @classmethod
     def of(cls, red: ReducedLine) -> EndCoupling:
-        line = red.line
-        fast = _coordinate_coupling(line)
-        if fast is not None:
-            return cls(*fast)
-        B = line.free_basis.tocsc()
-        e = _end_index(line.n_nodes)
+        fast = _coordinate_coupling(red.line)
+        return cls(*(fast if fast is not None else _sparse_coupling(red.line)))
 
-        def blocks(Q: object) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-            Q = Q.tocsr()  # type: ignore[attr-defined]
-            cols = Q[:, e]
-            rows = Q[e, :]
-            return (
-                np.asarray((B.T @ cols).todense()),
-                np.asarray((rows @ B).todense()),
-                np.asarray(rows[:, e].todense()),
-            )
 
-        return cls(K=blocks(line.stiffness), M=blocks(line.mass_matrix()), C=blocks(line.damping))
+def _sparse_coupling(line: LinearLine) -> tuple:
+    """:class:`EndCoupling`'s (K, M, C) blocks by sparse products with the free basis
+    (any basis)."""
+    B = line.free_basis.tocsc()
+    e = _end_index(line.n_nodes)
+
+    def blocks(Q: object) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        Q = Q.tocsr()  # type: ignore[attr-defined]
+        cols = Q[:, e]
+        rows = Q[e, :]
+        return (
+            np.asarray((B.T @ cols).todense()),
+            np.asarray((rows @ B).todense()),
+            np.asarray(rows[:, e].todense()),
+        )
+
+    return blocks(line.stiffness), blocks(line.mass_matrix()), blocks(line.damping)
 
 
 def _coordinate_coupling(line: LinearLine) -> tuple | None:
