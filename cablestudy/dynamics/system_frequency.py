@@ -68,6 +68,14 @@ to a body); the NumPy/LAPACK iteration line by line (:mod:`.system_frequency_ref
 and answers within 1e-7 of the largest (tests/unit/test_system_fd_kernel.py). At two
 elements a line (one inner node) the band is widened to a node's drag block.
 
+Building the model is cheap next to a time-domain case (``method: auto`` builds it
+before it judges a case): the lines re-solved at the model's nodes in one call of the
+compiled static kernels per group (``solve_many``; each answer verified as the
+solver's own), the end couplings picked from the lines' matrices entry by entry
+(:func:`_coordinate_coupling`; sparse products only for a basis that is not made of
+coordinate directions). Both give the plain construction's model bit for bit
+(tests/unit/test_system_fd_build.py).
+
 Pure: arrays and frozen dataclasses in, a :class:`SystemFrequencyResult` out.
 """
 

@@ -290,7 +290,8 @@ def _contact_one(problem: StaticProblem) -> StaticResult | None:
     """One problem through the seabed-contact kernel (the same arrays the grid builds for
     it), or None when the kernel does not settle it. A line anchored at B is solved from
     B, as the reversed line (sampled at L - s), as the general solver does."""
-    return _contact_many([problem])[0]
+    x = _contact_inputs(problem)
+    return _contact_result(x, solve_contact_arrays(*_contact_call(x)), 0)
 
 
 def _contact_inputs(problem: StaticProblem) -> dict:
@@ -346,52 +347,28 @@ def _contact_inputs(problem: StaticProblem) -> dict:
     }
 
 
-def _contact_many(problems: list[StaticProblem]) -> list[StaticResult | None]:
-    """:func:`_contact_one` of each problem, those of the same pieces, nodes and plane
-    in one call of the kernels (which solve case by case: the same answers)."""
-    inputs = [_contact_inputs(p) for p in problems]
-    groups: dict[tuple, list[int]] = {}
-    for i, x in enumerate(inputs):
-        pl = x["plane"]
-        key = (
-            x["arrays"][0].shape[1],
-            x["s"].shape[1],
-            float(pl.depth),
-            float(pl.slope),
-            float(pl.heading),
-            float(pl.friction),
-        )
-        groups.setdefault(key, []).append(i)
-    results: list[StaticResult | None] = [None] * len(problems)
-    for idx in groups.values():
-        xs = [inputs[i] for i in idx]
-        cat = [np.concatenate([x["arrays"][k] for x in xs]) for k in range(7)]
-        out = solve_contact_arrays(
-            *cat[:6],
-            cat[6],
-            xs[0]["plane"],
-            np.concatenate([x["tol"] for x in xs]),
-            np.concatenate([x["maxit"] for x in xs]),
-            np.concatenate([x["sample"] for x in xs]),
-            np.concatenate([x["kind"] for x in xs]),
-            np.concatenate([x["force"] for x in xs]),
-        )
-        for j, (i, x) in enumerate(zip(idx, xs, strict=True)):
-            if out["status"][j] != 0:
-                continue
-            fa, fb = ("force_a", "force_b") if x["end"] == "a" else ("force_b", "force_a")
-            results[i] = StaticResult(
-                s=x["s"][0],
-                position=out["position"][j],
-                tension=out["tension"][j],
-                force_a=out[fa][j],
-                force_b=out[fb][j],
-                status=STATUS_OK,
-                laid_length=float(out["laid_length"][j]),
-                iterations=int(out["iterations"][j]),
-                residual=float(out["residual"][j]),
-            )
-    return results
+def _contact_call(x: dict) -> tuple:
+    """The arguments of :func:`solve_contact_arrays` for :func:`_contact_inputs` ``x``."""
+    return (*x["arrays"], x["plane"], x["tol"], x["maxit"], x["sample"], x["kind"], x["force"])
+
+
+def _contact_result(x: dict, out: dict, j: int) -> StaticResult | None:
+    """The result of case ``j`` of :func:`solve_contact_arrays`'s ``out`` for the problem
+    of :func:`_contact_inputs` ``x`` (None: not settled)."""
+    if out["status"][j] != 0:
+        return None
+    fa, fb = ("force_a", "force_b") if x["end"] == "a" else ("force_b", "force_a")
+    return StaticResult(
+        s=x["s"][0],
+        position=out["position"][j],
+        tension=out["tension"][j],
+        force_a=out[fa][j],
+        force_b=out[fb][j],
+        status=STATUS_OK,
+        laid_length=float(out["laid_length"][j]),
+        iterations=int(out["iterations"][j]),
+        residual=float(out["residual"][j]),
+    )
 
 
 def solve_compiled(
@@ -420,44 +397,6 @@ def solve_compiled(
         lay = make_layout(line)
         P = len(lay.ell)
     return _solve_group([problem], P, problem.n_nodes, [lay], deadline, why=why)[0]
-
-
-def solve_compiled_many(problems: list[StaticProblem]) -> list[StaticResult | None]:
-    """:func:`solve_compiled` of each problem (no deadline), the batchable ones of the
-    same pieces and nodes stacked into one kernel call: the same answers (the kernel
-    and the verification go case by case), without a call per problem. None where
-    :func:`solve_compiled` gives None (the general solver's then)."""
-    from . import _fast  # imports numba: on first use, not with this module
-
-    out: list[StaticResult | None] = [None] * len(problems)
-    if not _fast.AVAILABLE:
-        return out
-    groups: dict[tuple, list[int]] = {}
-    layouts: list = [None] * len(problems)
-    contact = []
-    for i, problem in enumerate(problems):
-        if contact_eligible(problem):
-            contact.append(i)
-            continue
-        if not batchable(problem):
-            continue
-        line = problem.line
-        if line.length.size == 1 and line.attachment_s.size == 0:
-            key: tuple = (1, problem.n_nodes, False)
-        else:
-            layouts[i] = make_layout(line)
-            key = (len(layouts[i].ell), problem.n_nodes, True)
-        groups.setdefault(key, []).append(i)
-    if contact:  # as solve_compiled: verified one by one, else the general solver's
-        solved = _contact_many([problems[i] for i in contact])
-        for i, res in zip(contact, solved, strict=True):
-            if res is not None and verified(problems[i], res, method="catenary").success:
-                out[i] = res
-    for (P, n_nodes, _), idx in groups.items():
-        solved = _solve_group([problems[i] for i in idx], P, n_nodes, [layouts[i] for i in idx], None)
-        for i, res in zip(idx, solved, strict=True):
-            out[i] = res
-    return out
 
 
 def _guess(
