@@ -63,7 +63,7 @@ def system_frequency_model(case: Case, system: Any, static: Any) -> Any:
             for name, sl in zip(study.lines, system.lines, strict=True)
         ],
         nodes=dyn.elements + 1,
-        solve=STATIC_SOLVERS["catenary"].solve,
+        solve_many=_catenary_many,
     )
     out = model if model is not None else why
     COUNTERS["system_assemblies"] += 1
@@ -72,33 +72,52 @@ def system_frequency_model(case: Case, system: Any, static: Any) -> Any:
     return out
 
 
+def _catenary_many(problems: list[Any]) -> list[Any]:
+    """The catenary solver's ``solve`` of each problem, those its compiled kernels take
+    stacked into one call per group (:func:`~cablestudy.statics.batch_many.
+    solve_compiled_many`: the same answers, verified as ``solve`` verifies them)."""
+    from ..statics.batch_many import solve_compiled_many
+
+    solve = STATIC_SOLVERS["catenary"].solve
+    fast = solve_compiled_many(problems)
+    return [r if r is not None else solve(p) for r, p in zip(fast, problems, strict=True)]
+
+
 _GRID_CACHE: OrderedDict[tuple[int, int], tuple[Any, Any]] = OrderedDict()
 
 
-def _envelope_grid(model: Any, n_out: int) -> Any:
-    """The linear interpolation (as ``np.interp``) of values at every line's nodes, flat
-    over the lines, onto ``n_out`` equally spaced arc lengths of each line: a sparse
-    (lines x n_out, nodes) matrix, built once per model."""
-    import scipy.sparse as sp
+class _Interpolation:
+    """``np.interp`` of values at every line's nodes (flat over the lines) onto each
+    line's ``n_out`` equally spaced arc lengths, as a linear map applied by ``@``: the
+    value at an output is ``(1 - t) v[j] + t v[j + 1]``, the two products summed in
+    that order (as a sparse matrix's product sums its row), by two gathers."""
 
+    def __init__(self, left: np.ndarray, weight: np.ndarray, shape: tuple[int, int]) -> None:
+        self.left, self.weight, self.shape = left, weight, shape
+
+    def __matmul__(self, values: np.ndarray) -> np.ndarray:
+        v = np.asarray(values)
+        return (1.0 - self.weight) * v[self.left] + self.weight * v[self.left + 1]
+
+
+def _envelope_grid(model: Any, n_out: int) -> _Interpolation:
+    """The linear interpolation (as ``np.interp``) of values at every line's nodes, flat
+    over the lines, onto ``n_out`` equally spaced arc lengths of each line
+    (:class:`_Interpolation`, lines x n_out from the nodes), built once per model."""
     key = (id(model), n_out)
     hit = _GRID_CACHE.get(key)
     if hit is not None and hit[0] is model:
         return hit[1]
-    rows, cols, vals, start = [], [], [], 0
-    for i, red in enumerate(model.lines):
+    left, weight, start = [], [], 0
+    for red in model.lines:
         s = red.line.s
         x = np.linspace(0.0, float(s[-1]), n_out)
         j = np.clip(np.searchsorted(s, x, side="right") - 1, 0, s.size - 2)
-        t = (x - s[j]) / (s[j + 1] - s[j])
-        q = i * n_out + np.arange(n_out)
-        rows += [q, q]
-        cols += [start + j, start + j + 1]
-        vals += [1.0 - t, t]
+        weight.append((x - s[j]) / (s[j + 1] - s[j]))
+        left.append(start + j)
         start += s.size
-    grid = sp.csr_matrix(
-        (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-        shape=(len(model.lines) * n_out, start),
+    grid = _Interpolation(
+        np.concatenate(left), np.concatenate(weight), (len(model.lines) * n_out, start)
     )
     _GRID_CACHE[key] = (model, grid)
     trim_lru(_GRID_CACHE, _CACHE_SIZE)
@@ -209,6 +228,26 @@ def run_system_auto(
     status, message, out, res, model = _solve_frequency(case, system, static, "auto")
     if status != STATUS_OK:
         return None, f"auto: frequency domain failed ({message})"
+    on_bed, weight = _judged_nodes(model, system)
+    trusted, reason = judge_system(
+        model.names, system_measures(model, res, on_bed, weight), dyn.auto or AutoSettings()
+    )
+    if not trusted:
+        return None, f"auto: {reason}"
+    out["dynamic_method_reason"] = np.asarray(f"auto: {reason}")
+    return (status, message, out), ""
+
+
+_NODES_CACHE: OrderedDict[int, tuple[Any, Any]] = OrderedDict()
+
+
+def _judged_nodes(model: Any, system: Any) -> tuple[list[np.ndarray], list[np.ndarray]]:
+    """Per line of ``model`` which nodes lie on the seabed and the weight per length
+    [N/m] at each node, for :func:`~cablestudy.dynamics.system_validity.system_measures`
+    (constants of the model: built once per model)."""
+    hit = _NODES_CACHE.get(id(model))
+    if hit is not None and hit[0] is model:
+        return hit[1]
     on_bed, weight = [], []
     for red, sl in zip(model.lines, system.lines, strict=True):
         line = red.line
@@ -222,10 +261,6 @@ def run_system_auto(
         lm = sl.problem.line
         idx = np.searchsorted(lm.segment_ends, line.s, side="right") - 1
         weight.append(lm.weight[np.clip(idx, 0, len(lm.length) - 1)])
-    trusted, reason = judge_system(
-        model.names, system_measures(model, res, on_bed, weight), dyn.auto or AutoSettings()
-    )
-    if not trusted:
-        return None, f"auto: {reason}"
-    out["dynamic_method_reason"] = np.asarray(f"auto: {reason}")
-    return (status, message, out), ""
+    _NODES_CACHE[id(model)] = (model, (on_bed, weight))
+    trim_lru(_NODES_CACHE, _CACHE_SIZE)
+    return on_bed, weight

@@ -68,6 +68,14 @@ to a body); the NumPy/LAPACK iteration line by line (:mod:`.system_frequency_ref
 and answers within 1e-7 of the largest (tests/unit/test_system_fd_kernel.py). At two
 elements a line (one inner node) the band is widened to a node's drag block.
 
+Building the model is cheap next to a time-domain case (``method: auto`` builds it
+before it judges a case): the lines re-solved at the model's nodes in one call of the
+compiled static kernels per group (``solve_many``; each answer verified as the
+solver's own), the end couplings picked from the lines' matrices entry by entry
+(:func:`_coordinate_coupling`; sparse products only for a basis that is not made of
+coordinate directions). Both give the plain construction's model bit for bit
+(tests/unit/test_system_fd_build.py).
+
 Pure: arrays and frozen dataclasses in, a :class:`SystemFrequencyResult` out.
 """
 
@@ -86,7 +94,11 @@ from ..statics.system_model import BODY, FREE, MooringSystem, SystemResult
 from .frequency_model import (
     STATUS_NOT_CONVERGED,
     DragSettings,
+    LinearLine,
     ReducedLine,
+    block_entries,
+    csr_entries,
+    selected_rows,
 )
 from .linear_model import linear_line
 from .modal import ModalProblem
@@ -258,21 +270,60 @@ class EndCoupling:
 
     @classmethod
     def of(cls, red: ReducedLine) -> EndCoupling:
-        line = red.line
-        B = line.free_basis.tocsc()
-        e = _end_index(line.n_nodes)
+        fast = _coordinate_coupling(red.line)
+        return cls(*(fast if fast is not None else _sparse_coupling(red.line)))
 
-        def blocks(Q: object) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-            Q = Q.tocsr()  # type: ignore[attr-defined]
-            cols = Q[:, e]
-            rows = Q[e, :]
-            return (
-                np.asarray((B.T @ cols).todense()),
-                np.asarray((rows @ B).todense()),
-                np.asarray(rows[:, e].todense()),
-            )
 
-        return cls(K=blocks(line.stiffness), M=blocks(line.mass_matrix()), C=blocks(line.damping))
+def _sparse_coupling(line: LinearLine) -> tuple:
+    """:class:`EndCoupling`'s (K, M, C) blocks by sparse products with the free basis
+    (any basis)."""
+    B = line.free_basis.tocsc()
+    e = _end_index(line.n_nodes)
+
+    def blocks(Q: object) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        Q = Q.tocsr()  # type: ignore[attr-defined]
+        cols = Q[:, e]
+        rows = Q[e, :]
+        return (
+            np.asarray((B.T @ cols).todense()),
+            np.asarray((rows @ B).todense()),
+            np.asarray(rows[:, e].todense()),
+        )
+
+    return blocks(line.stiffness), blocks(line.mass_matrix()), blocks(line.damping)
+
+
+def _coordinate_coupling(line: LinearLine) -> tuple | None:
+    """:class:`EndCoupling`'s (K, M, C) blocks picked entry by entry, without sparse
+    products, when the free basis is made of coordinate directions
+    (:func:`~.frequency_model.selected_rows`) and the matrices' entries are at hand
+    (:func:`~.frequency_model.csr_entries`, :func:`~.frequency_model.block_entries`):
+    ``B^T Q[:, E]`` is then ``Q`` at the free rows and the end columns, each entry a
+    single product by 1, as scipy's products give it (None: not such a basis)."""
+    B = line.free_basis
+    rows = selected_rows(B)
+    if rows is None:
+        return None
+    parts = (csr_entries(line.stiffness), block_entries(line.mass), csr_entries(line.damping))
+    if any(p is None for p in parts):
+        return None
+    n3, k = B.shape
+    column_of = np.full(n3, -1, dtype=np.int64)
+    column_of[rows] = np.arange(k)
+    end_of = np.full(n3, -1, dtype=np.int64)
+    end_of[_end_index(line.n_nodes)] = np.arange(6)
+    out = []
+    for row, col, val in parts:  # type: ignore[misc]
+        r_in, c_in, r_end, c_end = column_of[row], column_of[col], end_of[row], end_of[col]
+        ie, ei, ee = np.zeros((k, 6)), np.zeros((6, k)), np.zeros((6, 6))
+        m = (r_in >= 0) & (c_end >= 0)
+        ie[r_in[m], c_end[m]] = val[m]
+        m = (r_end >= 0) & (c_in >= 0)
+        ei[r_end[m], c_in[m]] = val[m]
+        m = (r_end >= 0) & (c_end >= 0)
+        ee[r_end[m], c_end[m]] = val[m]
+        out.append((ie, ei, ee))
+    return tuple(out)
 
 
 @dataclass(kw_only=True)
@@ -346,6 +397,7 @@ def system_linear(
     extras: list | None = None,
     nodes: int | None = None,
     solve: Callable[[StaticProblem], StaticResult] | None = None,
+    solve_many: Callable[[list[StaticProblem]], list[StaticResult]] | None = None,
 ) -> tuple[SystemLinear | None, str]:
     """The system linearised about its solved static state ``static``, or None and why
     not. ``point_mass`` and ``point_added_mass`` [kg] (P,) (isotropic) and
@@ -353,24 +405,35 @@ def system_linear(
     given); ``extras`` per line the :class:`~cablestudy.dynamics.model.DynamicExtras`
     (None: the line's defaults). The nodes of each line are its static samples, or with
     ``nodes`` that many equally spaced ones: each line solved again by ``solve`` (a
-    static solver's ``solve``) between its points where the system put them."""
+    static solver's ``solve``) between its points where the system put them, or all
+    such lines in one call of ``solve_many`` (the same answers as ``solve`` of each)."""
     P = len(system.point_names)
     held = EndCondition(kind="fixed")
-    reduced = []
-    for i, (sl, st) in enumerate(zip(system.lines, static.lines, strict=True)):
-        if nodes is not None and len(st.s) != nodes:
-            if solve is None:
-                raise ValueError("system_linear: nodes needs a static solver (solve)")
-            st = solve(
-                replace(
-                    sl.problem,
-                    end_a=EndCondition(kind="fixed", position=static.point_position[sl.a]),
-                    end_b=EndCondition(kind="fixed", position=static.point_position[sl.b]),
-                    n_nodes=nodes,
-                )
+    states = list(static.lines)
+    if nodes is not None:
+        again = [i for i, st in enumerate(states) if len(st.s) != nodes]
+        if again and solve is None and solve_many is None:
+            raise ValueError("system_linear: nodes needs a static solver (solve)")
+        problems = [
+            replace(
+                system.lines[i].problem,
+                end_a=EndCondition(kind="fixed", position=static.point_position[system.lines[i].a]),
+                end_b=EndCondition(kind="fixed", position=static.point_position[system.lines[i].b]),
+                n_nodes=nodes,
             )
+            for i in again
+        ]
+        if solve_many is not None:
+            solved = solve_many(problems)
+        else:
+            assert solve is not None
+            solved = [solve(problem) for problem in problems]
+        for i, st in zip(again, solved, strict=True):
             if not st.success:
-                return None, f"line {sl.name!r} at {nodes} nodes: {st.message}"
+                return None, f"line {system.lines[i].name!r} at {nodes} nodes: {st.message}"
+            states[i] = st
+    reduced = []
+    for i, (sl, st) in enumerate(zip(system.lines, states, strict=True)):
         T_e = 0.5 * (st.tension[:-1] + st.tension[1:])
         med = sl.problem.medium
         if med.depth is not None:

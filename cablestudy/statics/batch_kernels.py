@@ -290,6 +290,13 @@ def _contact_one(problem: StaticProblem) -> StaticResult | None:
     """One problem through the seabed-contact kernel (the same arrays the grid builds for
     it), or None when the kernel does not settle it. A line anchored at B is solved from
     B, as the reversed line (sampled at L - s), as the general solver does."""
+    x = _contact_inputs(problem)
+    return _contact_result(x, solve_contact_arrays(*_contact_call(x)), 0)
+
+
+def _contact_inputs(problem: StaticProblem) -> dict:
+    """The arrays of ``problem`` for :func:`solve_contact_arrays` (a leading axis of
+    one), its plane, and which end it is anchored at (``end``)."""
     end = contact_end(problem)
     assert end is not None
     line = problem.line if end == "a" else reversed_line(problem.line)
@@ -319,34 +326,48 @@ def _contact_one(problem: StaticProblem) -> StaticResult | None:
     assert plane is not None
     L = bounds[:, -1]
     s = np.linspace(np.zeros(1), L, problem.n_nodes, axis=1)
-    out = solve_contact_arrays(
-        ell,
-        EA,
-        weight,
-        point,
-        bounds,
-        np.asarray(anchor.position, dtype=float)[None],
-        target,
-        plane,
-        np.array([problem.tolerance], dtype=float),
-        np.array([problem.max_iterations], dtype=np.int64),
-        s if end == "a" else L[:, None] - s,
-        np.array([kind]),
-        force,
-    )
-    if out["status"][0] != 0:
+    return {
+        "end": end,
+        "plane": plane,
+        "s": s,
+        "arrays": (
+            ell,
+            EA,
+            weight,
+            point,
+            bounds,
+            np.asarray(anchor.position, dtype=float)[None],
+            target,
+        ),
+        "tol": np.array([problem.tolerance], dtype=float),
+        "maxit": np.array([problem.max_iterations], dtype=np.int64),
+        "sample": s if end == "a" else L[:, None] - s,
+        "kind": np.array([kind]),
+        "force": force,
+    }
+
+
+def _contact_call(x: dict) -> tuple:
+    """The arguments of :func:`solve_contact_arrays` for :func:`_contact_inputs` ``x``."""
+    return (*x["arrays"], x["plane"], x["tol"], x["maxit"], x["sample"], x["kind"], x["force"])
+
+
+def _contact_result(x: dict, out: dict, j: int) -> StaticResult | None:
+    """The result of case ``j`` of :func:`solve_contact_arrays`'s ``out`` for the problem
+    of :func:`_contact_inputs` ``x`` (None: not settled)."""
+    if out["status"][j] != 0:
         return None
-    fa, fb = ("force_a", "force_b") if end == "a" else ("force_b", "force_a")
+    fa, fb = ("force_a", "force_b") if x["end"] == "a" else ("force_b", "force_a")
     return StaticResult(
-        s=s[0],
-        position=out["position"][0],
-        tension=out["tension"][0],
-        force_a=out[fa][0],
-        force_b=out[fb][0],
+        s=x["s"][0],
+        position=out["position"][j],
+        tension=out["tension"][j],
+        force_a=out[fa][j],
+        force_b=out[fb][j],
         status=STATUS_OK,
-        laid_length=float(out["laid_length"][0]),
-        iterations=int(out["iterations"][0]),
-        residual=float(out["residual"][0]),
+        laid_length=float(out["laid_length"][j]),
+        iterations=int(out["iterations"][j]),
+        residual=float(out["residual"][j]),
     )
 
 

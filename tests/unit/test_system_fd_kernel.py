@@ -140,7 +140,7 @@ def test_two_elements_a_line_converge_to_the_fine_mesh() -> None:
 
 
 def test_envelope_on_the_output_grid_is_numpys_interpolation(case8: object) -> None:
-    """The envelope of every line onto the output's arc lengths by one sparse product
+    """The envelope of every line onto the output's arc lengths by one linear map
     (built once per model) is ``np.interp`` of each line's nodes, to rounding (the two
     round a weighted sum differently: a few units of 1e-16 of the values), and the
     envelope computed over all lines at once is the per-line one bit for bit."""

@@ -1,0 +1,87 @@
+"""The system frequency domain's model built cheaply (issue 24: ``method: auto`` built
+it at 3x the cost of a time-domain case) is the model built the plain way, bit for bit:
+
+- the lines re-solved at the model's nodes in one call per group of the compiled
+  kernels (:func:`cablestudy.statics.batch_many.solve_compiled_many`, through the
+  analysis' ``_catenary_many``) against the catenary solver's ``solve`` line by line:
+  both run the same kernels case by case and verify each answer the same way, so the
+  states, and the model built on them, are equal, not just close;
+- the end couplings picked entry by entry from the lines' matrices against the sparse
+  products with the free basis: each entry is one product by 1 in both.
+
+On MoorPy's case8 (bridles on free junctions, legs anchored on the seabed: the contact
+kernel, lifting off to the free-hanging one) and MoorDyn's lines.txt (chains laid on
+the seabed: the contact kernel proper), at 3, 4 and 11 nodes a line.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from cablestudy.analyses.system import system_model
+from cablestudy.analyses.system_frequency import _catenary_many
+from cablestudy.dynamics.system_frequency import (
+    _coordinate_coupling,
+    _sparse_coupling,
+    system_linear,
+)
+from cablestudy.interchange import import_model, imported_yaml
+from cablestudy.statics import STATIC_SOLVERS
+from cablestudy.statics.system_methods import solve_system_by
+from cablestudy.study.grid import expand_cases
+from cablestudy.study.loader import parse_study_text
+
+ROOT = Path(__file__).parents[2]
+SOLVER = STATIC_SOLVERS["catenary"]
+
+
+def _system(which: str):  # noqa: ANN202
+    if which == "case8":
+        text = (ROOT / "configs" / "system-case8-surge.yaml").read_text()
+        _, cases = expand_cases(parse_study_text(text, "case8.yaml"))
+    else:
+        rel = "moordyn/tests/Mooring/lines.txt"
+        path = ROOT / "tests" / "data" / rel
+        imported = import_model(path.read_text(), rel, folder=path.parent)
+        _, cases = expand_cases(parse_study_text(imported_yaml(imported, rel), "<imported>"))
+    system = system_model(cases[0].study)
+    res = solve_system_by(system, "catenary", STATIC_SOLVERS)
+    assert res.status == 0, res.message
+    return system, res
+
+
+@pytest.fixture(scope="module", params=["case8", "lines.txt"])
+def solved(request: pytest.FixtureRequest):  # noqa: ANN201
+    return _system(request.param)
+
+
+@pytest.mark.parametrize("nodes", [3, 4, 11])
+def test_batched_re_solve_is_the_solver_line_by_line(solved, nodes: int) -> None:  # noqa: ANN001
+    system, res = solved
+    one, why = system_linear(system, res, nodes=nodes, solve=SOLVER.solve)
+    assert one is not None, why
+    many, why = system_linear(system, res, nodes=nodes, solve_many=_catenary_many)
+    assert many is not None, why
+    for a, b in zip(one.lines, many.lines, strict=True):
+        for name in ("s", "position", "tension", "end_force", "axial_stiffness", "mass"):
+            np.testing.assert_array_equal(getattr(a.line, name), getattr(b.line, name))
+        for name in ("K", "M", "C"):
+            np.testing.assert_array_equal(getattr(a, name), getattr(b, name))
+    for x, y in zip(one.packed.arrays, many.packed.arrays, strict=True):
+        np.testing.assert_array_equal(x, y)
+
+
+@pytest.mark.parametrize("nodes", [3, 11])
+def test_end_couplings_picked_are_the_sparse_products(solved, nodes: int) -> None:  # noqa: ANN001
+    system, res = solved
+    model, why = system_linear(system, res, nodes=nodes, solve_many=_catenary_many)
+    assert model is not None, why
+    for red in model.lines:
+        fast = _coordinate_coupling(red.line)
+        assert fast is not None  # held ends: a coordinate basis
+        for got, ref in zip(fast, _sparse_coupling(red.line), strict=True):
+            for g, r in zip(got, ref, strict=True):
+                np.testing.assert_array_equal(g, r)
