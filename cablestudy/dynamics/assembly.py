@@ -316,7 +316,12 @@ def assemble_lines(  # noqa: ANN201, PLR0912, PLR0915
                     F[node, a] += kb * acc
             _add_bend_blocks(K_d, K_o, K_o2, kb, nodes, G, count, n0, e0, q0)
         drag = has_drag[l]
-        sliding = friction[l, 0] > 0.0 or friction[l, 1] > 0.0
+        # the line's scalars, read once (a row view such as friction[l] passed on per
+        # contact node would cost a reference count pair per call)
+        mu_along = friction[l, 0]
+        mu_across = friction[l, 1]
+        offset_l = seabed_offset[l]
+        sliding = mu_along > 0.0 or mu_across > 0.0
         for j in range(n):
             i = n0 + j
             lo = j - 1 if j > 0 else 0
@@ -385,7 +390,7 @@ def assemble_lines(  # noqa: ANN201, PLR0912, PLR0915
                             C_d[i, a, b] += c
             ks = seabed_stiffness[i]
             if ks > 0.0:
-                gap = nrm[0] * x[i, 0] + nrm[1] * x[i, 1] + nrm[2] * x[i, 2] - seabed_offset[l]
+                gap = nrm[0] * x[i, 0] + nrm[1] * x[i, 1] + nrm[2] * x[i, 2] - offset_l
                 # contact: by the law (state 0: touching where gap <= 0, pushing only), or
                 # held fixed during a time step's Newton iterations (1: touching, the
                 # spring and damper linear, 2: not), see contact_changed
@@ -413,7 +418,8 @@ def assemble_lines(  # noqa: ANN201, PLR0912, PLR0915
                             ks,
                             cs,
                             fn,
-                            friction[l],
+                            mu_along,
+                            mu_across,
                             F,
                             K_d,
                             C_d,
@@ -433,7 +439,8 @@ def _friction(  # noqa: ANN202
     kt,  # noqa: ANN001
     cs,  # noqa: ANN001
     fn,  # noqa: ANN001
-    friction,  # noqa: ANN001
+    mu_along,  # noqa: ANN001
+    mu_across,  # noqa: ANN001
     F,  # noqa: ANN001
     K_d,  # noqa: ANN001
     C_d,  # noqa: ANN001
@@ -443,7 +450,8 @@ def _friction(  # noqa: ANN202
 ):
     """Elastic-plastic Coulomb friction at contact node ``i``: along the line (the node
     tangent projected on the seabed) and across it, each a spring of stiffness ``kt``
-    [N/m] to the node's anchor, capped at ``mu N``.
+    [N/m] to the node's anchor, capped at ``mu N`` (``mu`` the line's coefficient
+    ``mu_along`` or ``mu_across``).
 
     ``slip_state[i, k]`` (k = 0 along, 1 across) chooses how: 0 by the trial spring
     force (stick below mu N, else slide at mu N); 2 stick (the spring, uncapped);
@@ -478,7 +486,7 @@ def _friction(  # noqa: ANN202
         da += d * ea[a]
         dl += d * el[a]
     for k in range(2):
-        mu = friction[k]
+        mu = mu_along if k == 0 else mu_across
         if mu <= 0.0:
             continue
         e = ea if k == 0 else el
