@@ -13,6 +13,7 @@ import numpy as np
 from numba import njit
 
 from .discrete_line import DiscreteLine
+from .line_offsets import line_count, line_part, node_range
 
 # ------------------------------------------------------------------ compiled kernels
 
@@ -111,48 +112,19 @@ def assemble(  # noqa: ANN201
     micrometres short would drop the axial stiffness of a taut element, and Newton
     would take a huge step along the line's soft (inextensional) modes.
 
-    One line: :func:`assemble_lines` (which holds the formulation) with one line
-    (:func:`one_line`; a Newton loop takes those once and calls :func:`assemble_lines`)."""
-    no, eo, o2, ko, drag, clamp, offset, mu, uel, lel = one_line(
-        rest_length.shape[0], K_o2.shape[0], law_knots.shape[0], has_drag, clamp_direction,
-        seabed_offset, friction,
-    )  # fmt: skip
+    One line: :func:`assemble_lines` (which holds the formulation) given no offsets
+    (``None``) and the line's own ``has_drag``, ``clamp_direction`` (2, 3),
+    ``seabed_offset`` and ``friction`` (2,)."""
+    n_el = x.shape[0] - 1
     assemble_lines(
-        no, eo, o2, ko, x, v, anchor, rest_length, axial_stiffness, internal_damping, force,
-        drag_normal, drag_tangential, added_mass_normal, added_mass_tangential, mass,
-        current_z, current_velocity, drag, bending, clamp, transverse_damping,
-        body_added_mass, body_drag, held, seabed_normal, offset, seabed_stiffness,
-        seabed_damping, mu, law_code, law_params, law_knots, law_start, law_count, broken,
-        F, K_d, K_o, K_o2, C_d, C_o, M_d, tension, strain, taut0, contact, friction_force,
-        slip_state, trial, uel, lel,
+        None, None, None, None, x, v, anchor, rest_length, axial_stiffness, internal_damping,
+        force, drag_normal, drag_tangential, added_mass_normal, added_mass_tangential, mass,
+        current_z, current_velocity, has_drag, bending, clamp_direction, transverse_damping,
+        body_added_mass, body_drag, held, seabed_normal, seabed_offset, seabed_stiffness,
+        seabed_damping, friction, law_code, law_params, law_knots, law_start, law_count,
+        broken, F, K_d, K_o, K_o2, C_d, C_o, M_d, tension, strain, taut0, contact,
+        friction_force, slip_state, trial, np.empty((n_el, 3)), np.empty(n_el),
     )  # fmt: skip
-
-
-@njit(cache=True)
-def one_line(n_el, n_o2, n_knots, has_drag, clamp_direction, seabed_offset, friction):  # noqa: ANN001, ANN201
-    """The arguments by which :func:`assemble_lines` takes one line of ``n_el``
-    elements (its offsets ``no``, ``eo``, ``o2``, ``ko``; its ``has_drag``,
-    ``clamp_direction``, ``seabed_offset`` and ``friction`` as arrays over one line)
-    and its scratch ``uel``, ``lel``."""
-    no = np.empty(2, dtype=np.int64)
-    eo = np.empty(2, dtype=np.int64)
-    o2 = np.empty(2, dtype=np.int64)
-    ko = np.empty(2, dtype=np.int64)
-    no[0], no[1] = 0, n_el + 1
-    eo[0], eo[1] = 0, n_el
-    o2[0], o2[1] = 0, n_o2
-    ko[0], ko[1] = 0, n_knots
-    drag = np.empty(1, dtype=np.bool_)
-    drag[0] = has_drag
-    clamp = np.empty((1, 2, 3))
-    for end in range(2):
-        for a in range(3):
-            clamp[0, end, a] = clamp_direction[end, a]
-    offset = np.empty(1)
-    offset[0] = seabed_offset
-    mu = np.empty((1, 2))
-    mu[0, 0], mu[0, 1] = friction[0], friction[1]
-    return no, eo, o2, ko, drag, clamp, offset, mu, np.empty((n_el, 3)), np.empty(n_el)
 
 
 # fmt: off
@@ -174,7 +146,9 @@ def assemble_lines(  # noqa: ANN201, PLR0912, PLR0915
     ``law_start`` counted from ``ko[l]``); per line ``has_drag`` (L,),
     ``clamp_direction`` (L, 2, 3), ``seabed_offset`` (L,), ``friction`` (L, 2); the
     rest per node or element as :func:`assemble`'s. ``uel`` (E, 3), ``lel`` (E,):
-    scratch (the elements' unit vectors and lengths)."""
+    scratch (the elements' unit vectors and lengths). With ``no``, ``eo``, ``o2``,
+    ``ko`` None: one line, its ``has_drag``, ``clamp_direction``, ``seabed_offset``,
+    ``friction`` its own (:func:`assemble`)."""
     u = np.empty(3)
     G = np.zeros((3, 3, 3))
     nodes = np.zeros(3, dtype=np.int64)
@@ -182,13 +156,15 @@ def assemble_lines(  # noqa: ANN201, PLR0912, PLR0915
     rel = np.empty(3)
     un = np.empty(3)
     nrm = seabed_normal
-    for l in range(no.shape[0] - 1):  # noqa: E741
-        n0 = no[l]
-        n = no[l + 1] - n0
+    for l in range(line_count(no)):  # noqa: E741
+        # the line's offsets and its own values, read once (:mod:`.line_offsets`: none
+        # for one line); a row view such as friction[l] passed on per contact node
+        # would cost a reference count per call
+        n0, n, e0, q0, q1, k0, drag, clamp, offset_l, mu_along, mu_across = line_part(
+            no, eo, o2, ko, l, x.shape[0], K_o2.shape[0], has_drag, clamp_direction,
+            seabed_offset, friction,
+        )  # fmt: skip
         n_el = n - 1
-        e0 = eo[l]
-        q0 = o2[l]
-        k0 = ko[l]
         for i in range(n0, n0 + n):
             contact[i] = 0.0
             for a in range(3):
@@ -198,7 +174,7 @@ def assemble_lines(  # noqa: ANN201, PLR0912, PLR0915
                     K_d[i, a, b] = 0.0
                     C_d[i, a, b] = 0.0
                     M_d[i, a, b] = 0.0
-        for e in range(q0, o2[l + 1]):
+        for e in range(q0, q1):
             for a in range(3):
                 for b in range(3):
                     K_o2[e, a, b] = 0.0
@@ -302,7 +278,7 @@ def assemble_lines(  # noqa: ANN201, PLR0912, PLR0915
                         p = (1.0 if a == b else 0.0) - uel[e0 + e, a] * uel[e0 + e, b]
                         G[0, a, b] = -p / le
                         G[1, a, b] = p / le
-                    u[a] = uel[e0 + e, a] - clamp_direction[l, end, a]
+                    u[a] = uel[e0 + e, a] - clamp[end, a]
                 nodes[0] = e
                 nodes[1] = e + 1
                 count = 2
@@ -315,12 +291,6 @@ def assemble_lines(  # noqa: ANN201, PLR0912, PLR0915
                         acc += G[p, a, c] * u[c]
                     F[node, a] += kb * acc
             _add_bend_blocks(K_d, K_o, K_o2, kb, nodes, G, count, n0, e0, q0)
-        drag = has_drag[l]
-        # the line's scalars, read once (a row view such as friction[l] passed on per
-        # contact node would cost a reference count pair per call)
-        mu_along = friction[l, 0]
-        mu_across = friction[l, 1]
-        offset_l = seabed_offset[l]
         sliding = mu_along > 0.0 or mu_across > 0.0
         for j in range(n):
             i = n0 + j
@@ -702,14 +672,11 @@ def contact_states(
     state has changed ``MAX_CONTACT_FLIPS`` times in the step (it sits on the plane,
     where neither state is consistent) goes back to the law itself (0), which the
     Newton iterations then meet with their landing clip. One line:
-    :func:`contact_states_lines`."""
-    no = np.empty(2, dtype=np.int64)
-    no[0], no[1] = 0, x.shape[0]
-    offset = np.empty(1)
-    offset[0] = seabed_offset
+    :func:`contact_states_lines` given no offsets (``None``)."""
     return contact_states_lines(
-        no, x, v, seabed_normal, offset, seabed_stiffness, seabed_damping, slip_state, fix, count
-    )
+        None, x, v, seabed_normal, seabed_offset, seabed_stiffness, seabed_damping,
+        slip_state, fix, count,
+    )  # fmt: skip
 
 
 @njit(cache=True)
@@ -717,14 +684,17 @@ def contact_states_lines(
     no, x, v, seabed_normal, seabed_offset, seabed_stiffness, seabed_damping, slip_state, fix, count
 ):  # noqa: ANN001, ANN201, E501
     """:func:`contact_states` of lines packed one after another (line ``l`` the nodes
-    ``no[l]:no[l + 1]``, its seabed plane's offset ``seabed_offset[l]``), in one call."""
+    ``no[l]:no[l + 1]``, its seabed plane's offset ``seabed_offset[l]``), in one call;
+    ``no`` None: one line, ``seabed_offset`` its own (compiled apart, offsets 0:
+    :mod:`.line_offsets`)."""
     changed = False
-    for l in range(no.shape[0] - 1):  # noqa: E741
-        for i in range(no[l], no[l + 1]):
+    for l in range(line_count(no)):  # noqa: E741
+        i0, i1, offset_l = node_range(no, l, x.shape[0], seabed_offset)
+        for i in range(i0, i1):
             ks = seabed_stiffness[i]
             if ks <= 0.0 or slip_state[i, 2] == 3 and fix:
                 continue
-            gap = -seabed_offset[l]
+            gap = -offset_l
             vn = 0.0
             for a in range(3):
                 gap += seabed_normal[a] * x[i, a]
