@@ -14,8 +14,7 @@ from numba import njit
 from .assembly import (
     _trial_states,
     assemble_lines,
-    contact_states_lines,
-    one_line,
+    contact_states,
     solve_banded,
     states_changed,
 )
@@ -151,31 +150,80 @@ def alpha_step(
     # checked once they converge
     fixed_contact = has_seabed and slip_state.shape[1] > 2
     flips = np.zeros(n, dtype=np.int64)
-    # the line as assemble_lines and contact_states_lines take it, once for the step
-    one = one_line(
-        rest_length.shape[0], K_o2.shape[0], law_knots.shape[0], has_drag, clamp_direction,
-        seabed_offset, friction,
-    )  # fmt: skip
     if fixed_contact:
-        contact_states_lines(
-            one[0], x1, v1, seabed_normal, one[6], seabed_stiffness, seabed_damping,
-            slip_state, False, flips,
-        )  # fmt: skip
+        contact_states(
+            x1,
+            v1,
+            seabed_normal,
+            seabed_offset,
+            seabed_stiffness,
+            seabed_damping,
+            slip_state,
+            False,
+            flips,
+        )
     checks = 0
     checked_early = False
     clips = 0
     it = 0
+    # the elements' unit vectors and lengths (assemble_lines' scratch), once for the loop
+    uel = np.empty((rest_length.shape[0], 3))
+    lel = np.empty(rest_length.shape[0])
     while True:
         assemble_lines(
-            one[0], one[1], one[2], one[3], x1, v1, anchor, rest_length, axial_stiffness,
-            internal_damping, force, drag_normal, drag_tangential, added_mass_normal,
-            added_mass_tangential, mass, current_z, current_velocity, one[4], bending,
-            one[5], transverse_damping, body_added_mass, body_drag, held, seabed_normal,
-            one[6], seabed_stiffness, seabed_damping, one[7], law_code, law_params,
-            law_knots, law_start, law_count, broken, F, K_d, K_o, K_o2, C_d, C_o, M_d,
-            tension, strain, taut0, contact, friction_force, slip_state, trial, one[8],
-            one[9],
-        )  # fmt: skip
+            None,
+            None,
+            None,
+            None,
+            x1,
+            v1,
+            anchor,
+            rest_length,
+            axial_stiffness,
+            internal_damping,
+            force,
+            drag_normal,
+            drag_tangential,
+            added_mass_normal,
+            added_mass_tangential,
+            mass,
+            current_z,
+            current_velocity,
+            has_drag,
+            bending,
+            clamp_direction,
+            transverse_damping,
+            body_added_mass,
+            body_drag,
+            held,
+            seabed_normal,
+            seabed_offset,
+            seabed_stiffness,
+            seabed_damping,
+            friction,
+            law_code,
+            law_params,
+            law_knots,
+            law_start,
+            law_count,
+            broken,
+            F,
+            K_d,
+            K_o,
+            K_o2,
+            C_d,
+            C_o,
+            M_d,
+            tension,
+            strain,
+            taut0,
+            contact,
+            friction_force,
+            slip_state,
+            trial,
+            uel,
+            lel,
+        )
         if fix_states:
             # a contact node keeps the stick/slip state it ended the last step with (a
             # sliding stretch tends to go on sliding); a node new to the seabed takes
@@ -203,10 +251,17 @@ def alpha_step(
         if res <= tol or early:
             checked_early = True
             if checks < MAX_STATE_CHECKS:
-                changed = fixed_contact and contact_states_lines(
-                    one[0], x1, v1, seabed_normal, one[6], seabed_stiffness, seabed_damping,
-                    slip_state, True, flips,
-                )  # fmt: skip
+                changed = fixed_contact and contact_states(
+                    x1,
+                    v1,
+                    seabed_normal,
+                    seabed_offset,
+                    seabed_stiffness,
+                    seabed_damping,
+                    slip_state,
+                    True,
+                    flips,
+                )
                 if has_friction and states_changed(slip_state, trial, contact, friction):
                     changed = True
                 if changed:

@@ -13,6 +13,7 @@ import numpy as np
 from numba import njit
 
 from .discrete_line import DiscreteLine
+from .line_offsets import line_count, line_part, node_range
 
 # ------------------------------------------------------------------ compiled kernels
 
@@ -41,7 +42,9 @@ def _add_bend_blocks(K_d, K_o, K_o2, kb, nodes, G, count, n0, e0, q0):  # noqa: 
                         K_o2[q0 + i, a, b] += acc
 
 
-@njit(cache=True)
+# inlined (numba IR): the caller's row view law_params[e] then costs no reference count
+# pair per element (a call took the view as an argument: 3 % of a chain's time step)
+@njit(cache=True, inline="always")
 def axial_law(code, params, knots, start, count, ea, eps):  # noqa: ANN001, ANN201
     """Tension [N] and tangent dT/d(strain) [N] of an element's axial law at strain
     ``eps`` > 0 (the kernels' copy of :mod:`cablestudy.physics.axial`): 0 linear
@@ -111,48 +114,19 @@ def assemble(  # noqa: ANN201
     micrometres short would drop the axial stiffness of a taut element, and Newton
     would take a huge step along the line's soft (inextensional) modes.
 
-    One line: :func:`assemble_lines` (which holds the formulation) with one line
-    (:func:`one_line`; a Newton loop takes those once and calls :func:`assemble_lines`)."""
-    no, eo, o2, ko, drag, clamp, offset, mu, uel, lel = one_line(
-        rest_length.shape[0], K_o2.shape[0], law_knots.shape[0], has_drag, clamp_direction,
-        seabed_offset, friction,
-    )  # fmt: skip
+    One line: :func:`assemble_lines` (which holds the formulation) given no offsets
+    (``None``) and the line's own ``has_drag``, ``clamp_direction`` (2, 3),
+    ``seabed_offset`` and ``friction`` (2,)."""
+    n_el = x.shape[0] - 1
     assemble_lines(
-        no, eo, o2, ko, x, v, anchor, rest_length, axial_stiffness, internal_damping, force,
-        drag_normal, drag_tangential, added_mass_normal, added_mass_tangential, mass,
-        current_z, current_velocity, drag, bending, clamp, transverse_damping,
-        body_added_mass, body_drag, held, seabed_normal, offset, seabed_stiffness,
-        seabed_damping, mu, law_code, law_params, law_knots, law_start, law_count, broken,
-        F, K_d, K_o, K_o2, C_d, C_o, M_d, tension, strain, taut0, contact, friction_force,
-        slip_state, trial, uel, lel,
+        None, None, None, None, x, v, anchor, rest_length, axial_stiffness, internal_damping,
+        force, drag_normal, drag_tangential, added_mass_normal, added_mass_tangential, mass,
+        current_z, current_velocity, has_drag, bending, clamp_direction, transverse_damping,
+        body_added_mass, body_drag, held, seabed_normal, seabed_offset, seabed_stiffness,
+        seabed_damping, friction, law_code, law_params, law_knots, law_start, law_count,
+        broken, F, K_d, K_o, K_o2, C_d, C_o, M_d, tension, strain, taut0, contact,
+        friction_force, slip_state, trial, np.empty((n_el, 3)), np.empty(n_el),
     )  # fmt: skip
-
-
-@njit(cache=True)
-def one_line(n_el, n_o2, n_knots, has_drag, clamp_direction, seabed_offset, friction):  # noqa: ANN001, ANN201
-    """The arguments by which :func:`assemble_lines` takes one line of ``n_el``
-    elements (its offsets ``no``, ``eo``, ``o2``, ``ko``; its ``has_drag``,
-    ``clamp_direction``, ``seabed_offset`` and ``friction`` as arrays over one line)
-    and its scratch ``uel``, ``lel``."""
-    no = np.empty(2, dtype=np.int64)
-    eo = np.empty(2, dtype=np.int64)
-    o2 = np.empty(2, dtype=np.int64)
-    ko = np.empty(2, dtype=np.int64)
-    no[0], no[1] = 0, n_el + 1
-    eo[0], eo[1] = 0, n_el
-    o2[0], o2[1] = 0, n_o2
-    ko[0], ko[1] = 0, n_knots
-    drag = np.empty(1, dtype=np.bool_)
-    drag[0] = has_drag
-    clamp = np.empty((1, 2, 3))
-    for end in range(2):
-        for a in range(3):
-            clamp[0, end, a] = clamp_direction[end, a]
-    offset = np.empty(1)
-    offset[0] = seabed_offset
-    mu = np.empty((1, 2))
-    mu[0, 0], mu[0, 1] = friction[0], friction[1]
-    return no, eo, o2, ko, drag, clamp, offset, mu, np.empty((n_el, 3)), np.empty(n_el)
 
 
 # fmt: off
@@ -174,7 +148,9 @@ def assemble_lines(  # noqa: ANN201, PLR0912, PLR0915
     ``law_start`` counted from ``ko[l]``); per line ``has_drag`` (L,),
     ``clamp_direction`` (L, 2, 3), ``seabed_offset`` (L,), ``friction`` (L, 2); the
     rest per node or element as :func:`assemble`'s. ``uel`` (E, 3), ``lel`` (E,):
-    scratch (the elements' unit vectors and lengths)."""
+    scratch (the elements' unit vectors and lengths). With ``no``, ``eo``, ``o2``,
+    ``ko`` None: one line, its ``has_drag``, ``clamp_direction``, ``seabed_offset``,
+    ``friction`` its own (:func:`assemble`)."""
     u = np.empty(3)
     G = np.zeros((3, 3, 3))
     nodes = np.zeros(3, dtype=np.int64)
@@ -182,13 +158,15 @@ def assemble_lines(  # noqa: ANN201, PLR0912, PLR0915
     rel = np.empty(3)
     un = np.empty(3)
     nrm = seabed_normal
-    for l in range(no.shape[0] - 1):  # noqa: E741
-        n0 = no[l]
-        n = no[l + 1] - n0
+    for l in range(line_count(no)):  # noqa: E741
+        # the line's offsets and its own values, read once (:mod:`.line_offsets`: none
+        # for one line); a row view such as friction[l] passed on per contact node
+        # would cost a reference count per call
+        n0, n, e0, q0, q1, k0, drag, clamp, offset_l, mu_along, mu_across = line_part(
+            no, eo, o2, ko, l, x.shape[0], K_o2.shape[0], has_drag, clamp_direction,
+            seabed_offset, friction,
+        )  # fmt: skip
         n_el = n - 1
-        e0 = eo[l]
-        q0 = o2[l]
-        k0 = ko[l]
         for i in range(n0, n0 + n):
             contact[i] = 0.0
             for a in range(3):
@@ -198,7 +176,7 @@ def assemble_lines(  # noqa: ANN201, PLR0912, PLR0915
                     K_d[i, a, b] = 0.0
                     C_d[i, a, b] = 0.0
                     M_d[i, a, b] = 0.0
-        for e in range(q0, o2[l + 1]):
+        for e in range(q0, q1):
             for a in range(3):
                 for b in range(3):
                     K_o2[e, a, b] = 0.0
@@ -302,7 +280,7 @@ def assemble_lines(  # noqa: ANN201, PLR0912, PLR0915
                         p = (1.0 if a == b else 0.0) - uel[e0 + e, a] * uel[e0 + e, b]
                         G[0, a, b] = -p / le
                         G[1, a, b] = p / le
-                    u[a] = uel[e0 + e, a] - clamp_direction[l, end, a]
+                    u[a] = uel[e0 + e, a] - clamp[end, a]
                 nodes[0] = e
                 nodes[1] = e + 1
                 count = 2
@@ -315,8 +293,7 @@ def assemble_lines(  # noqa: ANN201, PLR0912, PLR0915
                         acc += G[p, a, c] * u[c]
                     F[node, a] += kb * acc
             _add_bend_blocks(K_d, K_o, K_o2, kb, nodes, G, count, n0, e0, q0)
-        drag = has_drag[l]
-        sliding = friction[l, 0] > 0.0 or friction[l, 1] > 0.0
+        sliding = mu_along > 0.0 or mu_across > 0.0
         for j in range(n):
             i = n0 + j
             lo = j - 1 if j > 0 else 0
@@ -385,7 +362,7 @@ def assemble_lines(  # noqa: ANN201, PLR0912, PLR0915
                             C_d[i, a, b] += c
             ks = seabed_stiffness[i]
             if ks > 0.0:
-                gap = nrm[0] * x[i, 0] + nrm[1] * x[i, 1] + nrm[2] * x[i, 2] - seabed_offset[l]
+                gap = nrm[0] * x[i, 0] + nrm[1] * x[i, 1] + nrm[2] * x[i, 2] - offset_l
                 # contact: by the law (state 0: touching where gap <= 0, pushing only), or
                 # held fixed during a time step's Newton iterations (1: touching, the
                 # spring and damper linear, 2: not), see contact_changed
@@ -413,7 +390,8 @@ def assemble_lines(  # noqa: ANN201, PLR0912, PLR0915
                             ks,
                             cs,
                             fn,
-                            friction[l],
+                            mu_along,
+                            mu_across,
                             F,
                             K_d,
                             C_d,
@@ -433,7 +411,8 @@ def _friction(  # noqa: ANN202
     kt,  # noqa: ANN001
     cs,  # noqa: ANN001
     fn,  # noqa: ANN001
-    friction,  # noqa: ANN001
+    mu_along,  # noqa: ANN001
+    mu_across,  # noqa: ANN001
     F,  # noqa: ANN001
     K_d,  # noqa: ANN001
     C_d,  # noqa: ANN001
@@ -443,7 +422,8 @@ def _friction(  # noqa: ANN202
 ):
     """Elastic-plastic Coulomb friction at contact node ``i``: along the line (the node
     tangent projected on the seabed) and across it, each a spring of stiffness ``kt``
-    [N/m] to the node's anchor, capped at ``mu N``.
+    [N/m] to the node's anchor, capped at ``mu N`` (``mu`` the line's coefficient
+    ``mu_along`` or ``mu_across``).
 
     ``slip_state[i, k]`` (k = 0 along, 1 across) chooses how: 0 by the trial spring
     force (stick below mu N, else slide at mu N); 2 stick (the spring, uncapped);
@@ -478,7 +458,7 @@ def _friction(  # noqa: ANN202
         da += d * ea[a]
         dl += d * el[a]
     for k in range(2):
-        mu = friction[k]
+        mu = mu_along if k == 0 else mu_across
         if mu <= 0.0:
             continue
         e = ea if k == 0 else el
@@ -694,14 +674,11 @@ def contact_states(
     state has changed ``MAX_CONTACT_FLIPS`` times in the step (it sits on the plane,
     where neither state is consistent) goes back to the law itself (0), which the
     Newton iterations then meet with their landing clip. One line:
-    :func:`contact_states_lines`."""
-    no = np.empty(2, dtype=np.int64)
-    no[0], no[1] = 0, x.shape[0]
-    offset = np.empty(1)
-    offset[0] = seabed_offset
+    :func:`contact_states_lines` given no offsets (``None``)."""
     return contact_states_lines(
-        no, x, v, seabed_normal, offset, seabed_stiffness, seabed_damping, slip_state, fix, count
-    )
+        None, x, v, seabed_normal, seabed_offset, seabed_stiffness, seabed_damping,
+        slip_state, fix, count,
+    )  # fmt: skip
 
 
 @njit(cache=True)
@@ -709,14 +686,17 @@ def contact_states_lines(
     no, x, v, seabed_normal, seabed_offset, seabed_stiffness, seabed_damping, slip_state, fix, count
 ):  # noqa: ANN001, ANN201, E501
     """:func:`contact_states` of lines packed one after another (line ``l`` the nodes
-    ``no[l]:no[l + 1]``, its seabed plane's offset ``seabed_offset[l]``), in one call."""
+    ``no[l]:no[l + 1]``, its seabed plane's offset ``seabed_offset[l]``), in one call;
+    ``no`` None: one line, ``seabed_offset`` its own (compiled apart, offsets 0:
+    :mod:`.line_offsets`)."""
     changed = False
-    for l in range(no.shape[0] - 1):  # noqa: E741
-        for i in range(no[l], no[l + 1]):
+    for l in range(line_count(no)):  # noqa: E741
+        i0, i1, offset_l = node_range(no, l, x.shape[0], seabed_offset)
+        for i in range(i0, i1):
             ks = seabed_stiffness[i]
             if ks <= 0.0 or slip_state[i, 2] == 3 and fix:
                 continue
-            gap = -seabed_offset[l]
+            gap = -offset_l
             vn = 0.0
             for a in range(3):
                 gap += seabed_normal[a] * x[i, a]

@@ -69,7 +69,6 @@ from .assembly import (
     _trial_states,
     assemble_lines,
     evaluate,
-    one_line,
     solve_banded,
     states_changed,
     update_anchors,
@@ -155,21 +154,64 @@ def _static_newton(
             slip_state[i, k] = 0
     checks = 0
     it = 0
-    one = one_line(
-        rest_length.shape[0], K_o2.shape[0], law_knots.shape[0], has_drag, clamp_direction,
-        seabed_offset, friction,
-    )  # fmt: skip
+    # the elements' unit vectors and lengths (assemble_lines' scratch), once for the loop
+    uel = np.empty((rest_length.shape[0], 3))
+    lel = np.empty(rest_length.shape[0])
     while True:
         assemble_lines(
-            one[0], one[1], one[2], one[3], x, v, anchor, rest_length, axial_stiffness,
-            internal_damping, force, drag_normal, drag_tangential, added_mass_normal,
-            added_mass_tangential, mass, current_z, current_velocity, one[4], bending,
-            one[5], transverse_damping, body_added_mass, body_drag, held, seabed_normal,
-            one[6], seabed_stiffness, seabed_damping, one[7], law_code, law_params,
-            law_knots, law_start, law_count, broken, F, K_d, K_o, K_o2, C_d, C_o, M_d,
-            tension, strain, taut0, contact, friction_force, slip_state, trial, one[8],
-            one[9],
-        )  # fmt: skip
+            None,
+            None,
+            None,
+            None,
+            x,
+            v,
+            anchor,
+            rest_length,
+            axial_stiffness,
+            internal_damping,
+            force,
+            drag_normal,
+            drag_tangential,
+            added_mass_normal,
+            added_mass_tangential,
+            mass,
+            current_z,
+            current_velocity,
+            has_drag,
+            bending,
+            clamp_direction,
+            transverse_damping,
+            body_added_mass,
+            body_drag,
+            held,
+            seabed_normal,
+            seabed_offset,
+            seabed_stiffness,
+            seabed_damping,
+            friction,
+            law_code,
+            law_params,
+            law_knots,
+            law_start,
+            law_count,
+            broken,
+            F,
+            K_d,
+            K_o,
+            K_o2,
+            C_d,
+            C_o,
+            M_d,
+            tension,
+            strain,
+            taut0,
+            contact,
+            friction_force,
+            slip_state,
+            trial,
+            uel,
+            lel,
+        )
         if fix_states:
             # friction as an active set, as in the time step: the trial decides which
             # contact nodes stick and which slide, Newton keeps those states
