@@ -285,7 +285,10 @@ def run(quick: bool = False) -> WorkPrecision:
         f"{b['model'] * 1e3:.1f} ms, dynamics {b['dynamics'] * 1e3:.1f} ms: {b['steps']} "
         f"steps, {periods:g} periods), MoorDyn {md_best[0]} {md_best[1] * 1e3:.0f} ms CPU "
         f"(error {md_best[2]:.1e}; initial condition {md_best[3] * 1e3:.0f} ms): MoorDyn / "
-        f"ours = {ratio:.1f} (the issue's target: 10, {'met' if ratio >= 10 else 'not met'}); "
+        f"ours = {ratio:.1f} with method time (the issue's target: 10, "
+        f"{'met' if ratio >= 10 else 'not met'}); as a user writes the study (auto, the "
+        f"default) {md_best[1] / auto['whole']:.1f} "
+        f"({'met' if md_best[1] / auto['whole'] >= 10 else 'not met'}); "
         f"dynamics alone {(md_best[1] - md_best[3]) / b['dynamics']:.1f}; "
         f"medians of {repeats} (ours) and {1 if quick else 3} (MoorDyn)"
     )
