@@ -32,6 +32,7 @@ KINDS: dict[str, tuple[str, float]] = {
     "statics": ("the static kernels", 18.0),
     "time": ("the time-domain kernels", 25.0),
     "frequency": ("the frequency-domain kernels", 10.0),
+    "systems": ("the mooring-system dynamics kernels", 30.0),
 }
 
 
@@ -111,6 +112,43 @@ sweep:
     build()
 
 
+#: a small system moved by its body, for the system dynamics' warm-up (a line on the
+#: seabed, a free junction with mass, a body point)
+_WARM_SYSTEM = """\
+name: warm-system-dynamics
+environment: {fluid: water, depth: 60.0}
+points:
+  anchor: {kind: fixed, position: [-90.0, 0.0, -60.0]}
+  joint: {kind: free, position: [-30.0, 0.0, -30.0], mass: 200.0}
+  fair: {kind: body, body: hull, offset: [0.0, 0.0, -5.0]}
+bodies:
+  hull: {kind: prescribed, position: [0.0, 0.0, 0.0, 0.0, 0.0, 0.0]}
+lines:
+  leg: {a: anchor, b: joint, segments: [SEG70]}
+  top: {a: joint, b: fair, segments: [SEG35]}
+analysis:
+  dynamic:
+    excitation: {body: hull, dof: surge, amplitude: 0.1, frequency: 0.1}
+    method: METHOD
+    elements: 4
+"""
+
+
+def _warm_systems() -> None:
+    """The system time domain (all lines and free points stepped together) and the
+    system frequency domain (its compiled drag iteration), on a two-line system."""
+    from .analyses.system import evaluate_system_case
+    from .study import parse_study_text
+    from .study.grid import expand_cases
+
+    seg = "{length: %s, diameter: 0.05, mass_per_length: 10.0, axial_stiffness: 1.0e8}"
+    text = _WARM_SYSTEM.replace("SEG70", seg % 70.0).replace("SEG35", seg % 35.0)
+    for method in ("time", "frequency"):
+        _, cases = expand_cases(parse_study_text(text.replace("METHOD", method), "warm.yaml"))
+        for case in cases:
+            evaluate_system_case(case)
+
+
 def _warm_time() -> None:
     from .dynamics.timedomain import warm_up
 
@@ -127,6 +165,7 @@ _WARM: dict[str, Callable[[], None]] = {
     "statics": _warm_statics,
     "time": _warm_time,
     "frequency": _warm_frequency,
+    "systems": _warm_systems,
 }
 
 
@@ -174,7 +213,7 @@ def kinds_of(study: Any) -> list[str]:
     kinds = ["statics"]
     dynamic = study.analysis.dynamic
     if dynamic is not None and study.is_system:
-        return kinds  # the system time domain compiles with its first case
+        return [*kinds, "systems"]
     if dynamic is not None:
         if dynamic.method != "frequency" and study.line.kind != "spring":
             kinds.append("time")
