@@ -42,19 +42,24 @@ def static_surface_warning(study: Any, res: Any) -> str:
 
 def case_surface_warning(study: Any, static: Any, data: dict[str, Any], ok: set[str]) -> str:
     """The ``surface`` warning of one line's case: of its static solution ``static``
-    (None: it failed), else, where the time domain kept the whole line's history
-    (``analysis.dynamic.history.whole_line``: ``history_line_position`` (time, s, 3) [m]
-    in ``data``, at the static nodes) and the dynamic analysis succeeded (in ``ok``), of
-    the line's highest position over that record. Without that history the motion is
-    not judged: no envelope of the positions is kept."""
+    (None: it failed), else, where the dynamic analysis succeeded (in ``ok``), of the
+    line's elevation envelope over the motion (``z_envelope_max`` (s,) [m] in ``data``,
+    at the static output points: both dynamic methods give it), or where a model gives
+    none (a line over sliding pulleys) of its kept whole-line time history
+    (``history_line_position`` (time, s, 3) [m]; without it the motion is not judged)."""
     if static is None or not _liquid(study):
         return ""
     text = static_surface_warning(study, static)
-    history = data.get("history_line_position")
-    if text or history is None or "dynamic" not in ok:
+    if text or "dynamic" not in ok:
         return text
-    z = np.asarray(history, dtype=float)[..., 2]  # (time, s)
     s = np.asarray(static.s, dtype=float)
+    envelope = data.get("z_envelope_max")
+    if envelope is not None:
+        return surface_warning(s, np.asarray(envelope, dtype=float), when="over the motion")
+    history = data.get("history_line_position")
+    if history is None:
+        return ""
+    z = np.asarray(history, dtype=float)[..., 2]  # (time, s)
     if z.ndim != 2 or z.shape[1] != s.size or not z.size:
         return ""
     return surface_warning(s, np.max(z, axis=0), when="in the kept time history")
