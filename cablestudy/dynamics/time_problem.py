@@ -140,8 +140,9 @@ class DynamicResult:
     ``_min`` (2,) those at ends A and B (so ``end_tension_max[excited_end]`` is
     ``tension_max``); ``touchdown_min``/``_max`` [m] the range of the touchdown point's
     arc length from A over the steps where the line touches the seabed (NaN if none);
-    ``z_max`` [m] (n + 1,) each node's highest elevation. ``touchdown_tracked`` is whether the model has a seabed to touch; ``line_s`` [m]
-    (n + 1,) are the nodes' arc lengths.
+    ``z_max`` [m] (n + 1,) each node's highest elevation. ``touchdown_tracked`` is
+    whether the model has a seabed to touch; ``line_s`` [m] (n + 1,) are the nodes' arc
+    lengths.
 
     ``break_time`` [s] is when the line parted (NaN: it did not), ``break_element`` which
     element (-1: none) and ``break_s`` [m] the arc length of its midpoint then. After a
