@@ -334,9 +334,7 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
                 p_split.append(c_split)
                 extremes.close()
             c_split = [split.copy(), split.copy()]
-            extremes.start(
-                work.tension, end_tensions, touchdown_of(line, x0, td_tol), x0[:, 2]
-            )
+            extremes.start(work.tension, end_tensions, touchdown_of(line, x0, td_tol), x0[:, 2])
             c_max = c_min = tension
             c_line = line_max
             c_int = 0.0
