@@ -11,9 +11,10 @@ and arc length. A line in a gas or vacuum (:func:`has_free_surface`) is never ju
 
 One function per path, each a few lines over the pure checks: a case alone
 (:func:`case_surface_warning`, from :func:`cablestudy.analyses.evaluate.case_warnings`:
-the statics, then the kept whole-line time history if there is one),
-a sweep run as arrays (:func:`template_surface_warnings`, from
-:mod:`cablestudy.analyses.static_grid`), a system case (:func:`system_surface_warning`,
+the statics, then the elevation envelope over the motion, both dynamic methods' output
+``z_envelope_max``), a sweep run as arrays (:func:`template_surface_warnings`, from
+:mod:`cablestudy.analyses.static_grid`), a system case (:func:`system_surface_warning`
+and over its motion :func:`system_motion_surface_warning`,
 :mod:`cablestudy.analyses.system`) and a system sweep run as arrays
 (:func:`system_grid_surface_warnings`, :mod:`cablestudy.analyses.system_grid`).
 """
@@ -85,6 +86,22 @@ def system_surface_warning(study: Any, res: Any) -> str:
     s = np.array([np.asarray(r.s, dtype=float) for r in res.lines])
     z = np.array([np.asarray(r.position, dtype=float)[:, 2] for r in res.lines])
     return surface_warning(s, z, list(study.lines))
+
+
+def system_motion_surface_warning(study: Any, data: dict[str, Any]) -> str:
+    """The warning of a system case whose dynamics lift a line above the surface:
+    ``data['z_envelope_max']`` (lines, s) [m], the lines' elevation envelope over the
+    motion, at the static output points ``data['arc_length']`` (lines, s) [m], the
+    lines named as in ``study.lines``; '' without a dynamic envelope."""
+    envelope = data.get("z_envelope_max")
+    if envelope is None or "arc_length" not in data or not _liquid(study):
+        return ""
+    return surface_warning(
+        np.asarray(data["arc_length"], dtype=float),
+        np.asarray(envelope, dtype=float),
+        list(study.lines),
+        when="over the motion",
+    )
 
 
 def system_grid_surface_warnings(
