@@ -45,7 +45,8 @@ def case_surface_warning(study: Any, static: Any, data: dict[str, Any], ok: set[
     """The ``surface`` warning of one line's case: of its static solution ``static``
     (None: it failed), else, where the dynamic analysis succeeded (in ``ok``), of the
     line's elevation envelope over the motion (``z_envelope_max`` (s,) [m] in ``data``,
-    at the static output points: both dynamic methods give it), or where a model gives
+    at the static output points: both dynamic methods give it; a fixed end, moved as
+    given, left out), or where a model gives
     none (a line over sliding pulleys) of its kept whole-line time history
     (``history_line_position`` (time, s, 3) [m]; without it the motion is not judged)."""
     if static is None or not _liquid(study):
@@ -56,7 +57,11 @@ def case_surface_warning(study: Any, static: Any, data: dict[str, Any], ok: set[
     s = np.asarray(static.s, dtype=float)
     envelope = data.get("z_envelope_max")
     if envelope is not None:
-        return surface_warning(s, np.asarray(envelope, dtype=float), when="over the motion")
+        z = np.array(envelope, dtype=float)
+        # a held end goes where its motion takes it: the input, not the model's answer
+        held = [study.ends.a.kind == "fixed", study.ends.b.kind == "fixed"]
+        z[[0, -1]] = np.where(held, np.nan, z[[0, -1]])
+        return surface_warning(s, z, when="over the motion")
     history = data.get("history_line_position")
     if history is None:
         return ""
@@ -92,15 +97,18 @@ def system_motion_surface_warning(study: Any, data: dict[str, Any]) -> str:
     """The warning of a system case whose dynamics lift a line above the surface:
     ``data['z_envelope_max']`` (lines, s) [m], the lines' elevation envelope over the
     motion, at the static output points ``data['arc_length']`` (lines, s) [m], the
-    lines named as in ``study.lines``; '' without a dynamic envelope."""
+    lines named as in ``study.lines``, ends on fixed points and bodies (whose motion is
+    given) left out; '' without a dynamic envelope."""
     envelope = data.get("z_envelope_max")
     if envelope is None or "arc_length" not in data or not _liquid(study):
         return ""
+    z = np.array(envelope, dtype=float)
+    for i, line in enumerate(study.lines.values()):  # ends on fixed or body points are
+        for k, point in ((0, line.a), (-1, line.b)):  # moved as given: not judged
+            if study.points[point].kind != "free":
+                z[i, k] = np.nan
     return surface_warning(
-        np.asarray(data["arc_length"], dtype=float),
-        np.asarray(envelope, dtype=float),
-        list(study.lines),
-        when="over the motion",
+        np.asarray(data["arc_length"], dtype=float), z, list(study.lines), when="over the motion"
     )
 
 
