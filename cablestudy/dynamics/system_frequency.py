@@ -103,6 +103,7 @@ from .frequency_model import (
 from .linear_model import linear_line
 from .modal import ModalProblem
 from .system_drag import mean_drag_jacobian, point_drag_fit
+from .system_fd_build import held_lines
 from .system_fd_kernel import NOT_CONVERGED, SINGULAR_JUNCTION, SINGULAR_LINE, solve_case
 from .system_fd_pack import PackedSystem, pack_system
 from .system_frequency_reference import iterate_reference
@@ -432,7 +433,7 @@ def system_linear(
             if not st.success:
                 return None, f"line {system.lines[i].name!r} at {nodes} nodes: {st.message}"
             states[i] = st
-    reduced = []
+    linear = []
     for i, (sl, st) in enumerate(zip(system.lines, states, strict=True)):
         T_e = 0.5 * (st.tension[:-1] + st.tension[1:])
         med = sl.problem.medium
@@ -461,7 +462,10 @@ def system_linear(
         gap = float(np.max(np.abs(line.position[[0, -1]] - ends)))
         if gap > 1e-6 * max(float(st.s[-1]), 1.0):
             return None, f"line {sl.name!r} does not end at its points (gap {gap:.3g} m)"
-        reduced.append(ReducedLine.of(line))
+        linear.append(line)
+    # every line held at both ends: reduced and coupled in one pass over all lines
+    fast = held_lines(linear)
+    reduced = fast[0] if fast is not None else [ReducedLine.of(line) for line in linear]
     arm = np.zeros((P, 3))
     on_body = system.point_kind == BODY
     if np.any(on_body):
@@ -476,21 +480,21 @@ def system_linear(
         if medium.current_velocity.size
         else np.zeros((P, 3))
     )
-    return (
-        SystemLinear(
-            names=tuple(sl.name for sl in system.lines),
-            lines=tuple(reduced),
-            ends=np.array([[sl.a, sl.b] for sl in system.lines], dtype=int).reshape(-1, 2),
-            point_kind=np.asarray(system.point_kind, dtype=int),
-            point_body=np.asarray(system.point_body, dtype=int),
-            point_arm=arm,
-            point_mass=mass,
-            point_drag=np.zeros(P) if point_drag is None else np.asarray(point_drag, dtype=float),
-            point_current=np.asarray(current, dtype=float).reshape(P, 3),
-            n_bodies=len(system.body_names),
-        ),
-        "",
+    model = SystemLinear(
+        names=tuple(sl.name for sl in system.lines),
+        lines=tuple(reduced),
+        ends=np.array([[sl.a, sl.b] for sl in system.lines], dtype=int).reshape(-1, 2),
+        point_kind=np.asarray(system.point_kind, dtype=int),
+        point_body=np.asarray(system.point_body, dtype=int),
+        point_arm=arm,
+        point_mass=mass,
+        point_drag=np.zeros(P) if point_drag is None else np.asarray(point_drag, dtype=float),
+        point_current=np.asarray(current, dtype=float).reshape(P, 3),
+        n_bodies=len(system.body_names),
     )
+    if fast is not None:  # the couplings came with the reduced lines (cached property)
+        model.__dict__["couplings"] = tuple(EndCoupling(*b) for b in fast[1])
+    return model, ""
 
 
 def point_motion(model: SystemLinear, body_motion: np.ndarray) -> np.ndarray:

@@ -16,6 +16,7 @@ the seabed: the contact kernel proper), at 3, 4 and 11 nodes a line.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -23,7 +24,10 @@ import pytest
 
 from cablestudy.analyses.system import system_model
 from cablestudy.analyses.system_frequency import _catenary_many
+from cablestudy.dynamics.frequency_model import ReducedLine
 from cablestudy.dynamics.system_frequency import (
+    EndCoupling,
+    SystemLinear,
     _coordinate_coupling,
     _sparse_coupling,
     system_linear,
@@ -39,7 +43,7 @@ SOLVER = STATIC_SOLVERS["catenary"]
 
 
 def _system(which: str):  # noqa: ANN202
-    if which == "case8":
+    if which.startswith("case8"):
         text = (ROOT / "configs" / "system-case8-surge.yaml").read_text()
         _, cases = expand_cases(parse_study_text(text, "case8.yaml"))
     else:
@@ -48,6 +52,23 @@ def _system(which: str):  # noqa: ANN202
         imported = import_model(path.read_text(), rel, folder=path.parent)
         _, cases = expand_cases(parse_study_text(imported_yaml(imported, rel), "<imported>"))
     system = system_model(cases[0].study)
+    if which == "case8-bending":  # bending in the lines' model (the catenary carries none)
+        system = replace(
+            system,
+            lines=tuple(
+                replace(
+                    sl,
+                    problem=replace(
+                        sl.problem,
+                        line=replace(
+                            sl.problem.line,
+                            bending_stiffness=np.full_like(sl.problem.line.bending_stiffness, 2e4),
+                        ),
+                    ),
+                )
+                for sl in system.lines
+            ),
+        )
     res = solve_system_by(system, "catenary", STATIC_SOLVERS)
     assert res.status == 0, res.message
     return system, res
@@ -85,3 +106,55 @@ def test_end_couplings_picked_are_the_sparse_products(solved, nodes: int) -> Non
         for got, ref in zip(fast, _sparse_coupling(red.line), strict=True):
             for g, r in zip(got, ref, strict=True):
                 np.testing.assert_array_equal(g, r)
+
+
+def _bits(a, b) -> None:  # noqa: ANN001
+    """``a`` and ``b`` the same array byte for byte (shape, type, every bit)."""
+    a, b = np.asarray(a), np.asarray(b)
+    assert a.shape == b.shape and a.dtype == b.dtype
+    assert np.ascontiguousarray(a).tobytes() == np.ascontiguousarray(b).tobytes()
+
+
+def _plain(model: SystemLinear) -> SystemLinear:
+    """``model`` with its reduced lines and couplings built line by line, the plain way."""
+    return SystemLinear(
+        names=model.names,
+        lines=tuple(ReducedLine.of(r.line) for r in model.lines),
+        ends=model.ends,
+        point_kind=model.point_kind,
+        point_body=model.point_body,
+        point_arm=model.point_arm,
+        point_mass=model.point_mass,
+        point_drag=model.point_drag,
+        point_current=model.point_current,
+        n_bodies=model.n_bodies,
+    )
+
+
+@pytest.mark.parametrize("which", ["case8", "case8-bending", "lines.txt"])
+@pytest.mark.parametrize("nodes", [2, 4, 11])
+def test_lines_reduced_in_one_pass_are_the_plain_ones(which: str, nodes: int) -> None:
+    system, res = _CACHE.get(which) or _CACHE.setdefault(which, _system(which))
+    fast, why = system_linear(system, res, nodes=nodes, solve_many=_catenary_many)
+    assert fast is not None, why
+    assert "couplings" in fast.__dict__  # built with the lines
+    if which == "case8-bending" and nodes > 4:  # inner blocks two nodes off the diagonal
+        assert max(r.bandwidth for r in fast.lines) > 5
+    plain = _plain(fast)
+    for a, b in zip(fast.lines, plain.lines, strict=True):
+        assert a.bandwidth == b.bandwidth
+        for name in ("K", "M", "C", "node_basis", "offsets"):
+            _bits(getattr(a, name), getattr(b, name))
+        for x, y in zip(a.band_index + a.block_index, b.band_index + b.block_index, strict=True):
+            _bits(x, y)
+    for a, r in zip(fast.couplings, plain.lines, strict=True):
+        b = EndCoupling.of(r)
+        for got, ref in zip((a.K, a.M, a.C), (b.K, b.M, b.C), strict=True):
+            for g, f in zip(got, ref, strict=True):
+                _bits(g, f)
+    assert fast.packed.bw == plain.packed.bw
+    for x, y in zip(fast.packed.arrays, plain.packed.arrays, strict=True):
+        _bits(x, y)
+
+
+_CACHE: dict = {}
