@@ -100,7 +100,7 @@ from .frequency_model import (
     csr_entries,
     selected_rows,
 )
-from .linear_model import linear_line
+from .linear_model import linear_lines
 from .modal import ModalProblem
 from .system_drag import mean_drag_jacobian, point_drag_fit
 from .system_fd_build import held_lines
@@ -433,7 +433,7 @@ def system_linear(
             if not st.success:
                 return None, f"line {system.lines[i].name!r} at {nodes} nodes: {st.message}"
             states[i] = st
-    linear = []
+    problems = []
     for i, (sl, st) in enumerate(zip(system.lines, states, strict=True)):
         T_e = 0.5 * (st.tension[:-1] + st.tension[1:])
         med = sl.problem.medium
@@ -448,7 +448,12 @@ def system_linear(
                 f"line {sl.name!r} is slack in the static state (element tension "
                 f"{float(T_e[slack].min()):.4g} N); the frequency domain needs taut lines"
             )
-        line = linear_line(
+        # the linear line's nodes are the state's samples
+        ends = static.point_position[[sl.a, sl.b]]
+        gap = float(np.max(np.abs(np.asarray(st.position, dtype=float)[[0, -1]] - ends)))
+        if gap > 1e-6 * max(float(st.s[-1]), 1.0):
+            return None, f"line {sl.name!r} does not end at its points (gap {gap:.3g} m)"
+        problems.append(
             ModalProblem(
                 line=sl.problem.line,
                 medium=med,
@@ -458,11 +463,7 @@ def system_linear(
                 extras=None if extras is None else extras[i],
             )
         )
-        ends = static.point_position[[sl.a, sl.b]]
-        gap = float(np.max(np.abs(line.position[[0, -1]] - ends)))
-        if gap > 1e-6 * max(float(st.s[-1]), 1.0):
-            return None, f"line {sl.name!r} does not end at its points (gap {gap:.3g} m)"
-        linear.append(line)
+    linear = linear_lines(problems)  # linear_line of each, alike lines sharing work
     # every line held at both ends: reduced and coupled in one pass over all lines
     fast = held_lines(linear)
     reduced = fast[0] if fast is not None else [ReducedLine.of(line) for line in linear]

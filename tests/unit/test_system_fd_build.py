@@ -158,3 +158,47 @@ def test_lines_reduced_in_one_pass_are_the_plain_ones(which: str, nodes: int) ->
 
 
 _CACHE: dict = {}
+
+
+@pytest.mark.parametrize("which", ["case8", "case8-bending", "lines.txt"])
+@pytest.mark.parametrize("nodes", [2, 4, 11])
+def test_linear_lines_are_linear_line_of_each(which: str, nodes: int) -> None:
+    """linear_lines (alike lines sharing their discretisation, each line's strains found
+    once) gives linear_line's lines byte for byte: every array, the sparse matrices'
+    stored entries and structure; case8's bridles and legs share (two kinds of nine)."""
+    from cablestudy.dynamics.linear_model import linear_line, linear_lines
+    from cablestudy.dynamics.modal import ModalProblem
+    from cablestudy.statics.base import EndCondition
+
+    system, res = _CACHE.get(which) or _CACHE.setdefault(which, _system(which))
+    states = _catenary_many(
+        [
+            replace(
+                sl.problem,
+                end_a=EndCondition(kind="fixed", position=res.point_position[sl.a]),
+                end_b=EndCondition(kind="fixed", position=res.point_position[sl.b]),
+                n_nodes=nodes,
+            )
+            for sl in system.lines
+        ]
+    )
+    held = EndCondition(kind="fixed")
+    problems = [
+        ModalProblem(
+            line=sl.problem.line, medium=sl.problem.medium, end_a=held, end_b=held, static=st
+        )
+        for sl, st in zip(system.lines, states, strict=True)
+    ]
+    for got, ref in zip(linear_lines(problems), [linear_line(p) for p in problems], strict=True):
+        for f in ("s", "position", "mass", "rest_length", "direction", "axial_stiffness"):
+            _bits(getattr(got, f), getattr(ref, f))
+        for f in ("axial_damping", "tension", "end_force", "drag_normal", "drag_tangential"):
+            _bits(getattr(got, f), getattr(ref, f))
+        for f in ("current", "tangent"):
+            _bits(getattr(got, f), getattr(ref, f))
+        assert (got.drag_body is None) == (ref.drag_body is None)
+        for f in ("stiffness", "damping", "free_basis"):
+            a, b = getattr(got, f), getattr(ref, f)
+            assert a.shape == b.shape and a.format == b.format == "csr"
+            for part in ("data", "indices", "indptr"):
+                _bits(getattr(a, part), getattr(b, part))
