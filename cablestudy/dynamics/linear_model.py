@@ -116,7 +116,7 @@ def linear_lines(problems: Sequence[ModalProblem]) -> list[LinearLine]:
         s, pos = np.asarray(st.s, dtype=float), np.asarray(st.position, dtype=float)
         n = s.size
         extras = problem.extras or default_extras(line, medium)
-        key = (line, medium, extras, s)
+        key = (s, medium, extras, line)  # the cheap inputs first: unlike lines part soon
         disc = next((d for k, d in made if _same(k, key)), None)
         if disc is None:
             disc = discretise_nodes(line, medium, s, extras)

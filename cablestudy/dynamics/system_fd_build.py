@@ -26,8 +26,9 @@ import functools
 from collections.abc import Sequence
 
 import numpy as np
+import scipy.sparse as sp
 
-from .frequency_model import LinearLine, ReducedLine, block_entries, csr_entries
+from .frequency_model import LinearLine, ReducedLine
 
 
 @functools.lru_cache(maxsize=64)
@@ -61,25 +62,37 @@ def _entries(
     lines: Sequence[LinearLine],
 ) -> list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] | None:
     """Per matrix (stiffness, mass, damping) the stored entries of all lines, flat:
-    (line, row, column, value); None where a line's are not at hand (not canonical
-    CSR, or not finite: :func:`~.frequency_model.csr_entries`)."""
+    (line, row, column, value), as :func:`~.frequency_model.csr_entries` and
+    :func:`~.frequency_model.block_entries` give each line's; None where a line's are
+    not at hand (not canonical CSR, or a value not finite)."""
+    L = len(lines)
+    n = np.array([ln.n_nodes for ln in lines], dtype=np.int64)
     out = []
     for kind in ("stiffness", "mass", "damping"):
-        parts = []
-        for line in lines:
-            e = block_entries(line.mass) if kind == "mass" else csr_entries(getattr(line, kind))
-            if e is None:
+        if kind == "mass":
+            blocks = np.concatenate([ln.mass for ln in lines])
+            if not np.all(np.isfinite(blocks)):
                 return None
-            parts.append(e)
-        which = np.repeat(np.arange(len(lines)), [p[0].size for p in parts])
-        out.append(
-            (
-                which,
-                np.concatenate([p[0] for p in parts]).astype(np.int64),
-                np.concatenate([p[1] for p in parts]).astype(np.int64),
-                np.concatenate([p[2] for p in parts]).astype(float),
-            )
-        )
+            node = np.arange(blocks.shape[0]) - np.repeat(np.cumsum(n) - n, n)
+            a = np.arange(3)
+            rows = np.broadcast_to(3 * node[:, None, None] + a[None, :, None], blocks.shape)
+            cols = np.broadcast_to(3 * node[:, None, None] + a[None, None, :], blocks.shape)
+            which = np.repeat(np.arange(L), 9 * n)
+            out.append((which, rows.ravel(), cols.ravel(), blocks.ravel().astype(float)))
+            continue
+        mats = [getattr(ln, kind) for ln in lines]
+        if not all(
+            sp.issparse(A) and A.format == "csr" and A.has_canonical_format for A in mats
+        ):
+            return None
+        data = np.concatenate([A.data for A in mats]).astype(float)
+        if not np.all(np.isfinite(data)):
+            return None
+        per_row = np.concatenate([np.diff(A.indptr) for A in mats])
+        local_row = np.arange(per_row.size) - np.repeat(np.cumsum(3 * n) - 3 * n, 3 * n)
+        which = np.repeat(np.arange(L), [A.data.size for A in mats])
+        cols = np.concatenate([A.indices for A in mats]).astype(np.int64)
+        out.append((which, np.repeat(local_row, per_row), cols, data))
     return out
 
 
