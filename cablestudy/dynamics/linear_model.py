@@ -29,8 +29,8 @@ import scipy.sparse as sp
 
 from ..physics.current import current_velocity
 from ..statics.base import EndCondition
-from .frequency_model import LinearLine
 from .discrete_line import discretise_nodes
+from .frequency_model import LinearLine
 from .modal import (
     ModalProblem,
     _segment_index,
@@ -130,9 +130,7 @@ def linear_lines(problems: Sequence[ModalProblem]) -> list[LinearLine]:
         changes: dict = {"rest_length": chord_length / (1.0 + strain), "has_drag": False}
         if not problem.include_added_mass:
             zero = np.zeros(disc.n_nodes)  # type: ignore[attr-defined]
-            changes.update(
-                added_mass_normal=zero, added_mass_tangential=zero, body_added_mass=zero
-            )
+            changes.update(added_mass_normal=zero, added_mass_tangential=zero, body_added_mass=zero)
         if not problem.include_bending:
             changes["bending"] = np.zeros(disc.n_nodes)  # type: ignore[attr-defined]
         here = replace(disc, **changes)  # type: ignore[type-var]

@@ -81,9 +81,7 @@ def _entries(
             out.append((which, rows.ravel(), cols.ravel(), blocks.ravel().astype(float)))
             continue
         mats = [getattr(ln, kind) for ln in lines]
-        if not all(
-            sp.issparse(A) and A.format == "csr" and A.has_canonical_format for A in mats
-        ):
+        if not all(sp.issparse(A) and A.format == "csr" and A.has_canonical_format for A in mats):
             return None
         data = np.concatenate([A.data for A in mats]).astype(float)
         if not np.all(np.isfinite(data)):
@@ -151,9 +149,7 @@ def held_lines(
     for i, line in enumerate(lines):
         b, ki = int(bw[i]), int(k[i])
         padded, band_r, band_c, blk_i, blk_r, blk_c, offsets, _ = _held_layout(int(n[i]), b)
-        K, M, C = (
-            band[band_start[i] : band_start[i + 1]].reshape(2 * b + 1, ki) for band in bands
-        )
+        K, M, C = (band[band_start[i] : band_start[i + 1]].reshape(2 * b + 1, ki) for band in bands)
         reduced.append(
             ReducedLine(
                 line=line,

@@ -167,7 +167,11 @@ def test_measures_over_all_lines_are_the_line_by_line_ones() -> None:
         assert not isinstance(model, str), model
         X, U, f = asf.harmonic_motion(case.study)
         res = solve_system_harmonic(
-            model, 2 * math.pi * f, X, drag_settings(case.study.analysis.dynamic), point_excitation=U
+            model,
+            2 * math.pi * f,
+            X,
+            drag_settings(case.study.analysis.dynamic),
+            point_excitation=U,
         )
         assert res.status == 0, res.message
         bed, weight = asf._judged_nodes(model, system)
