@@ -202,3 +202,47 @@ def test_linear_lines_are_linear_line_of_each(which: str, nodes: int) -> None:
             assert a.shape == b.shape and a.format == b.format == "csr"
             for part in ("data", "indices", "indptr"):
                 _bits(getattr(a, part), getattr(b, part))
+
+
+def _rows_by_diagonal(ab: np.ndarray, bw_line: int, bw: int) -> np.ndarray:
+    """Band storage to row storage diagonal by diagonal (the packing's former loop)."""
+    k = ab.shape[1]
+    out = np.zeros((k, 2 * bw + 1))
+    for d in range(-bw_line, bw_line + 1):  # A[i, i + d] = ab[bw_line - d, i + d]
+        lo, hi = max(0, -d), min(k, k - d)
+        if hi > lo:
+            out[lo:hi, bw + d] = ab[bw_line - d, lo + d : hi + d]
+    return out
+
+
+@pytest.mark.parametrize(
+    ("k", "bw_line", "bw"), [(0, 0, 2), (1, 0, 0), (3, 2, 5), (6, 5, 5), (12, 5, 8), (4, 8, 8)]
+)
+def test_band_rows_by_one_gather_are_the_diagonal_copies(k: int, bw_line: int, bw: int) -> None:
+    """The packing's band-to-row conversion (one gather) copies each entry where the
+    diagonal loop put it, zeros elsewhere, byte for byte (signed zeros and all)."""
+    from cablestudy.dynamics.system_fd_pack import _rows
+
+    ab = np.random.default_rng(k + 10 * bw_line).normal(size=(2 * bw_line + 1, k))
+    ab[ab > 1.0] = -0.0
+    _bits(_rows(ab, bw_line, bw), _rows_by_diagonal(ab, bw_line, bw))
+
+
+@pytest.mark.parametrize("which", ["case8", "lines.txt"])
+def test_packed_end_coupled_dofs_are_each_lines(which: str) -> None:
+    """The dofs coupled to the end nodes, found over all lines at once, are each line's
+    non-zero rows of A_IE and columns of A_EI, in order, with the lines' offsets."""
+    system, res = _CACHE.get(which) or _CACHE.setdefault(which, _system(which))
+    model, why = system_linear(system, res, nodes=6, solve_many=_catenary_many)
+    assert model is not None, why
+    couple = []
+    for c in model.couplings:
+        nz = np.zeros(c.K[0].shape[0], dtype=bool)
+        for Q in (c.K, c.M, c.C):
+            nz |= np.any(Q[0] != 0.0, axis=1) | np.any(Q[1] != 0.0, axis=0)
+        couple.append(np.flatnonzero(nz))
+    arrays = model.packed.arrays
+    coff = np.concatenate(([0], np.cumsum([c.size for c in couple]))).astype(np.int64)
+    # (noff, koff, K, M, C, IE x 3, EI x 3, EE x 3, couple, coff, ...): pack_system's order
+    _bits(arrays[14], np.concatenate(couple).astype(np.int64))
+    _bits(arrays[15], coff)
