@@ -29,6 +29,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from .frequency_model import LinearLine, ReducedLine
+from .linear_model import _held_ends_arrays
 
 
 @functools.lru_cache(maxsize=64)
@@ -56,6 +57,24 @@ def _held_layout(n: int, bw: int) -> tuple[np.ndarray, ...]:
     for a in out:
         a.flags.writeable = False
     return out
+
+
+def _held(line: LinearLine) -> bool:
+    """Whether the line's free basis is :func:`~.linear_model.held_ends_basis` (its
+    stored arrays byte for byte): the basis :func:`held_lines` is exact for."""
+    B = line.free_basis
+    n = line.n_nodes
+    if not (sp.issparse(B) and B.format == "csr" and B.shape == (3 * n, 3 * max(n - 2, 0))):
+        return False
+    data, indices, indptr = _held_ends_arrays(n)
+    return (
+        B.data.dtype == data.dtype
+        and B.indices.dtype == indices.dtype
+        and B.indptr.dtype == indptr.dtype
+        and B.indptr.tobytes() == indptr.tobytes()
+        and B.indices.tobytes() == indices.tobytes()
+        and B.data.tobytes() == data.tobytes()
+    )
 
 
 def _entries(
@@ -100,11 +119,13 @@ def held_lines(
     """Each line's :class:`ReducedLine` and its end couplings (the (K, M, C) blocks of
     :class:`~.system_frequency.EndCoupling`: ``IE`` (k, 6), ``EI`` (6, k), ``EE``
     (6, 6) each), for lines held at both end nodes, built over all lines at once
-    (module docstring); None where a line's matrices are not at hand (then the plain
-    construction applies)."""
+    (module docstring); None where a line's basis is not the held ends' or its
+    matrices are not at hand (then the plain construction applies)."""
     L = len(lines)
     if L == 0:
         return [], []
+    if not all(_held(line) for line in lines):
+        return None
     got = _entries(lines)
     if got is None:
         return None

@@ -71,10 +71,16 @@ elements a line (one inner node) the band is widened to a node's drag block.
 Building the model is cheap next to a time-domain case (``method: auto`` builds it
 before it judges a case): the lines re-solved at the model's nodes in one call of the
 compiled static kernels per group (``solve_many``; each answer verified as the
-solver's own), the end couplings picked from the lines' matrices entry by entry
-(:func:`_coordinate_coupling`; sparse products only for a basis that is not made of
-coordinate directions). Both give the plain construction's model bit for bit
-(tests/unit/test_system_fd_build.py).
+solver's own); their linear lines with alike lines sharing their discretisation
+(:func:`~.linear_model.linear_lines`); every line, held at both ends, reduced and its
+end couplings picked from its matrices entry by entry over all lines at once
+(:func:`~.system_fd_build.held_lines`; :meth:`ReducedLine.of` and
+:func:`_coordinate_coupling` or the sparse products line by line for other bases).
+All give the plain construction's model byte for byte
+(tests/unit/test_system_fd_build.py). On the case8 benchmark at 3 elements a line
+(tests' machine, shared): the model 7.2 -> 4.6 ms, of which the re-solve 2.2 ms (the
+contact legs verified one by one: 1.1 ms), the linear lines 1.5 ms, the reduction
+0.4 ms; packing 0.55 -> 0.24 ms.
 
 Pure: arrays and frozen dataclasses in, a :class:`SystemFrequencyResult` out.
 """

@@ -246,3 +246,18 @@ def test_packed_end_coupled_dofs_are_each_lines(which: str) -> None:
     # (noff, koff, K, M, C, IE x 3, EI x 3, EE x 3, couple, coff, ...): pack_system's order
     _bits(arrays[14], np.concatenate(couple).astype(np.int64))
     _bits(arrays[15], coff)
+
+
+def test_one_pass_reduction_refuses_other_bases() -> None:
+    """held_lines is exact for the held ends' basis only: a line with another basis
+    (every other column dropped) sends the build to the plain
+    construction (None), however the others are held."""
+    from cablestudy.dynamics.system_fd_build import held_lines
+
+    system, res = _CACHE.get("case8") or _CACHE.setdefault("case8", _system("case8"))
+    model, why = system_linear(system, res, nodes=5, solve_many=_catenary_many)
+    assert model is not None, why
+    lines = [r.line for r in model.lines]
+    assert held_lines(lines) is not None
+    other = replace(lines[0], free_basis=lines[0].free_basis[:, ::2].tocsr())
+    assert held_lines([other, *lines[1:]]) is None
