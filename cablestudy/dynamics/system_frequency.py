@@ -109,7 +109,6 @@ from .frequency_model import (
 from .linear_model import linear_lines
 from .modal import ModalProblem
 from .system_drag import mean_drag_jacobian, point_drag_fit
-from .system_fd_build import held_lines
 from .system_fd_kernel import NOT_CONVERGED, SINGULAR_JUNCTION, SINGULAR_LINE, solve_case
 from .system_fd_pack import PackedSystem, pack_system
 from .system_frequency_reference import iterate_reference
@@ -469,6 +468,8 @@ def system_linear(
                 extras=None if extras is None else extras[i],
             )
         )
+    from .system_fd_build import held_lines
+
     linear = linear_lines(problems)  # linear_line of each, alike lines sharing work
     # every line held at both ends: reduced and coupled in one pass over all lines
     fast = held_lines(linear)
