@@ -18,8 +18,10 @@ prescribed (held, or moved by the excitation), as in the time domain.
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
+from collections.abc import Sequence
 from dataclasses import replace
 
 import numpy as np
@@ -27,8 +29,17 @@ import scipy.sparse as sp
 
 from ..physics.current import current_velocity
 from ..statics.base import EndCondition
+from .discrete_line import discretise_nodes
 from .frequency_model import LinearLine
-from .modal import ModalProblem, _segment_index, element_tangent, shared_model, tangents_of
+from .modal import (
+    ModalProblem,
+    _segment_index,
+    default_extras,
+    element_strain,
+    element_tangent,
+    shared_model,
+    tangents_of,
+)
 
 
 def linear_line(problem: ModalProblem) -> LinearLine:
@@ -87,6 +98,110 @@ def linear_line(problem: ModalProblem) -> LinearLine:
         free_basis=held_ends_basis(n),
         drag_body=drag_b if np.any(drag_b > 0.0) else None,
     )
+
+
+def linear_lines(problems: Sequence[ModalProblem]) -> list[LinearLine]:
+    """:func:`linear_line` of each problem (a system's lines), the same lines bit for
+    bit with less repeated work: lines alike in every input of their discretisation
+    (line, medium, dynamic extras, node arc lengths: a spread's legs, a spar's
+    bridles) share it (it depends on those alone, not on where the line lies), and
+    each line's element segments and strains are found once (:func:`linear_line`
+    finds them in :func:`~.modal.shared_model` and again for the axial tangent).
+    Everything else is :func:`linear_line`'s arithmetic in its order
+    (tests/unit/test_system_fd_build.py compares the two byte for byte)."""
+    made: list[tuple[tuple, object]] = []
+    out = []
+    for problem in problems:
+        line, medium, st = problem.line, problem.medium, problem.static
+        s, pos = np.asarray(st.s, dtype=float), np.asarray(st.position, dtype=float)
+        n = s.size
+        extras = problem.extras or default_extras(line, medium)
+        key = (s, medium, extras, line)  # the cheap inputs first: unlike lines part soon
+        disc = next((d for k, d in made if _same(k, key)), None)
+        if disc is None:
+            disc = discretise_nodes(line, medium, s, extras)
+            made.append((key, disc))
+        # modal.shared_model's changes, the static tension's strain found once
+        l0 = np.diff(s)
+        seg = _segment_index(line, 0.5 * (s[:-1] + s[1:]))
+        T_e = 0.5 * (st.tension[:-1] + st.tension[1:])
+        strain = element_strain(line, s, T_e, seg)
+        chord_length = np.linalg.norm(np.diff(pos, axis=0), axis=1)
+        changes: dict = {"rest_length": chord_length / (1.0 + strain), "has_drag": False}
+        if not problem.include_added_mass:
+            zero = np.zeros(disc.n_nodes)  # type: ignore[attr-defined]
+            changes.update(added_mass_normal=zero, added_mass_tangential=zero, body_added_mass=zero)
+        if not problem.include_bending:
+            changes["bending"] = np.zeros(disc.n_nodes)  # type: ignore[attr-defined]
+        here = replace(disc, **changes)  # type: ignore[type-var]
+        x = pos.copy()
+        if here.has_seabed:
+            gap = x @ here.seabed_normal - here.seabed_offset
+            laid = gap <= 1e-6 * max(float(s[-1]), 1.0)
+            x[laid] -= np.outer(gap[laid] + 1e-9, here.seabed_normal)
+        # linear_line's own
+        chord = np.diff(pos, axis=0)
+        t = chord / np.linalg.norm(chord, axis=1)[:, None]
+        ea = element_tangent(line, s, T_e, seg, strain)
+        c_axial = line.damping_ratio[seg] * l0 * np.sqrt(line.axial_stiffness[seg] * line.mass[seg])
+        rho = medium.density
+        drag_n = _lump(0.5 * rho * line.drag_normal * line.diameter, seg, l0, n)
+        drag_t = _lump(0.5 * rho * math.pi * line.drag_tangential * line.diameter, seg, l0, n)
+        lo = np.maximum(np.arange(n) - 1, 0)
+        hi = np.minimum(np.arange(n) + 1, n - 1)
+        tangent = pos[hi] - pos[lo]
+        tangent /= np.linalg.norm(tangent, axis=1)[:, None]
+        mass, stiffness, damping = tangents_of(here, x)
+        drag_b = np.asarray(here.body_drag, dtype=float)
+        out.append(
+            LinearLine(
+                s=s,
+                position=pos,
+                mass=mass,
+                stiffness=stiffness,
+                damping=damping,
+                rest_length=l0,
+                direction=t,
+                axial_stiffness=ea,
+                axial_damping=c_axial,
+                tension=T_e,
+                end_force=np.stack([np.asarray(st.force_a), np.asarray(st.force_b)]),
+                drag_normal=drag_n,
+                drag_tangential=drag_t,
+                current=current_velocity(pos[:, 2], medium.current_z, medium.current_velocity),
+                tangent=tangent,
+                free_basis=held_ends_basis(n),
+                drag_body=drag_b if np.any(drag_b > 0.0) else None,
+            )
+        )
+    return out
+
+
+def _lump(per_length: np.ndarray, seg: np.ndarray, l0: np.ndarray, n: int) -> np.ndarray:
+    """Per node half of each adjacent element's ``per_length`` times its length (as
+    :func:`linear_line`'s ``lump``)."""
+    half = 0.5 * per_length[seg] * l0
+    out = np.zeros(n)
+    out[:-1] += half
+    out[1:] += half
+    return out
+
+
+def _same(a: object, b: object) -> bool:
+    """Whether two inputs are equal in every field: dataclasses field by field, arrays
+    byte for byte with their shapes and types, sequences item by item (a NaN or a
+    signed zero compares by its bits: never equal where the bits differ)."""
+    if a is b:
+        return True
+    if type(a) is not type(b):
+        return False
+    if isinstance(a, np.ndarray):
+        return a.shape == b.shape and a.dtype == b.dtype and a.tobytes() == b.tobytes()  # type: ignore[attr-defined]
+    if dataclasses.is_dataclass(a):
+        return all(_same(getattr(a, f.name), getattr(b, f.name)) for f in dataclasses.fields(a))
+    if isinstance(a, tuple | list):
+        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b, strict=True))  # type: ignore[arg-type]
+    return bool(a == b)
 
 
 def held_ends_basis(n: int) -> sp.csr_matrix:

@@ -233,10 +233,14 @@ def shared_model(problem: ModalProblem) -> tuple[DiscreteLine, np.ndarray]:
     return disc, x
 
 
-def element_strain(line: LineModel, s: np.ndarray, tension: np.ndarray) -> np.ndarray:
+def element_strain(
+    line: LineModel, s: np.ndarray, tension: np.ndarray, seg: np.ndarray | None = None
+) -> np.ndarray:
     """Strain [-] of the elements between nodes ``s`` [m] carrying ``tension`` [N] (n,),
-    by the inverse of each segment's axial law (T / EA where it is linear)."""
-    seg = _segment_index(line, 0.5 * (s[:-1] + s[1:]))
+    by the inverse of each segment's axial law (T / EA where it is linear); ``seg``
+    the elements' segments when known (:func:`_segment_index` of their midpoints)."""
+    if seg is None:
+        seg = _segment_index(line, 0.5 * (s[:-1] + s[1:]))
     out = np.asarray(tension, dtype=float) / line.axial_stiffness[seg]
     for i in range(line.length.size):
         law = line.law_of(i)
@@ -246,11 +250,20 @@ def element_strain(line: LineModel, s: np.ndarray, tension: np.ndarray) -> np.nd
     return out
 
 
-def element_tangent(line: LineModel, s: np.ndarray, tension: np.ndarray) -> np.ndarray:
-    """Tangent axial stiffness dT/d(strain) [N] of the elements at ``tension`` [N]."""
-    seg = _segment_index(line, 0.5 * (s[:-1] + s[1:]))
+def element_tangent(
+    line: LineModel,
+    s: np.ndarray,
+    tension: np.ndarray,
+    seg: np.ndarray | None = None,
+    strain: np.ndarray | None = None,
+) -> np.ndarray:
+    """Tangent axial stiffness dT/d(strain) [N] of the elements at ``tension`` [N];
+    ``seg`` and ``strain`` (:func:`element_strain`) when known."""
+    if seg is None:
+        seg = _segment_index(line, 0.5 * (s[:-1] + s[1:]))
     out = line.axial_stiffness[seg].astype(float)
-    strain = element_strain(line, s, tension)
+    if strain is None:
+        strain = element_strain(line, s, tension, seg)
     for i in range(line.length.size):
         law = line.law_of(i)
         if law is not None:

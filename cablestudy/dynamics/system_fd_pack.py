@@ -10,6 +10,7 @@ Pure: a linear model in, arrays out.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -27,14 +28,30 @@ class PackedSystem:
 
 
 def _rows(ab: np.ndarray, bw_line: int, bw: int) -> np.ndarray:
-    """LAPACK band storage ``ab`` (2 bw_line + 1, k) as row storage (k, 2 bw + 1)."""
+    """LAPACK band storage ``ab`` (2 bw_line + 1, k) as row storage (k, 2 bw + 1): each
+    stored entry copied to its place, zeros elsewhere (one gather, its indices built
+    once per shape: :func:`_row_index`)."""
     k = ab.shape[1]
     out = np.zeros((k, 2 * bw + 1))
-    for d in range(-bw_line, bw_line + 1):  # A[i, i + d] = ab[bw_line - d, i + d]
-        lo, hi = max(0, -d), min(k, k - d)
-        if hi > lo:
-            out[lo:hi, bw + d] = ab[bw_line - d, lo + d : hi + d]
+    to, frm = _row_index(k, bw_line, bw)
+    out.ravel()[to] = ab.ravel()[frm]
     return out
+
+
+@functools.lru_cache(maxsize=64)
+def _row_index(k: int, bw_line: int, bw: int) -> tuple[np.ndarray, np.ndarray]:
+    """Flat indices into the row storage (k, 2 bw + 1) and the band storage
+    (2 bw_line + 1, k) of :func:`_rows`: ``A[i, i + d]`` is ``ab[bw_line - d, i + d]``
+    and goes to ``out[i, bw + d]``, for ``|d| <= bw_line`` and ``0 <= i + d < k``."""
+    i = np.repeat(np.arange(k), 2 * bw_line + 1)
+    d = np.tile(np.arange(-bw_line, bw_line + 1), k)
+    on = (i + d >= 0) & (i + d < k)
+    i, d = i[on], d[on]
+    to = i * (2 * bw + 1) + bw + d
+    frm = (bw_line - d) * k + i + d
+    for a in (to, frm):
+        a.flags.writeable = False
+    return to, frm
 
 
 def pack_system(model) -> PackedSystem:  # noqa: ANN001 - SystemLinear (no import circle)
@@ -81,15 +98,19 @@ def pack_system(model) -> PackedSystem:  # noqa: ANN001 - SystemLinear (no impor
         np.stack([c.M[2] for c in cp]),
         np.stack([c.C[2] for c in cp]),
     ]
-    # per line the dofs coupled to its end nodes (non-zero rows of A_IE, columns of A_EI)
-    couple = []
-    for c in cp:
-        nz = np.zeros(c.K[0].shape[0], dtype=bool)
-        for Q in (c.K, c.M, c.C):
-            nz |= np.any(Q[0] != 0.0, axis=1) | np.any(Q[1] != 0.0, axis=0)
-        couple.append(np.flatnonzero(nz))
-    coff = np.concatenate(([0], np.cumsum([c.size for c in couple]))).astype(np.int64)
-    couple = np.concatenate(couple).astype(np.int64) if couple else np.zeros(0, dtype=np.int64)
+    # per line the dofs coupled to its end nodes (non-zero rows of A_IE, columns of A_EI),
+    # found over all lines' blocks at once
+    nz = np.zeros(int(koff[-1]), dtype=bool)
+    for Q in IE:
+        nz |= np.any(Q != 0.0, axis=1)
+    for Q in EI:
+        nz |= np.any(Q != 0.0, axis=0)
+    dof = np.flatnonzero(nz)
+    of_line = np.searchsorted(koff, dof, side="right") - 1
+    couple = (dof - koff[of_line]).astype(np.int64)
+    coff = np.concatenate(([0], np.cumsum(np.bincount(of_line, minlength=len(lines))))).astype(
+        np.int64
+    )
     basis = np.concatenate([r.node_basis for r in lines])
     ncount = np.concatenate(counts).astype(np.int64)
     nfirst = np.concatenate([r.offsets[:-1] for r in lines]).astype(np.int64)

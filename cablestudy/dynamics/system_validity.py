@@ -32,7 +32,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .validity import Validity, measures
+from .frequency_model import sum_components
+from .validity import Validity, measures, sag
 
 if TYPE_CHECKING:
     from ..study.analysis import AutoSettings
@@ -50,29 +51,88 @@ def system_measures(
     :class:`~.system_frequency.SystemFrequencyResult` (status 0); per line
     ``on_seabed`` (n_l,) bool, the nodes laid on the seabed in the static state, and
     ``submerged_weight`` [N/m] (n_l,) at the nodes. The geometric measure is on the
-    displacement relative to the chord's motion (module docstring)."""
+    displacement relative to the chord's motion (module docstring).
+
+    All lines at once (flat over their nodes and elements; a line with a laid stretch
+    and a touchdown point goes through :func:`~.validity.measures` on its own, for its
+    touchdown travel): each quantity by the same operations on the same numbers as
+    :func:`~.validity.measures` line by line, and the minima and maxima are exact
+    whatever the order, so the measures are the same numbers
+    (tests/unit/test_system_validity.py)."""
+    lines = [red.line for red in model.lines]  # type: ignore[attr-defined]
+    L = len(lines)
+    if L == 0:
+        return []
+    n = np.array([ln.n_nodes for ln in lines], dtype=np.int64)
+    node_start = np.concatenate(([0], np.cumsum(n)))
+    el_start = np.concatenate(([0], np.cumsum(n - 1)))
+    of_node = np.repeat(np.arange(L), n)
+    of_el = np.repeat(np.arange(L), n - 1)
+    first, last = node_start[:-1], node_start[1:] - 1
+    s = np.concatenate([ln.s for ln in lines])
+    disp = result.displacement  # type: ignore[attr-defined]
+    u = np.concatenate(disp) if isinstance(disp, list | tuple) else np.asarray(disp)
+    # the displacement relative to the chord's motion, its largest amplitude per line
+    xi = ((s - s[first][of_node]) / (s[last] - s[first])[of_node])[:, None]
+    deformation = u - (1.0 - xi) * u[first][of_node] - xi * u[last][of_node]
+    amp = np.maximum.reduceat(np.sqrt(sum_components(np.abs(deformation) ** 2)), first)
+    # near slack: elements between two held nodes, and laid ones (nodes on the seabed)
+    # without static tension, and laid ends without it, left out (as slack_ratio)
+    bed = np.concatenate([np.asarray(b, dtype=bool) for b in on_seabed])
+    held = np.concatenate(
+        [np.diff(ln.free_basis.tocsr().indptr).reshape(-1, 3).sum(axis=1) == 0 for ln in lines]
+    )
+    left = np.delete(np.arange(s.size), last)  # each element's first node
+    t_el = np.concatenate([ln.tension for ln in lines])
+    a_el = np.abs(np.concatenate(result.element_tension))  # type: ignore[attr-defined]
+    t_end = np.asarray(result.tension_static, dtype=float).reshape(L, 2)  # type: ignore[attr-defined]
+    a_end = np.abs(np.asarray(result.end_tension)).reshape(L, 2)  # type: ignore[attr-defined]
+    keep_el = ~(held[left] & held[left + 1])
+    keep_el &= ~(bed[left] & bed[left + 1] & (t_el <= 0.0))
+    keep_end = ~(np.stack([bed[first], bed[last]], axis=1) & (t_end <= 0.0))
+    static = np.concatenate([t_el[keep_el], t_end[keep_end]])
+    amps = np.concatenate([a_el[keep_el], a_end[keep_end]])
+    which = np.concatenate([of_el[keep_el], np.repeat(np.arange(L), 2)[keep_end.ravel()]])
+    top = np.zeros(L)
+    np.maximum.at(top, which, static)
+    positive = static > 0.0
+    active = positive | (amps > 1e-12 * top[which])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratios = np.where(
+            positive,
+            (static - amps) / np.where(positive, static, 1.0),
+            -amps / np.maximum(top[which], amps),
+        )
+    slack = np.full(L, math.inf)
+    np.minimum.at(slack, which[active], ratios[active])
     out = []
-    for i, red in enumerate(model.lines):  # type: ignore[attr-defined]
-        line = red.line
-        u = result.displacement[i]  # type: ignore[attr-defined]
-        xi = ((line.s - line.s[0]) / (line.s[-1] - line.s[0]))[:, None]
-        deformation = u - (1.0 - xi) * u[0] - xi * u[-1]
-        bed = np.asarray(on_seabed[i], dtype=bool)
-        laid = float(np.sum(line.rest_length[bed[:-1] & bed[1:]]))
-        held = np.diff(line.free_basis.tocsr().indptr).reshape(-1, 3).sum(axis=1) == 0
+    for i, line in enumerate(lines):
+        b = bed[first[i] : last[i] + 1]
+        laid = float(np.sum(line.rest_length[b[:-1] & b[1:]]))
+        if laid > 0.0 and np.any(b) and not np.all(b):  # a touchdown point: on its own
+            out.append(
+                measures(
+                    s=line.s,
+                    position=line.position,
+                    displacement=deformation[first[i] : last[i] + 1],
+                    element_tension_static=line.tension,
+                    element_tension_amplitude=a_el[el_start[i] : el_start[i + 1]],
+                    end_tension_static=t_end[i],
+                    end_tension_amplitude=a_end[i],
+                    laid_length=laid,
+                    on_seabed=b,
+                    submerged_weight=np.asarray(submerged_weight[i], dtype=float),
+                    held=held[first[i] : last[i] + 1],
+                )
+            )
+            continue
+        length = float(line.s[-1] - line.s[0])
+        d = sag(line.position)
         out.append(
-            measures(
-                s=line.s,
-                position=line.position,
-                displacement=deformation,
-                element_tension_static=line.tension,
-                element_tension_amplitude=np.abs(result.element_tension[i]),  # type: ignore[attr-defined]
-                end_tension_static=result.tension_static[i],  # type: ignore[attr-defined]
-                end_tension_amplitude=np.abs(result.end_tension[i]),  # type: ignore[attr-defined]
-                laid_length=laid,
-                on_seabed=bed,
-                submerged_weight=np.asarray(submerged_weight[i], dtype=float),
-                held=held,
+            Validity(
+                min_tension_ratio=float(slack[i]),
+                amplitude_sag_ratio=float(amp[i] / (d if d > 1e-9 * length else length)),
+                touchdown_travel=0.0,
             )
         )
     return out

@@ -88,3 +88,95 @@ def test_judge_names_the_first_failing_line_or_the_nearest() -> None:
     assert line_failures(ok, auto) == []
     unbounded = Validity(min_tension_ratio=1.0, amplitude_sag_ratio=0.0, touchdown_travel=np.inf)
     assert "unbounded" in line_failures(unbounded, auto)[0]
+
+
+def _line_by_line(model, result, on_seabed, weight):  # noqa: ANN001, ANN202
+    """The measures line by line (:func:`~cablestudy.dynamics.validity.measures` of
+    each, as system_measures computed them before it went over all lines at once)."""
+    from cablestudy.dynamics.validity import measures
+
+    out = []
+    for i, red in enumerate(model.lines):
+        line = red.line
+        u = result.displacement[i]
+        xi = ((line.s - line.s[0]) / (line.s[-1] - line.s[0]))[:, None]
+        bed = np.asarray(on_seabed[i], dtype=bool)
+        out.append(
+            measures(
+                s=line.s,
+                position=line.position,
+                displacement=u - (1.0 - xi) * u[0] - xi * u[-1],
+                element_tension_static=line.tension,
+                element_tension_amplitude=np.abs(result.element_tension[i]),
+                end_tension_static=result.tension_static[i],
+                end_tension_amplitude=np.abs(result.end_tension[i]),
+                laid_length=float(np.sum(line.rest_length[bed[:-1] & bed[1:]])),
+                on_seabed=bed,
+                submerged_weight=np.asarray(weight[i], dtype=float),
+                held=np.diff(line.free_basis.tocsr().indptr).reshape(-1, 3).sum(axis=1) == 0,
+            )
+        )
+    return out
+
+
+def test_measures_over_all_lines_are_the_line_by_line_ones() -> None:
+    """system_measures over all lines at once gives each line's measures as
+    validity.measures does line by line, exactly (the same operations on the same
+    numbers; minima and maxima are exact): on case8 (bridles, legs from anchors on the
+    seabed) in surge and heave, and on MoorDyn's lines.txt (chains laid on the seabed,
+    a touchdown point each: its travel), where a line's static tension goes to zero on
+    the bed (slack check leaves it out)."""
+    import math
+
+    from cablestudy.analyses import system_frequency as asf
+    from cablestudy.analyses.frequency import drag_settings
+    from cablestudy.analyses.system import system_model
+    from cablestudy.dynamics.system_frequency import solve_system_harmonic
+    from cablestudy.interchange import import_model, imported_yaml
+    from cablestudy.statics import STATIC_SOLVERS
+    from cablestudy.statics.system_methods import solve_system_by
+    from cablestudy.study.grid import expand_cases
+    from cablestudy.study.loader import parse_study_text
+
+    root = Path(__file__).parents[2]
+    case8 = (root / "configs" / "system-case8-surge.yaml").read_text()
+    rel = "moordyn/tests/Mooring/lines.txt"
+    path = DATA / rel
+    chains = imported_yaml(import_model(path.read_text(), rel, folder=path.parent), rel)
+    chains += """\
+  dynamic:
+    excitation: {body: vessel, dof: surge, amplitude: 0.2, frequency: 0.05}
+    elements: 10
+"""
+    studies = [
+        case8.replace("elements: 20", "elements: 6"),
+        case8.replace("dof: surge, amplitude: 2.0", "dof: heave, amplitude: 0.05").replace(
+            "elements: 20", "elements: 5"
+        ),
+        chains,
+    ]
+    # element counts no other test uses: the models are cached per process, and the
+    # integration tests count the assemblies of theirs (20 and 16 elements a line)
+    seen_travel = False
+    for text in studies:
+        _, cases = expand_cases(parse_study_text(text, "s.yaml"))
+        case = cases[0]
+        system = system_model(case.study)
+        static = solve_system_by(system, "catenary", STATIC_SOLVERS)
+        model = asf.system_frequency_model(case, system, static)
+        assert not isinstance(model, str), model
+        X, U, f = asf.harmonic_motion(case.study)
+        res = solve_system_harmonic(
+            model,
+            2 * math.pi * f,
+            X,
+            drag_settings(case.study.analysis.dynamic),
+            point_excitation=U,
+        )
+        assert res.status == 0, res.message
+        bed, weight = asf._judged_nodes(model, system)
+        got = system_measures(model, res, bed, weight)
+        ref = _line_by_line(model, res, bed, weight)
+        assert got == ref  # every float equal
+        seen_travel |= any(v.touchdown_travel > 0.0 for v in got)
+    assert seen_travel  # the touchdown branch was taken
