@@ -31,6 +31,7 @@ from ..study.problem import static_problem
 from ..study.study import Study
 from .common import STATUS_NOT_RUN, exception_message, non_finite_outputs
 from .dynamic import dynamic_problems, linear_model_problems, presolve_frequency, run_dynamic
+from .fallback import static_fallback
 from .modal import modal_outputs, solve_modal
 from .plausibility import dynamic_warnings, fallback_warning, joined, strain_warning
 from .static import (
@@ -266,6 +267,14 @@ def evaluate_case(
             )
     ok = {name for name, (st, _) in outcome.items() if st == STATUS_OK}
     try:
+        fallback = static_fallback(
+            case.study,
+            static[0] if static else None,
+            presolved is not None and case.static_hash in presolved,
+        )
+    except Exception:  # noqa: BLE001 - the statics failed before a solver took the case
+        fallback = ""
+    try:
         warning = case_warnings(case, static[0] if "static" in ok else None, data, ok)
     except Exception as exc:  # noqa: BLE001 - the results stand; say they went unchecked
         warning = f"unchecked: the plausibility checks failed ({exception_message(exc)})"
@@ -280,6 +289,7 @@ def evaluate_case(
         wall_time=wall,
         data=data,
         warning=warning,
+        fallback=fallback,
     )
 
 

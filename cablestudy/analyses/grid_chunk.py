@@ -18,10 +18,6 @@ from .plausibility import joined
 #: here: the statics package loads every solver)
 STATUS_NUMERICAL = 2
 
-#: why the general solver solved a case no batch kernel takes (both ends on the seabed,
-#: an end below it, end A resting on it)
-NO_KERNEL = "no batch kernel takes these end conditions"
-
 
 @dataclass
 class GridChunk:

@@ -24,7 +24,8 @@ import numpy as np
 
 from ..study.grid import _POSITION, _STIFFNESS, CaseGrid
 from ..study.study import Study
-from .grid_chunk import NO_KERNEL, STATUS_NUMERICAL, GridChunk, warning_column
+from .fallback import NO_KERNEL
+from .grid_chunk import STATUS_NUMERICAL, GridChunk, warning_column
 from .plausibility import fallback_warning, largest_strain, strain_warning
 from .surface import template_surface_warnings
 from .variables import KEPT_STATUSES

@@ -17,85 +17,33 @@ from typing import Any
 
 import numpy as np
 
-from ..study.study import Study
-
-
-def one_at_a_time(problem: Any) -> bool:
-    """Whether the catenary solver first takes the compiled kernels for ``problem`` on
-    its own (:func:`cablestudy.statics.batch_kernels.solve_compiled`)."""
-    from ..statics.batch_kernels import batchable, contact_eligible
-
-    return bool(contact_eligible(problem) or batchable(problem))
-
-
-def fallback_reason(study: Study, problem: Any) -> str:
-    """Why no batch kernel takes the case (it goes to the general solver)."""
-    from ..statics.batch_kernels import _has_drag
-
-    method = study.analysis.static.method
-    if method != "catenary":
-        return f"method {method!r} has no batch kernel"
-    if study.line.is_spring:
-        return "a spring line has no batch kernel"
-    if study.line.pulleys:
-        return "a line over pulleys has no batch kernel"
-    if problem is not None and problem.line.is_nonlinear:
-        return "a nonlinear axial law has no batch kernel"
-    if problem is not None and problem.medium.has_current and _has_drag(problem):
-        return "current with drag: the drag iteration runs in the general solver"
-    from .grid_chunk import NO_KERNEL
-
-    return NO_KERNEL
-
 
 def evaluate_static_chunk(grid: Any, lo: int, hi: int) -> Any:
     """Solve rows ``lo:hi`` of a static grid as :func:`cablestudy.analyses.evaluate.evaluate_chunk`
     solves validated cases, and stack the records. Never raises: a fault fails the
     chunk's cases with its text."""
-    from ..statics import _fast
     from ..study.cases import Case
-    from ..study.problem import static_problem
     from .evaluate import evaluate_case
-    from .grid_chunk import NO_KERNEL, STATUS_NUMERICAL, GridChunk, warning_column
-    from .static import _STATIC_CACHE, presolve_statics
+    from .grid_chunk import STATUS_NUMERICAL, GridChunk, warning_column
+    from .static import presolve_statics
     from .variables import ANALYSES, OUTPUTS, analysis_ok
 
     t0 = time.perf_counter()
     block = (hi - lo, *grid.shape[1:])
     n = math.prod(block)
     reasons = np.full(n, "", dtype=object)
-    single: set[int] = set()
     try:
         cases = []
         for index in itertools.product(*(range(k) for k in block)):
             index = (index[0] + lo, *index[1:])
             cases.append(Case(index, {}, grid.study_at(index), *grid.case_hashes(index)))
-        general: list[str] = []
-        solved, share = presolve_statics(cases, general=general)
-        gone = set(general)
-        for i, case in enumerate(cases):
-            if case.static_hash in solved:
-                if case.static_hash in gone:
-                    reasons[i] = solved[case.static_hash].fallback or fallback_reason(
-                        case.study, None
-                    )
-            else:
-                problem = None if case.study.line.is_spring else static_problem(case.study)
-                reasons[i] = fallback_reason(case.study, problem)
-                if reasons[i] == NO_KERNEL and _fast.AVAILABLE and one_at_a_time(problem):
-                    # the catenary solver takes the compiled kernels one case at a time
-                    # (a line anchored on the seabed, a case alone in its chunk): its
-                    # result says whether they settled it
-                    single.add(i)
+        solved, share = presolve_statics(cases)
         records = []
         for i, case in enumerate(cases):
             rec = evaluate_case(case, presolved=solved)
             rec.wall_time += share.pop(case.static_hash, 0.0)
             records.append(rec)
-            if i in single:
-                res = _STATIC_CACHE.get(case.static_hash)  # just solved and kept
-                if res is not None:
-                    reasons[i] = res.fallback
+            reasons[i] = rec.fallback
         nodes = grid_nodes(grid)
         data: dict[str, np.ndarray] = {}
         names = sorted({k for r in records for k in r.data})

@@ -491,6 +491,9 @@ class CaseRecord:
     settings: dict[str, Any] = field(default_factory=dict)
     #: why the kept results are implausible or risky (cablestudy.analyses.plausibility; '' if not)
     warning: str = ""
+    #: why the general solver, not a batch kernel, solved its statics
+    #: (cablestudy.analyses.fallback; '' if a batch kernel did)
+    fallback: str = ""
 
 
 def analysis_ok(record: CaseRecord, analysis: str | None) -> bool:

@@ -80,6 +80,7 @@ def encode_records(records: list[CaseRecord]) -> bytes:
         "status": np.array([r.status for r in records], dtype=np.int64),
         "message": np.array([r.message for r in records], dtype=str).reshape(n),
         "warning": np.array([r.warning for r in records], dtype=str).reshape(n),
+        "fallback": np.array([r.fallback for r in records], dtype=str).reshape(n),
         "wall_time": np.array([r.wall_time for r in records], dtype=np.float64),
     }
     groups: dict[tuple[str, str, int], list[tuple[int, np.ndarray]]] = {}
@@ -111,6 +112,7 @@ def decode_records(payload: bytes) -> list[CaseRecord]:
     hashes, index = files["hash"], files["index"]
     status, message, wall = files["status"], files["message"], files["wall_time"]
     warning = files.get("warning", np.full(len(hashes), ""))
+    fallback = files.get("fallback", np.full(len(hashes), ""))
     records = [
         CaseRecord(
             hash=str(hashes[i]),
@@ -119,6 +121,7 @@ def decode_records(payload: bytes) -> list[CaseRecord]:
             message=str(message[i]),
             wall_time=float(wall[i]),
             warning=str(warning[i]),
+            fallback=str(fallback[i]),
         )
         for i in range(len(hashes))
     ]

@@ -7,6 +7,7 @@ that trace it to its inputs. The variables are declared in
 from __future__ import annotations
 
 import json
+from collections import Counter
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -274,7 +275,20 @@ def assembled_variables(
     attrs["cases_warned"] = int(np.count_nonzero(data_vars["warning"][1] != ""))
     if np.any(status == STATUS_BROKEN):
         attrs["cases_broken"] = int(np.count_nonzero(status == STATUS_BROKEN))
+    fallbacks = Counter(r.fallback for r in by_index.values() if r.fallback)
+    attrs.update(fallback_attrs(fallbacks))
     return data_vars, coords, attrs
+
+
+def fallback_attrs(fallbacks: dict[str, int]) -> dict[str, Any]:
+    """The ``cases_fallback`` and ``fallback_reasons`` attributes: how many cases the
+    general solver solved (no batch kernel took them), and why, most frequent first."""
+    return {
+        "cases_fallback": int(sum(fallbacks.values())),
+        "fallback_reasons": "; ".join(
+            f"{n} x {why}" for why, n in sorted(fallbacks.items(), key=lambda kv: -kv[1])
+        ),
+    }
 
 
 def _flag_statuses(data_vars: dict[str, Any]) -> None:
@@ -495,9 +509,5 @@ def grid_variables(
     attrs["cases_warned"] = int(np.count_nonzero(warnings != ""))
     if np.any(status == STATUS_BROKEN):
         attrs["cases_broken"] = int(np.count_nonzero(status == STATUS_BROKEN))
-    fallbacks = fallbacks or {}
-    attrs["cases_fallback"] = int(sum(fallbacks.values()))
-    attrs["fallback_reasons"] = "; ".join(
-        f"{n} x {why}" for why, n in sorted(fallbacks.items(), key=lambda kv: -kv[1])
-    )
+    attrs.update(fallback_attrs(fallbacks or {}))
     return data_vars, coords, attrs

@@ -144,6 +144,9 @@ def _run_records(
         n_warned=len(warned),
         warnings=dict(Counter(records[c.hash].warning for c in warned)),
         warned_cases=warned_cases,
+        fallbacks=dict(
+            Counter(records[c.hash].fallback for c in cases if records[c.hash].fallback)
+        ),
     )
 
 
