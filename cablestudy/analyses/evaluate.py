@@ -32,6 +32,7 @@ from ..study.study import Study
 from .common import STATUS_NOT_RUN, exception_message, non_finite_outputs
 from .dynamic import dynamic_problems, linear_model_problems, presolve_frequency, run_dynamic
 from .fallback import static_fallback
+from .grid_chunk import GridChunk, records_chunk
 from .modal import modal_outputs, solve_modal
 from .plausibility import dynamic_warnings, fallback_warning, joined, strain_warning
 from .static import (
@@ -362,3 +363,11 @@ def evaluate_chunk(cases: list[Case]) -> list[CaseRecord]:
     (:data:`CHUNK_KINDS`)."""
     kind = "system" if cases and cases[0].study.is_system else "line"
     return CHUNK_KINDS[kind](cases)
+
+
+def evaluate_cases(cases: list[Case]) -> GridChunk:
+    """:func:`evaluate_chunk`, its records in the one chunk form every study's runner
+    stores and assembles (:func:`cablestudy.analyses.grid_chunk.records_chunk`), built
+    where they were computed."""
+    system = bool(cases) and cases[0].study.is_system
+    return records_chunk(evaluate_chunk(cases), system=system)

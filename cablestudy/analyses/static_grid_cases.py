@@ -24,9 +24,8 @@ def evaluate_static_chunk(grid: Any, lo: int, hi: int) -> Any:
     chunk's cases with its text."""
     from ..study.cases import Case
     from .evaluate import evaluate_case
-    from .grid_chunk import STATUS_NUMERICAL, GridChunk, warning_column
+    from .grid_chunk import STATUS_NUMERICAL, GridChunk, records_chunk
     from .static import presolve_statics
-    from .variables import ANALYSES, OUTPUTS, analysis_ok
 
     t0 = time.perf_counter()
     block = (hi - lo, *grid.shape[1:])
@@ -44,32 +43,18 @@ def evaluate_static_chunk(grid: Any, lo: int, hi: int) -> Any:
             rec.wall_time += share.pop(case.static_hash, 0.0)
             records.append(rec)
             reasons[i] = rec.fallback
-        nodes = grid_nodes(grid)
-        data: dict[str, np.ndarray] = {}
-        names = sorted({k for r in records for k in r.data})
-        for name in names:
-            if name.endswith("_status") and name[: -len("_status")] in ANALYSES:
-                continue  # the grid's status is the static analysis's
-            spec = OUTPUTS[name]
-            tail = tuple(
-                nodes
-                if d == "s"
-                else max(np.shape(r.data[name])[j] for r in records if name in r.data)
-                for j, d in enumerate(spec.dims)
-            )
-            arr = np.full((n, *tail), -1 if spec.dtype == "int64" else np.nan, dtype=spec.dtype)
-            for i, rec in enumerate(records):
-                if name in rec.data and analysis_ok(rec, spec.analysis):
-                    v = np.asarray(rec.data[name])
-                    arr[(i, *(slice(0, k) for k in v.shape))] = v
-            data[name] = arr
-        status = np.array([r.status for r in records], dtype=np.int64)
-        messages = [r.message for r in records]
-        warning = warning_column(n, {i: [r.warning] for i, r in enumerate(records) if r.warning})
-        wall = np.array([r.wall_time for r in records], dtype=float)
+        chunk = records_chunk(records, extent={"s": grid_nodes(grid)})
+        # the grid's status is the static analysis's (the dataset writes it as such)
+        data = {k: v for k, v in chunk.data.items() if not _status_variable(k)}
+        status, message, warning, wall = (
+            chunk.status,
+            chunk.message,
+            chunk.warning,
+            chunk.wall_time,
+        )
     except Exception as exc:  # noqa: BLE001 - a fault in a chunk fails its cases, as data
         status = np.full(n, STATUS_NUMERICAL, dtype=np.int64)
-        messages = [f"{type(exc).__name__}: {exc}"] * n
+        message = np.array([f"{type(exc).__name__}: {exc}"] * n, dtype=str).reshape(n)
         warning = None
         data = {}
         wall = np.full(n, (time.perf_counter() - t0) / max(n, 1))
@@ -78,7 +63,7 @@ def evaluate_static_chunk(grid: Any, lo: int, hi: int) -> Any:
         hi=hi,
         key=grid.chunk_key(lo, hi),
         status=status,
-        message=np.array(messages, dtype=str).reshape(n),
+        message=message,
         wall_time=wall,
         data=data,
         fallback=int(np.count_nonzero(reasons != "")),
@@ -93,3 +78,9 @@ def grid_nodes(grid: Any) -> int:
     if path in grid.validated:
         return int(max(grid.validated[path][1]))
     return int(grid.template.analysis.static.nodes)
+
+
+def _status_variable(name: str) -> bool:
+    from .variables import ANALYSES
+
+    return name.endswith("_status") and name[: -len("_status")] in ANALYSES
