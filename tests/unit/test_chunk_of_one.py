@@ -16,6 +16,7 @@ import pytest
 from cablestudy.analyses import evaluate as analyses
 from cablestudy.analyses import line_model
 from cablestudy.analyses import static as static_analysis
+from cablestudy.analyses.grid_chunk import join_chunks, records_chunk
 from cablestudy.analyses.variables import CaseRecord
 from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
@@ -80,7 +81,12 @@ def _fresh(monkeypatch: pytest.MonkeyPatch) -> None:
 
 
 def _same(a: CaseRecord, b: CaseRecord) -> None:
-    assert (a.status, a.message, a.warning) == (b.status, b.message, b.warning)
+    assert (a.status, a.message, a.warning, a.fallback) == (
+        b.status,
+        b.message,
+        b.warning,
+        b.fallback,
+    )
     assert a.data.keys() == b.data.keys()
     for name, value in a.data.items():
         x, y = np.asarray(value), np.asarray(b.data[name])
@@ -100,10 +106,23 @@ def test_a_case_alone_gives_the_record_it_gets_in_its_chunk(
     assert len(cases) >= 2
     _fresh(monkeypatch)
     together = analyses.evaluate_chunk(cases)
+    alones = []
     for case, record in zip(cases, together, strict=True):
         _fresh(monkeypatch)
         (alone,) = analyses.evaluate_chunk([case])
         _same(record, alone)
+        alones.append(alone)
+    # ... and in the chunk form the runner stores and assembles (records_chunk, in the
+    # worker): the chunk of the sweep equals its chunks of one joined, to the bit
+    whole = records_chunk(together)
+    joined = join_chunks([records_chunk([a]) for a in alones])
+    for column in ("status", "message", "warning", "fallback_reason", "hashes"):
+        assert np.array_equal(getattr(whole, column), getattr(joined, column)), column
+    assert whole.data.keys() == joined.data.keys()
+    for name, x in whole.data.items():
+        y = joined.data[name]
+        assert x.dtype.kind == y.dtype.kind and x.shape == y.shape, name
+        assert x.tobytes() == y.tobytes() if x.dtype.kind == "f" else np.array_equal(x, y), name
     assert all(r.status == 0 for r in together)  # the sweep exercises the analysis
     present = {k for r in together for k in r.data}
     expect = {
