@@ -365,9 +365,9 @@ def evaluate_chunk(cases: list[Case]) -> list[CaseRecord]:
     return CHUNK_KINDS[kind](cases)
 
 
-def evaluate_cases(cases: list[Case]) -> GridChunk:
+def evaluate_cases(cases: list[Case], *, extent: dict[str, int] | None = None) -> GridChunk:
     """:func:`evaluate_chunk`, its records in the one chunk form every study's runner
-    stores and assembles (:func:`cablestudy.analyses.grid_chunk.records_chunk`), built
-    where they were computed."""
+    stores and assembles (:func:`cablestudy.analyses.grid_chunk.records_chunk`, its
+    ``extent``), built where they were computed."""
     system = bool(cases) and cases[0].study.is_system
-    return records_chunk(evaluate_chunk(cases), system=system)
+    return records_chunk(evaluate_chunk(cases), system=system, extent=extent)

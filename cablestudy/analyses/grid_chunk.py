@@ -39,8 +39,6 @@ class GridChunk:
     message: np.ndarray  # unicode
     wall_time: np.ndarray
     data: dict[str, np.ndarray]
-    #: cases no array kernel settled, solved one by one by the general solver
-    fallback: int = 0
     #: per case, why its kept results are implausible or risky (unicode, '' if not)
     warning: np.ndarray | None = None
     #: per case, why the general solver solved it (unicode, '' if a batch kernel did)
@@ -58,6 +56,11 @@ class GridChunk:
     @property
     def n(self) -> int:
         return len(self.status)
+
+    @property
+    def fallback(self) -> int:
+        """Cases no batch kernel settled, solved one by one by the general solver."""
+        return int(np.count_nonzero(self.fallback_reason != ""))
 
 
 def warning_column(n: int, warnings: dict[int, list[str]]) -> np.ndarray:
@@ -151,7 +154,6 @@ def records_chunk(
         message=_text([r.message for r in records]),
         wall_time=np.array([r.wall_time for r in records], dtype=np.float64),
         data=data,
-        fallback=sum(1 for r in records if r.fallback),
         warning=_text([r.warning for r in records]),
         fallback_reason=_text([r.fallback for r in records]),
         hashes=_text([r.hash for r in records]),
@@ -216,7 +218,6 @@ def join_chunks(chunks: Sequence[GridChunk]) -> GridChunk:
         message=column("message"),
         wall_time=column("wall_time"),
         data=data,
-        fallback=sum(c.fallback for c in chunks),
         warning=column("warning"),
         fallback_reason=column("fallback_reason"),
         hashes=hashes,
@@ -233,7 +234,6 @@ def take_rows(chunk: GridChunk, rows: np.ndarray) -> GridChunk:
         message=chunk.message[rows],
         wall_time=chunk.wall_time[rows],
         data={k: v[rows] for k, v in chunk.data.items()},
-        fallback=int(np.count_nonzero(chunk.fallback_reason[rows] != "")),
         warning=chunk.warning[rows],
         fallback_reason=chunk.fallback_reason[rows],
         hashes=None if chunk.hashes is None else chunk.hashes[rows],
