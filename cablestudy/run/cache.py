@@ -102,8 +102,6 @@ def _odd_entry(path: Path) -> str:
 
 
 GRID_FORMAT = "cablestudy-grid-chunk-1"
-#: the per-case columns of a grid chunk file (not output variables)
-_CASE_COLUMNS = ("status", "message", "warning", "wall_time", "fallback", "hash")
 _GRID_NAME = re.compile(r"^grid-([0-9a-f]{32})-([0-9a-f]{64})\.npz$")
 
 
@@ -126,13 +124,10 @@ class GridSummary:
     fallbacks: Counter[str] = field(default_factory=Counter)
 
 
-def summarise(
-    chunks: Iterable[tuple[np.ndarray, np.ndarray, np.ndarray, dict[str, np.ndarray]]],
-    fallback: Iterable[np.ndarray] = (),
-) -> GridSummary:
-    """The :class:`GridSummary` of chunks given as (status, message, warning, outputs by
-    name), in the order of the grid's rows; ``fallback``: per chunk, why each case went
-    to the general solver ('' where a batch kernel solved it)."""
+def summarise(chunks: Iterable[Any]) -> GridSummary:
+    """The :class:`GridSummary` of chunks
+    (:class:`cablestudy.analyses.grid_chunk.GridChunk`), in the order of the grid's
+    rows."""
     names: set[str] = set()
     tails: dict[str, tuple[int, ...]] = {}
     arc: np.ndarray | None = None
@@ -142,7 +137,10 @@ def summarise(
     n_warned = 0
     warned_at: dict[str, int] = {}
     offset = 0
-    for status, message, warning, data in chunks:
+    fallbacks: Counter[str] = Counter()
+    for chunk in chunks:
+        status, message, warning, data = chunk.status, chunk.message, chunk.warning, chunk.data
+        fallbacks.update(str(r) for r in chunk.fallback_reason[chunk.fallback_reason != ""])
         bad = status != 0
         if bad.any():
             failures.update(str(m) for m in message[bad])
@@ -172,9 +170,6 @@ def summarise(
                     arc = ref
                 else:
                     same_arc = False
-    fallbacks: Counter[str] = Counter()
-    for reasons in fallback:
-        fallbacks.update(str(r) for r in reasons[reasons != ""])
     return GridSummary(
         sorted(names),
         tails,
@@ -261,54 +256,30 @@ class GridChunkStore:
         _write_atomic(path, payload, ".grid-")
         return path
 
-    @staticmethod
-    def summary(paths: list[Path]) -> GridSummary:
-        def columns(
-            path: Path,
-        ) -> tuple[np.ndarray, np.ndarray, np.ndarray, dict[str, np.ndarray]]:
-            with np.load(path, allow_pickle=False) as z:
-                data = {
-                    k[2:]: z[k]
-                    for k in z.files
-                    if k.startswith("v_") and k[2:] not in _CASE_COLUMNS
-                }
-                status = z["v_status"]
-                warning = z["v_warning"] if "v_warning" in z.files else np.full(len(status), "")
-                return status, z["v_message"], warning, data
-
-        def reasons(path: Path) -> np.ndarray:
-            with np.load(path, allow_pickle=False) as z:
-                return z["v_fallback"] if "v_fallback" in z.files else np.array([], dtype=str)
-
-        return summarise((columns(path) for path in paths), (reasons(p) for p in paths))
+    def summary(self, paths: list[Path]) -> GridSummary:
+        """The :func:`summarise` of chunk files, read one at a time."""
+        return summarise(self.chunk(p) for p in paths)
 
     @staticmethod
-    def load(path: Path) -> dict[str, np.ndarray]:
-        """The arrays of a chunk file, by name without the ``v_`` prefix (``status``,
-        ``message``, ``wall_time`` and the outputs), plus ``key`` and ``rows``."""
-        with np.load(path, allow_pickle=False) as z:
-            out = {k[2:]: z[k] for k in z.files if k.startswith("v_")}
-            out["key"] = z["key"]
-            out["rows"] = z["rows"]
-            return out
-
-    def chunk(self, path: Path) -> Any:
+    def chunk(path: Path) -> Any:
         """A chunk file as a :class:`cablestudy.analyses.grid_chunk.GridChunk`."""
         from ..analyses.grid_chunk import GridChunk
 
-        z = self.load(path)
-        lo, hi = (int(v) for v in z.pop("rows"))
+        with np.load(path, allow_pickle=False) as z:
+            v = {k[2:]: z[k] for k in z.files if k.startswith("v_")}
+            lo, hi = (int(r) for r in z["rows"])
+            key = str(z["key"])
         return GridChunk(
             lo=lo,
             hi=hi,
-            key=str(z.pop("key")),
-            status=z.pop("status"),
-            message=z.pop("message"),
-            wall_time=z.pop("wall_time"),
-            warning=z.pop("warning", None),
-            fallback_reason=z.pop("fallback", None),
-            hashes=z.pop("hash", None),
-            data=z,
+            key=key,
+            status=v.pop("status"),
+            message=v.pop("message"),
+            wall_time=v.pop("wall_time"),
+            warning=v.pop("warning", None),
+            fallback_reason=v.pop("fallback", None),
+            hashes=v.pop("hash", None),
+            data=v,
         )
 
     def cases(self, wanted: set[str]) -> tuple[list[Any], set[Path]]:

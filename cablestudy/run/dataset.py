@@ -150,9 +150,7 @@ def chunk_variables(
     if summary is None:
         from .cache import summarise
 
-        summary = summarise(
-            [(chunk.status, chunk.message, chunk.warning, chunk.data)], [chunk.fallback_reason]
-        )
+        summary = summarise([chunk])
     shape = tuple(a.size for a in axes)
     values = {
         name: arr.reshape(shape + arr.shape[1:])

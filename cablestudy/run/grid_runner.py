@@ -1,7 +1,9 @@
-"""A study run as arrays (:class:`cablestudy.study.grid.CaseGrid`): rows of the
-grid as chunks (:func:`cablestudy.analyses.static_grid.evaluate_grid_chunk`), each
-chunk's arrays kept in the cache, held in memory or streamed to disk by size, and the
-dataset written from them.
+"""Every study run in chunks of its grid (:class:`cablestudy.study.grid.CaseGrid`): rows
+of the grid as arrays (:func:`cablestudy.analyses.static_grid.evaluate_grid_chunk`), or
+its cases on the scheduler (:func:`cablestudy.analyses.evaluate.evaluate_cases`), each
+chunk in one record form (:class:`cablestudy.analyses.grid_chunk.GridChunk`) kept in the
+cache, held in memory or streamed to disk by size, and the dataset built from them by
+one function (:func:`cablestudy.run.dataset.grid_variables`).
 """
 
 from __future__ import annotations
@@ -57,7 +59,7 @@ def _grid_chunk_task(grid: Any, lo: int, hi: int) -> Any:
     return evaluate_grid_chunk(grid, lo, hi)
 
 
-def run_arrays(
+def run_chunks(
     src: StudySource,
     grid: Any,
     out_dir: Path,
@@ -148,10 +150,7 @@ def run_arrays(
             from .dataset import chunk_variables
 
             merged = plan.merged(held)
-            summary = summarise(
-                [(merged.status, merged.message, merged.warning, merged.data)],
-                [merged.fallback_reason],
-            )
+            summary = summarise([merged])
             variables = chunk_variables(
                 grid.axes,
                 src,

@@ -19,7 +19,7 @@ from pathlib import Path
 from ..study.grid import CaseGrid
 from ..study.loader import StudySource
 from .cache import TEMPORARY_PATTERNS
-from .grid_runner import run_arrays
+from .grid_runner import run_chunks
 from .outputs import CacheLock, remove_stale_temporaries
 from .outputs import now as run_started
 from .progress import RunSummary
@@ -48,7 +48,7 @@ def run_study(
 
     A grid run in chunks of rows (:attr:`CaseGrid.chunked`) goes as arrays, any other as
     chunks of cases sized by their measured cost (:mod:`cablestudy.run.scheduler`), both
-    through :func:`cablestudy.run.grid_runner.run_arrays`. Either way finished chunks are
+    through :func:`cablestudy.run.grid_runner.run_chunks`. Either way finished chunks are
     cached under ``<out_dir>/.cache/<name>/`` as they complete: an unchanged or
     interrupted study re-run reuses them."""
     t0 = time.perf_counter()
@@ -58,7 +58,7 @@ def run_study(
     cache_dir = out_dir / ".cache" / name if use_cache else None
     lock = tidy(out_dir, name, cache_dir)
     try:
-        summary = run_arrays(
+        summary = run_chunks(
             src, grid, out_dir, cache_dir, lock, scheduler, workers, progress, timeout
         )
     finally:
