@@ -611,3 +611,26 @@ def test_the_cli_runs_every_study_through_the_one_runner(
             assert main([*args, "--scheduler", "synchronous"]) == 0
     n = expand_grid(parse_study_text(TEXT, "rn.yaml")).size
     assert seen == [(True, 0), (True, n), (False, 0), (False, n)]
+
+
+def test_a_value_inserted_into_the_sweep_reuses_the_cases_where_they_now_are(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A cached case is found by its content hash, not its place: after a value is
+    inserted in the middle of an axis, the cached cases land at their new indices, and
+    the dataset equals an uncached run of the edited study (wall times aside)."""
+    src, grid, _ = _expand()
+    run_study(src, grid, tmp_path / "c", scheduler="synchronous", progress=False)
+    edited = TEXT.replace("[1.0e6, 1.0e7, 6.283e7]", "[1.0e6, 3.0e6, 1.0e7, 6.283e7]")
+    src2, grid2, _ = _expand(edited)
+    counter = _count_evaluations(monkeypatch)
+    again = run_study(src2, grid2, tmp_path / "c", scheduler="synchronous", progress=False)
+    assert counter["cases"] == 9 and again.n_reused == 27
+    plain = run_study(
+        src2, grid2, tmp_path / "plain", scheduler="synchronous", use_cache=False, progress=False
+    )
+    got, ref = xr.load_dataset(again.path), xr.load_dataset(plain.path)
+    xr.testing.assert_identical(
+        got.drop_vars("wall_time"),
+        ref.drop_vars("wall_time").assign_attrs(history=got.attrs["history"]),
+    )
