@@ -16,6 +16,7 @@ import math
 import struct
 from collections import OrderedDict
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -320,6 +321,8 @@ def solve_frequency_cases(
         "tension_max_line": np.where(edge_max > top, edge_max, top),
         "tension_envelope_max": env_max,
         "tension_envelope_min": static.tension - envelope,
+        # each node's static elevation plus its heave amplitude, onto the output points
+        "z_envelope_max": z_envelope(static.s, line, np.abs(res.displacement[..., 2])),
         "tension_amplitude_a": a_end[:, 0],
         "tension_amplitude_b": a_end[:, 1],
         "tension_phase_a": phase[:, 0],
@@ -357,6 +360,17 @@ def solve_frequency_cases(
         outcome.non_finite = known
         out.append(outcome)
     return out
+
+
+def z_envelope(s_out: np.ndarray, line: Any, amplitude: np.ndarray) -> np.ndarray:
+    """The highest elevation [m] at the output points ``s_out`` [m] of a linear
+    response: the model's static node elevations ``line.position[:, 2]`` plus the nodes'
+    vertical amplitudes ``amplitude`` [m] (..., n) (a harmonic's, or a spectrum's most
+    probable maximum), interpolated as the time domain's node maxima are."""
+    z = line.position[:, 2] + np.asarray(amplitude)
+    if z.ndim == 1:
+        return np.interp(s_out, line.s, z)
+    return np.array([np.interp(s_out, line.s, zk) for zk in z])
 
 
 #: the checks of ``method: auto`` when a study sets none (built once: a model per case
@@ -483,6 +497,7 @@ def irregular(
 
     sd_end, mpm_end = mpm(np.abs(res.end_tension) ** 2)
     _, mpm_el = mpm(np.abs(res.element_tension) ** 2)
+    _, mpm_z = mpm(np.abs(res.displacement[..., 2]) ** 2)
     ex = 0 if spec.end == "a" else 1
     t_end = res.tension_static
     env = tension_along(static.s, red.line.s, mpm_el, mpm_end)
@@ -496,6 +511,7 @@ def irregular(
         ),
         "tension_envelope_max": static.tension + env,
         "tension_envelope_min": static.tension - env,
+        "z_envelope_max": z_envelope(static.s, red.line, mpm_z),
         "tension_std_a": np.asarray(sd_end[0]),
         "tension_std_b": np.asarray(sd_end[1]),
         "transfer_frequency": freqs,

@@ -11,9 +11,10 @@ and arc length. A line in a gas or vacuum (:func:`has_free_surface`) is never ju
 
 One function per path, each a few lines over the pure checks: a case alone
 (:func:`case_surface_warning`, from :func:`cablestudy.analyses.evaluate.case_warnings`:
-the statics, then the kept whole-line time history if there is one),
-a sweep run as arrays (:func:`template_surface_warnings`, from
-:mod:`cablestudy.analyses.static_grid`), a system case (:func:`system_surface_warning`,
+the statics, then the elevation envelope over the motion, both dynamic methods' output
+``z_envelope_max``), a sweep run as arrays (:func:`template_surface_warnings`, from
+:mod:`cablestudy.analyses.static_grid`), a system case (:func:`system_surface_warning`
+and over its motion :func:`system_motion_surface_warning`,
 :mod:`cablestudy.analyses.system`) and a system sweep run as arrays
 (:func:`system_grid_surface_warnings`, :mod:`cablestudy.analyses.system_grid`).
 """
@@ -42,19 +43,29 @@ def static_surface_warning(study: Any, res: Any) -> str:
 
 def case_surface_warning(study: Any, static: Any, data: dict[str, Any], ok: set[str]) -> str:
     """The ``surface`` warning of one line's case: of its static solution ``static``
-    (None: it failed), else, where the time domain kept the whole line's history
-    (``analysis.dynamic.history.whole_line``: ``history_line_position`` (time, s, 3) [m]
-    in ``data``, at the static nodes) and the dynamic analysis succeeded (in ``ok``), of
-    the line's highest position over that record. Without that history the motion is
-    not judged: no envelope of the positions is kept."""
+    (None: it failed), else, where the dynamic analysis succeeded (in ``ok``), of the
+    line's elevation envelope over the motion (``z_envelope_max`` (s,) [m] in ``data``,
+    at the static output points: both dynamic methods give it; a fixed end, moved as
+    given, left out), or where a model gives
+    none (a line over sliding pulleys) of its kept whole-line time history
+    (``history_line_position`` (time, s, 3) [m]; without it the motion is not judged)."""
     if static is None or not _liquid(study):
         return ""
     text = static_surface_warning(study, static)
-    history = data.get("history_line_position")
-    if text or history is None or "dynamic" not in ok:
+    if text or "dynamic" not in ok:
         return text
-    z = np.asarray(history, dtype=float)[..., 2]  # (time, s)
     s = np.asarray(static.s, dtype=float)
+    envelope = data.get("z_envelope_max")
+    if envelope is not None:
+        z = np.array(envelope, dtype=float)
+        # a held end goes where its motion takes it: the input, not the model's answer
+        held = [study.ends.a.kind == "fixed", study.ends.b.kind == "fixed"]
+        z[[0, -1]] = np.where(held, np.nan, z[[0, -1]])
+        return surface_warning(s, z, when="over the motion")
+    history = data.get("history_line_position")
+    if history is None:
+        return ""
+    z = np.asarray(history, dtype=float)[..., 2]  # (time, s)
     if z.ndim != 2 or z.shape[1] != s.size or not z.size:
         return ""
     return surface_warning(s, np.max(z, axis=0), when="in the kept time history")
@@ -80,6 +91,25 @@ def system_surface_warning(study: Any, res: Any) -> str:
     s = np.array([np.asarray(r.s, dtype=float) for r in res.lines])
     z = np.array([np.asarray(r.position, dtype=float)[:, 2] for r in res.lines])
     return surface_warning(s, z, list(study.lines))
+
+
+def system_motion_surface_warning(study: Any, data: dict[str, Any]) -> str:
+    """The warning of a system case whose dynamics lift a line above the surface:
+    ``data['z_envelope_max']`` (lines, s) [m], the lines' elevation envelope over the
+    motion, at the static output points ``data['arc_length']`` (lines, s) [m], the
+    lines named as in ``study.lines``, ends on fixed points and bodies (whose motion is
+    given) left out; '' without a dynamic envelope."""
+    envelope = data.get("z_envelope_max")
+    if envelope is None or "arc_length" not in data or not _liquid(study):
+        return ""
+    z = np.array(envelope, dtype=float)
+    for i, line in enumerate(study.lines.values()):  # ends on fixed or body points are
+        for k, point in ((0, line.a), (-1, line.b)):  # moved as given: not judged
+            if study.points[point].kind != "free":
+                z[i, k] = np.nan
+    return surface_warning(
+        np.asarray(data["arc_length"], dtype=float), z, list(study.lines), when="over the motion"
+    )
 
 
 def system_grid_surface_warnings(

@@ -24,6 +24,7 @@ from ..study.cases import Case
 from ..study.problem import line_model, medium
 from ..study.system import BodyPoint, FixedPoint, FreePoint
 from .counters import trim_lru
+from .plausibility import SURFACE
 from .variables import CaseRecord
 
 #: per static problem of a study with dynamics (``case.static_hash``, which covers every
@@ -189,6 +190,10 @@ def evaluate_system_case(case: Case) -> CaseRecord:
                 f"({study.analysis.dynamic.max_periods}); the extremes are those of the last "
                 "periods run"
             )
+    if status == STATUS_OK and not any(w.startswith(SURFACE) for w in warnings):
+        from .surface import system_motion_surface_warning  # a line out of the water
+
+        warnings.append(system_motion_surface_warning(study, data))
     warning = "; ".join(w for w in warnings if w)
     return CaseRecord(
         hash=case.hash,

@@ -309,12 +309,13 @@ def run_system_dynamic(
     if res.status != STATUS_OK:
         return res.status, res.message, head
     n_out = system.lines[0].problem.n_nodes
-    env_max, env_min = [], []
+    env_max, env_min, z_max = [], [], []
     for k, ln in enumerate(packed.lines):
         s_out = np.linspace(0.0, float(ln.s[-1]), n_out)
         el = slice(packed.eo[k], packed.eo[k + 1])
         env_max.append(tension_along(s_out, ln.s, res.element_max[el], res.end_max[k]))
         env_min.append(tension_along(s_out, ln.s, res.element_min[el], res.end_min[k]))
+        z_max.append(np.interp(s_out, ln.s, res.z_max[packed.no[k] : packed.no[k + 1]]))
     out = {
         **head,
         "tension_max_a": res.end_max[:, 0],
@@ -325,6 +326,7 @@ def run_system_dynamic(
         "tension_mean_b": res.end_mean[:, 1],
         "tension_envelope_max": np.array(env_max),
         "tension_envelope_min": np.array(env_min),
+        "z_envelope_max": np.array(z_max),
         "steady_converged": np.asarray(int(res.steady_converged)),
         "periods": np.asarray(res.periods),
         "dynamic_steps": np.asarray(res.steps),

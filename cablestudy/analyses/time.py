@@ -126,6 +126,7 @@ def dynamic_outputs(
         out["tension_envelope_min"] = tension_along(
             s_out, res.line_s, res.element_tension_min, res.end_tension_min
         )
+        out["z_envelope_max"] = np.interp(s_out, res.line_s, res.z_max)
     if res.history is not None and "line_position" in res.history:
         h = res.history
         out["history_line_position"] = interpolate_nodes(res.line_s, s_out, h["line_position"])

@@ -138,6 +138,12 @@ OUTPUTS: dict[str, OutputVariable] = {
     "tension_envelope_min": OutputVariable(
         ("s",), "N", "smallest effective tension along the line over the steady motion"
     ),
+    # the elevation envelope (range graph of z): the time domain's per-step highest z of
+    # each node over the steady window, the frequency domain's static z + |z amplitude|
+    # (a spectrum: most probable maximum); the surface warning judges it
+    "z_envelope_max": OutputVariable(
+        ("s",), "m", "highest elevation (z, up; the surface at 0) along the line over the motion"
+    ),
     "touchdown_min": OutputVariable(
         (),
         "m",
@@ -389,7 +395,7 @@ SYSTEM_OUTPUTS.update(
         },
         **{
             k: replace(OUTPUTS[k], dims=("line", "s"))
-            for k in ("tension_envelope_max", "tension_envelope_min")
+            for k in ("tension_envelope_max", "tension_envelope_min", "z_envelope_max")
         },
         "body_force_max": OutputVariable(
             ("body", "dof"),

@@ -184,12 +184,14 @@ def drag_stochastic(
 @dataclass(kw_only=True)
 class SpectrumResult:
     """Response to an end-motion spectrum: per spectral line (K,) the complex
-    amplitudes of the end tensions (K, 2) [N] and element tensions (K, n - 1) [N];
-    tension_static (2,) [N]; iterations, converged, change; status, message."""
+    amplitudes of the end tensions (K, 2) [N] and element tensions (K, n - 1) [N], and
+    of the nodes' displacements (K, n, 3) [m] (NaN on failure); tension_static (2,) [N];
+    iterations, converged, change; status, message."""
 
     end_tension: np.ndarray
     element_tension: np.ndarray
     tension_static: np.ndarray
+    displacement: np.ndarray
     iterations: int = 0
     converged: bool = True
     change: float = 0.0
@@ -275,6 +277,7 @@ def solve_spectrum(
             end_tension=np.full((K, 2), np.nan + 0j),
             element_tension=np.full((K, n - 1), np.nan + 0j),
             tension_static=static_mag,
+            displacement=np.full((K, n, 3), np.nan + 0j),
             status=STATUS_NUMERICAL,
             message="singular dynamic matrix at a spectral line",
         )
@@ -293,6 +296,7 @@ def solve_spectrum(
         end_tension=ends,
         element_tension=element,
         tension_static=static_mag,
+        displacement=U,
         iterations=iterations,
         converged=converged,
         change=change,

@@ -262,6 +262,7 @@ def march(  # noqa: ANN201, PLR0913, PLR0915
     ext_element,
     ext_end,
     ext_touchdown,
+    ext_z,
     s,
     touchdown_tolerance,
     step,
@@ -304,7 +305,8 @@ def march(  # noqa: ANN201, PLR0913, PLR0915
     ``st_f`` = [t, boundary, max, min, integral of the excited end's tension, largest
     line tension, last end tension, last line maximum, last touchdown, last step],
     ``ext_element`` (2, n) the elements' largest and smallest tension,
-    ``ext_end`` (2, 2) the ends', ``ext_touchdown`` (2,) the touchdown point's range;
+    ``ext_end`` (2, 2) the ends', ``ext_touchdown`` (2,) the touchdown point's range,
+    ``ext_z`` (n,) the nodes' highest elevation;
     ``st_i`` = [level, clean steps, steps, Newton iterations, rejected steps, positions
     kept for the predictor, parted (1/0), the parted element].
     ``ends`` (2,) and ``forces`` (2, 3) hold the last accepted step's end tensions and
@@ -493,6 +495,7 @@ def march(  # noqa: ANN201, PLR0913, PLR0915
                 v0[i, c] = v1[i, c]
                 a0[i, c] = a1[i, c]
                 F0[i, c] = F[i, c]
+            ext_z[i] = max(ext_z[i], x0[i, 2])
         for i in range(m):
             strain_prev[i] = strain[i]
             tension_prev[i] = tension[i]

@@ -309,7 +309,7 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
         strain_prev[:] = work.strain
         end_tensions = np.sqrt(np.sum(forces**2, 1))
         line_max = max(float(work.tension.max()), float(end_tensions.max()))
-        extremes.add(work.tension, end_tensions, touchdown_of(line, x0, td_tol))
+        extremes.add(work.tension, end_tensions, touchdown_of(line, x0, td_tol), x0[:, 2])
         c_max = max(c_max, tension)
         c_min = min(c_min, tension)
         c_int += 0.5 * (t_prev_tension + tension) * h
@@ -334,7 +334,7 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
                 p_split.append(c_split)
                 extremes.close()
             c_split = [split.copy(), split.copy()]
-            extremes.start(work.tension, end_tensions, touchdown_of(line, x0, td_tol))
+            extremes.start(work.tension, end_tensions, touchdown_of(line, x0, td_tol), x0[:, 2])
             c_max = c_min = tension
             c_line = line_max
             c_int = 0.0
@@ -367,6 +367,7 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
         result.end_tension_min,
         result.touchdown_min,
         result.touchdown_max,
+        result.z_max,
     ) = extremes.window()
     result.history = hist.resampled(t)
     if problem.keep_steps:

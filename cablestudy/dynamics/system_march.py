@@ -335,6 +335,7 @@ def system_march(  # noqa: ANN201, PLR0913, PLR0915
     int_end,
     ext_el,
     ext_body,
+    ext_z,
     body_f,
     step,
     max_level,
@@ -363,8 +364,9 @@ def system_march(  # noqa: ANN201, PLR0913, PLR0915
     iterations, rejected steps, positions kept]. After each accepted step: the lines'
     end forces ``forces`` (L, 2, 3) and the bodies' ``body_f`` (B, 6); folded into the
     period's extremes ``ext_end`` (2, L, 2) of the end tensions (max, min) and their
-    integral ``int_end``, ``ext_el`` (2, E) of the element tensions and ``ext_body``
-    (2, B, 6) of the body forces. ``st_f[2]`` holds the step tried when Newton failed."""
+    integral ``int_end``, ``ext_el`` (2, E) of the element tensions, ``ext_body``
+    (2, B, 6) of the body forces and ``ext_z`` (N,) the nodes' highest elevation.
+    ``st_f[2]`` holds the step tried when Newton failed."""
     held = S[21]
     no = S[0]
     n_lines = no.shape[0] - 1
@@ -474,6 +476,7 @@ def system_march(  # noqa: ANN201, PLR0913, PLR0915
                 v0[i, c] = v1[i, c]
                 a0[i, c] = a1[i, c]
                 F0[i, c] = W[0][i, c]
+            ext_z[i] = max(ext_z[i], x0[i, 2])
         for p in range(Fp0.shape[0]):
             for c in range(3):
                 Fp0[p, c] = Fp[p, c]

@@ -63,7 +63,8 @@ class SystemProblem:
 class SystemDynamicResult:
     """Outcome of :func:`simulate_system` over the steady window: end tensions [N]
     (L, 2) (max, min, mean; ends A, B), element tensions (E,) packed line after line,
-    body forces and moments (B, 6) (max, min); the static end tensions (L, 2)."""
+    body forces and moments (B, 6) (max, min); the nodes' highest elevation [m] (N,)
+    packed line after line; the static end tensions (L, 2)."""
 
     status: int = STATUS_OK
     message: str = ""
@@ -73,6 +74,7 @@ class SystemDynamicResult:
     end_static: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     element_max: np.ndarray = field(default_factory=lambda: np.zeros(0))
     element_min: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    z_max: np.ndarray = field(default_factory=lambda: np.zeros(0))
     body_max: np.ndarray = field(default_factory=lambda: np.zeros((0, 6)))
     body_min: np.ndarray = field(default_factory=lambda: np.zeros((0, 6)))
     steady_converged: bool = False
@@ -208,9 +210,10 @@ def simulate_system(
             np.zeros((L, 2)),
             np.stack([W[7], W[7]]).copy(),
             np.stack([body_f, body_f]).copy(),
+            x0[:, 2].copy(),
         )
 
-    ext_end, int_end, ext_el, ext_body = fresh()
+    ext_end, int_end, ext_el, ext_body, ext_z = fresh()
     periods: list[tuple[np.ndarray, ...]] = []
     hist_t: list[float] = [0.0]
     hist_f: list[np.ndarray] = [ends_prev.copy()]
@@ -229,7 +232,8 @@ def simulate_system(
         code = system_march(
             st_f, st_i, x0, v0, a0, F0, Fp0, x1, v1, a1, x_pred, past_x, past_t, pk.frac,
             strain_prev, D, pk.he_node, pk.he_drive, pk.he_line, pk.he_end, pk.he_body,
-            dX, dV, dA, bx, bR, forces, ends_prev, ext_end, int_end, ext_el, ext_body, body_f,
+            dX, dV, dA, bx, bR, forces, ends_prev, ext_end, int_end, ext_el, ext_body, ext_z,
+            body_f,
             problem.step, problem.max_refinement,
             problem.max_refinement + NEWTON_RESCUE_HALVINGS, problem.tension_step,
             par.alpha_m, par.alpha_f, par.beta, par.gamma, problem.newton_tolerance,
@@ -254,9 +258,10 @@ def simulate_system(
         if c_start >= t_ramp - eps_t or (final and not periods):
             periods.append(
                 (ext_end[0].copy(), ext_end[1].copy(), int_end / max(t - c_start, 1e-300),
-                 ext_el[0].copy(), ext_el[1].copy(), ext_body[0].copy(), ext_body[1].copy())
+                 ext_el[0].copy(), ext_el[1].copy(), ext_body[0].copy(), ext_body[1].copy(),
+                 ext_z.copy())
             )  # fmt: skip
-        ext_end, int_end, ext_el, ext_body = fresh()
+        ext_end, int_end, ext_el, ext_body, ext_z = fresh()
         c_start = t
         if problem.duration is None:
             converged = _steady(problem, periods)
@@ -272,6 +277,7 @@ def simulate_system(
     result.element_min = np.min([p[4] for p in win], axis=0)
     result.body_max = np.max([p[5] for p in win], axis=0)
     result.body_min = np.min([p[6] for p in win], axis=0)
+    result.z_max = np.max([p[7] for p in win], axis=0)
     result.steady_converged = converged
     result.steps, result.newton_iterations = int(st_i[2]), int(st_i[3])
     result.rejected_steps = int(st_i[4])

@@ -139,9 +139,10 @@ class DynamicResult:
     each element's largest and smallest tension over the steps, ``end_tension_max``/
     ``_min`` (2,) those at ends A and B (so ``end_tension_max[excited_end]`` is
     ``tension_max``); ``touchdown_min``/``_max`` [m] the range of the touchdown point's
-    arc length from A over the steps where the line touches the seabed (NaN if none).
-    ``touchdown_tracked`` is whether the model has a seabed to touch; ``line_s`` [m]
-    (n + 1,) are the nodes' arc lengths.
+    arc length from A over the steps where the line touches the seabed (NaN if none);
+    ``z_max`` [m] (n + 1,) each node's highest elevation. ``touchdown_tracked`` is
+    whether the model has a seabed to touch; ``line_s`` [m] (n + 1,) are the nodes' arc
+    lengths.
 
     ``break_time`` [s] is when the line parted (NaN: it did not), ``break_element`` which
     element (-1: none) and ``break_s`` [m] the arc length of its midpoint then. After a
@@ -182,6 +183,7 @@ class DynamicResult:
     touchdown_min: float = math.nan
     touchdown_max: float = math.nan
     touchdown_tracked: bool = False
+    z_max: np.ndarray = field(default_factory=lambda: np.zeros(0))
     line_s: np.ndarray = field(default_factory=lambda: np.zeros(0))
     history: dict[str, np.ndarray] | None = None
     record: dict[str, np.ndarray] | None = None
@@ -212,35 +214,40 @@ def end_forces(
 
 class _LineExtremes:
     """Per-step extremes along the line over each period: element and end tensions
-    [N] (largest and smallest) and the touchdown arc length [m] (NaN where no contact).
-    The current period's are arrays the compiled step loop updates in place
-    (``element`` (2, n) and ``end`` (2, 2): largest, smallest; ``touchdown`` (2,):
-    least, greatest). Keeps the last ``keep`` periods (None: folds every period into
-    one)."""
+    [N] (largest and smallest), the touchdown arc length [m] (NaN where no contact) and
+    the nodes' highest elevation z [m]. The current period's are arrays the compiled
+    step loop updates in place (``element`` (2, n) and ``end`` (2, 2): largest,
+    smallest; ``touchdown`` (2,): least, greatest; ``z`` (n + 1,): highest). Keeps the
+    last ``keep`` periods (None: folds every period into one)."""
 
-    def __init__(self, keep: int | None, element: np.ndarray, ends: np.ndarray, td: float):
+    def __init__(
+        self, keep: int | None, element: np.ndarray, ends: np.ndarray, td: float, z: np.ndarray
+    ):
         self.keep = keep
         self.periods: deque[list] = deque()
         self.element = np.empty((2, element.size))
         self.end = np.empty((2, 2))
         self.touchdown = np.empty(2)
-        self.start(element, ends, td)
+        self.z = np.empty(z.size)
+        self.start(element, ends, td, z)
         self.run = self.current()  # the whole run, folded at every period boundary
 
-    def start(self, element: np.ndarray, ends: np.ndarray, td: float) -> None:
+    def start(self, element: np.ndarray, ends: np.ndarray, td: float, z: np.ndarray) -> None:
         self.element[:] = element[None, :]
         self.end[:] = ends[None, :]
         self.touchdown[:] = td
+        self.z[:] = z
 
-    def add(self, element: np.ndarray, ends: np.ndarray, td: float) -> None:
-        """Fold one step's element and end tensions and touchdown point in (the
-        compiled loop does this itself)."""
+    def add(self, element: np.ndarray, ends: np.ndarray, td: float, z: np.ndarray) -> None:
+        """Fold one step's element and end tensions, touchdown point and node
+        elevations in (the compiled loop does this itself)."""
         np.maximum(self.element[0], element, out=self.element[0])
         np.minimum(self.element[1], element, out=self.element[1])
         np.maximum(self.end[0], ends, out=self.end[0])
         np.minimum(self.end[1], ends, out=self.end[1])
         self.touchdown[0] = np.fmin(self.touchdown[0], td)
         self.touchdown[1] = np.fmax(self.touchdown[1], td)
+        np.maximum(self.z, z, out=self.z)
 
     def current(self) -> list:
         return [
@@ -250,6 +257,7 @@ class _LineExtremes:
             self.end[1].copy(),
             float(self.touchdown[0]),
             float(self.touchdown[1]),
+            self.z.copy(),
         ]
 
     def fold_run(self) -> None:
@@ -273,6 +281,7 @@ class _LineExtremes:
             np.min([i[3] for i in items], axis=0),
             float(np.fmin.reduce([i[4] for i in items])),
             float(np.fmax.reduce([i[5] for i in items])),
+            np.max([i[6] for i in items], axis=0),
         ]
 
     def window(self, whole_run: bool = False) -> list:
@@ -373,6 +382,7 @@ def _start(problem: DynamicProblem, line: DiscreteLine) -> _Start:
         work.tension,
         np.sqrt(np.sum(f_static**2, 1)),
         touchdown_of(line, x0, problem.touchdown_tolerance),
+        x0[:, 2],
     )
     return _Start(
         work,

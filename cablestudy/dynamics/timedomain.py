@@ -258,6 +258,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             extremes.element,
             extremes.end,
             extremes.touchdown,
+            extremes.z,
             line.s,
             problem.touchdown_tolerance,
             problem.step,
@@ -337,7 +338,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             p_mean.append(float(st_f[4]) / max(t - c_start, 1e-300))
             p_line.append(float(st_f[5]))
             extremes.close()
-        extremes.start(work.tension, ends, float(st_f[8]))
+        extremes.start(work.tension, ends, float(st_f[8]), x0[:, 2])
         st_f[2] = st_f[3] = tension
         st_f[4] = 0.0
         st_f[5] = st_f[7]
@@ -380,6 +381,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         result.end_tension_min,
         result.touchdown_min,
         result.touchdown_max,
+        result.z_max,
     ) = extremes.window(broke)
     result.winch_paid_out = problem.paid_out(t)
     result.history = hist.resampled(t)
