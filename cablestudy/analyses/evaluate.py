@@ -31,6 +31,8 @@ from ..study.problem import static_problem
 from ..study.study import Study
 from .common import STATUS_NOT_RUN, exception_message, non_finite_outputs
 from .dynamic import dynamic_problems, linear_model_problems, presolve_frequency, run_dynamic
+from .fallback import static_fallback
+from .grid_chunk import GridChunk, records_chunk
 from .modal import modal_outputs, solve_modal
 from .plausibility import dynamic_warnings, fallback_warning, joined, strain_warning
 from .static import (
@@ -266,6 +268,14 @@ def evaluate_case(
             )
     ok = {name for name, (st, _) in outcome.items() if st == STATUS_OK}
     try:
+        fallback = static_fallback(
+            case.study,
+            static[0] if static else None,
+            presolved is not None and case.static_hash in presolved,
+        )
+    except Exception:  # noqa: BLE001 - the statics failed before a solver took the case
+        fallback = ""
+    try:
         warning = case_warnings(case, static[0] if "static" in ok else None, data, ok)
     except Exception as exc:  # noqa: BLE001 - the results stand; say they went unchecked
         warning = f"unchecked: the plausibility checks failed ({exception_message(exc)})"
@@ -280,6 +290,7 @@ def evaluate_case(
         wall_time=wall,
         data=data,
         warning=warning,
+        fallback=fallback,
     )
 
 
@@ -352,3 +363,11 @@ def evaluate_chunk(cases: list[Case]) -> list[CaseRecord]:
     (:data:`CHUNK_KINDS`)."""
     kind = "system" if cases and cases[0].study.is_system else "line"
     return CHUNK_KINDS[kind](cases)
+
+
+def evaluate_cases(cases: list[Case], *, extent: dict[str, int] | None = None) -> GridChunk:
+    """:func:`evaluate_chunk`, its records in the one chunk form every study's runner
+    stores and assembles (:func:`cablestudy.analyses.grid_chunk.records_chunk`, its
+    ``extent``), built where they were computed."""
+    system = bool(cases) and cases[0].study.is_system
+    return records_chunk(evaluate_chunk(cases), system=system, extent=extent)

@@ -24,7 +24,8 @@ import numpy as np
 
 from ..study.grid import _POSITION, _STIFFNESS, CaseGrid
 from ..study.study import Study
-from .grid_chunk import NO_KERNEL, STATUS_NUMERICAL, GridChunk, warning_column
+from .fallback import NO_KERNEL
+from .grid_chunk import STATUS_NUMERICAL, GridChunk, warning_column
 from .plausibility import fallback_warning, largest_strain, strain_warning
 from .surface import template_surface_warnings
 from .variables import KEPT_STATUSES
@@ -526,7 +527,6 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
     messages = [""] * n
     warnings: dict[int, list[str]] = {}  # only the cases that have some
     data: dict[str, np.ndarray] = {}
-    n_general = n
     try:
         base, pos, ea = _swept_inputs(grid, lo, hi)
         deadline = time.monotonic() + grid.template.analysis.time_limit * n
@@ -535,12 +535,10 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
             general: list[int] = []
             results = solve_batch(_problems(base, pos, ea), deadline=deadline, general=general)
             fallback = {i: r.fallback for i, r in enumerate(results) if r.fallback}
-            n_general = len(general)
             reasons[general] = NO_KERNEL
             st = StaticArrays.of(results)
         else:
             st, rest, why = compiled
-            n_general = int(rest.size)
             if rest.size:  # what no kernel settled: the general solver, one by one
                 sub = {k: (None if v is None else v[rest]) for k, v in pos.items()}
                 st.put(
@@ -580,7 +578,6 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
         message=np.array(messages, dtype=str).reshape(n),
         wall_time=np.full(n, wall),
         data=data,
-        fallback=n_general,
         warning=warning_column(n, warnings),
         fallback_reason=np.array(reasons.tolist(), dtype=str).reshape(n),
     )

@@ -1,11 +1,9 @@
 """A chunk of a static grid whose cases the arrays do not take, solved as validated
 cases: each case's study is the template with its swept values copied in
-(:meth:`cablestudy.study.grid.CaseGrid.study_at`), and the chunk is solved as
-:func:`cablestudy.analyses.evaluate.evaluate_chunk` solves a chunk of validated cases (one
-:func:`cablestudy.statics.batch.solve_batch` call for the cases a batch kernel may take,
-the registry solver per case otherwise, the drag iteration per case); its records are
-stacked into a :class:`cablestudy.analyses.grid_chunk.GridChunk` with the values
-:func:`cablestudy.run.dataset.assemble` would write, bit for bit.
+(:meth:`cablestudy.study.grid.CaseGrid.study_at`), and the chunk is solved as every
+study's chunk of validated cases (one :func:`cablestudy.statics.batch.solve_batch` call
+for the cases a batch kernel may take, the registry solver per case otherwise, the drag
+iteration per case), its records as one :class:`cablestudy.analyses.grid_chunk.GridChunk`.
 """
 
 from __future__ import annotations
@@ -15,128 +13,31 @@ import math
 import time
 from typing import Any
 
-import numpy as np
-
-from ..study.study import Study
-
-
-def one_at_a_time(problem: Any) -> bool:
-    """Whether the catenary solver first takes the compiled kernels for ``problem`` on
-    its own (:func:`cablestudy.statics.batch_kernels.solve_compiled`)."""
-    from ..statics.batch_kernels import batchable, contact_eligible
-
-    return bool(contact_eligible(problem) or batchable(problem))
-
-
-def fallback_reason(study: Study, problem: Any) -> str:
-    """Why no batch kernel takes the case (it goes to the general solver)."""
-    from ..statics.batch_kernels import _has_drag
-
-    method = study.analysis.static.method
-    if method != "catenary":
-        return f"method {method!r} has no batch kernel"
-    if study.line.is_spring:
-        return "a spring line has no batch kernel"
-    if study.line.pulleys:
-        return "a line over pulleys has no batch kernel"
-    if problem is not None and problem.line.is_nonlinear:
-        return "a nonlinear axial law has no batch kernel"
-    if problem is not None and problem.medium.has_current and _has_drag(problem):
-        return "current with drag: the drag iteration runs in the general solver"
-    from .grid_chunk import NO_KERNEL
-
-    return NO_KERNEL
-
 
 def evaluate_static_chunk(grid: Any, lo: int, hi: int) -> Any:
-    """Solve rows ``lo:hi`` of a static grid as :func:`cablestudy.analyses.evaluate.evaluate_chunk`
-    solves validated cases, and stack the records. Never raises: a fault fails the
-    chunk's cases with its text."""
-    from ..statics import _fast
+    """Solve rows ``lo:hi`` of a static grid as the cases of any study are solved
+    (:func:`cablestudy.analyses.evaluate.evaluate_cases`), as a chunk of those rows. Never
+    raises: a fault fails the chunk's cases with its text."""
     from ..study.cases import Case
-    from ..study.problem import static_problem
-    from .evaluate import evaluate_case
-    from .grid_chunk import NO_KERNEL, STATUS_NUMERICAL, GridChunk, warning_column
-    from .static import _STATIC_CACHE, presolve_statics
-    from .variables import ANALYSES, OUTPUTS, analysis_ok
+    from .evaluate import evaluate_cases
+    from .grid_chunk import STATUS_NUMERICAL, failed_chunk
 
     t0 = time.perf_counter()
     block = (hi - lo, *grid.shape[1:])
     n = math.prod(block)
-    reasons = np.full(n, "", dtype=object)
-    single: set[int] = set()
     try:
         cases = []
         for index in itertools.product(*(range(k) for k in block)):
             index = (index[0] + lo, *index[1:])
             cases.append(Case(index, {}, grid.study_at(index), *grid.case_hashes(index)))
-        general: list[str] = []
-        solved, share = presolve_statics(cases, general=general)
-        gone = set(general)
-        for i, case in enumerate(cases):
-            if case.static_hash in solved:
-                if case.static_hash in gone:
-                    reasons[i] = solved[case.static_hash].fallback or fallback_reason(
-                        case.study, None
-                    )
-            else:
-                problem = None if case.study.line.is_spring else static_problem(case.study)
-                reasons[i] = fallback_reason(case.study, problem)
-                if reasons[i] == NO_KERNEL and _fast.AVAILABLE and one_at_a_time(problem):
-                    # the catenary solver takes the compiled kernels one case at a time
-                    # (a line anchored on the seabed, a case alone in its chunk): its
-                    # result says whether they settled it
-                    single.add(i)
-        records = []
-        for i, case in enumerate(cases):
-            rec = evaluate_case(case, presolved=solved)
-            rec.wall_time += share.pop(case.static_hash, 0.0)
-            records.append(rec)
-            if i in single:
-                res = _STATIC_CACHE.get(case.static_hash)  # just solved and kept
-                if res is not None:
-                    reasons[i] = res.fallback
-        nodes = grid_nodes(grid)
-        data: dict[str, np.ndarray] = {}
-        names = sorted({k for r in records for k in r.data})
-        for name in names:
-            if name.endswith("_status") and name[: -len("_status")] in ANALYSES:
-                continue  # the grid's status is the static analysis's
-            spec = OUTPUTS[name]
-            tail = tuple(
-                nodes
-                if d == "s"
-                else max(np.shape(r.data[name])[j] for r in records if name in r.data)
-                for j, d in enumerate(spec.dims)
-            )
-            arr = np.full((n, *tail), -1 if spec.dtype == "int64" else np.nan, dtype=spec.dtype)
-            for i, rec in enumerate(records):
-                if name in rec.data and analysis_ok(rec, spec.analysis):
-                    v = np.asarray(rec.data[name])
-                    arr[(i, *(slice(0, k) for k in v.shape))] = v
-            data[name] = arr
-        status = np.array([r.status for r in records], dtype=np.int64)
-        messages = [r.message for r in records]
-        warning = warning_column(n, {i: [r.warning] for i, r in enumerate(records) if r.warning})
-        wall = np.array([r.wall_time for r in records], dtype=float)
+        chunk = evaluate_cases(cases, extent={"s": grid_nodes(grid)})
+        # the grid's status is the static analysis's (the dataset writes it as such)
+        chunk.data = {k: v for k, v in chunk.data.items() if not _status_variable(k)}
     except Exception as exc:  # noqa: BLE001 - a fault in a chunk fails its cases, as data
-        status = np.full(n, STATUS_NUMERICAL, dtype=np.int64)
-        messages = [f"{type(exc).__name__}: {exc}"] * n
-        warning = None
-        data = {}
-        wall = np.full(n, (time.perf_counter() - t0) / max(n, 1))
-    return GridChunk(
-        lo=lo,
-        hi=hi,
-        key=grid.chunk_key(lo, hi),
-        status=status,
-        message=np.array(messages, dtype=str).reshape(n),
-        wall_time=wall,
-        data=data,
-        fallback=int(np.count_nonzero(reasons != "")),
-        warning=warning,
-        fallback_reason=np.array(reasons.tolist(), dtype=str).reshape(n),
-    )
+        chunk = failed_chunk(n, f"{type(exc).__name__}: {exc}", status=STATUS_NUMERICAL)
+        chunk.wall_time[:] = (time.perf_counter() - t0) / max(n, 1)
+    chunk.lo, chunk.hi, chunk.key, chunk.hashes = lo, hi, grid.chunk_key(lo, hi), None
+    return chunk
 
 
 def grid_nodes(grid: Any) -> int:
@@ -145,3 +46,9 @@ def grid_nodes(grid: Any) -> int:
     if path in grid.validated:
         return int(max(grid.validated[path][1]))
     return int(grid.template.analysis.static.nodes)
+
+
+def _status_variable(name: str) -> bool:
+    from .variables import ANALYSES
+
+    return name.endswith("_status") and name[: -len("_status")] in ANALYSES

@@ -203,6 +203,8 @@ def evaluate_system_case(case: Case) -> CaseRecord:
         wall_time=time.perf_counter() - t0,
         data=data,
         warning=warning,
+        # the compiled system Newton left it to the general path (as the grid counts it)
+        fallback=str(getattr(res, "fallback", "") or ""),
     )
 
 

@@ -312,7 +312,6 @@ def evaluate_system_chunk(grid: SystemGrid, lo: int, hi: int) -> GridChunk:
         message=np.array(messages, dtype=str).reshape(n),
         wall_time=np.full(n, wall),
         data=data,
-        fallback=int(np.count_nonzero(reasons != "")),
         warning=warning_column(n, warnings),
         fallback_reason=np.array(reasons.tolist(), dtype=str).reshape(n),
     )

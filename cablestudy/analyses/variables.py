@@ -7,7 +7,6 @@ results are kept, and :class:`CaseRecord`, what one case produced.
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
-from typing import Any
 
 import numpy as np
 
@@ -494,9 +493,11 @@ class CaseRecord:
     message: str
     wall_time: float
     data: dict[str, np.ndarray] = field(default_factory=dict)
-    settings: dict[str, Any] = field(default_factory=dict)
     #: why the kept results are implausible or risky (cablestudy.analyses.plausibility; '' if not)
     warning: str = ""
+    #: why the general solver, not a batch kernel, solved its statics
+    #: (cablestudy.analyses.fallback; '' if a batch kernel did)
+    fallback: str = ""
 
 
 def analysis_ok(record: CaseRecord, analysis: str | None) -> bool:

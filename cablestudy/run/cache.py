@@ -1,15 +1,18 @@
-"""The per-study case cache: finished case records on disk as data, never as code.
+"""The per-study cache: finished chunks of cases on disk as data, never as code.
 
-One file per finished chunk, ``chunk-<sha256>.npz``: a NumPy ``.npz`` archive of plain
-numeric and text arrays (no object arrays), read back with ``allow_pickle=False`` so
-that nothing in the cache folder can run code when it is loaded. The file is named by
-the sha256 of its own bytes: on load the bytes are hashed again and a file whose hash
-does not match its name (truncated, garbled, edited) is reported once on standard error,
-removed, and its cases are recomputed. Records are keyed by case hash (a content hash of
-everything that affects a case), so a record is only ever reused for the same case.
+One file per finished chunk (:class:`cablestudy.analyses.grid_chunk.GridChunk`, the one
+record form of every study), ``grid-<chunk key>-<sha256>.npz``: a NumPy ``.npz``
+archive of plain numeric and text arrays (no object arrays), read back with
+``allow_pickle=False`` so that nothing in the cache folder can run code when it is
+loaded. The file is named by the sha256 of its own bytes: on load the bytes are hashed
+again and a file whose hash does not match its name (truncated, garbled, edited) is
+reported once on standard error, removed, and its cases are recomputed. A chunk of rows
+of a grid is found again by its content key (:meth:`CaseGrid.chunk_key`); a chunk of
+cases picked from the grid holds each case's content hash (everything that affects the
+case), so a case is only ever reused for the same case, wherever it now is in the sweep.
 
 Files written atomically (temporary file, fsync, rename). Files of other names (e.g. the
-``chunk-*.pkl`` pickles of earlier versions) are never opened.
+``chunk-*`` files of earlier versions) are never opened.
 """
 
 from __future__ import annotations
@@ -24,10 +27,10 @@ from collections import Counter
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
-from ..analyses.variables import CaseRecord
 from .outputs import read_regular, regular_file, temporary_prefix, written
 
 #: messages of records that must not be cached (transient: a rerun may succeed)
@@ -41,12 +44,9 @@ TRANSIENT_PREFIXES = (
     "dynamic analysis: time limit",
 )
 
-FORMAT = "cablestudy-case-cache-1"
-_NAME = re.compile(r"^chunk-([0-9a-f]{64})\.npz$")
-
 
 class CacheFormatError(ValueError):
-    """A cache file that is not a chunk of case records in this format."""
+    """An output that cannot be kept in a chunk file as plain data."""
 
 
 def _warn_stderr(message: str) -> None:
@@ -65,76 +65,6 @@ def _as_data_array(name: str, value: object) -> np.ndarray:
     if arr.dtype.kind not in "biufcU":
         raise CacheFormatError(f"output {name!r} has dtype {arr.dtype}, not plain data")
     return arr
-
-
-def encode_records(records: list[CaseRecord]) -> bytes:
-    """The bytes of a ``.npz`` archive holding ``records``: per-case columns (hash, sweep
-    index, status, message, wall time) and, per output variable and dtype, the values of
-    the cases that have it flattened end to end, with their rows and shapes."""
-    n = len(records)
-    ndim = len(records[0].index) if records else 0
-    arrays: dict[str, np.ndarray] = {
-        "format": np.array(FORMAT),
-        "hash": np.array([r.hash for r in records], dtype=str),
-        "index": np.array([r.index for r in records], dtype=np.int64).reshape(n, ndim),
-        "status": np.array([r.status for r in records], dtype=np.int64),
-        "message": np.array([r.message for r in records], dtype=str).reshape(n),
-        "warning": np.array([r.warning for r in records], dtype=str).reshape(n),
-        "wall_time": np.array([r.wall_time for r in records], dtype=np.float64),
-    }
-    groups: dict[tuple[str, str, int], list[tuple[int, np.ndarray]]] = {}
-    for row, rec in enumerate(records):
-        for name, value in rec.data.items():
-            arr = _as_data_array(name, value)
-            groups.setdefault((name, arr.dtype.str, arr.ndim), []).append((row, arr))
-    for j, ((name, _, nd), items) in enumerate(sorted(groups.items())):
-        prefix = f"d{j}"
-        arrays[f"{prefix}_name"] = np.array(name)
-        arrays[f"{prefix}_rows"] = np.array([r for r, _ in items], dtype=np.int64)
-        arrays[f"{prefix}_shapes"] = np.array([a.shape for _, a in items], dtype=np.int64).reshape(
-            len(items), nd
-        )
-        arrays[f"{prefix}_values"] = np.concatenate([a.ravel() for _, a in items])
-    buf = io.BytesIO()
-    np.savez(buf, **arrays)
-    return buf.getvalue()
-
-
-def decode_records(payload: bytes) -> list[CaseRecord]:
-    """The records of an archive written by :func:`encode_records`; loaded with
-    ``allow_pickle=False``. Raises :class:`CacheFormatError` (or NumPy's own error) for
-    anything else."""
-    with np.load(io.BytesIO(payload), allow_pickle=False) as z:
-        files = {k: z[k] for k in z.files}
-    if "format" not in files or str(files["format"]) != FORMAT:
-        raise CacheFormatError("not a cablestudy case-cache archive")
-    hashes, index = files["hash"], files["index"]
-    status, message, wall = files["status"], files["message"], files["wall_time"]
-    warning = files.get("warning", np.full(len(hashes), ""))
-    records = [
-        CaseRecord(
-            hash=str(hashes[i]),
-            index=tuple(int(v) for v in index[i]),
-            status=int(status[i]),
-            message=str(message[i]),
-            wall_time=float(wall[i]),
-            warning=str(warning[i]),
-        )
-        for i in range(len(hashes))
-    ]
-    j = 0
-    while f"d{j}_name" in files:
-        name = str(files[f"d{j}_name"])
-        rows, shapes, values = (files[f"d{j}_{k}"] for k in ("rows", "shapes", "values"))
-        offset = 0
-        for row, shape in zip(rows, shapes, strict=True):
-            size = int(np.prod(shape)) if len(shape) else 1
-            records[int(row)].data[name] = values[offset : offset + size].reshape(tuple(shape))
-            offset += size
-        if offset != values.size:
-            raise CacheFormatError(f"values of {name!r} do not match their shapes")
-        j += 1
-    return records
 
 
 def _write_atomic(path: Path, payload: bytes, stem: str) -> None:
@@ -171,99 +101,7 @@ def _odd_entry(path: Path) -> str:
     )
 
 
-class CaseCache:
-    """Finished case records of one study, in memory and (with a ``directory``) on disk
-    as ``chunk-<sha256>.npz`` data files; see the module docstring."""
-
-    def __init__(
-        self, directory: Path | None, *, warn: Callable[[str], None] = _warn_stderr
-    ) -> None:
-        self.directory = directory
-        self.records: dict[str, CaseRecord] = {}
-        self.rejected: list[Path] = []
-        #: the chunk files read or written by this run: the only ones compact removes
-        self.files: set[Path] = set()
-        if directory is not None and directory.is_dir():
-            for path in sorted(directory.glob("chunk-*.npz")):
-                odd = _odd_entry(path)
-                if odd:
-                    warn(odd)
-                    continue
-                reason = self._load(path)
-                if reason:
-                    warn(f"cache file {path} {reason}; its cases will be recomputed")
-                    self.rejected.append(path)
-                    path.unlink(missing_ok=True)
-                else:
-                    self.files.add(path)
-
-    def _load(self, path: Path) -> str:
-        """Read one chunk file into :attr:`records`; '' if fine, else why not."""
-        match = _NAME.match(path.name)
-        if not match:
-            return "is not named chunk-<sha256>.npz"
-        try:
-            payload = read_regular(path)
-        except OSError as exc:
-            return f"cannot be read ({exc})"
-        digest = hashlib.sha256(payload).hexdigest()
-        if digest != match.group(1):
-            return f"is damaged (sha256 of its {len(payload)} bytes is {digest[:12]}...)"
-        try:
-            records = decode_records(payload)
-        except Exception as exc:  # noqa: BLE001 - whatever is wrong, the cases are recomputed
-            return f"is not a case-cache archive ({type(exc).__name__}: {exc})"
-        for rec in records:
-            self.records[rec.hash] = rec
-        return ""
-
-    def store(self, records: list[CaseRecord]) -> None:
-        """Keep ``records`` and write the cacheable ones (not time-limited, not lost with
-        their worker) to one new chunk file."""
-        for rec in records:
-            self.records[rec.hash] = rec
-        cacheable = [r for r in records if not r.message.startswith(TRANSIENT_PREFIXES)]
-        if self.directory is None or not cacheable:
-            return
-        self._write(cacheable)
-
-    def _write(self, records: list[CaseRecord]) -> Path:
-        assert self.directory is not None
-        payload = encode_records(records)
-        path = self.directory / f"chunk-{hashlib.sha256(payload).hexdigest()}.npz"
-        path.parent.mkdir(parents=True, exist_ok=True)
-        _write_atomic(path, payload, ".chunk-")
-        self.files.add(path)
-        return path
-
-    def compact(self, keep: Iterable[str]) -> None:
-        """Rewrite the cache as one file holding the records in ``keep`` (the cases of the
-        study as it now stands), dropping records of edited-away cases. The new file is
-        in place before the old ones are removed, so a crash loses nothing. Only files
-        this run read or wrote are removed (call it only when no other run of the study
-        is writing here: :class:`cablestudy.run.outputs.CacheLock`)."""
-        if self.directory is None or not self.directory.is_dir():
-            return
-        old = sorted(p for p in self.files if regular_file(p))
-        keep = set(keep)
-        records = [
-            self.records[h]
-            for h in sorted(keep)
-            if h in self.records and not self.records[h].message.startswith(TRANSIENT_PREFIXES)
-        ]
-        if not records:
-            return
-        if len(old) == 1 and len(records) == len(self.records):
-            return  # already one file holding exactly these records
-        target = self._write(records)
-        for path in old:
-            if path != target:
-                path.unlink(missing_ok=True)
-
-
 GRID_FORMAT = "cablestudy-grid-chunk-1"
-#: the per-case columns of a grid chunk file (not output variables)
-_CASE_COLUMNS = ("status", "message", "warning", "wall_time", "fallback")
 _GRID_NAME = re.compile(r"^grid-([0-9a-f]{32})-([0-9a-f]{64})\.npz$")
 
 
@@ -286,13 +124,10 @@ class GridSummary:
     fallbacks: Counter[str] = field(default_factory=Counter)
 
 
-def summarise(
-    chunks: Iterable[tuple[np.ndarray, np.ndarray, np.ndarray, dict[str, np.ndarray]]],
-    fallback: Iterable[np.ndarray] = (),
-) -> GridSummary:
-    """The :class:`GridSummary` of chunks given as (status, message, warning, outputs by
-    name), in the order of the grid's rows; ``fallback``: per chunk, why each case went
-    to the general solver ('' where a batch kernel solved it)."""
+def summarise(chunks: Iterable[Any]) -> GridSummary:
+    """The :class:`GridSummary` of chunks
+    (:class:`cablestudy.analyses.grid_chunk.GridChunk`), in the order of the grid's
+    rows."""
     names: set[str] = set()
     tails: dict[str, tuple[int, ...]] = {}
     arc: np.ndarray | None = None
@@ -302,7 +137,10 @@ def summarise(
     n_warned = 0
     warned_at: dict[str, int] = {}
     offset = 0
-    for status, message, warning, data in chunks:
+    fallbacks: Counter[str] = Counter()
+    for chunk in chunks:
+        status, message, warning, data = chunk.status, chunk.message, chunk.warning, chunk.data
+        fallbacks.update(str(r) for r in chunk.fallback_reason[chunk.fallback_reason != ""])
         bad = status != 0
         if bad.any():
             failures.update(str(m) for m in message[bad])
@@ -316,20 +154,22 @@ def summarise(
         offset += len(status)
         for k, v in data.items():
             names.add(k)
-            tails[k] = tuple(v.shape[1:])
+            old = tails.get(k, tuple(v.shape[1:]))
+            tails[k] = tuple(max(a, b) for a, b in zip(old, v.shape[1:], strict=True))
         # (a shared coordinate where each case has one arc length per node; a system's
-        # arc_length per line and node stays a variable)
+        # arc_length per line and node stays a variable); the cases whose statics kept
+        # them (the others hold NaN)
         if "arc_length" in data and same_arc and data["arc_length"].ndim == 2:
-            ok = data["arc_length"][~bad]
-            if len(ok):
+            arcs = data["arc_length"]
+            ok = arcs[~np.all(np.isnan(arcs), axis=1)] if arcs.shape[1] else arcs[:0]
+            if arc is not None and len(ok) and ok.shape[1] != len(arc):
+                same_arc = False
+            elif len(ok):
                 ref = ok[0] if arc is None else arc
                 if np.all(ok == ref):
                     arc = ref
                 else:
                     same_arc = False
-    fallbacks: Counter[str] = Counter()
-    for reasons in fallback:
-        fallbacks.update(str(r) for r in reasons[reasons != ""])
     return GridSummary(
         sorted(names),
         tails,
@@ -403,6 +243,8 @@ class GridChunkStore:
             "v_wall_time": np.asarray(chunk.wall_time, dtype=np.float64),  # type: ignore[attr-defined]
             "v_fallback": np.asarray(chunk.fallback_reason, dtype=str),  # type: ignore[attr-defined]
         }
+        if chunk.hashes is not None:  # type: ignore[attr-defined]
+            arrays["v_hash"] = np.asarray(chunk.hashes, dtype=str)  # type: ignore[attr-defined]
         for name, arr in chunk.data.items():  # type: ignore[attr-defined]
             arrays[f"v_{name}"] = _as_data_array(name, arr)
         buf = io.BytesIO()
@@ -414,36 +256,66 @@ class GridChunkStore:
         _write_atomic(path, payload, ".grid-")
         return path
 
-    @staticmethod
-    def summary(paths: list[Path]) -> GridSummary:
-        def columns(
-            path: Path,
-        ) -> tuple[np.ndarray, np.ndarray, np.ndarray, dict[str, np.ndarray]]:
-            with np.load(path, allow_pickle=False) as z:
-                data = {
-                    k[2:]: z[k]
-                    for k in z.files
-                    if k.startswith("v_") and k[2:] not in _CASE_COLUMNS
-                }
-                status = z["v_status"]
-                warning = z["v_warning"] if "v_warning" in z.files else np.full(len(status), "")
-                return status, z["v_message"], warning, data
-
-        def reasons(path: Path) -> np.ndarray:
-            with np.load(path, allow_pickle=False) as z:
-                return z["v_fallback"] if "v_fallback" in z.files else np.array([], dtype=str)
-
-        return summarise((columns(path) for path in paths), (reasons(p) for p in paths))
+    def summary(self, paths: list[Path]) -> GridSummary:
+        """The :func:`summarise` of chunk files, read one at a time."""
+        return summarise(self.chunk(p) for p in paths)
 
     @staticmethod
-    def load(path: Path) -> dict[str, np.ndarray]:
-        """The arrays of a chunk file, by name without the ``v_`` prefix (``status``,
-        ``message``, ``wall_time`` and the outputs), plus ``key`` and ``rows``."""
+    def chunk(path: Path) -> Any:
+        """A chunk file as a :class:`cablestudy.analyses.grid_chunk.GridChunk`."""
+        from ..analyses.grid_chunk import GridChunk
+
         with np.load(path, allow_pickle=False) as z:
-            out = {k[2:]: z[k] for k in z.files if k.startswith("v_")}
-            out["key"] = z["key"]
-            out["rows"] = z["rows"]
-            return out
+            v = {k[2:]: z[k] for k in z.files if k.startswith("v_")}
+            lo, hi = (int(r) for r in z["rows"])
+            key = str(z["key"])
+        return GridChunk(
+            lo=lo,
+            hi=hi,
+            key=key,
+            status=v.pop("status"),
+            message=v.pop("message"),
+            wall_time=v.pop("wall_time"),
+            warning=v.pop("warning", None),
+            fallback_reason=v.pop("fallback", None),
+            hashes=v.pop("hash", None),
+            data=v,
+        )
+
+    def cases(self, wanted: set[str]) -> tuple[list[Any], set[Path]]:
+        """The chunks of cases picked by content hash (the case-record path) that hold
+        cases of ``wanted``, each reduced to those (a case in two files: the first
+        found), and the files they came from. Every intact file is read; a damaged one
+        is reported once, removed and its cases recomputed."""
+        from ..analyses.grid_chunk import take_rows
+
+        found: list[Any] = []
+        files: set[Path] = set()
+        seen: set[str] = set()
+        if not self.directory.is_dir():
+            return found, files
+        for path in sorted(self.directory.glob("grid-*.npz")):
+            odd = _odd_entry(path)
+            if odd:
+                self.warn(odd)
+                continue
+            reason = self._check(path)
+            if reason:
+                self.warn(f"cache file {path} {reason}; its cases will be recomputed")
+                path.unlink(missing_ok=True)
+                continue
+            chunk = self.chunk(path)
+            if chunk.hashes is None:
+                continue
+            rows = []
+            for i, h in enumerate(chunk.hashes.tolist()):
+                if h in wanted and h not in seen:
+                    seen.add(h)
+                    rows.append(i)
+            if rows:
+                found.append(take_rows(chunk, np.array(rows, dtype=np.intp)))
+                files.add(path)
+        return found, files
 
     def keep(self, paths: set[Path]) -> None:
         """Remove the grid chunk files not in ``paths`` (cases edited away); call it only

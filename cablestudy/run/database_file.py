@@ -3,7 +3,7 @@
 A study with ``analysis.database`` writes, beside its result ``<name>.nc``, the file
 ``<name>.database.nc`` holding the database alone, for a vessel simulation or any other
 user that needs the lookup table and not the study. It is derived from the study
-dataset's variables (:func:`cablestudy.run.dataset.assembled_variables`), so the two always
+dataset's variables (:func:`cablestudy.run.dataset.chunk_variables`), so the two always
 agree and a rerun that resumes from the cache writes the same file.
 
 Cases map to a dimension, not to files: one file per study, its tables on the study's
@@ -29,12 +29,13 @@ Contents (CF-1.8, SI, ``units`` and ``long_name`` on every variable):
 from __future__ import annotations
 
 import json
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..analyses.variables import DATABASE_LAYOUTS, DATABASE_QUANTITIES
-from .writer import VariableSpec
+from .writer import VariableSpec, write_variables_atomic
 
 if TYPE_CHECKING:
     from ..study.cases import Case, SweepAxis
@@ -104,3 +105,22 @@ def database_variables(
     ends = src.data.get("ends")
     out_attrs["end_a"] = json.dumps(ends.get("a") if isinstance(ends, dict) else None)
     return out, out_coords, out_attrs
+
+
+def write_database_file(
+    variables: tuple[Any, Any, Any] | None,
+    axes: list[SweepAxis],
+    cases: list[Case],
+    src: StudySource,
+    out_dir: Path,
+) -> Path | None:
+    """Write ``<out_dir>/<name>.database.nc`` (:mod:`cablestudy.run.database_file`) from the
+    study dataset's variables when they hold a quasi-static database; otherwise remove a
+    file of that name left by an earlier run of the study, which would no longer
+    describe it."""
+    target = out_dir / database_file_name(str(src.data["name"]))
+    db_vars = None if variables is None else database_variables(variables, axes, cases, src)
+    if db_vars is None:
+        target.unlink(missing_ok=True)
+        return None
+    return write_variables_atomic(*db_vars, target)

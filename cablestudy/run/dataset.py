@@ -23,7 +23,6 @@ from ..analyses.variables import (
     STATUS_BROKEN,
     SYSTEM_OUTPUTS,
     CaseRecord,
-    analysis_ok,
 )
 from ..study.cases import Case, SweepAxis
 from ..study.line_types import line_type_attrs
@@ -33,30 +32,6 @@ from .writer import VariableSpec
 
 if TYPE_CHECKING:  # imported where used: a sweep run as arrays writes without xarray
     import xarray as xr
-
-
-def _fill(dtype: str) -> Any:
-    return {"int64": -1, "str": ""}.get(dtype, np.nan)
-
-
-def _fill_rows(
-    arr: np.ndarray, rows: list[tuple[tuple[int, ...], Any]], tail: tuple[int, ...]
-) -> None:
-    """Put each case's value at its sweep index; values of the full extent in one
-    vectorised assignment, shorter ones (fewer nodes) padded by the fill value."""
-    full = [(idx, v) for idx, v in rows if np.shape(v) == tail]
-    if full and len(full[0][0]) > 0:
-        where = tuple(
-            np.array(col, dtype=np.intp) for col in zip(*(i for i, _ in full), strict=True)
-        )
-        values = [v for _, v in full]
-        arr[where] = values if arr.dtype == object else np.asarray(values, dtype=arr.dtype)
-    else:
-        for idx, v in full:
-            arr[idx] = v
-    for idx, v in rows:
-        if np.shape(v) != tail:
-            arr[idx + tuple(slice(0, n) for n in np.shape(v))] = v
 
 
 def sweep_coordinates(axes: list[SweepAxis]) -> dict[str, Any]:
@@ -127,154 +102,87 @@ def assemble(
     *,
     solver_settings: dict[str, Any] | None = None,
 ) -> xr.Dataset:
-    """One Dataset on the sweep axes. A failed analysis is NaN (or -1, or "") in its own
+    """One Dataset on the sweep axes from case records (by case hash), built as the
+    runner builds every dataset: the records as a chunk
+    (:func:`cablestudy.analyses.grid_chunk.records_chunk`), its rows in C order of the
+    grid (:func:`chunk_variables`). A failed analysis is NaN (or -1, or "") in its own
     data variables (:attr:`OutputVariable.analysis`), the others are kept; a failed case
     is never dropped."""
     import xarray as xr
 
-    data_vars, coords, attrs = assembled_variables(
-        axes, cases, records, src, solver_settings=solver_settings
+    from ..analyses.grid_chunk import records_chunk
+
+    system = bool(cases) and cases[0].study.is_system
+    ordered = sorted(cases, key=lambda c: c.index)
+    chunk = records_chunk([records[c.hash] for c in ordered], system=system)
+    named = system_names(cases[0].study) if system else None
+    data_vars, coords, attrs = chunk_variables(
+        axes, src, chunk, solver_settings=solver_settings or {}, named=named
     )
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
 
 
-def assembled_variables(
+def system_names(study: Any) -> dict[str, list[str]]:
+    """A system study's names along its dimensions (line, free point, body)."""
+    return {
+        "line": list(study.lines),
+        "point": [k for k, p in study.points.items() if p.kind == "free"],
+        "body": list(study.bodies),
+    }
+
+
+def chunk_variables(
     axes: list[SweepAxis],
-    cases: list[Case],
-    records: dict[str, CaseRecord],
     src: StudySource,
+    chunk: Any,
+    summary: Any = None,
     *,
-    solver_settings: dict[str, Any] | None = None,
+    solver_settings: dict[str, Any],
+    named: dict[str, list[str]] | None = None,
+    static_status: bool = False,
 ) -> tuple[dict[str, VariableSpec], dict[str, VariableSpec], dict[str, Any]]:
-    """The (data variables, coordinates, attributes) of :func:`assemble`'s dataset, in
-    the form ``xarray.Dataset`` takes and :func:`write_variables_atomic` writes."""
+    """The (data variables, coordinates, attributes) of the dataset of every case of the
+    study held in memory as one :class:`cablestudy.analyses.grid_chunk.GridChunk` (its
+    rows in C order of the grid): :func:`grid_variables` on its arrays shaped as the
+    grid. ``static_status``: the case's status is its static analysis's (a static grid:
+    no ``static_status`` of its own). ``summary``: the chunk's
+    (:func:`cablestudy.run.cache.summarise`), if known."""
+    if summary is None:
+        from .cache import summarise
+
+        summary = summarise([chunk])
     shape = tuple(a.size for a in axes)
-    dims = tuple(a.name for a in axes)
-    by_index = {c.index: records[c.hash] for c in cases}
-    present = sorted({k for r in by_index.values() for k in r.data})
-    system = bool(cases) and cases[0].study.is_system
-    registry = SYSTEM_OUTPUTS if system else OUTPUTS
-    unknown = [k for k in present if k not in registry]
-    if unknown:
-        raise KeyError(f"output variables not declared in results.OUTPUTS: {unknown}")
+    values = {
+        name: arr.reshape(shape + arr.shape[1:])
+        for name, arr in chunk.data.items()
+        if not (name == "arc_length" and summary.arc is not None)
+    }
+    return grid_variables(
+        axes,
+        src,
+        status=chunk.status,
+        message=chunk.message,
+        warning=chunk.warning,
+        wall_time=chunk.wall_time,
+        values=values,
+        tails=summary.tails,
+        arc=summary.arc,
+        solver_settings=solver_settings,
+        fallbacks=summary.fallbacks,
+        named=named,
+        static_status=static_status,
+    )
 
-    # lengths of extra dims: the largest any case produced
-    extent: dict[str, int] = {"component": 3}
-    for rec in by_index.values():
-        for name, arr in rec.data.items():
-            for d, n in zip(registry[name].dims, np.shape(arr), strict=True):
-                extent[d] = max(extent.get(d, 0), n)
 
-    data_vars: dict[str, Any] = {}
-    for name, spec in {**CASE_VARIABLES, **{k: registry[k] for k in present}}.items():
-        tail = tuple(extent[d] for d in spec.dims)
-        dtype = object if spec.dtype == "str" else spec.dtype
-        arr = np.full(shape + tail, _fill(spec.dtype), dtype=dtype)
-        if name in CASE_VARIABLES:
-            rows = [(idx, getattr(rec, name)) for idx, rec in by_index.items()]
-        else:
-            rows = [
-                (idx, np.asarray(rec.data[name]))
-                for idx, rec in by_index.items()
-                if name in rec.data and analysis_ok(rec, spec.analysis)
-            ]
-        if spec.dtype == "str":
-            # text as Python str (not 0-d arrays), so that netCDF sees one type when
-            # failed cases hold the fill value ""
-            rows = [
-                (idx, str(v.item()) if isinstance(v, np.ndarray) and v.ndim == 0 else v)
-                for idx, v in rows
-            ]
-        _fill_rows(arr, rows, tail)
-        data_vars[name] = (
-            dims + spec.dims,
-            arr,
-            {"units": spec.units, "long_name": spec.long_name},
-        )
-
-    coords: dict[str, Any] = sweep_coordinates(axes)
-    if "component" in extent and any("component" in registry[k].dims for k in present):
-        coords["component"] = (
-            "component",
-            np.array(["x", "y", "z"]),
-            {"units": COORDINATES["component"][0], "long_name": COORDINATES["component"][1]},
-        )
-    if "mode" in extent and any("mode" in registry[k].dims for k in present):
-        coords["mode"] = (
-            "mode",
-            np.arange(1, extent["mode"] + 1),
-            {"units": COORDINATES["mode"][0], "long_name": COORDINATES["mode"][1]},
-        )
-    if system:
-        study = cases[0].study
-        named = {
-            "line": list(study.lines),
-            "point": [k for k, p in study.points.items() if p.kind == "free"],
-            "body": list(study.bodies),
-            "dof": list(BODY_DOFS),
-            "dof_j": list(BODY_DOFS),
-        }
-        for dim, names in named.items():
-            if dim in extent and any(dim in registry[k].dims for k in present):
-                coords[dim] = (
-                    dim,
-                    np.array(names),
-                    {"units": "1", "long_name": COORDINATES[dim][1]},
-                )
-        # s is the node index; each line's arc length is the variable arc_length beside it
-    if "s" in extent and not system:
-        arcs = [
-            np.asarray(r.data["arc_length"])
-            for r in by_index.values()
-            if "arc_length" in r.data and analysis_ok(r, "static")
-        ]
-        if arcs and all(len(a) == extent["s"] and np.array_equal(a, arcs[0]) for a in arcs):
-            coords["s"] = ("s", arcs[0], {"units": "m", "long_name": COORDINATES["s"][1]})
-            data_vars.pop("arc_length", None)
-    if "transfer_frequency" in data_vars and "frequency" not in coords:
-        # the transfer function's frequencies: a coordinate when every case has the same
-        freqs = [
-            np.asarray(r.data["transfer_frequency"])
-            for r in by_index.values()
-            if "transfer_frequency" in r.data and analysis_ok(r, "dynamic")
-        ]
-        if freqs and all(np.array_equal(f, freqs[0]) for f in freqs):
-            spec = registry["transfer_frequency"]
-            coords["frequency"] = (
-                "frequency",
-                freqs[0],
-                {"units": spec.units, "long_name": spec.long_name},
-            )
-            data_vars.pop("transfer_frequency")
-    for grid, dim in (
-        (g, d)
-        for lay in DATABASE_LAYOUTS.values()
-        for g, d in zip(lay.grid_variables, lay.dims, strict=True)
-    ):
-        # the quasi-static database's grid: a coordinate when every case has the same
-        if grid in data_vars and dim not in coords:
-            grids = [
-                np.asarray(r.data[grid])
-                for r in by_index.values()
-                if grid in r.data and analysis_ok(r, "static")
-            ]
-            if grids and all(np.array_equal(g, grids[0]) for g in grids):
-                spec = registry[grid]
-                coords[dim] = (dim, grids[0], {"units": spec.units, "long_name": spec.long_name})
-                data_vars.pop(grid)
-    if "arc_length" in data_vars and "s" not in coords:
-        coords["s"] = ("s", np.arange(extent["s"]), {"units": "1", "long_name": "node index"})
-
-    _flag_statuses(data_vars)
-    attrs = provenance(src, solver_settings or {})
-    status = np.asarray(data_vars["status"][1])
-    n_failed = int(np.count_nonzero((status != 0) & (status != STATUS_BROKEN)))
-    attrs["cases"] = int(np.prod(shape)) if shape else 1
-    attrs["cases_failed"] = n_failed
-    attrs["cases_warned"] = int(np.count_nonzero(data_vars["warning"][1] != ""))
-    if np.any(status == STATUS_BROKEN):
-        attrs["cases_broken"] = int(np.count_nonzero(status == STATUS_BROKEN))
-    return data_vars, coords, attrs
+def fallback_attrs(fallbacks: dict[str, int]) -> dict[str, Any]:
+    """The ``cases_fallback`` and ``fallback_reasons`` attributes: how many cases the
+    general solver solved (no batch kernel took them), and why, most frequent first."""
+    return {
+        "cases_fallback": int(sum(fallbacks.values())),
+        "fallback_reasons": "; ".join(
+            f"{n} x {why}" for why, n in sorted(fallbacks.items(), key=lambda kv: -kv[1])
+        ),
+    }
 
 
 def _flag_statuses(data_vars: dict[str, Any]) -> None:
@@ -421,8 +329,9 @@ def grid_variables(
     solver_settings: dict[str, Any],
     fallbacks: dict[str, int] | None = None,
     named: dict[str, list[str]] | None = None,
+    static_status: bool = True,
 ) -> tuple[dict[str, VariableSpec], dict[str, VariableSpec], dict[str, Any]]:
-    """Data variables, coordinates and global attributes of a study run as arrays, in
+    """Data variables, coordinates and global attributes of every study's dataset, in
     the form ``xarray.Dataset(data_vars, coords=coords, attrs=attrs)`` takes (and
     :func:`write_variables_atomic` writes): per case ``status``, ``message``,
     ``wall_time`` (flat, cases in C order) and per output its values (shape
@@ -432,7 +341,14 @@ def grid_variables(
     None (then ``s`` is the node index). ``fallbacks``: why cases were solved by the
     general solver, counted (the ``cases_fallback`` and ``fallback_reasons``
     attributes). ``named``: a system study's coordinates by dimension (line, point,
-    body; cablestudy.analyses.system_grid), whose outputs are :data:`SYSTEM_OUTPUTS`."""
+    body; cablestudy.analyses.system_grid), whose outputs are :data:`SYSTEM_OUTPUTS`.
+    ``static_status``: the case's status is its static analysis's (a static grid, whose
+    chunks record no ``static_status``).
+
+    Values held in memory also give the coordinates every case shares: the transfer
+    function's frequencies (``transfer_frequency`` -> ``frequency``) and the quasi-static
+    database's grid, each from the cases whose analysis kept them (the others hold the
+    fill); text (unicode) is written as strings."""
     registry = OUTPUTS if named is None else SYSTEM_OUTPUTS
     shape = tuple(a.size for a in axes)
     dims = tuple(a.name for a in axes)
@@ -452,21 +368,46 @@ def grid_variables(
     for name, arr in case:
         spec = CASE_VARIABLES[name]
         data_vars[name] = (dims, arr, {"units": spec.units, "long_name": spec.long_name})
-    # the array path runs the statics only: its status is the case's
-    spec = OUTPUTS["static_status"]
-    data_vars["static_status"] = (
-        dims,
-        status.astype(np.int64),
-        {"units": spec.units, "long_name": spec.long_name},
-    )
+    if static_status and "static_status" not in values:
+        # a static grid runs the statics only: its status is the case's
+        spec = OUTPUTS["static_status"]
+        data_vars["static_status"] = (
+            dims,
+            status.astype(np.int64),
+            {"units": spec.units, "long_name": spec.long_name},
+        )
+    extent: dict[str, int] = {}
     for name in sorted(values):
         spec = registry[name]
+        value = values[name]
+        if isinstance(value, np.ndarray) and value.dtype.kind == "U":
+            value = value.astype(object)  # text as str, "" where missing
+        for d, n in zip(spec.dims, np.shape(value)[len(shape) :], strict=True):
+            extent[d] = max(extent.get(d, 0), n)
         data_vars[name] = (
             dims + spec.dims,
-            values[name],
+            value,
             {"units": spec.units, "long_name": spec.long_name},
         )
     coords = sweep_coordinates(axes)
+    shared = [("transfer_frequency", "frequency")] + [
+        (g, d)
+        for lay in DATABASE_LAYOUTS.values()
+        for g, d in zip(lay.grid_variables, lay.dims, strict=True)
+    ]
+    for name, dim in shared:  # a coordinate when every case has the same values
+        if name in data_vars and dim not in coords and isinstance(values[name], np.ndarray):
+            common = _shared_row(values[name], len(shape))
+            if common is not None:
+                spec = registry[name]
+                coords[dim] = (dim, common, {"units": spec.units, "long_name": spec.long_name})
+                data_vars.pop(name)
+    if "mode" in extent:
+        coords["mode"] = (
+            "mode",
+            np.arange(1, extent["mode"] + 1),
+            {"units": COORDINATES["mode"][0], "long_name": COORDINATES["mode"][1]},
+        )
     if named is not None:  # a system: its named dimensions (as assemble gives them)
         named = {**named, "dof": list(BODY_DOFS), "dof_j": list(BODY_DOFS)}
         for dim, names in named.items():
@@ -495,9 +436,17 @@ def grid_variables(
     attrs["cases_warned"] = int(np.count_nonzero(warnings != ""))
     if np.any(status == STATUS_BROKEN):
         attrs["cases_broken"] = int(np.count_nonzero(status == STATUS_BROKEN))
-    fallbacks = fallbacks or {}
-    attrs["cases_fallback"] = int(sum(fallbacks.values()))
-    attrs["fallback_reasons"] = "; ".join(
-        f"{n} x {why}" for why, n in sorted(fallbacks.items(), key=lambda kv: -kv[1])
-    )
+    attrs.update(fallback_attrs(fallbacks or {}))
     return data_vars, coords, attrs
+
+
+def _shared_row(values: np.ndarray, ndim: int) -> np.ndarray | None:
+    """The values every case shares (``values``: the sweep's ``ndim`` dimensions first),
+    among the cases that have any (not all NaN: the others' analysis did not keep
+    them); None if they differ or no case has any."""
+    rows = values.reshape(-1, *values.shape[ndim:])
+    flat = rows.reshape(len(rows), -1)
+    kept = rows[~np.all(np.isnan(flat), axis=1)] if flat.size else rows[:0]
+    if len(kept) and np.all(kept == kept[0]):
+        return kept[0]
+    return None

@@ -1,11 +1,14 @@
-"""A study run as arrays (:class:`cablestudy.study.grid.CaseGrid`): rows of the
-grid as chunks (:func:`cablestudy.analyses.static_grid.evaluate_grid_chunk`), each
-chunk's arrays kept in the cache, held in memory or streamed to disk by size, and the
-dataset written from them.
+"""Every study run in chunks of its grid (:class:`cablestudy.study.grid.CaseGrid`): rows
+of the grid as arrays (:func:`cablestudy.analyses.static_grid.evaluate_grid_chunk`), or
+its cases on the scheduler (:func:`cablestudy.analyses.evaluate.evaluate_cases`), each
+chunk in one record form (:class:`cablestudy.analyses.grid_chunk.GridChunk`) kept in the
+cache, held in memory or streamed to disk by size, and the dataset built from them by
+one function (:func:`cablestudy.run.dataset.grid_variables`).
 """
 
 from __future__ import annotations
 
+import hashlib
 import json
 import math
 import tempfile
@@ -16,10 +19,11 @@ from typing import Any
 
 import numpy as np
 
-from ..study.cases import SweepAxis
+from ..study.cases import Case, SweepAxis
 from ..study.loader import StudySource
 from .cache import LOST_PREFIX, TRANSIENT_PREFIXES
-from .outputs import CacheLock, temporary_prefix
+from .database_file import write_database_file
+from .outputs import CacheLock, regular_file, temporary_prefix
 from .progress import Progress, RunSummary
 from .remote import DEFAULT_TIMEOUT, connect
 from .scheduler import (
@@ -55,7 +59,7 @@ def _grid_chunk_task(grid: Any, lo: int, hi: int) -> Any:
     return evaluate_grid_chunk(grid, lo, hi)
 
 
-def run_arrays(
+def run_chunks(
     src: StudySource,
     grid: Any,
     out_dir: Path,
@@ -66,16 +70,20 @@ def run_arrays(
     progress: bool | None,
     timeout: float,
 ) -> RunSummary:
-    """The rows of ``grid`` as arrays (:mod:`cablestudy.analyses.static_grid`), for
-    :func:`cablestudy.run.runner.run_study`, and ``<out_dir>/<name>.nc`` written
-    chunk by chunk: each finished chunk goes to its own data file (the cache
-    ``cache_dir``, or a temporary folder without one), and the result file is written
-    from those files lazily, so memory holds about one chunk at a time whatever the
-    number of cases. A chunk that is in the cache, intact, is reused."""
+    """Every case of ``grid`` in chunks, for :func:`cablestudy.run.runner.run_study`, and
+    ``<out_dir>/<name>.nc`` written from the chunks (one record form,
+    :class:`cablestudy.analyses.grid_chunk.GridChunk`, one store, one dataset builder):
+    a grid run as arrays (:attr:`CaseGrid.chunked`) in chunks of rows of its first axis
+    (:mod:`cablestudy.analyses.static_grid`), any other in chunks of its cases sized by
+    their measured cost (:mod:`cablestudy.run.scheduler`), turned into the chunk form in
+    the worker. Each finished chunk goes to its own data file (the cache ``cache_dir``,
+    or a temporary folder without one); a chunk of rows that is in the cache, intact, is
+    reused, and so is every cached case of a study run case by case (found by its content
+    hash). A large grid's result file is written from the files lazily, so memory holds
+    about one chunk at a time whatever the number of cases."""
     import shutil
 
     from .cache import GridChunkStore
-    from .dataset import grid_dataset
 
     name = str(src.data["name"])
     use_cache = cache_dir is not None
@@ -87,113 +95,96 @@ def run_arrays(
         scratch = Path(tempfile.mkdtemp(prefix=temporary_prefix(f".{name}-chunks-"), dir=out_dir))
         folder = scratch
     store = GridChunkStore(folder)
-    spans = grid_chunks(grid)
-    keys = {(lo, hi): grid.chunk_key(lo, hi) for lo, hi in spans}
-    files: dict[tuple[int, int], Path] = {}
-    for span, key in keys.items():
-        found = store.find(key)
-        if found is not None:
-            files[span] = found
-    row = math.prod(grid.shape[1:])
-    n_reused = sum((hi - lo) * row for lo, hi in files)
+    plan = _RowPlan(grid, store) if grid.chunked else _CasePlan(grid, store, use_cache)
     bar = Progress(grid.size, enabled=progress)
-    bar.update(n_reused)
+    bar.update(plan.n_reused)
 
-    transient: set[Path] = set()
     #: chunks computed here, held in memory while the whole result fits in
     #: IN_MEMORY_BYTES (decided at the first chunk with data); else every chunk goes to
-    #: its file and the result is streamed from the files
-    held: dict[tuple[int, int], Any] = {}
-    hold: list[bool | None] = [None]
+    #: its file and the result is streamed from the files (a grid of rows only)
+    held: dict[Any, Any] = {}
+    hold: list[bool | None] = [None if grid.chunked else True]
 
     def on_done(chunk: Any) -> None:
-        span = (chunk.lo, chunk.hi)
+        span = plan.span(chunk)
         if use_cache:
-            path = store.write(chunk)
-            files[span] = path
-            if any(str(m).startswith(TRANSIENT_PREFIXES) for m in chunk.message):
-                transient.add(path)  # in this result, but not kept: a re-run computes it
+            path = plan.write(chunk)
+            if path is not None:
+                plan.files[span] = path
         if hold[0] is None and chunk.data:
             per_case = sum(v.nbytes for v in chunk.data.values()) / max(chunk.n, 1)
             hold[0] = per_case * grid.size <= IN_MEMORY_BYTES
         held[span] = chunk
         if hold[0] is False:  # too large to hold: to files, streamed from there
             for sp, ch in held.items():
-                if sp not in files:
-                    files[sp] = store.write(ch)
+                if sp not in plan.files:
+                    plan.files[sp] = store.write(ch)
             held.clear()
         bar.update(chunk.n)
 
-    todo = [span for span in spans if span not in files]
     used = ""
-    timings: dict[str, float] = {}
     t1 = time.perf_counter()
     try:
-        if todo:
-            used = _execute_grid(grid, todo, scheduler, workers, on_done, timeout=timeout)
+        used = plan.execute(scheduler, workers, on_done, timeout)
     finally:
         bar.close()
     t2 = time.perf_counter()
-    timings["solve"] = t2 - t1
+    timings = {"solve": t2 - t1}
     target = out_dir / f"{name}.nc"
+    variables = None
     try:
         lazy = hold[0] is False
-        if not held and not lazy:  # everything from the cache: as large as it is
-            summary = store.summary([files[span] for span in spans])
+        if grid.chunked and not held and not lazy:  # all from the cache: as large as it is
+            summary = store.summary([plan.files[span] for span in plan.spans])
             per_case = sum(math.prod(t) for t in summary.tails.values()) * 8
             lazy = per_case * grid.size > IN_MEMORY_BYTES
         if lazy:
-            ordered = [(lo, hi, files[(lo, hi)]) for lo, hi in spans]
-            summary = store.summary([p for _, _, p in ordered])
-            ds = grid_dataset(
-                grid.axes,
-                ordered,
-                src,
-                names=summary.names,
-                tails=summary.tails,
-                arc=summary.arc,
-                solver_settings=grid_settings(grid),
-                lazy=True,
-                fallbacks=summary.fallbacks,
-                named=getattr(grid, "named", None),  # a system's (cablestudy.system_grid)
-            )
-            t3 = time.perf_counter()
-            timings["assembly"] = t3 - t2
+            summary, ds = _lazy_dataset(src, grid, store, plan)
+            timings["assembly"] = time.perf_counter() - t2
             import dask
 
             with dask.config.set(scheduler="synchronous"):  # one chunk in memory at a time
                 path = write_atomic(ds, target)
         else:
-            chunks = [
-                held[span] if span in held else _stored_chunk(store, files[span]) for span in spans
-            ]
-            summary, variables = _grid_variables(src, grid, chunks)
-            t3 = time.perf_counter()
-            timings["assembly"] = t3 - t2
+            from .cache import summarise
+            from .dataset import chunk_variables
+
+            merged = plan.merged(held)
+            summary = summarise([merged])
+            variables = chunk_variables(
+                grid.axes,
+                src,
+                merged,
+                summary,
+                solver_settings=grid_settings(grid),
+                named=_named(grid),
+                static_status=grid.chunked,
+            )
+            timings["assembly"] = time.perf_counter() - t2
             path = write_variables_atomic(*variables, target)
-        timings["write"] = time.perf_counter() - t3
+        # the quasi-static database's own file (a study run as cases may have one)
+        database = write_database_file(
+            variables, grid.axes, [] if grid.chunked else grid.cases(), src, out_dir
+        )
+        timings["write"] = time.perf_counter() - t2 - timings["assembly"]
     finally:
         if scratch is not None:
             shutil.rmtree(scratch, ignore_errors=True)
-    for p in transient:
+    for p in plan.transient:
         p.unlink(missing_ok=True)
-    # a study run as arrays has no database (cablestudy.analyses.static_grid refuses one): a
-    # database file of this name is an earlier run's, which no longer describes the study
-    from .database_file import database_file_name
-
-    (out_dir / database_file_name(name)).unlink(missing_ok=True)
     if lock is not None and lock.alone():  # no other run of the study writing here
-        store.keep(set(files.values()) - transient)
+        plan.tidy()
     return RunSummary(
         path=path,
         n_cases=grid.size,
-        n_reused=n_reused,
-        n_computed=grid.size - n_reused,
+        n_reused=plan.n_reused,
+        n_computed=plan.n_computed,
         n_failed=sum(summary.failures.values()),
         wall_time=math.nan,
         failures=dict(summary.failures),
         scheduler=used,
         timings=timings,
+        database_path=database,
         n_warned=summary.n_warned,
         warnings=dict(summary.warnings),
         warned_cases={
@@ -204,23 +195,157 @@ def run_arrays(
     )
 
 
-def _stored_chunk(store: Any, path: Path) -> Any:
-    """A chunk file of the cache as a :class:`cablestudy.analyses.grid_chunk.GridChunk`."""
-    from ..analyses.grid_chunk import GridChunk
+def _named(grid: Any) -> dict[str, list[str]] | None:
+    """A system study's names along its dimensions (None for one line)."""
+    named = getattr(grid, "named", None)  # a system grid's (cablestudy.analyses.system_grid)
+    if named is None and grid.template.is_system:
+        from .dataset import system_names
 
-    z = store.load(path)
-    lo, hi = (int(v) for v in z.pop("rows"))
-    return GridChunk(
-        lo=lo,
-        hi=hi,
-        key=str(z.pop("key")),
-        status=z.pop("status"),
-        message=z.pop("message"),
-        wall_time=z.pop("wall_time"),
-        warning=z.pop("warning", None),
-        fallback_reason=z.pop("fallback", None),
-        data=z,
+        named = system_names(grid.template)
+    return named
+
+
+def _lazy_dataset(src: StudySource, grid: Any, store: Any, plan: Any) -> tuple[Any, Any]:
+    """The summary and the dataset of a grid run in rows too large to hold, its variables
+    backed by the chunk files (:func:`cablestudy.run.dataset.grid_dataset`)."""
+    from .dataset import grid_dataset
+
+    ordered = [(lo, hi, plan.files[(lo, hi)]) for lo, hi in plan.spans]
+    summary = store.summary([p for _, _, p in ordered])
+    ds = grid_dataset(
+        grid.axes,
+        ordered,
+        src,
+        names=summary.names,
+        tails=summary.tails,
+        arc=summary.arc,
+        solver_settings=grid_settings(grid),
+        lazy=True,
+        fallbacks=summary.fallbacks,
+        named=_named(grid),
     )
+    return summary, ds
+
+
+class _RowPlan:
+    """A grid run in chunks of rows of its first axis (:func:`grid_chunks`), each found
+    again in the cache by its content key."""
+
+    def __init__(self, grid: Any, store: Any) -> None:
+        self.grid, self.store = grid, store
+        self.spans = grid_chunks(grid)
+        self.files: dict[Any, Path] = {}
+        self.transient: set[Path] = set()
+        for lo, hi in self.spans:
+            found = store.find(grid.chunk_key(lo, hi))
+            if found is not None:
+                self.files[(lo, hi)] = found
+        row = math.prod(grid.shape[1:])
+        self.n_reused = sum((hi - lo) * row for lo, hi in self.files)
+        self.n_computed = grid.size - self.n_reused
+
+    @staticmethod
+    def span(chunk: Any) -> Any:
+        return (chunk.lo, chunk.hi)
+
+    def write(self, chunk: Any) -> Path:
+        path = self.store.write(chunk)
+        if any(str(m).startswith(TRANSIENT_PREFIXES) for m in chunk.message):
+            self.transient.add(path)  # in this result, but not kept: a re-run computes it
+        return path
+
+    def execute(
+        self, scheduler: str, workers: int, on_done: Callable[[Any], None], timeout: float
+    ) -> str:
+        todo = [span for span in self.spans if span not in self.files]
+        if not todo:
+            return ""
+        return _execute_grid(self.grid, todo, scheduler, workers, on_done, timeout=timeout)
+
+    def merged(self, held: dict[Any, Any]) -> Any:
+        """Every row as one chunk, in order (computed here, or read from its file)."""
+        from ..analyses.grid_chunk import join_chunks
+
+        return join_chunks(
+            [
+                held[span] if span in held else self.store.chunk(self.files[span])
+                for span in self.spans
+            ]
+        )
+
+    def tidy(self) -> None:
+        """Remove the chunk files of cases edited away."""
+        self.store.keep(set(self.files.values()) - self.transient)
+
+
+class _CasePlan:
+    """A grid run case by case: its distinct cases (by content hash) in chunks on the
+    scheduler (:func:`cablestudy.run.scheduler.execute`), every cached case reused
+    wherever it now is in the sweep."""
+
+    def __init__(self, grid: Any, store: Any, use_cache: bool) -> None:
+        self.store = store
+        self.cases = grid.cases()
+        wanted = {c.hash for c in self.cases}
+        self.found, found_files = store.cases(wanted) if use_cache else ([], set())
+        self.files: dict[Any, Path] = {p: p for p in found_files}
+        self.transient: set[Path] = set()
+        done = {h for chunk in self.found for h in chunk.hashes.tolist()}
+        self.unique: dict[str, Case] = {}
+        for c in self.cases:
+            if c.hash not in done:
+                self.unique.setdefault(c.hash, c)
+        self.n_reused = sum(1 for c in self.cases if c.hash in done)
+        self.n_computed = len(self.unique)
+        self.all: Any = None
+
+    @staticmethod
+    def span(chunk: Any) -> Any:
+        if not chunk.key:  # named by its cases
+            chunk.key = hashlib.sha256("\n".join(chunk.hashes.tolist()).encode()).hexdigest()
+        return chunk.key
+
+    def write(self, chunk: Any) -> Path | None:
+        """The chunk's cases but the transient ones (a time limit, a lost task: a re-run
+        computes them) to a file."""
+        from ..analyses.grid_chunk import take_rows
+
+        keep = np.flatnonzero([not str(m).startswith(TRANSIENT_PREFIXES) for m in chunk.message])
+        if not len(keep):
+            return None
+        kept = chunk if len(keep) == chunk.n else take_rows(chunk, keep)
+        self.span(kept)
+        return self.store.write(kept)
+
+    def execute(
+        self, scheduler: str, workers: int, on_done: Callable[[Any], None], timeout: float
+    ) -> str:
+        if not self.unique:
+            return ""
+        from .scheduler import execute
+
+        return execute(list(self.unique.values()), scheduler, workers, on_done, timeout=timeout)
+
+    def merged(self, held: dict[Any, Any]) -> Any:
+        """Every case as one chunk, in C order of the grid (a case that appears at several
+        places of the sweep at each)."""
+        from ..analyses.grid_chunk import join_chunks, take_rows
+
+        self.all = join_chunks([*self.found, *held.values()])
+        row = {h: i for i, h in enumerate(self.all.hashes.tolist())}
+        return take_rows(self.all, np.array([row[c.hash] for c in self.cases], dtype=np.intp))
+
+    def tidy(self) -> None:
+        """The cache as one file holding the study's cases as it now stands (the cases of
+        edited-away studies dropped; the new file in place before the old ones go)."""
+        from ..analyses.grid_chunk import take_rows
+
+        present = [p for p in self.store.directory.glob("grid-*.npz") if regular_file(p)]
+        kept = set(self.files.values()) - self.transient
+        if self.all is None or (len(present) == 1 and set(present) == kept and not self.unique):
+            return
+        target = self.write(take_rows(self.all, np.arange(self.all.n)))
+        self.store.keep({target} if target is not None else set())
 
 
 def grid_settings(grid: Any) -> dict[str, Any]:
@@ -246,50 +371,6 @@ def grid_settings(grid: Any) -> dict[str, Any]:
     if len(distinct) > 1:
         out["analysis_per_case_distinct"] = [json.loads(d) for d in sorted(distinct)]
     return out
-
-
-def _grid_variables(src: StudySource, grid: Any, chunks: list[Any]) -> tuple[Any, tuple]:
-    """The summary of in-memory chunks (all rows of ``grid``, in order) and the dataset's
-    (data variables, coordinates, attributes): the dataset
-    :func:`cablestudy.run.dataset.grid_dataset` assembles from the chunk files."""
-    from .cache import summarise
-    from .dataset import grid_variables
-
-    summary = summarise(
-        ((c.status, c.message, c.warning, c.data) for c in chunks),
-        (c.fallback_reason for c in chunks),
-    )
-    rest = grid.shape[1:]
-    values: dict[str, Any] = {}
-    for name in summary.names:
-        if name == "arc_length" and summary.arc is not None:
-            continue
-        tail = summary.tails[name]
-        values[name] = np.concatenate(
-            [
-                (
-                    c.data[name]
-                    if name in c.data
-                    else np.full((c.n, *tail), np.nan)  # a chunk failed as a whole
-                ).reshape((c.hi - c.lo, *rest, *tail))
-                for c in chunks
-            ]
-        )
-    variables = grid_variables(
-        grid.axes,
-        src,
-        status=np.concatenate([c.status for c in chunks]),
-        message=np.concatenate([c.message for c in chunks]),
-        warning=np.concatenate([c.warning for c in chunks]),
-        wall_time=np.concatenate([c.wall_time for c in chunks]),
-        values=values,
-        tails=summary.tails,
-        arc=summary.arc,
-        solver_settings=grid_settings(grid),
-        fallbacks=summary.fallbacks,
-        named=getattr(grid, "named", None),  # a system's (cablestudy.system_grid)
-    )
-    return summary, variables
 
 
 def _execute_grid(

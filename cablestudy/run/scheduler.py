@@ -15,7 +15,9 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from ..analyses.variables import CaseRecord
+import numpy as np
+
+from ..analyses.grid_chunk import GridChunk
 from ..study.cases import Case
 from .cache import LOST_PREFIX
 from .remote import DEFAULT_TIMEOUT, connect
@@ -60,28 +62,23 @@ def default_workers() -> int:
     return max(1, min(cores, 8))
 
 
-def failed_chunk(cases: list[Case], exc: BaseException) -> list[CaseRecord]:
-    """Records for a chunk whose task died outside the solvers (a worker lost, an
-    unpicklable result): every case failed with the reason, NaN data, not cached."""
+def failed_chunk(cases: list[Case], exc: BaseException) -> GridChunk:
+    """The chunk of cases whose task died outside the solvers (a worker lost, an
+    unpicklable result): every case failed with the reason, no data, not cached."""
+    from ..analyses.grid_chunk import failed_chunk as failed
+
     message = f"{LOST_PREFIX}{type(exc).__name__}: {exc}"
-    return [
-        CaseRecord(
-            hash=c.hash,
-            index=c.index,
-            status=STATUS_TASK_FAILED,
-            message=message,
-            wall_time=math.nan,
-        )
-        for c in cases
-    ]
+    hashes = np.array([c.hash for c in cases], dtype=str).reshape(len(cases))
+    return failed(len(cases), message, hashes=hashes, status=STATUS_TASK_FAILED)
 
 
-def run_chunk(cases: list[Case]) -> list[CaseRecord]:
+def run_chunk(cases: list[Case]) -> GridChunk:
     """Evaluate a chunk of cases in one task (cases sharing a static problem are
-    adjacent, so its solution is reused; compatible static problems are batched)."""
-    from ..analyses.evaluate import evaluate_chunk
+    adjacent, so its solution is reused; compatible static problems are batched), its
+    records turned into the chunk form here, in the worker."""
+    from ..analyses.evaluate import evaluate_cases
 
-    return evaluate_chunk(cases)
+    return evaluate_cases(cases)
 
 
 def chunk_limit(per_case: float | None) -> int:
@@ -136,7 +133,7 @@ def make_chunks(
     return [chunks[i] for i in order if chunks[i]]
 
 
-OnDone = Callable[[list[CaseRecord]], None]
+OnDone = Callable[[GridChunk], None]
 
 
 @dataclass
@@ -204,8 +201,8 @@ def probe_threads(probe: Probe, on_done: OnDone, workers: int) -> Probe:
     with ThreadPoolExecutor(2) as pool:
         results = list(pool.map(run_chunk, chunks))
     wall = time.perf_counter() - t0
-    for records in results:
-        on_done(records)
+    for chunk in results:
+        on_done(chunk)
     return Probe(rest, probe.per_case, (2 * n * probe.per_case) / max(wall, 1e-9))
 
 
@@ -305,14 +302,14 @@ def _run_dask(
             pending = []
         for future in done:
             try:
-                records = future.result()
+                chunk = future.result()
             except Exception as exc:  # noqa: BLE001 - a lost task fails its cases, not the study
-                records = failed_chunk(chunk_of[future.key], exc)
-            on_done(records)
+                chunk = failed_chunk(chunk_of[future.key], exc)
+            on_done(chunk)
             future.release()
             if pending:
-                times = [r.wall_time for r in records if math.isfinite(r.wall_time)]
-                cost = sum(times) / len(times) if times else None
+                times = chunk.wall_time[np.isfinite(chunk.wall_time)]
+                cost = float(times.mean()) if len(times) else None
                 done.update(submit(make_chunks(pending, workers, per_case=cost)))
                 pending = []
     finally:
@@ -321,7 +318,7 @@ def _run_dask(
             cluster.close()
 
 
-def _guarded_chunk(cases: list[Case]) -> list[CaseRecord]:
+def _guarded_chunk(cases: list[Case]) -> GridChunk:
     """:func:`run_chunk`, its cases failed (not the study) if the task itself dies."""
     try:
         return run_chunk(cases)

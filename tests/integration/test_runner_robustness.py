@@ -357,7 +357,7 @@ def test_a_full_disk_at_the_cache_is_named_as_such(
     cache = out / ".cache" / "wire"
     assert re.fullmatch(
         rf"cannot write the results: no space left on device at {re.escape(str(cache))}"
-        r"/chunk-[0-9a-f]{64}\.npz\n",
+        r"/grid-[0-9a-f]{32}-[0-9a-f]{64}\.npz\n",
         err,
     ), err
     assert _leftovers(out) == []
@@ -381,9 +381,9 @@ def test_odd_entries_named_like_case_cache_chunks_are_skipped(
     cfg = str(_case_path_study(tmp_path))
     cache = tmp_path / ".cache" / "wire"
     cache.mkdir(parents=True)
-    folder = cache / f"chunk-{'a' * 64}.npz"
+    folder = cache / f"grid-{'a' * 32}-{'a' * 64}.npz"
     folder.mkdir()
-    fifo = cache / f"chunk-{'b' * 64}.npz"
+    fifo = cache / f"grid-{'b' * 32}-{'b' * 64}.npz"
     os.mkfifo(fifo)
     for _ in range(2):
         code, out, err = _run(capsys, cfg, "--out", str(tmp_path), "--scheduler", "synchronous")

@@ -9,13 +9,16 @@ that equal statics are equal by computation, not by reuse."""
 from __future__ import annotations
 
 from collections import OrderedDict
+from pathlib import Path
 
 import numpy as np
 import pytest
+import xarray as xr
 
 from cablestudy.analyses import evaluate as analyses
 from cablestudy.analyses import line_model
 from cablestudy.analyses import static as static_analysis
+from cablestudy.analyses.grid_chunk import join_chunks, records_chunk
 from cablestudy.analyses.variables import CaseRecord
 from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
@@ -80,7 +83,12 @@ def _fresh(monkeypatch: pytest.MonkeyPatch) -> None:
 
 
 def _same(a: CaseRecord, b: CaseRecord) -> None:
-    assert (a.status, a.message, a.warning) == (b.status, b.message, b.warning)
+    assert (a.status, a.message, a.warning, a.fallback) == (
+        b.status,
+        b.message,
+        b.warning,
+        b.fallback,
+    )
     assert a.data.keys() == b.data.keys()
     for name, value in a.data.items():
         x, y = np.asarray(value), np.asarray(b.data[name])
@@ -100,10 +108,23 @@ def test_a_case_alone_gives_the_record_it_gets_in_its_chunk(
     assert len(cases) >= 2
     _fresh(monkeypatch)
     together = analyses.evaluate_chunk(cases)
+    alones = []
     for case, record in zip(cases, together, strict=True):
         _fresh(monkeypatch)
         (alone,) = analyses.evaluate_chunk([case])
         _same(record, alone)
+        alones.append(alone)
+    # ... and in the chunk form the runner stores and assembles (records_chunk, in the
+    # worker): the chunk of the sweep equals its chunks of one joined, to the bit
+    whole = records_chunk(together)
+    joined = join_chunks([records_chunk([a]) for a in alones])
+    for column in ("status", "message", "warning", "fallback_reason", "hashes"):
+        assert np.array_equal(getattr(whole, column), getattr(joined, column)), column
+    assert whole.data.keys() == joined.data.keys()
+    for name, x in whole.data.items():
+        y = joined.data[name]
+        assert x.dtype.kind == y.dtype.kind and x.shape == y.shape, name
+        assert x.tobytes() == y.tobytes() if x.dtype.kind == "f" else np.array_equal(x, y), name
     assert all(r.status == 0 for r in together)  # the sweep exercises the analysis
     present = {k for r in together for k in r.data}
     expect = {
@@ -114,3 +135,31 @@ def test_a_case_alone_gives_the_record_it_gets_in_its_chunk(
         "database": "database_tension_b",
     }[kind]
     assert any(k.startswith(expect) for k in present), sorted(present)
+
+
+@pytest.mark.parametrize("kind", ["modal", "frequency", "database"])
+def test_a_cached_rerun_of_every_kind_is_the_run_that_filled_it(kind: str, tmp_path: Path) -> None:
+    """Every kind's chunks go through the one store: a re-run reuses every case (found by
+    its content hash) and writes the same dataset -- and the same database file -- bit
+    for bit (wall times included: they are the cached ones)."""
+    from cablestudy.run.runner import run_study
+    from cablestudy.study.grid import expand_grid
+
+    src = parse_study_text(KINDS[kind], "one.yaml")
+    grid = expand_grid(src)
+    assert not grid.chunked  # the case path
+    first = run_study(src, grid, tmp_path, scheduler="synchronous", progress=False)
+    a = xr.load_dataset(first.path)
+    files = sorted((tmp_path / ".cache" / "one").glob("grid-*.npz"))
+    assert len(files) == 1  # compacted to one file of the study's cases
+    second = run_study(src, grid, tmp_path, scheduler="synchronous", progress=False)
+    assert (second.n_reused, second.n_computed) == (grid.size, 0)
+    b = xr.load_dataset(second.path)
+    xr.testing.assert_identical(b.assign_attrs(history=a.attrs["history"]), a)
+    for name in a.data_vars:
+        if a[name].dtype.kind == "f":
+            assert a[name].values.tobytes() == b[name].values.tobytes(), name
+    assert (first.database_path is None) == (kind != "database")
+    if kind == "database":
+        da, db = (xr.load_dataset(p.database_path) for p in (first, second))
+        xr.testing.assert_identical(db.assign_attrs(history=da.attrs["history"]), da)

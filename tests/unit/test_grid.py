@@ -203,7 +203,7 @@ def test_array_path_writes_the_case_by_case_dataset_bit_for_bit(tmp_path: Path, 
             assert a.values.tobytes() == b.values.tobytes(), name
         else:
             assert np.array_equal(a.values, b.values), name
-    skip = {"history"} | FALLBACK_ATTRS
+    skip = {"history"}
     assert {k: v for k, v in fast.attrs.items() if k not in skip} == {
         k: v for k, v in slow.attrs.items() if k not in skip
     }

@@ -15,7 +15,7 @@ import xarray as xr
 
 from cablestudy.analyses import static as static_analysis
 from cablestudy.run import scheduler
-from cablestudy.run.cache import CaseCache
+from cablestudy.run.cache import GridChunkStore
 from cablestudy.run.progress import (
     WARNING_EXAMPLES,
     Progress,
@@ -200,30 +200,37 @@ def test_interrupted_study_resumes_without_losing_or_redoing_work(
 def test_cache_survives_a_corrupt_file_and_skips_transient_failures(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
+    from cablestudy.analyses.grid_chunk import records_chunk
     from cablestudy.analyses.variables import CaseRecord
+    from cablestudy.run.grid_runner import _CasePlan
 
-    cache = CaseCache(tmp_path)
+    store = GridChunkStore(tmp_path)
     ok = CaseRecord(hash="a", index=(0,), status=0, message="", wall_time=0.1)
     slow = CaseRecord(
         hash="b", index=(1,), status=3, message="time limit reached after 3", wall_time=0.1
     )
-    cache.store([ok, slow])
-    garbage = tmp_path / ("chunk-" + "0" * 64 + ".npz")
+    plan = _CasePlan.__new__(_CasePlan)  # its cache writing alone
+    plan.store = store
+    chunk = records_chunk([ok, slow])
+    plan.span(chunk)
+    written = plan.write(chunk)
+    garbage = tmp_path / ("grid-" + "0" * 32 + "-" + "0" * 64 + ".npz")
     garbage.write_bytes(b"not an archive")
-    again = CaseCache(tmp_path)
-    assert set(again.records) == {"a"}  # the time-limited case will be retried
+    found, files = store.cases({"a", "b"})
+    # the time-limited case will be retried: not kept
+    assert [c.hashes.tolist() for c in found] == [["a"]] and files == {written}
     assert not garbage.exists()
     assert str(garbage) in capsys.readouterr().err
-    again.compact({"a"})
-    assert len(list(tmp_path.glob("chunk-*.npz"))) == 1
-    assert set(CaseCache(tmp_path).records) == {"a"}
+    store.cases({"a", "b"})
     assert capsys.readouterr().err == ""  # reported once: the bad file is gone
 
 
-def test_cache_records_round_trip_exactly() -> None:
-    """Every kind of value a case produces comes back with its dtype, shape and bits."""
+def test_cache_chunks_round_trip_exactly(tmp_path: Path) -> None:
+    """Every kind of value a case produces comes back from the cache with its dtype, shape
+    and bits, in the one chunk form (a shorter value padded, a failed analysis's output
+    the fill)."""
+    from cablestudy.analyses.grid_chunk import records_chunk
     from cablestudy.analyses.variables import CaseRecord
-    from cablestudy.run.cache import decode_records, encode_records
 
     rng = np.random.default_rng(1)
     recs = [
@@ -245,33 +252,53 @@ def test_cache_records_round_trip_exactly() -> None:
         CaseRecord(
             hash="h1",
             index=(1, 0),
-            status=4,
+            status=0,
             message="did not converge: résidu 1e-3",
             wall_time=float("nan"),
-            data={"x": rng.standard_normal(5), "dynamic_method": np.array("time")},
+            data={
+                "x": rng.standard_normal(5),
+                "dynamic_method": np.array("time"),
+                "static_status": np.int64(0),
+                "dynamic_status": np.int64(4),
+            },
         ),
     ]
-    back = decode_records(encode_records(recs))
-    for a, b in zip(recs, back, strict=True):
-        assert (a.hash, a.index, a.status, a.message) == (b.hash, b.index, b.status, b.message)
-        assert np.array_equal(a.wall_time, b.wall_time, equal_nan=True)
-        assert set(a.data) == set(b.data)
-        for k, v in a.data.items():
-            want = np.asarray(v)
-            assert b.data[k].shape == want.shape and b.data[k].dtype.kind == want.dtype.kind
-            if want.dtype.kind == "f":
-                assert want.tobytes() == b.data[k].tobytes()  # bit for bit (-0.0, NaN)
-            else:
-                assert str(want) == str(b.data[k])
+    store = GridChunkStore(tmp_path)
+    chunk = records_chunk(recs)
+    chunk.key = "f" * 64
+    back = store.chunk(store.write(chunk))
+    assert back.hashes.tolist() == ["h0", "h1"] and back.status.tolist() == [0, 0]
+    assert back.message.tolist() == ["", "did not converge: résidu 1e-3"]
+    assert np.array_equal(back.wall_time, [0.125, np.nan], equal_nan=True)
+    assert set(back.data) == set(chunk.data)
+    for k, v in chunk.data.items():
+        assert back.data[k].dtype == v.dtype and back.data[k].shape == v.shape, k
+        if v.dtype.kind == "f":
+            assert back.data[k].tobytes() == v.tobytes(), k  # bit for bit (-0.0, NaN)
+        else:
+            assert np.array_equal(back.data[k], v), k
+    x = back.data["x"]
+    assert x[0].tobytes() == recs[0].data["x"].tobytes()
+    assert x[1, :5].tobytes() == recs[1].data["x"].tobytes() and np.isnan(x[1, 5:]).all()
+    assert back.data["dynamic_method"].tolist() == ["frequency", ""]  # its analysis failed
+    assert np.isnan(back.data["mode_shape"][1]).all()
 
 
 def test_cache_refuses_to_store_python_objects(tmp_path: Path) -> None:
-    from cablestudy.analyses.variables import CaseRecord
+    from cablestudy.analyses.grid_chunk import GridChunk
     from cablestudy.run.cache import CacheFormatError
 
-    rec = CaseRecord("h", (0,), 0, "", 0.1, data={"x": np.array([object()], dtype=object)})
+    chunk = GridChunk(
+        0,
+        1,
+        "f" * 64,
+        np.zeros(1, dtype=np.int64),
+        np.array([""]),
+        np.zeros(1),
+        {"x": np.array([object()], dtype=object)},
+    )
     with pytest.raises(CacheFormatError, match="'x' holds Python objects"):
-        CaseCache(tmp_path).store([rec])
+        GridChunkStore(tmp_path).write(chunk)
 
 
 def test_cached_rerun_is_bit_for_bit_the_uncached_run(tmp_path: Path) -> None:
@@ -309,7 +336,7 @@ def test_damaged_cache_chunk_is_reported_once_and_recomputed(
     src, grid, cases = _expand()
     first = run_study(src, grid, tmp_path, scheduler="synchronous", progress=False)
     ref = xr.load_dataset(first.path)
-    (chunk,) = (tmp_path / ".cache" / "rn").glob("chunk-*.npz")  # compacted to one
+    (chunk,) = (tmp_path / ".cache" / "rn").glob("grid-*.npz")  # compacted to one
     raw = bytearray(chunk.read_bytes())
     if damage == "truncate":
         chunk.write_bytes(bytes(raw[: len(raw) // 2]))
@@ -352,21 +379,22 @@ def test_a_pickle_in_the_cache_is_never_unpickled(
     cache_dir.mkdir()
     # as an old-style pickle chunk, and disguised as a data chunk with a valid hash name
     (cache_dir / "chunk-0123456789abcdef01234567.pkl").write_bytes(payload)
-    disguised = cache_dir / f"chunk-{hashlib.sha256(payload).hexdigest()}.npz"
+    key = "0" * 32
+    disguised = cache_dir / f"grid-{key}-{hashlib.sha256(payload).hexdigest()}.npz"
     disguised.write_bytes(payload)
     # a pickled object array inside a real .npz archive, also with a valid hash name
     import io
 
     buf = io.BytesIO()
-    np.savez(buf, format=np.array("cablestudy-case-cache-1"), hash=np.array([_Trap(str(marker))]))
-    inner = cache_dir / f"chunk-{hashlib.sha256(buf.getvalue()).hexdigest()}.npz"
+    np.savez(buf, format=np.array("cablestudy-grid-chunk-1"), v_hash=np.array([_Trap(str(marker))]))
+    inner = cache_dir / f"grid-{key}-{hashlib.sha256(buf.getvalue()).hexdigest()}.npz"
     inner.write_bytes(buf.getvalue())
-    cache = CaseCache(cache_dir)
+    found, files = GridChunkStore(cache_dir).cases({"a"})
     assert not marker.exists()
-    assert cache.records == {}
+    assert found == [] and files == set()
     err = capsys.readouterr().err
     assert str(disguised) in err and str(inner) in err
-    assert sorted(cache.rejected) == sorted([disguised, inner])
+    assert not disguised.exists() and not inner.exists()  # removed: recomputed
 
 
 def test_failures_grouped_by_message_with_numbers_masked() -> None:
@@ -466,7 +494,10 @@ def test_auto_scheduler_hands_a_long_study_to_workers(
     # one case probed alone, one on each of two threads, the rest to worker processes
     assert [h[:2] for h in handed] == [(24, "processes")] and handed[0][2] > 0
     assert summary.n_computed == 27 and summary.scheduler == "processes"
-    assert summary.report().endswith("s (processes)")
+    first, counted = summary.report().splitlines()[:2]
+    assert first.endswith("s (processes)")
+    # method analytic has no batch kernel: every case counted, records or grid alike
+    assert counted.startswith("27 cases solved by the general solver")
 
 
 def test_scheduler_choice_follows_the_probe() -> None:
@@ -499,7 +530,7 @@ def test_chunks_take_the_target_time_at_the_measured_cost() -> None:
 def test_probe_runs_each_case_once_in_doubling_chunks() -> None:
     _, _, cases = _expand()
     done: list[int] = []
-    probe = probe_cost(cases, lambda recs: done.append(len(recs)), seconds=1e9)
+    probe = probe_cost(cases, lambda chunk: done.append(chunk.n), seconds=1e9)
     assert done == [1, 2, 4, 8, 12] and probe.rest == []
     assert probe.per_case > 0
 
@@ -580,3 +611,26 @@ def test_the_cli_runs_every_study_through_the_one_runner(
             assert main([*args, "--scheduler", "synchronous"]) == 0
     n = expand_grid(parse_study_text(TEXT, "rn.yaml")).size
     assert seen == [(True, 0), (True, n), (False, 0), (False, n)]
+
+
+def test_a_value_inserted_into_the_sweep_reuses_the_cases_where_they_now_are(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A cached case is found by its content hash, not its place: after a value is
+    inserted in the middle of an axis, the cached cases land at their new indices, and
+    the dataset equals an uncached run of the edited study (wall times aside)."""
+    src, grid, _ = _expand()
+    run_study(src, grid, tmp_path / "c", scheduler="synchronous", progress=False)
+    edited = TEXT.replace("[1.0e6, 1.0e7, 6.283e7]", "[1.0e6, 3.0e6, 1.0e7, 6.283e7]")
+    src2, grid2, _ = _expand(edited)
+    counter = _count_evaluations(monkeypatch)
+    again = run_study(src2, grid2, tmp_path / "c", scheduler="synchronous", progress=False)
+    assert counter["cases"] == 9 and again.n_reused == 27
+    plain = run_study(
+        src2, grid2, tmp_path / "plain", scheduler="synchronous", use_cache=False, progress=False
+    )
+    got, ref = xr.load_dataset(again.path), xr.load_dataset(plain.path)
+    xr.testing.assert_identical(
+        got.drop_vars("wall_time"),
+        ref.drop_vars("wall_time").assign_attrs(history=got.attrs["history"]),
+    )
