@@ -290,10 +290,10 @@ def _csr_rows(ptr, idx, val, x, lo, hi, out):  # noqa: ANN001, ANN202
 ANDERSON_DEPTH = 3
 
 
-@njit(cache=True, fastmath=True, inline="always")
+@njit(cache=True, inline="always")
 def _dot(x, y):  # noqa: ANN001, ANN202
-    """``x . y`` of two 1-D arrays (reassociated, so vectorised: the mixing weights
-    need no particular order of the sum)."""
+    """``x . y`` of two 1-D arrays, summed in order (inlined into :func:`_mixed`, it
+    takes its caller's floating-point flags: none)."""
     acc = 0.0
     for q in range(x.shape[0]):
         acc += x[q] * y[q]
