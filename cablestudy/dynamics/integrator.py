@@ -203,9 +203,9 @@ def _attempt(  # noqa: ANN202, PLR0913
         v1,
         a1,
         anchor,
-        *largs,
-        *wargs,
-        *sargs,
+        largs,
+        wargs,
+        sargs,
     )
     return its, ok, True
 
