@@ -28,7 +28,6 @@ import numpy as np
 
 from cablestudy.statics import EndCondition, LineModel, Medium, StaticProblem
 from cablestudy.statics.batch import solve_batch
-from cablestudy.statics.batch_kernels import _solve_group
 from cablestudy.statics.elastic_catenary import solve_between
 from cablestudy.statics.semi_analytic import SemiAnalyticSolver
 
@@ -114,13 +113,6 @@ def bench_still_water(n: int, repeats: int) -> list[str]:
         f"max rel. error vs Irvine: force {ferr:.1e}, position {perr:.1e}; "
         f"Newton iterations median {statistics.median(iters):.0f}, max {max(iters)}"
     )
-    P = 1
-    t_np = median_time(
-        lambda: _solve_group(probs, P, 101, [None] * n, None, use_compiled=False),
-        repeats=max(1, repeats // 2),
-        per=n,
-    )
-    out.append(f"  batch (numpy, no numba)      median {t_np * 1e6:8.1f} us/case")
     m = min(n, 200)
     t_one = median_time(lambda: [solver.solve(p) for p in probs[:m]], repeats=repeats, per=m)
     out.append(f"  one by one (solver.solve)    median {t_one * 1e6:8.1f} us/case")

@@ -8,6 +8,7 @@ the nodes on the seabed.
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
@@ -85,18 +86,8 @@ def axial_law(code, params, knots, start, count, ea, eps):  # noqa: ANN001, ANN2
     return t, dt
 
 
-# fmt: off
 @njit(cache=True, nogil=True)
-def assemble(  # noqa: ANN201
-    x, v, anchor, rest_length, axial_stiffness, internal_damping, force, drag_normal,
-    drag_tangential, added_mass_normal, added_mass_tangential, mass, current_z,
-    current_velocity, has_drag, bending, clamp_direction, transverse_damping,
-    body_added_mass, body_drag, held, seabed_normal, seabed_offset, seabed_stiffness,
-    seabed_damping, friction, law_code, law_params, law_knots, law_start, law_count,
-    broken, F, K_d, K_o, K_o2, C_d, C_o, M_d, tension, strain, taut0, contact,
-    friction_force, slip_state, trial,
-):  # noqa: ANN001
-    # fmt: on
+def assemble(x, v, anchor, largs, wargs):  # noqa: ANN001, ANN201
     """Nodal out-of-balance force ``F = f_internal - f_external`` [N] (n + 1, 3) at
     positions ``x`` [m] and velocities ``v`` [m/s] (friction anchors ``anchor`` [m]),
     so that ``M a + F = 0``; its tangents: stiffness ``K = dF/dx`` and damping
@@ -114,19 +105,14 @@ def assemble(  # noqa: ANN201
     micrometres short would drop the axial stiffness of a taut element, and Newton
     would take a huge step along the line's soft (inextensional) modes.
 
-    One line: :func:`assemble_lines` (which holds the formulation) given no offsets
-    (``None``) and the line's own ``has_drag``, ``clamp_direction`` (2, 3),
-    ``seabed_offset`` and ``friction`` (2,)."""
+    The line's arrays come in ``largs`` (:class:`.discrete_line.LineArrays`), the
+    results go to ``wargs`` (:class:`WorkArrays`). One line: :func:`assemble_lines`
+    (which holds the formulation) given no offsets (``None``) and the line's own
+    ``has_drag``, ``clamp_direction`` (2, 3), ``seabed_offset`` and ``friction`` (2,)."""
     n_el = x.shape[0] - 1
-    assemble_lines(
-        None, None, None, None, x, v, anchor, rest_length, axial_stiffness, internal_damping,
-        force, drag_normal, drag_tangential, added_mass_normal, added_mass_tangential, mass,
-        current_z, current_velocity, has_drag, bending, clamp_direction, transverse_damping,
-        body_added_mass, body_drag, held, seabed_normal, seabed_offset, seabed_stiffness,
-        seabed_damping, friction, law_code, law_params, law_knots, law_start, law_count,
-        broken, F, K_d, K_o, K_o2, C_d, C_o, M_d, tension, strain, taut0, contact,
-        friction_force, slip_state, trial, np.empty((n_el, 3)), np.empty(n_el),
-    )  # fmt: skip
+    # largs[:], wargs[:]: the named tuples as plain ones, which numba joins into the arguments
+    uel, lel = np.empty((n_el, 3)), np.empty(n_el)
+    assemble_lines(None, None, None, None, x, v, anchor, *largs[:], *wargs[:], uel, lel)
 
 
 # fmt: off
@@ -567,6 +553,27 @@ def solve_banded(J_d, J_o, J_o2, held, rhs, out, band):  # noqa: ANN001, ANN201
     return True
 
 
+class WorkArrays(NamedTuple):
+    """The arrays :func:`assemble` fills, as the compiled kernels take them
+    (:meth:`Workspace.assemble_args`; read by name, ``wargs.F``, or passed on,
+    ``*wargs``)."""
+
+    F: np.ndarray
+    K_d: np.ndarray
+    K_o: np.ndarray
+    K_o2: np.ndarray
+    C_d: np.ndarray
+    C_o: np.ndarray
+    M_d: np.ndarray
+    tension: np.ndarray
+    strain: np.ndarray
+    taut0: np.ndarray
+    contact: np.ndarray
+    friction_force: np.ndarray
+    slip_state: np.ndarray
+    trial: np.ndarray
+
+
 class Workspace:
     """Scratch arrays of the kernels for a line of ``n`` elements (allocated once per
     run, reused every step), and the friction anchors (state carried between steps)."""
@@ -596,8 +603,8 @@ class Workspace:
         self.dx = np.zeros((n, 3))
         self.band = np.zeros((3 * n, 17))
 
-    def assemble_args(self) -> tuple:
-        return (
+    def assemble_args(self) -> WorkArrays:
+        return WorkArrays(
             self.F,
             self.K_d,
             self.K_o,
@@ -637,8 +644,8 @@ def evaluate(
         np.ascontiguousarray(x, dtype=float),
         np.ascontiguousarray(v, dtype=float),
         work.anchor,
-        *line.kernel_args(),
-        *work.assemble_args(),
+        line.kernel_args(),
+        work.assemble_args(),
     )
     return work
 

@@ -9,11 +9,47 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
 from ..physics.contact import default_seabed_stiffness as contact_stiffness
 from ..statics.base import LineModel, Medium
+
+
+class LineArrays(NamedTuple):
+    """A line's arrays as the compiled kernels take them (:meth:`DiscreteLine.kernel_args`;
+    a kernel reads them by name, ``largs.held``, or passes them on, ``*largs``)."""
+
+    rest_length: np.ndarray
+    axial_stiffness: np.ndarray
+    internal_damping: np.ndarray
+    force: np.ndarray
+    drag_normal: np.ndarray
+    drag_tangential: np.ndarray
+    added_mass_normal: np.ndarray
+    added_mass_tangential: np.ndarray
+    mass: np.ndarray
+    current_z: np.ndarray
+    current_velocity: np.ndarray
+    has_drag: np.ndarray
+    bending: np.ndarray
+    clamp_direction: np.ndarray
+    transverse_damping: np.ndarray
+    body_added_mass: np.ndarray
+    body_drag: np.ndarray
+    held: np.ndarray
+    seabed_normal: np.ndarray
+    seabed_offset: np.ndarray
+    seabed_stiffness: np.ndarray
+    seabed_damping: np.ndarray
+    friction: np.ndarray
+    law_code: np.ndarray
+    law_params: np.ndarray
+    law_knots: np.ndarray
+    law_start: np.ndarray
+    law_count: np.ndarray
+    broken: np.ndarray
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -141,39 +177,9 @@ class DiscreteLine:
     def has_seabed(self) -> bool:
         return bool(np.any(self.seabed_stiffness > 0.0))
 
-    def kernel_args(self) -> tuple:
+    def kernel_args(self) -> LineArrays:
         """The arrays in the order the compiled kernels take them."""
-        return (
-            self.rest_length,
-            self.axial_stiffness,
-            self.internal_damping,
-            self.force,
-            self.drag_normal,
-            self.drag_tangential,
-            self.added_mass_normal,
-            self.added_mass_tangential,
-            self.mass,
-            self.current_z,
-            self.current_velocity,
-            self.has_drag,
-            self.bending,
-            self.clamp_direction,
-            self.transverse_damping,
-            self.body_added_mass,
-            self.body_drag,
-            self.held,
-            self.seabed_normal,
-            self.seabed_offset,
-            self.seabed_stiffness,
-            self.seabed_damping,
-            self.friction,
-            self.law_code,
-            self.law_params,
-            self.law_knots,
-            self.law_start,
-            self.law_count,
-            self.broken,
-        )
+        return LineArrays(*(getattr(self, name) for name in LineArrays._fields))
 
 
 #: axial laws of the compiled kernels (:mod:`cablestudy.physics.axial`)

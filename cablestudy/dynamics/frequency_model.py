@@ -385,12 +385,6 @@ def drag_linearisation(
     return out
 
 
-def _banded(A: sp.spmatrix, bw: int) -> np.ndarray:
-    """``A`` in LAPACK band storage with ``bw`` sub- and super-diagonals."""
-    coo = A.tocoo()
-    return _band_of(coo.row, coo.col, coo.data, bw, A.shape[0])
-
-
 def _band_of(row: np.ndarray, col: np.ndarray, val: np.ndarray, bw: int, size: int) -> np.ndarray:
     """The (size, size) matrix of the distinct entries ``val`` at (``row``, ``col``) in
     LAPACK band storage with ``bw`` sub- and super-diagonals."""

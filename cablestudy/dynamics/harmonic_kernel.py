@@ -143,49 +143,66 @@ def drag_fit_samples(  # noqa: PLR0913
                 h20 += f2 * w0
                 h21 += f2 * w1
                 h22 += f2 * w2
-        trace = (g00 + g11 + g22) / samples
-        if not trace > 0.0:  # a node at rest: the small-motion tangent
-            for a in range(3):
-                for b in range(3):
-                    out[i, a, b] = tangent_d[i, a, b]
-            continue
-        eps = FIT_REGULARISATION * trace
-        G00, G01, G02 = g00 / samples + eps, g01 / samples, g02 / samples
-        # w1 w0 is w0 w1 exactly: the lower sums equal the upper ones bit for bit
-        G10, G11, G12 = g01 / samples, g11 / samples + eps, g12 / samples
-        G20, G21, G22 = g02 / samples, g12 / samples, g22 / samples + eps
-        H00 = h00 / samples + eps * tangent_d[i, 0, 0]
-        H01 = h01 / samples + eps * tangent_d[i, 0, 1]
-        H02 = h02 / samples + eps * tangent_d[i, 0, 2]
-        H10 = h10 / samples + eps * tangent_d[i, 1, 0]
-        H11 = h11 / samples + eps * tangent_d[i, 1, 1]
-        H12 = h12 / samples + eps * tangent_d[i, 1, 2]
-        H20 = h20 / samples + eps * tangent_d[i, 2, 0]
-        H21 = h21 / samples + eps * tangent_d[i, 2, 1]
-        H22 = h22 / samples + eps * tangent_d[i, 2, 2]
-        # D G = H  ->  D = H G^-1 (G symmetric positive definite; cofactors)
-        i00 = G11 * G22 - G12 * G21
-        i01 = G02 * G21 - G01 * G22
-        i02 = G01 * G12 - G02 * G11
-        i10 = G12 * G20 - G10 * G22
-        i11 = G00 * G22 - G02 * G20
-        i12 = G02 * G10 - G00 * G12
-        i20 = G10 * G21 - G11 * G20
-        i21 = G01 * G20 - G00 * G21
-        i22 = G00 * G11 - G01 * G10
-        det = G00 * i00 + G01 * i10 + G02 * i20
-        i00, i01, i02 = i00 / det, i01 / det, i02 / det
-        i10, i11, i12 = i10 / det, i11 / det, i12 / det
-        i20, i21, i22 = i20 / det, i21 / det, i22 / det
-        out[i, 0, 0] = H00 * i00 + H01 * i10 + H02 * i20
-        out[i, 0, 1] = H00 * i01 + H01 * i11 + H02 * i21
-        out[i, 0, 2] = H00 * i02 + H01 * i12 + H02 * i22
-        out[i, 1, 0] = H10 * i00 + H11 * i10 + H12 * i20
-        out[i, 1, 1] = H10 * i01 + H11 * i11 + H12 * i21
-        out[i, 1, 2] = H10 * i02 + H11 * i12 + H12 * i22
-        out[i, 2, 0] = H20 * i00 + H21 * i10 + H22 * i20
-        out[i, 2, 1] = H20 * i01 + H21 * i11 + H22 * i21
-        out[i, 2, 2] = H20 * i02 + H21 * i12 + H22 * i22
+        fit_from_sums(
+            (g00, g01, g02, g11, g12, g22),
+            (h00, h01, h02, h10, h11, h12, h20, h21, h22),
+            samples,
+            tangent_d,
+            i,
+            out,
+        )
+
+
+@njit(cache=True, inline="always")
+def fit_from_sums(g, h, samples, lean, i, out):  # noqa: ANN001, ANN201, PLR0913
+    """The 3x3 drag fit ``out[i]`` of node ``i`` from its sums over the ``samples``
+    phases: ``g`` of ``w w^T`` (entries 00, 01, 02, 11, 12, 22) and ``h`` of ``(f -
+    f_mean) w^T`` (row by row, 00 .. 22), ``w`` the relative velocity and ``f`` the drag.
+    The least-squares fit ``D G = H`` (``G``, ``H`` the means) is regularised towards
+    ``lean[i]``, the small-motion tangent: ``D (G + eps I) = H + eps lean[i]`` with
+    ``eps`` :data:`.frequency_model.FIT_REGULARISATION` times the trace of ``G``, and
+    solved by cofactors (``G`` symmetric positive definite); a node at rest (zero
+    trace) takes ``lean[i]``. Shared by the single line's fit (:func:`drag_fit_samples`)
+    and the system's (:func:`.system_fd_fit.fit_node`); inlined into each, so that it
+    is compiled with its caller's floating-point flags."""
+    g00, g01, g02, g11, g12, g22 = g
+    h00, h01, h02, h10, h11, h12, h20, h21, h22 = h
+    trace = (g00 + g11 + g22) / samples
+    if not trace > 0.0:  # a node at rest: the small-motion tangent
+        for a in range(3):
+            for b in range(3):
+                out[i, a, b] = lean[i, a, b]
+        return
+    eps = FIT_REGULARISATION * trace
+    G00, G01, G02 = g00 / samples + eps, g01 / samples, g02 / samples
+    G11, G12, G22 = g11 / samples + eps, g12 / samples, g22 / samples + eps
+    H00 = h00 / samples + eps * lean[i, 0, 0]
+    H01 = h01 / samples + eps * lean[i, 0, 1]
+    H02 = h02 / samples + eps * lean[i, 0, 2]
+    H10 = h10 / samples + eps * lean[i, 1, 0]
+    H11 = h11 / samples + eps * lean[i, 1, 1]
+    H12 = h12 / samples + eps * lean[i, 1, 2]
+    H20 = h20 / samples + eps * lean[i, 2, 0]
+    H21 = h21 / samples + eps * lean[i, 2, 1]
+    H22 = h22 / samples + eps * lean[i, 2, 2]
+    # D G = H  ->  D = H G^-1: the cofactors of the symmetric G over its determinant
+    i00 = G11 * G22 - G12 * G12
+    i01 = G02 * G12 - G01 * G22
+    i02 = G01 * G12 - G02 * G11
+    i11 = G00 * G22 - G02 * G02
+    i12 = G02 * G01 - G00 * G12
+    i22 = G00 * G11 - G01 * G01
+    det = G00 * i00 + G01 * i01 + G02 * i02
+    i00, i01, i02, i11, i12, i22 = i00 / det, i01 / det, i02 / det, i11 / det, i12 / det, i22 / det
+    out[i, 0, 0] = H00 * i00 + H01 * i01 + H02 * i02
+    out[i, 0, 1] = H00 * i01 + H01 * i11 + H02 * i12
+    out[i, 0, 2] = H00 * i02 + H01 * i12 + H02 * i22
+    out[i, 1, 0] = H10 * i00 + H11 * i01 + H12 * i02
+    out[i, 1, 1] = H10 * i01 + H11 * i11 + H12 * i12
+    out[i, 1, 2] = H10 * i02 + H11 * i12 + H12 * i22
+    out[i, 2, 0] = H20 * i00 + H21 * i01 + H22 * i02
+    out[i, 2, 1] = H20 * i01 + H21 * i11 + H22 * i12
+    out[i, 2, 2] = H20 * i02 + H21 * i12 + H22 * i22
 
 
 #: threshold of the pivoting of :func:`band_solve_rows` (the diagonal is kept while
@@ -273,10 +290,10 @@ def _csr_rows(ptr, idx, val, x, lo, hi, out):  # noqa: ANN001, ANN202
 ANDERSON_DEPTH = 3
 
 
-@njit(cache=True, fastmath=True, inline="always")
+@njit(cache=True, inline="always")
 def _dot(x, y):  # noqa: ANN001, ANN202
-    """``x . y`` of two 1-D arrays (reassociated, so vectorised: the mixing weights
-    need no particular order of the sum)."""
+    """``x . y`` of two 1-D arrays, summed in order (inlined into :func:`_mixed`, it
+    takes its caller's floating-point flags: none)."""
     acc = 0.0
     for q in range(x.shape[0]):
         acc += x[q] * y[q]

@@ -60,31 +60,38 @@ def winch_set(paid, ctl, wini, per_length, s_ini, s, largs):  # noqa: ANN001, AN
     if not (ctl[6] * l_ini <= l0 <= ctl[7] * l_ini):
         return False
     half = 0.5 * paid
-    rest = largs[0]
+    rest = largs.rest_length
     rest[0] = l0
     for i in range(1, s.shape[0]):
         s[i] = s_ini[i] + paid
-    largs[2][0] = wini[1, 0] * l0 / l_ini
-    arrays = (largs[8], largs[6], largs[7], largs[4], largs[5], largs[14])
+    largs.internal_damping[0] = wini[1, 0] * l0 / l_ini
+    arrays = (
+        largs.mass,
+        largs.added_mass_normal,
+        largs.added_mass_tangential,
+        largs.drag_normal,
+        largs.drag_tangential,
+        largs.transverse_damping,
+    )
     for k in range(6):
         arr = arrays[k]
         for j in range(2):
             arr[j] = wini[2 + k, j] + half * per_length[k]
-    force = largs[3]
+    force = largs.force
     for j in range(2):
         force[j, 2] = wini[8, j] - half * per_length[6]
     if per_length[7] > 0.0:
-        k_sb = largs[20]
-        c_sb = largs[21]
-        body = largs[15]
+        k_sb = largs.seabed_stiffness
+        c_sb = largs.seabed_damping
+        body = largs.body_added_mass
         for j in range(2):
             k_new = wini[9, j] + half * per_length[7]
             inertia0 = wini[2, j] + wini[3, j] + body[j]
-            inertia = largs[8][j] + largs[6][j] + body[j]
+            inertia = largs.mass[j] + largs.added_mass_normal[j] + body[j]
             if wini[9, j] > 0.0 and inertia0 > 0.0:
                 c_sb[j] = wini[10, j] * math.sqrt(k_new * inertia / (wini[9, j] * inertia0))
             k_sb[j] = k_new
-    bending = largs[12]
+    bending = largs.bending
     if bending.shape[0] > 2 and wini[11, 1] > 0.0:
         bending[1] = wini[11, 1] * (l_ini + wini[0, 1]) / (l0 + wini[0, 1])
     if ctl[8] > 0.0:
@@ -135,8 +142,8 @@ def _attempt(  # noqa: ANN202, PLR0913
     last three accepted positions, the held ends moved with the prescribed motion,
     shared linearly along ``frac``) and :func:`alpha_step`. Returns (Newton
     iterations, converged, winch within its bounds)."""
-    held = largs[17]
-    taut0 = wargs[9]
+    held = largs.held
+    taut0 = wargs.taut0
     n = x0.shape[0]
     tn = t + h
     if ctl[3] != 0.0:
@@ -203,9 +210,9 @@ def _attempt(  # noqa: ANN202, PLR0913
         v1,
         a1,
         anchor,
-        *largs,
-        *wargs,
-        *sargs,
+        largs,
+        wargs,
+        sargs,
     )
     return its, ok, True
 
@@ -214,10 +221,10 @@ def _attempt(  # noqa: ANN202, PLR0913
 def end_forces_of(x1, a1, largs, wargs, forces):  # noqa: ANN001, ANN201
     """Force of the line on the ends [N] (2, 3) into ``forces``: minus a held end
     node's support reaction, the end element's pull on a free end node."""
-    F = wargs[0]
-    M_d = wargs[6]
-    tension = wargs[7]
-    held = largs[17]
+    F = wargs.F
+    M_d = wargs.M_d
+    tension = wargs.tension
+    held = largs.held
     n = x1.shape[0]
     m = tension.shape[0]
     for e in range(2):
@@ -330,15 +337,15 @@ def march(  # noqa: ANN201, PLR0913, PLR0915
     Newton failed at the smallest step (``st_f[9]`` the step tried), :data:`PARTED`,
     :data:`WINCH_LIMIT`.
     """
-    F = wargs[0]
-    tension = wargs[7]
-    strain = wargs[8]
-    contact = wargs[10]
-    friction_force = wargs[11]
-    seabed_normal = largs[18]
-    seabed_offset = largs[19]
-    seabed_stiffness = largs[20]
-    broken = largs[28]
+    F = wargs.F
+    tension = wargs.tension
+    strain = wargs.strain
+    contact = wargs.contact
+    friction_force = wargs.friction_force
+    seabed_normal = largs.seabed_normal
+    seabed_offset = largs.seabed_offset
+    seabed_stiffness = largs.seabed_stiffness
+    broken = largs.broken
     has_seabed = seabed_stiffness.max() > 0.0 if seabed_stiffness.shape[0] else False
     n = x0.shape[0]
     m = tension.shape[0]

@@ -350,17 +350,6 @@ def _block_structure(n: int, m1: int, m2: int) -> tuple[np.ndarray, np.ndarray, 
     return take, cols.ravel()[take], indptr
 
 
-def mass_blocks(problem: ModalProblem) -> np.ndarray:
-    """Lumped nodal mass blocks (n_nodes, 3, 3) [kg] (:func:`tangents`)."""
-    return tangents(problem)[0]
-
-
-def stiffness_matrix(problem: ModalProblem) -> sp.csr_matrix:
-    """Tangent stiffness (3 n_nodes, 3 n_nodes) [N/m] of all nodes, before constraints
-    (:func:`tangents`)."""
-    return tangents(problem)[1]
-
-
 def transverse_mass(
     line: LineModel, medium: Medium, s: np.ndarray, *, include_added_mass: bool = True
 ) -> np.ndarray:

@@ -37,7 +37,7 @@ from .time_problem import (
 def _advance(head: tuple, line_args: tuple, tail: tuple) -> int:
     """One implicit step (:func:`.alpha_step.alpha_step`): its Newton iterations, or
     -1 - iterations when it failed."""
-    its, ok = alpha_step(*head, *line_args, *tail)
+    its, ok = alpha_step(*head, line_args, *tail)
     return its if ok else -1 - its
 
 
@@ -248,7 +248,7 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
             a1,
             work.anchor,
         )
-        tail = (*wargs, *sargs)
+        tail = (wargs, sargs)
         new_line, new_split = line, split
         if sliding is None:
             its = _advance(head, largs, tail)

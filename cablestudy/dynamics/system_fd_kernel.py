@@ -36,9 +36,10 @@ from numba import njit
 from .harmonic_kernel import PIVOT_THRESHOLD
 from .system_fd_fit import DEPTH, anderson, fit_all
 
-#: the compiler may reassociate and contract sums and products (rounding only); NaN
-#: and infinity keep their meaning (the failure checks rely on them)
-_SAFE_FAST = {"reassoc", "contract", "arcp", "nsz"}
+#: no fast-math in these kernels: it made them no faster (the time goes to the fit,
+#: :func:`.system_fd_fit.fit_node`) and made their answers depend on whether numba had
+#: just compiled them or loaded them from its cache (by up to 2e-9 of a value)
+_SAFE_FAST = False
 #: codes of the kernel's outcome (``info[0]``)
 OK, SINGULAR_LINE, SINGULAR_JUNCTION, NOT_CONVERGED = 0, 1, 2, 3
 

@@ -2,7 +2,7 @@
 cases. The mathematics is that of :mod:`.pieces` and :func:`.semi_analytic_newton.solve_free`
 with the load of every piece vertical (weight only) and point loads at piece
 boundaries; numba compiles it once per machine (cached on disk). When numba is not
-installed, :data:`AVAILABLE` is False and the numpy batch path is used instead.
+installed, :data:`AVAILABLE` is False and the same functions run as plain Python.
 """
 
 from __future__ import annotations

@@ -57,7 +57,6 @@ def solve_batch(
                 P,
                 n_nodes,
                 [layouts.get(i) for i in members],
-                deadline,
                 why=left,
                 verify=verify,
             ),

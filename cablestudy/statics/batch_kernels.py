@@ -1,5 +1,5 @@
-"""Many still-water problems of the semi-analytic solver at once (one Newton iteration
-over all cases as array operations).
+"""Many still-water problems of the semi-analytic solver at once (one compiled Newton
+iteration over all cases, :func:`._fast.solve_cases`).
 
 The per-case solver spends most of its time in numpy overhead on arrays of a few
 elements; a study sweeping end positions, lengths or loads has thousands of such cases
@@ -17,12 +17,9 @@ case took beyond round-off.
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
 
 from .base import STATUS_OK, StaticProblem, StaticResult
-from .pieces import piece_integrals
 from .seabed import Plane
 from .semi_analytic_shape import make_layout, reversed_line
 from .verify import Pieces, check_lines, verified
@@ -372,7 +369,7 @@ def _contact_result(x: dict, out: dict, j: int) -> StaticResult | None:
 
 
 def solve_compiled(
-    problem: StaticProblem, *, deadline: float | None = None, why: dict[int, str] | None = None
+    problem: StaticProblem, *, why: dict[int, str] | None = None
 ) -> StaticResult | None:
     """One still-water problem through the compiled batch kernels (free-hanging, or
     anchored on the seabed), or None when it does not take that path (or does not settle
@@ -396,7 +393,7 @@ def solve_compiled(
     else:
         lay = make_layout(line)
         P = len(lay.ell)
-    return _solve_group([problem], P, problem.n_nodes, [lay], deadline, why=why)[0]
+    return _solve_group([problem], P, problem.n_nodes, [lay], why=why)[0]
 
 
 def _guess(
@@ -451,8 +448,6 @@ def _solve_group(
     P: int,
     n_nodes: int,
     layouts: list,
-    deadline: float | None,
-    use_compiled: bool = True,
     why: dict[int, str] | None = None,
     verify: bool = True,
 ) -> list[StaticResult | None]:
@@ -483,11 +478,8 @@ def _solve_group(
     rA = np.array([p.end_a.position for p in problems], dtype=float)
     Ltot = bounds[:, -1]
     Q = q * ell[..., None]
-    C = np.cumsum(point[:, :-1], axis=1)
-    C[:, 1:] += np.cumsum(Q[:, :-1], axis=1)
     Cend = point.sum(axis=1) + Q.sum(axis=1)
     target = np.zeros((N, 3))
-    free = np.zeros((N, 3), dtype=bool)
     TA = np.zeros((N, 3))
     fixed = kind == "fixed"
     moor = kind == "mooring"
@@ -510,8 +502,6 @@ def _solve_group(
             )
             + Cend[force]
         )
-    free[fixed] = True
-    free[moor, 2] = True
     EAeff = Ltot / np.sum(ell / EA, axis=1)
     if np.any(fixed):
         TA[fixed] = _guess(target[fixed], Ltot[fixed], Cend[fixed], EAeff[fixed], point[fixed, 0])
@@ -529,46 +519,38 @@ def _solve_group(
     maxit = np.array([p.max_iterations for p in problems])
     # the same arc lengths as np.linspace(0, L, n) of the one-by-one path, bit for bit
     s = np.linspace(np.zeros(N), Ltot, n_nodes, axis=1)
-    if _fast.AVAILABLE and use_compiled:
-        pos = np.empty((N, n_nodes, 3))
-        tension = np.empty((N, n_nodes))
-        TL = np.empty((N, 3))
-        TAo = np.empty((N, 3))
-        iters = np.zeros(N, dtype=np.int64)
-        resid = np.zeros(N)
-        status = np.zeros(N, dtype=np.int64)
-        kind_code = np.where(fixed, 0, np.where(moor, 1, 2)).astype(np.int64)
-        _fast.solve_cases(
-            ell,
-            EA,
-            -q[..., 2].copy(),
-            point,
-            bounds,
-            kind_code,
-            rA,
-            target,
-            TA,
-            tol,
-            maxit.astype(np.int64),
-            s,
-            pos,
-            tension,
-            TAo,
-            TL,
-            iters,
-            resid,
-            status,
-        )
-        TA = TAo
-        done = status == 0
-        failed = ~done
-    else:
-        pos, tension, TA, TL, iters, resid, done, failed = _newton_numpy(
-            ell, EA, q, point, bounds, C, Cend, rA, target, free, TA, force, tol, maxit, s, deadline
-        )
+    pos = np.empty((N, n_nodes, 3))
+    tension = np.empty((N, n_nodes))
+    TL = np.empty((N, 3))
+    TAo = np.empty((N, 3))
+    iters = np.zeros(N, dtype=np.int64)
+    resid = np.zeros(N)
+    status = np.zeros(N, dtype=np.int64)
+    kind_code = np.where(fixed, 0, np.where(moor, 1, 2)).astype(np.int64)
+    _fast.solve_cases(
+        ell,
+        EA,
+        -q[..., 2].copy(),
+        point,
+        bounds,
+        kind_code,
+        rA,
+        target,
+        TA,
+        tol,
+        maxit.astype(np.int64),
+        s,
+        pos,
+        tension,
+        TAo,
+        TL,
+        iters,
+        resid,
+        status,
+    )
+    TA = TAo
     good = (
-        done
-        & ~failed
+        (status == 0)
         & np.all(np.isfinite(pos), axis=(1, 2))
         & np.all(np.isfinite(tension), axis=1)
         & np.all(np.isfinite(TA), axis=1)
@@ -660,118 +642,3 @@ def _verified_group(
     )
     ok[idx] = checked.ok
     return ok
-
-
-def _newton_numpy(
-    ell: np.ndarray,
-    EA: np.ndarray,
-    q: np.ndarray,
-    point: np.ndarray,
-    bounds: np.ndarray,
-    C: np.ndarray,
-    Cend: np.ndarray,
-    rA: np.ndarray,
-    target: np.ndarray,
-    free: np.ndarray,
-    TA: np.ndarray,
-    force: np.ndarray,
-    tol: np.ndarray,
-    maxit: np.ndarray,
-    s: np.ndarray,
-    deadline: float | None,
-) -> tuple[np.ndarray, ...]:
-    """The Newton iteration over all cases as numpy array operations (used without
-    numba), then the sampling at ``s``."""
-    N, P = ell.shape
-    Ltot = bounds[:, -1]
-    scale = np.maximum(Ltot, np.linalg.norm(target, axis=1))
-
-    def evaluate(idx: np.ndarray, T: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        dr, jac, en = piece_integrals(T[:, None, :] - C[idx], q[idx], ell[idx], EA[idx])
-        assert jac is not None
-        return dr.sum(axis=1), jac.sum(axis=1), en.sum(axis=1)
-
-    active = np.flatnonzero(~force)
-    done = np.zeros(N, dtype=bool)
-    done[force] = True
-    failed = np.zeros(N, dtype=bool)
-    iters = np.zeros(N, dtype=int)
-    resid = np.zeros(N)
-    polished = np.zeros(N, dtype=bool)
-    if active.size:
-        r, J, E = evaluate(active, TA[active])
-        g = np.where(free[active], r - target[active], 0.0)
-        psi = E - np.sum(np.where(free[active], target[active] * TA[active], 0.0), axis=1)
-        while active.size:
-            if deadline is not None and time.monotonic() > deadline:
-                failed[active] = True
-                break
-            res = np.max(np.abs(g), axis=1) / scale[active]
-            resid[active] = res
-            bad = ~np.isfinite(res)
-            conv = (res <= tol[active]) & (polished[active] | (res <= 1e-15))
-            polished[active[res <= tol[active]]] = True
-            over = iters[active] >= maxit[active]
-            stop = bad | conv | over
-            failed[active[bad | (over & ~conv)]] = True
-            done[active[conv]] = True
-            keep = ~stop
-            active, r, J, E, g, psi = (active[keep], r[keep], J[keep], E[keep], g[keep], psi[keep])
-            if not active.size:
-                break
-            iters[active] += 1
-            fa = free[active]
-            Jm = np.where(fa[:, :, None] & fa[:, None, :], J, np.eye(3))
-            step = np.linalg.solve(Jm, -g[..., None])[..., 0]
-            slope = np.sum(g * step, axis=1)
-            slack = 1e-13 * (
-                np.abs(E) + np.abs(np.sum(np.where(fa, target[active] * TA[active], 0.0), axis=1))
-            )
-            lam = np.ones(active.size)
-            pending = np.arange(active.size)
-            newT = TA[active].copy()
-            new_r, new_J, new_E, new_psi = r.copy(), J.copy(), E.copy(), psi.copy()
-            for _ in range(80):
-                idx = active[pending]
-                Tn = TA[idx] + lam[pending, None] * step[pending]
-                rn, Jn, En = evaluate(idx, Tn)
-                psin = En - np.sum(np.where(fa[pending], target[idx] * Tn, 0.0), axis=1)
-                ok = (
-                    np.isfinite(psin)
-                    & np.all(np.isfinite(Jn), axis=(1, 2))
-                    & (psin <= psi[pending] + 1e-4 * lam[pending] * slope[pending] + slack[pending])
-                )
-                acc = pending[ok]
-                newT[acc], new_r[acc], new_J[acc] = Tn[ok], rn[ok], Jn[ok]
-                new_E[acc], new_psi[acc] = En[ok], psin[ok]
-                pending = pending[~ok]
-                if not pending.size:
-                    break
-                lam[pending] *= 0.5
-            if pending.size:
-                failed[active[pending]] = True
-                keep = np.ones(active.size, dtype=bool)
-                keep[pending] = False
-            else:
-                keep = np.ones(active.size, dtype=bool)
-            TA[active] = newT
-            r, J, E, psi = new_r, new_J, new_E, new_psi
-            g = np.where(free[active], r - target[active], 0.0)
-            active, r, J, E, g, psi = (active[keep], r[keep], J[keep], E[keep], g[keep], psi[keep])
-    # sample the solved lines
-    k = np.clip(np.sum(bounds[:, None, 1:-1] <= s[:, :, None], axis=2), 0, P - 1)
-    rows = np.arange(N)[:, None]
-    T0 = TA[:, None, :] - C  # (N, P, 3)
-    dr_p, _, _ = piece_integrals(T0, q, ell, EA, jacobian=False)
-    r0 = rA[:, None, :] + np.concatenate((np.zeros((N, 1, 3)), np.cumsum(dr_p, axis=1)), axis=1)
-    sigma = np.clip(s - bounds[rows, k], 0.0, ell[rows, k])
-    qk = q[rows, k]
-    T0k = T0[rows, k]
-    dr, _, _ = piece_integrals(T0k, qk, sigma, EA[rows, k], jacobian=False)
-    pos = r0[rows, k] + dr
-    Tv = T0k - qk * sigma[..., None]
-    tension = np.linalg.norm(Tv, axis=2)
-    TL = TA - Cend
-    tension[:, 0] = np.linalg.norm(TA, axis=1)
-    tension[:, -1] = np.linalg.norm(TL, axis=1)
-    return pos, tension, TA, TL, iters, resid, done, failed

@@ -55,7 +55,7 @@ def contact_many(problems: list[StaticProblem]) -> list[StaticResult | None]:
 
 
 def solve_compiled_many(problems: list[StaticProblem]) -> list[StaticResult | None]:
-    """:func:`~.batch_kernels.solve_compiled` of each problem (no deadline), the
+    """:func:`~.batch_kernels.solve_compiled` of each problem, the
     batchable ones of the same pieces and nodes stacked into one kernel call, the
     seabed-contact ones of the same plane into another: the same answers, verified the
     same way. None where :func:`~.batch_kernels.solve_compiled` gives None (the general
@@ -87,9 +87,7 @@ def solve_compiled_many(problems: list[StaticProblem]) -> list[StaticResult | No
             if res is not None and verified(problems[i], res, method="catenary").success:
                 out[i] = res
     for (P, n_nodes, _), idx in groups.items():
-        solved = _solve_group(
-            [problems[i] for i in idx], P, n_nodes, [layouts[i] for i in idx], None
-        )
+        solved = _solve_group([problems[i] for i in idx], P, n_nodes, [layouts[i] for i in idx])
         for i, res in zip(idx, solved, strict=True):
             out[i] = res
     return out

@@ -200,7 +200,7 @@ class SemiAnalyticSolver:
             from .batch_kernels import solve_compiled
 
             left: dict[int, str] = {}
-            fast = solve_compiled(problem, deadline=deadline, why=left)
+            fast = solve_compiled(problem, why=left)
             if fast is not None:
                 return fast
             fallback = left.get(0, "")

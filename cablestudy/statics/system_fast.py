@@ -67,10 +67,6 @@ class Packed:
     cap: np.ndarray
     n_nodes: int
 
-    @property
-    def n(self) -> int:
-        return self.la.shape[0]
-
 
 def ineligible(system: MooringSystem, *, prescribed: bool = False) -> str:
     """Why the compiled path does not take ``system`` ('' when it does, as far as the

@@ -87,10 +87,6 @@ class CaseGrid:
     def size(self) -> int:
         return math.prod(self.shape)
 
-    def rows(self, lo: int, hi: int) -> tuple[slice, ...]:
-        """The block of cases ``lo <= i0 < hi`` along the first axis."""
-        return (slice(lo, hi),) + tuple(slice(0, n) for n in self.shape[1:])
-
     def values(self, path: str, lo: int, hi: int) -> np.ndarray:
         """The value of ``path`` for every case of rows ``lo:hi``, flattened in C order."""
         axis, vals = self.swept[path]

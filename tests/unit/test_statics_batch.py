@@ -5,7 +5,6 @@ does not take."""
 from __future__ import annotations
 
 import numpy as np
-import pytest
 
 from cablestudy.statics import EndCondition, LineModel, Medium, StaticProblem
 from cablestudy.statics.batch import solve_batch
@@ -89,10 +88,9 @@ def test_batch_equals_one_by_one() -> None:
         _agree(a, solver.solve(p), p.line.total_length)
 
 
-@pytest.mark.parametrize("compiled", [True, False])
-def test_group_kernels_agree(compiled: bool) -> None:
+def test_group_kernels_agree() -> None:
     probs = [p for p in problems() if p.line.attachment_s.size == 0]
-    res = _solve_group(probs, 1, 51, [None] * len(probs), None, use_compiled=compiled)
+    res = _solve_group(probs, 1, 51, [None] * len(probs))
     solver = SemiAnalyticSolver()
     for a, p in zip(res, probs, strict=True):
         assert a is not None
@@ -107,18 +105,10 @@ def test_group_with_attachments_uses_layouts() -> None:
         groups.setdefault(len(lay.ell), []).append(i)
     solver = SemiAnalyticSolver()
     for P, idx in groups.items():
-        for compiled in (True, False):
-            res = _solve_group(
-                [probs[i] for i in idx],
-                P,
-                51,
-                [layouts[i] for i in idx],
-                None,
-                use_compiled=compiled,
-            )
-            for a, i in zip(res, idx, strict=True):
-                assert a is not None
-                _agree(a, solver.solve(probs[i]), probs[i].line.total_length)
+        res = _solve_group([probs[i] for i in idx], P, 51, [layouts[i] for i in idx])
+        for a, i in zip(res, idx, strict=True):
+            assert a is not None
+            _agree(a, solver.solve(probs[i]), probs[i].line.total_length)
 
 
 def test_cases_the_batch_does_not_take_are_solved_one_by_one() -> None:

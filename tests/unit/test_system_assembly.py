@@ -101,7 +101,7 @@ def test_all_lines_in_one_call_are_each_line_bit_for_bit() -> None:
         work.taut0[:] = taut[pk.eo[k] : pk.eo[k + 1]]
         work.slip_state[:] = slips[pk.no[k] : pk.no[k + 1]]
         nodes, els = slice(pk.no[k], pk.no[k + 1]), slice(pk.eo[k], pk.eo[k + 1])
-        assemble(xs[k], vs[k], anchor[nodes], *ln.kernel_args(), *work.assemble_args())
+        assemble(xs[k], vs[k], anchor[nodes], ln.kernel_args(), work.assemble_args())
         q = slice(pk.S[2][k], pk.S[2][k + 1])
         pairs = (
             (W[0][nodes], work.F), (W[1][nodes], work.K_d), (W[2][els], work.K_o),
