@@ -103,7 +103,8 @@ from .frequency_model import (
 from .linear_model import linear_line
 from .modal import ModalProblem
 from .system_drag import mean_drag_jacobian, point_drag_fit
-from .system_fd_kernel import NOT_CONVERGED, SINGULAR_JUNCTION, SINGULAR_LINE, solve_case
+from .system_fd_kernel import NOT_CONVERGED, SINGULAR_JUNCTION, SINGULAR_LINE
+from .system_fd_sweep import solve_case
 from .system_fd_pack import PackedSystem, pack_system
 from .system_frequency_reference import iterate_reference
 
@@ -526,14 +527,42 @@ def solve_system_harmonic(
     :mod:`.system_frequency_reference`). Never raises for a numerical failure: status
     and message."""
     settings = settings or DragSettings()
-    L = len(model.lines)
-    static = model.post.static
+    prescribed = prescribed_motion(model, body_motion, point_excitation)
+    if reference:
+        outcome = iterate_reference(model, omega, prescribed, settings)
+    else:
+        outcome = _iterate_compiled(model, omega, prescribed, settings)
+    return harmonic_result(model, omega, body_motion, settings, prescribed, outcome)
+
+
+def prescribed_motion(
+    model: SystemLinear, body_motion: np.ndarray, point_excitation: np.ndarray | None = None
+) -> np.ndarray:
+    """Complex displacements [m] (P, 3) of the points the motion prescribes: the
+    bodies' (:func:`point_motion`) plus the points' own ``point_excitation``."""
     prescribed = point_motion(model, body_motion)
     if point_excitation is not None:
         own = np.asarray(point_excitation, dtype=complex).reshape(prescribed.shape)
         if np.any(own[model.point_kind == FREE] != 0.0):
             raise ValueError("a free point cannot be moved on its own: it is an unknown")
         prescribed = prescribed + own
+    return prescribed
+
+
+def harmonic_result(
+    model: SystemLinear,
+    omega: float,
+    body_motion: np.ndarray,
+    settings: DragSettings,
+    prescribed: np.ndarray,
+    outcome: tuple,
+) -> SystemFrequencyResult:
+    """The :class:`SystemFrequencyResult` of an iteration's ``outcome`` (kind, message,
+    iterations, converged, change, point motion, per line displacements, end forces,
+    residual: :func:`~.system_frequency_reference.iterate_reference`'s form) for the
+    motion ``body_motion`` and ``prescribed`` at ``omega``."""
+    L = len(model.lines)
+    static = model.post.static
 
     def failed(status: int, message: str, iterations: int = 0) -> SystemFrequencyResult:
         return SystemFrequencyResult(
@@ -551,14 +580,7 @@ def solve_system_harmonic(
             element_tension_static=[r.line.tension.copy() for r in model.lines],
         )
 
-    if reference:
-        kind, message, iterations, converged, change, u_pts, disp, forces, residual = (
-            iterate_reference(model, omega, prescribed, settings)
-        )
-    else:
-        kind, message, iterations, converged, change, u_pts, disp, forces, residual = (
-            _iterate_compiled(model, omega, prescribed, settings)
-        )
+    kind, message, iterations, converged, change, u_pts, disp, forces, residual = outcome
     if kind == "numerical":
         return failed(STATUS_NUMERICAL, message, iterations)
     if kind == "not converged":
@@ -621,12 +643,10 @@ def _iterate_compiled(
     model: SystemLinear, omega: float, prescribed: np.ndarray, settings: DragSettings
 ) -> tuple:
     """:func:`~.system_frequency_reference.iterate_reference` by the compiled kernel
-    (:func:`.system_fd_kernel.solve_case`), its outcome in the same form."""
+    (:func:`.system_fd_sweep.solve_case`), its outcome in the same form."""
     packed = model.packed
-    a = packed.arrays
-    noff = packed.node_offset
     L = len(model.lines)
-    disp = np.empty((int(noff[-1]), 3), dtype=complex)
+    disp = np.empty((int(packed.node_offset[-1]), 3), dtype=complex)
     u_pts = np.empty((model.point_kind.size, 3), dtype=complex)
     forces = np.empty((L, 6), dtype=complex)
     info = np.zeros(4, dtype=np.int64)
@@ -638,17 +658,29 @@ def _iterate_compiled(
         int(settings.max_iterations),
         int(settings.samples),
         bool(settings.exact),
-        a[0],
-        a[1],
+        packed.arrays,
         packed.bw,
-        *a[2:],
         disp,
         u_pts,
         forces,
         info,
         finfo,
     )
-    code, iterations, bad, at_start = (int(v) for v in info)
+    return compiled_outcome(model, omega, info, finfo, disp, u_pts, forces)
+
+
+def compiled_outcome(
+    model: SystemLinear,
+    omega: float,
+    info: np.ndarray,
+    finfo: np.ndarray,
+    disp: np.ndarray,
+    u_pts: np.ndarray,
+    forces: np.ndarray,
+) -> tuple:
+    """The compiled iteration's ``info``, ``finfo`` and arrays (:func:`.system_fd_sweep.
+    iterate`) as :func:`~.system_frequency_reference.iterate_reference`'s outcome."""
+    code, iterations, bad, at_start = (int(v) for v in info[:4])
     change, residual = float(finfo[0]), float(finfo[1])
     hz = omega / (2 * math.pi)
     if code in (SINGULAR_LINE, SINGULAR_JUNCTION):
@@ -661,9 +693,9 @@ def _iterate_compiled(
         return "numerical", message, iterations, False, change, None, None, None, math.nan
     if code == NOT_CONVERGED:
         return "not converged", "", iterations, False, change, None, None, None, math.nan
-    parts = [disp[noff[i] : noff[i + 1]] for i in range(L)]
-    converged = True
-    return "", "", iterations, converged, change, u_pts, parts, forces, residual
+    noff = model.packed.node_offset
+    parts = [disp[noff[i] : noff[i + 1]] for i in range(len(model.lines))]
+    return "", "", iterations, True, change, u_pts, parts, forces, residual
 
 
 def system_frequency_outputs(
