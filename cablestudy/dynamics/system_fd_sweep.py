@@ -9,9 +9,11 @@ fit, Anderson mixing), in a work space allocated once (:func:`workspace`) and re
 by every case of a sweep.
 
 Warm start (a sweep). The cases are taken in the order given (the caller sorts them by
-frequency); a case after one that converged starts from that case's converged drag
-(the nodes' and points' linearised drag matrices) instead of the quasi-static motion's
-fit, and its first change is measured against that case's converged motion. The
+motion and frequency); a case after one that converged at a nearby frequency starts
+from that case's converged drag (the nodes' and points' linearised drag matrices;
+extrapolated linearly in frequency from the two cases before, :func:`solve_sweep`)
+instead of the quasi-static motion's fit, and its first change is measured against
+that case's converged motion. The
 iteration and its stopping test are otherwise the cold start's: it stops when the
 velocity amplitudes of every node change by less than ``tolerance`` of the largest,
 so a warm and a cold start stop at two iterates of the same fixed point, each within
@@ -35,7 +37,8 @@ from .system_fd_kernel import OK, _parts, _residual, _solve
 #: ``info`` of a case (``info[i]``): code, iterations, failing line, 1 if it failed in
 #: the quasi-static start, 1 if the case started warm (its answer from a warm start)
 INFO = 5
-EXTRAPOLATE = True
+#: largest step of frequency, relative, from a case to the next started warm
+NEAR = 0.25
 
 
 @njit(cache=True)
@@ -229,23 +232,41 @@ def solve_case(  # noqa: ANN201, PLR0913
     iterate(omega, prescribed, tolerance, max_iterations, exact, m, bw, ws, False, disp, u_pts, forces, info, finfo)  # fmt: skip
 
 
+@njit(cache=True)
+def _same(prescribed, i):  # noqa: ANN001, ANN202
+    """Whether cases ``i``, ``i - 1`` and ``i - 2`` prescribe the same motion."""
+    for p in range(prescribed.shape[1]):
+        for a in range(3):
+            z = prescribed[i, p, a]
+            if z != prescribed[i - 1, p, a] or z != prescribed[i - 2, p, a]:
+                return False
+    return True
+
+
 @njit(cache=True, error_model="numpy")
 def solve_sweep(  # noqa: ANN201, PLR0913
     omega, prescribed, tolerance, max_iterations, samples, exact, m, bw, warm, disp, u_pts, forces, info, finfo
 ):  # fmt: skip
     """The cases ``i`` (``omega[i]`` [rad/s], ``prescribed[i]`` (P, 3)) in their order
     in one work space: ``disp[i]``, ``u_pts[i]``, ``forces[i]``, ``info[i]`` (:data:`INFO`)
-    and ``finfo[i]`` as :func:`iterate`'s; with ``warm`` each case after a converged one
-    starts from it (module docstring), run again cold if that fails."""
+    and ``finfo[i]`` as :func:`iterate`'s. With ``warm`` a case after a converged one
+    within :data:`NEAR` of its frequency starts from that one's drag (module
+    docstring), extrapolated linearly in frequency from the two before when those
+    converged too, moved by the same motion and stepped up in frequency (by at most
+    twice the last step); run again cold if that fails."""
     ws = workspace(m, bw, samples)
     started = False  # the work space holds a converged case
     flat = ws[13]
-    before = flat.copy()  # the converged drag of the case before the last (EXTRAPOLATE)
+    before = flat.copy()  # the converged drag of the case before the last
     n_ok = 0
     for i in range(omega.shape[0]):
-        hot = warm and started and m[37]
-        if hot and EXTRAPOLATE and n_ok >= 2 and omega[i - 1] > omega[i - 2]:
+        # a neighbour within NEAR of the frequency: its drag is a start closer than the
+        # quasi-static fit (farther, the cold start)
+        hot = warm and started and m[37] and abs(omega[i] - omega[i - 1]) <= NEAR * omega[i]
+        t = 0.0
+        if hot and n_ok >= 2 and omega[i - 1] > omega[i - 2] and _same(prescribed, i):
             t = (omega[i] - omega[i - 1]) / (omega[i - 1] - omega[i - 2])
+        if 0.0 < t <= 2.0:  # the last two converged drags extrapolated (linearly)
             for q in range(flat.shape[0]):
                 d = flat[q]
                 flat[q] = d + t * (d - before[q])

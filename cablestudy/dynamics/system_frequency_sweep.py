@@ -1,8 +1,9 @@
 """A sweep of harmonic motions of one linearised system solved together: the cases
 (frequency, body motion, the points' own motion) of one :class:`~.system_frequency.
 SystemLinear` go to the compiled iteration in one call (:func:`.system_fd_sweep.
-solve_sweep`), sorted by frequency, each case started from its neighbour's converged
-drag (warm start: the module docstring of :mod:`.system_fd_sweep`). Each case's result
+solve_sweep`), those of one motion together in order of frequency, each case started
+from its neighbours' converged drag (warm start: the module docstring of
+:mod:`.system_fd_sweep`). Each case's result
 is :func:`~.system_frequency.solve_system_harmonic`'s for that case, the drag iteration
 stopped at an iterate within the same tolerance of the same fixed point.
 
@@ -18,6 +19,7 @@ import numpy as np
 from .frequency_model import DragSettings
 from .system_fd_sweep import INFO, solve_sweep
 from .system_frequency import (
+    RESIDUAL_BAR,
     SystemFrequencyResult,
     SystemLinear,
     compiled_outcome,
@@ -48,7 +50,10 @@ def solve_system_sweep(
     prescribed = np.stack(
         [prescribed_motion(model, body_motion[i], own[i]) for i in range(n)]
     ).reshape(n, model.point_kind.size, 3)
-    order = np.argsort(w, kind="stable")
+    # the cases of one motion together, each in order of frequency (the warm starts)
+    motion: dict[bytes, int] = {}
+    group = [motion.setdefault(p.tobytes(), len(motion)) for p in prescribed]
+    order = np.lexsort((w, np.array(group, dtype=np.int64).reshape(n)))
     packed = model.packed
     N, L, P = int(packed.node_offset[-1]), len(model.lines), model.point_kind.size
     disp = np.empty((n, N, 3), dtype=complex)
@@ -72,10 +77,81 @@ def solve_system_sweep(
         info,
         finfo,
     )
+    theta = np.asarray(body_motion, dtype=complex).reshape(n, model.n_bodies, 6)[order, :, 3:]
+    post = _post_all(model, w[order], theta, disp, forces)
     out: list[SystemFrequencyResult | None] = [None] * n
     for k, i in enumerate(order):
+        if info[k, 0] == 0 and finfo[k, 1] <= RESIDUAL_BAR:
+            out[i] = _result(model, post, k, info[k], finfo[k], disp[k], u_pts[k])
+            continue
         outcome = compiled_outcome(
             model, float(w[i]), info[k], finfo[k], disp[k], u_pts[k], forces[k]
         )
         out[i] = harmonic_result(model, float(w[i]), body_motion[i], settings, prescribed[i], outcome)
     return out  # type: ignore[return-value]
+
+
+def _post_all(
+    model: SystemLinear, w: np.ndarray, theta: np.ndarray, disp: np.ndarray, forces: np.ndarray
+) -> tuple[np.ndarray, ...]:
+    """:func:`~.system_frequency.harmonic_result`'s outputs of every case at once (cases
+    first): end forces on the points (n, L, 2, 3), end tensions (n, L, 2), the bodies'
+    force (n, B, 6), the element tensions (n, elements) and the envelope over the
+    nodes (n, nodes) above and below."""
+    post = model.post
+    n, L = w.size, len(model.lines)
+    support = -forces.reshape(n, L, 2, 3)
+    end_tension = np.sum(post.unit[None] * support, axis=3)
+    body_force = np.zeros((n, model.n_bodies, 6), dtype=complex)
+    if post.body_line.size:
+        sup = support[:, post.body_line, post.body_end]
+        arm = post.body_arm[None]
+        turned = np.cross(np.cross(theta[:, post.body], arm), post.body_static[None])
+        moment = np.cross(arm, sup) + turned
+        np.add.at(body_force, (slice(None), post.body, slice(0, 3)), sup)
+        np.add.at(body_force, (slice(None), post.body, slice(3, 6)), moment)
+    du = disp[:, post.element + 1] - disp[:, post.element]
+    axial = post.axial_stiffness[None] + 1j * w[:, None] * post.axial_damping[None]
+    tension = axial * np.sum(post.direction[None] * du, axis=2)
+    var = np.empty((n, post.node_static.size), dtype=complex)
+    var[:, post.inner] = 0.5 * (tension[:, post.left] + tension[:, post.right])
+    var[:, post.first] = end_tension[:, :, 0]
+    var[:, post.last] = end_tension[:, :, 1]
+    amp = np.abs(var)
+    return support, end_tension, body_force, tension, post.node_static + amp, post.node_static - amp
+
+
+def _result(
+    model: SystemLinear,
+    post: tuple[np.ndarray, ...],
+    k: int,
+    info: np.ndarray,
+    finfo: np.ndarray,
+    disp: np.ndarray,
+    u_pts: np.ndarray,
+) -> SystemFrequencyResult:
+    """The :class:`~.system_frequency.SystemFrequencyResult` of the solved case ``k`` of
+    :func:`_post_all`'s arrays ``post``."""
+    support, end_tension, body_force, tension, hi, lo = post
+    noff = model.packed.node_offset
+    eoff = noff - np.arange(noff.size)  # elements: a line's nodes less one
+    L = len(model.lines)
+
+    def split(v: np.ndarray, at: np.ndarray) -> list[np.ndarray]:
+        return [v[at[j] : at[j + 1]] for j in range(L)]
+
+    return SystemFrequencyResult(
+        end_tension=end_tension[k],
+        tension_static=model.post.static,
+        element_tension=split(tension[k], eoff),
+        displacement=split(disp, noff),
+        point_displacement=u_pts,
+        end_force=support[k],
+        body_force=body_force[k],
+        iterations=int(info[1]),
+        converged=True,
+        change=float(finfo[0]),
+        residual=float(finfo[1]),
+        element_tension_static=[r.line.tension.copy() for r in model.lines],
+        envelope_lines=(split(hi[k], noff), split(lo[k], noff)),
+    )
