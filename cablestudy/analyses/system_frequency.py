@@ -162,7 +162,7 @@ def _solve_frequency(
 ) -> tuple[int, str, dict[str, np.ndarray], Any, Any]:
     """(status, message, outputs, result, model) of the case's harmonic response, its
     outputs marked as the frequency domain's with ``reason``."""
-    from ..dynamics.system_frequency import solve_system_harmonic, system_frequency_outputs
+    from ..dynamics.system_frequency import system_frequency_outputs
     from .frequency import drag_settings
 
     dyn = case.study.analysis.dynamic
@@ -176,10 +176,12 @@ def _solve_frequency(
     res = _swept.pop(case.hash, None) if _swept.model is model else None
     if res is None:
         res = _solve_sweep(case, model) if _swept.cases else None
-    if res is None:
+    if res is None:  # alone: from the nearest converged case of the model (memory)
+        from ..dynamics.system_frequency_sweep import solve_system_sweep
+
         X, U, frequency = harmonic_motion(case.study)
-        res = solve_system_harmonic(
-            model, 2.0 * math.pi * frequency, X, drag_settings(dyn), point_excitation=U
+        (res,) = solve_system_sweep(
+            model, [2.0 * math.pi * frequency], [X], drag_settings(dyn), [U], memory=_memory(model)
         )
     if res.status != STATUS_OK:
         return res.status, res.message, head, res, model
@@ -201,6 +203,24 @@ def _solve_frequency(
     if bad:
         return STATUS_NUMERICAL, f"non-finite values in {', '.join(bad)}", head, res, model
     return STATUS_OK, "", out, res, model
+
+
+_DRAG_CACHE: OrderedDict[int, tuple[Any, Any]] = OrderedDict()
+
+
+def _memory(model: Any) -> Any:
+    """The model's converged drags kept for warm starts
+    (:class:`~cablestudy.dynamics.system_frequency_sweep.DragMemory`), one per model."""
+    from ..dynamics.system_frequency_sweep import DragMemory
+
+    hit = _DRAG_CACHE.get(id(model))
+    if hit is not None and hit[0] is model:
+        _DRAG_CACHE.move_to_end(id(model))
+        return hit[1]
+    memory = DragMemory()
+    _DRAG_CACHE[id(model)] = (model, memory)
+    trim_lru(_DRAG_CACHE, _CACHE_SIZE)
+    return memory
 
 
 class _Sweep:
@@ -275,6 +295,7 @@ def _solve_sweep(case: Case, model: Any) -> Any:
         [X for X, _, _ in motions],
         settings,
         [U for _, U, _ in motions],
+        memory=_memory(model),
     )
     share = (time.perf_counter() - t0) / len(group)
     _swept.model = model

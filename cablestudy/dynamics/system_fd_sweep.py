@@ -245,24 +245,34 @@ def _same(prescribed, i):  # noqa: ANN001, ANN202
 
 @njit(cache=True, error_model="numpy")
 def solve_sweep(  # noqa: ANN201, PLR0913
-    omega, prescribed, tolerance, max_iterations, samples, exact, m, bw, warm, disp, u_pts, forces, info, finfo
+    omega, prescribed, tolerance, max_iterations, samples, exact, m, bw, warm, seed, seed_drag, seed_disp, seed_pts, disp, u_pts, forces, info, finfo, drag
 ):  # fmt: skip
     """The cases ``i`` (``omega[i]`` [rad/s], ``prescribed[i]`` (P, 3)) in their order
     in one work space: ``disp[i]``, ``u_pts[i]``, ``forces[i]``, ``info[i]`` (:data:`INFO`)
-    and ``finfo[i]`` as :func:`iterate`'s. With ``warm`` a case after a converged one
+    and ``finfo[i]`` as :func:`iterate`'s, and a converged case's drag (flat: nodes'
+    then points' 3 x 3) in ``drag[i]``. With ``warm`` a case after a converged one
     within :data:`NEAR` of its frequency starts from that one's drag (module
     docstring), extrapolated linearly in frequency from the two before when those
     converged too, moved by the same motion and stepped up in frequency (by at most
-    twice the last step); run again cold if that fails."""
+    twice the last step); with ``seed`` the first case starts from ``seed_drag`` and
+    the motion ``seed_disp``, ``seed_pts`` (a converged case of the same motion
+    nearby). A warm start that fails is run again cold."""
     ws = workspace(m, bw, samples)
+    flat, prev_d, prev_p = ws[13], ws[20], ws[21]
     started = False  # the work space holds a converged case
-    flat = ws[13]
     before = flat.copy()  # the converged drag of the case before the last
     n_ok = 0
+    if seed and m[37]:
+        flat[:] = seed_drag
+        prev_d[:, :] = seed_disp
+        prev_p[:, :] = seed_pts
     for i in range(omega.shape[0]):
         # a neighbour within NEAR of the frequency: its drag is a start closer than the
         # quasi-static fit (farther, the cold start)
-        hot = warm and started and m[37] and abs(omega[i] - omega[i - 1]) <= NEAR * omega[i]
+        if i == 0:
+            hot = warm and seed and m[37]
+        else:
+            hot = warm and started and m[37] and abs(omega[i] - omega[i - 1]) <= NEAR * omega[i]
         t = 0.0
         if hot and n_ok >= 2 and omega[i - 1] > omega[i - 2] and _same(prescribed, i):
             t = (omega[i] - omega[i - 1]) / (omega[i - 1] - omega[i - 2])
@@ -280,3 +290,5 @@ def solve_sweep(  # noqa: ANN201, PLR0913
         info[i, 4] = 1 if hot else 0
         started = info[i, 0] == OK
         n_ok = n_ok + 1 if started else 0
+        if started:
+            drag[i, :] = flat

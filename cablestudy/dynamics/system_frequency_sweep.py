@@ -17,7 +17,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from .frequency_model import DragSettings
-from .system_fd_sweep import INFO, solve_sweep
+from .system_fd_sweep import INFO, NEAR, solve_sweep
 from .system_frequency import (
     RESIDUAL_BAR,
     SystemFrequencyResult,
@@ -28,6 +28,32 @@ from .system_frequency import (
 )
 
 
+class DragMemory:
+    """Converged drags of one linear model kept for later sweeps' warm starts: per
+    motion (the prescribed points' complex motion and the drag settings) and frequency
+    the drag (flat, :func:`.system_fd_sweep.solve_sweep`'s ``drag``) and the motion of
+    the nodes and points; at most ``capacity`` cases (then no more are kept)."""
+
+    def __init__(self, capacity: int = 256) -> None:
+        self.capacity = capacity
+        self.kept: dict[tuple, dict[float, tuple[np.ndarray, np.ndarray, np.ndarray]]] = {}
+        self.size = 0
+
+    def nearest(self, key: tuple, w: float) -> tuple[float, tuple] | None:
+        """The kept case of ``key`` nearest in frequency to ``w`` (frequency, state)."""
+        kept = self.kept.get(key)
+        if not kept:
+            return None
+        near = min(kept, key=lambda x: abs(x - w))
+        return near, kept[near]
+
+    def add(self, key: tuple, w: float, state: tuple) -> None:
+        kept = self.kept.setdefault(key, {})
+        if w not in kept and self.size < self.capacity:
+            kept[w] = state
+            self.size += 1
+
+
 def solve_system_sweep(
     model: SystemLinear,
     omega: Sequence[float] | np.ndarray,
@@ -36,13 +62,17 @@ def solve_system_sweep(
     point_excitation: Sequence[np.ndarray | None] | None = None,
     *,
     warm: bool = True,
+    memory: DragMemory | None = None,
 ) -> list[SystemFrequencyResult]:
     """Per case ``i`` the steady harmonic response at ``omega[i]`` [rad/s] to the
     bodies' complex motion ``body_motion[i]`` (B, 6) [m, rad] and the points' own
     ``point_excitation[i]`` (P, 3) [m] (None: none), as
     :func:`~.system_frequency.solve_system_harmonic` gives it; with ``warm`` the cases
-    in order of frequency each start from the one before (module docstring), without
-    it each from the quasi-static start. Never raises for a numerical failure."""
+    of one motion in order of frequency each start from the one before (module
+    docstring), the first of a run of such cases from the nearest converged case
+    ``memory`` keeps of the model (within :data:`.system_fd_sweep.NEAR` of its
+    frequency; the converged cases added to it); without ``warm`` each case from the
+    quasi-static start. Never raises for a numerical failure."""
     settings = settings or DragSettings()
     w = np.asarray(omega, dtype=float).reshape(-1)
     n = w.size
@@ -52,8 +82,8 @@ def solve_system_sweep(
     ).reshape(n, model.point_kind.size, 3)
     # the cases of one motion together, each in order of frequency (the warm starts)
     motion: dict[bytes, int] = {}
-    group = [motion.setdefault(p.tobytes(), len(motion)) for p in prescribed]
-    order = np.lexsort((w, np.array(group, dtype=np.int64).reshape(n)))
+    group = np.array([motion.setdefault(p.tobytes(), len(motion)) for p in prescribed])
+    order = np.lexsort((w, group.reshape(n)))
     packed = model.packed
     N, L, P = int(packed.node_offset[-1]), len(model.lines), model.point_kind.size
     disp = np.empty((n, N, 3), dtype=complex)
@@ -61,22 +91,40 @@ def solve_system_sweep(
     forces = np.empty((n, L, 6), dtype=complex)
     info = np.zeros((n, INFO), dtype=np.int64)
     finfo = np.zeros((n, 2))
-    solve_sweep(
-        np.ascontiguousarray(w[order]),
-        np.ascontiguousarray(prescribed[order], dtype=complex),
-        float(settings.tolerance),
-        int(settings.max_iterations),
-        int(settings.samples),
-        bool(settings.exact),
-        packed.arrays,
-        packed.bw,
-        bool(warm),
-        disp,
-        u_pts,
-        forces,
-        info,
-        finfo,
+    drag = np.zeros((n, 9 * (N + P)))
+    ws, ps = w[order], np.ascontiguousarray(prescribed[order], dtype=complex)
+    # runs of cases of one motion, each within NEAR of the one before
+    cut = np.flatnonzero(
+        (group[order][1:] != group[order][:-1]) | (np.diff(ws) > NEAR * ws[1:])
     )
+    bounds = [0, *(cut + 1).tolist(), n]
+    keys = [(ps[k].tobytes(), settings) for k in range(n)]
+    for k0, k1 in zip(bounds[:-1], bounds[1:], strict=True):
+        near = memory.nearest(keys[k0], float(ws[k0])) if (warm and memory) else None
+        seed = near is not None and abs(near[0] - ws[k0]) <= NEAR * ws[k0]
+        state = near[1] if seed else (drag[0], disp[0], u_pts[0])  # type: ignore[index]
+        solve_sweep(
+            np.ascontiguousarray(ws[k0:k1]),
+            ps[k0:k1],
+            float(settings.tolerance),
+            int(settings.max_iterations),
+            int(settings.samples),
+            bool(settings.exact),
+            packed.arrays,
+            packed.bw,
+            bool(warm),
+            bool(seed),
+            *state,
+            disp[k0:k1],
+            u_pts[k0:k1],
+            forces[k0:k1],
+            info[k0:k1],
+            finfo[k0:k1],
+            drag[k0:k1],
+        )
+    if memory is not None:
+        for k in np.flatnonzero(info[:, 0] == 0):
+            memory.add(keys[k], float(ws[k]), (drag[k].copy(), disp[k].copy(), u_pts[k].copy()))
     theta = np.asarray(body_motion, dtype=complex).reshape(n, model.n_bodies, 6)[order, :, 3:]
     post = _post_all(model, w[order], theta, disp, forces)
     out: list[SystemFrequencyResult | None] = [None] * n
