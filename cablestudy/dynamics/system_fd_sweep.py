@@ -11,15 +11,18 @@ by every case of a sweep.
 Warm start (a sweep). The cases are taken in the order given (the caller sorts them by
 motion and frequency); a case after one that converged at a nearby frequency starts
 from that case's converged drag (the nodes' and points' linearised drag matrices;
-extrapolated linearly in frequency from the two cases before, :func:`solve_sweep`)
-instead of the quasi-static motion's fit, and its first change is measured against
-that case's converged motion. The
-iteration and its stopping test are otherwise the cold start's: it stops when the
-velocity amplitudes of every node change by less than ``tolerance`` of the largest,
-so a warm and a cold start stop at two iterates of the same fixed point, each within
-the tolerance (tests/unit/test_system_fd_sweep.py measures how far apart). A warm
-start that fails (singular, not converged) is run again from the cold start, whose
-outcome is the case's: a sweep never fails a case that the case alone would solve.
+extrapolated linearly in frequency from the two cases before, :func:`solve_sweep`), or
+the first case from a seed the caller gives (a converged case kept from an earlier
+sweep), instead of the quasi-static motion's fit. The mixing's history starts empty
+(pairs of another frequency's map mislead it: kept, they stopped iterations at 8 % off
+the fixed point). The first change is measured against the starting case's motion and
+never stops the iteration, so every stop compares two solves at the case's own
+frequency, as the cold start's stops after its first do: it stops when the velocity
+amplitudes of every node change by less than ``tolerance`` of the largest, so a warm
+and a cold start stop at two iterates of the same fixed point, each within the
+tolerance (tests/unit/test_system_fd_sweep.py measures how far apart). A warm start
+that fails (singular, not converged) is run again from the cold start, whose outcome is
+the case's: a sweep never fails a case that the case alone would solve.
 
 Pure: arrays in, arrays out.
 """
@@ -180,7 +183,7 @@ def iterate(  # noqa: ANN201, PLR0913
             prev_d[:, :] = disp
             prev_p[:, :] = u_pts
         _parts_at(omega, m, ws)
-        state[0] = 0
+        state[0] = 0  # the mixing's history is the case's own (another frequency's misleads)
         last = np.inf
         converged = False
         for it in range(1, max_iterations + 1):
@@ -203,7 +206,9 @@ def iterate(  # noqa: ANN201, PLR0913
                     prev_p[p, a] = u_pts[p, a]
             change = diff / max(big, 1e-300)
             finfo[0] = change
-            if change <= tolerance:
+            # a warm start's first change is against another case's motion: it never
+            # stops the iteration (each stop compares two solves at this frequency)
+            if change <= tolerance and not (warm and it == 1):
                 converged = True
                 break
             _fit_at(omega, m, ws, exact, disp, u_pts, fit)

@@ -12,6 +12,7 @@ Pure: arrays in, :class:`~.system_frequency.SystemFrequencyResult` out.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -39,13 +40,39 @@ class DragMemory:
         self.kept: dict[tuple, dict[float, tuple[np.ndarray, np.ndarray, np.ndarray]]] = {}
         self.size = 0
 
-    def nearest(self, key: tuple, w: float) -> tuple[float, tuple] | None:
-        """The kept case of ``key`` nearest in frequency to ``w`` (frequency, state)."""
+    def start(self, key: tuple, w: float, than: float = math.inf) -> tuple | None:
+        """A warm start at ``w`` [rad/s] for the motion ``key`` from the kept cases (the
+        drag, the motion of the nodes and of the points), or None, or None when it is
+        not better than a neighbour ``than`` [rad/s] away: the case itself if kept; with
+        kept cases on both
+        sides within ``2 NEAR w`` of each other the drag interpolated linearly between
+        the nearest two, else from the nearest within ``NEAR w`` and nearer than
+        ``than`` (extrapolated from it and the next on its side when that is at most
+        twice as far again); the motion of the nodes and points the nearest's."""
         kept = self.kept.get(key)
         if not kept:
             return None
         near = min(kept, key=lambda x: abs(x - w))
-        return near, kept[near]
+        if abs(near - w) > NEAR * w:
+            return None
+        drag, disp, pts = kept[near]
+        if near == w:  # this very case
+            return drag, disp, pts
+        below = [x for x in kept if x < w]
+        above = [x for x in kept if x > w]
+        if below and above and min(above) - max(below) <= 2.0 * NEAR * w:
+            a, b = max(below), min(above)
+            drag = kept[a][0] + (w - a) / (b - a) * (kept[b][0] - kept[a][0])
+        elif not abs(near - w) < than:
+            return None
+        else:
+            side = [x for x in (below if near < w else above) if x != near]
+            if side:
+                far = max(side) if near < w else min(side)
+                t = (w - near) / (near - far)
+                if 0.0 < t <= 2.0:
+                    drag = drag + t * (drag - kept[far][0])
+        return drag, disp, pts
 
     def add(self, key: tuple, w: float, state: tuple) -> None:
         kept = self.kept.setdefault(key, {})
@@ -93,16 +120,23 @@ def solve_system_sweep(
     finfo = np.zeros((n, 2))
     drag = np.zeros((n, 9 * (N + P)))
     ws, ps = w[order], np.ascontiguousarray(prescribed[order], dtype=complex)
-    # runs of cases of one motion, each within NEAR of the one before
-    cut = np.flatnonzero(
-        (group[order][1:] != group[order][:-1]) | (np.diff(ws) > NEAR * ws[1:])
-    )
-    bounds = [0, *(cut + 1).tolist(), n]
+    # runs of cases of one motion, each within NEAR of the one before and none that the
+    # memory starts better (between two kept cases, or nearer to one than to the last)
     keys = [(ps[k].tobytes(), settings) for k in range(n)]
+    new_run = np.ones(n, dtype=bool)
+    new_run[1:] = (group[order][1:] != group[order][:-1]) | (np.diff(ws) > NEAR * ws[1:])
+    starts: dict[int, tuple] = {}
+    for k in range(n):
+        than = math.inf if new_run[k] else float(ws[k] - ws[k - 1])
+        start = memory.start(keys[k], float(ws[k]), than) if (warm and memory) else None
+        if start is not None:
+            starts[k] = start
+            new_run[k] = True
+    bounds = [*np.flatnonzero(new_run).tolist(), n]
     for k0, k1 in zip(bounds[:-1], bounds[1:], strict=True):
-        near = memory.nearest(keys[k0], float(ws[k0])) if (warm and memory) else None
-        seed = near is not None and abs(near[0] - ws[k0]) <= NEAR * ws[k0]
-        state = near[1] if seed else (drag[0], disp[0], u_pts[0])  # type: ignore[index]
+        start = starts.get(k0)
+        seed = start is not None
+        state = start if start is not None else (drag[0], disp[0], u_pts[0])
         solve_sweep(
             np.ascontiguousarray(ws[k0:k1]),
             ps[k0:k1],
