@@ -17,6 +17,7 @@ tension), ``tension_envelope_max``/``_min`` on (``line``, ``s``), ``body_force_m
 from __future__ import annotations
 
 import math
+import threading
 import time
 from collections import OrderedDict
 from collections.abc import Iterator
@@ -223,9 +224,10 @@ def _memory(model: Any) -> Any:
     return memory
 
 
-class _Sweep:
+class _Sweep(threading.local):
     """The cases of the chunk being evaluated (:func:`sweep_chunk`) and the harmonic
-    responses solved ahead for them (by case hash) with the model they were solved on."""
+    responses solved ahead for them (by case hash) with the model they were solved on;
+    one per thread (the threads scheduler runs chunks side by side)."""
 
     def __init__(self) -> None:
         self.cases: list[Case] = []

@@ -83,6 +83,12 @@ def _band_solve(R, bw, N, reach, B, m):  # noqa: ANN001, ANN201
                 B[p, c] = t
         inv = 1.0 / R[k, bw]
         rk = reach[k]
+        # the right sides with a non-zero at row k (the others stay zero below it: a
+        # junction's unit motion at end B is zero down to the last node's rows)
+        mask = 0
+        for c in range(m):
+            if B[k, c].real != 0.0 or B[k, c].imag != 0.0:
+                mask |= 1 << c
         for i in range(k + 1, last + 1):
             z = R[i, k - i + bw]
             if z.real == 0.0 and z.imag == 0.0:
@@ -90,8 +96,10 @@ def _band_solve(R, bw, N, reach, B, m):  # noqa: ANN001, ANN201
             f = z * inv
             for j in range(k + 1, rk + 1):
                 R[i, j - i + bw] -= f * R[k, j - k + bw]
-            for c in range(m):
-                B[i, c] -= f * B[k, c]
+            if mask:
+                for c in range(m):
+                    if (mask >> c) & 1:
+                        B[i, c] -= f * B[k, c]
             if rk > reach[i]:
                 reach[i] = rk
     for i in range(N - 1, -1, -1):
@@ -245,7 +253,14 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
                         i = couple[q]
                         X[k0 + i, m] = -IE[k0 + i, 3 * e + a]
                     m += 1
-        if slot[ends[line, 0]] < 0 or slot[ends[line, 1]] < 0:
+        moved = False  # a prescribed end that moves (a fixed anchor's column is zero)
+        for e in range(2):
+            pt = ends[line, e]
+            if slot[pt] < 0:
+                for a in range(3):
+                    if prescribed[pt, a].real != 0.0 or prescribed[pt, a].imag != 0.0:
+                        moved = True
+        if moved:
             for i in range(k):
                 X[k0 + i, m] = 0.0
             for q in range(c0, c1):

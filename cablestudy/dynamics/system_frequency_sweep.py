@@ -52,14 +52,15 @@ class DragMemory:
         kept = self.kept.get(key)
         if not kept:
             return None
-        near = min(kept, key=lambda x: abs(x - w))
+        at = list(kept)  # (another thread may add meanwhile)
+        near = min(at, key=lambda x: abs(x - w))
         if abs(near - w) > NEAR * w:
             return None
         drag, disp, pts = kept[near]
         if near == w:  # this very case
             return drag, disp, pts
-        below = [x for x in kept if x < w]
-        above = [x for x in kept if x > w]
+        below = [x for x in at if x < w]
+        above = [x for x in at if x > w]
         if below and above and min(above) - max(below) <= 2.0 * NEAR * w:
             a, b = max(below), min(above)
             drag = kept[a][0] + (w - a) / (b - a) * (kept[b][0] - kept[a][0])
