@@ -137,7 +137,25 @@ def _solve_at(w, drag, m, bw, ws, prescribed, disp, u_pts, forces):  # noqa: ANN
 @njit(cache=True, error_model="numpy")
 def _parts_at(w, m, ws):  # noqa: ANN001, ANN202
     """:func:`.system_fd_kernel._parts` of the model ``m`` at ``w`` into ``ws``."""
-    _parts(w, m[2], m[3], m[4], m[5], m[6], m[7], m[8], m[9], m[10], m[11], m[12], m[13], ws[9], ws[10], ws[11], ws[12])  # fmt: skip
+    _parts(
+        w,
+        m[2],
+        m[3],
+        m[4],
+        m[5],
+        m[6],
+        m[7],
+        m[8],
+        m[9],
+        m[10],
+        m[11],
+        m[12],
+        m[13],
+        ws[9],
+        ws[10],
+        ws[11],
+        ws[12],
+    )
 
 
 @njit(cache=True, error_model="numpy")
@@ -145,13 +163,45 @@ def _fit_at(omega, m, ws, exact, disp, u_pts, out):  # noqa: ANN001, ANN202, PLR
     """:func:`.system_fd_fit.fit_all` of the motion at ``omega`` into ``out`` (flat)."""
     N = disp.shape[0]
     P = u_pts.shape[0]
-    fit_all(omega, disp, u_pts, m[19], m[20], m[21], m[22], m[23], m[35], m[36], ws[15], ws[16], exact, ws[17], ws[18], ws[19], out[: 9 * N].reshape(N, 3, 3), out[9 * N :].reshape(P, 3, 3))  # fmt: skip
+    fit_all(
+        omega,
+        disp,
+        u_pts,
+        m[19],
+        m[20],
+        m[21],
+        m[22],
+        m[23],
+        m[35],
+        m[36],
+        ws[15],
+        ws[16],
+        exact,
+        ws[17],
+        ws[18],
+        ws[19],
+        out[: 9 * N].reshape(N, 3, 3),
+        out[9 * N :].reshape(P, 3, 3),
+    )
 
 
 @njit(cache=True, error_model="numpy")
 def iterate(  # noqa: ANN201, PLR0913
-    omega, prescribed, tolerance, max_iterations, exact, m, bw, ws, warm, disp, u_pts, forces, info, finfo
-):  # fmt: skip
+    omega,
+    prescribed,
+    tolerance,
+    max_iterations,
+    exact,
+    m,
+    bw,
+    ws,
+    warm,
+    disp,
+    u_pts,
+    forces,
+    info,
+    finfo,
+):
     """A case's harmonic response (:func:`.system_frequency.solve_system_harmonic`) for
     the packed model ``m`` in the work space ``ws``: ``disp`` (nodes, 3), ``u_pts`` (P,
     3), ``forces`` (L, 6) out; ``info`` (>= 4,) int: code (:data:`.system_fd_kernel.OK`,
@@ -163,8 +213,14 @@ def iterate(  # noqa: ANN201, PLR0913
     N = disp.shape[0]
     P = u_pts.shape[0]
     flat, fit, prev_d, prev_p, hist_R, hist_G, state = (
-        ws[13], ws[14], ws[20], ws[21], ws[22], ws[23], ws[24]
-    )  # fmt: skip
+        ws[13],
+        ws[14],
+        ws[20],
+        ws[21],
+        ws[22],
+        ws[23],
+        ws[24],
+    )
     has_drag = m[37]
     info[0] = OK
     info[1] = 0
@@ -225,16 +281,61 @@ def iterate(  # noqa: ANN201, PLR0913
             return
     D = flat[: 9 * N].reshape(N, 3, 3)
     Dp = flat[9 * N :].reshape(P, 3, 3)
-    finfo[1] = _residual(omega, has_drag, D, Dp, disp, u_pts, m[0], m[24], m[25], m[26], m[27], m[28], m[29], m[30], m[31], m[33], m[34])  # fmt: skip
+    finfo[1] = _residual(
+        omega,
+        has_drag,
+        D,
+        Dp,
+        disp,
+        u_pts,
+        m[0],
+        m[24],
+        m[25],
+        m[26],
+        m[27],
+        m[28],
+        m[29],
+        m[30],
+        m[31],
+        m[33],
+        m[34],
+    )
 
 
 @njit(cache=True, error_model="numpy")
 def solve_case(  # noqa: ANN201, PLR0913
-    omega, prescribed, tolerance, max_iterations, samples, exact, m, bw, disp, u_pts, forces, info, finfo
-):  # fmt: skip
+    omega,
+    prescribed,
+    tolerance,
+    max_iterations,
+    samples,
+    exact,
+    m,
+    bw,
+    disp,
+    u_pts,
+    forces,
+    info,
+    finfo,
+):
     """One case from the cold start (:func:`iterate`) in a work space of its own."""
     ws = workspace(m, bw, samples)
-    iterate(omega, prescribed, tolerance, max_iterations, exact, m, bw, ws, False, disp, u_pts, forces, info, finfo)  # fmt: skip
+    iterate(
+        omega,
+        prescribed,
+        tolerance,
+        max_iterations,
+        exact,
+        m,
+        bw,
+        ws,
+        False,
+        disp,
+        u_pts,
+        forces,
+        info,
+        finfo,
+    )
 
 
 @njit(cache=True)
@@ -250,8 +351,26 @@ def _same(prescribed, i):  # noqa: ANN001, ANN202
 
 @njit(cache=True, error_model="numpy")
 def solve_sweep(  # noqa: ANN201, PLR0913
-    omega, prescribed, tolerance, max_iterations, samples, exact, m, bw, warm, seed, seed_drag, seed_disp, seed_pts, disp, u_pts, forces, info, finfo, drag
-):  # fmt: skip
+    omega,
+    prescribed,
+    tolerance,
+    max_iterations,
+    samples,
+    exact,
+    m,
+    bw,
+    warm,
+    seed,
+    seed_drag,
+    seed_disp,
+    seed_pts,
+    disp,
+    u_pts,
+    forces,
+    info,
+    finfo,
+    drag,
+):
     """The cases ``i`` (``omega[i]`` [rad/s], ``prescribed[i]`` (P, 3)) in their order
     in one work space: ``disp[i]``, ``u_pts[i]``, ``forces[i]``, ``info[i]`` (:data:`INFO`)
     and ``finfo[i]`` as :func:`iterate`'s, and a converged case's drag (flat: nodes'
@@ -288,9 +407,39 @@ def solve_sweep(  # noqa: ANN201, PLR0913
                 before[q] = d
         elif hot:
             before[:] = flat
-        iterate(omega[i], prescribed[i], tolerance, max_iterations, exact, m, bw, ws, hot, disp[i], u_pts[i], forces[i], info[i], finfo[i])  # fmt: skip
+        iterate(
+            omega[i],
+            prescribed[i],
+            tolerance,
+            max_iterations,
+            exact,
+            m,
+            bw,
+            ws,
+            hot,
+            disp[i],
+            u_pts[i],
+            forces[i],
+            info[i],
+            finfo[i],
+        )
         if hot and info[i, 0] != OK:
-            iterate(omega[i], prescribed[i], tolerance, max_iterations, exact, m, bw, ws, False, disp[i], u_pts[i], forces[i], info[i], finfo[i])  # fmt: skip
+            iterate(
+                omega[i],
+                prescribed[i],
+                tolerance,
+                max_iterations,
+                exact,
+                m,
+                bw,
+                ws,
+                False,
+                disp[i],
+                u_pts[i],
+                forces[i],
+                info[i],
+                finfo[i],
+            )
             hot = False
         info[i, 4] = 1 if hot else 0
         started = info[i, 0] == OK

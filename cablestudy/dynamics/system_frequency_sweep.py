@@ -170,7 +170,9 @@ def solve_system_sweep(
         outcome = compiled_outcome(
             model, float(w[i]), info[k], finfo[k], disp[k], u_pts[k], forces[k]
         )
-        out[i] = harmonic_result(model, float(w[i]), body_motion[i], settings, prescribed[i], outcome)
+        out[i] = harmonic_result(
+            model, float(w[i]), body_motion[i], settings, prescribed[i], outcome
+        )
     return out  # type: ignore[return-value]
 
 
