@@ -499,6 +499,14 @@ def system_linear(
     )
 
 
+def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``np.cross(a, b)`` of (..., 3) arrays, the same products and differences (so the
+    same values) without its reshaping of axes (most of its cost on small arrays)."""
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    return np.stack((a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0), axis=-1)
+
+
 def point_motion(model: SystemLinear, body_motion: np.ndarray) -> np.ndarray:
     """Complex displacements [m] (P, 3) of the points for the bodies' complex motion
     amplitudes ``body_motion`` (B, 6) [m, rad]: ``X + Theta x a`` on a body, zero
@@ -507,7 +515,7 @@ def point_motion(model: SystemLinear, body_motion: np.ndarray) -> np.ndarray:
     on = np.flatnonzero(model.point_kind == BODY)
     if on.size:
         q = np.asarray(body_motion, dtype=complex).reshape(model.n_bodies, 6)[model.point_body[on]]
-        u[on] = q[:, :3] + np.cross(q[:, 3:], model.point_arm[on])
+        u[on] = q[:, :3] + cross(q[:, 3:], model.point_arm[on])
     return u
 
 
@@ -610,7 +618,7 @@ def harmonic_result(
         theta = np.asarray(body_motion, dtype=complex).reshape(model.n_bodies, 6)[:, 3:]
         sup = support[post.body_line, post.body_end]
         arm = post.body_arm
-        moment = np.cross(arm, sup) + np.cross(np.cross(theta[post.body], arm), post.body_static)
+        moment = cross(arm, sup) + cross(cross(theta[post.body], arm), post.body_static)
         np.add.at(body_force, (post.body, slice(0, 3)), sup)
         np.add.at(body_force, (post.body, slice(3, 6)), moment)
     flat = np.concatenate(disp) if isinstance(disp, list) else disp

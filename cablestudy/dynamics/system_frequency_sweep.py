@@ -24,6 +24,7 @@ from .system_frequency import (
     SystemFrequencyResult,
     SystemLinear,
     compiled_outcome,
+    cross,
     harmonic_result,
     prescribed_motion,
 )
@@ -191,8 +192,8 @@ def _post_all(
     if post.body_line.size:
         sup = support[:, post.body_line, post.body_end]
         arm = post.body_arm[None]
-        turned = np.cross(np.cross(theta[:, post.body], arm), post.body_static[None])
-        moment = np.cross(arm, sup) + turned
+        turned = cross(cross(theta[:, post.body], arm), post.body_static[None])
+        moment = cross(arm, sup) + turned
         np.add.at(body_force, (slice(None), post.body, slice(0, 3)), sup)
         np.add.at(body_force, (slice(None), post.body, slice(3, 6)), moment)
     du = disp[:, post.element + 1] - disp[:, post.element]
