@@ -218,9 +218,9 @@ def _memory(model: Any) -> Any:
     if hit is not None and hit[0] is model:
         _DRAG_CACHE.move_to_end(id(model))
         return hit[1]
-    memory = DragMemory()
+    memory = DragMemory()  # at most 16 MB a model, of the last four models
     _DRAG_CACHE[id(model)] = (model, memory)
-    trim_lru(_DRAG_CACHE, _CACHE_SIZE)
+    trim_lru(_DRAG_CACHE, 4)
     return memory
 
 

@@ -34,12 +34,15 @@ class DragMemory:
     """Converged drags of one linear model kept for later sweeps' warm starts: per
     motion (the prescribed points' complex motion and the drag settings) and frequency
     the drag (flat, :func:`.system_fd_sweep.solve_sweep`'s ``drag``) and the motion of
-    the nodes and points; at most ``capacity`` cases (then no more are kept)."""
+    the nodes and points; at most ``capacity`` cases and ``max_bytes`` of arrays (then
+    no more are kept)."""
 
-    def __init__(self, capacity: int = 256) -> None:
+    def __init__(self, capacity: int = 256, max_bytes: int = 16 << 20) -> None:
         self.capacity = capacity
+        self.max_bytes = max_bytes
         self.kept: dict[tuple, dict[float, tuple[np.ndarray, np.ndarray, np.ndarray]]] = {}
         self.size = 0
+        self.nbytes = 0
 
     def start(self, key: tuple, w: float, than: float = math.inf) -> tuple | None:
         """A warm start at ``w`` [rad/s] for the motion ``key`` from the kept cases (the
@@ -78,9 +81,11 @@ class DragMemory:
 
     def add(self, key: tuple, w: float, state: tuple) -> None:
         kept = self.kept.setdefault(key, {})
-        if w not in kept and self.size < self.capacity:
+        more = sum(a.nbytes for a in state)
+        if w not in kept and self.size < self.capacity and self.nbytes + more <= self.max_bytes:
             kept[w] = state
             self.size += 1
+            self.nbytes += more
 
 
 def solve_system_sweep(
