@@ -4,7 +4,10 @@ frequencies from 0.02 to 0.5 Hz, each line linearised at ``--nodes`` nodes
 (:mod:`cablestudy.dynamics.system_frequency`). The statics and the linear model are
 built once and shared by the cases (as a sweep does); per case the drag iteration
 and the band solves run. Reported: CPU time (``time.process_time``; the machine may be
-shared) of the statics, of the linear model, and per case; drag iterations.
+shared) of the statics, of the linear model, and per case; drag iterations; and the
+same cases as one sweep (:func:`cablestudy.dynamics.system_frequency_sweep.
+solve_system_sweep`) from the quasi-static start and warm (each case from its
+neighbours' converged drag): CPU time a case and mean iterations.
 
     PYTHONPATH=$PWD .venv/bin/python benchmarks/bench_system_frequency.py [--nodes 41]
 
@@ -34,6 +37,7 @@ CASE8 = "moorpy/tests/case8.dat"
 def run(nodes: int, cases: int = 50) -> dict[str, float]:
     from cablestudy.analyses.system import system_model
     from cablestudy.dynamics.system_frequency import solve_system_harmonic, system_linear
+    from cablestudy.dynamics.system_frequency_sweep import solve_system_sweep
     from cablestudy.interchange import import_model, imported_yaml
     from cablestudy.statics import STATIC_SOLVERS
     from cablestudy.statics.system import solve_system
@@ -66,6 +70,15 @@ def run(nodes: int, cases: int = 50) -> dict[str, float]:
         iterations.append(out.iterations)
         failed += out.status != 0
     c3 = time.process_time()
+    # the same cases as one sweep (cablestudy.dynamics.system_frequency_sweep): each from
+    # the quasi-static start, then each from its neighbours' drag (warm start)
+    w = 2.0 * np.pi * np.linspace(0.02, 0.5, cases)
+    solve_system_sweep(model, w[:3], [motion] * 3)  # its compiled kernel loaded
+    c4 = time.process_time()
+    cold = solve_system_sweep(model, w, [motion] * cases, warm=False)
+    c5 = time.process_time()
+    warm = solve_system_sweep(model, w, [motion] * cases)
+    c6 = time.process_time()
     return {
         "static": c1 - c0,
         "linear_model": c2 - c1,
@@ -73,6 +86,11 @@ def run(nodes: int, cases: int = 50) -> dict[str, float]:
         "iterations_mean": float(np.mean(iterations)),
         "iterations_max": float(np.max(iterations)),
         "failed": float(failed),
+        "sweep_cold": (c5 - c4) / cases,
+        "sweep_warm": (c6 - c5) / cases,
+        "iterations_cold": float(np.mean([r.iterations for r in cold])),
+        "iterations_warm": float(np.mean([r.iterations for r in warm])),
+        "failed_sweep": float(sum(r.status != 0 for r in cold + warm)),
     }
 
 
@@ -162,7 +180,10 @@ def main() -> None:
         f"case8 surge 2 m, 50 frequencies 0.02-0.5 Hz, {args.nodes} nodes a line: statics "
         f"{r['static'] * 1e3:.0f} ms, linear model {r['linear_model'] * 1e3:.0f} ms, "
         f"{r['per_case'] * 1e3:.1f} ms a case (CPU), drag iterations mean "
-        f"{r['iterations_mean']:.1f} max {r['iterations_max']:.0f}, failed {r['failed']:.0f}"
+        f"{r['iterations_mean']:.1f} max {r['iterations_max']:.0f}, failed {r['failed']:.0f}; "
+        f"as one sweep: {r['sweep_cold'] * 1e3:.2f} ms a case cold ({r['iterations_cold']:.1f} "
+        f"iterations), {r['sweep_warm'] * 1e3:.2f} ms warm ({r['iterations_warm']:.1f}), "
+        f"failed {r['failed_sweep']:.0f}"
     )
 
 

@@ -17,7 +17,11 @@ tension), ``tension_envelope_max``/``_min`` on (``line``, ``s``), ``body_force_m
 from __future__ import annotations
 
 import math
+import threading
+import time
 from collections import OrderedDict
+from collections.abc import Iterator
+from contextlib import contextmanager
 from typing import Any
 
 import numpy as np
@@ -159,7 +163,7 @@ def _solve_frequency(
 ) -> tuple[int, str, dict[str, np.ndarray], Any, Any]:
     """(status, message, outputs, result, model) of the case's harmonic response, its
     outputs marked as the frequency domain's with ``reason``."""
-    from ..dynamics.system_frequency import solve_system_harmonic, system_frequency_outputs
+    from ..dynamics.system_frequency import system_frequency_outputs
     from .frequency import drag_settings
 
     dyn = case.study.analysis.dynamic
@@ -170,10 +174,16 @@ def _solve_frequency(
     model = system_frequency_model(case, system, static)
     if isinstance(model, str):
         return STATUS_NUMERICAL, model, head, None, None
-    X, U, frequency = harmonic_motion(case.study)
-    res = solve_system_harmonic(
-        model, 2.0 * math.pi * frequency, X, drag_settings(dyn), point_excitation=U
-    )
+    res = _swept.pop(case.hash, None) if _swept.model is model else None
+    if res is None:
+        res = _solve_sweep(case, model) if _swept.cases else None
+    if res is None:  # alone: from the nearest converged case of the model (memory)
+        from ..dynamics.system_frequency_sweep import solve_system_sweep
+
+        X, U, frequency = harmonic_motion(case.study)
+        (res,) = solve_system_sweep(
+            model, [2.0 * math.pi * frequency], [X], drag_settings(dyn), [U], memory=_memory(model)
+        )
     if res.status != STATUS_OK:
         return res.status, res.message, head, res, model
     bodies = len(system.body_names)
@@ -194,6 +204,112 @@ def _solve_frequency(
     if bad:
         return STATUS_NUMERICAL, f"non-finite values in {', '.join(bad)}", head, res, model
     return STATUS_OK, "", out, res, model
+
+
+_DRAG_CACHE: OrderedDict[int, tuple[Any, Any]] = OrderedDict()
+
+
+def _memory(model: Any) -> Any:
+    """The model's converged drags kept for warm starts
+    (:class:`~cablestudy.dynamics.system_frequency_sweep.DragMemory`), one per model."""
+    from ..dynamics.system_frequency_sweep import DragMemory
+
+    hit = _DRAG_CACHE.get(id(model))
+    if hit is not None and hit[0] is model:
+        _DRAG_CACHE.move_to_end(id(model))
+        return hit[1]
+    memory = DragMemory()  # at most 16 MB a model, of the last four models
+    _DRAG_CACHE[id(model)] = (model, memory)
+    trim_lru(_DRAG_CACHE, 4)
+    return memory
+
+
+class _Sweep(threading.local):
+    """The cases of the chunk being evaluated (:func:`sweep_chunk`) and the harmonic
+    responses solved ahead for them (by case hash) with the model they were solved on;
+    one per thread (the threads scheduler runs chunks side by side)."""
+
+    def __init__(self) -> None:
+        self.cases: list[Case] = []
+        self.results: dict[str, Any] = {}
+        self.model: Any = None
+        self.seconds: dict[str, float] = {}
+
+    def pop(self, key: str, default: Any) -> Any:
+        return self.results.pop(key, default)
+
+
+_swept = _Sweep()
+
+
+@contextmanager
+def sweep_chunk(cases: list[Case]) -> Iterator[dict[str, float]]:
+    """While a chunk of a system study's cases is evaluated: the first case of a group
+    that shares a linear model (static problem, element count, drag settings) and runs
+    the frequency domain solves the whole group's harmonic responses in one compiled
+    sweep (:func:`~cablestudy.dynamics.system_frequency_sweep.solve_system_sweep`,
+    sorted by frequency, each case started from its neighbour's converged drag); the
+    others take theirs. Yields, per case hash, the seconds of that sweep to move
+    to the case's wall time (its share; the first case's less the others')."""
+    _swept.cases, _swept.results, _swept.model, _swept.seconds = list(cases), {}, None, {}
+    try:
+        yield _swept.seconds
+    finally:
+        _swept.cases, _swept.results, _swept.model = [], {}, None
+
+
+def _sweepable(case: Case) -> bool:
+    """Whether the case runs the frequency domain (method frequency, or auto on a
+    harmonic motion of one frequency)."""
+    dyn = case.study.analysis.dynamic
+    if dyn is None or dyn.method not in ("frequency", "auto"):
+        return False
+    return dyn.method == "frequency" or not auto_ineligible_system(dyn)
+
+
+def _solve_sweep(case: Case, model: Any) -> Any:
+    """The harmonic response of ``case`` solved in one sweep with the chunk's other
+    cases of its group (:func:`sweep_chunk`), theirs kept for them; None when the case
+    has no such group (then alone)."""
+    from ..dynamics.system_frequency_sweep import solve_system_sweep
+    from .frequency import drag_settings
+
+    dyn = case.study.analysis.dynamic
+    settings = drag_settings(dyn)
+    group = [
+        c
+        for c in _swept.cases
+        if c.static_hash == case.static_hash
+        and c.study.analysis.dynamic is not None
+        and c.study.analysis.dynamic.elements == dyn.elements
+        and drag_settings(c.study.analysis.dynamic) == settings
+        and _sweepable(c)
+    ]
+    taken = {id(c) for c in group}
+    _swept.cases = [c for c in _swept.cases if id(c) not in taken]
+    if len(group) < 2 or id(case) not in taken:
+        return None
+    t0 = time.perf_counter()
+    motions = [harmonic_motion(c.study) for c in group]
+    results = solve_system_sweep(
+        model,
+        [2.0 * math.pi * f for _, _, f in motions],
+        [X for X, _, _ in motions],
+        settings,
+        [U for _, U, _ in motions],
+        memory=_memory(model),
+    )
+    share = (time.perf_counter() - t0) / len(group)
+    _swept.model = model
+    mine = None
+    for c, res in zip(group, results, strict=True):
+        if c is case:
+            mine = res
+            _swept.seconds[c.hash] = share - share * len(group)
+        else:
+            _swept.results[c.hash] = res
+            _swept.seconds[c.hash] = share
+    return mine
 
 
 def auto_ineligible_system(dyn: Any) -> str:

@@ -34,7 +34,6 @@ import numpy as np
 from numba import njit
 
 from .harmonic_kernel import PIVOT_THRESHOLD
-from .system_fd_fit import DEPTH, anderson, fit_all
 
 #: no fast-math in these kernels: it made them no faster (the time goes to the fit,
 #: :func:`.system_fd_fit.fit_node`) and made their answers depend on whether numba had
@@ -85,6 +84,12 @@ def _band_solve(R, bw, N, reach, B, m):  # noqa: ANN001, ANN201
                 B[p, c] = t
         inv = 1.0 / R[k, bw]
         rk = reach[k]
+        # the right sides with a non-zero at row k (the others stay zero below it: a
+        # junction's unit motion at end B is zero down to the last node's rows)
+        mask = 0
+        for c in range(m):
+            if B[k, c].real != 0.0 or B[k, c].imag != 0.0:
+                mask |= 1 << c
         for i in range(k + 1, last + 1):
             z = R[i, k - i + bw]
             if z.real == 0.0 and z.imag == 0.0:
@@ -92,8 +97,10 @@ def _band_solve(R, bw, N, reach, B, m):  # noqa: ANN001, ANN201
             f = z * inv
             for j in range(k + 1, rk + 1):
                 R[i, j - i + bw] -= f * R[k, j - k + bw]
-            for c in range(m):
-                B[i, c] -= f * B[k, c]
+            if mask:
+                for c in range(m):
+                    if (mask >> c) & 1:
+                        B[i, c] -= f * B[k, c]
             if rk > reach[i]:
                 reach[i] = rk
     for i in range(N - 1, -1, -1):
@@ -247,7 +254,14 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
                         i = couple[q]
                         X[k0 + i, m] = -IE[k0 + i, 3 * e + a]
                     m += 1
-        if slot[ends[line, 0]] < 0 or slot[ends[line, 1]] < 0:
+        moved = False  # a prescribed end that moves (a fixed anchor's column is zero)
+        for e in range(2):
+            pt = ends[line, e]
+            if slot[pt] < 0:
+                for a in range(3):
+                    if prescribed[pt, a].real != 0.0 or prescribed[pt, a].imag != 0.0:
+                        moved = True
+        if moved:
             for i in range(k):
                 X[k0 + i, m] = 0.0
             for q in range(c0, c1):
@@ -418,295 +432,3 @@ def _residual(
                 acc += z * u_pts[p, b]
             worst = max(worst, abs(acc))
     return worst / max(scale, 1e-300)
-
-
-@njit(cache=True, error_model="numpy")
-def solve_case(  # noqa: ANN201, PLR0913, PLR0915
-    omega,
-    prescribed,
-    tolerance,
-    max_iterations,
-    samples,
-    exact,
-    noff,
-    koff,
-    bw,
-    KR,
-    MR,
-    CR,
-    IEK,
-    IEM,
-    IEC,
-    EIK,
-    EIM,
-    EIC,
-    EEK,
-    EEM,
-    EEC,
-    couple,
-    coff,
-    basis,
-    ncount,
-    nfirst,
-    cur,
-    tan,
-    c_n,
-    c_t,
-    c_b,
-    mass,
-    kp,
-    ki,
-    kv,
-    cp,
-    ci,
-    cv,
-    ends,
-    slot,
-    free,
-    pmass,
-    c_p,
-    pcur,
-    has_drag,
-    disp,
-    u_pts,
-    forces,
-    info,
-    finfo,
-):
-    """A case's harmonic response (:func:`.system_frequency.solve_system_harmonic`):
-    ``disp`` (nodes, 3), ``u_pts`` (P, 3), ``forces`` (L, 6) out; ``info`` (4,) int:
-    code (:data:`OK`, :data:`SINGULAR_LINE`, :data:`SINGULAR_JUNCTION`,
-    :data:`NOT_CONVERGED`), iterations, failing line, 1 if it failed in the quasi-static
-    start; ``finfo`` (2,): last change, residual (NaN when failed)."""
-    N = disp.shape[0]
-    P = u_pts.shape[0]
-    L = ends.shape[0]
-    K = KR.shape[0]
-    F = free.shape[0]
-    R = np.empty((max(K, 1), 3 * bw + 1), dtype=np.complex128)
-    reach = np.empty(max(K, 1), dtype=np.int64)
-    X = np.empty((K, 6), dtype=np.complex128)
-    A_EE = np.empty((L, 6, 6), dtype=np.complex128)
-    uI = np.empty(K, dtype=np.complex128)
-    ncol = np.empty(L, dtype=np.int64)
-    uE = np.empty(6, dtype=np.complex128)
-    G = np.empty((3 * F, 3 * F), dtype=np.complex128)
-    rhs = np.empty(3 * F, dtype=np.complex128)
-    Rb = np.empty(KR.shape, dtype=np.complex128)
-    IE = np.empty((K, 6), dtype=np.complex128)
-    EI = np.empty((6, K), dtype=np.complex128)
-    EE = np.empty((L, 6, 6), dtype=np.complex128)
-    size = 9 * (N + P)
-    flat = np.zeros(size)
-    fit = np.zeros(size)
-    D = flat[: 9 * N].reshape(N, 3, 3)
-    Dp = flat[9 * N :].reshape(P, 3, 3)
-    GD = fit[: 9 * N].reshape(N, 3, 3)
-    GDp = fit[9 * N :].reshape(P, 3, 3)
-    info[0] = OK
-    info[1] = 0
-    info[2] = -1
-    info[3] = 0
-    finfo[0] = 0.0
-    finfo[1] = np.nan
-    if has_drag:
-        cs = np.empty(samples)
-        sn_ = np.empty(samples)
-        for k in range(samples):
-            cs[k] = math.cos(2.0 * math.pi * k / samples)
-            sn_[k] = math.sin(2.0 * math.pi * k / samples)
-        vr = np.empty((N, 3))
-        vi = np.empty((N, 3))
-        lean = np.empty((N, 3, 3))
-        _parts(0.0, KR, MR, CR, IEK, IEM, IEC, EIK, EIM, EIC, EEK, EEM, EEC, Rb, IE, EI, EE)
-        code, bad = _solve(
-            0.0,
-            False,
-            D,
-            Dp,
-            prescribed,
-            noff,
-            koff,
-            bw,
-            Rb,
-            IE,
-            EI,
-            EE,
-            couple,
-            coff,
-            basis,
-            ncount,
-            nfirst,
-            ends,
-            slot,
-            free,
-            pmass,
-            R,
-            reach,
-            X,
-            A_EE,
-            uI,
-            ncol,
-            uE,
-            G,
-            rhs,
-            disp,
-            u_pts,
-            forces,
-        )
-        if code != OK:
-            info[0], info[2], info[3] = code, bad, 1
-            return
-        fit_all(
-            omega,
-            disp,
-            u_pts,
-            cur,
-            tan,
-            c_n,
-            c_t,
-            c_b,
-            c_p,
-            pcur,
-            cs,
-            sn_,
-            exact,
-            vr,
-            vi,
-            lean,
-            D,
-            Dp,
-        )
-        _parts(omega, KR, MR, CR, IEK, IEM, IEC, EIK, EIM, EIC, EEK, EEM, EEC, Rb, IE, EI, EE)
-        prev_d = disp.copy()
-        prev_p = u_pts.copy()
-        hist_R = np.empty((DEPTH + 1, size))
-        hist_G = np.empty((DEPTH + 1, size))
-        state = np.zeros(1, dtype=np.int64)
-        last = np.inf
-        converged = False
-        for it in range(1, max_iterations + 1):
-            info[1] = it
-            code, bad = _solve(
-                omega,
-                True,
-                D,
-                Dp,
-                prescribed,
-                noff,
-                koff,
-                bw,
-                Rb,
-                IE,
-                EI,
-                EE,
-                couple,
-                coff,
-                basis,
-                ncount,
-                nfirst,
-                ends,
-                slot,
-                free,
-                pmass,
-                R,
-                reach,
-                X,
-                A_EE,
-                uI,
-                ncol,
-                uE,
-                G,
-                rhs,
-                disp,
-                u_pts,
-                forces,
-            )
-            if code != OK:
-                info[0], info[2] = code, bad
-                return
-            big = 0.0
-            diff = 0.0
-            for g in range(N):
-                for a in range(3):
-                    big = max(big, abs(disp[g, a]))
-                    diff = max(diff, abs(disp[g, a] - prev_d[g, a]))
-                    prev_d[g, a] = disp[g, a]
-            for p in range(P):
-                for a in range(3):
-                    big = max(big, abs(u_pts[p, a]))
-                    diff = max(diff, abs(u_pts[p, a] - prev_p[p, a]))
-                    prev_p[p, a] = u_pts[p, a]
-            change = diff / max(big, 1e-300)
-            finfo[0] = change
-            if change <= tolerance:
-                converged = True
-                break
-            fit_all(
-                omega,
-                disp,
-                u_pts,
-                cur,
-                tan,
-                c_n,
-                c_t,
-                c_b,
-                c_p,
-                pcur,
-                cs,
-                sn_,
-                exact,
-                vr,
-                vi,
-                lean,
-                GD,
-                GDp,
-            )
-            anderson(flat, fit, hist_R, hist_G, state, change, last)
-            last = change
-        if not converged:
-            info[0] = NOT_CONVERGED
-            return
-    else:
-        _parts(omega, KR, MR, CR, IEK, IEM, IEC, EIK, EIM, EIC, EEK, EEM, EEC, Rb, IE, EI, EE)
-        code, bad = _solve(
-            omega,
-            False,
-            D,
-            Dp,
-            prescribed,
-            noff,
-            koff,
-            bw,
-            Rb,
-            IE,
-            EI,
-            EE,
-            couple,
-            coff,
-            basis,
-            ncount,
-            nfirst,
-            ends,
-            slot,
-            free,
-            pmass,
-            R,
-            reach,
-            X,
-            A_EE,
-            uI,
-            ncol,
-            uE,
-            G,
-            rhs,
-            disp,
-            u_pts,
-            forces,
-        )
-        if code != OK:
-            info[0], info[2] = code, bad
-            return
-    finfo[1] = _residual(
-        omega, has_drag, D, Dp, disp, u_pts, noff, mass, kp, ki, kv, cp, ci, cv, ends, free, pmass
-    )

@@ -1,0 +1,448 @@
+"""The compiled drag iteration of a system's frequency domain driven case by case
+(:func:`solve_case`, one case) and over a sweep of cases that share one linear model
+(:func:`solve_sweep`: several frequencies and motions in one compiled call).
+
+The iteration (:func:`iterate`) is the one the module docstring of
+:mod:`.system_frequency` gives, by the steps of :mod:`.system_fd_kernel` (the
+condensation, the junction system, the residual) and :mod:`.system_fd_fit` (the drag
+fit, Anderson mixing), in a work space allocated once (:func:`workspace`) and reused
+by every case of a sweep.
+
+Warm start (a sweep). The cases are taken in the order given (the caller sorts them by
+motion and frequency); a case after one that converged at a nearby frequency starts
+from that case's converged drag (the nodes' and points' linearised drag matrices;
+extrapolated linearly in frequency from the two cases before, :func:`solve_sweep`), or
+the first case from a seed the caller gives (a converged case kept from an earlier
+sweep), instead of the quasi-static motion's fit. The mixing's history starts empty
+(pairs of another frequency's map mislead it: kept, they stopped iterations at 8 % off
+the fixed point). The first change is measured against the starting case's motion and
+never stops the iteration, so every stop compares two solves at the case's own
+frequency, as the cold start's stops after its first do: it stops when the velocity
+amplitudes of every node change by less than ``tolerance`` of the largest, so a warm
+and a cold start stop at two iterates of the same fixed point, each within the
+tolerance (tests/unit/test_system_fd_sweep.py measures how far apart). A warm start
+that fails (singular, not converged) is run again from the cold start, whose outcome is
+the case's: a sweep never fails a case that the case alone would solve.
+
+Pure: arrays in, arrays out.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .system_fd_fit import DEPTH, anderson, fit_all
+from .system_fd_kernel import OK, _parts, _residual, _solve
+
+#: ``info`` of a case (``info[i]``): code, iterations, failing line, 1 if it failed in
+#: the quasi-static start, 1 if the case started warm (its answer from a warm start)
+INFO = 5
+#: largest step of frequency, relative, from a case to the next started warm
+NEAR = 0.25
+
+
+@njit(cache=True)
+def workspace(m, bw, samples):  # noqa: ANN001, ANN201
+    """The iteration's work arrays for the packed model ``m``
+    (:attr:`.system_fd_pack.PackedSystem.arrays`) with band width ``bw`` and
+    ``samples`` phases of the drag fit (a tuple, :func:`iterate` reads it)."""
+    noff, KR, ends, pcur, free = m[0], m[2], m[31], m[36], m[33]
+    N = noff[-1]
+    P = pcur.shape[0]
+    L = ends.shape[0]
+    K = KR.shape[0]
+    F = free.shape[0]
+    size = 9 * (N + P)
+    cs = np.empty(samples)
+    sn_ = np.empty(samples)
+    for k in range(samples):
+        cs[k] = math.cos(2.0 * math.pi * k / samples)
+        sn_[k] = math.sin(2.0 * math.pi * k / samples)
+    return (
+        np.empty((max(K, 1), 3 * bw + 1), dtype=np.complex128),  # R
+        np.empty(max(K, 1), dtype=np.int64),  # reach
+        np.empty((K, 6), dtype=np.complex128),  # X
+        np.empty((L, 6, 6), dtype=np.complex128),  # A_EE
+        np.empty(K, dtype=np.complex128),  # uI
+        np.empty(L, dtype=np.int64),  # ncol
+        np.empty(6, dtype=np.complex128),  # uE
+        np.empty((3 * F, 3 * F), dtype=np.complex128),  # G
+        np.empty(3 * F, dtype=np.complex128),  # rhs
+        np.empty(KR.shape, dtype=np.complex128),  # Rb
+        np.empty((K, 6), dtype=np.complex128),  # IE
+        np.empty((6, K), dtype=np.complex128),  # EI
+        np.empty((L, 6, 6), dtype=np.complex128),  # EE
+        np.zeros(size),  # flat: the drag D (N, 3, 3) then Dp (P, 3, 3)
+        np.zeros(size),  # fit: the fit of the last iterate, as flat
+        cs,
+        sn_,
+        np.empty((N, 3)),  # vr
+        np.empty((N, 3)),  # vi
+        np.empty((N, 3, 3)),  # lean
+        np.zeros((N, 3), dtype=np.complex128),  # prev_d: the last iterate's motion
+        np.zeros((P, 3), dtype=np.complex128),  # prev_p
+        np.empty((DEPTH + 1, size)),  # hist_R
+        np.empty((DEPTH + 1, size)),  # hist_G
+        np.zeros(1, dtype=np.int64),  # state
+    )
+
+
+@njit(cache=True, error_model="numpy")
+def _solve_at(w, drag, m, bw, ws, prescribed, disp, u_pts, forces):  # noqa: ANN001, ANN202, PLR0913
+    """:func:`.system_fd_kernel._solve` at ``w`` with the model ``m``, the work space
+    ``ws`` and its drag (``drag``): (code, line)."""
+    N = disp.shape[0]
+    D = ws[13][: 9 * N].reshape(N, 3, 3)
+    Dp = ws[13][9 * N :].reshape(u_pts.shape[0], 3, 3)
+    return _solve(
+        w,
+        drag,
+        D,
+        Dp,
+        prescribed,
+        m[0],
+        m[1],
+        bw,
+        ws[9],
+        ws[10],
+        ws[11],
+        ws[12],
+        m[14],
+        m[15],
+        m[16],
+        m[17],
+        m[18],
+        m[31],
+        m[32],
+        m[33],
+        m[34],
+        ws[0],
+        ws[1],
+        ws[2],
+        ws[3],
+        ws[4],
+        ws[5],
+        ws[6],
+        ws[7],
+        ws[8],
+        disp,
+        u_pts,
+        forces,
+    )
+
+
+@njit(cache=True, error_model="numpy")
+def _parts_at(w, m, ws):  # noqa: ANN001, ANN202
+    """:func:`.system_fd_kernel._parts` of the model ``m`` at ``w`` into ``ws``."""
+    _parts(
+        w,
+        m[2],
+        m[3],
+        m[4],
+        m[5],
+        m[6],
+        m[7],
+        m[8],
+        m[9],
+        m[10],
+        m[11],
+        m[12],
+        m[13],
+        ws[9],
+        ws[10],
+        ws[11],
+        ws[12],
+    )
+
+
+@njit(cache=True, error_model="numpy")
+def _fit_at(omega, m, ws, exact, disp, u_pts, out):  # noqa: ANN001, ANN202, PLR0913
+    """:func:`.system_fd_fit.fit_all` of the motion at ``omega`` into ``out`` (flat)."""
+    N = disp.shape[0]
+    P = u_pts.shape[0]
+    fit_all(
+        omega,
+        disp,
+        u_pts,
+        m[19],
+        m[20],
+        m[21],
+        m[22],
+        m[23],
+        m[35],
+        m[36],
+        ws[15],
+        ws[16],
+        exact,
+        ws[17],
+        ws[18],
+        ws[19],
+        out[: 9 * N].reshape(N, 3, 3),
+        out[9 * N :].reshape(P, 3, 3),
+    )
+
+
+@njit(cache=True, error_model="numpy")
+def iterate(  # noqa: ANN201, PLR0913
+    omega,
+    prescribed,
+    tolerance,
+    max_iterations,
+    exact,
+    m,
+    bw,
+    ws,
+    warm,
+    disp,
+    u_pts,
+    forces,
+    info,
+    finfo,
+):
+    """A case's harmonic response (:func:`.system_frequency.solve_system_harmonic`) for
+    the packed model ``m`` in the work space ``ws``: ``disp`` (nodes, 3), ``u_pts`` (P,
+    3), ``forces`` (L, 6) out; ``info`` (>= 4,) int: code (:data:`.system_fd_kernel.OK`,
+    ``SINGULAR_LINE``, ``SINGULAR_JUNCTION``, ``NOT_CONVERGED``), iterations, failing
+    line, 1 if it failed in the quasi-static start; ``finfo`` (2,): last change,
+    residual (NaN when failed). With ``warm`` the drag and the last motion in ``ws``
+    (a converged case's) are the start (module docstring), else the quasi-static
+    motion's fit."""
+    N = disp.shape[0]
+    P = u_pts.shape[0]
+    flat, fit, prev_d, prev_p, hist_R, hist_G, state = (
+        ws[13],
+        ws[14],
+        ws[20],
+        ws[21],
+        ws[22],
+        ws[23],
+        ws[24],
+    )
+    has_drag = m[37]
+    info[0] = OK
+    info[1] = 0
+    info[2] = -1
+    info[3] = 0
+    finfo[0] = 0.0
+    finfo[1] = np.nan
+    if has_drag:
+        if not warm:
+            _parts_at(0.0, m, ws)
+            code, bad = _solve_at(0.0, False, m, bw, ws, prescribed, disp, u_pts, forces)
+            if code != OK:
+                info[0], info[2], info[3] = code, bad, 1
+                return
+            _fit_at(omega, m, ws, exact, disp, u_pts, flat)
+            prev_d[:, :] = disp
+            prev_p[:, :] = u_pts
+        _parts_at(omega, m, ws)
+        state[0] = 0  # the mixing's history is the case's own (another frequency's misleads)
+        last = np.inf
+        converged = False
+        for it in range(1, max_iterations + 1):
+            info[1] = it
+            code, bad = _solve_at(omega, True, m, bw, ws, prescribed, disp, u_pts, forces)
+            if code != OK:
+                info[0], info[2] = code, bad
+                return
+            big = 0.0
+            diff = 0.0
+            for g in range(N):
+                for a in range(3):
+                    big = max(big, abs(disp[g, a]))
+                    diff = max(diff, abs(disp[g, a] - prev_d[g, a]))
+                    prev_d[g, a] = disp[g, a]
+            for p in range(P):
+                for a in range(3):
+                    big = max(big, abs(u_pts[p, a]))
+                    diff = max(diff, abs(u_pts[p, a] - prev_p[p, a]))
+                    prev_p[p, a] = u_pts[p, a]
+            change = diff / max(big, 1e-300)
+            finfo[0] = change
+            # a warm start's first change is against another case's motion: it never
+            # stops the iteration (each stop compares two solves at this frequency)
+            if change <= tolerance and not (warm and it == 1):
+                converged = True
+                break
+            _fit_at(omega, m, ws, exact, disp, u_pts, fit)
+            anderson(flat, fit, hist_R, hist_G, state, change, last)
+            last = change
+        if not converged:
+            info[0] = 3  # NOT_CONVERGED
+            return
+    else:
+        _parts_at(omega, m, ws)
+        code, bad = _solve_at(omega, False, m, bw, ws, prescribed, disp, u_pts, forces)
+        if code != OK:
+            info[0], info[2] = code, bad
+            return
+    D = flat[: 9 * N].reshape(N, 3, 3)
+    Dp = flat[9 * N :].reshape(P, 3, 3)
+    finfo[1] = _residual(
+        omega,
+        has_drag,
+        D,
+        Dp,
+        disp,
+        u_pts,
+        m[0],
+        m[24],
+        m[25],
+        m[26],
+        m[27],
+        m[28],
+        m[29],
+        m[30],
+        m[31],
+        m[33],
+        m[34],
+    )
+
+
+@njit(cache=True, error_model="numpy")
+def solve_case(  # noqa: ANN201, PLR0913
+    omega,
+    prescribed,
+    tolerance,
+    max_iterations,
+    samples,
+    exact,
+    m,
+    bw,
+    disp,
+    u_pts,
+    forces,
+    info,
+    finfo,
+):
+    """One case from the cold start (:func:`iterate`) in a work space of its own."""
+    ws = workspace(m, bw, samples)
+    iterate(
+        omega,
+        prescribed,
+        tolerance,
+        max_iterations,
+        exact,
+        m,
+        bw,
+        ws,
+        False,
+        disp,
+        u_pts,
+        forces,
+        info,
+        finfo,
+    )
+
+
+@njit(cache=True)
+def _same(prescribed, i):  # noqa: ANN001, ANN202
+    """Whether cases ``i``, ``i - 1`` and ``i - 2`` prescribe the same motion."""
+    for p in range(prescribed.shape[1]):
+        for a in range(3):
+            z = prescribed[i, p, a]
+            if z != prescribed[i - 1, p, a] or z != prescribed[i - 2, p, a]:
+                return False
+    return True
+
+
+@njit(cache=True, error_model="numpy")
+def solve_sweep(  # noqa: ANN201, PLR0913
+    omega,
+    prescribed,
+    tolerance,
+    max_iterations,
+    samples,
+    exact,
+    m,
+    bw,
+    warm,
+    seed,
+    seed_drag,
+    seed_disp,
+    seed_pts,
+    disp,
+    u_pts,
+    forces,
+    info,
+    finfo,
+    drag,
+):
+    """The cases ``i`` (``omega[i]`` [rad/s], ``prescribed[i]`` (P, 3)) in their order
+    in one work space: ``disp[i]``, ``u_pts[i]``, ``forces[i]``, ``info[i]`` (:data:`INFO`)
+    and ``finfo[i]`` as :func:`iterate`'s, and a converged case's drag (flat: nodes'
+    then points' 3 x 3) in ``drag[i]``. With ``warm`` a case after a converged one
+    within :data:`NEAR` of its frequency starts from that one's drag (module
+    docstring), extrapolated linearly in frequency from the two before when those
+    converged too, moved by the same motion and stepped up in frequency (by at most
+    twice the last step); with ``seed`` the first case starts from ``seed_drag`` and
+    the motion ``seed_disp``, ``seed_pts`` (a converged case of the same motion
+    nearby). A warm start that fails is run again cold."""
+    ws = workspace(m, bw, samples)
+    flat, prev_d, prev_p = ws[13], ws[20], ws[21]
+    started = False  # the work space holds a converged case
+    before = flat.copy()  # the converged drag of the case before the last
+    n_ok = 0
+    if seed and m[37]:
+        flat[:] = seed_drag
+        prev_d[:, :] = seed_disp
+        prev_p[:, :] = seed_pts
+    for i in range(omega.shape[0]):
+        # a neighbour within NEAR of the frequency: its drag is a start closer than the
+        # quasi-static fit (farther, the cold start)
+        if i == 0:
+            hot = warm and seed and m[37]
+        else:
+            hot = warm and started and m[37] and abs(omega[i] - omega[i - 1]) <= NEAR * omega[i]
+        t = 0.0
+        if hot and n_ok >= 2 and omega[i - 1] > omega[i - 2] and _same(prescribed, i):
+            t = (omega[i] - omega[i - 1]) / (omega[i - 1] - omega[i - 2])
+        if 0.0 < t <= 2.0:  # the last two converged drags extrapolated (linearly)
+            for q in range(flat.shape[0]):
+                d = flat[q]
+                flat[q] = d + t * (d - before[q])
+                before[q] = d
+        elif hot:
+            before[:] = flat
+        iterate(
+            omega[i],
+            prescribed[i],
+            tolerance,
+            max_iterations,
+            exact,
+            m,
+            bw,
+            ws,
+            hot,
+            disp[i],
+            u_pts[i],
+            forces[i],
+            info[i],
+            finfo[i],
+        )
+        if hot and info[i, 0] != OK:
+            iterate(
+                omega[i],
+                prescribed[i],
+                tolerance,
+                max_iterations,
+                exact,
+                m,
+                bw,
+                ws,
+                False,
+                disp[i],
+                u_pts[i],
+                forces[i],
+                info[i],
+                finfo[i],
+            )
+            hot = False
+        info[i, 4] = 1 if hot else 0
+        started = info[i, 0] == OK
+        n_ok = n_ok + 1 if started else 0
+        if started:
+            drag[i, :] = flat

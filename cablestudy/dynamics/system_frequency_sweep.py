@@ -1,0 +1,248 @@
+"""A sweep of harmonic motions of one linearised system solved together: the cases
+(frequency, body motion, the points' own motion) of one :class:`~.system_frequency.
+SystemLinear` go to the compiled iteration in one call (:func:`.system_fd_sweep.
+solve_sweep`), those of one motion together in order of frequency, each case started
+from its neighbours' converged drag (warm start: the module docstring of
+:mod:`.system_fd_sweep`). Each case's result
+is :func:`~.system_frequency.solve_system_harmonic`'s for that case, the drag iteration
+stopped at an iterate within the same tolerance of the same fixed point.
+
+Pure: arrays in, :class:`~.system_frequency.SystemFrequencyResult` out.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from .frequency_model import DragSettings
+from .system_fd_sweep import INFO, NEAR, solve_sweep
+from .system_frequency import (
+    RESIDUAL_BAR,
+    SystemFrequencyResult,
+    SystemLinear,
+    compiled_outcome,
+    cross,
+    harmonic_result,
+    prescribed_motion,
+)
+
+
+class DragMemory:
+    """Converged drags of one linear model kept for later sweeps' warm starts: per
+    motion (the prescribed points' complex motion and the drag settings) and frequency
+    the drag (flat, :func:`.system_fd_sweep.solve_sweep`'s ``drag``) and the motion of
+    the nodes and points; at most ``capacity`` cases and ``max_bytes`` of arrays (then
+    no more are kept)."""
+
+    def __init__(self, capacity: int = 256, max_bytes: int = 16 << 20) -> None:
+        self.capacity = capacity
+        self.max_bytes = max_bytes
+        self.kept: dict[tuple, dict[float, tuple[np.ndarray, np.ndarray, np.ndarray]]] = {}
+        self.size = 0
+        self.nbytes = 0
+
+    def start(self, key: tuple, w: float, than: float = math.inf) -> tuple | None:
+        """A warm start at ``w`` [rad/s] for the motion ``key`` from the kept cases (the
+        drag, the motion of the nodes and of the points), or None, or None when it is
+        not better than a neighbour ``than`` [rad/s] away: the case itself if kept; with
+        kept cases on both
+        sides within ``2 NEAR w`` of each other the drag interpolated linearly between
+        the nearest two, else from the nearest within ``NEAR w`` and nearer than
+        ``than`` (extrapolated from it and the next on its side when that is at most
+        twice as far again); the motion of the nodes and points the nearest's."""
+        kept = self.kept.get(key)
+        if not kept:
+            return None
+        at = list(kept)  # (another thread may add meanwhile)
+        near = min(at, key=lambda x: abs(x - w))
+        if abs(near - w) > NEAR * w:
+            return None
+        drag, disp, pts = kept[near]
+        if near == w:  # this very case
+            return drag, disp, pts
+        below = [x for x in at if x < w]
+        above = [x for x in at if x > w]
+        if below and above and min(above) - max(below) <= 2.0 * NEAR * w:
+            a, b = max(below), min(above)
+            drag = kept[a][0] + (w - a) / (b - a) * (kept[b][0] - kept[a][0])
+        elif not abs(near - w) < than:
+            return None
+        else:
+            side = [x for x in (below if near < w else above) if x != near]
+            if side:
+                far = max(side) if near < w else min(side)
+                t = (w - near) / (near - far)
+                if 0.0 < t <= 2.0:
+                    drag = drag + t * (drag - kept[far][0])
+        return drag, disp, pts
+
+    def add(self, key: tuple, w: float, state: tuple) -> None:
+        kept = self.kept.setdefault(key, {})
+        more = sum(a.nbytes for a in state)
+        if w not in kept and self.size < self.capacity and self.nbytes + more <= self.max_bytes:
+            kept[w] = state
+            self.size += 1
+            self.nbytes += more
+
+
+def solve_system_sweep(
+    model: SystemLinear,
+    omega: Sequence[float] | np.ndarray,
+    body_motion: Sequence[np.ndarray] | np.ndarray,
+    settings: DragSettings | None = None,
+    point_excitation: Sequence[np.ndarray | None] | None = None,
+    *,
+    warm: bool = True,
+    memory: DragMemory | None = None,
+) -> list[SystemFrequencyResult]:
+    """Per case ``i`` the steady harmonic response at ``omega[i]`` [rad/s] to the
+    bodies' complex motion ``body_motion[i]`` (B, 6) [m, rad] and the points' own
+    ``point_excitation[i]`` (P, 3) [m] (None: none), as
+    :func:`~.system_frequency.solve_system_harmonic` gives it; with ``warm`` the cases
+    of one motion in order of frequency each start from the one before (module
+    docstring), the first of a run of such cases from the nearest converged case
+    ``memory`` keeps of the model (within :data:`.system_fd_sweep.NEAR` of its
+    frequency; the converged cases added to it); without ``warm`` each case from the
+    quasi-static start. Never raises for a numerical failure."""
+    settings = settings or DragSettings()
+    w = np.asarray(omega, dtype=float).reshape(-1)
+    n = w.size
+    own = [None] * n if point_excitation is None else list(point_excitation)
+    prescribed = np.stack(
+        [prescribed_motion(model, body_motion[i], own[i]) for i in range(n)]
+    ).reshape(n, model.point_kind.size, 3)
+    # the cases of one motion together, each in order of frequency (the warm starts)
+    motion: dict[bytes, int] = {}
+    group = np.array([motion.setdefault(p.tobytes(), len(motion)) for p in prescribed])
+    order = np.lexsort((w, group.reshape(n)))
+    packed = model.packed
+    N, L, P = int(packed.node_offset[-1]), len(model.lines), model.point_kind.size
+    disp = np.empty((n, N, 3), dtype=complex)
+    u_pts = np.empty((n, P, 3), dtype=complex)
+    forces = np.empty((n, L, 6), dtype=complex)
+    info = np.zeros((n, INFO), dtype=np.int64)
+    finfo = np.zeros((n, 2))
+    drag = np.zeros((n, 9 * (N + P)))
+    ws, ps = w[order], np.ascontiguousarray(prescribed[order], dtype=complex)
+    # runs of cases of one motion, each within NEAR of the one before and none that the
+    # memory starts better (between two kept cases, or nearer to one than to the last)
+    keys = [(ps[k].tobytes(), settings) for k in range(n)]
+    new_run = np.ones(n, dtype=bool)
+    new_run[1:] = (group[order][1:] != group[order][:-1]) | (np.diff(ws) > NEAR * ws[1:])
+    starts: dict[int, tuple] = {}
+    for k in range(n):
+        than = math.inf if new_run[k] else float(ws[k] - ws[k - 1])
+        start = memory.start(keys[k], float(ws[k]), than) if (warm and memory) else None
+        if start is not None:
+            starts[k] = start
+            new_run[k] = True
+    bounds = [*np.flatnonzero(new_run).tolist(), n]
+    for k0, k1 in zip(bounds[:-1], bounds[1:], strict=True):
+        start = starts.get(k0)
+        seed = start is not None
+        state = start if start is not None else (drag[0], disp[0], u_pts[0])
+        solve_sweep(
+            np.ascontiguousarray(ws[k0:k1]),
+            ps[k0:k1],
+            float(settings.tolerance),
+            int(settings.max_iterations),
+            int(settings.samples),
+            bool(settings.exact),
+            packed.arrays,
+            packed.bw,
+            bool(warm),
+            bool(seed),
+            *state,
+            disp[k0:k1],
+            u_pts[k0:k1],
+            forces[k0:k1],
+            info[k0:k1],
+            finfo[k0:k1],
+            drag[k0:k1],
+        )
+    if memory is not None:
+        for k in np.flatnonzero(info[:, 0] == 0):
+            memory.add(keys[k], float(ws[k]), (drag[k].copy(), disp[k].copy(), u_pts[k].copy()))
+    theta = np.asarray(body_motion, dtype=complex).reshape(n, model.n_bodies, 6)[order, :, 3:]
+    post = _post_all(model, w[order], theta, disp, forces)
+    out: list[SystemFrequencyResult | None] = [None] * n
+    for k, i in enumerate(order):
+        if info[k, 0] == 0 and finfo[k, 1] <= RESIDUAL_BAR:
+            out[i] = _result(model, post, k, info[k], finfo[k], disp[k], u_pts[k])
+            continue
+        outcome = compiled_outcome(
+            model, float(w[i]), info[k], finfo[k], disp[k], u_pts[k], forces[k]
+        )
+        out[i] = harmonic_result(
+            model, float(w[i]), body_motion[i], settings, prescribed[i], outcome
+        )
+    return out  # type: ignore[return-value]
+
+
+def _post_all(
+    model: SystemLinear, w: np.ndarray, theta: np.ndarray, disp: np.ndarray, forces: np.ndarray
+) -> tuple[np.ndarray, ...]:
+    """:func:`~.system_frequency.harmonic_result`'s outputs of every case at once (cases
+    first): end forces on the points (n, L, 2, 3), end tensions (n, L, 2), the bodies'
+    force (n, B, 6), the element tensions (n, elements) and the envelope over the
+    nodes (n, nodes) above and below."""
+    post = model.post
+    n, L = w.size, len(model.lines)
+    support = -forces.reshape(n, L, 2, 3)
+    end_tension = np.sum(post.unit[None] * support, axis=3)
+    body_force = np.zeros((n, model.n_bodies, 6), dtype=complex)
+    if post.body_line.size:
+        sup = support[:, post.body_line, post.body_end]
+        arm = post.body_arm[None]
+        turned = cross(cross(theta[:, post.body], arm), post.body_static[None])
+        moment = cross(arm, sup) + turned
+        np.add.at(body_force, (slice(None), post.body, slice(0, 3)), sup)
+        np.add.at(body_force, (slice(None), post.body, slice(3, 6)), moment)
+    du = disp[:, post.element + 1] - disp[:, post.element]
+    axial = post.axial_stiffness[None] + 1j * w[:, None] * post.axial_damping[None]
+    tension = axial * np.sum(post.direction[None] * du, axis=2)
+    var = np.empty((n, post.node_static.size), dtype=complex)
+    var[:, post.inner] = 0.5 * (tension[:, post.left] + tension[:, post.right])
+    var[:, post.first] = end_tension[:, :, 0]
+    var[:, post.last] = end_tension[:, :, 1]
+    amp = np.abs(var)
+    return support, end_tension, body_force, tension, post.node_static + amp, post.node_static - amp
+
+
+def _result(
+    model: SystemLinear,
+    post: tuple[np.ndarray, ...],
+    k: int,
+    info: np.ndarray,
+    finfo: np.ndarray,
+    disp: np.ndarray,
+    u_pts: np.ndarray,
+) -> SystemFrequencyResult:
+    """The :class:`~.system_frequency.SystemFrequencyResult` of the solved case ``k`` of
+    :func:`_post_all`'s arrays ``post``."""
+    support, end_tension, body_force, tension, hi, lo = post
+    noff = model.packed.node_offset
+    eoff = noff - np.arange(noff.size)  # elements: a line's nodes less one
+    L = len(model.lines)
+
+    def split(v: np.ndarray, at: np.ndarray) -> list[np.ndarray]:
+        return [v[at[j] : at[j + 1]] for j in range(L)]
+
+    return SystemFrequencyResult(
+        end_tension=end_tension[k],
+        tension_static=model.post.static,
+        element_tension=split(tension[k], eoff),
+        displacement=split(disp, noff),
+        point_displacement=u_pts,
+        end_force=support[k],
+        body_force=body_force[k],
+        iterations=int(info[1]),
+        converged=True,
+        change=float(finfo[0]),
+        residual=float(finfo[1]),
+        element_tension_static=[r.line.tension.copy() for r in model.lines],
+        envelope_lines=(split(hi[k], noff), split(lo[k], noff)),
+    )
