@@ -77,7 +77,7 @@ def run(nodes: int, cases: int = 50) -> dict[str, float]:
     c4 = time.process_time()
     cold = solve_system_sweep(model, w, [motion] * cases, warm=False)
     c5 = time.process_time()
-    warm = solve_system_sweep(model, w, [motion] * cases)
+    warm = solve_system_sweep(model, w, [motion] * cases, warm=True)
     c6 = time.process_time()
     return {
         "static": c1 - c0,

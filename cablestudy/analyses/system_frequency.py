@@ -177,12 +177,12 @@ def _solve_frequency(
     res = _swept.pop(case.hash, None) if _swept.model is model else None
     if res is None:
         res = _solve_sweep(case, model) if _swept.cases else None
-    if res is None:  # alone: from the nearest converged case of the model (memory)
+    if res is None:  # alone: a sweep of one
         from ..dynamics.system_frequency_sweep import solve_system_sweep
 
         X, U, frequency = harmonic_motion(case.study)
         (res,) = solve_system_sweep(
-            model, [2.0 * math.pi * frequency], [X], drag_settings(dyn), [U], memory=_memory(model)
+            model, [2.0 * math.pi * frequency], [X], drag_settings(dyn), [U]
         )
     if res.status != STATUS_OK:
         return res.status, res.message, head, res, model
@@ -204,24 +204,6 @@ def _solve_frequency(
     if bad:
         return STATUS_NUMERICAL, f"non-finite values in {', '.join(bad)}", head, res, model
     return STATUS_OK, "", out, res, model
-
-
-_DRAG_CACHE: OrderedDict[int, tuple[Any, Any]] = OrderedDict()
-
-
-def _memory(model: Any) -> Any:
-    """The model's converged drags kept for warm starts
-    (:class:`~cablestudy.dynamics.system_frequency_sweep.DragMemory`), one per model."""
-    from ..dynamics.system_frequency_sweep import DragMemory
-
-    hit = _DRAG_CACHE.get(id(model))
-    if hit is not None and hit[0] is model:
-        _DRAG_CACHE.move_to_end(id(model))
-        return hit[1]
-    memory = DragMemory()  # at most 16 MB a model, of the last four models
-    _DRAG_CACHE[id(model)] = (model, memory)
-    trim_lru(_DRAG_CACHE, 4)
-    return memory
 
 
 class _Sweep(threading.local):
@@ -297,7 +279,6 @@ def _solve_sweep(case: Case, model: Any) -> Any:
         [X for X, _, _ in motions],
         settings,
         [U for _, U, _ in motions],
-        memory=_memory(model),
     )
     share = (time.perf_counter() - t0) / len(group)
     _swept.model = model

@@ -2,17 +2,16 @@
 (frequency, body motion, the points' own motion) of one :class:`~.system_frequency.
 SystemLinear` go to the compiled iteration in one call (:func:`.system_fd_sweep.
 solve_sweep`), those of one motion together in order of frequency, each case started
-from its neighbours' converged drag (warm start: the module docstring of
-:mod:`.system_fd_sweep`). Each case's result
-is :func:`~.system_frequency.solve_system_harmonic`'s for that case, the drag iteration
-stopped at an iterate within the same tolerance of the same fixed point.
+from the quasi-static start, as alone. Each case's result is
+:func:`~.system_frequency.solve_system_harmonic`'s for that case bit for bit (a warm
+start from the neighbours, measured, is not what a study runs:
+:func:`solve_system_sweep`).
 
 Pure: arrays in, :class:`~.system_frequency.SystemFrequencyResult` out.
 """
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -30,64 +29,6 @@ from .system_frequency import (
 )
 
 
-class DragMemory:
-    """Converged drags of one linear model kept for later sweeps' warm starts: per
-    motion (the prescribed points' complex motion and the drag settings) and frequency
-    the drag (flat, :func:`.system_fd_sweep.solve_sweep`'s ``drag``) and the motion of
-    the nodes and points; at most ``capacity`` cases and ``max_bytes`` of arrays (then
-    no more are kept)."""
-
-    def __init__(self, capacity: int = 256, max_bytes: int = 16 << 20) -> None:
-        self.capacity = capacity
-        self.max_bytes = max_bytes
-        self.kept: dict[tuple, dict[float, tuple[np.ndarray, np.ndarray, np.ndarray]]] = {}
-        self.size = 0
-        self.nbytes = 0
-
-    def start(self, key: tuple, w: float, than: float = math.inf) -> tuple | None:
-        """A warm start at ``w`` [rad/s] for the motion ``key`` from the kept cases (the
-        drag, the motion of the nodes and of the points), or None, or None when it is
-        not better than a neighbour ``than`` [rad/s] away: the case itself if kept; with
-        kept cases on both
-        sides within ``2 NEAR w`` of each other the drag interpolated linearly between
-        the nearest two, else from the nearest within ``NEAR w`` and nearer than
-        ``than`` (extrapolated from it and the next on its side when that is at most
-        twice as far again); the motion of the nodes and points the nearest's."""
-        kept = self.kept.get(key)
-        if not kept:
-            return None
-        at = list(kept)  # (another thread may add meanwhile)
-        near = min(at, key=lambda x: abs(x - w))
-        if abs(near - w) > NEAR * w:
-            return None
-        drag, disp, pts = kept[near]
-        if near == w:  # this very case
-            return drag, disp, pts
-        below = [x for x in at if x < w]
-        above = [x for x in at if x > w]
-        if below and above and min(above) - max(below) <= 2.0 * NEAR * w:
-            a, b = max(below), min(above)
-            drag = kept[a][0] + (w - a) / (b - a) * (kept[b][0] - kept[a][0])
-        elif not abs(near - w) < than:
-            return None
-        else:
-            side = [x for x in (below if near < w else above) if x != near]
-            if side:
-                far = max(side) if near < w else min(side)
-                t = (w - near) / (near - far)
-                if 0.0 < t <= 2.0:
-                    drag = drag + t * (drag - kept[far][0])
-        return drag, disp, pts
-
-    def add(self, key: tuple, w: float, state: tuple) -> None:
-        kept = self.kept.setdefault(key, {})
-        more = sum(a.nbytes for a in state)
-        if w not in kept and self.size < self.capacity and self.nbytes + more <= self.max_bytes:
-            kept[w] = state
-            self.size += 1
-            self.nbytes += more
-
-
 def solve_system_sweep(
     model: SystemLinear,
     omega: Sequence[float] | np.ndarray,
@@ -95,18 +36,18 @@ def solve_system_sweep(
     settings: DragSettings | None = None,
     point_excitation: Sequence[np.ndarray | None] | None = None,
     *,
-    warm: bool = True,
-    memory: DragMemory | None = None,
+    warm: bool = False,
 ) -> list[SystemFrequencyResult]:
     """Per case ``i`` the steady harmonic response at ``omega[i]`` [rad/s] to the
     bodies' complex motion ``body_motion[i]`` (B, 6) [m, rad] and the points' own
     ``point_excitation[i]`` (P, 3) [m] (None: none), as
-    :func:`~.system_frequency.solve_system_harmonic` gives it; with ``warm`` the cases
-    of one motion in order of frequency each start from the one before (module
-    docstring), the first of a run of such cases from the nearest converged case
-    ``memory`` keeps of the model (within :data:`.system_fd_sweep.NEAR` of its
-    frequency; the converged cases added to it); without ``warm`` each case from the
-    quasi-static start. Never raises for a numerical failure."""
+    :func:`~.system_frequency.solve_system_harmonic` gives it bit for bit, each case
+    from the quasi-static start; with ``warm`` the cases of one motion in order of
+    frequency each start from the one before (module docstring: fewer iterations, but
+    each answer then depends on its neighbours within the iteration's tolerance, so a
+    study never asks for it: a case's record must not depend on the cases run beside
+    it; kept for the measurement in benchmarks/bench_system_frequency.py). Never raises
+    for a numerical failure."""
     settings = settings or DragSettings()
     w = np.asarray(omega, dtype=float).reshape(-1)
     n = w.size
@@ -127,23 +68,11 @@ def solve_system_sweep(
     finfo = np.zeros((n, 2))
     drag = np.zeros((n, 9 * (N + P)))
     ws, ps = w[order], np.ascontiguousarray(prescribed[order], dtype=complex)
-    # runs of cases of one motion, each within NEAR of the one before and none that the
-    # memory starts better (between two kept cases, or nearer to one than to the last)
-    keys = [(ps[k].tobytes(), settings) for k in range(n)]
+    # runs of cases of one motion, each within NEAR of the one before (warm starts)
     new_run = np.ones(n, dtype=bool)
     new_run[1:] = (group[order][1:] != group[order][:-1]) | (np.diff(ws) > NEAR * ws[1:])
-    starts: dict[int, tuple] = {}
-    for k in range(n):
-        than = math.inf if new_run[k] else float(ws[k] - ws[k - 1])
-        start = memory.start(keys[k], float(ws[k]), than) if (warm and memory) else None
-        if start is not None:
-            starts[k] = start
-            new_run[k] = True
     bounds = [*np.flatnonzero(new_run).tolist(), n]
     for k0, k1 in zip(bounds[:-1], bounds[1:], strict=True):
-        start = starts.get(k0)
-        seed = start is not None
-        state = start if start is not None else (drag[0], disp[0], u_pts[0])
         solve_sweep(
             np.ascontiguousarray(ws[k0:k1]),
             ps[k0:k1],
@@ -154,8 +83,10 @@ def solve_system_sweep(
             packed.arrays,
             packed.bw,
             bool(warm),
-            bool(seed),
-            *state,
+            False,
+            drag[0],
+            disp[0],
+            u_pts[0],
             disp[k0:k1],
             u_pts[k0:k1],
             forces[k0:k1],
@@ -163,9 +94,6 @@ def solve_system_sweep(
             finfo[k0:k1],
             drag[k0:k1],
         )
-    if memory is not None:
-        for k in np.flatnonzero(info[:, 0] == 0):
-            memory.add(keys[k], float(ws[k]), (drag[k].copy(), disp[k].copy(), u_pts[k].copy()))
     theta = np.asarray(body_motion, dtype=complex).reshape(n, model.n_bodies, 6)[order, :, 3:]
     post = _post_all(model, w[order], theta, disp, forces)
     out: list[SystemFrequencyResult | None] = [None] * n
