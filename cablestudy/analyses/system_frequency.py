@@ -190,13 +190,18 @@ def _solve_frequency(
     values = system_frequency_outputs(res, static.body_force if bodies else None)
     n_out = system.lines[0].problem.n_nodes
     grid = _envelope_grid(model, n_out)
+    # each node's static elevation plus its heave amplitude (the surface warning's)
+    values["z_envelope_max"] = [
+        red.line.position[:, 2] + np.abs(u[:, 2])
+        for red, u in zip(model.lines, res.displacement, strict=True)
+    ]
     env = {
         key: (grid @ np.concatenate(values[key])).reshape(len(model.lines), n_out)
-        for key in ("tension_envelope_max", "tension_envelope_min")
+        for key in ("tension_envelope_max", "tension_envelope_min", "z_envelope_max")
     }
     out = {
         **head,
-        **{k: np.asarray(v) for k, v in values.items() if not k.startswith("tension_envelope")},
+        **{k: np.asarray(v) for k, v in values.items() if k not in env},
         **env,
         "linearisation_iterations": np.asarray(res.iterations),
     }
