@@ -235,9 +235,9 @@ def sweep_chunk(cases: list[Case]) -> Iterator[dict[str, float]]:
     that shares a linear model (static problem, element count, drag settings) and runs
     the frequency domain solves the whole group's harmonic responses in one compiled
     sweep (:func:`~cablestudy.dynamics.system_frequency_sweep.solve_system_sweep`,
-    sorted by frequency, each case started from its neighbour's converged drag); the
-    others take theirs. Yields, per case hash, the seconds of that sweep to move
-    to the case's wall time (its share; the first case's less the others')."""
+    each case as alone); the others take theirs. Yields, per case hash, the seconds of
+    that sweep to move to the case's wall time (its share; the first case's less the
+    others')."""
     _swept.cases, _swept.results, _swept.model, _swept.seconds = list(cases), {}, None, {}
     try:
         yield _swept.seconds

@@ -68,10 +68,12 @@ to a body); the NumPy/LAPACK iteration line by line (:mod:`.system_frequency_ref
 and answers within 1e-7 of the largest (tests/unit/test_system_fd_kernel.py). At two
 elements a line (one inner node) the band is widened to a node's drag block. Cases
 that share a model go to the kernel together as a sweep
-(:mod:`.system_frequency_sweep`, :mod:`.system_fd_sweep`): one work space, the cases
-of one motion in order of frequency, each started from its neighbours' converged drag
-(6.4 drag iterations a case instead of 10.1 on case8 surged 2 m over 0.02-0.5 Hz;
-every answer within the tolerance of the same fixed point as the cold start's).
+(:mod:`.system_frequency_sweep`, :mod:`.system_fd_sweep`): one work space, each case
+from the quasi-static start, its answer the case's alone bit for bit. A warm start from
+the neighbours' converged drag was measured (6.4 drag iterations a case instead of
+10.1 on case8 surged 2 m over 0.02-0.5 Hz, every answer within the tolerance of the
+same fixed point) and is not what a study runs: it makes a case's record depend on the
+cases solved beside it.
 
 Building the model is cheap next to a time-domain case (``method: auto`` builds it
 before it judges a case): the lines re-solved at the model's nodes in one call of the
