@@ -1,6 +1,6 @@
-"""The compiled drag iteration of a system's frequency domain driven case by case
-(:func:`solve_case`, one case) and over a sweep of cases that share one linear model
-(:func:`solve_sweep`: several frequencies and motions in one compiled call).
+"""The compiled drag iteration of a system's frequency domain over a sweep of cases that
+share one linear model (:func:`solve_sweep`: several frequencies and motions in one
+compiled call; a case alone is a sweep of one).
 
 The iteration (:func:`iterate`) is the one the module docstring of
 :mod:`.system_frequency` gives, by the steps of :mod:`.system_fd_kernel` (the
@@ -299,42 +299,6 @@ def iterate(  # noqa: ANN201, PLR0913
         m[31],
         m[33],
         m[34],
-    )
-
-
-@njit(cache=True, error_model="numpy")
-def solve_case(  # noqa: ANN201, PLR0913
-    omega,
-    prescribed,
-    tolerance,
-    max_iterations,
-    samples,
-    exact,
-    m,
-    bw,
-    disp,
-    u_pts,
-    forces,
-    info,
-    finfo,
-):
-    """One case from the cold start (:func:`iterate`) in a work space of its own."""
-    ws = workspace(m, bw, samples)
-    iterate(
-        omega,
-        prescribed,
-        tolerance,
-        max_iterations,
-        exact,
-        m,
-        bw,
-        ws,
-        False,
-        disp,
-        u_pts,
-        forces,
-        info,
-        finfo,
     )
 
 

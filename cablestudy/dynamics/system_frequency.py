@@ -118,7 +118,6 @@ from .modal import ModalProblem
 from .system_drag import mean_drag_jacobian, point_drag_fit
 from .system_fd_kernel import NOT_CONVERGED, SINGULAR_JUNCTION, SINGULAR_LINE
 from .system_fd_pack import PackedSystem, pack_system
-from .system_fd_sweep import solve_case
 from .system_frequency_reference import iterate_reference
 
 #: largest residual of the assembled equations on the solution (inner rows of every
@@ -549,16 +548,19 @@ def solve_system_harmonic(
     amplitudes ``body_motion`` [m, rad] (B, 6) and the points' own complex displacement
     amplitudes ``point_excitation`` [m] (P, 3) (fixed or body points moved on their own,
     added to their bodies' motion; None: none), the drag linearised by iteration
-    (module docstring), by the compiled iteration (:mod:`.system_fd_kernel`; with
-    ``reference``, by NumPy and LAPACK line by line:
+    (module docstring), by the compiled iteration as a sweep of one case
+    (:func:`.system_frequency_sweep.solve_system_sweep`, the one path a study takes;
+    with ``reference``, by NumPy and LAPACK line by line:
     :mod:`.system_frequency_reference`). Never raises for a numerical failure: status
     and message."""
     settings = settings or DragSettings()
+    if not reference:
+        from .system_frequency_sweep import solve_system_sweep
+
+        (result,) = solve_system_sweep(model, [omega], [body_motion], settings, [point_excitation])
+        return result
     prescribed = prescribed_motion(model, body_motion, point_excitation)
-    if reference:
-        outcome = iterate_reference(model, omega, prescribed, settings)
-    else:
-        outcome = _iterate_compiled(model, omega, prescribed, settings)
+    outcome = iterate_reference(model, omega, prescribed, settings)
     return harmonic_result(model, omega, body_motion, settings, prescribed, outcome)
 
 
@@ -664,36 +666,6 @@ def harmonic_result(
         element_tension_static=[r.line.tension.copy() for r in model.lines],
         envelope_lines=envelope,
     )
-
-
-def _iterate_compiled(
-    model: SystemLinear, omega: float, prescribed: np.ndarray, settings: DragSettings
-) -> tuple:
-    """:func:`~.system_frequency_reference.iterate_reference` by the compiled kernel
-    (:func:`.system_fd_sweep.solve_case`), its outcome in the same form."""
-    packed = model.packed
-    L = len(model.lines)
-    disp = np.empty((int(packed.node_offset[-1]), 3), dtype=complex)
-    u_pts = np.empty((model.point_kind.size, 3), dtype=complex)
-    forces = np.empty((L, 6), dtype=complex)
-    info = np.zeros(4, dtype=np.int64)
-    finfo = np.zeros(2)
-    solve_case(
-        float(omega),
-        np.ascontiguousarray(prescribed, dtype=complex),
-        float(settings.tolerance),
-        int(settings.max_iterations),
-        int(settings.samples),
-        bool(settings.exact),
-        packed.arrays,
-        packed.bw,
-        disp,
-        u_pts,
-        forces,
-        info,
-        finfo,
-    )
-    return compiled_outcome(model, omega, info, finfo, disp, u_pts, forces)
 
 
 def compiled_outcome(
