@@ -118,6 +118,7 @@ from .modal import ModalProblem
 from .system_drag import mean_drag_jacobian, point_drag_fit
 from .system_fd_kernel import NOT_CONVERGED, SINGULAR_JUNCTION, SINGULAR_LINE
 from .system_fd_pack import PackedSystem, pack_system
+from .system_fd_sweep import INFO, solve_sweep
 from .system_frequency_reference import iterate_reference
 
 #: largest residual of the assembled equations on the solution (inner rows of every
@@ -549,19 +550,55 @@ def solve_system_harmonic(
     amplitudes ``point_excitation`` [m] (P, 3) (fixed or body points moved on their own,
     added to their bodies' motion; None: none), the drag linearised by iteration
     (module docstring), by the compiled iteration as a sweep of one case
-    (:func:`.system_frequency_sweep.solve_system_sweep`, the one path a study takes;
-    with ``reference``, by NumPy and LAPACK line by line:
+    (:func:`.system_fd_sweep.solve_sweep`, the one kernel a study runs; with
+    ``reference``, by NumPy and LAPACK line by line:
     :mod:`.system_frequency_reference`). Never raises for a numerical failure: status
     and message."""
     settings = settings or DragSettings()
-    if not reference:
-        from .system_frequency_sweep import solve_system_sweep
-
-        (result,) = solve_system_sweep(model, [omega], [body_motion], settings, [point_excitation])
-        return result
     prescribed = prescribed_motion(model, body_motion, point_excitation)
-    outcome = iterate_reference(model, omega, prescribed, settings)
+    if reference:
+        outcome = iterate_reference(model, omega, prescribed, settings)
+    else:
+        outcome = _iterate_compiled(model, omega, prescribed, settings)
     return harmonic_result(model, omega, body_motion, settings, prescribed, outcome)
+
+
+def _iterate_compiled(
+    model: SystemLinear, omega: float, prescribed: np.ndarray, settings: DragSettings
+) -> tuple:
+    """:func:`~.system_frequency_reference.iterate_reference` by the compiled kernel, a
+    sweep of one case (:func:`.system_fd_sweep.solve_sweep`, the study's one path), its
+    outcome in the same form."""
+    packed = model.packed
+    N, P = int(packed.node_offset[-1]), model.point_kind.size
+    disp = np.empty((1, N, 3), dtype=complex)
+    u_pts = np.empty((1, P, 3), dtype=complex)
+    forces = np.empty((1, len(model.lines), 6), dtype=complex)
+    info = np.zeros((1, INFO), dtype=np.int64)
+    finfo = np.zeros((1, 2))
+    drag = np.zeros((1, 9 * (N + P)))
+    solve_sweep(
+        np.array([float(omega)]),
+        np.ascontiguousarray(prescribed, dtype=complex).reshape(1, P, 3),
+        float(settings.tolerance),
+        int(settings.max_iterations),
+        int(settings.samples),
+        bool(settings.exact),
+        packed.arrays,
+        packed.bw,
+        False,
+        False,
+        drag[0],
+        disp[0],
+        u_pts[0],
+        disp,
+        u_pts,
+        forces,
+        info,
+        finfo,
+        drag,
+    )
+    return compiled_outcome(model, omega, info[0], finfo[0], disp[0], u_pts[0], forces[0])
 
 
 def prescribed_motion(
