@@ -99,7 +99,11 @@ def cmd_run(args: argparse.Namespace) -> int:
     from .kernels import ensure_compiled, kinds_of
 
     studies = [c.study for c in grid.cases()] if not grid.chunked else [grid.template]
-    ensure_compiled(sorted({k for study in studies for k in kinds_of(study)}))
+    try:
+        ensure_compiled(sorted({k for study in studies for k in kinds_of(study)}))
+    except KeyboardInterrupt:
+        print("\ninterrupted while compiling the kernels: no case was run", file=sys.stderr)
+        return 130
     try:
         if not grid.chunked:  # the kernels its cases need, loaded before any is timed
             from .analyses.evaluate import warm_up

@@ -9,7 +9,9 @@ from __future__ import annotations
 import contextlib
 import math
 import os
+import signal
 import sys
+import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -246,14 +248,23 @@ def _local_cluster(scheduler: str, workers: int):  # noqa: ANN202 - dask type, i
     from dask.distributed import LocalCluster
 
     method = "fork" if sys.platform.startswith("linux") else "spawn"
-    with dask.config.set({"distributed.worker.multiprocessing-method": method}):
-        return LocalCluster(
-            n_workers=workers if scheduler == PROCESSES else 1,
-            threads_per_worker=1 if scheduler == PROCESSES else workers,
-            processes=scheduler == PROCESSES,
-            dashboard_address=None,
-            silence_logs=50,
-        )
+    # Ctrl-C reaches every process of the terminal's group: the workers start with it
+    # ignored (a disposition both fork and spawn keep), so that only this process stops
+    # the run (says so, closes the cluster) instead of each worker printing a traceback
+    main = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
+    try:
+        with dask.config.set({"distributed.worker.multiprocessing-method": method}):
+            return LocalCluster(
+                n_workers=workers if scheduler == PROCESSES else 1,
+                threads_per_worker=1 if scheduler == PROCESSES else workers,
+                processes=scheduler == PROCESSES,
+                dashboard_address=None,
+                silence_logs=50,
+            )
+    finally:
+        if main:
+            signal.signal(signal.SIGINT, previous)
 
 
 def _run_dask(

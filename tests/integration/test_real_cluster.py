@@ -188,3 +188,23 @@ def test_unreachable_scheduler_fails_in_seconds_naming_the_address(tmp_path: Pat
     # process start and imports add a few seconds that a loaded machine stretches
     assert elapsed < 3.0 * DEFAULT_TIMEOUT, f"took {elapsed:.1f} s"
     assert not (tmp_path / "cluster.nc").exists()
+
+
+def test_local_workers_leave_ctrl_c_to_the_run() -> None:
+    """Ctrl-C reaches every process of the terminal's group: the local cluster's worker
+    processes start with SIGINT ignored, so only the run itself stops (it says so and
+    closes the cluster) instead of every worker printing a traceback; this process's own
+    handler is back in place afterwards."""
+    from dask.distributed import Client
+
+    from cablestudy.run.scheduler import PROCESSES, _local_cluster
+
+    before = signal.getsignal(signal.SIGINT)
+    cluster = _local_cluster(PROCESSES, 1)
+    try:
+        assert signal.getsignal(signal.SIGINT) is before
+        with Client(cluster) as client:
+            seen = client.run(lambda: int(signal.getsignal(signal.SIGINT)))
+        assert list(seen.values()) == [int(signal.SIG_IGN)]
+    finally:
+        cluster.close()
