@@ -37,7 +37,6 @@ from .modal import (
     default_extras,
     element_strain,
     element_tangent,
-    shared_model,
     tangents_of,
 )
 
@@ -45,70 +44,22 @@ from .modal import (
 def linear_line(problem: ModalProblem) -> LinearLine:
     """The linearised line about ``problem.static`` (its samples are the nodes), with
     both end nodes prescribed. ``problem.include_added_mass`` and
-    ``include_bending`` apply as in modal analysis."""
+    ``include_bending`` apply as in modal analysis (:func:`linear_lines` of the one
+    line, its ends held)."""
     held = EndCondition(kind="fixed")
-    prob = replace(problem, end_a=held, end_b=held)
-    line, medium, st = prob.line, prob.medium, prob.static
-    s, pos = np.asarray(st.s, dtype=float), np.asarray(st.position, dtype=float)
-    n = s.size
-    l0 = np.diff(s)
-    chord = np.diff(pos, axis=0)
-    t = chord / np.linalg.norm(chord, axis=1)[:, None]
-    seg = _segment_index(line, 0.5 * (s[:-1] + s[1:]))
-    # the tension response of an element is its law's tangent at the static strain
-    ea = element_tangent(line, s, 0.5 * (st.tension[:-1] + st.tension[1:]))
-    c_axial = line.damping_ratio[seg] * l0 * np.sqrt(line.axial_stiffness[seg] * line.mass[seg])
-
-    def lump(per_length: np.ndarray) -> np.ndarray:
-        half = 0.5 * per_length[seg] * l0
-        out = np.zeros(n)
-        out[:-1] += half
-        out[1:] += half
-        return out
-
-    rho = medium.density
-    drag_n = lump(0.5 * rho * line.drag_normal * line.diameter)
-    drag_t = lump(0.5 * rho * math.pi * line.drag_tangential * line.diameter)
-    lo = np.maximum(np.arange(n) - 1, 0)
-    hi = np.minimum(np.arange(n) + 1, n - 1)
-    tangent = pos[hi] - pos[lo]
-    tangent /= np.linalg.norm(tangent, axis=1)[:, None]
-
-    disc, x = shared_model(prob)
-    mass, stiffness, damping = tangents_of(disc, x)
-    # the bodies' drag 1/2 rho C_D A, lumped on their elements' nodes by the shared
-    # model, as the time domain has it
-    drag_b = np.asarray(disc.body_drag, dtype=float)
-    return LinearLine(
-        s=s,
-        position=pos,
-        mass=mass,
-        stiffness=stiffness,
-        damping=damping,
-        rest_length=l0,
-        direction=t,
-        axial_stiffness=ea,
-        axial_damping=c_axial,
-        tension=0.5 * (st.tension[:-1] + st.tension[1:]),
-        end_force=np.stack([np.asarray(st.force_a), np.asarray(st.force_b)]),
-        drag_normal=drag_n,
-        drag_tangential=drag_t,
-        current=current_velocity(pos[:, 2], medium.current_z, medium.current_velocity),
-        tangent=tangent,
-        free_basis=held_ends_basis(n),
-        drag_body=drag_b if np.any(drag_b > 0.0) else None,
-    )
+    return linear_lines([replace(problem, end_a=held, end_b=held)])[0]
 
 
 def linear_lines(problems: Sequence[ModalProblem]) -> list[LinearLine]:
-    """:func:`linear_line` of each problem (a system's lines), the same lines bit for
-    bit with less repeated work: lines alike in every input of their discretisation
-    (line, medium, dynamic extras, node arc lengths: a spread's legs, a spar's
-    bridles) share it (it depends on those alone, not on where the line lies), and
-    each line's element segments and strains are found once (:func:`linear_line`
-    finds them in :func:`~.modal.shared_model` and again for the axial tangent).
-    Everything else is :func:`linear_line`'s arithmetic in its order
-    (tests/unit/test_system_fd_build.py compares the two byte for byte)."""
+    """The linearised line of each problem (a system's lines, or the one line of
+    :func:`linear_line`), about its static shape: the shared model's tangents
+    (:func:`~.modal.shared_model`'s changes: rest lengths from the static tension's
+    strain, added mass and bending as the problem asks, laid nodes a nanometre into the
+    seabed), with the solver's own drag coefficients, current and node tangents. Lines
+    alike in every input of their discretisation (line, medium, dynamic extras, node arc
+    lengths: a spread's legs, a spar's bridles) share it (it depends on those alone, not
+    on where the line lies), and each line's element segments and strains are found
+    once."""
     made: list[tuple[tuple, object]] = []
     out = []
     for problem in problems:
