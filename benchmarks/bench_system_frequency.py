@@ -6,8 +6,7 @@ built once and shared by the cases (as a sweep does); per case the drag iteratio
 and the band solves run. Reported: CPU time (``time.process_time``; the machine may be
 shared) of the statics, of the linear model, and per case; drag iterations; and the
 same cases as one sweep (:func:`cablestudy.dynamics.system_frequency_sweep.
-solve_system_sweep`) from the quasi-static start and warm (each case from its
-neighbours' converged drag): CPU time a case and mean iterations.
+solve_system_sweep`, as a study runs them): CPU time a case.
 
     PYTHONPATH=$PWD .venv/bin/python benchmarks/bench_system_frequency.py [--nodes 41]
 
@@ -70,15 +69,13 @@ def run(nodes: int, cases: int = 50) -> dict[str, float]:
         iterations.append(out.iterations)
         failed += out.status != 0
     c3 = time.process_time()
-    # the same cases as one sweep (cablestudy.dynamics.system_frequency_sweep): each from
-    # the quasi-static start, then each from its neighbours' drag (warm start)
+    # the same cases as one sweep (cablestudy.dynamics.system_frequency_sweep), as a study
+    # runs them
     w = 2.0 * np.pi * np.linspace(0.02, 0.5, cases)
     solve_system_sweep(model, w[:3], [motion] * 3)  # its compiled kernel loaded
     c4 = time.process_time()
-    cold = solve_system_sweep(model, w, [motion] * cases, warm=False)
+    swept = solve_system_sweep(model, w, [motion] * cases)
     c5 = time.process_time()
-    warm = solve_system_sweep(model, w, [motion] * cases, warm=True)
-    c6 = time.process_time()
     return {
         "static": c1 - c0,
         "linear_model": c2 - c1,
@@ -86,11 +83,8 @@ def run(nodes: int, cases: int = 50) -> dict[str, float]:
         "iterations_mean": float(np.mean(iterations)),
         "iterations_max": float(np.max(iterations)),
         "failed": float(failed),
-        "sweep_cold": (c5 - c4) / cases,
-        "sweep_warm": (c6 - c5) / cases,
-        "iterations_cold": float(np.mean([r.iterations for r in cold])),
-        "iterations_warm": float(np.mean([r.iterations for r in warm])),
-        "failed_sweep": float(sum(r.status != 0 for r in cold + warm)),
+        "sweep": (c5 - c4) / cases,
+        "failed_sweep": float(sum(r.status != 0 for r in swept)),
     }
 
 
@@ -181,9 +175,7 @@ def main() -> None:
         f"{r['static'] * 1e3:.0f} ms, linear model {r['linear_model'] * 1e3:.0f} ms, "
         f"{r['per_case'] * 1e3:.1f} ms a case (CPU), drag iterations mean "
         f"{r['iterations_mean']:.1f} max {r['iterations_max']:.0f}, failed {r['failed']:.0f}; "
-        f"as one sweep: {r['sweep_cold'] * 1e3:.2f} ms a case cold ({r['iterations_cold']:.1f} "
-        f"iterations), {r['sweep_warm'] * 1e3:.2f} ms warm ({r['iterations_warm']:.1f}), "
-        f"failed {r['failed_sweep']:.0f}"
+        f"as one sweep: {r['sweep'] * 1e3:.2f} ms a case, failed {r['failed_sweep']:.0f}"
     )
 
 

@@ -8,21 +8,9 @@ condensation, the junction system, the residual) and :mod:`.system_fd_fit` (the 
 fit, Anderson mixing), in a work space allocated once (:func:`workspace`) and reused
 by every case of a sweep.
 
-Warm start (a sweep). The cases are taken in the order given (the caller sorts them by
-motion and frequency); a case after one that converged at a nearby frequency starts
-from that case's converged drag (the nodes' and points' linearised drag matrices;
-extrapolated linearly in frequency from the two cases before, :func:`solve_sweep`), or
-the first case from a seed the caller gives (a converged case kept from an earlier
-sweep), instead of the quasi-static motion's fit. The mixing's history starts empty
-(pairs of another frequency's map mislead it: kept, they stopped iterations at 8 % off
-the fixed point). The first change is measured against the starting case's motion and
-never stops the iteration, so every stop compares two solves at the case's own
-frequency, as the cold start's stops after its first do: it stops when the velocity
-amplitudes of every node change by less than ``tolerance`` of the largest, so a warm
-and a cold start stop at two iterates of the same fixed point, each within the
-tolerance (tests/unit/test_system_fd_sweep.py measures how far apart). A warm start
-that fails (singular, not converged) is run again from the cold start, whose outcome is
-the case's: a sweep never fails a case that the case alone would solve.
+Each case starts from its own quasi-static motion (the drag fitted to the response
+without drag at zero frequency), whatever the cases beside it: a case in a sweep is the
+case alone bit for bit (the work space's state is set afresh by each case's start).
 
 Pure: arrays in, arrays out.
 """
@@ -38,10 +26,8 @@ from .system_fd_fit import DEPTH, anderson, fit_all
 from .system_fd_kernel import OK, _parts, _residual, _solve
 
 #: ``info`` of a case (``info[i]``): code, iterations, failing line, 1 if it failed in
-#: the quasi-static start, 1 if the case started warm (its answer from a warm start)
-INFO = 5
-#: largest step of frequency, relative, from a case to the next started warm
-NEAR = 0.25
+#: the quasi-static start
+INFO = 4
 
 
 @njit(cache=True)
@@ -195,7 +181,6 @@ def iterate(  # noqa: ANN201, PLR0913
     m,
     bw,
     ws,
-    warm,
     disp,
     u_pts,
     forces,
@@ -207,9 +192,8 @@ def iterate(  # noqa: ANN201, PLR0913
     3), ``forces`` (L, 6) out; ``info`` (>= 4,) int: code (:data:`.system_fd_kernel.OK`,
     ``SINGULAR_LINE``, ``SINGULAR_JUNCTION``, ``NOT_CONVERGED``), iterations, failing
     line, 1 if it failed in the quasi-static start; ``finfo`` (2,): last change,
-    residual (NaN when failed). With ``warm`` the drag and the last motion in ``ws``
-    (a converged case's) are the start (module docstring), else the quasi-static
-    motion's fit."""
+    residual (NaN when failed). The start is the quasi-static motion's fit (module
+    docstring)."""
     N = disp.shape[0]
     P = u_pts.shape[0]
     flat, fit, prev_d, prev_p, hist_R, hist_G, state = (
@@ -229,17 +213,16 @@ def iterate(  # noqa: ANN201, PLR0913
     finfo[0] = 0.0
     finfo[1] = np.nan
     if has_drag:
-        if not warm:
-            _parts_at(0.0, m, ws)
-            code, bad = _solve_at(0.0, False, m, bw, ws, prescribed, disp, u_pts, forces)
-            if code != OK:
-                info[0], info[2], info[3] = code, bad, 1
-                return
-            _fit_at(omega, m, ws, exact, disp, u_pts, flat)
-            prev_d[:, :] = disp
-            prev_p[:, :] = u_pts
+        _parts_at(0.0, m, ws)
+        code, bad = _solve_at(0.0, False, m, bw, ws, prescribed, disp, u_pts, forces)
+        if code != OK:
+            info[0], info[2], info[3] = code, bad, 1
+            return
+        _fit_at(omega, m, ws, exact, disp, u_pts, flat)
+        prev_d[:, :] = disp
+        prev_p[:, :] = u_pts
         _parts_at(omega, m, ws)
-        state[0] = 0  # the mixing's history is the case's own (another frequency's misleads)
+        state[0] = 0  # the mixing's history is the case's own
         last = np.inf
         converged = False
         for it in range(1, max_iterations + 1):
@@ -262,9 +245,7 @@ def iterate(  # noqa: ANN201, PLR0913
                     prev_p[p, a] = u_pts[p, a]
             change = diff / max(big, 1e-300)
             finfo[0] = change
-            # a warm start's first change is against another case's motion: it never
-            # stops the iteration (each stop compares two solves at this frequency)
-            if change <= tolerance and not (warm and it == 1):
+            if change <= tolerance:
                 converged = True
                 break
             _fit_at(omega, m, ws, exact, disp, u_pts, fit)
@@ -302,17 +283,6 @@ def iterate(  # noqa: ANN201, PLR0913
     )
 
 
-@njit(cache=True)
-def _same(prescribed, i):  # noqa: ANN001, ANN202
-    """Whether cases ``i``, ``i - 1`` and ``i - 2`` prescribe the same motion."""
-    for p in range(prescribed.shape[1]):
-        for a in range(3):
-            z = prescribed[i, p, a]
-            if z != prescribed[i - 1, p, a] or z != prescribed[i - 2, p, a]:
-                return False
-    return True
-
-
 @njit(cache=True, error_model="numpy")
 def solve_sweep(  # noqa: ANN201, PLR0913
     omega,
@@ -323,54 +293,17 @@ def solve_sweep(  # noqa: ANN201, PLR0913
     exact,
     m,
     bw,
-    warm,
-    seed,
-    seed_drag,
-    seed_disp,
-    seed_pts,
     disp,
     u_pts,
     forces,
     info,
     finfo,
-    drag,
 ):
-    """The cases ``i`` (``omega[i]`` [rad/s], ``prescribed[i]`` (P, 3)) in their order
-    in one work space: ``disp[i]``, ``u_pts[i]``, ``forces[i]``, ``info[i]`` (:data:`INFO`)
-    and ``finfo[i]`` as :func:`iterate`'s, and a converged case's drag (flat: nodes'
-    then points' 3 x 3) in ``drag[i]``. With ``warm`` a case after a converged one
-    within :data:`NEAR` of its frequency starts from that one's drag (module
-    docstring), extrapolated linearly in frequency from the two before when those
-    converged too, moved by the same motion and stepped up in frequency (by at most
-    twice the last step); with ``seed`` the first case starts from ``seed_drag`` and
-    the motion ``seed_disp``, ``seed_pts`` (a converged case of the same motion
-    nearby). A warm start that fails is run again cold."""
+    """The cases ``i`` (``omega[i]`` [rad/s], ``prescribed[i]`` (P, 3)) in one work
+    space, each from its own start (module docstring): ``disp[i]``, ``u_pts[i]``,
+    ``forces[i]``, ``info[i]`` (:data:`INFO`) and ``finfo[i]`` as :func:`iterate`'s."""
     ws = workspace(m, bw, samples)
-    flat, prev_d, prev_p = ws[13], ws[20], ws[21]
-    started = False  # the work space holds a converged case
-    before = flat.copy()  # the converged drag of the case before the last
-    n_ok = 0
-    if seed and m[37]:
-        flat[:] = seed_drag
-        prev_d[:, :] = seed_disp
-        prev_p[:, :] = seed_pts
     for i in range(omega.shape[0]):
-        # a neighbour within NEAR of the frequency: its drag is a start closer than the
-        # quasi-static fit (farther, the cold start)
-        if i == 0:
-            hot = warm and seed and m[37]
-        else:
-            hot = warm and started and m[37] and abs(omega[i] - omega[i - 1]) <= NEAR * omega[i]
-        t = 0.0
-        if hot and n_ok >= 2 and omega[i - 1] > omega[i - 2] and _same(prescribed, i):
-            t = (omega[i] - omega[i - 1]) / (omega[i - 1] - omega[i - 2])
-        if 0.0 < t <= 2.0:  # the last two converged drags extrapolated (linearly)
-            for q in range(flat.shape[0]):
-                d = flat[q]
-                flat[q] = d + t * (d - before[q])
-                before[q] = d
-        elif hot:
-            before[:] = flat
         iterate(
             omega[i],
             prescribed[i],
@@ -380,33 +313,9 @@ def solve_sweep(  # noqa: ANN201, PLR0913
             m,
             bw,
             ws,
-            hot,
             disp[i],
             u_pts[i],
             forces[i],
             info[i],
             finfo[i],
         )
-        if hot and info[i, 0] != OK:
-            iterate(
-                omega[i],
-                prescribed[i],
-                tolerance,
-                max_iterations,
-                exact,
-                m,
-                bw,
-                ws,
-                False,
-                disp[i],
-                u_pts[i],
-                forces[i],
-                info[i],
-                finfo[i],
-            )
-            hot = False
-        info[i, 4] = 1 if hot else 0
-        started = info[i, 0] == OK
-        n_ok = n_ok + 1 if started else 0
-        if started:
-            drag[i, :] = flat

@@ -72,8 +72,8 @@ that share a model go to the kernel together as a sweep
 from the quasi-static start, its answer the case's alone bit for bit. A warm start from
 the neighbours' converged drag was measured (6.4 drag iterations a case instead of
 10.1 on case8 surged 2 m over 0.02-0.5 Hz, every answer within the tolerance of the
-same fixed point) and is not what a study runs: it makes a case's record depend on the
-cases solved beside it.
+same fixed point) and removed: it made a case's record depend on the cases solved
+beside it.
 
 Building the model is cheap next to a time-domain case (``method: auto`` builds it
 before it judges a case): the lines re-solved at the model's nodes in one call of the
@@ -576,7 +576,6 @@ def _iterate_compiled(
     forces = np.empty((1, len(model.lines), 6), dtype=complex)
     info = np.zeros((1, INFO), dtype=np.int64)
     finfo = np.zeros((1, 2))
-    drag = np.zeros((1, 9 * (N + P)))
     solve_sweep(
         np.array([float(omega)]),
         np.ascontiguousarray(prescribed, dtype=complex).reshape(1, P, 3),
@@ -586,17 +585,11 @@ def _iterate_compiled(
         bool(settings.exact),
         packed.arrays,
         packed.bw,
-        False,
-        False,
-        drag[0],
-        disp[0],
-        u_pts[0],
         disp,
         u_pts,
         forces,
         info,
         finfo,
-        drag,
     )
     return compiled_outcome(model, omega, info[0], finfo[0], disp[0], u_pts[0], forces[0])
 

@@ -1,11 +1,9 @@
 """A sweep of harmonic motions of one linearised system solved together: the cases
 (frequency, body motion, the points' own motion) of one :class:`~.system_frequency.
 SystemLinear` go to the compiled iteration in one call (:func:`.system_fd_sweep.
-solve_sweep`), those of one motion together in order of frequency, each case started
-from the quasi-static start, as alone. Each case's result is
-:func:`~.system_frequency.solve_system_harmonic`'s for that case bit for bit (a warm
-start from the neighbours, measured, is not what a study runs:
-:func:`solve_system_sweep`).
+solve_sweep`), each case started from its own quasi-static start, as alone: each
+case's result is :func:`~.system_frequency.solve_system_harmonic`'s for that case bit
+for bit, whatever the cases beside it.
 
 Pure: arrays in, :class:`~.system_frequency.SystemFrequencyResult` out.
 """
@@ -17,7 +15,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from .frequency_model import DragSettings
-from .system_fd_sweep import INFO, NEAR, solve_sweep
+from .system_fd_sweep import INFO, solve_sweep
 from .system_frequency import (
     RESIDUAL_BAR,
     SystemFrequencyResult,
@@ -35,19 +33,12 @@ def solve_system_sweep(
     body_motion: Sequence[np.ndarray] | np.ndarray,
     settings: DragSettings | None = None,
     point_excitation: Sequence[np.ndarray | None] | None = None,
-    *,
-    warm: bool = False,
 ) -> list[SystemFrequencyResult]:
     """Per case ``i`` the steady harmonic response at ``omega[i]`` [rad/s] to the
     bodies' complex motion ``body_motion[i]`` (B, 6) [m, rad] and the points' own
     ``point_excitation[i]`` (P, 3) [m] (None: none), as
     :func:`~.system_frequency.solve_system_harmonic` gives it bit for bit, each case
-    from the quasi-static start; with ``warm`` the cases of one motion in order of
-    frequency each start from the one before (module docstring: fewer iterations, but
-    each answer then depends on its neighbours within the iteration's tolerance, so a
-    study never asks for it: a case's record must not depend on the cases run beside
-    it; kept for the measurement in benchmarks/bench_system_frequency.py). Never raises
-    for a numerical failure."""
+    from the quasi-static start. Never raises for a numerical failure."""
     settings = settings or DragSettings()
     w = np.asarray(omega, dtype=float).reshape(-1)
     n = w.size
@@ -55,10 +46,6 @@ def solve_system_sweep(
     prescribed = np.stack(
         [prescribed_motion(model, body_motion[i], own[i]) for i in range(n)]
     ).reshape(n, model.point_kind.size, 3)
-    # the cases of one motion together, each in order of frequency (the warm starts)
-    motion: dict[bytes, int] = {}
-    group = np.array([motion.setdefault(p.tobytes(), len(motion)) for p in prescribed])
-    order = np.lexsort((w, group.reshape(n)))
     packed = model.packed
     N, L, P = int(packed.node_offset[-1]), len(model.lines), model.point_kind.size
     disp = np.empty((n, N, 3), dtype=complex)
@@ -66,48 +53,35 @@ def solve_system_sweep(
     forces = np.empty((n, L, 6), dtype=complex)
     info = np.zeros((n, INFO), dtype=np.int64)
     finfo = np.zeros((n, 2))
-    drag = np.zeros((n, 9 * (N + P)))
-    ws, ps = w[order], np.ascontiguousarray(prescribed[order], dtype=complex)
-    # runs of cases of one motion, each within NEAR of the one before (warm starts)
-    new_run = np.ones(n, dtype=bool)
-    new_run[1:] = (group[order][1:] != group[order][:-1]) | (np.diff(ws) > NEAR * ws[1:])
-    bounds = [*np.flatnonzero(new_run).tolist(), n]
-    for k0, k1 in zip(bounds[:-1], bounds[1:], strict=True):
-        solve_sweep(
-            np.ascontiguousarray(ws[k0:k1]),
-            ps[k0:k1],
-            float(settings.tolerance),
-            int(settings.max_iterations),
-            int(settings.samples),
-            bool(settings.exact),
-            packed.arrays,
-            packed.bw,
-            bool(warm),
-            False,
-            drag[0],
-            disp[0],
-            u_pts[0],
-            disp[k0:k1],
-            u_pts[k0:k1],
-            forces[k0:k1],
-            info[k0:k1],
-            finfo[k0:k1],
-            drag[k0:k1],
-        )
-    theta = np.asarray(body_motion, dtype=complex).reshape(n, model.n_bodies, 6)[order, :, 3:]
-    post = _post_all(model, w[order], theta, disp, forces)
-    out: list[SystemFrequencyResult | None] = [None] * n
-    for k, i in enumerate(order):
-        if info[k, 0] == 0 and finfo[k, 1] <= RESIDUAL_BAR:
-            out[i] = _result(model, post, k, info[k], finfo[k], disp[k], u_pts[k])
+    solve_sweep(
+        np.ascontiguousarray(w),
+        np.ascontiguousarray(prescribed, dtype=complex),
+        float(settings.tolerance),
+        int(settings.max_iterations),
+        int(settings.samples),
+        bool(settings.exact),
+        packed.arrays,
+        packed.bw,
+        disp,
+        u_pts,
+        forces,
+        info,
+        finfo,
+    )
+    theta = np.asarray(body_motion, dtype=complex).reshape(n, model.n_bodies, 6)[:, :, 3:]
+    post = _post_all(model, w, theta, disp, forces)
+    out: list[SystemFrequencyResult] = []
+    for i in range(n):
+        if info[i, 0] == 0 and finfo[i, 1] <= RESIDUAL_BAR:
+            out.append(_result(model, post, i, info[i], finfo[i], disp[i], u_pts[i]))
             continue
         outcome = compiled_outcome(
-            model, float(w[i]), info[k], finfo[k], disp[k], u_pts[k], forces[k]
+            model, float(w[i]), info[i], finfo[i], disp[i], u_pts[i], forces[i]
         )
-        out[i] = harmonic_result(
-            model, float(w[i]), body_motion[i], settings, prescribed[i], outcome
+        out.append(
+            harmonic_result(model, float(w[i]), body_motion[i], settings, prescribed[i], outcome)
         )
-    return out  # type: ignore[return-value]
+    return out
 
 
 def _post_all(
