@@ -47,11 +47,13 @@ OK, SINGULAR_LINE, SINGULAR_JUNCTION, NOT_CONVERGED = 0, 1, 2, 3
 
 
 @njit(cache=True, error_model="numpy", fastmath=_SAFE_FAST)
-def _band_solve(R, bw, N, reach, B, m):  # noqa: ANN001, ANN201
-    """Solve the complex band system on row storage ``R`` (>= N, 3 bw + 1) (``A[i, j]``
-    at ``R[i, j - i + bw]``) for the ``m`` right sides ``B[:N, :m]`` in place, by the
-    threshold pivoting of :func:`.harmonic_kernel.band_solve_rows`; False for a zero
-    pivot. ``reach`` (>= N,) int work."""
+def _band_factor(R, bw, N, reach, B, m):  # noqa: ANN001, ANN201
+    """Factor the complex band matrix on row storage ``R`` (>= N, 3 bw + 1) (``A[i, j]``
+    at ``R[i, j - i + bw]``) in place, by the threshold pivoting of
+    :func:`.harmonic_kernel.band_solve_rows`, and carry the ``m`` right sides ``B[:N,
+    :m]`` through the elimination (``B`` becomes ``L^-1 P B``; the upper factor ``U``
+    stays in ``R``, its last column of row ``i`` in ``reach[i]``, for
+    :func:`_back_rows`). False for a zero pivot or a non-finite eliminated side."""
     for i in range(N):
         reach[i] = min(i + bw, N - 1)
     for k in range(N):
@@ -85,7 +87,7 @@ def _band_solve(R, bw, N, reach, B, m):  # noqa: ANN001, ANN201
         inv = 1.0 / R[k, bw]
         rk = reach[k]
         # the right sides with a non-zero at row k (the others stay zero below it: a
-        # junction's unit motion at end B is zero down to the last node's rows)
+        # free end's unit motion is zero down to its own rows, which come last)
         mask = 0
         for c in range(m):
             if B[k, c].real != 0.0 or B[k, c].imag != 0.0:
@@ -103,15 +105,25 @@ def _band_solve(R, bw, N, reach, B, m):  # noqa: ANN001, ANN201
                         B[i, c] -= f * B[k, c]
             if rk > reach[i]:
                 reach[i] = rk
-    for i in range(N - 1, -1, -1):
+    for i in range(N):
+        for c in range(m):
+            if not (math.isfinite(B[i, c].real) and math.isfinite(B[i, c].imag)):
+                return False
+    return True
+
+
+@njit(cache=True, error_model="numpy", fastmath=_SAFE_FAST)
+def _back_rows(R, bw, N, reach, B, m, low):  # noqa: ANN001, ANN201, PLR0913
+    """Back substitution of :func:`_band_factor`'s ``B`` for its rows ``low .. N-1``
+    only (in place: the solution's rows there, exactly as a full substitution gives
+    them; the rows above keep ``L^-1 P B``). False for a non-finite answer."""
+    for i in range(N - 1, low - 1, -1):
         inv = 1.0 / R[i, bw]
         for c in range(m):
             acc = B[i, c]
             for j in range(i + 1, reach[i] + 1):
                 acc -= R[i, j - i + bw] * B[j, c]
             B[i, c] = acc * inv
-    for i in range(N):
-        for c in range(m):
             if not (math.isfinite(B[i, c].real) and math.isfinite(B[i, c].imag)):
                 return False
     return True
@@ -202,6 +214,7 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
     A_EE,
     uI,
     ncol,
+    low,
     uE,
     G,
     rhs,
@@ -214,7 +227,17 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
     ``u_pts`` (P, 3), ``disp`` (nodes, 3), ``forces`` (L, 6) (the force each line
     needs at its end nodes, ``A_EE u_E + A_EI u_I``). ``couple[coff[l]:coff[l+1]]``:
     the dofs of line ``l`` coupled to its end nodes (the non-zero columns of ``A_EI``
-    and rows of ``A_IE``). Returns (code, line)."""
+    and rows of ``A_IE``). Returns (code, line).
+
+    Per line the inner rows are factored once (``R``, ``reach`` and the eliminated
+    right sides ``X`` kept per line, rows ``koff[l]:koff[l+1]``), in the order that
+    puts the free end last: a line whose end A alone is free is eliminated from its
+    end B (row ``s`` of the factor is the line's dof ``k - 1 - s``). The junction
+    needs ``A_EI X`` at the free ends only, so the back substitution of the right sides
+    runs over the rows from the first one coupled to a free end to the last (``low``);
+    after the junction solve, the inner motion is one back substitution of the
+    eliminated sides combined by the end motions (the rows already solved combined
+    directly)."""
     L = ends.shape[0]
     F = free.shape[0]
     iw = 1j * w
@@ -235,6 +258,7 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
         k = koff[line + 1] - k0
         na, nb = noff[line], noff[line + 1] - 1
         c0, c1 = coff[line], coff[line + 1]
+        rev = slot[ends[line, 0]] >= 0 and slot[ends[line, 1]] < 0
         for r in range(6):
             for c in range(6):
                 A_EE[line, r, c] = EE[line, r, c]
@@ -252,7 +276,7 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
                         X[k0 + i, m] = 0.0
                     for q in range(c0, c1):
                         i = couple[q]
-                        X[k0 + i, m] = -IE[k0 + i, 3 * e + a]
+                        X[k0 + (k - 1 - i if rev else i), m] = -IE[k0 + i, 3 * e + a]
                     m += 1
         moved = False  # a prescribed end that moves (a fixed anchor's column is zero)
         for e in range(2):
@@ -272,15 +296,36 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
                     if slot[pt] < 0:
                         for a in range(3):
                             acc -= IE[k0 + i, 3 * e + a] * prescribed[pt, a]
-                X[k0 + i, m] = acc
+                X[k0 + (k - 1 - i if rev else i), m] = acc
             m += 1
         ncol[line] = m
+        # the first row of the factor that a free end's junction rows read
+        first = k
+        for q in range(c0, c1):
+            i = couple[q]
+            s_i = k - 1 - i if rev else i
+            if s_i < first:
+                for e in range(2):
+                    if slot[ends[line, e]] >= 0:
+                        for a in range(3):
+                            z = EI[3 * e + a, k0 + i]
+                            if z.real != 0.0 or z.imag != 0.0:
+                                first = s_i
+        low[line] = first
         if k > 0:
-            for i in range(k):
-                for c in range(width):
-                    R[i, c] = Rb[k0 + i, c]
-                for c in range(width, 3 * bw + 1):
-                    R[i, c] = 0.0
+            Rl = R[k0:]
+            if rev:
+                for i in range(k):
+                    for c in range(width):
+                        Rl[i, c] = Rb[k0 + k - 1 - i, 2 * bw - c]
+                    for c in range(width, 3 * bw + 1):
+                        Rl[i, c] = 0.0
+            else:
+                for i in range(k):
+                    for c in range(width):
+                        Rl[i, c] = Rb[k0 + i, c]
+                    for c in range(width, 3 * bw + 1):
+                        Rl[i, c] = 0.0
             if drag:
                 for g in range(na, nb + 1):
                     cnt = ncount[g]
@@ -294,8 +339,13 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
                                     continue
                                 for b in range(3):
                                     val += ba * D[g, a, b] * basis[g, b, c]
-                            R[f0 + r, c - r + bw] += iw * val
-            if not _band_solve(R, bw, k, reach, X[k0:], m):
+                            if rev:
+                                Rl[k - 1 - f0 - r, r - c + bw] += iw * val
+                            else:
+                                Rl[f0 + r, c - r + bw] += iw * val
+            if not _band_factor(Rl, bw, k, reach[k0:], X[k0:], m):
+                return SINGULAR_LINE, line
+            if not _back_rows(Rl, bw, k, reach[k0:], X[k0:], m, first):
                 return SINGULAR_LINE, line
         # the junction rows of the free ends: S u_E = A_EE u_E + A_EI X u_E
         for ea in range(2):
@@ -313,7 +363,9 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
                         acc = A_EE[line, row, 3 * eb + be]
                         for q in range(c0, c1):
                             i = couple[q]
-                            acc += EI[row, k0 + i] * X[k0 + i, c]
+                            z = EI[row, k0 + i]
+                            if z.real != 0.0 or z.imag != 0.0:
+                                acc += z * X[k0 + (k - 1 - i if rev else i), c]
                         G[3 * sa + al, 3 * sb + be] += acc
                         c += 1
                 if c < m:  # the prescribed column
@@ -325,7 +377,9 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
                                 acc += A_EE[line, row, 3 * eb + be] * prescribed[pt, be]
                     for q in range(c0, c1):
                         i = couple[q]
-                        acc += EI[row, k0 + i] * X[k0 + i, c]
+                        z = EI[row, k0 + i]
+                        if z.real != 0.0 or z.imag != 0.0:
+                            acc += z * X[k0 + (k - 1 - i if rev else i), c]
                     rhs[3 * sa + al] -= acc
     for p in range(prescribed.shape[0]):
         for a in range(3):
@@ -341,21 +395,32 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
         k = koff[line + 1] - k0
         na, nb = noff[line], noff[line + 1] - 1
         c0, c1 = coff[line], coff[line + 1]
+        rev = slot[ends[line, 0]] >= 0 and slot[ends[line, 1]] < 0
         m = ncol[line]
+        first = low[line]
         for e in range(2):
             for a in range(3):
                 uE[3 * e + a] = u_pts[ends[line, e], a]
-        for i in range(k):
+        # u_I = X [u_E; 1]: the rows back-substituted already combined, the others
+        # substituted back from the combined eliminated sides (row s of the factor is
+        # the dof k - 1 - s of a reversed line)
+        for s_ in range(k - 1, -1, -1):
             acc = 0j
             c = 0
             for e in range(2):
                 if slot[ends[line, e]] >= 0:
                     for a in range(3):
-                        acc += X[k0 + i, c] * uE[3 * e + a]
+                        acc += X[k0 + s_, c] * uE[3 * e + a]
                         c += 1
             if c < m:
-                acc += X[k0 + i, c]
-            uI[k0 + i] = acc
+                acc += X[k0 + s_, c]
+            if s_ < first:
+                for j in range(s_ + 1, reach[k0 + s_] + 1):
+                    acc -= R[k0 + s_, j - s_ + bw] * uI[k0 + (k - 1 - j if rev else j)]
+                acc = acc * (1.0 / R[k0 + s_, bw])
+                if not (math.isfinite(acc.real) and math.isfinite(acc.imag)):
+                    return SINGULAR_LINE, line
+            uI[k0 + (k - 1 - s_ if rev else s_)] = acc
         for g in range(na, nb + 1):
             f0 = nfirst[g]
             for a in range(3):

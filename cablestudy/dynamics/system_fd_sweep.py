@@ -73,6 +73,7 @@ def workspace(m, bw, samples):  # noqa: ANN001, ANN201
         np.empty((DEPTH + 1, size)),  # hist_R
         np.empty((DEPTH + 1, size)),  # hist_G
         np.zeros(1, dtype=np.int64),  # state
+        np.empty(L, dtype=np.int64),  # low: per line the first row back-substituted
     )
 
 
@@ -111,6 +112,7 @@ def _solve_at(w, drag, m, bw, ws, prescribed, disp, u_pts, forces):  # noqa: ANN
         ws[3],
         ws[4],
         ws[5],
+        ws[25],
         ws[6],
         ws[7],
         ws[8],
