@@ -103,6 +103,12 @@ class _Interpolation:
         v = np.asarray(values)
         return (1.0 - self.weight) * v[self.left] + self.weight * v[self.left + 1]
 
+    def rows(self, values: np.ndarray) -> np.ndarray:
+        """``self @ values[i]`` of every row ``i`` of ``values`` (cases, nodes), the same
+        products and sums."""
+        v = np.asarray(values)
+        return (1.0 - self.weight) * v[:, self.left] + self.weight * v[:, self.left + 1]
+
 
 def _envelope_grid(model: Any, n_out: int) -> _Interpolation:
     """The linear interpolation (as ``np.interp``) of values at every line's nodes, flat
@@ -163,10 +169,8 @@ def _solve_frequency(
 ) -> tuple[int, str, dict[str, np.ndarray], Any, Any]:
     """(status, message, outputs, result, model) of the case's harmonic response, its
     outputs marked as the frequency domain's with ``reason``."""
-    from ..dynamics.system_frequency import system_frequency_outputs
     from .frequency import drag_settings
 
-    dyn = case.study.analysis.dynamic
     head = {
         "dynamic_method": np.asarray("frequency"),
         "dynamic_method_reason": np.asarray(reason),
@@ -174,46 +178,92 @@ def _solve_frequency(
     model = system_frequency_model(case, system, static)
     if isinstance(model, str):
         return STATUS_NUMERICAL, model, head, None, None
-    res = _swept.pop(case.hash, None) if _swept.model is model else None
-    if res is None:
-        res = _solve_sweep(case, model) if _swept.cases else None
-    if res is None:  # alone: a sweep of one
-        from ..dynamics.system_frequency_sweep import solve_system_sweep
-
-        X, U, frequency = harmonic_motion(case.study)
-        (res,) = solve_system_sweep(
-            model, [2.0 * math.pi * frequency], [X], drag_settings(dyn), [U]
-        )
+    hit = _swept.pop(case.hash, None) if _swept.model is model else None
+    if hit is None:
+        hit = _solve_sweep(case, model, system, static) if _swept.cases else None
+    if hit is None:  # alone: a sweep of one
+        (hit,) = _solve_group([case], model, system, static, drag_settings(case.study.analysis.dynamic))
+    res, values, bad = hit
     if res.status != STATUS_OK:
         return res.status, res.message, head, res, model
-    bodies = len(system.body_names)
-    values = system_frequency_outputs(res, static.body_force if bodies else None)
+    if bad:
+        return STATUS_NUMERICAL, f"non-finite values in {', '.join(bad)}", head, res, model
+    return STATUS_OK, "", {**head, **values}, res, model
+
+
+def _solve_group(
+    cases: list[Case], model: Any, system: Any, static: Any, settings: Any
+) -> list[tuple[Any, dict[str, np.ndarray], list[str]]]:
+    """Per case of ``cases`` (of one linear model and drag settings) its harmonic
+    response solved in one sweep (:func:`~cablestudy.dynamics.system_frequency_sweep.
+    solve_system_sweep_arrays`, each case as alone), its outputs (the issue's names,
+    module docstring; computed for all the cases at once, each case's a view of its
+    row) and the names of its outputs that are not finite. Outputs (linear response):
+    extremes are the static value plus and minus the amplitude, the mean the static
+    value; the envelopes on each line's ``s`` grid of the static problem's nodes."""
+    from ..dynamics.system_frequency_sweep import solve_system_sweep_arrays
+
+    motions = [harmonic_motion(c.study) for c in cases]
+    results, arr = solve_system_sweep_arrays(
+        model,
+        [2.0 * math.pi * f for _, _, f in motions],
+        [X for X, _, _ in motions],
+        settings,
+        [U for _, U, _ in motions],
+    )
+    n, L = len(cases), len(model.lines)
+    amp = np.abs(arr["end_tension"])  # (n, L, 2)
+    T = model.post.static  # (L, 2) the static end tensions
+    batch: dict[str, np.ndarray] = {
+        "tension_amplitude_a": amp[:, :, 0],
+        "tension_amplitude_b": amp[:, :, 1],
+        "tension_mean_a": np.where(np.isfinite(amp[:, :, 0]), T[:, 0], np.nan),
+        "tension_mean_b": np.where(np.isfinite(amp[:, :, 1]), T[:, 1], np.nan),
+        "tension_max_a": T[:, 0] + amp[:, :, 0],
+        "tension_min_a": T[:, 0] - amp[:, :, 0],
+        "tension_max_b": T[:, 1] + amp[:, :, 1],
+        "tension_min_b": T[:, 1] - amp[:, :, 1],
+    }
+    if len(system.body_names) and model.n_bodies:
+        F = np.asarray(static.body_force, dtype=float).reshape(model.n_bodies, 6)
+        force = np.abs(arr["body_force"])
+        batch["body_force_max"] = F + force
+        batch["body_force_min"] = F - force
     n_out = system.lines[0].problem.n_nodes
     grid = _envelope_grid(model, n_out)
     # each node's static elevation plus its heave amplitude (the surface warning's)
-    values["z_envelope_max"] = [
-        red.line.position[:, 2] + np.abs(u[:, 2])
-        for red, u in zip(model.lines, res.displacement, strict=True)
+    z = _node_elevation(model) + np.abs(arr["displacement"][:, :, 2])
+    for key, values in (
+        ("tension_envelope_max", arr["envelope_max"]),
+        ("tension_envelope_min", arr["envelope_min"]),
+        ("z_envelope_max", z),
+    ):
+        batch[key] = grid.rows(values).reshape(n, L, n_out)
+    batch["linearisation_iterations"] = np.array([r.iterations for r in results], dtype=np.int64)
+    finite = {
+        k: np.isfinite(v.reshape(n, -1)).all(axis=1)
+        for k, v in batch.items()
+        if v.dtype.kind == "f"
+    }
+    return [
+        (
+            res,
+            {k: v[i, ...] for k, v in batch.items()},
+            [k for k, ok in finite.items() if not ok[i]],
+        )
+        for i, res in enumerate(results)
     ]
-    env = {
-        key: (grid @ np.concatenate(values[key])).reshape(len(model.lines), n_out)
-        for key in ("tension_envelope_max", "tension_envelope_min", "z_envelope_max")
-    }
-    out = {
-        **head,
-        **{k: np.asarray(v) for k, v in values.items() if k not in env},
-        **env,
-        "linearisation_iterations": np.asarray(res.iterations),
-    }
-    bad = [k for k, v in out.items() if v.dtype.kind == "f" and not np.all(np.isfinite(v))]
-    if bad:
-        return STATUS_NUMERICAL, f"non-finite values in {', '.join(bad)}", head, res, model
-    return STATUS_OK, "", out, res, model
+
+
+def _node_elevation(model: Any) -> np.ndarray:
+    """The static elevation [m] of every node of ``model``, flat over the lines."""
+    return np.concatenate([red.line.position[:, 2] for red in model.lines])
 
 
 class _Sweep(threading.local):
     """The cases of the chunk being evaluated (:func:`sweep_chunk`) and the harmonic
-    responses solved ahead for them (by case hash) with the model they were solved on;
+    responses solved ahead for them (by case hash: :func:`_solve_group`'s entries) with
+    the model they were solved on;
     one per thread (the threads scheduler runs chunks side by side)."""
 
     def __init__(self) -> None:
@@ -254,11 +304,10 @@ def _sweepable(case: Case) -> bool:
     return dyn.method == "frequency" or not auto_ineligible_system(dyn)
 
 
-def _solve_sweep(case: Case, model: Any) -> Any:
-    """The harmonic response of ``case`` solved in one sweep with the chunk's other
-    cases of its group (:func:`sweep_chunk`), theirs kept for them; None when the case
-    has no such group (then alone)."""
-    from ..dynamics.system_frequency_sweep import solve_system_sweep
+def _solve_sweep(case: Case, model: Any, system: Any, static: Any) -> Any:
+    """:func:`_solve_group`'s entry of ``case`` solved in one sweep with the chunk's
+    other cases of its group (:func:`sweep_chunk`), theirs kept for them; None when the
+    case has no such group (then alone)."""
     from .frequency import drag_settings
 
     dyn = case.study.analysis.dynamic
@@ -277,23 +326,16 @@ def _solve_sweep(case: Case, model: Any) -> Any:
     if len(group) < 2 or id(case) not in taken:
         return None
     t0 = time.perf_counter()
-    motions = [harmonic_motion(c.study) for c in group]
-    results = solve_system_sweep(
-        model,
-        [2.0 * math.pi * f for _, _, f in motions],
-        [X for X, _, _ in motions],
-        settings,
-        [U for _, U, _ in motions],
-    )
+    solved = _solve_group(group, model, system, static, settings)
     share = (time.perf_counter() - t0) / len(group)
     _swept.model = model
     mine = None
-    for c, res in zip(group, results, strict=True):
+    for c, entry in zip(group, solved, strict=True):
         if c is case:
-            mine = res
+            mine = entry
             _swept.seconds[c.hash] = share - share * len(group)
         else:
-            _swept.results[c.hash] = res
+            _swept.results[c.hash] = entry
             _swept.seconds[c.hash] = share
     return mine
 

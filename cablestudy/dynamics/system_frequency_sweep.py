@@ -34,11 +34,27 @@ def solve_system_sweep(
     settings: DragSettings | None = None,
     point_excitation: Sequence[np.ndarray | None] | None = None,
 ) -> list[SystemFrequencyResult]:
+    """Per case ``i`` the steady harmonic response (:func:`solve_system_sweep_arrays`'s
+    results)."""
+    return solve_system_sweep_arrays(model, omega, body_motion, settings, point_excitation)[0]
+
+
+def solve_system_sweep_arrays(
+    model: SystemLinear,
+    omega: Sequence[float] | np.ndarray,
+    body_motion: Sequence[np.ndarray] | np.ndarray,
+    settings: DragSettings | None = None,
+    point_excitation: Sequence[np.ndarray | None] | None = None,
+) -> tuple[list[SystemFrequencyResult], dict[str, np.ndarray]]:
     """Per case ``i`` the steady harmonic response at ``omega[i]`` [rad/s] to the
     bodies' complex motion ``body_motion[i]`` (B, 6) [m, rad] and the points' own
     ``point_excitation[i]`` (P, 3) [m] (None: none), as
     :func:`~.system_frequency.solve_system_harmonic` gives it bit for bit, each case
-    from the quasi-static start. Never raises for a numerical failure."""
+    from the quasi-static start; and the results of all cases as arrays, cases first
+    (``end_tension`` (n, L, 2), ``body_force`` (n, B, 6), the envelope at every node
+    ``envelope_max``/``_min`` (n, nodes), ``displacement`` (n, nodes, 3), flat over the
+    lines; the rows of the cases whose result has status 0 hold it, the others are not
+    results). Never raises for a numerical failure."""
     settings = settings or DragSettings()
     w = np.asarray(omega, dtype=float).reshape(-1)
     n = w.size
@@ -81,7 +97,15 @@ def solve_system_sweep(
         out.append(
             harmonic_result(model, float(w[i]), body_motion[i], settings, prescribed[i], outcome)
         )
-    return out
+    _, end_tension, body_force, _, hi, lo = post
+    arrays = {
+        "end_tension": end_tension,
+        "body_force": body_force,
+        "envelope_max": hi,
+        "envelope_min": lo,
+        "displacement": disp,
+    }
+    return out, arrays
 
 
 def _post_all(
