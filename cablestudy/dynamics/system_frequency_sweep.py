@@ -59,9 +59,17 @@ def solve_system_sweep_arrays(
     w = np.asarray(omega, dtype=float).reshape(-1)
     n = w.size
     own = [None] * n if point_excitation is None else list(point_excitation)
-    prescribed = np.stack(
-        [prescribed_motion(model, body_motion[i], own[i]) for i in range(n)]
-    ).reshape(n, model.point_kind.size, 3)
+    # the points' motion of each distinct motion once (a sweep of frequency has one)
+    seen: dict[bytes, np.ndarray] = {}
+    rows = []
+    for i in range(n):
+        X = np.asarray(body_motion[i], dtype=complex)
+        U = None if own[i] is None else np.asarray(own[i], dtype=complex)
+        key = X.tobytes() + (b"" if U is None else b"U" + U.tobytes())
+        if key not in seen:
+            seen[key] = prescribed_motion(model, X, U)
+        rows.append(seen[key])
+    prescribed = np.stack(rows).reshape(n, model.point_kind.size, 3)
     packed = model.packed
     N, L, P = int(packed.node_offset[-1]), len(model.lines), model.point_kind.size
     disp = np.empty((n, N, 3), dtype=complex)
