@@ -182,7 +182,9 @@ def _solve_frequency(
     if hit is None:
         hit = _solve_sweep(case, model, system, static) if _swept.cases else None
     if hit is None:  # alone: a sweep of one
-        (hit,) = _solve_group([case], model, system, static, drag_settings(case.study.analysis.dynamic))
+        (hit,) = _solve_group(
+            [case], model, system, static, drag_settings(case.study.analysis.dynamic)
+        )
     res, values, bad = hit
     if res.status != STATUS_OK:
         return res.status, res.message, head, res, model
