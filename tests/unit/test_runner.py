@@ -480,7 +480,7 @@ def test_auto_scheduler_hands_a_long_study_to_workers(
 ) -> None:
     handed: list[tuple[int, str, float | None]] = []
 
-    def fake_cluster(cases, scheduler, workers, on_done, *, per_case=None):  # noqa: ANN001, ANN202
+    def fake_cluster(work, cases, scheduler, workers, on_done, *, per_case=None):  # noqa: ANN001, ANN202
         handed.append((len(cases), scheduler, per_case))
         on_done(run_chunk(cases))
 
