@@ -23,7 +23,7 @@ from ..study.cases import Case, SweepAxis
 from ..study.loader import StudySource
 from .cache import TRANSIENT_PREFIXES
 from .database_file import write_database_file
-from .outputs import CacheLock, regular_file, temporary_prefix
+from .outputs import CacheLock, temporary_prefix
 from .progress import Progress, RunSummary
 from .scheduler import Cases, Rows, execute
 from .writer import write_atomic, write_variables_atomic
@@ -312,7 +312,7 @@ class _CasePlan:
         edited-away studies dropped; the new file in place before the old ones go)."""
         from ..analyses.grid_chunk import take_rows
 
-        present = [p for p in self.store.directory.glob("grid-*.npz") if regular_file(p)]
+        present = self.store.files()
         kept = set(self.files.values()) - self.transient
         if self.all is None or (len(present) == 1 and set(present) == kept and not self.unique):
             return
