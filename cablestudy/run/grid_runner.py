@@ -207,7 +207,6 @@ def _lazy_dataset(src: StudySource, grid: Any, store: Any, plan: Any) -> tuple[A
         tails=summary.tails,
         arc=summary.arc,
         solver_settings=grid_settings(grid),
-        lazy=True,
         fallbacks=summary.fallbacks,
         named=_named(grid),
     )
