@@ -93,15 +93,6 @@ def sweep_coordinates(axes: list[SweepAxis]) -> dict[str, Any]:
     return coords
 
 
-def system_names(study: Any) -> dict[str, list[str]]:
-    """A system study's names along its dimensions (line, free point, body)."""
-    return {
-        "line": list(study.lines),
-        "point": [k for k, p in study.points.items() if p.kind == "free"],
-        "body": list(study.bodies),
-    }
-
-
 def chunk_variables(
     axes: list[SweepAxis],
     src: StudySource,

@@ -184,12 +184,7 @@ def run_chunks(
 
 def _named(grid: Any) -> dict[str, list[str]] | None:
     """A system study's names along its dimensions (None for one line)."""
-    named = getattr(grid, "named", None)  # a system grid's (cablestudy.analyses.system_grid)
-    if named is None and grid.template.is_system:
-        from .dataset import system_names
-
-        named = system_names(grid.template)
-    return named
+    return grid.template.system_names if grid.template.is_system else None
 
 
 def _lazy_dataset(src: StudySource, grid: Any, store: Any, plan: Any) -> tuple[Any, Any]:
