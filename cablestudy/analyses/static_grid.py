@@ -6,8 +6,8 @@ takes as numbers (end positions of fixed ends, segment axial stiffnesses;
 :attr:`CaseGrid.arrays`), no per-case pydantic object is built: a chunk of cases becomes
 arrays of end positions and stiffnesses, is solved by the compiled kernels (lines
 hanging free, and lines anchored on the seabed with friction), the cases they do not
-settle by :func:`cablestudy.statics.batch.solve_batch` (counted in
-:attr:`GridChunk.fallback`, with the reason in :attr:`GridChunk.fallback_reason`), and
+settle by :func:`cablestudy.statics.batch.solve_batch` (the reason per case in
+:attr:`GridChunk.fallback_reason`, counted in the dataset's ``cases_fallback``), and
 its outputs are stacked into one array per output variable (a :class:`GridChunk`), which
 the runner streams to disk. Any other static grid's chunk is solved as validated cases
 are (:mod:`cablestudy.analyses.static_grid_cases`).
