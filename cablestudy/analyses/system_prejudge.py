@@ -1,0 +1,85 @@
+"""``method: auto`` for a system: the time domain chosen before the frequency domain is
+built where the quasi-static shape change of a line over the motion's amplitude already
+exceeds the geometric limit by :data:`~cablestudy.dynamics.system_prejudge.MARGIN`
+(the physics and the margin: :mod:`cablestudy.dynamics.system_prejudge`).
+
+The quasi-static states are the system's statics solved again by the compiled system
+Newton (:mod:`cablestudy.statics.system_fast`, both extremes in one call, each verified
+as a static case is) with the body moved by plus and minus the amplitude, the free
+points starting from the static state. Decided only for one harmonic motion of a
+degree of freedom of a prescribed body, a system the compiled path solved statically
+(method catenary, no fallback), and on the lines hanging free of the seabed in all
+three states; anything else (or a quasi-static state the compiled path does not
+settle and verify) leaves the decision to the frequency domain's own checks."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ..study.system_dynamics import BODY_DOFS, BodyHarmonic
+
+
+def quasi_static_reason(case: Any, system: Any, static: Any, limit: float) -> str:
+    """Why the time domain runs, decided before the frequency domain ('' when this check
+    does not decide: the frequency domain and its checks then run)."""
+    from ..dynamics.system_prejudge import MARGIN
+
+    got = quasi_static_ratios(case, system, static) if limit > 0.0 else None
+    if got is None:
+        return ""
+    ratio, judged = got
+    over = np.flatnonzero(judged & (ratio > MARGIN * limit))
+    if not over.size:
+        return ""
+    m = int(over[0])
+    e = case.study.analysis.dynamic.excitations[0]
+    return (
+        f"line {list(case.study.lines)[m]!r}: large motion: amplitude/sag {ratio[m]:.3g} > "
+        f"{limit:g} quasi-static, before the frequency domain (its shape with the body at "
+        f"its static position -+ {e.amplitude:g} in {e.dof}, over its sag: above "
+        f"{MARGIN:g} x the limit)"
+    )
+
+
+def quasi_static_ratios(case: Any, system: Any, static: Any) -> tuple[np.ndarray, np.ndarray] | None:
+    """Per line the quasi-static shape change over its sag
+    (:func:`~cablestudy.dynamics.system_prejudge.shape_change_ratios`) and whether the
+    line is judged by it (hanging free of the seabed in the three states), or None
+    where this check does not apply (module docstring)."""
+    from ..dynamics.system_prejudge import shape_change_ratios
+    from ..statics.system_fast import ineligible, pack, point_positions_many, solve_packed
+
+    study = case.study
+    dyn = study.analysis.dynamic
+    if len(dyn.excitations) != 1 or not isinstance(dyn.excitations[0], BodyHarmonic):
+        return None
+    if study.analysis.static.method != "catenary" or getattr(static, "fallback", ""):
+        return None
+    if static.body_position is None or ineligible(system):
+        return None
+    e = dyn.excitations[0]
+    poses = np.repeat(np.asarray(static.body_position, dtype=float)[None], 2, axis=0)
+    b, k = list(system.body_names).index(e.body), BODY_DOFS.index(e.dof)
+    poses[0, b, k] += e.amplitude
+    poses[1, b, k] -= e.amplitude
+    base = np.repeat(np.asarray(static.point_position, dtype=float)[None], 2, axis=0)
+    pos = point_positions_many(system, poses, None, base)
+    pk, why = pack(system, pos)
+    if pk is None or any(why):
+        return None
+    try:
+        sol = solve_packed(system, pk, poses)
+    except np.linalg.LinAlgError:
+        return None
+    if any(sol.fallback):
+        return None
+    s = np.array([r.s for r in static.lines])
+    shape = np.array([r.position for r in static.lines])
+    if shape.shape != sol.position.shape[1:]:
+        return None
+    laid = np.array([r.laid_length for r in static.lines]) > 0.0
+    laid |= np.any(sol.laid_length > 0.0, axis=0)
+    laid |= np.any(pk.anchored, axis=0)
+    return shape_change_ratios(s, shape, sol.position), ~laid
