@@ -49,7 +49,7 @@ def quasi_static_ratios(case: Any, system: Any, static: Any) -> tuple[np.ndarray
     line is judged by it (hanging free of the seabed in the three states), or None
     where this check does not apply (module docstring)."""
     from ..dynamics.system_prejudge import shape_change_ratios
-    from ..statics.system_fast import ineligible, pack, point_positions_many, solve_packed
+    from ..statics.system_fast import hanging_shapes, ineligible, pack, point_positions_many
 
     study = case.study
     dyn = study.analysis.dynamic
@@ -69,17 +69,26 @@ def quasi_static_ratios(case: Any, system: Any, static: Any) -> tuple[np.ndarray
     pk, why = pack(system, pos)
     if pk is None or any(why):
         return None
-    try:
-        sol = solve_packed(system, pk, poses)
-    except np.linalg.LinAlgError:
-        return None
-    if any(sol.fallback):
-        return None
     s = np.array([r.s for r in static.lines])
     shape = np.array([r.position for r in static.lines])
-    if shape.shape != sol.position.shape[1:]:
+    if shape.shape[1] != pk.n_nodes:
         return None
-    laid = np.array([r.laid_length for r in static.lines]) > 0.0
-    laid |= np.any(sol.laid_length > 0.0, axis=0)
-    laid |= np.any(pk.anchored, axis=0)
-    return shape_change_ratios(s, shape, sol.position), ~laid
+    # the lines hanging free of the seabed (no laid length, not anchored on it)
+    hanging = (np.array([r.laid_length for r in static.lines]) <= 0.0) & ~np.any(
+        pk.anchored, axis=0
+    )
+    lines = np.flatnonzero(hanging)
+    if not lines.size:
+        return None
+    try:
+        got = hanging_shapes(pk, lines)
+    except np.linalg.LinAlgError:
+        return None
+    if got is None:
+        return None
+    moved, good = got
+    judged = np.zeros(len(static.lines), dtype=bool)
+    judged[lines] = np.all(good, axis=0)
+    ratio = np.full(len(static.lines), np.nan)
+    ratio[lines] = shape_change_ratios(s[lines], shape[lines], moved)
+    return ratio, judged
