@@ -37,13 +37,15 @@ def quasi_static_reason(case: Any, system: Any, static: Any, limit: float) -> st
     e = case.study.analysis.dynamic.excitations[0]
     return (
         f"line {list(case.study.lines)[m]!r}: large motion: amplitude/sag {ratio[m]:.3g} > "
-        f"{limit:g} quasi-static, before the frequency domain (its shape with the body at "
-        f"its static position -+ {e.amplitude:g} in {e.dof}, over its sag: above "
-        f"{MARGIN:g} x the limit)"
+        f"{limit:g} quasi-static (its shape with the body at -+ {e.amplitude:g} in {e.dof} "
+        f"against its static shape, over its sag: above {MARGIN:g} x the limit, decided "
+        "before the frequency domain)"
     )
 
 
-def quasi_static_ratios(case: Any, system: Any, static: Any) -> tuple[np.ndarray, np.ndarray] | None:
+def quasi_static_ratios(
+    case: Any, system: Any, static: Any
+) -> tuple[np.ndarray, np.ndarray] | None:
     """Per line the quasi-static shape change over its sag
     (:func:`~cablestudy.dynamics.system_prejudge.shape_change_ratios`) and whether the
     line is judged by it (hanging free of the seabed in the three states), or None

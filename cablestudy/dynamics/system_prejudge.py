@@ -13,23 +13,31 @@ Here the same measure is taken on the quasi-static response: the system's static
 equilibrium solved again with the moved body at its two extreme positions (static
 position plus and minus the amplitude in the moved degree of freedom), ``u`` the
 difference of each line's static shape there and in the static state, at the same
-unstretched arc lengths. Why a line failing it cannot be linear at the motion's
-frequency: the quasi-static shape change is exact (each shape is a verified nonlinear
-equilibrium) and is the part of the response the line's geometric stiffness alone
-imposes; a linear response ``u = H(w) X`` whose amplitude stayed within the limit would
-have to cancel most of it by inertia and damping, which in the frequency domain's own
-model of the line would put the line above its first transverse resonance, where the
-linearisation's geometric terms (the change of the line's shape against its sag) are
-larger still, not smaller. So the decision is taken only with a margin: a line's
-quasi-static measure above :data:`MARGIN` times the limit sends the case to the time
-domain at once; anything less (or a system this check cannot solve) goes through the
-frequency domain and its post-solve check as before.
+unstretched arc lengths (both verified nonlinear equilibria).
 
-Measured (``tests/unit/test_system_prejudge.py`` and the report of the change that
-added it): on MoorPy's case8 surged at 0.1 Hz with 3 to 20 elements a line, the
-frequency domain's measure on the bridles is 2.1 to 7.5 times the quasi-static one
-(0.1 m: 0.014 quasi-static, 0.03 by the frequency domain; 2 m: 0.376, 2.83), so the
-margin of 2 leaves every case the post-solve check trusts far below the threshold.
+Why a line failing it cannot be linear at any frequency: the quasi-static shape change
+is the geometry the line's restoring forces (weight, tension, stretch) impose between
+the motion's extremes, a property of the stiffness term of the frequency domain's
+operator ``K - w^2 M + i w C``, which that model keeps at every frequency as the
+tangent at the static state. The limit on amplitude/sag is where the terms of order
+(shape change / sag)^2 that tangent drops reach the accepted size; a line whose
+equilibrium shape alone changes by more than twice the limit leaves the range where
+that tangent describes its restoring forces, and inertia and damping, which add to
+the stiffness and do not replace it, cannot bring the dropped terms back. The
+decision is taken only with that margin (:data:`MARGIN`): a line's quasi-static
+measure above MARGIN x the limit sends the case to the time domain at once; anything
+less (or a system this check cannot solve) goes through the frequency domain and its
+post-solve check exactly as before.
+
+Checked against the post-solve check on every system case of the tests and configs
+with ``method: auto`` (the report of the change that added it): MoorPy's case8 at
+0.1 Hz, surge 0.1 m (frequency domain trusted; quasi-static 0.014 = 0.19 of the limit,
+the frequency domain's own measure 0.030, 2.1 times it), surge 2 m (time domain;
+quasi-static 0.376 = 5.0 times the limit, the frequency domain's 2.78, 7.4 times it:
+decided here), heave 1 m (time domain; quasi-static 0.87 of the limit: left to the
+frequency domain, whose measure 1.2 is 18 times it); at 2 to 20 elements a line the
+same. MoorDyn's lines.txt (legs on the seabed) is not judged here. On every case the
+frequency domain's measure was at least twice the quasi-static one, never below it.
 """
 
 from __future__ import annotations

@@ -261,8 +261,7 @@ def pack(
     lay = _layout(system)
     plane = lay.plane
     why = np.full(N, "", dtype=object)
-    fwd, P, poff = lay.fwd, lay.P, lay.poff
-    Ptot = int(poff[-1])
+    P, poff = lay.P, lay.poff
     if plane is not None:
         limit = 1e-6 * lay.L
         ha, hb = plane.height_above(pos[:, lay.a]), plane.height_above(pos[:, lay.b])
@@ -330,9 +329,9 @@ def pack(
 
         Nk = int(k.sum())
         args = args[k]
-        args[:, :, :3] = pos[k][np.arange(Nk)[:, None], lb[k]] - pos[k][
-            np.arange(Nk)[:, None], la[k]
-        ]
+        args[:, :, :3] = (
+            pos[k][np.arange(Nk)[:, None], lb[k]] - pos[k][np.arange(Nk)[:, None], la[k]]
+        )
         a = args.reshape(Nk * M, 11)
         TA0 = _guess(a[:, :3], a[:, 3], a[:, 4:7], a[:, 7], a[:, 8:]).reshape(Nk, M, 3)
         packed = Packed(
