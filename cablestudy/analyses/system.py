@@ -218,11 +218,17 @@ def _statics(case: Case, deadline: float) -> tuple[Any, Any, int, str, dict, lis
         method = study.analysis.static.method  # catenary or discrete (config.study)
         if study.analysis.dynamic is not None:  # a sweep of the motion shares the statics
             from .system_dynamic import system_statics
+            from .system_prejudge import extreme_poses
 
+            # auto's quasi-static check: the body at the motion's extremes solved with
+            # the static state, as more cases of the same compiled call
+            extra = extreme_poses(case, system.body_position)
             res = system_statics(
                 case,
                 system,
-                lambda: solve_system_by(system, method, STATIC_SOLVERS, deadline=deadline),
+                lambda: solve_system_by(
+                    system, method, STATIC_SOLVERS, deadline=deadline, extra_poses=extra
+                ),
             )
         else:
             res = solve_system_by(system, method, STATIC_SOLVERS, deadline=deadline)

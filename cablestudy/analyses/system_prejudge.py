@@ -43,43 +43,61 @@ def quasi_static_reason(case: Any, system: Any, static: Any, limit: float) -> st
     )
 
 
+def extreme_poses(case: Any, body_position: np.ndarray) -> np.ndarray | None:
+    """The bodies' poses (2, m, 6) at the motion's extremes (``body_position`` plus and
+    minus the amplitude in the moved degree of freedom) where this check applies to the
+    case's motion and static method (module docstring), else None."""
+    study = case.study
+    dyn = study.analysis.dynamic
+    if dyn is None or dyn.method != "auto" or study.analysis.static.method != "catenary":
+        return None
+    if len(dyn.excitations) != 1 or not isinstance(dyn.excitations[0], BodyHarmonic):
+        return None
+    e = dyn.excitations[0]
+    poses = np.repeat(np.asarray(body_position, dtype=float)[None], 2, axis=0)
+    b, k = list(study.bodies).index(e.body), BODY_DOFS.index(e.dof)
+    poses[0, b, k] += e.amplitude
+    poses[1, b, k] -= e.amplitude
+    return poses
+
+
 def quasi_static_ratios(
     case: Any, system: Any, static: Any
 ) -> tuple[np.ndarray, np.ndarray] | None:
     """Per line the quasi-static shape change over its sag
     (:func:`~cablestudy.dynamics.system_prejudge.shape_change_ratios`) and whether the
     line is judged by it (hanging free of the seabed in the three states), or None
-    where this check does not apply (module docstring)."""
+    where this check does not apply (module docstring). The extreme states are those
+    the static solve found with the system's (``static.extra``, asked by
+    :func:`cablestudy.analyses.system._statics`) when they are of these poses, else
+    solved here."""
     from ..dynamics.system_prejudge import shape_change_ratios
     from ..statics.system_fast import hanging_shapes, ineligible, pack, point_positions_many
 
-    study = case.study
-    dyn = study.analysis.dynamic
-    if len(dyn.excitations) != 1 or not isinstance(dyn.excitations[0], BodyHarmonic):
+    if getattr(static, "fallback", "") or static.body_position is None:
         return None
-    if study.analysis.static.method != "catenary" or getattr(static, "fallback", ""):
+    poses = extreme_poses(case, static.body_position)
+    if poses is None or ineligible(system):
         return None
-    if static.body_position is None or ineligible(system):
-        return None
-    e = dyn.excitations[0]
-    poses = np.repeat(np.asarray(static.body_position, dtype=float)[None], 2, axis=0)
-    b, k = list(system.body_names).index(e.body), BODY_DOFS.index(e.dof)
-    poses[0, b, k] += e.amplitude
-    poses[1, b, k] -= e.amplitude
+    s = np.array([r.s for r in static.lines])
+    shape = np.array([r.position for r in static.lines])
+    static_laid = np.array([r.laid_length for r in static.lines]) > 0.0
+    extra = getattr(static, "extra", None)
+    if extra is not None and np.array_equal(extra["poses"], poses):
+        if shape.shape != extra["position"].shape[1:]:
+            return None
+        judged = ~static_laid & ~np.any(extra["anchored"], axis=0)
+        judged &= ~np.any(extra["laid_length"] > 0.0, axis=0)
+        return shape_change_ratios(s, shape, extra["position"]), judged
     base = np.repeat(np.asarray(static.point_position, dtype=float)[None], 2, axis=0)
     pos = point_positions_many(system, poses, None, base)
     pk, why = pack(system, pos)
     if pk is None or any(why):
         return None
-    s = np.array([r.s for r in static.lines])
-    shape = np.array([r.position for r in static.lines])
     if shape.shape[1] != pk.n_nodes:
         return None
     # the lines hanging free of the seabed (no laid length, not anchored on it)
-    hanging = (np.array([r.laid_length for r in static.lines]) <= 0.0) & ~np.any(
-        pk.anchored, axis=0
-    )
-    lines = np.flatnonzero(hanging)
+    lines = np.flatnonzero(~static_laid & ~np.any(pk.anchored, axis=0))
     if not lines.size:
         return None
     try:

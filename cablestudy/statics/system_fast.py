@@ -692,10 +692,15 @@ def _bodies_many(
     return body_force, body_stiffness
 
 
-def solve_fast(system: MooringSystem, *, prescribed: bool = False) -> tuple[object | None, str]:
+def solve_fast(
+    system: MooringSystem, *, prescribed: bool = False, extra_poses: np.ndarray | None = None
+) -> tuple[object | None, str]:
     """``system`` through the compiled path: (its :class:`.system.SystemResult`, '') or
     (None, why the general path must solve it). ``prescribed``: free bodies taken where
-    ``system`` puts them (see :func:`ineligible`)."""
+    ``system`` puts them (see :func:`ineligible`). ``extra_poses`` (K, m, 6): the system
+    solved at those body poses too, as more cases of the same call (each case's numbers
+    are its own: the system's are those of a call without them), into the result's
+    ``extra`` where every one settles and verifies."""
     from .base import StaticResult
     from .system_model import SystemResult
 
@@ -703,19 +708,32 @@ def solve_fast(system: MooringSystem, *, prescribed: bool = False) -> tuple[obje
     if why:
         return None, why
     # the points as a sweep's chunk places them (cablestudy.system_grid): the same bits
-    base = np.asarray(system.point_position, dtype=float)[None]
-    pos = point_positions_many(
-        system, np.asarray(system.body_position, dtype=float)[None], None, base
-    )
+    poses = np.asarray(system.body_position, dtype=float)[None]
+    if extra_poses is not None and len(extra_poses):
+        poses = np.concatenate((poses, np.asarray(extra_poses, dtype=float)))
+    base = np.repeat(np.asarray(system.point_position, dtype=float)[None], len(poses), 0)
+    pos = point_positions_many(system, poses, None, base)
     pk, whys = pack(system, pos)
+    if len(poses) > 1 and any(whys[1:]):  # an extra pose the compiled path cannot take
+        return solve_fast(system, prescribed=prescribed)
     if pk is None:
         return None, str(whys[0])
     try:
-        sol = solve_packed(system, pk, np.asarray(system.body_position, dtype=float)[None])
+        sol = solve_packed(system, pk, poses)
     except np.linalg.LinAlgError as exc:  # a singular point stiffness: the general path
+        if len(poses) > 1:
+            return solve_fast(system, prescribed=prescribed)
         return None, f"{NOT_SETTLED} ({exc})"
     if sol.fallback[0]:
         return None, str(sol.fallback[0])
+    extra = None
+    if len(poses) > 1 and not any(sol.fallback[1:]):
+        extra = {
+            "poses": poses[1:],
+            "position": sol.position[1:],
+            "laid_length": sol.laid_length[1:],
+            "anchored": pk.anchored[1:],
+        }
     lines = [
         StaticResult(
             s=sol.s[m],
@@ -736,6 +754,7 @@ def solve_fast(system: MooringSystem, *, prescribed: bool = False) -> tuple[obje
             iterations=int(sol.iterations[0]),
             residual=float(sol.residual[0]),
             body_position=np.array(system.body_position, dtype=float),
+            extra=extra,
         ),
         "",
     )
