@@ -27,7 +27,8 @@ import numpy as np
 
 from . import _fast
 from .seabed import Plane
-from .semi_analytic import make_layout, reversed_line
+from .semi_analytic import reversed_line
+from .system_layout import line_pieces, system_layout
 from .system_model import BODY, FIXED, FREE, MooringSystem
 from .verify import MULTIPLE, Pieces, check_lines
 
@@ -100,28 +101,6 @@ def ineligible(system: MooringSystem, *, prescribed: bool = False) -> str:
     return ""
 
 
-def _pieces(line) -> tuple[np.ndarray, ...]:  # noqa: ANN001
-    """ell, EA, weight, point, bounds as the batch kernels build them for ``line``."""
-    if line.length.size == 1 and line.attachment_s.size == 0:
-        L = float(line.length[0])
-        return (
-            np.array([L]),
-            np.array([float(line.axial_stiffness[0])]),
-            np.array([float(line.weight[0])]),
-            np.zeros((2, 3)),
-            np.array([0.0, L]),
-        )
-    lay = make_layout(line)
-    return lay.ell, lay.EA, lay.weight, lay.point, lay.bounds
-
-
-def _plane(system: MooringSystem) -> Plane | None:
-    med = system.lines[0].problem.medium
-    if med.depth is None:
-        return None
-    return Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
-
-
 def point_positions_many(
     system: MooringSystem, poses: np.ndarray, offsets: np.ndarray | None, base: np.ndarray
 ) -> np.ndarray:
@@ -168,78 +147,6 @@ def rotation_derivatives_many(angles: np.ndarray) -> np.ndarray:
     return np.stack((rz @ ry @ drx, rz @ dry @ rx, drz @ ry @ rx), axis=-3)
 
 
-@dataclass(frozen=True)
-class _Layout:
-    """What :func:`pack` takes from a system alone (its lines' pieces as laid from A,
-    the arrays they fill, each line's starting-tension inputs but the chord), built
-    once per system."""
-
-    fwd: list
-    P: np.ndarray
-    poff: np.ndarray
-    ell: np.ndarray  # (Ptot,)
-    EA: np.ndarray
-    w: np.ndarray
-    bounds: np.ndarray  # (Ptot + M,)
-    point: np.ndarray  # (Ptot + M, 3)
-    clear: np.ndarray  # (M,)
-    L: np.ndarray  # (M,)
-    a: np.ndarray
-    b: np.ndarray
-    guess: np.ndarray  # (M, 11): _guess's inputs per line, the chord (0:3) left 0
-    plane: Plane | None
-
-
-_LAYOUTS: dict[int, tuple[MooringSystem, _Layout]] = {}
-
-
-def _layout(system: MooringSystem) -> _Layout:
-    hit = _LAYOUTS.get(id(system))
-    if hit is not None and hit[0] is system:
-        return hit[1]
-    M = len(system.lines)
-    plane = _plane(system)
-    fwd = [_pieces(ln.problem.line) for ln in system.lines]
-    P = np.array([len(f[0]) for f in fwd])
-    poff = np.concatenate(([0], np.cumsum(P))).astype(np.int64)
-    Ptot = int(poff[-1])
-    ell, EA, w = np.empty((1, Ptot)), np.empty((1, Ptot)), np.empty((1, Ptot))
-    bounds, point = np.empty((1, Ptot + M)), np.empty((1, Ptot + M, 3))
-    clear = np.zeros(M, dtype=bool)
-    for m, (e_, ea_, w_, pt_, bd_) in enumerate(fwd):
-        o, ob, p = poff[m], poff[m] + m, P[m]
-        ell[:, o : o + p] = e_
-        EA[:, o : o + p] = ea_
-        w[:, o : o + p] = w_
-        bounds[:, ob : ob + p + 1] = bd_
-        point[:, ob : ob + p + 1] = pt_
-        down = bool(np.all(w_ >= 0.0))
-        if plane is not None:
-            down = down and bool(np.all(pt_ @ plane.normal <= 0.0))
-        clear[m] = down
-    # each line's starting-tension inputs as pack computes them for a case (the same
-    # operations on one row: the same numbers), the chord filled per case
-    guess = np.zeros((1, M, 11))
-    for m in range(M):
-        o, ob, p = poff[m], poff[m] + m, P[m]
-        guess[:, m, 3] = bounds[:, ob + p]
-        guess[:, m, 4:7] = point[:, ob : ob + p + 1].sum(axis=1)
-        guess[:, m, 6] -= np.sum(w[:, o : o + p] * ell[:, o : o + p], axis=1)
-        guess[:, m, 7] = guess[:, m, 3] / np.sum(ell[:, o : o + p] / EA[:, o : o + p], axis=1)
-        guess[:, m, 8:] = point[:, ob]
-    lay = _Layout(
-        fwd=fwd, P=P, poff=poff, ell=ell[0], EA=EA[0], w=w[0], bounds=bounds[0],
-        point=point[0], clear=clear, L=np.array([float(f[4][-1]) for f in fwd]),
-        a=np.array([ln.a for ln in system.lines], dtype=np.int64),
-        b=np.array([ln.b for ln in system.lines], dtype=np.int64),
-        guess=guess[0], plane=plane,
-    )  # fmt: skip
-    if len(_LAYOUTS) > 16:
-        _LAYOUTS.clear()
-    _LAYOUTS[id(system)] = (system, lay)
-    return lay
-
-
 def pack(
     system: MooringSystem,
     pos: np.ndarray,
@@ -258,7 +165,7 @@ def pack(
     pos = np.array(pos, dtype=float, copy=True)
     if start is not None:
         pos[:, free_pts] = start
-    lay = _layout(system)
+    lay = system_layout(system)
     plane = lay.plane
     why = np.full(N, "", dtype=object)
     P, poff = lay.P, lay.poff
@@ -286,7 +193,7 @@ def pack(
     for m in np.flatnonzero(np.any(grb, axis=0)):  # anchored at B: laid from B
         o, ob, p = poff[m], poff[m] + m, P[m]
         rows = grb[:, m]
-        e_, ea_, w_, pt_, bd_ = _pieces(reversed_line(system.lines[m].problem.line))
+        e_, ea_, w_, pt_, bd_ = line_pieces(reversed_line(system.lines[m].problem.line))
         ell[rows, o : o + p] = e_
         EA[rows, o : o + p] = ea_
         w[rows, o : o + p] = w_
