@@ -11,8 +11,8 @@ same error, both measured in this run.
 - Ours, in process: CPU time (``time.process_time``, the machine is shared) of the
   whole case with ``method: time`` (the system statics, the model: every line
   discretised and brought to its discrete equilibrium, the time domain; caches
-  cleared; the study's default ``auto`` first tries the frequency domain, timed apart
-  in a note), median of repeats, at a
+  cleared; the study's default ``auto``, which first checks the motion against the
+  linearisation's limits, timed apart in a note), median of repeats, at a
   ladder of meshes (elements per line x steps a period); the breakdown
   statics / model / dynamics of the mesh that reaches 1 % most cheaply. Then a fresh
   ``cablestudy run`` of the study as a user writes it at that mesh (process start,
@@ -64,9 +64,9 @@ TARGET = 1e-2
 
 def study_text(mesh: str, method: str = "time") -> str:
     """The study at ``mesh`` with the dynamic ``method``: ``time`` (the time domain,
-    what MoorDyn does), or the study's default ``auto``, which first solves the
-    frequency domain and judges it (on this motion it hands the case to the time
-    domain: amplitude over sag far beyond its limit), reported apart."""
+    what MoorDyn does), or the study's default ``auto`` (on this motion it hands the
+    case to the time domain: the bridles' quasi-static shape change over their sag five
+    times the limit, decided before the frequency domain is built), reported apart."""
     elements, steps = mesh.split("x")
     text = CONFIG.read_text().replace("elements: 20", f"elements: {elements}")
     text = text.replace("points_per_period: 128", f"points_per_period: {steps}")
@@ -240,9 +240,10 @@ def run(quick: bool = False) -> WorkPrecision:
     auto = ours(best, repeats, "auto")
     wp.notes.append(
         f"the study's default method auto at {best}: {auto['whole'] * 1e3:.1f} ms CPU a case "
-        f"(dynamics {auto['dynamics'] * 1e3:.1f} ms: the frequency domain solved and judged "
-        f"before it hands the case to the time domain; {b['dynamics'] * 1e3:.1f} ms with "
-        "method time, as timed against MoorDyn below)"
+        f"(dynamics {auto['dynamics'] * 1e3:.1f} ms: the quasi-static check, its extremes "
+        "solved with the statics, hands the case to the time domain before the frequency "
+        f"domain is built; {b['dynamics'] * 1e3:.1f} ms with method time, as timed against "
+        "MoorDyn below)"
     )
     try:
         import moordyn  # noqa: F401

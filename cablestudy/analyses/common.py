@@ -1,6 +1,6 @@
 """What every analysis kind shares: the status of an analysis that did not run, the
-text of a solver's exception, and the check of outputs for NaN and infinity (one case's
-or a column of cases' at once).
+segment of a point of the line, the text of a solver's exception, and the check of
+outputs for NaN and infinity (one case's or a column of cases' at once).
 """
 
 from __future__ import annotations
@@ -16,6 +16,13 @@ from .variables import OUTPUTS
 #: status of an analysis that did not run because the static analysis it starts from
 #: failed (the code of :data:`cablestudy.dynamics.modal.STATUS_STATIC_FAILED`)
 STATUS_NOT_RUN = 5
+
+
+def segment_of(segments: Any, s: np.ndarray) -> np.ndarray:
+    """The index of the segment (of ``segments``, in order along the line) each arc
+    length ``s`` [m] lies on; a point at a joint belongs to the segment after it."""
+    ends = np.cumsum([seg.length for seg in segments])
+    return np.minimum(np.searchsorted(ends, s, side="right"), len(segments) - 1)
 
 
 def exception_message(exc: Exception) -> str:

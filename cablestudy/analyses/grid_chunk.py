@@ -57,11 +57,6 @@ class GridChunk:
     def n(self) -> int:
         return len(self.status)
 
-    @property
-    def fallback(self) -> int:
-        """Cases no batch kernel settled, solved one by one by the general solver."""
-        return int(np.count_nonzero(self.fallback_reason != ""))
-
 
 def warning_column(n: int, warnings: dict[int, list[str]]) -> np.ndarray:
     """The ``warning`` text of ``n`` cases, from the warnings of those that have some."""

@@ -24,7 +24,7 @@ from ..statics.limits import apply_limits
 from ..study.cases import Case
 from ..study.loader import StudySource
 from ..study.problem import static_limits, static_problem
-from .common import CheckedOutputs, non_finite_outputs
+from .common import CheckedOutputs, non_finite_outputs, segment_of
 from .counters import COUNTERS, trim_lru
 from .plausibility import largest_strain
 
@@ -188,8 +188,7 @@ def static_outputs(res: StaticResult, study: Any = None) -> dict[str, np.ndarray
     if study is not None and not study.line.is_spring:
         env = study.environment
         segs = study.line.segments
-        ends = np.cumsum([seg.length for seg in segs])
-        k = np.minimum(np.searchsorted(ends, res.s, side="right"), len(segs) - 1)
+        k = segment_of(segs, res.s)
         out.update(
             profile_quantities(
                 res.s,
@@ -249,8 +248,7 @@ def largest_static_strain(study: Any, res: StaticResult) -> float:
         stretched = float(np.linalg.norm(np.diff(res.position, axis=0), axis=1).sum())
         return (stretched - line.total_length) / line.total_length
     segs = line.segments
-    ends = np.cumsum([seg.length for seg in segs])
-    k = np.minimum(np.searchsorted(ends, res.s, side="right"), len(segs) - 1)
+    k = segment_of(segs, res.s)
     ea = np.array([segs[i].elastic_stiffness for i in k])
     return float(largest_strain(res.tension, ea, _strain_along(segs, k, res.tension)))
 

@@ -6,8 +6,8 @@ takes as numbers (end positions of fixed ends, segment axial stiffnesses;
 :attr:`CaseGrid.arrays`), no per-case pydantic object is built: a chunk of cases becomes
 arrays of end positions and stiffnesses, is solved by the compiled kernels (lines
 hanging free, and lines anchored on the seabed with friction), the cases they do not
-settle by :func:`cablestudy.statics.batch.solve_batch` (counted in
-:attr:`GridChunk.fallback`, with the reason in :attr:`GridChunk.fallback_reason`), and
+settle by :func:`cablestudy.statics.batch.solve_batch` (the reason per case in
+:attr:`GridChunk.fallback_reason`, counted in the dataset's ``cases_fallback``), and
 its outputs are stacked into one array per output variable (a :class:`GridChunk`), which
 the runner streams to disk. Any other static grid's chunk is solved as validated cases
 are (:mod:`cablestudy.analyses.static_grid_cases`).
@@ -24,6 +24,7 @@ import numpy as np
 
 from ..study.grid import _POSITION, _STIFFNESS, CaseGrid
 from ..study.study import Study
+from .common import segment_of
 from .fallback import NO_KERNEL
 from .grid_chunk import STATUS_NUMERICAL, GridChunk, warning_column
 from .plausibility import fallback_warning, largest_strain, strain_warning
@@ -449,8 +450,7 @@ def array_outputs(
         "drag_iterations": st.drag_iterations.copy(),
     }
     env, segs = template.environment, template.line.segments
-    seg_end = np.cumsum([seg.length for seg in segs])
-    k = np.minimum(np.searchsorted(seg_end, s, side="right"), len(segs) - 1)
+    k = segment_of(segs, s)
     area = np.array([segs[i].area for i in k])
     m = s.size
     if m >= 3:
@@ -498,12 +498,6 @@ def array_outputs(
         for arr in out.values():
             arr[failed] = np.nan
     return out, status, messages
-
-
-def _segment_of(template: Study, s: np.ndarray) -> np.ndarray:
-    """The segment of each arc length ``s`` [m] of the template's line."""
-    seg_end = np.cumsum([seg.length for seg in template.line.segments])
-    return np.minimum(np.searchsorted(seg_end, s, side="right"), len(seg_end) - 1)
 
 
 def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
@@ -554,7 +548,8 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
         for i, reason in fallback.items():
             reasons[i] = reason
         data, status, messages = array_outputs(st, grid.template, ea)
-        max_strain = largest_strain(st.tension, ea[:, _segment_of(grid.template, st.s[0])])
+        k = segment_of(grid.template.line.segments, st.s[0])
+        max_strain = largest_strain(st.tension, ea[:, k])
         limit = grid.template.analysis.static.strain_warning
         for i in np.flatnonzero((status == 0) & (max_strain > limit)):
             warnings.setdefault(int(i), []).append(strain_warning(float(max_strain[i]), limit))

@@ -66,11 +66,24 @@ def system_model(study: Study) -> MooringSystem:
     settings = study.analysis.static
     med = medium(study)
     placeholder = EndCondition(kind="fixed", position=np.zeros(3))
+    made: list[tuple[Any, Any]] = []  # (segments and attachments, line model)
+
+    def model_of(line: Any) -> Any:
+        """The line's model; lines alike in their segments and attachments (all that
+        line_model reads of a line: a spar's bridles, a spread's legs) share one."""
+        key = (line.segments, line.attachments)
+        for k, m in made:
+            if k == key:
+                return m
+        m = line_model(SimpleNamespace(environment=env, line=line))  # type: ignore[arg-type]
+        made.append((key, m))
+        return m
+
     lines = tuple(
         SystemLine(
             name=name,
             problem=StaticProblem(
-                line=line_model(SimpleNamespace(environment=env, line=line)),  # type: ignore[arg-type]
+                line=model_of(line),
                 medium=med,
                 end_a=placeholder,
                 end_b=placeholder,
@@ -218,11 +231,17 @@ def _statics(case: Case, deadline: float) -> tuple[Any, Any, int, str, dict, lis
         method = study.analysis.static.method  # catenary or discrete (config.study)
         if study.analysis.dynamic is not None:  # a sweep of the motion shares the statics
             from .system_dynamic import system_statics
+            from .system_prejudge import extreme_poses
 
+            # auto's quasi-static check: the body at the motion's extremes solved with
+            # the static state, as more cases of the same compiled call
+            extra = extreme_poses(case, system.body_position)
             res = system_statics(
                 case,
                 system,
-                lambda: solve_system_by(system, method, STATIC_SOLVERS, deadline=deadline),
+                lambda: solve_system_by(
+                    system, method, STATIC_SOLVERS, deadline=deadline, extra_poses=extra
+                ),
             )
         else:
             res = solve_system_by(system, method, STATIC_SOLVERS, deadline=deadline)

@@ -164,7 +164,13 @@ def _equal(a: Any, b: Any) -> bool:
     if type(a) is not type(b):
         return False
     if isinstance(a, np.ndarray):
-        return a.shape == b.shape and a.dtype == b.dtype and bool(np.array_equal(a, b))
+        # the same bytes are the same numbers (the common case: a spread's legs); else
+        # element by element (-0.0 equals 0.0)
+        return (
+            a.shape == b.shape
+            and a.dtype == b.dtype
+            and (a.tobytes() == b.tobytes() or bool(np.array_equal(a, b)))
+        )
     if dataclasses.is_dataclass(a):
         return all(_equal(getattr(a, f.name), getattr(b, f.name)) for f in dataclasses.fields(a))
     if isinstance(a, tuple | list):

@@ -371,12 +371,18 @@ def run_system_auto(
     why = auto_ineligible_system(dyn)
     if why:
         return None, f"auto: {why}"
+    from .system_prejudge import quasi_static_reason
+
+    settings = dyn.auto or AutoSettings()
+    early = quasi_static_reason(case, system, static, settings.max_amplitude_sag_ratio)
+    if early:  # the shape change alone is beyond the limit (analyses.system_prejudge)
+        return None, f"auto: {early}"
     status, message, out, res, model = _solve_frequency(case, system, static, "auto")
     if status != STATUS_OK:
         return None, f"auto: frequency domain failed ({message})"
     on_bed, weight = _judged_nodes(model, system)
     trusted, reason = judge_system(
-        model.names, system_measures(model, res, on_bed, weight), dyn.auto or AutoSettings()
+        model.names, system_measures(model, res, on_bed, weight), settings
     )
     if not trusted:
         return None, f"auto: {reason}"

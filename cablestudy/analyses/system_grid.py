@@ -43,6 +43,7 @@ from ..study.cases import _copy_tree, _hash, _set_path, code_fingerprint, parse_
 from ..study.grid import CaseGrid, _numeric, grid_shape
 from ..study.loader import StudySource
 from ..study.study import Study
+from .common import segment_of
 from .grid_chunk import STATUS_NUMERICAL, GridChunk, warning_column
 
 #: swept paths the system grid takes: (group, name, field, component)
@@ -62,8 +63,6 @@ class SystemGrid(CaseGrid):
     #: [m], the free points' first-order response to the others' displacements (3k, 3n),
     #: their loads (k, 3) [N] and K_FF^-1 (3k, 3k); None where the template is unsettled
     start: tuple[np.ndarray, ...] | None = None
-    #: names of the system's coordinates: line, point (free points), body, dof, dof_j
-    named: dict[str, list[str]] = field(default_factory=dict)
     #: per swept path: (what it sets, index, component): ('pose', body, dof),
     #: ('fixed', point, xyz) or ('offset', point, xyz)
     targets: dict[str, tuple[str, int, int]] = field(default_factory=dict)
@@ -166,11 +165,6 @@ def expand_system_grid(src: StudySource, template: Study) -> SystemGrid | None:
         arrays=True,
         system=system,
         start=start,
-        named={
-            "line": list(template.lines),
-            "point": [k for k, p in template.points.items() if p.kind == "free"],
-            "body": bodies,
-        },
         targets=targets,
     )
 
@@ -345,10 +339,8 @@ def _strain_warnings(grid: SystemGrid, out: dict[str, np.ndarray], status: np.nd
     names = list(t.lines)
     ea = []
     for m, line in enumerate(t.lines.values()):
-        segs = line.segments
-        ends = np.cumsum([seg.length for seg in segs])
-        k = np.minimum(np.searchsorted(ends, out["arc_length"][0, m], side="right"), len(segs) - 1)
-        ea.append([segs[i].elastic_stiffness for i in k])
+        k = segment_of(line.segments, out["arc_length"][0, m])
+        ea.append([line.segments[i].elastic_stiffness for i in k])
     strains = largest_strain(out["tension"], np.array(ea))  # (n, M)
     found = {}
     for i in np.flatnonzero((status == 0) & np.any(strains > limit, axis=1)):

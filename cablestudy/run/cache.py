@@ -11,8 +11,9 @@ of a grid is found again by its content key (:meth:`CaseGrid.chunk_key`); a chun
 cases picked from the grid holds each case's content hash (everything that affects the
 case), so a case is only ever reused for the same case, wherever it now is in the sweep.
 
-Files written atomically (temporary file, fsync, rename). Files of other names (e.g. the
-``chunk-*`` files of earlier versions) are never opened.
+Files written atomically (temporary file, fsync, rename). Files of other names are never
+opened; the ``chunk-*.npz`` files of earlier versions are removed when the cache is
+tidied (:meth:`GridChunkStore.keep`).
 """
 
 from __future__ import annotations
@@ -24,7 +25,7 @@ import re
 import sys
 import tempfile
 from collections import Counter
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -195,19 +196,25 @@ class GridChunkStore:
 
     def find(self, key: str) -> Path | None:
         """The intact file of the chunk with content key ``key``, if any."""
+        return next(self._intact(f"grid-{key[:32]}-*.npz"), None)
+
+    def _intact(self, pattern: str) -> Iterator[Path]:
+        """The files matching ``pattern`` in order, each checked (:meth:`_check`) before
+        it is given: an entry that is not a regular file is reported and left in place, a
+        damaged file reported once and removed (its cases are recomputed)."""
         if not self.directory.is_dir():
-            return None
-        for path in sorted(self.directory.glob(f"grid-{key[:32]}-*.npz")):
+            return
+        for path in sorted(self.directory.glob(pattern)):
             odd = _odd_entry(path)
             if odd:
                 self.warn(odd)
                 continue
             reason = self._check(path)
-            if not reason:
-                return path
-            self.warn(f"cache file {path} {reason}; its cases will be recomputed")
-            path.unlink(missing_ok=True)
-        return None
+            if reason:
+                self.warn(f"cache file {path} {reason}; its cases will be recomputed")
+                path.unlink(missing_ok=True)
+                continue
+            yield path
 
     @staticmethod
     def _check(path: Path) -> str:
@@ -292,18 +299,7 @@ class GridChunkStore:
         found: list[Any] = []
         files: set[Path] = set()
         seen: set[str] = set()
-        if not self.directory.is_dir():
-            return found, files
-        for path in sorted(self.directory.glob("grid-*.npz")):
-            odd = _odd_entry(path)
-            if odd:
-                self.warn(odd)
-                continue
-            reason = self._check(path)
-            if reason:
-                self.warn(f"cache file {path} {reason}; its cases will be recomputed")
-                path.unlink(missing_ok=True)
-                continue
+        for path in self._intact("grid-*.npz"):
             chunk = self.chunk(path)
             if chunk.hashes is None:
                 continue
@@ -317,11 +313,16 @@ class GridChunkStore:
                 files.add(path)
         return found, files
 
+    def files(self) -> list[Path]:
+        """The chunk files here (regular files only), of this version and earlier ones."""
+        found = [*self.directory.glob("grid-*.npz"), *self.directory.glob("chunk-*.npz")]
+        return [p for p in found if regular_file(p)]
+
     def keep(self, paths: set[Path]) -> None:
-        """Remove the grid chunk files not in ``paths`` (cases edited away); call it only
-        when no other run of the study is writing here
-        (:class:`cablestudy.run.outputs.CacheLock`). Entries that are not regular files are
-        left alone."""
-        for path in self.directory.glob("grid-*.npz"):
-            if path not in paths and regular_file(path):
+        """Remove the grid chunk files not in ``paths`` (cases edited away), and the
+        ``chunk-*.npz`` files of earlier versions (never read); call it only when no other
+        run of the study is writing here (:class:`cablestudy.run.outputs.CacheLock`).
+        Entries that are not regular files are left alone."""
+        for path in self.files():
+            if path not in paths:
                 path.unlink(missing_ok=True)

@@ -22,9 +22,8 @@ from ..analyses.variables import (
     OUTPUTS,
     STATUS_BROKEN,
     SYSTEM_OUTPUTS,
-    CaseRecord,
 )
-from ..study.cases import Case, SweepAxis
+from ..study.cases import SweepAxis
 from ..study.line_types import line_type_attrs
 from ..study.loader import StudySource
 from .conventions import command_line, is_status_variable, status_flag_attrs
@@ -92,43 +91,6 @@ def sweep_coordinates(axes: list[SweepAxis]) -> dict[str, Any]:
                         {"long_name": f"{long_name} (JSON)", "units": "1"},
                     )
     return coords
-
-
-def assemble(
-    axes: list[SweepAxis],
-    cases: list[Case],
-    records: dict[str, CaseRecord],
-    src: StudySource,
-    *,
-    solver_settings: dict[str, Any] | None = None,
-) -> xr.Dataset:
-    """One Dataset on the sweep axes from case records (by case hash), built as the
-    runner builds every dataset: the records as a chunk
-    (:func:`cablestudy.analyses.grid_chunk.records_chunk`), its rows in C order of the
-    grid (:func:`chunk_variables`). A failed analysis is NaN (or -1, or "") in its own
-    data variables (:attr:`OutputVariable.analysis`), the others are kept; a failed case
-    is never dropped."""
-    import xarray as xr
-
-    from ..analyses.grid_chunk import records_chunk
-
-    system = bool(cases) and cases[0].study.is_system
-    ordered = sorted(cases, key=lambda c: c.index)
-    chunk = records_chunk([records[c.hash] for c in ordered], system=system)
-    named = system_names(cases[0].study) if system else None
-    data_vars, coords, attrs = chunk_variables(
-        axes, src, chunk, solver_settings=solver_settings or {}, named=named
-    )
-    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
-
-
-def system_names(study: Any) -> dict[str, list[str]]:
-    """A system study's names along its dimensions (line, free point, body)."""
-    return {
-        "line": list(study.lines),
-        "point": [k for k, p in study.points.items() if p.kind == "free"],
-        "body": list(study.bodies),
-    }
 
 
 def chunk_variables(
@@ -243,18 +205,18 @@ def grid_dataset(
     tails: dict[str, tuple[int, ...]],
     arc: np.ndarray | None,
     solver_settings: dict[str, Any],
-    lazy: bool = True,
     fallbacks: dict[str, int] | None = None,
     named: dict[str, list[str]] | None = None,
 ) -> xr.Dataset:
     """The dataset of a study run as arrays (:mod:`cablestudy.analyses.static_grid`), with the same
-    variables, dims, coordinates and attributes as :func:`assemble` would give, its large
-    variables backed lazily (dask) by the chunk files ``(lo, hi, path)`` (rows ``lo:hi``
-    of the first axis each, written by the runner), so that writing it streams chunk by
-    chunk; with ``lazy=False`` they are read into memory instead (small studies).
-    ``arc``: the arc lengths every successful case shares (then the ``s`` coordinate, as
-    in :func:`assemble`), or None (then ``arc_length`` stays a variable and ``s`` is the
+    variables, dims, coordinates and attributes as :func:`chunk_variables` would give,
+    its large variables backed lazily (dask) by the chunk files ``(lo, hi, path)`` (rows
+    ``lo:hi`` of the first axis each, written by the runner), so that writing it streams
+    chunk by chunk. ``arc``: the arc lengths every successful case shares (then the
+    ``s`` coordinate), or None (then ``arc_length`` stays a variable and ``s`` is the
     node index)."""
+    import dask
+    import dask.array as da
     import xarray as xr
 
     shape = tuple(a.size for a in axes)
@@ -279,25 +241,17 @@ def grid_dataset(
         if name == "arc_length" and arc is not None:
             continue
         tail = tails[name]
-        if lazy:
-            import dask
-            import dask.array as da
-
-            values[name] = da.concatenate(
-                [
-                    da.from_delayed(
-                        dask.delayed(load)(path, name).reshape((hi - lo, *rest, *tail)),
-                        shape=(hi - lo, *rest, *tail),
-                        dtype=np.float64,
-                    )
-                    for lo, hi, path in chunks
-                ],
-                axis=0,
-            )
-        else:  # small enough to hold: no dask needed
-            values[name] = np.concatenate(
-                [load(path, name).reshape((hi - lo, *rest, *tail)) for lo, hi, path in chunks]
-            )
+        values[name] = da.concatenate(
+            [
+                da.from_delayed(
+                    dask.delayed(load)(path, name).reshape((hi - lo, *rest, *tail)),
+                    shape=(hi - lo, *rest, *tail),
+                    dtype=np.float64,
+                )
+                for lo, hi, path in chunks
+            ],
+            axis=0,
+        )
     data_vars, coords, attrs = grid_variables(
         axes,
         src,
@@ -336,7 +290,7 @@ def grid_variables(
     :func:`write_variables_atomic` writes): per case ``status``, ``message``,
     ``wall_time`` (flat, cases in C order) and per output its values (shape
     (*sweep shape, *tail), NumPy or dask) -- the variables, dims, coordinates and
-    attributes :func:`assemble` gives. ``arc``: the arc lengths every successful case
+    attributes of every study. ``arc``: the arc lengths every successful case
     shares (then the ``s`` coordinate, and ``arc_length`` is not among ``values``), or
     None (then ``s`` is the node index). ``fallbacks``: why cases were solved by the
     general solver, counted (the ``cases_fallback`` and ``fallback_reasons``
@@ -408,7 +362,7 @@ def grid_variables(
             np.arange(1, extent["mode"] + 1),
             {"units": COORDINATES["mode"][0], "long_name": COORDINATES["mode"][1]},
         )
-    if named is not None:  # a system: its named dimensions (as assemble gives them)
+    if named is not None:  # a system: its named dimensions
         named = {**named, "dof": list(BODY_DOFS), "dof_j": list(BODY_DOFS)}
         for dim, names in named.items():
             if any(dim in registry[k].dims for k in values):
@@ -431,7 +385,7 @@ def grid_variables(
     _flag_statuses(data_vars)
     attrs = provenance(src, solver_settings)
     attrs["cases"] = int(np.prod(shape))
-    # as assemble counts them: a broken line is a result, not a failure
+    # a broken line is a result, not a failure
     attrs["cases_failed"] = int(np.count_nonzero((status != 0) & (status != STATUS_BROKEN)))
     attrs["cases_warned"] = int(np.count_nonzero(warnings != ""))
     if np.any(status == STATUS_BROKEN):

@@ -1,6 +1,7 @@
 """Every study run in chunks of its grid (:class:`cablestudy.study.grid.CaseGrid`): rows
 of the grid as arrays (:func:`cablestudy.analyses.static_grid.evaluate_grid_chunk`), or
-its cases on the scheduler (:func:`cablestudy.analyses.evaluate.evaluate_cases`), each
+its cases (:func:`cablestudy.analyses.evaluate.evaluate_cases`), both on the one loop of
+:mod:`cablestudy.run.scheduler`, each
 chunk in one record form (:class:`cablestudy.analyses.grid_chunk.GridChunk`) kept in the
 cache, held in memory or streamed to disk by size, and the dataset built from them by
 one function (:func:`cablestudy.run.dataset.grid_variables`).
@@ -13,7 +14,6 @@ import json
 import math
 import tempfile
 import time
-from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -21,18 +21,11 @@ import numpy as np
 
 from ..study.cases import Case, SweepAxis
 from ..study.loader import StudySource
-from .cache import LOST_PREFIX, TRANSIENT_PREFIXES
+from .cache import TRANSIENT_PREFIXES
 from .database_file import write_database_file
-from .outputs import CacheLock, regular_file, temporary_prefix
+from .outputs import CacheLock, temporary_prefix
 from .progress import Progress, RunSummary
-from .remote import DEFAULT_TIMEOUT, connect
-from .scheduler import (
-    AUTO,
-    AUTO_PARALLEL_AFTER,
-    PROCESSES,
-    SYNCHRONOUS,
-    _local_cluster,
-)
+from .scheduler import Cases, Rows, execute
 from .writer import write_atomic, write_variables_atomic
 
 #: cases per chunk of a study run as arrays (rows of the first axis are never split);
@@ -51,12 +44,6 @@ def grid_chunks(grid: Any) -> list[tuple[int, int]]:
     step = max(1, GRID_CHUNK_CASES // max(row, 1))
     n0 = grid.shape[0]
     return [(lo, min(lo + step, n0)) for lo in range(0, n0, step)]
-
-
-def _grid_chunk_task(grid: Any, lo: int, hi: int) -> Any:
-    from ..analyses.static_grid import evaluate_grid_chunk
-
-    return evaluate_grid_chunk(grid, lo, hi)
 
 
 def run_chunks(
@@ -125,7 +112,7 @@ def run_chunks(
     used = ""
     t1 = time.perf_counter()
     try:
-        used = plan.execute(scheduler, workers, on_done, timeout)
+        used = execute(plan.work, scheduler, workers, on_done, timeout=timeout)
     finally:
         bar.close()
     t2 = time.perf_counter()
@@ -197,12 +184,7 @@ def run_chunks(
 
 def _named(grid: Any) -> dict[str, list[str]] | None:
     """A system study's names along its dimensions (None for one line)."""
-    named = getattr(grid, "named", None)  # a system grid's (cablestudy.analyses.system_grid)
-    if named is None and grid.template.is_system:
-        from .dataset import system_names
-
-        named = system_names(grid.template)
-    return named
+    return grid.template.system_names if grid.template.is_system else None
 
 
 def _lazy_dataset(src: StudySource, grid: Any, store: Any, plan: Any) -> tuple[Any, Any]:
@@ -220,7 +202,6 @@ def _lazy_dataset(src: StudySource, grid: Any, store: Any, plan: Any) -> tuple[A
         tails=summary.tails,
         arc=summary.arc,
         solver_settings=grid_settings(grid),
-        lazy=True,
         fallbacks=summary.fallbacks,
         named=_named(grid),
     )
@@ -243,6 +224,7 @@ class _RowPlan:
         row = math.prod(grid.shape[1:])
         self.n_reused = sum((hi - lo) * row for lo, hi in self.files)
         self.n_computed = grid.size - self.n_reused
+        self.work = Rows(grid, [span for span in self.spans if span not in self.files])
 
     @staticmethod
     def span(chunk: Any) -> Any:
@@ -253,14 +235,6 @@ class _RowPlan:
         if any(str(m).startswith(TRANSIENT_PREFIXES) for m in chunk.message):
             self.transient.add(path)  # in this result, but not kept: a re-run computes it
         return path
-
-    def execute(
-        self, scheduler: str, workers: int, on_done: Callable[[Any], None], timeout: float
-    ) -> str:
-        todo = [span for span in self.spans if span not in self.files]
-        if not todo:
-            return ""
-        return _execute_grid(self.grid, todo, scheduler, workers, on_done, timeout=timeout)
 
     def merged(self, held: dict[Any, Any]) -> Any:
         """Every row as one chunk, in order (computed here, or read from its file)."""
@@ -297,6 +271,7 @@ class _CasePlan:
                 self.unique.setdefault(c.hash, c)
         self.n_reused = sum(1 for c in self.cases if c.hash in done)
         self.n_computed = len(self.unique)
+        self.work = Cases(list(self.unique.values()))
         self.all: Any = None
 
     @staticmethod
@@ -317,15 +292,6 @@ class _CasePlan:
         self.span(kept)
         return self.store.write(kept)
 
-    def execute(
-        self, scheduler: str, workers: int, on_done: Callable[[Any], None], timeout: float
-    ) -> str:
-        if not self.unique:
-            return ""
-        from .scheduler import execute
-
-        return execute(list(self.unique.values()), scheduler, workers, on_done, timeout=timeout)
-
     def merged(self, held: dict[Any, Any]) -> Any:
         """Every case as one chunk, in C order of the grid (a case that appears at several
         places of the sweep at each)."""
@@ -340,7 +306,7 @@ class _CasePlan:
         edited-away studies dropped; the new file in place before the old ones go)."""
         from ..analyses.grid_chunk import take_rows
 
-        present = [p for p in self.store.directory.glob("grid-*.npz") if regular_file(p)]
+        present = self.store.files()
         kept = set(self.files.values()) - self.transient
         if self.all is None or (len(present) == 1 and set(present) == kept and not self.unique):
             return
@@ -371,60 +337,6 @@ def grid_settings(grid: Any) -> dict[str, Any]:
     if len(distinct) > 1:
         out["analysis_per_case_distinct"] = [json.loads(d) for d in sorted(distinct)]
     return out
-
-
-def _execute_grid(
-    grid: Any,
-    spans: list[tuple[int, int]],
-    scheduler: str,
-    workers: int,
-    on_done: Callable[[Any], None],
-    *,
-    timeout: float = DEFAULT_TIMEOUT,
-) -> str:
-    """Evaluate the chunks ``spans`` of ``grid``: here, or on dask. 'auto' times the
-    first chunk here and goes on here unless the rest would take more than
-    :data:`AUTO_PARALLEL_AFTER` seconds (then worker processes)."""
-    rest = list(spans)
-    if scheduler in (AUTO, SYNCHRONOUS) or len(rest) == 1:
-        t0 = time.perf_counter()
-        on_done(_grid_chunk_task(grid, *rest.pop(0)))
-        per_chunk = time.perf_counter() - t0
-        if scheduler == AUTO and workers > 1 and per_chunk * len(rest) > AUTO_PARALLEL_AFTER:
-            scheduler = PROCESSES
-        else:
-            for lo, hi in rest:
-                on_done(_grid_chunk_task(grid, lo, hi))
-            return SYNCHRONOUS
-    if not rest:
-        return scheduler
-    from dask.distributed import Client, as_completed
-
-    cluster = None
-    if "://" in scheduler:
-        client = connect(scheduler, timeout)
-    else:
-        cluster = _local_cluster(scheduler, workers)
-        client = Client(cluster)
-    try:
-        remote = client.scatter(grid, broadcast=True)
-        futures = {
-            client.submit(_grid_chunk_task, remote, lo, hi, pure=False): (lo, hi) for lo, hi in rest
-        }
-        for future in as_completed(list(futures)):
-            try:
-                chunk = future.result()
-            except Exception as exc:  # noqa: BLE001 - a lost task fails its cases, not the study
-                from ..analyses.grid_chunk import failed_grid_chunk
-
-                chunk = failed_grid_chunk(grid, *futures[future], f"{LOST_PREFIX}{exc!r}")
-            on_done(chunk)
-            future.release()
-    finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
-    return scheduler
 
 
 def study_grid(src: StudySource) -> Any:

@@ -1,7 +1,9 @@
-"""Chunks of cases on a scheduler: serially, on threads, on local processes or a
-dask cluster (``auto`` probes the first cases' cost and chooses), a chunk per task sized
-to take about :data:`TARGET_TASK_SECONDS`, a task that dies failing its cases (not the
-study).
+"""The one execution loop of every study: its chunks serially, on threads, on local
+processes or a dask cluster (``auto`` probes the first chunks' cost and chooses), with
+the same progress, timeout, interrupt and failure handling whatever the work is: cases
+(:class:`Cases`, a chunk per task sized to take about :data:`TARGET_TASK_SECONDS`) or
+rows of a grid run as arrays (:class:`Rows`, fixed chunks). A task that dies fails its
+cases, not the study.
 """
 
 from __future__ import annotations
@@ -64,16 +66,6 @@ def default_workers() -> int:
     return max(1, min(cores, 8))
 
 
-def failed_chunk(cases: list[Case], exc: BaseException) -> GridChunk:
-    """The chunk of cases whose task died outside the solvers (a worker lost, an
-    unpicklable result): every case failed with the reason, no data, not cached."""
-    from ..analyses.grid_chunk import failed_chunk as failed
-
-    message = f"{LOST_PREFIX}{type(exc).__name__}: {exc}"
-    hashes = np.array([c.hash for c in cases], dtype=str).reshape(len(cases))
-    return failed(len(cases), message, hashes=hashes, status=STATUS_TASK_FAILED)
-
-
 def run_chunk(cases: list[Case]) -> GridChunk:
     """Evaluate a chunk of cases in one task (cases sharing a static problem are
     adjacent, so its solution is reused; compatible static problems are batched), its
@@ -81,6 +73,91 @@ def run_chunk(cases: list[Case]) -> GridChunk:
     from ..analyses.evaluate import evaluate_cases
 
     return evaluate_cases(cases)
+
+
+def _lost(exc: BaseException) -> str:
+    """The message of the cases of a task that died outside the solvers."""
+    return f"{LOST_PREFIX}{type(exc).__name__}: {exc}"
+
+
+class Cases:
+    """Cases of a study, in chunks sized by their measured cost (:func:`make_chunks`),
+    a chunk's task :func:`run_chunk`."""
+
+    shared = None
+    sized = True
+
+    def __init__(self, cases: list[Case]) -> None:
+        self.units = cases
+
+    @staticmethod
+    def run(shared: None, batch: list[Case]) -> GridChunk:
+        return run_chunk(batch)
+
+    @staticmethod
+    def fail(shared: None, batch: list[Case], exc: BaseException) -> GridChunk:
+        """The chunk of cases whose task died outside the solvers (a worker lost, an
+        unpicklable result): every case failed with the reason, no data, not cached."""
+        from ..analyses.grid_chunk import failed_chunk
+
+        hashes = np.array([c.hash for c in batch], dtype=str).reshape(len(batch))
+        return failed_chunk(len(batch), _lost(exc), hashes=hashes, status=STATUS_TASK_FAILED)
+
+    @staticmethod
+    def batches(units: list[Case], workers: int, per_case: float | None) -> list[Any]:
+        return make_chunks(units, workers, per_case=per_case)
+
+    def probe(self, on_done: OnDone, seconds: float) -> Probe:
+        return probe_cost(self.units, on_done, seconds)
+
+    def share(self) -> None:
+        """Solve the first case's statics in this process (cached by static hash, so
+        worker processes forked afterwards reuse it). A failure is left for the case
+        itself to record where it runs."""
+        from ..analyses.static import solve_static
+
+        first = min(self.units, key=lambda c: (c.static_hash, c.index))
+        with contextlib.suppress(Exception):
+            solve_static(first, None)
+
+
+class Rows:
+    """Rows ``lo:hi`` of a grid run as arrays
+    (:func:`cablestudy.analyses.static_grid.evaluate_grid_chunk`): fixed chunks, each its
+    own task, the grid sent to the workers once."""
+
+    sized = False
+
+    def __init__(self, grid: Any, spans: list[tuple[int, int]]) -> None:
+        self.shared, self.units = grid, spans
+
+    @staticmethod
+    def run(grid: Any, span: tuple[int, int]) -> GridChunk:
+        from ..analyses import static_grid
+
+        return static_grid.evaluate_grid_chunk(grid, *span)
+
+    @staticmethod
+    def fail(grid: Any, span: tuple[int, int], exc: BaseException) -> GridChunk:
+        from ..analyses.grid_chunk import failed_grid_chunk
+
+        return failed_grid_chunk(grid, *span, _lost(exc))
+
+    @staticmethod
+    def batches(units: list[Any], workers: int, per_case: float | None) -> list[Any]:
+        return list(units)
+
+    def probe(self, on_done: OnDone, seconds: float) -> Probe:
+        """The first chunk here, timed: the cost of a chunk."""
+        t0 = time.perf_counter()
+        on_done(self.run(self.shared, self.units[0]))
+        return Probe(self.units[1:], time.perf_counter() - t0)
+
+    def share(self) -> None:
+        pass
+
+
+Work = Cases | Rows
 
 
 def chunk_limit(per_case: float | None) -> int:
@@ -220,22 +297,23 @@ def choose_scheduler(probe: Probe, workers: int) -> str:
     return PROCESSES
 
 
-def _run_local(cases: list[Case], on_done: OnDone, *, per_case: float | None = None) -> None:
-    for chunk in make_chunks(cases, 1, per_case=per_case):
-        on_done(run_chunk(chunk))
+def _run_here(work: Work, units: list[Any], on_done: OnDone, per_case: float | None) -> None:
+    for batch in work.batches(units, 1, per_case):
+        on_done(work.run(work.shared, batch))
 
 
-def _run_auto(cases: list[Case], workers: int, on_done: OnDone) -> str:
-    """Probe the cost of a case in this process and choose (:func:`choose_scheduler`);
-    the probe's cases are done by then. Returns the scheduler used for the rest."""
-    probe = probe_cost(cases, on_done, AUTO_PROBE_SECONDS)
-    if workers > 1 and probe.per_case * len(probe.rest) > AUTO_PARALLEL_AFTER:
+def _run_auto(work: Work, workers: int, on_done: OnDone) -> str:
+    """Probe the cost of the work in this process and choose (:func:`choose_scheduler`;
+    threads are timed for cases, whose chunks can be cut to size); the probe's part is
+    done by then. Returns the scheduler used for the rest."""
+    probe = work.probe(on_done, AUTO_PROBE_SECONDS)
+    if work.sized and workers > 1 and probe.per_case * len(probe.rest) > AUTO_PARALLEL_AFTER:
         probe = probe_threads(probe, on_done, workers)
     chosen = choose_scheduler(probe, workers)
     if chosen == SYNCHRONOUS:
-        _run_local(probe.rest, on_done, per_case=probe.per_case)
+        _run_here(work, probe.rest, on_done, probe.per_case)
     else:
-        _run_dask(probe.rest, chosen, workers, on_done, per_case=probe.per_case)
+        _run_dask(work, probe.rest, chosen, workers, on_done, per_case=probe.per_case)
     return chosen
 
 
@@ -268,7 +346,8 @@ def _local_cluster(scheduler: str, workers: int):  # noqa: ANN202 - dask type, i
 
 
 def _run_dask(
-    cases: list[Case],
+    work: Work,
+    units: list[Any],
     scheduler: str,
     workers: int,
     on_done: OnDone,
@@ -276,15 +355,18 @@ def _run_dask(
     per_case: float | None = None,
     timeout: float = DEFAULT_TIMEOUT,
 ) -> None:
-    if not cases:
+    """``units`` of ``work`` on threads (:func:`_run_threads`), a local cluster or the
+    dask scheduler at the address ``scheduler``. Cases of unknown cost go one per worker
+    slot first, and the rest is chunked when the first of them is back."""
+    if not units:
         return
     if scheduler == THREADS:
-        _run_threads(cases, workers, on_done, per_case=per_case)
+        _run_threads(work, units, workers, on_done, per_case=per_case)
         return
     from dask.distributed import Client, as_completed
 
     cluster = None
-    if scheduler in (PROCESSES, THREADS):
+    if scheduler == PROCESSES:
         cluster = _local_cluster(scheduler, workers)
         client = Client(cluster)
     else:
@@ -293,35 +375,35 @@ def _run_dask(
         info = client.scheduler_info()
         workers = max(1, sum(w.get("nthreads", 1) for w in info.get("workers", {}).values()))
     try:
-        pending = sorted(cases, key=lambda c: (c.static_hash, c.index))
-        first: list[list[Case]] = []
-        if per_case is None:
+        shared = None if work.shared is None else client.scatter(work.shared, broadcast=True)
+        pending = list(units)
+        first: list[Any] = []
+        if work.sized and per_case is None:
             # the cost is not known yet: one case per worker slot first, timed on the
-            # cluster itself; the rest is chunked when the first of them is back
+            # cluster itself
             first = [[c] for c in pending[:workers]]
             pending = pending[workers:]
-        chunk_of: dict[str, list[Case]] = {}
+        else:
+            first, pending = work.batches(pending, workers, per_case), []
+        batch_of: dict[str, Any] = {}
 
-        def submit(chunks: list[list[Case]]) -> list[Any]:
-            futures = client.map(run_chunk, chunks, pure=False)
-            chunk_of.update({f.key: chunk for f, chunk in zip(futures, chunks, strict=True)})
+        def submit(batches: list[Any]) -> list[Any]:
+            futures = [client.submit(work.run, shared, b, pure=False) for b in batches]
+            batch_of.update({f.key: b for f, b in zip(futures, batches, strict=True)})
             return futures
 
-        done = as_completed(submit(first) if first else [])
-        if per_case is not None:
-            done.update(submit(make_chunks(pending, workers, per_case=per_case)))
-            pending = []
+        done = as_completed(submit(first))
         for future in done:
             try:
                 chunk = future.result()
             except Exception as exc:  # noqa: BLE001 - a lost task fails its cases, not the study
-                chunk = failed_chunk(chunk_of[future.key], exc)
+                chunk = work.fail(work.shared, batch_of[future.key], exc)
             on_done(chunk)
             future.release()
             if pending:
                 times = chunk.wall_time[np.isfinite(chunk.wall_time)]
                 cost = float(times.mean()) if len(times) else None
-                done.update(submit(make_chunks(pending, workers, per_case=cost)))
+                done.update(submit(work.batches(pending, workers, cost)))
                 pending = []
     finally:
         client.close()
@@ -329,16 +411,16 @@ def _run_dask(
             cluster.close()
 
 
-def _guarded_chunk(cases: list[Case]) -> GridChunk:
-    """:func:`run_chunk`, its cases failed (not the study) if the task itself dies."""
+def _guarded(work: Work, batch: Any) -> GridChunk:
+    """A task of ``work``, its cases failed (not the study) if the task itself dies."""
     try:
-        return run_chunk(cases)
+        return work.run(work.shared, batch)
     except Exception as exc:  # noqa: BLE001 - a lost task fails its cases, not the study
-        return failed_chunk(cases, exc)
+        return work.fail(work.shared, batch, exc)
 
 
 def _run_threads(
-    cases: list[Case], workers: int, on_done: OnDone, *, per_case: float | None = None
+    work: Work, units: list[Any], workers: int, on_done: OnDone, *, per_case: float | None = None
 ) -> None:
     """The chunks on dask's local threaded scheduler (no dask.distributed: its import
     alone is about 0.4 s, a tenth of a few-second study). The solvers' compiled kernels
@@ -349,9 +431,9 @@ def _run_threads(
     import dask.threaded
     from dask.callbacks import Callback
 
-    chunks = make_chunks(cases, workers, per_case=per_case)
-    n = len(chunks)
-    graph = {f"chunk-{n - 1 - i:08d}": (_guarded_chunk, chunk) for i, chunk in enumerate(chunks)}
+    batches = work.batches(units, workers, per_case)
+    n = len(batches)
+    graph = {f"chunk-{n - 1 - i:08d}": (_guarded, work, b) for i, b in enumerate(batches)}
 
     def posttask(key: str, result: Any, dsk: Any, state: dict, worker_id: Any) -> None:
         on_done(result)
@@ -361,45 +443,34 @@ def _run_threads(
         dask.threaded.get(graph, list(graph), num_workers=workers)
 
 
-def _share_statics(cases: list[Case]) -> None:
-    """Solve the first case's statics in this process (cached by static hash, so worker
-    processes forked afterwards reuse it). A failure is left for the case itself to
-    record where it runs."""
-    from ..analyses.static import solve_static
-
-    first = min(cases, key=lambda c: (c.static_hash, c.index))
-    with contextlib.suppress(Exception):
-        solve_static(first, None)
-
-
 def execute(
-    cases: list[Case],
+    work: Work,
     scheduler: str,
     workers: int,
     on_done: OnDone,
     *,
     timeout: float = DEFAULT_TIMEOUT,
 ) -> str:
-    """Evaluate ``cases`` in chunks on ``scheduler``, calling ``on_done`` with each chunk's
-    records as it finishes (in the calling process). Every local scheduler first times
-    a few cases here (:func:`probe_cost`), which sizes the chunks to about a quarter second
-    and loads the compiled kernels before worker processes are forked. Returns the
-    scheduler that ran the cases after the probe."""
-    if not cases:
-        return scheduler
+    """Evaluate ``work`` in chunks on ``scheduler``, calling ``on_done`` with each chunk
+    as it finishes (in the calling process). Every local scheduler but 'processes' first
+    times a few chunks here (``work.probe``), which sizes the chunks of cases to about a
+    quarter second and loads the compiled kernels. Returns the scheduler that ran the
+    work after the probe ("" when there was none)."""
+    if not work.units:
+        return ""
     if scheduler == AUTO:
-        return _run_auto(cases, workers, on_done)
+        return _run_auto(work, workers, on_done)
     if "://" in scheduler:
-        _run_dask(cases, scheduler, workers, on_done, timeout=timeout)
+        _run_dask(work, work.units, scheduler, workers, on_done, timeout=timeout)
         return scheduler
-    if scheduler == SYNCHRONOUS or len(cases) <= 1:
-        probe = probe_cost(cases, on_done, PROBE_SECONDS)
-        _run_local(probe.rest, on_done, per_case=probe.per_case)
-    else:
-        # the forked workers share what this process has loaded: the compiled kernels
-        # (analyses.warm_up, called before this by `cablestudy run`) and the first
-        # case's static solution, solved here; no case runs here, so both workers start
-        # at once. The chunks are sized from the first cases timed on the workers.
-        _share_statics(cases)
-        _run_dask(cases, scheduler, workers, on_done)
+    if scheduler == SYNCHRONOUS or len(work.units) <= 1:
+        probe = work.probe(on_done, PROBE_SECONDS)
+        _run_here(work, probe.rest, on_done, probe.per_case)
+        return SYNCHRONOUS
+    # the forked workers share what this process has loaded: the compiled kernels
+    # (analyses.warm_up, called before this by `cablestudy run`) and the first case's
+    # static solution, solved here; no case runs here, so both workers start at once.
+    # Chunks of cases are sized from the first cases timed on the workers.
+    work.share()
+    _run_dask(work, work.units, scheduler, workers, on_done)
     return scheduler

@@ -267,14 +267,22 @@ def _dof_index(mask: np.ndarray) -> np.ndarray:
 
 
 def solve_system(
-    system: MooringSystem, solver: Any, *, deadline: float | None = None, compiled: bool = True
+    system: MooringSystem,
+    solver: Any,
+    *,
+    deadline: float | None = None,
+    compiled: bool = True,
+    extra_poses: np.ndarray | None = None,
 ) -> SystemResult:
     """Equilibrium of the free points (Newton with the lines' exact stiffness and a
     line search on the system's energy along the step, :func:`_line_search`), then the
     bodies' force and stiffness; free bodies by :func:`solve_free_bodies`.
     ``solver`` solves one line with both ends fixed (a registered static solver). A
     numerical failure is returned as status, message and NaN. With ``compiled`` (the
-    default) the compiled system Newton takes what it can (:mod:`.system_fast`)."""
+    default) the compiled system Newton takes what it can (:mod:`.system_fast`);
+    ``extra_poses`` (K, m, 6), prescribed bodies only: the compiled path solves the
+    system at those body poses too, in the same call (``SystemResult.extra``; the
+    system's own solution is the same numbers as without)."""
     n, m = len(system.point_names), len(system.body_names)
     free_mask = system.point_kind == FREE
     # the compiled system Newton first where it takes the system (statics.system_fast);
@@ -285,7 +293,7 @@ def solve_system(
         if compiled and getattr(solver, "name", "") == "catenary":
             from .system_fast import solve_fast
 
-            fast, why = solve_fast(sys, prescribed=True)
+            fast, why = solve_fast(sys, prescribed=True, extra_poses=extra_poses)
             if fast is not None:
                 return fast
             fallback.append(why)
@@ -293,6 +301,7 @@ def solve_system(
 
     try:
         if system.body_free.size and np.any(system.body_free):
+            extra_poses = None  # the extra poses are of prescribed bodies
             res = solve_free_bodies(system, solve)
         else:
             res = solve(system)

@@ -27,7 +27,8 @@ import numpy as np
 
 from . import _fast
 from .seabed import Plane
-from .semi_analytic import make_layout, reversed_line
+from .semi_analytic import reversed_line
+from .system_layout import line_pieces, system_layout
 from .system_model import BODY, FIXED, FREE, MooringSystem
 from .verify import MULTIPLE, Pieces, check_lines
 
@@ -100,28 +101,6 @@ def ineligible(system: MooringSystem, *, prescribed: bool = False) -> str:
     return ""
 
 
-def _pieces(line) -> tuple[np.ndarray, ...]:  # noqa: ANN001
-    """ell, EA, weight, point, bounds as the batch kernels build them for ``line``."""
-    if line.length.size == 1 and line.attachment_s.size == 0:
-        L = float(line.length[0])
-        return (
-            np.array([L]),
-            np.array([float(line.axial_stiffness[0])]),
-            np.array([float(line.weight[0])]),
-            np.zeros((2, 3)),
-            np.array([0.0, L]),
-        )
-    lay = make_layout(line)
-    return lay.ell, lay.EA, lay.weight, lay.point, lay.bounds
-
-
-def _plane(system: MooringSystem) -> Plane | None:
-    med = system.lines[0].problem.medium
-    if med.depth is None:
-        return None
-    return Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
-
-
 def point_positions_many(
     system: MooringSystem, poses: np.ndarray, offsets: np.ndarray | None, base: np.ndarray
 ) -> np.ndarray:
@@ -186,60 +165,58 @@ def pack(
     pos = np.array(pos, dtype=float, copy=True)
     if start is not None:
         pos[:, free_pts] = start
-    plane = _plane(system)
+    lay = system_layout(system)
+    plane = lay.plane
     why = np.full(N, "", dtype=object)
-    fwd = [_pieces(ln.problem.line) for ln in system.lines]
-    P = np.array([len(f[0]) for f in fwd])
-    poff = np.concatenate(([0], np.cumsum(P))).astype(np.int64)
-    Ptot = int(poff[-1])
-    ell = np.empty((N, Ptot))
-    EA = np.empty((N, Ptot))
-    w = np.empty((N, Ptot))
-    bounds = np.empty((N, Ptot + M))
-    point = np.empty((N, Ptot + M, 3))
-    la = np.empty((N, M), dtype=np.int64)
-    lb = np.empty((N, M), dtype=np.int64)
-    flip = np.zeros((N, M), dtype=bool)
-    anchored = np.zeros((N, M), dtype=bool)
-    clear = np.zeros((N, M), dtype=bool)
-    for m, ln in enumerate(system.lines):
-        o, ob, p = poff[m], poff[m] + m, P[m]
-        L = float(fwd[m][4][-1])
-        a, b = ln.a, ln.b
-        if plane is not None:
-            limit = 1e-6 * L
-            ha, hb = plane.height_above(pos[:, a]), plane.height_above(pos[:, b])
-            gra = (np.abs(ha) <= limit) & (kind[a] == FIXED) & (hb > limit)
-            grb = (np.abs(hb) <= limit) & (kind[b] == FIXED) & (ha > limit)
-            hang = (ha > limit) & (hb > limit)
-            bad = ~(gra | grb | hang)
-            why[bad & (why == "")] = (
-                f"line {ln.name} has an end on or below the seabed that is not an anchor "
-                "(a fixed point with the line's other end above the seabed)"
+    P, poff = lay.P, lay.poff
+    if plane is not None:
+        limit = 1e-6 * lay.L
+        ha, hb = plane.height_above(pos[:, lay.a]), plane.height_above(pos[:, lay.b])
+        gra = (np.abs(ha) <= limit) & (kind[lay.a] == FIXED) & (hb > limit)
+        grb = (np.abs(hb) <= limit) & (kind[lay.b] == FIXED) & (ha > limit)
+        hang = (ha > limit) & (hb > limit)
+        bad = ~(gra | grb | hang)
+        for m in np.flatnonzero(np.any(bad, axis=0)):
+            why[bad[:, m] & (why == "")] = (
+                f"line {system.lines[m].name} has an end on or below the seabed that is not "
+                "an anchor (a fixed point with the line's other end above the seabed)"
             )
-        else:
-            gra = grb = np.zeros(N, dtype=bool)
-        rev = _pieces(reversed_line(ln.problem.line)) if np.any(grb) else None
-        for src, rows in ((fwd[m], ~grb), (rev, grb)):
-            if src is None or not np.any(rows):
-                continue
-            e_, ea_, w_, pt_, bd_ = src
-            ell[rows, o : o + p] = e_
-            EA[rows, o : o + p] = ea_
-            w[rows, o : o + p] = w_
-            bounds[rows, ob : ob + p + 1] = bd_
-            point[rows, ob : ob + p + 1] = pt_
-            down = bool(np.all(w_ >= 0.0))
-            if plane is not None:
-                down = down and bool(np.all(pt_ @ plane.normal <= 0.0))
-            clear[rows, m] = down
-        la[:, m] = np.where(grb, b, a)
-        lb[:, m] = np.where(grb, a, b)
-        flip[:, m] = grb
-        anchored[:, m] = gra | grb
+    else:
+        gra = grb = np.zeros((N, M), dtype=bool)
+    ell = np.repeat(lay.ell[None], N, axis=0)
+    EA = np.repeat(lay.EA[None], N, axis=0)
+    w = np.repeat(lay.w[None], N, axis=0)
+    bounds = np.repeat(lay.bounds[None], N, axis=0)
+    point = np.repeat(lay.point[None], N, axis=0)
+    clear = np.repeat(lay.clear[None], N, axis=0)
+    args = np.repeat(lay.guess[None], N, axis=0)  # (N, M, 11)
+    for m in np.flatnonzero(np.any(grb, axis=0)):  # anchored at B: laid from B
+        o, ob, p = poff[m], poff[m] + m, P[m]
+        rows = grb[:, m]
+        e_, ea_, w_, pt_, bd_ = line_pieces(reversed_line(system.lines[m].problem.line))
+        ell[rows, o : o + p] = e_
+        EA[rows, o : o + p] = ea_
+        w[rows, o : o + p] = w_
+        bounds[rows, ob : ob + p + 1] = bd_
+        point[rows, ob : ob + p + 1] = pt_
+        down = bool(np.all(w_ >= 0.0))
+        if plane is not None:
+            down = down and bool(np.all(pt_ @ plane.normal <= 0.0))
+        clear[rows, m] = down
+        args[rows, m, 3] = bounds[rows, ob + p]
+        args[rows, m, 4:7] = point[rows, ob : ob + p + 1].sum(axis=1)
+        args[rows, m, 6] -= np.sum(w[rows, o : o + p] * ell[rows, o : o + p], axis=1)
+        args[rows, m, 7] = args[rows, m, 3] / np.sum(
+            ell[rows, o : o + p] / EA[rows, o : o + p], axis=1
+        )
+        args[rows, m, 8:] = point[rows, ob]
+    la = np.where(grb, lay.b, lay.a)
+    lb = np.where(grb, lay.a, lay.b)
+    flip = grb.copy()
+    anchored = gra | grb
     fidx = np.full(n, -1, dtype=np.int64)
     fidx[free_pts] = np.arange(free_pts.size)
-    moving = np.array([kind[ln.a] == FREE or kind[ln.b] == FREE for ln in system.lines])
+    moving = (kind[lay.a] == FREE) | (kind[lay.b] == FREE)
     on_free = [
         ln.problem.line.total_length
         for ln in system.lines
@@ -258,18 +235,12 @@ def pack(
         from .batch_kernels import _guess
 
         Nk = int(k.sum())
-        args = np.empty((Nk, M, 11))  # d, L, Cend, EA_eff, point at A: one _guess call
-        for m in range(M):
-            o, ob, p = poff[m], poff[m] + m, P[m]
-            args[:, m, 3] = bounds[k, ob + p]
-            args[:, m, 4:7] = point[k, ob : ob + p + 1].sum(axis=1)
-            args[:, m, 6] -= np.sum(w[k, o : o + p] * ell[k, o : o + p], axis=1)
-            args[:, m, :3] = pos[k, lb[k, m]] - pos[k, la[k, m]]
-            args[:, m, 7] = args[:, m, 3] / np.sum(ell[k, o : o + p] / EA[k, o : o + p], axis=1)
-            args[:, m, 8:] = point[k, ob]
+        args = args[k]
+        args[:, :, :3] = (
+            pos[k][np.arange(Nk)[:, None], lb[k]] - pos[k][np.arange(Nk)[:, None], la[k]]
+        )
         a = args.reshape(Nk * M, 11)
         TA0 = _guess(a[:, :3], a[:, 3], a[:, 4:7], a[:, 7], a[:, 8:]).reshape(Nk, M, 3)
-        Nk = int(k.sum())
         packed = Packed(
             la=la[k], lb=lb[k], flip=flip[k], poff=poff, ell=ell[k], EA=EA[k], w=w[k],
             bounds=bounds[k], point=point[k], anchored=anchored[k], clear=clear[k],
@@ -312,34 +283,11 @@ def solve_packed(system: MooringSystem, pk: Packed, poses: np.ndarray) -> Solved
     """The free points of the packed cases by the compiled Newton, then the lines
     re-solved, sampled and verified at the solution, the equilibrium checked, and the
     bodies' force and stiffness at ``poses`` (N, m, 6) (see the module docstring)."""
-    from . import _system_fast as ks
-
     N, M = pk.la.shape
     n_pts = pk.pos.shape[1]
-    plane = pk.plane
-    if plane is not None:
-        e1, e2 = plane.basis
-        normal, basis = np.tile(plane.normal, (N, 1)), np.tile(np.stack((e1, e2), 1), (N, 1, 1))
-        depth, mu = np.full(N, plane.depth), np.full(N, plane.friction)
-        still, has = np.full(N, plane.slope == 0.0), np.ones(N, dtype=bool)
-    else:
-        normal, basis = np.zeros((N, 3)), np.zeros((N, 3, 2))
-        depth, mu = np.zeros(N), np.zeros(N)
-        still, has = np.zeros(N, dtype=bool), np.zeros(N, dtype=bool)
-    pos = np.ascontiguousarray(pk.pos, dtype=float).copy()
-    mode = np.zeros((N, M), dtype=np.int64)
-    fa = np.zeros((N, M, 3))
-    fb = np.zeros((N, M, 3))
-    K = np.zeros((N, M, 3, 3))
-    iters = np.zeros(N, dtype=np.int64)
-    resid = np.zeros(N)
-    status = np.zeros(N, dtype=np.int64)
-    ks.system_cases(
-        pk.la, pk.lb, pk.poff, pk.ell, pk.EA, pk.w, pk.bounds, pk.point, pk.anchored,
-        pk.clear, pk.moving, pk.fidx, pk.free_pts, pos, pk.pforce, pk.TA0, normal, basis,
-        depth, mu, still, has, pk.ltol, pk.lmaxit, pk.tol, pk.maxit, pk.cap,
-        mode, fa, fb, K, iters, resid, status,
-    )  # fmt: skip
+    from . import _system_fast as ks
+
+    pos, mode, fa, fb, K, iters, resid, status = _settle(pk)
     fallback = np.full(N, "", dtype=object)
     for code, text in ks.SYS_REASONS.items():
         fallback[status == code] = f"{NOT_SETTLED} ({text})"
@@ -406,6 +354,66 @@ def solve_packed(system: MooringSystem, pk: Packed, poses: np.ndarray) -> Solved
         body_stiffness=body_stiffness, iterations=iters, residual=resid,
         fallback=fallback, stiffness=Kl,
     )  # fmt: skip
+
+
+def _settle(pk: Packed) -> tuple[np.ndarray, ...]:
+    """The compiled system Newton on the packed cases: the points' positions (N, n, 3),
+    each line's mode, end forces and stiffness, the iterations, residuals and status."""
+    from . import _system_fast as ks
+
+    N, M = pk.la.shape
+    plane = pk.plane
+    if plane is not None:
+        e1, e2 = plane.basis
+        normal, basis = np.tile(plane.normal, (N, 1)), np.tile(np.stack((e1, e2), 1), (N, 1, 1))
+        depth, mu = np.full(N, plane.depth), np.full(N, plane.friction)
+        still, has = np.full(N, plane.slope == 0.0), np.ones(N, dtype=bool)
+    else:
+        normal, basis = np.zeros((N, 3)), np.zeros((N, 3, 2))
+        depth, mu = np.zeros(N), np.zeros(N)
+        still, has = np.zeros(N, dtype=bool), np.zeros(N, dtype=bool)
+    pos = np.ascontiguousarray(pk.pos, dtype=float).copy()
+    mode = np.zeros((N, M), dtype=np.int64)
+    fa = np.zeros((N, M, 3))
+    fb = np.zeros((N, M, 3))
+    K = np.zeros((N, M, 3, 3))
+    iters = np.zeros(N, dtype=np.int64)
+    resid = np.zeros(N)
+    status = np.zeros(N, dtype=np.int64)
+    ks.system_cases(
+        pk.la, pk.lb, pk.poff, pk.ell, pk.EA, pk.w, pk.bounds, pk.point, pk.anchored,
+        pk.clear, pk.moving, pk.fidx, pk.free_pts, pos, pk.pforce, pk.TA0, normal, basis,
+        depth, mu, still, has, pk.ltol, pk.lmaxit, pk.tol, pk.maxit, pk.cap,
+        mode, fa, fb, K, iters, resid, status,
+    )  # fmt: skip
+    return pos, mode, fa, fb, K, iters, resid, status
+
+
+def hanging_shapes(pk: Packed, lines: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    """The shapes of ``lines`` (indices, each hanging free, not anchored on the seabed in
+    any case) at the packed cases' equilibrium, by :func:`_settle` and the final stage
+    of :func:`solve_packed` on those lines alone (solved again at the points, sampled at
+    the nodes, verified): positions (N, len(lines), n, 3) [m] and whether each case's
+    line is settled and verified (N, len(lines)); None where a case did not settle."""
+    N, M = pk.la.shape
+    pos, _, _, _, _, _, _, status = _settle(pk)
+    if np.any(status != 0):
+        return None
+    n = pk.n_nodes
+    out_pos = np.full((N, M, n, 3), np.nan)
+    out_ten = np.full((N, M, n), np.nan)
+    out_fa = np.full((N, M, 3), np.nan)
+    out_fb = np.full((N, M, 3), np.nan)
+    laid = np.zeros((N, M))
+    good = np.zeros((N, M), dtype=bool)
+    sizes = np.diff(pk.poff)
+    rows = np.arange(N)
+    for p in np.unique(sizes[lines]):
+        ms = lines[sizes[lines] == p]
+        good[:, ms] = _final_lines(
+            pk, pos, rows, ms, int(p), n, out_pos, out_ten, out_fa, out_fb, laid
+        )
+    return out_pos[:, lines], good[:, lines]
 
 
 def _final_lines(
@@ -560,14 +568,14 @@ def _bodies_many(
     where = np.full(n, -1)
     where[sel] = np.arange(sel.size)
     Kall = np.zeros((N, 3 * sel.size, 3 * sel.size))
+    Kz = np.nan_to_num(Kl)
     for line in range(Kl.shape[1]):
         ends = (int(ka[0, line]), int(kb[0, line]))  # the line's own ends: every case's
         for i in range(2):
             for j in range(2):
                 wi, wj = where[ends[i]], where[ends[j]]
                 if wi >= 0 and wj >= 0:
-                    blk = np.nan_to_num(Kl[:, line, i, j])
-                    Kall[:, 3 * wi : 3 * wi + 3, 3 * wj : 3 * wj + 3] += blk
+                    Kall[:, 3 * wi : 3 * wi + 3, 3 * wj : 3 * wj + 3] += Kz[:, line, i, j]
     nb = 3 * on.size
     Kc = Kall[:, :nb, :nb]
     if fr.size:
@@ -591,10 +599,15 @@ def _bodies_many(
     return body_force, body_stiffness
 
 
-def solve_fast(system: MooringSystem, *, prescribed: bool = False) -> tuple[object | None, str]:
+def solve_fast(
+    system: MooringSystem, *, prescribed: bool = False, extra_poses: np.ndarray | None = None
+) -> tuple[object | None, str]:
     """``system`` through the compiled path: (its :class:`.system.SystemResult`, '') or
     (None, why the general path must solve it). ``prescribed``: free bodies taken where
-    ``system`` puts them (see :func:`ineligible`)."""
+    ``system`` puts them (see :func:`ineligible`). ``extra_poses`` (K, m, 6): the system
+    solved at those body poses too, as more cases of the same call (each case's numbers
+    are its own: the system's are those of a call without them), into the result's
+    ``extra`` where every one settles and verifies."""
     from .base import StaticResult
     from .system_model import SystemResult
 
@@ -602,19 +615,32 @@ def solve_fast(system: MooringSystem, *, prescribed: bool = False) -> tuple[obje
     if why:
         return None, why
     # the points as a sweep's chunk places them (cablestudy.system_grid): the same bits
-    base = np.asarray(system.point_position, dtype=float)[None]
-    pos = point_positions_many(
-        system, np.asarray(system.body_position, dtype=float)[None], None, base
-    )
+    poses = np.asarray(system.body_position, dtype=float)[None]
+    if extra_poses is not None and len(extra_poses):
+        poses = np.concatenate((poses, np.asarray(extra_poses, dtype=float)))
+    base = np.repeat(np.asarray(system.point_position, dtype=float)[None], len(poses), 0)
+    pos = point_positions_many(system, poses, None, base)
     pk, whys = pack(system, pos)
+    if len(poses) > 1 and any(whys[1:]):  # an extra pose the compiled path cannot take
+        return solve_fast(system, prescribed=prescribed)
     if pk is None:
         return None, str(whys[0])
     try:
-        sol = solve_packed(system, pk, np.asarray(system.body_position, dtype=float)[None])
+        sol = solve_packed(system, pk, poses)
     except np.linalg.LinAlgError as exc:  # a singular point stiffness: the general path
+        if len(poses) > 1:
+            return solve_fast(system, prescribed=prescribed)
         return None, f"{NOT_SETTLED} ({exc})"
     if sol.fallback[0]:
         return None, str(sol.fallback[0])
+    extra = None
+    if len(poses) > 1 and not any(sol.fallback[1:]):
+        extra = {
+            "poses": poses[1:],
+            "position": sol.position[1:],
+            "laid_length": sol.laid_length[1:],
+            "anchored": pk.anchored[1:],
+        }
     lines = [
         StaticResult(
             s=sol.s[m],
@@ -635,6 +661,7 @@ def solve_fast(system: MooringSystem, *, prescribed: bool = False) -> tuple[obje
             iterations=int(sol.iterations[0]),
             residual=float(sol.residual[0]),
             body_position=np.array(system.body_position, dtype=float),
+            extra=extra,
         ),
         "",
     )

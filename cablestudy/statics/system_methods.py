@@ -46,14 +46,19 @@ def as_cables(system: MooringSystem) -> MooringSystem:
 
 
 def solve_system_by(
-    system: MooringSystem, method: str, solvers: dict[str, Any], *, deadline: float | None = None
+    system: MooringSystem,
+    method: str,
+    solvers: dict[str, Any],
+    *,
+    deadline: float | None = None,
+    extra_poses: np.ndarray | None = None,
 ) -> SystemResult:
     """Solve ``system`` by static ``method`` (``solvers[method]``, a registered solver):
     method discrete starts from the cable solution of the same system (module doc)."""
     solver = solvers[method]
     moving = bool(np.any(system.point_kind == FREE)) or bool(np.any(system.body_free))
     if method != "discrete" or not moving:
-        return solve_system(system, solver, deadline=deadline)
+        return solve_system(system, solver, deadline=deadline, extra_poses=extra_poses)
     start = solve_system(as_cables(system), solvers["catenary"], deadline=deadline)
     if start.status == STATUS_OK:
         free = system.point_kind == FREE

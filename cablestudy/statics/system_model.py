@@ -90,6 +90,11 @@ class SystemResult:
     #: why the compiled system Newton (:mod:`.system_fast`) left the system to this
     #: general path ('' if it solved it, or was not asked: a method other than catenary)
     fallback: str = ""
+    #: the extra body poses asked of the solve (``extra_poses`` of :func:`.system.solve_system`)
+    #: solved with it by the compiled path, each verified: ``poses`` (K, m, 6), the lines'
+    #: ``position`` (K, M, n, 3) [m], ``laid_length`` (K, M) [m], ``anchored`` (K, M)
+    #: (on the seabed at an anchor); None when not asked or not all settled and verified
+    extra: dict | None = None
 
 
 class SystemFailure(Exception):

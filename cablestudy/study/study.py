@@ -389,3 +389,12 @@ class Study(StrictModel):
     def is_system(self) -> bool:
         """True for a system study (lines between points), False for a one-line study."""
         return bool(self.lines)
+
+    @property
+    def system_names(self) -> dict[str, list[str]]:
+        """A system study's names along its dataset's dimensions (line, free point, body)."""
+        return {
+            "line": list(self.lines),
+            "point": [k for k, p in self.points.items() if p.kind == "free"],
+            "body": list(self.bodies),
+        }

@@ -70,6 +70,9 @@ def test_case8_small_motion_picks_the_frequency_domain(
     assert small.startswith("auto: linear") and "line '" in small, small
     # at 2 m the taut bridles' shape changes by 0.2 to 2.8 of their 3 cm sag
     assert large.startswith("auto: line '") and "large motion: amplitude/sag" in large, large
+    # decided before the frequency domain by the quasi-static shape change (0.31 of the
+    # 3 cm sag on line 1, the first over twice the limit; analyses.system_prejudge)
+    assert "quasi-static" in large and "before the frequency domain" in large, large
     assert np.all(np.isfinite(auto.tension_amplitude_a.values[0]))
 
 

@@ -20,11 +20,11 @@ from cablestudy.analyses.common import STATUS_NOT_RUN
 from cablestudy.analyses.dynamic import run_dynamic
 from cablestudy.analyses.variables import OUTPUTS, CaseRecord
 from cablestudy.cli import main
-from cablestudy.run.dataset import assemble
 from cablestudy.run.runner import run_study
 from cablestudy.statics import STATUS_NUMERICAL, STATUS_TIME_LIMIT
 from cablestudy.study.grid import expand_cases, expand_grid
 from cablestudy.study.loader import parse_study_text
+from tests.dataset_helpers import assemble
 
 CABLE = """
 environment: {fluid: water}

@@ -333,11 +333,12 @@ def test_chunk_evaluation_matches_its_rows(tmp_path: Path) -> None:
     assert np.allclose(chunk.wall_time, chunk.wall_time[0])  # the chunk's time shared out
 
 
-def test_array_chunks_on_worker_processes_give_the_serial_result(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+@pytest.mark.parametrize("parallel", ["processes", "threads"])
+def test_array_chunks_on_workers_give_the_serial_result(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, parallel: str
 ) -> None:
-    pass
-
+    """Rows of an array grid run on the one execution loop of every study: on worker
+    processes or threads, the serial result."""
     monkeypatch.setattr(grid_runner, "GRID_CHUNK_CASES", 12)
     src = parse_study_text(TEXT, "gr.yaml")
     grid = expand_grid(src)
@@ -345,7 +346,7 @@ def test_array_chunks_on_worker_processes_give_the_serial_result(
         src,
         grid,
         tmp_path / "p",
-        scheduler="processes",
+        scheduler=parallel,
         workers=2,
         use_cache=False,
         progress=False,
@@ -353,7 +354,7 @@ def test_array_chunks_on_worker_processes_give_the_serial_result(
     ser = run_study(
         src, grid, tmp_path / "s", scheduler="synchronous", use_cache=False, progress=False
     )
-    assert par.scheduler == "processes" and ser.scheduler == "synchronous"
+    assert par.scheduler == parallel and ser.scheduler == "synchronous"
     a, b = xr.load_dataset(par.path), xr.load_dataset(ser.path)
     xr.testing.assert_identical(
         a.drop_vars("wall_time"), b.drop_vars("wall_time").assign_attrs(history=a.attrs["history"])

@@ -12,10 +12,10 @@ import pytest
 import xarray as xr
 
 from cablestudy.analyses.variables import OUTPUTS, CaseRecord
-from cablestudy.run.dataset import assemble
 from cablestudy.run.writer import write_atomic
 from cablestudy.study import parse_study_text
 from cablestudy.study.grid import expand_cases
+from tests.dataset_helpers import assemble
 
 TEXT = """\
 name: res

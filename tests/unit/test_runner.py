@@ -326,6 +326,26 @@ def test_cached_rerun_is_bit_for_bit_the_uncached_run(tmp_path: Path) -> None:
             assert ref[name].values.tobytes() == b[name].values.tobytes(), name
 
 
+def test_chunk_files_of_earlier_versions_are_removed_when_the_cache_is_tidied(
+    tmp_path: Path,
+) -> None:
+    """The ``chunk-*.npz`` files of earlier versions are never read; a run that may tidy
+    the cache (no other run of the study writing) removes them, and the study's own
+    chunk files stay and are reused, on either plan (cases by hash, rows by key)."""
+    for chunked in (False, True):
+        src, grid, cases = _expand()
+        grid = replace(grid, chunked=chunked)
+        out = tmp_path / str(chunked)
+        run_study(src, grid, out, scheduler="synchronous", progress=False)
+        cache = out / ".cache" / "rn"
+        ours = sorted(cache.glob("grid-*.npz"))
+        old = cache / "chunk-0123456789abcdef.npz"
+        old.write_bytes(b"an earlier version's chunk")
+        again = run_study(src, grid, out, scheduler="synchronous", progress=False)
+        assert again.n_reused == len(cases) and again.n_computed == 0
+        assert not old.exists() and sorted(cache.glob("grid-*.npz")) == ours
+
+
 @pytest.mark.parametrize("damage", ["truncate", "garble"])
 def test_damaged_cache_chunk_is_reported_once_and_recomputed(
     tmp_path: Path,
@@ -480,7 +500,7 @@ def test_auto_scheduler_hands_a_long_study_to_workers(
 ) -> None:
     handed: list[tuple[int, str, float | None]] = []
 
-    def fake_cluster(cases, scheduler, workers, on_done, *, per_case=None):  # noqa: ANN001, ANN202
+    def fake_cluster(work, cases, scheduler, workers, on_done, *, per_case=None):  # noqa: ANN001, ANN202
         handed.append((len(cases), scheduler, per_case))
         on_done(run_chunk(cases))
 
