@@ -10,7 +10,9 @@ import math
 from pathlib import Path
 
 import numpy as np
+import pytest
 
+from cablestudy.analyses import system_dynamic, system_frequency
 from cablestudy.analyses.frequency import drag_settings
 from cablestudy.analyses.system import _statics
 from cablestudy.analyses.system_frequency import (
@@ -41,6 +43,18 @@ def _one_by_one(res, model, system, static) -> dict[str, np.ndarray]:  # noqa: A
         **env,
         "linearisation_iterations": np.asarray(res.iterations),
     }
+
+
+@pytest.fixture(autouse=True)
+def _caches_left_as_found() -> object:
+    """The analyses' per-process caches (statics, linear models) as they were: other
+    tests count the builds their run makes."""
+    caches = (system_frequency._MODEL_CACHE, system_dynamic._STATIC_CACHE)
+    saved = [dict(c) for c in caches]
+    yield
+    for cache, items in zip(caches, saved, strict=True):
+        cache.clear()
+        cache.update(items)
 
 
 def test_outputs_of_a_sweep_at_once_are_each_case_s() -> None:
