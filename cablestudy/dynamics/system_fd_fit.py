@@ -41,6 +41,10 @@ def fit_node(i, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, out):  # 
     body = cb != 0.0
     odd = u0 == 0.0 and u1 == 0.0 and u2 == 0.0 and samples % 2 == 0
     ns = samples // 2 if odd else samples
+    # at three phases or more the sums of w = -(a cos - b sin) over a period are known:
+    # sum w = 0, sum w w^T = samples / 2 (a a^T + b b^T) (sum cos^2 = sum sin^2 =
+    # samples / 2, sum cos sin = 0); over half a period (odd) half of that
+    closed = samples >= 3
     sum_n = sum_r = abs_t = 0.0
     n00 = n01 = n02 = n11 = n12 = n22 = 0.0
     q00 = q01 = q02 = q11 = q12 = q22 = 0.0
@@ -86,15 +90,16 @@ def fit_node(i, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, out):  # 
         f0s += f0
         f1s += f1
         f2s += f2
-        w0s += w0
-        w1s += w1
-        w2s += w2
-        g00 += w0 * w0
-        g01 += w0 * w1
-        g02 += w0 * w2
-        g11 += w1 * w1
-        g12 += w1 * w2
-        g22 += w2 * w2
+        if not closed:
+            w0s += w0
+            w1s += w1
+            w2s += w2
+            g00 += w0 * w0
+            g01 += w0 * w1
+            g02 += w0 * w2
+            g11 += w1 * w1
+            g12 += w1 * w2
+            g22 += w2 * w2
         h00 += f0 * w0
         h01 += f0 * w1
         h02 += f0 * w2
@@ -104,6 +109,14 @@ def fit_node(i, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, out):  # 
         h20 += f2 * w0
         h21 += f2 * w1
         h22 += f2 * w2
+    if closed:
+        q = 0.5 * ns
+        g00 = q * (a0 * a0 + b0 * b0)
+        g01 = q * (a0 * a1 + b0 * b1)
+        g02 = q * (a0 * a2 + b0 * b2)
+        g11 = q * (a1 * a1 + b1 * b1)
+        g12 = q * (a1 * a2 + b1 * b2)
+        g22 = q * (a2 * a2 + b2 * b2)
     if odd:  # the other half period: the same sums; sum of f zero
         sum_n, sum_r, abs_t = 2.0 * sum_n, 2.0 * sum_r, 2.0 * abs_t
         n00, n01, n02, n11, n12, n22 = 2 * n00, 2 * n01, 2 * n02, 2 * n11, 2 * n12, 2 * n22
