@@ -31,8 +31,6 @@ def solve_batch(
     :data:`ON_SEABED`). ``verify=False`` takes the kernels' settled answers without
     :mod:`.verify`'s checks: only for intermediate iterates whose answer is re-solved
     verified (the system Newton's trials, :func:`.system._solve`)."""
-    from . import _fast  # imports numba: on first use, not with this module
-
     solver = solver or SemiAnalyticSolver()
     results: list[StaticResult | None] = [None] * len(problems)
     groups: dict[tuple[int, int], list[int]] = {}
@@ -69,7 +67,7 @@ def solve_batch(
     for i, prob in enumerate(problems):
         res = results[i]
         tried_contact = False
-        if res is None and contact and _fast.AVAILABLE and contact_eligible(prob):
+        if res is None and contact and contact_eligible(prob):
             res = _contact_one(prob)
             if res is not None and verify:  # status 0 means verified: else the general
                 res = verified(prob, res, method=solver.name)  # solver

@@ -60,11 +60,7 @@ def solve_compiled_many(problems: list[StaticProblem]) -> list[StaticResult | No
     seabed-contact ones of the same plane into another: the same answers, verified the
     same way. None where :func:`~.batch_kernels.solve_compiled` gives None (the general
     solver's then)."""
-    from . import _fast  # imports numba: on first use, not with this module
-
     out: list[StaticResult | None] = [None] * len(problems)
-    if not _fast.AVAILABLE:
-        return out
     groups: dict[tuple, list[int]] = {}
     layouts: list = [None] * len(problems)
     contact = []
