@@ -361,7 +361,8 @@ def warm_up_line() -> LinearLine:
 
 
 def warm_up() -> None:
-    """Load the compiled kernel (see :func:`cablestudy.dynamics.frequency.warm_up`)."""
+    """Load the compiled drag kernel (numba's first call in a process costs about a
+    second, mostly loading its own registries); callers do it before timing cases."""
     line = warm_up_line()
     motion = np.zeros((1, 2, 3), dtype=complex)
     motion[0, 1, 2] = 1.0

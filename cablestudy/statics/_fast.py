@@ -11,11 +11,6 @@ import math
 import numpy as np
 from numba import njit
 
-#: numba is a dependency of the package (pyproject.toml): the compiled kernels are always
-#: there. Kept for the callers that still ask (cablestudy.kernels, statics.system_fast,
-#: analyses.fallback).
-AVAILABLE = True
-
 
 @njit(cache=True, error_model="numpy")
 def _asinh_ratio(X: float) -> float:

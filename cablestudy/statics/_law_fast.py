@@ -14,11 +14,11 @@ import math
 import numpy as np
 
 from ..physics.axial import AxialLaw, PolynomialLaw, SteelWireLaw, TableLaw, _pchip_slopes
-from ._fast import AVAILABLE, _piece_general, njit
+from ._fast import _piece_general, njit
 
 POLYNOMIAL, STEEL_WIRE, TABLE = 1, 2, 3
 
-__all__ = ["AVAILABLE", "encode", "law_corrections"]
+__all__ = ["encode", "law_corrections"]
 
 
 def encode(law: AxialLaw) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
