@@ -27,7 +27,7 @@ import numpy as np
 from numba import njit
 
 from .assembly import assemble_lines
-from .excitation import _harmonics, _table
+from .excitation import motion_at
 
 # ------------------------------------------------------------------ kinematics
 
@@ -125,59 +125,6 @@ def rotation_motion(angle, rate, accel, R, Rd, Rdd):  # noqa: ANN001, ANN201
 
 
 @njit(cache=True)
-def movers_at(  # noqa: ANN201
-    t,
-    h_slot,
-    h_dir,
-    h_amp,
-    h_freq,
-    h_phase,
-    ramp_time,
-    tab_slot,
-    tab_dir,
-    tab_periodic,
-    tab_last,
-    tab_x,
-    tab_c,
-    tab_xo,
-    tab_co,
-    out,
-):  # noqa: ANN001
-    """Displacement, velocity, acceleration of every motion slot at ``t`` [s] into
-    ``out`` (3, slots, 3): slot 2b a body's translation, 2b + 1 its rotation angles
-    (roll, pitch, yaw), 2B + q a point's own motion; harmonics and tables as a line
-    end's (:mod:`.excitation`), the same smooth ramp."""
-    for q in range(3):
-        for e in range(out.shape[1]):
-            for a in range(3):
-                out[q, e, a] = 0.0
-    _harmonics(t, h_slot, h_dir, h_amp, h_freq, h_phase, out)
-    for k in range(tab_slot.shape[0]):
-        u, du, ddu = _table(t, k, tab_periodic, tab_last, tab_x, tab_c, tab_xo, tab_co)
-        e = tab_slot[k]
-        for a in range(3):
-            d = tab_dir[k, a]
-            out[0, e, a] += u * d
-            out[1, e, a] += du * d
-            out[2, e, a] += ddu * d
-    tr = ramp_time
-    if tr <= 0.0 or t >= tr:
-        return
-    if t <= 0.0:
-        r = dr = ddr = 0.0
-    else:
-        w = math.pi / tr
-        c, s = math.cos(w * t), math.sin(w * t)
-        r, dr, ddr = 0.5 * (1.0 - c), 0.5 * w * s, 0.5 * w * w * c
-    for e in range(out.shape[1]):
-        for a in range(3):
-            u, du, ddu = out[0, e, a], out[1, e, a], out[2, e, a]
-            out[0, e, a] = r * u
-            out[1, e, a] = r * du + dr * u
-            out[2, e, a] = r * ddu + 2.0 * dr * du + ddr * u
-
-
-@njit(cache=True)
 def drives_at(  # noqa: ANN201
     t, margs, body_base, body_R0, d_body, d_slot, d_offset, d_static, dx, dv, da, bx, bR
 ):  # noqa: ANN001
@@ -194,7 +141,7 @@ def drives_at(  # noqa: ANN201
     for d in range(d_slot.shape[0]):
         n_slot = max(n_slot, d_slot[d] + 1)
     out = np.zeros((3, max(n_slot, 1), 3))
-    movers_at(t, *margs, out)
+    motion_at(t, *margs, out)
     R = np.empty((3, 3))
     Rd = np.empty((3, 3))
     Rdd = np.empty((3, 3))
