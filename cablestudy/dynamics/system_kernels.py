@@ -26,7 +26,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .assembly import assemble_lines
+from .assembly import assemble_lines, band_factor, band_solve
 from .excitation import motion_at
 
 # ------------------------------------------------------------------ kinematics
@@ -206,71 +206,6 @@ def assemble_all(x, v, anchor, S, W):  # noqa: ANN001, ANN201
 
 
 @njit(cache=True)
-def _band_factor(J_d, J_o, J_o2, elim, band, reach):  # noqa: ANN001, ANN201
-    """Build and factor (LU, no pivoting) the scalar band of a line's block-banded
-    matrix, rows of ``elim`` nodes replaced by the identity (as
-    :func:`cablestudy.dynamics.model.solve_banded`). Returns False on a bad pivot."""
-    m = J_d.shape[0]
-    N = 3 * m
-    bw = 3 * reach + 2
-    W = 2 * bw + 1
-    for r_ in range(N):
-        for c in range(W):
-            band[r_, c] = 0.0
-    for i in range(m):
-        for a in range(3):
-            row = 3 * i + a
-            if elim[i]:
-                band[row, bw] = 1.0
-                continue
-            for b in range(3):
-                band[row, bw + b - a] += J_d[i, a, b]
-                if i + 1 < m and not elim[i + 1]:
-                    band[row, bw + 3 + b - a] += J_o[i, a, b]
-                if i >= 1 and not elim[i - 1]:
-                    band[row, bw - 3 + b - a] += J_o[i - 1, b, a]
-                if reach == 2:
-                    if i + 2 < m and not elim[i + 2]:
-                        band[row, bw + 6 + b - a] += J_o2[i, a, b]
-                    if i >= 2 and not elim[i - 2]:
-                        band[row, bw - 6 + b - a] += J_o2[i - 2, b, a]
-    for k in range(N):
-        piv = band[k, bw]
-        if not (abs(piv) > 0.0) or not math.isfinite(piv):
-            return False
-        top = min(k + bw + 1, N)
-        for r_ in range(k + 1, top):
-            lf = band[r_, bw + k - r_]
-            if lf == 0.0:
-                continue
-            lf /= piv
-            band[r_, bw + k - r_] = lf
-            for c in range(k + 1, top):
-                band[r_, bw + c - r_] -= lf * band[k, bw + c - k]
-    return True
-
-
-@njit(cache=True)
-def _band_solve(band, reach, f, off, N):  # noqa: ANN001, ANN201
-    """Solve with the factored band for the ``N`` unknowns ``f[off:off + N]`` of a flat
-    array (a line's slice of the packed nodes' components), in place."""
-    bw = 3 * reach + 2
-    for k in range(N):
-        fk = f[off + k]
-        if fk == 0.0:
-            continue
-        top = min(k + bw + 1, N)
-        for r_ in range(k + 1, top):
-            f[off + r_] -= band[r_, bw + k - r_] * fk
-    for k in range(N - 1, -1, -1):
-        acc = f[off + k]
-        top = min(k + bw + 1, N)
-        for c in range(k + 1, top):
-            acc -= band[k, bw + c - k] * f[off + c]
-        f[off + k] = acc / band[k, bw]
-
-
-@njit(cache=True)
 def coupled_solve(S, W, cm, kf, cf, reg, r, rp, dx, dp):  # noqa: ANN001, ANN201, PLR0912, PLR0915
     """Newton correction of the system: J = cm M + kf (K + cf C) (+ ``reg`` on the
     diagonal) per line from the assembled blocks in ``W``, the free points' own mass
@@ -348,12 +283,12 @@ def coupled_solve(S, W, cm, kf, cf, reg, r, rp, dx, dp):  # noqa: ANN001, ANN201
                 for b in range(3):
                     J_o2[q, a, b] = kf * K_o2[q, a, b]
         jo2 = J_o2[q0:q1] if bends[l] else J_o2[q0:q0]
-        if not _band_factor(J_d[n0:n1], J_o[e0:e1], jo2, elim[:n], band, reach):
+        if not band_factor(J_d[n0:n1], J_o[e0:e1], jo2, elim[:n], band, reach):
             return False
         for i in range(n):
             for a in range(3):
                 dx[n0 + i, a] = 0.0 if elim[i] else r[n0 + i, a]
-        _band_solve(band, reach, dx_flat, 3 * n0, 3 * n)  # y, in dx
+        band_solve(band, reach, dx_flat, 3 * n0, 3 * n)  # y, in dx
         if end_point[l, 0] < 0 and end_point[l, 1] < 0:
             continue
         # each junction end: its coupling blocks, its columns Z[end, c] = J_II^-1 J_I,end e_c
@@ -389,7 +324,7 @@ def coupled_solve(S, W, cm, kf, cf, reg, r, rp, dx, dp):  # noqa: ANN001, ANN201
                     for a in range(3):
                         # J[i, node] column c = J[node, i]^T entry (c, a)
                         Z[end, c, n0 + j, a] = Cb[end, d - 1, c, a]
-                _band_solve(band, reach, Z_flat, 3 * ((end * 3 + c) * n_all + n0), 3 * n)
+                band_solve(band, reach, Z_flat, 3 * ((end * 3 + c) * n_all + n0), 3 * n)
         # S -= J_PI Z, g -= J_PI y; direct end-to-end coupling within the band
         for ei in range(2):
             p = end_point[l, ei]
