@@ -25,17 +25,11 @@ def graded_nodes(
     grades: int,
     breaks: np.ndarray,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Quadrature nodes sigma [m] (P, K) and weights [m] (P, K) on each piece.
-
-    |T(sigma)| = sqrt(H^2 + V(sigma)^2) with V linear in sigma: the integrand's
-    singularities lie at V = +-i H, i.e. at sigma* = sigma_0 +- i r with sigma_0 = -V0/w
-    (the point of least tension) and r = H / w. Sub-intervals are graded geometrically
-    away from sigma_0 (boundaries sigma_0 +- r_g (2^k - 1), r_g = max(r, l 2^-grades)),
-    so that each is at most about a third as long as its distance from sigma*: the
-    Gauss-Legendre error then falls like 5.8^(-2 points) per sub-interval, whatever the
-    sag. The law's own kinks (``breaks``: tensions of a table's knots) are made
-    boundaries too, where |T(sigma)| crosses them. Degenerate sub-intervals get zero
-    weight.
+    """Quadrature nodes sigma [m] (P, K) and weights [m] (P, K) on each piece, on the
+    sub-intervals graded away from the point of least tension and split at the law's
+    kinks as the compiled kernel's (its docstring:
+    :func:`cablestudy.statics._law_fast.law_corrections` says why they converge
+    whatever the sag). Degenerate sub-intervals get zero weight.
     """
     x, w = gauss_legendre(points)
     P = len(ell)
