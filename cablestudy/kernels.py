@@ -42,13 +42,10 @@ def _warm_statics() -> None:
     problems; then the still-water batch kernels compiled ahead of time."""
     import numpy as np
 
-    from .statics import _fast
     from .statics.semi_analytic import SemiAnalyticSolver
     from .study.loader import parse_study_text, validate_data
     from .study.problem import static_problem
 
-    if not _fast.AVAILABLE:
-        return
     text = """\
 name: warm
 environment: {fluid: water, depth: 60.0}
@@ -162,7 +159,7 @@ def _warm_time() -> None:
 
 
 def _warm_frequency() -> None:
-    from .dynamics.frequency import warm_up
+    from .dynamics.harmonic_cases import warm_up
 
     warm_up()
 

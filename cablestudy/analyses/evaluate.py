@@ -129,7 +129,7 @@ def warm_up(cases: list[Case]) -> None:
         and c.study.analysis.dynamic.transfer_function is not None
         for c in cases
     ):
-        from ..dynamics.frequency import warm_up as warm_up_frequency
+        from ..dynamics.harmonic_cases import warm_up as warm_up_frequency
 
         warm_up_frequency()
     if any(

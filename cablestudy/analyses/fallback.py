@@ -50,11 +50,10 @@ def static_fallback(study: Any, result: Any, presolved: bool) -> str:
     compiled kernels first, says the same in its result."""
     if presolved:
         return str(getattr(result, "fallback", "") or "")
-    from ..statics import _fast
     from ..study.problem import static_problem
 
     problem = None if study.line.is_spring else static_problem(study)
     reason = fallback_reason(study, problem)
-    if reason == NO_KERNEL and _fast.AVAILABLE and one_at_a_time(problem):
+    if reason == NO_KERNEL and one_at_a_time(problem):
         return str(getattr(result, "fallback", "") or "")
     return reason

@@ -492,18 +492,17 @@ def update_anchors(x, friction_force, seabed_stiffness, contact, anchor):  # noq
 
 
 @njit(cache=True)
-def solve_banded(J_d, J_o, J_o2, held, rhs, out, band):  # noqa: ANN001, ANN201
-    """Solve ``J dx = rhs`` for a block-banded ``J`` with 3 x 3 blocks: diagonal blocks
-    ``J_d`` (m, 3, 3), upper blocks one node off ``J_o`` (m - 1, 3, 3) and two nodes
-    off ``J_o2`` (m - 2, 3, 3) (empty when the tangent has none), the lower blocks
-    being their transposes. Rows of ``held`` nodes are replaced by the identity with a
-    zero right side. LU without pivoting on the scalar band (half-bandwidth 5 or 8) in
-    the work array ``band`` (3m, 17): the systems here are dominated by their
-    diagonal (mass, or stiffness plus regularisation). Returns False on a zero or
-    non-finite pivot."""
+def band_factor(J_d, J_o, J_o2, elim, band, reach):  # noqa: ANN001, ANN201
+    """Build and factor (LU without pivoting) in the work array ``band`` (3m, 17) the
+    scalar band of a block-banded matrix with 3 x 3 blocks: diagonal blocks ``J_d``
+    (m, 3, 3), upper blocks one node off ``J_o`` (m - 1, 3, 3) and, for ``reach`` 2,
+    two nodes off ``J_o2`` (m - 2, 3, 3), the lower blocks being their transposes (half
+    bandwidth 3 reach + 2). Rows of ``elim`` nodes are replaced by the identity and
+    their columns left out (their unknowns are zero, or found apart: a system's
+    junctions). The systems here are dominated by their diagonal (mass, or stiffness
+    plus regularisation). Returns False on a zero or non-finite pivot."""
     m = J_d.shape[0]
     N = 3 * m
-    reach = 2 if J_o2.shape[0] > 0 else 1
     bw = 3 * reach + 2
     W = 2 * bw + 1
     for r_ in range(N):
@@ -512,24 +511,20 @@ def solve_banded(J_d, J_o, J_o2, held, rhs, out, band):  # noqa: ANN001, ANN201
     for i in range(m):
         for a in range(3):
             row = 3 * i + a
-            if held[i]:
+            if elim[i]:
                 band[row, bw] = 1.0
                 continue
             for b in range(3):
                 band[row, bw + b - a] += J_d[i, a, b]
-                if i + 1 < m:
+                if i + 1 < m and not elim[i + 1]:
                     band[row, bw + 3 + b - a] += J_o[i, a, b]
-                if i >= 1:
+                if i >= 1 and not elim[i - 1]:
                     band[row, bw - 3 + b - a] += J_o[i - 1, b, a]
                 if reach == 2:
-                    if i + 2 < m:
+                    if i + 2 < m and not elim[i + 2]:
                         band[row, bw + 6 + b - a] += J_o2[i, a, b]
-                    if i >= 2:
+                    if i >= 2 and not elim[i - 2]:
                         band[row, bw - 6 + b - a] += J_o2[i - 2, b, a]
-    for i in range(m):
-        for a in range(3):
-            out[i, a] = 0.0 if held[i] else rhs[i, a]
-    y = out.reshape(N)
     for k in range(N):
         piv = band[k, bw]
         if not (abs(piv) > 0.0) or not math.isfinite(piv):
@@ -543,13 +538,43 @@ def solve_banded(J_d, J_o, J_o2, held, rhs, out, band):  # noqa: ANN001, ANN201
             band[r_, bw + k - r_] = lf
             for c in range(k + 1, top):
                 band[r_, bw + c - r_] -= lf * band[k, bw + c - k]
-            y[r_] -= lf * y[k]
+    return True
+
+
+@njit(cache=True)
+def band_solve(band, reach, f, off, N):  # noqa: ANN001, ANN201
+    """Solve with the factored band for the ``N`` unknowns ``f[off:off + N]`` of a flat
+    array (a line's slice of the packed nodes' components), in place."""
+    bw = 3 * reach + 2
+    for k in range(N):
+        fk = f[off + k]
+        if fk == 0.0:
+            continue
+        top = min(k + bw + 1, N)
+        for r_ in range(k + 1, top):
+            f[off + r_] -= band[r_, bw + k - r_] * fk
     for k in range(N - 1, -1, -1):
-        acc = y[k]
+        acc = f[off + k]
         top = min(k + bw + 1, N)
         for c in range(k + 1, top):
-            acc -= band[k, bw + c - k] * y[c]
-        y[k] = acc / band[k, bw]
+            acc -= band[k, bw + c - k] * f[off + c]
+        f[off + k] = acc / band[k, bw]
+
+
+@njit(cache=True)
+def solve_banded(J_d, J_o, J_o2, held, rhs, out, band):  # noqa: ANN001, ANN201
+    """Solve ``J dx = rhs`` into ``out`` (m, 3) for the block-banded ``J`` of
+    :func:`band_factor` (reach 2 where ``J_o2`` has blocks), rows of ``held`` nodes
+    replaced by the identity with a zero right side. Returns False on a zero or
+    non-finite pivot."""
+    m = J_d.shape[0]
+    reach = 2 if J_o2.shape[0] > 0 else 1
+    if not band_factor(J_d, J_o, J_o2, held, band, reach):
+        return False
+    for i in range(m):
+        for a in range(3):
+            out[i, a] = 0.0 if held[i] else rhs[i, a]
+    band_solve(band, reach, out.reshape(3 * m), 0, 3 * m)
     return True
 
 

@@ -200,9 +200,12 @@ def motion_at(  # noqa: ANN201
 ):  # noqa: ANN001
     """Displacement, velocity and acceleration of ends A and B at ``t`` [s], ramp
     included, into ``out`` (3, 2, 3) [quantity, end, component] (overwritten): the
-    harmonics and the tables of :class:`EndMotion`'s :meth:`~EndMotion.kernel_args`."""
+    harmonics and the tables of :class:`EndMotion`'s :meth:`~EndMotion.kernel_args`.
+    A system's motion slots take the same call with ``out`` (3, slots, 3) and the slot
+    of each harmonic and table in place of its end
+    (:func:`.system_kernels.drives_at`)."""
     for q in range(3):
-        for e in range(2):
+        for e in range(out.shape[1]):
             for a in range(3):
                 out[q, e, a] = 0.0
     _harmonics(t, h_end, h_dir, h_amp, h_freq, h_phase, out)
@@ -223,7 +226,7 @@ def motion_at(  # noqa: ANN201
         w = math.pi / tr
         c, s = math.cos(w * t), math.sin(w * t)
         r, dr, ddr = 0.5 * (1.0 - c), 0.5 * w * s, 0.5 * w * w * c
-    for e in range(2):
+    for e in range(out.shape[1]):
         for a in range(3):
             u, du, ddu = out[0, e, a], out[1, e, a], out[2, e, a]
             out[0, e, a] = r * u

@@ -138,14 +138,6 @@ def solve_harmonic(
     return solve_undamped(red, omega, end_motion)
 
 
-def warm_up() -> None:
-    """Load the compiled drag kernels (numba's first call in a process costs about a
-    second, mostly loading its own registries); callers do it before timing cases."""
-    from .harmonic_cases import warm_up as warm_up_cases
-
-    warm_up_cases()
-
-
 # ------------------------------------------------------------------ irregular motion
 
 

@@ -150,12 +150,15 @@ def in_plane(red: ReducedLine) -> ReducedLine:
 def _plane_basis(line: LinearLine) -> sp.csr_matrix | None:
     """The free basis of ``line`` without its y columns when every free direction is
     either y or in the x-z plane, some are y, and the stiffness, damping and mass couple
-    no y direction with an x-z one (:func:`in_plane`); None otherwise."""
+    no y direction with an x-z one (:func:`in_plane`); None otherwise, and None for a
+    basis that is not of coordinate directions or matrices with non-finite entries
+    (every line :func:`~cablestudy.dynamics.linear_model.linear_line` builds has a
+    coordinate basis): the full system then gives the same numbers."""
     B = line.free_basis
     rows = selected_rows(B)
     entries = (csr_entries(line.stiffness), csr_entries(line.damping))
     if rows is None or entries[0] is None or entries[1] is None:
-        return _plane_basis_general(line)
+        return None
     # coordinate directions (the free basis of linear_line): a column is y or in-plane
     y_part = rows % 3 == 1
     if not np.any(y_part):
@@ -175,29 +178,6 @@ def _plane_basis(line: LinearLine) -> sp.csr_matrix | None:
         (B.data[keep], new_col[B.indices[keep]], kept_before[B.indptr]),
         shape=(B.shape[0], int(np.count_nonzero(~y_part))),
     )
-
-
-def _plane_basis_general(line: LinearLine) -> sp.csr_matrix | None:
-    """:func:`_plane_basis` for any free basis (with scipy's products)."""
-    B = sp.csc_matrix(line.free_basis)
-    is_y = (np.arange(B.shape[0]) % 3) == 1
-    y_part = np.asarray(abs(B[is_y]).sum(axis=0)).ravel() > 0.0
-    plane_part = np.asarray(abs(B[~is_y]).sum(axis=0)).ravel() > 0.0
-
-    def decoupled(A: sp.spmatrix) -> bool:
-        coo = sp.coo_matrix(A)
-        cross = is_y[coo.row] != is_y[coo.col]
-        return not np.any(coo.data[cross] != 0.0)
-
-    if (
-        not np.any(y_part & plane_part)
-        and np.any(y_part)
-        and decoupled(line.stiffness)
-        and decoupled(line.damping)
-        and decoupled(line.mass_matrix())
-    ):
-        return B[:, ~y_part].tocsr()
-    return None
 
 
 def _prepare(red: ReducedLine) -> _Prepared:
@@ -381,7 +361,8 @@ def warm_up_line() -> LinearLine:
 
 
 def warm_up() -> None:
-    """Load the compiled kernel (see :func:`cablestudy.dynamics.frequency.warm_up`)."""
+    """Load the compiled drag kernel (numba's first call in a process costs about a
+    second, mostly loading its own registries); callers do it before timing cases."""
     line = warm_up_line()
     motion = np.zeros((1, 2, 3), dtype=complex)
     motion[0, 1, 2] = 1.0

@@ -337,30 +337,3 @@ def _seated_start(
     fl = np.clip(np.einsum("ia,ia->i", need, across), -cap[1], cap[1])
     f = np.where(laid[:, None], fa[:, None] * along + fl[:, None] * across, 0.0)
     return x, x + f / np.maximum(line.seabed_stiffness, 1e-300)[:, None]
-
-
-def energies(
-    line: DiscreteLine, x: np.ndarray, v: np.ndarray, anchor: np.ndarray | None = None
-) -> tuple[float, float, float]:
-    """(kinetic, stored elastic, potential of the constant nodal forces) energy [J] of
-    the discrete line; the stored energy is the axial strain energy plus the bending
-    and seabed-spring energies, and the potential is ``-sum(force . x)``."""
-    if np.any(line.law_code != 0):
-        raise ValueError("energies: the stored axial energy is written for T = EA strain")
-    work = evaluate(line, x, v, anchor=anchor if anchor is not None else x)
-    kinetic = 0.5 * float(np.einsum("ia,iab,ib->", v, work.M_d, v))
-    eps = np.maximum(work.strain, 0.0)
-    stored = 0.5 * float(np.sum(line.axial_stiffness * line.rest_length * eps**2))
-    d = np.diff(x, axis=0)
-    u = d / np.linalg.norm(d, axis=1, keepdims=True)
-    if line.has_bending:
-        stored += 0.5 * float(np.sum(line.bending[1:-1] * np.sum((u[1:] - u[:-1]) ** 2, 1)))
-        for end, (e, node) in enumerate(((0, 0), (-1, -1))):
-            if line.bending[node] > 0.0:
-                r = u[e] - line.clamp_direction[end]
-                stored += 0.5 * float(line.bending[node] * r @ r)
-    if line.has_seabed:
-        gap = x @ line.seabed_normal - line.seabed_offset
-        stored += 0.5 * float(np.sum(line.seabed_stiffness * np.minimum(gap, 0.0) ** 2))
-    potential = -float(np.sum(line.force * x))
-    return kinetic, stored, potential

@@ -26,8 +26,8 @@ import math
 import numpy as np
 from numba import njit
 
-from .assembly import assemble_lines
-from .excitation import _harmonics, _table
+from .assembly import assemble_lines, band_factor, band_solve
+from .excitation import motion_at
 
 # ------------------------------------------------------------------ kinematics
 
@@ -125,59 +125,6 @@ def rotation_motion(angle, rate, accel, R, Rd, Rdd):  # noqa: ANN001, ANN201
 
 
 @njit(cache=True)
-def movers_at(  # noqa: ANN201
-    t,
-    h_slot,
-    h_dir,
-    h_amp,
-    h_freq,
-    h_phase,
-    ramp_time,
-    tab_slot,
-    tab_dir,
-    tab_periodic,
-    tab_last,
-    tab_x,
-    tab_c,
-    tab_xo,
-    tab_co,
-    out,
-):  # noqa: ANN001
-    """Displacement, velocity, acceleration of every motion slot at ``t`` [s] into
-    ``out`` (3, slots, 3): slot 2b a body's translation, 2b + 1 its rotation angles
-    (roll, pitch, yaw), 2B + q a point's own motion; harmonics and tables as a line
-    end's (:mod:`.excitation`), the same smooth ramp."""
-    for q in range(3):
-        for e in range(out.shape[1]):
-            for a in range(3):
-                out[q, e, a] = 0.0
-    _harmonics(t, h_slot, h_dir, h_amp, h_freq, h_phase, out)
-    for k in range(tab_slot.shape[0]):
-        u, du, ddu = _table(t, k, tab_periodic, tab_last, tab_x, tab_c, tab_xo, tab_co)
-        e = tab_slot[k]
-        for a in range(3):
-            d = tab_dir[k, a]
-            out[0, e, a] += u * d
-            out[1, e, a] += du * d
-            out[2, e, a] += ddu * d
-    tr = ramp_time
-    if tr <= 0.0 or t >= tr:
-        return
-    if t <= 0.0:
-        r = dr = ddr = 0.0
-    else:
-        w = math.pi / tr
-        c, s = math.cos(w * t), math.sin(w * t)
-        r, dr, ddr = 0.5 * (1.0 - c), 0.5 * w * s, 0.5 * w * w * c
-    for e in range(out.shape[1]):
-        for a in range(3):
-            u, du, ddu = out[0, e, a], out[1, e, a], out[2, e, a]
-            out[0, e, a] = r * u
-            out[1, e, a] = r * du + dr * u
-            out[2, e, a] = r * ddu + 2.0 * dr * du + ddr * u
-
-
-@njit(cache=True)
 def drives_at(  # noqa: ANN201
     t, margs, body_base, body_R0, d_body, d_slot, d_offset, d_static, dx, dv, da, bx, bR
 ):  # noqa: ANN001
@@ -194,7 +141,7 @@ def drives_at(  # noqa: ANN201
     for d in range(d_slot.shape[0]):
         n_slot = max(n_slot, d_slot[d] + 1)
     out = np.zeros((3, max(n_slot, 1), 3))
-    movers_at(t, *margs, out)
+    motion_at(t, *margs, out)
     R = np.empty((3, 3))
     Rd = np.empty((3, 3))
     Rdd = np.empty((3, 3))
@@ -256,71 +203,6 @@ def assemble_all(x, v, anchor, S, W):  # noqa: ANN001, ANN201
         W[0], W[1], W[2], W[3], W[4], W[5], W[6], W[7], W[8], W[9], W[10], W[11], W[12],
         W[13], W[24], W[25],
     )  # fmt: skip
-
-
-@njit(cache=True)
-def _band_factor(J_d, J_o, J_o2, elim, band, reach):  # noqa: ANN001, ANN201
-    """Build and factor (LU, no pivoting) the scalar band of a line's block-banded
-    matrix, rows of ``elim`` nodes replaced by the identity (as
-    :func:`cablestudy.dynamics.model.solve_banded`). Returns False on a bad pivot."""
-    m = J_d.shape[0]
-    N = 3 * m
-    bw = 3 * reach + 2
-    W = 2 * bw + 1
-    for r_ in range(N):
-        for c in range(W):
-            band[r_, c] = 0.0
-    for i in range(m):
-        for a in range(3):
-            row = 3 * i + a
-            if elim[i]:
-                band[row, bw] = 1.0
-                continue
-            for b in range(3):
-                band[row, bw + b - a] += J_d[i, a, b]
-                if i + 1 < m and not elim[i + 1]:
-                    band[row, bw + 3 + b - a] += J_o[i, a, b]
-                if i >= 1 and not elim[i - 1]:
-                    band[row, bw - 3 + b - a] += J_o[i - 1, b, a]
-                if reach == 2:
-                    if i + 2 < m and not elim[i + 2]:
-                        band[row, bw + 6 + b - a] += J_o2[i, a, b]
-                    if i >= 2 and not elim[i - 2]:
-                        band[row, bw - 6 + b - a] += J_o2[i - 2, b, a]
-    for k in range(N):
-        piv = band[k, bw]
-        if not (abs(piv) > 0.0) or not math.isfinite(piv):
-            return False
-        top = min(k + bw + 1, N)
-        for r_ in range(k + 1, top):
-            lf = band[r_, bw + k - r_]
-            if lf == 0.0:
-                continue
-            lf /= piv
-            band[r_, bw + k - r_] = lf
-            for c in range(k + 1, top):
-                band[r_, bw + c - r_] -= lf * band[k, bw + c - k]
-    return True
-
-
-@njit(cache=True)
-def _band_solve(band, reach, f, off, N):  # noqa: ANN001, ANN201
-    """Solve with the factored band for the ``N`` unknowns ``f[off:off + N]`` of a flat
-    array (a line's slice of the packed nodes' components), in place."""
-    bw = 3 * reach + 2
-    for k in range(N):
-        fk = f[off + k]
-        if fk == 0.0:
-            continue
-        top = min(k + bw + 1, N)
-        for r_ in range(k + 1, top):
-            f[off + r_] -= band[r_, bw + k - r_] * fk
-    for k in range(N - 1, -1, -1):
-        acc = f[off + k]
-        top = min(k + bw + 1, N)
-        for c in range(k + 1, top):
-            acc -= band[k, bw + c - k] * f[off + c]
-        f[off + k] = acc / band[k, bw]
 
 
 @njit(cache=True)
@@ -401,12 +283,12 @@ def coupled_solve(S, W, cm, kf, cf, reg, r, rp, dx, dp):  # noqa: ANN001, ANN201
                 for b in range(3):
                     J_o2[q, a, b] = kf * K_o2[q, a, b]
         jo2 = J_o2[q0:q1] if bends[l] else J_o2[q0:q0]
-        if not _band_factor(J_d[n0:n1], J_o[e0:e1], jo2, elim[:n], band, reach):
+        if not band_factor(J_d[n0:n1], J_o[e0:e1], jo2, elim[:n], band, reach):
             return False
         for i in range(n):
             for a in range(3):
                 dx[n0 + i, a] = 0.0 if elim[i] else r[n0 + i, a]
-        _band_solve(band, reach, dx_flat, 3 * n0, 3 * n)  # y, in dx
+        band_solve(band, reach, dx_flat, 3 * n0, 3 * n)  # y, in dx
         if end_point[l, 0] < 0 and end_point[l, 1] < 0:
             continue
         # each junction end: its coupling blocks, its columns Z[end, c] = J_II^-1 J_I,end e_c
@@ -442,7 +324,7 @@ def coupled_solve(S, W, cm, kf, cf, reg, r, rp, dx, dp):  # noqa: ANN001, ANN201
                     for a in range(3):
                         # J[i, node] column c = J[node, i]^T entry (c, a)
                         Z[end, c, n0 + j, a] = Cb[end, d - 1, c, a]
-                _band_solve(band, reach, Z_flat, 3 * ((end * 3 + c) * n_all + n0), 3 * n)
+                band_solve(band, reach, Z_flat, 3 * ((end * 3 + c) * n_all + n0), 3 * n)
         # S -= J_PI Z, g -= J_PI y; direct end-to-end coupling within the band
         for ei in range(2):
             p = end_point[l, ei]

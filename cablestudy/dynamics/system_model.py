@@ -4,7 +4,7 @@ driven points (fixed, on a prescribed body, or moved on their own).
 
 :func:`pack` lays the lines' arrays end to end for the compiled kernels
 (:mod:`.system_kernels`, :mod:`.system_march`); :func:`body_motion` packs the motion of
-the bodies and points into the slots of :func:`.system_kernels.movers_at`.
+the bodies and points into the slots of :func:`.excitation.motion_at` (a system's slots).
 
 Pure: arrays in, arrays out (SI units).
 """

@@ -193,10 +193,6 @@ class AxialLaw(ABC):
         e = self.strain(T)
         return np.where(T > 0.0, T * e - self.strain_energy(e), 0.0)
 
-    def compliance(self, tension: np.ndarray | float) -> np.ndarray:
-        """de/dT [1/N] at ``tension`` (1 / tangent stiffness at the strain of T)."""
-        return 1.0 / self.tangent_stiffness(self.strain(tension))
-
     def first_decrease(self, max_strain: float) -> float | None:
         """Smallest strain in (0, ``max_strain``] where dT/de <= 0 (the tension stops
         increasing, so it is not invertible and may turn negative), or None.

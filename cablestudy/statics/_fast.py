@@ -1,8 +1,7 @@
 """Compiled (numba) kernels of the still-water semi-analytic solve, for batches of
 cases. The mathematics is that of :mod:`.pieces` and :func:`.semi_analytic_newton.solve_free`
 with the load of every piece vertical (weight only) and point loads at piece
-boundaries; numba compiles it once per machine (cached on disk). When numba is not
-installed, :data:`AVAILABLE` is False and the same functions run as plain Python.
+boundaries; numba compiles it once per machine (cached on disk).
 """
 
 from __future__ import annotations
@@ -10,19 +9,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-
-try:  # numba is optional: a faster path, never a different answer
-    from numba import njit
-
-    AVAILABLE = True
-except ImportError:  # pragma: no cover - exercised only without numba
-    AVAILABLE = False
-
-    def njit(*args, **kwargs):  # type: ignore[no-untyped-def]  # noqa: ANN002, ANN003, ANN201
-        def deco(fn):  # noqa: ANN001, ANN202
-            return fn
-
-        return deco
+from numba import njit
 
 
 @njit(cache=True, error_model="numpy")

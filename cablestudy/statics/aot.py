@@ -126,10 +126,10 @@ def _load(path: Path) -> Any:
     return module if all(hasattr(module, name) for name in KERNELS) else None
 
 
-def kernel(name: str) -> Callable[..., Any] | None:
+def kernel(name: str) -> Callable[..., Any]:
     """The batch kernel ``name`` of :data:`KERNELS` (same arguments, same results as
     numba's): compiled ahead of time when the module is built for this source, else
-    numba's (loaded, or compiled, on first call); None without numba."""
+    numba's (loaded, or compiled, on first call)."""
     path = module_path()
     key = str(path)
     if key not in _LOADED:
@@ -138,11 +138,9 @@ def kernel(name: str) -> Callable[..., Any] | None:
     if module is not None:
         return getattr(module, name)  # type: ignore[no-any-return]
     jitted = importlib.import_module(f"{__package__}.{KERNELS[name][0]}")
-    from . import _fast
-
-    return getattr(jitted, name) if _fast.AVAILABLE else None
+    return getattr(jitted, name)  # type: ignore[no-any-return]
 
 
-def free_hanging_kernel() -> Callable[..., Any] | None:
+def free_hanging_kernel() -> Callable[..., Any]:
     """:func:`._fast.solve_cases`, as :func:`kernel` finds it."""
     return kernel("solve_cases")

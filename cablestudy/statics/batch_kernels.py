@@ -374,10 +374,6 @@ def solve_compiled(
     """One still-water problem through the compiled batch kernels (free-hanging, or
     anchored on the seabed), or None when it does not take that path (or does not settle
     there: then ``why[0]``, if given, says why)."""
-    from . import _fast  # imports numba: on first use, not with this module
-
-    if not _fast.AVAILABLE:
-        return None
     if contact_eligible(problem):
         res = _contact_one(problem)
         if res is not None and not verified(problem, res, method="catenary").success:

@@ -194,9 +194,7 @@ class SemiAnalyticSolver:
         the seabed with end B fixed above it, first takes the compiled kernels of
         :mod:`.batch` (when numba is available and ``compiled``); anything they do not
         settle takes the general path below, which gives the same answer."""
-        from . import _fast  # numba is imported on first use, not with the package
-
-        if compiled and _fast.AVAILABLE:
+        if compiled:
             from .batch_kernels import solve_compiled
 
             left: dict[int, str] = {}

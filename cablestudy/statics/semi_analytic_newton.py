@@ -137,7 +137,7 @@ def solve_free(
     last: list[np.ndarray] = []
     from . import _fast
 
-    if _fast.AVAILABLE and lay.law is None:
+    if lay.law is None:
         qc = np.ascontiguousarray(q, dtype=float)
         Cc = np.ascontiguousarray(C)
 

@@ -76,8 +76,6 @@ def ineligible(system: MooringSystem, *, prescribed: bool = False) -> str:
     Newton of :mod:`.free_bodies`)."""
     if not prescribed and system.body_free.size and np.any(system.body_free):
         return "free bodies are solved by the general path"
-    if not _fast.AVAILABLE:
-        return "numba is not installed"
     if not system.lines:
         return "no lines"
     nodes = {ln.problem.n_nodes for ln in system.lines}

@@ -34,26 +34,20 @@ _Z = np.array([0.0, 0.0, 1.0])
 
 
 def _stretched(
-    bounds: np.ndarray, w: np.ndarray, ea: np.ndarray, s0: float, s1: float, t0: float
+    bounds: np.ndarray,
+    w: np.ndarray,
+    ea: np.ndarray,
+    s0: float,
+    s1: float,
+    t0: float = 0.0,
+    *,
+    up: bool = False,
 ) -> float:
-    """Stretched length of [s0, s1] hanging with tension t0 at s1 growing by the weight
-    towards s0 (the leg's upper end at s0): sum l (1 + T_mid / EA) over the pieces."""
+    """Stretched length of [s0, s1] hanging with tension t0 at its lower end, growing by
+    the weight towards its upper end: s0 (``up`` False) or s1 (``up`` True: t0 at s0);
+    sum l (1 + T_mid / EA) over the pieces, marched from the lower end."""
     total, t = 0.0, t0
-    for k in range(len(w) - 1, -1, -1):
-        a, b = max(bounds[k], s0), min(bounds[k + 1], s1)
-        if b <= a:
-            continue
-        ell = b - a
-        total += ell * (1.0 + (t + 0.5 * w[k] * ell) / ea[k])
-        t += w[k] * ell
-    return total
-
-
-def _stretched_up(bounds: np.ndarray, w: np.ndarray, ea: np.ndarray, s0: float, s1: float) -> float:
-    """Stretched length of [s0, s1] hanging from s1 with zero tension at s0 (the leg's
-    upper end at s1)."""
-    total, t = 0.0, 0.0
-    for k in range(len(w)):
+    for k in range(len(w)) if up else range(len(w) - 1, -1, -1):
         a, b = max(bounds[k], s0), min(bounds[k + 1], s1)
         if b <= a:
             continue
@@ -83,7 +77,7 @@ def solve_vertical(problem: StaticProblem, s: np.ndarray) -> StaticResult | None
     dz = float(ra[2] - rb[2])  # A above B when positive
 
     def g(fold: float) -> float:  # z_A - z_B with the fold at s = fold
-        return _stretched(bounds, w, ea, 0.0, fold, 0.0) - _stretched_up(bounds, w, ea, fold, L)
+        return _stretched(bounds, w, ea, 0.0, fold) - _stretched(bounds, w, ea, fold, L, up=True)
 
     weight = np.concatenate(([0.0], np.cumsum(w * np.diff(bounds))))  # W(0, s) at bounds
 
@@ -110,7 +104,7 @@ def solve_vertical(problem: StaticProblem, s: np.ndarray) -> StaticResult | None
             [
                 ra[2] - _stretched(bounds, w, ea, 0.0, si, t_a - float(W(np.array(si))))
                 if si <= fold
-                else z_fold + _stretched_up(bounds, w, ea, fold, si)
+                else z_fold + _stretched(bounds, w, ea, fold, si, up=True)
                 for si in s
             ]
         )
@@ -121,7 +115,7 @@ def solve_vertical(problem: StaticProblem, s: np.ndarray) -> StaticResult | None
         base = (
             _stretched(bounds, w, ea, 0.0, L, 0.0)
             if upper_is_a
-            else _stretched_up(bounds, w, ea, 0.0, L)
+            else _stretched(bounds, w, ea, 0.0, L, up=True)
         )
         compliance = float(np.sum(np.diff(bounds) / ea))
         t_low = (d - base) / compliance
@@ -144,7 +138,7 @@ def solve_vertical(problem: StaticProblem, s: np.ndarray) -> StaticResult | None
                 [
                     ra[2]
                     + (
-                        _stretched_up(bounds, w, ea, 0.0, si)
+                        _stretched(bounds, w, ea, 0.0, si, up=True)
                         + t_low * float(np.sum(np.diff(np.clip(bounds, 0.0, si)) / ea))
                     )
                     for si in s
