@@ -78,9 +78,9 @@ def system_frequency_model(case: Case, system: Any, static: Any) -> Any:
 
 def _catenary_many(problems: list[Any]) -> list[Any]:
     """The catenary solver's ``solve`` of each problem, those its compiled kernels take
-    stacked into one call per group (:func:`~cablestudy.statics.batch_many.
+    stacked into one call per group (:func:`~cablestudy.statics.batch.
     solve_compiled_many`: the same answers, verified as ``solve`` verifies them)."""
-    from ..statics.batch_many import solve_compiled_many
+    from ..statics.batch import solve_compiled_many
 
     solve = STATIC_SOLVERS["catenary"].solve
     fast = solve_compiled_many(problems)

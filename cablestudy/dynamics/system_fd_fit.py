@@ -3,7 +3,7 @@
 over the phases (:func:`fit_node`), the free points' isotropic drag fit
 (:func:`fit_points`), all of a system's nodes and points (:func:`fit_all`) and the
 Anderson mixing of the iteration (:func:`anderson`), each the compiled form of the
-NumPy reference's step (:mod:`.system_frequency_reference`).
+NumPy reference's step (tests/system_frequency_reference.py).
 
 Pure: arrays in, arrays out.
 """
@@ -27,11 +27,12 @@ _REASSOCIATE = {"reassoc"}
 
 @njit(cache=True, error_model="numpy", fastmath=_REASSOCIATE)
 def fit_node(i, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, out):  # noqa: ANN001, ANN202, PLR0913, PLR0915
-    """The small-motion lean (:func:`.system_drag.mean_drag_jacobian`) into ``lean[i]``
-    and the drag fit leaning on it (:func:`.frequency_model.drag_linearisation`) into
-    ``out[i]`` of node ``i``, one pass over the phases for both. Without current at the
-    node and with an even number of phases, the phases of half a period serve (each
-    sum twice; the mean force is zero)."""
+    """The small-motion lean (``mean_drag_jacobian`` of the NumPy oracle,
+    tests/system_drag_reference.py) into ``lean[i]`` and the drag fit leaning on it
+    (:func:`.frequency_model.drag_linearisation`) into ``out[i]`` of node ``i``, one
+    pass over the phases for both. Without current at the node and with an even number
+    of phases, the phases of half a period serve (each sum twice; the mean force is
+    zero)."""
     samples = cs.shape[0]
     t0, t1, t2 = tan[i, 0], tan[i, 1], tan[i, 2]
     u0, u1, u2 = cur[i, 0], cur[i, 1], cur[i, 2]
@@ -164,8 +165,9 @@ def fit_node(i, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, out):  # 
 
 @njit(cache=True, error_model="numpy")
 def fit_points(c_p, cur, u_pts, omega, cs, sn_, Dp):  # noqa: ANN001, ANN202
-    """:func:`.system_drag.point_drag_fit` of every point at velocities ``i omega u_pts``
-    into ``Dp`` (P, 3, 3)."""
+    """The describing-function drag fit of every point (``point_drag_fit`` of the NumPy
+    oracle, tests/system_drag_reference.py) at velocities ``i omega u_pts`` into ``Dp``
+    (P, 3, 3)."""
     samples = cs.shape[0]
     P = c_p.shape[0]
     w = np.empty((samples, 3))
@@ -232,13 +234,13 @@ def fit_all(
 
 
 #: secant pairs kept by the Anderson mixing (as the reference:
-#: :data:`.system_frequency_reference.ANDERSON_DEPTH`)
+#: ``ANDERSON_DEPTH`` of tests/system_frequency_reference.py)
 DEPTH = 3
 
 
 @njit(cache=True, error_model="numpy")
 def anderson(d, g, hist_R, hist_G, state, change, last):  # noqa: ANN001, ANN202, PLR0913
-    """``_Anderson.step`` of :mod:`.system_frequency_reference` on the flat drag ``d``
+    """``_Anderson.step`` of tests/system_frequency_reference.py on the flat drag ``d``
     (overwritten by the next iterate) and its fit ``g``; the pairs in rows ``0 ..
     state[0]-1`` of ``hist_R``, ``hist_G`` (oldest first)."""
     size = d.shape[0]

@@ -63,8 +63,8 @@ the time domain.
 The iteration of a case runs in one compiled call for all lines
 (:mod:`.system_fd_kernel`, the model packed once in flat arrays: :mod:`.system_fd_pack`;
 per line only the junction's right sides are solved, four on a line from a junction
-to a body); the NumPy/LAPACK iteration line by line (:mod:`.system_frequency_reference`,
-``reference=True``) is the reference it is tested against: the same iteration counts
+to a body); the NumPy/LAPACK iteration line by line (tests/system_frequency_reference.py,
+``solve_reference``) is the oracle it is tested against: the same iteration counts
 and answers within 1e-7 of the largest (tests/unit/test_system_fd_kernel.py). At two
 elements a line (one inner node) the band is widened to a node's drag block. Cases
 that share a model go to the kernel together as a sweep
@@ -115,11 +115,9 @@ from .frequency_model import (
 )
 from .linear_model import linear_lines
 from .modal import ModalProblem
-from .system_drag import mean_drag_jacobian, point_drag_fit
 from .system_fd_kernel import NOT_CONVERGED, SINGULAR_JUNCTION, SINGULAR_LINE
 from .system_fd_pack import PackedSystem, pack_system
 from .system_fd_sweep import INFO, solve_sweep
-from .system_frequency_reference import iterate_reference
 
 #: largest residual of the assembled equations on the solution (inner rows of every
 #: line, balance of every free point), relative to the largest end-force amplitude and
@@ -542,33 +540,29 @@ def solve_system_harmonic(
     body_motion: np.ndarray,
     settings: DragSettings | None = None,
     point_excitation: np.ndarray | None = None,
-    *,
-    reference: bool = False,
 ) -> SystemFrequencyResult:
     """Steady harmonic response at ``omega`` [rad/s] to the bodies' complex motion
     amplitudes ``body_motion`` [m, rad] (B, 6) and the points' own complex displacement
     amplitudes ``point_excitation`` [m] (P, 3) (fixed or body points moved on their own,
     added to their bodies' motion; None: none), the drag linearised by iteration
     (module docstring), by the compiled iteration as a sweep of one case
-    (:func:`.system_fd_sweep.solve_sweep`, the one kernel a study runs; with
-    ``reference``, by NumPy and LAPACK line by line:
-    :mod:`.system_frequency_reference`). Never raises for a numerical failure: status
+    (:func:`.system_fd_sweep.solve_sweep`, the one kernel a study runs; the tests hold
+    it to a NumPy and LAPACK iteration line by line, tests/system_frequency_reference.py).
+    Never raises for a numerical failure: status
     and message."""
     settings = settings or DragSettings()
     prescribed = prescribed_motion(model, body_motion, point_excitation)
-    if reference:
-        outcome = iterate_reference(model, omega, prescribed, settings)
-    else:
-        outcome = _iterate_compiled(model, omega, prescribed, settings)
+    outcome = _iterate_compiled(model, omega, prescribed, settings)
     return harmonic_result(model, omega, body_motion, settings, prescribed, outcome)
 
 
 def _iterate_compiled(
     model: SystemLinear, omega: float, prescribed: np.ndarray, settings: DragSettings
 ) -> tuple:
-    """:func:`~.system_frequency_reference.iterate_reference` by the compiled kernel, a
-    sweep of one case (:func:`.system_fd_sweep.solve_sweep`, the study's one path), its
-    outcome in the same form."""
+    """The drag iteration by the compiled kernel (held to the NumPy reference,
+    tests/system_frequency_reference.py), a sweep of one case
+    (:func:`.system_fd_sweep.solve_sweep`, the study's one path), its outcome in the
+    same form."""
     packed = model.packed
     N, P = int(packed.node_offset[-1]), model.point_kind.size
     disp = np.empty((1, N, 3), dtype=complex)
@@ -618,7 +612,7 @@ def harmonic_result(
 ) -> SystemFrequencyResult:
     """The :class:`SystemFrequencyResult` of an iteration's ``outcome`` (kind, message,
     iterations, converged, change, point motion, per line displacements, end forces,
-    residual: :func:`~.system_frequency_reference.iterate_reference`'s form) for the
+    residual: the NumPy reference's form, tests/system_frequency_reference.py) for the
     motion ``body_motion`` and ``prescribed`` at ``omega``."""
     L = len(model.lines)
     static = model.post.static
@@ -708,7 +702,7 @@ def compiled_outcome(
     forces: np.ndarray,
 ) -> tuple:
     """The compiled iteration's ``info``, ``finfo`` and arrays (:func:`.system_fd_sweep.
-    iterate`) as :func:`~.system_frequency_reference.iterate_reference`'s outcome."""
+    iterate`) as the NumPy reference's outcome (tests/system_frequency_reference.py)."""
     code, iterations, bad, at_start = (int(v) for v in info[:4])
     change, residual = float(finfo[0]), float(finfo[1])
     hz = omega / (2 * math.pi)
@@ -764,8 +758,6 @@ __all__ = [
     "RESIDUAL_BAR",
     "SystemFrequencyResult",
     "SystemLinear",
-    "mean_drag_jacobian",
-    "point_drag_fit",
     "point_motion",
     "solve_system_harmonic",
     "system_linear",

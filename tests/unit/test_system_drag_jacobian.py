@@ -1,5 +1,5 @@
 """The mean drag Jacobian kernel of the system frequency domain
-(:func:`cablestudy.dynamics.system_frequency.mean_drag_jacobian`) against the
+(tests/system_drag_reference.py: the NumPy oracle of the compiled fit's lean) against the
 per-phase Jacobians summed directly: its phase sums are regrouped for speed, so the
 two agree to rounding (1e-13 of the largest entry: a few dozen additions of terms
 of one size, 1e-16 each)."""
@@ -10,7 +10,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from cablestudy.dynamics.system_frequency import mean_drag_jacobian
+from tests.system_drag_reference import mean_drag_jacobian
 
 
 def _direct(line: SimpleNamespace, v: np.ndarray, samples: int) -> np.ndarray:

@@ -2,7 +2,7 @@
 it at 3x the cost of a time-domain case) is the model built the plain way, bit for bit:
 
 - the lines re-solved at the model's nodes in one call per group of the compiled
-  kernels (:func:`cablestudy.statics.batch_many.solve_compiled_many`, through the
+  kernels (:func:`cablestudy.statics.batch.solve_compiled_many`, through the
   analysis' ``_catenary_many``) against the catenary solver's ``solve`` line by line:
   both run the same kernels case by case and verify each answer the same way, so the
   states, and the model built on them, are equal, not just close;

@@ -1,6 +1,6 @@
 """The compiled drag iteration of the system frequency domain
 (cablestudy.dynamics.system_fd_kernel, issue 24) against the NumPy/LAPACK iteration it
-replaces (cablestudy.dynamics.system_frequency_reference, ``reference=True``), and the
+replaces (tests/system_frequency_reference.py, ``solve_reference``), and the
 frequency domain at two elements a line (one inner node: the band of a line's inner
 rows narrower than a node's drag block, which raised IndexError before).
 
@@ -26,6 +26,7 @@ from cablestudy.dynamics.system_frequency import solve_system_harmonic, system_l
 from cablestudy.statics import STATIC_SOLVERS
 from cablestudy.statics.system import solve_system
 from cablestudy.statics.system_model import FREE
+from tests.system_frequency_reference import solve_reference
 from tests.system_models import CASE8_LINES, CASE8_POINTS, system_of
 
 SOLVER = STATIC_SOLVERS["catenary"]
@@ -93,7 +94,7 @@ def test_compiled_iteration_is_the_reference(case8: object, dof: int, frequency:
     X[0, dof] = -1j * (0.05 if dof >= 3 else 2.0 if dof == 0 else 1.0)
     w = 2.0 * np.pi * frequency
     a = solve_system_harmonic(case8, w, X)
-    b = solve_system_harmonic(case8, w, X, reference=True)
+    b = solve_reference(case8, w, X)
     assert a.iterations > 2  # the drag iteration ran
     _same(a, b)
 
@@ -111,9 +112,7 @@ def test_compiled_iteration_in_a_current(case8: object) -> None:
     X = np.array([[-1j, 0.0, -0.5j, 0.0, 0.0, 0.0]])
     for frequency in (0.05, 0.2):
         w = 2.0 * np.pi * frequency
-        _same(
-            solve_system_harmonic(model, w, X), solve_system_harmonic(model, w, X, reference=True)
-        )
+        _same(solve_system_harmonic(model, w, X), solve_reference(model, w, X))
 
 
 def test_two_elements_a_line_converge_to_the_fine_mesh() -> None:
@@ -133,7 +132,7 @@ def test_two_elements_a_line_converge_to_the_fine_mesh() -> None:
         model = _case8_model(nodes)
         got = solve_system_harmonic(model, w, X)
         if nodes == 3:
-            _same(got, solve_system_harmonic(model, w, X, reference=True))
+            _same(got, solve_reference(model, w, X))
         errors.append(np.abs(np.abs(got.end_tension) - np.abs(fine.end_tension)).max() / big)
     assert errors[0] < 3e-3, errors
     assert errors[1] < errors[0] / 3.0 and errors[2] < errors[1] / 3.0, errors

@@ -28,8 +28,6 @@ from cablestudy.dynamics.frequency import ReducedLine, solve_harmonic
 from cablestudy.dynamics.linear_model import linear_line
 from cablestudy.dynamics.modal import ModalProblem
 from cablestudy.dynamics.system_frequency import (
-    mean_drag_jacobian,
-    point_drag_fit,
     point_motion,
     solve_system_harmonic,
     system_frequency_outputs,
@@ -38,6 +36,7 @@ from cablestudy.dynamics.system_frequency import (
 from cablestudy.statics import STATIC_SOLVERS, EndCondition
 from cablestudy.statics.system import solve_system
 from cablestudy.statics.system_model import BODY, FIXED, FREE, MooringSystem, SystemLine
+from tests.system_drag_reference import mean_drag_jacobian, point_drag_fit
 from tests.system_models import CASE8_LINES, CASE8_POINTS, polyester, system_of
 
 SOLVER = STATIC_SOLVERS["catenary"]

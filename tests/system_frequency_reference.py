@@ -1,11 +1,11 @@
 """The system frequency domain's drag iteration in NumPy and LAPACK, line by line: the
-reference the compiled iteration (:mod:`.system_fd_kernel`) is tested against (same
-equations, same criterion and iteration; :func:`iterate_reference`), reached by
-``solve_system_harmonic(..., reference=True)``. Per line one LAPACK band solve with
+test oracle the compiled iteration (:mod:`cablestudy.dynamics.system_fd_kernel`) is held
+to (same equations, same criterion and iteration; :func:`iterate_reference`;
+:func:`solve_reference` is ``solve_system_harmonic`` by it). Per line one LAPACK band solve with
 the six end unit motions as right sides (the condensed end dynamic stiffness ``S``),
 the junction system by NumPy, the drag fits by
-:func:`~.system_drag.mean_drag_jacobian` and
-:func:`~.frequency_model.drag_linearisation`.
+:func:`tests.system_drag_reference.mean_drag_jacobian` and
+:func:`cablestudy.dynamics.frequency_model.drag_linearisation`.
 
 Pure: arrays and the linear model in, arrays out.
 """
@@ -18,10 +18,11 @@ from typing import Any
 import numpy as np
 from scipy.linalg.lapack import zgbsv as _zgbsv
 
-from .frequency_model import DragSettings, ReducedLine, drag_linearisation
-from .system_drag import mean_drag_jacobian, point_drag_fit
+from cablestudy.dynamics.frequency_model import DragSettings, ReducedLine, drag_linearisation
 
-SystemLinear = Any  # :class:`.system_frequency.SystemLinear` (no import circle)
+from .system_drag_reference import mean_drag_jacobian, point_drag_fit
+
+SystemLinear = Any  # :class:`cablestudy.dynamics.system_frequency.SystemLinear`
 
 
 def _dynamic_parts(
@@ -290,3 +291,20 @@ def iterate_reference(
     u_pts, disp, forces = out
     residual = _residual(model, omega, u_pts, disp, D_lines, D_points)
     return "", "", iterations, converged, change, u_pts, disp, np.array(forces), residual
+
+
+def solve_reference(
+    model: SystemLinear,
+    omega: float,
+    body_motion: np.ndarray,
+    settings: DragSettings | None = None,
+    point_excitation: np.ndarray | None = None,
+) -> Any:
+    """:func:`cablestudy.dynamics.system_frequency.solve_system_harmonic` with the drag
+    iterated by :func:`iterate_reference` instead of the compiled kernel."""
+    from cablestudy.dynamics.system_frequency import harmonic_result, prescribed_motion
+
+    settings = settings or DragSettings()
+    prescribed = prescribed_motion(model, body_motion, point_excitation)
+    outcome = iterate_reference(model, omega, prescribed, settings)
+    return harmonic_result(model, omega, body_motion, settings, prescribed, outcome)

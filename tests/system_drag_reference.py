@@ -1,7 +1,9 @@
 """The drag of a system's frequency domain, linearised over the motion: each line node's
 normal, tangential and transverse drag Jacobian averaged over the phases of its harmonic
 velocity (the fit's fallback where the motion is thin), and a free point's isotropic drag
-fitted as its describing function (:mod:`.system_frequency` iterates them)."""
+fitted as its describing function, in NumPy: the test oracle of the compiled fit
+(:mod:`cablestudy.dynamics.system_fd_fit`), used by the reference iteration
+(:mod:`tests.system_frequency_reference`)."""
 
 from __future__ import annotations
 
@@ -10,7 +12,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .frequency_model import FIT_REGULARISATION, LinearLine
+from cablestudy.dynamics.frequency_model import FIT_REGULARISATION, LinearLine
 
 
 def mean_drag_jacobian(line: LinearLine, velocity: np.ndarray, samples: int) -> np.ndarray:
