@@ -210,6 +210,40 @@ def fit_from_sums(g, h, samples, lean, i, out):  # noqa: ANN001, ANN201, PLR0913
 PIVOT_THRESHOLD = 0.1
 
 
+@njit(cache=True, inline="always")
+def band_pivot(R, bw, reach, k, last):  # noqa: ANN001, ANN201
+    """The pivot row ``p`` of step ``k`` of the elimination on band row storage ``R``
+    (rows ``k .. last`` of column ``k``) by threshold partial pivoting (the diagonal
+    kept while at least :data:`PIVOT_THRESHOLD` of the largest entry, in ``|re| +
+    |im|``), rows ``k`` and ``p`` of ``R`` and of ``reach`` exchanged; -1 for a zero
+    column. The caller exchanges its right sides. Shared by :func:`band_solve_rows`
+    and :func:`.system_fd_kernel._band_factor` (comparisons and exchanges only, no
+    rounding: inlined, it is the same under either caller's flags)."""
+    p = k
+    z = R[k, bw]
+    diag = abs(z.real) + abs(z.imag)
+    big = diag
+    for i in range(k + 1, last + 1):
+        z = R[i, k - i + bw]
+        a = abs(z.real) + abs(z.imag)
+        if a > big:
+            big, p = a, i
+    if not big > 0.0:
+        return -1
+    if diag >= PIVOT_THRESHOLD * big:
+        p = k
+    if p != k:
+        right = max(reach[k], reach[p])
+        for j in range(k, right + 1):
+            t = R[k, j - k + bw]
+            R[k, j - k + bw] = R[p, j - p + bw]
+            R[p, j - p + bw] = t
+        t2 = reach[k]
+        reach[k] = reach[p]
+        reach[p] = t2
+    return p
+
+
 @njit(cache=True)
 def band_solve_rows(R, bw, reach, rhs, x):  # noqa: ANN001, ANN201
     """Solve the complex banded system on row storage ``R`` (N, 3 bw + 1), A[i, j] at
@@ -229,28 +263,10 @@ def band_solve_rows(R, bw, reach, rhs, x):  # noqa: ANN001, ANN201
         reach[i] = min(i + bw, N - 1)
     for k in range(N):
         last = min(k + bw, N - 1)
-        p = k
-        z = R[k, bw]
-        diag = abs(z.real) + abs(z.imag)
-        big = diag
-        for i in range(k + 1, last + 1):
-            z = R[i, k - i + bw]
-            a = abs(z.real) + abs(z.imag)
-            if a > big:
-                big, p = a, i
-        if not big > 0.0:
+        p = band_pivot(R, bw, reach, k, last)
+        if p < 0:
             return False
-        if diag >= PIVOT_THRESHOLD * big:
-            p = k
         if p != k:
-            right = max(reach[k], reach[p])
-            for j in range(k, right + 1):
-                t = R[k, j - k + bw]
-                R[k, j - k + bw] = R[p, j - p + bw]
-                R[p, j - p + bw] = t
-            t2 = reach[k]
-            reach[k] = reach[p]
-            reach[p] = t2
             t = rhs[k]
             rhs[k] = rhs[p]
             rhs[p] = t

@@ -33,7 +33,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .harmonic_kernel import PIVOT_THRESHOLD
+from .harmonic_kernel import band_pivot
 
 #: no fast-math in these kernels: it made them no faster (the time goes to the fit,
 #: :func:`.system_fd_fit.fit_node`) and made their answers depend on whether numba had
@@ -50,7 +50,7 @@ OK, SINGULAR_LINE, SINGULAR_JUNCTION, NOT_CONVERGED = 0, 1, 2, 3
 def _band_factor(R, bw, N, reach, B, m):  # noqa: ANN001, ANN201
     """Factor the complex band matrix on row storage ``R`` (>= N, 3 bw + 1) (``A[i, j]``
     at ``R[i, j - i + bw]``) in place, by the threshold pivoting of
-    :func:`.harmonic_kernel.band_solve_rows`, and carry the ``m`` right sides ``B[:N,
+    :func:`.harmonic_kernel.band_pivot`, and carry the ``m`` right sides ``B[:N,
     :m]`` through the elimination (``B`` becomes ``L^-1 P B``; the upper factor ``U``
     stays in ``R``, its last column of row ``i`` in ``reach[i]``, for
     :func:`_back_rows`). False for a zero pivot or a non-finite eliminated side."""
@@ -58,28 +58,10 @@ def _band_factor(R, bw, N, reach, B, m):  # noqa: ANN001, ANN201
         reach[i] = min(i + bw, N - 1)
     for k in range(N):
         last = min(k + bw, N - 1)
-        p = k
-        z = R[k, bw]
-        diag = abs(z.real) + abs(z.imag)
-        big = diag
-        for i in range(k + 1, last + 1):
-            z = R[i, k - i + bw]
-            a = abs(z.real) + abs(z.imag)
-            if a > big:
-                big, p = a, i
-        if not big > 0.0:
+        p = band_pivot(R, bw, reach, k, last)
+        if p < 0:
             return False
-        if diag >= PIVOT_THRESHOLD * big:
-            p = k
         if p != k:
-            right = max(reach[k], reach[p])
-            for j in range(k, right + 1):
-                t = R[k, j - k + bw]
-                R[k, j - k + bw] = R[p, j - p + bw]
-                R[p, j - p + bw] = t
-            t2 = reach[k]
-            reach[k] = reach[p]
-            reach[p] = t2
             for c in range(m):
                 t = B[k, c]
                 B[k, c] = B[p, c]
