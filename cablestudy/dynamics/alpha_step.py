@@ -18,6 +18,7 @@ from .assembly import (
     solve_banded,
     states_changed,
 )
+from .step_parts import largest_correction, newmark_correct
 
 
 @dataclass(frozen=True)
@@ -260,10 +261,7 @@ def alpha_step(
         # first iteration only; later ones use the exact tangent (quadratic convergence)
         for e in range(taut0.shape[0]):
             taut0[e] = False
-        big = 0.0
-        for i in range(n):
-            for c in range(3):
-                big = max(big, abs(dx[i, c]))
+        big = largest_correction(dx, n)
         if big > lmin or not math.isfinite(big):
             return it, False
         # a node that would cross the seabed plane (land or lift off) stops on it: the
@@ -287,14 +285,7 @@ def alpha_step(
                     scale = min(scale, max(g0 / (g0 - g1), MIN_CLIP))
             if scale < 1.0:
                 clips += 1
-        for i in range(n):
-            if held[i]:
-                continue
-            for c in range(3):
-                d = scale * dx[i, c]
-                x1[i, c] += d
-                a1[i, c] += d / (beta * h * h)
-                v1[i, c] += gamma * d / (beta * h)
+        newmark_correct(x1, v1, a1, dx, held, n, scale, beta, gamma, h)
     return max_iterations, False
 
 

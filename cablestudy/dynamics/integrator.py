@@ -34,6 +34,7 @@ from .assembly import (
     update_anchors,
 )
 from .excitation import motion_at
+from .step_parts import accept_state, relax_level
 
 #: :func:`march` return codes
 REACHED_BOUNDARY, ACCEPTED_STEP, NEWTON_FAILED, STEP_BUDGET = 0, 1, 2, 3
@@ -482,27 +483,8 @@ def march(  # noqa: ANN201, PLR0913, PLR0915
         st_i[2] += 1
         if has_seabed:
             update_anchors(x1, friction_force, seabed_stiffness, contact, anchor)
-        if npast < 2:
-            for i in range(n):
-                for c in range(3):
-                    past_x[npast, i, c] = x0[i, c]
-            past_t[npast] = t
-            st_i[5] = npast + 1
-        else:
-            for i in range(n):
-                for c in range(3):
-                    past_x[0, i, c] = past_x[1, i, c]
-                    past_x[1, i, c] = x0[i, c]
-            past_t[0] = past_t[1]
-            past_t[1] = t
+        accept_state(x0, v0, a0, F0, x1, v1, a1, F, ext_z, t, past_x, past_t, npast, st_i)
         t = tn
-        for i in range(n):
-            for c in range(3):
-                x0[i, c] = x1[i, c]
-                v0[i, c] = v1[i, c]
-                a0[i, c] = a1[i, c]
-                F0[i, c] = F[i, c]
-            ext_z[i] = max(ext_z[i], x0[i, 2])
         for i in range(m):
             strain_prev[i] = strain[i]
             tension_prev[i] = tension[i]
@@ -537,13 +519,7 @@ def march(  # noqa: ANN201, PLR0913, PLR0915
         st_f[7] = line_max
         st_f[8] = td
         st_f[9] = h
-        if switched or steep:
-            st_i[1] = 0
-        else:
-            st_i[1] += 1
-            if st_i[1] >= 2 and st_i[0] > 0:
-                st_i[0] -= 1
-                st_i[1] = 0
+        relax_level(st_i, switched or steep)
         accepted += 1
         at_boundary = abs(t - boundary) <= eps_t
         st_f[0] = boundary if at_boundary else t

@@ -74,6 +74,7 @@ from .assembly import (
     update_anchors,
 )
 from .discrete_line import DiscreteLine
+from .step_parts import largest_correction, quarter_element_scale, slack_regularisation
 
 
 @njit(cache=True, nogil=True)
@@ -161,10 +162,7 @@ def _static_newton(
         # a little mass-like regularisation keeps slack nodes solvable; kept well below
         # the geometric stiffness T / l of the taut elements, or a light line's soft
         # modes would converge only linearly
-        tmax = 0.0
-        for e in range(tension.shape[0]):
-            tmax = max(tmax, tension[e])
-        reg_it = min(reg, max(1e-6 * tmax / lmin, 1e-6 * reg))
+        reg_it = slack_regularisation(tension, reg, lmin)
         for i in range(n):
             for a in range(3):
                 r[i, a] = -F[i, a]
@@ -182,15 +180,10 @@ def _static_newton(
         ok = solve_banded(J_d, J_o, J_o2, held, r, dx, band)
         if not ok:
             return it, res, False
-        big = 0.0
-        for i in range(n):
-            for a in range(3):
-                big = max(big, abs(dx[i, a]))
+        big = largest_correction(dx, n)
         if big <= floor:
             return it, res, True
-        scale = 1.0
-        if big > 0.25 * lmin:
-            scale = 0.25 * lmin / big
+        scale = quarter_element_scale(big, lmin)
         for i in range(n):
             for a in range(3):
                 x[i, a] += scale * dx[i, a]

@@ -22,6 +22,14 @@ from numba import njit
 
 from .alpha_step import MAX_LANDING_CLIPS, MAX_STATE_CHECKS, MIN_CLIP, STATE_CHECK_FACTOR
 from .assembly import _trial_states, contact_states_lines, states_changed, update_anchors
+from .step_parts import (
+    accept_state,
+    largest_correction,
+    newmark_correct,
+    quarter_element_scale,
+    relax_level,
+    slack_regularisation,
+)
 from .system_kernels import assemble_all, coupled_solve, drives_at, point_forces
 
 #: :func:`system_march` return codes
@@ -214,10 +222,7 @@ def system_step(  # noqa: ANN201
             return it, False
         for e in range(taut0.shape[0]):
             taut0[e] = False
-        big = 0.0
-        for i in range(n):
-            for c in range(3):
-                big = max(big, abs(dx[i, c]))
+        big = largest_correction(dx, n)
         if big > lmin or not math.isfinite(big):
             return it, False
         scale = 1.0
@@ -225,14 +230,7 @@ def system_step(  # noqa: ANN201
             scale = _landing_clip(S, W, x1, dx, sbn, sbo, ksb)
             if scale < 1.0:
                 clips += 1
-        for i in range(n):
-            if held[i]:
-                continue
-            for c in range(3):
-                d = scale * dx[i, c]
-                x1[i, c] += d
-                a1[i, c] += d / (beta * h * h)
-                v1[i, c] += gamma * d / (beta * h)
+        newmark_correct(x1, v1, a1, dx, held, n, scale, beta, gamma, h)
 
 
 @njit(cache=True)
@@ -457,26 +455,7 @@ def system_march(  # noqa: ANN201, PLR0913, PLR0915
         st_i[2] += 1
         if has_seabed:
             update_anchors(x1, friction_force, ksb, contact, anchor)
-        if npast < 2:
-            for i in range(n):
-                for c in range(3):
-                    past_x[npast, i, c] = x0[i, c]
-            past_t[npast] = t
-            st_i[5] = npast + 1
-        else:
-            for i in range(n):
-                for c in range(3):
-                    past_x[0, i, c] = past_x[1, i, c]
-                    past_x[1, i, c] = x0[i, c]
-            past_t[0] = past_t[1]
-            past_t[1] = t
-        for i in range(n):
-            for c in range(3):
-                x0[i, c] = x1[i, c]
-                v0[i, c] = v1[i, c]
-                a0[i, c] = a1[i, c]
-                F0[i, c] = W[0][i, c]
-            ext_z[i] = max(ext_z[i], x0[i, 2])
+        accept_state(x0, v0, a0, F0, x1, v1, a1, W[0], ext_z, t, past_x, past_t, npast, st_i)
         for p in range(Fp0.shape[0]):
             for c in range(3):
                 Fp0[p, c] = Fp[p, c]
@@ -497,13 +476,7 @@ def system_march(  # noqa: ANN201, PLR0913, PLR0915
             for k in range(6):
                 ext_body[0, b, k] = max(ext_body[0, b, k], body_f[b, k])
                 ext_body[1, b, k] = min(ext_body[1, b, k], body_f[b, k])
-        if switched or steep:
-            st_i[1] = 0
-        else:
-            st_i[1] += 1
-            if st_i[1] >= 2 and st_i[0] > 0:
-                st_i[0] -= 1
-                st_i[1] = 0
+        relax_level(st_i, switched or steep)
         at_boundary = abs(tn - boundary) <= eps_t
         st_f[0] = boundary if at_boundary else tn
         if at_boundary:
@@ -573,21 +546,13 @@ def system_static(x, anchor, S, W, r, rp, dx, dp, Fp, tol, max_it, lmin):  # noq
         if it >= max_it or not math.isfinite(res):
             return it, res, False
         it += 1
-        tmax = 0.0
-        for e in range(tension.shape[0]):
-            tmax = max(tmax, tension[e])
-        reg_it = min(reg, max(1e-6 * tmax / lmin, 1e-6 * reg))
+        reg_it = slack_regularisation(tension, reg, lmin)
         if not coupled_solve(S, W, 0.0, 1.0, 0.0, reg_it, r, rp, dx, dp):
             return it, res, False
-        big = 0.0
-        for i in range(n):
-            for a in range(3):
-                big = max(big, abs(dx[i, a]))
+        big = largest_correction(dx, n)
         if big <= floor:
             return it, res, True
-        scale = 1.0
-        if big > 0.25 * lmin:
-            scale = 0.25 * lmin / big
+        scale = quarter_element_scale(big, lmin)
         for i in range(n):
             if held[i]:
                 continue
