@@ -563,16 +563,29 @@ def _iterate_compiled(
     tests/system_frequency_reference.py), a sweep of one case
     (:func:`.system_fd_sweep.solve_sweep`, the study's one path), its outcome in the
     same form."""
+    w = np.array([float(omega)])
+    disp, u_pts, forces, info, finfo = sweep_compiled(model, w, prescribed, settings)
+    return compiled_outcome(model, omega, info[0], finfo[0], disp[0], u_pts[0], forces[0])
+
+
+def sweep_compiled(
+    model: SystemLinear, w: np.ndarray, prescribed: np.ndarray, settings: DragSettings
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The compiled drag iteration of ``w.size`` cases (:func:`.system_fd_sweep.solve_sweep`)
+    at ``w`` (n,) [rad/s] with the points' motion ``prescribed`` (n, P, 3) [m]: its
+    arrays (the nodes' displacements (n, N, 3), the points' (n, P, 3), the lines' end
+    forces (n, L, 6), ``info`` (n, INFO) and ``finfo`` (n, 2))."""
     packed = model.packed
-    N, P = int(packed.node_offset[-1]), model.point_kind.size
-    disp = np.empty((1, N, 3), dtype=complex)
-    u_pts = np.empty((1, P, 3), dtype=complex)
-    forces = np.empty((1, len(model.lines), 6), dtype=complex)
-    info = np.zeros((1, INFO), dtype=np.int64)
-    finfo = np.zeros((1, 2))
+    n = w.size
+    N, L, P = int(packed.node_offset[-1]), len(model.lines), model.point_kind.size
+    disp = np.empty((n, N, 3), dtype=complex)
+    u_pts = np.empty((n, P, 3), dtype=complex)
+    forces = np.empty((n, L, 6), dtype=complex)
+    info = np.zeros((n, INFO), dtype=np.int64)
+    finfo = np.zeros((n, 2))
     solve_sweep(
-        np.array([float(omega)]),
-        np.ascontiguousarray(prescribed, dtype=complex).reshape(1, P, 3),
+        np.ascontiguousarray(w),
+        np.ascontiguousarray(prescribed, dtype=complex).reshape(n, P, 3),
         float(settings.tolerance),
         int(settings.max_iterations),
         int(settings.samples),
@@ -585,7 +598,7 @@ def _iterate_compiled(
         info,
         finfo,
     )
-    return compiled_outcome(model, omega, info[0], finfo[0], disp[0], u_pts[0], forces[0])
+    return disp, u_pts, forces, info, finfo
 
 
 def prescribed_motion(

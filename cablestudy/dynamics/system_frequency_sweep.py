@@ -15,7 +15,6 @@ from collections.abc import Sequence
 import numpy as np
 
 from .frequency_model import DragSettings
-from .system_fd_sweep import INFO, solve_sweep
 from .system_frequency import (
     RESIDUAL_BAR,
     SystemFrequencyResult,
@@ -24,6 +23,7 @@ from .system_frequency import (
     cross,
     harmonic_result,
     prescribed_motion,
+    sweep_compiled,
 )
 
 
@@ -70,28 +70,7 @@ def solve_system_sweep_arrays(
             seen[key] = prescribed_motion(model, X, U)
         rows.append(seen[key])
     prescribed = np.stack(rows).reshape(n, model.point_kind.size, 3)
-    packed = model.packed
-    N, L, P = int(packed.node_offset[-1]), len(model.lines), model.point_kind.size
-    disp = np.empty((n, N, 3), dtype=complex)
-    u_pts = np.empty((n, P, 3), dtype=complex)
-    forces = np.empty((n, L, 6), dtype=complex)
-    info = np.zeros((n, INFO), dtype=np.int64)
-    finfo = np.zeros((n, 2))
-    solve_sweep(
-        np.ascontiguousarray(w),
-        np.ascontiguousarray(prescribed, dtype=complex),
-        float(settings.tolerance),
-        int(settings.max_iterations),
-        int(settings.samples),
-        bool(settings.exact),
-        packed.arrays,
-        packed.bw,
-        disp,
-        u_pts,
-        forces,
-        info,
-        finfo,
-    )
+    disp, u_pts, forces, info, finfo = sweep_compiled(model, w, prescribed, settings)
     theta = np.asarray(body_motion, dtype=complex).reshape(n, model.n_bodies, 6)[:, :, 3:]
     post = _post_all(model, w, theta, disp, forces)
     out: list[SystemFrequencyResult] = []
