@@ -89,6 +89,7 @@ from .frequency_model import (
     ReducedLine,
     drag_force,
     drag_tangent,
+    singular_result,
     solve_undamped,
 )
 
@@ -106,14 +107,7 @@ def solve_harmonic(
     line = red.line
     n = line.n_nodes
     static_mag = np.linalg.norm(line.end_force, axis=1)
-    failed = FrequencyResult(
-        displacement=np.full((n, 3), np.nan + 0j),
-        element_tension=np.full(n - 1, np.nan + 0j),
-        end_tension=np.full(2, np.nan + 0j),
-        tension_static=static_mag,
-        status=STATUS_NUMERICAL,
-        message=f"singular dynamic matrix at {omega / (2 * math.pi):.6g} Hz",
-    )
+    failed = singular_result(n, static_mag, omega)
     if line.has_drag:
         # the drag iteration is that of a sweep's cases (one compiled kernel), so a
         # case gives the same numbers alone or in a sweep

@@ -148,6 +148,20 @@ class FrequencyResult:
         return self.status == STATUS_OK
 
 
+def singular_result(n: int, tension_static: np.ndarray, omega: float) -> FrequencyResult:
+    """The result of a line of ``n`` nodes whose dynamic matrix was singular at
+    ``omega`` [rad/s]: NaN amplitudes, :data:`STATUS_NUMERICAL` and a message naming the
+    frequency; ``tension_static`` [N] (2,) the static end tensions."""
+    return FrequencyResult(
+        displacement=np.full((n, 3), np.nan + 0j),
+        element_tension=np.full(n - 1, np.nan + 0j),
+        end_tension=np.full(2, np.nan + 0j),
+        tension_static=tension_static,
+        status=STATUS_NUMERICAL,
+        message=f"singular dynamic matrix at {omega / (2 * math.pi):.6g} Hz",
+    )
+
+
 def sum_components(p: np.ndarray) -> np.ndarray:
     """``np.sum(p, axis=-1)`` of ``p`` (..., 3), bit for bit (numpy adds from a zero:
     ``((0 + x) + y) + z``, which fixes the sign of a sum of zeros and the order), with
@@ -558,14 +572,7 @@ def solve_undamped(red: ReducedLine, omega: float, end_motion: np.ndarray) -> Fr
     line = red.line
     n = line.n_nodes
     static_mag = np.linalg.norm(line.end_force, axis=1)
-    failed = FrequencyResult(
-        displacement=np.full((n, 3), np.nan + 0j),
-        element_tension=np.full(n - 1, np.nan + 0j),
-        end_tension=np.full(2, np.nan + 0j),
-        tension_static=static_mag,
-        status=STATUS_NUMERICAL,
-        message=f"singular dynamic matrix at {omega / (2 * math.pi):.6g} Hz",
-    )
+    failed = singular_result(n, static_mag, omega)
     # no drag: one linear solve, LAPACK's band solver
     B = line.free_basis
     up = np.zeros((n, 3), dtype=complex)
