@@ -76,23 +76,7 @@ ends:
         if grid.chunked:
             evaluate_grid_chunk(grid, 0, grid.shape[0])
     # a system's position sweep: the compiled system Newton (cablestudy.analyses.system_grid)
-    system = """\
-name: warm-system
-environment: {fluid: water, depth: 60.0}
-points:
-  anchor: {kind: fixed, position: [-90.0, 0.0, -60.0]}
-  joint: {kind: free, position: [-30.0, 0.0, -30.0], mass: 200.0}
-  fair: {kind: body, body: hull, offset: [0.0, 0.0, -5.0]}
-bodies:
-  hull: {kind: prescribed, position: [0.0, 0.0, 0.0, 0.0, 0.0, 0.0]}
-lines:
-  leg: {a: anchor, b: joint, segments: [SEG70]}
-  top: {a: joint, b: fair, segments: [SEG35]}
-sweep:
-  bodies.hull.position.0: [0.0, 2.0]
-"""
-    seg = "{length: %s, diameter: 0.05, mass_per_length: 10.0, axial_stiffness: 1.0e8}"
-    system = system.replace("SEG70", seg % 70.0).replace("SEG35", seg % 35.0)
+    system = _warm_system_text("warm-system", "sweep:\n  bodies.hull.position.0: [0.0, 2.0]\n")
     from .run.grid_runner import study_grid
 
     grid = study_grid(parse_study_text(system, "warm.yaml"))
@@ -109,10 +93,9 @@ sweep:
     build()
 
 
-#: a small system moved by its body, for the system dynamics' warm-up (a line on the
-#: seabed, a free junction with mass, a body point)
+#: a small two-line system moved by its body, for the system warm-ups (a line on the
+#: seabed, a free junction with mass, a body point); :func:`_warm_system_text` names it
 _WARM_SYSTEM = """\
-name: warm-system-dynamics
 environment: {fluid: water, depth: 60.0}
 points:
   anchor: {kind: fixed, position: [-90.0, 0.0, -60.0]}
@@ -123,12 +106,23 @@ bodies:
 lines:
   leg: {a: anchor, b: joint, segments: [SEG70]}
   top: {a: joint, b: fair, segments: [SEG35]}
+"""
+#: the system dynamics' analysis (METHOD: time or frequency)
+_WARM_DYNAMIC = """\
 analysis:
   dynamic:
     excitation: {body: hull, dof: surge, amplitude: 0.1, frequency: 0.1}
     method: METHOD
     elements: 4
 """
+
+
+def _warm_system_text(name: str, tail: str) -> str:
+    """The study text of :data:`_WARM_SYSTEM` named ``name``, its segments filled in,
+    ``tail`` (a sweep or an analysis) after it."""
+    seg = "{length: %s, diameter: 0.05, mass_per_length: 10.0, axial_stiffness: 1.0e8}"
+    body = _WARM_SYSTEM.replace("SEG70", seg % 70.0).replace("SEG35", seg % 35.0)
+    return f"name: {name}\n{body}{tail}"
 
 
 def _warm_systems() -> None:
@@ -139,8 +133,7 @@ def _warm_systems() -> None:
     from .study import parse_study_text
     from .study.grid import expand_cases
 
-    seg = "{length: %s, diameter: 0.05, mass_per_length: 10.0, axial_stiffness: 1.0e8}"
-    text = _WARM_SYSTEM.replace("SEG70", seg % 70.0).replace("SEG35", seg % 35.0)
+    text = _warm_system_text("warm-system-dynamics", _WARM_DYNAMIC)
     counted = COUNTERS.copy()  # the warm-up's solves and builds are no run's work
     try:
         for method in ("time", "frequency"):
