@@ -34,7 +34,7 @@ from .assembly import (
     update_anchors,
 )
 from .excitation import motion_at
-from .step_parts import accept_state, relax_level
+from .step_parts import accept_state, predict_positions, relax_level
 
 #: :func:`march` return codes
 REACHED_BOUNDARY, ACCEPTED_STEP, NEWTON_FAILED, STEP_BUDGET = 0, 1, 2, 3
@@ -153,18 +153,7 @@ def _attempt(  # noqa: ANN202, PLR0913
         if not winch_set(paid, ctl, wini, per_length, s_ini, s, largs):
             return 0, False, False
     motion_at(tn, *motion, raw)
-    if npast < 2:
-        for i in range(n):
-            for c in range(3):
-                x_pred[i, c] = x0[i, c] + (tn - t) * v0[i, c]
-    else:
-        ta, tb, tc = past_t[0], past_t[1], t
-        la = (tn - tb) * (tn - tc) / ((ta - tb) * (ta - tc))
-        lb = (tn - ta) * (tn - tc) / ((tb - ta) * (tb - tc))
-        lc = (tn - ta) * (tn - tb) / ((tc - ta) * (tc - tb))
-        for i in range(n):
-            for c in range(3):
-                x_pred[i, c] = past_x[0, i, c] * la + lb * past_x[1, i, c] + lc * x0[i, c]
+    predict_positions(x0, v0, past_x, past_t, npast, t, tn, x_pred)
     for e in range(2):
         for c in range(3):
             end_x[e, c] = base[e, c] + raw[0, e, c]

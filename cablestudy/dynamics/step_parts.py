@@ -61,6 +61,30 @@ def quarter_element_scale(big, lmin):  # noqa: ANN001, ANN201
 
 
 @njit(cache=True)
+def predict_positions(x0, v0, past_x, past_t, npast, t, tn, x_pred):  # noqa: ANN001, ANN201, PLR0913
+    """Newton's start ``x_pred`` at the step's end ``tn`` from the start ``x0`` at
+    ``t``: the quadratic through the two kept positions (``past_x`` at ``past_t``) and
+    ``x0``, or a straight step with velocity ``v0`` while fewer than two are kept
+    (``npast``). Returns the quadratic's Lagrange weights of the three (zeros for the
+    straight step)."""
+    n = x0.shape[0]
+    la = lb = lc = 0.0
+    if npast < 2:
+        for i in range(n):
+            for c in range(3):
+                x_pred[i, c] = x0[i, c] + (tn - t) * v0[i, c]
+    else:
+        ta, tb, tc = past_t[0], past_t[1], t
+        la = (tn - tb) * (tn - tc) / ((ta - tb) * (ta - tc))
+        lb = (tn - ta) * (tn - tc) / ((tb - ta) * (tb - tc))
+        lc = (tn - ta) * (tn - tb) / ((tc - ta) * (tc - tb))
+        for i in range(n):
+            for c in range(3):
+                x_pred[i, c] = past_x[0, i, c] * la + lb * past_x[1, i, c] + lc * x0[i, c]
+    return la, lb, lc
+
+
+@njit(cache=True)
 def accept_state(x0, v0, a0, F0, x1, v1, a1, F, ext_z, t, past_x, past_t, npast, st_i):  # noqa: ANN001, ANN201, PLR0913
     """An accepted step's bookkeeping: the start state ``x0`` at time ``t`` joins the
     last two kept (``past_x``, ``past_t``, ``npast`` of them so far, the count into

@@ -26,6 +26,7 @@ from .step_parts import (
     accept_state,
     largest_correction,
     newmark_correct,
+    predict_positions,
     quarter_element_scale,
     relax_level,
     slack_regularisation,
@@ -371,7 +372,6 @@ def system_march(  # noqa: ANN201, PLR0913, PLR0915
     tension, strain, friction_force, contact = W[7], W[8], W[11], W[10]
     ksb = S[24]
     has_seabed = ksb.max() > 0.0
-    n = x0.shape[0]
     m = tension.shape[0]
     corr = np.empty(3)
     accepted = 0
@@ -384,20 +384,7 @@ def system_march(  # noqa: ANN201, PLR0913, PLR0915
             h = boundary - t
         tn = t + h
         npast = st_i[5]
-        la = lb = lc = 0.0
-        # predictor
-        if npast < 2:
-            for i in range(n):
-                for c in range(3):
-                    x_pred[i, c] = x0[i, c] + (tn - t) * v0[i, c]
-        else:
-            ta, tb, tc = past_t[0], past_t[1], t
-            la = (tn - tb) * (tn - tc) / ((ta - tb) * (ta - tc))
-            lb = (tn - ta) * (tn - tc) / ((tb - ta) * (tb - tc))
-            lc = (tn - ta) * (tn - tb) / ((tc - ta) * (tc - tb))
-            for i in range(n):
-                for c in range(3):
-                    x_pred[i, c] = past_x[0, i, c] * la + lb * past_x[1, i, c] + lc * x0[i, c]
+        la, lb, lc = predict_positions(x0, v0, past_x, past_t, npast, t, tn, x_pred)
         set_drives(tn, D, x_pred, v1, a1, he_node, he_drive, dX, dV, dA, bx, bR)
         # spread each held end's correction along its line (the ends were extrapolated)
         for k in range(he_node.shape[0]):
