@@ -148,6 +148,24 @@ class FrequencyResult:
         return self.status == STATUS_OK
 
 
+def block_band_places(counts: np.ndarray, bw: int) -> tuple[np.ndarray, ...]:
+    """Where each entry of the nodes' reduced blocks lands in band storage of
+    half-bandwidth ``bw``, node ``i`` having ``counts[i]`` free coordinates (numbered
+    node by node): per entry, row by row within each block, its node ``blk_i``, row
+    ``blk_r`` and column ``blk_c`` in the block and its place ``(band_r, band_c)`` in
+    the band."""
+    sizes = counts**2
+    blk_i = np.repeat(np.arange(counts.size), sizes)
+    local = np.arange(int(sizes.sum())) - np.repeat(np.cumsum(sizes) - sizes, sizes)
+    k_of = counts[blk_i]
+    blk_r = local // np.maximum(k_of, 1)
+    blk_c = local % np.maximum(k_of, 1)
+    offset = np.concatenate(([0], np.cumsum(counts)[:-1]))
+    band_r = bw + blk_r - blk_c
+    band_c = offset[blk_i] + blk_c
+    return blk_i, blk_r, blk_c, band_r, band_c
+
+
 def singular_result(n: int, tension_static: np.ndarray, omega: float) -> FrequencyResult:
     """The result of a line of ``n`` nodes whose dynamic matrix was singular at
     ``omega`` [rad/s]: NaN amplitudes, :data:`STATUS_NUMERICAL` and a message naming the
@@ -522,16 +540,7 @@ class ReducedLine:
         # uncoupled, band 1 from the entries, a drag block of band 2)
         bw = max(bw, int(np.max(counts, initial=1)) - 1)
         size = B.shape[1]
-        # where each entry of a node's reduced 3 x 3 block lands in band storage
-        sizes = counts**2
-        blk_i = np.repeat(np.arange(n), sizes)
-        local = np.arange(int(sizes.sum())) - np.repeat(np.cumsum(sizes) - sizes, sizes)
-        k_of = counts[blk_i]
-        blk_r = local // np.maximum(k_of, 1)
-        blk_c = local % np.maximum(k_of, 1)
-        offset = np.concatenate(([0], np.cumsum(counts)[:-1]))
-        band_r = bw + blk_r - blk_c
-        band_c = offset[blk_i] + blk_c
+        blk_i, blk_r, blk_c, band_r, band_c = block_band_places(counts, bw)
         K, M, C = (_band_of(r, c, v, bw, size) for r, c, v in reduced)
         return cls(
             line=line,

@@ -28,7 +28,7 @@ from collections.abc import Sequence
 import numpy as np
 import scipy.sparse as sp
 
-from .frequency_model import LinearLine, ReducedLine
+from .frequency_model import LinearLine, ReducedLine, block_band_places
 from .linear_model import _held_ends_arrays
 
 
@@ -43,15 +43,7 @@ def _held_layout(n: int, bw: int) -> tuple[np.ndarray, ...]:
     first = np.concatenate(([0], np.cumsum(counts)[:-1]))
     padded = np.zeros((n, 3, 3))
     padded[node, rows % 3, np.arange(rows.size) - first[node]] = 1.0
-    sizes = counts**2
-    blk_i = np.repeat(np.arange(n), sizes)
-    local = np.arange(int(sizes.sum())) - np.repeat(np.cumsum(sizes) - sizes, sizes)
-    k_of = counts[blk_i]
-    blk_r = local // np.maximum(k_of, 1)
-    blk_c = local % np.maximum(k_of, 1)
-    offset = np.concatenate(([0], np.cumsum(counts)[:-1]))
-    band_r = bw + blk_r - blk_c
-    band_c = offset[blk_i] + blk_c
+    blk_i, blk_r, blk_c, band_r, band_c = block_band_places(counts, bw)
     offsets = np.concatenate(([0], np.cumsum(counts))).astype(np.int64)
     out = (padded, band_r, band_c, blk_i, blk_r, blk_c, offsets, counts)
     for a in out:
