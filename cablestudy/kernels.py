@@ -118,8 +118,7 @@ analysis:
 
 
 def _warm_system_text(name: str, tail: str) -> str:
-    """The study text of :data:`_WARM_SYSTEM` named ``name``, its segments filled in,
-    ``tail`` (a sweep or an analysis) after it."""
+    """:data:`_WARM_SYSTEM` named ``name``, segments filled in, ``tail`` after it."""
     seg = "{length: %s, diameter: 0.05, mass_per_length: 10.0, axial_stiffness: 1.0e8}"
     body = _WARM_SYSTEM.replace("SEG70", seg % 70.0).replace("SEG35", seg % 35.0)
     return f"name: {name}\n{body}{tail}"

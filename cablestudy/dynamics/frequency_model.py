@@ -149,11 +149,8 @@ class FrequencyResult:
 
 
 def block_band_places(counts: np.ndarray, bw: int) -> tuple[np.ndarray, ...]:
-    """Where each entry of the nodes' reduced blocks lands in band storage of
-    half-bandwidth ``bw``, node ``i`` having ``counts[i]`` free coordinates (numbered
-    node by node): per entry, row by row within each block, its node ``blk_i``, row
-    ``blk_r`` and column ``blk_c`` in the block and its place ``(band_r, band_c)`` in
-    the band."""
+    """Per entry of the nodes' reduced blocks (``counts[i]`` coordinates at node ``i``):
+    its node, row and column in the block, and its row and column in band storage."""
     sizes = counts**2
     blk_i = np.repeat(np.arange(counts.size), sizes)
     local = np.arange(int(sizes.sum())) - np.repeat(np.cumsum(sizes) - sizes, sizes)
@@ -167,9 +164,7 @@ def block_band_places(counts: np.ndarray, bw: int) -> tuple[np.ndarray, ...]:
 
 
 def singular_result(n: int, tension_static: np.ndarray, omega: float) -> FrequencyResult:
-    """The result of a line of ``n`` nodes whose dynamic matrix was singular at
-    ``omega`` [rad/s]: NaN amplitudes, :data:`STATUS_NUMERICAL` and a message naming the
-    frequency; ``tension_static`` [N] (2,) the static end tensions."""
+    """NaN response of ``n`` nodes, singular dynamic matrix at ``omega`` [rad/s]."""
     return FrequencyResult(
         displacement=np.full((n, 3), np.nan + 0j),
         element_tension=np.full(n - 1, np.nan + 0j),

@@ -212,13 +212,10 @@ PIVOT_THRESHOLD = 0.1
 
 @njit(cache=True, inline="always")
 def band_pivot(R, bw, reach, k, last):  # noqa: ANN001, ANN201
-    """The pivot row ``p`` of step ``k`` of the elimination on band row storage ``R``
-    (rows ``k .. last`` of column ``k``) by threshold partial pivoting (the diagonal
-    kept while at least :data:`PIVOT_THRESHOLD` of the largest entry, in ``|re| +
-    |im|``), rows ``k`` and ``p`` of ``R`` and of ``reach`` exchanged; -1 for a zero
-    column. The caller exchanges its right sides. Shared by :func:`band_solve_rows`
-    and :func:`.system_fd_kernel._band_factor` (comparisons and exchanges only, no
-    rounding: inlined, it is the same under either caller's flags)."""
+    """Pivot row ``p`` of step ``k`` (rows ``k .. last``) by :func:`band_solve_rows`'s
+    threshold rule, rows ``k`` and ``p`` of ``R`` and ``reach`` exchanged (the caller
+    exchanges its right sides); -1 for a zero column. No rounding: the same inlined
+    under any caller's flags."""
     p = k
     z = R[k, bw]
     diag = abs(z.real) + abs(z.imag)

@@ -1,11 +1,7 @@
-"""Small compiled pieces of the Newton iterations and time steps that the single line
+"""Compiled pieces of the Newton iterations and time steps shared by the single line
 (:mod:`.alpha_step`, :mod:`.integrator`, :mod:`.model`) and the system
-(:mod:`.system_march`) share: each the same operations in the same order as both had
-written out before, with no floating-point flags (as every caller: none of them takes
-fast-math), so that the answers are the same bit for bit.
-
-Pure: arrays in, arrays out.
-"""
+(:mod:`.system_march`): the operations each wrote out, in the same order, no float
+flags (as every caller), so the answers are the same bit for bit. Pure."""
 
 from __future__ import annotations
 
@@ -14,8 +10,7 @@ from numba import njit
 
 @njit(cache=True)
 def largest_correction(dx, n):  # noqa: ANN001, ANN201
-    """The largest ``|dx[i, c]|`` of the first ``n`` nodes (0 for none; NaN is passed
-    over by ``max``, so a caller tests the correction's finiteness on its own terms)."""
+    """The largest ``|dx[i, c]|`` of the first ``n`` nodes."""
     big = 0.0
     for i in range(n):
         for c in range(3):
@@ -25,9 +20,8 @@ def largest_correction(dx, n):  # noqa: ANN001, ANN201
 
 @njit(cache=True)
 def newmark_correct(x1, v1, a1, dx, held, n, scale, beta, gamma, h):  # noqa: ANN001, ANN201, PLR0913
-    """Apply the Newton correction ``scale dx`` to the positions of the free nodes of
-    the first ``n`` and the Newmark velocity and acceleration that follow from it
-    (``da = d / (beta h^2)``, ``dv = gamma d / (beta h)``)."""
+    """Add ``scale dx`` to the free nodes' positions, and the Newmark acceleration and
+    velocity that follow (``d / (beta h^2)``, ``gamma d / (beta h)``)."""
     for i in range(n):
         if held[i]:
             continue
@@ -40,10 +34,8 @@ def newmark_correct(x1, v1, a1, dx, held, n, scale, beta, gamma, h):  # noqa: AN
 
 @njit(cache=True)
 def slack_regularisation(tension, reg, lmin):  # noqa: ANN001, ANN201
-    """The statics' mass-like regularisation of an iteration: ``reg`` at most, kept
-    well below the geometric stiffness ``T / l`` of the taut elements (1e-6 of the
-    largest ``tension`` over the shortest element ``lmin``, and not below 1e-6 of
-    ``reg``), or a light line's soft modes would converge only linearly."""
+    """The statics' regularisation of slack nodes: at most ``reg``, and 1e-6 of the
+    geometric stiffness ``max(tension) / lmin`` (not below 1e-6 ``reg``)."""
     tmax = 0.0
     for e in range(tension.shape[0]):
         tmax = max(tmax, tension[e])
@@ -52,8 +44,7 @@ def slack_regularisation(tension, reg, lmin):  # noqa: ANN001, ANN201
 
 @njit(cache=True)
 def quarter_element_scale(big, lmin):  # noqa: ANN001, ANN201
-    """The statics' step limit: the factor that cuts a correction of largest component
-    ``big`` to a quarter of the shortest element ``lmin`` (1 when it is within)."""
+    """The factor that cuts a correction of size ``big`` to ``lmin / 4`` (1 within)."""
     scale = 1.0
     if big > 0.25 * lmin:
         scale = 0.25 * lmin / big
@@ -62,11 +53,9 @@ def quarter_element_scale(big, lmin):  # noqa: ANN001, ANN201
 
 @njit(cache=True)
 def predict_positions(x0, v0, past_x, past_t, npast, t, tn, x_pred):  # noqa: ANN001, ANN201, PLR0913
-    """Newton's start ``x_pred`` at the step's end ``tn`` from the start ``x0`` at
-    ``t``: the quadratic through the two kept positions (``past_x`` at ``past_t``) and
-    ``x0``, or a straight step with velocity ``v0`` while fewer than two are kept
-    (``npast``). Returns the quadratic's Lagrange weights of the three (zeros for the
-    straight step)."""
+    """Newton's start ``x_pred`` at ``tn``: the quadratic through the kept positions
+    (``past_x`` at ``past_t``) and ``x0`` at ``t``, a straight step with ``v0`` while
+    ``npast`` < 2. Returns the quadratic's weights (zeros for the straight step)."""
     n = x0.shape[0]
     la = lb = lc = 0.0
     if npast < 2:
@@ -86,10 +75,8 @@ def predict_positions(x0, v0, past_x, past_t, npast, t, tn, x_pred):  # noqa: AN
 
 @njit(cache=True)
 def accept_state(x0, v0, a0, F0, x1, v1, a1, F, ext_z, t, past_x, past_t, npast, st_i):  # noqa: ANN001, ANN201, PLR0913
-    """An accepted step's bookkeeping: the start state ``x0`` at time ``t`` joins the
-    last two kept (``past_x``, ``past_t``, ``npast`` of them so far, the count into
-    ``st_i[5]``), the end state (``x1, v1, a1``, force ``F``) becomes the next start,
-    and ``ext_z`` keeps each node's highest ``z``."""
+    """An accepted step: ``x0`` at ``t`` joins the two kept positions (count into
+    ``st_i[5]``), the end state becomes the start, ``ext_z`` keeps each highest ``z``."""
     n = x0.shape[0]
     if npast < 2:
         for i in range(n):
@@ -115,9 +102,8 @@ def accept_state(x0, v0, a0, F0, x1, v1, a1, F, ext_z, t, past_x, past_t, npast,
 
 @njit(cache=True)
 def relax_level(st_i, changed):  # noqa: ANN001, ANN201
-    """The step refinement after an accepted step: a step that changed a contact or
-    friction state or a tension steeply keeps the level (``st_i[0]``) and restarts the
-    count of smooth steps (``st_i[1]``); two smooth steps in a row go a level coarser."""
+    """After an accepted step: a ``changed`` one (state switch, steep tension) restarts
+    the count of smooth steps ``st_i[1]``; two smooth ones go a level coarser."""
     if changed:
         st_i[1] = 0
     else:

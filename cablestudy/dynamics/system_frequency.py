@@ -571,10 +571,8 @@ def _iterate_compiled(
 def sweep_compiled(
     model: SystemLinear, w: np.ndarray, prescribed: np.ndarray, settings: DragSettings
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The compiled drag iteration of ``w.size`` cases (:func:`.system_fd_sweep.solve_sweep`)
-    at ``w`` (n,) [rad/s] with the points' motion ``prescribed`` (n, P, 3) [m]: its
-    arrays (the nodes' displacements (n, N, 3), the points' (n, P, 3), the lines' end
-    forces (n, L, 6), ``info`` (n, INFO) and ``finfo`` (n, 2))."""
+    """:func:`.system_fd_sweep.solve_sweep` of the cases ``w`` (n,) [rad/s], points'
+    motion ``prescribed`` (n, P, 3) [m]: its disp, u_pts, forces, info, finfo."""
     packed = model.packed
     n = w.size
     N, L, P = int(packed.node_offset[-1]), len(model.lines), model.point_kind.size
