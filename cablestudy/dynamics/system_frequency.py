@@ -552,20 +552,10 @@ def solve_system_harmonic(
     and message."""
     settings = settings or DragSettings()
     prescribed = prescribed_motion(model, body_motion, point_excitation)
-    outcome = _iterate_compiled(model, omega, prescribed, settings)
-    return harmonic_result(model, omega, body_motion, settings, prescribed, outcome)
-
-
-def _iterate_compiled(
-    model: SystemLinear, omega: float, prescribed: np.ndarray, settings: DragSettings
-) -> tuple:
-    """The drag iteration by the compiled kernel (held to the NumPy reference,
-    tests/system_frequency_reference.py), a sweep of one case
-    (:func:`.system_fd_sweep.solve_sweep`, the study's one path), its outcome in the
-    same form."""
     w = np.array([float(omega)])
     disp, u_pts, forces, info, finfo = sweep_compiled(model, w, prescribed, settings)
-    return compiled_outcome(model, omega, info[0], finfo[0], disp[0], u_pts[0], forces[0])
+    outcome = compiled_outcome(model, omega, info[0], finfo[0], disp[0], u_pts[0], forces[0])
+    return harmonic_result(model, omega, body_motion, settings, prescribed, outcome)
 
 
 def sweep_compiled(
