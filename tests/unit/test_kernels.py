@@ -67,8 +67,7 @@ def test_kinds_follow_the_analyses() -> None:
     assert kinds(dyn + "frequency\n") == ["statics", "frequency"]
     assert kinds(dyn + "auto\n") == ["statics", "time", "frequency"]
     # a system's dynamics (time or frequency domain): its own kernels, compiled at install
-    seg = "{length: %s, diameter: 0.05, mass_per_length: 10.0, axial_stiffness: 1.0e8}"
-    system = kernels._WARM_SYSTEM.replace("SEG70", seg % 70.0).replace("SEG35", seg % 35.0)
+    system = kernels._warm_system_text("s", kernels._WARM_DYNAMIC)
     for method in ("time", "frequency", "auto"):
         src = parse_study_text(system.replace("METHOD", method), "s.yaml")
         assert kernels.kinds_of(validate_data(src.data, src)) == ["statics", "systems"]
