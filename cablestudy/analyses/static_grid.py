@@ -26,7 +26,7 @@ from ..study.grid import _POSITION, _STIFFNESS, CaseGrid
 from ..study.study import Study
 from .common import segment_of
 from .fallback import NO_KERNEL
-from .grid_chunk import STATUS_NUMERICAL, GridChunk, warning_column
+from .grid_chunk import STATUS_NUMERICAL, GridChunk, array_chunk, numerical_fault
 from .plausibility import fallback_warning, largest_strain, strain_warning
 from .surface import template_surface_warnings
 from .variables import KEPT_STATUSES
@@ -560,19 +560,5 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
         for i, text in template_surface_warnings(grid.template, st.s, st.position, status):
             warnings.setdefault(i, []).append(text)
     except Exception as exc:  # noqa: BLE001 - a fault in a chunk fails its cases, as data
-        status[:] = STATUS_NUMERICAL
-        messages = [f"{type(exc).__name__}: {exc}"] * n
-        warnings = {}
-        data = {}
-    wall = (time.perf_counter() - t0) / max(n, 1)
-    return GridChunk(
-        lo=lo,
-        hi=hi,
-        key=grid.chunk_key(lo, hi),
-        status=status,
-        message=np.array(messages, dtype=str).reshape(n),
-        wall_time=np.full(n, wall),
-        data=data,
-        warning=warning_column(n, warnings),
-        fallback_reason=np.array(reasons.tolist(), dtype=str).reshape(n),
-    )
+        messages, warnings, data = numerical_fault(exc, status)
+    return array_chunk(grid, lo, hi, t0, status, messages, data, warnings, reasons)
