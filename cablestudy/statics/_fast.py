@@ -184,20 +184,9 @@ def _total(
 
 
 @njit(cache=True, error_model="numpy")
-def _solve3(J: np.ndarray, g: np.ndarray, free: np.ndarray, step: np.ndarray) -> bool:
-    """step = -J^-1 g on the free components (Gaussian elimination, partial pivoting)."""
-    idx = np.empty(3, dtype=np.int64)
-    n = 0
-    for k in range(3):
-        step[k] = 0.0
-        if free[k]:
-            idx[n] = k
-            n += 1
-    A = np.zeros((3, 4))
-    for i in range(n):
-        for j in range(n):
-            A[i, j] = J[idx[i], idx[j]]
-        A[i, n] = -g[idx[i]]
+def _gauss(A: np.ndarray, n: int, x: np.ndarray) -> bool:
+    """x[:n] solving A[:n, :n] x = A[:n, n] by Gaussian elimination with partial pivoting
+    (``A`` overwritten); False where a pivot is zero or not finite."""
     for c in range(n):
         piv = c
         for i in range(c + 1, n):
@@ -212,12 +201,32 @@ def _solve3(J: np.ndarray, g: np.ndarray, free: np.ndarray, step: np.ndarray) ->
             f = A[i, c] / A[c, c]
             for j in range(c, n + 1):
                 A[i, j] -= f * A[c, j]
-    x = np.zeros(3)
     for i in range(n - 1, -1, -1):
         acc = A[i, n]
         for j in range(i + 1, n):
             acc -= A[i, j] * x[j]
         x[i] = acc / A[i, i]
+    return True
+
+
+@njit(cache=True, error_model="numpy")
+def _solve3(J: np.ndarray, g: np.ndarray, free: np.ndarray, step: np.ndarray) -> bool:
+    """step = -J^-1 g on the free components (Gaussian elimination, partial pivoting)."""
+    idx = np.empty(3, dtype=np.int64)
+    n = 0
+    for k in range(3):
+        step[k] = 0.0
+        if free[k]:
+            idx[n] = k
+            n += 1
+    A = np.zeros((3, 4))
+    for i in range(n):
+        for j in range(n):
+            A[i, j] = J[idx[i], idx[j]]
+        A[i, n] = -g[idx[i]]
+    x = np.zeros(3)
+    if not _gauss(A, n, x):
+        return False
     for i in range(n):
         step[idx[i]] = x[i]
     return True
