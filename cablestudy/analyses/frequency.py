@@ -25,6 +25,7 @@ from ..dynamics.frequency_model import DragSettings, ReducedLine
 from ..dynamics.harmonic_cases import solve_harmonic_cases
 from ..dynamics.linear_model import linear_line
 from ..dynamics.modal import ModalProblem
+from ..dynamics.system_validity import line_failures
 from ..dynamics.validity import Validity, measures_cases
 from ..statics import STATUS_NO_SOLUTION, STATUS_NUMERICAL, STATUS_OK, StaticResult
 from ..statics.base import StaticProblem
@@ -393,22 +394,7 @@ def _judged(
         reasons.append(
             f"drag linearisation not converged ({iterations} iterations, change {change:.2g})"
         )
-    if v.min_tension_ratio < auto.min_tension_ratio:
-        reasons.append(
-            f"near slack: min/static tension {v.min_tension_ratio:.3g} < {auto.min_tension_ratio:g}"
-        )
-    if v.amplitude_sag_ratio > auto.max_amplitude_sag_ratio:
-        reasons.append(
-            f"large motion: amplitude/sag {v.amplitude_sag_ratio:.3g} > "
-            f"{auto.max_amplitude_sag_ratio:g}"
-        )
-    if not math.isfinite(v.touchdown_travel):
-        # no submerged weight at a touchdown point holds it: its travel has no bound
-        reasons.append("touchdown travel unbounded: no submerged weight at the touchdown point")
-    elif v.touchdown_travel > auto.max_touchdown_travel:
-        reasons.append(
-            f"touchdown travel {v.touchdown_travel:.3g} L > {auto.max_touchdown_travel:g} L"
-        )
+    reasons += line_failures(v, auto)
     return FrequencyOutcome(
         status=STATUS_OK,
         message="",

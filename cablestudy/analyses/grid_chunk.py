@@ -8,6 +8,7 @@ and the chunk whose cases all failed.
 from __future__ import annotations
 
 import math
+import time
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -66,6 +67,45 @@ def warning_column(n: int, warnings: dict[int, list[str]]) -> np.ndarray:
     for i, text in texts.items():
         column[i] = text
     return column
+
+
+def numerical_fault(
+    exc: Exception, status: np.ndarray
+) -> tuple[list[str], dict[int, list[str]], dict[str, np.ndarray]]:
+    """A fault inside an array chunk fails all its cases, as data: ``status`` set to
+    :data:`STATUS_NUMERICAL` in place; returns the messages (the fault's text for every
+    case), no warnings and no data."""
+    status[:] = STATUS_NUMERICAL
+    return [f"{type(exc).__name__}: {exc}"] * len(status), {}, {}
+
+
+def array_chunk(
+    grid: CaseGrid,
+    lo: int,
+    hi: int,
+    t0: float,
+    status: np.ndarray,
+    messages: list[str],
+    data: dict[str, np.ndarray],
+    warnings: dict[int, list[str]],
+    reasons: np.ndarray,
+) -> GridChunk:
+    """Rows ``lo:hi`` of ``grid`` solved together since ``t0`` (:func:`time.perf_counter`):
+    the chunk's wall time shared out equally, the warnings as a column, the fallback
+    ``reasons`` (object array of text) as unicode."""
+    n = len(status)
+    wall = (time.perf_counter() - t0) / max(n, 1)
+    return GridChunk(
+        lo=lo,
+        hi=hi,
+        key=grid.chunk_key(lo, hi),
+        status=status,
+        message=np.array(messages, dtype=str).reshape(n),
+        wall_time=np.full(n, wall),
+        data=data,
+        warning=warning_column(n, warnings),
+        fallback_reason=np.array(reasons.tolist(), dtype=str).reshape(n),
+    )
 
 
 def failed_grid_chunk(grid: CaseGrid, lo: int, hi: int, message: str) -> GridChunk:

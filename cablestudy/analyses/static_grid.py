@@ -26,7 +26,7 @@ from ..study.grid import _POSITION, _STIFFNESS, CaseGrid
 from ..study.study import Study
 from .common import segment_of
 from .fallback import NO_KERNEL
-from .grid_chunk import STATUS_NUMERICAL, GridChunk, warning_column
+from .grid_chunk import STATUS_NUMERICAL, GridChunk, array_chunk, numerical_fault
 from .plausibility import fallback_warning, largest_strain, strain_warning
 from .surface import template_surface_warnings
 from .variables import KEPT_STATUSES
@@ -268,6 +268,18 @@ def _compiled_solve(
             ).ok
         return ok
 
+    def keep_contact(c: np.ndarray, got: dict[str, np.ndarray], a: str, b: str) -> None:
+        """The contact kernel's answers ``got`` for the cases ``c``, its end forces
+        ``a`` and ``b`` those at the line's ends A and B; the cases that did not settle
+        or fail :func:`seabed_checked` go to the general solver."""
+        position[c], tension[c] = got["position"], got["tension"]
+        TA[c], TL[c] = got[a], -got[b]
+        laid[c], iters[c], resid[c] = got["laid_length"], got["iterations"], got["residual"]
+        settled = got["status"] == 0
+        settled &= seabed_checked(c, settled)
+        for i in c[~settled]:
+            rest[i], why[i] = True, NOT_SETTLED
+
     # why the kernels hand a case to the general solver ('' for a case they never take:
     # both ends on the seabed, an end below it)
     why = [""] * N
@@ -351,13 +363,7 @@ def _compiled_solve(
             ell[c], EA[c], -q[c][..., 2], point[c], bounds[c], rA[c], rB[c], plane,
             tol[c], maxit[c], s[c],
         )  # fmt: skip
-        position[c], tension[c] = got["position"], got["tension"]
-        TA[c], TL[c] = got["force_a"], -got["force_b"]
-        laid[c], iters[c], resid[c] = got["laid_length"], got["iterations"], got["residual"]
-        settled = got["status"] == 0
-        settled &= seabed_checked(c, settled)
-        for i in c[~settled]:
-            rest[i], why[i] = True, NOT_SETTLED
+        keep_contact(c, got, "force_a", "force_b")
     if contact_b.any():
         from ..statics.batch_kernels import solve_contact_arrays
         from ..statics.semi_analytic_shape import make_layout, reversed_line
@@ -376,13 +382,7 @@ def _compiled_solve(
             ell_r, EA_r, w_r, point_r, bounds_r, rB[c], rA[c], plane,
             tol[c], maxit[c], Ltot[c, None] - s[c],
         )  # fmt: skip
-        position[c], tension[c] = got["position"], got["tension"]
-        TA[c], TL[c] = got["force_b"], -got["force_a"]
-        laid[c], iters[c], resid[c] = got["laid_length"], got["iterations"], got["residual"]
-        settled = got["status"] == 0
-        settled &= seabed_checked(c, settled)
-        for i in c[~settled]:
-            rest[i], why[i] = True, NOT_SETTLED
+        keep_contact(c, got, "force_b", "force_a")
     out = StaticArrays(
         s=s,
         position=position,
@@ -560,19 +560,5 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
         for i, text in template_surface_warnings(grid.template, st.s, st.position, status):
             warnings.setdefault(i, []).append(text)
     except Exception as exc:  # noqa: BLE001 - a fault in a chunk fails its cases, as data
-        status[:] = STATUS_NUMERICAL
-        messages = [f"{type(exc).__name__}: {exc}"] * n
-        warnings = {}
-        data = {}
-    wall = (time.perf_counter() - t0) / max(n, 1)
-    return GridChunk(
-        lo=lo,
-        hi=hi,
-        key=grid.chunk_key(lo, hi),
-        status=status,
-        message=np.array(messages, dtype=str).reshape(n),
-        wall_time=np.full(n, wall),
-        data=data,
-        warning=warning_column(n, warnings),
-        fallback_reason=np.array(reasons.tolist(), dtype=str).reshape(n),
-    )
+        messages, warnings, data = numerical_fault(exc, status)
+    return array_chunk(grid, lo, hi, t0, status, messages, data, warnings, reasons)

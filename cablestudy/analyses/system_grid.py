@@ -44,7 +44,7 @@ from ..study.grid import CaseGrid, _numeric, grid_shape
 from ..study.loader import StudySource
 from ..study.study import Study
 from .common import segment_of
-from .grid_chunk import STATUS_NUMERICAL, GridChunk, warning_column
+from .grid_chunk import GridChunk, array_chunk, numerical_fault
 
 #: swept paths the system grid takes: (group, name, field, component)
 _PATH = re.compile(r"^(bodies|points)\.([^.]+)\.(position|offset|force)\.(\d)$")
@@ -293,22 +293,8 @@ def evaluate_system_chunk(grid: SystemGrid, lo: int, hi: int) -> GridChunk:
             arr[bad] = np.nan
         data = out
     except Exception as exc:  # noqa: BLE001 - a fault in a chunk fails its cases, as data
-        status[:] = STATUS_NUMERICAL
-        messages = [f"{type(exc).__name__}: {exc}"] * n
-        warnings = {}
-        data = {}
-    wall = (time.perf_counter() - t0) / max(n, 1)
-    return GridChunk(
-        lo=lo,
-        hi=hi,
-        key=grid.chunk_key(lo, hi),
-        status=status,
-        message=np.array(messages, dtype=str).reshape(n),
-        wall_time=np.full(n, wall),
-        data=data,
-        warning=warning_column(n, warnings),
-        fallback_reason=np.array(reasons.tolist(), dtype=str).reshape(n),
-    )
+        messages, warnings, data = numerical_fault(exc, status)
+    return array_chunk(grid, lo, hi, t0, status, messages, data, warnings, reasons)
 
 
 def _starts(grid: SystemGrid, pos: np.ndarray, pforce: np.ndarray) -> list[np.ndarray | None]:

@@ -20,6 +20,83 @@ def _asinh_ratio(X: float) -> float:
 
 
 @njit(cache=True, error_model="numpy")
+def _curve(
+    curved: bool,
+    V0: float,
+    V1: float,
+    H2: float,
+    H: float,
+    T0n: float,
+    T1n: float,
+    ell: float,
+    wl: float,
+) -> tuple[float, float, float]:
+    """(P_l, A_1, H^2 J) of one piece of length ``ell`` > 0 under a load of total ``wl``
+    along u, with the tension's components V0, V1 along u at its ends, H2 = H^2 across:
+    the catenary whose V keeps its sign, the one where it changes sign, or the straight
+    piece (not ``curved``: no load)."""
+    a = abs(V0)
+    b = abs(V1)
+    Dn = b * T0n + a * T1n
+    if curved and V0 * V1 > 0.0:
+        X = (b - a) * (b + a) / Dn
+        Pl = ell * (a + b) / Dn * _asinh_ratio(X)
+        A1 = 0.5 * ell * (V0 + V1) * (V0 * V0 + V1 * V1 + H2) / (V1 * T1n + V0 * T0n)
+        A1 += 0.5 * H2 * Pl
+        H2J = H2 * ell * (a + b) / (T0n * T1n * Dn)
+    elif curved and wl > 0.0:
+        Hs = max(H, 1e-200 * (a + b))
+        Pl = ell * (math.asinh(V1 / Hs) - math.asinh(V0 / Hs)) / wl
+        A1 = 0.5 * ell * (V1 * T1n - V0 * T0n) / wl + 0.5 * H2 * Pl
+        H2J = ell * (V1 / T1n - V0 / T0n) / wl
+    else:
+        Pl = ell / T0n
+        A1 = ell * T0n
+        H2J = H2 * ell / (T0n * T0n * T0n)
+    return Pl, A1, H2J
+
+
+@njit(cache=True, error_model="numpy")
+def _flexibility(
+    ell: float,
+    V0: float,
+    V1: float,
+    H: float,
+    T0n: float,
+    T1n: float,
+    Pl: float,
+    H2J: float,
+    inv_ea: float,
+    hx: float,
+    hy: float,
+    hz: float,
+    ux: float,
+    uy: float,
+    uz: float,
+    jac: np.ndarray,
+) -> None:
+    """The flexibility d(dr)/dT of one piece into ``jac`` (3, 3) from its
+    :func:`_curve` terms, its tension across the load h (|h| = H) and the load's
+    direction u."""
+    L1H = ell * (V0 + V1) * H / ((T0n + T1n) * T0n * T1n)
+    K = Pl - H2J
+    if H > 0.0:
+        nx, ny, nz = hx / H, hy / H, hz / H
+    else:
+        nx, ny, nz = 0.0, 0.0, 0.0
+    n = (nx, ny, nz)
+    u = (ux, uy, uz)
+    diag = inv_ea + Pl
+    for i in range(3):
+        for j in range(i, 3):
+            v = -H2J * n[i] * n[j] - L1H * (n[i] * u[j] + u[i] * n[j]) - K * u[i] * u[j]
+            if i == j:
+                v += diag
+            jac[i, j] = v
+            jac[j, i] = v
+
+
+@njit(cache=True, error_model="numpy")
 def _piece(
     tx: float,
     ty: float,
@@ -43,16 +120,7 @@ def _piece(
     V1 = V0 + wl
     T0n = math.sqrt(H2 + V0 * V0)
     T1n = math.sqrt(H2 + V1 * V1)
-    a = abs(V0)
-    b = abs(V1)
     H = math.sqrt(H2)
-    kind = 0  # 0 same sign, 1 sign change, 2 straight
-    if aw > 0.0 and V0 * V1 > 0.0:
-        kind = 0
-    elif aw > 0.0 and wl > 0.0:
-        kind = 1
-    else:
-        kind = 2
     if ell == 0.0:
         dr[0] = 0.0
         dr[1] = 0.0
@@ -62,22 +130,7 @@ def _piece(
                 for j in range(3):
                     jac[i, j] = 0.0
         return 0.0
-    Dn = b * T0n + a * T1n
-    if kind == 0:
-        X = (b - a) * (b + a) / Dn
-        Pl = ell * (a + b) / Dn * _asinh_ratio(X)
-        A1 = 0.5 * ell * (V0 + V1) * (V0 * V0 + V1 * V1 + H2) / (V1 * T1n + V0 * T0n)
-        A1 += 0.5 * H2 * Pl
-        H2J = H2 * ell * (a + b) / (T0n * T1n * Dn)
-    elif kind == 1:
-        Hs = max(H, 1e-200 * (a + b))
-        Pl = ell * (math.asinh(V1 / Hs) - math.asinh(V0 / Hs)) / wl
-        A1 = 0.5 * ell * (V1 * T1n - V0 * T0n) / wl + 0.5 * H2 * Pl
-        H2J = ell * (V1 / T1n - V0 / T0n) / wl
-    else:
-        Pl = ell / T0n
-        A1 = ell * T0n
-        H2J = H2 * ell / (T0n * T0n * T0n)
+    Pl, A1, H2J = _curve(aw > 0.0, V0, V1, H2, H, T0n, T1n, ell, wl)
     S1 = ell * (V0 + V1) / (T0n + T1n)
     inv_ea = ell / EA
     qz = -w
@@ -87,22 +140,7 @@ def _piece(
     TT = tx * tx + ty * ty + tz * tz
     energy = A1 + (TT * ell - tz * qz * ell * ell + w * w * ell**3 / 3.0) / (2.0 * EA)
     if want_jac:
-        L1H = ell * (V0 + V1) * H / ((T0n + T1n) * T0n * T1n)
-        K = Pl - H2J
-        if H > 0.0:
-            nx, ny, nz = tx / H, ty / H, hz / H
-        else:
-            nx, ny, nz = 0.0, 0.0, 0.0
-        n = (nx, ny, nz)
-        u = (0.0, 0.0, uz)
-        diag = inv_ea + Pl
-        for i in range(3):
-            for j in range(i, 3):
-                v = -H2J * n[i] * n[j] - L1H * (n[i] * u[j] + u[i] * n[j]) - K * u[i] * u[j]
-                if i == j:
-                    v += diag
-                jac[i, j] = v
-                jac[j, i] = v
+        _flexibility(ell, V0, V1, H, T0n, T1n, Pl, H2J, inv_ea, tx, ty, hz, 0.0, 0.0, uz, jac)
     return energy
 
 
@@ -146,20 +184,9 @@ def _total(
 
 
 @njit(cache=True, error_model="numpy")
-def _solve3(J: np.ndarray, g: np.ndarray, free: np.ndarray, step: np.ndarray) -> bool:
-    """step = -J^-1 g on the free components (Gaussian elimination, partial pivoting)."""
-    idx = np.empty(3, dtype=np.int64)
-    n = 0
-    for k in range(3):
-        step[k] = 0.0
-        if free[k]:
-            idx[n] = k
-            n += 1
-    A = np.zeros((3, 4))
-    for i in range(n):
-        for j in range(n):
-            A[i, j] = J[idx[i], idx[j]]
-        A[i, n] = -g[idx[i]]
+def _gauss(A: np.ndarray, n: int, x: np.ndarray) -> bool:
+    """x[:n] solving A[:n, :n] x = A[:n, n] by Gaussian elimination with partial pivoting
+    (``A`` overwritten); False where a pivot is zero or not finite."""
     for c in range(n):
         piv = c
         for i in range(c + 1, n):
@@ -174,12 +201,32 @@ def _solve3(J: np.ndarray, g: np.ndarray, free: np.ndarray, step: np.ndarray) ->
             f = A[i, c] / A[c, c]
             for j in range(c, n + 1):
                 A[i, j] -= f * A[c, j]
-    x = np.zeros(3)
     for i in range(n - 1, -1, -1):
         acc = A[i, n]
         for j in range(i + 1, n):
             acc -= A[i, j] * x[j]
         x[i] = acc / A[i, i]
+    return True
+
+
+@njit(cache=True, error_model="numpy")
+def _solve3(J: np.ndarray, g: np.ndarray, free: np.ndarray, step: np.ndarray) -> bool:
+    """step = -J^-1 g on the free components (Gaussian elimination, partial pivoting)."""
+    idx = np.empty(3, dtype=np.int64)
+    n = 0
+    for k in range(3):
+        step[k] = 0.0
+        if free[k]:
+            idx[n] = k
+            n += 1
+    A = np.zeros((3, 4))
+    for i in range(n):
+        for j in range(n):
+            A[i, j] = J[idx[i], idx[j]]
+        A[i, n] = -g[idx[i]]
+    x = np.zeros(3)
+    if not _gauss(A, n, x):
+        return False
     for i in range(n):
         step[idx[i]] = x[i]
     return True
@@ -411,8 +458,6 @@ def _piece_general(
     V1 = V0 + wl
     T0n = math.sqrt(H2 + V0 * V0)
     T1n = math.sqrt(H2 + V1 * V1)
-    a = abs(V0)
-    b = abs(V1)
     H = math.sqrt(H2)
     if ell == 0.0:
         for i in range(3):
@@ -421,22 +466,7 @@ def _piece_general(
                 for j in range(3):
                     jac[i, j] = 0.0
         return 0.0
-    Dn = b * T0n + a * T1n
-    if w > 0.0 and V0 * V1 > 0.0:
-        X = (b - a) * (b + a) / Dn
-        Pl = ell * (a + b) / Dn * _asinh_ratio(X)
-        A1 = 0.5 * ell * (V0 + V1) * (V0 * V0 + V1 * V1 + H2) / (V1 * T1n + V0 * T0n)
-        A1 += 0.5 * H2 * Pl
-        H2J = H2 * ell * (a + b) / (T0n * T1n * Dn)
-    elif w > 0.0 and wl > 0.0:
-        Hs = max(H, 1e-200 * (a + b))
-        Pl = ell * (math.asinh(V1 / Hs) - math.asinh(V0 / Hs)) / wl
-        A1 = 0.5 * ell * (V1 * T1n - V0 * T0n) / wl + 0.5 * H2 * Pl
-        H2J = ell * (V1 / T1n - V0 / T0n) / wl
-    else:
-        Pl = ell / T0n
-        A1 = ell * T0n
-        H2J = H2 * ell / (T0n * T0n * T0n)
+    Pl, A1, H2J = _curve(w > 0.0, V0, V1, H2, H, T0n, T1n, ell, wl)
     S1 = ell * (V0 + V1) / (T0n + T1n)
     inv_ea = ell / EA
     e2 = 0.5 * ell * inv_ea
@@ -447,22 +477,7 @@ def _piece_general(
     Tq = tx * qx + ty * qy + tz * qz
     energy = A1 + (TT * ell - Tq * ell * ell + w * w * ell**3 / 3.0) / (2.0 * EA)
     if want_jac:
-        L1H = ell * (V0 + V1) * H / ((T0n + T1n) * T0n * T1n)
-        K = Pl - H2J
-        if H > 0.0:
-            nx, ny, nz = hx / H, hy / H, hz / H
-        else:
-            nx, ny, nz = 0.0, 0.0, 0.0
-        n = (nx, ny, nz)
-        u = (ux, uy, uz)
-        diag = inv_ea + Pl
-        for i in range(3):
-            for j in range(i, 3):
-                v = -H2J * n[i] * n[j] - L1H * (n[i] * u[j] + u[i] * n[j]) - K * u[i] * u[j]
-                if i == j:
-                    v += diag
-                jac[i, j] = v
-                jac[j, i] = v
+        _flexibility(ell, V0, V1, H, T0n, T1n, Pl, H2J, inv_ea, hx, hy, hz, ux, uy, uz, jac)
     return energy
 
 

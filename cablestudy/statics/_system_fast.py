@@ -34,7 +34,7 @@ import math
 
 import numpy as np
 
-from ._fast import njit
+from ._fast import _gauss, njit
 from ._fast_contact import LIFT_OFF, NOT_CONVERGED, NUMERICAL
 from ._system_lines import _contact_line, _free_line, _inv3, _offsets
 
@@ -62,25 +62,9 @@ def _solve_dense(A: np.ndarray, b: np.ndarray, x: np.ndarray, W: np.ndarray) -> 
         for j in range(n):
             W[i, j] = A[i, j]
         W[i, n] = b[i]
-    for c in range(n):
-        piv = c
-        for i in range(c + 1, n):
-            if abs(W[i, c]) > abs(W[piv, c]):
-                piv = i
-        if W[piv, c] == 0.0 or not math.isfinite(W[piv, c]):
-            return False
-        if piv != c:
-            for j in range(n + 1):
-                W[c, j], W[piv, j] = W[piv, j], W[c, j]
-        for i in range(c + 1, n):
-            f = W[i, c] / W[c, c]
-            for j in range(c, n + 1):
-                W[i, j] -= f * W[c, j]
-    for i in range(n - 1, -1, -1):
-        acc = W[i, n]
-        for j in range(i + 1, n):
-            acc -= W[i, j] * x[j]
-        x[i] = acc / W[i, i]
+    if not _gauss(W, n, x):
+        return False
+    for i in range(n):
         if not math.isfinite(x[i]):
             return False
     return True

@@ -121,6 +121,7 @@ def _solve_discrete(problem, disc, x0, start, free, end_force, deadline):  # noq
     """Newton from the cable solution at the nodes, then the node-level verification."""
     from ..dynamics.assembly import Workspace, evaluate
     from ..dynamics.mixed import (
+        MixedResult,
         geometry_rounding,
         is_finite_line,
         mixed_equilibrium,
@@ -141,16 +142,20 @@ def _solve_discrete(problem, disc, x0, start, free, end_force, deadline):  # noq
         x1, anchor = x0, x0.copy()
         if disc.has_seabed:
             x1, anchor = _seated_start(disc, x1, work, t_elements)
-        sol = mixed_equilibrium(
-            disc,
-            x1,
-            t_elements,
-            anchor,
-            tol_force=tol,
-            relative=problem.tolerance,
-            max_iterations=max(problem.max_iterations, 200),
-            deadline=deadline,
-        )
+
+        def mixed(x: np.ndarray, t: np.ndarray, anchor: np.ndarray) -> MixedResult:
+            return mixed_equilibrium(
+                disc,
+                x,
+                t,
+                anchor,
+                tol_force=tol,
+                relative=problem.tolerance,
+                max_iterations=max(problem.max_iterations, 200),
+                deadline=deadline,
+            )
+
+        sol = mixed(x1, t_elements, anchor)
         x, t_el, its, ok = sol.position, sol.tension, sol.iterations, sol.converged
         anchor = sol.anchor
         res = sol.force_residual
@@ -174,16 +179,7 @@ def _solve_discrete(problem, disc, x0, start, free, end_force, deadline):  # noq
                 t_el = evaluate(disc, x, np.zeros_like(x), anchor=anchor).tension.copy()
                 # polished by the mixed form from there (its tension from equilibrium,
                 # not from rounded chords), which now starts close enough to converge
-                polish = mixed_equilibrium(
-                    disc,
-                    x,
-                    t_el,
-                    anchor,
-                    tol_force=tol,
-                    relative=problem.tolerance,
-                    max_iterations=max(problem.max_iterations, 200),
-                    deadline=deadline,
-                )
+                polish = mixed(x, t_el, anchor)
                 its += polish.iterations
                 if polish.converged:
                     x, t_el, anchor = polish.position, polish.tension, polish.anchor
