@@ -1,7 +1,9 @@
 """Every study as a grid of cases: a case is its index into the grid of sweep axes.
 
-The study is validated once as a template, each swept value once at its own path, and
-the checks that combine fields over the grid (:func:`expand_grid`): with NumPy where the
+The study is validated once as a template, each swept value once at its own path
+(inside the smallest model that holds it where that is exactly the whole study's
+validation, :mod:`cablestudy.study.grid_values`; else as a whole study), and the checks
+that combine fields over the grid (:func:`expand_grid`): with NumPy where the
 compiled catenary kernels take the grid as arrays (end positions of fixed ends, segment
 stiffnesses: :attr:`CaseGrid.arrays`, :mod:`cablestudy.analyses.static_grid`), else by the
 models' own ``mode="after"`` validators on each case's study, which is the template with
@@ -248,6 +250,7 @@ def expand_grid(src: StudySource, template: Study | None = None) -> CaseGrid:
     :class:`StudyError` naming every fault when the template, a swept value or a
     combination of them is invalid, before any work."""
     from .grid_studies import combinations_ok, copyable, value_at
+    from .grid_values import validated_values
 
     if template is None:
         template = validate_data(src.data, src)
@@ -262,7 +265,17 @@ def expand_grid(src: StudySource, template: Study | None = None) -> CaseGrid:
     }
     alone = True  # every swept value valid at its own path
     for axis in axes:
+        inside = not any(p in whole for p in axis.paths)
         for i in range(axis.size):
+            got = (
+                validated_values(template, base, axis.paths, tuple(v[i] for v in axis.values))
+                if inside
+                else None
+            )
+            if got is not None:  # validated inside the model that holds it (grid_values)
+                for path in axis.paths:
+                    validated[path][1].append(got[0][path])
+                continue
             data = _copy_tree(base)
             try:
                 for path, vals in zip(axis.paths, axis.values, strict=True):
