@@ -111,6 +111,14 @@ class CaseGrid:
         raises as a full validation of the case would."""
         from .grid_studies import case_study
 
+        built = self.memo.get("cases")
+        if built is not None:  # each case's study is built once
+            return built[int(np.ravel_multi_index(index, self.shape))].study
+        if len(self.axes) == 1 and not self.whole:
+            # a single axis: the study its value was checked in (expand_grid)
+            found = self.memo.get(("value", index[0]))
+            if found is not None:
+                return found
         base = self.template
         if self.whole:
             picks = tuple(
@@ -264,6 +272,11 @@ def expand_grid(src: StudySource, template: Study | None = None) -> CaseGrid:
         p: (k, []) for k, axis in enumerate(axes) for p in axis.paths
     }
     alone = True  # every swept value valid at its own path
+    # with a single axis, the study a value is checked in (the template with it put in)
+    # is its case's study: the combinations are checked, and those of a grid run case by
+    # case kept for its cases (which hold them anyway)
+    single = len(axes) == 1
+    studies: dict[Any, Study] = {}
     for axis in axes:
         inside = not any(p in whole for p in axis.paths)
         for i in range(axis.size):
@@ -275,7 +288,10 @@ def expand_grid(src: StudySource, template: Study | None = None) -> CaseGrid:
             if got is not None:  # validated inside the model that holds it (grid_values)
                 for path in axis.paths:
                     validated[path][1].append(got[0][path])
+                if single and not chunked:
+                    studies[("value", i)] = got[1]
                 continue
+            single = False
             data = _copy_tree(base)
             try:
                 for path, vals in zip(axis.paths, axis.values, strict=True):
@@ -308,8 +324,10 @@ def expand_grid(src: StudySource, template: Study | None = None) -> CaseGrid:
         chunked,
         whole,
         src,
+        memo=studies,
     )
-    if alone and chunked and (_combined_ok(grid) if arrays else combinations_ok(grid)):
+    checked = single and bool(axes)  # every combination already checked
+    if alone and chunked and (_combined_ok(grid) if arrays else checked or combinations_ok(grid)):
         return grid
     if alone and not chunked:
         try:

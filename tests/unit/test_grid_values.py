@@ -16,6 +16,7 @@ from cablestudy.study.grid import expand_grid
 from cablestudy.study.grid_studies import copyable, value_at
 from cablestudy.study.grid_values import validated_values
 from cablestudy.study.loader import StudyError, parse_study_text, read_study_source, validate_data
+from cablestudy.study.study import Study
 
 CONFIGS = sorted((Path(__file__).resolve().parents[2] / "configs").glob("*.yaml"))
 
@@ -139,3 +140,35 @@ def test_the_frequency_sweep_of_case8_validates_no_whole_study(
         0.1,
         0.5,
     ]
+
+
+def test_each_case_study_is_built_once(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A single axis: the study its value was checked in is its case's study, built once
+    (not again by the cases nor by study_at after them); a chunked grid keeps none of
+    them (it never holds its cases' studies)."""
+    import cablestudy.study.grid_studies as gs
+
+    built = []
+    real = gs._rebuilt
+
+    def counted(node: Any, updates: Any) -> Any:
+        if isinstance(node, Study):  # the top of a case's rebuild
+            built.append(1)
+        return real(node, updates)
+
+    monkeypatch.setattr(gs, "_rebuilt", counted)
+    src = parse_study_text(
+        LINE + "sweep:\n  analysis.dynamic.excitation.frequency: [0.05, 0.1, 0.2]\n", "t.yaml"
+    )
+    grid = expand_grid(src)
+    cases = grid.cases()
+    assert len(built) == 3  # the three studies, one per value
+    assert all(grid.study_at(c.index) is c.study for c in cases)
+    assert len(built) == 3
+    static = LINE.split("analysis:")[0].replace(", current: [{z: 0.0, speed: 0.5}]", "")
+    src = parse_study_text(
+        static + "sweep:\n  line.segments.0.length: [50.0, 60.0, 70.0]\n", "s.yaml"
+    )
+    grid = expand_grid(src)
+    assert grid.chunked and not grid.arrays
+    assert not any(isinstance(v, Study) for v in grid.memo.values())
