@@ -6,6 +6,7 @@ that trace it to its inputs. The variables are declared in
 
 from __future__ import annotations
 
+import functools
 import json
 from datetime import UTC, datetime
 from pathlib import Path
@@ -162,11 +163,28 @@ def _path_info(path: str) -> tuple[str, str]:
     return _field_info(tuple(path.split(".")))
 
 
+@functools.cache
+def installed_version(name: str) -> str:
+    """The version of the installed distribution ``name``, the string
+    :func:`importlib.metadata.version` gives: the ``Version`` header of its metadata,
+    read from the headers alone (``version`` parses the whole file, scipy's licences
+    included: some 60 kB through the e-mail parser, a few ms a run), once a process."""
+    from importlib.metadata import distribution, version
+
+    text = distribution(name).read_text("METADATA") or ""
+    for line in text.splitlines():
+        if not line.strip():  # the end of the headers
+            break
+        key, colon, value = line.partition(":")
+        if colon and key.strip().lower() == "version":
+            return value.strip()
+    return version(name)
+
+
 def provenance(src: StudySource, solver_settings: dict[str, Any]) -> dict[str, Any]:
     """Global attributes that trace a dataset to its inputs: the study YAML and its hash,
     package versions, the solver-code fingerprint and the solver settings."""
     import platform
-    from importlib.metadata import version
 
     import numpy
     import pydantic
@@ -184,10 +202,10 @@ def provenance(src: StudySource, solver_settings: dict[str, Any]) -> dict[str, A
         "numpy_version": numpy.__version__,
         # from the installed metadata: the same strings as scipy.__version__ and
         # xarray.__version__, without importing them (the array path needs neither)
-        "scipy_version": version("scipy"),
-        "xarray_version": version("xarray"),
+        "scipy_version": installed_version("scipy"),
+        "xarray_version": installed_version("xarray"),
         "pydantic_version": pydantic.VERSION,
-        "dask_version": version("dask"),
+        "dask_version": installed_version("dask"),
         "python_version": platform.python_version(),
         "cablestudy_code_sha256": code_fingerprint(),
         "solver_settings": json.dumps(solver_settings, sort_keys=True),
