@@ -14,10 +14,11 @@ validation would; a study whose combinations fail has its faults named at their 
 
 from __future__ import annotations
 
+import inspect
 import itertools
 from typing import Any
 
-from pydantic import BaseModel
+from pydantic import AfterValidator, BaseModel, BeforeValidator, PlainValidator, WrapValidator
 from pydantic_core import PydanticUndefined
 
 from .analysis import HarmonicExcitation
@@ -39,14 +40,19 @@ _DERIVING: dict[type, str] = {
 
 def copyable(template: Study, path: str) -> bool:
     """Whether the swept ``path`` can be put into copies of ``template`` (every model on
-    the way has its value set as its own field, none derives other fields from it)."""
+    the way has its value set as its own field, none derives other fields from it, and
+    the validators of a field the path goes through can run again on its built value:
+    :func:`_field_checks`)."""
     node: Any = template
-    for part in path.split("."):
+    parts = path.split(".")
+    for k, part in enumerate(parts):
         if isinstance(node, BaseModel):
             field = _DERIVING.get(type(node))
             if field is not None and (getattr(node, field, None) is not None or part == field):
                 return False
             if part not in type(node).model_fields:
+                return False
+            if k < len(parts) - 1 and _field_checks(type(node), part) is None:
                 return False
             node = getattr(node, part)
         elif isinstance(node, list | tuple):
@@ -64,6 +70,40 @@ def value_at(study: Study, path: str) -> Any:
     for part in path.split("."):
         node = node[int(part)] if isinstance(node, list | tuple) else getattr(node, part)
     return node
+
+
+def _field_checks(cls: type, name: str) -> list[Any] | None:
+    """The validators of field ``name`` of model ``cls`` that check its built value (a
+    field validator ``mode="after"`` of the value alone, an ``AfterValidator`` of its
+    annotation: Environment's distinct current heights, a nonzero direction), run again
+    where a swept value changes the field inside (an item of its list); None where one
+    cannot be run again on the built value (a validator before, around or instead of
+    pydantic's, or one that reads the other fields)."""
+    key = (cls, name)
+    if key in _FIELD_CHECKS:
+        return _FIELD_CHECKS[key]
+    found: list[Any] | None = []
+    decs = cls.__pydantic_decorators__.field_validators.values()  # type: ignore[attr-defined]
+    funcs = [(d.info.mode, d.func) for d in decs if name in d.info.fields or "*" in d.info.fields]
+    for meta in cls.model_fields[name].metadata:  # type: ignore[attr-defined]
+        if isinstance(meta, AfterValidator):
+            funcs.append(("after", meta.func))
+        elif isinstance(meta, BeforeValidator | PlainValidator | WrapValidator):
+            funcs.append(("before", meta.func))
+    for mode, func in funcs:
+        try:
+            alone = len(inspect.signature(func).parameters) == 1
+        except (TypeError, ValueError):
+            alone = False
+        if mode != "after" or not alone:
+            found = None
+            break
+        found.append(func)
+    _FIELD_CHECKS[key] = found
+    return found
+
+
+_FIELD_CHECKS: dict[tuple[type, str], list[Any] | None] = {}
 
 
 def _after_validators(cls: type) -> list[Any]:
@@ -111,6 +151,14 @@ def _rebuilt(node: Any, updates: dict[tuple[str, ...], Any]) -> Any:
             items[int(key)] = _rebuilt(items[int(key)], sub)
         return type(node)(items)
     new = node.model_copy(update={k: _rebuilt(getattr(node, k), sub) for k, sub in groups.items()})
+    for name, sub in groups.items():
+        if () in sub:
+            continue  # the swept value itself, validated at its own path
+        # a field changed inside (an item of its list): its own checks again (copyable)
+        for check in _field_checks(type(new), name) or ():
+            value = check(getattr(new, name))
+            if value is not getattr(new, name):
+                object.__setattr__(new, name, value)
     unset = new.model_fields_set
     for name, default in _defaults(type(new)):
         # a field left out that a validator filled in (e.g. a line's total length)
