@@ -35,8 +35,8 @@ Ends: ``fixed`` ends are held; a ``force`` end is a free node carrying its force
 ``mooring`` end (known horizontal force at a known height) is held where the cable
 solution puts it, so its horizontal force is the cable's to the discretisation error.
 
-Outputs at the nodes: positions, tension (the mean of the adjacent element tensions,
-the end element's at the ends), the forces on the end supports (support reactions of
+Outputs at the nodes: positions, tension (the mean of the adjacent element tensions;
+at the ends the magnitude of the end force), the forces on the end supports (support reactions of
 held ends, minus the applied force at a free end; a held end on the seabed hands the
 seabed what presses it in), and the laid length (elements with both nodes on the
 seabed spring).
@@ -228,7 +228,6 @@ def _solve_discrete(problem, disc, x0, start, free, end_force, deadline):  # noq
     F, work = node_forces(disc, x, t_el, anchor)
     tension = np.empty(s.size)
     tension[1:-1] = 0.5 * (t_el[:-1] + t_el[1:])
-    tension[0], tension[-1] = t_el[0], t_el[-1]
     forces = []
     # a held end lying on the seabed with the line laid beside it (an anchor on the
     # seabed): the seabed carries what presses the support into it (its node's own
@@ -251,6 +250,10 @@ def _solve_discrete(problem, disc, x0, start, free, end_force, deadline):  # noq
             force += into * n_hat
             bed += into * n_hat
         forces.append(force)
+    # the tension at the ends is the magnitude of the end force (DESIGN.md): the end
+    # element's tension is that at its midpoint, O(h) from the end's (its half weight,
+    # drag and the bending shear lumped on the end node lie between)
+    tension[0], tension[-1] = np.linalg.norm(forces[0]), np.linalg.norm(forces[1])
     problems = verify_nodes(
         problem, disc, x, F, work, tol=tol, floor=floor, load=load, held_on_bed=bed
     )
