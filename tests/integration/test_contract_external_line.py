@@ -1,0 +1,477 @@
+"""One-line studies nobody on the team wrote, checked from outside as an external
+evaluator would: YAML text -> ``cablestudy run CONFIG --out DIR`` -> netCDF read with
+xarray, against "The study file (the contract)" and "Conventions every dataset keeps"
+of DESIGN.md.
+
+:func:`conventions` is the reusable checker: every sweep key a dimension named after its
+last part (``position_0`` for an index), coordinates with ``units`` and ``long_name``
+(balanced, readable), a ``units`` attribute on every variable, ``status`` / ``message``
+/ ``wall_time`` per case, the global attributes (study name, YAML text, its hash,
+version, solver settings), ``x y z tension`` along ``s`` from end A, ``force_a`` /
+``force_b`` on ``component`` with magnitude the end tension and the given end
+conditions kept, ``laid_length`` matching the nodes on the seabed, and for still fluid
+off the seabed the balance force_a + force_b = weight in the fluid + attachment loads
+(by the study's own numbers, computed here). It runs over :data:`STUDIES`: fluids (air,
+water, {density}), depth / none, seabed slope and friction, one-point, sheared and
+turning currents, mass_per_length and weight_in_fluid, several segments, attachments
+(force, clump, buoy), fixed, towing and mooring ends, each static method, modal, and
+dynamics by methods time, frequency and auto (frequency or period), swept by lists and
+{start, stop, num}, two axes, keys deep in segments / attachments / current, list
+indices and a labelled vector.
+
+The physics tests then compare with closed forms and invariances (elastic catenary,
+swapped ends, a frame turned about z, quasi-static dynamics), and the bad-input tests
+check that a wrong study fails before any work, naming field, value and what is allowed.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import itertools
+import json
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+import xarray as xr
+import yaml
+
+import cablestudy
+from cablestudy.cli import main
+
+G = 9.80665
+DENSITY = {"air": 1.225, "water": 1025.0, "vacuum": 0.0}
+
+STUDIES: dict[str, str] = {
+    "air-analytic": """\
+name: air-analytic
+environment: {fluid: air}
+line:
+  segments:
+    - {length: 120.0, diameter: 0.03, mass_per_length: 5.0, axial_stiffness: 1.0e8}
+ends:
+  a: {kind: fixed, position: [10.0, 5.0, 30.0]}
+  b: {kind: fixed, position: [110.0, 5.0, 10.0]}
+analysis:
+  static: {method: analytic, nodes: 41}
+sweep:
+  ends.b.position.0: [90.0, 110.0]
+""",
+    "mooring-friction": """\
+name: mooring-friction
+environment:
+  fluid: water
+  depth: 80.0
+  seabed: {friction: 0.4}
+line:
+  segments:
+    - {length: 300.0, diameter: 0.08, mass_per_length: 120.0, axial_stiffness: 5.0e8}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -80.0]}
+  b: {kind: mooring, force: [60000.0, 30000.0], z: -10.0}
+analysis:
+  static: {nodes: 61}
+sweep:
+  environment.seabed.friction: {start: 0.0, stop: 0.8, num: 3}
+""",
+    "density-shooting-sheared": """\
+name: density-shooting-sheared
+environment:
+  fluid: {density: 1020.0}
+  depth: 150.0
+  current:
+    - {z: 0.0, speed: 1.0, heading_deg: 30.0}
+    - {z: -150.0, speed: 0.2, heading_deg: 30.0}
+line:
+  segments:
+    - {length: 250.0, diameter: 0.05, weight_in_fluid: 150.0, axial_stiffness: 2.0e8}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -150.0]}
+  b: {kind: fixed, position: [180.0, 0.0, -5.0]}
+analysis:
+  static: {method: shooting, nodes: 51}
+sweep:
+  environment.current.0.speed: {start: 0.5, stop: 1.5, num: 3}
+""",
+    "segments-attachments-slope": """\
+name: segments-attachments-slope
+environment:
+  fluid: water
+  depth: 200.0
+  seabed: {slope_deg: 3.0, slope_heading_deg: 45.0, friction: 0.2}
+line:
+  segments:
+    - {length: 150.0, diameter: 0.1, weight_in_fluid: 1200.0, axial_stiffness: 8.0e8}
+    - {length: 200.0, diameter: 0.12, mass_per_length: 9.0, axial_stiffness: 1.0e8}
+    - {length: 50.0, diameter: 0.1, weight_in_fluid: 1200.0, axial_stiffness: 8.0e8}
+  attachments:
+    - {s: 250.0, mass: 2000.0}
+    - {s: 300.0, volume: 3.0}
+    - {s: 200.0, force: [500.0, 0.0, -1000.0]}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -200.0]}
+  b: {kind: fixed, position: [300.0, 50.0, -15.0]}
+analysis:
+  static: {nodes: 81}
+sweep:
+  line.attachments.0.mass: [1000.0, 3000.0]
+  line.segments.0.length: {start: 140.0, stop: 160.0, num: 2}
+""",
+    "towing-current": """\
+name: towing-current
+environment:
+  fluid: water
+  current:
+    - {z: 0.0, speed: 1.5, heading_deg: 180.0}
+line:
+  segments:
+    - {length: 200.0, diameter: 0.04, mass_per_length: 4.0, axial_stiffness: 8.0e7}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, 0.0]}
+  b: {kind: force, force: [-2000.0, 0.0, -3000.0]}
+analysis:
+  static: {nodes: 51}
+sweep:
+  ends.b.force.0: [-1000.0, -4000.0]
+""",
+    "discrete-two-segments": """\
+name: discrete-two-segments
+environment: {fluid: water}
+line:
+  segments:
+    - {length: 60.0, diameter: 0.1, mass_per_length: 30.0, axial_stiffness: 3.0e8}
+    - {length: 60.0, diameter: 0.12, mass_per_length: 40.0, axial_stiffness: 3.0e8}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -5.0]}
+  b: {kind: fixed, position: [100.0, 0.0, -20.0]}
+analysis:
+  static: {method: discrete, nodes: 41}
+""",
+    "modal": """\
+name: modal
+environment: {fluid: water}
+line:
+  segments:
+    - {length: 100.0, diameter: 0.05, mass_per_length: 8.0, axial_stiffness: 2.0e8}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -10.0]}
+  b: {kind: fixed, position: [95.0, 0.0, -20.0]}
+analysis:
+  static: {nodes: 31}
+  modal: {modes: 4}
+sweep:
+  ends.b.position.2: [-20.0, -40.0]
+""",
+    "time-period": """\
+name: time-period
+environment: {fluid: water}
+line:
+  segments:
+    - {length: 100.0, diameter: 0.05, mass_per_length: 8.0, axial_stiffness: 2.0e8}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -60.0]}
+  b: {kind: fixed, position: [90.0, 0.0, -10.0]}
+analysis:
+  static: {nodes: 21}
+  dynamic:
+    excitation: {end: b, direction: [0.0, 0.0, 1.0], amplitude: 0.5, period: 8.0}
+    method: time
+    elements: 20
+sweep:
+  analysis.dynamic.excitation.amplitude: [0.2, 0.8]
+""",
+    "frequency-range": """\
+name: frequency-range
+environment: {fluid: water, depth: 100.0}
+line:
+  segments:
+    - {length: 120.0, diameter: 0.05, mass_per_length: 8.0, axial_stiffness: 2.0e8}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -100.0]}
+  b: {kind: fixed, position: [80.0, 0.0, -10.0]}
+analysis:
+  static: {nodes: 21}
+  dynamic:
+    excitation: {end: b, direction: [1.0, 0.0, 0.0], amplitude: 0.3, frequency: 0.1}
+    method: frequency
+    elements: 30
+sweep:
+  analysis.dynamic.excitation.frequency: {start: 0.05, stop: 0.15, num: 3}
+""",
+    "auto-period-index": """\
+name: auto-period-index
+environment:
+  fluid: water
+  depth: 60.0
+  current:
+    - {z: 0.0, speed: 0.3, heading_deg: 90.0}
+line:
+  segments:
+    - {length: 70.0, diameter: 0.04, mass_per_length: 6.0, axial_stiffness: 1.0e8}
+  attachments:
+    - {s: 35.0, force: [0.0, 0.0, -200.0]}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -30.0]}
+  b: {kind: fixed, position: [65.0, 0.0, -5.0]}
+analysis:
+  static: {nodes: 15}
+  dynamic:
+    excitation: {end: b, direction: [1.0, 0.0, 1.0], amplitude: 0.2, period: 10.0}
+    elements: 14
+sweep:
+  analysis.dynamic.excitation.period: {start: 6.0, stop: 12.0, num: 2}
+  line.attachments.0.force.2: [-200.0, -400.0]
+""",
+    "towed-modal-labels": """\
+name: towed-modal-labels
+environment: {fluid: water}
+line:
+  segments:
+    - {length: 150.0, diameter: 0.03, weight_in_fluid: 20.0, mass_per_length: 3.0,
+       axial_stiffness: 5.0e7}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, 0.0]}
+  b: {kind: force, force: [-500.0, 0.0, -1000.0]}
+analysis:
+  static: {nodes: 31, method: shooting}
+  modal: {modes: 3}
+sweep:
+  ends.b.force: {values: [[-500.0, 0.0, -1000.0], [-500.0, 300.0, -1000.0]],
+                 labels: [inline, skew]}
+""",
+    "turning-current-mooring-dynamic": """\
+name: turning-current-mooring-dynamic
+environment:
+  fluid: water
+  depth: 100.0
+  current:
+    - {z: 0.0, speed: 0.5, heading_deg: 0.0}
+    - {z: -100.0, speed: 0.2, heading_deg: 90.0}
+line:
+  segments:
+    - {length: 250.0, diameter: 0.07, mass_per_length: 100.0, axial_stiffness: 4.0e8}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -100.0]}
+  b: {kind: mooring, force: [50000.0, 0.0], z: -10.0}
+analysis:
+  static: {nodes: 26}
+  dynamic:
+    excitation: {end: b, direction: [1.0, 0.0, 0.0], amplitude: 1.0, frequency: 0.08}
+    method: time
+    elements: 25
+""",
+}
+
+
+# ------------------------------------------------------------------ helpers
+
+
+def run(tmp_path: Path, text: str, *extra: str) -> xr.Dataset:
+    """``cablestudy run CONFIG --out DIR`` on ``text``; the dataset it wrote."""
+    name = yaml.safe_load(text)["name"]
+    tmp_path.mkdir(parents=True, exist_ok=True)
+    cfg = tmp_path / f"{name}.yaml"
+    cfg.write_text(text)
+    out = tmp_path / "out"
+    args = ["run", str(cfg), "--out", str(out), "--no-progress", "--scheduler", "synchronous"]
+    assert main([*args, *extra]) == 0
+    return xr.load_dataset(out / f"{name}.nc")
+
+
+def dim_name(path: str, spec: Any) -> str:
+    """The contract's dimension name: the path's last part (an index: ``<key>_<i>``),
+    or the axis's own ``name``."""
+    if isinstance(spec, dict) and "name" in spec:
+        return str(spec["name"])
+    parts = path.split(".")
+    return f"{parts[-2]}_{parts[-1]}" if parts[-1].isdigit() else parts[-1]
+
+
+def axis_values(spec: Any) -> list[Any]:
+    if isinstance(spec, list):
+        return spec
+    if "values" in spec:
+        return list(spec["values"])
+    return list(np.linspace(spec["start"], spec["stop"], spec["num"]))
+
+
+def cases(doc: dict[str, Any]) -> list[tuple[dict[str, int], dict[str, Any]]]:
+    """(position on the sweep dims, the study with the swept values put in) per case."""
+    sweep = doc.get("sweep") or {}
+    names = [dim_name(p, s) for p, s in sweep.items()]
+    values = [axis_values(s) for s in sweep.values()]
+    out = []
+    for combo in itertools.product(*[range(len(v)) for v in values]):
+        case = json.loads(json.dumps({k: v for k, v in doc.items() if k != "sweep"}))
+        for path, vals, i in zip(sweep, values, combo, strict=True):
+            *head, last = path.split(".")
+            node: Any = case
+            for part in head:
+                node = node[int(part)] if isinstance(node, list) else node[part]
+            node[int(last) if isinstance(node, list) else last] = vals[i]
+        out.append((dict(zip(names, combo, strict=True)), case))
+    return out
+
+
+def weight_and_loads(case: dict[str, Any]) -> np.ndarray:
+    """Weight of the segments in the fluid plus the attachments' loads [N], from the
+    study's own numbers: (m - rho A) g per length (or weight_in_fluid), an
+    attachment's force, - m g and + rho V g."""
+    env = case.get("environment", {})
+    fluid = env.get("fluid", "water")
+    rho = float(fluid["density"]) if isinstance(fluid, dict) else DENSITY[fluid]
+    g = float(env.get("gravity", G))
+    total = np.zeros(3)
+    for seg in case["line"]["segments"]:
+        area = math.pi * seg["diameter"] ** 2 / 4.0
+        w = seg.get("weight_in_fluid", (seg.get("mass_per_length", 0.0) - rho * area) * g)
+        total[2] -= w * seg["length"]
+    for att in case["line"].get("attachments", []):
+        total += np.asarray(att.get("force", [0.0, 0.0, 0.0]), dtype=float)
+        total[2] += (rho * att.get("volume", 0.0) - att.get("mass", 0.0)) * g
+    return total
+
+
+def conventions(ds: xr.Dataset, text: str) -> list[str]:
+    """Every convention of DESIGN.md a one-line dataset keeps; the faults found."""
+    bad: list[str] = []
+    doc = yaml.safe_load(text)
+    analysis = doc.get("analysis", {})
+    sweep = doc.get("sweep") or {}
+    dims = [dim_name(p, s) for p, s in sweep.items()]
+    for path, spec in sweep.items():
+        name, values = dim_name(path, spec), axis_values(spec)
+        if ds.sizes.get(name) != len(values):
+            bad.append(f"sweep {path}: no dimension {name} of {len(values)}: {dict(ds.sizes)}")
+        elif "labels" not in spec and all(isinstance(v, int | float) for v in values):
+            if not np.allclose(ds[name].values.astype(float), values, rtol=1e-12):
+                bad.append(f"{name}: coordinate {ds[name].values} for {values}")
+    for name in [*ds.data_vars, *ds.coords]:
+        attrs = ds[name].attrs
+        if not isinstance(attrs.get("units"), str):
+            bad.append(f"{name}: no units")
+        long_name = str(attrs.get("long_name", ""))
+        if not long_name or long_name.count("(") != long_name.count(")"):
+            bad.append(f"{name}: long_name {long_name!r}")
+    for name in ("status", "message", "wall_time"):
+        if name not in ds or list(ds[name].dims) != dims:
+            bad.append(f"{name}: not one per case on {dims}")
+    if ds.attrs.get("study_name") != doc["name"] or ds.attrs.get("study_yaml") != text:
+        bad.append("study name or YAML text not in the global attributes")
+    if ds.attrs.get("study_sha256") != hashlib.sha256(text.encode()).hexdigest():
+        bad.append("study_sha256 is not the hash of the YAML text")
+    if ds.attrs.get("cablestudy_version") != cablestudy.__version__:
+        bad.append("cablestudy_version")
+    settings = json.loads(ds.attrs.get("solver_settings", "{}")).get("analysis", {})
+    if settings.get("static", {}).get("nodes") != analysis.get("static", {}).get("nodes", 101):
+        bad.append(f"solver_settings: {settings.get('static')}")
+    units = {"x": "m", "y": "m", "z": "m", "tension": "N", "force_a": "N", "force_b": "N"}
+    units |= {"laid_length": "m", "status": "1", "message": "1", "wall_time": "s"}
+    if analysis.get("dynamic"):
+        units |= {f"tension_{k}": "N" for k in ("max", "min", "mean", "static")}
+    if analysis.get("modal"):
+        units["natural_frequency"] = "Hz"
+    for name, unit in units.items():
+        if name not in ds or ds[name].attrs.get("units") != unit:
+            bad.append(f"{name}: missing or not in {unit}")
+    if bad:
+        return bad
+    if [ds[k].dims[-1] for k in ("x", "y", "z", "tension")] != ["s"] * 4:
+        bad.append("x, y, z, tension not along s")
+    if list(ds["component"].values) != ["x", "y", "z"] or ds["force_a"].dims[-1] != "component":
+        bad.append("force_a, force_b not on component (x, y, z)")
+    if analysis.get("modal") and ds["natural_frequency"].dims[-1] != "mode":
+        bad.append("natural_frequency not on mode")
+    nodes = analysis.get("static", {}).get("nodes", 101)
+    for at, case in cases(doc):
+        bad += [f"case {at}: {p}" for p in _case_checks(ds.isel(at), case, nodes)]
+    return bad
+
+
+def _case_checks(c: xr.Dataset, case: dict[str, Any], nodes: int) -> list[str]:
+    bad: list[str] = []
+    status, message = int(c["status"]), str(c["message"].values)
+    if status != 0:
+        return [] if message else [f"status {status} without a message"]
+    if message or not float(c["wall_time"]) > 0.0:
+        bad.append(f"ok with message {message!r} or wall_time {float(c['wall_time'])}")
+    length = sum(seg["length"] for seg in case["line"]["segments"])
+    # s from end A: the coordinate, or per case where swept lengths differ (docs)
+    s = c["arc_length"].values if "arc_length" in c else c["s"].values
+    if len(s) != nodes or abs(s[0]) > 0.0 or abs(s[-1] - length) > 1e-12 * length:
+        bad.append(f"s from {s[0]} to {s[-1]} ({len(s)} points) on a {length} m line")
+    pos = np.stack([c[k].values for k in "xyz"], axis=-1)
+    tension = c["tension"].values
+    fa, fb = c["force_a"].values, c["force_b"].values
+    # |force| is the end tension; rounding only (both come from the same solution)
+    for label, force, t_end in (("a", fa, tension[0]), ("b", fb, tension[-1])):
+        if not np.isclose(np.linalg.norm(force), t_end, rtol=1e-9):
+            bad.append(f"|force_{label}| {np.linalg.norm(force)} is not the end tension {t_end}")
+        if not np.isclose(np.linalg.norm(force), float(c[f"tension_{label}"]), rtol=1e-12):
+            bad.append(f"|force_{label}| is not tension_{label}")
+    for label, i, force in (("a", 0, fa), ("b", -1, fb)):
+        end = case["ends"][label]
+        # the solvers' tolerance is 1e-9 relative: 1e-6 of the length is far above it
+        if end["kind"] == "fixed" and not np.allclose(pos[i], end["position"], atol=1e-6 * length):
+            bad.append(f"end {label} at {pos[i]}, given {end['position']}")
+        if end["kind"] == "force" and not np.allclose(force, -np.asarray(end["force"]), rtol=1e-9):
+            bad.append(f"force_{label} {force} is not minus the applied {end['force']}")
+        if end["kind"] == "mooring" and not (
+            np.allclose(force[:2], -np.asarray(end["force"]), rtol=1e-9)
+            and abs(pos[i][2] - end["z"]) < 1e-6 * length
+        ):
+            bad.append(f"mooring end {label}: force {force} at z {pos[i][2]}")
+    env = case.get("environment", {})
+    depth, laid = env.get("depth"), float(c["laid_length"])
+    if depth is None and laid != 0.0:
+        bad.append(f"laid_length {laid} without a seabed")
+    if depth is not None:
+        bed = env.get("seabed", {})
+        rise = math.tan(math.radians(bed.get("slope_deg", 0.0)))
+        heading = math.radians(bed.get("slope_heading_deg", 0.0))
+        ground = -depth + rise * (pos[:, 0] * math.cos(heading) + pos[:, 1] * math.sin(heading))
+        if np.any(pos[:, 2] < ground - 1e-6 * depth):
+            bad.append(f"{np.max(ground - pos[:, 2])} m below the seabed")
+        on = pos[:, 2] <= ground + 1e-6 * depth
+        ds_ = np.diff(s)
+        # the touchdown lies between two output points: within one spacing either way
+        touching = float(np.sum(ds_[on[:-1] & on[1:]]))
+        if abs(touching - laid) > ds_.max() * (1 + 1e-9):
+            bad.append(f"laid_length {laid}, nodes on the seabed over {touching} m")
+    if not env.get("current") and laid == 0.0:
+        # still fluid, off the seabed: the supports carry the weight and the loads, to
+        # the solver's tolerance (1e-9) relative to the largest tension
+        loads = weight_and_loads(case)
+        if not np.allclose(fa + fb, loads, rtol=0, atol=1e-7 * np.abs(tension).max()):
+            bad.append(f"force_a + force_b = {fa + fb}, weight and loads {loads}")
+    dyn = case.get("analysis", {}).get("dynamic")
+    if dyn:
+        low, mean, high, static = (
+            float(c[f"tension_{k}"]) for k in ("min", "mean", "max", "static")
+        )
+        if not (low <= mean <= high and low <= static <= high):
+            bad.append(f"tension min {low} mean {mean} max {high} static {static}")
+        # the dynamic model's static end tension is the static one at the excited end, to
+        # its lumped-mass discretisation (>= 14 elements: well within 1 %)
+        end = dyn["excitation"]["end"]
+        t_end = float(c[f"tension_{end}"])
+        if not np.isclose(static, t_end, rtol=1e-2):
+            bad.append(f"tension_static {static}, static tension_{end} {t_end}")
+    if case.get("analysis", {}).get("modal"):
+        f = c["natural_frequency"].values
+        if not (np.all(f > 0.0) and np.all(np.diff(f) >= 0.0)):
+            bad.append(f"natural frequencies {f}")
+    return bad
+
+
+# ------------------------------------------------------------------ the conventions
+
+
+@pytest.mark.parametrize("key", sorted(STUDIES))
+def test_study_keeps_every_convention(tmp_path: Path, key: str) -> None:
+    text = STUDIES[key]
+    ds = run(tmp_path, text, "--no-cache")
+    assert np.all(ds["status"] == 0), ds["message"].values
+    assert conventions(ds, text) == []
