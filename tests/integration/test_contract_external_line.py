@@ -37,6 +37,7 @@ import numpy as np
 import pytest
 import xarray as xr
 import yaml
+from scipy.optimize import fsolve
 
 import cablestudy
 from cablestudy.cli import main
@@ -475,3 +476,242 @@ def test_study_keeps_every_convention(tmp_path: Path, key: str) -> None:
     ds = run(tmp_path, text, "--no-cache")
     assert np.all(ds["status"] == 0), ds["message"].values
     assert conventions(ds, text) == []
+
+
+# ------------------------------------------------------------------ physics from outside
+
+
+def _elastic_catenary(h: float, va: float, w: float, ea: float, s: np.ndarray) -> np.ndarray:
+    """(x, z) from end A of an elastic catenary (Irvine 1981, eqs. 2.27-2.28 with s from
+    A): horizontal tension ``h`` [N], vertical tension ``va`` [N] at A along +s, weight
+    ``w`` [N/m], ``ea`` [N]."""
+    v = va + w * s
+    x = h * s / ea + h / w * (np.arcsinh(v / h) - np.arcsinh(va / h))
+    z = (va * s + 0.5 * w * s**2) / ea + h / w * (np.hypot(1.0, v / h) - np.hypot(1.0, va / h))
+    return np.stack([x, z])
+
+
+@pytest.mark.parametrize("method", ["analytic", "catenary", "shooting", "discrete"])
+def test_each_method_meets_the_elastic_catenary(tmp_path: Path, method: str) -> None:
+    """The air study by each static method against the closed form, solved here for the
+    end tensions (H, V_A) by scipy's fsolve. Analytic, catenary and shooting solve it exactly
+    (to their 1e-9 tolerance, so 1e-8); the discrete lumped-mass model converges as h^2 (h = 3 m on
+    120 m: about 1e-4 at 41 nodes, so 1e-3). The end tensions are those of the profile
+    (tension[0], tension[-1]) and of the forces on the supports: force_a points from A
+    along the line, down at the higher support (z_A = 30 m > z_B)."""
+    text = STUDIES["air-analytic"].replace("method: analytic", f"method: {method}")
+    ds = run(tmp_path, text.replace("name: air-analytic", f"name: air-{method}"))
+    w = (5.0 - 1.225 * math.pi * 0.03**2 / 4.0) * G
+    rtol = 1e-3 if method == "discrete" else 1e-8
+    for i, xb in enumerate([90.0, 110.0]):
+        target = np.array([xb - 10.0, 10.0 - 30.0])
+        h, va = fsolve(
+            lambda p, t=target: _elastic_catenary(p[0], p[1], w, 1e8, np.array([120.0]))[:, 0] - t,
+            [1000.0, -300.0],
+            xtol=1e-12,
+        )
+        c = ds.isel(position_0=i)
+        assert int(c["status"]) == 0, str(c["message"].values)
+        t_a, t_b = math.hypot(h, va), math.hypot(h, va + w * 120.0)
+        np.testing.assert_allclose(c["force_a"], [h, 0.0, va], rtol=rtol, atol=rtol * t_a)
+        np.testing.assert_allclose(c["force_b"], [-h, 0.0, -(va + w * 120.0)], rtol=rtol)
+        np.testing.assert_allclose(c["tension"].values[[0, -1]], [t_a, t_b], rtol=rtol)
+        assert float(c["force_a"][2]) < 0.0  # the higher support is pulled down
+        shape = _elastic_catenary(h, va, w, 1e8, c["s"].values)
+        np.testing.assert_allclose(c["x"] - 10.0, shape[0], atol=rtol * 120.0)
+        np.testing.assert_allclose(c["z"] - 30.0, shape[1], atol=rtol * 120.0)
+
+
+FORWARD = """\
+name: forward
+environment:
+  fluid: water
+  depth: 120.0
+line:
+  segments:
+    - {length: 100.0, diameter: 0.08, mass_per_length: 60.0, axial_stiffness: 4.0e8}
+    - {length: 80.0, diameter: 0.05, mass_per_length: 10.0, axial_stiffness: 1.0e8}
+  attachments:
+    - {s: 122.0, mass: 500.0}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -120.0]}
+  b: {kind: fixed, position: [120.0, 0.0, -10.0]}
+analysis:
+  static: {nodes: 37, method: METHOD}
+"""
+#: the same line from B to A: segments and attachment reversed, s -> 180 - s
+REVERSED = (
+    FORWARD.replace("name: forward", "name: reversed")
+    .replace(
+        "    - {length: 100.0, diameter: 0.08, mass_per_length: 60.0, axial_stiffness: 4.0e8}\n"
+        "    - {length: 80.0, diameter: 0.05, mass_per_length: 10.0, axial_stiffness: 1.0e8}\n",
+        "    - {length: 80.0, diameter: 0.05, mass_per_length: 10.0, axial_stiffness: 1.0e8}\n"
+        "    - {length: 100.0, diameter: 0.08, mass_per_length: 60.0, axial_stiffness: 4.0e8}\n",
+    )
+    .replace("{s: 122.0, mass: 500.0}", "{s: 58.0, mass: 500.0}")
+    .replace("a: {kind: fixed, position: [0.0, 0.0, -120.0]}", "a: {kind: fixed, position: X}")
+    .replace("b: {kind: fixed, position: [120.0, 0.0, -10.0]}", "b: {kind: fixed, position: Y}")
+    .replace("position: X", "position: [120.0, 0.0, -10.0]")
+    .replace("position: Y", "position: [0.0, 0.0, -120.0]")
+)
+
+
+@pytest.mark.parametrize("method", ["catenary", "shooting", "discrete"])
+def test_swapping_ends_mirrors_the_results(tmp_path: Path, method: str) -> None:
+    """A two-segment line with a clump, anchored on the seabed, defined from A to B and
+    from B to A: the same shape and tensions read backwards, force_a and force_b
+    exchanged, the same laid length (MoorPy's invariance test; the swap changes only the
+    order of the arithmetic, so the solvers' 1e-9 tolerance bounds the difference)."""
+    fwd = run(tmp_path / "f", FORWARD.replace("METHOD", method))
+    rev = run(tmp_path / "r", REVERSED.replace("METHOD", method))
+    assert int(fwd["status"]) == int(rev["status"]) == 0
+    scale = float(fwd["tension"].max())
+    for k in ("x", "y", "z"):
+        np.testing.assert_allclose(rev[k].values[::-1], fwd[k].values, atol=1e-8 * 180.0)
+    np.testing.assert_allclose(rev["tension"].values[::-1], fwd["tension"], atol=1e-8 * scale)
+    np.testing.assert_allclose(rev["force_a"], fwd["force_b"], atol=1e-8 * scale)
+    np.testing.assert_allclose(rev["force_b"], fwd["force_a"], atol=1e-8 * scale)
+    assert float(fwd["laid_length"]) > 0.0
+    assert float(rev["laid_length"]) == pytest.approx(float(fwd["laid_length"]), abs=1e-8)
+
+
+def _turned(text: str, degrees: float) -> str:
+    """The study in a frame turned about z: positions, forces, the current's and the
+    seabed slope's headings."""
+    a = math.radians(degrees)
+
+    def turn(v: list[float]) -> list[float]:
+        return [
+            math.cos(a) * v[0] - math.sin(a) * v[1],
+            math.sin(a) * v[0] + math.cos(a) * v[1],
+        ] + v[2:]
+
+    doc = yaml.safe_load(text)
+    doc.pop("sweep", None)
+    doc["name"] += "-turned"
+    env = doc["environment"]
+    if "seabed" in env:
+        env["seabed"]["slope_heading_deg"] = env["seabed"].get("slope_heading_deg", 0.0) + degrees
+    for point in env.get("current") or []:
+        point["heading_deg"] = point.get("heading_deg", 0.0) + degrees
+    for att in doc["line"].get("attachments", []):
+        if "force" in att:
+            att["force"] = turn(att["force"])
+    for end in doc["ends"].values():
+        for key in ("position", "force"):
+            if key in end:
+                end[key] = turn(end[key])
+    return yaml.safe_dump(doc, sort_keys=False)
+
+
+@pytest.mark.parametrize(
+    "key", ["segments-attachments-slope", "density-shooting-sheared", "mooring-friction"]
+)
+def test_turning_the_frame_about_z_turns_x_y_and_the_forces(tmp_path: Path, key: str) -> None:
+    """Objectivity: a sloping seabed with attachments (catenary), a sheared current
+    (shooting) and a mooring end whose horizontal force has x and y parts, each turned by
+    30 degrees about z: x, y and the force components turn, z, tension and the laid
+    length do not (to the solvers' 1e-9 tolerance)."""
+    base = yaml.safe_load(STUDIES[key])
+    base.pop("sweep")
+    text = yaml.safe_dump(base, sort_keys=False)
+    ref, turned = run(tmp_path / "0", text), run(tmp_path / "1", _turned(text, 30.0))
+    assert int(ref["status"]) == int(turned["status"]) == 0
+    c, s_ = math.cos(math.radians(30.0)), math.sin(math.radians(30.0))
+    length, scale = float(ref["s"][-1]), float(ref["tension"].max())
+    np.testing.assert_allclose(turned["x"], c * ref["x"] - s_ * ref["y"], atol=1e-8 * length)
+    np.testing.assert_allclose(turned["y"], s_ * ref["x"] + c * ref["y"], atol=1e-8 * length)
+    np.testing.assert_allclose(turned["z"], ref["z"], atol=1e-8 * length)
+    np.testing.assert_allclose(turned["tension"], ref["tension"], atol=1e-8 * scale)
+    for f in ("force_a", "force_b"):
+        fx, fy, fz = ref[f].values
+        np.testing.assert_allclose(
+            turned[f], [c * fx - s_ * fy, s_ * fx + c * fy, fz], atol=1e-8 * scale
+        )
+    np.testing.assert_allclose(
+        float(turned["laid_length"]), float(ref["laid_length"]), atol=1e-8 * length
+    )
+
+
+QUASI_STATIC = """\
+name: quasi-static
+environment: {fluid: water}
+line:
+  segments:
+    - {length: 100.0, diameter: 0.03, mass_per_length: 10.0, axial_stiffness: 1.0e8}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -10.0]}
+  b: {kind: fixed, position: [90.0, 0.0, -20.0]}
+analysis:
+  static: {nodes: 21}
+  modal: {modes: 1}
+  dynamic:
+    excitation: {end: b, direction: [1.0, 0.0, 0.0], amplitude: 1.0, frequency: 0.005}
+    method: time
+    elements: 40
+"""
+
+
+def test_slow_end_motion_gives_the_static_tensions_of_the_end_positions(
+    tmp_path: Path,
+) -> None:
+    """End B moved +-1 m along x at 0.005 Hz, 1/24 of the first natural frequency: the
+    line passes through its static shapes, so tension_max and tension_min at B are the
+    static end tensions with B at 91 and 89 m (a statics sweep of the same line). The
+    error is the inertia and drag left, O((f / f_1)^2) = 2e-3, and the 40-element model's
+    O(h^2) discretisation; 1e-2 bounds both. tension_static is the 90 m one."""
+    dyn = run(tmp_path / "d", QUASI_STATIC)
+    statics = QUASI_STATIC.split("  modal:")[0].replace("name: quasi-static", "name: qs-statics")
+    ref = run(tmp_path / "s", statics + "sweep:\n  ends.b.position.0: [89.0, 90.0, 91.0]\n")
+    assert int(dyn["status"]) == 0 and np.all(ref["status"] == 0)
+    f1 = float(dyn["natural_frequency"][0])
+    assert 0.005 / f1 < 0.05
+    t89, t90, t91 = ref["tension_b"].values
+    assert float(dyn["tension_min"]) == pytest.approx(t89, rel=1e-2)
+    assert float(dyn["tension_max"]) == pytest.approx(t91, rel=1e-2)
+    assert float(dyn["tension_static"]) == pytest.approx(t90, rel=1e-2)
+    assert t89 < float(dyn["tension_mean"]) < t91
+
+
+def test_a_case_past_max_strain_fails_and_is_kept_as_nan(tmp_path: Path) -> None:
+    """max_strain on a linear law (it was silently ignored there): the 52 m span of a
+    50 m line strains it by 4 % > 1 %, so that case fails with status, message and NaN
+    data, its modes are not run (status 5), and the two other cases are untouched."""
+    text = """\
+name: max-strain
+environment:
+  fluid: {density: 1000.0}
+line:
+  segments:
+    - length: 50.0
+      diameter: 0.02
+      mass_per_length: 1.0
+      axial: {law: linear, stiffness: 1.0e6, max_strain: 0.01}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -1.0]}
+  b: {kind: fixed, position: [40.0, 0.0, -1.0]}
+analysis:
+  static: {nodes: 11}
+  modal: {modes: 2}
+sweep:
+  ends.b.position.0: [40.0, 52.0, 45.0]
+"""
+    ds = run(tmp_path, text)
+    assert conventions(ds, text) == []
+    np.testing.assert_array_equal(ds["position_0"], [40.0, 52.0, 45.0])  # file order kept
+    bad = ds.sel(position_0=52.0)
+    assert int(bad["status"]) != 0 and int(bad["modal_status"]) == 5
+    assert "max_strain" in str(bad["message"].values)
+    for name in ("x", "tension", "force_a", "laid_length", "natural_frequency"):
+        assert np.all(np.isnan(bad[name].values)), name
+        assert np.all(np.isfinite(ds[name].sel(position_0=[40.0, 45.0]).values)), name
+    assert ds.attrs["cases_failed"] == 1
+
+
+def test_a_second_run_reuses_every_case(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    text = STUDIES["segments-attachments-slope"]
+    first = run(tmp_path, text)
+    assert "4 computed, 0 reused" in capsys.readouterr().out
+    second = run(tmp_path, text)
+    assert "0 computed, 4 reused" in capsys.readouterr().out
+    xr.testing.assert_identical(first.drop_vars("wall_time"), second.drop_vars("wall_time"))
