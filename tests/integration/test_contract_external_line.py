@@ -715,3 +715,130 @@ def test_a_second_run_reuses_every_case(tmp_path: Path, capsys: pytest.CaptureFi
     second = run(tmp_path, text)
     assert "0 computed, 4 reused" in capsys.readouterr().out
     xr.testing.assert_identical(first.drop_vars("wall_time"), second.drop_vars("wall_time"))
+
+
+# ------------------------------------------------------------------ bad input
+
+
+BASE = STUDIES["modal"]
+
+
+def _edit(text: str, old: str, new: str) -> str:
+    assert old in text, old
+    return text.replace(old, new)
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "expected"),
+    [
+        # a misspelt key
+        (
+            "mass_per_length: 8.0",
+            "mass_per_lenght: 8.0",
+            ":5: line.segments.0.mass_per_lenght: unknown key 'mass_per_lenght' (did you "
+            "mean 'mass_per_length'?); allowed keys here:",
+        ),
+        # a wrong type
+        (
+            "modes: 4",
+            "modes: four",
+            ":11: analysis.modal.modes: must be a whole number (got 'four')",
+        ),
+        # a negative length
+        (
+            "length: 100.0",
+            "length: -100.0",
+            ":5: line.segments.0.length: must be greater than 0 (got -100.0)",
+        ),
+        # an unknown fluid
+        (
+            "fluid: water",
+            "fluid: oil",
+            ":2: environment.fluid: must be 'air', 'water' or 'vacuum', or a mapping "
+            "{density: <kg/m^3>} (got 'oil')",
+        ),
+        # a sweep path that does not exist, by name and by index
+        (
+            "ends.b.position.2:",
+            "ends.b.positon.2:",
+            ":13: sweep.ends.b.positon.2: the path does not lead to a setting of this study: "
+            "ends.b.positon does not exist (did you mean 'position'?)",
+        ),
+        (
+            "ends.b.position.2:",
+            "line.segments.3.length:",
+            ":13: sweep.line.segments.3.length: the path does not lead to a setting of this "
+            "study: line.segments is a list of 1 items; '3' is not an index into it "
+            "(allowed 0..0)",
+        ),
+        # an empty sweep list, an empty range, a swept value out of range
+        (
+            "[-20.0, -40.0]",
+            "[]",
+            ":13: sweep.ends.b.position.2: an empty sweep axis gives no cases; allowed: a list "
+            "of at least one value (got [])",
+        ),
+        (
+            "ends.b.position.2: [-20.0, -40.0]",
+            "line.segments.0.length: {start: 100.0, stop: 50.0, num: 0}",
+            ":13: sweep.line.segments.0.length.num: must be a whole number >= 1 (got 0)",
+        ),
+        (
+            "ends.b.position.2: [-20.0, -40.0]",
+            "environment.fluid: [water, oil]",
+            "environment.fluid (value from sweep.environment.fluid): must be 'air', 'water' or "
+            "'vacuum', or a mapping {density: <kg/m^3>} (got 'oil')",
+        ),
+        # keys no analysis would use (they were silently ignored)
+        (
+            "fluid: water}",
+            "fluid: water, seabed: {slope_deg: 5.0, friction: 0.5}}",
+            ":2: environment.seabed.friction: there is no seabed without environment.depth, "
+            "so no analysis uses it (got 0.5); allowed: give environment.depth, or leave the "
+            "seabed key out",
+        ),
+        (
+            "static: {nodes: 31}",
+            "static: {nodes: 31, drag_elements: 40}",
+            ":10: analysis.static.drag_elements: the study has no environment.current, so "
+            "there is no drag to discretise (got 40); allowed:",
+        ),
+        (
+            "static: {nodes: 31}",
+            "static: {nodes: 31, method: shooting, drag_diameter: stretched}",
+            ":10: analysis.static.drag_diameter: the diameter of the drag law, with no "
+            "environment.current and no installation: there is no drag (got 'stretched'); "
+            "allowed:",
+        ),
+        (
+            "position: [0.0, 0.0, -10.0]}",
+            "position: [0.0, 0.0, -10.0], bending: clamped}",
+            ":7: ends.a.bending: no segment has bending_stiffness > 0, so there is no moment "
+            "to hold (got 'clamped'); allowed: pinned (the default), or clamped with "
+            "bending_stiffness > 0",
+        ),
+    ],
+)
+def test_bad_input_fails_before_any_work(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], old: str, new: str, expected: str
+) -> None:
+    """Each fault is reported at its line, naming the field, the value and what is
+    allowed; the run exits 2 without a traceback and writes nothing."""
+    cfg = tmp_path / "bad.yaml"
+    cfg.write_text(_edit(BASE, old, new))
+    out = tmp_path / "out"
+    assert main(["run", str(cfg), "--out", str(out), "--no-progress"]) == 2
+    err = capsys.readouterr().err
+    assert (f"{cfg}{expected}" if expected.startswith(":") else expected) in err, err
+    assert "Traceback" not in err
+    assert not out.exists()
+    assert main(["validate", str(cfg)]) == 2
+
+
+def test_seabed_keys_at_their_defaults_stay_allowed_without_depth(tmp_path: Path) -> None:
+    """DESIGN.md's example with ``depth`` left out (its comment: "omit: no seabed") keeps
+    ``seabed: {slope_deg: 0.0, friction: 0.0}``: values that change nothing are not
+    refused."""
+    text = _edit(BASE, "fluid: water}", "fluid: water, seabed: {slope_deg: 0.0, friction: 0.0}}")
+    ds = run(tmp_path, text)
+    assert np.all(ds["status"] == 0)
