@@ -6,6 +6,7 @@ Each check names the field, the value given, and what uses it:
 
 - ``environment.seabed`` keys other than their defaults without ``environment.depth``:
   there is no seabed to slope, rub or press on;
+- ``environment.current`` in a fluid of density 0 (vacuum): it drags nothing;
 - ``analysis.static.drag_elements`` outside method catenary with a current, and
   ``drag_diameter: stretched`` without a current or laying (it scales the drag only);
 - ``ends.<a|b>.bending: clamped`` where nothing bends: no segment with
@@ -52,6 +53,21 @@ def _seabed_problems(case: Case, src: StudySource) -> list[str]:
         )
         for key in given
         if getattr(seabed, key) != getattr(defaults, key)
+    ]
+
+
+def _current_problems(case: Case, src: StudySource) -> list[str]:
+    env = case.study.environment
+    if env.current is None or env.density > 0.0:
+        return []
+    return [
+        _say(
+            src,
+            ("environment", "current"),
+            "a current in a fluid of density 0 (vacuum) exerts no drag, so no analysis uses it",
+            [p.model_dump() for p in env.current],
+            "a fluid with density > 0 (air, water, {density}), or leave the current out",
+        )
     ]
 
 
@@ -121,6 +137,7 @@ def unused_key_problems(case: Case, src: StudySource) -> list[str]:
         return []
     return [
         *_seabed_problems(case, src),
+        *_current_problems(case, src),
         *_static_problems(case, src),
         *_bending_problems(case, src),
     ]

@@ -574,6 +574,13 @@ def _edit(text: str, old: str, new: str) -> str:
             "seabed key out",
         ),
         (
+            "fluid: water}",
+            "fluid: vacuum, current: [{z: 0.0, speed: 2.0}]}",
+            ":2: environment.current: a current in a fluid of density 0 (vacuum) exerts no "
+            "drag, so no analysis uses it (got [{'z': 0.0, 'speed': 2.0, 'heading_deg': 0.0}]);"
+            " allowed: a fluid with density > 0",
+        ),
+        (
             "static: {nodes: 31}",
             "static: {nodes: 31, drag_elements: 40}",
             ":10: analysis.static.drag_elements: the study has no environment.current, so "
