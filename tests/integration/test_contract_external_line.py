@@ -625,3 +625,38 @@ def test_seabed_keys_at_their_defaults_stay_allowed_without_depth(tmp_path: Path
     text = _edit(BASE, "fluid: water}", "fluid: water, seabed: {slope_deg: 0.0, friction: 0.0}}")
     ds = run(tmp_path, text)
     assert np.all(ds["status"] == 0)
+
+
+def test_a_buoyant_line_between_anchors_on_the_seabed_arches_up(tmp_path: Path) -> None:
+    """A riser-like buoyant line (weight_in_fluid -50 N/m) 120 m long between two
+    anchors on the seabed 100 m apart rises in an inverted catenary; methods catenary
+    and discrete refused it as a line 'slack on the seabed'. By symmetry each anchor
+    carries half the lift, +3000 N up, whatever the gravity (the weight in the fluid is
+    given); every method agrees with the analytic one (discrete: O(h^2), h = 5 m, 1e-3)."""
+    text = """\
+name: buoyant
+environment: {fluid: water, depth: 100.0}
+line:
+  segments:
+    - {length: 120.0, diameter: 0.2, mass_per_length: 20.0, weight_in_fluid: -50.0,
+       axial_stiffness: 1.0e8}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -100.0]}
+  b: {kind: fixed, position: [100.0, 0.0, -100.0]}
+analysis:
+  static: {nodes: 25}
+sweep:
+  analysis.static.method: [analytic, catenary, shooting, discrete]
+  environment.gravity: [9.80665, 1.62]
+"""
+    ds = run(tmp_path, text)
+    assert np.all(ds["status"] == 0), ds["message"].values
+    assert conventions(ds, text) == []
+    ref = ds.sel(method="analytic")
+    np.testing.assert_allclose(ds["force_a"].sel(component="z"), 3000.0, rtol=1e-9)
+    np.testing.assert_allclose(ds["force_b"].sel(component="z"), 3000.0, rtol=1e-9)
+    for method, rtol in (("catenary", 1e-8), ("shooting", 1e-8), ("discrete", 1e-3)):
+        c = ds.sel(method=method)
+        np.testing.assert_allclose(c["force_a"], ref["force_a"], rtol=rtol, atol=1e-9)
+        np.testing.assert_allclose(c["z"], ref["z"], atol=rtol * 120.0)
+    assert np.all(ds["z"].values >= -100.0 - 1e-9 * 100.0) and np.all(ds["laid_length"] == 0.0)
