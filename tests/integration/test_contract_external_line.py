@@ -660,3 +660,33 @@ sweep:
         np.testing.assert_allclose(c["force_a"], ref["force_a"], rtol=rtol, atol=1e-9)
         np.testing.assert_allclose(c["z"], ref["z"], atol=rtol * 120.0)
     assert np.all(ds["z"].values >= -100.0 - 1e-9 * 100.0) and np.all(ds["laid_length"] == 0.0)
+
+
+def test_attachments_at_the_ends_load_the_supports(tmp_path: Path) -> None:
+    """A 100 kg clump at s = 0 and a 300 N lift at s = L: the supports carry them with
+    the line (the contract's balance), and the end tension is the end force's magnitude
+    by every method (shooting reported the line's tension inside the attachment and
+    failed its own verification, status 11)."""
+    text = """\
+name: end-attachments
+environment: {fluid: water}
+line:
+  segments:
+    - {length: 100.0, diameter: 0.03, mass_per_length: 10.0, axial_stiffness: 1.0e8}
+  attachments:
+    - {s: 0.0, mass: 100.0}
+    - {s: 100.0, force: [0.0, 0.0, 300.0]}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -10.0]}
+  b: {kind: fixed, position: [90.0, 0.0, -20.0]}
+analysis:
+  static: {nodes: 11}
+sweep:
+  analysis.static.method: [catenary, shooting, discrete]
+"""
+    ds = run(tmp_path, text)
+    assert np.all(ds["status"] == 0), ds["message"].values
+    assert conventions(ds, text) == []  # |force| = end tension, the balance with the loads
+    ref = ds.sel(method="catenary")
+    for method, rtol in (("shooting", 1e-8), ("discrete", 1e-2)):  # discrete: h = 10 m
+        np.testing.assert_allclose(ds["tension"].sel(method=method), ref["tension"], rtol=rtol)
