@@ -6,7 +6,8 @@ and turning currents, mass_per_length and weight_in_fluid, several segments,
 attachments (force, clump, buoy), fixed, towing and mooring ends, every static method,
 modal, and dynamics by methods time, frequency and auto (frequency or period), swept by
 lists and {start, stop, num}, on two axes, by keys deep in segments, attachments and
-current, by list indices and by a labelled vector."""
+current, by list indices, by a labelled vector, and by {start, stop, step} with a
+swept node count."""
 
 from __future__ import annotations
 
@@ -227,5 +228,24 @@ analysis:
     excitation: {end: b, direction: [1.0, 0.0, 0.0], amplitude: 1.0, frequency: 0.08}
     method: time
     elements: 25
+""",
+    "nodes-and-length-steps": """\
+name: nodes-and-length-steps
+environment: {fluid: water, depth: 50.0}
+line:
+  segments:
+    - {length: 100.0, diameter: 0.03, mass_per_length: 10.0, axial_stiffness: 1.0e8}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -50.0]}
+  b: {kind: fixed, position: [80.0, 0.0, -20.0]}
+analysis:
+  static: {nodes: 11}
+  modal: {modes: 2}
+  dynamic:
+    excitation: {end: b, direction: [1.0, 0.0, 0.0], amplitude: 0.5, frequency: 0.1}
+    elements: 20
+sweep:
+  analysis.static.nodes: [11, 21]
+  line.segments.0.length: {start: 100.0, stop: 105.0, step: 5.0}
 """,
 }

@@ -71,6 +71,9 @@ def axis_values(spec: Any) -> list[Any]:
         return spec
     if "values" in spec:
         return list(spec["values"])
+    if "step" in spec:  # stop included
+        n = int(round((spec["stop"] - spec["start"]) / spec["step"])) + 1
+        return [spec["start"] + i * spec["step"] for i in range(n)]
     return list(np.linspace(spec["start"], spec["stop"], spec["num"]))
 
 
@@ -161,17 +164,21 @@ def conventions(ds: xr.Dataset, text: str) -> list[str]:
         bad.append("force_a, force_b not on component (x, y, z)")
     if analysis.get("modal") and ds["natural_frequency"].dims[-1] != "mode":
         bad.append("natural_frequency not on mode")
-    nodes = analysis.get("static", {}).get("nodes", 101)
     for at, case in cases(doc):
-        bad += [f"case {at}: {p}" for p in _case_checks(ds.isel(at), case, nodes)]
+        bad += [f"case {at}: {p}" for p in _case_checks(ds.isel(at), case)]
     return bad
 
 
-def _case_checks(c: xr.Dataset, case: dict[str, Any], nodes: int) -> list[str]:
+def _case_checks(c: xr.Dataset, case: dict[str, Any]) -> list[str]:
     bad: list[str] = []
     status, message = int(c["status"]), str(c["message"].values)
     if status != 0:
         return [] if message else [f"status {status} without a message"]
+    nodes = case.get("analysis", {}).get("static", {}).get("nodes", 101)
+    if c.sizes["s"] > nodes:  # a swept node count: the node index, padded with NaN
+        if not np.all(np.isnan(c["x"].values[nodes:])):
+            bad.append(f"values past the case's {nodes} nodes")
+        c = c.isel(s=slice(0, nodes))
     if message or not float(c["wall_time"]) > 0.0:
         bad.append(f"ok with message {message!r} or wall_time {float(c['wall_time'])}")
     length = sum(seg["length"] for seg in case["line"]["segments"])
