@@ -724,3 +724,24 @@ analysis:
     expected = n / (2 * 101.0) * math.sqrt(1e4 / (100.0 / 101.0))
     np.testing.assert_allclose(ds["natural_frequency"], expected, rtol=1e-3)
     assert ds["natural_frequency"].dims == ("mode",)
+
+
+def test_seabed_friction_takes_mu_w_per_laid_metre_off_the_anchor(tmp_path: Path) -> None:
+    """A chain held by a horizontal pull of |(60, 30)| kN at z = -10 m over an 80 m
+    deep flat seabed: Coulomb friction along the laid length L_l holds mu w L_l of the
+    pull, so the anchor sees H - mu w L_l (down to 0), and the suspended part, hence
+    L_l, does not depend on mu. The pull keeps its direction: B lies along (2, 1)."""
+    text = _edit(
+        STUDIES["mooring-friction"],
+        "friction: {start: 0.0, stop: 0.8, num: 3}",
+        "friction: [0.0, 0.05, 0.1, 0.8]",
+    )
+    ds = run(tmp_path, text)
+    assert np.all(ds["status"] == 0) and conventions(ds, text) == []
+    w = (120.0 - 1025.0 * math.pi * 0.08**2 / 4.0) * G
+    h = math.hypot(60000.0, 30000.0)
+    laid = ds["laid_length"].values
+    np.testing.assert_allclose(laid, laid[0], rtol=1e-9)
+    expected = np.maximum(h - ds["friction"].values * w * laid, 0.0)
+    np.testing.assert_allclose(ds["tension_a"], expected, rtol=1e-9, atol=1e-9 * h)
+    np.testing.assert_allclose(ds["y"].isel(s=-1) / ds["x"].isel(s=-1), 0.5, rtol=1e-12)
