@@ -102,6 +102,7 @@ analysis:
   static: {nodes: 51}
 sweep:
   ends.b.force.0: [-1000.0, -4000.0]
+  environment.current.0.heading_deg: [180.0, 150.0]
 """,
     "discrete-two-segments": """\
 name: discrete-two-segments

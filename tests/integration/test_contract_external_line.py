@@ -40,6 +40,9 @@ from tests.contract_line_studies import STUDIES
 
 G = 9.80665
 DENSITY = {"air": 1.225, "water": 1025.0, "vacuum": 0.0}
+#: the units a swept number may carry (SI, and deg for the inputs named *_deg)
+UNITS = {"1", "m", "s", "Hz", "N", "kg", "deg", "m/s", "kg/m", "N/m", "N m^2", "m^3"}
+UNITS |= {"m/s^2", "kg/m^3", "N/m^2", "m^2", "rad"}
 
 
 # ------------------------------------------------------------------ helpers
@@ -128,6 +131,8 @@ def conventions(ds: xr.Dataset, text: str) -> list[str]:
         elif "labels" not in spec and all(isinstance(v, int | float) for v in values):
             if not np.allclose(ds[name].values.astype(float), values, rtol=1e-12):
                 bad.append(f"{name}: coordinate {ds[name].values} for {values}")
+            if ds[name].attrs.get("units") not in UNITS:
+                bad.append(f"{name}: units {ds[name].attrs.get('units')!r} is not a unit")
     for name in [*ds.data_vars, *ds.coords]:
         attrs = ds[name].attrs
         if not isinstance(attrs.get("units"), str):
