@@ -250,3 +250,56 @@ sweep:
   line.segments.0.length: {start: 100.0, stop: 105.0, step: 5.0}
 """,
 }
+
+#: a two-segment line with a clump, anchored on the seabed (test_swapping_ends_...)
+FORWARD = """\
+name: forward
+environment:
+  fluid: water
+  depth: 120.0
+line:
+  segments:
+    - {length: 100.0, diameter: 0.08, mass_per_length: 60.0, axial_stiffness: 4.0e8}
+    - {length: 80.0, diameter: 0.05, mass_per_length: 10.0, axial_stiffness: 1.0e8}
+  attachments:
+    - {s: 122.0, mass: 500.0}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -120.0]}
+  b: {kind: fixed, position: [120.0, 0.0, -10.0]}
+analysis:
+  static: {nodes: 37, method: METHOD}
+"""
+#: the same line from B to A: segments and attachment reversed, s -> 180 - s
+REVERSED = (
+    FORWARD.replace("name: forward", "name: reversed")
+    .replace(
+        "    - {length: 100.0, diameter: 0.08, mass_per_length: 60.0, axial_stiffness: 4.0e8}\n"
+        "    - {length: 80.0, diameter: 0.05, mass_per_length: 10.0, axial_stiffness: 1.0e8}\n",
+        "    - {length: 80.0, diameter: 0.05, mass_per_length: 10.0, axial_stiffness: 1.0e8}\n"
+        "    - {length: 100.0, diameter: 0.08, mass_per_length: 60.0, axial_stiffness: 4.0e8}\n",
+    )
+    .replace("{s: 122.0, mass: 500.0}", "{s: 58.0, mass: 500.0}")
+    .replace("a: {kind: fixed, position: [0.0, 0.0, -120.0]}", "a: {kind: fixed, position: X}")
+    .replace("b: {kind: fixed, position: [120.0, 0.0, -10.0]}", "b: {kind: fixed, position: Y}")
+    .replace("position: X", "position: [120.0, 0.0, -10.0]")
+    .replace("position: Y", "position: [0.0, 0.0, -120.0]")
+)
+
+#: end B moved slowly (test_slow_end_motion_...)
+QUASI_STATIC = """\
+name: quasi-static
+environment: {fluid: water}
+line:
+  segments:
+    - {length: 100.0, diameter: 0.03, mass_per_length: 10.0, axial_stiffness: 1.0e8}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -10.0]}
+  b: {kind: fixed, position: [90.0, 0.0, -20.0]}
+analysis:
+  static: {nodes: 21}
+  modal: {modes: 1}
+  dynamic:
+    excitation: {end: b, direction: [1.0, 0.0, 0.0], amplitude: 1.0, frequency: 0.005}
+    method: time
+    elements: 40
+"""

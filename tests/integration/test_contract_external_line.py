@@ -36,7 +36,7 @@ from scipy.optimize import fsolve
 
 import cablestudy
 from cablestudy.cli import main
-from tests.contract_line_studies import STUDIES
+from tests.contract_line_studies import FORWARD, QUASI_STATIC, REVERSED, STUDIES
 
 G = 9.80665
 DENSITY = {"air": 1.225, "water": 1025.0, "vacuum": 0.0}
@@ -315,40 +315,6 @@ def test_each_method_meets_the_elastic_catenary(tmp_path: Path, method: str) -> 
         np.testing.assert_allclose(c["z"] - 30.0, shape[1], atol=rtol * 120.0)
 
 
-FORWARD = """\
-name: forward
-environment:
-  fluid: water
-  depth: 120.0
-line:
-  segments:
-    - {length: 100.0, diameter: 0.08, mass_per_length: 60.0, axial_stiffness: 4.0e8}
-    - {length: 80.0, diameter: 0.05, mass_per_length: 10.0, axial_stiffness: 1.0e8}
-  attachments:
-    - {s: 122.0, mass: 500.0}
-ends:
-  a: {kind: fixed, position: [0.0, 0.0, -120.0]}
-  b: {kind: fixed, position: [120.0, 0.0, -10.0]}
-analysis:
-  static: {nodes: 37, method: METHOD}
-"""
-#: the same line from B to A: segments and attachment reversed, s -> 180 - s
-REVERSED = (
-    FORWARD.replace("name: forward", "name: reversed")
-    .replace(
-        "    - {length: 100.0, diameter: 0.08, mass_per_length: 60.0, axial_stiffness: 4.0e8}\n"
-        "    - {length: 80.0, diameter: 0.05, mass_per_length: 10.0, axial_stiffness: 1.0e8}\n",
-        "    - {length: 80.0, diameter: 0.05, mass_per_length: 10.0, axial_stiffness: 1.0e8}\n"
-        "    - {length: 100.0, diameter: 0.08, mass_per_length: 60.0, axial_stiffness: 4.0e8}\n",
-    )
-    .replace("{s: 122.0, mass: 500.0}", "{s: 58.0, mass: 500.0}")
-    .replace("a: {kind: fixed, position: [0.0, 0.0, -120.0]}", "a: {kind: fixed, position: X}")
-    .replace("b: {kind: fixed, position: [120.0, 0.0, -10.0]}", "b: {kind: fixed, position: Y}")
-    .replace("position: X", "position: [120.0, 0.0, -10.0]")
-    .replace("position: Y", "position: [0.0, 0.0, -120.0]")
-)
-
-
 @pytest.mark.parametrize("method", ["catenary", "shooting", "discrete"])
 def test_swapping_ends_mirrors_the_results(tmp_path: Path, method: str) -> None:
     """A two-segment line with a clump, anchored on the seabed, defined from A to B and
@@ -440,25 +406,6 @@ def test_turning_the_frame_about_z_turns_x_y_and_the_forces(tmp_path: Path, key:
     for name in ("tension_max", "tension_min", "tension_mean", "tension_static"):
         if name in ref:
             np.testing.assert_allclose(turned[name], ref[name], rtol=1e-6)
-
-
-QUASI_STATIC = """\
-name: quasi-static
-environment: {fluid: water}
-line:
-  segments:
-    - {length: 100.0, diameter: 0.03, mass_per_length: 10.0, axial_stiffness: 1.0e8}
-ends:
-  a: {kind: fixed, position: [0.0, 0.0, -10.0]}
-  b: {kind: fixed, position: [90.0, 0.0, -20.0]}
-analysis:
-  static: {nodes: 21}
-  modal: {modes: 1}
-  dynamic:
-    excitation: {end: b, direction: [1.0, 0.0, 0.0], amplitude: 1.0, frequency: 0.005}
-    method: time
-    elements: 40
-"""
 
 
 def test_slow_end_motion_gives_the_static_tensions_of_the_end_positions(
