@@ -44,6 +44,7 @@ from .static import (
     unsupported_static,
 )
 from .surface import case_surface_warning
+from .unused_keys import unused_key_problems
 from .variables import CaseRecord
 
 
@@ -58,6 +59,7 @@ def check_supported(cases: list[Case], src: StudySource) -> None:
         seen.add(case.static_hash)
         if case.study.is_system:
             continue  # what a system cannot do is refused by the study model itself
+        problems.extend(p for p in unused_key_problems(case, src) if p not in problems)
         if case.study.line.is_spring:
             from .spring import spring_problems
 

@@ -274,7 +274,12 @@ class SemiAnalyticSolver:
                         STATUS_NO_SOLUTION,
                         f"end {name} lies {-float(plane.height_above(pos)):.4g} m below the seabed",
                     )
-            grounded = float(plane.height_above(ends.rA)) <= 1e-6 * L
+            # a buoyant line (every segment and load lifting) rises off the seabed from
+            # an end on it: it neither lies along it nor touches down
+            buoyant = bool(np.all(line.weight < 0.0)) and bool(
+                np.all(line.attachment_force[:, 2] >= 0.0)
+            )
+            grounded = float(plane.height_above(ends.rA)) <= 1e-6 * L and not buoyant
         if grounded and ends.kind == "fixed" and plane is not None:
             assert ends.rB is not None
             if float(plane.height_above(ends.rB)) <= 1e-6 * L:

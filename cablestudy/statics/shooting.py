@@ -680,6 +680,11 @@ class ShootingSolver(_StartGuesses):
         force_start = start.force_start
         force_far = -shot.force_end
         force_a, force_b = (force_far, force_start) if st.reverse else (force_start, force_far)
+        # an attachment exactly at an end: the end tension is the magnitude of the end
+        # force, its load included (DESIGN.md; the other methods, the verification)
+        for j, force in ((0, force_a), (len(s_out) - 1, force_b)):
+            if s_out[j] in (0.0, L) and np.isin(s_loc[j], st.line.att_s):
+                tension[j] = float(np.linalg.norm(force))
         if st.bed is not None:
             ground = np.array([st.bed.z(x, y) for x, y in position[:, :2]])
             below = float(np.max(ground - position[:, 2]))

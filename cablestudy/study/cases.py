@@ -104,6 +104,9 @@ def _field_info(path: tuple[str, ...]) -> tuple[str, str]:
             units = match.group(1) if match else ""
             units = "1" if units == "-" else units
             long_name = re.sub(r"\s*\[[^\]]*\]", "", desc).split(";")[0].strip()
+            if long_name.count("(") > long_name.count(")"):
+                # cut inside a parenthesis ("... (along the line; ..."): drop the open part
+                long_name = long_name[: long_name.rfind("(")].strip()
             return units, f"{long_name} ({'.'.join(path)})"
     return "", ".".join(path)
 

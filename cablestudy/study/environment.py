@@ -84,7 +84,9 @@ class CurrentPoint(StrictModel):
 
     z: Finite = Field(description="height of this point [m], z up, surface at 0")
     speed: NonNegative = Field(description="current speed [m/s]")
-    heading_deg: Finite = Field(0.0, description="direction the current flows to [deg from +x]")
+    heading_deg: Finite = Field(
+        0.0, description="direction the current flows to, from +x towards +y [deg]"
+    )
 
 
 class Environment(StrictModel):

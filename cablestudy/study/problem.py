@@ -98,7 +98,13 @@ def static_limits(study: Study) -> StaticLimits:
         segment_ends=np.concatenate(([0.0], np.cumsum([s.length for s in line.segments]))),
         break_tension=np.array(tension, dtype=float),
         break_source=tuple(source),
-        law=tuple(s.axial_law() if s.is_nonlinear else None for s in line.segments),
+        # a law's range is checked where it is non-linear, or where max_strain is given
+        law=tuple(
+            s.axial_law()
+            if s.is_nonlinear or (s.axial is not None and s.axial.max_strain is not None)
+            else None
+            for s in line.segments
+        ),
         max_strain=tuple(
             float((s.axial.max_strain if s.axial else None) or DEFAULT_MAX_STRAIN)
             for s in line.segments
