@@ -273,3 +273,55 @@ def test_a_swept_degree_of_freedom_runs_on_its_own_dimension(tmp_path: Path) -> 
     # surge pulls leg 1 hardest; sway leaves leg 1 (along x) the least loaded
     assert float(t.sel(excitation_dof="surge", line="l1")) > float(t.sel(excitation_dof="surge", line="l2"))
     assert float(t.sel(excitation_dof="sway", line="l1")) < float(t.sel(excitation_dof="sway", line="l2"))
+
+
+def _edited(text: str, edit) -> str:  # noqa: ANN001
+    study = yaml.safe_load(text)
+    edit(study)
+    return yaml.safe_dump(study, sort_keys=False)
+
+
+def _exc(**kw: object):  # noqa: ANN202
+    return lambda s: s["analysis"]["dynamic"].update(excitation=kw)
+
+
+def _free_junction(s: dict) -> None:
+    """Leg 1 split at a free junction j (so that j can be named)."""
+    s["points"]["j"] = {"kind": "free", "position": [150.0, 0.0, -80.0]}
+    s["lines"]["l1"]["b"] = "j"
+    s["lines"]["l1"]["segments"][0]["length"] = 160.0
+    s["lines"]["l1j"] = {"a": "j", "b": "f1", "segments": [dict(s["lines"]["l1"]["segments"][0])]}
+
+
+HARM = {"amplitude": 1.0, "frequency": 0.1}
+
+#: (case, edit of the dynamic spread, the field the message must name, words it must
+#: hold: the value given and what is allowed)
+BAD = [
+    ("line to a missing point", lambda s: s["lines"]["l1"].update(b="f9"), "lines.l1.b", ["'f9'", "'f1'"]),
+    ("point on a missing body", lambda s: s["points"]["f1"].update(body="boat"), "points.f1.body", ["'boat'", "'hull'"]),
+    ("motion of a free point", lambda s: (_free_junction(s), _exc(point="j", direction=[1, 0, 0], **HARM)(s)), "analysis.dynamic.excitation.point", ["'j'", "fixed point or a body point"]),
+    ("body motion naming a point", _exc(body="a1", dof="surge", **HARM), "analysis.dynamic.excitation.body", ["'a1'", "'hull'"]),
+    ("wrong dof", _exc(body="hull", dof="surgee", **HARM), "analysis.dynamic.excitation.dof", ["'surgee'", "'surge', 'sway', 'heave', 'roll', 'pitch' or 'yaw'"]),
+    ("wrong dof swept", lambda s: s.update(sweep={"analysis.dynamic.excitation.dof": ["surge", "pitchh"]}), "analysis.dynamic.excitation.dof", ["'pitchh'", "'pitch'"]),
+    ("sweep into a missing line", lambda s: s.update(sweep={"lines.l9.segments.0.length": [300.0, 310.0]}), "sweep.lines.l9.segments.0.length", ["'l9'", "l1, l2, l3"]),
+    ("sweep past the segments", lambda s: s.update(sweep={"lines.l1.segments.3.length": [300.0, 310.0]}), "sweep.lines.l1.segments.3.length", ["'3'", "0..0"]),
+    ("a line end's motion in a system", _exc(end="b", direction=[1, 0, 0], **HARM), "analysis.dynamic.excitation.end", ["'b'", "dof"]),
+    # was refused at analysis.dynamic as "needs harmonic excitation" though it was harmonic
+    ("transfer function of a system", lambda s: s["analysis"]["dynamic"].update(method="frequency", transfer_function={"start": 0.05, "stop": 0.2, "num": 4}, excitation={"body": "hull", "dof": "surge", **HARM}) or [s["analysis"]["dynamic"].pop(k) for k in ("points_per_period", "max_periods")], "analysis.dynamic.transfer_function", ["not built for a system", "remove the key"]),
+]
+
+
+@pytest.mark.parametrize(("case", "edit", "field", "words"), BAD, ids=[b[0] for b in BAD])
+def test_bad_input_is_refused_before_any_work_naming_field_value_and_allowed(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], case: str, edit, field: str, words: list[str]  # noqa: ANN001
+) -> None:
+    text = _edited(spread("bad", analysis=dynamic(SURGE)), edit)
+    cfg = tmp_path / "bad.yaml"
+    cfg.write_text(text)
+    code = main(["run", str(cfg), "--out", str(tmp_path), "--no-cache", "--no-progress"])
+    err = capsys.readouterr().err
+    assert code != 0 and not (tmp_path / "bad.nc").exists(), case
+    assert f": {field}" in err, err
+    for w in words:
+        assert w in err, (w, err)
