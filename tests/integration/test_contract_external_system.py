@@ -404,3 +404,67 @@ def test_a_system_of_one_line_is_the_one_line_study(tmp_path: Path, depth: float
     assert _kinds(str(system["warning"].item())) == _kinds(str(one["warning"].item()))
     if depth == 100.0:
         assert {"slack", "unsettled"} <= _kinds(str(system["warning"].item()))
+
+
+def test_static_spread_symmetry_rotation_and_mirror(tmp_path: Path) -> None:
+    """A 3-leg spread: equal tensions at zero offset, symmetric translational stiffness
+    (K_xx = K_yy, K_xy = 0 by the 120-degree symmetry); the same spread turned 40
+    degrees about z gives T K T^T. A 4-leg spread surged +3 m is the mirror image of
+    -3 m: leg 1 at +3 is leg 3 at -3, the surge forces opposite. Tolerance 1e-8 of the
+    scale: the static tolerance is 1e-9 (relative), the checks take a few such terms."""
+    sweep = "  bodies.hull.position.0: {values: [-3.0, 0.0, 3.0], name: surge}\n"
+    plain = run_study(tmp_path, spread("sp0", sweep=sweep))
+    turned = run_study(tmp_path, spread("sp40", turn_deg=40.0, sweep=sweep))
+    four = run_study(tmp_path, spread("sp4", legs=4, sweep=sweep))
+    for ds in (plain, turned, four):
+        assert contract_problems(ds) == [] and statics_problems(ds) == []
+        assert np.all(ds["status"] == 0)
+    t = plain["tension_b"].sel(surge=0.0).values
+    big = float(t.max())
+    np.testing.assert_allclose(t, t[0], rtol=0, atol=1e-8 * big)
+    K = plain["body_stiffness"].sel(surge=0.0, body="hull").values
+    kbig = float(np.abs(K).max())
+    assert abs(K[0, 0] - K[1, 1]) < 1e-8 * kbig and abs(K[0, 1]) < 1e-8 * kbig
+    a = np.deg2rad(40.0)
+    rz = np.array([[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1]])
+    T = np.zeros((6, 6))
+    T[:3, :3] = T[3:, 3:] = rz
+    K40 = turned["body_stiffness"].sel(surge=0.0, body="hull").values
+    np.testing.assert_allclose(K40, T @ K @ T.T, rtol=0, atol=1e-8 * kbig)
+    f = four["body_force"].sel(body="hull")
+    tb = four["tension_b"]
+    fbig = float(abs(f).max())
+    np.testing.assert_allclose(tb.sel(surge=3.0, line="l1"), tb.sel(surge=-3.0, line="l3"), rtol=1e-8)
+    np.testing.assert_allclose(tb.sel(surge=3.0, line="l2"), tb.sel(surge=-3.0, line="l2"), rtol=1e-8)
+    np.testing.assert_allclose(
+        f.sel(surge=3.0, dof="surge"), -f.sel(surge=-3.0, dof="surge"), rtol=0, atol=1e-8 * fbig
+    )
+    np.testing.assert_allclose(
+        f.sel(surge=3.0, dof="heave"), f.sel(surge=-3.0, dof="heave"), rtol=0, atol=1e-8 * fbig
+    )
+    assert float(f.sel(surge=3.0, dof="surge")) < 0.0  # restoring
+
+
+def test_dynamic_spread_turned_about_z_gives_the_same_tensions(tmp_path: Path) -> None:
+    """The 3-leg spread surged 2 m at 0.1 Hz, and the same spread turned 40 degrees
+    about z moved 2 m along its turned x (surge 2 cos 40 and sway 2 sin 40, in phase):
+    the same system in a turned frame, so each leg's tension extremes are equal. They
+    differ only by rounding of the turned coordinates through the Newton solves (its
+    tolerance 1e-7 of the static tension), so 1e-5 of the tension bounds it well."""
+    a = np.deg2rad(40.0)
+    turned_motion = (
+        f"[{{body: hull, dof: surge, amplitude: {2.0 * float(np.cos(a))!r}, frequency: 0.1}}, "
+        f"{{body: hull, dof: sway, amplitude: {2.0 * float(np.sin(a))!r}, frequency: 0.1}}]"
+    )
+    plain = run_study(tmp_path, spread("d0", analysis=dynamic(SURGE)))
+    turned = run_study(tmp_path, spread("d40", turn_deg=40.0, analysis=dynamic(turned_motion)))
+    for ds in (plain, turned):
+        assert contract_problems(ds, dynamic=True) == [] and statics_problems(ds) == []
+    big = float(plain["tension_max_b"].max())
+    for name in ("tension_max_b", "tension_min_b", "tension_mean_b", "tension_max_a", "tension_min_a"):
+        np.testing.assert_allclose(turned[name].values, plain[name].values, rtol=0, atol=1e-5 * big)
+    # the body force turns with the frame: its heave extremes are the same
+    for name in ("body_force_max", "body_force_min"):
+        np.testing.assert_allclose(
+            turned[name].sel(dof="heave").values, plain[name].sel(dof="heave").values, rtol=0, atol=1e-5 * big
+        )
