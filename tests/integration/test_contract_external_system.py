@@ -468,3 +468,113 @@ def test_dynamic_spread_turned_about_z_gives_the_same_tensions(tmp_path: Path) -
         np.testing.assert_allclose(
             turned[name].sel(dof="heave").values, plain[name].sel(dof="heave").values, rtol=0, atol=1e-5 * big
         )
+
+
+BRIDLE = """\
+name: bridle
+environment: {fluid: water, depth: 200.0}
+points:
+  anc: {kind: fixed, position: [-400.0, 0.0, -200.0]}
+  anc2: {kind: fixed, position: [400.0, 0.0, -200.0]}
+  clump: {kind: free, position: [-200.0, 0.0, -150.0], mass: 4000.0, volume: 0.3, added_mass: 300.0, drag_area: 1.5}
+  buoy: {kind: free, position: [200.0, 0.0, -100.0], mass: 500.0, volume: 4.0, added_mass: 4000.0, drag_area: 2.0}
+  fa: {kind: body, body: ship, offset: [-8.0, 3.0, -5.0]}
+  fb: {kind: body, body: ship, offset: [-8.0, -3.0, -5.0]}
+  fc: {kind: body, body: ship, offset: [8.0, 0.0, -5.0]}
+bodies:
+  ship: {kind: prescribed, position: [0.0, 0.0, 0.0, 0.0, 0.0, 0.05]}
+lines:
+  leg: {a: anc, b: clump, segments: [{length: 215.0, diameter: 0.1, mass_per_length: 60.0, axial_stiffness: 6.0e8, drag_normal: 1.2}]}
+  br1: {a: clump, b: fa, segments: [{length: 240.0, diameter: 0.08, mass_per_length: 20.0, axial_stiffness: 2.0e8, drag_normal: 1.2}]}
+  br2: {a: clump, b: fb, segments: [{length: 240.0, diameter: 0.08, mass_per_length: 20.0, axial_stiffness: 2.0e8, drag_normal: 1.2}]}
+  leg2: {a: anc2, b: buoy, segments: [{length: 230.0, diameter: 0.1, mass_per_length: 60.0, axial_stiffness: 6.0e8, drag_normal: 1.2}]}
+  riser: {a: buoy, b: fc, segments: [{length: 220.0, diameter: 0.08, mass_per_length: 20.0, axial_stiffness: 2.0e8, drag_normal: 1.2}]}
+analysis:
+  static: {nodes: 11}
+%s"""
+
+#: studies a MoorPy/MoorDyn user writes: (name, analysis block, sweep, dynamic?)
+STUDIES = [
+    (
+        "bridle-clump-buoy-statics",
+        "",
+        "sweep:\n  points.clump.mass: [3000.0, 5000.0]\n  lines.riser.segments.0.length: [215.0, 225.0]\n",
+        False,
+    ),
+    (
+        "bridle-several-motions-at-once",
+        "  dynamic:\n    excitation:\n"
+        "      - {body: ship, dof: surge, amplitude: 1.0, frequency: 0.08}\n"
+        "      - {body: ship, dof: pitch, amplitude: 0.03, frequency: 0.08, phase_deg: 60.0}\n"
+        "      - {body: ship, dof: roll, amplitude: 0.03, frequency: 0.08, phase_deg: 30.0}\n"
+        "      - {point: anc2, direction: [0, 0, 1], amplitude: 0.2, frequency: 0.08}\n"
+        "    method: time\n    elements: 6\n    points_per_period: 32\n    max_periods: 10\n"
+        "    history: {periods: 1.0, samples_per_period: 16}\n",
+        "sweep:\n  points.clump.mass: [3000.0, 5000.0]\n",
+        True,
+    ),
+    (
+        "bridle-table-yaw",
+        "  dynamic:\n    excitation: {body: ship, dof: yaw, table: [[0, 0.0], [3, 0.04], [6, 0.0], [9, -0.04], [12, 0.0]], periodic: true}\n"
+        "    method: time\n    elements: 6\n    points_per_period: 32\n    max_periods: 8\n",
+        "",
+        True,
+    ),
+    (
+        "bridle-heave-spectrum",
+        "  dynamic:\n    excitation: {body: ship, dof: heave, wave_spectrum: {hs: 2.0, tp: 10.0}, rao: [[0.0, 1.0], [0.1, 1.0], [0.2, 0.5], [0.3, 0.1]], components: 16, seed: 3}\n"
+        "    method: time\n    elements: 6\n    points_per_period: 16\n    duration: 60.0\n",
+        "",
+        True,
+    ),
+    (
+        "bridle-auto-amplitude-frequency",
+        "  dynamic:\n    excitation: {body: ship, dof: sway, amplitude: 0.05, period: 10.0}\n"
+        "    method: auto\n    elements: 6\n    points_per_period: 32\n    max_periods: 8\n",
+        "sweep:\n  analysis.dynamic.excitation.amplitude: [0.02, 3.0]\n  analysis.dynamic.excitation.period: [8.0, 12.0]\n",
+        True,
+    ),
+    (
+        "bridle-frequency-heave",
+        "  dynamic:\n    excitation: {body: ship, dof: heave, amplitude: 0.1, frequency: 0.1}\n"
+        "    method: frequency\n    elements: 6\n",
+        "sweep:\n  lines.leg.segments.0.length: [212.0, 218.0]\n",
+        True,
+    ),
+]
+
+
+@pytest.mark.parametrize(("name", "analysis", "sweep", "dyn"), STUDIES, ids=[s[0] for s in STUDIES])
+def test_user_system_study_keeps_the_contract(
+    tmp_path: Path, name: str, analysis: str, sweep: str, dyn: bool
+) -> None:
+    """Bridles to a clump (free point with mass, volume, added mass and drag area), a
+    buoy at a junction, a body turned in yaw: every documented output with its
+    dimensions and units, labelled coordinates, the balance of every free point and the
+    body's force as the sum of its lines' pulls (statics_problems), and through each
+    dynamic method, motion kind and sweep."""
+    text = (BRIDLE % analysis).replace("name: bridle", f"name: {name}") + sweep
+    if not dyn:  # added mass and drag area act in the dynamics (refused in still statics)
+        text = re.sub(r", added_mass: [0-9.]+, drag_area: [0-9.]+", "", text)
+    ds = run_study(tmp_path, text)
+    assert np.all(ds["status"] == 0), ds["message"].values
+    assert contract_problems(ds, dynamic=dyn) == []
+    assert statics_problems(ds) == []
+    assert list(ds["point"].values) == ["clump", "buoy"]
+    if "history" in analysis:
+        assert ds["history_tension_a"].dims == (*ds["status"].dims, "line", "time")
+        assert ds["history_tension_a"].attrs["units"] == "N"
+        # the history lies within the steady extremes of the same run
+        h, lo = ds["history_tension_a"], ds["tension_min_a"]
+        assert bool((h.min("time") >= lo - 1e-6 * float(lo.max())).all())
+    if "auto" in analysis:
+        methods = ds["dynamic_method"].values
+        assert set(methods.ravel()) <= {"time", "frequency"}
+        assert (methods[0] == "frequency").all() and (methods[1] == "time").all()
+        assert all(str(r).startswith("auto") for r in ds["dynamic_method_reason"].values.ravel())
+    if "method: frequency" in analysis:
+        amp = ds["tension_amplitude_b"]
+        big = float(ds["tension_b"].max())
+        # linear extremes: static plus and minus the amplitude (docs/guide/systems.md)
+        np.testing.assert_allclose(ds["tension_max_b"], ds["tension_b"] + amp, rtol=0, atol=1e-9 * big)
+        np.testing.assert_allclose(ds["tension_min_b"], ds["tension_b"] - amp, rtol=0, atol=1e-9 * big)
