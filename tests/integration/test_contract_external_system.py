@@ -614,3 +614,50 @@ def test_frequency_and_time_domain_agree_at_small_amplitude(tmp_path: Path) -> N
     # cos 60 = 1/2 of the motion along them): the amplitudes in that ratio to 5 %
     amp = fd["tension_amplitude_b"].values
     assert abs(amp[1] / amp[0] - 0.5) < 0.025 and abs(amp[1] - amp[2]) < 1e-6 * amp[0]
+
+
+DATA = Path(__file__).resolve().parents[1] / "data"
+SYSTEM_FILES = [
+    "moordyn/example/lines.txt",
+    "moordyn/example/body.txt",
+    "moordyn/example/MHK_RM1_Floating/MHK_RM1_Floating_MoorDyn.dat",
+    "moordyn/tests/Mooring/lines.txt",
+    "moordyn/tests/Mooring/local_euler/duplicated.txt",
+    "moorpy/examples/sample.txt",
+    "moorpy/tests/case8.dat",
+    "moorpy/tests/case9.dat",
+]
+
+
+@pytest.mark.parametrize("path", SYSTEM_FILES)
+def test_moordyn_system_file_imported_and_run(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], path: str
+) -> None:
+    """``cablestudy import moordyn FILE`` on a system file of the peers' own test data,
+    run as it is (statics), then with its prescribed body surged 1 m at 0.1 Hz under
+    method auto: both datasets keep the contract, the free points balance, the body
+    force is its lines' (statics_problems)."""
+    capsys.readouterr()
+    assert main(["import", "moordyn", str(DATA / path)]) == 0
+    study = yaml.safe_load(capsys.readouterr().out)
+    assert study.get("lines"), "a system file imports as one system study"
+    study["name"] = "imported"
+    study["analysis"]["static"]["nodes"] = 11
+    study.pop("sweep", None)
+    ds = run_study(tmp_path, yaml.safe_dump(study, sort_keys=False))
+    assert np.all(ds["status"] == 0), ds["message"].values
+    assert contract_problems(ds) == [] and statics_problems(ds) == []
+    ids = [str(k) for k in study["lines"]]
+    assert list(ds["line"].values) == ids  # the file's line IDs, as text
+    body = next(b for b, v in study["bodies"].items() if v["kind"] == "prescribed")
+    study["name"] = "imported_dyn"
+    study["analysis"]["dynamic"] = {
+        "excitation": {"body": body, "dof": "surge", "amplitude": 1.0, "frequency": 0.1},
+        "method": "auto",
+        "elements": 6,
+        "points_per_period": 32,
+        "max_periods": 8,
+    }
+    dyn = run_study(tmp_path, yaml.safe_dump(study, sort_keys=False))
+    assert np.all(dyn["status"] == 0), dyn["message"].values
+    assert contract_problems(dyn, dynamic=True) == [] and statics_problems(dyn) == []
