@@ -143,11 +143,16 @@ _METHOD_DIAGNOSTICS = (
 
 
 def _case_study(base: dict, ds: xr.Dataset, case: xr.Dataset) -> dict:
-    """The study text of one case: each sweep coordinate's value put at its path."""
+    """The study text of one case: each swept value (a sweep coordinate, or a zip
+    group's coordinate per path) put at the path its long_name ends with."""
     study = copy.deepcopy(base)
-    for d in ds["status"].dims:
-        m = re.search(r"\(([^()]*)\)\s*$", ds[d].attrs.get("long_name", ""))
-        assert m, f"sweep coordinate {d} does not name its path"
+    sweep = set(ds["status"].dims)
+    for d, coord in ds.coords.items():
+        if not coord.dims or not set(coord.dims) <= sweep:
+            continue
+        m = re.search(r"\(([^()]*)\)\s*$", coord.attrs.get("long_name", ""))
+        if m is None or coord.attrs.get("long_name", "").startswith("zipped"):
+            continue
         *parents, last = m.group(1).split(".")
         node = study
         for q in parents:
@@ -541,6 +546,22 @@ STUDIES = [
         "sweep:\n  lines.leg.segments.0.length: [212.0, 218.0]\n",
         True,
     ),
+    (
+        "bridle-offsets-and-sea-states",
+        "  dynamic:\n    excitation: {body: ship, dof: surge, amplitude: 1.0, frequency: 0.1}\n"
+        "    method: time\n    elements: 6\n    points_per_period: 32\n    max_periods: 8\n",
+        "sweep:\n  bodies.ship.position.0: {values: [-5.0, 5.0], name: offset}\n"
+        "  zip:\n    - name: sea\n      analysis.dynamic.excitation.amplitude: [0.5, 2.0]\n"
+        "      analysis.dynamic.excitation.frequency: [0.08, 0.12]\n",
+        True,
+    ),
+    (
+        "bridle-line-types",
+        "  dynamic:\n    excitation: {body: ship, dof: heave, amplitude: 0.5, frequency: 0.1}\n"
+        "    method: auto\n    elements: 6\n    points_per_period: 32\n    max_periods: 8\n",
+        "",
+        True,
+    ),
 ]
 
 
@@ -556,6 +577,10 @@ def test_user_system_study_keeps_the_contract(
     text = (BRIDLE % analysis).replace("name: bridle", f"name: {name}") + sweep
     if not dyn:  # added mass and drag area act in the dynamics (refused in still statics)
         text = re.sub(r", added_mass: [0-9.]+, drag_area: [0-9.]+", "", text)
+    if "line-types" in name:  # the legs of published chain, the bridles of polyester
+        text = re.sub(r"\{length: (2[0-9.]+), diameter: 0.1, [^}]*\}", r"{length: \1, line_type: {material: chain_studless, nominal_diameter: 0.076}}", text)
+        text = re.sub(r"\{length: (2[0-9.]+), diameter: 0.08, [^}]*\}", r"{length: \1, line_type: {material: polyester, nominal_diameter: 0.12}}", text)
+        assert text.count("line_type") == 5
     ds = run_study(tmp_path, text)
     assert np.all(ds["status"] == 0), ds["message"].values
     assert contract_problems(ds, dynamic=dyn) == []
@@ -567,7 +592,7 @@ def test_user_system_study_keeps_the_contract(
         # the history lies within the steady extremes of the same run
         h, lo = ds["history_tension_a"], ds["tension_min_a"]
         assert bool((h.min("time") >= lo - 1e-6 * float(lo.max())).all())
-    if "auto" in analysis:
+    if name == "bridle-auto-amplitude-frequency":
         methods = ds["dynamic_method"].values
         assert set(methods.ravel()) <= {"time", "frequency"}
         assert (methods[0] == "frequency").all() and (methods[1] == "time").all()
