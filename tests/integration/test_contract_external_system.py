@@ -686,3 +686,55 @@ def test_moordyn_system_file_imported_and_run(
     dyn = run_study(tmp_path, yaml.safe_dump(study, sort_keys=False))
     assert np.all(dyn["status"] == 0), dyn["message"].values
     assert contract_problems(dyn, dynamic=True) == [] and statics_problems(dyn) == []
+
+
+SLOPE = """\
+name: slope
+environment:
+  fluid: water
+  depth: 100.0
+  seabed: {slope_deg: 3.0, slope_heading_deg: 0.0, friction: 0.6}
+points:
+  a1: {kind: fixed, position: [300.0, 0.0, %s]}
+  a2: {kind: fixed, position: [-300.0, 0.0, %s]}
+  f1: {kind: body, body: hull, offset: [10.0, 0.0, -10.0]}
+  f2: {kind: body, body: hull, offset: [-10.0, 0.0, -10.0]}
+bodies:
+  hull: {kind: prescribed, position: [0.0, 0.0, 0.0, 0.0, 0.0, 0.0]}
+lines:
+  l1: {a: a1, b: f1, segments: [{length: 320.0, diameter: 0.1, mass_per_length: 50.0, axial_stiffness: 5.0e8}]}
+  l2: {a: a2, b: f2, segments: [{length: 340.0, diameter: 0.1, mass_per_length: 50.0, axial_stiffness: 5.0e8}]}
+analysis:
+  static: {nodes: 11}
+sweep:
+  bodies.hull.position.0: {values: [-4.0, 0.0, 4.0], name: surge}
+"""
+
+
+def test_anchors_on_a_sloped_seabed_from_the_refusal_message(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Anchors typed a little below a 3-degree slope are refused, naming the seabed's
+    height there. The message gave it to 6 digits (-115.722), which is 0.3 mm above the
+    seabed: copied into the study, the line then touched the seabed between two
+    'raised' ends and every case failed. The height is now given in full: copied in,
+    the anchors lie on the seabed and the spread solves, each line laid on the slope,
+    friction held (the laid length grows on the slack side)."""
+    cfg = tmp_path / "slope.yaml"
+    heights = {"a1": "-84.3", "a2": "-115.8"}
+    for _ in range(2):  # one refusal at a time, as the user meets them
+        cfg.write_text(SLOPE % (heights["a1"], heights["a2"]))
+        capsys.readouterr()
+        assert main(["validate", str(cfg)]) != 0
+        err = capsys.readouterr().err
+        found = re.findall(r"points\.(a[12])\.position: .*? seabed at z = (\S+) m there", err)
+        assert found, err
+        heights.update(found)
+    ds = run_study(tmp_path, SLOPE % (heights["a1"], heights["a2"]))
+    assert np.all(ds["status"] == 0), ds["message"].values
+    assert contract_problems(ds) == [] and statics_problems(ds) == []
+    laid = ds["laid_length"]
+    assert bool((laid > 0).all())
+    # surge towards +x slackens l1 (anchored at +x) and pulls l2: more of l1 lies down
+    assert float(laid.sel(surge=4.0, line="l1")) > float(laid.sel(surge=-4.0, line="l1"))
+    assert float(laid.sel(surge=4.0, line="l2")) < float(laid.sel(surge=-4.0, line="l2"))
