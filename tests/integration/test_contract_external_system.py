@@ -785,3 +785,60 @@ def test_a_moved_anchor_on_the_seabed_feels_the_line_not_the_seabed(tmp_path: Pa
     end = 0.5 * float(l2["tension_max_a"] - l2["tension_min_a"])
     along = 0.5 * float((l2["tension_envelope_max"] - l2["tension_envelope_min"]).isel(s=1))
     assert abs(end - along) < 0.25 * along, (end, along)
+
+
+TWO_BODIES = """\
+name: twobody
+environment: {fluid: water, depth: 150.0}
+points:
+  a1: {kind: fixed, position: [-400.0, 0.0, -150.0]}
+  a2: {kind: fixed, position: [400.0, 0.0, -150.0]}
+  a3: {kind: fixed, position: [0.0, 300.0, -150.0]}
+  a4: {kind: fixed, position: [0.0, 200.0, -20.0]}
+  p1: {kind: body, body: ship1, offset: [-10.0, 0.0, -5.0]}
+  p1b: {kind: body, body: ship1, offset: [10.0, 0.0, -5.0]}
+  p2: {kind: body, body: ship2, offset: [10.0, 0.0, -5.0]}
+  p2b: {kind: body, body: ship2, offset: [-10.0, 0.0, -5.0]}
+bodies:
+  ship1: {kind: prescribed, position: [-100.0, 0.0, 0.0, 0.0, 0.0, 0.0]}
+  ship2: {kind: prescribed, position: [100.0, 0.0, 0.0, 0.0, 0.0, 0.0]}
+lines:
+  m1: {a: a1, b: p1, segments: [{length: 330.0, diameter: 0.1, mass_per_length: 50.0, axial_stiffness: 5.0e8, drag_normal: 1.2}]}
+  m2: {a: a2, b: p2, segments: [{length: 330.0, diameter: 0.1, mass_per_length: 50.0, axial_stiffness: 5.0e8, drag_normal: 1.2}]}
+  hawser: {a: p1b, b: p2b, segments: [{length: 182.0, diameter: 0.08, mass_per_length: 8.0, axial_stiffness: 1.0e8, drag_normal: 1.2}]}
+  span: {a: a3, b: a4, segments: [{length: 190.0, diameter: 0.05, mass_per_length: 10.0, axial_stiffness: 1.0e8, drag_normal: 1.2}]}
+analysis:
+  static: {nodes: 11}
+  dynamic:
+    excitation: {body: ship1, dof: surge, amplitude: 1.0, frequency: 0.1}
+    method: time
+    elements: 6
+    points_per_period: 32
+    max_periods: 8
+sweep:
+  analysis.dynamic.excitation.body: [ship1, ship2]
+"""
+
+
+def test_two_bodies_joined_by_a_hawser_and_a_line_between_two_fixed_points(tmp_path: Path) -> None:
+    """Two prescribed ships, each moored by one leg, joined by a hawser; elsewhere a
+    line between two fixed points (no body). Sweeping which ship moves (a dimension
+    'excitation_body': 'body' is the outputs'), the body forces of both ships: the
+    statics mirror in x (ship forces opposite, leg tensions equal), and surging ship 2
+    is surging ship 1 mirrored (half a period later): each leg's extreme is its mirror
+    leg's to the steady-state tolerance (2e-3 of the tension), the fixed span untouched
+    (its tension range is zero to rounding: nothing moves it)."""
+    ds = run_study(tmp_path, TWO_BODIES)
+    assert np.all(ds["status"] == 0)
+    assert contract_problems(ds, dynamic=True) == [] and statics_problems(ds) == []
+    assert list(ds["excitation_body"].values) == ["ship1", "ship2"]
+    assert list(ds["body"].values) == ["ship1", "ship2"]
+    f = ds["body_force"].isel(excitation_body=0)
+    big = float(ds["tension_b"].max())
+    np.testing.assert_allclose(f.sel(body="ship1", dof="surge"), -f.sel(body="ship2", dof="surge"), rtol=0, atol=1e-8 * big)
+    t = ds["tension_max_b"]
+    tol = 2e-3 * float(t.max())
+    assert abs(float(t.sel(excitation_body="ship1", line="m1") - t.sel(excitation_body="ship2", line="m2"))) < tol
+    assert abs(float(t.sel(excitation_body="ship1", line="hawser") - t.sel(excitation_body="ship2", line="hawser"))) < tol
+    span = ds.sel(line="span")
+    np.testing.assert_allclose(span["tension_max_a"], span["tension_min_a"], rtol=1e-9)
