@@ -842,3 +842,29 @@ def test_two_bodies_joined_by_a_hawser_and_a_line_between_two_fixed_points(tmp_p
     assert abs(float(t.sel(excitation_body="ship1", line="hawser") - t.sel(excitation_body="ship2", line="hawser"))) < tol
     span = ds.sel(line="span")
     np.testing.assert_allclose(span["tension_max_a"], span["tension_min_a"], rtol=1e-9)
+
+
+def test_export_keeps_the_free_points_added_mass(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """``cablestudy export moordyn`` of a system wrote every free point's Ca as 0: the
+    clump's and the buoy's added mass (300 kg, 4000 kg) were dropped without a word.
+    MoorDyn's point added mass is Ca rho V, so Ca = added_mass / (rho V): 300 / (1025 x
+    0.3) and 4000 / (1025 x 4). The file's statics are the study's (import of the
+    export: every tension to 1e-9 of the largest, the static tolerance's order)."""
+    text = (BRIDLE % "  dynamic:\n    excitation: {body: ship, dof: surge, amplitude: 1.0, frequency: 0.1}\n    method: time\n    elements: 6\n")
+    cfg = tmp_path / "bridle.yaml"
+    cfg.write_text(text)
+    out = tmp_path / "bridle.txt"
+    assert main(["export", "moordyn", str(cfg), "--out", str(out)]) == 0
+    rows = {r.split("!")[-1].strip(): r.split() for r in out.read_text().splitlines() if " Free " in r}
+    assert float(rows["clump"][8]) == pytest.approx(300.0 / (1025.0 * 0.3), rel=1e-12)
+    assert float(rows["buoy"][8]) == pytest.approx(4000.0 / (1025.0 * 4.0), rel=1e-12)
+    capsys.readouterr()
+    assert main(["import", "moordyn", str(out)]) == 0
+    back = yaml.safe_load(capsys.readouterr().out)
+    back["name"] = "back"
+    statics = re.sub(r"  dynamic:.*", "", text, flags=re.S)
+    statics = re.sub(r", added_mass: [0-9.]+, drag_area: [0-9.]+", "", statics)
+    mine = run_study(tmp_path, statics)
+    theirs = run_study(tmp_path, yaml.safe_dump(back, sort_keys=False))
+    big = float(mine["tension_b"].max())
+    np.testing.assert_allclose(theirs["tension_b"].values, mine["tension_b"].values, rtol=0, atol=1e-9 * big)
