@@ -195,6 +195,20 @@ def statics_problems(ds: xr.Dataset, balance: float = 1e-6) -> list[str]:
             net = pull[p] + np.array([0.0, 0.0, up]) + np.asarray(spec.get("force", [0, 0, 0]))
             if np.abs(net).max() > balance * big:
                 errs.append(f"case {k}: free point {p} out of balance by {net}")
+        for name, ln in lines.items():  # each line ends at its points
+            xyz = np.stack([c[k].sel(line=str(name)).values for k in "xyz"], axis=-1)
+            xyz = xyz[np.all(np.isfinite(xyz), axis=1)]
+            for end, at in ((ln["a"], xyz[0]), (ln["b"], xyz[-1])):
+                spec = pts[end]
+                if spec["kind"] == "fixed":
+                    want = np.asarray(spec["position"], float)
+                elif spec["kind"] == "body":  # X + R p: R = Rz Ry Rx of the body's angles
+                    pos = c["body_position"].sel(body=spec["body"]).values
+                    want = pos[:3] + _rotation(pos[3:]) @ np.asarray(spec["offset"], float)
+                else:
+                    want = c["point_position"].sel(point=end).values
+                if np.abs(at - want).max() > 1e-6 * (1.0 + np.abs(want).max()):
+                    errs.append(f"case {k}: line {name} ends at {at}, its point {end} at {want}")
         for b in study.get("bodies") or {}:
             rot = _rotation(c["body_position"].sel(body=b).values[3:])
             force, moment = np.zeros(3), np.zeros(3)
@@ -554,6 +568,12 @@ STUDIES = [
         "  zip:\n    - name: sea\n      analysis.dynamic.excitation.amplitude: [0.5, 2.0]\n"
         "      analysis.dynamic.excitation.frequency: [0.08, 0.12]\n",
         True,
+    ),
+    (
+        "bridle-turned-body-statics",
+        "",
+        "sweep:\n  bodies.ship.position.3: [0.1, 0.3]\n  bodies.ship.position.4: [-0.07, 0.05]\n",
+        False,
     ),
     (
         "bridle-line-types",
