@@ -888,3 +888,38 @@ def test_export_keeps_the_free_points_added_mass(tmp_path: Path, capsys: pytest.
     theirs = run_study(tmp_path, yaml.safe_dump(back, sort_keys=False))
     big = float(mine["tension_b"].max())
     np.testing.assert_allclose(theirs["tension_b"].values, mine["tension_b"].values, rtol=0, atol=1e-9 * big)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="defect (reported): the frequency domain of a system of one line is not the "
+    "one-line study's: 9153 N against 9706 N of tension amplitude at end B (6 %) for a "
+    "line lying on the seabed, 2e-2 N of 14840 N hanging free (1.4e-6, not bit for "
+    "bit); the system's own frequency model (dynamics/system_frequency.py) differs from "
+    "the one-line one (dynamics/frequency_model.py) on the laid line",
+)
+def test_a_system_of_one_line_is_the_one_line_study_in_the_frequency_domain(tmp_path: Path) -> None:
+    """Issue 24 in the frequency domain: one 320 m line, still water, no friction,
+    surged 1.5 m at 0.1 Hz at its end B, 10 elements, lying on the seabed."""
+    seg = "{length: 320.0, diameter: 0.1, mass_per_length: 60.0, axial_stiffness: 6.0e8, drag_normal: 1.2}"
+    dyn = "  dynamic:\n    excitation: %s\n    method: frequency\n    elements: 10\n"
+    one = run_study(
+        tmp_path,
+        f"name: one\nenvironment: {{fluid: water, depth: 100.0}}\nline:\n  segments: [{seg}]\n"
+        "ends:\n  a: {kind: fixed, position: [-290.0, 20.0, -100.0]}\n"
+        "  b: {kind: fixed, position: [0.0, 0.0, -12.0]}\nanalysis:\n  static: {nodes: 13}\n"
+        + dyn % "{end: b, direction: [1, 0, 0], amplitude: 1.5, frequency: 0.1}",
+    )
+    system = run_study(
+        tmp_path,
+        "name: sys\nenvironment: {fluid: water, depth: 100.0}\npoints:\n"
+        "  p: {kind: fixed, position: [-290.0, 20.0, -100.0]}\n"
+        "  q: {kind: body, body: ship, offset: [0.0, 0.0, -12.0]}\n"
+        "bodies:\n  ship: {kind: prescribed, position: [0, 0, 0, 0, 0, 0]}\n"
+        f"lines:\n  only: {{a: p, b: q, segments: [{seg}]}}\nanalysis:\n  static: {{nodes: 13}}\n"
+        + dyn % "{body: ship, dof: surge, amplitude: 1.5, frequency: 0.1}",
+    )
+    assert float(one["laid_length"]) > 0.0
+    np.testing.assert_array_equal(
+        one["tension_amplitude_b"].values, system["tension_amplitude_b"].isel(line=0).values
+    )
