@@ -2,273 +2,37 @@
 evaluator checks them: each study written as a MoorPy/MoorDyn user would write it, run
 through ``cablestudy run CONFIG --out DIR`` and read back from the netCDF file only.
 
-:func:`contract_problems` checks the dataset conventions of DESIGN.md and the output
-names of issues 22 and 24 (dimensions, ``units``, labelled ``line``/``point``/``body``/
-``dof`` coordinates, status/message/wall_time, no NaN at status 0, min <= mean <= max);
-:func:`statics_problems` checks the physics any system must satisfy, from the file alone
-(each free point balanced by its lines, its weight, buoyancy and applied force; each
+The checker (tests/system_contract.py): ``contract_problems`` checks the dataset
+conventions of DESIGN.md and the output names of issues 22 and 24 (dimensions,
+``units``, labelled ``line``/``point``/``body``/``dof`` coordinates,
+status/message/wall_time, no NaN at status 0, min <= mean <= max); ``statics_problems``
+the physics any system must satisfy, from the file alone (each line ends at its points,
+each free point balanced by its lines, its weight, buoyancy and applied force; each
 body's force the sum of its lines' pulls and their moments about the reference point;
 each end tension the magnitude of its end force). Swept values are applied to the
 study text before checking, from the sweep path each coordinate names."""
 
 from __future__ import annotations
 
-import copy
 import re
 from pathlib import Path
 
 import numpy as np
 import pytest
-import xarray as xr
 import yaml
 
 from cablestudy.cli import main
-
-DOFS = ["surge", "sway", "heave", "roll", "pitch", "yaw"]
-RHO = {"water": 1025.0, "air": 1.225, "vacuum": 0.0}
-
-
-def run_study(tmp_path: Path, text: str) -> xr.Dataset:
-    """``cablestudy run`` on the study text; the dataset it wrote."""
-    name = yaml.safe_load(text)["name"]
-    cfg = tmp_path / f"{name}.yaml"
-    cfg.write_text(text)
-    args = ["run", str(cfg), "--out", str(tmp_path), "--no-cache", "--no-progress"]
-    assert main([*args, "--scheduler", "synchronous"]) in (0, 1)
-    return xr.load_dataset(tmp_path / f"{name}.nc")
-
-
-def _rotation(angles: np.ndarray) -> np.ndarray:
-    """R = Rz(yaw) Ry(pitch) Rx(roll) (docs/guide/systems.md)."""
-    r, p, y = angles
-    cx, sx, cy, sy, cz, sz = np.cos(r), np.sin(r), np.cos(p), np.sin(p), np.cos(y), np.sin(y)
-    rx = np.array([[1, 0, 0], [0, cx, -sx], [0, sx, cx]])
-    ry = np.array([[cy, 0, sy], [0, 1, 0], [-sy, 0, cy]])
-    rz = np.array([[cz, -sz, 0], [sz, cz, 0], [0, 0, 1]])
-    return rz @ ry @ rx
-
-
-def contract_problems(ds: xr.Dataset, dynamic: bool = False) -> list[str]:
-    """Where the dataset breaks the conventions and the system output contract."""
-    errs = []
-    for n, v in list(ds.coords.items()) + list(ds.data_vars.items()):
-        if "units" not in v.attrs:
-            errs.append(f"{n}: no units")
-    for n in ("status", "message", "wall_time"):
-        if n not in ds:
-            errs.append(f"missing {n}")
-    sweep = ds["status"].dims
-    for n in ("line", "point", "body", "dof"):
-        if n in ds.dims and (n not in ds.coords or ds[n].dtype.kind not in "UO"):
-            errs.append(f"dimension {n} not labelled by names")
-    if "dof" in ds.coords and list(ds["dof"].values) != DOFS:
-        errs.append(f"dof labels {list(ds['dof'].values)}")
-    study = yaml.safe_load(ds.attrs["study_yaml"])
-    want = {
-        "tension_a": ("line",),
-        "tension_b": ("line",),
-        "force_a": ("line", "component"),
-        "force_b": ("line", "component"),
-        "x": ("line", "s"),
-        "y": ("line", "s"),
-        "z": ("line", "s"),
-        "tension": ("line", "s"),
-    }
-    if study.get("bodies"):
-        want.update(
-            body_position=("body", "dof"),
-            body_force=("body", "dof"),
-            body_stiffness=("body", "dof", "dof_j"),
-        )
-    if any(p.get("kind") == "free" for p in (study.get("points") or {}).values()):
-        want["point_position"] = ("point", "component")
-    if dynamic:
-        want.update({f"tension_{m}_{e}": ("line",) for m in ("max", "min", "mean") for e in "ab"})
-        want.update(
-            tension_envelope_max=("line", "s"),
-            tension_envelope_min=("line", "s"),
-            dynamic_method=(),
-            dynamic_method_reason=(),
-        )
-        if study.get("bodies"):
-            want.update(body_force_max=("body", "dof"), body_force_min=("body", "dof"))
-        if bool((ds["dynamic_method"] == "frequency").any()):
-            want.update(tension_amplitude_a=("line",), tension_amplitude_b=("line",))
-    for n, d in want.items():
-        if n not in ds:
-            errs.append(f"missing {n}")
-        elif ds[n].dims != tuple(sweep) + d:
-            errs.append(f"{n} dims {ds[n].dims} != {tuple(sweep) + d}")
-    ok = ds["status"] == 0
-    if dynamic and not errs:
-        for e in "ab":
-            mx, mn, me = (ds[f"tension_{m}_{e}"] for m in ("max", "min", "mean"))
-            # the mean of a record lies between its extremes; round-off only
-            if bool(((mn > me * (1 + 1e-12)) & ok).any() or ((me > mx * (1 + 1e-12)) & ok).any()):
-                errs.append(f"tension_min_{e} <= tension_mean_{e} <= tension_max_{e} violated")
-        big = float(ds["tension_envelope_max"].max())
-        for m in ("max", "min"):  # the envelope at end A is end A's extreme
-            env = ds[f"tension_envelope_{m}"].isel(s=0)
-            if float(abs(env - ds[f"tension_{m}_a"]).where(ok, 0.0).max()) > 1e-9 * big:
-                errs.append(f"tension_envelope_{m} at s = 0 != tension_{m}_a")
-        if study.get("bodies"):
-            # (the static force need not lie between them: the dynamic model's own
-            # discrete equilibrium and the mean drag of the motion shift the mean)
-            lo, hi = ds["body_force_min"], ds["body_force_max"]
-            if bool(((lo > hi) & ok).any()):
-                errs.append("body_force_min > body_force_max")
-    for n, v in ds.data_vars.items():
-        if v.dtype.kind != "f" or {"line", "s"} <= set(v.dims):
-            continue  # along s, lines of different node counts are padded with NaN
-        if n in ("laid_length", "tension_amplitude_a", "tension_amplitude_b"):
-            continue
-        if dynamic and n in _METHOD_DIAGNOSTICS:
-            continue  # a diagnostic of the method that did not run
-        if bool(np.isnan(v.where(ok, 0.0)).any()):
-            errs.append(f"NaN in {n} at status 0")
-    bad = ~ok
-    if bool(bad.any()) and bool((ds["message"].where(bad, "x") == "").any()):
-        errs.append("a failed case without a message")
-    return errs
-
-
-_METHOD_DIAGNOSTICS = (
-    "dynamic_steps",
-    "newton_iterations",
-    "periods",
-    "rejected_steps",
-    "steady_converged",
-    "linearisation_iterations",
+from tests.system_contract import (
+    BRIDLE,
+    DOFS,
+    SURGE,
+    TWO_BODIES,
+    contract_problems,
+    dynamic,
+    run_study,
+    spread,
+    statics_problems,
 )
-
-
-def _case_study(base: dict, ds: xr.Dataset, case: xr.Dataset) -> dict:
-    """The study text of one case: each swept value (a sweep coordinate, or a zip
-    group's coordinate per path) put at the path its long_name ends with."""
-    study = copy.deepcopy(base)
-    sweep = set(ds["status"].dims)
-    for d, coord in ds.coords.items():
-        if not coord.dims or not set(coord.dims) <= sweep:
-            continue
-        m = re.search(r"\(([^()]*)\)\s*$", coord.attrs.get("long_name", ""))
-        if m is None or coord.attrs.get("long_name", "").startswith("zipped"):
-            continue
-        *parents, last = m.group(1).split(".")
-        node = study
-        for q in parents:
-            node = node[int(q)] if isinstance(node, list) else node[q]
-        node[int(last) if isinstance(node, list) else last] = case[d].item()
-    return study
-
-
-def statics_problems(ds: xr.Dataset, balance: float = 1e-6) -> list[str]:
-    """Free points balanced, each body's force the lines' pulls and moments, tension =
-    |force|. ``balance``: the residual allowed, relative to the largest tension (the
-    static tolerance is 1e-9 by default; 1e-6 leaves room for its scaling)."""
-    errs = []
-    base = yaml.safe_load(ds.attrs["study_yaml"])
-    sweep = ds["status"].dims
-    big = float(ds["tension_a"].max())
-    for e in "ab":
-        mag = np.sqrt((ds[f"force_{e}"] ** 2).sum("component"))
-        if float(abs(ds[f"tension_{e}"] - mag).max()) > 1e-12 * big:
-            errs.append(f"tension_{e} != |force_{e}|")
-    stacked = ds.stack(case=sweep) if sweep else ds.expand_dims(case=[0])
-    for k in range(stacked.sizes["case"]):
-        c = stacked.isel(case=k)
-        if int(c["status"]) != 0:
-            continue
-        study = _case_study(base, ds, c)
-        env = study.get("environment", {})
-        fluid = env.get("fluid", "water")
-        rho = fluid["density"] if isinstance(fluid, dict) else RHO[fluid]
-        g = env.get("gravity", 9.80665)
-        pts, lines = study.get("points", {}), study.get("lines", {})
-        pull = {p: np.zeros(3) for p in pts}
-        for name, ln in lines.items():
-            pull[ln["a"]] += c["force_a"].sel(line=str(name)).values
-            pull[ln["b"]] += c["force_b"].sel(line=str(name)).values
-        for p, spec in pts.items():
-            if spec["kind"] != "free" or "current" in env:
-                continue  # in a current the point's drag joins the balance
-            up = (rho * spec.get("volume", 0.0) - spec.get("mass", 0.0)) * g
-            net = pull[p] + np.array([0.0, 0.0, up]) + np.asarray(spec.get("force", [0, 0, 0]))
-            if np.abs(net).max() > balance * big:
-                errs.append(f"case {k}: free point {p} out of balance by {net}")
-        for name, ln in lines.items():  # each line ends at its points
-            xyz = np.stack([c[k].sel(line=str(name)).values for k in "xyz"], axis=-1)
-            xyz = xyz[np.all(np.isfinite(xyz), axis=1)]
-            for end, at in ((ln["a"], xyz[0]), (ln["b"], xyz[-1])):
-                spec = pts[end]
-                if spec["kind"] == "fixed":
-                    want = np.asarray(spec["position"], float)
-                elif spec["kind"] == "body":  # X + R p: R = Rz Ry Rx of the body's angles
-                    pos = c["body_position"].sel(body=spec["body"]).values
-                    want = pos[:3] + _rotation(pos[3:]) @ np.asarray(spec["offset"], float)
-                else:
-                    want = c["point_position"].sel(point=end).values
-                if np.abs(at - want).max() > 1e-6 * (1.0 + np.abs(want).max()):
-                    errs.append(f"case {k}: line {name} ends at {at}, its point {end} at {want}")
-        for b in study.get("bodies") or {}:
-            rot = _rotation(c["body_position"].sel(body=b).values[3:])
-            force, moment = np.zeros(3), np.zeros(3)
-            for p, spec in pts.items():
-                if spec["kind"] == "body" and spec["body"] == b:
-                    force += pull[p]
-                    moment += np.cross(rot @ np.asarray(spec["offset"], float), pull[p])
-            got = c["body_force"].sel(body=b).values
-            arm = max(1.0, max(np.linalg.norm(s.get("offset", 0.0)) for s in pts.values()))
-            if np.abs(got[:3] - force).max() > 1e-9 * big or (
-                np.abs(got[3:] - moment).max() > 1e-9 * big * arm
-            ):
-                errs.append(f"case {k}: body_force {got} != the lines' {force}, {moment}")
-    return errs
-
-
-# ------------------------------------------------------------------------- studies
-
-LEG = (
-    "{length: 320.0, diameter: 0.1, mass_per_length: 50.0, axial_stiffness: 5.0e8, "
-    "drag_normal: 1.2}"
-)
-
-
-def spread(
-    name: str, *, legs: int = 3, turn_deg: float = 0.0, analysis: str = "", sweep: str = ""
-) -> str:
-    """A spread of ``legs`` equal legs from anchors on the seabed (radius 300 m, depth
-    100 m) to fairleads on a prescribed hull, turned by ``turn_deg`` about z."""
-    points, lines = [], []
-    for i in range(legs):
-        a = np.deg2rad(turn_deg) + 2.0 * np.pi * i / legs
-        c, s = float(np.cos(a)), float(np.sin(a))
-        points.append(f"  a{i + 1}: {{kind: fixed, position: [{300 * c!r}, {300 * s!r}, -100.0]}}")
-        points.append(
-            f"  f{i + 1}: {{kind: body, body: hull, offset: [{10 * c!r}, {10 * s!r}, -10.0]}}"
-        )
-        lines.append(f"  l{i + 1}: {{a: a{i + 1}, b: f{i + 1}, segments: [{LEG}]}}")
-    text = (
-        f"name: {name}\nenvironment: {{fluid: water, depth: 100.0}}\npoints:\n"
-        + "\n".join(points)
-        + "\nbodies:\n  hull: {kind: prescribed, position: [0.0, 0.0, 0.0, 0.0, 0.0, 0.0]}"
-        + "\nlines:\n"
-        + "\n".join(lines)
-        + "\nanalysis:\n  static: {nodes: 11}\n"
-        + analysis
-    )
-    return text + (f"sweep:\n{sweep}" if sweep else "")
-
-
-def dynamic(excitation: str, method: str = "time", more: str = "") -> str:
-    """An analysis.dynamic block: few elements and steps a period, to stay fast."""
-    return (
-        f"  dynamic:\n    excitation: {excitation}\n    method: {method}\n    elements: 8\n"
-        + ("    points_per_period: 32\n    max_periods: 12\n" if method != "frequency" else "")
-        + more
-    )
-
-
-SURGE = "{body: hull, dof: surge, amplitude: 2.0, frequency: 0.1}"
 
 
 def test_a_swept_degree_of_freedom_runs_on_its_own_dimension(tmp_path: Path) -> None:
@@ -590,36 +354,6 @@ def test_dynamic_spread_turned_about_z_gives_the_same_tensions(tmp_path: Path) -
         )
 
 
-BRIDLE = """\
-name: bridle
-environment: {fluid: water, depth: 200.0}
-points:
-  anc: {kind: fixed, position: [-400.0, 0.0, -200.0]}
-  anc2: {kind: fixed, position: [400.0, 0.0, -200.0]}
-  clump: {kind: free, position: [-200.0, 0.0, -150.0], mass: 4000.0, volume: 0.3,
-      added_mass: 300.0, drag_area: 1.5}
-  buoy: {kind: free, position: [200.0, 0.0, -100.0], mass: 500.0, volume: 4.0,
-      added_mass: 4000.0, drag_area: 2.0}
-  fa: {kind: body, body: ship, offset: [-8.0, 3.0, -5.0]}
-  fb: {kind: body, body: ship, offset: [-8.0, -3.0, -5.0]}
-  fc: {kind: body, body: ship, offset: [8.0, 0.0, -5.0]}
-bodies:
-  ship: {kind: prescribed, position: [0.0, 0.0, 0.0, 0.0, 0.0, 0.05]}
-lines:
-  leg: {a: anc, b: clump, segments: [{length: 215.0, diameter: 0.1, mass_per_length: 60.0,
-      axial_stiffness: 6.0e8, drag_normal: 1.2}]}
-  br1: {a: clump, b: fa, segments: [{length: 240.0, diameter: 0.08, mass_per_length: 20.0,
-      axial_stiffness: 2.0e8, drag_normal: 1.2}]}
-  br2: {a: clump, b: fb, segments: [{length: 240.0, diameter: 0.08, mass_per_length: 20.0,
-      axial_stiffness: 2.0e8, drag_normal: 1.2}]}
-  leg2: {a: anc2, b: buoy, segments: [{length: 230.0, diameter: 0.1, mass_per_length: 60.0,
-      axial_stiffness: 6.0e8, drag_normal: 1.2}]}
-  riser: {a: buoy, b: fc, segments: [{length: 220.0, diameter: 0.08, mass_per_length: 20.0,
-      axial_stiffness: 2.0e8, drag_normal: 1.2}]}
-analysis:
-  static: {nodes: 11}
-%s"""
-
 #: studies a MoorPy/MoorDyn user writes: (name, analysis block, sweep, dynamic?)
 STUDIES = [
     (
@@ -891,97 +625,6 @@ def test_anchors_on_a_sloped_seabed_from_the_refusal_message(
     assert float(laid.sel(surge=4.0, line="l2")) < float(laid.sel(surge=-4.0, line="l2"))
 
 
-# ------------------------------------------------- defects found, reported, not fixed
-# (each needs a change in the compiled time-domain kernels: the lead decides)
-
-
-@pytest.mark.xfail(
-    strict=True,
-    reason="defect (reported): the system time domain judges its steady state on every "
-    "line end (dynamics/system_timedomain._steady), the one-line study on its excited "
-    "end only, and the two step controls differ (1645 accepted steps vs 1609 here, "
-    "rejected 371 vs 358): a system of one line on the seabed with a buoy gives other "
-    "extremes (2.8 % on the maximum); needs the system time stepping",
-)
-def test_a_system_of_one_line_on_the_seabed_with_a_buoy_is_the_one_line_study(
-    tmp_path: Path,
-) -> None:
-    """Issue 24: 'A system of one line reproduces the single-line results bit for
-    bit'. The two-segment line of test_a_system_of_one_line_is_the_one_line_study, on
-    the rough seabed, with a 3 kN buoy at s = 250 m."""
-    one_text, sys_text = _pair(100.0, "  attachments: [{s: 250.0, force: [0.0, 0.0, 3000.0]}]\n")
-    one = run_study(tmp_path, one_text)
-    line = run_study(tmp_path, sys_text).isel(line=0)
-    np.testing.assert_array_equal(one["tension_max"].values, line["tension_max_b"].values)
-    np.testing.assert_array_equal(one["dynamic_steps"].values, line["dynamic_steps"].values)
-
-
-@pytest.mark.xfail(
-    strict=True,
-    reason="defect (reported): a held end node's reaction (the end tension of the time "
-    "domain, one line and systems alike) includes that node's seabed contact force, so "
-    "an anchor on the seabed moved down presses into the penalty seabed and its end "
-    "tension swings 27 times the line's (27.1 kN vs 1.0 kN; the anchor 1 m above the "
-    "seabed: 0.99 kN); needs the contact of held nodes in the "
-    "kernels (dynamics/system_march.py end_forces, time_problem.end_forces)",
-)
-def test_a_moved_anchor_on_the_seabed_feels_the_line_not_the_seabed(tmp_path: Path) -> None:
-    """The 3-leg spread (legs clear of the seabed) with anchor a2 moved 0.05 m up and
-    down at 0.1 Hz: the line's tension swings about 2 kN along its whole length
-    (envelope), so the force of the line on the anchor swings alike (within 25 %: the
-    end node's own inertia and weight are a few hundred newtons)."""
-    exc = "{point: a2, direction: [0, 0, 1], amplitude: 0.05, frequency: 0.1}"
-    block = (
-        f"  dynamic:\n    excitation: {exc}\n    method: time\n    elements: 20\n"
-        "    points_per_period: 64\n    max_periods: 12\n"
-    )
-    ds = run_study(
-        tmp_path, spread("anchor", analysis=block).replace("length: 320.0", "length: 305.0")
-    )
-    assert np.all(ds["status"] == 0) and contract_problems(ds, dynamic=True) == []
-    l2 = ds.sel(line="l2")
-    end = 0.5 * float(l2["tension_max_a"] - l2["tension_min_a"])
-    along = 0.5 * float((l2["tension_envelope_max"] - l2["tension_envelope_min"]).isel(s=1))
-    assert abs(end - along) < 0.25 * along, (end, along)
-
-
-TWO_BODIES = """\
-name: twobody
-environment: {fluid: water, depth: 150.0}
-points:
-  a1: {kind: fixed, position: [-400.0, 0.0, -150.0]}
-  a2: {kind: fixed, position: [400.0, 0.0, -150.0]}
-  a3: {kind: fixed, position: [0.0, 300.0, -150.0]}
-  a4: {kind: fixed, position: [0.0, 200.0, -20.0]}
-  p1: {kind: body, body: ship1, offset: [-10.0, 0.0, -5.0]}
-  p1b: {kind: body, body: ship1, offset: [10.0, 0.0, -5.0]}
-  p2: {kind: body, body: ship2, offset: [10.0, 0.0, -5.0]}
-  p2b: {kind: body, body: ship2, offset: [-10.0, 0.0, -5.0]}
-bodies:
-  ship1: {kind: prescribed, position: [-100.0, 0.0, 0.0, 0.0, 0.0, 0.0]}
-  ship2: {kind: prescribed, position: [100.0, 0.0, 0.0, 0.0, 0.0, 0.0]}
-lines:
-  m1: {a: a1, b: p1, segments: [{length: 330.0, diameter: 0.1, mass_per_length: 50.0,
-      axial_stiffness: 5.0e8, drag_normal: 1.2}]}
-  m2: {a: a2, b: p2, segments: [{length: 330.0, diameter: 0.1, mass_per_length: 50.0,
-      axial_stiffness: 5.0e8, drag_normal: 1.2}]}
-  hawser: {a: p1b, b: p2b, segments: [{length: 182.0, diameter: 0.08, mass_per_length: 8.0,
-      axial_stiffness: 1.0e8, drag_normal: 1.2}]}
-  span: {a: a3, b: a4, segments: [{length: 190.0, diameter: 0.05, mass_per_length: 10.0,
-      axial_stiffness: 1.0e8, drag_normal: 1.2}]}
-analysis:
-  static: {nodes: 11}
-  dynamic:
-    excitation: {body: ship1, dof: surge, amplitude: 1.0, frequency: 0.1}
-    method: time
-    elements: 6
-    points_per_period: 32
-    max_periods: 8
-sweep:
-  analysis.dynamic.excitation.body: [ship1, ship2]
-"""
-
-
 def test_two_bodies_joined_by_a_hawser_and_a_line_between_two_fixed_points(tmp_path: Path) -> None:
     """Two prescribed ships, each moored by one leg, joined by a hawser; elsewhere a
     line between two fixed points (no body). Sweeping which ship moves (a dimension
@@ -1057,6 +700,60 @@ def test_export_keeps_the_free_points_added_mass(
     np.testing.assert_allclose(
         theirs["tension_b"].values, mine["tension_b"].values, rtol=0, atol=1e-9 * big
     )
+
+
+# ------------------------------------------------- defects found, reported, not fixed
+# (each needs a change in the compiled time-domain kernels: the lead decides)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="defect (reported): the system time domain judges its steady state on every "
+    "line end (dynamics/system_timedomain._steady), the one-line study on its excited "
+    "end only, and the two step controls differ (1645 accepted steps vs 1609 here, "
+    "rejected 371 vs 358): a system of one line on the seabed with a buoy gives other "
+    "extremes (2.8 % on the maximum); needs the system time stepping",
+)
+def test_a_system_of_one_line_on_the_seabed_with_a_buoy_is_the_one_line_study(
+    tmp_path: Path,
+) -> None:
+    """Issue 24: 'A system of one line reproduces the single-line results bit for
+    bit'. The two-segment line of test_a_system_of_one_line_is_the_one_line_study, on
+    the rough seabed, with a 3 kN buoy at s = 250 m."""
+    one_text, sys_text = _pair(100.0, "  attachments: [{s: 250.0, force: [0.0, 0.0, 3000.0]}]\n")
+    one = run_study(tmp_path, one_text)
+    line = run_study(tmp_path, sys_text).isel(line=0)
+    np.testing.assert_array_equal(one["tension_max"].values, line["tension_max_b"].values)
+    np.testing.assert_array_equal(one["dynamic_steps"].values, line["dynamic_steps"].values)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="defect (reported): a held end node's reaction (the end tension of the time "
+    "domain, one line and systems alike) includes that node's seabed contact force, so "
+    "an anchor on the seabed moved down presses into the penalty seabed and its end "
+    "tension swings 27 times the line's (27.1 kN vs 1.0 kN; the anchor 1 m above the "
+    "seabed: 0.99 kN); needs the contact of held nodes in the "
+    "kernels (dynamics/system_march.py end_forces, time_problem.end_forces)",
+)
+def test_a_moved_anchor_on_the_seabed_feels_the_line_not_the_seabed(tmp_path: Path) -> None:
+    """The 3-leg spread (legs clear of the seabed) with anchor a2 moved 0.05 m up and
+    down at 0.1 Hz: the line's tension swings about 2 kN along its whole length
+    (envelope), so the force of the line on the anchor swings alike (within 25 %: the
+    end node's own inertia and weight are a few hundred newtons)."""
+    exc = "{point: a2, direction: [0, 0, 1], amplitude: 0.05, frequency: 0.1}"
+    block = (
+        f"  dynamic:\n    excitation: {exc}\n    method: time\n    elements: 20\n"
+        "    points_per_period: 64\n    max_periods: 12\n"
+    )
+    ds = run_study(
+        tmp_path, spread("anchor", analysis=block).replace("length: 320.0", "length: 305.0")
+    )
+    assert np.all(ds["status"] == 0) and contract_problems(ds, dynamic=True) == []
+    l2 = ds.sel(line="l2")
+    end = 0.5 * float(l2["tension_max_a"] - l2["tension_min_a"])
+    along = 0.5 * float((l2["tension_envelope_max"] - l2["tension_envelope_min"]).isel(s=1))
+    assert abs(end - along) < 0.25 * along, (end, along)
 
 
 @pytest.mark.xfail(
