@@ -97,10 +97,11 @@ def contract_problems(ds: xr.Dataset, dynamic: bool = False) -> list[str]:
             if bool(((mn > me * (1 + 1e-12)) & ok).any() or ((me > mx * (1 + 1e-12)) & ok).any()):
                 errs.append(f"tension_min_{e} <= tension_mean_{e} <= tension_max_{e} violated")
         big = float(ds["tension_envelope_max"].max())
-        for m in ("max", "min"):  # the envelope at end A is end A's extreme
-            env = ds[f"tension_envelope_{m}"].isel(s=0)
-            if float(abs(env - ds[f"tension_{m}_a"]).where(ok, 0.0).max()) > 1e-9 * big:
-                errs.append(f"tension_envelope_{m} at s = 0 != tension_{m}_a")
+        for m in ("max", "min"):  # the envelope at each end is that end's extreme
+            for e, i in (("a", 0), ("b", -1)):
+                env = ds[f"tension_envelope_{m}"].isel(s=i)
+                if float(abs(env - ds[f"tension_{m}_{e}"]).where(ok, 0.0).max()) > 1e-9 * big:
+                    errs.append(f"tension_envelope_{m} at end {e} != tension_{m}_{e}")
         if study.get("bodies"):
             # (the static force need not lie between them: the dynamic model's own
             # discrete equilibrium and the mean drag of the motion shift the mean)
