@@ -198,11 +198,13 @@ def evaluate_system_case(case: Case) -> CaseRecord:
     if study.analysis.dynamic is not None:  # the system time domain (analyses.system_dynamic)
         status, message = _dynamics(case, system, res, status, message, deadline, data)
         if int(data.get("steady_converged", 1)) == 0 and study.analysis.dynamic.duration is None:
-            warnings.append(
-                f"unsettled: the line end tensions did not settle within max_periods "
-                f"({study.analysis.dynamic.max_periods}); the extremes are those of the last "
-                "periods run"
-            )
+            # the one-line study's text: one warning ('; ' separates warnings)
+            from .plausibility import unsettled_warning
+
+            periods = float(np.asarray(data.get("periods", np.nan)))
+            warnings.append(unsettled_warning(periods, study.analysis.dynamic.max_periods))
+        if status == STATUS_OK:
+            warnings.append(_slack_warning(list(study.lines), data))
     if status == STATUS_OK and not any(w.startswith(SURFACE) for w in warnings):
         from .surface import system_motion_surface_warning  # a line out of the water
 
@@ -219,6 +221,30 @@ def evaluate_system_case(case: Case) -> CaseRecord:
         # the compiled system Newton left it to the general path (as the grid counts it)
         fallback=str(getattr(res, "fallback", "") or ""),
     )
+
+
+def _slack_warning(names: list[str], data: dict[str, Any]) -> str:
+    """The one-line study's slack warning (:func:`.plausibility.slack_warning`) for a
+    system's dynamics: a line end whose smallest tension is at or below zero, else a
+    point along a line (where its static tension is positive: a stretch slack in statics
+    does not go slack) whose envelope minimum is; the lines named."""
+    from .plausibility import slack_warning
+
+    ends = np.stack([np.asarray(data.get(f"tension_min_{e}", np.nan), float) for e in "ab"])
+    ends = np.broadcast_to(ends, (2, len(names))) if ends.size else np.full((2, len(names)), np.nan)
+    if np.any(ends <= 0.0):
+        slack = [n for n, t in zip(names, np.min(ends, axis=0), strict=True) if t <= 0.0]
+        return slack_warning(float(np.min(ends)), f"at an end of line {', '.join(slack)}")
+    env = np.asarray(data.get("tension_envelope_min", np.nan), dtype=float)
+    static = np.asarray(data.get("tension", np.nan), dtype=float)
+    if env.shape != static.shape or env.ndim != 2:
+        return ""
+    env = np.where(static > 0.0, env, np.nan)
+    low = np.array([np.nanmin(r) if np.any(np.isfinite(r)) else np.nan for r in env])
+    if not np.any(low <= 0.0):
+        return ""
+    slack = [n for n, t in zip(names, low, strict=True) if t <= 0.0]
+    return slack_warning(float(np.nanmin(low)), f"along line {', '.join(slack)}")
 
 
 def _statics(case: Case, deadline: float) -> tuple[Any, Any, int, str, dict, list[str]]:

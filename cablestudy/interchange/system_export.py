@@ -126,9 +126,17 @@ def system_moordyn_input(study: Study, result: Any, *, title: str) -> ExportedCa
             assert isinstance(point, BodyPoint)
             kind, xyz, mass, vol = f"Body{body_ids[point.body]}", point.offset, 0.0, 0.0
         cda = point.drag_area if isinstance(point, FreePoint) else 0.0
+        # MoorDyn's point added mass is Ca rho V (as a line's lumped body, export.py)
+        added = point.added_mass if isinstance(point, FreePoint) else 0.0
+        ca = added / (rho * vol) if vol > 0.0 and rho > 0.0 else 0.0
+        if added > 0.0 and ca == 0.0:
+            warnings.append(
+                f"points.{name}.added_mass: {added:g} kg with no displaced volume has no "
+                "MoorDyn Ca (MoorDyn's point added mass is Ca rho V); written as 0"
+            )
         point_rows.append(
             f"{pid}  {kind}  {'  '.join(_num(v) for v in xyz)}  {_num(mass)}  {_num(vol)}  "
-            f"{_num(cda)}  0   ! {name}"
+            f"{_num(cda)}  {_num(ca)}   ! {name}"
         )
     n_nodes = study.analysis.static.nodes
     type_rows: list[str] = []

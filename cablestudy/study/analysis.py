@@ -499,8 +499,8 @@ class DynamicSettings(StrictModel):
                 "Hermite over the velocity's distribution), which has no phases; allowed: "
                 "remove samples, or harmonic excitation"
             )
-        if self.transfer_function is not None and not all(
-            isinstance(e, HarmonicExcitation) for e in self.excitations
+        if self.transfer_function is not None and not all(  # a system's: system_checks
+            isinstance(e, (HarmonicExcitation, *SYSTEM_HARMONICS)) for e in self.excitations
         ):
             raise ValueError(
                 "transfer_function: needs harmonic excitation (the tension per unit amplitude "

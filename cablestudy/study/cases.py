@@ -39,8 +39,13 @@ from .. import __version__
 from .loader import Loc, StudyError, StudySource, _models_at, _unwrap, dotted, validate_data
 from .study import Study
 
-#: dimension names used by output variables; a sweep axis may not take them
-RESERVED_DIMS = frozenset({"s", "component", "mode", "time", "complex", "point", "harmonic"})
+#: dimension names used by output variables; a sweep axis may not take them (a system's
+#: ``line``, ``point``, ``body``, ``dof`` and ``dof_j`` included: a swept
+#: ``analysis.dynamic.excitation.dof`` would otherwise collide with the outputs' ``dof``)
+RESERVED_DIMS = frozenset(
+    {"s", "component", "mode", "time", "complex", "point", "harmonic"}
+    | {"line", "body", "dof", "dof_j", "pulley"}
+)
 _DIM = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 MAX_CASES = 1_000_000
 
@@ -235,6 +240,9 @@ def _default_dim(path: tuple[str, ...]) -> str:
     if last.isdigit():
         named = [p for p in path if not p.isdigit()]
         return f"{named[-1]}_{last}" if named else f"index_{last}"
+    if last in RESERVED_DIMS:  # an output's dimension: prefix the parent key
+        named = [p for p in path[:-1] if not p.isdigit()]
+        return f"{named[-1]}_{last}" if named else last
     return last
 
 

@@ -190,8 +190,8 @@ class Study(StrictModel):
                 if z < ground - 1e-9 * env.depth:
                     raise FieldError(
                         ("ends", label, key),
-                        f"end {label} lies below the seabed (z = {z:g} m, seabed at "
-                        f"z = {ground:g} m there); allowed z >= seabed height",
+                        f"end {label} lies below the seabed (z = {z!r} m, seabed at "
+                        f"z = {ground!r} m there); allowed z >= seabed height",
                         end.position if isinstance(end, FixedEnd) else end.z,
                     )
         return self
@@ -336,8 +336,8 @@ class Study(StrictModel):
                 if z < ground - 1e-9 * env.depth:
                     raise FieldError(
                         ("points", name, "position"),
-                        f"the point lies below the seabed (z = {z:g} m, seabed at "
-                        f"z = {ground:g} m there); allowed z >= seabed height",
+                        f"the point lies below the seabed (z = {z!r} m, seabed at "
+                        f"z = {ground!r} m there); allowed z >= seabed height",
                         list(point.position),
                     )
         return self

@@ -125,7 +125,7 @@ def check_system_dynamics(study: object) -> None:
         raise FieldError(
             (*root, "history", key),
             "a system keeps the history of each line's end tensions (history_tension_a, "
-            "history_tension_b on line and time) and of the body forces; points along a "
+            "history_tension_b on line and time); points along a "
             "line and whole-line histories are supported by a one-line study; allowed: "
             "history with periods and samples_per_period",
             getattr(hist, key),
