@@ -62,6 +62,11 @@ def _close_modal(x: np.ndarray, y: np.ndarray) -> bool:
     return bool(np.allclose(np.abs(x), np.abs(y), rtol=1e-9, atol=1e-9 * scale, equal_nan=True))
 
 
+def _same_attrs(a: dict, b: dict) -> bool:
+    """Attributes equal, array-valued ones (flag values) element by element."""
+    return a.keys() == b.keys() and all(np.array_equal(a[k], b[k]) for k in a)
+
+
 def compare(path_a: Path, path_b: Path) -> str:
     da = _clean(xr.open_dataset(path_a)).load()
     db = _clean(xr.open_dataset(path_b)).load()
@@ -80,7 +85,7 @@ def compare(path_a: Path, path_b: Path) -> str:
         x, y = da[v], db[v]
         if x.identical(y):
             continue
-        if x.dims != y.dims or x.shape != y.shape or x.attrs != y.attrs:
+        if x.dims != y.dims or x.shape != y.shape or not _same_attrs(x.attrs, y.attrs):
             problems.append(f"{v}: dims, shape or attributes differ")
             continue
         if v == "mode_shape" and "natural_frequency" in da and same_modes(da, db):
