@@ -112,11 +112,12 @@ def ellipse_means(k):  # noqa: ANN001, ANN201
 def principal_turn(a0, a1, a2, b0, b1, b2):  # noqa: ANN001, ANN201, PLR0913
     """``(cos th_0, sin th_0)`` of the phase turn ``th_0 = arg(Z . Z) / 2`` of ``Z = a +
     i b`` (module docstring), from the half-angle formulas of ``cos 2 th_0 = x / rho``,
-    ``sin 2 th_0 = y / rho`` (``x = a.a - b.b``, ``y = 2 a.b``), each square root of a
-    sum of non-negative terms; ``(1, 0)`` for a circle or no motion (any turn serves)."""
+    ``sin 2 th_0 = y / rho`` (``x = a.a - b.b``, ``y = 2 a.b``, ``rho = |(x, y)|``),
+    each square root of a sum of non-negative terms; ``(1, 0)`` for a circle or no
+    motion (any turn serves)."""
     x = (a0 * a0 + a1 * a1 + a2 * a2) - (b0 * b0 + b1 * b1 + b2 * b2)
     y = 2.0 * (a0 * b0 + a1 * b1 + a2 * b2)
-    rho = math.sqrt(x * x + y * y)
+    rho = math.hypot(x, y)  # not sqrt(x^2 + y^2): x^2 under- or overflows first
     if not rho > 0.0:
         return 1.0, 0.0
     if x >= 0.0:

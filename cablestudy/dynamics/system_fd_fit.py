@@ -15,8 +15,9 @@ import math
 import numpy as np
 from numba import njit
 
-from .frequency_model import FIT_REGULARISATION, is_planar, planar_drag_fit
-from .harmonic_kernel import fit_from_sums
+from .elliptic_fit import still_water_means
+from .frequency_model import FIT_REGULARISATION, is_planar, planar_drag_fit, still_water
+from .harmonic_kernel import fit_from_sums, row_entries, sym_entries
 
 #: the sums over the phases may be reassociated (vectorised: the system's frequency
 #: domain takes 13% less time a case); no other fast-math flag: with contraction and
@@ -26,14 +27,25 @@ _REASSOCIATE = {"reassoc"}
 
 
 @njit(cache=True, error_model="numpy", fastmath=_REASSOCIATE)
-def fit_node(i, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, out):  # noqa: ANN001, ANN202, PLR0913, PLR0915
+def fit_node(i, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, out, acc):  # noqa: ANN001, ANN202, PLR0913, PLR0915
     """The small-motion lean (``mean_drag_jacobian`` of the NumPy oracle,
     tests/system_drag_reference.py) into ``lean[i]`` and the drag fit leaning on it
     (:func:`.frequency_model.drag_linearisation`) into ``out[i]`` of node ``i``, one
-    pass over the phases for both. Without current at the node and with an even number
-    of phases, the phases of half a period serve (each sum twice; the mean force is
-    zero)."""
+    pass over the phases for both. Without current at the node: with ``exact`` the
+    exact period means of both (:func:`.elliptic_fit.still_water_means`, into the work
+    array ``acc`` (3, 3, 3)) and no phases; else, with an even number of phases, the
+    phases of half a period serve (each sum twice; the mean force is zero)."""
     samples = cs.shape[0]
+    if exact and still_water(cur, i):
+        still_water_means(vr, vi, tan, c_n, c_t, c_b, i, acc)
+        for a in range(3):
+            for b in range(3):
+                lean[i, a, b] = acc[2, a, b]
+        if c_b[i] == 0.0 and is_planar(vr, vi, tan, cur, i):
+            planar_drag_fit(vr, vi, tan, cur, c_n, c_t, lean, i, out)
+        else:
+            fit_from_sums(sym_entries(acc[0]), row_entries(acc[1]), 1, lean, i, out)
+        return
     t0, t1, t2 = tan[i, 0], tan[i, 1], tan[i, 2]
     u0, u1, u2 = cur[i, 0], cur[i, 1], cur[i, 2]
     a0, a1, a2 = vr[i, 0], vr[i, 1], vr[i, 2]
@@ -228,8 +240,9 @@ def fit_all(
             v = 1j * omega * disp[g, a]
             vr[g, a] = v.real
             vi[g, a] = v.imag
+    acc = np.empty((3, 3, 3))
     for g in range(disp.shape[0]):
-        fit_node(g, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, D)
+        fit_node(g, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, D, acc)
     fit_points(c_p, pcur, u_pts, omega, cs, sn_, Dp)
 
 
