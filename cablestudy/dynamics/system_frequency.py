@@ -33,7 +33,8 @@ their order).
 
 Drag. Each line's nodal Morison drag is linearised as in the single-line frequency
 domain (:func:`~.frequency.drag_linearisation`: the mean-square, describing-function
-fit of ``c_N |w_N| w_N + c_T |w_T| w_T``, closed form for motion in the x-z plane); a
+fit of ``c_N |w_N| w_N + c_T |w_T| w_T``, closed form for motion in the x-z plane and
+for any node without current, :mod:`.elliptic_fit`); a
 free point's isotropic drag ``c |w| w`` (``c = rho C_d A / 2``) is fitted the same way
 over ``samples`` phases. Since ``D`` depends on the motion the solve is iterated from
 the quasi-static motion (``w = 0``: the stiffness alone, the velocity then ``i w u``),
