@@ -54,15 +54,21 @@ from numba import njit
 #: ``r(psi)`` is ``2 / pi`` times its integral over a quarter period
 _QUARTER = 2.0 / math.pi
 
-#: the arithmetic-geometric mean stops once ``c_n < 1e-9 a_n``: the next ``c`` is
-#: ``c_n^2 / (4 a_{n+1}) < 3e-19 a``, below rounding in ``K`` and in the sum of ``c^2``
-_AGM_STOP = 1e-9
+#: the arithmetic-geometric mean stops once ``c_n < 1e-4 a_n``: then ``c_{n+1} =
+#: c_n^2 / (4 a_{n+1}) < 3e-9 a`` is added to the sum of ``c^2`` and ``M = a_{n+1}``,
+#: whose error ``a_{n+1} - M < c_{n+1}^2 / (4 a) < 3e-18 a`` is below rounding, as is
+#: the rest of the sum (``c_{n+2}^2``)
+_AGM_STOP = 1e-4
+
+
+#: no contribution: the 15 values of :func:`_ellipse_terms` of a drag that is absent
+_NONE = (0.0,) * 15
 
 
 @njit(cache=True, inline="always")
 def ellipse_means(k):  # noqa: ANN001, ANN201
-    """The period means ``(<r cos^2>, <r sin^2>, <cos^2 / r>, k^2 <sin^2 / r>)`` of
-    ``r(psi) = sqrt(cos^2 psi + k^2 sin^2 psi)`` for ``0 <= k <= 1`` (``psi`` uniform).
+    """The period means ``(<r cos^2>, <r sin^2>, <cos^2 / r>, <sin^2 / r>)`` of ``r(psi)
+    = sqrt(cos^2 psi + k^2 sin^2 psi)`` for ``0 <= k <= 1`` (``psi`` uniform).
 
     With ``m = 1 - k^2``, ``r = sqrt(1 - m sin^2)``, ``K``, ``E`` the complete elliptic
     integrals: ``int_0^{pi/2} sin^2 / r = (K - E) / m = L``, ``cos^2 / r`` gives ``K -
@@ -70,12 +76,13 @@ def ellipse_means(k):  # noqa: ANN001, ANN201
     gives ``E - J``. ``K = pi / (2 M)`` with ``M`` the arithmetic-geometric mean of 1
     and ``k``, and ``K - E = K sum_n 2^(n-1) c_n^2`` (``c_0^2 = m``, ``c_{n+1} = c_n^2 /
     (4 a_{n+1})``, no difference of near numbers), so ``L = K (1/2 + S)`` with ``S =
-    sum_{n>=1} 2^(n-1) c_n^2 / m``, computed as ratios (zero on a circle). ``J`` is
-    taken as ``K (3/2 - m + S (1 - 2m)) / 3`` for ``m <= 1/2`` (no cancellation near
-    the circle) and by the ``E``, ``K`` form above otherwise (positive terms). Near a
-    line ``E = K - m L`` and ``K - L`` lose ``log10(ln(4 / k))`` digits (two at ``k =
-    1e-40``); at ``k = 0`` the limits ``(4, 2, 6, 0) / (3 pi)``."""
-    if not k > 0.0:  # a line: <|cos|^3>, <|cos| sin^2>, <|cos|>, 0
+    sum_{n>=1} 2^(n-1) c_n^2 / m`` (zero on a circle). ``J`` is taken as ``K (3/2 - m +
+    S (1 - 2m)) / 3`` for ``m <= 1/2`` (no cancellation near the circle) and by the
+    ``E``, ``K`` form above otherwise (positive terms). Near a line ``E = K - m L`` and
+    ``K - L`` lose ``log10(ln(4 / k))`` digits (two at ``k = 1e-40``). At ``k = 0`` the
+    limits ``(4 / 3, 2 / 3, 2, 0) / pi``: ``<sin^2 / r>`` diverges as ``ln(4 / k)``,
+    but its weight (``q^2``) vanishes faster, and 0 stands for their product."""
+    if not k > 0.0:  # a line: <|cos|^3>, <|cos| sin^2>, <|cos|>, and see above
         return 4.0 / (3.0 * math.pi), 2.0 / (3.0 * math.pi), 2.0 / math.pi, 0.0
     if k > 1.0:
         k = 1.0
@@ -89,100 +96,109 @@ def ellipse_means(k):  # noqa: ANN001, ANN201
             break
         a_next = 0.5 * (a + b)
         b = math.sqrt(a * b)
-        c2_next = c2 * c2 / (16.0 * a_next * a_next)
+        c2 = c2 * c2 / (16.0 * a_next * a_next)
         weight *= 2.0
-        s += weight * (c2_next / m)
-        a, c2 = a_next, c2_next
-    big_k = 0.5 * math.pi / (0.5 * (a + b))
+        s += weight * (c2 / m)
+        a = a_next
+    a_next = 0.5 * (a + b)  # M, and the last term of the sum (module constant)
+    if m > 0.0:
+        s += 2.0 * weight * (c2 * c2 / (16.0 * a_next * a_next) / m)
+    big_k = 0.5 * math.pi / a_next
     lam = big_k * (0.5 + s)
     e = big_k - m * lam
     if m <= 0.5:
         j = big_k * (1.5 - m + s * (1.0 - 2.0 * m)) / 3.0
     else:
         j = ((2.0 * m - 1.0) * e + (1.0 - m) * big_k) / (3.0 * m)
+    return _QUARTER * (e - j), _QUARTER * j, _QUARTER * big_k * (0.5 - s), _QUARTER * lam
+
+
+@njit(cache=True, inline="always")
+def _ellipse_terms(coef, a0, a1, a2, b0, b1, b2, f0, f1, f2, g0, g1, g2, t0, t1, t2):  # noqa: ANN001, ANN202, PLR0913
+    """The means of ``coef |v_e| v_e`` for ``v_e = A cos - B sin`` (the normal part, or
+    ``v`` itself with ``t = 0``) and ``v = a cos - b sin`` the whole velocity (``A``:
+    ``a0 .. a2``, ``B``: ``b0 .. b2``, ``a``: ``f0 .. f2``, ``b``: ``g0 .. g2``): the 9
+    entries of ``<coef |v_e| v_e v^T>`` row by row, then the entries 00, 01, 02, 11,
+    12, 22 of the mean Jacobian ``coef (<|v_e|> (I - t t^T) + <v_e v_e^T / |v_e|>)``;
+    zeros for ``v_e = 0``.
+
+    The principal axes without the turn itself: with ``x = A.A - B.B``, ``y = 2 A.B``,
+    ``rho = |(x, y)|`` (``cos 2 th_0 = x / rho``, ``sin 2 th_0 = y / rho``), ``p^2 + q^2 =
+    A.A + B.B``, ``p^2 - q^2 = rho`` and ``p q = |A x B|``, so ``k = q / p = 2 |A x B| /
+    (A.A + B.B + rho)``, and ``X X_f^T = c^2 A a^T + s^2 B b^T + c s (A b^T + B a^T)``,
+    ``Y Y_f^T`` the same with ``c^2``, ``s^2`` exchanged and ``-c s`` (``c^2 = (1 + cos
+    2 th_0) / 2``, ...): one square root and no turn before the mean. Everything is
+    scaled by ``A.A + B.B`` first (no square of a square: no under- or overflow where
+    the drag itself has none). Scalars throughout (this runs once a node)."""
+    aa = a0 * a0 + a1 * a1 + a2 * a2
+    bb = b0 * b0 + b1 * b1 + b2 * b2
+    s2 = aa + bb
+    if not s2 > 0.0:
+        return _NONE
+    inv = 1.0 / s2
+    x = (aa - bb) * inv
+    y = 2.0 * (a0 * b0 + a1 * b1 + a2 * b2) * inv
+    z0 = (a1 * b2 - a2 * b1) * inv
+    z1 = (a2 * b0 - a0 * b2) * inv
+    z2 = (a0 * b1 - a1 * b0) * inv
+    rho = math.sqrt(x * x + y * y)  # (p^2 - q^2) / (p^2 + q^2), in [0, 1]
+    area = math.sqrt(z0 * z0 + z1 * z1 + z2 * z2)  # p q / (p^2 + q^2)
+    rc, rs, ic, lm = ellipse_means(min(2.0 * area / (1.0 + rho), 1.0))
+    p = math.sqrt(0.5 * s2 * (1.0 + rho))
+    if rho > 0.0:
+        cc = 0.5 * (1.0 + x / rho)
+        ss = 0.5 * (1.0 - x / rho)
+        cs = 0.5 * y / rho
+    else:  # a circle: any turn
+        cc, ss, cs = 1.0, 0.0, 0.0
+    # H: coef p (rc X X_f^T + rs Y Y_f^T) = ha A a^T + hb B b^T + hc (A b^T + B a^T)
+    hp = coef * p
+    ha = hp * (rc * cc + rs * ss)
+    hb = hp * (rc * ss + rs * cc)
+    hc = hp * (rc - rs) * cs
+    # J: coef (p (rc + rs) P + (ic X X^T + lm Y Y^T) / p), the same way
+    mean_r = hp * (rc + rs)
+    jp = coef / p
+    ja = jp * (ic * cc + lm * ss)
+    jb = jp * (ic * ss + lm * cc)
+    jc = jp * (ic - lm) * cs
     return (
-        _QUARTER * (e - j),
-        _QUARTER * j,
-        _QUARTER * big_k * (0.5 - s),
-        _QUARTER * k * k * lam,
+        ha * a0 * f0 + hb * b0 * g0 + hc * (a0 * g0 + b0 * f0),
+        ha * a0 * f1 + hb * b0 * g1 + hc * (a0 * g1 + b0 * f1),
+        ha * a0 * f2 + hb * b0 * g2 + hc * (a0 * g2 + b0 * f2),
+        ha * a1 * f0 + hb * b1 * g0 + hc * (a1 * g0 + b1 * f0),
+        ha * a1 * f1 + hb * b1 * g1 + hc * (a1 * g1 + b1 * f1),
+        ha * a1 * f2 + hb * b1 * g2 + hc * (a1 * g2 + b1 * f2),
+        ha * a2 * f0 + hb * b2 * g0 + hc * (a2 * g0 + b2 * f0),
+        ha * a2 * f1 + hb * b2 * g1 + hc * (a2 * g1 + b2 * f1),
+        ha * a2 * f2 + hb * b2 * g2 + hc * (a2 * g2 + b2 * f2),
+        mean_r * (1.0 - t0 * t0) + ja * a0 * a0 + jb * b0 * b0 + jc * (a0 * b0 + b0 * a0),
+        ja * a0 * a1 + jb * b0 * b1 + jc * (a0 * b1 + b0 * a1) - mean_r * t0 * t1,
+        ja * a0 * a2 + jb * b0 * b2 + jc * (a0 * b2 + b0 * a2) - mean_r * t0 * t2,
+        mean_r * (1.0 - t1 * t1) + ja * a1 * a1 + jb * b1 * b1 + jc * (a1 * b1 + b1 * a1),
+        ja * a1 * a2 + jb * b1 * b2 + jc * (a1 * b2 + b1 * a2) - mean_r * t1 * t2,
+        mean_r * (1.0 - t2 * t2) + ja * a2 * a2 + jb * b2 * b2 + jc * (a2 * b2 + b2 * a2),
     )
 
 
 @njit(cache=True, inline="always")
-def principal_turn(a0, a1, a2, b0, b1, b2):  # noqa: ANN001, ANN201, PLR0913
-    """``(cos th_0, sin th_0)`` of the phase turn ``th_0 = arg(Z . Z) / 2`` of ``Z = a +
-    i b`` (module docstring), from the half-angle formulas of ``cos 2 th_0 = x / rho``,
-    ``sin 2 th_0 = y / rho`` (``x = a.a - b.b``, ``y = 2 a.b``, ``rho = |(x, y)|``),
-    each square root of a sum of non-negative terms; ``(1, 0)`` for a circle or no
-    motion (any turn serves)."""
-    x = (a0 * a0 + a1 * a1 + a2 * a2) - (b0 * b0 + b1 * b1 + b2 * b2)
-    y = 2.0 * (a0 * b0 + a1 * b1 + a2 * b2)
-    rho = math.hypot(x, y)  # not sqrt(x^2 + y^2): x^2 under- or overflows first
-    if not rho > 0.0:
-        return 1.0, 0.0
-    if x >= 0.0:
-        c = math.sqrt((rho + x) / (2.0 * rho))
-        return c, y / (2.0 * rho * c)
-    s = math.copysign(math.sqrt((rho - x) / (2.0 * rho)), y)
-    return y / (2.0 * rho * s), s
-
-
-@njit(cache=True, inline="always")
-def _ellipse_terms(coef, a0, a1, a2, b0, b1, b2, f0, f1, f2, g0, g1, g2, t0, t1, t2, acc):  # noqa: ANN001, ANN202, PLR0913
-    """Add the means of ``coef |v_e| v_e`` to ``acc`` (3, 3, 3): to ``acc[1]`` (``H``)
-    ``<coef |v_e| v_e v^T>`` and to ``acc[2]`` (``J``) the mean Jacobian ``coef (<|v_e|>
-    (I - t t^T) + <v_e v_e^T / |v_e|>)``, for ``v_e = a cos - b sin`` (the normal part,
-    or ``v`` itself with ``t = 0``) and ``v = f cos - g sin`` the whole velocity. Nothing
-    for ``v_e = 0``."""
-    c, s = principal_turn(a0, a1, a2, b0, b1, b2)
-    x0, x1, x2 = a0 * c + b0 * s, a1 * c + b1 * s, a2 * c + b2 * s
-    y0, y1, y2 = b0 * c - a0 * s, b1 * c - a1 * s, b2 * c - a2 * s
-    p = math.sqrt(x0 * x0 + x1 * x1 + x2 * x2)
-    if not p > 0.0:
-        return
-    q = math.sqrt(y0 * y0 + y1 * y1 + y2 * y2)
-    rc, rs, ic, js = ellipse_means(q / p)
-    X = (x0, x1, x2)
-    Y = (y0, y1, y2)
-    Xf = (f0 * c + g0 * s, f1 * c + g1 * s, f2 * c + g2 * s)
-    Yf = (g0 * c - f0 * s, g1 * c - f1 * s, g2 * c - f2 * s)
-    t = (t0, t1, t2)
-    # the minor axis' unit vector (its term vanishes with q: none for a line)
-    inv_q = 1.0 / q if q > 0.0 else 0.0
-    e = (y0 * inv_q, y1 * inv_q, y2 * inv_q)
-    hx, hy = coef * p * rc, coef * p * rs
-    mean_r = coef * p * (rc + rs)
-    jx, jy = coef * ic / p, coef * js * p
-    for r in range(3):
-        for k in range(3):
-            acc[1, r, k] += hx * X[r] * Xf[k] + hy * Y[r] * Yf[k]
-            eye = 1.0 if r == k else 0.0
-            acc[2, r, k] += mean_r * (eye - t[r] * t[k]) + jx * X[r] * X[k] + jy * e[r] * e[k]
-
-
-@njit(cache=True, inline="always")
-def still_water_means(vr, vi, tan, c_n, c_t, c_b, i, acc):  # noqa: ANN001, ANN201, PLR0913
+def still_water_means(vr, vi, tan, c_n, c_t, c_b, i):  # noqa: ANN001, ANN201, PLR0913
     """The exact period means of node ``i``'s drag fit without current (module
-    docstring) into ``acc`` (3, 3, 3): ``G = <w w^T>``, ``H = <f w^T>`` (the mean force
-    is zero) and the mean Jacobian ``J = <df/dw>`` (the lean of a system's fit, as
-    ``tests/system_drag_reference.mean_drag_jacobian``), for the velocity amplitude
-    ``vr[i] + i vi[i]`` [m/s], unit tangent ``tan[i]`` and drag coefficients ``c_n[i]``,
-    ``c_t[i]``, ``c_b[i]`` [kg/m] (normal, tangential, isotropic body)."""
+    docstring): ``G = <w w^T>`` (entries 00, 01, 02, 11, 12, 22), ``H = <f w^T>`` (row
+    by row; the mean force is zero) and the mean Jacobian ``J = <df/dw>`` (as ``G``; the
+    lean of a system's fit, as ``tests/system_drag_reference.mean_drag_jacobian``), for
+    the velocity amplitude ``vr[i] + i vi[i]`` [m/s], unit tangent ``tan[i]`` and drag
+    coefficients ``c_n[i]``, ``c_t[i]``, ``c_b[i]`` [kg/m] (normal, tangential,
+    isotropic body): the sums of :func:`.harmonic_kernel.fit_from_sums` over one
+    phase."""
     a0, a1, a2 = vr[i, 0], vr[i, 1], vr[i, 2]
     b0, b1, b2 = vi[i, 0], vi[i, 1], vi[i, 2]
     t0, t1, t2 = tan[i, 0], tan[i, 1], tan[i, 2]
-    a = (a0, a1, a2)
-    b = (b0, b1, b2)
-    t = (t0, t1, t2)
-    for r in range(3):
-        for k in range(3):
-            acc[0, r, k] = 0.5 * (a[r] * a[k] + b[r] * b[k])
-            acc[1, r, k] = 0.0
-            acc[2, r, k] = 0.0
     al = a0 * t0 + a1 * t1 + a2 * t2
     be = b0 * t0 + b1 * t1 + b2 * t2
+    n = _NONE
     if c_n[i] != 0.0:
-        _ellipse_terms(
+        n = _ellipse_terms(
             c_n[i],
             a0 - al * t0,
             a1 - al * t1,
@@ -199,16 +215,41 @@ def still_water_means(vr, vi, tan, c_n, c_t, c_b, i, acc):  # noqa: ANN001, ANN2
             t0,
             t1,
             t2,
-            acc,
         )
+    bd = _NONE
     if c_b[i] != 0.0:
-        _ellipse_terms(c_b[i], a0, a1, a2, b0, b1, b2, a0, a1, a2, b0, b1, b2, 0.0, 0.0, 0.0, acc)
-    if c_t[i] != 0.0:
-        # |x| x of a harmonic of amplitude s_t: first harmonic 8 s_t / (3 pi) x
-        s_t = math.sqrt(al * al + be * be)
-        gain = c_t[i] * 8.0 * s_t / (3.0 * math.pi)
-        along = c_t[i] * 4.0 * s_t / math.pi  # 2 c_T <|w_T|>
-        for r in range(3):
-            for k in range(3):
-                acc[1, r, k] += gain * t[r] * 0.5 * (al * a[k] + be * b[k])
-                acc[2, r, k] += along * t[r] * t[k]
+        bd = _ellipse_terms(c_b[i], a0, a1, a2, b0, b1, b2, a0, a1, a2, b0, b1, b2, 0.0, 0.0, 0.0)
+    # |x| x of a harmonic of amplitude s_t: first harmonic 8 s_t / (3 pi) x, so
+    # <|w_T| w_T w^T> = 8 s_t / (3 pi) t^T G; and 2 c_T <|w_T|> = 4 c_T s_t / pi
+    s_t = math.sqrt(al * al + be * be)
+    gain = c_t[i] * (4.0 / (3.0 * math.pi)) * s_t
+    along = c_t[i] * (4.0 / math.pi) * s_t
+    u0, u1, u2 = gain * (al * a0 + be * b0), gain * (al * a1 + be * b1), gain * (al * a2 + be * b2)
+    g = (
+        0.5 * (a0 * a0 + b0 * b0),
+        0.5 * (a0 * a1 + b0 * b1),
+        0.5 * (a0 * a2 + b0 * b2),
+        0.5 * (a1 * a1 + b1 * b1),
+        0.5 * (a1 * a2 + b1 * b2),
+        0.5 * (a2 * a2 + b2 * b2),
+    )
+    h = (
+        n[0] + bd[0] + t0 * u0,
+        n[1] + bd[1] + t0 * u1,
+        n[2] + bd[2] + t0 * u2,
+        n[3] + bd[3] + t1 * u0,
+        n[4] + bd[4] + t1 * u1,
+        n[5] + bd[5] + t1 * u2,
+        n[6] + bd[6] + t2 * u0,
+        n[7] + bd[7] + t2 * u1,
+        n[8] + bd[8] + t2 * u2,
+    )
+    j = (
+        n[9] + bd[9] + along * t0 * t0,
+        n[10] + bd[10] + along * t0 * t1,
+        n[11] + bd[11] + along * t0 * t2,
+        n[12] + bd[12] + along * t1 * t1,
+        n[13] + bd[13] + along * t1 * t2,
+        n[14] + bd[14] + along * t2 * t2,
+    )
+    return g, h, j

@@ -299,6 +299,11 @@ def planar_drag_fit(vr, vi, t, u, c_n, c_t, tangent_d, i, out):  # noqa: ANN001,
     out[i, 1, 2] = 0.0
 
 
+#: the place of entry (a, b) of a symmetric 3 x 3 matrix in its entries 00, 01, 02, 11,
+#: 12, 22
+_SYM = ((0, 1, 2), (1, 3, 4), (2, 4, 5))
+
+
 @njit(cache=True)
 def _drag_fit(  # noqa: PLR0913
     velocity_re, velocity_im, current, tangent, c_n, c_t, c_b, tangent_d, samples, exact, out
@@ -310,7 +315,6 @@ def _drag_fit(  # noqa: PLR0913
     any other node without current the exact period means of the fit
     (:func:`.elliptic_fit.still_water_means`) instead of the phase sums."""
     n = current.shape[0]
-    acc = np.empty((3, 3, 3))
     cos = np.empty(samples)
     sin = np.empty(samples)
     for k in range(samples):
@@ -326,8 +330,12 @@ def _drag_fit(  # noqa: PLR0913
             planar_drag_fit(velocity_re, velocity_im, tangent, current, c_n, c_t, tangent_d, i, out)
             continue
         if exact and still_water(current, i):
-            still_water_means(velocity_re, velocity_im, tangent, c_n, c_t, c_b, i, acc)
-            _regularised_fit(acc[0], acc[1], 1, tangent_d, i, Gi, out)
+            g, h, _ = still_water_means(velocity_re, velocity_im, tangent, c_n, c_t, c_b, i)
+            for a in range(3):
+                for b in range(3):
+                    G[a, b] = g[_SYM[a][b]]
+                    H[a, b] = h[3 * a + b]
+            _regularised_fit(G, H, 1, tangent_d, i, Gi, out)
             continue
         fm0 = fm1 = fm2 = 0.0
         for k in range(samples):

@@ -54,7 +54,6 @@ def drag_fit_samples(  # noqa: PLR0913
     (:func:`.elliptic_fit.still_water_means`), as ``_drag_fit`` does."""
     n = current.shape[0]
     samples = cos.shape[0]
-    acc = np.empty((3, 3, 3))
     for i in range(n):
         if exact and c_b[i] == 0.0 and is_planar(vr, vi, tangent, current, i):
             kind[i] = 2
@@ -62,8 +61,8 @@ def drag_fit_samples(  # noqa: PLR0913
             continue
         if exact and still_water(current, i):
             kind[i] = 2
-            still_water_means(vr, vi, tangent, c_n, c_t, c_b, i, acc)
-            fit_from_sums(sym_entries(acc[0]), row_entries(acc[1]), 1, tangent_d, i, out)
+            g, h, _ = still_water_means(vr, vi, tangent, c_n, c_t, c_b, i)
+            fit_from_sums(g, h, 1, tangent_d, i, out)
             continue
         t0, t1, t2 = tangent[i, 0], tangent[i, 1], tangent[i, 2]
         cn, ct, cb = c_n[i], c_t[i], c_b[i]
@@ -161,18 +160,6 @@ def drag_fit_samples(  # noqa: PLR0913
             i,
             out,
         )
-
-
-@njit(cache=True, inline="always")
-def sym_entries(m):  # noqa: ANN001, ANN202
-    """The entries 00, 01, 02, 11, 12, 22 of the symmetric ``m`` (3, 3)."""
-    return m[0, 0], m[0, 1], m[0, 2], m[1, 1], m[1, 2], m[2, 2]
-
-
-@njit(cache=True, inline="always")
-def row_entries(m):  # noqa: ANN001, ANN202
-    """The entries of ``m`` (3, 3) row by row."""
-    return m[0, 0], m[0, 1], m[0, 2], m[1, 0], m[1, 1], m[1, 2], m[2, 0], m[2, 1], m[2, 2]
 
 
 @njit(cache=True, inline="always")

@@ -17,7 +17,7 @@ from numba import njit
 
 from .elliptic_fit import still_water_means
 from .frequency_model import FIT_REGULARISATION, is_planar, planar_drag_fit, still_water
-from .harmonic_kernel import fit_from_sums, row_entries, sym_entries
+from .harmonic_kernel import fit_from_sums
 
 #: the sums over the phases may be reassociated (vectorised: the system's frequency
 #: domain takes 13% less time a case); no other fast-math flag: with contraction and
@@ -27,25 +27,14 @@ _REASSOCIATE = {"reassoc"}
 
 
 @njit(cache=True, error_model="numpy", fastmath=_REASSOCIATE)
-def fit_node(i, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, out, acc):  # noqa: ANN001, ANN202, PLR0913, PLR0915
+def fit_node(i, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, out):  # noqa: ANN001, ANN202, PLR0913, PLR0915
     """The small-motion lean (``mean_drag_jacobian`` of the NumPy oracle,
     tests/system_drag_reference.py) into ``lean[i]`` and the drag fit leaning on it
     (:func:`.frequency_model.drag_linearisation`) into ``out[i]`` of node ``i``, one
-    pass over the phases for both. Without current at the node: with ``exact`` the
-    exact period means of both (:func:`.elliptic_fit.still_water_means`, into the work
-    array ``acc`` (3, 3, 3)) and no phases; else, with an even number of phases, the
-    phases of half a period serve (each sum twice; the mean force is zero)."""
+    pass over the phases for both. Without current at the node and with an even number
+    of phases, the phases of half a period serve (each sum twice; the mean force is
+    zero)."""
     samples = cs.shape[0]
-    if exact and still_water(cur, i):
-        still_water_means(vr, vi, tan, c_n, c_t, c_b, i, acc)
-        for a in range(3):
-            for b in range(3):
-                lean[i, a, b] = acc[2, a, b]
-        if c_b[i] == 0.0 and is_planar(vr, vi, tan, cur, i):
-            planar_drag_fit(vr, vi, tan, cur, c_n, c_t, lean, i, out)
-        else:
-            fit_from_sums(sym_entries(acc[0]), row_entries(acc[1]), 1, lean, i, out)
-        return
     t0, t1, t2 = tan[i, 0], tan[i, 1], tan[i, 2]
     u0, u1, u2 = cur[i, 0], cur[i, 1], cur[i, 2]
     a0, a1, a2 = vr[i, 0], vr[i, 1], vr[i, 2]
@@ -175,6 +164,24 @@ def fit_node(i, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, out, acc)
     )
 
 
+@njit(cache=True, inline="always")
+def fit_still_node(i, vr, vi, cur, tan, c_n, c_t, c_b, lean, out):  # noqa: ANN001, ANN202, PLR0913
+    """:func:`fit_node` of a node without current with ``samples`` unset: the lean and
+    the fit from the exact period means (:func:`.elliptic_fit.still_water_means`)
+    instead of the phase sums; a node moving in the x-z plane (no body) the planar
+    closed form with that lean, as :func:`fit_node`. Inlined into :func:`fit_all`: a
+    call per node with its ten arrays would cost as much as the means (their
+    reference counts)."""
+    g, h, j = still_water_means(vr, vi, tan, c_n, c_t, c_b, i)
+    lean[i, 0, 0], lean[i, 0, 1], lean[i, 0, 2] = j[0], j[1], j[2]
+    lean[i, 1, 0], lean[i, 1, 1], lean[i, 1, 2] = j[1], j[3], j[4]
+    lean[i, 2, 0], lean[i, 2, 1], lean[i, 2, 2] = j[2], j[4], j[5]
+    if c_b[i] == 0.0 and is_planar(vr, vi, tan, cur, i):
+        planar_drag_fit(vr, vi, tan, cur, c_n, c_t, lean, i, out)
+    else:
+        fit_from_sums(g, h, 1, lean, i, out)
+
+
 @njit(cache=True, error_model="numpy")
 def fit_points(c_p, cur, u_pts, omega, cs, sn_, Dp):  # noqa: ANN001, ANN202
     """The describing-function drag fit of every point (``point_drag_fit`` of the NumPy
@@ -240,9 +247,11 @@ def fit_all(
             v = 1j * omega * disp[g, a]
             vr[g, a] = v.real
             vi[g, a] = v.imag
-    acc = np.empty((3, 3, 3))
     for g in range(disp.shape[0]):
-        fit_node(g, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, D, acc)
+        if exact and still_water(cur, g):
+            fit_still_node(g, vr, vi, cur, tan, c_n, c_t, c_b, lean, D)
+        else:
+            fit_node(g, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, D)
     fit_points(c_p, pcur, u_pts, omega, cs, sn_, Dp)
 
 

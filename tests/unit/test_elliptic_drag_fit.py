@@ -32,10 +32,14 @@ from cablestudy.dynamics.frequency_model import drag_linearisation, planar_drag_
 def _closed(vr, vi, tan, c_n, c_t, c_b):  # noqa: ANN001, ANN202
     """(n, 3, 3, 3): per node ``G``, ``H``, ``J`` of :func:`still_water_means`."""
     out = np.empty((vr.shape[0], 3, 3, 3))
-    acc = np.empty((3, 3, 3))
+    sym = ((0, 1, 2), (1, 3, 4), (2, 4, 5))
     for i in range(vr.shape[0]):
-        still_water_means(vr, vi, tan, c_n, c_t, c_b, i, acc)
-        out[i] = acc
+        g, h, j = still_water_means(vr, vi, tan, c_n, c_t, c_b, i)
+        for a in range(3):
+            for b in range(3):
+                out[i, 0, a, b] = g[sym[a][b]]
+                out[i, 1, a, b] = h[3 * a + b]
+                out[i, 2, a, b] = j[sym[a][b]]
     return out
 
 
@@ -105,7 +109,7 @@ def _axis_ratio(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 @pytest.mark.parametrize("k", [1.0, 1.0 - 1e-9, 0.9, 0.5, 0.2, 1e-2, 1e-4, 1e-8, 1e-20, 1e-40])
 def test_ellipse_means_are_the_elliptic_integrals(k: float) -> None:
-    """``(<r cos^2>, <r sin^2>, <cos^2 / r>, k^2 <sin^2 / r>)`` of ``r = sqrt(1 - m
+    """``(<r cos^2>, <r sin^2>, <cos^2 / r>, <sin^2 / r>)`` of ``r = sqrt(1 - m
     sin^2)``, ``m = 1 - k^2``, by mpmath's ``K``, ``E`` at 100 digits (``m`` within
     ``1e-80`` of one needs 80 of them). The bar: rounding times the ``ln(4 / k)`` digits
     the sums lose near a line (module docstring of elliptic_fit), 1e-15 each."""
@@ -118,7 +122,7 @@ def test_ellipse_means_are_the_elliptic_integrals(k: float) -> None:
         else:
             L = (K - E) / m
             J = ((2 * m - 1) * E + (1 - m) * K) / (3 * m)
-        want = [float(x * 2 / mpmath.pi) for x in (E - J, J, K - L, kk**2 * L)]
+        want = [float(x * 2 / mpmath.pi) for x in (E - J, J, K - L, L)]
     got = ellipse_means(k)
     bar = 4e-16 * (4.0 + math.log(4.0 / k))
     np.testing.assert_allclose(got, want, rtol=bar, atol=0.0)
@@ -126,11 +130,17 @@ def test_ellipse_means_are_the_elliptic_integrals(k: float) -> None:
 
 def test_ellipse_means_at_a_line_and_a_circle() -> None:
     """A line (``k = 0``): ``<|cos|^3> = 4 / (3 pi)``, ``<|cos| sin^2> = 2 / (3 pi)``,
-    ``<|cos|> = 2 / pi`` and the minor-axis term zero, which ``k -> 0`` approaches
-    (``k^2 ln(1 / k)``: below 1e-15 at ``k = 1e-9``); a circle: one half each."""
+    ``<|cos|> = 2 / pi``, which ``k -> 0`` approaches (as ``k^2 ln(1 / k)``: below
+    1e-15 at ``k = 1e-9``), and 0 for ``<sin^2 / r>``, whose weight ``k^2`` in the fit
+    takes it to zero (``(2 / pi) k^2 (ln(4 / k) - 1)`` near the line); a circle: one
+    half each."""
     line = (4.0 / (3.0 * math.pi), 2.0 / (3.0 * math.pi), 2.0 / math.pi, 0.0)
     assert ellipse_means(0.0) == pytest.approx(line, rel=1e-15, abs=0.0)
-    np.testing.assert_allclose(ellipse_means(1e-9), line, rtol=1e-14, atol=1e-15)
+    k = 1e-9
+    near = ellipse_means(k)
+    np.testing.assert_allclose(near[:3], line[:3], rtol=1e-14)
+    want = 2.0 / math.pi * (math.log(4.0 / k) - 1.0)
+    assert near[3] == pytest.approx(want, rel=1e-15)
     np.testing.assert_allclose(ellipse_means(1.0), [0.5] * 4, rtol=1e-15)
 
 
