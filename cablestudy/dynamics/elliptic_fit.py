@@ -182,24 +182,21 @@ def _ellipse_terms(coef, a0, a1, a2, b0, b1, b2, f0, f1, f2, g0, g1, g2, t0, t1,
 
 
 @njit(cache=True, inline="always")
-def still_water_means(vr, vi, tan, c_n, c_t, c_b, i):  # noqa: ANN001, ANN201, PLR0913
-    """The exact period means of node ``i``'s drag fit without current (module
-    docstring): ``G = <w w^T>`` (entries 00, 01, 02, 11, 12, 22), ``H = <f w^T>`` (row
-    by row; the mean force is zero) and the mean Jacobian ``J = <df/dw>`` (as ``G``; the
-    lean of a system's fit, as ``tests/system_drag_reference.mean_drag_jacobian``), for
-    the velocity amplitude ``vr[i] + i vi[i]`` [m/s], unit tangent ``tan[i]`` and drag
-    coefficients ``c_n[i]``, ``c_t[i]``, ``c_b[i]`` [kg/m] (normal, tangential,
-    isotropic body): the sums of :func:`.harmonic_kernel.fit_from_sums` over one
-    phase."""
-    a0, a1, a2 = vr[i, 0], vr[i, 1], vr[i, 2]
-    b0, b1, b2 = vi[i, 0], vi[i, 1], vi[i, 2]
-    t0, t1, t2 = tan[i, 0], tan[i, 1], tan[i, 2]
+def still_water_means(a0, a1, a2, b0, b1, b2, t0, t1, t2, cn, ct, cb):  # noqa: ANN001, ANN201, PLR0913
+    """The exact period means of a node's drag fit without current (module docstring):
+    ``G = <w w^T>`` (entries 00, 01, 02, 11, 12, 22), ``H = <f w^T>`` (row by row; the
+    mean force is zero) and the mean Jacobian ``J = <df/dw>`` (as ``G``; the lean of a
+    system's fit, as ``tests/system_drag_reference.mean_drag_jacobian``), for the
+    velocity amplitude ``a + i b`` [m/s], unit tangent ``t`` and drag coefficients
+    ``cn``, ``ct``, ``cb`` [kg/m] (normal, tangential, isotropic body): the sums of
+    :func:`.harmonic_kernel.fit_from_sums` over one phase. Scalars in (an inlined
+    function's array arguments cost reference counts, as much as the means)."""
     al = a0 * t0 + a1 * t1 + a2 * t2
     be = b0 * t0 + b1 * t1 + b2 * t2
     n = _NONE
-    if c_n[i] != 0.0:
+    if cn != 0.0:
         n = _ellipse_terms(
-            c_n[i],
+            cn,
             a0 - al * t0,
             a1 - al * t1,
             a2 - al * t2,
@@ -217,13 +214,13 @@ def still_water_means(vr, vi, tan, c_n, c_t, c_b, i):  # noqa: ANN001, ANN201, P
             t2,
         )
     bd = _NONE
-    if c_b[i] != 0.0:
-        bd = _ellipse_terms(c_b[i], a0, a1, a2, b0, b1, b2, a0, a1, a2, b0, b1, b2, 0.0, 0.0, 0.0)
+    if cb != 0.0:
+        bd = _ellipse_terms(cb, a0, a1, a2, b0, b1, b2, a0, a1, a2, b0, b1, b2, 0.0, 0.0, 0.0)
     # |x| x of a harmonic of amplitude s_t: first harmonic 8 s_t / (3 pi) x, so
     # <|w_T| w_T w^T> = 8 s_t / (3 pi) t^T G; and 2 c_T <|w_T|> = 4 c_T s_t / pi
     s_t = math.sqrt(al * al + be * be)
-    gain = c_t[i] * (4.0 / (3.0 * math.pi)) * s_t
-    along = c_t[i] * (4.0 / math.pi) * s_t
+    gain = ct * (4.0 / (3.0 * math.pi)) * s_t
+    along = ct * (4.0 / math.pi) * s_t
     u0, u1, u2 = gain * (al * a0 + be * b0), gain * (al * a1 + be * b1), gain * (al * a2 + be * b2)
     g = (
         0.5 * (a0 * a0 + b0 * b0),

@@ -330,7 +330,20 @@ def _drag_fit(  # noqa: PLR0913
             planar_drag_fit(velocity_re, velocity_im, tangent, current, c_n, c_t, tangent_d, i, out)
             continue
         if exact and still_water(current, i):
-            g, h, _ = still_water_means(velocity_re, velocity_im, tangent, c_n, c_t, c_b, i)
+            g, h, _ = still_water_means(
+                velocity_re[i, 0],
+                velocity_re[i, 1],
+                velocity_re[i, 2],
+                velocity_im[i, 0],
+                velocity_im[i, 1],
+                velocity_im[i, 2],
+                tangent[i, 0],
+                tangent[i, 1],
+                tangent[i, 2],
+                c_n[i],
+                c_t[i],
+                c_b[i],
+            )
             for a in range(3):
                 for b in range(3):
                     G[a, b] = g[_SYM[a][b]]

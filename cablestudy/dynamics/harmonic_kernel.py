@@ -61,7 +61,20 @@ def drag_fit_samples(  # noqa: PLR0913
             continue
         if exact and still_water(current, i):
             kind[i] = 2
-            g, h, _ = still_water_means(vr, vi, tangent, c_n, c_t, c_b, i)
+            g, h, _ = still_water_means(
+                vr[i, 0],
+                vr[i, 1],
+                vr[i, 2],
+                vi[i, 0],
+                vi[i, 1],
+                vi[i, 2],
+                tangent[i, 0],
+                tangent[i, 1],
+                tangent[i, 2],
+                c_n[i],
+                c_t[i],
+                c_b[i],
+            )
             fit_from_sums(g, h, 1, tangent_d, i, out)
             continue
         t0, t1, t2 = tangent[i, 0], tangent[i, 1], tangent[i, 2]

@@ -16,7 +16,7 @@ import numpy as np
 from numba import njit
 
 from .elliptic_fit import still_water_means
-from .frequency_model import FIT_REGULARISATION, is_planar, planar_drag_fit, still_water
+from .frequency_model import FIT_REGULARISATION, is_planar, planar_drag_fit
 from .harmonic_kernel import fit_from_sums
 
 #: the sums over the phases may be reassociated (vectorised: the system's frequency
@@ -164,24 +164,6 @@ def fit_node(i, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, out):  # 
     )
 
 
-@njit(cache=True, inline="always")
-def fit_still_node(i, vr, vi, cur, tan, c_n, c_t, c_b, lean, out):  # noqa: ANN001, ANN202, PLR0913
-    """:func:`fit_node` of a node without current with ``samples`` unset: the lean and
-    the fit from the exact period means (:func:`.elliptic_fit.still_water_means`)
-    instead of the phase sums; a node moving in the x-z plane (no body) the planar
-    closed form with that lean, as :func:`fit_node`. Inlined into :func:`fit_all`: a
-    call per node with its ten arrays would cost as much as the means (their
-    reference counts)."""
-    g, h, j = still_water_means(vr, vi, tan, c_n, c_t, c_b, i)
-    lean[i, 0, 0], lean[i, 0, 1], lean[i, 0, 2] = j[0], j[1], j[2]
-    lean[i, 1, 0], lean[i, 1, 1], lean[i, 1, 2] = j[1], j[3], j[4]
-    lean[i, 2, 0], lean[i, 2, 1], lean[i, 2, 2] = j[2], j[4], j[5]
-    if c_b[i] == 0.0 and is_planar(vr, vi, tan, cur, i):
-        planar_drag_fit(vr, vi, tan, cur, c_n, c_t, lean, i, out)
-    else:
-        fit_from_sums(g, h, 1, lean, i, out)
-
-
 @njit(cache=True, error_model="numpy")
 def fit_points(c_p, cur, u_pts, omega, cs, sn_, Dp):  # noqa: ANN001, ANN202
     """The describing-function drag fit of every point (``point_drag_fit`` of the NumPy
@@ -248,10 +230,23 @@ def fit_all(
             vr[g, a] = v.real
             vi[g, a] = v.imag
     for g in range(disp.shape[0]):
-        if exact and still_water(cur, g):
-            fit_still_node(g, vr, vi, cur, tan, c_n, c_t, c_b, lean, D)
-        else:
+        if not (exact and cur[g, 0] == 0.0 and cur[g, 1] == 0.0 and cur[g, 2] == 0.0):
             fit_node(g, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, D)
+            continue
+        # no current, samples unset: the lean and the fit from the exact period means
+        # (written out here: an inlined function's array arguments cost reference
+        # counts, as much as the means); a node moving in the x-z plane (no body) the
+        # planar closed form with that lean, as fit_node
+        a0, a1, a2, b0, b1, b2 = vr[g, 0], vr[g, 1], vr[g, 2], vi[g, 0], vi[g, 1], vi[g, 2]
+        t0, t1, t2 = tan[g, 0], tan[g, 1], tan[g, 2]
+        G, H, J = still_water_means(a0, a1, a2, b0, b1, b2, t0, t1, t2, c_n[g], c_t[g], c_b[g])
+        lean[g, 0, 0], lean[g, 0, 1], lean[g, 0, 2] = J[0], J[1], J[2]
+        lean[g, 1, 0], lean[g, 1, 1], lean[g, 1, 2] = J[1], J[3], J[4]
+        lean[g, 2, 0], lean[g, 2, 1], lean[g, 2, 2] = J[2], J[4], J[5]
+        if c_b[g] == 0.0 and a1 == 0.0 and b1 == 0.0 and t1 == 0.0:
+            planar_drag_fit(vr, vi, tan, cur, c_n, c_t, lean, g, D)
+        else:
+            fit_from_sums(G, H, 1, lean, g, D)
     fit_points(c_p, pcur, u_pts, omega, cs, sn_, Dp)
 
 

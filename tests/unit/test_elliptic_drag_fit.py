@@ -34,7 +34,10 @@ def _closed(vr, vi, tan, c_n, c_t, c_b):  # noqa: ANN001, ANN202
     out = np.empty((vr.shape[0], 3, 3, 3))
     sym = ((0, 1, 2), (1, 3, 4), (2, 4, 5))
     for i in range(vr.shape[0]):
-        g, h, j = still_water_means(vr, vi, tan, c_n, c_t, c_b, i)
+        g, h, j = still_water_means(
+            vr[i, 0], vr[i, 1], vr[i, 2], vi[i, 0], vi[i, 1], vi[i, 2],
+            tan[i, 0], tan[i, 1], tan[i, 2], c_n[i], c_t[i], c_b[i],
+        )  # fmt: skip
         for a in range(3):
             for b in range(3):
                 out[i, 0, a, b] = g[sym[a][b]]
