@@ -28,6 +28,7 @@ from numba import njit
 from cablestudy.dynamics.elliptic_fit import ellipse_means, still_water_means
 from cablestudy.dynamics.frequency_model import drag_linearisation, planar_drag_fit
 
+
 @njit(cache=True)
 def _closed(vr, vi, tan, c_n, c_t, c_b):  # noqa: ANN001, ANN202
     """(n, 3, 3, 3): per node ``G``, ``H``, ``J`` of :func:`still_water_means`."""
@@ -157,7 +158,9 @@ def test_smooth_means_are_the_geometric_limit_of_the_phase_sums() -> None:
     n = 60
     node = _nodes(rng, n, c_t=np.zeros(n))
     # some near-circles in the normal plane: b turned a quarter period from a
-    node.vi[:10] = np.cross(node.tan[:10], node.vr[:10] - (node.vr[:10] * node.tan[:10]).sum(1)[:, None] * node.tan[:10])
+    node.vi[:10] = np.cross(
+        node.tan[:10], node.vr[:10] - (node.vr[:10] * node.tan[:10]).sum(1)[:, None] * node.tan[:10]
+    )
     P = np.eye(3) - node.tan[:, :, None] * node.tan[:, None, :]
     k_n = _axis_ratio(np.einsum("nab,nb->na", P, node.vr), np.einsum("nab,nb->na", P, node.vi))
     k_b = np.where(node.c_b > 0.0, _axis_ratio(node.vr, node.vi), 1.0)
@@ -170,7 +173,9 @@ def test_smooth_means_are_the_geometric_limit_of_the_phase_sums() -> None:
     scale = np.abs(exact).max(axis=(2, 3))
     for samples in (32, 128, 512, 4096):
         err = np.abs(_phase_sums(node, samples) - exact).max(axis=(2, 3))
-        bar = np.maximum(4.0 * np.exp(-samples * np.arctanh(np.minimum(k, 0.99)) / 2.0), 1e-13)[:, None]
+        bar = np.maximum(4.0 * np.exp(-samples * np.arctanh(np.minimum(k, 0.99)) / 2.0), 1e-13)[
+            :, None
+        ]
         assert np.all(err <= bar * scale), (samples, np.max(err / scale / bar))
 
 
