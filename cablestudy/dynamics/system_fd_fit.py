@@ -33,7 +33,8 @@ def fit_node(i, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, out):  # 
     (:func:`.frequency_model.drag_linearisation`) into ``out[i]`` of node ``i``, one
     pass over the phases for both. Without current at the node and with an even number
     of phases, the phases of half a period serve (each sum twice; the mean force is
-    zero)."""
+    zero); with ``samples`` unset (``exact``) such a node does not come here: it takes
+    the exact means in :func:`fit_all`."""
     samples = cs.shape[0]
     t0, t1, t2 = tan[i, 0], tan[i, 1], tan[i, 2]
     u0, u1, u2 = cur[i, 0], cur[i, 1], cur[i, 2]
@@ -223,7 +224,9 @@ def fit_all(
     omega, disp, u_pts, cur, tan, c_n, c_t, c_b, c_p, pcur, cs, sn_, exact, vr, vi, lean, D, Dp
 ):  # noqa: ANN001, ANN202, PLR0913
     """The drag fit of every node (into ``D``) and point (into ``Dp``) at velocities
-    ``i omega u``."""
+    ``i omega u``: a node in a current, or every node with ``samples`` set, over the
+    phases (:func:`fit_node`), any other by the exact period means
+    (:func:`.elliptic_fit.still_water_means`); the points over the phases."""
     for g in range(disp.shape[0]):
         for a in range(3):
             v = 1j * omega * disp[g, a]
