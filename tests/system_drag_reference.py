@@ -116,6 +116,22 @@ def _mean_jacobian(vr, vi, current, tangent, c_n, c_t, c_b, samples, out):  # no
                 out[i, b, a] = v
 
 
+def point_fits(
+    c: np.ndarray, current: np.ndarray, velocity: np.ndarray, settings: DragSettings
+) -> np.ndarray:
+    """:func:`point_drag_fit` as the compiled
+    :func:`~cablestudy.dynamics.system_fd_fit.fit_points` defines it: over
+    ``settings.samples`` phases, except with ``settings.exact`` at a point without
+    current, where the fit is that of the exact period means, here by dense quadrature
+    (:data:`DENSE` phases: ``|w| w`` is analytic in the phase but on a line, whose kink
+    leaves ``DENSE^-3``)."""
+    fit = point_drag_fit(c, current, velocity, settings.samples)
+    still = np.all(current == 0.0, axis=1)
+    if settings.exact and np.any(still):
+        fit[still] = point_drag_fit(c, current, velocity, DENSE)[still]
+    return fit
+
+
 def point_drag_fit(
     c: np.ndarray, current: np.ndarray, velocity: np.ndarray, samples: int
 ) -> np.ndarray:

@@ -5,7 +5,7 @@ to (same equations, same criterion and iteration; :func:`iterate_reference`;
 the six end unit motions as right sides (the condensed end dynamic stiffness ``S``),
 the junction system by NumPy, the drag fits by
 :func:`tests.system_drag_reference.node_fits` (phase sums, or dense quadrature where the
-compiled fit takes exact means) and :func:`tests.system_drag_reference.point_drag_fit`.
+compiled fit takes exact means) and :func:`tests.system_drag_reference.point_fits`.
 
 Pure: arrays and the linear model in, arrays out.
 """
@@ -20,7 +20,7 @@ from scipy.linalg.lapack import zgbsv as _zgbsv
 
 from cablestudy.dynamics.frequency_model import DragSettings, ReducedLine
 
-from .system_drag_reference import node_fits, point_drag_fit
+from .system_drag_reference import node_fits, point_fits
 
 SystemLinear = Any  # :class:`cablestudy.dynamics.system_frequency.SystemLinear`
 
@@ -258,9 +258,7 @@ def iterate_reference(
             for r, u in zip(model.lines, disp, strict=True):
                 v = 1j * omega * u
                 Dl.append(node_fits(r.line, v, settings)[1])
-            Dp = point_drag_fit(
-                model.point_drag, model.point_current, 1j * omega * u_pts, settings.samples
-            )
+            Dp = point_fits(model.point_drag, model.point_current, 1j * omega * u_pts, settings)
             return Dl, Dp
 
         D_lines, D_points = fit(u_pts, disp)

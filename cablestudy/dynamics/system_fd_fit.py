@@ -166,10 +166,12 @@ def fit_node(i, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, out):  # 
 
 
 @njit(cache=True, error_model="numpy")
-def fit_points(c_p, cur, u_pts, omega, cs, sn_, Dp):  # noqa: ANN001, ANN202
+def fit_points(c_p, cur, u_pts, omega, cs, sn_, exact, Dp):  # noqa: ANN001, ANN202, PLR0913
     """The describing-function drag fit of every point (``point_drag_fit`` of the NumPy
     oracle, tests/system_drag_reference.py) at velocities ``i omega u_pts`` into ``Dp``
-    (P, 3, 3)."""
+    (P, 3, 3); with ``exact`` (``samples`` unset) a point without current from the
+    exact period means (:func:`.elliptic_fit.still_water_means` of the isotropic drag
+    alone) instead of the phase sums."""
     samples = cs.shape[0]
     P = c_p.shape[0]
     w = np.empty((samples, 3))
@@ -188,6 +190,18 @@ def fit_points(c_p, cur, u_pts, omega, cs, sn_, Dp):  # noqa: ANN001, ANN202
             v = 1j * omega * u_pts[p, a]
             vr[a] = v.real
             vi[a] = v.imag
+        su = math.sqrt(cur[p, 0] ** 2 + cur[p, 1] ** 2 + cur[p, 2] ** 2)
+        inv = 1.0 / su if su > 0.0 else 0.0
+        if exact and not su > 0.0:
+            g6, h9, _ = still_water_means(
+                vr[0], vr[1], vr[2], vi[0], vi[1], vi[2], 0.0, 0.0, 0.0, 0.0, 0.0, c_p[p]
+            )
+            for a in range(3):
+                for b in range(3):
+                    lhs[a, b] = g6[_SYM[a][b]]
+                    rhs[a, b] = h9[3 * a + b]
+            _point_solve(lhs, rhs, c_p[p], cur, p, su, inv, Dp)
+            continue
         fm[:] = 0.0
         for k in range(samples):
             for a in range(3):
@@ -197,9 +211,6 @@ def fit_points(c_p, cur, u_pts, omega, cs, sn_, Dp):  # noqa: ANN001, ANN202
             for a in range(3):
                 f[k, a] = c_p[p] * nr * r[a]
                 fm[a] += f[k, a]
-        su = math.sqrt(cur[p, 0] ** 2 + cur[p, 1] ** 2 + cur[p, 2] ** 2)
-        inv = 1.0 / su if su > 0.0 else 0.0
-        trace = 0.0
         for a in range(3):
             for b in range(3):
                 g = 0.0
@@ -209,14 +220,31 @@ def fit_points(c_p, cur, u_pts, omega, cs, sn_, Dp):  # noqa: ANN001, ANN202
                     h += (f[k, a] - fm[a] / samples) * w[k, b]
                 lhs[a, b] = g / samples
                 rhs[a, b] = h / samples
-            trace += lhs[a, a]
-        eps = FIT_REGULARISATION * trace if trace > 0.0 else 1.0
-        for a in range(3):
-            for b in range(3):
-                d0 = c_p[p] * ((su if a == b else 0.0) + inv * cur[p, a] * cur[p, b])
-                rhs[a, b] = rhs[a, b] + eps * d0 if trace > 0.0 else d0
-            lhs[a, a] += eps
-        Dp[p] = rhs @ np.linalg.inv(lhs)
+        _point_solve(lhs, rhs, c_p[p], cur, p, su, inv, Dp)
+
+
+#: the place of entry (a, b) of a symmetric 3 x 3 matrix in its entries 00, 01, 02, 11,
+#: 12, 22 (:func:`.elliptic_fit.still_water_means`)
+_SYM = ((0, 1, 2), (1, 3, 4), (2, 4, 5))
+
+
+@njit(cache=True, inline="always")
+def _point_solve(lhs, rhs, c, cur, p, su, inv, Dp):  # noqa: ANN001, ANN202, PLR0913
+    """``Dp[p] = (H + eps D_0)(G + eps I)^-1`` from the means ``G`` (``lhs``) and ``H``
+    (``rhs``) of point ``p``'s fit, ``D_0 = c (|U| I + U U^T / |U|)`` the small-motion
+    tangent (``su = |U|``, ``inv = 1 / |U|`` or 0), ``eps``
+    :data:`.frequency_model.FIT_REGULARISATION` times the trace of ``G``; ``D_0`` for a
+    point at rest."""
+    trace = 0.0
+    for a in range(3):
+        trace += lhs[a, a]
+    eps = FIT_REGULARISATION * trace if trace > 0.0 else 1.0
+    for a in range(3):
+        for b in range(3):
+            d0 = c * ((su if a == b else 0.0) + inv * cur[p, a] * cur[p, b])
+            rhs[a, b] = rhs[a, b] + eps * d0 if trace > 0.0 else d0
+        lhs[a, a] += eps
+    Dp[p] = rhs @ np.linalg.inv(lhs)
 
 
 @njit(cache=True, error_model="numpy")
@@ -226,7 +254,7 @@ def fit_all(
     """The drag fit of every node (into ``D``) and point (into ``Dp``) at velocities
     ``i omega u``: a node in a current, or every node with ``samples`` set, over the
     phases (:func:`fit_node`), any other by the exact period means
-    (:func:`.elliptic_fit.still_water_means`); the points over the phases."""
+    (:func:`.elliptic_fit.still_water_means`); the points likewise (:func:`fit_points`)."""
     for g in range(disp.shape[0]):
         for a in range(3):
             v = 1j * omega * disp[g, a]
@@ -250,7 +278,7 @@ def fit_all(
             planar_drag_fit(vr, vi, tan, cur, c_n, c_t, lean, g, D)
         else:
             fit_from_sums(G, H, 1, lean, g, D)
-    fit_points(c_p, pcur, u_pts, omega, cs, sn_, Dp)
+    fit_points(c_p, pcur, u_pts, omega, cs, sn_, exact, Dp)
 
 
 #: secant pairs kept by the Anderson mixing (as the reference:

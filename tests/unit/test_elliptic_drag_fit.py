@@ -26,7 +26,11 @@ import pytest
 from numba import njit
 
 from cablestudy.dynamics.elliptic_fit import ellipse_means, still_water_means
-from cablestudy.dynamics.frequency_model import drag_linearisation, planar_drag_fit
+from cablestudy.dynamics.frequency_model import (
+    FIT_REGULARISATION,
+    drag_linearisation,
+    planar_drag_fit,
+)
 
 
 @njit(cache=True)
@@ -293,3 +297,37 @@ def test_single_line_fit_is_the_limit_of_the_sampled_fit() -> None:
     assert np.all(np.abs((got - want) @ V).max(axis=(1, 2)) <= bar * big)
     # the 32 phases it replaces were off by far more
     assert np.abs((coarse - want) @ V).max() > 1e-6 * big.max()
+
+
+def test_free_points_fit_is_the_limit_of_the_sampled_fit() -> None:
+    """The system's free points (isotropic drag ``c |w| w``) without current, with
+    ``samples`` unset: the fit of the exact means against the oracle's sampled fit at
+    4096 phases, on the plane of the motion (bar as for the lines' nodes above), and
+    on a line exactly the describing function ``c 8 a / (3 pi)`` along it (to rounding;
+    with the regularisation's ``1 + 1e-6``)."""
+    from cablestudy.dynamics.system_fd_fit import fit_points
+    from tests.system_drag_reference import point_drag_fit
+
+    rng = np.random.default_rng(16)
+    P = 12
+    c = rng.uniform(50.0, 300.0, P)
+    u = rng.normal(size=(P, 3)) + 1j * rng.normal(size=(P, 3))
+    u[0] = [0.8j, 0.0, 0.0]  # velocity i omega u = -0.8 omega along x: a line
+    cur = np.zeros((P, 3))
+    omega = 0.7
+    cs = np.cos(2.0 * np.pi * np.arange(32) / 32)
+    sn = np.sin(2.0 * np.pi * np.arange(32) / 32)
+    got = np.empty((P, 3, 3))
+    fit_points(c, cur, u, omega, cs, sn, True, got)
+    want = point_drag_fit(c, cur, 1j * omega * u, 4096)
+    v = 1j * omega * u
+    V = np.stack([v.real, v.imag], axis=2)
+    G = 0.5 * (V @ np.swapaxes(V, 1, 2))
+    ev = np.linalg.eigvalsh(G)
+    bar = 5.0 / 4096**3 * (ev[:, 2] / np.maximum(ev[:, 1], 1e-300 * ev[:, 2])) + 1e-14
+    bar[0] = 5.0 / 4096**3 + 1e-14
+    big = np.abs(want @ V).max(axis=(1, 2))
+    assert np.all(np.abs((got - want) @ V).max(axis=(1, 2)) <= bar * big)
+    # G + eps I along the motion: G (1 + FIT_REGULARISATION), H = gain G
+    gain = c[0] * 8.0 * 0.8 * omega / (3.0 * np.pi) / (1.0 + FIT_REGULARISATION)
+    assert got[0, 0, 0] == pytest.approx(gain, rel=1e-14)
