@@ -12,7 +12,20 @@ import math
 import numpy as np
 from numba import njit
 
-from cablestudy.dynamics.frequency_model import FIT_REGULARISATION, LinearLine
+from cablestudy.dynamics.frequency_model import (
+    FIT_REGULARISATION,
+    DragSettings,
+    LinearLine,
+    drag_linearisation,
+)
+
+#: phases of the oracle's still-water means (:func:`node_fits`): the trapezoid rule on
+#: a period. The fit's sums are analytic in the phase but for the kinks of ``|w_T| w_T``
+#: (and of ``|w_N| w_N`` on a line), whose aliasing falls as ``DENSE^-3`` (1e-11 of the
+#: fit here); the mean Jacobian's kinks (``|w_T|``) leave ``DENSE^-2``, which one
+#: Richardson step with ``2 DENSE`` phases removes (the aliased coefficients of ``|cos|``
+#: are ``4 / (pi (n^2 - 1))``: an expansion in ``1 / N^2``, next term ``N^-4``)
+DENSE = 4096
 
 
 def mean_drag_jacobian(line: LinearLine, velocity: np.ndarray, samples: int) -> np.ndarray:
@@ -103,6 +116,22 @@ def _mean_jacobian(vr, vi, current, tangent, c_n, c_t, c_b, samples, out):  # no
                 out[i, b, a] = v
 
 
+def point_fits(
+    c: np.ndarray, current: np.ndarray, velocity: np.ndarray, settings: DragSettings
+) -> np.ndarray:
+    """:func:`point_drag_fit` as the compiled
+    :func:`~cablestudy.dynamics.system_fd_fit.fit_points` defines it: over
+    ``settings.samples`` phases, except with ``settings.exact`` at a point without
+    current, where the fit is that of the exact period means, here by dense quadrature
+    (:data:`DENSE` phases: ``|w| w`` is analytic in the phase but on a line, whose kink
+    leaves ``DENSE^-3``)."""
+    fit = point_drag_fit(c, current, velocity, settings.samples)
+    still = np.all(current == 0.0, axis=1)
+    if settings.exact and np.any(still):
+        fit[still] = point_drag_fit(c, current, velocity, DENSE)[still]
+    return fit
+
+
 def point_drag_fit(
     c: np.ndarray, current: np.ndarray, velocity: np.ndarray, samples: int
 ) -> np.ndarray:
@@ -133,3 +162,37 @@ def point_drag_fit(
     rhs = np.where((trace > 0.0)[:, None, None], H + eps * D0, D0)
     # D lhs = rhs -> lhs^T D^T = rhs^T (lhs symmetric)
     return np.swapaxes(np.linalg.solve(lhs, np.swapaxes(rhs, 1, 2)), 1, 2)
+
+
+def node_fits(
+    line: LinearLine, velocity: np.ndarray, settings: DragSettings
+) -> tuple[np.ndarray, np.ndarray]:
+    """The lean (:func:`mean_drag_jacobian`) and the drag fit leaning on it
+    (:func:`~cablestudy.dynamics.frequency_model.drag_linearisation`) of every node of
+    ``line`` at the velocity amplitudes ``velocity`` (n, 3), as the compiled
+    :func:`~cablestudy.dynamics.system_fd_fit.fit_node` defines them: over
+    ``settings.samples`` phases, except with ``settings.exact`` at a node without
+    current, where both are the exact period means, here by dense quadrature
+    (:data:`DENSE` phases; the lean Richardson-extrapolated from ``DENSE`` and ``2
+    DENSE``), independent of the compiled closed form
+    (:mod:`cablestudy.dynamics.elliptic_fit`); a node there whose motion and tangent lie
+    in the x-z plane (no body) takes the planar closed form with that lean."""
+    lean = mean_drag_jacobian(line, velocity, settings.samples)
+    still = np.all(line.current == 0.0, axis=1)
+    if not (settings.exact and np.any(still)):
+        return lean, drag_linearisation(line, velocity, settings.samples, lean, settings.exact)
+    coarse = mean_drag_jacobian(line, velocity, DENSE)
+    fine = mean_drag_jacobian(line, velocity, 2 * DENSE)
+    lean[still] = ((4.0 * fine - coarse) / 3.0)[still]
+    planar = (
+        (velocity.real[:, 1] == 0.0)
+        & (velocity.imag[:, 1] == 0.0)
+        & (line.tangent[:, 1] == 0.0)
+        & (line.current[:, 1] == 0.0)
+        & (line.body_drag == 0.0)
+    )
+    fit = drag_linearisation(line, velocity, settings.samples, lean, True)
+    dense = drag_linearisation(line, velocity, DENSE, lean, False)
+    use_dense = still & ~planar
+    fit[use_dense] = dense[use_dense]
+    return lean, fit

@@ -4,8 +4,8 @@ to (same equations, same criterion and iteration; :func:`iterate_reference`;
 :func:`solve_reference` is ``solve_system_harmonic`` by it). Per line one LAPACK band solve with
 the six end unit motions as right sides (the condensed end dynamic stiffness ``S``),
 the junction system by NumPy, the drag fits by
-:func:`tests.system_drag_reference.mean_drag_jacobian` and
-:func:`cablestudy.dynamics.frequency_model.drag_linearisation`.
+:func:`tests.system_drag_reference.node_fits` (phase sums, or dense quadrature where the
+compiled fit takes exact means) and :func:`tests.system_drag_reference.point_fits`.
 
 Pure: arrays and the linear model in, arrays out.
 """
@@ -18,9 +18,9 @@ from typing import Any
 import numpy as np
 from scipy.linalg.lapack import zgbsv as _zgbsv
 
-from cablestudy.dynamics.frequency_model import DragSettings, ReducedLine, drag_linearisation
+from cablestudy.dynamics.frequency_model import DragSettings, ReducedLine
 
-from .system_drag_reference import mean_drag_jacobian, point_drag_fit
+from .system_drag_reference import node_fits, point_fits
 
 SystemLinear = Any  # :class:`cablestudy.dynamics.system_frequency.SystemLinear`
 
@@ -257,11 +257,8 @@ def iterate_reference(
             Dl = []
             for r, u in zip(model.lines, disp, strict=True):
                 v = 1j * omega * u
-                lean = mean_drag_jacobian(r.line, v, settings.samples)
-                Dl.append(drag_linearisation(r.line, v, settings.samples, lean, settings.exact))
-            Dp = point_drag_fit(
-                model.point_drag, model.point_current, 1j * omega * u_pts, settings.samples
-            )
+                Dl.append(node_fits(r.line, v, settings)[1])
+            Dp = point_fits(model.point_drag, model.point_current, 1j * omega * u_pts, settings)
             return Dl, Dp
 
         D_lines, D_points = fit(u_pts, disp)

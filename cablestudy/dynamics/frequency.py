@@ -60,8 +60,11 @@ A node whose motion, tangent and current lie in the x-z plane (every node of a l
 hanging in that plane and moved in it) has scalar normal and tangential relative
 velocities, each a mean plus one harmonic, and the fit is then done in closed form
 (:func:`harmonic_gain`, :func:`planar_drag_fit`): exact, where 32 phases alias the
-odd harmonics of ``|x| x`` into the fit at about 1e-4 of it, and cheaper. The phases
-serve the other nodes, and every node when a study sets ``samples``.
+odd harmonics of ``|x| x`` into the fit at about 1e-4 of it, and cheaper. Any other
+node without current is fitted by the exact period means of the sums, in closed form
+for motion in any direction (:mod:`.elliptic_fit`: complete elliptic integrals of the
+normal velocity's ellipse). The phases serve the nodes in a current, and every node
+when a study sets ``samples``.
 
 Since ``D`` depends on the motion, the solve is iterated: start from the quasi-static
 motion (the end motion spread linearly along the line), compute ``D``, solve, and

@@ -17,6 +17,7 @@ from numba import njit
 from scipy.linalg import solve_banded
 
 from ..statics.base import STATUS_NUMERICAL, STATUS_OK
+from .elliptic_fit import still_water_means
 
 #: status of a case whose drag linearisation did not converge
 STATUS_NOT_CONVERGED = 7
@@ -115,7 +116,9 @@ class DragSettings:
     """Drag iteration: ``tolerance`` [-] on the relative change of the nodal velocity
     amplitudes, ``max_iterations``, and ``samples`` phases per period in the fit; with
     ``exact`` a node moving in the x-z plane is fitted in closed form
-    (:func:`planar_drag_fit`) and the phases serve the others."""
+    (:func:`planar_drag_fit`), any other node without current by the exact period
+    means (:func:`.elliptic_fit.still_water_means`), and the phases serve the nodes in
+    a current."""
 
     tolerance: float = 1e-6
     max_iterations: int = 100
@@ -249,6 +252,13 @@ def is_planar(vr, vi, t, u, i):  # noqa: ANN001, ANN201
 
 
 @njit(cache=True, inline="always")
+def still_water(u, i):  # noqa: ANN001, ANN201
+    """Node ``i`` has no current (``u`` (n, 3)): its drag fit has exact period means in
+    closed form (:func:`.elliptic_fit.still_water_means`)."""
+    return u[i, 0] == 0.0 and u[i, 1] == 0.0 and u[i, 2] == 0.0
+
+
+@njit(cache=True, inline="always")
 def planar_drag_fit(vr, vi, t, u, c_n, c_t, tangent_d, i, out):  # noqa: ANN001, ANN201, PLR0913
     """The drag fit of node ``i`` whose tangent ``(t0, 0, t2)``, current ``(u0, 0, u2)``
     and velocity amplitude ``(a0 + i b0, 0, a2 + i b2)`` lie in the x-z plane, in closed
@@ -289,6 +299,11 @@ def planar_drag_fit(vr, vi, t, u, c_n, c_t, tangent_d, i, out):  # noqa: ANN001,
     out[i, 1, 2] = 0.0
 
 
+#: the place of entry (a, b) of a symmetric 3 x 3 matrix in its entries 00, 01, 02, 11,
+#: 12, 22
+_SYM = ((0, 1, 2), (1, 3, 4), (2, 4, 5))
+
+
 @njit(cache=True)
 def _drag_fit(  # noqa: PLR0913
     velocity_re, velocity_im, current, tangent, c_n, c_t, c_b, tangent_d, samples, exact, out
@@ -296,7 +311,9 @@ def _drag_fit(  # noqa: PLR0913
     """Kernel of :func:`drag_linearisation` (loops over nodes and phases); with
     ``exact``, a node whose motion, tangent and current lie in the x-z plane takes
     :func:`planar_drag_fit` instead of the phases, unless it carries a body (``c_b``
-    (n,): isotropic drag ``c_b |w| w``, whose plane motion is not two scalar ones)."""
+    (n,): isotropic drag ``c_b |w| w``, whose plane motion is not two scalar ones), and
+    any other node without current the exact period means of the fit
+    (:func:`.elliptic_fit.still_water_means`) instead of the phase sums."""
     n = current.shape[0]
     cos = np.empty(samples)
     sin = np.empty(samples)
@@ -311,6 +328,27 @@ def _drag_fit(  # noqa: PLR0913
     for i in range(n):
         if exact and c_b[i] == 0.0 and is_planar(velocity_re, velocity_im, tangent, current, i):
             planar_drag_fit(velocity_re, velocity_im, tangent, current, c_n, c_t, tangent_d, i, out)
+            continue
+        if exact and still_water(current, i):
+            g, h, _ = still_water_means(
+                velocity_re[i, 0],
+                velocity_re[i, 1],
+                velocity_re[i, 2],
+                velocity_im[i, 0],
+                velocity_im[i, 1],
+                velocity_im[i, 2],
+                tangent[i, 0],
+                tangent[i, 1],
+                tangent[i, 2],
+                c_n[i],
+                c_t[i],
+                c_b[i],
+            )
+            for a in range(3):
+                for b in range(3):
+                    G[a, b] = g[_SYM[a][b]]
+                    H[a, b] = h[3 * a + b]
+            _regularised_fit(G, H, 1, tangent_d, i, Gi, out)
             continue
         fm0 = fm1 = fm2 = 0.0
         for k in range(samples):
@@ -348,38 +386,48 @@ def _drag_fit(  # noqa: PLR0913
                 for b in range(3):
                     G[a, b] += w[k, a] * w[k, b]
                     H[a, b] += f[k, a] * w[k, b]
-        trace = (G[0, 0] + G[1, 1] + G[2, 2]) / samples
-        if not trace > 0.0:  # a node at rest: the small-motion tangent
-            for a in range(3):
-                for b in range(3):
-                    out[i, a, b] = tangent_d[i, a, b]
-            continue
-        eps = FIT_REGULARISATION * trace
+        _regularised_fit(G, H, samples, tangent_d, i, Gi, out)
+
+
+@njit(cache=True, inline="always")
+def _regularised_fit(G, H, count, tangent_d, i, Gi, out):  # noqa: ANN001, ANN202, PLR0913
+    """``out[i] = (H + eps D_0)(G + eps I)^-1`` of :func:`_drag_fit` from the sums ``G``
+    of ``w w^T`` and ``H`` of ``(f - f_mean) w^T`` (3, 3) over ``count`` phases (1: the
+    means themselves), ``D_0 = tangent_d[i]``, ``eps`` :data:`FIT_REGULARISATION` times
+    the trace of the mean of ``G``; ``D_0`` for a node at rest. ``G`` and ``H`` are
+    overwritten, ``Gi`` (3, 3) is work."""
+    trace = (G[0, 0] + G[1, 1] + G[2, 2]) / count
+    if not trace > 0.0:  # a node at rest: the small-motion tangent
         for a in range(3):
             for b in range(3):
-                G[a, b] = G[a, b] / samples
-                H[a, b] = H[a, b] / samples + eps * tangent_d[i, a, b]
-            G[a, a] += eps
-        # D G = H  ->  D = H G^-1 (G symmetric positive definite; cofactors)
-        Gi[0, 0] = G[1, 1] * G[2, 2] - G[1, 2] * G[2, 1]
-        Gi[0, 1] = G[0, 2] * G[2, 1] - G[0, 1] * G[2, 2]
-        Gi[0, 2] = G[0, 1] * G[1, 2] - G[0, 2] * G[1, 1]
-        Gi[1, 0] = G[1, 2] * G[2, 0] - G[1, 0] * G[2, 2]
-        Gi[1, 1] = G[0, 0] * G[2, 2] - G[0, 2] * G[2, 0]
-        Gi[1, 2] = G[0, 2] * G[1, 0] - G[0, 0] * G[1, 2]
-        Gi[2, 0] = G[1, 0] * G[2, 1] - G[1, 1] * G[2, 0]
-        Gi[2, 1] = G[0, 1] * G[2, 0] - G[0, 0] * G[2, 1]
-        Gi[2, 2] = G[0, 0] * G[1, 1] - G[0, 1] * G[1, 0]
-        det = G[0, 0] * Gi[0, 0] + G[0, 1] * Gi[1, 0] + G[0, 2] * Gi[2, 0]
-        for a in range(3):
-            for b in range(3):
-                Gi[a, b] /= det
-        for a in range(3):
-            for b in range(3):
-                acc = 0.0
-                for c2 in range(3):
-                    acc += H[a, c2] * Gi[c2, b]
-                out[i, a, b] = acc
+                out[i, a, b] = tangent_d[i, a, b]
+        return
+    eps = FIT_REGULARISATION * trace
+    for a in range(3):
+        for b in range(3):
+            G[a, b] = G[a, b] / count
+            H[a, b] = H[a, b] / count + eps * tangent_d[i, a, b]
+        G[a, a] += eps
+    # D G = H  ->  D = H G^-1 (G symmetric positive definite; cofactors)
+    Gi[0, 0] = G[1, 1] * G[2, 2] - G[1, 2] * G[2, 1]
+    Gi[0, 1] = G[0, 2] * G[2, 1] - G[0, 1] * G[2, 2]
+    Gi[0, 2] = G[0, 1] * G[1, 2] - G[0, 2] * G[1, 1]
+    Gi[1, 0] = G[1, 2] * G[2, 0] - G[1, 0] * G[2, 2]
+    Gi[1, 1] = G[0, 0] * G[2, 2] - G[0, 2] * G[2, 0]
+    Gi[1, 2] = G[0, 2] * G[1, 0] - G[0, 0] * G[1, 2]
+    Gi[2, 0] = G[1, 0] * G[2, 1] - G[1, 1] * G[2, 0]
+    Gi[2, 1] = G[0, 1] * G[2, 0] - G[0, 0] * G[2, 1]
+    Gi[2, 2] = G[0, 0] * G[1, 1] - G[0, 1] * G[1, 0]
+    det = G[0, 0] * Gi[0, 0] + G[0, 1] * Gi[1, 0] + G[0, 2] * Gi[2, 0]
+    for a in range(3):
+        for b in range(3):
+            Gi[a, b] /= det
+    for a in range(3):
+        for b in range(3):
+            acc = 0.0
+            for c2 in range(3):
+                acc += H[a, c2] * Gi[c2, b]
+            out[i, a, b] = acc
 
 
 def drag_linearisation(
@@ -392,8 +440,9 @@ def drag_linearisation(
     """Equivalent drag damping [N s/m] (n, 3, 3) for nodal velocity amplitudes
     ``velocity`` [m/s] (n, 3) complex: the mean-square (describing-function) fit of the
     module docstring, over ``samples`` phases (with ``exact``, a node moving in the x-z
-    plane in closed form: :func:`planar_drag_fit`); ``tangent`` is :func:`drag_tangent`
-    (computed when not given)."""
+    plane in closed form, :func:`planar_drag_fit`, and any other node without current
+    by its exact period means, :func:`.elliptic_fit.still_water_means`); ``tangent`` is
+    :func:`drag_tangent` (computed when not given)."""
     D0 = drag_tangent(line) if tangent is None else tangent
     out = np.empty((line.n_nodes, 3, 3))
     _drag_fit(

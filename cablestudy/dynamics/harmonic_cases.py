@@ -15,8 +15,10 @@ kernel, so a case gives the same numbers alone or in a sweep. The kernel has:
 * the drag blocks of nodes whose free basis picks coordinate directions added
   directly (the projection ``b^T D b`` then picks entries of ``D``);
 * the drag fit in closed form for nodes moving in the x-z plane
-  (:func:`~cablestudy.dynamics.frequency_model.planar_drag_fit`), and over the phases laid
-  out so that the compiler vectorises it for the others (:func:`drag_fit_samples`);
+  (:func:`~cablestudy.dynamics.frequency_model.planar_drag_fit`) and for any node without
+  current (:func:`~cablestudy.dynamics.elliptic_fit.still_water_means`), and over the
+  phases laid out so that the compiler vectorises it for the others
+  (:func:`drag_fit_samples`);
 * the right side and the end reactions from the sparse rows themselves;
 * for a line in the x-z plane moved in that plane, the system without its y unknowns,
   which stay zero (:func:`in_plane`).

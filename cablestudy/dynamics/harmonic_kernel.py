@@ -11,10 +11,12 @@ import math
 import numpy as np
 from numba import njit
 
+from .elliptic_fit import still_water_means
 from .frequency_model import (
     FIT_REGULARISATION,
     is_planar,
     planar_drag_fit,
+    still_water,
 )
 
 
@@ -47,13 +49,33 @@ def drag_fit_samples(  # noqa: PLR0913
     samples) and ``kind`` (n,) int are work arrays. A node whose motion, tangent and
     current have no y component skips the y terms (zeros: the values are the same);
     with ``exact`` (and no body: ``c_b`` (n,) zero) it takes
-    :func:`~cablestudy.dynamics.frequency_model.planar_drag_fit`, as ``_drag_fit`` does."""
+    :func:`~cablestudy.dynamics.frequency_model.planar_drag_fit`, and with ``exact`` any
+    other node without current the exact period means
+    (:func:`.elliptic_fit.still_water_means`), as ``_drag_fit`` does."""
     n = current.shape[0]
     samples = cos.shape[0]
     for i in range(n):
         if exact and c_b[i] == 0.0 and is_planar(vr, vi, tangent, current, i):
             kind[i] = 2
             planar_drag_fit(vr, vi, tangent, current, c_n, c_t, tangent_d, i, out)
+            continue
+        if exact and still_water(current, i):
+            kind[i] = 2
+            g, h, _ = still_water_means(
+                vr[i, 0],
+                vr[i, 1],
+                vr[i, 2],
+                vi[i, 0],
+                vi[i, 1],
+                vi[i, 2],
+                tangent[i, 0],
+                tangent[i, 1],
+                tangent[i, 2],
+                c_n[i],
+                c_t[i],
+                c_b[i],
+            )
+            fit_from_sums(g, h, 1, tangent_d, i, out)
             continue
         t0, t1, t2 = tangent[i, 0], tangent[i, 1], tangent[i, 2]
         cn, ct, cb = c_n[i], c_t[i], c_b[i]

@@ -15,6 +15,7 @@ import math
 import numpy as np
 from numba import njit
 
+from .elliptic_fit import still_water_means
 from .frequency_model import FIT_REGULARISATION, is_planar, planar_drag_fit
 from .harmonic_kernel import fit_from_sums
 
@@ -32,7 +33,8 @@ def fit_node(i, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, out):  # 
     (:func:`.frequency_model.drag_linearisation`) into ``out[i]`` of node ``i``, one
     pass over the phases for both. Without current at the node and with an even number
     of phases, the phases of half a period serve (each sum twice; the mean force is
-    zero)."""
+    zero); with ``samples`` unset (``exact``) such a node does not come here: it takes
+    the exact means in :func:`fit_all`."""
     samples = cs.shape[0]
     t0, t1, t2 = tan[i, 0], tan[i, 1], tan[i, 2]
     u0, u1, u2 = cur[i, 0], cur[i, 1], cur[i, 2]
@@ -164,10 +166,12 @@ def fit_node(i, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, out):  # 
 
 
 @njit(cache=True, error_model="numpy")
-def fit_points(c_p, cur, u_pts, omega, cs, sn_, Dp):  # noqa: ANN001, ANN202
+def fit_points(c_p, cur, u_pts, omega, cs, sn_, exact, Dp):  # noqa: ANN001, ANN202, PLR0913
     """The describing-function drag fit of every point (``point_drag_fit`` of the NumPy
     oracle, tests/system_drag_reference.py) at velocities ``i omega u_pts`` into ``Dp``
-    (P, 3, 3)."""
+    (P, 3, 3); with ``exact`` (``samples`` unset) a point without current from the
+    exact period means (:func:`.elliptic_fit.still_water_means` of the isotropic drag
+    alone) instead of the phase sums."""
     samples = cs.shape[0]
     P = c_p.shape[0]
     w = np.empty((samples, 3))
@@ -186,6 +190,18 @@ def fit_points(c_p, cur, u_pts, omega, cs, sn_, Dp):  # noqa: ANN001, ANN202
             v = 1j * omega * u_pts[p, a]
             vr[a] = v.real
             vi[a] = v.imag
+        su = math.sqrt(cur[p, 0] ** 2 + cur[p, 1] ** 2 + cur[p, 2] ** 2)
+        inv = 1.0 / su if su > 0.0 else 0.0
+        if exact and not su > 0.0:
+            g6, h9, _ = still_water_means(
+                vr[0], vr[1], vr[2], vi[0], vi[1], vi[2], 0.0, 0.0, 0.0, 0.0, 0.0, c_p[p]
+            )
+            for a in range(3):
+                for b in range(3):
+                    lhs[a, b] = g6[_SYM[a][b]]
+                    rhs[a, b] = h9[3 * a + b]
+            _point_solve(lhs, rhs, c_p[p], cur, p, su, inv, Dp)
+            continue
         fm[:] = 0.0
         for k in range(samples):
             for a in range(3):
@@ -195,9 +211,6 @@ def fit_points(c_p, cur, u_pts, omega, cs, sn_, Dp):  # noqa: ANN001, ANN202
             for a in range(3):
                 f[k, a] = c_p[p] * nr * r[a]
                 fm[a] += f[k, a]
-        su = math.sqrt(cur[p, 0] ** 2 + cur[p, 1] ** 2 + cur[p, 2] ** 2)
-        inv = 1.0 / su if su > 0.0 else 0.0
-        trace = 0.0
         for a in range(3):
             for b in range(3):
                 g = 0.0
@@ -207,14 +220,31 @@ def fit_points(c_p, cur, u_pts, omega, cs, sn_, Dp):  # noqa: ANN001, ANN202
                     h += (f[k, a] - fm[a] / samples) * w[k, b]
                 lhs[a, b] = g / samples
                 rhs[a, b] = h / samples
-            trace += lhs[a, a]
-        eps = FIT_REGULARISATION * trace if trace > 0.0 else 1.0
-        for a in range(3):
-            for b in range(3):
-                d0 = c_p[p] * ((su if a == b else 0.0) + inv * cur[p, a] * cur[p, b])
-                rhs[a, b] = rhs[a, b] + eps * d0 if trace > 0.0 else d0
-            lhs[a, a] += eps
-        Dp[p] = rhs @ np.linalg.inv(lhs)
+        _point_solve(lhs, rhs, c_p[p], cur, p, su, inv, Dp)
+
+
+#: the place of entry (a, b) of a symmetric 3 x 3 matrix in its entries 00, 01, 02, 11,
+#: 12, 22 (:func:`.elliptic_fit.still_water_means`)
+_SYM = ((0, 1, 2), (1, 3, 4), (2, 4, 5))
+
+
+@njit(cache=True, inline="always")
+def _point_solve(lhs, rhs, c, cur, p, su, inv, Dp):  # noqa: ANN001, ANN202, PLR0913
+    """``Dp[p] = (H + eps D_0)(G + eps I)^-1`` from the means ``G`` (``lhs``) and ``H``
+    (``rhs``) of point ``p``'s fit, ``D_0 = c (|U| I + U U^T / |U|)`` the small-motion
+    tangent (``su = |U|``, ``inv = 1 / |U|`` or 0), ``eps``
+    :data:`.frequency_model.FIT_REGULARISATION` times the trace of ``G``; ``D_0`` for a
+    point at rest."""
+    trace = 0.0
+    for a in range(3):
+        trace += lhs[a, a]
+    eps = FIT_REGULARISATION * trace if trace > 0.0 else 1.0
+    for a in range(3):
+        for b in range(3):
+            d0 = c * ((su if a == b else 0.0) + inv * cur[p, a] * cur[p, b])
+            rhs[a, b] = rhs[a, b] + eps * d0 if trace > 0.0 else d0
+        lhs[a, a] += eps
+    Dp[p] = rhs @ np.linalg.inv(lhs)
 
 
 @njit(cache=True, error_model="numpy")
@@ -222,15 +252,33 @@ def fit_all(
     omega, disp, u_pts, cur, tan, c_n, c_t, c_b, c_p, pcur, cs, sn_, exact, vr, vi, lean, D, Dp
 ):  # noqa: ANN001, ANN202, PLR0913
     """The drag fit of every node (into ``D``) and point (into ``Dp``) at velocities
-    ``i omega u``."""
+    ``i omega u``: a node in a current, or every node with ``samples`` set, over the
+    phases (:func:`fit_node`), any other by the exact period means
+    (:func:`.elliptic_fit.still_water_means`); the points likewise (:func:`fit_points`)."""
     for g in range(disp.shape[0]):
         for a in range(3):
             v = 1j * omega * disp[g, a]
             vr[g, a] = v.real
             vi[g, a] = v.imag
     for g in range(disp.shape[0]):
-        fit_node(g, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, D)
-    fit_points(c_p, pcur, u_pts, omega, cs, sn_, Dp)
+        if not (exact and cur[g, 0] == 0.0 and cur[g, 1] == 0.0 and cur[g, 2] == 0.0):
+            fit_node(g, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, D)
+            continue
+        # no current, samples unset: the lean and the fit from the exact period means
+        # (written out here: an inlined function's array arguments cost reference
+        # counts, as much as the means); a node moving in the x-z plane (no body) the
+        # planar closed form with that lean, as fit_node
+        a0, a1, a2, b0, b1, b2 = vr[g, 0], vr[g, 1], vr[g, 2], vi[g, 0], vi[g, 1], vi[g, 2]
+        t0, t1, t2 = tan[g, 0], tan[g, 1], tan[g, 2]
+        G, H, J = still_water_means(a0, a1, a2, b0, b1, b2, t0, t1, t2, c_n[g], c_t[g], c_b[g])
+        lean[g, 0, 0], lean[g, 0, 1], lean[g, 0, 2] = J[0], J[1], J[2]
+        lean[g, 1, 0], lean[g, 1, 1], lean[g, 1, 2] = J[1], J[3], J[4]
+        lean[g, 2, 0], lean[g, 2, 1], lean[g, 2, 2] = J[2], J[4], J[5]
+        if c_b[g] == 0.0 and a1 == 0.0 and b1 == 0.0 and t1 == 0.0:
+            planar_drag_fit(vr, vi, tan, cur, c_n, c_t, lean, g, D)
+        else:
+            fit_from_sums(G, H, 1, lean, g, D)
+    fit_points(c_p, pcur, u_pts, omega, cs, sn_, exact, Dp)
 
 
 #: secant pairs kept by the Anderson mixing (as the reference:

@@ -19,7 +19,9 @@ the arithmetic differs from a per-line NumPy/LAPACK sequence only in rounding:
 - the drag fit and the small-motion Jacobian it leans on share one pass over the
   phases, and at a node without current (drag odd in the relative velocity: the phase
   ``th + pi`` gives the opposite velocity and force) the phases of a half period are
-  summed twice, the mean force being zero (:func:`.system_fd_fit.fit_node`);
+  summed twice, the mean force being zero (:func:`.system_fd_fit.fit_node`); with
+  ``samples`` unset such a node takes both as exact period means in closed form
+  instead (:mod:`.elliptic_fit`; the oracle: dense quadrature);
 - the junction system is solved by Gaussian elimination with partial pivoting of its
   own (:func:`_dense_solve`), as LAPACK's but not its blocked order.
 

@@ -199,8 +199,9 @@ class LinearisationSettings(StrictModel):
         ge=8,
         le=4096,
         description="phases per period in the drag fit (describing function) at every "
-        "node; unset: a node whose motion, tangent and current lie in the x-z plane is fitted "
-        "in closed form (exact) and the others over 32 phases",
+        "node; unset: every node without current is fitted in closed form (exact), the "
+        "others over 32 phases (in closed form too where motion, tangent and current lie in "
+        "the x-z plane)",
     )
 
 
