@@ -7,8 +7,9 @@ The step is the single line's (:mod:`.integrator`): the same generalised-alpha
 coefficients and Newmark relations, the same predictor (quadratic through the last
 three accepted positions, the held ends moved to their prescribed positions with the
 correction spread along each line), halving the step when Newton fails, when an
-element switches between slack and taut, or when a line end's tension changes by more
-than ``tension_step`` in a step, and doubling it back after two clean steps.
+element switches between slack and taut, or when a watched line end's tension changes
+by more than ``tension_step`` in a step (every line end; in a system of one line the
+end the motion moves, as the single line's excited end), and doubling it back after two clean steps.
 
 Pure: arrays in, arrays out (SI units).
 """
@@ -336,6 +337,7 @@ def system_march(  # noqa: ANN201, PLR0913, PLR0915
     ext_body,
     ext_z,
     body_f,
+    watch,
     step,
     max_level,
     rescue_level,
@@ -365,6 +367,8 @@ def system_march(  # noqa: ANN201, PLR0913, PLR0915
     period's extremes ``ext_end`` (2, L, 2) of the end tensions (max, min) and their
     integral ``int_end``, ``ext_el`` (2, E) of the element tensions, ``ext_body``
     (2, B, 6) of the body forces and ``ext_z`` (N,) the nodes' highest elevation.
+    The step control's tension test (a change over ``tension_step`` in one step) looks
+    at the line ends ``watch`` (L, 2) marks (:func:`.system_timedomain.watched_ends`).
     ``st_f[2]`` holds the step tried when Newton failed."""
     held = S[21]
     no = S[0]
@@ -429,6 +433,8 @@ def system_march(  # noqa: ANN201, PLR0913, PLR0915
         steep = False
         for l in range(n_lines):  # noqa: E741
             for end in range(2):
+                if not watch[l, end]:
+                    continue
                 f = forces[l, end]
                 te = math.sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2])
                 if abs(te - ends_prev[l, end]) > tension_step:

@@ -706,20 +706,15 @@ def test_export_keeps_the_free_points_added_mass(
 # (each needs a change in the compiled time-domain kernels: the lead decides)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="defect (reported): the system time domain judges its steady state on every "
-    "line end (dynamics/system_timedomain._steady), the one-line study on its excited "
-    "end only, and the two step controls differ (1645 accepted steps vs 1609 here, "
-    "rejected 371 vs 358): a system of one line on the seabed with a buoy gives other "
-    "extremes (2.8 % on the maximum); needs the system time stepping",
-)
 def test_a_system_of_one_line_on_the_seabed_with_a_buoy_is_the_one_line_study(
     tmp_path: Path,
 ) -> None:
     """Issue 24: 'A system of one line reproduces the single-line results bit for
     bit'. The two-segment line of test_a_system_of_one_line_is_the_one_line_study, on
-    the rough seabed, with a 3 kN buoy at s = 250 m."""
+    the rough seabed, with a 3 kN buoy at s = 250 m. The system judged its steady state
+    and its step's tension change on every line end, the one-line study on its excited
+    end only (1645 accepted steps against 1609, 2.8 % on the maximum): a system of one
+    line now watches the end its motion moves (system_timedomain.watched_ends)."""
     one_text, sys_text = _pair(100.0, "  attachments: [{s: 250.0, force: [0.0, 0.0, 3000.0]}]\n")
     one = run_study(tmp_path, one_text)
     line = run_study(tmp_path, sys_text).isel(line=0)
