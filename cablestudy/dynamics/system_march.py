@@ -23,6 +23,7 @@ from numba import njit
 
 from .alpha_step import MAX_LANDING_CLIPS, MAX_STATE_CHECKS, MIN_CLIP, STATE_CHECK_FACTOR
 from .assembly import _trial_states, contact_states_lines, states_changed, update_anchors
+from .end_support import seabed_support
 from .step_parts import (
     accept_state,
     largest_correction,
@@ -238,9 +239,12 @@ def system_step(  # noqa: ANN201
 @njit(cache=True)
 def end_forces(S, W, x, a, he_node, forces):  # noqa: ANN001, ANN201
     """Force of each line on its end points [N] (L, 2, 3): minus the support reaction
-    ``F + M a`` of a held end node; the pull of the end element on a junction."""
+    ``F + M a`` of a held end node (without the seabed's part where it rests on the
+    seabed: :func:`.end_support.seabed_support`, as the single line's); the pull of the
+    end element on a junction."""
     no, eo, end_point = S[0], S[1], S[34]
     F, M_d, tension = W[0], W[6], W[7]
+    rest, ksb = S[4], S[24]
     for l in range(no.shape[0] - 1):  # noqa: E741
         for end in range(2):
             node = no[l] if end == 0 else no[l + 1] - 1
@@ -250,6 +254,15 @@ def end_forces(S, W, x, a, he_node, forces):  # noqa: ANN001, ANN201
                     for b in range(3):
                         acc += M_d[node, c, b] * a[node, b]
                     forces[l, end, c] = -acc
+                if ksb.shape[0] > 0 and ksb[node] > 0.0:
+                    # the single line's tolerance: a millionth of the line's length
+                    length = 0.0
+                    for k in range(eo[l], eo[l + 1]):
+                        length += rest[k]
+                    seabed_support(
+                        forces[l, end], x[node], W[10][node], W[11][node], ksb[node],
+                        S[22], S[23][l], 1e-6 * max(length, 1.0),
+                    )  # fmt: skip
             else:
                 other = node + 1 if end == 0 else node - 1
                 elem = eo[l] if end == 0 else eo[l + 1] - 1

@@ -722,20 +722,13 @@ def test_a_system_of_one_line_on_the_seabed_with_a_buoy_is_the_one_line_study(
     np.testing.assert_array_equal(one["dynamic_steps"].values, line["dynamic_steps"].values)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="defect (reported): a held end node's reaction (the end tension of the time "
-    "domain, one line and systems alike) includes that node's seabed contact force, so "
-    "an anchor on the seabed moved down presses into the penalty seabed and its end "
-    "tension swings 27 times the line's (27.1 kN vs 1.0 kN; the anchor 1 m above the "
-    "seabed: 0.99 kN); needs the contact of held nodes in the "
-    "kernels (dynamics/system_march.py end_forces, time_problem.end_forces)",
-)
 def test_a_moved_anchor_on_the_seabed_feels_the_line_not_the_seabed(tmp_path: Path) -> None:
     """The 3-leg spread (legs clear of the seabed) with anchor a2 moved 0.05 m up and
     down at 0.1 Hz: the line's tension swings about 2 kN along its whole length
     (envelope), so the force of the line on the anchor swings alike (within 25 %: the
-    end node's own inertia and weight are a few hundred newtons)."""
+    end node's own inertia and weight are a few hundred newtons). The held node's
+    reaction included its seabed contact (27.1 kN of swing against the line's 1.0 kN):
+    the seabed's forces are not the line's (dynamics/end_support.py; 0.99 kN now)."""
     exc = "{point: a2, direction: [0, 0, 1], amplitude: 0.05, frequency: 0.1}"
     block = (
         f"  dynamic:\n    excitation: {exc}\n    method: time\n    elements: 20\n"
