@@ -33,6 +33,7 @@ from .alpha_step import alpha_step
 from .assembly import (
     update_anchors,
 )
+from .end_support import seabed_support
 from .excitation import motion_at
 from .step_parts import accept_state, predict_positions, relax_level
 
@@ -210,13 +211,15 @@ def _attempt(  # noqa: ANN202, PLR0913
 @njit(cache=True, nogil=True)
 def end_forces_of(x1, a1, largs, wargs, forces):  # noqa: ANN001, ANN201
     """Force of the line on the ends [N] (2, 3) into ``forces``: minus a held end
-    node's support reaction, the end element's pull on a free end node."""
+    node's support reaction (without the seabed's part where it rests on the seabed:
+    :func:`.end_support.seabed_support`), the end element's pull on a free end node."""
     F = wargs.F
     M_d = wargs.M_d
     tension = wargs.tension
     held = largs.held
     n = x1.shape[0]
     m = tension.shape[0]
+    ksb = largs.seabed_stiffness
     for e in range(2):
         node = 0 if e == 0 else n - 1
         if held[node]:
@@ -225,6 +228,17 @@ def end_forces_of(x1, a1, largs, wargs, forces):  # noqa: ANN001, ANN201
                 for b in range(3):
                     acc += M_d[node, c, b] * a1[node, b]
                 forces[e, c] = -acc
+            if ksb.shape[0] > 0 and ksb[node] > 0.0:
+                # on the seabed within the statics' touchdown rule (a millionth of the
+                # line's length)
+                length = 0.0
+                for k in range(largs.rest_length.shape[0]):
+                    length += largs.rest_length[k]
+                seabed_support(
+                    forces[e], x1[node], wargs.contact[node], wargs.friction_force[node],
+                    ksb[node], largs.seabed_normal, largs.seabed_offset,
+                    1e-6 * max(length, 1.0),
+                )  # fmt: skip
         else:
             other = 1 if e == 0 else n - 2
             elem = 0 if e == 0 else m - 1

@@ -278,7 +278,7 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
             clean = 0
             continue
         switched = bool(np.any((work.strain > 0.0) != (strain_prev > 0.0)))
-        forces = end_forces(work, a1, x1, held)
+        forces = end_forces(work, a1, x1, held, new_line)
         tension = float(math.sqrt(forces[ex] @ forces[ex]))
         steep = abs(tension - t_prev_tension) > problem.tension_step
         if (switched or steep) and level < max_level:

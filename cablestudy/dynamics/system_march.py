@@ -7,8 +7,9 @@ The step is the single line's (:mod:`.integrator`): the same generalised-alpha
 coefficients and Newmark relations, the same predictor (quadratic through the last
 three accepted positions, the held ends moved to their prescribed positions with the
 correction spread along each line), halving the step when Newton fails, when an
-element switches between slack and taut, or when a line end's tension changes by more
-than ``tension_step`` in a step, and doubling it back after two clean steps.
+element switches between slack and taut, or when a watched line end's tension changes
+by more than ``tension_step`` in a step (every line end; in a system of one line the
+end the motion moves, as the single line's excited end), and doubling it back after two clean steps.
 
 Pure: arrays in, arrays out (SI units).
 """
@@ -22,6 +23,7 @@ from numba import njit
 
 from .alpha_step import MAX_LANDING_CLIPS, MAX_STATE_CHECKS, MIN_CLIP, STATE_CHECK_FACTOR
 from .assembly import _trial_states, contact_states_lines, states_changed, update_anchors
+from .end_support import seabed_support
 from .step_parts import (
     accept_state,
     largest_correction,
@@ -237,9 +239,12 @@ def system_step(  # noqa: ANN201
 @njit(cache=True)
 def end_forces(S, W, x, a, he_node, forces):  # noqa: ANN001, ANN201
     """Force of each line on its end points [N] (L, 2, 3): minus the support reaction
-    ``F + M a`` of a held end node; the pull of the end element on a junction."""
+    ``F + M a`` of a held end node (without the seabed's part where it rests on the
+    seabed: :func:`.end_support.seabed_support`, as the single line's); the pull of the
+    end element on a junction."""
     no, eo, end_point = S[0], S[1], S[34]
     F, M_d, tension = W[0], W[6], W[7]
+    rest, ksb = S[4], S[24]
     for l in range(no.shape[0] - 1):  # noqa: E741
         for end in range(2):
             node = no[l] if end == 0 else no[l + 1] - 1
@@ -249,6 +254,15 @@ def end_forces(S, W, x, a, he_node, forces):  # noqa: ANN001, ANN201
                     for b in range(3):
                         acc += M_d[node, c, b] * a[node, b]
                     forces[l, end, c] = -acc
+                if ksb.shape[0] > 0 and ksb[node] > 0.0:
+                    # the single line's tolerance: a millionth of the line's length
+                    length = 0.0
+                    for k in range(eo[l], eo[l + 1]):
+                        length += rest[k]
+                    seabed_support(
+                        forces[l, end], x[node], W[10][node], W[11][node], ksb[node],
+                        S[22], S[23][l], 1e-6 * max(length, 1.0),
+                    )  # fmt: skip
             else:
                 other = node + 1 if end == 0 else node - 1
                 elem = eo[l] if end == 0 else eo[l + 1] - 1
@@ -336,6 +350,7 @@ def system_march(  # noqa: ANN201, PLR0913, PLR0915
     ext_body,
     ext_z,
     body_f,
+    watch,
     step,
     max_level,
     rescue_level,
@@ -365,6 +380,8 @@ def system_march(  # noqa: ANN201, PLR0913, PLR0915
     period's extremes ``ext_end`` (2, L, 2) of the end tensions (max, min) and their
     integral ``int_end``, ``ext_el`` (2, E) of the element tensions, ``ext_body``
     (2, B, 6) of the body forces and ``ext_z`` (N,) the nodes' highest elevation.
+    The step control's tension test (a change over ``tension_step`` in one step) looks
+    at the line ends ``watch`` (L, 2) marks (:func:`.system_timedomain.watched_ends`).
     ``st_f[2]`` holds the step tried when Newton failed."""
     held = S[21]
     no = S[0]
@@ -429,6 +446,8 @@ def system_march(  # noqa: ANN201, PLR0913, PLR0915
         steep = False
         for l in range(n_lines):  # noqa: E741
             for end in range(2):
+                if not watch[l, end]:
+                    continue
                 f = forces[l, end]
                 te = math.sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2])
                 if abs(te - ends_prev[l, end]) > tension_step:

@@ -4,11 +4,16 @@ All lines and free points are integrated together (:mod:`.system_march`): the si
 line's generalised-alpha step with Newton, the Jacobian banded per line and the free
 points coupling the lines through a bordered (Schur complement) solve. The run starts at
 rest in the discrete static equilibrium of the system model (:func:`equilibrium`),
-steps at ``step`` landing on period boundaries, and stops when every line's end
-tensions have settled: the per-period maximum and minimum of each line end changed by
-at most ``steady_tolerance`` times the largest end tension over ``steady_window``
-consecutive periods (or after ``max_periods``; with ``duration`` it runs that long and
-the statistics cover every period after the ramp, as for a single line).
+steps at ``step`` landing on period boundaries, and stops when the watched line ends'
+tensions have settled: the per-period maximum and minimum of each changed by at most
+``steady_tolerance`` times the largest of them over ``steady_window`` consecutive
+periods (or after ``max_periods``; with ``duration`` it runs that long and the
+statistics cover every period after the ramp, as for a single line).
+
+The watched ends (:func:`watched_ends`) are every line end; in a system of one line
+(no free points) whose motion moves one of its ends, that end alone: the single line's
+excited end, so that the steady-state test and the step control's tension test take
+the one-line study's decisions and a system of one line reproduces it bit for bit.
 
 Pure: arrays in, a :class:`SystemDynamicResult` out (status, message, counters).
 """
@@ -147,6 +152,26 @@ def equilibrium(
     return x, anchor, ""
 
 
+def watched_ends(packed: PackedSystem, drives: Drives, motion: SlotMotion) -> np.ndarray:
+    """The line ends (L, 2) the steady-state test and the step control's tension test
+    look at: all of them, or in a system of one line without free points the one end
+    the motion moves (a held end on a moved body, or on a point moved on its own), as
+    the single line's excited end. Both ends moved (or neither): all ends."""
+    L = len(packed.lines)
+    watch = np.ones((L, 2), dtype=np.bool_)
+    if L != 1 or packed.n_points != 0:
+        return watch
+    slots = {int(s) for s in np.asarray(motion.slot).ravel()} | {int(s) for s, _ in motion.tables}
+    moved = np.zeros((L, 2), dtype=np.bool_)
+    for k in range(packed.he_line.size):
+        d = int(packed.he_drive[k])
+        b = int(drives.body[d])
+        own = int(drives.slot[d])
+        if (b >= 0 and (2 * b in slots or 2 * b + 1 in slots)) or (own >= 0 and own in slots):
+            moved[packed.he_line[k], packed.he_end[k]] = True
+    return moved if int(moved.sum()) == 1 else watch
+
+
 def simulate_system(
     problem: SystemProblem, *, deadline: float | None = None
 ) -> SystemDynamicResult:
@@ -224,6 +249,7 @@ def simulate_system(
     c_start = 0.0
     converged = False
     lmin = pk.lmin
+    watch = watched_ends(pk, dr, problem.motion)
     while True:
         if deadline is not None and time.monotonic() > deadline:
             result.status = STATUS_TIME_LIMIT
@@ -233,7 +259,7 @@ def simulate_system(
             st_f, st_i, x0, v0, a0, F0, Fp0, x1, v1, a1, x_pred, past_x, past_t, pk.frac,
             strain_prev, D, pk.he_node, pk.he_drive, pk.he_line, pk.he_end, pk.he_body,
             dX, dV, dA, bx, bR, forces, ends_prev, ext_end, int_end, ext_el, ext_body, ext_z,
-            body_f,
+            body_f, watch,
             problem.step, problem.max_refinement,
             problem.max_refinement + NEWTON_RESCUE_HALVINGS, problem.tension_step,
             par.alpha_m, par.alpha_f, par.beta, par.gamma, problem.newton_tolerance,
@@ -264,7 +290,7 @@ def simulate_system(
         ext_end, int_end, ext_el, ext_body, ext_z = fresh()
         c_start = t
         if problem.duration is None:
-            converged = _steady(problem, periods)
+            converged = _steady(problem, periods, watch)
         if converged or final:
             break
         st_f[1] = min(st_f[1] + T, t_stop)
@@ -287,16 +313,18 @@ def simulate_system(
     return result
 
 
-def _steady(problem: SystemProblem, periods: list[tuple[np.ndarray, ...]]) -> bool:
-    """Every line end's per-period maximum and minimum changed by at most
-    ``steady_tolerance`` times the largest end tension over the last ``steady_window``
-    periods (after ``min_periods``)."""
+def _steady(
+    problem: SystemProblem, periods: list[tuple[np.ndarray, ...]], watch: np.ndarray
+) -> bool:
+    """Every watched line end's (``watch`` (L, 2)) per-period maximum and minimum
+    changed by at most ``steady_tolerance`` times the largest of their tensions over
+    the last ``steady_window`` periods (after ``min_periods``)."""
     w = problem.steady_window
     if len(periods) < max(problem.min_periods, w + 1):
         return False
     for j in range(1, w + 1):
-        hi, lo = periods[-j][0], periods[-j][1]
-        hi0, lo0 = periods[-j - 1][0], periods[-j - 1][1]
+        hi, lo = periods[-j][0][watch], periods[-j][1][watch]
+        hi0, lo0 = periods[-j - 1][0][watch], periods[-j - 1][1][watch]
         scale = problem.steady_tolerance * float(np.max(hi))
         if np.any(np.abs(hi - hi0) > scale) or np.any(np.abs(lo - lo0) > scale):
             return False

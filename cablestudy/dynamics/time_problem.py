@@ -17,6 +17,7 @@ from ..physics.seabed import touchdown_arc_length
 from ..statics.base import STATUS_OK
 from .assembly import Workspace, evaluate
 from .discrete_line import DiscreteLine, interpolate_nodes
+from .end_support import seabed_support
 from .excitation import EndMotion
 from .pulley import SlidingPulleys
 
@@ -194,14 +195,29 @@ class DynamicResult:
 
 
 def end_forces(
-    work: Workspace, a: np.ndarray, x: np.ndarray | None = None, held: np.ndarray | None = None
+    work: Workspace,
+    a: np.ndarray,
+    x: np.ndarray | None = None,
+    held: np.ndarray | None = None,
+    line: DiscreteLine | None = None,
 ) -> np.ndarray:
     """Force of the line on the supports at A and B [N] (2, 3): minus the support
-    reaction ``M a + F`` of a held end node; at a free end node (a towed body, given
-    ``x`` [m] and ``held``) the pull of the end element on it."""
+    reaction ``M a + F`` of a held end node (given ``x`` [m] and the ``line``, without
+    the seabed's part where the node rests on the seabed:
+    :func:`.end_support.seabed_support`, as the compiled step's); at a free end node (a
+    towed body, given ``x`` and ``held``) the pull of the end element on it."""
     out = np.empty((2, 3))
     out[0] = -(work.F[0] + work.M_d[0] @ a[0])
     out[1] = -(work.F[-1] + work.M_d[-1] @ a[-1])
+    if line is not None and x is not None and line.seabed_stiffness.size:
+        tol = 1e-6 * max(float(np.sum(line.rest_length)), 1.0)
+        for e, i in ((0, 0), (1, x.shape[0] - 1)):
+            if held is None or held[i]:
+                seabed_support(
+                    out[e], x[i], float(work.contact[i]), work.friction[i],
+                    float(line.seabed_stiffness[i]), line.seabed_normal,
+                    float(line.seabed_offset), tol,
+                )  # fmt: skip
     if held is not None and x is not None:
         if not held[0]:
             d = x[1] - x[0]
@@ -373,7 +389,7 @@ def _start(problem: DynamicProblem, line: DiscreteLine) -> _Start:
     anchor0 = problem.anchor if problem.anchor is not None else x0
     evaluate(line, x0, v0, work, anchor=anchor0)
     ex = problem.excited_end
-    f_static = end_forces(work, a0, x0, held)
+    f_static = end_forces(work, a0, x0, held, line)
     t_static = float(np.linalg.norm(f_static[ex]))
     result = DynamicResult(tension_static=t_static, line_s=line.s)
     result.touchdown_tracked = line.has_seabed

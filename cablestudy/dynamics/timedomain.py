@@ -208,7 +208,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         tension_prev[:] = work.tension
         st_i[5] = 0  # the predictor starts afresh
         st_i[0] = st_i[1] = 0
-        f = end_forces(work, a0, x0, held)
+        f = end_forces(work, a0, x0, held, line)
         forces[:] = f
         ends[:] = np.sqrt(np.sum(f**2, 1))
         st_f[6] = float(ends[ex])

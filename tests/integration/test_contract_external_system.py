@@ -706,20 +706,15 @@ def test_export_keeps_the_free_points_added_mass(
 # (each needs a change in the compiled time-domain kernels: the lead decides)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="defect (reported): the system time domain judges its steady state on every "
-    "line end (dynamics/system_timedomain._steady), the one-line study on its excited "
-    "end only, and the two step controls differ (1645 accepted steps vs 1609 here, "
-    "rejected 371 vs 358): a system of one line on the seabed with a buoy gives other "
-    "extremes (2.8 % on the maximum); needs the system time stepping",
-)
 def test_a_system_of_one_line_on_the_seabed_with_a_buoy_is_the_one_line_study(
     tmp_path: Path,
 ) -> None:
     """Issue 24: 'A system of one line reproduces the single-line results bit for
     bit'. The two-segment line of test_a_system_of_one_line_is_the_one_line_study, on
-    the rough seabed, with a 3 kN buoy at s = 250 m."""
+    the rough seabed, with a 3 kN buoy at s = 250 m. The system judged its steady state
+    and its step's tension change on every line end, the one-line study on its excited
+    end only (1645 accepted steps against 1609, 2.8 % on the maximum): a system of one
+    line now watches the end its motion moves (system_timedomain.watched_ends)."""
     one_text, sys_text = _pair(100.0, "  attachments: [{s: 250.0, force: [0.0, 0.0, 3000.0]}]\n")
     one = run_study(tmp_path, one_text)
     line = run_study(tmp_path, sys_text).isel(line=0)
@@ -727,20 +722,13 @@ def test_a_system_of_one_line_on_the_seabed_with_a_buoy_is_the_one_line_study(
     np.testing.assert_array_equal(one["dynamic_steps"].values, line["dynamic_steps"].values)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="defect (reported): a held end node's reaction (the end tension of the time "
-    "domain, one line and systems alike) includes that node's seabed contact force, so "
-    "an anchor on the seabed moved down presses into the penalty seabed and its end "
-    "tension swings 27 times the line's (27.1 kN vs 1.0 kN; the anchor 1 m above the "
-    "seabed: 0.99 kN); needs the contact of held nodes in the "
-    "kernels (dynamics/system_march.py end_forces, time_problem.end_forces)",
-)
 def test_a_moved_anchor_on_the_seabed_feels_the_line_not_the_seabed(tmp_path: Path) -> None:
     """The 3-leg spread (legs clear of the seabed) with anchor a2 moved 0.05 m up and
     down at 0.1 Hz: the line's tension swings about 2 kN along its whole length
     (envelope), so the force of the line on the anchor swings alike (within 25 %: the
-    end node's own inertia and weight are a few hundred newtons)."""
+    end node's own inertia and weight are a few hundred newtons). The held node's
+    reaction included its seabed contact (27.1 kN of swing against the line's 1.0 kN):
+    the seabed's forces are not the line's (dynamics/end_support.py; 0.99 kN now)."""
     exc = "{point: a2, direction: [0, 0, 1], amplitude: 0.05, frequency: 0.1}"
     block = (
         f"  dynamic:\n    excitation: {exc}\n    method: time\n    elements: 20\n"
