@@ -118,6 +118,7 @@ from .modal import ModalProblem
 from .system_fd_kernel import NOT_CONVERGED, SINGULAR_JUNCTION, SINGULAR_LINE
 from .system_fd_pack import PackedSystem, pack_system
 from .system_fd_sweep import INFO, solve_sweep
+from .touchdown_mesh import touchdown_states
 
 #: largest residual of the assembled equations on the solution (inner rows of every
 #: line, balance of every free point), relative to the largest end-force amplitude and
@@ -444,6 +445,7 @@ def system_linear(
             if not st.success:
                 return None, f"line {system.lines[i].name!r} at {nodes} nodes: {st.message}"
             states[i] = st
+        touchdown_states(system, static, states, nodes, solve, solve_many)
     problems = []
     for i, (sl, st) in enumerate(zip(system.lines, states, strict=True)):
         T_e = 0.5 * (st.tension[:-1] + st.tension[1:])
