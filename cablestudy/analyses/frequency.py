@@ -26,6 +26,7 @@ from ..dynamics.harmonic_cases import solve_harmonic_cases
 from ..dynamics.linear_model import linear_line
 from ..dynamics.modal import ModalProblem
 from ..dynamics.system_validity import line_failures
+from ..dynamics.touchdown_mesh import TOUCHDOWN_SAMPLES, touchdown_mesh
 from ..dynamics.validity import Validity, measures_cases
 from ..statics import STATUS_NO_SOLUTION, STATUS_NUMERICAL, STATUS_OK, StaticResult
 from ..statics.base import StaticProblem
@@ -119,33 +120,16 @@ def linearised(
     return out
 
 
-#: static samples per element from which a touchdown node is taken (it lies within
-#: half a sample of the touchdown point)
-TOUCHDOWN_SAMPLES = 16
-
-
 def _with_touchdown_nodes(case: Case, elements: int, deadline: float | None) -> StaticResult | None:
-    """The uniform nodes plus a node at each touchdown point (the last laid one of
-    ``TOUCHDOWN_SAMPLES`` static samples per element), so that the held laid nodes end
-    where the line leaves the seabed, as in the modal mesh
-    (:func:`cablestudy.analyses.modal.solve_modal`); None if the fine sampling fails."""
-    from ..dynamics.modal import snap_to_samples, subset_static
+    """The uniform nodes plus a node at each touchdown point
+    (:func:`cablestudy.dynamics.touchdown_mesh.touchdown_mesh`, shared with the lines
+    of a system); None if the fine sampling fails."""
     from .static import static_at
 
     fine = static_at(case, elements * TOUCHDOWN_SAMPLES + 1, deadline)
     if not fine.success:
         return None
-    length = float(fine.s[-1])
-    med = static_problem(case.study).medium
-    ground = med.seabed_z(fine.position[:, 0], fine.position[:, 1])
-    on_bed = np.abs(fine.position[:, 2] - ground) <= 1e-6 * max(length, 1.0)
-    touchdown = []
-    if on_bed[0] and not on_bed.all():
-        touchdown.append(fine.s[int(np.argmin(on_bed)) - 1])  # last laid sample from A
-    if on_bed[-1] and not on_bed.all():
-        touchdown.append(fine.s[len(on_bed) - int(np.argmin(on_bed[::-1]))])  # from B
-    targets = np.union1d(np.linspace(0.0, length, elements + 1), touchdown)
-    return subset_static(fine, snap_to_samples(fine.s, targets))
+    return touchdown_mesh(fine, static_problem(case.study).medium, elements)
 
 
 def end_displacements(dyn: DynamicSettings) -> tuple[np.ndarray, float, complex]:
