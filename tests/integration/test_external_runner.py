@@ -1,0 +1,81 @@
+"""The runner's promises checked from outside, as an external evaluator would (README,
+docs/guide/cli.md, docs/guide/results.md): bad input refused before any work with the
+field, the value and what is allowed, exit 2 and no traceback; failed cases recorded
+(status, message, NaN) while the others stay intact; nothing read from disk runs code;
+no placeholder number in a message. Each test runs the real command line
+(:func:`cablestudy.cli.main`, or a subprocess where a signal or a second process is
+needed) on a study of a few nodes."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from cablestudy.cli import main
+from cablestudy.run import runner
+
+#: the steel catenary of configs/catenary-in-air.yaml with 11 output points: solved by
+#: the exact elastic catenary in well under a second
+STUDY = """\
+name: wire
+environment: {fluid: air}
+line:
+  segments:
+    - {length: 100.0, diameter: 0.02, mass_per_length: 2.466, axial_stiffness: 6.283e7}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, 0.0]}
+  b: {kind: fixed, position: [92.5, 0.0, -8.6]}
+analysis:
+  static: {nodes: 11}
+"""
+
+
+@pytest.fixture
+def no_work(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Any case solved fails the test: the refusal must come before any work."""
+
+    def refuse(*args: object, **kwargs: object) -> None:
+        raise AssertionError("work started before the check")
+
+    monkeypatch.setattr(runner, "run_study", refuse)
+
+
+def _run(capsys: pytest.CaptureFixture[str], *args: str) -> tuple[int, str, str]:
+    code = main(["run", *args])
+    captured = capsys.readouterr()
+    return code, captured.out, captured.err
+
+
+# --- sweep ranges too large to build -----------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("axis", "said"),
+    [
+        # 1e11 values: numpy.linspace would ask for 745 GiB (a MemoryError traceback)
+        (
+            "{start: 0.0, stop: 1.0e18, num: 100000000000}",
+            "sweep.ends.b.position.0.num: 100000000000 values is more than the 1000000 allowed",
+        ),
+        # (stop - start) / step overflows to inf (an OverflowError traceback)
+        (
+            "{start: 0.0, stop: 1.0e18, step: 1.0e-300}",
+            "sweep.ends.b.position.0.step: 1e-300 from 0.0 to 1e+18 gives more than the "
+            "1000000 values allowed",
+        ),
+    ],
+)
+def test_a_sweep_range_of_too_many_values_is_refused_before_it_is_built(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], no_work: None, axis: str, said: str
+) -> None:
+    cfg = tmp_path / "wire.yaml"
+    cfg.write_text(STUDY + f"sweep:\n  ends.b.position.0: {axis}\n")
+    for verb in ("run", "validate"):
+        args = [str(cfg), "--out", str(tmp_path)] if verb == "run" else [str(cfg)]
+        code = main([verb, *args])
+        err = capsys.readouterr().err
+        assert code == 2, err
+        assert "Traceback" not in err and "Error" not in err
+        assert f"wire.yaml:12: {said}" in err
+    assert not (tmp_path / "wire.nc").exists()
