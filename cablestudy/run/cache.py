@@ -183,6 +183,40 @@ def summarise(chunks: Iterable[Any]) -> GridSummary:
     )
 
 
+#: members every chunk file has, and the kinds of array they must be (numpy dtype kinds)
+_REQUIRED = {"key": "U", "rows": "iu", "v_status": "iu", "v_message": "U", "v_wall_time": "f"}
+_TEXT = ("v_message", "v_warning", "v_fallback", "v_hash")
+
+
+def _chunk_fault(members: dict[str, np.ndarray], key_prefix: str) -> str:
+    """What makes the members of a chunk file unusable as one
+    (:meth:`GridChunkStore.chunk`), or '': the members it needs, of the right kinds, its
+    key the one its name starts with, its rows ``lo <= hi``, and one record per case in
+    every variable (a file that passed its hash check can still have been written by
+    hand to look like a chunk; it is recomputed, never half-read)."""
+    for name, kinds in _REQUIRED.items():
+        if name not in members:
+            return f"no member {name!r}"
+        if members[name].dtype.kind not in kinds:
+            return f"member {name!r} holds {members[name].dtype} data"
+    if not str(members["key"]).startswith(key_prefix) or members["key"].ndim != 0:
+        return "its key is not the one its name starts with"
+    rows = members["rows"]
+    if rows.shape != (2,) or not 0 <= rows[0] <= rows[1]:
+        return f"rows {rows.tolist()} are not lo <= hi"
+    n = members["v_status"].shape[0] if members["v_status"].ndim == 1 else -1
+    if n < 0:
+        return "v_status is not one status per case"
+    for name, arr in members.items():
+        if name.startswith("v_") and (arr.ndim == 0 or arr.shape[0] != n):
+            return f"{name[2:]} has shape {arr.shape}, not {n} records (one per case)"
+        if name in _TEXT and arr.dtype.kind != "U":
+            return f"member {name!r} holds {arr.dtype} data"
+    if "v_hash" not in members and n != 0 and (rows[1] - rows[0]) and n % (rows[1] - rows[0]):
+        return f"{n} records do not fill rows {rows[0]}:{rows[1]}"
+    return ""
+
+
 class GridChunkStore:
     """Chunks of a study run as arrays (:class:`cablestudy.analyses.grid_chunk.GridChunk`), one
     data file
@@ -232,11 +266,11 @@ class GridChunkStore:
             with np.load(io.BytesIO(payload), allow_pickle=False) as z:
                 if "format" not in z.files or str(z["format"]) != GRID_FORMAT:
                     return "is not a grid chunk archive"
-                for k in z.files:  # every member loads as plain data
-                    z[k]
+                members = {k: z[k] for k in z.files}  # every member loads as plain data
         except Exception as exc:  # noqa: BLE001 - whatever is wrong, the cases are recomputed
-            return f"is not a grid chunk archive ({type(exc).__name__}: {exc})"
-        return ""
+            return f"is not a grid chunk archive ({type(exc).__name__})"
+        fault = _chunk_fault(members, match.group(1))
+        return f"is not a grid chunk archive ({fault})" if fault else ""
 
     def write(self, chunk: object) -> Path:
         """Write ``chunk`` (a GridChunk) atomically; returns its file."""

@@ -8,9 +8,13 @@ needed) on a study of a few nodes."""
 
 from __future__ import annotations
 
+import hashlib
+import io
 from pathlib import Path
 
+import numpy as np
 import pytest
+import xarray as xr
 
 from cablestudy.cli import main
 from cablestudy.run import runner
@@ -79,3 +83,74 @@ def test_a_sweep_range_of_too_many_values_is_refused_before_it_is_built(
         assert "Traceback" not in err and "Error" not in err
         assert f"wire.yaml:12: {said}" in err
     assert not (tmp_path / "wire.nc").exists()
+
+
+# --- hostile cache files ----------------------------------------------------------------
+
+#: two spans of the wire: a static grid, run as arrays in one chunk of rows
+SWEEP = STUDY + "sweep:\n  ends.b.position.0: {values: [90.0, 95.0], name: span}\n"
+
+
+def _rewrite_chunk(path: Path, members: dict[str, np.ndarray]) -> Path:
+    """``members`` as a chunk file in ``path``'s folder, named as the cache names its own
+    files (its key, the sha256 of its bytes): a file that passes the hash check."""
+    buf = io.BytesIO()
+    np.savez(buf, **members)
+    payload = buf.getvalue()
+    path.unlink()
+    new = path.parent / f"grid-{str(members['key'])[:32]}-{hashlib.sha256(payload).hexdigest()}.npz"
+    new.write_bytes(payload)
+    return new
+
+
+def test_a_forged_chunk_file_with_records_missing_is_recomputed_not_a_traceback(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    cfg = tmp_path / "wire.yaml"
+    cfg.write_text(SWEEP)
+    assert _run(capsys, str(cfg), "--out", str(tmp_path))[0] == 0
+    before = xr.load_dataset(tmp_path / "wire.nc")
+    (chunk,) = (tmp_path / ".cache" / "wire").glob("grid-*.npz")
+    with np.load(chunk, allow_pickle=False) as z:
+        members = {k: z[k] for k in z.files}
+    members["v_tension"] = members["v_tension"][:1]  # one case's profile dropped
+    forged = _rewrite_chunk(chunk, members)
+    code, out, err = _run(capsys, str(cfg), "--out", str(tmp_path))
+    assert code == 0, err
+    assert "Traceback" not in err
+    assert f"cache file {forged} is not a grid chunk archive (tension has shape (1, 11)" in err
+    assert "(2 computed, 0 reused from cache)" in out
+    after = xr.load_dataset(tmp_path / "wire.nc")
+    for name in ("tension", "tension_a", "x", "z", "status"):  # recomputed: the same answer
+        np.testing.assert_array_equal(after[name].values, before[name].values)
+    assert not forged.exists()
+
+
+def test_a_chunk_file_holding_a_pickle_is_never_loaded_as_one(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    cfg = tmp_path / "wire.yaml"
+    cfg.write_text(SWEEP)
+    assert _run(capsys, str(cfg), "--out", str(tmp_path))[0] == 0
+    (chunk,) = (tmp_path / ".cache" / "wire").glob("grid-*.npz")
+    with np.load(chunk, allow_pickle=False) as z:
+        members = {k: z[k] for k in z.files}
+    sentinel = tmp_path / "executed"
+    members["v_status"] = np.array([_Payload(sentinel)] * 2, dtype=object)  # pickled member
+    forged = _rewrite_chunk(chunk, members)
+    code, out, err = _run(capsys, str(cfg), "--out", str(tmp_path))
+    assert code == 0, err
+    assert f"cache file {forged} is not a grid chunk archive (ValueError)" in err
+    assert "allow_pickle" not in err  # no advice to load it unsafely
+    assert "(2 computed, 0 reused from cache)" in out
+    assert not sentinel.exists()
+
+
+class _Payload:
+    """Unpickling it would create ``path``: the proof that a pickle ran."""
+
+    def __init__(self, path: Path) -> None:
+        self.path = path
+
+    def __reduce__(self) -> tuple[object, tuple[str]]:
+        return (Path.touch, (str(self.path),))
