@@ -323,6 +323,13 @@ def case_warnings(
                 static_tension=None if static is None else static.tension,
             )
         )
+        envelope = data.get("tension_envelope_max")
+        if static is not None and envelope is not None and not case.study.line.is_spring:
+            # a non-linear law stretched past its checked max_strain by the motion
+            from ..study.problem import static_limits
+            from .law_range import law_range_warning
+
+            found.append(law_range_warning(static.s, envelope, static_limits(case.study)))
     return joined(found)
 
 

@@ -154,3 +154,65 @@ class _Payload:
 
     def __reduce__(self) -> tuple[object, tuple[str]]:
         return (Path.touch, (str(self.path),))
+
+
+# --- a motion past the range an axial law was checked on ---------------------------------
+
+#: 100 m of line with T = 1e5 e + 1e5 e^2 [N], checked up to strain 0.2 (T = 24000 N
+#: there, exactly), in water between ends 80 m apart and 45 m up: statically about
+#: 1400 N; surged 0.5 m the tension stays far below 24000 N, surged 20 m (the chord then
+#: longer than the line) it rises far above
+LAW = """\
+name: law
+environment: {fluid: water}
+line:
+  segments:
+    - length: 100.0
+      diameter: 0.05
+      mass_per_length: 5.0
+      axial: {law: polynomial, coefficients: [1.0e5, 1.0e5], max_strain: MAX}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -50.0]}
+  b: {kind: fixed, position: [80.0, 0.0, -5.0]}
+analysis:
+  static: {nodes: 11}
+  dynamic:
+    method: time
+    elements: 10
+    points_per_period: 64
+    excitation: {end: b, direction: [1.0, 0.0, 0.0], amplitude: 1.0, frequency: 0.2}
+sweep:
+  analysis.dynamic.excitation.amplitude: [0.5, 20.0]
+"""
+
+
+def test_a_motion_past_an_axial_laws_checked_range_is_warned_about(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Statics fail a case past max_strain; the time domain used the law there silently
+    (status 0, no warning). Now the case keeps its results with a `strain` warning
+    naming the tension, the law's tension at max_strain and the key."""
+    cfg = tmp_path / "law.yaml"
+    cfg.write_text(LAW.replace("MAX", "0.2"))
+    code, out, err = _run(capsys, str(cfg), "--out", str(tmp_path), "--no-cache")
+    assert code == 0, err
+    ds = xr.load_dataset(tmp_path / "law.nc")
+    assert ds["status"].values.tolist() == [0, 0]
+    small, large = (str(w) for w in ds["warning"].values)
+    # the small motion stays inside the law's range: 1e5 * 0.2 + 1e5 * 0.2^2 = 24000 N
+    assert float(ds["tension_envelope_max"][0].max()) < 24000.0
+    assert "max_strain" not in small
+    peak = float(ds["tension_envelope_max"][1].max())
+    assert peak > 24000.0
+    assert (
+        f"strain: the dynamic tension {peak:.6g} N at s = 100 m in segment 0 passes 24000 N"
+        in large
+    )
+    assert "(line.segments.0.axial.max_strain)" in large
+    assert "max_strain" in out  # listed among the warnings of the run's summary
+    # with the law checked far enough (peak tension < law(1.0) = 2e5 N) there is none
+    cfg.write_text(LAW.replace("MAX", "1.0"))
+    assert _run(capsys, str(cfg), "--out", str(tmp_path), "--no-cache")[0] == 0
+    ds = xr.load_dataset(tmp_path / "law.nc")
+    assert float(ds["tension_envelope_max"][1].max()) == pytest.approx(peak, rel=1e-12)
+    assert not any("max_strain" in str(w) for w in ds["warning"].values)
