@@ -216,3 +216,23 @@ def test_a_motion_past_an_axial_laws_checked_range_is_warned_about(
     ds = xr.load_dataset(tmp_path / "law.nc")
     assert float(ds["tension_envelope_max"][1].max()) == pytest.approx(peak, rel=1e-12)
     assert not any("max_strain" in str(w) for w in ds["warning"].values)
+
+
+# --- numbers in messages ------------------------------------------------------------------
+
+
+def test_an_end_far_beyond_the_line_is_reported_by_its_real_distance_not_inf(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """End B 1e300 m away: the solver's line cannot get there and the verification says
+    by how much. The distance was |r_B - target| by sqrt(x^2 + y^2 + z^2), which
+    overflows to inf ("off by inf m"); it is 1e300 m to the last digit shown."""
+    cfg = tmp_path / "wire.yaml"
+    cfg.write_text(STUDY.replace("[92.5, 0.0, -8.6]", "[1.0e300, 0.0, -8.6]"))
+    code, out, err = _run(capsys, str(cfg), "--out", str(tmp_path))
+    assert code == 3, err  # every case failed, dataset written
+    ds = xr.load_dataset(tmp_path / "wire.nc")
+    message = str(ds["message"].values)
+    assert int(ds["status"]) != 0
+    assert "end B position off by 1e+300 m" in message, message
+    assert "inf" not in message and "nan" not in message.lower()
