@@ -10,6 +10,9 @@ from __future__ import annotations
 
 import hashlib
 import io
+import os
+import threading
+import time
 from pathlib import Path
 
 import numpy as np
@@ -236,3 +239,45 @@ def test_an_end_far_beyond_the_line_is_reported_by_its_real_distance_not_inf(
     assert int(ds["status"]) != 0
     assert "end B position off by 1e+300 m" in message, message
     assert "inf" not in message and "nan" not in message.lower()
+
+
+# --- a study file that is a named pipe -------------------------------------------------------
+
+
+def test_a_named_pipe_nobody_writes_to_is_refused_not_waited_on_forever(
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+    monkeypatch: pytest.MonkeyPatch,
+    no_work: None,
+) -> None:
+    """`cablestudy run FIFO` with no writer blocked in open() for ever (a hang, no
+    message); now the pipe gets loader.PIPE_WAIT seconds (0.2 here) and is refused."""
+    from cablestudy.study import loader
+
+    monkeypatch.setattr(loader, "PIPE_WAIT", 0.2)
+    fifo = tmp_path / "study.yaml"
+    os.mkfifo(fifo)
+    t0 = time.perf_counter()
+    code, _, err = _run(capsys, str(fifo), "--out", str(tmp_path))
+    assert code == 2
+    assert time.perf_counter() - t0 < 5.0  # the wait, not for ever
+    assert f"{fifo}:0: cannot read the study file: it is a named pipe that nobody wrote " in err
+    assert "Traceback" not in err
+
+
+def test_a_named_pipe_with_a_writer_is_read_as_a_study(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    fifo = tmp_path / "study.yaml"
+    os.mkfifo(fifo)
+
+    def write() -> None:
+        time.sleep(0.2)  # the reader is already waiting
+        fifo.write_text(STUDY)
+
+    writer = threading.Thread(target=write)
+    writer.start()
+    code = main(["validate", str(fifo)])
+    writer.join(timeout=10)
+    out = capsys.readouterr().out
+    assert code == 0 and "valid study 'wire': 1 cases" in out
