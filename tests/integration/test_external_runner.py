@@ -281,3 +281,37 @@ def test_a_named_pipe_with_a_writer_is_read_as_a_study(
     writer.join(timeout=10)
     out = capsys.readouterr().out
     assert code == 0 and "valid study 'wire': 1 cases" in out
+
+
+# --- the cache folder ------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("blocked", [".cache", ".cache/wire"])
+def test_a_file_where_the_cache_folder_goes_is_refused_before_any_work(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], no_work: None, blocked: str
+) -> None:
+    """A file at <out>/.cache or <out>/.cache/<name> failed the run with "cannot write
+    the results: File exists" (exit 1, the machine's state, naming the result, not the
+    cache); it is the user's to fix, found with the other output paths: exit 2."""
+    cfg = tmp_path / "wire.yaml"
+    cfg.write_text(STUDY)
+    out = tmp_path / "out"
+    (out / blocked).parent.mkdir(parents=True, exist_ok=True)
+    (out / blocked).write_text("not a folder")
+    code, _, err = _run(capsys, str(cfg), "--out", str(out))
+    assert code == 2
+    assert err.strip() == (
+        f"--out {out}: the cache folder {out / blocked} is not a folder (remove it, or run "
+        "with --no-cache)"
+    )
+
+
+def test_a_file_where_the_cache_folder_goes_does_not_stop_a_run_without_cache(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    cfg = tmp_path / "wire.yaml"
+    cfg.write_text(STUDY)
+    (tmp_path / ".cache").write_text("not a folder")
+    code, out, err = _run(capsys, str(cfg), "--out", str(tmp_path), "--no-cache")
+    assert code == 0, err
+    assert xr.load_dataset(tmp_path / "wire.nc")["status"].item() == 0
