@@ -188,9 +188,7 @@ def _axis_values_only(spec: Any, at: str, *, distinct: bool) -> tuple[list[Any],
                 if not isinstance(num, int) or isinstance(num, bool) or num < 1:
                     raise ValueError(f"{at}.num: must be a whole number >= 1 (got {num!r})")
                 if num > MAX_CASES:  # refused before numpy allocates them
-                    raise ValueError(
-                        f"{at}.num: {num} values is more than the {MAX_CASES} allowed"
-                    )
+                    raise ValueError(f"{at}.num: {num} values is more than the {MAX_CASES} allowed")
                 values = [float(v) for v in np.linspace(start, stop, num)]
                 return _tidy_range(values, start, stop if num > 1 else None), name
             step = float(spec["step"])

@@ -129,9 +129,7 @@ def _open_without_waiting(path: Path) -> Any:
             poller = select.poll()
             poller.register(fd, select.POLLIN)
             if not poller.poll(int(PIPE_WAIT * 1000)):
-                raise OSError(
-                    0, f"it is a named pipe that nobody wrote to within {PIPE_WAIT:g} s"
-                )
+                raise OSError(0, f"it is a named pipe that nobody wrote to within {PIPE_WAIT:g} s")
         os.set_blocking(fd, True)  # reads wait for a writer's data, as usual
         return os.fdopen(fd, "rb")
     except BaseException:
