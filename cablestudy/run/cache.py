@@ -123,6 +123,9 @@ class GridSummary:
     warned_at: dict[str, int] = field(default_factory=dict)
     #: why cases were solved by the general solver (no batch kernel took them), counted
     fallbacks: Counter[str] = field(default_factory=Counter)
+    #: the messages of the cases whose line broke in statics (status 10, their results
+    #: kept: an answer, not a failure, as the file's ``cases_broken``), counted
+    broken: Counter[str] = field(default_factory=Counter)
 
 
 def summarise(chunks: Iterable[Any]) -> GridSummary:
@@ -139,12 +142,18 @@ def summarise(chunks: Iterable[Any]) -> GridSummary:
     warned_at: dict[str, int] = {}
     offset = 0
     fallbacks: Counter[str] = Counter()
+    broken: Counter[str] = Counter()
+    from ..analyses.variables import STATUS_BROKEN
+
     for chunk in chunks:
         status, message, warning, data = chunk.status, chunk.message, chunk.warning, chunk.data
         fallbacks.update(str(r) for r in chunk.fallback_reason[chunk.fallback_reason != ""])
-        bad = status != 0
+        parted = status == STATUS_BROKEN
+        bad = (status != 0) & ~parted
         if bad.any():
             failures.update(str(m) for m in message[bad])
+        if parted.any():
+            broken.update(str(m) for m in message[parted])
         warned = np.flatnonzero(warning != "")
         n_warned += len(warned)
         if len(warned):
@@ -180,6 +189,7 @@ def summarise(chunks: Iterable[Any]) -> GridSummary:
         n_warned,
         warned_at,
         fallbacks,
+        broken,
     )
 
 

@@ -391,3 +391,30 @@ def test_ctrl_c_mid_run_exits_130_and_the_rerun_resumes_to_the_same_file(
     assert set(got.variables) == set(want.variables)
     for name in set(got.variables) - {"wall_time"}:
         assert got[name].equals(want[name]), name
+
+
+# --- the summary line and the file agree -------------------------------------------------------
+
+
+def test_the_summary_counts_a_line_broken_in_statics_as_broken_like_the_file(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """A case over its failure limit in statics is status 10, results kept: the file
+    counts it in cases_broken, not cases_failed (docs/conventions.md); the summary said
+    "1 failed" and listed it under "failures by message"."""
+    cfg = tmp_path / "wire.yaml"
+    # the wire at 92.5 m holds about 2.2 kN, stretched to 99.99 m far more than 10 kN
+    cfg.write_text(
+        STUDY.replace("line:\n", "line:\n  failure: {tension: 1.0e4}\n")
+        + "sweep:\n  ends.b.position.0: {values: [92.5, 99.99], name: span}\n"
+    )
+    code, out, err = _run(capsys, str(cfg), "--out", str(tmp_path))
+    assert code == 0, err
+    ds = xr.load_dataset(tmp_path / "wire.nc")
+    assert ds["status"].values.tolist() == [0, 10]
+    assert ds.attrs["cases_failed"] == 0 and ds.attrs["cases_broken"] == 1
+    first = out.splitlines()[0]
+    assert "0 failed, 1 broken" in first, first
+    assert "failures by message" not in out
+    assert "lines broken in statics (status 10, results kept):" in out
+    assert str(ds["message"].values[1]) in out
