@@ -418,3 +418,50 @@ def test_the_summary_counts_a_line_broken_in_statics_as_broken_like_the_file(
     assert "failures by message" not in out
     assert "lines broken in statics (status 10, results kept):" in out
     assert str(ds["message"].values[1]) in out
+
+
+#: 100 m of stiff line (EA = 1e9 N) between ends 80 m apart and 45 m up in water,
+#: end B surged 1 m: at 0.2 Hz the tension swings by about a kilonewton; at 1e9 Hz the
+#: end moves far faster than the line's axial waves can follow and the model's tension
+#: reaches ~1e21 N (a strain of ~1e12), which no line survives
+FAST = """\
+name: fast
+environment: {fluid: water}
+line:
+  segments:
+    - {length: 100.0, diameter: 0.05, mass_per_length: 5.0, axial_stiffness: 1.0e9}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -50.0]}
+  b: {kind: fixed, position: [80.0, 0.0, -5.0]}
+analysis:
+  static: {nodes: 11}
+  dynamic:
+    method: time
+    elements: 20
+    points_per_period: 8
+    excitation: {end: b, direction: [1.0, 0.0, 0.0], amplitude: 1.0, frequency: 0.2}
+sweep:
+  analysis.dynamic.excitation.frequency: [0.2, 1.0e9]
+"""
+
+
+def test_a_motion_that_stretches_the_line_past_any_material_is_warned_about(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """It kept status 0 and no warning with 2.35e21 N in a 5 cm line; the static
+    plausibility limit (analysis.static.strain_warning, 0.05) now holds for the motion's
+    tension envelope too: strain T / EA of the file's own envelope."""
+    cfg = tmp_path / "fast.yaml"
+    cfg.write_text(FAST)
+    code, out, err = _run(capsys, str(cfg), "--out", str(tmp_path))
+    assert code == 0, err
+    ds = xr.load_dataset(tmp_path / "fast.nc")
+    assert ds["status"].values.tolist() == [0, 0]  # kept: the model's answer, flagged
+    slow, fast = (float(ds["tension_envelope_max"][i].max()) for i in (0, 1))
+    assert slow / 1.0e9 < 0.05 and "dynamic strain" not in str(ds["warning"].values[0])
+    strain = fast / 1.0e9  # linear law: T / EA
+    assert strain > 0.05
+    said = str(ds["warning"].values[1])
+    assert f"strain: largest dynamic strain {strain:.4g} at s = " in said, said
+    assert "(analysis.static.strain_warning)" in said
+    assert "largest dynamic strain" in out
