@@ -86,7 +86,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     src, axes, grid = _load(args.config, args.max_study_size)
     # before any work: the output folder can take the result, the scheduler answers
     try:
-        check_output_paths(Path(args.out), str(src.data["name"]))
+        check_output_paths(Path(args.out), str(src.data["name"]), cache=not args.no_cache)
     except OutputPathError as exc:
         print(exc, file=sys.stderr)
         return 2

@@ -325,6 +325,22 @@ def case_warnings(
                 static_tension=None if static is None else static.tension,
             )
         )
+        envelope = data.get("tension_envelope_max")
+        if static is not None and envelope is not None and not case.study.line.is_spring:
+            # a non-linear law stretched past its checked max_strain by the motion
+            from ..study.problem import static_limits
+            from .law_range import dynamic_strain_warning, law_range_warning
+
+            beyond = law_range_warning(static.s, envelope, static_limits(case.study))
+            found.append(
+                beyond  # the law's own range passed: its strain there is extrapolated
+                or dynamic_strain_warning(
+                    static.s,
+                    envelope,
+                    case.study.line.segments,
+                    case.study.analysis.static.strain_warning,
+                )
+            )
     return joined(found)
 
 

@@ -123,6 +123,9 @@ class GridSummary:
     warned_at: dict[str, int] = field(default_factory=dict)
     #: why cases were solved by the general solver (no batch kernel took them), counted
     fallbacks: Counter[str] = field(default_factory=Counter)
+    #: the messages of the cases whose line broke in statics (status 10, their results
+    #: kept: an answer, not a failure, as the file's ``cases_broken``), counted
+    broken: Counter[str] = field(default_factory=Counter)
 
 
 def summarise(chunks: Iterable[Any]) -> GridSummary:
@@ -139,12 +142,18 @@ def summarise(chunks: Iterable[Any]) -> GridSummary:
     warned_at: dict[str, int] = {}
     offset = 0
     fallbacks: Counter[str] = Counter()
+    broken: Counter[str] = Counter()
+    from ..analyses.variables import STATUS_BROKEN
+
     for chunk in chunks:
         status, message, warning, data = chunk.status, chunk.message, chunk.warning, chunk.data
         fallbacks.update(str(r) for r in chunk.fallback_reason[chunk.fallback_reason != ""])
-        bad = status != 0
+        parted = status == STATUS_BROKEN
+        bad = (status != 0) & ~parted
         if bad.any():
             failures.update(str(m) for m in message[bad])
+        if parted.any():
+            broken.update(str(m) for m in message[parted])
         warned = np.flatnonzero(warning != "")
         n_warned += len(warned)
         if len(warned):
@@ -180,7 +189,42 @@ def summarise(chunks: Iterable[Any]) -> GridSummary:
         n_warned,
         warned_at,
         fallbacks,
+        broken,
     )
+
+
+#: members every chunk file has, and the kinds of array they must be (numpy dtype kinds)
+_REQUIRED = {"key": "U", "rows": "iu", "v_status": "iu", "v_message": "U", "v_wall_time": "f"}
+_TEXT = ("v_message", "v_warning", "v_fallback", "v_hash")
+
+
+def _chunk_fault(members: dict[str, np.ndarray], key_prefix: str) -> str:
+    """What makes the members of a chunk file unusable as one
+    (:meth:`GridChunkStore.chunk`), or '': the members it needs, of the right kinds, its
+    key the one its name starts with, its rows ``lo <= hi``, and one record per case in
+    every variable (a file that passed its hash check can still have been written by
+    hand to look like a chunk; it is recomputed, never half-read)."""
+    for name, kinds in _REQUIRED.items():
+        if name not in members:
+            return f"no member {name!r}"
+        if members[name].dtype.kind not in kinds:
+            return f"member {name!r} holds {members[name].dtype} data"
+    if not str(members["key"]).startswith(key_prefix) or members["key"].ndim != 0:
+        return "its key is not the one its name starts with"
+    rows = members["rows"]
+    if rows.shape != (2,) or not 0 <= rows[0] <= rows[1]:
+        return f"rows {rows.tolist()} are not lo <= hi"
+    n = members["v_status"].shape[0] if members["v_status"].ndim == 1 else -1
+    if n < 0:
+        return "v_status is not one status per case"
+    for name, arr in members.items():
+        if name.startswith("v_") and (arr.ndim == 0 or arr.shape[0] != n):
+            return f"{name[2:]} has shape {arr.shape}, not {n} records (one per case)"
+        if name in _TEXT and arr.dtype.kind != "U":
+            return f"member {name!r} holds {arr.dtype} data"
+    if "v_hash" not in members and n != 0 and (rows[1] - rows[0]) and n % (rows[1] - rows[0]):
+        return f"{n} records do not fill rows {rows[0]}:{rows[1]}"
+    return ""
 
 
 class GridChunkStore:
@@ -232,11 +276,11 @@ class GridChunkStore:
             with np.load(io.BytesIO(payload), allow_pickle=False) as z:
                 if "format" not in z.files or str(z["format"]) != GRID_FORMAT:
                     return "is not a grid chunk archive"
-                for k in z.files:  # every member loads as plain data
-                    z[k]
+                members = {k: z[k] for k in z.files}  # every member loads as plain data
         except Exception as exc:  # noqa: BLE001 - whatever is wrong, the cases are recomputed
-            return f"is not a grid chunk archive ({type(exc).__name__}: {exc})"
-        return ""
+            return f"is not a grid chunk archive ({type(exc).__name__})"
+        fault = _chunk_fault(members, match.group(1))
+        return f"is not a grid chunk archive ({fault})" if fault else ""
 
     def write(self, chunk: object) -> Path:
         """Write ``chunk`` (a GridChunk) atomically; returns its file."""

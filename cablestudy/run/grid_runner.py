@@ -169,6 +169,7 @@ def run_chunks(
         n_failed=sum(summary.failures.values()),
         wall_time=math.nan,
         failures=dict(summary.failures),
+        broken=dict(summary.broken),
         scheduler=used,
         timings=timings,
         database_path=database,

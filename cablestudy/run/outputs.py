@@ -49,9 +49,13 @@ class OutputWriteError(OSError):
     disk)."""
 
 
-def check_output_paths(out_dir: Path, name: str, *, option: str = "--out") -> None:
+def check_output_paths(
+    out_dir: Path, name: str, *, option: str = "--out", cache: bool = False
+) -> None:
     """Raise :class:`OutputPathError` unless ``out_dir`` is (or can be made) a folder in
-    which ``<name>.nc`` can be written: one line naming the path and what is wrong."""
+    which ``<name>.nc`` can be written, and with ``cache`` its cache folder
+    ``.cache/<name>`` one (cablestudy.run.runner): one line naming the path and what is
+    wrong."""
     out_dir = Path(out_dir)
     where = f"{option} {out_dir}"
     if out_dir.exists() and not out_dir.is_dir():
@@ -71,6 +75,20 @@ def check_output_paths(out_dir: Path, name: str, *, option: str = "--out") -> No
         raise OutputPathError(f"{where}: cannot write in the folder ({_reason(exc)})") from None
     os.close(fd)
     os.unlink(probe)
+    if cache:
+        folder = out_dir / ".cache" / name
+        for path in (folder.parent, folder):
+            if path.exists() and not path.is_dir():
+                raise OutputPathError(
+                    f"{where}: the cache folder {path} is not a folder (remove it, or run "
+                    "with --no-cache)"
+                )
+        try:
+            folder.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise OutputPathError(
+                f"{where}: cannot create the cache folder {folder} ({_reason(exc)})"
+            ) from None
 
 
 def _reason(exc: OSError) -> str:

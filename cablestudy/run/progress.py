@@ -33,6 +33,8 @@ class RunSummary:
     #: cases of a study run as arrays that no batch kernel took (solved by the general
     #: solver), counted by reason
     fallbacks: dict[str, int] = field(default_factory=dict)
+    #: cases whose line broke in statics (status 10: results kept, not failed), by message
+    broken: dict[str, int] = field(default_factory=dict)
 
     def report(self) -> str:
         """Text summary; failures grouped by message (numbers in messages masked so that
@@ -40,6 +42,7 @@ class RunSummary:
         lines = [
             f"wrote {self.path}: {self.n_cases} cases ({self.n_computed} computed, "
             f"{self.n_reused} reused from cache), {self.n_failed} failed, "
+            + (f"{sum(self.broken.values())} broken, " if self.broken else "")
             + (f"{self.n_warned} with warnings, " if self.n_warned else "")
             + f"{self.wall_time:.2f} s"
             + (f" ({self.scheduler})" if self.scheduler else "")
@@ -59,6 +62,12 @@ class RunSummary:
             if i == 0:  # (not after the summary line alone: the lines above may be there)
                 lines.append("failures by message:")
             single = count == self.failures.get(example)
+            shown = example if single else f"{pattern}  (e.g. {example})"
+            lines.append(f"  {count:6d} x {shown}")
+        for i, (pattern, (count, example)) in enumerate(group_failures(self.broken).items()):
+            if i == 0:
+                lines.append("lines broken in statics (status 10, results kept):")
+            single = count == self.broken.get(example)
             shown = example if single else f"{pattern}  (e.g. {example})"
             lines.append(f"  {count:6d} x {shown}")
         kinds = group_warnings(self.warnings, self.warned_cases)

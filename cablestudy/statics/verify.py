@@ -351,7 +351,8 @@ def _checks(
     x_allow = MULTIPLE * tol * reach
     for label, target, k in (("A", position_a, 0), ("B", position_b, -1)):
         if target is not None:
-            d = np.linalg.norm(position[:, k] - target, axis=1)
+            gap = position[:, k] - target  # hypot: no overflow to inf for a far target
+            d = np.hypot(np.hypot(gap[:, 0], gap[:, 1]), gap[:, 2])
             fixed = np.all(np.isfinite(target), axis=1)
             put(f"end {label} position", np.where(fixed, d, 0.0), x_allow, "m")
     if not bending:

@@ -96,7 +96,8 @@ class StaticSettings(StrictModel):
         description="plausibility limit of the static strain [-]: a case whose largest "
         "strain along the line (T / EA, or the axial law's strain; kind spring: extension "
         "/ length) exceeds it keeps status 0 and gets a warning (a law's max_strain still "
-        "fails the case)",
+        "fails the case); a dynamic analysis's tension envelope is held to it too (a "
+        "warning, the case keeps status 0)",
     )
 
     @field_validator("method")

@@ -195,6 +195,8 @@ def _axis_values_only(spec: Any, at: str, *, distinct: bool) -> tuple[list[Any],
                 num = spec["num"]
                 if not isinstance(num, int) or isinstance(num, bool) or num < 1:
                     raise ValueError(f"{at}.num: must be a whole number >= 1 (got {num!r})")
+                if num > MAX_CASES:  # refused before numpy allocates them
+                    raise ValueError(f"{at}.num: {num} values is more than the {MAX_CASES} allowed")
                 values = [float(v) for v in np.linspace(start, stop, num)]
                 return _tidy_range(values, start, stop if num > 1 else None), name
             step = float(spec["step"])
@@ -203,7 +205,13 @@ def _axis_values_only(spec: Any, at: str, *, distinct: bool) -> tuple[list[Any],
                     f"{at}.step: does not lead from start {start!r} to stop {stop!r}; "
                     f"allowed: a nonzero step with the sign of stop - start (got {step!r})"
                 )
-            n = math.floor((stop - start) / step * (1.0 + 1e-12) + 1e-9) + 1
+            ratio = (stop - start) / step  # may overflow to inf (a tiny step, a huge range)
+            if not ratio < MAX_CASES:
+                raise ValueError(
+                    f"{at}.step: {step!r} from {start!r} to {stop!r} gives more than the "
+                    f"{MAX_CASES} values allowed"
+                )
+            n = math.floor(ratio * (1.0 + 1e-12) + 1e-9) + 1
             if n > MAX_CASES:
                 raise ValueError(f"{at}: {n} values is more than {MAX_CASES} allowed")
             values = [start + i * step for i in range(n)]

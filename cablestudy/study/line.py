@@ -18,7 +18,9 @@ class _AxialBase(StrictModel):
     max_strain: Positive | None = Field(
         None,
         description="the law is checked to increase from 0 up to this strain [-] (a "
-        "spring: extension [m]); a static solution beyond it fails with a message. "
+        "spring: extension [m]); a static solution beyond it fails with a message; a "
+        "segment's dynamic tension envelope beyond the law's tension there keeps its "
+        "results with a strain warning. "
         "Default: 1.0 for a segment; for a spring the largest extension its ends can "
         "reach (from the end positions and the excitation amplitudes)",
     )

@@ -110,6 +110,33 @@ def parse_study_text(
     return StudySource(text=text, data=data, lines=lines, source=source)
 
 
+#: seconds a named pipe (FIFO) given as the study file may take to get its first data
+PIPE_WAIT = 10.0
+
+
+def _open_without_waiting(path: Path) -> Any:
+    """``path`` open for reading in binary mode. A named pipe (FIFO) is opened without
+    blocking (a plain ``open`` waits forever for a writer that may never come) and given
+    :data:`PIPE_WAIT` seconds to get data or be closed by its writer (``<(...)``, a
+    writer started beside the run), else refused; regular files read as usual."""
+    import os
+    import select
+    import stat
+
+    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
+    try:
+        if stat.S_ISFIFO(os.fstat(fd).st_mode):
+            poller = select.poll()
+            poller.register(fd, select.POLLIN)
+            if not poller.poll(int(PIPE_WAIT * 1000)):
+                raise OSError(0, f"it is a named pipe that nobody wrote to within {PIPE_WAIT:g} s")
+        os.set_blocking(fd, True)  # reads wait for a writer's data, as usual
+        return os.fdopen(fd, "rb")
+    except BaseException:
+        os.close(fd)
+        raise
+
+
 def read_study_source(path: str | Path, *, max_bytes: int | None = None) -> StudySource:
     """Read a study file (UTF-8 YAML) keeping line numbers; a file over ``max_bytes``
     [bytes] (default: the configured study size limit) is refused before it is read in
@@ -120,7 +147,7 @@ def read_study_source(path: str | Path, *, max_bytes: int | None = None) -> Stud
     except YamlRefused as exc:
         raise StudyError(exc.problems, str(path)) from None
     try:
-        with path.open("rb") as stream:
+        with _open_without_waiting(path) as stream:
             raw = stream.read(limit + 1)
             if len(raw) > limit:
                 size = path.stat().st_size
