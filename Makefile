@@ -21,7 +21,7 @@ $(STAMP): pyproject.toml
 	touch $(STAMP)
 
 study: install
-	$(BIN)/cablestudy run $(CONFIG) --out $(OUT)
+	$(BIN)/cablestudy run "$(CONFIG)" --out "$(OUT)"
 
 test: install
 	$(BIN)/python -m pytest -q tests

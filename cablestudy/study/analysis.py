@@ -348,6 +348,11 @@ class FrequencyRange(StrictModel):
         return [float(f"{self.start + i * step:.15g}") for i in range(self.num)]
 
 
+#: periods a time-domain run may last at most (max_periods, and duration over the
+#: slowest harmonic's period)
+MAX_PERIODS = 100_000
+
+
 class DynamicSettings(StrictModel):
     """Time-domain dynamics about the static shape under prescribed end motion.
 
@@ -396,14 +401,16 @@ class DynamicSettings(StrictModel):
     )
     steady_window: int = Field(2, ge=1, le=100, description="periods that must agree")
     min_periods: int = Field(3, ge=1, description="periods run after the ramp at least")
-    max_periods: int = Field(80, ge=1, le=100_000, description="periods run at most")
+    max_periods: int = Field(80, ge=1, le=MAX_PERIODS, description="periods run at most")
     period: Positive | None = Field(
         None,
         description="steady-state period [s]; default: the longest harmonic or "
         "periodic-table period",
     )
     duration: Positive | None = Field(
-        None, description="fixed run time [s] (no steady-state detection)"
+        None,
+        description="fixed run time [s] (no steady-state detection); at most 100000 periods "
+        "of the slowest harmonic motion",
     )
     after_break: Literal["continue", "stop"] = Field(
         "continue",
@@ -445,6 +452,17 @@ class DynamicSettings(StrictModel):
                 "excitation has no period (only non-periodic tables): give "
                 "analysis.dynamic.duration [s] or analysis.dynamic.period [s]"
             )
+        frequencies = [f for e in items if (f := getattr(e, "frequency", None))]
+        if self.duration is not None and frequencies:
+            # the same bound as max_periods: a run of more periods of its slowest
+            # harmonic than that only reaches the per-case time limit
+            periods = self.duration * min(frequencies)
+            if periods > MAX_PERIODS:
+                raise ValueError(
+                    f"duration: {self.duration:g} s is {periods:.3g} periods of the slowest "
+                    f"harmonic motion ({min(frequencies):g} Hz); allowed: at most "
+                    f"{MAX_PERIODS} periods (as max_periods)"
+                )
         return self
 
     @model_validator(mode="after")

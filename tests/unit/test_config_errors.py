@@ -347,3 +347,21 @@ def test_non_utf8_file_is_a_clear_error(tmp_path: Path, capsys: pytest.CaptureFi
     path.write_bytes(text.encode("latin-1"))
     assert main(["validate", str(path)]) == 2
     assert f"{path}:2: the study file is not UTF-8 text" in capsys.readouterr().err
+
+
+def test_a_duration_beyond_max_periods_is_refused(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """A fixed duration of more periods of the slowest harmonic than max_periods may be
+    (1e5) only ever reached the per-case time limit: refused before any work, naming
+    the key, the value and the bound; 1e5 periods exactly is allowed."""
+    dynamic = (
+        "  dynamic:\n"
+        "    excitation: {end: b, direction: [1.0, 0.0, 0.0], amplitude: 0.1, frequency: 0.2}\n"
+        "    method: time\n    duration: %s\n"
+    )
+    err = _validate(tmp_path, capsys, BASE + dynamic % "1.0e12")
+    assert "duration: 1e+12 s is 2e+11 periods" in err and "at most 100000 periods" in err
+    path = tmp_path / "ok.yaml"
+    path.write_text(BASE + dynamic % "5.0e5")  # 0.2 Hz x 5e5 s = 1e5 periods
+    assert main(["validate", str(path)]) == 0
