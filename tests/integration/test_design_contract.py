@@ -583,7 +583,7 @@ def test_make_study_writes_into_results() -> None:
     assert re.search(r"^OUT \?= results$", makefile, re.M)
     recipe = re.search(r"^study:.*\n\t(.*)$", makefile, re.M)
     assert recipe is not None
-    assert recipe.group(1) == "$(BIN)/cablestudy run $(CONFIG) --out $(OUT)"
+    assert recipe.group(1) == '$(BIN)/cablestudy run "$(CONFIG)" --out "$(OUT)"'
 
 
 @pytest.mark.parametrize(
