@@ -56,6 +56,37 @@ def cmd_validate(args: argparse.Namespace) -> int:
     return 0
 
 
+class _Terminated(list):
+    """Whether SIGTERM arrived (truthy once it did), and the handler it replaced."""
+
+    previous: object = None
+
+    def restore(self) -> None:
+        if self.previous is not None:
+            import signal
+
+            signal.signal(signal.SIGTERM, self.previous)
+
+
+def _on_sigterm() -> _Terminated:
+    """Make SIGTERM stop a run as Ctrl-C does (finished cases cached, one line said,
+    exit 143 instead of dying silently); returns the flag the handler sets. Only in the
+    main thread, where Python delivers signals."""
+    import signal
+    import threading
+
+    flag = _Terminated()
+    if threading.current_thread() is not threading.main_thread():
+        return flag
+
+    def stop(signum: int, frame: object) -> None:
+        flag.append(signum)
+        raise KeyboardInterrupt
+
+    flag.previous = signal.signal(signal.SIGTERM, stop)
+    return flag
+
+
 def cmd_run(args: argparse.Namespace) -> int:
     from .run.outputs import OutputPathError, OutputWriteError, check_output_paths
     from .run.remote import (
@@ -104,6 +135,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     except KeyboardInterrupt:
         print("\ninterrupted while compiling the kernels: no case was run", file=sys.stderr)
         return 130
+    terminated = _on_sigterm()
     try:
         if not grid.chunked:  # the kernels its cases need, loaded before any is timed
             from .analyses.evaluate import warm_up
@@ -121,11 +153,12 @@ def cmd_run(args: argparse.Namespace) -> int:
             timeout=timeout,
         )
     except KeyboardInterrupt:
+        how = "terminated" if terminated else "interrupted"
         print(
-            "\ninterrupted: finished cases are cached; run the same command again to resume",
+            f"\n{how}: finished cases are cached; run the same command again to resume",
             file=sys.stderr,
         )
-        return 130
+        return 143 if terminated else 130
     except SchedulerUnreachable as exc:
         print(f"{exc}; finished cases are cached", file=sys.stderr)
         return 1
@@ -136,6 +169,8 @@ def cmd_run(args: argparse.Namespace) -> int:
         where = f" at {exc.filename}" if exc.filename else ""
         print(f"cannot write the results: {exc.strerror or exc}{where}", file=sys.stderr)
         return 1
+    finally:
+        terminated.restore()
     print(summary.report())
     if summary.n_failed < summary.n_cases:
         # the summary counts every case of status != 0 (a broken line too) at each place

@@ -348,9 +348,15 @@ sweep:
 """
 
 
+@pytest.mark.parametrize(
+    ("sig", "code", "word"),
+    [(signal.SIGINT, 130, "interrupted"), (signal.SIGTERM, 143, "terminated")],
+)
 def test_ctrl_c_mid_run_exits_130_and_the_rerun_resumes_to_the_same_file(
-    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], sig: int, code: int, word: str
 ) -> None:
+    """Ctrl-C (SIGINT) and SIGTERM (a batch system's stop) alike: one line saying so,
+    exit 128 + the signal, the finished cases cached and resumed."""
     cfg = tmp_path / "kt.yaml"
     cfg.write_text(KILLED)
     out = tmp_path / "out"
@@ -365,10 +371,10 @@ def test_ctrl_c_mid_run_exits_130_and_the_rerun_resumes_to_the_same_file(
     while not list(cache.glob("grid-*.npz")) and proc.poll() is None:
         assert time.monotonic() < deadline, "no chunk finished"
         time.sleep(0.02)
-    proc.send_signal(signal.SIGINT)  # after the first chunk, before the last
+    proc.send_signal(sig)  # after the first chunk, before the last
     _, err = proc.communicate(timeout=60)
-    assert proc.returncode == 130, err
-    assert "interrupted: finished cases are cached; run the same command again to resume" in err
+    assert proc.returncode == code, err
+    assert f"{word}: finished cases are cached; run the same command again to resume" in err
     assert "Traceback" not in err
     assert not (out / "kt.nc").exists()
     # the rerun computes only what was not finished
