@@ -22,19 +22,19 @@ import numpy as np
 
 from ..dynamics.frequency import solve_harmonic, solve_spectrum
 from ..dynamics.frequency_model import DragSettings, ReducedLine
-from ..dynamics.harmonic_cases import solve_harmonic_cases
 from ..dynamics.linear_model import linear_line
 from ..dynamics.modal import ModalProblem
 from ..dynamics.system_validity import line_failures
 from ..dynamics.touchdown_mesh import TOUCHDOWN_SAMPLES, touchdown_mesh
-from ..dynamics.validity import Validity, measures_cases
+from ..dynamics.validity import Validity
 from ..statics import STATUS_NO_SOLUTION, STATUS_NUMERICAL, STATUS_OK, StaticResult
 from ..statics.base import StaticProblem
 from ..study.analysis import AutoSettings, DynamicSettings, HarmonicExcitation, SpectrumExcitation
 from ..study.cases import Case
 from ..study.problem import static_problem
-from .along_line import tension_along, tension_along_cases
+from .along_line import tension_along
 from .counters import COUNTERS, trim_lru
+from .line_harmonic import line_harmonic, submerged_weight, z_envelope
 
 #: outputs of the transfer function (analysis.dynamic.transfer_function)
 TRANSFER_OUTPUTS = (
@@ -255,7 +255,6 @@ def solve_frequency_cases(
             for i in range(0, len(cases), step)
             for outcome in solve_frequency_cases(cases[i : i + step], static, red)
         ]
-    line = red.line
     K = len(cases)
     dyns = [c.study.analysis.dynamic for c in cases]
     omegas = np.empty(K)
@@ -268,34 +267,21 @@ def solve_frequency_cases(
         motion[k] = X
         refs[k] = ref
     assert dyns[0] is not None
-    res = solve_harmonic_cases(red, omegas, motion, drag_settings(dyns[0]))
+    problem = _problem(cases[0])
+    # the solve and the arrays of the outputs (shared with a system of one line)
+    got = line_harmonic(
+        red, omegas, motion, drag_settings(dyns[0]), static, problem.medium, problem.line
+    )
+    res, a_end = got.res, got.amplitude
     t_end = res.tension_static
-    a_end = np.abs(res.end_tension)
-    a_el = np.abs(res.element_tension)
     phase = np.degrees(np.angle(res.end_tension / refs[:, None]))
     edge_max = np.max(t_end[None] + a_end, axis=1)
-    med = _problem(cases[0]).medium
-    ground = med.seabed_z(line.position[:, 0], line.position[:, 1])
-    on_bed = np.abs(line.position[:, 2] - ground) <= 1e-6 * max(float(line.s[-1]), 1.0)
-    ratio, sag_ratio, travel = measures_cases(
-        s=line.s,
-        position=line.position,
-        displacement=res.displacement,
-        element_tension_static=line.tension,
-        element_tension_amplitude=a_el,
-        end_tension_static=t_end,
-        end_tension_amplitude=a_end,
-        laid_length=static.laid_length,
-        on_seabed=on_bed,
-        submerged_weight=_submerged_weight(cases[0], line.s),
-        held=np.diff(line.free_basis.tocsr().indptr).reshape(-1, 3).sum(axis=1) == 0,
-    )
-    envelope = tension_along_cases(static.s, line.s, a_el, a_end)
+    ratio, sag_ratio, travel = got.ratio, got.sag_ratio, got.travel
     # the outputs of every case as arrays (K, ...); a case's own are views of them
     ex = np.array([0 if dyn.excitations[0].end == "a" else 1 for dyn in dyns])  # type: ignore[union-attr]
     t_ex = t_end[ex]
     a_ex = a_end[np.arange(K), ex]
-    env_max = static.tension + envelope
+    env_max = got.envelope_max
     top = np.max(env_max, axis=1)
     columns: dict[str, np.ndarray] = {
         "tension_static": t_ex,
@@ -305,9 +291,8 @@ def solve_frequency_cases(
         # max(line, ends) as Python's max: the second only where larger
         "tension_max_line": np.where(edge_max > top, edge_max, top),
         "tension_envelope_max": env_max,
-        "tension_envelope_min": static.tension - envelope,
-        # each node's static elevation plus its heave amplitude, onto the output points
-        "z_envelope_max": z_envelope(static.s, line, np.abs(res.displacement[..., 2])),
+        "tension_envelope_min": got.envelope_min,
+        "z_envelope_max": got.z_max,
         "tension_amplitude_a": a_end[:, 0],
         "tension_amplitude_b": a_end[:, 1],
         "tension_phase_a": phase[:, 0],
@@ -347,17 +332,6 @@ def solve_frequency_cases(
     return out
 
 
-def z_envelope(s_out: np.ndarray, line: Any, amplitude: np.ndarray) -> np.ndarray:
-    """The highest elevation [m] at the output points ``s_out`` [m] of a linear
-    response: the model's static node elevations ``line.position[:, 2]`` plus the nodes'
-    vertical amplitudes ``amplitude`` [m] (..., n) (a harmonic's, or a spectrum's most
-    probable maximum), interpolated as the time domain's node maxima are."""
-    z = line.position[:, 2] + np.asarray(amplitude)
-    if z.ndim == 1:
-        return np.interp(s_out, line.s, z)
-    return np.array([np.interp(s_out, line.s, zk) for zk in z])
-
-
 #: the checks of ``method: auto`` when a study sets none (built once: a model per case
 #: costs more than the checks)
 _DEFAULT_AUTO = AutoSettings()
@@ -391,10 +365,7 @@ def _judged(
 
 def _submerged_weight(case: Case, s: np.ndarray) -> np.ndarray:
     """Submerged weight per length [N/m] at arc lengths ``s``."""
-    line = _problem(case).line
-    ends = line.segment_ends
-    idx = np.clip(np.searchsorted(ends, s, side="right") - 1, 0, len(line.length) - 1)
-    return line.weight[idx]
+    return submerged_weight(_problem(case).line, s)
 
 
 def transfer_function(

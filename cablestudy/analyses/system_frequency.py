@@ -12,6 +12,10 @@ Outputs (the issue's names): ``tension_amplitude_a``/``_b`` on ``line``; the lin
 extremes ``tension_max_a`` ... (static plus and minus the amplitude, mean the static
 tension), ``tension_envelope_max``/``_min`` on (``line``, ``s``), ``body_force_max``/
 ``_min`` on (``body``, ``dof``), ``dynamic_method`` and its reason, ``linearisation_iterations``.
+
+A system of one line between prescribed points (no free point) is the one-line study
+with prescribed end motions: its cases go through the single line's solve and outputs
+(:mod:`cablestudy.analyses.system_one_line`), the same numbers bit for bit.
 """
 
 from __future__ import annotations
@@ -204,8 +208,11 @@ def _solve_group(
     extremes are the static value plus and minus the amplitude, the mean the static
     value; the envelopes on each line's ``s`` grid of the static problem's nodes."""
     from ..dynamics.system_frequency_sweep import solve_system_sweep_arrays
+    from .system_one_line import is_one_line, solve_one_line_group
 
     motions = [harmonic_motion(c.study) for c in cases]
+    if is_one_line(system):  # the one-line study's solve and outputs, bit for bit
+        return solve_one_line_group(motions, model, system, static, settings)
     results, arr = solve_system_sweep_arrays(
         model,
         [2.0 * math.pi * f for _, _, f in motions],

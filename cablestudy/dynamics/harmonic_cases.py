@@ -58,7 +58,10 @@ class HarmonicCases:
     end_tension [N] (K, 2) variation of the end tensions at A and B; tension_static [N]
     (2,) static end tensions; iterations (K,) drag iterations; converged (K,) bool;
     change (K,) last relative change of the drag iteration; ok (K,) bool, False where
-    the dynamic matrix was singular (the case's arrays are then NaN).
+    the dynamic matrix was singular (the case's arrays are then NaN); end_force [N]
+    (K, 2, 3) the variation of the force of the line on its supports at A and B (whose
+    projection on the static end force's direction is ``end_tension``; the force a
+    system's body takes from the line).
     """
 
     displacement: np.ndarray
@@ -69,6 +72,7 @@ class HarmonicCases:
     converged: np.ndarray
     change: np.ndarray
     ok: np.ndarray
+    end_force: np.ndarray
 
 
 @dataclass(frozen=True, eq=False)
@@ -306,6 +310,8 @@ def solve_harmonic_cases(
     unit = line.end_force / np.where(static_mag > 0.0, static_mag, 1.0)[:, None]
     end_tension = sum_components(unit[None] * -reaction)
     end_tension[~ok] = np.nan + 0j
+    support = -reaction
+    support[~ok] = np.nan + 0j
     return HarmonicCases(
         displacement=u,
         element_tension=element,
@@ -315,6 +321,7 @@ def solve_harmonic_cases(
         converged=converged,
         change=change,
         ok=ok,
+        end_force=support,
     )
 
 
@@ -323,6 +330,13 @@ def _one_by_one(red: ReducedLine, omegas: np.ndarray, end_motion: np.ndarray) ->
     (:func:`~cablestudy.dynamics.frequency_model.solve_undamped`, which
     :func:`~cablestudy.dynamics.frequency.solve_harmonic` gives such a line)."""
     results = [solve_undamped(red, w, X) for w, X in zip(omegas, end_motion, strict=True)]
+    # the force on the supports as solve_undamped finds it (the same function of the
+    # same displacements: the same numbers)
+    support = np.full((len(results), 2, 3), np.nan + 0j)
+    for k, (w, r) in enumerate(zip(omegas, results, strict=True)):
+        if r.success:
+            reaction = red.apply(r.displacement, w, None)
+            support[k] = -np.stack([reaction[0], reaction[-1]])
     return HarmonicCases(
         displacement=np.array([r.displacement for r in results]),
         element_tension=np.array([r.element_tension for r in results]),
@@ -332,6 +346,7 @@ def _one_by_one(red: ReducedLine, omegas: np.ndarray, end_motion: np.ndarray) ->
         converged=np.array([r.drag_converged for r in results], dtype=np.bool_),
         change=np.array([r.drag_change for r in results], dtype=float),
         ok=np.array([r.success for r in results], dtype=np.bool_),
+        end_force=support,
     )
 
 

@@ -106,14 +106,7 @@ def _post_all(
     n, L = w.size, len(model.lines)
     support = -forces.reshape(n, L, 2, 3)
     end_tension = np.sum(post.unit[None] * support, axis=3)
-    body_force = np.zeros((n, model.n_bodies, 6), dtype=complex)
-    if post.body_line.size:
-        sup = support[:, post.body_line, post.body_end]
-        arm = post.body_arm[None]
-        turned = cross(cross(theta[:, post.body], arm), post.body_static[None])
-        moment = cross(arm, sup) + turned
-        np.add.at(body_force, (slice(None), post.body, slice(0, 3)), sup)
-        np.add.at(body_force, (slice(None), post.body, slice(3, 6)), moment)
+    body_force = body_forces(model, theta, support)
     du = disp[:, post.element + 1] - disp[:, post.element]
     axial = post.axial_stiffness[None] + 1j * w[:, None] * post.axial_damping[None]
     tension = axial * np.sum(post.direction[None] * du, axis=2)
@@ -123,6 +116,24 @@ def _post_all(
     var[:, post.last] = end_tension[:, :, 1]
     amp = np.abs(var)
     return support, end_tension, body_force, tension, post.node_static + amp, post.node_static - amp
+
+
+def body_forces(model: SystemLinear, theta: np.ndarray, support: np.ndarray) -> np.ndarray:
+    """The variation of the force and moment [N, N m] (n, B, 6) of the lines on each
+    body about its reference point, of n cases: ``support`` (n, L, 2, 3) the variation
+    of the force of each line end on its point, ``theta`` (n, B, 3) the bodies' complex
+    rotation amplitudes (the static end force turning with the arm;
+    :class:`~.system_frequency.SystemFrequencyResult`)."""
+    post = model.post
+    body_force = np.zeros((support.shape[0], model.n_bodies, 6), dtype=complex)
+    if post.body_line.size:
+        sup = support[:, post.body_line, post.body_end]
+        arm = post.body_arm[None]
+        turned = cross(cross(theta[:, post.body], arm), post.body_static[None])
+        moment = cross(arm, sup) + turned
+        np.add.at(body_force, (slice(None), post.body, slice(0, 3)), sup)
+        np.add.at(body_force, (slice(None), post.body, slice(3, 6)), moment)
+    return body_force
 
 
 def _result(
