@@ -64,8 +64,15 @@ def line_harmonic(
     line's static solution at the output points (``s``, ``tension``, ``laid_length``);
     ``medium``: its static problem's medium (the seabed); ``line_model``: its static
     line model (the submerged weight)."""
-    line = red.line
     res = solve_harmonic_cases(red, omegas, motion, settings)
+    return line_outputs(red.line, res, static, medium, line_model)
+
+
+def line_outputs(
+    line: Any, res: HarmonicCases, static: Any, medium: Any, line_model: Any
+) -> LineHarmonic:
+    """The outputs' arrays of the harmonic responses ``res`` of the linear line
+    ``line`` (:func:`line_harmonic`'s, each case's row from its own response only)."""
     t_end = res.tension_static
     a_end = np.abs(res.end_tension)
     a_el = np.abs(res.element_tension)
