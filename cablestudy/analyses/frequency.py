@@ -16,7 +16,6 @@ import math
 import struct
 from collections import OrderedDict
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 

@@ -115,8 +115,10 @@ def _assert_same(
     assert np.all(one["linearisation_converged"].values[where] == 1)
     pairs = [(one[k], system[k].isel(line=0)) for k in PER_LINE]
     pairs += [(one[k], system[k]) for k in PER_CASE]
-    pairs += [(one[f"tension_{q}"], system[f"tension_{q}_{excited}"].isel(line=0))
-              for q in ("max", "min", "mean")]
+    pairs += [
+        (one[f"tension_{q}"], system[f"tension_{q}_{excited}"].isel(line=0))
+        for q in ("max", "min", "mean")
+    ]
     pairs += [(one[f"tension_{e}"], system["tension_" + e].isel(line=0)) for e in "ab"]
     for want, got in pairs:
         w, g = want.values, got.values
@@ -155,13 +157,23 @@ def test_a_surged_system_of_one_line_is_the_one_line_study_bit_for_bit(
     b = (0.0, 0.0, -12.0)
     one = run_study(
         tmp_path,
-        _one(f"one{tag}", depth, ANCHOR_3D, b,
-             "{end: b, direction: [1, 0, 0], amplitude: 1.5, frequency: 0.1}"),
+        _one(
+            f"one{tag}",
+            depth,
+            ANCHOR_3D,
+            b,
+            "{end: b, direction: [1, 0, 0], amplitude: 1.5, frequency: 0.1}",
+        ),
     )
     system = run_study(
         tmp_path,
-        _system(f"sys{tag}", depth, _ship_points(ANCHOR_3D, b), SHIP,
-                "{body: ship, dof: surge, amplitude: 1.5, frequency: 0.1}"),
+        _system(
+            f"sys{tag}",
+            depth,
+            _ship_points(ANCHOR_3D, b),
+            SHIP,
+            "{body: ship, dof: surge, amplitude: 1.5, frequency: 0.1}",
+        ),
     )
     assert (float(one["laid_length"]) > 0.0) == (depth == 100.0)
     _assert_same(one, system, "b")
@@ -182,28 +194,48 @@ def test_heave_and_a_pitch_about_an_offset_point_are_the_one_line_study(
     pts = _ship_points(ANCHOR_2D, b)
     one = run_study(
         tmp_path,
-        _one(f"onepitch{tag}", depth, ANCHOR_2D, b,
-             "[{end: b, direction: [-1, 0, 0], amplitude: 1.0, frequency: 0.1, phase_deg: 30},"
-             " {end: b, direction: [0, 0, -1], amplitude: 0.5, frequency: 0.1, phase_deg: 30}]"),
+        _one(
+            f"onepitch{tag}",
+            depth,
+            ANCHOR_2D,
+            b,
+            "[{end: b, direction: [-1, 0, 0], amplitude: 1.0, frequency: 0.1, phase_deg: 30},"
+            " {end: b, direction: [0, 0, -1], amplitude: 0.5, frequency: 0.1, phase_deg: 30}]",
+        ),
     )
     system = run_study(
         tmp_path,
-        _system(f"syspitch{tag}", depth, pts, SHIP,
-                "{body: ship, dof: pitch, amplitude: 0.0625, frequency: 0.1, phase_deg: 30}"),
+        _system(
+            f"syspitch{tag}",
+            depth,
+            pts,
+            SHIP,
+            "{body: ship, dof: pitch, amplitude: 0.0625, frequency: 0.1, phase_deg: 30}",
+        ),
     )
     _assert_same(one, system, "b")
     one = run_study(
         tmp_path,
-        _one(f"oneheave{tag}", depth, ANCHOR_2D, b,
-             "[{end: b, direction: [0, 0, 1], amplitude: 0.75, frequency: 0.08},"
-             " {end: a, direction: [1, 0, 0], amplitude: 0.25, frequency: 0.08, phase_deg: 90}]"),
+        _one(
+            f"oneheave{tag}",
+            depth,
+            ANCHOR_2D,
+            b,
+            "[{end: b, direction: [0, 0, 1], amplitude: 0.75, frequency: 0.08},"
+            " {end: a, direction: [1, 0, 0], amplitude: 0.25, frequency: 0.08, phase_deg: 90}]",
+        ),
     )
     system = run_study(
         tmp_path,
-        _system(f"sysheave{tag}", depth, pts, SHIP,
-                "[{body: ship, dof: heave, amplitude: 0.75, frequency: 0.08},"
-                " {point: p, direction: [1, 0, 0], amplitude: 0.25, frequency: 0.08,"
-                " phase_deg: 90}]"),
+        _system(
+            f"sysheave{tag}",
+            depth,
+            pts,
+            SHIP,
+            "[{body: ship, dof: heave, amplitude: 0.75, frequency: 0.08},"
+            " {point: p, direction: [1, 0, 0], amplitude: 0.25, frequency: 0.08,"
+            " phase_deg: 90}]",
+        ),
     )
     _assert_same(one, system, "b")
     _body_force_bounds(system, "b")
@@ -215,13 +247,23 @@ def test_sway_of_a_line_out_of_the_x_z_plane_is_the_one_line_study(tmp_path: Pat
     b = (0.0, 0.0, -12.0)
     one = run_study(
         tmp_path,
-        _one("onesway", 300.0, ANCHOR_3D, b,
-             "{end: b, direction: [0, 1, 0], amplitude: 1.0, frequency: 0.12}"),
+        _one(
+            "onesway",
+            300.0,
+            ANCHOR_3D,
+            b,
+            "{end: b, direction: [0, 1, 0], amplitude: 1.0, frequency: 0.12}",
+        ),
     )
     system = run_study(
         tmp_path,
-        _system("syssway", 300.0, _ship_points(ANCHOR_3D, b), SHIP,
-                "{body: ship, dof: sway, amplitude: 1.0, frequency: 0.12}"),
+        _system(
+            "syssway",
+            300.0,
+            _ship_points(ANCHOR_3D, b),
+            SHIP,
+            "{body: ship, dof: sway, amplitude: 1.0, frequency: 0.12}",
+        ),
     )
     _assert_same(one, system, "b")
 
@@ -233,9 +275,14 @@ def test_two_bodies_moving_both_ends_are_the_one_line_study(tmp_path: Path) -> N
     b = (0.0, 0.0, -12.0)
     one = run_study(
         tmp_path,
-        _one("onetwo", 300.0, ANCHOR_3D, b,
-             "[{end: a, direction: [0, 0, 1], amplitude: 0.5, frequency: 0.1, phase_deg: 90},"
-             " {end: b, direction: [1, 0, 0], amplitude: 1.0, frequency: 0.1}]"),
+        _one(
+            "onetwo",
+            300.0,
+            ANCHOR_3D,
+            b,
+            "[{end: a, direction: [0, 0, 1], amplitude: 0.5, frequency: 0.1, phase_deg: 90},"
+            " {end: b, direction: [1, 0, 0], amplitude: 1.0, frequency: 0.1}]",
+        ),
     )
     points = (
         "  p: {kind: body, body: buoy, offset: [0.0, 0.0, -100.0]}\n"
@@ -244,9 +291,14 @@ def test_two_bodies_moving_both_ends_are_the_one_line_study(tmp_path: Path) -> N
     bodies = SHIP + "  buoy: {kind: prescribed, position: [-290, 20, 0, 0, 0, 0]}\n"
     system = run_study(
         tmp_path,
-        _system("systwo", 300.0, points, bodies,
-                "[{body: buoy, dof: heave, amplitude: 0.5, frequency: 0.1, phase_deg: 90},"
-                " {body: ship, dof: surge, amplitude: 1.0, frequency: 0.1}]"),
+        _system(
+            "systwo",
+            300.0,
+            points,
+            bodies,
+            "[{body: buoy, dof: heave, amplitude: 0.5, frequency: 0.1, phase_deg: 90},"
+            " {body: ship, dof: surge, amplitude: 1.0, frequency: 0.1}]",
+        ),
     )
     _assert_same(one, system, "a")
 
@@ -267,15 +319,25 @@ def test_a_sweep_of_frequency_amplitude_and_dof_is_the_one_line_sweep(tmp_path: 
     )
     one = run_study(
         tmp_path,
-        _one("onesweep", 100.0, ANCHOR_3D, b,
-             "{end: b, direction: [1, 0, 0], amplitude: 1.5, frequency: 0.1}",
-             sweep=axes + "  analysis.dynamic.excitation.direction: [[1, 0, 0], [0, 0, 1]]\n"),
+        _one(
+            "onesweep",
+            100.0,
+            ANCHOR_3D,
+            b,
+            "{end: b, direction: [1, 0, 0], amplitude: 1.5, frequency: 0.1}",
+            sweep=axes + "  analysis.dynamic.excitation.direction: [[1, 0, 0], [0, 0, 1]]\n",
+        ),
     )
     system = run_study(
         tmp_path,
-        _system("syssweep", 100.0, _ship_points(ANCHOR_3D, b), SHIP,
-                "{body: ship, dof: surge, amplitude: 1.5, frequency: 0.1}",
-                sweep=axes + "  analysis.dynamic.excitation.dof: [surge, heave]\n"),
+        _system(
+            "syssweep",
+            100.0,
+            _ship_points(ANCHOR_3D, b),
+            SHIP,
+            "{body: ship, dof: surge, amplitude: 1.5, frequency: 0.1}",
+            sweep=axes + "  analysis.dynamic.excitation.dof: [surge, heave]\n",
+        ),
     )
     assert one["status"].size == system["status"].size == 12
     one = one.rename({"direction": "excitation_dof"}).assign_coords(
@@ -290,16 +352,26 @@ def test_a_sweep_of_frequency_amplitude_and_dof_is_the_one_line_sweep(tmp_path: 
         tag = f"{dof}{int(f * 100)}"
         alone = run_study(
             tmp_path,
-            _system(f"sysalone{tag}", 100.0, _ship_points(ANCHOR_3D, b), SHIP,
-                    f"{{body: ship, dof: {dof}, amplitude: 0.5, frequency: {f}}}"),
+            _system(
+                f"sysalone{tag}",
+                100.0,
+                _ship_points(ANCHOR_3D, b),
+                SHIP,
+                f"{{body: ship, dof: {dof}, amplitude: 0.5, frequency: {f}}}",
+            ),
         )
         case = system.sel(frequency=f, amplitude=0.5, excitation_dof=dof)
         for k in (*PER_LINE, "linearisation_iterations", "body_force_max", "status"):
             assert np.array_equal(alone[k].values, case[k].values), (tag, k)
         one_alone = run_study(
             tmp_path,
-            _one(f"onealone{tag}", 100.0, ANCHOR_3D, b,
-                 f"{{end: b, direction: {direction}, amplitude: 0.5, frequency: {f}}}"),
+            _one(
+                f"onealone{tag}",
+                100.0,
+                ANCHOR_3D,
+                b,
+                f"{{end: b, direction: {direction}, amplitude: 0.5, frequency: {f}}}",
+            ),
         )
         if dof == "heave":  # settled by the single line: the same as the system's
             _assert_same(one_alone, alone, "b")
@@ -312,13 +384,25 @@ def test_auto_picking_the_frequency_domain_is_the_one_line_study(tmp_path: Path)
     b = (0.0, 0.0, -12.0)
     one = run_study(
         tmp_path,
-        _one("oneauto", 300.0, ANCHOR_3D, b,
-             "{end: b, direction: [1, 0, 0], amplitude: 0.25, frequency: 0.1}", method="auto"),
+        _one(
+            "oneauto",
+            300.0,
+            ANCHOR_3D,
+            b,
+            "{end: b, direction: [1, 0, 0], amplitude: 0.25, frequency: 0.1}",
+            method="auto",
+        ),
     )
     system = run_study(
         tmp_path,
-        _system("sysauto", 300.0, _ship_points(ANCHOR_3D, b), SHIP,
-                "{body: ship, dof: surge, amplitude: 0.25, frequency: 0.1}", method="auto"),
+        _system(
+            "sysauto",
+            300.0,
+            _ship_points(ANCHOR_3D, b),
+            SHIP,
+            "{body: ship, dof: surge, amplitude: 0.25, frequency: 0.1}",
+            method="auto",
+        ),
     )
     assert str(system["dynamic_method_reason"].values).startswith("auto: linear")
     _assert_same(one, system, "b")
@@ -349,18 +433,26 @@ def test_a_system_of_two_lines_keeps_the_system_solve(
         f"  r: {{kind: fixed, position: {_vec(mirror)}}}\n"
         f"  q: {{kind: body, body: ship, offset: {_vec(b)}}}\n"
     )
-    text = _system("systwolines", 300.0, points, SHIP,
-                   "{body: ship, dof: surge, amplitude: 1.5, frequency: 0.1}")
-    text = text.replace(
-        "lines:\n", f"lines:\n  other: {{a: r, b: q, segments: [{SEG}]}}\n"
+    text = _system(
+        "systwolines",
+        300.0,
+        points,
+        SHIP,
+        "{body: ship, dof: surge, amplitude: 1.5, frequency: 0.1}",
     )
+    text = text.replace("lines:\n", f"lines:\n  other: {{a: r, b: q, segments: [{SEG}]}}\n")
     system = run_study(tmp_path, text)
     assert int(system["status"]) == 0, system["message"].values
     for name, anchor in (("only", ANCHOR_3D), ("other", mirror)):
         one = run_study(
             tmp_path,
-            _one(f"one{name}", 300.0, anchor, b,
-                 "{end: b, direction: [1, 0, 0], amplitude: 1.5, frequency: 0.1}"),
+            _one(
+                f"one{name}",
+                300.0,
+                anchor,
+                b,
+                "{end: b, direction: [1, 0, 0], amplitude: 1.5, frequency: 0.1}",
+            ),
         )
         for end in "ab":
             want = float(one[f"tension_amplitude_{end}"])
@@ -394,13 +486,25 @@ def test_a_system_of_one_laid_line_linearises_about_the_one_line_model(
     b = (0.0, 0.0, -12.0)
     run_study(
         tmp_path,
-        _one("one", 100.0, ANCHOR_3D, b,
-             "{end: b, direction: [1, 0, 0], amplitude: 1.5, frequency: 0.1}", elements=6),
+        _one(
+            "one",
+            100.0,
+            ANCHOR_3D,
+            b,
+            "{end: b, direction: [1, 0, 0], amplitude: 1.5, frequency: 0.1}",
+            elements=6,
+        ),
     )
     run_study(
         tmp_path,
-        _system("sys", 100.0, _ship_points(ANCHOR_3D, b), SHIP,
-                "{body: ship, dof: surge, amplitude: 1.5, frequency: 0.1}", elements=6),
+        _system(
+            "sys",
+            100.0,
+            _ship_points(ANCHOR_3D, b),
+            SHIP,
+            "{body: ship, dof: surge, amplitude: 1.5, frequency: 0.1}",
+            elements=6,
+        ),
     )
     a, b_ = got["one"][0].line, got["sys"].lines[0].line
     s_fine = np.linspace(0.0, 320.0, 6 * 16 + 1)
