@@ -54,11 +54,12 @@ def _one(
     method: str = "frequency",
     elements: int = 10,
     sweep: str = "",
+    seg: str = SEG,
 ) -> str:
     """The one-line study between fixed ends ``a`` and ``b``."""
     return (
         f"name: {name}\nenvironment: {{fluid: water, depth: {depth!r}}}\n"
-        f"line:\n  segments: [{SEG}]\nends:\n  a: {{kind: fixed, position: {_vec(a)}}}\n"
+        f"line:\n  segments: [{seg}]\nends:\n  a: {{kind: fixed, position: {_vec(a)}}}\n"
         f"  b: {{kind: fixed, position: {_vec(b)}}}\nanalysis:\n  static: {{nodes: 13}}\n"
         + _dynamic(excitation, method, elements, sweep)
     )
@@ -74,11 +75,12 @@ def _system(
     method: str = "frequency",
     elements: int = 10,
     sweep: str = "",
+    seg: str = SEG,
 ) -> str:
     """The system of one line from point p to point q."""
     return (
         f"name: {name}\nenvironment: {{fluid: water, depth: {depth!r}}}\npoints:\n{points}"
-        f"bodies:\n{bodies}lines:\n  only: {{a: p, b: q, segments: [{SEG}]}}\n"
+        f"bodies:\n{bodies}lines:\n  only: {{a: p, b: q, segments: [{seg}]}}\n"
         "analysis:\n  static: {nodes: 13}\n" + _dynamic(excitation, method, elements, sweep)
     )
 
@@ -528,3 +530,37 @@ def test_a_system_of_one_laid_line_linearises_about_the_one_line_model(
     for name in ("stiffness", "damping", "free_basis"):
         x, y = getattr(a, name), getattr(b_, name)
         assert x.shape == y.shape and (x != y).nnz == 0, name
+
+
+def test_a_line_without_drag_is_the_one_line_study(tmp_path: Path) -> None:
+    """Without drag (both coefficients 0) the single line's solve is one LAPACK band
+    solve a case (harmonic_cases._one_by_one), whose end force the system's body takes:
+    the same outputs, and the ship's force amplitude at least the tension amplitude
+    (_body_force_bounds)."""
+    seg = SEG.replace("drag_normal: 1.2", "drag_normal: 0.0, drag_tangential: 0.0")
+    b = (0.0, 0.0, -12.0)
+    one = run_study(
+        tmp_path,
+        _one(
+            "onenodrag",
+            300.0,
+            ANCHOR_3D,
+            b,
+            "{end: b, direction: [1, 0, 0], amplitude: 1.5, frequency: 0.1}",
+            seg=seg,
+        ),
+    )
+    system = run_study(
+        tmp_path,
+        _system(
+            "sysnodrag",
+            300.0,
+            _ship_points(ANCHOR_3D, b),
+            SHIP,
+            "{body: ship, dof: surge, amplitude: 1.5, frequency: 0.1}",
+            seg=seg,
+        ),
+    )
+    assert "drag_normal: 0.0" in system.attrs["study_yaml"]
+    _assert_same(one, system, "b")
+    _body_force_bounds(system, "b")
