@@ -564,3 +564,32 @@ def test_a_line_without_drag_is_the_one_line_study(tmp_path: Path) -> None:
     assert "drag_normal: 0.0" in system.attrs["study_yaml"]
     _assert_same(one, system, "b")
     _body_force_bounds(system, "b")
+
+
+def test_a_line_between_fixed_points_moved_on_their_own_is_the_one_line_study(
+    tmp_path: Path,
+) -> None:
+    """No body: a line between two fixed points, the fairlead moved on its own 1.5 m
+    along x (a point harmonic): the same outputs."""
+    b = (0.0, 0.0, -12.0)
+    one = run_study(
+        tmp_path,
+        _one(
+            "onefixed",
+            300.0,
+            ANCHOR_3D,
+            b,
+            "{end: b, direction: [1, 0, 0], amplitude: 1.5, frequency: 0.1}",
+        ),
+    )
+    text = _system(
+        "sysfixed",
+        300.0,
+        f"  p: {{kind: fixed, position: {_vec(ANCHOR_3D)}}}\n"
+        f"  q: {{kind: fixed, position: {_vec(b)}}}\n",
+        "",
+        "{point: q, direction: [1, 0, 0], amplitude: 1.5, frequency: 0.1}",
+    ).replace("bodies:\n", "")
+    system = run_study(tmp_path, text)
+    assert "body" not in system.dims
+    _assert_same(one, system, "b")
