@@ -405,8 +405,7 @@ def transfer_function(
     drag linearised at the case's amplitude, divided by the largest amplitude."""
     assert dyn.transfer_function is not None
     freqs = np.asarray(dyn.transfer_function.values)
-    X, _, ref = end_displacements(dyn)
-    scale = max(float(np.max(np.abs(X))), 1e-300)
+    X, scale, ref = rao_motion(dyn)
     settings = drag_settings(dyn)
     n_out = static.s.size
     end_amp = np.full((freqs.size, 2), np.nan)
@@ -432,6 +431,23 @@ def transfer_function(
         "tension_rao_phase_b": end_phase[:, 1],
         "tension_rao_line": line_amp,
     }
+
+
+def rao_motion(dyn: DynamicSettings) -> tuple[np.ndarray, float, complex]:
+    """The end displacements [m] (2, 3) the transfer function is solved for, the
+    amplitude [m] its tensions are divided by, and the phase reference (as
+    :func:`end_displacements`). The amplitude is the largest excitation's ``amplitude``
+    (the length of its motion along its unit direction; a component of a direction off
+    the axes is shorter). With every amplitude 0 the small-motion limit is meant: each
+    motion at 1e-9 m (the drag linearised at rest), divided by that."""
+    X, _, ref = end_displacements(dyn)
+    amplitude = max(e.amplitude for e in dyn.excitations if isinstance(e, HarmonicExcitation))
+    if amplitude > 0.0:
+        return X, float(amplitude), ref
+    tiny = 1e-9
+    harmonics = [e for e in dyn.excitations if isinstance(e, HarmonicExcitation)]
+    X, ref = _end_displacements([e.model_copy(update={"amplitude": tiny}) for e in harmonics])
+    return X, tiny, ref
 
 
 def irregular(
