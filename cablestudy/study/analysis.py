@@ -185,6 +185,9 @@ TIME_ONLY_KEYS = (
     "after_break",
 )
 
+#: the steady-state detection's settings: unused by a run of fixed ``duration``
+STEADY_KEYS = ("steady_tolerance", "steady_window", "min_periods", "max_periods")
+
 
 class LinearisationSettings(StrictModel):
     """Drag linearisation of the frequency-domain method (methods 'frequency' and
@@ -526,6 +529,39 @@ class DynamicSettings(StrictModel):
                 "transfer_function: needs harmonic excitation (the tension per unit amplitude "
                 "of a harmonic end motion); allowed: harmonic motions"
             )
+        return self
+
+    @model_validator(mode="after")
+    def _keys_left_unused(self) -> DynamicSettings:
+        """Keys that this run's settings leave unused: the steady-state keys when a fixed
+        ``duration`` switches the steady-state detection off, a spectrum's
+        ``storm_duration`` (the frequency domain's most probable maximum) in the time
+        domain and its ``seed`` (the time domain's random phases) in the frequency
+        domain. Only keys the study gives are refused (never a default)."""
+        if self.duration is not None:
+            given = [k for k in STEADY_KEYS if k in self.model_fields_set]
+            if given:
+                values = ", ".join(f"{k} {getattr(self, k)!r}" for k in given)
+                raise ValueError(
+                    f"{', '.join(given)}: steady-state settings, unused with duration "
+                    f"{self.duration:g} s (the run lasts that long and no steady state is "
+                    f"detected) (got {values}); allowed: remove duration (steady-state "
+                    "detection) or these keys"
+                )
+        unused = {"time": "storm_duration", "frequency": "seed"}.get(self.method)
+        for e in self.excitations:
+            if unused is not None and unused in e.model_fields_set:
+                used_by = (
+                    "the frequency domain's most probable maximum"
+                    if unused == "storm_duration"
+                    else "the time domain's random phases"
+                )
+                allowed = "'frequency' or 'auto'" if unused == "storm_duration" else "'time'"
+                raise ValueError(
+                    f"excitation.{unused}: sets {used_by}, not used by method "
+                    f"{self.method!r} (got {getattr(e, unused)!r}); allowed: method "
+                    f"{allowed} (or remove the key)"
+                )
         return self
 
     @property
