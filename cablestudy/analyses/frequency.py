@@ -505,6 +505,8 @@ def irregular(
         "tension_psd_b": np.abs(res.end_tension[:, 1]) ** 2 / (2.0 * df),
         "linearisation_iterations": np.asarray(res.iterations),
         "linearisation_converged": np.asarray(int(res.converged)),
+        # a statistical answer has no transient: steady, as a harmonic one (results guide)
+        "steady_converged": np.asarray(1),
     }
     return FrequencyOutcome(
         status=STATUS_OK,
