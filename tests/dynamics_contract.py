@@ -106,6 +106,13 @@ sweep:
 """
 
 
+#: the laid line's fairlead surged 5 cm at 0.05 Hz by the method given (``% method``)
+LAID_SURGE = (
+    "  dynamic:\n    method: %s\n    elements: 60\n"
+    "    excitation: {end: b, direction: [1.0, 0.0, 0.0], amplitude: 0.05, frequency: 0.05}\n"
+)
+
+
 def air(name: str, method: str, excitation: str = OFF_AXIS, extra: str = "") -> str:
     return AIR.format(name=name, method=method, excitation=excitation, extra=extra)
 
@@ -270,10 +277,9 @@ STUDIES: dict[str, str] = {
     ),
     "laid-friction-auto": laid(
         "laid-friction-auto",
-        "  dynamic:\n    elements: 60\n"
-        "    excitation: {end: b, direction: [1.0, 0.0, 0.0], amplitude: 0.05,"
-        " frequency: 0.05}\n",
-        "sweep:\n  environment.seabed.friction: [0.0, 0.5]\n",
+        LAID_SURGE % "auto",
+        "sweep:\n  analysis.dynamic.excitation.amplitude: [0.05, 2.0]\n"
+        "  environment.seabed.friction: [0.0, 0.5]\n",
     ),
     "bent-pinned-time": bent(
         "bent-pinned-time",

@@ -35,6 +35,7 @@ from ..study.cases import Case
 from ..study.problem import static_problem
 from .along_line import tension_along, tension_along_cases
 from .counters import COUNTERS, trim_lru
+from .touchdown_range import touchdown_range
 
 #: outputs of the transfer function (analysis.dynamic.transfer_function)
 TRANSFER_OUTPUTS = (
@@ -291,6 +292,7 @@ def solve_frequency_cases(
         held=np.diff(line.free_basis.tocsr().indptr).reshape(-1, 3).sum(axis=1) == 0,
     )
     envelope = tension_along_cases(static.s, line.s, a_el, a_end)
+    touchdown_min, touchdown_max = touchdown_range(line.s, on_bed, travel)
     # the outputs of every case as arrays (K, ...); a case's own are views of them
     ex = np.array([0 if dyn.excitations[0].end == "a" else 1 for dyn in dyns])  # type: ignore[union-attr]
     t_ex = t_end[ex]
@@ -316,6 +318,9 @@ def solve_frequency_cases(
         "linearisation_iterations": res.iterations.astype(np.asarray(1).dtype),
         "linearisation_converged": res.converged.astype(np.asarray(1).dtype),
     }
+    if med.depth is not None:  # a seabed to touch, as the time domain's (touchdown_range)
+        columns["touchdown_min"] = touchdown_min
+        columns["touchdown_max"] = touchdown_max
     from .common import non_finite_cases
 
     bad = non_finite_cases(columns, "dynamic")
