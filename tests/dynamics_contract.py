@@ -179,8 +179,9 @@ STUDIES: dict[str, str] = {
     "air-table": air(
         "air-table",
         "time",
-        excitation="{end: b, direction: [1.0, 0.0, 0.5], periodic: true, table: [%s]}"
-        % _periodic_sine_table(0.002, 0.3, 64),
+        excitation="{end: b, direction: [1.0, 0.0, 0.5], periodic: true, table: ["
+        + _periodic_sine_table(0.002, 0.3, 64)
+        + "]}",
     ),
     "air-history": air(
         "air-history",

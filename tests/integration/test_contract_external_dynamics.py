@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+
 import numpy as np
 import pytest
 import xarray as xr
@@ -78,7 +79,9 @@ def dynamic_conventions(ds: xr.Dataset, text: str) -> list[str]:
     for name in [*ds.data_vars, *ds.coords]:
         attrs = ds[name].attrs
         if not isinstance(attrs.get("units"), str) or not attrs.get("long_name"):
-            bad.append(f"{name}: units {attrs.get('units')!r}, long_name {attrs.get('long_name')!r}")
+            bad.append(
+                f"{name}: units {attrs.get('units')!r}, long_name {attrs.get('long_name')!r}"
+            )
         if name in UNITS and attrs.get("units") != UNITS[name]:
             bad.append(f"{name}: units {attrs.get('units')!r}, not {UNITS[name]!r}")
     for name in ("status", "message", "wall_time"):
@@ -113,7 +116,9 @@ def dynamic_conventions(ds: xr.Dataset, text: str) -> list[str]:
             if c[name].dtype.kind == "f" and not np.all(np.isfinite(c[name].values)):
                 bad.append(f"case {at}: {name} not finite with status 0")
         if "tension_max" in wanted:
-            low, mean, high, static = (float(c[f"tension_{k}"]) for k in ("min", "mean", "max", "static"))
+            low, mean, high, static = (
+                float(c[f"tension_{k}"]) for k in ("min", "mean", "max", "static")
+            )
             if not low <= min(mean, static) <= max(mean, static) <= high:
                 bad.append(f"case {at}: min {low} mean {mean} static {static} max {high}")
             if str(c["dynamic_method"].values) not in ("time", "frequency", "spring"):
@@ -310,7 +315,9 @@ def test_sweeps_of_direction_end_elements_steps_and_duration(tmp_path: Path) -> 
     ds = _run(tmp_path, STUDIES["air-direction-end"])
     assert list(ds["motion"].values) == ["surge", "sway", "heave"]
     assert list(ds["end"].values) == ["a", "b"]
-    assert np.all(ds["tension_amplitude_b"].sel(motion="sway").values == pytest.approx(0.0, abs=1e-9))
+    assert np.all(
+        ds["tension_amplitude_b"].sel(motion="sway").values == pytest.approx(0.0, abs=1e-9)
+    )
     assert np.all(ds["tension_amplitude_b"].sel(motion="surge").values > 1.0)
     el = _run(tmp_path, STUDIES["air-elements-steps"])
     static = el["tension_static"].isel(points_per_period=0).values
@@ -400,7 +407,9 @@ def test_a_spring_line_follows_its_law_along_the_motion(tmp_path: Path) -> None:
     500 +- 100 N; across it 500 N to 1000 (sqrt(10.5^2 + 0.1^2) - 10) N; the motion
     reversed gives the same range."""
     ds = _run(tmp_path, STUDIES["spring-linear"])
-    np.testing.assert_allclose(ds["tension_max"].values, [600.0, 1000 * (math.hypot(10.5, 0.1) - 10), 600.0], rtol=1e-9)
+    np.testing.assert_allclose(
+        ds["tension_max"].values, [600.0, 1000 * (math.hypot(10.5, 0.1) - 10), 600.0], rtol=1e-9
+    )
     np.testing.assert_allclose(ds["tension_min"].values, [400.0, 500.0, 400.0], rtol=1e-9)
     assert np.all(ds["dynamic_method"] == "spring")
 
@@ -425,7 +434,11 @@ def test_the_database_holds_the_static_solutions_of_its_grid(tmp_path: Path) -> 
 BAD: list[tuple[str, str, list[str]]] = [
     (
         "duration-with-steady-keys",
-        air("x", "time", extra="    duration: 50.0\n    steady_tolerance: 0.01\n    max_periods: 10\n"),
+        air(
+            "x",
+            "time",
+            extra="    duration: 50.0\n    steady_tolerance: 0.01\n    max_periods: 10\n",
+        ),
         ["steady_tolerance, max_periods", "duration 50 s", "got steady_tolerance 0.01", "allowed"],
     ),
     (
@@ -443,7 +456,8 @@ BAD: list[tuple[str, str, list[str]]] = [
         water(
             "x",
             "frequency",
-            excitation="{end: b, direction: [1, 0, 0], spectrum: [[0.1, 0.01], [0.2, 0.01]], seed: 3}",
+            excitation="{end: b, direction: [1, 0, 0], spectrum: [[0.1, 0.01], [0.2, 0.01]],"
+            " seed: 3}",
         ),
         ["excitation.seed", "method 'frequency'", "got 3", "allowed: method 'time'"],
     ),
@@ -456,12 +470,19 @@ BAD: list[tuple[str, str, list[str]]] = [
     ),
     (
         "zero-direction",
-        air("x", "time", excitation="{end: b, direction: [0, 0, 0], amplitude: 0.1, frequency: 0.3}"),
+        air(
+            "x", "time", excitation="{end: b, direction: [0, 0, 0], amplitude: 0.1, frequency: 0.3}"
+        ),
         ["excitation.direction", "nonzero", "got [0, 0, 0]"],
     ),
     (
         "frequency-and-period",
-        air("x", "time", excitation="{end: b, direction: [1, 0, 0], amplitude: 0.1, frequency: 0.3, period: 2.0}"),
+        air(
+            "x",
+            "time",
+            excitation="{end: b, direction: [1, 0, 0], amplitude: 0.1, frequency: 0.3,"
+            " period: 2.0}",
+        ),
         ["excitation.period", "not both", "got 2.0"],
     ),
     (
@@ -502,4 +523,3 @@ def test_bad_dynamic_input_is_refused_before_any_work(
     err = capsys.readouterr().err
     for fragment in says:
         assert fragment in err, err
-
