@@ -450,7 +450,14 @@ class DynamicSettings(StrictModel):
         periodic = any(
             isinstance(e, (TimeSeriesExcitation, *SYSTEM_TABLES)) and e.periodic for e in items
         ) or any(isinstance(e, SpectrumExcitation) for e in items)
-        if not (harmonic or periodic) and self.period is None and self.duration is None:
+        # method frequency refuses tables itself (_keys_of_the_method): advising it
+        # duration or period here, keys it refuses too, would send the user in a circle
+        if (
+            not (harmonic or periodic)
+            and self.period is None
+            and self.duration is None
+            and self.method != "frequency"
+        ):
             raise ValueError(
                 "excitation has no period (only non-periodic tables): give "
                 "analysis.dynamic.duration [s] or analysis.dynamic.period [s]"

@@ -496,6 +496,16 @@ BAD: list[tuple[str, str, list[str]]] = [
         ["transfer_function", "method 'time'", "allowed: method 'frequency' or 'auto'"],
     ),
     (
+        "a-time-table-in-the-frequency-domain",
+        air(
+            "x",
+            "frequency",
+            excitation="{end: b, direction: [1, 0, 0],"
+            " table: [[0, 0], [1, 0.1], [2, 0.1], [3, 0.1]]}",
+        ),
+        ["method 'frequency' needs harmonic excitation or a spectrum", "allowed"],
+    ),
+    (
         "history-beyond-the-line",
         air("x", "time", extra="    history: {points: [25.0]}\n"),
         ["history.points.0", "25.0", "allowed 0 <= s <= 20.2"],
