@@ -343,6 +343,22 @@ analysis:
     horizontal_distance: {start: 110.0, stop: 130.0, num: 5}
     height_difference: {start: 41.0, stop: 49.0, num: 5}
 """,
+    "database-radial": """\
+name: database-radial
+environment: {fluid: air}
+line:
+  segments:
+    - {length: 20.2, diameter: 0.01, mass_per_length: 1.0, axial_stiffness: 2.0e6}
+ends:
+  a: {kind: fixed, position: [1.0, 2.0, 3.0]}
+  b: {kind: fixed, position: [1.0, 19.320508075688775, 13.0]}
+analysis:
+  static: {nodes: 41}
+  database:
+    grid: radial
+    distance: {start: 18.0, stop: 20.0, num: 5}
+    angle_deg: {start: -30.0, stop: 30.0, num: 5}
+""",
 }
 
 

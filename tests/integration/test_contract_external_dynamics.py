@@ -424,6 +424,16 @@ def test_the_database_holds_the_static_solutions_of_its_grid(tmp_path: Path) -> 
     for name in ("tension_a", "tension_b", "laid_length"):
         assert float(p[f"database_{name}"]) == pytest.approx(float(ds[name]), rel=1e-9)
     np.testing.assert_allclose(p["database_force_b"], ds["force_b"], rtol=1e-9, atol=1e-6)
+    # the radial grid (a line off the seabed): end B 20 m from A at 30 degrees above it,
+    # in the plane turned to +y; the angle written in rad (conventions: output angles)
+    radial = _run(tmp_path, STUDIES["database-radial"])
+    assert radial["angle"].attrs["units"] == "rad"
+    q = radial.sel(distance=20.0).isel(angle=-1)
+    assert float(q["angle"]) == pytest.approx(math.radians(30.0), rel=1e-12)
+    assert float(radial["database_heading"]) == pytest.approx(math.pi / 2, rel=1e-12)
+    for name in ("tension_a", "tension_b"):
+        assert float(q[f"database_radial_{name}"]) == pytest.approx(float(radial[name]), rel=1e-9)
+    np.testing.assert_allclose(q["database_radial_force_b"], radial["force_b"], atol=1e-7)
 
 
 # ------------------------------------------------------------------ bad input
