@@ -377,6 +377,11 @@ def test_seabed_friction_and_auto_keep_the_laid_line_consistent(tmp_path: Path) 
     fd = ds.sel(amplitude=0.05, friction=0.0)
     assert str(fd["dynamic_method"].values) == "frequency"
     td = _run(tmp_path, laid("laid-small-time", LAID_SURGE % "time"))
+    # seen from the other end the touchdown point is at L - s
+    fwd = _run(tmp_path, laid("laid-small-frequency", LAID_SURGE % "frequency"))
+    mir = _run(tmp_path, mirrored(laid("x", LAID_SURGE % "frequency"), "laid-mirrored"))
+    assert float(mir["touchdown_min"]) == pytest.approx(150.0 - float(fwd["touchdown_max"]))
+    assert float(mir["touchdown_max"]) == pytest.approx(150.0 - float(fwd["touchdown_min"]))
     width_fd = float(fd["touchdown_max"] - fd["touchdown_min"])
     width_td = float(td["touchdown_max"] - td["touchdown_min"])
     assert 0.5 < width_fd / width_td < 2.0
