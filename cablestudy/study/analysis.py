@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import Annotated, Any, Literal
 
 from pydantic import (
@@ -319,7 +320,12 @@ class HistorySettings(StrictModel):
     points: list[NonNegative] = Field(
         [], description="arc lengths from end A of the points whose motion is kept [m]"
     )
-    periods: Positive = Field(2.0, description="length of the kept record [periods]")
+    periods: Positive = Field(
+        2.0,
+        description="length of the kept record [periods]; a run to steady state lasts at "
+        "least that many periods after the ramp, and a record longer than the run "
+        "(duration, or max_periods after the ramp) is refused",
+    )
     samples_per_period: int = Field(64, ge=4, le=10_000, description="samples per period")
     whole_line: bool = Field(
         False,
@@ -571,6 +577,45 @@ class DynamicSettings(StrictModel):
                 )
         return self
 
+    @model_validator(mode="after")
+    def _history_within_the_run(self) -> DynamicSettings:
+        """A kept record that fits in the run: within a fixed ``duration``, else within
+        ``max_periods`` after the ramp (a steady-state run lasts at least the record's
+        periods after the ramp: :attr:`settle_periods`). A longer record would start
+        before t = 0 (samples of the state at rest, not of the motion)."""
+        if self.history is None or self.method == "frequency":
+            return self  # method frequency refuses history (_keys_of_the_method)
+        period = self.period if self.period is not None else steady_period(self.excitations)
+        if period is None:
+            return self  # only non-periodic tables: the run (duration) is the period
+        if self.duration is not None:
+            longest, what = self.duration / period, f"the run, duration {self.duration:g} s"
+            allowed = "or a longer duration"
+        else:
+            longest = self.max_periods - self.ramp_periods
+            what = (
+                f"the longest run after the ramp, max_periods {self.max_periods} - "
+                f"ramp_periods {self.ramp_periods:g}"
+            )
+            allowed = "or a larger max_periods"
+        if self.history.periods > longest * (1.0 + 1e-9):
+            raise ValueError(
+                f"history.periods: {self.history.periods:g} periods of {period:g} s is longer "
+                f"than {what}: the record would start before the motion (got "
+                f"{self.history.periods:g}); allowed: history.periods <= {longest:.6g}, "
+                f"{allowed}"
+            )
+        return self
+
+    @property
+    def settle_periods(self) -> int:
+        """Periods a steady-state run lasts at least after the ramp: ``min_periods``, or
+        the kept record's whole periods where ``history`` asks for more (so that the
+        record lies in the motion, not before it)."""
+        if self.history is None:
+            return self.min_periods
+        return max(self.min_periods, math.ceil(self.history.periods - 1e-9))
+
     @property
     def excitations(self) -> list[HarmonicExcitation | TimeSeriesExcitation | SpectrumExcitation]:
         return list(self.excitation) if isinstance(self.excitation, list) else [self.excitation]
@@ -694,3 +739,19 @@ class Analysis(StrictModel):
         description="dynamics under prescribed end motion (time or frequency domain); "
         "omit: statics only",
     )
+
+
+def steady_period(excitations: list[Any]) -> float | None:
+    """The steady-state period [s] of a list of motions (``analysis.dynamic.period``'s
+    default): the longest of the harmonics' periods, a spectrum's repeat period 1 / df
+    and a periodic table's duration; None when there are only non-periodic tables."""
+    periods = []
+    for e in excitations:
+        frequency = getattr(e, "frequency", None)
+        if frequency:
+            periods.append(1.0 / frequency)
+        elif isinstance(e, SpectrumExcitation) or hasattr(e, "line_frequencies"):
+            periods.append(1.0 / e.line_frequencies[0])
+        elif getattr(e, "periodic", False):
+            periods.append(float(e.table[-1][0] - e.table[0][0]))
+    return max(periods) if periods else None

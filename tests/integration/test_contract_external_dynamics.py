@@ -278,6 +278,20 @@ def test_histories_follow_the_prescribed_motion(tmp_path: Path) -> None:
     high, low = float(ds["tension_max"]), float(ds["tension_min"])
     assert low - 1e-9 <= end.min() and end.max() <= high + 1e-9
     assert end.max() - end.min() > 0.98 * (high - low)
+    # a record longer than the shortest run to steady state (ramp 2 + 3 periods): the
+    # run lasts long enough to keep it after the ramp (it began 10 s before t = 0, where
+    # it held the state at rest, with status 0)
+    long = _run(
+        tmp_path,
+        air(
+            "air-long-history",
+            "time",
+            extra="    history: {points: [20.2], periods: 8, samples_per_period: 8}\n",
+        ),
+    )
+    ramp_end = 2.0 / 0.3
+    assert float(long["history_time"][0]) >= ramp_end - 1e-9
+    assert float(long["periods"]) >= 2.0 + 8.0 - 1e-9
 
 
 def test_the_transfer_function_is_the_tension_per_metre_of_motion(tmp_path: Path) -> None:
@@ -519,6 +533,15 @@ BAD: list[tuple[str, str, list[str]]] = [
             " table: [[0, 0], [1, 0.1], [2, 0.1], [3, 0.1]]}",
         ),
         ["method 'frequency' needs harmonic excitation or a spectrum", "allowed"],
+    ),
+    (
+        "history-longer-than-the-run",
+        air(
+            "x",
+            "time",
+            extra="    duration: 5.0\n    history: {points: [20.2], periods: 4}\n",
+        ),
+        ["history.periods", "longer than the run, duration 5 s", "got 4", "allowed"],
     ),
     (
         "history-beyond-the-line",
