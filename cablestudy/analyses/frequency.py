@@ -276,6 +276,7 @@ def solve_frequency_cases(
     phase = np.degrees(np.angle(res.end_tension / refs[:, None]))
     edge_max = np.max(t_end[None] + a_end, axis=1)
     ratio, sag_ratio, travel = got.ratio, got.sag_ratio, got.travel
+    med = problem.medium
     # the outputs of every case as arrays (K, ...); a case's own are views of them
     ex = np.array([0 if dyn.excitations[0].end == "a" else 1 for dyn in dyns])  # type: ignore[union-attr]
     t_ex = t_end[ex]
@@ -300,6 +301,9 @@ def solve_frequency_cases(
         "linearisation_iterations": res.iterations.astype(np.asarray(1).dtype),
         "linearisation_converged": res.converged.astype(np.asarray(1).dtype),
     }
+    if med.depth is not None:  # a seabed to touch, as the time domain's (touchdown_range)
+        columns["touchdown_min"] = got.touchdown_min
+        columns["touchdown_max"] = got.touchdown_max
     from .common import non_finite_cases
 
     bad = non_finite_cases(columns, "dynamic")
@@ -375,8 +379,7 @@ def transfer_function(
     drag linearised at the case's amplitude, divided by the largest amplitude."""
     assert dyn.transfer_function is not None
     freqs = np.asarray(dyn.transfer_function.values)
-    X, _, ref = end_displacements(dyn)
-    scale = max(float(np.max(np.abs(X))), 1e-300)
+    X, scale, ref = rao_motion(dyn)
     settings = drag_settings(dyn)
     n_out = static.s.size
     end_amp = np.full((freqs.size, 2), np.nan)
@@ -402,6 +405,23 @@ def transfer_function(
         "tension_rao_phase_b": end_phase[:, 1],
         "tension_rao_line": line_amp,
     }
+
+
+def rao_motion(dyn: DynamicSettings) -> tuple[np.ndarray, float, complex]:
+    """The end displacements [m] (2, 3) the transfer function is solved for, the
+    amplitude [m] its tensions are divided by, and the phase reference (as
+    :func:`end_displacements`). The amplitude is the largest excitation's ``amplitude``
+    (the length of its motion along its unit direction; a component of a direction off
+    the axes is shorter). With every amplitude 0 the small-motion limit is meant: each
+    motion at 1e-9 m (the drag linearised at rest), divided by that."""
+    X, _, ref = end_displacements(dyn)
+    amplitude = max(e.amplitude for e in dyn.excitations if isinstance(e, HarmonicExcitation))
+    if amplitude > 0.0:
+        return X, float(amplitude), ref
+    tiny = 1e-9
+    harmonics = [e for e in dyn.excitations if isinstance(e, HarmonicExcitation)]
+    X, ref = _end_displacements([e.model_copy(update={"amplitude": tiny}) for e in harmonics])
+    return X, tiny, ref
 
 
 def irregular(
@@ -459,6 +479,8 @@ def irregular(
         "tension_psd_b": np.abs(res.end_tension[:, 1]) ** 2 / (2.0 * df),
         "linearisation_iterations": np.asarray(res.iterations),
         "linearisation_converged": np.asarray(int(res.converged)),
+        # a statistical answer has no transient: steady, as a harmonic one (results guide)
+        "steady_converged": np.asarray(1),
     }
     return FrequencyOutcome(
         status=STATUS_OK,

@@ -21,6 +21,7 @@ from ..dynamics.frequency_model import DragSettings, ReducedLine
 from ..dynamics.harmonic_cases import HarmonicCases, solve_harmonic_cases
 from ..dynamics.validity import measures_cases
 from .along_line import tension_along_cases
+from .touchdown_range import touchdown_range
 
 
 @dataclass(frozen=True, eq=False)
@@ -30,7 +31,8 @@ class LineHarmonic:
     ``envelope_max``/``_min`` [N] (K, n_out) the static tension at the static output
     points plus and minus the amplitude of its variation; ``z_max`` [m] (K, n_out) the
     highest elevation; ``ratio``, ``sag_ratio``, ``travel`` (K,) the validity measures
-    (:func:`~cablestudy.dynamics.validity.measures_cases`)."""
+    (:func:`~cablestudy.dynamics.validity.measures_cases`); ``touchdown_min``/``_max``
+    [m] (K,) the range of the touchdown point (:func:`.touchdown_range.touchdown_range`)."""
 
     res: HarmonicCases
     amplitude: np.ndarray
@@ -40,6 +42,8 @@ class LineHarmonic:
     ratio: np.ndarray
     sag_ratio: np.ndarray
     travel: np.ndarray
+    touchdown_min: np.ndarray
+    touchdown_max: np.ndarray
 
 
 def submerged_weight(line_model: Any, s: np.ndarray) -> np.ndarray:
@@ -92,6 +96,7 @@ def line_outputs(
         held=np.diff(line.free_basis.tocsr().indptr).reshape(-1, 3).sum(axis=1) == 0,
     )
     envelope = tension_along_cases(static.s, line.s, a_el, a_end)
+    touchdown_min, touchdown_max = touchdown_range(line.s, on_bed, travel)
     return LineHarmonic(
         res=res,
         amplitude=a_end,
@@ -102,6 +107,8 @@ def line_outputs(
         ratio=ratio,
         sag_ratio=sag_ratio,
         travel=travel,
+        touchdown_min=touchdown_min,
+        touchdown_max=touchdown_max,
     )
 
 

@@ -304,7 +304,7 @@ def run_system_dynamic(
         tension_step=dyn.tension_resolution * scale,
         steady_tolerance=dyn.steady_tolerance,
         steady_window=dyn.steady_window,
-        min_periods=dyn.min_periods,
+        min_periods=dyn.settle_periods,  # a kept record lies in the motion
         max_periods=dyn.max_periods,
         duration=dyn.duration,
         history=hist is not None,

@@ -68,7 +68,7 @@ def dynamic_problem(case: Case, static: StaticResult) -> DynamicProblem | str:
         tension_step=dyn.tension_resolution * float(np.nanmax(static.tension)),
         steady_tolerance=dyn.steady_tolerance,
         steady_window=dyn.steady_window,
-        min_periods=dyn.min_periods,
+        min_periods=dyn.settle_periods,  # a kept record lies in the motion
         max_periods=dyn.max_periods,
         duration=dyn.duration,
         history=hist is not None,

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import Annotated, Any, Literal
 
 from pydantic import (
@@ -185,6 +186,9 @@ TIME_ONLY_KEYS = (
     "after_break",
 )
 
+#: the steady-state detection's settings: unused by a run of fixed ``duration``
+STEADY_KEYS = ("steady_tolerance", "steady_window", "min_periods", "max_periods")
+
 
 class LinearisationSettings(StrictModel):
     """Drag linearisation of the frequency-domain method (methods 'frequency' and
@@ -316,7 +320,12 @@ class HistorySettings(StrictModel):
     points: list[NonNegative] = Field(
         [], description="arc lengths from end A of the points whose motion is kept [m]"
     )
-    periods: Positive = Field(2.0, description="length of the kept record [periods]")
+    periods: Positive = Field(
+        2.0,
+        description="length of the kept record [periods]; a run to steady state lasts at "
+        "least that many periods after the ramp, and a record longer than the run "
+        "(duration, or max_periods after the ramp) is refused",
+    )
     samples_per_period: int = Field(64, ge=4, le=10_000, description="samples per period")
     whole_line: bool = Field(
         False,
@@ -447,7 +456,14 @@ class DynamicSettings(StrictModel):
         periodic = any(
             isinstance(e, (TimeSeriesExcitation, *SYSTEM_TABLES)) and e.periodic for e in items
         ) or any(isinstance(e, SpectrumExcitation) for e in items)
-        if not (harmonic or periodic) and self.period is None and self.duration is None:
+        # method frequency refuses tables itself (_keys_of_the_method): advising it
+        # duration or period here, keys it refuses too, would send the user in a circle
+        if (
+            not (harmonic or periodic)
+            and self.period is None
+            and self.duration is None
+            and self.method != "frequency"
+        ):
             raise ValueError(
                 "excitation has no period (only non-periodic tables): give "
                 "analysis.dynamic.duration [s] or analysis.dynamic.period [s]"
@@ -527,6 +543,78 @@ class DynamicSettings(StrictModel):
                 "of a harmonic end motion); allowed: harmonic motions"
             )
         return self
+
+    @model_validator(mode="after")
+    def _keys_left_unused(self) -> DynamicSettings:
+        """Keys that this run's settings leave unused: the steady-state keys when a fixed
+        ``duration`` switches the steady-state detection off, a spectrum's
+        ``storm_duration`` (the frequency domain's most probable maximum) in the time
+        domain and its ``seed`` (the time domain's random phases) in the frequency
+        domain. Only keys the study gives are refused (never a default)."""
+        if self.duration is not None:
+            given = [k for k in STEADY_KEYS if k in self.model_fields_set]
+            if given:
+                values = ", ".join(f"{k} {getattr(self, k)!r}" for k in given)
+                raise ValueError(
+                    f"{', '.join(given)}: steady-state settings, unused with duration "
+                    f"{self.duration:g} s (the run lasts that long and no steady state is "
+                    f"detected) (got {values}); allowed: remove duration (steady-state "
+                    "detection) or these keys"
+                )
+        unused = {"time": "storm_duration", "frequency": "seed"}.get(self.method)
+        for e in self.excitations:
+            if unused is not None and unused in e.model_fields_set:
+                used_by = (
+                    "the frequency domain's most probable maximum"
+                    if unused == "storm_duration"
+                    else "the time domain's random phases"
+                )
+                allowed = "'frequency' or 'auto'" if unused == "storm_duration" else "'time'"
+                raise ValueError(
+                    f"excitation.{unused}: sets {used_by}, not used by method "
+                    f"{self.method!r} (got {getattr(e, unused)!r}); allowed: method "
+                    f"{allowed} (or remove the key)"
+                )
+        return self
+
+    @model_validator(mode="after")
+    def _history_within_the_run(self) -> DynamicSettings:
+        """A kept record that fits in the run: within a fixed ``duration``, else within
+        ``max_periods`` after the ramp (a steady-state run lasts at least the record's
+        periods after the ramp: :attr:`settle_periods`). A longer record would start
+        before t = 0 (samples of the state at rest, not of the motion)."""
+        if self.history is None or self.method == "frequency":
+            return self  # method frequency refuses history (_keys_of_the_method)
+        period = self.period if self.period is not None else steady_period(self.excitations)
+        if period is None:
+            return self  # only non-periodic tables: the run (duration) is the period
+        if self.duration is not None:
+            longest, what = self.duration / period, f"the run, duration {self.duration:g} s"
+            allowed = "or a longer duration"
+        else:
+            longest = self.max_periods - self.ramp_periods
+            what = (
+                f"the longest run after the ramp, max_periods {self.max_periods} - "
+                f"ramp_periods {self.ramp_periods:g}"
+            )
+            allowed = "or a larger max_periods"
+        if self.history.periods > longest * (1.0 + 1e-9):
+            raise ValueError(
+                f"history.periods: {self.history.periods:g} periods of {period:g} s is longer "
+                f"than {what}: the record would start before the motion (got "
+                f"{self.history.periods:g}); allowed: history.periods <= {longest:.6g}, "
+                f"{allowed}"
+            )
+        return self
+
+    @property
+    def settle_periods(self) -> int:
+        """Periods a steady-state run lasts at least after the ramp: ``min_periods``, or
+        the kept record's whole periods where ``history`` asks for more (so that the
+        record lies in the motion, not before it)."""
+        if self.history is None:
+            return self.min_periods
+        return max(self.min_periods, math.ceil(self.history.periods - 1e-9))
 
     @property
     def excitations(self) -> list[HarmonicExcitation | TimeSeriesExcitation | SpectrumExcitation]:
@@ -651,3 +739,19 @@ class Analysis(StrictModel):
         description="dynamics under prescribed end motion (time or frequency domain); "
         "omit: statics only",
     )
+
+
+def steady_period(excitations: list[Any]) -> float | None:
+    """The steady-state period [s] of a list of motions (``analysis.dynamic.period``'s
+    default): the longest of the harmonics' periods, a spectrum's repeat period 1 / df
+    and a periodic table's duration; None when there are only non-periodic tables."""
+    periods = []
+    for e in excitations:
+        frequency = getattr(e, "frequency", None)
+        if frequency:
+            periods.append(1.0 / frequency)
+        elif isinstance(e, SpectrumExcitation) or hasattr(e, "line_frequencies"):
+            periods.append(1.0 / e.line_frequencies[0])
+        elif getattr(e, "periodic", False):
+            periods.append(float(e.table[-1][0] - e.table[0][0]))
+    return max(periods) if periods else None
