@@ -56,6 +56,7 @@ from .time_problem import (
     DynamicResult,
     _History,
     _start,
+    close_run,
     end_forces,
     is_steady,
     window_statistics,
@@ -138,25 +139,10 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     keep_hist = problem.history
     hist = _History(problem, line)
 
-    def push(t: float, tension: float, ends: np.ndarray) -> None:
-        hist.push(t, tension, ends, x0, v0, a0, work.tension)
+    def push(t: float, tension: float, ends: np.ndarray, forces: np.ndarray) -> None:
+        hist.push(t, tension, ends, forces, x0, v0, a0, work)
 
-    rec: dict[str, list[np.ndarray]] = {
-        k: [] for k in ("t", "x", "v", "a", "end_force", "tension", "friction")
-    }
-
-    def keep(t: float, forces: np.ndarray) -> None:
-        if problem.keep_steps:
-            rec["t"].append(np.asarray(t))
-            rec["x"].append(x0.copy())
-            rec["v"].append(v0.copy())
-            rec["a"].append(a0.copy())
-            rec["end_force"].append(forces.copy())
-            rec["tension"].append(work.tension.copy())
-            rec["friction"].append(work.friction.copy())
-
-    keep(0.0, f_static)
-    push(0.0, t_static, np.sqrt(np.sum(f_static**2, 1)))
+    push(0.0, t_static, np.sqrt(np.sum(f_static**2, 1)), f_static)
 
     # per-period statistics (periods starting after the ramp only)
     p_max: list[float] = []
@@ -312,13 +298,11 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             result.steps, result.newton_iterations = int(st_i[2]), int(st_i[3])
             return result
         if single:
-            keep(t, forces)
-            push(t, float(st_f[6]), ends)
+            push(t, float(st_f[6]), ends, forces)
         if code == PARTED:
             part_restart()
             if single:
-                keep(t, forces)
-                push(t, float(st_f[6]), ends)
+                push(t, float(st_f[6]), ends, forces)
             if problem.after_break == "stop":
                 t_stop = t
             if abs(t - st_f[1]) > eps_t and t < t_stop - eps_t:
@@ -371,23 +355,8 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         result.tension_mean = r_int / max(t, 1e-300)
         result.tension_max_line = r_line
     result.steady_converged = converged
-    result.steps, result.newton_iterations, result.rejected_steps = steps, newton, rejected
-    result.periods = t / T
-    result.simulated_time = t
-    (
-        result.element_tension_max,
-        result.element_tension_min,
-        result.end_tension_max,
-        result.end_tension_min,
-        result.touchdown_min,
-        result.touchdown_max,
-        result.z_max,
-    ) = extremes.window(broke)
     result.winch_paid_out = problem.paid_out(t)
-    result.history = hist.resampled(t)
-    if problem.keep_steps:
-        result.record = {k: np.asarray(v) for k, v in rec.items()}
-    return result
+    return close_run(result, t, (steps, newton, rejected), extremes.window(broke), hist)
 
 
 def warm_up() -> None:
