@@ -168,13 +168,13 @@ def _compiled_solve(
     kernel takes), or None when the template does not take this path (then
     :func:`solve_batch` runs as before).
     """
-    from ..statics.aot import free_hanging_kernel
+    from ..statics.aot import kernel
     from ..statics.batch_kernels import NOT_SETTLED, ON_SEABED, _guess
     from ..statics.verify import Pieces, check_lines
 
     line, med = base.line, base.medium
     # the kernel compiled ahead of time where it is built: no numba to load (issue 20)
-    solve_cases = free_hanging_kernel()
+    solve_cases = kernel("solve_cases")
     if (
         solve_cases is None
         or base.end_a.kind != "fixed"

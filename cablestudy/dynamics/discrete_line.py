@@ -13,7 +13,6 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..physics.contact import default_seabed_stiffness as contact_stiffness
 from ..statics.base import LineModel, Medium
 
 
@@ -245,12 +244,6 @@ def seabed_plane(medium: Medium) -> tuple[np.ndarray, float]:
     normal /= np.linalg.norm(normal)
     depth = medium.depth if medium.depth is not None else math.inf
     return normal, float(normal[2] * -depth)
-
-
-def default_seabed_stiffness(line: LineModel) -> float:
-    """Default normal contact stiffness per length [N/m^2]
-    (:func:`cablestudy.physics.contact.default_seabed_stiffness` of the line's weights)."""
-    return contact_stiffness(line.weight)
 
 
 def discretise(

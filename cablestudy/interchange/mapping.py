@@ -98,7 +98,7 @@ def select_chain(md: MoorDynFile, ids: list[int] | None) -> tuple[list[tuple[Lin
         )
 
     def fixed(key: str) -> bool:
-        pt = _point(md, key)
+        pt = point_of(md, key)
         return pt is not None and pt.kind == "fixed"
 
     first = chosen[0]
@@ -144,12 +144,8 @@ def _no_lines(md: MoorDynFile) -> None:
     )
 
 
-def _point(md: MoorDynFile, key: str) -> Point | None:
-    return point_of(md, key)
-
-
 def _need_point(md: MoorDynFile, key: str, line: Line) -> Point:
-    pt = _point(md, key)
+    pt = point_of(md, key)
     if pt is None:
         if key.upper().startswith("R"):
             raise NotModelledError(
