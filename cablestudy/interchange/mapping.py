@@ -211,6 +211,11 @@ def _segment(md: MoorDynFile, lt: LineType, line: Line, warnings: list[str]) -> 
             )
         elif key.startswith("column"):
             warnings.append(f"{where}: line type {lt.name!r}: extra {key} ({value}) not read")
+    if line.outputs not in ("-", ""):
+        warnings.append(
+            f"{md.source}:{line.source_line}: line {line.id} outputs {line.outputs!r} not "
+            "used (cablestudy writes every output)"
+        )
     return {
         "length": line.length,
         "diameter": lt.diameter,
@@ -357,11 +362,6 @@ def moordyn_to_study(
                     f"{src}:{pt.source_line} point {pt.id}"
                 )
         seg = _segment(md, lt, ln, warnings)
-        if ln.outputs not in ("-", ""):
-            warnings.append(
-                f"{src}:{ln.source_line}: line {ln.id} outputs {ln.outputs!r} not used "
-                "(cablestudy writes every output)"
-            )
         if segments and seg_types[-1] == lt.name:
             segments[-1]["length"] += seg["length"]
             comments[("line", "segments", len(segments) - 1)] += f", line {ln.id}"

@@ -246,11 +246,6 @@ def moordyn_system_to_study(
                 f"the file does not define; defined: {', '.join(md.line_types) or 'none'}"
             )
         seg = _segment(md, lt, ln, warnings)
-        if ln.outputs not in ("-", ""):
-            warnings.append(
-                f"{src}:{ln.source_line}: line {ln.id} outputs {ln.outputs!r} not used "
-                "(cablestudy writes every output)"
-            )
         lname = str(ln.id)
         study_lines[lname] = {
             "a": _point_name(point_of(md, ln.attach_a).id),  # type: ignore[union-attr]
