@@ -16,7 +16,6 @@ from collections import deque
 
 import numpy as np
 
-from ..statics.base import STATUS_NUMERICAL, STATUS_TIME_LIMIT
 from .alpha_step import AlphaParameters, alpha_step
 from .assembly import Workspace, update_anchors
 from .discrete_line import DiscreteLine, interpolate_nodes
@@ -30,6 +29,8 @@ from .time_problem import (
     close_run,
     end_forces,
     is_steady,
+    newton_failed,
+    out_of_time,
     touchdown_of,
     window_statistics,
 )
@@ -182,11 +183,7 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
     converged = False
     while True:
         if deadline is not None and steps % 64 == 0 and time.monotonic() > deadline:
-            result.status, result.message = (
-                STATUS_TIME_LIMIT,
-                (f"time limit reached at t = {t:.4g} s of the dynamic run"),
-            )
-            return result
+            return out_of_time(result, t)
         h = problem.step / 2**level
         if next_b - t <= h * (1.0 + 1e-6):
             h = next_b - t
@@ -239,14 +236,7 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
         if not ok:
             rejected += 1
             if level >= max_level + NEWTON_RESCUE_HALVINGS:
-                result.status = STATUS_NUMERICAL
-                result.message = (
-                    f"Newton did not converge at t = {t:.6g} s with step "
-                    f"{h:.3g} s ({problem.step:.3g} s halved {level} times)"
-                )
-                result.steps, result.newton_iterations = steps, newton
-                result.rejected_steps = rejected
-                return result
+                return newton_failed(result, t, h, problem.step, level, (steps, newton, rejected))
             level += 1
             clean = 0
             continue

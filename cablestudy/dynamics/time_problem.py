@@ -9,12 +9,12 @@ from __future__ import annotations
 import math
 from collections import deque
 from dataclasses import dataclass, field
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 
 from ..physics.seabed import touchdown_arc_length
-from ..statics.base import STATUS_OK
+from ..statics.base import STATUS_NUMERICAL, STATUS_OK, STATUS_TIME_LIMIT
 from .assembly import Workspace, evaluate
 from .discrete_line import DiscreteLine, interpolate_nodes
 from .end_support import seabed_support
@@ -461,6 +461,28 @@ def _start(problem: DynamicProblem, line: DiscreteLine) -> _Start:
         result,
         extremes,
     )
+
+
+def out_of_time(result: Any, t: float) -> Any:
+    """``result`` (of a line or a system) stopped by the deadline at ``t`` [s]."""
+    result.status = STATUS_TIME_LIMIT
+    result.message = f"time limit reached at t = {t:.4g} s of the dynamic run"
+    return result
+
+
+def newton_failed(
+    result: Any, t: float, h: float, step: float, level: int, counters: tuple[int, int, int]
+) -> Any:
+    """``result`` (of a line or a system) stopped at ``t`` [s] where Newton failed with
+    the step ``h`` [s], the nominal ``step`` halved ``level`` times; its (steps, Newton
+    iterations, rejected steps)."""
+    result.status = STATUS_NUMERICAL
+    result.message = (
+        f"Newton did not converge at t = {t:.6g} s with step {h:.3g} s ({step:.3g} s "
+        f"halved {level} times)"
+    )
+    result.steps, result.newton_iterations, result.rejected_steps = counters
+    return result
 
 
 def touchdown_of(line: DiscreteLine, x: np.ndarray, tolerance: float) -> float:

@@ -45,7 +45,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..statics.base import STATUS_NUMERICAL, STATUS_TIME_LIMIT
+from ..statics.base import STATUS_NUMERICAL
 from .alpha_step import AlphaParameters
 from .assembly import evaluate
 from .discrete_line import DiscreteLine
@@ -59,6 +59,8 @@ from .time_problem import (
     close_run,
     end_forces,
     is_steady,
+    newton_failed,
+    out_of_time,
     window_statistics,
 )
 
@@ -217,11 +219,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     converged = False
     while True:
         if deadline is not None and time.monotonic() > deadline:
-            result.status, result.message = (
-                STATUS_TIME_LIMIT,
-                (f"time limit reached at t = {st_f[0]:.4g} s of the dynamic run"),
-            )
-            return result
+            return out_of_time(result, st_f[0])
         code = march(
             st_f,
             st_i,
@@ -275,15 +273,8 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         )
         t = float(st_f[0])
         if code == NEWTON_FAILED:
-            level = int(st_i[0])
-            result.status = STATUS_NUMERICAL
-            result.message = (
-                f"Newton did not converge at t = {t:.6g} s with step "
-                f"{st_f[9]:.3g} s ({problem.step:.3g} s halved {level} times)"
-            )
-            result.steps, result.newton_iterations = int(st_i[2]), int(st_i[3])
-            result.rejected_steps = int(st_i[4])
-            return result
+            counters = (int(st_i[2]), int(st_i[3]), int(st_i[4]))
+            return newton_failed(result, t, st_f[9], problem.step, int(st_i[0]), counters)
         if code == WINCH_LIMIT:
             paid, l_ini = float(st_f[9]), float(wini[0, 0])
             lo, hi = problem.winch_limits
