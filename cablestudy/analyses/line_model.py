@@ -170,6 +170,21 @@ def _extras(
     )
 
 
+def period_and_step(dyn: Any, periods: list[float]) -> tuple[float, float]:
+    """The run's period [s] (``analysis.dynamic.period``, else the longest of the
+    motions' ``periods``, else the ``duration``) and its time step [s]: the fastest
+    period over ``points_per_period``, shortened to a whole number of steps a period."""
+    if dyn.period is not None:
+        period = dyn.period
+    elif periods:
+        period = max(periods)
+    else:
+        period = dyn.duration  # validated: one of them is set
+    fastest = min(periods) if periods else period
+    step = fastest / dyn.points_per_period
+    return period, period / math.ceil(period / step * (1.0 - 1e-12))
+
+
 def roundoff_force(line: DiscreteLine, x: np.ndarray) -> float:
     """Nodal force [N] below which a residual is lost in rounding: an element tension
     carries EA * (relative rounding of the node coordinates) / (element length)."""
@@ -214,15 +229,7 @@ def end_motion(dyn: DynamicSettings) -> tuple[EndMotion, float, float]:
     ]
     periods = [1.0 / e.frequency for e in harmonics] + [1.0 / f for _, f, _, _ in lines]
     periods += [m.duration for m in table_motions if m.periodic]
-    if dyn.period is not None:
-        period = dyn.period
-    elif periods:
-        period = max(periods)
-    else:
-        period = dyn.duration  # type: ignore[assignment]  (validated: one of them is set)
-    fastest = min(periods) if periods else period
-    step = fastest / dyn.points_per_period
-    step = period / math.ceil(period / step * (1.0 - 1e-12))
+    period, step = period_and_step(dyn, periods)
     every = [(e, e.frequency, e.amplitude, math.radians(e.phase_deg)) for e in harmonics]
     every += lines
     motion = EndMotion(
