@@ -161,6 +161,17 @@ def _need_point(md: MoorDynFile, key: str, line: Line) -> Point:
     return pt
 
 
+def _line_type(md: MoorDynFile, ln: Line) -> LineType:
+    """The line type of line ``ln`` (refused when the file does not define it)."""
+    lt = md.line_types.get(ln.line_type)
+    if lt is None:
+        raise InterchangeError(
+            f"{md.source}:{ln.source_line}: line {ln.id} uses line type {ln.line_type!r}, "
+            f"which the file does not define; defined: {', '.join(md.line_types) or 'none'}"
+        )
+    return lt
+
+
 def _segment(md: MoorDynFile, lt: LineType, line: Line, warnings: list[str]) -> dict[str, Any]:
     where = f"{md.source}:{lt.source_line}"
     try:
@@ -322,12 +333,7 @@ def moordyn_to_study(
     s = 0.0
     at = start
     for k, (ln, rev) in enumerate(chain):
-        lt = md.line_types.get(ln.line_type)
-        if lt is None:
-            raise InterchangeError(
-                f"{src}:{ln.source_line}: line {ln.id} uses line type {ln.line_type!r}, which "
-                f"the file does not define; defined: {', '.join(md.line_types) or 'none'}"
-            )
+        lt = _line_type(md, ln)
         if k > 0:
             pt = _need_point(md, at, ln)
             if pt.kind != "free":
