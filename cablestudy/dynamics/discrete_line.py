@@ -7,6 +7,7 @@ plane, and values at the nodes interpolated along the line.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 from typing import NamedTuple
@@ -273,6 +274,16 @@ def uniform_nodes(line: LineModel, elements: int) -> np.ndarray:
     )
 
 
+def lump_on_nodes(per_length: np.ndarray, seg: np.ndarray, l0: np.ndarray, n: int) -> np.ndarray:
+    """Per node (n,) half of each adjacent element's ``per_length`` (by segment; ``seg``
+    each element's) times its length ``l0`` [m]."""
+    half = 0.5 * per_length[seg] * l0
+    out = np.zeros(n)
+    out[:-1] += half
+    out[1:] += half
+    return out
+
+
 def discretise_nodes(
     line: LineModel, medium: Medium, s: np.ndarray, extras: DynamicExtras | None = None
 ) -> DiscreteLine:
@@ -293,13 +304,7 @@ def discretise_nodes(
     c_int = line.damping_ratio[seg] * l0 * np.sqrt(ea * m_el)
     n = s.size
 
-    def lump(per_length: np.ndarray) -> np.ndarray:
-        half = 0.5 * per_length[seg] * l0
-        out = np.zeros(n)
-        out[:-1] += half
-        out[1:] += half
-        return out
-
+    lump = functools.partial(lump_on_nodes, seg=seg, l0=l0, n=n)
     mass = lump(line.mass)
     added_n = lump(line.added_mass_normal * rho * area)
     added_t = lump(line.added_mass_tangential * rho * area)
