@@ -36,11 +36,7 @@ def batchable(problem: StaticProblem) -> bool:
     line = problem.line
     if problem.end_a.kind != "fixed" or line.is_nonlinear:
         return False
-    if (
-        med.has_current
-        and med.density > 0.0
-        and bool(np.any(line.diameter * (line.drag_normal + line.drag_tangential) > 0.0))
-    ):
+    if med.drags(line):
         return False
     plane = seabed_of(med)
     if plane is not None:
@@ -66,7 +62,7 @@ def contact_end(problem: StaticProblem) -> str | None:
     line = problem.line
     if plane is None or problem.end_a.kind != "fixed":
         return None
-    if line.is_nonlinear or _has_drag(problem):
+    if line.is_nonlinear or problem.medium.drags(line):
         return None
     assert problem.end_a.position is not None
     limit = 1e-6 * line.total_length
@@ -87,15 +83,6 @@ def contact_end(problem: StaticProblem) -> str | None:
 def contact_eligible(problem: StaticProblem) -> bool:
     """Whether ``problem`` can take the compiled seabed-contact kernel (:func:`contact_end`)."""
     return contact_end(problem) is not None
-
-
-def _has_drag(problem: StaticProblem) -> bool:
-    med, line = problem.medium, problem.line
-    return (
-        med.has_current
-        and med.density > 0.0
-        and bool(np.any(line.diameter * (line.drag_normal + line.drag_tangential) > 0.0))
-    )
 
 
 def solve_contact_arrays(

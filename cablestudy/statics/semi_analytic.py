@@ -282,11 +282,7 @@ class SemiAnalyticSolver:
             assert ends.rB is not None
             if float(plane.height_above(ends.rB)) <= 1e-6 * L:
                 return _laid_between(line, ends, s_eval, s, reverse)
-        has_current = (
-            medium.has_current
-            and medium.density > 0.0
-            and bool(np.any(line.diameter * (line.drag_normal + line.drag_tangential) > 0.0))
-        )
+        has_current = medium.drags(line)
         n_el = 0
         if has_current:
             n_el = (
