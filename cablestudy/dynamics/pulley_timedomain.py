@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import math
 import time
-from collections import deque
 
 import numpy as np
 
@@ -20,6 +19,7 @@ from .alpha_step import AlphaParameters, alpha_step
 from .assembly import Workspace, update_anchors
 from .discrete_line import DiscreteLine, interpolate_nodes
 from .pulley import SlidingPulleys, pulley_tensions, solve_split, wrap_angle
+from .step_parts import predict_positions
 from .time_problem import (
     NEWTON_RESCUE_HALVINGS,
     DynamicProblem,
@@ -157,23 +157,13 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
     # Newton starts from a quadratic extrapolation of the last three positions: the
     # positions are smooth, whereas the accelerations of generalised-alpha carry the
     # decaying unresolved axial modes, which a Taylor predictor would amplify into
-    # large spurious stretches.
-    past: deque[tuple[float, np.ndarray]] = deque()
+    # large spurious stretches (:func:`.step_parts.predict_positions`, as the compiled
+    # step loop's, from the last ``npast`` accepted positions ``past_x`` at ``past_t``).
+    past_x = np.zeros((2, *x0.shape))
+    past_t = np.zeros(2)
+    npast = 0
     frac = (line.s / line.s[-1])[:, None]
     x_pred = np.empty_like(x0)
-
-    def predict(t_new: float, out: np.ndarray) -> None:
-        if len(past) < 2:
-            np.add(x0, (t_new - t) * v0, out=out)
-            return
-        (ta, xa), (tb, xb) = past[0], past[1]
-        tc = t
-        la = (t_new - tb) * (t_new - tc) / ((ta - tb) * (ta - tc))
-        lb = (t_new - ta) * (t_new - tc) / ((tb - ta) * (tb - tc))
-        lc = (t_new - ta) * (t_new - tb) / ((tc - ta) * (tc - tb))
-        np.multiply(xa, la, out=out)
-        out += lb * xb
-        out += lc * x0
 
     t = 0.0
     level = 0
@@ -188,7 +178,7 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
         if next_b - t <= h * (1.0 + 1e-6):
             h = next_b - t
         disp, vel, acc = problem.motion.at(t + h)
-        predict(t + h, x_pred)
+        predict_positions(x0, v0, past_x, past_t, npast, t, t + h, x_pred)
         np.greater(strain_prev, 0.0, out=work.taut0)
         # move the whole line with the ends' prescribed correction, shared linearly
         # along s, so that the predictor neither stretches nor compresses the end
@@ -259,9 +249,12 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
             np.maximum(c_split[1], split, out=c_split[1])
         if line.has_seabed:
             update_anchors(x1, work.friction, line.seabed_stiffness, work.contact, work.anchor)
-        past.append((t, x0.copy()))
-        if len(past) > 2:
-            past.popleft()
+        if npast == 2:  # the older of the two goes
+            past_x[0] = past_x[1]
+            past_t[0] = past_t[1]
+        past_x[min(npast, 1)] = x0
+        past_t[min(npast, 1)] = t
+        npast = min(npast + 1, 2)
         t += h
         x0, x1 = x1, x0
         v0, v1 = v1, v0
