@@ -232,8 +232,8 @@ def regime(label: str, quick: bool) -> WorkPrecision:
 def moordyn_text(f: float, a: float, segments: int) -> tuple[str, np.ndarray, float]:
     """The exported MoorDyn file of the case with our seabed set (module notes), the
     coupled point's position [m] and its time step dtM [s]."""
-    from cablestudy.dynamics.discrete_line import default_seabed_stiffness
     from cablestudy.interchange.case_export import export_case
+    from cablestudy.physics.contact import default_seabed_stiffness
     from cablestudy.study.loader import parse_study_text
     from cablestudy.study.problem import line_model
 
@@ -243,7 +243,7 @@ def moordyn_text(f: float, a: float, segments: int) -> tuple[str, np.ndarray, fl
     the_study = _case(data).study
     seg = the_study.line.segments[0]
     env = the_study.environment
-    stiffness = env.seabed.stiffness or default_seabed_stiffness(line_model(the_study))
+    stiffness = env.seabed.stiffness or default_seabed_stiffness(line_model(the_study).weight)
     inertia = seg.mass_in(env.density, env.gravity) + (
         seg.added_mass_normal * env.density * seg.area
     )

@@ -127,15 +127,6 @@ def warm_up(cases: list[Case]) -> None:
         warm_up_harmonic()
     if any(
         c.study.analysis.dynamic is not None
-        and c.study.analysis.dynamic.method != "time"
-        and c.study.analysis.dynamic.transfer_function is not None
-        for c in cases
-    ):
-        from ..dynamics.harmonic_cases import warm_up as warm_up_frequency
-
-        warm_up_frequency()
-    if any(
-        c.study.analysis.dynamic is not None
         and c.study.analysis.dynamic.method != "frequency"
         and c.study.line.kind != "spring"
         for c in cases

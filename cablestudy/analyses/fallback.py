@@ -25,8 +25,6 @@ def one_at_a_time(problem: Any) -> bool:
 def fallback_reason(study: Any, problem: Any) -> str:
     """Why no batch kernel takes the case of ``study`` (its static ``problem``, None for
     a spring line): it goes to the general solver."""
-    from ..statics.batch_kernels import _has_drag
-
     method = study.analysis.static.method
     if method != "catenary":
         return f"method {method!r} has no batch kernel"
@@ -36,7 +34,7 @@ def fallback_reason(study: Any, problem: Any) -> str:
         return "a line over pulleys has no batch kernel"
     if problem is not None and problem.line.is_nonlinear:
         return "a nonlinear axial law has no batch kernel"
-    if problem is not None and problem.medium.has_current and _has_drag(problem):
+    if problem is not None and problem.medium.drags(problem.line):
         return "current with drag: the drag iteration runs in the general solver"
     return NO_KERNEL
 

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..physics.contact import default_seabed_stiffness
 from ..statics import (
     StaticResult,
 )
@@ -111,8 +112,6 @@ def dynamic_extras(study: Any, start: np.ndarray) -> Any:
     free ends (an unexcited ``force`` end), clamped ends (holding the direction of the
     end elements of ``start`` [m], the static shape at the mesh nodes) and the seabed
     contact."""
-    from ..dynamics.discrete_line import DynamicExtras, default_seabed_stiffness
-
     dyn = study.analysis.dynamic
     excited = {e.end for e in dyn.excitations} if dyn is not None else set()
     end_force = np.zeros((2, 3))
@@ -126,25 +125,64 @@ def dynamic_extras(study: Any, start: np.ndarray) -> Any:
         if end.bending == "clamped":
             d = start[1] - start[0] if k == 0 else start[-1] - start[-2]
             clamp[k] = d / np.linalg.norm(d)
-    env = study.environment
-    sb = env.seabed
     lm = line_model(study)
+    return _extras(study.environment, study.line, lm, end_force, (free[0], free[1]), clamp)
+
+
+def system_line_extras(study: Any, name: str, lm: Any) -> Any:
+    """The dynamic-only properties of line ``name`` (as a one-line study's: transverse
+    damping, attachment added mass and drag, the seabed contact; pinned ends)."""
+    none = np.zeros((2, 3))
+    return _extras(study.environment, study.lines[name], lm, none, (False, False), none.copy())
+
+
+def _extras(
+    env: Any,
+    line: Any,
+    lm: Any,
+    end_force: np.ndarray,
+    free: tuple[bool, bool],
+    clamp: np.ndarray,
+) -> Any:
+    """:class:`cablestudy.dynamics.discrete_line.DynamicExtras` of the study's ``line``
+    (its model ``lm``) in ``env``, with the ends' applied forces, free ends and clamp
+    directions given."""
+    from ..dynamics.discrete_line import DynamicExtras
+
+    sb = env.seabed
     stiffness = 0.0
     if env.depth is not None:
-        stiffness = sb.stiffness if sb.stiffness is not None else default_seabed_stiffness(lm)
-    atts = study.line.attachments
+        stiffness = (
+            sb.stiffness if sb.stiffness is not None else default_seabed_stiffness(lm.weight)
+        )
+    atts = line.attachments
     return DynamicExtras(
-        transverse_damping=np.array([seg.damping_transverse for seg in study.line.segments]),
+        transverse_damping=np.array([seg.damping_transverse for seg in line.segments]),
         attachment_added_mass=np.array([a.added_mass for a in atts], dtype=float),
         attachment_drag_area=np.array([a.drag_area for a in atts], dtype=float),
         end_force=end_force,
-        free_end=(free[0], free[1]),
+        free_end=free,
         clamp_direction=clamp,
         seabed_stiffness=float(stiffness),
         seabed_damping_ratio=float(sb.damping_ratio),
         friction_axial=float(sb.friction),
         friction_lateral=float(sb.friction if sb.friction_lateral is None else sb.friction_lateral),
     )
+
+
+def period_and_step(dyn: Any, periods: list[float]) -> tuple[float, float]:
+    """The run's period [s] (``analysis.dynamic.period``, else the longest of the
+    motions' ``periods``, else the ``duration``) and its time step [s]: the fastest
+    period over ``points_per_period``, shortened to a whole number of steps a period."""
+    if dyn.period is not None:
+        period = dyn.period
+    elif periods:
+        period = max(periods)
+    else:
+        period = dyn.duration  # validated: one of them is set
+    fastest = min(periods) if periods else period
+    step = fastest / dyn.points_per_period
+    return period, period / math.ceil(period / step * (1.0 - 1e-12))
 
 
 def roundoff_force(line: DiscreteLine, x: np.ndarray) -> float:
@@ -191,15 +229,7 @@ def end_motion(dyn: DynamicSettings) -> tuple[EndMotion, float, float]:
     ]
     periods = [1.0 / e.frequency for e in harmonics] + [1.0 / f for _, f, _, _ in lines]
     periods += [m.duration for m in table_motions if m.periodic]
-    if dyn.period is not None:
-        period = dyn.period
-    elif periods:
-        period = max(periods)
-    else:
-        period = dyn.duration  # type: ignore[assignment]  (validated: one of them is set)
-    fastest = min(periods) if periods else period
-    step = fastest / dyn.points_per_period
-    step = period / math.ceil(period / step * (1.0 - 1e-12))
+    period, step = period_and_step(dyn, periods)
     every = [(e, e.frequency, e.amplitude, math.radians(e.phase_deg)) for e in harmonics]
     every += lines
     motion = EndMotion(
@@ -244,29 +274,3 @@ def catenary_winch(winch: Any) -> dict[str, float]:
         "winch_start": float(winch.start),
         "winch_stop": math.inf if winch.stop is None else float(winch.stop),
     }
-
-
-def system_line_extras(study: Any, name: str, lm: Any) -> Any:
-    """The dynamic-only properties of line ``name`` (as a one-line study's: transverse
-    damping, attachment added mass and drag, the seabed contact; pinned ends)."""
-    from ..dynamics.discrete_line import DynamicExtras, default_seabed_stiffness
-
-    line = study.lines[name]
-    env = study.environment
-    sb = env.seabed
-    stiffness = 0.0
-    if env.depth is not None:
-        stiffness = sb.stiffness if sb.stiffness is not None else default_seabed_stiffness(lm)
-    atts = line.attachments
-    return DynamicExtras(
-        transverse_damping=np.array([seg.damping_transverse for seg in line.segments]),
-        attachment_added_mass=np.array([a.added_mass for a in atts], dtype=float),
-        attachment_drag_area=np.array([a.drag_area for a in atts], dtype=float),
-        end_force=np.zeros((2, 3)),
-        free_end=(False, False),
-        clamp_direction=np.zeros((2, 3)),
-        seabed_stiffness=float(stiffness),
-        seabed_damping_ratio=float(sb.damping_ratio),
-        friction_axial=float(sb.friction),
-        friction_lateral=float(sb.friction if sb.friction_lateral is None else sb.friction_lateral),
-    )

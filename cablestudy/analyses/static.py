@@ -128,12 +128,7 @@ def solve_static(
         from .pulley import solve_pulley_static
 
         result = solve_pulley_static(case.study, deadline).check_finite()
-        result = apply_limits(result, static_limits(case.study))
-        COUNTERS["static_solves"] += 1
-        _STATIC_CACHE[case.static_hash] = result
-        trim_lru(_STATIC_CACHE, _STATIC_CACHE_SIZE)
-        return result
-    if missing:
+    elif missing:
         # the CLI rejects these before any work (check_supported); a caller that skips
         # that check still gets a failure rather than a solution that ignores an input
         return StaticResult.failed(
@@ -141,7 +136,8 @@ def solve_static(
             STATUS_NO_SOLUTION,
             f"static method {method!r} does not support {'; '.join(missing)}",
         )
-    result = solver.solve(problem, deadline=deadline).check_finite()
+    else:
+        result = solver.solve(problem, deadline=deadline).check_finite()
     result = apply_limits(result, static_limits(case.study))
     COUNTERS["static_solves"] += 1
     _STATIC_CACHE[case.static_hash] = result

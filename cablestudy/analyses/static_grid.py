@@ -168,13 +168,14 @@ def _compiled_solve(
     kernel takes), or None when the template does not take this path (then
     :func:`solve_batch` runs as before).
     """
-    from ..statics.aot import free_hanging_kernel
+    from ..statics.aot import kernel
     from ..statics.batch_kernels import NOT_SETTLED, ON_SEABED, _guess
+    from ..statics.seabed import seabed_of
     from ..statics.verify import Pieces, check_lines
 
     line, med = base.line, base.medium
     # the kernel compiled ahead of time where it is built: no numba to load (issue 20)
-    solve_cases = free_hanging_kernel()
+    solve_cases = kernel("solve_cases")
     if (
         solve_cases is None
         or base.end_a.kind != "fixed"
@@ -187,14 +188,11 @@ def _compiled_solve(
     n_nodes = base.n_nodes
     rA = np.ascontiguousarray(pos["a"], dtype=float)
     rB = np.ascontiguousarray(pos["b"], dtype=float)
-    plane = None
     rest = np.zeros(N, dtype=bool)
     contact = np.zeros(N, dtype=bool)
     contact_b = np.zeros(N, dtype=bool)
-    if med.depth is not None:
-        from ..statics.seabed import Plane
-
-        plane = Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
+    plane = seabed_of(med)
+    if plane is not None:
         limit = 1e-6 * line.total_length
         grounded_a = _height_below(plane, rA[:, None, :], limit, strict=False)
         grounded_b = _height_below(plane, rB[:, None, :], limit, strict=False)

@@ -24,7 +24,7 @@ from ..study.cases import Case
 from ..study.system import BodyPoint, FreePoint
 from ..study.system_dynamics import BODY_DOFS, BodyHarmonic, BodyTable, PointHarmonic
 from .counters import COUNTERS, trim_lru
-from .line_model import system_line_extras
+from .line_model import period_and_step, system_line_extras
 
 _MODEL_CACHE: OrderedDict[tuple, Any] = OrderedDict()
 _STATIC_CACHE: OrderedDict[str, Any] = OrderedDict()
@@ -230,15 +230,7 @@ def slot_motion(study: Any, driven: list[int]) -> tuple[Any, np.ndarray, float, 
             tables.append((slot, tm))
             if e.periodic:
                 periods.append(tm.duration)
-    if dyn.period is not None:
-        period = dyn.period
-    elif periods:
-        period = max(periods)
-    else:
-        period = dyn.duration
-    fastest = min(periods) if periods else period
-    step = fastest / dyn.points_per_period
-    step = period / math.ceil(period / step * (1.0 - 1e-12))
+    period, step = period_and_step(dyn, periods)
     motion = SlotMotion(
         slot=np.array(slots, dtype=np.int64),
         direction=np.array(dirs, dtype=float).reshape(-1, 3),

@@ -7,13 +7,13 @@ plane, and values at the nodes interpolated along the line.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 from typing import NamedTuple
 
 import numpy as np
 
-from ..physics.contact import default_seabed_stiffness as contact_stiffness
 from ..statics.base import LineModel, Medium
 
 
@@ -247,12 +247,6 @@ def seabed_plane(medium: Medium) -> tuple[np.ndarray, float]:
     return normal, float(normal[2] * -depth)
 
 
-def default_seabed_stiffness(line: LineModel) -> float:
-    """Default normal contact stiffness per length [N/m^2]
-    (:func:`cablestudy.physics.contact.default_seabed_stiffness` of the line's weights)."""
-    return contact_stiffness(line.weight)
-
-
 def discretise(
     line: LineModel, medium: Medium, elements: int, extras: DynamicExtras | None = None
 ) -> DiscreteLine:
@@ -280,6 +274,16 @@ def uniform_nodes(line: LineModel, elements: int) -> np.ndarray:
     )
 
 
+def lump_on_nodes(per_length: np.ndarray, seg: np.ndarray, l0: np.ndarray, n: int) -> np.ndarray:
+    """Per node (n,) half of each adjacent element's ``per_length`` (by segment; ``seg``
+    each element's) times its length ``l0`` [m]."""
+    half = 0.5 * per_length[seg] * l0
+    out = np.zeros(n)
+    out[:-1] += half
+    out[1:] += half
+    return out
+
+
 def discretise_nodes(
     line: LineModel, medium: Medium, s: np.ndarray, extras: DynamicExtras | None = None
 ) -> DiscreteLine:
@@ -300,13 +304,7 @@ def discretise_nodes(
     c_int = line.damping_ratio[seg] * l0 * np.sqrt(ea * m_el)
     n = s.size
 
-    def lump(per_length: np.ndarray) -> np.ndarray:
-        half = 0.5 * per_length[seg] * l0
-        out = np.zeros(n)
-        out[:-1] += half
-        out[1:] += half
-        return out
-
+    lump = functools.partial(lump_on_nodes, seg=seg, l0=l0, n=n)
     mass = lump(line.mass)
     added_n = lump(line.added_mass_normal * rho * area)
     added_t = lump(line.added_mass_tangential * rho * area)

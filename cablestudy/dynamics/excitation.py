@@ -10,6 +10,7 @@ by the product rule (both continuous).
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -109,10 +110,6 @@ class EndMotion:
     ramp_time: float = 0.0
 
     def __post_init__(self) -> None:
-        tabs = self.tables
-        xs = [np.asarray(t.spline.x, dtype=float) for t in tabs]
-        xo = np.cumsum([0] + [x.size for x in xs])
-        co = np.cumsum([0] + [x.size - 1 for x in xs])
         args = (
             np.asarray(self.harmonic_end, dtype=np.int64),
             np.asarray(self.harmonic_direction, dtype=float).reshape(-1, 3),
@@ -120,14 +117,7 @@ class EndMotion:
             np.asarray(self.harmonic_frequency, dtype=float),
             np.asarray(self.harmonic_phase, dtype=float),
             float(self.ramp_time),
-            np.array([t.end for t in tabs], dtype=np.int64),
-            np.array([t.direction for t in tabs], dtype=float).reshape(-1, 3),
-            np.array([t.periodic for t in tabs], dtype=np.bool_),
-            np.array([t.values[-1] for t in tabs], dtype=float),
-            np.concatenate(xs) if xs else np.zeros(0),
-            np.concatenate([t.spline.c for t in tabs], axis=1) if tabs else np.zeros((4, 0)),
-            xo.astype(np.int64),
-            co.astype(np.int64),
+            *table_args([t.end for t in self.tables], self.tables),
         )
         object.__setattr__(self, "_kernel_args", args)
 
@@ -142,6 +132,26 @@ class EndMotion:
         out = np.zeros((3, 2, 3))
         motion_at(t, *self.kernel_args(), out)
         return out[0], out[1], out[2]
+
+
+def table_args(owners: list[int], tables: Sequence[TableMotion]) -> tuple:
+    """Time tables as the arrays :func:`motion_at` takes: what each moves (``owners``:
+    its end, or its motion slot), its direction, periodic flag and last value, and the
+    piecewise cubics (all breakpoints, all coefficients, each table's offsets into
+    them)."""
+    xs = [np.asarray(t.spline.x, dtype=float) for t in tables]
+    xo = np.cumsum([0] + [x.size for x in xs])
+    co = np.cumsum([0] + [x.size - 1 for x in xs])
+    return (
+        np.array(owners, dtype=np.int64),
+        np.array([t.direction for t in tables], dtype=float).reshape(-1, 3),
+        np.array([t.periodic for t in tables], dtype=np.bool_),
+        np.array([t.values[-1] for t in tables], dtype=float),
+        np.concatenate(xs) if xs else np.zeros(0),
+        np.concatenate([t.spline.c for t in tables], axis=1) if tables else np.zeros((4, 0)),
+        xo.astype(np.int64),
+        co.astype(np.int64),
+    )
 
 
 @njit(cache=True)

@@ -29,7 +29,7 @@ import scipy.sparse as sp
 
 from ..physics.current import current_velocity
 from ..statics.base import EndCondition
-from .discrete_line import discretise_nodes
+from .discrete_line import discretise_nodes, lump_on_nodes
 from .frequency_model import LinearLine
 from .modal import (
     ModalProblem,
@@ -96,8 +96,10 @@ def linear_lines(problems: Sequence[ModalProblem]) -> list[LinearLine]:
         ea = element_tangent(line, s, T_e, seg, strain)
         c_axial = line.damping_ratio[seg] * l0 * np.sqrt(line.axial_stiffness[seg] * line.mass[seg])
         rho = medium.density
-        drag_n = _lump(0.5 * rho * line.drag_normal * line.diameter, seg, l0, n)
-        drag_t = _lump(0.5 * rho * math.pi * line.drag_tangential * line.diameter, seg, l0, n)
+        drag_n = lump_on_nodes(0.5 * rho * line.drag_normal * line.diameter, seg, l0, n)
+        drag_t = lump_on_nodes(
+            0.5 * rho * math.pi * line.drag_tangential * line.diameter, seg, l0, n
+        )
         lo = np.maximum(np.arange(n) - 1, 0)
         hi = np.minimum(np.arange(n) + 1, n - 1)
         tangent = pos[hi] - pos[lo]
@@ -125,16 +127,6 @@ def linear_lines(problems: Sequence[ModalProblem]) -> list[LinearLine]:
                 drag_body=drag_b if np.any(drag_b > 0.0) else None,
             )
         )
-    return out
-
-
-def _lump(per_length: np.ndarray, seg: np.ndarray, l0: np.ndarray, n: int) -> np.ndarray:
-    """Per node half of each adjacent element's ``per_length`` times its length (as
-    :func:`linear_line`'s ``lump``)."""
-    half = 0.5 * per_length[seg] * l0
-    out = np.zeros(n)
-    out[:-1] += half
-    out[1:] += half
     return out
 
 

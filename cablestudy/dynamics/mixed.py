@@ -108,7 +108,7 @@ def axial_forces(x: np.ndarray, tension: np.ndarray) -> tuple[np.ndarray, ...]:
     return f, u, length
 
 
-def _block_matrix(rows: np.ndarray, cols: np.ndarray, blocks: np.ndarray) -> tuple:
+def block_triplets(rows: np.ndarray, cols: np.ndarray, blocks: np.ndarray) -> tuple:
     """COO triplets of 3 x 3 ``blocks`` (k, 3, 3) at node rows and columns (k,)."""
     a = np.arange(3)
     r = 3 * rows[:, None, None] + a[None, :, None]
@@ -117,18 +117,52 @@ def _block_matrix(rows: np.ndarray, cols: np.ndarray, blocks: np.ndarray) -> tup
     return r.ravel(), c.ravel(), blocks.ravel()
 
 
-def _tangent_of_others(work: Workspace, n: int, bending: bool) -> tuple[list, list, list]:
-    """COO triplets of the model's tangent of the other forces (symmetric block band)."""
-    i = np.arange(n)
-    parts = [_block_matrix(i, i, work.K_d)]
-    j = np.arange(n - 1)
-    parts.append(_block_matrix(j, j + 1, work.K_o))
-    parts.append(_block_matrix(j + 1, j, np.transpose(work.K_o, (0, 2, 1))))
+def band_triplets(work: Workspace, n: int, bending: bool) -> list[tuple]:
+    """The model's block-band tangent (diagonal, first and, with bending, second
+    off-diagonal blocks, symmetric in position) as COO triplets (here the tangent of
+    the other forces; :func:`cablestudy.statics.line_state.discrete_jacobian` the whole
+    line's)."""
+    i, j = np.arange(n), np.arange(n - 1)
+    out = [
+        block_triplets(i, i, work.K_d),
+        block_triplets(j, j + 1, work.K_o),
+        block_triplets(j + 1, j, np.transpose(work.K_o, (0, 2, 1))),
+    ]
     if bending and n > 2:
         k = np.arange(n - 2)
-        parts.append(_block_matrix(k, k + 2, work.K_o2))
-        parts.append(_block_matrix(k + 2, k, np.transpose(work.K_o2, (0, 2, 1))))
-    return [p[0] for p in parts], [p[1] for p in parts], [p[2] for p in parts]
+        out.append(block_triplets(k, k + 2, work.K_o2))
+        out.append(block_triplets(k + 2, k, np.transpose(work.K_o2, (0, 2, 1))))
+    return out
+
+
+def mixed_triplets(
+    t: np.ndarray,
+    u: np.ndarray,
+    length: np.ndarray,
+    per_length: np.ndarray,
+    taut: np.ndarray,
+    n: int,
+) -> list[tuple]:
+    """The mixed form's coupling of positions and tensions as COO triplets (``n``
+    nodes; element e's tension in column 3 n + e): in the node rows the tension's
+    geometric stiffness T / l (I - u u) on each element's four node blocks and d(node
+    force) / d T_e (+u at node e + 1, -u at node e, the model's sign); in the rows of
+    the ``taut`` elements' laws d g / d x = (-u, +u) / l0, divided by ``per_length``
+    (the rest lengths in the rows' scaling). Element tensions ``t`` [N], unit vectors
+    ``u`` and lengths [m] (m,)."""
+    e = np.arange(t.size)
+    geo = (t / length)[:, None, None] * (np.eye(3)[None] - u[:, :, None] * u[:, None, :])
+    pairs = ((e, e, 1.0), (e + 1, e + 1, 1.0), (e, e + 1, -1.0), (e + 1, e, -1.0))
+    parts = [block_triplets(r, c, sign * geo) for r, c, sign in pairs]
+    a = np.arange(3)
+    col_t = 3 * n + e
+    for node, sign in ((e + 1, 1.0), (e, -1.0)):
+        parts.append(((3 * node[:, None] + a).ravel(), np.repeat(col_t, 3), (sign * u).ravel()))
+    for node, sign in ((e + 1, -1.0), (e, 1.0)):
+        rows = np.repeat(col_t[taut], 3)
+        cols = (3 * node[taut][:, None] + a).ravel()
+        parts.append((rows, cols, (sign * u[taut] / per_length[taut][:, None]).ravel()))
+    return parts
 
 
 class _System:
@@ -191,37 +225,16 @@ class _System:
     def step(self, x: np.ndarray, tension: np.ndarray, taut: np.ndarray, reg: float) -> tuple:
         """Newton correction (dx [m], dT [N]) of the scaled residual at (x, tension)."""
         n, m = self.n, self.m
-        rows, cols, vals = _tangent_of_others(self.work, n, self.line.has_bending)
-        u, length, t = self.u, self.length, tension
-        # the tension's geometric stiffness T / l (I - u u) on the element's 2 x 2 blocks
-        geo = (t / length)[:, None, None] * (np.eye(3)[None] - u[:, :, None] * u[:, None, :])
-        e = np.arange(m)
-        for r_, c_, sign in ((e, e, 1.0), (e + 1, e + 1, 1.0), (e, e + 1, -1.0), (e + 1, e, -1.0)):
-            rr, cc, vv = _block_matrix(r_, c_, sign * geo)
-            rows.append(rr)
-            cols.append(cc)
-            vals.append(vv)
-        nx = 3 * n
-        col_t = nx + e
-        # d(node force)/dT_e: +u at node e + 1, -u at node e
-        a = np.arange(3)
-        for node, sign in ((e + 1, 1.0), (e, -1.0)):
-            rows.append((3 * node[:, None] + a[None, :]).ravel())
-            cols.append(np.repeat(col_t, 3))
-            vals.append((sign * u).ravel())
+        parts = band_triplets(self.work, n, self.line.has_bending)
         # element rows: taut (c T - g) / tol_g, slack K c T / tol_g
-        l0 = self.line.rest_length
-        tt = taut
-        for node, sign in ((e + 1, -1.0), (e, 1.0)):
-            rows.append(np.repeat(col_t[tt], 3))
-            cols.append((3 * node[tt][:, None] + a[None, :]).ravel())
-            vals.append((sign * u[tt] / (l0[tt] * self.tol_g)[:, None]).ravel())
-        rows.append(col_t)
-        cols.append(col_t)
-        vals.append(np.where(tt, 1.0, self.weight) * self.c / self.tol_g)
-        R = np.concatenate(rows)
-        C = np.concatenate(cols)
-        V = np.concatenate(vals)
+        l0 = self.line.rest_length * self.tol_g
+        parts += mixed_triplets(tension, self.u, self.length, l0, taut, n)
+        nx = 3 * n
+        col_t = nx + np.arange(m)
+        parts.append((col_t, col_t, np.where(taut, 1.0, self.weight) * self.c / self.tol_g))
+        R = np.concatenate([p[0] for p in parts])
+        C = np.concatenate([p[1] for p in parts])
+        V = np.concatenate([p[2] for p in parts])
         # node rows in units of tol_F; held nodes keep their place (identity rows)
         held_dof = np.repeat(~self.free, 3)
         node_row = R < nx

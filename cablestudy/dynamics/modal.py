@@ -63,6 +63,7 @@ import scipy.sparse as sp
 from scipy.linalg import eig_banded
 from scipy.sparse.linalg import ArpackError, eigsh
 
+from ..physics.contact import default_seabed_stiffness
 from ..statics.base import (
     STATUS_NUMERICAL,
     STATUS_OK,
@@ -73,7 +74,7 @@ from ..statics.base import (
     StaticResult,
 )
 from .assembly import evaluate
-from .discrete_line import DiscreteLine, DynamicExtras, default_seabed_stiffness, discretise_nodes
+from .discrete_line import DiscreteLine, DynamicExtras, discretise_nodes
 
 #: status of a modal analysis about a static solution that failed
 STATUS_STATIC_FAILED = 5
@@ -275,7 +276,7 @@ def element_tangent(
 def default_extras(line: LineModel, medium: Medium) -> DynamicExtras:
     """Dynamic line properties of a bare :class:`LineModel`: pinned ends, no bodies or
     transverse damping, the default seabed stiffness and the medium's friction."""
-    stiffness = default_seabed_stiffness(line) if medium.depth is not None else 0.0
+    stiffness = default_seabed_stiffness(line.weight) if medium.depth is not None else 0.0
     return DynamicExtras(
         seabed_stiffness=stiffness, friction_axial=medium.friction, friction_lateral=medium.friction
     )

@@ -12,33 +12,28 @@ from __future__ import annotations
 
 import math
 import time
-from collections import deque
 
 import numpy as np
 
-from ..statics.base import STATUS_NUMERICAL, STATUS_TIME_LIMIT
 from .alpha_step import AlphaParameters, alpha_step
 from .assembly import Workspace, update_anchors
 from .discrete_line import DiscreteLine, interpolate_nodes
 from .pulley import SlidingPulleys, pulley_tensions, solve_split, wrap_angle
+from .step_parts import predict_positions
 from .time_problem import (
     NEWTON_RESCUE_HALVINGS,
     DynamicProblem,
     DynamicResult,
     _History,
     _start,
+    close_run,
     end_forces,
     is_steady,
+    newton_failed,
+    out_of_time,
     touchdown_of,
     window_statistics,
 )
-
-
-def _advance(head: tuple, line_args: tuple, tail: tuple) -> int:
-    """One implicit step (:func:`.alpha_step.alpha_step`): its Newton iterations, or
-    -1 - iterations when it failed."""
-    its, ok = alpha_step(*head, line_args, *tail)
-    return its if ok else -1 - its
 
 
 def _slide(
@@ -79,9 +74,9 @@ def _slide(
             pred[node] = x_pred[node]
         else:
             pred = x_pred
-        got = _advance((*head[:13], cap, pred, *head[15:]), trial.kernel_args(), tail)
-        iterations += got if got >= 0 else -1 - got
-        if got < 0:
+        its, ok = alpha_step(*head[:13], cap, pred, *head[15:], trial.kernel_args(), *tail)
+        iterations += its
+        if not ok:
             return None
         last[:] = [(trial.s, x1.copy())]
         return pulley_tensions(trial, x1, work.tension, node), wrap_angle(x1, node)
@@ -133,34 +128,18 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
     max_level = problem.max_refinement
     eps_t = 1e-9 * T
 
-    hist = _History(problem, line)
-
-    def push(t: float, tension: float, ends: np.ndarray) -> None:
-        hist.push(t, tension, ends, x0, v0, a0, work.tension)
-
-    rec: dict[str, list[np.ndarray]] = {
-        k: [] for k in ("t", "x", "v", "a", "end_force", "tension", "friction", "split")
-    }
+    hist = _History(problem, line, extra=("split",))
     sliding = problem.pulleys
-    split = sliding.split.copy() if sliding is not None else np.zeros(0)
+    split = sliding.split.copy()
     slide_rate = np.zeros_like(split)  # [m/s] of the last step
     slide_dir = np.zeros_like(split)  # +1 / -1 sliding out / in in the last step, 0 stuck
     # interior held nodes (pulleys) stay where the static state has them
     inner_held = np.nonzero(held[1:-1])[0] + 1
 
-    def keep(t: float, forces: np.ndarray) -> None:
-        if problem.keep_steps:
-            rec["t"].append(np.asarray(t))
-            rec["x"].append(x0.copy())
-            rec["v"].append(v0.copy())
-            rec["a"].append(a0.copy())
-            rec["end_force"].append(forces.copy())
-            rec["tension"].append(work.tension.copy())
-            rec["friction"].append(work.friction.copy())
-            rec["split"].append(split.copy())
+    def push(t: float, tension: float, ends: np.ndarray, forces: np.ndarray) -> None:
+        hist.push(t, tension, ends, forces, x0, v0, a0, work, split)
 
-    keep(0.0, f_static)
-    push(0.0, t_static, np.sqrt(np.sum(f_static**2, 1)))
+    push(0.0, t_static, np.sqrt(np.sum(f_static**2, 1)), f_static)
 
     # per-period statistics (periods starting after the ramp only)
     p_max: list[float] = []
@@ -178,23 +157,13 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
     # Newton starts from a quadratic extrapolation of the last three positions: the
     # positions are smooth, whereas the accelerations of generalised-alpha carry the
     # decaying unresolved axial modes, which a Taylor predictor would amplify into
-    # large spurious stretches.
-    past: deque[tuple[float, np.ndarray]] = deque()
+    # large spurious stretches (:func:`.step_parts.predict_positions`, as the compiled
+    # step loop's, from the last ``npast`` accepted positions ``past_x`` at ``past_t``).
+    past_x = np.zeros((2, *x0.shape))
+    past_t = np.zeros(2)
+    npast = 0
     frac = (line.s / line.s[-1])[:, None]
     x_pred = np.empty_like(x0)
-
-    def predict(t_new: float, out: np.ndarray) -> None:
-        if len(past) < 2:
-            np.add(x0, (t_new - t) * v0, out=out)
-            return
-        (ta, xa), (tb, xb) = past[0], past[1]
-        tc = t
-        la = (t_new - tb) * (t_new - tc) / ((ta - tb) * (ta - tc))
-        lb = (t_new - ta) * (t_new - tc) / ((tb - ta) * (tb - tc))
-        lc = (t_new - ta) * (t_new - tb) / ((tc - ta) * (tc - tb))
-        np.multiply(xa, la, out=out)
-        out += lb * xb
-        out += lc * x0
 
     t = 0.0
     level = 0
@@ -204,16 +173,12 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
     converged = False
     while True:
         if deadline is not None and steps % 64 == 0 and time.monotonic() > deadline:
-            result.status, result.message = (
-                STATUS_TIME_LIMIT,
-                (f"time limit reached at t = {t:.4g} s of the dynamic run"),
-            )
-            return result
+            return out_of_time(result, t)
         h = problem.step / 2**level
         if next_b - t <= h * (1.0 + 1e-6):
             h = next_b - t
         disp, vel, acc = problem.motion.at(t + h)
-        predict(t + h, x_pred)
+        predict_positions(x0, v0, past_x, past_t, npast, t, t + h, x_pred)
         np.greater(strain_prev, 0.0, out=work.taut0)
         # move the whole line with the ends' prescribed correction, shared linearly
         # along s, so that the predictor neither stretches nor compresses the end
@@ -250,30 +215,18 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
         )
         tail = (wargs, sargs)
         new_line, new_split = line, split
-        if sliding is None:
-            its = _advance(head, largs, tail)
-            ok = its >= 0
-            newton += its if ok else -1 - its
-        else:
-            # the step with its split: stick, or slide to the friction bound
-            found, new_dir, got_line, its = _slide(
-                sliding, split, slide_dir, slide_rate * h, head, tail, work, x1, tol
-            )
-            newton += its
-            ok = found is not None
-            if found is not None and got_line is not None:
-                new_split, new_line = found, got_line
+        # the step with its split: stick, or slide to the friction bound
+        found, new_dir, got_line, its = _slide(
+            sliding, split, slide_dir, slide_rate * h, head, tail, work, x1, tol
+        )
+        newton += its
+        ok = found is not None
+        if found is not None and got_line is not None:
+            new_split, new_line = found, got_line
         if not ok:
             rejected += 1
             if level >= max_level + NEWTON_RESCUE_HALVINGS:
-                result.status = STATUS_NUMERICAL
-                result.message = (
-                    f"Newton did not converge at t = {t:.6g} s with step "
-                    f"{h:.3g} s ({problem.step:.3g} s halved {level} times)"
-                )
-                result.steps, result.newton_iterations = steps, newton
-                result.rejected_steps = rejected
-                return result
+                return newton_failed(result, t, h, problem.step, level, (steps, newton, rejected))
             level += 1
             clean = 0
             continue
@@ -288,19 +241,20 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
             continue
         # accept
         steps += 1
-        if sliding is not None:
-            slide_rate = (new_split - split) / h
-            slide_dir = new_dir
+        slide_rate = (new_split - split) / h
+        slide_dir = new_dir
         if new_line is not line:
             line, split = new_line, new_split
-            largs = line.kernel_args()
             np.minimum(c_split[0], split, out=c_split[0])
             np.maximum(c_split[1], split, out=c_split[1])
         if line.has_seabed:
             update_anchors(x1, work.friction, line.seabed_stiffness, work.contact, work.anchor)
-        past.append((t, x0.copy()))
-        if len(past) > 2:
-            past.popleft()
+        if npast == 2:  # the older of the two goes
+            past_x[0] = past_x[1]
+            past_t[0] = past_t[1]
+        past_x[min(npast, 1)] = x0
+        past_t[min(npast, 1)] = t
+        npast = min(npast + 1, 2)
         t += h
         x0, x1 = x1, x0
         v0, v1 = v1, v0
@@ -315,8 +269,7 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
         c_int += 0.5 * (t_prev_tension + tension) * h
         c_line = max(c_line, line_max)
         t_prev_tension = tension
-        keep(t, forces)
-        push(t, tension, end_tensions)
+        push(t, tension, end_tensions, forces)
         if switched or steep:
             clean = 0
         else:
@@ -352,24 +305,8 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
         (c_max, c_min, c_int / max(t - c_start, 1e-300), c_line),
     )
     result.steady_converged = converged
-    if sliding is not None:
-        kept = p_split[sl] if p_split else [c_split]
-        result.split_min = np.min([k[0] for k in kept], axis=0)
-        result.split_max = np.max([k[1] for k in kept], axis=0)
+    kept = p_split[sl] if p_split else [c_split]
+    result.split_min = np.min([k[0] for k in kept], axis=0)
+    result.split_max = np.max([k[1] for k in kept], axis=0)
     result.line_s = line.s
-    result.steps, result.newton_iterations, result.rejected_steps = steps, newton, rejected
-    result.periods = t / T
-    result.simulated_time = t
-    (
-        result.element_tension_max,
-        result.element_tension_min,
-        result.end_tension_max,
-        result.end_tension_min,
-        result.touchdown_min,
-        result.touchdown_max,
-        result.z_max,
-    ) = extremes.window()
-    result.history = hist.resampled(t)
-    if problem.keep_steps:
-        result.record = {k: np.asarray(v) for k, v in rec.items()}
-    return result
+    return close_run(result, t, (steps, newton, rejected), extremes.window(), hist)

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .discrete_line import DiscreteLine
-from .excitation import TableMotion
+from .excitation import TableMotion, table_args
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -60,10 +60,6 @@ class SlotMotion:
     ramp_time: float = 0.0
 
     def kernel_args(self) -> tuple:
-        tabs = [t for _, t in self.tables]
-        xs = [np.asarray(t.spline.x, dtype=float) for t in tabs]
-        xo = np.cumsum([0] + [x.size for x in xs]).astype(np.int64)
-        co = np.cumsum([0] + [x.size - 1 for x in xs]).astype(np.int64)
         return (
             np.asarray(self.slot, dtype=np.int64),
             np.asarray(self.direction, dtype=float).reshape(-1, 3),
@@ -71,14 +67,7 @@ class SlotMotion:
             np.asarray(self.frequency, dtype=float),
             np.asarray(self.phase, dtype=float),
             float(self.ramp_time),
-            np.array([s for s, _ in self.tables], dtype=np.int64),
-            np.array([t.direction for t in tabs], dtype=float).reshape(-1, 3),
-            np.array([t.periodic for t in tabs], dtype=np.bool_),
-            np.array([t.values[-1] for t in tabs], dtype=float),
-            np.concatenate(xs) if xs else np.zeros(0),
-            np.concatenate([t.spline.c for t in tabs], axis=1) if tabs else np.zeros((4, 0)),
-            xo,
-            co,
+            *table_args([s for s, _ in self.tables], [t for _, t in self.tables]),
         )
 
 

@@ -26,15 +26,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..statics.base import STATUS_NUMERICAL, STATUS_OK, STATUS_TIME_LIMIT
+from ..statics.base import STATUS_OK
 from .alpha_step import AlphaParameters
 from .model import static_equilibrium
 from .system_kernels import assemble_all, point_forces
 from .system_march import BOUNDARY, FAILED, end_forces, set_drives, system_march, system_static
 from .system_model import Drives, PackedSystem, SlotMotion, work_arrays
-
-#: extra step halvings allowed beyond ``max_refinement`` when Newton fails
-NEWTON_RESCUE_HALVINGS = 8
+from .time_problem import NEWTON_RESCUE_HALVINGS, newton_failed, out_of_time
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -252,9 +250,7 @@ def simulate_system(
     watch = watched_ends(pk, dr, problem.motion)
     while True:
         if deadline is not None and time.monotonic() > deadline:
-            result.status = STATUS_TIME_LIMIT
-            result.message = f"time limit reached at t = {st_f[0]:.4g} s of the dynamic run"
-            return result
+            return out_of_time(result, st_f[0])
         code = system_march(
             st_f, st_i, x0, v0, a0, F0, Fp0, x1, v1, a1, x_pred, past_x, past_t, pk.frac,
             strain_prev, D, pk.he_node, pk.he_drive, pk.he_line, pk.he_end, pk.he_body,
@@ -267,14 +263,8 @@ def simulate_system(
         )  # fmt: skip
         t = float(st_f[0])
         if code == FAILED:
-            result.status = STATUS_NUMERICAL
-            result.message = (
-                f"Newton did not converge at t = {t:.6g} s with step {st_f[2]:.3g} s "
-                f"({problem.step:.3g} s halved {int(st_i[0])} times)"
-            )
-            result.steps, result.newton_iterations = int(st_i[2]), int(st_i[3])
-            result.rejected_steps = int(st_i[4])
-            return result
+            counters = (int(st_i[2]), int(st_i[3]), int(st_i[4]))
+            return newton_failed(result, t, st_f[2], problem.step, int(st_i[0]), counters)
         if single:
             hist_t.append(t)
             hist_f.append(ends_prev.copy())

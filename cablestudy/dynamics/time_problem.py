@@ -9,12 +9,12 @@ from __future__ import annotations
 import math
 from collections import deque
 from dataclasses import dataclass, field
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 
 from ..physics.seabed import touchdown_arc_length
-from ..statics.base import STATUS_OK
+from ..statics.base import STATUS_NUMERICAL, STATUS_OK, STATUS_TIME_LIMIT
 from .assembly import Workspace, evaluate
 from .discrete_line import DiscreteLine, interpolate_nodes
 from .end_support import seabed_support
@@ -312,30 +312,42 @@ class _History:
     """The time histories a run keeps (``problem.history``): (t, end tension, x, v, a at
     the history points, and with ``history_line`` x, v, a of every node, the element
     and end tensions) over the last ``history_periods`` periods and one more,
-    resampled uniformly at the end (:func:`_resample`)."""
+    resampled uniformly at the end (:func:`_resample`); with ``problem.keep_steps``
+    also every accepted step's full state (t, x, v, a, the forces on the ends, the
+    element tensions and friction forces, and the run's ``extra`` values)."""
 
-    def __init__(self, problem: DynamicProblem, line: DiscreteLine) -> None:
+    def __init__(self, problem: DynamicProblem, line: DiscreteLine, extra: tuple = ()) -> None:
         self.problem = problem
         self.line = line
         self.points = np.asarray(problem.history_s, dtype=float)
         self.span = (problem.history_periods + 1.0) * problem.period
         self.buf: deque[tuple] = deque()
+        keys = ("t", "x", "v", "a", "end_force", "tension", "friction", *extra)
+        self.steps = {k: [] for k in keys} if problem.keep_steps else None
 
     def push(
         self,
         t: float,
         tension: float,
         ends: np.ndarray,
+        forces: np.ndarray,
         x: np.ndarray,
         v: np.ndarray,
         a: np.ndarray,
-        element_tension: np.ndarray,
+        work: Workspace,
+        *extra: np.ndarray,
     ) -> None:
+        """One accepted step: ``tension`` [N] at the excited end, ``ends`` [N] (2,) both
+        end tensions, ``forces`` [N] (2, 3) the line's on the ends."""
+        if self.steps is not None:
+            state = (t, x, v, a, forces, work.tension, work.friction, *extra)
+            for values, value in zip(self.steps.values(), state, strict=True):
+                values.append(np.array(value, copy=True))
         if not self.problem.history:
             return
         xs = interpolate_nodes(self.line.s, self.points, np.stack([x, v, a]))
         whole = (
-            (x.copy(), v.copy(), a.copy(), element_tension.copy(), ends.copy())
+            (x.copy(), v.copy(), a.copy(), work.tension.copy(), ends.copy())
             if self.problem.history_line
             else ()
         )
@@ -351,6 +363,34 @@ class _History:
         prob = self.problem
         static = interpolate_nodes(self.line.s, self.points, prob.static_position[None])[0]
         return _resample(self.buf, t_end, prob.period, prob, static)
+
+
+def close_run(
+    result: DynamicResult,
+    t: float,
+    counters: tuple[int, int, int],
+    extremes: list,
+    hist: _History,
+) -> DynamicResult:
+    """The end of a run at ``t`` [s] into ``result``: its (steps, Newton iterations,
+    rejected steps), periods, the line's ``extremes`` (:meth:`_LineExtremes.window`),
+    the resampled history and the step record (``keep_steps``)."""
+    result.steps, result.newton_iterations, result.rejected_steps = counters
+    result.periods = t / hist.problem.period
+    result.simulated_time = t
+    (
+        result.element_tension_max,
+        result.element_tension_min,
+        result.end_tension_max,
+        result.end_tension_min,
+        result.touchdown_min,
+        result.touchdown_max,
+        result.z_max,
+    ) = extremes
+    result.history = hist.resampled(t)
+    if hist.steps is not None:
+        result.record = {k: np.asarray(v) for k, v in hist.steps.items()}
+    return result
 
 
 class _Start(NamedTuple):
@@ -421,6 +461,28 @@ def _start(problem: DynamicProblem, line: DiscreteLine) -> _Start:
         result,
         extremes,
     )
+
+
+def out_of_time(result: Any, t: float) -> Any:
+    """``result`` (of a line or a system) stopped by the deadline at ``t`` [s]."""
+    result.status = STATUS_TIME_LIMIT
+    result.message = f"time limit reached at t = {t:.4g} s of the dynamic run"
+    return result
+
+
+def newton_failed(
+    result: Any, t: float, h: float, step: float, level: int, counters: tuple[int, int, int]
+) -> Any:
+    """``result`` (of a line or a system) stopped at ``t`` [s] where Newton failed with
+    the step ``h`` [s], the nominal ``step`` halved ``level`` times; its (steps, Newton
+    iterations, rejected steps)."""
+    result.status = STATUS_NUMERICAL
+    result.message = (
+        f"Newton did not converge at t = {t:.6g} s with step {h:.3g} s ({step:.3g} s "
+        f"halved {level} times)"
+    )
+    result.steps, result.newton_iterations, result.rejected_steps = counters
+    return result
 
 
 def touchdown_of(line: DiscreteLine, x: np.ndarray, tolerance: float) -> float:

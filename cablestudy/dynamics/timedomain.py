@@ -45,7 +45,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..statics.base import STATUS_NUMERICAL, STATUS_TIME_LIMIT
+from ..statics.base import STATUS_NUMERICAL
 from .alpha_step import AlphaParameters
 from .assembly import evaluate
 from .discrete_line import DiscreteLine
@@ -56,8 +56,11 @@ from .time_problem import (
     DynamicResult,
     _History,
     _start,
+    close_run,
     end_forces,
     is_steady,
+    newton_failed,
+    out_of_time,
     window_statistics,
 )
 
@@ -138,25 +141,10 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     keep_hist = problem.history
     hist = _History(problem, line)
 
-    def push(t: float, tension: float, ends: np.ndarray) -> None:
-        hist.push(t, tension, ends, x0, v0, a0, work.tension)
+    def push(t: float, tension: float, ends: np.ndarray, forces: np.ndarray) -> None:
+        hist.push(t, tension, ends, forces, x0, v0, a0, work)
 
-    rec: dict[str, list[np.ndarray]] = {
-        k: [] for k in ("t", "x", "v", "a", "end_force", "tension", "friction")
-    }
-
-    def keep(t: float, forces: np.ndarray) -> None:
-        if problem.keep_steps:
-            rec["t"].append(np.asarray(t))
-            rec["x"].append(x0.copy())
-            rec["v"].append(v0.copy())
-            rec["a"].append(a0.copy())
-            rec["end_force"].append(forces.copy())
-            rec["tension"].append(work.tension.copy())
-            rec["friction"].append(work.friction.copy())
-
-    keep(0.0, f_static)
-    push(0.0, t_static, np.sqrt(np.sum(f_static**2, 1)))
+    push(0.0, t_static, np.sqrt(np.sum(f_static**2, 1)), f_static)
 
     # per-period statistics (periods starting after the ramp only)
     p_max: list[float] = []
@@ -231,11 +219,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     converged = False
     while True:
         if deadline is not None and time.monotonic() > deadline:
-            result.status, result.message = (
-                STATUS_TIME_LIMIT,
-                (f"time limit reached at t = {st_f[0]:.4g} s of the dynamic run"),
-            )
-            return result
+            return out_of_time(result, st_f[0])
         code = march(
             st_f,
             st_i,
@@ -289,15 +273,8 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         )
         t = float(st_f[0])
         if code == NEWTON_FAILED:
-            level = int(st_i[0])
-            result.status = STATUS_NUMERICAL
-            result.message = (
-                f"Newton did not converge at t = {t:.6g} s with step "
-                f"{st_f[9]:.3g} s ({problem.step:.3g} s halved {level} times)"
-            )
-            result.steps, result.newton_iterations = int(st_i[2]), int(st_i[3])
-            result.rejected_steps = int(st_i[4])
-            return result
+            counters = (int(st_i[2]), int(st_i[3]), int(st_i[4]))
+            return newton_failed(result, t, st_f[9], problem.step, int(st_i[0]), counters)
         if code == WINCH_LIMIT:
             paid, l_ini = float(st_f[9]), float(wini[0, 0])
             lo, hi = problem.winch_limits
@@ -312,13 +289,11 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             result.steps, result.newton_iterations = int(st_i[2]), int(st_i[3])
             return result
         if single:
-            keep(t, forces)
-            push(t, float(st_f[6]), ends)
+            push(t, float(st_f[6]), ends, forces)
         if code == PARTED:
             part_restart()
             if single:
-                keep(t, forces)
-                push(t, float(st_f[6]), ends)
+                push(t, float(st_f[6]), ends, forces)
             if problem.after_break == "stop":
                 t_stop = t
             if abs(t - st_f[1]) > eps_t and t < t_stop - eps_t:
@@ -371,23 +346,8 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         result.tension_mean = r_int / max(t, 1e-300)
         result.tension_max_line = r_line
     result.steady_converged = converged
-    result.steps, result.newton_iterations, result.rejected_steps = steps, newton, rejected
-    result.periods = t / T
-    result.simulated_time = t
-    (
-        result.element_tension_max,
-        result.element_tension_min,
-        result.end_tension_max,
-        result.end_tension_min,
-        result.touchdown_min,
-        result.touchdown_max,
-        result.z_max,
-    ) = extremes.window(broke)
     result.winch_paid_out = problem.paid_out(t)
-    result.history = hist.resampled(t)
-    if problem.keep_steps:
-        result.record = {k: np.asarray(v) for k, v in rec.items()}
-    return result
+    return close_run(result, t, (steps, newton, rejected), extremes.window(broke), hist)
 
 
 def warm_up() -> None:

@@ -4,6 +4,7 @@ current that turns with depth."""
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -30,21 +31,30 @@ def _segment_ends(ds: xr.Dataset) -> list[float]:
     return list(np.cumsum(lengths)[:-1])
 
 
+def _solved(ds: xr.Dataset, dim: str, labels: list[str]) -> list[tuple[str, xr.Dataset]]:
+    """(label, case) of each case along ``dim`` that solved (status 0)."""
+    cases = [(label, ds.isel({dim: i})) for i, label in enumerate(labels)]
+    return [(label, case) for label, case in cases if int(case["status"]) == 0]
+
+
+def _grid_legend(axes: Iterable[plt.Axes]) -> None:
+    """A light grid and a small legend on each of ``axes``."""
+    for ax in axes:
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+
+
 def _profile_panels(axes: list[plt.Axes], ds: xr.Dataset, dim: str, labels: list[str]) -> None:
     """Elevation and azimuth of the tangent [deg] and elongation [m] along s, the
     seed's other outputs (cablestudy.physics.profile)."""
-    for i, label in enumerate(labels):
-        case = ds.isel({dim: i})
-        if int(case["status"]) != 0:
-            continue
+    for label, case in _solved(ds, dim, labels):
         axes[0].plot(case["s"], np.degrees(case["elevation"]), label=label)
         axes[1].plot(case["s"], np.degrees(case["azimuth"]), label=label)
         axes[2].plot(case["s"], case["elongation"], label=label)
     what = ("elevation of the tangent [deg]", "azimuth of the tangent [deg]", "elongation [m]")
     for ax, ylabel in zip(axes, what, strict=True):
         ax.set(xlabel="unstretched arc length s [m]", ylabel=ylabel)
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
+    _grid_legend(axes)
 
 
 def _tensions(ax: plt.Axes, case: xr.Dataset, label: str) -> None:
@@ -60,10 +70,7 @@ def mooring(data: dict[str, xr.Dataset], out: Path) -> Path:
     labels = _labels(ds, dim, "deg")
     fig, grid = plt.subplots(2, 3, figsize=(13, 8))
     axes = grid[0]
-    for i, label in enumerate(labels):
-        case = ds.isel({dim: i})
-        if int(case["status"]) != 0:
-            continue
+    for label, case in _solved(ds, dim, labels):
         laid = float(case["laid_length"])
         axes[0].plot(case["x"], case["z"], label=f"current {label}, laid {laid:.0f} m")
         axes[1].plot(case["x"], case["y"], label=f"current {label}")
@@ -82,9 +89,7 @@ def mooring(data: dict[str, xr.Dataset], out: Path) -> Path:
         ylabel="tension [kN]",
         title="effective (solid), wall (dashed) tension; grey: joints",
     )
-    for ax in axes:
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
+    _grid_legend(axes)
     _profile_panels(list(grid[1]), ds, dim, [f"current {lab}" for lab in labels])
     fig.suptitle(
         "Segmented deep-water mooring in a sheared current (vaz-patel example 2, shooting solver)",
@@ -105,10 +110,7 @@ def turning_current(data: dict[str, xr.Dataset], out: Path) -> Path:
     )
     (ax_xz, ax_xy), (ax_yz, ax_t) = axes
     row3 = [fig.add_subplot(spec[2, 2 * k : 2 * k + 2]) for k in range(3)]
-    for i, label in enumerate(labels):
-        case = ds.isel({dim: i})
-        if int(case["status"]) != 0:
-            continue
+    for label, case in _solved(ds, dim, labels):
         text = f"lower current {label}"
         ax_xz.plot(case["x"], case["z"], label=text)
         ax_xy.plot(case["x"], case["y"], label=f"{text}, laid {float(case['laid_length']):.0f} m")
@@ -122,9 +124,7 @@ def turning_current(data: dict[str, xr.Dataset], out: Path) -> Path:
         ylabel="tension [kN]",
         title="effective (solid) and wall (dashed) tension",
     )
-    for ax in axes.flat:
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
+    _grid_legend(axes.flat)
     _profile_panels(row3, ds, dim, [f"lower current {lab}" for lab in labels])
     fig.suptitle(
         "HA telecommunication cable (seed Table 1) in a current turning with depth "
@@ -141,10 +141,7 @@ def cable_installation(data: dict[str, xr.Dataset], out: Path) -> Path:
     labels = _labels(ds, dim, "m/s")
     fig, grid = plt.subplots(2, 3, figsize=(13, 8))
     axes = grid[0]
-    for i, label in enumerate(labels):
-        case = ds.isel({dim: i})
-        if int(case["status"]) != 0:
-            continue
+    for label, case in _solved(ds, dim, labels):
         text = f"transverse current {label}"
         axes[0].plot(case["x"], case["z"], label=text)
         axes[1].plot(case["x"], case["y"], label=f"{text}, laid {float(case['laid_length']):.0f} m")
@@ -156,9 +153,7 @@ def cable_installation(data: dict[str, xr.Dataset], out: Path) -> Path:
         ylabel="tension [kN]",
         title="effective (solid) and wall (dashed) tension",
     )
-    for ax in axes:
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
+    _grid_legend(axes)
     _profile_panels(list(grid[1]), ds, dim, [f"current {lab}" for lab in labels])
     fig.suptitle(
         "Steady laying of the HA cable (seed Table 1), ship 1.0 m/s, pay-out "

@@ -98,7 +98,7 @@ def select_chain(md: MoorDynFile, ids: list[int] | None) -> tuple[list[tuple[Lin
         )
 
     def fixed(key: str) -> bool:
-        pt = _point(md, key)
+        pt = point_of(md, key)
         return pt is not None and pt.kind == "fixed"
 
     first = chosen[0]
@@ -144,12 +144,8 @@ def _no_lines(md: MoorDynFile) -> None:
     )
 
 
-def _point(md: MoorDynFile, key: str) -> Point | None:
-    return point_of(md, key)
-
-
 def _need_point(md: MoorDynFile, key: str, line: Line) -> Point:
-    pt = _point(md, key)
+    pt = point_of(md, key)
     if pt is None:
         if key.upper().startswith("R"):
             raise NotModelledError(
@@ -163,6 +159,17 @@ def _need_point(md: MoorDynFile, key: str, line: Line) -> Point:
             f"{', '.join(str(p) for p in sorted(md.points))}"
         )
     return pt
+
+
+def _line_type(md: MoorDynFile, ln: Line) -> LineType:
+    """The line type of line ``ln`` (refused when the file does not define it)."""
+    lt = md.line_types.get(ln.line_type)
+    if lt is None:
+        raise InterchangeError(
+            f"{md.source}:{ln.source_line}: line {ln.id} uses line type {ln.line_type!r}, "
+            f"which the file does not define; defined: {', '.join(md.line_types) or 'none'}"
+        )
+    return lt
 
 
 def _segment(md: MoorDynFile, lt: LineType, line: Line, warnings: list[str]) -> dict[str, Any]:
@@ -215,6 +222,11 @@ def _segment(md: MoorDynFile, lt: LineType, line: Line, warnings: list[str]) -> 
             )
         elif key.startswith("column"):
             warnings.append(f"{where}: line type {lt.name!r}: extra {key} ({value}) not read")
+    if line.outputs not in ("-", ""):
+        warnings.append(
+            f"{md.source}:{line.source_line}: line {line.id} outputs {line.outputs!r} not "
+            "used (cablestudy writes every output)"
+        )
     return {
         "length": line.length,
         "diameter": lt.diameter,
@@ -321,12 +333,7 @@ def moordyn_to_study(
     s = 0.0
     at = start
     for k, (ln, rev) in enumerate(chain):
-        lt = md.line_types.get(ln.line_type)
-        if lt is None:
-            raise InterchangeError(
-                f"{src}:{ln.source_line}: line {ln.id} uses line type {ln.line_type!r}, which "
-                f"the file does not define; defined: {', '.join(md.line_types) or 'none'}"
-            )
+        lt = _line_type(md, ln)
         if k > 0:
             pt = _need_point(md, at, ln)
             if pt.kind != "free":
@@ -361,11 +368,6 @@ def moordyn_to_study(
                     f"{src}:{pt.source_line} point {pt.id}"
                 )
         seg = _segment(md, lt, ln, warnings)
-        if ln.outputs not in ("-", ""):
-            warnings.append(
-                f"{src}:{ln.source_line}: line {ln.id} outputs {ln.outputs!r} not used "
-                "(cablestudy writes every output)"
-            )
         if segments and seg_types[-1] == lt.name:
             segments[-1]["length"] += seg["length"]
             comments[("line", "segments", len(segments) - 1)] += f", line {ln.id}"

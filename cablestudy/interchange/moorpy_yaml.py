@@ -19,6 +19,7 @@ from typing import Any
 
 import yaml
 
+from ..study.safe_yaml import line_map
 from .moordyn_format import InterchangeError, Line, LineType, MoorDynFile, Option, Point
 
 Loc = tuple[str | int, ...]
@@ -38,20 +39,6 @@ _Loader.add_implicit_resolver(
 
 def _load(text: str) -> Any:
     return yaml.load(text, Loader=_Loader)  # noqa: S506 - a SafeLoader subclass
-
-
-def _lines(node: yaml.Node | None, loc: Loc, out: dict[Loc, int]) -> None:
-    """Line (1-based) of every YAML path below ``node``."""
-    if node is None:
-        return
-    out.setdefault(loc, node.start_mark.line + 1)
-    if isinstance(node, yaml.MappingNode):
-        for key, value in node.value:
-            out.setdefault(loc + (str(key.value),), key.start_mark.line + 1)
-            _lines(value, loc + (str(key.value),), out)
-    elif isinstance(node, yaml.SequenceNode):
-        for i, item in enumerate(node.value):
-            _lines(item, loc + (i,), out)
 
 
 _TYPE_KEYS = {
@@ -87,7 +74,8 @@ def parse_mooring_yaml(text: str, source: str) -> tuple[MoorDynFile, list[str]]:
     except yaml.YAMLError as exc:
         raise InterchangeError(f"{source}: not valid YAML: {exc}") from None
     lines_at: dict[Loc, int] = {}
-    _lines(node, (), lines_at)
+    if node is not None:
+        line_map(node, (), lines_at)
     prefix: tuple[str | int, ...] = (
         ("mooring",) if isinstance(data, dict) and "mooring" in data else ()
     )

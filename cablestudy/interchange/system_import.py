@@ -35,7 +35,7 @@ from typing import Any
 import numpy as np
 
 from ..statics.system import rotation
-from .mapping import ImportedStudy, _seabed_contact, _segment, environment
+from .mapping import ImportedStudy, _line_type, _seabed_contact, _segment, environment
 from .moordyn_format import InterchangeError, MoorDynFile
 from .moordyn_scope import check_chain, point_of
 
@@ -239,18 +239,8 @@ def moordyn_system_to_study(
     study_lines: dict[str, Any] = {}
     segments: list[dict[str, Any]] = []
     for ln in lines:
-        lt = md.line_types.get(ln.line_type)
-        if lt is None:
-            raise InterchangeError(
-                f"{src}:{ln.source_line}: line {ln.id} uses line type {ln.line_type!r}, which "
-                f"the file does not define; defined: {', '.join(md.line_types) or 'none'}"
-            )
+        lt = _line_type(md, ln)
         seg = _segment(md, lt, ln, warnings)
-        if ln.outputs not in ("-", ""):
-            warnings.append(
-                f"{src}:{ln.source_line}: line {ln.id} outputs {ln.outputs!r} not used "
-                "(cablestudy writes every output)"
-            )
         lname = str(ln.id)
         study_lines[lname] = {
             "a": _point_name(point_of(md, ln.attach_a).id),  # type: ignore[union-attr]

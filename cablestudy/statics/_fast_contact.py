@@ -22,7 +22,7 @@ import math
 
 import numpy as np
 
-from ._fast import _piece, _piece_general, njit
+from ._fast import _gauss, _piece, _piece_general, njit
 
 # statuses of :func:`contact_cases` and why each hands a case on: in a module without
 # numba, so that callers of the kernel compiled ahead of time read them without it
@@ -214,26 +214,7 @@ def _newton_step(J: np.ndarray, R: np.ndarray, A: np.ndarray, step: np.ndarray) 
         for j in range(3):
             A[i, j] = J[i, j]
         A[i, 3] = -R[i]
-    for c in range(3):
-        piv = c
-        for i in range(c + 1, 3):
-            if abs(A[i, c]) > abs(A[piv, c]):
-                piv = i
-        if A[piv, c] == 0.0 or not math.isfinite(A[piv, c]):
-            return False
-        if piv != c:
-            for j in range(4):
-                A[c, j], A[piv, j] = A[piv, j], A[c, j]
-        for i in range(c + 1, 3):
-            f = A[i, c] / A[c, c]
-            for j in range(c, 4):
-                A[i, j] -= f * A[c, j]
-    for i in range(2, -1, -1):
-        acc = A[i, 3]
-        for j in range(i + 1, 3):
-            acc -= A[i, j] * step[j]
-        step[i] = acc / A[i, i]
-    return True
+    return _gauss(A, 3, step)
 
 
 @njit(cache=True, error_model="numpy")

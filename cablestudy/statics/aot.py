@@ -139,8 +139,3 @@ def kernel(name: str) -> Callable[..., Any]:
         return getattr(module, name)  # type: ignore[no-any-return]
     jitted = importlib.import_module(f"{__package__}.{KERNELS[name][0]}")
     return getattr(jitted, name)  # type: ignore[no-any-return]
-
-
-def free_hanging_kernel() -> Callable[..., Any]:
-    """:func:`._fast.solve_cases`, as :func:`kernel` finds it."""
-    return kernel("solve_cases")

@@ -132,6 +132,15 @@ class Medium:
     def has_current(self) -> bool:
         return bool(self.current_velocity.size) and bool(np.any(self.current_velocity != 0.0))
 
+    def drags(self, line: LineModel) -> bool:
+        """Whether a current here loads ``line`` with drag (a current in a fluid with
+        density, on a segment with a drag area)."""
+        return (
+            self.has_current
+            and self.density > 0.0
+            and bool(np.any(line.diameter * (line.drag_normal + line.drag_tangential) > 0.0))
+        )
+
     def seabed_z(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
         """Height of the seabed under (x, y) [m] (-inf where there is no seabed)."""
         if self.depth is None:

@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from .base import STATUS_OK, StaticProblem, StaticResult
-from .seabed import Plane
+from .seabed import Plane, seabed_of
 from .semi_analytic_shape import make_layout, reversed_line
 from .verify import Pieces, check_lines, verified
 
@@ -36,14 +36,10 @@ def batchable(problem: StaticProblem) -> bool:
     line = problem.line
     if problem.end_a.kind != "fixed" or line.is_nonlinear:
         return False
-    if (
-        med.has_current
-        and med.density > 0.0
-        and bool(np.any(line.diameter * (line.drag_normal + line.drag_tangential) > 0.0))
-    ):
+    if med.drags(line):
         return False
-    if med.depth is not None:
-        plane = Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
+    plane = seabed_of(med)
+    if plane is not None:
         assert problem.end_a.position is not None
         if float(plane.height_above(problem.end_a.position)) <= 1e-6 * line.total_length:
             return False
@@ -54,13 +50,6 @@ def batchable(problem: StaticProblem) -> bool:
     return True
 
 
-def _plane(problem: StaticProblem) -> Plane | None:
-    med = problem.medium
-    if med.depth is None:
-        return None
-    return Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
-
-
 def contact_end(problem: StaticProblem) -> str | None:
     """The end (``"a"`` or ``"b"``) anchored on the seabed when ``problem`` can take the
     compiled seabed-contact kernel (:mod:`._fast_contact`), else None: still water (or
@@ -69,11 +58,11 @@ def contact_end(problem: StaticProblem) -> str | None:
     mooring or towed end (a known force). The same decisions as
     :meth:`.semi_analytic.SemiAnalyticSolver._solve`, which describes a line anchored at
     B from B (the reversed line)."""
-    plane = _plane(problem)
+    plane = seabed_of(problem.medium)
     line = problem.line
     if plane is None or problem.end_a.kind != "fixed":
         return None
-    if line.is_nonlinear or _has_drag(problem):
+    if line.is_nonlinear or problem.medium.drags(line):
         return None
     assert problem.end_a.position is not None
     limit = 1e-6 * line.total_length
@@ -94,15 +83,6 @@ def contact_end(problem: StaticProblem) -> str | None:
 def contact_eligible(problem: StaticProblem) -> bool:
     """Whether ``problem`` can take the compiled seabed-contact kernel (:func:`contact_end`)."""
     return contact_end(problem) is not None
-
-
-def _has_drag(problem: StaticProblem) -> bool:
-    med, line = problem.medium, problem.line
-    return (
-        med.has_current
-        and med.density > 0.0
-        and bool(np.any(line.diameter * (line.drag_normal + line.drag_tangential) > 0.0))
-    )
 
 
 def solve_contact_arrays(
@@ -319,7 +299,7 @@ def _contact_inputs(problem: StaticProblem) -> dict:
         if kind == 1:
             force[0, 2] = 0.0
             target[0, 2] = float(top.z)
-    plane = _plane(problem)
+    plane = seabed_of(problem.medium)
     assert plane is not None
     L = bounds[:, -1]
     s = np.linspace(np.zeros(1), L, problem.n_nodes, axis=1)
@@ -575,13 +555,11 @@ def _solve_group(
             iterations=iters_l[i],
             residual=resid_l[i],
         )
-        if prob.medium.depth is not None:
-            med = prob.medium
-            plane = Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
-            if np.any(plane.height_above(res.position) < -1e-6 * Ltot[i]):
-                why[i] = ON_SEABED
-                out.append(None)  # touches the seabed: the one-by-one solver decides
-                continue
+        plane = seabed_of(prob.medium)
+        if plane is not None and np.any(plane.height_above(res.position) < -1e-6 * Ltot[i]):
+            why[i] = ON_SEABED
+            out.append(None)  # touches the seabed: the one-by-one solver decides
+            continue
         out.append(res)
     return out
 

@@ -49,6 +49,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from ..physics.contact import default_seabed_stiffness
 from .base import (
     STATUS_NOT_CONVERGED,
     STATUS_NOT_VERIFIED,
@@ -78,7 +79,6 @@ class DiscreteSolver:
     def solve(self, problem: StaticProblem, *, deadline: float | None = None) -> StaticResult:
         from ..dynamics.discrete_line import (
             DynamicExtras,
-            default_seabed_stiffness,
             discretise_nodes,
             uniform_nodes,
         )
@@ -108,7 +108,7 @@ class DiscreteSolver:
             stiffness = (
                 problem.seabed_stiffness
                 if problem.seabed_stiffness is not None
-                else default_seabed_stiffness(line)
+                else default_seabed_stiffness(line.weight)
             )
         extras = DynamicExtras(
             attachment_drag_area=line.attachment_drag_area,

@@ -57,31 +57,6 @@ class DiscreteState:
     mixed: bool
 
 
-def _blocks(rows: np.ndarray, cols: np.ndarray, blocks: np.ndarray) -> tuple:
-    """COO triplets of 3 x 3 ``blocks`` (k, 3, 3) at node rows and columns (k,)."""
-    a = np.arange(3)
-    r = 3 * rows[:, None, None] + a[None, :, None]
-    c = 3 * cols[:, None, None] + a[None, None, :]
-    r, c = np.broadcast_arrays(r, c)
-    return r.ravel(), c.ravel(), blocks.ravel()
-
-
-def _band_triplets(work: Any, n: int, bending: bool) -> list[tuple]:
-    """The model's block-band tangent (diagonal, first and, with bending, second
-    off-diagonal blocks, symmetric in position) as COO triplets."""
-    i, j = np.arange(n), np.arange(n - 1)
-    out = [
-        _blocks(i, i, work.K_d),
-        _blocks(j, j + 1, work.K_o),
-        _blocks(j + 1, j, np.transpose(work.K_o, (0, 2, 1))),
-    ]
-    if bending and n > 2:
-        k = np.arange(n - 2)
-        out.append(_blocks(k, k + 2, work.K_o2))
-        out.append(_blocks(k + 2, k, np.transpose(work.K_o2, (0, 2, 1))))
-    return out
-
-
 def _turning(r: np.ndarray, u: np.ndarray, length: np.ndarray) -> np.ndarray:
     """sum_a r_a d^2 u_a / d d^2 (k, 3, 3) of unit vectors u = d / |d| (k, 3) of lengths
     (k,): -(r u^T + u r^T + (r . u) I - 3 (r . u) u u^T) / |d|^2."""
@@ -99,6 +74,8 @@ def _bending_curvature_triplets(line: Any, x: np.ndarray) -> list[tuple]:
     between its elements' directions, or u_e - d at a clamped end): kb sum_a r_a
     d^2 r_a, on the two nodes of each element whose direction r holds, with the
     element's pattern [[H, -H], [-H, H]] in its chord."""
+    from ..dynamics.mixed import block_triplets
+
     d = np.diff(x, axis=0)
     length = np.linalg.norm(d, axis=1)
     u = d / length[:, None]
@@ -120,10 +97,10 @@ def _bending_curvature_triplets(line: Any, x: np.ndarray) -> list[tuple]:
     e = np.concatenate(elem)
     H = np.concatenate(weight)[:, None, None] * _turning(np.concatenate(r), u[e], length[e])
     return [
-        _blocks(e, e, H),
-        _blocks(e + 1, e + 1, H),
-        _blocks(e, e + 1, -H),
-        _blocks(e + 1, e, -H),
+        block_triplets(e, e, H),
+        block_triplets(e + 1, e + 1, H),
+        block_triplets(e, e + 1, -H),
+        block_triplets(e + 1, e, -H),
     ]
 
 
@@ -134,7 +111,13 @@ def discrete_jacobian(state: DiscreteState) -> Any:
     sparse matrix; scipy is imported here, not with the solvers)."""
     import scipy.sparse as sp
 
-    from ..dynamics.mixed import SLACK_WEIGHT, axial_forces, other_forces_line
+    from ..dynamics.mixed import (
+        SLACK_WEIGHT,
+        axial_forces,
+        band_triplets,
+        mixed_triplets,
+        other_forces_line,
+    )
     from ..dynamics.model import Workspace, _trial_states, evaluate
 
     line, x = state.line, np.asarray(state.position, dtype=float)
@@ -146,22 +129,12 @@ def discrete_jacobian(state: DiscreteState) -> Any:
         # the stick/slip states of the converged state (as its Newton last set them)
         _trial_states(work.slip_state, work.trial, work.contact, line.friction)
         evaluate(model, x, np.zeros_like(x), work, anchor=state.anchor)
-    parts = _band_triplets(work, n, line.has_bending)
+    parts = band_triplets(work, n, line.has_bending)
     if line.has_bending:
         parts.extend(_bending_curvature_triplets(line, x))
     if state.mixed:
         t = np.asarray(state.tension, dtype=float)
         _, u, length = axial_forces(x, t)
-        e = np.arange(m)
-        # the tension's geometric stiffness T / l (I - u u) on the element's four blocks
-        geo = (t / length)[:, None, None] * (np.eye(3)[None] - u[:, :, None] * u[:, None, :])
-        for r_, c_, sign in ((e, e, 1.0), (e + 1, e + 1, 1.0), (e, e + 1, -1.0), (e + 1, e, -1.0)):
-            parts.append(_blocks(r_, c_, sign * geo))
-        a = np.arange(3)
-        col_t = 3 * n + e
-        # d(node force) / d T_e: +u at node e + 1, -u at node e (the model's sign)
-        for node, sign in ((e + 1, 1.0), (e, -1.0)):
-            parts.append(((3 * node[:, None] + a).ravel(), np.repeat(col_t, 3), (sign * u).ravel()))
         # element law c T = max(g, 0), g = l / l0 - 1: taut rows c T - g, slack rows T
         l0 = line.rest_length
         c = 1.0 / np.asarray(line.axial_stiffness, dtype=float)
@@ -169,14 +142,8 @@ def discrete_jacobian(state: DiscreteState) -> Any:
         # weight): a slack element's row is T = 0
         g = length / l0 - 1.0
         taut = (c * t - g <= SLACK_WEIGHT * c * t) & ~np.asarray(line.broken, dtype=bool)
-        for node, sign in ((e + 1, -1.0), (e, 1.0)):
-            parts.append(
-                (
-                    np.repeat(col_t[taut], 3),
-                    (3 * node[taut][:, None] + a).ravel(),
-                    (sign * u[taut] / l0[taut][:, None]).ravel(),
-                )
-            )
+        parts += mixed_triplets(t, u, length, l0, taut, n)
+        col_t = 3 * n + np.arange(m)
         parts.append((col_t, col_t, np.where(taut, c, 1.0)))
     size = 3 * n + (m if state.mixed else 0)
     R = np.concatenate([p[0] for p in parts])

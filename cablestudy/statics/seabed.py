@@ -59,6 +59,14 @@ class Plane:
         return (r - np.array([0.0, 0.0, -self.depth])) @ self.normal
 
 
+def seabed_of(medium: Any) -> Plane | None:
+    """The seabed plane of a medium (:class:`.base.Medium`: its depth, slope, heading and
+    friction; None without a seabed)."""
+    if medium.depth is None:
+        return None
+    return Plane(medium.depth, medium.seabed_slope, medium.seabed_heading, medium.friction)
+
+
 def _law_stretch(law: Any, t_lo: float, t_hi: float, length: float) -> tuple[float, float]:
     """(int e(T) ds, int de/dT ds) [m], [m/N] over ``length`` [m] of a laid piece whose
     tension runs linearly from t_lo to t_hi [N]: exact through the law's complementary

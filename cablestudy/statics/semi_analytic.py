@@ -46,7 +46,7 @@ from .base import (
     StaticResult,
 )
 from .line_state import CatenaryState
-from .seabed import Plane
+from .seabed import Plane, seabed_of
 from .semi_analytic_newton import initial_contact, initial_tension, solve_contact, solve_free
 from .semi_analytic_shape import (
     _DIRECTION_ONLY,
@@ -247,9 +247,7 @@ class SemiAnalyticSolver:
         line = problem.line
         L = line.total_length
         medium = problem.medium
-        plane = None
-        if medium.depth is not None:
-            plane = Plane(medium.depth, medium.seabed_slope, medium.seabed_heading, medium.friction)
+        plane = seabed_of(medium)
         reverse = a.kind != "fixed"
         if a.kind == "fixed" and b.kind == "fixed" and plane is not None:
             assert a.position is not None and b.position is not None
@@ -284,11 +282,7 @@ class SemiAnalyticSolver:
             assert ends.rB is not None
             if float(plane.height_above(ends.rB)) <= 1e-6 * L:
                 return _laid_between(line, ends, s_eval, s, reverse)
-        has_current = (
-            medium.has_current
-            and medium.density > 0.0
-            and bool(np.any(line.diameter * (line.drag_normal + line.drag_tangential) > 0.0))
-        )
+        has_current = medium.drags(line)
         n_el = 0
         if has_current:
             n_el = (

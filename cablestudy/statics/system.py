@@ -49,7 +49,7 @@ from .base import (
 )
 from .law_pieces import piece_increments
 from .line_state import CatenaryState, DiscreteState, discrete_end_stiffness
-from .seabed import Plane
+from .seabed import seabed_of
 from .semi_analytic_shape import _laid, _offsets, _suspended, make_layout, reversed_line
 from .system_model import (
     BODY,
@@ -95,13 +95,6 @@ def _skew(v: np.ndarray) -> np.ndarray:
 # --------------------------------------------------------------------------- one line
 
 
-def _plane(problem: StaticProblem) -> Plane | None:
-    m = problem.medium
-    if m.depth is None:
-        return None
-    return Plane(m.depth, m.seabed_slope, m.seabed_heading, m.friction)
-
-
 def line_end_stiffness(problem: StaticProblem, result: StaticResult) -> np.ndarray:
     """Exact end stiffness of a solved line with both ends fixed, shape (2, 2, 3, 3):
     ``K[i, j]`` = -d f_i / d r_j for ends i, j in (A, B), f the force of the line on the
@@ -117,7 +110,7 @@ def line_end_stiffness(problem: StaticProblem, result: StaticResult) -> np.ndarr
         return discrete_end_stiffness(result.state)
     line = problem.line
     L = line.total_length
-    plane = _plane(problem)
+    plane = seabed_of(problem.medium)
     ra, rb = problem.end_a.position, problem.end_b.position
     fa, fb = result.force_a, result.force_b
     reverse = False

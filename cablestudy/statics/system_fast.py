@@ -88,12 +88,6 @@ def ineligible(system: MooringSystem, *, prescribed: bool = False) -> str:
             return "current: the compiled kernels solve still water"
         if line.is_nonlinear:
             return f"line {ln.name}: a nonlinear axial law has no compiled kernel"
-        if (
-            med.has_current
-            and med.density > 0.0
-            and bool(np.any(line.diameter * (line.drag_normal + line.drag_tangential) > 0.0))
-        ):
-            return f"line {ln.name}: current with drag has no compiled kernel"
         if getattr(line, "is_spring", False):
             return f"line {ln.name}: a spring line has no compiled kernel"
     return ""

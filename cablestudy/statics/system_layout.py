@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .seabed import Plane
+from .seabed import Plane, seabed_of
 from .semi_analytic import make_layout
 from .system_model import MooringSystem
 
@@ -27,13 +27,6 @@ def line_pieces(line) -> tuple[np.ndarray, ...]:  # noqa: ANN001
         )
     lay = make_layout(line)
     return lay.ell, lay.EA, lay.weight, lay.point, lay.bounds
-
-
-def seabed_plane(system: MooringSystem) -> Plane | None:
-    med = system.lines[0].problem.medium
-    if med.depth is None:
-        return None
-    return Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
 
 
 @dataclass(frozen=True)
@@ -66,7 +59,7 @@ def system_layout(system: MooringSystem) -> Layout:
     if hit is not None and hit[0] is system:
         return hit[1]
     M = len(system.lines)
-    plane = seabed_plane(system)
+    plane = seabed_of(system.lines[0].problem.medium)
     fwd = [line_pieces(ln.problem.line) for ln in system.lines]
     P = np.array([len(f[0]) for f in fwd])
     poff = np.concatenate(([0], np.cumsum(P))).astype(np.int64)

@@ -63,7 +63,7 @@ import numpy as np
 from ..physics.current import current_velocity
 from ..physics.hydro import drag_per_length
 from .base import STATUS_NOT_VERIFIED, STATUS_OK, StaticProblem, StaticResult
-from .seabed import Plane
+from .seabed import Plane, seabed_of
 
 #: allowances are this multiple of the requested tolerance times the load (or length)
 #: scale: a converged solver meets its tolerance on its own residual, which differs from
@@ -500,9 +500,8 @@ def check_one(
                 "m",
             )
     contact = laid = None
-    plane = None
-    if med.depth is not None:
-        plane = Plane(med.depth, med.seabed_slope, med.seabed_heading, med.friction)
+    plane = seabed_of(med)
+    if plane is not None:
         height = plane.height_above(pos[0])
         contact = (height <= CONTACT_GAP * L)[None]
         # on the plane to the round-off of the coordinates

@@ -10,11 +10,18 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-import yaml
 from pydantic import BaseModel, ValidationError
 
 from .base import FieldError
-from .safe_yaml import YamlRefused, compose_and_load, dotted, max_study_bytes, printable, too_large
+from .safe_yaml import (
+    YamlRefused,
+    compose_and_load,
+    dotted,
+    line_map,
+    max_study_bytes,
+    printable,
+    too_large,
+)
 from .study import Study
 
 Loc = tuple[str | int, ...]
@@ -53,21 +60,6 @@ class StudySource:
         return None
 
 
-def _line_map(node: yaml.Node, loc: Loc, out: dict[Loc, int]) -> None:
-    """Line of every YAML path (aliases included: their nodes are counted in the node
-    budget, so this walk is bounded). Duplicate keys were refused while composing."""
-    out.setdefault(loc, node.start_mark.line + 1)
-    if isinstance(node, yaml.MappingNode):
-        for key, value in node.value:
-            sub = loc + (str(key.value),)
-            out[sub] = key.start_mark.line + 1
-            _line_map(value, sub, out)
-    elif isinstance(node, yaml.SequenceNode):
-        for i, item in enumerate(node.value):
-            out[loc + (i,)] = item.start_mark.line + 1
-            _line_map(item, loc + (i,), out)
-
-
 def _byte_size(text: str) -> int:
     return len(text.encode("utf-8", "surrogatepass"))
 
@@ -103,7 +95,7 @@ def parse_study_text(
         )
     lines: dict[Loc, int] = {}
     if node is not None:
-        _line_map(node, (), lines)
+        line_map(node, (), lines)
     bad_keys = [k for k in data if not isinstance(k, str)]
     if bad_keys:
         raise StudyError([f"1: <top>: keys must be text, got {bad_keys!r}"], source)

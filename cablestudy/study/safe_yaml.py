@@ -364,3 +364,20 @@ def compose_and_load(
     finally:
         loader.dispose()
     return node, data
+
+
+def line_map(
+    node: yaml.Node, loc: tuple[str | int, ...], out: dict[tuple[str | int, ...], int]
+) -> None:
+    """Line of every YAML path (aliases included: their nodes are counted in the node
+    budget, so this walk is bounded). Duplicate keys were refused while composing."""
+    out.setdefault(loc, node.start_mark.line + 1)
+    if isinstance(node, yaml.MappingNode):
+        for key, value in node.value:
+            sub = loc + (str(key.value),)
+            out[sub] = key.start_mark.line + 1
+            line_map(value, sub, out)
+    elif isinstance(node, yaml.SequenceNode):
+        for i, item in enumerate(node.value):
+            out[loc + (i,)] = item.start_mark.line + 1
+            line_map(item, loc + (i,), out)

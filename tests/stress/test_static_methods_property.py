@@ -39,7 +39,7 @@ import numpy as np
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from cablestudy.dynamics.discrete_line import default_seabed_stiffness
+from cablestudy.physics.contact import default_seabed_stiffness
 from cablestudy.statics import STATIC_SOLVERS, STATUS_OK, Medium, StaticProblem
 from cablestudy.statics.pieces import piece_integrals
 from cablestudy.statics.verify import check_one
@@ -121,7 +121,7 @@ def _allowed(prob: StaticProblem, cat, method: str) -> tuple[float, float]:  # n
             # short of the arc by h theta^2 / 8 (the same estimate as above, with the
             # turn concentrated). And a laid line is held axially by its laid part, so
             # its end stiffness is up to EA / L, not only the hanging part's.
-            k_seabed = float(default_seabed_stiffness(line))
+            k_seabed = float(default_seabed_stiffness(line.weight))
             delta += abs(w) / k_seabed
             fb = np.asarray(cat.force_b, dtype=float)
             theta = math.atan2(abs(fb[2]), max(float(np.hypot(fb[0], fb[1])), 1e-300))
