@@ -142,7 +142,7 @@ def _unreadable(path: Path, exc: OSError) -> str:
     path first): no line number, as no line of it was read."""
     if isinstance(exc, FileNotFoundError):
         where = path.resolve(strict=False)
-        return f" the study file does not exist (no file at {where})"
+        return f" cannot read the study file: it does not exist (no file at {where})"
     return f" cannot read the study file: {exc.strerror}"
 
 

@@ -53,7 +53,9 @@ def test_missing_study_file_is_named_without_a_line_number(
     extra = ["--out", str(tmp_path / "out")] if command == "run" else []
     assert main([command, str(missing), *extra]) == 2
     err = capsys.readouterr().err
-    assert f"{missing}: the study file does not exist (no file at {missing.resolve()})" in err
+    assert (
+        f"{missing}: cannot read the study file: it does not exist (no file at {missing.resolve()})"
+    ) in err
     assert ":0:" not in err and "line 0" not in err and "Traceback" not in err
     assert not (tmp_path / "out").exists()
 
