@@ -293,3 +293,22 @@ def test_mode_shapes_switched_off_are_absent_or_explained(tmp_path: Path) -> Non
     )
     # the attribute is the registry's, on every variable that gives NaN a meaning
     assert "nan_means" not in swept["natural_frequency"].attrs
+
+
+def test_every_declared_status_variable_is_an_integer() -> None:
+    """The registry behind every analysis's outputs (one line, systems, the database's
+    layouts): each variable that carries the status flags is declared an integer, so
+    that its ``flag_values`` (of the variable's type) are integers in every dataset."""
+    from cablestudy.analyses.variables import CASE_VARIABLES, OUTPUTS, SYSTEM_OUTPUTS
+    from cablestudy.run.conventions import is_status_variable
+
+    registries = {"outputs": OUTPUTS, "system": SYSTEM_OUTPUTS, "case": CASE_VARIABLES}
+    statuses = [
+        (where, name, spec.dtype)
+        for where, registry in registries.items()
+        for name, spec in registry.items()
+        if is_status_variable(name)
+    ]
+    names = {name for _, name, _ in statuses}
+    assert {"status", "static_status", "database_status", "database_radial_status"} <= names
+    assert all(dtype == "int64" for _, _, dtype in statuses), statuses
