@@ -162,7 +162,7 @@ def solve_database(study: Study, deadline: float | None = None) -> dict[str, np.
         "tension_b": np.full(shape, np.nan),
         "tension_max": np.full(shape, np.nan),
         "laid_length": np.full(shape, np.nan),
-        "status": np.zeros(shape),
+        "status": np.zeros(shape, dtype=np.int64),
     }
     for i in range(shape[0]):
         for j in range(shape[1]):

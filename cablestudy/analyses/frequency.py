@@ -218,7 +218,7 @@ def solve_frequency(case: Case, static: StaticResult, deadline: float | None) ->
         return FrequencyOutcome(status=STATUS_NO_SOLUTION, message=why, data={}, distrust=why)
     spectra = [e for e in dyn.excitations if isinstance(e, SpectrumExcitation)]
     if spectra:
-        return irregular(red, spectra[0], dyn, static)
+        return irregular(red, spectra[0], dyn, static, _problem(case))
     return solve_frequency_cases([case], static, red)[0]
 
 
@@ -425,14 +425,25 @@ def rao_motion(dyn: DynamicSettings) -> tuple[np.ndarray, float, complex]:
 
 
 def irregular(
-    red: ReducedLine, spec: SpectrumExcitation, dyn: DynamicSettings, static: StaticResult
+    red: ReducedLine,
+    spec: SpectrumExcitation,
+    dyn: DynamicSettings,
+    static: StaticResult,
+    problem: StaticProblem,
 ) -> FrequencyOutcome:
     """Response to an end-motion spectrum: tension standard deviations, spectra and the
     most probable maxima over ``storm_duration``. With the tension a narrow-band
     Gaussian process its peaks are Rayleigh-distributed, and the most probable largest
     of ``N = duration / T_z`` of them is ``sigma sqrt(2 ln N)`` above the mean, with the
     zero up-crossing period ``T_z = 2 pi sqrt(m0 / m2)`` from the tension spectrum's
-    moments ``m_j = sum_k w_k^j |dT_k|^2 / 2``."""
+    moments ``m_j = sum_k w_k^j |dT_k|^2 / 2``.
+
+    On a seabed (``problem``'s medium) the touchdown point's range over the storm, as the
+    time domain's over its run: the travel estimate of the harmonic case
+    (:func:`cablestudy.analyses.touchdown_range.touchdown_range`) is linear in the
+    tension variation of the element at the touchdown point, so its most probable
+    maximum over the storm is the estimate at that element's most probable maximum
+    tension variation (the same statistic as ``tension_max``)."""
     freqs = np.asarray(spec.line_frequencies)
     amps = np.asarray(spec.line_amplitudes)
     d = np.asarray(spec.direction, dtype=float)
@@ -458,6 +469,7 @@ def irregular(
     sd_end, mpm_end = mpm(np.abs(res.end_tension) ** 2)
     _, mpm_el = mpm(np.abs(res.element_tension) ** 2)
     _, mpm_z = mpm(np.abs(res.displacement[..., 2]) ** 2)
+    _, mpm_xyz = mpm(np.abs(res.displacement) ** 2)
     ex = 0 if spec.end == "a" else 1
     t_end = res.tension_static
     env = tension_along(static.s, red.line.s, mpm_el, mpm_end)
@@ -482,6 +494,8 @@ def irregular(
         # a statistical answer has no transient: steady, as a harmonic one (results guide)
         "steady_converged": np.asarray(1),
     }
+    if problem.medium.depth is not None:  # a seabed to touch (as the harmonic cases)
+        data.update(_touchdown_of_spectrum(red, static, problem, mpm_el, mpm_end, mpm_xyz))
     return FrequencyOutcome(
         status=STATUS_OK,
         message="",
@@ -489,3 +503,39 @@ def irregular(
         distrust="" if res.converged else "drag linearisation not converged",
         drag_converged=res.converged,
     )
+
+
+def _touchdown_of_spectrum(
+    red: ReducedLine,
+    static: StaticResult,
+    problem: StaticProblem,
+    mpm_el: np.ndarray,
+    mpm_end: np.ndarray,
+    mpm_xyz: np.ndarray,
+) -> dict[str, np.ndarray]:
+    """``touchdown_min``, ``touchdown_max`` [m] of a spectrum's response (see
+    :func:`irregular`): the travel measure of ``method: auto``
+    (:func:`cablestudy.dynamics.validity.measures_cases`) at the most probable maxima of
+    the element and end tension variations ``mpm_el`` (n - 1,), ``mpm_end`` (2,) [N]
+    and of the node displacements ``mpm_xyz`` (n, 3) [m], on the nodes the harmonic
+    cases judge laid (:func:`cablestudy.analyses.line_harmonic.line_outputs`)."""
+    from ..dynamics.validity import measures_cases
+    from .touchdown_range import touchdown_range
+
+    line = red.line
+    ground = problem.medium.seabed_z(line.position[:, 0], line.position[:, 1])
+    on_bed = np.abs(line.position[:, 2] - ground) <= 1e-6 * max(float(line.s[-1]), 1.0)
+    _, _, travel = measures_cases(
+        s=line.s,
+        position=line.position,
+        displacement=mpm_xyz[None].astype(complex),
+        element_tension_static=line.tension,
+        element_tension_amplitude=mpm_el[None],
+        end_tension_static=np.linalg.norm(line.end_force, axis=1),
+        end_tension_amplitude=mpm_end[None],
+        laid_length=static.laid_length,
+        on_seabed=on_bed,
+        submerged_weight=submerged_weight(problem.line, line.s),
+    )
+    low, high = touchdown_range(line.s, on_bed, travel)
+    return {"touchdown_min": low[0], "touchdown_max": high[0]}

@@ -139,7 +139,9 @@ def failed_chunk(
     )
 
 
-def _fill(dtype: str) -> Any:
+def _fill(dtype: str, fill: Any = None) -> Any:
+    if fill is not None:  # the output's own (OutputVariable.fill)
+        return fill
     return {"int64": -1, "str": ""}.get(dtype, np.nan)
 
 
@@ -176,7 +178,7 @@ def records_chunk(
             arr = np.full((n, *tail), "", dtype=f"<U{width}")
             values: list[Any] = texts
         else:
-            arr = np.full((n, *tail), _fill(spec.dtype), dtype=spec.dtype)
+            arr = np.full((n, *tail), _fill(spec.dtype, spec.fill), dtype=spec.dtype)
             values = [v for _, v in kept]
         for (i, _), v in zip(kept, values, strict=True):
             arr[(i, *(slice(0, k) for k in np.shape(v)))] = v
@@ -214,7 +216,7 @@ def output_fill(name: str, arr: np.ndarray) -> Any:
     if arr.dtype.kind == "U":
         return ""
     spec = OUTPUTS.get(name) or SYSTEM_OUTPUTS.get(name)
-    return _fill(spec.dtype) if spec is not None else np.nan
+    return _fill(spec.dtype, spec.fill) if spec is not None else np.nan
 
 
 def join_chunks(chunks: Sequence[GridChunk]) -> GridChunk:

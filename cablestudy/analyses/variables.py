@@ -25,6 +25,9 @@ class OutputVariable:
     dtype: str = "float64"
     analysis: str | None = "dynamic"
     nan_means: str = ""
+    #: the value of a case whose analysis failed, or beyond a shorter case's extent,
+    #: where not the dtype's own (NaN, -1 or ''; cablestudy.analyses.grid_chunk)
+    fill: int | None = None
 
 
 #: status of a case whose line broke in statics (cablestudy.statics.base.STATUS_BROKEN):
@@ -105,7 +108,17 @@ OUTPUTS: dict[str, OutputVariable] = {
     "drag_iterations": OutputVariable((), "1", "outer drag iterations of the static solver"),
     # dynamics (cablestudy.dynamics.timedomain): tensions at the excited end over the
     # steady-state window (the envelope of the last periods when steady_converged is 0)
-    "tension_static": OutputVariable((), "N", "static tension at the excited end (dynamic model)"),
+    # one variable for both methods (dynamic_method says which ran): each writes the
+    # static state its motion is about
+    "tension_static": OutputVariable(
+        (),
+        "N",
+        "static tension at the excited end, in the equilibrium the dynamic method's motion "
+        "is about: the time domain's own discretised model at rest (it differs from the "
+        "static solver's by that model's discretisation), the frequency domain's static "
+        "solution, which it linearises about (the static solver's); dynamic_method says "
+        "which ran",
+    ),
     "tension_max": OutputVariable((), "N", "maximum tension at the excited end, steady window"),
     "tension_min": OutputVariable((), "N", "minimum tension at the excited end, steady window"),
     "tension_mean": OutputVariable((), "N", "mean tension at the excited end, steady window"),
@@ -147,13 +160,19 @@ OUTPUTS: dict[str, OutputVariable] = {
     "touchdown_min": OutputVariable(
         (),
         "m",
-        "smallest arc length from end A of the touchdown point over the steady window",
+        "smallest arc length from end A of the touchdown point over the steady window "
+        "(frequency domain: the static point minus the "
+        "catenary estimate of its travel; for a spectrum, the most probable maximum "
+        "travel over storm_duration)",
         nan_means="the line does not touch the seabed over the steady window",
     ),
     "touchdown_max": OutputVariable(
         (),
         "m",
-        "largest arc length from end A of the touchdown point over the steady window",
+        "largest arc length from end A of the touchdown point over the steady window "
+        "(frequency domain: the static point plus the "
+        "catenary estimate of its travel; for a spectrum, the most probable maximum "
+        "travel over storm_duration)",
         nan_means="the line does not touch the seabed over the steady window",
     ),
     "tension_amplitude_a": OutputVariable((), "N", "tension amplitude at end A"),
@@ -259,8 +278,17 @@ DATABASE_QUANTITIES: dict[str, tuple[bool, str, str]] = {
     "tension_b": (False, "N", "tension at B"),
     "tension_max": (False, "N", "largest tension along the line"),
     "laid_length": (False, "m", "unstretched length on the seabed"),
-    "status": (False, "1", "static status per grid point (0 ok)"),
+    "status": (
+        False,
+        "1",
+        "static status per grid point (0 ok; 5 not solved: the case's statics failed, or "
+        "the point lies beyond this case's grid)",
+    ),
 }
+
+#: status of a database point not solved (the case's statics failed, or the point lies
+#: beyond a smaller grid of the sweep): cablestudy.analyses.evaluate.STATUS_NOT_RUN
+_DATABASE_NOT_SOLVED = 5
 
 
 def _database_outputs() -> dict[str, OutputVariable]:
@@ -268,10 +296,15 @@ def _database_outputs() -> dict[str, OutputVariable]:
     out = {}
     for lay in DATABASE_LAYOUTS.values():
         for q, (vector, units, long_name) in DATABASE_QUANTITIES.items():
+            # the per-point status is a code (CF flag_values of the variable's integer
+            # type): an integer variable, "not solved" where a case has no value
+            status = q == "status"
             out[f"{lay.prefix}{q}"] = OutputVariable(
                 lay.dims + (("component",) if vector else ()),
                 units,
                 f"quasi-static database: {long_name}",
+                dtype="int64" if status else "float64",
+                fill=_DATABASE_NOT_SOLVED if status else None,
             )
         for dim, var, (units, long_name) in zip(
             lay.dims, lay.grid_variables, lay.grid_attrs, strict=True
@@ -322,6 +355,11 @@ ANALYSIS_OF: dict[str, str] = {
 OUTPUTS = {k: replace(v, analysis=ANALYSIS_OF.get(k, "dynamic")) for k, v in OUTPUTS.items()}
 OUTPUTS["break_time"] = replace(OUTPUTS["break_time"], nan_means="the line did not part")
 OUTPUTS["break_s"] = replace(OUTPUTS["break_s"], nan_means="the line did not part")
+# a sweep may switch the mode shapes off in some cases (analysis.modal.mode_shapes)
+OUTPUTS["mode_shape"] = replace(
+    OUTPUTS["mode_shape"],
+    nan_means="the case's analysis.modal.mode_shapes is false: its mode shapes were not written",
+)
 OUTPUTS.update(
     {
         f"{name}_status": OutputVariable(

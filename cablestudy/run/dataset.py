@@ -356,11 +356,10 @@ def grid_variables(
             value = value.astype(object)  # text as str, "" where missing
         for d, n in zip(spec.dims, np.shape(value)[len(shape) :], strict=True):
             extent[d] = max(extent.get(d, 0), n)
-        data_vars[name] = (
-            dims + spec.dims,
-            value,
-            {"units": spec.units, "long_name": spec.long_name},
-        )
+        var_attrs = {"units": spec.units, "long_name": spec.long_name}
+        if spec.nan_means:  # what a NaN of a case whose analysis succeeded means
+            var_attrs["nan_means"] = spec.nan_means
+        data_vars[name] = (dims + spec.dims, value, var_attrs)
     coords = sweep_coordinates(axes)
     shared = [("transfer_frequency", "frequency")] + [
         (g, d)

@@ -129,6 +129,15 @@ def _open_without_waiting(path: Path) -> Any:
         raise
 
 
+def _unreadable(path: Path, exc: OSError) -> str:
+    """Why the study file ``path`` cannot be read, for :class:`StudyError` (which puts the
+    path first): no line number, as no line of it was read."""
+    if isinstance(exc, FileNotFoundError):
+        where = path.resolve(strict=False)
+        return f" cannot read the study file: it does not exist (no file at {where})"
+    return f" cannot read the study file: {exc.strerror}"
+
+
 def read_study_source(path: str | Path, *, max_bytes: int | None = None) -> StudySource:
     """Read a study file (UTF-8 YAML) keeping line numbers; a file over ``max_bytes``
     [bytes] (default: the configured study size limit) is refused before it is read in
@@ -145,7 +154,7 @@ def read_study_source(path: str | Path, *, max_bytes: int | None = None) -> Stud
                 size = path.stat().st_size
                 raise StudyError([too_large(size, limit, exact=size > limit)], str(path))
     except OSError as exc:
-        raise StudyError([f"0: cannot read the study file: {exc.strerror}"], str(path)) from None
+        raise StudyError([_unreadable(path, exc)], str(path)) from None
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as exc:
