@@ -15,6 +15,7 @@ from .elliptic_fit import still_water_means
 from .frequency_model import (
     FIT_REGULARISATION,
     is_planar,
+    lean_jacobian,
     planar_drag_fit,
     still_water,
 )
@@ -40,6 +41,7 @@ def drag_fit_samples(  # noqa: PLR0913
     F1,
     F2,
     kind,
+    lean,
     out,
 ):  # noqa: ANN001, ANN201, PLR0913
     """:func:`cablestudy.dynamics.frequency_model._drag_fit` with ``cos``, ``sin`` (samples,)
@@ -51,7 +53,15 @@ def drag_fit_samples(  # noqa: PLR0913
     with ``exact`` (and no body: ``c_b`` (n,) zero) it takes
     :func:`~cablestudy.dynamics.frequency_model.planar_drag_fit`, and with ``exact`` any
     other node without current the exact period means
-    (:func:`.elliptic_fit.still_water_means`), as ``_drag_fit`` does."""
+    (:func:`.elliptic_fit.still_water_means`), as ``_drag_fit`` does, leaning on their
+    mean Jacobian ``J = <df/dw>`` (written into the work array ``lean`` (n, 3, 3)), not
+    on ``tangent_d``: without current the small-motion tangent is zero, and a node
+    moving along a line (or a thin ellipse: ``G`` nearly singular) then got no drag,
+    or an ill-determined one, across its motion, which made the drag iteration of a
+    3-D line circle without settling (a laid or hanging line surged out of its plane:
+    about one case in five of a frequency x amplitude x direction sweep stopped at the
+    iteration limit); ``J``, the drag's response to a small motion across, is what the
+    system's fit leans on (:mod:`.system_fd_fit`)."""
     n = current.shape[0]
     samples = cos.shape[0]
     for i in range(n):
@@ -61,7 +71,7 @@ def drag_fit_samples(  # noqa: PLR0913
             continue
         if exact and still_water(current, i):
             kind[i] = 2
-            g, h, _ = still_water_means(
+            g, h, j = still_water_means(
                 vr[i, 0],
                 vr[i, 1],
                 vr[i, 2],
@@ -75,7 +85,10 @@ def drag_fit_samples(  # noqa: PLR0913
                 c_t[i],
                 c_b[i],
             )
-            fit_from_sums(g, h, 1, tangent_d, i, out)
+            # the lean of the fit: the mean Jacobian J (what the small-motion tangent,
+            # zero without current, misses; see the docstring)
+            lean_jacobian(j, lean, i)
+            fit_from_sums(g, h, 1, lean, i, out)
             continue
         t0, t1, t2 = tangent[i, 0], tangent[i, 1], tangent[i, 2]
         cn, ct, cb = c_n[i], c_t[i], c_b[i]
@@ -181,7 +194,8 @@ def fit_from_sums(g, h, samples, lean, i, out):  # noqa: ANN001, ANN201, PLR0913
     phases: ``g`` of ``w w^T`` (entries 00, 01, 02, 11, 12, 22) and ``h`` of ``(f -
     f_mean) w^T`` (row by row, 00 .. 22), ``w`` the relative velocity and ``f`` the drag.
     The least-squares fit ``D G = H`` (``G``, ``H`` the means) is regularised towards
-    ``lean[i]``, the small-motion tangent: ``D (G + eps I) = H + eps lean[i]`` with
+    ``lean[i]`` (the small-motion tangent, or the mean Jacobian where the caller has it
+    in closed form): ``D (G + eps I) = H + eps lean[i]`` with
     ``eps`` :data:`.frequency_model.FIT_REGULARISATION` times the trace of ``G``, and
     solved by cofactors (``G`` symmetric positive definite); a node at rest (zero
     trace) takes ``lean[i]``. Shared by the single line's fit (:func:`drag_fit_samples`)
@@ -190,7 +204,7 @@ def fit_from_sums(g, h, samples, lean, i, out):  # noqa: ANN001, ANN201, PLR0913
     g00, g01, g02, g11, g12, g22 = g
     h00, h01, h02, h10, h11, h12, h20, h21, h22 = h
     trace = (g00 + g11 + g22) / samples
-    if not trace > 0.0:  # a node at rest: the small-motion tangent
+    if not trace > 0.0:  # a node at rest: the lean
         for a in range(3):
             for b in range(3):
                 out[i, a, b] = lean[i, a, b]
@@ -504,6 +518,7 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
     F1 = np.empty((n, samples))
     F2 = np.empty((n, samples))
     kind = np.empty(n, dtype=np.int64)
+    lean = np.empty((n, 3, 3))
     # the columns of B^T K, B^T C and B^T M at the six end coordinates (their non-zero
     # rows), from the sparse rows: y = A e_d, then B^T y
     nz_ptr = np.zeros(7, dtype=np.int64)
@@ -590,6 +605,7 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                 F1,
                 F2,
                 kind,
+                lean,
                 D,
             )
             mix_state[0] = 0
@@ -676,6 +692,7 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                     F1,
                     F2,
                     kind,
+                    lean,
                     G,
                 )
                 _mixed(D, G, hist_R, hist_G, gram, mix_state, change, last)
