@@ -299,21 +299,6 @@ def planar_drag_fit(vr, vi, t, u, c_n, c_t, tangent_d, i, out):  # noqa: ANN001,
     out[i, 1, 2] = 0.0
 
 
-@njit(cache=True, inline="always")
-def lean_jacobian(j, lean, i):  # noqa: ANN001, ANN201
-    """``lean[i]`` (n, 3, 3) the symmetric 3x3 matrix of the entries ``j`` (00, 01, 02, 11,
-    12, 22): the mean Jacobian of :func:`.elliptic_fit.still_water_means`."""
-    lean[i, 0, 0] = j[0]
-    lean[i, 0, 1] = j[1]
-    lean[i, 0, 2] = j[2]
-    lean[i, 1, 0] = j[1]
-    lean[i, 1, 1] = j[3]
-    lean[i, 1, 2] = j[4]
-    lean[i, 2, 0] = j[2]
-    lean[i, 2, 1] = j[4]
-    lean[i, 2, 2] = j[5]
-
-
 #: the place of entry (a, b) of a symmetric 3 x 3 matrix in its entries 00, 01, 02, 11,
 #: 12, 22
 _SYM = ((0, 1, 2), (1, 3, 4), (2, 4, 5))
@@ -340,13 +325,12 @@ def _drag_fit(  # noqa: PLR0913
     f = np.empty((samples, 3))
     G = np.empty((3, 3))
     H = np.empty((3, 3))
-    lean = np.empty((n, 3, 3))
     for i in range(n):
         if exact and c_b[i] == 0.0 and is_planar(velocity_re, velocity_im, tangent, current, i):
             planar_drag_fit(velocity_re, velocity_im, tangent, current, c_n, c_t, tangent_d, i, out)
             continue
         if exact and still_water(current, i):
-            g, h, j = still_water_means(
+            g, h, _ = still_water_means(
                 velocity_re[i, 0],
                 velocity_re[i, 1],
                 velocity_re[i, 2],
@@ -364,9 +348,7 @@ def _drag_fit(  # noqa: PLR0913
                 for b in range(3):
                     G[a, b] = g[_SYM[a][b]]
                     H[a, b] = h[3 * a + b]
-            # leaning on the mean Jacobian (harmonic_kernel.drag_fit_samples says why)
-            lean_jacobian(j, lean, i)
-            _regularised_fit(G, H, 1, lean, i, Gi, out)
+            _regularised_fit(G, H, 1, tangent_d, i, Gi, out)
             continue
         fm0 = fm1 = fm2 = 0.0
         for k in range(samples):

@@ -11,11 +11,11 @@ import math
 import numpy as np
 from numba import njit
 
+from .drag_lean import lean_from_entries, sampled_lean
 from .elliptic_fit import still_water_means
 from .frequency_model import (
     FIT_REGULARISATION,
     is_planar,
-    lean_jacobian,
     planar_drag_fit,
     still_water,
 )
@@ -44,24 +44,22 @@ def drag_fit_samples(  # noqa: PLR0913
     lean,
     out,
 ):  # noqa: ANN001, ANN201, PLR0913
-    """:func:`cablestudy.dynamics.frequency_model._drag_fit` with ``cos``, ``sin`` (samples,)
-    given and the same operations in the same order, laid out for the compiler: the
-    drag at every node and phase first, in a loop without running sums (which it can
-    vectorise), then the sums over the phases node by node; ``W0`` .. ``F2`` (n,
-    samples) and ``kind`` (n,) int are work arrays. A node whose motion, tangent and
-    current have no y component skips the y terms (zeros: the values are the same);
-    with ``exact`` (and no body: ``c_b`` (n,) zero) it takes
-    :func:`~cablestudy.dynamics.frequency_model.planar_drag_fit`, and with ``exact`` any
-    other node without current the exact period means
-    (:func:`.elliptic_fit.still_water_means`), as ``_drag_fit`` does, leaning on their
-    mean Jacobian ``J = <df/dw>`` (written into the work array ``lean`` (n, 3, 3)), not
-    on ``tangent_d``: without current the small-motion tangent is zero, and a node
-    moving along a line (or a thin ellipse: ``G`` nearly singular) then got no drag,
-    or an ill-determined one, across its motion, which made the drag iteration of a
-    3-D line circle without settling (a laid or hanging line surged out of its plane:
-    about one case in five of a frequency x amplitude x direction sweep stopped at the
-    iteration limit); ``J``, the drag's response to a small motion across, is what the
-    system's fit leans on (:mod:`.system_fd_fit`)."""
+    """:func:`cablestudy.dynamics.frequency_model._drag_fit` given the lean (the mean
+    Jacobian, :mod:`.drag_lean`: ``drag_linearisation(line, v, samples, J, exact)``)
+    with ``cos``, ``sin`` (samples,) given and the same operations in the same order,
+    laid out for the compiler: the drag at every node and phase first, in a loop
+    without running sums (which it can vectorise), then the sums over the phases node
+    by node; ``W0`` .. ``F2`` (n, samples), ``kind`` (n,) int and ``lean`` (n, 3, 3)
+    are work arrays. A node whose motion, tangent and current have no y component
+    skips the y terms (zeros: the values are the same); with ``exact`` (and no body:
+    ``c_b`` (n,) zero) it takes
+    :func:`~cablestudy.dynamics.frequency_model.planar_drag_fit` (whose y row, decoupled
+    from the plane, keeps the tangent ``tangent_d``), and with ``exact`` any other node
+    without current the exact period means (:func:`.elliptic_fit.still_water_means`),
+    as ``_drag_fit`` does. Every fit but the planar one leans on the node's mean
+    Jacobian over its motion (:mod:`.drag_lean` says why: not the small-motion tangent,
+    zero without current, with which a 3-D line's drag iteration circled), exact with
+    the still-water means, over the phases with the sums."""
     n = current.shape[0]
     samples = cos.shape[0]
     for i in range(n):
@@ -87,7 +85,7 @@ def drag_fit_samples(  # noqa: PLR0913
             )
             # the lean of the fit: the mean Jacobian J (what the small-motion tangent,
             # zero without current, misses; see the docstring)
-            lean_jacobian(j, lean, i)
+            lean_from_entries(j, lean, i)
             fit_from_sums(g, h, 1, lean, i, out)
             continue
         t0, t1, t2 = tangent[i, 0], tangent[i, 1], tangent[i, 2]
@@ -178,11 +176,12 @@ def drag_fit_samples(  # noqa: PLR0913
                 h20 += f2 * w0
                 h21 += f2 * w1
                 h22 += f2 * w2
+        sampled_lean(W0, W1, W2, kind[i] == 1, current, tangent, c_n, c_t, c_b, i, lean)
         fit_from_sums(
             (g00, g01, g02, g11, g12, g22),
             (h00, h01, h02, h10, h11, h12, h20, h21, h22),
             samples,
-            tangent_d,
+            lean,
             i,
             out,
         )
