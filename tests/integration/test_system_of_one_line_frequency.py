@@ -406,13 +406,13 @@ def test_a_system_of_two_lines_keeps_the_system_solve(
 ) -> None:
     """Two lines (two anchors, one ship, no free point) are not one line: the system's
     own solve answers (the one-line path is never called), each line within the
-    system solve's bound of its one-line study. Bound: the system's drag fit leans,
-    where a node hardly moves, towards the drag's Jacobian averaged over the motion,
-    the single line's towards the tangent at the mean flow (weight FIT_REGULARISATION
-    1e-6 of the velocity covariance, dynamics/frequency_model.py), and the two
-    iterations (Anderson depth 1 and 3) stop at different iterates within the
-    tolerance 1e-6 of the velocities: measured 2.3e-7 (laid) and 1.7e-6 (hanging) of
-    the tension amplitude on one line; 1e-5 is about 4 times the sum."""
+    system solve's bound of its one-line study. Bound: both drag fits lean, where a
+    node hardly moves, on the drag's Jacobian averaged over the motion
+    (dynamics/drag_lean.py), and the two iterations (Anderson depth 1 and 3) stop at
+    different iterates within the tolerance 1e-6 of the velocities, which the step to
+    tension amplitudes may amplify a few times: measured 4.7e-8 of the tension
+    amplitude (1.7e-6 while the single line leaned on the small-motion tangent);
+    bound 1e-5."""
     import cablestudy.analyses.system_one_line as one_line
 
     def refuse(*args: Any) -> Any:
