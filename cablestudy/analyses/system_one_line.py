@@ -17,14 +17,15 @@ are the equivalent one-line study's to the bit. The bodies' force comes from the
 line's end force (:func:`~cablestudy.dynamics.system_frequency_sweep.body_forces`, as
 for any system).
 
-Where the single line's drag iteration does not settle (it records such a case with
-``linearisation_converged`` 0 and status 0; a system has no such output and its
-status 0 means a converged answer) or its dynamic matrix is singular, the case is
-solved by the system's own iteration (:mod:`cablestudy.dynamics.system_frequency`,
-Anderson depth 3: it settles, for instance, the 3-D line laid on the seabed surged at
-0.2 Hz in 11 iterations where the single line's stops at 100 with a change of 0.1),
-its answer put through the same outputs; a case neither settles is failed with the
-system's status and message. Only there the two studies differ. ``method: auto``
+The single line's drag iteration settles these lines: its fit leans, where a node
+hardly moves, on the drag's mean Jacobian, as the system's does
+(:mod:`cablestudy.dynamics.drag_lean`; leaning on the small-motion tangent it circled
+on 3-D lines, which a system of one line then answered by the system's own
+iteration). Where the two studies' conventions differ this keeps the system's: a drag
+linearisation that does not converge is a failed case (status
+:data:`~cablestudy.dynamics.frequency_model.STATUS_NOT_CONVERGED`, NaN, message), as
+in every system (a one-line study records it with ``linearisation_converged`` 0, an
+output a system does not have), a singular dynamic matrix too; ``method: auto``
 judges the line by the system's checks (:mod:`cablestudy.dynamics.system_validity`).
 """
 
@@ -36,11 +37,11 @@ from typing import Any
 
 import numpy as np
 
-from ..dynamics.frequency_model import DragSettings, ReducedLine
-from ..dynamics.harmonic_cases import HarmonicCases, solve_harmonic_cases
+from ..dynamics.frequency_model import STATUS_NOT_CONVERGED, DragSettings, ReducedLine
+from ..dynamics.harmonic_cases import solve_harmonic_cases
 from ..dynamics.system_frequency import SystemFrequencyResult, SystemLinear, prescribed_motion
-from ..dynamics.system_frequency_sweep import body_forces, solve_system_sweep_arrays
-from ..statics import STATUS_OK
+from ..dynamics.system_frequency_sweep import body_forces
+from ..statics import STATUS_NUMERICAL
 from ..statics.system_model import FREE
 from .line_harmonic import line_outputs
 
@@ -88,44 +89,6 @@ def solve_one_line_group(
     return out
 
 
-def _system_solve(
-    res: HarmonicCases,
-    omegas: np.ndarray,
-    motions: list[tuple[np.ndarray, np.ndarray, float]],
-    model: SystemLinear,
-    settings: DragSettings,
-) -> dict[int, tuple[int, str]]:
-    """The cases of ``res`` whose single-line solve failed or did not converge solved
-    by the system's iteration (:func:`~cablestudy.dynamics.system_frequency_sweep.
-    solve_system_sweep_arrays`, each case as alone), its answers written into ``res``
-    in place (as converged responses); the cases it does not answer either, with its
-    status and message."""
-    redo = np.flatnonzero(~res.ok | ~res.converged)
-    if not redo.size:
-        return {}
-    results, _ = solve_system_sweep_arrays(
-        model,
-        omegas[redo],
-        [motions[k][0] for k in redo],
-        settings,
-        [motions[k][1] for k in redo],
-    )
-    failed = {}
-    for k, r in zip(redo.tolist(), results, strict=True):
-        if r.status != STATUS_OK:
-            failed[k] = (r.status, r.message)
-            continue
-        res.displacement[k] = r.displacement[0]
-        res.element_tension[k] = r.element_tension[0]
-        res.end_tension[k] = r.end_tension[0]
-        res.end_force[k] = r.end_force[0]
-        res.iterations[k] = r.iterations
-        res.converged[k] = True
-        res.change[k] = r.change
-        res.ok[k] = True
-    return failed
-
-
 def _group(
     motions: list[tuple[np.ndarray, np.ndarray, float]],
     model: SystemLinear,
@@ -141,9 +104,6 @@ def _group(
     omegas = np.array([2.0 * math.pi * f for _, _, f in motions])
     sl = system.lines[0]
     res = solve_harmonic_cases(red, omegas, motion, settings)
-    # where the single line's iteration does not settle, the system's own (module
-    # docstring): its answer in the same outputs, or its failure
-    failed = _system_solve(res, omegas, motions, model, settings)
     got = line_outputs(red.line, res, static.lines[0], sl.problem.medium, sl.problem.line)
     amp = got.amplitude[:, None, :]  # (K, 1, 2): the one line's
     T = res.tension_static  # (2,)
@@ -192,8 +152,17 @@ def _group(
             residual=math.nan,  # not computed by the single line's solve
             element_tension_static=[red.line.tension.copy()],
         )
-        if k in failed:  # neither iteration answered: the system's status and message
-            result.status, result.message = failed[k]
+        hz = omegas[k] / (2 * math.pi)
+        if not res.ok[k]:
+            result.status = STATUS_NUMERICAL
+            result.message = f"singular dynamic matrix at {hz:.6g} Hz"
+        elif not res.converged[k]:  # a system's status 0 is a converged answer
+            result.status = STATUS_NOT_CONVERGED
+            result.message = (
+                f"drag linearisation did not converge in {settings.max_iterations} "
+                f"iterations (last change {res.change[k]:.3g}, tolerance "
+                f"{settings.tolerance:.3g})"
+            )
         out.append(
             (
                 result,

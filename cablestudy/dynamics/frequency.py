@@ -53,8 +53,10 @@ leaves out the mean drift of any nonlinearity) and the second harmonic. For ``|U
 a`` the fit falls between ``2 c |U|`` and ``c 8 a / (3 pi)``; for motion across a
 current in 2 or 3 dimensions the same fit gives the matrix ``c (|U| I + U U^T / |U|)``
 on the normal plane in the limit ``a << |U|``. Directions in which a node does not
-move (``<w' w'^T>`` singular there) take that small-motion tangent, and directions in
-which it hardly moves lean towards it (:data:`FIT_REGULARISATION`).
+move (``<w' w'^T>`` singular there) take the drag's Jacobian averaged over the node's
+motion (the damping a small motion across it feels; the small-motion tangent at rest),
+and directions in which it hardly moves lean towards it (:data:`FIT_REGULARISATION`,
+:mod:`.drag_lean`).
 
 A node whose motion, tangent and current lie in the x-z plane (every node of a line
 hanging in that plane and moved in it) has scalar normal and tangential relative

@@ -99,10 +99,12 @@ def block_diagonal(blocks: np.ndarray) -> sp.csr_matrix:
     return sp.csr_matrix((blocks.ravel(), (rows.ravel(), cols.ravel())), shape=(3 * n, 3 * n))
 
 
-#: weight of the small-motion tangent in the sampled drag fit, relative to the trace of
-#: the velocity covariance: ``D = (H + e D_0)(G + e I)^-1`` with ``e`` this times the
-#: trace, so a direction in which the node moves by less than about 1e-3 of its largest
-#: amplitude leans towards the tangent. The fit in such a direction is ill-determined
+#: weight of the lean ``D_0`` in the sampled drag fit, relative to the trace of the
+#: velocity covariance: ``D = (H + e D_0)(G + e I)^-1`` with ``e`` this times the trace,
+#: so a direction in which the node moves by less than about 1e-3 of its largest
+#: amplitude leans towards ``D_0`` (the single line's and the system's kernels: the
+#: drag's mean Jacobian, :mod:`.drag_lean`; :func:`drag_linearisation`: the one given).
+#: The fit in such a direction is ill-determined
 #: (a thin velocity ellipse: out of plane on a line in a cross current) and fed back
 #: into the motion it made the drag iteration stall at 1e-7 to 1e-5; with 1e-10 the
 #: cross-current lines of tests/unit/test_harmonic_cases.py took 3 to 47 iterations and

@@ -11,6 +11,7 @@ import math
 import numpy as np
 from numba import njit
 
+from .drag_lean import lean_from_entries, sampled_lean
 from .elliptic_fit import still_water_means
 from .frequency_model import (
     FIT_REGULARISATION,
@@ -40,18 +41,25 @@ def drag_fit_samples(  # noqa: PLR0913
     F1,
     F2,
     kind,
+    lean,
     out,
 ):  # noqa: ANN001, ANN201, PLR0913
-    """:func:`cablestudy.dynamics.frequency_model._drag_fit` with ``cos``, ``sin`` (samples,)
-    given and the same operations in the same order, laid out for the compiler: the
-    drag at every node and phase first, in a loop without running sums (which it can
-    vectorise), then the sums over the phases node by node; ``W0`` .. ``F2`` (n,
-    samples) and ``kind`` (n,) int are work arrays. A node whose motion, tangent and
-    current have no y component skips the y terms (zeros: the values are the same);
-    with ``exact`` (and no body: ``c_b`` (n,) zero) it takes
-    :func:`~cablestudy.dynamics.frequency_model.planar_drag_fit`, and with ``exact`` any
-    other node without current the exact period means
-    (:func:`.elliptic_fit.still_water_means`), as ``_drag_fit`` does."""
+    """:func:`cablestudy.dynamics.frequency_model._drag_fit` given the lean (the mean
+    Jacobian, :mod:`.drag_lean`: ``drag_linearisation(line, v, samples, J, exact)``)
+    with ``cos``, ``sin`` (samples,) given and the same operations in the same order,
+    laid out for the compiler: the drag at every node and phase first, in a loop
+    without running sums (which it can vectorise), then the sums over the phases node
+    by node; ``W0`` .. ``F2`` (n, samples), ``kind`` (n,) int and ``lean`` (n, 3, 3)
+    are work arrays. A node whose motion, tangent and current have no y component
+    skips the y terms (zeros: the values are the same); with ``exact`` (and no body:
+    ``c_b`` (n,) zero) it takes
+    :func:`~cablestudy.dynamics.frequency_model.planar_drag_fit` (whose y row, decoupled
+    from the plane, keeps the tangent ``tangent_d``), and with ``exact`` any other node
+    without current the exact period means (:func:`.elliptic_fit.still_water_means`),
+    as ``_drag_fit`` does. Every fit but the planar one leans on the node's mean
+    Jacobian over its motion (:mod:`.drag_lean` says why: not the small-motion tangent,
+    zero without current, with which a 3-D line's drag iteration circled), exact with
+    the still-water means, over the phases with the sums."""
     n = current.shape[0]
     samples = cos.shape[0]
     for i in range(n):
@@ -61,7 +69,7 @@ def drag_fit_samples(  # noqa: PLR0913
             continue
         if exact and still_water(current, i):
             kind[i] = 2
-            g, h, _ = still_water_means(
+            g, h, j = still_water_means(
                 vr[i, 0],
                 vr[i, 1],
                 vr[i, 2],
@@ -75,7 +83,10 @@ def drag_fit_samples(  # noqa: PLR0913
                 c_t[i],
                 c_b[i],
             )
-            fit_from_sums(g, h, 1, tangent_d, i, out)
+            # the lean of the fit: the mean Jacobian J (what the small-motion tangent,
+            # zero without current, misses; see the docstring)
+            lean_from_entries(j, lean, i)
+            fit_from_sums(g, h, 1, lean, i, out)
             continue
         t0, t1, t2 = tangent[i, 0], tangent[i, 1], tangent[i, 2]
         cn, ct, cb = c_n[i], c_t[i], c_b[i]
@@ -165,11 +176,12 @@ def drag_fit_samples(  # noqa: PLR0913
                 h20 += f2 * w0
                 h21 += f2 * w1
                 h22 += f2 * w2
+        sampled_lean(W0, W1, W2, kind[i] == 1, current, tangent, c_n, c_t, c_b, i, lean)
         fit_from_sums(
             (g00, g01, g02, g11, g12, g22),
             (h00, h01, h02, h10, h11, h12, h20, h21, h22),
             samples,
-            tangent_d,
+            lean,
             i,
             out,
         )
@@ -181,7 +193,8 @@ def fit_from_sums(g, h, samples, lean, i, out):  # noqa: ANN001, ANN201, PLR0913
     phases: ``g`` of ``w w^T`` (entries 00, 01, 02, 11, 12, 22) and ``h`` of ``(f -
     f_mean) w^T`` (row by row, 00 .. 22), ``w`` the relative velocity and ``f`` the drag.
     The least-squares fit ``D G = H`` (``G``, ``H`` the means) is regularised towards
-    ``lean[i]``, the small-motion tangent: ``D (G + eps I) = H + eps lean[i]`` with
+    ``lean[i]`` (the small-motion tangent, or the mean Jacobian where the caller has it
+    in closed form): ``D (G + eps I) = H + eps lean[i]`` with
     ``eps`` :data:`.frequency_model.FIT_REGULARISATION` times the trace of ``G``, and
     solved by cofactors (``G`` symmetric positive definite); a node at rest (zero
     trace) takes ``lean[i]``. Shared by the single line's fit (:func:`drag_fit_samples`)
@@ -190,7 +203,7 @@ def fit_from_sums(g, h, samples, lean, i, out):  # noqa: ANN001, ANN201, PLR0913
     g00, g01, g02, g11, g12, g22 = g
     h00, h01, h02, h10, h11, h12, h20, h21, h22 = h
     trace = (g00 + g11 + g22) / samples
-    if not trace > 0.0:  # a node at rest: the small-motion tangent
+    if not trace > 0.0:  # a node at rest: the lean
         for a in range(3):
             for b in range(3):
                 out[i, a, b] = lean[i, a, b]
@@ -504,6 +517,7 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
     F1 = np.empty((n, samples))
     F2 = np.empty((n, samples))
     kind = np.empty(n, dtype=np.int64)
+    lean = np.empty((n, 3, 3))
     # the columns of B^T K, B^T C and B^T M at the six end coordinates (their non-zero
     # rows), from the sparse rows: y = A e_d, then B^T y
     nz_ptr = np.zeros(7, dtype=np.int64)
@@ -590,6 +604,7 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                 F1,
                 F2,
                 kind,
+                lean,
                 D,
             )
             mix_state[0] = 0
@@ -676,6 +691,7 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                     F1,
                     F2,
                     kind,
+                    lean,
                     G,
                 )
                 _mixed(D, G, hist_R, hist_G, gram, mix_state, change, last)

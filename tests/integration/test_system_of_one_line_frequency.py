@@ -106,15 +106,13 @@ PER_LINE = (
 PER_CASE = ("status", "message", "warning", "linearisation_iterations", "dynamic_method")
 
 
-def _assert_same(
-    one: xr.Dataset, system: xr.Dataset, excited: str, where: np.ndarray | None = None
-) -> None:
+def _assert_same(one: xr.Dataset, system: xr.Dataset, excited: str) -> None:
     """Every output both studies write is the same, bit for bit (``==``, NaN nowhere:
-    status 0), at the sweep's cases ``where`` (all by default); the one-line study's
-    tension_max/min/mean are at its excited end."""
+    status 0; every drag iteration settled); the one-line study's tension_max/min/mean
+    are at its excited end."""
     assert np.all(one["status"].values == 0), one["message"].values
     assert np.all(one["dynamic_method"].values == "frequency")
-    assert np.all(one["linearisation_converged"].values[where] == 1)
+    assert np.all(one["linearisation_converged"].values == 1)
     pairs = [(one[k], system[k].isel(line=0)) for k in PER_LINE]
     pairs += [(one[k], system[k]) for k in PER_CASE]
     pairs += [
@@ -124,8 +122,6 @@ def _assert_same(
     pairs += [(one[f"tension_{e}"], system["tension_" + e].isel(line=0)) for e in "ab"]
     for want, got in pairs:
         w, g = want.values, got.values
-        if where is not None:
-            w, g = w[where], g[where]
         assert w.shape == g.shape, (want.name, w.shape, g.shape)
         if w.dtype.kind == "f":
             assert np.all(np.isfinite(w)), want.name
@@ -308,12 +304,11 @@ def test_two_bodies_moving_both_ends_are_the_one_line_study(tmp_path: Path) -> N
 def test_a_sweep_of_frequency_amplitude_and_dof_is_the_one_line_sweep(tmp_path: Path) -> None:
     """A sweep over 3 frequencies x 2 amplitudes x 2 degrees of freedom (surge, heave;
     the one-line study's directions x, z) of the 3-D line laid on the seabed: every case
-    the single line's drag iteration settles is the one-line study's (the system's
-    cases solved as one group, each as alone). The surges at 0.2 Hz the single line's
-    iteration does not settle (100 iterations, its status 0 with
-    linearisation_converged 0): the system answers them by its own iteration, converged
-    (status 0, fewer iterations than the limit). Run alone, a case is the same in
-    both kinds (a chunk of one)."""
+    is the one-line study's, bit for bit (the system's cases solved as one group, each
+    as alone), the surges at 0.2 Hz included, which the single line's drag iteration
+    did not settle while its fit leaned on the small-motion tangent (zero in still
+    water; dynamics/drag_lean.py) and the system then answered by its own iteration.
+    Run alone, a case is the same in both kinds (a chunk of one)."""
     b = (0.0, 0.0, -12.0)
     axes = (
         "  analysis.dynamic.excitation.frequency: [0.05, 0.1, 0.2]\n"
@@ -345,11 +340,8 @@ def test_a_sweep_of_frequency_amplitude_and_dof_is_the_one_line_sweep(tmp_path: 
     one = one.rename({"direction": "excitation_dof"}).assign_coords(
         excitation_dof=system["excitation_dof"].values
     )
-    settled = one["linearisation_converged"].values == 1
-    assert 0 < np.count_nonzero(~settled) < 12  # the test covers both kinds
-    _assert_same(one, system, "b", settled)
-    assert np.all(system["status"].values == 0), system["message"].values
-    assert np.all(system["linearisation_iterations"].values[~settled] < 100)
+    _assert_same(one, system, "b")
+    assert np.all(system["linearisation_iterations"].values < 100)
     for f, dof, direction in ((0.2, "surge", "[1, 0, 0]"), (0.05, "heave", "[0, 0, 1]")):
         tag = f"{dof}{int(f * 100)}"
         alone = run_study(
@@ -375,8 +367,7 @@ def test_a_sweep_of_frequency_amplitude_and_dof_is_the_one_line_sweep(tmp_path: 
                 f"{{end: b, direction: {direction}, amplitude: 0.5, frequency: {f}}}",
             ),
         )
-        if dof == "heave":  # settled by the single line: the same as the system's
-            _assert_same(one_alone, alone, "b")
+        _assert_same(one_alone, alone, "b")
 
 
 def test_auto_picking_the_frequency_domain_is_the_one_line_study(tmp_path: Path) -> None:
@@ -415,13 +406,13 @@ def test_a_system_of_two_lines_keeps_the_system_solve(
 ) -> None:
     """Two lines (two anchors, one ship, no free point) are not one line: the system's
     own solve answers (the one-line path is never called), each line within the
-    system solve's bound of its one-line study. Bound: the system's drag fit leans,
-    where a node hardly moves, towards the drag's Jacobian averaged over the motion,
-    the single line's towards the tangent at the mean flow (weight FIT_REGULARISATION
-    1e-6 of the velocity covariance, dynamics/frequency_model.py), and the two
-    iterations (Anderson depth 1 and 3) stop at different iterates within the
-    tolerance 1e-6 of the velocities: measured 2.3e-7 (laid) and 1.7e-6 (hanging) of
-    the tension amplitude on one line; 1e-5 is about 4 times the sum."""
+    system solve's bound of its one-line study. Bound: both drag fits lean, where a
+    node hardly moves, on the drag's Jacobian averaged over the motion
+    (dynamics/drag_lean.py), and the two iterations (Anderson depth 1 and 3) stop at
+    different iterates within the tolerance 1e-6 of the velocities, which the step to
+    tension amplitudes may amplify a few times: measured 4.7e-8 of the tension
+    amplitude (1.7e-6 while the single line leaned on the small-motion tangent);
+    bound 1e-5."""
     import cablestudy.analyses.system_one_line as one_line
 
     def refuse(*args: Any) -> Any:

@@ -42,6 +42,7 @@ from cablestudy.dynamics.harmonic_cases import in_plane, solve_harmonic_cases
 from cablestudy.dynamics.validity import measures, measures_cases
 from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
+from tests.system_drag_reference import mean_drag_jacobian
 
 FIGS = Path(__file__).resolve().parents[2] / "configs" / "moustafa-figs2-5.yaml"
 
@@ -125,13 +126,22 @@ def _dense_solve(red: ReducedLine, omega: float, X: np.ndarray, D: np.ndarray | 
 
 
 def _fit(red: ReducedLine, omega: float, u: np.ndarray, settings) -> np.ndarray | None:  # noqa: ANN001
-    """The reference drag fit (drag_linearisation) to displacements ``u``."""
+    """The reference drag fit (drag_linearisation) to displacements ``u``, leaning as the
+    kernel does (dynamics/drag_lean.py): on the mean Jacobian over the motion
+    (tests/system_drag_reference.py; over the fit's phases, where the kernel has it
+    exact without current: their difference, ``N^-2`` of ``J``, weighs 1e-6 in the
+    fit), on the small-motion tangent where a node takes the planar closed form (its
+    y row, decoupled from the plane)."""
     line = red.line
     if not line.has_drag:
         return None
-    return drag_linearisation(
-        line, 1j * omega * u, settings.samples, drag_tangent(line), settings.exact
-    )
+    v = 1j * omega * u
+    lean = mean_drag_jacobian(line, v, settings.samples)
+    if settings.exact:
+        planar = (v[:, 1] == 0.0) & (line.tangent[:, 1] == 0.0) & (line.current[:, 1] == 0.0)
+        planar &= line.body_drag == 0.0
+        lean[planar] = drag_tangent(line)[planar]
+    return drag_linearisation(line, v, settings.samples, lean, settings.exact)
 
 
 def _fixed_point_error(
