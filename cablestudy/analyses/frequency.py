@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..dynamics.frequency import solve_harmonic, solve_spectrum
-from ..dynamics.frequency_model import DragSettings, ReducedLine
+from ..dynamics.frequency_model import STATUS_NOT_CONVERGED, DragSettings, ReducedLine
 from ..dynamics.linear_model import linear_line
 from ..dynamics.modal import ModalProblem
 from ..dynamics.system_validity import line_failures
@@ -350,12 +350,11 @@ def _judged(
 ) -> FrequencyOutcome:
     """A solved case's outcome with the checks of ``method: auto`` on its measures."""
     auto = dyn.auto or _DEFAULT_AUTO
-    reasons = []
-    if not converged:
-        reasons.append(
-            f"drag linearisation not converged ({iterations} iterations, change {change:.2g})"
-        )
-    reasons += line_failures(v, auto)
+    if not converged:  # the transfer function asked for is its own linear solve: kept
+        failed = unsettled_fit(dyn, iterations, change)
+        failed.data.update((k, x) for k, x in data.items() if k in TRANSFER_OUTPUTS)
+        return failed
+    reasons = line_failures(v, auto)
     return FrequencyOutcome(
         status=STATUS_OK,
         message="",
@@ -363,6 +362,22 @@ def _judged(
         distrust="; ".join(reasons),
         validity=v,
         drag_converged=converged,
+    )
+
+
+def unsettled_fit(dyn: DynamicSettings, iterations: int, change: float) -> FrequencyOutcome:
+    """The outcome of a frequency-domain case whose drag linearisation stopped at
+    ``analysis.dynamic.linearisation.max_iterations`` without settling: not verified,
+    so failed (status 7, its message, no dynamic outputs), as a system's case is
+    (:mod:`cablestudy.dynamics.system_frequency`); ``method: auto`` runs the time
+    domain instead."""
+    settings = drag_settings(dyn)
+    why = (
+        f"drag linearisation did not converge in {iterations} iterations "
+        f"(last change {change:.3g}, tolerance {settings.tolerance:.3g})"
+    )
+    return FrequencyOutcome(
+        status=STATUS_NOT_CONVERGED, message=why, data={}, distrust=why, drag_converged=False
     )
 
 
@@ -376,7 +391,9 @@ def transfer_function(
 ) -> dict[str, np.ndarray]:
     """Tension per unit excitation amplitude [N/m] at the transfer-function frequencies:
     the excitation of the case (directions, phases, amplitude ratios) at each frequency,
-    drag linearised at the case's amplitude, divided by the largest amplitude."""
+    drag linearised at the case's amplitude, divided by the largest amplitude. NaN at a
+    frequency whose dynamic matrix is singular or whose drag linearisation does not
+    settle (:func:`cablestudy.analyses.plausibility.dynamic_warnings` warns of them)."""
     assert dyn.transfer_function is not None
     freqs = np.asarray(dyn.transfer_function.values)
     X, scale, ref = rao_motion(dyn)
@@ -387,7 +404,7 @@ def transfer_function(
     line_amp = np.full((freqs.size, n_out), np.nan)
     for k, f in enumerate(freqs):
         res = solve_harmonic(red, 2.0 * math.pi * f, X, settings)
-        if not res.success:
+        if not res.success or not res.drag_converged:  # NaN there, and a warning
             continue
         end_amp[k] = np.abs(res.end_tension) / scale
         end_phase[k] = np.degrees(np.angle(res.end_tension / ref))
@@ -496,13 +513,9 @@ def irregular(
     }
     if problem.medium.depth is not None:  # a seabed to touch (as the harmonic cases)
         data.update(_touchdown_of_spectrum(red, static, problem, mpm_el, mpm_end, mpm_xyz))
-    return FrequencyOutcome(
-        status=STATUS_OK,
-        message="",
-        data=data,
-        distrust="" if res.converged else "drag linearisation not converged",
-        drag_converged=res.converged,
-    )
+    if not res.converged:
+        return unsettled_fit(dyn, res.iterations, res.change)
+    return FrequencyOutcome(status=STATUS_OK, message="", data=data, distrust="")
 
 
 def _touchdown_of_spectrum(
