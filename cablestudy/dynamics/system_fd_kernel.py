@@ -439,17 +439,21 @@ def _residual(
     iw = 1j * omega
     w2 = omega * omega
     r = np.empty(3, dtype=np.complex128)
+    # a line's column j (node j // 3, direction j % 3) is entry 3 n0 + j of the flat
+    # motion: the same values, without a division per stored entry
+    flat = disp.reshape(-1)
     for line in range(L):
         n0, n1 = noff[line], noff[line + 1]
+        base = 3 * n0
         for g in range(n0, n1):
             for a in range(3):
                 row = 3 * g + a
                 ku = 0j
                 for jj in range(kp[row], kp[row + 1]):
-                    ku += kv[jj] * disp[n0 + ki[jj] // 3, ki[jj] % 3]
+                    ku += kv[jj] * flat[base + ki[jj]]
                 cu = 0j
                 for jj in range(cp[row], cp[row + 1]):
-                    cu += cv[jj] * disp[n0 + ci[jj] // 3, ci[jj] % 3]
+                    cu += cv[jj] * flat[base + ci[jj]]
                 acc = ku + iw * cu
                 mu = 0j
                 du = 0j
