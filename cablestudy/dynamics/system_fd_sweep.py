@@ -81,6 +81,7 @@ def workspace(m, bw, samples):  # noqa: ANN001, ANN201
         np.zeros((P, 3), dtype=np.complex128),  # qs_p
         np.zeros((P, 3), dtype=np.complex128),  # qs_of: the prescribed motion it is of
         np.zeros(1, dtype=np.int64),  # qs_ok: 1 while qs_d, qs_p hold a solved start
+        np.empty(max(K, 1), dtype=np.complex128),  # pinv: the band factor's pivots' inverses
     )
 
 
@@ -126,6 +127,8 @@ def _solve_at(w, drag, m, bw, ws, prescribed, disp, u_pts, forces):  # noqa: ANN
         disp,
         u_pts,
         forces,
+        ws[30],
+        m[38],
     )
 
 
