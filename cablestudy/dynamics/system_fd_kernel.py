@@ -420,6 +420,10 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
             uI[k0 + (k - 1 - s_ if rev else s_)] = acc
         for g in range(na, nb + 1):
             f0 = nfirst[g]
+            if unit[g]:  # the identity basis: the node's dofs are its motion
+                for a in range(3):
+                    disp[g, a] = uI[k0 + f0 + a]
+                continue
             for a in range(3):
                 acc = 0j
                 for r in range(ncount[g]):
