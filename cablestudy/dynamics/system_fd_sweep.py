@@ -199,6 +199,25 @@ def _same_motion(a, b):  # noqa: ANN001, ANN202
     return True
 
 
+#: a complex number whose squared modulus is below this fraction of the largest squared
+#: modulus so far cannot have a larger modulus than the number that set it (the
+#: squares' rounding and ``abs``'s, a few units in the last place, are far below
+#: 1e-15): :func:`_larger` takes ``abs`` (a ``hypot``) only of the others, and the
+#: maximum of the moduli is the one of all of them, bit for bit
+_NEAR = 1.0 - 1e-12
+
+
+@njit(cache=True, inline="always")
+def _larger(top, top2, z):  # noqa: ANN001, ANN202
+    """``max(top, abs(z))`` and the largest squared modulus ``top2`` so far, updated:
+    ``abs`` only where it may change the maximum (:data:`_NEAR`)."""
+    q = z.real * z.real + z.imag * z.imag
+    if q >= _NEAR * top2:
+        top = max(top, abs(z))
+        top2 = max(top2, q)
+    return top, top2
+
+
 @njit(cache=True, error_model="numpy")
 def iterate(  # noqa: ANN201, PLR0913
     omega,
@@ -271,18 +290,22 @@ def iterate(  # noqa: ANN201, PLR0913
             if code != OK:
                 info[0], info[2] = code, bad
                 return
-            big = 0.0
-            diff = 0.0
+            # the largest modulus of the motion and of its change (module :data:`_NEAR`)
+            big, diff, big2, diff2 = 0.0, 0.0, 0.0, 0.0
             for g in range(N):
                 for a in range(3):
-                    big = max(big, abs(disp[g, a]))
-                    diff = max(diff, abs(disp[g, a] - prev_d[g, a]))
-                    prev_d[g, a] = disp[g, a]
+                    z = disp[g, a]
+                    dz = z - prev_d[g, a]
+                    prev_d[g, a] = z
+                    big, big2 = _larger(big, big2, z)
+                    diff, diff2 = _larger(diff, diff2, dz)
             for p in range(P):
                 for a in range(3):
-                    big = max(big, abs(u_pts[p, a]))
-                    diff = max(diff, abs(u_pts[p, a] - prev_p[p, a]))
-                    prev_p[p, a] = u_pts[p, a]
+                    z = u_pts[p, a]
+                    dz = z - prev_p[p, a]
+                    prev_p[p, a] = z
+                    big, big2 = _larger(big, big2, z)
+                    diff, diff2 = _larger(diff, diff2, dz)
             change = diff / max(big, 1e-300)
             finfo[0] = change
             if change <= tolerance:
