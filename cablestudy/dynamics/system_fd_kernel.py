@@ -443,6 +443,25 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
     return OK, -1
 
 
+#: a complex number whose squared modulus is below this fraction of the largest squared
+#: modulus so far cannot have a larger modulus than the number that set it (the
+#: squares' rounding and ``abs``'s, a few units in the last place, are far below
+#: 1e-15): :func:`_larger` takes ``abs`` (a ``hypot``) only of the others, and the
+#: maximum of the moduli is the one of all of them, bit for bit
+_NEAR = 1.0 - 1e-12
+
+
+@njit(cache=True, inline="always")
+def _larger(top, top2, z):  # noqa: ANN001, ANN202
+    """``max(top, abs(z))`` and the largest squared modulus ``top2`` so far, updated:
+    ``abs`` only where it may change the maximum (:data:`_NEAR`)."""
+    q = z.real * z.real + z.imag * z.imag
+    if q >= _NEAR * top2:
+        top = max(top, abs(z))
+        top2 = max(top2, q)
+    return top, top2
+
+
 @njit(cache=True, error_model="numpy")
 def _residual(
     omega, drag, D, Dp, disp, u_pts, noff, mass, kp, ki, kv, cp, ci, cv, ends, free, pmass
@@ -450,8 +469,7 @@ def _residual(
     """:func:`.system_frequency._residual`: the largest residual of every line's inner
     rows and every free point's balance relative to the force scale."""
     L = ends.shape[0]
-    scale = 0.0
-    worst = 0.0
+    scale = worst = scale2 = worst2 = 0.0  # the largest moduli and their squares (_larger)
     balance = np.zeros(u_pts.shape, dtype=np.complex128)
     iw = 1j * omega
     w2 = omega * omega
@@ -482,15 +500,15 @@ def _residual(
                 if drag:
                     acc += iw * du
                 r[a] = acc
-                scale = max(scale, abs(ku))
+                scale, scale2 = _larger(scale, scale2, ku)
             if g == n0 or g == n1 - 1:
                 e = 0 if g == n0 else 1
                 for a in range(3):
-                    scale = max(scale, abs(r[a]))
+                    scale, scale2 = _larger(scale, scale2, r[a])
                     balance[ends[line, e], a] += r[a]
             else:
                 for a in range(3):
-                    worst = max(worst, abs(r[a]))
+                    worst, worst2 = _larger(worst, worst2, r[a])
     for j in range(free.shape[0]):
         p = free[j]
         for a in range(3):
@@ -500,5 +518,5 @@ def _residual(
                 if drag:
                     z += iw * Dp[p, a, b]
                 acc += z * u_pts[p, b]
-            worst = max(worst, abs(acc))
+            worst, worst2 = _larger(worst, worst2, acc)
     return worst / max(scale, 1e-300)

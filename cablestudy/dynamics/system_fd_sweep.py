@@ -26,7 +26,7 @@ import numpy as np
 from numba import njit
 
 from .system_fd_fit import DEPTH, anderson, fit_all
-from .system_fd_kernel import OK, _parts, _residual, _solve
+from .system_fd_kernel import OK, _larger, _parts, _residual, _solve
 
 #: ``info`` of a case (``info[i]``): code, iterations, failing line, 1 if it failed in
 #: the quasi-static start
@@ -199,25 +199,6 @@ def _same_motion(a, b):  # noqa: ANN001, ANN202
     return True
 
 
-#: a complex number whose squared modulus is below this fraction of the largest squared
-#: modulus so far cannot have a larger modulus than the number that set it (the
-#: squares' rounding and ``abs``'s, a few units in the last place, are far below
-#: 1e-15): :func:`_larger` takes ``abs`` (a ``hypot``) only of the others, and the
-#: maximum of the moduli is the one of all of them, bit for bit
-_NEAR = 1.0 - 1e-12
-
-
-@njit(cache=True, inline="always")
-def _larger(top, top2, z):  # noqa: ANN001, ANN202
-    """``max(top, abs(z))`` and the largest squared modulus ``top2`` so far, updated:
-    ``abs`` only where it may change the maximum (:data:`_NEAR`)."""
-    q = z.real * z.real + z.imag * z.imag
-    if q >= _NEAR * top2:
-        top = max(top, abs(z))
-        top2 = max(top2, q)
-    return top, top2
-
-
 @njit(cache=True, error_model="numpy")
 def iterate(  # noqa: ANN201, PLR0913
     omega,
@@ -290,7 +271,7 @@ def iterate(  # noqa: ANN201, PLR0913
             if code != OK:
                 info[0], info[2] = code, bad
                 return
-            # the largest modulus of the motion and of its change (module :data:`_NEAR`)
+            # the largest modulus of the motion and of its change (:func:`.system_fd_kernel._larger`)
             big, diff, big2, diff2 = 0.0, 0.0, 0.0, 0.0
             for g in range(N):
                 for a in range(3):
