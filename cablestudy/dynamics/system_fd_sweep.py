@@ -75,7 +75,7 @@ def workspace(m, bw, samples):  # noqa: ANN001, ANN201
         np.zeros((P, 3), dtype=np.complex128),  # prev_p
         np.empty((DEPTH + 1, size)),  # hist_R
         np.empty((DEPTH + 1, size)),  # hist_G
-        np.zeros(1, dtype=np.int64),  # state
+        np.zeros(2, dtype=np.int64),  # state: the mixing's pairs and first row
         np.empty(L, dtype=np.int64),  # low: per line the first row back-substituted
         np.zeros((N, 3), dtype=np.complex128),  # qs_d: the last quasi-static start's motion
         np.zeros((P, 3), dtype=np.complex128),  # qs_p
@@ -263,6 +263,7 @@ def iterate(  # noqa: ANN201, PLR0913
         prev_p[:, :] = u_pts
         _parts_at(omega, m, ws)
         state[0] = 0  # the mixing's history is the case's own
+        state[1] = 0
         last = np.inf
         converged = False
         for it in range(1, max_iterations + 1):
