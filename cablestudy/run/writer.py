@@ -61,11 +61,10 @@ FLOAT_ENCODING: dict[str, Any] = {"zlib": True, "complevel": 1, "shuffle": True}
 #: SAMPLE_BYTES, evenly spaced) shrink to at most COMPRESS_BELOW of their size: a
 #: constant or mostly-NaN variable shrinks a hundredfold, while the smooth profiles of a
 #: sweep shrink by a third at a cost that exceeds their solve (zlib runs at some 100 MB/s,
-#: the batch kernel at about 1 GB of output a second). Blocks of 4 KiB (512 doubles, a
-#: whole profile of a case or more) judge as 16 KiB did on every study of configs/ at a
-#: quarter of the cost (a 50-case system sweep's 31 variables: 2.9 -> 1.4 ms)
+#: the batch kernel at about 1 GB of output a second). (Blocks of 4 KiB would judge at
+#: half the cost, but differently: 53 of the 1322 variables of configs/ flipped.)
 COMPRESS_BELOW = 0.5
-SAMPLE_BYTES = 1 << 12
+SAMPLE_BYTES = 1 << 14
 SAMPLE_BLOCKS = 4
 
 
