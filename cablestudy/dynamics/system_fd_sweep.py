@@ -272,7 +272,8 @@ def iterate(  # noqa: ANN201, PLR0913
             if code != OK:
                 info[0], info[2] = code, bad
                 return
-            # the largest modulus of the motion and of its change (:func:`.system_fd_kernel._larger`)
+            # the largest modulus of the motion and of its change (abs only near the
+            # running maximum: :func:`.system_fd_kernel._larger`)
             big, diff, big2, diff2 = 0.0, 0.0, 0.0, 0.0
             for g in range(N):
                 for a in range(3):
