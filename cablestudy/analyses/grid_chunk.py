@@ -161,22 +161,27 @@ def records_chunk(
     if unknown:
         raise KeyError(f"output variables not declared in results.OUTPUTS: {unknown}")
     data: dict[str, np.ndarray] = {}
+    judged: dict[str | None, list[bool]] = {}
     for name in names:
         spec = registry[name]
         shapes = [np.shape(r.data[name]) for r in records if name in r.data]
         tail = tuple(
             (extent or {}).get(d) or max(s[j] for s in shapes) for j, d in enumerate(spec.dims)
         )
-        kept = [
-            (i, r.data[name])
-            for i, r in enumerate(records)
-            if name in r.data and analysis_ok(r, spec.analysis)
-        ]
+        if spec.analysis not in judged:  # each record's verdict once per analysis
+            judged[spec.analysis] = [analysis_ok(r, spec.analysis) for r in records]
+        ok = judged[spec.analysis]
+        kept = [(i, r.data[name]) for i, r in enumerate(records) if ok[i] and name in r.data]
         if spec.dtype == "str":
             texts = [str(np.asarray(v).item()) if np.ndim(v) == 0 else v for _, v in kept]
             width = max([1, *(np.asarray(t, dtype=str).dtype.itemsize // 4 for t in texts)])
             arr = np.full((n, *tail), "", dtype=f"<U{width}")
             values: list[Any] = texts
+        elif len(kept) == n and n > 1 and all(s == tail for s in shapes):
+            # every record has it, whole: stacked (the same values as placed one by one:
+            # the cast to the output's dtype is the one assignment makes)
+            data[name] = _stacked([v for _, v in kept], spec.dtype)
+            continue
         else:
             arr = np.full((n, *tail), _fill(spec.dtype, spec.fill), dtype=spec.dtype)
             values = [v for _, v in kept]
@@ -195,6 +200,18 @@ def records_chunk(
         fallback_reason=_text([r.fallback for r in records]),
         hashes=_text([r.hash for r in records]),
     )
+
+
+def _stacked(values: list[Any], dtype: str) -> np.ndarray:
+    """The records' values (all of one shape) as one array of ``dtype``, each cast as
+    assigning it into such an array casts it."""
+    arrays = [np.asarray(v) for v in values]
+    if len({a.dtype for a in arrays}) == 1:  # one dtype: stacked, then cast once
+        return np.stack(arrays).astype(dtype, copy=False)
+    arr = np.empty((len(values), *arrays[0].shape), dtype=dtype)
+    for i, a in enumerate(arrays):
+        arr[i] = a
+    return arr
 
 
 def _text(values: list[str]) -> np.ndarray:

@@ -103,6 +103,8 @@ def system_motion_surface_warning(study: Any, data: dict[str, Any]) -> str:
     if envelope is None or "arc_length" not in data or not _liquid(study):
         return ""
     z = np.array(envelope, dtype=float)
+    if not np.any(z > 0.0):  # nothing above z = 0 (NaN counts as not): no warning
+        return ""
     for i, line in enumerate(study.lines.values()):  # ends on fixed or body points are
         for k, point in ((0, line.a), (-1, line.b)):  # moved as given: not judged
             if study.points[point].kind != "free":

@@ -240,6 +240,8 @@ def _slack_warning(names: list[str], data: dict[str, Any]) -> str:
     if env.shape != static.shape or env.ndim != 2:
         return ""
     env = np.where(static > 0.0, env, np.nan)
+    if not np.any(env <= 0.0):  # no point at or below zero: no row's minimum is
+        return ""
     low = np.array([np.nanmin(r) if np.any(np.isfinite(r)) else np.nan for r in env])
     if not np.any(low <= 0.0):
         return ""

@@ -289,35 +289,40 @@ DEPTH = 3
 @njit(cache=True, error_model="numpy")
 def anderson(d, g, hist_R, hist_G, state, change, last):  # noqa: ANN001, ANN202, PLR0913
     """``_Anderson.step`` of tests/system_frequency_reference.py on the flat drag ``d``
-    (overwritten by the next iterate) and its fit ``g``; the pairs in rows ``0 ..
-    state[0]-1`` of ``hist_R``, ``hist_G`` (oldest first)."""
+    (overwritten by the next iterate) and its fit ``g``; the ``state[0]`` pairs in the
+    ring of rows of ``hist_R``, ``hist_G`` from row ``state[1]`` on (oldest first: the
+    oldest leaves by moving the start, not the rows; the same values in the same
+    order as rows kept oldest first)."""
     size = d.shape[0]
+    keep = hist_R.shape[0]  # DEPTH + 1
     if change >= last:
         state[0] = 0
+        state[1] = 0
         for q in range(size):
             d[q] = 0.5 * (d[q] + g[q])
         return
-    count = state[0]
-    if count == DEPTH + 1:  # the oldest pair leaves
-        for j in range(count - 1):
-            hist_R[j] = hist_R[j + 1]
-            hist_G[j] = hist_G[j + 1]
+    count, head = state[0], state[1]
+    if count == keep:  # the oldest pair leaves
+        head = (head + 1) % keep
         count -= 1
+    slot = (head + count) % keep
     for q in range(size):
-        hist_R[count, q] = g[q] - d[q]
-        hist_G[count, q] = g[q]
+        hist_R[slot, q] = g[q] - d[q]
+        hist_G[slot, q] = g[q]
     count += 1
     state[0] = count
+    state[1] = head
     if count == 1:
         for q in range(size):
             d[q] = g[q]
         return
     m = count - 1
-    r = hist_R[m]
+    r = hist_R[slot]
     dR = np.empty((m, size))
     for j in range(m):
+        row = (head + j) % keep
         for q in range(size):
-            dR[j, q] = r[q] - hist_R[j, q]
+            dR[j, q] = r[q] - hist_R[row, q]
     A = dR @ dR.T
     trace = 0.0
     for j in range(m):
@@ -330,5 +335,6 @@ def anderson(d, g, hist_R, hist_G, state, change, last):  # noqa: ANN001, ANN202
         A[j, j] += 1e-12 * trace
     gam = np.linalg.solve(A, dR @ r)
     for j in range(m):
+        row = (head + j) % keep
         for q in range(size):
-            d[q] -= gam[j] * (g[q] - hist_G[j, q])
+            d[q] -= gam[j] * (g[q] - hist_G[row, q])

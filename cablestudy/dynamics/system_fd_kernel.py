@@ -49,13 +49,15 @@ OK, SINGULAR_LINE, SINGULAR_JUNCTION, NOT_CONVERGED = 0, 1, 2, 3
 
 
 @njit(cache=True, error_model="numpy", fastmath=_SAFE_FAST)
-def _band_factor(R, bw, N, reach, B, m):  # noqa: ANN001, ANN201
+def _band_factor(R, bw, N, reach, B, m, pinv):  # noqa: ANN001, ANN201, PLR0913
     """Factor the complex band matrix on row storage ``R`` (>= N, 3 bw + 1) (``A[i, j]``
     at ``R[i, j - i + bw]``) in place, by the threshold pivoting of
     :func:`.harmonic_kernel.band_pivot`, and carry the ``m`` right sides ``B[:N,
     :m]`` through the elimination (``B`` becomes ``L^-1 P B``; the upper factor ``U``
-    stays in ``R``, its last column of row ``i`` in ``reach[i]``, for
-    :func:`_back_rows`). False for a zero pivot or a non-finite eliminated side."""
+    stays in ``R``, its last column of row ``i`` in ``reach[i]``, and the inverse of
+    its diagonal in ``pinv[i]``, for :func:`_back_rows` and the back substitution:
+    the same quotient a substitution would form, one complex division a row the
+    less). False for a zero pivot or a non-finite eliminated side."""
     for i in range(N):
         reach[i] = min(i + bw, N - 1)
     for k in range(N):
@@ -69,6 +71,7 @@ def _band_factor(R, bw, N, reach, B, m):  # noqa: ANN001, ANN201
                 B[k, c] = B[p, c]
                 B[p, c] = t
         inv = 1.0 / R[k, bw]
+        pinv[k] = inv
         rk = reach[k]
         # the right sides with a non-zero at row k (the others stay zero below it: a
         # free end's unit motion is zero down to its own rows, which come last)
@@ -97,12 +100,12 @@ def _band_factor(R, bw, N, reach, B, m):  # noqa: ANN001, ANN201
 
 
 @njit(cache=True, error_model="numpy", fastmath=_SAFE_FAST)
-def _back_rows(R, bw, N, reach, B, m, low):  # noqa: ANN001, ANN201, PLR0913
+def _back_rows(R, bw, N, reach, B, m, low, pinv):  # noqa: ANN001, ANN201, PLR0913
     """Back substitution of :func:`_band_factor`'s ``B`` for its rows ``low .. N-1``
     only (in place: the solution's rows there, exactly as a full substitution gives
     them; the rows above keep ``L^-1 P B``). False for a non-finite answer."""
     for i in range(N - 1, low - 1, -1):
-        inv = 1.0 / R[i, bw]
+        inv = pinv[i]
         for c in range(m):
             acc = B[i, c]
             for j in range(i + 1, reach[i] + 1):
@@ -205,6 +208,8 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
     disp,
     u_pts,
     forces,
+    pinv,
+    unit,
 ):
     """One linear solve at fixed drag (``drag``: ``D`` (nodes, 3, 3) and ``Dp`` (P, 3,
     3) enter) at ``w`` [rad/s] with :func:`_parts` ``Rb`` ... ``EE`` at ``w``:
@@ -314,6 +319,14 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
                 for g in range(na, nb + 1):
                     cnt = ncount[g]
                     f0 = nfirst[g]
+                    if unit[g]:  # the node's basis is the identity: B^T D B is D
+                        for r in range(3):
+                            for c in range(3):
+                                if rev:
+                                    Rl[k - 1 - f0 - r, r - c + bw] += iw * D[g, r, c]
+                                else:
+                                    Rl[f0 + r, c - r + bw] += iw * D[g, r, c]
+                        continue
                     for r in range(cnt):
                         for c in range(cnt):
                             val = 0.0
@@ -327,9 +340,9 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
                                 Rl[k - 1 - f0 - r, r - c + bw] += iw * val
                             else:
                                 Rl[f0 + r, c - r + bw] += iw * val
-            if not _band_factor(Rl, bw, k, reach[k0:], X[k0:], m):
+            if not _band_factor(Rl, bw, k, reach[k0:], X[k0:], m, pinv[k0:]):
                 return SINGULAR_LINE, line
-            if not _back_rows(Rl, bw, k, reach[k0:], X[k0:], m, first):
+            if not _back_rows(Rl, bw, k, reach[k0:], X[k0:], m, first, pinv[k0:]):
                 return SINGULAR_LINE, line
         # the junction rows of the free ends: S u_E = A_EE u_E + A_EI X u_E
         for ea in range(2):
@@ -401,12 +414,16 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
             if s_ < first:
                 for j in range(s_ + 1, reach[k0 + s_] + 1):
                     acc -= R[k0 + s_, j - s_ + bw] * uI[k0 + (k - 1 - j if rev else j)]
-                acc = acc * (1.0 / R[k0 + s_, bw])
+                acc = acc * pinv[k0 + s_]
                 if not (math.isfinite(acc.real) and math.isfinite(acc.imag)):
                     return SINGULAR_LINE, line
             uI[k0 + (k - 1 - s_ if rev else s_)] = acc
         for g in range(na, nb + 1):
             f0 = nfirst[g]
+            if unit[g]:  # the identity basis: the node's dofs are its motion
+                for a in range(3):
+                    disp[g, a] = uI[k0 + f0 + a]
+                continue
             for a in range(3):
                 acc = 0j
                 for r in range(ncount[g]):
@@ -426,6 +443,25 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
     return OK, -1
 
 
+#: a complex number whose squared modulus is below this fraction of the largest squared
+#: modulus so far cannot have a larger modulus than the number that set it (the
+#: squares' rounding and ``abs``'s, a few units in the last place, are far below
+#: 1e-15): :func:`_larger` takes ``abs`` (a ``hypot``) only of the others, and the
+#: maximum of the moduli is the one of all of them, bit for bit
+_NEAR = 1.0 - 1e-12
+
+
+@njit(cache=True, inline="always")
+def _larger(top, top2, z):  # noqa: ANN001, ANN202
+    """``max(top, abs(z))`` and the largest squared modulus ``top2`` so far, updated:
+    ``abs`` only where it may change the maximum (:data:`_NEAR`)."""
+    q = z.real * z.real + z.imag * z.imag
+    if q >= _NEAR * top2:
+        top = max(top, abs(z))
+        top2 = max(top2, q)
+    return top, top2
+
+
 @njit(cache=True, error_model="numpy")
 def _residual(
     omega, drag, D, Dp, disp, u_pts, noff, mass, kp, ki, kv, cp, ci, cv, ends, free, pmass
@@ -433,23 +469,26 @@ def _residual(
     """:func:`.system_frequency._residual`: the largest residual of every line's inner
     rows and every free point's balance relative to the force scale."""
     L = ends.shape[0]
-    scale = 0.0
-    worst = 0.0
+    scale = worst = scale2 = worst2 = 0.0  # the largest moduli and their squares (_larger)
     balance = np.zeros(u_pts.shape, dtype=np.complex128)
     iw = 1j * omega
     w2 = omega * omega
     r = np.empty(3, dtype=np.complex128)
+    # a line's column j (node j // 3, direction j % 3) is entry 3 n0 + j of the flat
+    # motion: the same values, without a division per stored entry
+    flat = disp.reshape(-1)
     for line in range(L):
         n0, n1 = noff[line], noff[line + 1]
+        base = 3 * n0
         for g in range(n0, n1):
             for a in range(3):
                 row = 3 * g + a
                 ku = 0j
                 for jj in range(kp[row], kp[row + 1]):
-                    ku += kv[jj] * disp[n0 + ki[jj] // 3, ki[jj] % 3]
+                    ku += kv[jj] * flat[base + ki[jj]]
                 cu = 0j
                 for jj in range(cp[row], cp[row + 1]):
-                    cu += cv[jj] * disp[n0 + ci[jj] // 3, ci[jj] % 3]
+                    cu += cv[jj] * flat[base + ci[jj]]
                 acc = ku + iw * cu
                 mu = 0j
                 du = 0j
@@ -461,15 +500,15 @@ def _residual(
                 if drag:
                     acc += iw * du
                 r[a] = acc
-                scale = max(scale, abs(ku))
+                scale, scale2 = _larger(scale, scale2, ku)
             if g == n0 or g == n1 - 1:
                 e = 0 if g == n0 else 1
                 for a in range(3):
-                    scale = max(scale, abs(r[a]))
+                    scale, scale2 = _larger(scale, scale2, r[a])
                     balance[ends[line, e], a] += r[a]
             else:
                 for a in range(3):
-                    worst = max(worst, abs(r[a]))
+                    worst, worst2 = _larger(worst, worst2, r[a])
     for j in range(free.shape[0]):
         p = free[j]
         for a in range(3):
@@ -479,5 +518,5 @@ def _residual(
                 if drag:
                     z += iw * Dp[p, a, b]
                 acc += z * u_pts[p, b]
-            worst = max(worst, abs(acc))
+            worst, worst2 = _larger(worst, worst2, acc)
     return worst / max(scale, 1e-300)

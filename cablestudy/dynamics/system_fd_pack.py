@@ -165,5 +165,8 @@ def pack_system(model) -> PackedSystem:  # noqa: ANN001 - SystemLinear (no impor
         np.ascontiguousarray(model.point_drag, dtype=float),
         np.ascontiguousarray(model.point_current, dtype=float),
         has_drag,
+        # per node whether its basis is the identity (three free directions, x y z):
+        # its drag enters the band as it is (:func:`.system_fd_kernel._solve`)
+        (ncount == 3) & np.all(basis == np.eye(3), axis=(1, 2)),
     )
     return PackedSystem(arrays=arrays, bw=bw, node_offset=noff, dof_offset=koff)

@@ -26,7 +26,7 @@ import numpy as np
 from numba import njit
 
 from .system_fd_fit import DEPTH, anderson, fit_all
-from .system_fd_kernel import OK, _parts, _residual, _solve
+from .system_fd_kernel import OK, _larger, _parts, _residual, _solve
 
 #: ``info`` of a case (``info[i]``): code, iterations, failing line, 1 if it failed in
 #: the quasi-static start
@@ -75,12 +75,13 @@ def workspace(m, bw, samples):  # noqa: ANN001, ANN201
         np.zeros((P, 3), dtype=np.complex128),  # prev_p
         np.empty((DEPTH + 1, size)),  # hist_R
         np.empty((DEPTH + 1, size)),  # hist_G
-        np.zeros(1, dtype=np.int64),  # state
+        np.zeros(2, dtype=np.int64),  # state: the mixing's pairs and first row
         np.empty(L, dtype=np.int64),  # low: per line the first row back-substituted
         np.zeros((N, 3), dtype=np.complex128),  # qs_d: the last quasi-static start's motion
         np.zeros((P, 3), dtype=np.complex128),  # qs_p
         np.zeros((P, 3), dtype=np.complex128),  # qs_of: the prescribed motion it is of
         np.zeros(1, dtype=np.int64),  # qs_ok: 1 while qs_d, qs_p hold a solved start
+        np.empty(max(K, 1), dtype=np.complex128),  # pinv: the band factor's pivots' inverses
     )
 
 
@@ -126,6 +127,8 @@ def _solve_at(w, drag, m, bw, ws, prescribed, disp, u_pts, forces):  # noqa: ANN
         disp,
         u_pts,
         forces,
+        ws[30],
+        m[38],
     )
 
 
@@ -260,6 +263,7 @@ def iterate(  # noqa: ANN201, PLR0913
         prev_p[:, :] = u_pts
         _parts_at(omega, m, ws)
         state[0] = 0  # the mixing's history is the case's own
+        state[1] = 0
         last = np.inf
         converged = False
         for it in range(1, max_iterations + 1):
@@ -268,18 +272,23 @@ def iterate(  # noqa: ANN201, PLR0913
             if code != OK:
                 info[0], info[2] = code, bad
                 return
-            big = 0.0
-            diff = 0.0
+            # the largest modulus of the motion and of its change (abs only near the
+            # running maximum: :func:`.system_fd_kernel._larger`)
+            big, diff, big2, diff2 = 0.0, 0.0, 0.0, 0.0
             for g in range(N):
                 for a in range(3):
-                    big = max(big, abs(disp[g, a]))
-                    diff = max(diff, abs(disp[g, a] - prev_d[g, a]))
-                    prev_d[g, a] = disp[g, a]
+                    z = disp[g, a]
+                    dz = z - prev_d[g, a]
+                    prev_d[g, a] = z
+                    big, big2 = _larger(big, big2, z)
+                    diff, diff2 = _larger(diff, diff2, dz)
             for p in range(P):
                 for a in range(3):
-                    big = max(big, abs(u_pts[p, a]))
-                    diff = max(diff, abs(u_pts[p, a] - prev_p[p, a]))
-                    prev_p[p, a] = u_pts[p, a]
+                    z = u_pts[p, a]
+                    dz = z - prev_p[p, a]
+                    prev_p[p, a] = z
+                    big, big2 = _larger(big, big2, z)
+                    diff, diff2 = _larger(diff, diff2, dz)
             change = diff / max(big, 1e-300)
             finfo[0] = change
             if change <= tolerance:

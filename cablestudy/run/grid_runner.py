@@ -175,12 +175,21 @@ def run_chunks(
         database_path=database,
         n_warned=summary.n_warned,
         warnings=dict(summary.warnings),
-        warned_cases={
-            text: case_label(grid.axes, np.unravel_index(i, grid.shape))
-            for text, i in summary.warned_at.items()
-        },
+        warned_cases=_warned_labels(grid, summary.warned_at),
         fallbacks=dict(summary.fallbacks),
     )
+
+
+def _warned_labels(grid: Any, warned_at: dict[str, int]) -> dict[str, str]:
+    """Per warning text the label of its first case (:func:`case_label`), the axes'
+    coordinates worked out once."""
+    if not warned_at:
+        return {}
+    coordinates = [axis.coordinate() for axis in grid.axes]
+    return {
+        text: case_label(grid.axes, np.unravel_index(i, grid.shape), coordinates)
+        for text, i in warned_at.items()
+    }
 
 
 def _named(grid: Any) -> dict[str, list[str]] | None:
@@ -357,12 +366,17 @@ def study_grid(src: StudySource) -> Any:
     return expand_grid(src, template)
 
 
-def case_label(axes: list[SweepAxis], index: tuple[int, ...]) -> str:
+def case_label(
+    axes: list[SweepAxis], index: tuple[int, ...], coordinates: list[Any] | None = None
+) -> str:
     """The case at ``index`` by its sweep coordinates ("amplitude=0.05, frequency=0.2"), or
-    "the case" without a sweep."""
+    "the case" without a sweep; ``coordinates``: the axes' :meth:`SweepAxis.coordinate`,
+    when the caller labels many cases (each axis's worked out once)."""
+    if coordinates is None:
+        coordinates = [axis.coordinate() for axis in axes]
     parts = []
-    for axis, i in zip(axes, index, strict=True):
-        value = axis.coordinate()[i]
+    for axis, coordinate, i in zip(axes, coordinates, index, strict=True):
+        value = coordinate[i]
         shown = f"{value:g}" if isinstance(value, int | float | np.number) else str(value)
         parts.append(f"{axis.name}={shown}")
     return ", ".join(parts) or "the case"
