@@ -30,9 +30,9 @@ import numpy as np
 from ..statics.base import STATUS_NUMERICAL, STATUS_OK, STATUS_TIME_LIMIT
 from .alpha_step import AlphaParameters
 from .model import static_equilibrium
+from .steady import extremes_settled
 from .system_kernels import assemble_all, point_forces
 from .system_march import BOUNDARY, FAILED, end_forces, set_drives, system_march, system_static
-from .steady import extremes_settled
 from .system_model import Drives, PackedSystem, SlotMotion, work_arrays
 
 #: extra step halvings allowed beyond ``max_refinement`` when Newton fails
