@@ -630,3 +630,11 @@ def test_clamped_ends_start_the_time_domain_from_the_static_tension(tmp_path: Pa
     fd = _run(tmp_path, bent("clamped-frequency", "frequency", "clamped", exc))
     np.testing.assert_allclose(fd["tension_static"], td["tension_a"], rtol=1e-9)
     np.testing.assert_allclose(td["tension_static"], td["tension_a"], rtol=1e-6)
+    # the clamp acts in the dynamics only: the static line is the pinned one (to the
+    # Newton tolerance of the statics, 1e-9 of the tension); the tension ranges are not
+    # (measured 2.7 and 1.0 % larger clamped, at 0.05 and 0.3 Hz), and both methods
+    # hold the same clamp (they agree to 0.02 and 0.18 %; bound 0.5 % as pinned, above)
+    pinned = _run(tmp_path, STUDIES["bent-pinned-time"])
+    np.testing.assert_allclose(td["tension_a"], pinned["tension_a"], rtol=1e-9)
+    assert np.all(np.abs(_amplitude(td) / _amplitude(pinned) - 1.0) > 5e-3)
+    np.testing.assert_allclose(_amplitude(td), _amplitude(fd), rtol=5e-3)
