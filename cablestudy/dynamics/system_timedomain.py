@@ -320,8 +320,9 @@ def _steady(
 ) -> bool:
     """Every watched line end's (``watch`` (L, 2)) per-period maximum and minimum
     changed by at most ``steady_tolerance`` times that end's dynamic range in the period
-    (or the Newton tolerance) over the last ``steady_window`` periods, after
-    ``min_periods``: the single line's rule (:func:`.steady.extremes_settled`)."""
+    (or the Newton tolerance times the square root of a line's nodes) over the last
+    ``steady_window`` periods, after ``min_periods``: the single line's rule
+    (:func:`.steady.extremes_settled`)."""
     w = problem.steady_window
     if len(periods) < max(problem.min_periods, w + 1):
         return False
@@ -331,7 +332,8 @@ def _steady(
         np.array([p[1][watch] for p in recent]),
         tolerance=problem.steady_tolerance,
         window=w,
-        floor=problem.newton_tolerance,
+        # the single line's floor: a line's end force sums its nodes' residuals
+        floor=problem.newton_tolerance * math.sqrt(max(ln.n_nodes for ln in problem.packed.lines)),
     )
 
 

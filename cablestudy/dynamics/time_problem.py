@@ -133,7 +133,7 @@ class DynamicResult:
     last ``steady_window`` periods; ``tension_max_line`` is the largest element or end
     tension there; the spreads are the ranges of the per-period maxima and minima over
     the last ``steady_window + 1`` periods (each period's change below
-    ``steady_tolerance`` times its dynamic range, or the Newton tolerance, when
+    ``steady_tolerance`` times its dynamic range, or the Newton floor, when
     ``steady_converged``). ``history`` holds ``time`` (nt,), ``tension``
     (nt,), ``displacement``, ``velocity``, ``acceleration`` (p, nt, 3) when asked for,
     and with ``history_line`` the nodes' ``line_position``, ``line_velocity``
@@ -442,7 +442,8 @@ def touchdown_of(line: DiscreteLine, x: np.ndarray, tolerance: float) -> float:
 def is_steady(problem: DynamicProblem, p_max: list[float], p_min: list[float]) -> bool:
     """Whether the last ``steady_window`` periods' maxima and minima each changed by at
     most ``steady_tolerance`` times the period's dynamic range (or by at most the Newton
-    tolerance, the force the solve resolves), after ``min_periods``
+    tolerance times the square root of the node count: the end force sums the nodes'
+    residuals, independent), after ``min_periods``
     (:func:`.steady.extremes_settled`)."""
     w = problem.steady_window
     if len(p_max) < max(problem.min_periods, w + 1):
@@ -452,7 +453,7 @@ def is_steady(problem: DynamicProblem, p_max: list[float], p_min: list[float]) -
         np.asarray(p_min),
         tolerance=problem.steady_tolerance,
         window=w,
-        floor=problem.newton_tolerance,
+        floor=problem.newton_tolerance * math.sqrt(problem.line.n_nodes),
     )
 
 
