@@ -24,9 +24,9 @@ length of its two elements; the bending energy is ``sum EI_i |u_i - u_{i-1}|^2 /
 Gauss-Newton part ``(EI/h) J^T J`` (exact for a straight line; the dropped term is of
 order EI times the curvature, a quasi-Newton approximation). A ``pinned`` end carries
 no curvature term (zero moment); a ``clamped`` end adds ``EI |u_end - d|^2 / l0`` with
-``d`` the end's fixed direction (its static tangent), i.e. the end node owns half an
-element of curvature. Bending couples a node to its second neighbours, so the
-tangent has blocks two nodes off the diagonal.
+``d`` the end's fixed direction (its static end element's: no moment at rest), i.e.
+the end node owns half an element of curvature. Bending couples a node to its second
+neighbours, so the tangent has blocks two nodes off the diagonal.
 
 Loads at nodes (tributary length = half of each adjacent element):
 

@@ -6,7 +6,8 @@ points coupling the lines through a bordered (Schur complement) solve. The run s
 rest in the discrete static equilibrium of the system model (:func:`equilibrium`),
 steps at ``step`` landing on period boundaries, and stops when the watched line ends'
 tensions have settled: the per-period maximum and minimum of each changed by at most
-``steady_tolerance`` times the largest of them over ``steady_window`` consecutive
+``steady_tolerance`` times that end's dynamic range in the period (or the Newton
+tolerance; :mod:`.steady`, the single line's rule) over ``steady_window`` consecutive
 periods (or after ``max_periods``; with ``duration`` it runs that long and the
 statistics cover every period after the ramp, as for a single line).
 
@@ -29,6 +30,7 @@ import numpy as np
 from ..statics.base import STATUS_OK
 from .alpha_step import AlphaParameters
 from .model import static_equilibrium
+from .steady import extremes_settled
 from .system_kernels import assemble_all, point_forces
 from .system_march import BOUNDARY, FAILED, end_forces, set_drives, system_march, system_static
 from .system_model import Drives, PackedSystem, SlotMotion, work_arrays
@@ -307,18 +309,22 @@ def _steady(
     problem: SystemProblem, periods: list[tuple[np.ndarray, ...]], watch: np.ndarray
 ) -> bool:
     """Every watched line end's (``watch`` (L, 2)) per-period maximum and minimum
-    changed by at most ``steady_tolerance`` times the largest of their tensions over
-    the last ``steady_window`` periods (after ``min_periods``)."""
+    changed by at most ``steady_tolerance`` times that end's dynamic range in the period
+    (or the Newton tolerance times the square root of a line's nodes) over the last
+    ``steady_window`` periods, after ``min_periods``: the single line's rule
+    (:func:`.steady.extremes_settled`)."""
     w = problem.steady_window
     if len(periods) < max(problem.min_periods, w + 1):
         return False
-    for j in range(1, w + 1):
-        hi, lo = periods[-j][0][watch], periods[-j][1][watch]
-        hi0, lo0 = periods[-j - 1][0][watch], periods[-j - 1][1][watch]
-        scale = problem.steady_tolerance * float(np.max(hi))
-        if np.any(np.abs(hi - hi0) > scale) or np.any(np.abs(lo - lo0) > scale):
-            return False
-    return True
+    recent = periods[-(w + 1) :]
+    return extremes_settled(
+        np.array([p[0][watch] for p in recent]),
+        np.array([p[1][watch] for p in recent]),
+        tolerance=problem.steady_tolerance,
+        window=w,
+        # the single line's floor: a line's end force sums its nodes' residuals
+        floor=problem.newton_tolerance * math.sqrt(max(ln.n_nodes for ln in problem.packed.lines)),
+    )
 
 
 def _resample(

@@ -20,6 +20,7 @@ from .discrete_line import DiscreteLine, interpolate_nodes
 from .end_support import seabed_support
 from .excitation import EndMotion
 from .pulley import SlidingPulleys
+from .steady import extremes_settled
 
 #: extra step halvings allowed beyond ``max_refinement`` when Newton fails
 NEWTON_RESCUE_HALVINGS = 8
@@ -41,7 +42,8 @@ class DynamicProblem:
     spectral_radius : [-] generalised-alpha high-frequency spectral radius
     newton_tolerance : [N] largest residual force accepted on a free node
     max_newton_iterations : per step
-    steady_tolerance : [-] relative change of per-period max/min that counts as steady
+    steady_tolerance : [-] change of the per-period max and min, relative to the period's
+        dynamic range (max - min), that counts as steady (:mod:`.steady`)
     steady_window : consecutive periods that must agree; outputs are taken over them
     min_periods : periods after the ramp before steady state may be declared
     max_periods : periods run at most (ramp included)
@@ -130,8 +132,9 @@ class DynamicResult:
     ``tension_max``/``tension_min``/``tension_mean`` are at the excited end over the
     last ``steady_window`` periods; ``tension_max_line`` is the largest element or end
     tension there; the spreads are the ranges of the per-period maxima and minima over
-    the last ``steady_window + 1`` periods (below ``steady_tolerance`` times the
-    maximum when ``steady_converged``). ``history`` holds ``time`` (nt,), ``tension``
+    the last ``steady_window + 1`` periods (each period's change below
+    ``steady_tolerance`` times its dynamic range, or the Newton floor, when
+    ``steady_converged``). ``history`` holds ``time`` (nt,), ``tension``
     (nt,), ``displacement``, ``velocity``, ``acceleration`` (p, nt, 3) when asked for,
     and with ``history_line`` the nodes' ``line_position``, ``line_velocity``
     (nt, n + 1, 3), ``line_element_tension`` (nt, n) and ``line_end_tension`` (nt, 2).
@@ -500,14 +503,19 @@ def touchdown_of(line: DiscreteLine, x: np.ndarray, tolerance: float) -> float:
 
 def is_steady(problem: DynamicProblem, p_max: list[float], p_min: list[float]) -> bool:
     """Whether the last ``steady_window`` periods' maxima and minima each changed by at
-    most ``steady_tolerance`` times the period's maximum (after ``min_periods``)."""
+    most ``steady_tolerance`` times the period's dynamic range (or by at most the Newton
+    tolerance times the square root of the node count: the end force sums the nodes'
+    residuals, independent), after ``min_periods``
+    (:func:`.steady.extremes_settled`)."""
     w = problem.steady_window
     if len(p_max) < max(problem.min_periods, w + 1):
         return False
-    return all(
-        abs(p_max[-j] - p_max[-j - 1]) <= problem.steady_tolerance * p_max[-j]
-        and abs(p_min[-j] - p_min[-j - 1]) <= problem.steady_tolerance * p_max[-j]
-        for j in range(1, w + 1)
+    return extremes_settled(
+        np.asarray(p_max),
+        np.asarray(p_min),
+        tolerance=problem.steady_tolerance,
+        window=w,
+        floor=problem.newton_tolerance * math.sqrt(problem.line.n_nodes),
     )
 
 

@@ -12,8 +12,8 @@ generalised-alpha method (:mod:`.integrator`) and
 * records, per period, the maximum, minimum and mean tension at the excited end (the
   magnitude of the force of the line on the end support) and the largest element
   tension; it stops when the per-period maximum and minimum have changed by less
-  than ``steady_tolerance`` times the period's maximum over ``steady_window``
-  consecutive periods (steady state), or after ``max_periods`` periods (not
+  than ``steady_tolerance`` times the period's dynamic range over ``steady_window``
+  consecutive periods (steady state, :mod:`.steady`), or after ``max_periods`` periods (not
   converged: the spread of the per-period values over the last periods is reported
   with the result, so a response that does not settle (subharmonic, chaotic) is never
   mistaken for a final number);

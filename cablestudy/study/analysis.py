@@ -367,8 +367,9 @@ class DynamicSettings(StrictModel):
 
     ``excitation`` is one motion or a list of motions summed (harmonics at either or both
     ends, or time tables). The run lasts until the per-period maximum and minimum end
-    tension change by less than ``steady_tolerance`` (relative to the period's maximum)
-    over ``steady_window`` consecutive periods, or ``max_periods`` periods; with
+    tension change by less than ``steady_tolerance`` (relative to the period's dynamic
+    range, maximum - minimum; a change below the Newton tolerance counts as none) over
+    ``steady_window`` consecutive periods, or ``max_periods`` periods; with
     ``duration`` it lasts that long instead and steady-state detection is off.
     """
 
@@ -406,7 +407,10 @@ class DynamicSettings(StrictModel):
         2.0, description="smooth start of the motion over this many periods [periods]"
     )
     steady_tolerance: Positive = Field(
-        0.002, le=0.5, description="steady state: change of per-period max and min tension [-]"
+        0.002,
+        le=0.5,
+        description="steady state: change of the per-period max and min tension, relative "
+        "to the period's dynamic range (max - min) [-]",
     )
     steady_window: int = Field(2, ge=1, le=100, description="periods that must agree")
     min_periods: int = Field(3, ge=1, description="periods run after the ramp at least")

@@ -65,16 +65,28 @@ def test_small_amplitude_in_air_agrees_within_half_a_percent() -> None:
         if method == "time":
             steady = np.array([float(r.data["steady_converged"]) == 1.0 for r in recs])
     fd_v, td_v = fd[0], td[0]
-    assert np.count_nonzero(steady) >= 19  # all but the beating cases at 1.05-1.2 Hz
+    # with no damping at all only the integrator's algorithmic damping takes the start's
+    # free vibration out: enough within max_periods from 0.1 to 0.6 Hz (measured: 11
+    # of 23 settle, each extreme then moving by less than 0.002 of the swing per
+    # period); judged against the ~106 N maximum instead of the 1-6 N swing, 19 were
+    # called steady with a free vibration of up to 0.2 N left in them
+    assert np.count_nonzero(steady[:11]) == 11
     err = np.abs(fd_v / td_v - 1.0)[steady]
     assert np.all(err < 0.005), err.max()
-    # the dynamic part itself (the swing max - min, 1-6 N on ~106 N) agrees within the
-    # time domain's own uncertainty: its steady state is declared when per-period
-    # extremes change by less than steady_tolerance (0.002) of the maximum, i.e.
-    # 2 * 0.002 * max / swing relative, plus 1 % for the two discretisations
+    # the dynamic part itself (the swing max - min, 1-6 N on ~106 N): below 0.45 Hz
+    # within 2 * 0.002 (each extreme within steady_tolerance of the swing) plus 1 % for
+    # the two discretisations (measured at most 0.4 %). From 0.5 Hz twice the
+    # excitation frequency nears the 1.15 Hz mode: a free vibration there, undamped,
+    # turns little from one period to the next, so no per-period test sees it, and it
+    # stays in the swing (measured 1.4, 4.7 and 3.1 % at 0.5, 0.55 and 0.6 Hz): bounded
+    # by the extremes' agreement, 0.002 of the maximum each
     swing_fd = (fd_v[:, 0] - fd_v[:, 1])[steady]
     swing_td = (td_v[:, 0] - td_v[:, 1])[steady]
-    bound = 2.0 * 0.002 * td_v[steady, 0] / swing_td + 0.01
+    bound = np.where(
+        FIGS_2_5_FREQUENCIES[steady] < 0.475,
+        2.0 * 0.002 + 0.01,
+        2.0 * 0.002 * td_v[steady, 0] / swing_td + 0.01,
+    )
     assert np.all(np.abs(swing_fd / swing_td - 1.0) < bound)
 
 
