@@ -181,10 +181,10 @@ class StaticProblem:
     touchdown_velocity: np.ndarray = field(default_factory=lambda: np.zeros(3))
     #: drag on the stretched diameter d (1 + e)^(-1/2) (vaz-patel seed) instead of d
     stretched_drag_diameter: bool = False
-    #: bending end conditions of ends A and B ("pinned" or "clamped"), the seabed's
-    #: contact stiffness per length [N/m^2] (None: the default) and lateral friction
-    #: coefficient (None: ``medium.friction``): used by the methods that model them
-    bending_ends: tuple[str, str] = ("pinned", "pinned")
+    #: the seabed's contact stiffness per length [N/m^2] (None: the default) and lateral
+    #: friction coefficient (None: ``medium.friction``): used by the methods that model
+    #: them (a clamped end holds the static solution's own direction, so the statics of
+    #: a clamped end are a pinned one's: the dynamics clamp, docs/guide/line-model.md)
     seabed_stiffness: float | None = None
     friction_lateral: float | None = None
 

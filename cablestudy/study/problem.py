@@ -165,7 +165,6 @@ def static_problem(study: Study) -> StaticProblem:
         max_iterations=settings.max_iterations,
         drag_elements=settings.drag_elements or 0,
         stretched_drag_diameter=settings.drag_diameter == "stretched",
-        bending_ends=(study.ends.a.bending, study.ends.b.bending),
         seabed_stiffness=study.environment.seabed.stiffness,
         friction_lateral=study.environment.seabed.friction_lateral,
         **_installation(settings.installation),

@@ -220,7 +220,12 @@ def test_the_frequency_domain_judges_its_own_envelope(tmp_path: Path) -> None:
     rise = {}
     for m, ds in runs.items():
         tiny, calm, rough = (str(w) for w in ds["warning"].values)
-        assert tiny == calm == "" and "over the motion" in rough
+        # at 1 mm the time domain's per-period extremes wander by ~5 % of the 9 N range
+        # even after 2000 periods (measured: 8.56 N at 80, 9.02 N at 2000; the quadratic
+        # drag hardly damps a 1 mm motion): its steady-state test, judged against the
+        # range (dynamics/steady.py), says so; no surface warning either way
+        assert tiny == "" or tiny.startswith("unsettled: no steady state")
+        assert calm == "" and "over the motion" in rough
         env = ds["z_envelope_max"]
         rise[m] = env.isel(amplitude=1) - env.isel(amplitude=0)
     assert float(np.abs(rise["time"] - rise["frequency"]).max()) < 0.05 * 0.5
