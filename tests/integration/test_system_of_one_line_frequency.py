@@ -1,7 +1,7 @@
 """Issue 24: a system of one line is the one-line study, in the frequency domain, bit
-for bit (moved from tests/integration/test_contract_external_system.py, where it was a
-strict-xfail reproducer of the defect: the system's lines lacked the single line's
-touchdown node).
+for bit (first found by the outside check tests/integration/test_contract_external_system.py:
+the system's lines lacked the single line's touchdown node; fixed, and the check moved
+here).
 
 A system of one line between prescribed points (fixed points, points of prescribed
 bodies; no free point) is a single line with prescribed end motions: its cases go
