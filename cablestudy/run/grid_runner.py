@@ -357,6 +357,7 @@ def study_grid(src: StudySource) -> Any:
     from ..study.loader import validate_data
 
     template = validate_data(src.data, src)
+    _refuse_output_names(src)
     if template.is_system:
         from ..analyses.system_grid import expand_system_grid
 
@@ -364,6 +365,30 @@ def study_grid(src: StudySource) -> Any:
         if grid is not None:
             return grid
     return expand_grid(src, template)
+
+
+def _refuse_output_names(src: StudySource) -> None:
+    """A sweep axis named as an output variable or coordinate of the dataset is refused
+    before any work (the netCDF writer found the clash only after every case had run,
+    and failed with a traceback), at the line of its ``name``."""
+    from ..analyses.variables import CASE_VARIABLES, COORDINATES, OUTPUTS, SYSTEM_OUTPUTS
+    from ..study.cases import parse_sweep
+    from ..study.loader import StudyError
+
+    taken = set(OUTPUTS) | set(SYSTEM_OUTPUTS) | set(CASE_VARIABLES) | set(COORDINATES)
+    raw = src.data.get("sweep") or {}
+    faults = []
+    for axis in parse_sweep(src):
+        if axis.name not in taken:
+            continue
+        key = axis.paths[0] if axis.paths[0] in raw else "zip"
+        faults.append(
+            f"{src.line_of(('sweep', key))}: sweep.{key}: dimension name {axis.name!r} is "
+            "the name of an output variable of the dataset; allowed: a name no output "
+            f"uses (give the axis another 'name') (got {axis.name!r})"
+        )
+    if faults:
+        raise StudyError(faults, src.source)
 
 
 def case_label(

@@ -46,6 +46,12 @@ RESERVED_DIMS = frozenset(
     {"s", "component", "mode", "time", "complex", "point", "harmonic"}
     | {"line", "body", "dof", "dof_j", "pulley"}
 )
+#: study keys named as an output variable is (``ends.b.z``, ``environment.current.0.z``,
+#: ``line.failure.tension``, ``analysis.dynamic.periods``): a dimension named after one
+#: would clash with that variable in the dataset, so it is prefixed with its parent key
+#: like :data:`RESERVED_DIMS` (``b_z``, ``current_z``, ``failure_tension``);
+#: tests/unit/test_sweep_dim_names.py keeps this the schema's keys that are outputs' names
+OUTPUT_NAMED_KEYS = frozenset({"z", "tension", "periods"})
 _DIM = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 MAX_CASES = 1_000_000
 
@@ -248,7 +254,7 @@ def _default_dim(path: tuple[str, ...]) -> str:
     if last.isdigit():
         named = [p for p in path if not p.isdigit()]
         return f"{named[-1]}_{last}" if named else f"index_{last}"
-    if last in RESERVED_DIMS:  # an output's dimension: prefix the parent key
+    if last in RESERVED_DIMS or last in OUTPUT_NAMED_KEYS:  # an output's name: prefix the parent
         named = [p for p in path[:-1] if not p.isdigit()]
         return f"{named[-1]}_{last}" if named else last
     return last
