@@ -28,6 +28,7 @@ import itertools
 import json
 import math
 import re
+import types
 import typing
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -94,6 +95,32 @@ class Case:
 
 def _is_scalar(v: Any) -> bool:
     return isinstance(v, int | float | str | bool) and not (isinstance(v, float) and math.isnan(v))
+
+
+def _float_field(path: str) -> bool:
+    """Whether the study field at dotted ``path`` (an item of a list field where its
+    last part is an index) holds a float in every model that may be there."""
+    parts = tuple(path.split("."))
+    item = parts[-1].isdigit()
+    names = [p for p in parts if not p.isdigit()]
+    if not names:
+        return False
+    fields = [m.model_fields.get(names[-1]) for m in _models_at(tuple(names[:-1]))]
+    found = [f for f in fields if f is not None]
+
+    def is_float(annotation: Any, unwrap_list: bool) -> bool:
+        origin = typing.get_origin(annotation)
+        if origin is typing.Annotated:
+            return is_float(typing.get_args(annotation)[0], unwrap_list)
+        if origin in (typing.Union, types.UnionType):
+            args = [a for a in typing.get_args(annotation) if a is not type(None)]
+            return bool(args) and all(is_float(a, unwrap_list) for a in args)
+        if unwrap_list and origin in (list, tuple):
+            args = [a for a in typing.get_args(annotation) if a is not Ellipsis]
+            return bool(args) and all(is_float(a, False) for a in args)
+        return annotation is float
+
+    return bool(found) and all(is_float(f.annotation, item) for f in found)
 
 
 def _field_info(path: tuple[str, ...]) -> tuple[str, str]:
@@ -364,6 +391,12 @@ def parse_sweep(src: StudySource) -> list[SweepAxis]:
             )
             return
         units, long_name = _field_info(tuple(paths[0].split(".")))
+        # a whole number swept into a float field is that float: the coordinate and the
+        # case hash do not depend on how the number is written (1_000, 1000.0, 1e3)
+        values = [
+            [float(v) if _float_field(p) and type(v) is int else v for v in vals]
+            for p, vals in zip(paths, values, strict=True)
+        ]
         if len(paths) > 1:
             long_name = "zipped: " + ", ".join(paths)
             units = ""
