@@ -38,7 +38,9 @@ def test_two_current_points_swept_to_one_height_are_refused() -> None:
     with pytest.raises(StudyError) as err:
         expand_grid(src)
     assert "environment.current" in str(err.value)
-    assert "{'z': -20.0, 'z1': -20.0}" in str(err.value)  # the one case that has it
+    # the one case that has it; the axis of a current point's z is current_z (a dimension
+    # z would clash with the position output z)
+    assert "{'current_z': -20.0, 'z1': -20.0}" in str(err.value)
 
 
 def test_a_direction_swept_to_zero_in_parts_is_refused() -> None:
