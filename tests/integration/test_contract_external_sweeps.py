@@ -76,7 +76,9 @@ def _runs(tmp_path: Path, base: str, sweep: dict, methods: tuple[str, ...], node
     out = {}
     for m in methods:
         text = study_text(base, m, f"agree-{base}-{m}-{nodes}")
-        out[m] = _quiet_run(tmp_path, with_sweep(text.replace("nodes: 21", f"nodes: {nodes}"), sweep))
+        out[m] = _quiet_run(
+            tmp_path, with_sweep(text.replace("nodes: 21", f"nodes: {nodes}"), sweep)
+        )
     return out
 
 
@@ -85,25 +87,35 @@ def _tension_error(ds: xr.Dataset, ref: xr.Dataset) -> float:
     or of end B's position relative to the line's length where larger (a towed end's
     tension is given: its place is the answer)."""
     length = float(ref["s"][-1])
-    found = [float(np.max(np.abs(ds[v] - ref[v]) / ref["tension_b"])) for v in ("tension_a", "tension_b")]
+    found = [
+        float(np.max(np.abs(ds[v] - ref[v]) / ref["tension_b"])) for v in ("tension_a", "tension_b")
+    ]
     found += [float(np.max(np.abs(ds[v].isel(s=-1) - ref[v].isel(s=-1)))) / length for v in "xyz"]
     return max(found)
 
 
 AGREE = [
     # base, sweep, the exact methods (the first is the reference), the discretised ones
-    ("span", {"ends.b.position.0": [100.0, 119.0, 125.0]}, ("analytic", "catenary", "shooting"),
-     ("discrete",)),
-    ("leg", {"environment.seabed.friction": [0.0, 0.05]}, ("catenary", "shooting"),
-     ("discrete",)),
-    ("current", {"environment.current.0.speed": [0.25, 1.0]}, ("shooting",),
-     ("catenary", "discrete")),
+    (
+        "span",
+        {"ends.b.position.0": [100.0, 119.0, 125.0]},
+        ("analytic", "catenary", "shooting"),
+        ("discrete",),
+    ),
+    ("leg", {"environment.seabed.friction": [0.0, 0.05]}, ("catenary", "shooting"), ("discrete",)),
+    (
+        "current",
+        {"environment.current.0.speed": [0.25, 1.0]},
+        ("shooting",),
+        ("catenary", "discrete"),
+    ),
     ("tow", {"ends.b.force.0": [-3000.0, -1000.0]}, ("catenary", "shooting"), ("discrete",)),
 ]
 
 
-@pytest.mark.parametrize(("base", "sweep", "exact", "discretised"), AGREE,
-                         ids=[a[0] for a in AGREE])
+@pytest.mark.parametrize(
+    ("base", "sweep", "exact", "discretised"), AGREE, ids=[a[0] for a in AGREE]
+)
 def test_the_static_methods_agree_on_the_same_sweep(
     tmp_path: Path, base: str, sweep: dict, exact: tuple[str, ...], discretised: tuple[str, ...]
 ) -> None:
@@ -165,8 +177,15 @@ def test_a_sloped_seabed_holds_the_laid_line_on_its_plane(tmp_path: Path) -> Non
 FALLBACK = [
     (
         "current",
-        {"zip": [{"name": "speed", "environment.current.0.speed": [0.0, 0.5, 1.0],
-                  "environment.current.1.speed": [0.0, 0.5, 1.0]}]},
+        {
+            "zip": [
+                {
+                    "name": "speed",
+                    "environment.current.0.speed": [0.0, 0.5, 1.0],
+                    "environment.current.1.speed": [0.0, 0.5, 1.0],
+                }
+            ]
+        },
         2,
         "2 x current with drag: the drag iteration runs in the general solver",
     ),
@@ -180,8 +199,11 @@ FALLBACK = [
 ]
 
 
-@pytest.mark.parametrize(("base", "sweep", "count", "reasons"), FALLBACK,
-                         ids=["current-speed", "method", "anchor-height"])
+@pytest.mark.parametrize(
+    ("base", "sweep", "count", "reasons"),
+    FALLBACK,
+    ids=["current-speed", "method", "anchor-height"],
+)
 def test_a_sweep_mixing_kernel_and_general_cases_counts_the_fallback(
     tmp_path: Path, base: str, sweep: dict, count: int, reasons: str
 ) -> None:
@@ -374,38 +396,87 @@ def test_how_the_study_is_written_changes_neither_path_nor_file(tmp_path: Path) 
 
 
 REFUSED = [
-    ("span", {"line.segments.0.length": [130.0, -5.0]},
-     ["line.segments.0.length", "sweep.line.segments.0.length", "greater than 0", "-5.0"]),
-    ("leg", {"environment.seabed.friction": [0.1, -0.2]},
-     ["environment.seabed.friction", "greater than or equal to 0", "-0.2"]),
-    ("span", {"line.segments.0.lenght": [130.0, 140.0]},
-     ["sweep.line.segments.0.lenght", "did you mean 'length'", "allowed keys"]),
-    ("span", {"line.segments.3.length": [130.0, 140.0]},
-     ["sweep.line.segments.3.length", "list of 1 items", "allowed 0..0"]),
-    ("span", {"ends.b.kind": [1.0, 2.0]},
-     ["ends.b.kind", "'fixed', 'force', 'mooring'", "got '1.0'"]),
-    ("span", {"line.segments.0.length": [130.0, "long"]},
-     ["line.segments.0.length", "must be a number", "got 'long'"]),
-    ("current", {"environment.current.0.heading_deg": [0.0, "north"]},
-     ["environment.current.0.heading_deg", "must be a number", "got 'north'"]),
-    ("span", {"zip": [{"name": "g", "line.segments.0.length": [130.0, 140.0],
-                       "ends.b.position.0": [110.0, 115.0, 119.0]}]},
-     ["sweep.zip.0", "equal lengths", "line.segments.0.length: 2", "ends.b.position.0: 3"]),
-    ("leg", {"line.segments.1.length": [200.0, 100.0]},
-     ["line.attachments.0.s", "beyond the end of the line", "allowed 0 <= s <= 300", "330.0"]),
-    ("leg", {"environment.depth": [100.0, 95.0]},
-     ["ends.a.position", "below the seabed", "allowed z >= seabed height", "95.0"]),
-    ("leg", {"environment.seabed.slope_deg": [0.0, 70.0]},
-     ["environment.seabed.slope_deg", "less than or equal to 60", "70.0"]),
-    ("span", {"analysis.static.nodes": [21, 21.5]},
-     ["analysis.static.nodes", "whole number", "21.5"]),
-    ("span", {"ends.b.position.0": {"values": [110.0, 119.0], "name": "tension_b"}},
-     ["sweep.ends.b.position.0", "'tension_b'", "output variable", "another 'name'"]),
+    (
+        "span",
+        {"line.segments.0.length": [130.0, -5.0]},
+        ["line.segments.0.length", "sweep.line.segments.0.length", "greater than 0", "-5.0"],
+    ),
+    (
+        "leg",
+        {"environment.seabed.friction": [0.1, -0.2]},
+        ["environment.seabed.friction", "greater than or equal to 0", "-0.2"],
+    ),
+    (
+        "span",
+        {"line.segments.0.lenght": [130.0, 140.0]},
+        ["sweep.line.segments.0.lenght", "did you mean 'length'", "allowed keys"],
+    ),
+    (
+        "span",
+        {"line.segments.3.length": [130.0, 140.0]},
+        ["sweep.line.segments.3.length", "list of 1 items", "allowed 0..0"],
+    ),
+    (
+        "span",
+        {"ends.b.kind": [1.0, 2.0]},
+        ["ends.b.kind", "'fixed', 'force', 'mooring'", "got '1.0'"],
+    ),
+    (
+        "span",
+        {"line.segments.0.length": [130.0, "long"]},
+        ["line.segments.0.length", "must be a number", "got 'long'"],
+    ),
+    (
+        "current",
+        {"environment.current.0.heading_deg": [0.0, "north"]},
+        ["environment.current.0.heading_deg", "must be a number", "got 'north'"],
+    ),
+    (
+        "span",
+        {
+            "zip": [
+                {
+                    "name": "g",
+                    "line.segments.0.length": [130.0, 140.0],
+                    "ends.b.position.0": [110.0, 115.0, 119.0],
+                }
+            ]
+        },
+        ["sweep.zip.0", "equal lengths", "line.segments.0.length: 2", "ends.b.position.0: 3"],
+    ),
+    (
+        "leg",
+        {"line.segments.1.length": [200.0, 100.0]},
+        ["line.attachments.0.s", "beyond the end of the line", "allowed 0 <= s <= 300", "330.0"],
+    ),
+    (
+        "leg",
+        {"environment.depth": [100.0, 95.0]},
+        ["ends.a.position", "below the seabed", "allowed z >= seabed height", "95.0"],
+    ),
+    (
+        "leg",
+        {"environment.seabed.slope_deg": [0.0, 70.0]},
+        ["environment.seabed.slope_deg", "less than or equal to 60", "70.0"],
+    ),
+    (
+        "span",
+        {"analysis.static.nodes": [21, 21.5]},
+        ["analysis.static.nodes", "whole number", "21.5"],
+    ),
+    (
+        "span",
+        {"ends.b.position.0": {"values": [110.0, 119.0], "name": "tension_b"}},
+        ["sweep.ends.b.position.0", "'tension_b'", "output variable", "another 'name'"],
+    ),
 ]
 
 
-@pytest.mark.parametrize(("base", "sweep", "fragments"), REFUSED,
-                         ids=[next(iter(r[1])) + f"-{i}" for i, r in enumerate(REFUSED)])
+@pytest.mark.parametrize(
+    ("base", "sweep", "fragments"),
+    REFUSED,
+    ids=[next(iter(r[1])) + f"-{i}" for i, r in enumerate(REFUSED)],
+)
 def test_a_bad_swept_value_is_refused_before_any_work(
     tmp_path: Path, base: str, sweep: dict, fragments: list[str]
 ) -> None:
@@ -445,8 +516,9 @@ def test_keys_named_as_outputs_sweep_under_their_parent_names(tmp_path: Path) ->
     # B is reached by integrating from A: at the given height to rounding
     np.testing.assert_allclose(ds["z"].isel(s=-1).values, [-20.0, -10.0], rtol=0, atol=1e-9)
     assert float(ds["tension_b"][1]) > float(ds["tension_b"][0])
-    cur = with_sweep(study_text("current", "shooting", "current-z"),
-                     {"environment.current.1.z": [-100.0, -50.0]})
+    cur = with_sweep(
+        study_text("current", "shooting", "current-z"), {"environment.current.1.z": [-100.0, -50.0]}
+    )
     ds = _quiet_run(tmp_path, cur)
     assert "current_z" in ds.dims and ds["current_z"].attrs["units"] == "m"
     fail = study_text("span", None, "failure-tension").replace(
@@ -462,8 +534,9 @@ def test_a_line_too_short_to_reach_is_solved_stretched_and_warned(tmp_path: Path
     solves it stretched, T = EA (d / L - 1) along a straight line less its small sag; the
     case keeps status 0 and its ``warning`` names the strain, past
     ``analysis.static.strain_warning``; the study carries on with the other case clean."""
-    text = with_sweep(study_text("span", None, "too-short"),
-                      {"line.segments.0.length": [130.0, 10.0]})
+    text = with_sweep(
+        study_text("span", None, "too-short"), {"line.segments.0.length": [130.0, 10.0]}
+    )
     ds = _quiet_run(tmp_path, text)
     assert ds.attrs["cases_warned"] == 1
     assert str(ds["warning"].values[0]) == ""
