@@ -534,10 +534,17 @@ def alone_faults(grid: xr.Dataset, alone: xr.Dataset, dim: str, k: int) -> list[
     case = grid.isel({dim: k})
     if "arc_length" in case:
         # cases of other arc lengths: s is the node index, arc_length the case's own
-        # (docs/guide/results.md); the case alone has its arc lengths as the s coordinate
-        if not np.array_equal(case["arc_length"].values, alone["s"].values):
+        # (docs/guide/results.md); the case alone has its arc lengths as the s coordinate;
+        # a case of fewer nodes than the grid's most is NaN past its own
+        n = alone.sizes["s"]
+        arc = case["arc_length"].values
+        if not (np.array_equal(arc[:n], alone["s"].values) and np.all(np.isnan(arc[n:]))):
             faults.append("arc_length of the grid case != s of the case alone")
-        case = case.drop_vars("arc_length")
+        for name in [v for v in case.data_vars if "s" in case[v].dims]:
+            rest = case[name].isel(s=slice(n, None)).values
+            if rest.size and not np.all(np.isnan(rest)):
+                faults.append(f"{name}: values past the case's {n} nodes")
+        case = case.drop_vars("arc_length").isel(s=slice(0, n))
     for name in sorted(set(case.data_vars) - NOT_RESULTS):
         if name not in alone:
             faults.append(f"{name} in the grid, not in the case run alone")

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import contextlib
 import io
+import json
 import math
 from pathlib import Path
 
@@ -545,3 +546,89 @@ def test_a_line_too_short_to_reach_is_solved_stretched_and_warned(tmp_path: Path
     chord = math.hypot(119.0, 20.0)
     # the weight (5 kg/m over 10 m) sags the taut line by far less than 1e-3 of its tension
     np.testing.assert_allclose(float(ds["tension_b"][1]), 4.0e7 * (chord / 10.0 - 1.0), rtol=1e-3)
+
+
+# ------------------------------------------------ resolution, mirror, vectors
+
+
+@pytest.mark.parametrize("method", ["catenary", "analytic", "shooting", "discrete"])
+def test_a_swept_node_count_changes_the_resolution_only(tmp_path: Path, method: str) -> None:
+    """``analysis.static.nodes`` swept 11, 21, 41: ``s`` becomes the node index (units 1)
+    with each case's ``arc_length`` beside it (NaN past a case's own nodes), and each
+    case is the case alone. The continuous methods' end tensions do not depend on where
+    the line is sampled (equal to 1e-9, their tolerance); the discrete model's are
+    second order in the element length: each halving divides the error by 4 (held in
+    [3, 5]) against the exact catenary (measured: 4.0 and 4.0)."""
+    nodes = [11, 21, 41]
+    ds = _quiet_run(
+        tmp_path,
+        with_sweep(study_text("span", method, f"nodes-{method}"), {"analysis.static.nodes": nodes}),
+    )
+    assert ds["s"].attrs["units"] == "1" and ds["arc_length"].dims == ("nodes", "s")
+    for k, n in enumerate(nodes):
+        alone = _quiet_run(
+            tmp_path / "alone",
+            study_text("span", method, f"nodes-{method}-{n}").replace("nodes: 21", f"nodes: {n}"),
+        )
+        assert not alone_faults(ds, alone, "nodes", k), (n, alone_faults(ds, alone, "nodes", k))
+    t = ds["tension_b"].values
+    if method != "discrete":
+        np.testing.assert_allclose(t, t[0], rtol=1e-9)
+        return
+    exact = _quiet_run(tmp_path, study_text("span", "analytic", "nodes-exact"))
+    err = np.abs(t - float(exact["tension_b"]))
+    assert 3.0 < err[0] / err[1] < 5.0 and 3.0 < err[1] / err[2] < 5.0, err
+
+
+@pytest.mark.parametrize("method", ["catenary", "shooting", "discrete"])
+def test_a_current_turned_round_mirrors_the_line(tmp_path: Path, method: str) -> None:
+    """The current's heading swept 90 and 270 deg at both profile points (a zip group),
+    across the vertical plane of the line's ends: the line is blown to +y and to -y as
+    mirror images, x, z and tension equal, y opposite, to rounding in the heading's sine
+    and cosine (1e-9 m and 1e-9 of the tension; measured 1e-14)."""
+    sweep = {
+        "zip": [
+            {
+                "name": "heading",
+                "environment.current.0.heading_deg": [90.0, 270.0],
+                "environment.current.1.heading_deg": [90.0, 270.0],
+            }
+        ]
+    }
+    ds = _quiet_run(tmp_path, with_sweep(study_text("current", method, f"mirror-{method}"), sweep))
+    # a zip group: one coordinate per path on its dimension, with the field's units
+    for path in sweep["zip"][0]:
+        if path != "name":
+            (coord,) = [
+                c
+                for name, c in ds.coords.items()
+                if name != "heading" and path in c.attrs.get("long_name", "")
+            ]
+            assert coord.dims == ("heading",) and coord.attrs["units"] == "deg"
+            assert list(coord.values) == [90.0, 270.0]
+    a, b = ds.isel(heading=0), ds.isel(heading=1)
+    assert float(a["y"].isel(s=10)) > 0.1  # blown well off the plane
+    np.testing.assert_allclose(b["y"], -a["y"], rtol=0, atol=1e-9)
+    for v in ("x", "z"):
+        np.testing.assert_allclose(b[v], a[v], rtol=0, atol=1e-9)
+    np.testing.assert_allclose(b["tension"], a["tension"], rtol=1e-9)
+
+
+@pytest.mark.parametrize("method", ["catenary", "shooting", "discrete"])
+def test_a_swept_tow_force_vector_with_labels(tmp_path: Path, method: str) -> None:
+    """A towing end's whole force swept as labelled vectors: the dimension reads the
+    labels, ``tow_value`` keeps the vectors, the line's force on the towing point is
+    the applied force reversed (the end holds it exactly), and each case is the case
+    alone."""
+    forces = [[-2000.0, 0.0, -500.0], [-1000.0, 500.0, 0.0]]
+    sweep = {"ends.b.force": {"values": forces, "labels": ["hard", "soft"], "name": "tow"}}
+    ds = _quiet_run(tmp_path, with_sweep(study_text("tow", method, f"tow-{method}"), sweep))
+    assert list(ds["tow"].values) == ["hard", "soft"]
+    assert [json.loads(v) for v in ds["tow_value"].values] == forces
+    np.testing.assert_allclose(ds["force_b"].values, -np.array(forces), rtol=0, atol=1e-6)
+    for k, force in enumerate(forces):
+        text = study_text("tow", method, f"tow-{method}-{k}").replace(
+            "force: [-2000.0, 0.0, -500.0]", f"force: {force}"
+        )
+        alone = _quiet_run(tmp_path / "alone", text)
+        assert not alone_faults(ds, alone, "tow", k), alone_faults(ds, alone, "tow", k)
