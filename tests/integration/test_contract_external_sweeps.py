@@ -632,3 +632,31 @@ def test_a_swept_tow_force_vector_with_labels(tmp_path: Path, method: str) -> No
         )
         alone = _quiet_run(tmp_path / "alone", text)
         assert not alone_faults(ds, alone, "tow", k), alone_faults(ds, alone, "tow", k)
+
+
+@pytest.mark.parametrize("method", ["catenary", "shooting", "discrete"])
+def test_a_case_that_fails_is_recorded_and_the_sweep_carries_on(
+    tmp_path: Path, method: str
+) -> None:
+    """The leg with its clump moved to s = 250 m and its chain swept 190, 200, 210 m:
+    at 190 m the touchdown point falls on the clump (a point load resting on the seabed
+    with a kink there), which no static method here solves. That case is kept with a
+    nonzero status, a message, NaN in every numeric static output (counters included);
+    the other two cases are solved (status 0, empty message) and the file counts one
+    failure. Measured: every method fails it; shooting says why, catenary and discrete
+    report their Newton's line search."""
+    text = study_text("leg", method, f"fails-{method}").replace("s: 330.0", "s: 250.0")
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf):
+        code, ds = run(
+            tmp_path, with_sweep(text, {"line.segments.0.length": [190.0, 200.0, 210.0]})
+        )
+    assert code == 0 and ds is not None, buf.getvalue()
+    assert list(ds["status"].values != 0) == [True, False, False]
+    assert str(ds["message"].values[0]) and not any(str(m) for m in ds["message"].values[1:])
+    assert ds.attrs["cases_failed"] == 1
+    for name, var in ds.data_vars.items():
+        if var.dtype.kind == "f" and name != "wall_time":
+            assert np.all(np.isnan(var.isel(length=0).values)), name
+            assert np.all(np.isfinite(var.isel(length=slice(1, None)).values)), name
+    assert "failures by message" in buf.getvalue()
