@@ -128,7 +128,19 @@ analysis:
   static: {method: METHOD, nodes: 21}
 """
 
+#: SPAN with its stiffness as an axial law: linear (the kernels take it as EA) and a
+#: polynomial T = A e + B e^2 (the general solver's), and SPAN made of a line type
+SPAN_LINEAR = SPAN.replace("axial_stiffness: 4.0e7}", "axial: {law: linear, stiffness: 4.0e7}}")
+SPAN_POLY = SPAN.replace(
+    "axial_stiffness: 4.0e7}", "axial: {law: polynomial, coefficients: [4.0e7, 1.0e8]}}"
+)
+SPAN_TYPE = SPAN.replace(
+    "diameter: 0.03, mass_per_length: 5.0, axial_stiffness: 4.0e7}",
+    "line_type: {material: wire_six_strand, nominal_diameter: 0.03}}",
+)
+
 BASES = {"leg": LEG, "span": SPAN, "span_clump": SPAN_CLUMP, "current": CURRENT}
+BASES |= {"span_linear": SPAN_LINEAR, "span_poly": SPAN_POLY, "span_type": SPAN_TYPE}
 BASES |= {"tow": TOW, "moor": MOOR}
 
 
@@ -311,6 +323,39 @@ PROBES: tuple[Probe, ...] = (
         "m",
         ALL,
         "a higher support stretches the span taut",
+    ),
+    Probe(
+        "span_linear",
+        "line.segments.0.axial.stiffness",
+        (2.0e7, 4.0e7, 8.0e7),
+        "tension_b",
+        _scalar("tension_b"),
+        +1,
+        "N",
+        ALL,
+        "the linear law's stiffness is EA: stiffer, less sag, more tension",
+    ),
+    Probe(
+        "span_poly",
+        "line.segments.0.axial.coefficients.0",
+        (2.0e7, 4.0e7, 8.0e7),
+        "tension_b",
+        _scalar("tension_b"),
+        +1,
+        "N",
+        CAT_SHOOT_DISC,
+        "the polynomial law's linear term: stiffer, less sag, more tension",
+    ),
+    Probe(
+        "span_type",
+        "line.segments.0.line_type.nominal_diameter",
+        (0.02, 0.03, 0.04),
+        "tension_b",
+        _scalar("tension_b"),
+        +1,
+        "m",
+        ALL,
+        "a thicker wire rope of the library weighs more per metre",
     ),
     Probe(
         "span_clump",
