@@ -448,7 +448,44 @@ def verified(
     checked = check_one(problem, result, method=method, floor=floor)
     if bool(checked.ok[0]):
         return result
-    return replace(result, status=STATUS_NOT_VERIFIED, message=checked.message(0))
+    message = checked.message(0) + _cross_slope_hint(problem, result, method, checked)
+    return replace(result, status=STATUS_NOT_VERIFIED, message=message)
+
+
+#: the whole-line check of a line resting on the seabed (:func:`_checks`)
+_SEABED_BALANCE = "whole-line force balance (seabed reaction admissible)"
+
+
+def _cross_slope_hint(
+    problem: StaticProblem, result: StaticResult, method: str, checked: Checked
+) -> str:
+    """Why a cable method's laid line fails the seabed balance on a slope that rises
+    across the vertical plane of its ends: those methods solve the line in that plane,
+    so the laid line's weight down the cross slope is left to friction together with
+    the pull along the line; where Coulomb friction cannot hold both the line would slide
+    sideways, which they do not model ('' where that is not the case)."""
+    med = problem.medium
+    name = _SEABED_BALANCE
+    if method not in ("catenary", "shooting") or med.depth is None or med.seabed_slope == 0.0:
+        return ""
+    if name not in checked.values or checked.values[name][0] <= checked.allowed[name][0]:
+        return ""
+    chord = np.asarray(result.position[-1], dtype=float) - np.asarray(result.position[0])
+    if float(np.hypot(chord[0], chord[1])) == 0.0:
+        return ""
+    azimuth = math.atan2(float(chord[1]), float(chord[0]))
+    across = math.sin(med.seabed_heading - azimuth)
+    shown = round(math.degrees(azimuth), 6) + 0.0  # no -7.68e-20 for a line along +x
+    if abs(across) <= 1e-6:
+        return ""
+    return (
+        f" (the seabed rises at {math.degrees(med.seabed_slope):.3g} deg towards heading "
+        f"{math.degrees(med.seabed_heading):.3g} deg, across the vertical plane of the "
+        f"line's ends at azimuth {shown:.6g} deg: method {method!r} solves "
+        "the line in that plane, leaving the laid line's weight down the cross slope to "
+        "friction with the pull along it, more than Coulomb friction holds here; method "
+        "'discrete' models the line sliding sideways)"
+    )
 
 
 def check_one(

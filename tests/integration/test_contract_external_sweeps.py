@@ -660,3 +660,40 @@ def test_a_case_that_fails_is_recorded_and_the_sweep_carries_on(
             assert np.all(np.isnan(var.isel(length=0).values)), name
             assert np.all(np.isfinite(var.isel(length=slice(1, None)).values)), name
     assert "failures by message" in buf.getvalue()
+
+
+@pytest.mark.parametrize("method", ["catenary", "shooting"])
+def test_a_laid_line_on_a_cross_slope_says_why_the_cable_methods_fail(
+    tmp_path: Path, method: str
+) -> None:
+    """The leg on a seabed rising 4 deg across its vertical plane (towards +y), friction
+    swept 0.1 and 0.5. The cable methods solve the line in the plane of its ends, so the
+    laid chain's weight down the cross slope (w sin 4 deg a metre) is left to friction
+    beside the pull along the line: with 0.5 the Coulomb limit holds both and the case
+    is verified (status 0); with 0.1 it does not (the chain would slide sideways) and
+    the verification fails the case (status 11, kept), its message now saying so and
+    naming method 'discrete', whose nodes may slide (measured: 0.1 passes there).
+    Found here: the message said only "whole-line force balance (seabed reaction
+    admissible) off by 5.62e+03 N"."""
+    text = study_text("leg", method, f"cross-{method}").replace(
+        "slope_deg: 0.0", "slope_deg: 4.0, slope_heading_deg: 90.0"
+    )
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf):
+        code, ds = run(tmp_path, with_sweep(text, {"environment.seabed.friction": [0.1, 0.5]}))
+    assert code == 0 and ds is not None
+    assert list(ds["status"].values) == [11, 0]
+    message = str(ds["message"].values[0])
+    assert message.startswith("not verified: whole-line force balance")
+    assert "across the vertical plane of the line's ends" in message
+    assert "method 'discrete'" in message and f"method {method!r}" in message
+    discrete = _quiet_run(
+        tmp_path,
+        with_sweep(
+            study_text("leg", "discrete", "cross-discrete").replace(
+                "slope_deg: 0.0", "slope_deg: 4.0, slope_heading_deg: 90.0"
+            ),
+            {"environment.seabed.friction": [0.1]},
+        ),
+    )
+    assert int(discrete["status"][0]) == 0
