@@ -394,7 +394,7 @@ def parse_sweep(src: StudySource) -> list[SweepAxis]:
         # a whole number swept into a float field is that float: the coordinate and the
         # case hash do not depend on how the number is written (1_000, 1000.0, 1e3)
         values = [
-            [float(v) if _float_field(p) and type(v) is int else v for v in vals]
+            [float(v) if type(v) is int else v for v in vals] if _float_field(p) else vals
             for p, vals in zip(paths, values, strict=True)
         ]
         if len(paths) > 1:
