@@ -5,6 +5,15 @@ The studies are in tests/sweep_contract.py, written from DESIGN.md and docs/ (th
 sweeps guide, the results page, the key reference), and run as a user runs them:
 ``cablestudy run CONFIG --out DIR``. Not repeated here: line statics without sweeps
 (tests/integration/test_contract_external_line.py).
+
+Found by these checks and fixed (each test says which fails without its fix): a swept
+``ends.b.z`` / ``environment.current.N.z`` / ``line.failure.tension`` crashed the netCDF
+writer after every case had run (a dimension named as an output); an axis ``name:`` of
+an output did the same; a discrete mooring end on a rough seabed failed its own
+verification; a float field swept with whole numbers wrote an int64 coordinate; a laid
+line on a cross slope failed without saying why. Seabed lines swept over keys other than
+end positions and stiffnesses were solved one by one (now in one batch: the records are
+the same bit for bit, the alone-run comparisons below check it).
 """
 
 from __future__ import annotations
