@@ -24,7 +24,7 @@ from ..study.cases import Case
 from ..study.system import BodyPoint, FreePoint
 from ..study.system_dynamics import BODY_DOFS, BodyHarmonic, BodyTable, PointHarmonic
 from .counters import COUNTERS, trim_lru
-from .line_model import period_and_step, system_line_extras
+from .line_model import march_settings, period_and_step, system_line_extras
 
 _MODEL_CACHE: OrderedDict[tuple, Any] = OrderedDict()
 _STATIC_CACHE: OrderedDict[str, Any] = OrderedDict()
@@ -289,19 +289,11 @@ def run_system_dynamic(
         motion=motion,
         period=period,
         step=step,
-        max_refinement=dyn.max_refinement,
-        spectral_radius=dyn.spectral_radius,
         newton_tolerance=tol,
-        max_newton_iterations=dyn.max_newton_iterations,
         tension_step=dyn.tension_resolution * scale,
-        steady_tolerance=dyn.steady_tolerance,
-        steady_window=dyn.steady_window,
-        min_periods=dyn.settle_periods,  # a kept record lies in the motion
-        max_periods=dyn.max_periods,
-        duration=dyn.duration,
-        history=hist is not None,
         history_periods=hist.periods if hist else 2.0,
         history_samples=hist.samples_per_period if hist else 64,
+        **march_settings(dyn),
     )
     res = simulate_system(problem, deadline=deadline)
     if res.status != STATUS_OK:
