@@ -281,8 +281,9 @@ def element_breaks(study: Any, line: DiscreteLine) -> dict[str, np.ndarray]:
     return {"break_tension": tension[of], "break_at": when[of]}
 
 
-def catenary_winch(winch: Any) -> dict[str, float]:
-    """The time domain's winch settings (the first element's length changes)."""
+def winch_settings(winch: Any) -> dict[str, float]:
+    """The winch settings of the time domain (the first element's length changes) and of
+    a spring line's dynamics (its unstretched length changes)."""
     if winch is None:
         return {}
     return {

@@ -17,12 +17,12 @@ from ..study.analysis import (
 )
 from ..study.cases import Case
 from .line_model import (
-    catenary_winch,
     discrete_statics,
     element_breaks,
     end_motion,
     march_settings,
     roundoff_force,
+    winch_settings,
 )
 
 if TYPE_CHECKING:  # imported where used: `cablestudy validate` needs none of them
@@ -80,7 +80,7 @@ def dynamic_problem(case: Case, static: StaticResult) -> DynamicProblem | str:
         touchdown_tolerance=1e-6 * max(float(line.s[-1]), 1.0),
         after_break=dyn.after_break,
         **element_breaks(case.study, line),
-        **catenary_winch(case.study.line.winch),
+        **winch_settings(case.study.line.winch),
         pulleys=sliding,
         **march_settings(dyn),
     )
