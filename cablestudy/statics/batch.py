@@ -124,7 +124,6 @@ def solve_batch(
     problems: list[StaticProblem],
     *,
     deadline: float | None = None,
-    solver: SemiAnalyticSolver | None = None,
     contact: bool = True,
     general: list[int] | None = None,
     verify: bool = True,
@@ -137,7 +136,7 @@ def solve_batch(
     :data:`ON_SEABED`). ``verify=False`` takes the kernels' settled answers without
     :mod:`.verify`'s checks: only for intermediate iterates whose answer is re-solved
     verified (the system Newton's trials, :func:`.system._solve`)."""
-    solver = solver or SemiAnalyticSolver()
+    solver = SemiAnalyticSolver()
     results, why, tried = _kernels(problems, contact=contact, verify=verify)
     out = []
     for i, prob in enumerate(problems):
