@@ -98,7 +98,6 @@ def over_pulleys(problem: SpringProblem) -> StaticResult:
         force_b=-T[-1] * u[-1],
     )
     res.pulley_force = T[1:, None] * u[1:] - T[:-1, None] * u[:-1]  # type: ignore[attr-defined]
-    res.span_length = lengths  # type: ignore[attr-defined]
     return res
 
 
