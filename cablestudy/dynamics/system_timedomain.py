@@ -53,14 +53,13 @@ class SystemDynamicResult:
     """Outcome of :func:`simulate_system` over the steady window: end tensions [N]
     (L, 2) (max, min, mean; ends A, B), element tensions (E,) packed line after line,
     body forces and moments (B, 6) (max, min); the nodes' highest elevation [m] (N,)
-    packed line after line; the static end tensions (L, 2)."""
+    packed line after line."""
 
     status: int = STATUS_OK
     message: str = ""
     end_max: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     end_min: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     end_mean: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
-    end_static: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     element_max: np.ndarray = field(default_factory=lambda: np.zeros(0))
     element_min: np.ndarray = field(default_factory=lambda: np.zeros(0))
     z_max: np.ndarray = field(default_factory=lambda: np.zeros(0))
@@ -180,7 +179,6 @@ def simulate_system(
     forces = np.zeros((L, 2, 3))
     end_forces(S, W, x0, a0, pk.he_node, forces)
     ends_prev = np.sqrt(np.sum(forces**2, axis=2))
-    end_static = ends_prev.copy()
     dr = problem.drives
     D = (
         problem.motion.kernel_args(),
@@ -229,7 +227,7 @@ def simulate_system(
     single = problem.history
     # one step at a time for the history; with a deadline, back every 64 steps to check it
     budget = 1 if single else (64 if deadline is not None else 2**62)
-    result = SystemDynamicResult(end_static=end_static)
+    result = SystemDynamicResult()
     c_start = 0.0
     converged = False
     lmin = pk.lmin
