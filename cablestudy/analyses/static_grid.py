@@ -157,7 +157,7 @@ def _compiled_solve(
     """The cases of a chunk (the template's static problem ``base`` with end positions
     ``pos`` and segment stiffnesses ``ea`` per case) through the compiled batch kernel
     straight from arrays: the inputs :func:`cablestudy.statics.batch_kernels._solve_group` (lines
-    hanging free) and :func:`cablestudy.statics.batch_kernels._contact_one` (end A anchored on
+    hanging free) and :func:`cablestudy.statics.batch_kernels._contact_inputs` (end A anchored on
     the seabed, end B above it: :func:`cablestudy.statics.batch_kernels.solve_contact_arrays`)
     build from one problem object per case, built here for all cases at once (so the
     same numbers, bit for bit, without a per-case object). Returns the stacked results,
