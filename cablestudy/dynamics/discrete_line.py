@@ -15,6 +15,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..statics.base import LineModel, Medium
+from ..statics.seabed import Plane
 
 
 class LineArrays(NamedTuple):
@@ -236,17 +237,6 @@ def element_counts(lengths: np.ndarray, elements: int) -> np.ndarray:
     return counts
 
 
-def seabed_plane(medium: Medium) -> tuple[np.ndarray, float]:
-    """Unit upward normal and offset of the seabed plane ``n . x = offset`` (the plane
-    through (0, 0, -depth) rising at ``seabed_slope`` towards ``seabed_heading``)."""
-    rise = math.tan(medium.seabed_slope)
-    ch, sh = math.cos(medium.seabed_heading), math.sin(medium.seabed_heading)
-    normal = np.array([-rise * ch, -rise * sh, 1.0])
-    normal /= np.linalg.norm(normal)
-    depth = medium.depth if medium.depth is not None else math.inf
-    return normal, float(normal[2] * -depth)
-
-
 def discretise(
     line: LineModel, medium: Medium, elements: int, extras: DynamicExtras | None = None
 ) -> DiscreteLine:
@@ -348,7 +338,9 @@ def discretise_nodes(
         bending[0] = ei_el[0] / (0.5 * l0[0])
     if np.any(clamp[1] != 0.0):
         bending[-1] = ei_el[-1] / (0.5 * l0[-1])
-    normal, offset = seabed_plane(medium)
+    # the seabed plane n . x = offset (the statics' plane; without a seabed at infinite depth)
+    normal = Plane(0.0, medium.seabed_slope, medium.seabed_heading, 0.0).normal
+    offset = float(normal[2] * -(medium.depth if medium.depth is not None else math.inf))
     k_sb = np.zeros(n)
     c_sb = np.zeros(n)
     if medium.depth is not None and extras.seabed_stiffness > 0.0:
