@@ -7,6 +7,7 @@ plane, and values at the nodes interpolated along the line.
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 from dataclasses import dataclass, field
@@ -399,6 +400,33 @@ def discretise_nodes(
         law_count=count,
         first_per_length=first,
     )
+
+
+def same_inputs(a: object, b: object, *, bitwise: bool = True) -> bool:
+    """Whether two inputs of a discretisation are equal in every field (lines alike share
+    one model): dataclasses field by field, arrays with their shapes and types, sequences
+    item by item. Arrays compare byte for byte (``bitwise``: a NaN or a signed zero by its
+    bits, never equal where the bits differ), else element by element where the bytes
+    differ (-0.0 equals 0.0)."""
+    if a is b:
+        return True
+    if type(a) is not type(b):
+        return False
+    if isinstance(a, np.ndarray):
+        if a.shape != b.shape or a.dtype != b.dtype:  # type: ignore[attr-defined]
+            return False
+        return a.tobytes() == b.tobytes() or (not bitwise and bool(np.array_equal(a, b)))
+    if dataclasses.is_dataclass(a):
+        return all(
+            same_inputs(getattr(a, f.name), getattr(b, f.name), bitwise=bitwise)
+            for f in dataclasses.fields(a)
+        )
+    if isinstance(a, tuple | list):
+        return len(a) == len(b) and all(  # type: ignore[arg-type]
+            same_inputs(x, y, bitwise=bitwise)
+            for x, y in zip(a, b, strict=True)  # type: ignore[arg-type]
+        )
+    return bool(a == b)
 
 
 def interpolate_nodes(s_nodes: np.ndarray, s_points: np.ndarray, values: np.ndarray) -> np.ndarray:
