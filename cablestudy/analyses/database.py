@@ -102,14 +102,12 @@ def database_problems(case: Case, src: StudySource) -> list[str]:
     if env.depth is not None:
         assert db.horizontal_distance is not None and db.height_difference is not None
         za = study.ends.a.position[2]  # type: ignore[union-attr]
-        rise = math.tan(math.radians(env.seabed.slope_deg))
         th = heading(study)
         ax, ay = study.ends.a.position[0], study.ends.a.position[1]  # type: ignore[union-attr]
         worst = math.inf
         for r in (db.horizontal_distance.start, db.horizontal_distance.stop):
             x, y = ax + r * math.cos(th), ay + r * math.sin(th)
-            hd = math.radians(env.seabed.slope_heading_deg)
-            ground = -env.depth + rise * (x * math.cos(hd) + y * math.sin(hd))
+            ground = env.seabed_z(x, y)
             worst = min(worst, za + db.height_difference.start - ground)
         if worst < -1e-9 * env.depth:
             line = src.line_of(("analysis", "database", "height_difference", "start")) or where

@@ -185,6 +185,22 @@ def period_and_step(dyn: Any, periods: list[float]) -> tuple[float, float]:
     return period, period / math.ceil(period / step * (1.0 - 1e-12))
 
 
+def march_settings(dyn: Any) -> dict[str, Any]:
+    """The settings of ``analysis.dynamic`` a time-domain run of a line or a system takes
+    as given (:class:`cablestudy.dynamics.time_problem.MarchSettings`)."""
+    return {
+        "max_refinement": dyn.max_refinement,
+        "spectral_radius": dyn.spectral_radius,
+        "max_newton_iterations": dyn.max_newton_iterations,
+        "steady_tolerance": dyn.steady_tolerance,
+        "steady_window": dyn.steady_window,
+        "min_periods": dyn.settle_periods,  # a kept record lies in the motion
+        "max_periods": dyn.max_periods,
+        "duration": dyn.duration,
+        "history": dyn.history is not None,
+    }
+
+
 def roundoff_force(line: DiscreteLine, x: np.ndarray) -> float:
     """Nodal force [N] below which a residual is lost in rounding: an element tension
     carries EA * (relative rounding of the node coordinates) / (element length)."""
@@ -265,8 +281,9 @@ def element_breaks(study: Any, line: DiscreteLine) -> dict[str, np.ndarray]:
     return {"break_tension": tension[of], "break_at": when[of]}
 
 
-def catenary_winch(winch: Any) -> dict[str, float]:
-    """The time domain's winch settings (the first element's length changes)."""
+def winch_settings(winch: Any) -> dict[str, float]:
+    """The winch settings of the time domain (the first element's length changes) and of
+    a spring line's dynamics (its unstretched length changes)."""
     if winch is None:
         return {}
     return {

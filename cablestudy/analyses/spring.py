@@ -8,7 +8,6 @@ outputs named as for any line.
 
 from __future__ import annotations
 
-import math
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -206,7 +205,7 @@ def run_spring_dynamic(
     """The dynamic outputs of a spring line under its end motion: (status, message,
     outputs named as the time domain's)."""
     from ..dynamics.spring import SpringDynamicProblem, spring_response
-    from .line_model import end_motion
+    from .line_model import end_motion, winch_settings
 
     study = case.study
     dyn = study.analysis.dynamic
@@ -230,7 +229,7 @@ def run_spring_dynamic(
         pulleys=np.array([p.position for p in study.line.pulleys], dtype=float).reshape(-1, 3),
         friction=np.array([p.friction_factor for p in study.line.pulleys], dtype=float),
         excited_end=0 if dyn.excitations[0].end == "a" else 1,
-        **_winch(study.line.winch),
+        **winch_settings(study.line.winch),
     )
     res = spring_response(problem)
     out: dict[str, np.ndarray] = {
@@ -247,17 +246,6 @@ def run_spring_dynamic(
     if study.line.failure is not None:
         out["break_time"] = np.asarray(res.break_time)
     return STATUS_OK, "", out
-
-
-def _winch(winch: Any) -> dict[str, float]:
-    if winch is None:
-        return {}
-    stop = math.inf if winch.stop is None else float(winch.stop)
-    return {
-        "winch_speed": float(winch.speed),
-        "winch_start": float(winch.start),
-        "winch_stop": stop,
-    }
 
 
 def break_tension_of(line: Any) -> float | None:

@@ -249,15 +249,11 @@ def largest_static_strain(study: Any, res: StaticResult) -> float:
     return float(largest_strain(res.tension, ea, _strain_along(segs, k, res.tension)))
 
 
-def presolve_statics(
-    cases: list[Case], *, general: list[str] | None = None
-) -> tuple[dict[str, StaticResult], dict[str, float]]:
+def presolve_statics(cases: list[Case]) -> tuple[dict[str, StaticResult], dict[str, float]]:
     """Solve the distinct still-water static problems of method 'catenary' in ``cases``
     together (:func:`cablestudy.statics.batch.solve_batch`). Returns the solutions by
-    static hash and each one's share of the batch wall time [s]; the static hashes of
-    those no batch kernel settled (solved by the general solver) are appended to
-    ``general`` if given. Anything unexpected leaves the cases to the one-by-one path
-    (which records its own errors)."""
+    static hash and each one's share of the batch wall time [s]. Anything unexpected
+    leaves the cases to the one-by-one path (which records its own errors)."""
     from ..statics.batch import solve_batch
     from ..statics.batch_kernels import batchable, contact_eligible
 
@@ -282,13 +278,9 @@ def presolve_statics(
     t0 = time.perf_counter()
     try:
         deadline = time.monotonic() + max(limit for _, limit in todo.values())
-        handed: list[int] = []
-        results = solve_batch([p for p, _ in todo.values()], deadline=deadline, general=handed)
+        results = solve_batch([p for p, _ in todo.values()], deadline=deadline)
     except Exception:  # noqa: BLE001 - fall back to one case at a time
         return {}, {}
-    if general is not None:
-        keys = list(todo)
-        general.extend(keys[i] for i in handed)
     COUNTERS["static_solves"] += len(todo)
     share = (time.perf_counter() - t0) / len(todo)
     solved = {h: r.check_finite() for h, r in zip(todo, results, strict=True)}

@@ -157,7 +157,7 @@ def _compiled_solve(
     """The cases of a chunk (the template's static problem ``base`` with end positions
     ``pos`` and segment stiffnesses ``ea`` per case) through the compiled batch kernel
     straight from arrays: the inputs :func:`cablestudy.statics.batch_kernels._solve_group` (lines
-    hanging free) and :func:`cablestudy.statics.batch_kernels._contact_one` (end A anchored on
+    hanging free) and :func:`cablestudy.statics.batch_kernels._contact_inputs` (end A anchored on
     the seabed, end B above it: :func:`cablestudy.statics.batch_kernels.solve_contact_arrays`)
     build from one problem object per case, built here for all cases at once (so the
     same numbers, bit for bit, without a per-case object). Returns the stacked results,
@@ -419,9 +419,9 @@ def array_outputs(
 ) -> tuple[dict[str, np.ndarray], np.ndarray, list[str]]:
     """:func:`cablestudy.analyses.static.static_outputs` of many static results at once: the
     same variables, bit for bit (the same element-wise operations on stacked arrays;
-    the profile quantities are those of :func:`cablestudy.physics.profile.
-    profile_quantities`, evaluated along axis 1 of (cases, nodes) arrays). Returns the
-    outputs (cases first), status and messages, with a failed case's values NaN."""
+    :func:`cablestudy.physics.profile.profile_quantities` of the (cases, nodes) arrays).
+    Returns the outputs (cases first), status and messages, with a failed case's values
+    NaN."""
     from ..physics.profile import profile_quantities
 
     n = len(st.status)
@@ -450,35 +450,16 @@ def array_outputs(
     env, segs = template.environment, template.line.segments
     k = segment_of(segs, s)
     area = np.array([segs[i].area for i in k])
-    m = s.size
-    if m >= 3:
-        d = np.gradient(position, s, axis=1, edge_order=2)
-    else:
-        d = np.repeat(np.diff(position, axis=1), m, axis=1)[:, :m]
-    norm = np.linalg.norm(d, axis=2)
-    t = d / np.where(norm > 0.0, norm, 1.0)[:, :, None]
-    horizontal = np.hypot(t[:, :, 0], t[:, :, 1])
-    elevation = np.arctan2(t[:, :, 2], horizontal)
-    azimuth = np.arctan2(t[:, :, 1], t[:, :, 0])
-    strain = tension / ea[:, k]
-    elongation = np.concatenate(
-        [np.zeros((n, 1)), np.cumsum(0.5 * (strain[:, 1:] + strain[:, :-1]) * np.diff(s), axis=1)],
-        axis=1,
-    )
-    tension_wall = tension + env.density * env.gravity * position[:, :, 2] * area
-    # a vertical tangent somewhere: that case's azimuths as profile_quantities gives them
-    for i in np.flatnonzero(~np.all(horizontal > 1e-12, axis=1)):
-        azimuth[i] = profile_quantities(
+    out.update(
+        profile_quantities(
             s,
-            position[i],
-            tension[i],
-            axial_stiffness=ea[i, k],
+            position,
+            tension,
+            axial_stiffness=ea[:, k],
             area=area,
             density=env.density,
             gravity=env.gravity,
-        )["azimuth"]
-    out.update(
-        elevation=elevation, azimuth=azimuth, elongation=elongation, tension_wall=tension_wall
+        )
     )
     ok = status == 0
     finite = np.ones(n, dtype=bool)

@@ -11,7 +11,6 @@ count, and counted in :data:`cablestudy.counters.COUNTERS` (``system_static_solv
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections import OrderedDict
 from typing import Any
@@ -24,7 +23,7 @@ from ..study.cases import Case
 from ..study.system import BodyPoint, FreePoint
 from ..study.system_dynamics import BODY_DOFS, BodyHarmonic, BodyTable, PointHarmonic
 from .counters import COUNTERS, trim_lru
-from .line_model import period_and_step, system_line_extras
+from .line_model import march_settings, period_and_step, system_line_extras
 
 _MODEL_CACHE: OrderedDict[tuple, Any] = OrderedDict()
 _STATIC_CACHE: OrderedDict[str, Any] = OrderedDict()
@@ -49,7 +48,7 @@ def system_model_dynamic(case: Case, system: Any, static: Any) -> tuple[Any, ...
     equilibrium, cached per static problem and element count: (packed, positions,
     anchors, drive arrays (body, slot owner point, offset, static position), the
     Newton and tension-step scale [N]), or why the equilibrium was not found."""
-    from ..dynamics.discrete_line import discretise_nodes, uniform_nodes
+    from ..dynamics.discrete_line import discretise_nodes, same_inputs, uniform_nodes
     from ..dynamics.system_model import FreePoints, pack
     from ..dynamics.system_timedomain import equilibrium
     from ..statics.system import rotation
@@ -73,7 +72,7 @@ def system_model_dynamic(case: Case, system: Any, static: Any) -> tuple[Any, ...
         extras = system_line_extras(study, names[k], lm)
         # lines alike in every input (a spread's legs, a spar's bridles) share one
         # discretisation: it depends on these alone, not on where the line lies
-        same = next((m for m in made if _equal(m[0], (lm, med, extras))), None)
+        same = next((m for m in made if same_inputs(m[0], (lm, med, extras), bitwise=False)), None)
         if same is None:
             s_nodes = uniform_nodes(lm, dyn.elements)
             same = ((lm, med, extras), s_nodes, discretise_nodes(lm, med, s_nodes, extras))
@@ -154,28 +153,6 @@ def system_model_dynamic(case: Case, system: Any, static: Any) -> tuple[Any, ...
     _MODEL_CACHE[key] = out
     trim_lru(_MODEL_CACHE, _CACHE_SIZE)
     return out
-
-
-def _equal(a: Any, b: Any) -> bool:
-    """Whether two model inputs are equal in every field (dataclasses field by field,
-    arrays element by element with their shapes and types, sequences item by item)."""
-    if a is b:
-        return True
-    if type(a) is not type(b):
-        return False
-    if isinstance(a, np.ndarray):
-        # the same bytes are the same numbers (the common case: a spread's legs); else
-        # element by element (-0.0 equals 0.0)
-        return (
-            a.shape == b.shape
-            and a.dtype == b.dtype
-            and (a.tobytes() == b.tobytes() or bool(np.array_equal(a, b)))
-        )
-    if dataclasses.is_dataclass(a):
-        return all(_equal(getattr(a, f.name), getattr(b, f.name)) for f in dataclasses.fields(a))
-    if isinstance(a, tuple | list):
-        return len(a) == len(b) and all(_equal(x, y) for x, y in zip(a, b, strict=True))
-    return bool(a == b)
 
 
 def slot_motion(study: Any, driven: list[int]) -> tuple[Any, np.ndarray, float, float]:
@@ -289,19 +266,11 @@ def run_system_dynamic(
         motion=motion,
         period=period,
         step=step,
-        max_refinement=dyn.max_refinement,
-        spectral_radius=dyn.spectral_radius,
         newton_tolerance=tol,
-        max_newton_iterations=dyn.max_newton_iterations,
         tension_step=dyn.tension_resolution * scale,
-        steady_tolerance=dyn.steady_tolerance,
-        steady_window=dyn.steady_window,
-        min_periods=dyn.settle_periods,  # a kept record lies in the motion
-        max_periods=dyn.max_periods,
-        duration=dyn.duration,
-        history=hist is not None,
         history_periods=hist.periods if hist else 2.0,
         history_samples=hist.samples_per_period if hist else 64,
+        **march_settings(dyn),
     )
     res = simulate_system(problem, deadline=deadline)
     if res.status != STATUS_OK:

@@ -180,8 +180,6 @@ def _fixed_points_above_seabed(
     env = template.environment
     if env.depth is None:
         return True
-    rise = math.tan(math.radians(env.seabed.slope_deg))
-    heading = math.radians(env.seabed.slope_heading_deg)
     names = list(template.points)
     moved = {targets[p][1] for p in swept if targets[p][0] == "fixed"}
     for i in moved:
@@ -196,7 +194,7 @@ def _fixed_points_above_seabed(
             else:
                 xyz.append(np.asarray(float(template.points[names[i]].position[c])))
         x, y, z = xyz
-        ground = -env.depth + rise * (x * math.cos(heading) + y * math.sin(heading))
+        ground = env.seabed_z(x, y)
         if np.any(z < ground - 1e-9 * env.depth):
             return False
     return True

@@ -16,7 +16,14 @@ from ..study.analysis import (
     DynamicSettings,
 )
 from ..study.cases import Case
-from .line_model import catenary_winch, discrete_statics, element_breaks, end_motion, roundoff_force
+from .line_model import (
+    discrete_statics,
+    element_breaks,
+    end_motion,
+    march_settings,
+    roundoff_force,
+    winch_settings,
+)
 
 if TYPE_CHECKING:  # imported where used: `cablestudy validate` needs none of them
     from ..dynamics.time_problem import DynamicProblem, DynamicResult
@@ -58,20 +65,11 @@ def dynamic_problem(case: Case, static: StaticResult) -> DynamicProblem | str:
         period=period,
         step=step,
         excited_end=0 if first.end == "a" else 1,
-        max_refinement=dyn.max_refinement,
-        spectral_radius=dyn.spectral_radius,
         newton_tolerance=max(
             dyn.newton_tolerance * float(np.nanmax(static.tension)),
             4.0 * roundoff_force(line, x_static),
         ),
-        max_newton_iterations=dyn.max_newton_iterations,
         tension_step=dyn.tension_resolution * float(np.nanmax(static.tension)),
-        steady_tolerance=dyn.steady_tolerance,
-        steady_window=dyn.steady_window,
-        min_periods=dyn.settle_periods,  # a kept record lies in the motion
-        max_periods=dyn.max_periods,
-        duration=dyn.duration,
-        history=hist is not None,
         history_s=np.asarray(hist.points if hist else [], dtype=float),
         history_periods=hist.periods if hist else 0.0,
         history_samples=hist.samples_per_period if hist else 1,
@@ -82,8 +80,9 @@ def dynamic_problem(case: Case, static: StaticResult) -> DynamicProblem | str:
         touchdown_tolerance=1e-6 * max(float(line.s[-1]), 1.0),
         after_break=dyn.after_break,
         **element_breaks(case.study, line),
-        **catenary_winch(case.study.line.winch),
+        **winch_settings(case.study.line.winch),
         pulleys=sliding,
+        **march_settings(dyn),
     )
 
 

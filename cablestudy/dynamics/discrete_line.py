@@ -7,6 +7,7 @@ plane, and values at the nodes interpolated along the line.
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 from dataclasses import dataclass, field
@@ -15,6 +16,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..statics.base import LineModel, Medium
+from ..statics.seabed import Plane
 
 
 class LineArrays(NamedTuple):
@@ -236,17 +238,6 @@ def element_counts(lengths: np.ndarray, elements: int) -> np.ndarray:
     return counts
 
 
-def seabed_plane(medium: Medium) -> tuple[np.ndarray, float]:
-    """Unit upward normal and offset of the seabed plane ``n . x = offset`` (the plane
-    through (0, 0, -depth) rising at ``seabed_slope`` towards ``seabed_heading``)."""
-    rise = math.tan(medium.seabed_slope)
-    ch, sh = math.cos(medium.seabed_heading), math.sin(medium.seabed_heading)
-    normal = np.array([-rise * ch, -rise * sh, 1.0])
-    normal /= np.linalg.norm(normal)
-    depth = medium.depth if medium.depth is not None else math.inf
-    return normal, float(normal[2] * -depth)
-
-
 def discretise(
     line: LineModel, medium: Medium, elements: int, extras: DynamicExtras | None = None
 ) -> DiscreteLine:
@@ -348,7 +339,9 @@ def discretise_nodes(
         bending[0] = ei_el[0] / (0.5 * l0[0])
     if np.any(clamp[1] != 0.0):
         bending[-1] = ei_el[-1] / (0.5 * l0[-1])
-    normal, offset = seabed_plane(medium)
+    # the seabed plane n . x = offset (the statics' plane; without a seabed at infinite depth)
+    normal = Plane(0.0, medium.seabed_slope, medium.seabed_heading, 0.0).normal
+    offset = float(normal[2] * -(medium.depth if medium.depth is not None else math.inf))
     k_sb = np.zeros(n)
     c_sb = np.zeros(n)
     if medium.depth is not None and extras.seabed_stiffness > 0.0:
@@ -407,6 +400,33 @@ def discretise_nodes(
         law_count=count,
         first_per_length=first,
     )
+
+
+def same_inputs(a: object, b: object, *, bitwise: bool = True) -> bool:
+    """Whether two inputs of a discretisation are equal in every field (lines alike share
+    one model): dataclasses field by field, arrays with their shapes and types, sequences
+    item by item. Arrays compare byte for byte (``bitwise``: a NaN or a signed zero by its
+    bits, never equal where the bits differ), else element by element where the bytes
+    differ (-0.0 equals 0.0)."""
+    if a is b:
+        return True
+    if type(a) is not type(b):
+        return False
+    if isinstance(a, np.ndarray):
+        if a.shape != b.shape or a.dtype != b.dtype:  # type: ignore[attr-defined]
+            return False
+        return a.tobytes() == b.tobytes() or (not bitwise and bool(np.array_equal(a, b)))
+    if dataclasses.is_dataclass(a):
+        return all(
+            same_inputs(getattr(a, f.name), getattr(b, f.name), bitwise=bitwise)
+            for f in dataclasses.fields(a)
+        )
+    if isinstance(a, tuple | list):
+        return len(a) == len(b) and all(  # type: ignore[arg-type]
+            same_inputs(x, y, bitwise=bitwise)
+            for x, y in zip(a, b, strict=True)  # type: ignore[arg-type]
+        )
+    return bool(a == b)
 
 
 def interpolate_nodes(s_nodes: np.ndarray, s_points: np.ndarray, values: np.ndarray) -> np.ndarray:

@@ -18,7 +18,6 @@ prescribed (held, or moved by the excitation), as in the time domain.
 
 from __future__ import annotations
 
-import dataclasses
 import functools
 import math
 from collections.abc import Sequence
@@ -29,7 +28,7 @@ import scipy.sparse as sp
 
 from ..physics.current import current_velocity
 from ..statics.base import EndCondition
-from .discrete_line import discretise_nodes, lump_on_nodes
+from .discrete_line import discretise_nodes, lump_on_nodes, same_inputs
 from .frequency_model import LinearLine
 from .modal import (
     ModalProblem,
@@ -68,7 +67,7 @@ def linear_lines(problems: Sequence[ModalProblem]) -> list[LinearLine]:
         n = s.size
         extras = problem.extras or default_extras(line, medium)
         key = (s, medium, extras, line)  # the cheap inputs first: unlike lines part soon
-        disc = next((d for k, d in made if _same(k, key)), None)
+        disc = next((d for k, d in made if same_inputs(k, key)), None)
         if disc is None:
             disc = discretise_nodes(line, medium, s, extras)
             made.append((key, disc))
@@ -128,23 +127,6 @@ def linear_lines(problems: Sequence[ModalProblem]) -> list[LinearLine]:
             )
         )
     return out
-
-
-def _same(a: object, b: object) -> bool:
-    """Whether two inputs are equal in every field: dataclasses field by field, arrays
-    byte for byte with their shapes and types, sequences item by item (a NaN or a
-    signed zero compares by its bits: never equal where the bits differ)."""
-    if a is b:
-        return True
-    if type(a) is not type(b):
-        return False
-    if isinstance(a, np.ndarray):
-        return a.shape == b.shape and a.dtype == b.dtype and a.tobytes() == b.tobytes()  # type: ignore[attr-defined]
-    if dataclasses.is_dataclass(a):
-        return all(_same(getattr(a, f.name), getattr(b, f.name)) for f in dataclasses.fields(a))
-    if isinstance(a, tuple | list):
-        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b, strict=True))  # type: ignore[arg-type]
-    return bool(a == b)
 
 
 def held_ends_basis(n: int) -> sp.csr_matrix:

@@ -57,8 +57,8 @@ class MixedResult:
 
     position [m] (n + 1, 3); tension [N] (n,) element tensions; iterations (Newton,
     summed over the continuation); force_residual [N] the largest out-of-balance force
-    of a free node; strain_residual [-] the largest element misfit ``|c T - g|`` of a
-    taut element; converged: both within their tolerances; anchor [m] (n + 1, 3) the
+    of a free node; converged: the forces and the taut elements' strain misfits
+    ``|c T - g|`` within their tolerances; anchor [m] (n + 1, 3) the
     seabed friction anchors that hold the friction forces of that state; stages: the
     continuation's stiffness stages used (0: Newton converged from the start);
     timed_out: stopped by its deadline.
@@ -68,7 +68,6 @@ class MixedResult:
     tension: np.ndarray
     iterations: int
     force_residual: float
-    strain_residual: float
     converged: bool
     anchor: np.ndarray
     stages: int = 0
@@ -393,7 +392,7 @@ def mixed_equilibrium(
             if not ok:
                 break
         late = deadline is not None and time.monotonic() > deadline
-    vec, F, misfit, taut = system.last
+    F = system.last[1]
     free = ~np.asarray(line.held, dtype=bool)
     held_anchor = np.array(anchor, dtype=float, copy=True)
     update_anchors(xs, work.friction, line.seabed_stiffness, work.contact, held_anchor)
@@ -403,7 +402,6 @@ def mixed_equilibrium(
         tension=ts,
         iterations=int(total),
         force_residual=float(np.max(np.abs(F[free]), initial=0.0)),
-        strain_residual=float(np.max(np.abs(misfit[taut]), initial=0.0)),
         converged=bool(ok),
         stages=used,
         timed_out=bool(late and not ok),

@@ -28,7 +28,6 @@ from .time_problem import (
     _start,
     close_run,
     end_forces,
-    is_steady,
     newton_failed,
     out_of_time,
     touchdown_of,
@@ -293,7 +292,7 @@ def simulate_sliding(problem: DynamicProblem, *, deadline: float | None = None) 
             c_int = 0.0
             c_start = t
             if problem.duration is None:
-                converged = is_steady(problem, p_max, p_min)
+                converged = problem.settled(p_max, p_min, problem.line.n_nodes)
             if converged or t >= t_stop - eps_t:
                 break
             next_b = min(next_b + T, t_stop)

@@ -83,8 +83,6 @@ class SpringDynamicResult:
     tension_max: float
     tension_min: float
     tension_mean: float
-    time_max: float
-    time_min: float
     break_time: float = math.nan
     status: int = 0
     message: str = ""
@@ -248,8 +246,6 @@ def _friction_response(problem: SpringDynamicProblem) -> SpringDynamicResult:
         tension_max=float(win.max()),
         tension_min=float(win.min()),
         tension_mean=mean,
-        time_max=float(t[before + int(np.argmax(win))]),
-        time_min=float(t[before + int(np.argmin(win))]),
     )
 
 
@@ -292,7 +288,7 @@ def spring_response(problem: SpringDynamicProblem) -> SpringDynamicResult:
     h = (t1 - t0) / n
     i_max, i_min = int(np.argmax(T)), int(np.argmin(T))
     tmax, Tmax = _refine(f, max(grid[i_max] - h, t0), min(grid[i_max] + h, t1), 1.0, tol)
-    tmin, Tmin = _refine(f, max(grid[i_min] - h, t0), min(grid[i_min] + h, t1), -1.0, tol)
+    _, Tmin = _refine(f, max(grid[i_min] - h, t0), min(grid[i_min] + h, t1), -1.0, tol)
     Tmax, Tmin = max(Tmax, float(T[i_max])), min(Tmin, float(T[i_min]))
     # trapezoidal rule: spectrally accurate on a periodic window, O(h^2) otherwise
     mean = float(np.sum(0.5 * (T[1:] + T[:-1]))) / n
@@ -300,25 +296,19 @@ def spring_response(problem: SpringDynamicProblem) -> SpringDynamicResult:
         parted = grid >= break_time
         if break_time <= t0:
             Tmax = Tmin = mean = 0.0
-            tmax = tmin = t0
         else:
             Tp = np.where(parted, 0.0, T)
             mean = float(np.sum(0.5 * (Tp[1:] + Tp[:-1]))) / n
             if break_time < t1:
-                Tmin, tmin = 0.0, break_time
+                Tmin = 0.0
             if tmax >= break_time:
                 before = ~parted
                 k = int(np.argmax(np.where(before, T, -np.inf)))
-                Tmax, tmax = float(T[k]), float(grid[k])
-                at_break = f(break_time)
-                if at_break > Tmax:
-                    Tmax, tmax = at_break, break_time
+                Tmax = max(float(T[k]), f(break_time))
     return SpringDynamicResult(
         tension_static=static,
         tension_max=Tmax,
         tension_min=Tmin,
         tension_mean=mean,
-        time_max=tmax,
-        time_min=tmin,
         break_time=break_time,
     )

@@ -21,7 +21,6 @@ Pure: arrays in, a :class:`SystemDynamicResult` out (status, message, counters).
 
 from __future__ import annotations
 
-import math
 import time
 from dataclasses import dataclass, field
 
@@ -30,38 +29,23 @@ import numpy as np
 from ..statics.base import STATUS_OK
 from .alpha_step import AlphaParameters
 from .model import static_equilibrium
-from .steady import extremes_settled
 from .system_kernels import assemble_all, point_forces
 from .system_march import BOUNDARY, FAILED, end_forces, set_drives, system_march, system_static
 from .system_model import Drives, PackedSystem, SlotMotion, work_arrays
-from .time_problem import NEWTON_RESCUE_HALVINGS, newton_failed, out_of_time
+from .time_problem import NEWTON_RESCUE_HALVINGS, MarchSettings, newton_failed, out_of_time
 
 
 @dataclass(frozen=True, kw_only=True)
-class SystemProblem:
-    """A time-domain run of a system (see :class:`.timedomain.DynamicProblem` for the
-    settings, which mean the same here)."""
+class SystemProblem(MarchSettings):
+    """A time-domain run of a system: the packed lines, the static state and friction
+    anchors it starts from, the drives and their motion, and the settings of
+    :class:`.time_problem.MarchSettings` (which mean the same as for a line)."""
 
     packed: PackedSystem
     static_position: np.ndarray
     anchor: np.ndarray
     drives: Drives
     motion: SlotMotion
-    period: float
-    step: float
-    max_refinement: int = 3
-    spectral_radius: float = 0.3
-    newton_tolerance: float = 1e-5
-    max_newton_iterations: int = 12
-    tension_step: float = math.inf
-    steady_tolerance: float = 0.002
-    steady_window: int = 2
-    min_periods: int = 3
-    max_periods: int = 80
-    duration: float | None = None
-    history: bool = False
-    history_periods: float = 2.0
-    history_samples: int = 64
 
 
 @dataclass(kw_only=True)
@@ -69,14 +53,13 @@ class SystemDynamicResult:
     """Outcome of :func:`simulate_system` over the steady window: end tensions [N]
     (L, 2) (max, min, mean; ends A, B), element tensions (E,) packed line after line,
     body forces and moments (B, 6) (max, min); the nodes' highest elevation [m] (N,)
-    packed line after line; the static end tensions (L, 2)."""
+    packed line after line."""
 
     status: int = STATUS_OK
     message: str = ""
     end_max: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     end_min: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     end_mean: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
-    end_static: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     element_max: np.ndarray = field(default_factory=lambda: np.zeros(0))
     element_min: np.ndarray = field(default_factory=lambda: np.zeros(0))
     z_max: np.ndarray = field(default_factory=lambda: np.zeros(0))
@@ -196,7 +179,6 @@ def simulate_system(
     forces = np.zeros((L, 2, 3))
     end_forces(S, W, x0, a0, pk.he_node, forces)
     ends_prev = np.sqrt(np.sum(forces**2, axis=2))
-    end_static = ends_prev.copy()
     dr = problem.drives
     D = (
         problem.motion.kernel_args(),
@@ -245,7 +227,7 @@ def simulate_system(
     single = problem.history
     # one step at a time for the history; with a deadline, back every 64 steps to check it
     budget = 1 if single else (64 if deadline is not None else 2**62)
-    result = SystemDynamicResult(end_static=end_static)
+    result = SystemDynamicResult()
     c_start = 0.0
     converged = False
     lmin = pk.lmin
@@ -282,7 +264,12 @@ def simulate_system(
         ext_end, int_end, ext_el, ext_body, ext_z = fresh()
         c_start = t
         if problem.duration is None:
-            converged = _steady(problem, periods, watch)
+            # every watched end's extremes, the floor of the line with the most nodes
+            converged = problem.settled(
+                np.array([p[0][watch] for p in periods]),
+                np.array([p[1][watch] for p in periods]),
+                max(ln.n_nodes for ln in problem.packed.lines),
+            )
         if converged or final:
             break
         st_f[1] = min(st_f[1] + T, t_stop)
@@ -303,28 +290,6 @@ def simulate_system(
     if single:
         result.history = _resample(np.array(hist_t), np.array(hist_f), t, problem)
     return result
-
-
-def _steady(
-    problem: SystemProblem, periods: list[tuple[np.ndarray, ...]], watch: np.ndarray
-) -> bool:
-    """Every watched line end's (``watch`` (L, 2)) per-period maximum and minimum
-    changed by at most ``steady_tolerance`` times that end's dynamic range in the period
-    (or the Newton tolerance times the square root of a line's nodes) over the last
-    ``steady_window`` periods, after ``min_periods``: the single line's rule
-    (:func:`.steady.extremes_settled`)."""
-    w = problem.steady_window
-    if len(periods) < max(problem.min_periods, w + 1):
-        return False
-    recent = periods[-(w + 1) :]
-    return extremes_settled(
-        np.array([p[0][watch] for p in recent]),
-        np.array([p[1][watch] for p in recent]),
-        tolerance=problem.steady_tolerance,
-        window=w,
-        # the single line's floor: a line's end force sums its nodes' residuals
-        floor=problem.newton_tolerance * math.sqrt(max(ln.n_nodes for ln in problem.packed.lines)),
-    )
 
 
 def _resample(

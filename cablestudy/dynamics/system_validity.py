@@ -33,7 +33,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .frequency_model import sum_components
-from .validity import Validity, measures, sag
+from .validity import Validity, measures_cases, sag
 
 if TYPE_CHECKING:
     from ..study.analysis import AutoSettings
@@ -54,9 +54,9 @@ def system_measures(
     displacement relative to the chord's motion (module docstring).
 
     All lines at once (flat over their nodes and elements; a line with a laid stretch
-    and a touchdown point goes through :func:`~.validity.measures` on its own, for its
-    touchdown travel): each quantity by the same operations on the same numbers as
-    :func:`~.validity.measures` line by line, and the minima and maxima are exact
+    and a touchdown point goes through :func:`~.validity.measures_cases` on its own, for
+    its touchdown travel): each quantity by the same operations on the same numbers as
+    :func:`~.validity.measures_cases` line by line, and the minima and maxima are exact
     whatever the order, so the measures are the same numbers
     (tests/unit/test_system_validity.py)."""
     lines = [red.line for red in model.lines]  # type: ignore[attr-defined]
@@ -110,19 +110,24 @@ def system_measures(
         b = bed[first[i] : last[i] + 1]
         laid = float(np.sum(line.rest_length[b[:-1] & b[1:]]))
         if laid > 0.0 and np.any(b) and not np.all(b):  # a touchdown point: on its own
+            ratio, amp_ratio, travel = measures_cases(
+                s=line.s,
+                position=line.position,
+                displacement=deformation[first[i] : last[i] + 1][None],
+                element_tension_static=line.tension,
+                element_tension_amplitude=a_el[el_start[i] : el_start[i + 1]][None],
+                end_tension_static=t_end[i],
+                end_tension_amplitude=a_end[i][None],
+                laid_length=laid,
+                on_seabed=b,
+                submerged_weight=np.asarray(submerged_weight[i], dtype=float),
+                held=held[first[i] : last[i] + 1],
+            )
             out.append(
-                measures(
-                    s=line.s,
-                    position=line.position,
-                    displacement=deformation[first[i] : last[i] + 1],
-                    element_tension_static=line.tension,
-                    element_tension_amplitude=a_el[el_start[i] : el_start[i + 1]],
-                    end_tension_static=t_end[i],
-                    end_tension_amplitude=a_end[i],
-                    laid_length=laid,
-                    on_seabed=b,
-                    submerged_weight=np.asarray(submerged_weight[i], dtype=float),
-                    held=held[first[i] : last[i] + 1],
+                Validity(
+                    min_tension_ratio=float(ratio[0]),
+                    amplitude_sag_ratio=float(amp_ratio[0]),
+                    touchdown_travel=float(travel[0]),
                 )
             )
             continue

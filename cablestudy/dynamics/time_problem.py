@@ -1,7 +1,8 @@
 """A time-domain run's problem and what it records (:mod:`.timedomain` runs it): the
-settings (:class:`DynamicProblem`), the result (:class:`DynamicResult`), the end
-forces, the extremes along the line and the histories kept, where it starts, the
-touchdown point and the steady-state test over a window of periods.
+settings (:class:`MarchSettings`, a system's too, and :class:`DynamicProblem`), the
+result (:class:`DynamicResult`), the end forces, the extremes along the line and the
+histories kept, where it starts, the touchdown point and the steady-state test over a
+window of periods.
 """
 
 from __future__ import annotations
@@ -27,34 +28,78 @@ NEWTON_RESCUE_HALVINGS = 8
 
 
 @dataclass(frozen=True, kw_only=True)
-class DynamicProblem:
-    """A time-domain run.
+class MarchSettings:
+    """The step control and steady-state settings of a time-domain run, the same for a
+    line (:class:`DynamicProblem`) and a system
+    (:class:`.system_timedomain.SystemProblem`).
 
     Parameters
     ----------
-    line : the discretised line
-    static_position : [m] (n + 1, 3) discrete static equilibrium (start, at rest)
-    motion : prescribed motion of the ends about their static positions
     period : [s] steady-state period (windows of the per-period statistics)
     step : [s] base time step
-    excited_end : 0 (A) or 1 (B): where ``tension_*`` are taken
     max_refinement : step halvings allowed around slack-taut transitions
     spectral_radius : [-] generalised-alpha high-frequency spectral radius
     newton_tolerance : [N] largest residual force accepted on a free node
     max_newton_iterations : per step
+    tension_step : [N] largest change of the end tension in one step; a larger change
+        halves the step (up to ``max_refinement`` times), so snap loads are resolved
     steady_tolerance : [-] change of the per-period max and min, relative to the period's
         dynamic range (max - min), that counts as steady (:mod:`.steady`)
     steady_window : consecutive periods that must agree; outputs are taken over them
     min_periods : periods after the ramp before steady state may be declared
     max_periods : periods run at most (ramp included)
     duration : [s] fixed run time instead (no steady-state detection), or None
-    history_s : [m] (p,) arc lengths of the points whose motion is kept
     history : whether to keep time histories
     history_periods : [periods] length of the kept record
     history_samples : samples per period of the kept record
+    """
+
+    period: float
+    step: float
+    max_refinement: int = 3
+    spectral_radius: float = 0.3
+    newton_tolerance: float = 1e-5
+    max_newton_iterations: int = 12
+    tension_step: float = math.inf
+    steady_tolerance: float = 0.002
+    steady_window: int = 2
+    min_periods: int = 3
+    max_periods: int = 80
+    duration: float | None = None
+    history: bool = False
+    history_periods: float = 2.0
+    history_samples: int = 64
+
+    def settled(self, p_max: Any, p_min: Any, nodes: int) -> bool:
+        """Whether the last ``steady_window`` periods' maxima and minima (periods first)
+        each changed by at most ``steady_tolerance`` times the period's dynamic range
+        (or by at most the Newton tolerance times the square root of ``nodes``, a
+        line's node count: the end force sums the nodes' residuals, independent), after
+        ``min_periods`` (:func:`.steady.extremes_settled`)."""
+        w = self.steady_window
+        if len(p_max) < max(self.min_periods, w + 1):
+            return False
+        return extremes_settled(
+            np.asarray(p_max),
+            np.asarray(p_min),
+            tolerance=self.steady_tolerance,
+            window=w,
+            floor=self.newton_tolerance * math.sqrt(nodes),
+        )
+
+
+@dataclass(frozen=True, kw_only=True)
+class DynamicProblem(MarchSettings):
+    """A time-domain run of a line: the settings of :class:`MarchSettings` and
+
+    Parameters
+    ----------
+    line : the discretised line
+    static_position : [m] (n + 1, 3) discrete static equilibrium (start, at rest)
+    motion : prescribed motion of the ends about their static positions
+    excited_end : 0 (A) or 1 (B): where ``tension_*`` are taken
+    history_s : [m] (p,) arc lengths of the points whose motion is kept
     keep_steps : keep every accepted step's full state (for tests and diagnostics)
-    tension_step : [N] largest change of the end tension in one step; a larger change
-        halves the step (up to ``max_refinement`` times), so snap loads are resolved
     anchor : [m] (n + 1, 3) seabed friction anchors of the static equilibrium (None:
         at the static positions, no friction force stored)
     history_line : with ``history``, also keep the whole line's history (nodes)
@@ -79,24 +124,9 @@ class DynamicProblem:
     line: DiscreteLine
     static_position: np.ndarray
     motion: EndMotion
-    period: float
-    step: float
     excited_end: int = 1
-    max_refinement: int = 3
-    spectral_radius: float = 0.3
-    newton_tolerance: float = 1e-5
-    max_newton_iterations: int = 12
-    steady_tolerance: float = 0.002
-    steady_window: int = 2
-    min_periods: int = 3
-    max_periods: int = 80
-    duration: float | None = None
-    history: bool = False
     history_s: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    history_periods: float = 2.0
-    history_samples: int = 64
     keep_steps: bool = False
-    tension_step: float = math.inf
     anchor: np.ndarray | None = None
     history_line: bool = False
     touchdown_tolerance: float = 0.0
@@ -499,24 +529,6 @@ def touchdown_of(line: DiscreteLine, x: np.ndarray, tolerance: float) -> float:
     else:
         bed = (line.seabed_offset - n[0] * x[:, 0] - n[1] * x[:, 1]) / n[2]
     return touchdown_arc_length(line.s, x[:, 2], bed, tolerance)
-
-
-def is_steady(problem: DynamicProblem, p_max: list[float], p_min: list[float]) -> bool:
-    """Whether the last ``steady_window`` periods' maxima and minima each changed by at
-    most ``steady_tolerance`` times the period's dynamic range (or by at most the Newton
-    tolerance times the square root of the node count: the end force sums the nodes'
-    residuals, independent), after ``min_periods``
-    (:func:`.steady.extremes_settled`)."""
-    w = problem.steady_window
-    if len(p_max) < max(problem.min_periods, w + 1):
-        return False
-    return extremes_settled(
-        np.asarray(p_max),
-        np.asarray(p_min),
-        tolerance=problem.steady_tolerance,
-        window=w,
-        floor=problem.newton_tolerance * math.sqrt(problem.line.n_nodes),
-    )
 
 
 def window_statistics(

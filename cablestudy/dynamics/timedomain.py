@@ -58,7 +58,6 @@ from .time_problem import (
     _start,
     close_run,
     end_forces,
-    is_steady,
     newton_failed,
     out_of_time,
     window_statistics,
@@ -323,7 +322,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         if problem.duration is None and st_i[6] == 0:
             w = problem.steady_window
             if not winching or t - (w + 1) * T >= problem.winch_stop - eps_t:
-                converged = is_steady(problem, p_max, p_min)
+                converged = problem.settled(p_max, p_min, problem.line.n_nodes)
         if converged or final:
             break
         st_f[1] = min(st_f[1] + T, t_stop)

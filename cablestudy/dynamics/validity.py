@@ -99,47 +99,6 @@ def slack_ratio(
     return np.min(np.where(active, ratios, math.inf), axis=1, initial=math.inf)
 
 
-def measures(
-    *,
-    s: np.ndarray,
-    position: np.ndarray,
-    displacement: np.ndarray,
-    element_tension_static: np.ndarray,
-    element_tension_amplitude: np.ndarray,
-    end_tension_static: np.ndarray,
-    end_tension_amplitude: np.ndarray,
-    laid_length: float,
-    on_seabed: np.ndarray,
-    submerged_weight: np.ndarray,
-    held: np.ndarray | None = None,
-) -> Validity:
-    """Validity measures. ``s`` [m] (n,), ``position`` [m] (n, 3) static nodes,
-    ``displacement`` [m] (n, 3) complex amplitudes; tensions [N]: static and amplitude
-    per element (n - 1,) and at the ends (2,); ``laid_length`` [m]; ``on_seabed`` (n,)
-    bool, the held laid nodes; ``submerged_weight`` [N/m] (n,) at the nodes; ``held``
-    (n,) bool, nodes with no free direction (elements between two of them do not move
-    and are left out of the slack check: a laid stretch that friction has emptied of
-    tension is not a slack span)."""
-    ratio, amp, travel = measures_cases(
-        s=s,
-        position=position,
-        displacement=displacement[None],
-        element_tension_static=element_tension_static,
-        element_tension_amplitude=element_tension_amplitude[None],
-        end_tension_static=end_tension_static,
-        end_tension_amplitude=end_tension_amplitude[None],
-        laid_length=laid_length,
-        on_seabed=on_seabed,
-        submerged_weight=submerged_weight,
-        held=held,
-    )
-    return Validity(
-        min_tension_ratio=float(ratio[0]),
-        amplitude_sag_ratio=float(amp[0]),
-        touchdown_travel=float(travel[0]),
-    )
-
-
 def measures_cases(
     *,
     s: np.ndarray,
@@ -154,10 +113,14 @@ def measures_cases(
     submerged_weight: np.ndarray,
     held: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """:func:`measures` of K responses of one line at once: ``displacement`` (K, n, 3),
-    ``element_tension_amplitude`` (K, n - 1) and ``end_tension_amplitude`` (K, 2) per
-    response, the rest shared. Returns (min_tension_ratio, amplitude_sag_ratio,
-    touchdown_travel), each (K,); :func:`measures` is its K = 1."""
+    """Validity measures of K responses of one line at once. ``s`` [m] (n,), ``position``
+    [m] (n, 3) static nodes, ``displacement`` [m] (K, n, 3) complex amplitudes; tensions
+    [N]: static per element (n - 1,) and at the ends (2,), amplitudes per response (K, n -
+    1) and (K, 2); ``laid_length`` [m]; ``on_seabed`` (n,) bool, the held laid nodes;
+    ``submerged_weight`` [N/m] (n,) at the nodes; ``held`` (n,) bool, nodes with no free
+    direction (elements between two of them do not move and are left out of the slack
+    check: a laid stretch that friction has emptied of tension is not a slack span).
+    Returns (min_tension_ratio, amplitude_sag_ratio, touchdown_travel), each (K,)."""
     ratio = slack_ratio(
         element_tension_static=element_tension_static,
         element_tension_amplitude=element_tension_amplitude,

@@ -37,7 +37,6 @@ class ExportedCase:
     extra_files: dict[str, str]
     warnings: list[str]
     coupled: dict[int, np.ndarray]  # point ID -> position [m] to pass to MoorDyn's Init
-    fairlead_line: int  # the MoorDyn line ending at end B
     time_step: float  # dtM [s]
 
 
@@ -340,4 +339,4 @@ def moordyn_input(
     text = file_text(
         front, type_rows, [], point_rows, line_rows, opts, [f"FairTen{n_lines}", "AnchTen1"]
     )
-    return ExportedCase(text, extra, warnings, coupled, n_lines, dtm)
+    return ExportedCase(text, extra, warnings, coupled, dtm)

@@ -264,4 +264,4 @@ def system_moordyn_input(study: Study, result: Any, *, title: str) -> ExportedCa
         opts,
         ["FairTen1"],
     )
-    return ExportedCase(text, extra, warnings, {}, 1, dtm)
+    return ExportedCase(text, extra, warnings, {}, dtm)

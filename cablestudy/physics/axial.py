@@ -5,9 +5,8 @@ Every law is tension-only: a non-positive argument carries no tension. The argum
 called ``strain`` below; for a ``kind: spring`` line the same laws take the extension
 [m] instead, and their coefficients then carry [N/m^i] instead of [N].
 
-A law is a small frozen dataclass found by name in :data:`AXIAL_LAWS` (one entry per
-law, the ``law:`` key of a study's ``axial`` mapping). All methods are pure numpy and
-vectorised over any array shape:
+A law is a small frozen dataclass whose ``name`` is the ``law:`` key of a study's
+``axial`` mapping. All methods are pure numpy and vectorised over any array shape:
 
 ``tension(e)`` [N]
     T(e), 0 for e <= 0.
@@ -535,12 +534,6 @@ class TableLaw(AxialLaw):
         return super().first_decrease(max_strain)
 
 
-#: law name -> class (the ``law:`` key of a study's ``axial`` mapping)
-AXIAL_LAWS: dict[str, type[AxialLaw]] = {
-    cls.name: cls for cls in (LinearLaw, PolynomialLaw, SteelWireLaw, TableLaw)
-}
-
-
 def is_effectively_linear(law: AxialLaw | None) -> bool:
     """True for no law (today's EA), the linear law and a polynomial with only c1."""
     if law is None or law.is_linear:
@@ -560,7 +553,6 @@ def gauss_legendre(n: int) -> tuple[np.ndarray, np.ndarray]:
 
 
 __all__ = [
-    "AXIAL_LAWS",
     "AxialLaw",
     "LinearLaw",
     "PolynomialLaw",

@@ -25,7 +25,9 @@ def profile_quantities(
     density: float,
     gravity: float,
 ) -> dict[str, np.ndarray]:
-    """Elevation, azimuth, elongation and wall tension at the points of a static line.
+    """Elevation, azimuth, elongation and wall tension at the points of a static line (or
+    of many lines at the same ``s``: leading case axes on ``position``, ``tension``,
+    ``axial_stiffness`` and ``strain``, each line's quantities as alone).
 
     Parameters
     ----------
@@ -58,26 +60,29 @@ def profile_quantities(
     tension = np.asarray(tension, dtype=float)
     n = s.size
     if n >= 3:
-        d = np.gradient(position, s, axis=0, edge_order=2)
+        d = np.gradient(position, s, axis=-2, edge_order=2)
     else:
-        d = np.repeat(np.diff(position, axis=0), n, axis=0)[:n]
-    norm = np.linalg.norm(d, axis=1)
-    t = d / np.where(norm > 0.0, norm, 1.0)[:, None]
-    horizontal = np.hypot(t[:, 0], t[:, 1])
-    elevation = np.arctan2(t[:, 2], horizontal)
-    azimuth = np.arctan2(t[:, 1], t[:, 0])
-    defined = horizontal > 1e-12
-    if not defined.all():
+        d = np.repeat(np.diff(position, axis=-2), n, axis=-2)[..., :n, :]
+    norm = np.linalg.norm(d, axis=-1)
+    t = d / np.where(norm > 0.0, norm, 1.0)[..., None]
+    horizontal = np.hypot(t[..., 0], t[..., 1])
+    elevation = np.arctan2(t[..., 2], horizontal)
+    azimuth = np.arctan2(t[..., 1], t[..., 0])
+    for line in np.ndindex(horizontal.shape[:-1]):  # one line, or each of many
+        defined = horizontal[line] > 1e-12
+        if defined.all():
+            continue
         if defined.any():
             idx = np.flatnonzero(defined)
             nearest = idx[np.abs(np.arange(n)[:, None] - idx[None, :]).argmin(axis=1)]
-            azimuth = azimuth[nearest]
+            azimuth[line] = azimuth[line][nearest]
         else:
-            azimuth = np.zeros(n)
+            azimuth[line] = 0.0
     if strain is None:
         strain = tension / np.asarray(axial_stiffness, dtype=float)
-    elongation = np.concatenate([[0.0], np.cumsum(0.5 * (strain[1:] + strain[:-1]) * np.diff(s))])
-    tension_wall = tension + density * gravity * position[:, 2] * np.asarray(area, dtype=float)
+    steps = np.cumsum(0.5 * (strain[..., 1:] + strain[..., :-1]) * np.diff(s), axis=-1)
+    elongation = np.concatenate([np.zeros((*steps.shape[:-1], 1)), steps], axis=-1)
+    tension_wall = tension + density * gravity * position[..., 2] * np.asarray(area, dtype=float)
     return {
         "elevation": elevation,
         "azimuth": azimuth,

@@ -170,26 +170,17 @@ def chunk_limit(per_case: float | None) -> int:
 
 
 def make_chunks(
-    cases: list[Case],
-    workers: int,
-    *,
-    min_chunks_per_worker: int = 4,
-    max_chunk: int | None = None,
-    per_case: float | None = None,
+    cases: list[Case], workers: int, *, per_case: float | None = None
 ) -> list[list[Case]]:
     """Batch cases so that a task takes about :data:`TARGET_TASK_SECONDS` (``per_case``:
     the measured cost of a case [s]; unknown: at most :data:`DEFAULT_CHUNK_CASES` cases),
-    while every
-    worker gets several chunks (load balance) and an interrupt loses at most one chunk
-    per worker."""
+    while every worker gets several chunks (four, load balance) and an interrupt loses at
+    most one chunk per worker."""
     if not cases:
         return []
-    if max_chunk is None:
-        max_chunk = chunk_limit(per_case)
+    max_chunk = chunk_limit(per_case)
     ordered = sorted(cases, key=lambda c: (c.static_hash, c.index))
-    n_chunks = max(
-        min(len(ordered), workers * min_chunks_per_worker), math.ceil(len(ordered) / max_chunk)
-    )
+    n_chunks = max(min(len(ordered), workers * 4), math.ceil(len(ordered) / max_chunk))
     # each chunk takes STRIPES runs of adjacent cases from evenly spaced parts of the
     # sweep: neighbouring cases cost alike (a taut-slack corner of a dynamic sweep can
     # cost 50 times the rest), so this spreads an expensive region over several tasks,

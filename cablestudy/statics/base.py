@@ -110,6 +110,21 @@ class LineModel:
         )
 
 
+#: the arrays of a :class:`LineModel` with one value per segment, but ``length``
+SEGMENT_ARRAYS = (
+    "weight",
+    "mass",
+    "axial_stiffness",
+    "diameter",
+    "drag_normal",
+    "drag_tangential",
+    "added_mass_normal",
+    "added_mass_tangential",
+    "bending_stiffness",
+    "damping_ratio",
+)
+
+
 @dataclass(frozen=True, kw_only=True)
 class Medium:
     """Fluid, gravity, seabed and current.

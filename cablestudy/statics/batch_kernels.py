@@ -263,14 +263,6 @@ def _hang_free(
     out["status"][k] = 0
 
 
-def _contact_one(problem: StaticProblem) -> StaticResult | None:
-    """One problem through the seabed-contact kernel (the same arrays the grid builds for
-    it), or None when the kernel does not settle it. A line anchored at B is solved from
-    B, as the reversed line (sampled at L - s), as the general solver does."""
-    x = _contact_inputs(problem)
-    return _contact_result(x, solve_contact_arrays(*_contact_call(x)), 0)
-
-
 def _contact_inputs(problem: StaticProblem) -> dict:
     """The arrays of ``problem`` for :func:`solve_contact_arrays` (a leading axis of
     one), its plane, and which end it is anchored at (``end``)."""
@@ -352,24 +344,96 @@ def solve_compiled(
     problem: StaticProblem, *, why: dict[int, str] | None = None
 ) -> StaticResult | None:
     """One still-water problem through the compiled batch kernels (free-hanging, or
-    anchored on the seabed), or None when it does not take that path (or does not settle
-    there: then ``why[0]``, if given, says why)."""
-    if contact_eligible(problem):
-        res = _contact_one(problem)
-        if res is not None and not verified(problem, res, method="catenary").success:
-            res = None  # status 0 means verified: the general solver takes it
-        if res is None and why is not None:
-            why[0] = NOT_SETTLED
-        return res
-    if not batchable(problem):
-        return None
-    line = problem.line
-    if line.length.size == 1 and line.attachment_s.size == 0:
-        lay, P = None, 1
-    else:
-        lay = make_layout(line)
-        P = len(lay.ell)
-    return _solve_group([problem], P, problem.n_nodes, [lay], why=why)[0]
+    anchored on the seabed: :func:`_kernels` of one problem), or None when it does not
+    take that path (or does not settle there: then ``why[0]``, if given, says why)."""
+    results, reasons, tried = _kernels([problem])
+    if results[0] is not None and results[0].success:
+        return results[0]
+    if why is not None and tried:  # status 0 means verified: the general solver takes it
+        why[0] = reasons.get(0, NOT_SETTLED)
+    return None
+
+
+def contact_many(problems: list[StaticProblem]) -> list[StaticResult | None]:
+    """The seabed-contact kernel's answer for each problem (seabed-contact eligible; None
+    where the kernel does not settle it), those of the same pieces, nodes and seabed
+    plane in one call. A line anchored at B is solved from B, as the reversed line
+    (sampled at L - s), as the general solver does."""
+    inputs = [_contact_inputs(p) for p in problems]
+    groups: dict[tuple, list[int]] = {}
+    for i, x in enumerate(inputs):
+        pl = x["plane"]
+        key = (
+            x["arrays"][0].shape[1],
+            x["s"].shape[1],
+            pl.depth,
+            pl.slope,
+            pl.heading,
+            pl.friction,
+        )
+        groups.setdefault(key, []).append(i)
+    results: list[StaticResult | None] = [None] * len(problems)
+    for idx in groups.values():
+        calls = [_contact_call(inputs[i]) for i in idx]
+        args = [
+            calls[0][k] if k == 7 else np.concatenate([c[k] for c in calls])
+            for k in range(len(calls[0]))
+        ]
+        out = solve_contact_arrays(*args)
+        for j, i in enumerate(idx):
+            results[i] = _contact_result(inputs[i], out, j)
+    return results
+
+
+def _kernels(
+    problems: list[StaticProblem], *, contact: bool = True, verify: bool = True
+) -> tuple[list[StaticResult | None], dict[int, str], set[int]]:
+    """The kernels' answers (None where a kernel does not take a problem or does not
+    settle it), why the batch kernel left a case it tried, and the cases a kernel tried.
+    Batchable problems with equal piece and node counts are solved together; lines
+    anchored on the seabed (``contact``) by the contact kernel, those of one plane
+    together, their answers verified (``verify``) as the batch kernel verifies its own."""
+    results: list[StaticResult | None] = [None] * len(problems)
+    groups: dict[tuple[int, int], list[int]] = {}
+    layouts: dict = {}
+    seabed = []
+    for i, prob in enumerate(problems):
+        if contact and contact_eligible(prob):  # never batchable: anchored on the seabed
+            seabed.append(i)
+            continue
+        if not batchable(prob):
+            continue
+        line = prob.line
+        if line.length.size == 1 and line.attachment_s.size == 0:
+            P = 1
+        else:
+            layouts[i] = make_layout(line)
+            P = len(layouts[i].ell)
+        groups.setdefault((P, prob.n_nodes), []).append(i)
+    why: dict[int, str] = {}
+    for (P, n_nodes), members in groups.items():
+        left: dict[int, str] = {}
+        for i, res in zip(
+            members,
+            _solve_group(
+                [problems[i] for i in members],
+                P,
+                n_nodes,
+                [layouts.get(i) for i in members],
+                why=left,
+                verify=verify,
+            ),
+            strict=True,
+        ):
+            results[i] = res
+        why.update({members[j]: reason for j, reason in left.items()})
+    if seabed:
+        for i, res in zip(seabed, contact_many([problems[i] for i in seabed]), strict=True):
+            if res is not None and verify:  # status 0 means verified: else the general
+                res = verified(problems[i], res, method="catenary")  # solver
+            results[i] = res
+    tried = {i for members in groups.values() for i in members} | set(seabed)
+    return results, why, tried
 
 
 def _guess(

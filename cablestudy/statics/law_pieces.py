@@ -51,8 +51,6 @@ def piece_increments(
     laws: Sequence[AxialLaw | None] | None = None,
     *,
     jacobian: bool = True,
-    points: int | None = None,
-    grades: int | None = None,
 ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
     """:func:`.pieces.piece_integrals` with each piece's own axial law.
 
@@ -63,10 +61,6 @@ def piece_increments(
     laws : sequence of AxialLaw or None, length P, or None
         The law of each piece; None (or a linear law) for T = EA e.
     jacobian : bool
-    points, grades : int
-        Gauss-Legendre nodes per sub-interval, and graded sub-intervals on each side of
-        the point of least tension (:func:`._law_fast.law_corrections`); default the
-        module's QUADRATURE_POINTS and QUADRATURE_GRADES.
 
     Returns
     -------
@@ -91,9 +85,9 @@ def piece_increments(
     _law_fast.linear_pieces(
         T0, q, ell, EA, dr, jac if jac is not None else np.zeros((1, 3, 3)), energy, jacobian
     )
-    points = QUADRATURE_POINTS if points is None else points
-    grades = QUADRATURE_GRADES if grades is None else grades
-    xg, wg = gauss_legendre(points)
+    # the quadrature of :func:`._law_fast.law_corrections`: QUADRATURE_POINTS nodes per
+    # sub-interval, QUADRATURE_GRADES graded sub-intervals each side of the least tension
+    xg, wg = gauss_legendre(QUADRATURE_POINTS)
     for law, idx_list in groups.values():
         code, a, b, c = _law_fast.encode(law)
         _law_fast.law_corrections(
@@ -109,7 +103,7 @@ def piece_increments(
             np.asarray(law.breakpoints(), dtype=float),
             np.ascontiguousarray(xg),
             np.ascontiguousarray(wg),
-            grades,
+            QUADRATURE_GRADES,
             dr,
             jac if jac is not None else np.zeros((1, 3, 3)),
             energy,

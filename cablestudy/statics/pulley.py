@@ -52,6 +52,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 
 from .base import (
+    SEGMENT_ARRAYS,
     STATUS_NO_SOLUTION,
     STATUS_NOT_CONVERGED,
     STATUS_OK,
@@ -84,22 +85,9 @@ def cut_line(line: LineModel, s0: float, s1: float) -> LineModel:
     last = s1 >= line.total_length
     s_att = np.asarray(line.attachment_s, dtype=float)
     on = (s_att >= s0) & ((s_att <= s1) if last else (s_att < s1))
-
-    def pick(a: np.ndarray) -> np.ndarray:
-        return np.asarray(a)[keep].copy()
-
     return LineModel(
         length=lengths,
-        weight=pick(line.weight),
-        mass=pick(line.mass),
-        axial_stiffness=pick(line.axial_stiffness),
-        diameter=pick(line.diameter),
-        drag_normal=pick(line.drag_normal),
-        drag_tangential=pick(line.drag_tangential),
-        added_mass_normal=pick(line.added_mass_normal),
-        added_mass_tangential=pick(line.added_mass_tangential),
-        bending_stiffness=pick(line.bending_stiffness),
-        damping_ratio=pick(line.damping_ratio),
+        **{name: np.asarray(getattr(line, name))[keep].copy() for name in SEGMENT_ARRAYS},
         attachment_s=s_att[on] - s0,
         attachment_force=np.asarray(line.attachment_force, dtype=float).reshape(-1, 3)[on],
         attachment_mass=np.asarray(line.attachment_mass, dtype=float)[on],

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .base import (
+    SEGMENT_ARRAYS,
     STATUS_NO_SOLUTION,
     STATUS_NUMERICAL,
     STATUS_TIME_LIMIT,
@@ -115,22 +116,7 @@ def reversed_line(line: LineModel) -> LineModel:
     """The same line described from B to A."""
     L = line.total_length
     order = np.argsort(L - line.attachment_s, kind="stable")
-    seg = {
-        name: getattr(line, name)[::-1].copy()
-        for name in (
-            "length",
-            "weight",
-            "mass",
-            "axial_stiffness",
-            "diameter",
-            "drag_normal",
-            "drag_tangential",
-            "added_mass_normal",
-            "added_mass_tangential",
-            "bending_stiffness",
-            "damping_ratio",
-        )
-    }
+    seg = {name: getattr(line, name)[::-1].copy() for name in ("length", *SEGMENT_ARRAYS)}
     return LineModel(
         **seg,
         axial_law=tuple(reversed(line.axial_law)),

@@ -69,22 +69,20 @@ def span_tensions(
     return law.tension(length * (distances / lengths - 1.0))
 
 
-def over_pulleys(problem: SpringProblem, lengths: np.ndarray | None = None) -> StaticResult:
-    """A spring between fixed ends over fixed pulleys. Without ``lengths`` (unstretched
-    length of each span [m]) the line slides freely to the frictionless equilibrium:
-    one strain, T = law(path length - L) on every span -- the state of a line
-    tensioned sliding over its pulleys, which every friction factor >= 1 also holds
-    (with friction the static state depends on the history; the dynamics starts
-    from this one). Outputs on s follow the spans; ``pulley_force`` is the force of
-    the line on each pulley [N]."""
+def over_pulleys(problem: SpringProblem) -> StaticResult:
+    """A spring between fixed ends over fixed pulleys, slid freely to the frictionless
+    equilibrium (each span's unstretched length in proportion to its chord): one strain,
+    T = law(path length - L) on every span -- the state of a line tensioned sliding over
+    its pulleys, which every friction factor >= 1 also holds (with friction the static
+    state depends on the history; the dynamics starts from this one). Outputs on s
+    follow the spans; ``pulley_force`` is the force of the line on each pulley [N]."""
     L = problem.length
     rA = np.asarray(problem.end_a.position, dtype=float)
     rB = np.asarray(problem.end_b.position, dtype=float)
     P = np.vstack((rA, problem.pulleys, rB))
     d = np.linalg.norm(np.diff(P, axis=0), axis=1)
     D = float(np.sum(d))
-    if lengths is None:
-        lengths = L * d / D
+    lengths = L * d / D
     T = span_tensions(problem.law, L, d, lengths) if D > 0.0 else np.zeros(len(d))
     u = np.diff(P, axis=0) / np.where(d > 0.0, d, 1.0)[:, None]
     s = np.linspace(0.0, L, problem.n_nodes)
@@ -100,7 +98,6 @@ def over_pulleys(problem: SpringProblem, lengths: np.ndarray | None = None) -> S
         force_b=-T[-1] * u[-1],
     )
     res.pulley_force = T[1:, None] * u[1:] - T[:-1, None] * u[:-1]  # type: ignore[attr-defined]
-    res.span_length = lengths  # type: ignore[attr-defined]
     return res
 
 

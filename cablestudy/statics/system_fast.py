@@ -111,20 +111,8 @@ def point_positions_many(
     return pos
 
 
-def rotations(angles: np.ndarray) -> np.ndarray:
-    """R = Rz(yaw) Ry(pitch) Rx(roll) for angles (..., 3), as :func:`.system.rotation`."""
-    c1, s1 = np.cos(angles[..., 0]), np.sin(angles[..., 0])
-    c2, s2 = np.cos(angles[..., 1]), np.sin(angles[..., 1])
-    c3, s3 = np.cos(angles[..., 2]), np.sin(angles[..., 2])
-    z, o = np.zeros_like(c1), np.ones_like(c1)
-    rx = np.stack([o, z, z, z, c1, -s1, z, s1, c1], -1).reshape(*c1.shape, 3, 3)
-    ry = np.stack([c2, z, s2, z, o, z, -s2, z, c2], -1).reshape(*c1.shape, 3, 3)
-    rz = np.stack([c3, -s3, z, s3, c3, z, z, z, o], -1).reshape(*c1.shape, 3, 3)
-    return rz @ ry @ rx
-
-
-def rotation_derivatives_many(angles: np.ndarray) -> np.ndarray:
-    """dR/d(roll, pitch, yaw) (..., 3, 3, 3), as :func:`.system.rotation_derivatives`."""
+def _axis_rotations_many(angles: np.ndarray) -> tuple[np.ndarray, ...]:
+    """:func:`.system._axis_rotations` for angles (..., 3): each (..., 3, 3)."""
     c1, s1 = np.cos(angles[..., 0]), np.sin(angles[..., 0])
     c2, s2 = np.cos(angles[..., 1]), np.sin(angles[..., 1])
     c3, s3 = np.cos(angles[..., 2]), np.sin(angles[..., 2])
@@ -136,6 +124,18 @@ def rotation_derivatives_many(angles: np.ndarray) -> np.ndarray:
     drx = np.stack([z, z, z, z, -s1, -c1, z, c1, -s1], -1).reshape(sh)
     dry = np.stack([-s2, z, c2, z, z, z, -c2, z, -s2], -1).reshape(sh)
     drz = np.stack([-s3, -c3, z, c3, -s3, z, z, z, z], -1).reshape(sh)
+    return rx, ry, rz, drx, dry, drz
+
+
+def rotations(angles: np.ndarray) -> np.ndarray:
+    """R = Rz(yaw) Ry(pitch) Rx(roll) for angles (..., 3), as :func:`.system.rotation`."""
+    rx, ry, rz, *_ = _axis_rotations_many(angles)
+    return rz @ ry @ rx
+
+
+def rotation_derivatives_many(angles: np.ndarray) -> np.ndarray:
+    """dR/d(roll, pitch, yaw) (..., 3, 3, 3), as :func:`.system.rotation_derivatives`."""
+    rx, ry, rz, drx, dry, drz = _axis_rotations_many(angles)
     return np.stack((rz @ ry @ drx, rz @ dry @ rx, drz @ ry @ rx), axis=-3)
 
 

@@ -187,8 +187,6 @@ def check_lines(
     tolerance: np.ndarray,
     position_a: np.ndarray | None = None,
     position_b: np.ndarray | None = None,
-    laws: tuple | None = None,
-    resolution: np.ndarray | float = 0.0,
     given_force_b: np.ndarray | None = None,
     given_height_b: np.ndarray | None = None,
     plane: Plane | None = None,
@@ -197,10 +195,10 @@ def check_lines(
     stiffness: arrays with a leading case axis, ``s`` [m] (N, n), ``position`` [m]
     (N, n, 3), ``tension`` [N] (N, n), end forces [N] (N, 3), ``tolerance`` [-] (N,);
     ``position_a``, ``position_b`` [m] (N, 3) where the end is fixed (rows of NaN, or
-    None, where it is not); ``laws`` one axial law (or None) per piece, shared by the
-    cases; ``resolution`` [N] the tension resolution of the method (0 for the exact
-    ones); ``given_force_b`` [N] (N, 3) the force given on the line at B (NaN where not
-    given: a mooring end gives x and y) and ``given_height_b`` [m] (N,) its given z.
+    None, where it is not); ``given_force_b`` [N] (N, 3) the force given on the line at
+    B (NaN where not given: a mooring end gives x and y) and ``given_height_b`` [m] (N,)
+    its given z. The axial laws are linear and the tensions exact (the compiled
+    kernels' lines: no tension resolution).
     With ``plane``, the lines rest on that rigid seabed (the compiled contact kernel's
     cases): the whole-line balance leaves a seabed reaction that the laid weight and
     Coulomb friction admit (as :func:`check_one`), and no sample lies below it."""
@@ -227,8 +225,8 @@ def check_lines(
         tolerance=tolerance,
         position_a=position_a,
         position_b=position_b,
-        laws=laws,
-        resolution=np.broadcast_to(np.asarray(resolution, dtype=float), tolerance.shape),
+        laws=None,
+        resolution=np.zeros(tolerance.shape),
         **seabed,  # type: ignore[arg-type]
     )
     f_allow = checked.allowed["end tension"]

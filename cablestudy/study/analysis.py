@@ -336,15 +336,16 @@ class HistorySettings(StrictModel):
     )
 
 
-class FrequencyRange(StrictModel):
-    """Frequencies [Hz] from ``start`` to ``stop`` (included), ``num`` of them."""
+class EvenRange(StrictModel):
+    """``num`` equally spaced values from ``start`` to ``stop`` (both included, stop above
+    start): what :class:`FrequencyRange` and :class:`GridAxis` share."""
 
-    start: Positive = Field(description="lowest frequency [Hz]")
-    stop: Positive = Field(description="highest frequency [Hz]")
-    num: int = Field(200, ge=2, le=100_000, description="number of frequencies [-]")
+    start: float
+    stop: float
+    num: int
 
     @model_validator(mode="after")
-    def _ordered(self) -> FrequencyRange:
+    def _ordered(self) -> EvenRange:
         if self.stop <= self.start:
             raise ValueError(
                 f"stop must exceed start; allowed: stop > {self.start} (got {self.stop})"
@@ -355,6 +356,14 @@ class FrequencyRange(StrictModel):
     def values(self) -> list[float]:
         step = (self.stop - self.start) / (self.num - 1)
         return [float(f"{self.start + i * step:.15g}") for i in range(self.num)]
+
+
+class FrequencyRange(EvenRange):
+    """Frequencies [Hz] from ``start`` to ``stop`` (included), ``num`` of them."""
+
+    start: Positive = Field(description="lowest frequency [Hz]")
+    stop: Positive = Field(description="highest frequency [Hz]")
+    num: int = Field(200, ge=2, le=100_000, description="number of frequencies [-]")
 
 
 #: periods a time-domain run may last at most (max_periods, and duration over the
@@ -625,26 +634,13 @@ class DynamicSettings(StrictModel):
         return list(self.excitation) if isinstance(self.excitation, list) else [self.excitation]
 
 
-class GridAxis(StrictModel):
+class GridAxis(EvenRange):
     """``num`` equally spaced values from ``start`` to ``stop`` (both included), in the
     unit of the key (m, or deg for ``angle_deg``)."""
 
     start: Finite = Field(description="first value [m, or deg for angle_deg]")
     stop: Finite = Field(description="last value [m, or deg for angle_deg]")
     num: int = Field(ge=4, le=2000, description="number of values (>= 4: bicubic) [-]")
-
-    @model_validator(mode="after")
-    def _ordered(self) -> GridAxis:
-        if self.stop <= self.start:
-            raise ValueError(
-                f"stop must exceed start; allowed: stop > {self.start} (got {self.stop})"
-            )
-        return self
-
-    @property
-    def values(self) -> list[float]:
-        step = (self.stop - self.start) / (self.num - 1)
-        return [float(f"{self.start + i * step:.15g}") for i in range(self.num)]
 
 
 #: the keys of each database grid: (first axis, second axis)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import Annotated, Any, Literal
 
 from pydantic import (
@@ -131,3 +132,10 @@ class Environment(StrictModel):
     @property
     def has_current(self) -> bool:
         return bool(self.current) and any(p.speed > 0.0 for p in self.current or [])
+
+    def seabed_z(self, x: Any, y: Any) -> Any:
+        """Height [m] of the seabed under (x, y) [m] (numbers or arrays; with a depth)."""
+        assert self.depth is not None
+        rise = math.tan(math.radians(self.seabed.slope_deg))
+        heading = math.radians(self.seabed.slope_heading_deg)
+        return -self.depth + rise * (x * math.cos(heading) + y * math.sin(heading))

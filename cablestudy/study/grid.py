@@ -385,12 +385,10 @@ def _combined_ok(grid: CaseGrid) -> bool:
         if np.any(chord <= t.line.length):
             return False
     if env.depth is not None:
-        rise = math.tan(math.radians(env.seabed.slope_deg))
-        heading = math.radians(env.seabed.slope_heading_deg)
         for label, (x, y, z) in (("a", pa), ("b", pb)):
             if getattr(t.ends, label).kind != "fixed":
                 continue
-            ground = -env.depth + rise * (x * math.cos(heading) + y * math.sin(heading))
+            ground = env.seabed_z(x, y)
             if np.any(z < ground - 1e-9 * env.depth):
                 return False
     return True

@@ -465,8 +465,6 @@ def _shown(value: Any) -> str:
 def format_validation_error(
     exc: ValidationError,
     src: StudySource,
-    prefix: Loc = (),
-    note: str = "",
     swept: dict[Loc, tuple[Loc, Loc]] | None = None,
 ) -> list[str]:
     """One message per faulty field: ``line: path: what is wrong and what is allowed
@@ -477,7 +475,7 @@ def format_validation_error(
     grouped: dict[tuple[Loc, str, str], list[str]] = {}
     for err in exc.errors(include_url=False):
         extra, msg, value, known = _describe(err)
-        loc = prefix + _clean_loc(tuple(err["loc"])) + extra
+        loc = _clean_loc(tuple(err["loc"])) + extra
         line_loc = loc if err["type"] != "missing" else loc[:-1]
         line = src.line_of(line_loc)
         where = dotted(loc)
@@ -493,24 +491,20 @@ def format_validation_error(
             msgs.append(msg)
     problems = []
     for (_, head, tail), msgs in grouped.items():
-        problems.append(f"{head}: {'; or '.join(msgs)}{tail}{note}")
+        problems.append(f"{head}: {'; or '.join(msgs)}{tail}")
     return problems
 
 
 def validate_data(
     data: dict[str, Any],
     src: StudySource,
-    prefix: Loc = (),
-    note: str = "",
     swept: dict[Loc, tuple[Loc, Loc]] | None = None,
 ) -> Study:
     """Validate parsed study data; raise :class:`StudyError` naming each fault's line."""
     try:
         return Study.model_validate(data)
     except ValidationError as exc:
-        raise StudyError(
-            format_validation_error(exc, src, prefix, note, swept), src.source
-        ) from None
+        raise StudyError(format_validation_error(exc, src, swept), src.source) from None
 
 
 def load_study(path: str | Path) -> tuple[Study, StudySource]:

@@ -129,23 +129,15 @@ class StudyLoader(_EventParser, Composer, SafeConstructor, Resolver):
     It also reads ``1e-9`` and ``2E5`` as numbers (YAML 1.2; PyYAML follows YAML 1.1, which
     needs a dot in the mantissa and would return a string).
 
-    Parameters
-    ----------
-    stream : str
-        The study text.
-    max_nodes : int
-        Node budget after alias expansion [1].
-    max_depth : int
-        Nesting limit of lists and mappings [1].
+    ``stream`` is the study text; the limits are the module's :data:`MAX_NODES` (after
+    alias expansion) and :data:`MAX_DEPTH`.
     """
 
-    def __init__(self, stream: str, *, max_nodes: int = MAX_NODES, max_depth: int = MAX_DEPTH):
+    def __init__(self, stream: str):
         _EventParser.__init__(self, stream)
         Composer.__init__(self)
         SafeConstructor.__init__(self)
         Resolver.__init__(self)
-        self.max_nodes = max_nodes
-        self.max_depth = max_depth
         self.duplicates: list[str] = []
         self._nodes = 0  # nodes of the expanded document so far
         self._depth = 0
@@ -188,23 +180,23 @@ class StudyLoader(_EventParser, Composer, SafeConstructor, Resolver):
                 )
             start = self._nodes
             self._nodes += 1
-            if self._nodes > self.max_nodes:
+            if self._nodes > MAX_NODES:
                 raise YamlRefused(
                     [
-                        f"{line}: {dotted(loc)}: the study has more than {self.max_nodes} YAML "
+                        f"{line}: {dotted(loc)}: the study has more than {MAX_NODES} YAML "
                         f"nodes (values, keys, lists and mappings, aliases expanded); "
-                        f"allowed: at most {self.max_nodes}"
+                        f"allowed: at most {MAX_NODES}"
                     ]
                 )
             mapping = isinstance(event, yaml.MappingStartEvent)
             collection = mapping or isinstance(event, yaml.SequenceStartEvent)
             if collection:
                 self._depth += 1
-                if self._depth > self.max_depth:
+                if self._depth > MAX_DEPTH:
                     raise YamlRefused(
                         [
                             f"{line}: {dotted(loc)}: lists and mappings nested more than "
-                            f"{self.max_depth} deep; allowed: at most {self.max_depth} levels"
+                            f"{MAX_DEPTH} deep; allowed: at most {MAX_DEPTH} levels"
                         ]
                     )
             if mapping:
@@ -237,12 +229,12 @@ class StudyLoader(_EventParser, Composer, SafeConstructor, Resolver):
             return  # PyYAML reports the undefined alias
         size, anchor_line = self._sizes[anchor]
         self._nodes += size
-        if self._nodes > self.max_nodes:
+        if self._nodes > MAX_NODES:
             raise YamlRefused(
                 [
                     f"{line}: {dotted(loc)}: the alias *{anchor} (anchor &{anchor} on line "
                     f"{anchor_line}: {size} nodes) would expand the study past "
-                    f"{self.max_nodes} YAML nodes; allowed: at most {self.max_nodes} nodes "
+                    f"{MAX_NODES} YAML nodes; allowed: at most {MAX_NODES} nodes "
                     f"with aliases expanded (got at least {self._nodes})"
                 ]
             )
@@ -320,12 +312,7 @@ def _yaml_error(exc: yaml.YAMLError) -> str:
     return f"{line}: not valid YAML: {problem}"
 
 
-def compose_and_load(
-    text: str,
-    *,
-    max_nodes: int = MAX_NODES,
-    max_depth: int = MAX_DEPTH,
-) -> tuple[yaml.Node | None, Any]:
+def compose_and_load(text: str) -> tuple[yaml.Node | None, Any]:
     """Parse one YAML document within the limits: (node graph with marks, data).
 
     Raises :class:`YamlRefused` with one message per fault."""
@@ -333,7 +320,7 @@ def compose_and_load(
     if bad is not None:
         raise YamlRefused([bad])
     try:
-        loader = StudyLoader(text, max_nodes=max_nodes, max_depth=max_depth)
+        loader = StudyLoader(text)
     except yaml.YAMLError as exc:
         raise YamlRefused([_yaml_error(exc)]) from None
     try:
@@ -354,12 +341,12 @@ def compose_and_load(
             line = message.split(":", 1)[0]
             message = (
                 f"{line}: {dotted(loader._loc)}: lists and mappings nested more than "
-                f"{max_depth} deep; allowed: at most {max_depth} levels"
+                f"{MAX_DEPTH} deep; allowed: at most {MAX_DEPTH} levels"
             )
         raise YamlRefused([message]) from None
     except RecursionError:  # not expected within MAX_DEPTH; never a traceback
         raise YamlRefused(
-            [f"1: <top>: nested too deeply to read; allowed: at most {max_depth} levels"]
+            [f"1: <top>: nested too deeply to read; allowed: at most {MAX_DEPTH} levels"]
         ) from None
     finally:
         loader.dispose()

@@ -173,8 +173,6 @@ class Study(StrictModel):
                     list(b.position),
                 )
         if env.depth is not None:
-            rise = math.tan(math.radians(env.seabed.slope_deg))
-            heading = math.radians(env.seabed.slope_heading_deg)
             for label, end in (("a", a), ("b", b)):
                 if isinstance(end, FixedEnd):
                     x, y, z, key = *end.position, "position"
@@ -182,11 +180,7 @@ class Study(StrictModel):
                     x, y, z, key = math.nan, math.nan, end.z, "z"
                 else:
                     continue
-                ground = -env.depth + (
-                    rise * (x * math.cos(heading) + y * math.sin(heading))
-                    if math.isfinite(x)
-                    else 0.0
-                )
+                ground = env.seabed_z(x, y) if math.isfinite(x) else -env.depth
                 if z < ground - 1e-9 * env.depth:
                     raise FieldError(
                         ("ends", label, key),
@@ -326,13 +320,11 @@ class Study(StrictModel):
             )
         env = self.environment
         if env.depth is not None:
-            rise = math.tan(math.radians(env.seabed.slope_deg))
-            heading = math.radians(env.seabed.slope_heading_deg)
             for name, point in self.points.items():
                 if not isinstance(point, FixedPoint):
                     continue
                 x, y, z = point.position
-                ground = -env.depth + rise * (x * math.cos(heading) + y * math.sin(heading))
+                ground = env.seabed_z(x, y)
                 if z < ground - 1e-9 * env.depth:
                     raise FieldError(
                         ("points", name, "position"),

@@ -119,11 +119,15 @@ def test_all_lines_in_one_call_are_each_line_bit_for_bit() -> None:
 
 def test_lines_share_a_discretisation_only_when_alike_in_every_input() -> None:
     """The system model discretises lines alike in every input once
-    (:func:`cablestudy.analyses.system_dynamic._equal`): a copy is alike; a line that
+    (:func:`cablestudy.dynamics.discrete_line.same_inputs`, arrays compared by value as
+    the system model does): a copy is alike; a line that
     differs in one array entry, in one scalar of its extras, or in its medium is not."""
     from dataclasses import replace
 
-    from cablestudy.analyses.system_dynamic import _equal
+    from cablestudy.dynamics.discrete_line import same_inputs
+
+    def _equal(a: object, b: object) -> bool:
+        return same_inputs(a, b, bitwise=False)
 
     table = TableLaw((0.0, 0.005, 0.01, 0.02, 0.04), (0.0, 1.0e4, 3.0e4, 9.0e4, 2.5e5))
     lm = _line(40.0, 0.0, table)

@@ -91,9 +91,10 @@ def test_judge_names_the_first_failing_line_or_the_nearest() -> None:
 
 
 def _line_by_line(model, result, on_seabed, weight):  # noqa: ANN001, ANN202
-    """The measures line by line (:func:`~cablestudy.dynamics.validity.measures` of
-    each, as system_measures computed them before it went over all lines at once)."""
-    from cablestudy.dynamics.validity import measures
+    """The measures line by line (:func:`~cablestudy.dynamics.validity.measures_cases`
+    of each line's response, as system_measures computed them before it went over all
+    lines at once)."""
+    from cablestudy.dynamics.validity import Validity, measures_cases
 
     out = []
     for i, red in enumerate(model.lines):
@@ -101,19 +102,24 @@ def _line_by_line(model, result, on_seabed, weight):  # noqa: ANN001, ANN202
         u = result.displacement[i]
         xi = ((line.s - line.s[0]) / (line.s[-1] - line.s[0]))[:, None]
         bed = np.asarray(on_seabed[i], dtype=bool)
+        ratio, amp, travel = measures_cases(
+            s=line.s,
+            position=line.position,
+            displacement=(u - (1.0 - xi) * u[0] - xi * u[-1])[None],
+            element_tension_static=line.tension,
+            element_tension_amplitude=np.abs(result.element_tension[i])[None],
+            end_tension_static=result.tension_static[i],
+            end_tension_amplitude=np.abs(result.end_tension[i])[None],
+            laid_length=float(np.sum(line.rest_length[bed[:-1] & bed[1:]])),
+            on_seabed=bed,
+            submerged_weight=np.asarray(weight[i], dtype=float),
+            held=np.diff(line.free_basis.tocsr().indptr).reshape(-1, 3).sum(axis=1) == 0,
+        )
         out.append(
-            measures(
-                s=line.s,
-                position=line.position,
-                displacement=u - (1.0 - xi) * u[0] - xi * u[-1],
-                element_tension_static=line.tension,
-                element_tension_amplitude=np.abs(result.element_tension[i]),
-                end_tension_static=result.tension_static[i],
-                end_tension_amplitude=np.abs(result.end_tension[i]),
-                laid_length=float(np.sum(line.rest_length[bed[:-1] & bed[1:]])),
-                on_seabed=bed,
-                submerged_weight=np.asarray(weight[i], dtype=float),
-                held=np.diff(line.free_basis.tocsr().indptr).reshape(-1, 3).sum(axis=1) == 0,
+            Validity(
+                min_tension_ratio=float(ratio[0]),
+                amplitude_sag_ratio=float(amp[0]),
+                touchdown_travel=float(travel[0]),
             )
         )
     return out
@@ -121,7 +127,7 @@ def _line_by_line(model, result, on_seabed, weight):  # noqa: ANN001, ANN202
 
 def test_measures_over_all_lines_are_the_line_by_line_ones() -> None:
     """system_measures over all lines at once gives each line's measures as
-    validity.measures does line by line, exactly (the same operations on the same
+    validity.measures_cases does line by line, exactly (the same operations on the same
     numbers; minima and maxima are exact): on case8 (bridles, legs from anchors on the
     seabed) in surge and heave, and on MoorDyn's lines.txt (chains laid on the seabed,
     a touchdown point each: its travel), where a line's static tension goes to zero on
