@@ -1,0 +1,255 @@
+"""Mooring systems in dynamics (issue 24) checked from outside: studies written from
+DESIGN.md and docs/guide/systems.md (tests/system_dynamics_contract.py), run through
+``cablestudy run CONFIG --out DIR`` and read back from the netCDF file, against the
+contract (tests/system_contract.py: names, dimensions, units, status/message, no NaN at
+status 0) and against the physics a user checks: a held system stays at its static
+state (every static load is in the dynamic model, and the lines' forces on free points
+are the statics'), a body pitched through a large angle moves its fairlead by the exact
+rotation, a phase is a time shift, a slowly moved body follows the static offset curve,
+the fairleads moved on their own are the body moved, the frequency and time domains
+agree with free points (added mass, drag) and converge together as the elements are
+refined, and a study whose every case fails keeps its outputs as NaN.
+
+Not repeated here (tests/integration/test_contract_external_system.py): the dof sweep's
+dimension, mirrored legs in surge and sway, the spread turned about z, a system of one
+line against the one-line study, FD against TD on a 3-leg spread, the bridle's motion
+kinds and sweeps through the contract, bad references refused by name.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from tests.system_contract import contract_problems, run_study, spread, statics_problems
+from tests.system_dynamics_contract import (
+    bridle,
+    one_leg,
+    periodic_table,
+    pitched_offset,
+    run,
+    run_failing,
+    time_domain,
+)
+
+ENDS = [f"tension_{m}_{e}" for m in ("max", "min") for e in "ab"]
+
+
+def test_a_held_system_stays_at_its_static_state(tmp_path: Path) -> None:
+    """The bridle (a clump and a buoy at junctions) in a sheared, turning current, its
+    buoy pushed by a constant force, the ship turned in all three angles and moved off
+    its origin, held still (amplitude 0) after statics by method discrete at the
+    dynamic mesh (nodes = elements + 1: the same lumped-mass model): every line's end
+    tensions and the body force stay at the static ones. The time domain starts at
+    that equilibrium, so only the Newton tolerance (1e-7 of the static tension) moves
+    them: 1e-5 of the largest tension bounds it. Each line's tension at a free point
+    was the end element's pull (without the half element's weight the point carries
+    in the statics): 2.3e-2 off at the clump and the buoy, 0 at the anchors and the
+    ship (cablestudy/dynamics/system_march.py end_forces)."""
+    study = bridle("held")
+    study["environment"]["current"] = [
+        {"z": 0.0, "speed": 0.8, "heading_deg": 30.0},
+        {"z": -200.0, "speed": 0.3, "heading_deg": 60.0},
+    ]
+    study["points"]["buoy"]["force"] = [3000.0, 1000.0, -5000.0]
+    study["bodies"]["ship"]["position"] = [5.0, -3.0, 1.0, 0.05, -0.04, 0.3]
+    study["analysis"] = {
+        "static": {"nodes": 9, "method": "discrete"},
+        "dynamic": time_domain(
+            {"body": "ship", "dof": "surge", "amplitude": 0.0, "frequency": 0.1}, periods=6
+        ),
+    }
+    ds = run(tmp_path, study)
+    assert np.all(ds["status"] == 0), ds["message"].values
+    assert contract_problems(ds, dynamic=True) == []
+    big = float(ds["tension_b"].max())
+    for e in "ab":
+        for m in ("max", "min", "mean"):
+            diff = np.abs(ds[f"tension_{m}_{e}"] - ds[f"tension_{e}"]).values
+            assert diff.max() < 1e-5 * big, (m, e, diff / big)
+    for m in ("max", "min"):
+        diff = np.abs(ds[f"body_force_{m}"] - ds["body_force"]).values
+        assert diff.max() < 1e-5 * big, (m, diff / big)
+
+
+def test_a_study_whose_every_case_fails_keeps_its_outputs_as_nan(tmp_path: Path) -> None:
+    """A 3-leg spread surged at two amplitudes under a 0.1 ms time limit: every case
+    fails in the dynamics (status and message), and the dataset still has every
+    dynamic output, NaN (DESIGN.md: a failed case is NaN in its data variables, never
+    dropped). They were missing: the variables were the keys of the cases that
+    succeeded."""
+    text = spread(
+        "failing",
+        analysis=(
+            "  time_limit: 1.0e-4\n  dynamic:\n"
+            "    excitation: {body: hull, dof: surge, amplitude: 2.0, frequency: 0.1}\n"
+            "    method: time\n    elements: 8\n    points_per_period: 32\n    max_periods: 12\n"
+        ),
+        sweep="  analysis.dynamic.excitation.amplitude: [1.0, 2.0]\n",
+    )
+    code, ds = run_failing(tmp_path, text)
+    assert code == 3  # every case failed (docs/guide/cli.md)
+    assert np.all(ds["status"] != 0)
+    assert all("time limit" in str(m) for m in ds["message"].values)
+    assert contract_problems(ds, dynamic=True) == []
+    for name in (*ENDS, "tension_envelope_max", "body_force_max", "body_force_min"):
+        assert bool(np.isnan(ds[name]).all()), name
+    # the statics of each case are kept
+    assert bool(np.isfinite(ds["tension_b"]).all())
+
+
+def test_a_large_pitch_moves_the_fairlead_by_the_exact_rotation(tmp_path: Path) -> None:
+    """A single leg on a body pitched 0.2 rad (11.5 deg) at 0.1 Hz by a periodic table,
+    against the same body moved by surge and heave tables that carry its fairlead
+    along R_y(pitch) p - p exactly (one fairlead: the line sees only that point). The
+    tables (65 rows a period, cubic splines) differ by the spline's h^4 error of the
+    two forms of the motion: measured 4e-5 of the tension range, bounded by 1e-3. The
+    small-angle motion (p_z pitch, -p_x pitch) is 0.2 of the range away: the check sees
+    a rotation taken small-angle."""
+    period, angle = 10.0, 0.2
+    pitch = angle * np.sin(2.0 * np.pi * np.linspace(0.0, 1.0, 65))
+    move = pitched_offset(np.array([10.0, 0.0, -10.0]), pitch)
+    small = np.stack([-10.0 * pitch, 0.0 * pitch, -10.0 * pitch], axis=-1)
+
+    def tables(name: str, rows: list[tuple[str, np.ndarray]]) -> dict:
+        study = one_leg(name)
+        exc = [
+            {"body": "hull", "dof": dof, "table": periodic_table(period, v), "periodic": True}
+            for dof, v in rows
+        ]
+        study["analysis"]["dynamic"] = time_domain(exc)
+        return run(tmp_path, study)
+
+    rotated = tables("pitched", [("pitch", pitch)])
+    moved = tables("moved", [("surge", move[:, 0]), ("heave", move[:, 2])])
+    linear = tables("smallangle", [("surge", small[:, 0]), ("heave", small[:, 2])])
+    for ds in (rotated, moved, linear):
+        assert np.all(ds["status"] == 0), ds["message"].values
+        assert contract_problems(ds, dynamic=True) == []
+    rotated, moved, linear = (ds.sel(line="l1") for ds in (rotated, moved, linear))
+    span = float(rotated["tension_max_b"] - rotated["tension_min_b"])
+    for name in ENDS:
+        assert abs(float(rotated[name] - moved[name])) < 1e-3 * span, name
+    assert abs(float(rotated["tension_max_b"] - linear["tension_max_b"])) > 0.1 * span
+
+
+def test_a_phase_of_the_heave_is_a_time_shift(tmp_path: Path) -> None:
+    """The leg's body heaved 1 m at 0.1 Hz for a fixed 100 s, with phase 0 and 90 deg,
+    histories kept (2 periods, 32 samples a period, on (line, time)): sin(w t + pi/2)
+    = sin(w (t + T/4)), so the 90-degree record is the other shifted by 8 samples. The
+    runs differ only by their start (the ramp), decayed over 8 periods below the
+    steady tolerance (2e-3 of the range); measured 1e-11 of the range."""
+
+    def heave(phase: float) -> object:
+        study = one_leg(f"phase{int(phase)}")
+        dyn = time_domain(
+            {"body": "hull", "dof": "heave", "amplitude": 1.0, "frequency": 0.1,
+             "phase_deg": phase},
+            history={"periods": 2.0, "samples_per_period": 32},
+        )  # fmt: skip
+        dyn.pop("max_periods")
+        dyn["duration"] = 100.0
+        study["analysis"]["dynamic"] = dyn
+        return run(tmp_path, study)
+
+    first, later = heave(0.0), heave(90.0)
+    for ds in (first, later):
+        assert np.all(ds["status"] == 0) and contract_problems(ds, dynamic=True) == []
+        assert ds["history_tension_b"].dims == ("line", "time")
+        assert ds["history_tension_b"].attrs["units"] == "N"
+        assert ds["history_time"].attrs["units"] == "s"
+    np.testing.assert_array_equal(first["history_time"], later["history_time"])
+    a = first["history_tension_b"].sel(line="l1").values
+    b = later["history_tension_b"].sel(line="l1").values
+    span = float(a.max() - a.min())
+    assert np.abs(b[:-8] - a[8:]).max() < 2e-3 * span
+    assert np.abs(b - a).max() > 0.5 * span  # unshifted, they differ
+
+
+def test_a_slowly_moved_body_follows_the_static_offset_curve(tmp_path: Path) -> None:
+    """The leg's body surged 3 m at 0.002 Hz against the statics (method discrete at
+    the dynamic mesh) of the body offset -3, 0, +3 m: the maximum fairlead tension is
+    the static one at -3 m, the minimum at +3 m, the anchor's alike, and the body's
+    surge force the static one. The dynamic part (inertia, drag) falls as the frequency
+    squared: 240 N at 0.01 Hz, 10 N at 0.002 Hz (measured), so 1e-3 of the 28 kN static
+    range bounds it."""
+    static = one_leg("offsets")
+    static["analysis"]["static"]["method"] = "discrete"
+    static["sweep"] = {"bodies.hull.position.0": {"values": [-3.0, 0.0, 3.0], "name": "surge"}}
+    curve = run(tmp_path, static)
+    assert statics_problems(curve) == []
+    slow = one_leg("slow")
+    slow["analysis"]["dynamic"] = time_domain(
+        {"body": "hull", "dof": "surge", "amplitude": 3.0, "frequency": 0.002}
+    )
+    ds = run(tmp_path, slow)
+    assert np.all(ds["status"] == 0) and contract_problems(ds, dynamic=True) == []
+    ds = ds.sel(line="l1")
+    span = float(curve["tension_b"].max() - curve["tension_b"].min())
+    for e in "ab":
+        t = curve[f"tension_{e}"].sel(line="l1")
+        assert abs(float(ds[f"tension_max_{e}"]) - float(t.sel(surge=-3.0))) < 1e-3 * span
+        assert abs(float(ds[f"tension_min_{e}"]) - float(t.sel(surge=3.0))) < 1e-3 * span
+    f = curve["body_force"].sel(body="hull", dof="surge")
+    got = ds["body_force_max"].sel(body="hull", dof="surge")
+    assert abs(float(got) - float(f.sel(surge=-3.0))) < 1e-3 * span
+
+
+def test_the_fairleads_moved_on_their_own_are_the_body_moved(tmp_path: Path) -> None:
+    """A 3-leg spread surged 2 m at 0.1 Hz, against its three fairleads each moved 2 m
+    along x on its own (point excitations beside their body): the same held-node
+    motions, so the same tensions up to the Newton tolerance (1e-7 of the static
+    tension; 1e-5 of the largest bounds the differences of the step control)."""
+    surge = "{body: hull, dof: surge, amplitude: 2.0, frequency: 0.1}"
+    points = (
+        "[" + ", ".join(
+            f"{{point: f{i}, direction: [1, 0, 0], amplitude: 2.0, frequency: 0.1}}"
+            for i in (1, 2, 3)
+        ) + "]"
+    )  # fmt: skip
+    block = (
+        "  dynamic:\n    excitation: %s\n    method: time\n    elements: 8\n"
+        "    points_per_period: 32\n    max_periods: 12\n"
+    )
+    body = run_study(tmp_path, spread("bodymoved", analysis=block % surge))
+    own = run_study(tmp_path, spread("pointsmoved", analysis=block % points))
+    for ds in (body, own):
+        assert np.all(ds["status"] == 0) and contract_problems(ds, dynamic=True) == []
+    big = float(body["tension_max_b"].max())
+    for name in ENDS:
+        np.testing.assert_allclose(own[name].values, body[name].values, rtol=0, atol=1e-5 * big)
+
+
+def test_free_points_frequency_and_time_domain_agree_and_converge(tmp_path: Path) -> None:
+    """The bridle in 400 m of water (every line clear of the seabed; the clump's and the
+    buoy's mass, added mass and drag area in both models), heaved 0.05 m at 0.1 Hz: each
+    line's end extremes by the frequency domain (static plus and minus the amplitude)
+    and by the time domain. Their difference is the time domain's discrete statics
+    against the catenary (second order in the element length): measured 2.5e-3 of the
+    static tension at 10 elements, 6.5e-4 at 20; so within 5e-3 at 10, 1.2e-3 at 20, and
+    at least 3 times smaller at 20 than at 10 (4 for order 2)."""
+    worst = {}
+    for elements in (10, 20):
+        runs = {}
+        for method in ("frequency", "time"):
+            study = bridle(f"deep_{method}_{elements}", depth=400.0)
+            exc = {"body": "ship", "dof": "heave", "amplitude": 0.05, "frequency": 0.1}
+            if method == "time":
+                dyn = time_domain(exc, elements=elements, steps=64, periods=30)
+            else:
+                dyn = {"excitation": exc, "method": "frequency", "elements": elements}
+            study["analysis"]["dynamic"] = dyn
+            ds = run(tmp_path, study)
+            assert np.all(ds["status"] == 0), ds["message"].values
+            assert contract_problems(ds, dynamic=True) == []
+            assert str(ds["dynamic_method"].item()) == method
+            runs[method] = ds
+        fd, td = runs["frequency"], runs["time"]
+        assert float(fd["laid_length"].max()) == 0.0
+        static = fd["tension_b"].values
+        worst[elements] = max(
+            float(np.max(np.abs(fd[n].values - td[n].values) / static)) for n in ENDS
+        )
+    assert worst[10] < 5e-3 and worst[20] < 1.2e-3, worst
+    assert worst[20] < worst[10] / 3.0, worst
