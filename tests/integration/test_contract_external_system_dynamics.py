@@ -21,7 +21,10 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+import pytest
+import yaml
 
+from cablestudy.cli import main
 from tests.system_contract import contract_problems, run_study, spread, statics_problems
 from tests.system_dynamics_contract import (
     bridle,
@@ -253,3 +256,148 @@ def test_free_points_frequency_and_time_domain_agree_and_converge(tmp_path: Path
         )
     assert worst[10] < 5e-3 and worst[20] < 1.2e-3, worst
     assert worst[20] < worst[10] / 3.0, worst
+
+
+def test_a_turned_body_pitches_about_its_own_axis(tmp_path: Path) -> None:
+    """The 3-leg spread pitched 0.1 rad at 0.1 Hz, against the spread turned 40 deg
+    about z whose fairleads are given in the body frame as before and whose body is
+    yawed 40 deg (docs/guide/systems.md: R = Rz(yaw) Ry(pitch) Rx(roll), so the pitch
+    turns about the yawed body's own y axis): the same system in a turned frame, every
+    line's tension extremes equal (the turned coordinates' rounding through the Newton
+    solves: 1e-7 of the tension; measured 4e-12 of it), and the body's heave force and
+    yaw moment, which do not turn."""
+    block = (
+        "  dynamic:\n    excitation: {body: hull, dof: pitch, amplitude: 0.1, frequency: 0.1}\n"
+        "    method: time\n    elements: 8\n    points_per_period: 32\n    max_periods: 12\n"
+    )
+    plain = yaml.safe_load(spread("pitch0", analysis=block))
+    turned = yaml.safe_load(spread("pitch40", turn_deg=40.0, analysis=block))
+    for k, v in turned["points"].items():
+        if v["kind"] == "body":
+            v["offset"] = plain["points"][k]["offset"]
+    turned["bodies"]["hull"]["position"][5] = float(np.deg2rad(40.0))
+    a, b = run(tmp_path, plain), run(tmp_path, turned)
+    for ds in (a, b):
+        assert np.all(ds["status"] == 0) and contract_problems(ds, dynamic=True) == []
+        assert statics_problems(ds) == []
+    big = float(a["tension_max_b"].max())
+    for name in (*ENDS, "tension_mean_a", "tension_mean_b"):
+        np.testing.assert_allclose(b[name].values, a[name].values, rtol=0, atol=1e-6 * big)
+    for name in ("body_force_max", "body_force_min"):
+        for dof in ("heave", "yaw"):
+            np.testing.assert_allclose(
+                b[name].sel(dof=dof).values, a[name].sel(dof=dof).values, rtol=0,
+                atol=1e-6 * big * 10.0,  # a moment: forces times the 10 m fairlead radius
+            )  # fmt: skip
+
+
+def test_two_spectra_of_one_wave_move_the_body_coherently(tmp_path: Path) -> None:
+    """A body surged by a JONSWAP sea times an RAO, given as two entries of the same
+    wave (RAO r, seed 3, 16 lines), against one entry of RAO 2 r: the motion of each
+    degree of freedom is the one wave's realisation times its RAO (the same seeded
+    phases), so the two studies move the body alike and every tension is equal to the
+    rounding of summing two halves (1e-9 of the tension)."""
+    wave = {"hs": 2.0, "tp": 10.0}
+    rao = [[0.0, 1.0], [0.1, 1.0], [0.2, 0.5], [0.3, 0.1]]
+
+    def study(name: str, excitation: object) -> dict:
+        s = yaml.safe_load(spread(name))
+        dyn = time_domain(excitation)
+        dyn.pop("max_periods")
+        dyn["duration"] = 60.0
+        s["analysis"]["dynamic"] = dyn
+        return s
+
+    entry = {"body": "hull", "dof": "surge", "wave_spectrum": wave, "components": 16, "seed": 3}
+    double = run(tmp_path, study("rao2", {**entry, "rao": [[f, 2.0 * a] for f, a in rao]}))
+    halves = run(tmp_path, study("raos", [{**entry, "rao": rao}, {**entry, "rao": rao}]))
+    for ds in (double, halves):
+        assert np.all(ds["status"] == 0) and contract_problems(ds, dynamic=True) == []
+        assert str(ds["dynamic_method"].item()) == "time"
+    big = float(double["tension_max_b"].max())
+    for name in ENDS:
+        np.testing.assert_allclose(
+            halves[name].values, double[name].values, rtol=0, atol=1e-9 * big
+        )
+
+
+def test_a_free_points_added_mass_is_mass_that_does_not_weigh(tmp_path: Path) -> None:
+    """The bridle's clump (300 kg added mass) and buoy (4000 kg), surged 0.1 m at
+    0.1 Hz, against the same points with that added mass as mass and the volume that
+    buoys its weight (V + m_a / rho): the same inertia and the same net weight, so both
+    methods give the same tensions (to the rounding of the weights: 1e-9)."""
+    exc = {"body": "ship", "dof": "surge", "amplitude": 0.1, "frequency": 0.1}
+    for method in ("frequency", "time"):
+        got = {}
+        for kind in ("added", "massive"):
+            study = bridle(f"{kind}_{method}")
+            if kind == "massive":
+                for p in ("clump", "buoy"):
+                    pt = study["points"][p]
+                    pt["mass"] += pt["added_mass"]
+                    pt["volume"] += pt.pop("added_mass") / 1025.0
+            if method == "time":
+                study["analysis"]["dynamic"] = time_domain(exc, elements=6, periods=8)
+            else:
+                study["analysis"]["dynamic"] = {"excitation": exc, "method": method, "elements": 6}
+            ds = run(tmp_path, study)
+            assert np.all(ds["status"] == 0) and contract_problems(ds, dynamic=True) == []
+            got[kind] = ds
+        big = float(got["added"]["tension_max_b"].max())
+        for name in ENDS:
+            np.testing.assert_allclose(
+                got["massive"][name].values, got["added"][name].values, rtol=0, atol=1e-9 * big
+            )
+
+
+#: (case, the excitation of the dynamic spread, the field named, words the message holds)
+BAD = [
+    (
+        "body spectrum along a direction",
+        {"body": "hull", "dof": "surge", "spectrum": [[0.05, 1.0], [0.2, 1.0]],
+         "direction": [1, 0, 0]},
+        "analysis.dynamic.excitation.direction",
+        ["[1, 0, 0]", "degree of freedom (dof)", "remove direction"],
+    ),
+    (
+        "body spectrum at a line end",
+        {"body": "hull", "dof": "surge", "spectrum": [[0.05, 1.0], [0.2, 1.0]], "end": "b"},
+        "analysis.dynamic.excitation.end",
+        ["'b'", "not a line end", "remove end"],
+    ),
+    (
+        "point spectrum at a line end",
+        {"point": "a1", "direction": [0, 0, 1], "spectrum": [[0.05, 1.0], [0.2, 1.0]],
+         "end": "a"},
+        "analysis.dynamic.excitation.end",
+        ["'a'", "not a line end", "remove end"],
+    ),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize(("case", "excitation", "field", "words"), BAD, ids=[b[0] for b in BAD])
+def test_a_line_ends_keys_on_a_systems_spectrum_are_refused_in_words(
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+    case: str,
+    excitation: dict,
+    field: str,
+    words: list[str],
+) -> None:
+    """A line end's keys (end, direction) on a body's or a point's motion spectrum are
+    refused before any work, naming the field, the value and what to do. They were
+    refused as "must be None", which tells a user neither why nor what to write."""
+    study = yaml.safe_load(spread("badspectrum"))
+    dyn = time_domain(excitation)
+    dyn.pop("max_periods")
+    dyn["duration"] = 60.0
+    study["analysis"]["dynamic"] = dyn
+    cfg = tmp_path / "badspectrum.yaml"
+    cfg.write_text(yaml.safe_dump(study, sort_keys=False))
+    code = main(["run", str(cfg), "--out", str(tmp_path), "--no-cache", "--no-progress"])
+    err = capsys.readouterr().err
+    assert code == 2 and not (tmp_path / "badspectrum.nc").exists(), case
+    assert f": {field}: " in err, err
+    assert "must be None" not in err
+    for w in words:
+        assert w in err, (w, err)
