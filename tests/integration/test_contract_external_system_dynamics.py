@@ -350,7 +350,8 @@ def test_a_free_points_added_mass_is_mass_that_does_not_weigh(tmp_path: Path) ->
             )
 
 
-#: (case, the excitation of the dynamic spread, the field named, words the message holds)
+#: (case, the excitation of the dynamic spread, the field named, words the message holds,
+#: words it must not hold)
 BAD = [
     (
         "body spectrum along a direction",
@@ -358,12 +359,14 @@ BAD = [
          "direction": [1, 0, 0]},
         "analysis.dynamic.excitation.direction",
         ["[1, 0, 0]", "degree of freedom (dof)", "remove direction"],
+        ["must be None"],
     ),
     (
         "body spectrum at a line end",
         {"body": "hull", "dof": "surge", "spectrum": [[0.05, 1.0], [0.2, 1.0]], "end": "b"},
         "analysis.dynamic.excitation.end",
         ["'b'", "not a line end", "remove end"],
+        ["must be None"],
     ),
     (
         "point spectrum at a line end",
@@ -371,33 +374,56 @@ BAD = [
          "end": "a"},
         "analysis.dynamic.excitation.end",
         ["'a'", "not a line end", "remove end"],
+        ["must be None"],
+    ),
+    # was: "unknown key 'amplitude' (did you mean 'amplitude'?); allowed keys here:
+    # amplitude, body, ..." (the keys of every kind of motion)
+    (
+        "amplitude on a body spectrum",
+        {"body": "hull", "dof": "surge", "spectrum": [[0.05, 1.0], [0.2, 1.0]], "amplitude": 1.0},
+        "analysis.dynamic.excitation.amplitude",
+        ["unknown key 'amplitude'", "allowed keys here: body, components, dof, rao, seed, "
+         "spectrum, storm_duration, wave_spectrum", "(got 1.0)"],
+        ["did you mean", "direction", "phase_deg"],
+    ),
+    # was named at 'analysis.dynamic.excitation.BodySpectrum' (an internal tag)
+    (
+        "waves without the motion's rao",
+        {"body": "hull", "dof": "heave", "wave_spectrum": {"hs": 2.0, "tp": 10.0}},
+        "analysis.dynamic.excitation",
+        ["wave_spectrum together with rao", "'wave_spectrum'"],
+        ["BodySpectrum"],
     ),
 ]  # fmt: skip
 
 
-@pytest.mark.parametrize(("case", "excitation", "field", "words"), BAD, ids=[b[0] for b in BAD])
-def test_a_line_ends_keys_on_a_systems_spectrum_are_refused_in_words(
+@pytest.mark.parametrize(
+    ("case", "excitation", "field", "words", "not_words"), BAD, ids=[b[0] for b in BAD]
+)
+def test_bad_system_motions_are_refused_in_words(
     tmp_path: Path,
     capsys: pytest.CaptureFixture[str],
     case: str,
     excitation: dict,
     field: str,
     words: list[str],
+    not_words: list[str],
 ) -> None:
-    """A line end's keys (end, direction) on a body's or a point's motion spectrum are
-    refused before any work, naming the field, the value and what to do. They were
-    refused as "must be None", which tells a user neither why nor what to write."""
-    study = yaml.safe_load(spread("badspectrum"))
+    """Motions a user plausibly writes wrong are refused before any work, naming the
+    field (as a path into the study file), the value and what to do; the message does
+    not contradict itself nor name internals."""
+    study = yaml.safe_load(spread("badmotion"))
     dyn = time_domain(excitation)
     dyn.pop("max_periods")
     dyn["duration"] = 60.0
     study["analysis"]["dynamic"] = dyn
-    cfg = tmp_path / "badspectrum.yaml"
+    cfg = tmp_path / "badmotion.yaml"
     cfg.write_text(yaml.safe_dump(study, sort_keys=False))
     code = main(["run", str(cfg), "--out", str(tmp_path), "--no-cache", "--no-progress"])
     err = capsys.readouterr().err
-    assert code == 2 and not (tmp_path / "badspectrum.nc").exists(), case
+    assert code == 2 and not (tmp_path / "badmotion.nc").exists(), case
     assert f": {field}: " in err, err
-    assert "must be None" not in err
     for w in words:
         assert w in err, (w, err)
+    for w in not_words:
+        assert w not in err, (w, err)
