@@ -226,8 +226,10 @@ def test_the_fairleads_moved_on_their_own_are_the_body_moved(tmp_path: Path) -> 
 
 def test_free_points_frequency_and_time_domain_agree_and_converge(tmp_path: Path) -> None:
     """The bridle in 400 m of water (every line clear of the seabed; the clump's and the
-    buoy's mass, added mass and drag area in both models), heaved 0.05 m at 0.1 Hz: each
-    line's end extremes by the frequency domain (static plus and minus the amplitude)
+    buoy's mass, added mass and drag area in both models), its ship surged 0.05 m and
+    pitched 0.004 rad a quarter period later, an anchor heaved 0.05 m on its own at
+    -60 deg (phases across degrees of freedom and points), all at 0.1 Hz: each line's
+    end extremes by the frequency domain (static plus and minus the amplitude)
     and by the time domain. Their difference is the time domain's discrete statics
     against the catenary (second order in the element length): measured 2.5e-3 of the
     static tension at 10 elements, 6.5e-4 at 20; so within 5e-3 at 10, 1.2e-3 at 20, and
@@ -237,7 +239,13 @@ def test_free_points_frequency_and_time_domain_agree_and_converge(tmp_path: Path
         runs = {}
         for method in ("frequency", "time"):
             study = bridle(f"deep_{method}_{elements}", depth=400.0)
-            exc = {"body": "ship", "dof": "heave", "amplitude": 0.05, "frequency": 0.1}
+            exc = [
+                {"body": "ship", "dof": "surge", "amplitude": 0.05, "frequency": 0.1},
+                {"body": "ship", "dof": "pitch", "amplitude": 0.004, "frequency": 0.1,
+                 "phase_deg": 90.0},
+                {"point": "anc", "direction": [0, 0, 1], "amplitude": 0.05, "frequency": 0.1,
+                 "phase_deg": -60.0},
+            ]  # fmt: skip
             if method == "time":
                 dyn = time_domain(exc, elements=elements, steps=64, periods=30)
             else:
