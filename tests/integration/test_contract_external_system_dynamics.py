@@ -435,3 +435,33 @@ def test_bad_system_motions_are_refused_in_words(
         assert w in err, (w, err)
     for w in not_words:
         assert w not in err, (w, err)
+
+
+def test_auto_per_case_amplitudes_only_where_the_frequency_domain_ran(tmp_path: Path) -> None:
+    """The 3-leg spread under method auto, surged 0.02 m and 4 m: the small motion is
+    linear (the frequency domain, its reason 'auto: linear ...'), the large one slackens
+    leg 1 (the time domain, its reason naming line 'l1'). tension_amplitude_a/_b hold
+    numbers where the frequency domain ran and NaN where it did not, and the variable
+    says what that NaN means (a NaN at status 0 without a word was left to the user to
+    guess)."""
+    text = spread(
+        "autosweep",
+        analysis=(
+            "  dynamic:\n"
+            "    excitation: {body: hull, dof: surge, amplitude: 2.0, frequency: 0.1}\n"
+            "    method: auto\n    elements: 8\n    points_per_period: 32\n"
+            "    max_periods: 12\n"
+        ),
+        sweep="  analysis.dynamic.excitation.amplitude: [0.02, 4.0]\n",
+    )
+    ds = run_study(tmp_path, text)
+    assert np.all(ds["status"] == 0) and contract_problems(ds, dynamic=True) == []
+    assert list(ds["dynamic_method"].values) == ["frequency", "time"]
+    reasons = [str(r) for r in ds["dynamic_method_reason"].values]
+    assert reasons[0].startswith("auto: linear") and "'l1'" in reasons[1], reasons
+    for e in "ab":
+        amp = ds[f"tension_amplitude_{e}"]
+        assert amp.dims == ("amplitude", "line") and amp.attrs["units"] == "N"
+        assert bool(np.isfinite(amp.sel(amplitude=0.02)).all())
+        assert bool(np.isnan(amp.sel(amplitude=4.0)).all())
+        assert "time domain" in amp.attrs.get("nan_means", ""), amp.attrs
