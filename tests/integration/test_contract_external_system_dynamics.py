@@ -465,3 +465,32 @@ def test_auto_per_case_amplitudes_only_where_the_frequency_domain_ran(tmp_path: 
         assert bool(np.isfinite(amp.sel(amplitude=0.02)).all())
         assert bool(np.isnan(amp.sel(amplitude=4.0)).all())
         assert "time domain" in amp.attrs.get("nan_means", ""), amp.attrs
+
+
+def test_a_spread_yawed_or_rolled_through_large_angles_keeps_its_symmetry(
+    tmp_path: Path,
+) -> None:
+    """The 3-leg spread (legs at 0, 120, 240 deg) yawed 0.3 rad at 0.1 Hz: the
+    120-degree symmetry holds at every instant (yaw about the centre turns each
+    fairlead alike), so the three legs' extremes are equal; rolled 0.15 rad, legs 2 and
+    3 are mirror images in y (roll +r mirrored is roll -r, the same motion half a
+    period later): their extremes are equal, leg 1 (in the x-z plane) apart. Equal to
+    the steady-state tolerance (2e-3 of each line's range) as the runs settle; measured
+    far closer (the same arithmetic up to the fairleads' rounded coordinates)."""
+    block = (
+        "  dynamic:\n    excitation: {body: hull, dof: %s, amplitude: %s, frequency: 0.1}\n"
+        "    method: time\n    elements: 8\n    points_per_period: 32\n    max_periods: 12\n"
+    )
+    yawed = run_study(tmp_path, spread("yawed", analysis=block % ("yaw", 0.3)))
+    rolled = run_study(tmp_path, spread("rolled", analysis=block % ("roll", 0.15)))
+    for ds in (yawed, rolled):
+        assert np.all(ds["status"] == 0) and contract_problems(ds, dynamic=True) == []
+    span = float((yawed["tension_max_b"] - yawed["tension_min_b"]).min())
+    assert span > 1e3  # the yaw loads the legs
+    for name in ENDS:
+        t = yawed[name].values
+        assert np.abs(t - t[0]).max() < 2e-3 * span, (name, t)
+    span = float((rolled["tension_max_b"] - rolled["tension_min_b"]).sel(line="l2"))
+    for name in ENDS:
+        t = rolled[name]
+        assert abs(float(t.sel(line="l2") - t.sel(line="l3"))) < 2e-3 * span, name
