@@ -42,14 +42,15 @@ ENDS = [f"tension_{m}_{e}" for m in ("max", "min") for e in "ab"]
 def test_a_held_system_stays_at_its_static_state(tmp_path: Path) -> None:
     """The bridle (a clump and a buoy at junctions) in a sheared, turning current, its
     buoy pushed by a constant force, the ship turned in all three angles and moved off
-    its origin, held still (amplitude 0) after statics by method discrete at the
-    dynamic mesh (nodes = elements + 1: the same lumped-mass model): every line's end
-    tensions and the body force stay at the static ones. The time domain starts at
-    that equilibrium, so only the Newton tolerance (1e-7 of the static tension) moves
-    them: 1e-5 of the largest tension bounds it. Each line's tension at a free point
-    was the end element's pull (without the half element's weight the point carries
-    in the statics): 2.3e-2 off at the clump and the buoy, 0 at the anchors and the
-    ship (cablestudy/dynamics/system_march.py end_forces)."""
+    its origin, a riser with bending stiffness, a bridle of a polynomial law, held still
+    (amplitude 0) after statics by method discrete at the dynamic mesh (nodes =
+    elements + 1: the same lumped-mass model): every line's end tensions and the body
+    force stay at the static ones. The time domain starts at that equilibrium, so only
+    the Newton tolerance (1e-7 of the static tension) moves them: 1e-5 of the largest
+    tension bounds it. Each line's tension at a free point was the end element's pull
+    (without the half element's weight the point carries in the statics): 2.3e-2 off
+    at the clump and the buoy, 0 at the anchors and the ship
+    (cablestudy/dynamics/system_march.py end_forces)."""
     study = bridle("held")
     study["environment"]["current"] = [
         {"z": 0.0, "speed": 0.8, "heading_deg": 30.0},
@@ -57,6 +58,9 @@ def test_a_held_system_stays_at_its_static_state(tmp_path: Path) -> None:
     ]
     study["points"]["buoy"]["force"] = [3000.0, 1000.0, -5000.0]
     study["bodies"]["ship"]["position"] = [5.0, -3.0, 1.0, 0.05, -0.04, 0.3]
+    study["lines"]["riser"]["segments"][0]["bending_stiffness"] = 2.0e5
+    br1 = study["lines"]["br1"]["segments"][0]
+    br1["axial"] = {"law": "polynomial", "coefficients": [br1.pop("axial_stiffness"), 5.0e9]}
     study["analysis"] = {
         "static": {"nodes": 9, "method": "discrete"},
         "dynamic": time_domain(
@@ -494,3 +498,36 @@ def test_a_spread_yawed_or_rolled_through_large_angles_keeps_its_symmetry(
     for name in ENDS:
         t = rolled[name]
         assert abs(float(t.sel(line="l2") - t.sel(line="l3"))) < 2e-3 * span, name
+
+
+def test_a_held_spread_laid_on_a_rough_slope_stays_at_its_static_state(
+    tmp_path: Path,
+) -> None:
+    """Two legs laid on a 3-degree slope with friction 0.6 (128 m and 170 m on the
+    seabed), anchors on the slope, held still after statics by method discrete at the
+    dynamic mesh: the seabed's plane, stiffness and friction of the dynamic model are
+    the statics', so the end tensions stay at the static ones (Newton tolerance: 1e-5
+    of the largest tension; measured 1e-7)."""
+    from tests.integration.test_contract_external_system import SLOPE
+
+    heights = (-300.0 * np.tan(np.deg2rad(-3.0)) - 100.0, 300.0 * np.tan(np.deg2rad(-3.0)) - 100.0)
+    study = yaml.safe_load(SLOPE % tuple(repr(float(h)) for h in heights))
+    study.pop("sweep")
+    study["name"] = "slopeheld"
+    study["analysis"] = {
+        "static": {"nodes": 11, "method": "discrete"},
+        "dynamic": time_domain(
+            {"body": "hull", "dof": "surge", "amplitude": 0.0, "frequency": 0.1},
+            elements=10,
+            periods=6,
+        ),
+    }
+    ds = run(tmp_path, study)
+    assert np.all(ds["status"] == 0), ds["message"].values
+    assert contract_problems(ds, dynamic=True) == []
+    assert bool((ds["laid_length"] > 100.0).all())
+    big = float(ds["tension_b"].max())
+    for e in "ab":
+        for m in ("max", "min"):
+            diff = np.abs(ds[f"tension_{m}_{e}"] - ds[f"tension_{e}"]).values
+            assert diff.max() < 1e-5 * big, (m, e, diff / big)
