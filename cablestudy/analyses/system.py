@@ -308,10 +308,11 @@ def _dynamics(
     """Run the case's dynamics after its statics (not run when they failed) into
     ``data``; the case's status and message."""
     from .common import STATUS_NOT_RUN
-    from .system_dynamic import run_system_dynamic
+    from .system_dynamic import failed_dynamic_outputs, run_system_dynamic
 
     if status != STATUS_OK:
         data["dynamic_status"] = np.asarray(STATUS_NOT_RUN, dtype=np.int64)
+        data.update(failed_dynamic_outputs(case.study, data))  # NaN, never dropped
         return status, message
     try:
         d_status, d_message, d_data = run_system_dynamic(case, system, res, deadline)
@@ -320,6 +321,7 @@ def _dynamics(
     data.update(d_data)
     data["dynamic_status"] = np.asarray(d_status, dtype=np.int64)
     if d_status != STATUS_OK:
+        data.update(failed_dynamic_outputs(case.study, data))  # NaN, never dropped
         return d_status, f"dynamic analysis: {d_message}"
     return status, message
 

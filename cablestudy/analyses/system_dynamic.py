@@ -311,3 +311,28 @@ def run_system_dynamic(
     if bad:
         return STATUS_NUMERICAL, f"non-finite values in {', '.join(bad)}", head
     return STATUS_OK, "", out
+
+
+def failed_dynamic_outputs(study: Any, data: dict[str, Any]) -> dict[str, np.ndarray]:
+    """NaN for each output of a system's dynamics that a failed (or not run) case left
+    out, shaped as a successful case's: a failed case is NaN in its data variables,
+    never dropped, even when every case of the study fails (the dataset's variables are
+    the records' keys). Shapes from the case's static outputs (``tension`` (line, s),
+    ``body_force`` (body, dof)), else from the study."""
+    n_line = len(study.lines)
+    tension = data.get("tension")
+    n_s = np.shape(tension)[-1] if tension is not None else study.analysis.static.nodes
+    out: dict[str, np.ndarray] = {}
+    names = [f"tension_{m}_{e}" for m in ("max", "min", "mean") for e in "ab"]
+    out.update({k: np.full(n_line, np.nan) for k in names})
+    for k in ("tension_envelope_max", "tension_envelope_min", "z_envelope_max"):
+        out[k] = np.full((n_line, n_s), np.nan)
+    if study.bodies:
+        force = data.get("body_force")
+        n_body = np.shape(force)[0] if force is not None else len(study.bodies)
+        out["body_force_max"] = np.full((n_body, len(BODY_DOFS)), np.nan)
+        out["body_force_min"] = np.full((n_body, len(BODY_DOFS)), np.nan)
+    if study.analysis.dynamic.method == "frequency":
+        out["tension_amplitude_a"] = np.full(n_line, np.nan)
+        out["tension_amplitude_b"] = np.full(n_line, np.nan)
+    return {k: v for k, v in out.items() if k not in data}

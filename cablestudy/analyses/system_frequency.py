@@ -157,7 +157,20 @@ def harmonic_motion(study: Any) -> tuple[np.ndarray, np.ndarray, float]:
             d = np.asarray(e.direction, dtype=float)
             U[points.index(e.point)] += amp * d / np.linalg.norm(d)
     (frequency,) = freqs  # one frequency: the study model checked it
-    return X, U, float(frequency)
+    return _turned_rotations(study, X), U, float(frequency)
+
+
+def _turned_rotations(study: Any, X: np.ndarray) -> np.ndarray:
+    """``X`` with each body's roll, pitch and yaw amplitudes as the global rotation
+    vector they make about the body's static orientation (the model moves a point by
+    ``Theta x a``: right at zero angles only; the time domain turns a yawed body's pitch
+    about its own axis, R = Rz Ry Rx). Unchanged for bodies at zero angles."""
+    from ..dynamics.body_rates import rotation_vector
+
+    out = X.copy()
+    for b, body in enumerate(study.bodies.values()):
+        out[b, 3:] = rotation_vector(np.asarray(body.position[3:], dtype=float), X[b, 3:])
+    return out
 
 
 def run_system_frequency(

@@ -453,6 +453,9 @@ SYSTEM_OUTPUTS.update(
                 "N",
                 f"amplitude of the harmonic tension variation at end {end.upper()} of each "
                 "line (frequency domain)",
+                # a case of method auto may run the time domain: said, not a bare NaN
+                nan_means="the case ran the time domain (dynamic_method 'time'): no "
+                "harmonic amplitude",
             )
             for end in ("a", "b")
         },

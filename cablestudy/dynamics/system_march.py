@@ -239,39 +239,33 @@ def system_step(  # noqa: ANN201
 @njit(cache=True)
 def end_forces(S, W, x, a, he_node, forces):  # noqa: ANN001, ANN201
     """Force of each line on its end points [N] (L, 2, 3): minus the support reaction
-    ``F + M a`` of a held end node (without the seabed's part where it rests on the
-    seabed: :func:`.end_support.seabed_support`, as the single line's); the pull of the
-    end element on a junction."""
-    no, eo, end_point = S[0], S[1], S[34]
-    F, M_d, tension = W[0], W[6], W[7]
+    ``F + M a`` of the line's end node (without the seabed's part where it rests on the
+    seabed: :func:`.end_support.seabed_support`, as the single line's), at a held end
+    and at a free point alike. A line's end node on a free point lumps the line's half
+    end element (its mass, weight and drag are the line's, the point's own are apart),
+    so the line's force on the point is that node's reaction, as the statics' end force
+    is (the end element's pull alone left out the half element's weight: a first-order
+    error, 2 % of a bridle's junction tension at 8 elements)."""
+    no, eo = S[0], S[1]
+    F, M_d = W[0], W[6]
     rest, ksb = S[4], S[24]
     for l in range(no.shape[0] - 1):  # noqa: E741
         for end in range(2):
             node = no[l] if end == 0 else no[l + 1] - 1
-            if end_point[l, end] < 0:
-                for c in range(3):
-                    acc = F[node, c]
-                    for b in range(3):
-                        acc += M_d[node, c, b] * a[node, b]
-                    forces[l, end, c] = -acc
-                if ksb.shape[0] > 0 and ksb[node] > 0.0:
-                    # the single line's tolerance: a millionth of the line's length
-                    length = 0.0
-                    for k in range(eo[l], eo[l + 1]):
-                        length += rest[k]
-                    seabed_support(
-                        forces[l, end], x[node], W[10][node], W[11][node], ksb[node],
-                        S[22], S[23][l], 1e-6 * max(length, 1.0),
-                    )  # fmt: skip
-            else:
-                other = node + 1 if end == 0 else node - 1
-                elem = eo[l] if end == 0 else eo[l + 1] - 1
-                ln = 0.0
-                for c in range(3):
-                    ln += (x[other, c] - x[node, c]) ** 2
-                ln = math.sqrt(ln)
-                for c in range(3):
-                    forces[l, end, c] = tension[elem] * (x[other, c] - x[node, c]) / ln
+            for c in range(3):
+                acc = F[node, c]
+                for b in range(3):
+                    acc += M_d[node, c, b] * a[node, b]
+                forces[l, end, c] = -acc
+            if ksb.shape[0] > 0 and ksb[node] > 0.0:
+                # the single line's tolerance: a millionth of the line's length
+                length = 0.0
+                for k in range(eo[l], eo[l + 1]):
+                    length += rest[k]
+                seabed_support(
+                    forces[l, end], x[node], W[10][node], W[11][node], ksb[node],
+                    S[22], S[23][l], 1e-6 * max(length, 1.0),
+                )  # fmt: skip
 
 
 @njit(cache=True)

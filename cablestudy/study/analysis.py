@@ -295,8 +295,8 @@ Excitation = Annotated[
     | Annotated[BodyTable, Tag("BodyTable")]
     | Annotated[PointHarmonic, Tag("PointHarmonic")]
     | Annotated[PointTable, Tag("PointTable")]
-    | Annotated[BodySpectrumExcitation, Tag("BodySpectrum")]
-    | Annotated[PointSpectrumExcitation, Tag("PointSpectrum")],
+    | Annotated[BodySpectrumExcitation, Tag("BodySpectrumExcitation")]
+    | Annotated[PointSpectrumExcitation, Tag("PointSpectrumExcitation")],
     Discriminator(_excitation_tag),
 ]
 

@@ -371,7 +371,14 @@ def _describe(err: dict[str, Any]) -> tuple[Loc, str, Any, bool]:
         return cause.loc, cause.message, cause.value, True
     if kind == "extra_forbidden":
         key = str(raw[-1])
-        allowed = sorted({f for m in _models_at(raw[:-1]) for f in m.model_fields})
+        allowed = sorted(
+            {
+                f
+                for m in _models_at(raw[:-1])
+                for f, info in m.model_fields.items()
+                if info.annotation is not type(None)  # a key kept only to be refused
+            }
+        )
         alias = alias_hint(key, allowed)
         close = difflib.get_close_matches(key, allowed, n=1)
         hint = f" ({alias})" if alias else f" (did you mean {close[0]!r}?)" if close else ""

@@ -121,6 +121,20 @@ class SpectrumExcitation(StrictModel):
         return [math.sqrt(2.0 * self.density(f) * df) for f in self.line_frequencies]
 
 
+#: why a system's spectrum refuses a line end's keys, and what it takes instead
+_NOT_A_LINE_END = {
+    "end": (
+        "a system's motion names a body (body, dof) or a point (point, direction), not a "
+        "line end; allowed: remove end"
+    ),
+    "direction": (
+        "a body's motion spectrum moves it in its degree of freedom (dof), not along a "
+        "direction; allowed: remove direction (a point moved on its own by a spectrum "
+        "takes point and direction)"
+    ),
+}
+
+
 class BodySpectrumExcitation(SpectrumExcitation):
     """Irregular motion of one degree of freedom of a body of a system (issue 24): the
     spectrum of a line end's motion (a density table, or JONSWAP waves times the
@@ -133,6 +147,14 @@ class BodySpectrumExcitation(SpectrumExcitation):
         description="degree of freedom moved [m or rad]"
     )
 
+    @field_validator("end", "direction", mode="before")
+    @classmethod
+    def _line_end_keys(cls, value: object, info: object) -> object:
+        # said in words: pydantic's own text was "must be None"
+        if value is not None:
+            raise ValueError(_NOT_A_LINE_END[info.field_name])  # type: ignore[attr-defined]
+        return value
+
 
 class PointSpectrumExcitation(SpectrumExcitation):
     """Irregular motion of a point of a system on its own along ``direction``: the
@@ -140,3 +162,10 @@ class PointSpectrumExcitation(SpectrumExcitation):
 
     end: None = Field(None, description="(a line end's key: a point moves by name)")
     point: str = Field(description="the point that moves (a key of points)")
+
+    @field_validator("end", mode="before")
+    @classmethod
+    def _line_end_key(cls, value: object) -> object:
+        if value is not None:
+            raise ValueError(_NOT_A_LINE_END["end"])
+        return value

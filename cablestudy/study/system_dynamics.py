@@ -162,10 +162,10 @@ def system_tag(value: dict) -> str | None:
     """The tag of a system excitation given as a mapping (None: not one)."""
     if "body" in value:
         if "spectrum" in value or "wave_spectrum" in value:
-            return "BodySpectrum"
+            return "BodySpectrumExcitation"  # the class name: error paths drop it
         return "BodyTable" if "table" in value else "BodyHarmonic"
     if "point" in value:
         if "spectrum" in value or "wave_spectrum" in value:
-            return "PointSpectrum"
+            return "PointSpectrumExcitation"
         return "PointTable" if "table" in value else "PointHarmonic"
     return None
