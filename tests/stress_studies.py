@@ -1,0 +1,650 @@
+"""Random study generator and solver-independent checks (the stress helper's harness).
+
+Written from the study-file contract (docs/reference/keys.md, docs/guide/*.md,
+docs/conventions.md), not from the solvers: :func:`generate` makes a seeded,
+deterministic, valid-looking study (a one-line study, static or dynamic, or a system of
+lines joined at a free point or on a body), :func:`run_study` runs it through the
+command line (``cablestudy run STUDY --out DIR``) and :func:`check_study` checks every
+case against what a user can recompute from the written dataset:
+
+* the run: exit 0 (some case ok), 3 (none ok) or 2 (refused, with a message naming the
+  field); never 1, never a Python traceback, never numpy's RuntimeWarning;
+* a case of status 0 (statics): finite outputs, the end positions of the study, the
+  stretched distance between neighbouring nodes no longer than their stretched arc
+  length, tension >= 0 (no bending), the whole line's balance of forces where the loads
+  are known (no current: weight, attachments, seabed reaction vertical when frictionless
+  and flat), the horizontal tension constant along a uniform catenary with no current,
+  friction, slope or attachments;
+* a case of status 0 (dynamics): tension_max >= tension_mean >= tension_min, finite;
+* a failed case: a message, NaN in the failed analysis's outputs (status 10 and 11 keep
+  their numbers, docs/conventions.md), the statics kept when only the dynamics failed.
+
+Each anomaly is a (kind, text) pair; the kinds are counted by the batch driver
+(``benchmarks/stress_random.py``) and the fixed-seed test
+(``tests/integration/test_stress_random_studies.py``) asserts there are none.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+import subprocess
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import yaml
+
+GRAVITY = 9.80665
+WATER = 1025.0
+
+#: material families: (mass per length / d^2 [kg/m/m^2], EA / d^2 [N/m^2], Cdn)
+#: from the usual rules of thumb (chain ~ 19.9 d^2 t/m, wire ~ 5 d^2 t/m, polyester
+#: ~ 0.8 d^2 t/m with the chain's 0.85e11 d^2, wire's 9e10 d^2, polyester's 1.1e9 d^2)
+MATERIALS = {
+    "chain": (19900.0, 0.854e11, 2.4),
+    "wire": (5000.0, 9.0e10, 1.2),
+    "polyester": (800.0, 1.1e9, 1.2),
+}
+
+
+def _r(rng: np.random.Generator, lo: float, hi: float) -> float:
+    return float(rng.uniform(lo, hi))
+
+
+def _log(rng: np.random.Generator, lo: float, hi: float) -> float:
+    return float(math.exp(rng.uniform(math.log(lo), math.log(hi))))
+
+
+def _round(x: float, digits: int = 6) -> float:
+    """A number as a user writes it (6 significant digits)."""
+    if x == 0.0 or not math.isfinite(x):
+        return float(x)
+    return float(f"{x:.{digits}g}")
+
+
+def _segment(rng: np.random.Generator, length: float, rho: float, extreme: bool) -> dict:
+    kind = str(rng.choice(list(MATERIALS)))
+    mass_d2, ea_d2, cdn = MATERIALS[kind]
+    d = _log(rng, 0.01, 0.2)
+    mass = mass_d2 * d * d
+    ea = ea_d2 * d * d
+    if extreme:
+        ea = _log(rng, 1e3, 1e11)
+        roll = rng.uniform()
+        if roll < 0.25 and rho > 0:  # slightly buoyant
+            mass = rho * math.pi * d * d / 4 * _r(rng, 0.8, 0.99)
+        elif roll < 0.5:  # heavy
+            mass = mass * _r(rng, 2.0, 20.0)
+    seg = {
+        "length": _round(length),
+        "diameter": _round(d),
+        "mass_per_length": _round(mass),
+        "axial_stiffness": _round(ea),
+        "drag_normal": cdn,
+        "drag_tangential": 0.01 if kind != "chain" else 0.4,
+    }
+    return seg
+
+
+def _weight(seg: dict, rho: float) -> float:
+    """Submerged weight per length [N/m] (docs: weight_in_fluid overrides)."""
+    if "weight_in_fluid" in seg:
+        return float(seg["weight_in_fluid"])
+    a = math.pi * seg["diameter"] ** 2 / 4
+    return (seg["mass_per_length"] - rho * a) * GRAVITY
+
+
+@dataclass
+class Meta:
+    """What the checks need to know of a generated study."""
+
+    kind: str  # "line" | "system"
+    method: str
+    rho: float
+    depth: float | None
+    slope: float = 0.0
+    friction: float = 0.0
+    current: bool = False
+    attachments: bool = False
+    bending: bool = False
+    dynamic: str | None = None  # method of analysis.dynamic
+    ends: tuple[str, str] = ("fixed", "fixed")
+    expect_refusal: str | None = None  # a key the study gives that should be refused
+    sweep_dim: str | None = None
+    notes: list[str] = field(default_factory=list)
+
+
+def _current(rng: np.random.Generator, depth: float) -> list[dict]:
+    n = int(rng.integers(1, 4))
+    zs = sorted((-_r(rng, 0.0, depth) for _ in range(n - 1)), reverse=True)
+    zs = [0.0] + zs
+    return [
+        {"z": _round(z), "speed": _round(_r(rng, 0.05, 2.0)), "heading_deg": _round(_r(rng, -180, 180))}
+        for z in zs
+    ]
+
+
+def _makeup(rng: np.random.Generator, total: float, rho: float, extreme: bool) -> list[dict]:
+    n = int(rng.integers(1, 5))
+    parts = rng.dirichlet(np.ones(n)) * total
+    parts = np.maximum(parts, total * 0.02)
+    parts *= total / parts.sum()
+    return [_segment(rng, float(p), rho, extreme) for p in parts]
+
+
+def generate(seed: int) -> tuple[dict, Meta]:
+    """One random study (a dict ready for yaml) and what the checks need about it."""
+    rng = np.random.default_rng(seed)
+    roll = rng.uniform()
+    if roll < 0.15:
+        return _system(rng, seed)
+    return _one_line(rng, seed, dynamic=roll > 0.75)
+
+
+def _fluid(rng: np.random.Generator) -> tuple[Any, float]:
+    r = rng.uniform()
+    if r < 0.75:
+        return "water", WATER
+    if r < 0.85:
+        return "vacuum", 0.0
+    rho = _round(_r(rng, 800.0, 1100.0))
+    return {"density": rho}, rho
+
+
+def _one_line(rng: np.random.Generator, seed: int, dynamic: bool) -> tuple[dict, Meta]:
+    fluid, rho = _fluid(rng)
+    has_bed = rho > 0 and rng.uniform() < 0.8
+    depth = _log(rng, 5.0, 3000.0)
+    extreme = rng.uniform() < 0.35
+    # geometry: anchor near the seabed (or the bottom of the span), fairlead near the top
+    drop = depth * _r(rng, 0.3, 1.0)
+    za = -depth if has_bed and rng.uniform() < 0.7 else -depth * _r(rng, 0.5, 1.0)
+    zb = za + drop if rng.uniform() < 0.9 else za + drop * _r(rng, -0.2, 0.2)
+    zb = min(zb, 0.0) if rho > 0 else zb
+    span = abs(zb - za) * _log(rng, 0.02, 20.0)
+    chord = math.hypot(span, zb - za)
+    length = chord * _r(rng, 0.98, 3.0)
+    if has_bed and rng.uniform() < 0.3:  # enough to lay on the seabed
+        length = max(length, (abs(zb - za) + span) * _r(rng, 0.7, 1.1))
+    method = str(rng.choice(["catenary", "catenary", "shooting", "analytic", "discrete"]))
+    segs = _makeup(rng, length, rho, extreme)
+    if method == "analytic":  # a uniform line (the method's scope, docs/reference/keys.md)
+        segs = [dict(segs[0], length=_round(length))]
+    total = sum(s["length"] for s in segs)
+    meta = Meta(kind="line", method=method, rho=rho, depth=depth if has_bed else None)
+    env: dict[str, Any] = {"fluid": fluid}
+    if has_bed:
+        env["depth"] = _round(depth)
+        meta.depth = env["depth"]
+        bed: dict[str, Any] = {}
+        if rng.uniform() < 0.4:
+            bed["friction"] = _round(_r(rng, 0.0, 1.0))
+            meta.friction = bed["friction"]
+        if rng.uniform() < 0.2 and method in ("shooting", "catenary", "discrete"):
+            bed["slope_deg"] = _round(_r(rng, -10.0, 10.0))
+            meta.slope = bed["slope_deg"]
+        if bed:
+            env["seabed"] = bed
+    if rho > 0 and method != "analytic" and rng.uniform() < 0.35:
+        env["current"] = _current(rng, depth)
+        meta.current = True
+    line: dict[str, Any] = {"segments": segs}
+    if method != "analytic" and rng.uniform() < 0.3:
+        atts = []
+        for _ in range(int(rng.integers(1, 3))):
+            s = _round(_r(rng, 0.05, 0.95) * total)
+            if rng.uniform() < 0.5:
+                atts.append({"s": s, "mass": _round(_log(rng, 10.0, 1e4))})
+            else:
+                atts.append({"s": s, "volume": _round(_log(rng, 0.01, 5.0))}
+                            if rho > 0 else {"s": s, "force": [0.0, 0.0, _round(_log(rng, 10, 1e4))]})
+        line["attachments"] = atts
+        meta.attachments = True
+    if method == "discrete" and rng.uniform() < 0.5:
+        for s in segs:
+            s["bending_stiffness"] = _round(_log(rng, 1.0, 1e5))
+        meta.bending = True
+    elif rng.uniform() < 0.03:  # a key the method cannot use: must be refused
+        segs[0]["bending_stiffness"] = 100.0
+        if method != "discrete":
+            meta.expect_refusal = "bending_stiffness"
+    ends: dict[str, Any] = {"a": {"kind": "fixed", "position": [0.0, 0.0, _round(za)]}}
+    b_kind = "fixed"
+    if not dynamic and method in ("catenary", "shooting", "discrete") and rng.uniform() < 0.3:
+        b_kind = str(rng.choice(["force", "mooring"]))
+    wsum = sum(max(_weight(s, rho), 0.0) * s["length"] for s in segs)
+    if b_kind == "fixed":
+        ends["b"] = {"kind": "fixed", "position": [_round(span), 0.0, _round(zb)]}
+    elif b_kind == "force":
+        h = wsum * _log(rng, 0.05, 5.0) + 1.0
+        ends["b"] = {"kind": "force", "force": [_round(h), 0.0, _round(wsum * _r(rng, 0.2, 1.2) + 1.0)]}
+    else:
+        h = wsum * _log(rng, 0.05, 5.0) + 1.0
+        ends["b"] = {"kind": "mooring", "force": [_round(h), 0.0], "z": _round(zb)}
+    meta.ends = ("fixed", b_kind)
+    nodes = int(rng.choice([11, 21, 51, 101]))
+    analysis: dict[str, Any] = {"static": {"method": method, "nodes": nodes}, "time_limit": 60.0}
+    if dynamic:
+        dyn_method = str(rng.choice(["time", "frequency", "auto"]))
+        if meta.bending or meta.friction:
+            pass
+        freq = _round(_log(rng, 0.02, 1.0))
+        exc: dict[str, Any]
+        if dyn_method != "frequency" and rng.uniform() < 0.3:
+            amp = _round(_log(rng, 0.01, 0.05) * chord)
+            per = 1.0 / freq
+            exc = {"end": "b", "direction": [1.0, 0.0, 0.0],
+                   "table": [[0.0, 0.0], [per / 4, amp], [per / 2, 0.0], [3 * per / 4, -amp], [per, 0.0]],
+                   "periodic": True}
+        else:
+            exc = {"end": "b", "direction": [_round(_r(rng, -1, 1)), 0.0, _round(_r(rng, -1, 1))],
+                   "amplitude": _round(_log(rng, 0.001, 0.05) * chord), "frequency": freq}
+            if exc["direction"] == [0.0, 0.0, 0.0]:
+                exc["direction"] = [1.0, 0.0, 0.0]
+        dyn: dict[str, Any] = {"excitation": exc, "method": dyn_method, "elements": int(rng.choice([8, 12, 20]))}
+        if dyn_method != "frequency":
+            dyn.update({"points_per_period": 32, "max_periods": int(rng.choice([6, 10])), "ramp_periods": 1.0})
+        analysis["dynamic"] = dyn
+        meta.dynamic = dyn_method
+        # the dynamic model is the discrete one: EI is fine there
+    study: dict[str, Any] = {
+        "name": f"stress-{seed}",
+        "description": f"random stress study, seed {seed}",
+        "environment": env,
+        "line": line,
+        "ends": ends,
+        "analysis": analysis,
+    }
+    # a sweep of 2-3 values to get several cases per run
+    if rng.uniform() < 0.6 and b_kind == "fixed":
+        vals = sorted({_round(span * f) for f in (1.0, _r(rng, 0.5, 1.0), _r(rng, 1.0, 1.3))})
+        study["sweep"] = {"ends.b.position.0": {"values": vals, "name": "span"}}
+        meta.sweep_dim = "span"
+    elif rng.uniform() < 0.4 and meta.current:
+        study["sweep"] = {"environment.current.0.speed": {"values": [0.1, 0.5, 1.5], "name": "surface_speed"}}
+        meta.sweep_dim = "surface_speed"
+    return study, meta
+
+
+def _system(rng: np.random.Generator, seed: int) -> tuple[dict, Meta]:
+    depth = _log(rng, 20.0, 1500.0)
+    n = int(rng.integers(2, 5))
+    on_body = rng.uniform() < 0.5
+    radius = depth * _log(rng, 1.5, 6.0)
+    hub_z = -depth * _r(rng, 0.05, 0.4)
+    points: dict[str, Any] = {}
+    lines: dict[str, Any] = {}
+    bodies: dict[str, Any] = {}
+    if on_body:
+        bodies["hull"] = {"kind": "prescribed", "position": [0.0, 0.0, _round(hub_z), 0.0, 0.0, 0.0]}
+    else:
+        points["hub"] = {"kind": "free", "position": [0.0, 0.0, _round(hub_z)],
+                         "mass": _round(_log(rng, 1.0, 1e4))}
+    for i in range(n):
+        ang = 2 * math.pi * i / n + _r(rng, -0.3, 0.3)
+        anchor = [_round(radius * math.cos(ang)), _round(radius * math.sin(ang)), _round(-depth)]
+        points[f"anchor{i}"] = {"kind": "fixed", "position": anchor}
+        if on_body:
+            off = [_round(5 * math.cos(ang)), _round(5 * math.sin(ang)), 0.0]
+            points[f"fair{i}"] = {"kind": "body", "body": "hull", "offset": off}
+            end_b = f"fair{i}"
+        else:
+            end_b = "hub"
+        chord = math.hypot(radius, depth + hub_z)
+        length = chord * _r(rng, 1.0, 1.4)
+        lines[f"leg{i}"] = {"a": f"anchor{i}", "b": end_b, "segments": _makeup(rng, length, WATER, False)}
+    study = {
+        "name": f"stress-{seed}",
+        "description": f"random stress system, seed {seed}",
+        "environment": {"fluid": "water", "depth": _round(depth)},
+        "points": points,
+        "bodies": bodies,
+        "lines": lines,
+        "analysis": {"static": {"method": "catenary", "nodes": 21}, "time_limit": 60.0},
+    }
+    meta = Meta(kind="system", method="catenary", rho=WATER, depth=_round(depth))
+    if on_body:
+        study["sweep"] = {"bodies.hull.position.0": {"values": [_round(-0.1 * depth), 0.0, _round(0.1 * depth)],
+                                                      "name": "surge"}}
+        meta.sweep_dim = "surge"
+    return study, meta
+
+
+# --------------------------------------------------------------------------- running
+
+
+@dataclass
+class RunResult:
+    code: int
+    stdout: str
+    stderr: str
+    seconds: float
+    nc: Path | None
+
+
+def run_study(study: dict, workdir: Path, timeout: float = 300.0) -> RunResult:
+    """``cablestudy run STUDY.yaml --out DIR`` in a fresh process (as a user runs it)."""
+    workdir.mkdir(parents=True, exist_ok=True)
+    cfg = workdir / f"{study['name']}.yaml"
+    cfg.write_text(yaml.safe_dump(study, sort_keys=False))
+    env = dict(os.environ)
+    env["PYTHONWARNINGS"] = "default"  # numpy's RuntimeWarnings would show
+    t0 = time.perf_counter()
+    try:
+        p = subprocess.run(
+            [sys.executable, "-m", "cablestudy.cli", "run", str(cfg), "--out", str(workdir),
+             "--no-cache", "--scheduler", "synchronous", "--no-progress"],
+            capture_output=True, text=True, env=env, timeout=timeout,
+        )
+        code, out, err = p.returncode, p.stdout, p.stderr
+    except subprocess.TimeoutExpired as e:
+        code, out, err = -9, str(e.stdout or ""), f"timeout after {timeout} s"
+    dt = time.perf_counter() - t0
+    nc = workdir / f"{study['name']}.nc"
+    return RunResult(code, out, err, dt, nc if nc.exists() else None)
+
+
+# --------------------------------------------------------------------------- checks
+
+
+def _cases(ds: Any) -> list[dict]:
+    """Each case as a dict of indexers over the sweep dims."""
+    dims = [d for d in ds["status"].dims]
+    if not dims:
+        return [{}]
+    idx = np.ndindex(*[ds.sizes[d] for d in dims])
+    return [dict(zip(dims, i)) for i in idx]
+
+
+def _f(ds: Any, name: str, case: dict) -> np.ndarray | None:
+    if name not in ds:
+        return None
+    v = ds[name].isel({k: v for k, v in case.items() if k in ds[name].dims})
+    return np.asarray(v.values, dtype=float)
+
+
+def _study_case(study: dict, ds: Any, case: dict, meta: Meta) -> dict:
+    """The study with this case's swept value set (span or current speed)."""
+    import copy
+
+    st = copy.deepcopy(study)
+    if meta.sweep_dim == "span":
+        st["ends"]["b"]["position"][0] = float(ds["span"].values[case["span"]])
+    elif meta.sweep_dim == "surface_speed":
+        st["environment"]["current"][0]["speed"] = float(ds["surface_speed"].values[case["surface_speed"]])
+    elif meta.sweep_dim == "surge":
+        st["bodies"]["hull"]["position"][0] = float(ds["surge"].values[case["surge"]])
+    return st
+
+
+def check_run(study: dict, meta: Meta, res: RunResult) -> list[tuple[str, str]]:
+    out: list[tuple[str, str]] = []
+    text = res.stdout + res.stderr
+    if "Traceback" in text:
+        out.append(("traceback", text[-1500:]))
+    if "RuntimeWarning" in text:
+        line = next(ln for ln in text.splitlines() if "RuntimeWarning" in ln)
+        out.append(("runtime_warning", line))
+    if res.code == 2:
+        if meta.expect_refusal and meta.expect_refusal in text:
+            return out
+        out.append(("refused", res.stderr.strip()[-600:]))
+        return out
+    if meta.expect_refusal:
+        out.append(("not_refused", f"{meta.expect_refusal} under method {meta.method}: exit {res.code}"))
+    if res.code not in (0, 3):
+        out.append(("exit_code", f"exit {res.code}: {res.stderr.strip()[-800:]}"))
+        return out
+    if res.nc is None:
+        out.append(("no_dataset", f"exit {res.code} and no dataset"))
+        return out
+    import xarray as xr
+
+    with xr.open_dataset(res.nc) as ds:
+        ds.load()
+    n_ok = int((ds["status"].values == 0).sum())
+    if res.code == 0 and n_ok == 0 and not np.any(ds["status"].values == 10):
+        out.append(("exit_code", "exit 0 with no case of status 0"))
+    if res.code == 3 and n_ok > 0:
+        out.append(("exit_code", "exit 3 with a case of status 0"))
+    for case in _cases(ds):
+        st = _study_case(study, ds, case, meta)
+        for kind, text in check_case(ds, case, st, meta):
+            out.append((kind, f"case {case}: {text}"))
+    return out
+
+
+def _msg(ds: Any, name: str, case: dict) -> str:
+    if name not in ds:
+        return ""
+    v = ds[name].isel({k: v for k, v in case.items() if k in ds[name].dims}).values
+    return str(v.item() if hasattr(v, "item") else v)
+
+
+STATIC_VARS = ("x", "y", "z", "tension", "force_a", "force_b", "tension_a", "tension_b")
+DYN_VARS = ("tension_max", "tension_min", "tension_mean")
+
+
+def check_case(ds: Any, case: dict, study: dict, meta: Meta) -> list[tuple[str, str]]:
+    out: list[tuple[str, str]] = []
+    status = int(ds["status"].isel(case).values)
+    sstat = int(ds["static_status"].isel(case).values) if "static_status" in ds else status
+    dstat = int(ds["dynamic_status"].isel(case).values) if "dynamic_status" in ds else None
+    msg = _msg(ds, "message", case)
+    if status != 0 and not msg.strip():
+        out.append(("empty_message", f"status {status} and no message"))
+    if status == 0 and msg.strip():
+        out.append(("message_when_ok", msg[:300]))
+    if re.search(r"\bnan\b|\binf\b", msg, re.I) and status != 0:
+        out.append(("nan_in_message", msg[:300]))
+    if sstat not in (0, 10, 11):
+        for v in STATIC_VARS:
+            a = _f(ds, v, case)
+            if a is not None and np.any(np.isfinite(a)):
+                out.append(("number_in_failed", f"static_status {sstat} but {v} has numbers"))
+                break
+    if sstat in (0, 10):
+        for v in STATIC_VARS:
+            a = _f(ds, v, case)
+            if a is not None and not np.all(np.isfinite(a)):
+                out.append(("nan_when_ok", f"static_status {sstat} and {v} not finite"))
+                break
+        else:
+            if sstat == 0:
+                out += _check_statics(ds, case, study, meta)
+    if dstat is not None:
+        vals = {v: _f(ds, v, case) for v in DYN_VARS}
+        if dstat == 0:
+            if any(a is None or not np.all(np.isfinite(a)) for a in vals.values()):
+                out.append(("nan_when_ok", "dynamic_status 0 with a non-finite tension_max/min/mean"))
+            else:
+                tmax, tmean, tmin = (float(np.max(vals["tension_max"])), float(np.max(vals["tension_mean"])),
+                                     float(np.max(vals["tension_min"])))
+                tol = 1e-9 * max(abs(tmax), 1.0)
+                if not (tmax + tol >= tmean >= tmin - tol):
+                    out.append(("dyn_order", f"tension max {tmax}, mean {tmean}, min {tmin}"))
+        else:
+            for v, a in vals.items():
+                if a is not None and np.any(np.isfinite(a)):
+                    out.append(("number_in_failed", f"dynamic_status {dstat} but {v} = {a}"))
+                    break
+            if dstat != 5 and sstat == 0:
+                t = _f(ds, "tension", case)
+                if t is None or not np.all(np.isfinite(t)):
+                    out.append(("statics_lost", f"dynamic_status {dstat}: the statics are not kept"))
+    return out
+
+
+def _check_statics(ds: Any, case: dict, study: dict, meta: Meta) -> list[tuple[str, str]]:
+    if meta.kind == "system":
+        return _check_system(ds, case, study, meta)
+    out: list[tuple[str, str]] = []
+    x, y, z = (_f(ds, c, case) for c in "xyz")
+    t = _f(ds, "tension", case)
+    s = _f(ds, "arc_length", case) if "arc_length" in ds else np.asarray(ds["s"].values, float)
+    segs = study["line"]["segments"]
+    total = sum(sg["length"] for sg in segs)
+    scale = max(total, 1.0)
+    pos = np.stack([x, y, z], axis=-1)
+    # end positions
+    ea = study["ends"]["a"]
+    eb = study["ends"]["b"]
+    tol_pos = 1e-5 * scale + 1e-6
+    if ea["kind"] == "fixed" and np.linalg.norm(pos[0] - np.array(ea["position"])) > tol_pos:
+        out.append(("end_position", f"A at {pos[0]} not {ea['position']}"))
+    if eb["kind"] == "fixed" and np.linalg.norm(pos[-1] - np.array(eb["position"])) > tol_pos:
+        out.append(("end_position", f"B at {pos[-1]} not {eb['position']}"))
+    if eb["kind"] == "mooring" and abs(pos[-1, 2] - eb["z"]) > tol_pos:
+        out.append(("end_position", f"B at z {pos[-1, 2]} not {eb['z']}"))
+    # tension >= 0 without bending
+    tmax = float(np.max(np.abs(t))) if t.size else 0.0
+    if not meta.bending and np.min(t) < -1e-6 * max(tmax, 1.0):
+        out.append(("negative_tension", f"min tension {np.min(t):.6g} N (max {tmax:.6g})"))
+    # stretched node spacing no longer than the stretched arc between them
+    bounds = np.cumsum([0.0] + [sg["length"] for sg in segs])
+    mid = 0.5 * (s[1:] + s[:-1])
+    ea_all = np.array([sg["axial_stiffness"] for sg in segs])
+    i0 = np.clip(np.searchsorted(bounds, s[:-1], side="right") - 1, 0, len(segs) - 1)
+    i1 = np.clip(np.searchsorted(bounds, s[1:], side="left") - 1, 0, len(segs) - 1)
+    ea_s = np.array([ea_all[a:b + 1].min() for a, b in zip(i0, np.maximum(i0, i1))])
+    del mid
+    ds_ = np.diff(s)
+    chord = np.linalg.norm(np.diff(pos, axis=0), axis=1)
+    tpair = np.maximum(np.abs(t[1:]), np.abs(t[:-1]))
+    arc_max = ds_ * (1.0 + tpair / ea_s)
+    # the linear law between the two nodes' tensions bounds the stretched length; a
+    # relative 1e-6 for the solver's tolerance and rounding (the nodes' positions are
+    # exact to the Newton tolerance, 1e-9 relative, times the line's length)
+    bad = chord > arc_max * (1 + 1e-6) + 1e-7 * scale
+    if np.any(bad) and not meta.bending:
+        i = int(np.argmax(chord - arc_max))
+        out.append(("stretch", f"nodes {i}-{i+1}: chord {chord[i]:.9g} > stretched arc {arc_max[i]:.9g}"))
+    # whole-line balance (known loads: no current)
+    if not meta.current:
+        out += _check_balance(ds, case, study, meta, s, pos, t)
+    return out
+
+
+def _seg_weights(study: dict, rho: float) -> tuple[np.ndarray, np.ndarray]:
+    segs = study["line"]["segments"]
+    bounds = np.cumsum([0.0] + [sg["length"] for sg in segs])
+    return bounds, np.array([_weight(sg, rho) for sg in segs])
+
+
+def _check_balance(ds, case, study, meta, s, pos, t) -> list[tuple[str, str]]:
+    out: list[tuple[str, str]] = []
+    fa = _f(ds, "force_a", case)
+    fb = _f(ds, "force_b", case)
+    if fa is None or fb is None:
+        return out
+    rho = meta.rho
+    bounds, w = _seg_weights(study, rho)
+    load = np.zeros(3)
+    load[2] -= float(np.sum(w * np.diff(bounds)))
+    for att in study["line"].get("attachments", []):
+        load += np.asarray(att.get("force", [0.0, 0.0, 0.0]), float)
+        load[2] -= att.get("mass", 0.0) * GRAVITY
+        load[2] += rho * att.get("volume", 0.0) * GRAVITY
+    # the seabed's reaction on the laid part (nodes on the flat seabed)
+    on_bed = np.zeros(len(s), bool)
+    if meta.depth is not None:
+        gap = pos[:, 2] + meta.depth
+        if meta.slope:
+            return out  # the bed plane's reaction is not vertical: not checked
+        on_bed = gap < 1e-6 * max(meta.depth, 1.0) + 1e-4
+    # weight of the laid part, integrated by the trapezoidal rule on the nodes
+    wn = w[np.clip(np.searchsorted(bounds, s, side="right") - 1, 0, len(w) - 1)]
+    laid_w = 0.0
+    for i in range(len(s) - 1):
+        if on_bed[i] and on_bed[i + 1]:
+            laid_w += 0.5 * (wn[i] + wn[i + 1]) * (s[i + 1] - s[i])
+    # the line's balance: -force_a - force_b + load + seabed reaction = 0
+    resid = fa + fb - load
+    ref = max(np.linalg.norm(fa), np.linalg.norm(fb), np.abs(load).max(), 1.0)
+    # a node half on the seabed: the laid weight is known to one element's weight
+    ds_max = float(np.max(np.diff(s))) if len(s) > 1 else 0.0
+    touch = bool(on_bed.any())
+    tol_z = 1e-6 * ref + (2 * float(np.max(np.abs(w))) * ds_max if touch else 0.0)
+    if touch:
+        resid_z = resid[2] - laid_w  # the bed pushes up the laid weight: fa_z + fb_z = load_z + laid
+        if meta.attachments:
+            return out  # an attachment on the bed: its weight is carried too
+    else:
+        resid_z = resid[2]
+    if abs(resid_z) > tol_z:
+        out.append(("balance_z", f"vertical: force_a+force_b = {fa[2] + fb[2]:.9g} N, weight and loads "
+                                 f"{load[2]:.9g} N, laid {laid_w:.6g} N (residual {resid_z:.3g}, tol {tol_z:.3g})"))
+    if not (touch and meta.friction > 0):
+        rh = float(np.hypot(resid[0], resid[1]))
+        if rh > 1e-6 * ref:
+            out.append(("balance_h", f"horizontal: force_a+force_b = {fa[:2] + fb[:2]} N, loads {load[:2]} "
+                                     f"(residual {rh:.3g} N, ref {ref:.3g})"))
+    # the tension's change between suspended nodes of one segment: dT = w0 dz / (1 + e)
+    # (effective tension, still fluid; w0 per unstretched length): the trapezoidal rule
+    # on 1 / (1 + e) over the interval errs by less than w0 |dz| |de| (e's change there)
+    if not meta.attachments and not meta.bending:
+        ea_n = np.array([study["line"]["segments"][i]["axial_stiffness"] for i in
+                         np.clip(np.searchsorted(bounds, s, side="right") - 1, 0, len(w) - 1)])
+        e = t / ea_n
+        dz = np.diff(pos[:, 2])
+        same = np.diff(np.clip(np.searchsorted(bounds, s, side="right") - 1, 0, len(w) - 1)) == 0
+        susp = ~(on_bed[1:] | on_bed[:-1]) & same
+        pred = wn[:-1] * dz * 0.5 * (1 / (1 + e[1:]) + 1 / (1 + e[:-1]))
+        err = np.abs(np.diff(t) - pred)
+        allow = np.abs(wn[:-1] * dz) * (np.abs(np.diff(e)) + 1e-6) + 1e-6 * ref
+        if meta.method == "discrete":  # element tensions averaged at the nodes: one element's weight
+            allow = allow + np.abs(wn[:-1]) * np.diff(s)
+        bad = susp & (err > allow)
+        if np.any(bad):
+            i = int(np.argmax(np.where(bad, err - allow, -np.inf)))
+            out.append(("tension_gradient", f"nodes {i}-{i+1}: dT {t[i+1]-t[i]:.9g} N, w dz/(1+e) "
+                                            f"{pred[i]:.9g} N (allowed {allow[i]:.3g})"))
+    # the end tensions are the end forces' magnitudes; elevation at the ends is the end
+    # forces' direction (no point load or bending there)
+    ta, tb = np.linalg.norm(fa), np.linalg.norm(fb)
+    if abs(t[0] - ta) > 1e-6 * ref or abs(t[-1] - tb) > 1e-6 * ref:
+        out.append(("end_tension", f"tension at the ends {t[0]:.9g}, {t[-1]:.9g} N; |force_a|, |force_b| "
+                                   f"{ta:.9g}, {tb:.9g} N"))
+    el = _f(ds, "elevation", case)
+    if el is not None and not meta.bending and not touch and not meta.attachments:
+        ela = math.atan2(fa[2], math.hypot(fa[0], fa[1]))
+        elb = math.atan2(-fb[2], math.hypot(fb[0], fb[1]))
+        d = max(abs(el[0] - ela), abs(el[-1] - elb))
+        if d > 1e-2:
+            out.append(("elevation_end", f"elevation at the ends {el[0]:.6g}, {el[-1]:.6g} rad; the end "
+                                         f"forces' {ela:.6g}, {elb:.6g} rad (nodes {len(s)})"))
+    return out
+
+
+def _check_system(ds, case, study, meta) -> list[tuple[str, str]]:
+    out: list[tuple[str, str]] = []
+    names = [str(n) for n in ds["line"].values]
+    fa = _f(ds, "force_a", case)
+    fb = _f(ds, "force_b", case)
+    t = _f(ds, "tension", case)
+    if t is not None and np.nanmin(t) < -1e-6 * max(np.nanmax(np.abs(t)), 1.0):
+        out.append(("negative_tension", f"system min tension {np.nanmin(t):.6g}"))
+    # per line: ends at their points
+    x, y, z = (_f(ds, c, case) for c in "xyz")
+    for i, nm in enumerate(names):
+        ln = study["lines"][nm]
+        pa = study["points"][ln["a"]]
+        if pa["kind"] == "fixed":
+            p0 = np.array([x[i, 0], y[i, 0], z[i, 0]])
+            if np.linalg.norm(p0 - np.array(pa["position"])) > 1e-5 * 1000:
+                out.append(("end_position", f"line {nm} A at {p0} not {pa['position']}"))
+    # free hub: the lines' pull balances its weight
+    if "hub" in study["points"] and fb is not None:
+        hub = study["points"]["hub"]
+        total = fb.sum(axis=0)  # the lines' forces on the hub
+        total[2] -= hub.get("mass", 0.0) * GRAVITY
+        total[2] += WATER * hub.get("volume", 0.0) * GRAVITY
+        ref = max(float(np.abs(fb).max()), 1.0)
+        if np.linalg.norm(total) > 1e-5 * ref:
+            out.append(("balance_point", f"free point residual {total} N (ref {ref:.3g})"))
+    return out
