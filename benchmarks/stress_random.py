@@ -18,7 +18,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from tests.stress_studies import check_run, generate, run_study  # noqa: E402
+from tests.stress_studies import check_run, check_swap, generate, run_study, swapped  # noqa: E402
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -36,6 +36,10 @@ def main(argv: list[str] | None = None) -> int:
         study, meta = generate(seed)
         res = run_study(study, a.out / str(seed))
         found = check_run(study, meta, res)
+        twin = swapped(study) if seed % 3 == 0 else None
+        if twin is not None:
+            res2 = run_study(twin, a.out / str(seed))
+            found += check_swap(res, res2, meta)
         if res.seconds > a.slow:
             found.append(("slow", f"{res.seconds:.1f} s"))
         ncase = 0

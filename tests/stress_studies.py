@@ -166,6 +166,7 @@ def _one_line(rng: np.random.Generator, seed: int, dynamic: bool) -> tuple[dict,
     za = -depth if has_bed and rng.uniform() < 0.7 else -depth * _r(rng, 0.5, 1.0)
     zb = za + drop if rng.uniform() < 0.9 else za + drop * _r(rng, -0.2, 0.2)
     zb = min(zb, 0.0) if rho > 0 else zb
+    zb = max(zb, -depth) if has_bed else zb
     span = abs(zb - za) * _log(rng, 0.02, 20.0)
     chord = math.hypot(span, zb - za)
     length = chord * _r(rng, 0.98, 3.0)
@@ -215,7 +216,7 @@ def _one_line(rng: np.random.Generator, seed: int, dynamic: bool) -> tuple[dict,
             meta.expect_refusal = "bending_stiffness"
     ends: dict[str, Any] = {"a": {"kind": "fixed", "position": [0.0, 0.0, _round(za)]}}
     b_kind = "fixed"
-    if not dynamic and method in ("catenary", "shooting", "discrete") and rng.uniform() < 0.3:
+    if method in ("catenary", "shooting", "discrete") and rng.uniform() < 0.3:
         b_kind = str(rng.choice(["force", "mooring"]))
     wsum = sum(max(_weight(s, rho), 0.0) * s["length"] for s in segs)
     if b_kind == "fixed":
@@ -229,6 +230,14 @@ def _one_line(rng: np.random.Generator, seed: int, dynamic: bool) -> tuple[dict,
     meta.ends = ("fixed", b_kind)
     nodes = int(rng.choice([11, 21, 51, 101]))
     analysis: dict[str, Any] = {"static": {"method": method, "nodes": nodes}, "time_limit": 60.0}
+    if rng.uniform() < 0.2:
+        analysis["modal"] = {"modes": int(rng.integers(1, 6)), "elements": int(rng.choice([10, 20, 40]))}
+    if dynamic and b_kind == "mooring":  # documented refusal: excite it, fix it, or make it a force end
+        meta.expect_refusal = "mooring"
+    if dynamic and b_kind == "force":
+        ends["b"] = {"kind": "fixed", "position": [_round(span), 0.0, _round(zb)]}
+        ends["a"] = {"kind": "force", "force": [0.0, 0.0, -_round(wsum * _r(rng, 0.2, 1.2) + 1.0)]}
+        meta.ends = ("force", "fixed")
     if dynamic:
         dyn_method = str(rng.choice(["time", "frequency", "auto"]))
         if meta.bending or meta.friction:
@@ -327,11 +336,16 @@ class RunResult:
     nc: Path | None
 
 
-def run_study(study: dict, workdir: Path, timeout: float = 300.0) -> RunResult:
-    """``cablestudy run STUDY.yaml --out DIR`` in a fresh process (as a user runs it)."""
+def run_study(study: dict, workdir: Path, timeout: float = 300.0, in_process: bool = False) -> RunResult:
+    """``cablestudy run STUDY.yaml --out DIR`` in a fresh process (as a user runs it), or
+    with ``in_process`` through :func:`cablestudy.cli.main` in this one (the test: no
+    start-up per study), its output captured, an escaping exception reported as the
+    traceback a user would see and numpy's RuntimeWarnings as printed."""
     workdir.mkdir(parents=True, exist_ok=True)
     cfg = workdir / f"{study['name']}.yaml"
     cfg.write_text(yaml.safe_dump(study, sort_keys=False))
+    if in_process:
+        return _run_in_process(cfg, workdir, study["name"])
     env = dict(os.environ)
     env["PYTHONWARNINGS"] = "default"  # numpy's RuntimeWarnings would show
     t0 = time.perf_counter()
@@ -347,6 +361,35 @@ def run_study(study: dict, workdir: Path, timeout: float = 300.0) -> RunResult:
     dt = time.perf_counter() - t0
     nc = workdir / f"{study['name']}.nc"
     return RunResult(code, out, err, dt, nc if nc.exists() else None)
+
+
+def _run_in_process(cfg: Path, workdir: Path, name: str) -> RunResult:
+    import contextlib
+    import io
+    import traceback
+    import warnings
+
+    from cablestudy.cli import main
+
+    out, err = io.StringIO(), io.StringIO()
+    t0 = time.perf_counter()
+    with warnings.catch_warnings(record=True) as caught, contextlib.redirect_stdout(out), \
+            contextlib.redirect_stderr(err):
+        warnings.simplefilter("always")
+        try:
+            code = int(main(["run", str(cfg), "--out", str(workdir), "--no-cache",
+                             "--scheduler", "synchronous", "--no-progress"]) or 0)
+        except SystemExit as e:
+            code = int(e.code or 0)
+        except BaseException:  # what a user would see: a traceback, exit 1
+            err.write(traceback.format_exc())
+            code = 1
+    for w in caught:
+        if issubclass(w.category, RuntimeWarning):
+            err.write(f"{w.filename}:{w.lineno}: RuntimeWarning: {w.message}\n")
+    dt = time.perf_counter() - t0
+    nc = workdir / f"{name}.nc"
+    return RunResult(code, out.getvalue(), err.getvalue(), dt, nc if nc.exists() else None)
 
 
 # --------------------------------------------------------------------------- checks
@@ -393,7 +436,9 @@ def check_run(study: dict, meta: Meta, res: RunResult) -> list[tuple[str, str]]:
     if res.code == 2:
         if meta.expect_refusal and meta.expect_refusal in text:
             return out
-        out.append(("refused", res.stderr.strip()[-600:]))
+        # a refusal must name the field (a dotted path and the value, docs/guide/cli.md)
+        named = re.search(r"^\S*:\d+: [a-z_]+(\.[a-z_0-9<>]+)*:", res.stderr, re.M)
+        out.append(("info_refused" if named else "refused_unnamed", res.stderr.strip()[-600:]))
         return out
     if meta.expect_refusal:
         out.append(("not_refused", f"{meta.expect_refusal} under method {meta.method}: exit {res.code}"))
@@ -616,7 +661,7 @@ def _check_balance(ds, case, study, meta, s, pos, t) -> list[tuple[str, str]]:
         elb = math.atan2(-fb[2], math.hypot(fb[0], fb[1]))
         d = max(abs(el[0] - ela), abs(el[-1] - elb))
         if d > 1e-2:
-            out.append(("elevation_end", f"elevation at the ends {el[0]:.6g}, {el[-1]:.6g} rad; the end "
+            out.append(("info_elevation_fd", f"elevation at the ends {el[0]:.6g}, {el[-1]:.6g} rad; the end "
                                          f"forces' {ela:.6g}, {elb:.6g} rad (nodes {len(s)})"))
     return out
 
@@ -647,4 +692,65 @@ def _check_system(ds, case, study, meta) -> list[tuple[str, str]]:
         ref = max(float(np.abs(fb).max()), 1.0)
         if np.linalg.norm(total) > 1e-5 * ref:
             out.append(("balance_point", f"free point residual {total} N (ref {ref:.3g})"))
+    return out
+
+
+# --------------------------------------------------------------------------- symmetry
+
+
+def swapped(study: dict) -> dict | None:
+    """The same one-line study with its ends swapped (segments reversed, attachments at
+    L - s), or None where that is not the same problem (a force or mooring end, an
+    excitation, a current sweep is kept)."""
+    import copy
+
+    if "line" not in study or study["ends"]["b"]["kind"] != "fixed" or "dynamic" in study["analysis"]:
+        return None
+    st = copy.deepcopy(study)
+    st["name"] = study["name"] + "-swapped"
+    segs = st["line"]["segments"][::-1]
+    st["line"]["segments"] = segs
+    total = sum(sg["length"] for sg in segs)
+    for att in st["line"].get("attachments", []):
+        att["s"] = _round(total - att["s"], 12)
+    st["ends"] = {"a": st["ends"]["b"], "b": st["ends"]["a"]}
+    sw = st.get("sweep", {})
+    if "ends.b.position.0" in sw:
+        sw["ends.a.position.0"] = sw.pop("ends.b.position.0")
+    return st
+
+
+def check_swap(res1: RunResult, res2: RunResult, meta: Meta) -> list[tuple[str, str]]:
+    """Swapping the ends changes nothing but the direction of s: same status, end forces
+    exchanged, the tension profile reversed."""
+    import xarray as xr
+
+    if res1.nc is None or res2.nc is None:
+        if (res1.nc is None) != (res2.nc is None):
+            return [("swap_status", f"exit {res1.code} vs swapped {res2.code}")]
+        return []
+    with xr.open_dataset(res1.nc) as d1, xr.open_dataset(res2.nc) as d2:
+        d1.load()
+        d2.load()
+    out: list[tuple[str, str]] = []
+    for case in _cases(d1):
+        s1 = int(d1["status"].isel(case).values)
+        s2 = int(d2["status"].isel(case).values)
+        if (s1 == 0) != (s2 == 0):
+            out.append(("swap_status", f"case {case}: status {s1} vs swapped {s2}: "
+                                       f"{_msg(d1, 'message', case)[:200]} | {_msg(d2, 'message', case)[:200]}"))
+            continue
+        if s1 != 0:
+            continue
+        fa1, fb1 = _f(d1, "force_a", case), _f(d1, "force_b", case)
+        fa2, fb2 = _f(d2, "force_a", case), _f(d2, "force_b", case)
+        ref = max(np.abs(fa1).max(), np.abs(fb1).max(), 1.0)
+        # the solvers' own tolerance (1e-9 relative) on both; 1e-6 of the force scale
+        # leaves room for the different path the iteration takes from the other end
+        tol = 1e-6 * ref if meta.method != "discrete" else 1e-4 * ref
+        if np.abs(fa1 - fb2).max() > tol or np.abs(fb1 - fa2).max() > tol:
+            out.append(("swap_forces", f"case {case}: force_a {fa1}, force_b {fb1}; swapped {fa2}, {fb2}"))
+        t1, t2 = _f(d1, "tension", case), _f(d2, "tension", case)
+        if t1.shape == t2.shape and np.abs(t1 - t2[::-1]).max() > tol * 10:
+            out.append(("swap_tension", f"case {case}: tension differs by {np.abs(t1 - t2[::-1]).max():.3g} N"))
     return out
