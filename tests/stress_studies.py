@@ -167,7 +167,7 @@ def _one_line(rng: np.random.Generator, seed: int, dynamic: bool) -> tuple[dict,
     zb = za + drop if rng.uniform() < 0.9 else za + drop * _r(rng, -0.2, 0.2)
     zb = min(zb, 0.0) if rho > 0 else zb
     zb = max(zb, -depth) if has_bed else zb
-    span = abs(zb - za) * _log(rng, 0.02, 20.0)
+    span = max(abs(zb - za), 1.0) * _log(rng, 0.02, 20.0)
     chord = math.hypot(span, zb - za)
     length = chord * _r(rng, 0.98, 3.0)
     if has_bed and rng.uniform() < 0.3:  # enough to lay on the seabed
@@ -232,8 +232,7 @@ def _one_line(rng: np.random.Generator, seed: int, dynamic: bool) -> tuple[dict,
     analysis: dict[str, Any] = {"static": {"method": method, "nodes": nodes}, "time_limit": 60.0}
     if rng.uniform() < 0.2:
         analysis["modal"] = {"modes": int(rng.integers(1, 6)), "elements": int(rng.choice([10, 20, 40]))}
-    if dynamic and b_kind == "mooring":  # documented refusal: excite it, fix it, or make it a force end
-        meta.expect_refusal = "mooring"
+    # an excited mooring end is allowed (keys.md: only an unexcited one is refused)
     if dynamic and b_kind == "force":
         ends["b"] = {"kind": "fixed", "position": [_round(span), 0.0, _round(zb)]}
         ends["a"] = {"kind": "force", "force": [0.0, 0.0, -_round(wsum * _r(rng, 0.2, 1.2) + 1.0)]}
