@@ -254,6 +254,10 @@ def _one_line(rng: np.random.Generator, seed: int, dynamic: bool) -> tuple[dict,
                    "amplitude": _round(_log(rng, 0.001, 0.05) * chord), "frequency": freq}
             if exc["direction"] == [0.0, 0.0, 0.0]:
                 exc["direction"] = [1.0, 0.0, 0.0]
+        if dyn_method in ("frequency", "auto") and rng.uniform() < 0.3:  # irregular motion
+            fp = freq
+            exc = {"end": "b", "direction": [1.0, 0.0, 0.0], "components": 16,
+                   "spectrum": [[_round(0.5 * fp), 0.0], [fp, _round((0.01 * chord) ** 2 / fp)], [_round(2 * fp), 0.0]]}
         dyn: dict[str, Any] = {"excitation": exc, "method": dyn_method, "elements": int(rng.choice([8, 12, 20]))}
         if dyn_method != "frequency":
             dyn.update({"points_per_period": 32, "max_periods": int(rng.choice([6, 10])), "ramp_periods": 1.0})
@@ -306,17 +310,35 @@ def _system(rng: np.random.Generator, seed: int) -> tuple[dict, Meta]:
         chord = math.hypot(radius, depth + hub_z)
         length = chord * _r(rng, 1.0, 1.4)
         lines[f"leg{i}"] = {"a": f"anchor{i}", "b": end_b, "segments": _makeup(rng, length, WATER, False)}
+    env: dict[str, Any] = {"fluid": "water", "depth": _round(depth)}
+    current = rng.uniform() < 0.3
+    if current:
+        env["current"] = _current(rng, depth)
+        if not on_body and rng.uniform() < 0.5:
+            points["hub"]["drag_area"] = _round(_log(rng, 0.1, 5.0))
+    if on_body and rng.uniform() < 0.3:  # a free body found by equilibrium
+        bodies["hull"] = {"kind": "free", "position": bodies["hull"]["position"],
+                          "mass": _round(_log(rng, 1e3, 1e6)), "volume": 0.0}
+        bodies["hull"]["volume"] = _round(bodies["hull"]["mass"] / WATER * _r(rng, 1.0, 1.5))
     study = {
         "name": f"stress-{seed}",
         "description": f"random stress system, seed {seed}",
-        "environment": {"fluid": "water", "depth": _round(depth)},
+        "environment": env,
         "points": points,
         "bodies": bodies,
         "lines": lines,
         "analysis": {"static": {"method": "catenary", "nodes": 21}, "time_limit": 60.0},
     }
-    meta = Meta(kind="system", method="catenary", rho=WATER, depth=_round(depth))
-    if on_body:
+    meta = Meta(kind="system", method="catenary", rho=WATER, depth=_round(depth), current=current)
+    if on_body and bodies["hull"]["kind"] == "prescribed" and rng.uniform() < 0.4:
+        study["analysis"]["dynamic"] = {
+            "excitation": {"body": "hull", "dof": str(rng.choice(["surge", "heave", "pitch"])),
+                           "amplitude": _round(_log(rng, 0.01, 0.05) * depth), "frequency": _round(_log(rng, 0.03, 0.3))},
+            "method": "time", "elements": 8, "points_per_period": 32, "max_periods": 6, "ramp_periods": 1.0}
+        if study["analysis"]["dynamic"]["excitation"]["dof"] == "pitch":
+            study["analysis"]["dynamic"]["excitation"]["amplitude"] = 0.05
+        meta.dynamic = "time"
+    elif on_body and bodies["hull"]["kind"] == "prescribed":
         study["sweep"] = {"bodies.hull.position.0": {"values": [_round(-0.1 * depth), 0.0, _round(0.1 * depth)],
                                                       "name": "surge"}}
         meta.sweep_dim = "surge"
@@ -507,10 +529,9 @@ def check_case(ds: Any, case: dict, study: dict, meta: Meta) -> list[tuple[str, 
             if any(a is None or not np.all(np.isfinite(a)) for a in vals.values()):
                 out.append(("nan_when_ok", "dynamic_status 0 with a non-finite tension_max/min/mean"))
             else:
-                tmax, tmean, tmin = (float(np.max(vals["tension_max"])), float(np.max(vals["tension_mean"])),
-                                     float(np.max(vals["tension_min"])))
-                tol = 1e-9 * max(abs(tmax), 1.0)
-                if not (tmax + tol >= tmean >= tmin - tol):
+                tmax, tmean, tmin = vals["tension_max"], vals["tension_mean"], vals["tension_min"]
+                tol = 1e-9 * np.maximum(np.abs(tmax), 1.0)
+                if not (np.all(tmax + tol >= tmean) and np.all(tmean >= tmin - tol)):
                     out.append(("dyn_order", f"tension max {tmax}, mean {tmean}, min {tmin}"))
         else:
             for v, a in vals.items():
@@ -682,6 +703,15 @@ def _check_system(ds, case, study, meta) -> list[tuple[str, str]]:
             p0 = np.array([x[i, 0], y[i, 0], z[i, 0]])
             if np.linalg.norm(p0 - np.array(pa["position"])) > 1e-5 * 1000:
                 out.append(("end_position", f"line {nm} A at {p0} not {pa['position']}"))
+    # a free body: its lines' force balances its weight and buoyancy
+    body = study.get("bodies", {}).get("hull")
+    if body is not None and body["kind"] == "free" and "body_force" in ds:
+        bf = _f(ds, "body_force", case)
+        net = bf[0, :3] + np.array([0.0, 0.0, (WATER * body["volume"] - body["mass"]) * GRAVITY])
+        ref = max(float(np.nanmax(np.abs(fb))) if fb is not None else 1.0, 1.0)
+        if np.linalg.norm(net) > 1e-5 * max(ref, body["mass"] * GRAVITY):
+            out.append(("balance_body", f"free body: lines' force {bf[0, :3]} N with weight and buoyancy "
+                                        f"leaves {net} N"))
     # free hub: the lines' pull balances its weight
     if "hub" in study["points"] and fb is not None:
         hub = study["points"]["hub"]
