@@ -49,8 +49,11 @@ def main(argv: list[str] | None = None) -> int:
             with xr.open_dataset(res.nc) as ds:
                 ncase = int(ds["status"].size)
         cases += ncase
-        print(f"seed {seed}: {meta.kind} {meta.method} dyn={meta.dynamic} exit {res.code} "
-              f"{res.seconds:.1f} s, {ncase} cases, {len(found)} anomalies", flush=True)
+        print(
+            f"seed {seed}: {meta.kind} {meta.method} dyn={meta.dynamic} exit {res.code} "
+            f"{res.seconds:.1f} s, {ncase} cases, {len(found)} anomalies",
+            flush=True,
+        )
         with log.open("a") as fh:
             for kind, text in found:
                 kinds[kind] += 1

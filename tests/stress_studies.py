@@ -124,7 +124,11 @@ def _current(rng: np.random.Generator, depth: float) -> list[dict]:
     zs = sorted((-_r(rng, 0.0, depth) for _ in range(n - 1)), reverse=True)
     zs = [0.0] + zs
     return [
-        {"z": _round(z), "speed": _round(_r(rng, 0.05, 2.0)), "heading_deg": _round(_r(rng, -180, 180))}
+        {
+            "z": _round(z),
+            "speed": _round(_r(rng, 0.05, 2.0)),
+            "heading_deg": _round(_r(rng, -180, 180)),
+        }
         for z in zs
     ]
 
@@ -202,8 +206,11 @@ def _one_line(rng: np.random.Generator, seed: int, dynamic: bool) -> tuple[dict,
             if rng.uniform() < 0.5:
                 atts.append({"s": s, "mass": _round(_log(rng, 10.0, 1e4))})
             else:
-                atts.append({"s": s, "volume": _round(_log(rng, 0.01, 5.0))}
-                            if rho > 0 else {"s": s, "force": [0.0, 0.0, _round(_log(rng, 10, 1e4))]})
+                atts.append(
+                    {"s": s, "volume": _round(_log(rng, 0.01, 5.0))}
+                    if rho > 0
+                    else {"s": s, "force": [0.0, 0.0, _round(_log(rng, 10, 1e4))]}
+                )
         line["attachments"] = atts
         meta.attachments = True
     if method == "discrete" and rng.uniform() < 0.5:
@@ -223,7 +230,10 @@ def _one_line(rng: np.random.Generator, seed: int, dynamic: bool) -> tuple[dict,
         ends["b"] = {"kind": "fixed", "position": [_round(span), 0.0, _round(zb)]}
     elif b_kind == "force":
         h = wsum * _log(rng, 0.05, 5.0) + 1.0
-        ends["b"] = {"kind": "force", "force": [_round(h), 0.0, _round(wsum * _r(rng, 0.2, 1.2) + 1.0)]}
+        ends["b"] = {
+            "kind": "force",
+            "force": [_round(h), 0.0, _round(wsum * _r(rng, 0.2, 1.2) + 1.0)],
+        }
     else:
         h = wsum * _log(rng, 0.05, 5.0) + 1.0
         ends["b"] = {"kind": "mooring", "force": [_round(h), 0.0], "z": _round(zb)}
@@ -231,7 +241,10 @@ def _one_line(rng: np.random.Generator, seed: int, dynamic: bool) -> tuple[dict,
     nodes = int(rng.choice([11, 21, 51, 101]))
     analysis: dict[str, Any] = {"static": {"method": method, "nodes": nodes}, "time_limit": 60.0}
     if rng.uniform() < 0.2:
-        analysis["modal"] = {"modes": int(rng.integers(1, 6)), "elements": int(rng.choice([10, 20, 40]))}
+        analysis["modal"] = {
+            "modes": int(rng.integers(1, 6)),
+            "elements": int(rng.choice([10, 20, 40])),
+        }
     # an excited mooring end is allowed (keys.md: only an unexcited one is refused)
     if dynamic and b_kind == "force":
         ends["b"] = {"kind": "fixed", "position": [_round(span), 0.0, _round(zb)]}
@@ -246,21 +259,52 @@ def _one_line(rng: np.random.Generator, seed: int, dynamic: bool) -> tuple[dict,
         if dyn_method != "frequency" and rng.uniform() < 0.3:
             amp = _round(_log(rng, 0.01, 0.05) * chord)
             per = 1.0 / freq
-            exc = {"end": "b", "direction": [1.0, 0.0, 0.0],
-                   "table": [[0.0, 0.0], [per / 4, amp], [per / 2, 0.0], [3 * per / 4, -amp], [per, 0.0]],
-                   "periodic": True}
+            exc = {
+                "end": "b",
+                "direction": [1.0, 0.0, 0.0],
+                "table": [
+                    [0.0, 0.0],
+                    [per / 4, amp],
+                    [per / 2, 0.0],
+                    [3 * per / 4, -amp],
+                    [per, 0.0],
+                ],
+                "periodic": True,
+            }
         else:
-            exc = {"end": "b", "direction": [_round(_r(rng, -1, 1)), 0.0, _round(_r(rng, -1, 1))],
-                   "amplitude": _round(_log(rng, 0.001, 0.05) * chord), "frequency": freq}
+            exc = {
+                "end": "b",
+                "direction": [_round(_r(rng, -1, 1)), 0.0, _round(_r(rng, -1, 1))],
+                "amplitude": _round(_log(rng, 0.001, 0.05) * chord),
+                "frequency": freq,
+            }
             if exc["direction"] == [0.0, 0.0, 0.0]:
                 exc["direction"] = [1.0, 0.0, 0.0]
         if dyn_method in ("frequency", "auto") and rng.uniform() < 0.3:  # irregular motion
             fp = freq
-            exc = {"end": "b", "direction": [1.0, 0.0, 0.0], "components": 16,
-                   "spectrum": [[_round(0.5 * fp), 0.0], [fp, _round((0.01 * chord) ** 2 / fp)], [_round(2 * fp), 0.0]]}
-        dyn: dict[str, Any] = {"excitation": exc, "method": dyn_method, "elements": int(rng.choice([8, 12, 20]))}
+            exc = {
+                "end": "b",
+                "direction": [1.0, 0.0, 0.0],
+                "components": 16,
+                "spectrum": [
+                    [_round(0.5 * fp), 0.0],
+                    [fp, _round((0.01 * chord) ** 2 / fp)],
+                    [_round(2 * fp), 0.0],
+                ],
+            }
+        dyn: dict[str, Any] = {
+            "excitation": exc,
+            "method": dyn_method,
+            "elements": int(rng.choice([8, 12, 20])),
+        }
         if dyn_method != "frequency":
-            dyn.update({"points_per_period": 32, "max_periods": int(rng.choice([6, 10])), "ramp_periods": 1.0})
+            dyn.update(
+                {
+                    "points_per_period": 32,
+                    "max_periods": int(rng.choice([6, 10])),
+                    "ramp_periods": 1.0,
+                }
+            )
         analysis["dynamic"] = dyn
         meta.dynamic = dyn_method
         # the dynamic model is the discrete one: EI is fine there
@@ -278,7 +322,9 @@ def _one_line(rng: np.random.Generator, seed: int, dynamic: bool) -> tuple[dict,
         study["sweep"] = {"ends.b.position.0": {"values": vals, "name": "span"}}
         meta.sweep_dim = "span"
     elif rng.uniform() < 0.4 and meta.current:
-        study["sweep"] = {"environment.current.0.speed": {"values": [0.1, 0.5, 1.5], "name": "surface_speed"}}
+        study["sweep"] = {
+            "environment.current.0.speed": {"values": [0.1, 0.5, 1.5], "name": "surface_speed"}
+        }
         meta.sweep_dim = "surface_speed"
     return study, meta
 
@@ -293,10 +339,16 @@ def _system(rng: np.random.Generator, seed: int) -> tuple[dict, Meta]:
     lines: dict[str, Any] = {}
     bodies: dict[str, Any] = {}
     if on_body:
-        bodies["hull"] = {"kind": "prescribed", "position": [0.0, 0.0, _round(hub_z), 0.0, 0.0, 0.0]}
+        bodies["hull"] = {
+            "kind": "prescribed",
+            "position": [0.0, 0.0, _round(hub_z), 0.0, 0.0, 0.0],
+        }
     else:
-        points["hub"] = {"kind": "free", "position": [0.0, 0.0, _round(hub_z)],
-                         "mass": _round(_log(rng, 1.0, 1e4))}
+        points["hub"] = {
+            "kind": "free",
+            "position": [0.0, 0.0, _round(hub_z)],
+            "mass": _round(_log(rng, 1.0, 1e4)),
+        }
     for i in range(n):
         ang = 2 * math.pi * i / n + _r(rng, -0.3, 0.3)
         anchor = [_round(radius * math.cos(ang)), _round(radius * math.sin(ang)), _round(-depth)]
@@ -309,7 +361,11 @@ def _system(rng: np.random.Generator, seed: int) -> tuple[dict, Meta]:
             end_b = "hub"
         chord = math.hypot(radius, depth + hub_z)
         length = chord * _r(rng, 1.0, 1.4)
-        lines[f"leg{i}"] = {"a": f"anchor{i}", "b": end_b, "segments": _makeup(rng, length, WATER, False)}
+        lines[f"leg{i}"] = {
+            "a": f"anchor{i}",
+            "b": end_b,
+            "segments": _makeup(rng, length, WATER, False),
+        }
     env: dict[str, Any] = {"fluid": "water", "depth": _round(depth)}
     current = rng.uniform() < 0.3
     if current:
@@ -317,8 +373,12 @@ def _system(rng: np.random.Generator, seed: int) -> tuple[dict, Meta]:
         if not on_body and rng.uniform() < 0.5:
             points["hub"]["drag_area"] = _round(_log(rng, 0.1, 5.0))
     if on_body and rng.uniform() < 0.3:  # a free body found by equilibrium
-        bodies["hull"] = {"kind": "free", "position": bodies["hull"]["position"],
-                          "mass": _round(_log(rng, 1e3, 1e6)), "volume": 0.0}
+        bodies["hull"] = {
+            "kind": "free",
+            "position": bodies["hull"]["position"],
+            "mass": _round(_log(rng, 1e3, 1e6)),
+            "volume": 0.0,
+        }
         bodies["hull"]["volume"] = _round(bodies["hull"]["mass"] / WATER * _r(rng, 1.0, 1.5))
     study = {
         "name": f"stress-{seed}",
@@ -332,15 +392,28 @@ def _system(rng: np.random.Generator, seed: int) -> tuple[dict, Meta]:
     meta = Meta(kind="system", method="catenary", rho=WATER, depth=_round(depth), current=current)
     if on_body and bodies["hull"]["kind"] == "prescribed" and rng.uniform() < 0.4:
         study["analysis"]["dynamic"] = {
-            "excitation": {"body": "hull", "dof": str(rng.choice(["surge", "heave", "pitch"])),
-                           "amplitude": _round(_log(rng, 0.01, 0.05) * depth), "frequency": _round(_log(rng, 0.03, 0.3))},
-            "method": "time", "elements": 8, "points_per_period": 32, "max_periods": 6, "ramp_periods": 1.0}
+            "excitation": {
+                "body": "hull",
+                "dof": str(rng.choice(["surge", "heave", "pitch"])),
+                "amplitude": _round(_log(rng, 0.01, 0.05) * depth),
+                "frequency": _round(_log(rng, 0.03, 0.3)),
+            },
+            "method": "time",
+            "elements": 8,
+            "points_per_period": 32,
+            "max_periods": 6,
+            "ramp_periods": 1.0,
+        }
         if study["analysis"]["dynamic"]["excitation"]["dof"] == "pitch":
             study["analysis"]["dynamic"]["excitation"]["amplitude"] = 0.05
         meta.dynamic = "time"
     elif on_body and bodies["hull"]["kind"] == "prescribed":
-        study["sweep"] = {"bodies.hull.position.0": {"values": [_round(-0.1 * depth), 0.0, _round(0.1 * depth)],
-                                                      "name": "surge"}}
+        study["sweep"] = {
+            "bodies.hull.position.0": {
+                "values": [_round(-0.1 * depth), 0.0, _round(0.1 * depth)],
+                "name": "surge",
+            }
+        }
         meta.sweep_dim = "surge"
     return study, meta
 
@@ -357,7 +430,9 @@ class RunResult:
     nc: Path | None
 
 
-def run_study(study: dict, workdir: Path, timeout: float = 300.0, in_process: bool = False) -> RunResult:
+def run_study(
+    study: dict, workdir: Path, timeout: float = 300.0, in_process: bool = False
+) -> RunResult:
     """``cablestudy run STUDY.yaml --out DIR`` in a fresh process (as a user runs it), or
     with ``in_process`` through :func:`cablestudy.cli.main` in this one (the test: no
     start-up per study), its output captured, an escaping exception reported as the
@@ -372,9 +447,23 @@ def run_study(study: dict, workdir: Path, timeout: float = 300.0, in_process: bo
     t0 = time.perf_counter()
     try:
         p = subprocess.run(
-            [sys.executable, "-m", "cablestudy.cli", "run", str(cfg), "--out", str(workdir),
-             "--no-cache", "--scheduler", "synchronous", "--no-progress"],
-            capture_output=True, text=True, env=env, timeout=timeout,
+            [
+                sys.executable,
+                "-m",
+                "cablestudy.cli",
+                "run",
+                str(cfg),
+                "--out",
+                str(workdir),
+                "--no-cache",
+                "--scheduler",
+                "synchronous",
+                "--no-progress",
+            ],
+            capture_output=True,
+            text=True,
+            env=env,
+            timeout=timeout,
         )
         code, out, err = p.returncode, p.stdout, p.stderr
     except subprocess.TimeoutExpired as e:
@@ -394,12 +483,28 @@ def _run_in_process(cfg: Path, workdir: Path, name: str) -> RunResult:
 
     out, err = io.StringIO(), io.StringIO()
     t0 = time.perf_counter()
-    with warnings.catch_warnings(record=True) as caught, contextlib.redirect_stdout(out), \
-            contextlib.redirect_stderr(err):
+    with (
+        warnings.catch_warnings(record=True) as caught,
+        contextlib.redirect_stdout(out),
+        contextlib.redirect_stderr(err),
+    ):
         warnings.simplefilter("always")
         try:
-            code = int(main(["run", str(cfg), "--out", str(workdir), "--no-cache",
-                             "--scheduler", "synchronous", "--no-progress"]) or 0)
+            code = int(
+                main(
+                    [
+                        "run",
+                        str(cfg),
+                        "--out",
+                        str(workdir),
+                        "--no-cache",
+                        "--scheduler",
+                        "synchronous",
+                        "--no-progress",
+                    ]
+                )
+                or 0
+            )
         except SystemExit as e:
             code = int(e.code or 0)
         except BaseException:  # what a user would see: a traceback, exit 1
@@ -422,7 +527,7 @@ def _cases(ds: Any) -> list[dict]:
     if not dims:
         return [{}]
     idx = np.ndindex(*[ds.sizes[d] for d in dims])
-    return [dict(zip(dims, i)) for i in idx]
+    return [dict(zip(dims, i, strict=True)) for i in idx]
 
 
 def _f(ds: Any, name: str, case: dict) -> np.ndarray | None:
@@ -440,7 +545,9 @@ def _study_case(study: dict, ds: Any, case: dict, meta: Meta) -> dict:
     if meta.sweep_dim == "span":
         st["ends"]["b"]["position"][0] = float(ds["span"].values[case["span"]])
     elif meta.sweep_dim == "surface_speed":
-        st["environment"]["current"][0]["speed"] = float(ds["surface_speed"].values[case["surface_speed"]])
+        st["environment"]["current"][0]["speed"] = float(
+            ds["surface_speed"].values[case["surface_speed"]]
+        )
     elif meta.sweep_dim == "surge":
         st["bodies"]["hull"]["position"][0] = float(ds["surge"].values[case["surge"]])
     return st
@@ -462,7 +569,9 @@ def check_run(study: dict, meta: Meta, res: RunResult) -> list[tuple[str, str]]:
         out.append(("info_refused" if named else "refused_unnamed", res.stderr.strip()[-600:]))
         return out
     if meta.expect_refusal:
-        out.append(("not_refused", f"{meta.expect_refusal} under method {meta.method}: exit {res.code}"))
+        out.append(
+            ("not_refused", f"{meta.expect_refusal} under method {meta.method}: exit {res.code}")
+        )
     if res.code not in (0, 3):
         out.append(("exit_code", f"exit {res.code}: {res.stderr.strip()[-800:]}"))
         return out
@@ -527,7 +636,9 @@ def check_case(ds: Any, case: dict, study: dict, meta: Meta) -> list[tuple[str, 
         vals = {v: _f(ds, v, case) for v in DYN_VARS}
         if dstat == 0:
             if any(a is None or not np.all(np.isfinite(a)) for a in vals.values()):
-                out.append(("nan_when_ok", "dynamic_status 0 with a non-finite tension_max/min/mean"))
+                out.append(
+                    ("nan_when_ok", "dynamic_status 0 with a non-finite tension_max/min/mean")
+                )
             else:
                 tmax, tmean, tmin = vals["tension_max"], vals["tension_mean"], vals["tension_min"]
                 tol = 1e-9 * np.maximum(np.abs(tmax), 1.0)
@@ -541,7 +652,9 @@ def check_case(ds: Any, case: dict, study: dict, meta: Meta) -> list[tuple[str, 
             if dstat != 5 and sstat == 0:
                 t = _f(ds, "tension", case)
                 if t is None or not np.all(np.isfinite(t)):
-                    out.append(("statics_lost", f"dynamic_status {dstat}: the statics are not kept"))
+                    out.append(
+                        ("statics_lost", f"dynamic_status {dstat}: the statics are not kept")
+                    )
     return out
 
 
@@ -576,7 +689,7 @@ def _check_statics(ds: Any, case: dict, study: dict, meta: Meta) -> list[tuple[s
     ea_all = np.array([sg["axial_stiffness"] for sg in segs])
     i0 = np.clip(np.searchsorted(bounds, s[:-1], side="right") - 1, 0, len(segs) - 1)
     i1 = np.clip(np.searchsorted(bounds, s[1:], side="left") - 1, 0, len(segs) - 1)
-    ea_s = np.array([ea_all[a:b + 1].min() for a, b in zip(i0, np.maximum(i0, i1))])
+    ea_s = np.array([ea_all[a : b + 1].min() for a, b in zip(i0, np.maximum(i0, i1), strict=True)])
     del mid
     ds_ = np.diff(s)
     chord = np.linalg.norm(np.diff(pos, axis=0), axis=1)
@@ -588,7 +701,9 @@ def _check_statics(ds: Any, case: dict, study: dict, meta: Meta) -> list[tuple[s
     bad = chord > arc_max * (1 + 1e-6) + 1e-7 * scale
     if np.any(bad) and not meta.bending:
         i = int(np.argmax(chord - arc_max))
-        out.append(("stretch", f"nodes {i}-{i+1}: chord {chord[i]:.9g} > stretched arc {arc_max[i]:.9g}"))
+        out.append(
+            ("stretch", f"nodes {i}-{i + 1}: chord {chord[i]:.9g} > stretched arc {arc_max[i]:.9g}")
+        )
     # whole-line balance (known loads: no current)
     if not meta.current:
         out += _check_balance(ds, case, study, meta, s, pos, t)
@@ -636,25 +751,41 @@ def _check_balance(ds, case, study, meta, s, pos, t) -> list[tuple[str, str]]:
     touch = bool(on_bed.any())
     tol_z = 1e-6 * ref + (2 * float(np.max(np.abs(w))) * ds_max if touch else 0.0)
     if touch:
-        resid_z = resid[2] - laid_w  # the bed pushes up the laid weight: fa_z + fb_z = load_z + laid
+        resid_z = (
+            resid[2] - laid_w
+        )  # the bed pushes up the laid weight: fa_z + fb_z = load_z + laid
         if meta.attachments:
             return out  # an attachment on the bed: its weight is carried too
     else:
         resid_z = resid[2]
     if abs(resid_z) > tol_z:
-        out.append(("balance_z", f"vertical: force_a+force_b = {fa[2] + fb[2]:.9g} N, weight and loads "
-                                 f"{load[2]:.9g} N, laid {laid_w:.6g} N (residual {resid_z:.3g}, tol {tol_z:.3g})"))
+        out.append(
+            (
+                "balance_z",
+                f"vertical: force_a+force_b = {fa[2] + fb[2]:.9g} N, weight and loads "
+                f"{load[2]:.9g} N, laid {laid_w:.6g} N (residual {resid_z:.3g}, tol {tol_z:.3g})",
+            )
+        )
     if not (touch and meta.friction > 0):
         rh = float(np.hypot(resid[0], resid[1]))
         if rh > 1e-6 * ref:
-            out.append(("balance_h", f"horizontal: force_a+force_b = {fa[:2] + fb[:2]} N, loads {load[:2]} "
-                                     f"(residual {rh:.3g} N, ref {ref:.3g})"))
+            out.append(
+                (
+                    "balance_h",
+                    f"horizontal: force_a+force_b = {fa[:2] + fb[:2]} N, loads {load[:2]} "
+                    f"(residual {rh:.3g} N, ref {ref:.3g})",
+                )
+            )
     # the tension's change between suspended nodes of one segment: dT = w0 dz / (1 + e)
     # (effective tension, still fluid; w0 per unstretched length): the trapezoidal rule
     # on 1 / (1 + e) over the interval errs by less than w0 |dz| |de| (e's change there)
     if not meta.attachments and not meta.bending:
-        ea_n = np.array([study["line"]["segments"][i]["axial_stiffness"] for i in
-                         np.clip(np.searchsorted(bounds, s, side="right") - 1, 0, len(w) - 1)])
+        ea_n = np.array(
+            [
+                study["line"]["segments"][i]["axial_stiffness"]
+                for i in np.clip(np.searchsorted(bounds, s, side="right") - 1, 0, len(w) - 1)
+            ]
+        )
         e = t / ea_n
         dz = np.diff(pos[:, 2])
         same = np.diff(np.clip(np.searchsorted(bounds, s, side="right") - 1, 0, len(w) - 1)) == 0
@@ -662,34 +793,50 @@ def _check_balance(ds, case, study, meta, s, pos, t) -> list[tuple[str, str]]:
         pred = wn[:-1] * dz * 0.5 * (1 / (1 + e[1:]) + 1 / (1 + e[:-1]))
         err = np.abs(np.diff(t) - pred)
         allow = np.abs(wn[:-1] * dz) * (np.abs(np.diff(e)) + 1e-6) + 1e-6 * ref
-        if meta.method == "discrete":  # element tensions averaged at the nodes: one element's weight
+        if (
+            meta.method == "discrete"
+        ):  # element tensions averaged at the nodes: one element's weight
             allow = allow + np.abs(wn[:-1]) * np.diff(s)
         bad = susp & (err > allow)
         if np.any(bad):
             i = int(np.argmax(np.where(bad, err - allow, -np.inf)))
-            out.append(("tension_gradient", f"nodes {i}-{i+1}: dT {t[i+1]-t[i]:.9g} N, w dz/(1+e) "
-                                            f"{pred[i]:.9g} N (allowed {allow[i]:.3g})"))
+            out.append(
+                (
+                    "tension_gradient",
+                    f"nodes {i}-{i + 1}: dT {t[i + 1] - t[i]:.9g} N, w dz/(1+e) "
+                    f"{pred[i]:.9g} N (allowed {allow[i]:.3g})",
+                )
+            )
     # the end tensions are the end forces' magnitudes; elevation at the ends is the end
     # forces' direction (no point load or bending there)
     ta, tb = np.linalg.norm(fa), np.linalg.norm(fb)
     if abs(t[0] - ta) > 1e-6 * ref or abs(t[-1] - tb) > 1e-6 * ref:
-        out.append(("end_tension", f"tension at the ends {t[0]:.9g}, {t[-1]:.9g} N; |force_a|, |force_b| "
-                                   f"{ta:.9g}, {tb:.9g} N"))
+        out.append(
+            (
+                "end_tension",
+                f"tension at the ends {t[0]:.9g}, {t[-1]:.9g} N; |force_a|, |force_b| "
+                f"{ta:.9g}, {tb:.9g} N",
+            )
+        )
     el = _f(ds, "elevation", case)
     if el is not None and not meta.bending and not touch and not meta.attachments:
         ela = math.atan2(fa[2], math.hypot(fa[0], fa[1]))
         elb = math.atan2(-fb[2], math.hypot(fb[0], fb[1]))
         d = max(abs(el[0] - ela), abs(el[-1] - elb))
         if d > 1e-2:
-            out.append(("info_elevation_fd", f"elevation at the ends {el[0]:.6g}, {el[-1]:.6g} rad; the end "
-                                         f"forces' {ela:.6g}, {elb:.6g} rad (nodes {len(s)})"))
+            out.append(
+                (
+                    "info_elevation_fd",
+                    f"elevation at the ends {el[0]:.6g}, {el[-1]:.6g} rad; the end "
+                    f"forces' {ela:.6g}, {elb:.6g} rad (nodes {len(s)})",
+                )
+            )
     return out
 
 
 def _check_system(ds, case, study, meta) -> list[tuple[str, str]]:
     out: list[tuple[str, str]] = []
     names = [str(n) for n in ds["line"].values]
-    fa = _f(ds, "force_a", case)
     fb = _f(ds, "force_b", case)
     t = _f(ds, "tension", case)
     if t is not None and np.nanmin(t) < -1e-6 * max(np.nanmax(np.abs(t)), 1.0):
@@ -710,8 +857,13 @@ def _check_system(ds, case, study, meta) -> list[tuple[str, str]]:
         net = bf[0, :3] + np.array([0.0, 0.0, (WATER * body["volume"] - body["mass"]) * GRAVITY])
         ref = max(float(np.nanmax(np.abs(fb))) if fb is not None else 1.0, 1.0)
         if np.linalg.norm(net) > 1e-5 * max(ref, body["mass"] * GRAVITY):
-            out.append(("balance_body", f"free body: lines' force {bf[0, :3]} N with weight and buoyancy "
-                                        f"leaves {net} N"))
+            out.append(
+                (
+                    "balance_body",
+                    f"free body: lines' force {bf[0, :3]} N with weight and buoyancy "
+                    f"leaves {net} N",
+                )
+            )
     # free hub: the lines' pull balances its weight
     if "hub" in study["points"] and fb is not None:
         hub = study["points"]["hub"]
@@ -733,7 +885,11 @@ def swapped(study: dict) -> dict | None:
     excitation, a current sweep is kept)."""
     import copy
 
-    if "line" not in study or study["ends"]["b"]["kind"] != "fixed" or "dynamic" in study["analysis"]:
+    if (
+        "line" not in study
+        or study["ends"]["b"]["kind"] != "fixed"
+        or "dynamic" in study["analysis"]
+    ):
         return None
     st = copy.deepcopy(study)
     st["name"] = study["name"] + "-swapped"
@@ -766,8 +922,13 @@ def check_swap(res1: RunResult, res2: RunResult, meta: Meta) -> list[tuple[str, 
         s1 = int(d1["status"].isel(case).values)
         s2 = int(d2["status"].isel(case).values)
         if (s1 == 0) != (s2 == 0):
-            out.append(("swap_status", f"case {case}: status {s1} vs swapped {s2}: "
-                                       f"{_msg(d1, 'message', case)[:200]} | {_msg(d2, 'message', case)[:200]}"))
+            out.append(
+                (
+                    "swap_status",
+                    f"case {case}: status {s1} vs swapped {s2}: "
+                    f"{_msg(d1, 'message', case)[:200]} | {_msg(d2, 'message', case)[:200]}",
+                )
+            )
             continue
         if s1 != 0:
             continue
@@ -778,8 +939,15 @@ def check_swap(res1: RunResult, res2: RunResult, meta: Meta) -> list[tuple[str, 
         # leaves room for the different path the iteration takes from the other end
         tol = 1e-6 * ref if meta.method != "discrete" else 1e-4 * ref
         if np.abs(fa1 - fb2).max() > tol or np.abs(fb1 - fa2).max() > tol:
-            out.append(("swap_forces", f"case {case}: force_a {fa1}, force_b {fb1}; swapped {fa2}, {fb2}"))
+            out.append(
+                ("swap_forces", f"case {case}: force_a {fa1}, force_b {fb1}; swapped {fa2}, {fb2}")
+            )
         t1, t2 = _f(d1, "tension", case), _f(d2, "tension", case)
         if t1.shape == t2.shape and np.abs(t1 - t2[::-1]).max() > tol * 10:
-            out.append(("swap_tension", f"case {case}: tension differs by {np.abs(t1 - t2[::-1]).max():.3g} N"))
+            out.append(
+                (
+                    "swap_tension",
+                    f"case {case}: tension differs by {np.abs(t1 - t2[::-1]).max():.3g} N",
+                )
+            )
     return out

@@ -22,8 +22,10 @@ name: graded-modal
 environment: {fluid: water}
 line:
   segments:
-    - {length: 0.877, diameter: 0.025, mass_per_length: 3.06, axial_stiffness: 5.5e7, bending_stiffness: 8.5e4}
-    - {length: 43.6, diameter: 0.15, mass_per_length: 115.0, axial_stiffness: 2.0e9, bending_stiffness: 1.0e3}
+    - {length: 0.877, diameter: 0.025, mass_per_length: 3.06, axial_stiffness: 5.5e7,
+       bending_stiffness: 8.5e4}
+    - {length: 43.6, diameter: 0.15, mass_per_length: 115.0, axial_stiffness: 2.0e9,
+       bending_stiffness: 1.0e3}
 ends:
   a: {kind: fixed, position: [0.0, 0.0, -15.2]}
   b: {kind: mooring, force: [24856.5, 0.0], z: 0.0}
@@ -49,14 +51,17 @@ def test_a_modal_meshs_failed_static_resolve_is_the_modal_analysiss_failure(
         if n_nodes == 11:
             return real(case, n_nodes, deadline)
         return StaticResult.failed(
-            np.linspace(0.0, 44.477, n_nodes), STATUS_NOT_VERIFIED,
+            np.linspace(0.0, 44.477, n_nodes),
+            STATUS_NOT_VERIFIED,
             "not verified: whole-line force balance off by 0.168 N (allowed 0.00108 N)",
         )
 
     monkeypatch.setattr(modal, "static_at", resolve_fails)
     cfg = tmp_path / "graded-modal.yaml"
     cfg.write_text(GRADED_MODAL)
-    code = main(["run", str(cfg), "--out", str(tmp_path), "--no-cache", "--scheduler", "synchronous"])
+    code = main(
+        ["run", str(cfg), "--out", str(tmp_path), "--no-cache", "--scheduler", "synchronous"]
+    )
     assert calls and max(calls) > 11  # the graded mesh re-solved the statics finer
     ds = xr.load_dataset(tmp_path / "graded-modal.nc")
     assert int(ds["static_status"]) == 0  # the statics hold and are kept
@@ -79,8 +84,10 @@ name: moored-discrete
 environment: {fluid: water}
 line:
   segments:
-    - {length: 0.877, diameter: 0.025, mass_per_length: 3.06, axial_stiffness: 5.5e7, bending_stiffness: 8.5e4}
-    - {length: 43.6, diameter: 0.15, mass_per_length: 115.0, axial_stiffness: 2.0e9, bending_stiffness: 1.0e3}
+    - {length: 0.877, diameter: 0.025, mass_per_length: 3.06, axial_stiffness: 5.5e7,
+       bending_stiffness: 8.5e4}
+    - {length: 43.6, diameter: 0.15, mass_per_length: 115.0, axial_stiffness: 2.0e9,
+       bending_stiffness: 1.0e3}
 ends:
   a: {kind: fixed, position: [0.0, 0.0, -15.2]}
   b: {kind: mooring, force: [24856.5, 0.0], z: 0.0}
@@ -104,7 +111,9 @@ def test_a_time_limit_while_matching_a_mooring_force_says_time_limit(
         calls.append(1)
         if len(calls) == 1:
             return real(problem, disc, x0, start, free, end_force, deadline)
-        return StaticResult.failed(disc.s, STATUS_TIME_LIMIT, "time limit reached in the discrete equilibrium")
+        return StaticResult.failed(
+            disc.s, STATUS_TIME_LIMIT, "time limit reached in the discrete equilibrium"
+        )
 
     monkeypatch.setattr(discrete, "_solve_discrete", deadline_passes)
     cfg = tmp_path / "moored-discrete.yaml"
