@@ -694,6 +694,18 @@ def _check_statics(ds: Any, case: dict, study: dict, meta: Meta) -> list[tuple[s
     ds_ = np.diff(s)
     chord = np.linalg.norm(np.diff(pos, axis=0), axis=1)
     tpair = np.maximum(np.abs(t[1:]), np.abs(t[:-1]))
+    if meta.method == "discrete":
+        # its node tensions are the neighbouring elements' mean: an element's own may
+        # exceed both of its nodes' by one element's load (weight, or an attachment
+        # lumped on a node, seed 567)
+        rho = meta.rho
+        w_max = max(abs(_weight(sg, rho)) for sg in segs)
+        att = [
+            np.linalg.norm(a.get("force", [0.0, 0.0, 0.0]))
+            + GRAVITY * (a.get("mass", 0.0) + rho * a.get("volume", 0.0))
+            for a in study["line"].get("attachments", [])
+        ]
+        tpair = tpair + w_max * ds_ + max(att, default=0.0)
     arc_max = ds_ * (1.0 + tpair / ea_s)
     # the linear law between the two nodes' tensions bounds the stretched length; a
     # relative 1e-6 for the solver's tolerance and rounding (the nodes' positions are
