@@ -27,13 +27,14 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--count", type=int, default=50)
     ap.add_argument("--out", type=Path, default=Path("/tmp/stress"))
     ap.add_argument("--slow", type=float, default=30.0, help="report runs longer than this [s]")
+    ap.add_argument("--dynamic", action="store_true", help="one-line dynamic studies only")
     a = ap.parse_args(argv)
     kinds: collections.Counter[str] = collections.Counter()
     log = a.out / "anomalies.jsonl"
     a.out.mkdir(parents=True, exist_ok=True)
     cases = 0
     for seed in range(a.start, a.start + a.count):
-        study, meta = generate(seed)
+        study, meta = generate(seed, dynamic=a.dynamic)
         res = run_study(study, a.out / str(seed))
         found = check_run(study, meta, res)
         twin = swapped(study) if seed % 3 == 0 else None

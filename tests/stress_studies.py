@@ -141,10 +141,11 @@ def _makeup(rng: np.random.Generator, total: float, rho: float, extreme: bool) -
     return [_segment(rng, float(p), rho, extreme) for p in parts]
 
 
-def generate(seed: int) -> tuple[dict, Meta]:
-    """One random study (a dict ready for yaml) and what the checks need about it."""
+def generate(seed: int, dynamic: bool = False) -> tuple[dict, Meta]:
+    """One random study (a dict ready for yaml) and what the checks need about it;
+    ``dynamic``: a one-line study with analysis.dynamic (a focused batch)."""
     rng = np.random.default_rng(seed)
-    roll = rng.uniform()
+    roll = 0.9 if dynamic else rng.uniform()
     if roll < 0.15:
         return _system(rng, seed)
     return _one_line(rng, seed, dynamic=roll > 0.75)

@@ -205,6 +205,11 @@ def _solve_discrete(problem, disc, x0, start, free, end_force, deadline):  # noq
     for k, (end, node) in enumerate(((problem.end_a, 0), (problem.end_b, -1))):
         if end.kind == "fixed" and not free[k]:
             x0[node] = np.asarray(end.position, dtype=float)
+        elif end.kind == "mooring":
+            # its height is given: exactly, not as the cable solution's start puts it
+            # (to that solver's tolerance, 3.7e-7 m in a current, which the check of
+            # the held ends, to the coordinates' rounding, refused: random seed 2031)
+            x0[node, 2] = float(end.z)
     tol, floor, load = _force_tolerance(problem, disc, x0, t_elements)
     if is_finite_line(disc):
         work = Workspace(disc.n_elements)
