@@ -18,7 +18,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from tests.stress_studies import check_run, check_swap, generate, run_study, swapped  # noqa: E402
+from tests.stress_checks import check_run, check_swap, run_study, swapped
+from tests.stress_studies import generate  # noqa: E402
 
 
 def main(argv: list[str] | None = None) -> int:

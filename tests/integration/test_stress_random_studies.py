@@ -6,7 +6,7 @@ meshes); ``CABLESTUDY_STRESS_COUNT=N`` runs N more seeds (from 1000), and
 ``benchmarks/stress_random.py`` runs batches from the command line with a count of the
 anomalies by kind.
 
-What is checked, per run and per case (the kinds of :func:`tests.stress_studies.check_run`):
+What is checked, per run and per case (the kinds of :func:`tests.stress_checks.check_run`):
 no Python traceback, no numpy RuntimeWarning, exit 0/3 with a dataset or 2 with a message
 naming the field; a status-0 case has finite outputs, the study's end positions, no
 negative tension, no node interval stretched beyond its arc, the whole line's balance of
@@ -22,7 +22,8 @@ from pathlib import Path
 
 import pytest
 
-from tests.stress_studies import check_run, check_swap, generate, run_study, swapped
+from tests.stress_checks import check_run, check_swap, run_study, swapped
+from tests.stress_studies import generate
 
 #: seeds chosen (from a batch of 150, benchmarks/stress_random.py --start 500) to cover
 #: the generator's branches: statics by each method (500 shooting, 503 catenary, 513
