@@ -37,6 +37,7 @@ def solve_modal(case: Case, static: StaticResult, deadline: float | None) -> Mod
     each node, so every node lies exactly on the static solution."""
     from ..dynamics.modal import (
         ModalProblem,
+        ModalResult,
         graded_arc_lengths,
         modal_analysis,
         snap_to_samples,
@@ -77,6 +78,18 @@ def solve_modal(case: Case, static: StaticResult, deadline: float | None) -> Mod
         fine = static_at(case, n_el * per_element + 1, deadline)
         mesh_static = (
             subset_static(fine, snap_to_samples(fine.s, targets)) if fine.success else fine
+        )
+    if static.success and not mesh_static.success:
+        # the case's statics hold (static_status 0): the re-solve at the modal mesh's
+        # points failed, and that is the modal analysis's own failure, with the solver's
+        # status (1 not converged, 3 time limit, 11 not verified, ...), never 5 ("the
+        # statics failed"), which the case's static_status would contradict
+        return ModalResult.failed(
+            mesh_static.s,
+            settings.modes,
+            mesh_static.status,
+            f"the static shape re-solved at {len(mesh_static.s)} points to place the "
+            f"{settings.mesh} modal mesh's nodes failed: {mesh_static.message}",
         )
     return modal_analysis(
         ModalProblem(
