@@ -5,7 +5,8 @@ The study is validated once as a template, each swept value once at its own path
 validation, :mod:`cablestudy.study.grid_values`; else as a whole study), and the checks
 that combine fields over the grid (:func:`expand_grid`): with NumPy where the
 compiled catenary kernels take the grid as arrays (end positions of fixed ends, segment
-stiffnesses: :attr:`CaseGrid.arrays`, :mod:`cablestudy.analyses.static_grid`), else by the
+stiffnesses, a line's loads built once per combination of their values,
+:mod:`cablestudy.study.grid_lines`: :attr:`CaseGrid.arrays`, :mod:`cablestudy.analyses.static_grid`), else by the
 models' own ``mode="after"`` validators on each case's study, which is the template with
 its validated swept values copied in (:mod:`cablestudy.study.grid_studies`). A swept path
 that cannot be copied into the template (a model whose validator derives other fields
@@ -41,6 +42,7 @@ from .cases import (
     parse_sweep,
     report_sweep_faults,
 )
+from .grid_lines import LINE_LOAD, MAX_LINES, line_count, line_index, line_studies, weightless
 from .loader import StudyError, StudySource, validate_data
 from .study import Study
 
@@ -223,7 +225,8 @@ def _static_sweep(template: Study, axes: list[SweepAxis]) -> bool:
 def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
     """A static-only, still-water, method 'catenary' study without a quasi-static
     database (its grid of solves per case is not an array kernel) whose swept paths are
-    all end positions of fixed ends or segment stiffnesses, with numeric values."""
+    all end positions of fixed ends, segment stiffnesses or the numbers that set the
+    line's loads (:data:`cablestudy.study.grid_lines.LINE_LOAD`), with numeric values."""
     an = template.analysis
     if an.modal is not None or an.dynamic is not None or an.static.method != "catenary":
         return False
@@ -246,11 +249,12 @@ def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
             if m:
                 if getattr(getattr(template.ends, m.group(1)), "kind", "") != "fixed":
                     return False
-            elif not _STIFFNESS.match(path):
+            elif not (_STIFFNESS.match(path) or LINE_LOAD.match(path)):
                 return False
             if not all(isinstance(v, int | float) and not isinstance(v, bool) for v in vals):
                 return False
-    return bool(axes)
+    # a line per combination of the swept load values (cablestudy.study.grid_lines)
+    return bool(axes) and line_count(axes) <= MAX_LINES
 
 
 def expand_grid(src: StudySource, template: Study | None = None) -> CaseGrid:
@@ -353,7 +357,8 @@ def expand_cases(src: StudySource) -> tuple[list[SweepAxis], list[Case]]:
 def _combined_ok(grid: CaseGrid) -> bool:
     """The checks of :meth:`Study._physical` that involve swept fields, over the whole
     grid at once (end positions against the seabed; a weightless line between fixed ends
-    closer than its length). Stiffness enters none of them."""
+    closer than its length), and those of the models of each swept line
+    (:func:`cablestudy.study.grid_lines.line_studies`). Stiffness enters none of them."""
     t = grid.template
     env = t.environment
 
@@ -376,13 +381,16 @@ def _combined_ok(grid: CaseGrid) -> bool:
         return out
 
     pa, pb = position("a"), position("b")
-    rho, g = env.density, env.gravity
-    weightless = all(seg.weight_in(rho, g) == 0.0 for seg in t.line.segments) and not any(
-        att.mass != rho * att.volume or any(att.force) for att in t.line.attachments
-    )
-    if weightless and t.ends.a.kind == "fixed" and t.ends.b.kind == "fixed":
+    try:
+        lines = line_studies(grid)
+    except (ValueError, AssertionError, TypeError):
+        return False
+    light = np.array([weightless(study) for study in lines])
+    if light.any() and t.ends.a.kind == "fixed" and t.ends.b.kind == "fixed":
         chord = np.sqrt(sum((b - a) ** 2 for a, b in zip(pa, pb, strict=True)))
-        if np.any(chord <= t.line.length):
+        # per case, whether its line is weightless (the line's length is never swept)
+        light = light[line_index(grid, 0, grid.shape[0])].reshape(grid.shape)
+        if np.any(light & (chord <= t.line.length)):
             return False
     if env.depth is not None:
         rise = math.tan(math.radians(env.seabed.slope_deg))
