@@ -30,7 +30,7 @@ LINE_LOAD = re.compile(
 
 #: at most this many combinations of line values are built (a grid with more is solved
 #: as validated cases: :mod:`cablestudy.analyses.static_grid_cases`)
-MAX_LINES = 100_000
+MAX_LINES = 10_000
 
 
 def line_axes(grid: Any) -> tuple[int, ...]:

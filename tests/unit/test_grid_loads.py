@@ -144,3 +144,24 @@ def test_combinations_of_loads_are_refused_as_a_full_validation_refuses_them() -
     # spans beyond the line's length: every case is valid, and run as arrays
     taut = weightless.replace("[92.5, 101.0]", "[100.5, 101.0]")
     assert expand_grid(parse_study_text(taut, "gl.yaml")).arrays
+
+
+def test_a_swept_mass_runs_from_the_study_file_as_arrays(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """YAML -> netCDF through the CLI, the method left out: the grid is the array one,
+    and the tension at end A grows with the swept mass at every span (a heavier line
+    between the same ends pulls harder: T_A rises monotonically with w for a catenary)."""
+    from cablestudy import cli
+
+    path = tmp_path / "gl.yaml"
+    path.write_text(TEXT)
+    _, _, grid = cli._load(str(path))
+    assert grid.arrays
+    assert cli.main(["run", str(path), "--out", str(tmp_path / "out")]) == 0
+    assert "general solver" not in capsys.readouterr().out
+    with xr.open_dataset(tmp_path / "out" / "gl.nc") as ds:
+        assert int((ds["status"] == 0).sum()) == ds["status"].size
+        assert ds.attrs["cases_fallback"] == 0
+        t = ds["tension_a"].transpose("span", ...).values  # (span, mass, diameter)
+        assert np.all(np.diff(t, axis=1) > 0.0)
