@@ -74,19 +74,32 @@ class SweptLines:
     studies: list[Any]
     models: list[Any]
     which: np.ndarray  # (n,) int64
+    #: per distinct line its :class:`~cablestudy.statics.base.Medium`
+    #: (:func:`cablestudy.study.problem.medium`: a swept seabed)
+    media: list[Any]
 
     @classmethod
     def of(cls, grid: CaseGrid, lo: int, hi: int) -> SweptLines:
-        from ..study.problem import line_model
+        from ..study.problem import line_model, medium
 
         studies = line_studies(grid)
         models = grid.memo.get("line_models")
         if models is None:
             models = grid.memo["line_models"] = [line_model(s) for s in studies]
-        return cls(studies, models, line_index(grid, lo, hi))
+            grid.memo["line_media"] = [medium(s) for s in studies]
+        return cls(studies, models, line_index(grid, lo, hi), grid.memo["line_media"])
 
     def take(self, rows: np.ndarray) -> SweptLines:
-        return SweptLines(self.studies, self.models, self.which[rows])
+        return SweptLines(self.studies, self.models, self.which[rows], self.media)
+
+    def seabeds(self) -> np.ndarray:
+        """Per case the number of its seabed (cases with equal depth, slope, heading and
+        friction share one)."""
+        keys = [
+            (m.depth, m.seabed_slope, m.seabed_heading, m.friction) for m in self.media
+        ]
+        first = {k: i for i, k in reversed(list(enumerate(keys)))}
+        return np.array([first[k] for k in keys], dtype=np.int64)[self.which]
 
     def stacked(self, get: Any) -> np.ndarray:
         """``get(model)`` of each case's line, stacked along a leading case axis."""
@@ -114,6 +127,8 @@ def _problems(base: Any, pos: dict[str, Any], ea: np.ndarray) -> list[Any]:
             changes["line"] = _with(line, axial_stiffness=ea[i])
         elif lines is not None:
             changes["line"] = line
+        if lines is not None:
+            changes["medium"] = lines.media[lines.which[i]]
         problems.append(_with(base, **changes))
     return problems
 
@@ -176,26 +191,70 @@ class StaticArrays:
             drag_iterations=np.array([r.drag_iterations for r in results], dtype=float),
         )
 
+    #: the fields that are arrays with a leading case axis
+    ARRAYS = (
+        "s",
+        "position",
+        "tension",
+        "force_a",
+        "force_b",
+        "status",
+        "laid_length",
+        "iterations",
+        "residual",
+        "drag_iterations",
+    )
+
     def put(self, rows: np.ndarray, other: StaticArrays) -> None:
         """Overwrite cases ``rows`` with the cases of ``other`` (in order)."""
-        for name in (
-            "s",
-            "position",
-            "tension",
-            "force_a",
-            "force_b",
-            "status",
-            "laid_length",
-            "iterations",
-            "residual",
-            "drag_iterations",
-        ):
+        for name in self.ARRAYS:
             getattr(self, name)[rows] = getattr(other, name)
         for i, msg in zip(rows.tolist(), other.messages, strict=True):
             self.messages[i] = msg
 
 
 def _compiled_solve(
+    base: Any, pos: dict[str, Any], ea: np.ndarray
+) -> tuple[StaticArrays, np.ndarray, list[str]] | None:
+    """:func:`_compiled_solve_one` per group of cases on the same seabed (a swept depth,
+    slope or friction: :meth:`SweptLines.seabeds`), put back in the chunk's order."""
+    lines = pos.get("lines")
+    if lines is None:
+        return _compiled_solve_one(base, pos, ea)
+    seabed = lines.seabeds()
+    groups = np.unique(seabed)
+    if groups.size == 1:
+        return _compiled_solve_one(_with(base, medium=lines.media[groups[0]]), pos, ea)
+    out: StaticArrays | None = None
+    left: list[np.ndarray] = []
+    why: list[str] = []
+    for g in groups.tolist():
+        rows = np.flatnonzero(seabed == g)
+        sub = {
+            k: (None if v is None else v.take(rows) if k == "lines" else v[rows])
+            for k, v in pos.items()
+        }
+        got = _compiled_solve_one(_with(base, medium=lines.media[g]), sub, ea[rows])
+        if got is None:  # what the seabed does not decide: the same for every group
+            return None
+        if out is None:
+            n = len(ea)
+            out = StaticArrays(
+                **{
+                    name: np.empty((n, *getattr(got[0], name).shape[1:]), getattr(got[0], name).dtype)
+                    for name in StaticArrays.ARRAYS
+                },
+                messages=[""] * n,
+            )
+        out.put(rows, got[0])
+        left.append(rows[got[1]])
+        why.extend(got[2])
+    order = np.argsort(np.concatenate(left), kind="stable")
+    assert out is not None
+    return out, np.concatenate(left)[order], [why[i] for i in order.tolist()]
+
+
+def _compiled_solve_one(
     base: Any, pos: dict[str, Any], ea: np.ndarray
 ) -> tuple[StaticArrays, np.ndarray, list[str]] | None:
     """The cases of a chunk (the template's static problem ``base`` with end positions

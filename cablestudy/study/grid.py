@@ -42,7 +42,7 @@ from .cases import (
     parse_sweep,
     report_sweep_faults,
 )
-from .grid_lines import LINE_LOAD, MAX_LINES, line_count, line_index, line_studies, weightless
+from .grid_lines import MAX_LINES, line_count, line_index, line_studies, per_line, weightless
 from .loader import StudyError, StudySource, validate_data
 from .study import Study
 
@@ -226,7 +226,8 @@ def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
     """A static-only, still-water, method 'catenary' study without a quasi-static
     database (its grid of solves per case is not an array kernel) whose swept paths are
     all end positions of fixed ends, segment stiffnesses or the numbers that set the
-    line's loads (:data:`cablestudy.study.grid_lines.LINE_LOAD`), with numeric values."""
+    line's loads or the seabed (:func:`cablestudy.study.grid_lines.per_line`), with
+    numeric values."""
     an = template.analysis
     if an.modal is not None or an.dynamic is not None or an.static.method != "catenary":
         return False
@@ -249,7 +250,7 @@ def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
             if m:
                 if getattr(getattr(template.ends, m.group(1)), "kind", "") != "fixed":
                     return False
-            elif not (_STIFFNESS.match(path) or LINE_LOAD.match(path)):
+            elif not (_STIFFNESS.match(path) or per_line(path)):
                 return False
             if not all(isinstance(v, int | float) and not isinstance(v, bool) for v in vals):
                 return False
@@ -360,7 +361,6 @@ def _combined_ok(grid: CaseGrid) -> bool:
     closer than its length), and those of the models of each swept line
     (:func:`cablestudy.study.grid_lines.line_studies`). Stiffness enters none of them."""
     t = grid.template
-    env = t.environment
 
     def position(end: str) -> list[np.ndarray]:
         fixed = getattr(t.ends, end)
@@ -392,13 +392,22 @@ def _combined_ok(grid: CaseGrid) -> bool:
         light = light[line_index(grid, 0, grid.shape[0])].reshape(grid.shape)
         if np.any(light & (chord <= t.line.length)):
             return False
-    if env.depth is not None:
-        rise = math.tan(math.radians(env.seabed.slope_deg))
-        heading = math.radians(env.seabed.slope_heading_deg)
-        for label, (x, y, z) in (("a", pa), ("b", pb)):
-            if getattr(t.ends, label).kind != "fixed":
-                continue
-            ground = -env.depth + rise * (x * math.cos(heading) + y * math.sin(heading))
-            if np.any(z < ground - 1e-9 * env.depth):
-                return False
+    # the seabed per case: that of its line's combination (a swept depth, slope)
+    which = line_index(grid, 0, grid.shape[0]).reshape(grid.shape)
+    envs = [study.environment for study in lines]
+    if all(e.depth is None for e in envs):
+        return True
+    if any(e.depth is None for e in envs):
+        return False  # a seabed in some cases only: never from a swept number
+    depth = np.array([e.depth for e in envs], dtype=float)[which]
+    rise = np.array([math.tan(math.radians(e.seabed.slope_deg)) for e in envs])[which]
+    # cos and sin as Study._physical takes them (math, per distinct seabed)
+    cos = np.array([math.cos(math.radians(e.seabed.slope_heading_deg)) for e in envs])[which]
+    sin = np.array([math.sin(math.radians(e.seabed.slope_heading_deg)) for e in envs])[which]
+    for label, (x, y, z) in (("a", pa), ("b", pb)):
+        if getattr(t.ends, label).kind != "fixed":
+            continue
+        ground = -depth + rise * (x * cos + y * sin)
+        if np.any(z < ground - 1e-9 * depth):
+            return False
     return True

@@ -3,8 +3,9 @@
 A grid run as arrays (:attr:`cablestudy.study.grid.CaseGrid.arrays`) may sweep, besides
 end positions and segment stiffnesses, the numbers that set the line's weight and buoyancy
 without changing its geometry: a segment's ``mass_per_length``, ``weight_in_fluid`` or
-``diameter``, an attachment's ``mass`` or ``volume`` (:data:`LINE_LOAD`). The line does
-not depend on the other swept values, so it is built once per combination of the values
+``diameter``, an attachment's ``mass`` or ``volume`` (:data:`LINE_LOAD`), and the
+seabed's depth, slope and friction (:data:`SEABED`). These do not depend on the other
+swept values, so it is built once per combination of the values
 on the axes that hold such paths (:func:`line_studies`): each one the template with those
 validated values copied in (:func:`cablestudy.study.grid_studies.case_study`, which runs
 every combined check of the models on the way, raising as a full validation would), and
@@ -28,22 +29,36 @@ LINE_LOAD = re.compile(
     r"|attachments\.\d+\.(mass|volume))$"
 )
 
+#: swept paths that change the seabed only (its depth, slope and friction): each case's
+#: medium is that of its combination, like its line
+SEABED = re.compile(
+    r"^environment\.(depth|seabed\.(friction|slope_deg|slope_heading_deg))$"
+)
+
+
+def per_line(path: str) -> bool:
+    """Whether ``path`` is one whose values are built per combination (a load of the
+    line, :data:`LINE_LOAD`, or the seabed, :data:`SEABED`)."""
+    return bool(LINE_LOAD.match(path) or SEABED.match(path))
+
+
 #: at most this many combinations of line values are built (a grid with more is solved
 #: as validated cases: :mod:`cablestudy.analyses.static_grid_cases`)
 MAX_LINES = 10_000
 
 
 def line_axes(grid: Any) -> tuple[int, ...]:
-    """The axes of ``grid`` that hold a :data:`LINE_LOAD` path, in order."""
+    """The axes of ``grid`` that hold a :data:`LINE_LOAD` or :data:`SEABED` path, in
+    order."""
     return tuple(
-        k for k, axis in enumerate(grid.axes) if any(LINE_LOAD.match(p) for p in axis.paths)
+        k for k, axis in enumerate(grid.axes) if any(per_line(p) for p in axis.paths)
     )
 
 
 def line_count(axes: list[Any]) -> int:
     """How many distinct lines a grid over ``axes`` has (1 without a line path)."""
     return math.prod(
-        a.size for a in axes if any(LINE_LOAD.match(p) for p in a.paths)
+        a.size for a in axes if any(per_line(p) for p in a.paths)
     )
 
 
@@ -59,7 +74,7 @@ def line_studies(grid: Any) -> list[Any]:
         return found
     axes = line_axes(grid)
     paths = [
-        (k, p) for k in axes for p in grid.axes[k].paths if LINE_LOAD.match(p)
+        (k, p) for k in axes for p in grid.axes[k].paths if per_line(p)
     ]
     found = []
     for combo in itertools.product(*(range(grid.shape[k]) for k in axes)):
