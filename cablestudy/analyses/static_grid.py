@@ -2,11 +2,13 @@
 as arrays: a case is its index into the grid of sweep axes.
 
 For a grid whose cases differ only in settings the batched still-water catenary kernel
-takes as numbers (end positions of fixed ends, segment axial stiffnesses;
-:attr:`CaseGrid.arrays`), no per-case pydantic object is built: a chunk of cases becomes
-arrays of end positions and stiffnesses, is solved by the compiled kernels (lines
-hanging free, and lines anchored on the seabed with friction), the cases they do not
-settle by :func:`cablestudy.statics.batch.solve_batch` (the reason per case in
+takes as numbers (end positions of fixed ends, segment axial stiffnesses; the line's
+loads and the seabed, built once per combination of their values by
+:mod:`cablestudy.study.grid_lines`; :attr:`CaseGrid.arrays`), no per-case pydantic
+object is built: a chunk of cases becomes arrays of end positions, stiffnesses and
+loads, is solved by the compiled kernels (lines hanging free, and lines anchored on
+the seabed with friction), the cases they do not settle by
+:func:`cablestudy.statics.batch.solve_batch` (the reason per case in
 :attr:`GridChunk.fallback_reason`, counted in the dataset's ``cases_fallback``), and
 its outputs are stacked into one array per output variable (a :class:`GridChunk`), which
 the runner streams to disk. Any other static grid's chunk is solved as validated cases
@@ -95,9 +97,7 @@ class SweptLines:
     def seabeds(self) -> np.ndarray:
         """Per case the number of its seabed (cases with equal depth, slope, heading and
         friction share one)."""
-        keys = [
-            (m.depth, m.seabed_slope, m.seabed_heading, m.friction) for m in self.media
-        ]
+        keys = [(m.depth, m.seabed_slope, m.seabed_heading, m.friction) for m in self.media]
         first = {k: i for i, k in reversed(list(enumerate(keys)))}
         return np.array([first[k] for k in keys], dtype=np.int64)[self.which]
 
@@ -241,7 +241,9 @@ def _compiled_solve(
             n = len(ea)
             out = StaticArrays(
                 **{
-                    name: np.empty((n, *getattr(got[0], name).shape[1:]), getattr(got[0], name).dtype)
+                    name: np.empty(
+                        (n, *getattr(got[0], name).shape[1:]), getattr(got[0], name).dtype
+                    )
                     for name in StaticArrays.ARRAYS
                 },
                 messages=[""] * n,

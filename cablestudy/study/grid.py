@@ -5,8 +5,9 @@ The study is validated once as a template, each swept value once at its own path
 validation, :mod:`cablestudy.study.grid_values`; else as a whole study), and the checks
 that combine fields over the grid (:func:`expand_grid`): with NumPy where the
 compiled catenary kernels take the grid as arrays (end positions of fixed ends, segment
-stiffnesses, a line's loads built once per combination of their values,
-:mod:`cablestudy.study.grid_lines`: :attr:`CaseGrid.arrays`, :mod:`cablestudy.analyses.static_grid`), else by the
+stiffnesses, the line's loads and the seabed built once per combination of their
+values, :mod:`cablestudy.study.grid_lines`: :attr:`CaseGrid.arrays`,
+:mod:`cablestudy.analyses.static_grid`), else by the
 models' own ``mode="after"`` validators on each case's study, which is the template with
 its validated swept values copied in (:mod:`cablestudy.study.grid_studies`). A swept path
 that cannot be copied into the template (a model whose validator derives other fields

@@ -31,9 +31,7 @@ LINE_LOAD = re.compile(
 
 #: swept paths that change the seabed only (its depth, slope and friction): each case's
 #: medium is that of its combination, like its line
-SEABED = re.compile(
-    r"^environment\.(depth|seabed\.(friction|slope_deg|slope_heading_deg))$"
-)
+SEABED = re.compile(r"^environment\.(depth|seabed\.(friction|slope_deg|slope_heading_deg))$")
 
 
 def per_line(path: str) -> bool:
@@ -50,16 +48,12 @@ MAX_LINES = 10_000
 def line_axes(grid: Any) -> tuple[int, ...]:
     """The axes of ``grid`` that hold a :data:`LINE_LOAD` or :data:`SEABED` path, in
     order."""
-    return tuple(
-        k for k, axis in enumerate(grid.axes) if any(per_line(p) for p in axis.paths)
-    )
+    return tuple(k for k, axis in enumerate(grid.axes) if any(per_line(p) for p in axis.paths))
 
 
 def line_count(axes: list[Any]) -> int:
     """How many distinct lines a grid over ``axes`` has (1 without a line path)."""
-    return math.prod(
-        a.size for a in axes if any(per_line(p) for p in a.paths)
-    )
+    return math.prod(a.size for a in axes if any(per_line(p) for p in a.paths))
 
 
 def line_studies(grid: Any) -> list[Any]:
@@ -73,9 +67,7 @@ def line_studies(grid: Any) -> list[Any]:
     if found is not None:
         return found
     axes = line_axes(grid)
-    paths = [
-        (k, p) for k in axes for p in grid.axes[k].paths if per_line(p)
-    ]
+    paths = [(k, p) for k in axes for p in grid.axes[k].paths if per_line(p)]
     found = []
     for combo in itertools.product(*(range(grid.shape[k]) for k in axes)):
         at = dict(zip(axes, combo, strict=True))

@@ -1,5 +1,6 @@
-"""Static sweeps of a line's loads as arrays (cablestudy.study.grid_lines): segment mass,
-weight in the fluid and diameter, attachment mass and volume, swept with end positions.
+"""Static sweeps of a line's loads and of the seabed as arrays (cablestudy.study.grid_lines):
+segment mass, weight in the fluid and diameter, attachment mass and volume, seabed slope
+and friction, swept with end positions.
 
 The grid builds one line per combination of those values (the template with them copied
 in, every combined check of the models run) and the compiled kernels take the cases as
@@ -43,11 +44,14 @@ sweep:
   line.segments.1.diameter: [0.05, 0.1]
 """
 #: a buoy and a clump on the line: the attachment's mass and volume swept
-ATTACHED = TEXT.replace(
-    "ends:\n", "  attachments:\n    - {s: 50.0, mass: 100.0, volume: 0.05}\nends:\n"
-).replace(
-    "line.segments.0.mass_per_length: [1.0, 2.466, 6.0]", "line.attachments.0.mass: [0.0, 400.0]"
-).replace("line.segments.1.diameter: [0.05, 0.1]", "line.attachments.0.volume: [0.0, 0.3]")
+ATTACHED = (
+    TEXT.replace("ends:\n", "  attachments:\n    - {s: 50.0, mass: 100.0, volume: 0.05}\nends:\n")
+    .replace(
+        "line.segments.0.mass_per_length: [1.0, 2.466, 6.0]",
+        "line.attachments.0.mass: [0.0, 400.0]",
+    )
+    .replace("line.segments.1.diameter: [0.05, 0.1]", "line.attachments.0.volume: [0.0, 0.3]")
+)
 #: anchored at end B on the seabed (the contact kernel on the reversed line), weights
 #: given in the fluid
 SEABED_B = (
@@ -61,13 +65,28 @@ SEABED_B = (
     )
 )
 
+#: end A anchored on a seabed whose slope and friction are swept: the compiled contact
+#: kernel per group of cases on one seabed
+SLOPED = (
+    TEXT.replace("depth: 50.0", "depth: 30.0, seabed: {friction: 0.5}")
+    .replace("[0.0, 0.0, -10.0]", "[0.0, 0.0, -30.0]")
+    .replace("{start: 60.0, stop: 100.5, num: 7, name: span}", "{start: 88.0, stop: 100.0, num: 7}")
+    .replace(
+        "line.segments.0.mass_per_length: [1.0, 2.466, 6.0]",
+        "environment.seabed.slope_deg: [0.0, 1.0, 2.0]",
+    )
+    .replace("line.segments.1.diameter: [0.05, 0.1]", "environment.seabed.friction: [0.0, 0.5]")
+)
+
 
 @pytest.fixture(autouse=True)
 def _fresh_static_cache(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(static_analysis, "_STATIC_CACHE", OrderedDict())
 
 
-@pytest.mark.parametrize("text", [TEXT, ATTACHED, SEABED_B], ids=["segments", "buoy", "seabed-b"])
+@pytest.mark.parametrize(
+    "text", [TEXT, ATTACHED, SEABED_B, SLOPED], ids=["segments", "buoy", "seabed-b", "slope"]
+)
 def test_swept_loads_run_as_arrays_with_the_case_datasets_bits(tmp_path: Path, text: str) -> None:
     src = parse_study_text(text, "gl.yaml")
     grid = expand_grid(src)
@@ -89,7 +108,7 @@ def test_swept_loads_run_as_arrays_with_the_case_datasets_bits(tmp_path: Path, t
     )
     kept = np.isin(slow["status"].values, KEPT_STATUSES)
     assert int(kept.sum()) >= kept.size // 2  # most cases solve: the equality means something
-    if text == SEABED_B:
+    if text in (SEABED_B, SLOPED):
         assert float(slow["laid_length"].max()) > 0.0  # the contact kernel did run
     # the loads do change the answer (else the sweep would prove nothing)
     t = slow["tension_a"].values.reshape(grid.shape[0], -1)
