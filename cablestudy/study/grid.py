@@ -68,7 +68,7 @@ class CaseGrid:
     #: per swept path: (axis number, the validated value at each index of that axis)
     validated: dict[str, tuple[int, tuple[Any, ...]]] = field(default_factory=dict)
     #: whether the compiled catenary kernels take the chunks straight from arrays of end
-    #: positions and stiffnesses (else
+    #: positions, stiffnesses, lines and seabeds (:mod:`cablestudy.study.grid_lines`; else
     #: :func:`cablestudy.analyses.static_grid_cases.evaluate_static_chunk`
     #: builds each case's study by copying and solves the chunk as validated cases)
     arrays: bool = True
