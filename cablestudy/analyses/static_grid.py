@@ -2,11 +2,13 @@
 as arrays: a case is its index into the grid of sweep axes.
 
 For a grid whose cases differ only in settings the batched still-water catenary kernel
-takes as numbers (end positions of fixed ends, segment axial stiffnesses;
-:attr:`CaseGrid.arrays`), no per-case pydantic object is built: a chunk of cases becomes
-arrays of end positions and stiffnesses, is solved by the compiled kernels (lines
-hanging free, and lines anchored on the seabed with friction), the cases they do not
-settle by :func:`cablestudy.statics.batch.solve_batch` (the reason per case in
+takes as numbers (end positions of fixed ends, segment axial stiffnesses; the line's
+loads and the seabed, built once per combination of their values by
+:mod:`cablestudy.study.grid_lines`; :attr:`CaseGrid.arrays`), no per-case pydantic
+object is built: a chunk of cases becomes arrays of end positions, stiffnesses and
+loads, is solved by the compiled kernels (lines hanging free, and lines anchored on
+the seabed with friction), the cases they do not settle by
+:func:`cablestudy.statics.batch.solve_batch` (the reason per case in
 :attr:`GridChunk.fallback_reason`, counted in the dataset's ``cases_fallback``), and
 its outputs are stacked into one array per output variable (a :class:`GridChunk`), which
 the runner streams to disk. Any other static grid's chunk is solved as validated cases
@@ -23,6 +25,7 @@ from typing import Any
 import numpy as np
 
 from ..study.grid import _POSITION, _STIFFNESS, CaseGrid
+from ..study.grid_lines import line_axes, line_index, line_studies
 from ..study.study import Study
 from .common import segment_of
 from .fallback import NO_KERNEL
@@ -34,7 +37,9 @@ from .variables import KEPT_STATUSES
 
 def _swept_inputs(grid: CaseGrid, lo: int, hi: int) -> tuple[Any, dict[str, Any], np.ndarray]:
     """The template's static problem, per end the positions of rows ``lo:hi`` ((n, 3),
-    None for an end that is not fixed) and the segment stiffnesses ((n, n_segments))."""
+    None for an end that is not fixed) and the segment stiffnesses ((n, n_segments)).
+    Where the sweep changes the line's loads, ``pos['lines']`` holds the lines
+    (:class:`SweptLines`)."""
     from ..study.problem import static_problem
 
     base = static_problem(grid.template)
@@ -52,24 +57,78 @@ def _swept_inputs(grid: CaseGrid, lo: int, hi: int) -> tuple[Any, dict[str, Any]
         m = _POSITION.match(path)
         if m:
             pos[m.group(1)][:, int(m.group(2))] = grid.values(path, lo, hi)
-        else:
+        elif _STIFFNESS.match(path):
             k = int(_STIFFNESS.match(path).group(1))  # type: ignore[union-attr]
             ea[:, k] = grid.values(path, lo, hi)
+        # else a load of the line (LINE_LOAD): its own line per case, below
+    if line_axes(grid):
+        pos["lines"] = SweptLines.of(grid, lo, hi)
     return base, pos, ea
+
+
+@dataclass
+class SweptLines:
+    """The lines of a chunk whose sweep changes the line's loads: per distinct line
+    (:func:`cablestudy.study.grid_lines.line_studies`) its study and its
+    :class:`~cablestudy.statics.base.LineModel` (by :func:`cablestudy.study.problem.line_model`,
+    as for a case alone), and per case the number of its line."""
+
+    studies: list[Any]
+    models: list[Any]
+    which: np.ndarray  # (n,) int64
+    #: per distinct line its :class:`~cablestudy.statics.base.Medium`
+    #: (:func:`cablestudy.study.problem.medium`: a swept seabed)
+    media: list[Any]
+
+    @classmethod
+    def of(cls, grid: CaseGrid, lo: int, hi: int) -> SweptLines:
+        from ..study.problem import line_model, medium
+
+        studies = line_studies(grid)
+        models = grid.memo.get("line_models")
+        if models is None:
+            models = grid.memo["line_models"] = [line_model(s) for s in studies]
+            grid.memo["line_media"] = [medium(s) for s in studies]
+        return cls(studies, models, line_index(grid, lo, hi), grid.memo["line_media"])
+
+    def take(self, rows: np.ndarray) -> SweptLines:
+        return SweptLines(self.studies, self.models, self.which[rows], self.media)
+
+    def seabeds(self) -> np.ndarray:
+        """Per case the number of its seabed (cases with equal depth, slope, heading and
+        friction share one)."""
+        keys = [(m.depth, m.seabed_slope, m.seabed_heading, m.friction) for m in self.media]
+        first = {k: i for i, k in reversed(list(enumerate(keys)))}
+        return np.array([first[k] for k in keys], dtype=np.int64)[self.which]
+
+    def stacked(self, get: Any) -> np.ndarray:
+        """``get(model)`` of each case's line, stacked along a leading case axis."""
+        return np.stack([np.asarray(get(m)) for m in self.models])[self.which]
+
+    def area(self, k: np.ndarray) -> np.ndarray:
+        """Per case the cross-section area [m^2] of the segment ``k`` of each point."""
+        per = np.array([[s.line.segments[i].area for i in k] for s in self.studies])
+        return per[self.which]
 
 
 def _problems(base: Any, pos: dict[str, Any], ea: np.ndarray) -> list[Any]:
     """One static problem per case: the template's with the swept numbers put in
     (shallow copies of the frozen dataclasses; every array shared but the swept ones)."""
     ea_swept = not np.all(ea == base.line.axial_stiffness)
+    lines = pos.get("lines")
     problems = []
     for i in range(len(ea)):
         changes: dict[str, Any] = {}
         for end in "ab":
             if pos[end] is not None:
                 changes[f"end_{end}"] = _with(getattr(base, f"end_{end}"), position=pos[end][i])
+        line = base.line if lines is None else lines.models[lines.which[i]]
         if ea_swept:
-            changes["line"] = _with(base.line, axial_stiffness=ea[i])
+            changes["line"] = _with(line, axial_stiffness=ea[i])
+        elif lines is not None:
+            changes["line"] = line
+        if lines is not None:
+            changes["medium"] = lines.media[lines.which[i]]
         problems.append(_with(base, **changes))
     return problems
 
@@ -132,26 +191,72 @@ class StaticArrays:
             drag_iterations=np.array([r.drag_iterations for r in results], dtype=float),
         )
 
+    #: the fields that are arrays with a leading case axis
+    ARRAYS = (
+        "s",
+        "position",
+        "tension",
+        "force_a",
+        "force_b",
+        "status",
+        "laid_length",
+        "iterations",
+        "residual",
+        "drag_iterations",
+    )
+
     def put(self, rows: np.ndarray, other: StaticArrays) -> None:
         """Overwrite cases ``rows`` with the cases of ``other`` (in order)."""
-        for name in (
-            "s",
-            "position",
-            "tension",
-            "force_a",
-            "force_b",
-            "status",
-            "laid_length",
-            "iterations",
-            "residual",
-            "drag_iterations",
-        ):
+        for name in self.ARRAYS:
             getattr(self, name)[rows] = getattr(other, name)
         for i, msg in zip(rows.tolist(), other.messages, strict=True):
             self.messages[i] = msg
 
 
 def _compiled_solve(
+    base: Any, pos: dict[str, Any], ea: np.ndarray
+) -> tuple[StaticArrays, np.ndarray, list[str]] | None:
+    """:func:`_compiled_solve_one` per group of cases on the same seabed (a swept depth,
+    slope or friction: :meth:`SweptLines.seabeds`), put back in the chunk's order."""
+    lines = pos.get("lines")
+    if lines is None:
+        return _compiled_solve_one(base, pos, ea)
+    seabed = lines.seabeds()
+    groups = np.unique(seabed)
+    if groups.size == 1:
+        return _compiled_solve_one(_with(base, medium=lines.media[groups[0]]), pos, ea)
+    out: StaticArrays | None = None
+    left: list[np.ndarray] = []
+    why: list[str] = []
+    for g in groups.tolist():
+        rows = np.flatnonzero(seabed == g)
+        sub = {
+            k: (None if v is None else v.take(rows) if k == "lines" else v[rows])
+            for k, v in pos.items()
+        }
+        got = _compiled_solve_one(_with(base, medium=lines.media[g]), sub, ea[rows])
+        if got is None:  # what the seabed does not decide: the same for every group
+            return None
+        if out is None:
+            n = len(ea)
+            out = StaticArrays(
+                **{
+                    name: np.empty(
+                        (n, *getattr(got[0], name).shape[1:]), getattr(got[0], name).dtype
+                    )
+                    for name in StaticArrays.ARRAYS
+                },
+                messages=[""] * n,
+            )
+        out.put(rows, got[0])
+        left.append(rows[got[1]])
+        why.extend(got[2])
+    order = np.argsort(np.concatenate(left), kind="stable")
+    assert out is not None
+    return out, np.concatenate(left)[order], [why[i] for i in order.tolist()]
+
+
+def _compiled_solve_one(
     base: Any, pos: dict[str, Any], ea: np.ndarray
 ) -> tuple[StaticArrays, np.ndarray, list[str]] | None:
     """The cases of a chunk (the template's static problem ``base`` with end positions
@@ -206,12 +311,13 @@ def _compiled_solve(
             grounded_b & ~grounded_a & ~_height_below(plane, rB[:, None, :], -limit, strict=True)
         )
         rest |= (grounded_a | grounded_b) & ~contact & ~contact_b
+    lines = pos.get("lines")  # the line's loads per case (SweptLines), else the template's
     if line.length.size == 1 and line.attachment_s.size == 0:
         P = 1
         ell = np.full((N, 1), line.length[0])
         EA = np.ascontiguousarray(ea[:, :1], dtype=float)
         q = np.zeros((N, 1, 3))
-        q[:, 0, 2] = -line.weight[0]
+        q[:, 0, 2] = -line.weight[0] if lines is None else -lines.stacked(lambda m: m.weight[0])
         point = np.zeros((N, 2, 3))
         bounds = np.empty((N, 2))
         bounds[:, 0] = 0.0
@@ -224,9 +330,14 @@ def _compiled_solve(
         ell = np.tile(lay.ell, (N, 1))
         EA = np.ascontiguousarray(ea[:, lay.segment], dtype=float)
         q = np.zeros((N, P, 3))
-        q[:, :, 2] = -lay.weight
-        point = np.tile(lay.point, (N, 1, 1))
         bounds = np.tile(lay.bounds, (N, 1))
+        if lines is None:
+            q[:, :, 2] = -lay.weight
+            point = np.tile(lay.point, (N, 1, 1))
+        else:  # each case's line laid out as the template's (the same cuts: no length swept)
+            lays = [make_layout(m) for m in lines.models]
+            q[:, :, 2] = -np.stack([la.weight for la in lays])[lines.which]
+            point = np.stack([la.point for la in lays])[lines.which]
     Ltot = bounds[:, -1]
     tol = np.full(N, base.tolerance, dtype=float)
     maxit = np.full(N, base.max_iterations, dtype=np.int64)
@@ -376,6 +487,10 @@ def _compiled_solve(
             ell_r, w_r = np.tile(lay_r.ell, (m, 1)), np.tile(lay_r.weight, (m, 1))
             EA_r = ea[c][:, ::-1][:, lay_r.segment]
             point_r, bounds_r = np.tile(lay_r.point, (m, 1, 1)), np.tile(lay_r.bounds, (m, 1))
+            if lines is not None:  # each case's own line, reversed as a case alone is
+                lays_r = [make_layout(reversed_line(ln)) for ln in lines.models]
+                w_r = np.stack([la.weight for la in lays_r])[lines.which[c]]
+                point_r = np.stack([la.point for la in lays_r])[lines.which[c]]
         got = solve_contact_arrays(
             ell_r, EA_r, w_r, point_r, bounds_r, rB[c], rA[c], plane,
             tol[c], maxit[c], Ltot[c, None] - s[c],
@@ -415,13 +530,13 @@ def _height_below(plane: Any, r: np.ndarray, limit: Any, *, strict: bool) -> np.
 
 
 def array_outputs(
-    st: StaticArrays, template: Study, ea: np.ndarray
+    st: StaticArrays, template: Study, ea: np.ndarray, lines: SweptLines | None = None
 ) -> tuple[dict[str, np.ndarray], np.ndarray, list[str]]:
     """:func:`cablestudy.analyses.static.static_outputs` of many static results at once: the
     same variables, bit for bit (the same element-wise operations on stacked arrays;
     :func:`cablestudy.physics.profile.profile_quantities` of the (cases, nodes) arrays).
     Returns the outputs (cases first), status and messages, with a failed case's values
-    NaN."""
+    NaN; with ``lines``, each case's areas are those of its own line's segments."""
     from ..physics.profile import profile_quantities
 
     n = len(st.status)
@@ -449,7 +564,7 @@ def array_outputs(
     }
     env, segs = template.environment, template.line.segments
     k = segment_of(segs, s)
-    area = np.array([segs[i].area for i in k])
+    area = np.array([segs[i].area for i in k]) if lines is None else lines.area(k)
     out.update(
         profile_quantities(
             s,
@@ -513,7 +628,10 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
         else:
             st, rest, why = compiled
             if rest.size:  # what no kernel settled: the general solver, one by one
-                sub = {k: (None if v is None else v[rest]) for k, v in pos.items()}
+                sub = {
+                    k: (None if v is None else v.take(rest) if k == "lines" else v[rest])
+                    for k, v in pos.items()
+                }
                 st.put(
                     rest,
                     StaticArrays.of(
@@ -526,7 +644,7 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
             reasons[rest] = NO_KERNEL
         for i, reason in fallback.items():
             reasons[i] = reason
-        data, status, messages = array_outputs(st, grid.template, ea)
+        data, status, messages = array_outputs(st, grid.template, ea, pos.get("lines"))
         k = segment_of(grid.template.line.segments, st.s[0])
         max_strain = largest_strain(st.tension, ea[:, k])
         limit = grid.template.analysis.static.strain_warning

@@ -5,7 +5,9 @@ The study is validated once as a template, each swept value once at its own path
 validation, :mod:`cablestudy.study.grid_values`; else as a whole study), and the checks
 that combine fields over the grid (:func:`expand_grid`): with NumPy where the
 compiled catenary kernels take the grid as arrays (end positions of fixed ends, segment
-stiffnesses: :attr:`CaseGrid.arrays`, :mod:`cablestudy.analyses.static_grid`), else by the
+stiffnesses, the line's loads and the seabed built once per combination of their
+values, :mod:`cablestudy.study.grid_lines`: :attr:`CaseGrid.arrays`,
+:mod:`cablestudy.analyses.static_grid`), else by the
 models' own ``mode="after"`` validators on each case's study, which is the template with
 its validated swept values copied in (:mod:`cablestudy.study.grid_studies`). A swept path
 that cannot be copied into the template (a model whose validator derives other fields
@@ -41,6 +43,7 @@ from .cases import (
     parse_sweep,
     report_sweep_faults,
 )
+from .grid_lines import MAX_LINES, line_count, line_index, line_studies, per_line, weightless
 from .loader import StudyError, StudySource, validate_data
 from .study import Study
 
@@ -65,7 +68,7 @@ class CaseGrid:
     #: per swept path: (axis number, the validated value at each index of that axis)
     validated: dict[str, tuple[int, tuple[Any, ...]]] = field(default_factory=dict)
     #: whether the compiled catenary kernels take the chunks straight from arrays of end
-    #: positions and stiffnesses (else
+    #: positions, stiffnesses, lines and seabeds (:mod:`cablestudy.study.grid_lines`; else
     #: :func:`cablestudy.analyses.static_grid_cases.evaluate_static_chunk`
     #: builds each case's study by copying and solves the chunk as validated cases)
     arrays: bool = True
@@ -223,7 +226,9 @@ def _static_sweep(template: Study, axes: list[SweepAxis]) -> bool:
 def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
     """A static-only, still-water, method 'catenary' study without a quasi-static
     database (its grid of solves per case is not an array kernel) whose swept paths are
-    all end positions of fixed ends or segment stiffnesses, with numeric values."""
+    all end positions of fixed ends, segment stiffnesses or the numbers that set the
+    line's loads or the seabed (:func:`cablestudy.study.grid_lines.per_line`), with
+    numeric values."""
     an = template.analysis
     if an.modal is not None or an.dynamic is not None or an.static.method != "catenary":
         return False
@@ -246,11 +251,12 @@ def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
             if m:
                 if getattr(getattr(template.ends, m.group(1)), "kind", "") != "fixed":
                     return False
-            elif not _STIFFNESS.match(path):
+            elif not (_STIFFNESS.match(path) or per_line(path)):
                 return False
             if not all(isinstance(v, int | float) and not isinstance(v, bool) for v in vals):
                 return False
-    return bool(axes)
+    # a line per combination of the swept load values (cablestudy.study.grid_lines)
+    return bool(axes) and line_count(axes) <= MAX_LINES
 
 
 def expand_grid(src: StudySource, template: Study | None = None) -> CaseGrid:
@@ -353,9 +359,9 @@ def expand_cases(src: StudySource) -> tuple[list[SweepAxis], list[Case]]:
 def _combined_ok(grid: CaseGrid) -> bool:
     """The checks of :meth:`Study._physical` that involve swept fields, over the whole
     grid at once (end positions against the seabed; a weightless line between fixed ends
-    closer than its length). Stiffness enters none of them."""
+    closer than its length), and those of the models of each swept line
+    (:func:`cablestudy.study.grid_lines.line_studies`). Stiffness enters none of them."""
     t = grid.template
-    env = t.environment
 
     def position(end: str) -> list[np.ndarray]:
         fixed = getattr(t.ends, end)
@@ -376,19 +382,33 @@ def _combined_ok(grid: CaseGrid) -> bool:
         return out
 
     pa, pb = position("a"), position("b")
-    rho, g = env.density, env.gravity
-    weightless = all(seg.weight_in(rho, g) == 0.0 for seg in t.line.segments) and not any(
-        att.mass != rho * att.volume or any(att.force) for att in t.line.attachments
-    )
-    if weightless and t.ends.a.kind == "fixed" and t.ends.b.kind == "fixed":
+    try:
+        lines = line_studies(grid)
+    except (ValueError, AssertionError, TypeError):
+        return False
+    light = np.array([weightless(study) for study in lines])
+    if light.any() and t.ends.a.kind == "fixed" and t.ends.b.kind == "fixed":
         chord = np.sqrt(sum((b - a) ** 2 for a, b in zip(pa, pb, strict=True)))
-        if np.any(chord <= t.line.length):
+        # per case, whether its line is weightless (the line's length is never swept)
+        light = light[line_index(grid, 0, grid.shape[0])].reshape(grid.shape)
+        if np.any(light & (chord <= t.line.length)):
             return False
-    if env.depth is not None:
-        for label, (x, y, z) in (("a", pa), ("b", pb)):
-            if getattr(t.ends, label).kind != "fixed":
-                continue
-            ground = env.seabed_z(x, y)
-            if np.any(z < ground - 1e-9 * env.depth):
-                return False
+    # the seabed per case: that of its line's combination (a swept depth, slope)
+    which = line_index(grid, 0, grid.shape[0]).reshape(grid.shape)
+    envs = [study.environment for study in lines]
+    if all(e.depth is None for e in envs):
+        return True
+    if any(e.depth is None for e in envs):
+        return False  # a seabed in some cases only: never from a swept number
+    depth = np.array([e.depth for e in envs], dtype=float)[which]
+    rise = np.array([math.tan(math.radians(e.seabed.slope_deg)) for e in envs])[which]
+    # cos and sin as Study._physical takes them (math, per distinct seabed)
+    cos = np.array([math.cos(math.radians(e.seabed.slope_heading_deg)) for e in envs])[which]
+    sin = np.array([math.sin(math.radians(e.seabed.slope_heading_deg)) for e in envs])[which]
+    for label, (x, y, z) in (("a", pa), ("b", pb)):
+        if getattr(t.ends, label).kind != "fixed":
+            continue
+        ground = -depth + rise * (x * cos + y * sin)
+        if np.any(z < ground - 1e-9 * depth):
+            return False
     return True

@@ -1,0 +1,101 @@
+"""The line of each case of an array grid whose sweep changes the line's loads.
+
+A grid run as arrays (:attr:`cablestudy.study.grid.CaseGrid.arrays`) may sweep, besides
+end positions and segment stiffnesses, the numbers that set the line's weight and buoyancy
+without changing its geometry: a segment's ``mass_per_length``, ``weight_in_fluid`` or
+``diameter``, an attachment's ``mass`` or ``volume`` (:data:`LINE_LOAD`), and the
+seabed's depth, slope and friction (:data:`SEABED`). These do not depend on the other
+swept values, so it is built once per combination of the values
+on the axes that hold such paths (:func:`line_studies`): each one the template with those
+validated values copied in (:func:`cablestudy.study.grid_studies.case_study`, which runs
+every combined check of the models on the way, raising as a full validation would), and
+a case's line is the one of its combination (:func:`line_index`). The solvers' arrays are
+then derived from those studies by the very functions a case alone uses
+(:func:`cablestudy.study.problem.line_model`), so the numbers are the same bit for bit.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import re
+from typing import Any
+
+import numpy as np
+
+#: swept paths that change the line's loads only (not its lengths nor its stiffness)
+LINE_LOAD = re.compile(
+    r"^line\.(segments\.\d+\.(mass_per_length|weight_in_fluid|diameter)"
+    r"|attachments\.\d+\.(mass|volume))$"
+)
+
+#: swept paths that change the seabed only (its depth, slope and friction): each case's
+#: medium is that of its combination, like its line
+SEABED = re.compile(r"^environment\.(depth|seabed\.(friction|slope_deg|slope_heading_deg))$")
+
+
+def per_line(path: str) -> bool:
+    """Whether ``path`` is one whose values are built per combination (a load of the
+    line, :data:`LINE_LOAD`, or the seabed, :data:`SEABED`)."""
+    return bool(LINE_LOAD.match(path) or SEABED.match(path))
+
+
+#: at most this many combinations of line values are built (a grid with more is solved
+#: as validated cases: :mod:`cablestudy.analyses.static_grid_cases`)
+MAX_LINES = 10_000
+
+
+def line_axes(grid: Any) -> tuple[int, ...]:
+    """The axes of ``grid`` that hold a :data:`LINE_LOAD` or :data:`SEABED` path, in
+    order."""
+    return tuple(k for k, axis in enumerate(grid.axes) if any(per_line(p) for p in axis.paths))
+
+
+def line_count(axes: list[Any]) -> int:
+    """How many distinct lines a grid over ``axes`` has (1 without a line path)."""
+    return math.prod(a.size for a in axes if any(per_line(p) for p in a.paths))
+
+
+def line_studies(grid: Any) -> list[Any]:
+    """Per combination of the values on :func:`line_axes` (C order), the template with
+    those validated values copied in (built once, kept in ``grid.memo``). Raises as the
+    full validation of a case with that combination would (a segment given both a mass
+    and a weight in the fluid, ...)."""
+    from .grid_studies import case_study
+
+    found = grid.memo.get("line_studies")
+    if found is not None:
+        return found
+    axes = line_axes(grid)
+    paths = [(k, p) for k in axes for p in grid.axes[k].paths if per_line(p)]
+    found = []
+    for combo in itertools.product(*(range(grid.shape[k]) for k in axes)):
+        at = dict(zip(axes, combo, strict=True))
+        values = {p: grid.validated[p][1][at[k]] for k, p in paths}
+        found.append(case_study(grid.template, values) if values else grid.template)
+    grid.memo["line_studies"] = found
+    return found
+
+
+def line_index(grid: Any, lo: int, hi: int) -> np.ndarray:
+    """Per case of rows ``lo:hi`` (C order), the number of its line in
+    :func:`line_studies`."""
+    axes = line_axes(grid)
+    block = (hi - lo, *grid.shape[1:])
+    if not axes:
+        return np.zeros(math.prod(block), dtype=np.int64)
+    idx = np.indices(block).reshape(len(block), -1)
+    idx[0] += lo
+    return np.ravel_multi_index(
+        tuple(idx[k] for k in axes), tuple(grid.shape[k] for k in axes)
+    ).astype(np.int64)
+
+
+def weightless(study: Any) -> bool:
+    """Whether the line of ``study`` has no weight in its fluid (what
+    :meth:`cablestudy.study.study.Study._physical` asks before its chord check)."""
+    env = study.environment
+    rho, g = env.density, env.gravity
+    return all(seg.weight_in(rho, g) == 0.0 for seg in study.line.segments) and not any(
+        att.mass != rho * att.volume or any(att.force) for att in study.line.attachments
+    )
