@@ -200,7 +200,12 @@ def _solve_frequency(
         hit = _solve_sweep(case, model, system, static) if _swept.cases else None
     if hit is None:  # alone: a sweep of one
         (hit,) = _solve_group(
-            [case], model, system, static, drag_settings(case.study.analysis.dynamic)
+            [case],
+            model,
+            system,
+            static,
+            drag_settings(case.study.analysis.dynamic),
+            full=_needs_result([case]),
         )
     res, values, bad = hit
     if res.status != STATUS_OK:
@@ -210,8 +215,21 @@ def _solve_frequency(
     return STATUS_OK, "", {**head, **values}, res, model
 
 
+def _needs_result(cases: list[Case]) -> list[bool]:
+    """Per case whether its whole harmonic result is read after its outputs (``method:
+    auto`` judges it: :func:`run_system_auto`); a case of ``method: frequency`` reads
+    only its status and iterations (:class:`~cablestudy.dynamics.
+    system_frequency_sweep.SolvedCase`)."""
+    return [c.study.analysis.dynamic.method != "frequency" for c in cases]
+
+
 def _solve_group(
-    cases: list[Case], model: Any, system: Any, static: Any, settings: Any
+    cases: list[Case],
+    model: Any,
+    system: Any,
+    static: Any,
+    settings: Any,
+    full: list[bool] | None = None,
 ) -> list[tuple[Any, dict[str, np.ndarray], list[str]]]:
     """Per case of ``cases`` (of one linear model and drag settings) its harmonic
     response solved in one sweep (:func:`~cablestudy.dynamics.system_frequency_sweep.
@@ -219,7 +237,9 @@ def _solve_group(
     module docstring; computed for all the cases at once, each case's a view of its
     row) and the names of its outputs that are not finite. Outputs (linear response):
     extremes are the static value plus and minus the amplitude, the mean the static
-    value; the envelopes on each line's ``s`` grid of the static problem's nodes."""
+    value; the envelopes on each line's ``s`` grid of the static problem's nodes.
+    ``full[i]`` false: case ``i``'s result is only its status and iterations (its
+    outputs are whole; None: every result whole)."""
     from ..dynamics.system_frequency_sweep import solve_system_sweep_arrays
     from .system_one_line import is_one_line, solve_one_line_group
 
@@ -232,6 +252,7 @@ def _solve_group(
         [X for X, _, _ in motions],
         settings,
         [U for _, U, _ in motions],
+        full,
     )
     n, L = len(cases), len(model.lines)
     amp = np.abs(arr["end_tension"])  # (n, L, 2)
@@ -348,7 +369,7 @@ def _solve_sweep(case: Case, model: Any, system: Any, static: Any) -> Any:
     if len(group) < 2 or id(case) not in taken:
         return None
     t0 = time.perf_counter()
-    solved = _solve_group(group, model, system, static, settings)
+    solved = _solve_group(group, model, system, static, settings, _needs_result(group))
     share = (time.perf_counter() - t0) / len(group)
     _swept.model = model
     mine = None

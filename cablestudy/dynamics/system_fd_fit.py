@@ -323,7 +323,16 @@ def anderson(d, g, hist_R, hist_G, state, change, last):  # noqa: ANN001, ANN202
         row = (head + j) % keep
         for q in range(size):
             dR[j, q] = r[q] - hist_R[row, q]
-    A = dR @ dR.T
+    # the normal equations dR dR^T gam = dR r (m <= DEPTH): the products by
+    # :func:`_dot`, the m x m system by :func:`_small_solve` (BLAS and LAPACK through
+    # numba cost more in calls and copies than the sums themselves)
+    A = np.empty((m, m))
+    rhs = np.empty(m)
+    for j in range(m):
+        for i in range(j, m):
+            A[j, i] = _dot(dR[j], dR[i], size)
+            A[i, j] = A[j, i]
+        rhs[j] = _dot(dR[j], r, size)
     trace = 0.0
     for j in range(m):
         trace += A[j, j]
@@ -333,8 +342,59 @@ def anderson(d, g, hist_R, hist_G, state, change, last):  # noqa: ANN001, ANN202
         return
     for j in range(m):
         A[j, j] += 1e-12 * trace
-    gam = np.linalg.solve(A, dR @ r)
+    if not _small_solve(A, rhs, m):
+        return  # a singular system (not met: the regularisation): the plain step
+    gam = rhs
     for j in range(m):
         row = (head + j) % keep
         for q in range(size):
             d[q] -= gam[j] * (g[q] - hist_G[row, q])
+
+
+@njit(cache=True, inline="always")
+def _dot(a, b, n):  # noqa: ANN001, ANN202
+    """``sum(a[:n] * b[:n])`` in four interleaved partial sums (a fixed order: the same
+    bits on every call), added pairwise at the end."""
+    s0 = s1 = s2 = s3 = 0.0
+    q = 0
+    while q + 4 <= n:
+        s0 += a[q] * b[q]
+        s1 += a[q + 1] * b[q + 1]
+        s2 += a[q + 2] * b[q + 2]
+        s3 += a[q + 3] * b[q + 3]
+        q += 4
+    while q < n:
+        s0 += a[q] * b[q]
+        q += 1
+    return (s0 + s1) + (s2 + s3)
+
+
+@njit(cache=True)
+def _small_solve(A, x, m):  # noqa: ANN001, ANN202
+    """Solve ``A[:m, :m] y = x[:m]`` in place into ``x`` (Gaussian elimination with
+    partial pivoting, as LAPACK's ``gesv``); False for a zero pivot or a non-finite
+    answer."""
+    for k in range(m):
+        p = k
+        for i in range(k + 1, m):
+            if abs(A[i, k]) > abs(A[p, k]):
+                p = i
+        if A[p, k] == 0.0:
+            return False
+        if p != k:
+            for j in range(m):
+                A[k, j], A[p, j] = A[p, j], A[k, j]
+            x[k], x[p] = x[p], x[k]
+        for i in range(k + 1, m):
+            f = A[i, k] / A[k, k]
+            for j in range(k + 1, m):
+                A[i, j] -= f * A[k, j]
+            x[i] -= f * x[k]
+    for i in range(m - 1, -1, -1):
+        acc = x[i]
+        for j in range(i + 1, m):
+            acc -= A[i, j] * x[j]
+        x[i] = acc / A[i, i]
+        if not math.isfinite(x[i]):
+            return False
+    return True

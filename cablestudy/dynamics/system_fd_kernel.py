@@ -79,6 +79,30 @@ def _band_factor(R, bw, N, reach, B, m, pinv):  # noqa: ANN001, ANN201, PLR0913
         for c in range(m):
             if B[k, c].real != 0.0 or B[k, c].imag != 0.0:
                 mask |= 1 << c
+        if bw == 5 and rk == k + 5:
+            # a node's three directions and the next node's (bw 5) without a row
+            # exchange above: the five entries of row k written out (the same products
+            # in the same order as the loop below; a loop of unknown length this short
+            # costs more than its arithmetic)
+            u1, u2, u3, u4, u5 = R[k, 6], R[k, 7], R[k, 8], R[k, 9], R[k, 10]
+            for i in range(k + 1, last + 1):
+                o = k - i + 5
+                z = R[i, o]
+                if z.real == 0.0 and z.imag == 0.0:
+                    continue
+                f = z * inv
+                R[i, o + 1] -= f * u1
+                R[i, o + 2] -= f * u2
+                R[i, o + 3] -= f * u3
+                R[i, o + 4] -= f * u4
+                R[i, o + 5] -= f * u5
+                if mask:
+                    for c in range(m):
+                        if (mask >> c) & 1:
+                            B[i, c] -= f * B[k, c]
+                if rk > reach[i]:
+                    reach[i] = rk
+            continue
         for i in range(k + 1, last + 1):
             z = R[i, k - i + bw]
             if z.real == 0.0 and z.imag == 0.0:

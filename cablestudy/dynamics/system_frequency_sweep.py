@@ -11,6 +11,7 @@ Pure: arrays in, :class:`~.system_frequency.SystemFrequencyResult` out.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -39,13 +40,26 @@ def solve_system_sweep(
     return solve_system_sweep_arrays(model, omega, body_motion, settings, point_excitation)[0]
 
 
+@dataclass(frozen=True)
+class SolvedCase:
+    """What a study's case of ``method: frequency`` reads of a solved case's result
+    (:func:`solve_system_sweep_arrays` with ``full`` false for it): its outputs are the
+    sweep's arrays, so the per-line lists of a :class:`~.system_frequency.
+    SystemFrequencyResult` are not built."""
+
+    iterations: int
+    status: int = 0
+    message: str = ""
+
+
 def solve_system_sweep_arrays(
     model: SystemLinear,
     omega: Sequence[float] | np.ndarray,
     body_motion: Sequence[np.ndarray] | np.ndarray,
     settings: DragSettings | None = None,
     point_excitation: Sequence[np.ndarray | None] | None = None,
-) -> tuple[list[SystemFrequencyResult], dict[str, np.ndarray]]:
+    full: Sequence[bool] | None = None,
+) -> tuple[list[SystemFrequencyResult | SolvedCase], dict[str, np.ndarray]]:
     """Per case ``i`` the steady harmonic response at ``omega[i]`` [rad/s] to the
     bodies' complex motion ``body_motion[i]`` (B, 6) [m, rad] and the points' own
     ``point_excitation[i]`` (P, 3) [m] (None: none), as
@@ -54,7 +68,9 @@ def solve_system_sweep_arrays(
     (``end_tension`` (n, L, 2), ``body_force`` (n, B, 6), the envelope at every node
     ``envelope_max``/``_min`` (n, nodes), ``displacement`` (n, nodes, 3), flat over the
     lines; the rows of the cases whose result has status 0 hold it, the others are not
-    results). Never raises for a numerical failure."""
+    results). ``full[i]`` false: a solved case's result is a :class:`SolvedCase` (its
+    iterations; a failed one is always the whole result). Never raises for a numerical
+    failure."""
     settings = settings or DragSettings()
     w = np.asarray(omega, dtype=float).reshape(-1)
     n = w.size
@@ -73,10 +89,13 @@ def solve_system_sweep_arrays(
     disp, u_pts, forces, info, finfo = sweep_compiled(model, w, prescribed, settings)
     theta = np.asarray(body_motion, dtype=complex).reshape(n, model.n_bodies, 6)[:, :, 3:]
     post = _post_all(model, w, theta, disp, forces)
-    out: list[SystemFrequencyResult] = []
+    out: list[SystemFrequencyResult | SolvedCase] = []
     for i in range(n):
         if info[i, 0] == 0 and finfo[i, 1] <= RESIDUAL_BAR:
-            out.append(_result(model, post, i, info[i], finfo[i], disp[i], u_pts[i]))
+            if full is None or full[i]:
+                out.append(_result(model, post, i, info[i], finfo[i], disp[i], u_pts[i]))
+            else:
+                out.append(SolvedCase(int(info[i, 1])))
             continue
         outcome = compiled_outcome(
             model, float(w[i]), info[i], finfo[i], disp[i], u_pts[i], forces[i]
@@ -109,7 +128,10 @@ def _post_all(
     body_force = body_forces(model, theta, support)
     du = disp[:, post.element + 1] - disp[:, post.element]
     axial = post.axial_stiffness[None] + 1j * w[:, None] * post.axial_damping[None]
-    tension = axial * np.sum(post.direction[None] * du, axis=2)
+    # the sum over the three directions written out: np.sum's order ((0 + 1) + 2), the
+    # same values, without its reduction over a short axis (most of this function's cost)
+    d = post.direction[None]
+    tension = axial * (d[..., 0] * du[..., 0] + d[..., 1] * du[..., 1] + d[..., 2] * du[..., 2])
     var = np.empty((n, post.node_static.size), dtype=complex)
     var[:, post.inner] = 0.5 * (tension[:, post.left] + tension[:, post.right])
     var[:, post.first] = end_tension[:, :, 0]
