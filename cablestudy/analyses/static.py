@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from ..physics.profile import profile_quantities
+from ..physics.profile import end_pulls, profile_quantities
 from ..statics import (
     STATIC_SOLVERS,
     STATUS_NO_SOLUTION,
@@ -195,9 +195,30 @@ def static_outputs(res: StaticResult, study: Any = None) -> dict[str, np.ndarray
                 area=np.array([segs[i].area for i in k]),
                 density=env.density,
                 gravity=env.gravity,
+                end_pull=end_pulls(
+                    res.force_a,
+                    res.force_b,
+                    **tangent_ends(study.line, study.analysis.static.tolerance, res.tension),
+                ),
             )
         )
     return out
+
+
+def tangent_ends(line: Any, tolerance: float, tension: np.ndarray) -> dict[str, Any]:
+    """The ``free_a``, ``free_b`` and ``floor`` of :func:`~cablestudy.physics.profile.end_pulls`
+    for a line (its study model) solved to the relative ``tolerance`` with ``tension``
+    (..., n) [N]: an end is free without bending stiffness in its segment and without an
+    attachment at it; the floor is the verification's force allowance, 10 tolerance
+    times the largest tension (:mod:`cablestudy.statics.verify`)."""
+    segs = line.segments
+    total = sum(seg.length for seg in segs)
+    at = [att.s for att in line.attachments]
+    return {
+        "free_a": segs[0].bending_stiffness == 0.0 and not any(s == 0.0 for s in at),
+        "free_b": segs[-1].bending_stiffness == 0.0 and not any(s >= total for s in at),
+        "floor": 10.0 * tolerance * np.max(np.abs(np.asarray(tension, dtype=float)), axis=-1),
+    }
 
 
 #: the static outputs of the last static solution, with that solution and the names of

@@ -537,7 +537,7 @@ def array_outputs(
     :func:`cablestudy.physics.profile.profile_quantities` of the (cases, nodes) arrays).
     Returns the outputs (cases first), status and messages, with a failed case's values
     NaN; with ``lines``, each case's areas are those of its own line's segments."""
-    from ..physics.profile import profile_quantities
+    from ..physics.profile import end_pulls, profile_quantities
 
     n = len(st.status)
     s = st.s[0]
@@ -574,6 +574,7 @@ def array_outputs(
             area=area,
             density=env.density,
             gravity=env.gravity,
+            end_pull=end_pulls(force_a, force_b, **_tangent_ends(template, tension, lines)),
         )
     )
     ok = status == 0
@@ -592,6 +593,22 @@ def array_outputs(
         for arr in out.values():
             arr[failed] = np.nan
     return out, status, messages
+
+
+def _tangent_ends(
+    template: Study, tension: np.ndarray, lines: SweptLines | None
+) -> dict[str, Any]:
+    """:func:`cablestudy.analyses.static.tangent_ends` of each case of a chunk (its own
+    line's, with ``lines``): ``free_a``, ``free_b`` (cases,) and ``floor`` (cases,)."""
+    from .static import tangent_ends
+
+    tol = template.analysis.static.tolerance
+    got = tangent_ends(template.line, tol, tension)
+    if lines is not None:
+        each = [tangent_ends(study.line, tol, tension[:1]) for study in lines.studies]
+        for key in ("free_a", "free_b"):
+            got[key] = np.array([e[key] for e in each], dtype=bool)[lines.which]
+    return got
 
 
 def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:

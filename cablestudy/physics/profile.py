@@ -24,6 +24,7 @@ def profile_quantities(
     strain: np.ndarray | None = None,
     density: float,
     gravity: float,
+    end_pull: np.ndarray | None = None,
 ) -> dict[str, np.ndarray]:
     """Elevation, azimuth, elongation and wall tension at the points of a static line (or
     of many lines at the same ``s``: leading case axes on ``position``, ``tension``,
@@ -45,12 +46,19 @@ def profile_quantities(
         Axial strain at each point from a non-linear axial law (default T / EA).
     density : [kg/m^3]
     gravity : [m/s^2]
+    end_pull : (2, 3) [N], optional
+        The tension vector T(s) (the pull of the part beyond s on the part before it) at
+        end A and at end B (:func:`end_pulls`), for a line without bending stiffness at
+        that end: along the tangent dr/ds, so the end's angles are its direction,
+        exactly. A zero vector (no tension there, or not known) keeps the end's
+        one-sided difference; a non-finite one (a failed case) gives NaN.
 
     Returns
     -------
     dict with ``elevation`` [rad] and ``azimuth`` [rad] of the tangent dr/ds
     (second-order differences: an error O(h^2 kappa^2) for node spacing h and curvature
-    kappa, and at a point load the mean of the tangents on either side); the azimuth of
+    kappa, and at a point load the mean of the tangents on either side; at an end with
+    a non-zero ``end_pull``, its direction); the azimuth of
     a vertical tangent (horizontal part below 1e-12) is that of the nearest point along
     the line that has one (0 if none does); ``elongation`` [m], the integral of
     T / EA from A (trapezoids, O(h^2)); ``tension_wall`` [N], T + rho g z A.
@@ -65,6 +73,8 @@ def profile_quantities(
         d = np.repeat(np.diff(position, axis=-2), n, axis=-2)[..., :n, :]
     norm = np.linalg.norm(d, axis=-1)
     t = d / np.where(norm > 0.0, norm, 1.0)[..., None]
+    if end_pull is not None:
+        t = _ends_along(t, np.asarray(end_pull, dtype=float))
     horizontal = np.hypot(t[..., 0], t[..., 1])
     elevation = np.arctan2(t[..., 2], horizontal)
     azimuth = np.arctan2(t[..., 1], t[..., 0])
@@ -89,3 +99,44 @@ def profile_quantities(
         "elongation": elongation,
         "tension_wall": tension_wall,
     }
+
+
+def _ends_along(t: np.ndarray, pull: np.ndarray) -> np.ndarray:
+    """Unit tangents ``t`` (..., n, 3) with the first and last replaced by the direction
+    of ``pull`` (..., 2, 3) where that is non-zero (NaN where it is not finite)."""
+    t = t.copy()
+    size = np.sqrt(np.sum(pull * pull, axis=-1))  # (..., 2)
+    use = ~(size == 0.0)  # NaN (a failed case) is used too: its angles are NaN
+    unit = pull / np.where(use, size, 1.0)[..., None]
+    t[..., 0, :] = np.where(use[..., 0, None], unit[..., 0, :], t[..., 0, :])
+    t[..., -1, :] = np.where(use[..., 1, None], unit[..., 1, :], t[..., -1, :])
+    return t
+
+
+def end_pulls(
+    force_a: np.ndarray,
+    force_b: np.ndarray,
+    *,
+    free_a: np.ndarray | bool,
+    free_b: np.ndarray | bool,
+    floor: np.ndarray | float = 0.0,
+) -> np.ndarray:
+    """The tension vectors (..., 2, 3) [N] at end A and end B for ``profile_quantities``:
+    from the forces the line exerts on its ends (``force_a``, ``force_b`` (..., 3)),
+    T(0) = force_a and T(L) = -force_b (the end's support pulls the line with
+    -force_a at A, and the line there pulls towards B; at B the support's pull
+    -force_b is the line's tension pointing away from A). ``free_a``, ``free_b``
+    (bool, or (...,)): whether the tension is along the tangent at that end (no bending
+    stiffness there, whose shear would tilt the end force, and no point load at the
+    end itself, which T(0) = force_a leaves out); where not, the vector is zero. So is
+    an end force no larger than ``floor`` [N] (or (...,)): one within the solver's
+    force tolerance of zero (a slack end laid on the seabed) has no direction to
+    trust; its end keeps the position differences."""
+    fa = np.asarray(force_a, dtype=float)
+    fb = np.asarray(force_b, dtype=float)
+    floor = np.asarray(floor, dtype=float)
+    big_a = ~(np.sqrt(np.sum(fa * fa, axis=-1)) <= floor)  # NaN stays: a failed case
+    big_b = ~(np.sqrt(np.sum(fb * fb, axis=-1)) <= floor)
+    a = np.where((np.asarray(free_a) & big_a)[..., None], fa, 0.0)
+    b = np.where((np.asarray(free_b) & big_b)[..., None], -fb, 0.0)
+    return np.stack(np.broadcast_arrays(a, b), axis=-2)
