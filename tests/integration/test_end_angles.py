@@ -159,3 +159,22 @@ def test_a_line_with_bending_stiffness_keeps_the_differences(tmp_path: Path) -> 
     elev = free["elevation"].values
     assert abs(elev[0] - _direction(free["force_a"].values)) < 1e-12
     assert abs(elev[-1] - _direction(-free["force_b"].values)) < 1e-12
+
+
+def test_a_swept_studys_cases_take_their_own_end_forces(tmp_path: Path) -> None:
+    # a sweep of end B's position runs as one grid (analyses/static_grid.py
+    # array_outputs, many cases at once): each case's end angles are its own end
+    # forces' directions, elevation and azimuth, to round-off
+    text = SYMMETRIC.replace("NODES", "5").replace("symmetric5", "swept") + (
+        "sweep:\n  ends.b.position: [[80.0, 0.0, -20.0], [60.0, 30.0, -10.0], "
+        "[90.0, -20.0, -40.0]]\n"
+    )
+    ds = _run(tmp_path, "swept", text)
+    elev, az = ds["elevation"].values, ds["azimuth"].values
+    for i in range(3):
+        fa, tb = ds["force_a"].values[i], -ds["force_b"].values[i]
+        assert abs(elev[i, 0] - _direction(fa)) < 1e-12
+        assert abs(elev[i, -1] - _direction(tb)) < 1e-12
+        assert abs(az[i, 0] - math.atan2(fa[1], fa[0])) < 1e-12
+        assert abs(az[i, -1] - math.atan2(tb[1], tb[0])) < 1e-12
+    assert elev[1, 0] < 0.0 < elev[1, -1]  # down from A, up to B (B is higher: still)
