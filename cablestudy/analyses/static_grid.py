@@ -595,9 +595,7 @@ def array_outputs(
     return out, status, messages
 
 
-def _tangent_ends(
-    template: Study, tension: np.ndarray, lines: SweptLines | None
-) -> dict[str, Any]:
+def _tangent_ends(template: Study, tension: np.ndarray, lines: SweptLines | None) -> dict[str, Any]:
     """:func:`cablestudy.analyses.static.tangent_ends` of each case of a chunk (its own
     line's, with ``lines``): ``free_a``, ``free_b`` (cases,) and ``floor`` (cases,)."""
     from .static import tangent_ends
