@@ -213,10 +213,11 @@ def tangent_ends(line: Any, tolerance: float, tension: np.ndarray) -> dict[str, 
     times the largest tension (:mod:`cablestudy.statics.verify`)."""
     segs = line.segments
     total = sum(seg.length for seg in segs)
+    near = 1e-9 * total  # an attachment put at the end, up to the round-off of its s
     at = [att.s for att in line.attachments]
     return {
-        "free_a": segs[0].bending_stiffness == 0.0 and not any(s == 0.0 for s in at),
-        "free_b": segs[-1].bending_stiffness == 0.0 and not any(s >= total for s in at),
+        "free_a": segs[0].bending_stiffness == 0.0 and not any(s <= near for s in at),
+        "free_b": segs[-1].bending_stiffness == 0.0 and not any(s >= total - near for s in at),
         "floor": 10.0 * tolerance * np.max(np.abs(np.asarray(tension, dtype=float)), axis=-1),
     }
 

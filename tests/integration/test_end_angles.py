@@ -178,3 +178,23 @@ def test_a_swept_studys_cases_take_their_own_end_forces(tmp_path: Path) -> None:
         assert abs(az[i, 0] - math.atan2(fa[1], fa[0])) < 1e-12
         assert abs(az[i, -1] - math.atan2(tb[1], tb[0])) < 1e-12
     assert elev[1, 0] < 0.0 < elev[1, -1]  # down from A, up to B (B is higher: still)
+
+
+def test_an_attachment_at_an_end_keeps_that_ends_difference(tmp_path: Path) -> None:
+    # a clump weight at B itself: force_b carries it (the line's tangent just before B
+    # is along -force_b plus the clump's weight, not -force_b), so B keeps the one-sided
+    # difference; one 3 m from A leaves T(0) = force_a along the tangent at A
+    text = (
+        SYMMETRIC.replace("NODES", "11")
+        .replace("symmetric11", "clump")
+        .replace(
+            "ends:",
+            "  attachments:\n    - {s: 3.0, mass: 3000.0}\n    - {s: 100.0, mass: 3000.0}\nends:",
+        )
+    )
+    ds = _run(tmp_path, "clump", text)
+    elev = ds["elevation"].values
+    old = _one_sided(ds, L)
+    assert abs(elev[0] - _direction(ds["force_a"].values)) < 1e-12
+    assert abs(elev[-1] - old[1]) < 1e-12
+    assert abs(elev[-1] - _direction(-ds["force_b"].values)) > 0.3  # 0.94 against 1.38 rad
