@@ -136,6 +136,19 @@ class Environment(StrictModel):
     def seabed_z(self, x: Any, y: Any) -> Any:
         """Height [m] of the seabed under (x, y) [m] (numbers or arrays; with a depth)."""
         assert self.depth is not None
-        rise = math.tan(math.radians(self.seabed.slope_deg))
-        heading = math.radians(self.seabed.slope_heading_deg)
-        return -self.depth + rise * (x * math.cos(heading) + y * math.sin(heading))
+        rise, cos, sin = seabed_slope(self.seabed.slope_deg, self.seabed.slope_heading_deg)
+        return seabed_height(self.depth, rise, cos, sin, x, y)
+
+
+def seabed_slope(slope_deg: float, heading_deg: float) -> tuple[float, float, float]:
+    """The seabed's rise tan(slope) and the cosine and sine of its heading (math, as
+    every check of the study takes them)."""
+    heading = math.radians(heading_deg)
+    return math.tan(math.radians(slope_deg)), math.cos(heading), math.sin(heading)
+
+
+def seabed_height(depth: Any, rise: Any, cos: Any, sin: Any, x: Any, y: Any) -> Any:
+    """Height [m] of a plane seabed ``depth`` [m] deep at the origin, rising by ``rise``
+    along the heading (``cos``, ``sin``), under (x, y) [m]; numbers or arrays (one
+    seabed per case in a grid)."""
+    return -depth + rise * (x * cos + y * sin)

@@ -43,6 +43,7 @@ from .cases import (
     parse_sweep,
     report_sweep_faults,
 )
+from .environment import seabed_height, seabed_slope
 from .grid_lines import MAX_LINES, line_count, line_index, line_studies, per_line, weightless
 from .loader import StudyError, StudySource, validate_data
 from .study import Study
@@ -401,14 +402,13 @@ def _combined_ok(grid: CaseGrid) -> bool:
     if any(e.depth is None for e in envs):
         return False  # a seabed in some cases only: never from a swept number
     depth = np.array([e.depth for e in envs], dtype=float)[which]
-    rise = np.array([math.tan(math.radians(e.seabed.slope_deg)) for e in envs])[which]
-    # cos and sin as Study._physical takes them (math, per distinct seabed)
-    cos = np.array([math.cos(math.radians(e.seabed.slope_heading_deg)) for e in envs])[which]
-    sin = np.array([math.sin(math.radians(e.seabed.slope_heading_deg)) for e in envs])[which]
+    # per distinct seabed as Environment.seabed_z takes it, then per case
+    slope = np.array([seabed_slope(e.seabed.slope_deg, e.seabed.slope_heading_deg) for e in envs])
+    rise, cos, sin = (slope[:, j][which] for j in range(3))
     for label, (x, y, z) in (("a", pa), ("b", pb)):
         if getattr(t.ends, label).kind != "fixed":
             continue
-        ground = -depth + rise * (x * cos + y * sin)
+        ground = seabed_height(depth, rise, cos, sin, x, y)
         if np.any(z < ground - 1e-9 * depth):
             return False
     return True
