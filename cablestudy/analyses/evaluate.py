@@ -34,7 +34,13 @@ from .dynamic import dynamic_problems, linear_model_problems, presolve_frequency
 from .fallback import static_fallback
 from .grid_chunk import GridChunk, records_chunk
 from .modal import modal_outputs, solve_modal
-from .plausibility import dynamic_warnings, fallback_warning, joined, strain_warning
+from .plausibility import (
+    dynamic_warnings,
+    fallback_warning,
+    joined,
+    strain_warning,
+    take_step_warning,
+)
 from .static import (
     largest_static_strain,
     law_problems,
@@ -299,7 +305,7 @@ def case_warnings(
     a line above the water's surface (:func:`cablestudy.analyses.surface.case_surface_warning`);
     slack and an unsettled time-domain run, when the dynamic analysis succeeded (named
     in ``ok``)."""
-    found: list[str] = []
+    found: list[str] = [take_step_warning(data)]  # the time domain's step check
     if static is not None:
         limit = case.study.analysis.static.strain_warning
         found.append(strain_warning(largest_static_strain(case.study, static), limit))

@@ -13,6 +13,8 @@ import math
 
 import numpy as np
 
+from ..dynamics.step_check import STEP  # the time domain's step check
+
 STRAIN = "strain"
 SURFACE = "surface"
 SLACK = "slack"
@@ -20,7 +22,16 @@ UNSETTLED = "unsettled"
 FALLBACK = "fallback"
 UNCHECKED = "unchecked"
 #: the kinds of warning, in the order a case lists them
-KINDS = (STRAIN, SURFACE, SLACK, UNSETTLED, FALLBACK, UNCHECKED)
+KINDS = (STRAIN, SURFACE, SLACK, UNSETTLED, STEP, FALLBACK, UNCHECKED)
+#: the key under which a time-domain run hands its step check's warning to the case's
+#: warnings (popped from the outputs before they become data variables)
+STEP_WARNING_KEY = "_step_warning"
+
+
+def take_step_warning(data: dict) -> str:
+    """The step check's warning of a case's outputs ``data`` ('' if none), removed from
+    them (it is a warning, not a data variable)."""
+    return str(data.pop(STEP_WARNING_KEY, "") or "")
 #: between the warnings of one case
 SEPARATOR = "; "
 

@@ -82,6 +82,13 @@ def pulley_problems(case: Case, src: StudySource) -> list[str]:
                     "tension_max/min/mean and pulley_arc_length_min/max are written; "
                     "allowed: omit it"
                 )
+        if "step_tolerance" in dyn.model_fields_set:  # the step check (issue 24)
+            out.append(
+                f"{at('analysis', 'dynamic', 'step_tolerance')}: analysis.dynamic."
+                f"step_tolerance: {dyn.step_tolerance!r}: the step check re-runs a period "
+                "of the line's own time domain; a catenary line over sliding pulleys is "
+                "run by its own (no step check); allowed: omit it, or no line.pulleys"
+            )
         line = study.line
         breaks = [("line", "failure")] if line.failure is not None else []
         breaks += [

@@ -266,6 +266,7 @@ SPRING_UNUSED_DYNAMIC_KEYS = (
     "newton_tolerance",
     "max_newton_iterations",
     "steady_tolerance",
+    "step_tolerance",
     "steady_window",
     "min_periods",
     "max_periods",

@@ -197,6 +197,9 @@ def evaluate_system_case(case: Case) -> CaseRecord:
             trim_lru(_STATICS_CACHE, _CACHE_SIZE)
     if study.analysis.dynamic is not None:  # the system time domain (analyses.system_dynamic)
         status, message = _dynamics(case, system, res, status, message, deadline, data)
+        from .plausibility import take_step_warning  # the time domain's step check
+
+        warnings.append(take_step_warning(data))
         if int(data.get("steady_converged", 1)) == 0 and study.analysis.dynamic.duration is None:
             # the one-line study's text: one warning ('; ' separates warnings)
             from .plausibility import unsettled_warning

@@ -270,6 +270,10 @@ def run_system_dynamic(
         tension_step=dyn.tension_resolution * scale,
         history_periods=hist.periods if hist else 2.0,
         history_samples=hist.samples_per_period if hist else 64,
+        # the step check (cablestudy.dynamics.step_check)
+        step_tolerance=dyn.step_tolerance,
+        points_per_period=dyn.points_per_period,
+        line_names=tuple(case.study.lines),
         **march_settings(dyn),
     )
     res = simulate_system(problem, deadline=deadline)
@@ -310,6 +314,10 @@ def run_system_dynamic(
     bad = [k for k, v in out.items() if v.dtype.kind == "f" and not np.all(np.isfinite(v))]
     if bad:
         return STATUS_NUMERICAL, f"non-finite values in {', '.join(bad)}", head
+    if res.step_warning:  # the step check's: a warning, not a variable (system.py)
+        from .plausibility import STEP_WARNING_KEY
+
+        out[STEP_WARNING_KEY] = res.step_warning  # type: ignore[assignment]
     return STATUS_OK, "", out
 
 

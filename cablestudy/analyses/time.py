@@ -24,6 +24,7 @@ from .line_model import (
     roundoff_force,
     winch_settings,
 )
+from .plausibility import STEP_WARNING_KEY
 
 if TYPE_CHECKING:  # imported where used: `cablestudy validate` needs none of them
     from ..dynamics.time_problem import DynamicProblem, DynamicResult
@@ -82,6 +83,10 @@ def dynamic_problem(case: Case, static: StaticResult) -> DynamicProblem | str:
         **element_breaks(case.study, line),
         **winch_settings(case.study.line.winch),
         pulleys=sliding,
+        # the step check (cablestudy.dynamics.step_check); not over sliding pulleys,
+        # whose run is its own (documented)
+        step_tolerance=None if sliding is not None else dyn.step_tolerance,
+        points_per_period=dyn.points_per_period,
         **march_settings(dyn),
     )
 
@@ -110,6 +115,8 @@ def dynamic_outputs(
         "rejected_steps": np.asarray(res.rejected_steps),
         "dynamic_method": np.asarray("time"),
     }
+    if res.step_warning:  # the step check's (a warning, not a variable: evaluate.py)
+        out[STEP_WARNING_KEY] = res.step_warning
     if res.touchdown_tracked:  # a seabed to touch: NaN when the line does not touch it
         out["touchdown_min"] = np.asarray(res.touchdown_min)
         out["touchdown_max"] = np.asarray(res.touchdown_max)

@@ -319,7 +319,10 @@ def march(  # noqa: ANN201, PLR0913, PLR0915
     ``ext_end`` (2, 2) the ends', ``ext_touchdown`` (2,) the touchdown point's range,
     ``ext_z`` (n,) the nodes' highest elevation;
     ``st_i`` = [level, clean steps, steps, Newton iterations, rejected steps, positions
-    kept for the predictor, parted (1/0), the parted element].
+    kept for the predictor, parted (1/0), the parted element, seabed contact changes
+    (a node landing or lifting off between accepted steps: within the touchdown
+    tolerance of the seabed or not), accepted steps in which an element changed between
+    slack and taut] (the last two counted for :mod:`.step_check`).
     ``ends`` (2,) and ``forces`` (2, 3) hold the last accepted step's end tensions and
     forces of the line on the ends.
 
@@ -357,6 +360,13 @@ def march(  # noqa: ANN201, PLR0913, PLR0915
     end_x = np.empty((2, 3))
     corr = np.empty(3)
     gap = np.empty(n)
+    # each node on the seabed (within the touchdown tolerance) at the last accepted step
+    on_bed = np.zeros(n, dtype=np.bool_)
+    if has_seabed:
+        nz = seabed_normal[2]
+        for i in range(n):
+            bed = (seabed_offset - seabed_normal[0] * x0[i, 0] - seabed_normal[1] * x0[i, 1]) / nz
+            on_bed[i] = x0[i, 2] - bed <= touchdown_tolerance
     accepted = 0
     break_at = ctl[0]
     while True:
@@ -510,6 +520,10 @@ def march(  # noqa: ANN201, PLR0913, PLR0915
                     seabed_offset - seabed_normal[0] * x0[i, 0] - seabed_normal[1] * x0[i, 1]
                 ) / nz
                 gap[i] = x0[i, 2] - bed
+                on = gap[i] <= touchdown_tolerance
+                if on != on_bed[i]:
+                    st_i[8] += 1
+                    on_bed[i] = on
             td = touchdown_from_gap(s, gap, touchdown_tolerance)
             if not math.isnan(td):
                 ext_touchdown[0] = td if math.isnan(ext_touchdown[0]) else min(ext_touchdown[0], td)
@@ -522,6 +536,8 @@ def march(  # noqa: ANN201, PLR0913, PLR0915
         st_f[7] = line_max
         st_f[8] = td
         st_f[9] = h
+        if switched:
+            st_i[9] += 1
         relax_level(st_i, switched or steep)
         accepted += 1
         at_boundary = abs(t - boundary) <= eps_t

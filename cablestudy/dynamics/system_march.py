@@ -309,6 +309,29 @@ def set_drives(t, D, x1, v1, a1, he_node, he_drive, dX, dV, dA, bx, bR):  # noqa
 
 
 @njit(cache=True, nogil=True)
+def _on_seabed(S, x, on_bed, count):  # noqa: ANN001, ANN201
+    """Each node of a line with seabed contact on the seabed or not into ``on_bed``
+    (within a millionth of its line's unstretched length of the plane, vertically: the
+    single line's touchdown rule); with ``count``, how many changed."""
+    no, eo, rest, ksb, sbn, sbo = S[0], S[1], S[4], S[24], S[22], S[23]
+    changes = 0
+    for l in range(no.shape[0] - 1):  # noqa: E741
+        length = 0.0
+        for k in range(eo[l], eo[l + 1]):
+            length += rest[k]
+        tol = 1e-6 * max(length, 1.0)
+        for i in range(no[l], no[l + 1]):
+            if ksb[i] <= 0.0:
+                continue
+            bed = (sbo[l] - sbn[0] * x[i, 0] - sbn[1] * x[i, 1]) / sbn[2]
+            on = x[i, 2] - bed <= tol
+            if count and on != on_bed[i]:
+                changes += 1
+            on_bed[i] = on
+    return changes
+
+
+@njit(cache=True, nogil=True)
 def system_march(  # noqa: ANN201, PLR0913, PLR0915
     st_f,
     st_i,
@@ -369,7 +392,9 @@ def system_march(  # noqa: ANN201, PLR0913, PLR0915
 ):  # noqa: ANN001
     """Time steps from ``st_f[0]`` to the period boundary ``st_f[1]`` [s] (or
     ``budget`` accepted steps: :data:`ACCEPTED`). ``st_i`` = [level, clean steps, steps, Newton
-    iterations, rejected steps, positions kept]. After each accepted step: the lines'
+    iterations, rejected steps, positions kept, seabed contact changes of nodes between
+    accepted steps, accepted steps with an element changing between slack and taut] (the
+    last two for :mod:`.step_check`). After each accepted step: the lines'
     end forces ``forces`` (L, 2, 3) and the bodies' ``body_f`` (B, 6); folded into the
     period's extremes ``ext_end`` (2, L, 2) of the end tensions (max, min) and their
     integral ``int_end``, ``ext_el`` (2, E) of the element tensions, ``ext_body``
@@ -385,6 +410,11 @@ def system_march(  # noqa: ANN201, PLR0913, PLR0915
     has_seabed = ksb.max() > 0.0
     m = tension.shape[0]
     corr = np.empty(3)
+    # each node on the seabed at the last accepted step (the single line's rule: within
+    # a millionth of its line's length of the plane, measured vertically)
+    on_bed = np.zeros(x0.shape[0], dtype=np.bool_)
+    if has_seabed:
+        _on_seabed(S, x0, on_bed, False)
     accepted = 0
     while True:
         t = st_f[0]
@@ -476,6 +506,10 @@ def system_march(  # noqa: ANN201, PLR0913, PLR0915
             for k in range(6):
                 ext_body[0, b, k] = max(ext_body[0, b, k], body_f[b, k])
                 ext_body[1, b, k] = min(ext_body[1, b, k], body_f[b, k])
+        if has_seabed:
+            st_i[6] += _on_seabed(S, x0, on_bed, True)
+        if switched:
+            st_i[7] += 1
         relax_level(st_i, switched or steep)
         at_boundary = abs(tn - boundary) <= eps_t
         st_f[0] = boundary if at_boundary else tn

@@ -21,16 +21,28 @@ Pure: arrays in, a :class:`SystemDynamicResult` out (status, message, counters).
 
 from __future__ import annotations
 
+import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
 from ..statics.base import STATUS_OK
 from .alpha_step import AlphaParameters
 from .model import static_equilibrium
+from .step_check import failed_warning, restore, snapshot, step_warning, verdict_of
 from .system_kernels import assemble_all, point_forces
-from .system_march import BOUNDARY, FAILED, end_forces, set_drives, system_march, system_static
+from .system_march import (
+    ACCEPTED,
+    BOUNDARY,
+    FAILED,
+    end_forces,
+    set_drives,
+    system_march,
+    system_static,
+)
 from .system_model import Drives, PackedSystem, SlotMotion, work_arrays
 from .time_problem import NEWTON_RESCUE_HALVINGS, MarchSettings, newton_failed, out_of_time
 
@@ -46,6 +58,8 @@ class SystemProblem(MarchSettings):
     anchor: np.ndarray
     drives: Drives
     motion: SlotMotion
+    #: the lines' names (the step check's warning; empty: numbered)
+    line_names: tuple[str, ...] = ()
 
 
 @dataclass(kw_only=True)
@@ -71,6 +85,9 @@ class SystemDynamicResult:
     rejected_steps: int = 0
     periods: float = 0.0
     history: dict[str, np.ndarray] | None = None
+    #: the step check's verdict (:mod:`.step_check`; None: not run) and warning
+    step_check: Any = None
+    step_warning: str = ""
 
 
 def equilibrium(
@@ -204,7 +221,7 @@ def simulate_system(
     t_ramp = problem.motion.ramp_time
     eps_t = 1e-9 * T
     st_f = np.array([0.0, min(T, t_stop), 0.0])
-    st_i = np.zeros(6, dtype=np.int64)
+    st_i = np.zeros(8, dtype=np.int64)
     past_x = np.zeros((2, *x0.shape))
     past_t = np.zeros(2)
     x_pred = np.empty_like(x0)
@@ -232,19 +249,33 @@ def simulate_system(
     converged = False
     lmin = pk.lmin
     watch = watched_ends(pk, dr, problem.motion)
-    while True:
-        if deadline is not None and time.monotonic() > deadline:
-            return out_of_time(result, st_f[0])
-        code = system_march(
+
+    def run_march(step: float, budget: int, ext: tuple[np.ndarray, ...]) -> int:
+        """The compiled step loop from the state in the arrays, at base ``step``, its
+        extremes into ``ext`` (end, integral, element, body, z)."""
+        return system_march(
             st_f, st_i, x0, v0, a0, F0, Fp0, x1, v1, a1, x_pred, past_x, past_t, pk.frac,
             strain_prev, D, pk.he_node, pk.he_drive, pk.he_line, pk.he_end, pk.he_body,
-            dX, dV, dA, bx, bR, forces, ends_prev, ext_end, int_end, ext_el, ext_body, ext_z,
-            body_f, watch,
-            problem.step, problem.max_refinement,
+            dX, dV, dA, bx, bR, forces, ends_prev, *ext, body_f, watch,
+            step, problem.max_refinement,
             problem.max_refinement + NEWTON_RESCUE_HALVINGS, problem.tension_step,
             par.alpha_m, par.alpha_f, par.beta, par.gamma, problem.newton_tolerance,
             problem.max_newton_iterations, budget, anchor, S, W, r, rp, dx, dp, Fp, lmin, eps_t,
         )  # fmt: skip
+
+    # the step check (:mod:`.step_check`): the state at the start of each period
+    checking = problem.step_tolerance is not None
+    state = {
+        "x0": x0, "v0": v0, "a0": a0, "F0": F0, "Fp0": Fp0, "x1": x1, "v1": v1, "a1": a1,
+        "past_x": past_x, "past_t": past_t, "strain_prev": strain_prev, "anchor": anchor,
+        "forces": forces, "ends_prev": ends_prev, "body_f": body_f, "st_f": st_f,
+        "st_i": st_i, "Fp": Fp, **{f"W{k}": w for k, w in enumerate(W)},
+    }  # fmt: skip
+    period_start = snapshot(state) if checking else None
+    while True:
+        if deadline is not None and time.monotonic() > deadline:
+            return out_of_time(result, st_f[0])
+        code = run_march(problem.step, budget, (ext_end, int_end, ext_el, ext_body, ext_z))
         t = float(st_f[0])
         if code == FAILED:
             counters = (int(st_i[2]), int(st_i[3]), int(st_i[4]))
@@ -273,6 +304,8 @@ def simulate_system(
         if converged or final:
             break
         st_f[1] = min(st_f[1] + T, t_stop)
+        if checking:
+            period_start = snapshot(state)
     w = max(1, problem.steady_window) if problem.duration is None else len(periods)
     win = periods[-min(w, len(periods)) :]
     result.end_max = np.max([p[0] for p in win], axis=0)
@@ -289,7 +322,63 @@ def simulate_system(
     result.periods = t / T
     if single:
         result.history = _resample(np.array(hist_t), np.array(hist_f), t, problem)
+    if checking and periods:
+        _check_step(problem, result, state, period_start, periods[-1], run_march, fresh, deadline)
     return result
+
+
+def _check_step(  # noqa: PLR0913
+    problem: SystemProblem,
+    result: SystemDynamicResult,
+    state: dict[str, np.ndarray],
+    start: dict[str, np.ndarray],
+    last: tuple[np.ndarray, ...],
+    run_march: Callable[[float, int, tuple[np.ndarray, ...]], int],
+    fresh: Callable[[], tuple[np.ndarray, ...]],
+    deadline: float | None,
+) -> None:
+    """The step check of :mod:`.step_check` on a finished system run, as a line's
+    (:func:`.timedomain._check_step`): when its last period (``last``: its extremes)
+    had seabed landings or lift-offs or slack-taut switches, that period again from the
+    saved ``start`` at half the step; every line end's extremes against the run's, each
+    within ``step_tolerance`` of its line's largest end-tension range in the period."""
+    contacts = int(state["st_i"][6] - start["st_i"][6])
+    switches = int(state["st_i"][7] - start["st_i"][7])
+    if contacts == 0 and switches == 0:
+        return
+    restore(state, start)
+    ext = fresh()
+    p = problem.steps_per_period
+    code = ACCEPTED
+    while code == ACCEPTED:
+        if deadline is not None and time.monotonic() > deadline:
+            result.step_warning = failed_warning("time limit reached", p)
+            return
+        code = run_march(problem.step * problem.step_check_factor, 256, ext)
+    if code != BOUNDARY:
+        result.step_warning = failed_warning(
+            f"Newton did not converge at t = {float(state['st_f'][0]):.6g} s", p
+        )
+        return
+    L = last[0].shape[0]
+    coarse = np.stack([last[0].ravel(), last[1].ravel()], axis=1)  # (L * 2, 2)
+    fine = np.stack([ext[0][0].ravel(), ext[0][1].ravel()], axis=1)
+    names = problem.line_names or tuple(f"line {l}" for l in range(L))  # noqa: E741
+    verdict = verdict_of(
+        coarse,
+        fine,
+        coarse[:, 0] - coarse[:, 1],
+        names=tuple(f"end {'AB'[e]} of line {names[l]}" for l in range(L) for e in range(2)),  # noqa: E741
+        step_tolerance=float(problem.step_tolerance),  # type: ignore[arg-type]
+        floor=problem.newton_tolerance * math.sqrt(max(ln.n_nodes for ln in problem.packed.lines)),
+        contact_changes=contacts,
+        slack_switches=switches,
+        points_per_period=p,
+        factor=problem.step_check_factor,
+        line_of_end=np.repeat(np.arange(L), 2),
+    )
+    result.step_check = verdict
+    result.step_warning = step_warning(verdict)
 
 
 def _resample(

@@ -52,6 +52,14 @@ class MarchSettings:
     history : whether to keep time histories
     history_periods : [periods] length of the kept record
     history_samples : samples per period of the kept record
+    step_tolerance : [-] the step check (:mod:`.step_check`): where the last period had
+        seabed landings or lift-offs or slack-taut switches, it is run again from its
+        start at half the step, and its end tensions' extremes must agree within this
+        fraction of the period's dynamic range; None: no check
+    points_per_period : steps a period of the fastest harmonic the step was set from
+        (the check's message; 0: the period over the step)
+    step_check_factor : the check's re-run step over the run's (1/2; 1 in a test: the
+        same step must give the run's extremes bit for bit)
     """
 
     period: float
@@ -69,6 +77,14 @@ class MarchSettings:
     history: bool = False
     history_periods: float = 2.0
     history_samples: int = 64
+    step_tolerance: float | None = None
+    points_per_period: float = 0.0
+    step_check_factor: float = 0.5
+
+    @property
+    def steps_per_period(self) -> float:
+        """``points_per_period``, or the period over the step when not given."""
+        return self.points_per_period or self.period / self.step
 
     def settled(self, p_max: Any, p_min: Any, nodes: int) -> bool:
         """Whether the last ``steady_window`` periods' maxima and minima (periods first)
@@ -221,6 +237,10 @@ class DynamicResult:
     line_s: np.ndarray = field(default_factory=lambda: np.zeros(0))
     history: dict[str, np.ndarray] | None = None
     record: dict[str, np.ndarray] | None = None
+    #: the step check's verdict (:mod:`.step_check`; None: not run, no risk) and its
+    #: warning ('' when the extremes agree)
+    step_check: Any = None
+    step_warning: str = ""
 
     @property
     def success(self) -> bool:

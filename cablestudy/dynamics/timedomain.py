@@ -41,6 +41,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import replace
 
 import numpy as np
@@ -49,7 +50,8 @@ from ..statics.base import STATUS_NUMERICAL
 from .alpha_step import AlphaParameters
 from .assembly import evaluate
 from .discrete_line import DiscreteLine
-from .integrator import NEWTON_FAILED, PARTED, REACHED_BOUNDARY, WINCH_LIMIT, march
+from .integrator import NEWTON_FAILED, PARTED, REACHED_BOUNDARY, STEP_BUDGET, WINCH_LIMIT, march
+from .step_check import failed_warning, restore, snapshot, step_warning, verdict_of
 from .time_problem import (
     NEWTON_RESCUE_HALVINGS,
     DynamicProblem,
@@ -159,7 +161,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
     st_f = np.array(
         [0.0, min(T, t_stop), t_static, t_static, 0.0, c_line0, t_static, c_line0, 0.0, 0.0]
     )
-    st_i = np.zeros(8, dtype=np.int64)
+    st_i = np.zeros(10, dtype=np.int64)
     # the same over the whole run (what a run with a break reports), folded at every
     # period boundary
     r_max, r_min, r_int, r_line = t_static, t_static, 0.0, c_line0
@@ -204,22 +206,9 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         np.minimum(extremes.element[1], work.tension, out=extremes.element[1])
         np.minimum(extremes.end[1], ends, out=extremes.end[1])
 
-    if problem.breakable and bool(np.any(work.tension > limit)):
-        # the model's own equilibrium is already over a limit: it parts at once
-        st_i[7] = int(np.argmax(work.tension / limit))
-        st_i[6] = 1
-        line.broken[st_i[7]] = True
-        part_restart()
-        if problem.after_break == "stop":
-            result.tension_max = result.tension_min = result.tension_mean = t_static
-            result.tension_max_line = c_line0
-            return result
-
-    converged = False
-    while True:
-        if deadline is not None and time.monotonic() > deadline:
-            return out_of_time(result, st_f[0])
-        code = march(
+    def run_march(step: float, single: bool, budget: int) -> int:
+        """The compiled step loop from the state in the arrays, at base ``step``."""
+        return march(
             st_f,
             st_i,
             x0,
@@ -244,7 +233,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             extremes.z,
             line.s,
             problem.touchdown_tolerance,
-            problem.step,
+            step,
             problem.max_refinement,
             problem.max_refinement + NEWTON_RESCUE_HALVINGS,
             problem.tension_step,
@@ -270,6 +259,36 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             line.first_per_length,
             s_ini,
         )
+
+    if problem.breakable and bool(np.any(work.tension > limit)):
+        # the model's own equilibrium is already over a limit: it parts at once
+        st_i[7] = int(np.argmax(work.tension / limit))
+        st_i[6] = 1
+        line.broken[st_i[7]] = True
+        part_restart()
+        if problem.after_break == "stop":
+            result.tension_max = result.tension_min = result.tension_mean = t_static
+            result.tension_max_line = c_line0
+            return result
+
+    # the step check (:mod:`.step_check`): the state at the start of each period, and
+    # the end tensions' extremes (max, min; ends A, B) of the last period closed
+    checking = problem.step_tolerance is not None
+    state = {
+        "x0": x0, "v0": v0, "a0": a0, "x1": x1, "v1": v1, "a1": a1, "F0": F0,
+        "strain_prev": strain_prev, "tension_prev": tension_prev, "past_x": past_x,
+        "past_t": past_t, "st_f": st_f, "st_i": st_i, "ends": ends, "forces": forces,
+        "ext_element": extremes.element, "ext_end": extremes.end,
+        "ext_touchdown": extremes.touchdown, "ext_z": extremes.z,
+        **{f"work_{k}": v for k, v in vars(work).items() if isinstance(v, np.ndarray)},
+    }  # fmt: skip
+    period_start = snapshot(state) if checking else None
+    last_end = extremes.end.copy()
+    converged = False
+    while True:
+        if deadline is not None and time.monotonic() > deadline:
+            return out_of_time(result, st_f[0])
+        code = run_march(problem.step, single, budget)
         t = float(st_f[0])
         if code == NEWTON_FAILED:
             counters = (int(st_i[2]), int(st_i[3]), int(st_i[4]))
@@ -312,6 +331,7 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
             p_mean.append(float(st_f[4]) / max(t - c_start, 1e-300))
             p_line.append(float(st_f[5]))
             extremes.close()
+        last_end[:] = extremes.end
         extremes.start(work.tension, ends, float(st_f[8]), x0[:, 2])
         st_f[2] = st_f[3] = tension
         st_f[4] = 0.0
@@ -326,6 +346,8 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         if converged or final:
             break
         st_f[1] = min(st_f[1] + T, t_stop)
+        if checking:
+            period_start = snapshot(state)
 
     broke = bool(st_i[6])
     steps, newton, rejected = int(st_i[2]), int(st_i[3]), int(st_i[4])
@@ -346,7 +368,60 @@ def simulate(problem: DynamicProblem, *, deadline: float | None = None) -> Dynam
         result.tension_max_line = r_line
     result.steady_converged = converged
     result.winch_paid_out = problem.paid_out(t)
-    return close_run(result, t, (steps, newton, rejected), extremes.window(broke), hist)
+    close_run(result, t, (steps, newton, rejected), extremes.window(broke), hist)
+    if checking and not broke:
+        _check_step(problem, result, state, period_start, last_end, run_march, deadline)
+    return result
+
+
+def _check_step(  # noqa: PLR0913
+    problem: DynamicProblem,
+    result: DynamicResult,
+    state: dict[str, np.ndarray],
+    start: dict[str, np.ndarray],
+    coarse: np.ndarray,
+    run_march: Callable[[float, bool, int], int],
+    deadline: float | None,
+) -> None:
+    """The step check of :mod:`.step_check` on a finished run: when its last period
+    (from the saved ``start`` to now) had seabed landings or lift-offs or slack-taut
+    switches, that period again from ``start`` at half the step (the run's arrays
+    ``state`` are overwritten: the results are already out), its end tensions' extremes
+    against the run's ``coarse`` ones (2, 2) (max, min; ends A, B), into
+    ``result.step_check`` and ``result.step_warning``."""
+    contacts = int(state["st_i"][8] - start["st_i"][8])
+    switches = int(state["st_i"][9] - start["st_i"][9])
+    if contacts == 0 and switches == 0:
+        return
+    restore(state, start)
+    st_f = state["st_f"]
+    p = problem.steps_per_period
+    code = STEP_BUDGET
+    while code == STEP_BUDGET:
+        if deadline is not None and time.monotonic() > deadline:
+            result.step_warning = failed_warning("time limit reached", p)
+            return
+        code = run_march(problem.step * problem.step_check_factor, False, 256)
+    if code != REACHED_BOUNDARY:
+        why = {NEWTON_FAILED: "Newton did not converge", PARTED: "the line parted"}
+        what = why.get(code, "the winch left its bounds")
+        result.step_warning = failed_warning(f"{what} at t = {float(st_f[0]):.6g} s", p)
+        return
+    fine = state["ext_end"]
+    verdict = verdict_of(
+        coarse.T,
+        fine.T,
+        coarse[0] - coarse[1],
+        names=("end A", "end B"),
+        step_tolerance=float(problem.step_tolerance),  # type: ignore[arg-type]
+        floor=problem.newton_tolerance * math.sqrt(problem.line.n_nodes),
+        contact_changes=contacts,
+        slack_switches=switches,
+        points_per_period=p,
+        factor=problem.step_check_factor,
+    )
+    result.step_check = verdict
+    result.step_warning = step_warning(verdict)
 
 
 def warm_up() -> None:

@@ -177,6 +177,7 @@ TIME_ONLY_KEYS = (
     "max_newton_iterations",
     "ramp_periods",
     "steady_tolerance",
+    "step_tolerance",
     "steady_window",
     "min_periods",
     "max_periods",
@@ -420,6 +421,14 @@ class DynamicSettings(StrictModel):
         le=0.5,
         description="steady state: change of the per-period max and min tension, relative "
         "to the period's dynamic range (max - min) [-]",
+    )
+    step_tolerance: Positive = Field(
+        0.01,
+        le=1.0,
+        description="step check of the time domain: where the last period has seabed "
+        "landings or lift-offs or slack-taut switches, it is run again at half the step; its "
+        "end-tension extremes must agree within this fraction of the period's dynamic range, "
+        "else the case carries a 'step' warning [-]",
     )
     steady_window: int = Field(2, ge=1, le=100, description="periods that must agree")
     min_periods: int = Field(3, ge=1, description="periods run after the ramp at least")
