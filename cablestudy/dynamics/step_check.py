@@ -127,16 +127,16 @@ def step_warning(verdict: StepVerdict) -> str:
     rng = float(verdict.ranges[e])
     share = abs(b - a) / rng if rng > 0.0 else math.inf
     return (
-        f"{STEP}: the {what} tension at {verdict.names[e]} depends on the time step: "
-        f"{a:.6g} N at points_per_period {p:g}, {b:.6g} N with the last period run again "
-        f"at {p_fine:g} from the same state ({abs(b - a):.4g} N apart, {share:.3g} of the "
-        f"period's dynamic range {rng:.4g} N, over analysis.dynamic.step_tolerance "
-        f"{verdict.step_tolerance:g}); the period has "
+        f"{STEP}: the {what} tension at {verdict.names[e]} over the last period depends on "
+        f"the time step: {a:.6g} N at points_per_period {p:g}, {b:.6g} N with the period run "
+        f"again at {p_fine:g} from the same state ({abs(b - a):.4g} N apart, {share:.3g} of "
+        f"the period's dynamic range {rng:.4g} N, over analysis.dynamic.step_tolerance "
+        f"{verdict.step_tolerance:g}). The period has "
         f"{events_text(verdict.contact_changes, verdict.slack_switches)}, which ring modes "
-        "the step damps instead of resolving; the reported values are those at "
-        f"{p:g}: about points_per_period {verdict.needed_points()} is needed (first-order "
-        "estimate: re-run there and compare), or damp the line's axial modes "
-        "(segments' damping_ratio) if the real line has such damping"
+        f"the step damps instead of resolving. The values reported are those at {p:g}: "
+        f"about points_per_period {verdict.needed_points()} is needed (a first-order "
+        "estimate: run there and compare), or the line's axial damping (segments' "
+        "damping_ratio) where the real line has it"
     )
 
 
@@ -144,8 +144,8 @@ def failed_warning(message: str, points_per_period: float) -> str:
     """The warning of a check whose re-run at half the step failed (``message``)."""
     return (
         f"{STEP}: not verified: the last period run again at half the step "
-        f"(points_per_period {points_per_period * 2:g}) failed ({message}); the reported "
-        f"values are those at {points_per_period:g}"
+        f"(points_per_period {points_per_period * 2:g}) failed ({message}), the values "
+        f"reported are those at {points_per_period:g}"
     )
 
 
