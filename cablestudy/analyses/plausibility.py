@@ -32,6 +32,8 @@ def take_step_warning(data: dict) -> str:
     """The step check's warning of a case's outputs ``data`` ('' if none), removed from
     them (it is a warning, not a data variable)."""
     return str(data.pop(STEP_WARNING_KEY, "") or "")
+
+
 #: between the warnings of one case
 SEPARATOR = "; "
 

@@ -60,9 +60,7 @@ def test_a_chain_landing_on_the_seabed_warns_of_its_step(tmp_path: Path) -> None
     halved step's value lies nearer the 1024-step answer than the run's own: the check's
     second value is a step towards the converged one (MoorDyn at dtM 1.25e-4 s: minimum
     57.9 kN at the fairlead, ours at 1024: 61.2 kN, at 64: 71.1 kN)."""
-    ds = run_study(
-        tmp_path, _leg("steps", "  analysis.dynamic.points_per_period: [64, 1024]\n")
-    )
+    ds = run_study(tmp_path, _leg("steps", "  analysis.dynamic.points_per_period: [64, 1024]\n"))
     assert np.all(ds["status"] == 0)
     coarse = ds.sel(points_per_period=64)
     text = str(coarse["warning"].values)
