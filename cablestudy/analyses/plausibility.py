@@ -13,14 +13,15 @@ import math
 
 import numpy as np
 
-from ..dynamics.step_check import STEP  # the time domain's step check
-
 STRAIN = "strain"
 SURFACE = "surface"
 SLACK = "slack"
 UNSETTLED = "unsettled"
 FALLBACK = "fallback"
 UNCHECKED = "unchecked"
+#: the time domain's step check (:mod:`cablestudy.dynamics.step_check`, which writes the
+#: same word: a statics run loads no dynamics)
+STEP = "step"
 #: the kinds of warning, in the order a case lists them
 KINDS = (STRAIN, SURFACE, SLACK, UNSETTLED, STEP, FALLBACK, UNCHECKED)
 #: the key under which a time-domain run hands its step check's warning to the case's

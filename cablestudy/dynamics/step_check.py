@@ -38,7 +38,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-#: the warning's kind (:data:`cablestudy.analyses.plausibility.KINDS`)
+#: the warning's kind (:data:`cablestudy.analyses.plausibility.STEP`, one of its KINDS)
 STEP = "step"
 #: the step of the re-run over the run's step
 HALF = 0.5
