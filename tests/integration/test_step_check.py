@@ -171,3 +171,37 @@ def test_a_systems_re_run_restarts_exactly(tmp_path: Path, system_runs) -> None:
     v = seen[-1].step_check
     assert v is not None and v.contact_changes > 0
     np.testing.assert_array_equal(v.fine, v.coarse)
+
+
+@pytest.mark.parametrize(
+    ("config", "words"),
+    [
+        ("catenary-pulley-dynamics", "a catenary line over sliding pulleys"),
+        ("cable-spring-polynomial", "not used by a kind: spring line"),
+        ("moustafa-figs2-5", "used by the time domain only"),
+    ],
+)
+def test_step_tolerance_is_refused_where_nothing_would_use_it(
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+    config: str,
+    words: str,
+) -> None:
+    """Given where no step check runs (a line over sliding pulleys: its own time
+    domain; a spring line: no time step; method frequency: no time domain), the key is
+    refused before any work, naming it (and its value, but for method frequency, whose
+    message is the one of every time-domain key)."""
+    from cablestudy.cli import main
+
+    root = Path(__file__).resolve().parents[2]
+    study = yaml.safe_load((root / "configs" / f"{config}.yaml").read_text())
+    dyn = study["analysis"]["dynamic"]
+    dyn["step_tolerance"] = 0.05
+    if config == "moustafa-figs2-5":
+        dyn["method"] = "frequency"
+    cfg = tmp_path / f"{config}.yaml"
+    cfg.write_text(yaml.safe_dump(study, sort_keys=False))
+    assert main(["validate", str(cfg)]) == 2
+    err = capsys.readouterr().err
+    assert "step_tolerance" in err and words in err, err
+    assert "0.05" in err or config == "moustafa-figs2-5", err
