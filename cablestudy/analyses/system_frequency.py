@@ -240,12 +240,36 @@ def _solve_group(
     value; the envelopes on each line's ``s`` grid of the static problem's nodes.
     ``full[i]`` false: case ``i``'s result is only its status and iterations (its
     outputs are whole; None: every result whole)."""
-    from ..dynamics.system_frequency_sweep import solve_system_sweep_arrays
     from .system_one_line import is_one_line, solve_one_line_group
 
     motions = [harmonic_motion(c.study) for c in cases]
     if is_one_line(system):  # the one-line study's solve and outputs, bit for bit
         return solve_one_line_group(motions, model, system, static, settings)
+    results, batch, finite = group_arrays(motions, model, system, static, settings, full)
+    return [
+        (
+            res,
+            {k: v[i, ...] for k, v in batch.items()},
+            [k for k, ok in finite.items() if not ok[i]],
+        )
+        for i, res in enumerate(results)
+    ]
+
+
+def group_arrays(
+    motions: list[tuple[np.ndarray, np.ndarray, float]],
+    model: Any,
+    system: Any,
+    static: Any,
+    settings: Any,
+    full: list[bool] | None = None,
+) -> tuple[list[Any], dict[str, np.ndarray], dict[str, np.ndarray]]:
+    """:func:`_solve_group`'s work for a system of more than one line, as arrays: the
+    cases' results, their outputs (one array per output, cases first) and per
+    floating-point output whether each case's values are all finite. ``motions``: each
+    case's :func:`harmonic_motion`."""
+    from ..dynamics.system_frequency_sweep import solve_system_sweep_arrays
+
     results, arr = solve_system_sweep_arrays(
         model,
         [2.0 * math.pi * f for _, _, f in motions],
@@ -254,7 +278,7 @@ def _solve_group(
         [U for _, U, _ in motions],
         full,
     )
-    n, L = len(cases), len(model.lines)
+    n, L = len(motions), len(model.lines)
     amp = np.abs(arr["end_tension"])  # (n, L, 2)
     T = model.post.static  # (L, 2) the static end tensions
     batch: dict[str, np.ndarray] = {
@@ -288,14 +312,7 @@ def _solve_group(
         for k, v in batch.items()
         if v.dtype.kind == "f"
     }
-    return [
-        (
-            res,
-            {k: v[i, ...] for k, v in batch.items()},
-            [k for k, ok in finite.items() if not ok[i]],
-        )
-        for i, res in enumerate(results)
-    ]
+    return results, batch, finite
 
 
 def _node_elevation(model: Any) -> np.ndarray:

@@ -364,6 +364,11 @@ def study_grid(src: StudySource) -> Any:
         grid = expand_system_grid(src, template)
         if grid is not None:
             return grid
+        from ..analyses.system_fd_grid import excitation_sweep
+
+        # a sweep of the harmonic excitation in the frequency domain: its chunks of cases
+        # evaluated as arrays (analyses.system_fd_grid)
+        return excitation_sweep(expand_grid(src, template))
     return expand_grid(src, template)
 
 
