@@ -93,7 +93,7 @@ def evaluate_excitation_chunk(cases: list[Case]) -> GridChunk:
     fault: that is its status and message."""
     from .frequency import drag_settings
     from .system import case_statics
-    from .system_frequency import group_arrays, harmonic_motion, system_frequency_model
+    from .system_frequency import group_arrays, system_frequency_model
     from .system_one_line import is_one_line
 
     t0 = time.perf_counter()
@@ -104,7 +104,7 @@ def evaluate_excitation_chunk(cases: list[Case]) -> GridChunk:
     model = system_frequency_model(first, system, res) if status == 0 else None
     if status != 0 or isinstance(model, str) or is_one_line(system):
         return _case_by_case(cases)
-    motions = [harmonic_motion(c.study) for c in cases]
+    motions = _motions(cases)
     settings = drag_settings(study.analysis.dynamic)
     results, batch, finite = group_arrays(
         motions, model, system, res, settings, [False] * len(cases)
@@ -124,6 +124,23 @@ def evaluate_excitation_chunk(cases: list[Case]) -> GridChunk:
     if rows.size < len(cases):
         chunks.append(_case_by_case([c for c, ok in zip(cases, good, strict=True) if not ok]))
     return join_chunks(chunks)
+
+
+def _motions(cases: list[Case]) -> list[tuple[np.ndarray, np.ndarray, float]]:
+    """Each case's :func:`cablestudy.analyses.system_frequency.harmonic_motion`: the
+    bodies' rotations turned about their static orientation once per distinct motion
+    (a sweep's cases share the bodies' static poses, and mostly their motion)."""
+    from .system_frequency import body_axes_motion, turned_rotations
+
+    turned: dict[bytes, np.ndarray] = {}
+    out = []
+    for c in cases:
+        X, U, frequency = body_axes_motion(c.study)
+        key = X.tobytes()  # bit for bit, signs of zeros too
+        if key not in turned:
+            turned[key] = turned_rotations(c.study, X)
+        out.append((turned[key], U, frequency))
+    return out
 
 
 def _case_by_case(cases: list[Case]) -> GridChunk:

@@ -142,6 +142,14 @@ def harmonic_motion(study: Any) -> tuple[np.ndarray, np.ndarray, float]:
     """The complex amplitudes of ``Re(X e^{i w t})`` of the bodies (B, 6) [m, rad] and of
     the points moved on their own (P, 3) [m], and the frequency [Hz]:
     ``a sin(w t + phi)`` is ``Re(-i a e^{i phi} e^{i w t})``."""
+    X, U, frequency = body_axes_motion(study)
+    return turned_rotations(study, X), U, frequency
+
+
+def body_axes_motion(study: Any) -> tuple[np.ndarray, np.ndarray, float]:
+    """:func:`harmonic_motion` before the bodies' rotations are turned about their
+    static orientation (:func:`turned_rotations`): roll, pitch and yaw amplitudes as
+    the study gives them."""
     dyn = study.analysis.dynamic
     bodies, points = list(study.bodies), list(study.points)
     X = np.zeros((len(bodies), 6), dtype=complex)
@@ -157,10 +165,10 @@ def harmonic_motion(study: Any) -> tuple[np.ndarray, np.ndarray, float]:
             d = np.asarray(e.direction, dtype=float)
             U[points.index(e.point)] += amp * d / np.linalg.norm(d)
     (frequency,) = freqs  # one frequency: the study model checked it
-    return _turned_rotations(study, X), U, float(frequency)
+    return X, U, float(frequency)
 
 
-def _turned_rotations(study: Any, X: np.ndarray) -> np.ndarray:
+def turned_rotations(study: Any, X: np.ndarray) -> np.ndarray:
     """``X`` with each body's roll, pitch and yaw amplitudes as the global rotation
     vector they make about the body's static orientation (the model moves a point by
     ``Theta x a``: right at zero angles only; the time domain turns a yawed body's pitch
