@@ -153,3 +153,35 @@ def test_other_sweeps_are_not_run_as_excitation_arrays(method: str, sweep: str) 
     grid = _grid(_text(method, sweep=sweep))
     assert not isinstance(grid, ExcitationGrid)
     assert not any(isinstance(c, ExcitationCase) for c in grid.cases())
+
+
+def test_the_cache_is_the_case_by_case_cache(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The arrays path keeps each case's content hash as its cache key: a sweep cached
+    by the case-by-case path and then given one more frequency reuses the cached cases
+    and computes the new one as arrays, into the dataset a fresh run gives."""
+    from cablestudy.analyses import system_fd_grid
+
+    three = "sweep:\n  analysis.dynamic.excitation.frequency: [0.05, 0.2, 0.45]\n"
+    four = "sweep:\n  analysis.dynamic.excitation.frequency: [0.05, 0.1, 0.2, 0.45]\n"
+    out = tmp_path / "cached"
+
+    def run(text: str) -> str:
+        cfg = tmp_path / "study.yaml"
+        cfg.write_text(text)
+        args = ["run", str(cfg), "--out", str(out), "--no-progress", "--scheduler", "synchronous"]
+        capsys.readouterr()
+        assert main(args) == 0
+        return capsys.readouterr().out
+
+    with monkeypatch.context() as m:
+        m.setattr(system_fd_grid, "excitation_sweep", lambda grid: grid)
+        assert "3 computed, 0 reused" in run(_text(sweep=three))
+    before = COUNTERS["fd_grid_cases"]
+    assert "1 computed, 3 reused" in run(_text(sweep=four))
+    assert COUNTERS["fd_grid_cases"] - before == 1
+    ds = xr.load_dataset(out / "system-case8-surge.nc")
+    ds = ds.drop_vars([v for v in STAMPS if v in ds.variables])
+    ds.attrs = {k: v for k, v in ds.attrs.items() if k not in ("history", "cablestudy_code_sha256")}
+    xr.testing.assert_identical(ds, _run(tmp_path, _text(sweep=four), "fresh"))
