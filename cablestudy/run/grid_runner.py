@@ -281,7 +281,7 @@ class _CasePlan:
                 self.unique.setdefault(c.hash, c)
         self.n_reused = sum(1 for c in self.cases if c.hash in done)
         self.n_computed = len(self.unique)
-        self.work = Cases(list(self.unique.values()))
+        self.work = _case_work(grid)(list(self.unique.values()))
         self.all: Any = None
 
     @staticmethod
@@ -322,6 +322,25 @@ class _CasePlan:
             return
         target = self.write(take_rows(self.all, np.arange(self.all.n)))
         self.store.keep({target} if target is not None else set())
+
+
+class _ExcitationCases(Cases):
+    """The cases of a sweep of a system's harmonic excitation
+    (:class:`cablestudy.analyses.system_fd_grid.ExcitationGrid`): a chunk of them is
+    solved as arrays at once, so the probe fills its time with few chunks
+    (:func:`cablestudy.run.scheduler.probe_cost` with ``fill``)."""
+
+    def probe(self, on_done: Any, seconds: float) -> Any:
+        from .scheduler import probe_cost
+
+        return probe_cost(self.units, on_done, seconds, fill=True)
+
+
+def _case_work(grid: Any) -> type[Cases]:
+    """The scheduler's work of a grid run case by case."""
+    from ..analyses.system_fd_grid import ExcitationGrid
+
+    return _ExcitationCases if isinstance(grid, ExcitationGrid) else Cases
 
 
 def grid_settings(grid: Any) -> dict[str, Any]:
