@@ -113,7 +113,8 @@ def pipeline(elements: int, cases: int = 50, repeats: int = 3) -> dict[str, floa
     on the same sweep of ``cases`` frequencies (module docstring), medians of
     ``repeats`` runs each with the caches emptied (:func:`_cold`), after one run that
     loads the compiled kernels; and the cost of one more case, from the same runs of a
-    sweep of one case (``(T_cases - T_1) / (cases - 1)``)."""
+    sweep of one case (``(T_cases - T_1) / (cases - 1)``). The frequency sweep's cases
+    run as arrays (:mod:`cablestudy.analyses.system_fd_grid`), counted in the first run."""
     import statistics
     import tempfile
 
@@ -139,8 +140,13 @@ def pipeline(elements: int, cases: int = 50, repeats: int = 3) -> dict[str, floa
             assert cli([*args, "--no-progress", "--scheduler", "synchronous"]) == 0
             return time.process_time() - c0
 
+        from cablestudy.analyses.counters import COUNTERS
+
         for method in ("frequency", "time"):
+            before = COUNTERS["fd_grid_cases"]
             once(method, cases)  # the compiled kernels loaded
+            # the frequency sweep's cases evaluated as arrays (analyses.system_fd_grid)
+            out[f"{method}_arrays"] = COUNTERS["fd_grid_cases"] - before
             full = [once(method, cases) for _ in range(repeats)]
             one = [once(method, 1) for _ in range(repeats)]
             out[method] = statistics.median(full) / cases
@@ -166,7 +172,8 @@ def main() -> None:
             f"{f * 1e3:.2f} ms a case, time {t * 1e3:.1f} ms a case: ratio {t / f:.1f}; "
             f"one more case: frequency {fm * 1e3:.2f} ms, time {tm * 1e3:.1f} ms: ratio "
             f"{tm / fm:.1f}; a study of one case: frequency {p['frequency_one'] * 1e3:.1f} ms, "
-            f"time {p['time_one'] * 1e3:.1f} ms"
+            f"time {p['time_one'] * 1e3:.1f} ms; cases run as arrays (of 50): "
+            f"{p['frequency_arrays']:.0f}"
         )
         return
     r = run(args.nodes)

@@ -391,4 +391,17 @@ def evaluate_cases(cases: list[Case], *, extent: dict[str, int] | None = None) -
     stores and assembles (:func:`cablestudy.analyses.grid_chunk.records_chunk`, its
     ``extent``), built where they were computed."""
     system = bool(cases) and cases[0].study.is_system
+    if system and extent is None and _excitation_sweep(cases):
+        # a system's sweep of its harmonic excitation, as arrays (analyses.system_fd_grid)
+        from .system_fd_grid import evaluate_excitation_chunk
+
+        return evaluate_excitation_chunk(cases)
     return records_chunk(evaluate_chunk(cases), system=system, extent=extent)
+
+
+def _excitation_sweep(cases: list[Case]) -> bool:
+    """Whether every case is of a sweep of a system's harmonic excitation
+    (:class:`cablestudy.analyses.system_fd_grid.ExcitationCase`)."""
+    from .system_fd_grid import ExcitationCase
+
+    return all(isinstance(c, ExcitationCase) for c in cases)

@@ -182,19 +182,7 @@ def evaluate_system_case(case: Case) -> CaseRecord:
     t0 = time.perf_counter()
     study = case.study
     deadline = time.monotonic() + study.analysis.time_limit
-    key = None
-    if study.analysis.dynamic is not None and case.static_hash:
-        key = (case.static_hash, study.analysis.static.strain_warning)
-    hit = _STATICS_CACHE.get(key) if key is not None else None
-    if hit is not None:
-        _STATICS_CACHE.move_to_end(key)
-        system, res, status, message, shared, shared_warnings = hit
-        data, warnings = dict(shared), list(shared_warnings)
-    else:
-        system, res, status, message, data, warnings = _statics(case, deadline)
-        if key is not None and status == STATUS_OK:  # a failure is tried again
-            _STATICS_CACHE[key] = (system, res, status, message, dict(data), list(warnings))
-            trim_lru(_STATICS_CACHE, _CACHE_SIZE)
+    system, res, status, message, data, warnings = case_statics(case, deadline)
     if study.analysis.dynamic is not None:  # the system time domain (analyses.system_dynamic)
         status, message = _dynamics(case, system, res, status, message, deadline, data)
         from .plausibility import take_step_warning  # the time domain's step check
@@ -224,6 +212,28 @@ def evaluate_system_case(case: Case) -> CaseRecord:
         # the compiled system Newton left it to the general path (as the grid counts it)
         fallback=str(getattr(res, "fallback", "") or ""),
     )
+
+
+def case_statics(case: Case, deadline: float) -> tuple[Any, Any, int, str, dict, list[str]]:
+    """The case's system, static solution, status, message, static outputs and warnings
+    (:func:`_statics`), shared through :data:`_STATICS_CACHE` by the cases of a study
+    with dynamics that have one static problem (a sweep of the motion); the outputs and
+    warnings are the caller's own copies."""
+    study = case.study
+    key = None
+    if study.analysis.dynamic is not None and case.static_hash:
+        key = (case.static_hash, study.analysis.static.strain_warning)
+    hit = _STATICS_CACHE.get(key) if key is not None else None
+    if hit is not None:
+        _STATICS_CACHE.move_to_end(key)
+        system, res, status, message, shared, shared_warnings = hit
+        data, warnings = dict(shared), list(shared_warnings)
+    else:
+        system, res, status, message, data, warnings = _statics(case, deadline)
+        if key is not None and status == STATUS_OK:  # a failure is tried again
+            _STATICS_CACHE[key] = (system, res, status, message, dict(data), list(warnings))
+            trim_lru(_STATICS_CACHE, _CACHE_SIZE)
+    return system, res, status, message, data, warnings
 
 
 def _slack_warning(names: list[str], data: dict[str, Any]) -> str:

@@ -142,6 +142,14 @@ def harmonic_motion(study: Any) -> tuple[np.ndarray, np.ndarray, float]:
     """The complex amplitudes of ``Re(X e^{i w t})`` of the bodies (B, 6) [m, rad] and of
     the points moved on their own (P, 3) [m], and the frequency [Hz]:
     ``a sin(w t + phi)`` is ``Re(-i a e^{i phi} e^{i w t})``."""
+    X, U, frequency = body_axes_motion(study)
+    return turned_rotations(study, X), U, frequency
+
+
+def body_axes_motion(study: Any) -> tuple[np.ndarray, np.ndarray, float]:
+    """:func:`harmonic_motion` before the bodies' rotations are turned about their
+    static orientation (:func:`turned_rotations`): roll, pitch and yaw amplitudes as
+    the study gives them."""
     dyn = study.analysis.dynamic
     bodies, points = list(study.bodies), list(study.points)
     X = np.zeros((len(bodies), 6), dtype=complex)
@@ -157,10 +165,10 @@ def harmonic_motion(study: Any) -> tuple[np.ndarray, np.ndarray, float]:
             d = np.asarray(e.direction, dtype=float)
             U[points.index(e.point)] += amp * d / np.linalg.norm(d)
     (frequency,) = freqs  # one frequency: the study model checked it
-    return _turned_rotations(study, X), U, float(frequency)
+    return X, U, float(frequency)
 
 
-def _turned_rotations(study: Any, X: np.ndarray) -> np.ndarray:
+def turned_rotations(study: Any, X: np.ndarray) -> np.ndarray:
     """``X`` with each body's roll, pitch and yaw amplitudes as the global rotation
     vector they make about the body's static orientation (the model moves a point by
     ``Theta x a``: right at zero angles only; the time domain turns a yawed body's pitch
@@ -240,12 +248,36 @@ def _solve_group(
     value; the envelopes on each line's ``s`` grid of the static problem's nodes.
     ``full[i]`` false: case ``i``'s result is only its status and iterations (its
     outputs are whole; None: every result whole)."""
-    from ..dynamics.system_frequency_sweep import solve_system_sweep_arrays
     from .system_one_line import is_one_line, solve_one_line_group
 
     motions = [harmonic_motion(c.study) for c in cases]
     if is_one_line(system):  # the one-line study's solve and outputs, bit for bit
         return solve_one_line_group(motions, model, system, static, settings)
+    results, batch, finite = group_arrays(motions, model, system, static, settings, full)
+    return [
+        (
+            res,
+            {k: v[i, ...] for k, v in batch.items()},
+            [k for k, ok in finite.items() if not ok[i]],
+        )
+        for i, res in enumerate(results)
+    ]
+
+
+def group_arrays(
+    motions: list[tuple[np.ndarray, np.ndarray, float]],
+    model: Any,
+    system: Any,
+    static: Any,
+    settings: Any,
+    full: list[bool] | None = None,
+) -> tuple[list[Any], dict[str, np.ndarray], dict[str, np.ndarray]]:
+    """:func:`_solve_group`'s work for a system of more than one line, as arrays: the
+    cases' results, their outputs (one array per output, cases first) and per
+    floating-point output whether each case's values are all finite. ``motions``: each
+    case's :func:`harmonic_motion`."""
+    from ..dynamics.system_frequency_sweep import solve_system_sweep_arrays
+
     results, arr = solve_system_sweep_arrays(
         model,
         [2.0 * math.pi * f for _, _, f in motions],
@@ -254,7 +286,7 @@ def _solve_group(
         [U for _, U, _ in motions],
         full,
     )
-    n, L = len(cases), len(model.lines)
+    n, L = len(motions), len(model.lines)
     amp = np.abs(arr["end_tension"])  # (n, L, 2)
     T = model.post.static  # (L, 2) the static end tensions
     batch: dict[str, np.ndarray] = {
@@ -288,14 +320,7 @@ def _solve_group(
         for k, v in batch.items()
         if v.dtype.kind == "f"
     }
-    return [
-        (
-            res,
-            {k: v[i, ...] for k, v in batch.items()},
-            [k for k, ok in finite.items() if not ok[i]],
-        )
-        for i, res in enumerate(results)
-    ]
+    return results, batch, finite
 
 
 def _node_elevation(model: Any) -> np.ndarray:

@@ -281,7 +281,7 @@ class _CasePlan:
                 self.unique.setdefault(c.hash, c)
         self.n_reused = sum(1 for c in self.cases if c.hash in done)
         self.n_computed = len(self.unique)
-        self.work = Cases(list(self.unique.values()))
+        self.work = _case_work(grid)(list(self.unique.values()))
         self.all: Any = None
 
     @staticmethod
@@ -324,6 +324,25 @@ class _CasePlan:
         self.store.keep({target} if target is not None else set())
 
 
+class _ExcitationCases(Cases):
+    """The cases of a sweep of a system's harmonic excitation
+    (:class:`cablestudy.analyses.system_fd_grid.ExcitationGrid`): a chunk of them is
+    solved as arrays at once, so the probe fills its time with few chunks
+    (:func:`cablestudy.run.scheduler.probe_cost` with ``fill``)."""
+
+    def probe(self, on_done: Any, seconds: float) -> Any:
+        from .scheduler import probe_cost
+
+        return probe_cost(self.units, on_done, seconds, fill=True)
+
+
+def _case_work(grid: Any) -> type[Cases]:
+    """The scheduler's work of a grid run case by case."""
+    from ..analyses.system_fd_grid import ExcitationGrid
+
+    return _ExcitationCases if isinstance(grid, ExcitationGrid) else Cases
+
+
 def grid_settings(grid: Any) -> dict[str, Any]:
     """The analysis settings of the study (defaults filled in), and every distinct value a
     sweep gave them. A case's analysis settings change only along the axes that sweep
@@ -364,6 +383,11 @@ def study_grid(src: StudySource) -> Any:
         grid = expand_system_grid(src, template)
         if grid is not None:
             return grid
+        from ..analyses.system_fd_grid import excitation_sweep
+
+        # a sweep of the harmonic excitation in the frequency domain: its chunks of cases
+        # evaluated as arrays (analyses.system_fd_grid)
+        return excitation_sweep(expand_grid(src, template))
     return expand_grid(src, template)
 
 

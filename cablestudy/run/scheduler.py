@@ -216,11 +216,13 @@ class Probe:
     thread_speedup: float | None = None
 
 
-def probe_cost(cases: list[Case], on_done: OnDone, seconds: float) -> Probe:
+def probe_cost(cases: list[Case], on_done: OnDone, seconds: float, fill: bool = False) -> Probe:
     """Run ``cases`` here in doubling chunks (1, 2, 4, ... cases, so that cheap cases
     are timed batched as they will run) until ``seconds`` have passed; the cost of a
     case is that of the last (largest) chunk. The probe's records count: nothing is
-    computed twice."""
+    computed twice. ``fill``: after the first, a chunk takes at least as many cases as
+    the time left would hold at the last chunk's cost a case (cases solved as arrays a
+    chunk at a time, whose chunk costs about a case more than its cases)."""
     ordered = sorted(cases, key=lambda c: (c.static_hash, c.index))
     # probe cases spread over the sweep (bit-reversed order: its ends, its middle, its
     # quarters, ...): a sweep's cost changes along its axes (a dynamic sweep's large
@@ -238,9 +240,12 @@ def probe_cost(cases: list[Case], on_done: OnDone, seconds: float) -> Probe:
         on_done(run_chunk(chunk))
         per_case = (time.perf_counter() - t0) / len(chunk)
         probed.update(take)
-        if time.perf_counter() - t_start >= seconds:
+        elapsed = time.perf_counter() - t_start
+        if elapsed >= seconds:
             break
         size *= 2
+        if fill and per_case > 0.0:
+            size = max(size, min(MAX_CHUNK_CASES, int((seconds - elapsed) / per_case)))
     rest = [c for i, c in enumerate(ordered) if i not in probed]
     return Probe(rest, per_case)
 
