@@ -390,9 +390,11 @@ def _combined_ok(grid: CaseGrid) -> bool:
     light = np.array([weightless(study) for study in lines])
     if light.any() and t.ends.a.kind == "fixed" and t.ends.b.kind == "fixed":
         chord = np.sqrt(sum((b - a) ** 2 for a, b in zip(pa, pb, strict=True)))
-        # per case, whether its line is weightless (the line's length is never swept)
-        light = light[line_index(grid, 0, grid.shape[0])].reshape(grid.shape)
-        if np.any(light & (chord <= t.line.length)):
+        # per case, whether its line is weightless, and its line's length (swept
+        # segment lengths: each line's own, Study._physical's total_length)
+        which = line_index(grid, 0, grid.shape[0]).reshape(grid.shape)
+        length = np.array([study.line.total_length for study in lines], dtype=float)[which]
+        if np.any(light[which] & (chord <= length)):
             return False
     # the seabed per case: that of its line's combination (a swept depth, slope)
     which = line_index(grid, 0, grid.shape[0]).reshape(grid.shape)
