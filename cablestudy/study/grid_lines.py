@@ -40,9 +40,7 @@ SEABED = re.compile(r"^environment\.(depth|seabed\.(friction|slope_deg|slope_hea
 #: attachment's position ``s`` along the line and its ``force`` components; each
 #: case's line is cut into its pieces as a case alone is (the compiled kernels take
 #: per-case pieces: :mod:`cablestudy.analyses.static_grid_lines`)
-LINE_GEOMETRY = re.compile(
-    r"^line\.(segments\.\d+\.length|attachments\.\d+\.(s|force\.[012]))$"
-)
+LINE_GEOMETRY = re.compile(r"^line\.(segments\.\d+\.length|attachments\.\d+\.(s|force\.[012]))$")
 
 
 def per_line(path: str) -> bool:
