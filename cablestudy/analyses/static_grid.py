@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 
-from ..study.grid import _POSITION, _STIFFNESS, CaseGrid
+from ..study.grid import _END_LOAD, _POSITION, _STIFFNESS, CaseGrid
 from ..study.grid_lines import line_axes
 from ..study.study import Study
 from .common import segment_of
@@ -56,8 +56,11 @@ def _swept_inputs(grid: CaseGrid, lo: int, hi: int) -> tuple[Any, dict[str, Any]
     ea = np.tile(base.line.axial_stiffness, (n, 1))
     for path in grid.swept:
         m = _POSITION.match(path)
+        load = _END_LOAD.match(path)
         if m:
             pos[m.group(1)][:, int(m.group(2))] = grid.values(path, lo, hi)
+        elif load:  # a towing or mooring end's known load: per case, as its end condition
+            _put_end_load(pos, base, load, grid.values(path, lo, hi))
         elif _STIFFNESS.match(path):
             k = int(_STIFFNESS.match(path).group(1))  # type: ignore[union-attr]
             ea[:, k] = grid.values(path, lo, hi)
@@ -65,6 +68,21 @@ def _swept_inputs(grid: CaseGrid, lo: int, hi: int) -> tuple[Any, dict[str, Any]
     if line_axes(grid):
         pos["lines"] = SweptLines.of(grid, lo, hi)
     return base, pos, ea
+
+
+def _put_end_load(pos: dict[str, Any], base: Any, m: Any, values: np.ndarray) -> None:
+    """Put the swept values of an end's known load (``m``: the match of
+    :data:`cablestudy.study.grid._END_LOAD`) into ``pos['<end>_force']`` (n, 3) or
+    ``pos['<end>_z']`` (n,), each starting from the template's end condition."""
+    end = m.group(1)
+    cond = getattr(base, f"end_{end}")
+    if m.group(3) is None:
+        pos[f"{end}_z"] = np.asarray(values, dtype=float).copy()
+        return
+    key = f"{end}_force"
+    if key not in pos:
+        pos[key] = np.tile(np.asarray(cond.force, dtype=float), (len(values), 1))
+    pos[key][:, int(m.group(3))] = values
 
 
 def _problems(base: Any, pos: dict[str, Any], ea: np.ndarray) -> list[Any]:
@@ -78,6 +96,13 @@ def _problems(base: Any, pos: dict[str, Any], ea: np.ndarray) -> list[Any]:
         for end in "ab":
             if pos[end] is not None:
                 changes[f"end_{end}"] = _with(getattr(base, f"end_{end}"), position=pos[end][i])
+            loads = {}
+            if f"{end}_force" in pos:
+                loads["force"] = pos[f"{end}_force"][i]
+            if f"{end}_z" in pos:  # a float, as the study's (messages print its repr)
+                loads["z"] = float(pos[f"{end}_z"][i])
+            if loads:  # a towing or mooring end's swept load
+                changes[f"end_{end}"] = _with(getattr(base, f"end_{end}"), **loads)
         line = base.line if lines is None else lines.models[lines.which[i]]
         if ea_swept:
             changes["line"] = _with(line, axial_stiffness=ea[i])

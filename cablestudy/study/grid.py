@@ -51,6 +51,9 @@ from .study import Study
 #: swept paths the array path takes: (kind, end or segment, component)
 _POSITION = re.compile(r"^ends\.(a|b)\.position\.([012])$")
 _STIFFNESS = re.compile(r"^line\.segments\.(\d+)\.axial_stiffness$")
+#: the known load of an end that is not fixed: a towing end's force components, a
+#: mooring end's horizontal force components and height (end, 'force' or 'z', component)
+_END_LOAD = re.compile(r"^ends\.(a|b)\.(force\.([012])|z)$")
 
 
 @dataclass(frozen=True)
@@ -252,12 +255,23 @@ def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
             if m:
                 if getattr(getattr(template.ends, m.group(1)), "kind", "") != "fixed":
                     return False
-            elif not (_STIFFNESS.match(path) or per_line(path)):
+            elif not (_STIFFNESS.match(path) or per_line(path) or _end_load(template, path)):
                 return False
             if not all(isinstance(v, int | float) and not isinstance(v, bool) for v in vals):
                 return False
     # a line per combination of the swept load values (cablestudy.study.grid_lines)
     return bool(axes) and line_count(axes) <= MAX_LINES
+
+
+def _end_load(template: Study, path: str) -> bool:
+    """Whether ``path`` is a known load of an end that has one (:data:`_END_LOAD`: a
+    ``force`` end's force, a ``mooring`` end's horizontal force and height), which the
+    arrays put into each case's end condition (the batch kernels take both kinds)."""
+    m = _END_LOAD.match(path)
+    if m is None:
+        return False
+    kind = getattr(getattr(template.ends, m.group(1)), "kind", "")
+    return kind == "mooring" or (kind == "force" and m.group(3) is not None)
 
 
 def expand_grid(src: StudySource, template: Study | None = None) -> CaseGrid:
@@ -412,5 +426,25 @@ def _combined_ok(grid: CaseGrid) -> bool:
             continue
         ground = seabed_height(depth, rise, cos, sin, x, y)
         if np.any(z < ground - 1e-9 * depth):
+            return False
+    return _mooring_heights_ok(grid, depth)
+
+
+def _mooring_heights_ok(grid: CaseGrid, depth: np.ndarray) -> bool:
+    """Whether every case's mooring end (its height ``z``, swept or the template's) lies
+    above its seabed (``depth`` per case), as :meth:`Study._physical` asks: z >= -depth
+    (the seabed's height under an end whose position is not known is -depth)."""
+    for label in "ab":
+        end = getattr(grid.template.ends, label)
+        if getattr(end, "kind", "") != "mooring":
+            continue
+        path = f"ends.{label}.z"
+        z: Any = float(end.z)
+        if path in grid.swept:
+            axis, vals = grid.swept[path]
+            shape = [1] * len(grid.shape)
+            shape[axis] = len(vals)
+            z = vals.reshape(shape)
+        if np.any(z < -depth - 1e-9 * depth):
             return False
     return True

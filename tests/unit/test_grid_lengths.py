@@ -214,3 +214,83 @@ sweep:
             # the force on the support at A pulls it towards B and down the sag
             fa = case["force_a"].values
             assert abs(fa[0] - h) <= 1e-6 * ta and abs(fa[2] - va) <= 1e-6 * ta
+
+
+#: a towed line: end A fixed, a known force at end B, its components swept
+TOWED = """\
+name: tow
+environment: {fluid: water, depth: 200.0}
+line:
+  segments:
+    - {length: 60.0, diameter: 0.05, weight_in_fluid: 60.0, axial_stiffness: 2.0e8}
+    - {length: 40.0, diameter: 0.02, mass_per_length: 2.466, axial_stiffness: 6.283e7}
+  attachments:
+    - {s: 70.0, mass: 50.0}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -10.0]}
+  b: {kind: force, force: [5000.0, 0.0, 2000.0]}
+analysis:
+  static: {nodes: 21}
+sweep:
+  ends.b.force.0: [1000.0, 5000.0, 20000.0]
+  ends.b.force.2: [0.0, 3000.0, 8000.0]
+  line.segments.1.length: [30.0, 40.0]
+"""
+#: a mooring leg: the horizontal pull and the height of end B known, swept
+MOORED = (
+    TOWED.replace("depth: 200.0", "depth: 60.0, seabed: {friction: 0.5}")
+    .replace("[0.0, 0.0, -10.0]", "[0.0, 0.0, -60.0]")
+    .replace(
+        "{kind: force, force: [5000.0, 0.0, 2000.0]}",
+        "{kind: mooring, force: [5000.0, 0.0], z: -5.0}",
+    )
+    .replace("ends.b.force.2: [0.0, 3000.0, 8000.0]", "ends.b.z: [-20.0, -5.0]")
+)
+
+
+@pytest.mark.parametrize("text", [TOWED, MOORED], ids=["force", "mooring"])
+def test_swept_end_loads_run_as_arrays_with_the_case_datasets_bits(
+    tmp_path: Path, text: str
+) -> None:
+    src = parse_study_text(text, "tow.yaml")
+    grid = expand_grid(src)
+    assert grid.chunked and grid.arrays
+    fast = xr.load_dataset(
+        run_study(src, grid, tmp_path / "g", scheduler="synchronous", use_cache=False).path
+    )
+    slow = xr.load_dataset(
+        run_study(
+            src, replace(grid, chunked=False), tmp_path / "c", scheduler="synchronous",
+            use_cache=False,
+        ).path
+    )  # fmt: skip
+    assert int((slow["status"] == 0).sum()) >= slow["status"].size // 2
+    # the end's known load is what the line gets at B: force_b (the line's force on what
+    # holds end B) is its opposite, to the solver's tolerance 1e-9 of the largest force
+    ok = slow["status"] == 0
+    fb = slow["force_b"].where(ok)
+    scale = 1e-8 * float(np.abs(fb).max())
+    assert np.nanmax(np.abs(fb.sel(component="x") + slow["force_0"])) <= scale
+    if text is TOWED:
+        assert np.nanmax(np.abs(fb.sel(component="z") + slow["force_2"])) <= scale
+    else:  # end B at its known height
+        z_b = slow["z"].where(ok).isel(s=-1)
+        assert np.nanmax(np.abs(z_b - slow["b_z"])) <= 1e-8 * 60.0
+    for name in slow.variables:
+        if name == "wall_time":
+            continue
+        a, b = fast[name], slow[name]
+        assert a.dims == b.dims, name
+        if a.dtype.kind == "f":
+            assert a.values.tobytes() == b.values.tobytes(), name
+        else:
+            assert np.array_equal(a.values, b.values), name
+    skip = {"history"}
+    assert {k: v for k, v in fast.attrs.items() if k not in skip} == {
+        k: v for k, v in slow.attrs.items() if k not in skip
+    }
+    # a mooring end swept below the seabed is refused before any work, named
+    if text is MOORED:
+        below = text.replace("ends.b.z: [-20.0, -5.0]", "ends.b.z: [-20.0, -70.0]")
+        with pytest.raises(StudyError, match="below the seabed"):
+            expand_grid(parse_study_text(below, "tow.yaml"))
