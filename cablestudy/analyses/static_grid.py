@@ -2,9 +2,11 @@
 as arrays: a case is its index into the grid of sweep axes.
 
 For a grid whose cases differ only in settings the batched still-water catenary kernel
-takes as numbers (end positions of fixed ends, segment axial stiffnesses; the line's
-loads and the seabed, built once per combination of their values by
-:mod:`cablestudy.study.grid_lines`; :attr:`CaseGrid.arrays`), no per-case pydantic
+takes as numbers (end positions of fixed ends, segment axial stiffnesses, a towing or
+mooring end's load; the line's loads, lengths and attachments and the seabed, built once
+per combination of their values by :mod:`cablestudy.study.grid_lines`, each line cut
+into its own pieces by :mod:`cablestudy.analyses.static_grid_lines`;
+:attr:`CaseGrid.arrays`), no per-case pydantic
 object is built: a chunk of cases becomes arrays of end positions, stiffnesses and
 loads, is solved by the compiled kernels (lines hanging free, and lines anchored on
 the seabed with friction), the cases they do not settle by

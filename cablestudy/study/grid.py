@@ -5,7 +5,8 @@ The study is validated once as a template, each swept value once at its own path
 validation, :mod:`cablestudy.study.grid_values`; else as a whole study), and the checks
 that combine fields over the grid (:func:`expand_grid`): with NumPy where the
 compiled catenary kernels take the grid as arrays (end positions of fixed ends, segment
-stiffnesses, the line's loads and the seabed built once per combination of their
+stiffnesses, towing and mooring ends' loads; the line's loads, lengths and attachments
+and the seabed built once per combination of their
 values, :mod:`cablestudy.study.grid_lines`: :attr:`CaseGrid.arrays`,
 :mod:`cablestudy.analyses.static_grid`), else by the
 models' own ``mode="after"`` validators on each case's study, which is the template with
@@ -230,9 +231,10 @@ def _static_sweep(template: Study, axes: list[SweepAxis]) -> bool:
 def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
     """A static-only, still-water, method 'catenary' study without a quasi-static
     database (its grid of solves per case is not an array kernel) whose swept paths are
-    all end positions of fixed ends, segment stiffnesses or the numbers that set the
-    line's loads or the seabed (:func:`cablestudy.study.grid_lines.per_line`), with
-    numeric values."""
+    all end positions of fixed ends, segment stiffnesses, the numbers that set the
+    line's loads, its lengths and attachments or the seabed
+    (:func:`cablestudy.study.grid_lines.per_line`), or a towing or mooring end's known
+    load (:func:`_end_load`), with numeric values."""
     an = template.analysis
     if an.modal is not None or an.dynamic is not None or an.static.method != "catenary":
         return False
