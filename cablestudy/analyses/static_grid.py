@@ -2,9 +2,11 @@
 as arrays: a case is its index into the grid of sweep axes.
 
 For a grid whose cases differ only in settings the batched still-water catenary kernel
-takes as numbers (end positions of fixed ends, segment axial stiffnesses; the line's
-loads and the seabed, built once per combination of their values by
-:mod:`cablestudy.study.grid_lines`; :attr:`CaseGrid.arrays`), no per-case pydantic
+takes as numbers (end positions of fixed ends, segment axial stiffnesses, a towing or
+mooring end's load; the line's loads, lengths and attachments and the seabed, built once
+per combination of their values by :mod:`cablestudy.study.grid_lines`, each line cut
+into its own pieces by :mod:`cablestudy.analyses.static_grid_lines`;
+:attr:`CaseGrid.arrays`), no per-case pydantic
 object is built: a chunk of cases becomes arrays of end positions, stiffnesses and
 loads, is solved by the compiled kernels (lines hanging free, and lines anchored on
 the seabed with friction), the cases they do not settle by
@@ -24,13 +26,14 @@ from typing import Any
 
 import numpy as np
 
-from ..study.grid import _POSITION, _STIFFNESS, CaseGrid
-from ..study.grid_lines import line_axes, line_index, line_studies
+from ..study.grid import _END_LOAD, _POSITION, _STIFFNESS, CaseGrid
+from ..study.grid_lines import line_axes
 from ..study.study import Study
 from .common import segment_of
 from .fallback import NO_KERNEL
 from .grid_chunk import STATUS_NUMERICAL, GridChunk, array_chunk, numerical_fault
 from .plausibility import fallback_warning, largest_strain, strain_warning
+from .static_grid_lines import SweptLines, geometry_groups, layout_arrays, node_segments
 from .surface import template_surface_warnings
 from .variables import KEPT_STATUSES
 
@@ -55,8 +58,11 @@ def _swept_inputs(grid: CaseGrid, lo: int, hi: int) -> tuple[Any, dict[str, Any]
     ea = np.tile(base.line.axial_stiffness, (n, 1))
     for path in grid.swept:
         m = _POSITION.match(path)
+        load = _END_LOAD.match(path)
         if m:
             pos[m.group(1)][:, int(m.group(2))] = grid.values(path, lo, hi)
+        elif load:  # a towing or mooring end's known load: per case, as its end condition
+            _put_end_load(pos, base, load, grid.values(path, lo, hi))
         elif _STIFFNESS.match(path):
             k = int(_STIFFNESS.match(path).group(1))  # type: ignore[union-attr]
             ea[:, k] = grid.values(path, lo, hi)
@@ -66,49 +72,19 @@ def _swept_inputs(grid: CaseGrid, lo: int, hi: int) -> tuple[Any, dict[str, Any]
     return base, pos, ea
 
 
-@dataclass
-class SweptLines:
-    """The lines of a chunk whose sweep changes the line's loads: per distinct line
-    (:func:`cablestudy.study.grid_lines.line_studies`) its study and its
-    :class:`~cablestudy.statics.base.LineModel` (by :func:`cablestudy.study.problem.line_model`,
-    as for a case alone), and per case the number of its line."""
-
-    studies: list[Any]
-    models: list[Any]
-    which: np.ndarray  # (n,) int64
-    #: per distinct line its :class:`~cablestudy.statics.base.Medium`
-    #: (:func:`cablestudy.study.problem.medium`: a swept seabed)
-    media: list[Any]
-
-    @classmethod
-    def of(cls, grid: CaseGrid, lo: int, hi: int) -> SweptLines:
-        from ..study.problem import line_model, medium
-
-        studies = line_studies(grid)
-        models = grid.memo.get("line_models")
-        if models is None:
-            models = grid.memo["line_models"] = [line_model(s) for s in studies]
-            grid.memo["line_media"] = [medium(s) for s in studies]
-        return cls(studies, models, line_index(grid, lo, hi), grid.memo["line_media"])
-
-    def take(self, rows: np.ndarray) -> SweptLines:
-        return SweptLines(self.studies, self.models, self.which[rows], self.media)
-
-    def seabeds(self) -> np.ndarray:
-        """Per case the number of its seabed (cases with equal depth, slope, heading and
-        friction share one)."""
-        keys = [(m.depth, m.seabed_slope, m.seabed_heading, m.friction) for m in self.media]
-        first = {k: i for i, k in reversed(list(enumerate(keys)))}
-        return np.array([first[k] for k in keys], dtype=np.int64)[self.which]
-
-    def stacked(self, get: Any) -> np.ndarray:
-        """``get(model)`` of each case's line, stacked along a leading case axis."""
-        return np.stack([np.asarray(get(m)) for m in self.models])[self.which]
-
-    def area(self, k: np.ndarray) -> np.ndarray:
-        """Per case the cross-section area [m^2] of the segment ``k`` of each point."""
-        per = np.array([[s.line.segments[i].area for i in k] for s in self.studies])
-        return per[self.which]
+def _put_end_load(pos: dict[str, Any], base: Any, m: Any, values: np.ndarray) -> None:
+    """Put the swept values of an end's known load (``m``: the match of
+    :data:`cablestudy.study.grid._END_LOAD`) into ``pos['<end>_force']`` (n, 3) or
+    ``pos['<end>_z']`` (n,), each starting from the template's end condition."""
+    end = m.group(1)
+    cond = getattr(base, f"end_{end}")
+    if m.group(3) is None:
+        pos[f"{end}_z"] = np.asarray(values, dtype=float).copy()
+        return
+    key = f"{end}_force"
+    if key not in pos:
+        pos[key] = np.tile(np.asarray(cond.force, dtype=float), (len(values), 1))
+    pos[key][:, int(m.group(3))] = values
 
 
 def _problems(base: Any, pos: dict[str, Any], ea: np.ndarray) -> list[Any]:
@@ -122,6 +98,13 @@ def _problems(base: Any, pos: dict[str, Any], ea: np.ndarray) -> list[Any]:
         for end in "ab":
             if pos[end] is not None:
                 changes[f"end_{end}"] = _with(getattr(base, f"end_{end}"), position=pos[end][i])
+            loads = {}
+            if f"{end}_force" in pos:
+                loads["force"] = pos[f"{end}_force"][i]
+            if f"{end}_z" in pos:  # a float, as the study's (messages print its repr)
+                loads["z"] = float(pos[f"{end}_z"][i])
+            if loads:  # a towing or mooring end's swept load
+                changes[f"end_{end}"] = _with(getattr(base, f"end_{end}"), **loads)
         line = base.line if lines is None else lines.models[lines.which[i]]
         if ea_swept:
             changes["line"] = _with(line, axial_stiffness=ea[i])
@@ -205,6 +188,13 @@ class StaticArrays:
         "drag_iterations",
     )
 
+    def take(self, rows: np.ndarray) -> StaticArrays:
+        """The cases ``rows`` (in order)."""
+        return StaticArrays(
+            **{name: getattr(self, name)[rows] for name in self.ARRAYS},
+            messages=[self.messages[i] for i in rows.tolist()],
+        )
+
     def put(self, rows: np.ndarray, other: StaticArrays) -> None:
         """Overwrite cases ``rows`` with the cases of ``other`` (in order)."""
         for name in self.ARRAYS:
@@ -217,24 +207,29 @@ def _compiled_solve(
     base: Any, pos: dict[str, Any], ea: np.ndarray
 ) -> tuple[StaticArrays, np.ndarray, list[str]] | None:
     """:func:`_compiled_solve_one` per group of cases on the same seabed (a swept depth,
-    slope or friction: :meth:`SweptLines.seabeds`), put back in the chunk's order."""
+    slope or friction: :meth:`SweptLines.seabeds`) whose lines are cut into as many
+    pieces (swept lengths or attachment positions: :meth:`SweptLines.pieces`), put back
+    in the chunk's order."""
     lines = pos.get("lines")
     if lines is None:
         return _compiled_solve_one(base, pos, ea)
     seabed = lines.seabeds()
-    groups = np.unique(seabed)
+    pieces = lines.pieces()
+    key = seabed * (int(pieces.max()) + 1) + pieces
+    groups = np.unique(key)
     if groups.size == 1:
-        return _compiled_solve_one(_with(base, medium=lines.media[groups[0]]), pos, ea)
+        return _compiled_solve_one(_with(base, medium=lines.media[seabed[0]]), pos, ea)
     out: StaticArrays | None = None
     left: list[np.ndarray] = []
     why: list[str] = []
     for g in groups.tolist():
-        rows = np.flatnonzero(seabed == g)
+        rows = np.flatnonzero(key == g)
         sub = {
             k: (None if v is None else v.take(rows) if k == "lines" else v[rows])
             for k, v in pos.items()
         }
-        got = _compiled_solve_one(_with(base, medium=lines.media[g]), sub, ea[rows])
+        medium = lines.media[seabed[rows[0]]]
+        got = _compiled_solve_one(_with(base, medium=medium), sub, ea[rows])
         if got is None:  # what the seabed does not decide: the same for every group
             return None
         if out is None:
@@ -297,8 +292,10 @@ def _compiled_solve_one(
     contact = np.zeros(N, dtype=bool)
     contact_b = np.zeros(N, dtype=bool)
     plane = seabed_of(med)
+    # each case's own line (SweptLines: its loads, lengths, attachments), else the template's
+    lines = pos.get("lines")
     if plane is not None:
-        limit = 1e-6 * line.total_length
+        limit = 1e-6 * (line.total_length if lines is None else lines.total_length())
         grounded_a = _height_below(plane, rA[:, None, :], limit, strict=False)
         grounded_b = _height_below(plane, rB[:, None, :], limit, strict=False)
         # anchored at one end (not below the seabed), the other above: the contact
@@ -311,33 +308,10 @@ def _compiled_solve_one(
             grounded_b & ~grounded_a & ~_height_below(plane, rB[:, None, :], -limit, strict=True)
         )
         rest |= (grounded_a | grounded_b) & ~contact & ~contact_b
-    lines = pos.get("lines")  # the line's loads per case (SweptLines), else the template's
-    if line.length.size == 1 and line.attachment_s.size == 0:
-        P = 1
-        ell = np.full((N, 1), line.length[0])
-        EA = np.ascontiguousarray(ea[:, :1], dtype=float)
-        q = np.zeros((N, 1, 3))
-        q[:, 0, 2] = -line.weight[0] if lines is None else -lines.stacked(lambda m: m.weight[0])
-        point = np.zeros((N, 2, 3))
-        bounds = np.empty((N, 2))
-        bounds[:, 0] = 0.0
-        bounds[:, 1] = ell[:, 0]
-    else:
-        from ..statics.semi_analytic_shape import make_layout
-
-        lay = make_layout(line)
-        P = len(lay.ell)
-        ell = np.tile(lay.ell, (N, 1))
-        EA = np.ascontiguousarray(ea[:, lay.segment], dtype=float)
-        q = np.zeros((N, P, 3))
-        bounds = np.tile(lay.bounds, (N, 1))
-        if lines is None:
-            q[:, :, 2] = -lay.weight
-            point = np.tile(lay.point, (N, 1, 1))
-        else:  # each case's line laid out as the template's (the same cuts: no length swept)
-            lays = [make_layout(m) for m in lines.models]
-            q[:, :, 2] = -np.stack([la.weight for la in lays])[lines.which]
-            point = np.stack([la.point for la in lays])[lines.which]
+    ell, EA, w, point, bounds = layout_arrays(line, ea, lines)
+    P = ell.shape[1]
+    q = np.zeros((N, P, 3))
+    q[:, :, 2] = -w
     Ltot = bounds[:, -1]
     tol = np.full(N, base.tolerance, dtype=float)
     maxit = np.full(N, base.max_iterations, dtype=np.int64)
@@ -475,22 +449,12 @@ def _compiled_solve_one(
         keep_contact(c, got, "force_a", "force_b")
     if contact_b.any():
         from ..statics.batch_kernels import solve_contact_arrays
-        from ..statics.semi_analytic_shape import make_layout, reversed_line
 
         c = np.flatnonzero(contact_b)
-        m = c.size
-        if line.length.size == 1 and line.attachment_s.size == 0:
-            ell_r, EA_r, w_r = ell[c], EA[c], -q[c][..., 2]
-            point_r, bounds_r = point[c], bounds[c]
-        else:
-            lay_r = make_layout(reversed_line(line))
-            ell_r, w_r = np.tile(lay_r.ell, (m, 1)), np.tile(lay_r.weight, (m, 1))
-            EA_r = ea[c][:, ::-1][:, lay_r.segment]
-            point_r, bounds_r = np.tile(lay_r.point, (m, 1, 1)), np.tile(lay_r.bounds, (m, 1))
-            if lines is not None:  # each case's own line, reversed as a case alone is
-                lays_r = [make_layout(reversed_line(ln)) for ln in lines.models]
-                w_r = np.stack([la.weight for la in lays_r])[lines.which[c]]
-                point_r = np.stack([la.point for la in lays_r])[lines.which[c]]
+        # each case's own line, reversed as a case alone is
+        ell_r, EA_r, w_r, point_r, bounds_r = layout_arrays(
+            line, ea[c], None if lines is None else lines.take(c), reverse=True
+        )
         got = solve_contact_arrays(
             ell_r, EA_r, w_r, point_r, bounds_r, rB[c], rA[c], plane,
             tol[c], maxit[c], Ltot[c, None] - s[c],
@@ -536,7 +500,36 @@ def array_outputs(
     same variables, bit for bit (the same element-wise operations on stacked arrays;
     :func:`cablestudy.physics.profile.profile_quantities` of the (cases, nodes) arrays).
     Returns the outputs (cases first), status and messages, with a failed case's values
-    NaN; with ``lines``, each case's areas are those of its own line's segments."""
+    NaN; with ``lines``, each case's areas and segments are those of its own line's, per
+    group of cases whose nodes lie at the same arc lengths on segments of the same
+    lengths (:func:`cablestudy.analyses.static_grid_lines.geometry_groups`)."""
+    groups = geometry_groups(st.s, lines)
+    if groups is None:
+        study = template if lines is None else lines.studies[lines.which[0]]
+        return _group_outputs(st, study, ea, lines)
+    n = len(st.status)
+    out: dict[str, np.ndarray] = {}
+    status = np.empty(n, dtype=np.int64)
+    messages = [""] * n
+    for rows in groups:
+        sub = None if lines is None else lines.take(rows)
+        study = template if sub is None else sub.studies[sub.which[0]]
+        got, st_g, msg_g = _group_outputs(st.take(rows), study, ea[rows], sub)
+        for name, arr in got.items():
+            if name not in out:
+                out[name] = np.empty((n, *arr.shape[1:]), dtype=arr.dtype)
+            out[name][rows] = arr
+        status[rows] = st_g
+        for i, msg in zip(rows.tolist(), msg_g, strict=True):
+            messages[i] = msg
+    return out, status, messages
+
+
+def _group_outputs(
+    st: StaticArrays, template: Study, ea: np.ndarray, lines: SweptLines | None
+) -> tuple[dict[str, np.ndarray], np.ndarray, list[str]]:
+    """:func:`array_outputs` of cases that share their arc lengths and the lengths of
+    their segments, those of the line of ``template``."""
     from ..physics.profile import end_pulls, profile_quantities
 
     n = len(st.status)
@@ -603,9 +596,7 @@ def _tangent_ends(template: Study, tension: np.ndarray, lines: SweptLines | None
     tol = template.analysis.static.tolerance
     got = tangent_ends(template.line, tol, tension)
     if lines is not None:
-        each = [tangent_ends(study.line, tol, tension[:1]) for study in lines.studies]
-        for key in ("free_a", "free_b"):
-            got[key] = np.array([e[key] for e in each], dtype=bool)[lines.which]
+        got["free_a"], got["free_b"] = lines.free_ends(tol)
     return got
 
 
@@ -660,8 +651,8 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
         for i, reason in fallback.items():
             reasons[i] = reason
         data, status, messages = array_outputs(st, grid.template, ea, pos.get("lines"))
-        k = segment_of(grid.template.line.segments, st.s[0])
-        max_strain = largest_strain(st.tension, ea[:, k])
+        k = node_segments(st.s, grid.template, pos.get("lines"))  # each case's own line's
+        max_strain = largest_strain(st.tension, np.take_along_axis(ea, k, axis=1))
         limit = grid.template.analysis.static.strain_warning
         for i in np.flatnonzero((status == 0) & (max_strain > limit)):
             warnings.setdefault(int(i), []).append(strain_warning(float(max_strain[i]), limit))

@@ -5,7 +5,8 @@ The study is validated once as a template, each swept value once at its own path
 validation, :mod:`cablestudy.study.grid_values`; else as a whole study), and the checks
 that combine fields over the grid (:func:`expand_grid`): with NumPy where the
 compiled catenary kernels take the grid as arrays (end positions of fixed ends, segment
-stiffnesses, the line's loads and the seabed built once per combination of their
+stiffnesses, towing and mooring ends' loads; the line's loads, lengths and attachments
+and the seabed built once per combination of their
 values, :mod:`cablestudy.study.grid_lines`: :attr:`CaseGrid.arrays`,
 :mod:`cablestudy.analyses.static_grid`), else by the
 models' own ``mode="after"`` validators on each case's study, which is the template with
@@ -51,6 +52,9 @@ from .study import Study
 #: swept paths the array path takes: (kind, end or segment, component)
 _POSITION = re.compile(r"^ends\.(a|b)\.position\.([012])$")
 _STIFFNESS = re.compile(r"^line\.segments\.(\d+)\.axial_stiffness$")
+#: the known load of an end that is not fixed: a towing end's force components, a
+#: mooring end's horizontal force components and height (end, 'force' or 'z', component)
+_END_LOAD = re.compile(r"^ends\.(a|b)\.(force\.([012])|z)$")
 
 
 @dataclass(frozen=True)
@@ -227,9 +231,10 @@ def _static_sweep(template: Study, axes: list[SweepAxis]) -> bool:
 def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
     """A static-only, still-water, method 'catenary' study without a quasi-static
     database (its grid of solves per case is not an array kernel) whose swept paths are
-    all end positions of fixed ends, segment stiffnesses or the numbers that set the
-    line's loads or the seabed (:func:`cablestudy.study.grid_lines.per_line`), with
-    numeric values."""
+    all end positions of fixed ends, segment stiffnesses, the numbers that set the
+    line's loads, its lengths and attachments or the seabed
+    (:func:`cablestudy.study.grid_lines.per_line`), or a towing or mooring end's known
+    load (:func:`_end_load`), with numeric values."""
     an = template.analysis
     if an.modal is not None or an.dynamic is not None or an.static.method != "catenary":
         return False
@@ -252,12 +257,23 @@ def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
             if m:
                 if getattr(getattr(template.ends, m.group(1)), "kind", "") != "fixed":
                     return False
-            elif not (_STIFFNESS.match(path) or per_line(path)):
+            elif not (_STIFFNESS.match(path) or per_line(path) or _end_load(template, path)):
                 return False
             if not all(isinstance(v, int | float) and not isinstance(v, bool) for v in vals):
                 return False
     # a line per combination of the swept load values (cablestudy.study.grid_lines)
     return bool(axes) and line_count(axes) <= MAX_LINES
+
+
+def _end_load(template: Study, path: str) -> bool:
+    """Whether ``path`` is a known load of an end that has one (:data:`_END_LOAD`: a
+    ``force`` end's force, a ``mooring`` end's horizontal force and height), which the
+    arrays put into each case's end condition (the batch kernels take both kinds)."""
+    m = _END_LOAD.match(path)
+    if m is None:
+        return False
+    kind = getattr(getattr(template.ends, m.group(1)), "kind", "")
+    return kind == "mooring" or (kind == "force" and m.group(3) is not None)
 
 
 def expand_grid(src: StudySource, template: Study | None = None) -> CaseGrid:
@@ -390,9 +406,11 @@ def _combined_ok(grid: CaseGrid) -> bool:
     light = np.array([weightless(study) for study in lines])
     if light.any() and t.ends.a.kind == "fixed" and t.ends.b.kind == "fixed":
         chord = np.sqrt(sum((b - a) ** 2 for a, b in zip(pa, pb, strict=True)))
-        # per case, whether its line is weightless (the line's length is never swept)
-        light = light[line_index(grid, 0, grid.shape[0])].reshape(grid.shape)
-        if np.any(light & (chord <= t.line.length)):
+        # per case, whether its line is weightless, and its line's length (swept
+        # segment lengths: each line's own, Study._physical's total_length)
+        which = line_index(grid, 0, grid.shape[0]).reshape(grid.shape)
+        length = np.array([study.line.total_length for study in lines], dtype=float)[which]
+        if np.any(light[which] & (chord <= length)):
             return False
     # the seabed per case: that of its line's combination (a swept depth, slope)
     which = line_index(grid, 0, grid.shape[0]).reshape(grid.shape)
@@ -410,5 +428,25 @@ def _combined_ok(grid: CaseGrid) -> bool:
             continue
         ground = seabed_height(depth, rise, cos, sin, x, y)
         if np.any(z < ground - 1e-9 * depth):
+            return False
+    return _mooring_heights_ok(grid, depth)
+
+
+def _mooring_heights_ok(grid: CaseGrid, depth: np.ndarray) -> bool:
+    """Whether every case's mooring end (its height ``z``, swept or the template's) lies
+    above its seabed (``depth`` per case), as :meth:`Study._physical` asks: z >= -depth
+    (the seabed's height under an end whose position is not known is -depth)."""
+    for label in "ab":
+        end = getattr(grid.template.ends, label)
+        if getattr(end, "kind", "") != "mooring":
+            continue
+        path = f"ends.{label}.z"
+        z: Any = float(end.z)
+        if path in grid.swept:
+            axis, vals = grid.swept[path]
+            shape = [1] * len(grid.shape)
+            shape[axis] = len(vals)
+            z = vals.reshape(shape)
+        if np.any(z < -depth - 1e-9 * depth):
             return False
     return True

@@ -1,10 +1,11 @@
 """The line of each case of an array grid whose sweep changes the line's loads.
 
 A grid run as arrays (:attr:`cablestudy.study.grid.CaseGrid.arrays`) may sweep, besides
-end positions and segment stiffnesses, the numbers that set the line's weight and buoyancy
-without changing its geometry: a segment's ``mass_per_length``, ``weight_in_fluid`` or
-``diameter``, an attachment's ``mass`` or ``volume`` (:data:`LINE_LOAD`), and the
-seabed's depth, slope and friction (:data:`SEABED`). These do not depend on the other
+end positions and segment stiffnesses, the numbers that set the line's weight and buoyancy:
+a segment's ``mass_per_length``, ``weight_in_fluid`` or ``diameter``, an attachment's
+``mass`` or ``volume`` (:data:`LINE_LOAD`), the line's make-up along its length: a
+segment's ``length``, an attachment's position ``s`` and ``force`` (:data:`LINE_GEOMETRY`),
+and the seabed's depth, slope and friction (:data:`SEABED`). These do not depend on the other
 swept values, so it is built once per combination of the values
 on the axes that hold such paths (:func:`line_studies`): each one the template with those
 validated values copied in (:func:`cablestudy.study.grid_studies.case_study`, which runs
@@ -34,10 +35,19 @@ LINE_LOAD = re.compile(
 SEABED = re.compile(r"^environment\.(depth|seabed\.(friction|slope_deg|slope_heading_deg))$")
 
 
+#: swept paths that change where the line's loads act: a segment's unstretched
+#: ``length`` (the line's length, where its nodes lie and on which segment) and an
+#: attachment's position ``s`` along the line and its ``force`` components; each
+#: case's line is cut into its pieces as a case alone is (the compiled kernels take
+#: per-case pieces: :mod:`cablestudy.analyses.static_grid_lines`)
+LINE_GEOMETRY = re.compile(r"^line\.(segments\.\d+\.length|attachments\.\d+\.(s|force\.[012]))$")
+
+
 def per_line(path: str) -> bool:
     """Whether ``path`` is one whose values are built per combination (a load of the
-    line, :data:`LINE_LOAD`, or the seabed, :data:`SEABED`)."""
-    return bool(LINE_LOAD.match(path) or SEABED.match(path))
+    line, :data:`LINE_LOAD`, where and how long its parts are, :data:`LINE_GEOMETRY`, or
+    the seabed, :data:`SEABED`)."""
+    return bool(LINE_LOAD.match(path) or LINE_GEOMETRY.match(path) or SEABED.match(path))
 
 
 #: at most this many combinations of line values are built (a grid with more is solved

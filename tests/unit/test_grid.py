@@ -212,8 +212,8 @@ def test_array_path_writes_the_case_by_case_dataset_bit_for_bit(tmp_path: Path, 
 
 def test_a_sweep_the_arrays_cannot_take_is_left_to_the_case_path() -> None:
     # any numeric key of a static study is a grid; the compiled array route only for
-    # end positions and stiffnesses
-    text = TEXT.replace("ends.a.position.2: [-10.0, -20.0]", "line.segments.1.length: [40.0, 41.0]")
+    # end positions, stiffnesses and the numbers of the line and the seabed
+    text = TEXT.replace("ends.a.position.2: [-10.0, -20.0]", "analysis.static.nodes: [21, 31]")
     grid = expand_grid(parse_study_text(text, "gr.yaml"))
     assert grid.chunked and not grid.arrays
     text = TEXT.replace("method: catenary", "method: analytic")
