@@ -17,6 +17,7 @@ from .base import (
     STATUS_NOT_CONVERGED,
     STATUS_NUMERICAL,
 )
+from .contact_pin import pin_jump, pin_map
 from .law_pieces import piece_increments
 from .seabed import Plane
 from .semi_analytic_shape import (
@@ -339,7 +340,11 @@ def solve_contact(
     e1, e2 = plane.basis
     basis = np.stack((e1, e2), axis=1)  # (3, 2)
     T_td, s_td = guess
-    y = np.array([float(T_td @ e1), float(T_td @ e2), s_td])
+    # the TDP coordinate: s_td, extended by an interval at each downward point load over
+    # which the TDP stays at the load and the seabed takes up its weight (.contact_pin)
+    pins = pin_map(lay.bounds, lay.point, lay.weight, plane.normal)
+    y = np.array([float(T_td @ e1), float(T_td @ e2), pins.to_sigma(s_td)])
+    eye = np.eye(3)
     Fscale = max(float(np.sum(np.abs(lay.weight) * lay.ell)), 1e-300)
     if ends.kind != "fixed":
         assert ends.force is not None
@@ -347,22 +352,26 @@ def solve_contact(
 
     def evaluate(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         T_td = basis @ y[:2]
-        s_td = float(y[2])
+        s_td, pin, _, jT, jsig = _pinned(y[2], T_td)
         tn = float(np.linalg.norm(T_td))
         e = T_td / tn
         laid = _laid(lay, s_td, T_td, plane)
         s0, ell, EA, qs, C, k_td, Cend = _suspended(lay, q, s_td)
         laws = None if lay.law is None else lay.law[k_td:]
-        dr, jac, _ = piece_increments(T_td - C, qs, ell, EA, laws)
+        dr, jac, _ = piece_increments(T_td - pin - C, qs, ell, EA, laws)
         assert jac is not None
         Js = jac.sum(axis=0)
         rB = ends.rA + e * laid.stretched + dr.sum(axis=0)
-        dlaid = (
-            laid.stretched * (np.eye(3) - np.outer(e, e)) / tn + np.outer(e, e) * laid.positive_flex
-        )
-        dT = (Js + dlaid) @ basis  # d rB / d (alpha, beta)
-        drs = Js @ qs[0] - e * laid.rate_td * laid.positive_flex  # d rB / d s_td
-        TL = T_td - Cend
+        dlaid = laid.stretched * (eye - np.outer(e, e)) / tn + np.outer(e, e) * laid.positive_flex
+        dTup = (eye - jT) @ basis  # d T(s_td+) / d (alpha, beta)
+        dT = Js @ dTup + dlaid @ basis  # d rB / d (alpha, beta)
+        if jsig is None:
+            g = qs[0]  # d T(L) / d sigma
+            drs = Js @ qs[0] - e * laid.rate_td * laid.positive_flex  # d rB / d sigma
+        else:  # pinned: sigma moves the seabed reaction, the TDP stays
+            g = -jsig
+            drs = Js @ g
+        TL = T_td - pin - Cend
         if ends.kind == "fixed":
             assert ends.rB is not None
             R = (rB - ends.rB) / L
@@ -378,15 +387,27 @@ def solve_contact(
             )
             Jm = np.vstack(
                 (
-                    np.column_stack((basis[:2], qs[0][:2, None])) / Fscale,
+                    np.column_stack((dTup[:2], g[:2, None])) / Fscale,
                     np.append(dT[2], drs[2])[None, :] / L,
                 )
             )
         else:
             assert ends.force is not None
             R = (TL - ends.force) / Fscale
-            Jm = np.column_stack((basis, qs[0])) / Fscale
+            Jm = np.column_stack((dTup, g)) / Fscale
         return R, Jm
+
+    def _pinned(
+        sigma: float, T_td: np.ndarray
+    ) -> tuple[float, np.ndarray, float, np.ndarray, np.ndarray | None]:
+        """(s_td, tension jump at s_td, R, d jump / d T_td, d jump / d sigma or None)."""
+        s_td, i, R, rate = pins.to_line(float(sigma))
+        if i < 0:
+            return s_td, np.zeros(3), 0.0, np.zeros((3, 3)), None
+        j, dj_dT, dj_dR = pin_jump(
+            lay.point[pins.index[i]], R, T_td, plane.normal, plane.friction
+        )
+        return s_td, j, R, dj_dT, dj_dR * rate
 
     R, Jm = evaluate(y)
     res = float(np.max(np.abs(R)))
@@ -424,7 +445,7 @@ def solve_contact(
         for _ in range(40):
             yn = y + lam * step
             # keep the TDP on the line and the tension positive
-            yn[2] = min(max(yn[2], 0.0), L * (1.0 - 1e-9))
+            yn[2] = min(max(yn[2], 0.0), L + pins.extra - 1e-9 * L)
             if np.linalg.norm(yn[:2]) <= 1e-3 * np.linalg.norm(y[:2]):
                 yn[:2] = y[:2] * 1e-3
             Rn, Jn = evaluate(yn)
@@ -454,7 +475,11 @@ def solve_contact(
             at_zero = 0
     if y[2] <= 0.0:
         return None
-    shape = _contact_shape(lay, q, ends.rA, float(y[2]), basis @ y[:2], plane)
+    T_td = basis @ y[:2]
+    s_td, pin, _, _, jsig = _pinned(y[2], T_td)
+    shape = _contact_shape(
+        lay, q, ends.rA, s_td, T_td, plane, None if jsig is None else pin
+    )
     shape.iterations = it
     shape.residual = res
     _finite(shape, "line on the seabed")

@@ -281,8 +281,16 @@ def _laid(lay: Layout, s_td: float, T_td: np.ndarray, plane: Plane) -> LaidPart:
 
 
 def _contact_shape(
-    lay: Layout, q: np.ndarray, rA: np.ndarray, s_td: float, T_td: np.ndarray, plane: Plane
+    lay: Layout,
+    q: np.ndarray,
+    rA: np.ndarray,
+    s_td: float,
+    T_td: np.ndarray,
+    plane: Plane,
+    jump: np.ndarray | None = None,
 ) -> Shape:
+    """The line on the seabed up to s_td; ``jump`` [N]: the tension drop across a point
+    load resting on the seabed exactly at the TDP (:mod:`.contact_pin`), else None."""
     laid = _laid(lay, s_td, T_td, plane)
     tn = float(np.linalg.norm(T_td))
     e = T_td / tn if tn > 0.0 else plane.basis[0]
@@ -319,7 +327,8 @@ def _contact_shape(
             lawl.append(seg_law)
             slack.append(False)
     s0s, ells, EAs, qs, C, k_td, Cend = _suspended(lay, q, s_td)
-    T0s = T_td - C
+    T_up = T_td if jump is None else T_td - jump  # tension at s_td+, past a pinned load
+    T0s = T_up - C
     s0 = np.concatenate((np.array(s0l), s0s))
     ell = np.concatenate((np.array(elll), ells))
     T0 = np.concatenate((np.array(T0l).reshape(-1, 3), T0s))
@@ -337,7 +346,7 @@ def _contact_shape(
         EA=EA,
         r0=r0,
         force_a=force_a,
-        tension_end=T_td - Cend,
+        tension_end=T_up - Cend,
         laid_length=s_td,
         contact=True,
         law=laws,

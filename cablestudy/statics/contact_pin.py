@@ -1,0 +1,103 @@
+"""A point load (a clump weight) resting on the seabed at the touchdown point.
+
+The seabed-contact Newton (:func:`.semi_analytic_newton.solve_contact`) solves for the
+tension T_td at the touchdown point (TDP) and its arc length s_td. A downward point load
+at s_p makes that state set-valued: for a finite range of fairlead positions the TDP
+stays at the load while the seabed carries part R of it,
+
+    0 <= R <= R_max = -(f . n)        (f the load on the line, n the seabed normal),
+
+the line is straight on the seabed up to s_p and leaves it there with a kink. R = 0 is
+the limit of the TDP just anchor-side of the load (the load hangs, the laid part ends
+tangent to the seabed); R = R_max is the limit of the TDP just past it (the load lies on
+the seabed, the suspended line leaves tangent to it). The tension across the load,
+with Coulomb friction mu R fully mobilised towards the anchor (as on the laid part,
+:mod:`.seabed`), jumps by
+
+    T(s_p+) = T(s_p-) - j,    j = f + R n - mu R e     (e the laid direction).
+
+With s_td alone as unknown the residual jumps as the TDP crosses s_p, and Newton's line
+search fails there (the clump-near-touchdown failure). :class:`PinMap` replaces s_td by a
+coordinate sigma along an extended line in which every such load holds an interval of
+length Delta_p = R_max / w_p (w_p the normal weight per length of the line there, so that
+moving sigma by one metre changes the force held by the seabed as much as moving the TDP
+by one metre does): on it s_td = s_p and R runs linearly from 0 to R_max. The map is
+continuous and piecewise linear, the residual continuous in sigma, and Newton crosses the
+load without a jump.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class PinMap:
+    """Pinning intervals of the downward point loads strictly inside the line: their
+    boundary indices ``index``, arc lengths ``s`` [m] (ascending), maximum seabed
+    reactions ``r_max`` [N] and interval lengths ``delta`` [m]."""
+
+    index: np.ndarray
+    s: np.ndarray
+    r_max: np.ndarray
+    delta: np.ndarray
+
+    @property
+    def extra(self) -> float:
+        """[m] the extension of the sigma axis over the line length."""
+        return float(np.sum(self.delta))
+
+    def to_line(self, sigma: float) -> tuple[float, int, float, float]:
+        """(s_td [m], pinning load's position in this map or -1, R [N], dR/dsigma [N/m]).
+        A TDP exactly at a load is always pinned (R = 0 at one end of its interval, R_max
+        at the other), so that the load is never left out of both parts."""
+        shift = 0.0
+        for i in range(len(self.s)):
+            lo = self.s[i] + shift
+            if sigma < lo:
+                break
+            if sigma <= lo + self.delta[i]:
+                rate = self.r_max[i] / self.delta[i]
+                return float(self.s[i]), i, float(rate * (sigma - lo)), float(rate)
+            shift += self.delta[i]
+        return float(sigma - shift), -1, 0.0, 0.0
+
+    def to_sigma(self, s_td: float) -> float:
+        """sigma of a TDP at s_td [m] not pinned (a TDP exactly at a load: the load
+        lying on the seabed, R = R_max)."""
+        return float(s_td + np.sum(self.delta[self.s <= s_td]))
+
+
+def pin_map(bounds: np.ndarray, point: np.ndarray, weight: np.ndarray, normal: np.ndarray) -> PinMap:
+    """The pinning intervals of a layout: ``bounds`` [m] (P + 1,), ``point`` [N] (P + 1, 3)
+    point loads at the boundaries, ``weight`` [N/m] (P,), ``normal`` the seabed's upward
+    unit normal. Loads pulling up or along the seabed cannot rest on it: no interval."""
+    fn = point @ normal
+    idx = np.flatnonzero(fn[1:-1] < 0.0) + 1
+    L = float(bounds[-1])
+    mean = float(np.sum(np.abs(weight) * np.diff(bounds))) / L
+    r_max = -fn[idx]
+    delta = np.empty(len(idx))
+    for j, k in enumerate(idx):
+        # the normal weight per length anchor-side of the load, else the line's mean
+        w = float(weight[k - 1]) * float(normal[2])
+        if not w > 0.0:
+            w = mean * float(normal[2])
+        delta[j] = r_max[j] / max(w, 1e-300)
+    keep = delta > 1e-12 * L
+    return PinMap(idx[keep], bounds[idx[keep]].astype(float), r_max[keep], delta[keep])
+
+
+def pin_jump(
+    force: np.ndarray, reaction: float, T_td: np.ndarray, normal: np.ndarray, mu: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The tension jump j across a pinned load (T(s_p+) = T_td - j) with its derivatives:
+    (j [N] (3,), dj/dT_td [-] (3, 3), dj/dR [-] (3,)); T_td the laid tension at s_p-."""
+    tn = float(np.linalg.norm(T_td))
+    e = T_td / tn
+    j = force + reaction * normal - mu * reaction * e
+    dj_dT = -mu * reaction * (np.eye(3) - np.outer(e, e)) / tn
+    dj_dR = normal - mu * e
+    return j, dj_dT, dj_dR
