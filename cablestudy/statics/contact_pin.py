@@ -64,6 +64,12 @@ class PinMap:
             shift += self.delta[i]
         return float(sigma - shift), -1, 0.0, 0.0
 
+    @property
+    def kinks(self) -> np.ndarray:
+        """[m] the sigma values where the state changes piece (ends of the intervals)."""
+        lo = self.s + np.concatenate(([0.0], np.cumsum(self.delta)[:-1]))
+        return np.sort(np.concatenate((lo, lo + self.delta)))
+
     def to_sigma(self, s_td: float) -> float:
         """sigma of a TDP at s_td [m] not pinned (a TDP exactly at a load: the load
         lying on the seabed, R = R_max)."""
@@ -91,13 +97,29 @@ def pin_map(bounds: np.ndarray, point: np.ndarray, weight: np.ndarray, normal: n
 
 
 def pin_jump(
-    force: np.ndarray, reaction: float, T_td: np.ndarray, normal: np.ndarray, mu: float
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The tension jump j across a pinned load (T(s_p+) = T_td - j) with its derivatives:
-    (j [N] (3,), dj/dT_td [-] (3, 3), dj/dR [-] (3,)); T_td the laid tension at s_p-."""
-    tn = float(np.linalg.norm(T_td))
-    e = T_td / tn
-    j = force + reaction * normal - mu * reaction * e
-    dj_dT = -mu * reaction * (np.eye(3) - np.outer(e, e)) / tn
-    dj_dR = normal - mu * e
-    return j, dj_dT, dj_dR
+    force: np.ndarray, reaction: float, r_max: float, T_hat: np.ndarray, normal: np.ndarray,
+    mu: float,
+) -> tuple[np.ndarray, np.ndarray, float, np.ndarray, float]:
+    """A pinned load's state from the in-plane unknown T_hat [N] and the reaction R [N]:
+    (j [N], dj/dR [-], t_lo [N], dt_lo/dT_hat [-] (3,), dt_lo/dR [-]).
+
+    The tension past the load is T(s_p+) = T_hat - j with j = f + R n - (R / R_max) f_t
+    (f_t the load's part in the seabed plane), the laid part ends at s_p- along
+    e = T_hat / |T_hat| with tension t_lo = |T_hat| - (R / R_max) (mu R_max - f . e).
+    Along e and n this is the load's equilibrium with the seabed reaction R n and the
+    friction mu R towards the anchor; T_hat is the tension at the TDP of the neighbouring
+    states at both ends (R = 0: the load hangs just past the TDP; R = R_max: it lies just
+    before it, where :func:`.seabed.laid_part` takes mu R_max - f . e off the tension),
+    so the state is continuous across both ends. The load's part across the line in the
+    seabed plane is ignored on the laid side, as :func:`.seabed.laid_part` does."""
+    tn = float(np.linalg.norm(T_hat))
+    e = T_hat / tn
+    ft = force - float(force @ normal) * normal
+    a = reaction / r_max
+    j = force + reaction * normal - a * ft
+    dj_dR = normal - ft / r_max
+    fe = float(force @ e)
+    t_lo = tn - a * (mu * r_max - fe)
+    dt_dT = e + a * (force - fe * e) / tn
+    dt_dR = -(mu * r_max - fe) / r_max
+    return j, dj_dR, t_lo, dt_dT, dt_dR

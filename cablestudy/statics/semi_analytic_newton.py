@@ -352,25 +352,25 @@ def solve_contact(
 
     def evaluate(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         T_td = basis @ y[:2]
-        s_td, pin, _, jT, jsig = _pinned(y[2], T_td)
+        s_td, pin, jsig, t_lo, dtT, dtsig = _pinned(y[2], T_td)
         tn = float(np.linalg.norm(T_td))
         e = T_td / tn
-        laid = _laid(lay, s_td, T_td, plane)
+        laid = _laid(lay, s_td, T_td, plane, t_lo)
         s0, ell, EA, qs, C, k_td, Cend = _suspended(lay, q, s_td)
         laws = None if lay.law is None else lay.law[k_td:]
         dr, jac, _ = piece_increments(T_td - pin - C, qs, ell, EA, laws)
         assert jac is not None
         Js = jac.sum(axis=0)
         rB = ends.rA + e * laid.stretched + dr.sum(axis=0)
-        dlaid = laid.stretched * (eye - np.outer(e, e)) / tn + np.outer(e, e) * laid.positive_flex
-        dTup = (eye - jT) @ basis  # d T(s_td+) / d (alpha, beta)
-        dT = Js @ dTup + dlaid @ basis  # d rB / d (alpha, beta)
+        # d (e stretched) / d T_td; positive_flex = d stretched / d (laid tension at s_td)
+        dlaid = laid.stretched * (eye - np.outer(e, e)) / tn + np.outer(e, dtT) * laid.positive_flex
+        dT = (Js + dlaid) @ basis  # d rB / d (alpha, beta)
         if jsig is None:
             g = qs[0]  # d T(L) / d sigma
             drs = Js @ qs[0] - e * laid.rate_td * laid.positive_flex  # d rB / d sigma
         else:  # pinned: sigma moves the seabed reaction, the TDP stays
             g = -jsig
-            drs = Js @ g
+            drs = Js @ g + e * laid.positive_flex * dtsig
         TL = T_td - pin - Cend
         if ends.kind == "fixed":
             assert ends.rB is not None
@@ -387,28 +387,52 @@ def solve_contact(
             )
             Jm = np.vstack(
                 (
-                    np.column_stack((dTup[:2], g[:2, None])) / Fscale,
+                    np.column_stack((basis[:2], g[:2, None])) / Fscale,
                     np.append(dT[2], drs[2])[None, :] / L,
                 )
             )
         else:
             assert ends.force is not None
             R = (TL - ends.force) / Fscale
-            Jm = np.column_stack((dTup, g)) / Fscale
+            Jm = np.column_stack((basis, g)) / Fscale
         return R, Jm
 
     def _pinned(
         sigma: float, T_td: np.ndarray
-    ) -> tuple[float, np.ndarray, float, np.ndarray, np.ndarray | None]:
-        """(s_td, tension jump at s_td, R, d jump / d T_td, d jump / d sigma or None)."""
+    ) -> tuple[float, np.ndarray, np.ndarray | None, float | None, np.ndarray, float]:
+        """(s_td, tension jump at s_td, d jump / d sigma, laid tension at s_td, its
+        derivatives by T_td and sigma); not pinned: (s_td, 0, None, None, e, 0)."""
         s_td, i, R, rate = pins.to_line(float(sigma))
         if i < 0:
-            return s_td, np.zeros(3), 0.0, np.zeros((3, 3)), None
-        j, dj_dT, dj_dR = pin_jump(
-            lay.point[pins.index[i]], R, T_td, plane.normal, plane.friction
+            tn = float(np.linalg.norm(T_td))
+            return s_td, np.zeros(3), None, None, T_td / tn, 0.0
+        k = pins.index[i]
+        j, dj_dR, t_lo, dt_dT, dt_dR = pin_jump(
+            lay.point[k], R, float(pins.r_max[i]), T_td, plane.normal, plane.friction
         )
-        return s_td, j, R, dj_dT, dj_dR * rate
+        return s_td, j, dj_dR * rate, t_lo, dt_dT, dt_dR * rate
 
+    def kink_step(y: np.ndarray, R: np.ndarray, step: np.ndarray) -> tuple[np.ndarray, float]:
+        """At a kink of the TDP coordinate, the Newton step of the piece it goes into;
+        and the largest step fraction that stays within one piece (the line search
+        starts there, landing on the next kink)."""
+        if not kinks.size or step[2] == 0.0:
+            return step, 1.0
+        if np.any(np.abs(kinks - y[2]) <= 1e-12 * L):
+            side = y.copy()
+            side[2] += math.copysign(1e-9 * L, step[2])
+            _, Jside = evaluate(side)
+            try:
+                other = np.linalg.solve(Jside, -R)
+            except np.linalg.LinAlgError:
+                other = step
+            if other[2] * step[2] > 0.0:
+                step = other
+        frac = (kinks - y[2]) / step[2]
+        ahead = frac[(frac > 1e-12) & (frac < 1.0)]
+        return step, float(ahead.min()) if ahead.size else 1.0
+
+    kinks = pins.kinks
     R, Jm = evaluate(y)
     res = float(np.max(np.abs(R)))
     it = 0
@@ -440,10 +464,13 @@ def solve_contact(
             step = np.linalg.solve(Jm, -R)
         except np.linalg.LinAlgError:
             step = -np.linalg.lstsq(Jm, R, rcond=None)[0]
-        lam = 1.0
+        step, lam = kink_step(y, R, step)
+        lam_kink = lam if lam < 1.0 else None
         norm0 = float(np.linalg.norm(R))
         for _ in range(40):
             yn = y + lam * step
+            if lam == lam_kink:
+                yn[2] = kinks[np.argmin(np.abs(kinks - yn[2]))]  # exactly on it
             # keep the TDP on the line and the tension positive
             yn[2] = min(max(yn[2], 0.0), L + pins.extra - 1e-9 * L)
             if np.linalg.norm(yn[:2]) <= 1e-3 * np.linalg.norm(y[:2]):
@@ -476,9 +503,9 @@ def solve_contact(
     if y[2] <= 0.0:
         return None
     T_td = basis @ y[:2]
-    s_td, pin, _, _, jsig = _pinned(y[2], T_td)
+    s_td, pin, jsig, t_lo, _, _ = _pinned(y[2], T_td)
     shape = _contact_shape(
-        lay, q, ends.rA, s_td, T_td, plane, None if jsig is None else pin
+        lay, q, ends.rA, s_td, T_td, plane, None if jsig is None else pin, t_lo
     )
     shape.iterations = it
     shape.residual = res

@@ -262,9 +262,15 @@ def _suspended(
     return s0, ell, EA, qs, C, k, Cend
 
 
-def _laid(lay: Layout, s_td: float, T_td: np.ndarray, plane: Plane) -> LaidPart:
+def _laid(
+    lay: Layout, s_td: float, T_td: np.ndarray, plane: Plane, tension: float | None = None
+) -> LaidPart:
+    """The laid part up to s_td along T_td; ``tension`` [N]: its tension at s_td when it
+    is not |T_td| (a load resting on the seabed at the TDP, :mod:`.contact_pin`)."""
     tn = float(np.linalg.norm(T_td))
     e = T_td / tn if tn > 0.0 else plane.basis[0]
+    if tension is not None:
+        tn = max(tension, 0.0)
     mask = (lay.bounds < s_td) & np.any(lay.point != 0.0, axis=1)
     return laid_part(
         s_td,
@@ -288,10 +294,12 @@ def _contact_shape(
     T_td: np.ndarray,
     plane: Plane,
     jump: np.ndarray | None = None,
+    laid_tension: float | None = None,
 ) -> Shape:
-    """The line on the seabed up to s_td; ``jump`` [N]: the tension drop across a point
-    load resting on the seabed exactly at the TDP (:mod:`.contact_pin`), else None."""
-    laid = _laid(lay, s_td, T_td, plane)
+    """The line on the seabed up to s_td; ``jump`` [N] and ``laid_tension`` [N]: with a
+    point load resting on the seabed exactly at the TDP (:mod:`.contact_pin`), the
+    tension past it is T_td - jump and the laid part's tension at s_td- laid_tension."""
+    laid = _laid(lay, s_td, T_td, plane, laid_tension)
     tn = float(np.linalg.norm(T_td))
     e = T_td / tn if tn > 0.0 else plane.basis[0]
     s0l, elll, T0l, ql, EAl, lawl, slack = [], [], [], [], [], [], []
