@@ -76,7 +76,9 @@ class PinMap:
         return float(s_td + np.sum(self.delta[self.s <= s_td]))
 
 
-def pin_map(bounds: np.ndarray, point: np.ndarray, weight: np.ndarray, normal: np.ndarray) -> PinMap:
+def pin_map(
+    bounds: np.ndarray, point: np.ndarray, weight: np.ndarray, normal: np.ndarray
+) -> PinMap:
     """The pinning intervals of a layout: ``bounds`` [m] (P + 1,), ``point`` [N] (P + 1, 3)
     point loads at the boundaries, ``weight`` [N/m] (P,), ``normal`` the seabed's upward
     unit normal. Loads pulling up or along the seabed cannot rest on it: no interval."""
@@ -97,7 +99,11 @@ def pin_map(bounds: np.ndarray, point: np.ndarray, weight: np.ndarray, normal: n
 
 
 def pin_jump(
-    force: np.ndarray, reaction: float, r_max: float, T_hat: np.ndarray, normal: np.ndarray,
+    force: np.ndarray,
+    reaction: float,
+    r_max: float,
+    T_hat: np.ndarray,
+    normal: np.ndarray,
     mu: float,
 ) -> tuple[np.ndarray, np.ndarray, float, np.ndarray, float]:
     """A pinned load's state from the in-plane unknown T_hat [N] and the reaction R [N]:

@@ -504,9 +504,7 @@ def solve_contact(
         return None
     T_td = basis @ y[:2]
     s_td, pin, jsig, t_lo, _, _ = _pinned(y[2], T_td)
-    shape = _contact_shape(
-        lay, q, ends.rA, s_td, T_td, plane, None if jsig is None else pin, t_lo
-    )
+    shape = _contact_shape(lay, q, ends.rA, s_td, T_td, plane, None if jsig is None else pin, t_lo)
     shape.iterations = it
     shape.residual = res
     _finite(shape, "line on the seabed")
