@@ -12,7 +12,8 @@ solved on its own as a free-hanging wire from the clump's position, gives the sa
 fairlead force (an independent solve); the seabed reaction lies in [0, W]; the anchor
 tension equals the fairlead's horizontal tension less the friction on the laid line and
 on the clump (mu R); and the fairlead tension is continuous as the fairlead moves the
-TDP onto, along and off the clump.
+TDP onto, along and off the clump; with the clump hanging, MoorPy (a point of that
+mass between lines) gives the same fairlead force and clump position.
 """
 
 from __future__ import annotations
@@ -157,3 +158,47 @@ def test_fairlead_tension_continuous_as_the_clump_lifts_off_the_seabed(
     # the suspended length grows) and varies by < 2x over these 2 m, so 2x the median
     # increment bounds every increment of a continuous curve
     assert dT.max() <= 2.0 * np.median(dT), dT
+
+
+def test_suspended_clump_matches_moorpy(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # the clump hanging 100 m from the fairlead, no friction: MoorPy (NREL) with the
+    # line as three lines (chain, wire to the clump, wire to the fairlead) between an
+    # anchor, a free massless point, the free 5 t clump and the fixed fairlead
+    import moorpy
+
+    ds = _run(
+        tmp_path,
+        "hung",
+        [820.0],
+        mu=0.0,
+        segments=CHAIN + WIRE.format(length=400.0),
+        attachments="  attachments:\n    - {s: 800.0, mass: 5000.0, name: clump}",
+        xa=0.0,
+        nodes=46,
+    ).isel(position_0=0)
+    capsys.readouterr()
+    assert int(ds["status"]) == 0 and float(ds["laid_length"]) < 800.0  # clump hangs
+
+    rho = 1025.0
+    ms = moorpy.System(depth=200.0, rho=rho, g=G)
+    for name, mass, w, ea, dnom in (
+        ("chain", 115.0, W_CHAIN, 4.9e8, 137.0),
+        ("wire", 29.0, W_WIRE, 5.2e8, 76.0),
+    ):
+        d_vol = float(np.sqrt((mass - w / G) / rho * 4.0 / np.pi))
+        ms.setLineType(dnommm=dnom, d_vol=d_vol, mass=mass, w=w, EA=ea, name=name)
+    ms.addPoint(1, [0.0, 0.0, -200.0])
+    ms.addPoint(0, [480.0, 0.0, -200.0])
+    ms.addPoint(0, [700.0, 0.0, -120.0], m=5000.0, v=0.0)
+    ms.addPoint(1, [820.0, 0.0, -20.0])
+    ms.addLine(500.0, "chain", pointA=1, pointB=2)
+    ms.addLine(300.0, "wire", pointA=2, pointB=3)
+    ms.addLine(100.0, "wire", pointA=3, pointB=4)
+    ms.initialize()
+    ms.solveEquilibrium(tol=1e-6)
+    # MoorPy's equilibrium tolerance 1e-6 m on the free points; the line is ~1e3 times
+    # stiffer in force than that over its tension (a few 1e5 N/m at ~1e5 N): 1e-5
+    # relative on forces, 1e-4 m on the clump's position bound both answers' errors
+    np.testing.assert_allclose(ds["force_b"].values, ms.lineList[2].fB, rtol=1e-5)
+    clump = [float(ds["x"].sel(s=800.0)), float(ds["z"].sel(s=800.0))]
+    np.testing.assert_allclose(clump, ms.pointList[2].r[[0, 2]], rtol=0, atol=1e-4)
