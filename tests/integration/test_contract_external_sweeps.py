@@ -647,18 +647,20 @@ def test_a_swept_tow_force_vector_with_labels(tmp_path: Path, method: str) -> No
 def test_a_case_that_fails_is_recorded_and_the_sweep_carries_on(
     tmp_path: Path, method: str
 ) -> None:
-    """The leg with its clump moved to s = 250 m and its chain swept 190, 200, 210 m:
-    at 190 m the touchdown point falls on the clump (a point load resting on the seabed
-    with a kink there), which no static method here solves. That case is kept with a
-    nonzero status, a message, NaN in every numeric static output (counters included);
-    the other two cases are solved (status 0, empty message) and the file counts one
-    failure. Measured: every method fails it; shooting says why, catenary and discrete
-    report their Newton's line search."""
-    text = study_text("leg", method, f"fails-{method}").replace("s: 330.0", "s: 250.0")
+    """The leg with its chain swept 260, 200, 210 m: at 260 m the line (460 m) is longer
+    than the path along the seabed and straight up to B (440 m), so it lies slack on the
+    seabed and its laid shape is not determined, which no static method here solves.
+    That case is kept with a nonzero status, a message, NaN in every numeric static
+    output (counters included); the other two cases are solved (status 0, empty message)
+    and the file counts one failure. Measured: every method fails it and says why.
+    (This test used the clump moved to s = 250 m with a 190 m chain, its touchdown point
+    on the clump; catenary and discrete now solve that, with the clump resting at the
+    touchdown point, statics/contact_pin.py.)"""
+    text = study_text("leg", method, f"fails-{method}")
     buf = io.StringIO()
     with contextlib.redirect_stdout(buf):
         code, ds = run(
-            tmp_path, with_sweep(text, {"line.segments.0.length": [190.0, 200.0, 210.0]})
+            tmp_path, with_sweep(text, {"line.segments.0.length": [260.0, 200.0, 210.0]})
         )
     assert code == 0 and ds is not None, buf.getvalue()
     assert list(ds["status"].values != 0) == [True, False, False]
