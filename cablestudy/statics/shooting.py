@@ -559,8 +559,9 @@ class ShootingSolver(_StartGuesses):
                     status,
                     f"the touchdown point runs into the attachment at s = {near[0]:.6g} m "
                     "(from the seabed end): a point load resting on the seabed at the "
-                    "touchdown point, with a kink in the line there, is not modelled; "
-                    f"{msg}",
+                    "touchdown point, with a kink in the line there, is not modelled "
+                    "here (method 'catenary' models it, the seabed carrying part of the "
+                    f"load); {msg}",
                     iterations=total_it,
                     residual=norm,
                 )
