@@ -248,3 +248,32 @@ analysis:
 sweep:
   analysis.dynamic.method: [time, frequency]
 """
+
+
+def law_line(law: str) -> str:
+    """The ``axial:`` line of docs/guide/cable-laws.md's block for ``law``, as printed."""
+    block = next(b for b in yaml_blocks("docs/guide/cable-laws.md") if "law: polynomial" in b)
+    line = next(x for x in block.splitlines() if f"law: {law}" in x)
+    return line.split("#")[0].strip()
+
+
+def hanging_wire(axial_line: str, name: str) -> str:
+    """A 100 m wire hanging straight down in air under 20 kN, with the axial law
+    ``axial_line``, by the three methods that take a non-linear law."""
+    return f"""\
+name: {name}
+environment: {{fluid: air}}
+line:
+  segments:
+    - length: 100.0
+      diameter: 0.02
+      mass_per_length: 3.0
+      {axial_line}
+ends:
+  a: {{kind: fixed, position: [0.0, 0.0, 50.0]}}
+  b: {{kind: force, force: [0.0, 0.0, -20000.0]}}
+analysis:
+  static: {{nodes: 51}}
+sweep:
+  analysis.static.method: {{values: [catenary, shooting, discrete], name: solver}}
+"""

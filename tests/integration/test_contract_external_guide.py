@@ -380,3 +380,41 @@ def test_guide_cli_refusals(tmp_path, capsys):
     assert "is a file, not a folder" in err
     assert "is a folder, not a result file" in err
     assert "does not exist" in err
+
+
+def test_polynomial_law_stretch(tmp_path):
+    """docs/guide/cable-laws.md's polynomial law as printed, on a wire hanging straight
+    down: its lower end lies at the law's exact stretch, the integral of the strain e(T)
+    along s with T = F + w (L - s) (catenary and shooting to 1e-12 m, their tolerances;
+    discrete to 1e-7 m, its 50 elements' O(h^2) lumping); ``elongation``, trapezoids
+    over the 51 output points, within their error bound L h^2 / 12 max |e_ss| (1.6e-8
+    m here, docs/guide/results.md), not exact."""
+    from scipy.integrate import quad
+    from scipy.optimize import brentq
+
+    line = gc.law_line("polynomial")
+    coefficients = [4.0e6, 2.0e7, 5.0e7]
+    assert line == "axial: {law: polynomial, coefficients: [4.0e6, 2.0e7, 5.0e7]}"
+    ds = gc.run(tmp_path, gc.hanging_wire(line, "poly-wire"))
+
+    def law(e, k=0):  # T(e) and its derivatives
+        c = np.polynomial.Polynomial([0.0, *coefficients])
+        return c.deriv(k)(e) if k else c(e)
+
+    w = (3.0 - gc.RHO_AIR * math.pi * 0.02**2 / 4) * gc.G
+    force, length, h = 20000.0, 100.0, 2.0
+
+    def strain(s):
+        t = force + w * (length - s)
+        return brentq(lambda e: law(e) - t, 0.0, 1.0, xtol=1e-16, rtol=1e-15)
+
+    exact = quad(strain, 0.0, length, epsabs=1e-14, epsrel=1e-14)[0]
+    # e_ss = e''(T) w^2 = -T''(e) / T'(e)^3 w^2, largest at the least tension
+    e_ss = max(abs(law(strain(s), 2) / law(strain(s), 1) ** 3) * w**2 for s in (0.0, length))
+    bound = length * h**2 / 12 * e_ss
+    for m in ds.solver.values:
+        d = ds.sel(solver=m)
+        assert int(d.status) == 0
+        tol = 1e-7 if m == "discrete" else 1e-12
+        assert abs((50.0 - float(d.z[-1]) - length) - exact) <= tol, m
+        assert abs(float(d.elongation[-1]) - exact) <= 1.05 * bound, m
