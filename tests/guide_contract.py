@@ -277,3 +277,14 @@ analysis:
 sweep:
   analysis.static.method: {{values: [catenary, shooting, discrete], name: solver}}
 """
+
+
+#: the spread's platform surged 1 m at 0.002 Hz by both dynamic methods in one study
+SPREAD_DYNAMICS = SPREAD.split("sweep:")[0].replace("name: spread3", "name: spread3-dyn") + (
+    "analysis:\n"
+    "  dynamic:\n"
+    "    excitation: {body: platform, dof: surge, amplitude: 1.0, frequency: 0.002}\n"
+    "    elements: 40\n"
+    "sweep:\n"
+    "  analysis.dynamic.method: [time, frequency]\n"
+)

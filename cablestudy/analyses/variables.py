@@ -512,6 +512,12 @@ SYSTEM_OUTPUTS.update(
     }
 )
 SYSTEM_OUTPUTS["x"] = replace(SYSTEM_OUTPUTS["x"], long_name="x position along each line")
+# the system frequency domain writes no steady_converged (the one-line one writes 1)
+SYSTEM_OUTPUTS["steady_converged"] = replace(
+    SYSTEM_OUTPUTS["steady_converged"],
+    nan_means="the case ran the frequency domain (dynamic_method 'frequency'), which has "
+    "no steady window to settle",
+)
 SYSTEM_OUTPUTS["arc_length"] = replace(
     SYSTEM_OUTPUTS["arc_length"], long_name="unstretched arc length from end A of each line"
 )
