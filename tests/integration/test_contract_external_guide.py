@@ -450,3 +450,24 @@ def test_system_methods_in_one_study_explain_their_nans(tmp_path):
     rng = ds.tension_max_b - ds.tension_min_b
     np.testing.assert_allclose(rng.sel({"method": "frequency"}), expected, rtol=0.03)
     np.testing.assert_allclose(rng.sel({"method": "time"}), expected, rtol=0.12)
+
+
+def test_validate_and_schema_load_no_kernels(tmp_path):
+    """docs/guide/cli.md: `validate` and `schema` load neither numba nor scipy (what
+    makes them answer at once), checked in a fresh interpreter."""
+    import subprocess
+    import sys
+
+    cfg = gc.write(tmp_path, gc.LEG)
+    code = (
+        "import sys, io, contextlib\n"
+        "from cablestudy.cli import main\n"
+        "with contextlib.redirect_stdout(io.StringIO()):\n"
+        f"    assert main(['validate', {str(cfg)!r}]) == 0\n"
+        "    assert main(['schema']) == 0\n"
+        "print(sorted(m for m in ('numba', 'scipy') if m in sys.modules))\n"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, cwd=gc.ROOT, check=True
+    )
+    assert out.stdout.strip() == "[]", out.stdout + out.stderr
