@@ -471,3 +471,22 @@ def test_validate_and_schema_load_no_kernels(tmp_path):
         [sys.executable, "-c", code], capture_output=True, text=True, cwd=gc.ROOT, check=True
     )
     assert out.stdout.strip() == "[]", out.stdout + out.stderr
+
+
+def test_system_guide_example_from_a_taut_start(tmp_path):
+    """The same example started with the clump where leg1 is taut (systems.md): every
+    surge solves; the clump balances its weight less buoyancy and the two lines' pulls
+    (to 1e-9 of its weight: the Newton's tolerance), and sits where the guide says at
+    zero surge (printed to 0.1 m)."""
+    text = gc.SYSTEM_GUIDE_SLACK_START.replace(
+        "position: [-60.0, 0.0, -60.0]", "position: [-70.0, 0.0, -30.0]"
+    ).replace("name: spread", "name: spread-taut")
+    ds = gc.run(tmp_path, text)
+    assert (ds.status == 0).all()
+    weight = (3000.0 - gc.RHO_WATER * 0.2) * gc.G
+    for surge in ds.surge.values:
+        d = ds.sel(surge=surge)
+        net = d.force_b.sel(line="leg1").values + d.force_a.sel(line="bridle").values
+        np.testing.assert_allclose(net, [0.0, 0.0, weight], atol=1e-9 * weight)
+    clump = ds.point_position.sel(surge=0.0, point="clump").values
+    np.testing.assert_allclose(clump, [-27.9, 0.0, -76.1], atol=0.05)
