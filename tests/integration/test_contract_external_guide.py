@@ -490,3 +490,37 @@ def test_system_guide_example_from_a_taut_start(tmp_path):
         np.testing.assert_allclose(net, [0.0, 0.0, weight], atol=1e-9 * weight)
     clump = ds.point_position.sel(surge=0.0, point="clump").values
     np.testing.assert_allclose(clump, [-27.9, 0.0, -76.1], atol=0.05)
+
+
+MOORPY_DESIGN = """\
+mooring:
+  water_depth: 200
+  points:
+    - {name: anchor, type: fixed, location: [800, 0, -200]}
+    - {name: fair, type: vessel, location: [20, 0, -14]}
+  lines:
+    - {name: leg, endA: anchor, endB: fair, type: chain, length: 850}
+  line_types:
+    - {name: chain, diameter: 0.137, mass_density: 115.0, stiffness: 4.9e8,
+       transverse_drag: 1.2, tangential_drag: 0.4, transverse_added_mass: 1.0,
+       tangential_added_mass: 0.5}
+"""
+
+
+def test_moorpy_design_yaml_imported_and_run(tmp_path, capsys):
+    """docs/guide/interchange.md: `cablestudy import moorpy design.yaml > study.yaml`,
+    then `cablestudy run`: the study says where it came from (a MoorPy design YAML, not
+    "MoorDyn v2"), and its leg is MoorPy's catenary between the same points (1e-9)."""
+    catenary = pytest.importorskip("moorpy.Catenary", reason="MoorPy (the peers extra)").catenary
+    src = tmp_path / "design.yaml"
+    src.write_text(MOORPY_DESIGN)
+    capsys.readouterr()
+    assert main(["import", "moorpy", str(src)]) == 0
+    study = capsys.readouterr().out
+    ds = gc.run(tmp_path, study)
+    assert "(MoorPy design YAML)" in ds.attrs["study_description"]
+    assert "MoorDyn v" not in ds.attrs["study_description"]
+    _, _, hb, vb, _ = catenary(780.0, 186.0, 850.0, 4.9e8, gc.W_CHAIN, CB=0.0, Tol=1e-12)
+    fb = ds.force_b.values
+    assert abs(fb[0]) == pytest.approx(abs(hb), rel=1e-9)
+    assert fb[2] == pytest.approx(vb, rel=1e-9)
