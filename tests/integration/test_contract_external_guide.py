@@ -15,7 +15,13 @@ Defects found this way and fixed (each test below failed before its fix):
   the other method (``dynamic_steps``, ``tension_amplitude_b``, ...);
 - a system sweep run as arrays failed every case of a chunk as "LinAlgError: Singular
   matrix" (status 2) when one case's free points had a singular stiffness, instead of
-  handing that case to the general solver (its own message, naming the line).
+  handing that case to the general solver (its own message, naming the line);
+- the system frequency domain left ``steady_converged`` a bare NaN in a study mixing
+  methods;
+- results.md called ``elongation`` "the integral of T / EA": it is the strain by
+  trapezoids between output points (O(h^2) off for a non-linear law);
+- cli.md said `validate` imports none of the solvers (it loads no numba nor scipy);
+- a study imported from a MoorPy design YAML described itself as "MoorDyn v2".
 """
 
 from __future__ import annotations
