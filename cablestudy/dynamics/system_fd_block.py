@@ -58,19 +58,73 @@ def _inverse(z):  # noqa: ANN001, ANN202
     return complex(t / d, -1.0 / d)
 
 
+@njit(cache=True, inline="always")
+def _block(A, k0, k, rev, bw, i, j):  # noqa: ANN001, ANN202, PLR0913
+    """The 3 x 3 block at rows ``i ..``, columns ``j ..`` (row-major, nine values) of a
+    line's matrix in factor order, read from its band rows in the line's own order
+    ``A[k0 + p, q - p + bw]`` (rows ``k0 .. k0 + k - 1``); with ``rev`` the factor's
+    row ``i`` is the line's ``k - 1 - i`` (:func:`.system_fd_kernel._line_rows`)."""
+    if rev:
+        r = k0 + k - 1 - i
+        o = bw - (j - i)
+        return (
+            A[r, o], A[r, o - 1], A[r, o - 2],
+            A[r - 1, o + 1], A[r - 1, o], A[r - 1, o - 1],
+            A[r - 2, o + 2], A[r - 2, o + 1], A[r - 2, o],
+        )  # fmt: skip
+    r = k0 + i
+    o = bw + (j - i)
+    return (
+        A[r, o], A[r, o + 1], A[r, o + 2],
+        A[r + 1, o - 1], A[r + 1, o], A[r + 1, o + 1],
+        A[r + 2, o - 2], A[r + 2, o - 1], A[r + 2, o],
+    )  # fmt: skip
+
+
+@njit(cache=True, inline="always")
+def _diagonal(A, k0, k, rev, bw, i, drag, D, g, iw):  # noqa: ANN001, ANN202, PLR0913
+    """The diagonal block at row ``i`` of :func:`_block` with ``drag`` the node ``g``'s
+    ``iw D[g]`` added (reversed with the line: the band rows' own sums, in their order,
+    :func:`.system_fd_kernel._line_rows`)."""
+    a00, a01, a02, a10, a11, a12, a20, a21, a22 = _block(A, k0, k, rev, bw, i, i)
+    if drag:
+        if rev:
+            a00 += iw * D[g, 2, 2]
+            a01 += iw * D[g, 2, 1]
+            a02 += iw * D[g, 2, 0]
+            a10 += iw * D[g, 1, 2]
+            a11 += iw * D[g, 1, 1]
+            a12 += iw * D[g, 1, 0]
+            a20 += iw * D[g, 0, 2]
+            a21 += iw * D[g, 0, 1]
+            a22 += iw * D[g, 0, 0]
+        else:
+            a00 += iw * D[g, 0, 0]
+            a01 += iw * D[g, 0, 1]
+            a02 += iw * D[g, 0, 2]
+            a10 += iw * D[g, 1, 0]
+            a11 += iw * D[g, 1, 1]
+            a12 += iw * D[g, 1, 2]
+            a20 += iw * D[g, 2, 0]
+            a21 += iw * D[g, 2, 1]
+            a22 += iw * D[g, 2, 2]
+    return a00, a01, a02, a10, a11, a12, a20, a21, a22
+
+
 @njit(cache=True, error_model="numpy")
-def block_factor(R, bw, N, reach, B, m, pinv):  # noqa: ANN001, ANN201, PLR0913, PLR0915
-    """Factor the block-tridiagonal complex matrix of 3 x 3 blocks (``N`` a multiple of
-    3) on the row storage ``R`` (``A[i, j]`` at ``R[i, j - i + bw]``, ``bw >= 5`` unless
-    one block) without row exchanges, carrying the ``m`` right sides ``B[:N, :m]``
-    (module docstring). False when a multiplier exceeds :data:`_LIMIT` or a pivot is
-    zero or not finite, or an eliminated right side is not finite (``R`` and ``B``
-    then changed: the caller starts again from the band factor)."""
+def block_factor(A, k0, N, rev, bw, drag, D, g0, iw, R, reach, B, m, pinv):  # noqa: ANN001, ANN201, PLR0913, PLR0915
+    """Factor a line's block-tridiagonal complex matrix of 3 x 3 blocks (``N`` rows, a
+    multiple of 3) without row exchanges, carrying the ``m`` right sides ``B[:N, :m]``
+    (module docstring), in factor order: its band rows ``A`` in the line's own order
+    (:func:`_block`; ``bw >= 5`` unless one block), with ``drag`` the drag ``iw D[g]``
+    of node ``g = g0 + s`` (``g0 - s`` with ``rev``) on the factor's ``s``-th diagonal
+    block (:func:`_diagonal`). ``U`` into ``R`` (rows ``0 .. N - 1``, only its
+    entries), ``pinv``, ``reach`` as :func:`.system_fd_kernel._band_factor`. False when
+    a multiplier exceeds :data:`_LIMIT`, a pivot is zero or not finite, or an eliminated
+    right side is not finite (``R`` and ``B`` then changed: the caller starts again by
+    the band factor)."""
     n = N // 3
-    # S: the current node's diagonal block less the Schur update of the node before
-    s00, s01, s02 = R[0, bw], R[0, bw + 1], R[0, bw + 2]
-    s10, s11, s12 = R[1, bw - 1], R[1, bw], R[1, bw + 1]
-    s20, s21, s22 = R[2, bw - 2], R[2, bw - 1], R[2, bw]
+    s00, s01, s02, s10, s11, s12, s20, s21, s22 = _diagonal(A, k0, N, rev, bw, 0, drag, D, g0, iw)
     for s in range(n):
         r = 3 * s
         # S = L U, L unit lower: multipliers l10, l20, l21
@@ -112,32 +166,34 @@ def block_factor(R, bw, N, reach, B, m, pinv):  # noqa: ANN001, ANN201, PLR0913,
         reach[r + 1] = r + 5
         reach[r + 2] = r + 5
         q = r + 3
-        # V = L^-1 A_{s,s+1} (the upper factor's block right of the diagonal), in place:
-        # A_{s,s+1}[a, b] at R[r + a, bw + 3 + b - a]
-        v00, v01, v02 = R[r, bw + 3], R[r, bw + 4], R[r, bw + 5]
-        v10 = R[r + 1, bw + 2] - l10 * v00
-        v11 = R[r + 1, bw + 3] - l10 * v01
-        v12 = R[r + 1, bw + 4] - l10 * v02
-        v20 = R[r + 2, bw + 1] - l20 * v00 - l21 * v10
-        v21 = R[r + 2, bw + 2] - l20 * v01 - l21 * v11
-        v22 = R[r + 2, bw + 3] - l20 * v02 - l21 * v12
+        # V = L^-1 A_{s,s+1} (the upper factor's block right of the diagonal)
+        v00, v01, v02, v10, v11, v12, v20, v21, v22 = _block(A, k0, N, rev, bw, r, q)
+        v10 = v10 - l10 * v00
+        v11 = v11 - l10 * v01
+        v12 = v12 - l10 * v02
+        v20 = v20 - l20 * v00 - l21 * v10
+        v21 = v21 - l20 * v01 - l21 * v11
+        v22 = v22 - l20 * v02 - l21 * v12
+        R[r, bw + 3] = v00
+        R[r, bw + 4] = v01
+        R[r, bw + 5] = v02
         R[r + 1, bw + 2] = v10
         R[r + 1, bw + 3] = v11
         R[r + 1, bw + 4] = v12
         R[r + 2, bw + 1] = v20
         R[r + 2, bw + 2] = v21
         R[r + 2, bw + 3] = v22
-        # M = A_{s+1,s} U^-1 (the multipliers of the next node's rows): A_{s+1,s}[a, b]
-        # at R[q + a, bw + b - 3 - a]
-        m00 = R[q, bw - 3] * i0
-        m01 = (R[q, bw - 2] - m00 * s01) * i1
-        m02 = (R[q, bw - 1] - m00 * s02 - m01 * s12) * i2
-        m10 = R[q + 1, bw - 4] * i0
-        m11 = (R[q + 1, bw - 3] - m10 * s01) * i1
-        m12 = (R[q + 1, bw - 2] - m10 * s02 - m11 * s12) * i2
-        m20 = R[q + 2, bw - 5] * i0
-        m21 = (R[q + 2, bw - 4] - m20 * s01) * i1
-        m22 = (R[q + 2, bw - 3] - m20 * s02 - m21 * s12) * i2
+        # M = A_{s+1,s} U^-1: the multipliers of the next node's rows
+        m00, m01, m02, m10, m11, m12, m20, m21, m22 = _block(A, k0, N, rev, bw, q, r)
+        m00 = m00 * i0
+        m01 = (m01 - m00 * s01) * i1
+        m02 = (m02 - m00 * s02 - m01 * s12) * i2
+        m10 = m10 * i0
+        m11 = (m11 - m10 * s01) * i1
+        m12 = (m12 - m10 * s02 - m11 * s12) * i2
+        m20 = m20 * i0
+        m21 = (m21 - m20 * s01) * i1
+        m22 = (m22 - m20 * s02 - m21 * s12) * i2
         top = max(
             max(max(_big(m00), _big(m01)), max(_big(m02), _big(m10))),
             max(max(_big(m11), _big(m12)), max(_big(m20), max(_big(m21), _big(m22)))),
@@ -153,15 +209,17 @@ def block_factor(R, bw, N, reach, B, m, pinv):  # noqa: ANN001, ANN201, PLR0913,
             B[q + 1, c] = B[q + 1, c] - m10 * z0 - m11 * z1 - m12 * z2
             B[q + 2, c] = B[q + 2, c] - m20 * z0 - m21 * z1 - m22 * z2
         # the next node's diagonal block less M V
-        s00 = R[q, bw] - m00 * v00 - m01 * v10 - m02 * v20
-        s01 = R[q, bw + 1] - m00 * v01 - m01 * v11 - m02 * v21
-        s02 = R[q, bw + 2] - m00 * v02 - m01 * v12 - m02 * v22
-        s10 = R[q + 1, bw - 1] - m10 * v00 - m11 * v10 - m12 * v20
-        s11 = R[q + 1, bw] - m10 * v01 - m11 * v11 - m12 * v21
-        s12 = R[q + 1, bw + 1] - m10 * v02 - m11 * v12 - m12 * v22
-        s20 = R[q + 2, bw - 2] - m20 * v00 - m21 * v10 - m22 * v20
-        s21 = R[q + 2, bw - 1] - m20 * v01 - m21 * v11 - m22 * v21
-        s22 = R[q + 2, bw] - m20 * v02 - m21 * v12 - m22 * v22
+        g = g0 - s - 1 if rev else g0 + s + 1
+        a00, a01, a02, a10, a11, a12, a20, a21, a22 = _diagonal(A, k0, N, rev, bw, q, drag, D, g, iw)
+        s00 = a00 - m00 * v00 - m01 * v10 - m02 * v20
+        s01 = a01 - m00 * v01 - m01 * v11 - m02 * v21
+        s02 = a02 - m00 * v02 - m01 * v12 - m02 * v22
+        s10 = a10 - m10 * v00 - m11 * v10 - m12 * v20
+        s11 = a11 - m10 * v01 - m11 * v11 - m12 * v21
+        s12 = a12 - m10 * v02 - m11 * v12 - m12 * v22
+        s20 = a20 - m20 * v00 - m21 * v10 - m22 * v20
+        s21 = a21 - m20 * v01 - m21 * v11 - m22 * v21
+        s22 = a22 - m20 * v02 - m21 * v12 - m22 * v22
     for i in range(N):
         for c in range(m):
             if not (math.isfinite(B[i, c].real) and math.isfinite(B[i, c].imag)):
@@ -176,23 +234,28 @@ def block_lines(
     MR: np.ndarray,
     CR: np.ndarray,
     ncount: np.ndarray,
+    nfirst: np.ndarray,
     unit: np.ndarray,
     bw: int,
 ) -> np.ndarray:
-    """Per line whether :func:`block_factor` serves it: every node with free directions
-    has the identity basis (three dofs: the node's x, y, z), and the band rows of the
-    stiffness, mass and damping (natural order, ``A[i, j]`` at ``[i, j - i + bw]``)
-    couple a node to its neighbours alone (the block pattern; drag adds to the
+    """Per line whether :func:`block_factor` serves it: its inner nodes, in order, have
+    the identity basis (three dofs each: the node's x, y, z; the end nodes none), and
+    the band rows of the stiffness, mass and damping (the line's order, ``A[i, j]`` at
+    ``[i, j - i + bw]``) couple a node to its neighbours alone (drag adds to the
     diagonal blocks only). Packing time (NumPy)."""
     L = noff.size - 1
     out = np.zeros(L, dtype=bool)
     width = 2 * bw + 1
     for line in range(L):
         k0, k1 = int(koff[line]), int(koff[line + 1])
+        na, nb = int(noff[line]), int(noff[line + 1]) - 1
         k = k1 - k0
-        nodes = slice(int(noff[line]), int(noff[line + 1]))
-        moving = ncount[nodes] > 0
-        if k == 0 or k % 3 or not np.all(unit[nodes][moving]) or (bw < 5 and k > 3):
+        inner = slice(na + 1, nb)
+        if k == 0 or k != 3 * (nb - na - 1) or (bw < 5 and k > 3):
+            continue
+        if ncount[na] or ncount[nb] or not np.all(unit[inner]):
+            continue
+        if np.any(nfirst[inner] != 3 * np.arange(nb - na - 1)):
             continue
         i = np.arange(k)[:, None]
         j = i + np.arange(width)[None, :] - bw

@@ -381,17 +381,21 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
         low[line] = first
         if k > 0:
             Rl = R[k0:]
-            _line_rows(Rl, Rb, k0, k, rev, bw, drag, na, nb, ncount, nfirst, unit, basis, D, iw)
-            # the block-tridiagonal factor where it serves (system_fd_block); where it
-            # declines (the band factor would exchange rows) all again by the band factor
-            done = blocky[line] and block_factor(Rl, bw, k, reach[k0:], X[k0:], m, pinv[k0:])
-            if not done and blocky[line]:
-                _line_sides(X, k0, k, rev, line, ends, slot, couple, c0, c1, IE, prescribed)
-                _line_rows(
-                    Rl, Rb, k0, k, rev, bw, drag, na, nb, ncount, nfirst, unit, basis, D, iw
+            done = False
+            if blocky[line]:
+                # block tridiagonal: its own factor (system_fd_block), reading the band
+                # rows and the drag where they are; where it declines (the band factor
+                # would exchange rows) the right sides again, and the band factor
+                g0 = nb - 1 if rev else na + 1
+                done = block_factor(
+                    Rb, k0, k, rev, bw, drag, D, g0, iw, Rl, reach[k0:], X[k0:], m, pinv[k0:]
                 )
-            if not done and not _band_factor(Rl, bw, k, reach[k0:], X[k0:], m, pinv[k0:]):
-                return SINGULAR_LINE, line
+                if not done:
+                    _line_sides(X, k0, k, rev, line, ends, slot, couple, c0, c1, IE, prescribed)
+            if not done:
+                _line_rows(Rl, Rb, k0, k, rev, bw, drag, na, nb, ncount, nfirst, unit, basis, D, iw)
+                if not _band_factor(Rl, bw, k, reach[k0:], X[k0:], m, pinv[k0:]):
+                    return SINGULAR_LINE, line
             if not _back_rows(Rl, bw, k, reach[k0:], X[k0:], m, first, pinv[k0:]):
                 return SINGULAR_LINE, line
         # the junction rows of the free ends: S u_E = A_EE u_E + A_EI X u_E

@@ -173,6 +173,6 @@ def pack_system(model) -> PackedSystem:  # noqa: ANN001 - SystemLinear (no impor
         unit,
         # per line whether its matrix is block tridiagonal in its nodes' 3 x 3 blocks:
         # factored by :func:`.system_fd_block.block_factor`
-        block_lines(noff, koff, K, M, C, ncount, unit, bw),
+        block_lines(noff, koff, K, M, C, ncount, nfirst, unit, bw),
     )
     return PackedSystem(arrays=arrays, bw=bw, node_offset=noff, dof_offset=koff)
