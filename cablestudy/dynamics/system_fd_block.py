@@ -152,12 +152,43 @@ def block_factor(A, k0, N, rev, bw, drag, D, g0, iw, R, reach, B, m, pinv):  # n
         pinv[r] = i0
         pinv[r + 1] = i1
         pinv[r + 2] = i2
+        last = s == n - 1
+        q = r + 3
+        if not last:
+            # M = A_{s+1,s} U^-1: the multipliers of the next node's rows
+            m00, m01, m02, m10, m11, m12, m20, m21, m22 = _block(A, k0, N, rev, bw, q, r)
+            m00 = m00 * i0
+            m01 = (m01 - m00 * s01) * i1
+            m02 = (m02 - m00 * s02 - m01 * s12) * i2
+            m10 = m10 * i0
+            m11 = (m11 - m10 * s01) * i1
+            m12 = (m12 - m10 * s02 - m11 * s12) * i2
+            m20 = m20 * i0
+            m21 = (m21 - m20 * s01) * i1
+            m22 = (m22 - m20 * s02 - m21 * s12) * i2
+            top = max(
+                max(max(_big(m00), _big(m01)), max(_big(m02), _big(m10))),
+                max(max(_big(m11), _big(m12)), max(_big(m20), max(_big(m21), _big(m22)))),
+            )
+            if not top <= _LIMIT:
+                return False
+        # the right sides through the node's rows and on to the next node's; a side
+        # zero in the node's rows (a free end's unit motion: zero down to its own rows)
+        # is left as it is (the band factor's mask)
         for c in range(m):
-            b0 = B[r, c]
-            b1 = B[r + 1, c] - l10 * b0
-            B[r + 1, c] = b1
-            B[r + 2, c] = B[r + 2, c] - l20 * b0 - l21 * b1
-        if s == n - 1:
+            z0, z1, z2 = B[r, c], B[r + 1, c], B[r + 2, c]
+            if z0.real == 0.0 and z0.imag == 0.0 and z1.real == 0.0 and z1.imag == 0.0:
+                if z2.real == 0.0 and z2.imag == 0.0:
+                    continue
+            z1 = z1 - l10 * z0
+            z2 = z2 - l20 * z0 - l21 * z1
+            B[r + 1, c] = z1
+            B[r + 2, c] = z2
+            if not last:
+                B[q, c] = B[q, c] - m00 * z0 - m01 * z1 - m02 * z2
+                B[q + 1, c] = B[q + 1, c] - m10 * z0 - m11 * z1 - m12 * z2
+                B[q + 2, c] = B[q + 2, c] - m20 * z0 - m21 * z1 - m22 * z2
+        if last:
             reach[r] = r + 2
             reach[r + 1] = r + 2
             reach[r + 2] = r + 2
@@ -165,7 +196,6 @@ def block_factor(A, k0, N, rev, bw, drag, D, g0, iw, R, reach, B, m, pinv):  # n
         reach[r] = r + 5
         reach[r + 1] = r + 5
         reach[r + 2] = r + 5
-        q = r + 3
         # V = L^-1 A_{s,s+1} (the upper factor's block right of the diagonal)
         v00, v01, v02, v10, v11, v12, v20, v21, v22 = _block(A, k0, N, rev, bw, r, q)
         v10 = v10 - l10 * v00
@@ -183,31 +213,6 @@ def block_factor(A, k0, N, rev, bw, drag, D, g0, iw, R, reach, B, m, pinv):  # n
         R[r + 2, bw + 1] = v20
         R[r + 2, bw + 2] = v21
         R[r + 2, bw + 3] = v22
-        # M = A_{s+1,s} U^-1: the multipliers of the next node's rows
-        m00, m01, m02, m10, m11, m12, m20, m21, m22 = _block(A, k0, N, rev, bw, q, r)
-        m00 = m00 * i0
-        m01 = (m01 - m00 * s01) * i1
-        m02 = (m02 - m00 * s02 - m01 * s12) * i2
-        m10 = m10 * i0
-        m11 = (m11 - m10 * s01) * i1
-        m12 = (m12 - m10 * s02 - m11 * s12) * i2
-        m20 = m20 * i0
-        m21 = (m21 - m20 * s01) * i1
-        m22 = (m22 - m20 * s02 - m21 * s12) * i2
-        top = max(
-            max(max(_big(m00), _big(m01)), max(_big(m02), _big(m10))),
-            max(max(_big(m11), _big(m12)), max(_big(m20), max(_big(m21), _big(m22)))),
-        )
-        if not top <= _LIMIT:
-            return False
-        for c in range(m):
-            z0, z1, z2 = B[r, c], B[r + 1, c], B[r + 2, c]
-            if z0.real == 0.0 and z0.imag == 0.0 and z1.real == 0.0 and z1.imag == 0.0:
-                if z2.real == 0.0 and z2.imag == 0.0:
-                    continue  # a free end's unit motion: zero down to its own rows
-            B[q, c] = B[q, c] - m00 * z0 - m01 * z1 - m02 * z2
-            B[q + 1, c] = B[q + 1, c] - m10 * z0 - m11 * z1 - m12 * z2
-            B[q + 2, c] = B[q + 2, c] - m20 * z0 - m21 * z1 - m22 * z2
         # the next node's diagonal block less M V
         g = g0 - s - 1 if rev else g0 + s + 1
         a00, a01, a02, a10, a11, a12, a20, a21, a22 = _diagonal(A, k0, N, rev, bw, q, drag, D, g, iw)
