@@ -215,7 +215,9 @@ def block_factor(A, k0, N, rev, bw, drag, D, g0, iw, R, reach, B, m, pinv):  # n
         R[r + 2, bw + 3] = v22
         # the next node's diagonal block less M V
         g = g0 - s - 1 if rev else g0 + s + 1
-        a00, a01, a02, a10, a11, a12, a20, a21, a22 = _diagonal(A, k0, N, rev, bw, q, drag, D, g, iw)
+        a00, a01, a02, a10, a11, a12, a20, a21, a22 = _diagonal(
+            A, k0, N, rev, bw, q, drag, D, g, iw
+        )
         s00 = a00 - m00 * v00 - m01 * v10 - m02 * v20
         s01 = a01 - m00 * v01 - m01 * v11 - m02 * v21
         s02 = a02 - m00 * v02 - m01 * v12 - m02 * v22
