@@ -195,10 +195,18 @@ class SemiAnalyticSolver:
         :mod:`.batch` (when numba is available and ``compiled``); anything they do not
         settle takes the general path below, which gives the same answer."""
         if compiled:
+            from .batch_drag import CONTINUATION, MAX_DRAG_ITERATIONS
             from .batch_kernels import solve_compiled
 
             left: dict[int, str] = {}
-            fast = solve_compiled(problem, why=left)
+            # the compiled drag iteration runs this solver's default drag settings
+            default_drag = (
+                drag_elements is None
+                and self.drag_elements is None
+                and self.max_drag_iterations == MAX_DRAG_ITERATIONS
+                and tuple(self.continuation_steps) == CONTINUATION
+            )
+            fast = solve_compiled(problem, why=left, drag=default_drag)
             if fast is not None:
                 return fast
             fallback = left.get(0, "")
