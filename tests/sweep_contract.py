@@ -144,7 +144,9 @@ BASES |= {"span_linear": SPAN_LINEAR, "span_poly": SPAN_POLY, "span_type": SPAN_
 BASES |= {"tow": TOW, "moor": MOOR}
 #: CURRENT over a seabed it does not reach: the compiled drag iteration takes lines
 #: without a seabed only, so its current cases go to the general solver
-BASES |= {"current_seabed": CURRENT.replace("  fluid: water\n", "  fluid: water\n  depth: 150.0\n", 1)}
+BASES |= {
+    "current_seabed": CURRENT.replace("  fluid: water\n", "  fluid: water\n  depth: 150.0\n", 1)
+}
 
 
 def _mid(ds: xr.Dataset, var: str) -> np.ndarray:

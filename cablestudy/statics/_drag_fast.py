@@ -574,7 +574,9 @@ def _drag_case(
                         count = 0
                         beta = max(beta * 0.5, 0.05)
                         stall = 0
-                count = _anderson(D.reshape(V), Dn.reshape(V), xs, fs, count, 5, beta, Dnext.reshape(V))
+                count = _anderson(
+                    D.reshape(V), Dn.reshape(V), xs, fs, count, 5, beta, Dnext.reshape(V)
+                )
                 for p in range(P):
                     for k in range(3):
                         D[p, k] = Dnext[p, k]
@@ -734,6 +736,4 @@ def drag_cases(
             if si <= 0.0:
                 tension[c, i] = math.sqrt(TA[0] ** 2 + TA[1] ** 2 + TA[2] ** 2)
             if si >= Lend:
-                tension[c, i] = math.sqrt(
-                    TL_out[c, 0] ** 2 + TL_out[c, 1] ** 2 + TL_out[c, 2] ** 2
-                )
+                tension[c, i] = math.sqrt(TL_out[c, 0] ** 2 + TL_out[c, 1] ** 2 + TL_out[c, 2] ** 2)

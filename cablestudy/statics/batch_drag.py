@@ -54,7 +54,7 @@ def drag_many(problems: list[StaticProblem], *, verify: bool = True) -> list[Sta
     """The drag kernel's verified answer per problem (all :func:`drag_eligible`), None
     where it leaves the case to the general solver. Problems of equal piece, node and
     current-profile counts are solved in one call."""
-    from .verify import verified
+    from .verify_drag import verified_many
 
     layouts = [make_layout(p.line, drag_elements(p)) for p in problems]
     groups: dict[tuple[int, int, int], list[int]] = {}
@@ -72,11 +72,14 @@ def drag_many(problems: list[StaticProblem], *, verify: bool = True) -> list[Sta
                     got += _solve_group([problems[i]], [layouts[i]])
                 except Exception:  # noqa: BLE001 - the general solver takes it
                     got.append(None)
+        if verify:  # status 0 means verified: else the general solver's
+            settled = [j for j, res in enumerate(got) if res is not None]
+            checked = verified_many(
+                [problems[members[j]] for j in settled], [got[j] for j in settled]
+            )
+            for j, res in zip(settled, checked, strict=True):
+                got[j] = res if res.status == STATUS_OK else None
         for i, res in zip(members, got, strict=True):
-            if res is not None and verify:
-                res = verified(problems[i], res, method="catenary")
-                if res.status != STATUS_OK:
-                    res = None  # status 0 means verified: else the general solver's
             out[i] = res
     return out
 

@@ -145,3 +145,45 @@ def test_cases_it_does_not_take_go_to_the_general_solver() -> None:
     assert all(r.status == 0 for r in out)
     ref = SemiAnalyticSolver().solve(base, compiled=False)
     assert np.max(np.abs(out[0].force_a - ref.force_a)) <= 1e-12 * np.max(ref.tension)
+
+
+def test_the_batched_verification_is_check_one_and_catches_a_wrong_answer() -> None:
+    """:func:`cablestudy.statics.verify_drag.verified_many` computes :func:`check_one`'s
+    checks for many lines at once: each value and allowance equal to round-off of the
+    sums (1e-12 of the allowance), and an answer off by 1e-3 of its tension in an end
+    force or a node's tension is not verified, with the check named (the allowance is
+    set by the drag's quadrature estimate here, about 1e-5 of the tension, far above the
+    1e-9 tolerance: the perturbation is 100 times it)."""
+    from dataclasses import replace
+
+    from cablestudy.statics.verify import check_one
+    from cablestudy.statics.verify_drag import _check_group, verified_many
+
+    probs = problems()
+    res = drag_many(probs, verify=False)
+    for segments in (1, 2):
+        idx = [i for i, p in enumerate(probs) if p.line.length.size == segments]
+        idx = [i for i in idx if probs[i].n_nodes == probs[idx[0]].n_nodes]
+        checked, ends = _check_group([probs[i] for i in idx], [res[i] for i in idx], False)
+        for j, i in enumerate(idx):
+            one = check_one(probs[i], res[i], method="catenary")
+            for name in one.values:
+                value, allow = (
+                    (checked.values[name], checked.allowed[name])
+                    if name in checked.values
+                    else ends[name][:2]
+                )
+                a = float(one.allowed[name][0])
+                assert abs(float(value[j]) - float(one.values[name][0])) <= 1e-12 * a, name
+                assert abs(float(allow[j]) - a) <= 1e-12 * a, name
+    assert all(r.status == 0 for r in verified_many(probs, res))
+    bad = []
+    for p, r in zip(probs[:6], res[:6], strict=True):
+        F = float(np.max(r.tension))
+        tension = r.tension.copy()
+        tension[3] += 1e-3 * F  # not at the clump (whose tension is either side's)
+        bad += [replace(r, force_a=r.force_a + [1e-3 * F, 0.0, 0.0]), replace(r, tension=tension)]
+    out = verified_many([p for p in probs[:6] for _ in (0, 1)], bad)
+    assert all(r.status != 0 and "not verified" in r.message for r in out)
+    assert all("force balance" in r.message for r in out[::2])
+    assert all("tension along s" in r.message for r in out[1::2])
