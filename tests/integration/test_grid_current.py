@@ -5,8 +5,6 @@ forces balance the drag integrated over the line the dataset holds."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 import yaml

@@ -20,7 +20,7 @@ def _current(*rows: tuple[float, float, float]) -> tuple[np.ndarray, np.ndarray]
     """(z, velocity) of a profile given as (z, speed, heading in degrees) rows."""
     z = np.array([r[0] for r in rows])
     h = np.radians([r[2] for r in rows])
-    v = np.array([[r[1] * np.cos(a), r[1] * np.sin(a), 0.0] for r, a in zip(rows, h)])
+    v = np.array([[r[1] * np.cos(a), r[1] * np.sin(a), 0.0] for r, a in zip(rows, h, strict=True)])
     order = np.argsort(z)
     return z[order], v[order]
 
@@ -178,7 +178,7 @@ def test_the_batched_verification_is_check_one_and_catches_a_wrong_answer() -> N
                 assert abs(float(allow[j]) - a) <= 1e-12 * a, name
     assert all(r.status == 0 for r in verified_many(probs, res))
     bad = []
-    for p, r in zip(probs[:6], res[:6], strict=True):
+    for r in res[:6]:
         F = float(np.max(r.tension))
         tension = r.tension.copy()
         tension[3] += 1e-3 * F  # not at the clump (whose tension is either side's)
