@@ -235,7 +235,7 @@ def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
         return False
     if an.database is not None:
         return False
-    if template.environment.current or template.line.pulleys:
+    if template.line.pulleys or not _current_ok(template):
         return False
     line = template.line
     # the arrays' outputs take strain as T / EA and no break limits: a nonlinear law or
@@ -258,6 +258,17 @@ def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
                 return False
     # a line per combination of the swept load values (cablestudy.study.grid_lines)
     return bool(axes) and line_count(axes) <= MAX_LINES
+
+
+def _current_ok(template: Study) -> bool:
+    """Whether a template in a current (or in still water) takes the arrays: its cases in
+    a current are solved by :func:`cablestudy.statics.batch.solve_batch` (the drag
+    iteration per case in the compiled batch, :mod:`cablestudy.statics.batch_drag`, or the
+    general solver where that does not take a case), except drag on the stretched
+    diameter, which the catenary solver refuses (a case alone says so)."""
+    if not template.environment.current:
+        return True
+    return template.analysis.static.drag_diameter == "unstretched"
 
 
 def expand_grid(src: StudySource, template: Study | None = None) -> CaseGrid:
