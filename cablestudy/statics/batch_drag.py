@@ -56,7 +56,13 @@ def drag_many(problems: list[StaticProblem], *, verify: bool = True) -> list[Sta
     current-profile counts are solved in one call."""
     from .verify_drag import verified_many
 
-    layouts = [make_layout(p.line, drag_elements(p)) for p in problems]
+    made: dict[tuple[int, int], Layout] = {}  # a grid's cases share their line objects
+    layouts = []
+    for p in problems:
+        key = (id(p.line), drag_elements(p))
+        if key not in made:
+            made[key] = make_layout(p.line, key[1])
+        layouts.append(made[key])
     groups: dict[tuple[int, int, int], list[int]] = {}
     for i, (p, lay) in enumerate(zip(problems, layouts, strict=True)):
         key = (len(lay.ell), p.n_nodes, len(p.medium.current_z))
@@ -100,6 +106,8 @@ def _solve_group(problems: list[StaticProblem], layouts: list[Layout]) -> list:
     rA, rB, force, zB = np.zeros((N, 3)), np.zeros((N, 3)), np.zeros((N, 3)), np.zeros(N)
     tol, maxit = np.empty(N), np.empty(N, dtype=np.int64)
     s = np.empty((N, n))
+    # the general solver's np.linspace(0, L, n), bit for bit; once per line object
+    samples: dict[int, np.ndarray] = {}
     for i, (prob, lay) in enumerate(zip(problems, layouts, strict=True)):
         line, med = prob.line, prob.medium
         seg = lay.segment
@@ -123,7 +131,9 @@ def _solve_group(problems: list[StaticProblem], layouts: list[Layout]) -> list:
                 force[i, 2] = 0.0
                 zB[i] = float(b.z)
         tol[i], maxit[i] = prob.tolerance, prob.max_iterations
-        s[i] = np.linspace(0.0, line.total_length, n)  # the general solver's, bit for bit
+        if id(line) not in samples:
+            samples[id(line)] = np.linspace(0.0, line.total_length, n)
+        s[i] = samples[id(line)]
     pos, tension = np.empty((N, n, 3)), np.empty((N, n))
     TA, TL, loads = np.empty((N, 3)), np.empty((N, 3)), np.empty((N, P, 3))
     counts, resid = np.zeros((N, 2), dtype=np.int64), np.zeros(N)

@@ -64,12 +64,18 @@ def verified_many(problems: list[StaticProblem], results: list[StaticResult]) ->
     return out
 
 
-def _check_group(problems: list[StaticProblem], results: list[StaticResult], bending: bool):  # noqa: ANN202
+def _check_group(  # noqa: ANN202
+    problems: list[StaticProblem],
+    results: list[StaticResult],
+    bending: bool,
+    layouts: list | None = None,
+):
     """:func:`.verify.check_one`'s checks of lines with equal piece, segment and sample
-    counts: the :class:`.verify.Checked` of :func:`.verify._checks` and the end checks
+    counts (their :func:`.semi_analytic_shape.make_layout` ``layouts``, made here if not
+    given): the :class:`.verify.Checked` of :func:`.verify._checks` and the end checks
     (name: (value, allowance, unit), each (N,))."""
     N = len(problems)
-    lays = [make_layout(p.line) for p in problems]
+    lays = layouts if layouts is not None else [make_layout(p.line) for p in problems]
     pieces = Pieces(
         bounds=np.stack([lay.bounds for lay in lays]),
         weight=np.stack([lay.weight for lay in lays]),
@@ -84,14 +90,14 @@ def _check_group(problems: list[StaticProblem], results: list[StaticResult], ben
     n = s.shape[1]
     requested = np.array([p.tolerance for p in problems], dtype=float)
     tol = np.maximum(requested, 16.0 * float(np.finfo(float).eps) * n)
-    L = np.array([p.line.total_length for p in problems])
-    f_scale = np.array(
-        [
-            float(np.sum(np.abs(p.line.weight) * p.line.length))
-            + float(np.sum(np.linalg.norm(p.line.attachment_force, axis=1)))
-            for p in problems
-        ]
-    )
+    L = pieces.bounds[:, -1]  # the line's total length, as make_layout ends it
+    per_line: dict[int, float] = {}
+    for p in problems:
+        if id(p.line) not in per_line:
+            per_line[id(p.line)] = float(np.sum(np.abs(p.line.weight) * p.line.length)) + float(
+                np.sum(np.linalg.norm(p.line.attachment_force, axis=1))
+            )
+    f_scale = np.array([per_line[id(p.line)] for p in problems])
     f_scale = f_scale + np.linalg.norm(fa, axis=1) + np.linalg.norm(fb, axis=1)
     f_allow = MULTIPLE * tol * f_scale
     x_allow = MULTIPLE * tol * np.maximum(L, np.max(np.abs(pos), axis=(1, 2)))
@@ -165,9 +171,17 @@ def _interval_drag(problems: list[StaticProblem], s: np.ndarray, pos: np.ndarray
     t = chord / np.where(lc > 0.0, lc, 1.0)[..., None]
     mid = 0.5 * (pos[:, :-1, 2] + pos[:, 1:, 2])
     U = np.empty(chord.shape)
+    media: dict[int, list[int]] = {}  # the cases of one medium object (a grid's share it)
     for i, p in enumerate(problems):
-        U[i] = current_velocity(mid[i], p.medium.current_z, p.medium.current_velocity)
-    ends = np.stack([p.line.segment_ends for p in problems])  # (N, K + 1)
+        media.setdefault(id(p.medium), []).append(i)
+    for rows in media.values():
+        med = problems[rows[0]].medium
+        U[rows] = current_velocity(mid[rows], med.current_z, med.current_velocity)
+    seg_ends: dict[int, np.ndarray] = {}
+    for p in problems:
+        if id(p.line) not in seg_ends:
+            seg_ends[id(p.line)] = p.line.segment_ends
+    ends = np.stack([seg_ends[id(p.line)] for p in problems])  # (N, K + 1)
     rho = np.array([p.medium.density for p in problems])
     f = np.zeros(chord.shape)
     for k in range(ends.shape[1] - 1):
