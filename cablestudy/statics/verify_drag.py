@@ -33,19 +33,31 @@ def verified_many(problems: list[StaticProblem], results: list[StaticResult]) ->
     shapes checked together."""
     out: list[StaticResult] = list(results)
     groups: dict[tuple, list[int]] = {}
+    made: dict[int, tuple] = {}  # per line object (a grid's cases share theirs)
+    layouts = []
     for i, (p, r) in enumerate(zip(problems, results, strict=True)):
+        line = p.line
+        if id(line) not in made:
+            lay = make_layout(line)
+            made[id(line)] = (
+                lay,
+                bool(line.attachment_drag_area.size and np.any(line.attachment_drag_area > 0.0)),
+                (len(lay.ell), line.length.size, bool(np.any(line.bending_stiffness > 0))),
+            )
+        lay, bodies, shape = made[id(line)]
+        layouts.append(lay)
         if r.status != STATUS_OK:
             continue
-        line = p.line
-        if line.attachment_drag_area.size and np.any(line.attachment_drag_area > 0.0):
+        if bodies:
             out[i] = verified(p, r, method="catenary")
             continue
-        lay = make_layout(line)
-        key = (len(lay.ell), line.length.size, len(r.s), bool(np.any(line.bending_stiffness > 0)))
-        groups.setdefault(key, []).append(i)
-    for (_, _, _, bending), members in groups.items():
+        groups.setdefault((*shape, len(r.s)), []).append(i)
+    for (_, _, bending, _), members in groups.items():
         checked, end_vals = _check_group(
-            [problems[i] for i in members], [results[i] for i in members], bending
+            [problems[i] for i in members],
+            [results[i] for i in members],
+            bending,
+            [layouts[i] for i in members],
         )
         ok = checked.ok
         for j, i in enumerate(members):
