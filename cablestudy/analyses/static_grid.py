@@ -11,7 +11,9 @@ the seabed with friction), the cases they do not settle by
 :func:`cablestudy.statics.batch.solve_batch` (the reason per case in
 :attr:`GridChunk.fallback_reason`, counted in the dataset's ``cases_fallback``), and
 its outputs are stacked into one array per output variable (a :class:`GridChunk`), which
-the runner streams to disk. Any other static grid's chunk is solved as validated cases
+the runner streams to disk. A chunk in a current (the template's, or a swept speed or
+heading) is solved by :func:`cablestudy.statics.batch.solve_batch`, where the drag
+iteration runs per case inside a compiled batch. Any other static grid's chunk is solved as validated cases
 are (:mod:`cablestudy.analyses.static_grid_cases`).
 """
 

@@ -225,11 +225,11 @@ def _static_sweep(template: Study, axes: list[SweepAxis]) -> bool:
 
 
 def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
-    """A static-only, still-water, method 'catenary' study without a quasi-static
-    database (its grid of solves per case is not an array kernel) whose swept paths are
-    all end positions of fixed ends, segment stiffnesses or the numbers that set the
-    line's loads or the seabed (:func:`cablestudy.study.grid_lines.per_line`), with
-    numeric values."""
+    """A static-only, method 'catenary' study without a quasi-static database (its grid
+    of solves per case is not an array kernel), in still water or a current
+    (:func:`_current_ok`), whose swept paths are all end positions of fixed ends, segment
+    stiffnesses or the numbers that set the line's loads, the seabed or the current
+    (:func:`cablestudy.study.grid_lines.per_line`), with numeric values."""
     an = template.analysis
     if an.modal is not None or an.dynamic is not None or an.static.method != "catenary":
         return False
