@@ -13,8 +13,8 @@ the seabed with friction), the cases they do not settle by
 its outputs are stacked into one array per output variable (a :class:`GridChunk`), which
 the runner streams to disk. A chunk in a current (the template's, or a swept speed or
 heading) is solved by :func:`cablestudy.statics.batch.solve_batch`, where the drag
-iteration runs per case inside a compiled batch. Any other static grid's chunk is solved as validated cases
-are (:mod:`cablestudy.analyses.static_grid_cases`).
+iteration runs per case inside a compiled batch. Any other static grid's chunk is solved
+as validated cases are (:mod:`cablestudy.analyses.static_grid_cases`).
 """
 
 from __future__ import annotations
