@@ -13,7 +13,8 @@ from cablestudy.physics.current import current_velocity
 from cablestudy.physics.hydro import drag_per_length
 from tests.sweep_contract import alone_faults, run, set_path, study_text, with_sweep
 
-SPEEDS = [0.25, 0.75, 1.5]
+#: still water among them: that case goes to the still-water kernel in the same batch
+SPEEDS = [0.0, 0.75, 1.5]
 SPANS = [100.0, 119.0]
 
 #: a sheared current turning with depth (heading 90 deg at the surface, 30 at -100 m),
@@ -58,7 +59,8 @@ def test_a_current_sweep_runs_in_the_drag_kernel_with_no_fallback(swept) -> None
 @pytest.mark.parametrize(("i", "j"), [(0, 0), (2, 1)])
 def test_a_swept_current_case_equals_the_case_run_alone(swept, i: int, j: int) -> None:  # noqa: ANN001
     """Case (speed i, span j) of the grid against the same study written out with those
-    values and run alone through ``cablestudy run``: every result bit for bit."""
+    values and run alone through ``cablestudy run``: every result bit for bit (speed 0:
+    the still-water kernel's case inside the current's batch)."""
     folder, text, ds = swept
     alone = _text(f"gc-alone-{i}-{j}")
     alone = set_path(alone, "environment.current.0.speed", SPEEDS[i])
@@ -110,4 +112,4 @@ def test_the_end_forces_balance_the_drag_integrated_along_the_line(swept) -> Non
             scale = weight + float(np.sum(np.linalg.norm(f, axis=1) * lc))
             allowed = 10 * 1e-10 * scale + 1e-12 * float(case["tension"].max())
             assert np.max(np.abs(ends[:2] - drag[:2])) <= allowed, (v, SPANS[j])
-            assert np.hypot(*drag[:2]) > 0.01 * v**2 * seg["length"]  # the drag is there
+            assert np.hypot(*drag[:2]) >= 0.01 * v**2 * seg["length"]  # the drag is there
