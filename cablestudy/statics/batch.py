@@ -46,7 +46,7 @@ def solve_batch(
     :mod:`.verify`'s checks: only for intermediate iterates whose answer is re-solved
     verified (the system Newton's trials, :func:`.system._solve`)."""
     solver = SemiAnalyticSolver()
-    results, why, tried = _kernels(problems, contact=contact, verify=verify)
+    results, why, tried = _kernels(problems, contact=contact, verify=verify, deadline=deadline)
     out = []
     for i, prob in enumerate(problems):
         res = results[i]

@@ -17,6 +17,8 @@ Pure: problems in, results out.
 
 from __future__ import annotations
 
+import time
+
 import numpy as np
 
 from .base import STATUS_OK, StaticProblem, StaticResult
@@ -50,11 +52,18 @@ def drag_elements(problem: StaticProblem) -> int:
     return problem.drag_elements or max(problem.n_nodes - 1, 20)
 
 
-def drag_many(problems: list[StaticProblem], *, verify: bool = True) -> list[StaticResult | None]:
+def drag_many(
+    problems: list[StaticProblem], *, verify: bool = True, deadline: float | None = None
+) -> list[StaticResult | None]:
     """The drag kernel's verified answer per problem (all :func:`drag_eligible`), None
     where it leaves the case to the general solver. Problems of equal piece, node and
-    current-profile counts are solved in one call."""
+    current-profile counts are solved in one call. Past ``deadline`` (``time.monotonic``)
+    no answer is kept: the general solver then reports the time limit, as for a case it
+    iterates itself (the kernel does not look at the clock inside its loops)."""
     from .verify_drag import verified_many
+
+    if deadline is not None and time.monotonic() > deadline:
+        return [None] * len(problems)
 
     made: dict[tuple[int, int], Layout] = {}  # a grid's cases share their line objects
     layouts = []
@@ -78,6 +87,8 @@ def drag_many(problems: list[StaticProblem], *, verify: bool = True) -> list[Sta
                     got += _solve_group([problems[i]], [layouts[i]])
                 except Exception:  # noqa: BLE001 - the general solver takes it
                     got.append(None)
+        if deadline is not None and time.monotonic() > deadline:
+            got = [None] * len(members)  # the time limit is the general solver's to say
         if verify:  # status 0 means verified: else the general solver's
             settled = [j for j, res in enumerate(got) if res is not None]
             checked = verified_many(

@@ -342,13 +342,17 @@ def _contact_result(x: dict, out: dict, j: int) -> StaticResult | None:
 
 
 def solve_compiled(
-    problem: StaticProblem, *, why: dict[int, str] | None = None, drag: bool = True
+    problem: StaticProblem,
+    *,
+    why: dict[int, str] | None = None,
+    drag: bool = True,
+    deadline: float | None = None,
 ) -> StaticResult | None:
     """One problem through the compiled batch kernels (free-hanging, anchored on the
     seabed, or hanging free in a current with ``drag``: :func:`_kernels` of one problem),
     or None when it does not take that path (or does not settle there: then ``why[0]``,
     if given, says why)."""
-    results, reasons, tried = _kernels([problem], drag=drag)
+    results, reasons, tried = _kernels([problem], drag=drag, deadline=deadline)
     if results[0] is not None and results[0].success:
         return results[0]
     if why is not None and tried:  # status 0 means verified: the general solver takes it
@@ -393,6 +397,7 @@ def _kernels(
     contact: bool = True,
     verify: bool = True,
     drag: bool = True,
+    deadline: float | None = None,
 ) -> tuple[list[StaticResult | None], dict[int, str], set[int]]:
     """The kernels' answers (None where a kernel does not take a problem or does not
     settle it), why the batch kernel left a case it tried, and the cases a kernel tried.
@@ -400,7 +405,7 @@ def _kernels(
     anchored on the seabed (``contact``) by the contact kernel, those of one plane
     together, their answers verified (``verify``) as the batch kernel verifies its own;
     lines hanging free in a current (``drag``) by the compiled drag iteration
-    (:mod:`.batch_drag`)."""
+    (:mod:`.batch_drag`, which keeps no answer past ``deadline``)."""
     from .batch_drag import DRAG_NOT_SETTLED, drag_eligible, drag_many
 
     results: list[StaticResult | None] = [None] * len(problems)
@@ -448,7 +453,9 @@ def _kernels(
             results[i] = res
     if current:
         for i, res in zip(
-            current, drag_many([problems[i] for i in current], verify=verify), strict=True
+            current,
+            drag_many([problems[i] for i in current], verify=verify, deadline=deadline),
+            strict=True,
         ):
             results[i] = res
             if res is None:

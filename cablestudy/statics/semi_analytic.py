@@ -208,7 +208,7 @@ class SemiAnalyticSolver:
                 and self.max_drag_iterations == MAX_DRAG_ITERATIONS
                 and tuple(self.continuation_steps) == CONTINUATION
             )
-            fast = solve_compiled(problem, why=left, drag=default_drag)
+            fast = solve_compiled(problem, why=left, drag=default_drag, deadline=deadline)
             if fast is not None:
                 return fast
             fallback = left.get(0, "")
