@@ -37,9 +37,10 @@ KINDS: dict[str, tuple[str, float]] = {
 
 
 def _warm_statics() -> None:
-    """The still-water catenary kernels (free-hanging and seabed-contact batches, alone
-    and stacked, nonlinear axial laws) and the quasi-static database lookup on small
-    problems; then the still-water batch kernels compiled ahead of time."""
+    """The catenary kernels (still water: free-hanging and seabed-contact batches, alone
+    and stacked, nonlinear axial laws; the drag iteration in a current) and the
+    quasi-static database lookup on small problems; then the still-water batch kernels
+    compiled ahead of time."""
     import numpy as np
 
     from .statics.semi_analytic import SemiAnalyticSolver
@@ -60,7 +61,11 @@ ends:
     linear = text.replace("LAW", "axial_stiffness: 2.0e8")
     anchored = linear.replace("[0.0, 0.0, -50.0]", "[0.0, 0.0, -60.0]")  # on the seabed
     nonlinear = text.replace("LAW", "axial: {law: polynomial, coefficients: [2.0e8, 1.0e9]}")
-    for body in (linear, anchored, nonlinear):
+    # in a current with no seabed: the compiled drag iteration (cablestudy.statics.batch_drag)
+    current = linear.replace(
+        "{fluid: water, depth: 60.0}", "{fluid: water, current: [{z: 0.0, speed: 0.5}]}"
+    )
+    for body in (linear, anchored, nonlinear, current):
         src = parse_study_text(body, "warm.yaml")
         SemiAnalyticSolver().solve(static_problem(validate_data(src.data, src)))
     # the array path of sweeps calls the batch kernels with stacked cases

@@ -142,6 +142,11 @@ SPAN_TYPE = SPAN.replace(
 BASES = {"leg": LEG, "span": SPAN, "span_clump": SPAN_CLUMP, "current": CURRENT}
 BASES |= {"span_linear": SPAN_LINEAR, "span_poly": SPAN_POLY, "span_type": SPAN_TYPE}
 BASES |= {"tow": TOW, "moor": MOOR}
+#: CURRENT over a seabed it does not reach: the compiled drag iteration takes lines
+#: without a seabed only, so its current cases go to the general solver
+BASES |= {
+    "current_seabed": CURRENT.replace("  fluid: water\n", "  fluid: water\n  depth: 150.0\n", 1)
+}
 
 
 def _mid(ds: xr.Dataset, var: str) -> np.ndarray:

@@ -17,9 +17,10 @@ NO_KERNEL = "no batch kernel takes these end conditions"
 def one_at_a_time(problem: Any) -> bool:
     """Whether the catenary solver first takes the compiled kernels for ``problem`` on
     its own (:func:`cablestudy.statics.batch_kernels.solve_compiled`)."""
+    from ..statics.batch_drag import drag_eligible
     from ..statics.batch_kernels import batchable, contact_eligible
 
-    return bool(contact_eligible(problem) or batchable(problem))
+    return bool(contact_eligible(problem) or batchable(problem) or drag_eligible(problem))
 
 
 def fallback_reason(study: Any, problem: Any) -> str:
@@ -35,7 +36,10 @@ def fallback_reason(study: Any, problem: Any) -> str:
     if problem is not None and problem.line.is_nonlinear:
         return "a nonlinear axial law has no batch kernel"
     if problem is not None and problem.medium.drags(problem.line):
-        return "current with drag: the drag iteration runs in the general solver"
+        from ..statics.batch_drag import drag_eligible
+
+        if not drag_eligible(problem):  # else the compiled drag iteration tried it
+            return "current with drag: the drag iteration runs in the general solver"
     return NO_KERNEL
 
 

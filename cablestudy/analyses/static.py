@@ -277,6 +277,7 @@ def presolve_statics(cases: list[Case]) -> tuple[dict[str, StaticResult], dict[s
     static hash and each one's share of the batch wall time [s]. Anything unexpected
     leaves the cases to the one-by-one path (which records its own errors)."""
     from ..statics.batch import solve_batch
+    from ..statics.batch_drag import drag_eligible
     from ..statics.batch_kernels import batchable, contact_eligible
 
     todo: dict[str, Any] = {}
@@ -293,7 +294,8 @@ def presolve_statics(cases: list[Case]) -> tuple[dict[str, StaticResult], dict[s
         # a line anchored on the seabed too: solve_batch takes it to the compiled
         # contact kernel with the others of its seabed (one by one, each case paid the
         # kernel's set-up and was verified twice: 7 ms a case, 3x the batch's)
-        if batchable(problem) or contact_eligible(problem):
+        # and a line hanging free in a current: the compiled drag iteration, per case
+        if batchable(problem) or contact_eligible(problem) or drag_eligible(problem):
             todo[h] = (problem, case.study.analysis.time_limit)
     if len(todo) < 2:
         return {}, {}

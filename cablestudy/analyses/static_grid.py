@@ -13,8 +13,10 @@ the seabed with friction), the cases they do not settle by
 :func:`cablestudy.statics.batch.solve_batch` (the reason per case in
 :attr:`GridChunk.fallback_reason`, counted in the dataset's ``cases_fallback``), and
 its outputs are stacked into one array per output variable (a :class:`GridChunk`), which
-the runner streams to disk. Any other static grid's chunk is solved as validated cases
-are (:mod:`cablestudy.analyses.static_grid_cases`).
+the runner streams to disk. A chunk in a current (the template's, or a swept speed or
+heading) is solved by :func:`cablestudy.statics.batch.solve_batch`, where the drag
+iteration runs per case inside a compiled batch. Any other static grid's chunk is solved
+as validated cases are (:mod:`cablestudy.analyses.static_grid_cases`).
 """
 
 from __future__ import annotations
@@ -116,6 +118,22 @@ def _problems(base: Any, pos: dict[str, Any], ea: np.ndarray) -> list[Any]:
     return problems
 
 
+def _in_current(base: Any, pos: dict[str, Any]) -> bool:
+    """Whether some case of a chunk is in a current (the template's, or its own with a
+    swept current: :class:`SweptLines`)."""
+    lines = pos.get("lines")
+    return any(m.has_current for m in ([base.medium] if lines is None else lines.media))
+
+
+def _general_reasons(template: Study, problems: list[Any], general: list[int]) -> list[str]:
+    """Why the general solver took each case of ``general`` no kernel tried, as the case
+    alone says (:func:`cablestudy.analyses.fallback.fallback_reason`: a current with drag
+    the compiled drag iteration does not take, else :data:`NO_KERNEL`)."""
+    from .fallback import fallback_reason
+
+    return [fallback_reason(template, problems[i]) for i in general]
+
+
 def _with(obj: Any, **changes: Any) -> Any:
     """A shallow copy of the (frozen) dataclass ``obj`` with ``changes``: what
     :func:`dataclasses.replace` gives for these plain-data classes, without running
@@ -210,6 +228,8 @@ def _compiled_solve(
     slope or friction: :meth:`SweptLines.seabeds`) whose lines are cut into as many
     pieces (swept lengths or attachment positions: :meth:`SweptLines.pieces`), put back
     in the chunk's order."""
+    if _in_current(base, pos):  # solve_batch: the drag iteration per case, compiled
+        return None
     lines = pos.get("lines")
     if lines is None:
         return _compiled_solve_one(base, pos, ea)
@@ -627,9 +647,10 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
         compiled = _compiled_solve(base, pos, ea)
         if compiled is None:
             general: list[int] = []
-            results = solve_batch(_problems(base, pos, ea), deadline=deadline, general=general)
+            problems = _problems(base, pos, ea)
+            results = solve_batch(problems, deadline=deadline, general=general)
             fallback = {i: r.fallback for i, r in enumerate(results) if r.fallback}
-            reasons[general] = NO_KERNEL
+            reasons[general] = _general_reasons(grid.template, problems, general)
             st = StaticArrays.of(results)
         else:
             st, rest, why = compiled

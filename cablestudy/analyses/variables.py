@@ -355,6 +355,35 @@ ANALYSIS_OF: dict[str, str] = {
 OUTPUTS = {k: replace(v, analysis=ANALYSIS_OF.get(k, "dynamic")) for k, v in OUTPUTS.items()}
 OUTPUTS["break_time"] = replace(OUTPUTS["break_time"], nan_means="the line did not part")
 OUTPUTS["break_s"] = replace(OUTPUTS["break_s"], nan_means="the line did not part")
+# cases of one study may run different dynamic methods (method: auto, or a sweep over
+# analysis.dynamic.method): each writes only its own method's counters and results, and
+# the other method's are NaN in it, said so (not a bare NaN, which means a failure)
+for _k in (
+    "tension_max_spread",
+    "tension_min_spread",
+    "periods",
+    "dynamic_steps",
+    "newton_iterations",
+    "rejected_steps",
+):
+    OUTPUTS[_k] = replace(
+        OUTPUTS[_k],
+        nan_means="the case ran the frequency domain (dynamic_method 'frequency'), which "
+        "has no time steps",
+    )
+for _k in (
+    "tension_amplitude_a",
+    "tension_amplitude_b",
+    "tension_phase_a",
+    "tension_phase_b",
+    "linearisation_iterations",
+    "linearisation_converged",
+):
+    OUTPUTS[_k] = replace(
+        OUTPUTS[_k],
+        nan_means="the case ran the time domain (dynamic_method 'time'), which has no "
+        "harmonic amplitude, phase or drag linearisation",
+    )
 # a sweep may switch the mode shapes off in some cases (analysis.modal.mode_shapes)
 OUTPUTS["mode_shape"] = replace(
     OUTPUTS["mode_shape"],
@@ -483,6 +512,12 @@ SYSTEM_OUTPUTS.update(
     }
 )
 SYSTEM_OUTPUTS["x"] = replace(SYSTEM_OUTPUTS["x"], long_name="x position along each line")
+# the system frequency domain writes no steady_converged (the one-line one writes 1)
+SYSTEM_OUTPUTS["steady_converged"] = replace(
+    SYSTEM_OUTPUTS["steady_converged"],
+    nan_means="the case ran the frequency domain (dynamic_method 'frequency'), which has "
+    "no steady window to settle",
+)
 SYSTEM_OUTPUTS["arc_length"] = replace(
     SYSTEM_OUTPUTS["arc_length"], long_name="unstretched arc length from end A of each line"
 )

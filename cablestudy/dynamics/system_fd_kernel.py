@@ -15,7 +15,14 @@ the arithmetic differs from a per-line NumPy/LAPACK sequence only in rounding:
   instead of six on a line from a junction to a body); the end forces are then
   ``A_EE u_E + A_EI u_I``, the same quantity as ``S u_E``;
 - the band LU pivots by threshold (:data:`.harmonic_kernel.PIVOT_THRESHOLD`, as the
-  single line's kernel), not by LAPACK's partial pivoting;
+  single line's kernel), not by LAPACK's partial pivoting; a line whose matrix is block
+  tridiagonal in its nodes' 3 x 3 blocks (every inner node free in x, y, z, coupled to
+  its neighbours alone: :func:`.system_fd_block.block_lines`) is factored by
+  :func:`.system_fd_block.block_factor`, the same LU bit for bit where the band factor
+  exchanges no rows, and by the band factor where it would (measured on case8, 20
+  elements a line, 50 frequencies: the kernel 0.70-0.74 -> 0.55-0.56 ms a case, 10.06
+  drag iterations a case as before, every answer the same bits;
+  benchmarks/bench_fd_kernel.py);
 - the drag fit and the small-motion Jacobian it leans on share one pass over the
   phases, and at a node without current (drag odd in the relative velocity: the phase
   ``th + pi`` gives the opposite velocity and force) the phases of a half period are
@@ -36,6 +43,7 @@ import numpy as np
 from numba import njit
 
 from .harmonic_kernel import band_pivot
+from .system_fd_block import block_factor
 
 #: no fast-math in these kernels: it made them no faster (the time goes to the fit,
 #: :func:`.system_fd_fit.fit_node`) and made their answers depend on whether numba had
@@ -197,6 +205,88 @@ def _parts(w, KR, MR, CR, IEK, IEM, IEC, EIK, EIM, EIC, EEK, EEM, EEC, Rb, IE, E
 
 
 @njit(cache=True, error_model="numpy", fastmath=_SAFE_FAST)
+def _line_sides(X, k0, k, rev, line, ends, slot, couple, c0, c1, IE, prescribed):  # noqa: ANN001, ANN202, PLR0913
+    """The right sides of line ``line`` into ``X[k0:k0 + k]`` (factor order): the unit
+    motions of its free ends, then the prescribed ends' motion together if one moves;
+    their number."""
+    m = 0
+    for e in range(2):
+        if slot[ends[line, e]] >= 0:
+            for a in range(3):
+                for i in range(k):
+                    X[k0 + i, m] = 0.0
+                for q in range(c0, c1):
+                    i = couple[q]
+                    X[k0 + (k - 1 - i if rev else i), m] = -IE[k0 + i, 3 * e + a]
+                m += 1
+    moved = False  # a prescribed end that moves (a fixed anchor's column is zero)
+    for e in range(2):
+        pt = ends[line, e]
+        if slot[pt] < 0:
+            for a in range(3):
+                if prescribed[pt, a].real != 0.0 or prescribed[pt, a].imag != 0.0:
+                    moved = True
+    if moved:
+        for i in range(k):
+            X[k0 + i, m] = 0.0
+        for q in range(c0, c1):
+            i = couple[q]
+            acc = 0j
+            for e in range(2):
+                pt = ends[line, e]
+                if slot[pt] < 0:
+                    for a in range(3):
+                        acc -= IE[k0 + i, 3 * e + a] * prescribed[pt, a]
+            X[k0 + (k - 1 - i if rev else i), m] = acc
+        m += 1
+    return m
+
+
+@njit(cache=True, error_model="numpy", fastmath=_SAFE_FAST)
+def _line_rows(Rl, Rb, k0, k, rev, bw, drag, na, nb, ncount, nfirst, unit, basis, D, iw):  # noqa: ANN001, ANN202, PLR0913
+    """The band rows of a line's dynamic matrix with its drag (``iw D`` on its
+    nodes' blocks) into ``Rl[:k]`` (factor order), the room for fill-in zeroed."""
+    width = 2 * bw + 1
+    if rev:
+        for i in range(k):
+            for c in range(width):
+                Rl[i, c] = Rb[k0 + k - 1 - i, 2 * bw - c]
+            for c in range(width, 3 * bw + 1):
+                Rl[i, c] = 0.0
+    else:
+        for i in range(k):
+            for c in range(width):
+                Rl[i, c] = Rb[k0 + i, c]
+            for c in range(width, 3 * bw + 1):
+                Rl[i, c] = 0.0
+    if drag:
+        for g in range(na, nb + 1):
+            cnt = ncount[g]
+            f0 = nfirst[g]
+            if unit[g]:  # the node's basis is the identity: B^T D B is D
+                for r in range(3):
+                    for c in range(3):
+                        if rev:
+                            Rl[k - 1 - f0 - r, r - c + bw] += iw * D[g, r, c]
+                        else:
+                            Rl[f0 + r, c - r + bw] += iw * D[g, r, c]
+                continue
+            for r in range(cnt):
+                for c in range(cnt):
+                    val = 0.0
+                    for a in range(3):
+                        ba = basis[g, a, r]
+                        if ba == 0.0:
+                            continue
+                        for b in range(3):
+                            val += ba * D[g, a, b] * basis[g, b, c]
+                    if rev:
+                        Rl[k - 1 - f0 - r, r - c + bw] += iw * val
+                    else:
+                        Rl[f0 + r, c - r + bw] += iw * val
+
+
+@njit(cache=True, error_model="numpy", fastmath=_SAFE_FAST)
 def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
     w,
     drag,
@@ -234,6 +324,7 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
     forces,
     pinv,
     unit,
+    blocky,
 ):
     """One linear solve at fixed drag (``drag``: ``D`` (nodes, 3, 3) and ``Dp`` (P, 3,
     3) enter) at ``w`` [rad/s] with :func:`_parts` ``Rb`` ... ``EE`` at ``w``:
@@ -255,7 +346,6 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
     F = free.shape[0]
     iw = 1j * w
     w2 = w * w
-    width = 2 * bw + 1
     G[:, :] = 0.0
     rhs[:] = 0.0
     for j in range(F):
@@ -281,36 +371,7 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
                     A_EE[line, a, b] += iw * D[na, a, b]
                     A_EE[line, 3 + a, 3 + b] += iw * D[nb, a, b]
         # right sides: unit motions of the free ends, the prescribed ends' motion together
-        m = 0
-        for e in range(2):
-            if slot[ends[line, e]] >= 0:
-                for a in range(3):
-                    for i in range(k):
-                        X[k0 + i, m] = 0.0
-                    for q in range(c0, c1):
-                        i = couple[q]
-                        X[k0 + (k - 1 - i if rev else i), m] = -IE[k0 + i, 3 * e + a]
-                    m += 1
-        moved = False  # a prescribed end that moves (a fixed anchor's column is zero)
-        for e in range(2):
-            pt = ends[line, e]
-            if slot[pt] < 0:
-                for a in range(3):
-                    if prescribed[pt, a].real != 0.0 or prescribed[pt, a].imag != 0.0:
-                        moved = True
-        if moved:
-            for i in range(k):
-                X[k0 + i, m] = 0.0
-            for q in range(c0, c1):
-                i = couple[q]
-                acc = 0j
-                for e in range(2):
-                    pt = ends[line, e]
-                    if slot[pt] < 0:
-                        for a in range(3):
-                            acc -= IE[k0 + i, 3 * e + a] * prescribed[pt, a]
-                X[k0 + (k - 1 - i if rev else i), m] = acc
-            m += 1
+        m = _line_sides(X, k0, k, rev, line, ends, slot, couple, c0, c1, IE, prescribed)
         ncol[line] = m
         # the first row of the factor that a free end's junction rows read
         first = k
@@ -327,45 +388,21 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
         low[line] = first
         if k > 0:
             Rl = R[k0:]
-            if rev:
-                for i in range(k):
-                    for c in range(width):
-                        Rl[i, c] = Rb[k0 + k - 1 - i, 2 * bw - c]
-                    for c in range(width, 3 * bw + 1):
-                        Rl[i, c] = 0.0
-            else:
-                for i in range(k):
-                    for c in range(width):
-                        Rl[i, c] = Rb[k0 + i, c]
-                    for c in range(width, 3 * bw + 1):
-                        Rl[i, c] = 0.0
-            if drag:
-                for g in range(na, nb + 1):
-                    cnt = ncount[g]
-                    f0 = nfirst[g]
-                    if unit[g]:  # the node's basis is the identity: B^T D B is D
-                        for r in range(3):
-                            for c in range(3):
-                                if rev:
-                                    Rl[k - 1 - f0 - r, r - c + bw] += iw * D[g, r, c]
-                                else:
-                                    Rl[f0 + r, c - r + bw] += iw * D[g, r, c]
-                        continue
-                    for r in range(cnt):
-                        for c in range(cnt):
-                            val = 0.0
-                            for a in range(3):
-                                ba = basis[g, a, r]
-                                if ba == 0.0:
-                                    continue
-                                for b in range(3):
-                                    val += ba * D[g, a, b] * basis[g, b, c]
-                            if rev:
-                                Rl[k - 1 - f0 - r, r - c + bw] += iw * val
-                            else:
-                                Rl[f0 + r, c - r + bw] += iw * val
-            if not _band_factor(Rl, bw, k, reach[k0:], X[k0:], m, pinv[k0:]):
-                return SINGULAR_LINE, line
+            done = False
+            if blocky[line]:
+                # block tridiagonal: its own factor (system_fd_block), reading the band
+                # rows and the drag where they are; where it declines (the band factor
+                # would exchange rows) the right sides again, and the band factor
+                g0 = nb - 1 if rev else na + 1
+                done = block_factor(
+                    Rb, k0, k, rev, bw, drag, D, g0, iw, Rl, reach[k0:], X[k0:], m, pinv[k0:]
+                )
+                if not done:
+                    _line_sides(X, k0, k, rev, line, ends, slot, couple, c0, c1, IE, prescribed)
+            if not done:
+                _line_rows(Rl, Rb, k0, k, rev, bw, drag, na, nb, ncount, nfirst, unit, basis, D, iw)
+                if not _band_factor(Rl, bw, k, reach[k0:], X[k0:], m, pinv[k0:]):
+                    return SINGULAR_LINE, line
             if not _back_rows(Rl, bw, k, reach[k0:], X[k0:], m, first, pinv[k0:]):
                 return SINGULAR_LINE, line
         # the junction rows of the free ends: S u_E = A_EE u_E + A_EI X u_E

@@ -15,6 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .system_fd_block import block_lines
+
 
 @dataclass(frozen=True, eq=False)
 class PackedSystem:
@@ -137,6 +139,7 @@ def pack_system(model) -> PackedSystem:  # noqa: ANN001 - SystemLinear (no impor
     slot = np.full(kind.size, -1, dtype=np.int64)
     slot[free] = np.arange(free.size)
     has_drag = bool(model.has_drag)
+    unit = (ncount == 3) & np.all(basis == np.eye(3), axis=(1, 2))
     arrays = (
         noff,
         koff,
@@ -167,6 +170,9 @@ def pack_system(model) -> PackedSystem:  # noqa: ANN001 - SystemLinear (no impor
         has_drag,
         # per node whether its basis is the identity (three free directions, x y z):
         # its drag enters the band as it is (:func:`.system_fd_kernel._solve`)
-        (ncount == 3) & np.all(basis == np.eye(3), axis=(1, 2)),
+        unit,
+        # per line whether its matrix is block tridiagonal in its nodes' 3 x 3 blocks:
+        # factored by :func:`.system_fd_block.block_factor`
+        block_lines(noff, koff, K, M, C, ncount, nfirst, unit, bw),
     )
     return PackedSystem(arrays=arrays, bw=bw, node_offset=noff, dof_offset=koff)

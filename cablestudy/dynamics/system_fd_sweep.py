@@ -129,6 +129,7 @@ def _solve_at(w, drag, m, bw, ws, prescribed, disp, u_pts, forces):  # noqa: ANN
         forces,
         ws[30],
         m[38],
+        m[39],
     )
 
 

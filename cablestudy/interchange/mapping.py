@@ -420,7 +420,7 @@ def moordyn_to_study(
         _seabed_contact(md, env, segments, rho, comments, warnings)
     data: dict[str, Any] = {
         "name": name,
-        "description": f"imported from {src} (MoorDyn v{md.version}), lines "
+        "description": f"imported from {src} ({md.format_name}), lines "
         + ", ".join(str(ln.id) for ln, _ in chain),
         "environment": env,
         "line": {"segments": segments},

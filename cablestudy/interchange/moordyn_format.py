@@ -244,6 +244,13 @@ class MoorDynFile:
     #: what the reader noticed and the user should know (mislabelled headers, ...)
     notes: list[str] = field(default_factory=list)
     source: str = "<moordyn>"
+    #: the format it was read from, as a study's description names it
+    kind: str = ""
+
+    @property
+    def format_name(self) -> str:
+        """'MoorDyn v2', or the other format it was read from (a MoorPy design YAML)."""
+        return self.kind or f"MoorDyn v{self.version}"
 
     def option(self, *names: str) -> Option | None:
         """The first option present under any of ``names`` (case-insensitive)."""

@@ -107,7 +107,7 @@ def parse_mooring_yaml(text: str, source: str) -> tuple[MoorDynFile, list[str]]:
                     "is not modelled by cablestudy"
                 )
 
-    md = MoorDynFile(version=2, source=source)
+    md = MoorDynFile(version=2, source=source, kind="MoorPy design YAML")
     for i, lt in enumerate(body.get("line_types") or []):
         loc = ("line_types", i)
         extra_keys(lt, _TYPE_KEYS, loc)

@@ -262,7 +262,7 @@ def moordyn_system_to_study(
         warnings[before:] = [w.replace(word, said) for w in warnings[before:]]
     data: dict[str, Any] = {
         "name": name,
-        "description": f"imported from {src} (MoorDyn v{md.version}), the whole system: "
+        "description": f"imported from {src} ({md.format_name}), the whole system: "
         f"lines {', '.join(study_lines)}",
         "environment": env,
         "points": points,

@@ -1,7 +1,8 @@
 """Many static problems of method ``catenary`` at once (:func:`solve_batch`): those the
 compiled kernels take (:mod:`.batch_kernels`: lines hanging free stacked and solved
 together, lines anchored on the seabed by the contact kernel, those of one seabed plane
-stacked too), the others and any case a kernel does not settle one by one by
+stacked too, lines hanging free in a current by the drag iteration run per case inside
+the batch, :mod:`.batch_drag`), the others and any case a kernel does not settle one by one by
 :class:`.semi_analytic.SemiAnalyticSolver`, so the answer never depends on which path a
 case took beyond round-off. :func:`solve_compiled_many` is the kernels' part alone: the
 lines of a mooring system re-solved at another number of nodes (the system frequency
@@ -45,7 +46,7 @@ def solve_batch(
     :mod:`.verify`'s checks: only for intermediate iterates whose answer is re-solved
     verified (the system Newton's trials, :func:`.system._solve`)."""
     solver = SemiAnalyticSolver()
-    results, why, tried = _kernels(problems, contact=contact, verify=verify)
+    results, why, tried = _kernels(problems, contact=contact, verify=verify, deadline=deadline)
     out = []
     for i, prob in enumerate(problems):
         res = results[i]

@@ -9,8 +9,9 @@ same damped Newton iteration on the convex complementary energy as
 :func:`.semi_analytic_newton.solve_free` (with a per-case Armijo line search and per-case
 convergence). A line anchored at end A on the seabed with end B fixed above it takes
 the compiled seabed-contact kernel (:mod:`._fast_contact`, :func:`solve_contact_arrays`).
-Cases that need more (current, contact between the ends, a weightless slack piece, no
-fixed end A, a case a kernel does not settle) are solved one by one by
+Lines hanging free in a current take the compiled drag iteration (:mod:`.batch_drag`).
+Cases that need more (contact between the ends, a current over a seabed, a weightless
+slack piece, no fixed end A, a case a kernel does not settle) are solved one by one by
 :class:`.semi_analytic.SemiAnalyticSolver`, so the answer never depends on which path a
 case took beyond round-off.
 """
@@ -341,12 +342,17 @@ def _contact_result(x: dict, out: dict, j: int) -> StaticResult | None:
 
 
 def solve_compiled(
-    problem: StaticProblem, *, why: dict[int, str] | None = None
+    problem: StaticProblem,
+    *,
+    why: dict[int, str] | None = None,
+    drag: bool = True,
+    deadline: float | None = None,
 ) -> StaticResult | None:
-    """One still-water problem through the compiled batch kernels (free-hanging, or
-    anchored on the seabed: :func:`_kernels` of one problem), or None when it does not
-    take that path (or does not settle there: then ``why[0]``, if given, says why)."""
-    results, reasons, tried = _kernels([problem])
+    """One problem through the compiled batch kernels (free-hanging, anchored on the
+    seabed, or hanging free in a current with ``drag``: :func:`_kernels` of one problem),
+    or None when it does not take that path (or does not settle there: then ``why[0]``,
+    if given, says why)."""
+    results, reasons, tried = _kernels([problem], drag=drag, deadline=deadline)
     if results[0] is not None and results[0].success:
         return results[0]
     if why is not None and tried:  # status 0 means verified: the general solver takes it
@@ -386,20 +392,33 @@ def contact_many(problems: list[StaticProblem]) -> list[StaticResult | None]:
 
 
 def _kernels(
-    problems: list[StaticProblem], *, contact: bool = True, verify: bool = True
+    problems: list[StaticProblem],
+    *,
+    contact: bool = True,
+    verify: bool = True,
+    drag: bool = True,
+    deadline: float | None = None,
 ) -> tuple[list[StaticResult | None], dict[int, str], set[int]]:
     """The kernels' answers (None where a kernel does not take a problem or does not
     settle it), why the batch kernel left a case it tried, and the cases a kernel tried.
     Batchable problems with equal piece and node counts are solved together; lines
     anchored on the seabed (``contact``) by the contact kernel, those of one plane
-    together, their answers verified (``verify``) as the batch kernel verifies its own."""
+    together, their answers verified (``verify``) as the batch kernel verifies its own;
+    lines hanging free in a current (``drag``) by the compiled drag iteration
+    (:mod:`.batch_drag`, which keeps no answer past ``deadline``)."""
+    from .batch_drag import DRAG_NOT_SETTLED, drag_eligible, drag_many
+
     results: list[StaticResult | None] = [None] * len(problems)
     groups: dict[tuple[int, int], list[int]] = {}
     layouts: dict = {}
     seabed = []
+    current = []
     for i, prob in enumerate(problems):
         if contact and contact_eligible(prob):  # never batchable: anchored on the seabed
             seabed.append(i)
+            continue
+        if drag and drag_eligible(prob):  # never batchable: in a current
+            current.append(i)
             continue
         if not batchable(prob):
             continue
@@ -432,7 +451,16 @@ def _kernels(
             if res is not None and verify:  # status 0 means verified: else the general
                 res = verified(problems[i], res, method="catenary")  # solver
             results[i] = res
-    tried = {i for members in groups.values() for i in members} | set(seabed)
+    if current:
+        for i, res in zip(
+            current,
+            drag_many([problems[i] for i in current], verify=verify, deadline=deadline),
+            strict=True,
+        ):
+            results[i] = res
+            if res is None:
+                why[i] = DRAG_NOT_SETTLED
+    tried = {i for members in groups.values() for i in members} | set(seabed) | set(current)
     return results, why, tried
 
 

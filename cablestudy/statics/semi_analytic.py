@@ -191,14 +191,24 @@ class SemiAnalyticSolver:
         compiled: bool = True,
     ) -> StaticResult:
         """Solve ``problem``. A still-water problem hanging free, or anchored at end A on
-        the seabed with end B fixed above it, first takes the compiled kernels of
-        :mod:`.batch` (when numba is available and ``compiled``); anything they do not
-        settle takes the general path below, which gives the same answer."""
+        the seabed with end B fixed above it, and one hanging free in a current (the
+        drag iteration compiled, :mod:`.batch_drag`, with this solver's default drag
+        settings), first takes the compiled kernels of :mod:`.batch` (when numba is
+        available and ``compiled``); anything they do not settle takes the general path
+        below, which gives the same answer to round-off."""
         if compiled:
+            from .batch_drag import CONTINUATION, MAX_DRAG_ITERATIONS
             from .batch_kernels import solve_compiled
 
             left: dict[int, str] = {}
-            fast = solve_compiled(problem, why=left)
+            # the compiled drag iteration runs this solver's default drag settings
+            default_drag = (
+                drag_elements is None
+                and self.drag_elements is None
+                and self.max_drag_iterations == MAX_DRAG_ITERATIONS
+                and tuple(self.continuation_steps) == CONTINUATION
+            )
+            fast = solve_compiled(problem, why=left, drag=default_drag, deadline=deadline)
             if fast is not None:
                 return fast
             fallback = left.get(0, "")

@@ -336,6 +336,10 @@ def solve_packed(system: MooringSystem, pk: Packed, poses: np.ndarray) -> Solved
     Kl[:, :, 1, 1] = K
     Kl = np.where(pk.flip[..., None, None, None, None], Kl[:, :, ::-1, ::-1], Kl)
     body_force, body_stiffness = _bodies_many(system, pos, poses, net - pk.pforce, Kl, ka, kb)
+    # a singular free-point stiffness (see _solve_each): the general solver decides
+    singular = ok & ~np.isfinite(body_stiffness).reshape(N, -1).all(axis=1)
+    fallback[singular] = f"{NOT_SETTLED} (singular free-point stiffness)"
+    ok &= ~singular
     bad = ~ok
     for arr in (out_pos, out_ten, out_fa, out_fb, laid, body_force, body_stiffness):
         arr[bad] = np.nan
@@ -571,7 +575,7 @@ def _bodies_many(
     nb = 3 * on.size
     Kc = Kall[:, :nb, :nb]
     if fr.size:
-        Kc = Kc - Kall[:, :nb, nb:] @ np.linalg.solve(Kall[:, nb:, nb:], Kall[:, nb:, :nb])
+        Kc = Kc - Kall[:, :nb, nb:] @ _solve_each(Kall[:, nb:, nb:], Kall[:, nb:, :nb])
     dR = rotation_derivatives_many(poses[..., 3:])  # (N, m, 3 angles, 3, 3)
     for b in range(m):
         mine = np.flatnonzero(system.point_body[on] == b)
@@ -589,6 +593,23 @@ def _bodies_many(
         blk = Kc.reshape(N, on.size, 3, on.size, 3)[:, mine][:, :, :, mine].transpose(0, 1, 3, 2, 4)
         body_stiffness[:, b] += np.einsum("npia,npqab,nqbj->nij", lever, blk, trans)
     return body_force, body_stiffness
+
+
+def _solve_each(A: np.ndarray, B: np.ndarray) -> np.ndarray:
+    """``A^-1 B`` per case (A (N, k, k), B (N, k, j)); NaN in the cases whose A is singular
+    (a case the compiled Newton did not settle has zero stiffness blocks), so that one
+    such case does not fail the others of its chunk (the caller hands it to the general
+    solver)."""
+    try:
+        return np.linalg.solve(A, B)
+    except np.linalg.LinAlgError:
+        out = np.full(B.shape, np.nan)
+        for i in range(len(A)):
+            try:
+                out[i] = np.linalg.solve(A[i], B[i])
+            except np.linalg.LinAlgError:
+                pass
+        return out
 
 
 def solve_fast(

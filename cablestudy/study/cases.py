@@ -508,10 +508,10 @@ def parse_sweep(src: StudySource) -> list[SweepAxis]:
         for p in axis.paths:
             for q, dim in seen_paths.items():
                 if p == q or p.startswith(q + ".") or q.startswith(p + "."):
-                    what = "swept twice" if p == q else f"overlaps the swept path {q!r}"
+                    what = "is swept twice" if p == q else f"overlaps the swept path {q!r}"
                     raise StudyError(
                         [
-                            f"{src.line_of(key_locs.get(p, ('sweep',)))}: sweep.{p}: the path is "
+                            f"{src.line_of(key_locs.get(p, ('sweep',)))}: sweep.{p}: the path "
                             f"{what} (dimensions {dim!r} and {axis.name!r}); allowed: each "
                             f"setting on one axis (got {p!r})"
                         ],

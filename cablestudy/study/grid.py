@@ -229,18 +229,18 @@ def _static_sweep(template: Study, axes: list[SweepAxis]) -> bool:
 
 
 def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
-    """A static-only, still-water, method 'catenary' study without a quasi-static
-    database (its grid of solves per case is not an array kernel) whose swept paths are
-    all end positions of fixed ends, segment stiffnesses, the numbers that set the
-    line's loads, its lengths and attachments or the seabed
-    (:func:`cablestudy.study.grid_lines.per_line`), or a towing or mooring end's known
-    load (:func:`_end_load`), with numeric values."""
+    """A static-only, method 'catenary' study without a quasi-static database (its grid
+    of solves per case is not an array kernel), in still water or a current
+    (:func:`_current_ok`), whose swept paths are all end positions of fixed ends, segment
+    stiffnesses, the numbers that set the line's loads, its lengths and attachments, the
+    seabed or the current (:func:`cablestudy.study.grid_lines.per_line`), or a towing or
+    mooring end's known load (:func:`_end_load`), with numeric values."""
     an = template.analysis
     if an.modal is not None or an.dynamic is not None or an.static.method != "catenary":
         return False
     if an.database is not None:
         return False
-    if template.environment.current or template.line.pulleys:
+    if template.line.pulleys or not _current_ok(template):
         return False
     line = template.line
     # the arrays' outputs take strain as T / EA and no break limits: a nonlinear law or
@@ -274,6 +274,17 @@ def _end_load(template: Study, path: str) -> bool:
         return False
     kind = getattr(getattr(template.ends, m.group(1)), "kind", "")
     return kind == "mooring" or (kind == "force" and m.group(3) is not None)
+
+
+def _current_ok(template: Study) -> bool:
+    """Whether a template in a current (or in still water) takes the arrays: its cases in
+    a current are solved by :func:`cablestudy.statics.batch.solve_batch` (the drag
+    iteration per case in the compiled batch, :mod:`cablestudy.statics.batch_drag`, or the
+    general solver where that does not take a case), except drag on the stretched
+    diameter, which the catenary solver refuses (a case alone says so)."""
+    if not template.environment.current:
+        return True
+    return template.analysis.static.drag_diameter == "unstretched"
 
 
 def expand_grid(src: StudySource, template: Study | None = None) -> CaseGrid:

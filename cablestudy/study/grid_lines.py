@@ -42,12 +42,22 @@ SEABED = re.compile(r"^environment\.(depth|seabed\.(friction|slope_deg|slope_hea
 #: per-case pieces: :mod:`cablestudy.analyses.static_grid_lines`)
 LINE_GEOMETRY = re.compile(r"^line\.(segments\.\d+\.length|attachments\.\d+\.(s|force\.[012]))$")
 
+#: swept paths that change the current only (a profile point's speed or heading): each
+#: case's medium is that of its combination, like its seabed (the drag iteration then
+#: runs per case in the compiled batch, :mod:`cablestudy.statics.batch_drag`)
+CURRENT = re.compile(r"^environment\.current\.\d+\.(speed|heading_deg)$")
+
 
 def per_line(path: str) -> bool:
     """Whether ``path`` is one whose values are built per combination (a load of the
-    line, :data:`LINE_LOAD`, where and how long its parts are, :data:`LINE_GEOMETRY`, or
-    the seabed, :data:`SEABED`)."""
-    return bool(LINE_LOAD.match(path) or LINE_GEOMETRY.match(path) or SEABED.match(path))
+    line, :data:`LINE_LOAD`, where and how long its parts are, :data:`LINE_GEOMETRY`,
+    the seabed, :data:`SEABED`, or the current, :data:`CURRENT`)."""
+    return bool(
+        LINE_LOAD.match(path)
+        or LINE_GEOMETRY.match(path)
+        or SEABED.match(path)
+        or CURRENT.match(path)
+    )
 
 
 #: at most this many combinations of line values are built (a grid with more is solved

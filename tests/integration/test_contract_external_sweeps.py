@@ -186,7 +186,7 @@ def test_a_sloped_seabed_holds_the_laid_line_on_its_plane(tmp_path: Path) -> Non
 
 FALLBACK = [
     (
-        "current",
+        "current_seabed",
         {
             "zip": [
                 {
@@ -218,8 +218,9 @@ def test_a_sweep_mixing_kernel_and_general_cases_counts_the_fallback(
     tmp_path: Path, base: str, sweep: dict, count: int, reasons: str
 ) -> None:
     """A sweep whose cases the batch kernel takes and cases it cannot (still water
-    and a current; the catenary method beside shooting and analytic; an anchor on the
-    seabed and one lifted off it, the line then touching down between): every case
+    and a current over a seabed, which the compiled drag iteration does not take; the
+    catenary method beside shooting and analytic; an anchor on the seabed and one lifted
+    off it, the line then touching down between): every case
     solved in the one run, status 0, and the dataset's ``cases_fallback`` /
     ``fallback_reasons`` and the run's summary count exactly the cases handed on, and
     why."""

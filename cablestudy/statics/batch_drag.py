@@ -1,0 +1,175 @@
+"""Lines in a current solved together (:func:`drag_many`): the drag iteration of the
+semi-analytic solver runs per case inside the compiled batch (:func:`._drag_fast.drag_cases`).
+
+A problem takes it (:func:`drag_eligible`) when the general solver
+(:class:`.semi_analytic.SemiAnalyticSolver`) would solve it hanging free with its drag
+loop: a current that drags the line, end A fixed, end B fixed, towed or moored, linear
+axial laws, no seabed, no installation. Its pieces are the general solver's
+(:func:`.semi_analytic_shape.make_layout` with the same drag elements), the cases with the
+same numbers of pieces, output points and current-profile points are stacked, and each
+case iterates until its own convergence test passes, with its own arithmetic: a case
+gives the same numbers alone as in any batch, bit for bit. Every settled answer is then
+checked by :func:`.verify.verified` exactly as the general solver's is; a case the kernel
+does not settle, or whose answer fails a check, is None here (the general solver's).
+
+Pure: problems in, results out.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from .base import STATUS_OK, StaticProblem, StaticResult
+from .line_state import CatenaryState
+from .seabed import seabed_of
+from .semi_analytic_shape import Layout, make_layout
+
+#: the general solver's drag-loop settings the kernel runs with
+#: (:class:`.semi_analytic.SemiAnalyticSolver` defaults)
+MAX_DRAG_ITERATIONS = 300
+CONTINUATION = (4, 16)
+
+#: why the drag kernel left a case to the general solver
+DRAG_NOT_SETTLED = "not settled by the drag kernel"
+
+
+def drag_eligible(problem: StaticProblem) -> bool:
+    """Whether ``problem`` takes the compiled drag iteration (module docstring)."""
+    med, line = problem.medium, problem.line
+    if not med.drags(line) or line.is_nonlinear:
+        return False
+    if problem.end_a.kind != "fixed" or problem.end_b.kind not in ("fixed", "force", "mooring"):
+        return False
+    if problem.is_installation or problem.stretched_drag_diameter:
+        return False
+    return seabed_of(med) is None
+
+
+def drag_elements(problem: StaticProblem) -> int:
+    """The drag elements the general solver cuts ``problem``'s line into."""
+    return problem.drag_elements or max(problem.n_nodes - 1, 20)
+
+
+def drag_many(
+    problems: list[StaticProblem], *, verify: bool = True, deadline: float | None = None
+) -> list[StaticResult | None]:
+    """The drag kernel's verified answer per problem (all :func:`drag_eligible`), None
+    where it leaves the case to the general solver. Problems of equal piece, node and
+    current-profile counts are solved in one call. Past ``deadline`` (``time.monotonic``)
+    no answer is kept: the general solver then reports the time limit, as for a case it
+    iterates itself (the kernel does not look at the clock inside its loops)."""
+    from .verify_drag import verified_many
+
+    if deadline is not None and time.monotonic() > deadline:
+        return [None] * len(problems)
+
+    made: dict[tuple[int, int], Layout] = {}  # a grid's cases share their line objects
+    layouts = []
+    for p in problems:
+        key = (id(p.line), drag_elements(p))
+        if key not in made:
+            made[key] = make_layout(p.line, key[1])
+        layouts.append(made[key])
+    groups: dict[tuple[int, int, int], list[int]] = {}
+    for i, (p, lay) in enumerate(zip(problems, layouts, strict=True)):
+        key = (len(lay.ell), p.n_nodes, len(p.medium.current_z))
+        groups.setdefault(key, []).append(i)
+    out: list[StaticResult | None] = [None] * len(problems)
+    for members in groups.values():
+        try:
+            got = _solve_group([problems[i] for i in members], [layouts[i] for i in members])
+        except Exception:  # noqa: BLE001 - a fault in the kernel: each case alone
+            got = []
+            for i in members:
+                try:
+                    got += _solve_group([problems[i]], [layouts[i]])
+                except Exception:  # noqa: BLE001 - the general solver takes it
+                    got.append(None)
+        if deadline is not None and time.monotonic() > deadline:
+            got = [None] * len(members)  # the time limit is the general solver's to say
+        if verify:  # status 0 means verified: else the general solver's
+            settled = [j for j, res in enumerate(got) if res is not None]
+            checked = verified_many(
+                [problems[members[j]] for j in settled], [got[j] for j in settled]
+            )
+            for j, res in zip(settled, checked, strict=True):
+                got[j] = res if res.status == STATUS_OK else None
+        for i, res in zip(members, got, strict=True):
+            out[i] = res
+    return out
+
+
+def _solve_group(problems: list[StaticProblem], layouts: list[Layout]) -> list:
+    """One stacked call of the kernel; the settled cases as results (None otherwise)."""
+    from ._drag_fast import SETTLED, drag_cases
+
+    N = len(problems)
+    P = len(layouts[0].ell)
+    n = problems[0].n_nodes
+    M = len(problems[0].medium.current_z)
+    ell, EA, weight = np.empty((N, P)), np.empty((N, P)), np.empty((N, P))
+    diam, cn, ct = np.empty((N, P)), np.empty((N, P)), np.empty((N, P))
+    point, bounds = np.empty((N, P + 1, 3)), np.empty((N, P + 1))
+    rho, pz, pv = np.empty(N), np.empty((N, M)), np.empty((N, M, 3))
+    kind = np.empty(N, dtype=np.int64)
+    rA, rB, force, zB = np.zeros((N, 3)), np.zeros((N, 3)), np.zeros((N, 3)), np.zeros(N)
+    tol, maxit = np.empty(N), np.empty(N, dtype=np.int64)
+    s = np.empty((N, n))
+    # the general solver's np.linspace(0, L, n), bit for bit; once per line object
+    samples: dict[int, np.ndarray] = {}
+    for i, (prob, lay) in enumerate(zip(problems, layouts, strict=True)):
+        line, med = prob.line, prob.medium
+        seg = lay.segment
+        ell[i], EA[i], weight[i], point[i], bounds[i] = (
+            lay.ell,
+            lay.EA,
+            lay.weight,
+            lay.point,
+            lay.bounds,
+        )
+        diam[i], cn[i], ct[i] = line.diameter[seg], line.drag_normal[seg], line.drag_tangential[seg]
+        rho[i], pz[i], pv[i] = med.density, med.current_z, med.current_velocity
+        rA[i] = prob.end_a.position
+        b = prob.end_b
+        kind[i] = {"fixed": 0, "mooring": 1, "force": 2}[b.kind]
+        if b.kind == "fixed":
+            rB[i] = b.position
+        else:
+            force[i] = b.force
+            if b.kind == "mooring":
+                force[i, 2] = 0.0
+                zB[i] = float(b.z)
+        tol[i], maxit[i] = prob.tolerance, prob.max_iterations
+        if id(line) not in samples:
+            samples[id(line)] = np.linspace(0.0, line.total_length, n)
+        s[i] = samples[id(line)]
+    pos, tension = np.empty((N, n, 3)), np.empty((N, n))
+    TA, TL, loads = np.empty((N, 3)), np.empty((N, 3)), np.empty((N, P, 3))
+    counts, resid = np.zeros((N, 2), dtype=np.int64), np.zeros(N)
+    status = np.zeros(N, dtype=np.int64)
+    drag_cases(
+        ell, EA, weight, point, bounds, diam, cn, ct, rho, pz, pv, kind, rA, rB, force, zB,
+        tol, maxit, MAX_DRAG_ITERATIONS, np.array([1, *CONTINUATION], dtype=np.int64), s,
+        pos, tension, TA, TL, loads, counts, resid, status,
+    )  # fmt: skip
+    out: list[StaticResult | None] = []
+    for i, lay in enumerate(layouts):
+        if status[i] != SETTLED:
+            out.append(None)
+            continue
+        res = StaticResult(
+            s=s[i],
+            position=pos[i],
+            tension=tension[i],
+            force_a=TA[i],
+            force_b=-TL[i],
+            status=STATUS_OK,
+            iterations=int(counts[i, 0]),
+            residual=float(resid[i]),
+            state=CatenaryState(layout=lay, q=loads[i], reversed=False),
+        ).check_finite()
+        res.drag_iterations = int(counts[i, 1])
+        out.append(res if res.status == STATUS_OK else None)
+    return out
