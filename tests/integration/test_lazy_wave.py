@@ -14,8 +14,8 @@ Checks: status 0 with 'catenary' and 'shooting' (independent methods: closed-for
 segment increments with Newton on the end forces, against an ODE integrated from the
 TDP) and their agreement; the modules hang above the seabed; the whole-line vertical
 balance; and with 4 m^3 modules (the line between them lies on the seabed, each module
-lifting an arch: one laid part from the anchor cannot represent it) 'catenary' does not claim status 0 while 'discrete',
-started from its state, still solves it.
+lifting an arch: one laid part from the anchor cannot represent it) 'catenary' does
+not claim status 0 while 'discrete', started from its state, still solves it.
 """
 
 from __future__ import annotations
