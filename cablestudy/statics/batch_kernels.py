@@ -162,6 +162,7 @@ def solve_contact_arrays(
         out["status"],
     )
     st = out["status"]
+    _hand_on_laid_lift(out, point, bounds, plane)
     free = np.flatnonzero(
         ((st == LIFT_OFF) | (st == NOT_CONVERGED) | (st == NUMERICAL))
         & (True if kind is None else kind == 0)  # B fixed (else: the general solver)
@@ -169,6 +170,25 @@ def solve_contact_arrays(
     if free.size:
         _hang_free(free, out, ell, EA, weight, point, bounds, rA, rB, plane, tol, maxit, s)
     return out
+
+
+def _hand_on_laid_lift(
+    out: dict[str, np.ndarray], point: np.ndarray, bounds: np.ndarray, plane: Plane
+) -> None:
+    """Hand on (status :data:`.contact_status.LIFTING_LOAD_LAID`) the settled cases whose
+    touchdown point lies past a point load lifting the line (a buoy, f . n > 0): the
+    kernel's laid part holds it on the seabed, which only pushes. The general solver's
+    contact Newton keeps the touchdown point short of it
+    (:func:`.contact_pin.first_lift`)."""
+    from .contact_status import LIFTING_LOAD_LAID
+
+    lifts = (point[:, 1:-1] @ plane.normal) > 0.0  # (N, P - 1) interior boundaries
+    if not lifts.any():
+        return
+    s_in = bounds[:, 1:-1]
+    laid = out["laid_length"][:, None]
+    bad = (out["status"] == 0) & np.any(lifts & (s_in < laid), axis=1)
+    out["status"][bad] = LIFTING_LOAD_LAID
 
 
 def _hang_free(

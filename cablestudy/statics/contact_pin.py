@@ -28,6 +28,7 @@ load without a jump.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -129,3 +130,18 @@ def pin_jump(
     dt_dT = e + a * (force - fe * e) / tn
     dt_dR = -(mu * r_max - fe) / r_max
     return j, dj_dR, t_lo, dt_dT, dt_dR
+
+
+def first_lift(bounds: np.ndarray, point: np.ndarray, normal: np.ndarray) -> tuple[float, int]:
+    """(arc length [m], boundary index) of the first point load strictly inside the line
+    that pulls away from the seabed (a buoyancy module: ``point . normal > 0``), or
+    (inf, -1). The seabed-contact state cannot have the touchdown point (TDP) past it:
+    the seabed only pushes, so a laid line cannot hold a load lifting it. Short of it
+    the state is continuous in s_td up to the load (the load hangs just past the TDP and
+    the suspended line leaves there with the kink the load makes as s_td -> s_p-). At
+    s_td = s_p exactly the load would fall between the laid and the suspended parts, so
+    the contact Newton keeps s_td a little short of it."""
+    up = np.flatnonzero(point[1:-1] @ normal > 0.0) + 1
+    if not up.size:
+        return math.inf, -1
+    return float(bounds[up[0]]), int(up[0])

@@ -16,6 +16,9 @@ SLACK = 3
 NUMERICAL = 4
 #: the solved line passes below the seabed (a contact this model does not describe)
 BELOW_SEABED = 5
+#: the touchdown point lies past a point load lifting the line (a buoy): the laid part
+#: would hold it down, which the seabed cannot (set after the kernel, by its caller)
+LIFTING_LOAD_LAID = 6
 
 REASONS = {
     NOT_CONVERGED: "seabed-contact Newton did not converge",
@@ -23,4 +26,5 @@ REASONS = {
     SLACK: "slack on the seabed",
     NUMERICAL: "non-finite values or a singular Jacobian",
     BELOW_SEABED: "the line passes below the seabed",
+    LIFTING_LOAD_LAID: "a point load lifting the line lies on the seabed",
 }

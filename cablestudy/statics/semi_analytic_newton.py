@@ -17,7 +17,7 @@ from .base import (
     STATUS_NOT_CONVERGED,
     STATUS_NUMERICAL,
 )
-from .contact_pin import pin_jump, pin_map
+from .contact_pin import first_lift, pin_jump, pin_map
 from .law_pieces import piece_increments
 from .seabed import Plane
 from .semi_analytic_shape import (
@@ -322,6 +322,19 @@ def _slack_hint(lay: Layout, *, current: bool = False) -> str:
     )
 
 
+def _lift_message(lay: Layout, s_up: float, k_up: int, res: float) -> str:
+    """Why the seabed-contact Newton stops at a load lifting the line."""
+    return (
+        "line search failed in the seabed-contact Newton iteration (residual "
+        f"{res:.3g}): the touchdown point runs into the point load at s = {s_up:.6g} m "
+        f"from the seabed end, which lifts the line ({float(lay.point[k_up, 2]):.4g} N "
+        "upwards, a buoyancy module): the line would lie on the seabed past it, the "
+        "module resting on the seabed or the line arching off it between two laid "
+        "stretches, which this method does not model (one laid part from the anchor); "
+        "method 'discrete' models it"
+    )
+
+
 def solve_contact(
     lay: Layout,
     q: np.ndarray,
@@ -335,7 +348,62 @@ def solve_contact(
 ) -> Shape | None:
     """Line anchored at A on the seabed with a laid part: Newton on (T_td in the seabed
     plane, s_td) with an analytic Jacobian. Returns None if the line lifts off (s_td
-    driven to zero)."""
+    driven to zero).
+
+    With a point load lifting the line (a lazy wave's buoyancy modules) the TDP is first
+    kept short of it (:func:`.contact_pin.first_lift`), starting halfway to it when the
+    guess lies past it (the uniform line's guess ignores the lift). If that state does
+    not exist (Newton held at the load) or its suspended line dips below the seabed
+    (the modules' stretch would rest on the seabed, or arch off it between two laid
+    stretches, which one laid part from the anchor cannot represent), the unbounded
+    Newton from the given guess answers instead, as before: its state lays the load,
+    and the whole-line verification (:mod:`.verify`) reports the seabed pulling."""
+    s_up, k_up = first_lift(lay.bounds, lay.point, plane.normal)
+    if k_up < 0:
+        return _solve_contact(lay, q, ends, plane, guess, tol, max_iterations, deadline, False)
+    T_td, s_td = guess
+    start = (T_td, s_td if s_td < s_up else 0.5 * s_up)
+    try:
+        shape = _solve_contact(lay, q, ends, plane, start, tol, max_iterations, deadline, True)
+    except _Failure as exc:
+        if exc.status != STATUS_NOT_CONVERGED or "runs into the point load" not in str(exc):
+            raise
+        shape = None
+        bounded_failure: _Failure | None = exc
+    else:
+        bounded_failure = None
+        if shape is None or not _dips(shape, lay, plane, tol):
+            return shape
+    try:
+        return _solve_contact(lay, q, ends, plane, guess, tol, max_iterations, deadline, False)
+    except _Failure:
+        if bounded_failure is not None:
+            raise bounded_failure from None
+        raise
+
+
+def _dips(shape: Shape, lay: Layout, plane: Plane, tol: float) -> bool:
+    """Whether the suspended line of a contact state passes below the seabed (by more
+    than the solve's tolerance on positions, as the solver's own penetration check)."""
+    L = lay.total
+    s = np.linspace(shape.laid_length, L, 401)
+    pos, _ = shape.sample(s)
+    return bool(-np.min(plane.height_above(pos)) > max(1e-6 * L, 1e3 * tol * L))
+
+
+def _solve_contact(
+    lay: Layout,
+    q: np.ndarray,
+    ends: Ends,
+    plane: Plane,
+    guess: tuple[np.ndarray, float],
+    tol: float,
+    max_iterations: int,
+    deadline: float | None,
+    bounded: bool,
+) -> Shape | None:
+    """:func:`solve_contact`'s Newton; ``bounded``: the TDP kept short of the first
+    load lifting the line."""
     L = lay.total
     e1, e2 = plane.basis
     basis = np.stack((e1, e2), axis=1)  # (3, 2)
@@ -343,7 +411,10 @@ def solve_contact(
     # the TDP coordinate: s_td, extended by an interval at each downward point load over
     # which the TDP stays at the load and the seabed takes up its weight (.contact_pin)
     pins = pin_map(lay.bounds, lay.point, lay.weight, plane.normal)
-    y = np.array([float(T_td @ e1), float(T_td @ e2), pins.to_sigma(s_td)])
+    # the TDP stays short of the first load lifting the line (.contact_pin.first_lift)
+    s_up, k_up = first_lift(lay.bounds, lay.point, plane.normal) if bounded else (math.inf, -1)
+    sig_max = min(L + pins.extra, pins.to_sigma(s_up) if k_up >= 0 else math.inf) - 1e-9 * L
+    y = np.array([float(T_td @ e1), float(T_td @ e2), min(pins.to_sigma(s_td), sig_max)])
     eye = np.eye(3)
     Fscale = max(float(np.sum(np.abs(lay.weight) * lay.ell)), 1e-300)
     if ends.kind != "fixed":
@@ -472,7 +543,7 @@ def solve_contact(
             if lam == lam_kink:
                 yn[2] = kinks[np.argmin(np.abs(kinks - yn[2]))]  # exactly on it
             # keep the TDP on the line and the tension positive
-            yn[2] = min(max(yn[2], 0.0), L + pins.extra - 1e-9 * L)
+            yn[2] = min(max(yn[2], 0.0), sig_max)
             if np.linalg.norm(yn[:2]) <= 1e-3 * np.linalg.norm(y[:2]):
                 yn[:2] = y[:2] * 1e-3
             Rn, Jn = evaluate(yn)
@@ -480,6 +551,8 @@ def solve_contact(
                 break
             lam *= 0.5
         else:
+            if k_up >= 0 and y[2] >= sig_max - 1e-9 * L:
+                raise _Failure(STATUS_NOT_CONVERGED, _lift_message(lay, s_up, k_up, res), it, res)
             hint = ""
             if float(np.linalg.norm(y[:2])) < 1e-3 * Fscale:
                 hint = _slack_hint(lay)

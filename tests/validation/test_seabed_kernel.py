@@ -23,7 +23,7 @@ import pytest
 
 from cablestudy import cli
 from cablestudy.analyses.static_grid import evaluate_grid_chunk
-from cablestudy.statics import STATIC_SOLVERS, _fast_contact
+from cablestudy.statics import STATIC_SOLVERS, _fast_contact, contact_status
 from cablestudy.statics.batch import solve_batch
 from cablestudy.statics.batch_kernels import contact_eligible, contact_end, solve_compiled
 from cablestudy.statics.semi_analytic import SemiAnalyticSolver
@@ -160,9 +160,20 @@ def test_kernel_agrees_with_the_numpy_contact_solver(
     if _slides(slope, heading, mu):
         _assert_refused_by_both_paths(prob)
         return
-    fast = solve_compiled(prob)
-    assert fast is not None and fast.status == 0  # the kernel settled it
+    why: dict[int, str] = {}
+    fast = solve_compiled(prob, why=why)
     ref = SemiAnalyticSolver().solve(prob, compiled=False)
+    if multi and (slope, heading, mu) == (3.0, 30.0, 0.5) and not at_b:
+        # the kernel's contact Newton settles this line with its touchdown point at
+        # s = 209 m, past the 15 kN buoy at s = 200 m: the laid part would hold the buoy
+        # down, which the seabed cannot. It is handed on (contact_status.LIFTING_LOAD_LAID)
+        # and the general solver, which keeps the touchdown point short of a load lifting
+        # the line (statics/contact_pin.first_lift), answers with the buoy hanging
+        assert fast is None, why
+        assert ref.status == 0, ref.message
+        assert 0.0 < ref.laid_length < 200.0
+        return
+    assert fast is not None and fast.status == 0  # the kernel settled it
     assert ref.status == 0, ref.message
     assert 0.0 < ref.laid_length < prob.line.total_length  # a laid part and a suspended one
     L = prob.line.total_length
@@ -238,6 +249,7 @@ def test_statuses_are_named() -> None:
         _fast_contact.SLACK,
         _fast_contact.NUMERICAL,
         _fast_contact.BELOW_SEABED,
+        contact_status.LIFTING_LOAD_LAID,
     }
     assert 0 not in _fast_contact.REASONS
 
