@@ -303,12 +303,17 @@ def _flag_summary(grid: str, P: np.ndarray, Q: np.ndarray, cells: np.ndarray, le
     taut = int(np.count_nonzero(cells & CELL_TAUT_CHORD))
     off = int(np.count_nonzero(cells & CELL_OFF))
     i, j = np.argwhere(cells & CELL_OFF if off else flagged)[0]
+    crosses = (
+        f"{taut} straddle the taut chord (end distance = the line's length {length:g} m: "
+        "its kink spoils the patches' slopes over the whole grid), "
+        if taut
+        else ""
+    )
     return (
-        f"quasi-static database: {int(flagged.sum())} of {cells.size} cells flagged, "
-        f"{taut} straddling the taut chord (end distance = the line's length "
-        f"{length:g} m), {off} off a direct solve at their centre by more than "
-        f"{CELL_TOLERANCE:.0%} of the cell's end tension (e.g. {_cell(grid, P, Q, i, j)}); "
-        "a lookup in a flagged cell is refused: keep the grid on one side of the taut chord"
+        f"quasi-static database: {int(flagged.sum())} of {cells.size} cells flagged ({crosses}"
+        f"{off} are off a direct solve at their centre by more than {CELL_TOLERANCE:.0%} of "
+        f"the cell's end tension, e.g. {_cell(grid, P, Q, i, j)}), and a lookup in a flagged "
+        "cell is refused: keep the grid on one side of the taut chord"
     )
 
 

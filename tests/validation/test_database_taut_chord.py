@@ -53,6 +53,7 @@ def test_grid_across_the_taut_chord_is_flagged_and_its_lookup_refused(
     _run(tmp_path, "across", 150.0)
     out = capsys.readouterr().out
     assert "quasi-static database:" in out and "cells flagged" in out
+    assert "a lookup in a flagged cell is refused: keep the grid on one side" in out
     ds = xr.load_dataset(tmp_path / "across.database.nc")
     check = ds["cell_check"].values
     assert check.shape == (17, 17)
@@ -99,3 +100,17 @@ def test_grid_on_the_slack_side_is_verified_and_looks_up_to_the_guide_accuracy(
     # (110, 5), so 1e-4 of the local tension bounds it with room for the cell position
     np.testing.assert_allclose(got["force_a"], res.force_a, rtol=0, atol=1e-4 * scale)
     np.testing.assert_allclose(got["force_b"], res.force_b, rtol=0, atol=1e-4 * scale)
+
+
+def test_cli_allow_flagged_returns_the_value_with_a_warning(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """--allow-flagged: the patch value, said to be unverified in the JSON and on stderr."""
+    _run(tmp_path, "opt", 150.0)
+    capsys.readouterr()
+    path = str(tmp_path / "opt.database.nc")
+    assert main(["lookup", path, "--at", "110", "5", "--allow-flagged"]) == 0
+    captured = capsys.readouterr()
+    got = json.loads(captured.out)
+    assert "distance 109.375 .. 112.5 m" in got["warning"] and "warning" in captured.err
+    assert got["tension_a"] < 0.0
