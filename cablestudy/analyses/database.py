@@ -30,6 +30,12 @@ error is first order in h). A radial database is looked up by (r, h) converted t
 (d, a): a smooth map away from d = 0, which the grid excludes, so the lookup is C1 in
 (r, h) as well. One lookup evaluates all quantities at once (a few microseconds); a
 point outside the grid is refused with the grid's range.
+
+The build checks every cell (:func:`check_cells`, the table ``cell_check``): one that
+straddles the taut chord (end distance = the line's length, a kink in every table) or
+whose patches at its centre are off a direct solve there by more than
+:data:`CELL_TOLERANCE` is flagged, the case warns (:func:`cell_warning`), and a lookup in
+a flagged cell is refused naming it (``allow_flagged`` returns it).
 """
 
 from __future__ import annotations
@@ -178,7 +184,11 @@ def solve_database(study: Study, deadline: float | None = None) -> dict[str, np.
             out["tension_max"][i, j] = np.max(res.tension)
             out["laid_length"][i, j] = res.laid_length
     out["cell_check"] = check_cells(
-        db.grid, P, Q, out, float(sum(seg.length for seg in study.line.segments)),
+        db.grid,
+        P,
+        Q,
+        out,
+        float(sum(seg.length for seg in study.line.segments)),
         lambda r, h: _solve_at(solver, base, rA + r * e + np.array([0.0, 0.0, h]), deadline),
     )
     data = {f"{layout.prefix}{k}": v for k, v in out.items()}
@@ -203,7 +213,9 @@ CELL_TOLERANCE = 1e-2
 
 
 def _solve_at(solver: Any, base: Any, rB: np.ndarray, deadline: float | None) -> Any:
-    res = solver.solve(replace(base, end_b=EndCondition(kind="fixed", position=rB)), deadline=deadline)
+    res = solver.solve(
+        replace(base, end_b=EndCondition(kind="fixed", position=rB)), deadline=deadline
+    )
     return res.check_finite()
 
 
