@@ -621,6 +621,13 @@ def _add_lookup_parser(sub: argparse._SubParsersAction) -> None:  # type: ignore
         metavar="DIM=VALUE",
         help="one case of a swept study, by dimension and value (repeatable)",
     )
+    p.add_argument(
+        "--allow-flagged",
+        action="store_true",
+        help="interpolate in a cell the build flagged (cell_check: the patches cannot follow "
+        "the table there, e.g. across the taut chord) instead of refusing; the result then "
+        "carries a 'warning' naming the cell",
+    )
     p.set_defaults(func=cmd_lookup)
 
 
@@ -637,7 +644,12 @@ def cmd_lookup(args: argparse.Namespace) -> int:
             sel[dim] = value
     try:
         db = open_database(args.database, **sel)
+        db.allow_flagged = args.allow_flagged
         out = db.lookup(args.at[0], args.at[1])
+        flagged = db.flagged_cell(*db.to_grid(args.at[0], args.at[1]))
+        if flagged:  # only with --allow-flagged (refused otherwise)
+            out["warning"] = f"flagged cell, the value may be wrong by any amount: {flagged}"
+            print(f"lookup: warning: {out['warning']}", file=sys.stderr)
     except (ValueError, KeyError, OSError) as exc:
         print(f"lookup: {exc}", file=sys.stderr)
         return 2

@@ -30,10 +30,17 @@ error is first order in h). A radial database is looked up by (r, h) converted t
 (d, a): a smooth map away from d = 0, which the grid excludes, so the lookup is C1 in
 (r, h) as well. One lookup evaluates all quantities at once (a few microseconds); a
 point outside the grid is refused with the grid's range.
+
+The build checks every cell (:func:`check_cells`, the table ``cell_check``): one that
+straddles the taut chord (end distance = the line's length, a kink in every table) or
+whose patches at its centre are off a direct solve there by more than
+:data:`CELL_TOLERANCE` is flagged, the case warns (:func:`cell_warning`), and a lookup in
+a flagged cell is refused naming it (``allow_flagged`` returns it).
 """
 
 from __future__ import annotations
 
+import bisect
 import math
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
@@ -176,11 +183,160 @@ def solve_database(study: Study, deadline: float | None = None) -> dict[str, np.
             out["tension_b"][i, j] = np.linalg.norm(res.force_b)
             out["tension_max"][i, j] = np.max(res.tension)
             out["laid_length"][i, j] = res.laid_length
+    out["cell_check"] = check_cells(
+        db.grid,
+        P,
+        Q,
+        out,
+        float(sum(seg.length for seg in study.line.segments)),
+        lambda r, h: _solve_at(solver, base, rA + r * e + np.array([0.0, 0.0, h]), deadline),
+    )
     data = {f"{layout.prefix}{k}": v for k, v in out.items()}
     data[layout.grid_variables[0]] = P
     data[layout.grid_variables[1]] = Q
     data["database_heading"] = np.asarray(th)
     return data
+
+
+#: codes of ``cell_check`` (the cell whose lower corner is the grid point, see
+#: :func:`check_cells`): bits, 0 verified
+CELL_NO_CELL = -1  # the grid's last row or column (no cell), or not checked
+CELL_TAUT_CHORD = 1  # the cell straddles the taut chord (distance = the line's length)
+CELL_OFF = 2  # the patch at the cell's centre is off a direct solve by > CELL_TOLERANCE
+#: the largest error of a patch at a cell's centre against a direct solve, relative to
+#: the largest end tension at the cell's corners (the line's length for laid_length)
+#: before the cell is flagged: 1 %, 10^3..10^4 times the error of a smooth table's
+#: patches at 5..17 points a side (guide: 1e-3..4e-6 of the largest end tension), so a
+#: flagged cell is one the patches cannot follow (a kink inside or near it), not one a
+#: smooth table resolves coarsely
+CELL_TOLERANCE = 1e-2
+
+
+def _solve_at(solver: Any, base: Any, rB: np.ndarray, deadline: float | None) -> Any:
+    res = solver.solve(
+        replace(base, end_b=EndCondition(kind="fixed", position=rB)), deadline=deadline
+    )
+    return res.check_finite()
+
+
+def _span(lo: float, hi: float) -> tuple[float, float]:
+    """The smallest and largest |x| over the interval [lo, hi]."""
+    small = 0.0 if lo <= 0.0 <= hi else min(abs(lo), abs(hi))
+    return small, max(abs(lo), abs(hi))
+
+
+def taut_chord_cells(grid: str, P: np.ndarray, Q: np.ndarray, length: float) -> np.ndarray:
+    """(n1 - 1, n2 - 1) bool: the cells whose end distance |r_B - r_A| crosses the line's
+    unstretched ``length`` [m] (slack on one side, taut on the other: the tension turns
+    to rising with EA there, a kink in every table the patches cannot follow)."""
+    n1, n2 = len(P) - 1, len(Q) - 1
+    out = np.zeros((n1, n2), dtype=bool)
+    for i in range(n1):
+        for j in range(n2):
+            if grid == "radial":
+                lo, hi = P[i], P[i + 1]
+            else:
+                (r0, r1), (h0, h1) = _span(P[i], P[i + 1]), _span(Q[j], Q[j + 1])
+                lo, hi = math.hypot(r0, h0), math.hypot(r1, h1)
+            out[i, j] = lo < length < hi
+    return out
+
+
+def check_cells(
+    grid: str,
+    P: np.ndarray,
+    Q: np.ndarray,
+    tables: dict[str, np.ndarray],
+    length: float,
+    solve: Any,
+) -> np.ndarray:
+    """``cell_check`` (n1, n2) int: per grid point the check of the cell of which it is
+    the lower corner (:data:`CELL_NO_CELL` on the last row and column):
+    :data:`CELL_TAUT_CHORD` where the cell straddles the taut chord
+    (:func:`taut_chord_cells`), plus :data:`CELL_OFF` where the patches at the cell's
+    centre are off a direct solve there (``solve(r, h)`` -> StaticResult) by more than
+    :data:`CELL_TOLERANCE` (a negative interpolated tension always is), 0 verified.
+    Not checked (-1 throughout) when a grid point failed: the lookup refuses such a
+    table anyway."""
+    out = np.full((len(P), len(Q)), CELL_NO_CELL, dtype=np.int64)
+    quantities = {k: v for k, v in tables.items() if k in QUANTITIES}
+    if any(not np.all(np.isfinite(v)) for v in quantities.values()):
+        return out
+    db = QuasiStaticDatabase.from_arrays(P, Q, quantities, grid=grid)
+    names = db.names
+    taut = taut_chord_cells(grid, P, Q, length)
+    ends = np.maximum(tables["tension_a"], tables["tension_b"])
+    for i in range(len(P) - 1):
+        for j in range(len(Q) - 1):
+            p, q = 0.5 * (P[i] + P[i + 1]), 0.5 * (Q[j] + Q[j + 1])
+            got = db.lookup_grid(p, q)
+            code = CELL_TAUT_CHORD if taut[i, j] else 0
+            r, h = grid_to_plane(grid, np.asarray(p), np.asarray(q))
+            res = solve(float(r), float(h))
+            scale = float(np.max(ends[i : i + 2, j : j + 2]))
+            if res.status != 0 or not scale > 0.0:
+                code |= CELL_OFF  # not verified: no direct solve to compare with
+            else:
+                ref = {
+                    "force_a": res.force_a,
+                    "force_b": res.force_b,
+                    "tension_a": np.linalg.norm(res.force_a),
+                    "tension_b": np.linalg.norm(res.force_b),
+                    "tension_max": np.max(res.tension),
+                    "laid_length": res.laid_length,
+                }
+                for (name, k), value in zip(names, got, strict=True):
+                    want = ref[name] if k is None else ref[name][k]
+                    tol = CELL_TOLERANCE * (length if name == "laid_length" else scale)
+                    negative = name.startswith("tension") and value < 0.0
+                    if negative or not abs(value - want) <= tol:
+                        code |= CELL_OFF
+                        break
+            out[i, j] = code
+    return out
+
+
+def cell_warning(data: dict[str, Any], length: float) -> str:
+    """The case's warning about its database's flagged cells (:func:`check_cells`), or
+    "" when every cell is verified (or the case holds no database)."""
+    for kind, layout in DATABASE_LAYOUTS.items():
+        check = data.get(f"{layout.prefix}cell_check")
+        if check is None:
+            continue
+        P, Q = (np.asarray(data[v]) for v in layout.grid_variables)
+        return _flag_summary(kind, P, Q, np.asarray(check)[:-1, :-1], length)
+    return ""
+
+
+def _flag_summary(grid: str, P: np.ndarray, Q: np.ndarray, cells: np.ndarray, length: float) -> str:
+    flagged = cells > 0
+    if not np.any(flagged):
+        return ""
+    taut = int(np.count_nonzero(cells & CELL_TAUT_CHORD))
+    off = int(np.count_nonzero(cells & CELL_OFF))
+    i, j = np.argwhere(cells & CELL_OFF if off else flagged)[0]
+    crosses = (
+        f"{taut} straddle the taut chord (end distance = the line's length {length:g} m: "
+        "its kink spoils the patches' slopes over the whole grid), "
+        if taut
+        else ""
+    )
+    return (
+        f"quasi-static database: {int(flagged.sum())} of {cells.size} cells flagged ({crosses}"
+        f"{off} are off a direct solve at their centre by more than {CELL_TOLERANCE:.0%} of "
+        f"the cell's end tension, e.g. {_cell(grid, P, Q, i, j)}), and a lookup in a flagged "
+        "cell is refused: keep the grid on one side of the taut chord"
+    )
+
+
+def _cell(grid: str, P: Any, Q: Any, i: int, j: int) -> str:
+    if grid == "radial":
+        a0, a1 = (f"{math.degrees(a):.6g}" for a in (Q[j], Q[j + 1]))
+        return f"cell distance {P[i]:g} .. {P[i + 1]:g} m, angle {a0} .. {a1} deg"
+    return (
+        f"cell horizontal distance {P[i]:g} .. {P[i + 1]:g} m, height difference "
+        f"{Q[j]:g} .. {Q[j + 1]:g} m"
+    )
 
 
 @dataclass
@@ -206,6 +362,11 @@ class QuasiStaticDatabase:
     #: monomial coefficients of each cell's bicubic, (Q, n1 - 1, n2 - 1, 4, 4): value =
     #: sum_mn C[m, n] t^m u^n with t, u the position in the cell in [0, 1]
     coefficients: np.ndarray = field(default_factory=lambda: np.zeros((0, 0, 0, 4, 4)))
+    #: per grid point the check of the cell of which it is the lower corner
+    #: (:func:`check_cells`), None for a database written before the check
+    cell_check: np.ndarray | None = None
+    #: lookups in a flagged cell: refused (False, the default) or returned (True)
+    allow_flagged: bool = False
 
     def __post_init__(self) -> None:
         if self.grid not in DATABASE_LAYOUTS:
@@ -257,6 +418,7 @@ class QuasiStaticDatabase:
         heading: float = 0.0,
         *,
         grid: str = "cartesian",
+        cell_check: np.ndarray | None = None,
     ) -> QuasiStaticDatabase:
         """Build from the grid (SI: [m], and [m] or [rad], see the class) and tables
         (name -> (n1, n2) or (n1, n2, 3)); every table must be finite (a failed grid
@@ -291,7 +453,7 @@ class QuasiStaticDatabase:
             d1[q] = spl(first, second, dx=1)
             d2[q] = spl(first, second, dy=1)
             d12[q] = spl(first, second, dx=1, dy=1)
-        return cls(first, second, names, V, d1, d2, d12, heading, grid)
+        return cls(first, second, names, V, d1, d2, d12, heading, grid, cell_check=cell_check)
 
     @classmethod
     def from_dataset(cls, ds: xr.Dataset) -> QuasiStaticDatabase:
@@ -318,7 +480,9 @@ class QuasiStaticDatabase:
             axes.append(ds[dim].values if dim in ds.coords else ds[name].values)
         head = "heading" if standalone else "database_heading"
         th = float(ds[head].values) if head in ds else 0.0
-        return cls.from_arrays(axes[0], axes[1], tables, th, grid=grid)
+        check = f"{prefix}cell_check"
+        cells = ds[check].transpose(*layout.dims).values if check in ds else None
+        return cls.from_arrays(axes[0], axes[1], tables, th, grid=grid, cell_check=cells)
 
     def to_grid(self, horizontal_distance: float, height_difference: float) -> tuple[float, float]:
         """The grid coordinates of end B at ``horizontal_distance`` [m] and
@@ -339,7 +503,8 @@ class QuasiStaticDatabase:
         Raises
         ------
         ValueError
-            outside the grid, with the grid's range.
+            outside the grid, with the grid's range; in a cell flagged at the build
+            (:func:`check_cells`), naming it, unless ``allow_flagged``.
         """
         P, Q = self._p, self._q
         if not (P[0] <= p <= P[-1] and Q[0] <= q <= Q[-1]):
@@ -352,9 +517,42 @@ class QuasiStaticDatabase:
                 f"position ({where}{_describe(self.grid, p, q)}) lies outside the "
                 f"database; allowed: {_range(self.grid, P, Q)}"
             )
+        if self.cell_check is not None and not self.allow_flagged:
+            self._refuse_flagged(p, q)
         from .database_kernel import evaluate_cell
 
         return evaluate_cell(self._cells, self._p_array, self._q_array, p, q)
+
+    def flagged_cell(self, p: float, q: float) -> str:
+        """The description of the flagged cell (:func:`check_cells`) holding the grid
+        coordinates (p, q) inside the grid, "" where it is verified or not checked."""
+        if self.cell_check is None:
+            return ""
+        i = min(max(bisect.bisect_right(self._p, p) - 1, 0), len(self._p) - 2)
+        j = min(max(bisect.bisect_right(self._q, q) - 1, 0), len(self._q) - 2)
+        code = int(self.cell_check[i, j])
+        if code <= 0:
+            return ""
+        why = []
+        if code & CELL_TAUT_CHORD:
+            why.append("it straddles the taut chord (end distance = the line's length)")
+        if code & CELL_OFF:
+            why.append(
+                f"its patch at the centre is off a direct solve by more than {CELL_TOLERANCE:.0%} "
+                "of the end tension"
+            )
+        return f"{_cell(self.grid, self._p, self._q, i, j)}: " + " and ".join(why)
+
+    def _refuse_flagged(self, p: float, q: float) -> None:
+        cell = self.flagged_cell(p, q)
+        if cell:
+            raise ValueError(
+                f"position ({_describe(self.grid, p, q)}) lies in a flagged cell of the "
+                f"database, {cell}: the bicubic patches cannot follow the table there and "
+                "the lookup can be wrong by any amount; rebuild with a grid on one side of "
+                "the taut chord (all end distances below, or all above, the line's length), "
+                "or solve this position directly"
+            )
 
     def lookup_array(self, horizontal_distance: float, height_difference: float) -> np.ndarray:
         """:meth:`lookup` as one array in the order of ``names``."""
@@ -369,7 +567,8 @@ class QuasiStaticDatabase:
         Raises
         ------
         ValueError
-            outside the grid, with the grid's range.
+            outside the grid, with the grid's range; in a cell flagged at the build
+            (:func:`check_cells`), naming it, unless ``allow_flagged``.
         """
         v = self.lookup_array(horizontal_distance, height_difference)
         out: dict[str, Any] = {}

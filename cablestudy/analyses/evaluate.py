@@ -312,6 +312,10 @@ def case_warnings(
         if static.fallback:
             found.append(fallback_warning(static.fallback))
     found.append(case_surface_warning(case.study, static, data, ok))  # above the water
+    if case.study.analysis.database is not None:  # cells the lookup's patches cannot follow
+        from .database import cell_warning
+
+        found.append(cell_warning(data, sum(seg.length for seg in case.study.line.segments)))
     dyn = case.study.analysis.dynamic
     if "dynamic" in ok and dyn is not None:
         found.extend(

@@ -306,6 +306,16 @@ def _database_outputs() -> dict[str, OutputVariable]:
                 dtype="int64" if status else "float64",
                 fill=_DATABASE_NOT_SOLVED if status else None,
             )
+        # the check of each cell at build (cablestudy.analyses.database.check_cells)
+        out[f"{lay.prefix}cell_check"] = OutputVariable(
+            lay.dims,
+            "1",
+            "quasi-static database: check of the cell whose lower corner is this grid point "
+            "(0 verified; bits: 1 straddles the taut chord, 2 patch off a direct solve at the "
+            "cell centre by > 1 %; -1 no cell: last row or column, or not checked)",
+            dtype="int64",
+            fill=-1,
+        )
         for dim, var, (units, long_name) in zip(
             lay.dims, lay.grid_variables, lay.grid_attrs, strict=True
         ):

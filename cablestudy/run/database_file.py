@@ -16,6 +16,10 @@ Contents (CF-1.8, SI, ``units`` and ``long_name`` on every variable):
 
 - ``force_a``, ``force_b`` [N], ``tension_a``, ``tension_b``, ``tension_max`` [N],
   ``laid_length`` [m], ``point_status`` (0 ok) per grid point;
+- ``cell_check`` per grid point: the build's check of the cell of which it is the lower
+  corner (:func:`cablestudy.analyses.database.check_cells`; 0 verified, bit 1 straddles
+  the taut chord, bit 2 off a direct solve at its centre, -1 no cell); a lookup refuses
+  a point in a flagged cell;
 - the grid as coordinates of its dimensions [m; rad for ``angle``], or, when cases of
   the sweep have different grids, as ``<dim>_grid`` variables per case;
 - ``heading`` [rad]: the database's vertical plane, from end A towards the study's end B;
@@ -82,6 +86,10 @@ def database_variables(
             values,
             {**var_attrs, "long_name": long_name},
         )
+    if f"{layout.prefix}cell_check" in data_vars:  # the build's check of each cell
+        dims, values, var_attrs = data_vars[f"{layout.prefix}cell_check"]
+        long_name = var_attrs["long_name"].removeprefix(PREFIX)
+        out["cell_check"] = (dims, values, {**var_attrs, "long_name": long_name})
     for dim, var in zip(layout.dims, layout.grid_variables, strict=True):
         if var in data_vars:  # cases with different grids: one per case
             out[f"{dim}_grid"] = data_vars[var]
