@@ -3,9 +3,13 @@ semi-analytic solver runs per case inside the compiled batch (:func:`._drag_fast
 
 A problem takes it (:func:`drag_eligible`) when the general solver
 (:class:`.semi_analytic.SemiAnalyticSolver`) would solve it hanging free with its drag
-loop: a current that drags the line, end A fixed, end B fixed, towed or moored, linear
-axial laws, no seabed, no installation. Its pieces are the general solver's
-(:func:`.semi_analytic_shape.make_layout` with the same drag elements), the cases with the
+loop: a current that drags the line, one end fixed and the other fixed, towed or moored,
+linear axial laws, no seabed, no installation. A line whose end A is towed or moored
+(end B fixed) is solved as the general solver solves it, from B: the reversed line
+(:func:`.semi_analytic_shape.reversed_line`: segments, attachments and drag coefficients
+in reverse order; the current is a function of height and needs no change), its ends
+swapped, sampled at L - s, its end forces swapped back. Its pieces are the general
+solver's (:func:`.semi_analytic_shape.make_layout` with the same drag elements), the cases with the
 same numbers of pieces, output points and current-profile points are stacked, and each
 case iterates until its own convergence test passes, with its own arithmetic: a case
 gives the same numbers alone as in any batch, bit for bit. Every settled answer is then
@@ -21,10 +25,10 @@ import time
 
 import numpy as np
 
-from .base import STATUS_OK, StaticProblem, StaticResult
+from .base import STATUS_OK, LineModel, StaticProblem, StaticResult
 from .line_state import CatenaryState
 from .seabed import seabed_of
-from .semi_analytic_shape import Layout, make_layout
+from .semi_analytic_shape import Layout, make_layout, reversed_line
 
 #: the general solver's drag-loop settings the kernel runs with
 #: (:class:`.semi_analytic.SemiAnalyticSolver` defaults)
@@ -40,11 +44,18 @@ def drag_eligible(problem: StaticProblem) -> bool:
     med, line = problem.medium, problem.line
     if not med.drags(line) or line.is_nonlinear:
         return False
-    if problem.end_a.kind != "fixed" or problem.end_b.kind not in ("fixed", "force", "mooring"):
+    a, b = problem.end_a.kind, problem.end_b.kind
+    known = ("force", "mooring")  # an end of known force: the other one fixed
+    if not ((a == "fixed" and (b == "fixed" or b in known)) or (b == "fixed" and a in known)):
         return False
     if problem.is_installation or problem.stretched_drag_diameter:
         return False
     return seabed_of(med) is None
+
+
+def is_reversed(problem: StaticProblem) -> bool:
+    """Whether the general solver solves ``problem`` from end B (its end A not fixed)."""
+    return problem.end_a.kind != "fixed"
 
 
 def drag_elements(problem: StaticProblem) -> int:
@@ -65,12 +76,17 @@ def drag_many(
     if deadline is not None and time.monotonic() > deadline:
         return [None] * len(problems)
 
-    made: dict[tuple[int, int], Layout] = {}  # a grid's cases share their line objects
+    # a grid's cases share their line objects: one reversed line and layout per object
+    flipped: dict[int, LineModel] = {}
+    made: dict[tuple[int, bool, int], Layout] = {}
     layouts = []
     for p in problems:
-        key = (id(p.line), drag_elements(p))
+        rev = is_reversed(p)
+        if rev and id(p.line) not in flipped:
+            flipped[id(p.line)] = reversed_line(p.line)
+        key = (id(p.line), rev, drag_elements(p))
         if key not in made:
-            made[key] = make_layout(p.line, key[1])
+            made[key] = make_layout(flipped[id(p.line)] if rev else p.line, key[2])
         layouts.append(made[key])
     groups: dict[tuple[int, int, int], list[int]] = {}
     for i, (p, lay) in enumerate(zip(problems, layouts, strict=True)):
@@ -79,12 +95,14 @@ def drag_many(
     out: list[StaticResult | None] = [None] * len(problems)
     for members in groups.values():
         try:
-            got = _solve_group([problems[i] for i in members], [layouts[i] for i in members])
+            got = _solve_group(
+                [problems[i] for i in members], [layouts[i] for i in members], flipped
+            )
         except Exception:  # noqa: BLE001 - a fault in the kernel: each case alone
             got = []
             for i in members:
                 try:
-                    got += _solve_group([problems[i]], [layouts[i]])
+                    got += _solve_group([problems[i]], [layouts[i]], flipped)
                 except Exception:  # noqa: BLE001 - the general solver takes it
                     got.append(None)
         if deadline is not None and time.monotonic() > deadline:
@@ -101,8 +119,12 @@ def drag_many(
     return out
 
 
-def _solve_group(problems: list[StaticProblem], layouts: list[Layout]) -> list:
-    """One stacked call of the kernel; the settled cases as results (None otherwise)."""
+def _solve_group(
+    problems: list[StaticProblem], layouts: list[Layout], flipped: dict[int, LineModel]
+) -> list:
+    """One stacked call of the kernel; the settled cases as results (None otherwise).
+    A reversed problem (:func:`is_reversed`) goes in as the general solver states it:
+    the line ``flipped[id(line)]`` from end B, sampled at L - s."""
     from ._drag_fast import SETTLED, drag_cases
 
     N = len(problems)
@@ -117,10 +139,14 @@ def _solve_group(problems: list[StaticProblem], layouts: list[Layout]) -> list:
     rA, rB, force, zB = np.zeros((N, 3)), np.zeros((N, 3)), np.zeros((N, 3)), np.zeros(N)
     tol, maxit = np.empty(N), np.empty(N, dtype=np.int64)
     s = np.empty((N, n))
-    # the general solver's np.linspace(0, L, n), bit for bit; once per line object
-    samples: dict[int, np.ndarray] = {}
+    s_eval = np.empty((N, n))
+    rev = np.array([is_reversed(p) for p in problems])
+    # the general solver's np.linspace(0, L, n) (and L - s from B), bit for bit; once
+    # per line object
+    samples: dict[int, tuple[np.ndarray, np.ndarray]] = {}
     for i, (prob, lay) in enumerate(zip(problems, layouts, strict=True)):
-        line, med = prob.line, prob.medium
+        med = prob.medium
+        line = flipped[id(prob.line)] if rev[i] else prob.line
         seg = lay.segment
         ell[i], EA[i], weight[i], point[i], bounds[i] = (
             lay.ell,
@@ -131,8 +157,8 @@ def _solve_group(problems: list[StaticProblem], layouts: list[Layout]) -> list:
         )
         diam[i], cn[i], ct[i] = line.diameter[seg], line.drag_normal[seg], line.drag_tangential[seg]
         rho[i], pz[i], pv[i] = med.density, med.current_z, med.current_velocity
-        rA[i] = prob.end_a.position
-        b = prob.end_b
+        a, b = (prob.end_b, prob.end_a) if rev[i] else (prob.end_a, prob.end_b)
+        rA[i] = a.position
         kind[i] = {"fixed": 0, "mooring": 1, "force": 2}[b.kind]
         if b.kind == "fixed":
             rB[i] = b.position
@@ -142,16 +168,19 @@ def _solve_group(problems: list[StaticProblem], layouts: list[Layout]) -> list:
                 force[i, 2] = 0.0
                 zB[i] = float(b.z)
         tol[i], maxit[i] = prob.tolerance, prob.max_iterations
-        if id(line) not in samples:
-            samples[id(line)] = np.linspace(0.0, line.total_length, n)
-        s[i] = samples[id(line)]
+        if id(prob.line) not in samples:
+            L = prob.line.total_length
+            at = np.linspace(0.0, L, n)
+            samples[id(prob.line)] = (at, L - at)
+        s[i] = samples[id(prob.line)][0]
+        s_eval[i] = samples[id(prob.line)][1] if rev[i] else s[i]
     pos, tension = np.empty((N, n, 3)), np.empty((N, n))
     TA, TL, loads = np.empty((N, 3)), np.empty((N, 3)), np.empty((N, P, 3))
     counts, resid = np.zeros((N, 2), dtype=np.int64), np.zeros(N)
     status = np.zeros(N, dtype=np.int64)
     drag_cases(
         ell, EA, weight, point, bounds, diam, cn, ct, rho, pz, pv, kind, rA, rB, force, zB,
-        tol, maxit, MAX_DRAG_ITERATIONS, np.array([1, *CONTINUATION], dtype=np.int64), s,
+        tol, maxit, MAX_DRAG_ITERATIONS, np.array([1, *CONTINUATION], dtype=np.int64), s_eval,
         pos, tension, TA, TL, loads, counts, resid, status,
     )  # fmt: skip
     out: list[StaticResult | None] = []
@@ -159,16 +188,18 @@ def _solve_group(problems: list[StaticProblem], layouts: list[Layout]) -> list:
         if status[i] != SETTLED:
             out.append(None)
             continue
+        # the forces on the end attachments, of the line as solved (from B if reversed)
+        fa, fb = TA[i], -TL[i]
         res = StaticResult(
             s=s[i],
             position=pos[i],
             tension=tension[i],
-            force_a=TA[i],
-            force_b=-TL[i],
+            force_a=fb if rev[i] else fa,
+            force_b=fa if rev[i] else fb,
             status=STATUS_OK,
             iterations=int(counts[i, 0]),
             residual=float(resid[i]),
-            state=CatenaryState(layout=lay, q=loads[i], reversed=False),
+            state=CatenaryState(layout=lay, q=loads[i], reversed=bool(rev[i])),
         ).check_finite()
         res.drag_iterations = int(counts[i, 1])
         out.append(res if res.status == STATUS_OK else None)

@@ -3,12 +3,13 @@ a current at once (:func:`verified_many`): the answers of the compiled drag iter
 (:mod:`.batch_drag`), checked by the same checks with the same allowances, the cases of
 equal piece, segment and sample counts as arrays.
 
-For these lines (end A fixed, no seabed, no installation, linear axial laws) the checks
-of :func:`.verify.check_one` are: the whole-line force balance with the drag recomputed
+For these lines (one end fixed, no seabed, no installation, linear axial laws) the
+checks of :func:`.verify.check_one` are: the whole-line force balance with the drag recomputed
 from the returned shape (each sample interval's drag law on its chord, at the current of
 its mid-height, in each segment's share), allowed four times the Richardson estimate of
-its quadrature error; the ends (a fixed end where it was put, a mooring end at its
-height and carrying its horizontal force, a towed end its force, the end tensions); the
+its quadrature error; the ends, A and B alike (a fixed end where it was put, a mooring
+end at its height and carrying its horizontal force, a towed end its force, the end
+tensions); the
 tension along s from end A; the stretched length. A line with lumped drag bodies
 (``attachment_drag_area``) is checked by :func:`.verify.check_one` itself.
 
@@ -114,26 +115,32 @@ def _check_group(  # noqa: ANN202
     f_allow = MULTIPLE * tol * f_scale
     x_allow = MULTIPLE * tol * np.maximum(L, np.max(np.abs(pos), axis=(1, 2)))
     end_vals: dict[str, tuple[np.ndarray, np.ndarray, str]] = {}
-    kinds = np.array([p.end_b.kind for p in problems])
-    given = np.zeros((N, 3))
-    height = np.zeros(N)
-    for i, p in enumerate(problems):
-        if p.end_b.kind != "fixed":
-            given[i] = p.end_b.force
-            if p.end_b.kind == "mooring":
-                height[i] = float(p.end_b.z)
-    if np.any(kinds == "force"):
-        v = np.where(kinds == "force", np.linalg.norm(fb + given, axis=1), 0.0)
-        end_vals["end B force"] = (v, f_allow, "N")
-    if np.any(kinds == "mooring"):
-        moor = kinds == "mooring"
-        v = np.where(moor, np.linalg.norm(fb[:, :2] + given[:, :2], axis=1), 0.0)
-        end_vals["end B horizontal force"] = (v, f_allow, "N")
-        v = np.where(moor, np.abs(pos[:, -1, 2] - height), 0.0)
-        end_vals["end B height"] = (v, x_allow, "m")
+    # ends other than fixed (either end: a towed or moored end A is a reversed line)
+    for label, attr, force, k in (("A", "end_a", fa, 0), ("B", "end_b", fb, -1)):
+        ends = [getattr(p, attr) for p in problems]
+        kinds = np.array([e.kind for e in ends])
+        given = np.zeros((N, 3))
+        height = np.zeros(N)
+        for i, e in enumerate(ends):
+            if e.kind != "fixed":
+                given[i] = e.force
+                if e.kind == "mooring":
+                    height[i] = float(e.z)
+        if np.any(kinds == "force"):
+            v = np.where(kinds == "force", np.linalg.norm(force + given, axis=1), 0.0)
+            end_vals[f"end {label} force"] = (v, f_allow, "N")
+        if np.any(kinds == "mooring"):
+            moor = kinds == "mooring"
+            v = np.where(moor, np.linalg.norm(force[:, :2] + given[:, :2], axis=1), 0.0)
+            end_vals[f"end {label} horizontal force"] = (v, f_allow, "N")
+            v = np.where(moor, np.abs(pos[:, k, 2] - height), 0.0)
+            end_vals[f"end {label} height"] = (v, x_allow, "m")
     drag, drag_allow = _drag(problems, s, pos)
-    rb = np.full((N, 3), np.nan)
+    # fixed ends where they were put (rows of NaN: that end is not fixed)
+    ra, rb = np.full((N, 3), np.nan), np.full((N, 3), np.nan)
     for i, p in enumerate(problems):
+        if p.end_a.kind == "fixed":
+            ra[i] = p.end_a.position
         if p.end_b.kind == "fixed":
             rb[i] = p.end_b.position
     checked = _checks(
@@ -144,8 +151,8 @@ def _check_group(  # noqa: ANN202
         force_b=fb,
         pieces=pieces,
         tolerance=requested,
-        position_a=np.stack([np.asarray(p.end_a.position, dtype=float) for p in problems]),
-        position_b=rb if np.any(kinds == "fixed") else None,
+        position_a=ra if np.any(np.isfinite(ra)) else None,
+        position_b=rb if np.any(np.isfinite(rb)) else None,
         laws=None,
         resolution=np.zeros(N),
         drag=drag,
