@@ -119,9 +119,10 @@ def test_the_converged_loads_balance_the_end_forces() -> None:
 
 
 def test_cases_it_does_not_take_go_to_the_general_solver() -> None:
-    """A line in a current over a seabed, and one whose end A is the towed end, are not
-    the kernel's: ``solve_batch`` solves them with the general solver (verified, status
-    0), beside the kernel's cases, and says so through its ``general`` list."""
+    """A line in a current over a seabed is not the kernel's: ``solve_batch`` solves it
+    with the general solver (verified, status 0), beside the kernel's cases, and says so
+    through its ``general`` list. A line whose end A is the towed end is the kernel's
+    (solved from B, :mod:`tests.unit.test_statics_batch_drag_reversed`)."""
     z, v = _current((0.0, 0.5, 30.0))
     line = make_line([300.0], [80.0], [2e8], diameter=0.05)
     free = Medium(density=1025.0, gravity=9.80665, current_z=z, current_velocity=v)
@@ -138,13 +139,14 @@ def test_cases_it_does_not_take_go_to_the_general_solver() -> None:
             "end_b": fixed(220.0, 0.0, -200.0),
         }
     )
-    assert drag_eligible(base) and not drag_eligible(over) and not drag_eligible(towed_a)
+    assert drag_eligible(base) and not drag_eligible(over) and drag_eligible(towed_a)
     general: list[int] = []
     out = solve_batch([base, over, towed_a], general=general)
-    assert general == [1, 2]
+    assert general == [1]
     assert all(r.status == 0 for r in out)
-    ref = SemiAnalyticSolver().solve(base, compiled=False)
-    assert np.max(np.abs(out[0].force_a - ref.force_a)) <= 1e-12 * np.max(ref.tension)
+    for i, p in ((0, base), (2, towed_a)):
+        ref = SemiAnalyticSolver().solve(p, compiled=False)
+        assert np.max(np.abs(out[i].force_a - ref.force_a)) <= 1e-12 * np.max(ref.tension)
 
 
 def test_the_batched_verification_is_check_one_and_catches_a_wrong_answer() -> None:
