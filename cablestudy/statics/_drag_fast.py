@@ -27,12 +27,14 @@ import math
 import numpy as np
 from numba import njit
 
+from ._drag_seabed import _dips
 from ._fast import _piece_general, _solve3, line_sums
 
 #: a case's status: settled (0), or left to the general solver and why
 SETTLED = 0
 GIVE_UP = 1  # a path the kernel does not have (regularised retry, singular Jacobian)
 FAILED = 2  # every continuation failed (the general solver says why)
+DIPS = 3  # a shape of the iteration reaches the seabed (the general solver lays it)
 
 #: an inner solve's outcome (the general solver's _Failure statuses it stands for)
 _OK = 0
@@ -417,6 +419,8 @@ def _drag_case(
     maxit: int,
     max_drag: int,
     steps: np.ndarray,
+    over: bool,
+    seabed: np.ndarray,
     TA: np.ndarray,
     Dused: np.ndarray,
     Dout: np.ndarray,
@@ -426,7 +430,10 @@ def _drag_case(
     """One case's drag loop (:meth:`.semi_analytic.SemiAnalyticSolver._drag_loop`).
     Returns (status, the shape's Newton residual, the load residual); on success ``TA``,
     ``Dused`` (the drag the shape was solved with), ``Dout`` (the converged drag loads),
-    ``nodes_out`` the shape's piece boundaries; ``counts`` [Newton, drag] iterations."""
+    ``nodes_out`` the shape's piece boundaries; ``counts`` [Newton, drag] iterations.
+    A line ``over`` the seabed plane ``seabed`` (normal, depth; both ends above it) is
+    the general solver's line hanging free as long as no shape of the iteration reaches
+    the seabed (:func:`_dips`); the first one that does ends the case (:data:`DIPS`)."""
     P = ell.shape[0]
     V = 3 * P
     L = bounds[P]
@@ -497,6 +504,8 @@ def _drag_case(
                 if code == _GIVE_UP or (code != _OK and _unloaded(q)):
                     return GIVE_UP, 0.0, 0.0
                 if code == _OK:
+                    if over and _dips(q, ell, EA, bounds, C, T, nodes, seabed):
+                        return DIPS, 0.0, 0.0
                     counts[0] += its
                     for k in range(3):
                         st_TA[k] = T[k]
@@ -533,6 +542,8 @@ def _drag_case(
                 if code != _OK:
                     failed = True
                     break
+                if over and _dips(q, ell, EA, bounds, C, T, nodes, seabed):
+                    return DIPS, 0.0, 0.0
                 counts[0] += its
                 for k in range(3):
                     st_TA[k] = T[k]
@@ -672,6 +683,8 @@ def drag_cases(
     maxit: np.ndarray,
     max_drag: int,
     steps: np.ndarray,
+    over: np.ndarray,
+    seabed: np.ndarray,
     s: np.ndarray,
     pos: np.ndarray,
     tension: np.ndarray,
@@ -684,7 +697,8 @@ def drag_cases(
 ) -> None:
     """N lines of P pieces in a current (arrays (N, P), (N, P + 1, 3) point loads and
     bounds, (N,) fluid density, (N, M) / (N, M, 3) current profiles, (N,) end B kind 0
-    fixed / 1 mooring / 2 force, (N, 3) ends and forces, (N,) zB), each by
+    fixed / 1 mooring / 2 force, (N, 3) ends and forces, (N,) zB, (N,) whether over a
+    seabed and (N, 4) its plane, upward normal and depth), each by
     :func:`_drag_case`, sampled at ``s`` (N, n) as :meth:`.semi_analytic_shape.Shape.sample`.
     Outputs: positions, tensions, T_A, T(L), the converged loads per piece (weight and
     drag, (N, P, 3)), counts (N, 2) [Newton, drag iterations], residual, status."""
@@ -703,7 +717,7 @@ def drag_cases(
         st, sres, dres = _drag_case(
             ell[c], EA[c], weight[c], point[c], bounds[c], diam[c], cn[c], ct[c], rho[c],
             pz[c], pv[c], kind[c], rA[c], rB[c], force[c], zB[c], tol[c], maxit[c],
-            max_drag, steps, TA, Dused, Dout, nodes, counts[c],
+            max_drag, steps, over[c], seabed[c], TA, Dused, Dout, nodes, counts[c],
         )  # fmt: skip
         status[c] = st
         if st != SETTLED:

@@ -4,17 +4,29 @@ semi-analytic solver runs per case inside the compiled batch (:func:`._drag_fast
 A problem takes it (:func:`drag_eligible`) when the general solver
 (:class:`.semi_analytic.SemiAnalyticSolver`) would solve it hanging free with its drag
 loop: a current that drags the line, one end fixed and the other fixed, towed or moored,
-linear axial laws, no seabed, no installation. A line whose end A is towed or moored
-(end B fixed) is solved as the general solver solves it, from B: the reversed line
-(:func:`.semi_analytic_shape.reversed_line`: segments, attachments and drag coefficients
-in reverse order; the current is a function of height and needs no change), its ends
-swapped, sampled at L - s, its end forces swapped back. Its pieces are the general
-solver's (:func:`.semi_analytic_shape.make_layout` with the same drag elements), the cases with the
-same numbers of pieces, output points and current-profile points are stacked, and each
-case iterates until its own convergence test passes, with its own arithmetic: a case
-gives the same numbers alone as in any batch, bit for bit. Every settled answer is then
-checked by :func:`.verify.verified` exactly as the general solver's is; a case the kernel
-does not settle, or whose answer fails a check, is None here (the general solver's).
+linear axial laws, no installation, no seabed or one below both fixed ends.
+
+A line whose end A is towed or moored (end B fixed) is solved as the general solver
+solves it, from B: the reversed line (:func:`.semi_analytic_shape.reversed_line`:
+segments, attachments and drag coefficients in reverse order; the current is a function
+of height and needs no change), its ends swapped, sampled at L - s, its end forces
+swapped back.
+
+Over a seabed the general solver hangs the line free, exactly as without one, until a
+shape of its iteration reaches the seabed (then it lays it, :mod:`.midspan`). The kernel
+runs the same iteration and tests every shape against the seabed
+(:mod:`._drag_seabed`); a case one of whose shapes has a sample below the seabed is
+handed on with :data:`ON_SEABED` (the general solver lays a line from 1e-9 L below:
+the margin keeps round-off from making the two decide differently). A line touching
+the seabed in a current is the general solver's.
+
+Its pieces are the general solver's (:func:`.semi_analytic_shape.make_layout` with the
+same drag elements), the cases with the same numbers of pieces, output points and
+current-profile points are stacked, and each case iterates until its own convergence
+test passes, with its own arithmetic: a case gives the same numbers alone as in any
+batch, bit for bit. Every settled answer is then checked by :func:`.verify.verified`
+exactly as the general solver's is; a case the kernel does not settle, or whose answer
+fails a check, is None here (the general solver's).
 
 Pure: problems in, results out.
 """
@@ -37,6 +49,7 @@ CONTINUATION = (4, 16)
 
 #: why the drag kernel left a case to the general solver
 DRAG_NOT_SETTLED = "not settled by the drag kernel"
+ON_SEABED = "its solution touches the seabed"
 
 
 def drag_eligible(problem: StaticProblem) -> bool:
@@ -50,7 +63,16 @@ def drag_eligible(problem: StaticProblem) -> bool:
         return False
     if problem.is_installation or problem.stretched_drag_diameter:
         return False
-    return seabed_of(med) is None
+    plane = seabed_of(med)
+    if plane is None:
+        return True
+    # over a seabed: both fixed ends above it, as the general solver tells an end on it
+    # (1e-6 L); that solver then hangs the line free until a shape reaches the seabed
+    limit = 1e-6 * line.total_length
+    for end in (problem.end_a, problem.end_b):
+        if end.kind == "fixed" and not float(plane.height_above(end.position)) > limit:
+            return False
+    return True
 
 
 def is_reversed(problem: StaticProblem) -> bool:
@@ -64,13 +86,19 @@ def drag_elements(problem: StaticProblem) -> int:
 
 
 def drag_many(
-    problems: list[StaticProblem], *, verify: bool = True, deadline: float | None = None
+    problems: list[StaticProblem],
+    *,
+    verify: bool = True,
+    deadline: float | None = None,
+    why: dict[int, str] | None = None,
 ) -> list[StaticResult | None]:
     """The drag kernel's verified answer per problem (all :func:`drag_eligible`), None
-    where it leaves the case to the general solver. Problems of equal piece, node and
-    current-profile counts are solved in one call. Past ``deadline`` (``time.monotonic``)
-    no answer is kept: the general solver then reports the time limit, as for a case it
-    iterates itself (the kernel does not look at the clock inside its loops)."""
+    where it leaves the case to the general solver (``why``, if given, gets
+    :data:`ON_SEABED` for a line over a seabed that reaches it). Problems of equal piece,
+    node and current-profile counts are solved in one call. Past ``deadline``
+    (``time.monotonic``) no answer is kept: the general solver then reports the time
+    limit, as for a case it iterates itself (the kernel does not look at the clock
+    inside its loops)."""
     from .verify_drag import verified_many
 
     if deadline is not None and time.monotonic() > deadline:
@@ -94,17 +122,22 @@ def drag_many(
         groups.setdefault(key, []).append(i)
     out: list[StaticResult | None] = [None] * len(problems)
     for members in groups.values():
+        seabed: set[int] = set()
         try:
             got = _solve_group(
-                [problems[i] for i in members], [layouts[i] for i in members], flipped
+                [problems[i] for i in members], [layouts[i] for i in members], flipped, seabed
             )
         except Exception:  # noqa: BLE001 - a fault in the kernel: each case alone
-            got = []
-            for i in members:
+            got, seabed = [], set()
+            for j, i in enumerate(members):
+                one: set[int] = set()
                 try:
-                    got += _solve_group([problems[i]], [layouts[i]], flipped)
+                    got += _solve_group([problems[i]], [layouts[i]], flipped, one)
                 except Exception:  # noqa: BLE001 - the general solver takes it
                     got.append(None)
+                seabed |= {j} if one else set()
+        if why is not None:
+            why.update({members[j]: ON_SEABED for j in seabed})
         if deadline is not None and time.monotonic() > deadline:
             got = [None] * len(members)  # the time limit is the general solver's to say
         if verify:  # status 0 means verified: else the general solver's
@@ -120,12 +153,16 @@ def drag_many(
 
 
 def _solve_group(
-    problems: list[StaticProblem], layouts: list[Layout], flipped: dict[int, LineModel]
+    problems: list[StaticProblem],
+    layouts: list[Layout],
+    flipped: dict[int, LineModel],
+    seabed_hit: set[int],
 ) -> list:
-    """One stacked call of the kernel; the settled cases as results (None otherwise).
-    A reversed problem (:func:`is_reversed`) goes in as the general solver states it:
-    the line ``flipped[id(line)]`` from end B, sampled at L - s."""
-    from ._drag_fast import SETTLED, drag_cases
+    """One stacked call of the kernel; the settled cases as results (None otherwise, the
+    index put in ``seabed_hit`` for a line that reaches the seabed). A reversed problem
+    (:func:`is_reversed`) goes in as the general solver states it: the line
+    ``flipped[id(line)]`` from end B, sampled at L - s."""
+    from ._drag_fast import DIPS, SETTLED, drag_cases
 
     N = len(problems)
     P = len(layouts[0].ell)
@@ -140,6 +177,8 @@ def _solve_group(
     tol, maxit = np.empty(N), np.empty(N, dtype=np.int64)
     s = np.empty((N, n))
     s_eval = np.empty((N, n))
+    over, seabed = np.zeros(N, dtype=np.bool_), np.zeros((N, 4))
+    planes = [seabed_of(p.medium) for p in problems]
     rev = np.array([is_reversed(p) for p in problems])
     # the general solver's np.linspace(0, L, n) (and L - s from B), bit for bit; once
     # per line object
@@ -168,6 +207,10 @@ def _solve_group(
                 force[i, 2] = 0.0
                 zB[i] = float(b.z)
         tol[i], maxit[i] = prob.tolerance, prob.max_iterations
+        plane = planes[i]
+        if plane is not None:
+            over[i] = True
+            seabed[i, :3], seabed[i, 3] = plane.normal, plane.depth
         if id(prob.line) not in samples:
             L = prob.line.total_length
             at = np.linspace(0.0, L, n)
@@ -180,12 +223,22 @@ def _solve_group(
     status = np.zeros(N, dtype=np.int64)
     drag_cases(
         ell, EA, weight, point, bounds, diam, cn, ct, rho, pz, pv, kind, rA, rB, force, zB,
-        tol, maxit, MAX_DRAG_ITERATIONS, np.array([1, *CONTINUATION], dtype=np.int64), s_eval,
+        tol, maxit, MAX_DRAG_ITERATIONS, np.array([1, *CONTINUATION], dtype=np.int64), over,
+        seabed, s_eval,
         pos, tension, TA, TL, loads, counts, resid, status,
     )  # fmt: skip
     out: list[StaticResult | None] = []
     for i, lay in enumerate(layouts):
+        plane = planes[i]
+        if (
+            status[i] == SETTLED
+            and plane is not None
+            and not np.all(plane.height_above(pos[i]) >= 0.0)
+        ):
+            status[i] = DIPS  # a node below the seabed: the general solver's to say
         if status[i] != SETTLED:
+            if status[i] == DIPS:
+                seabed_hit.add(i)
             out.append(None)
             continue
         # the forces on the end attachments, of the line as solved (from B if reversed)

@@ -9,9 +9,10 @@ same damped Newton iteration on the convex complementary energy as
 :func:`.semi_analytic_newton.solve_free` (with a per-case Armijo line search and per-case
 convergence). A line anchored at end A on the seabed with end B fixed above it takes
 the compiled seabed-contact kernel (:mod:`._fast_contact`, :func:`solve_contact_arrays`).
-Lines hanging free in a current take the compiled drag iteration (:mod:`.batch_drag`).
-Cases that need more (contact between the ends, a current over a seabed, a weightless
-slack piece, no fixed end A, a case a kernel does not settle) are solved one by one by
+Lines hanging free in a current (over a seabed too, until they reach it) take the
+compiled drag iteration (:mod:`.batch_drag`). Cases that need more (contact between the
+ends, a line in a current touching a seabed, a weightless slack piece, no fixed end A in
+still water, a case a kernel does not settle) are solved one by one by
 :class:`.semi_analytic.SemiAnalyticSolver`, so the answer never depends on which path a
 case took beyond round-off.
 """
@@ -472,14 +473,19 @@ def _kernels(
                 res = verified(problems[i], res, method="catenary")  # solver
             results[i] = res
     if current:
-        for i, res in zip(
-            current,
-            drag_many([problems[i] for i in current], verify=verify, deadline=deadline),
-            strict=True,
+        left: dict[int, str] = {}  # a line over a seabed that reaches it: ON_SEABED
+        for k, (i, res) in enumerate(
+            zip(
+                current,
+                drag_many(
+                    [problems[i] for i in current], verify=verify, deadline=deadline, why=left
+                ),
+                strict=True,
+            )
         ):
             results[i] = res
             if res is None:
-                why[i] = DRAG_NOT_SETTLED
+                why[i] = left.get(k, DRAG_NOT_SETTLED)
     tried = {i for members in groups.values() for i in members} | set(seabed) | set(current)
     return results, why, tried
 

@@ -3,15 +3,15 @@ a current at once (:func:`verified_many`): the answers of the compiled drag iter
 (:mod:`.batch_drag`), checked by the same checks with the same allowances, the cases of
 equal piece, segment and sample counts as arrays.
 
-For these lines (one end fixed, no seabed, no installation, linear axial laws) the
-checks of :func:`.verify.check_one` are: the whole-line force balance with the drag recomputed
-from the returned shape (each sample interval's drag law on its chord, at the current of
-its mid-height, in each segment's share), allowed four times the Richardson estimate of
-its quadrature error; the ends, A and B alike (a fixed end where it was put, a mooring
-end at its height and carrying its horizontal force, a towed end its force, the end
-tensions); the
-tension along s from end A; the stretched length. A line with lumped drag bodies
-(``attachment_drag_area``) is checked by :func:`.verify.check_one` itself.
+For these lines (one end fixed, hanging free, no installation, linear axial laws) the
+checks of :func:`.verify.check_one` are: the whole-line force balance with the drag
+recomputed from the returned shape (each sample interval's drag law on its chord, at
+the current of its mid-height, in each segment's share), allowed four times the
+Richardson estimate of its quadrature error; the ends, A and B alike (a fixed end where
+it was put, a mooring end at its height and carrying its horizontal force, a towed end
+its force, the end tensions); the tension along s from end A; the stretched length. A
+line with lumped drag bodies (``attachment_drag_area``), or with a node within the
+contact gap of a seabed, is checked by :func:`.verify.check_one` itself.
 
 Pure: arrays in, results out.
 """
@@ -25,8 +25,9 @@ import numpy as np
 from ..physics.current import current_velocity
 from ..physics.hydro import drag_per_length
 from .base import STATUS_NOT_VERIFIED, STATUS_OK, StaticProblem, StaticResult
+from .seabed import seabed_of
 from .semi_analytic_shape import make_layout
-from .verify import MULTIPLE, Pieces, _checks, verified
+from .verify import CONTACT_GAP, MULTIPLE, Pieces, _checks, verified
 
 
 def verified_many(problems: list[StaticProblem], results: list[StaticResult]) -> list:
@@ -49,7 +50,7 @@ def verified_many(problems: list[StaticProblem], results: list[StaticResult]) ->
         layouts.append(lay)
         if r.status != STATUS_OK:
             continue
-        if bodies:
+        if bodies or _near_seabed(p, r):
             out[i] = verified(p, r, method="catenary")
             continue
         groups.setdefault((*shape, len(r.s)), []).append(i)
@@ -75,6 +76,17 @@ def verified_many(problems: list[StaticProblem], results: list[StaticResult]) ->
                 message = (message + "; " if message else "not verified: ") + "; ".join(parts)
             out[i] = replace(results[i], status=STATUS_NOT_VERIFIED, message=message)
     return out
+
+
+def _near_seabed(problem: StaticProblem, result: StaticResult) -> bool:
+    """Whether a node of ``result`` lies within :func:`.verify.check_one`'s contact gap
+    of the seabed (then that checks it, with the seabed's reaction; further off, its
+    checks are those here)."""
+    plane = seabed_of(problem.medium)
+    if plane is None:
+        return False
+    height = plane.height_above(np.asarray(result.position, dtype=float))
+    return bool(np.any(height <= CONTACT_GAP * problem.line.total_length))
 
 
 def _check_group(  # noqa: ANN202
