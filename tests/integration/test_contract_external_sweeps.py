@@ -194,10 +194,14 @@ FALLBACK = [
                     "environment.current.0.speed": [0.0, 0.5, 1.0],
                     "environment.current.1.speed": [0.0, 0.5, 1.0],
                 }
-            ]
+            ],
+            # over a deep seabed the lines hang free (the kernels'); at 41.5 m the still
+            # line and the one at 0.5 m/s rest on it, and an iterate of the one at 1 m/s
+            # reaches it (the drag kernel hands that on too): the general solver's
+            "environment.depth": [150.0, 41.5],
         },
-        2,
-        "2 x current with drag: the drag iteration runs in the general solver",
+        3,
+        "3 x its solution touches the seabed",
     ),
     (
         "span",
@@ -218,7 +222,7 @@ def test_a_sweep_mixing_kernel_and_general_cases_counts_the_fallback(
     tmp_path: Path, base: str, sweep: dict, count: int, reasons: str
 ) -> None:
     """A sweep whose cases the batch kernel takes and cases it cannot (still water
-    and a current over a seabed, which the compiled drag iteration does not take; the
+    and a current over a seabed, deep or reached by the line; the
     catenary method beside shooting and analytic; an anchor on the seabed and one lifted
     off it, the line then touching down between): every case
     solved in the one run, status 0, and the dataset's ``cases_fallback`` /
