@@ -417,16 +417,19 @@ def test_with_and_without_method_and_a_key_no_kernel_takes_share_one_path(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     """The method written, left out, and a swept key that no compiled kernel takes (a
-    current with drag over a seabed): all three are array grids run by the same runner
-    (the current's chunk through solve_batch), and the cases the
+    current with drag on a line anchored on the seabed): all three are array grids run
+    by the same runner (the current's chunk through solve_batch), and the cases the
     batch kernels did not settle are counted with their reason, in the dataset and the
     summary."""
     from cablestudy import cli
     from cablestudy.study.grid import CaseGrid
 
     left_out = TEXT.replace("method: catenary, ", "")
+    # end A on the seabed (a line hanging free over it is the drag kernel's)
+    anchored = CURRENT.replace("position: [0.0, 0.0, -10.0]", "position: [0.0, 0.0, -50.0]")
+    assert anchored != CURRENT
     found = {}
-    for label, text in (("written", TEXT), ("left-out", left_out), ("current", CURRENT)):
+    for label, text in (("written", TEXT), ("left-out", left_out), ("current", anchored)):
         path = tmp_path / f"{label}.yaml"
         path.write_text(text)
         _, _, grid = cli._load(str(path))
@@ -437,7 +440,8 @@ def test_with_and_without_method_and_a_key_no_kernel_takes_share_one_path(
             found[label] = (grid, dict(ds.attrs), report, int((ds["status"] == 0).sum()))
     written, left, current = found["written"], found["left-out"], found["current"]
     # a current, too, runs as arrays (its chunk through solve_batch, the drag iteration
-    # per case compiled where the drag kernel takes the line: not here, over a seabed)
+    # per case compiled where the drag kernel takes the line: not here, anchored on the
+    # seabed)
     assert written[0].arrays and left[0].arrays and current[0].arrays
     # the same template with its defaults: the same kernel, the same cases and counts
     assert written[0].key == left[0].key
@@ -445,7 +449,7 @@ def test_with_and_without_method_and_a_key_no_kernel_takes_share_one_path(
     # in air-free still water every case between separated ends is the kernel's
     assert written[3] == 42
     # every case with a current and drag (speeds 0.5 and 1.0 of [0, 0.5, 1.0]): the drag
-    # iteration in the general solver; still water (speed 0): the kernel
+    # iteration in the general solver; still water (speed 0): the contact kernel
     attrs, report = current[1], current[2]
     n = current[0].size * 2 // 3
     assert attrs["cases_fallback"] == n
