@@ -51,6 +51,7 @@ from .law_pieces import piece_increments
 from .line_state import CatenaryState, DiscreteState, discrete_end_stiffness
 from .seabed import seabed_of
 from .semi_analytic_shape import _laid, _offsets, _suspended, make_layout, reversed_line
+from .system_slack import slack_forces, slack_result
 from .system_model import (
     BODY,
     FIXED,
@@ -226,6 +227,13 @@ def _solve_lines(
         solved = [solver.solve(prob, deadline=deadline) for prob in problems]
     for ln, prob, res in zip(system.lines, problems, solved, strict=True):
         res = res.check_finite()
+        slack = None
+        if res.status != STATUS_OK and not verify:
+            # a Newton trial where the line lies slack on the seabed: its end forces are
+            # still defined (.system_slack); never at the verified solution
+            slack = slack_forces(prob)
+            if slack is not None:
+                res = slack_result(prob, *slack)
         if res.status != STATUS_OK:
             raise SystemFailure(res.status, f"line {ln.name}: {res.message}")
         results.append(res)
@@ -234,7 +242,7 @@ def _solve_lines(
         moving = [system.point_kind[ln.a] != FIXED, system.point_kind[ln.b] != FIXED]
         if not any(moving):
             continue
-        k = line_end_stiffness(prob, res)
+        k = slack[2] if slack is not None else line_end_stiffness(prob, res)
         ends = (ln.a, ln.b)
         for i in range(2):
             for j in range(2):
@@ -378,8 +386,11 @@ def _solve(
                     f"{system.tolerance:.3g})",
                 )
             it += 1
-            step = np.linalg.solve(K[np.ix_(P, P)], R.ravel()).reshape(-1, 3)
-            phi0 = float(R.ravel() @ step.ravel())
+            try:
+                step = np.linalg.solve(K[np.ix_(P, P)], R.ravel()).reshape(-1, 3)
+                phi0 = float(R.ravel() @ step.ravel())
+            except np.linalg.LinAlgError:  # e.g. a point held across only by slack lines
+                phi0 = math.nan
             if not phi0 > 0.0:  # stiffness not positive definite here: go downhill
                 step = R / max(float(np.max(np.diag(K[np.ix_(P, P)]))), 1e-300)
                 phi0 = float(R.ravel() @ step.ravel())
