@@ -51,6 +51,7 @@ from .law_pieces import piece_increments
 from .line_state import CatenaryState, DiscreteState, discrete_end_stiffness
 from .seabed import seabed_of
 from .semi_analytic_shape import _laid, _offsets, _suspended, make_layout, reversed_line
+from .system_pin import pinned_stiffness
 from .system_slack import slack_forces, slack_result
 from .system_model import (
     BODY,
@@ -146,6 +147,11 @@ def line_end_stiffness(problem: StaticProblem, result: StaticResult) -> np.ndarr
                 "the line lies wholly on the seabed: method catenary gives no end stiffness "
                 "(analysis.static.method: discrete models it)",
             )
+        # a TDP resting at a clump (.contact_pin's pinned state): its own derivative
+        pinned = pinned_stiffness(lay, q, plane, s_td, np.asarray(fb, dtype=float))
+        if pinned is not None:
+            K[1, 1] = pinned
+            return K[::-1, ::-1].copy() if reverse else K
         _, ell, EA, qs, C, k_td, Cend = _suspended(lay, q, s_td)
         T_td = -np.asarray(fb, dtype=float) + Cend
         e1, e2 = plane.basis
