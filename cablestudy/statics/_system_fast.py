@@ -358,9 +358,10 @@ def system_cases(
     the system's ``tol`` (largest net force / force scale), ``maxit``, step ``cap`` [m].
 
     Outputs per case and line (kernel orientation): ``mode_out`` (0 hanging free, 1 on the
-    seabed, 2 slack on the seabed: a trial's state, never verified), end forces ``fa_out``, ``fb_out`` (N, M, 3) [N], end stiffness ``K_out``
-    (N, M, 3, 3) [N/m] (G, or K_BB on the seabed) at the last iterate; per case Newton
-    ``iters``, ``resid`` and ``status`` (0 or a SYS_* code)."""
+    seabed, 2 slack on the seabed: a trial's state, never verified), end forces
+    ``fa_out``, ``fb_out`` (N, M, 3) [N], end stiffness ``K_out`` (N, M, 3, 3) [N/m] (G,
+    or K_BB on the seabed) at the last iterate; per case Newton ``iters``, ``resid`` and
+    ``status`` (0 or a SYS_* code)."""
     N, M = la.shape
     n = pos.shape[1]
     k = free_pts.shape[0]

@@ -51,8 +51,6 @@ from .law_pieces import piece_increments
 from .line_state import CatenaryState, DiscreteState, discrete_end_stiffness
 from .seabed import seabed_of
 from .semi_analytic_shape import _laid, _offsets, _suspended, make_layout, reversed_line
-from .system_pin import pinned_stiffness
-from .system_slack import slack_forces, slack_result
 from .system_model import (
     BODY,
     FIXED,
@@ -62,6 +60,8 @@ from .system_model import (
     SystemResult,
     point_drag,
 )
+from .system_pin import pinned_stiffness
+from .system_slack import slack_forces, slack_result
 
 
 def _axis_rotations(angles: np.ndarray) -> tuple[np.ndarray, ...]:

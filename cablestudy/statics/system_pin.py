@@ -65,7 +65,9 @@ def pinned_stiffness(
     Js = jac.sum(axis=0)
     e1, e2 = plane.basis
     basis = np.stack((e1, e2), axis=1)
-    dlaid = laid.stretched * (np.eye(3) - np.outer(e, e)) / tn + np.outer(e, dt_dT) * laid.positive_flex
+    dlaid = (
+        laid.stretched * (np.eye(3) - np.outer(e, e)) / tn + np.outer(e, dt_dT) * laid.positive_flex
+    )
     M = np.column_stack(((Js + dlaid) @ basis, -Js @ dj_dR + e * laid.positive_flex * dt_dR))
     N = np.column_stack((basis, -dj_dR))
     return np.linalg.solve(M.T, N.T).T

@@ -25,6 +25,7 @@ W, EA = 981.0, 4.9e8  # chain [N/m], [N]
 
 def _problem(length: float, ra: list[float], rb: list[float], **kw: object) -> StaticProblem:
     line = one_segment(length=length, weight=W, mass=115.0, axial_stiffness=EA)
+    mu = float(kw.get("mu", 0.0))  # type: ignore[arg-type]
     if kw.get("clump_s") is not None:
         line = replace(
             line,
@@ -35,7 +36,7 @@ def _problem(length: float, ra: list[float], rb: list[float], **kw: object) -> S
         )
     return StaticProblem(
         line=line,
-        medium=Medium(density=1025.0, gravity=9.80665, depth=200.0, friction=float(kw.get("mu", 0.0))),  # type: ignore[arg-type]
+        medium=Medium(density=1025.0, gravity=9.80665, depth=200.0, friction=mu),
         end_a=EndCondition(kind="fixed", position=np.asarray(ra, dtype=float)),
         end_b=EndCondition(kind="fixed", position=np.asarray(rb, dtype=float)),
         tolerance=1e-12,
@@ -49,7 +50,9 @@ def test_hanging_part_matches_the_closed_form() -> None:
     h = 150.0
     root = math.sqrt(1.0 + 2.0 * W * h / EA)
     S, Wtop, k = hanging(np.array([400.0]), np.array([W]), np.array([EA]), np.zeros(2), h)  # type: ignore[misc]
-    np.testing.assert_allclose([S, Wtop, k], [EA / W * (root - 1.0), W * EA / W * (root - 1.0), W / root], rtol=1e-12)
+    np.testing.assert_allclose(
+        [S, Wtop, k], [EA / W * (root - 1.0), W * EA / W * (root - 1.0), W / root], rtol=1e-12
+    )
     # too short to reach the seabed: no hanging state
     assert hanging(np.array([100.0]), np.array([W]), np.array([EA]), np.zeros(2), h) is None
 
@@ -134,3 +137,51 @@ def test_pinned_touchdown_stiffness_is_the_central_difference() -> None:
         # The free-TDP formula this replaces is off by far more (the TDP does not move).
         scale = float(np.max(np.abs(K)))
         assert np.max(np.abs(K - Kfd)) <= 1e-6 * scale, (K, Kfd)
+
+
+SLACK_START = """\
+name: slackstart
+environment: {fluid: water, depth: 100.0}
+points:
+  anchor1: {kind: fixed, position: [-300.0, 0.0, -100.0]}
+  clump:   {kind: free, position: [-150.0, 0.0, -90.0], mass: 3000.0, volume: 0.2}
+  fair1:   {kind: body, body: buoy, offset: [-5.0, 0.0, -10.0]}
+bodies:
+  buoy: {kind: prescribed, position: [0.0, 0.0, 0.0, 0.0, 0.0, 0.0]}
+lines:
+  leg1:
+    a: anchor1
+    b: clump
+    segments: [{length: 280.0, diameter: 0.1, mass_per_length: 100.0, axial_stiffness: 5.0e8}]
+  bridle:
+    a: clump
+    b: fair1
+    segments: [{length: 70.0, diameter: 0.1, mass_per_length: 100.0, axial_stiffness: 5.0e8}]
+"""
+
+
+def test_slack_start_compiled_equals_general() -> None:
+    # leg1 slack at the start (seabed path 150 m + rise 10 m < 280 m): the compiled
+    # Newton (its slack lines by _system_lines._slack_line) takes the case and agrees with
+    # the general path (its slack lines by system_slack.slack_forces) to the bar of
+    # test_system_fast (1e-9 relative: both converge the same equations past tolerance)
+    from cablestudy.analyses.system import system_model
+    from cablestudy.statics.system_fast import solve_fast
+    from cablestudy.study.grid import expand_cases
+    from cablestudy.study.loader import parse_study_text
+    from tests.unit.test_system_fast import _compare
+
+    _, cases = expand_cases(parse_study_text(SLACK_START, "<slack>"))
+    system = system_model(cases[0].study)
+    ln = system.lines[0].problem
+    start = slack_forces(
+        replace(
+            ln,
+            end_a=EndCondition(kind="fixed", position=np.array([-300.0, 0.0, -100.0])),
+            end_b=EndCondition(kind="fixed", position=np.array([-150.0, 0.0, -90.0])),
+        )
+    )
+    assert start is not None  # slack there
+    _compare(system)
+    got, _ = solve_fast(system)
+    assert got is not None and got.status == 0
