@@ -210,7 +210,9 @@ def _solve_lines(
     """Each line between the points at ``pos``: results, the net line force on each
     point (n, 3) [N] and the assembled stiffness (3n, 3n) [N/m]. ``verify=False``: the
     catenary kernels' answers unchecked (Newton iterates, re-solved verified at the
-    solution)."""
+    solution), and a line slack on the seabed given its end forces and stiffness
+    (:mod:`.system_slack`) instead of failing, so that a free point started there moves
+    on to the taut equilibrium."""
     n = len(pos)
     force = np.zeros((n, 3))
     K = np.zeros((3 * n, 3 * n))
