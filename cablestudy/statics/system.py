@@ -298,15 +298,15 @@ def solve_system(
     # what it leaves comes here, with its reason in ``fallback``
     fallback: list[str] = []
 
-    def solve(sys: MooringSystem) -> SystemResult:
-        if compiled and getattr(solver, "name", "") == "catenary":
+    def solve(sys: MooringSystem, trial: bool = False) -> SystemResult:
+        if compiled and getattr(solver, "name", "") == "catenary" and not trial:
             from .system_fast import solve_fast
 
             fast, why = solve_fast(sys, prescribed=True, extra_poses=extra_poses)
             if fast is not None:
                 return fast
             fallback.append(why)
-        return _solve(sys, solver, deadline, free_mask)
+        return _solve(sys, solver, deadline, free_mask, verified=not trial)
 
     try:
         if system.body_free.size and np.any(system.body_free):
@@ -340,8 +340,18 @@ def solve_system(
 
 
 def _solve(
-    system: MooringSystem, solver: Any, deadline: float | None, free_mask: np.ndarray
+    system: MooringSystem,
+    solver: Any,
+    deadline: float | None,
+    free_mask: np.ndarray,
+    *,
+    verified: bool = True,
 ) -> SystemResult:
+    """The free points' Newton (see :func:`solve_system`). ``verified=False``: a trial
+    of the free-body Newton where a line would be slack, the lines at the solution as
+    the Newton left them (unverified, slack lines by their stand-ins,
+    :mod:`.system_slack`); never an answer (:func:`solve_free_bodies` solves its
+    solution again verified)."""
     x = np.array(system.point_position[free_mask], dtype=float)
     pf = system.point_force[free_mask]
     P = _dof_index(free_mask)
@@ -430,6 +440,16 @@ def _solve(
             if polished:
                 break
         pos = point_positions(system, x)
+    if not verified:
+        body_force, body_stiffness = _bodies(final, pos, force, K, free_mask)
+        return SystemResult(
+            lines=results,
+            point_position=pos,
+            body_force=body_force,
+            body_stiffness=body_stiffness,
+            iterations=it,
+            residual=res,
+        )
     results, force, K = _solve_lines(final, pos, solver, deadline)
     if P.size:
         # the Newton's lines were unverified (the kernels' answers, for speed): the
@@ -586,7 +606,8 @@ def solve_free_bodies(system: MooringSystem, solve: Any) -> SystemResult:
     loads are conservative): see :func:`_line_search`."""
     free = np.flatnonzero(system.body_free)
     free_points = system.point_kind == FREE
-    state = {"guess": np.array(system.point_position, dtype=float)}
+    state: dict[str, Any] = {"guess": np.array(system.point_position, dtype=float)}
+    state["verified"] = True
     longest_line = min(ln.problem.line.total_length for ln in system.lines)
     force_scale = max(
         float(np.max(system.body_weight[free], initial=0.0)),
@@ -601,10 +622,19 @@ def solve_free_bodies(system: MooringSystem, solve: Any) -> SystemResult:
         1.0,
     )
 
-    def evaluate(q: np.ndarray) -> tuple[SystemResult, np.ndarray, np.ndarray]:
+    def evaluate(q: np.ndarray, trial: bool = True) -> tuple[SystemResult, np.ndarray, np.ndarray]:
         poses = np.array(system.body_position, dtype=float)
         poses[free] = q
-        res = solve(replace(system, body_position=poses, point_position=state["guess"]))
+        placed = replace(system, body_position=poses, point_position=state["guess"])
+        try:
+            res = solve(placed)
+            state["verified"] = True
+        except SystemFailure:
+            if not trial:
+                raise
+            # a line slack at this pose (.system_slack): the Newton's unverified lines
+            res = solve(placed, trial=True)
+            state["verified"] = False
         R = np.zeros((len(free), 6))
         K = np.zeros((6 * len(free), 6 * len(free)))
         for k, b in enumerate(free):
@@ -677,6 +707,18 @@ def solve_free_bodies(system: MooringSystem, solve: Any) -> SystemResult:
         err = size(R)
         if polished:
             break
+    if not state["verified"]:
+        # the last iterate was a trial (a line slack there): solved again, verified, at
+        # the solution, where it must balance as the free points' solution does
+        res, R, _ = evaluate(q, trial=False)
+        err = size(R)
+        if not err <= max(100.0 * system.tolerance, 1e-10):
+            raise SystemFailure(
+                STATUS_NOT_CONVERGED,
+                f"free-body equilibrium: the verified lines at the Newton's solution leave "
+                f"a net load of {err:.3g} of the largest tension (tolerance "
+                f"{system.tolerance:.3g})",
+            )
     res.iterations = it
     res.residual = err if math.isfinite(err) else res.residual
     return res
