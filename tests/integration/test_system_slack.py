@@ -189,3 +189,37 @@ def test_system_leg_with_a_clump_at_its_touchdown(tmp_path: Path) -> None:
     # the fairlead tension grows monotonically as the vessel moves out, across the
     # clump's resting range (a continuous state; a wrong branch would jump)
     assert np.all(np.diff(ds["tension_b"].sel(line="bridle").values) > 0.0)
+
+
+def test_free_body_started_where_a_line_is_slack(tmp_path: Path) -> None:
+    # test_system_study's system with its buoy let free (20 t, 30 m^3, as there) and started at
+    # surge 0 and 100 m: from 100 m, leg3 (290 m) from its anchor at x = 250 to the
+    # fairlead at x = 105, 10 m down, is slack (seabed path 145 m + rise 90 m < 290 m),
+    # which failed before ("leg3 ... lies slack on the seabed"). Both starts reach the
+    # same pose
+    from tests.integration.test_system_study import SYSTEM
+
+    body = (
+        "buoy: {kind: free, position: [X0, 0.0, 0.0, 0.0, 0.0, 0.0], mass: 20000.0, "
+        "volume: 30.0, center_of_gravity: [0.0, 0.0, -8.0], center_of_buoyancy: [0.0, 0.0, -2.0]}"
+    )
+    text = SYSTEM.split("sweep:")[0].replace(
+        "buoy: {kind: prescribed, position: [0.0, 0.0, 0.0, 0.0, 0.0, 0.0]}", body
+    )
+    assert 250.0 - 105.0 + 90.0 < 290.0
+    poses = []
+    for x0 in ("0.0", "100.0"):
+        ds = _run(
+            tmp_path,
+            f"free{x0[:-2]}",
+            text.replace("name: sys", f"name: free{x0[:-2]}").replace("X0", x0),
+        )
+        assert int(ds["status"]) == 0, str(ds["message"].values)
+        poses.append(ds["body_position"].values[0])
+        # the body's balance: lines, weight and buoyancy (constant, no waterplane)
+        force = ds["body_force"].values[0]
+        np.testing.assert_allclose(force[2], -(RHO * 30.0 - 20000.0) * G, rtol=1e-9)
+    # both converge the body's net load to the system tolerance (1e-11 of the largest
+    # tension, the study's) over a restoring stiffness of the lines ~ tension / length:
+    # ~1e-11 * 300 m, a few 1e-9 m; the polishing step squares it
+    np.testing.assert_allclose(poses[1], poses[0], rtol=0, atol=1e-8)
