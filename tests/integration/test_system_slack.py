@@ -9,7 +9,8 @@ leg whose touchdown came to rest at a 5 t clump did not converge ("free-point
 equilibrium did not converge in 100 iterations"). Checks: every start of a grid of
 starts (slack, taut, placed too high) reaches the same equilibrium; the moved case8
 equals the case8 from its file's start and MoorPy's ``solveEquilibrium`` from the
-moved start; the clump leg solves at every offset with the junction in equilibrium."""
+moved start; the clump leg solves at every offset with the junction in equilibrium; a
+free body started where one of its lines is slack reaches the pose of a taut start."""
 
 from __future__ import annotations
 
