@@ -21,7 +21,10 @@ that lifts off hangs free. That choice is made by the ends' positions alone, nev
 the line's state at the iterate: the net force on the free points is then a function of
 their positions (chosen by history it jumps where a line touches down, and the line
 search fails there: measured on case8 at 14.35 m surge). Whatever a trial cannot solve
-makes the line search shorten the step, as :func:`.system._trial` does.
+makes the line search shorten the step, as :func:`.system._trial` does. A line
+anchored on the seabed that lies slack there (a free point started by eye) has its end
+forces all the same (:func:`._system_lines._slack_line`, as :mod:`.system_slack`), so
+the Newton can start there and move to the taut equilibrium.
 
 The kernel gives the free points' positions, each line's end forces and end stiffness
 at the last iterate, and a status; the caller re-solves and verifies the lines at the
@@ -36,7 +39,7 @@ import numpy as np
 
 from ._fast import _gauss, njit
 from ._fast_contact import LIFT_OFF, NOT_CONVERGED, NUMERICAL
-from ._system_lines import _contact_line, _free_line, _inv3, _offsets
+from ._system_lines import _contact_line, _free_line, _inv3, _offsets, _slack_line
 
 #: statuses of :func:`system_cases` (0: converged)
 SYS_NOT_CONVERGED = 1
@@ -119,7 +122,8 @@ def _eval_lines(
     """Every line of case ``c`` between the points at ``pos`` (n, 3) (with
     ``only_moving``, the lines with an end on a free point; the others keep their
     state), each from its state ``*_in`` to ``*_out``: mode (0 hanging free, 1 on the
-    seabed from end A), tension at A, touchdown unknowns, end forces and end stiffness
+    seabed from end A, 2 slack on the seabed from end A: :func:`._system_lines.
+    _slack_line`), tension at A, touchdown unknowns, end forces and end stiffness
     (hanging free: G = J^-1, K_AA = K_BB = G, K_AB = K_BA = -G; on the seabed: K_BB in
     ``K_out[m]``). False where a line cannot be solved there.
 
@@ -222,18 +226,27 @@ def _eval_lines(
                 for k in range(3):
                     d_out[m, k] = d[k]
                 continue
-            if st != LIFT_OFF and st != NOT_CONVERGED and st != NUMERICAL:
-                return False
-            # hanging free, as batch._hang_free keeps it
-            ok = _free_line(
-                ell_m, EA_m, w_m, C, L, d, TA_out[m], ltol, lmaxit, J, r, rn, Jn, Tn, g, stp, free3
-            )
-            if not ok:
-                return False
-            if st != LIFT_OFF:
+            ok = st == LIFT_OFF or st == NOT_CONVERGED or st == NUMERICAL
+            if ok:  # hanging free, as batch._hang_free keeps it
+                ok = _free_line(
+                    ell_m, EA_m, w_m, C, L, d, TA_out[m], ltol, lmaxit, J, r, rn, Jn, Tn, g, stp,
+                    free3,
+                )  # fmt: skip
+            if ok and st != LIFT_OFF:
                 up = TA_out[m, 0] * normal[0] + TA_out[m, 1] * normal[1] + TA_out[m, 2] * normal[2]
-                if not (clear[c, m] and up >= 0.0 and ha >= -1e-9 * L):
-                    return False
+                ok = clear[c, m] and up >= 0.0 and ha >= -1e-9 * L
+            if not ok:
+                # slack on the seabed (a trial only: the solution's lines are solved
+                # again and verified): its forces, mode 2 (K_BB only, never warm)
+                if has_plane and _slack_line(
+                    ell_m, EA_m, w_m, p_m, pos[a], pos[b], normal, depth, fa_out[m], fb_out[m],
+                    K_out[m],
+                ):  # fmt: skip
+                    mode_out[m] = 2
+                    for k in range(3):
+                        d_out[m, k] = d[k]
+                    continue
+                return False
             mode_out[m] = 0
         # hanging free: forces and G = J^-1 at the solution
         for k in range(3):
@@ -345,9 +358,10 @@ def system_cases(
     the system's ``tol`` (largest net force / force scale), ``maxit``, step ``cap`` [m].
 
     Outputs per case and line (kernel orientation): ``mode_out`` (0 hanging free, 1 on the
-    seabed), end forces ``fa_out``, ``fb_out`` (N, M, 3) [N], end stiffness ``K_out``
-    (N, M, 3, 3) [N/m] (G, or K_BB on the seabed) at the last iterate; per case Newton
-    ``iters``, ``resid`` and ``status`` (0 or a SYS_* code)."""
+    seabed, 2 slack on the seabed: a trial's state, never verified), end forces
+    ``fa_out``, ``fb_out`` (N, M, 3) [N], end stiffness ``K_out`` (N, M, 3, 3) [N/m] (G,
+    or K_BB on the seabed) at the last iterate; per case Newton ``iters``, ``resid`` and
+    ``status`` (0 or a SYS_* code)."""
     N, M = la.shape
     n = pos.shape[1]
     k = free_pts.shape[0]

@@ -180,3 +180,117 @@ def _contact_line(
         for j in range(3):
             Kbb[i, j] = n0 * Js[0, j] + n1 * Js[1, j] + n2 * Js[2, j]
     return 0
+
+
+@njit(cache=True, error_model="numpy")
+def _slack_line(
+    ell: np.ndarray,
+    EA: np.ndarray,
+    w: np.ndarray,
+    point: np.ndarray,
+    rA: np.ndarray,
+    rB: np.ndarray,
+    normal: np.ndarray,
+    depth: float,
+    fa: np.ndarray,
+    fb: np.ndarray,
+    Kbb: np.ndarray,
+) -> bool:
+    """A line anchored at A on the seabed lying slack (longer than the path straight down
+    from B and along the seabed): its end forces and K_BB as :func:`.system_slack.
+    slack_forces` (the part hanging straight down from B to a zero-tension foot, a
+    point load at the foot carried in proportion; nothing at A, K_BB only in its
+    vertical row). False where that state does not apply (not slack, a piece lighter
+    than the fluid, a point load not straight down)."""
+    P = w.shape[0]
+    for p in range(P):
+        if not w[p] > 0.0:
+            return False
+    for p in range(P + 1):
+        if point[p, 0] != 0.0 or point[p, 1] != 0.0 or point[p, 2] > 0.0:
+            return False
+    above = rB[0] * normal[0] + rB[1] * normal[1] + (rB[2] + depth) * normal[2]
+    h = above / normal[2]
+    if not h > 0.0:
+        return False
+    # from B down: pieces P-1 .. 0, the load at the top of each piece (its B-side end)
+    top = 0.0
+    S = -1.0
+    W = 0.0
+    k = 0.0
+    for jj in range(P):
+        j = P - 1 - jj  # the piece in line order
+        if jj > 0 and -point[j + 1, 2] > 0.0:  # the foot at this load: carried in part
+            h0, T0, flex = _column_b(ell, EA, w, point, j + 1, 0.0, 0.0)
+            h1, _, _ = _column_b(ell, EA, w, point, j + 1, 0.0, 1.0)
+            if h <= h1:
+                phi = (h - h0) / (h1 - h0) if h1 > h0 else 1.0
+                S = top
+                W = T0 - phi * point[j + 1, 2]
+                k = 1.0 / max(flex, 1e-300)
+                break
+        h_end, _, _ = _column_b(ell, EA, w, point, j, ell[j], 1.0)
+        if h <= h_end:
+            lo, hi = 0.0, ell[j]
+            for _ in range(200):
+                mid = 0.5 * (lo + hi)
+                if _column_b(ell, EA, w, point, j, mid, 1.0)[0] < h:
+                    lo = mid
+                else:
+                    hi = mid
+                if hi - lo <= 1e-15 * max(ell[j], 1.0):
+                    break
+            x = 0.5 * (lo + hi)
+            _, W, flex = _column_b(ell, EA, w, point, j, x, 1.0)
+            S = top + x
+            k = w[j] / (1.0 + w[j] * flex)
+            break
+        top += ell[j]
+    if S < 0.0:
+        return False
+    L = 0.0
+    for p in range(P):
+        L += ell[p]
+    fx = rB[0] - rA[0]
+    fy = rB[1] - rA[1]
+    fz = rB[2] - h - rA[2]
+    if not L - S > math.sqrt(fx * fx + fy * fy + fz * fz):
+        return False
+    for i in range(3):
+        fa[i] = 0.0
+        fb[i] = point[P, i]
+        for j in range(3):
+            Kbb[i, j] = 0.0
+    fb[2] -= W
+    for j in range(3):
+        Kbb[2, j] = k * normal[j] / normal[2]
+    return True
+
+
+@njit(cache=True, error_model="numpy")
+def _column_b(
+    ell: np.ndarray, EA: np.ndarray, w: np.ndarray, point: np.ndarray, j: int, x: float,
+    phi: float,
+) -> tuple[float, float, float]:  # fmt: skip
+    """:func:`.system_slack._column` from end B: the foot ``x`` [m] below the B-side end
+    of piece ``j`` (line order; with x = 0 the foot at boundary ``j``, its load carried
+    with fraction ``phi``; with x > 0 the foot in piece j, the load at j + 1 whole):
+    height [m], top tension [N], flexibility above the foot [m/N]."""
+    P = w.shape[0]
+    if x > 0.0:
+        T = w[j] * x
+        height = x + 0.5 * w[j] * x * x / EA[j]
+        flex = x / EA[j]
+        first = j + 1
+    else:
+        T = 0.0
+        height = 0.0
+        flex = 0.0
+        first = j
+    for i in range(first, P):
+        f = -point[i, 2]
+        T += f * (phi if (x == 0.0 and i == j) else 1.0)
+        height += ell[i] + (T * ell[i] + 0.5 * w[i] * ell[i] * ell[i]) / EA[i]
+        flex += ell[i] / EA[i]
+        T += w[i] * ell[i]
+    return height, T, flex

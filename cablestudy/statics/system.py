@@ -60,6 +60,8 @@ from .system_model import (
     SystemResult,
     point_drag,
 )
+from .system_pin import pinned_stiffness
+from .system_slack import slack_forces, slack_result
 
 
 def _axis_rotations(angles: np.ndarray) -> tuple[np.ndarray, ...]:
@@ -145,6 +147,11 @@ def line_end_stiffness(problem: StaticProblem, result: StaticResult) -> np.ndarr
                 "the line lies wholly on the seabed: method catenary gives no end stiffness "
                 "(analysis.static.method: discrete models it)",
             )
+        # a TDP resting at a clump (.contact_pin's pinned state): its own derivative
+        pinned = pinned_stiffness(lay, q, plane, s_td, np.asarray(fb, dtype=float))
+        if pinned is not None:
+            K[1, 1] = pinned
+            return K[::-1, ::-1].copy() if reverse else K
         _, ell, EA, qs, C, k_td, Cend = _suspended(lay, q, s_td)
         T_td = -np.asarray(fb, dtype=float) + Cend
         e1, e2 = plane.basis
@@ -203,7 +210,9 @@ def _solve_lines(
     """Each line between the points at ``pos``: results, the net line force on each
     point (n, 3) [N] and the assembled stiffness (3n, 3n) [N/m]. ``verify=False``: the
     catenary kernels' answers unchecked (Newton iterates, re-solved verified at the
-    solution)."""
+    solution), and a line slack on the seabed given its end forces and stiffness
+    (:mod:`.system_slack`) instead of failing, so that a free point started there moves
+    on to the taut equilibrium."""
     n = len(pos)
     force = np.zeros((n, 3))
     K = np.zeros((3 * n, 3 * n))
@@ -226,6 +235,13 @@ def _solve_lines(
         solved = [solver.solve(prob, deadline=deadline) for prob in problems]
     for ln, prob, res in zip(system.lines, problems, solved, strict=True):
         res = res.check_finite()
+        slack = None
+        if res.status != STATUS_OK and not verify:
+            # a Newton trial where the line lies slack on the seabed: its end forces are
+            # still defined (.system_slack); never at the verified solution
+            slack = slack_forces(prob)
+            if slack is not None:
+                res = slack_result(prob, *slack)
         if res.status != STATUS_OK:
             raise SystemFailure(res.status, f"line {ln.name}: {res.message}")
         results.append(res)
@@ -234,7 +250,7 @@ def _solve_lines(
         moving = [system.point_kind[ln.a] != FIXED, system.point_kind[ln.b] != FIXED]
         if not any(moving):
             continue
-        k = line_end_stiffness(prob, res)
+        k = slack[2] if slack is not None else line_end_stiffness(prob, res)
         ends = (ln.a, ln.b)
         for i in range(2):
             for j in range(2):
@@ -282,15 +298,15 @@ def solve_system(
     # what it leaves comes here, with its reason in ``fallback``
     fallback: list[str] = []
 
-    def solve(sys: MooringSystem) -> SystemResult:
-        if compiled and getattr(solver, "name", "") == "catenary":
+    def solve(sys: MooringSystem, trial: bool = False) -> SystemResult:
+        if compiled and getattr(solver, "name", "") == "catenary" and not trial:
             from .system_fast import solve_fast
 
             fast, why = solve_fast(sys, prescribed=True, extra_poses=extra_poses)
             if fast is not None:
                 return fast
             fallback.append(why)
-        return _solve(sys, solver, deadline, free_mask)
+        return _solve(sys, solver, deadline, free_mask, verified=not trial)
 
     try:
         if system.body_free.size and np.any(system.body_free):
@@ -324,8 +340,18 @@ def solve_system(
 
 
 def _solve(
-    system: MooringSystem, solver: Any, deadline: float | None, free_mask: np.ndarray
+    system: MooringSystem,
+    solver: Any,
+    deadline: float | None,
+    free_mask: np.ndarray,
+    *,
+    verified: bool = True,
 ) -> SystemResult:
+    """The free points' Newton (see :func:`solve_system`). ``verified=False``: a trial
+    of the free-body Newton where a line would be slack, the lines at the solution as
+    the Newton left them (unverified, slack lines by their stand-ins,
+    :mod:`.system_slack`); never an answer (:func:`solve_free_bodies` solves its
+    solution again verified)."""
     x = np.array(system.point_position[free_mask], dtype=float)
     pf = system.point_force[free_mask]
     P = _dof_index(free_mask)
@@ -378,8 +404,11 @@ def _solve(
                     f"{system.tolerance:.3g})",
                 )
             it += 1
-            step = np.linalg.solve(K[np.ix_(P, P)], R.ravel()).reshape(-1, 3)
-            phi0 = float(R.ravel() @ step.ravel())
+            try:
+                step = np.linalg.solve(K[np.ix_(P, P)], R.ravel()).reshape(-1, 3)
+                phi0 = float(R.ravel() @ step.ravel())
+            except np.linalg.LinAlgError:  # e.g. a point held across only by slack lines
+                phi0 = math.nan
             if not phi0 > 0.0:  # stiffness not positive definite here: go downhill
                 step = R / max(float(np.max(np.diag(K[np.ix_(P, P)]))), 1e-300)
                 phi0 = float(R.ravel() @ step.ravel())
@@ -411,6 +440,16 @@ def _solve(
             if polished:
                 break
         pos = point_positions(system, x)
+    if not verified:
+        body_force, body_stiffness = _bodies(final, pos, force, K, free_mask)
+        return SystemResult(
+            lines=results,
+            point_position=pos,
+            body_force=body_force,
+            body_stiffness=body_stiffness,
+            iterations=it,
+            residual=res,
+        )
     results, force, K = _solve_lines(final, pos, solver, deadline)
     if P.size:
         # the Newton's lines were unverified (the kernels' answers, for speed): the
@@ -567,7 +606,8 @@ def solve_free_bodies(system: MooringSystem, solve: Any) -> SystemResult:
     loads are conservative): see :func:`_line_search`."""
     free = np.flatnonzero(system.body_free)
     free_points = system.point_kind == FREE
-    state = {"guess": np.array(system.point_position, dtype=float)}
+    state: dict[str, Any] = {"guess": np.array(system.point_position, dtype=float)}
+    state["verified"] = True
     longest_line = min(ln.problem.line.total_length for ln in system.lines)
     force_scale = max(
         float(np.max(system.body_weight[free], initial=0.0)),
@@ -582,10 +622,19 @@ def solve_free_bodies(system: MooringSystem, solve: Any) -> SystemResult:
         1.0,
     )
 
-    def evaluate(q: np.ndarray) -> tuple[SystemResult, np.ndarray, np.ndarray]:
+    def evaluate(q: np.ndarray, trial: bool = True) -> tuple[SystemResult, np.ndarray, np.ndarray]:
         poses = np.array(system.body_position, dtype=float)
         poses[free] = q
-        res = solve(replace(system, body_position=poses, point_position=state["guess"]))
+        placed = replace(system, body_position=poses, point_position=state["guess"])
+        try:
+            res = solve(placed)
+            state["verified"] = True
+        except SystemFailure:
+            if not trial:
+                raise
+            # a line slack at this pose (.system_slack): the Newton's unverified lines
+            res = solve(placed, trial=True)
+            state["verified"] = False
         R = np.zeros((len(free), 6))
         K = np.zeros((6 * len(free), 6 * len(free)))
         for k, b in enumerate(free):
@@ -658,6 +707,18 @@ def solve_free_bodies(system: MooringSystem, solve: Any) -> SystemResult:
         err = size(R)
         if polished:
             break
+    if not state["verified"]:
+        # the last iterate was a trial (a line slack there): solved again, verified, at
+        # the solution, where it must balance as the free points' solution does
+        res, R, _ = evaluate(q, trial=False)
+        err = size(R)
+        if not err <= max(100.0 * system.tolerance, 1e-10):
+            raise SystemFailure(
+                STATUS_NOT_CONVERGED,
+                f"free-body equilibrium: the verified lines at the Newton's solution leave "
+                f"a net load of {err:.3g} of the largest tension (tolerance "
+                f"{system.tolerance:.3g})",
+            )
     res.iterations = it
     res.residual = err if math.isfinite(err) else res.residual
     return res
