@@ -362,9 +362,12 @@ def grid_settings(grid: Any) -> dict[str, Any]:
     settings = [a.model_dump(mode="json") for a in analyses]
     out: dict[str, Any] = {"analysis": settings[0] if settings else {}}
     out["static_methods"] = sorted({a.static.method for a in analyses})
-    distinct = {json.dumps(s, sort_keys=True) for s in settings}
+    # each distinct setting by its text; kept as the dump it came from, which the
+    # dataset's attribute writes as the same text (json.dumps with sorted keys,
+    # :func:`cablestudy.run.dataset.provenance`), not parsed back from it
+    distinct = {json.dumps(s, sort_keys=True): s for s in settings}
     if len(distinct) > 1:
-        out["analysis_per_case_distinct"] = [json.loads(d) for d in sorted(distinct)]
+        out["analysis_per_case_distinct"] = [distinct[d] for d in sorted(distinct)]
     return out
 
 

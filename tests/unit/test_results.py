@@ -176,9 +176,16 @@ def _netcdf_layout(path: Path) -> dict[str, Any]:
         return out
 
 
+@pytest.mark.parametrize("small", [False, True], ids=["judged", "small-result"])
 @pytest.mark.parametrize("extra_coord", [False, True], ids=["dimension-coords", "zip-coord"])
-def test_direct_netcdf_writer_writes_what_xarray_writes(tmp_path: Path, extra_coord: bool) -> None:
+def test_direct_netcdf_writer_writes_what_xarray_writes(
+    tmp_path: Path, extra_coord: bool, small: bool, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from cablestudy.run import writer
     from cablestudy.run.writer import write_variables_atomic
+
+    if not small:  # this result's variables judged one by one, as a large result's are
+        monkeypatch.setattr(writer, "SMALL_RESULT_BYTES", 0)
 
     rng = np.random.default_rng(1)
     x = rng.normal(size=(3, 2, 4))
@@ -213,4 +220,7 @@ def test_direct_netcdf_writer_writes_what_xarray_writes(tmp_path: Path, extra_co
     xr.testing.assert_identical(xr.load_dataset(direct), xr.load_dataset(ref))
     assert oct(direct.stat().st_mode & 0o777) == oct(ref.stat().st_mode & 0o777)
     layout = _netcdf_layout(direct)
-    assert layout["y"][4]["zlib"] and not layout["x"][4]["zlib"]
+    if small:  # a small result is stored as is, the constant variable too
+        assert not any(layout[k][4]["zlib"] for k in ("wall_time", "force_a", "x", "y"))
+    else:
+        assert layout["y"][4]["zlib"] and not layout["x"][4]["zlib"]
