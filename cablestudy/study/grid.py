@@ -45,7 +45,15 @@ from .cases import (
     report_sweep_faults,
 )
 from .environment import seabed_height, seabed_slope
-from .grid_lines import MAX_LINES, line_count, line_index, line_studies, per_line, weightless
+from .grid_lines import (
+    MAX_LINES,
+    line_count,
+    line_index,
+    line_studies,
+    per_line,
+    static_setting,
+    weightless,
+)
 from .loader import StudyError, StudySource, validate_data
 from .study import Study
 
@@ -233,8 +241,10 @@ def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
     of solves per case is not an array kernel), in still water or a current
     (:func:`_current_ok`), whose swept paths are all end positions of fixed ends, segment
     stiffnesses, the numbers that set the line's loads, its lengths and attachments, the
-    seabed or the current (:func:`cablestudy.study.grid_lines.per_line`), or a towing or
-    mooring end's known load (:func:`_end_load`), with numeric values."""
+    seabed or the current (:func:`cablestudy.study.grid_lines.per_line`), a towing or
+    mooring end's known load (:func:`_end_load`), or a static setting
+    (:func:`cablestudy.study.grid_lines.static_setting`: node count, drag elements,
+    tolerance, ...), with numeric values."""
     an = template.analysis
     if an.modal is not None or an.dynamic is not None or an.static.method != "catenary":
         return False
@@ -257,7 +267,12 @@ def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
             if m:
                 if getattr(getattr(template.ends, m.group(1)), "kind", "") != "fixed":
                     return False
-            elif not (_STIFFNESS.match(path) or per_line(path) or _end_load(template, path)):
+            elif not (
+                _STIFFNESS.match(path)
+                or per_line(path)
+                or _end_load(template, path)
+                or static_setting(template, path)
+            ):
                 return False
             if not all(isinstance(v, int | float) and not isinstance(v, bool) for v in vals):
                 return False

@@ -48,6 +48,15 @@ LINE_GEOMETRY = re.compile(r"^line\.(segments\.\d+\.length|attachments\.\d+\.(s|
 CURRENT = re.compile(r"^environment\.current\.\d+\.(speed|heading_deg)$")
 
 
+#: swept static settings (the output points' count, the drag elements of a line in a
+#: current, the solver's tolerance and iteration limit, the strain warning's limit): the
+#: array chunk solves its cases per group of equal settings, each group with its own
+#: settings (:mod:`cablestudy.analyses.static_grid_settings`), as each case alone is
+STATIC_SETTING = re.compile(
+    r"^analysis\.static\.(nodes|drag_elements|tolerance|max_iterations|strain_warning)$"
+)
+
+
 def per_line(path: str) -> bool:
     """Whether ``path`` is one whose values are built per combination (a load of the
     line, :data:`LINE_LOAD`, where and how long its parts are, :data:`LINE_GEOMETRY`,
@@ -119,3 +128,15 @@ def weightless(study: Any) -> bool:
     return all(seg.weight_in(rho, g) == 0.0 for seg in study.line.segments) and not any(
         att.mass != rho * att.volume or any(att.force) for att in study.line.attachments
     )
+
+
+def static_setting(template: Any, path: str) -> bool:
+    """Whether ``path`` is a static setting the array chunk takes per group of cases
+    (:data:`STATIC_SETTING`). ``drag_elements`` only where the template has a current:
+    without one each swept value is refused by the support check of every axis value
+    (:func:`cablestudy.analyses.unused_keys.unused_key_problems`), which an array grid
+    does not run (its template answers for every case)."""
+    m = STATIC_SETTING.match(path)
+    if m is None:
+        return False
+    return m.group(1) != "drag_elements" or bool(template.environment.current)
