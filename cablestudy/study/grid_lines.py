@@ -30,6 +30,14 @@ LINE_LOAD = re.compile(
     r"|attachments\.\d+\.(mass|volume))$"
 )
 
+#: swept paths that set a segment's hydrodynamic coefficients: its drag (used by the
+#: drag iteration of a line in a current, through the line's model) and its added mass
+#: (read by no static solver: a static-only sweep of it gives equal cases, as case by
+#: case); each case's line is the one of its combination, like its loads
+LINE_HYDRO = re.compile(
+    r"^line\.segments\.\d+\.(drag_normal|drag_tangential|added_mass_normal|added_mass_tangential)$"
+)
+
 #: swept paths that change the seabed only (its depth, slope and friction): each case's
 #: medium is that of its combination, like its line
 SEABED = re.compile(r"^environment\.(depth|seabed\.(friction|slope_deg|slope_heading_deg))$")
@@ -59,10 +67,12 @@ STATIC_SETTING = re.compile(
 
 def per_line(path: str) -> bool:
     """Whether ``path`` is one whose values are built per combination (a load of the
-    line, :data:`LINE_LOAD`, where and how long its parts are, :data:`LINE_GEOMETRY`,
+    line, :data:`LINE_LOAD`, its drag and added-mass coefficients, :data:`LINE_HYDRO`,
+    where and how long its parts are, :data:`LINE_GEOMETRY`,
     the seabed, :data:`SEABED`, or the current, :data:`CURRENT`)."""
     return bool(
         LINE_LOAD.match(path)
+        or LINE_HYDRO.match(path)
         or LINE_GEOMETRY.match(path)
         or SEABED.match(path)
         or CURRENT.match(path)

@@ -219,3 +219,46 @@ def test_drag_elements_swept_without_a_current_are_refused_by_name(tmp_path: Pat
         cli._load(str(path))
     msg = str(exc.value)
     assert "analysis.static.drag_elements" in msg and "no environment.current" in msg, msg
+
+
+#: a wire in a current, its normal drag coefficient and added mass swept (each
+#: combination one line, as for its loads)
+HYDRO = DRAG.replace(
+    "  analysis.static.drag_elements: [5, 10, 20, 40, 80, 160]\n",
+    "  line.segments.0.drag_normal: [0.0, 0.6, 1.2, 2.4]\n"
+    "  line.segments.0.added_mass_normal: [0.5, 1.0]\n",
+).replace("drag_tangential: 0.01", "drag_tangential: 0.0")
+
+
+def test_drag_and_added_mass_coefficient_sweeps_run_as_arrays_with_the_case_bits(
+    tmp_path: Path,
+) -> None:
+    fast, slow = _both(HYDRO, tmp_path)
+    assert (slow["status"] == 0).all()
+    _same_bits(fast, slow)
+    # no static solver reads the added mass: equal cases, bit for bit
+    for name in ("tension", "x", "y", "z", "force_a", "force_b"):
+        a = fast[name].isel(added_mass_normal=0).values
+        assert a.tobytes() == fast[name].isel(added_mass_normal=1).values.tobytes(), name
+    # the whole line's balance across the plane of its ends (y): the ends hold what the
+    # drag pushes, F_a,y + F_b,y = the line's drag in y (weight has none). Without drag
+    # (C_N = 0, C_T = 0) it is zero to the solver's tolerance (1e-9 of the line's weight
+    # of 24 kN: 1e-5 N allowed), and it grows with C_N
+    fy = (fast["force_a"] + fast["force_b"]).sel(component="y").isel(added_mass_normal=0)
+    drag_y = fy.values  # (drag_normal, span)
+    assert np.max(np.abs(drag_y[0])) <= 1e-9 * 80.0 * 300.0
+    assert np.all(np.diff(np.abs(drag_y), axis=0) > 0.0)
+    # and without drag the line is the still-water one: its fairlead tension that of the
+    # same study without a current, to the tolerance (1e-9 relative)
+    still = HYDRO.replace("  current: [{z: 0.0, speed: 1.0, heading_deg: 60.0}]\n", "").replace(
+        "  line.segments.0.drag_normal: [0.0, 0.6, 1.2, 2.4]\n"
+        "  line.segments.0.added_mass_normal: [0.5, 1.0]\n",
+        "",
+    )
+    src = parse_study_text(still, "gs.yaml")
+    ref = xr.load_dataset(
+        run_study(src, expand_grid(src), tmp_path / "s", scheduler="synchronous",
+                  use_cache=False).path
+    )  # fmt: skip
+    t0 = fast["tension_b"].isel(drag_normal=0, added_mass_normal=0).values
+    assert np.max(np.abs(t0 - ref["tension_b"].values)) <= 1e-9 * float(ref["tension_b"].max())
