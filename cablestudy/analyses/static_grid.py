@@ -35,6 +35,7 @@ from .common import segment_of
 from .fallback import NO_KERNEL
 from .grid_chunk import STATUS_NUMERICAL, GridChunk, array_chunk, numerical_fault
 from .plausibility import fallback_warning, largest_strain, strain_warning
+from .static_grid_limits import apply_grid_limits
 from .static_grid_lines import SweptLines, geometry_groups, layout_arrays, node_segments
 from .surface import template_surface_warnings
 from .variables import KEPT_STATUSES
@@ -703,6 +704,8 @@ def _solve_outputs(
         reasons[rest] = NO_KERNEL
     for i, reason in fallback.items():
         reasons[i] = reason
+    # break conditions, as each case alone (cablestudy.analyses.static_grid_limits)
+    apply_grid_limits(st, template, pos.get("lines"))
     data, status, messages = array_outputs(st, template, ea, pos.get("lines"))
     k = node_segments(st.s, template, pos.get("lines"))  # each case's own line's
     max_strain = largest_strain(st.tension, np.take_along_axis(ea, k, axis=1))

@@ -253,11 +253,12 @@ def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
     if template.line.pulleys or not _current_ok(template):
         return False
     line = template.line
-    # the arrays' outputs take strain as T / EA and no break limits: a nonlinear law or
-    # a failure condition is solved as validated cases are (cablestudy.analyses.static_grid_cases)
-    if line.is_spring or line.failure is not None:
+    # the arrays' outputs take strain as T / EA: a nonlinear law is solved as validated
+    # cases are (cablestudy.analyses.static_grid_cases); break conditions are checked
+    # per case on the arrays (cablestudy.analyses.static_grid_limits)
+    if line.is_spring:
         return False
-    if any(seg.is_nonlinear or seg.failure is not None for seg in line.segments):
+    if any(seg.is_nonlinear for seg in line.segments):
         return False
     if getattr(an.static, "installation", None) is not None:
         return False

@@ -38,6 +38,12 @@ LINE_HYDRO = re.compile(
     r"^line\.segments\.\d+\.(drag_normal|drag_tangential|added_mass_normal|added_mass_tangential)$"
 )
 
+#: swept paths that set a break condition's limit (the line's, or a segment's own): the
+#: limits of each case's line are checked on its result (per combination, like its loads)
+FAILURE = re.compile(
+    r"^line\.(segments\.\d+\.)?failure\.(tension|minimum_breaking_load|safety_factor)$"
+)
+
 #: swept paths that change the seabed only (its depth, slope and friction): each case's
 #: medium is that of its combination, like its line
 SEABED = re.compile(r"^environment\.(depth|seabed\.(friction|slope_deg|slope_heading_deg))$")
@@ -68,11 +74,13 @@ STATIC_SETTING = re.compile(
 def per_line(path: str) -> bool:
     """Whether ``path`` is one whose values are built per combination (a load of the
     line, :data:`LINE_LOAD`, its drag and added-mass coefficients, :data:`LINE_HYDRO`,
+    its break limits, :data:`FAILURE`,
     where and how long its parts are, :data:`LINE_GEOMETRY`,
     the seabed, :data:`SEABED`, or the current, :data:`CURRENT`)."""
     return bool(
         LINE_LOAD.match(path)
         or LINE_HYDRO.match(path)
+        or FAILURE.match(path)
         or LINE_GEOMETRY.match(path)
         or SEABED.match(path)
         or CURRENT.match(path)
