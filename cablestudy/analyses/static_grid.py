@@ -659,6 +659,29 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
     return array_chunk(grid, lo, hi, t0, status, messages, data, warnings, reasons)
 
 
+def _solve_each(template: Study, problems: list[Any]) -> list[Any]:
+    """Each static problem solved alone by the template's method (not ``catenary``), as
+    :func:`cablestudy.analyses.static.solve_static` solves a case alone (each with its own
+    time limit)."""
+    from ..statics import STATIC_SOLVERS
+    from ..statics.base import STATUS_NO_SOLUTION, StaticResult
+    from .static import unsupported_static
+
+    method = template.analysis.static.method
+    solver = STATIC_SOLVERS[method]
+    limit = template.analysis.time_limit
+    out = []
+    for p in problems:
+        missing = unsupported_static(method, p)
+        if missing:  # what the method cannot model in this case: refused as data
+            s = np.linspace(0.0, p.line.total_length, p.n_nodes)
+            text = f"static method {method!r} does not support {'; '.join(missing)}"
+            out.append(StaticResult.failed(s, STATUS_NO_SOLUTION, text))
+            continue
+        out.append(solver.solve(p, deadline=time.monotonic() + limit).check_finite())
+    return out
+
+
 def _take(pos: dict[str, Any], rows: np.ndarray) -> dict[str, Any]:
     """The swept inputs ``pos`` of the cases ``rows`` (in order)."""
     return {
@@ -679,8 +702,14 @@ def _solve_outputs(
     n = len(ea)
     reasons = np.full(n, "", dtype=object)
     warnings: dict[int, list[str]] = {}
-    compiled = _compiled_solve(base, pos, ea)
-    if compiled is None:
+    method = template.analysis.static.method
+    compiled = _compiled_solve(base, pos, ea) if method == "catenary" else None
+    if method != "catenary":  # no batch kernel: the method's solver, case by case
+        problems = _problems(base, pos, ea)
+        st = StaticArrays.of(_solve_each(template, problems))
+        fallback = {}
+        reasons[:] = _general_reasons(template, problems, list(range(n)))
+    elif compiled is None:
         general: list[int] = []
         problems = _problems(base, pos, ea)
         results = solve_batch(problems, deadline=deadline, general=general)

@@ -246,7 +246,7 @@ def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
     (:func:`cablestudy.study.grid_lines.static_setting`: node count, drag elements,
     tolerance, ...), with numeric values."""
     an = template.analysis
-    if an.modal is not None or an.dynamic is not None or an.static.method != "catenary":
+    if an.modal is not None or an.dynamic is not None:
         return False
     if an.database is not None:
         return False
@@ -298,8 +298,8 @@ def _current_ok(template: Study) -> bool:
     iteration per case in the compiled batch, :mod:`cablestudy.statics.batch_drag`, or the
     general solver where that does not take a case), except drag on the stretched
     diameter, which the catenary solver refuses (a case alone says so)."""
-    if not template.environment.current:
-        return True
+    if not template.environment.current or template.analysis.static.method != "catenary":
+        return True  # another method's solver takes each case as a case alone
     return template.analysis.static.drag_diameter == "unstretched"
 
 
