@@ -4,11 +4,11 @@ The study is validated once as a template, each swept value once at its own path
 (inside the smallest model that holds it where that is exactly the whole study's
 validation, :mod:`cablestudy.study.grid_values`; else as a whole study), and the checks
 that combine fields over the grid (:func:`expand_grid`): with NumPy where the
-compiled catenary kernels take the grid as arrays (end positions of fixed ends, segment
-stiffnesses, towing and mooring ends' loads; the line's loads, lengths and attachments
-and the seabed built once per combination of their
-values, :mod:`cablestudy.study.grid_lines`: :attr:`CaseGrid.arrays`,
-:mod:`cablestudy.analyses.static_grid`), else by the
+array chunk takes the grid (end positions of fixed ends, segment
+stiffnesses, towing and mooring ends' loads; the line's loads, lengths, attachments,
+coefficients and break limits and the seabed built once per combination of their
+values, :mod:`cablestudy.study.grid_lines`; the static settings, solved per group:
+:attr:`CaseGrid.arrays`, :mod:`cablestudy.analyses.static_grid`), else by the
 models' own ``mode="after"`` validators on each case's study, which is the template with
 its validated swept values copied in (:mod:`cablestudy.study.grid_studies`). A swept path
 that cannot be copied into the template (a model whose validator derives other fields
@@ -237,14 +237,14 @@ def _static_sweep(template: Study, axes: list[SweepAxis]) -> bool:
 
 
 def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
-    """A static-only, method 'catenary' study without a quasi-static database (its grid
-    of solves per case is not an array kernel), in still water or a current
-    (:func:`_current_ok`), whose swept paths are all end positions of fixed ends, segment
-    stiffnesses, the numbers that set the line's loads, its lengths and attachments, the
-    seabed or the current (:func:`cablestudy.study.grid_lines.per_line`), a towing or
-    mooring end's known load (:func:`_end_load`), or a static setting
-    (:func:`cablestudy.study.grid_lines.static_setting`: node count, drag elements,
-    tolerance, ...), with numeric values."""
+    """A static-only study (any static method: ``catenary`` through the compiled
+    kernels, another through its solver per case) without a quasi-static database (its
+    grid of solves per case is not an array kernel), with linear axial laws, in still
+    water or a current (:func:`_current_ok`), whose swept paths are all end positions
+    of fixed ends, segment stiffnesses, the numbers of the line, the seabed or the
+    current (:func:`cablestudy.study.grid_lines.per_line`), a towing or mooring end's
+    known load (:func:`_end_load`), or a static setting
+    (:func:`cablestudy.study.grid_lines.static_setting`), with numeric values."""
     an = template.analysis
     if an.modal is not None or an.dynamic is not None:
         return False
