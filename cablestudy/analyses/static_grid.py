@@ -59,6 +59,11 @@ def _swept_inputs(grid: CaseGrid, lo: int, hi: int) -> tuple[Any, dict[str, Any]
             else None
         )
     ea = np.tile(base.line.axial_stiffness, (n, 1))
+    if line_axes(grid):
+        pos["lines"] = SweptLines.of(grid, lo, hi)
+        # each case's own line's stiffnesses (a catalogue size sets them), a swept
+        # stiffness put in below
+        ea = pos["lines"].stacked(lambda m: m.axial_stiffness).astype(float)
     for path in grid.swept:
         m = _POSITION.match(path)
         load = _END_LOAD.match(path)
@@ -69,9 +74,7 @@ def _swept_inputs(grid: CaseGrid, lo: int, hi: int) -> tuple[Any, dict[str, Any]
         elif _STIFFNESS.match(path):
             k = int(_STIFFNESS.match(path).group(1))  # type: ignore[union-attr]
             ea[:, k] = grid.values(path, lo, hi)
-        # else a load of the line (LINE_LOAD): its own line per case, below
-    if line_axes(grid):
-        pos["lines"] = SweptLines.of(grid, lo, hi)
+        # else a number of the line (grid_lines.per_line): its own line per case, above
     return base, pos, ea
 
 

@@ -233,7 +233,9 @@ def _static_sweep(template: Study, axes: list[SweepAxis]) -> bool:
         return False
     if not axes or not _numeric(axes):
         return False
-    return all(copyable(template, p) for axis in axes for p in axis.paths)
+    # a path into a segment of a catalogue line type cannot be copied in: its line is
+    # validated as a whole study once per combination of its values (grid_lines)
+    return all(copyable(template, p) or per_line(p) for axis in axes for p in axis.paths)
 
 
 def _eligible(template: Study, axes: list[SweepAxis]) -> bool:

@@ -44,6 +44,11 @@ FAILURE = re.compile(
     r"^line\.(segments\.\d+\.)?failure\.(tension|minimum_breaking_load|safety_factor)$"
 )
 
+#: a segment's catalogue size (its line type's nominal diameter, from which validation
+#: derives its diameter, mass, weight and stiffness): each combination's line is the
+#: study validated as a whole with it (:func:`line_studies`)
+LINE_TYPE = re.compile(r"^line\.segments\.\d+\.line_type\.nominal_diameter$")
+
 #: swept paths that change the seabed only (its depth, slope and friction): each case's
 #: medium is that of its combination, like its line
 SEABED = re.compile(r"^environment\.(depth|seabed\.(friction|slope_deg|slope_heading_deg))$")
@@ -74,13 +79,14 @@ STATIC_SETTING = re.compile(
 def per_line(path: str) -> bool:
     """Whether ``path`` is one whose values are built per combination (a load of the
     line, :data:`LINE_LOAD`, its drag and added-mass coefficients, :data:`LINE_HYDRO`,
-    its break limits, :data:`FAILURE`,
+    its break limits, :data:`FAILURE`, a segment's catalogue size, :data:`LINE_TYPE`,
     where and how long its parts are, :data:`LINE_GEOMETRY`,
     the seabed, :data:`SEABED`, or the current, :data:`CURRENT`)."""
     return bool(
         LINE_LOAD.match(path)
         or LINE_HYDRO.match(path)
         or FAILURE.match(path)
+        or LINE_TYPE.match(path)
         or LINE_GEOMETRY.match(path)
         or SEABED.match(path)
         or CURRENT.match(path)
@@ -115,12 +121,35 @@ def line_studies(grid: Any) -> list[Any]:
         return found
     axes = line_axes(grid)
     paths = [(k, p) for k in axes for p in grid.axes[k].paths if per_line(p)]
+    whole = set(getattr(grid, "whole", ()))
     found = []
     for combo in itertools.product(*(range(grid.shape[k]) for k in axes)):
         at = dict(zip(axes, combo, strict=True))
-        values = {p: grid.validated[p][1][at[k]] for k, p in paths}
-        found.append(case_study(grid.template, values) if values else grid.template)
+        values = {p: grid.validated[p][1][at[k]] for k, p in paths if p not in whole}
+        # a path that cannot be copied in (a segment of a catalogue line type, whose
+        # validator derives its other fields): the whole study of those values
+        picks = tuple((p, at[k]) for k, p in paths if p in whole)
+        base = _whole_study(grid, picks) if picks else grid.template
+        found.append(case_study(base, values) if values else base)
     grid.memo["line_studies"] = found
+    return found
+
+
+def _whole_study(grid: Any, picks: tuple[tuple[str, int], ...]) -> Any:
+    """The study validated as a whole with the values of the swept ``picks`` (path,
+    index along its axis) put in, the others the template's (built once per grid; the
+    memo :meth:`cablestudy.study.grid.CaseGrid.study_at` keeps such studies in)."""
+    from .cases import _copy_tree, _set_path
+    from .loader import validate_data
+
+    found = grid.memo.get(picks)
+    if found is None:
+        src = grid.src
+        data = _copy_tree({k: v for k, v in src.data.items() if k != "sweep"})
+        values = {p: v for a in grid.axes for p, v in zip(a.paths, a.values, strict=True)}
+        for p, i in picks:
+            _set_path(data, p, _copy_tree(values[p][i]))
+        found = grid.memo[picks] = validate_data(data, src)
     return found
 
 

@@ -43,11 +43,15 @@ sweep:
 """
 #: the wire's linear law checked to a strain range it passes at the longest offsets
 #: (a case past it fails, as a non-linear law's would)
-LAW = BREAK.replace(
-    "axial_stiffness: 5.2e8}", "axial: {law: linear, stiffness: 5.2e8, max_strain: 1.0e-3}}"
-).replace("  failure: {minimum_breaking_load: 6.0e5, safety_factor: 1.5}\n", "").replace(
-    "  line.failure.minimum_breaking_load: [3.0e5, 6.0e5, 1.2e6]\n",
-    "  line.segments.1.length: [340.0, 350.0]\n",
+LAW = (
+    BREAK.replace(
+        "axial_stiffness: 5.2e8}", "axial: {law: linear, stiffness: 5.2e8, max_strain: 1.0e-3}}"
+    )
+    .replace("  failure: {minimum_breaking_load: 6.0e5, safety_factor: 1.5}\n", "")
+    .replace(
+        "  line.failure.minimum_breaking_load: [3.0e5, 6.0e5, 1.2e6]\n",
+        "  line.segments.1.length: [340.0, 350.0]\n",
+    )
 )
 
 
@@ -57,9 +61,7 @@ def _fresh_static_cache(monkeypatch: pytest.MonkeyPatch) -> None:
 
 
 @pytest.mark.parametrize("text", [BREAK, LAW], ids=["break", "law-range"])
-def test_break_limits_run_as_arrays_with_the_case_datasets_bits(
-    tmp_path: Path, text: str
-) -> None:
+def test_break_limits_run_as_arrays_with_the_case_datasets_bits(tmp_path: Path, text: str) -> None:
     src = parse_study_text(text, "gb.yaml")
     grid = expand_grid(src)
     assert grid.chunked and grid.arrays
@@ -102,3 +104,66 @@ def test_break_limits_run_as_arrays_with_the_case_datasets_bits(
     assert {k: v for k, v in fast.attrs.items() if k not in skip} == {
         k: v for k, v in slow.attrs.items() if k not in skip
     }
+
+
+#: a chain of a catalogue line type hanging in water: its nominal size and its length
+#: swept (validation derives its diameter, mass and stiffness from the size, so each
+#: combination's line is validated as a whole study once)
+CHAIN = """\
+name: gt
+environment: {fluid: water}
+line:
+  segments:
+    - {length: 120.0, line_type: {material: chain_studless, nominal_diameter: 0.076}}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -100.0]}
+  b: {kind: fixed, position: [60.0, 0.0, -10.0]}
+analysis:
+  static: {nodes: 25}
+sweep:
+  line.segments.0.line_type.nominal_diameter: [0.064, 0.076, 0.095]
+  line.segments.0.length: [115.0, 125.0]
+  ends.b.position.0: [50.0, 70.0]
+"""
+
+
+def test_a_catalogue_size_sweep_runs_as_arrays_with_the_case_datasets_bits(
+    tmp_path: Path,
+) -> None:
+    from cablestudy.study.grid_lines import line_studies
+    from cablestudy.study.problem import line_model
+
+    src = parse_study_text(CHAIN, "gt.yaml")
+    grid = expand_grid(src)
+    assert grid.chunked and grid.arrays
+    assert "line.segments.0.line_type.nominal_diameter" in grid.whole
+    fast = xr.load_dataset(
+        run_study(src, grid, tmp_path / "g", scheduler="synchronous", use_cache=False).path
+    )
+    slow = xr.load_dataset(
+        run_study(
+            src, replace(grid, chunked=False), tmp_path / "c", scheduler="synchronous",
+            use_cache=False,
+        ).path
+    )  # fmt: skip
+    assert (slow["status"] == 0).all()
+    for name in slow.variables:
+        if name == "wall_time":
+            continue
+        a, b = fast[name], slow[name]
+        assert a.dims == b.dims, name
+        if a.dtype.kind == "f":
+            assert a.values.tobytes() == b.values.tobytes(), name
+        else:
+            assert np.array_equal(a.values, b.values), name
+    # the line hangs free: its supports carry its whole weight in water, w(d) L, w from
+    # the catalogue size's line (heavier for a larger size), to the solver's tolerance
+    # (1e-9 of the forces)
+    weights = [float(line_model(s).weight[0]) for s in line_studies(grid)]
+    w = np.array(weights).reshape(3, 2)  # (size, length)
+    assert np.all(np.diff(w[:, 0]) > 0.0)
+    fz = (fast["force_a"] + fast["force_b"]).sel(component="z").values  # (size, length, x)
+    carried = -fz
+    length = np.array([115.0, 125.0])
+    expected = (w * length[None, :])[..., None]
+    assert np.max(np.abs(carried - expected) / expected) <= 1e-8
