@@ -35,6 +35,7 @@ from .common import segment_of
 from .fallback import NO_KERNEL
 from .grid_chunk import STATUS_NUMERICAL, GridChunk, array_chunk, numerical_fault
 from .plausibility import fallback_warning, largest_strain, strain_warning
+from .static_grid_limits import apply_grid_limits
 from .static_grid_lines import SweptLines, geometry_groups, layout_arrays, node_segments
 from .surface import template_surface_warnings
 from .variables import KEPT_STATUSES
@@ -58,6 +59,11 @@ def _swept_inputs(grid: CaseGrid, lo: int, hi: int) -> tuple[Any, dict[str, Any]
             else None
         )
     ea = np.tile(base.line.axial_stiffness, (n, 1))
+    if line_axes(grid):
+        pos["lines"] = SweptLines.of(grid, lo, hi)
+        # each case's own line's stiffnesses (a catalogue size sets them), a swept
+        # stiffness put in below
+        ea = pos["lines"].stacked(lambda m: m.axial_stiffness).astype(float)
     for path in grid.swept:
         m = _POSITION.match(path)
         load = _END_LOAD.match(path)
@@ -68,9 +74,7 @@ def _swept_inputs(grid: CaseGrid, lo: int, hi: int) -> tuple[Any, dict[str, Any]
         elif _STIFFNESS.match(path):
             k = int(_STIFFNESS.match(path).group(1))  # type: ignore[union-attr]
             ea[:, k] = grid.values(path, lo, hi)
-        # else a load of the line (LINE_LOAD): its own line per case, below
-    if line_axes(grid):
-        pos["lines"] = SweptLines.of(grid, lo, hi)
+        # else a number of the line (grid_lines.per_line): its own line per case, above
     return base, pos, ea
 
 
@@ -244,10 +248,7 @@ def _compiled_solve(
     why: list[str] = []
     for g in groups.tolist():
         rows = np.flatnonzero(key == g)
-        sub = {
-            k: (None if v is None else v.take(rows) if k == "lines" else v[rows])
-            for k, v in pos.items()
-        }
+        sub = _take(pos, rows)
         medium = lines.media[seabed[rows[0]]]
         got = _compiled_solve_one(_with(base, medium=medium), sub, ea[rows])
         if got is None:  # what the seabed does not decide: the same for every group
@@ -623,9 +624,10 @@ def _tangent_ends(template: Study, tension: np.ndarray, lines: SweptLines | None
 def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
     """Solve rows ``lo:hi`` of the grid as one batch and stack the outputs. Per case the
     same outputs, status and message as :func:`cablestudy.analyses.evaluate.evaluate_case`; a
-    fault inside the batch fails the chunk's cases with its text (never raises)."""
-    from ..statics.batch import solve_batch
-
+    fault inside the batch fails the chunk's cases with its text (never raises). Cases
+    whose swept static settings differ (node count, drag elements, tolerance:
+    :mod:`cablestudy.analyses.static_grid_settings`) are solved per group of equal
+    settings, each group's outputs padded to the grid's node count."""
     if getattr(grid, "is_system", False):  # a system's position sweep
         from .system_grid import evaluate_system_chunk
 
@@ -634,6 +636,8 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
         from .static_grid_cases import evaluate_static_chunk
 
         return evaluate_static_chunk(grid, lo, hi)
+    from .static_grid_settings import settings_groups, solve_in_groups
+
     t0 = time.perf_counter()
     n = (hi - lo) * math.prod(grid.shape[1:])
     reasons = np.full(n, "", dtype=object)
@@ -644,45 +648,106 @@ def evaluate_grid_chunk(grid: CaseGrid, lo: int, hi: int) -> GridChunk:
     try:
         base, pos, ea = _swept_inputs(grid, lo, hi)
         deadline = time.monotonic() + grid.template.analysis.time_limit * n
-        compiled = _compiled_solve(base, pos, ea)
-        if compiled is None:
-            general: list[int] = []
-            problems = _problems(base, pos, ea)
-            results = solve_batch(problems, deadline=deadline, general=general)
-            fallback = {i: r.fallback for i, r in enumerate(results) if r.fallback}
-            reasons[general] = _general_reasons(grid.template, problems, general)
-            st = StaticArrays.of(results)
+        groups = settings_groups(grid, lo, hi)
+        if groups is None:
+            data, status, messages, warnings, reasons = _solve_outputs(
+                grid.template, base, pos, ea, deadline
+            )
         else:
-            st, rest, why = compiled
-            if rest.size:  # what no kernel settled: the general solver, one by one
-                sub = {
-                    k: (None if v is None else v.take(rest) if k == "lines" else v[rest])
-                    for k, v in pos.items()
-                }
-                st.put(
-                    rest,
-                    StaticArrays.of(
-                        solve_batch(
-                            _problems(base, sub, ea[rest]), deadline=deadline, contact=False
-                        )
-                    ),
-                )
-            fallback = {i: r for i, r in zip(rest.tolist(), why, strict=True) if r}
-            reasons[rest] = NO_KERNEL
-        for i, reason in fallback.items():
-            reasons[i] = reason
-        data, status, messages = array_outputs(st, grid.template, ea, pos.get("lines"))
-        k = node_segments(st.s, grid.template, pos.get("lines"))  # each case's own line's
-        max_strain = largest_strain(st.tension, np.take_along_axis(ea, k, axis=1))
-        limit = grid.template.analysis.static.strain_warning
-        for i in np.flatnonzero((status == 0) & (max_strain > limit)):
-            warnings.setdefault(int(i), []).append(strain_warning(float(max_strain[i]), limit))
-        for i, reason in fallback.items():
-            if status[i] == 0:
-                warnings.setdefault(i, []).append(fallback_warning(reason))
-        # a line above the water's surface (cablestudy.analyses.plausibility)
-        for i, text in template_surface_warnings(grid.template, st.s, st.position, status):
-            warnings.setdefault(i, []).append(text)
+            data, status, messages, warnings, reasons = solve_in_groups(
+                grid, groups, base, pos, ea, deadline, _solve_outputs, _with, _take
+            )
     except Exception as exc:  # noqa: BLE001 - a fault in a chunk fails its cases, as data
         messages, warnings, data = numerical_fault(exc, status)
     return array_chunk(grid, lo, hi, t0, status, messages, data, warnings, reasons)
+
+
+def _solve_each(template: Study, problems: list[Any]) -> list[Any]:
+    """Each static problem solved alone by the template's method (not ``catenary``), as
+    :func:`cablestudy.analyses.static.solve_static` solves a case alone (each with its own
+    time limit)."""
+    from ..statics import STATIC_SOLVERS
+    from ..statics.base import STATUS_NO_SOLUTION, StaticResult
+    from .static import unsupported_static
+
+    method = template.analysis.static.method
+    solver = STATIC_SOLVERS[method]
+    limit = template.analysis.time_limit
+    out = []
+    for p in problems:
+        missing = unsupported_static(method, p)
+        if missing:  # what the method cannot model in this case: refused as data
+            s = np.linspace(0.0, p.line.total_length, p.n_nodes)
+            text = f"static method {method!r} does not support {'; '.join(missing)}"
+            out.append(StaticResult.failed(s, STATUS_NO_SOLUTION, text))
+            continue
+        out.append(solver.solve(p, deadline=time.monotonic() + limit).check_finite())
+    return out
+
+
+def _take(pos: dict[str, Any], rows: np.ndarray) -> dict[str, Any]:
+    """The swept inputs ``pos`` of the cases ``rows`` (in order)."""
+    return {
+        k: (None if v is None else v.take(rows) if k == "lines" else v[rows])
+        for k, v in pos.items()
+    }
+
+
+def _solve_outputs(
+    template: Study, base: Any, pos: dict[str, Any], ea: np.ndarray, deadline: float
+) -> tuple[dict[str, np.ndarray], np.ndarray, list[str], dict[int, list[str]], np.ndarray]:
+    """The cases of a chunk (``template``'s static problem ``base`` with the swept inputs
+    ``pos`` and stiffnesses ``ea`` per case; all with ``template``'s static settings)
+    solved and their outputs stacked: (outputs, status, messages, warnings of the cases
+    that have some, fallback reasons). Raises on a fault (the caller fails the chunk)."""
+    from ..statics.batch import solve_batch
+
+    n = len(ea)
+    reasons = np.full(n, "", dtype=object)
+    warnings: dict[int, list[str]] = {}
+    method = template.analysis.static.method
+    compiled = _compiled_solve(base, pos, ea) if method == "catenary" else None
+    if method != "catenary":  # no batch kernel: the method's solver, case by case
+        problems = _problems(base, pos, ea)
+        st = StaticArrays.of(_solve_each(template, problems))
+        fallback = {}
+        reasons[:] = _general_reasons(template, problems, list(range(n)))
+    elif compiled is None:
+        general: list[int] = []
+        problems = _problems(base, pos, ea)
+        results = solve_batch(problems, deadline=deadline, general=general)
+        fallback = {i: r.fallback for i, r in enumerate(results) if r.fallback}
+        reasons[general] = _general_reasons(template, problems, general)
+        st = StaticArrays.of(results)
+    else:
+        st, rest, why = compiled
+        if rest.size:  # what no kernel settled: the general solver, one by one
+            st.put(
+                rest,
+                StaticArrays.of(
+                    solve_batch(
+                        _problems(base, _take(pos, rest), ea[rest]),
+                        deadline=deadline,
+                        contact=False,
+                    )
+                ),
+            )
+        fallback = {i: r for i, r in zip(rest.tolist(), why, strict=True) if r}
+        reasons[rest] = NO_KERNEL
+    for i, reason in fallback.items():
+        reasons[i] = reason
+    # break conditions, as each case alone (cablestudy.analyses.static_grid_limits)
+    apply_grid_limits(st, template, pos.get("lines"))
+    data, status, messages = array_outputs(st, template, ea, pos.get("lines"))
+    k = node_segments(st.s, template, pos.get("lines"))  # each case's own line's
+    max_strain = largest_strain(st.tension, np.take_along_axis(ea, k, axis=1))
+    limit = template.analysis.static.strain_warning
+    for i in np.flatnonzero((status == 0) & (max_strain > limit)):
+        warnings.setdefault(int(i), []).append(strain_warning(float(max_strain[i]), limit))
+    for i, reason in fallback.items():
+        if status[i] == 0:
+            warnings.setdefault(i, []).append(fallback_warning(reason))
+    # a line above the water's surface (cablestudy.analyses.plausibility)
+    for i, text in template_surface_warnings(template, st.s, st.position, status):
+        warnings.setdefault(i, []).append(text)
+    return data, status, messages, warnings, reasons

@@ -4,11 +4,11 @@ The study is validated once as a template, each swept value once at its own path
 (inside the smallest model that holds it where that is exactly the whole study's
 validation, :mod:`cablestudy.study.grid_values`; else as a whole study), and the checks
 that combine fields over the grid (:func:`expand_grid`): with NumPy where the
-compiled catenary kernels take the grid as arrays (end positions of fixed ends, segment
-stiffnesses, towing and mooring ends' loads; the line's loads, lengths and attachments
-and the seabed built once per combination of their
-values, :mod:`cablestudy.study.grid_lines`: :attr:`CaseGrid.arrays`,
-:mod:`cablestudy.analyses.static_grid`), else by the
+array chunk takes the grid (end positions of fixed ends, segment
+stiffnesses, towing and mooring ends' loads; the line's loads, lengths, attachments,
+coefficients and break limits and the seabed built once per combination of their
+values, :mod:`cablestudy.study.grid_lines`; the static settings, solved per group:
+:attr:`CaseGrid.arrays`, :mod:`cablestudy.analyses.static_grid`), else by the
 models' own ``mode="after"`` validators on each case's study, which is the template with
 its validated swept values copied in (:mod:`cablestudy.study.grid_studies`). A swept path
 that cannot be copied into the template (a model whose validator derives other fields
@@ -45,7 +45,15 @@ from .cases import (
     report_sweep_faults,
 )
 from .environment import seabed_height, seabed_slope
-from .grid_lines import MAX_LINES, line_count, line_index, line_studies, per_line, weightless
+from .grid_lines import (
+    MAX_LINES,
+    line_count,
+    line_index,
+    line_studies,
+    per_line,
+    static_setting,
+    weightless,
+)
 from .loader import StudyError, StudySource, validate_data
 from .study import Study
 
@@ -225,29 +233,34 @@ def _static_sweep(template: Study, axes: list[SweepAxis]) -> bool:
         return False
     if not axes or not _numeric(axes):
         return False
-    return all(copyable(template, p) for axis in axes for p in axis.paths)
+    # a path into a segment of a catalogue line type cannot be copied in: its line is
+    # validated as a whole study once per combination of its values (grid_lines)
+    return all(copyable(template, p) or per_line(p) for axis in axes for p in axis.paths)
 
 
 def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
-    """A static-only, method 'catenary' study without a quasi-static database (its grid
-    of solves per case is not an array kernel), in still water or a current
-    (:func:`_current_ok`), whose swept paths are all end positions of fixed ends, segment
-    stiffnesses, the numbers that set the line's loads, its lengths and attachments, the
-    seabed or the current (:func:`cablestudy.study.grid_lines.per_line`), or a towing or
-    mooring end's known load (:func:`_end_load`), with numeric values."""
+    """A static-only study (any static method: ``catenary`` through the compiled
+    kernels, another through its solver per case) without a quasi-static database (its
+    grid of solves per case is not an array kernel), with linear axial laws, in still
+    water or a current (:func:`_current_ok`), whose swept paths are all end positions
+    of fixed ends, segment stiffnesses, the numbers of the line, the seabed or the
+    current (:func:`cablestudy.study.grid_lines.per_line`), a towing or mooring end's
+    known load (:func:`_end_load`), or a static setting
+    (:func:`cablestudy.study.grid_lines.static_setting`), with numeric values."""
     an = template.analysis
-    if an.modal is not None or an.dynamic is not None or an.static.method != "catenary":
+    if an.modal is not None or an.dynamic is not None:
         return False
     if an.database is not None:
         return False
     if template.line.pulleys or not _current_ok(template):
         return False
     line = template.line
-    # the arrays' outputs take strain as T / EA and no break limits: a nonlinear law or
-    # a failure condition is solved as validated cases are (cablestudy.analyses.static_grid_cases)
-    if line.is_spring or line.failure is not None:
+    # the arrays' outputs take strain as T / EA: a nonlinear law is solved as validated
+    # cases are (cablestudy.analyses.static_grid_cases); break conditions are checked
+    # per case on the arrays (cablestudy.analyses.static_grid_limits)
+    if line.is_spring:
         return False
-    if any(seg.is_nonlinear or seg.failure is not None for seg in line.segments):
+    if any(seg.is_nonlinear for seg in line.segments):
         return False
     if getattr(an.static, "installation", None) is not None:
         return False
@@ -257,7 +270,12 @@ def _eligible(template: Study, axes: list[SweepAxis]) -> bool:
             if m:
                 if getattr(getattr(template.ends, m.group(1)), "kind", "") != "fixed":
                     return False
-            elif not (_STIFFNESS.match(path) or per_line(path) or _end_load(template, path)):
+            elif not (
+                _STIFFNESS.match(path)
+                or per_line(path)
+                or _end_load(template, path)
+                or static_setting(template, path)
+            ):
                 return False
             if not all(isinstance(v, int | float) and not isinstance(v, bool) for v in vals):
                 return False
@@ -282,8 +300,8 @@ def _current_ok(template: Study) -> bool:
     iteration per case in the compiled batch, :mod:`cablestudy.statics.batch_drag`, or the
     general solver where that does not take a case), except drag on the stretched
     diameter, which the catenary solver refuses (a case alone says so)."""
-    if not template.environment.current:
-        return True
+    if not template.environment.current or template.analysis.static.method != "catenary":
+        return True  # another method's solver takes each case as a case alone
     return template.analysis.static.drag_diameter == "unstretched"
 
 

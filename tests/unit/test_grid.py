@@ -212,14 +212,21 @@ def test_array_path_writes_the_case_by_case_dataset_bit_for_bit(tmp_path: Path, 
 
 
 def test_a_sweep_the_arrays_cannot_take_is_left_to_the_case_path() -> None:
-    # any numeric key of a static study is a grid; the compiled array route only for
-    # end positions, stiffnesses and the numbers of the line and the seabed
+    # any numeric key of a static study is a grid; the array route for end positions,
+    # stiffnesses, the numbers of the line and the seabed, the static settings, with any
+    # static method; not for gravity, nor a line with a non-linear law
+    text = TEXT.replace("ends.a.position.2: [-10.0, -20.0]", "environment.gravity: [9.8, 9.81]")
+    grid = expand_grid(parse_study_text(text, "gr.yaml"))
+    assert grid.chunked and not grid.arrays
+    text = TEXT.replace(
+        "axial_stiffness: 2.0e8}", "axial: {law: polynomial, coefficients: [2.0e8, 1.0e9]}}"
+    )
+    grid = expand_grid(parse_study_text(text, "gr.yaml"))
+    assert grid.chunked and not grid.arrays
     text = TEXT.replace("ends.a.position.2: [-10.0, -20.0]", "analysis.static.nodes: [21, 31]")
-    grid = expand_grid(parse_study_text(text, "gr.yaml"))
-    assert grid.chunked and not grid.arrays
+    assert expand_grid(parse_study_text(text, "gr.yaml")).arrays
     text = TEXT.replace("method: catenary", "method: analytic")
-    grid = expand_grid(parse_study_text(text, "gr.yaml"))
-    assert grid.chunked and not grid.arrays
+    assert expand_grid(parse_study_text(text, "gr.yaml")).arrays
     # not in chunks of rows (their cases through the per-case evaluators): a dynamic
     # analysis, a value that is not a number
     dynamic = TEXT.replace(

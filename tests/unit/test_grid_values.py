@@ -166,9 +166,7 @@ def test_each_case_study_is_built_once(monkeypatch: pytest.MonkeyPatch) -> None:
     assert all(grid.study_at(c.index) is c.study for c in cases)
     assert len(built) == 3
     static = LINE.split("analysis:")[0].replace(", current: [{z: 0.0, speed: 0.5}]", "")
-    src = parse_study_text(
-        static + "sweep:\n  line.segments.0.length: [50.0, 60.0, 70.0]\n", "s.yaml"
-    )
+    src = parse_study_text(static + "sweep:\n  environment.gravity: [9.79, 9.8, 9.81]\n", "s.yaml")
     grid = expand_grid(src)
     assert grid.chunked and not grid.arrays
     assert not any(isinstance(v, Study) for v in grid.memo.values())
