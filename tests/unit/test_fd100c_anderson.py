@@ -31,7 +31,7 @@ def test_dot_within_the_bound_of_a_summation() -> None:
 
 
 def test_small_solve_is_backward_stable_and_refuses_a_singular_system() -> None:
-    """Gaussian elimination with partial pivoting of an m x m system (m <= 3, as the
+    """Gaussian elimination with partial pivoting of an m x m system (m <= DEPTH, as the
     mixing's): the residual within ``c m^2 eps |A| |x|`` (backward stability, growth
     factor at most 2^(m-1)), on Gram matrices as the mixing forms them, some nearly
     singular (two histories almost alike) with the mixing's regularisation; a zero
