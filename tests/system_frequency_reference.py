@@ -149,17 +149,20 @@ def _unflat(
     return out, flat[start:].reshape(like_points.shape)
 
 
-#: secant pairs kept by the Anderson mixing of the drag iteration (as the single line's,
-#: :data:`cablestudy.dynamics.harmonic_cases.ANDERSON_DEPTH`)
-ANDERSON_DEPTH = 3
+#: secant pairs kept by the Anderson mixing of the drag iteration and the damping of
+#: its step (:data:`cablestudy.dynamics.system_fd_fit.DEPTH` and ``MIXING``, where
+#: the choice is measured)
+ANDERSON_DEPTH = 4
+MIXING = 0.8
 
 
 class _Anderson:
     """Mixing of the fixed point ``D = G(D)`` (``G`` the drag fit to the motion ``D``
-    gave), the single-line iteration's rule: after a change that grew, the mean of ``D``
-    and ``G`` with the history dropped; else Anderson mixing over the last pairs of
-    residual ``R = G - D`` and ``G``: ``D = G - sum_j g_j (G - G_j)`` with ``g`` the
-    least-squares fit of ``R`` by the residual differences ``R - R_j``."""
+    gave): after a change that grew, the mean of ``D`` and ``G`` with the history
+    dropped; else damped Anderson mixing over the last pairs of residual ``R = G - D``
+    and ``G``: ``D = gbar - (1 - MIXING) rbar`` with ``gbar = G - sum_j g_j (G - G_j)``,
+    ``rbar = R - sum_j g_j (R - R_j)`` and ``g`` the least-squares fit of ``R`` by the
+    residual differences ``R - R_j`` (with one pair, ``D + MIXING R``)."""
 
     def __init__(self) -> None:
         self.R: list[np.ndarray] = []
@@ -170,21 +173,26 @@ class _Anderson:
             self.R.clear()
             self.G.clear()
             return 0.5 * (d + g)
-        self.R.append(g - d)
+        r = g - d
+        self.R.append(r)
         self.G.append(g)
         if len(self.R) > ANDERSON_DEPTH + 1:
             del self.R[0], self.G[0]
+        plain = d + MIXING * r
         if len(self.R) == 1:
-            return g
-        r = self.R[-1]
+            return plain
         dR = np.array([r - Rj for Rj in self.R[:-1]])
         A = dR @ dR.T
         trace = float(np.trace(A))
         if not trace > 0.0:
-            return g
+            return plain
         A += 1e-12 * trace * np.eye(A.shape[0])  # a near-dependent pair gets no weight
         gam = np.linalg.solve(A, dR @ r)
-        return g - sum(c * (g - Gj) for c, Gj in zip(gam, self.G[:-1], strict=True))
+        damp = 1.0 - MIXING  # gbar - damp rbar, a pair at a time (as the kernel)
+        out = g - damp * r
+        for c, Gj, Rj in zip(gam, self.G[:-1], self.R[:-1], strict=True):
+            out -= c * ((g - Gj) - damp * (r - Rj))
+        return out
 
 
 def _velocity_change(old: list[np.ndarray], new: list[np.ndarray]) -> float:

@@ -82,6 +82,7 @@ def workspace(m, bw, samples):  # noqa: ANN001, ANN201
         np.zeros((P, 3), dtype=np.complex128),  # qs_of: the prescribed motion it is of
         np.zeros(1, dtype=np.int64),  # qs_ok: 1 while qs_d, qs_p hold a solved start
         np.empty(max(K, 1), dtype=np.complex128),  # pinv: the band factor's pivots' inverses
+        np.empty((DEPTH + 1, DEPTH + 1)),  # gram: the mixing's Gram matrix of hist_R
     )
 
 
@@ -296,7 +297,7 @@ def iterate(  # noqa: ANN201, PLR0913
                 converged = True
                 break
             _fit_at(omega, m, ws, exact, disp, u_pts, fit)
-            anderson(flat, fit, hist_R, hist_G, state, change, last)
+            anderson(flat, fit, hist_R, hist_G, ws[31], state, change, last)
             last = change
         if not converged:
             info[0] = 3  # NOT_CONVERGED

@@ -38,9 +38,10 @@ any node without current, :mod:`.elliptic_fit`); a free point's isotropic drag `
 w`` (``c = rho C_d A / 2``) is fitted the same way (over ``samples`` phases; in closed
 form without current when ``samples`` is unset). Since ``D`` depends on the motion the
 solve is iterated from the quasi-static motion (``w = 0``: the stiffness alone, the
-velocity then ``i w u``), with the single-line iteration's Anderson mixing (depth 3;
-after a change that grew, the mean of the last two with the history dropped), until the
-velocity amplitudes of every node change by less than ``tolerance`` of the largest.
+velocity then ``i w u``), with Anderson mixing (depth 4, the step damped by 0.8:
+:data:`.system_fd_fit.MIXING`; after a change that grew, the mean of the last two with
+the history dropped, as the single line's iteration), until the velocity amplitudes of
+every node change by less than ``tolerance`` of the largest.
 
 Output per line: end tension variations at A and B (``F_hat . dF``, ``F_hat`` the unit
 static force of the line on the point, as in the single-line frequency domain), the

@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from cablestudy.dynamics.system_fd_fit import DEPTH, _dot, _small_solve, anderson
+from cablestudy.dynamics.system_fd_fit import DEPTH, MIXING, _dot, _small_solve, anderson
 
 EPS = np.finfo(float).eps
 
@@ -31,7 +31,7 @@ def test_dot_within_the_bound_of_a_summation() -> None:
 
 
 def test_small_solve_is_backward_stable_and_refuses_a_singular_system() -> None:
-    """Gaussian elimination with partial pivoting of an m x m system (m <= 3, as the
+    """Gaussian elimination with partial pivoting of an m x m system (m <= DEPTH, as the
     mixing's): the residual within ``c m^2 eps |A| |x|`` (backward stability, growth
     factor at most 2^(m-1)), on Gram matrices as the mixing forms them, some nearly
     singular (two histories almost alike) with the mixing's regularisation; a zero
@@ -55,15 +55,20 @@ def test_small_solve_is_backward_stable_and_refuses_a_singular_system() -> None:
 
 
 def test_a_mixing_step_is_the_normal_equations_solution() -> None:
-    """With a history of pairs the mixed iterate is ``g - sum_j gam_j (g - G_j)`` with
+    """With a history of pairs the mixed iterate is ``gbar - (1 - MIXING) rbar``,
+    ``gbar = g - sum_j gam_j (g - G_j)``, ``rbar = r - sum_j gam_j (r - R_j)``, with
     ``gam`` solving ``(dR dR^T + 1e-12 tr I) gam = dR r`` (the NumPy reference's step,
-    tests/system_frequency_reference.py): equal to rounding of the small system, its
-    condition number times eps, relative to the iterate's size."""
+    tests/system_frequency_reference.py); with one pair ``d + MIXING r`` bit for bit.
+    Equal to rounding of the small system: its condition number times eps relative to
+    the iterate's size, times the cancellation of forming ``(r - R_a) . (r - R_b)``
+    from the residuals' Gram matrix (each product is rounded relative to ``|r|^2``,
+    ``|R_a|^2``, not to the differences')."""
     rng = np.random.default_rng(7)
     size = 40
     keep = DEPTH + 1
     hist_R = np.empty((keep, size))
     hist_G = np.empty((keep, size))
+    gram = np.empty((keep, keep))
     state = np.zeros(2, dtype=np.int64)
     d = rng.standard_normal(size)
     last = math.inf
@@ -77,19 +82,22 @@ def test_a_mixing_step_is_the_normal_equations_solution() -> None:
         old_R = [hist_R[r].copy() for r in rows]
         old_G = [hist_G[r].copy() for r in rows]
         r = g - d
-        want = g.copy()
+        want = d + MIXING * r
+        tol = 0.0
         if old_R:
             dR = np.array([r - q for q in old_R])
             A = dR @ dR.T
             A += 1e-12 * np.trace(A) * np.eye(len(old_R))
             gam = np.linalg.solve(A, dR @ r)
-            want = g - sum(gj * (g - Gj) for gj, Gj in zip(gam, old_G, strict=True))
-            tol = 100 * np.linalg.cond(A) * EPS * (np.abs(g).max() + np.abs(old_G).max())
-        else:
-            tol = 0.0
+            gbar = g - sum(gj * (g - Gj) for gj, Gj in zip(gam, old_G, strict=True))
+            rbar = r - sum(gj * (r - Rj) for gj, Rj in zip(gam, old_R, strict=True))
+            want = gbar - (1.0 - MIXING) * rbar
+            cancel = max(r @ r, *(q @ q for q in old_R)) / np.abs(A).max()
+            scale = np.abs(g).max() + np.abs(old_G).max() + np.abs(old_R).max()
+            tol = 100 * np.linalg.cond(A) * EPS * scale * max(1.0, cancel)
         change *= 0.5  # shrinking: no restart
         got = d.copy()
-        anderson(got, g, hist_R, hist_G, state, change, last)
+        anderson(got, g, hist_R, hist_G, gram, state, change, last)
         last = change
         assert np.max(np.abs(got - want)) <= tol
         d = got
