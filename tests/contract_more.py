@@ -242,3 +242,20 @@ def hanging_chain_frequencies(length: float, count: int) -> list[float]:
     from scipy.special import jn_zeros
 
     return [float(j) * math.sqrt(G / length) / (4.0 * math.pi) for j in jn_zeros(0, count)]
+
+#: a spring whose end B is pulled 0.5 m along it by a ramp-and-hold table, run 50 s
+SPRING_TABLE = """\
+name: spring-table
+environment: {fluid: air}
+line: {kind: spring, length: 10.0, axial: {law: linear, stiffness: 5000.0}}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, 0.0]}
+  b: {kind: fixed, position: [10.2, 0.0, 0.0]}
+analysis:
+  dynamic:
+    duration: 50.0
+    excitation:
+      end: b
+      direction: [1.0, 0.0, 0.0]
+      table: [[0.0, 0.0], [10.0, 0.25], [20.0, 0.5], [30.0, 0.5]]
+"""

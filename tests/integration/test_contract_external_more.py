@@ -29,6 +29,7 @@ from tests.contract_more import (
     RHO,
     SPRING_PULLEY,
     SPRING_SLACK,
+    SPRING_TABLE,
     SPRINGS,
     TABLE_PULL,
     hanging_chain_frequencies,
@@ -222,6 +223,18 @@ def test_a_time_table_moves_the_end_as_written(tmp_path: Path) -> None:
     np.testing.assert_allclose(ds["history_displacement"].values[0, -1], [0.0, 0.0, 0.2])
     assert float(ds["history_tension"][-1]) == pytest.approx(static + rise, rel=1e-6)
     assert float(ds["tension_max"]) == pytest.approx(static + rise, rel=1e-4)
+
+
+def test_a_spring_pulled_by_a_time_table_reaches_the_tables_stretch(tmp_path: Path) -> None:
+    """A linear spring (5000 N/m, stretched 0.2 m) pulled 0.5 m more by a ramp-and-hold
+    table over a 50 s run: its tension runs from 1000 N to 5000 (0.2 + 0.5) = 3500 N
+    exactly (algebraic); the ramp scaled the table, 2250 N."""
+    ds = run(tmp_path, SPRING_TABLE)
+    ok_cases(ds, ["tension_max", "tension_min"])
+    assert str(ds["dynamic_method"].values) == "spring"
+    assert float(ds["tension_static"]) == pytest.approx(1000.0, rel=1e-12)
+    assert float(ds["tension_min"]) == pytest.approx(1000.0, rel=1e-12)
+    assert float(ds["tension_max"]) == pytest.approx(3500.0, rel=1e-12)
 
 
 def test_a_table_that_does_not_start_at_rest_is_refused(
