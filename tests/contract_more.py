@@ -243,6 +243,7 @@ def hanging_chain_frequencies(length: float, count: int) -> list[float]:
 
     return [float(j) * math.sqrt(G / length) / (4.0 * math.pi) for j in jn_zeros(0, count)]
 
+
 #: a spring whose end B is pulled 0.5 m along it by a ramp-and-hold table, run 50 s
 SPRING_TABLE = """\
 name: spring-table
@@ -258,4 +259,41 @@ analysis:
       end: b
       direction: [1.0, 0.0, 0.0]
       table: [[0.0, 0.0], [10.0, 0.25], [20.0, 0.5], [30.0, 0.5]]
+"""
+
+#: a mooring line's modes for two counts of modes in one study (the mode dimension is
+#: the larger count: the smaller case is padded)
+MODES_SWEPT = """\
+name: modes-swept
+environment: {fluid: water}
+line:
+  segments:
+    - {length: 100.0, diameter: 0.05, mass_per_length: 8.0, axial_stiffness: 2.0e8}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -60.0]}
+  b: {kind: fixed, position: [80.0, 0.0, -10.0]}
+analysis:
+  static: {nodes: 21}
+  modal: {modes: 2, elements: 40}
+sweep:
+  analysis.modal.modes: [2, 4]
+"""
+
+#: a wire whose law is checked only up to 5 % strain, tabulated out to end distances
+#: past 1.05 times its length: those grid points fail (the law's max_strain)
+DATABASE_PAST_MAX_STRAIN = """\
+name: db-past-max-strain
+environment: {fluid: water}
+line:
+  segments:
+    - {length: 120.0, diameter: 0.05, mass_per_length: 10.0,
+       axial: {law: linear, stiffness: 6.0e6, max_strain: 0.05}}
+ends:
+  a: {kind: fixed, position: [0.0, 0.0, -100.0]}
+  b: {kind: fixed, position: [100.0, 0.0, -95.0]}
+analysis:
+  static: {nodes: 21}
+  database:
+    horizontal_distance: {start: 100.0, stop: 130.0, num: 4}
+    height_difference: {start: -10.0, stop: 20.0, num: 4}
 """

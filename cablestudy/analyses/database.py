@@ -297,13 +297,26 @@ def check_cells(
 
 
 def cell_warning(data: dict[str, Any], length: float) -> str:
-    """The case's warning about its database's flagged cells (:func:`check_cells`), or
-    "" when every cell is verified (or the case holds no database)."""
+    """The case's warning about its database's failed grid points, else its flagged cells
+    (:func:`check_cells`), or "" when every point solved and every cell is verified (or
+    the case holds no database)."""
     for kind, layout in DATABASE_LAYOUTS.items():
         check = data.get(f"{layout.prefix}cell_check")
         if check is None:
             continue
         P, Q = (np.asarray(data[v]) for v in layout.grid_variables)
+        status = np.asarray(data[f"{layout.prefix}status"])
+        failed = status != 0
+        if np.any(failed):  # the cells are not checked then (-1): say why instead
+            i, j = np.argwhere(failed)[0]
+            codes = ", ".join(str(c) for c in sorted(set(status[failed].tolist())))
+            return (
+                f"quasi-static database: {int(failed.sum())} of {status.size} grid points "
+                f"failed (static status {codes}; NaN in their tables), e.g. "
+                f"{_describe(kind, float(P[i]), float(Q[j]))}: a lookup refuses the "
+                "database; solve that point as a study of its own for the solver's message, "
+                "or shrink the grid to where the line solves"
+            )
         return _flag_summary(kind, P, Q, np.asarray(check)[:-1, :-1], length)
     return ""
 

@@ -21,11 +21,13 @@ from cablestudy.cli import main
 from tests.contract_more import (
     CATENARY_PULLEY,
     DATABASE_GRID,
+    DATABASE_PAST_MAX_STRAIN,
     DATABASE_SPRING,
     DATABASE_TURNED,
     EXPORT_LEG,
     HANGING_CHAIN,
     LAYING,
+    MODES_SWEPT,
     RHO,
     SPRING_PULLEY,
     SPRING_SLACK,
@@ -95,6 +97,22 @@ def test_a_taut_umbilical_is_the_tensioned_pinned_beam_and_keeps_it_turned(
     )
 
 
+def test_a_sweep_over_the_number_of_modes_explains_its_padding(tmp_path: Path) -> None:
+    """Two and four modes in one study: the mode dimension holds four, the two-mode case
+    is NaN beyond its second mode with status 0, and the NaN is explained by a
+    ``nan_means`` (a bare NaN means a failed analysis); the modes both cases hold are the
+    same numbers (one model)."""
+    ds = run(tmp_path, MODES_SWEPT)
+    assert np.all(ds["status"].values == 0) and np.all(ds["modal_status"].values == 0)
+    f = ds["natural_frequency"]
+    assert f.sizes["mode"] == 4
+    assert np.all(np.isnan(f.sel(modes=2).values[2:]))
+    assert np.all(np.isfinite(f.sel(modes=4).values))
+    np.testing.assert_array_equal(f.sel(modes=2).values[:2], f.sel(modes=4).values[:2])
+    for name in ("natural_frequency", "mode_shape"):
+        assert "analysis.modal.modes" in ds[name].attrs["nan_means"], name
+
+
 # ------------------------------------------------------------------ database
 
 
@@ -125,6 +143,24 @@ def test_a_turned_database_on_a_slope_in_a_current_holds_direct_solves(
     assert float(db["database_laid_length"].sel(point)) == pytest.approx(
         float(direct["laid_length"]), abs=1e-6
     )
+
+
+def test_failed_grid_points_of_a_database_are_warned(tmp_path: Path) -> None:
+    """A wire whose law holds to 5 % strain, tabulated out to 130 m of a 120 m line: the
+    points past 126 m end distance fail (max_strain) and are NaN in the tables with
+    their point status; the case keeps status 0 (its own statics solved) and says so in
+    its warning, naming a point (it had none: the run reported no failure and only
+    ``lookup`` refused the table)."""
+    ds = run(tmp_path, DATABASE_PAST_MAX_STRAIN)
+    status = ds["database_status"].values
+    far = np.hypot(ds["horizontal_distance"].values[:, None], ds["height_difference"].values)
+    assert int(ds["status"]) == 0
+    np.testing.assert_array_equal(status != 0, far > 1.05 * 120.0 * (1 + 1e-3))
+    assert np.all(np.isnan(ds["database_tension_b"].values[status != 0]))
+    assert np.all(np.isfinite(ds["database_tension_b"].values[status == 0]))
+    warning = str(ds["warning"].values)
+    assert f"{int((status != 0).sum())} of 16 grid points failed" in warning
+    assert "horizontal distance 130 m" in warning
 
 
 def test_a_database_of_a_spring_line_is_refused_by_name(
