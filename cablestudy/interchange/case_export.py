@@ -61,19 +61,6 @@ def choose_case(src: StudySource, selectors: list[str]) -> Any:
     return found[0]
 
 
-def refused(case: Any, src: StudySource) -> None:
-    """Raise :class:`InterchangeError` with what ``cablestudy validate`` refuses in the
-    case (a study that cannot run is not exported either: its refused keys would be
-    dropped from the file silently)."""
-    from ..analyses.evaluate import check_supported
-    from ..study.loader import StudyError
-
-    try:
-        check_supported([case], src)
-    except StudyError as exc:
-        raise InterchangeError(f"the study is refused (cablestudy validate):\n{exc}") from None
-
-
 def export_case(src: StudySource, selectors: list[str]) -> ExportedCase:
     """The MoorDyn input file of one case of ``src`` (chosen by ``selectors``)."""
     from ..statics import STATIC_SOLVERS, STATUS_OK
@@ -83,7 +70,6 @@ def export_case(src: StudySource, selectors: list[str]) -> ExportedCase:
     study = case.study
     coords = ", ".join(f"{k}={v}" for k, v in case.coords.items())
     title = f"study {study.name}" + (f", case {coords}" if coords else "")
-    refused(case, src)
     if study.is_system:
         return _system(study, title)
     check_exportable(study)  # before the statics: a spring line has no segments to solve

@@ -313,8 +313,7 @@ def test_export_refuses_or_names_what_the_moordyn_file_cannot_hold(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     """A spring line is refused naming its kind (it failed as "the case's statics
-    failed (ZeroDivisionError ...)", solved as a catenary of no segments); a study that
-    ``validate`` refuses is not exported (its refused key was dropped silently); cable
+    failed (ZeroDivisionError ...)", solved as a catenary of no segments); cable
     laying is exported as the line at rest with a warning naming the key (it was
     dropped silently: MoorDyn's line would carry mu V^2 less tension)."""
 
@@ -325,13 +324,6 @@ def test_export_refuses_or_names_what_the_moordyn_file_cannot_hold(
     assert export(SPRING_SLACK) == 2
     err = capsys.readouterr().err
     assert "line.kind: spring" in err and "ZeroDivision" not in err
-    bad = LAYING.replace("nodes: 61", "nodes: 61\n    drag_diameter: stretched").replace(
-        "installation: {payout_speed: 2.0}\n", ""
-    )
-    bad = bad.split("sweep:")[0]
-    assert export(bad) == 2
-    err = capsys.readouterr().err
-    assert "analysis.static.drag_diameter" in err and "refused" in err
     assert export(LAYING, "--case", "payout_speed=2.0") == 0
     assert "analysis.static.installation" in capsys.readouterr().err
 
