@@ -297,3 +297,26 @@ analysis:
     horizontal_distance: {start: 100.0, stop: 130.0, num: 4}
     height_difference: {start: -10.0, stop: 20.0, num: 4}
 """
+
+#: a taut tendon from an anchor to a hull's keel, the hull heaved 0.2 m by a
+#: ramp-and-hold table over a 120 s run (a system: the same motion kernel)
+TENDON_TABLE = """\
+name: tendon-table
+description: a hull heaved 0.2 m by a time table, its tendon taut
+environment: {fluid: water}
+points:
+  anchor: {kind: fixed, position: [0.0, 0.0, -101.0]}
+  keel: {kind: body, body: hull, offset: [0.0, 0.0, -1.0]}
+bodies:
+  hull: {kind: prescribed, position: [0.0, 0.0, 0.5, 0.0, 0.0, 0.0]}
+lines:
+  tendon: {a: anchor, b: keel, segments: [{length: 100.0, diameter: 0.05,
+           mass_per_length: 8.0, axial_stiffness: 2.0e8, damping_ratio: 0.5}]}
+analysis:
+  dynamic:
+    method: time
+    elements: 10
+    duration: 120.0
+    history: {periods: 0.25, samples_per_period: 8}
+    excitation: {body: hull, dof: heave, table: [[0.0, 0.0], [10.0, 0.1], [20.0, 0.2], [30.0, 0.2]]}
+"""
