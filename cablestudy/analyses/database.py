@@ -48,7 +48,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..statics import STATIC_SOLVERS, EndCondition
-from ..study.problem import static_problem
+from ..statics.limits import apply_limits
+from ..study.problem import static_limits, static_problem
 from .variables import DATABASE_LAYOUTS, DATABASE_QUANTITIES
 
 if TYPE_CHECKING:
@@ -154,6 +155,11 @@ def solve_database(study: Study, deadline: float | None = None) -> dict[str, np.
     layout = DATABASE_LAYOUTS[db.grid]
     base = static_problem(study)
     solver = STATIC_SOLVERS[study.analysis.static.method]
+    # each point is held to its laws' checked strain range as a study of that point is
+    # (it failed there, but was tabulated with status 0); the break limits are not
+    # applied: a table of the tensions is what the user compares with them
+    limits = static_limits(study)
+    limits = replace(limits, break_tension=np.full_like(limits.break_tension, np.inf))
     rA = np.asarray(base.end_a.position, dtype=float)
     th = heading(study)
     e = np.array([math.cos(th), math.sin(th), 0.0])
@@ -173,7 +179,7 @@ def solve_database(study: Study, deadline: float | None = None) -> dict[str, np.
         for j in range(shape[1]):
             rB = rA + R[i, j] * e + np.array([0.0, 0.0, Hh[i, j]])
             prob = replace(base, end_b=EndCondition(kind="fixed", position=rB))
-            res = solver.solve(prob, deadline=deadline).check_finite()
+            res = apply_limits(solver.solve(prob, deadline=deadline).check_finite(), limits)
             out["status"][i, j] = res.status
             if res.status != 0:
                 continue
@@ -189,7 +195,9 @@ def solve_database(study: Study, deadline: float | None = None) -> dict[str, np.
         Q,
         out,
         float(sum(seg.length for seg in study.line.segments)),
-        lambda r, h: _solve_at(solver, base, rA + r * e + np.array([0.0, 0.0, h]), deadline),
+        lambda r, h: apply_limits(
+            _solve_at(solver, base, rA + r * e + np.array([0.0, 0.0, h]), deadline), limits
+        ),
     )
     data = {f"{layout.prefix}{k}": v for k, v in out.items()}
     data[layout.grid_variables[0]] = P
@@ -297,13 +305,26 @@ def check_cells(
 
 
 def cell_warning(data: dict[str, Any], length: float) -> str:
-    """The case's warning about its database's flagged cells (:func:`check_cells`), or
-    "" when every cell is verified (or the case holds no database)."""
+    """The case's warning about its database's failed grid points, else its flagged cells
+    (:func:`check_cells`), or "" when every point solved and every cell is verified (or
+    the case holds no database)."""
     for kind, layout in DATABASE_LAYOUTS.items():
         check = data.get(f"{layout.prefix}cell_check")
         if check is None:
             continue
         P, Q = (np.asarray(data[v]) for v in layout.grid_variables)
+        status = np.asarray(data[f"{layout.prefix}status"])
+        failed = status != 0
+        if np.any(failed):  # the cells are not checked then (-1): say why instead
+            i, j = np.argwhere(failed)[0]
+            codes = ", ".join(str(c) for c in sorted(set(status[failed].tolist())))
+            return (
+                f"quasi-static database: {int(failed.sum())} of {status.size} grid points "
+                f"failed (static status {codes}; NaN in their tables), e.g. "
+                f"{_describe(kind, float(P[i]), float(Q[j]))}: a lookup refuses the "
+                "database; solve that point as a study of its own for the solver's message, "
+                "or shrink the grid to where the line solves"
+            )
         return _flag_summary(kind, P, Q, np.asarray(check)[:-1, :-1], length)
     return ""
 

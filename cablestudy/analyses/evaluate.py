@@ -70,6 +70,10 @@ def check_supported(cases: list[Case], src: StudySource) -> None:
             from .spring import spring_problems
 
             problems.extend(p for p in spring_problems(case, src) if p not in problems)
+            if case.study.analysis.database is not None:  # refused there, by name
+                from .database import database_problems
+
+                problems.extend(p for p in database_problems(case, src) if p not in problems)
             continue
         problems.extend(p for p in law_problems(case, src) if p not in problems)
         if case.study.line.pulleys:

@@ -394,10 +394,17 @@ for _k in (
         nan_means="the case ran the time domain (dynamic_method 'time'), which has no "
         "harmonic amplitude, phase or drag linearisation",
     )
-# a sweep may switch the mode shapes off in some cases (analysis.modal.mode_shapes)
+# a sweep may switch the mode shapes off in some cases (analysis.modal.mode_shapes), or
+# ask some cases for fewer modes than others (analysis.modal.modes: the mode dimension
+# is the largest count)
+#: (natural_frequency has no nan_means in the registry, so that a NaN frequency of a
+#: solved case is caught: the dataset adds this one where the padding shows,
+#: cablestudy/run/dataset.py)
+FEWER_MODES = "the mode number is beyond the case's analysis.modal.modes (a sweep over it)"
 OUTPUTS["mode_shape"] = replace(
     OUTPUTS["mode_shape"],
-    nan_means="the case's analysis.modal.mode_shapes is false: its mode shapes were not written",
+    nan_means="the case's analysis.modal.mode_shapes is false: its mode shapes were not "
+    f"written; or {FEWER_MODES}",
 )
 OUTPUTS.update(
     {

@@ -4,7 +4,9 @@ The displacement of an end from its static position is ``r(t) d(t)``, where ``d`
 the sum of the motions given for that end and the ramp ``r`` rises from 0 to 1 as
 ``r = (1 - cos(pi t / t_r)) / 2`` over ``t_r``: with ``r(0) = r'(0) = 0`` the end
 starts at rest, so the start-up transient is small. Velocity and acceleration follow
-by the product rule (both continuous).
+by the product rule (both continuous). The ramp starts the repeating motions
+(harmonics, spectral lines, periodic tables); a non-periodic table starts at 0 (its
+first displacement, checked in the study) and is added as written, unramped.
 """
 
 from __future__ import annotations
@@ -219,7 +221,41 @@ def motion_at(  # noqa: ANN201
             for a in range(3):
                 out[q, e, a] = 0.0
     _harmonics(t, h_end, h_dir, h_amp, h_freq, h_phase, out)
+    _add_tables(
+        t, True, tab_end, tab_dir, tab_periodic, tab_last, tab_x, tab_c, tab_xo, tab_co, out
+    )
+    tr = ramp_time
+    if tr > 0.0 and t < tr:
+        if t <= 0.0:
+            r = dr = ddr = 0.0
+        else:
+            w = math.pi / tr
+            c, s = math.cos(w * t), math.sin(w * t)
+            r, dr, ddr = 0.5 * (1.0 - c), 0.5 * w * s, 0.5 * w * w * c
+        for e in range(out.shape[1]):
+            for a in range(3):
+                u, du, ddu = out[0, e, a], out[1, e, a], out[2, e, a]
+                out[0, e, a] = r * u
+                out[1, e, a] = r * du + dr * u
+                out[2, e, a] = r * ddu + 2.0 * dr * du + ddr * u
+    # a non-periodic table is the motion as written (it starts at 0, the static
+    # position: study/system_dynamics.py), not ramped: a ramp of ramp_periods x the
+    # run's period (the duration, when nothing repeats) scaled it, so the end never
+    # reached the table's displacement within the run
+    _add_tables(
+        t, False, tab_end, tab_dir, tab_periodic, tab_last, tab_x, tab_c, tab_xo, tab_co, out
+    )
+
+
+@njit(cache=True)
+def _add_tables(  # noqa: ANN202
+    t, periodic, tab_end, tab_dir, tab_periodic, tab_last, tab_x, tab_c, tab_xo, tab_co, out
+):  # noqa: ANN001
+    """Add the tables whose periodic flag is ``periodic`` to ``out`` (as
+    :func:`motion_at`)."""
     for k in range(tab_end.shape[0]):
+        if tab_periodic[k] != periodic:
+            continue
         u, du, ddu = _table(t, k, tab_periodic, tab_last, tab_x, tab_c, tab_xo, tab_co)
         e = tab_end[k]
         for a in range(3):
@@ -227,18 +263,3 @@ def motion_at(  # noqa: ANN201
             out[0, e, a] += u * d
             out[1, e, a] += du * d
             out[2, e, a] += ddu * d
-    tr = ramp_time
-    if tr <= 0.0 or t >= tr:
-        return
-    if t <= 0.0:
-        r = dr = ddr = 0.0
-    else:
-        w = math.pi / tr
-        c, s = math.cos(w * t), math.sin(w * t)
-        r, dr, ddr = 0.5 * (1.0 - c), 0.5 * w * s, 0.5 * w * w * c
-    for e in range(out.shape[1]):
-        for a in range(3):
-            u, du, ddu = out[0, e, a], out[1, e, a], out[2, e, a]
-            out[0, e, a] = r * u
-            out[1, e, a] = r * du + dr * u
-            out[2, e, a] = r * ddu + 2.0 * dr * du + ddr * u

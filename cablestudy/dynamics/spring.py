@@ -91,7 +91,7 @@ class SpringDynamicResult:
 def end_displacements(motion: EndMotion, t: np.ndarray) -> np.ndarray:
     """Displacements [m] of ends A and B at times ``t`` [s], shape (n, 2, 3): the
     displacement of :meth:`EndMotion.at` (harmonics and ramp vectorised over ``t``;
-    time tables point by point)."""
+    time tables point by point; the ramp on all but the non-periodic tables)."""
     t = np.asarray(t, dtype=float).ravel()
     out = np.zeros((t.size, 2, 3))
     if motion.harmonic_amplitude.size:
@@ -102,15 +102,20 @@ def end_displacements(motion: EndMotion, t: np.ndarray) -> np.ndarray:
             out[:, e, :] += (motion.harmonic_amplitude[k] * s[:, k])[:, None] * (
                 motion.harmonic_direction[k]
             )
-    for tab in motion.tables:
-        u = np.array([tab.evaluate(float(ti))[0] for ti in t])
-        out[:, tab.end, :] += u[:, None] * tab.direction
-    tr = motion.ramp_time
-    if tr > 0.0:
-        ramp = np.where(
-            t >= tr, 1.0, np.where(t <= 0.0, 0.0, 0.5 * (1.0 - np.cos(math.pi * t / tr)))
-        )
-        out *= ramp[:, None, None]
+    for periodic in (True, False):
+        for tab in motion.tables:
+            if tab.periodic != periodic:
+                continue
+            u = np.array([tab.evaluate(float(ti))[0] for ti in t])
+            out[:, tab.end, :] += u[:, None] * tab.direction
+        tr = motion.ramp_time
+        if periodic and tr > 0.0:
+            # the ramp starts the repeating motions; a non-periodic table, added after
+            # it, moves as written (as :func:`.excitation.motion_at`)
+            ramp = np.where(
+                t >= tr, 1.0, np.where(t <= 0.0, 0.0, 0.5 * (1.0 - np.cos(math.pi * t / tr)))
+            )
+            out *= ramp[:, None, None]
     return out
 
 

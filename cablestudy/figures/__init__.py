@@ -1,7 +1,8 @@
 """Paper figures: one builder per figure, reading results datasets.
 
 :data:`FIGURES` maps a figure name to (the study names it reads, builder). ``build_all``
-runs any missing study from ``configs/`` (unless told not to) and writes PNGs.
+runs any missing study from ``configs/`` (unless told not to), and any whose result was
+made from another text of its config (its ``study_sha256``), and writes PNGs.
 """
 
 from __future__ import annotations
@@ -17,13 +18,27 @@ class MissingResult(FileNotFoundError):
     """A figure needs a result file that is not there and may not be made here."""
 
 
+def _stale(path: Path, config: Path) -> bool:
+    """True when the result ``path`` was made from another text than ``config`` (its
+    ``study_sha256`` differs from the config's): a figure from it would silently show
+    the study as it was, not as it is."""
+    from ..study.loader import read_study_source
+
+    with xr.open_dataset(path) as ds:
+        made_from = ds.attrs.get("study_sha256")
+    return made_from != read_study_source(config).sha256
+
+
 def _ensure_study(name: str, results: Path, configs: Path, run_missing: bool) -> Path:
     path = results / f"{name}.nc"
-    if path.exists():
+    config = configs / f"{name}.yaml"
+    stale = path.exists() and config.is_file() and _stale(path, config)
+    if path.exists() and not stale:
         return path
     if not run_missing:
+        why = f"was made from another version of {config}" if stale else "is missing"
         raise MissingResult(
-            f"{path} is missing; make it with `cablestudy run {configs / name}.yaml --out "
+            f"{path} {why}; make it with `cablestudy run {configs / name}.yaml --out "
             f"{results}`, or run `cablestudy figures` without --no-run"
         )
     from ..analyses.evaluate import check_supported

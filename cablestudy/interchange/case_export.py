@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 
 from ..study.loader import StudySource
-from .export import ExportedCase, moordyn_input
+from .export import ExportedCase, check_exportable, moordyn_input
 from .moordyn_format import InterchangeError
 
 
@@ -72,6 +72,7 @@ def export_case(src: StudySource, selectors: list[str]) -> ExportedCase:
     title = f"study {study.name}" + (f", case {coords}" if coords else "")
     if study.is_system:
         return _system(study, title)
+    check_exportable(study)  # before the statics: a spring line has no segments to solve
     problem = static_problem(study)
     solver = STATIC_SOLVERS[study.analysis.static.method]
     missing = solver.unsupported(problem)

@@ -146,6 +146,50 @@ def file_text(
     return "\n".join(rows) + "\n"
 
 
+def check_exportable(study: Study) -> None:
+    """Raise :class:`InterchangeError` for a one-line study the MoorDyn file cannot hold
+    (before its statics are solved: a spring line has no segments to solve)."""
+    segs = study.line.segments
+    if study.line.is_spring:
+        raise InterchangeError(
+            "line.kind: spring (a massless spring) has no MoorDyn line equivalent; "
+            "export a kind: catenary line"
+        )
+    if study.line.pulleys:
+        raise InterchangeError(
+            "line.pulleys: a line over fixed pulleys has no MoorDyn line equivalent (a "
+            "MoorDyn point holds the line, it does not let it slide); export the line "
+            "without pulleys"
+        )
+    for i, seg in enumerate(segs):
+        if seg.axial is not None and seg.axial.law != "linear":
+            raise InterchangeError(
+                f"line.segments.{i}.axial: the {seg.axial.law} law is not exported (the "
+                "MoorDyn file takes a linear EA here); give axial_stiffness to export"
+            )
+
+
+def not_written(study: Study) -> list[str]:
+    """Warnings naming what the study models and the MoorDyn file does not hold: the
+    file is the line at rest, a MoorDyn run of it does without them."""
+    out = []
+    static = study.analysis.static
+    if static.installation is not None:
+        out.append(
+            "analysis.static.installation: MoorDyn has no cable laying (pay-out along the "
+            "line, moving frame): the file holds the line at rest, whose tension and shape "
+            "differ from the laying solution the end positions come from"
+        )
+    if study.line.failure is not None or any(g.failure is not None for g in study.line.segments):
+        out.append(
+            "failure: the break condition is not written (no FAILURE section): the line "
+            "does not part in MoorDyn"
+        )
+    if study.line.winch is not None:
+        out.append("line.winch: not written: MoorDyn's line keeps its unstretched length")
+    return out
+
+
 def moordyn_input(
     study: Study,
     *,
@@ -169,24 +213,8 @@ def moordyn_input(
     env = study.environment
     rho, g = env.density, env.gravity
     segs = study.line.segments
-    if study.line.is_spring:
-        raise InterchangeError(
-            "line.kind: spring (a massless spring) has no MoorDyn line equivalent; "
-            "export a kind: catenary line"
-        )
-    if study.line.pulleys:
-        raise InterchangeError(
-            "line.pulleys: a line over fixed pulleys has no MoorDyn line equivalent (a "
-            "MoorDyn point holds the line, it does not let it slide); export the line "
-            "without pulleys"
-        )
-    for i, seg in enumerate(segs):
-        if seg.axial is not None and seg.axial.law != "linear":
-            raise InterchangeError(
-                f"line.segments.{i}.axial: the {seg.axial.law} law is not exported (the "
-                "MoorDyn file takes a linear EA here); give axial_stiffness to export"
-            )
-    warnings: list[str] = []
+    check_exportable(study)
+    warnings: list[str] = not_written(study)
     bounds = np.concatenate([[0.0], np.cumsum([s.length for s in segs])])
     total = float(bounds[-1])
     for i, att in enumerate(study.line.attachments):

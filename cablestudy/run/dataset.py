@@ -20,6 +20,7 @@ from ..analyses.variables import (
     CASE_VARIABLES,
     COORDINATES,
     DATABASE_LAYOUTS,
+    FEWER_MODES,
     OUTPUTS,
     STATUS_BROKEN,
     SYSTEM_OUTPUTS,
@@ -359,6 +360,12 @@ def grid_variables(
         var_attrs = {"units": spec.units, "long_name": spec.long_name}
         if spec.nan_means:  # what a NaN of a case whose analysis succeeded means
             var_attrs["nan_means"] = spec.nan_means
+        if name == "natural_frequency" and "modal_status" in values:
+            # cases asking for fewer modes than others (a sweep over analysis.modal.modes)
+            # are padded with NaN: a NaN of a solved case means only that
+            solved = np.asarray(values["modal_status"]) == 0
+            if np.isnan(np.asarray(value, dtype=float)[solved]).any():
+                var_attrs["nan_means"] = FEWER_MODES
         data_vars[name] = (dims + spec.dims, value, var_attrs)
     coords = sweep_coordinates(axes)
     shared = [("transfer_frequency", "frequency")] + [

@@ -267,7 +267,9 @@ class TimeSeriesExcitation(TableMotion):
     """Motion of one end along ``direction`` given as a table of (time [s], displacement
     [m]) pairs, interpolated by a cubic spline (continuous acceleration). With
     ``periodic`` the table repeats with its duration as period (the last displacement
-    must equal the first); otherwise the motion holds its last value after the table."""
+    must equal the first); otherwise it starts at displacement 0, moves as written (not
+    ramped: ``ramp_periods`` starts the repeating motions) and holds its last value after
+    the table."""
 
     end: Literal["a", "b"] = Field(description="the end that moves")
     direction: Annotated[Vec3, AfterValidator(unit_direction)] = Field(
@@ -414,7 +416,9 @@ class DynamicSettings(StrictModel):
     )
     max_newton_iterations: int = Field(12, ge=2, le=200)
     ramp_periods: NonNegative = Field(
-        2.0, description="smooth start of the motion over this many periods [periods]"
+        2.0,
+        description="smooth start of the repeating motions (harmonics, spectra, periodic "
+        "tables) over this many periods [periods]; a non-periodic table moves as written",
     )
     steady_tolerance: Positive = Field(
         0.002,

@@ -77,7 +77,8 @@ class HarmonicMotion(StrictModel):
 class TableMotion(StrictModel):
     """The checks shared by the time-table motions (of an end, a body or a point): the
     ``table``'s times start at 0 and increase strictly; a ``periodic`` table ends where
-    it starts."""
+    it starts; a non-periodic one starts at displacement 0 (it moves as written, not
+    ramped)."""
 
     @field_validator("table", check_fields=False)
     @classmethod
@@ -91,13 +92,21 @@ class TableMotion(StrictModel):
 
     @model_validator(mode="after")
     def _closes(self) -> TableMotion:
+        first, last = self.table[0][1], self.table[-1][1]  # type: ignore[attr-defined]
         if self.periodic:  # type: ignore[attr-defined]
-            first, last = self.table[0][1], self.table[-1][1]  # type: ignore[attr-defined]
             if abs(last - first) > 1e-9 * max(1.0, abs(first)):
                 raise ValueError(
                     f"a periodic table must end where it starts: displacement {last} at the "
                     f"end, {first} at t = 0"
                 )
+        elif first != 0.0:
+            # a non-periodic table moves as written, without the ramp of the repeating
+            # motions (dynamics/excitation.py): it starts at the static position
+            raise ValueError(
+                f"a non-periodic table starts at the static position: its displacement at "
+                f"t = 0 must be 0, got {first}; allowed: 0 (or periodic: true, which the "
+                "ramp starts smoothly)"
+            )
         return self
 
 
