@@ -23,8 +23,12 @@ $(STAMP): pyproject.toml
 study: install
 	$(BIN)/cablestudy run "$(CONFIG)" --out "$(OUT)"
 
+# The suite runs on every core (pytest-xdist; `-n auto` is the number of cores;
+# `make test TEST_WORKERS=N` chooses). Each test file stays on one worker (`--dist loadfile`): the
+# fixtures a file shares are built once, and a file's tests keep their order.
+TEST_WORKERS ?= auto
 test: install
-	$(BIN)/python -m pytest -q tests
+	$(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist loadfile tests
 
 figures: install
 	$(BIN)/cablestudy figures --results $(OUT) --out $(OUT)/figures --docs docs
