@@ -23,8 +23,13 @@ $(STAMP): pyproject.toml
 study: install
 	$(BIN)/cablestudy run "$(CONFIG)" --out "$(OUT)"
 
+# The suite runs on every core (pytest-xdist: `-n auto` is the number of cores;
+# `make test TEST_WORKERS=N` chooses, 0 runs it in this one process). Each test file stays
+# on one worker (`--dist loadfile`): the fixtures a file shares are built once, a file's
+# tests keep their order, and the largest file is far under half of the suite.
+TEST_WORKERS ?= auto
 test: install
-	$(BIN)/python -m pytest -q tests
+	$(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist loadfile tests
 
 figures: install
 	$(BIN)/cablestudy figures --results $(OUT) --out $(OUT)/figures --docs docs

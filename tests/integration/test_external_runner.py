@@ -323,6 +323,9 @@ def test_a_file_where_the_cache_folder_goes_does_not_stop_a_run_without_cache(
 
 # --- Ctrl-C and resume, through a real signal ----------------------------------------------
 
+#: seconds after which a child process that should take a few counts as hung
+HANG = 300.0
+
 #: 16 time-domain cases of a chain mooring leg (40 elements, T/512), together about 1.5 s
 #: on one core: run synchronously in chunks of 4 cases, each chunk cached as it finishes
 KILLED = """\
@@ -367,12 +370,20 @@ def test_ctrl_c_mid_run_exits_130_and_the_rerun_resumes_to_the_same_file(
          "--scheduler", "synchronous", "--no-progress"],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
     )  # fmt: skip
-    deadline = time.monotonic() + 60.0  # a cold kernel cache compiles first
-    while not list(cache.glob("grid-*.npz")) and proc.poll() is None:
-        assert time.monotonic() < deadline, "no chunk finished"
-        time.sleep(0.02)
-    proc.send_signal(sig)  # after the first chunk, before the last
-    _, err = proc.communicate(timeout=60)
+    try:
+        # a hang detector, not a timing: the child's start-up, imports and first chunk
+        # take seconds alone and minutes beside other work (a cold kernel cache compiles
+        # first; under pytest-xdist another worker shares the cores)
+        deadline = time.monotonic() + HANG
+        while not list(cache.glob("grid-*.npz")) and proc.poll() is None:
+            assert time.monotonic() < deadline, "no chunk finished"
+            time.sleep(0.02)
+        proc.send_signal(sig)  # after the first chunk, before the last
+        _, err = proc.communicate(timeout=HANG)
+    finally:  # a failed wait leaves no process behind
+        if proc.poll() is None:
+            proc.kill()
+            proc.communicate()
     assert proc.returncode == code, err
     assert f"{word}: finished cases are cached; run the same command again to resume" in err
     assert "Traceback" not in err

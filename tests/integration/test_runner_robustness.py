@@ -47,6 +47,17 @@ HANG = 30
 TIMEOUT = "0.5"
 
 
+@pytest.fixture(scope="module", autouse=True)
+def _client_imported() -> None:
+    """Import dask.distributed (the client a --scheduler address gets) once, before any
+    test's clock and alarm start: under pytest-xdist any test of this file can be the
+    first of its worker to import it, which takes seconds on a loaded machine and is not
+    the handshake the timed tests bound."""
+    import dask.distributed  # noqa: F401
+
+    from cablestudy.run import remote  # noqa: F401
+
+
 @pytest.fixture(autouse=True)
 def _no_hang() -> Iterator[None]:
     """Fail (not hang) a test that blocks for :data:`HANG` seconds."""

@@ -69,6 +69,19 @@ def dynamic_dict(
     return data
 
 
+@pytest.fixture(scope="module", autouse=True)
+def _kernels_loaded() -> None:
+    """The timed calls below measure a run against its time limit, not this process's
+    first load of the kernels (or their compilation on a cold cache): under pytest-xdist
+    any test of this file can be the first of its worker to use them. One short untimed
+    case of each path loads them: the time domain on the analytic statics, and each static
+    solver in a current (the drag iteration, the shooting ODE)."""
+    evaluate(dynamic_dict(periods=1.0))
+    current = [{"z": 0.0, "speed": 0.5, "heading_deg": 90.0}]
+    for method in ("analytic", "catenary", "shooting"):
+        evaluate(study_dict(method=method, current=None if method == "analytic" else current))
+
+
 # (id, keyword overrides), all valid
 EXTREMES: list[tuple[str, dict[str, Any]]] = [
     ("slack-driving-amplitude", {"amplitude": 0.4, "frequency": 1.0}),
