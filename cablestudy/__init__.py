@@ -37,6 +37,11 @@ def _numba_cache_dir() -> None:
     if not os.path.isdir(where):
         _prune(base, KEEP_CACHES)
         _prune(numba_base, KEEP_CHECKOUTS)
+    else:  # mark this checkout used: pruning keeps the most recently used checkouts
+        try:
+            os.utime(base)
+        except OSError:
+            pass
     os.environ["NUMBA_CACHE_DIR"] = where
     config = sys.modules.get("numba.core.config")
     if config is not None:  # numba imported before cablestudy: tell it too
