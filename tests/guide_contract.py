@@ -210,7 +210,7 @@ SPREAD = (
 )
 
 #: docs/guide/systems.md's example with its segments filled in: the clump's start makes
-#: leg1 lie slack on the seabed, so no case solves; the sweep runs as arrays
+#: leg1 lie slack on the seabed (the solve starts from there); the sweep runs as arrays
 SYSTEM_GUIDE_SLACK_START = """\
 name: spread
 environment: {fluid: water, depth: 100.0}
