@@ -28,6 +28,7 @@ from cablestudy.study import parse_study_text
 from cablestudy.study.grid import expand_grid
 from cablestudy.study.grid_lines import line_studies
 from cablestudy.study.loader import StudyError
+from tests.grid_bits import same_bits
 
 #: a chain and a wire anchored on the seabed at A (the contact kernel), the chain's
 #: length swept with the fairlead's offset
@@ -104,20 +105,7 @@ def test_swept_lengths_and_attachments_run_as_arrays_with_the_case_datasets_bits
     if text is LENGTH:  # each case's nodes along its own line
         ends = slow["arc_length"].isel(s=-1).values
         assert np.array_equal(ends[-1], np.array([90.0, 100.0, 110.0]))  # the widest span
-    assert set(fast.variables) == set(slow.variables)
-    for name in slow.variables:
-        if name == "wall_time":
-            continue
-        a, b = fast[name], slow[name]
-        assert a.dims == b.dims, name
-        if a.dtype.kind == "f":
-            assert a.values.tobytes() == b.values.tobytes(), name
-        else:
-            assert np.array_equal(a.values, b.values), name
-    skip = {"history"}
-    assert {k: v for k, v in fast.attrs.items() if k not in skip} == {
-        k: v for k, v in slow.attrs.items() if k not in skip
-    }
+    same_bits(fast, slow)
 
 
 def test_an_attachment_beyond_a_swept_lines_end_is_refused_before_any_work() -> None:
@@ -276,19 +264,7 @@ def test_swept_end_loads_run_as_arrays_with_the_case_datasets_bits(
     else:  # end B at its known height
         z_b = slow["z"].where(ok).isel(s=-1)
         assert np.nanmax(np.abs(z_b - slow["b_z"])) <= 1e-8 * 60.0
-    for name in slow.variables:
-        if name == "wall_time":
-            continue
-        a, b = fast[name], slow[name]
-        assert a.dims == b.dims, name
-        if a.dtype.kind == "f":
-            assert a.values.tobytes() == b.values.tobytes(), name
-        else:
-            assert np.array_equal(a.values, b.values), name
-    skip = {"history"}
-    assert {k: v for k, v in fast.attrs.items() if k not in skip} == {
-        k: v for k, v in slow.attrs.items() if k not in skip
-    }
+    same_bits(fast, slow)
     # a mooring end swept below the seabed is refused before any work, named
     if text is MOORED:
         below = text.replace("ends.b.z: [-20.0, -5.0]", "ends.b.z: [-20.0, -70.0]")

@@ -18,6 +18,7 @@ from cablestudy.analyses import static as static_analysis
 from cablestudy.run.runner import run_study
 from cablestudy.study import parse_study_text
 from cablestudy.study.grid import expand_grid
+from tests.grid_bits import same_bits
 
 #: a chain-wire-chain mooring leg anchored on the seabed with a clump; the whole line's
 #: break limit MBL / SF swept (MBL) with the fairlead's offset
@@ -91,19 +92,7 @@ def test_break_limits_run_as_arrays_with_the_case_datasets_bits(tmp_path: Path, 
         # failed where the wire's strain T / EA passes 1e-3 somewhere, solved elsewhere
         assert (status == 0).any() and (status != 0).any()
         assert "max_strain" in str(slow["message"].values[status != 0][0])
-    for name in slow.variables:
-        if name == "wall_time":
-            continue
-        a, b = fast[name], slow[name]
-        assert a.dims == b.dims, name
-        if a.dtype.kind == "f":
-            assert a.values.tobytes() == b.values.tobytes(), name
-        else:
-            assert np.array_equal(a.values, b.values), name
-    skip = {"history"}
-    assert {k: v for k, v in fast.attrs.items() if k not in skip} == {
-        k: v for k, v in slow.attrs.items() if k not in skip
-    }
+    same_bits(fast, slow)
 
 
 #: a chain of a catalogue line type hanging in water: its nominal size and its length
@@ -147,15 +136,7 @@ def test_a_catalogue_size_sweep_runs_as_arrays_with_the_case_datasets_bits(
         ).path
     )  # fmt: skip
     assert (slow["status"] == 0).all()
-    for name in slow.variables:
-        if name == "wall_time":
-            continue
-        a, b = fast[name], slow[name]
-        assert a.dims == b.dims, name
-        if a.dtype.kind == "f":
-            assert a.values.tobytes() == b.values.tobytes(), name
-        else:
-            assert np.array_equal(a.values, b.values), name
+    same_bits(fast, slow)
     # the line hangs free: its supports carry its whole weight in water, w(d) L, w from
     # the catalogue size's line (heavier for a larger size), to the solver's tolerance
     # (1e-9 of the forces)

@@ -19,6 +19,7 @@ from cablestudy.run.runner import run_study
 from cablestudy.study import parse_study_text
 from cablestudy.study.grid import expand_grid
 from cablestudy.study.loader import StudyError
+from tests.grid_bits import same_bits
 
 #: a uniform wire hanging in water between fixed ends: end B's offset, the stiffness
 #: and the node count swept (every method models it)
@@ -76,19 +77,7 @@ def test_another_methods_sweep_runs_as_arrays_with_the_case_datasets_bits(
     else:
         assert (status == 0).all()
     assert fast.attrs["cases_fallback"] == status.size  # no batch kernel: all counted
-    for name in slow.variables:
-        if name == "wall_time":
-            continue
-        a, b = fast[name], slow[name]
-        assert a.dims == b.dims, name
-        if a.dtype.kind == "f":
-            assert a.values.tobytes() == b.values.tobytes(), name
-        else:
-            assert np.array_equal(a.values, b.values), name
-    skip = {"history"}
-    assert {k: v for k, v in fast.attrs.items() if k not in skip} == {
-        k: v for k, v in slow.attrs.items() if k not in skip
-    }
+    same_bits(fast, slow)
     # against the catenary on the same cases (the method left out)
     ref = _run(WIRE.replace("method: METHOD, ", ""), tmp_path, "r")
     ok = status == 0

@@ -26,6 +26,7 @@ from cablestudy.run.runner import run_study
 from cablestudy.study import parse_study_text
 from cablestudy.study.grid import expand_grid
 from cablestudy.study.loader import StudyError
+from tests.grid_bits import same_bits
 
 #: a chain and a wire anchored on the seabed at A (the contact kernel) or hanging free
 #: (the fairlead's offsets take it off the seabed at the short end), the node count
@@ -105,23 +106,6 @@ def _both(text: str, tmp_path: Path) -> tuple[xr.Dataset, xr.Dataset]:
     return fast, slow
 
 
-def _same_bits(fast: xr.Dataset, slow: xr.Dataset) -> None:
-    assert set(fast.variables) == set(slow.variables)
-    for name in slow.variables:
-        if name == "wall_time":
-            continue
-        a, b = fast[name], slow[name]
-        assert a.dims == b.dims, name
-        if a.dtype.kind == "f":
-            assert a.values.tobytes() == b.values.tobytes(), name
-        else:
-            assert np.array_equal(a.values, b.values), name
-    skip = {"history"}
-    assert {k: v for k, v in fast.attrs.items() if k not in skip} == {
-        k: v for k, v in slow.attrs.items() if k not in skip
-    }
-
-
 @pytest.mark.parametrize("text", [NODES, NODES_INNER], ids=["outer", "inner"])
 def test_a_node_count_sweep_runs_as_arrays_with_the_case_datasets_bits(
     tmp_path: Path, text: str
@@ -133,7 +117,7 @@ def test_a_node_count_sweep_runs_as_arrays_with_the_case_datasets_bits(
     # the layout of a swept node count: s the node index, each case's arc lengths
     assert slow["s"].attrs["units"] == "1" and slow.sizes["s"] == 41
     assert "arc_length" in slow.data_vars
-    _same_bits(fast, slow)
+    same_bits(fast, slow)
     # padded beyond each case's own node count, by NaN
     n11 = fast.sel(nodes=11)
     assert np.isnan(n11["tension"].isel(s=slice(11, None))).all()
@@ -159,7 +143,7 @@ def test_drag_elements_run_as_arrays_and_converge_at_second_order(tmp_path: Path
     assert np.all(status[0] == 11) and "not verified" in str(slow["message"].values[0, 0])
     assert np.all(status[1:] == 0)
     assert int(slow["drag_iterations"][1:].min()) > 1  # the drag iteration ran
-    _same_bits(fast, slow)
+    same_bits(fast, slow)
     # the fairlead's tension against the element count (10 to 160): successive
     # differences fall by 2^p per halving, p the method's order. Each element carries the
     # drag of its chord's direction (a midpoint rule): p = 2, ratio 4; the next term of
@@ -175,7 +159,7 @@ def test_tolerance_and_iteration_limit_sweeps_run_as_arrays_with_the_case_bits(
     tmp_path: Path,
 ) -> None:
     fast, slow = _both(TOLERANCE, tmp_path)
-    _same_bits(fast, slow)
+    same_bits(fast, slow)
     # three iterations do not settle the seabed contact: those cases fail (or go to the
     # general solver, which also stops at three), the others solve
     ok = slow["status"] == 0
@@ -235,7 +219,7 @@ def test_drag_and_added_mass_coefficient_sweeps_run_as_arrays_with_the_case_bits
 ) -> None:
     fast, slow = _both(HYDRO, tmp_path)
     assert (slow["status"] == 0).all()
-    _same_bits(fast, slow)
+    same_bits(fast, slow)
     # no static solver reads the added mass: equal cases, bit for bit
     for name in ("tension", "x", "y", "z", "force_a", "force_b"):
         a = fast[name].isel(added_mass_normal=0).values
