@@ -34,9 +34,11 @@ def _load(path: str, max_bytes: int | None = None):  # noqa: ANN202
     if not grid.chunked:
         check_supported(grid.cases(), src)
     elif grid.arrays and grid.template.analysis.static.method == "catenary":
-        # an array grid sweeps end positions of fixed ends and segment stiffnesses only,
-        # which no support check reads (end kinds, laws, attachments, analyses): its
-        # template answers for every case (and 300 axis studies cost 20 ms of a 0.5 s run)
+        # a catenary array grid sweeps numbers only (end positions, stiffnesses, lengths,
+        # loads, attachments, current, settings, coefficients, limits; study.grid._eligible),
+        # each validated at its own path as the grid is built; what the support checks read
+        # (end kinds, law kinds, pulleys, analyses) is the template's in every case, so the
+        # template answers for all (and 300 axis studies cost 20 ms of a 0.5 s run)
         check_supported([Case((), {}, grid.template, *case_hashes(grid.template))], src)
     else:
         studies = axis_studies(grid)
