@@ -201,17 +201,22 @@ def march_settings(dyn: Any) -> dict[str, Any]:
     }
 
 
-def roundoff_force(line: DiscreteLine, x: np.ndarray) -> float:
+def roundoff_force(
+    line: DiscreteLine, x: np.ndarray, parts: tuple[float, float, float] | None = None
+) -> float:
     """Nodal force [N] below which a residual is lost in rounding: an element tension
-    carries EA * (relative rounding of the node coordinates) / (element length)."""
-    reach = float(np.max(np.abs(x))) + float(np.sum(line.rest_length))
-    return (
-        16.0
-        * float(np.finfo(float).eps)
-        * float(np.max(line.axial_stiffness))
-        * reach
-        / float(np.min(line.rest_length))
-    )
+    carries EA * (relative rounding of the node coordinates) / (element length).
+    ``parts``: :func:`roundoff_parts` of ``line``, where the caller has them."""
+    c, rest, shortest = parts or roundoff_parts(line)
+    return c * (float(np.max(np.abs(x))) + rest) / shortest
+
+
+def roundoff_parts(line: DiscreteLine) -> tuple[float, float, float]:
+    """What :func:`roundoff_force` takes of the line alone: 16 eps max(EA) [N], the sum
+    and the shortest of the rest lengths [m]."""
+    rest = line.rest_length
+    c = 16.0 * float(np.finfo(float).eps) * float(np.max(line.axial_stiffness))
+    return c, float(np.sum(rest)), float(np.min(rest))
 
 
 def end_motion(dyn: DynamicSettings) -> tuple[EndMotion, float, float]:

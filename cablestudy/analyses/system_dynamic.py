@@ -48,12 +48,12 @@ def system_model_dynamic(case: Case, system: Any, static: Any) -> tuple[Any, ...
     equilibrium, cached per static problem and element count: (packed, positions,
     anchors, drive arrays (body, slot owner point, offset, static position), the
     Newton and tension-step scale [N]), or why the equilibrium was not found."""
-    from ..dynamics.discrete_line import discretise_nodes, same_inputs, uniform_nodes
+    from ..dynamics.discrete_line import discretise_nodes, uniform_nodes
     from ..dynamics.system_model import FreePoints, pack
     from ..dynamics.system_timedomain import equilibrium
     from ..statics.system import rotation
     from ..statics.system_model import FREE
-    from .line_model import roundoff_force
+    from .line_model import roundoff_force, roundoff_parts
 
     dyn = case.study.analysis.dynamic
     key = (case.static_hash, dyn.elements)
@@ -63,30 +63,38 @@ def system_model_dynamic(case: Case, system: Any, static: Any) -> tuple[Any, ...
         return hit
     study = case.study
     names = list(study.lines)
-    lines, starts, tol, fallback = [], [], [], []
-    made: list[tuple[tuple, np.ndarray, Any]] = []  # (inputs, nodes, model) of each kind
+    lines, starts, tol, fallback, peak, made_parts = [], [], [], [], [], []
+    # per kind of line: (its line model, medium and study segments and attachments, its
+    # nodes, model, largest nodal force [N] on a seabed and roundoff_force's factors)
+    made: list[tuple[tuple, np.ndarray, Any, float, tuple]] = []
     for k, sl in enumerate(system.lines):
         lm = sl.problem.line
         med = sl.problem.medium
         res = static.lines[k]
-        extras = system_line_extras(study, names[k], lm)
+        spec = study.lines[names[k]]
         # lines alike in every input (a spread's legs, a spar's bridles) share one
-        # discretisation: it depends on these alone, not on where the line lies
-        same = next((m for m in made if same_inputs(m[0], (lm, med, extras), bitwise=False)), None)
+        # discretisation: it depends on these alone (the line model, the medium, and the
+        # extras, read from the study line's segments and attachments), not on where the
+        # line lies
+        inputs = (lm, med, (spec.segments, spec.attachments))
+        same = next(
+            (m for m in made if m[0][0] is lm and m[0][1] is med and m[0][2] == inputs[2]), None
+        )
         if same is None:
             s_nodes = uniform_nodes(lm, dyn.elements)
-            same = ((lm, med, extras), s_nodes, discretise_nodes(lm, med, s_nodes, extras))
+            line = discretise_nodes(lm, med, s_nodes, system_line_extras(study, names[k], lm))
+            force = float(np.max(np.abs(line.force))) if line.has_seabed else -math.inf
+            same = (inputs, s_nodes, line, force, roundoff_parts(line))
             made.append(same)
-        s_nodes, line = same[1], same[2]
+        _, s_nodes, line, force, parts = same
         start = np.stack([np.interp(s_nodes, res.s, res.position[:, c]) for c in range(3)], 1)
-        scale = float(np.nanmax(res.tension))
-        if line.has_seabed:
-            scale = max(scale, float(np.max(np.abs(line.force))))
+        peak.append(float(np.nanmax(res.tension)))
         lines.append(line)
         starts.append(start)
         t_nodes = np.interp(s_nodes, res.s, res.tension)
         fallback.append(0.5 * (t_nodes[:-1] + t_nodes[1:]))
-        tol.append(max(1e-9 * scale, roundoff_force(line, start)))
+        tol.append(max(1e-9 * max(peak[-1], force), roundoff_force(line, start, parts)))
+        made_parts.append(parts)
     COUNTERS["system_assemblies"] += 1
     kind = system.point_kind
     free_index = -np.ones(kind.size, dtype=int)
@@ -131,11 +139,12 @@ def system_model_dynamic(case: Case, system: Any, static: Any) -> tuple[Any, ...
     body_pos = static.body_position if static.body_position is not None else system.body_position
     body_base = np.asarray(body_pos, dtype=float).reshape(-1, 6)
     body_R0 = np.array([rotation(b[3:]) for b in body_base]).reshape(-1, 3, 3)
-    scale = max(float(np.nanmax(r.tension)) for r in static.lines)
+    scale = max(peak)
     # rounding of the element forces: the Newton tolerance's floor (the tolerance itself,
     # relative to the static tension, is a dynamic setting: applied per case)
     floor = max(
-        4.0 * roundoff_force(ln, x[packed.no[k] : packed.no[k + 1]]) for k, ln in enumerate(lines)
+        4.0 * roundoff_force(ln, x[packed.no[k] : packed.no[k + 1]], made_parts[k])
+        for k, ln in enumerate(lines)
     )
     out = (
         packed,
