@@ -267,7 +267,7 @@ def largest_static_strain(study: Any, res: StaticResult) -> float:
         return (stretched - line.total_length) / line.total_length
     segs = line.segments
     k = segment_of(segs, res.s)
-    ea = np.array([segs[i].elastic_stiffness for i in k])
+    ea = np.array([seg.elastic_stiffness for seg in segs])[k]
     return float(largest_strain(res.tension, ea, _strain_along(segs, k, res.tension)))
 
 

@@ -505,12 +505,14 @@ def _guess(
         dh = d - h[:, None] * up
         l = np.linalg.norm(dh, axis=1)
         vertical = l <= 1e-12 * chord
-        alt = np.cross(up, [1.0, 0.0, 0.0])
-        alt = np.where(
-            np.linalg.norm(alt, axis=1)[:, None] < 0.5, np.cross(up, [0.0, 1.0, 0.0]), alt
-        )
-        alt = alt / np.linalg.norm(alt, axis=1)[:, None]
-        e = np.where(vertical[:, None], alt, dh / np.where(vertical, 1.0, l)[:, None])
+        e = dh / np.where(vertical, 1.0, l)[:, None]
+        if np.any(vertical):  # a horizontal direction across the vertical chord
+            alt = np.cross(up, [1.0, 0.0, 0.0])
+            alt = np.where(
+                np.linalg.norm(alt, axis=1)[:, None] < 0.5, np.cross(up, [0.0, 1.0, 0.0]), alt
+            )
+            alt = alt / np.linalg.norm(alt, axis=1)[:, None]
+            e = np.where(vertical[:, None], alt, e)
         lam = np.where(
             L <= chord,
             0.2,

@@ -58,42 +58,38 @@ def system_layout(system: MooringSystem) -> Layout:
     hit = _LAYOUTS.get(id(system))
     if hit is not None and hit[0] is system:
         return hit[1]
-    M = len(system.lines)
     plane = seabed_of(system.lines[0].problem.medium)
-    fwd = [line_pieces(ln.problem.line) for ln in system.lines]
+    # per line model (lines alike share one: a spread's legs, a spar's bridles): its
+    # pieces, whether its loads all point down, and its starting-tension inputs but the
+    # chord (the same operations on one row as pack's for a case: the same numbers)
+    kinds: dict[int, tuple] = {}
+    rows = []
+    for ln in system.lines:
+        got = kinds.get(id(ln.problem.line))
+        if got is None:
+            e_, ea_, w_, pt_, bd_ = pieces = line_pieces(ln.problem.line)
+            down = bool(np.all(w_ >= 0.0))
+            if plane is not None:
+                down = down and bool(np.all(pt_ @ plane.normal <= 0.0))
+            g = np.zeros((1, 11))
+            g[:, 3] = bd_[-1]
+            g[:, 4:7] = pt_[None].sum(axis=1)
+            g[:, 6] -= np.sum(w_[None] * e_[None], axis=1)
+            g[:, 7] = g[:, 3] / np.sum(e_[None] / ea_[None], axis=1)
+            g[:, 8:] = pt_[0]
+            got = kinds[id(ln.problem.line)] = (pieces, down, g[0])
+        rows.append(got)
+    fwd = [r[0] for r in rows]
     P = np.array([len(f[0]) for f in fwd])
-    poff = np.concatenate(([0], np.cumsum(P))).astype(np.int64)
-    Ptot = int(poff[-1])
-    ell, EA, w = np.empty((1, Ptot)), np.empty((1, Ptot)), np.empty((1, Ptot))
-    bounds, point = np.empty((1, Ptot + M)), np.empty((1, Ptot + M, 3))
-    clear = np.zeros(M, dtype=bool)
-    for m, (e_, ea_, w_, pt_, bd_) in enumerate(fwd):
-        o, ob, p = poff[m], poff[m] + m, P[m]
-        ell[:, o : o + p] = e_
-        EA[:, o : o + p] = ea_
-        w[:, o : o + p] = w_
-        bounds[:, ob : ob + p + 1] = bd_
-        point[:, ob : ob + p + 1] = pt_
-        down = bool(np.all(w_ >= 0.0))
-        if plane is not None:
-            down = down and bool(np.all(pt_ @ plane.normal <= 0.0))
-        clear[m] = down
-    # each line's starting-tension inputs as pack computes them for a case (the same
-    # operations on one row: the same numbers), the chord filled per case
-    guess = np.zeros((1, M, 11))
-    for m in range(M):
-        o, ob, p = poff[m], poff[m] + m, P[m]
-        guess[:, m, 3] = bounds[:, ob + p]
-        guess[:, m, 4:7] = point[:, ob : ob + p + 1].sum(axis=1)
-        guess[:, m, 6] -= np.sum(w[:, o : o + p] * ell[:, o : o + p], axis=1)
-        guess[:, m, 7] = guess[:, m, 3] / np.sum(ell[:, o : o + p] / EA[:, o : o + p], axis=1)
-        guess[:, m, 8:] = point[:, ob]
+    cat = np.concatenate
     lay = Layout(
-        fwd=fwd, P=P, poff=poff, ell=ell[0], EA=EA[0], w=w[0], bounds=bounds[0],
-        point=point[0], clear=clear, L=np.array([float(f[4][-1]) for f in fwd]),
+        fwd=fwd, P=P, poff=np.concatenate(([0], np.cumsum(P))).astype(np.int64),
+        ell=cat([f[0] for f in fwd]), EA=cat([f[1] for f in fwd]), w=cat([f[2] for f in fwd]),
+        bounds=cat([f[4] for f in fwd]), point=cat([f[3] for f in fwd]),
+        clear=np.array([r[1] for r in rows]), L=np.array([float(f[4][-1]) for f in fwd]),
         a=np.array([ln.a for ln in system.lines], dtype=np.int64),
         b=np.array([ln.b for ln in system.lines], dtype=np.int64),
-        guess=guess[0], plane=plane,
+        guess=np.array([r[2] for r in rows]), plane=plane,
     )  # fmt: skip
     if len(_LAYOUTS) > 16:
         _LAYOUTS.clear()
