@@ -155,9 +155,13 @@ def system_outputs(system: MooringSystem, res: Any) -> dict[str, np.ndarray]:
         "z": per_line(lambda r: r.position[:, 2], (n_nodes,)),
         "tension": per_line(lambda r: r.tension, (n_nodes,)),
         "laid_length": per_line(lambda r: r.laid_length, ()),
-        "arc_length": np.array(
-            [np.linspace(0.0, ln.problem.line.total_length, n_nodes) for ln in system.lines]
-        ),
+        # as np.linspace(0, L, n) line by line, bit for bit
+        "arc_length": np.linspace(
+            np.zeros(n_lines),
+            [ln.problem.line.total_length for ln in system.lines],
+            n_nodes,
+            axis=1,
+        ),  # fmt: skip
         "static_iterations": np.asarray(float(res.iterations)),
         "static_residual": np.asarray(float(res.residual) if ok else math.nan),
     }

@@ -56,12 +56,18 @@ KERNELS = {
 
 #: per module path, the kernels loaded from it (None where it is missing or broken)
 _LOADED: dict[str, Any] = {}
+#: per cache directory, the module's path (a kernel is looked up at every batch call)
+_PATHS: dict[str, Path] = {}
 
 
 def module_path() -> Path:
     """Where the compiled module of this version of the source lives."""
     where = os.environ.get("NUMBA_CACHE_DIR") or "."
-    return Path(where) / f"{MODULE}{sysconfig.get_config_var('EXT_SUFFIX') or '.so'}"
+    path = _PATHS.get(where)
+    if path is None:
+        suffix = sysconfig.get_config_var("EXT_SUFFIX") or ".so"
+        path = _PATHS[where] = Path(where) / f"{MODULE}{suffix}"
+    return path
 
 
 def build() -> bool:
