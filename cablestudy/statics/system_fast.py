@@ -303,7 +303,9 @@ def solve_packed(system: MooringSystem, pk: Packed, poses: np.ndarray) -> Solved
         if not rows.size:
             break
         ms = np.flatnonzero(sizes == p)
-        good = _final_lines(pk, pos, rows, ms, int(p), n, out_pos, out_ten, out_fa, out_fb, laid)
+        good = _final_lines(
+            pk, pos, rows, ms, int(p), n, out_pos, out_ten, out_fa, out_fb, laid, mode
+        )
         bad = rows[~np.all(good, axis=1)]
         fallback[bad] = NOT_VERIFIED
         ok[bad] = False
@@ -424,6 +426,7 @@ def _final_lines(
     out_fa: np.ndarray,
     out_fb: np.ndarray,
     laid: np.ndarray,
+    mode: np.ndarray | None = None,
 ) -> np.ndarray:
     """Lines ``ms`` (all of ``p`` pieces) of cases ``rows`` solved again at the points
     ``pos`` and sampled at ``n`` nodes by the batch kernels (hanging free:
@@ -431,7 +434,15 @@ def _final_lines(
     does; anchored on the seabed: :func:`.batch.solve_contact_arrays`), written as each
     line is defined (A to B) into the ``out_*`` arrays (N, M, ...), and verified
     (:func:`.verify.check_lines`, with the seabed for the anchored ones). Returns per
-    case and line (len(rows), len(ms)) whether the line is settled and verified."""
+    case and line (len(rows), len(ms)) whether the line is settled and verified.
+
+    An anchored line that the system Newton left hanging free (``mode`` (N, M) 0, as
+    :func:`._system_fast.system_cases` gives it), its loads all pointing down, is solved
+    hanging first and kept so where it leaves its anchor (not below the seabed) upwards:
+    then it rises all along (:func:`.batch_kernels._hang_free`), and the contact solve
+    would lift it off and hand it on to the same free-hanging solve from the same start
+    (the same numbers, without the contact solve and its second verification pass).
+    Otherwise it goes to the contact solve."""
     from .batch_kernels import _guess, solve_contact_arrays
 
     R, nm = rows.size, ms.size
@@ -458,11 +469,15 @@ def _final_lines(
     FA = np.full((R * nm, 3), np.nan)
     FB = np.full((R * nm, 3), np.nan)
     LL = np.zeros(R * nm)
-    for g in (np.flatnonzero(~anch), np.flatnonzero(anch)):
+    first = ~anch  # solved hanging free
+    if mode is not None and plane is not None:
+        first |= anch & pk.clear[rows][:, ms].reshape(-1) & (mode[rows][:, ms].reshape(-1) == 0)
+    groups = [(np.flatnonzero(first), False), (np.flatnonzero(~first), True)]
+    for g, on_bed in groups:
         if not g.size:
             continue
         sg = np.where(flip[g, None], L[g, None] - s[g], s[g])
-        if anch[g[0]]:
+        if on_bed:
             got = solve_contact_arrays(
                 ell[g], EA[g], w[g], point[g], bounds[g], rA[g], rB[g], plane,
                 tol[g], maxit[g], sg,
@@ -483,13 +498,21 @@ def _final_lines(
             pg, tg = np.empty((g.size, n, 3)), np.empty((g.size, n))
             _fast.solve_cases(
                 ell[g], EA[g], w[g], point[g], bounds[g], np.zeros(g.size, dtype=np.int64),
-                rA[g], target, TA0, tol[g], maxit[g], s[g], pg, tg, TAo, TL, it_, rs_, st_,
+                rA[g], target, TA0, tol[g], maxit[g], sg, pg, tg, TAo, TL, it_, rs_, st_,
             )  # fmt: skip
             P_[g], T_[g], FA[g], FB[g] = pg, tg, TAo, -TL
             settled = st_ == 0
             if plane is not None:  # a line touching the seabed between raised ends
                 height = (pg - np.array([0.0, 0.0, -plane.depth])) @ plane.normal
                 settled &= ~np.any(height < -1e-6 * L[g, None], axis=1)
+                on = anch[g]
+                if np.any(on):  # anchored: kept where it leaves the anchor upwards
+                    nrm = plane.normal
+                    anchor = (rA[g] - np.array([0.0, 0.0, -plane.depth])) @ nrm
+                    keep = ~on | (settled & (TAo @ nrm >= 0.0) & (anchor >= -1e-9 * L[g]))
+                    settled &= keep
+                    # the others to the contact solve, the group taken next
+                    groups[1] = (np.sort(np.concatenate((groups[1][0], g[~keep]))), True)
         settled &= (
             np.all(np.isfinite(P_[g]), axis=(1, 2))
             & np.all(np.isfinite(T_[g]), axis=1)
@@ -520,7 +543,7 @@ def _final_lines(
                 tolerance=tol[idx],
                 position_a=np.where(fl[:, None], rB[idx], rA[idx]),
                 position_b=np.where(fl[:, None], rA[idx], rB[idx]),
-                plane=plane if anch[g[0]] else None,
+                plane=plane if on_bed else None,
             ).ok
     # back to the line as defined (A to B)
     at = (rows[:, None], ms[None])

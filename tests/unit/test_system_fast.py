@@ -108,3 +108,34 @@ def test_what_the_kernel_cannot_take_goes_to_the_general_path_with_its_reason() 
     ref = solve_system(system, STATIC_SOLVERS["catenary"], compiled=False)
     assert res.fallback == why
     assert res.status == ref.status and res.message == ref.message
+
+
+@pytest.mark.parametrize("rel", SYSTEM_FILES)
+def test_final_lines_are_the_batch_solvers_for_the_same_ends(rel: str) -> None:
+    """The compiled path's lines at its solution are :func:`solve_batch`'s for the same
+    end positions, bit for bit (what a sweep's grid and a case share): an anchored line
+    the Newton left hanging free (case8's taut legs, lifted off their anchors) is solved
+    hanging at once, the numbers the contact solve hands on after lifting it off; a line
+    laid from its anchor (lines.txt's chains) goes through the contact solve."""
+    from dataclasses import replace
+
+    from cablestudy.statics import EndCondition
+    from cablestudy.statics.batch import solve_batch
+
+    system = _imported(rel)
+    got, why = solve_fast(system)
+    assert why == "" and got is not None
+    pos = got.point_position
+
+    def fixed(i: int) -> EndCondition:
+        return EndCondition(kind="fixed", position=pos[i].copy())
+
+    problems = [replace(ln.problem, end_a=fixed(ln.a), end_b=fixed(ln.b)) for ln in system.lines]
+    for mine, ref in zip(got.lines, solve_batch(problems), strict=True):
+        assert ref.status == 0, ref.message
+        for name in ("position", "tension", "force_a", "force_b", "laid_length"):
+            assert np.array_equal(getattr(mine, name), getattr(ref, name)), name
+    if rel.endswith("case8.dat"):  # the legs: anchored on the seabed, lifted off
+        depth = system.lines[0].problem.medium.depth
+        on_bed = [k for k, ln in enumerate(system.lines) if pos[ln.a][2] <= -depth]
+        assert len(on_bed) == 3 and all(got.lines[k].laid_length == 0.0 for k in on_bed)
