@@ -111,8 +111,9 @@ def point_positions_many(
     return pos
 
 
-def _axis_rotations_many(angles: np.ndarray) -> tuple[np.ndarray, ...]:
-    """:func:`.system._axis_rotations` for angles (..., 3): each (..., 3, 3)."""
+def _axis_rotations_many(angles: np.ndarray, derivatives: bool = True) -> tuple[np.ndarray, ...]:
+    """:func:`.system._axis_rotations` for angles (..., 3): each (..., 3, 3) (without
+    ``derivatives``, the rotations alone)."""
     c1, s1 = np.cos(angles[..., 0]), np.sin(angles[..., 0])
     c2, s2 = np.cos(angles[..., 1]), np.sin(angles[..., 1])
     c3, s3 = np.cos(angles[..., 2]), np.sin(angles[..., 2])
@@ -121,6 +122,8 @@ def _axis_rotations_many(angles: np.ndarray) -> tuple[np.ndarray, ...]:
     rx = np.stack([o, z, z, z, c1, -s1, z, s1, c1], -1).reshape(sh)
     ry = np.stack([c2, z, s2, z, o, z, -s2, z, c2], -1).reshape(sh)
     rz = np.stack([c3, -s3, z, s3, c3, z, z, z, o], -1).reshape(sh)
+    if not derivatives:
+        return rx, ry, rz
     drx = np.stack([z, z, z, z, -s1, -c1, z, c1, -s1], -1).reshape(sh)
     dry = np.stack([-s2, z, c2, z, z, z, -c2, z, -s2], -1).reshape(sh)
     drz = np.stack([-s3, -c3, z, c3, -s3, z, z, z, z], -1).reshape(sh)
@@ -129,7 +132,7 @@ def _axis_rotations_many(angles: np.ndarray) -> tuple[np.ndarray, ...]:
 
 def rotations(angles: np.ndarray) -> np.ndarray:
     """R = Rz(yaw) Ry(pitch) Rx(roll) for angles (..., 3), as :func:`.system.rotation`."""
-    rx, ry, rz, *_ = _axis_rotations_many(angles)
+    rx, ry, rz = _axis_rotations_many(angles, derivatives=False)
     return rz @ ry @ rx
 
 
@@ -586,15 +589,14 @@ def _bodies_many(
     sel = np.concatenate((on, fr))
     where = np.full(n, -1)
     where[sel] = np.arange(sel.size)
-    Kall = np.zeros((N, 3 * sel.size, 3 * sel.size))
-    Kz = np.nan_to_num(Kl)
-    for line in range(Kl.shape[1]):
-        ends = (int(ka[0, line]), int(kb[0, line]))  # the line's own ends: every case's
-        for i in range(2):
-            for j in range(2):
-                wi, wj = where[ends[i]], where[ends[j]]
-                if wi >= 0 and wj >= 0:
-                    Kall[:, 3 * wi : 3 * wi + 3, 3 * wj : 3 * wj + 3] += Kz[:, line, i, j]
+    Kall = np.zeros((N, sel.size, 3, sel.size, 3))
+    # each line's blocks between its moving ends (the line's own ends: every case's),
+    # added in the order line, i, j (np.add.at adds in index order: the same sums)
+    ends = where[np.stack((ka[0], kb[0]), axis=1)]  # (M, 2)
+    line, i, j = np.nonzero((ends[:, :, None] >= 0) & (ends[:, None, :] >= 0))
+    blocks = np.nan_to_num(Kl[:, line, i, j]).transpose(1, 0, 2, 3)  # (K, N, 3, 3)
+    np.add.at(Kall, (slice(None), ends[line, i], slice(None), ends[line, j]), blocks)
+    Kall = Kall.reshape(N, 3 * sel.size, 3 * sel.size)
     nb = 3 * on.size
     Kc = Kall[:, :nb, :nb]
     if fr.size:
