@@ -346,9 +346,9 @@ def solve_packed(system: MooringSystem, pk: Packed, poses: np.ndarray) -> Solved
     fallback[singular] = f"{NOT_SETTLED} (singular free-point stiffness)"
     ok &= ~singular
     bad = ~ok
-    for arr in (out_pos, out_ten, out_fa, out_fb, laid, body_force, body_stiffness):
-        arr[bad] = np.nan
-    pos[bad] = np.nan
+    if np.any(bad):
+        for arr in (out_pos, out_ten, out_fa, out_fb, laid, body_force, body_stiffness, pos):
+            arr[bad] = np.nan
     return Solved(
         s=s_all, position=out_pos, tension=out_ten, force_a=out_fa, force_b=out_fb,
         laid_length=laid, point_position=pos, body_force=body_force,

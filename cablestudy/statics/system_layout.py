@@ -35,7 +35,6 @@ class Layout:
     the arrays they fill, each line's starting-tension inputs but the chord), built
     once per system."""
 
-    fwd: list
     P: np.ndarray
     poff: np.ndarray
     ell: np.ndarray  # (Ptot,)
@@ -83,7 +82,7 @@ def system_layout(system: MooringSystem) -> Layout:
     P = np.array([len(f[0]) for f in fwd])
     cat = np.concatenate
     lay = Layout(
-        fwd=fwd, P=P, poff=np.concatenate(([0], np.cumsum(P))).astype(np.int64),
+        P=P, poff=np.concatenate(([0], np.cumsum(P))).astype(np.int64),
         ell=cat([f[0] for f in fwd]), EA=cat([f[1] for f in fwd]), w=cat([f[2] for f in fwd]),
         bounds=cat([f[4] for f in fwd]), point=cat([f[3] for f in fwd]),
         clear=np.array([r[1] for r in rows]), L=np.array([float(f[4][-1]) for f in fwd]),
