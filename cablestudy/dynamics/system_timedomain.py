@@ -228,16 +228,17 @@ def simulate_system(
     r, dx = np.zeros_like(x0), np.zeros_like(x0)
     rp, dp, Fp = np.zeros((P, 3)), np.zeros((P, 3)), np.zeros((P, 3))
 
-    def fresh() -> tuple[np.ndarray, ...]:
-        return (
-            np.stack([ends_prev, ends_prev]).copy(),
-            np.zeros((L, 2)),
-            np.stack([W[7], W[7]]).copy(),
-            np.stack([body_f, body_f]).copy(),
-            x0[:, 2].copy(),
-        )
+    def fresh(ext: tuple[np.ndarray, ...] | None = None) -> tuple[np.ndarray, ...]:
+        """A period's extremes started from the state now: into ``ext`` in place (the
+        period's record holds copies), or new arrays."""
+        if ext is None:
+            ext = (np.empty((2, L, 2)), np.empty((L, 2)), np.empty((2, *W[7].shape)),
+                   np.empty((2, B, 6)), np.empty(x0.shape[0]))  # fmt: skip
+        ext[0][:], ext[1][:], ext[2][:], ext[3][:] = ends_prev, 0.0, W[7], body_f
+        ext[4][:] = x0[:, 2]
+        return ext
 
-    ext_end, int_end, ext_el, ext_body, ext_z = fresh()
+    ext_end, int_end, ext_el, ext_body, ext_z = ext = fresh()
     periods: list[tuple[np.ndarray, ...]] = []
     hist_t: list[float] = [0.0]
     hist_f: list[np.ndarray] = [ends_prev.copy()]
@@ -263,19 +264,23 @@ def simulate_system(
             problem.max_newton_iterations, budget, anchor, S, W, r, rp, dx, dp, Fp, lmin, eps_t,
         )  # fmt: skip
 
-    # the step check (:mod:`.step_check`): the state at the start of each period
+    # the step check (:mod:`.step_check`): the state at the start of each period, copied
+    # into the same saved arrays each period; the kernels' scratch (W[14:]: the Newton
+    # solve's blocks and factors, the assembly's element scratch, aliases of x1 and v1)
+    # is written before it is read in every step, so it is no state
     checking = problem.step_tolerance is not None
     state = {
         "x0": x0, "v0": v0, "a0": a0, "F0": F0, "Fp0": Fp0, "x1": x1, "v1": v1, "a1": a1,
         "past_x": past_x, "past_t": past_t, "strain_prev": strain_prev, "anchor": anchor,
         "forces": forces, "ends_prev": ends_prev, "body_f": body_f, "st_f": st_f,
-        "st_i": st_i, "Fp": Fp, **{f"W{k}": w for k, w in enumerate(W)},
+        "st_i": st_i, "Fp": Fp, **{f"W{k}": w for k, w in enumerate(W[:14])},
     }  # fmt: skip
     period_start = snapshot(state) if checking else None
+    nodes = max(ln.n_nodes for ln in pk.lines)  # the steady test's floor: the most nodes
     while True:
         if deadline is not None and time.monotonic() > deadline:
             return out_of_time(result, st_f[0])
-        code = run_march(problem.step, budget, (ext_end, int_end, ext_el, ext_body, ext_z))
+        code = run_march(problem.step, budget, ext)
         t = float(st_f[0])
         if code == FAILED:
             counters = (int(st_i[2]), int(st_i[3]), int(st_i[4]))
@@ -292,20 +297,19 @@ def simulate_system(
                  ext_el[0].copy(), ext_el[1].copy(), ext_body[0].copy(), ext_body[1].copy(),
                  ext_z.copy())
             )  # fmt: skip
-        ext_end, int_end, ext_el, ext_body, ext_z = fresh()
+        fresh(ext)
         c_start = t
-        if problem.duration is None:
-            # every watched end's extremes, the floor of the line with the most nodes
+        if problem.duration is None:  # every watched end's extremes
             converged = problem.settled(
                 np.array([p[0][watch] for p in periods]),
                 np.array([p[1][watch] for p in periods]),
-                max(ln.n_nodes for ln in problem.packed.lines),
+                nodes,
             )
         if converged or final:
             break
         st_f[1] = min(st_f[1] + T, t_stop)
         if checking:
-            period_start = snapshot(state)
+            restore(period_start, state)  # type: ignore[arg-type]
     w = max(1, problem.steady_window) if problem.duration is None else len(periods)
     win = periods[-min(w, len(periods)) :]
     result.end_max = np.max([p[0] for p in win], axis=0)
