@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
 
@@ -360,161 +361,174 @@ def cmd_line_types(args: argparse.Namespace) -> int:
     return 0
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(command: str | None = None) -> argparse.ArgumentParser:
+    """The command line's parser; with ``command`` (a run's first argument) that
+    command's sub-parser alone, the others not built (all of them cost a run about 1.5
+    ms), or every one where ``command`` names none."""
     from . import __version__
 
     parser = argparse.ArgumentParser(prog="cablestudy", description=__doc__)
     parser.add_argument("--version", action="version", version=f"cablestudy {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
+    built: list[str] = []
 
-    p = sub.add_parser("run", help="run a study file and write <out>/<name>.nc")
-    p.add_argument("config")
-    p.add_argument("--out", default="results", help="output folder (default: results)")
-    p.add_argument(
-        "--workers",
-        type=int,
-        default=None,
-        help="local worker processes (default: the cores available)",
-    )
-    p.add_argument(
-        "--scheduler",
-        default=None,
-        help="auto | synchronous | threads | processes | tcp://host:port of a "
-        "running dask.distributed scheduler (default: auto: run here, and "
-        "start --workers processes when the study would take more than a "
-        "few seconds)",
-    )
-    p.add_argument(
-        "--connect-timeout",
-        type=float,
-        default=None,
-        metavar="SECONDS",
-        help="with --scheduler tcp://host:port: seconds allowed for the scheduler's "
-        "handshake, and again for a worker to be there (default: "
-        "$CABLESTUDY_CONNECT_TIMEOUT, else 10)",
-    )
-    p.add_argument("--no-cache", action="store_true", help="recompute every case")
-    p.add_argument(
-        "--progress",
-        action=argparse.BooleanOptionalAction,
-        default=None,
-        help="progress bar (default: on a terminal)",
-    )
-    _add_size_option(p)
-    p.set_defaults(func=cmd_run)
+    def add(name: str, **kwargs: str) -> argparse.ArgumentParser | None:
+        if command is not None and name != command:
+            return None
+        built.append(name)
+        return sub.add_parser(name, **kwargs)
 
-    p = sub.add_parser(
+    if p := add("run", help="run a study file and write <out>/<name>.nc"):
+        p.add_argument("config")
+        p.add_argument("--out", default="results", help="output folder (default: results)")
+        p.add_argument(
+            "--workers",
+            type=int,
+            default=None,
+            help="local worker processes (default: the cores available)",
+        )
+        p.add_argument(
+            "--scheduler",
+            default=None,
+            help="auto | synchronous | threads | processes | tcp://host:port of a "
+            "running dask.distributed scheduler (default: auto: run here, and "
+            "start --workers processes when the study would take more than a "
+            "few seconds)",
+        )
+        p.add_argument(
+            "--connect-timeout",
+            type=float,
+            default=None,
+            metavar="SECONDS",
+            help="with --scheduler tcp://host:port: seconds allowed for the scheduler's "
+            "handshake, and again for a worker to be there (default: "
+            "$CABLESTUDY_CONNECT_TIMEOUT, else 10)",
+        )
+        p.add_argument("--no-cache", action="store_true", help="recompute every case")
+        p.add_argument(
+            "--progress",
+            action=argparse.BooleanOptionalAction,
+            default=None,
+            help="progress bar (default: on a terminal)",
+        )
+        _add_size_option(p)
+        p.set_defaults(func=cmd_run)
+
+    if p := add(
         "compile",
         help="compile the numba kernels now (make install does), so that no study waits for it",
-    )
-    p.add_argument("--jobs", type=int, default=None, help="processes at once (default: the cores)")
-    p.set_defaults(func=cmd_compile)
+    ):
+        p.add_argument(
+            "--jobs", type=int, default=None, help="processes at once (default: the cores)"
+        )
+        p.set_defaults(func=cmd_compile)
 
-    p = sub.add_parser("validate", help="check a study file without running it")
-    p.add_argument("config")
-    _add_size_option(p)
-    p.set_defaults(func=cmd_validate)
+    if p := add("validate", help="check a study file without running it"):
+        p.add_argument("config")
+        _add_size_option(p)
+        p.set_defaults(func=cmd_validate)
 
-    p = sub.add_parser("schema", help="print the JSON Schema of study files")
-    p.set_defaults(func=cmd_schema)
+    if p := add("schema", help="print the JSON Schema of study files"):
+        p.set_defaults(func=cmd_schema)
 
-    p = sub.add_parser("figures", help="build the paper figures from results datasets")
-    p.add_argument("--results", default="results")
-    p.add_argument("--out", default="results/figures")
-    p.add_argument("--configs", default="configs")
-    p.add_argument("--no-run", action="store_true", help="do not run missing studies")
-    p.add_argument(
-        "--docs",
-        default=None,
-        help="also write the checked gallery DOCS/validation.md with the figures in DOCS/figures/",
-    )
-    p.set_defaults(func=cmd_figures)
+    if p := add("figures", help="build the paper figures from results datasets"):
+        p.add_argument("--results", default="results")
+        p.add_argument("--out", default="results/figures")
+        p.add_argument("--configs", default="configs")
+        p.add_argument("--no-run", action="store_true", help="do not run missing studies")
+        p.add_argument(
+            "--docs",
+            default=None,
+            help="also write the checked gallery DOCS/validation.md with the figures in "
+            "DOCS/figures/",
+        )
+        p.set_defaults(func=cmd_figures)
 
-    p = sub.add_parser("bench", help="run time against error benchmarks")
-    p.add_argument("--out", default="results/bench")
-    p.add_argument("--quick", action="store_true", help="fewer repeats and settings")
-    p.add_argument("--only", default=None, help="comma-separated benchmark modules (wp_*)")
-    p.add_argument("--readme", default=None, help="README to update between bench markers")
-    p.add_argument("--docs", default=None, help="folder for the committed plots")
-    p.set_defaults(func=cmd_bench)
+    if p := add("bench", help="run time against error benchmarks"):
+        p.add_argument("--out", default="results/bench")
+        p.add_argument("--quick", action="store_true", help="fewer repeats and settings")
+        p.add_argument("--only", default=None, help="comma-separated benchmark modules (wp_*)")
+        p.add_argument("--readme", default=None, help="README to update between bench markers")
+        p.add_argument("--docs", default=None, help="folder for the committed plots")
+        p.set_defaults(func=cmd_bench)
 
-    p = sub.add_parser(
-        "import", help="write a study (YAML, to stdout) from another tool's model file"
-    )
-    p.add_argument(
-        "format",
-        choices=["moordyn", "moorpy"],
-        help="moordyn: a MoorDyn input file (v1 or v2); moorpy: a RAFT/MoorPy mooring YAML "
-        "(either is also detected from the file's content)",
-    )
-    p.add_argument("file")
-    p.add_argument(
-        "--line",
-        action="append",
-        default=None,
-        help="a line ID (MoorDyn) or name (mooring YAML) of the line, end to end; repeat "
-        "for a line of several (default: all lines: one line where they form one chain, "
-        "else one system study of every line, point and body)",
-    )
-    p.add_argument("--name", default=None, help="study name (default: from the file name)")
-    p.set_defaults(func=cmd_import)
+    if p := add("import", help="write a study (YAML, to stdout) from another tool's model file"):
+        p.add_argument(
+            "format",
+            choices=["moordyn", "moorpy"],
+            help="moordyn: a MoorDyn input file (v1 or v2); moorpy: a RAFT/MoorPy mooring YAML "
+            "(either is also detected from the file's content)",
+        )
+        p.add_argument("file")
+        p.add_argument(
+            "--line",
+            action="append",
+            default=None,
+            help="a line ID (MoorDyn) or name (mooring YAML) of the line, end to end; repeat "
+            "for a line of several (default: all lines: one line where they form one chain, "
+            "else one system study of every line, point and body)",
+        )
+        p.add_argument("--name", default=None, help="study name (default: from the file name)")
+        p.set_defaults(func=cmd_import)
 
-    p = sub.add_parser("export", help="write one case of a study as another tool's input file")
-    p.add_argument("format", choices=["moordyn"], help="moordyn: a MoorDyn v2 input file")
-    p.add_argument("config")
-    p.add_argument(
-        "--case",
-        action="append",
-        default=None,
-        metavar="DIM=VALUE",
-        help="the case's sweep coordinate, one per swept dimension",
-    )
-    p.add_argument("--out", default=None, help="output file (default: standard output)")
-    p.set_defaults(func=cmd_export)
+    if p := add("export", help="write one case of a study as another tool's input file"):
+        p.add_argument("format", choices=["moordyn"], help="moordyn: a MoorDyn v2 input file")
+        p.add_argument("config")
+        p.add_argument(
+            "--case",
+            action="append",
+            default=None,
+            metavar="DIM=VALUE",
+            help="the case's sweep coordinate, one per swept dimension",
+        )
+        p.add_argument("--out", default=None, help="output file (default: standard output)")
+        p.set_defaults(func=cmd_export)
 
-    p = sub.add_parser("plot", help="quick-look plot of variables of a result file")
-    p.add_argument("result", help="a result file (.nc)")
-    p.add_argument(
-        "var", nargs="+", help="the variable(s) to draw on one axes (of one unit, e.g. N)"
-    )
-    p.add_argument(
-        "--units",
-        default=None,
-        metavar="UNIT",
-        help="unit of the values drawn (N kN MN, N/m kN/m MN/m, m mm km, s min h, Hz rad/s, "
-        "rad deg; default: the file's SI unit)",
-    )
-    p.add_argument("--x", default=None, help="dimension on the x axis")
-    p.add_argument("--hue", default=None, help="dimension drawn as one curve per value")
-    p.add_argument(
-        "--sel",
-        action="append",
-        default=None,
-        metavar="DIM=VALUE",
-        help="pick one value of a dimension: the nearest number, a label, or a swept "
-        "vector as [0,0,1] (repeatable)",
-    )
-    p.add_argument("--out", default=None, help="PNG file (default: RESULT-VAR[-VAR...].png)")
-    p.add_argument(
-        "--shape", action="store_true", help="draw profiles on s as line shapes in the x-z plane"
-    )
-    p.set_defaults(func=cmd_plot)
-    _add_lookup_parser(sub)
+    if p := add("plot", help="quick-look plot of variables of a result file"):
+        p.add_argument("result", help="a result file (.nc)")
+        p.add_argument(
+            "var", nargs="+", help="the variable(s) to draw on one axes (of one unit, e.g. N)"
+        )
+        p.add_argument(
+            "--units",
+            default=None,
+            metavar="UNIT",
+            help="unit of the values drawn (N kN MN, N/m kN/m MN/m, m mm km, s min h, Hz rad/s, "
+            "rad deg; default: the file's SI unit)",
+        )
+        p.add_argument("--x", default=None, help="dimension on the x axis")
+        p.add_argument("--hue", default=None, help="dimension drawn as one curve per value")
+        p.add_argument(
+            "--sel",
+            action="append",
+            default=None,
+            metavar="DIM=VALUE",
+            help="pick one value of a dimension: the nearest number, a label, or a swept "
+            "vector as [0,0,1] (repeatable)",
+        )
+        p.add_argument("--out", default=None, help="PNG file (default: RESULT-VAR[-VAR...].png)")
+        p.add_argument(
+            "--shape",
+            action="store_true",
+            help="draw profiles on s as line shapes in the x-z plane",
+        )
+        p.set_defaults(func=cmd_plot)
+    _add_lookup_parser(add)
 
-    p = sub.add_parser(
+    if p := add(
         "line-types",
         help="list the line-type library (line.segments.N.line_type): materials, formulas, "
         "coefficients and their sources",
-    )
-    p.add_argument(
-        "--diameter",
-        type=float,
-        default=None,
-        metavar="D",
-        help="also give every material's filled values at nominal diameter D [m]",
-    )
-    p.set_defaults(func=cmd_line_types)
-    return parser
+    ):
+        p.add_argument(
+            "--diameter",
+            type=float,
+            default=None,
+            metavar="D",
+            help="also give every material's filled values at nominal diameter D [m]",
+        )
+        p.set_defaults(func=cmd_line_types)
+    return parser if built else build_parser()
 
 
 #: exit status after the reader of the output went away (as a shell reports SIGPIPE)
@@ -524,7 +538,10 @@ EXIT_BROKEN_PIPE = 141
 def main(argv: list[str] | None = None) -> int:
     from .run.conventions import COMMAND
 
-    args = build_parser().parse_args(argv)
+    words = sys.argv[1:] if argv is None else argv
+    args, extra = build_parser(words[0] if words else None).parse_known_args(argv)
+    if extra:  # refused as the whole parser words it (its usage names every command)
+        build_parser().parse_args(argv)
     if argv is None:  # the program itself (not a caller in its own process)
         _skip_final_collection()
         if args.func is cmd_run:
@@ -598,11 +615,13 @@ def _skip_final_collection() -> None:
     atexit.register(gc.freeze)
 
 
-def _add_lookup_parser(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
-    p = sub.add_parser(
+def _add_lookup_parser(add: Callable[..., argparse.ArgumentParser | None]) -> None:
+    p = add(
         "lookup",
         help="interpolate a quasi-static database (analysis.database) at an end-B position",
     )
+    if p is None:
+        return
     p.add_argument(
         "database",
         help="the database's own file (<name>.database.nc) or the study's result (<name>.nc)",

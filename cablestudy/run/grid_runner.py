@@ -328,12 +328,19 @@ class _ExcitationCases(Cases):
     """The cases of a sweep of a system's harmonic excitation
     (:class:`cablestudy.analyses.system_fd_grid.ExcitationGrid`): a chunk of them is
     solved as arrays at once, so the probe fills its time with few chunks
-    (:func:`cablestudy.run.scheduler.probe_cost` with ``fill``)."""
+    (:func:`cablestudy.run.scheduler.probe_cost` with ``fill``), the first of up to
+    :data:`EXCITATION_PROBE_CASES`: a chunk costs the sweep's shared statics and model
+    (once) and about half a millisecond a case, so a sweep of that many runs as one
+    chunk (each further chunk cost about 0.4 ms more)."""
 
     def probe(self, on_done: Any, seconds: float) -> Any:
         from .scheduler import probe_cost
 
-        return probe_cost(self.units, on_done, seconds, fill=True)
+        return probe_cost(self.units, on_done, seconds, fill=True, first=EXCITATION_PROBE_CASES)
+
+
+#: cases in the first chunk of a sweep of a system's harmonic excitation (about 40 ms)
+EXCITATION_PROBE_CASES = 64
 
 
 def _case_work(grid: Any) -> type[Cases]:

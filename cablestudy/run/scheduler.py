@@ -216,13 +216,15 @@ class Probe:
     thread_speedup: float | None = None
 
 
-def probe_cost(cases: list[Case], on_done: OnDone, seconds: float, fill: bool = False) -> Probe:
-    """Run ``cases`` here in doubling chunks (1, 2, 4, ... cases, so that cheap cases
-    are timed batched as they will run) until ``seconds`` have passed; the cost of a
-    case is that of the last (largest) chunk. The probe's records count: nothing is
-    computed twice. ``fill``: after the first, a chunk takes at least as many cases as
-    the time left would hold at the last chunk's cost a case (cases solved as arrays a
-    chunk at a time, whose chunk costs about a case more than its cases)."""
+def probe_cost(
+    cases: list[Case], on_done: OnDone, seconds: float, fill: bool = False, first: int = 1
+) -> Probe:
+    """Run ``cases`` here in doubling chunks (``first``, twice that, ... cases, so that
+    cheap cases are timed batched as they will run) until ``seconds`` have passed; the
+    cost of a case is that of the last (largest) chunk. The probe's records count:
+    nothing is computed twice. ``fill``: after the first, a chunk takes at least as many
+    cases as the time left would hold at the last chunk's cost a case (cases solved as
+    arrays a chunk at a time, whose chunk costs about a case more than its cases)."""
     ordered = sorted(cases, key=lambda c: (c.static_hash, c.index))
     # probe cases spread over the sweep (bit-reversed order: its ends, its middle, its
     # quarters, ...): a sweep's cost changes along its axes (a dynamic sweep's large
@@ -231,7 +233,7 @@ def probe_cost(cases: list[Case], on_done: OnDone, seconds: float, fill: bool = 
     spread = sorted(range(len(ordered)), key=lambda i: _radical_inverse(i))
     probed: set[int] = set()
     t_start = time.perf_counter()
-    size, per_case, pos = 1, math.nan, 0
+    size, per_case, pos = max(1, first), math.nan, 0
     while pos < len(spread):
         take = spread[pos : pos + size]
         pos += len(take)
