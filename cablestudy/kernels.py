@@ -67,7 +67,11 @@ ends:
     )
     for body in (linear, anchored, nonlinear, current):
         src = parse_study_text(body, "warm.yaml")
-        SemiAnalyticSolver().solve(static_problem(validate_data(src.data, src)))
+        problem = static_problem(validate_data(src.data, src))
+        SemiAnalyticSolver().solve(problem)
+    # the general solver, which calls compiled pieces from Python (a case no kernel
+    # settles; a current over a seabed): found by tests/unit/test_compile_coverage.py
+    SemiAnalyticSolver().solve(problem, compiled=False)
     # the array path of sweeps calls the batch kernels with stacked cases
     from .analyses.static_grid import evaluate_grid_chunk
     from .study.grid import expand_grid

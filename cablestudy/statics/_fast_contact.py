@@ -6,7 +6,8 @@ at the touchdown point in the seabed plane and the arc length of the touchdown p
 with the analytic Jacobian and the same line search from the same start,
 :func:`.semi_analytic_newton.initial_contact`) and of :func:`.seabed.laid_part` (the laid part
 straight along the touchdown tension, the tension falling towards the anchor at
-k = w (mu n_z + e_z) and never below zero; Coulomb friction on point loads resting on
+k = w (sqrt((mu n_z)^2 - c^2) + e_z), c the weight's part across the line
+(:func:`.seabed.along_friction`), and never below zero; Coulomb friction on point loads resting on
 the seabed), for pieces under their weight only (:func:`._fast._piece`) with point loads
 at piece boundaries, end B fixed above the seabed or given a known force (mooring or
 towed end). Where the tension has fallen to zero the laid line is slack: its tension is
@@ -34,11 +35,15 @@ from .contact_status import (  # noqa: F401 - re-exported
     REASONS,
     SLACK,
 )
+from .seabed import along_friction
 
 
 @njit(cache=True, error_model="numpy")
 def _dot3(a: np.ndarray, b: np.ndarray) -> float:
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+_along = njit(cache=True, error_model="numpy")(along_friction)
 
 
 @njit(cache=True, error_model="numpy")
@@ -72,7 +77,6 @@ def _laid(
             m += 1
     npc = m + 1
     ez = e[2]
-    nz = normal[2]
     stretched = 0.0
     flex = 0.0
     t_up = max(tn, 0.0)  # tension at the TDP end of the piece being marched
@@ -86,7 +90,7 @@ def _laid(
             if f[0] != 0.0 or f[1] != 0.0 or f[2] != 0.0:
                 fn = _dot3(f, normal)
                 th = max(th - (mu * max(0.0, -fn) - _dot3(f, e)), 0.0)
-        k = w[j] * (mu * nz + ez)
+        k = w[j] * (_along(mu, normal, e) + ez)
         tl = th - k * ell
         if tl >= 0.0:
             positive = ell

@@ -613,8 +613,9 @@ def _solve_group(
         TA[moor, 2] = np.where(Wz > 0.0, Vz, -0.5 * Wz)
     tol = np.array([p.tolerance for p in problems])
     maxit = np.array([p.max_iterations for p in problems])
-    # the same arc lengths as np.linspace(0, L, n) of the one-by-one path, bit for bit
-    s = np.linspace(np.zeros(N), Ltot, n_nodes, axis=1)
+    # the same arc lengths as np.linspace(0, L, n) of the one-by-one path, bit for bit;
+    # C order, the layout cablestudy compile warms the kernel for (linspace's is F)
+    s = np.ascontiguousarray(np.linspace(np.zeros(N), Ltot, n_nodes, axis=1))
     pos = np.empty((N, n_nodes, 3))
     tension = np.empty((N, n_nodes))
     TL = np.empty((N, 3))

@@ -7,12 +7,16 @@ TDP; the seabed carries the normal component of its weight; Coulomb friction is 
 mobilised towards the anchor, so that the tension falls from the TDP towards the anchor
 at the rate
 
-    k = mu w (n . z) + w (e . z)     [N/m]
+    k = w sqrt((mu n_z)^2 - c^2) + w (e . z)     [N/m]
 
-(friction on the normal weight plus the component of weight along the line; w > 0 the
-submerged weight per length, n the upward seabed normal), and never below zero: where
-it reaches zero the rest of the laid line towards the anchor is slack. Drag on the laid
-part is neglected.
+and never below zero: where it reaches zero the rest of the laid line towards the anchor
+is slack (w > 0 the submerged weight per length, n the upward seabed normal). Friction
+first holds the weight's part down the slope across the line, w c with
+c = |n_x e_y - n_y e_x| (zero on a flat seabed or along the fall line); Coulomb's cone,
+|friction| <= mu w n_z at every point, leaves sqrt((mu n_z)^2 - c^2) per unit weight to
+act along the line (:func:`along_friction`). Where c > mu n_z no friction holds the
+straight laid line: it would slide sideways, and the solver refuses the state. Drag on
+the laid part is neglected.
 """
 
 from __future__ import annotations
@@ -57,6 +61,17 @@ class Plane:
         """Distance above the plane measured along its normal [m] (negative below)."""
         r = np.asarray(r, dtype=float)
         return (r - np.array([0.0, 0.0, -self.depth])) @ self.normal
+
+
+def along_friction(mu: float, normal: np.ndarray, e: np.ndarray) -> float:
+    """Friction per unit weight [-] that a line laid along the unit vector ``e`` on the
+    seabed of upward unit ``normal`` and friction coefficient ``mu`` mobilises along
+    itself: sqrt((mu n_z)^2 - c^2), c = |n_x e_y - n_y e_x| the weight's part down the
+    slope across the line per unit weight, which friction holds first (mu n_z exactly
+    where c = 0; 0 where c > mu n_z). Plain Python: :mod:`._fast_contact` compiles it."""
+    a = mu * normal[2]
+    c = normal[0] * e[1] - normal[1] * e[0]
+    return math.sqrt(max(a * a - c * c, 0.0)) if c != 0.0 else a
 
 
 def seabed_of(medium: Any) -> Plane | None:
@@ -144,7 +159,6 @@ def laid_part(
     n = plane.normal
     mu = plane.friction
     ez = float(direction[2])
-    nz = float(n[2])
     cut = bounds[(bounds > 0.0) & (bounds < s_td)]
     pts = np.concatenate(([0.0], cut, [s_td]))
     tension = np.empty(len(pts))
@@ -154,7 +168,7 @@ def laid_part(
     piece = np.clip(
         np.searchsorted(bounds, 0.5 * (pts[:-1] + pts[1:]), side="right") - 1, 0, len(weight) - 1
     )
-    rates = weight[piece] * (mu * nz + ez)
+    rates = weight[piece] * (along_friction(mu, n, direction) + ez)
     order = np.argsort(point_s)
     t_los = np.zeros(len(pts) - 1)
     t_his = np.zeros(len(pts) - 1)

@@ -382,6 +382,27 @@ def solve_contact(
         raise
 
 
+def _held_across(plane: Plane, T_td: np.ndarray, tol: float, it: int, res: float) -> None:
+    """Refuse a laid line that friction cannot hold on the slope across it: its weight's
+    part down the slope across the line, c per unit weight, exceeds mu n_z by more than
+    the solve's relative tolerance ``tol`` (the laid part then takes no friction along
+    itself, :func:`.seabed.along_friction`)."""
+    n, mu = plane.normal, plane.friction
+    e = T_td / float(np.linalg.norm(T_td))
+    c = abs(float(n[0] * e[1] - n[1] * e[0]))
+    if c <= mu * float(n[2]) + tol:
+        return
+    raise _Failure(
+        STATUS_NO_SOLUTION,
+        f"no straight laid line: it lies across the seabed slope, whose fall across it "
+        f"(gradient {c / float(n[2]):.3g}) exceeds the friction coefficient {mu:.3g}, so "
+        "friction cannot hold it from sliding sideways (this method lays the line "
+        "straight along the touchdown tension; method 'discrete' models it sliding)",
+        it,
+        res,
+    )
+
+
 def _dips(shape: Shape, lay: Layout, plane: Plane, tol: float) -> bool:
     """Whether the suspended line of a contact state passes below the seabed (by more
     than the solve's tolerance on positions, as the solver's own penetration check)."""
@@ -577,6 +598,7 @@ def _solve_contact(
         return None
     T_td = basis @ y[:2]
     s_td, pin, jsig, t_lo, _, _ = _pinned(y[2], T_td)
+    _held_across(plane, T_td, tol, it, res)
     shape = _contact_shape(lay, q, ends.rA, s_td, T_td, plane, None if jsig is None else pin, t_lo)
     shape.iterations = it
     shape.residual = res
