@@ -12,12 +12,8 @@ import math
 import numpy as np
 from numba import njit
 
-from cablestudy.dynamics.frequency_model import (
-    FIT_REGULARISATION,
-    DragSettings,
-    LinearLine,
-    drag_linearisation,
-)
+from cablestudy.dynamics.frequency_model import FIT_REGULARISATION, DragSettings, LinearLine
+from tests.drag_fit_reference import drag_linearisation
 
 #: phases of the oracle's still-water means (:func:`node_fits`): the trapezoid rule on
 #: a period. The fit's sums are analytic in the phase but for the kinks of ``|w_T| w_T``

@@ -44,7 +44,7 @@ def drag_fit_samples(  # noqa: PLR0913
     lean,
     out,
 ):  # noqa: ANN001, ANN201, PLR0913
-    """:func:`cablestudy.dynamics.frequency_model._drag_fit` given the lean (the mean
+    """``_drag_fit`` (tests/drag_fit_reference.py) given the lean (the mean
     Jacobian, :mod:`.drag_lean`: ``drag_linearisation(line, v, samples, J, exact)``)
     with ``cos``, ``sin`` (samples,) given and the same operations in the same order,
     laid out for the compiler: the drag at every node and phase first, in a loop

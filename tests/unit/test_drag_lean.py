@@ -19,8 +19,9 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from cablestudy.dynamics.frequency_model import FIT_REGULARISATION, drag_linearisation
+from cablestudy.dynamics.frequency_model import FIT_REGULARISATION
 from cablestudy.dynamics.harmonic_kernel import drag_fit_samples
+from tests.drag_fit_reference import drag_linearisation
 from tests.system_drag_reference import mean_drag_jacobian
 
 

@@ -26,11 +26,8 @@ import pytest
 from numba import njit
 
 from cablestudy.dynamics.elliptic_fit import ellipse_means, still_water_means
-from cablestudy.dynamics.frequency_model import (
-    FIT_REGULARISATION,
-    drag_linearisation,
-    planar_drag_fit,
-)
+from cablestudy.dynamics.frequency_model import FIT_REGULARISATION, planar_drag_fit
+from tests.drag_fit_reference import drag_linearisation
 
 
 @njit(cache=True)

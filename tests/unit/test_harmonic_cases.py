@@ -32,16 +32,12 @@ from cablestudy.analyses.frequency import (
 )
 from cablestudy.analyses.static import _STATIC_CACHE, solve_static
 from cablestudy.dynamics.frequency import solve_harmonic
-from cablestudy.dynamics.frequency_model import (
-    ReducedLine,
-    block_diagonal,
-    drag_linearisation,
-    drag_tangent,
-)
+from cablestudy.dynamics.frequency_model import ReducedLine, block_diagonal, drag_tangent
 from cablestudy.dynamics.harmonic_cases import in_plane, solve_harmonic_cases
 from cablestudy.dynamics.validity import measures_cases
 from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
+from tests.drag_fit_reference import drag_linearisation
 from tests.system_drag_reference import mean_drag_jacobian
 
 FIGS = Path(__file__).resolve().parents[2] / "configs" / "moustafa-figs2-5.yaml"
