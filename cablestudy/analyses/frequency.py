@@ -381,11 +381,6 @@ def unsettled_fit(dyn: DynamicSettings, iterations: int, change: float) -> Frequ
     )
 
 
-def _submerged_weight(case: Case, s: np.ndarray) -> np.ndarray:
-    """Submerged weight per length [N/m] at arc lengths ``s``."""
-    return submerged_weight(_problem(case).line, s)
-
-
 def transfer_function(
     red: ReducedLine, dyn: DynamicSettings, static: StaticResult
 ) -> dict[str, np.ndarray]:

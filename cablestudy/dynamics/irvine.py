@@ -77,13 +77,3 @@ def frequencies(lambda_squared: float, count: int) -> dict[str, np.ndarray]:
         "antisymmetric": 2.0 * n * math.pi,
         "symmetric": symmetric_roots(lambda_squared, count),
     }
-
-
-def lowest_frequencies(
-    lambda_squared: float, count: int, *, span: float, horizontal_tension: float, mass: float
-) -> np.ndarray:
-    """The ``count`` lowest natural frequencies [Hz] of all three families together,
-    sorted; ``mass`` [kg/m] includes any added mass."""
-    fam = frequencies(lambda_squared, count)
-    bar = np.sort(np.concatenate(list(fam.values())))[:count]
-    return bar * math.sqrt(horizontal_tension / mass) / span / (2.0 * math.pi)

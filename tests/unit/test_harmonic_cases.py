@@ -24,12 +24,12 @@ from cablestudy.analyses.evaluate import evaluate_case, evaluate_chunk
 from cablestudy.analyses.frequency import (
     _LINEAR_CACHE,
     _problem,
-    _submerged_weight,
     drag_settings,
     end_displacements,
     linearised,
     solve_frequency_cases,
 )
+from cablestudy.analyses.line_harmonic import submerged_weight
 from cablestudy.analyses.static import _STATIC_CACHE, solve_static
 from cablestudy.dynamics.frequency import solve_harmonic
 from cablestudy.dynamics.frequency_model import ReducedLine, block_diagonal, drag_tangent
@@ -293,7 +293,7 @@ def test_validity_measures_as_arrays_match_the_per_case_function(text: str) -> N
         end_tension_static=res.tension_static,
         laid_length=static.laid_length,
         on_seabed=on_bed,
-        submerged_weight=_submerged_weight(cases[0], line.s),
+        submerged_weight=submerged_weight(_problem(cases[0]).line, line.s),
         held=held,
     )
     ratio, sag_ratio, travel = measures_cases(
