@@ -254,7 +254,8 @@ def _solve_active(
         if got is None:
             return None
         (Ti, To), w = got
-        return _gap(Ti, To, slide_bound(pulleys.factor, w), towards_out)[idx]
+        bound = slide_bound(pulleys.factor, w)  # T_out - r T_in, r the bound (out larger) or 1/r
+        return (To - np.where(towards_out, bound, 1.0 / bound) * Ti)[idx]
 
     S = start.copy()
     g = g_at(S)
@@ -299,13 +300,6 @@ def _solve_active(
                 pulleys.jacobian[np.ix_(idx, idx)] = J
             return S
     return None
-
-
-def _gap(
-    T_in: np.ndarray, T_out: np.ndarray, bound: np.ndarray, out_larger: np.ndarray
-) -> np.ndarray:
-    """T_out - r T_in with r the bound (out larger) or its inverse."""
-    return T_out - np.where(out_larger, bound, 1.0 / bound) * T_in
 
 
 def _bounds(S: np.ndarray, pulleys: SlidingPulleys) -> np.ndarray:

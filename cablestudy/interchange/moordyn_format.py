@@ -442,12 +442,6 @@ def _point(tokens: list[str], where: str, n: int) -> Point:
     )
 
 
-def _v1_line_order(header: list[str]) -> bool:
-    """True if the header names the unstretched length in the third column (the version 1
-    order ``Line LineType UnstrLen NumSegs NodeAnch NodeFair``)."""
-    return len(header) > 2 and header[2].lower().startswith(("unstr", "len"))
-
-
 def _line(tokens: list[str], v1_order: bool, where: str, n: int) -> Line:
     if v1_order:
         _need(tokens, V1_LINE_COLUMNS[:-1], where, "version 1 line")
@@ -610,7 +604,9 @@ def parse_moordyn(text: str, source: str = "<moordyn>") -> MoorDynFile:
                 )
             rows_to_skip -= 1
             if kind == "lines":
-                v1_lines = _v1_line_order(header)
+                # the unstretched length third: version 1's order ``Line LineType UnstrLen
+                # NumSegs NodeAnch NodeFair``
+                v1_lines = len(header) > 2 and header[2].lower().startswith(("unstr", "len"))
             continue
         if not body:
             continue

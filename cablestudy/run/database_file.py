@@ -48,11 +48,6 @@ if TYPE_CHECKING:
 PREFIX = "quasi-static database: "
 
 
-def database_file_name(name: str) -> str:
-    """The database file of study ``name``."""
-    return f"{name}.database.nc"
-
-
 def database_variables(
     variables: tuple[dict[str, VariableSpec], dict[str, VariableSpec], dict[str, Any]],
     axes: list[SweepAxis],
@@ -126,7 +121,7 @@ def write_database_file(
     study dataset's variables when they hold a quasi-static database; otherwise remove a
     file of that name left by an earlier run of the study, which would no longer
     describe it."""
-    target = out_dir / database_file_name(str(src.data["name"]))
+    target = out_dir / f"{src.data['name']}.database.nc"
     db_vars = None if variables is None else database_variables(variables, axes, cases, src)
     if db_vars is None:
         target.unlink(missing_ok=True)

@@ -314,12 +314,8 @@ def _bracketed(
         raise _SubFailed(STATUS_NOT_CONVERGED, "no sub-line solution at the first split")
     _, _, payload = _root_1d(f_outer, float(split[0]), got0, 0.0, L, tol, L)
     res, r = payload
-    return _splits_of(res), res, r, count[0]
-
-
-def _splits_of(res: list[StaticResult]) -> np.ndarray:
-    """The split [m] of sub-line results: their cumulative unstretched lengths."""
-    return np.cumsum([float(r.s[-1]) for r in res])[:-1]
+    # the split [m]: the sub-lines' cumulative unstretched lengths
+    return np.cumsum([float(r.s[-1]) for r in res])[:-1], res, r, count[0]
 
 
 def _root_1d(
