@@ -60,15 +60,6 @@ def wrap_angles(points: np.ndarray) -> np.ndarray:
     return np.arccos(c)
 
 
-def span_tensions(
-    law: AxialLaw, length: float, distances: np.ndarray, lengths: np.ndarray
-) -> np.ndarray:
-    """Tension [N] of each span of unstretched length ``lengths`` [m] stretched to
-    ``distances`` [m]: the cable's law at the extension its strain gives the whole
-    cable, length (d / l - 1)."""
-    return law.tension(length * (distances / lengths - 1.0))
-
-
 def over_pulleys(problem: SpringProblem) -> StaticResult:
     """A spring between fixed ends over fixed pulleys, slid freely to the frictionless
     equilibrium (each span's unstretched length in proportion to its chord): one strain,
@@ -83,7 +74,8 @@ def over_pulleys(problem: SpringProblem) -> StaticResult:
     d = np.linalg.norm(np.diff(P, axis=0), axis=1)
     D = float(np.sum(d))
     lengths = L * d / D
-    T = span_tensions(problem.law, L, d, lengths) if D > 0.0 else np.zeros(len(d))
+    # each span's tension: the law at the extension its strain gives the whole cable
+    T = problem.law.tension(L * (d / lengths - 1.0)) if D > 0.0 else np.zeros(len(d))
     u = np.diff(P, axis=0) / np.where(d > 0.0, d, 1.0)[:, None]
     s = np.linspace(0.0, L, problem.n_nodes)
     S = np.concatenate(([0.0], np.cumsum(lengths)))
@@ -99,12 +91,6 @@ def over_pulleys(problem: SpringProblem) -> StaticResult:
     )
     res.pulley_force = T[1:, None] * u[1:] - T[:-1, None] * u[:-1]  # type: ignore[attr-defined]
     return res
-
-
-def spring_tension(law: AxialLaw, length: float, distance: np.ndarray | float) -> np.ndarray:
-    """Tension [N] of a spring of unstretched ``length`` [m] whose ends are ``distance``
-    [m] apart (0 when slack)."""
-    return law.tension(np.asarray(distance, dtype=float) - length)
 
 
 def _straight(
@@ -180,7 +166,7 @@ def solve_spring(problem: SpringProblem) -> StaticResult:
     if b.kind == "fixed":
         assert b.position is not None
         rB = np.asarray(b.position, dtype=float)
-        T = float(spring_tension(law, L, float(np.linalg.norm(rB - rA))))
+        T = float(law.tension(np.asarray(float(np.linalg.norm(rB - rA)), dtype=float) - L))
         its = 0
     elif b.kind == "force":
         assert b.force is not None
