@@ -125,7 +125,18 @@ def spring_problems(case: Case, src: StudySource) -> list[str]:
             "time domain of a kind: catenary line)"
         )
     if dyn is not None:
-        out += _unused_dynamic_keys(dyn, at)
+        # the keys a spring line's dynamics would ignore (given in the study; defaults are
+        # never refused): its tension is algebraic in the end motion over one period after
+        # the ramp (or over duration): no elements, implicit steps, steady state or drag
+        out += [
+            f"{at('analysis', 'dynamic', key)}: analysis.dynamic.{key}: not used by a kind: "
+            "spring line, whose tension is algebraic in the end motion (no elements, time "
+            "steps, steady-state detection or drag linearisation) (got "
+            f"{getattr(dyn, key)!r}); allowed: omit it (the spring's dynamics reads "
+            "excitation, duration, period, ramp_periods and points_per_period)"
+            for key in SPRING_UNUSED_DYNAMIC_KEYS
+            if key in dyn.model_fields_set
+        ]
         for key in ("transfer_function", "history"):
             if getattr(dyn, key) is not None:
                 out.append(
@@ -273,19 +284,3 @@ SPRING_UNUSED_DYNAMIC_KEYS = (
     "linearisation",
     "auto",
 )
-
-
-def _unused_dynamic_keys(dyn: Any, at: Any) -> list[str]:
-    """Messages for the ``analysis.dynamic`` keys a spring line's dynamics would ignore
-    (given in the study; defaults are never refused): its tension is algebraic in the end
-    motion over one period after the ramp (or over ``duration``), so it has no elements,
-    no implicit steps, no steady state to detect and no drag to linearise."""
-    return [
-        f"{at('analysis', 'dynamic', key)}: analysis.dynamic.{key}: not used by a kind: "
-        "spring line, whose tension is algebraic in the end motion (no elements, time "
-        "steps, steady-state detection or drag linearisation) (got "
-        f"{getattr(dyn, key)!r}); allowed: omit it (the spring's dynamics reads "
-        "excitation, duration, period, ramp_periods and points_per_period)"
-        for key in SPRING_UNUSED_DYNAMIC_KEYS
-        if key in dyn.model_fields_set
-    ]

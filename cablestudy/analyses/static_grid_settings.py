@@ -23,13 +23,6 @@ import numpy as np
 from ..study.grid_lines import STATIC_SETTING
 
 
-def setting_axes(grid: Any) -> tuple[int, ...]:
-    """The axes of ``grid`` that hold a swept static setting, in order."""
-    return tuple(
-        k for k, axis in enumerate(grid.axes) if any(STATIC_SETTING.match(p) for p in axis.paths)
-    )
-
-
 def settings_groups(grid: Any, lo: int, hi: int) -> list[tuple[np.ndarray, Any]] | None:
     """Per combination of swept static settings among the cases of rows ``lo:hi`` (C
     order): the cases' positions in the chunk and the study of that combination (the
@@ -37,7 +30,10 @@ def settings_groups(grid: Any, lo: int, hi: int) -> list[tuple[np.ndarray, Any]]
     when no static setting is swept (the template's settings for every case)."""
     from ..study.grid_studies import case_study
 
-    axes = setting_axes(grid)
+    # the axes that hold a swept static setting, in order
+    axes = tuple(
+        k for k, axis in enumerate(grid.axes) if any(STATIC_SETTING.match(p) for p in axis.paths)
+    )
     if not axes:
         return None
     block = (hi - lo, *grid.shape[1:])
