@@ -31,9 +31,7 @@ def touchdown_range(
     nan = np.full(travel.shape, np.nan)
     if not on.any() or on.all():
         return nan, nan.copy()
-    if on[0]:
-        point = s[int(np.argmin(on)) - 1]  # the last node of the run laid from A
-    else:
-        point = s[int(np.argmax(on))]  # the first laid node seen from A
+    # the last node of the run laid from A, or the first laid node seen from A
+    point = s[int(np.argmin(on)) - 1] if on[0] else s[int(np.argmax(on))]
     reach = np.where(np.isfinite(travel), travel * float(s[-1] - s[0]), np.nan)
     return point - reach, point + reach

@@ -356,7 +356,7 @@ def warm_up_line() -> LinearLine:
     eye = sp.identity(3 * n, format="csr")
     basis = sp.csr_matrix(np.eye(3 * n)[:, 3:6])
     z = np.zeros(n)
-    line = LinearLine(
+    return LinearLine(
         s=np.arange(n, dtype=float),
         position=np.zeros((n, 3)),
         mass=np.tile(np.eye(3), (n, 1, 1)),
@@ -374,7 +374,6 @@ def warm_up_line() -> LinearLine:
         tangent=np.tile([1.0, 0.0, 0.0], (n, 1)),
         free_basis=basis,
     )
-    return line
 
 
 def warm_up() -> None:

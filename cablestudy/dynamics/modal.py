@@ -423,8 +423,7 @@ def snap_to_samples(s_fine: np.ndarray, targets: np.ndarray) -> np.ndarray:
     j = np.clip(np.searchsorted(s_fine, targets), 1, len(s_fine) - 1)
     nearer_left = (targets - s_fine[j - 1]) <= (s_fine[j] - targets)
     idx = np.where(nearer_left, j - 1, j)
-    idx = np.unique(np.concatenate(([0], idx, [len(s_fine) - 1])))
-    return idx
+    return np.unique(np.concatenate(([0], idx, [len(s_fine) - 1])))
 
 
 #: largest model (degrees of freedom) solved by LAPACK's banded eigensolver. Its
