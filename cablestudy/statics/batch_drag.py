@@ -37,9 +37,9 @@ import time
 
 import numpy as np
 
-from .base import STATUS_OK, LineModel, StaticProblem, StaticResult
+from .base import STATUS_OK, EndCondition, LineModel, StaticProblem, StaticResult
 from .line_state import CatenaryState
-from .seabed import seabed_of
+from .seabed import Plane, seabed_of
 from .semi_analytic_shape import Layout, make_layout, reversed_line
 
 #: the general solver's drag-loop settings the kernel runs with
@@ -50,6 +50,12 @@ CONTINUATION = (4, 16)
 #: why the drag kernel left a case to the general solver
 DRAG_NOT_SETTLED = "not settled by the drag kernel"
 ON_SEABED = "its solution touches the seabed"
+#: ... and why it left a line anchored on the seabed (by the kernel's status)
+ANCHORED_REASONS = {
+    4: "anchored on the seabed, it may hang free of it (the free-hanging path)",
+    5: "anchored on the seabed, its seabed-contact Newton did not settle",
+    6: "anchored on the seabed, its solution passes below the seabed",
+}
 
 
 def drag_eligible(problem: StaticProblem) -> bool:
@@ -69,15 +75,45 @@ def drag_eligible(problem: StaticProblem) -> bool:
     # over a seabed: both fixed ends above it, as the general solver tells an end on it
     # (1e-6 L); that solver then hangs the line free until a shape reaches the seabed
     limit = 1e-6 * line.total_length
-    for end in (problem.end_a, problem.end_b):
-        if end.kind == "fixed" and not float(plane.height_above(end.position)) > limit:
-            return False
-    return True
+    heights = [_height(plane, e) for e in (problem.end_a, problem.end_b) if e.kind == "fixed"]
+    if all(h > limit for h in heights):
+        return True
+    # anchored on it: the end solved from on the seabed (not below), the other above it;
+    # no attachment (a clump resting on the seabed, a buoy: the general solver's), every
+    # segment heavier than the fluid
+    a, b = problem.end_a, problem.end_b
+    if is_reversed(problem):
+        a, b = b, a
+    return (
+        abs(_height(plane, a)) <= limit
+        and (b.kind != "fixed" or _height(plane, b) > limit)
+        and line.attachment_s.size == 0
+        and bool(np.all(line.weight > 0.0))
+    )
+
+
+def _height(plane: Plane, end: EndCondition) -> float:
+    """How far a fixed ``end`` lies above ``plane`` [m]."""
+    return float(plane.height_above(end.position))
 
 
 def is_reversed(problem: StaticProblem) -> bool:
-    """Whether the general solver solves ``problem`` from end B (its end A not fixed)."""
-    return problem.end_a.kind != "fixed"
+    """Whether the general solver solves ``problem`` from end B: its end A not fixed, or
+    both fixed and B, not A, on the seabed (within 1e-6 L of it)."""
+    a, b = problem.end_a, problem.end_b
+    plane = seabed_of(problem.medium)
+    if a.kind != "fixed" or plane is None or b.kind != "fixed":
+        return a.kind != "fixed"
+    limit = 1e-6 * problem.line.total_length
+    return _height(plane, b) <= limit < _height(plane, a)
+
+
+def anchored(problem: StaticProblem) -> bool:
+    """Whether the general solver lays ``problem`` (:func:`drag_eligible`) from the end it
+    solves from, anchored on the seabed."""
+    plane = seabed_of(problem.medium)
+    a = problem.end_b if is_reversed(problem) else problem.end_a
+    return plane is not None and _height(plane, a) <= 1e-6 * problem.line.total_length
 
 
 def drag_elements(problem: StaticProblem) -> int:
@@ -94,7 +130,8 @@ def drag_many(
 ) -> list[StaticResult | None]:
     """The drag kernel's verified answer per problem (all :func:`drag_eligible`), None
     where it leaves the case to the general solver (``why``, if given, gets
-    :data:`ON_SEABED` for a line over a seabed that reaches it). Problems of equal piece,
+    :data:`ON_SEABED` for a line over a seabed that reaches it, an
+    :data:`ANCHORED_REASONS` text for a line anchored on it). Problems of equal piece,
     node and current-profile counts are solved in one call. Past ``deadline``
     (``time.monotonic``) no answer is kept: the general solver then reports the time
     limit, as for a case it iterates itself (the kernel does not look at the clock
@@ -122,22 +159,23 @@ def drag_many(
         groups.setdefault(key, []).append(i)
     out: list[StaticResult | None] = [None] * len(problems)
     for members in groups.values():
-        seabed: set[int] = set()
+        left: dict[int, str] = {}
         try:
             got = _solve_group(
-                [problems[i] for i in members], [layouts[i] for i in members], flipped, seabed
+                [problems[i] for i in members], [layouts[i] for i in members], flipped, left
             )
         except Exception:  # noqa: BLE001 - a fault in the kernel: each case alone
-            got, seabed = [], set()
+            got, left = [], {}
             for j, i in enumerate(members):
-                one: set[int] = set()
+                one: dict[int, str] = {}
                 try:
                     got += _solve_group([problems[i]], [layouts[i]], flipped, one)
                 except Exception:  # noqa: BLE001 - the general solver takes it
                     got.append(None)
-                seabed |= {j} if one else set()
+                if one:  # its own reason
+                    left[j] = one[0]
         if why is not None:
-            why.update({members[j]: ON_SEABED for j in seabed})
+            why.update({members[j]: r for j, r in left.items()})
         if deadline is not None and time.monotonic() > deadline:
             got = [None] * len(members)  # the time limit is the general solver's to say
         if verify:  # status 0 means verified: else the general solver's
@@ -156,13 +194,14 @@ def _solve_group(
     problems: list[StaticProblem],
     layouts: list[Layout],
     flipped: dict[int, LineModel],
-    seabed_hit: set[int],
+    left: dict[int, str],
 ) -> list:
-    """One stacked call of the kernel; the settled cases as results (None otherwise, the
-    index put in ``seabed_hit`` for a line that reaches the seabed). A reversed problem
-    (:func:`is_reversed`) goes in as the general solver states it: the line
+    """One stacked call of the kernel; the settled cases as results (None otherwise, why
+    in ``left`` by index for a line that reaches the seabed or is anchored on it). A
+    reversed problem (:func:`is_reversed`) goes in as the general solver states it: the line
     ``flipped[id(line)]`` from end B, sampled at L - s."""
     from ._drag_fast import DIPS, SETTLED, drag_cases
+    from ._drag_inner import SEABED_COLUMNS
 
     N = len(problems)
     P = len(layouts[0].ell)
@@ -177,7 +216,7 @@ def _solve_group(
     tol, maxit = np.empty(N), np.empty(N, dtype=np.int64)
     s = np.empty((N, n))
     s_eval = np.empty((N, n))
-    over, seabed = np.zeros(N, dtype=np.bool_), np.zeros((N, 4))
+    mode, seabed = np.zeros(N, dtype=np.int64), np.zeros((N, SEABED_COLUMNS))
     planes = [seabed_of(p.medium) for p in problems]
     rev = np.array([is_reversed(p) for p in problems])
     # the general solver's np.linspace(0, L, n) (and L - s from B), bit for bit; once
@@ -208,9 +247,12 @@ def _solve_group(
                 zB[i] = float(b.z)
         tol[i], maxit[i] = prob.tolerance, prob.max_iterations
         plane = planes[i]
-        if plane is not None:
-            over[i] = True
-            seabed[i, :3], seabed[i, 3] = plane.normal, plane.depth
+        if plane is not None:  # normal, depth, basis (3, 2) by rows, friction, flat
+            mode[i] = 2 if anchored(prob) else 1
+            seabed[i] = [
+                *plane.normal, plane.depth, *np.stack(plane.basis, axis=1).ravel(),
+                plane.friction, plane.slope == 0.0,
+            ]  # fmt: skip
         if id(prob.line) not in samples:
             L = prob.line.total_length
             at = np.linspace(0.0, L, n)
@@ -221,24 +263,21 @@ def _solve_group(
     TA, TL, loads = np.empty((N, 3)), np.empty((N, 3)), np.empty((N, P, 3))
     counts, resid = np.zeros((N, 2), dtype=np.int64), np.zeros(N)
     status = np.zeros(N, dtype=np.int64)
+    laid = np.zeros(N)
     drag_cases(
         ell, EA, weight, point, bounds, diam, cn, ct, rho, pz, pv, kind, rA, rB, force, zB,
-        tol, maxit, MAX_DRAG_ITERATIONS, np.array([1, *CONTINUATION], dtype=np.int64), over,
+        tol, maxit, MAX_DRAG_ITERATIONS, np.array([1, *CONTINUATION], dtype=np.int64), mode,
         seabed, s_eval,
-        pos, tension, TA, TL, loads, counts, resid, status,
+        pos, tension, TA, TL, loads, counts, resid, status, laid,
     )  # fmt: skip
     out: list[StaticResult | None] = []
     for i, lay in enumerate(layouts):
         plane = planes[i]
-        if (
-            status[i] == SETTLED
-            and plane is not None
-            and not np.all(plane.height_above(pos[i]) >= 0.0)
-        ):
+        if status[i] == SETTLED and mode[i] == 1 and not np.all(plane.height_above(pos[i]) >= 0.0):
             status[i] = DIPS  # a node below the seabed: the general solver's to say
         if status[i] != SETTLED:
-            if status[i] == DIPS:
-                seabed_hit.add(i)
+            if status[i] == DIPS or status[i] in ANCHORED_REASONS:
+                left[i] = ANCHORED_REASONS.get(int(status[i]), ON_SEABED)
             out.append(None)
             continue
         # the forces on the end attachments, of the line as solved (from B if reversed)
@@ -250,6 +289,7 @@ def _solve_group(
             force_a=fb if rev[i] else fa,
             force_b=fa if rev[i] else fb,
             status=STATUS_OK,
+            laid_length=float(laid[i]),
             iterations=int(counts[i, 0]),
             residual=float(resid[i]),
             state=CatenaryState(layout=lay, q=loads[i], reversed=bool(rev[i])),
