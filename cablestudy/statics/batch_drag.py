@@ -33,11 +33,12 @@ Pure: problems in, results out.
 
 from __future__ import annotations
 
+import math
 import time
 
 import numpy as np
 
-from .base import STATUS_OK, EndCondition, LineModel, StaticProblem, StaticResult
+from .base import STATUS_OK, LineModel, StaticProblem, StaticResult
 from .line_state import CatenaryState
 from .seabed import Plane, seabed_of
 from .semi_analytic_shape import Layout, make_layout, reversed_line
@@ -69,51 +70,54 @@ def drag_eligible(problem: StaticProblem) -> bool:
         return False
     if problem.is_installation or problem.stretched_drag_diameter:
         return False
-    plane = seabed_of(med)
-    if plane is None:
-        return True
+    plane, ha, hb, limit = _seabed_ends(problem)
     # over a seabed: both fixed ends above it, as the general solver tells an end on it
     # (1e-6 L); that solver then hangs the line free until a shape reaches the seabed
-    limit = 1e-6 * line.total_length
-    heights = [_height(plane, e) for e in (problem.end_a, problem.end_b) if e.kind == "fixed"]
-    if all(h > limit for h in heights):
+    if plane is None or (ha > limit and hb > limit):
         return True
     # anchored on it: the end solved from on the seabed (not below), the other above it;
     # no attachment (a clump resting on the seabed, a buoy: the general solver's), every
     # segment heavier than the fluid
-    a, b = problem.end_a, problem.end_b
-    if is_reversed(problem):
-        a, b = b, a
+    if _reversed(problem, ha, hb, limit):
+        ha, hb = hb, ha
     return (
-        abs(_height(plane, a)) <= limit
-        and (b.kind != "fixed" or _height(plane, b) > limit)
+        abs(ha) <= limit
+        and hb > limit
         and line.attachment_s.size == 0
         and bool(np.all(line.weight > 0.0))
     )
 
 
-def _height(plane: Plane, end: EndCondition) -> float:
-    """How far a fixed ``end`` lies above ``plane`` [m]."""
-    return float(plane.height_above(end.position))
+def _seabed_ends(problem: StaticProblem) -> tuple[Plane | None, float, float, float]:
+    """(the seabed or None, the heights above it of ends A and B (inf where an end is not
+    fixed, or there is no seabed) [m], the general solver's margin 1e-6 L [m])."""
+    plane = seabed_of(problem.medium)
+    h = [math.inf, math.inf]
+    if plane is not None:
+        n, base = plane.normal, np.array([0.0, 0.0, -plane.depth])
+        for k, end in enumerate((problem.end_a, problem.end_b)):
+            if end.kind == "fixed":
+                h[k] = float((np.asarray(end.position, dtype=float) - base) @ n)
+    return plane, h[0], h[1], 1e-6 * float(np.sum(problem.line.length))
+
+
+def _reversed(problem: StaticProblem, ha: float, hb: float, limit: float) -> bool:
+    """:func:`is_reversed` from the end heights of :func:`_seabed_ends`."""
+    return problem.end_a.kind != "fixed" or hb <= limit < ha
 
 
 def is_reversed(problem: StaticProblem) -> bool:
     """Whether the general solver solves ``problem`` from end B: its end A not fixed, or
     both fixed and B, not A, on the seabed (within 1e-6 L of it)."""
-    a, b = problem.end_a, problem.end_b
-    plane = seabed_of(problem.medium)
-    if a.kind != "fixed" or plane is None or b.kind != "fixed":
-        return a.kind != "fixed"
-    limit = 1e-6 * problem.line.total_length
-    return _height(plane, b) <= limit < _height(plane, a)
+    return _reversed(problem, *_seabed_ends(problem)[1:])
 
 
-def anchored(problem: StaticProblem) -> bool:
-    """Whether the general solver lays ``problem`` (:func:`drag_eligible`) from the end it
-    solves from, anchored on the seabed."""
-    plane = seabed_of(problem.medium)
-    a = problem.end_b if is_reversed(problem) else problem.end_a
-    return plane is not None and _height(plane, a) <= 1e-6 * problem.line.total_length
+def _sides(problem: StaticProblem) -> tuple[bool, bool]:
+    """(:func:`is_reversed`, whether the end it is solved from is anchored on the seabed,
+    within 1e-6 L of it: the general solver then lays it from there)."""
+    _, ha, hb, limit = _seabed_ends(problem)
+    rev = _reversed(problem, ha, hb, limit)
+    return rev, (hb if rev else ha) <= limit
 
 
 def drag_elements(problem: StaticProblem) -> int:
@@ -145,8 +149,8 @@ def drag_many(
     flipped: dict[int, LineModel] = {}
     made: dict[tuple[int, bool, int], Layout] = {}
     layouts = []
-    for p in problems:
-        rev = is_reversed(p)
+    sides = [_sides(p) for p in problems]
+    for p, (rev, _) in zip(problems, sides, strict=True):
         if rev and id(p.line) not in flipped:
             flipped[id(p.line)] = reversed_line(p.line)
         key = (id(p.line), rev, drag_elements(p))
@@ -162,14 +166,18 @@ def drag_many(
         left: dict[int, str] = {}
         try:
             got = _solve_group(
-                [problems[i] for i in members], [layouts[i] for i in members], flipped, left
+                [problems[i] for i in members],
+                [layouts[i] for i in members],
+                [sides[i] for i in members],
+                flipped,
+                left,
             )
         except Exception:  # noqa: BLE001 - a fault in the kernel: each case alone
             got, left = [], {}
             for j, i in enumerate(members):
                 one: dict[int, str] = {}
                 try:
-                    got += _solve_group([problems[i]], [layouts[i]], flipped, one)
+                    got += _solve_group([problems[i]], [layouts[i]], [sides[i]], flipped, one)
                 except Exception:  # noqa: BLE001 - the general solver takes it
                     got.append(None)
                 if one:  # its own reason
@@ -193,13 +201,14 @@ def drag_many(
 def _solve_group(
     problems: list[StaticProblem],
     layouts: list[Layout],
+    sides: list[tuple[bool, bool]],
     flipped: dict[int, LineModel],
     left: dict[int, str],
 ) -> list:
     """One stacked call of the kernel; the settled cases as results (None otherwise, why
     in ``left`` by index for a line that reaches the seabed or is anchored on it). A
-    reversed problem (:func:`is_reversed`) goes in as the general solver states it: the line
-    ``flipped[id(line)]`` from end B, sampled at L - s."""
+    reversed problem (``sides``: :func:`_sides` per problem) goes in as the general
+    solver states it: the line ``flipped[id(line)]`` from end B, sampled at L - s."""
     from ._drag_fast import DIPS, SETTLED, drag_cases
     from ._drag_inner import SEABED_COLUMNS
 
@@ -218,10 +227,11 @@ def _solve_group(
     s_eval = np.empty((N, n))
     mode, seabed = np.zeros(N, dtype=np.int64), np.zeros((N, SEABED_COLUMNS))
     planes = [seabed_of(p.medium) for p in problems]
-    rev = np.array([is_reversed(p) for p in problems])
+    rev = np.array([r for r, _ in sides])
     # the general solver's np.linspace(0, L, n) (and L - s from B), bit for bit; once
     # per line object
     samples: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+    rows: dict[Plane, list[float]] = {}  # a seabed's row, once per plane
     for i, (prob, lay) in enumerate(zip(problems, layouts, strict=True)):
         med = prob.medium
         line = flipped[id(prob.line)] if rev[i] else prob.line
@@ -248,11 +258,13 @@ def _solve_group(
         tol[i], maxit[i] = prob.tolerance, prob.max_iterations
         plane = planes[i]
         if plane is not None:  # normal, depth, basis (3, 2) by rows, friction, flat
-            mode[i] = 2 if anchored(prob) else 1
-            seabed[i] = [
-                *plane.normal, plane.depth, *np.stack(plane.basis, axis=1).ravel(),
-                plane.friction, plane.slope == 0.0,
-            ]  # fmt: skip
+            mode[i] = 2 if sides[i][1] else 1
+            if plane not in rows:
+                rows[plane] = [
+                    *plane.normal, plane.depth, *np.stack(plane.basis, axis=1).ravel(),
+                    plane.friction, plane.slope == 0.0,
+                ]  # fmt: skip
+            seabed[i] = rows[plane]
         if id(prob.line) not in samples:
             L = prob.line.total_length
             at = np.linspace(0.0, L, n)
