@@ -2,12 +2,13 @@
 current (:func:`drag_cases`).
 
 Each case runs, in scalar code of its own, the algorithm of
-:meth:`.semi_analytic.SemiAnalyticSolver._drag_loop` for a line hanging free with end A
-fixed and no seabed: the outer fixed point on the drag loads per piece (seed eqs.
-38-39, Anderson-accelerated, with the stall reset and the current-speed continuation in
-1, 4 and 16 steps), around the inner Newton of
-:func:`.semi_analytic_newton.solve_free` on the tension at A (warm-started from the
-previous iterate, inexact while the loads are far from converged). The same steps, in
+:meth:`.semi_analytic.SemiAnalyticSolver._drag_loop` for a line with end A fixed: the
+outer fixed point on the drag loads per piece (seed eqs. 38-39, Anderson-accelerated,
+with the stall reset and the current-speed continuation in 1, 4 and 16 steps), around
+the inner Newton of :func:`.semi_analytic_newton.solve_free` on the tension at A for a
+line hanging free, or of :func:`.semi_analytic_newton.solve_contact` for one resting on
+the seabed from an anchor at A (:mod:`._drag_inner`), warm-started from the previous
+iterate, inexact while the loads are far from converged. The same steps, in
 the same order, with the same tests; only the 3 x 3 solves (Gaussian elimination here,
 LAPACK there) and the order of a few sums differ, so the two agree to round-off of each
 iterate. A case's arithmetic depends on its own inputs only, never on the other cases of

@@ -4,7 +4,9 @@ semi-analytic solver runs per case inside the compiled batch (:func:`._drag_fast
 A problem takes it (:func:`drag_eligible`) when the general solver
 (:class:`.semi_analytic.SemiAnalyticSolver`) would solve it hanging free with its drag
 loop: a current that drags the line, one end fixed and the other fixed, towed or moored,
-linear axial laws, no installation, no seabed or one below both fixed ends.
+linear axial laws, no installation, no seabed or one below both fixed ends; or when it
+would lay it on the seabed from an anchor (the end it solves from on the seabed, the
+other above it; no attachments, every segment heavier than the fluid).
 
 A line whose end A is towed or moored (end B fixed) is solved as the general solver
 solves it, from B: the reversed line (:func:`.semi_analytic_shape.reversed_line`:
@@ -17,8 +19,16 @@ shape of its iteration reaches the seabed (then it lays it, :mod:`.midspan`). Th
 runs the same iteration and tests every shape against the seabed
 (:mod:`._drag_seabed`); a case one of whose shapes has a sample below the seabed is
 handed on with :data:`ON_SEABED` (the general solver lays a line from 1e-9 L below:
-the margin keeps round-off from making the two decide differently). A line touching
-the seabed in a current is the general solver's.
+the margin keeps round-off from making the two decide differently). A line resting on
+the seabed between its ends in a current is the general solver's.
+
+A line anchored on the seabed (a mooring line: the anchor at A, or at B for a line
+solved from B) rests on it from the anchor in every inner solve of the iteration, as
+the general solver lays it (:mod:`._drag_inner`: the laid part under its weight with
+friction towards the anchor, the suspended part under weight and drag, no drag on the
+laid pieces). Where that solver would leave the contact path (the touchdown point
+driven to the anchor, a contact Newton that fails, a line below the seabed) the case
+is handed on with the reason (:data:`ANCHORED_REASONS`).
 
 Its pieces are the general solver's (:func:`.semi_analytic_shape.make_layout` with the
 same drag elements), the cases with the same numbers of pieces, output points and
