@@ -2,12 +2,13 @@
 current (:func:`drag_cases`).
 
 Each case runs, in scalar code of its own, the algorithm of
-:meth:`.semi_analytic.SemiAnalyticSolver._drag_loop` for a line hanging free with end A
-fixed and no seabed: the outer fixed point on the drag loads per piece (seed eqs.
-38-39, Anderson-accelerated, with the stall reset and the current-speed continuation in
-1, 4 and 16 steps), around the inner Newton of
-:func:`.semi_analytic_newton.solve_free` on the tension at A (warm-started from the
-previous iterate, inexact while the loads are far from converged). The same steps, in
+:meth:`.semi_analytic.SemiAnalyticSolver._drag_loop` for a line with end A fixed: the
+outer fixed point on the drag loads per piece (seed eqs. 38-39, Anderson-accelerated,
+with the stall reset and the current-speed continuation in 1, 4 and 16 steps), around
+the inner Newton of :func:`.semi_analytic_newton.solve_free` on the tension at A for a
+line hanging free, or of :func:`.semi_analytic_newton.solve_contact` for one resting on
+the seabed from an anchor at A (:mod:`._drag_inner`), warm-started from the previous
+iterate, inexact while the loads are far from converged. The same steps, in
 the same order, with the same tests; only the 3 x 3 solves (Gaussian elimination here,
 LAPACK there) and the order of a few sums differ, so the two agree to round-off of each
 iterate. A case's arithmetic depends on its own inputs only, never on the other cases of
@@ -27,20 +28,22 @@ import math
 import numpy as np
 from numba import njit
 
+from ._drag_inner import (  # noqa: F401 - the statuses re-exported
+    _GIVE_UP,
+    _OK,
+    BELOW,
+    DIPS,
+    FAILED,
+    GIVE_UP,
+    SETTLED,
+    _anchored,
+    _initial_tension,
+    _offsets3,
+    _sampled,
+    _solve_free,
+)
 from ._drag_seabed import _dips
-from ._fast import _piece_general, _solve3, line_sums
-
-#: a case's status: settled (0), or left to the general solver and why
-SETTLED = 0
-GIVE_UP = 1  # a path the kernel does not have (regularised retry, singular Jacobian)
-FAILED = 2  # every continuation failed (the general solver says why)
-DIPS = 3  # a shape of the iteration reaches the seabed (the general solver lays it)
-
-#: an inner solve's outcome (the general solver's _Failure statuses it stands for)
-_OK = 0
-_NOT_CONVERGED = 1
-_NUMERICAL = 2
-_GIVE_UP = 3
+from ._fast import _piece_general
 
 _EPS = 2.220446049250313e-16
 
@@ -65,6 +68,7 @@ def _interp(x: float, xp: np.ndarray, fp: np.ndarray) -> float:
 @njit(cache=True, error_model="numpy")
 def _drag_load(
     nodes: np.ndarray,
+    bounds: np.ndarray,
     ell: np.ndarray,
     diam: np.ndarray,
     cn: np.ndarray,
@@ -74,10 +78,11 @@ def _drag_load(
     pv: np.ndarray,
     factor: float,
     D: np.ndarray,
+    laid: float,
 ) -> None:
-    """:meth:`.semi_analytic.DragModel.load` of a free-hanging shape whose piece
-    boundaries are at ``nodes`` (P + 1, 3): drag per unstretched length (P, 3) into
-    ``D``."""
+    """:meth:`.semi_analytic.DragModel.load` of a shape whose piece boundaries are at
+    ``nodes`` (P + 1, 3): drag per unstretched length (P, 3) into ``D``, zero on the
+    pieces whose middle lies on the ``laid`` [m] length from end A."""
     P = ell.shape[0]
     for p in range(P):
         cx = nodes[p + 1, 0] - nodes[p, 0]
@@ -102,242 +107,8 @@ def _drag_load(
         D[p, 0] = k * (a * unx + b * utx) * r
         D[p, 1] = k * (a * uny + b * uty) * r
         D[p, 2] = k * (a * unz + b * utz) * r
-
-
-@njit(cache=True, error_model="numpy")
-def _offsets3(q: np.ndarray, ell: np.ndarray, point: np.ndarray, C: np.ndarray, Cend: np.ndarray):
-    """:func:`.semi_analytic_shape._offsets` for loads ``q`` (P, 3) of any direction."""
-    P = ell.shape[0]
-    for k in range(3):
-        cp = 0.0
-        cq = 0.0
-        for p in range(P):
-            cp += point[p, k]
-            C[p, k] = cp if p == 0 else cp + cq
-            cq += q[p, k] * ell[p]
-        Cend[k] = (cp + point[P, k]) + cq
-
-
-@njit(cache=True, error_model="numpy")
-def _initial_tension(
-    q: np.ndarray,
-    ell: np.ndarray,
-    EA: np.ndarray,
-    point: np.ndarray,
-    L: float,
-    C: np.ndarray,
-    Cend: np.ndarray,
-    kind: int,
-    rA: np.ndarray,
-    rB: np.ndarray,
-    force: np.ndarray,
-    zB: float,
-    TA: np.ndarray,
-) -> None:
-    """:func:`.semi_analytic_newton.initial_tension` into ``TA`` (``C``, ``Cend`` the
-    offsets of ``q``)."""
-    flex = 0.0
-    for p in range(ell.shape[0]):
-        flex += ell[p] / EA[p]
-    EAe = L / flex
-    if kind == 2:
-        for k in range(3):
-            TA[k] = force[k] + Cend[k]
-        return
-    W = math.sqrt(Cend[0] ** 2 + Cend[1] ** 2 + Cend[2] ** 2)
-    if kind == 1:
-        TA[0] = force[0] + Cend[0]
-        TA[1] = force[1] + Cend[1]
-        TA[2] = 0.0
-        Hh = math.hypot(TA[0], TA[1])
-        Wz = -Cend[2]
-        h = zB - rA[2]
-        if Wz <= 0.0:
-            TA[2] = -0.5 * Wz
-            return
-        w = Wz / L
-        c = Wz / max(Hh, 1e-300)
-        if c < 600.0 and Hh > 0.0:
-            a = math.asinh(w * h / (2.0 * Hh * math.sinh(0.5 * c))) - 0.5 * c
-            TA[2] = Hh * math.sinh(a)
-        else:
-            TA[2] = 0.5 * (w * h - Wz)
-        return
-    d0, d1, d2 = rB[0] - rA[0], rB[1] - rA[1], rB[2] - rA[2]
-    chord = math.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
-    stretch = EAe * max(chord / L - 1.0, 0.0)
-    if W <= 1e-12 * max(EAe, 1.0) * 1e-6 or W == 0.0:
-        t = stretch if stretch > 0.0 else 1e-6 * EAe
-        den = max(chord, 1e-300)
-        TA[0] = t * d0 / den
-        TA[1] = t * d1 / den
-        TA[2] = t * d2 / den
-        return
-    up0, up1, up2 = -Cend[0] / W, -Cend[1] / W, -Cend[2] / W
-    w = W / L
-    h = d0 * up0 + d1 * up1 + d2 * up2
-    dh0, dh1, dh2 = d0 - h * up0, d1 - h * up1, d2 - h * up2
-    l = math.sqrt(dh0 * dh0 + dh1 * dh1 + dh2 * dh2)
-    if l > 1e-12 * chord:
-        e0, e1, e2 = dh0 / l, dh1 / l, dh2 / l
-    else:  # up x (1, 0, 0), else up x (0, 1, 0)
-        e0, e1, e2 = 0.0, up2, -up1
-        if math.sqrt(e1 * e1 + e2 * e2) < 0.5:
-            e0, e1, e2 = -up2, 0.0, up0
-        n = math.sqrt(e0 * e0 + e1 * e1 + e2 * e2)
-        e0, e1, e2 = e0 / n, e1 / n, e2 / n
-    if l <= 1e-12 * chord:
-        H = 0.0
-        VB = 0.5 * w * (L + h) if L > abs(h) else w * L + max(stretch, 0.0)
-    else:
-        if L <= chord:
-            lam = 0.2
-        else:
-            lam = max(math.sqrt(3.0 * max((L * L - h * h) / (l * l) - 1.0, 0.0)), 1e-3)
-        H = w * l / (2.0 * lam)
-        VB = 0.5 * w * (h / math.tanh(lam) + L)
-        if chord > L:
-            H = max(H, stretch * l / chord)
-            VB = max(VB, stretch * h / chord + 0.5 * w * L)
-    VA = VB - w * L
-    TA[0] = H * e0 + VA * up0 + point[0, 0]
-    TA[1] = H * e1 + VA * up1 + point[0, 1]
-    TA[2] = H * e2 + VA * up2 + point[0, 2]
-
-
-@njit(cache=True, error_model="numpy")
-def _solve_free(
-    q: np.ndarray,
-    ell: np.ndarray,
-    EA: np.ndarray,
-    point: np.ndarray,
-    L: float,
-    kind: int,
-    rA: np.ndarray,
-    rB: np.ndarray,
-    force: np.ndarray,
-    zB: float,
-    TA: np.ndarray,
-    tol: float,
-    maxit: int,
-    polish: bool,
-    C: np.ndarray,
-    Cend: np.ndarray,
-    dr_acc: np.ndarray,
-    nodes: np.ndarray,
-    scratch: np.ndarray,
-) -> tuple[int, int, float]:
-    """:func:`.semi_analytic_newton.solve_free` (linear axial laws): ``TA`` in/out (the
-    start, then the solution), the increments per piece at it into ``dr_acc`` and the
-    piece boundaries into ``nodes``. Returns (outcome, iterations, residual)."""
-    P = ell.shape[0]
-    _offsets3(q, ell, point, C, Cend)
-    r = np.zeros(3)
-    J = np.zeros((3, 3))
-    rn = np.zeros(3)
-    Jn = np.zeros((3, 3))
-    Tn = np.zeros(3)
-    g = np.zeros(3)
-    step = np.zeros(3)
-    target = np.zeros(3)
-    free = np.zeros(3, dtype=np.bool_)
-    it = 0
-    res = 0.0
-    if kind == 2:
-        for k in range(3):
-            TA[k] = force[k] + Cend[k]
-        line_sums(TA, C, q, ell, EA, dr_acc, r, J, False)
-    else:
-        if kind == 0:
-            for k in range(3):
-                target[k] = rB[k] - rA[k]
-                free[k] = True
-        else:
-            TA[0] = force[0] + Cend[0]
-            TA[1] = force[1] + Cend[1]
-            target[2] = zB - rA[2]
-            free[2] = True
-        scale = max(L, math.sqrt(target[0] ** 2 + target[1] ** 2 + target[2] ** 2))
-        E = line_sums(TA, C, q, ell, EA, dr_acc, r, J, True)
-        dot = 0.0
-        for k in range(3):
-            if free[k]:
-                dot += target[k] * TA[k]
-        psi = E - dot
-        polished = 0 if polish else 1
-        res = 0.0
-        for k in range(3):
-            g[k] = r[k] - target[k] if free[k] else 0.0
-            res = max(res, abs(g[k]))
-        res /= scale
-        while True:
-            if not math.isfinite(res):
-                return _NUMERICAL, it, res
-            if res <= tol:
-                if polished >= 1 or res <= 1e-15:
-                    break
-                polished += 1
-            if it >= maxit:
-                return _NOT_CONVERGED, it, res
-            it += 1
-            if not _solve3(J, g, free, step):
-                return _GIVE_UP, it, res  # the general solver's fallback step
-            slope = 0.0
-            for k in range(3):
-                slope += g[k] * step[k]
-            slack = 1e-13 * (abs(E) + abs(dot))
-            lam = 1.0
-            accepted = False
-            En = 0.0
-            dotn = 0.0
-            for _ in range(80):
-                dotn = 0.0
-                for k in range(3):
-                    Tn[k] = TA[k] + lam * step[k] if free[k] else TA[k]
-                    if free[k]:
-                        dotn += target[k] * Tn[k]
-                En = line_sums(Tn, C, q, ell, EA, scratch, rn, Jn, True)
-                psin = En - dotn
-                finite = math.isfinite(psin)
-                for a in range(3):
-                    for b in range(3):
-                        if not math.isfinite(Jn[a, b]):
-                            finite = False
-                if finite and psin <= psi + 1e-4 * lam * slope + slack:
-                    accepted = True
-                    break
-                lam *= 0.5
-            if not accepted:
-                return _NOT_CONVERGED, it, res
-            for k in range(3):
-                TA[k] = Tn[k]
-                r[k] = rn[k]
-                for m in range(3):
-                    J[k, m] = Jn[k, m]
-            for p in range(P):
-                for k in range(3):
-                    dr_acc[p, k] = scratch[p, k]
-            E = En
-            dot = dotn
-            psi = En - dotn
-            res = 0.0
-            for k in range(3):
-                g[k] = r[k] - target[k] if free[k] else 0.0
-                res = max(res, abs(g[k]))
-            res /= scale
-    # the shape: piece starts from A (finite, else the general solver's numerical fault)
-    for k in range(3):
-        nodes[0, k] = rA[k]
-    acc = np.zeros(3)
-    for p in range(P):
-        for k in range(3):
-            acc[k] += dr_acc[p, k]
-            nodes[p + 1, k] = rA[k] + acc[k]
-    for p in range(P):
-        for k in range(3):
-            if not (math.isfinite(nodes[p, k]) and math.isfinite(TA[k] - C[p, k])):
-                return _NUMERICAL, it, res
-    return _OK, it, res
+        if 0.5 * (bounds[p] + bounds[p + 1]) <= laid:
+            D[p, 0], D[p, 1], D[p, 2] = 0.0, 0.0, 0.0
 
 
 @njit(cache=True, error_model="numpy")
@@ -419,7 +190,7 @@ def _drag_case(
     maxit: int,
     max_drag: int,
     steps: np.ndarray,
-    over: bool,
+    mode: int,
     seabed: np.ndarray,
     TA: np.ndarray,
     Dused: np.ndarray,
@@ -431,9 +202,13 @@ def _drag_case(
     Returns (status, the shape's Newton residual, the load residual); on success ``TA``,
     ``Dused`` (the drag the shape was solved with), ``Dout`` (the converged drag loads),
     ``nodes_out`` the shape's piece boundaries; ``counts`` [Newton, drag] iterations.
-    A line ``over`` the seabed plane ``seabed`` (normal, depth; both ends above it) is
-    the general solver's line hanging free as long as no shape of the iteration reaches
-    the seabed (:func:`_dips`); the first one that does ends the case (:data:`DIPS`)."""
+    With a seabed (a row of :data:`._drag_inner.SEABED_COLUMNS`: its upward normal and
+    depth first): a line over it (``mode`` 1, both ends above it) is the general
+    solver's line hanging free as long as no shape of the iteration reaches the seabed
+    (:func:`_dips`); the first one that does ends the case (:data:`DIPS`). A line
+    anchored at A on it (``mode`` 2) rests on it from A to its touchdown point in every
+    inner solve (:func:`_anchored`; ``TA`` is then y = (the touchdown tension in the
+    seabed plane, its arc length))."""
     P = ell.shape[0]
     V = 3 * P
     L = bounds[P]
@@ -497,14 +272,22 @@ def _drag_case(
                 else:
                     _offsets3(q, ell, point, C, Cend)
                     _initial_tension(q, ell, EA, point, L, C, Cend, kind, rA, rB, force, zB, T)
-                code, its, _r = _solve_free(
-                    q, ell, EA, point, L, kind, rA, rB, force, zB, T,
-                    max(tol_fp, 1e-6), maxit, True, C, Cend, dr, nodes, scratch,
-                )  # fmt: skip
+                if mode == 2:
+                    code, its, _r = _anchored(
+                        q, weight, ell, EA, point, bounds, kind, rA, rB, force, zB, seabed, T,
+                        have, max(tol_fp, 1e-6), maxit, C, Cend, dr, nodes, scratch,
+                    )  # fmt: skip
+                    if code != SETTLED:
+                        return code, 0.0, 0.0
+                else:
+                    code, its, _r = _solve_free(
+                        q, ell, EA, point, L, kind, rA, rB, force, zB, T,
+                        max(tol_fp, 1e-6), maxit, True, C, Cend, dr, nodes, scratch,
+                    )  # fmt: skip
                 if code == _GIVE_UP or (code != _OK and _unloaded(q)):
                     return GIVE_UP, 0.0, 0.0
                 if code == _OK:
-                    if over and _dips(q, ell, EA, bounds, C, T, nodes, seabed):
+                    if mode == 1 and _dips(q, ell, EA, bounds, C, T, nodes, seabed):
                         return DIPS, 0.0, 0.0
                     counts[0] += its
                     for k in range(3):
@@ -512,7 +295,8 @@ def _drag_case(
                     have = True
                 else:  # a straight line from A: only the first drag estimate
                     _straight(kind, rA, rB, force, zB, bounds, nodes)
-                _drag_load(nodes, ell, diam, cn, ct, rho, pz, pv, factor, D)
+                laid = T[2] if mode == 2 else 0.0  # y's touchdown arc length
+                _drag_load(nodes, bounds, ell, diam, cn, ct, rho, pz, pv, factor, D, laid)
             count = 0
             beta = 0.7
             best = math.inf
@@ -533,23 +317,32 @@ def _drag_case(
                 else:
                     _offsets3(q, ell, point, C, Cend)
                     _initial_tension(q, ell, EA, point, L, C, Cend, kind, rA, rB, force, zB, T)
-                code, its, sres = _solve_free(
-                    q, ell, EA, point, L, kind, rA, rB, force, zB, T,
-                    tol_inner, maxit, False, C, Cend, dr, nodes, scratch,
-                )  # fmt: skip
+                if mode == 2:
+                    code, its, sres = _anchored(
+                        q, weight, ell, EA, point, bounds, kind, rA, rB, force, zB, seabed, T,
+                        have, tol_inner, maxit, C, Cend, dr, nodes, scratch,
+                    )  # fmt: skip
+                    if code != SETTLED:
+                        return code, 0.0, 0.0
+                else:
+                    code, its, sres = _solve_free(
+                        q, ell, EA, point, L, kind, rA, rB, force, zB, T,
+                        tol_inner, maxit, False, C, Cend, dr, nodes, scratch,
+                    )  # fmt: skip
                 if code == _GIVE_UP or (code != _OK and _unloaded(q)):
                     return GIVE_UP, 0.0, 0.0
                 if code != _OK:
                     failed = True
                     break
-                if over and _dips(q, ell, EA, bounds, C, T, nodes, seabed):
+                if mode == 1 and _dips(q, ell, EA, bounds, C, T, nodes, seabed):
                     return DIPS, 0.0, 0.0
                 counts[0] += its
                 for k in range(3):
                     st_TA[k] = T[k]
                 have = True
                 shape_res = sres
-                _drag_load(nodes, ell, diam, cn, ct, rho, pz, pv, factor, Dn)
+                laid = T[2] if mode == 2 else 0.0  # y's touchdown arc length
+                _drag_load(nodes, bounds, ell, diam, cn, ct, rho, pz, pv, factor, Dn, laid)
                 change, size = _weighted_change(Dn, D, ell)
                 res = change / max(Fscale + size, 1e-300)
                 if res <= tol_fp and tol_inner <= tol_fp:
@@ -683,7 +476,7 @@ def drag_cases(
     maxit: np.ndarray,
     max_drag: int,
     steps: np.ndarray,
-    over: np.ndarray,
+    mode: np.ndarray,
     seabed: np.ndarray,
     s: np.ndarray,
     pos: np.ndarray,
@@ -694,14 +487,16 @@ def drag_cases(
     counts: np.ndarray,
     resid: np.ndarray,
     status: np.ndarray,
+    laid: np.ndarray,
 ) -> None:
     """N lines of P pieces in a current (arrays (N, P), (N, P + 1, 3) point loads and
     bounds, (N,) fluid density, (N, M) / (N, M, 3) current profiles, (N,) end B kind 0
-    fixed / 1 mooring / 2 force, (N, 3) ends and forces, (N,) zB, (N,) whether over a
-    seabed and (N, 4) its plane, upward normal and depth), each by
-    :func:`_drag_case`, sampled at ``s`` (N, n) as :meth:`.semi_analytic_shape.Shape.sample`.
-    Outputs: positions, tensions, T_A, T(L), the converged loads per piece (weight and
-    drag, (N, P, 3)), counts (N, 2) [Newton, drag iterations], residual, status."""
+    fixed / 1 mooring / 2 force, (N, 3) ends and forces, (N,) zB, (N,) seabed ``mode``
+    (0 none, 1 over it, 2 anchored at A on it) and (N, 12) its plane
+    (:data:`._drag_inner.SEABED_COLUMNS`), each by :func:`_drag_case`, sampled at
+    ``s`` (N, n) as :meth:`.semi_analytic_shape.Shape.sample`. Outputs: positions,
+    tensions, T_A, T(L), the converged loads per piece (weight and drag, (N, P, 3)),
+    counts (N, 2) [Newton, drag iterations], residual, status, laid length [m]."""
     N, P = ell.shape
     n = s.shape[1]
     TA = np.zeros(3)
@@ -717,7 +512,7 @@ def drag_cases(
         st, sres, dres = _drag_case(
             ell[c], EA[c], weight[c], point[c], bounds[c], diam[c], cn[c], ct[c], rho[c],
             pz[c], pv[c], kind[c], rA[c], rB[c], force[c], zB[c], tol[c], maxit[c],
-            max_drag, steps, over[c], seabed[c], TA, Dused, Dout, nodes, counts[c],
+            max_drag, steps, mode[c], seabed[c], TA, Dused, Dout, nodes, counts[c],
         )  # fmt: skip
         status[c] = st
         if st != SETTLED:
@@ -730,6 +525,18 @@ def drag_cases(
             loads[c, p, 0] = Dout[p, 0]
             loads[c, p, 1] = Dout[p, 1]
             loads[c, p, 2] = -weight[c, p] + Dout[p, 2]
+        laid[c] = 0.0
+        if mode[c] == 2:  # resting on the seabed from A (TA: y), checked as the general
+            # solver checks it (the line below the seabed by its margin: not resolved)
+            laid[c] = TA[2]
+            ok, low = _sampled(
+                TA, q, weight[c], EA[c], point[c], bounds[c], rA[c], seabed[c], s[c], pos[c],
+                tension[c], TA_out[c], TL_out[c],
+            )  # fmt: skip
+            Lc = bounds[c, P]
+            if not (ok and -low <= max(1e-6 * Lc, 1e3 * tol[c] * Lc)):
+                status[c] = BELOW
+            continue
         _offsets3(q, ell[c], point[c], C, Cend)
         for k in range(3):
             TA_out[c, k] = TA[k]

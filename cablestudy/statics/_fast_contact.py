@@ -117,6 +117,27 @@ def _laid(
 
 
 @njit(cache=True, error_model="numpy")
+def _load(q: np.ndarray, w: np.ndarray, p: int) -> tuple[float, float, float]:
+    """The load of piece ``p`` [N/m]: ``q[p]``, or (0, 0, -``w[p]``) where ``q`` is empty."""
+    if q.shape[0] == 0:
+        return 0.0, 0.0, -w[p]
+    return q[p, 0], q[p, 1], q[p, 2]
+
+
+@njit(cache=True, error_model="numpy")
+def _loaded_piece(
+    tx: float, ty: float, tz: float, qx: float, qy: float, qz: float, ell: float, EA: float,
+    dr: np.ndarray, jac: np.ndarray, want: bool,
+) -> None:  # fmt: skip
+    """A suspended piece under the load (qx, qy, qz): :func:`._fast._piece` where it is
+    vertical (the weight alone, bit for bit as before), else :func:`._fast._piece_general`."""
+    if qx == 0.0 and qy == 0.0:
+        _piece(tx, ty, tz, -qz, ell, EA, dr, jac, want)
+    else:
+        _piece_general(tx, ty, tz, qx, qy, qz, ell, EA, dr, jac, want)
+
+
+@njit(cache=True, error_model="numpy")
 def _evaluate(
     y: np.ndarray,
     basis: np.ndarray,
@@ -128,6 +149,7 @@ def _evaluate(
     L: float,
     bounds: np.ndarray,
     w: np.ndarray,
+    q: np.ndarray,
     EA: np.ndarray,
     point: np.ndarray,
     normal: np.ndarray,
@@ -148,7 +170,9 @@ def _evaluate(
 ) -> None:
     """Residual ``R`` and its Jacobian ``Jm`` (3, 3) with respect to y = (alpha, beta,
     s_td), T_td = alpha e1 + beta e2, as the ``evaluate`` of
-    :func:`.semi_analytic_newton.solve_contact`: ``kind`` 0 (end B fixed at ``target``)
+    :func:`.semi_analytic_newton.solve_contact`, the laid part under the weight ``w``,
+    the suspended pieces under the loads ``q`` (P, 3) [N/m] (weight and drag; empty
+    (0, 3): the weight alone): ``kind`` 0 (end B fixed at ``target``)
     R = (r_B(y) - r_B) / L; 1 (mooring: horizontal ``force`` on the line at B and B's
     height ``target[2]``) the horizontal components of (T(L) - force) / ``Fscale`` and
     (z_B(y) - z_B) / L; 2 (a known ``force``) (T(L) - force) / ``Fscale``. The arrays
@@ -178,13 +202,16 @@ def _evaluate(
             Cx += point[p, 0]
             Cy += point[p, 1]
             Cz += point[p, 2]
-        _piece(T[0] - Cx, T[1] - Cy, T[2] - Cz, w[p], ell, EA[p], dr, jac, True)
-        Cz -= w[p] * ell
+        qx, qy, qz = _load(q, w, p)
+        _loaded_piece(T[0] - Cx, T[1] - Cy, T[2] - Cz, qx, qy, qz, ell, EA[p], dr, jac, True)
+        Cx += qx * ell
+        Cy += qy * ell
+        Cz += qz * ell
         for i in range(3):
             rs[i] += dr[i]
             for j in range(3):
                 Js[i, j] += jac[i, j]
-    qz = -w[k]
+    qx, qy, qz = _load(q, w, k)
     for i in range(3):
         rB = rA[i] + e[i] * stretched + rs[i]
         R[i] = (rB - target[i]) / L
@@ -197,7 +224,7 @@ def _evaluate(
                 d -= stretched * e[i] * e[j] / tn
                 v += d * basis[j, c]
             Jm[i, c] = v / L
-        Jm[i, 2] = (Js[i, 2] * qz - e[i] * rate_td * pf) / L
+        Jm[i, 2] = (Js[i, 2] * qz + (Js[i, 0] * qx + Js[i, 1] * qy) - e[i] * rate_td * pf) / L
     if kind != 0:  # T(L) = T_td - C_end; d T(L) / d s_td = q of the touchdown piece
         TL0 = T[0] - Cx - point[P, 0]
         TL1 = T[1] - Cy - point[P, 1]
@@ -207,7 +234,7 @@ def _evaluate(
             R[i] = ((TL0, TL1, TL2)[i] - force[i]) / Fscale
             Jm[i, 0] = basis[i, 0] / Fscale
             Jm[i, 1] = basis[i, 1] / Fscale
-            Jm[i, 2] = (qz if i == 2 else 0.0) / Fscale
+            Jm[i, 2] = (qx, qy, qz)[i] / Fscale
 
 
 @njit(cache=True, error_model="numpy")
@@ -326,6 +353,7 @@ def _contact_newton(
     L: float,
     bounds: np.ndarray,
     w: np.ndarray,
+    q: np.ndarray,
     EA: np.ndarray,
     point: np.ndarray,
     nrm: np.ndarray,
@@ -358,7 +386,7 @@ def _contact_newton(
     iterations, final residual max |R|): 0, or :data:`NOT_CONVERGED`, :data:`LIFT_OFF`,
     :data:`SLACK` or :data:`NUMERICAL`."""
     _evaluate(
-        y, bas, rA, target, kind, force, Fscale, L, bounds, w, EA, point, nrm, mu, R, Jm,
+        y, bas, rA, target, kind, force, Fscale, L, bounds, w, q, EA, point, nrm, mu, R, Jm,
         T, e, t_lo, t_hi, rate, hi_s, lp, dr, jac, rs, Js,
     )  # fmt: skip
     res = max(abs(R[0]), max(abs(R[1]), abs(R[2])))
@@ -394,8 +422,8 @@ def _contact_newton(
                 yn[0] = y[0] * 1e-3
                 yn[1] = y[1] * 1e-3
             _evaluate(
-                yn, bas, rA, target, kind, force, Fscale, L, bounds, w, EA, point, nrm, mu, Rn,
-                Jn, T, e, t_lo, t_hi, rate, hi_s, lp, dr, jac, rs, Js,
+                yn, bas, rA, target, kind, force, Fscale, L, bounds, w, q, EA, point, nrm, mu,
+                Rn, Jn, T, e, t_lo, t_hi, rate, hi_s, lp, dr, jac, rs, Js,
             )  # fmt: skip
             nn = math.sqrt(Rn[0] * Rn[0] + Rn[1] * Rn[1] + Rn[2] * Rn[2])
             if math.isfinite(nn) and nn <= (1.0 - 1e-4 * lam) * norm0 + 1e-15:
@@ -497,6 +525,7 @@ def contact_cases(
     pEA = np.empty(M)
     pkind = np.empty(M, dtype=np.int64)  # 0 slack on the seabed, 1 laid, 2 suspended
     pr0 = np.empty((M, 3))
+    q = np.zeros((0, 3))
     dr = np.zeros(3)
     jac = np.zeros((3, 3))
     for c in range(N):
@@ -518,8 +547,8 @@ def contact_cases(
         res = math.nan
         if st == 0:
             st, it, res = _contact_newton(
-                y, bas, rA[c], rB[c], kc, force[c], Fscale, L, bounds[c], w[c], EA[c], point[c],
-                nrm, mu[c], tol[c], maxit[c], R, Rn, Jm, Jn, yn, step, A,
+                y, bas, rA[c], rB[c], kc, force[c], Fscale, L, bounds[c], w[c], q, EA[c],
+                point[c], nrm, mu[c], tol[c], maxit[c], R, Rn, Jm, Jn, yn, step, A,
                 T, e, t_lo, t_hi, rate, hi_s, lp, dr, jac, rs, Js,
             )  # fmt: skip
         iters[c] = it
@@ -535,116 +564,141 @@ def contact_cases(
                 force_a[c, k] = math.nan
                 force_b[c, k] = math.nan
             continue
-        # the solved line as pieces: laid (slack, then tensioned), then suspended
-        s_td = y[2]
-        for i in range(3):
-            T[i] = bas[i, 0] * y[0] + bas[i, 1] * y[1]
-        tn = math.sqrt(T[0] * T[0] + T[1] * T[1] + T[2] * T[2])
-        for i in range(3):
-            e[i] = T[i] / tn
-        npc = _laid(
-            s_td, tn, e, bounds[c], w[c], EA[c], point[c], nrm, mu[c], t_lo, t_hi, rate, hi_s, lp
+        # the solved line as pieces, sampled at s
+        pcs = (ps0, pell, pT0, pq, pEA, pkind, pr0)
+        work = (t_lo, t_hi, rate, hi_s, lp, e, T, dr, jac)
+        np_ = _pieces(y, bas, rA[c], bounds[c], w[c], q, EA[c], point[c], nrm, mu[c], pcs, work, R)
+        ok, low = _sample(
+            np_, pcs, e, s[c], L, lp[3], R, nrm, depth[c], pos[c], tension[c], dr, jac
         )
-        np_ = 0
-        for j in range(npc):
-            lo = bounds[c, j]
-            hi = hi_s[j]
-            k_ = rate[j]
-            slack_len = 0.0
-            if t_hi[j] <= 0.0:
-                slack_len = hi - lo
-            elif t_hi[j] - k_ * (hi - lo) < 0.0 and k_ > 0.0:
-                slack_len = (hi - lo) - t_hi[j] / k_
-            if slack_len > 0.0:
-                ps0[np_] = lo
-                pell[np_] = slack_len
-                pEA[np_] = EA[c, j]
-                pkind[np_] = 0
-                for i in range(3):
-                    pT0[np_, i] = 0.0
-                    pq[np_, i] = 0.0
-                np_ += 1
-            if hi - lo - slack_len > 0.0:
-                ps0[np_] = lo + slack_len
-                pell[np_] = hi - lo - slack_len
-                pEA[np_] = EA[c, j]
-                pkind[np_] = 1
-                for i in range(3):
-                    pT0[np_, i] = max(t_lo[j], 0.0) * e[i]
-                    pq[np_, i] = -k_ * e[i]
-                np_ += 1
-        kt = 0
-        for p in range(1, P):
-            if bounds[c, p] <= s_td:
-                kt = p
-        Cx, Cy, Cz = 0.0, 0.0, 0.0
-        for p in range(kt, P):
-            if p > kt:
-                Cx += point[c, p, 0]
-                Cy += point[c, p, 1]
-                Cz += point[c, p, 2]
-            ps0[np_] = s_td if p == kt else bounds[c, p]
-            pell[np_] = bounds[c, p + 1] - ps0[np_]
-            pEA[np_] = EA[c, p]
-            pkind[np_] = 2
-            pT0[np_, 0] = T[0] - Cx
-            pT0[np_, 1] = T[1] - Cy
-            pT0[np_, 2] = T[2] - Cz
-            pq[np_, 0] = 0.0
-            pq[np_, 1] = 0.0
-            pq[np_, 2] = -w[c, p]
-            Cz -= w[c, p] * pell[np_]
-            np_ += 1
-        Cx += point[c, P, 0]
-        Cy += point[c, P, 1]
-        Cz += point[c, P, 2]
-        TLx, TLy, TLz = T[0] - Cx, T[1] - Cy, T[2] - Cz
-        # start positions of the pieces
-        x0, y0, z0 = rA[c, 0], rA[c, 1], rA[c, 2]
-        for j in range(np_):
-            pr0[j, 0] = x0
-            pr0[j, 1] = y0
-            pr0[j, 2] = z0
-            _increment(pkind[j], pT0[j], pq[j], pell[j], pEA[j], e, dr, jac)
-            x0 += dr[0]
-            y0 += dr[1]
-            z0 += dr[2]
-        ta = lp[3]
         for k in range(3):
-            force_a[c, k] = ta * e[k]
-        force_b[c, 0] = -TLx
-        force_b[c, 1] = -TLy
-        force_b[c, 2] = -TLz
-        j = 0
-        low = math.inf
-        ok = True
-        for i in range(n):
-            si = s[c, i]
-            j = 0
-            while j < np_ - 1 and ps0[j + 1] <= si:
-                j += 1
-            sig = min(max(si - ps0[j], 0.0), pell[j])
-            _increment(pkind[j], pT0[j], pq[j], sig, pEA[j], e, dr, jac)
-            tv0 = pT0[j, 0] - pq[j, 0] * sig
-            tv1 = pT0[j, 1] - pq[j, 1] * sig
-            tv2 = pT0[j, 2] - pq[j, 2] * sig
-            tension[c, i] = math.sqrt(tv0 * tv0 + tv1 * tv1 + tv2 * tv2)
-            if si <= 0.0:
-                tension[c, i] = abs(ta)
-            if si >= L:
-                tension[c, i] = math.sqrt(TLx * TLx + TLy * TLy + TLz * TLz)
-            for k in range(3):
-                pos[c, i, k] = pr0[j, k] + dr[k]
-                ok = ok and math.isfinite(pos[c, i, k])
-            hgt = pos[c, i, 0] * nrm[0] + pos[c, i, 1] * nrm[1] + (pos[c, i, 2] + depth[c]) * nrm[2]
-            low = min(low, hgt)
-            ok = ok and math.isfinite(tension[c, i])
+            force_a[c, k] = lp[3] * e[k]
+            force_b[c, k] = -R[k]
         if not ok:
             status[c] = NUMERICAL
         elif -low > max(1e-6 * L, 1e3 * tol[c] * L):
             status[c] = BELOW_SEABED
         else:
             status[c] = 0
+
+
+@njit(cache=True, error_model="numpy")
+def _pieces(
+    y: np.ndarray, bas: np.ndarray, rA: np.ndarray, bounds: np.ndarray, w: np.ndarray,
+    q: np.ndarray, EA: np.ndarray, point: np.ndarray, nrm: np.ndarray, mu: float,
+    pcs: tuple, work: tuple, TL: np.ndarray,
+) -> int:  # fmt: skip
+    """The line solved at y = (alpha, beta, s_td) (loads as :func:`_evaluate`) as pieces
+    in order along s: laid (slack, then tensioned), then suspended, into ``pcs`` = (start
+    [m], length [m], tension vector at the start [N], load [N/m], EA [N], kind (0 slack on
+    the seabed, 1 laid, 2 suspended), start position [m]), each (3 P) long; T(L) into
+    ``TL``; ``work`` = (t_lo, t_hi, rate, hi_s, lp, e, T, dr, jac) as :func:`_laid` and
+    :func:`_evaluate` (after it: lp[3] the tension at the anchor, ``e`` the laid
+    direction). Returns the number of pieces."""
+    ps0, pell, pT0, pq, pEA, pkind, pr0 = pcs
+    t_lo, t_hi, rate, hi_s, lp, e, T, dr, jac = work
+    P = w.shape[0]
+    s_td = y[2]
+    for i in range(3):
+        T[i] = bas[i, 0] * y[0] + bas[i, 1] * y[1]
+    tn = math.sqrt(T[0] * T[0] + T[1] * T[1] + T[2] * T[2])
+    for i in range(3):
+        e[i] = T[i] / tn
+    npc = _laid(s_td, tn, e, bounds, w, EA, point, nrm, mu, t_lo, t_hi, rate, hi_s, lp)
+    np_ = 0
+    for j in range(npc):
+        lo = bounds[j]
+        hi = hi_s[j]
+        k_ = rate[j]
+        slack_len = 0.0
+        if t_hi[j] <= 0.0:
+            slack_len = hi - lo
+        elif t_hi[j] - k_ * (hi - lo) < 0.0 and k_ > 0.0:
+            slack_len = (hi - lo) - t_hi[j] / k_
+        for part in range(2):  # the slack length, then the tensioned rest
+            length = slack_len if part == 0 else hi - lo - slack_len
+            if length <= 0.0:
+                continue
+            ps0[np_] = lo if part == 0 else lo + slack_len
+            pell[np_] = length
+            pEA[np_] = EA[j]
+            pkind[np_] = part
+            for i in range(3):
+                pT0[np_, i] = 0.0 if part == 0 else max(t_lo[j], 0.0) * e[i]
+                pq[np_, i] = 0.0 if part == 0 else -k_ * e[i]
+            np_ += 1
+    kt = 0
+    for p in range(1, P):
+        if bounds[p] <= s_td:
+            kt = p
+    Cx, Cy, Cz = 0.0, 0.0, 0.0
+    for p in range(kt, P):
+        if p > kt:
+            Cx += point[p, 0]
+            Cy += point[p, 1]
+            Cz += point[p, 2]
+        ps0[np_] = s_td if p == kt else bounds[p]
+        pell[np_] = bounds[p + 1] - ps0[np_]
+        pEA[np_] = EA[p]
+        pkind[np_] = 2
+        pT0[np_, 0] = T[0] - Cx
+        pT0[np_, 1] = T[1] - Cy
+        pT0[np_, 2] = T[2] - Cz
+        pq[np_, 0], pq[np_, 1], pq[np_, 2] = _load(q, w, p)
+        Cx += pq[np_, 0] * pell[np_]
+        Cy += pq[np_, 1] * pell[np_]
+        Cz += pq[np_, 2] * pell[np_]
+        np_ += 1
+    TL[0] = T[0] - (Cx + point[P, 0])
+    TL[1] = T[1] - (Cy + point[P, 1])
+    TL[2] = T[2] - (Cz + point[P, 2])
+    # start positions of the pieces
+    x0, y0, z0 = rA[0], rA[1], rA[2]
+    for j in range(np_):
+        pr0[j, 0] = x0
+        pr0[j, 1] = y0
+        pr0[j, 2] = z0
+        _increment(pkind[j], pT0[j], pq[j], pell[j], pEA[j], e, dr, jac)
+        x0 += dr[0]
+        y0 += dr[1]
+        z0 += dr[2]
+    return np_
+
+
+@njit(cache=True, error_model="numpy")
+def _sample(
+    np_: int, pcs: tuple, e: np.ndarray, s: np.ndarray, L: float, ta: float, TL: np.ndarray,
+    nrm: np.ndarray, depth: float, pos: np.ndarray, tension: np.ndarray, dr: np.ndarray,
+    jac: np.ndarray,
+) -> tuple[bool, float]:  # fmt: skip
+    """The pieces ``pcs`` of :func:`_pieces` sampled at ``s`` (n,) [m] into ``pos`` (n, 3)
+    and ``tension`` (n,) (``ta`` [N] at the anchor, |``TL``| at the end); returns (all
+    finite, the least height above the seabed through (0, 0, -``depth``) with upward
+    ``nrm`` [m])."""
+    ps0, pell, pT0, pq, pEA, pkind, pr0 = pcs
+    low = math.inf
+    ok = True
+    for i in range(s.shape[0]):
+        si = s[i]
+        j = 0
+        while j < np_ - 1 and ps0[j + 1] <= si:
+            j += 1
+        sig = min(max(si - ps0[j], 0.0), pell[j])
+        _increment(pkind[j], pT0[j], pq[j], sig, pEA[j], e, dr, jac)
+        tv0 = pT0[j, 0] - pq[j, 0] * sig
+        tv1 = pT0[j, 1] - pq[j, 1] * sig
+        tv2 = pT0[j, 2] - pq[j, 2] * sig
+        tension[i] = math.sqrt(tv0 * tv0 + tv1 * tv1 + tv2 * tv2)
+        if si <= 0.0:
+            tension[i] = abs(ta)
+        if si >= L:
+            tension[i] = math.sqrt(TL[0] * TL[0] + TL[1] * TL[1] + TL[2] * TL[2])
+        for k in range(3):
+            pos[i, k] = pr0[j, k] + dr[k]
+            ok = ok and math.isfinite(pos[i, k])
+        low = min(low, pos[i, 0] * nrm[0] + pos[i, 1] * nrm[1] + (pos[i, 2] + depth) * nrm[2])
+        ok = ok and math.isfinite(tension[i])
+    return ok, low
 
 
 @njit(cache=True, error_model="numpy")
@@ -659,11 +713,11 @@ def _increment(
     jac: np.ndarray,
 ) -> None:
     """Position increment over ``sig`` [m] of a piece: slack on the seabed (kind 0: straight
-    along ``e``, no tension), laid (1: load along the line) or suspended (2: weight)."""
+    along ``e``, no tension), laid (1: load along the line) or suspended (2: weight, drag)."""
     if kind == 0:
         for k in range(3):
             dr[k] = sig * e[k]
     elif kind == 1:
         _piece_general(T0[0], T0[1], T0[2], q[0], q[1], q[2], sig, EA, dr, jac, False)
     else:
-        _piece(T0[0], T0[1], T0[2], -q[2], sig, EA, dr, jac, False)
+        _loaded_piece(T0[0], T0[1], T0[2], q[0], q[1], q[2], sig, EA, dr, jac, False)

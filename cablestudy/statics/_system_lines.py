@@ -135,7 +135,7 @@ def _contact_line(
     Js = sc3[2]
     jac = sc3[3]
     st, _, _ = _contact_newton(
-        y, bas, rA, rB, 0, zero3, Fscale, L, bounds, w, EA, point, normal, mu, tol, maxit,
+        y, bas, rA, rB, 0, zero3, Fscale, L, bounds, w, sc[:0], EA, point, normal, mu, tol, maxit,
         R, Rn, Jm, Jn, yn, stp, A, T, e, t_lo, t_hi, rate, hi_s, lp, dr, jac, rs, Js,
     )  # fmt: skip
     if st != 0:

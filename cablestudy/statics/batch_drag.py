@@ -4,7 +4,9 @@ semi-analytic solver runs per case inside the compiled batch (:func:`._drag_fast
 A problem takes it (:func:`drag_eligible`) when the general solver
 (:class:`.semi_analytic.SemiAnalyticSolver`) would solve it hanging free with its drag
 loop: a current that drags the line, one end fixed and the other fixed, towed or moored,
-linear axial laws, no installation, no seabed or one below both fixed ends.
+linear axial laws, no installation, no seabed or one below both fixed ends; or when it
+would lay it on the seabed from an anchor (the end it solves from on the seabed, the
+other above it; no attachments, every segment heavier than the fluid).
 
 A line whose end A is towed or moored (end B fixed) is solved as the general solver
 solves it, from B: the reversed line (:func:`.semi_analytic_shape.reversed_line`:
@@ -17,8 +19,16 @@ shape of its iteration reaches the seabed (then it lays it, :mod:`.midspan`). Th
 runs the same iteration and tests every shape against the seabed
 (:mod:`._drag_seabed`); a case one of whose shapes has a sample below the seabed is
 handed on with :data:`ON_SEABED` (the general solver lays a line from 1e-9 L below:
-the margin keeps round-off from making the two decide differently). A line touching
-the seabed in a current is the general solver's.
+the margin keeps round-off from making the two decide differently). A line resting on
+the seabed between its ends in a current is the general solver's.
+
+A line anchored on the seabed (a mooring line: the anchor at A, or at B for a line
+solved from B) rests on it from the anchor in every inner solve of the iteration, as
+the general solver lays it (:mod:`._drag_inner`: the laid part under its weight with
+friction towards the anchor, the suspended part under weight and drag, no drag on the
+laid pieces). Where that solver would leave the contact path (the touchdown point
+driven to the anchor, a contact Newton that fails, a line below the seabed) the case
+is handed on with the reason (:data:`ANCHORED_REASONS`).
 
 Its pieces are the general solver's (:func:`.semi_analytic_shape.make_layout` with the
 same drag elements), the cases with the same numbers of pieces, output points and
@@ -33,13 +43,14 @@ Pure: problems in, results out.
 
 from __future__ import annotations
 
+import math
 import time
 
 import numpy as np
 
 from .base import STATUS_OK, LineModel, StaticProblem, StaticResult
 from .line_state import CatenaryState
-from .seabed import seabed_of
+from .seabed import Plane, seabed_of
 from .semi_analytic_shape import Layout, make_layout, reversed_line
 
 #: the general solver's drag-loop settings the kernel runs with
@@ -50,6 +61,12 @@ CONTINUATION = (4, 16)
 #: why the drag kernel left a case to the general solver
 DRAG_NOT_SETTLED = "not settled by the drag kernel"
 ON_SEABED = "its solution touches the seabed"
+#: ... and why it left a line anchored on the seabed (by the kernel's status)
+ANCHORED_REASONS = {
+    4: "anchored on the seabed, it may hang free of it (the free-hanging path)",
+    5: "anchored on the seabed, its seabed-contact Newton did not settle",
+    6: "anchored on the seabed, its solution passes below the seabed",
+}
 
 
 def drag_eligible(problem: StaticProblem) -> bool:
@@ -63,21 +80,54 @@ def drag_eligible(problem: StaticProblem) -> bool:
         return False
     if problem.is_installation or problem.stretched_drag_diameter:
         return False
-    plane = seabed_of(med)
-    if plane is None:
-        return True
+    plane, ha, hb, limit = _seabed_ends(problem)
     # over a seabed: both fixed ends above it, as the general solver tells an end on it
     # (1e-6 L); that solver then hangs the line free until a shape reaches the seabed
-    limit = 1e-6 * line.total_length
-    for end in (problem.end_a, problem.end_b):
-        if end.kind == "fixed" and not float(plane.height_above(end.position)) > limit:
-            return False
-    return True
+    if plane is None or (ha > limit and hb > limit):
+        return True
+    # anchored on it: the end solved from on the seabed (not below), the other above it;
+    # no attachment (a clump resting on the seabed, a buoy: the general solver's), every
+    # segment heavier than the fluid
+    if _reversed(problem, ha, hb, limit):
+        ha, hb = hb, ha
+    return (
+        abs(ha) <= limit
+        and hb > limit
+        and line.attachment_s.size == 0
+        and bool(np.all(line.weight > 0.0))
+    )
+
+
+def _seabed_ends(problem: StaticProblem) -> tuple[Plane | None, float, float, float]:
+    """(the seabed or None, the heights above it of ends A and B (inf where an end is not
+    fixed, or there is no seabed) [m], the general solver's margin 1e-6 L [m])."""
+    plane = seabed_of(problem.medium)
+    h = [math.inf, math.inf]
+    if plane is not None:
+        n, base = plane.normal, np.array([0.0, 0.0, -plane.depth])
+        for k, end in enumerate((problem.end_a, problem.end_b)):
+            if end.kind == "fixed":
+                h[k] = float((np.asarray(end.position, dtype=float) - base) @ n)
+    return plane, h[0], h[1], 1e-6 * float(np.sum(problem.line.length))
+
+
+def _reversed(problem: StaticProblem, ha: float, hb: float, limit: float) -> bool:
+    """:func:`is_reversed` from the end heights of :func:`_seabed_ends`."""
+    return problem.end_a.kind != "fixed" or hb <= limit < ha
 
 
 def is_reversed(problem: StaticProblem) -> bool:
-    """Whether the general solver solves ``problem`` from end B (its end A not fixed)."""
-    return problem.end_a.kind != "fixed"
+    """Whether the general solver solves ``problem`` from end B: its end A not fixed, or
+    both fixed and B, not A, on the seabed (within 1e-6 L of it)."""
+    return _reversed(problem, *_seabed_ends(problem)[1:])
+
+
+def _sides(problem: StaticProblem) -> tuple[bool, bool]:
+    """(:func:`is_reversed`, whether the end it is solved from is anchored on the seabed,
+    within 1e-6 L of it: the general solver then lays it from there)."""
+    _, ha, hb, limit = _seabed_ends(problem)
+    rev = _reversed(problem, ha, hb, limit)
+    return rev, (hb if rev else ha) <= limit
 
 
 def drag_elements(problem: StaticProblem) -> int:
@@ -94,7 +144,8 @@ def drag_many(
 ) -> list[StaticResult | None]:
     """The drag kernel's verified answer per problem (all :func:`drag_eligible`), None
     where it leaves the case to the general solver (``why``, if given, gets
-    :data:`ON_SEABED` for a line over a seabed that reaches it). Problems of equal piece,
+    :data:`ON_SEABED` for a line over a seabed that reaches it, an
+    :data:`ANCHORED_REASONS` text for a line anchored on it). Problems of equal piece,
     node and current-profile counts are solved in one call. Past ``deadline``
     (``time.monotonic``) no answer is kept: the general solver then reports the time
     limit, as for a case it iterates itself (the kernel does not look at the clock
@@ -108,8 +159,8 @@ def drag_many(
     flipped: dict[int, LineModel] = {}
     made: dict[tuple[int, bool, int], Layout] = {}
     layouts = []
-    for p in problems:
-        rev = is_reversed(p)
+    sides = [_sides(p) for p in problems]
+    for p, (rev, _) in zip(problems, sides, strict=True):
         if rev and id(p.line) not in flipped:
             flipped[id(p.line)] = reversed_line(p.line)
         key = (id(p.line), rev, drag_elements(p))
@@ -122,22 +173,27 @@ def drag_many(
         groups.setdefault(key, []).append(i)
     out: list[StaticResult | None] = [None] * len(problems)
     for members in groups.values():
-        seabed: set[int] = set()
+        left: dict[int, str] = {}
         try:
             got = _solve_group(
-                [problems[i] for i in members], [layouts[i] for i in members], flipped, seabed
+                [problems[i] for i in members],
+                [layouts[i] for i in members],
+                [sides[i] for i in members],
+                flipped,
+                left,
             )
         except Exception:  # noqa: BLE001 - a fault in the kernel: each case alone
-            got, seabed = [], set()
+            got, left = [], {}
             for j, i in enumerate(members):
-                one: set[int] = set()
+                one: dict[int, str] = {}
                 try:
-                    got += _solve_group([problems[i]], [layouts[i]], flipped, one)
+                    got += _solve_group([problems[i]], [layouts[i]], [sides[i]], flipped, one)
                 except Exception:  # noqa: BLE001 - the general solver takes it
                     got.append(None)
-                seabed |= {j} if one else set()
+                if one:  # its own reason
+                    left[j] = one[0]
         if why is not None:
-            why.update({members[j]: ON_SEABED for j in seabed})
+            why.update({members[j]: r for j, r in left.items()})
         if deadline is not None and time.monotonic() > deadline:
             got = [None] * len(members)  # the time limit is the general solver's to say
         if verify:  # status 0 means verified: else the general solver's
@@ -155,14 +211,16 @@ def drag_many(
 def _solve_group(
     problems: list[StaticProblem],
     layouts: list[Layout],
+    sides: list[tuple[bool, bool]],
     flipped: dict[int, LineModel],
-    seabed_hit: set[int],
+    left: dict[int, str],
 ) -> list:
-    """One stacked call of the kernel; the settled cases as results (None otherwise, the
-    index put in ``seabed_hit`` for a line that reaches the seabed). A reversed problem
-    (:func:`is_reversed`) goes in as the general solver states it: the line
-    ``flipped[id(line)]`` from end B, sampled at L - s."""
+    """One stacked call of the kernel; the settled cases as results (None otherwise, why
+    in ``left`` by index for a line that reaches the seabed or is anchored on it). A
+    reversed problem (``sides``: :func:`_sides` per problem) goes in as the general
+    solver states it: the line ``flipped[id(line)]`` from end B, sampled at L - s."""
     from ._drag_fast import DIPS, SETTLED, drag_cases
+    from ._drag_inner import SEABED_COLUMNS
 
     N = len(problems)
     P = len(layouts[0].ell)
@@ -177,12 +235,13 @@ def _solve_group(
     tol, maxit = np.empty(N), np.empty(N, dtype=np.int64)
     s = np.empty((N, n))
     s_eval = np.empty((N, n))
-    over, seabed = np.zeros(N, dtype=np.bool_), np.zeros((N, 4))
+    mode, seabed = np.zeros(N, dtype=np.int64), np.zeros((N, SEABED_COLUMNS))
     planes = [seabed_of(p.medium) for p in problems]
-    rev = np.array([is_reversed(p) for p in problems])
+    rev = np.array([r for r, _ in sides])
     # the general solver's np.linspace(0, L, n) (and L - s from B), bit for bit; once
     # per line object
     samples: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+    rows: dict[Plane, list[float]] = {}  # a seabed's row, once per plane
     for i, (prob, lay) in enumerate(zip(problems, layouts, strict=True)):
         med = prob.medium
         line = flipped[id(prob.line)] if rev[i] else prob.line
@@ -208,9 +267,14 @@ def _solve_group(
                 zB[i] = float(b.z)
         tol[i], maxit[i] = prob.tolerance, prob.max_iterations
         plane = planes[i]
-        if plane is not None:
-            over[i] = True
-            seabed[i, :3], seabed[i, 3] = plane.normal, plane.depth
+        if plane is not None:  # normal, depth, basis (3, 2) by rows, friction, flat
+            mode[i] = 2 if sides[i][1] else 1
+            if plane not in rows:
+                rows[plane] = [
+                    *plane.normal, plane.depth, *np.stack(plane.basis, axis=1).ravel(),
+                    plane.friction, plane.slope == 0.0,
+                ]  # fmt: skip
+            seabed[i] = rows[plane]
         if id(prob.line) not in samples:
             L = prob.line.total_length
             at = np.linspace(0.0, L, n)
@@ -221,24 +285,21 @@ def _solve_group(
     TA, TL, loads = np.empty((N, 3)), np.empty((N, 3)), np.empty((N, P, 3))
     counts, resid = np.zeros((N, 2), dtype=np.int64), np.zeros(N)
     status = np.zeros(N, dtype=np.int64)
+    laid = np.zeros(N)
     drag_cases(
         ell, EA, weight, point, bounds, diam, cn, ct, rho, pz, pv, kind, rA, rB, force, zB,
-        tol, maxit, MAX_DRAG_ITERATIONS, np.array([1, *CONTINUATION], dtype=np.int64), over,
+        tol, maxit, MAX_DRAG_ITERATIONS, np.array([1, *CONTINUATION], dtype=np.int64), mode,
         seabed, s_eval,
-        pos, tension, TA, TL, loads, counts, resid, status,
+        pos, tension, TA, TL, loads, counts, resid, status, laid,
     )  # fmt: skip
     out: list[StaticResult | None] = []
     for i, lay in enumerate(layouts):
         plane = planes[i]
-        if (
-            status[i] == SETTLED
-            and plane is not None
-            and not np.all(plane.height_above(pos[i]) >= 0.0)
-        ):
+        if status[i] == SETTLED and mode[i] == 1 and not np.all(plane.height_above(pos[i]) >= 0.0):
             status[i] = DIPS  # a node below the seabed: the general solver's to say
         if status[i] != SETTLED:
-            if status[i] == DIPS:
-                seabed_hit.add(i)
+            if status[i] == DIPS or status[i] in ANCHORED_REASONS:
+                left[i] = ANCHORED_REASONS.get(int(status[i]), ON_SEABED)
             out.append(None)
             continue
         # the forces on the end attachments, of the line as solved (from B if reversed)
@@ -250,6 +311,7 @@ def _solve_group(
             force_a=fb if rev[i] else fa,
             force_b=fa if rev[i] else fb,
             status=STATUS_OK,
+            laid_length=float(laid[i]),
             iterations=int(counts[i, 0]),
             residual=float(resid[i]),
             state=CatenaryState(layout=lay, q=loads[i], reversed=bool(rev[i])),

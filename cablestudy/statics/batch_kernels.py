@@ -9,10 +9,11 @@ same damped Newton iteration on the convex complementary energy as
 :func:`.semi_analytic_newton.solve_free` (with a per-case Armijo line search and per-case
 convergence). A line anchored at end A on the seabed with end B fixed above it takes
 the compiled seabed-contact kernel (:mod:`._fast_contact`, :func:`solve_contact_arrays`).
-Lines hanging free in a current (over a seabed too, until they reach it) take the
-compiled drag iteration (:mod:`.batch_drag`). Cases that need more (contact between the
-ends, a line in a current touching a seabed, a weightless slack piece, no fixed end A in
-still water, a case a kernel does not settle) are solved one by one by
+Lines hanging free in a current (over a seabed too, until they reach it) and lines
+anchored on the seabed in a current take the compiled drag iteration
+(:mod:`.batch_drag`). Cases that need more (contact between the ends, a line in a
+current that reaches the seabed between its ends, a weightless slack piece, no fixed end
+A in still water, a case a kernel does not settle) are solved one by one by
 :class:`.semi_analytic.SemiAnalyticSolver`, so the answer never depends on which path a
 case took beyond round-off.
 """

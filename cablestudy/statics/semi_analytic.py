@@ -191,11 +191,11 @@ class SemiAnalyticSolver:
         compiled: bool = True,
     ) -> StaticResult:
         """Solve ``problem``. A still-water problem hanging free, or anchored at end A on
-        the seabed with end B fixed above it, and one hanging free in a current (the
-        drag iteration compiled, :mod:`.batch_drag`, with this solver's default drag
-        settings), first takes the compiled kernels of :mod:`.batch` (when numba is
-        available and ``compiled``); anything they do not settle takes the general path
-        below, which gives the same answer to round-off."""
+        the seabed with end B fixed above it, and one hanging free or anchored on the
+        seabed in a current (the drag iteration compiled, :mod:`.batch_drag`, with this
+        solver's default drag settings), first takes the compiled kernels of
+        :mod:`.batch` (when numba is available and ``compiled``); anything they do not
+        settle takes the general path below, which gives the same answer to round-off."""
         if compiled:
             from .batch_drag import CONTINUATION, MAX_DRAG_ITERATIONS
             from .batch_kernels import solve_compiled

@@ -10,8 +10,13 @@ the current of its mid-height, in each segment's share), allowed four times the
 Richardson estimate of its quadrature error; the ends, A and B alike (a fixed end where
 it was put, a mooring end at its height and carrying its horizontal force, a towed end
 its force, the end tensions); the tension along s from end A; the stretched length. A
-line with lumped drag bodies (``attachment_drag_area``), or with a node within the
-contact gap of a seabed, is checked by :func:`.verify.check_one` itself.
+line resting on the seabed from its anchor has the seabed's reaction left by the
+balance checked as admissible (the laid weight carried, Coulomb friction), no drag on
+its laid intervals, and its tension along s checked from the end not cut off by the
+contact, as there; those on one plane are checked together. A line with lumped drag
+bodies (``attachment_drag_area``) or a lateral friction coefficient, or one over a
+seabed with a node within its contact gap, is checked by :func:`.verify.check_one`
+itself.
 
 Pure: arrays in, results out.
 """
@@ -25,7 +30,7 @@ import numpy as np
 from ..physics.current import current_velocity
 from ..physics.hydro import drag_per_length
 from .base import STATUS_NOT_VERIFIED, STATUS_OK, StaticProblem, StaticResult
-from .seabed import seabed_of
+from .seabed import Plane, seabed_of
 from .semi_analytic_shape import make_layout
 from .verify import CONTACT_GAP, MULTIPLE, Pieces, _checks, verified
 
@@ -50,16 +55,18 @@ def verified_many(problems: list[StaticProblem], results: list[StaticResult]) ->
         layouts.append(lay)
         if r.status != STATUS_OK:
             continue
-        if bodies or _near_seabed(p, r):
+        plane = seabed_of(p.medium) if r.laid_length > 0.0 else None
+        if bodies or (plane is None and _near_seabed(p, r)) or p.friction_lateral is not None:
             out[i] = verified(p, r, method="catenary")
             continue
-        groups.setdefault((*shape, len(r.s)), []).append(i)
-    for (_, _, bending, _), members in groups.items():
+        groups.setdefault((*shape, len(r.s), plane), []).append(i)
+    for (_, _, bending, _, plane), members in groups.items():
         checked, end_vals = _check_group(
             [problems[i] for i in members],
             [results[i] for i in members],
             bending,
             [layouts[i] for i in members],
+            plane,
         )
         ok = checked.ok
         for j, i in enumerate(members):
@@ -94,11 +101,14 @@ def _check_group(  # noqa: ANN202
     results: list[StaticResult],
     bending: bool,
     layouts: list | None = None,
+    plane: Plane | None = None,
 ):
     """:func:`.verify.check_one`'s checks of lines with equal piece, segment and sample
     counts (their :func:`.semi_analytic_shape.make_layout` ``layouts``, made here if not
-    given): the :class:`.verify.Checked` of :func:`.verify._checks` and the end checks
-    (name: (value, allowance, unit), each (N,))."""
+    given), resting on the seabed ``plane`` from an anchor where given (its reaction
+    admissible, no drag on the laid intervals): the :class:`.verify.Checked` of
+    :func:`.verify._checks` and the end checks (name: (value, allowance, unit), each
+    (N,))."""
     N = len(problems)
     lays = layouts if layouts is not None else [make_layout(p.line) for p in problems]
     pieces = Pieces(
@@ -147,7 +157,17 @@ def _check_group(  # noqa: ANN202
             end_vals[f"end {label} horizontal force"] = (v, f_allow, "N")
             v = np.where(moor, np.abs(pos[:, k, 2] - height), 0.0)
             end_vals[f"end {label} height"] = (v, x_allow, "m")
-    drag, drag_allow = _drag(problems, s, pos)
+    seabed: dict = {}
+    if plane is not None:  # as check_one marks the samples on and near the seabed
+        height = (pos - np.array([0.0, 0.0, -plane.depth])) @ plane.normal
+        reach = np.maximum(np.maximum(L, np.max(np.abs(pos), axis=(1, 2))), plane.depth)
+        seabed = {
+            "contact": height <= CONTACT_GAP * L[:, None],
+            "laid": height <= 64.0 * float(np.finfo(float).eps) * reach[:, None],
+            "seabed": plane,
+            "friction": plane.friction,
+        }
+    drag, drag_allow = _drag(problems, s, pos, seabed.get("laid"), seabed.get("contact"))
     # fixed ends where they were put (rows of NaN: that end is not fixed)
     ra, rb = np.full((N, 3), np.nan), np.full((N, 3), np.nan)
     for i, p in enumerate(problems):
@@ -169,28 +189,44 @@ def _check_group(  # noqa: ANN202
         resolution=np.zeros(N),
         drag=drag,
         drag_allow=drag_allow,
-        friction=0.0,
         bending=bending,
+        **seabed,
     )
     return checked, end_vals
 
 
-def _drag(problems: list[StaticProblem], s: np.ndarray, pos: np.ndarray):  # noqa: ANN202
-    """:func:`.verify._drag` of N free-hanging lines: the drag on each sample interval
-    (N, n - 1, 3) [N] and its allowance (N, n - 1)."""
+def _drag(  # noqa: ANN202
+    problems: list[StaticProblem],
+    s: np.ndarray,
+    pos: np.ndarray,
+    laid: np.ndarray | None,
+    contact: np.ndarray | None,
+):
+    """:func:`.verify._drag` of N lines: the drag on each sample interval (N, n - 1, 3)
+    [N] (none on those between two samples ``laid`` (N, n) on the seabed; the whole of
+    it allowed on those near the touchdown point, within ``contact`` but not laid) and
+    its allowance (N, n - 1)."""
     force = _interval_drag(problems, s, pos)
+    if laid is not None:
+        force[laid[:, :-1] & laid[:, 1:]] = 0.0
     mag = np.linalg.norm(force, axis=2)
     m = (s.shape[1] - 1) // 2
     if m >= 1:
         idx = np.arange(0, 2 * m + 1, 2)
         coarse = _interval_drag(problems, s[:, idx], pos[:, idx])
+        if laid is not None:
+            coarse[laid[:, idx[:-1]] & laid[:, idx[1:]]] = 0.0
         fine = force[:, : 2 * m].reshape(len(problems), m, 2, 3).sum(axis=2)
         size = np.sum(np.linalg.norm(fine, axis=2), axis=1)
         diff = np.sum(np.linalg.norm(fine - coarse, axis=2), axis=1)
         rho = np.where(size > 0.0, diff / np.where(size > 0.0, size, 1.0), 0.0)
     else:
         rho = np.ones(len(problems))
-    return force, 4.0 * np.minimum(rho, 1.0)[:, None] * mag
+    allow = 4.0 * np.minimum(rho, 1.0)[:, None] * mag
+    if laid is not None and contact is not None:  # partly laid: no drag there
+        edge = (contact[:, :-1] | contact[:, 1:]) & ~(laid[:, :-1] & laid[:, 1:])
+        allow = np.where(edge, mag, allow)
+    return force, allow
 
 
 def _interval_drag(problems: list[StaticProblem], s: np.ndarray, pos: np.ndarray) -> np.ndarray:

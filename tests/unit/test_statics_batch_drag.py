@@ -119,13 +119,18 @@ def test_the_converged_loads_balance_the_end_forces() -> None:
 
 
 def test_cases_it_does_not_take_go_to_the_general_solver() -> None:
-    """A line in a current anchored on a seabed is not the kernel's: ``solve_batch``
-    solves it with the general solver (verified, status 0), beside the kernel's cases,
-    and says so through its ``general`` list. A line whose end A is the towed end is the
-    kernel's (solved from B, :mod:`tests.unit.test_statics_batch_drag_reversed`), and so
-    is one over a seabed it does not reach (:mod:`tests.unit.test_statics_batch_drag_seabed`)."""
+    """A line in a current anchored on a seabed with a clump weight on it is not the
+    kernel's (the general solver's touchdown point can stop at the clump,
+    :mod:`cablestudy.statics.contact_pin`): ``solve_batch`` solves it with the general
+    solver (verified, status 0), beside the kernel's cases, and says so through its
+    ``general`` list. A line whose end A is the towed end is the kernel's (solved from B,
+    :mod:`tests.unit.test_statics_batch_drag_reversed`), and so is one over a seabed it
+    does not reach (:mod:`tests.unit.test_statics_batch_drag_seabed`)."""
     z, v = _current((0.0, 0.5, 30.0))
     line = make_line([300.0], [80.0], [2e8], diameter=0.05)
+    clumped = make_line(
+        [300.0], [80.0], [2e8], diameter=0.05, attachments=[(100.0, (0.0, 0.0, -2000.0))]
+    )
     free = Medium(density=1025.0, gravity=9.80665, current_z=z, current_velocity=v)
     seabed = Medium(density=1025.0, gravity=9.80665, depth=250.0, current_z=z, current_velocity=v)
     base = StaticProblem(
@@ -133,7 +138,7 @@ def test_cases_it_does_not_take_go_to_the_general_solver() -> None:
         n_nodes=21, tolerance=1e-9,
     )  # fmt: skip
     over = StaticProblem(
-        **{**base.__dict__, "medium": seabed, "end_b": fixed(150.0, 0.0, -250.0)}
+        **{**base.__dict__, "line": clumped, "medium": seabed, "end_b": fixed(150.0, 0.0, -250.0)}
     )  # anchored on the seabed at B
     towed_a = StaticProblem(
         **{
