@@ -683,26 +683,36 @@ def test_a_laid_line_on_a_cross_slope_says_why_the_cable_methods_fail(
     tmp_path: Path, method: str
 ) -> None:
     """The leg on a seabed rising 4 deg across its vertical plane (towards +y), friction
-    swept 0.1 and 0.5. The cable methods solve the line in the plane of its ends, so the
-    laid chain's weight down the cross slope (w sin 4 deg a metre) is left to friction
-    beside the pull along the line: with 0.5 the Coulomb limit holds both and the case
-    is verified (status 0); with 0.1 it does not (the chain would slide sideways) and
-    the verification fails the case (status 11, kept), its message now saying so and
-    naming method 'discrete', whose nodes may slide (measured: 0.1 passes there).
-    Found here: the message said only "whole-line force balance (seabed reaction
-    admissible) off by 5.62e+03 N"."""
+    swept 0.05, 0.1 and 0.5. The laid chain's weight down the cross slope (w sin 4 deg a
+    metre, a gradient tan 4 deg = 0.070 against the seabed's normal load) must be held by
+    friction beside the pull along the line. ``catenary`` gives the laid part what the
+    Coulomb cone leaves along it, sqrt((mu n_z)^2 - c^2) (:func:`statics.seabed.
+    along_friction`): with 0.1 and 0.5 the cone holds both and the case is verified
+    (status 0); with 0.05 < 0.070 no straight laid line is held, and the case is refused
+    (status 4) saying so and naming method 'discrete', whose nodes may slide.
+    ``shooting`` still takes the full friction along the line, so with 0.05 and 0.1 the
+    verification fails the case (status 11, kept), its message saying why and naming
+    'discrete' (measured: 0.1 passes there). Found here: the message said only
+    "whole-line force balance (seabed reaction admissible) off by 5.62e+03 N"."""
     text = study_text("leg", method, f"cross-{method}").replace(
         "slope_deg: 0.0", "slope_deg: 4.0, slope_heading_deg: 90.0"
     )
     buf = io.StringIO()
     with contextlib.redirect_stdout(buf):
-        code, ds = run(tmp_path, with_sweep(text, {"environment.seabed.friction": [0.1, 0.5]}))
+        sweep = {"environment.seabed.friction": [0.05, 0.1, 0.5]}
+        code, ds = run(tmp_path, with_sweep(text, sweep))
     assert code == 0 and ds is not None
-    assert list(ds["status"].values) == [11, 0]
-    message = str(ds["message"].values[0])
-    assert message.startswith("not verified: whole-line force balance")
-    assert "across the vertical plane of the line's ends" in message
-    assert "method 'discrete'" in message and f"method {method!r}" in message
+    if method == "catenary":
+        assert list(ds["status"].values) == [4, 0, 0]
+        message = str(ds["message"].values[0])
+        assert "friction cannot hold it from sliding sideways" in message
+        assert "method 'discrete'" in message
+    else:
+        assert list(ds["status"].values) == [11, 11, 0]
+        for message in map(str, ds["message"].values[:2]):
+            assert message.startswith("not verified: whole-line force balance")
+            assert "across the vertical plane of the line's ends" in message
+            assert "method 'discrete'" in message and f"method {method!r}" in message
     discrete = _quiet_run(
         tmp_path,
         with_sweep(
