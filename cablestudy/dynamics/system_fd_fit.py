@@ -30,7 +30,7 @@ _REASSOCIATE = {"reassoc"}
 def fit_node(i, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, out):  # noqa: ANN001, ANN202, PLR0913, PLR0915
     """The small-motion lean (``mean_drag_jacobian`` of the NumPy oracle,
     tests/system_drag_reference.py) into ``lean[i]`` and the drag fit leaning on it
-    (:func:`.frequency_model.drag_linearisation`) into ``out[i]`` of node ``i``, one
+    (``drag_linearisation`` of tests/drag_fit_reference.py) into ``out[i]`` of node ``i``, one
     pass over the phases for both. Without current at the node and with an even number
     of phases, the phases of half a period serve (each sum twice; the mean force is
     zero); with ``samples`` unset (``exact``) such a node does not come here: it takes

@@ -32,16 +32,16 @@ by ``X + Theta x a`` (small rotation: the rotation matrices' first order, whatev
 their order).
 
 Drag. Each line's nodal Morison drag is linearised as in the single-line frequency
-domain (:func:`~.frequency.drag_linearisation`: the mean-square, describing-function fit
-of ``c_N |w_N| w_N + c_T |w_T| w_T``, closed form for motion in the x-z plane and for
-any node without current, :mod:`.elliptic_fit`); a free point's isotropic drag ``c |w|
-w`` (``c = rho C_d A / 2``) is fitted the same way (over ``samples`` phases; in closed
-form without current when ``samples`` is unset). Since ``D`` depends on the motion the
-solve is iterated from the quasi-static motion (``w = 0``: the stiffness alone, the
-velocity then ``i w u``), with Anderson mixing (depth 4, the step damped by 0.8:
-:data:`.system_fd_fit.MIXING`; after a change that grew, the mean of the last two with
-the history dropped, as the single line's iteration), until the velocity amplitudes of
-every node change by less than ``tolerance`` of the largest.
+domain (``drag_linearisation`` of tests/drag_fit_reference.py: the mean-square,
+describing-function fit of ``c_N |w_N| w_N + c_T |w_T| w_T``, closed form for motion in
+the x-z plane and for any node without current, :mod:`.elliptic_fit`); a free point's
+isotropic drag ``c |w| w`` (``c = rho C_d A / 2``) is fitted the same way (over
+``samples`` phases; in closed form without current when ``samples`` is unset). Since
+``D`` depends on the motion the solve is iterated from the quasi-static motion (``w =
+0``: the stiffness alone, the velocity then ``i w u``), with Anderson mixing (depth 4,
+the step damped by 0.8: :data:`.system_fd_fit.MIXING`; after a change that grew, the
+mean of the last two with the history dropped, as the single line's iteration), until
+the velocity amplitudes of every node change by less than ``tolerance`` of the largest.
 
 Output per line: end tension variations at A and B (``F_hat . dF``, ``F_hat`` the unit
 static force of the line on the point, as in the single-line frequency domain), the
