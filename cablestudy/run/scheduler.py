@@ -54,6 +54,10 @@ DEFAULT_CHUNK_CASES = 200
 MAX_CHUNK_CASES = 20_000
 #: runs of adjacent cases per chunk, from evenly spaced parts of the sweep (make_chunks)
 STRIPES = 4
+#: seconds a local worker process may take to start (connect to this process's
+#: scheduler) or to stop: past it the start fails, and the run goes on threads
+#: (:func:`_run_dask`), or the stop gives up and kills the workers (:func:`_close`)
+CLUSTER_TIMEOUT = 60.0
 
 
 def default_workers() -> int:
@@ -337,6 +341,7 @@ def _local_cluster(scheduler: str, workers: int):  # noqa: ANN202 - dask type, i
                 processes=scheduler == PROCESSES,
                 dashboard_address=None,
                 silence_logs=50,
+                death_timeout=CLUSTER_TIMEOUT,
             )
     finally:
         if main:
@@ -365,7 +370,15 @@ def _run_dask(
 
     cluster = None
     if scheduler == PROCESSES:
-        cluster = _local_cluster(scheduler, workers)
+        try:
+            cluster = _local_cluster(scheduler, workers)
+        except Exception as exc:  # noqa: BLE001 - the run goes on, on threads
+            _say(
+                f"the local worker processes did not start ({type(exc).__name__}: {exc}); "
+                f"running the remaining {len(units)} chunks on {workers} threads instead"
+            )
+            _run_threads(work, units, workers, on_done, per_case=per_case)
+            return
         client = Client(cluster)
     else:
         client = connect(scheduler, timeout)
@@ -404,9 +417,32 @@ def _run_dask(
                 done.update(submit(work.batches(pending, workers, cost)))
                 pending = []
     finally:
-        client.close()
+        _close(client, cluster)
+
+
+def _say(message: str) -> None:
+    print(f"warning: {message}", file=sys.stderr)
+
+
+def _close(client: Any, cluster: Any) -> None:
+    """Close ``client`` and the local ``cluster`` (if any) within :data:`CLUSTER_TIMEOUT`
+    each: every result has reached the caller by then, so a stop that hangs (a worker
+    process that does not exit) kills the workers and says so instead of holding the
+    run."""
+    import multiprocessing
+
+    try:
+        client.close(timeout=CLUSTER_TIMEOUT)
         if cluster is not None:
-            cluster.close()
+            cluster.close(timeout=CLUSTER_TIMEOUT)
+    except Exception as exc:  # noqa: BLE001 - the results are in; only the stop failed
+        stuck = multiprocessing.active_children() if cluster is not None else []
+        for process in stuck:
+            process.kill()
+        _say(
+            f"the local worker processes did not stop ({type(exc).__name__}: {exc}); "
+            f"killed {len(stuck)} of them (every result was already received)"
+        )
 
 
 def _guarded(work: Work, batch: Any) -> GridChunk:

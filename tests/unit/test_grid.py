@@ -5,6 +5,7 @@ output with a safe chunk cache."""
 
 from __future__ import annotations
 
+import time
 from collections import OrderedDict
 from dataclasses import replace
 from pathlib import Path
@@ -280,7 +281,6 @@ def test_faulty_swept_values_are_reported_as_before() -> None:
 def test_streamed_result_opens_lazily_and_chunks_are_cached(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    pass
     from cablestudy.analyses import static_grid as grid_module
 
     monkeypatch.setattr(grid_runner, "GRID_CHUNK_CASES", 12)  # two rows of 6 cases a chunk
@@ -370,10 +370,61 @@ def test_array_chunks_on_workers_give_the_serial_result(
     assert not list((tmp_path / "p").glob(".gr-chunks-*"))  # the scratch folder is gone
 
 
+def test_a_local_cluster_that_does_not_start_leaves_the_run_to_threads(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Worker processes that do not come up within the start time-out (here: at once)
+    do not hold or fail the run: it goes on threads, says so, and gives the serial
+    result."""
+    from cablestudy.run import scheduler as sched
+
+    def no_cluster(scheduler: str, workers: int) -> None:
+        raise TimeoutError("the nanny gave up after 60 s")
+
+    monkeypatch.setattr(sched, "_local_cluster", no_cluster)
+    monkeypatch.setattr(grid_runner, "GRID_CHUNK_CASES", 12)
+    src = parse_study_text(TEXT, "gr.yaml")
+    grid = expand_grid(src)
+    par = run_study(
+        src, grid, tmp_path / "p", scheduler="processes", workers=2, use_cache=False, progress=False
+    )
+    ser = run_study(
+        src, grid, tmp_path / "s", scheduler="synchronous", use_cache=False, progress=False
+    )
+    err = capsys.readouterr().err
+    assert "did not start (TimeoutError: the nanny gave up after 60 s)" in err
+    assert "on 2 threads instead" in err
+    a, b = xr.load_dataset(par.path), xr.load_dataset(ser.path)
+    np.testing.assert_array_equal(a["tension_a"].values, b["tension_a"].values)
+
+
+def test_a_cluster_that_does_not_stop_is_given_up_after_the_results() -> None:
+    """A stop that times out (the results are all in by then) kills the worker
+    processes left and says so, instead of failing or holding the run."""
+    import multiprocessing
+
+    from cablestudy.run import scheduler as sched
+
+    class Stuck:
+        def __init__(self) -> None:
+            self.closed: list[float | None] = []
+
+        def close(self, timeout: float | None = None) -> None:
+            self.closed.append(timeout)
+            raise TimeoutError("still closing")
+
+    child = multiprocessing.get_context("fork").Process(target=time.sleep, args=(60,))
+    child.start()
+    stuck = Stuck()
+    sched._close(stuck, stuck)  # no exception
+    child.join(10)
+    assert stuck.closed == [sched.CLUSTER_TIMEOUT]  # the client's close raised first
+    assert child.exitcode is not None and child.exitcode < 0  # killed
+
+
 def test_an_extended_first_axis_reuses_the_cached_chunks(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    pass
     from cablestudy.analyses import static_grid as grid_module
 
     monkeypatch.setattr(grid_runner, "GRID_CHUNK_CASES", 12)  # two spans a chunk
