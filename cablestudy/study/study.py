@@ -16,6 +16,8 @@ from .line import Line, MoorDynLineRef
 from .system import BodyPoint, FixedPoint, FreePoint, SystemBody, SystemLine, SystemPoint
 from .system_checks import check_one_line_excitation, check_system_dynamics
 
+#: the physical systems whose layout passed (:meth:`Study._system`): ids -> objects
+_LAYOUTS: dict[tuple[int, ...], tuple[Any, ...]] = {}
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.\-]*$")
 
 
@@ -207,8 +209,68 @@ class Study(StrictModel):
 
     def _system(self) -> Study:
         """A system (lines between points): every reference resolved, every key used or
-        refused naming what supports it, fixed points above the seabed."""
+        refused naming what supports it, fixed points above the seabed. The checks of
+        the physical system alone (:meth:`_layout`) pass once for the objects they read:
+        a sweep's case shares them with its template (a sweep of frequency, 50 values:
+        1.4 -> 0.5 ms)."""
         one_line = "a one-line study (line and ends)"
+        parts = (self.line, self.ends, self.lines, self.points, self.bodies, self.environment)
+        key = tuple(map(id, parts))
+        if key not in _LAYOUTS:  # (the objects are kept alive there: their ids are theirs)
+            self._layout(one_line)
+            if len(_LAYOUTS) >= 64:
+                _LAYOUTS.clear()
+            _LAYOUTS[key] = parts
+        for name, point in self.points.items():
+            if (
+                isinstance(point, FreePoint)
+                and point.drag_area > 0.0
+                and not self.environment.current
+                and self.analysis.dynamic is None  # the dynamics drag a moving point
+            ):
+                raise FieldError(
+                    ("points", name, "drag_area"),
+                    f"C_D A = {point.drag_area:g} m^2: a point's drag acts in a current, or "
+                    "on its motion in analysis.dynamic; allowed: 0, or give "
+                    "environment.current or analysis.dynamic",
+                    point.drag_area,
+                )
+        an = self.analysis
+        refused_analyses = {
+            "modal": an.modal is not None,
+            "database": an.database is not None,
+        }
+        if an.dynamic is not None:  # the system time domain (dynamics/system_*.py)
+            check_system_dynamics(self)
+        else:
+            for name, point in self.points.items():
+                if isinstance(point, FreePoint) and point.added_mass != 0.0:
+                    raise FieldError(
+                        ("points", name, "added_mass"),
+                        "added_mass acts in the dynamics only; allowed: add "
+                        "analysis.dynamic, or remove the key",
+                        point.added_mass,
+                    )
+        for key, given in refused_analyses.items():
+            if given:
+                raise FieldError(
+                    ("analysis", key),
+                    f"analysis.{key} is not available for a system yet; it is supported by "
+                    f"{one_line}; a system runs analysis.static",
+                    key,
+                )
+        self._system_method(one_line)
+        if an.static.installation is not None:
+            raise FieldError(
+                ("analysis", "static", "installation"),
+                f"cable laying is supported by {one_line}, not by a system",
+                "installation",
+            )
+        return self
+
+    def _layout(self, one_line: str) -> None:
+        """The checks of :meth:`_system` that read the physical system alone (lines,
+        points, bodies, environment), not the analysis."""
         for key in ("line", "ends"):
             if getattr(self, key) is not None:
                 raise FieldError(
@@ -228,19 +290,6 @@ class Study(StrictModel):
                         name,
                     )
         for name, point in self.points.items():
-            if (
-                isinstance(point, FreePoint)
-                and point.drag_area > 0.0
-                and not self.environment.current
-                and self.analysis.dynamic is None  # the dynamics drag a moving point
-            ):
-                raise FieldError(
-                    ("points", name, "drag_area"),
-                    f"C_D A = {point.drag_area:g} m^2: a point's drag acts in a current, or "
-                    "on its motion in analysis.dynamic; allowed: 0, or give "
-                    "environment.current or analysis.dynamic",
-                    point.drag_area,
-                )
             if isinstance(point, BodyPoint) and point.body not in self.bodies:
                 raise FieldError(
                     ("points", name, "body"),
@@ -287,37 +336,6 @@ class Study(StrictModel):
                 raise FieldError(
                     ("points", name), "the point is on no line; allowed: points lines use", name
                 )
-        an = self.analysis
-        refused_analyses = {
-            "modal": an.modal is not None,
-            "database": an.database is not None,
-        }
-        if an.dynamic is not None:  # the system time domain (dynamics/system_*.py)
-            check_system_dynamics(self)
-        else:
-            for name, point in self.points.items():
-                if isinstance(point, FreePoint) and point.added_mass != 0.0:
-                    raise FieldError(
-                        ("points", name, "added_mass"),
-                        "added_mass acts in the dynamics only; allowed: add "
-                        "analysis.dynamic, or remove the key",
-                        point.added_mass,
-                    )
-        for key, given in refused_analyses.items():
-            if given:
-                raise FieldError(
-                    ("analysis", key),
-                    f"analysis.{key} is not available for a system yet; it is supported by "
-                    f"{one_line}; a system runs analysis.static",
-                    key,
-                )
-        self._system_method(one_line)
-        if an.static.installation is not None:
-            raise FieldError(
-                ("analysis", "static", "installation"),
-                f"cable laying is supported by {one_line}, not by a system",
-                "installation",
-            )
         env = self.environment
         if env.depth is not None:
             for name, point in self.points.items():
@@ -332,7 +350,6 @@ class Study(StrictModel):
                         f"z = {ground!r} m there); allowed z >= seabed height",
                         list(point.position),
                     )
-        return self
 
     def _system_method(self, one_line: str) -> None:
         """The static method of a system: one that gives each line's exact end stiffness
