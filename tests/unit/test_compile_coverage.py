@@ -23,13 +23,15 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 #: quick configs reaching the batch statics (towed end, anchored on the seabed, a
-#: current), the time and frequency domains
+#: current), the time and frequency domains, a system's statics and time domain (and its
+#: frequency domain, made from the last in the test)
 CONFIGS = (
     "cable-break-catenary",
     "tutorial-towed-cable",
     "mooring-span-sweep",
     "vaz-patel-turning-current",
     "umbilical-frequency-tension-30kg",
+    "system-case8-surge",
 )
 #: a chain anchored on a sloped seabed in a current (the general solver's drag
 #: iteration with seabed contact) and still (the contact kernel), swept as arrays
@@ -87,6 +89,13 @@ def test_runs_compile_no_signature_the_compile_step_missed(tmp_path: Path) -> No
         path = tmp_path / f"{name}.yaml"
         path.write_text(SEABED.replace("NAME", name).replace("CURRENT", text))
         paths.append(str(path))
+    system = (ROOT / "configs" / "system-case8-surge.yaml").read_text()
+    fd = tmp_path / "system-frequency.yaml"
+    fd.write_text(
+        system.replace("    points_per_period: 128\n", "    method: frequency\n")
+        + "sweep:\n  analysis.dynamic.excitation.frequency: [0.05, 0.1]\n"
+    )
+    paths.append(str(fd))
     env = dict(os.environ, PYTHONPATH=str(ROOT))
     done = subprocess.run(
         [sys.executable, "-c", _CHILD, *paths],
