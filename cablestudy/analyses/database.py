@@ -481,10 +481,13 @@ class QuasiStaticDatabase:
         """From a dataset holding one case's database: the study's dataset
         (``database_*`` or ``database_radial_*``) or the database's own
         (``<name>.database.nc``, :mod:`cablestudy.run.database_file`). Select a case first
-        with ``ds.sel(...)`` when the study has sweep dimensions."""
+        with ``ds.sel(...)`` when a sweep dimension holds more than one value (one value
+        is its case)."""
         grid, prefix = _layout_of(ds)
         layout = DATABASE_LAYOUTS[grid]
         extra = [d for d in ds[f"{prefix}tension_a"].dims if d not in layout.dims]
+        ds = ds.isel({d: 0 for d in extra if ds.sizes[d] == 1})  # one value: that case
+        extra = [d for d in extra if ds.sizes.get(d, 1) > 1]
         if extra:
             raise ValueError(
                 f"the dataset holds one database per case of the sweep dimensions {extra}; "

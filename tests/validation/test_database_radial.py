@@ -248,6 +248,11 @@ def test_swept_database_file_holds_a_case_dimension_and_a_resumed_run_rewrites_i
     assert got["force_b"] == db.lookup(120.0, 5.0)["force_b"].tolist()
     assert main(["lookup", str(path), "--at", "120", "5"]) == 2
     assert "select one case" in capsys.readouterr().err
+    # a sweep dimension of one value is that case's: no --sel needed
+    one = tmp_path / "one.database.nc"
+    first.isel(axial_stiffness=[1]).to_netcdf(one)
+    assert main(["lookup", str(one), "--at", "120", "5"]) == 0
+    assert json.loads(capsys.readouterr().out) == got
 
     # resumed from the cache (every case reused, the file lost): the same file again
     path.unlink()
