@@ -21,7 +21,7 @@ three ``simulate`` runs.
 
 Peer: MoorDyn (optional extra ``peers``; 2.7.2 here) running the file cablestudy exports
 for the case (``cablestudy export moordyn``: same line, drag, added mass, axial damping
-BA = -0.8, its stable step dtM), with its seabed set to ours:
+BA = -0.8, its stable step dtM), whose seabed rows are ours (written by the exporter):
 
 * contact stiffness: MoorDyn's seabed force per node is ``kBot * d * l * penetration``
   (kBot is per unit of projected area, Pa/m, not per length), so kBot = stiffness / d.
@@ -110,7 +110,6 @@ MOORDYN = {
     "slow_drift": ((10, 20, 40), (64, 128, 512)),
 }
 MOORDYN_REPEAT_BELOW = 3.0  # [s] MoorDyn runs shorter than this are repeated 3 times
-SLIP_VELOCITY = 0.02  # [m/s] MoorDyn's friction saturates above this
 
 
 def study(frequency: float, amplitude: float, elements: int, ppp: int) -> dict[str, Any]:
@@ -230,36 +229,16 @@ def regime(label: str, quick: bool) -> WorkPrecision:
 
 
 def moordyn_text(f: float, a: float, segments: int) -> tuple[str, np.ndarray, float]:
-    """The exported MoorDyn file of the case with our seabed set (module notes), the
+    """The exported MoorDyn file of the case (its seabed as ours: module notes), the
     coupled point's position [m] and its time step dtM [s]."""
     from cablestudy.interchange.case_export import export_case
-    from cablestudy.physics.contact import default_seabed_stiffness
     from cablestudy.study.loader import parse_study_text
-    from cablestudy.study.problem import line_model
 
     data = study(f, a, segments, 64)
     src = parse_study_text(yaml.safe_dump(data), "<bench>")
     exported = export_case(src, [])
-    the_study = _case(data).study
-    seg = the_study.line.segments[0]
-    env = the_study.environment
-    stiffness = env.seabed.stiffness or default_seabed_stiffness(line_model(the_study).weight)
-    inertia = seg.mass_in(env.density, env.gravity) + (
-        seg.added_mass_normal * env.density * seg.area
-    )
-    damping = 2.0 * env.seabed.damping_ratio * np.sqrt(stiffness * inertia)
-    weight = (seg.mass_in(env.density, env.gravity) - env.density * seg.area) * env.gravity
-    fric_damp = weight * (seg.length / segments) / SLIP_VELOCITY
-    options = [
-        f"{stiffness / seg.diameter:.9g}  kBot   ! cablestudy's seabed.stiffness / d",
-        f"{damping / seg.diameter:.9g}  cBot   ! critical, as cablestudy's damping_ratio 1",
-        f"{fric_damp:.9g}  FricDamp   ! saturates at {SLIP_VELOCITY} m/s",
-        "1.0  StatDynFricScale",
-    ]
-    text = exported.text.replace(
-        "---------------------- OUTPUTS", "\n".join(options) + "\n---------------------- OUTPUTS"
-    )
-    assert re.search(r"^\S+\s+FrictionCoefficient", text, re.M), "friction not exported"
+    text = exported.text
+    assert re.search(r"^\S+\s+FricDamp", text, re.M), "friction not exported"
     (pid,) = exported.coupled
     return text, exported.coupled[pid], exported.time_step
 

@@ -78,10 +78,117 @@ def _floor125(x: float) -> float:
     return 10.0**e
 
 
-def type_row(name: str, seg: Any, mass: float) -> str:
+def axial_step(
+    pieces: list[tuple[Any, float]], rho: float, g: float
+) -> tuple[float, dict[int, float], list[str]]:
+    """The largest time step [s] of MoorDyn's explicit RK2 on the lines written as
+    ``pieces`` (segment, node length [m]): about 20 steps per period of the fastest axial
+    mode, omega = 2 c / l (a lumped-mass chain's highest), dt = pi l / (10 c). RK2
+    amplifies an undamped mode by (omega dt)^4 / 8 a step, so a segment without axial
+    damping is written with the damping ratio zeta = (omega dtM)^3 / 4 (BA = -zeta), twice
+    what cancels that growth (a decay of zeta omega dtM a step). It damps a mode of
+    frequency f by about zeta f / f_max, nothing at wave frequencies. Measured on the
+    320 m chain of tests/integration/test_step_check.py, no damping, 20 m nodes: dtM
+    1e-3 and 5e-4 blew up (maximum tension 984 and 312 kN against 131 kN). Returns the
+    step, that damping by segment (``id``) and a warning naming it."""
+    dt, fastest = math.inf, {}
+    for seg, length in pieces:
+        axial_mass = seg.mass_in(rho, g) + rho * seg.area * seg.added_mass_tangential
+        c = math.sqrt(seg.elastic_stiffness / axial_mass)
+        dt = min(dt, math.pi * length / (10.0 * c))
+        if seg.damping_ratio <= 0.0:
+            fastest[id(seg)] = max(fastest.get(id(seg), 0.0), 2.0 * c / length)
+    damping = {k: (omega * _floor125(dt)) ** 3 / 4.0 for k, omega in fastest.items()}
+    warnings = (
+        [
+            "segments without axial damping (damping_ratio 0) are written with MoorDyn's "
+            f"BA = -{max(damping.values()):.3g} at most: the least damping that keeps its "
+            "explicit RK2 from amplifying their fastest axial mode at dtM; it damps a mode "
+            "of frequency f by about that times f / f_max, nothing at wave frequencies"
+        ]
+        if damping
+        else []
+    )
+    return dt, damping, warnings
+
+
+#: slip speed [m/s] at which MoorDyn's saturated viscous friction, ``F = min(mu FricDamp
+#: |v|, mu N)``, reaches the Coulomb force on the heaviest laid node: FricDamp = w l /
+#: SLIP_VELOCITY. MoorDyn's default FricDamp (200 N s/m) saturates a chain's node near
+#: 100 m/s: no friction at all (benchmarks/wp_chain_moordyn.py; halving this speed there
+#: moves the maximum tension by 6e-4)
+SLIP_VELOCITY = 0.02
+
+
+def seabed_options(
+    env: Any, pieces: list[tuple[Any, float]], stiffness: float
+) -> tuple[list[str], list[str], float]:
+    """MoorDyn's OPTIONS rows of the seabed of ``env`` for the lines written as
+    ``pieces`` (segment, node length [m]) with the contact ``stiffness`` [N/m^2]: kBot and
+    cBot over the largest diameter, and with friction FrictionCoefficient, FricDamp
+    (:data:`SLIP_VELOCITY`) and StatDynFricScale 1; the warnings of what MoorDyn's seabed
+    does differently; and the largest time step [s] its explicit integration takes on a
+    laid node: omega dt <= 1 on the contact spring and r dt <= 1 on the friction's
+    damping rate r (half the stability limit of 2 on a real rate). Measured on
+    configs/chain-mooring-surge.yaml with a contact 80 times the default (1e8 N/m^2,
+    omega = 790 rad/s, critically damped): MoorDyn 2.7 stays stable up to omega dt =
+    1.6, its extremes within 4e-7 of those at a tenth of the step."""
+    rho, g = env.density, env.gravity
+    ref = max((seg for seg, _ in pieces), key=lambda s: s.diameter)
+    m_ref = ref.mass_in(rho, g) + rho * ref.area * ref.added_mass_normal
+    kbot, cbot = to_moordyn(stiffness, env.seabed.damping_ratio, diameter=ref.diameter, mass=m_ref)
+    rows = [
+        f"{_num(kbot)}  kBot   ! the contact stiffness {stiffness:.6g} N/m^2 over the largest "
+        f"diameter {ref.diameter:g} m",
+        f"{_num(cbot)}  cBot   ! damping ratio {env.seabed.damping_ratio:g} of that contact spring",
+    ]
+    warnings = []
+    if len({seg.diameter for seg, _ in pieces}) > 1:
+        warnings.append(
+            "MoorDyn's seabed stiffness scales with each line type's diameter; kBot is the "
+            "study's contact stiffness over the largest diameter, so thinner lines rest on a "
+            "softer seabed in MoorDyn"
+        )
+    if env.seabed.slope_deg != 0.0:
+        warnings.append(
+            f"environment.seabed.slope_deg = {env.seabed.slope_deg:g}: MoorDyn's seabed here "
+            "is flat at WtrDpth (a bathymetry file is not written)"
+        )
+    mu = env.seabed.friction
+    nodes = [  # (weight in the fluid [N], lightest mass [kg], diameter, length [m]) of a node
+        (
+            (seg.mass_in(rho, g) - rho * seg.area) * g * length,
+            (
+                seg.mass_in(rho, g)
+                + rho * seg.area * min(seg.added_mass_normal, seg.added_mass_tangential)
+            )
+            * length,
+            seg.diameter,
+            length,
+        )
+        for seg, length in pieces
+    ]
+    fric_damp = max(w for w, _, _, _ in nodes) / SLIP_VELOCITY if mu > 0.0 else 0.0
+    dt = math.inf
+    for _, mass, d, length in nodes:
+        rate = mu * fric_damp / mass
+        dt = min(dt, math.sqrt(mass / (kbot * d * length)), 1.0 / rate if rate > 0.0 else math.inf)
+    if mu > 0.0:
+        rows += [
+            f"{_num(mu)}  FrictionCoefficient",
+            f"{_num(fric_damp)}  FricDamp   ! saturates at {SLIP_VELOCITY:g} m/s on the "
+            "heaviest laid node",
+            "1  StatDynFricScale",
+        ]
+    return rows, warnings, dt
+
+
+def type_row(name: str, seg: Any, mass: float, damping: dict[int, float]) -> str:
     """The LINE TYPES row ``name`` of segment ``seg`` with mass ``mass`` [kg/m] in the
-    fluid's terms (internal damping as MoorDyn's -zeta)."""
-    ba = -seg.damping_ratio if seg.damping_ratio > 0.0 else 0.0
+    fluid's terms (internal damping as MoorDyn's -zeta; ``damping``: that of segments
+    without their own, :func:`axial_step`)."""
+    zeta = seg.damping_ratio if seg.damping_ratio > 0.0 else damping.get(id(seg), 0.0)
+    ba = -zeta if zeta > 0.0 else 0.0
     return (
         f"{name}  {_num(seg.diameter)}  {_num(mass)}  {_num(seg.elastic_stiffness)}  "
         f"{_num(ba)}  {_num(seg.bending_stiffness)}  {_num(seg.drag_normal)}  "
@@ -91,11 +198,12 @@ def type_row(name: str, seg: Any, mass: float) -> str:
 
 
 def time_options(dt: float) -> list[str]:
-    """The OPTIONS rows of the time step (``dt`` [s] the axial stability limit, rounded
-    down to 1-2-5) and the initial-condition settings."""
+    """The OPTIONS rows of the time step (``dt`` [s] the stability limit of the axial
+    waves and the seabed, rounded down to 1-2-5) and the initial-condition settings."""
     return [
         f"{_num(_floor125(dt))}  dtM   ! explicit RK2: about 20 steps per period of the "
-        f"fastest (axial) segment mode, pi l / (10 c) = {dt:.3g} s rounded down",
+        f"fastest axial segment mode (pi l / (10 c)), within the seabed contact's and "
+        f"friction's limits: {dt:.3g} s rounded down",
         "0.001  threshIC",
         "300  TmaxIC",
     ]
@@ -251,7 +359,7 @@ def moordyn_input(
                     f"line.segments.{i}: weight_in_fluid {seg.weight_in_fluid:g} N/m differs "
                     f"from (mass - rho A) g = {implied:g} N/m; MoorDyn uses mass and diameter"
                 )
-        type_rows.append(type_row(f"seg{i + 1}", seg, m))
+        type_rows.append((f"seg{i + 1}", seg, m))
     dyn = study.analysis.dynamic
     n_total = dyn.elements if dyn is not None else study.analysis.static.nodes - 1
     # points
@@ -292,57 +400,31 @@ def moordyn_input(
         )
     # lines between consecutive points
     line_rows = []
-    dt = math.inf
+    pieces = []  # (segment, node length) of each MoorDyn line
     for k in range(len(positions) - 1):
         s0, s1 = positions[k], positions[k + 1]
         iseg = int(np.searchsorted(bounds, 0.5 * (s0 + s1)) - 1)
         seg = segs[iseg]
         length = s1 - s0
         nseg = max(1, round(n_total * length / total))
-        c = math.sqrt(
-            seg.elastic_stiffness
-            / (seg.mass_in(rho, g) + rho * seg.area * seg.added_mass_tangential)
-        )
-        dt = min(dt, math.pi * (length / nseg) / (10.0 * c))
+        pieces.append((seg, length / nseg))
         line_rows.append(f"{k + 1}  seg{iseg + 1}  {k + 1}  {k + 2}  {_num(length)}  {nseg}  -")
-    dtm = _floor125(dt)
+    dt, damping, warned = axial_step(pieces, rho, g)
+    warnings += warned
     # options
     lowest = min(end_a[2], end_b[2], float(position_at[:, 2].min()))
     opts = [f"{_num(g)}  g", f"{_num(rho)}  rho"]
     if env.depth is not None:
         opts.append(f"{_num(env.depth)}  WtrDpth")
-        ref = max(range(len(segs)), key=lambda i: segs[i].diameter)
-        seg = segs[ref]
-        m_n = seg.mass_in(rho, g) + rho * seg.area * seg.added_mass_normal
         stiffness = (
             env.seabed.stiffness
             if env.seabed.stiffness is not None
             else default_seabed_stiffness(line_model(study).weight)
         )
-        kbot, cbot = to_moordyn(
-            stiffness, env.seabed.damping_ratio, diameter=seg.diameter, mass=m_n
-        )
-        opts.append(
-            f"{_num(kbot)}  kBot   ! the study's contact stiffness {stiffness:.6g} N/m^2 over "
-            f"the diameter of segment {ref + 1}"
-        )
-        opts.append(
-            f"{_num(cbot)}  cBot   ! damping ratio {env.seabed.damping_ratio:g} of that "
-            "segment's contact spring"
-        )
-        if len({sg.diameter for sg in segs}) > 1:
-            warnings.append(
-                "MoorDyn's seabed stiffness scales with each line type's diameter; kBot is "
-                f"the study's contact stiffness over segment {ref + 1}'s diameter, so the "
-                "thinner segments rest on a softer seabed in MoorDyn"
-            )
-        if env.seabed.slope_deg != 0.0:
-            warnings.append(
-                f"environment.seabed.slope_deg = {env.seabed.slope_deg:g}: MoorDyn's seabed "
-                "here is flat at WtrDpth (a bathymetry file is not written)"
-            )
-        if env.seabed.friction > 0.0:
-            opts.append(f"{_num(env.seabed.friction)}  FrictionCoefficient")
+        rows, warned, dt_bed = seabed_options(env, pieces, stiffness)
+        opts += rows
+        warnings += warned
+        dt = min(dt, dt_bed)
     else:
         deep = math.ceil(-lowest + 10.0 * total)
         opts.append(
@@ -365,6 +447,12 @@ def moordyn_input(
             )
     n_lines = len(line_rows)
     text = file_text(
-        front, type_rows, [], point_rows, line_rows, opts, [f"FairTen{n_lines}", "AnchTen1"]
+        front,
+        [type_row(*row, damping) for row in type_rows],
+        [],
+        point_rows,
+        line_rows,
+        opts,
+        [f"FairTen{n_lines}", "AnchTen1"],
     )
-    return ExportedCase(text, extra, warnings, coupled, dtm)
+    return ExportedCase(text, extra, warnings, coupled, _floor125(dt))

@@ -31,13 +31,14 @@ from .export import (
     ExportedCase,
     _floor125,
     _num,
+    axial_step,
     current_table,
     file_text,
+    seabed_options,
     time_options,
     type_row,
 )
 from .moordyn_format import InterchangeError
-from .seabed import to_moordyn
 from .system_import import moordyn_angles
 
 
@@ -139,21 +140,17 @@ def system_moordyn_input(study: Study, result: Any, *, title: str) -> ExportedCa
             f"{_num(cda)}  {_num(ca)}   ! {name}"
         )
     n_nodes = study.analysis.static.nodes
-    type_rows: list[str] = []
+    type_rows: list[tuple[str, Any, float]] = []
     line_rows: list[str] = []
     chained: list[tuple[str, int, int, Any, list[tuple[float, float, float, float]]]] = []
-    dt = math.inf
-    all_segments = []
+    pieces = []  # (segment, node length) of each MoorDyn line
 
     def add_line(lid: int, seg: Any, a: int, b: int, length: float, nseg: int, note: str) -> None:
-        nonlocal dt
         m = seg.mass_in(rho, g)
         tname = f"type{len(type_rows) + 1}"
-        type_rows.append(type_row(tname, seg, m))
+        type_rows.append((tname, seg, m))
         line_rows.append(f"{lid}  {tname}  {a}  {b}  {_num(length)}  {nseg}  -   ! {note}")
-        c = math.sqrt(seg.elastic_stiffness / (m + rho * seg.area * seg.added_mass_tangential))
-        dt = min(dt, math.pi * (length / nseg) / (10.0 * c))
-        all_segments.append(seg)
+        pieces.append((seg, length / nseg))
 
     for k, (name, line) in enumerate(study.lines.items()):
         a, b = point_ids[line.a], point_ids[line.b]
@@ -210,10 +207,11 @@ def system_moordyn_input(study: Study, result: Any, *, title: str) -> ExportedCa
             "MoorDyn line has one line type and no attachments); re-imported, it is a "
             "system of those lines"
         )
+    dt, damping, warned = axial_step(pieces, rho, g)
+    warnings += warned
     opts = [f"{_num(g)}  g", f"{_num(rho)}  rho"]
     if env.depth is not None:
         opts.append(f"{_num(env.depth)}  WtrDpth")
-        ref = max(all_segments, key=lambda s: s.diameter)
         if env.seabed.stiffness is not None:
             stiffness = env.seabed.stiffness
         else:
@@ -222,28 +220,10 @@ def system_moordyn_input(study: Study, result: Any, *, title: str) -> ExportedCa
                 for ln in study.lines.values()
             ]
             stiffness = max(default_seabed_stiffness(lm.weight) for lm in lines)
-        m_n = ref.mass_in(rho, g) + rho * ref.area * ref.added_mass_normal
-        kbot, cbot = to_moordyn(
-            stiffness, env.seabed.damping_ratio, diameter=ref.diameter, mass=m_n
-        )
-        opts.append(
-            f"{_num(kbot)}  kBot   ! the contact stiffness {stiffness:.6g} N/m^2 over the "
-            f"largest diameter {ref.diameter:g} m"
-        )
-        opts.append(f"{_num(cbot)}  cBot   ! damping ratio {env.seabed.damping_ratio:g}")
-        if len({s.diameter for s in all_segments}) > 1:
-            warnings.append(
-                "MoorDyn's seabed stiffness scales with each line type's diameter; kBot is "
-                "the study's contact stiffness over the largest diameter, so thinner lines "
-                "rest on a softer seabed in MoorDyn"
-            )
-        if env.seabed.slope_deg != 0.0:
-            warnings.append(
-                f"environment.seabed.slope_deg = {env.seabed.slope_deg:g}: MoorDyn's seabed "
-                "here is flat at WtrDpth (a bathymetry file is not written)"
-            )
-        if env.seabed.friction > 0.0:
-            opts.append(f"{_num(env.seabed.friction)}  FrictionCoefficient")
+        rows, warned, dt_bed = seabed_options(env, pieces, stiffness)
+        opts += rows
+        warnings += warned
+        dt = min(dt, dt_bed)
     else:
         lowest = min(float(np.min(np.asarray(r.position)[:, 2])) for r in result.lines)
         longest = max(ln.length for ln in study.lines.values())
@@ -257,7 +237,7 @@ def system_moordyn_input(study: Study, result: Any, *, title: str) -> ExportedCa
     extra = current_table(study, opts)
     text = file_text(
         [f"MoorDyn v2 input file written by cablestudy: {title}"],
-        type_rows,
+        [type_row(*row, damping) for row in type_rows],
         body_rows,
         point_rows,
         line_rows,

@@ -243,7 +243,8 @@ analysis:
 def test_import_of_export_gives_back_the_study() -> None:
     """Everything comes back as written, and the seabed contact comes back explicit:
     the default stiffness (the heaviest segment's weight over 1 mm) and damping ratio,
-    through MoorDyn's kBot, cBot on the thickest segment's diameter."""
+    through MoorDyn's kBot, cBot on the thickest segment's diameter; the undamped second
+    segment comes back with the axial damping the file gives it for MoorDyn's RK2."""
     study, back, exported = _roundtrip(STUDY)
     sb = back.environment.seabed
     assert sb.stiffness == pytest.approx(
@@ -254,7 +255,12 @@ def test_import_of_export_gives_back_the_study() -> None:
         update={"stiffness": sb.stiffness, "damping_ratio": sb.damping_ratio}
     )
     assert back.environment == study.environment.model_copy(update={"seabed": explicit})
-    assert back.line == study.line
+    zeta = back.line.segments[1].damping_ratio
+    assert 0.0 < zeta < 0.07  # (omega dtM)^3 / 4 at omega dtM <= 2 pi / 10
+    undamped = study.line.segments[1].model_copy(update={"damping_ratio": zeta})
+    assert back.line == study.line.model_copy(
+        update={"segments": [study.line.segments[0], undamped]}
+    )
     assert back.ends == study.ends
     assert back.analysis.static.nodes == study.analysis.static.nodes
     assert exported.time_step > 0.0
@@ -278,6 +284,13 @@ def test_export_time_step_resolves_the_axial_mode() -> None:
     assert exported.time_step <= math.pi * l / (10 * c)
     assert exported.time_step > math.pi * l / (10 * c) / 2.5  # 1-2-5 rounding loses < 2.5x
     assert "dtM" in exported.text and "explicit" in exported.text
+    # the undamped second segment (5 m nodes): the damping ratio (omega dtM)^3 / 4 of its
+    # fastest axial mode omega = 2 c / l keeps MoorDyn's RK2 from amplifying it
+    c2 = math.sqrt(2.0e8 / 20.0)
+    row = next(r for r in exported.text.splitlines() if r.startswith("seg2 "))
+    zeta = (2.0 * c2 / 5.0 * exported.time_step) ** 3 / 4.0
+    assert float(row.split()[4]) == pytest.approx(-zeta, rel=1e-12)
+    assert any("BA = -" in w for w in exported.warnings)
 
 
 MOORPY = """

@@ -15,6 +15,7 @@ from __future__ import annotations
 import contextlib
 import os
 import re
+import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -31,6 +32,7 @@ from cablestudy.interchange.moordyn_scope import point_of
 from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
 
+ROOT = Path(__file__).resolve().parents[2]
 PEERS = (
     "in the optional extra `peers` (pip install '.[peers]'); without it the exported file "
     "cannot be run"
@@ -307,3 +309,95 @@ def test_peer_files_chains_through_free_points_agree_with_moorpy() -> None:
         compared.append((rel, err / float(np.abs(ours_f).max())))
     print("chains against MoorPy:", compared)
     assert len(compared) >= 3
+
+
+def _surge_extremes(
+    moordyn: Any, text: str, x0: np.ndarray, dtm: float, periods: int = 4
+) -> tuple[float, float]:
+    """MoorDyn's largest and smallest fairlead tension [N] over the last of ``periods``
+    periods of the file ``text`` at time step ``dtm``, its coupled point at ``x0`` moved
+    2 sin(2 pi 0.1 t) m in x after a ramp over the first period ((1 - cos(pi t / 10)) /
+    2, as ours), handed the motion 128 times a period."""
+    text = re.sub(r"^\S+(\s+dtM)", f"{dtm!r}\\1", text, flags=re.M)
+    with tempfile.TemporaryDirectory() as tmp, _quiet():
+        path = Path(tmp) / "line.dat"
+        path.write_text(text)
+        system = moordyn.Create(str(path))
+        moordyn.Init(system, x0, np.zeros(3))
+        w, step, t, out = 2.0 * np.pi * 0.1, 10.0 / 128, 0.0, []
+        for _ in range(periods * 128):
+            tn = t + step
+            ramp, dramp = (
+                (0.5 * (1.0 - np.cos(np.pi * tn / 10.0)), 0.05 * np.pi * np.sin(np.pi * tn / 10.0))
+                if tn < 10.0
+                else (1.0, 0.0)
+            )
+            x = x0 + [2.0 * ramp * np.sin(w * tn), 0.0, 0.0]
+            v = [2.0 * (ramp * w * np.cos(w * tn) + dramp * np.sin(w * tn)), 0.0, 0.0]
+            out.append(np.linalg.norm(moordyn.Step(system, x, v, t, step)))
+            t = tn
+        moordyn.Close(system)
+    last = np.array(out[-128:])
+    return float(last.max()), float(last.min())
+
+
+def test_exported_seabed_friction_acts_and_its_time_step_is_stable(tmp_path: Path) -> None:
+    """The chain of configs/chain-mooring-surge.yaml (310 m laid, friction 0.5) surged 2 m
+    at 0.1 Hz: the exported file sets MoorDyn's friction to saturate at 2 cm/s on a laid
+    node (FricDamp = w l / 0.02 m/s, from the file's own line type; MoorDyn's default of
+    200 N s/m would saturate near 100 m/s, no friction), and MoorDyn at the exported dtM
+    gives the extremes it gives at a quarter of it (a stable, converged step: 1e-4 of
+    T_max; 4e-7 measured). Against ours at the same 40 elements and T/128: within 5e-3
+    of T_max (measured 3.0e-3 and 1.1e-3; each code is within about 1e-3 of a converged
+    reference here, benchmarks/wp_chain_moordyn.py, and the friction laws differ:
+    halving the slip speed moves MoorDyn's maximum by 6e-4)."""
+    moordyn = pytest.importorskip("moordyn", reason=f"MoorDyn is {PEERS}")
+    text = (ROOT / "configs" / "chain-mooring-surge.yaml").read_text().split("sweep:")[0]
+    study = tmp_path / "chain.yaml"
+    study.write_text(text.replace("name: chain-mooring-surge", "name: chain"))
+    path = tmp_path / "chain.dat"
+    assert main(["export", "moordyn", str(study), "--out", str(path)]) == 0
+    exported = path.read_text()
+    row = re.search(r"^seg1\s+(\S+)\s+(\S+)", exported, re.M)
+    d, mass = float(row.group(1)), float(row.group(2))
+    weight = (mass - 1025.0 * np.pi * d**2 / 4.0) * 9.80665 * 800.0 / 40.0
+    fric_damp = float(re.search(r"^(\S+)\s+FricDamp", exported, re.M).group(1))
+    assert fric_damp == pytest.approx(weight / 0.02, rel=1e-9)
+    assert re.search(r"^1\s+StatDynFricScale", exported, re.M)
+    dtm = float(re.search(r"^(\S+)\s+dtM", exported, re.M).group(1))
+    x0 = np.array([750.0, 0.0, -10.0])
+    t_max, t_min = _surge_extremes(moordyn, exported, x0, dtm)
+    fine = _surge_extremes(moordyn, exported, x0, dtm / 4.0)
+    assert abs(t_max - fine[0]) <= 1e-4 * t_max and abs(t_min - fine[1]) <= 1e-4 * t_max
+    assert main(["run", str(study), "--out", str(tmp_path), "--no-progress"]) == 0
+    with xr.open_dataset(tmp_path / "chain.nc") as ds:
+        ours = float(ds.tension_max), float(ds.tension_min)
+    assert abs(t_max - ours[0]) <= 5e-3 * ours[0] and abs(t_min - ours[1]) <= 5e-3 * ours[0]
+
+
+def test_exported_undamped_line_steps_without_growth(tmp_path: Path) -> None:
+    """An undamped chain (tests/integration/test_step_check.py: 320 m, EA 5e8 N, 20 m
+    nodes, no axial damping, landing and lifting off each period): MoorDyn's RK2 grows an
+    undamped mode omega by (omega dt)^4 / 8 a step, which blew the file up at dtM 1e-3
+    (maximum 984 kN against 131 kN; 312 kN at 5e-4). The export writes the damping
+    ratio (omega dtM)^3 / 4 of its fastest axial mode omega = 2 c / l, warns, and MoorDyn
+    at dtM gives the extremes it gives at a quarter of it within 3e-2 of T_max (measured
+    1.5e-2 over eight periods: the undamped ringing after each landing converges slowly
+    in the step at 128 handovers a period)."""
+    moordyn = pytest.importorskip("moordyn", reason=f"MoorDyn is {PEERS}")
+    from tests.integration.test_step_check import LEG
+
+    study = tmp_path / "leg.yaml"
+    study.write_text(LEG % "leg")
+    path = tmp_path / "leg.dat"
+    assert main(["export", "moordyn", str(study), "--out", str(path)]) == 0
+    exported = path.read_text()
+    dtm = float(re.search(r"^(\S+)\s+dtM", exported, re.M).group(1))
+    c = np.sqrt(5.0e8 / 50.0)
+    assert np.pi * 20.0 / (10.0 * c) / 2.5 < dtm <= np.pi * 20.0 / (10.0 * c)  # axial rule
+    ba = float(re.search(r"^seg1\s+\S+\s+\S+\s+\S+\s+(\S+)", exported, re.M).group(1))
+    assert ba == pytest.approx(-((2.0 * c / 20.0 * dtm) ** 3) / 4.0, rel=1e-12)
+    x0 = np.array([10.0, 0.0, -10.0])
+    t_max, t_min = _surge_extremes(moordyn, exported, x0, dtm, periods=8)
+    fine = _surge_extremes(moordyn, exported, x0, dtm / 4.0, periods=8)
+    assert abs(t_max - fine[0]) <= 3e-2 * t_max and abs(t_min - fine[1]) <= 3e-2 * t_max
