@@ -48,6 +48,9 @@ from .seabed import DEFAULT_CBOT, DEFAULT_KBOT, from_moordyn
 #: version 1 C code use the same value)
 DEFAULT_GRAVITY = 9.80665
 DEFAULT_DENSITY = 1025.0
+#: MoorPy's default gravity (``moorpy.System(g=9.81)``), which a MoorPy design YAML
+#: without one takes
+MOORPY_GRAVITY = 9.81
 
 
 @dataclass
@@ -459,7 +462,9 @@ def environment(
     named = [k for k, v in FLUID_DENSITY.items() if v == rho]
     env["fluid"] = named[0] if named else {"density": rho}
     comments[("environment", "fluid")] = (
-        f"{src}:{rho_opt[1]} rho" if rho_opt else f"MoorDyn default rho = {DEFAULT_DENSITY:g}"
+        f"{src}:{rho_opt[1]} rho"
+        if rho_opt
+        else f"{'MoorPy' if md.kind else 'MoorDyn'} default rho = {DEFAULT_DENSITY:g}"
     )
     if above_surface:
         env["fluid"] = "vacuum"
@@ -469,9 +474,10 @@ def environment(
         )
         rho = 0.0
     g_opt = option_value(md, "g", "gravity")
-    env["gravity"] = g_opt[0] if g_opt else DEFAULT_GRAVITY
+    tool, g_default = ("MoorPy", MOORPY_GRAVITY) if md.kind else ("MoorDyn", DEFAULT_GRAVITY)
+    env["gravity"] = g_opt[0] if g_opt else g_default
     comments[("environment", "gravity")] = (
-        f"{src}:{g_opt[1]} g" if g_opt else f"MoorDyn default g = {DEFAULT_GRAVITY:g}"
+        f"{src}:{g_opt[1]} g" if g_opt else f"{tool} default g = {g_default:g}"
     )
     depth, origin = water_depth(md)
     env["depth"] = depth

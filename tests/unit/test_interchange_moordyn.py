@@ -319,6 +319,9 @@ def test_moorpy_mooring_yaml() -> None:
     assert (seg.length, seg.mass_per_length, seg.drag_normal) == (850.0, 150.0, 2.4)
     assert study.line.attachments[0].mass == 5000.0
     assert study.environment.depth == 200.0
+    # a design YAML gives no gravity: MoorPy's default, not MoorDyn's 9.80665
+    assert study.environment.gravity == 9.81 and study.environment.density == 1025.0
+    assert imported.comments[("environment", "gravity")] == "MoorPy default g = 9.81"
     warned = "\n".join(imported.warnings)
     for key in ("breaking_load", "cost", "anchor_types", "anchor_type"):
         assert key in warned
@@ -426,6 +429,18 @@ def test_cli_import_writes_a_valid_study(tmp_path: Path, capsys: pytest.CaptureF
     assert "Mooring-System" in capsys.readouterr().out
     assert main(["import", "moordyn", str(model), "--line", "9"]) == 2
     assert "no line 9" in capsys.readouterr().err
+
+
+def test_moorpy_defaults_are_moorpys_own() -> None:
+    """The gravity and density a design YAML leaves out are MoorPy's defaults, read from
+    MoorPy itself (``moorpy.System``'s signature) when it is installed."""
+    mp = pytest.importorskip("moorpy", reason="MoorPy is in the optional extra `peers`")
+    import inspect
+
+    from cablestudy.interchange.mapping import DEFAULT_DENSITY, MOORPY_GRAVITY
+
+    params = inspect.signature(mp.System).parameters
+    assert (params["g"].default, params["rho"].default) == (MOORPY_GRAVITY, DEFAULT_DENSITY)
 
 
 def test_cli_import_moorpy_and_export_round_trip(
