@@ -25,7 +25,7 @@ def _build(config: Path, site: Path) -> subprocess.CompletedProcess[str]:
         capture_output=True,
         text=True,
         cwd=config.parent,
-        timeout=120,
+        timeout=600,  # a bound on a hang, not a speed check (the machine may be loaded)
     )
 
 

@@ -188,7 +188,7 @@ def refusals(tmp_path_factory: pytest.TempPathFactory) -> dict[str, dict]:
         ],
         capture_output=True,
         text=True,
-        timeout=120,
+        timeout=600,  # a bound on a hang, not a speed check (the machine may be loaded)
         env=env,
         preexec_fn=_cap_memory,
     )
