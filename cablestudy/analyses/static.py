@@ -18,6 +18,7 @@ from ..physics.profile import end_pulls, profile_quantities
 from ..statics import (
     STATIC_SOLVERS,
     STATUS_NO_SOLUTION,
+    STATUS_TIME_LIMIT,
     StaticResult,
 )
 from ..statics.limits import apply_limits
@@ -140,9 +141,17 @@ def solve_static(
         result = solver.solve(problem, deadline=deadline).check_finite()
     result = apply_limits(result, static_limits(case.study))
     COUNTERS["static_solves"] += 1
-    _STATIC_CACHE[case.static_hash] = result
-    trim_lru(_STATIC_CACHE, _STATIC_CACHE_SIZE)
+    _keep(case.static_hash, result)
     return result
+
+
+def _keep(key: str, result: StaticResult) -> None:
+    """Keep ``result`` for the cases of the same static solution (``key``), unless it
+    ran out of time: the time limit is not part of that key, so a case with a longer
+    one (or the same one, on a less loaded machine) solves it again."""
+    if result.status != STATUS_TIME_LIMIT:
+        _STATIC_CACHE[key] = result
+        trim_lru(_STATIC_CACHE, _STATIC_CACHE_SIZE)
 
 
 def static_at(case: Case, n_nodes: int, deadline: float | None) -> StaticResult:
@@ -154,8 +163,7 @@ def static_at(case: Case, n_nodes: int, deadline: float | None) -> StaticResult:
         solver = STATIC_SOLVERS[case.study.analysis.static.method]
         cached = solver.solve(problem, deadline=deadline).check_finite()
         COUNTERS["static_solves"] += 1
-        _STATIC_CACHE[key] = cached
-        trim_lru(_STATIC_CACHE, _STATIC_CACHE_SIZE)
+        _keep(key, cached)
     return cached
 
 

@@ -524,7 +524,8 @@ mooring:
 def test_moorpy_design_yaml_imported_and_run(tmp_path, capsys):
     """docs/guide/interchange.md: `cablestudy import moorpy design.yaml > study.yaml`,
     then `cablestudy run`: the study says where it came from (a MoorPy design YAML, not
-    "MoorDyn v2"), and its leg is MoorPy's catenary between the same points (1e-9)."""
+    "MoorDyn v2"), and its leg is MoorPy's catenary between the same points (1e-9),
+    at MoorPy's gravity."""
     catenary = pytest.importorskip("moorpy.Catenary", reason="MoorPy (the peers extra)").catenary
     src = tmp_path / "design.yaml"
     src.write_text(MOORPY_DESIGN)
@@ -534,7 +535,9 @@ def test_moorpy_design_yaml_imported_and_run(tmp_path, capsys):
     ds = gc.run(tmp_path, study)
     assert "(MoorPy design YAML)" in ds.attrs["study_description"]
     assert "MoorDyn v" not in ds.attrs["study_description"]
-    _, _, hb, vb, _ = catenary(780.0, 186.0, 850.0, 4.9e8, gc.W_CHAIN, CB=0.0, Tol=1e-12)
+    # the design YAML gives no gravity: MoorPy's own default, 9.81
+    w = gc.W_CHAIN / gc.G * 9.81
+    _, _, hb, vb, _ = catenary(780.0, 186.0, 850.0, 4.9e8, w, CB=0.0, Tol=1e-12)
     fb = ds.force_b.values
     assert abs(fb[0]) == pytest.approx(abs(hb), rel=1e-9)
     assert fb[2] == pytest.approx(vb, rel=1e-9)
