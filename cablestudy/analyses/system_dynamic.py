@@ -38,8 +38,9 @@ def system_statics(case: Case, system: Any, solve: Any) -> Any:
         return hit
     res = solve()
     COUNTERS["system_static_solves"] += 1
-    _STATIC_CACHE[case.static_hash] = res
-    trim_lru(_STATIC_CACHE, _CACHE_SIZE)
+    if res.status == STATUS_OK:  # a failure (a time limit among them) is tried again
+        _STATIC_CACHE[case.static_hash] = res
+        trim_lru(_STATIC_CACHE, _CACHE_SIZE)
     return res
 
 
