@@ -32,10 +32,10 @@ def test_a_frequency_sweep_through_the_command_line_is_the_cases_alone(tmp_path:
     from cablestudy.analyses.frequency import drag_settings
     from cablestudy.analyses.system import system_model
     from cablestudy.analyses.system_frequency import harmonic_motion, system_frequency_model
-    from cablestudy.dynamics.system_frequency import solve_system_harmonic
     from cablestudy.statics import STATIC_SOLVERS
     from cablestudy.statics.system import solve_system
     from cablestudy.study.grid import expand_cases
+    from tests.system_frequency_reference import solve_system_harmonic
 
     text = CONFIG.read_text()
     text = text[: text.index("  dynamic:")] + SWEEP % ", ".join(f"{f:.6g}" for f in FREQUENCIES)

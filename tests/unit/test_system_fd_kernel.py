@@ -22,11 +22,11 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from cablestudy.dynamics.system_frequency import solve_system_harmonic, system_linear
+from cablestudy.dynamics.system_frequency import system_linear
 from cablestudy.statics import STATIC_SOLVERS
 from cablestudy.statics.system import solve_system
 from cablestudy.statics.system_model import FREE
-from tests.system_frequency_reference import solve_reference
+from tests.system_frequency_reference import solve_reference, solve_system_harmonic
 from tests.system_models import CASE8_LINES, CASE8_POINTS, system_of
 
 SOLVER = STATIC_SOLVERS["catenary"]

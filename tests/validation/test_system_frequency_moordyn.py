@@ -35,12 +35,13 @@ import numpy as np
 import pytest
 
 from cablestudy.analyses.system import system_model
-from cablestudy.dynamics.system_frequency import solve_system_harmonic, system_linear
+from cablestudy.dynamics.system_frequency import system_linear
 from cablestudy.interchange import import_model, imported_yaml
 from cablestudy.statics import STATIC_SOLVERS
 from cablestudy.statics.system import solve_system
 from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
+from tests.system_frequency_reference import solve_system_harmonic
 from tests.validation.test_system_moordyn_ic import _quiet, settled_input
 
 moordyn = pytest.importorskip("moordyn", reason="MoorDyn is in the optional extra `peers`")
