@@ -344,6 +344,25 @@ def solve_system_harmonic(
     return harmonic_result(model, omega, body_motion, settings, prescribed, outcome)
 
 
+def envelope(result: Any) -> tuple[list[np.ndarray], list[np.ndarray]]:
+    """Per line the linear tension envelope at its nodes [N] (n_l,), (max, min), as a
+    solve gives it (``result.envelope_lines``), else from the element tensions: static
+    plus and minus the amplitude of the variation; at the ends the end tensions, inside
+    the mean of the two elements a node joins (static and complex variation)."""
+    if result.envelope_lines is not None:
+        return result.envelope_lines
+    hi, lo = [], []
+    T, dT = result.tension_static, result.end_tension
+    for i, (t, d) in enumerate(
+        zip(result.element_tension_static, result.element_tension, strict=True)
+    ):
+        static = np.concatenate(([T[i, 0]], 0.5 * (t[:-1] + t[1:]), [T[i, 1]]))
+        var = np.concatenate(([dT[i, 0]], 0.5 * (d[:-1] + d[1:]), [dT[i, 1]]))
+        hi.append(static + np.abs(var))
+        lo.append(static - np.abs(var))
+    return hi, lo
+
+
 def system_frequency_outputs(
     result: Any, body_force_static: np.ndarray | None = None
 ) -> dict[str, Any]:
@@ -356,9 +375,9 @@ def system_frequency_outputs(
     ``_min`` (list of arrays); with the bodies' static force and moment
     ``body_force_static`` (B, 6) [N, N m], ``body_force_max``/``_min`` on (``body``,
     ``dof``). NaN where the case failed (status says why)."""
-    amp = result.tension_amplitude
+    amp = np.abs(result.end_tension)
     T = result.tension_static
-    hi, lo = result.envelope()
+    hi, lo = envelope(result)
     out: dict[str, Any] = {
         "tension_amplitude_a": amp[:, 0],
         "tension_amplitude_b": amp[:, 1],

@@ -375,33 +375,10 @@ class SystemFrequencyResult:
     status: int = STATUS_OK
     message: str = ""
     element_tension_static: list[np.ndarray] = field(default_factory=list)
-    #: the envelope (:meth:`envelope`) when the solve computed it over all lines at once
+    #: per line the linear tension envelope at its nodes [N] (n_l,), (max, min): static
+    #: plus and minus the amplitude of the variation; at the ends the end tensions,
+    #: inside the mean of the two elements a node joins (static and complex variation)
     envelope_lines: tuple[list[np.ndarray], list[np.ndarray]] | None = None
-
-    @property
-    def tension_amplitude(self) -> np.ndarray:
-        """[N] (L, 2) amplitudes of the end tension variations at A and B."""
-        return np.abs(self.end_tension)
-
-    def envelope(self) -> tuple[list[np.ndarray], list[np.ndarray]]:
-        """Per line the linear tension envelope at its nodes [N] (n_l,): static plus
-        and minus the amplitude of the variation; at the ends the end tensions, inside
-        the mean of the two elements a node joins (static and complex variation)."""
-        if self.envelope_lines is not None:
-            return self.envelope_lines
-        hi, lo = [], []
-        for i, (t, d) in enumerate(
-            zip(self.element_tension_static, self.element_tension, strict=True)
-        ):
-            static = np.concatenate(
-                ([self.tension_static[i, 0]], 0.5 * (t[:-1] + t[1:]), [self.tension_static[i, 1]])
-            )
-            var = np.concatenate(
-                ([self.end_tension[i, 0]], 0.5 * (d[:-1] + d[1:]), [self.end_tension[i, 1]])
-            )
-            hi.append(static + np.abs(var))
-            lo.append(static - np.abs(var))
-        return hi, lo
 
 
 # ------------------------------------------------------------------------ building

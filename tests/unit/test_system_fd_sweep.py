@@ -13,7 +13,7 @@ import pytest
 
 from cablestudy.dynamics.frequency_model import DragSettings
 from cablestudy.dynamics.system_frequency_sweep import solve_system_sweep_arrays
-from tests.system_frequency_reference import solve_system_harmonic
+from tests.system_frequency_reference import envelope, solve_system_harmonic
 from tests.unit.test_system_fd_kernel import _case8_model
 
 FREQUENCIES = np.linspace(0.02, 0.5, 25)
@@ -32,7 +32,7 @@ def _quantities(r) -> list[np.ndarray]:  # noqa: ANN001
         r.point_displacement,
         np.concatenate(r.displacement),
         np.concatenate(r.element_tension),
-        np.concatenate(r.envelope()[0]),
+        np.concatenate(envelope(r)[0]),
     ]
 
 
