@@ -304,15 +304,28 @@ def solve_reference(
     body_motion: np.ndarray,
     settings: DragSettings | None = None,
     point_excitation: np.ndarray | None = None,
+    iterate: Any = None,
 ) -> Any:
-    """:func:`solve_system_harmonic` with the drag iterated by :func:`iterate_reference`
-    instead of the compiled kernel."""
+    """:func:`solve_system_harmonic` with the drag iterated by ``iterate`` (default
+    :func:`iterate_reference`) instead of the compiled kernel."""
     from cablestudy.dynamics.system_frequency import harmonic_result, prescribed_motion
 
     settings = settings or DragSettings()
     prescribed = prescribed_motion(model, body_motion, point_excitation)
-    outcome = iterate_reference(model, omega, prescribed, settings)
+    outcome = (iterate or iterate_reference)(model, omega, prescribed, settings)
     return harmonic_result(model, omega, body_motion, settings, prescribed, outcome)
+
+
+def _iterate_compiled(
+    model: SystemLinear, omega: float, prescribed: np.ndarray, settings: DragSettings
+) -> tuple:
+    """The compiled iteration a study runs (:func:`cablestudy.dynamics.system_fd_sweep.
+    solve_sweep`) for one case, a sweep of one, as :func:`iterate_reference`'s outcome."""
+    from cablestudy.dynamics.system_frequency import compiled_outcome, sweep_compiled
+
+    w = np.array([float(omega)])
+    disp, u_pts, forces, info, finfo = sweep_compiled(model, w, prescribed, settings)
+    return compiled_outcome(model, omega, info[0], finfo[0], disp[0], u_pts[0], forces[0])
 
 
 def solve_system_harmonic(
@@ -326,22 +339,11 @@ def solve_system_harmonic(
     amplitudes ``body_motion`` [m, rad] (B, 6) and the points' own complex displacement
     amplitudes ``point_excitation`` [m] (P, 3) (fixed or body points moved on their own,
     added to their bodies' motion; None: none): one case alone through the compiled
-    iteration a study runs (:func:`cablestudy.dynamics.system_fd_sweep.solve_sweep`, a
-    sweep of one), as :func:`solve_reference` by the NumPy iteration. Never raises for a
-    numerical failure: status and message."""
-    from cablestudy.dynamics.system_frequency import (
-        compiled_outcome,
-        harmonic_result,
-        prescribed_motion,
-        sweep_compiled,
+    iteration a study runs (:func:`_iterate_compiled`). Never raises for a numerical
+    failure: status and message."""
+    return solve_reference(
+        model, omega, body_motion, settings, point_excitation, iterate=_iterate_compiled
     )
-
-    settings = settings or DragSettings()
-    prescribed = prescribed_motion(model, body_motion, point_excitation)
-    w = np.array([float(omega)])
-    disp, u_pts, forces, info, finfo = sweep_compiled(model, w, prescribed, settings)
-    outcome = compiled_outcome(model, omega, info[0], finfo[0], disp[0], u_pts[0], forces[0])
-    return harmonic_result(model, omega, body_motion, settings, prescribed, outcome)
 
 
 def envelope(result: Any) -> tuple[list[np.ndarray], list[np.ndarray]]:
