@@ -6,7 +6,7 @@ built once and shared by the cases (as a sweep does); per case the drag iteratio
 and the band solves run. Reported: CPU time (``time.process_time``; the machine may be
 shared) of the statics, of the linear model, and per case; drag iterations; and the
 same cases as one sweep (:func:`cablestudy.dynamics.system_frequency_sweep.
-solve_system_sweep`, as a study runs them): CPU time a case.
+solve_system_sweep_arrays`, as a study runs them): CPU time a case.
 
     PYTHONPATH=$PWD .venv/bin/python benchmarks/bench_system_frequency.py [--nodes 41]
 
@@ -35,13 +35,14 @@ CASE8 = "moorpy/tests/case8.dat"
 
 def run(nodes: int, cases: int = 50) -> dict[str, float]:
     from cablestudy.analyses.system import system_model
-    from cablestudy.dynamics.system_frequency import solve_system_harmonic, system_linear
-    from cablestudy.dynamics.system_frequency_sweep import solve_system_sweep
+    from cablestudy.dynamics.system_frequency import system_linear
+    from cablestudy.dynamics.system_frequency_sweep import solve_system_sweep_arrays
     from cablestudy.interchange import import_model, imported_yaml
     from cablestudy.statics import STATIC_SOLVERS
     from cablestudy.statics.system import solve_system
     from cablestudy.study.grid import expand_cases
     from cablestudy.study.loader import parse_study_text
+    from tests.system_frequency_reference import solve_system_harmonic
 
     path = ROOT / "tests" / "data" / CASE8
     imported = import_model(path.read_text(), CASE8, folder=path.parent)
@@ -72,9 +73,9 @@ def run(nodes: int, cases: int = 50) -> dict[str, float]:
     # the same cases as one sweep (cablestudy.dynamics.system_frequency_sweep), as a study
     # runs them
     w = 2.0 * np.pi * np.linspace(0.02, 0.5, cases)
-    solve_system_sweep(model, w[:3], [motion] * 3)  # its compiled kernel loaded
+    solve_system_sweep_arrays(model, w[:3], [motion] * 3)  # its compiled kernel loaded
     c4 = time.process_time()
-    swept = solve_system_sweep(model, w, [motion] * cases)
+    swept = solve_system_sweep_arrays(model, w, [motion] * cases)[0]
     c5 = time.process_time()
     return {
         "static": c1 - c0,

@@ -173,7 +173,8 @@ def iterate(
 
 def main() -> None:
     from cablestudy.dynamics.frequency_model import DragSettings
-    from cablestudy.dynamics.system_frequency import prescribed_motion, solve_system_harmonic
+    from cablestudy.dynamics.system_frequency import prescribed_motion
+    from tests.system_frequency_reference import solve_system_harmonic
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--nodes", type=int, default=21)

@@ -24,7 +24,7 @@ import sys
 import time
 from collections.abc import Callable, Iterable
 from pathlib import Path
-from typing import Any, TextIO
+from typing import Any
 
 #: per kind: what it is, for messages, and about how long its compilation takes on one
 #: core of the 2-core development machine [s] (measured by ``cablestudy compile``)
@@ -197,12 +197,12 @@ def compile_kind(kind: str) -> float:
     return seconds
 
 
-def compile_all(kinds: Iterable[str] | None = None, *, jobs: int | None = None) -> dict[str, float]:
-    """Compile ``kinds`` (default: all) in parallel processes, ``jobs`` at a time
-    (default: the number of cores). Returns the wall time per kind [s]."""
+def compile_all(*, jobs: int | None = None) -> dict[str, float]:
+    """Compile every kind in parallel processes, ``jobs`` at a time (default: the number
+    of cores). Returns the wall time per kind [s]."""
     from concurrent.futures import ProcessPoolExecutor
 
-    todo = list(kinds or KINDS)
+    todo = list(KINDS)
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(todo)))
     if jobs == 1:
         return {k: compile_kind(k) for k in todo}
@@ -226,7 +226,7 @@ def kinds_of(study: Any) -> list[str]:
     return kinds
 
 
-def ensure_compiled(kinds: Iterable[str], stream: TextIO | None = None) -> None:
+def ensure_compiled(kinds: Iterable[str]) -> None:
     """Compile the ``kinds`` not yet compiled, saying so first, in this process (a run
     then forks or spawns workers that load the machine code from disk)."""
     for kind in kinds:
@@ -235,7 +235,7 @@ def ensure_compiled(kinds: Iterable[str], stream: TextIO | None = None) -> None:
         label, seconds = KINDS[kind]
         print(
             f"compiling {label}, first run only, about {seconds:.0f} s",
-            file=stream or sys.stderr,
+            file=sys.stderr,
             flush=True,
         )
         compile_kind(kind)

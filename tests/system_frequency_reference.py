@@ -1,7 +1,7 @@
 """The system frequency domain's drag iteration in NumPy and LAPACK, line by line: the
 test oracle the compiled iteration (:mod:`cablestudy.dynamics.system_fd_kernel`) is held
 to (same equations, same criterion and iteration; :func:`iterate_reference`;
-:func:`solve_reference` is ``solve_system_harmonic`` by it). Per line one LAPACK band solve with
+:func:`solve_reference` is :func:`solve_system_harmonic` by it). Per line one LAPACK band solve with
 the six end unit motions as right sides (the condensed end dynamic stiffness ``S``),
 the junction system by NumPy, the drag fits by
 :func:`tests.system_drag_reference.node_fits` (phase sums, or dense quadrature where the
@@ -304,12 +304,96 @@ def solve_reference(
     body_motion: np.ndarray,
     settings: DragSettings | None = None,
     point_excitation: np.ndarray | None = None,
+    iterate: Any = None,
 ) -> Any:
-    """:func:`cablestudy.dynamics.system_frequency.solve_system_harmonic` with the drag
-    iterated by :func:`iterate_reference` instead of the compiled kernel."""
+    """:func:`solve_system_harmonic` with the drag iterated by ``iterate`` (default
+    :func:`iterate_reference`) instead of the compiled kernel."""
     from cablestudy.dynamics.system_frequency import harmonic_result, prescribed_motion
 
     settings = settings or DragSettings()
     prescribed = prescribed_motion(model, body_motion, point_excitation)
-    outcome = iterate_reference(model, omega, prescribed, settings)
+    outcome = (iterate or iterate_reference)(model, omega, prescribed, settings)
     return harmonic_result(model, omega, body_motion, settings, prescribed, outcome)
+
+
+def _iterate_compiled(
+    model: SystemLinear, omega: float, prescribed: np.ndarray, settings: DragSettings
+) -> tuple:
+    """The compiled iteration a study runs (:func:`cablestudy.dynamics.system_fd_sweep.
+    solve_sweep`) for one case, a sweep of one, as :func:`iterate_reference`'s outcome."""
+    from cablestudy.dynamics.system_frequency import compiled_outcome, sweep_compiled
+
+    w = np.array([float(omega)])
+    disp, u_pts, forces, info, finfo = sweep_compiled(model, w, prescribed, settings)
+    return compiled_outcome(model, omega, info[0], finfo[0], disp[0], u_pts[0], forces[0])
+
+
+def solve_system_harmonic(
+    model: SystemLinear,
+    omega: float,
+    body_motion: np.ndarray,
+    settings: DragSettings | None = None,
+    point_excitation: np.ndarray | None = None,
+) -> Any:
+    """Steady harmonic response at ``omega`` [rad/s] to the bodies' complex motion
+    amplitudes ``body_motion`` [m, rad] (B, 6) and the points' own complex displacement
+    amplitudes ``point_excitation`` [m] (P, 3) (fixed or body points moved on their own,
+    added to their bodies' motion; None: none): one case alone through the compiled
+    iteration a study runs (:func:`_iterate_compiled`). Never raises for a numerical
+    failure: status and message."""
+    return solve_reference(
+        model, omega, body_motion, settings, point_excitation, iterate=_iterate_compiled
+    )
+
+
+def envelope(result: Any) -> tuple[list[np.ndarray], list[np.ndarray]]:
+    """Per line the linear tension envelope at its nodes [N] (n_l,), (max, min), as a
+    solve gives it (``result.envelope_lines``), else from the element tensions: static
+    plus and minus the amplitude of the variation; at the ends the end tensions, inside
+    the mean of the two elements a node joins (static and complex variation)."""
+    if result.envelope_lines is not None:
+        return result.envelope_lines
+    hi, lo = [], []
+    T, dT = result.tension_static, result.end_tension
+    for i, (t, d) in enumerate(
+        zip(result.element_tension_static, result.element_tension, strict=True)
+    ):
+        static = np.concatenate(([T[i, 0]], 0.5 * (t[:-1] + t[1:]), [T[i, 1]]))
+        var = np.concatenate(([dT[i, 0]], 0.5 * (d[:-1] + d[1:]), [dT[i, 1]]))
+        hi.append(static + np.abs(var))
+        lo.append(static - np.abs(var))
+    return hi, lo
+
+
+def system_frequency_outputs(
+    result: Any, body_force_static: np.ndarray | None = None
+) -> dict[str, Any]:
+    """The issue's outputs of one solved case from its own result (linear response:
+    extremes are the static value plus and minus the amplitude, the mean the static
+    value): the oracle of a study's outputs computed for all cases of a sweep at once
+    (:func:`cablestudy.analyses.system_frequency.group_arrays`). On ``line``
+    ``tension_amplitude_a``/``_b``, ``tension_max_a``, ``tension_min_a``,
+    ``tension_mean_a`` (and ``_b``); per line at its nodes ``tension_envelope_max``/
+    ``_min`` (list of arrays); with the bodies' static force and moment
+    ``body_force_static`` (B, 6) [N, N m], ``body_force_max``/``_min`` on (``body``,
+    ``dof``). NaN where the case failed (status says why)."""
+    amp = np.abs(result.end_tension)
+    T = result.tension_static
+    hi, lo = envelope(result)
+    out: dict[str, Any] = {
+        "tension_amplitude_a": amp[:, 0],
+        "tension_amplitude_b": amp[:, 1],
+        "tension_mean_a": np.where(np.isfinite(amp[:, 0]), T[:, 0], np.nan),
+        "tension_mean_b": np.where(np.isfinite(amp[:, 1]), T[:, 1], np.nan),
+        "tension_max_a": T[:, 0] + amp[:, 0],
+        "tension_min_a": T[:, 0] - amp[:, 0],
+        "tension_max_b": T[:, 1] + amp[:, 1],
+        "tension_min_b": T[:, 1] - amp[:, 1],
+        "tension_envelope_max": hi,
+        "tension_envelope_min": lo,
+    }
+    if body_force_static is not None and result.body_force.size:
+        F = np.asarray(body_force_static, dtype=float).reshape(result.body_force.shape)
+        out["body_force_max"] = F + np.abs(result.body_force)
+        out["body_force_min"] = F - np.abs(result.body_force)
+    return out

@@ -6,7 +6,8 @@ between the points the statics found at ``elements + 1`` nodes, its dynamic
 properties as the time domain's, the free points' mass, added mass and drag) is built
 once per static problem and element count and shared by the cases of a sweep of the
 motion (amplitude, frequency, phase, degree of freedom); per case the harmonic
-response (:func:`~cablestudy.dynamics.system_frequency.solve_system_harmonic`) runs.
+response (:func:`~cablestudy.dynamics.system_frequency_sweep.solve_system_sweep_arrays`)
+runs.
 
 Outputs (the issue's names): ``tension_amplitude_a``/``_b`` on ``line``; the linear
 extremes ``tension_max_a`` ... (static plus and minus the amplitude, mean the static
@@ -352,7 +353,7 @@ def sweep_chunk(cases: list[Case]) -> Iterator[dict[str, float]]:
     """While a chunk of a system study's cases is evaluated: the first case of a group
     that shares a linear model (static problem, element count, drag settings) and runs
     the frequency domain solves the whole group's harmonic responses in one compiled
-    sweep (:func:`~cablestudy.dynamics.system_frequency_sweep.solve_system_sweep`,
+    sweep (:func:`~cablestudy.dynamics.system_frequency_sweep.solve_system_sweep_arrays`,
     each case as alone); the others take theirs. Yields, per case hash, the seconds of
     that sweep to move to the case's wall time (its share; the first case's less the
     others')."""

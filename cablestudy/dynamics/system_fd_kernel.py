@@ -1,5 +1,5 @@
 """The compiled drag iteration of a system's frequency domain
-(:func:`cablestudy.dynamics.system_frequency.solve_system_harmonic`): one call does a
+(:func:`cablestudy.dynamics.system_frequency_sweep.solve_system_sweep_arrays`): one call does a
 case's whole iteration for all lines at once: per line the condensation onto its end
 nodes (banded LU of the inner rows), the junction system of the free points, the drag
 fit of every node and free point, Anderson mixing and the convergence test, and at the

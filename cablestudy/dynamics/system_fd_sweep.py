@@ -217,7 +217,7 @@ def iterate(  # noqa: ANN201, PLR0913
     info,
     finfo,
 ):
-    """A case's harmonic response (:func:`.system_frequency.solve_system_harmonic`) for
+    """A case's harmonic response (:func:`.system_frequency_sweep.solve_system_sweep_arrays`) for
     the packed model ``m`` in the work space ``ws``: ``disp`` (nodes, 3), ``u_pts`` (P,
     3), ``forces`` (L, 6) out; ``info`` (>= 4,) int: code (:data:`.system_fd_kernel.OK`,
     ``SINGULAR_LINE``, ``SINGULAR_JUNCTION``, ``NOT_CONVERGED``), iterations, failing

@@ -375,33 +375,10 @@ class SystemFrequencyResult:
     status: int = STATUS_OK
     message: str = ""
     element_tension_static: list[np.ndarray] = field(default_factory=list)
-    #: the envelope (:meth:`envelope`) when the solve computed it over all lines at once
+    #: per line the linear tension envelope at its nodes [N] (n_l,), (max, min): static
+    #: plus and minus the amplitude of the variation; at the ends the end tensions,
+    #: inside the mean of the two elements a node joins (static and complex variation)
     envelope_lines: tuple[list[np.ndarray], list[np.ndarray]] | None = None
-
-    @property
-    def tension_amplitude(self) -> np.ndarray:
-        """[N] (L, 2) amplitudes of the end tension variations at A and B."""
-        return np.abs(self.end_tension)
-
-    def envelope(self) -> tuple[list[np.ndarray], list[np.ndarray]]:
-        """Per line the linear tension envelope at its nodes [N] (n_l,): static plus
-        and minus the amplitude of the variation; at the ends the end tensions, inside
-        the mean of the two elements a node joins (static and complex variation)."""
-        if self.envelope_lines is not None:
-            return self.envelope_lines
-        hi, lo = [], []
-        for i, (t, d) in enumerate(
-            zip(self.element_tension_static, self.element_tension, strict=True)
-        ):
-            static = np.concatenate(
-                ([self.tension_static[i, 0]], 0.5 * (t[:-1] + t[1:]), [self.tension_static[i, 1]])
-            )
-            var = np.concatenate(
-                ([self.end_tension[i, 0]], 0.5 * (d[:-1] + d[1:]), [self.end_tension[i, 1]])
-            )
-            hi.append(static + np.abs(var))
-            lo.append(static - np.abs(var))
-        return hi, lo
 
 
 # ------------------------------------------------------------------------ building
@@ -541,30 +518,6 @@ def point_motion(model: SystemLinear, body_motion: np.ndarray) -> np.ndarray:
 
 
 # ------------------------------------------------------------------------ solving
-
-
-def solve_system_harmonic(
-    model: SystemLinear,
-    omega: float,
-    body_motion: np.ndarray,
-    settings: DragSettings | None = None,
-    point_excitation: np.ndarray | None = None,
-) -> SystemFrequencyResult:
-    """Steady harmonic response at ``omega`` [rad/s] to the bodies' complex motion
-    amplitudes ``body_motion`` [m, rad] (B, 6) and the points' own complex displacement
-    amplitudes ``point_excitation`` [m] (P, 3) (fixed or body points moved on their own,
-    added to their bodies' motion; None: none), the drag linearised by iteration
-    (module docstring), by the compiled iteration as a sweep of one case
-    (:func:`.system_fd_sweep.solve_sweep`, the one kernel a study runs; the tests hold
-    it to a NumPy and LAPACK iteration line by line, tests/system_frequency_reference.py).
-    Never raises for a numerical failure: status
-    and message."""
-    settings = settings or DragSettings()
-    prescribed = prescribed_motion(model, body_motion, point_excitation)
-    w = np.array([float(omega)])
-    disp, u_pts, forces, info, finfo = sweep_compiled(model, w, prescribed, settings)
-    outcome = compiled_outcome(model, omega, info[0], finfo[0], disp[0], u_pts[0], forces[0])
-    return harmonic_result(model, omega, body_motion, settings, prescribed, outcome)
 
 
 def sweep_compiled(
@@ -731,44 +684,10 @@ def compiled_outcome(
     return "", "", iterations, True, change, u_pts, parts, forces, residual
 
 
-def system_frequency_outputs(
-    result: SystemFrequencyResult, body_force_static: np.ndarray | None = None
-) -> dict[str, np.ndarray]:
-    """The issue's outputs of one solved case (linear response: extremes are the static
-    value plus and minus the amplitude, the mean the static value): on ``line``
-    ``tension_amplitude_a``/``_b``, ``tension_max_a``, ``tension_min_a``,
-    ``tension_mean_a`` (and ``_b``); per line at its nodes ``tension_envelope_max``/
-    ``_min`` (list of arrays: the caller puts them on its ``s`` grid); with the bodies'
-    static force and moment ``body_force_static`` (B, 6) [N, N m], ``body_force_max``/
-    ``_min`` on (``body``, ``dof``). NaN where the case failed (status says why)."""
-    amp = result.tension_amplitude
-    T = result.tension_static
-    hi, lo = result.envelope()
-    out: dict[str, np.ndarray | list[np.ndarray]] = {
-        "tension_amplitude_a": amp[:, 0],
-        "tension_amplitude_b": amp[:, 1],
-        "tension_mean_a": np.where(np.isfinite(amp[:, 0]), T[:, 0], np.nan),
-        "tension_mean_b": np.where(np.isfinite(amp[:, 1]), T[:, 1], np.nan),
-        "tension_max_a": T[:, 0] + amp[:, 0],
-        "tension_min_a": T[:, 0] - amp[:, 0],
-        "tension_max_b": T[:, 1] + amp[:, 1],
-        "tension_min_b": T[:, 1] - amp[:, 1],
-        "tension_envelope_max": hi,
-        "tension_envelope_min": lo,
-    }
-    if body_force_static is not None and result.body_force.size:
-        F = np.asarray(body_force_static, dtype=float).reshape(result.body_force.shape)
-        out["body_force_max"] = F + np.abs(result.body_force)
-        out["body_force_min"] = F - np.abs(result.body_force)
-    return out  # type: ignore[return-value]
-
-
 __all__ = [
-    "system_frequency_outputs",
     "RESIDUAL_BAR",
     "SystemFrequencyResult",
     "SystemLinear",
     "point_motion",
-    "solve_system_harmonic",
     "system_linear",
 ]

@@ -2,8 +2,8 @@
 (frequency, body motion, the points' own motion) of one :class:`~.system_frequency.
 SystemLinear` go to the compiled iteration in one call (:func:`.system_fd_sweep.
 solve_sweep`), each case started from its own quasi-static start, as alone: each
-case's result is :func:`~.system_frequency.solve_system_harmonic`'s for that case bit
-for bit, whatever the cases beside it.
+case's result is that case's alone (a sweep of one) bit for bit, whatever the cases
+beside it.
 
 Pure: arrays in, :class:`~.system_frequency.SystemFrequencyResult` out.
 """
@@ -26,18 +26,6 @@ from .system_frequency import (
     prescribed_motion,
     sweep_compiled,
 )
-
-
-def solve_system_sweep(
-    model: SystemLinear,
-    omega: Sequence[float] | np.ndarray,
-    body_motion: Sequence[np.ndarray] | np.ndarray,
-    settings: DragSettings | None = None,
-    point_excitation: Sequence[np.ndarray | None] | None = None,
-) -> list[SystemFrequencyResult]:
-    """Per case ``i`` the steady harmonic response (:func:`solve_system_sweep_arrays`'s
-    results)."""
-    return solve_system_sweep_arrays(model, omega, body_motion, settings, point_excitation)[0]
 
 
 @dataclass(frozen=True)
@@ -63,8 +51,8 @@ def solve_system_sweep_arrays(
     """Per case ``i`` the steady harmonic response at ``omega[i]`` [rad/s] to the
     bodies' complex motion ``body_motion[i]`` (B, 6) [m, rad] and the points' own
     ``point_excitation[i]`` (P, 3) [m] (None: none), as
-    :func:`~.system_frequency.solve_system_harmonic` gives it bit for bit, each case
-    from the quasi-static start; and the results of all cases as arrays, cases first
+    a sweep of that case alone gives it bit for bit, each case from the quasi-static
+    start; and the results of all cases as arrays, cases first
     (``end_tension`` (n, L, 2), ``body_force`` (n, B, 6), the envelope at every node
     ``envelope_max``/``_min`` (n, nodes), ``displacement`` (n, nodes, 3), flat over the
     lines; the rows of the cases whose result has status 0 hold it, the others are not

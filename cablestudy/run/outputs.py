@@ -49,15 +49,13 @@ class OutputWriteError(OSError):
     disk)."""
 
 
-def check_output_paths(
-    out_dir: Path, name: str, *, option: str = "--out", cache: bool = False
-) -> None:
+def check_output_paths(out_dir: Path, name: str, *, cache: bool = False) -> None:
     """Raise :class:`OutputPathError` unless ``out_dir`` is (or can be made) a folder in
     which ``<name>.nc`` can be written, and with ``cache`` its cache folder
     ``.cache/<name>`` one (cablestudy.run.runner): one line naming the path and what is
     wrong."""
     out_dir = Path(out_dir)
-    where = f"{option} {out_dir}"
+    where = f"--out {out_dir}"
     if out_dir.exists() and not out_dir.is_dir():
         raise OutputPathError(f"{where}: is a file, not a folder")
     target = out_dir / f"{name}.nc"

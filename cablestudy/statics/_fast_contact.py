@@ -25,14 +25,13 @@ import numpy as np
 
 from ._fast import _gauss, _piece, _piece_general, njit
 
-# statuses of :func:`contact_cases` and why each hands a case on: in a module without
-# numba, so that callers of the kernel compiled ahead of time read them without it
+# statuses of :func:`contact_cases`: in a module without numba, so that callers of the
+# kernel compiled ahead of time read them without it
 from .contact_status import (  # noqa: F401 - re-exported
     BELOW_SEABED,
     LIFT_OFF,
     NOT_CONVERGED,
     NUMERICAL,
-    REASONS,
     SLACK,
 )
 from .seabed import along_friction

@@ -112,18 +112,14 @@ def _seabed_ends(problem: StaticProblem) -> tuple[Plane | None, float, float, fl
 
 
 def _reversed(problem: StaticProblem, ha: float, hb: float, limit: float) -> bool:
-    """:func:`is_reversed` from the end heights of :func:`_seabed_ends`."""
+    """Whether the general solver solves ``problem`` from end B: its end A not fixed, or
+    both fixed and B, not A, on the seabed (within ``limit`` = 1e-6 L of it), from the
+    end heights ``ha``, ``hb`` [m] of :func:`_seabed_ends`."""
     return problem.end_a.kind != "fixed" or hb <= limit < ha
 
 
-def is_reversed(problem: StaticProblem) -> bool:
-    """Whether the general solver solves ``problem`` from end B: its end A not fixed, or
-    both fixed and B, not A, on the seabed (within 1e-6 L of it)."""
-    return _reversed(problem, *_seabed_ends(problem)[1:])
-
-
 def _sides(problem: StaticProblem) -> tuple[bool, bool]:
-    """(:func:`is_reversed`, whether the end it is solved from is anchored on the seabed,
+    """(:func:`_reversed`, whether the end it is solved from is anchored on the seabed,
     within 1e-6 L of it: the general solver then lays it from there)."""
     _, ha, hb, limit = _seabed_ends(problem)
     rev = _reversed(problem, ha, hb, limit)

@@ -19,12 +19,3 @@ BELOW_SEABED = 5
 #: the touchdown point lies past a point load lifting the line (a buoy): the laid part
 #: would hold it down, which the seabed cannot (set after the kernel, by its caller)
 LIFTING_LOAD_LAID = 6
-
-REASONS = {
-    NOT_CONVERGED: "seabed-contact Newton did not converge",
-    LIFT_OFF: "the line lifts off the seabed at the anchor",
-    SLACK: "slack on the seabed",
-    NUMERICAL: "non-finite values or a singular Jacobian",
-    BELOW_SEABED: "the line passes below the seabed",
-    LIFTING_LOAD_LAID: "a point load lifting the line lies on the seabed",
-}

@@ -105,9 +105,10 @@ def chord_split(problem: StaticProblem, pulleys: np.ndarray) -> np.ndarray:
 
 
 def sub_problems(
-    problem: StaticProblem, pulleys: np.ndarray, split: np.ndarray, n_nodes: int = 3
+    problem: StaticProblem, pulleys: np.ndarray, split: np.ndarray
 ) -> list[StaticProblem]:
-    """The fixed-fixed sub-problems of the line cut at ``split`` [m]."""
+    """The fixed-fixed sub-problems of the line cut at ``split`` [m] (3 nodes each: a
+    caller that solves them sets its own)."""
     P = _points(problem, pulleys)
     S = np.concatenate(([0.0], split, [problem.line.total_length]))
     return [
@@ -116,7 +117,7 @@ def sub_problems(
             line=cut_line(problem.line, float(S[k]), float(S[k + 1])),
             end_a=EndCondition(kind="fixed", position=P[k].copy()),
             end_b=EndCondition(kind="fixed", position=P[k + 1].copy()),
-            n_nodes=n_nodes,
+            n_nodes=3,
         )
         for k in range(len(S) - 1)
     ]

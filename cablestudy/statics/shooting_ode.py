@@ -65,11 +65,10 @@ class _Line:
     def length(self) -> float:
         return self.ends[-1]
 
-    def segment_at(self, s: float, *, right: bool = True) -> int:
+    def segment_at(self, s: float) -> int:
         """Index of the segment containing s (the one starting at s when on a
-        boundary and ``right``)."""
-        k = bisect.bisect_right(self.ends, s) - 1 if right else bisect.bisect_left(self.ends, s) - 1
-        return min(max(k, 0), len(self.weight) - 1)
+        boundary)."""
+        return min(max(bisect.bisect_right(self.ends, s) - 1, 0), len(self.weight) - 1)
 
     def total_load(self) -> np.ndarray:
         """Weight and attachment forces on the line [N] (3,)."""

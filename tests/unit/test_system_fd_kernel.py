@@ -22,11 +22,11 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from cablestudy.dynamics.system_frequency import solve_system_harmonic, system_linear
+from cablestudy.dynamics.system_frequency import system_linear
 from cablestudy.statics import STATIC_SOLVERS
 from cablestudy.statics.system import solve_system
 from cablestudy.statics.system_model import FREE
-from tests.system_frequency_reference import solve_reference
+from tests.system_frequency_reference import envelope, solve_reference, solve_system_harmonic
 from tests.system_models import CASE8_LINES, CASE8_POINTS, system_of
 
 SOLVER = STATIC_SOLVERS["catenary"]
@@ -155,7 +155,7 @@ def test_envelope_on_the_output_grid_is_numpys_interpolation(case8: object) -> N
         got = _envelope_grid(case8, n_out) @ np.concatenate(values)
         np.testing.assert_allclose(got, np.concatenate(ref), rtol=0, atol=1e-14)
     out = solve_system_harmonic(case8, 2.0 * np.pi * 0.2, np.array([[-2j, 0, 0, 0, 0.01j, 0]]))
-    hi, lo = out.envelope()
-    hi_ref, lo_ref = replace(out, envelope_lines=None).envelope()
+    hi, lo = envelope(out)
+    hi_ref, lo_ref = envelope(replace(out, envelope_lines=None))
     for a, b in zip(hi + lo, hi_ref + lo_ref, strict=True):
         np.testing.assert_array_equal(a, b)

@@ -22,7 +22,7 @@ import numpy as np
 import pytest
 
 from cablestudy.dynamics.frequency_model import DragSettings
-from cablestudy.dynamics.system_frequency import solve_system_harmonic
+from tests.system_frequency_reference import solve_system_harmonic
 from tests.unit.test_system_fd_kernel import _case8_model
 
 #: the drag iteration's default tolerance on the velocity change (module docstring)

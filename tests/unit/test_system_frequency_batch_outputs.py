@@ -20,9 +20,9 @@ from cablestudy.analyses.system_frequency import (
     _solve_group,
     system_frequency_model,
 )
-from cablestudy.dynamics.system_frequency import system_frequency_outputs
 from cablestudy.study.grid import expand_cases
 from cablestudy.study.loader import parse_study_text
+from tests.system_frequency_reference import system_frequency_outputs
 
 CONFIG = Path(__file__).resolve().parents[2] / "configs" / "system-case8-surge.yaml"
 

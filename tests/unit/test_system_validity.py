@@ -137,12 +137,12 @@ def test_measures_over_all_lines_are_the_line_by_line_ones() -> None:
     from cablestudy.analyses import system_frequency as asf
     from cablestudy.analyses.frequency import drag_settings
     from cablestudy.analyses.system import system_model
-    from cablestudy.dynamics.system_frequency import solve_system_harmonic
     from cablestudy.interchange import import_model, imported_yaml
     from cablestudy.statics import STATIC_SOLVERS
     from cablestudy.statics.system_methods import solve_system_by
     from cablestudy.study.grid import expand_cases
     from cablestudy.study.loader import parse_study_text
+    from tests.system_frequency_reference import solve_system_harmonic
 
     root = Path(__file__).parents[2]
     case8 = (root / "configs" / "system-case8-surge.yaml").read_text()

@@ -23,7 +23,7 @@ import pytest
 
 from cablestudy import cli
 from cablestudy.analyses.static_grid import evaluate_grid_chunk
-from cablestudy.statics import STATIC_SOLVERS, _fast_contact, contact_status
+from cablestudy.statics import STATIC_SOLVERS
 from cablestudy.statics.batch import solve_batch
 from cablestudy.statics.batch_kernels import contact_eligible, contact_end, solve_compiled
 from cablestudy.statics.semi_analytic import SemiAnalyticSolver
@@ -245,18 +245,6 @@ def test_slack_goes_to_the_general_solver_and_a_lifted_line_hangs_free() -> None
     general: list[int] = []
     (res,) = solve_batch([prob], general=general)
     assert general == [0] and res.status == 0 and res.laid_length == 0.0
-
-
-def test_statuses_are_named() -> None:
-    assert set(_fast_contact.REASONS) == {
-        _fast_contact.NOT_CONVERGED,
-        _fast_contact.LIFT_OFF,
-        _fast_contact.SLACK,
-        _fast_contact.NUMERICAL,
-        _fast_contact.BELOW_SEABED,
-        contact_status.LIFTING_LOAD_LAID,
-    }
-    assert 0 not in _fast_contact.REASONS
 
 
 @pytest.mark.parametrize("mu", [0.0, 0.5, 1.0])
