@@ -36,6 +36,7 @@ from .modal import (
     default_extras,
     element_strain,
     element_tangent,
+    filled_csr,
     tangents_of,
 )
 
@@ -135,10 +136,13 @@ def held_ends_basis(n: int) -> sp.csr_matrix:
     node, the three axes at every other node, in node order), with each inner node's
     identity block stored whole, its zeros too, as scipy stores the blocks given as
     coordinates."""
+    return filled_csr(_held_ends_template(n), _held_ends_arrays(n)[0].copy())
+
+
+@functools.lru_cache(maxsize=16)
+def _held_ends_template(n: int) -> sp.csr_matrix:
     data, indices, indptr = _held_ends_arrays(n)
-    return sp.csr_matrix(
-        (data.copy(), indices.copy(), indptr.copy()), shape=(3 * n, 3 * max(n - 2, 0))
-    )
+    return sp.csr_matrix((data, indices, indptr), shape=(3 * n, 3 * max(n - 2, 0)))
 
 
 @functools.lru_cache(maxsize=16)
