@@ -30,6 +30,7 @@ time domain) case by case as before.
 
 from __future__ import annotations
 
+import math
 import re
 import time
 from dataclasses import dataclass, fields
@@ -214,6 +215,7 @@ def _warnings(
     system_motion_surface_warning`); each called only for the cases whose arrays can
     give one (an end or envelope tension at or below zero; an elevation above zero),
     the others' being empty."""
+    from .plausibility import slack_warning
     from .surface import system_motion_surface_warning
     from .system import _slack_warning
 
@@ -230,12 +232,22 @@ def _warnings(
     above = np.zeros(n, dtype=bool)
     if surface and "z_envelope_max" in values:
         above = np.any(values["z_envelope_max"].reshape(n, -1) > 0.0, axis=1)
+    # a slack end (_slack_warning's first branch): the minima over each case's ends
+    # (2, lines), in the same order, found for all the cases at once
+    lowest = per_line = [math.nan] * n
+    if "tension_min_a" in values and "tension_min_b" in values and len(names):
+        ends = np.stack([values[f"tension_min_{e}"].reshape(n, -1) for e in "ab"], axis=1)
+        lowest, per_line = ends.reshape(n, -1).min(axis=1).tolist(), ends.min(axis=1).tolist()
     out = []
     for i in range(n):
         found = list(static_warnings)
-        if slack[i] or above[i]:
+        end = slack[i] and lowest[i] <= 0.0
+        if end:
+            at = ", ".join(m for m, t in zip(names, per_line[i], strict=True) if t <= 0.0)
+            found.append(slack_warning(lowest[i], f"at an end of line {at}"))
+        if (slack[i] and not end) or above[i]:
             row = {**static_data, **{k: v[i] for k, v in values.items()}}
-            if slack[i]:
+            if slack[i] and not end:
                 found.append(_slack_warning(names, row))
             if above[i]:
                 found.append(system_motion_surface_warning(cases[i].study, row))

@@ -36,6 +36,7 @@ from .modal import (
     default_extras,
     element_strain,
     element_tangent,
+    filled_csr,
     tangents_of,
 )
 
@@ -135,14 +136,14 @@ def held_ends_basis(n: int) -> sp.csr_matrix:
     node, the three axes at every other node, in node order), with each inner node's
     identity block stored whole, its zeros too, as scipy stores the blocks given as
     coordinates."""
-    data, indices, indptr = _held_ends_arrays(n)
-    return sp.csr_matrix(
-        (data.copy(), indices.copy(), indptr.copy()), shape=(3 * n, 3 * max(n - 2, 0))
-    )
+    held = _held_ends(n)
+    return filled_csr(held, held.data.copy())
 
 
 @functools.lru_cache(maxsize=16)
-def _held_ends_arrays(n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _held_ends(n: int) -> sp.csr_matrix:
+    """:func:`held_ends_basis` of ``n`` nodes, its arrays read-only (shared: the
+    template of every copy, and the basis :mod:`.system_fd_build` recognises)."""
     inner = max(n - 2, 0)
     per_row = np.zeros(3 * n, dtype=np.int32)
     per_row[3 : 3 + 3 * inner] = 3
@@ -151,4 +152,4 @@ def _held_ends_arrays(n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     data = np.tile(np.eye(3).ravel(), inner)
     for a in (data, indices, indptr):
         a.flags.writeable = False
-    return data, indices.ravel(), indptr
+    return sp.csr_matrix((data, indices.ravel(), indptr), shape=(3 * n, 3 * inner))

@@ -29,7 +29,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from .frequency_model import LinearLine, ReducedLine, block_band_places
-from .linear_model import _held_ends_arrays
+from .linear_model import _held_ends
 
 
 @functools.lru_cache(maxsize=64)
@@ -58,7 +58,8 @@ def _held(line: LinearLine) -> bool:
     n = line.n_nodes
     if not (sp.issparse(B) and B.format == "csr" and B.shape == (3 * n, 3 * max(n - 2, 0))):
         return False
-    data, indices, indptr = _held_ends_arrays(n)
+    H = _held_ends(n)
+    data, indices, indptr = H.data, H.indices, H.indptr
     return (
         B.data.dtype == data.dtype
         and B.indices.dtype == indices.dtype

@@ -101,7 +101,7 @@ def chunk_variables(
     chunk: Any,
     summary: Any = None,
     *,
-    solver_settings: dict[str, Any],
+    solver_settings: dict[str, Any] | str,
     named: dict[str, list[str]] | None = None,
     static_status: bool = False,
 ) -> tuple[dict[str, VariableSpec], dict[str, VariableSpec], dict[str, Any]]:
@@ -182,9 +182,10 @@ def installed_version(name: str) -> str:
     return version(name)
 
 
-def provenance(src: StudySource, solver_settings: dict[str, Any]) -> dict[str, Any]:
+def provenance(src: StudySource, solver_settings: dict[str, Any] | str) -> dict[str, Any]:
     """Global attributes that trace a dataset to its inputs: the study YAML and its hash,
-    package versions, the solver-code fingerprint and the solver settings."""
+    package versions, the solver-code fingerprint and the solver settings (or their JSON
+    text, sorted keys: :func:`cablestudy.run.grid_runner.grid_settings`)."""
     import platform
 
     import numpy
@@ -209,7 +210,9 @@ def provenance(src: StudySource, solver_settings: dict[str, Any]) -> dict[str, A
         "dask_version": installed_version("dask"),
         "python_version": platform.python_version(),
         "cablestudy_code_sha256": code_fingerprint(),
-        "solver_settings": json.dumps(solver_settings, sort_keys=True),
+        "solver_settings": solver_settings
+        if isinstance(solver_settings, str)
+        else json.dumps(solver_settings, sort_keys=True),
         "history": f"{datetime.now(UTC).isoformat(timespec='seconds')}: {command_line()}",
         **line_type_attrs(src),
     }
@@ -223,7 +226,7 @@ def grid_dataset(
     names: list[str],
     tails: dict[str, tuple[int, ...]],
     arc: np.ndarray | None,
-    solver_settings: dict[str, Any],
+    solver_settings: dict[str, Any] | str,
     fallbacks: dict[str, int] | None = None,
     named: dict[str, list[str]] | None = None,
 ) -> xr.Dataset:
@@ -299,7 +302,7 @@ def grid_variables(
     warning: np.ndarray | None = None,
     tails: dict[str, tuple[int, ...]],
     arc: np.ndarray | None,
-    solver_settings: dict[str, Any],
+    solver_settings: dict[str, Any] | str,
     fallbacks: dict[str, int] | None = None,
     named: dict[str, list[str]] | None = None,
     static_status: bool = True,

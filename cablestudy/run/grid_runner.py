@@ -350,11 +350,12 @@ def _case_work(grid: Any) -> type[Cases]:
     return _ExcitationCases if isinstance(grid, ExcitationGrid) else Cases
 
 
-def grid_settings(grid: Any) -> dict[str, Any]:
+def grid_settings(grid: Any) -> str:
     """The analysis settings of the study (defaults filled in), and every distinct value a
-    sweep gave them. A case's analysis settings change only along the axes that sweep
-    ``analysis`` paths, so one case per combination of those axes (the others at their
-    first value) stands for all."""
+    sweep gave them, as the JSON text of the dataset's ``solver_settings`` attribute
+    (:func:`cablestudy.run.dataset.provenance`). A case's analysis settings change only
+    along the axes that sweep ``analysis`` paths, so one case per combination of those
+    axes (the others at their first value) stands for all."""
     import itertools
 
     swept = sorted(
@@ -366,16 +367,19 @@ def grid_settings(grid: Any) -> dict[str, Any]:
         for k, i in zip(swept, picks, strict=True):
             index[k] = i
         analyses.append(grid.study_at(tuple(index)).analysis)
-    settings = [a.model_dump(mode="json") for a in analyses]
-    out: dict[str, Any] = {"analysis": settings[0] if settings else {}}
-    out["static_methods"] = sorted({a.static.method for a in analyses})
-    # each distinct setting by its text; kept as the dump it came from, which the
-    # dataset's attribute writes as the same text (json.dumps with sorted keys,
-    # :func:`cablestudy.run.dataset.provenance`), not parsed back from it
-    distinct = {json.dumps(s, sort_keys=True): s for s in settings}
+    # each case's settings as JSON once (a sweep of the excitation: one per case), and
+    # the whole text made of them: json.dumps(settings, sort_keys=True) of the dict
+    # {"analysis": first, "analysis_per_case_distinct": [distinct...], "static_methods":
+    # [...]}, without encoding every case's settings a second time
+    texts = [json.dumps(a.model_dump(mode="json"), sort_keys=True) for a in analyses]
+    parts = {
+        "analysis": texts[0] if texts else "{}",
+        "static_methods": json.dumps(sorted({a.static.method for a in analyses})),
+    }
+    distinct = sorted(set(texts))
     if len(distinct) > 1:
-        out["analysis_per_case_distinct"] = [distinct[d] for d in sorted(distinct)]
-    return out
+        parts["analysis_per_case_distinct"] = f"[{', '.join(distinct)}]"
+    return "{" + ", ".join(f"{json.dumps(k)}: {parts[k]}" for k in sorted(parts)) + "}"
 
 
 def study_grid(src: StudySource) -> Any:
