@@ -78,19 +78,12 @@ def _floor125(x: float) -> float:
     return 10.0**e
 
 
-def axial_step(
-    pieces: list[tuple[Any, float]], rho: float, g: float
-) -> tuple[float, dict[int, float], list[str]]:
+def axial_step(pieces: list[tuple[Any, float]], rho: float, g: float) -> tuple[float, dict]:
     """The largest time step [s] of MoorDyn's explicit RK2 on the lines written as
     ``pieces`` (segment, node length [m]): about 20 steps per period of the fastest axial
-    mode, omega = 2 c / l (a lumped-mass chain's highest), dt = pi l / (10 c). RK2
-    amplifies an undamped mode by (omega dt)^4 / 8 a step, so a segment without axial
-    damping is written with the damping ratio zeta = (omega dtM)^3 / 4 (BA = -zeta), twice
-    what cancels that growth (a decay of zeta omega dtM a step). It damps a mode of
-    frequency f by about zeta f / f_max, nothing at wave frequencies. Measured on the
-    320 m chain of tests/integration/test_step_check.py, no damping, 20 m nodes: dtM
-    1e-3 and 5e-4 blew up (maximum tension 984 and 312 kN against 131 kN). Returns the
-    step, that damping by segment (``id``) and a warning naming it."""
+    mode, omega = 2 c / l (a lumped-mass chain's highest), dt = pi l / (10 c); and that
+    omega [rad/s] of each segment without axial damping (by ``id``), for
+    :func:`added_damping`."""
     dt, fastest = math.inf, {}
     for seg, length in pieces:
         axial_mass = seg.mass_in(rho, g) + rho * seg.area * seg.added_mass_tangential
@@ -98,18 +91,27 @@ def axial_step(
         dt = min(dt, math.pi * length / (10.0 * c))
         if seg.damping_ratio <= 0.0:
             fastest[id(seg)] = max(fastest.get(id(seg), 0.0), 2.0 * c / length)
-    damping = {k: (omega * _floor125(dt)) ** 3 / 4.0 for k, omega in fastest.items()}
-    warnings = (
-        [
-            "segments without axial damping (damping_ratio 0) are written with MoorDyn's "
-            f"BA = -{max(damping.values()):.3g} at most: the least damping that keeps its "
-            "explicit RK2 from amplifying their fastest axial mode at dtM; it damps a mode "
-            "of frequency f by about that times f / f_max, nothing at wave frequencies"
-        ]
-        if damping
-        else []
-    )
-    return dt, damping, warnings
+    return dt, fastest
+
+
+def added_damping(fastest: dict[int, float], dtm: float) -> tuple[dict[int, float], list[str]]:
+    """The damping ratio written for each undamped segment (``fastest``: its fastest
+    axial mode omega, :func:`axial_step`) at the exported step ``dtm`` [s], and a warning
+    naming it. RK2 amplifies an undamped mode by (omega dt)^4 / 8 a step; zeta = (omega
+    dtM)^3 / 4 (BA = -zeta) is twice what cancels that growth (a decay of zeta omega dtM
+    a step). It damps a mode of frequency f by about zeta f / f_max, nothing at wave
+    frequencies. Measured on the 320 m chain of tests/integration/test_step_check.py,
+    no damping, 20 m nodes: dtM 1e-3 and 5e-4 blew up (maximum tension 984 and 312 kN
+    against 131 kN)."""
+    damping = {k: (omega * dtm) ** 3 / 4.0 for k, omega in fastest.items()}
+    if not damping:
+        return damping, []
+    return damping, [
+        "segments without axial damping (damping_ratio 0) are written with MoorDyn's "
+        f"BA = -{max(damping.values()):.3g} at most: the least damping that keeps its "
+        "explicit RK2 from amplifying their fastest axial mode at dtM; it damps a mode "
+        "of frequency f by about that times f / f_max, nothing at wave frequencies"
+    ]
 
 
 #: slip speed [m/s] at which MoorDyn's saturated viscous friction, ``F = min(mu FricDamp
@@ -168,7 +170,8 @@ def seabed_options(
         )
         for seg, length in pieces
     ]
-    fric_damp = max(w for w, _, _, _ in nodes) / SLIP_VELOCITY if mu > 0.0 else 0.0
+    # a buoyant line rests nowhere: no node weight to saturate at
+    fric_damp = max(0.0, *(w for w, _, _, _ in nodes)) / SLIP_VELOCITY if mu > 0.0 else 0.0
     dt = math.inf
     for _, mass, d, length in nodes:
         rate = mu * fric_damp / mass
@@ -409,8 +412,7 @@ def moordyn_input(
         nseg = max(1, round(n_total * length / total))
         pieces.append((seg, length / nseg))
         line_rows.append(f"{k + 1}  seg{iseg + 1}  {k + 1}  {k + 2}  {_num(length)}  {nseg}  -")
-    dt, damping, warned = axial_step(pieces, rho, g)
-    warnings += warned
+    dt, fastest = axial_step(pieces, rho, g)
     # options
     lowest = min(end_a[2], end_b[2], float(position_at[:, 2].min()))
     opts = [f"{_num(g)}  g", f"{_num(rho)}  rho"]
@@ -432,6 +434,8 @@ def moordyn_input(
             "lowest point, out of reach"
         )
     opts += time_options(dt)
+    damping, warned = added_damping(fastest, _floor125(dt))
+    warnings += warned
     extra = current_table(study, opts)
     front = [f"MoorDyn v2 input file written by cablestudy: {title}"]
     if dyn is not None:

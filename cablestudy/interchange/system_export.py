@@ -31,6 +31,7 @@ from .export import (
     ExportedCase,
     _floor125,
     _num,
+    added_damping,
     axial_step,
     current_table,
     file_text,
@@ -207,8 +208,7 @@ def system_moordyn_input(study: Study, result: Any, *, title: str) -> ExportedCa
             "MoorDyn line has one line type and no attachments); re-imported, it is a "
             "system of those lines"
         )
-    dt, damping, warned = axial_step(pieces, rho, g)
-    warnings += warned
+    dt, fastest = axial_step(pieces, rho, g)
     opts = [f"{_num(g)}  g", f"{_num(rho)}  rho"]
     if env.depth is not None:
         opts.append(f"{_num(env.depth)}  WtrDpth")
@@ -234,6 +234,8 @@ def system_moordyn_input(study: Study, result: Any, *, title: str) -> ExportedCa
         )
     dtm = _floor125(dt)
     opts += time_options(dt)
+    damping, warned = added_damping(fastest, dtm)
+    warnings += warned
     extra = current_table(study, opts)
     text = file_text(
         [f"MoorDyn v2 input file written by cablestudy: {title}"],

@@ -436,7 +436,9 @@ def _close(client: Any, cluster: Any) -> None:
         if cluster is not None:
             cluster.close(timeout=CLUSTER_TIMEOUT)
     except Exception as exc:  # noqa: BLE001 - the results are in; only the stop failed
-        stuck = multiprocessing.active_children() if cluster is not None else []
+        stuck = [  # the cluster's own worker processes (distributed names them so)
+            p for p in multiprocessing.active_children() if cluster is not None and "Dask" in p.name
+        ]
         for process in stuck:
             process.kill()
         _say(

@@ -399,8 +399,9 @@ def test_a_local_cluster_that_does_not_start_leaves_the_run_to_threads(
 
 
 def test_a_cluster_that_does_not_stop_is_given_up_after_the_results() -> None:
-    """A stop that times out (the results are all in by then) kills the worker
-    processes left and says so, instead of failing or holding the run."""
+    """A stop that times out (the results are all in by then) kills the cluster's worker
+    processes left (named by distributed) and says so, instead of failing or holding
+    the run; another child of the process is left alone."""
     import multiprocessing
 
     from cablestudy.run import scheduler as sched
@@ -413,13 +414,21 @@ def test_a_cluster_that_does_not_stop_is_given_up_after_the_results() -> None:
             self.closed.append(timeout)
             raise TimeoutError("still closing")
 
-    child = multiprocessing.get_context("fork").Process(target=time.sleep, args=(60,))
+    fork = multiprocessing.get_context("fork")
+    child = fork.Process(target=time.sleep, args=(60,), name="Dask Worker process (from Nanny)")
+    other = fork.Process(target=time.sleep, args=(60,), name="not a worker")
     child.start()
-    stuck = Stuck()
-    sched._close(stuck, stuck)  # no exception
-    child.join(10)
-    assert stuck.closed == [sched.CLUSTER_TIMEOUT]  # the client's close raised first
-    assert child.exitcode is not None and child.exitcode < 0  # killed
+    other.start()
+    try:
+        stuck = Stuck()
+        sched._close(stuck, stuck)  # no exception
+        child.join(10)
+        assert stuck.closed == [sched.CLUSTER_TIMEOUT]  # the client's close raised first
+        assert child.exitcode is not None and child.exitcode < 0  # killed
+        assert other.is_alive()
+    finally:
+        other.kill()
+        other.join(10)
 
 
 def test_an_extended_first_axis_reuses_the_cached_chunks(
