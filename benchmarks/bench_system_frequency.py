@@ -109,13 +109,18 @@ def _cold() -> None:
                 value.clear()
 
 
-def pipeline(elements: int, cases: int = 50, repeats: int = 3) -> dict[str, float]:
+def pipeline(
+    elements: int, cases: int = 50, repeats: int = 3, keep: Path | None = None
+) -> dict[str, float]:
     """CPU time a case [s] of the frequency and the time domain through the command line
     on the same sweep of ``cases`` frequencies (module docstring), medians of
     ``repeats`` runs each with the caches emptied (:func:`_cold`), after one run that
     loads the compiled kernels; and the cost of one more case, from the same runs of a
     sweep of one case (``(T_cases - T_1) / (cases - 1)``). The frequency sweep's cases
-    run as arrays (:mod:`cablestudy.analyses.system_fd_grid`), counted in the first run."""
+    run as arrays (:mod:`cablestudy.analyses.system_fd_grid`), counted in the first run.
+    With ``keep``, each method's last ``cases``-case dataset is copied there
+    (``frequency.nc``, ``time.nc``)."""
+    import shutil
     import statistics
     import tempfile
 
@@ -155,6 +160,9 @@ def pipeline(elements: int, cases: int = 50, repeats: int = 3) -> dict[str, floa
                 cases - 1
             )
             out[f"{method}_one"] = statistics.median(one)
+            if keep is not None:
+                (nc,) = (Path(tmp) / f"{method}{cases}").glob("*.nc")
+                shutil.copy(nc, keep / f"{method}.nc")
     return out
 
 
