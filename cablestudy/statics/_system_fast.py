@@ -258,6 +258,33 @@ def _eval_lines(
     return True
 
 
+@njit(cache=True)
+def _slide(x, step, R, normal, depth, margin, work):  # noqa: ANN001, ANN202, PLR0913
+    """A free point the step would take below ``margin`` above the seabed plane (its
+    upward unit ``normal``, through (0, 0, -depth)) slides along it instead (the step's
+    part along the normal cut there), where the slid step still goes downhill
+    (R . step > 0): :func:`.system._solve`. ``work`` (3 k,) scratch. True if it slid."""
+    k = x.shape[0] // 3
+    slid = False
+    for i in range(k):
+        h = -margin
+        for q in range(3):
+            h += (x[3 * i + q] + step[3 * i + q]) * normal[q]
+        h += depth * normal[2]
+        for q in range(3):
+            work[3 * i + q] = step[3 * i + q] - min(h, 0.0) * normal[q]
+        slid = slid or h < 0.0
+    if not slid:
+        return False
+    phi = 0.0
+    for i in range(3 * k):
+        phi += R[i] * work[i]
+    if phi > 0.0:
+        for i in range(3 * k):
+            step[i] = work[i]
+    return phi > 0.0
+
+
 @njit(cache=True, error_model="numpy")
 def _assemble(
     c: int,
@@ -471,13 +498,18 @@ def system_cases(
                     for i in range(k3):
                         stepv[i] *= f
                     phi0 *= f
+                if plane_c and _slide(x, stepv, R, normal[c], depth[c], 1e-6 * cap[c], xt):
+                    phi0 = 0.0
+                    for i in range(k3):
+                        phi0 += R[i] * stepv[i]
                 # line search on the energy along the step (system._line_search)
                 done = res <= tol[c]
                 lo, f_lo = 0.0, phi0
                 hi, f_hi = math.nan, math.nan
                 lam = 1.0
                 found = False
-                for _ in range(40):
+                retry = False
+                for _ in range(41):
                     for i in range(k3):
                         xt[i] = x[i] + lam * stepv[i]
                     for i in range(k):
@@ -490,6 +522,12 @@ def system_cases(
                         C, sc, sc3, t_lo, t_hi, rate, hi_s, A4, free3, K_out[c], dS, dT,
                     )  # fmt: skip
                     if not good:
+                        if lo > 0.0 and not retry:
+                            # the energy falls all the way to lo and the lines cannot
+                            # be solved a little further on: the step to lo
+                            # (system._line_search), its lines evaluated again
+                            lam, retry = lo, True
+                            continue
                         hi, f_hi = lam, math.nan
                         lam = 0.5 * (lo + lam)
                         continue
@@ -504,7 +542,8 @@ def system_cases(
                     fv = 0.0
                     for i in range(k3):
                         fv += Rn[i] * stepv[i]
-                    if abs(fv) <= 0.5 * phi0 or (fv > 0.0 and lam == 1.0) or (done and lam == 1.0):
+                    accept = abs(fv) <= 0.5 * phi0 or (fv > 0.0 and lam == 1.0)
+                    if retry or accept or (done and lam == 1.0):
                         found = True
                         break
                     if fv > 0.0:

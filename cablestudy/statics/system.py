@@ -387,6 +387,9 @@ def _solve(
             1e-300,
         )
 
+        plane = seabed_of(system.lines[0].problem.medium)
+        pressed = np.zeros(int(free_mask.sum()), dtype=bool)
+
         def residual(force: np.ndarray) -> np.ndarray:
             return force[free_mask] + pf
 
@@ -401,7 +404,7 @@ def _solve(
                     STATUS_NOT_CONVERGED,
                     f"free-point equilibrium did not converge in {system.max_iterations} "
                     f"iterations (net force / largest tension {res:.3g}, tolerance "
-                    f"{system.tolerance:.3g})",
+                    f"{system.tolerance:.3g}){_on_seabed(system, free_mask, pressed)}",
                 )
             it += 1
             try:
@@ -416,6 +419,15 @@ def _solve(
             if longest > cap:
                 step *= cap / longest
                 phi0 *= cap / longest
+            if plane is not None:
+                # a free point the step would take below the seabed slides along it
+                # instead (a projected step; the lines cannot end below the seabed)
+                below = plane.height_above(x + step) - 1e-6 * cap
+                pressed = below < 0.0
+                if np.any(pressed):
+                    slid = step - np.minimum(below, 0.0)[:, None] * plane.normal
+                    if float(R.ravel() @ slid.ravel()) > 0.0:  # still downhill
+                        step, phi0 = slid, float(R.ravel() @ slid.ravel())
             found = _line_search(
                 lambda lam, x=x, step=step: _trial(
                     system, x + lam * step, raw, deadline, residual, step
@@ -429,7 +441,7 @@ def _solve(
                 raise SystemFailure(
                     STATUS_NOT_CONVERGED,
                     f"line search failed in the free-point equilibrium (net force / "
-                    f"largest tension {res:.3g})",
+                    f"largest tension {res:.3g}){_on_seabed(system, free_mask, pressed)}",
                 )
             lam, out = found
             xn = x + lam * step
@@ -473,6 +485,22 @@ def _solve(
     )
 
 
+def _on_seabed(system: MooringSystem, free_mask: np.ndarray, pressed: np.ndarray) -> str:
+    """The part of a failure's message naming the free points the last Newton step
+    pressed into the seabed (``pressed``, per free point): a free point resting on the
+    seabed has no seabed reaction in this model, so such an equilibrium is not found."""
+    low = [
+        str(n) for n, p in zip(np.asarray(system.point_names)[free_mask], pressed, strict=True) if p
+    ]
+    if not low:
+        return ""
+    return (
+        f"; the Newton step presses free point {', '.join(low)} into the seabed: a free "
+        "point resting on the seabed is not modelled (no seabed reaction on points); give "
+        "it buoyancy (volume) or join its lines into one line"
+    )
+
+
 def _trial(
     system: MooringSystem,
     x: np.ndarray,
@@ -499,12 +527,18 @@ def _line_search(trial: Any, phi0: float, *, done: bool) -> tuple[float, Any] | 
     its zero (the energy's minimum along s) is bracketed and found by regula falsi. A
     straight step lets a point swinging on a taut line (stiff along it, soft across it)
     move along its arc by several steps, where a residual-norm search stalls."""
-    lo, f_lo = 0.0, phi0
+    lo, f_lo, out_lo = 0.0, phi0, None
     hi, f_hi = math.nan, math.nan
     lam = 1.0
     for _ in range(40):
         t = trial(lam)
         if t is None:  # a line could not be solved there: shorter
+            if out_lo is not None:
+                # the energy falls all the way to lo (phi > 0 there) and the lines
+                # cannot be solved a little further on (a free point at the seabed,
+                # a line end below it): take the step to lo, the next Newton step
+                # starts from there
+                return lo, out_lo
             hi, f_hi = lam, math.nan
             lam = 0.5 * (lo + lam)
             continue
@@ -512,7 +546,7 @@ def _line_search(trial: Any, phi0: float, *, done: bool) -> tuple[float, Any] | 
         if abs(f) <= 0.5 * phi0 or (f > 0.0 and lam == 1.0) or (done and lam == 1.0):
             return lam, out
         if f > 0.0:
-            lo, f_lo = lam, f
+            lo, f_lo, out_lo = lam, f, out
         else:
             hi, f_hi = lam, f
         if math.isnan(f_hi):

@@ -1,0 +1,221 @@
+"""The invariances NREL/MoorPy's own ``tests/test_system.py`` asserts of its systems
+(licence in ``tests/data/moorpy/LICENSE.txt``), written as our system studies and run
+through the command line to the netCDF file: a line defined from either end, a line
+split at a free junction (suspended, and a few metres past the touchdown with seabed
+friction 0, 1 and 10), and the U of a line between two floats with a free point at its
+bottom. MoorPy's chain of 120 mm (``getLineProps``: 288 kg/m, volume diameter 0.216 m,
+EA 1.2326e9 N), rho 1025, g 9.81.
+
+Tolerances: the catenary answers are exact to the solvers' tolerances (line 1e-9, system
+1e-9 of the largest tension, the default), so the anchor and fairlead forces of the
+split and the single line must agree to 1e-8 of the largest tension (observed 1e-13).
+The U runs by the discrete method (the catenary refuses a line touching the seabed
+between two raised ends, by name); there the two layouts differ by the mesh (the
+single U line has no node where the two-line U has its free point), an error that
+must fall with the element size: halving the elements at least halves the float
+positions' difference.
+
+The split with friction failed before the system Newton's step slid along the seabed:
+its first steps push the junction, which ends 0.84 m above the seabed, below it, and the
+line search stalled there. Two free points that would rest on the seabed (MoorPy's
+``test_multiseg_seabed``) are refused naming them: our points have no seabed reaction.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+import yaml
+
+from cablestudy.cli import main
+from tests.system_contract import run_study
+
+SEG = {"diameter": 0.216, "mass_per_length": 288.0, "axial_stiffness": 1232572089.6}
+
+
+def _study(name: str, depth: float, points: dict, lines: dict, **kw: object) -> str:
+    env: dict = {"fluid": {"density": 1025.0}, "gravity": 9.81, "depth": depth}
+    if "friction" in kw:
+        env["seabed"] = {"friction": kw["friction"]}
+    static = {"nodes": kw.get("nodes", 21)}
+    if "method" in kw:
+        static["method"] = kw["method"]
+    return yaml.safe_dump(
+        {
+            "name": name,
+            "environment": env,
+            "points": points,
+            "lines": {
+                k: {"a": a, "b": b, "segments": [{"length": length, **SEG}]}
+                for k, (a, b, length) in lines.items()
+            },
+            "analysis": {"static": static},
+        },
+        sort_keys=False,
+    )
+
+
+def _failed(tmp_path: Path, text: str) -> xr.Dataset:
+    """``cablestudy run`` of a study whose every case fails (exit status 3); its dataset."""
+    name = yaml.safe_load(text)["name"]
+    (tmp_path / f"{name}.yaml").write_text(text)
+    args = ["run", str(tmp_path / f"{name}.yaml"), "--out", str(tmp_path), "--no-cache"]
+    assert main([*args, "--no-progress", "--scheduler", "synchronous"]) == 3
+    return xr.load_dataset(tmp_path / f"{name}.nc")
+
+
+def _fixed(p: list[float]) -> dict:
+    return {"kind": "fixed", "position": p}
+
+
+def _free(p: list[float], **kw: float) -> dict:
+    return {"kind": "free", "position": p, **kw}
+
+
+def _ends(ds) -> tuple[np.ndarray, np.ndarray, float]:  # noqa: ANN001
+    """The first line's force at A, the last line's at B, the largest tension."""
+    return (
+        ds["force_a"].values[0],
+        ds["force_b"].values[-1],
+        float(max(ds["tension_a"].max(), ds["tension_b"].max())),
+    )
+
+
+def test_a_line_defined_from_either_end_pulls_the_same(tmp_path: Path) -> None:
+    ds = run_study(
+        tmp_path,
+        _study(
+            "swap",
+            60.0,
+            {"p1": _fixed([0.0, 0.0, -60.0]), "p2": _fixed([100.0, 10.0, -30.0])},
+            {"l1": ("p1", "p2", 120.0), "l2": ("p2", "p1", 120.0)},
+        ),
+    )
+    assert (ds["status"].values == 0).all()
+    big = float(ds["tension_b"].max())
+    np.testing.assert_allclose(ds["force_a"].values[0], ds["force_b"].values[1], atol=1e-8 * big)
+    np.testing.assert_allclose(ds["force_b"].values[0], ds["force_a"].values[1], atol=1e-8 * big)
+
+
+@pytest.mark.parametrize(
+    ("split", "guess", "friction"),
+    [(630.0, [-205.0, 0.0, -100.0], None)]
+    + [(430.0, [-405.0, 0.0, -150.0], mu) for mu in (0.0, 1.0, 10.0)],
+)
+def test_a_line_split_at_a_free_junction_pulls_as_the_whole_line(
+    tmp_path: Path, split: float, guess: list[float], friction: float | None
+) -> None:
+    kw = {} if friction is None else {"friction": friction}
+    anchor, fair = _fixed([-800.0, 0.0, -200.0]), _fixed([0.0, 0.0, 0.0])
+    one = run_study(
+        tmp_path,
+        _study("whole", 200.0, {"a": anchor, "f": fair}, {"l": ("a", "f", 860.0)}, **kw),
+    )
+    two = run_study(
+        tmp_path,
+        _study(
+            "split",
+            200.0,
+            {"a": anchor, "m": _free(guess), "f": fair},
+            {"l1": ("a", "m", split), "l2": ("m", "f", 860.0 - split)},
+            **kw,
+        ),
+    )
+    assert int(one["status"]) == 0 and int(two["status"]) == 0, str(two["message"].values)
+    a1, b1, big = _ends(one)
+    a2, b2, _ = _ends(two)
+    np.testing.assert_allclose(a2, a1, atol=1e-8 * big)
+    np.testing.assert_allclose(b2, b1, atol=1e-8 * big)
+    if friction is not None:  # the junction lies past the touchdown, just off the seabed
+        laid = float(one["laid_length"].values[0])
+        assert laid < split and float(two["laid_length"].values[0]) == pytest.approx(laid)
+        assert float(two["point_position"].values[0, 2]) > -200.0
+
+
+def _u(tmp_path: Path, nodes: int) -> np.ndarray:
+    """The floats' positions (2, 3) of the U as two lines with a free point at its bottom
+    minus those of the U as one line, by the discrete method at ``nodes`` a line."""
+    ends = {"a1": _fixed([-200.0, 0.0, -100.0]), "a2": _fixed([200.0, 0.0, -100.0])}
+    f1, f2 = _free([-100.0, 0.0, -50.0], volume=50.0), _free([100.0, 0.0, -40.0], volume=50.0)
+    two = run_study(
+        tmp_path,
+        _study(
+            f"u4_{nodes}",
+            100.0,
+            {**ends, "fl1": f1, "mid": _free([0.0, 0.0, -100.0]), "fl2": f2},
+            {
+                "l1": ("a1", "fl1", 120.0),
+                "l2": ("fl1", "mid", 125.0),
+                "l3": ("mid", "fl2", 125.0),
+                "l4": ("fl2", "a2", 120.0),
+            },
+            method="discrete",
+            nodes=nodes,
+        ),
+    )
+    one = run_study(
+        tmp_path,
+        _study(
+            f"u3_{nodes}",
+            100.0,
+            {**ends, "fl1": f1, "fl2": f2},
+            {"l1": ("a1", "fl1", 120.0), "l2": ("fl1", "fl2", 250.0), "l3": ("fl2", "a2", 120.0)},
+            method="discrete",
+            nodes=nodes,
+        ),
+    )
+    assert int(one["status"]) == 0 and int(two["status"]) == 0
+    return two["point_position"].values[[0, 2]] - one["point_position"].values
+
+
+def test_a_u_between_floats_with_a_point_at_its_bottom_is_the_one_line_u(
+    tmp_path: Path,
+) -> None:
+    coarse, fine = _u(tmp_path, 21), _u(tmp_path, 41)
+    assert np.abs(fine).max() <= 0.5 * np.abs(coarse).max()
+    assert np.abs(fine).max() < 0.05  # [m], of floats about 100 m from the centre
+
+
+def test_the_u_by_the_catenary_is_refused_naming_the_method_that_models_it(
+    tmp_path: Path,
+) -> None:
+    ds = _failed(
+        tmp_path,
+        _study(
+            "u_catenary",
+            100.0,
+            {
+                "a1": _fixed([-200.0, 0.0, -100.0]),
+                "fl1": _free([-100.0, 0.0, -50.0], volume=50.0),
+                "fl2": _free([100.0, 0.0, -40.0], volume=50.0),
+                "a2": _fixed([200.0, 0.0, -100.0]),
+            },
+            {"l1": ("a1", "fl1", 120.0), "l2": ("fl1", "fl2", 250.0), "l3": ("fl2", "a2", 120.0)},
+        ),
+    )
+    assert int(ds["status"]) != 0
+    assert "method: discrete" in str(ds["message"].values)
+
+
+def test_free_points_that_would_rest_on_the_seabed_are_named(tmp_path: Path) -> None:
+    ds = _failed(
+        tmp_path,
+        _study(
+            "points_on_seabed",
+            200.0,
+            {
+                "a": _fixed([-800.0, 0.0, -200.0]),
+                "m1": _free([-700.0, 0.0, -190.0]),
+                "m2": _free([-600.0, 0.0, -190.0]),
+                "f": _fixed([0.0, 0.0, 0.0]),
+            },
+            {"l1": ("a", "m1", 100.0), "l2": ("m1", "m2", 100.0), "l3": ("m2", "f", 660.0)},
+        ),
+    )
+    assert int(ds["status"]) != 0
+    message = str(ds["message"].values)
+    assert "free point m1, m2 into the seabed" in message and "not modelled" in message
+    assert np.isnan(ds["tension_a"].values).all()
