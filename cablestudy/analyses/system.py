@@ -118,6 +118,9 @@ def system_model(study: Study) -> MooringSystem:
         body_cog=_rows([_of(b, "center_of_gravity", [0.0] * 3) for b in study.bodies.values()]),
         body_cob=_rows([_of(b, "center_of_buoyancy", [0.0] * 3) for b in study.bodies.values()]),
         body_applied=_rows([_of(b, "force", [0.0] * 3) for b in study.bodies.values()]),
+        body_waterplane=np.array(
+            [rho * _of(b, "waterplane_area", 0.0) * g for b in study.bodies.values()]
+        ),
         lines=lines,
         tolerance=settings.tolerance,
         max_iterations=settings.max_iterations,

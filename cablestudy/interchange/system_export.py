@@ -57,6 +57,11 @@ def _refuse(study: Study) -> None:
                     f"bodies.{name}.force: a steady force {body.force} N on a body has no "
                     "MoorDyn v2 equivalent"
                 )
+            if body.waterplane_area:
+                raise InterchangeError(
+                    f"bodies.{name}.waterplane_area: {body.waterplane_area} m^2; a MoorDyn v2 "
+                    "body has no hydrostatic stiffness (allowed: 0)"
+                )
             if any(body.center_of_buoyancy):
                 raise InterchangeError(
                     f"bodies.{name}.center_of_buoyancy: {body.center_of_buoyancy} m; MoorDyn's "

@@ -614,8 +614,9 @@ def _bodies(
 
 
 def body_loads(system: MooringSystem, body: int, pose: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Weight, buoyancy and applied force on ``body`` at ``pose``: the load [N, N m] (6,)
-    about the reference point and its stiffness -d load / d pose (6, 6)."""
+    """Weight, buoyancy, the waterplane's heave force and the applied force on ``body`` at
+    ``pose``: the load [N, N m] (6,) about the reference point and its stiffness -d load /
+    d pose (6, 6)."""
     R = rotation(pose[3:])
     dR = rotation_derivatives(pose[3:])
     load = np.zeros(6)
@@ -630,6 +631,9 @@ def body_loads(system: MooringSystem, body: int, pose: np.ndarray) -> tuple[np.n
         A = np.stack([dR[k] @ p for k in range(3)], axis=1)
         K[3:, 3:] += _skew(f) @ A
     load[:3] += system.body_applied[body]
+    if system.body_waterplane.size:
+        load[2] -= system.body_waterplane[body] * pose[2]
+        K[2, 2] += system.body_waterplane[body]
     return load, K
 
 

@@ -64,6 +64,9 @@ class MooringSystem:
     body_cob: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
     #: [N] (m, 3) constant force at the reference point
     body_applied: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    #: [N/m] (m,) rho g A_WP: the waterplane's heave force -rho g A_WP z at the reference
+    #: point (z the body's heave); empty: none
+    body_waterplane: np.ndarray = field(default_factory=lambda: np.zeros(0))
     #: [kg/m] (n,) 1/2 rho C_D A of the free points: drag in the lines' current
     #: (:func:`point_drag`); empty: none
     point_drag: np.ndarray = field(default_factory=lambda: np.zeros(0))

@@ -81,8 +81,10 @@ class PrescribedBody(StrictModel):
 
 class FreeBody(StrictModel):
     """A body found by equilibrium of its lines, its weight (at its centre of gravity),
-    its buoyancy (at its centre of buoyancy; the displaced volume is constant: no
-    waterplane) and a constant applied force at its reference point."""
+    its buoyancy (at its centre of buoyancy: the displaced volume at heave 0; giving the
+    metacentre here, as MoorPy's ``rM``, makes the buoyancy's moment the small-angle
+    hydrostatic restoring moment), its waterplane's heave force and a constant applied
+    force at its reference point."""
 
     kind: Literal["free"]
     position: Vec6 = Field(
@@ -100,6 +102,11 @@ class FreeBody(StrictModel):
         [0.0, 0.0, 0.0], description="in the body frame from the reference point [m]"
     )
     force: Vec3 = Field([0.0, 0.0, 0.0], description="constant force at the reference point [N]")
+    waterplane_area: NonNegative = Field(
+        0.0,
+        description="waterplane area A_WP [m^2]: the heave force -rho g A_WP z at the "
+        "reference point, z its heave (the volume displaced at heave 0 is volume)",
+    )
 
 
 SystemBody = Annotated[PrescribedBody | FreeBody, Field(discriminator="kind")]

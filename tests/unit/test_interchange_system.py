@@ -297,3 +297,15 @@ def test_a_system_in_a_current_survives_export_and_import(tmp_path: Path, capsys
     largest = float(np.max(original.data["tension_b"]))
     for key in ("tension_a", "tension_b"):
         np.testing.assert_allclose(again[key], original.data[key], rtol=0.0, atol=1e-9 * largest)
+
+
+def test_a_body_waterplane_is_refused_by_the_moordyn_export(tmp_path: Path, capsys) -> None:
+    config = tmp_path / "free.yaml"
+    config.write_text(
+        FREE_BODY.replace("    mass: 20000.0\n", "    mass: 20000.0\n    waterplane_area: 3.0\n")
+    )
+    out = tmp_path / "exported.dat"
+    assert main(["export", "moordyn", str(config), "--out", str(out)]) != 0
+    err = capsys.readouterr().err
+    assert "bodies.buoy.waterplane_area: 3.0 m^2" in err and "allowed: 0" in err
+    assert not out.exists()

@@ -219,3 +219,44 @@ def test_free_points_that_would_rest_on_the_seabed_are_named(tmp_path: Path) -> 
     message = str(ds["message"].values)
     assert "free point m1, m2 into the seabed" in message and "not modelled" in message
     assert np.isnan(ds["tension_a"].values).all()
+
+
+def test_a_floating_body_with_a_waterplane_returns_to_its_symmetric_equilibrium(
+    tmp_path: Path,
+) -> None:
+    """MoorPy's ``test_basic``: a free body (1e6 kg, 1e3 m^3 with its metacentre 100 m up,
+    waterplane 1e6 m^2) on three 1800 m chains at 120 degrees in 600 m of water, started
+    offset by (10, 10, 1) m, must come back to the axis (MoorPy asserts 0.01 m; by
+    symmetry ours is exact to the Newton's tolerance, 1e-9 of the largest force over the
+    stiffness, below 1e-9 m here), with its heave the hydrostatic balance
+    rho g A_WP z = rho g V - m g + F_z(lines) to round-off."""
+    angles = np.arange(3) * 2.0 * np.pi / 3.0
+    points, lines = {}, {}
+    for i, a in enumerate(angles):
+        c, s = float(np.cos(a)), float(np.sin(a))
+        points[f"anchor{i}"] = _fixed([1600.0 * c, 1600.0 * s, -600.0])
+        points[f"fair{i}"] = {
+            "kind": "body",
+            "body": "float",
+            "offset": [20.0 * c, 20.0 * s, -21.0],
+        }
+        lines[f"leg{i}"] = (f"anchor{i}", f"fair{i}", 1800.0)
+    study = yaml.safe_load(_study("floating", 600.0, points, lines))
+    study["bodies"] = {
+        "float": {
+            "kind": "free",
+            "position": [10.0, 10.0, 1.0, 0.0, 0.0, 0.0],
+            "mass": 1e6,
+            "volume": 1e3,
+            "center_of_buoyancy": [0.0, 0.0, 100.0],
+            "waterplane_area": 1e6,
+        }
+    }
+    ds = run_study(tmp_path, yaml.safe_dump(study, sort_keys=False))
+    assert int(ds["status"]) == 0
+    pose, lines_force = ds["body_position"].values[0], ds["body_force"].values[0]
+    rho_g = 1025.0 * 9.81
+    assert np.abs(pose[[0, 1]]).max() < 1e-9 and np.abs(pose[3:]).max() < 1e-12
+    weight = 1e6 * 9.81
+    assert abs(rho_g * 1e6 * pose[2] - (rho_g * 1e3 - weight + lines_force[2])) <= 1e-9 * weight
+    assert -1e-3 < pose[2] < 0.0  # the lines pull it down by about 0.76 mm
