@@ -372,7 +372,13 @@ def _solve(
                 for ln in system.lines
             ),
         )
-    results, force, K = _solve_lines(system, pos, raw, deadline, verify=False)
+    plane = seabed_of(system.lines[0].problem.medium)
+    try:
+        results, force, K = _solve_lines(system, pos, raw, deadline, verify=False)
+    except SystemFailure as exc:
+        # a start that puts free points on the seabed: say what is not modelled
+        on = np.zeros(len(x), dtype=bool) if plane is None else plane.height_above(x) <= 0.0
+        raise SystemFailure(exc.status, exc.message + _on_seabed(system, free_mask, on)) from None
     it = 0
     res = 0.0
     if P.size:
@@ -387,7 +393,6 @@ def _solve(
             1e-300,
         )
 
-        plane = seabed_of(system.lines[0].problem.medium)
         pressed = np.zeros(int(free_mask.sum()), dtype=bool)
 
         def residual(force: np.ndarray) -> np.ndarray:
@@ -487,15 +492,16 @@ def _solve(
 
 def _on_seabed(system: MooringSystem, free_mask: np.ndarray, pressed: np.ndarray) -> str:
     """The part of a failure's message naming the free points the last Newton step
-    pressed into the seabed (``pressed``, per free point): a free point resting on the
-    seabed has no seabed reaction in this model, so such an equilibrium is not found."""
+    pressed into the seabed, or its start put there (``pressed``, per free point): a
+    free point resting on the seabed has no seabed reaction in this model, so such an
+    equilibrium is not found."""
     low = [
         str(n) for n, p in zip(np.asarray(system.point_names)[free_mask], pressed, strict=True) if p
     ]
     if not low:
         return ""
     return (
-        f"; the Newton step presses free point {', '.join(low)} into the seabed: a free "
+        f"; free point {', '.join(low)} is pressed into or placed on the seabed: a free "
         "point resting on the seabed is not modelled (no seabed reaction on points); give "
         "it buoyancy (volume) or join its lines into one line"
     )
