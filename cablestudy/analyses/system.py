@@ -172,6 +172,10 @@ def system_outputs(system: MooringSystem, res: Any) -> dict[str, np.ndarray]:
         out["point_position"] = (
             res.point_position[free] if ok else np.full((int(free.sum()), 3), np.nan)
         )
+        seabed = np.zeros((int(free.sum()), 3))
+        if res.seabed_force is not None:
+            seabed = res.seabed_force[free]
+        out["point_seabed_force"] = seabed if ok else np.full_like(seabed, np.nan)
     if len(system.body_names):
         if ok and res.body_position is not None:
             out["body_position"] = np.array(res.body_position, dtype=float)

@@ -46,6 +46,10 @@ def system_frequency_model(case: Case, system: Any, static: Any) -> Any:
     why it cannot be built (a string)."""
     from ..dynamics.system_frequency import system_linear
     from .line_model import system_line_extras
+    from .system_dynamic import resting_on_seabed
+
+    if resting_on_seabed(system, static):
+        return resting_on_seabed(system, static)
 
     study = case.study
     dyn = study.analysis.dynamic

@@ -364,6 +364,7 @@ def _empty_outputs(system: Any, n: int) -> dict[str, np.ndarray]:
     }
     if k:
         out["point_position"] = np.full((n, k, 3), np.nan)
+        out["point_seabed_force"] = np.full((n, k, 3), np.nan)
     if m:
         out["body_position"] = np.full((n, m, 6), np.nan)
         out["body_force"] = np.full((n, m, 6), np.nan)
@@ -388,6 +389,7 @@ def _put(out: dict[str, np.ndarray], rows: np.ndarray, sol: Any, system: Any) ->
     out["static_residual"][rows] = sol.residual
     if "point_position" in out:
         out["point_position"][rows] = sol.point_position[:, system.point_kind == FREE]
+        out["point_seabed_force"][rows] = 0.0  # the compiled Newton's points are off it
     if "body_force" in out:
         out["body_force"][rows] = sol.body_force
         out["body_stiffness"][rows] = sol.body_stiffness

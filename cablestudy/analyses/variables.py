@@ -443,6 +443,12 @@ SYSTEM_OUTPUTS: dict[str, OutputVariable] = {
     "point_position": OutputVariable(
         ("point", "component"), "m", "position of each free point in equilibrium", analysis="static"
     ),
+    "point_seabed_force": OutputVariable(
+        ("point", "component"),
+        "N",
+        "force of the seabed on each free point resting on it (zero off the seabed)",
+        analysis="static",
+    ),
     "body_position": OutputVariable(
         ("body", "dof"),
         "m, rad",

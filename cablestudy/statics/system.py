@@ -225,14 +225,17 @@ def _solve_lines(
         )
         for ln in system.lines
     ]
-    if getattr(solver, "name", "") == "catenary":
-        # every line of the system in one call of the batch kernels (verified as the
-        # registry's solver verifies; the same numbers as one line at a time)
-        from .batch import solve_batch
 
-        solved = solve_batch(problems, deadline=deadline, verify=verify)
-    else:
-        solved = [solver.solve(prob, deadline=deadline) for prob in problems]
+    def solve_all(problems: list[StaticProblem]) -> list[StaticResult]:
+        if getattr(solver, "name", "") == "catenary":
+            # every line of the system in one call of the batch kernels (verified as the
+            # registry's solver verifies; the same numbers as one line at a time)
+            from .batch import solve_batch
+
+            return solve_batch(problems, deadline=deadline, verify=verify)
+        return [solver.solve(prob, deadline=deadline) for prob in problems]
+
+    solved = solve_all(problems)
     for ln, prob, res in zip(system.lines, problems, solved, strict=True):
         res = res.check_finite()
         slack = None
@@ -250,25 +253,79 @@ def _solve_lines(
         moving = [system.point_kind[ln.a] != FIXED, system.point_kind[ln.b] != FIXED]
         if not any(moving):
             continue
-        k = slack[2] if slack is not None else line_end_stiffness(prob, res)
+        # a line lying on the seabed from a free point, or touching it between two
+        # raised ends: without friction, the stiffness by central differences of the
+        # line's solves; with it, where a laid stretch starts at a free end or between
+        # two suspended parts, the statics do not determine which way friction acts
+        frictionless = not prob.medium.friction
+        try:
+            k = slack[2] if slack is not None else line_end_stiffness(prob, res)
+        except SystemFailure:
+            if not frictionless:
+                raise
+            k = None
+        pairs = [(i, j) for i in range(2) for j in range(2) if moving[i] and moving[j]]
+        if k is None or not all(np.all(np.isfinite(k[i, j])) for i, j in pairs):
+            if not frictionless:
+                raise SystemFailure(
+                    STATUS_NO_SOLUTION,
+                    f"line {ln.name} lies on the seabed from a free point, with seabed "
+                    f"friction {prob.medium.friction:g}: which way friction acts along it "
+                    "is not determined by the statics (friction: 0 solves it; or anchor "
+                    "that end)",
+                )
+            k = _numeric_stiffness(ln.name, prob, res, solve_all, moving)
         ends = (ln.a, ln.b)
-        for i in range(2):
-            for j in range(2):
-                if not (moving[i] and moving[j]):
-                    continue
-                if not np.all(np.isfinite(k[i, j])):
-                    raise SystemFailure(
-                        STATUS_NO_SOLUTION,
-                        f"line {ln.name} lies on the seabed from an end that is not a "
-                        "fixed point; method catenary does not model its stiffness there "
-                        "(anchor it, or analysis.static.method: discrete models it)",
-                    )
-                K[3 * ends[i] : 3 * ends[i] + 3, 3 * ends[j] : 3 * ends[j] + 3] += k[i, j]
+        for i, j in pairs:
+            K[3 * ends[i] : 3 * ends[i] + 3, 3 * ends[j] : 3 * ends[j] + 3] += k[i, j]
     drag = point_drag(system, pos)  # current drag on free points, if any
     if drag is not None:
         force += drag[0]
         K += drag[1]
     return results, force, K
+
+
+def _numeric_stiffness(
+    name: str, prob: StaticProblem, res: StaticResult, solve_all: Any, moving: list[bool]
+) -> np.ndarray:
+    """End stiffness (2, 2, 3, 3) of a solved line by central differences of its end
+    forces (one-sided where the backward step would go below the seabed), each moving
+    end stepped by 1e-4 of the line's length; an end resting on the seabed only along
+    the plane (its motion across it is held by the seabed: zero columns there). The
+    differences' error: the solves' tolerance (1e-9 of the tension) over the step and
+    the step squared over the catenary's length scale, both near 1e-5 of the
+    stiffness: enough for the Newton, whose residual is the lines' exact forces."""
+    L = prob.line.total_length
+    h = 1e-4 * L
+    plane = seabed_of(prob.medium)
+    ends = [np.asarray(prob.end_a.position, float), np.asarray(prob.end_b.position, float)]
+    base = np.stack((res.force_a, res.force_b))
+    K = np.zeros((2, 2, 3, 3))
+    for j in range(2):
+        if not moving[j]:
+            continue
+        on = plane is not None and float(plane.height_above(ends[j])) <= 1e-6 * L
+        for d in np.stack(plane.basis) if on else np.eye(3):
+            steps = [h, -h]
+            if plane is not None and float(plane.height_above(ends[j] - h * d)) < 0.0:
+                steps = [h]
+            probs = []
+            for sgn in steps:
+                moved = EndCondition(kind="fixed", position=ends[j] + sgn * d)
+                probs.append(replace(prob, end_a=moved) if j == 0 else replace(prob, end_b=moved))
+            out = [r.check_finite() for r in solve_all(probs)]
+            if any(r.status != STATUS_OK for r in out):
+                raise SystemFailure(
+                    STATUS_NO_SOLUTION,
+                    f"line {name}: its end stiffness could not be differenced (a solve "
+                    f"{h:.3g} m from the end failed: {next(r.message for r in out if r.status)})",
+                )
+            plus = np.stack((out[0].force_a, out[0].force_b))
+            minus = np.stack((out[1].force_a, out[1].force_b)) if len(out) == 2 else base
+            dF = (plus - minus) / (h * len(out))
+            for i in range(2):
+                K[i, j] -= np.outer(dF[i], d)
+    return K
 
 
 def _dof_index(mask: np.ndarray) -> np.ndarray:
@@ -373,12 +430,21 @@ def _solve(
             ),
         )
     plane = seabed_of(system.lines[0].problem.medium)
+    # free points resting on the seabed: held on its plane (their motion along it the
+    # unknowns, the seabed's reaction across it; released where the net force lifts them)
+    contact = np.zeros(len(x), dtype=bool)
+    if plane is not None and len(x):
+        height = plane.height_above(x)
+        contact = height <= 0.0
+        x[contact] -= height[contact, None] * plane.normal
+        pos = point_positions(system, x)
     try:
         results, force, K = _solve_lines(system, pos, raw, deadline, verify=False)
     except SystemFailure as exc:
-        # a start that puts free points on the seabed: say what is not modelled
-        on = np.zeros(len(x), dtype=bool) if plane is None else plane.height_above(x) <= 0.0
-        raise SystemFailure(exc.status, exc.message + _on_seabed(system, free_mask, on)) from None
+        # a start that puts free points on the seabed: name them
+        raise SystemFailure(
+            exc.status, exc.message + _on_seabed(system, free_mask, contact, plane)
+        ) from None
     it = 0
     res = 0.0
     if P.size:
@@ -398,8 +464,13 @@ def _solve(
         def residual(force: np.ndarray) -> np.ndarray:
             return force[free_mask] + pf
 
+        def size(R: np.ndarray) -> float:  # the net force but the seabed's reaction
+            if contact.any():
+                R = R - np.where(contact[:, None], (R @ plane.normal)[:, None] * plane.normal, 0.0)
+            return float(np.max(np.abs(R))) / scale
+
         R = residual(force)
-        res = float(np.max(np.abs(R))) / scale
+        res = size(R)
         polished = 0
         while res > system.tolerance or polished == 0:
             if res <= system.tolerance:
@@ -409,17 +480,22 @@ def _solve(
                     STATUS_NOT_CONVERGED,
                     f"free-point equilibrium did not converge in {system.max_iterations} "
                     f"iterations (net force / largest tension {res:.3g}, tolerance "
-                    f"{system.tolerance:.3g}){_on_seabed(system, free_mask, pressed)}",
+                    f"{system.tolerance:.3g}){_on_seabed(system, free_mask, pressed, plane)}",
                 )
             it += 1
+            T = _plane_dofs(plane, contact)
+            Kpp, r = K[np.ix_(P, P)], R.ravel()
+            if T is not None:  # points on the seabed move along it
+                Kpp, r = T.T @ Kpp @ T, T.T @ r
             try:
-                step = np.linalg.solve(K[np.ix_(P, P)], R.ravel()).reshape(-1, 3)
-                phi0 = float(R.ravel() @ step.ravel())
+                step = np.linalg.solve(Kpp, r)
+                phi0 = float(r @ step)
             except np.linalg.LinAlgError:  # e.g. a point held across only by slack lines
                 phi0 = math.nan
             if not phi0 > 0.0:  # stiffness not positive definite here: go downhill
-                step = R / max(float(np.max(np.diag(K[np.ix_(P, P)]))), 1e-300)
-                phi0 = float(R.ravel() @ step.ravel())
+                step = r / max(float(np.max(np.diag(Kpp))), 1e-300)
+                phi0 = float(r @ step)
+            step = (step if T is None else T @ step).reshape(-1, 3)
             longest = float(np.max(np.linalg.norm(step, axis=1)))
             if longest > cap:
                 step *= cap / longest
@@ -427,10 +503,10 @@ def _solve(
             if plane is not None:
                 # a free point the step would take below the seabed slides along it
                 # instead (a projected step; the lines cannot end below the seabed)
-                below = plane.height_above(x + step) - 1e-6 * cap
-                pressed = below < 0.0
+                below = plane.height_above(x + step) - np.where(contact, 0.0, 1e-6 * cap)
+                pressed = (below < 0.0) & ~contact
                 if np.any(pressed):
-                    slid = step - np.minimum(below, 0.0)[:, None] * plane.normal
+                    slid = step - np.where(pressed, below, 0.0)[:, None] * plane.normal
                     if float(R.ravel() @ slid.ravel()) > 0.0:  # still downhill
                         step, phi0 = slid, float(R.ravel() @ slid.ravel())
             found = _line_search(
@@ -446,19 +522,36 @@ def _solve(
                 raise SystemFailure(
                     STATUS_NOT_CONVERGED,
                     f"line search failed in the free-point equilibrium (net force / "
-                    f"largest tension {res:.3g}){_on_seabed(system, free_mask, pressed)}",
+                    f"largest tension {res:.3g}){_on_seabed(system, free_mask, pressed, plane)}",
                 )
             lam, out = found
             xn = x + lam * step
             Rn = residual(out[1])
             assert out is not None
             x, (results, force, K), R = xn, out, Rn
-            res = float(np.max(np.abs(R))) / scale
+            if plane is not None:
+                # a point the step slid onto the seabed rests on it; one the net force
+                # lifts off leaves it
+                height = plane.height_above(x)
+                landed = ~contact & (height <= 2e-6 * cap)
+                if landed.any():
+                    contact |= landed
+                    x[landed] -= height[landed, None] * plane.normal
+                    results, force, K = _solve_lines(
+                        system, point_positions(system, x), raw, deadline, verify=False
+                    )
+                    R = residual(force)
+                lifted = contact & (R @ plane.normal > system.tolerance * scale)
+                if lifted.any():
+                    contact &= ~lifted
+                    polished = 0
+            res = size(R)
             if polished:
                 break
         pos = point_positions(system, x)
+    T = _plane_dofs(plane, contact)
     if not verified:
-        body_force, body_stiffness = _bodies(final, pos, force, K, free_mask)
+        body_force, body_stiffness = _bodies(final, pos, force, K, free_mask, T)
         return SystemResult(
             lines=results,
             point_position=pos,
@@ -468,18 +561,41 @@ def _solve(
             residual=res,
         )
     results, force, K = _solve_lines(final, pos, solver, deadline)
+    reaction = None
     if P.size:
         # the Newton's lines were unverified (the kernels' answers, for speed): the
         # verified lines at the solution must hold the points in equilibrium as well
-        final_res = float(np.max(np.abs(force[free_mask] + pf))) / scale
-        if not final_res <= max(100.0 * system.tolerance, 1e-10):
+        net = force[free_mask] + pf
+        bar = max(100.0 * system.tolerance, 1e-10)
+        if contact.any() and plane.friction:
+            raise SystemFailure(
+                STATUS_NO_SOLUTION,
+                f"free point {', '.join(np.asarray(system.point_names)[free_mask][contact])} "
+                f"rests on the seabed, with seabed friction {plane.friction:g}: which way "
+                "friction acts along the lines lying from it is not determined by the "
+                "statics (friction: 0 solves it)",
+            )
+        if contact.any():
+            # the seabed pushes a resting point up (never pulls it down)
+            push = np.where(contact, net @ plane.normal, 0.0)
+            if np.any(push > bar * scale):
+                raise SystemFailure(
+                    STATUS_NOT_CONVERGED,
+                    "free-point equilibrium: the verified lines lift a point the Newton "
+                    "left resting on the seabed",
+                )
+            reaction = np.zeros((len(system.point_names), 3))
+            reaction[free_mask] = -push[:, None] * plane.normal + 0.0  # no signed zeros
+            net = net + reaction[free_mask]
+        final_res = float(np.max(np.abs(net))) / scale
+        if not final_res <= bar:
             raise SystemFailure(
                 STATUS_NOT_CONVERGED,
                 f"free-point equilibrium: the verified lines at the Newton's solution leave "
                 f"a net force of {final_res:.3g} of the largest tension (tolerance "
                 f"{system.tolerance:.3g})",
             )
-    body_force, body_stiffness = _bodies(final, pos, force, K, free_mask)
+    body_force, body_stiffness = _bodies(final, pos, force, K, free_mask, T)
     return SystemResult(
         lines=results,
         point_position=pos,
@@ -487,24 +603,45 @@ def _solve(
         body_stiffness=body_stiffness,
         iterations=it,
         residual=res,
+        seabed_force=reaction,
+        resting=tuple(str(n) for n in np.asarray(system.point_names)[free_mask][contact]),
     )
 
 
-def _on_seabed(system: MooringSystem, free_mask: np.ndarray, pressed: np.ndarray) -> str:
+def _plane_dofs(plane: Any, contact: np.ndarray) -> np.ndarray | None:
+    """(3 k, d) the free points' motions from their unknowns: three for a point off the
+    seabed, two along the seabed's plane (its basis) for one resting on it; None when
+    none rests on it."""
+    if plane is None or not contact.any():
+        return None
+    T = np.zeros((3 * len(contact), 3 * len(contact) - int(contact.sum())))
+    basis = np.stack(plane.basis, axis=1)
+    j = 0
+    for i, on in enumerate(contact):
+        n = 2 if on else 3
+        T[3 * i : 3 * i + 3, j : j + n] = basis if on else np.eye(3)
+        j += n
+    return T
+
+
+def _on_seabed(
+    system: MooringSystem, free_mask: np.ndarray, pressed: np.ndarray, plane: Any
+) -> str:
     """The part of a failure's message naming the free points the last Newton step
-    pressed into the seabed, or its start put there (``pressed``, per free point): a
-    free point resting on the seabed has no seabed reaction in this model, so such an
-    equilibrium is not found."""
+    pressed onto the seabed, or its start put there (``pressed``, per free point), and,
+    with seabed friction, that such a point is solved without friction only."""
     low = [
         str(n) for n, p in zip(np.asarray(system.point_names)[free_mask], pressed, strict=True) if p
     ]
     if not low:
         return ""
-    return (
-        f"; free point {', '.join(low)} is pressed into or placed on the seabed: a free "
-        "point resting on the seabed is not modelled (no seabed reaction on points); give "
-        "it buoyancy (volume) or join its lines into one line"
-    )
+    text = f"; free point {', '.join(low)} is pressed onto or placed on the seabed"
+    if plane is not None and plane.friction:
+        text += (
+            f" (with seabed friction {plane.friction:g}: a free point resting on the seabed "
+            "is solved without friction only, friction: 0)"
+        )
+    return text
 
 
 def _trial(
@@ -572,7 +709,10 @@ def _bodies(
     force: np.ndarray,
     K: np.ndarray,
     free_mask: np.ndarray,
+    T: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
+    """The lines' force on each body and its stiffness, the free points re-equilibrated
+    (those resting on the seabed along it: ``T``, :func:`_plane_dofs`)."""
     m = len(system.body_names)
     body_force = np.zeros((m, 6))
     body_stiffness = np.zeros((m, 6, 6))
@@ -581,8 +721,11 @@ def _bodies(
         return body_force, body_stiffness
     B, P = _dof_index(on_body), _dof_index(free_mask)
     Kc = K[np.ix_(B, B)]
-    if P.size:
+    if P.size and T is None:
         Kc = Kc - K[np.ix_(B, P)] @ np.linalg.solve(K[np.ix_(P, P)], K[np.ix_(P, B)])
+    elif P.size:
+        Kbp, Kpb = K[np.ix_(B, P)] @ T, T.T @ K[np.ix_(P, B)]
+        Kc = Kc - Kbp @ np.linalg.solve(T.T @ K[np.ix_(P, P)] @ T, Kpb)
     idx = np.flatnonzero(on_body)
     for b in range(m):
         pose = system.body_position[b]

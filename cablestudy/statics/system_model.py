@@ -98,6 +98,11 @@ class SystemResult:
     #: ``position`` (K, M, n, 3) [m], ``laid_length`` (K, M) [m], ``anchored`` (K, M)
     #: (on the seabed at an anchor); None when not asked or not all settled and verified
     extra: dict | None = None
+    #: [N] (n, 3) the seabed's force on each point resting on it (free points only; zero
+    #: elsewhere); None when no point rests on the seabed
+    seabed_force: np.ndarray | None = None
+    #: the names of the free points resting on the seabed
+    resting: tuple[str, ...] = ()
 
 
 class SystemFailure(Exception):

@@ -143,7 +143,7 @@ def slack_forces(problem: StaticProblem) -> tuple[np.ndarray, np.ndarray, np.nda
             return None
         S[i], W[i], k[i] = out
     laid = L - S[0] - S[1]
-    if not laid > float(np.linalg.norm(feet[1] - feet[0])):
+    if laid < float(np.linalg.norm(feet[1] - feet[0])):
         return None  # taut: the contact solvers' state
     forces = []
     K = np.zeros((2, 2, 3, 3))

@@ -179,49 +179,101 @@ def test_a_u_between_floats_with_a_point_at_its_bottom_is_the_one_line_u(
     assert np.abs(fine).max() < 0.05  # [m], of floats about 100 m from the centre
 
 
-def test_the_u_by_the_catenary_is_refused_naming_the_method_that_models_it(
+def test_the_u_by_the_catenary_with_a_point_resting_at_its_bottom_is_the_one_line_u(
     tmp_path: Path,
 ) -> None:
-    ds = _failed(
+    """MoorPy's ``test_basicU`` by the catenary (exact): the floats of the two layouts
+    agree to the Newton's tolerance (MoorPy asserts 1 mm). The free point at the bottom
+    rests on the seabed; the U line's end stiffness (touching the seabed between two
+    raised ends) comes from differences of its solves."""
+    ends = {"a1": _fixed([-200.0, 0.0, -100.0]), "a2": _fixed([200.0, 0.0, -100.0])}
+    f1, f2 = _free([-100.0, 0.0, -50.0], volume=50.0), _free([100.0, 0.0, -40.0], volume=50.0)
+    four = {"l1": ("a1", "fl1", 120.0), "l2": ("fl1", "mid", 125.0)}
+    four |= {"l3": ("mid", "fl2", 125.0), "l4": ("fl2", "a2", 120.0)}
+    two = run_study(
         tmp_path,
-        _study(
-            "u_catenary",
-            100.0,
-            {
-                "a1": _fixed([-200.0, 0.0, -100.0]),
-                "fl1": _free([-100.0, 0.0, -50.0], volume=50.0),
-                "fl2": _free([100.0, 0.0, -40.0], volume=50.0),
-                "a2": _fixed([200.0, 0.0, -100.0]),
-            },
-            {"l1": ("a1", "fl1", 120.0), "l2": ("fl1", "fl2", 250.0), "l3": ("fl2", "a2", 120.0)},
-        ),
+        _study("u4", 100.0, {**ends, "fl1": f1, "mid": _free([0.0, 0.0, -100.0]), "fl2": f2}, four),
     )
-    assert int(ds["status"]) != 0
-    assert "method: discrete" in str(ds["message"].values)
+    three = {"l1": ("a1", "fl1", 120.0), "l2": ("fl1", "fl2", 250.0), "l3": ("fl2", "a2", 120.0)}
+    one = run_study(tmp_path, _study("u3", 100.0, {**ends, "fl1": f1, "fl2": f2}, three))
+    assert int(one["status"]) == 0 and int(two["status"]) == 0
+    floats = two["point_position"].values[[0, 2]]
+    np.testing.assert_allclose(floats, one["point_position"].values, rtol=0.0, atol=1e-6)
+    assert two["point_position"].values[1, 2] == -100.0  # on the seabed
 
 
 @pytest.mark.parametrize("z", [-200.0, -190.0])  # as MoorPy places them; above
-def test_free_points_that_would_rest_on_the_seabed_are_named(tmp_path: Path, z: float) -> None:
+def test_free_points_resting_on_the_seabed_pull_as_the_whole_line(tmp_path: Path, z: float) -> None:
+    """MoorPy's ``test_multiseg_seabed``: two junctions on the laid part of the chain,
+    held on the seabed's plane (the seabed's reaction across it, their motion along
+    it); every point balanced by the lines and the seabed to the system's tolerance."""
+    anchor, fair = _fixed([-800.0, 0.0, -200.0]), _fixed([0.0, 0.0, 0.0])
+    points = {"a": anchor, "m1": _free([-700.0, 0.0, z]), "m2": _free([-600.0, 0.0, z]), "f": fair}
+    lines = {"l1": ("a", "m1", 100.0), "l2": ("m1", "m2", 100.0), "l3": ("m2", "f", 660.0)}
+    three = run_study(tmp_path, _study("three", 200.0, points, lines))
+    one = run_study(
+        tmp_path, _study("whole", 200.0, {"a": anchor, "f": fair}, {"l": ("a", "f", 860.0)})
+    )
+    assert int(three["status"]) == 0, str(three["message"].values)
+    a1, b1, big = _ends(one)
+    a3, b3, _ = _ends(three)
+    np.testing.assert_allclose(a3, a1, atol=1e-8 * big)
+    np.testing.assert_allclose(b3, b1, atol=1e-8 * big)
+    assert (three["point_position"].values[:, 2] == -200.0).all()
+    fa, fb = three["force_a"].values, three["force_b"].values
+    net = np.stack((fb[0] + fa[1], fb[1] + fa[2])) + three["point_seabed_force"].values
+    assert np.abs(net).max() <= 1e-8 * big
+    assert (three["point_seabed_force"].values[:, 2] >= 0.0).all()
+
+
+def test_a_clump_resting_on_the_seabed_is_the_clump_on_the_line(tmp_path: Path) -> None:
+    """A 2 t clump where two chains meet, resting on the laid part: the seabed carries
+    its weight, and the pull is the one line's with the clump attached there."""
+    env = {"fluid": {"density": 1025.0}, "gravity": 9.81, "depth": 200.0}
+    ends = {"a": {"kind": "fixed", "position": [-800.0, 0.0, -200.0]}}
+    ends["b"] = {"kind": "fixed", "position": [0.0, 0.0, 0.0]}
+    segs = [{"length": 402.0, **SEG}, {"length": 486.0, **SEG}]
+    line = {"segments": segs, "attachments": [{"s": 402.0, "mass": 2000.0}]}
+    one = run_study(
+        tmp_path,
+        yaml.safe_dump(
+            {"name": "clumped", "environment": env, "line": line, "ends": ends,
+             "analysis": {"static": {"nodes": 21}}}
+        ),
+    )  # fmt: skip
+    pts = {"a": _fixed([-800.0, 0.0, -200.0]), "f": _fixed([0.0, 0.0, 0.0])}
+    pts["m"] = _free([-450.0, 0.0, -150.0], mass=2000.0)
+    two = run_study(
+        tmp_path,
+        _study("joined", 200.0, pts, {"l1": ("a", "m", 402.0), "l2": ("m", "f", 486.0)}),
+    )
+    assert int(one["status"]) == 0 and int(two["status"]) == 0, str(two["message"].values)
+    big = float(one["tension_b"].max())
+    np.testing.assert_allclose(two["force_a"].values[0], one["force_a"].values, atol=1e-8 * big)
+    np.testing.assert_allclose(two["force_b"].values[1], one["force_b"].values, atol=1e-8 * big)
+    assert two["point_position"].values[0, 2] == -200.0
+    weight = 2000.0 * 9.81  # in water: its volume is none
+    assert two["point_seabed_force"].values[0, 2] == pytest.approx(weight, rel=1e-8)
+
+
+def test_a_point_resting_on_the_seabed_with_friction_is_refused_by_name(tmp_path: Path) -> None:
+    points = {
+        "a": _fixed([-800.0, 0.0, -200.0]),
+        "m": _free([-700.0, 0.0, -190.0]),
+        "f": _fixed([0.0, 0.0, 0.0]),
+    }
     ds = _failed(
         tmp_path,
         _study(
-            "points_on_seabed",
+            "rubbing",
             200.0,
-            {
-                "a": _fixed([-800.0, 0.0, -200.0]),
-                "m1": _free([-700.0, 0.0, z]),
-                "m2": _free([-600.0, 0.0, z]),
-                "f": _fixed([0.0, 0.0, 0.0]),
-            },
-            {"l1": ("a", "m1", 100.0), "l2": ("m1", "m2", 100.0), "l3": ("m2", "f", 660.0)},
+            points,
+            {"l1": ("a", "m", 100.0), "l2": ("m", "f", 760.0)},
+            friction=0.5,
         ),
     )
-    assert int(ds["status"]) != 0
     message = str(ds["message"].values)
-    assert (
-        "free point m1, m2 is pressed into or placed on the seabed" in message
-        and "not modelled" in message
-    )
+    assert "friction 0.5" in message and "friction: 0" in message
     assert np.isnan(ds["tension_a"].values).all()
 
 
@@ -264,3 +316,20 @@ def test_a_floating_body_with_a_waterplane_returns_to_its_symmetric_equilibrium(
     weight = 1e6 * 9.81
     assert abs(rho_g * 1e6 * pose[2] - (rho_g * 1e3 - weight + lines_force[2])) <= 1e-9 * weight
     assert -1e-3 < pose[2] < 0.0  # the lines pull it down by about 0.76 mm
+
+
+@pytest.mark.parametrize("method", ["time", "frequency"])
+def test_the_dynamics_refuse_a_point_resting_on_the_seabed_and_keep_the_statics(
+    tmp_path: Path, method: str
+) -> None:
+    anchor, fair = _fixed([-800.0, 0.0, -200.0]), _fixed([0.0, 0.0, 0.0])
+    points = {"a": anchor, "m": _free([-700.0, 0.0, -190.0]), "f": fair}
+    study = yaml.safe_load(
+        _study("moved", 200.0, points, {"l1": ("a", "m", 100.0), "l2": ("m", "f", 760.0)})
+    )
+    motion = {"point": "f", "direction": [1.0, 0.0, 0.0], "amplitude": 1.0, "frequency": 0.1}
+    study["analysis"]["dynamic"] = {"excitation": motion, "method": method, "elements": 8}
+    ds = _failed(tmp_path, yaml.safe_dump(study, sort_keys=False))
+    assert "rests on the seabed in the static state" in str(ds["message"].values)
+    assert int(ds["static_status"]) == 0 and np.isfinite(ds["tension_a"].values).all()
+    assert ds["point_position"].values[0, 2] == -200.0
