@@ -184,6 +184,8 @@ def statics_problems(ds: xr.Dataset, balance: float = 1e-6) -> list[str]:
                 continue  # in a current the point's drag joins the balance
             up = (rho * spec.get("volume", 0.0) - spec.get("mass", 0.0)) * g
             net = pull[p] + np.array([0.0, 0.0, up]) + np.asarray(spec.get("force", [0, 0, 0]))
+            if "point_seabed_force" in c:  # the seabed's push on a point resting on it
+                net = net + c["point_seabed_force"].sel(point=p).values
             if np.abs(net).max() > balance * big:
                 errs.append(f"case {k}: free point {p} out of balance by {net}")
         for name, ln in lines.items():  # each line ends at its points

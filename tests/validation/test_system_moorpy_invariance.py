@@ -31,7 +31,7 @@ import xarray as xr
 import yaml
 
 from cablestudy.cli import main
-from tests.system_contract import run_study
+from tests.system_contract import run_study, statics_problems
 
 SEG = {"diameter": 0.216, "mass_per_length": 288.0, "axial_stiffness": 1232572089.6}
 
@@ -224,6 +224,7 @@ def test_free_points_resting_on_the_seabed_pull_as_the_whole_line(tmp_path: Path
     net = np.stack((fb[0] + fa[1], fb[1] + fa[2])) + three["point_seabed_force"].values
     assert np.abs(net).max() <= 1e-8 * big
     assert (three["point_seabed_force"].values[:, 2] >= 0.0).all()
+    assert statics_problems(three, balance=1e-8) == []  # the external checker's balance
 
 
 def test_a_clump_resting_on_the_seabed_is_the_clump_on_the_line(tmp_path: Path) -> None:
