@@ -585,35 +585,45 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                     v[i, a] = 1j * omega * u[i, a]
                     vr[i, a] = v[i, a].real
                     vi[i, a] = v[i, a].imag
-            drag_fit_samples(
-                vr,
-                vi,
-                current,
-                tangent,
-                c_n,
-                c_t,
-                c_b,
-                d_small,
-                cos,
-                sin,
-                exact,
-                W0,
-                W1,
-                W2,
-                F0,
-                F1,
-                F2,
-                kind,
-                lean,
-                D,
-            )
             mix_state[0] = 0
             mix_state[1] = 0
             last = np.inf
             change = np.inf
             converged = False
             iterations = max_iterations
-            for it in range(1, max_iterations + 1):
+            for it in range(1, max_iterations + 2):
+                # the fit to the last motion: the first one taken as it is, the later
+                # ones mixed with the drag that gave the motion (after the last
+                # iteration too: the end rows take that drag)
+                drag_fit_samples(
+                    vr,
+                    vi,
+                    current,
+                    tangent,
+                    c_n,
+                    c_t,
+                    c_b,
+                    d_small,
+                    cos,
+                    sin,
+                    exact,
+                    W0,
+                    W1,
+                    W2,
+                    F0,
+                    F1,
+                    F2,
+                    kind,
+                    lean,
+                    G,
+                )
+                if it == 1:
+                    D[:] = G
+                else:
+                    _mixed(D, G, hist_R, hist_G, gram, mix_state, change, last)
+                    last = change
+                if it > max_iterations:
+                    break
                 for r in range(N):
                     for j in range(width):
                         R[r, j] = base[r, j]
@@ -672,30 +682,6 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                     for a in range(3):
                         vr[i, a] = v[i, a].real
                         vi[i, a] = v[i, a].imag
-                drag_fit_samples(
-                    vr,
-                    vi,
-                    current,
-                    tangent,
-                    c_n,
-                    c_t,
-                    c_b,
-                    d_small,
-                    cos,
-                    sin,
-                    exact,
-                    W0,
-                    W1,
-                    W2,
-                    F0,
-                    F1,
-                    F2,
-                    kind,
-                    lean,
-                    G,
-                )
-                _mixed(D, G, hist_R, hist_G, gram, mix_state, change, last)
-                last = change
         else:
             for r in range(N):
                 for j in range(width):
