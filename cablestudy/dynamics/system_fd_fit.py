@@ -15,6 +15,7 @@ import math
 import numpy as np
 from numba import njit
 
+from .drag_lean import lean_from_sums
 from .elliptic_fit import still_water_means
 from .frequency_model import FIT_REGULARISATION, is_planar, planar_drag_fit
 from .harmonic_kernel import fit_from_sums, ring_push, secant_system
@@ -138,20 +139,9 @@ def fit_node(i, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, out):  # 
         h20 -= fm2 * w0s
         h21 -= fm2 * w1s
         h22 -= fm2 * w2s
-    # the lean: c_N (sum |w_N| (I - t t^T) + sum w_N w_N^T / |w_N|) + c_B (...)
-    # + 2 c_T <|w_T|> t t^T
-    along = ct * 2.0 * (abs_t / samples)
-    t = (t0, t1, t2)
     Wn = ((n00, n01, n02), (n01, n11, n12), (n02, n12, n22))
     Wb = ((q00, q01, q02), (q01, q11, q12), (q02, q12, q22))
-    for a in range(3):
-        for b in range(a, 3):
-            eye = 1.0 if a == b else 0.0
-            jn = sum_n * (eye - t[a] * t[b]) + Wn[a][b]
-            jb = sum_r * eye + Wb[a][b]
-            v = (cn * jn + cb * jb) / samples + along * t[a] * t[b]
-            lean[i, a, b] = v
-            lean[i, b, a] = v
+    lean_from_sums(sum_n, sum_r, abs_t, Wn, Wb, (t0, t1, t2), cn, ct, cb, samples, lean, i)
     if exact and not body and is_planar(vr, vi, tan, cur, i):
         planar_drag_fit(vr, vi, tan, cur, c_n, c_t, lean, i, out)
         return
