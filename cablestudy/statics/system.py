@@ -440,28 +440,19 @@ def _solve(
             if polished:
                 break
         pos = point_positions(system, x)
-    if not verified:
-        body_force, body_stiffness = _bodies(final, pos, force, K, free_mask)
-        return SystemResult(
-            lines=results,
-            point_position=pos,
-            body_force=body_force,
-            body_stiffness=body_stiffness,
-            iterations=it,
-            residual=res,
-        )
-    results, force, K = _solve_lines(final, pos, solver, deadline)
-    if P.size:
-        # the Newton's lines were unverified (the kernels' answers, for speed): the
-        # verified lines at the solution must hold the points in equilibrium as well
-        final_res = float(np.max(np.abs(force[free_mask] + pf))) / scale
-        if not final_res <= max(100.0 * system.tolerance, 1e-10):
-            raise SystemFailure(
-                STATUS_NOT_CONVERGED,
-                f"free-point equilibrium: the verified lines at the Newton's solution leave "
-                f"a net force of {final_res:.3g} of the largest tension (tolerance "
-                f"{system.tolerance:.3g})",
-            )
+    if verified:
+        results, force, K = _solve_lines(final, pos, solver, deadline)
+        if P.size:
+            # the Newton's lines were unverified (the kernels' answers, for speed): the
+            # verified lines at the solution must hold the points in equilibrium as well
+            final_res = float(np.max(np.abs(force[free_mask] + pf))) / scale
+            if not final_res <= max(100.0 * system.tolerance, 1e-10):
+                raise SystemFailure(
+                    STATUS_NOT_CONVERGED,
+                    f"free-point equilibrium: the verified lines at the Newton's solution leave "
+                    f"a net force of {final_res:.3g} of the largest tension (tolerance "
+                    f"{system.tolerance:.3g})",
+                )
     body_force, body_stiffness = _bodies(final, pos, force, K, free_mask)
     return SystemResult(
         lines=results,
