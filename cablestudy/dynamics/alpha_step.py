@@ -271,22 +271,35 @@ def alpha_step(
         # (its direction kept), a few times per step at most.
         scale = 1.0
         if clips < MAX_LANDING_CLIPS:
-            for i in range(n):
-                if held[i] or seabed_stiffness[i] <= 0.0:
-                    continue
-                if slip_state.shape[1] > 2 and (slip_state[i, 2] == 1 or slip_state[i, 2] == 2):
-                    continue  # a held contact state: no kink to stop at
-                g0 = -seabed_offset
-                g1 = -seabed_offset
-                for c in range(3):
-                    g0 += seabed_normal[c] * x1[i, c]
-                    g1 += seabed_normal[c] * (x1[i, c] + dx[i, c])
-                if (g0 > 0.0 and g1 < 0.0) or (g0 < 0.0 and g1 > 0.0):
-                    scale = min(scale, max(g0 / (g0 - g1), MIN_CLIP))
+            scale = landing_clip(
+                x1, dx, 0, n, held, seabed_stiffness, slip_state, seabed_normal, seabed_offset, 1.0
+            )
             if scale < 1.0:
                 clips += 1
         newmark_correct(x1, v1, a1, dx, held, n, scale, beta, gamma, h)
     return max_iterations, False
+
+
+@njit(cache=True, inline="always")
+def landing_clip(x1, dx, lo, hi, held, ksb, slip, normal, offset, scale):  # noqa: ANN001, ANN201, PLR0913
+    """``scale`` lowered to the fraction of the Newton correction ``dx`` that stops the
+    first of nodes ``lo`` .. ``hi - 1`` crossing the seabed plane (``normal`` . x =
+    ``offset``) on it, at least :data:`MIN_CLIP`; a held node, one without seabed
+    stiffness ``ksb`` or in a held contact state (``slip[:, 2]`` 1 or 2: no kink to stop
+    at) is passed over. Shared by :func:`alpha_step` and the system's step."""
+    for i in range(lo, hi):
+        if held[i] or ksb[i] <= 0.0:
+            continue
+        if slip.shape[1] > 2 and (slip[i, 2] == 1 or slip[i, 2] == 2):
+            continue
+        g0 = -offset
+        g1 = -offset
+        for c in range(3):
+            g0 += normal[c] * x1[i, c]
+            g1 += normal[c] * (x1[i, c] + dx[i, c])
+        if (g0 > 0.0 and g1 < 0.0) or (g0 < 0.0 and g1 > 0.0):
+            scale = min(scale, max(g0 / (g0 - g1), MIN_CLIP))
+    return scale
 
 
 #: stick/slip re-checks per time step after Newton converged with a wrong guess

@@ -85,10 +85,21 @@ def sampled_lean(W0, W1, W2, planar, current, tangent, c_n, c_t, c_b, i, lean): 
                 q11 += r1 * r1 * inv
                 q12 += r1 * r2 * inv
                 q22 += r2 * r2 * inv
-    along = ct * 2.0 * (abs_t / samples)
-    t = (t0, t1, t2)
     wn = ((n00, n01, n02), (n01, n11, n12), (n02, n12, n22))
     wb = ((q00, q01, q02), (q01, q11, q12), (q02, q12, q22))
+    lean_from_sums(sum_n, sum_r, abs_t, wn, wb, (t0, t1, t2), cn, ct, cb, samples, lean, i)
+
+
+@njit(cache=True, inline="always")
+def lean_from_sums(sum_n, sum_r, abs_t, wn, wb, t, cn, ct, cb, samples, lean, i):  # noqa: ANN001, ANN201, PLR0913
+    """``lean[i]`` the mean Jacobian (module docstring) ``c_N (sum |w_N| (I - t t^T) +
+    sum w_N w_N^T / |w_N|) + c_B (sum |w| I + sum w w^T / |w|)`` over ``samples`` phases,
+    plus ``2 c_T <|w_T|> t t^T``, from the sums ``sum_n`` (of ``|w_N|``), ``sum_r`` (of
+    ``|w|``), ``abs_t`` (of ``|w_T|``) and the symmetric 3 x 3 tuples ``wn``, ``wb``
+    (of ``w_N w_N^T / |w_N|``, ``w w^T / |w|``); ``t`` the tangent. Shared by
+    :func:`sampled_lean` and the system's :func:`.system_fd_fit.fit_node` (inlined: the
+    caller's floating-point flags)."""
+    along = ct * 2.0 * (abs_t / samples)
     for a in range(3):
         for b in range(a, 3):
             eye = 1.0 if a == b else 0.0

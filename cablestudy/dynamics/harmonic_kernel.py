@@ -355,48 +355,39 @@ def _axpy_difference(d, a, g, h):  # noqa: ANN001, ANN202
         d[q] -= a * (g[q] - h[q])
 
 
-@njit(cache=True)
-def _mixed(D, G, hist_R, hist_G, gram, state, change, last):  # noqa: ANN001, ANN202, PLR0913
-    """The next drag matrices ``D`` of the fixed point ``D = G(D)`` (``G`` the fit to the
-    motion ``D`` gave): after a change that grew, the mean of the two with the history
-    dropped; else Anderson mixing over the last (residual ``R = G - D``, ``G``) pairs,
-    ``D = G - sum_j g_j (G - G_j)`` with ``g`` the least-squares fit of ``R`` by the
-    residual differences ``R - R_j`` (depth one: the secant step ``theta = R . dR / dR
-    . dR``). The pairs sit in the ring ``hist_R``, ``hist_G`` (depth + 1, n * 9) with
-    their Gram matrix ``gram`` (depth + 1, depth + 1); ``state`` (2,) int holds the
-    number of pairs and the ring's first slot."""
-    d = D.reshape(-1)
-    g = G.reshape(-1)
-    size = d.size
+@njit(cache=True, inline="always")
+def ring_push(d, g, hist_R, hist_G, state):  # noqa: ANN001, ANN201
+    """Anderson mixing's new pair (residual ``g - d``, fit ``g``; flat drags) into the
+    ring of rows of ``hist_R``, ``hist_G`` (depth + 1, size) whose ``state[0]`` pairs
+    start at row ``state[1]`` (oldest first: the oldest leaves by moving the start);
+    ``state`` updated, returns the new pair's row. Shared by the single line's
+    :func:`_mixed` and the system's :func:`.system_fd_fit.anderson`."""
     keep = hist_R.shape[0]
     count, head = state[0], state[1]
-    if change >= last:
-        for q in range(size):
-            d[q] = 0.5 * (d[q] + g[q])
-        state[0] = 0
-        state[1] = 0
-        return
-    if count == keep:  # the oldest pair leaves
+    if count == keep:  # the oldest pair leaves; the new one takes its row
         slot = head
         head = (head + 1) % keep
     else:
         slot = (head + count) % keep
         count += 1
-    for q in range(size):
+    for q in range(d.shape[0]):
         hist_R[slot, q] = g[q] - d[q]
         hist_G[slot, q] = g[q]
-    for c in range(count):
-        j = (head + c) % keep
-        acc = _dot(hist_R[slot], hist_R[j])
-        gram[slot, j] = acc
-        gram[j, slot] = acc
     state[0] = count
     state[1] = head
+    return slot
+
+
+@njit(cache=True, inline="always")
+def secant_system(gram, slot, state):  # noqa: ANN001, ANN201
+    """The normal equations ``A gam = rhs`` of Anderson mixing over the ``m = state[0] -
+    1`` pairs other than the new one in row ``slot`` (:func:`ring_push`), from their
+    Gram matrix ``gram``: ``A[a, b] = (r - R_a) . (r - R_b)``, ``rhs[a] = (r - R_a) .
+    r``; returns (the other pairs' rows oldest first, ``A``, ``rhs``, the trace of
+    ``A``)."""
+    keep = gram.shape[0]
+    count, head = state[0], state[1]
     m = count - 1
-    if m == 0:
-        for q in range(size):
-            d[q] = g[q]
-        return
     others = np.empty(m, dtype=np.int64)
     c2 = 0
     for c in range(count):
@@ -415,6 +406,42 @@ def _mixed(D, G, hist_R, hist_G, gram, state, change, last):  # noqa: ANN001, AN
             jb = others[b]
             A[a, b] = rr - gram[slot, ja] - gram[slot, jb] + gram[ja, jb]
         trace += A[a, a]
+    return others, A, rhs, trace
+
+
+@njit(cache=True)
+def _mixed(D, G, hist_R, hist_G, gram, state, change, last):  # noqa: ANN001, ANN202, PLR0913
+    """The next drag matrices ``D`` of the fixed point ``D = G(D)`` (``G`` the fit to the
+    motion ``D`` gave): after a change that grew, the mean of the two with the history
+    dropped; else Anderson mixing over the last (residual ``R = G - D``, ``G``) pairs,
+    ``D = G - sum_j g_j (G - G_j)`` with ``g`` the least-squares fit of ``R`` by the
+    residual differences ``R - R_j`` (depth one: the secant step ``theta = R . dR / dR
+    . dR``). The pairs sit in the ring ``hist_R``, ``hist_G`` (depth + 1, n * 9) with
+    their Gram matrix ``gram`` (depth + 1, depth + 1); ``state`` (2,) int holds the
+    number of pairs and the ring's first slot (:func:`ring_push`)."""
+    d = D.reshape(-1)
+    g = G.reshape(-1)
+    size = d.size
+    keep = hist_R.shape[0]
+    if change >= last:
+        for q in range(size):
+            d[q] = 0.5 * (d[q] + g[q])
+        state[0] = 0
+        state[1] = 0
+        return
+    slot = ring_push(d, g, hist_R, hist_G, state)
+    count, head = state[0], state[1]
+    for c in range(count):
+        j = (head + c) % keep
+        acc = _dot(hist_R[slot], hist_R[j])
+        gram[slot, j] = acc
+        gram[j, slot] = acc
+    m = count - 1
+    if m == 0:
+        for q in range(size):
+            d[q] = g[q]
+        return
+    others, A, rhs, trace = secant_system(gram, slot, state)
     gam = np.zeros(m)
     if trace > 0.0:
         for a in range(m):
@@ -585,35 +612,45 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                     v[i, a] = 1j * omega * u[i, a]
                     vr[i, a] = v[i, a].real
                     vi[i, a] = v[i, a].imag
-            drag_fit_samples(
-                vr,
-                vi,
-                current,
-                tangent,
-                c_n,
-                c_t,
-                c_b,
-                d_small,
-                cos,
-                sin,
-                exact,
-                W0,
-                W1,
-                W2,
-                F0,
-                F1,
-                F2,
-                kind,
-                lean,
-                D,
-            )
             mix_state[0] = 0
             mix_state[1] = 0
             last = np.inf
             change = np.inf
             converged = False
             iterations = max_iterations
-            for it in range(1, max_iterations + 1):
+            for it in range(1, max_iterations + 2):
+                # the fit to the last motion: the first one taken as it is, the later
+                # ones mixed with the drag that gave the motion (after the last
+                # iteration too: the end rows take that drag)
+                drag_fit_samples(
+                    vr,
+                    vi,
+                    current,
+                    tangent,
+                    c_n,
+                    c_t,
+                    c_b,
+                    d_small,
+                    cos,
+                    sin,
+                    exact,
+                    W0,
+                    W1,
+                    W2,
+                    F0,
+                    F1,
+                    F2,
+                    kind,
+                    lean,
+                    G,
+                )
+                if it == 1:
+                    D[:] = G
+                else:
+                    _mixed(D, G, hist_R, hist_G, gram, mix_state, change, last)
+                    last = change
+                if it > max_iterations:
+                    break
                 for r in range(N):
                     for j in range(width):
                         R[r, j] = base[r, j]
@@ -672,30 +709,6 @@ def _cases_kernel(  # noqa: ANN201, PLR0913, PLR0912, PLR0915
                     for a in range(3):
                         vr[i, a] = v[i, a].real
                         vi[i, a] = v[i, a].imag
-                drag_fit_samples(
-                    vr,
-                    vi,
-                    current,
-                    tangent,
-                    c_n,
-                    c_t,
-                    c_b,
-                    d_small,
-                    cos,
-                    sin,
-                    exact,
-                    W0,
-                    W1,
-                    W2,
-                    F0,
-                    F1,
-                    F2,
-                    kind,
-                    lean,
-                    G,
-                )
-                _mixed(D, G, hist_R, hist_G, gram, mix_state, change, last)
-                last = change
         else:
             for r in range(N):
                 for j in range(width):

@@ -15,9 +15,10 @@ import math
 import numpy as np
 from numba import njit
 
+from .drag_lean import lean_from_sums
 from .elliptic_fit import still_water_means
 from .frequency_model import FIT_REGULARISATION, is_planar, planar_drag_fit
-from .harmonic_kernel import fit_from_sums
+from .harmonic_kernel import fit_from_sums, ring_push, secant_system
 
 #: the sums over the phases may be reassociated (vectorised: the system's frequency
 #: domain takes 13% less time a case); no other fast-math flag: with contraction and
@@ -138,20 +139,9 @@ def fit_node(i, vr, vi, cur, tan, c_n, c_t, c_b, cs, sn_, exact, lean, out):  # 
         h20 -= fm2 * w0s
         h21 -= fm2 * w1s
         h22 -= fm2 * w2s
-    # the lean: c_N (sum |w_N| (I - t t^T) + sum w_N w_N^T / |w_N|) + c_B (...)
-    # + 2 c_T <|w_T|> t t^T
-    along = ct * 2.0 * (abs_t / samples)
-    t = (t0, t1, t2)
     Wn = ((n00, n01, n02), (n01, n11, n12), (n02, n12, n22))
     Wb = ((q00, q01, q02), (q01, q11, q12), (q02, q12, q22))
-    for a in range(3):
-        for b in range(a, 3):
-            eye = 1.0 if a == b else 0.0
-            jn = sum_n * (eye - t[a] * t[b]) + Wn[a][b]
-            jb = sum_r * eye + Wb[a][b]
-            v = (cn * jn + cb * jb) / samples + along * t[a] * t[b]
-            lean[i, a, b] = v
-            lean[i, b, a] = v
+    lean_from_sums(sum_n, sum_r, abs_t, Wn, Wb, (t0, t1, t2), cn, ct, cb, samples, lean, i)
     if exact and not body and is_planar(vr, vi, tan, cur, i):
         planar_drag_fit(vr, vi, tan, cur, c_n, c_t, lean, i, out)
         return
@@ -316,47 +306,20 @@ def anderson(d, g, hist_R, hist_G, gram, state, change, last):  # noqa: ANN001, 
         for q in range(size):
             d[q] = 0.5 * (d[q] + g[q])
         return
+    slot = ring_push(d, g, hist_R, hist_G, state)
     count, head = state[0], state[1]
-    if count == keep:  # the oldest pair leaves; the new one takes its row
-        slot = head
-        head = (head + 1) % keep
-    else:
-        slot = (head + count) % keep
-        count += 1
-    for q in range(size):
-        hist_R[slot, q] = g[q] - d[q]
-        hist_G[slot, q] = g[q]
     r = hist_R[slot]
     for c in range(count):
         j = (head + c) % keep
         acc = _dot(r, hist_R[j], size)
         gram[slot, j] = acc
         gram[j, slot] = acc
-    state[0] = count
-    state[1] = head
     m = count - 1
     if m > 0:
         # the normal equations (dR dR^T + 1e-12 tr I) gam = dR r over the kept pairs,
         # oldest first, by :func:`_small_solve` (BLAS and LAPACK through numba cost
         # more in calls and copies than the sums themselves)
-        others = np.empty(m, dtype=np.int64)
-        a = 0
-        for c in range(count):
-            j = (head + c) % keep
-            if j != slot:
-                others[a] = j
-                a += 1
-        A = np.empty((m, m))
-        gam = np.empty(m)
-        rr = gram[slot, slot]
-        trace = 0.0
-        for a in range(m):
-            ja = others[a]
-            gam[a] = rr - gram[slot, ja]
-            for b in range(m):
-                jb = others[b]
-                A[a, b] = rr - gram[slot, ja] - gram[slot, jb] + gram[ja, jb]
-            trace += A[a, a]
+        others, A, gam, trace = secant_system(gram, slot, state)
         if trace > 0.0:
             for a in range(m):
                 A[a, a] += 1e-12 * trace

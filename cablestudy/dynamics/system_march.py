@@ -21,7 +21,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .alpha_step import MAX_LANDING_CLIPS, MAX_STATE_CHECKS, MIN_CLIP, STATE_CHECK_FACTOR
+from .alpha_step import MAX_LANDING_CLIPS, MAX_STATE_CHECKS, STATE_CHECK_FACTOR, landing_clip
 from .assembly import _trial_states, contact_states_lines, states_changed, update_anchors
 from .end_support import seabed_support
 from .step_parts import (
@@ -113,22 +113,9 @@ def _landing_clip(S, W, x1, dx, sbn, sbo, ksb):  # noqa: ANN001, ANN201
     seabed plane on it (a node whose contact state is not held), at least
     :data:`.integrator.MIN_CLIP` (as the single line's step)."""
     no, held = S[0], S[21]
-    slip = W[12]
     scale = 1.0
     for l in range(no.shape[0] - 1):  # noqa: E741
-        off = sbo[l]
-        for i in range(no[l], no[l + 1]):
-            if held[i] or ksb[i] <= 0.0:
-                continue
-            if slip[i, 2] == 1 or slip[i, 2] == 2:
-                continue
-            g0 = -off
-            g1 = -off
-            for c in range(3):
-                g0 += sbn[c] * x1[i, c]
-                g1 += sbn[c] * (x1[i, c] + dx[i, c])
-            if (g0 > 0.0 and g1 < 0.0) or (g0 < 0.0 and g1 > 0.0):
-                scale = min(scale, max(g0 / (g0 - g1), MIN_CLIP))
+        scale = landing_clip(x1, dx, no[l], no[l + 1], held, ksb, W[12], sbn, sbo[l], scale)
     return scale
 
 

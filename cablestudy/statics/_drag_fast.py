@@ -347,28 +347,12 @@ def _drag_case(
                 res = change / max(Fscale + size, 1e-300)
                 if res <= tol_fp and tol_inner <= tol_fp:
                     done = True
-                    for k in range(3):
-                        TA[k] = T[k]
-                    for p in range(P):
-                        for k in range(3):
-                            Dused[p, k] = D[p, k]
-                            Dout[p, k] = Dn[p, k]
-                    for p in range(P + 1):
-                        for k in range(3):
-                            nodes_out[p, k] = nodes[p, k]
+                    _keep(T, D, Dn, nodes, TA, Dused, Dout, nodes_out)
                     break
                 if res < best_res:
                     best_res = res
                     have_best = True
-                    for k in range(3):
-                        best_TA[k] = T[k]
-                    for p in range(P):
-                        for k in range(3):
-                            best_D[p, k] = D[p, k]
-                            best_Dn[p, k] = Dn[p, k]
-                    for p in range(P + 1):
-                        for k in range(3):
-                            best_nodes[p, k] = nodes[p, k]
+                    _keep(T, D, Dn, nodes, best_TA, best_D, best_Dn, best_nodes)
                 if res < 0.5 * best:
                     best = res
                     stall = 0
@@ -389,15 +373,7 @@ def _drag_case(
             if not done:
                 if (not final) and have_best and best_res < 1e-2:
                     res = best_res
-                    for k in range(3):
-                        TA[k] = best_TA[k]
-                    for p in range(P):
-                        for k in range(3):
-                            Dused[p, k] = best_D[p, k]
-                            Dout[p, k] = best_Dn[p, k]
-                    for p in range(P + 1):
-                        for k in range(3):
-                            nodes_out[p, k] = best_nodes[p, k]
+                    _keep(best_TA, best_D, best_Dn, best_nodes, TA, Dused, Dout, nodes_out)
                 else:
                     failed = True
                     break
@@ -412,6 +388,23 @@ def _drag_case(
             st_TA[k] = saved[k]
         have = saved_have
     return FAILED, 0.0, 0.0
+
+
+@njit(cache=True, error_model="numpy")
+def _keep(T, D, Dn, nodes, T_to, D_to, Dn_to, nodes_to):  # noqa: ANN001, ANN202, PLR0913
+    """Copy a drag iterate (the end tension ``T`` (3,), the drag ``D`` the shape was
+    solved with and the loads ``Dn`` it gave (P, 3), the piece boundaries ``nodes``
+    (P + 1, 3)) into the ``*_to`` arrays of the same shapes."""
+    P = D.shape[0]
+    for k in range(3):
+        T_to[k] = T[k]
+    for p in range(P):
+        for k in range(3):
+            D_to[p, k] = D[p, k]
+            Dn_to[p, k] = Dn[p, k]
+    for p in range(P + 1):
+        for k in range(3):
+            nodes_to[p, k] = nodes[p, k]
 
 
 @njit(cache=True, error_model="numpy")

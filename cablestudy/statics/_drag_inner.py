@@ -152,6 +152,48 @@ def _offsets3(q: np.ndarray, ell: np.ndarray, point: np.ndarray, C: np.ndarray, 
 
 
 @njit(cache=True, error_model="numpy")
+def mooring_vertical(Hh: float, Wz: float, h: float, L: float) -> float:
+    """The starting vertical tension at end A [N] of a mooring line (end B at height
+    ``h`` [m] above A, the horizontal end force ``Hh`` [N] given): the uniform catenary
+    of length ``L`` [m] and total downward load ``Wz`` [N] through both ends; half of
+    ``-Wz`` for a line with no downward load. Shared by
+    :func:`.semi_analytic_newton.initial_tension` and :func:`_initial_tension`."""
+    if Wz <= 0.0:
+        return -0.5 * Wz
+    w = Wz / L
+    c = Wz / max(Hh, 1e-300)
+    if c < 600.0 and Hh > 0.0:
+        a = math.asinh(w * h / (2.0 * Hh * math.sinh(0.5 * c))) - 0.5 * c
+        return Hh * math.sinh(a)
+    return 0.5 * (w * h - Wz)
+
+
+@njit(cache=True, error_model="numpy")
+def uniform_end_tension(
+    w: float, L: float, h: float, l: float, chord: float, stretch: float
+) -> tuple[float, float]:
+    """(H, V_A) [N] of the uniform line (load ``w`` [N/m] along ``-up``, length ``L``
+    [m]) between ends ``h`` [m] apart along ``up`` and ``l`` [m] across it (``chord``
+    [m] apart), after Peyrot & Goulios (1979), with the elastic ``stretch`` [N] of a taut
+    chord added: the start of :func:`.semi_analytic_newton.initial_tension` and
+    :func:`_initial_tension`."""
+    if l <= 1e-12 * chord:
+        H = 0.0
+        VB = 0.5 * w * (L + h) if L > abs(h) else w * L + max(stretch, 0.0)
+    else:
+        if L <= chord:
+            lam = 0.2
+        else:
+            lam = max(math.sqrt(3.0 * max((L * L - h * h) / (l * l) - 1.0, 0.0)), 1e-3)
+        H = w * l / (2.0 * lam)
+        VB = 0.5 * w * (h / math.tanh(lam) + L)
+        if chord > L:
+            H = max(H, stretch * l / chord)
+            VB = max(VB, stretch * h / chord + 0.5 * w * L)
+    return H, VB - w * L
+
+
+@njit(cache=True, error_model="numpy")
 def _initial_tension(
     q: np.ndarray,
     ell: np.ndarray,
@@ -182,19 +224,7 @@ def _initial_tension(
         TA[0] = force[0] + Cend[0]
         TA[1] = force[1] + Cend[1]
         TA[2] = 0.0
-        Hh = math.hypot(TA[0], TA[1])
-        Wz = -Cend[2]
-        h = zB - rA[2]
-        if Wz <= 0.0:
-            TA[2] = -0.5 * Wz
-            return
-        w = Wz / L
-        c = Wz / max(Hh, 1e-300)
-        if c < 600.0 and Hh > 0.0:
-            a = math.asinh(w * h / (2.0 * Hh * math.sinh(0.5 * c))) - 0.5 * c
-            TA[2] = Hh * math.sinh(a)
-        else:
-            TA[2] = 0.5 * (w * h - Wz)
+        TA[2] = mooring_vertical(math.hypot(TA[0], TA[1]), -Cend[2], zB - rA[2], L)
         return
     d0, d1, d2 = rB[0] - rA[0], rB[1] - rA[1], rB[2] - rA[2]
     chord = math.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
@@ -219,20 +249,7 @@ def _initial_tension(
             e0, e1, e2 = -up2, 0.0, up0
         n = math.sqrt(e0 * e0 + e1 * e1 + e2 * e2)
         e0, e1, e2 = e0 / n, e1 / n, e2 / n
-    if l <= 1e-12 * chord:
-        H = 0.0
-        VB = 0.5 * w * (L + h) if L > abs(h) else w * L + max(stretch, 0.0)
-    else:
-        if L <= chord:
-            lam = 0.2
-        else:
-            lam = max(math.sqrt(3.0 * max((L * L - h * h) / (l * l) - 1.0, 0.0)), 1e-3)
-        H = w * l / (2.0 * lam)
-        VB = 0.5 * w * (h / math.tanh(lam) + L)
-        if chord > L:
-            H = max(H, stretch * l / chord)
-            VB = max(VB, stretch * h / chord + 0.5 * w * L)
-    VA = VB - w * L
+    H, VA = uniform_end_tension(w, L, h, l, chord, stretch)
     TA[0] = H * e0 + VA * up0 + point[0, 0]
     TA[1] = H * e1 + VA * up1 + point[0, 1]
     TA[2] = H * e2 + VA * up2 + point[0, 2]

@@ -41,6 +41,8 @@ def initial_tension(lay: Layout, q: np.ndarray, ends: Ends) -> np.ndarray:
     """Starting T_A for a free-hanging line: the uniform line with the same total load
     (direction and size) between the same ends, after Peyrot & Goulios (1979), with the
     elastic stretch added for taut chords."""
+    from ._drag_inner import mooring_vertical, uniform_end_tension  # numba: not at import
+
     C, Cend = _offsets(lay, q)
     L = lay.total
     EA = L / float(np.sum(lay.ell / lay.EA))
@@ -51,19 +53,8 @@ def initial_tension(lay: Layout, q: np.ndarray, ends: Ends) -> np.ndarray:
     if ends.kind == "mooring":
         assert ends.force is not None
         TA = np.array([ends.force[0] + Cend[0], ends.force[1] + Cend[1], 0.0])
-        Hh = math.hypot(TA[0], TA[1])
-        Wz = -float(Cend[2])  # total downward load
         h = ends.zB - float(ends.rA[2])
-        if Wz <= 0.0:
-            TA[2] = -0.5 * Wz
-            return TA
-        w = Wz / L
-        c = Wz / max(Hh, 1e-300)
-        if c < 600.0 and Hh > 0.0:
-            a = math.asinh(w * h / (2.0 * Hh * math.sinh(0.5 * c))) - 0.5 * c
-            TA[2] = Hh * math.sinh(a)
-        else:
-            TA[2] = 0.5 * (w * h - Wz)
+        TA[2] = mooring_vertical(math.hypot(TA[0], TA[1]), -float(Cend[2]), h, L)
         return TA
     assert ends.rB is not None
     d = ends.rB - ends.rA
@@ -84,20 +75,7 @@ def initial_tension(lay: Layout, q: np.ndarray, ends: Ends) -> np.ndarray:
         if np.linalg.norm(e) < 0.5:
             e = np.cross(up, [0.0, 1.0, 0.0])
         e = e / np.linalg.norm(e)
-    if l <= 1e-12 * chord:
-        H = 0.0
-        VB = 0.5 * w * (L + h) if L > abs(h) else w * L + max(stretch, 0.0)
-    else:
-        if L <= chord:
-            lam = 0.2
-        else:
-            lam = max(math.sqrt(3.0 * max((L * L - h * h) / (l * l) - 1.0, 0.0)), 1e-3)
-        H = w * l / (2.0 * lam)
-        VB = 0.5 * w * (h / math.tanh(lam) + L)
-        if chord > L:
-            H = max(H, stretch * l / chord)
-            VB = max(VB, stretch * h / chord + 0.5 * w * L)
-    VA = VB - w * L
+    H, VA = uniform_end_tension(w, L, h, l, chord, stretch)
     # T_A is the tension just before the point load at s = 0: add it back
     return H * e + VA * up + lay.point[0]
 
