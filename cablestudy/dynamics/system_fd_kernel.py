@@ -186,25 +186,6 @@ def _dense_solve(G, rhs, n):  # noqa: ANN001, ANN202
 
 
 @njit(cache=True, error_model="numpy", fastmath=_SAFE_FAST)
-def _parts(w, KR, MR, CR, IEK, IEM, IEC, EIK, EIM, EIC, EEK, EEM, EEC, Rb, IE, EI, EE):  # noqa: ANN001, ANN202, PLR0913
-    """The dynamic matrix without drag at ``w`` (``K - w^2 M + i w C``): band rows
-    ``Rb``, couplings ``IE`` (dofs, 6), ``EI`` (6, dofs), ``EE`` (L, 6, 6), shared by
-    the iterations of a case."""
-    iw = 1j * w
-    w2 = w * w
-    for i in range(KR.shape[0]):
-        for c in range(KR.shape[1]):
-            Rb[i, c] = KR[i, c] - w2 * MR[i, c] + iw * CR[i, c]
-        for c in range(6):
-            IE[i, c] = IEK[i, c] - w2 * IEM[i, c] + iw * IEC[i, c]
-            EI[c, i] = EIK[c, i] - w2 * EIM[c, i] + iw * EIC[c, i]
-    for line in range(EEK.shape[0]):
-        for r in range(6):
-            for c in range(6):
-                EE[line, r, c] = EEK[line, r, c] - w2 * EEM[line, r, c] + iw * EEC[line, r, c]
-
-
-@njit(cache=True, error_model="numpy", fastmath=_SAFE_FAST)
 def _line_sides(X, k0, k, rev, line, ends, slot, couple, c0, c1, IE, prescribed):  # noqa: ANN001, ANN202, PLR0913
     """The right sides of line ``line`` into ``X[k0:k0 + k]`` (factor order): the unit
     motions of its free ends, then the prescribed ends' motion together if one moves;
@@ -327,7 +308,7 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
     blocky,
 ):
     """One linear solve at fixed drag (``drag``: ``D`` (nodes, 3, 3) and ``Dp`` (P, 3,
-    3) enter) at ``w`` [rad/s] with :func:`_parts` ``Rb`` ... ``EE`` at ``w``:
+    3) enter) at ``w`` [rad/s] with :func:`.system_fd_sweep._parts_at`'s ``Rb`` ... ``EE`` at ``w``:
     ``u_pts`` (P, 3), ``disp`` (nodes, 3), ``forces`` (L, 6) (the force each line
     needs at its end nodes, ``A_EE u_E + A_EI u_I``). ``couple[coff[l]:coff[l+1]]``:
     the dofs of line ``l`` coupled to its end nodes (the non-zero columns of ``A_EI``
