@@ -319,7 +319,8 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
     puts the free end last: a line whose end A alone is free is eliminated from its
     end B (row ``s`` of the factor is the line's dof ``k - 1 - s``). The junction
     needs ``A_EI X`` at the free ends only, so the back substitution of the right sides
-    runs over the rows from the first one coupled to a free end to the last (``low``);
+    runs over the rows from the first one coupled to a free end to the last (``low[l, 0]``;
+    ``low[l, 1]``: the row above which the unit motions' eliminated sides are zero);
     after the junction solve, the inner motion is one back substitution of the
     eliminated sides combined by the end motions (the rows already solved combined
     directly)."""
@@ -354,19 +355,25 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
         # right sides: unit motions of the free ends, the prescribed ends' motion together
         m = _line_sides(X, k0, k, rev, line, ends, slot, couple, c0, c1, IE, prescribed)
         ncol[line] = m
-        # the first row of the factor that a free end's junction rows read
-        first = k
+        # the first row of the factor that a free end's junction rows read, and the
+        # first where a free end's unit motion is not zero
+        first = top = k
         for q in range(c0, c1):
             i = couple[q]
             s_i = k - 1 - i if rev else i
-            if s_i < first:
-                for e in range(2):
-                    if slot[ends[line, e]] >= 0:
-                        for a in range(3):
-                            z = EI[3 * e + a, k0 + i]
-                            if z.real != 0.0 or z.imag != 0.0:
-                                first = s_i
-        low[line] = first
+            for e in range(2):
+                if slot[ends[line, e]] >= 0:
+                    for a in range(3):
+                        z = EI[3 * e + a, k0 + i]
+                        if s_i < first and (z.real != 0.0 or z.imag != 0.0):
+                            first = s_i
+                        z = IE[k0 + i, 3 * e + a]
+                        if s_i < top and (z.real != 0.0 or z.imag != 0.0):
+                            top = s_i
+        low[line, 0] = first
+        # above both the unit motions' eliminated sides stay zero (the block factor
+        # exchanges no rows and skips a node's zero sides; the band factor may exchange)
+        low[line, 1] = 0
         if k > 0:
             Rl = R[k0:]
             done = False
@@ -380,7 +387,9 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
                 )
                 if not done:
                     _line_sides(X, k0, k, rev, line, ends, slot, couple, c0, c1, IE, prescribed)
-            if not done:
+            if done:
+                low[line, 1] = min(first, top)
+            else:
                 _line_rows(Rl, Rb, k0, k, rev, bw, drag, na, nb, ncount, nfirst, unit, basis, D, iw)
                 if not _band_factor(Rl, bw, k, reach[k0:], X[k0:], m, pinv[k0:]):
                     return SINGULAR_LINE, line
@@ -436,21 +445,28 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
         c0, c1 = coff[line], coff[line + 1]
         rev = slot[ends[line, 0]] >= 0 and slot[ends[line, 1]] < 0
         m = ncol[line]
-        first = low[line]
+        first, zero = low[line, 0], low[line, 1]
+        units = 0  # the unit motions' columns
+        for e in range(2):
+            if slot[ends[line, e]] >= 0:
+                units += 3
         for e in range(2):
             for a in range(3):
                 uE[3 * e + a] = u_pts[ends[line, e], a]
         # u_I = X [u_E; 1]: the rows back-substituted already combined, the others
         # substituted back from the combined eliminated sides (row s of the factor is
-        # the dof k - 1 - s of a reversed line)
+        # the dof k - 1 - s of a reversed line); above ``zero`` the unit motions' sides
+        # are zeros, which leave ``acc`` +0 (the same bits without them)
         for s_ in range(k - 1, -1, -1):
             acc = 0j
-            c = 0
-            for e in range(2):
-                if slot[ends[line, e]] >= 0:
-                    for a in range(3):
-                        acc += X[k0 + s_, c] * uE[3 * e + a]
-                        c += 1
+            c = units
+            if s_ >= zero:
+                c = 0
+                for e in range(2):
+                    if slot[ends[line, e]] >= 0:
+                        for a in range(3):
+                            acc += X[k0 + s_, c] * uE[3 * e + a]
+                            c += 1
             if c < m:
                 acc += X[k0 + s_, c]
             if s_ < first:

@@ -76,7 +76,7 @@ def workspace(m, bw, samples):  # noqa: ANN001, ANN201
         np.empty((DEPTH + 1, size)),  # hist_R
         np.empty((DEPTH + 1, size)),  # hist_G
         np.zeros(2, dtype=np.int64),  # state: the mixing's pairs and first row
-        np.empty(L, dtype=np.int64),  # low: per line the first row back-substituted
+        np.empty((L, 2), dtype=np.int64),  # low: per line the first row back-substituted
         np.zeros((N, 3), dtype=np.complex128),  # qs_d: the last quasi-static start's motion
         np.zeros((P, 3), dtype=np.complex128),  # qs_p
         np.zeros((P, 3), dtype=np.complex128),  # qs_of: the prescribed motion it is of
