@@ -44,6 +44,12 @@ def _big(z):  # noqa: ANN001, ANN202
 
 
 @njit(cache=True, inline="always")
+def _finite(z):  # noqa: ANN001, ANN202
+    """Whether both parts of ``z`` are finite."""
+    return math.isfinite(z.real) and math.isfinite(z.imag)
+
+
+@njit(cache=True, inline="always")
 def _inverse(z):  # noqa: ANN001, ANN202
     """``1 / z`` (complex), NaN for zero: Smith's quotient, as numba's division."""
     a, b = z.real, z.imag
@@ -141,7 +147,7 @@ def block_factor(A, k0, N, rev, bw, drag, D, g0, iw, R, reach, B, m, pinv):  # n
         i2 = _inverse(s22)
         if not (_big(l10) <= _LIMIT and _big(l20) <= _LIMIT and _big(l21) <= _LIMIT):
             return False  # (NaN for a zero pivot fails here too)
-        if not (math.isfinite(i2.real) and math.isfinite(i2.imag)):
+        if not _finite(i2):
             return False
         R[r, bw] = s00
         R[r, bw + 1] = s01
@@ -182,6 +188,8 @@ def block_factor(A, k0, N, rev, bw, drag, D, g0, iw, R, reach, B, m, pinv):  # n
                     continue
             z1 = z1 - l10 * z0
             z2 = z2 - l20 * z0 - l21 * z1
+            if not (_finite(z0) and _finite(z1) and _finite(z2)):
+                return False  # (the node's rows are final: each row is checked once)
             B[r + 1, c] = z1
             B[r + 2, c] = z2
             if not last:
@@ -227,10 +235,6 @@ def block_factor(A, k0, N, rev, bw, drag, D, g0, iw, R, reach, B, m, pinv):  # n
         s20 = a20 - m20 * v00 - m21 * v10 - m22 * v20
         s21 = a21 - m20 * v01 - m21 * v11 - m22 * v21
         s22 = a22 - m20 * v02 - m21 * v12 - m22 * v22
-    for i in range(N):
-        for c in range(m):
-            if not (math.isfinite(B[i, c].real) and math.isfinite(B[i, c].imag)):
-                return False
     return True
 
 

@@ -186,25 +186,6 @@ def _dense_solve(G, rhs, n):  # noqa: ANN001, ANN202
 
 
 @njit(cache=True, error_model="numpy", fastmath=_SAFE_FAST)
-def _parts(w, KR, MR, CR, IEK, IEM, IEC, EIK, EIM, EIC, EEK, EEM, EEC, Rb, IE, EI, EE):  # noqa: ANN001, ANN202, PLR0913
-    """The dynamic matrix without drag at ``w`` (``K - w^2 M + i w C``): band rows
-    ``Rb``, couplings ``IE`` (dofs, 6), ``EI`` (6, dofs), ``EE`` (L, 6, 6), shared by
-    the iterations of a case."""
-    iw = 1j * w
-    w2 = w * w
-    for i in range(KR.shape[0]):
-        for c in range(KR.shape[1]):
-            Rb[i, c] = KR[i, c] - w2 * MR[i, c] + iw * CR[i, c]
-        for c in range(6):
-            IE[i, c] = IEK[i, c] - w2 * IEM[i, c] + iw * IEC[i, c]
-            EI[c, i] = EIK[c, i] - w2 * EIM[c, i] + iw * EIC[c, i]
-    for line in range(EEK.shape[0]):
-        for r in range(6):
-            for c in range(6):
-                EE[line, r, c] = EEK[line, r, c] - w2 * EEM[line, r, c] + iw * EEC[line, r, c]
-
-
-@njit(cache=True, error_model="numpy", fastmath=_SAFE_FAST)
 def _line_sides(X, k0, k, rev, line, ends, slot, couple, c0, c1, IE, prescribed):  # noqa: ANN001, ANN202, PLR0913
     """The right sides of line ``line`` into ``X[k0:k0 + k]`` (factor order): the unit
     motions of its free ends, then the prescribed ends' motion together if one moves;
@@ -327,7 +308,7 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
     blocky,
 ):
     """One linear solve at fixed drag (``drag``: ``D`` (nodes, 3, 3) and ``Dp`` (P, 3,
-    3) enter) at ``w`` [rad/s] with :func:`_parts` ``Rb`` ... ``EE`` at ``w``:
+    3) enter) at ``w`` [rad/s] with :func:`.system_fd_sweep._parts_at`'s ``Rb`` ... ``EE`` at ``w``:
     ``u_pts`` (P, 3), ``disp`` (nodes, 3), ``forces`` (L, 6) (the force each line
     needs at its end nodes, ``A_EE u_E + A_EI u_I``). ``couple[coff[l]:coff[l+1]]``:
     the dofs of line ``l`` coupled to its end nodes (the non-zero columns of ``A_EI``
@@ -338,7 +319,8 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
     puts the free end last: a line whose end A alone is free is eliminated from its
     end B (row ``s`` of the factor is the line's dof ``k - 1 - s``). The junction
     needs ``A_EI X`` at the free ends only, so the back substitution of the right sides
-    runs over the rows from the first one coupled to a free end to the last (``low``);
+    runs over the rows from the first one coupled to a free end to the last (``low[l, 0]``;
+    ``low[l, 1]``: the row above which the unit motions' eliminated sides are zero);
     after the junction solve, the inner motion is one back substitution of the
     eliminated sides combined by the end motions (the rows already solved combined
     directly)."""
@@ -373,19 +355,25 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
         # right sides: unit motions of the free ends, the prescribed ends' motion together
         m = _line_sides(X, k0, k, rev, line, ends, slot, couple, c0, c1, IE, prescribed)
         ncol[line] = m
-        # the first row of the factor that a free end's junction rows read
-        first = k
+        # the first row of the factor that a free end's junction rows read, and the
+        # first where a free end's unit motion is not zero
+        first = top = k
         for q in range(c0, c1):
             i = couple[q]
             s_i = k - 1 - i if rev else i
-            if s_i < first:
-                for e in range(2):
-                    if slot[ends[line, e]] >= 0:
-                        for a in range(3):
-                            z = EI[3 * e + a, k0 + i]
-                            if z.real != 0.0 or z.imag != 0.0:
-                                first = s_i
-        low[line] = first
+            for e in range(2):
+                if slot[ends[line, e]] >= 0:
+                    for a in range(3):
+                        z = EI[3 * e + a, k0 + i]
+                        if s_i < first and (z.real != 0.0 or z.imag != 0.0):
+                            first = s_i
+                        z = IE[k0 + i, 3 * e + a]
+                        if s_i < top and (z.real != 0.0 or z.imag != 0.0):
+                            top = s_i
+        low[line, 0] = first
+        # above both the unit motions' eliminated sides stay zero (the block factor
+        # exchanges no rows and skips a node's zero sides; the band factor may exchange)
+        low[line, 1] = 0
         if k > 0:
             Rl = R[k0:]
             done = False
@@ -399,7 +387,9 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
                 )
                 if not done:
                     _line_sides(X, k0, k, rev, line, ends, slot, couple, c0, c1, IE, prescribed)
-            if not done:
+            if done:
+                low[line, 1] = min(first, top)
+            else:
                 _line_rows(Rl, Rb, k0, k, rev, bw, drag, na, nb, ncount, nfirst, unit, basis, D, iw)
                 if not _band_factor(Rl, bw, k, reach[k0:], X[k0:], m, pinv[k0:]):
                     return SINGULAR_LINE, line
@@ -455,21 +445,28 @@ def _solve(  # noqa: ANN201, PLR0912, PLR0913, PLR0915
         c0, c1 = coff[line], coff[line + 1]
         rev = slot[ends[line, 0]] >= 0 and slot[ends[line, 1]] < 0
         m = ncol[line]
-        first = low[line]
+        first, zero = low[line, 0], low[line, 1]
+        units = 0  # the unit motions' columns
+        for e in range(2):
+            if slot[ends[line, e]] >= 0:
+                units += 3
         for e in range(2):
             for a in range(3):
                 uE[3 * e + a] = u_pts[ends[line, e], a]
         # u_I = X [u_E; 1]: the rows back-substituted already combined, the others
         # substituted back from the combined eliminated sides (row s of the factor is
-        # the dof k - 1 - s of a reversed line)
+        # the dof k - 1 - s of a reversed line); above ``zero`` the unit motions' sides
+        # are zeros, which leave ``acc`` +0 (the same bits without them)
         for s_ in range(k - 1, -1, -1):
             acc = 0j
-            c = 0
-            for e in range(2):
-                if slot[ends[line, e]] >= 0:
-                    for a in range(3):
-                        acc += X[k0 + s_, c] * uE[3 * e + a]
-                        c += 1
+            c = units
+            if s_ >= zero:
+                c = 0
+                for e in range(2):
+                    if slot[ends[line, e]] >= 0:
+                        for a in range(3):
+                            acc += X[k0 + s_, c] * uE[3 * e + a]
+                            c += 1
             if c < m:
                 acc += X[k0 + s_, c]
             if s_ < first:

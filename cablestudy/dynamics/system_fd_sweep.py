@@ -26,7 +26,7 @@ import numpy as np
 from numba import njit
 
 from .system_fd_fit import DEPTH, anderson, fit_all
-from .system_fd_kernel import OK, _larger, _parts, _residual, _solve
+from .system_fd_kernel import OK, _larger, _residual, _solve
 
 #: ``info`` of a case (``info[i]``): code, iterations, failing line, 1 if it failed in
 #: the quasi-static start
@@ -61,8 +61,8 @@ def workspace(m, bw, samples):  # noqa: ANN001, ANN201
         np.empty((3 * F, 3 * F), dtype=np.complex128),  # G
         np.empty(3 * F, dtype=np.complex128),  # rhs
         np.empty(KR.shape, dtype=np.complex128),  # Rb
-        np.empty((K, 6), dtype=np.complex128),  # IE
-        np.empty((6, K), dtype=np.complex128),  # EI
+        np.zeros((K, 6), dtype=np.complex128),  # IE (its dofs coupled to the ends alone)
+        np.zeros((6, K), dtype=np.complex128),  # EI
         np.empty((L, 6, 6), dtype=np.complex128),  # EE
         np.zeros(size),  # flat: the drag D (N, 3, 3) then Dp (P, 3, 3)
         np.zeros(size),  # fit: the fit of the last iterate, as flat
@@ -76,7 +76,7 @@ def workspace(m, bw, samples):  # noqa: ANN001, ANN201
         np.empty((DEPTH + 1, size)),  # hist_R
         np.empty((DEPTH + 1, size)),  # hist_G
         np.zeros(2, dtype=np.int64),  # state: the mixing's pairs and first row
-        np.empty(L, dtype=np.int64),  # low: per line the first row back-substituted
+        np.empty((L, 2), dtype=np.int64),  # low: per line the first row back-substituted
         np.zeros((N, 3), dtype=np.complex128),  # qs_d: the last quasi-static start's motion
         np.zeros((P, 3), dtype=np.complex128),  # qs_p
         np.zeros((P, 3), dtype=np.complex128),  # qs_of: the prescribed motion it is of
@@ -136,26 +136,28 @@ def _solve_at(w, drag, m, bw, ws, prescribed, disp, u_pts, forces):  # noqa: ANN
 
 @njit(cache=True, error_model="numpy")
 def _parts_at(w, m, ws):  # noqa: ANN001, ANN202
-    """:func:`.system_fd_kernel._parts` of the model ``m`` at ``w`` into ``ws``."""
-    _parts(
-        w,
-        m[2],
-        m[3],
-        m[4],
-        m[5],
-        m[6],
-        m[7],
-        m[8],
-        m[9],
-        m[10],
-        m[11],
-        m[12],
-        m[13],
-        ws[9],
-        ws[10],
-        ws[11],
-        ws[12],
-    )
+    """The dynamic matrix of the model ``m`` without drag at ``w`` (``K - w^2 M + i w
+    C``) into ``ws``: band rows ``Rb``, couplings ``IE`` (dofs, 6), ``EI`` (6, dofs),
+    ``EE`` (L, 6, 6), shared by the iterations of a case. ``IE`` and ``EI`` only at the
+    dofs coupled to the end nodes (``couple``: the only ones
+    :func:`.system_fd_kernel._solve` reads; the others zero, :func:`workspace`)."""
+    KR, MR, CR, koff, couple, coff = m[2], m[3], m[4], m[1], m[14], m[15]
+    IEK, IEM, IEC, EIK, EIM, EIC, EEK, EEM, EEC = m[5:14]
+    Rb, IE, EI, EE = ws[9], ws[10], ws[11], ws[12]
+    iw = 1j * w
+    w2 = w * w
+    for i in range(KR.shape[0]):
+        for c in range(KR.shape[1]):
+            Rb[i, c] = KR[i, c] - w2 * MR[i, c] + iw * CR[i, c]
+    for line in range(EEK.shape[0]):
+        for q in range(coff[line], coff[line + 1]):
+            i = koff[line] + couple[q]
+            for c in range(6):
+                IE[i, c] = IEK[i, c] - w2 * IEM[i, c] + iw * IEC[i, c]
+                EI[c, i] = EIK[c, i] - w2 * EIM[c, i] + iw * EIC[c, i]
+        for r in range(6):
+            for c in range(6):
+                EE[line, r, c] = EEK[line, r, c] - w2 * EEM[line, r, c] + iw * EEC[line, r, c]
 
 
 @njit(cache=True, error_model="numpy")

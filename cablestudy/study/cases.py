@@ -354,7 +354,15 @@ def check_path(data: dict[str, Any], path: str) -> str | None:
 
 
 def parse_sweep(src: StudySource) -> list[SweepAxis]:
-    """The sweep axes of a study source, in file order. Raises :class:`StudyError`."""
+    """The sweep axes of a study source, in file order (found once per source: a run
+    asks three or four times). Raises :class:`StudyError`."""
+    found = src.memo.get("axes")
+    if found is None:
+        found = src.memo["axes"] = tuple(_parse_sweep(src))
+    return list(found)
+
+
+def _parse_sweep(src: StudySource) -> list[SweepAxis]:
     raw = src.data.get("sweep") or {}
     if not isinstance(raw, dict):
         raise StudyError(

@@ -6,7 +6,7 @@ import difflib
 import hashlib
 import types
 import typing
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -47,6 +47,8 @@ class StudySource:
     source: str
     #: what files the study refers to hold and cablestudy does not model (by name)
     notes: tuple[str, ...] = ()
+    #: what is found once from the source (its sweep axes, :func:`.cases.parse_sweep`)
+    memo: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
 
     @property
     def sha256(self) -> str:
