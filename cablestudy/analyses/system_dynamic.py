@@ -18,6 +18,7 @@ from typing import Any
 import numpy as np
 
 from ..statics import STATUS_NUMERICAL, STATUS_OK
+from ..statics.system_model import resting_on_seabed
 from ..study.analysis import BodySpectrumExcitation, SpectrumExcitation
 from ..study.cases import Case
 from ..study.system import BodyPoint, FreePoint
@@ -231,23 +232,11 @@ def slot_motion(study: Any, driven: list[int]) -> tuple[Any, np.ndarray, float, 
     return motion, d_slot, period, step
 
 
-def resting_on_seabed(system: Any, static: Any) -> str:
-    """Why the dynamics refuse a static state with free points resting on the seabed
-    ('' when none does): their contact with the seabed is modelled in the statics only."""
-    names = getattr(static, "resting", ())
-    if not names:
-        return ""
-    return (
-        f"free point {', '.join(names)} rests on the seabed in the static state: a free "
-        "point's contact with the seabed is modelled in the statics only"
-    )
-
-
 def run_system_dynamic(
     case: Case, system: Any, static: Any, deadline: float | None
 ) -> tuple[int, str, dict[str, np.ndarray]]:
     """The case's time-domain run and its outputs: (status, message, outputs)."""
-    resting = resting_on_seabed(system, static)
+    resting = resting_on_seabed(static)
     if resting:
         return STATUS_NUMERICAL, resting, {}
     from ..dynamics.system_model import Drives

@@ -9,7 +9,7 @@ fixed), its end stiffness G = J^-1 from the flexibility J = d(r_B - r_A)/d T_A a
 solution; a line anchored at end A on the seabed by the Newton of
 :func:`._fast_contact.contact_cases`, its end stiffness K_BB = N M^-1 (M = d r_B / dy
 the contact Newton's Jacobian, N = d T(L) / dy, y = (alpha, beta, s_td)), as
-:func:`.system.line_end_stiffness`.
+:func:`.line_stiffness.line_end_stiffness`.
 
 Each line of a trial starts from its own solution at the current iterate (its tension
 at A hanging free, or its touchdown unknowns on the seabed), so a system iteration

@@ -5,7 +5,7 @@ A line hanging free: the Newton of :func:`._fast.solve_cases` (end B fixed) on t
 tension at A, and G = J^-1 from its flexibility J = d(r_B - r_A)/d T_A at the solution.
 A line anchored at A on the seabed: the Newton of :func:`._fast_contact.contact_cases`
 on y = (alpha, beta, s_td), and K_BB = N M^-1 (M = d r_B / dy, N = d T(L) / dy), as
-:func:`.system.line_end_stiffness`. Pure: arrays in, arrays out.
+:func:`.line_stiffness.line_end_stiffness`. Pure: arrays in, arrays out.
 """
 
 from __future__ import annotations

@@ -4,7 +4,7 @@ A line on the seabed from its anchor may leave the seabed at a downward point lo
 clump), the seabed carrying part R of the load's weight (the pinned contact state of
 :mod:`.contact_pin`). There the touchdown point does not move with the fairlead: the
 fairlead moves R and the in-plane touchdown tension T_hat instead. The free-TDP
-stiffness of :func:`.system.line_end_stiffness` (unknowns alpha, beta, s_td) is then
+stiffness of :func:`.line_stiffness.line_end_stiffness` (unknowns alpha, beta, s_td) is then
 the wrong derivative, and a system's Newton with it converges slowly or not at all (a
 clump near a leg's touchdown: "free-point equilibrium did not converge").
 

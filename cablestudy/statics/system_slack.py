@@ -101,7 +101,7 @@ def hanging(
 def slack_forces(problem: StaticProblem) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
     """A line between its fixed end positions lying slack on the seabed: the forces it
     exerts on its ends A and B [N] (3,) and its end stiffness (2, 2, 3, 3) [N/m]
-    (K[i, j] = -d f_i / d r_j, as :func:`.system.line_end_stiffness`). None where the
+    (K[i, j] = -d f_i / d r_j, as :func:`.line_stiffness.line_end_stiffness`). None where the
     line is not slack there, or where the slack state is not the one above: no seabed,
     a current, a non-linear axial law, a piece lighter than the fluid or a point load
     that is not straight down."""

@@ -12,7 +12,7 @@ import pytest
 
 from cablestudy.analyses.system import system_model
 from cablestudy.statics import STATIC_SOLVERS, EndCondition
-from cablestudy.statics.system import line_end_stiffness
+from cablestudy.statics.line_stiffness import line_end_stiffness
 from cablestudy.statics.system_methods import solve_system_by
 from cablestudy.statics.system_model import SystemResult
 from cablestudy.study import parse_study_text

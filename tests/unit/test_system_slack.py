@@ -15,7 +15,7 @@ from dataclasses import replace
 import numpy as np
 
 from cablestudy.statics import STATIC_SOLVERS, EndCondition, Medium, StaticProblem
-from cablestudy.statics.system import line_end_stiffness
+from cablestudy.statics.line_stiffness import line_end_stiffness
 from cablestudy.statics.system_slack import hanging, slack_forces
 from tests.line_models import one_segment
 
