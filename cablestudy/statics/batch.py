@@ -51,11 +51,9 @@ def solve_batch(
     for i, prob in enumerate(problems):
         res = results[i]
         if res is None or not res.success:
-            res = verified(
-                prob,
-                solver.solve(prob, deadline=deadline, compiled=False).check_finite(),
-                method=solver.name,
-            )
+            res = solver.solve(prob, deadline=deadline, compiled=False).check_finite()
+            if verify:  # an iterate's answer is re-solved and verified where it is kept
+                res = verified(prob, res, method=solver.name)
             if general is not None:
                 general.append(i)
             if i in tried:

@@ -334,3 +334,36 @@ def test_the_dynamics_refuse_a_point_resting_on_the_seabed_and_keep_the_statics(
     assert "rests on the seabed in the static state" in str(ds["message"].values)
     assert int(ds["static_status"]) == 0 and np.isfinite(ds["tension_a"].values).all()
     assert ds["point_position"].values[0, 2] == -200.0
+
+
+def test_a_start_that_makes_a_line_a_u_still_finds_the_clump_resting_on_the_seabed(
+    tmp_path: Path,
+) -> None:
+    """A 10 t clump joining two chains, its guess 50 m above the seabed: there the
+    second chain hangs in a U (raised at both ends, laid between). The Newton's trial
+    solves are not verified (only the answer is, at the study's nodes: a U sampled at
+    its ends alone could not pass the check), so the start is taken and the clump comes
+    to rest on the laid chain, pulling as the one line with the clump attached."""
+    env = {"fluid": {"density": 1025.0}, "gravity": 9.81, "depth": 200.0}
+    ends = {"a": {"kind": "fixed", "position": [-800.0, 0.0, -200.0]}}
+    ends["b"] = {"kind": "fixed", "position": [0.0, 0.0, 0.0]}
+    segs = [{"length": 242.3, **SEG}, {"length": 675.2, **SEG}]
+    line = {"segments": segs, "attachments": [{"s": 242.3, "mass": 10000.0}]}
+    one = run_study(
+        tmp_path,
+        yaml.safe_dump(
+            {"name": "clumped", "environment": env, "line": line, "ends": ends,
+             "analysis": {"static": {"nodes": 21}}}
+        ),
+    )  # fmt: skip
+    pts = {"a": _fixed([-800.0, 0.0, -200.0]), "f": _fixed([0.0, 0.0, 0.0])}
+    pts["m"] = _free([-582.0, 0.0, -150.0], mass=10000.0)
+    two = run_study(
+        tmp_path,
+        _study("u_start", 200.0, pts, {"l1": ("a", "m", 242.3), "l2": ("m", "f", 675.2)}),
+    )
+    assert int(one["status"]) == 0 and int(two["status"]) == 0, str(two["message"].values)
+    big = float(one["tension_b"].max())
+    np.testing.assert_allclose(two["force_a"].values[0], one["force_a"].values, atol=1e-8 * big)
+    np.testing.assert_allclose(two["force_b"].values[1], one["force_b"].values, atol=1e-8 * big)
+    assert two["point_position"].values[0, 2] == -200.0
