@@ -227,14 +227,25 @@ def test_free_points_resting_on_the_seabed_pull_as_the_whole_line(tmp_path: Path
     assert statics_problems(three, balance=1e-8) == []  # the external checker's balance
 
 
-def test_a_clump_resting_on_the_seabed_is_the_clump_on_the_line(tmp_path: Path) -> None:
-    """A 2 t clump where two chains meet, resting on the laid part: the seabed carries
-    its weight, and the pull is the one line's with the clump attached there."""
+@pytest.mark.parametrize(
+    ("split", "mass", "guess"),
+    [(402.0, 2000.0, -450.0), (242.3, 10000.0, -582.0)],
+)
+def test_a_clump_resting_on_the_seabed_is_the_clump_on_the_line(
+    tmp_path: Path, split: float, mass: float, guess: float
+) -> None:
+    """A clump where two chains meet, resting on the laid part: the seabed carries its
+    weight, and the pull is the one line's with the clump attached there. The 10 t
+    clump's guess, 50 m above the seabed, makes the second chain a U (raised at both
+    ends, laid between): the Newton's trial solves are not verified (only the answer
+    is, at the study's nodes: a U sampled at its ends alone could not pass the check),
+    so that start is taken too."""
     env = {"fluid": {"density": 1025.0}, "gravity": 9.81, "depth": 200.0}
     ends = {"a": {"kind": "fixed", "position": [-800.0, 0.0, -200.0]}}
     ends["b"] = {"kind": "fixed", "position": [0.0, 0.0, 0.0]}
-    segs = [{"length": 402.0, **SEG}, {"length": 486.0, **SEG}]
-    line = {"segments": segs, "attachments": [{"s": 402.0, "mass": 2000.0}]}
+    rest = 888.0 - 402.0 if split == 402.0 else 675.2
+    segs = [{"length": split, **SEG}, {"length": rest, **SEG}]
+    line = {"segments": segs, "attachments": [{"s": split, "mass": mass}]}
     one = run_study(
         tmp_path,
         yaml.safe_dump(
@@ -243,17 +254,17 @@ def test_a_clump_resting_on_the_seabed_is_the_clump_on_the_line(tmp_path: Path) 
         ),
     )  # fmt: skip
     pts = {"a": _fixed([-800.0, 0.0, -200.0]), "f": _fixed([0.0, 0.0, 0.0])}
-    pts["m"] = _free([-450.0, 0.0, -150.0], mass=2000.0)
+    pts["m"] = _free([guess, 0.0, -150.0], mass=mass)
     two = run_study(
         tmp_path,
-        _study("joined", 200.0, pts, {"l1": ("a", "m", 402.0), "l2": ("m", "f", 486.0)}),
+        _study("joined", 200.0, pts, {"l1": ("a", "m", split), "l2": ("m", "f", rest)}),
     )
     assert int(one["status"]) == 0 and int(two["status"]) == 0, str(two["message"].values)
     big = float(one["tension_b"].max())
     np.testing.assert_allclose(two["force_a"].values[0], one["force_a"].values, atol=1e-8 * big)
     np.testing.assert_allclose(two["force_b"].values[1], one["force_b"].values, atol=1e-8 * big)
     assert two["point_position"].values[0, 2] == -200.0
-    weight = 2000.0 * 9.81  # in water: its volume is none
+    weight = mass * 9.81  # in water: its volume is none
     assert two["point_seabed_force"].values[0, 2] == pytest.approx(weight, rel=1e-8)
 
 
@@ -334,36 +345,3 @@ def test_the_dynamics_refuse_a_point_resting_on_the_seabed_and_keep_the_statics(
     assert "rests on the seabed in the static state" in str(ds["message"].values)
     assert int(ds["static_status"]) == 0 and np.isfinite(ds["tension_a"].values).all()
     assert ds["point_position"].values[0, 2] == -200.0
-
-
-def test_a_start_that_makes_a_line_a_u_still_finds_the_clump_resting_on_the_seabed(
-    tmp_path: Path,
-) -> None:
-    """A 10 t clump joining two chains, its guess 50 m above the seabed: there the
-    second chain hangs in a U (raised at both ends, laid between). The Newton's trial
-    solves are not verified (only the answer is, at the study's nodes: a U sampled at
-    its ends alone could not pass the check), so the start is taken and the clump comes
-    to rest on the laid chain, pulling as the one line with the clump attached."""
-    env = {"fluid": {"density": 1025.0}, "gravity": 9.81, "depth": 200.0}
-    ends = {"a": {"kind": "fixed", "position": [-800.0, 0.0, -200.0]}}
-    ends["b"] = {"kind": "fixed", "position": [0.0, 0.0, 0.0]}
-    segs = [{"length": 242.3, **SEG}, {"length": 675.2, **SEG}]
-    line = {"segments": segs, "attachments": [{"s": 242.3, "mass": 10000.0}]}
-    one = run_study(
-        tmp_path,
-        yaml.safe_dump(
-            {"name": "clumped", "environment": env, "line": line, "ends": ends,
-             "analysis": {"static": {"nodes": 21}}}
-        ),
-    )  # fmt: skip
-    pts = {"a": _fixed([-800.0, 0.0, -200.0]), "f": _fixed([0.0, 0.0, 0.0])}
-    pts["m"] = _free([-582.0, 0.0, -150.0], mass=10000.0)
-    two = run_study(
-        tmp_path,
-        _study("u_start", 200.0, pts, {"l1": ("a", "m", 242.3), "l2": ("m", "f", 675.2)}),
-    )
-    assert int(one["status"]) == 0 and int(two["status"]) == 0, str(two["message"].values)
-    big = float(one["tension_b"].max())
-    np.testing.assert_allclose(two["force_a"].values[0], one["force_a"].values, atol=1e-8 * big)
-    np.testing.assert_allclose(two["force_b"].values[1], one["force_b"].values, atol=1e-8 * big)
-    assert two["point_position"].values[0, 2] == -200.0
