@@ -42,9 +42,10 @@ def solve_batch(
     kernel, the others (and any case a kernel does not settle) one by one by the general
     solver; the indices of those are appended to ``general`` if given. A case a kernel
     tried and handed on says why in its ``fallback`` (:data:`NOT_SETTLED`,
-    :data:`ON_SEABED`). ``verify=False`` takes the kernels' settled answers without
-    :mod:`.verify`'s checks: only for intermediate iterates whose answer is re-solved
-    verified (the system Newton's trials, :func:`.system._solve`)."""
+    :data:`ON_SEABED`). ``verify=False`` takes the kernels' settled answers, and the
+    general solver's, without :mod:`.verify`'s checks: only for intermediate iterates
+    whose answer is re-solved verified (the system Newton's trials,
+    :func:`.system._solve`)."""
     solver = SemiAnalyticSolver()
     results, why, tried = _kernels(problems, contact=contact, verify=verify, deadline=deadline)
     out = []

@@ -115,12 +115,13 @@ def numeric_stiffness(
     name: str, prob: StaticProblem, res: StaticResult, solve_all: Any, moving: list[bool]
 ) -> np.ndarray:
     """End stiffness (2, 2, 3, 3) of a solved line by central differences of its end
-    forces (one-sided where the backward step would go below the seabed), each moving
-    end stepped by 1e-4 of the line's length; an end resting on the seabed only along
-    the plane (its motion across it is held by the seabed: zero columns there). The
-    differences' error: the solves' tolerance (1e-9 of the tension) over the step and
-    the step squared over the catenary's length scale, both near 1e-5 of the
-    stiffness: enough for the Newton, whose residual is the lines' exact forces."""
+    forces, each moving end stepped by 1e-4 of the line's length along x, y and z;
+    one-sided (forward) where the backward step would go below the seabed, as lifting
+    an end that rests on it (a body's point keeps that column; a free point resting
+    there drops it: its motion across the seabed is held). The differences' error: the
+    solves' tolerance (1e-9 of the tension) over the step and the step squared over the
+    catenary's length scale, both near 1e-5 of the stiffness: enough for the Newton,
+    whose residual is the lines' exact forces."""
     L = prob.line.total_length
     h = 1e-4 * L
     plane = seabed_of(prob.medium)
@@ -130,8 +131,7 @@ def numeric_stiffness(
     for j in range(2):
         if not moving[j]:
             continue
-        on = plane is not None and float(plane.height_above(ends[j])) <= 1e-6 * L
-        for d in np.stack(plane.basis) if on else np.eye(3):
+        for d in np.eye(3):
             steps = [h, -h]
             if plane is not None and float(plane.height_above(ends[j] - h * d)) < 0.0:
                 steps = [h]

@@ -175,10 +175,10 @@ def _solve_lines(
             if not frictionless:
                 raise SystemFailure(
                     STATUS_NO_SOLUTION,
-                    f"line {ln.name} lies on the seabed from a free point, with seabed "
-                    f"friction {prob.medium.friction:g}: which way friction acts along it "
-                    "is not determined by the statics (friction: 0 solves it; or anchor "
-                    "that end)",
+                    f"line {ln.name} lies on the seabed from a point that is not an anchor, "
+                    f"or between two raised ends, with seabed friction "
+                    f"{prob.medium.friction:g}: which way friction acts along it is not "
+                    "determined by the statics (friction: 0 solves it; or anchor that end)",
                 )
             k = numeric_stiffness(ln.name, prob, res, solve_all, moving)
         ends = (ln.a, ln.b)

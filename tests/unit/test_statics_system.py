@@ -267,3 +267,35 @@ def test_free_body_is_in_equilibrium_and_responds_through_its_stiffness() -> Non
         )
     order = np.polyfit(np.log(forces), np.log(err), 1)[0]
     assert abs(order - 2.0) <= 0.15, (order, err)  # a Taylor remainder, as above
+
+
+def test_differenced_stiffness_is_the_exact_one_where_both_exist() -> None:
+    """The system's differenced end stiffness (:func:`.line_stiffness.numeric_stiffness`,
+    used where no closed form exists) against the exact one, on a line lying on the
+    seabed from its anchor (exact K_BB) and a hanging one (every block). Its step is
+    1e-4 of the line (16 mm here): the solver's force error over the step (1e-9 of the
+    tension over 1.6e-2 m) and the step squared over the catenary's length scale are
+    near 1e-6 of the stiffness; 1e-4 of the largest entry covers both."""
+    from cablestudy.statics.line_stiffness import numeric_stiffness
+
+    def solve_all(problems):  # type: ignore[no-untyped-def]
+        return [SOLVER.solve(p) for p in problems]
+
+    for problem, ra, rb, moving in (
+        (polyester(160.0), [0.0, 0.0, -100.0], [130.0, 20.0, -30.0], [False, True]),
+        (polyester(100.0, depth=None), [0.0, 0.0, 0.0], [80.0, 10.0, -30.0], [True, True]),
+    ):
+        ra, rb = np.asarray(ra, dtype=float), np.asarray(rb, dtype=float)
+        fixed = replace(
+            problem,
+            end_a=EndCondition(kind="fixed", position=ra),
+            end_b=EndCondition(kind="fixed", position=rb),
+        )
+        res = _forces(problem, ra, rb)
+        exact = line_end_stiffness(fixed, res)
+        got = numeric_stiffness("leg", fixed, res, solve_all, moving)
+        for i in range(2):
+            for j in range(2):
+                if moving[i] and moving[j]:
+                    scale = float(np.max(np.abs(exact[i, j])))
+                    assert np.max(np.abs(got[i, j] - exact[i, j])) <= 1e-4 * scale
