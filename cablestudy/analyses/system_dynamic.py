@@ -18,7 +18,6 @@ from typing import Any
 import numpy as np
 
 from ..statics import STATUS_NUMERICAL, STATUS_OK
-from ..statics.system_model import resting_on_seabed
 from ..study.analysis import BodySpectrumExcitation, SpectrumExcitation
 from ..study.cases import Case
 from ..study.system import BodyPoint, FreePoint
@@ -236,9 +235,6 @@ def run_system_dynamic(
     case: Case, system: Any, static: Any, deadline: float | None
 ) -> tuple[int, str, dict[str, np.ndarray]]:
     """The case's time-domain run and its outputs: (status, message, outputs)."""
-    resting = resting_on_seabed(static)
-    if resting:
-        return STATUS_NUMERICAL, resting, {}
     from ..dynamics.system_model import Drives
     from ..dynamics.system_timedomain import SystemProblem, simulate_system
     from .along_line import tension_along

@@ -45,11 +45,7 @@ def system_frequency_model(case: Case, system: Any, static: Any) -> Any:
     """The case's linearised system (cached per static problem and element count), or
     why it cannot be built (a string)."""
     from ..dynamics.system_frequency import system_linear
-    from ..statics.system_model import resting_on_seabed
     from .line_model import system_line_extras
-
-    if resting_on_seabed(static):
-        return resting_on_seabed(static)
 
     study = case.study
     dyn = study.analysis.dynamic

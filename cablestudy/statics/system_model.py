@@ -105,17 +105,6 @@ class SystemResult:
     resting: tuple[str, ...] = ()
 
 
-def resting_on_seabed(static: SystemResult) -> str:
-    """Why the dynamics refuse a static state with free points resting on the seabed
-    ('' when none does): their contact with the seabed is modelled in the statics only."""
-    if not static.resting:
-        return ""
-    return (
-        f"free point {', '.join(static.resting)} rests on the seabed in the static state: "
-        "a free point's contact with the seabed is modelled in the statics only"
-    )
-
-
 class SystemFailure(Exception):
     """A numerical failure of a system solve (becomes status and message)."""
 

@@ -328,20 +328,3 @@ def test_a_floating_body_with_a_waterplane_returns_to_its_symmetric_equilibrium(
     weight = 1e6 * 9.81
     assert abs(rho_g * 1e6 * pose[2] - (rho_g * 1e3 - weight + lines_force[2])) <= 1e-9 * weight
     assert -1e-3 < pose[2] < 0.0  # the lines pull it down by about 0.76 mm
-
-
-@pytest.mark.parametrize("method", ["time", "frequency"])
-def test_the_dynamics_refuse_a_point_resting_on_the_seabed_and_keep_the_statics(
-    tmp_path: Path, method: str
-) -> None:
-    anchor, fair = _fixed([-800.0, 0.0, -200.0]), _fixed([0.0, 0.0, 0.0])
-    points = {"a": anchor, "m": _free([-700.0, 0.0, -190.0]), "f": fair}
-    study = yaml.safe_load(
-        _study("moved", 200.0, points, {"l1": ("a", "m", 100.0), "l2": ("m", "f", 760.0)})
-    )
-    motion = {"point": "f", "direction": [1.0, 0.0, 0.0], "amplitude": 1.0, "frequency": 0.1}
-    study["analysis"]["dynamic"] = {"excitation": motion, "method": method, "elements": 8}
-    ds = _failed(tmp_path, yaml.safe_dump(study, sort_keys=False))
-    assert "rests on the seabed in the static state" in str(ds["message"].values)
-    assert int(ds["static_status"]) == 0 and np.isfinite(ds["tension_a"].values).all()
-    assert ds["point_position"].values[0, 2] == -200.0
