@@ -141,6 +141,15 @@ def pack(
     if any(not nodes for nodes in p_nodes):
         raise ValueError("every free point must be on a line")
     p_off = np.concatenate(([0], np.cumsum([len(n) for n in p_nodes]))).astype(np.int64)
+    # a point's contact damper is the one node's it is (2 zeta sqrt(k m), the point's
+    # mass in m): its end nodes' dampers scaled to share it as their springs do
+    c_sb = cat([ln.seabed_damping for ln in lines])
+    k_sb = cat([ln.seabed_stiffness for ln in lines])
+    inertia = cat([ln.mass + ln.added_mass_normal + ln.body_added_mass for ln in lines])
+    for p, nodes in enumerate(p_nodes):
+        k, m = k_sb[nodes], inertia[nodes]
+        if k.sum() > 0.0:
+            c_sb[nodes] *= np.sqrt(k * (m.sum() + points.mass[p]) / (k.sum() * m))
     first = lines[0]
     S = (
         no,
@@ -167,8 +176,8 @@ def pack(
         held,
         np.asarray(first.seabed_normal, dtype=float),
         np.array([ln.seabed_offset for ln in lines], dtype=float),
-        cat([ln.seabed_stiffness for ln in lines]),
-        cat([ln.seabed_damping for ln in lines]),
+        k_sb,
+        c_sb,
         np.array([ln.friction for ln in lines], dtype=float).reshape(L, 2),
         cat([ln.law_code for ln in lines]).astype(np.int64),
         cat([ln.law_params for ln in lines]).reshape(-1, 5),

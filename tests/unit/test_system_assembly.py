@@ -8,9 +8,10 @@ friction, current, transverse damping, an attached body)."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from cablestudy.dynamics.assembly import Workspace, assemble
-from cablestudy.dynamics.discrete_line import DynamicExtras, discretise
+from cablestudy.dynamics.discrete_line import DynamicExtras, discretise, discretise_nodes
 from cablestudy.dynamics.system_kernels import assemble_all
 from cablestudy.dynamics.system_model import FreePoints, pack, work_arrays
 from cablestudy.physics.axial import TableLaw
@@ -141,3 +142,40 @@ def test_lines_share_a_discretisation_only_when_alike_in_every_input() -> None:
     assert not _equal((lm, med, ex), (lm, med, replace(ex, friction_axial=0.1)))
     assert not _equal((lm, med, ex), (lm, replace(med, depth=31.0), ex))
     assert not _equal((lm, med, ex), (_line(40.0, 0.0, None), med, ex))
+
+
+def test_a_free_point_on_the_seabed_is_the_one_line_node_it_replaces() -> None:
+    """A chain (12 m elements) and a wire (5 m) joined at a 2 t clump: its end nodes'
+    seabed springs and dampers add up to the one line's node with the clump attached
+    there, the spring per tributary length, the damper 2 zeta sqrt(k m) with the clump's
+    mass in m (so the point lands as the node does), to round-off."""
+    medium = Medium(density=1025.0, gravity=G, depth=100.0)
+    seg = {"length": (36.0, 25.0), "weight": (400.0, 30.0), "mass": (50.0, 4.0)}
+
+    def model(k: slice, mass: float | None) -> LineModel:
+        one = {key: np.array(v[k]) for key, v in seg.items()}
+        n = one["length"].size
+        att = np.zeros(0) if mass is None else np.array([36.0])
+        return LineModel(
+            **one, axial_stiffness=np.full(n, 1e8), diameter=np.full(n, 0.05),
+            drag_normal=np.ones(n), drag_tangential=np.zeros(n),
+            added_mass_normal=np.ones(n), added_mass_tangential=np.zeros(n),
+            bending_stiffness=np.zeros(n), damping_ratio=np.zeros(n), attachment_s=att,
+            attachment_force=np.zeros((att.size, 3)), attachment_mass=np.full(att.size, 2e3),
+            attachment_volume=np.zeros(att.size),
+        )  # fmt: skip
+
+    extras = DynamicExtras(seabed_stiffness=4e5, seabed_damping_ratio=0.7)
+    s1, s2 = np.linspace(0.0, 36.0, 4), np.linspace(0.0, 25.0, 6)
+    whole = discretise_nodes(model(slice(0, 2), 2e3), medium, np.r_[s1, 36.0 + s2[1:]], extras)
+    parts = [
+        discretise_nodes(model(slice(i, i + 1), None), medium, s, extras)
+        for i, s in enumerate((s1, s2))
+    ]
+    point = FreePoints(mass=np.array([2e3]), force=np.zeros((1, 3)), drag=np.zeros(1))
+    packed = pack(
+        parts, np.array([[-1, 0], [0, -1]]), np.array([[0, -1], [-1, 1]]), point, np.array([-1, -1])
+    )
+    nodes = packed.S[38]
+    for k, want in ((24, whole.seabed_stiffness[3]), (25, whole.seabed_damping[3])):
+        assert packed.S[k][nodes].sum() == pytest.approx(want, rel=1e-14)
