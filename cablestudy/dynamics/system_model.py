@@ -148,7 +148,7 @@ def pack(
     inertia = cat([ln.mass + ln.added_mass_normal + ln.body_added_mass for ln in lines])
     for p, nodes in enumerate(p_nodes):
         k, m = k_sb[nodes], inertia[nodes]
-        if k.sum() > 0.0:
+        if k.sum() > 0.0 and m.min() > 0.0:  # (a massless line's damper stays 0)
             c_sb[nodes] *= np.sqrt(k * (m.sum() + points.mass[p]) / (k.sum() * m))
     first = lines[0]
     S = (
