@@ -460,10 +460,10 @@ def laid_pulled(
     gap = 0.0
     for _ in range(100 if T > 0.0 else 0):
         laid = _laid(lay, L, e, plane, T)
-        gap = laid.stretched - chord
-        T, flex = T - gap / laid.positive_flex, laid.positive_flex
-        if abs(gap) <= 1e-15 * L:
+        gap, flex = laid.stretched - chord, laid.positive_flex
+        if abs(gap) <= 1e-14 * L:
             break
+        T -= gap / flex
     shape = _contact_shape(lay, lay.gravity, ra, L, max(T, 0.0) * e, plane)
     pos, tension = shape.sample(s)
     if T <= 0.0:  # straight at its length

@@ -50,7 +50,7 @@ from .base import (
 from .line_stiffness import laid_stiffness, line_end_stiffness, numeric_stiffness
 from .seabed import seabed_of
 from .semi_analytic_shape import laid_pulled
-from .system_friction import point_friction
+from .system_friction import point_friction, pulled_ends
 from .system_model import (
     BODY,
     FIXED,
@@ -146,31 +146,32 @@ def _solve_lines(
 
     solved = solve_all(problems)
     plane = seabed_of(problems[0].medium)
-    for ln, prob, res in zip(system.lines, problems, solved, strict=True):
+    pulls = None if plane is None else pulled_ends(system, pos, plane)
+    for idx, (ln, prob, res) in enumerate(zip(system.lines, problems, solved, strict=True)):
         res = res.check_finite()
         moving = [system.point_kind[ln.a] != FIXED, system.point_kind[ln.b] != FIXED]
         ends, mu, L = (ln.a, ln.b), prob.medium.friction, prob.line.total_length
         grounded = plane is not None and max(plane.height_above(pos[[ln.a, ln.b]])) <= 1e-6 * L
         k = slack = None
         if any(moving) and grounded and (mu or res.status == STATUS_OK):
-            # wholly on the seabed, straight: pulled at the end that moves (with friction,
-            # as MoorPy lays such a line, and held straight where it would lie slack: a
-            # point held by friction stays where the single line has it; between two ends
-            # that move, which way friction acts is not determined)
-            if mu and all(moving):
+            # wholly on the seabed, straight: pulled at the end nearer a rising line's pull
+            # (with friction, as MoorPy lays such a line, and held straight where it would
+            # lie slack: a point held by friction stays where the single line has it)
+            pulled = int(moving[1]) if pulls[idx] < 0 else int(pulls[idx])
+            if mu and pulls[idx] < 0:
                 raise SystemFailure(
                     STATUS_NO_SOLUTION,
-                    f"line {ln.name} lies wholly on the seabed between two points that are "
-                    f"not anchors, with seabed friction {mu:g}: which way friction acts "
-                    "along it is not determined by the statics (friction: 0 solves it; or "
-                    "anchor one end)",
+                    f"line {ln.name} lies wholly on the seabed, with seabed friction {mu:g}, "
+                    "pulled from neither end or both (no line rising from the seabed pulls "
+                    "one end nearer than the other): which way friction acts along it is "
+                    "not determined by the statics (friction: 0 solves it; or anchor one end)",
                 )
             r = (prob.end_a.position, prob.end_b.position)
-            got = laid_pulled(prob.line, r, plane, res.s, int(moving[1]), compress=bool(mu))
+            got = laid_pulled(prob.line, r, plane, res.s, pulled, compress=bool(mu))
             if got is not None:
                 res = got[0] if mu else res
                 taut = float(np.max(res.tension)) > 0.0
-                T = float(np.linalg.norm((res.force_a, res.force_b)[int(moving[1])]))
+                T = float(np.linalg.norm((res.force_a, res.force_b)[pulled]))
                 k = laid_stiffness(r[1] - r[0], T if taut else 0.0, got[1])
                 if mu and verify:  # the answer: the pushing stand-in has no force
                     if not taut:

@@ -21,7 +21,30 @@ from typing import Any
 import numpy as np
 
 from .base import STATUS_NO_SOLUTION, StaticResult
-from .system_model import FREE, MooringSystem, SystemFailure
+from .system_model import FIXED, FREE, MooringSystem, SystemFailure
+
+
+def pulled_ends(system: MooringSystem, pos: np.ndarray, plane: Any) -> np.ndarray:
+    """Per line, for one lying with both ends on the seabed at ``pos`` [m] (n, 3), the end
+    pulled (0: A, 1: B), -1 where that is not determined: the end nearer, along such
+    lines, to a point that a line rising from the seabed pulls (anchors pass no pull on).
+    A chain split at several junctions on its laid part is pulled from the fairlead's
+    side, each line anchored towards the anchor, as the single line is."""
+    low = np.array(
+        [plane.height_above(pos[[ln.a, ln.b]]) <= 1e-6 * ln.problem.line.total_length
+         for ln in system.lines]
+    ).reshape(-1, 2)  # fmt: skip
+    dist = np.full(len(pos), np.inf)
+    for ln, (la, lb) in zip(system.lines, low, strict=True):
+        if la != lb:  # rising from the seabed at its low end
+            dist[ln.a if la else ln.b] = 0.0
+    for _ in system.lines:
+        for ln, flat in zip(system.lines, low.all(axis=1), strict=True):
+            for p, q in ((ln.a, ln.b), (ln.b, ln.a)):
+                if flat and system.point_kind[p] != FIXED:
+                    dist[q] = min(dist[q], dist[p] + 1.0)
+    da, db = dist[[ln.a for ln in system.lines]], dist[[ln.b for ln in system.lines]]
+    return np.where(da < db, 0, np.where(db < da, 1, -1))
 
 
 def point_friction(

@@ -17,8 +17,9 @@ positions' difference.
 
 The split with friction failed before the system Newton's step slid along the seabed:
 its first steps push the junction, which ends 0.84 m above the seabed, below it, and the
-line search stalled there. Two free points that would rest on the seabed (MoorPy's
-``test_multiseg_seabed``) are refused naming them: our points have no seabed reaction.
+line search stalled there. Free points resting on the seabed (MoorPy's
+``test_multiseg_seabed``, and a junction with a clump) pull as the single line, with
+seabed friction too (MoorPy's convention, :mod:`cablestudy.statics.system_friction`).
 """
 
 from __future__ import annotations
@@ -202,17 +203,23 @@ def test_the_u_by_the_catenary_with_a_point_resting_at_its_bottom_is_the_one_lin
     assert two["point_position"].values[1, 2] == -100.0  # on the seabed
 
 
-@pytest.mark.parametrize("z", [-200.0, -190.0])  # as MoorPy places them; above
-def test_free_points_resting_on_the_seabed_pull_as_the_whole_line(tmp_path: Path, z: float) -> None:
-    """MoorPy's ``test_multiseg_seabed``: two junctions on the laid part of the chain,
-    held on the seabed's plane (the seabed's reaction across it, their motion along
-    it); every point balanced by the lines and the seabed to the system's tolerance."""
+@pytest.mark.parametrize(("z", "mu"), [(-200.0, 0.0), (-190.0, 0.0), (-200.0, 1.0)])
+def test_free_points_resting_on_the_seabed_pull_as_the_whole_line(
+    tmp_path: Path, z: float, mu: float
+) -> None:
+    """MoorPy's ``test_multiseg_seabed``: two junctions on the laid part of the chain
+    (placed as MoorPy places them, or above), held on the seabed's plane (the seabed's
+    reaction across it, their motion along it); every point balanced by the lines and
+    the seabed to the system's tolerance. With friction the middle chain, lying wholly
+    on the seabed between the two junctions, is pulled from the fairlead's side, as the
+    single line's laid part."""
     anchor, fair = _fixed([-800.0, 0.0, -200.0]), _fixed([0.0, 0.0, 0.0])
     points = {"a": anchor, "m1": _free([-700.0, 0.0, z]), "m2": _free([-600.0, 0.0, z]), "f": fair}
     lines = {"l1": ("a", "m1", 100.0), "l2": ("m1", "m2", 100.0), "l3": ("m2", "f", 660.0)}
-    three = run_study(tmp_path, _study("three", 200.0, points, lines))
+    three = run_study(tmp_path, _study("three", 200.0, points, lines, friction=mu))
     one = run_study(
-        tmp_path, _study("whole", 200.0, {"a": anchor, "f": fair}, {"l": ("a", "f", 860.0)})
+        tmp_path,
+        _study("whole", 200.0, {"a": anchor, "f": fair}, {"l": ("a", "f", 860.0)}, friction=mu),
     )
     assert int(three["status"]) == 0, str(three["message"].values)
     a1, b1, big = _ends(one)
