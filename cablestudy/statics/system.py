@@ -152,8 +152,9 @@ def _solve_lines(
         moving = [system.point_kind[ln.a] != FIXED, system.point_kind[ln.b] != FIXED]
         ends, mu, L = (ln.a, ln.b), prob.medium.friction, prob.line.total_length
         grounded = plane is not None and max(plane.height_above(pos[[ln.a, ln.b]])) <= 1e-6 * L
+        laid = res.laid_length >= (1 - 1e-9) * L if res.status == STATUS_OK else mu
         k = slack = None
-        if any(moving) and grounded and (mu or res.status == STATUS_OK):
+        if any(moving) and grounded and laid:
             # wholly on the seabed, straight: pulled at the end nearer a rising line's pull
             # (with friction, as MoorPy lays such a line, and held straight where it would
             # lie slack: a point held by friction stays where the single line has it)
