@@ -2,8 +2,8 @@
 
 MoorPy's convention, as the single line takes it: each line takes friction as its own
 catenary does (from its touchdown towards its end lying on the seabed, as if that end
-were anchored; a line lying wholly on the seabed, pulled at its end that moves,
-:func:`.semi_analytic_shape.laid_pulled`), and a free point resting on the seabed takes,
+were anchored; a line lying wholly on the seabed pulled at its end nearer a line
+rising from the seabed, :func:`pulled_ends`, :func:`.semi_analytic_shape.laid_pulled`), and a free point resting on the seabed takes,
 besides the seabed's normal reaction N, the friction a point load on a single line's laid
 stretch takes (:func:`.seabed.laid_part`): mu N against the pull of the line that lifts
 from it or lies on the seabed from it towards a raised end, at most that pull (the
