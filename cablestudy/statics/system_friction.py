@@ -2,16 +2,16 @@
 
 MoorPy's convention, as the single line takes it: each line takes friction as its own
 catenary does (from its touchdown towards its end lying on the seabed, as if that end
-were anchored; a line lying wholly on the seabed pulled at its end nearer a line
-rising from the seabed, :func:`pulled_ends`, :func:`.semi_analytic_shape.laid_pulled`), and a free point resting on the seabed takes,
-besides the seabed's normal reaction N, the friction a point load on a single line's laid
-stretch takes (:func:`.seabed.laid_part`): mu N against the pull of the line that lifts
-from it or lies on the seabed from it towards a raised end, at most that pull (the
-lines lying wholly on the seabed from it hold the rest). So a chain split at a junction
-resting on its laid stretch is the one line with the junction's load as an attachment.
-Where two such lines pull the point (a laid stretch between two suspended parts) which way
-friction acts is not determined by the statics: refused by name. Pure: arrays in, arrays
-out (SI units).
+were anchored; a line lying wholly on the seabed pulled at its end nearer a line rising
+from the seabed, :func:`pulled_ends`, :func:`.semi_analytic_shape.laid_pulled`), and a
+free point resting on the seabed takes, besides the seabed's normal reaction N, the
+friction a point load on a single line's laid stretch takes (:func:`.seabed.laid_part`):
+mu N against the pull of the line that lifts from it or lies on the seabed from it
+towards a raised end, at most that pull (the lines lying wholly on the seabed from it
+hold the rest). So a chain split at a junction resting on its laid stretch is the one
+line with the junction's load as an attachment. Where two such lines pull the point (a
+laid stretch between two suspended parts) which way friction acts is not determined by
+the statics: refused by name. Pure: arrays in, arrays out (SI units).
 """
 
 from __future__ import annotations
