@@ -424,3 +424,35 @@ def test_the_dynamics_refuse_a_point_resting_on_the_seabed_and_keep_the_statics(
     assert "rests on the seabed in the static state" in str(ds["message"].values)
     assert int(ds["static_status"]) == 0 and np.isfinite(ds["tension_a"].values).all()
     assert ds["point_position"].values[0, 2] == -200.0
+
+
+@pytest.mark.parametrize(
+    ("mu", "reach"), [(0.0, 300.1), (0.5, 300.01), (1.0, 300.05), (0.5, 300.2)]
+)
+def test_a_line_lying_wholly_on_the_seabed_pulled_at_one_end_is_moorpys(
+    mu: float, reach: float
+) -> None:
+    """The anchor chain of a split chain, lying wholly on the seabed and pulled at its
+    junction (:func:`laid_pulled`), against MoorPy's own catenary for such a line (ZF = 0,
+    CB = mu): the pulled end's tension and the anchor's, the friction taking part of the
+    pull (300.2 m) or all of it before the anchor (300.01, 300.05 m). Both are closed
+    forms solved to round-off: 1e-9 of the tension (observed 1e-12)."""
+    from moorpy.Catenary import catenary
+
+    from cablestudy.analyses.system import system_model
+    from cablestudy.statics.seabed import seabed_of
+    from cablestudy.statics.semi_analytic_shape import laid_pulled
+    from cablestudy.study.grid import expand_cases
+    from cablestudy.study.loader import parse_study_text
+
+    points = {"a": _fixed([0.0, 0.0, -200.0]), "b": _fixed([reach, 0.0, -200.0])}
+    text = _study("laid", 200.0, points, {"l": ("a", "b", 300.0)}, friction=mu)
+    prob = system_model(expand_cases(parse_study_text(text, "laid"))[1][0].study).lines[0].problem
+    ends = (np.array([0.0, 0.0, -200.0]), np.array([reach, 0.0, -200.0]))
+    ours, _ = laid_pulled(prob.line, ends, seabed_of(prob.medium), np.linspace(0, 300, 5), 1)
+    fa, _, fb, _, _ = catenary(
+        reach, 0.0, 300.0, SEG["axial_stiffness"], prob.line.weight[0], CB=mu
+    )
+    np.testing.assert_allclose(
+        [ours.force_a[0], ours.force_b[0]], [fa, fb], rtol=0, atol=1e-9 * -fb
+    )
