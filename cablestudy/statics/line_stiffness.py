@@ -111,6 +111,18 @@ def line_end_stiffness(problem: StaticProblem, result: StaticResult) -> np.ndarr
     return K
 
 
+def laid_stiffness(chord: np.ndarray, tension: float, flex: float) -> np.ndarray:
+    """End stiffness (2, 2, 3, 3) of a line lying straight on the seabed from end A to
+    end B (``chord`` = r_B - r_A [m]), ``tension`` [N] at its pulled end and ``flex`` =
+    d|chord|/dT [m/N] (:func:`.semi_analytic_shape.laid_pulled`): a bar, K_BB = e e^T /
+    flex + T / |chord| (I - e e^T) (its stretch along it, its tension turning across),
+    K_AA = K_BB = -K_AB = -K_BA."""
+    length = float(np.linalg.norm(chord))
+    e = chord / length
+    G = np.outer(e, e) / flex + tension / length * (np.eye(3) - np.outer(e, e))
+    return np.array([[G, -G], [-G, G]])
+
+
 def numeric_stiffness(
     name: str, prob: StaticProblem, res: StaticResult, solve_all: Any, moving: list[bool]
 ) -> np.ndarray:

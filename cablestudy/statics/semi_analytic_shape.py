@@ -425,6 +425,57 @@ def _laid_between(
     )
 
 
+def laid_pulled(
+    line: LineModel,
+    ends: tuple[np.ndarray, np.ndarray],
+    plane: Plane,
+    s: np.ndarray,
+    pulled: int,
+    *,
+    compress: bool = False,
+) -> tuple[StaticResult, float] | None:
+    """A line lying wholly on the seabed between ``ends`` (r_A, r_B [m]), pulled at end
+    ``pulled`` (0: A, 1: B) and anchored at the other, as MoorPy's catenary takes a fully
+    laid line: the tension T at the pulled end falls by the mobilised friction towards the
+    anchor (mu w per metre, mu times each point load's weight), to zero, as the laid part
+    of a line anchored there (:func:`.seabed.laid_part`); T [N] makes that laid length,
+    stretched, the chord. Without friction the tension is uniform (:func:`_laid_between`).
+    Returns the result at arc lengths ``s`` [m] and d|chord|/dT [m/N] (the stiffness of
+    :func:`.line_stiffness.laid_stiffness`). Where the chord is not longer than the line
+    it lies slack, its shape not determined: None, or with ``compress`` the end forces of
+    T = (|chord| - L) / sum(l / EA) <= 0, the line's own stiffness pushing it straight (a
+    system Newton's stand-in that puts a point held by friction where the line lies
+    straight at its length; the result's tension is zero)."""
+    ra, rb = ends
+    if pulled == 0:
+        line, ra, rb, s = reversed_line(line), rb, ra, line.total_length - s
+    lay = make_layout(line)
+    L = line.total_length
+    chord = float(np.linalg.norm(rb - ra))
+    e = (rb - ra) / chord
+    flex = float(np.sum(lay.ell / lay.EA))
+    T = (chord - L) / flex  # uniform: from below (the stretch is convex in T)
+    if T <= 0.0 and not compress:
+        return None
+    gap = 0.0
+    for _ in range(100 if T > 0.0 else 0):
+        laid = _laid(lay, L, e, plane, T)
+        gap, flex = laid.stretched - chord, laid.positive_flex
+        if abs(gap) <= 1e-14 * L:
+            break
+        T -= gap / flex
+    shape = _contact_shape(lay, lay.gravity, ra, L, max(T, 0.0) * e, plane)
+    pos, tension = shape.sample(s)
+    if T <= 0.0:  # straight at its length
+        pos = ra + np.outer(s / L * chord, e)
+    force = (shape.force_a + min(T, 0.0) * e, -shape.tension_end - min(T, 0.0) * e)
+    result = StaticResult(
+        s=s if pulled else L - s, position=pos, tension=tension, force_a=force[pulled - 1],
+        force_b=force[-pulled], laid_length=L, residual=abs(gap) / L,
+    )  # fmt: skip
+    return result, flex
+
+
 def _mid_unknowns(shape: Shape, plane: Plane) -> np.ndarray:
     """(alpha, beta, s1, s2) of a solution resting on the seabed between its ends."""
     T = _td_tension_at(shape, shape.laid_start)

@@ -47,8 +47,10 @@ from .base import (
     StaticProblem,
     StaticResult,
 )
-from .line_stiffness import line_end_stiffness, numeric_stiffness
+from .line_stiffness import laid_stiffness, line_end_stiffness, numeric_stiffness
 from .seabed import seabed_of
+from .semi_analytic_shape import laid_pulled
+from .system_friction import point_friction, pulled_ends
 from .system_model import (
     BODY,
     FIXED,
@@ -59,6 +61,7 @@ from .system_model import (
     point_drag,
 )
 from .system_slack import slack_forces, slack_result
+from .verify import verified
 
 
 def _axis_rotations(angles: np.ndarray) -> tuple[np.ndarray, ...]:
@@ -132,58 +135,88 @@ def _solve_lines(
         for ln in system.lines
     ]
 
-    def solve_all(problems: list[StaticProblem]) -> list[StaticResult]:
+    def solve_all(problems: list[StaticProblem], check: bool = verify) -> list[StaticResult]:
         if getattr(solver, "name", "") == "catenary":
             # every line of the system in one call of the batch kernels (verified as the
             # registry's solver verifies; the same numbers as one line at a time)
             from .batch import solve_batch
 
-            return solve_batch(problems, deadline=deadline, verify=verify)
+            return solve_batch(problems, deadline=deadline, verify=check)
         return [solver.solve(prob, deadline=deadline) for prob in problems]
 
     solved = solve_all(problems)
-    for ln, prob, res in zip(system.lines, problems, solved, strict=True):
+    plane = seabed_of(problems[0].medium)
+    pulls = None if plane is None else pulled_ends(system, pos, plane)
+    for idx, (ln, prob, res) in enumerate(zip(system.lines, problems, solved, strict=True)):
         res = res.check_finite()
-        slack = None
-        if res.status != STATUS_OK and not verify:
+        moving = [system.point_kind[ln.a] != FIXED, system.point_kind[ln.b] != FIXED]
+        ends, mu, L = (ln.a, ln.b), prob.medium.friction, prob.line.total_length
+        grounded = plane is not None and max(plane.height_above(pos[[ln.a, ln.b]])) <= 1e-6 * L
+        laid = res.laid_length >= (1 - 1e-9) * L if res.status == STATUS_OK else mu
+        k = slack = None
+        if any(moving) and grounded and laid:
+            # wholly on the seabed, straight: pulled at the end nearer a rising line's pull
+            # (with friction, as MoorPy lays such a line, and held straight where it would
+            # lie slack: a point held by friction stays where the single line has it)
+            pulled = int(moving[1]) if pulls[idx] < 0 else int(pulls[idx])
+            if mu and pulls[idx] < 0:
+                raise SystemFailure(
+                    STATUS_NO_SOLUTION,
+                    f"line {ln.name} lies wholly on the seabed, with seabed friction {mu:g}, "
+                    "pulled from neither end or both (no line rising from the seabed pulls "
+                    "one end nearer than the other): which way friction acts along it is "
+                    "not determined by the statics (friction: 0 solves it; or anchor one end)",
+                )
+            r = (prob.end_a.position, prob.end_b.position)
+            got = laid_pulled(prob.line, r, plane, res.s, pulled, compress=bool(mu))
+            if got is not None:
+                res = got[0] if mu else res
+                taut = float(np.max(res.tension)) > 0.0
+                T = float(np.linalg.norm((res.force_a, res.force_b)[pulled]))
+                k = laid_stiffness(r[1] - r[0], T if taut else 0.0, got[1])
+                if mu and verify:  # the answer: the pushing stand-in has no force
+                    if not taut:
+                        res = replace(res, force_a=0 * res.force_a, force_b=0 * res.force_b)
+                    res = verified(prob, res, method="catenary")
+        elif res.status != STATUS_OK and not verify:
             # a Newton trial where the line lies slack on the seabed: its end forces are
             # still defined (.system_slack); never at the verified solution
             slack = slack_forces(prob)
             if slack is not None:
-                res = slack_result(prob, *slack)
+                res, k = slack_result(prob, *slack), slack[2]
         if res.status != STATUS_OK:
             raise SystemFailure(res.status, f"line {ln.name}: {res.message}")
         results.append(res)
         force[ln.a] += res.force_a
         force[ln.b] += res.force_b
-        moving = [system.point_kind[ln.a] != FIXED, system.point_kind[ln.b] != FIXED]
         if not any(moving):
             continue
-        # a line lying on the seabed from a free point, or touching it between two
-        # raised ends: without friction, the stiffness by central differences of the
-        # line's solves; with it, where a laid stretch starts at a free end or between
-        # two suspended parts, the statics do not determine which way friction acts
-        frictionless = not prob.medium.friction
-        try:
-            k = slack[2] if slack is not None else line_end_stiffness(prob, res)
-        except SystemFailure:
-            if not frictionless:
-                raise
-            k = None
+        if k is None:
+            try:
+                k = line_end_stiffness(prob, res)
+            except SystemFailure:
+                pass
         pairs = [(i, j) for i in range(2) for j in range(2) if moving[i] and moving[j]]
         if k is None or not all(np.all(np.isfinite(k[i, j])) for i, j in pairs):
-            if not frictionless:
+            # a line lying on the seabed from an end that moves (friction as its own
+            # catenary takes it, from the touchdown towards that end), or touching it
+            # between two raised ends (with friction, which way it acts along the laid
+            # stretch is not determined: a Newton trial's stand-in, never an answer): by
+            # central differences of its solves
+            raised = plane is not None and min(plane.height_above(pos[[ln.a, ln.b]])) > 1e-6 * L
+            if mu and raised and verify:
                 raise SystemFailure(
                     STATUS_NO_SOLUTION,
-                    f"line {ln.name} lies on the seabed from a point that is not an anchor, "
-                    f"or between two raised ends, with seabed friction "
-                    f"{prob.medium.friction:g}: which way friction acts along it is not "
-                    "determined by the statics (friction: 0 solves it; or anchor that end)",
+                    f"line {ln.name} lies on the seabed between two raised ends, with seabed "
+                    f"friction {mu:g}: which way friction acts along its laid stretch is not "
+                    "determined by the statics (friction: 0 solves it)",
                 )
-            k = numeric_stiffness(ln.name, prob, res, solve_all, moving)
-        ends = (ln.a, ln.b)
+            # (the differences' solves unchecked, as the Newton's trials: not answers)
+            k = numeric_stiffness(ln.name, prob, res, lambda p: solve_all(p, False), moving)
         for i, j in pairs:
             K[3 * ends[i] : 3 * ends[i] + 3, 3 * ends[j] : 3 * ends[j] + 3] += k[i, j]
+    if plane is not None and plane.friction:
+        force += point_friction(system, pos, results, plane, verify)
     drag = point_drag(system, pos)  # current drag on free points, if any
     if drag is not None:
         force += drag[0]
@@ -430,14 +463,6 @@ def _solve(
         # verified lines at the solution must hold the points in equilibrium as well
         net = force[free_mask] + pf
         bar = max(100.0 * system.tolerance, 1e-10)
-        if contact.any() and plane.friction:
-            raise SystemFailure(
-                STATUS_NO_SOLUTION,
-                f"free point {', '.join(np.asarray(system.point_names)[free_mask][contact])} "
-                f"rests on the seabed, with seabed friction {plane.friction:g}: which way "
-                "friction acts along the lines lying from it is not determined by the "
-                "statics (friction: 0 solves it)",
-            )
         if contact.any():
             # the seabed pushes a resting point up (never pulls it down)
             push = np.where(contact, net @ plane.normal, 0.0)
@@ -450,6 +475,8 @@ def _solve(
             reaction = np.zeros((len(system.point_names), 3))
             reaction[free_mask] = -push[:, None] * plane.normal + 0.0  # no signed zeros
             net = net + reaction[free_mask]
+            if plane.friction:  # and its friction, in the lines' force (system_friction)
+                reaction += point_friction(final, pos, results, plane)
         final_res = float(np.max(np.abs(net))) / scale
         if not final_res <= bar:
             raise SystemFailure(
@@ -491,20 +518,11 @@ def _on_seabed(
     system: MooringSystem, free_mask: np.ndarray, pressed: np.ndarray, plane: Any
 ) -> str:
     """The part of a failure's message naming the free points the last Newton step
-    pressed onto the seabed, or its start put there (``pressed``, per free point), and,
-    with seabed friction, that such a point is solved without friction only."""
+    pressed onto the seabed, or its start put there (``pressed``, per free point)."""
     low = [
         str(n) for n, p in zip(np.asarray(system.point_names)[free_mask], pressed, strict=True) if p
     ]
-    if not low:
-        return ""
-    text = f"; free point {', '.join(low)} is pressed onto or placed on the seabed"
-    if plane is not None and plane.friction:
-        text += (
-            f" (with seabed friction {plane.friction:g}: a free point resting on the seabed "
-            "is solved without friction only, friction: 0)"
-        )
-    return text
+    return f"; free point {', '.join(low)} is pressed onto or placed on the seabed" if low else ""
 
 
 def _trial(

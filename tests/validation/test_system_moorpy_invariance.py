@@ -17,8 +17,9 @@ positions' difference.
 
 The split with friction failed before the system Newton's step slid along the seabed:
 its first steps push the junction, which ends 0.84 m above the seabed, below it, and the
-line search stalled there. Two free points that would rest on the seabed (MoorPy's
-``test_multiseg_seabed``) are refused naming them: our points have no seabed reaction.
+line search stalled there. Free points resting on the seabed (MoorPy's
+``test_multiseg_seabed``, and a junction with a clump) pull as the single line, with
+seabed friction too (MoorPy's convention, :mod:`cablestudy.statics.system_friction`).
 """
 
 from __future__ import annotations
@@ -202,17 +203,23 @@ def test_the_u_by_the_catenary_with_a_point_resting_at_its_bottom_is_the_one_lin
     assert two["point_position"].values[1, 2] == -100.0  # on the seabed
 
 
-@pytest.mark.parametrize("z", [-200.0, -190.0])  # as MoorPy places them; above
-def test_free_points_resting_on_the_seabed_pull_as_the_whole_line(tmp_path: Path, z: float) -> None:
-    """MoorPy's ``test_multiseg_seabed``: two junctions on the laid part of the chain,
-    held on the seabed's plane (the seabed's reaction across it, their motion along
-    it); every point balanced by the lines and the seabed to the system's tolerance."""
+@pytest.mark.parametrize(("z", "mu"), [(-200.0, 0.0), (-190.0, 0.0), (-200.0, 1.0)])
+def test_free_points_resting_on_the_seabed_pull_as_the_whole_line(
+    tmp_path: Path, z: float, mu: float
+) -> None:
+    """MoorPy's ``test_multiseg_seabed``: two junctions on the laid part of the chain
+    (placed as MoorPy places them, or above), held on the seabed's plane (the seabed's
+    reaction across it, their motion along it); every point balanced by the lines and
+    the seabed to the system's tolerance. With friction the middle chain, lying wholly
+    on the seabed between the two junctions, is pulled from the fairlead's side, as the
+    single line's laid part."""
     anchor, fair = _fixed([-800.0, 0.0, -200.0]), _fixed([0.0, 0.0, 0.0])
     points = {"a": anchor, "m1": _free([-700.0, 0.0, z]), "m2": _free([-600.0, 0.0, z]), "f": fair}
     lines = {"l1": ("a", "m1", 100.0), "l2": ("m1", "m2", 100.0), "l3": ("m2", "f", 660.0)}
-    three = run_study(tmp_path, _study("three", 200.0, points, lines))
+    three = run_study(tmp_path, _study("three", 200.0, points, lines, friction=mu))
     one = run_study(
-        tmp_path, _study("whole", 200.0, {"a": anchor, "f": fair}, {"l": ("a", "f", 860.0)})
+        tmp_path,
+        _study("whole", 200.0, {"a": anchor, "f": fair}, {"l": ("a", "f", 860.0)}, friction=mu),
     )
     assert int(three["status"]) == 0, str(three["message"].values)
     a1, b1, big = _ends(one)
@@ -268,24 +275,96 @@ def test_a_clump_resting_on_the_seabed_is_the_clump_on_the_line(
     assert two["point_seabed_force"].values[0, 2] == pytest.approx(weight, rel=1e-8)
 
 
-def test_a_point_resting_on_the_seabed_with_friction_is_refused_by_name(tmp_path: Path) -> None:
-    points = {
-        "a": _fixed([-800.0, 0.0, -200.0]),
-        "m": _free([-700.0, 0.0, -190.0]),
-        "f": _fixed([0.0, 0.0, 0.0]),
+def _junction(tmp_path: Path, name: str, length: float, split: float, mass: float, **kw: object):  # noqa: ANN202
+    """The chain of ``length`` [m] from the anchor to the fairlead as one line with a
+    clump of ``mass`` [kg] at ``split`` [m], and as two lines joined at a free point
+    carrying that clump (``kw["swap"]``: each line defined from its other end)."""
+    anchor, fair = _fixed([-800.0, 0.0, -200.0]), _fixed([0.0, 0.0, 0.0])
+    env = {"fluid": {"density": 1025.0}, "gravity": 9.81, "depth": 200.0}
+    env["seabed"] = {"friction": kw["friction"]}
+    segs = [{"length": split, **SEG}, {"length": length - split, **SEG}]
+    line = {"segments": segs, "attachments": [{"s": split, "mass": mass}]}
+    one = {
+        "name": f"{name}1",
+        "environment": env,
+        "line": line,
+        "analysis": {"static": {"nodes": 21}},
     }
-    ds = _failed(
-        tmp_path,
-        _study(
-            "rubbing",
-            200.0,
-            points,
-            {"l1": ("a", "m", 100.0), "l2": ("m", "f", 760.0)},
-            friction=0.5,
-        ),
+    one["ends"] = {"a": anchor, "b": fair}
+    lines = {"l1": ("a", "m", split), "l2": ("m", "f", length - split)}
+    if kw.get("swap"):
+        lines = {k: (b, a, x) for k, (a, b, x) in lines.items()}
+    pts = {"a": anchor, "m": _free([-800.0 + 0.9 * split, 0.0, -150.0], mass=mass), "f": fair}
+    two = _study(f"{name}2", 200.0, pts, lines, friction=kw["friction"])
+    return run_study(tmp_path, yaml.safe_dump(one, sort_keys=False)), run_study(tmp_path, two)
+
+
+@pytest.mark.parametrize(
+    ("friction", "length", "split", "mass"),
+    [(0.0, 927.0, 373.0, 2000.0), (0.5, 927.0, 373.0, 2000.0), (1.0, 927.0, 373.0, 2000.0)]
+    + [(1.0, 927.0, 373.0, 0.0), (0.5, 951.0, 501.0, 10000.0)],
+)
+def test_a_chain_split_at_a_junction_resting_on_the_seabed_is_the_one_line(
+    tmp_path: Path, friction: float, length: float, split: float, mass: float
+) -> None:
+    """MoorPy's way to write a two-material chain, its junction (a clump) resting on the
+    laid part, with seabed friction: each line takes friction as its own catenary does,
+    from its touchdown towards its end on the seabed (the anchor chain, lying wholly on
+    the seabed, pulled at the junction), and the junction, as the single line's clump on
+    its laid part, the seabed's reaction and mu times it against the pull. So the pull
+    is the one line's with the clump attached, to the solvers' tolerance (1e-9 of the
+    tension; asserted 1e-8, observed 1e-13). In the last case friction takes the whole
+    pull before the junction: the anchor chain lies straight at its length without
+    tension, where the single line has it. The junction's own friction (mu times its
+    weight, at most the pull) is in ``point_seabed_force`` beside the reaction."""
+    one, two = _junction(tmp_path, "chain", length, split, mass, friction=friction)
+    assert int(one["status"]) == 0 and int(two["status"]) == 0, str(two["message"].values)
+    a2, b2, big = _ends(two)
+    np.testing.assert_allclose(a2, one["force_a"].values, atol=1e-8 * big)
+    np.testing.assert_allclose(b2, one["force_b"].values, atol=1e-8 * big)
+    assert two["point_position"].values[0, 2] == -200.0  # resting on the seabed
+    seabed, weight = two["point_seabed_force"].values[0], mass * 9.81  # no volume
+    assert seabed[2] == pytest.approx(weight, rel=1e-8)
+    assert -friction * weight * (1 + 1e-12) <= seabed[0] <= 0.0  # against the pull, +x
+    if mass == 10000.0:  # held where the anchor chain lies straight at its length
+        assert float(two["tension_a"].values[0]) == 0.0 == float(one["tension_a"])
+        assert two["point_position"].values[0, 0] == pytest.approx(-800.0 + split, abs=1e-6)
+
+
+@pytest.mark.parametrize("friction", [0.5, 1.0])
+def test_a_split_chain_defined_from_the_other_ends_pulls_the_same(
+    tmp_path: Path, friction: float
+) -> None:
+    """MoorPy's invariance (a line defined A to B equals the same line B to A) where it
+    matters with friction: which end of the anchor chain lying wholly on the seabed is
+    pulled, and which way friction acts along the laid chain, follow the points (the
+    moving end pulled, the fixed one anchored), not the order the ends are written in."""
+    _, two = _junction(tmp_path, "ab", 927.0, 373.0, 2000.0, friction=friction)
+    _, owt = _junction(tmp_path, "ba", 927.0, 373.0, 2000.0, friction=friction, swap=True)
+    assert int(two["status"]) == 0 and int(owt["status"]) == 0, str(owt["message"].values)
+    big = float(two["tension_b"].max())
+    for f, g in (("force_a", "force_b"), ("force_b", "force_a")):
+        np.testing.assert_allclose(owt[g].values, two[f].values, atol=1e-8 * big)
+    np.testing.assert_allclose(
+        owt["tension"].values[:, ::-1], two["tension"].values, atol=1e-8 * big
     )
+
+
+def test_a_laid_stretch_between_two_suspended_parts_with_friction_is_refused_by_name(
+    tmp_path: Path,
+) -> None:
+    """The U of a chain between two floats, its bottom point resting on the seabed (by
+    the catenary frictionless above): with friction, which way it acts along the laid
+    stretch between the two suspended parts is not determined by the statics."""
+    ends = {"a1": _fixed([-200.0, 0.0, -100.0]), "a2": _fixed([200.0, 0.0, -100.0])}
+    f1, f2 = _free([-100.0, 0.0, -50.0], volume=50.0), _free([100.0, 0.0, -40.0], volume=50.0)
+    four = {"l1": ("a1", "fl1", 120.0), "l2": ("fl1", "mid", 125.0)}
+    four |= {"l3": ("mid", "fl2", 125.0), "l4": ("fl2", "a2", 120.0)}
+    points = {**ends, "fl1": f1, "mid": _free([0.0, 0.0, -100.0]), "fl2": f2}
+    ds = _failed(tmp_path, _study("rubbing", 100.0, points, four, friction=0.5))
     message = str(ds["message"].values)
     assert "friction 0.5" in message and "friction: 0" in message
+    assert "suspended parts" in message and "mid" in message
     assert np.isnan(ds["tension_a"].values).all()
 
 
@@ -328,3 +407,35 @@ def test_a_floating_body_with_a_waterplane_returns_to_its_symmetric_equilibrium(
     weight = 1e6 * 9.81
     assert abs(rho_g * 1e6 * pose[2] - (rho_g * 1e3 - weight + lines_force[2])) <= 1e-9 * weight
     assert -1e-3 < pose[2] < 0.0  # the lines pull it down by about 0.76 mm
+
+
+@pytest.mark.parametrize(
+    ("mu", "reach"), [(0.0, 300.1), (0.5, 300.01), (1.0, 300.05), (0.5, 300.2)]
+)
+def test_a_line_lying_wholly_on_the_seabed_pulled_at_one_end_is_moorpys(
+    mu: float, reach: float
+) -> None:
+    """The anchor chain of a split chain, lying wholly on the seabed and pulled at its
+    junction (:func:`laid_pulled`), against MoorPy's own catenary for such a line (ZF = 0,
+    CB = mu): the pulled end's tension and the anchor's, the friction taking part of the
+    pull (300.2 m) or all of it before the anchor (300.01, 300.05 m). Both are closed
+    forms solved to round-off: 1e-9 of the tension (observed 1e-12)."""
+    from moorpy.Catenary import catenary
+
+    from cablestudy.analyses.system import system_model
+    from cablestudy.statics.seabed import seabed_of
+    from cablestudy.statics.semi_analytic_shape import laid_pulled
+    from cablestudy.study.grid import expand_cases
+    from cablestudy.study.loader import parse_study_text
+
+    points = {"a": _fixed([0.0, 0.0, -200.0]), "b": _fixed([reach, 0.0, -200.0])}
+    text = _study("laid", 200.0, points, {"l": ("a", "b", 300.0)}, friction=mu)
+    prob = system_model(expand_cases(parse_study_text(text, "laid"))[1][0].study).lines[0].problem
+    ends = (np.array([0.0, 0.0, -200.0]), np.array([reach, 0.0, -200.0]))
+    ours, _ = laid_pulled(prob.line, ends, seabed_of(prob.medium), np.linspace(0, 300, 5), 1)
+    fa, _, fb, _, _ = catenary(
+        reach, 0.0, 300.0, SEG["axial_stiffness"], prob.line.weight[0], CB=mu
+    )
+    np.testing.assert_allclose(
+        [ours.force_a[0], ours.force_b[0]], [fa, fb], rtol=0, atol=1e-9 * -fb
+    )
