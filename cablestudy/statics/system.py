@@ -224,6 +224,9 @@ def _solve_lines(
     return results, force, K
 
 
+_UNBALANCED = "free-point equilibrium: the verified lines"
+
+
 def _dof_index(mask: np.ndarray) -> np.ndarray:
     return (3 * np.flatnonzero(mask)[:, None] + np.arange(3)).ravel()
 
@@ -259,7 +262,14 @@ def solve_system(
             if fast is not None:
                 return fast
             fallback.append(why)
-        return _solve(sys, solver, deadline, free_mask, verified=not trial)
+        try:
+            return _solve(sys, solver, deadline, free_mask, verified=not trial)
+        except SystemFailure as exc:
+            # lines sampled at their ends may hang through the seabed unseen: the verified
+            # ones do not balance at the Newton's solution; again at the study's nodes
+            if not exc.message.startswith(_UNBALANCED):
+                raise
+            return _solve(sys, solver, deadline, free_mask, verified=not trial, sampled=False)
 
     try:
         if system.body_free.size and np.any(system.body_free):
@@ -299,8 +309,10 @@ def _solve(
     free_mask: np.ndarray,
     *,
     verified: bool = True,
+    sampled: bool = True,
 ) -> SystemResult:
-    """The free points' Newton (see :func:`solve_system`). ``verified=False``: a trial
+    """The free points' Newton (see :func:`solve_system`); ``sampled``: the cable
+    solver's lines at their ends only in its trials (still water). ``verified=False``: a trial
     of the free-body Newton where a line would be slack, the lines at the solution as
     the Newton left them (unverified, slack lines by their stand-ins,
     :mod:`.system_slack`); never an answer (:func:`solve_free_bodies` solves its
@@ -317,7 +329,7 @@ def _solve(
     # shape is wanted at the solution (the discrete model's nodes are its mesh, and the
     # check of a line in a current sums its drag over the samples: both kept)
     still = not any(ln.problem.medium.has_current for ln in system.lines)
-    if getattr(solver, "name", "") == "catenary" and still:
+    if getattr(solver, "name", "") == "catenary" and still and sampled:
         system = replace(
             system,
             lines=tuple(
@@ -469,8 +481,7 @@ def _solve(
             if np.any(push > bar * scale):
                 raise SystemFailure(
                     STATUS_NOT_CONVERGED,
-                    "free-point equilibrium: the verified lines lift a point the Newton "
-                    "left resting on the seabed",
+                    f"{_UNBALANCED} lift a point the Newton left resting on the seabed",
                 )
             reaction = np.zeros((len(system.point_names), 3))
             reaction[free_mask] = -push[:, None] * plane.normal + 0.0  # no signed zeros
@@ -481,7 +492,7 @@ def _solve(
         if not final_res <= bar:
             raise SystemFailure(
                 STATUS_NOT_CONVERGED,
-                f"free-point equilibrium: the verified lines at the Newton's solution leave "
+                f"{_UNBALANCED} at the Newton's solution leave "
                 f"a net force of {final_res:.3g} of the largest tension (tolerance "
                 f"{system.tolerance:.3g})",
             )
