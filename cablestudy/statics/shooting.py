@@ -100,6 +100,7 @@ from .base import (
     StaticProblem,
     StaticResult,
 )
+from .contact_pin import arch_refusal
 from .shooting_ode import (
     _Env,
     _Integrator,
@@ -659,6 +660,18 @@ class ShootingSolver(_StartGuesses):
         if start.laid is not None:
             assert st.bed is not None
             laid = start.s0
+            why = arch_refusal(
+                np.array(st.line.att_s),
+                np.array(st.line.att_force),
+                np.array(st.line.ends),
+                np.array(st.line.weight),
+                st.bed.normal,
+                (0.0, laid),
+                "shooting",
+                L if st.reverse else None,
+            )
+            if why:
+                return StaticResult.failed(s_out, STATUS_NO_SOLUTION, why, iterations=iterations)
             dist, tens, _ = _laid_profile(st.line, st.bed, start.laid, start.s0, start.t_tdp, s_loc)
             position[before] = start.origin + dist[before, None] * start.laid
             tension[before] = tens[before]
