@@ -136,7 +136,8 @@ class DiscreteSolver:
                     break
                 x = step.position
             result = step if k == LIFT_STEPS else result
-        return _match_mooring_end(problem, disc, x0, start, free, end_force, deadline, result)
+        args = (problem, disc, x0, start, free, end_force, deadline, result, carried)
+        return _match_mooring_end(*args)
 
 
 #: steps of the continuation on a buoy's lift where Newton cannot take it at once
@@ -174,7 +175,7 @@ def _cable_start(problem: StaticProblem, cable, n_nodes: int, deadline):  # noqa
     return (trial, carried) if trial.success or trial.status == STATUS_TIME_LIMIT else (start, None)
 
 
-def _match_mooring_end(problem, disc, x0, start, free, end_force, deadline, result):  # noqa: ANN001, ANN202
+def _match_mooring_end(problem, disc, x0, start, free, end_force, deadline, result, carried):  # noqa: ANN001, ANN202
     """A mooring end is held where the cable solution puts it, where the discrete line's
     horizontal force differs from the given one by the discretisation error (O(h^2));
     the verification, which asks for the given force, then failed every such case. The
@@ -192,6 +193,7 @@ def _match_mooring_end(problem, disc, x0, start, free, end_force, deadline, resu
     target = -np.asarray(ends[k].force, dtype=float)[:2]  # the line's pull on the end
     scale = max(float(np.linalg.norm(target)), float(np.max(np.abs(result.tension))))
     cable = replace(problem.line, bending_stiffness=np.zeros_like(problem.line.bending_stiffness))
+    cable = cable if carried is None else carried  # the start's line (without a lift)
     step = 1e-6 * problem.line.total_length
     stiffness = np.empty((2, 2))
     for i in range(2):

@@ -326,32 +326,31 @@ def solve_contact(
     (which the seabed would have to pull down), the line is refused by name
     (:func:`.contact_pin.arch_refusal`)."""
     s_up, k_up = first_lift(lay.bounds, lay.point, plane.normal)
-    if k_up < 0:
-        return _solve_contact(lay, q, ends, plane, guess, tol, max_iterations, deadline, False)
-    T_td, s_td = guess
-    start = (T_td, s_td if s_td < s_up else 0.5 * s_up)
-    try:
-        shape = _solve_contact(lay, q, ends, plane, start, tol, max_iterations, deadline, True)
-    except _Failure as exc:
-        if exc.status != STATUS_NOT_CONVERGED:
-            raise
-    else:
-        if shape is None or not _dips(shape, lay, plane, tol):
-            return shape
+    if k_up >= 0:
+        T_td, s_td = guess
+        start = (T_td, s_td if s_td < s_up else 0.5 * s_up)
+        try:
+            shape = _solve_contact(lay, q, ends, plane, start, tol, max_iterations, deadline, True)
+        except _Failure as exc:
+            if exc.status != STATUS_NOT_CONVERGED:
+                raise
+        else:
+            if shape is None or not _dips(shape, lay, plane, tol):
+                return shape
     failed: _Failure | None = None
     try:
         shape = _solve_contact(lay, q, ends, plane, guess, tol, max_iterations, deadline, False)
     except _Failure as exc:
-        if exc.status == STATUS_TIME_LIMIT:
+        if k_up < 0 or exc.status == STATUS_TIME_LIMIT:
             raise
-        failed = exc
-    else:
-        if shape is None or shape.laid_length <= s_up:
-            return shape
+        shape, failed = None, exc
+    laid = lay.total if failed else 0.0 if shape is None else shape.laid_length
     why = arch_refusal(
-        lay.bounds, lay.point, lay.bounds, lay.weight, plane.normal, (0.0, lay.total), "catenary"
+        lay.bounds, lay.point, lay.bounds, lay.weight, plane.normal, (0.0, laid), "catenary"
     )
-    raise _Failure(STATUS_NO_SOLUTION, why, final=True) from failed
+    if why:  # the state lays a load lifting the line, which the seabed cannot hold down
+        raise _Failure(STATUS_NO_SOLUTION, why, final=True) from failed
+    return shape
 
 
 def _held_across(plane: Plane, T_td: np.ndarray, tol: float, it: int, res: float) -> None:

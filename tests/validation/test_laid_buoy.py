@@ -226,3 +226,39 @@ def test_moorpy_case6_w_solves_with_discrete(
     # carrying them (within the resolution at the four touchdowns)
     assert z[20] > -300.0 + 100.0 and float(ds["laid_length"]) > 0.0
     assert R > 0.0 and abs(R - w * float(ds["laid_length"])) < 4.0 * w * h
+
+
+def test_a_buoyant_piece_on_the_laid_stretch(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """20 m of 1 m float (300 kg/m: 5.0 kN/m of lift in water) at s = 290 to 310 m in
+    place of chain: 'catenary' laid it flat (status 11, the seabed pulling it down) and
+    'shooting' too; both now refuse it by name, and 'discrete' lifts it."""
+    float_piece = "{length: 20.0, diameter: 1.0, mass_per_length: 300.0, axial_stiffness: 1.0e9}"
+    text = (
+        _study(
+            "laidfloat",
+            "catenary",
+            "analysis.static.method: [catenary, shooting, discrete]",
+            0.0,
+            0.0,
+        )
+        .replace("    - {length: 300.0,", "    - {length: 290.0,", 1)
+        .replace("    - {length: 600.0,", f"    - {float_piece}\n    - {{length: 590.0,")
+        .replace("  attachments:\n    - {s: 300.0, volume: 0.0}\n", "")
+    )
+    ds = _run(tmp_path, "laidfloat", text)
+    capsys.readouterr()
+    for method in ("catenary", "shooting"):
+        r = ds.sel({"method": method})
+        assert int(r["status"]) == 4 and str(r["message"].values).startswith(
+            "a buoyant piece at s = 290 to 310 m lifts the line off the seabed"
+        ), r["message"].values
+    r = ds.sel({"method": "discrete"})
+    assert int(r["status"]) == 0, r["message"].values
+    s, z = r["s"].values, r["z"].values + DEPTH
+    assert np.all(z[(s > 290.0) & (s < 310.0)] > 0.1)
+    lift = (RHO * np.pi / 4.0 - 300.0) * G * 20.0 + W * 20.0  # the float less the chain
+    R = _seabed_reaction(r, lift)
+    h = LENGTH / 150
+    assert R > 0.0 and abs(R - W * float(r["laid_length"])) < 3.0 * W * h
