@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -147,35 +148,19 @@ def first_lift(bounds: np.ndarray, point: np.ndarray, normal: np.ndarray) -> tup
     return float(bounds[up[0]]), int(up[0])
 
 
-def arch_refusal(  # noqa: PLR0913
-    att_s: np.ndarray,
-    att_force: np.ndarray,
-    ends: np.ndarray,
-    weight: np.ndarray,
-    normal: np.ndarray,
-    laid: tuple[float, float],
-    method: str,
-    length: float | None = None,
-) -> str:
-    """Why a state with one laid stretch cannot be (empty when it can): its laid
-    stretch ``laid`` [m] (from, to; arc lengths, as ``att_s`` and ``ends``, from A, or
-    from the end ``length`` [m] from A) holds an attachment lifting the line
-    (``att_force . normal > 0``) or a buoyant piece (``weight`` < 0 [N/m]). The seabed
+def arch_refusal(lay: Any, normal: np.ndarray, laid: tuple[float, float], method: str) -> str:
+    """Why a state with one laid stretch cannot be (empty when it can): its laid stretch
+    ``laid`` [m] (from, to: arc lengths from A) holds a load lifting the line, a point
+    load of the layout ``lay`` (:class:`.semi_analytic_shape.Layout`) pulling away from
+    the seabed of upward unit ``normal``, or a piece lighter than the fluid. The seabed
     cannot pull it down: the line arches off the seabed there, between two touchdowns."""
-    s, f = np.asarray(att_s, dtype=float), np.reshape(att_force, (-1, 3))
-    lo, hi = laid
-    b = np.asarray(ends, dtype=float)
-    up = np.flatnonzero((s > lo) & (s < hi) & (f @ normal > 0.0))
-    light = np.flatnonzero((np.asarray(weight) < 0.0) & (b[:-1] < hi) & (b[1:] > lo))
+    (lo, hi), b = laid, lay.bounds
+    up = np.flatnonzero((b > lo) & (b < hi) & (lay.point @ normal > 0.0))
+    light = np.flatnonzero((lay.weight < 0.0) & (b[:-1] < hi) & (b[1:] > lo))
     if up.size:
-        x = float(s[up[0]])
-        what = f"a buoy at s = {x if length is None else length - x:.6g} m"
+        what = f"a buoy at s = {b[up[0]]:.6g} m"
     elif light.size:
-        a, b = sorted(
-            float(ends[k]) if length is None else length - float(ends[k])
-            for k in (light[0], light[0] + 1)
-        )
-        what = f"a buoyant piece at s = {a:.6g} to {b:.6g} m"
+        what = f"a buoyant piece at s = {b[light[0]]:.6g} to {b[light[0] + 1]:.6g} m"
     else:
         return ""
     return (

@@ -162,7 +162,7 @@ def _cable_start(problem: StaticProblem, cable, n_nodes: int, deadline):  # noqa
     start = solve(cable, med)
     if start.success or start.status == STATUS_TIME_LIMIT or med.depth is None:
         return start, None
-    if not (np.any(up) or np.any(cable.weight < 0.0)):
+    if not (np.any(up) or np.any(cable.weight < 0.0)):  # nothing lifts it
         return start, None
     force = np.where(up[:, None], 0.0, cable.attachment_force)
     unlifted = replace(cable, weight=np.abs(cable.weight), attachment_force=force)
@@ -192,8 +192,8 @@ def _match_mooring_end(problem, disc, x0, start, free, end_force, deadline, resu
     node = 0 if k == 0 else -1
     target = -np.asarray(ends[k].force, dtype=float)[:2]  # the line's pull on the end
     scale = max(float(np.linalg.norm(target)), float(np.max(np.abs(result.tension))))
-    cable = replace(problem.line, bending_stiffness=np.zeros_like(problem.line.bending_stiffness))
-    cable = cable if carried is None else carried  # the start's line (without a lift)
+    # the start's line (carried: without its lift, whose cable solution exists)
+    cable = carried or replace(problem.line, bending_stiffness=0.0 * problem.line.bending_stiffness)
     step = 1e-6 * problem.line.total_length
     stiffness = np.empty((2, 2))
     for i in range(2):
