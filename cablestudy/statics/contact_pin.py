@@ -148,19 +148,25 @@ def first_lift(bounds: np.ndarray, point: np.ndarray, normal: np.ndarray) -> tup
     return float(bounds[up[0]]), int(up[0])
 
 
-def arch_refusal(lay: Any, normal: np.ndarray, laid: tuple[float, float], method: str) -> str:
+def arch_refusal(
+    lay: Any, normal: np.ndarray, laid: tuple[float, float], method: str, flip: float | None = None
+) -> str:
     """Why a state with one laid stretch cannot be (empty when it can): its laid stretch
-    ``laid`` [m] (from, to: arc lengths from A) holds a load lifting the line, a point
-    load of the layout ``lay`` (:class:`.semi_analytic_shape.Layout`) pulling away from
-    the seabed of upward unit ``normal``, or a piece lighter than the fluid. The seabed
-    cannot pull it down: the line arches off the seabed there, between two touchdowns."""
+    ``laid`` [m] (from, to: arc lengths of the layout ``lay``,
+    :class:`.semi_analytic_shape.Layout`) holds a load lifting the line, a point load
+    pulling away from the seabed of upward unit ``normal``, or a piece lighter than the
+    fluid. The seabed cannot pull it down: the line arches off the seabed there, between
+    two touchdowns. ``flip`` [m]: the line's length where ``lay`` runs from B (the
+    message counts s from A)."""
     (lo, hi), b = laid, lay.bounds
     up = np.flatnonzero((b > lo) & (b < hi) & (lay.point @ normal > 0.0))
     light = np.flatnonzero((lay.weight < 0.0) & (b[:-1] < hi) & (b[1:] > lo))
+    s = b if flip is None else flip - b
     if up.size:
-        what = f"a buoy at s = {b[up[0]]:.6g} m"
+        what = f"a buoy at s = {s[up[0]]:.6g} m"
     elif light.size:
-        what = f"a buoyant piece at s = {b[light[0]]:.6g} to {b[light[0] + 1]:.6g} m"
+        k = light[0]
+        what = f"a buoyant piece at s = {min(s[k], s[k + 1]):.6g} to {max(s[k], s[k + 1]):.6g} m"
     else:
         return ""
     return (

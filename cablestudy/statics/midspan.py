@@ -251,7 +251,7 @@ def solve_midspan(
     along = float(np.linalg.norm(d - (d @ n) * n))
     # an upward load inside (an attachment pulling up, a piece lighter than the fluid)
     # can hold the line off the seabed between two laid stretches, not this one shape
-    why = arch_refusal(lay, n, (0.0, L), "catenary")
+    why = arch_refusal(lay, n, (0.0, L), "catenary", ends.flip)
     if L >= ha + along + hb and why:
         raise _Failure(STATUS_NO_SOLUTION, why, final=True)
     if L >= ha + along + hb:
@@ -347,7 +347,7 @@ def solve_midspan(
             it,
             res,
         )
-    why = arch_refusal(lay, n, (y[2], y[3]), "catenary")
+    why = arch_refusal(lay, n, (y[2], y[3]), "catenary", ends.flip)
     if why:  # a laid stretch the seabed would have to pull down
         raise _Failure(STATUS_NO_SOLUTION, why, it, res, final=True)
     shape = _shape(parts, ends.rA)

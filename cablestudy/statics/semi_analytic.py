@@ -273,6 +273,7 @@ class SemiAnalyticSolver:
         else:
             s_eval = s
         ends = _ends(a, b)
+        ends.flip = L if reverse else None
         grounded = False
         if plane is not None:
             for label, pos in (("A", ends.rA), ("B", ends.rB)):

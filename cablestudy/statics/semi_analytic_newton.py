@@ -345,7 +345,7 @@ def solve_contact(
             raise
         shape, failed = None, exc
     laid = lay.total if failed else 0.0 if shape is None else shape.laid_length
-    why = arch_refusal(lay, plane.normal, (0.0, laid), "catenary")
+    why = arch_refusal(lay, plane.normal, (0.0, laid), "catenary", ends.flip)
     if why:  # the state lays a load lifting the line, which the seabed cannot hold down
         raise _Failure(STATUS_NO_SOLUTION, why, final=True) from failed
     return shape
