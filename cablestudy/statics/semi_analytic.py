@@ -398,7 +398,7 @@ class SemiAnalyticSolver:
                         lay, q, ends, plane, guess, tol=tol, max_iterations=maxit, deadline=deadline
                     )
                 except _Failure as exc:  # the usual path below decides, as before
-                    if exc.status == STATUS_TIME_LIMIT:
+                    if exc.status == STATUS_TIME_LIMIT or exc.final:  # final: the same again
                         raise
                     cshape = None
                 if cshape is not None:
