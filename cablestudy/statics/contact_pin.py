@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -145,3 +146,30 @@ def first_lift(bounds: np.ndarray, point: np.ndarray, normal: np.ndarray) -> tup
     if not up.size:
         return math.inf, -1
     return float(bounds[up[0]]), int(up[0])
+
+
+def arch_refusal(
+    lay: Any, normal: np.ndarray, laid: tuple[float, float], method: str, flip: float | None = None
+) -> str:
+    """Why a state with one laid stretch cannot be (empty when it can): its laid stretch
+    ``laid`` [m] (from, to: arc lengths of the layout ``lay``,
+    :class:`.semi_analytic_shape.Layout`) holds a load lifting the line, a point load
+    pulling away from the seabed of upward unit ``normal``, or a piece lighter than the
+    fluid. The seabed cannot pull it down: the line arches off the seabed there, between
+    two touchdowns. ``flip`` [m]: the line's length where ``lay`` runs from B (the
+    message counts s from A)."""
+    (lo, hi), b = laid, lay.bounds
+    up = np.flatnonzero((b > lo) & (b < hi) & (lay.point @ normal > 0.0))
+    light = np.flatnonzero((lay.weight < 0.0) & (b[:-1] < hi) & (b[1:] > lo))
+    s = b if flip is None else flip - b
+    if up.size:
+        what = f"a buoy at s = {s[up[0]]:.6g} m"
+    elif light.size:
+        k = light[0]
+        what = f"a buoyant piece at s = {min(s[k], s[k + 1]):.6g} to {max(s[k], s[k + 1]):.6g} m"
+    else:
+        return ""
+    return (
+        f"{what} lifts the line off the seabed between two touchdowns; method '{method}' "
+        "models one laid stretch; method 'discrete' models it"
+    )

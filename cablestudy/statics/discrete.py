@@ -60,6 +60,7 @@ from .base import (
     StaticResult,
 )
 from .line_state import DiscreteState
+from .seabed import seabed_of
 
 
 class DiscreteSolver:
@@ -83,14 +84,11 @@ class DiscreteSolver:
             discretise_nodes,
             uniform_nodes,
         )
-        from .semi_analytic import SemiAnalyticSolver
 
         line, med = problem.line, problem.medium
         s = uniform_nodes(line, max(problem.n_nodes - 1, line.length.size))
         cable = replace(line, bending_stiffness=np.zeros_like(line.bending_stiffness))
-        start = SemiAnalyticSolver().solve(
-            replace(problem, line=cable, n_nodes=s.size), deadline=deadline
-        )
+        start, carried = _cable_start(problem, cable, s.size, deadline)
         if not start.success:
             return start
         x0 = np.stack([np.interp(s, start.s, start.position[:, k]) for k in range(3)], 1)
@@ -127,10 +125,57 @@ class DiscreteSolver:
         )
         disc = discretise_nodes(line, med, s, extras)
         result = _solve_discrete(problem, disc, x0.copy(), start, free, end_force, deadline)
-        return _match_mooring_end(problem, disc, x0, start, free, end_force, deadline, result)
+        if carried is not None and result.status == STATUS_NOT_CONVERGED:
+            # continuation on the lift, from the loads the start carries to the full ones
+            base = discretise_nodes(carried, med, s, extras).force
+            step, x = start, x0
+            for k in range(1, LIFT_STEPS + 1):
+                part = replace(disc, force=base + k / LIFT_STEPS * (disc.force - base))
+                step = _solve_discrete(problem, part, x.copy(), step, free, end_force, deadline)
+                if not step.success:
+                    break
+                x = step.position
+            result = step if k == LIFT_STEPS else result
+        args = (problem, disc, x0, start, free, end_force, deadline, result, carried)
+        return _match_mooring_end(*args)
 
 
-def _match_mooring_end(problem, disc, x0, start, free, end_force, deadline, result):  # noqa: ANN001, ANN202
+#: steps of the continuation on a buoy's lift where Newton cannot take it at once
+LIFT_STEPS = 4
+
+
+def _cable_start(problem: StaticProblem, cable, n_nodes: int, deadline):  # noqa: ANN001, ANN202
+    """The cable solution (method ``catenary``, without EI) Newton starts from. A line
+    that a buoy or a buoyant piece lifts off the seabed between two touchdowns has
+    none (that method models one laid stretch and refuses it by name): then the same
+    line without its lift (attachments pulling up lose their force, buoyant pieces
+    weigh what they lift), or, where that lies slack on the seabed, the line hanging
+    free through the seabed, its nodes below it put onto it; Newton raises the arch.
+    Returns the start and the line whose loads it carries (None: ``cable``'s own)."""
+    from .semi_analytic import SemiAnalyticSolver
+
+    def solve(line, medium) -> StaticResult:  # noqa: ANN001
+        p = replace(problem, line=line, medium=medium, n_nodes=n_nodes)
+        return SemiAnalyticSolver().solve(p, deadline=deadline)
+
+    med, up = problem.medium, cable.attachment_force[:, 2] > 0.0
+    start = solve(cable, med)
+    if start.success or start.status == STATUS_TIME_LIMIT or med.depth is None:
+        return start, None
+    if not (np.any(up) or np.any(cable.weight < 0.0)):  # nothing lifts it
+        return start, None
+    force = np.where(up[:, None], 0.0, cable.attachment_force)
+    unlifted = replace(cable, weight=np.abs(cable.weight), attachment_force=force)
+    trial, carried = solve(unlifted, med), unlifted
+    if not trial.success and trial.status != STATUS_TIME_LIMIT:
+        trial, carried = solve(cable, replace(med, depth=None)), None
+        plane = seabed_of(med)
+        below = np.minimum(plane.height_above(trial.position), 0.0)
+        trial.position = trial.position - below[:, None] * plane.normal
+    return (trial, carried) if trial.success or trial.status == STATUS_TIME_LIMIT else (start, None)
+
+
+def _match_mooring_end(problem, disc, x0, start, free, end_force, deadline, result, carried):  # noqa: ANN001, ANN202
     """A mooring end is held where the cable solution puts it, where the discrete line's
     horizontal force differs from the given one by the discretisation error (O(h^2));
     the verification, which asks for the given force, then failed every such case. The
@@ -147,7 +192,8 @@ def _match_mooring_end(problem, disc, x0, start, free, end_force, deadline, resu
     node = 0 if k == 0 else -1
     target = -np.asarray(ends[k].force, dtype=float)[:2]  # the line's pull on the end
     scale = max(float(np.linalg.norm(target)), float(np.max(np.abs(result.tension))))
-    cable = replace(problem.line, bending_stiffness=np.zeros_like(problem.line.bending_stiffness))
+    # the start's line (carried: without its lift, whose cable solution exists)
+    cable = carried or replace(problem.line, bending_stiffness=0.0 * problem.line.bending_stiffness)
     step = 1e-6 * problem.line.total_length
     stiffness = np.empty((2, 2))
     for i in range(2):

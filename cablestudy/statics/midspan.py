@@ -26,6 +26,7 @@ import time
 import numpy as np
 
 from .base import STATUS_NO_SOLUTION, STATUS_NOT_CONVERGED, STATUS_TIME_LIMIT
+from .contact_pin import arch_refusal
 from .law_pieces import piece_increments
 from .seabed import Plane, _law_stretch
 from .semi_analytic_shape import Ends, Layout, Shape, _Failure, _suspended
@@ -248,23 +249,11 @@ def solve_midspan(
     hb = float(plane.height_above(ends.rB))  # type: ignore[arg-type]
     d = ends.rB - ends.rA  # type: ignore[operator]
     along = float(np.linalg.norm(d - (d @ n) * n))
-    # arc lengths of upward loads: attachments pulling up, pieces lighter than the fluid
-    lifted = np.concatenate(
-        (lay.bounds[1:-1][lay.point[1:-1] @ n > 0.0], lay.bounds[:-1][lay.weight < 0.0])
-    )
-    if L >= ha + along + hb and lifted.size:
-        # an upward load inside can hold the line off the seabed between two laid
-        # stretches: a shape with several contacts, not this one
-        raise _Failure(
-            STATUS_NO_SOLUTION,
-            f"the line ({L:.6g} m) is not shorter than the path down to the seabed, along "
-            f"it and up to the other end ({ha + along + hb:.6g} m) and holds an upward load "
-            f"at s = {float(np.min(lifted)):.6g} m (a buoyant attachment or "
-            "piece): it would rest on the seabed on both sides of it (a W shape); seabed "
-            "contact in several stretches is not modelled (one laid stretch between two "
-            "raised ends is)",
-            final=True,
-        )
+    # an upward load inside (an attachment pulling up, a piece lighter than the fluid)
+    # can hold the line off the seabed between two laid stretches, not this one shape
+    why = arch_refusal(lay, n, (0.0, L), "catenary", ends.flip)
+    if L >= ha + along + hb and why:
+        raise _Failure(STATUS_NO_SOLUTION, why, final=True)
     if L >= ha + along + hb:
         raise _Failure(
             STATUS_NO_SOLUTION,
@@ -358,6 +347,9 @@ def solve_midspan(
             it,
             res,
         )
+    why = arch_refusal(lay, n, (y[2], y[3]), "catenary", ends.flip)
+    if why:  # a laid stretch the seabed would have to pull down
+        raise _Failure(STATUS_NO_SOLUTION, why, it, res, final=True)
     shape = _shape(parts, ends.rA)
     shape.iterations = it
     shape.residual = res

@@ -273,6 +273,7 @@ class SemiAnalyticSolver:
         else:
             s_eval = s
         ends = _ends(a, b)
+        ends.flip = L if reverse else None
         grounded = False
         if plane is not None:
             for label, pos in (("A", ends.rA), ("B", ends.rB)):
@@ -397,7 +398,7 @@ class SemiAnalyticSolver:
                         lay, q, ends, plane, guess, tol=tol, max_iterations=maxit, deadline=deadline
                     )
                 except _Failure as exc:  # the usual path below decides, as before
-                    if exc.status == STATUS_TIME_LIMIT:
+                    if exc.status == STATUS_TIME_LIMIT or exc.final:  # final: the same again
                         raise
                     cshape = None
                 if cshape is not None:

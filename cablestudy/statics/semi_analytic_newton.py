@@ -16,8 +16,9 @@ from .base import (
     STATUS_NO_SOLUTION,
     STATUS_NOT_CONVERGED,
     STATUS_NUMERICAL,
+    STATUS_TIME_LIMIT,
 )
-from .contact_pin import first_lift, pin_jump, pin_map
+from .contact_pin import arch_refusal, first_lift, pin_jump, pin_map
 from .law_pieces import piece_increments
 from .seabed import Plane
 from .semi_analytic_shape import (
@@ -300,19 +301,6 @@ def _slack_hint(lay: Layout, *, current: bool = False) -> str:
     )
 
 
-def _lift_message(lay: Layout, s_up: float, k_up: int, res: float) -> str:
-    """Why the seabed-contact Newton stops at a load lifting the line."""
-    return (
-        "line search failed in the seabed-contact Newton iteration (residual "
-        f"{res:.3g}): the touchdown point runs into the point load at s = {s_up:.6g} m "
-        f"from the seabed end, which lifts the line ({float(lay.point[k_up, 2]):.4g} N "
-        "upwards, a buoyancy module): the line would lie on the seabed past it, the "
-        "module resting on the seabed or the line arching off it between two laid "
-        "stretches, which this method does not model (one laid part from the anchor); "
-        "method 'discrete' models it"
-    )
-
-
 def solve_contact(
     lay: Layout,
     q: np.ndarray,
@@ -334,30 +322,33 @@ def solve_contact(
     not exist (Newton held at the load) or its suspended line dips below the seabed
     (the modules' stretch would rest on the seabed, or arch off it between two laid
     stretches, which one laid part from the anchor cannot represent), the unbounded
-    Newton from the given guess answers instead, as before: its state lays the load,
-    and the whole-line verification (:mod:`.verify`) reports the seabed pulling."""
+    Newton from the given guess answers instead: if it fails or its state lays the load
+    (which the seabed would have to pull down), the line is refused by name
+    (:func:`.contact_pin.arch_refusal`)."""
     s_up, k_up = first_lift(lay.bounds, lay.point, plane.normal)
-    if k_up < 0:
-        return _solve_contact(lay, q, ends, plane, guess, tol, max_iterations, deadline, False)
-    T_td, s_td = guess
-    start = (T_td, s_td if s_td < s_up else 0.5 * s_up)
+    if k_up >= 0:
+        T_td, s_td = guess
+        start = (T_td, s_td if s_td < s_up else 0.5 * s_up)
+        try:
+            shape = _solve_contact(lay, q, ends, plane, start, tol, max_iterations, deadline, True)
+        except _Failure as exc:
+            if exc.status != STATUS_NOT_CONVERGED:
+                raise
+        else:
+            if shape is None or not _dips(shape, lay, plane, tol):
+                return shape
+    failed: _Failure | None = None
     try:
-        shape = _solve_contact(lay, q, ends, plane, start, tol, max_iterations, deadline, True)
+        shape = _solve_contact(lay, q, ends, plane, guess, tol, max_iterations, deadline, False)
     except _Failure as exc:
-        if exc.status != STATUS_NOT_CONVERGED or "runs into the point load" not in str(exc):
+        if k_up < 0 or exc.status == STATUS_TIME_LIMIT:
             raise
-        shape = None
-        bounded_failure: _Failure | None = exc
-    else:
-        bounded_failure = None
-        if shape is None or not _dips(shape, lay, plane, tol):
-            return shape
-    try:
-        return _solve_contact(lay, q, ends, plane, guess, tol, max_iterations, deadline, False)
-    except _Failure:
-        if bounded_failure is not None:
-            raise bounded_failure from None
-        raise
+        shape, failed = None, exc
+    laid = lay.total if failed else 0.0 if shape is None else shape.laid_length
+    why = arch_refusal(lay, plane.normal, (0.0, laid), "catenary", ends.flip)
+    if why:  # the state lays a load lifting the line, which the seabed cannot hold down
+        raise _Failure(STATUS_NO_SOLUTION, why, final=True) from failed
+    return shape
 
 
 def _held_across(plane: Plane, T_td: np.ndarray, tol: float, it: int, res: float) -> None:
@@ -551,7 +542,7 @@ def _solve_contact(
             lam *= 0.5
         else:
             if k_up >= 0 and y[2] >= sig_max - 1e-9 * L:
-                raise _Failure(STATUS_NOT_CONVERGED, _lift_message(lay, s_up, k_up, res), it, res)
+                raise _Failure(STATUS_NOT_CONVERGED, "the touchdown point runs into a buoy")
             hint = ""
             if float(np.linalg.norm(y[:2])) < 1e-3 * Fscale:
                 hint = _slack_hint(lay)

@@ -224,6 +224,8 @@ class Ends:
     rB: np.ndarray | None = None
     force: np.ndarray | None = None
     zB: float = 0.0
+    #: the line's length [m] where A here is the problem's B (messages count s from A)
+    flip: float | None = None
 
 
 def _check_deadline(deadline: float | None, it: int, what: str) -> None:

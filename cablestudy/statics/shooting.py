@@ -100,6 +100,9 @@ from .base import (
     StaticProblem,
     StaticResult,
 )
+from .contact_pin import arch_refusal
+from .seabed import seabed_of
+from .semi_analytic_shape import make_layout
 from .shooting_ode import (
     _Env,
     _Integrator,
@@ -179,7 +182,7 @@ class ShootingSolver(_StartGuesses):
         if missing:
             return StaticResult.failed(s_out, STATUS_NO_SOLUTION, "; ".join(missing))
         try:
-            return self._solve(problem, s_out, deadline).check_finite()
+            result = self._solve(problem, s_out, deadline).check_finite()
         except _TimeUp:
             return StaticResult.failed(
                 s_out, STATUS_TIME_LIMIT, "time limit reached in the shooting solver"
@@ -188,6 +191,14 @@ class ShootingSolver(_StartGuesses):
             return StaticResult.failed(
                 s_out, STATUS_NUMERICAL, f"shooting solver: {type(exc).__name__}: {exc}"
             )
+        plane, L = seabed_of(problem.medium), problem.line.total_length
+        if result.laid_length > 0.0 and plane is not None:  # laid from the lower end
+            low = plane.height_above(result.position[[0, -1]])
+            laid = (0.0, result.laid_length) if low[0] <= low[1] else (L - result.laid_length, L)
+            why = arch_refusal(make_layout(problem.line), plane.normal, laid, "shooting")
+            if why:
+                return StaticResult.failed(s_out, STATUS_NO_SOLUTION, why)
+        return result
 
     # -- set-up ---------------------------------------------------------------------
     def _setup(self, problem: StaticProblem) -> _Setup:

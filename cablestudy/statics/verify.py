@@ -344,6 +344,11 @@ def _checks(
             f_allow + resolution,
             "N",
         )
+        # the seabed only pushes: a buoy or a buoyant piece inside a laid stretch would
+        # need it to pull the line down (a lumped line's node lifts within its resolution)
+        pull = np.sum(np.where(inner, np.maximum(-normal_w * h, 0.0), 0.0), axis=1)
+        pull = pull + _points_in(pieces, s, inner, nrm)
+        put("seabed reaction pulling a laid stretch down", pull, f_allow + resolution, "N")
     # 2. ends
     reach = np.maximum(pieces.bounds[:, -1], np.max(np.abs(position), axis=(1, 2), initial=0.0))
     x_allow = MULTIPLE * tol * reach
@@ -409,12 +414,15 @@ def pieces_weight_at(s: np.ndarray, pieces: Pieces) -> np.ndarray:
     return np.take_along_axis(pieces.weight, k, axis=1)
 
 
-def _points_in(pieces: Pieces, s: np.ndarray, mask: np.ndarray) -> np.ndarray:
-    """Sum over the point loads lying in the masked sample intervals of their downward
-    normal parts (an upper bound of what the seabed carries of them) [N] (N,)."""
+def _points_in(
+    pieces: Pieces, s: np.ndarray, mask: np.ndarray, up: np.ndarray | None = None
+) -> np.ndarray:
+    """Sum over the point loads lying in the masked sample intervals of their magnitudes
+    (an upper bound of what the seabed carries of them), or given the seabed's normal
+    ``up``, of their parts lifting the line off it [N] (N,)."""
     b = pieces.bounds
     out = np.zeros(b.shape[0])
-    mag = np.linalg.norm(pieces.point, axis=2)
+    mag = np.linalg.norm(pieces.point, axis=2) if up is None else np.maximum(pieces.point @ up, 0)
     for p in range(b.shape[1]):
         inside = (s[:, :-1] <= b[:, p, None]) & (b[:, p, None] <= s[:, 1:]) & mask
         out += np.where(np.any(inside, axis=1), mag[:, p], 0.0)

@@ -142,13 +142,14 @@ def test_a_buoy_on_the_laid_part_is_refused_on_both_paths() -> None:
     """The three-piece line anchored at B: its laid part (about 120 m from B) holds the
     15 kN buoy at s = 200 m, which would lift some 90 m of the 164 N/m wire off the
     seabed. The laid-part model keeps the line straight on the seabed, so the whole-line
-    balance needs the seabed to pull the line down there: not verified (status 11), by
-    the kernel (handed on) and by the general solver alike."""
+    balance needs the seabed to pull the line down there: the kernel hands it on, and the
+    general solver refuses it by name (status 4; it was status 11, not verified), the
+    buoy's s counted from A although the line is solved from B."""
     prob = _problem(
         slope=3.0, heading=30.0, mu=0.5, multi=True, xb=_reach(230.0, True), yb=60.0, at_b=True
     )
     assert contact_end(prob) == "b"
-    _assert_refused_by_both_paths(prob, 11, "seabed reaction admissible")
+    _assert_refused_by_both_paths(prob, 4, "a buoy at s = 200 m lifts the line off the seabed")
 
 
 @pytest.mark.parametrize(
