@@ -58,7 +58,9 @@ from .system_model import (
     MooringSystem,
     SystemFailure,
     SystemResult,
+    on_seabed_note,
     point_drag,
+    unpulled_note,
 )
 from .system_slack import slack_forces, slack_result
 from .verify import verified
@@ -351,7 +353,7 @@ def _solve(
     except SystemFailure as exc:
         # a start that puts free points on the seabed: name them
         raise SystemFailure(
-            exc.status, exc.message + _on_seabed(system, free_mask, contact, plane)
+            exc.status, exc.message + on_seabed_note(system, free_mask, contact, plane)
         ) from None
     it = 0
     res = 0.0
@@ -384,11 +386,13 @@ def _solve(
             if res <= system.tolerance:
                 polished = 1
             if it >= system.max_iterations:
+                idle = unpulled_note(system, free_mask, contact, results, scale)
                 raise SystemFailure(
-                    STATUS_NOT_CONVERGED,
+                    STATUS_NO_SOLUTION if idle else STATUS_NOT_CONVERGED,
                     f"free-point equilibrium did not converge in {system.max_iterations} "
                     f"iterations (net force / largest tension {res:.3g}, tolerance "
-                    f"{system.tolerance:.3g}){_on_seabed(system, free_mask, pressed, plane)}",
+                    f"{system.tolerance:.3g}){on_seabed_note(system, free_mask, pressed, plane)}"
+                    f"{idle}",
                 )
             it += 1
             T = _plane_dofs(plane, contact)
@@ -427,10 +431,12 @@ def _solve(
             if found is None:
                 if res <= system.tolerance:
                     break  # round-off: the polishing step cannot reduce it further
+                idle = unpulled_note(system, free_mask, contact, results, scale)
                 raise SystemFailure(
-                    STATUS_NOT_CONVERGED,
+                    STATUS_NO_SOLUTION if idle else STATUS_NOT_CONVERGED,
                     f"line search failed in the free-point equilibrium (net force / "
-                    f"largest tension {res:.3g}){_on_seabed(system, free_mask, pressed, plane)}",
+                    f"largest tension {res:.3g}){on_seabed_note(system, free_mask, pressed, plane)}"
+                    f"{idle}",
                 )
             lam, out = found
             xn = x + lam * step
@@ -523,17 +529,6 @@ def _plane_dofs(plane: Any, contact: np.ndarray) -> np.ndarray | None:
         T[3 * i : 3 * i + 3, j : j + n] = basis if on else np.eye(3)
         j += n
     return T
-
-
-def _on_seabed(
-    system: MooringSystem, free_mask: np.ndarray, pressed: np.ndarray, plane: Any
-) -> str:
-    """The part of a failure's message naming the free points the last Newton step
-    pressed onto the seabed, or its start put there (``pressed``, per free point)."""
-    low = [
-        str(n) for n, p in zip(np.asarray(system.point_names)[free_mask], pressed, strict=True) if p
-    ]
-    return f"; free point {', '.join(low)} is pressed onto or placed on the seabed" if low else ""
 
 
 def _trial(

@@ -146,3 +146,38 @@ def point_drag(system: MooringSystem, pos: np.ndarray) -> tuple[np.ndarray, np.n
         dfdz = c[i] * (speed * np.eye(3) + np.outer(U, U) / speed) @ slope
         K[3 * i : 3 * i + 3, 3 * i + 2] -= dfdz
     return force, K
+
+
+def on_seabed_note(
+    system: MooringSystem, free_mask: np.ndarray, pressed: np.ndarray, plane: object
+) -> str:
+    """The part of a failure's message naming the free points the last Newton step
+    pressed onto the seabed, or its start put there (``pressed``, per free point)."""
+    low = [
+        str(n) for n, p in zip(np.asarray(system.point_names)[free_mask], pressed, strict=True) if p
+    ]
+    return f"; free point {', '.join(low)} is pressed onto or placed on the seabed" if low else ""
+
+
+def unpulled_note(
+    system: MooringSystem, free_mask: np.ndarray, contact: np.ndarray, results: list, scale: float
+) -> str:
+    """The part of a failure's message naming the free points resting on the seabed that
+    no line pulls (each lies slack there): the statics do not fix where they rest."""
+    idle = [
+        str(system.point_names[i])
+        for i, on in zip(np.flatnonzero(free_mask), contact, strict=True)
+        if on
+        and all(
+            np.linalg.norm(r.force_a if ln.a == i else r.force_b) <= 1e-6 * scale
+            for ln, r in zip(system.lines, results, strict=True)
+            if i in (ln.a, ln.b)
+        )
+    ]
+    if not idle:
+        return ""
+    return (
+        f"; free point {', '.join(idle)} rests on the seabed with every line lying slack "
+        "from it: where it rests is not determined by the statics (shorten a line lying "
+        "from it, or move its anchor)"
+    )
