@@ -118,11 +118,15 @@ def _ours_balance(ds, study: dict, rho_g: float) -> float:  # noqa: ANN001
     return float(np.max(np.abs(net))) / float(np.max(np.abs(np.concatenate([fa, fb]))))
 
 
-@pytest.mark.parametrize(
-    ("seed", "longer"),
-    [(s, (1.003, 1.03)) for s in range(6)] + [(s, (1.02, 1.25)) for s in range(6)],
-)
-def test_random_spread_matches_moorpy(tmp_path: Path, seed: int, longer: tuple) -> None:
+@pytest.mark.parametrize("seed", range(6))
+def test_random_taut_spread_matches_moorpy(tmp_path: Path, seed: int) -> None:
+    check_spread(tmp_path, seed, (1.003, 1.03))
+
+
+def check_spread(tmp_path: Path, seed: int, longer: tuple) -> None:
+    """One random spread mooring through MoorPy and ours (the module's oracles); the
+    slack family runs from its own file (test_system_moorpy_random_slack.py), so that
+    the test workers share the two."""
     text, n_lines = _spread(seed, longer)
     path = tmp_path / f"spread{seed}.dat"
     path.write_text(text)
