@@ -11,6 +11,8 @@ import pytest
 from tests.validation.test_system_moorpy_random import check_spread
 
 
-@pytest.mark.parametrize("seed", range(6))
+# seeds 1, 4, 5: a point no line pulls (refused by name), a slack laid line (refused by
+# name), MoorPy's catenary pulling 62 MN at one end and nothing at the other (ours solves)
+@pytest.mark.parametrize("seed", [1, 4, 5])
 def test_random_slack_spread_matches_moorpy(tmp_path: Path, seed: int) -> None:
     check_spread(tmp_path, seed, (1.02, 1.25))
