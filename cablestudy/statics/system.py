@@ -464,19 +464,10 @@ def _solve(
                 break
         pos = point_positions(system, x)
     T = _plane_dofs(plane, contact)
-    if not verified:
-        body_force, body_stiffness = _bodies(final, pos, force, K, free_mask, T)
-        return SystemResult(
-            lines=results,
-            point_position=pos,
-            body_force=body_force,
-            body_stiffness=body_stiffness,
-            iterations=it,
-            residual=res,
-        )
-    results, force, K = _solve_lines(final, pos, solver, deadline)
     reaction = None
-    if P.size:
+    if verified:
+        results, force, K = _solve_lines(final, pos, solver, deadline)
+    if verified and P.size:
         # the Newton's lines were unverified (the kernels' answers, for speed): the
         # verified lines at the solution must hold the points in equilibrium as well
         net = force[free_mask] + pf
